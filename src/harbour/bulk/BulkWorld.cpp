@@ -1,0 +1,256 @@
+#include "harbour/bulk/BulkWorld.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <tuple>
+
+#include "harbour/core/Assert.h"
+
+namespace harbour::bulk {
+namespace {
+
+// a jaw tip this close above the surface counts as touching it
+constexpr double kGrabTouchTolerance_m = 0.02;
+
+bool pressed_before(const auto& a, const auto& b) { return std::tie(a.grid, a.j, a.i) < std::tie(b.grid, b.j, b.i); }
+
+}  // namespace
+
+BulkWorld::BulkWorld(const Material& material, const BulkWorldSettings& settings)
+    : material_(material), settings_(settings) {}
+
+int BulkWorld::add_grid(const GridSettings& grid, const core::Pose& pose) {
+  grids_.emplace_back(grid, material_, settings_.relaxation);
+  grids_.back().set_pose(pose);
+  return static_cast<int>(grids_.size()) - 1;
+}
+
+int BulkWorld::add_grab(const GrabSettings& grab) {
+  grab_settings_.push_back(grab);
+  GrabState state;
+  state.opening_m = grab.max_opening_m;
+  grabs_.push_back(state);
+  return static_cast<int>(grabs_.size()) - 1;
+}
+
+bool BulkWorld::pour(int grid_id, double x, double y, double volume_m3) {
+  HeightGrid& g = grid(grid_id);
+  const auto cell = g.cell_at(x, y);
+  if (!cell || !(volume_m3 >= 0.0)) return false;
+  g.add_volume(cell->i, cell->j, volume_m3);
+  added_m3_ += volume_m3;
+  return true;
+}
+
+double BulkWorld::add_heap(int grid_id, double x, double y, double volume_m3) {
+  // cone volume V = pi r^2 h / 3 with h = r tan(repose)
+  HeightGrid& g = grid(grid_id);
+  const double tan_repose = std::tan(material_.angle_of_repose_rad);
+  const double radius = std::cbrt(3.0 * volume_m3 / (std::numbers::pi * tan_repose));
+  double added = 0.0;
+  for (int j = 0; j < g.cells_y(); ++j)
+    for (int i = 0; i < g.cells_x(); ++i) {
+      const core::Vec3 c = g.cell_centre(i, j);
+      const double r = std::hypot(c.x - x, c.y - y);
+      if (r >= radius) continue;
+      const double volume = (radius - r) * tan_repose * g.cell_area_m2();
+      g.add_volume(i, j, volume);
+      added += volume;
+    }
+  added_m3_ += added;
+  return added;
+}
+
+ContactResult BulkWorld::contact(const ContactBody& body) {
+  ContactResult result;
+  core::Vec3 weighted_point;
+  double total_force = 0.0;
+  for (int gid = 0; gid < grid_count(); ++gid) {
+    HeightGrid& g = grid(gid);
+    const core::Vec3 normal = g.pose().rotation.column(2);
+    for (const core::Vec3& body_point : body.points) {
+      // penetration of the point below the material surface, along the grid's up axis
+      const core::Vec3 p = body.pose.to_parent(body_point);
+      const core::Vec3 local = g.pose().to_local(p);
+      if (!g.contains(local.x, local.y)) continue;
+      const double penetration = g.surface_height(local.x, local.y) - local.z;
+      if (penetration <= 0.0) continue;
+
+      // highly damped linear spring on depth and its rate, relative to a moving grid; never pulls
+      const core::Vec3 v_body = body.linear_velocity + core::cross(body.angular_velocity, p - body.pose.position);
+      const core::Vec3 v_grid = g.linear_velocity() + core::cross(g.angular_velocity(), p - g.pose().position);
+      const double penetration_rate = -core::dot(v_body - v_grid, normal);
+      const double force = settings_.contact.stiffness_n_per_m * penetration +
+                           settings_.contact.damping_n_s_per_m * penetration_rate;
+      ++result.points_in_contact;
+      result.max_penetration_m = std::max(result.max_penetration_m, penetration);
+      if (force > 0.0) {
+        result.force += normal * force;
+        weighted_point += p * force;
+        total_force += force;
+      }
+
+      // compression: the pressed cell looks higher to the slope rule, so material escapes sideways
+      const auto cell = g.cell_at(local.x, local.y);
+      pressing_.push_back({gid, cell->i, cell->j, material_.compression_gain * penetration});
+    }
+  }
+  result.point = total_force > 0.0 ? weighted_point * (1.0 / total_force) : body.pose.position;
+  return result;
+}
+
+void BulkWorld::update_compression() {
+  // this step's pressed cells (deepest press per cell) replace last step's; unpressed cells relax to zero
+  std::sort(pressing_.begin(), pressing_.end(), [](const PressedCell& a, const PressedCell& b) {
+    return pressed_before(a, b) || (!pressed_before(b, a) && a.height_m > b.height_m);
+  });
+  pressing_.erase(std::unique(pressing_.begin(), pressing_.end(),
+                              [](const PressedCell& a, const PressedCell& b) {
+                                return !pressed_before(a, b) && !pressed_before(b, a);
+                              }),
+                  pressing_.end());
+  for (const PressedCell& old : pressed_)
+    if (!std::binary_search(pressing_.begin(), pressing_.end(), old, pressed_before<PressedCell, PressedCell>))
+      grid(old.grid).set_compression(old.i, old.j, 0.0);
+  for (const PressedCell& now : pressing_) grid(now.grid).set_compression(now.i, now.j, now.height_m);
+  pressed_.swap(pressing_);
+  pressing_.clear();
+}
+
+void BulkWorld::step(double dt_s, std::span<const GrabCommand> grab_commands) {
+  HARBOUR_ASSERT(grab_commands.size() == grabs_.size(), "one command per grab");
+  update_compression();
+  for (std::size_t n = 0; n < grabs_.size(); ++n) step_grab(grab_settings_[n], grabs_[n], grab_commands[n], dt_s);
+  step_parcels(dt_s);
+  for (HeightGrid& g : grids_) {
+    if (full_sweep_)
+      g.relax_full_sweep();
+    else
+      g.relax_active();
+  }
+}
+
+void BulkWorld::step_grab(const GrabSettings& settings, GrabState& state, const GrabCommand& command,
+                          double dt_s) {
+  state.pose = command.pose;
+  state.velocity = command.velocity;
+  const double rate = std::clamp(command.close_rate, -1.0, 1.0);
+  const bool closing = rate > 0.0 && state.opening_m > 0.0;
+  state.digging = closing && dig(settings, state, dt_s);
+  state.opening_m = std::clamp(state.opening_m - rate * settings.max_opening_m / settings.closing_time_s * dt_s, 0.0,
+                               settings.max_opening_m);
+  if (rate < 0.0) state.cut_depth_m = 0.0;
+
+  // an open grab spills through its opening w x W at v0, as a falling parcel
+  if (rate <= 0.0 && state.opening_m > 0.0 && state.load_m3 > 0.0) {
+    const double out = std::min(state.load_m3, state.opening_m * settings.width_m * settings.spill_speed_mps * dt_s);
+    state.load_m3 -= out;
+    unloaded_m3_ += out;
+    parcels_.push_back({state.pose.position, state.velocity, out, std::sqrt(state.opening_m * settings.width_m)});
+  }
+}
+
+double BulkWorld::dig(const GrabSettings& settings, GrabState& state, double dt_s) {
+  // the grid under the jaw tips, if they touch its surface
+  for (int gid = 0; gid < grid_count(); ++gid) {
+    HeightGrid& g = grid(gid);
+    const core::Vec3 tip = g.pose().to_local(state.pose.position);
+    if (!g.contains(tip.x, tip.y) || tip.z > g.surface_height(tip.x, tip.y) + kGrabTouchTolerance_m) continue;
+    if (state.cut_depth_m >= settings.max_depth_m || state.load_m3 >= settings.capacity_m3) return false;
+
+    // cells whose centres lie inside the jaw footprint w x W (grab frame x across, y along the hinge)
+    std::vector<CellIndex>& cells = footprint_;
+    cells.clear();
+    const double half_w = 0.5 * state.opening_m, half_W = 0.5 * settings.width_m;
+    const double reach = std::sqrt(half_w * half_w + half_W * half_W);
+    const int i0 = std::max(0, static_cast<int>((tip.x - reach) / g.cell_size_m()));
+    const int i1 = std::min(g.cells_x() - 1, static_cast<int>((tip.x + reach) / g.cell_size_m()));
+    const int j0 = std::max(0, static_cast<int>((tip.y - reach) / g.cell_size_m()));
+    const int j1 = std::min(g.cells_y() - 1, static_cast<int>((tip.y + reach) / g.cell_size_m()));
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i) {
+        const core::Vec3 in_grab = state.pose.to_local(g.pose().to_parent(g.cell_centre(i, j)));
+        if (std::abs(in_grab.x) <= half_w && std::abs(in_grab.y) <= half_W) cells.push_back({i, j});
+      }
+    if (cells.empty()) return false;
+
+    // one layer v*dt off every cell, never more than the cell holds nor than the grab has room for
+    const double layer = settings.sinking_speed_mps * dt_s;
+    const double room = settings.capacity_m3 - state.load_m3;
+    const double scale = std::min(1.0, room / (static_cast<double>(cells.size()) * layer * g.cell_area_m2()));
+    double taken = 0.0;
+    for (const CellIndex& c : cells) taken += g.remove_layer(c.i, c.j, layer * scale);
+    state.load_m3 += taken;
+    loaded_m3_ += taken;
+    state.cut_depth_m += layer;
+    return true;
+  }
+  return false;
+}
+
+void BulkWorld::step_parcels(double dt_s) {
+  // semi-implicit Euler under gravity; a parcel lands on the first grid whose surface it reaches
+  std::size_t kept = 0;
+  for (Parcel& parcel : parcels_) {
+    parcel.velocity.z -= settings_.gravity_mps2 * dt_s;
+    parcel.position += parcel.velocity * dt_s;
+    if (land(parcel)) continue;
+    if (parcel.position.z < settings_.spill_level_m) {
+      spilled_m3_ += parcel.volume_m3;
+      continue;
+    }
+    parcels_[kept++] = parcel;
+  }
+  parcels_.resize(kept);
+}
+
+bool BulkWorld::land(const Parcel& parcel) {
+  for (HeightGrid& g : grids_) {
+    const core::Vec3 local = g.pose().to_local(parcel.position);
+    if (!g.contains(local.x, local.y) || local.z > g.surface_height(local.x, local.y)) continue;
+
+    // spread evenly over the cells whose centres lie in the parcel's square footprint
+    std::vector<CellIndex>& cells = footprint_;
+    cells.clear();
+    const double half = 0.5 * parcel.footprint_m, size = g.cell_size_m();
+    const int i0 = std::max(0, static_cast<int>(std::ceil((local.x - half) / size - 0.5)));
+    const int i1 = std::min(g.cells_x() - 1, static_cast<int>(std::floor((local.x + half) / size - 0.5)));
+    const int j0 = std::max(0, static_cast<int>(std::ceil((local.y - half) / size - 0.5)));
+    const int j1 = std::min(g.cells_y() - 1, static_cast<int>(std::floor((local.y + half) / size - 0.5)));
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i) cells.push_back({i, j});
+    if (cells.empty()) cells.push_back(*g.cell_at(local.x, local.y));
+    const double share = parcel.volume_m3 / static_cast<double>(cells.size());
+    for (const CellIndex& c : cells) g.add_volume(c.i, c.j, share);
+    return true;
+  }
+  return false;
+}
+
+VolumeBalance BulkWorld::balance() const {
+  VolumeBalance b;
+  for (const HeightGrid& g : grids_) b.in_grids_m3 += g.total_volume_m3();
+  for (const GrabState& s : grabs_) b.in_grabs_m3 += s.load_m3;
+  for (const Parcel& p : parcels_) b.in_flight_m3 += p.volume_m3;
+  b.spilled_m3 = spilled_m3_;
+  b.added_m3 = added_m3_;
+  return b;
+}
+
+std::uint64_t BulkWorld::state_hash() const {
+  core::StateHash hash;
+  for (const HeightGrid& g : grids_) g.hash_into(hash);
+  for (const GrabState& s : grabs_) {
+    hash.add(s.pose);
+    hash.add(s.opening_m);
+    hash.add(s.load_m3);
+    hash.add(s.cut_depth_m);
+  }
+  for (const Parcel& p : parcels_) hash.add(p);
+  hash.add(spilled_m3_);
+  hash.add(added_m3_);
+  return hash.value();
+}
+
+}  // namespace harbour::bulk

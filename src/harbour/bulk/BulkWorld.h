@@ -1,0 +1,118 @@
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "harbour/bulk/Contact.h"
+#include "harbour/bulk/Grab.h"
+#include "harbour/bulk/HeightGrid.h"
+#include "harbour/bulk/Material.h"
+#include "harbour/core/Warnings.h"
+
+namespace harbour::bulk {
+
+/// Settings of a bulk world.
+struct BulkWorldSettings {
+  RelaxationSettings relaxation;
+  ContactSettings contact;
+  double spill_level_m = 0.0;  ///< [m] world z below which falling material outside every grid is spilled
+  double gravity_mps2 = 9.80665;  ///< [m/s^2]
+};
+
+/// Where every cubic metre is: the balance is exact up to rounding.
+struct VolumeBalance {
+  double in_grids_m3 = 0.0;
+  double in_grabs_m3 = 0.0;
+  double in_flight_m3 = 0.0;
+  double spilled_m3 = 0.0;
+  double added_m3 = 0.0;  ///< everything ever poured in
+  /// in_grids + in_grabs + in_flight + spilled - added: zero up to rounding.
+  double discrepancy_m3() const { return in_grids_m3 + in_grabs_m3 + in_flight_m3 + spilled_m3 - added_m3; }
+};
+
+/// Material falling from a grab: a point parcel in free flight.
+struct Parcel {
+  core::Vec3 position;  ///< [m] world
+  core::Vec3 velocity;  ///< [m/s] world
+  double volume_m3 = 0.0;
+  double footprint_m = 0.0;  ///< [m] side of the square it spreads over when it lands
+};
+
+/// One material's bulk simulation: its grids (active regions), grabs and falling material.
+class BulkWorld {
+ public:
+  BulkWorld(const Material& material, const BulkWorldSettings& settings);
+
+  const Material& material() const { return material_; }
+  const BulkWorldSettings& settings() const { return settings_; }
+
+  /// Adds an active region and returns its index.
+  int add_grid(const GridSettings& grid, const core::Pose& pose);
+  HeightGrid& grid(int id) { return grids_[static_cast<std::size_t>(id)]; }
+  const HeightGrid& grid(int id) const { return grids_[static_cast<std::size_t>(id)]; }
+  int grid_count() const { return static_cast<int>(grids_.size()); }
+
+  /// Adds a grab and returns its index.
+  int add_grab(const GrabSettings& grab);
+  const GrabState& grab(int id) const { return grabs_[static_cast<std::size_t>(id)]; }
+  const GrabSettings& grab_settings(int id) const { return grab_settings_[static_cast<std::size_t>(id)]; }
+
+  /// Pours `volume_m3` into the cell under grid-frame (x, y) of grid `grid_id` (a conveyor or an initial pile).
+  /// Returns false, adding nothing, when the point is off the grid.
+  bool pour(int grid_id, double x, double y, double volume_m3);
+
+  /// Builds a relaxed cone of about `volume_m3` at the angle of repose centred at grid-frame (x, y),
+  /// clipped by the grid's walls; returns the volume added [m^3].
+  double add_heap(int grid_id, double x, double y, double volume_m3);
+
+  /// Penalty contact of one body against every grid; sets compression of pressed cells for this step.
+  ContactResult contact(const ContactBody& body);
+
+  /// Advances grabs, falling material and relaxation by `dt_s`; compression is cleared afterwards.
+  void step(double dt_s, std::span<const GrabCommand> grab_commands);
+
+  /// Where the material is now (sums every cell: O(cells), for checks and reports).
+  VolumeBalance balance() const;
+  /// Mass of a volume of this material [kg].
+  double mass_kg(double volume_m3) const { return volume_m3 * material_.bulk_density_kg_m3; }
+  /// Total volume unloaded from grabs so far [m^3] (tonnes handled, for evaluation).
+  double unloaded_m3() const { return unloaded_m3_; }
+  /// Total volume loaded into grabs so far [m^3].
+  double loaded_m3() const { return loaded_m3_; }
+  const std::vector<Parcel>& parcels() const { return parcels_; }
+
+  /// Selects the relaxation used by step(): the active list (default) or the full-sweep reference.
+  void use_full_sweep(bool on) { full_sweep_ = on; }
+
+  const core::Warnings& warnings() const { return warnings_; }
+  std::uint64_t state_hash() const;
+
+ private:
+  void step_grab(GrabSettings const& settings, GrabState& state, const GrabCommand& command, double dt_s);
+  double dig(const GrabSettings& settings, GrabState& state, double dt_s);
+  void step_parcels(double dt_s);
+  bool land(const Parcel& parcel);
+
+  Material material_;
+  BulkWorldSettings settings_;
+  std::vector<HeightGrid> grids_;
+  std::vector<GrabSettings> grab_settings_;
+  std::vector<GrabState> grabs_;
+  std::vector<Parcel> parcels_;
+  struct PressedCell {
+    int grid, i, j;
+    double height_m;
+  };
+  void update_compression();
+  std::vector<PressedCell> pressed_;   // cells compressed during the last step
+  std::vector<PressedCell> pressing_;  // cells the contacts of this step press
+  std::vector<CellIndex> footprint_;   // scratch
+  double added_m3_ = 0.0;
+  double spilled_m3_ = 0.0;
+  double loaded_m3_ = 0.0;
+  double unloaded_m3_ = 0.0;
+  bool full_sweep_ = false;
+  core::Warnings warnings_;
+};
+
+}  // namespace harbour::bulk

@@ -1,0 +1,134 @@
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "harbour/bulk/Material.h"
+#include "harbour/core/StateHash.h"
+#include "harbour/core/Vec3.h"
+
+namespace harbour::bulk {
+
+/// Size of a height grid (settings). The grid frame has its origin at the outer corner of cell (0, 0),
+/// x along i, y along j, z up from the floor; the grid's edges are walls (material stays inside).
+struct GridSettings {
+  int cells_x = 0;           ///< cells along x
+  int cells_y = 0;           ///< cells along y
+  double cell_size_m = 0.1;  ///< [m] side of a square cell
+};
+
+/// Relaxation tuning shared by every grid of a bulk world.
+struct RelaxationSettings {
+  double min_excess_m = 1e-5;            ///< [m] slope excess below which no material moves (ends avalanches)
+  double tilt_quantum_rad = 8.7e-4;      ///< [rad] tilt change (0.05 deg) that re-examines a moving grid
+};
+
+/// Cell coordinates inside a grid.
+struct CellIndex {
+  int i = 0;
+  int j = 0;
+};
+
+/// One active region of bulk material: a height field on square cells relaxed by the
+/// cellular automaton of García-Fernández et al. §3.1, extended to a 16-neighbour stencil.
+class HeightGrid {
+ public:
+  HeightGrid(const GridSettings& settings, const Material& material, const RelaxationSettings& relaxation);
+
+  int cells_x() const { return nx_; }
+  int cells_y() const { return ny_; }
+  double cell_size_m() const { return cell_m_; }
+  double cell_area_m2() const { return cell_m_ * cell_m_; }
+
+  /// World pose of the grid frame, and the grid's velocity for contact rates.
+  const core::Pose& pose() const { return pose_; }
+  const core::Vec3& linear_velocity() const { return linear_velocity_; }
+  const core::Vec3& angular_velocity() const { return angular_velocity_; }
+  /// Moves the grid (a vessel's hold). A tilt change beyond the quantum re-examines every loaded cell.
+  void set_pose(const core::Pose& pose, const core::Vec3& linear_velocity = {},
+                const core::Vec3& angular_velocity = {});
+
+  /// Material height of a cell [m].
+  double height(int i, int j) const { return h_[index(i, j)]; }
+  /// Artificial compression height of a cell [m]; enters slopes only.
+  double compression(int i, int j) const { return comp_[index(i, j)]; }
+  /// Adds `volume_m3` of material to a cell (volume >= 0).
+  void add_volume(int i, int j, double volume_m3);
+  /// Removes up to `thickness_m` of material from a cell; returns the volume removed [m^3].
+  double remove_layer(int i, int j, double thickness_m);
+  /// Sets the artificial compression height of a cell [m].
+  void set_compression(int i, int j, double height_m);
+
+  /// True when grid-frame point (x, y) lies over the grid.
+  bool contains(double x, double y) const;
+  /// The cell under grid-frame point (x, y), if any.
+  std::optional<CellIndex> cell_at(double x, double y) const;
+  /// Grid-frame centre of cell (i, j) at the floor.
+  core::Vec3 cell_centre(int i, int j) const;
+  /// Material surface height [m] at grid-frame (x, y), bilinear between cell centres.
+  double surface_height(double x, double y) const;
+
+  /// Sum of material over all cells [m^3].
+  double total_volume_m3() const;
+  /// Largest cell height [m].
+  double max_height_m() const;
+
+  /// One synchronous relaxation step examining only the active cells (the paper's active list).
+  void relax_active();
+  /// The same step examining every cell: the reference for tests and the benchmark baseline.
+  void relax_full_sweep();
+  /// Cells that changed in the last step or were edited since; the next step starts from them.
+  std::size_t active_count() const { return active_.size(); }
+  /// Cells examined by the last relaxation step.
+  std::size_t examined_count() const { return examined_; }
+  /// Marks every cell holding material active (after an external change of slope rules).
+  void activate_loaded_cells();
+
+  /// Adds heights, compression, tilt and active list to a determinism hash.
+  void hash_into(core::StateHash& hash) const;
+
+ private:
+  static constexpr int kPad = 2;  // stencil radius: knight moves reach two cells
+  static constexpr int kStencil = 16;
+  static constexpr double kWall = 1e30;  // compression of the padding ring: nothing flows in or out
+
+  std::size_t index(int i, int j) const { return static_cast<std::size_t>(j + kPad) * stride_ + (i + kPad); }
+  void mark(std::size_t cell);
+  void update_slope_offsets();
+  double net_inflow(std::size_t cell, bool& moved) const;
+  void apply(const std::vector<std::size_t>& cells, const std::vector<double>& deltas,
+             const std::vector<std::uint8_t>& moved);
+
+  int nx_, ny_;
+  double cell_m_;
+  double tan_repose_;
+  double pair_fraction_;  // c / 16: keeps total outflow of a cell below c times its height
+  RelaxationSettings relaxation_;
+  std::size_t stride_;
+
+  core::Pose pose_;
+  core::Vec3 linear_velocity_, angular_velocity_;
+  core::Vec3 slope_up_{0, 0, 1};  // world up in grid coordinates, quantised; sets the slope rule
+
+  std::array<std::ptrdiff_t, kStencil> neighbour_offset_{};
+  std::array<double, kStencil> slope_offset_{};  // elevation change to neighbour k minus its critical drop
+
+  std::vector<double> h_;     // material height per cell, padded
+  std::vector<double> comp_;  // artificial compression height per cell, padded (walls: kWall)
+
+  // active list: cells to examine next, deduplicated by stamp
+  std::vector<std::size_t> active_;
+  std::vector<std::uint32_t> active_stamp_;
+  std::vector<std::uint32_t> examine_stamp_;
+  std::uint32_t epoch_ = 1;
+  std::size_t examined_ = 0;
+
+  // scratch buffers reused across steps (not state)
+  std::vector<std::size_t> examine_;
+  std::vector<double> deltas_;
+  std::vector<std::uint8_t> moved_;
+};
+
+}  // namespace harbour::bulk

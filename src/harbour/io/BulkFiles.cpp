@@ -1,0 +1,102 @@
+#include "harbour/io/BulkFiles.h"
+
+#include <algorithm>
+#include <limits>
+
+#include "harbour/core/Units.h"
+
+namespace harbour::io {
+namespace {
+
+constexpr double kHuge = std::numeric_limits<double>::max();
+
+std::string item(const std::string& list, std::size_t n) { return list + "[" + std::to_string(n) + "]"; }
+
+}  // namespace
+
+std::vector<bulk::Material> load_materials(const YamlFile& file) {
+  std::vector<bulk::Material> materials;
+  const YAML::Node list = file.sequence(file.root(), "materials", "");
+  for (std::size_t n = 0; n < list.size(); ++n) {
+    const YAML::Node m = list[n];
+    const std::string path = item("materials", n);
+    bulk::Material material;
+    material.name = file.text(m, "name", path);
+    if (std::any_of(materials.begin(), materials.end(), [&](const auto& o) { return o.name == material.name; }))
+      file.fail(m["name"], path + ".name", "duplicate material '" + material.name + "'");
+    material.bulk_density_kg_m3 = file.number(m, "bulk_density_kg_m3", path, 0.0, 25000.0, true);
+    material.angle_of_repose_rad =
+        core::deg_to_rad(file.number(m, "angle_of_repose_deg", path, 0.0, 90.0, true, true));
+    material.flow_fraction = file.number(m, "flow_fraction", path, 0.0, 1.0, true, true);
+    material.compression_gain = file.number_or(m, "compression_gain", path, 1.0, 0.0, 1000.0);
+    materials.push_back(material);
+  }
+  if (materials.empty()) file.fail(list, "materials", "no material defined");
+  return materials;
+}
+
+std::vector<bulk::Material> load_materials(const std::string& path) { return load_materials(YamlFile::load(path)); }
+
+BulkScenario load_bulk_scenario(const YamlFile& file, const std::vector<bulk::Material>& materials) {
+  BulkScenario scenario;
+  const YAML::Node bulk = file.required(file.root(), "bulk", "");
+
+  const std::string material = file.text(bulk, "material", "bulk");
+  const auto found = std::find_if(materials.begin(), materials.end(), [&](const auto& m) { return m.name == material; });
+  if (found == materials.end()) file.fail(bulk["material"], "bulk.material", "unknown material '" + material + "'");
+  scenario.material = *found;
+  scenario.spill_level_m = file.number_or(bulk, "spill_level_m", "bulk", 0.0, -kHuge, kHuge);
+
+  const YAML::Node grids = file.sequence(bulk, "grids", "bulk");
+  for (std::size_t n = 0; n < grids.size(); ++n) {
+    const YAML::Node g = grids[n];
+    const std::string path = item("bulk.grids", n);
+    ScenarioGrid grid;
+    grid.name = file.text(g, "name", path);
+    grid.settings.cells_x = file.integer(g, "cells_x", path, 1, 8192);
+    grid.settings.cells_y = file.integer(g, "cells_y", path, 1, 8192);
+    grid.settings.cell_size_m = file.number(g, "cell_size_m", path, 0.0, 100.0, true);
+    grid.origin_x_m = file.number_or(g, "origin_x_m", path, 0.0, -kHuge, kHuge);
+    grid.origin_y_m = file.number_or(g, "origin_y_m", path, 0.0, -kHuge, kHuge);
+    grid.origin_z_m = file.number_or(g, "origin_z_m", path, 0.0, -kHuge, kHuge);
+    grid.yaw_rad = core::deg_to_rad(file.number_or(g, "yaw_deg", path, 0.0, -360.0, 360.0));
+    grid.roll_amplitude_rad = core::deg_to_rad(file.number_or(g, "roll_amplitude_deg", path, 0.0, 0.0, 30.0));
+    grid.roll_period_s = file.number_or(g, "roll_period_s", path, 0.0, 0.0, 600.0);
+    scenario.grids.push_back(grid);
+  }
+  if (scenario.grids.empty()) file.fail(grids, "bulk.grids", "no grid defined");
+
+  if (bulk["heaps"].IsDefined()) {
+    const YAML::Node heaps = file.sequence(bulk, "heaps", "bulk");
+    for (std::size_t n = 0; n < heaps.size(); ++n) {
+      const YAML::Node h = heaps[n];
+      const std::string path = item("bulk.heaps", n);
+      ScenarioHeap heap;
+      const std::string grid = file.text(h, "grid", path);
+      const auto g = std::find_if(scenario.grids.begin(), scenario.grids.end(), [&](auto& s) { return s.name == grid; });
+      if (g == scenario.grids.end()) file.fail(h["grid"], path + ".grid", "unknown grid '" + grid + "'");
+      heap.grid = static_cast<int>(g - scenario.grids.begin());
+      heap.x_m = file.number(h, "x_m", path, 0.0, g->settings.cells_x * g->settings.cell_size_m);
+      heap.y_m = file.number(h, "y_m", path, 0.0, g->settings.cells_y * g->settings.cell_size_m);
+      heap.volume_m3 = file.number(h, "volume_m3", path, 0.0, 1e7);
+      scenario.heaps.push_back(heap);
+    }
+  }
+
+  const YAML::Node grab = file.required(bulk, "grab", "bulk");
+  bulk::GrabSettings& s = scenario.grab;
+  s.width_m = file.number(grab, "width_m", "bulk.grab", 0.0, 50.0, true);
+  s.max_opening_m = file.number(grab, "max_opening_m", "bulk.grab", 0.0, 50.0, true);
+  s.max_depth_m = file.number(grab, "max_depth_m", "bulk.grab", 0.0, 20.0, true);
+  s.sinking_speed_mps = file.number(grab, "sinking_speed_mps", "bulk.grab", 0.0, 20.0, true);
+  s.spill_speed_mps = file.number(grab, "spill_speed_mps", "bulk.grab", 0.0, 50.0, true);
+  s.capacity_m3 = file.number(grab, "capacity_m3", "bulk.grab", 0.0, 500.0, true);
+  s.closing_time_s = file.number(grab, "closing_time_s", "bulk.grab", 0.0, 120.0, true);
+  return scenario;
+}
+
+BulkScenario load_bulk_scenario(const std::string& path, const std::vector<bulk::Material>& materials) {
+  return load_bulk_scenario(YamlFile::load(path), materials);
+}
+
+}  // namespace harbour::io
