@@ -19,11 +19,11 @@ namespace {
 
 using core::Vec3;
 
-constexpr double kStep_s = 0.001;           // physics step: 1 kHz
-constexpr double kHoistSpeed_mps = 1.5;     // 90 m/min, typical grab crane hoist (assumed)
-constexpr double kTravelSpeed_mps = 2.0;    // horizontal jib-tip speed while slewing (assumed)
-constexpr double kTravelHeight_m = 10.0;    // world z of the grab when travelling
-constexpr double kDropClearance_m = 2.5;    // opening height above the hold's material
+constexpr double kStep_s = 0.001;         // physics step: 1 kHz
+constexpr double kHoistSpeed_mps = 1.5;   // 90 m/min, typical grab crane hoist (assumed)
+constexpr double kTravelSpeed_mps = 2.0;  // horizontal jib-tip speed while slewing (assumed)
+constexpr double kTravelHeight_m = 10.0;  // world z of the grab when travelling
+constexpr double kDropClearance_m = 2.5;  // opening height above the hold's material
 constexpr double kProgressEvery_s = 15.0;
 
 enum class Phase { kHoist, kToPile, kLower, kClose, kHoistLoaded, kToHold, kLowerToDrop, kOpen };
@@ -50,7 +50,8 @@ Vec3 dig_target(const bulk::HeightGrid& yard) {
 void move_hold(bulk::HeightGrid& hold, const io::ScenarioGrid& g, double t) {
   if (g.roll_period_s <= 0.0) return;
   const double w = 2.0 * std::numbers::pi / g.roll_period_s;
-  const double roll = g.roll_amplitude_rad * std::sin(w * t), roll_rate = g.roll_amplitude_rad * w * std::cos(w * t);
+  const double roll = g.roll_amplitude_rad * std::sin(w * t),
+               roll_rate = g.roll_amplitude_rad * w * std::cos(w * t);
   const Vec3 origin{g.origin_x_m, g.origin_y_m, g.origin_z_m};
   const Vec3 centre_line{0.0, 0.5 * g.settings.cells_y * g.settings.cell_size_m, 0.0};
   core::Pose pose;
@@ -75,7 +76,8 @@ int run_bulk_demo(const BulkDemoOptions& options) {
     pose.position = {g.origin_x_m, g.origin_y_m, g.origin_z_m};
     world.add_grid(g.settings, pose);
   }
-  for (const auto& h : scenario.heaps) world.add_heap(h.grid, h.x_m, h.y_m, h.volume_m3);
+  for (const auto& h : scenario.heaps)
+    world.add_heap(h.grid, h.x_m, h.y_m, h.volume_m3);
   const int grab = world.add_grab(scenario.grab);
   const int yard = 0, hold = scenario.grids.size() > 1 ? 1 : 0;
 
@@ -101,14 +103,16 @@ int run_bulk_demo(const BulkDemoOptions& options) {
     command.close_rate = 0.0;
     switch (phase) {
       case Phase::kHoist:
-        if (move_toward(command.pose.position, {before.x, before.y, kTravelHeight_m}, kHoistSpeed_mps, kStep_s)) {
+        if (move_toward(command.pose.position, {before.x, before.y, kTravelHeight_m}, kHoistSpeed_mps,
+                        kStep_s)) {
           target = dig_target(world.grid(yard));
           phase = Phase::kToPile;
         }
         break;
       case Phase::kToPile:
         command.close_rate = -1.0;  // open on the way
-        if (move_toward(command.pose.position, {target.x, target.y, kTravelHeight_m}, kTravelSpeed_mps, kStep_s))
+        if (move_toward(command.pose.position, {target.x, target.y, kTravelHeight_m}, kTravelSpeed_mps,
+                        kStep_s))
           phase = Phase::kLower;
         break;
       case Phase::kLower: {
@@ -116,8 +120,10 @@ int run_bulk_demo(const BulkDemoOptions& options) {
         const Vec3 local = g.pose().to_local(command.pose.position);
         const double clearance = local.z - g.surface_height(local.x, local.y);
         const double speed = clearance > 1.0 ? kHoistSpeed_mps : 0.3;
-        if (clearance <= 0.01) phase = Phase::kClose;
-        else command.pose.position.z -= std::min(speed * kStep_s, clearance);
+        if (clearance <= 0.01)
+          phase = Phase::kClose;
+        else
+          command.pose.position.z -= std::min(speed * kStep_s, clearance);
         break;
       }
       case Phase::kClose:
@@ -126,7 +132,8 @@ int run_bulk_demo(const BulkDemoOptions& options) {
         if (state.opening_m <= 0.0) phase = Phase::kHoistLoaded;
         break;
       case Phase::kHoistLoaded:
-        if (move_toward(command.pose.position, {before.x, before.y, kTravelHeight_m}, kHoistSpeed_mps, kStep_s)) {
+        if (move_toward(command.pose.position, {before.x, before.y, kTravelHeight_m}, kHoistSpeed_mps,
+                        kStep_s)) {
           const auto& g = world.grid(hold);
           const double station = drop_stations_x[static_cast<std::size_t>(cycle) % drop_stations_x.size()];
           target = g.pose().to_parent({station, 0.5 * g.cells_y() * g.cell_size_m(), 0.0});
@@ -134,14 +141,15 @@ int run_bulk_demo(const BulkDemoOptions& options) {
         }
         break;
       case Phase::kToHold:
-        if (move_toward(command.pose.position, {target.x, target.y, kTravelHeight_m}, kTravelSpeed_mps, kStep_s))
+        if (move_toward(command.pose.position, {target.x, target.y, kTravelHeight_m}, kTravelSpeed_mps,
+                        kStep_s))
           phase = Phase::kLowerToDrop;
         break;
       case Phase::kLowerToDrop: {
         const bulk::HeightGrid& g = world.grid(hold);
         const Vec3 local = g.pose().to_local(command.pose.position);
-        const double drop_z = g.pose().to_parent({local.x, local.y, g.surface_height(local.x, local.y)}).z +
-                              kDropClearance_m;
+        const double drop_z =
+            g.pose().to_parent({local.x, local.y, g.surface_height(local.x, local.y)}).z + kDropClearance_m;
         if (move_toward(command.pose.position, {before.x, before.y, std::min(drop_z, kTravelHeight_m)},
                         kHoistSpeed_mps, kStep_s))
           phase = Phase::kOpen;
@@ -162,8 +170,8 @@ int run_bulk_demo(const BulkDemoOptions& options) {
     if (clock.time_s() >= next_progress_s) {
       next_progress_s += kProgressEvery_s;
       const auto b = world.balance();
-      std::printf("  t=%6.1f s  cycle %d/%d  in hold %6.1f t  in grab %5.1f t  spilled %5.2f t\n", clock.time_s(),
-                  std::min(cycle + 1, options.cycles), options.cycles,
+      std::printf("  t=%6.1f s  cycle %d/%d  in hold %6.1f t  in grab %5.1f t  spilled %5.2f t\n",
+                  clock.time_s(), std::min(cycle + 1, options.cycles), options.cycles,
                   core::kg_to_t(world.mass_kg(world.grid(hold).total_volume_m3())),
                   core::kg_to_t(world.mass_kg(b.in_grabs_m3)), core::kg_to_t(world.mass_kg(b.spilled_m3)));
       std::fflush(stdout);
@@ -187,8 +195,8 @@ int run_bulk_demo(const BulkDemoOptions& options) {
               core::kg_to_t(world.mass_kg(world.grid(hold).total_volume_m3())), options.cycles,
               core::kg_to_t(world.mass_kg(world.loaded_m3())) / options.cycles);
   std::printf("spilled             : %8.3f t\n", core::kg_to_t(world.mass_kg(b.spilled_m3)));
-  std::printf("mass balance        : %.3e t discrepancy over %.1f t\n", core::kg_to_t(world.mass_kg(b.discrepancy_m3())),
-              core::kg_to_t(world.mass_kg(b.added_m3)));
+  std::printf("mass balance        : %.3e t discrepancy over %.1f t\n",
+              core::kg_to_t(world.mass_kg(b.discrepancy_m3())), core::kg_to_t(world.mass_kg(b.added_m3)));
   const double flank_min = core::deg_to_rad(10.0);
   for (int g = 0; g < world.grid_count(); ++g)
     std::printf("angle of repose     : %-5s %5.1f deg (median flank slope; material %.1f deg)\n",
@@ -196,7 +204,8 @@ int run_bulk_demo(const BulkDemoOptions& options) {
                 core::rad_to_deg(bulk::median_flank_angle(world.grid(g), flank_min)),
                 core::rad_to_deg(scenario.material.angle_of_repose_rad));
   std::vector<const bulk::HeightGrid*> grids;
-  for (int g = 0; g < world.grid_count(); ++g) grids.push_back(&world.grid(g));
+  for (int g = 0; g < world.grid_count(); ++g)
+    grids.push_back(&world.grid(g));
   const std::string png = options.out_dir + "/bulk_demo.png";
   io::write_relief_png(png, grids);
   std::printf("relief image        : %s\n", png.c_str());

@@ -24,12 +24,15 @@ int main(int argc, char** argv) {
     const std::string arg = argv[n];
     if (n + 1 >= argc) return usage();
     const std::string value = argv[++n];
-    if (arg == "--data") options.data_dir = value;
-    else if (arg == "--out") options.out_dir = value;
+    if (arg == "--data")
+      options.data_dir = value;
+    else if (arg == "--out")
+      options.out_dir = value;
     else if (arg == "--cycles") {
       options.cycles = std::atoi(value.c_str());
       if (options.cycles < 1) return usage();
-    } else return usage();
+    } else
+      return usage();
   }
   try {
     return harbour::apps::run_bulk_demo(options);

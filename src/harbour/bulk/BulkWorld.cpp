@@ -13,7 +13,9 @@ namespace {
 // a jaw tip this close above the surface counts as touching it
 constexpr double kGrabTouchTolerance_m = 0.02;
 
-bool pressed_before(const auto& a, const auto& b) { return std::tie(a.grid, a.j, a.i) < std::tie(b.grid, b.j, b.i); }
+bool pressed_before(const auto& a, const auto& b) {
+  return std::tie(a.grid, a.j, a.i) < std::tie(b.grid, b.j, b.i);
+}
 
 }  // namespace
 
@@ -78,8 +80,10 @@ ContactResult BulkWorld::contact(const ContactBody& body) {
       if (penetration <= 0.0) continue;
 
       // highly damped linear spring on depth and its rate, relative to a moving grid; never pulls
-      const core::Vec3 v_body = body.linear_velocity + core::cross(body.angular_velocity, p - body.pose.position);
-      const core::Vec3 v_grid = g.linear_velocity() + core::cross(g.angular_velocity(), p - g.pose().position);
+      const core::Vec3 v_body =
+          body.linear_velocity + core::cross(body.angular_velocity, p - body.pose.position);
+      const core::Vec3 v_grid =
+          g.linear_velocity() + core::cross(g.angular_velocity(), p - g.pose().position);
       const double penetration_rate = -core::dot(v_body - v_grid, normal);
       const double force = settings_.contact.stiffness_n_per_m * penetration +
                            settings_.contact.damping_n_s_per_m * penetration_rate;
@@ -111,9 +115,11 @@ void BulkWorld::update_compression() {
                               }),
                   pressing_.end());
   for (const PressedCell& old : pressed_)
-    if (!std::binary_search(pressing_.begin(), pressing_.end(), old, pressed_before<PressedCell, PressedCell>))
+    if (!std::binary_search(pressing_.begin(), pressing_.end(), old,
+                            pressed_before<PressedCell, PressedCell>))
       grid(old.grid).set_compression(old.i, old.j, 0.0);
-  for (const PressedCell& now : pressing_) grid(now.grid).set_compression(now.i, now.j, now.height_m);
+  for (const PressedCell& now : pressing_)
+    grid(now.grid).set_compression(now.i, now.j, now.height_m);
   pressed_.swap(pressing_);
   pressing_.clear();
 }
@@ -121,7 +127,8 @@ void BulkWorld::update_compression() {
 void BulkWorld::step(double dt_s, std::span<const GrabCommand> grab_commands) {
   HARBOUR_ASSERT(grab_commands.size() == grabs_.size(), "one command per grab");
   update_compression();
-  for (std::size_t n = 0; n < grabs_.size(); ++n) step_grab(grab_settings_[n], grabs_[n], grab_commands[n], dt_s);
+  for (std::size_t n = 0; n < grabs_.size(); ++n)
+    step_grab(grab_settings_[n], grabs_[n], grab_commands[n], dt_s);
   step_parcels(dt_s);
   for (HeightGrid& g : grids_) {
     if (full_sweep_)
@@ -138,16 +145,19 @@ void BulkWorld::step_grab(const GrabSettings& settings, GrabState& state, const 
   const double rate = std::clamp(command.close_rate, -1.0, 1.0);
   const bool closing = rate > 0.0 && state.opening_m > 0.0;
   state.digging = closing && dig(settings, state, dt_s);
-  state.opening_m = std::clamp(state.opening_m - rate * settings.max_opening_m / settings.closing_time_s * dt_s, 0.0,
-                               settings.max_opening_m);
+  state.opening_m =
+      std::clamp(state.opening_m - rate * settings.max_opening_m / settings.closing_time_s * dt_s, 0.0,
+                 settings.max_opening_m);
   if (rate < 0.0) state.cut_depth_m = 0.0;
 
   // an open grab spills through its opening w x W at v0, as a falling parcel
   if (rate <= 0.0 && state.opening_m > 0.0 && state.load_m3 > 0.0) {
-    const double out = std::min(state.load_m3, state.opening_m * settings.width_m * settings.spill_speed_mps * dt_s);
+    const double out =
+        std::min(state.load_m3, state.opening_m * settings.width_m * settings.spill_speed_mps * dt_s);
     state.load_m3 -= out;
     unloaded_m3_ += out;
-    parcels_.push_back({state.pose.position, state.velocity, out, std::sqrt(state.opening_m * settings.width_m)});
+    parcels_.push_back(
+        {state.pose.position, state.velocity, out, std::sqrt(state.opening_m * settings.width_m)});
   }
 }
 
@@ -180,7 +190,8 @@ double BulkWorld::dig(const GrabSettings& settings, GrabState& state, double dt_
     const double room = settings.capacity_m3 - state.load_m3;
     const double scale = std::min(1.0, room / (static_cast<double>(cells.size()) * layer * g.cell_area_m2()));
     double taken = 0.0;
-    for (const CellIndex& c : cells) taken += g.remove_layer(c.i, c.j, layer * scale);
+    for (const CellIndex& c : cells)
+      taken += g.remove_layer(c.i, c.j, layer * scale);
     state.load_m3 += taken;
     loaded_m3_ += taken;
     state.cut_depth_m += layer;
@@ -219,10 +230,12 @@ bool BulkWorld::land(const Parcel& parcel) {
     const int j0 = std::max(0, static_cast<int>(std::ceil((local.y - half) / size - 0.5)));
     const int j1 = std::min(g.cells_y() - 1, static_cast<int>(std::floor((local.y + half) / size - 0.5)));
     for (int j = j0; j <= j1; ++j)
-      for (int i = i0; i <= i1; ++i) cells.push_back({i, j});
+      for (int i = i0; i <= i1; ++i)
+        cells.push_back({i, j});
     if (cells.empty()) cells.push_back(*g.cell_at(local.x, local.y));
     const double share = parcel.volume_m3 / static_cast<double>(cells.size());
-    for (const CellIndex& c : cells) g.add_volume(c.i, c.j, share);
+    for (const CellIndex& c : cells)
+      g.add_volume(c.i, c.j, share);
     return true;
   }
   return false;
@@ -230,9 +243,12 @@ bool BulkWorld::land(const Parcel& parcel) {
 
 VolumeBalance BulkWorld::balance() const {
   VolumeBalance b;
-  for (const HeightGrid& g : grids_) b.in_grids_m3 += g.total_volume_m3();
-  for (const GrabState& s : grabs_) b.in_grabs_m3 += s.load_m3;
-  for (const Parcel& p : parcels_) b.in_flight_m3 += p.volume_m3;
+  for (const HeightGrid& g : grids_)
+    b.in_grids_m3 += g.total_volume_m3();
+  for (const GrabState& s : grabs_)
+    b.in_grabs_m3 += s.load_m3;
+  for (const Parcel& p : parcels_)
+    b.in_flight_m3 += p.volume_m3;
   b.spilled_m3 = spilled_m3_;
   b.added_m3 = added_m3_;
   return b;
@@ -240,14 +256,16 @@ VolumeBalance BulkWorld::balance() const {
 
 std::uint64_t BulkWorld::state_hash() const {
   core::StateHash hash;
-  for (const HeightGrid& g : grids_) g.hash_into(hash);
+  for (const HeightGrid& g : grids_)
+    g.hash_into(hash);
   for (const GrabState& s : grabs_) {
     hash.add(s.pose);
     hash.add(s.opening_m);
     hash.add(s.load_m3);
     hash.add(s.cut_depth_m);
   }
-  for (const Parcel& p : parcels_) hash.add(p);
+  for (const Parcel& p : parcels_)
+    hash.add(p);
   hash.add(spilled_m3_);
   hash.add(added_m3_);
   return hash.value();

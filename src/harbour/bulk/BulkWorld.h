@@ -15,7 +15,7 @@ namespace harbour::bulk {
 struct BulkWorldSettings {
   RelaxationSettings relaxation;
   ContactSettings contact;
-  double spill_level_m = 0.0;  ///< [m] world z below which falling material outside every grid is spilled
+  double spill_level_m = 0.0;     ///< [m] world z below which falling material outside every grid is spilled
   double gravity_mps2 = 9.80665;  ///< [m/s^2]
 };
 
@@ -57,8 +57,8 @@ class BulkWorld {
   const GrabState& grab(int id) const { return grabs_[static_cast<std::size_t>(id)]; }
   const GrabSettings& grab_settings(int id) const { return grab_settings_[static_cast<std::size_t>(id)]; }
 
-  /// Pours `volume_m3` into the cell under grid-frame (x, y) of grid `grid_id` (a conveyor or an initial pile).
-  /// Returns false, adding nothing, when the point is off the grid.
+  /// Pours `volume_m3` into the cell under grid-frame (x, y) of grid `grid_id` (a conveyor or an initial
+  /// pile). Returns false, adding nothing, when the point is off the grid.
   bool pour(int grid_id, double x, double y, double volume_m3);
 
   /// Builds a relaxed cone of about `volume_m3` at the angle of repose centred at grid-frame (x, y),

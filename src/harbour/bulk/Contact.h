@@ -14,16 +14,16 @@ struct ContactSettings {
 
 /// A body touching the material: its pose, velocity and contact points in its own frame.
 struct ContactBody {
-  core::Pose pose;                      ///< body frame in the world
-  core::Vec3 linear_velocity;           ///< [m/s] of the body origin, world frame
-  core::Vec3 angular_velocity;          ///< [rad/s] world frame
+  core::Pose pose;                     ///< body frame in the world
+  core::Vec3 linear_velocity;          ///< [m/s] of the body origin, world frame
+  core::Vec3 angular_velocity;         ///< [rad/s] world frame
   std::span<const core::Vec3> points;  ///< [m] contact points in the body frame
 };
 
 /// Resultant of the penalty forces on one body: apply `force` at `point` (all forces share one normal).
 struct ContactResult {
-  core::Vec3 force;                 ///< [N] world frame
-  core::Vec3 point;                 ///< [m] world application point (force-weighted centroid)
+  core::Vec3 force;  ///< [N] world frame
+  core::Vec3 point;  ///< [m] world application point (force-weighted centroid)
   int points_in_contact = 0;
   double max_penetration_m = 0.0;  ///< [m]
 };

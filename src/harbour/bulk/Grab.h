@@ -17,8 +17,8 @@ struct GrabSettings {
 
 /// What the machine does with the grab this step.
 struct GrabCommand {
-  core::Pose pose;         ///< jaw-tip centre in the world; x across the jaws, y along the hinge, z up
-  core::Vec3 velocity;     ///< [m/s] world velocity of the jaw-tip centre
+  core::Pose pose;        ///< jaw-tip centre in the world; x across the jaws, y along the hinge, z up
+  core::Vec3 velocity;    ///< [m/s] world velocity of the jaw-tip centre
   double close_rate = 0;  ///< [-] +1 closes at full speed, -1 opens, 0 holds
 };
 
@@ -26,10 +26,10 @@ struct GrabCommand {
 struct GrabState {
   core::Pose pose;
   core::Vec3 velocity;
-  double opening_m = 0.0;  ///< [m] current jaw opening w
-  double load_m3 = 0.0;    ///< [m^3] material held
+  double opening_m = 0.0;    ///< [m] current jaw opening w
+  double load_m3 = 0.0;      ///< [m^3] material held
   double cut_depth_m = 0.0;  ///< [m] depth the jaws have cut in this bite
-  bool digging = false;    ///< jaws closing in contact with material this step
+  bool digging = false;      ///< jaws closing in contact with material this step
 };
 
 }  // namespace harbour::bulk

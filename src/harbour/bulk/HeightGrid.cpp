@@ -18,7 +18,8 @@ constexpr std::uint32_t kNeverExamine = std::numeric_limits<std::uint32_t>::max(
 
 }  // namespace
 
-HeightGrid::HeightGrid(const GridSettings& settings, const Material& material, const RelaxationSettings& relaxation)
+HeightGrid::HeightGrid(const GridSettings& settings, const Material& material,
+                       const RelaxationSettings& relaxation)
     : nx_(settings.cells_x),
       ny_(settings.cells_y),
       cell_m_(settings.cell_size_m),
@@ -27,7 +28,8 @@ HeightGrid::HeightGrid(const GridSettings& settings, const Material& material, c
       relaxation_(relaxation),
       stride_(static_cast<std::size_t>(settings.cells_x + 2 * kPad)) {
   HARBOUR_ASSERT(nx_ > 0 && ny_ > 0 && cell_m_ > 0.0, "grid settings must be validated by the loader");
-  HARBOUR_ASSERT(material.flow_fraction > 0.0 && material.flow_fraction < 1.0, "flow fraction outside (0, 1)");
+  HARBOUR_ASSERT(material.flow_fraction > 0.0 && material.flow_fraction < 1.0,
+                 "flow fraction outside (0, 1)");
   const std::size_t padded = stride_ * static_cast<std::size_t>(ny_ + 2 * kPad);
   h_.assign(padded, 0.0);
   comp_.assign(padded, kWall);
@@ -39,16 +41,18 @@ HeightGrid::HeightGrid(const GridSettings& settings, const Material& material, c
       examine_stamp_[index(i, j)] = 0;
     }
   for (int k = 0; k < kStencil; ++k)
-    neighbour_offset_[k] = static_cast<std::ptrdiff_t>(kStencilDy[k]) * static_cast<std::ptrdiff_t>(stride_) + kStencilDx[k];
+    neighbour_offset_[k] =
+        static_cast<std::ptrdiff_t>(kStencilDy[k]) * static_cast<std::ptrdiff_t>(stride_) + kStencilDx[k];
   update_slope_offsets();
 }
 
 void HeightGrid::update_slope_offsets() {
-  // elevation of neighbour k relative to the cell, along world up, minus the drop the critical slope allows
+  level_ = slope_up_.x == 0.0 && slope_up_.y == 0.0;
   for (int k = 0; k < kStencil; ++k) {
     const double dx = kStencilDx[k] * cell_m_, dy = kStencilDy[k] * cell_m_;
-    const double distance = std::sqrt(dx * dx + dy * dy);
-    slope_offset_[k] = -(slope_up_.x * dx + slope_up_.y * dy) - distance * tan_repose_;
+    squared_distance_[k] = dx * dx + dy * dy;
+    rise_[k] = slope_up_.x * dx + slope_up_.y * dy;  // world elevation gained by the grid's tilt
+    level_offset_[k] = -std::sqrt(squared_distance_[k]) * tan_repose_;
   }
 }
 
@@ -100,10 +104,13 @@ bool HeightGrid::contains(double x, double y) const {
 
 std::optional<CellIndex> HeightGrid::cell_at(double x, double y) const {
   if (!contains(x, y)) return std::nullopt;
-  return CellIndex{std::min(static_cast<int>(x / cell_m_), nx_ - 1), std::min(static_cast<int>(y / cell_m_), ny_ - 1)};
+  return CellIndex{std::min(static_cast<int>(x / cell_m_), nx_ - 1),
+                   std::min(static_cast<int>(y / cell_m_), ny_ - 1)};
 }
 
-core::Vec3 HeightGrid::cell_centre(int i, int j) const { return {(i + 0.5) * cell_m_, (j + 0.5) * cell_m_, 0.0}; }
+core::Vec3 HeightGrid::cell_centre(int i, int j) const {
+  return {(i + 0.5) * cell_m_, (j + 0.5) * cell_m_, 0.0};
+}
 
 double HeightGrid::surface_height(double x, double y) const {
   // bilinear between cell centres, clamped to the outermost centres
@@ -120,24 +127,38 @@ double HeightGrid::surface_height(double x, double y) const {
 double HeightGrid::total_volume_m3() const {
   double sum = 0.0;
   for (int j = 0; j < ny_; ++j)
-    for (int i = 0; i < nx_; ++i) sum += height(i, j);
+    for (int i = 0; i < nx_; ++i)
+      sum += height(i, j);
   return sum * cell_area_m2();
 }
 
-double HeightGrid::max_height_m() const { return *std::max_element(h_.begin(), h_.end()); }
+double HeightGrid::max_height_m() const {
+  return *std::max_element(h_.begin(), h_.end());
+}
 
+template <bool kLevel>
 double HeightGrid::net_inflow(std::size_t cell, bool& moved) const {
   // gather the flows across all 16 pairs of this cell from the previous heights (synchronous update);
-  // flow p->q = c/16 * min(excess, h_p) where excess = elevation drop beyond the critical slope
+  // flow p->q = c/16 * min(excess, h_p), excess = world elevation drop minus horizontal distance *
+  // tan(repose)
   const double hp = h_[cell];
   const double sp = hp + comp_[cell];
   double delta = 0.0;
   for (int k = 0; k < kStencil; ++k) {
     const std::size_t q = cell + neighbour_offset_[k];
     const double hq = h_[q];
-    const double drop = slope_up_.z * (sp - (hq + comp_[q]));
-    const double out_excess = drop + slope_offset_[k];
-    const double in_excess = -drop + slope_offset_[k ^ 1];
+    const double ds = sp - (hq + comp_[q]);
+    double drop, critical_drop;
+    if constexpr (kLevel) {
+      drop = ds;
+      critical_drop = -level_offset_[k];
+    } else {
+      // on a tilted grid the height difference also shifts the points horizontally
+      drop = slope_up_.z * ds - rise_[k];
+      critical_drop = std::sqrt(std::max(0.0, squared_distance_[k] + ds * ds - drop * drop)) * tan_repose_;
+    }
+    const double out_excess = drop - critical_drop;
+    const double in_excess = -drop - critical_drop;
     if (out_excess > relaxation_.min_excess_m) {
       const double flow = pair_fraction_ * std::min(out_excess, hp);
       if (flow > 0.0) {
@@ -155,14 +176,28 @@ double HeightGrid::net_inflow(std::size_t cell, bool& moved) const {
   return delta;
 }
 
+void HeightGrid::examine(const std::vector<std::size_t>& cells) {
+  deltas_.resize(cells.size());
+  moved_.resize(cells.size());
+  for (std::size_t n = 0; n < cells.size(); ++n) {
+    bool moved = false;
+    deltas_[n] = level_ ? net_inflow<true>(cells[n], moved) : net_inflow<false>(cells[n], moved);
+    moved_[n] = moved;
+  }
+  examined_ = cells.size();
+  apply(cells, deltas_, moved_);
+}
+
 void HeightGrid::apply(const std::vector<std::size_t>& cells, const std::vector<double>& deltas,
                        const std::vector<std::uint8_t>& moved) {
   // a new epoch: cells that moved now are examined next step
   active_.clear();
   if (++epoch_ == kNeverExamine) {
     epoch_ = 1;
-    std::replace_if(active_stamp_.begin(), active_stamp_.end(), [](std::uint32_t s) { return s != 0; }, 0u);
-    std::replace_if(examine_stamp_.begin(), examine_stamp_.end(), [](std::uint32_t s) { return s != kNeverExamine; }, 0u);
+    std::replace_if(
+        active_stamp_.begin(), active_stamp_.end(), [](std::uint32_t s) { return s != 0; }, 0u);
+    std::replace_if(
+        examine_stamp_.begin(), examine_stamp_.end(), [](std::uint32_t s) { return s != kNeverExamine; }, 0u);
   }
   for (std::size_t n = 0; n < cells.size(); ++n) {
     if (!moved[n]) continue;
@@ -186,30 +221,15 @@ void HeightGrid::relax_active() {
       examine_.push_back(q);
     }
   }
-  deltas_.resize(examine_.size());
-  moved_.resize(examine_.size());
-  for (std::size_t n = 0; n < examine_.size(); ++n) {
-    bool moved = false;
-    deltas_[n] = net_inflow(examine_[n], moved);
-    moved_[n] = moved;
-  }
-  examined_ = examine_.size();
-  apply(examine_, deltas_, moved_);
+  examine(examine_);
 }
 
 void HeightGrid::relax_full_sweep() {
   examine_.clear();
   for (int j = 0; j < ny_; ++j)
-    for (int i = 0; i < nx_; ++i) examine_.push_back(index(i, j));
-  deltas_.resize(examine_.size());
-  moved_.resize(examine_.size());
-  for (std::size_t n = 0; n < examine_.size(); ++n) {
-    bool moved = false;
-    deltas_[n] = net_inflow(examine_[n], moved);
-    moved_[n] = moved;
-  }
-  examined_ = examine_.size();
-  apply(examine_, deltas_, moved_);
+    for (int i = 0; i < nx_; ++i)
+      examine_.push_back(index(i, j));
+  examine(examine_);
 }
 
 void HeightGrid::activate_loaded_cells() {

@@ -21,8 +21,8 @@ struct GridSettings {
 
 /// Relaxation tuning shared by every grid of a bulk world.
 struct RelaxationSettings {
-  double min_excess_m = 1e-5;            ///< [m] slope excess below which no material moves (ends avalanches)
-  double tilt_quantum_rad = 8.7e-4;      ///< [rad] tilt change (0.05 deg) that re-examines a moving grid
+  double min_excess_m = 1e-5;        ///< [m] slope excess below which no material moves (ends avalanches)
+  double tilt_quantum_rad = 8.7e-4;  ///< [rad] tilt change (0.05 deg) that re-examines a moving grid
 };
 
 /// Cell coordinates inside a grid.
@@ -97,7 +97,9 @@ class HeightGrid {
   std::size_t index(int i, int j) const { return static_cast<std::size_t>(j + kPad) * stride_ + (i + kPad); }
   void mark(std::size_t cell);
   void update_slope_offsets();
+  template <bool kLevel>
   double net_inflow(std::size_t cell, bool& moved) const;
+  void examine(const std::vector<std::size_t>& cells);
   void apply(const std::vector<std::size_t>& cells, const std::vector<double>& deltas,
              const std::vector<std::uint8_t>& moved);
 
@@ -113,7 +115,10 @@ class HeightGrid {
   core::Vec3 slope_up_{0, 0, 1};  // world up in grid coordinates, quantised; sets the slope rule
 
   std::array<std::ptrdiff_t, kStencil> neighbour_offset_{};
-  std::array<double, kStencil> slope_offset_{};  // elevation change to neighbour k minus its critical drop
+  bool level_ = true;                                // grid floor horizontal: the fast path
+  std::array<double, kStencil> level_offset_{};      // minus the critical drop to neighbour k on a level grid
+  std::array<double, kStencil> rise_{};              // world elevation gained moving to neighbour k (tilt)
+  std::array<double, kStencil> squared_distance_{};  // [m^2] grid-plane distance to neighbour k
 
   std::vector<double> h_;     // material height per cell, padded
   std::vector<double> comp_;  // artificial compression height per cell, padded (walls: kWall)

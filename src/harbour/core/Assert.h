@@ -13,7 +13,7 @@ AssertHandler set_assert_handler(AssertHandler handler);
 }  // namespace harbour::core
 
 /// Checks a programming invariant (never user input), in every build type.
-#define HARBOUR_ASSERT(cond, msg)                                          \
-  do {                                                                     \
+#define HARBOUR_ASSERT(cond, msg)                                                \
+  do {                                                                           \
     if (!(cond)) ::harbour::core::assert_failed(#cond, msg, __FILE__, __LINE__); \
   } while (false)

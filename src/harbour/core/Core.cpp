@@ -29,11 +29,16 @@ void assert_failed(const char* expression, const char* message, const char* file
 
 std::string_view to_string(Warning w) {
   switch (w) {
-    case Warning::kNonFinite: return "non-finite value";
-    case Warning::kMassDrift: return "mass drift";
-    case Warning::kNegativeHeight: return "negative height";
-    case Warning::kSolverLimit: return "solver iteration limit";
-    case Warning::kCount: break;
+    case Warning::kNonFinite:
+      return "non-finite value";
+    case Warning::kMassDrift:
+      return "mass drift";
+    case Warning::kNegativeHeight:
+      return "negative height";
+    case Warning::kSolverLimit:
+      return "solver iteration limit";
+    case Warning::kCount:
+      break;
   }
   return "unknown";
 }

@@ -10,7 +10,9 @@ namespace harbour::core {
 class FixedStepClock {
  public:
   /// `step_s` [s] is the physics step, e.g. 0.001 for 1 kHz.
-  explicit FixedStepClock(double step_s) : step_s_(step_s) { HARBOUR_ASSERT(step_s > 0.0, "step must be positive"); }
+  explicit FixedStepClock(double step_s) : step_s_(step_s) {
+    HARBOUR_ASSERT(step_s > 0.0, "step must be positive");
+  }
 
   void advance() { ++steps_; }
   std::int64_t steps() const { return steps_; }

@@ -19,15 +19,11 @@ class StateHash {
     }
   }
   template <typename T>
-    requires std::is_trivially_copyable_v<T>
-  void add(const T& v) {
-    add_bytes(&v, sizeof v);
-  }
+  requires std::is_trivially_copyable_v<T>
+  void add(const T& v) { add_bytes(&v, sizeof v); }
   template <typename T>
-    requires std::is_trivially_copyable_v<T>
-  void add(std::span<const T> values) {
-    add_bytes(values.data(), values.size_bytes());
-  }
+  requires std::is_trivially_copyable_v<T>
+  void add(std::span<const T> values) { add_bytes(values.data(), values.size_bytes()); }
   std::uint64_t value() const { return value_; }
 
  private:

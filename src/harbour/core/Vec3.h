@@ -31,16 +31,30 @@ struct Vec3 {
   friend constexpr bool operator==(const Vec3&, const Vec3&) = default;
 };
 
-constexpr Vec3 operator+(Vec3 a, const Vec3& b) { return a += b; }
-constexpr Vec3 operator-(Vec3 a, const Vec3& b) { return a -= b; }
-constexpr Vec3 operator-(const Vec3& a) { return {-a.x, -a.y, -a.z}; }
-constexpr Vec3 operator*(Vec3 a, double s) { return a *= s; }
-constexpr Vec3 operator*(double s, Vec3 a) { return a *= s; }
-constexpr double dot(const Vec3& a, const Vec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+constexpr Vec3 operator+(Vec3 a, const Vec3& b) {
+  return a += b;
+}
+constexpr Vec3 operator-(Vec3 a, const Vec3& b) {
+  return a -= b;
+}
+constexpr Vec3 operator-(const Vec3& a) {
+  return {-a.x, -a.y, -a.z};
+}
+constexpr Vec3 operator*(Vec3 a, double s) {
+  return a *= s;
+}
+constexpr Vec3 operator*(double s, Vec3 a) {
+  return a *= s;
+}
+constexpr double dot(const Vec3& a, const Vec3& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
 constexpr Vec3 cross(const Vec3& a, const Vec3& b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
-inline double length(const Vec3& a) { return std::sqrt(dot(a, a)); }
+inline double length(const Vec3& a) {
+  return std::sqrt(dot(a, a));
+}
 
 /// Row-major 3x3 matrix; used for rotations (orthonormal) in this code base.
 struct Mat3 {
@@ -57,16 +71,20 @@ struct Mat3 {
   constexpr Mat3 transposed() const {
     Mat3 t;
     for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) t.m[i][j] = m[j][i];
+      for (int j = 0; j < 3; ++j)
+        t.m[i][j] = m[j][i];
     return t;
   }
 };
 
-constexpr Vec3 operator*(const Mat3& a, const Vec3& v) { return {dot(a.row(0), v), dot(a.row(1), v), dot(a.row(2), v)}; }
+constexpr Vec3 operator*(const Mat3& a, const Vec3& v) {
+  return {dot(a.row(0), v), dot(a.row(1), v), dot(a.row(2), v)};
+}
 constexpr Mat3 operator*(const Mat3& a, const Mat3& b) {
   Mat3 r;
   for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) r.m[i][j] = a.m[i][0] * b.m[0][j] + a.m[i][1] * b.m[1][j] + a.m[i][2] * b.m[2][j];
+    for (int j = 0; j < 3; ++j)
+      r.m[i][j] = a.m[i][0] * b.m[0][j] + a.m[i][1] * b.m[1][j] + a.m[i][2] * b.m[2][j];
   return r;
 }
 

@@ -24,7 +24,8 @@ class Warnings {
   std::uint32_t count(Warning w) const { return counts_[static_cast<std::size_t>(w)]; }
   std::uint32_t total() const {
     std::uint32_t sum = 0;
-    for (auto c : counts_) sum += c;
+    for (auto c : counts_)
+      sum += c;
     return sum;
   }
   void clear() { counts_.fill(0); }

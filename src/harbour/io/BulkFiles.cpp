@@ -10,7 +10,9 @@ namespace {
 
 constexpr double kHuge = std::numeric_limits<double>::max();
 
-std::string item(const std::string& list, std::size_t n) { return list + "[" + std::to_string(n) + "]"; }
+std::string item(const std::string& list, std::size_t n) {
+  return list + "[" + std::to_string(n) + "]";
+}
 
 }  // namespace
 
@@ -22,7 +24,8 @@ std::vector<bulk::Material> load_materials(const YamlFile& file) {
     const std::string path = item("materials", n);
     bulk::Material material;
     material.name = file.text(m, "name", path);
-    if (std::any_of(materials.begin(), materials.end(), [&](const auto& o) { return o.name == material.name; }))
+    if (std::any_of(materials.begin(), materials.end(),
+                    [&](const auto& o) { return o.name == material.name; }))
       file.fail(m["name"], path + ".name", "duplicate material '" + material.name + "'");
     material.bulk_density_kg_m3 = file.number(m, "bulk_density_kg_m3", path, 0.0, 25000.0, true);
     material.angle_of_repose_rad =
@@ -35,15 +38,19 @@ std::vector<bulk::Material> load_materials(const YamlFile& file) {
   return materials;
 }
 
-std::vector<bulk::Material> load_materials(const std::string& path) { return load_materials(YamlFile::load(path)); }
+std::vector<bulk::Material> load_materials(const std::string& path) {
+  return load_materials(YamlFile::load(path));
+}
 
 BulkScenario load_bulk_scenario(const YamlFile& file, const std::vector<bulk::Material>& materials) {
   BulkScenario scenario;
   const YAML::Node bulk = file.required(file.root(), "bulk", "");
 
   const std::string material = file.text(bulk, "material", "bulk");
-  const auto found = std::find_if(materials.begin(), materials.end(), [&](const auto& m) { return m.name == material; });
-  if (found == materials.end()) file.fail(bulk["material"], "bulk.material", "unknown material '" + material + "'");
+  const auto found =
+      std::find_if(materials.begin(), materials.end(), [&](const auto& m) { return m.name == material; });
+  if (found == materials.end())
+    file.fail(bulk["material"], "bulk.material", "unknown material '" + material + "'");
   scenario.material = *found;
   scenario.spill_level_m = file.number_or(bulk, "spill_level_m", "bulk", 0.0, -kHuge, kHuge);
 
@@ -73,7 +80,8 @@ BulkScenario load_bulk_scenario(const YamlFile& file, const std::vector<bulk::Ma
       const std::string path = item("bulk.heaps", n);
       ScenarioHeap heap;
       const std::string grid = file.text(h, "grid", path);
-      const auto g = std::find_if(scenario.grids.begin(), scenario.grids.end(), [&](auto& s) { return s.name == grid; });
+      const auto g =
+          std::find_if(scenario.grids.begin(), scenario.grids.end(), [&](auto& s) { return s.name == grid; });
       if (g == scenario.grids.end()) file.fail(h["grid"], path + ".grid", "unknown grid '" + grid + "'");
       heap.grid = static_cast<int>(g - scenario.grids.begin());
       heap.x_m = file.number(h, "x_m", path, 0.0, g->settings.cells_x * g->settings.cell_size_m);

@@ -36,8 +36,8 @@ void write_png(const std::string& path, const std::vector<Rgb>& pixels, const in
     throw std::runtime_error(path + ": PNG encoding failed");
   }
   png_init_io(png, file.get());
-  png_set_IHDR(png, info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height), 8, PNG_COLOR_TYPE_RGB,
-               PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  png_set_IHDR(png, info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height), 8,
+               PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
   png_write_info(png, info);
   for (int row = 0; row < height; ++row)
     png_write_row(png, reinterpret_cast<png_const_bytep>(&pixels[static_cast<std::size_t>(row) * width]));
@@ -47,7 +47,8 @@ void write_png(const std::string& path, const std::vector<Rgb>& pixels, const in
 
 }  // namespace
 
-void write_relief_png(const std::string& path, std::span<const bulk::HeightGrid* const> grids, int max_side_px) {
+void write_relief_png(const std::string& path, std::span<const bulk::HeightGrid* const> grids,
+                      int max_side_px) {
   // layout: each grid subsampled by an integer step so its longer side fits max_side_px
   std::vector<int> steps;
   int width = 0, height = 0;
@@ -66,7 +67,9 @@ void write_relief_png(const std::string& path, std::span<const bulk::HeightGrid*
     const bulk::HeightGrid& g = *grids[n];
     const int step = steps[n], w = g.cells_x() / step, h = g.cells_y() / step;
     const double spacing = g.cell_size_m() * step;
-    auto at = [&](int i, int j) { return g.height(std::clamp(i, 0, w - 1) * step, std::clamp(j, 0, h - 1) * step); };
+    auto at = [&](int i, int j) {
+      return g.height(std::clamp(i, 0, w - 1) * step, std::clamp(j, 0, h - 1) * step);
+    };
     for (int j = 0; j < h; ++j)
       for (int i = 0; i < w; ++i) {
         // Lambert shading of the surface normal under a light from the north-west, 45 degrees up

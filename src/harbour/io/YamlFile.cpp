@@ -66,13 +66,14 @@ double YamlFile::number(const YAML::Node& map, const std::string& key, const std
   const bool high = exclusive_max ? value >= max : value > max;
   if (low || high)
     fail(node, field,
-         describe(value) + " is outside " + (exclusive_min ? "(" : "[") + describe(min) + ", " + describe(max) +
-             (exclusive_max ? ")" : "]"));
+         describe(value) + " is outside " + (exclusive_min ? "(" : "[") + describe(min) + ", " +
+             describe(max) + (exclusive_max ? ")" : "]"));
   return value;
 }
 
 double YamlFile::number_or(const YAML::Node& map, const std::string& key, const std::string& path,
-                           double fallback, double min, double max, bool exclusive_min, bool exclusive_max) const {
+                           double fallback, double min, double max, bool exclusive_min,
+                           bool exclusive_max) const {
   if (!map.IsMap() || !map[key].IsDefined()) return fallback;
   return number(map, key, path, min, max, exclusive_min, exclusive_max);
 }

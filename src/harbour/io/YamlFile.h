@@ -27,8 +27,8 @@ class YamlFile {
   /// The map entry `key` of `map`; fails if missing.
   YAML::Node required(const YAML::Node& map, const std::string& key, const std::string& path) const;
   /// A finite number in [min, max] (open at `exclusive` bounds when set).
-  double number(const YAML::Node& map, const std::string& key, const std::string& path, double min, double max,
-                bool exclusive_min = false, bool exclusive_max = false) const;
+  double number(const YAML::Node& map, const std::string& key, const std::string& path, double min,
+                double max, bool exclusive_min = false, bool exclusive_max = false) const;
   /// Like number() but returns `fallback` when the key is absent.
   double number_or(const YAML::Node& map, const std::string& key, const std::string& path, double fallback,
                    double min, double max, bool exclusive_min = false, bool exclusive_max = false) const;

@@ -1,0 +1,105 @@
+#include "harbour/io/BulkFiles.h"
+
+#include <gtest/gtest.h>
+
+#include "harbour/core/Units.h"
+
+namespace harbour::io {
+namespace {
+
+const std::string kMaterials = HARBOUR_DATA_DIR "/materials.yaml";
+
+const char* kGoodMaterials = R"(materials:
+  - name: coal
+    bulk_density_kg_m3: 960
+    angle_of_repose_deg: 35
+    flow_fraction: 0.5
+)";
+
+const char* kScenario = R"(bulk:
+  material: coal
+  grids:
+    - name: yard
+      cells_x: 10
+      cells_y: 10
+      cell_size_m: 0.1
+  heaps:
+    - grid: yard
+      x_m: 0.5
+      y_m: 0.5
+      volume_m3: 1
+  grab:
+    width_m: 2
+    max_opening_m: 3
+    max_depth_m: 1
+    sinking_speed_mps: 0.2
+    spill_speed_mps: 2
+    capacity_m3: 10
+    closing_time_s: 5
+)";
+
+// expects `text` (one replacement of `from` by `to` in `base`) to fail at `line` naming `field`
+template <typename Load>
+void expect_error(Load load, std::string base, const std::string& from, const std::string& to, int line,
+                  const std::string& field) {
+  const auto at = base.find(from);
+  ASSERT_NE(at, std::string::npos) << from;
+  base.replace(at, from.size(), to);
+  try {
+    load(YamlFile::parse(base, "bad.yaml"));
+    FAIL() << "accepted: " << to;
+  } catch (const DataError& e) {
+    EXPECT_EQ(e.file(), "bad.yaml");
+    EXPECT_EQ(e.line(), line) << e.what();
+    EXPECT_EQ(e.field(), field) << e.what();
+  }
+}
+
+TEST(BulkFiles, ShippedMaterialsLoadWithPublishedValues) {
+  const auto materials = load_materials(kMaterials);
+  ASSERT_EQ(materials.size(), 7u);
+  EXPECT_EQ(materials[0].name, "coal");
+  EXPECT_EQ(materials[0].bulk_density_kg_m3, 960.0);
+  EXPECT_DOUBLE_EQ(materials[0].angle_of_repose_rad, core::deg_to_rad(35.0));
+}
+
+TEST(BulkFiles, ShippedDemoScenarioLoads) {
+  const auto s = load_bulk_scenario(HARBOUR_DATA_DIR "/scenarios/bulk_demo.yaml", load_materials(kMaterials));
+  EXPECT_EQ(s.material.name, "coal");
+  EXPECT_EQ(s.grids.size(), 2u);
+}
+
+TEST(BulkFiles, BadMaterialsNameLineAndField) {
+  const auto load = [](const YamlFile& f) { load_materials(f); };
+  expect_error(load, kGoodMaterials, "angle_of_repose_deg: 35", "angle_of_repose_deg: 90", 4,
+               "materials[0].angle_of_repose_deg");
+  expect_error(load, kGoodMaterials, "bulk_density_kg_m3: 960", "bulk_density_kg_m3: heavy", 3,
+               "materials[0].bulk_density_kg_m3");
+  expect_error(load, kGoodMaterials, "bulk_density_kg_m3: 960", "bulk_density_kg_m3: -960", 3,
+               "materials[0].bulk_density_kg_m3");
+  expect_error(load, kGoodMaterials, "    flow_fraction: 0.5\n", "", 2, "materials[0].flow_fraction");
+}
+
+TEST(BulkFiles, BadScenarioNamesLineAndField) {
+  const auto materials = load_materials(YamlFile::parse(kGoodMaterials, "m.yaml"));
+  const auto load = [&](const YamlFile& f) { load_bulk_scenario(f, materials); };
+  expect_error(load, kScenario, "material: coal", "material: unobtainium", 2, "bulk.material");
+  expect_error(load, kScenario, "cell_size_m: 0.1", "cell_size_m: -0.1", 7, "bulk.grids[0].cell_size_m");
+  expect_error(load, kScenario, "cells_x: 10", "cells_x: 10.5", 5, "bulk.grids[0].cells_x");
+  expect_error(load, kScenario, "- grid: yard", "- grid: hold", 9, "bulk.heaps[0].grid");
+  expect_error(load, kScenario, "x_m: 0.5", "x_m: 5", 10, "bulk.heaps[0].x_m");  // off the 1 m grid
+  expect_error(load, kScenario, "capacity_m3: 10", "capacity_m3: [10]", 19, "bulk.grab.capacity_m3");
+}
+
+TEST(BulkFiles, AFailedLoadLeavesTheCallersDataUntouched) {
+  auto materials = load_materials(kMaterials);
+  const auto before = materials.size();
+  try {
+    materials = load_materials(YamlFile::parse("materials:\n  - name: x\n", "bad.yaml"));
+  } catch (const DataError&) {
+  }
+  EXPECT_EQ(materials.size(), before);
+}
+
+}  // namespace
+}  // namespace harbour::io

@@ -1,0 +1,44 @@
+#include "harbour/io/YamlFile.h"
+
+#include <gtest/gtest.h>
+
+namespace harbour::io {
+namespace {
+
+TEST(YamlFile, SyntaxErrorNamesFileAndLine) {
+  try {
+    YamlFile::parse("a: 1\nb: [1, 2\nc: 3\n", "broken.yaml");
+    FAIL() << "no error";
+  } catch (const DataError& e) {
+    EXPECT_EQ(e.file(), "broken.yaml");
+    EXPECT_GE(e.line(), 2);
+  }
+}
+
+TEST(YamlFile, MissingFileIsADataError) {
+  EXPECT_THROW(YamlFile::load("/nonexistent/harbour.yaml"), DataError);
+}
+
+TEST(YamlFile, NumberChecksTypeFinitenessAndRange) {
+  const YamlFile f = YamlFile::parse("x: 1.5\ny: abc\nz: .nan\nw: 7\n", "t.yaml");
+  EXPECT_EQ(f.number(f.root(), "x", "", 0, 2), 1.5);
+  EXPECT_THROW(f.number(f.root(), "y", "", 0, 2), DataError);
+  EXPECT_THROW(f.number(f.root(), "z", "", 0, 2), DataError);
+  EXPECT_THROW(f.number(f.root(), "w", "", 0, 2), DataError);
+  EXPECT_THROW(f.number(f.root(), "missing", "", 0, 2), DataError);
+  EXPECT_EQ(f.number_or(f.root(), "missing", "", 4.0, 0, 2), 4.0);
+  EXPECT_THROW(f.number(f.root(), "x", "", 1.5, 2, true), DataError);  // exclusive bound
+}
+
+TEST(YamlFile, ErrorMessageReadsFileLineField) {
+  const YamlFile f = YamlFile::parse("outer:\n  inner: nope\n", "m.yaml");
+  try {
+    f.number(f.root()["outer"], "inner", "outer", 0, 1);
+    FAIL() << "no error";
+  } catch (const DataError& e) {
+    EXPECT_STREQ(e.what(), "m.yaml:2: outer.inner: 'nope' is not a number");
+  }
+}
+
+}  // namespace
+}  // namespace harbour::io
