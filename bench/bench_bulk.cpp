@@ -14,7 +14,8 @@ namespace {
 void dig(benchmark::State& state, bool full_sweep) {
   // warm up into the bite with the active list, which is bit-identical to the sweep and much faster
   scenes::DigScene scene(static_cast<int>(state.range(0)));
-  for (int n = 0; n < 2000; ++n) scene.step();
+  for (int n = 0; n < 2000; ++n)
+    scene.step();
   scene.world.use_full_sweep(full_sweep);
   double examined = 0;
   for (auto _ : state) {
@@ -25,8 +26,12 @@ void dig(benchmark::State& state, bool full_sweep) {
   state.counters["cell_updates_per_s"] = benchmark::Counter(examined, benchmark::Counter::kIsRate);
 }
 
-void BM_DigActiveList(benchmark::State& state) { dig(state, false); }
-void BM_DigFullSweep(benchmark::State& state) { dig(state, true); }
+void BM_DigActiveList(benchmark::State& state) {
+  dig(state, false);
+}
+void BM_DigFullSweep(benchmark::State& state) {
+  dig(state, true);
+}
 BENCHMARK(BM_DigActiveList)->Arg(256)->Arg(512)->Arg(1024)->Arg(2048)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_DigFullSweep)->Arg(256)->Arg(512)->Arg(1024)->Arg(2048)->Unit(benchmark::kMicrosecond);
 
@@ -43,7 +48,8 @@ void pour(benchmark::State& state, bool full_sweep) {
       const double r = std::hypot((i + 0.5) * 0.1 - c, (j + 0.5) * 0.1 - c);
       if (r < radius) grid.add_volume(i, j, (radius - r) * t * grid.cell_area_m2());
     }
-  for (int n = 0; n < 200000 && grid.active_count() > 0; ++n) grid.relax_active();
+  for (int n = 0; n < 200000 && grid.active_count() > 0; ++n)
+    grid.relax_active();
   const int top = cells / 2;
   for (int n = 0; n < 3000; ++n) {  // reach a steady avalanche regime
     grid.add_volume(top, top, 0.002);
@@ -61,8 +67,12 @@ void pour(benchmark::State& state, bool full_sweep) {
   state.counters["cells_per_step"] = benchmark::Counter(examined, benchmark::Counter::kAvgIterations);
 }
 
-void BM_PourActiveList(benchmark::State& state) { pour(state, false); }
-void BM_PourFullSweep(benchmark::State& state) { pour(state, true); }
+void BM_PourActiveList(benchmark::State& state) {
+  pour(state, false);
+}
+void BM_PourFullSweep(benchmark::State& state) {
+  pour(state, true);
+}
 BENCHMARK(BM_PourActiveList)->Arg(5)->Arg(10)->Arg(20)->Arg(40)->Arg(80)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_PourFullSweep)->Arg(5)->Arg(10)->Arg(20)->Arg(40)->Arg(80)->Unit(benchmark::kMicrosecond);
 

@@ -59,7 +59,8 @@ struct DigScene {
     centre = 0.05 * cells;
     world.add_heap(grid, centre, centre, 1000.0);
     grab = world.add_grab(GrabSettings{});
-    for (int n = 0; n < 100000 && world.grid(grid).active_count() > 0; ++n) world.grid(grid).relax_active();
+    for (int n = 0; n < 100000 && world.grid(grid).active_count() > 0; ++n)
+      world.grid(grid).relax_active();
   }
 
   void step() {
@@ -68,7 +69,8 @@ struct DigScene {
     const HeightGrid& g = world.grid(grid);
     if (phase == 0) command = grab_at({x, y, g.surface_height(x, y)}, 1.0);
     if (phase < 6000) {
-      if (world.grab(grab).digging) command.pose.position.z -= world.grab_settings(grab).sinking_speed_mps * 0.001;
+      if (world.grab(grab).digging)
+        command.pose.position.z -= world.grab_settings(grab).sinking_speed_mps * 0.001;
     } else {
       command.pose.position.z = g.surface_height(x, y) + 2.0;
       command.close_rate = -1.0;

@@ -180,8 +180,10 @@ double BulkWorld::dig(const GrabSettings& settings, GrabState& state, double dt_
     const int j1 = std::min(g.cells_y() - 1, static_cast<int>((tip.y + reach) / g.cell_size_m()));
     // cell centres map affinely into the grab frame: step along i and j instead of transforming each
     const core::Vec3 origin = state.pose.to_local(g.pose().to_parent(g.cell_centre(i0, j0)));
-    const core::Vec3 step_i = state.pose.direction_to_local(g.pose().direction_to_parent({g.cell_size_m(), 0, 0}));
-    const core::Vec3 step_j = state.pose.direction_to_local(g.pose().direction_to_parent({0, g.cell_size_m(), 0}));
+    const core::Vec3 step_i =
+        state.pose.direction_to_local(g.pose().direction_to_parent({g.cell_size_m(), 0, 0}));
+    const core::Vec3 step_j =
+        state.pose.direction_to_local(g.pose().direction_to_parent({0, g.cell_size_m(), 0}));
     for (int j = j0; j <= j1; ++j) {
       const core::Vec3 row = origin + step_j * static_cast<double>(j - j0);
       for (int i = i0; i <= i1; ++i) {

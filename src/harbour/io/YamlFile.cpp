@@ -92,6 +92,12 @@ std::string YamlFile::text(const YAML::Node& map, const std::string& key, const 
   return node.Scalar();
 }
 
+core::Vec3 YamlFile::vector3(const YAML::Node& node, const std::string& field) const {
+  if (!node.IsSequence() || node.size() != 3) fail(node, field, "expected a list of three numbers [x, y, z]");
+  return {to_number(node[0], field + "[0]"), to_number(node[1], field + "[1]"),
+          to_number(node[2], field + "[2]")};
+}
+
 YAML::Node YamlFile::sequence(const YAML::Node& map, const std::string& key, const std::string& path) const {
   const std::string field = path.empty() ? key : path + "." + key;
   const YAML::Node node = required(map, key, path);

@@ -5,6 +5,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "harbour/core/Vec3.h"
 #include "harbour/io/DataError.h"
 
 namespace harbour::io {
@@ -36,6 +37,8 @@ class YamlFile {
   int integer(const YAML::Node& map, const std::string& key, const std::string& path, int min, int max) const;
   /// A non-empty string.
   std::string text(const YAML::Node& map, const std::string& key, const std::string& path) const;
+  /// A list of three finite numbers [x, y, z].
+  core::Vec3 vector3(const YAML::Node& node, const std::string& field) const;
   /// A sequence (possibly empty).
   YAML::Node sequence(const YAML::Node& map, const std::string& key, const std::string& path) const;
 
