@@ -1,0 +1,356 @@
+#include "harbour/cable/HoistSystem.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "harbour/core/Assert.h"
+
+namespace harbour::cable {
+namespace {
+
+using core::Vec3;
+
+constexpr double kCourant = 0.5;              // sub-step: wave (plus transport) crosses half a node interval
+constexpr double kSpringDecay_s = 0.05;       // a suspended oscillation's shape fades over this time
+constexpr double kBrakeSpeedFraction = 1e-3;  // brake engages below this share of full speed
+
+Vec3 perpendicular(const Vec3& v, const Vec3& e) {
+  return v - e * core::dot(v, e);
+}
+
+}  // namespace
+
+HoistSystem::HoistSystem(const ReevingSettings& settings, const CableBodies& bodies, const Vec3& gravity)
+    : settings_(settings), gravity_(gravity), elements_(settings.elements.size()) {
+  for (int e = 0; e < static_cast<int>(settings.elements.size()); ++e)
+    if (settings.elements[e].kind == ElementKind::kDrum) drums_.push_back(e);
+  for (int r = 0; r < static_cast<int>(settings.ropes.size()); ++r) {
+    const RopeSettings& rope = settings.ropes[r];
+    HARBOUR_ASSERT(rope.path.size() >= 2, "reeving must be validated by the loader");
+    Rope state;
+    state.stored_m = settings.elements[rope.path.front()].stored_rope_m;
+    if (settings.elements[rope.path.back()].kind == ElementKind::kDrum)
+      state.stored_m += settings.elements[rope.path.back()].stored_rope_m;
+    for (std::size_t j = 0; j + 1 < rope.path.size(); ++j) {
+      Segment s;
+      s.rope = r;
+      s.a = rope.path[j];
+      s.b = rope.path[j + 1];
+      const ElementSettings& ea = settings.elements[s.a];
+      const ElementSettings& eb = settings.elements[s.b];
+      s.end_a = bodies.point_position(ea.mount.body, ea.mount.local);
+      s.end_b = bodies.point_position(eb.mount.body, eb.mount.local);
+      s.velocity_a = bodies.point_velocity(ea.mount.body, ea.mount.local);
+      s.velocity_b = bodies.point_velocity(eb.mount.body, eb.mount.local);
+      s.rest_length = core::length(s.end_b - s.end_a);
+      s.length = s.rest_length;
+      s.w.assign(static_cast<std::size_t>(rope.nodes - 1), Vec3{});
+      s.u.assign(static_cast<std::size_t>(rope.nodes - 1), Vec3{});
+      state.segments.push_back(static_cast<int>(segments_.size()));
+      segments_.push_back(std::move(s));
+    }
+    ropes_.push_back(std::move(state));
+  }
+}
+
+double HoistSystem::rope_speed_into(const Segment& s, bool at_a) const {
+  // speed at which rope material crosses an end of the segment, positive from the drum towards the dead end
+  const int e = at_a ? s.a : s.b;
+  const ElementSettings& el = settings_.elements[e];
+  if (el.kind == ElementKind::kAnchor) return 0.0;
+  const double v = el.radius_m * elements_[e].omega;
+  // a drum at the far end pays out towards the drum at the near end: against the path direction
+  const bool far_drum = !at_a && el.kind == ElementKind::kDrum;
+  return far_drum ? -v : v;
+}
+
+void HoistSystem::update_segment(Segment& s, const RopeSettings& rope, double dt, const CableBodies& bodies) {
+  const ElementSettings& ea = settings_.elements[s.a];
+  const ElementSettings& eb = settings_.elements[s.b];
+  const Vec3 a = bodies.point_position(ea.mount.body, ea.mount.local);
+  const Vec3 b = bodies.point_position(eb.mount.body, eb.mount.local);
+  const Vec3 va = bodies.point_velocity(ea.mount.body, ea.mount.local);
+  const Vec3 vb = bodies.point_velocity(eb.mount.body, eb.mount.local);
+  const Vec3 chord = b - a;
+  const double chord_length = std::max(core::length(chord), 1e-9);
+  const Vec3 e = chord * (1.0 / chord_length);
+  const int n = rope.nodes;
+  const double h = chord_length / n;
+  const double mu = rope.mass_per_m_kg;
+
+  // keep the transverse field perpendicular to the (turning) chord
+  for (std::size_t k = 0; k < s.w.size(); ++k) {
+    s.w[k] = perpendicular(s.w[k], e);
+    s.u[k] = perpendicular(s.u[k], e);
+  }
+
+  // oscillation, or the massless spring when the wave would need too many sub-steps (with hysteresis)
+  const double transport = 0.5 * (rope_speed_into(s, true) + rope_speed_into(s, false));
+  const double wave_speed = std::sqrt(s.tension / mu);
+  const int substeps = static_cast<int>(std::ceil(dt * (wave_speed + std::abs(transport)) / (kCourant * h)));
+  if (s.oscillating && substeps > settings_.max_substeps) {
+    s.oscillating = false;
+    s.switch_tension = s.tension;
+  } else if (!s.oscillating && s.tension < settings_.resume_fraction * s.switch_tension) {
+    s.oscillating = true;
+  }
+
+  if (s.oscillating) {
+    // axially moving string: w_tt = (T/mu - v^2) w_ss - 2 v w_st - d w_t + g_perp - a_chord(s)_perp
+    const Vec3 accel_a = (va - s.velocity_a) * (1.0 / dt), accel_b = (vb - s.velocity_b) * (1.0 / dt);
+    const Vec3 g_perp = perpendicular(gravity_, e);
+    const double tension_term = std::max(s.tension / mu - transport * transport, 0.0) / (h * h);
+    const double gyro = transport / h;  // 2 v / (2 h)
+    const double damping = rope.transverse_damping_per_s;
+    const int count = std::max(substeps, 1);
+    const double ds = dt / count;
+    const std::size_t m = s.w.size();
+    std::vector<Vec3>& w = s.w;
+    std::vector<Vec3>& u = s.u;
+    for (int sub = 0; sub < count; ++sub) {
+      Vec3 u_previous{};  // u at node k-1 before this sub-step (the fixed end: zero)
+      for (std::size_t k = 0; k < m; ++k) {
+        const Vec3 w_left = k > 0 ? w[k - 1] : Vec3{}, w_right = k + 1 < m ? w[k + 1] : Vec3{};
+        const Vec3 u_right = k + 1 < m ? u[k + 1] : Vec3{};
+        const double along = static_cast<double>(k + 1) / n;
+        const Vec3 end_motion = perpendicular(accel_a * (1.0 - along) + accel_b * along, e);
+        const Vec3 acc = (w_right - w[k] * 2.0 + w_left) * tension_term - (u_right - u_previous) * gyro -
+                         u[k] * damping + g_perp - end_motion;
+        u_previous = u[k];
+        u[k] += acc * ds;
+      }
+      for (std::size_t k = 0; k < m; ++k)
+        w[k] += u[k] * ds;
+    }
+  } else {
+    const double fade = std::exp(-dt / kSpringDecay_s);
+    for (std::size_t k = 0; k < s.w.size(); ++k) {
+      s.w[k] *= fade;
+      s.u[k] = Vec3{};
+    }
+  }
+
+  // tension from the stretch of the curved rope, with strain-rate damping; a rope never pushes
+  double length = 0.0;
+  for (int k = 0; k < n; ++k) {
+    const Vec3 left = k > 0 ? s.w[k - 1] : Vec3{}, right = k + 1 < n ? s.w[k] : Vec3{};
+    length += std::sqrt(h * h + core::dot(right - left, right - left));
+  }
+  const double stretch = length - s.rest_length;
+  const double strain_rate = ((length - s.length) / dt) / s.rest_length;
+  s.length = length;
+  if (stretch > 0.0) {
+    const double ea_over_l0 = rope.axial_stiffness_n / s.rest_length;
+    s.tension =
+        std::max(0.0, ea_over_l0 * stretch + rope.axial_stiffness_n * rope.axial_damping_s * strain_rate);
+    s.stiffness = ea_over_l0 * length / s.rest_length;
+  } else {
+    s.tension = 0.0;
+    s.stiffness = 0.0;
+  }
+  s.end_a = a;
+  s.end_b = b;
+  s.velocity_a = va;
+  s.velocity_b = vb;
+}
+
+void HoistSystem::step_drums(double dt, std::span<const DrumCommand> commands) {
+  // rope torque on each drum: tension at the rim pays rope out
+  for (int d : drums_)
+    elements_[d].rope_torque = 0.0;
+  for (const Rope& rope : ropes_) {
+    const Segment& first = segments_[rope.segments.front()];
+    const Segment& last = segments_[rope.segments.back()];
+    elements_[first.a].rope_torque += settings_.elements[first.a].radius_m * first.tension;
+    if (settings_.elements[last.b].kind == ElementKind::kDrum)
+      elements_[last.b].rope_torque += settings_.elements[last.b].radius_m * last.tension;
+  }
+  for (std::size_t n = 0; n < drums_.size(); ++n) {
+    const ElementSettings& d = settings_.elements[drums_[n]];
+    ElementState& st = elements_[drums_[n]];
+    const DrumCommand command = n < commands.size() ? commands[n] : DrumCommand{};
+    // ramped speed reference from the lever
+    const double full = d.max_rope_speed_mps / d.radius_m;
+    const double target = std::clamp(command.lever, -1.0, 1.0) * full;
+    const double ramp = d.max_rope_acceleration_mps2 / d.radius_m * dt;
+    st.reference += std::clamp(target - st.reference, -ramp, ramp);
+
+    const bool brake =
+        !command.brake_fault && st.reference == 0.0 && std::abs(st.omega) <= kBrakeSpeedFraction * full;
+    if (brake) {
+      // the holding brake alone; it slips if the rope torque beats it
+      if (std::abs(st.rope_torque) <= d.brake_torque_n_m) {
+        st.omega = 0.0;
+      } else {
+        st.omega +=
+            dt * (st.rope_torque - std::copysign(d.brake_torque_n_m, st.rope_torque)) / d.inertia_kg_m2;
+      }
+      continue;
+    }
+    // speed control within the motor's torque limit
+    const double wanted = d.inertia_kg_m2 * (st.reference - st.omega) / dt - st.rope_torque;
+    const double motor = std::clamp(wanted, -d.max_torque_n_m, d.max_torque_n_m);
+    st.omega += dt * (motor + st.rope_torque) / d.inertia_kg_m2;
+  }
+}
+
+void HoistSystem::step_sheaves(const Rope& rope, double dt) {
+  // linearly implicit in the sheave speeds: each sheave's tension difference after this step's rope transfer,
+  // T' = T - k dL0, gives a tridiagonal system along the rope (sheaves are light against stiff rope)
+  const std::size_t m = rope.segments.size() + 1;  // path elements
+  if (m < 3) return;
+  std::vector<double> lower(m, 0.0), diag(m, 1.0), upper(m, 0.0), rhs(m, 0.0);
+  auto element = [&](std::size_t j) {
+    return j == 0 ? segments_[rope.segments[0]].a : segments_[rope.segments[j - 1]].b;
+  };
+  for (std::size_t j = 1; j + 1 < m; ++j) {
+    const int e = element(j);
+    const ElementSettings& el = settings_.elements[e];
+    const Segment& before = segments_[rope.segments[j - 1]];
+    const Segment& after = segments_[rope.segments[j]];
+    const double r = el.radius_m;
+    diag[j] = el.inertia_kg_m2 / dt + dt * r * r * (before.stiffness + after.stiffness);
+    rhs[j] = el.inertia_kg_m2 * elements_[e].omega / dt + r * (after.tension - before.tension);
+    // neighbours: sheaves are unknowns; the ends (drum or anchor) have known rope speeds
+    const double left_speed = rope_speed_into(before, true), right_speed = rope_speed_into(after, false);
+    if (j - 1 >= 1)
+      lower[j] = -dt * r * before.stiffness * settings_.elements[element(j - 1)].radius_m;
+    else
+      rhs[j] += dt * r * before.stiffness * left_speed;
+    if (j + 1 <= m - 2)
+      upper[j] = -dt * r * after.stiffness * settings_.elements[element(j + 1)].radius_m;
+    else
+      rhs[j] += dt * r * after.stiffness * right_speed;
+  }
+  // Thomas algorithm over j = 1 .. m-2
+  for (std::size_t j = 2; j + 1 < m; ++j) {
+    const double f = lower[j] / diag[j - 1];
+    diag[j] -= f * upper[j - 1];
+    rhs[j] -= f * rhs[j - 1];
+  }
+  for (std::size_t j = m - 2; j >= 1; --j) {
+    const double next = j + 1 <= m - 2 ? elements_[element(j + 1)].omega : 0.0;
+    double omega = (rhs[j] - upper[j] * next) / diag[j];
+    // bearing friction opposes the motion and cannot reverse it
+    const ElementSettings& el = settings_.elements[element(j)];
+    if (el.friction_torque_n_m > 0.0) {
+      const double loss = el.friction_torque_n_m * dt / el.inertia_kg_m2;
+      omega = std::abs(omega) <= loss ? 0.0 : omega - std::copysign(loss, omega);
+    }
+    elements_[element(j)].omega = omega;
+    if (j == 1) break;
+  }
+}
+
+void HoistSystem::apply_forces(const Segment& s, const RopeSettings& rope, CableBodies& bodies) const {
+  // the rope pulls each end towards its first interior point; its weight goes half to each end (the part
+  // across the chord travels through the sag while it oscillates)
+  const Vec3 chord = s.end_b - s.end_a;
+  const double chord_length = std::max(core::length(chord), 1e-9);
+  const Vec3 e = chord * (1.0 / chord_length);
+  const double h = chord_length / rope.nodes;
+  const Vec3 first = e * h + (s.w.empty() ? Vec3{} : s.w.front());
+  const Vec3 last = -e * h + (s.w.empty() ? Vec3{} : s.w.back());
+  const Vec3 weight = gravity_ * (0.5 * rope.mass_per_m_kg * s.rest_length);
+  const Vec3 carried = s.oscillating ? e * core::dot(weight, e) : weight;
+  const ElementSettings& ea = settings_.elements[s.a];
+  const ElementSettings& eb = settings_.elements[s.b];
+  if (ea.mount.body >= 0)
+    bodies.add_force(ea.mount.body, s.end_a, first * (s.tension / core::length(first)) + carried);
+  if (eb.mount.body >= 0)
+    bodies.add_force(eb.mount.body, s.end_b, last * (s.tension / core::length(last)) + carried);
+}
+
+void HoistSystem::check_events(Segment& s, const RopeSettings& rope, int rope_index, int segment_index) {
+  const bool slack = s.tension <= 0.0;
+  const bool overloaded = s.tension > rope.min_breaking_force_n / rope.safety_factor;
+  const bool breaking = s.tension > rope.min_breaking_force_n;
+  if (slack && !s.slack) events_.push_back({CableEventKind::kSlack, rope_index, segment_index, s.tension});
+  if (overloaded && !s.overloaded)
+    events_.push_back({CableEventKind::kOverload, rope_index, segment_index, s.tension});
+  if (breaking && !s.breaking)
+    events_.push_back({CableEventKind::kBreakingForce, rope_index, segment_index, s.tension});
+  s.slack = slack;
+  s.overloaded = overloaded;
+  s.breaking = breaking;
+}
+
+void HoistSystem::step(double dt_s, std::span<const DrumCommand> drum_commands, CableBodies& bodies) {
+  // segments (tension from the bodies' positions), then drums, then sheaves, then rope transfer and forces
+  for (Segment& s : segments_)
+    update_segment(s, settings_.ropes[s.rope], dt_s, bodies);
+  step_drums(dt_s, drum_commands);
+  for (const Rope& rope : ropes_)
+    step_sheaves(rope, dt_s);
+  for (std::size_t r = 0; r < ropes_.size(); ++r) {
+    Rope& rope = ropes_[r];
+    const RopeSettings& settings = settings_.ropes[r];
+    for (std::size_t n = 0; n < rope.segments.size(); ++n) {
+      Segment& s = segments_[rope.segments[n]];
+      s.rest_length += (rope_speed_into(s, true) - rope_speed_into(s, false)) * dt_s;
+      s.rest_length = std::max(s.rest_length, 1e-3);
+      apply_forces(s, settings, bodies);
+      check_events(s, settings, static_cast<int>(r), static_cast<int>(n));
+    }
+    rope.stored_m -= rope_speed_into(segments_[rope.segments.front()], true) * dt_s;
+    if (settings_.elements[segments_[rope.segments.back()].b].kind == ElementKind::kDrum)
+      rope.stored_m += rope_speed_into(segments_[rope.segments.back()], false) * dt_s;
+  }
+}
+
+double HoistSystem::rope_length(int rope) const {
+  double total = ropes_[rope].stored_m;
+  for (int s : ropes_[rope].segments)
+    total += segments_[s].rest_length;
+  return total;
+}
+
+core::Vec3 HoistSystem::midspan_displacement(int rope, int segment) const {
+  const Segment& s = segment_at(rope, segment);
+  return s.w.empty() ? Vec3{} : s.w[s.w.size() / 2];
+}
+
+double HoistSystem::drum_rope_speed(int drum) const {
+  return settings_.elements[drums_[drum]].radius_m * elements_[drums_[drum]].omega;
+}
+
+double HoistSystem::drum_rope_torque(int drum) const {
+  return elements_[drums_[drum]].rope_torque;
+}
+
+double HoistSystem::energy() const {
+  double total = 0.0;
+  for (const Segment& s : segments_) {
+    const RopeSettings& rope = settings_.ropes[s.rope];
+    const double stretch = std::max(0.0, s.length - s.rest_length);
+    total += 0.5 * rope.axial_stiffness_n / s.rest_length * stretch * stretch;
+    const double node_mass = rope.mass_per_m_kg * s.rest_length / rope.nodes;
+    for (const Vec3& u : s.u)
+      total += 0.5 * node_mass * core::dot(u, u);
+  }
+  for (std::size_t e = 0; e < elements_.size(); ++e)
+    total += 0.5 * settings_.elements[e].inertia_kg_m2 * elements_[e].omega * elements_[e].omega;
+  return total;
+}
+
+std::vector<CableEvent> HoistSystem::take_events() {
+  std::vector<CableEvent> out;
+  out.swap(events_);
+  return out;
+}
+
+void HoistSystem::hash_into(core::StateHash& hash) const {
+  for (const Segment& s : segments_) {
+    hash.add(s.rest_length);
+    hash.add(s.tension);
+    hash.add(s.oscillating);
+    hash.add(std::span<const Vec3>(s.w));
+    hash.add(std::span<const Vec3>(s.u));
+  }
+  for (const ElementState& e : elements_)
+    hash.add(e);
+  for (const Rope& r : ropes_)
+    hash.add(r.stored_m);
+}
+
+}  // namespace harbour::cable

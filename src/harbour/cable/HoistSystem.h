@@ -1,0 +1,110 @@
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "harbour/cable/CableBodies.h"
+#include "harbour/cable/Reeving.h"
+#include "harbour/core/StateHash.h"
+
+namespace harbour::cable {
+
+/// What the cable model reports (edge-triggered: once when a condition starts).
+enum class CableEventKind : std::uint8_t {
+  kOverload,       ///< a segment's tension exceeded the rope's working load limit (MBF / safety factor)
+  kBreakingForce,  ///< a segment's tension exceeded the minimum breaking force
+  kSlack,          ///< a segment of a rope went slack (zero tension)
+};
+
+struct CableEvent {
+  CableEventKind kind;
+  int rope = 0;
+  int segment = 0;
+  double tension_n = 0.0;
+};
+
+/// Drum commands: normalised lever positions, +1 pays out at full speed (lowers), -1 reels in (hoists).
+struct DrumCommand {
+  double lever = 0.0;
+  bool brake_fault = false;  ///< the holding brake does not engage (fault injection)
+};
+
+/// Any block-and-tackle as data (§3.2): drums, sheaves and anchors joined by rope segments. Each segment is
+/// an axially moving string whose transverse motion follows the wave equation with transport velocity and
+/// end-motion inertia, or a massless spring when that would need too many sub-steps. Sheaves turn under the
+/// tension difference of their segments and move unstretched rope between them; drums pay it out or reel it
+/// in. Forces reach the bodies through CableBodies.
+class HoistSystem {
+ public:
+  /// Builds the reeving with every segment unstretched at the bodies' current positions.
+  HoistSystem(const ReevingSettings& settings, const CableBodies& bodies, const core::Vec3& gravity);
+
+  /// Advances by `dt_s` (one command per drum, in element order of the drums) and adds the rope forces
+  /// to the bodies.
+  void step(double dt_s, std::span<const DrumCommand> drum_commands, CableBodies& bodies);
+
+  int rope_count() const { return static_cast<int>(ropes_.size()); }
+  int segment_count(int rope) const { return static_cast<int>(ropes_[rope].segments.size()); }
+  /// Tension of a segment [N] (axial, uniform along it).
+  double tension(int rope, int segment) const { return segment_at(rope, segment).tension; }
+  /// True while the segment integrates its transverse oscillation (false: massless spring).
+  bool oscillating(int rope, int segment) const { return segment_at(rope, segment).oscillating; }
+  /// Unstretched rope in a segment [m].
+  double unstretched_length(int rope, int segment) const { return segment_at(rope, segment).rest_length; }
+  /// All of a rope's unstretched length, in segments and on its drums [m]: conserved.
+  double rope_length(int rope) const;
+  /// Transverse displacement of a segment's middle node from its chord [m].
+  core::Vec3 midspan_displacement(int rope, int segment) const;
+  /// Rope speed at a drum [m/s] (positive pays out) and the torque the rope puts on it [N m].
+  double drum_rope_speed(int drum) const;
+  double drum_rope_torque(int drum) const;
+  /// Elastic energy of the ropes plus kinetic energy of transverse motion, sheaves and drums [J].
+  double energy() const;
+  /// Events since the last call.
+  std::vector<CableEvent> take_events();
+
+  void hash_into(core::StateHash& hash) const;
+
+ private:
+  struct Segment {
+    int rope = 0, a = 0, b = 0;   // element indices of its ends (a: towards the drum)
+    double rest_length = 0.0;     // [m] unstretched
+    double length = 0.0;          // [m] current, along the (curved) rope
+    double tension = 0.0;         // [N]
+    double stiffness = 0.0;       // [N/m] dT / d(rest length)
+    double switch_tension = 0.0;  // [N] tension at which it became a spring
+    bool oscillating = true;
+    bool slack = false, overloaded = false, breaking = false;
+    std::vector<core::Vec3> w, u;       // transverse displacement [m] and velocity [m/s] of interior nodes
+    core::Vec3 end_a, end_b;            // [m] world positions of the ends this step
+    core::Vec3 velocity_a, velocity_b;  // [m/s] previous end velocities, for end accelerations
+  };
+  struct Rope {
+    std::vector<int> segments;
+    double stored_m = 0.0;  // [m] on its first drum (and last, if it ends on a drum)
+  };
+  struct ElementState {
+    double omega = 0.0;        // [rad/s] positive moves rope from the drum towards the dead end
+    double reference = 0.0;    // [rad/s] drum: ramped speed reference
+    double rope_torque = 0.0;  // [N m] drum: torque from its ropes
+  };
+
+  const Segment& segment_at(int rope, int s) const { return segments_[ropes_[rope].segments[s]]; }
+  double rope_speed_into(const Segment& s, bool at_a) const;
+  void update_segment(Segment& s, const RopeSettings& rope, double dt, const CableBodies& bodies);
+  void step_drums(double dt, std::span<const DrumCommand> commands);
+  void step_sheaves(const Rope& rope, double dt);
+  void apply_forces(const Segment& s, const RopeSettings& rope, CableBodies& bodies) const;
+  void check_events(Segment& s, const RopeSettings& rope, int rope_index, int segment_index);
+
+  ReevingSettings settings_;
+  core::Vec3 gravity_;
+  std::vector<Segment> segments_;
+  std::vector<Rope> ropes_;
+  std::vector<ElementState> elements_;
+  std::vector<int> drums_;  // element indices of drums, in order
+  std::vector<CableEvent> events_;
+};
+
+}  // namespace harbour::cable

@@ -1,0 +1,56 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "harbour/core/Vec3.h"
+
+namespace harbour::cable {
+
+/// Where an element sits: a point on a body (body index into CableBodies), or fixed in the world (body -1).
+struct Mount {
+  int body = -1;
+  core::Vec3 local;  ///< [m] in the body frame (world frame when body is -1)
+};
+
+/// Steel wire rope (settings).
+struct RopeSettings {
+  std::string name;
+  double diameter_m = 0.028;              ///< [m]
+  double mass_per_m_kg = 2.70;            ///< [kg/m]
+  double axial_stiffness_n = 3.1e7;       ///< [N] EA on the metallic area
+  double min_breaking_force_n = 461e3;    ///< [N]
+  double safety_factor = 5.0;             ///< [-] working load limit = MBF / safety factor (EN 12385-4)
+  double axial_damping_s = 0.002;         ///< [s] strain-rate damping: tension += EA * this * strain rate
+  double transverse_damping_per_s = 0.3;  ///< [1/s] damping of the transverse oscillation
+  int nodes = 12;                         ///< intervals per segment for the wave equation
+  std::vector<int> path;  ///< element indices: a drum first, then sheaves, then an anchor or drum
+};
+
+enum class ElementKind { kDrum, kSheave, kAnchor };
+
+/// A drum, sheave or anchor (settings).
+struct ElementSettings {
+  std::string name;
+  ElementKind kind = ElementKind::kAnchor;
+  Mount mount;
+  double radius_m = 0.0;                    ///< [m] pitch radius (drum, sheave)
+  double inertia_kg_m2 = 0.0;               ///< [kg m^2] (drum with motor and gearing reflected, sheave)
+  double friction_torque_n_m = 0.0;         ///< [N m] bearing friction (sheave)
+  double max_rope_speed_mps = 0.0;          ///< [m/s] drum: rope speed at full command
+  double max_rope_acceleration_mps2 = 0.0;  ///< [m/s^2] drum: speed ramp
+  double max_torque_n_m = 0.0;              ///< [N m] drum motor torque limit
+  double brake_torque_n_m = 0.0;            ///< [N m] drum holding brake
+  double stored_rope_m = 0.0;               ///< [m] drum: rope wound on it at the start, per rope
+};
+
+/// A whole reeving: elements and the ropes that run through them (settings, loaded from data/reeving/).
+struct ReevingSettings {
+  std::string name;
+  std::vector<ElementSettings> elements;
+  std::vector<RopeSettings> ropes;
+  int max_substeps = 8;          ///< wave sub-steps per simulation step before a segment becomes a spring
+  double resume_fraction = 0.8;  ///< a spring segment oscillates again below this share of the switch tension
+};
+
+}  // namespace harbour::cable

@@ -1,0 +1,254 @@
+#include "harbour/cable/HoistSystem.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "harbour/core/Units.h"
+#include "scenes/CableScenes.h"
+#include "scenes/PointMassBodies.h"
+
+namespace harbour::cable {
+namespace {
+
+using core::Vec3;
+constexpr double kDt = 0.001;
+const Vec3 kGravity{0, 0, -core::kStandardGravity};
+
+// a hoist and its point-mass bodies, stepped together
+struct Rig {
+  scenes::PointMassBodies bodies;
+  std::unique_ptr<HoistSystem> hoist;
+  std::vector<DrumCommand> commands;
+  Vec3 gravity = kGravity;
+
+  void build(const ReevingSettings& r) {
+    hoist = std::make_unique<HoistSystem>(r, bodies, gravity);
+    commands.assign(1, DrumCommand{});
+  }
+  void step(int n = 1) {
+    for (int k = 0; k < n; ++k) {
+      hoist->step(kDt, commands, bodies);
+      bodies.step(kDt, gravity);
+    }
+  }
+};
+
+TEST(HoistSystem, FourFallCarriesAQuarterOfTheLoadInEachPart) {
+  Rig rig;
+  const double mass = 20000.0;
+  const int block = rig.bodies.add({0, 0, 10}, mass);
+  rig.build(scenes::four_fall(block));
+  rig.step(40000);  // 40 s to settle (axial damping ratio ~0.02)
+  const double w = mass * core::kStandardGravity;
+  double lowest = 1e30, highest = 0;
+  for (int s = 0; s < 4; ++s) {
+    EXPECT_NEAR(rig.hoist->tension(0, s), w / 4, 0.01 * w / 4) << "part " << s;
+    lowest = std::min(lowest, rig.hoist->tension(0, s));
+    highest = std::max(highest, rig.hoist->tension(0, s));
+  }
+  EXPECT_LT(highest - lowest, 1e-3 * highest);  // frictionless sheaves equalise the parts
+  EXPECT_NEAR(rig.hoist->drum_rope_torque(0), rig.hoist->tension(0, 0) * 0.5, 1e-9);  // T r
+  EXPECT_LT(std::abs(rig.bodies.bodies[block].velocity.z), 1e-4);
+}
+
+// mean period of upward zero crossings of a series about its mean [samples]
+double mean_period(const std::vector<double>& x) {
+  double mean = 0;
+  for (double v : x)
+    mean += v;
+  mean /= static_cast<double>(x.size());
+  std::vector<double> crossings;
+  for (std::size_t k = 1; k < x.size(); ++k)
+    if (x[k - 1] < mean && x[k] >= mean)
+      crossings.push_back(static_cast<double>(k - 1) + (mean - x[k - 1]) / (x[k] - x[k - 1]));
+  if (crossings.size() < 2) return 0.0;
+  return (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
+}
+
+TEST(HoistSystem, TensionedSegmentVibratesAtTheStringFrequency) {
+  // a 10 m horizontal rope between a drum and an anchor, tensioned by reeling in; released straight, it sags
+  // and swings about its sag at f1 = sqrt(T / mu) / 2L
+  Rig rig;
+  ReevingSettings r;
+  r.elements = {scenes::drum({-1, {0, 0, 10}}), scenes::anchor({-1, {10, 0, 10}})};
+  r.ropes = {scenes::rope_28mm({0, 1}, 24)};
+  r.ropes[0].transverse_damping_per_s = 0.0;
+  r.ropes[0].axial_damping_s = 0.0;
+  rig.build(r);
+  rig.commands[0].lever = -0.01;  // reel in 10 mm/s for 1 s
+  rig.step(1000);
+  rig.commands[0].lever = 0.0;
+  rig.step(1000);  // ramp down, brake
+  ASSERT_EQ(rig.hoist->drum_rope_speed(0), 0.0);
+  std::vector<double> midspan;
+  double tension = 0.0;
+  for (int k = 0; k < 5000; ++k) {
+    rig.step();
+    midspan.push_back(rig.hoist->midspan_displacement(0, 0).z);
+    tension += rig.hoist->tension(0, 0) / 5000;
+  }
+  ASSERT_TRUE(rig.hoist->oscillating(0, 0));
+  const double expected_hz = std::sqrt(tension / r.ropes[0].mass_per_m_kg) / (2 * 10.0);
+  const double measured_hz = 1.0 / (mean_period(midspan) * kDt);
+  EXPECT_NEAR(measured_hz, expected_hz, 0.02 * expected_hz) << "tension " << tension << " N";
+}
+
+TEST(HoistSystem, HookLoadSwingsWithThePendulumPeriod) {
+  Rig rig;
+  const int load = rig.bodies.add({0.3, 0, 5}, 10000.0);  // 0.3 m off the drum's plumb line: 1.1 degrees
+  ReevingSettings r;
+  r.elements = {scenes::drum({-1, {0, 0, 20}}), scenes::anchor({load, {0, 0, 0}})};
+  r.ropes = {scenes::rope_28mm({0, 1})};
+  rig.build(r);
+  rig.step(2000);  // let the axial bounce die
+  std::vector<double> x;
+  double length = 0;
+  for (int k = 0; k < 40000; ++k) {
+    rig.step();
+    x.push_back(rig.bodies.bodies[load].position.x);
+    length += core::length(rig.bodies.bodies[load].position - Vec3{0, 0, 20}) / 40000;
+  }
+  ASSERT_TRUE(rig.hoist->oscillating(0, 0));
+  const double expected_s = 2 * std::numbers::pi * std::sqrt(length / core::kStandardGravity);
+  EXPECT_NEAR(mean_period(x) * kDt, expected_s, 0.01 * expected_s);
+}
+
+TEST(HoistSystem, HoistingTenMetresUpAndBackConservesRopeLength) {
+  Rig rig;
+  const int block = rig.bodies.add({0, 0, 10}, 20000.0);
+  rig.build(scenes::four_fall(block));
+  rig.step(5000);
+  const double rope = rig.hoist->rope_length(0);
+  const double start_z = rig.bodies.bodies[block].position.z;
+  // 4 falls: 10 m of block travel is 40 m of rope at 1 m/s, then back down
+  for (const double lever : {-1.0, 1.0}) {
+    rig.commands[0].lever = lever;
+    for (int k = 0; k < 40000; ++k) {
+      rig.step();
+      if (k % 1000 == 0) {
+        ASSERT_NEAR(rig.hoist->rope_length(0), rope, 1e-9 * rope);
+      }
+    }
+    rig.commands[0].lever = 0.0;
+    rig.step(5000);
+    if (lever < 0) {
+      EXPECT_NEAR(rig.bodies.bodies[block].position.z - start_z, 10.0, 0.15);
+    }
+  }
+  EXPECT_NEAR(rig.hoist->rope_length(0), rope, 1e-9 * rope);
+  EXPECT_NEAR(rig.bodies.bodies[block].position.z, start_z, 0.05);
+}
+
+TEST(HoistSystem, SlackRopeNeverPushesAndIsReported) {
+  Rig rig;
+  const int load = rig.bodies.add({0, 0, 1.0}, 2000.0);
+  rig.bodies.bodies[load].floor_z = 0.0;
+  ReevingSettings r;
+  r.elements = {scenes::drum({-1, {0, 0, 10}}), scenes::anchor({load, {0, 0, 0}})};
+  r.ropes = {scenes::rope_28mm({0, 1})};
+  rig.build(r);
+  rig.step(2000);
+  rig.hoist->take_events();
+  rig.commands[0].lever = 0.5;  // lower: the load lands, then the rope goes slack
+  bool slack_seen = false;
+  for (int k = 0; k < 6000; ++k) {
+    rig.step();
+    for (const CableEvent& e : rig.hoist->take_events())
+      slack_seen |= e.kind == CableEventKind::kSlack;
+    if (rig.hoist->tension(0, 0) == 0.0) {
+      // slack: no pull and no push, only the slack rope's own weight resting on the load
+      const double weight_share = 0.5 * 2.70 * rig.hoist->unstretched_length(0, 0) * core::kStandardGravity;
+      EXPECT_NEAR(rig.bodies.last_force.z, -weight_share, 1e-6 * weight_share);
+      EXPECT_NEAR(rig.bodies.last_force.x, 0.0, 1e-9);
+    }
+    ASSERT_GE(rig.hoist->tension(0, 0), 0.0);
+  }
+  EXPECT_TRUE(slack_seen);
+  EXPECT_EQ(rig.hoist->tension(0, 0), 0.0);
+}
+
+TEST(HoistSystem, OverloadIsReported) {
+  Rig rig;
+  const int load = rig.bodies.add({0, 0, 5}, 12000.0);  // 118 kN on one 28 mm fall: WLL is 92 kN
+  ReevingSettings r;
+  r.elements = {scenes::drum({-1, {0, 0, 20}}), scenes::anchor({load, {0, 0, 0}})};
+  r.ropes = {scenes::rope_28mm({0, 1})};
+  rig.build(r);
+  bool overload = false;
+  for (int k = 0; k < 3000; ++k) {
+    rig.step();
+    for (const CableEvent& e : rig.hoist->take_events())
+      overload |= e.kind == CableEventKind::kOverload;
+  }
+  EXPECT_TRUE(overload);
+}
+
+// A 1 m segment to a load resting on the floor, reeled in slowly: tension rises through the point where the
+// wave needs more than max_substeps, the segment becomes a spring, and back when the drum pays out again.
+struct SwitchRig {
+  Rig rig;
+  int load = 0;
+  SwitchRig() {
+    load = rig.bodies.add({0, 0, 0}, 1e6);  // far too heavy to lift
+    rig.bodies.bodies[load].floor_z = 0.0;
+    ReevingSettings r;
+    r.elements = {scenes::drum({-1, {0, 0, 1.0}}), scenes::anchor({load, {0, 0, 0}})};
+    r.ropes = {scenes::rope_28mm({0, 1})};
+    r.ropes[0].min_breaking_force_n = 1e9;  // not the subject here
+    r.elements[0].max_torque_n_m = 1e7;
+    r.elements[0].brake_torque_n_m = 1e7;
+    rig.build(r);
+  }
+};
+
+TEST(HoistSystem, SwitchToSpringAndBackKeepsEndTensionContinuous) {
+  SwitchRig s;
+  Rig& rig = s.rig;
+  std::vector<double> tension;
+  std::vector<bool> oscillating;
+  rig.commands[0].lever = -0.001;  // 1 mm/s
+  for (int k = 0; k < 16000; ++k) {
+    rig.step();
+    tension.push_back(rig.hoist->tension(0, 0));
+    oscillating.push_back(rig.hoist->oscillating(0, 0));
+  }
+  rig.commands[0].lever = 0.001;
+  for (int k = 0; k < 16000; ++k) {
+    rig.step();
+    tension.push_back(rig.hoist->tension(0, 0));
+    oscillating.push_back(rig.hoist->oscillating(0, 0));
+  }
+  int switches = 0;
+  for (std::size_t k = 2; k < tension.size(); ++k) {
+    if (oscillating[k] == oscillating[k - 1]) continue;
+    ++switches;
+    // the change across the switching step against the steady ramp either side
+    const double ramp = tension[k - 1] - tension[k - 2];
+    const double jump = (tension[k] - tension[k - 1]) - ramp;
+    EXPECT_LT(std::abs(jump), 1e-6 * tension[k]) << "switch at step " << k << ", tension " << tension[k];
+  }
+  EXPECT_EQ(switches, 2);  // to spring on the way up, back on the way down (hysteresis: at a lower tension)
+}
+
+TEST(HoistSystem, TenMinutesAtMaximumTensionStayBoundedInEnergy) {
+  SwitchRig s;
+  Rig& rig = s.rig;
+  rig.commands[0].lever = -0.001;
+  rig.step(16000);  // past the switch
+  rig.commands[0].lever = 0.0;
+  rig.step(1000);
+  const double start = rig.hoist->energy();
+  double highest = start;
+  for (int k = 0; k < 600000; ++k) {
+    rig.step();
+    if (k % 100 == 0) highest = std::max(highest, rig.hoist->energy());
+  }
+  ASSERT_TRUE(std::isfinite(rig.hoist->energy()));
+  EXPECT_LE(highest, start * (1 + 1e-6));
+}
+
+}  // namespace
+}  // namespace harbour::cable
