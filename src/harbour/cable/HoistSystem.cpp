@@ -44,6 +44,7 @@ HoistSystem::HoistSystem(const ReevingSettings& settings, const CableBodies& bod
       s.velocity_b = bodies.point_velocity(eb.mount.body, eb.mount.local);
       s.rest_length = core::length(s.end_b - s.end_a);
       s.length = s.rest_length;
+      s.chord_length = s.rest_length;
       s.w.assign(static_cast<std::size_t>(rope.nodes - 1), Vec3{});
       s.u.assign(static_cast<std::size_t>(rope.nodes - 1), Vec3{});
       state.segments.push_back(static_cast<int>(segments_.size()));
@@ -62,6 +63,47 @@ double HoistSystem::rope_speed_into(const Segment& s, bool at_a) const {
   // a drum at the far end pays out towards the drum at the near end: against the path direction
   const bool far_drum = !at_a && el.kind == ElementKind::kDrum;
   return far_drum ? -v : v;
+}
+
+void HoistSystem::integrate_wave(Segment& s, const RopeSettings& rope, double dt, int substeps, const Vec3& e,
+                                 double h, double transport, const Vec3& accel_a, const Vec3& accel_b) {
+  // axially moving string: w_tt = (T/mu - v^2) w_ss - 2 v w_st - d w_t + g_perp - a_chord(s)_perp
+  // symplectic Euler for the wave; the transport (gyroscopic, skew) and damping terms implicitly (midpoint
+  // and backward Euler: a tridiagonal solve), since forward Euler on a skew operator always amplifies
+  const int n = rope.nodes;
+  const double mu = rope.mass_per_m_kg;
+  const Vec3 g_perp = perpendicular(gravity_, e);
+  const double tension_term = std::max(s.tension / mu - transport * transport, 0.0) / (h * h);
+  const int count = std::max(substeps, 1);
+  const double ds = dt / count;
+  const double skew = 0.5 * ds * transport / h;  // (ds / 2) * 2v / (2h)
+  const double diag = 1.0 + ds * rope.transverse_damping_per_s;
+  const std::size_t m = s.w.size();
+  std::vector<Vec3>& w = s.w;
+  std::vector<Vec3>& u = s.u;
+  // Thomas factors of the tridiagonal (lower -skew, diagonal diag, upper +skew): the same every sub-step
+  thomas_upper_.resize(m);
+  thomas_pivot_.resize(m);
+  for (std::size_t k = 0; k < m; ++k) {
+    thomas_pivot_[k] = diag + (k > 0 ? skew * thomas_upper_[k - 1] : 0.0);
+    thomas_upper_[k] = skew / thomas_pivot_[k];
+  }
+  thomas_rhs_.resize(m);
+  for (int sub = 0; sub < count; ++sub) {
+    for (std::size_t k = 0; k < m; ++k) {
+      const Vec3 w_left = k > 0 ? w[k - 1] : Vec3{}, w_right = k + 1 < m ? w[k + 1] : Vec3{};
+      const Vec3 u_left = k > 0 ? u[k - 1] : Vec3{}, u_right = k + 1 < m ? u[k + 1] : Vec3{};
+      const double along = static_cast<double>(k + 1) / n;
+      const Vec3 end_motion = perpendicular(accel_a * (1.0 - along) + accel_b * along, e);
+      const Vec3 force = (w_right - w[k] * 2.0 + w_left) * tension_term + g_perp - end_motion;
+      const Vec3 rhs = u[k] + force * ds - (u_right - u_left) * skew;
+      thomas_rhs_[k] = (rhs + (k > 0 ? thomas_rhs_[k - 1] * skew : Vec3{})) * (1.0 / thomas_pivot_[k]);
+    }
+    for (std::size_t k = m; k-- > 0;)
+      u[k] = thomas_rhs_[k] - (k + 1 < m ? u[k + 1] * thomas_upper_[k] : Vec3{});
+    for (std::size_t k = 0; k < m; ++k)
+      w[k] += u[k] * ds;
+  }
 }
 
 void HoistSystem::update_segment(Segment& s, const RopeSettings& rope, double dt, const CableBodies& bodies) {
@@ -84,7 +126,9 @@ void HoistSystem::update_segment(Segment& s, const RopeSettings& rope, double dt
     s.u[k] = perpendicular(s.u[k], e);
   }
 
-  // oscillation, or the massless spring when the wave would need too many sub-steps (with hysteresis)
+  // oscillation, or the massless spring when the wave would need too many sub-steps (with hysteresis);
+  // a slack segment carries no wave either (nothing restores it): its shape fades and its weight rests on its
+  // ends
   const double transport = 0.5 * (rope_speed_into(s, true) + rope_speed_into(s, false));
   const double wave_speed = std::sqrt(s.tension / mu);
   const int substeps = static_cast<int>(std::ceil(dt * (wave_speed + std::abs(transport)) / (kCourant * h)));
@@ -95,50 +139,32 @@ void HoistSystem::update_segment(Segment& s, const RopeSettings& rope, double dt
     s.oscillating = true;
   }
 
-  if (s.oscillating) {
-    // axially moving string: w_tt = (T/mu - v^2) w_ss - 2 v w_st - d w_t + g_perp - a_chord(s)_perp
-    const Vec3 accel_a = (va - s.velocity_a) * (1.0 / dt), accel_b = (vb - s.velocity_b) * (1.0 / dt);
-    const Vec3 g_perp = perpendicular(gravity_, e);
-    const double tension_term = std::max(s.tension / mu - transport * transport, 0.0) / (h * h);
-    const double gyro = transport / h;  // 2 v / (2 h)
-    const double damping = rope.transverse_damping_per_s;
-    const int count = std::max(substeps, 1);
-    const double ds = dt / count;
-    const std::size_t m = s.w.size();
-    std::vector<Vec3>& w = s.w;
-    std::vector<Vec3>& u = s.u;
-    for (int sub = 0; sub < count; ++sub) {
-      Vec3 u_previous{};  // u at node k-1 before this sub-step (the fixed end: zero)
-      for (std::size_t k = 0; k < m; ++k) {
-        const Vec3 w_left = k > 0 ? w[k - 1] : Vec3{}, w_right = k + 1 < m ? w[k + 1] : Vec3{};
-        const Vec3 u_right = k + 1 < m ? u[k + 1] : Vec3{};
-        const double along = static_cast<double>(k + 1) / n;
-        const Vec3 end_motion = perpendicular(accel_a * (1.0 - along) + accel_b * along, e);
-        const Vec3 acc = (w_right - w[k] * 2.0 + w_left) * tension_term - (u_right - u_previous) * gyro -
-                         u[k] * damping + g_perp - end_motion;
-        u_previous = u[k];
-        u[k] += acc * ds;
-      }
-      for (std::size_t k = 0; k < m; ++k)
-        w[k] += u[k] * ds;
-    }
+  // the share of the rope's cross-chord weight that travels through the sag: it builds as a wave segment sags
+  // and fades with a spring's shape, so the end forces change smoothly across a switch
+  const double fade = std::exp(-dt / kSpringDecay_s);
+  if (s.oscillating && s.tension > 0.0) {
+    s.sag_share = 1.0 - (1.0 - s.sag_share) * fade;
+    integrate_wave(s, rope, dt, substeps, e, h, transport, (va - s.velocity_a) * (1.0 / dt),
+                   (vb - s.velocity_b) * (1.0 / dt));
   } else {
-    const double fade = std::exp(-dt / kSpringDecay_s);
+    s.sag_share *= fade;
     for (std::size_t k = 0; k < s.w.size(); ++k) {
       s.w[k] *= fade;
       s.u[k] = Vec3{};
     }
   }
 
-  // tension from the stretch of the curved rope, with strain-rate damping; a rope never pushes
+  // tension from the stretch of the chord (the linear string: transverse motion does not stretch the rope),
+  // with strain-rate damping; a rope never pushes
   double length = 0.0;
   for (int k = 0; k < n; ++k) {
     const Vec3 left = k > 0 ? s.w[k - 1] : Vec3{}, right = k + 1 < n ? s.w[k] : Vec3{};
     length += std::sqrt(h * h + core::dot(right - left, right - left));
   }
-  const double stretch = length - s.rest_length;
-  const double strain_rate = ((length - s.length) / dt) / s.rest_length;
+  const double stretch = chord_length - s.rest_length;
+  const double strain_rate = ((chord_length - s.chord_length) / dt) / s.rest_length;
   s.length = length;
+  s.chord_length = chord_length;
   if (stretch > 0.0) {
     const double ea_over_l0 = rope.axial_stiffness_n / s.rest_length;
     s.tension =
@@ -252,7 +278,8 @@ void HoistSystem::apply_forces(const Segment& s, const RopeSettings& rope, Cable
   const Vec3 first = e * h + (s.w.empty() ? Vec3{} : s.w.front());
   const Vec3 last = -e * h + (s.w.empty() ? Vec3{} : s.w.back());
   const Vec3 weight = gravity_ * (0.5 * rope.mass_per_m_kg * s.rest_length);
-  const Vec3 carried = s.oscillating ? e * core::dot(weight, e) : weight;
+  const Vec3 along = e * core::dot(weight, e);
+  const Vec3 carried = along + (weight - along) * (1.0 - s.sag_share);
   const ElementSettings& ea = settings_.elements[s.a];
   const ElementSettings& eb = settings_.elements[s.b];
   if (ea.mount.body >= 0)

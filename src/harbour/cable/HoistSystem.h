@@ -71,10 +71,12 @@ class HoistSystem {
     int rope = 0, a = 0, b = 0;   // element indices of its ends (a: towards the drum)
     double rest_length = 0.0;     // [m] unstretched
     double length = 0.0;          // [m] current, along the (curved) rope
+    double chord_length = 0.0;    // [m] current, end to end
     double tension = 0.0;         // [N]
     double stiffness = 0.0;       // [N/m] dT / d(rest length)
     double switch_tension = 0.0;  // [N] tension at which it became a spring
     bool oscillating = true;
+    double sag_share = 0.0;  // [-] share of the cross-chord weight carried through the sag
     bool slack = false, overloaded = false, breaking = false;
     std::vector<core::Vec3> w, u;       // transverse displacement [m] and velocity [m/s] of interior nodes
     core::Vec3 end_a, end_b;            // [m] world positions of the ends this step
@@ -93,6 +95,8 @@ class HoistSystem {
   const Segment& segment_at(int rope, int s) const { return segments_[ropes_[rope].segments[s]]; }
   double rope_speed_into(const Segment& s, bool at_a) const;
   void update_segment(Segment& s, const RopeSettings& rope, double dt, const CableBodies& bodies);
+  void integrate_wave(Segment& s, const RopeSettings& rope, double dt, int substeps, const core::Vec3& e,
+                      double h, double transport, const core::Vec3& accel_a, const core::Vec3& accel_b);
   void step_drums(double dt, std::span<const DrumCommand> commands);
   void step_sheaves(const Rope& rope, double dt);
   void apply_forces(const Segment& s, const RopeSettings& rope, CableBodies& bodies) const;
@@ -105,6 +109,9 @@ class HoistSystem {
   std::vector<ElementState> elements_;
   std::vector<int> drums_;  // element indices of drums, in order
   std::vector<CableEvent> events_;
+  // scratch for the implicit transport solve (not state)
+  std::vector<double> thomas_upper_, thomas_pivot_;
+  std::vector<core::Vec3> thomas_rhs_;
 };
 
 }  // namespace harbour::cable

@@ -1,0 +1,67 @@
+#include "harbour/io/ReevingFiles.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <string>
+
+namespace harbour::io {
+namespace {
+
+const char* kSmall = R"(reeving:
+  name: small
+  max_substeps: 8
+  bodies: [block]
+  rope_types:
+    - {name: wire, diameter_m: 0.028, mass_per_m_kg: 2.7, axial_stiffness_n: 3.1e7, min_breaking_force_n: 461000}
+  elements:
+    - {name: drum, kind: drum, body: world, at_m: [0, 0, 10], radius_m: 0.5, inertia_kg_m2: 500,
+       max_rope_speed_mps: 1, max_rope_acceleration_mps2: 0.5, max_torque_n_m: 1e5, brake_torque_n_m: 2e5,
+       stored_rope_m: 100}
+    - {name: sheave, kind: sheave, body: block, at_m: [0, 0, 0], radius_m: 0.3, inertia_kg_m2: 2}
+    - {name: dead_end, kind: anchor, body: world, at_m: [1, 0, 10]}
+  ropes:
+    - {name: hoist, type: wire, path: [drum, sheave, dead_end]}
+)";
+
+void expect_error(const std::string& from, const std::string& to, int line, const std::string& field,
+                  const std::string& says) {
+  std::string text = kSmall;
+  const auto at = text.find(from);
+  ASSERT_NE(at, std::string::npos) << from;
+  text.replace(at, from.size(), to);
+  try {
+    load_reeving(YamlFile::parse(text, "bad_reeving.yaml"));
+    FAIL() << "accepted " << to;
+  } catch (const DataError& e) {
+    EXPECT_EQ(e.file(), "bad_reeving.yaml");
+    EXPECT_EQ(e.line(), line) << e.what();
+    EXPECT_EQ(e.field(), field) << e.what();
+    EXPECT_NE(std::string(e.what()).find(says), std::string::npos) << e.what();
+  }
+}
+
+TEST(ReevingFiles, ShippedReevingsLoad) {
+  for (const char* name : {"sts_hoist", "rtg_hoist", "mhc_grab", "boom_luffing"}) {
+    const ReevingFile f = load_reeving(std::string(HARBOUR_DATA_DIR "/reeving/") + name + ".yaml");
+    EXPECT_EQ(f.reeving.name, name);
+    EXPECT_FALSE(f.reeving.ropes.empty());
+  }
+  const ReevingFile sts = load_reeving(HARBOUR_DATA_DIR "/reeving/sts_hoist.yaml");
+  EXPECT_EQ(sts.reeving.ropes.size(), 4u);
+  EXPECT_EQ(sts.bodies, (std::vector<std::string>{"trolley", "headblock"}));
+}
+
+TEST(ReevingFiles, BadReevingsNameFileLineAndField) {
+  expect_error("path: [drum, sheave, dead_end]", "path: [drum, pulley, dead_end]", 14,
+               "reeving.ropes[0].path[1]", "unknown element 'pulley'");
+  expect_error("path: [drum, sheave, dead_end]", "path: [sheave, dead_end]", 14, "reeving.ropes[0].path[0]",
+               "must start at a drum");
+  expect_error("diameter_m: 0.028", "diameter_m: -0.028", 6, "reeving.rope_types[0].diameter_m", "outside");
+  expect_error("body: block", "body: hook", 11, "reeving.elements[1].body", "unknown body 'hook'");
+  expect_error("radius_m: 0.3", "radius_m: x", 11, "reeving.elements[1].radius_m", "not a number");
+  expect_error("type: wire,", "type: rope,", 14, "reeving.ropes[0].type", "unknown rope type");
+}
+
+}  // namespace
+}  // namespace harbour::io
