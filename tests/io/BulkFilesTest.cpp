@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "harbour/core/Units.h"
+#include "scenes/DataErrors.h"
 
 namespace harbour::io {
 namespace {
@@ -38,22 +39,7 @@ const char* kScenario = R"(bulk:
     closing_time_s: 5
 )";
 
-// expects `text` (one replacement of `from` by `to` in `base`) to fail at `line` naming `field`
-template <typename Load>
-void expect_error(Load load, std::string base, const std::string& from, const std::string& to, int line,
-                  const std::string& field) {
-  const auto at = base.find(from);
-  ASSERT_NE(at, std::string::npos) << from;
-  base.replace(at, from.size(), to);
-  try {
-    load(YamlFile::parse(base, "bad.yaml"));
-    FAIL() << "accepted: " << to;
-  } catch (const DataError& e) {
-    EXPECT_EQ(e.file(), "bad.yaml");
-    EXPECT_EQ(e.line(), line) << e.what();
-    EXPECT_EQ(e.field(), field) << e.what();
-  }
-}
+using scenes::expect_data_error;
 
 TEST(BulkFiles, ShippedMaterialsLoadWithPublishedValues) {
   const auto materials = load_materials(kMaterials);
@@ -71,24 +57,24 @@ TEST(BulkFiles, ShippedDemoScenarioLoads) {
 
 TEST(BulkFiles, BadMaterialsNameLineAndField) {
   const auto load = [](const YamlFile& f) { load_materials(f); };
-  expect_error(load, kGoodMaterials, "angle_of_repose_deg: 35", "angle_of_repose_deg: 90", 4,
-               "materials[0].angle_of_repose_deg");
-  expect_error(load, kGoodMaterials, "bulk_density_kg_m3: 960", "bulk_density_kg_m3: heavy", 3,
-               "materials[0].bulk_density_kg_m3");
-  expect_error(load, kGoodMaterials, "bulk_density_kg_m3: 960", "bulk_density_kg_m3: -960", 3,
-               "materials[0].bulk_density_kg_m3");
-  expect_error(load, kGoodMaterials, "    flow_fraction: 0.5\n", "", 2, "materials[0].flow_fraction");
+  expect_data_error(kGoodMaterials, "angle_of_repose_deg: 35", "angle_of_repose_deg: 90", load, 4,
+                    "materials[0].angle_of_repose_deg");
+  expect_data_error(kGoodMaterials, "bulk_density_kg_m3: 960", "bulk_density_kg_m3: heavy", load, 3,
+                    "materials[0].bulk_density_kg_m3");
+  expect_data_error(kGoodMaterials, "bulk_density_kg_m3: 960", "bulk_density_kg_m3: -960", load, 3,
+                    "materials[0].bulk_density_kg_m3");
+  expect_data_error(kGoodMaterials, "    flow_fraction: 0.5\n", "", load, 2, "materials[0].flow_fraction");
 }
 
 TEST(BulkFiles, BadScenarioNamesLineAndField) {
   const auto materials = load_materials(YamlFile::parse(kGoodMaterials, "m.yaml"));
   const auto load = [&](const YamlFile& f) { load_bulk_scenario(f, materials); };
-  expect_error(load, kScenario, "material: coal", "material: unobtainium", 2, "bulk.material");
-  expect_error(load, kScenario, "cell_size_m: 0.1", "cell_size_m: -0.1", 7, "bulk.grids[0].cell_size_m");
-  expect_error(load, kScenario, "cells_x: 10", "cells_x: 10.5", 5, "bulk.grids[0].cells_x");
-  expect_error(load, kScenario, "- grid: yard", "- grid: hold", 9, "bulk.heaps[0].grid");
-  expect_error(load, kScenario, "x_m: 0.5", "x_m: 5", 10, "bulk.heaps[0].x_m");  // off the 1 m grid
-  expect_error(load, kScenario, "capacity_m3: 10", "capacity_m3: [10]", 19, "bulk.grab.capacity_m3");
+  expect_data_error(kScenario, "material: coal", "material: unobtainium", load, 2, "bulk.material");
+  expect_data_error(kScenario, "cell_size_m: 0.1", "cell_size_m: -0.1", load, 7, "bulk.grids[0].cell_size_m");
+  expect_data_error(kScenario, "cells_x: 10", "cells_x: 10.5", load, 5, "bulk.grids[0].cells_x");
+  expect_data_error(kScenario, "- grid: yard", "- grid: hold", load, 9, "bulk.heaps[0].grid");
+  expect_data_error(kScenario, "x_m: 0.5", "x_m: 5", load, 10, "bulk.heaps[0].x_m");  // off the 1 m grid
+  expect_data_error(kScenario, "capacity_m3: 10", "capacity_m3: [10]", load, 19, "bulk.grab.capacity_m3");
 }
 
 TEST(BulkFiles, AFailedLoadLeavesTheCallersDataUntouched) {

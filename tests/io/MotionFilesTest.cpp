@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "harbour/core/Units.h"
+#include "scenes/DataErrors.h"
 
 namespace harbour::io {
 namespace {
@@ -18,25 +19,14 @@ std::string shipped_platform() {
   return text.str();
 }
 
-int line_of(const std::string& text, const std::string& needle) {
-  const auto at = text.find(needle);
-  return 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(at), '\n'));
-}
-
-// replaces `from` by `to` and expects an error for `field` on the line holding `reported_at` (default: `to`)
-void expect_error(std::string text, const std::string& from, const std::string& to, const std::string& field,
+// one edit to the shipped platform file; the error is expected on the line holding `reported_at` (default:
+// the edited line)
+void expect_error(const std::string& from, const std::string& to, const std::string& field,
                   const std::string& says = "", const std::string& reported_at = "") {
-  const auto at = text.find(from);
-  ASSERT_NE(at, std::string::npos) << from;
-  text.replace(at, from.size(), to);
-  try {
-    load_platform(YamlFile::parse(text, "platform.yaml"));
-    FAIL() << "accepted " << to;
-  } catch (const DataError& e) {
-    EXPECT_EQ(e.line(), line_of(text, reported_at.empty() ? to : reported_at)) << e.what();
-    EXPECT_EQ(e.field(), field) << e.what();
-    EXPECT_NE(std::string(e.what()).find(says), std::string::npos) << e.what();
-  }
+  const std::string text = shipped_platform();
+  scenes::expect_data_error(
+      text, from, to, [](const YamlFile& f) { load_platform(f); },
+      scenes::line_of(text, reported_at.empty() ? from : reported_at), field, says);
 }
 
 TEST(MotionFiles, ShippedPlatformAndWashoutLoad) {
@@ -49,22 +39,20 @@ TEST(MotionFiles, ShippedPlatformAndWashoutLoad) {
 }
 
 TEST(MotionFiles, ActuatorsThatCannotReachNeutralAreRejected) {
-  expect_error(shipped_platform(), "neutral_height_m: 0.90", "neutral_height_m: 1.60",
-               "platform.neutral_height_m", "outside its stroke");
-  expect_error(shipped_platform(), "max_length_m: 1.35", "max_length_m: 1.00", "platform.neutral_height_m",
-               "actuator 0", "neutral_height_m");
-  expect_error(shipped_platform(), "parked_heave_m: -0.18", "parked_heave_m: -0.6",
-               "platform.sequencer.parked_heave_m");
+  expect_error("neutral_height_m: 0.90", "neutral_height_m: 1.60", "platform.neutral_height_m",
+               "outside its stroke");
+  expect_error("max_length_m: 1.35", "max_length_m: 1.00", "platform.neutral_height_m", "actuator 0",
+               "neutral_height_m");
+  expect_error("parked_heave_m: -0.18", "parked_heave_m: -0.6", "platform.sequencer.parked_heave_m");
 }
 
 TEST(MotionFiles, NonNumbersAndWrongShapesNameTheField) {
-  expect_error(shipped_platform(), "[-0.3090, 0.9511, 0.0]", "[-0.3090, north, 0.0]",
-               "platform.base_joints_m[2][1]", "not a number");
-  expect_error(shipped_platform(), "[-0.3090, 0.9511, 0.0]", "[-0.3090, 0.9511]",
-               "platform.base_joints_m[2]");
-  expect_error(shipped_platform(), "roll_deg_s: 30", "roll_deg_s: .inf", "platform.max_velocity.roll_deg_s");
-  expect_error(shipped_platform(), "min_length_m: 0.90", "min_length_m: 1.40", "platform.max_length_m",
-               "must exceed", "max_length_m");
+  expect_error("[-0.3090, 0.9511, 0.0]", "[-0.3090, north, 0.0]", "platform.base_joints_m[2][1]",
+               "not a number");
+  expect_error("[-0.3090, 0.9511, 0.0]", "[-0.3090, 0.9511]", "platform.base_joints_m[2]");
+  expect_error("roll_deg_s: 30", "roll_deg_s: .inf", "platform.max_velocity.roll_deg_s");
+  expect_error("min_length_m: 0.90", "min_length_m: 1.40", "platform.max_length_m", "must exceed",
+               "max_length_m");
 }
 
 TEST(MotionFiles, UnknownMachineIsAnError) {

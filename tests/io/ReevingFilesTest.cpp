@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "scenes/DataErrors.h"
+
 #include <algorithm>
 #include <string>
 
@@ -24,21 +26,11 @@ const char* kSmall = R"(reeving:
     - {name: hoist, type: wire, path: [drum, sheave, dead_end]}
 )";
 
+// one edit to the small reeving above, and the error it must give
 void expect_error(const std::string& from, const std::string& to, int line, const std::string& field,
                   const std::string& says) {
-  std::string text = kSmall;
-  const auto at = text.find(from);
-  ASSERT_NE(at, std::string::npos) << from;
-  text.replace(at, from.size(), to);
-  try {
-    load_reeving(YamlFile::parse(text, "bad_reeving.yaml"));
-    FAIL() << "accepted " << to;
-  } catch (const DataError& e) {
-    EXPECT_EQ(e.file(), "bad_reeving.yaml");
-    EXPECT_EQ(e.line(), line) << e.what();
-    EXPECT_EQ(e.field(), field) << e.what();
-    EXPECT_NE(std::string(e.what()).find(says), std::string::npos) << e.what();
-  }
+  scenes::expect_data_error(
+      kSmall, from, to, [](const YamlFile& f) { load_reeving(f); }, line, field, says);
 }
 
 TEST(ReevingFiles, ShippedReevingsLoad) {
