@@ -1,4 +1,5 @@
 #include <gtest/gtest.h>
+#include <limits>
 #include <memory>
 
 #include <vector>
@@ -90,6 +91,18 @@ TEST(Contact, PointsOffTheGridOrAboveTheSurfaceGiveNoForce) {
   EXPECT_EQ(s.world->contact(s.body).points_in_contact, 0);
   s.body.pose.position = {30.0, 3.0, 0.5};
   EXPECT_EQ(s.world->contact(s.body).force.z, 0.0);
+}
+
+TEST(Contact, ANonFiniteBodyIsCountedAsAWarningAndChangesNothing) {
+  BoxScene s(4.0, 2000.0);
+  const double before = s.world->grid(s.bed).total_volume_m3();
+  s.body.pose.position = {3.0, 3.0, std::numeric_limits<double>::quiet_NaN()};
+  s.body.points = s.points;
+  const ContactResult r = s.world->contact(s.body);
+  s.world->step(kDt, {});
+  EXPECT_EQ(r.points_in_contact, 0);
+  EXPECT_GE(s.world->warnings().count(core::Warning::kNonFinite), 1u);
+  EXPECT_EQ(s.world->grid(s.bed).total_volume_m3(), before);
 }
 
 }  // namespace

@@ -74,6 +74,10 @@ ContactResult BulkWorld::contact(const ContactBody& body) {
     for (const core::Vec3& body_point : body.points) {
       // penetration of the point below the material surface, along the grid's up axis
       const core::Vec3 p = body.pose.to_parent(body_point);
+      if (!std::isfinite(p.x + p.y + p.z)) {  // a broken body state: count it, touch nothing
+        warnings_.raise(core::Warning::kNonFinite);
+        continue;
+      }
       const core::Vec3 local = g.pose().to_local(p);
       if (!g.contains(local.x, local.y)) continue;
       const double penetration = g.surface_height(local.x, local.y) - local.z;
@@ -87,6 +91,10 @@ ContactResult BulkWorld::contact(const ContactBody& body) {
       const double penetration_rate = -core::dot(v_body - v_grid, normal);
       const double force = settings_.contact.stiffness_n_per_m * penetration +
                            settings_.contact.damping_n_s_per_m * penetration_rate;
+      if (!std::isfinite(force)) {
+        warnings_.raise(core::Warning::kNonFinite);
+        continue;
+      }
       ++result.points_in_contact;
       result.max_penetration_m = std::max(result.max_penetration_m, penetration);
       if (force > 0.0) {
@@ -131,10 +139,12 @@ void BulkWorld::step(double dt_s, std::span<const GrabCommand> grab_commands) {
     step_grab(grab_settings_[n], grabs_[n], grab_commands[n], dt_s);
   step_parcels(dt_s);
   for (HeightGrid& g : grids_) {
+    const std::uint32_t rejected = g.non_finite_count();
     if (full_sweep_)
       g.relax_full_sweep();
     else
       g.relax_active();
+    if (g.non_finite_count() != rejected) warnings_.raise(core::Warning::kNonFinite);
   }
 }
 

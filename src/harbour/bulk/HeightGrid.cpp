@@ -201,6 +201,10 @@ void HeightGrid::apply(const std::vector<std::size_t>& cells, const std::vector<
   }
   for (std::size_t n = 0; n < cells.size(); ++n) {
     if (!moved[n]) continue;
+    if (!std::isfinite(deltas[n])) {  // never let a NaN into the heights: count it and skip the cell
+      ++non_finite_;
+      continue;
+    }
     h_[cells[n]] += deltas[n];
     mark(cells[n]);
   }

@@ -86,6 +86,9 @@ class HeightGrid {
   /// Marks every cell holding material active (after an external change of slope rules).
   void activate_loaded_cells();
 
+  /// Relaxation updates rejected because they were not finite (a physics anomaly; should stay 0).
+  std::uint32_t non_finite_count() const { return non_finite_; }
+
   /// Adds heights, compression, tilt and active list to a determinism hash.
   void hash_into(core::StateHash& hash) const;
 
@@ -128,6 +131,7 @@ class HeightGrid {
   std::vector<std::uint32_t> active_stamp_;
   std::vector<std::uint32_t> examine_stamp_;
   std::uint32_t epoch_ = 1;
+  std::uint32_t non_finite_ = 0;
   std::size_t examined_ = 0;
 
   // scratch buffers reused across steps (not state)
