@@ -1,0 +1,184 @@
+#include "harbour/physics/PhysicsWorld.h"
+
+#include <ode/ode.h>
+
+#include <mutex>
+
+#include "harbour/core/Assert.h"
+#include "harbour/core/StateHash.h"
+
+namespace harbour::physics {
+namespace {
+
+using core::Vec3;
+
+void init_ode_once() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    dInitODE2(0);
+    HARBOUR_ASSERT(dCheckConfiguration("ODE_double_precision"), "ODE must be built in double precision");
+  });
+}
+
+Vec3 to_vec(const dReal* v) {
+  return {v[0], v[1], v[2]};
+}
+
+core::Mat3 to_mat(const dReal* r) {
+  core::Mat3 m;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      m.m[i][j] = r[4 * i + j];
+  return m;
+}
+
+}  // namespace
+
+struct PhysicsWorld::Ode {
+  dWorldID world = nullptr;
+  dSpaceID space = nullptr;
+  dJointGroupID contacts = nullptr;
+  std::vector<dBodyID> bodies;
+  std::vector<dJointID> sliders;
+  PhysicsWorld* owner = nullptr;
+};
+
+PhysicsWorld::PhysicsWorld(const WorldSettings& settings)
+    : ode_(std::make_unique<Ode>()), settings_(settings) {
+  init_ode_once();
+  ode_->world = dWorldCreate();
+  ode_->space = dSimpleSpaceCreate(nullptr);
+  ode_->contacts = dJointGroupCreate(0);
+  ode_->owner = this;
+  dWorldSetGravity(ode_->world, settings.gravity.x, settings.gravity.y, settings.gravity.z);
+  dWorldSetERP(ode_->world, settings.erp);
+  dWorldSetCFM(ode_->world, settings.cfm);
+}
+
+PhysicsWorld::~PhysicsWorld() {
+  dJointGroupDestroy(ode_->contacts);
+  dSpaceDestroy(ode_->space);
+  dWorldDestroy(ode_->world);
+}
+
+BodyId PhysicsWorld::add_box(const BoxSettings& box) {
+  dBodyID b = dBodyCreate(ode_->world);
+  dMass mass;
+  const Vec3 size = box.half_extents_m * 2.0;
+  dMassSetBoxTotal(&mass, box.mass_kg, size.x, size.y, size.z);
+  dBodySetMass(b, &mass);
+  dBodySetPosition(b, box.pose.position.x, box.pose.position.y, box.pose.position.z);
+  dMatrix3 r;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j)
+      r[4 * i + j] = box.pose.rotation.m[i][j];
+    r[4 * i + 3] = 0.0;
+  }
+  dBodySetRotation(b, r);
+  if (box.collides) {
+    dGeomID g = dCreateBox(ode_->space, size.x, size.y, size.z);
+    dGeomSetBody(g, b);
+  }
+  ode_->bodies.push_back(b);
+  return static_cast<BodyId>(ode_->bodies.size()) - 1;
+}
+
+void PhysicsWorld::add_ground(double z_m) {
+  dCreatePlane(ode_->space, 0, 0, 1, z_m);
+}
+
+int PhysicsWorld::add_slider(BodyId a, BodyId b, const Vec3& axis) {
+  dJointID j = dJointCreateSlider(ode_->world, nullptr);
+  dJointAttach(j, a == kWorld ? nullptr : ode_->bodies[a], ode_->bodies[b]);
+  dJointSetSliderAxis(j, axis.x, axis.y, axis.z);
+  ode_->sliders.push_back(j);
+  return static_cast<int>(ode_->sliders.size()) - 1;
+}
+
+void PhysicsWorld::set_slider_motor(int slider, double velocity_mps, double max_force_n) {
+  dJointSetSliderParam(ode_->sliders[slider], dParamVel, velocity_mps);
+  dJointSetSliderParam(ode_->sliders[slider], dParamFMax, max_force_n);
+}
+
+double PhysicsWorld::slider_position(int slider) const {
+  return dJointGetSliderPosition(ode_->sliders[slider]);
+}
+
+core::Pose PhysicsWorld::pose(BodyId body) const {
+  return {to_mat(dBodyGetRotation(ode_->bodies[body])), to_vec(dBodyGetPosition(ode_->bodies[body]))};
+}
+Vec3 PhysicsWorld::linear_velocity(BodyId body) const {
+  return to_vec(dBodyGetLinearVel(ode_->bodies[body]));
+}
+Vec3 PhysicsWorld::angular_velocity(BodyId body) const {
+  return to_vec(dBodyGetAngularVel(ode_->bodies[body]));
+}
+
+double PhysicsWorld::mass_kg(BodyId body) const {
+  dMass m;
+  dBodyGetMass(ode_->bodies[body], &m);
+  return m.mass;
+}
+
+Vec3 PhysicsWorld::point_position(BodyId body, const Vec3& local) const {
+  if (body == kWorld) return local;
+  dVector3 out;
+  dBodyGetRelPointPos(ode_->bodies[body], local.x, local.y, local.z, out);
+  return to_vec(out);
+}
+
+Vec3 PhysicsWorld::point_velocity(BodyId body, const Vec3& local) const {
+  if (body == kWorld) return {};
+  dVector3 out;
+  dBodyGetRelPointVel(ode_->bodies[body], local.x, local.y, local.z, out);
+  return to_vec(out);
+}
+
+void PhysicsWorld::add_force_at(BodyId body, const Vec3& p, const Vec3& f) {
+  if (body == kWorld) return;
+  dBodyAddForceAtPos(ode_->bodies[body], f.x, f.y, f.z, p.x, p.y, p.z);
+}
+
+void PhysicsWorld::set_position(BodyId body, const Vec3& p) {
+  dBodySetPosition(ode_->bodies[body], p.x, p.y, p.z);
+}
+void PhysicsWorld::set_linear_velocity(BodyId body, const Vec3& v) {
+  dBodySetLinearVel(ode_->bodies[body], v.x, v.y, v.z);
+}
+
+void PhysicsWorld::step(double dt_s) {
+  // contacts: every colliding geometry pair in the simple space's fixed order
+  contact_count_ = 0;
+  dSpaceCollide(ode_->space, ode_.get(), [](void* data, dGeomID g1, dGeomID g2) {
+    auto* ode = static_cast<Ode*>(data);
+    const WorldSettings& s = ode->owner->settings_;
+    dBodyID b1 = dGeomGetBody(g1), b2 = dGeomGetBody(g2);
+    if (!b1 && !b2) return;
+    std::vector<dContact> contacts(static_cast<std::size_t>(s.max_contacts_per_pair));
+    const int n = dCollide(g1, g2, s.max_contacts_per_pair, &contacts[0].geom, sizeof(dContact));
+    for (int i = 0; i < n; ++i) {
+      dContact& c = contacts[static_cast<std::size_t>(i)];
+      c.surface.mode = dContactSoftERP | dContactSoftCFM | dContactApprox1;
+      c.surface.mu = s.contact_friction;
+      c.surface.soft_erp = s.contact_erp;
+      c.surface.soft_cfm = s.contact_cfm;
+      dJointAttach(dJointCreateContact(ode->world, ode->contacts, &c), b1, b2);
+    }
+    ode->owner->contact_count_ += n;
+  });
+  dWorldStep(ode_->world, dt_s);
+  dJointGroupEmpty(ode_->contacts);
+}
+
+std::uint64_t PhysicsWorld::state_hash() const {
+  core::StateHash hash;
+  for (dBodyID b : ode_->bodies) {
+    hash.add_bytes(dBodyGetPosition(b), 3 * sizeof(dReal));
+    hash.add_bytes(dBodyGetQuaternion(b), 4 * sizeof(dReal));
+    hash.add_bytes(dBodyGetLinearVel(b), 3 * sizeof(dReal));
+    hash.add_bytes(dBodyGetAngularVel(b), 3 * sizeof(dReal));
+  }
+  return hash.value();
+}
+
+}  // namespace harbour::physics

@@ -1,0 +1,80 @@
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "harbour/core/Vec3.h"
+
+namespace harbour::physics {
+
+/// Index of a rigid body in a PhysicsWorld; -1 stands for the fixed world.
+using BodyId = int;
+inline constexpr BodyId kWorld = -1;
+
+/// Settings of the multibody world (ODE).
+struct WorldSettings {
+  core::Vec3 gravity{0, 0, -9.80665};  ///< [m/s^2]
+  double erp = 0.2;                    ///< [-] joint error reduction per step
+  double cfm = 1e-9;                   ///< [-] constraint force mixing (softness)
+  double contact_friction = 0.6;       ///< [-] Coulomb friction coefficient (steel on steel, dry: assumed)
+  double contact_erp = 0.2;            ///< [-]
+  double contact_cfm = 1e-7;           ///< [-]
+  int max_contacts_per_pair = 8;
+};
+
+/// A box body (settings).
+struct BoxSettings {
+  core::Vec3 half_extents_m{0.5, 0.5, 0.5};  ///< [m]
+  double mass_kg = 1.0;                      ///< [kg] uniform density
+  core::Pose pose;                           ///< initial pose in the world
+  bool collides = true;                      ///< has a collision geometry
+};
+
+/// Thin adapter over ODE 0.16 (double precision): bodies, joints, contacts, forces at points, and a
+/// deterministic fixed step (dWorldStep, collision in a simple space: fixed pair order). One instance owns
+/// its ODE world; ODE itself is initialised once per process.
+class PhysicsWorld {
+ public:
+  explicit PhysicsWorld(const WorldSettings& settings);
+  ~PhysicsWorld();
+  PhysicsWorld(const PhysicsWorld&) = delete;
+  PhysicsWorld& operator=(const PhysicsWorld&) = delete;
+
+  BodyId add_box(const BoxSettings& box);
+  /// A static horizontal ground plane at height `z_m`.
+  void add_ground(double z_m);
+  /// A prismatic joint letting `b` slide along world `axis` relative to `a` (kWorld: the ground); returns its
+  /// index.
+  int add_slider(BodyId a, BodyId b, const core::Vec3& axis);
+  /// Drives a slider at `velocity_mps` with at most `max_force_n` (0 frees it).
+  void set_slider_motor(int slider, double velocity_mps, double max_force_n);
+  /// Slider displacement [m] along its axis from where it was created.
+  double slider_position(int slider) const;
+
+  core::Pose pose(BodyId body) const;
+  core::Vec3 linear_velocity(BodyId body) const;
+  core::Vec3 angular_velocity(BodyId body) const;
+  double mass_kg(BodyId body) const;
+  core::Vec3 point_position(BodyId body, const core::Vec3& local) const;
+  core::Vec3 point_velocity(BodyId body, const core::Vec3& local) const;
+  /// A world force at a world point for the next step (cleared by the step).
+  void add_force_at(BodyId body, const core::Vec3& world_point, const core::Vec3& force);
+  void set_position(BodyId body, const core::Vec3& position);
+  void set_linear_velocity(BodyId body, const core::Vec3& velocity);
+
+  /// Collides, steps the world by `dt_s` with dWorldStep, and clears contacts and forces.
+  void step(double dt_s);
+  /// Contacts generated in the last step.
+  int contact_count() const { return contact_count_; }
+  /// Hash of every body's position, orientation and velocities (bit-exact).
+  std::uint64_t state_hash() const;
+
+ private:
+  struct Ode;
+  std::unique_ptr<Ode> ode_;
+  WorldSettings settings_;
+  int contact_count_ = 0;
+};
+
+}  // namespace harbour::physics
