@@ -1,20 +1,11 @@
 #include "harbour/motion/MotionLimiter.h"
 
+#include "harbour/core/Braking.h"
+
 #include <algorithm>
 #include <cmath>
 
 namespace harbour::motion {
-namespace {
-
-double braking_speed(double distance, double acceleration, double dt) {
-  // fastest speed from which constant deceleration `acceleration`, applied in steps of dt, stops within
-  // `distance`: v = a dt (sqrt(2 d / (a dt^2) + 1/4) - 1/2)
-  const double a_dt = acceleration * dt;
-  return a_dt * (std::sqrt(2.0 * distance / (a_dt * dt) + 0.25) - 0.5);
-}
-
-}  // namespace
-
 const PlatformPose& MotionLimiter::step(const PlatformPose& target, double dt_s) {
   // the velocity that lands on the target this step, scaled as one vector into the speed limits and each
   // axis's braking curve (so no axis overshoots its target)
@@ -22,8 +13,9 @@ const PlatformPose& MotionLimiter::step(const PlatformPose& target, double dt_s)
   PlatformPose wanted = error * (1.0 / dt_s);
   double speed_scale = 1.0;
   for (int i = 0; i < kDofCount; ++i) {
-    const double cap = std::min(limits_.max_velocity[i],
-                                braking_speed(std::abs(error[i]), limits_.max_acceleration[i], dt_s));
+    const double cap =
+        std::min(limits_.max_velocity[i],
+                 core::discrete_braking_speed(std::abs(error[i]), limits_.max_acceleration[i], dt_s));
     if (std::abs(wanted[i]) > cap) speed_scale = std::min(speed_scale, cap / std::abs(wanted[i]));
   }
   wanted = wanted * speed_scale;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "harbour/core/Braking.h"
 #include "harbour/core/Units.h"
 
 namespace harbour::motion {
@@ -55,8 +56,7 @@ double ClassicalWashout::follow(Follower& f, double filtered_x, double cue, doub
   if (!(filter_a * cue > 0.0 && std::abs(filter_a) > limit)) {
     // no perceptible onset (no cue, the filter braking against it, or its sub-threshold tail): head for
     // neutral at no more than the limit, braking in time
-    const double a_dt = limit * dt;
-    const double brake = a_dt * (std::sqrt(2.0 * std::abs(f.x) / (a_dt * dt) + 0.25) - 0.5);
+    const double brake = core::discrete_braking_speed(std::abs(f.x), limit, dt);
     const double v_wanted = std::clamp(-f.x / dt, -brake, brake);
     a = std::clamp((v_wanted - f.v) / dt, -limit, limit);
   }

@@ -1,0 +1,14 @@
+#pragma once
+
+#include <cmath>
+
+namespace harbour::core {
+
+/// The fastest speed from which a constant deceleration `deceleration`, applied in steps of `dt_s` (velocity
+/// first, then position), stops within `distance`: v = a dt (sqrt(2 d / (a dt^2) + 1/4) - 1/2).
+inline double discrete_braking_speed(double distance, double deceleration, double dt_s) {
+  const double a_dt = deceleration * dt_s;
+  return a_dt * (std::sqrt(2.0 * distance / (a_dt * dt_s) + 0.25) - 0.5);
+}
+
+}  // namespace harbour::core

@@ -1,0 +1,57 @@
+#include "harbour/sim/Twistlocks.h"
+
+#include <cmath>
+
+namespace harbour::sim {
+
+std::array<bool, 4> landed_corners(const core::Pose& spreader_underside, const core::Pose& container_top,
+                                   double half_length_m, double half_width_m,
+                                   const TwistlockSettings& settings) {
+  constexpr double kSign[4][2] = {{1, 1}, {-1, 1}, {-1, -1}, {1, -1}};
+  std::array<bool, 4> landed{};
+  for (int c = 0; c < 4; ++c) {
+    const core::Vec3 corner{kSign[c][0] * half_length_m, kSign[c][1] * half_width_m, 0.0};
+    const core::Vec3 pin = spreader_underside.to_parent(corner);
+    const core::Vec3 in_container =
+        container_top.to_local(pin);  // aperture c sits at `corner` on the top face
+    const double lateral = std::hypot(in_container.x - corner.x, in_container.y - corner.y);
+    landed[c] = lateral <= settings.lateral_tolerance_m && std::abs(in_container.z) <= settings.landed_gap_m;
+  }
+  return landed;
+}
+
+void Twistlocks::update(const std::array<bool, 4>& landed, bool lock_button, bool unlock_button,
+                        bool load_suspended) {
+  all_landed_ = landed[0] && landed[1] && landed[2] && landed[3];
+  const bool lock_pressed = lock_button && !lock_was_pressed_;
+  const bool unlock_pressed = unlock_button && !unlock_was_pressed_;
+  lock_was_pressed_ = lock_button;
+  unlock_was_pressed_ = unlock_button;
+
+  if (lock_pressed && !locked_) {
+    if (all_landed_)
+      locked_ = true;
+    else
+      events_.push_back(TwistlockEvent::kLockRefusedNotLanded);
+  }
+  if (unlock_pressed && locked_) {
+    if (load_suspended)
+      events_.push_back(TwistlockEvent::kUnlockRefusedSuspended);
+    else
+      locked_ = false;
+  }
+  // arriving empty and lifting off again without ever locking is a pick-up hoisted unlocked (a set-down
+  // arrives locked, unlocks and lifts away: that is the normal end of a move)
+  if (all_landed_ && !was_landed_) arrived_locked_ = locked_;
+  if (was_landed_ && !all_landed_ && !locked_ && !arrived_locked_)
+    events_.push_back(TwistlockEvent::kHoistedUnlocked);
+  was_landed_ = all_landed_;
+}
+
+std::vector<TwistlockEvent> Twistlocks::take_events() {
+  std::vector<TwistlockEvent> out;
+  out.swap(events_);
+  return out;
+}
+
+}  // namespace harbour::sim

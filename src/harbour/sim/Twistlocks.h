@@ -1,0 +1,62 @@
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "harbour/core/Vec3.h"
+
+namespace harbour::sim {
+
+/// Landing tolerances of the spreader's twistlocks in a container's top corner castings (settings).
+struct TwistlockSettings {
+  double lateral_tolerance_m = 0.03;  ///< [m] cone to aperture centre, horizontally (guide cones and flippers
+                                      ///< bring the spreader within this; assumed)
+  double landed_gap_m = 0.01;         ///< [m] spreader underside to casting top counted as landed (assumed)
+};
+
+/// What the cab lamps show.
+struct TwistlockLamps {
+  bool landed = false;  ///< all four corners seated
+  bool locked = false;
+  bool unlocked = false;
+};
+
+/// Twistlock misuse and interlock events, for evaluation.
+enum class TwistlockEvent : std::uint8_t {
+  kLockRefusedNotLanded,    ///< lock pressed with fewer than four corners landed (interlock refuses it)
+  kUnlockRefusedSuspended,  ///< unlock pressed with the load hanging (interlock refuses it)
+  kHoistedUnlocked,         ///< the spreader arrived empty on a container and lifted off without locking
+};
+
+/// Corners (spreader frame: +x +y, -x +y, -x -y, +x -y) that sit in the matching corner castings of a
+/// container: the spreader's twistlock positions within the lateral tolerance of the casting apertures and
+/// its underside within the landed gap of the container's top. Both poses are world poses of the bottom-face
+/// / top-face centres.
+std::array<bool, 4> landed_corners(const core::Pose& spreader_underside, const core::Pose& container_top,
+                                   double half_length_m, double half_width_m,
+                                   const TwistlockSettings& settings);
+
+/// The spreader's twistlocks with their interlocks: lock only when all four corners are landed; never unlock
+/// under load; report misuse.
+class Twistlocks {
+ public:
+  /// One control step: the four landed sensors, the operator's buttons, and whether the load hangs from the
+  /// spreader (hoist rope tension above the empty-spreader weight).
+  void update(const std::array<bool, 4>& landed, bool lock_button, bool unlock_button, bool load_suspended);
+
+  bool locked() const { return locked_; }
+  TwistlockLamps lamps() const { return {all_landed_, locked_, !locked_}; }
+  /// Events since the last call.
+  std::vector<TwistlockEvent> take_events();
+
+ private:
+  bool locked_ = false;
+  bool all_landed_ = false;
+  bool was_landed_ = false;
+  bool arrived_locked_ = false;  // carrying a container when this landing began
+  bool lock_was_pressed_ = false, unlock_was_pressed_ = false;
+  std::vector<TwistlockEvent> events_;
+};
+
+}  // namespace harbour::sim

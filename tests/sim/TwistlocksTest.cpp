@@ -1,0 +1,71 @@
+#include "harbour/sim/Twistlocks.h"
+
+#include <gtest/gtest.h>
+
+#include "harbour/core/Units.h"
+
+namespace harbour::sim {
+namespace {
+
+constexpr double kHalfLength40 = 12.192 / 2, kHalfWidth = 2.438 / 2;  // ISO 668, 40 ft
+constexpr std::array<bool, 4> kAll{true, true, true, true};
+
+core::Pose at(double x, double y, double z, double yaw_deg = 0.0) {
+  core::Pose p;
+  p.rotation = core::Mat3::rotation({0, 0, 1}, core::deg_to_rad(yaw_deg));
+  p.position = {x, y, z};
+  return p;
+}
+
+TEST(Twistlocks, LandedOnlyWithinTheCastingTolerances) {
+  const core::Pose container = at(10, 5, 2.591);
+  const TwistlockSettings s;
+  EXPECT_EQ(landed_corners(at(10.02, 5.0, 2.595), container, kHalfLength40, kHalfWidth, s), kAll);
+  EXPECT_EQ(landed_corners(at(10.05, 5.0, 2.591), container, kHalfLength40, kHalfWidth, s),
+            (std::array<bool, 4>{false, false, false, false}));  // 5 cm off: outside the cones' reach
+  EXPECT_EQ(landed_corners(at(10, 5, 2.62), container, kHalfLength40, kHalfWidth, s),
+            (std::array<bool, 4>{false, false, false, false}));  // still 3 cm above
+  // skewed 0.4 degrees: the far ends move 4 cm sideways, outside the tolerance
+  const auto skewed = landed_corners(at(10, 5, 2.591, 0.4), container, kHalfLength40, kHalfWidth, s);
+  EXPECT_FALSE(skewed[0] && skewed[1] && skewed[2] && skewed[3]);
+}
+
+TEST(Twistlocks, LockOnlyWhenAllFourAreLanded) {
+  Twistlocks t;
+  t.update({true, true, true, false}, true, false, false);
+  EXPECT_FALSE(t.locked());
+  EXPECT_EQ(t.take_events(), std::vector<TwistlockEvent>{TwistlockEvent::kLockRefusedNotLanded});
+  t.update(kAll, false, false, false);
+  t.update(kAll, true, false, false);
+  EXPECT_TRUE(t.locked());
+  EXPECT_TRUE(t.lamps().landed);
+  EXPECT_TRUE(t.lamps().locked);
+  EXPECT_FALSE(t.lamps().unlocked);
+}
+
+TEST(Twistlocks, NeverUnlockUnderLoad) {
+  Twistlocks t;
+  t.update(kAll, true, false, false);
+  t.update({false, false, false, false}, false, false, true);  // lifted with the container
+  t.update({false, false, false, false}, false, true, true);   // unlock in the air
+  EXPECT_TRUE(t.locked());
+  EXPECT_EQ(t.take_events(), std::vector<TwistlockEvent>{TwistlockEvent::kUnlockRefusedSuspended});
+}
+
+TEST(Twistlocks, ASetDownIsNormalButAnUnlockedPickUpIsMisuse) {
+  Twistlocks t;
+  // pick-up done right, move, set down, unlock, lift away: no events
+  t.update(kAll, true, false, false);
+  t.update({false, false, false, false}, false, false, true);
+  t.update(kAll, false, false, false);
+  t.update(kAll, false, true, false);
+  t.update({false, false, false, false}, false, false, false);
+  EXPECT_TRUE(t.take_events().empty());
+  // arrive empty on the next box and hoist without locking
+  t.update(kAll, false, false, false);
+  t.update({false, false, false, false}, false, false, false);
+  EXPECT_EQ(t.take_events(), std::vector<TwistlockEvent>{TwistlockEvent::kHoistedUnlocked});
+}
+
+}  // namespace
+}  // namespace harbour::sim
