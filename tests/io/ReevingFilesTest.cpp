@@ -41,7 +41,7 @@ TEST(ReevingFiles, ShippedReevingsLoad) {
   }
   const ReevingFile sts = load_reeving(HARBOUR_DATA_DIR "/reeving/sts_hoist.yaml");
   EXPECT_EQ(sts.reeving.ropes.size(), 4u);
-  EXPECT_EQ(sts.bodies, (std::vector<std::string>{"trolley", "headblock"}));
+  EXPECT_EQ(sts.bodies, (std::vector<std::string>{"gantry", "trolley", "headblock"}));
 }
 
 TEST(ReevingFiles, BadReevingsNameFileLineAndField) {

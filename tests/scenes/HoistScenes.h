@@ -39,6 +39,7 @@ struct HoistScene {
 /// m.
 inline void build_sts(HoistScene& s, const std::string& data_dir, int max_substeps = 8) {
   const io::ReevingFile f = io::load_reeving(data_dir + "/reeving/sts_hoist.yaml");
+  s.bodies.add({0, 0, 0}, 1e6, true);      // gantry (its frame is the crane's base centre)
   s.bodies.add({20, 0, 49}, 30000, true);  // trolley
   s.bodies.add({20, 0, 20}, 80000);        // headblock, spreader and container
   s.build(f.reeving, max_substeps);

@@ -36,7 +36,7 @@ TEST(OdeCableBodies, StsLoadSwingsWithThePendulumPeriod) {
   world.set_slider_motor(rail, 0.0, 1e7);
 
   const io::ReevingFile file = io::load_reeving(HARBOUR_DATA_DIR "/reeving/sts_hoist.yaml");
-  OdeCableBodies bodies(world, {t, h});
+  OdeCableBodies bodies(world, {physics::kWorld, t, h});  // the gantry stands still: the world
   cable::HoistSystem hoist(file.reeving, bodies, {0, 0, -kG});
   const std::vector<cable::DrumCommand> brake(1);
 

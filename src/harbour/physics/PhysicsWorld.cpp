@@ -40,6 +40,7 @@ struct PhysicsWorld::Ode {
   dJointGroupID contacts = nullptr;
   std::vector<dBodyID> bodies;
   std::vector<dJointID> sliders;
+  std::vector<dJointID> attachments;
   PhysicsWorld* owner = nullptr;
 };
 
@@ -87,6 +88,32 @@ void PhysicsWorld::add_ground(double z_m) {
   dCreatePlane(ode_->space, 0, 0, 1, z_m);
 }
 
+void PhysicsWorld::add_static_box(const Vec3& half_extents_m, const core::Pose& pose) {
+  dGeomID g = dCreateBox(ode_->space, 2 * half_extents_m.x, 2 * half_extents_m.y, 2 * half_extents_m.z);
+  dGeomSetPosition(g, pose.position.x, pose.position.y, pose.position.z);
+  dMatrix3 r;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j)
+      r[4 * i + j] = pose.rotation.m[i][j];
+    r[4 * i + 3] = 0.0;
+  }
+  dGeomSetRotation(g, r);
+}
+
+int PhysicsWorld::attach(BodyId a, BodyId b) {
+  dJointID j = dJointCreateFixed(ode_->world, nullptr);
+  dJointAttach(j, ode_->bodies[a], ode_->bodies[b]);
+  dJointSetFixed(j);
+  ode_->attachments.push_back(j);
+  return static_cast<int>(ode_->attachments.size()) - 1;
+}
+
+void PhysicsWorld::detach(int attachment) {
+  dJointID& j = ode_->attachments[static_cast<std::size_t>(attachment)];
+  if (j) dJointDestroy(j);
+  j = nullptr;
+}
+
 int PhysicsWorld::add_slider(BodyId a, BodyId b, const Vec3& axis) {
   dJointID j = dJointCreateSlider(ode_->world, nullptr);
   dJointAttach(j, a == kWorld ? nullptr : ode_->bodies[a], ode_->bodies[b]);
@@ -102,6 +129,10 @@ void PhysicsWorld::set_slider_motor(int slider, double velocity_mps, double max_
 
 double PhysicsWorld::slider_position(int slider) const {
   return dJointGetSliderPosition(ode_->sliders[slider]);
+}
+
+double PhysicsWorld::slider_rate(int slider) const {
+  return dJointGetSliderPositionRate(ode_->sliders[slider]);
 }
 
 core::Pose PhysicsWorld::pose(BodyId body) const {
@@ -154,6 +185,7 @@ void PhysicsWorld::step(double dt_s) {
     const WorldSettings& s = ode->owner->settings_;
     dBodyID b1 = dGeomGetBody(g1), b2 = dGeomGetBody(g2);
     if (!b1 && !b2) return;
+    if (b1 && b2 && dAreConnectedExcluding(b1, b2, dJointTypeContact)) return;
     std::vector<dContact> contacts(static_cast<std::size_t>(s.max_contacts_per_pair));
     const int n = dCollide(g1, g2, s.max_contacts_per_pair, &contacts[0].geom, sizeof(dContact));
     for (int i = 0; i < n; ++i) {

@@ -44,13 +44,19 @@ class PhysicsWorld {
   BodyId add_box(const BoxSettings& box);
   /// A static horizontal ground plane at height `z_m`.
   void add_ground(double z_m);
+  /// A static box (quay furniture, a vessel's deck or hatch cover) at a world pose.
+  void add_static_box(const core::Vec3& half_extents_m, const core::Pose& pose);
+  /// Rigidly joins two bodies as they are now (twistlocks locked); returns a handle for detach().
+  int attach(BodyId a, BodyId b);
+  void detach(int attachment);
   /// A prismatic joint letting `b` slide along world `axis` relative to `a` (kWorld: the ground); returns its
   /// index.
   int add_slider(BodyId a, BodyId b, const core::Vec3& axis);
   /// Drives a slider at `velocity_mps` with at most `max_force_n` (0 frees it).
   void set_slider_motor(int slider, double velocity_mps, double max_force_n);
-  /// Slider displacement [m] along its axis from where it was created.
+  /// Slider displacement [m] along its axis from where it was created, and its rate [m/s].
   double slider_position(int slider) const;
+  double slider_rate(int slider) const;
 
   core::Pose pose(BodyId body) const;
   core::Vec3 linear_velocity(BodyId body) const;

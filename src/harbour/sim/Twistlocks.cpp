@@ -40,10 +40,12 @@ void Twistlocks::update(const std::array<bool, 4>& landed, bool lock_button, boo
     else
       locked_ = false;
   }
-  // arriving empty and lifting off again without ever locking is a pick-up hoisted unlocked (a set-down
-  // arrives locked, unlocks and lifts away: that is the normal end of a move)
-  if (all_landed_ && !was_landed_) arrived_locked_ = locked_;
-  if (was_landed_ && !all_landed_ && !locked_ && !arrived_locked_)
+  // lifting off a landing during which the locks never closed is a pick-up hoisted unlocked; a set-down
+  // closes them on arrival (or they stay closed through a carry), unlocks and lifts away: the normal end of a
+  // move
+  if (all_landed_ && !was_landed_) locked_this_landing_ = false;
+  if (all_landed_ && locked_) locked_this_landing_ = true;
+  if (was_landed_ && !all_landed_ && !locked_ && !locked_this_landing_)
     events_.push_back(TwistlockEvent::kHoistedUnlocked);
   was_landed_ = all_landed_;
 }

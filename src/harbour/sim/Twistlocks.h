@@ -54,7 +54,7 @@ class Twistlocks {
   bool locked_ = false;
   bool all_landed_ = false;
   bool was_landed_ = false;
-  bool arrived_locked_ = false;  // carrying a container when this landing began
+  bool locked_this_landing_ = false;  // the locks were closed at some point of the current landing
   bool lock_was_pressed_ = false, unlock_was_pressed_ = false;
   std::vector<TwistlockEvent> events_;
 };

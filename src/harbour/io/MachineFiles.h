@@ -1,0 +1,15 @@
+#pragma once
+
+#include <string>
+
+#include "harbour/io/YamlFile.h"
+#include "harbour/sim/StsCrane.h"
+
+namespace harbour::io {
+
+/// Reads an STS crane file (data/machines/sts.yaml) and the hoist reeving it names (a path relative to the
+/// machine file's folder).
+sim::StsCraneSettings load_sts_crane(const YamlFile& file, const std::string& folder);
+sim::StsCraneSettings load_sts_crane(const std::string& path);
+
+}  // namespace harbour::io

@@ -1,0 +1,102 @@
+#include "harbour/sim/StsCrane.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace harbour::sim {
+namespace {
+
+// the headblock's rope segments under the trolley in each rope of the 4-rope reeving (path: drum, backreach,
+// trolley, headblock, trolley, boom tip): segments 2 and 3
+constexpr int kFallSegments[] = {2, 3};
+
+}  // namespace
+
+StsCrane::StsCrane(physics::PhysicsWorld& world, const StsCraneSettings& settings, double gantry_y_m,
+                   double trolley_x_m, double spreader_z_m)
+    : world_(world),
+      settings_(settings),
+      gantry_start_y_(gantry_y_m),
+      trolley_start_x_(trolley_x_m),
+      gantry_(settings.gantry_drive),
+      trolley_(settings.trolley_drive) {
+  // gantry: the crane's base frame, on the quay rails
+  physics::BoxSettings gantry;
+  gantry.mass_kg = settings.gantry_mass_kg;
+  gantry.half_extents_m = {15, 10, 25};
+  gantry.pose.position = {0, gantry_y_m, 0};
+  gantry.collides = false;
+  gantry_body_ = world.add_box(gantry);
+  gantry_slider_ = world.add_slider(physics::kWorld, gantry_body_, {0, 1, 0});
+
+  physics::BoxSettings trolley;
+  trolley.mass_kg = settings.trolley_mass_kg;
+  trolley.half_extents_m = {3, 4, 1};
+  trolley.pose.position = {trolley_x_m, gantry_y_m, settings.trolley_rail_height_m};
+  trolley.collides = false;
+  trolley_body_ = world.add_box(trolley);
+  trolley_slider_ = world.add_slider(gantry_body_, trolley_body_, {1, 0, 0});
+
+  physics::BoxSettings spreader;
+  spreader.mass_kg = settings.spreader_mass_kg;
+  spreader.half_extents_m = settings.spreader_half_extents_m;
+  spreader.pose.position = {trolley_x_m, gantry_y_m, spreader_z_m};
+  spreader_ = world.add_box(spreader);
+
+  cable_bodies_ = std::make_unique<OdeCableBodies>(
+      world, std::vector<physics::BodyId>{gantry_body_, trolley_body_, spreader_});
+  hoist_ = std::make_unique<cable::HoistSystem>(settings.hoist, *cable_bodies_, core::Vec3{0, 0, -9.80665});
+}
+
+double StsCrane::hoisted_load_n() const {
+  double total = 0.0;
+  for (int r = 0; r < hoist_->rope_count(); ++r)
+    for (int s : kFallSegments)
+      total += hoist_->tension(r, s);
+  return total;
+}
+
+void StsCrane::step(const StsControls& c, std::span<const ContainerRef> containers, double dt_s) {
+  // travel drives onto the slider motors
+  const DriveOutput g = gantry_.step(c.gantry, gantry_position_m(), dt_s, c.emergency_stop);
+  world_.set_slider_motor(gantry_slider_, g.velocity_mps, g.max_force_n);
+  const DriveOutput t = trolley_.step(c.trolley, trolley_position_m(), dt_s, c.emergency_stop);
+  world_.set_slider_motor(trolley_slider_, t.velocity_mps, t.max_force_n);
+
+  // hoist: raising reels rope in (negative pay-out); the e-stop lets the drum ramp down and brake
+  const cable::DrumCommand drum{c.emergency_stop ? 0.0 : -std::clamp(c.hoist, -1.0, 1.0), false};
+  hoist_->step(dt_s, {&drum, 1}, *cable_bodies_);
+
+  // twistlocks against the container under the spreader, if any
+  const core::Pose spreader = world_.pose(spreader_);
+  core::Pose underside = spreader;
+  underside.position = spreader.to_parent({0, 0, -settings_.spreader_half_extents_m.z});
+  std::array<bool, 4> landed{};
+  std::optional<physics::BodyId> landed_on;
+  for (const ContainerRef& box : containers) {
+    core::Pose top = world_.pose(box.body);
+    top.position = top.to_parent({0, 0, box.half_extents_m.z});
+    const auto corners =
+        landed_corners(underside, top, box.half_extents_m.x, box.half_extents_m.y, settings_.twistlocks);
+    if (corners[0] && corners[1] && corners[2] && corners[3]) {
+      landed = corners;
+      landed_on = box.body;
+      break;
+    }
+  }
+  // the load hangs when the ropes carry clearly more than the empty spreader (landing pins stay pressed while
+  // a locked container hangs, so "landed" alone cannot tell)
+  const bool load_suspended = hoisted_load_n() > 1.3 * settings_.spreader_mass_kg * 9.80665;
+  const bool was_locked = twistlocks_.locked();
+  twistlocks_.update(landed, c.lock, c.unlock, load_suspended);
+  if (!was_locked && twistlocks_.locked() && landed_on) {
+    attachment_ = world_.attach(spreader_, *landed_on);
+    locked_container_ = landed_on;
+  } else if (was_locked && !twistlocks_.locked() && attachment_ >= 0) {
+    world_.detach(attachment_);
+    attachment_ = -1;
+    locked_container_.reset();
+  }
+}
+
+}  // namespace harbour::sim

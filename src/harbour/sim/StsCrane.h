@@ -1,0 +1,87 @@
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "harbour/cable/HoistSystem.h"
+#include "harbour/physics/PhysicsWorld.h"
+#include "harbour/sim/Drive.h"
+#include "harbour/sim/OdeCableBodies.h"
+#include "harbour/sim/Twistlocks.h"
+
+namespace harbour::sim {
+
+/// A ship-to-shore crane (settings, from data/machines/sts.yaml). Frames: the gantry travels along world y on
+/// the quay rails; the trolley along the gantry's x (waterside +x); the hoist reeving's bodies are
+/// [gantry, trolley, headblock].
+struct StsCraneSettings {
+  DriveSettings gantry_drive;
+  DriveSettings trolley_drive;
+  double gantry_mass_kg = 1.2e6;
+  double trolley_mass_kg = 30000.0;
+  double trolley_rail_height_m = 49.0;                    ///< [m] trolley body centre above the quay
+  double spreader_mass_kg = 15000.0;                      ///< [kg] headblock and spreader
+  core::Vec3 spreader_half_extents_m{6.096, 1.219, 0.5};  ///< [m] at its 40 ft setting
+  TwistlockSettings twistlocks;
+  cable::ReevingSettings hoist;
+};
+
+/// The operator's controls, normalised (cab joysticks and buttons).
+struct StsControls {
+  double gantry = 0.0;   ///< [-1, 1] +: along +y
+  double trolley = 0.0;  ///< [-1, 1] +: waterside
+  double hoist = 0.0;    ///< [-1, 1] +: raise
+  bool lock = false;
+  bool unlock = false;
+  bool emergency_stop = false;
+};
+
+/// A container the spreader may land on: its body and half extents.
+struct ContainerRef {
+  physics::BodyId body = physics::kWorld;
+  core::Vec3 half_extents_m;
+};
+
+/// The STS crane on the physics world: gantry and trolley on motorised sliders driven by Drives, the spreader
+/// hanging from the 4-rope hoist (cable model), twistlocks that lock a landed container to the spreader.
+class StsCrane {
+ public:
+  StsCrane(physics::PhysicsWorld& world, const StsCraneSettings& settings, double gantry_y_m,
+           double trolley_x_m, double spreader_z_m);
+
+  /// Drives, hoist ropes (forces onto the bodies) and twistlocks; the caller then steps the physics world.
+  void step(const StsControls& controls, std::span<const ContainerRef> containers, double dt_s);
+
+  double gantry_position_m() const { return gantry_start_y_ + world_.slider_position(gantry_slider_); }
+  double trolley_position_m() const { return trolley_start_x_ + world_.slider_position(trolley_slider_); }
+  core::Pose spreader_pose() const { return world_.pose(spreader_); }
+  physics::BodyId spreader_body() const { return spreader_; }
+  /// The container locked to the spreader, if any.
+  std::optional<physics::BodyId> locked_container() const { return locked_container_; }
+  TwistlockLamps lamps() const { return twistlocks_.lamps(); }
+  std::vector<TwistlockEvent> take_twistlock_events() { return twistlocks_.take_events(); }
+  const Drive& gantry_drive() const { return gantry_; }
+  const Drive& trolley_drive() const { return trolley_; }
+  const cable::HoistSystem& hoist() const { return *hoist_; }
+  cable::HoistSystem& hoist() { return *hoist_; }
+  /// Vertical rope pull on the headblock [N] (the load the hoist carries, spreader included).
+  double hoisted_load_n() const;
+
+ private:
+  physics::PhysicsWorld& world_;
+  StsCraneSettings settings_;
+  physics::BodyId gantry_body_, trolley_body_, spreader_;
+  int gantry_slider_, trolley_slider_;
+  double gantry_start_y_, trolley_start_x_;
+  Drive gantry_, trolley_;
+  Twistlocks twistlocks_;
+  std::unique_ptr<OdeCableBodies> cable_bodies_;
+  std::unique_ptr<cable::HoistSystem> hoist_;
+  std::optional<physics::BodyId> locked_container_;
+  int attachment_ = -1;
+};
+
+}  // namespace harbour::sim
