@@ -37,6 +37,7 @@ struct StsControls {
   bool lock = false;
   bool unlock = false;
   bool emergency_stop = false;
+  friend bool operator==(const StsControls&, const StsControls&) = default;
 };
 
 /// A container the spreader may land on: its body and half extents.

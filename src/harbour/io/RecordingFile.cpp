@@ -1,0 +1,155 @@
+#include "harbour/io/RecordingFile.h"
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <vector>
+
+namespace harbour::io {
+namespace {
+
+constexpr char kMagic[4] = {'H', 'S', 'R', 'C'};
+
+class Writer {
+ public:
+  template <typename T>
+  void put(T v) {
+    auto bytes = std::bit_cast<std::array<unsigned char, sizeof(T)>>(v);
+    if constexpr (std::endian::native == std::endian::big) std::reverse(bytes.begin(), bytes.end());
+    out.insert(out.end(), bytes.begin(), bytes.end());
+  }
+  void put(const std::string& s) {
+    put(static_cast<std::uint32_t>(s.size()));
+    out.insert(out.end(), s.begin(), s.end());
+  }
+  std::vector<unsigned char> out;
+};
+
+class Reader {
+ public:
+  Reader(std::string file, std::vector<unsigned char> bytes)
+      : file_(std::move(file)), in_(std::move(bytes)) {}
+  template <typename T>
+  T get(const char* what) {
+    need(sizeof(T), what);
+    std::array<unsigned char, sizeof(T)> bytes;
+    std::memcpy(bytes.data(), &in_[at_], sizeof(T));
+    if constexpr (std::endian::native == std::endian::big) std::reverse(bytes.begin(), bytes.end());
+    at_ += sizeof(T);
+    return std::bit_cast<T>(bytes);
+  }
+  std::string text(const char* what) {
+    const auto n = get<std::uint32_t>(what);
+    need(n, what);
+    std::string s(reinterpret_cast<const char*>(&in_[at_]), n);
+    at_ += n;
+    return s;
+  }
+  /// A count of records of `record_size` bytes each, checked against what is left.
+  std::uint32_t count(std::size_t record_size, const char* what) {
+    const auto n = get<std::uint32_t>(what);
+    if (static_cast<std::size_t>(n) * record_size > in_.size() - at_)
+      fail(std::string(what) + ": " + std::to_string(n) + " records do not fit in the file (truncated?)");
+    return n;
+  }
+  [[noreturn]] void fail(const std::string& problem) const { throw RecordingFileError(file_, at_, problem); }
+  std::size_t offset() const { return at_; }
+  bool done() const { return at_ == in_.size(); }
+
+ private:
+  void need(std::size_t n, const char* what) const {
+    if (n > in_.size() - at_) fail(std::string("truncated in ") + what);
+  }
+  std::string file_;
+  std::vector<unsigned char> in_;
+  std::size_t at_ = 0;
+};
+
+constexpr std::size_t kInputRecord = 8 + 3 * 8 + 1;
+constexpr std::size_t kCheckpointRecord = 8 + 8;
+
+}  // namespace
+
+void write_recording(const std::string& path, const sim::Recording& r) {
+  Writer w;
+  w.out.insert(w.out.end(), std::begin(kMagic), std::end(kMagic));
+  w.put(kRecordingVersion);
+  w.put(std::uint16_t{0});
+  w.put(r.scenario);
+  w.put(r.parent);
+  w.put(r.branch_step);
+  w.put(r.total_steps);
+  w.put(static_cast<std::uint32_t>(r.inputs.size()));
+  for (const auto& c : r.inputs) {
+    w.put(c.step);
+    w.put(c.inputs.sts.gantry);
+    w.put(c.inputs.sts.trolley);
+    w.put(c.inputs.sts.hoist);
+    w.put(static_cast<std::uint8_t>((c.inputs.sts.lock ? 1 : 0) | (c.inputs.sts.unlock ? 2 : 0) |
+                                    (c.inputs.sts.emergency_stop ? 4 : 0)));
+  }
+  w.put(static_cast<std::uint32_t>(r.checkpoints.size()));
+  for (const auto& c : r.checkpoints) {
+    w.put(c.step);
+    w.put(c.state_hash);
+  }
+  const std::string temporary = path + ".partial";
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    out.write(reinterpret_cast<const char*>(w.out.data()), static_cast<std::streamsize>(w.out.size()));
+    if (!out) throw std::runtime_error(temporary + ": cannot be written");
+  }
+  std::filesystem::rename(temporary, path);
+}
+
+sim::Recording read_recording(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw RecordingFileError(path, 0, "cannot be opened");
+  Reader r(path, std::vector<unsigned char>(std::istreambuf_iterator<char>(in), {}));
+  char magic[4];
+  for (char& m : magic)
+    m = static_cast<char>(r.get<std::uint8_t>("magic"));
+  if (std::memcmp(magic, kMagic, 4) != 0)
+    throw RecordingFileError(path, 0, "not a harboursim recording (no HSRC magic)");
+  const auto version = r.get<std::uint16_t>("version");
+  if (version != kRecordingVersion)
+    throw RecordingFileError(path, 4,
+                             "recording version " + std::to_string(version) +
+                                 " is not supported (this build reads " + std::to_string(kRecordingVersion) +
+                                 ")");
+  r.get<std::uint16_t>("reserved");
+  sim::Recording rec;
+  rec.scenario = r.text("scenario name");
+  rec.parent = r.text("parent");
+  rec.branch_step = r.get<std::int64_t>("branch step");
+  rec.total_steps = r.get<std::int64_t>("total steps");
+  const std::uint32_t inputs = r.count(kInputRecord, "inputs");
+  for (std::uint32_t n = 0; n < inputs; ++n) {
+    sim::Recording::InputChange c;
+    c.step = r.get<std::int64_t>("input step");
+    c.inputs.sts.gantry = r.get<double>("gantry");
+    c.inputs.sts.trolley = r.get<double>("trolley");
+    c.inputs.sts.hoist = r.get<double>("hoist");
+    const auto flags = r.get<std::uint8_t>("buttons");
+    c.inputs.sts.lock = flags & 1;
+    c.inputs.sts.unlock = flags & 2;
+    c.inputs.sts.emergency_stop = flags & 4;
+    if (!rec.inputs.empty() && c.step < rec.inputs.back().step) r.fail("input steps out of order");
+    rec.inputs.push_back(c);
+  }
+  const std::uint32_t checkpoints = r.count(kCheckpointRecord, "checkpoints");
+  for (std::uint32_t n = 0; n < checkpoints; ++n) {
+    sim::Recording::Checkpoint c;
+    c.step = r.get<std::int64_t>("checkpoint step");
+    c.state_hash = r.get<std::uint64_t>("checkpoint hash");
+    rec.checkpoints.push_back(c);
+  }
+  if (!r.done()) r.fail("unexpected bytes after the last checkpoint");
+  return rec;
+}
+
+}  // namespace harbour::io

@@ -1,0 +1,57 @@
+#include "harbour/sim/Recording.h"
+
+#include <algorithm>
+
+namespace harbour::sim {
+
+void Recorder::after_step(const Simulation& simulation, const Inputs& inputs) {
+  // store inputs only when they change; the step they were applied at is one before the current
+  const std::int64_t applied_at = simulation.steps() - 1;
+  if (recording_.inputs.empty() || !(recording_.inputs.back().inputs == inputs))
+    recording_.inputs.push_back({applied_at, inputs});
+  if (simulation.steps() % kCheckpointEvery == 0)
+    recording_.checkpoints.push_back({simulation.steps(), simulation.state_hash()});
+  recording_.total_steps = simulation.steps();
+}
+
+ReplayResult replay(const ScenarioSettings& scenario, const Recording& recording, std::int64_t stop_step) {
+  ReplayResult result;
+  result.simulation = std::make_unique<Simulation>(scenario);
+  Simulation& sim = *result.simulation;
+  const std::int64_t end = stop_step < 0 ? recording.total_steps : std::min(stop_step, recording.total_steps);
+  std::size_t next_input = 0, next_checkpoint = 0;
+  Inputs current;
+  while (sim.steps() < end) {
+    while (next_input < recording.inputs.size() && recording.inputs[next_input].step <= sim.steps())
+      current = recording.inputs[next_input++].inputs;
+    sim.single_step(current);  // replay ignores the freeze: held periods were not recorded as steps
+    while (next_checkpoint < recording.checkpoints.size() &&
+           recording.checkpoints[next_checkpoint].step < sim.steps())
+      ++next_checkpoint;
+    if (next_checkpoint < recording.checkpoints.size() &&
+        recording.checkpoints[next_checkpoint].step == sim.steps()) {
+      ++result.checkpoints_checked;
+      if (!result.first_mismatch && recording.checkpoints[next_checkpoint].state_hash != sim.state_hash())
+        result.first_mismatch = sim.steps();
+      ++next_checkpoint;
+    }
+  }
+  return result;
+}
+
+TakeOver take_over(const ScenarioSettings& scenario, const Recording& recording,
+                   const std::string& recording_id, std::int64_t step) {
+  ReplayResult r = replay(scenario, recording, step);
+  Recording prefix;
+  prefix.scenario = recording.scenario;
+  prefix.parent = recording_id;
+  prefix.branch_step = r.simulation->steps();
+  prefix.total_steps = r.simulation->steps();
+  for (const auto& change : recording.inputs)
+    if (change.step < prefix.branch_step) prefix.inputs.push_back(change);
+  for (const auto& checkpoint : recording.checkpoints)
+    if (checkpoint.step <= prefix.branch_step) prefix.checkpoints.push_back(checkpoint);
+  return {std::move(r.simulation), Recorder(std::move(prefix))};
+}
+
+}  // namespace harbour::sim

@@ -1,0 +1,68 @@
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "harbour/sim/Simulation.h"
+
+namespace harbour::sim {
+
+/// A run as the inputs that drove it plus the state hash at every recorded second: replay is re-simulation.
+struct Recording {
+  struct InputChange {
+    std::int64_t step = 0;  ///< inputs take effect from this step on
+    Inputs inputs;
+  };
+  struct Checkpoint {
+    std::int64_t step = 0;
+    std::uint64_t state_hash = 0;
+  };
+  std::string scenario;          ///< scenario name the run started from
+  std::string parent;            ///< recording this one branched from (take-over), empty if none
+  std::int64_t branch_step = 0;  ///< step of the parent where the branch starts
+  std::int64_t total_steps = 0;
+  std::vector<InputChange> inputs;      ///< in step order
+  std::vector<Checkpoint> checkpoints;  ///< in step order
+};
+
+/// Records while a simulation runs: call after each step.
+class Recorder {
+ public:
+  static constexpr std::int64_t kCheckpointEvery = 1000;  ///< one simulated second at 1 kHz
+
+  explicit Recorder(std::string scenario) { recording_.scenario = std::move(scenario); }
+  /// Continues an existing recording's prefix (a take-over branch).
+  explicit Recorder(Recording prefix) : recording_(std::move(prefix)) {}
+
+  /// `inputs` were used for the step that just ended (now at `simulation.steps()`).
+  void after_step(const Simulation& simulation, const Inputs& inputs);
+  const Recording& recording() const { return recording_; }
+
+ private:
+  Recording recording_;
+};
+
+/// Outcome of a replay.
+struct ReplayResult {
+  std::unique_ptr<Simulation> simulation;  ///< the state at the stop step
+  int checkpoints_checked = 0;
+  std::optional<std::int64_t> first_mismatch;  ///< step of the first checkpoint whose hash differed
+};
+
+/// Re-simulates `recording` from `scenario` up to `stop_step` (default: its end), comparing every checkpoint.
+ReplayResult replay(const ScenarioSettings& scenario, const Recording& recording,
+                    std::int64_t stop_step = -1);
+
+/// Instructor take-over at `step` of a recording: the simulation restored there (by re-simulation) and a
+/// recorder for the new branch, linked to the original as its parent.
+struct TakeOver {
+  std::unique_ptr<Simulation> simulation;
+  Recorder recorder;
+};
+TakeOver take_over(const ScenarioSettings& scenario, const Recording& recording,
+                   const std::string& recording_id, std::int64_t step);
+
+}  // namespace harbour::sim

@@ -1,0 +1,74 @@
+#include "harbour/sim/Simulation.h"
+
+#include <cmath>
+
+#include "harbour/core/StateHash.h"
+
+namespace harbour::sim {
+
+Simulation::Simulation(const ScenarioSettings& scenario) : scenario_(scenario) {
+  world_ = std::make_unique<physics::PhysicsWorld>(physics::WorldSettings{});
+  world_->add_ground(0.0);
+  for (const StaticBlock& b : scenario.blocks) {
+    core::Pose p;
+    p.position = b.position_m;
+    world_->add_static_box(b.half_extents_m, p);
+  }
+  for (const ContainerPlacement& c : scenario.containers) {
+    physics::BoxSettings box;
+    box.half_extents_m = c.half_extents_m;
+    box.mass_kg = c.gross_mass_kg;
+    box.pose.position = c.position_m;
+    box.pose.rotation = core::Mat3::rotation({0, 0, 1}, c.yaw_rad);
+    containers_.push_back({world_->add_box(box), c.half_extents_m});
+  }
+  crane_ = std::make_unique<StsCrane>(*world_, scenario.crane, scenario.gantry_y_m, scenario.trolley_x_m,
+                                      scenario.spreader_z_m);
+}
+
+void Simulation::advance(const Inputs& inputs) {
+  // machine (drives, ropes, twistlocks) pushes on the bodies, then the multibody step
+  crane_->step(inputs.sts, containers_, kStep_s);
+  world_->step(kStep_s);
+  clock_.advance();
+  const core::Vec3 p = crane_->spreader_pose().position;
+  if (!std::isfinite(p.x + p.y + p.z)) warnings_.raise(core::Warning::kNonFinite);
+}
+
+void Simulation::step(const Inputs& inputs) {
+  if (!held_) advance(inputs);
+}
+
+void Simulation::single_step(const Inputs& inputs) {
+  advance(inputs);
+}
+
+Snapshot Simulation::snapshot() const {
+  Snapshot s;
+  s.step = clock_.steps();
+  s.time_s = clock_.time_s();
+  s.held = held_;
+  s.gantry_y_m = crane_->gantry_position_m();
+  s.trolley_x_m = crane_->trolley_position_m();
+  s.spreader = crane_->spreader_pose();
+  s.lamps = crane_->lamps();
+  s.hoisted_load_n = crane_->hoisted_load_n();
+  s.warnings = warnings_.total();
+  for (std::size_t n = 0; n < containers_.size(); ++n)
+    s.containers.push_back({scenario_.containers[n].id, world_->pose(containers_[n].body),
+                            crane_->locked_container() == containers_[n].body});
+  return s;
+}
+
+std::uint64_t Simulation::state_hash() const {
+  core::StateHash hash;
+  hash.add(clock_.steps());
+  hash.add(world_->state_hash());
+  crane_->hoist().hash_into(hash);
+  hash.add(crane_->gantry_drive().reference_mps());
+  hash.add(crane_->trolley_drive().reference_mps());
+  hash.add(crane_->lamps());
+  return hash.value();
+}
+
+}  // namespace harbour::sim

@@ -1,0 +1,102 @@
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "harbour/core/FixedStepClock.h"
+#include "harbour/core/Warnings.h"
+#include "harbour/physics/PhysicsWorld.h"
+#include "harbour/sim/StsCrane.h"
+
+namespace harbour::sim {
+
+/// Everything the executive consumes each step: the station's labelled, normalised controls. Plain data, so
+/// the recorder can store it bit for bit.
+struct Inputs {
+  StsControls sts;
+  friend bool operator==(const Inputs&, const Inputs&) = default;
+};
+
+/// A container placed in the scenario (ISO 668 sizes).
+struct ContainerPlacement {
+  std::string id;
+  core::Vec3 half_extents_m;   ///< [m]
+  double gross_mass_kg = 0.0;  ///< [kg] tare + cargo
+  core::Vec3 position_m;       ///< [m] centre, world
+  double yaw_rad = 0.0;        ///< [rad]
+};
+
+/// A static block the containers stand on (vessel deck, hatch cover, quay furniture).
+struct StaticBlock {
+  core::Vec3 half_extents_m;
+  core::Vec3 position_m;
+};
+
+/// The initial state of an STS exercise world (settings).
+struct ScenarioSettings {
+  std::string name;
+  StsCraneSettings crane;
+  double gantry_y_m = 0.0, trolley_x_m = 20.0, spreader_z_m = 20.0;  ///< [m] crane pose at the start
+  std::vector<StaticBlock> blocks;
+  std::vector<ContainerPlacement> containers;
+};
+
+/// What consumers (image generator, console, network, evaluation) see of the simulation: plain data.
+struct Snapshot {
+  std::int64_t step = 0;
+  double time_s = 0.0;
+  bool held = false;
+  double gantry_y_m = 0.0, trolley_x_m = 0.0;
+  core::Pose spreader;
+  TwistlockLamps lamps;
+  struct Container {
+    std::string id;
+    core::Pose pose;
+    bool locked = false;
+  };
+  std::vector<Container> containers;
+  double hoisted_load_n = 0.0;
+  std::uint32_t warnings = 0;
+};
+
+/// The executive: a pure function of its inputs at a fixed 1 kHz step (no clocks, files or threads). The
+/// instructor's freeze is hold()/resume()/single_step().
+class Simulation {
+ public:
+  static constexpr double kStep_s = 0.001;
+
+  explicit Simulation(const ScenarioSettings& scenario);
+
+  /// One physics step with these inputs; does nothing while held.
+  void step(const Inputs& inputs);
+  void hold() { held_ = true; }
+  void resume() { held_ = false; }
+  bool held() const { return held_; }
+  /// One step even while held (the instructor steps a frozen exercise).
+  void single_step(const Inputs& inputs);
+
+  std::int64_t steps() const { return clock_.steps(); }
+  double time_s() const { return clock_.time_s(); }
+  Snapshot snapshot() const;
+  /// Hash of the whole dynamic state: bodies, ropes, drives, twistlocks, clock.
+  std::uint64_t state_hash() const;
+  const core::Warnings& warnings() const { return warnings_; }
+  StsCrane& crane() { return *crane_; }
+  const StsCrane& crane() const { return *crane_; }
+  const ScenarioSettings& scenario() const { return scenario_; }
+
+ private:
+  void advance(const Inputs& inputs);
+
+  ScenarioSettings scenario_;
+  core::FixedStepClock clock_{kStep_s};
+  std::unique_ptr<physics::PhysicsWorld> world_;
+  std::unique_ptr<StsCrane> crane_;
+  std::vector<ContainerRef> containers_;
+  bool held_ = false;
+  core::Warnings warnings_;
+};
+
+}  // namespace harbour::sim

@@ -1,0 +1,86 @@
+#include "harbour/io/RecordingFile.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+namespace harbour::io {
+namespace {
+
+sim::Recording sample() {
+  sim::Recording r;
+  r.scenario = "sts_discharge";
+  r.parent = "attempt-7";
+  r.branch_step = 1234;
+  r.total_steps = 5000;
+  sim::Inputs a;
+  a.sts.trolley = 0.25;
+  a.sts.lock = true;
+  sim::Inputs b;
+  b.sts.hoist = -1.0 / 3.0;
+  b.sts.emergency_stop = true;
+  r.inputs = {{0, a}, {2500, b}};
+  r.checkpoints = {{1000, 0x0123456789ABCDEFull}, {2000, 42}};
+  return r;
+}
+
+std::string temp(const char* name) {
+  return (std::filesystem::temp_directory_path() / name).string();
+}
+
+TEST(RecordingFile, RoundTripsBitForBit) {
+  const std::string path = temp("harbour_roundtrip.hsrc");
+  write_recording(path, sample());
+  const sim::Recording back = read_recording(path);
+  EXPECT_EQ(back.scenario, "sts_discharge");
+  EXPECT_EQ(back.parent, "attempt-7");
+  EXPECT_EQ(back.branch_step, 1234);
+  EXPECT_EQ(back.total_steps, 5000);
+  ASSERT_EQ(back.inputs.size(), 2u);
+  EXPECT_TRUE(back.inputs[0].inputs == sample().inputs[0].inputs);
+  EXPECT_TRUE(back.inputs[1].inputs == sample().inputs[1].inputs);  // -1/3 exactly
+  EXPECT_EQ(back.checkpoints[0].state_hash, 0x0123456789ABCDEFull);
+  EXPECT_FALSE(std::filesystem::exists(path + ".partial"));
+  std::filesystem::remove(path);
+}
+
+TEST(RecordingFile, BadFilesNameTheFileAndTheByte) {
+  const std::string path = temp("harbour_bad.hsrc");
+  write_recording(path, sample());
+  const auto size = std::filesystem::file_size(path);
+
+  std::filesystem::resize_file(path, size - 5);  // truncated inside the last checkpoint
+  try {
+    read_recording(path);
+    FAIL() << "accepted a truncated file";
+  } catch (const RecordingFileError& e) {
+    EXPECT_NE(std::string(e.what()).find(path + ": byte "), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("truncated"), std::string::npos) << e.what();
+  }
+
+  { std::ofstream(path, std::ios::binary) << "PNG\x89 not a recording"; }
+  try {
+    read_recording(path);
+    FAIL() << "accepted garbage";
+  } catch (const RecordingFileError& e) {
+    EXPECT_NE(std::string(e.what()).find("no HSRC magic"), std::string::npos) << e.what();
+  }
+
+  write_recording(path, sample());
+  {
+    std::fstream f(path, std::ios::binary | std::ios::in | std::ios::out);
+    f.seekp(4);
+    f.put(9);  // version 9
+  }
+  try {
+    read_recording(path);
+    FAIL() << "accepted a future version";
+  } catch (const RecordingFileError& e) {
+    EXPECT_NE(std::string(e.what()).find("version 9 is not supported"), std::string::npos) << e.what();
+  }
+  std::filesystem::remove(path);
+}
+
+}  // namespace
+}  // namespace harbour::io

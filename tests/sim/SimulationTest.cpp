@@ -1,0 +1,67 @@
+#include "harbour/sim/Simulation.h"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "scenes/StsScenes.h"
+
+namespace harbour::sim {
+namespace {
+
+std::vector<std::uint64_t> hashes_per_second(double nudge = 0.0) {
+  Simulation s(scenes::sts_discharge(HARBOUR_DATA_DIR));
+  std::vector<std::uint64_t> out;
+  for (std::int64_t k = 0; k < 15000; ++k) {
+    Inputs in = scenes::scripted_operator(k);
+    if (k == 5000) in.sts.gantry += nudge;  // the gantry is idle then: any change moves it
+    s.step(in);
+    if (s.steps() % 1000 == 0) out.push_back(s.state_hash());
+  }
+  EXPECT_EQ(s.warnings().total(), 0u);
+  return out;
+}
+
+TEST(Simulation, SameInputsGiveTheSameStateHashEverySecond) {
+  const auto a = hashes_per_second(), b = hashes_per_second();
+  EXPECT_EQ(a, b);
+  const auto c = hashes_per_second(1e-9);  // one lever differs by 1e-9 for one millisecond
+  EXPECT_EQ(std::vector(a.begin(), a.begin() + 5), std::vector(c.begin(), c.begin() + 5));
+  EXPECT_NE(a.back(), c.back());
+}
+
+TEST(Simulation, HoldFreezesAndSingleStepAdvances) {
+  Simulation s(scenes::sts_discharge(HARBOUR_DATA_DIR));
+  for (std::int64_t k = 0; k < 2000; ++k)
+    s.step(scenes::scripted_operator(k));
+  s.hold();
+  const std::uint64_t frozen = s.state_hash();
+  for (int k = 0; k < 500; ++k)
+    s.step(scenes::scripted_operator(2000));
+  EXPECT_EQ(s.state_hash(), frozen);
+  EXPECT_EQ(s.steps(), 2000);
+  EXPECT_TRUE(s.snapshot().held);
+  s.single_step(scenes::scripted_operator(2000));
+  EXPECT_EQ(s.steps(), 2001);
+  EXPECT_NE(s.state_hash(), frozen);
+  s.resume();
+  s.step(scenes::scripted_operator(2001));
+  EXPECT_EQ(s.steps(), 2002);
+}
+
+TEST(Simulation, SnapshotShowsTheMachineAndTheContainers) {
+  Simulation s(scenes::sts_discharge(HARBOUR_DATA_DIR));
+  for (std::int64_t k = 0; k < 3000; ++k)
+    s.step(scenes::scripted_operator(k));
+  const Snapshot snap = s.snapshot();
+  EXPECT_EQ(snap.step, 3000);
+  EXPECT_DOUBLE_EQ(snap.time_s, 3.0);
+  EXPECT_GT(snap.trolley_x_m, 42.0);  // moved waterside
+  ASSERT_EQ(snap.containers.size(), 3u);
+  EXPECT_EQ(snap.containers[1].id, "BOX2");
+  EXPECT_NEAR(snap.containers[1].pose.position.z, 8.0 + 2.591 / 2, 0.01);  // standing on deck
+  EXPECT_GT(snap.hoisted_load_n, 0.9 * 15000 * 9.80665);                   // the spreader hangs
+}
+
+}  // namespace
+}  // namespace harbour::sim
