@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 namespace harbour::physics {
 namespace {
@@ -43,6 +44,22 @@ TEST(PhysicsWorld, BoxDroppedOnTheGroundComesToRestOnIt) {
   EXPECT_GT(contacts, 0);
   EXPECT_NEAR(w.pose(b).position.z, 0.5, 0.01);
   EXPECT_LT(std::abs(w.linear_velocity(b).z), 1e-3);
+}
+
+TEST(PhysicsWorld, AnImpactIsReportedOnceWithItsClosingSpeed) {
+  PhysicsWorld w({});
+  w.add_ground(0.0);
+  const BodyId b = w.add_box(box_at({0, 0, 0.5 + 1.25}, 1000.0));  // bottom 1.25 m up: lands at sqrt(2 g h)
+  std::vector<ImpactEvent> impacts;
+  for (int k = 0; k < 2000; ++k) {
+    w.step(kDt);
+    for (const ImpactEvent& e : w.take_impacts())
+      impacts.push_back(e);
+  }
+  ASSERT_EQ(impacts.size(), 1u);  // resting contact afterwards is not a new impact
+  EXPECT_EQ(impacts[0].body, b);
+  EXPECT_EQ(impacts[0].other, kWorld);
+  EXPECT_NEAR(impacts[0].normal_speed_mps, std::sqrt(2 * kG * 1.25), 0.02);
 }
 
 TEST(PhysicsWorld, SliderMotorDrivesTheBodyAtItsSpeed) {

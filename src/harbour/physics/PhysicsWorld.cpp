@@ -2,6 +2,9 @@
 
 #include <ode/ode.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <mutex>
 
 #include "harbour/core/Assert.h"
@@ -54,6 +57,8 @@ PhysicsWorld::PhysicsWorld(const WorldSettings& settings)
   dWorldSetGravity(ode_->world, settings.gravity.x, settings.gravity.y, settings.gravity.z);
   dWorldSetERP(ode_->world, settings.erp);
   dWorldSetCFM(ode_->world, settings.cfm);
+  dWorldSetContactMaxCorrectingVel(ode_->world, settings.contact_max_correcting_mps);
+  dWorldSetContactSurfaceLayer(ode_->world, settings.contact_surface_layer_m);
 }
 
 PhysicsWorld::~PhysicsWorld() {
@@ -81,7 +86,9 @@ BodyId PhysicsWorld::add_box(const BoxSettings& box) {
     dGeomSetBody(g, b);
   }
   ode_->bodies.push_back(b);
-  return static_cast<BodyId>(ode_->bodies.size()) - 1;
+  const BodyId id = static_cast<BodyId>(ode_->bodies.size()) - 1;
+  dBodySetData(b, reinterpret_cast<void*>(static_cast<std::intptr_t>(id)));
+  return id;
 }
 
 void PhysicsWorld::add_ground(double z_m) {
@@ -188,6 +195,24 @@ void PhysicsWorld::step(double dt_s) {
     if (b1 && b2 && dAreConnectedExcluding(b1, b2, dJointTypeContact)) return;
     std::vector<dContact> contacts(static_cast<std::size_t>(s.max_contacts_per_pair));
     const int n = dCollide(g1, g2, s.max_contacts_per_pair, &contacts[0].geom, sizeof(dContact));
+    // a pair touching now that did not touch last step is an impact: closing speed along the normal
+    PhysicsWorld& self = *ode->owner;
+    const BodyId id1 = b1 ? static_cast<BodyId>(reinterpret_cast<std::intptr_t>(dBodyGetData(b1))) : kWorld;
+    const BodyId id2 = b2 ? static_cast<BodyId>(reinterpret_cast<std::intptr_t>(dBodyGetData(b2))) : kWorld;
+    if (n > 0) {
+      const std::uint64_t key = (static_cast<std::uint64_t>(static_cast<std::uint32_t>(id1)) << 32) |
+                                static_cast<std::uint32_t>(id2);
+      self.touching_now_.push_back(key);
+      if (std::find(self.touching_.begin(), self.touching_.end(), key) == self.touching_.end()) {
+        const dContactGeom& g = contacts[0].geom;
+        dVector3 v1{0, 0, 0, 0}, v2{0, 0, 0, 0};
+        if (b1) dBodyGetPointVel(b1, g.pos[0], g.pos[1], g.pos[2], v1);
+        if (b2) dBodyGetPointVel(b2, g.pos[0], g.pos[1], g.pos[2], v2);
+        const double closing = std::abs((v1[0] - v2[0]) * g.normal[0] + (v1[1] - v2[1]) * g.normal[1] +
+                                        (v1[2] - v2[2]) * g.normal[2]);
+        self.impacts_.push_back({id1, id2, closing, {g.pos[0], g.pos[1], g.pos[2]}});
+      }
+    }
     for (int i = 0; i < n; ++i) {
       dContact& c = contacts[static_cast<std::size_t>(i)];
       c.surface.mode = dContactSoftERP | dContactSoftCFM | dContactApprox1;
@@ -200,6 +225,14 @@ void PhysicsWorld::step(double dt_s) {
   });
   dWorldStep(ode_->world, dt_s);
   dJointGroupEmpty(ode_->contacts);
+  touching_.swap(touching_now_);
+  touching_now_.clear();
+}
+
+std::vector<ImpactEvent> PhysicsWorld::take_impacts() {
+  std::vector<ImpactEvent> out;
+  out.swap(impacts_);
+  return out;
 }
 
 std::uint64_t PhysicsWorld::state_hash() const {

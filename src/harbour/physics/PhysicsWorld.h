@@ -20,7 +20,17 @@ struct WorldSettings {
   double contact_friction = 0.6;       ///< [-] Coulomb friction coefficient (steel on steel, dry: assumed)
   double contact_erp = 0.2;            ///< [-]
   double contact_cfm = 1e-7;           ///< [-]
+  double contact_max_correcting_mps = 0.1;  ///< [m/s] penetration is resolved no faster (no popping bounces)
+  double contact_surface_layer_m = 0.001;   ///< [m] allowed resting penetration (stable stacking)
   int max_contacts_per_pair = 8;
+};
+
+/// The first contact of two bodies (or a body and static geometry: other = kWorld) after being apart.
+struct ImpactEvent {
+  BodyId body = kWorld;
+  BodyId other = kWorld;
+  double normal_speed_mps = 0.0;  ///< [m/s] closing speed along the contact normal
+  core::Vec3 point;               ///< [m] world
 };
 
 /// A box body (settings).
@@ -73,6 +83,8 @@ class PhysicsWorld {
   void step(double dt_s);
   /// Contacts generated in the last step.
   int contact_count() const { return contact_count_; }
+  /// Impacts (pairs that touched this step and not the step before) since the last call.
+  std::vector<ImpactEvent> take_impacts();
   /// Hash of every body's position, orientation and velocities (bit-exact).
   std::uint64_t state_hash() const;
 
@@ -81,6 +93,8 @@ class PhysicsWorld {
   std::unique_ptr<Ode> ode_;
   WorldSettings settings_;
   int contact_count_ = 0;
+  std::vector<std::uint64_t> touching_, touching_now_;  // body-pair keys in contact last step / this step
+  std::vector<ImpactEvent> impacts_;
 };
 
 }  // namespace harbour::physics
