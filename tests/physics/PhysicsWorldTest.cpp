@@ -72,7 +72,21 @@ TEST(PhysicsWorld, SliderMotorDrivesTheBodyAtItsSpeed) {
   // force-limited run-up: 2 m/s reached after t1 = v m / F = 60 ms, then constant speed: x = v (t - t1 / 2)
   const double t1 = 2.0 * 30000.0 / 1e6;
   EXPECT_NEAR(w.slider_position(s), 2.0 * (2.0 - t1 / 2), 2.0 * kDt);
+  EXPECT_NEAR(w.pose(trolley).position.x, w.slider_position(s), 1e-9);  // the body really moved along +x
   EXPECT_NEAR(w.pose(trolley).position.z, 10.0, 1e-5);  // the joint carries its weight (CFM: micrometres)
+}
+
+TEST(PhysicsWorld, SliderBetweenTwoBodiesMeasuresTheSecondRelativeToTheFirst) {
+  PhysicsWorld w({});
+  const BodyId gantry = w.add_box(box_at({0, 0, 10}, 1e6, false));
+  const BodyId trolley = w.add_box(box_at({5, 0, 20}, 3e4, false));
+  w.add_slider(kWorld, gantry, {0, 1, 0});
+  const int s = w.add_slider(gantry, trolley, {1, 0, 0});
+  w.set_slider_motor(s, 1.0, 1e7);
+  for (int k = 0; k < 1000; ++k)
+    w.step(kDt);
+  EXPECT_GT(w.slider_position(s), 0.9);
+  EXPECT_NEAR(w.pose(trolley).position.x - w.pose(gantry).position.x - 5.0, w.slider_position(s), 1e-3);
 }
 
 TEST(PhysicsWorld, SameInputsGiveTheSameStateHash) {

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "harbour/io/MachineFiles.h"
+#include "harbour/sim/Evaluation.h"
 #include "harbour/sim/Simulation.h"
 
 namespace harbour::scenes {
@@ -24,6 +25,17 @@ inline sim::ScenarioSettings sts_discharge(const std::string& data_dir) {
     s.containers.push_back(
         {"BOX" + std::to_string(n + 2), half, 22000.0, {42.0, 3.0 * n, 8.0 + half.z}, 0.0});
   return s;
+}
+
+/// Discharge exercise: BOX2 from the vessel onto a truck chassis (a 1.5 m high block) on the quay at x = 8 m.
+inline sim::ExerciseSettings sts_discharge_exercise(const std::string& data_dir) {
+  sim::ExerciseSettings e;
+  e.name = "discharge_one";
+  e.scenario = sts_discharge(data_dir);
+  e.scenario.blocks.push_back({{6.2, 1.3, 0.75}, {8.0, 0.0, 0.75}});  // truck chassis, 1.5 m deck height
+  e.moves.push_back({"BOX2", {8.0, 0.0, 1.5 + 2.591 / 2}, 0.3});
+  e.rules.time_limit_s = 180.0;
+  return e;
 }
 
 /// A scripted operator: trolley out and back, lowering, a lock attempt, hoisting with some gantry travel.

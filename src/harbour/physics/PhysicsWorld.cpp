@@ -43,6 +43,7 @@ struct PhysicsWorld::Ode {
   dJointGroupID contacts = nullptr;
   std::vector<dBodyID> bodies;
   std::vector<dJointID> sliders;
+  std::vector<double> slider_sign;  // +1 or -1: ODE's slider sign against ours
   std::vector<dJointID> attachments;
   PhysicsWorld* owner = nullptr;
 };
@@ -123,23 +124,31 @@ void PhysicsWorld::detach(int attachment) {
 
 int PhysicsWorld::add_slider(BodyId a, BodyId b, const Vec3& axis) {
   dJointID j = dJointCreateSlider(ode_->world, nullptr);
-  dJointAttach(j, a == kWorld ? nullptr : ode_->bodies[a], ode_->bodies[b]);
+  // ODE measures a slider as body 1 relative to body 2. On the world, attach b alone. Between two bodies the
+  // (a, b) attachment is the numerically stable one (measured: (b, a) diverged under the STS trolley), so the
+  // adapter flips its sign: our position and motor speed are b relative to a along +axis.
+  if (a == kWorld) {
+    dJointAttach(j, ode_->bodies[b], nullptr);
+  } else {
+    dJointAttach(j, ode_->bodies[a], ode_->bodies[b]);
+  }
   dJointSetSliderAxis(j, axis.x, axis.y, axis.z);
+  ode_->slider_sign.push_back(a == kWorld ? 1.0 : -1.0);
   ode_->sliders.push_back(j);
   return static_cast<int>(ode_->sliders.size()) - 1;
 }
 
 void PhysicsWorld::set_slider_motor(int slider, double velocity_mps, double max_force_n) {
-  dJointSetSliderParam(ode_->sliders[slider], dParamVel, velocity_mps);
+  dJointSetSliderParam(ode_->sliders[slider], dParamVel, ode_->slider_sign[slider] * velocity_mps);
   dJointSetSliderParam(ode_->sliders[slider], dParamFMax, max_force_n);
 }
 
 double PhysicsWorld::slider_position(int slider) const {
-  return dJointGetSliderPosition(ode_->sliders[slider]);
+  return ode_->slider_sign[slider] * dJointGetSliderPosition(ode_->sliders[slider]);
 }
 
 double PhysicsWorld::slider_rate(int slider) const {
-  return dJointGetSliderPositionRate(ode_->sliders[slider]);
+  return ode_->slider_sign[slider] * dJointGetSliderPositionRate(ode_->sliders[slider]);
 }
 
 core::Pose PhysicsWorld::pose(BodyId body) const {
@@ -185,6 +194,7 @@ void PhysicsWorld::set_linear_velocity(BodyId body, const Vec3& v) {
 }
 
 void PhysicsWorld::step(double dt_s) {
+  step_s_ = dt_s;
   // contacts: every colliding geometry pair in the simple space's fixed order
   contact_count_ = 0;
   dSpaceCollide(ode_->space, ode_.get(), [](void* data, dGeomID g1, dGeomID g2) {
@@ -202,8 +212,9 @@ void PhysicsWorld::step(double dt_s) {
     if (n > 0) {
       const std::uint64_t key = (static_cast<std::uint64_t>(static_cast<std::uint32_t>(id1)) << 32) |
                                 static_cast<std::uint32_t>(id2);
-      self.touching_now_.push_back(key);
-      if (std::find(self.touching_.begin(), self.touching_.end(), key) == self.touching_.end()) {
+      const auto last = self.last_touch_.find(key);
+      const auto rearm = static_cast<std::int64_t>(s.impact_rearm_s / self.step_s_);
+      if (last == self.last_touch_.end() || self.step_count_ - last->second > rearm) {
         const dContactGeom& g = contacts[0].geom;
         dVector3 v1{0, 0, 0, 0}, v2{0, 0, 0, 0};
         if (b1) dBodyGetPointVel(b1, g.pos[0], g.pos[1], g.pos[2], v1);
@@ -212,6 +223,7 @@ void PhysicsWorld::step(double dt_s) {
                                         (v1[2] - v2[2]) * g.normal[2]);
         self.impacts_.push_back({id1, id2, closing, {g.pos[0], g.pos[1], g.pos[2]}});
       }
+      self.last_touch_[key] = self.step_count_;
     }
     for (int i = 0; i < n; ++i) {
       dContact& c = contacts[static_cast<std::size_t>(i)];
@@ -225,8 +237,7 @@ void PhysicsWorld::step(double dt_s) {
   });
   dWorldStep(ode_->world, dt_s);
   dJointGroupEmpty(ode_->contacts);
-  touching_.swap(touching_now_);
-  touching_now_.clear();
+  ++step_count_;
 }
 
 std::vector<ImpactEvent> PhysicsWorld::take_impacts() {

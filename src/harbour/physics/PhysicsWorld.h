@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <vector>
 
@@ -23,9 +24,12 @@ struct WorldSettings {
   double contact_max_correcting_mps = 0.1;  ///< [m/s] penetration is resolved no faster (no popping bounces)
   double contact_surface_layer_m = 0.001;   ///< [m] allowed resting penetration (stable stacking)
   int max_contacts_per_pair = 8;
+  double impact_rearm_s = 1.0;  ///< [s] a pair must have been apart this long for a new contact to be an
+                                ///< impact (a box landing one end first, then the other, is one landing)
 };
 
-/// The first contact of two bodies (or a body and static geometry: other = kWorld) after being apart.
+/// The first contact of two bodies (or a body and static geometry: other = kWorld) after being apart for a
+/// while.
 struct ImpactEvent {
   BodyId body = kWorld;
   BodyId other = kWorld;
@@ -83,7 +87,7 @@ class PhysicsWorld {
   void step(double dt_s);
   /// Contacts generated in the last step.
   int contact_count() const { return contact_count_; }
-  /// Impacts (pairs that touched this step and not the step before) since the last call.
+  /// Impacts (pairs that touch after being apart for impact_rearm_s) since the last call.
   std::vector<ImpactEvent> take_impacts();
   /// Hash of every body's position, orientation and velocities (bit-exact).
   std::uint64_t state_hash() const;
@@ -93,7 +97,9 @@ class PhysicsWorld {
   std::unique_ptr<Ode> ode_;
   WorldSettings settings_;
   int contact_count_ = 0;
-  std::vector<std::uint64_t> touching_, touching_now_;  // body-pair keys in contact last step / this step
+  std::map<std::uint64_t, std::int64_t> last_touch_;  // body-pair key -> last step the pair touched
+  std::int64_t step_count_ = 0;
+  double step_s_ = 0.001;
   std::vector<ImpactEvent> impacts_;
 };
 

@@ -31,6 +31,9 @@ void Simulation::advance(const Inputs& inputs) {
   crane_->step(inputs.sts, containers_, kStep_s);
   world_->step(kStep_s);
   clock_.advance();
+  events_.impacts = world_->take_impacts();
+  events_.twistlocks = crane_->take_twistlock_events();
+  events_.ropes = crane_->hoist().take_events();
   const core::Vec3 p = crane_->spreader_pose().position;
   if (!std::isfinite(p.x + p.y + p.z)) warnings_.raise(core::Warning::kNonFinite);
 }

@@ -61,6 +61,13 @@ struct Snapshot {
   std::uint32_t warnings = 0;
 };
 
+/// What happened during the last step, for evaluation and the instructor.
+struct StepEvents {
+  std::vector<physics::ImpactEvent> impacts;
+  std::vector<TwistlockEvent> twistlocks;
+  std::vector<cable::CableEvent> ropes;
+};
+
 /// The executive: a pure function of its inputs at a fixed 1 kHz step (no clocks, files or threads). The
 /// instructor's freeze is hold()/resume()/single_step().
 class Simulation {
@@ -83,6 +90,11 @@ class Simulation {
   /// Hash of the whole dynamic state: bodies, ropes, drives, twistlocks, clock.
   std::uint64_t state_hash() const;
   const core::Warnings& warnings() const { return warnings_; }
+  /// Events of the last step.
+  const StepEvents& events() const { return events_; }
+  /// Body of scenario container `index`.
+  physics::BodyId container_body(std::size_t index) const { return containers_[index].body; }
+  const physics::PhysicsWorld& world() const { return *world_; }
   StsCrane& crane() { return *crane_; }
   const StsCrane& crane() const { return *crane_; }
   const ScenarioSettings& scenario() const { return scenario_; }
@@ -97,6 +109,7 @@ class Simulation {
   std::vector<ContainerRef> containers_;
   bool held_ = false;
   core::Warnings warnings_;
+  StepEvents events_;
 };
 
 }  // namespace harbour::sim

@@ -1,0 +1,133 @@
+#include "harbour/sim/Autopilot.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace harbour::sim {
+namespace {
+
+constexpr double kTravelHeight_m = 22.0;  // spreader centre while travelling: clears the vessel's stack
+constexpr double kCruiseLever = 0.75;     // travel at three quarters of full speed
+constexpr double kSlowZone_m = 1.5;       // lower slowly over the last metre and a half
+constexpr double kSlowLever = 0.08;       // 0.12 m/s at the spreader on the STS hoist
+constexpr double kPosition_tolerance_m = 0.03;
+constexpr double kSettledSway_m = 0.04;
+constexpr double kButton_s = 0.1;
+constexpr double kSlacken_s = 0.6;
+
+}  // namespace
+
+Autopilot::Autopilot(const ExerciseSettings& exercise, OperatorDefects defects)
+    : exercise_(exercise), defects_(defects) {}
+
+core::Vec3 Autopilot::source(const Simulation& simulation) const {
+  const auto& containers = simulation.scenario().containers;
+  for (std::size_t c = 0; c < containers.size(); ++c)
+    if (containers[c].id == exercise_.moves[goal_].container_id)
+      return simulation.world().pose(simulation.container_body(c)).position;
+  return {};
+}
+
+void Autopilot::start_travel(const core::Vec3& to, double now) {
+  trolley_ = {to.x, 0.0, now, false, 0.0};
+  gantry_ = {to.y, 0.0, now, false, 0.0};
+}
+
+double Autopilot::axis_lever(AxisMove& m, double position, double max_speed, double period,
+                             double now) const {
+  // trapezoid in the lever: ramp up over one period, brake over one period when the remaining distance equals
+  // what a linear ramp-down covers (v T / 2), then creep onto the target
+  const double error = m.target - position;
+  const double direction = error >= 0.0 ? 1.0 : -1.0;
+  if (!m.decelerating) {
+    m.peak = std::min(kCruiseLever, kCruiseLever * (now - m.ramp_start) / period);
+    if (std::abs(error) <= m.peak * max_speed * period / 2.0) {
+      m.decelerating = true;
+      m.decel_from = m.peak;
+      m.ramp_start = now;
+    } else {
+      return direction * m.peak;
+    }
+  }
+  const double braking = m.decel_from * (1.0 - (now - m.ramp_start) / period);
+  if (braking > 0.0) return direction * braking;
+  // creep: proportional, slow enough not to swing the load
+  return std::abs(error) > kPosition_tolerance_m ? std::clamp(error * 0.05, -0.02, 0.02) : 0.0;
+}
+
+Inputs Autopilot::next(const Simulation& simulation) {
+  Inputs in;
+  if (done()) return in;
+  const StsCrane& crane = simulation.crane();
+  const StsCraneSettings& settings = simulation.scenario().crane;
+  const double now = simulation.time_s();
+  const core::Vec3 spreader = crane.spreader_pose().position;
+  const double fall = settings.trolley_rail_height_m - 1.0 - (spreader.z + 0.5);
+  const double period = 2.0 * std::numbers::pi * std::sqrt(std::max(fall, 1.0) / 9.80665);
+  const double sway =
+      std::hypot(spreader.x - crane.trolley_position_m(), spreader.y - crane.gantry_position_m());
+  const core::Vec3 destination = carrying_ ? exercise_.moves[goal_].target_m : source(simulation);
+  auto enter = [&](Phase p) {
+    phase_ = p;
+    phase_start_ = now;
+  };
+
+  switch (phase_) {
+    case Phase::kRaise:
+      in.sts.hoist = 1.0;
+      if (spreader.z >= kTravelHeight_m) {
+        start_travel(destination, now);
+        enter(Phase::kTravel);
+      }
+      break;
+    case Phase::kTravel: {
+      in.sts.trolley =
+          axis_lever(trolley_, crane.trolley_position_m(), settings.trolley_drive.max_speed_mps, period, now);
+      in.sts.gantry =
+          axis_lever(gantry_, crane.gantry_position_m(), settings.gantry_drive.max_speed_mps, period, now);
+      if (in.sts.trolley == 0.0 && in.sts.gantry == 0.0) enter(Phase::kSettle);
+      break;
+    }
+    case Phase::kSettle:
+      if (sway < kSettledSway_m && now - phase_start_ > 0.5) enter(Phase::kLower);
+      break;
+    case Phase::kLower: {
+      // landing surface: the container's top (pick-up) or the target's floor (set-down, carried box below)
+      const double land_z = carrying_ ? destination.z + 2.591 / 2 + 0.5 : destination.z + 2.591 / 2 + 0.5;
+      const bool slow = spreader.z - land_z < kSlowZone_m && !(carrying_ && defects_.land_fast);
+      in.sts.hoist = slow ? -kSlowLever : -0.6;
+      if (!carrying_ && crane.lamps().landed) enter(Phase::kLock);
+      if (carrying_ && simulation.world().pose(*crane.locked_container()).position.z <= destination.z + 0.01)
+        enter(Phase::kSlacken);
+      break;
+    }
+    case Phase::kLock:
+      if (defects_.forget_lock_once && !lock_skipped_) {
+        lock_skipped_ = true;  // hoists straight away without locking, then has to come back down
+        enter(Phase::kRaise);
+        break;
+      }
+      in.sts.lock = now - phase_start_ < kButton_s;
+      if (now - phase_start_ > 2 * kButton_s && crane.locked_container()) {
+        carrying_ = true;
+        enter(Phase::kRaise);
+      }
+      break;
+    case Phase::kSlacken:
+      in.sts.hoist = -kSlowLever;
+      if (now - phase_start_ > kSlacken_s) enter(Phase::kUnlock);
+      break;
+    case Phase::kUnlock:
+      in.sts.unlock = now - phase_start_ < kButton_s;
+      if (now - phase_start_ > 2 * kButton_s && !crane.locked_container()) {
+        carrying_ = false;
+        ++goal_;
+        enter(Phase::kRaise);
+      }
+      break;
+  }
+  return in;
+}
+
+}  // namespace harbour::sim

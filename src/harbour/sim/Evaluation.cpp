@@ -1,0 +1,126 @@
+#include "harbour/sim/Evaluation.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace harbour::sim {
+
+Evaluator::Evaluator(const ExerciseSettings& exercise)
+    : exercise_(exercise), done_(exercise.moves.size(), false) {}
+
+int Evaluator::goal_of(physics::BodyId body, const Simulation& simulation) const {
+  for (std::size_t g = 0; g < exercise_.moves.size(); ++g)
+    for (std::size_t c = 0; c < simulation.scenario().containers.size(); ++c)
+      if (simulation.scenario().containers[c].id == exercise_.moves[g].container_id &&
+          simulation.container_body(c) == body)
+        return static_cast<int>(g);
+  return -1;
+}
+
+bool Evaluator::near_target(physics::BodyId box, const Simulation& simulation) const {
+  const int g = goal_of(box, simulation);
+  if (g < 0) return false;
+  const core::Vec3 p = simulation.world().pose(box).position;
+  const core::Vec3 t = exercise_.moves[g].target_m;
+  return std::hypot(p.x - t.x, p.y - t.y) <= 2.0 * exercise_.moves[g].tolerance_m;
+}
+
+void Evaluator::record_landing(const Simulation& simulation) {
+  const double sway = sway_m(simulation);
+  metrics_.landing_sway_m.push_back(sway);
+  if (sway > exercise_.rules.sway_limit_m) ++metrics_.sway_landings;
+}
+
+double Evaluator::sway_m(const Simulation& simulation) const {
+  // horizontal offset of the spreader from plumb under the trolley
+  const StsCrane& crane = simulation.crane();
+  const core::Vec3 s = crane.spreader_pose().position;
+  return std::hypot(s.x - crane.trolley_position_m(), s.y - crane.gantry_position_m());
+}
+
+void Evaluator::observe(const Simulation& simulation, const Inputs& inputs) {
+  const EvaluationRules& rules = exercise_.rules;
+  const StsCrane& crane = simulation.crane();
+  metrics_.time_s = simulation.time_s();
+  const physics::BodyId spreader = crane.spreader_body();
+
+  // impacts: landings (spreader onto a container, a carried container onto anything) or collisions
+  for (const physics::ImpactEvent& e : simulation.events().impacts) {
+    const bool spreader_hit = e.body == spreader || e.other == spreader;
+    const bool carried_hit = carried_ && (e.body == *carried_ || e.other == *carried_);
+    if (!spreader_hit && !carried_hit) continue;
+    const physics::BodyId other =
+        spreader_hit ? (e.body == spreader ? e.other : e.body) : (e.body == *carried_ ? e.other : e.body);
+    const bool touching_goal_box = spreader_hit && !carried_ && goal_of(other, simulation) >= 0;
+    const bool setting_down = carried_hit && !spreader_hit && near_target(*carried_, simulation);
+    if (setting_down) {
+      record_landing(simulation);
+      metrics_.worst_landing_mps = std::max(metrics_.worst_landing_mps, e.normal_speed_mps);
+      if (e.normal_speed_mps > rules.hard_landing_mps) ++metrics_.hard_landings;
+    } else if (!touching_goal_box && e.normal_speed_mps >= rules.collision_speed_mps) {
+      ++metrics_.collisions;
+      metrics_.worst_collision_mps = std::max(metrics_.worst_collision_mps, e.normal_speed_mps);
+    }
+  }
+
+  // moves: a goal container locked, then unlocked at its target
+  const std::optional<physics::BodyId> locked = crane.locked_container();
+  if (carried_ && !locked) {
+    const int g = goal_of(*carried_, simulation);
+    if (g >= 0 && !done_[g]) {
+      const core::Vec3 p = simulation.world().pose(*carried_).position;
+      const core::Vec3 t = exercise_.moves[g].target_m;
+      if (std::hypot(p.x - t.x, p.y - t.y) <= exercise_.moves[g].tolerance_m && std::abs(p.z - t.z) < 0.2) {
+        done_[g] = true;
+        ++metrics_.moves_completed;
+        metrics_.cycle_times_s.push_back(metrics_.time_s - last_completion_s_);
+        last_completion_s_ = metrics_.time_s;
+      }
+    }
+  }
+  if (!carried_ && locked) record_landing(simulation);  // pick-up: the spreader landed and locked
+  carried_ = locked;
+  if (metrics_.time_s > 0.0) metrics_.moves_per_hour = metrics_.moves_completed * 3600.0 / metrics_.time_s;
+
+  for (const TwistlockEvent e : simulation.events().twistlocks) {
+    (void)e;
+    ++metrics_.twistlock_misuse;
+  }
+  for (const cable::CableEvent& e : simulation.events().ropes)
+    if (e.kind == cable::CableEventKind::kOverload) ++metrics_.overloads;
+  const std::uint32_t hits = crane.gantry_drive().limit_hits() + crane.trolley_drive().limit_hits();
+  metrics_.limit_hits += static_cast<int>(hits - limit_hits_seen_);
+  limit_hits_seen_ = hits;
+  if (inputs.sts.emergency_stop && !was_estop_) ++metrics_.emergency_stops;
+  was_estop_ = inputs.sts.emergency_stop;
+  const double drum_power = -crane.hoist().drum_rope_torque(0) * crane.hoist().drum_rope_speed(0) /
+                            simulation.scenario().crane.hoist.elements[0].radius_m;
+  metrics_.hoist_energy_j += std::max(0.0, drum_power) * Simulation::kStep_s;
+}
+
+Score Evaluator::score() const {
+  const EvaluationRules& r = exercise_.rules;
+  Score s;
+  auto deduct = [&](const char* reason, int count, double points) {
+    if (count <= 0) return;
+    s.deductions.push_back({reason, count, count * points});
+    s.total -= count * points;
+  };
+  deduct("collision", metrics_.collisions, r.points_collision);
+  deduct("hard landing", metrics_.hard_landings, r.points_hard_landing);
+  deduct("landing while swaying", metrics_.sway_landings, r.points_sway);
+  deduct("twistlock misuse", metrics_.twistlock_misuse, r.points_twistlock_misuse);
+  deduct("rope overload", metrics_.overloads, r.points_overload);
+  deduct("limit switch hit", metrics_.limit_hits, r.points_limit_hit);
+  deduct("emergency stop", metrics_.emergency_stops, r.points_emergency_stop);
+  deduct("move not completed", static_cast<int>(exercise_.moves.size()) - metrics_.moves_completed,
+         r.points_per_move_missing);
+  const int minutes_over =
+      static_cast<int>(std::ceil(std::max(0.0, metrics_.time_s - r.time_limit_s) / 60.0));
+  deduct("minute over the time limit", minutes_over, r.points_per_minute_over);
+  s.total = std::max(0.0, s.total);
+  s.passed = s.total >= r.pass_score && metrics_.moves_completed == static_cast<int>(exercise_.moves.size());
+  return s;
+}
+
+}  // namespace harbour::sim

@@ -1,0 +1,103 @@
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "harbour/sim/Simulation.h"
+
+namespace harbour::sim {
+
+/// One move to make: a container to a target position (e.g. a truck's chassis under the crane).
+struct MoveGoal {
+  std::string container_id;
+  core::Vec3 target_m;       ///< [m] container centre when correctly set down
+  double tolerance_m = 0.3;  ///< [m] horizontal distance from target still counted as done
+};
+
+/// Trigger values and per-occurrence deductions (points of 100); defined in docs/evaluation.md.
+struct EvaluationRules {
+  double time_limit_s = 600.0;
+  double pass_score = 70.0;
+  double collision_speed_mps = 0.1;  ///< [m/s] impacts at least this fast that are not landings count
+  double hard_landing_mps = 0.3;     ///< [m/s] landing a container faster than this is a hard landing
+  double sway_limit_m = 0.25;        ///< [m] spreader offset from plumb at a landing counted as swaying
+  double points_collision = 10.0;
+  double points_hard_landing = 5.0;
+  double points_sway = 2.0;
+  double points_twistlock_misuse = 10.0;
+  double points_overload = 15.0;
+  double points_limit_hit = 2.0;
+  double points_emergency_stop = 5.0;
+  double points_per_move_missing = 20.0;
+  double points_per_minute_over = 5.0;
+};
+
+/// An exercise: a scenario, the moves to make and the rules that score them (settings).
+struct ExerciseSettings {
+  std::string name;
+  ScenarioSettings scenario;
+  std::vector<MoveGoal> moves;
+  EvaluationRules rules;
+};
+
+/// Everything measured during an attempt (docs/evaluation.md defines each).
+struct Metrics {
+  double time_s = 0.0;
+  int moves_completed = 0;
+  std::vector<double> cycle_times_s;  ///< per completed move
+  double moves_per_hour = 0.0;
+  int collisions = 0;
+  double worst_collision_mps = 0.0;
+  int hard_landings = 0;
+  double worst_landing_mps = 0.0;
+  std::vector<double> landing_sway_m;  ///< at every landing (pick-up and set-down)
+  int sway_landings = 0;
+  int twistlock_misuse = 0;
+  int overloads = 0;
+  int limit_hits = 0;
+  int emergency_stops = 0;
+  double hoist_energy_j = 0.0;  ///< [J] mechanical work at the hoist drum (positive part)
+};
+
+/// The score: 100 minus deductions, with the reasons.
+struct Score {
+  double total = 100.0;
+  bool passed = false;
+  struct Deduction {
+    std::string reason;
+    int count = 0;
+    double points = 0.0;
+  };
+  std::vector<Deduction> deductions;
+};
+
+/// Watches an attempt step by step and measures it.
+class Evaluator {
+ public:
+  explicit Evaluator(const ExerciseSettings& exercise);
+
+  /// Call after every simulation step with the inputs that drove it.
+  void observe(const Simulation& simulation, const Inputs& inputs);
+  /// All goals done.
+  bool finished() const { return metrics_.moves_completed == static_cast<int>(exercise_.moves.size()); }
+  const Metrics& metrics() const { return metrics_; }
+  Score score() const;
+
+ private:
+  int goal_of(physics::BodyId body, const Simulation& simulation) const;
+  double sway_m(const Simulation& simulation) const;
+  bool near_target(physics::BodyId box, const Simulation& simulation) const;
+  void record_landing(const Simulation& simulation);
+
+  ExerciseSettings exercise_;
+  Metrics metrics_;
+  std::vector<bool> done_;
+  std::optional<physics::BodyId> carried_;
+  bool was_estop_ = false;
+  std::uint32_t limit_hits_seen_ = 0;
+  double last_completion_s_ = 0.0;
+};
+
+}  // namespace harbour::sim

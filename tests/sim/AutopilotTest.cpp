@@ -1,0 +1,54 @@
+#include "harbour/sim/Autopilot.h"
+
+#include <gtest/gtest.h>
+
+#include "scenes/StsScenes.h"
+
+namespace harbour::sim {
+namespace {
+
+struct Attempt {
+  Metrics metrics;
+  Score score;
+  bool done = false;
+};
+
+Attempt run(OperatorDefects defects = {}) {
+  const ExerciseSettings exercise = scenes::sts_discharge_exercise(HARBOUR_DATA_DIR);
+  Simulation sim(exercise.scenario);
+  Autopilot pilot(exercise, defects);
+  Evaluator evaluator(exercise);
+  for (int k = 0; k < 240000 && !evaluator.finished(); ++k) {
+    const Inputs in = pilot.next(sim);
+    sim.step(in);
+    evaluator.observe(sim, in);
+  }
+  EXPECT_EQ(sim.warnings().total(), 0u);
+  return {evaluator.metrics(), evaluator.score(), evaluator.finished()};
+}
+
+TEST(Autopilot, CompletesTheDischargeWithAPassingScore) {
+  const Attempt a = run();
+  ASSERT_TRUE(a.done) << "moves " << a.metrics.moves_completed << " after " << a.metrics.time_s << " s";
+  EXPECT_TRUE(a.score.passed);
+  EXPECT_EQ(a.score.total, 100.0) << a.score.deductions.front().reason;
+  EXPECT_EQ(a.metrics.collisions, 0);
+  EXPECT_EQ(a.metrics.hard_landings, 0);
+  EXPECT_EQ(a.metrics.sway_landings, 0);
+  ASSERT_EQ(a.metrics.landing_sway_m.size(), 2u);  // pick-up and set-down
+  EXPECT_LT(a.metrics.time_s, 180.0);
+  EXPECT_GT(a.metrics.hoist_energy_j, 0.0);
+  RecordProperty("cycle_time_s", std::to_string(a.metrics.cycle_times_s.front()));
+}
+
+TEST(Autopilot, ABadOperatorGetsTheDocumentedPenalties) {
+  const Attempt a = run({.land_fast = true, .forget_lock_once = true});
+  ASSERT_TRUE(a.done);
+  EXPECT_EQ(a.metrics.hard_landings, 1);
+  EXPECT_EQ(a.metrics.twistlock_misuse, 1);
+  const EvaluationRules rules;
+  EXPECT_DOUBLE_EQ(a.score.total, 100.0 - rules.points_hard_landing - rules.points_twistlock_misuse);
+}
+
+}  // namespace
+}  // namespace harbour::sim
