@@ -1,0 +1,118 @@
+#include "StsRun.h"
+
+#include <chrono>
+#include <cstdio>
+
+#include "harbour/io/ExerciseFiles.h"
+#include "harbour/io/RecordingFile.h"
+#include "harbour/sim/Autopilot.h"
+#include "harbour/sim/Recording.h"
+
+namespace harbour::apps {
+namespace {
+
+constexpr double kProgressEvery_s = 10.0;
+constexpr double kGiveUpAfter_s = 3600.0;
+
+void print_evaluation(const sim::Metrics& m, const sim::Score& s) {
+  std::printf("\nevaluation\n");
+  std::printf("  time                 %8.1f s\n", m.time_s);
+  std::printf("  moves completed      %8d\n", m.moves_completed);
+  for (std::size_t n = 0; n < m.cycle_times_s.size(); ++n)
+    std::printf("  cycle time, move %zu   %8.1f s\n", n + 1, m.cycle_times_s[n]);
+  std::printf("  moves per hour       %8.1f\n", m.moves_per_hour);
+  std::printf("  collisions           %8d (worst %.2f m/s)\n", m.collisions, m.worst_collision_mps);
+  std::printf("  hard landings        %8d (worst landing %.2f m/s)\n", m.hard_landings, m.worst_landing_mps);
+  for (std::size_t n = 0; n < m.landing_sway_m.size(); ++n)
+    std::printf("  sway at landing %zu    %8.3f m\n", n + 1, m.landing_sway_m[n]);
+  std::printf("  twistlock misuse     %8d\n", m.twistlock_misuse);
+  std::printf("  rope overloads       %8d\n", m.overloads);
+  std::printf("  limit switch hits    %8d\n", m.limit_hits);
+  std::printf("  emergency stops      %8d\n", m.emergency_stops);
+  std::printf("  hoist energy         %8.2f MJ\n", m.hoist_energy_j / 1e6);
+  std::printf("score %.0f / 100: %s\n", s.total, s.passed ? "PASSED" : "NOT PASSED");
+  for (const auto& d : s.deductions)
+    std::printf("  -%.0f  %s x%d\n", d.points, d.reason.c_str(), d.count);
+}
+
+}  // namespace
+
+int run_exercise(const RunOptions& options) {
+  if (!options.autopilot) {
+    std::fprintf(stderr, "harboursim: no input device support yet; run with --autopilot\n");
+    return 2;
+  }
+  const sim::ExerciseSettings exercise = io::load_exercise(options.exercise);
+  sim::Simulation simulation(exercise.scenario);
+  sim::Autopilot pilot(exercise);
+  sim::Evaluator evaluator(exercise);
+  sim::Recorder recorder(exercise.name);
+  std::printf("harboursim: exercise %s, %zu move(s), autopilot, time limit %.0f s\n", exercise.name.c_str(),
+              exercise.moves.size(), exercise.rules.time_limit_s);
+  const auto wall_start = std::chrono::steady_clock::now();
+  double next_progress = kProgressEvery_s;
+  while (!evaluator.finished() && simulation.time_s() < kGiveUpAfter_s) {
+    const sim::Inputs in = pilot.next(simulation);
+    simulation.step(in);
+    evaluator.observe(simulation, in);
+    if (!options.record.empty()) recorder.after_step(simulation, in);
+    if (simulation.time_s() >= next_progress) {
+      next_progress += kProgressEvery_s;
+      const sim::Snapshot s = simulation.snapshot();
+      std::printf("  t=%6.1f s  trolley %6.2f m  spreader z %5.2f m  load %5.1f t  %s  moves %d/%zu\n",
+                  s.time_s, s.trolley_x_m, s.spreader.position.z, s.hoisted_load_n / 9.80665 / 1000.0,
+                  s.lamps.locked ? "locked  " : "unlocked", evaluator.metrics().moves_completed,
+                  exercise.moves.size());
+      std::fflush(stdout);
+    }
+  }
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  std::printf("\nsimulated %.1f s in %.2f s (%.0fx real time), %u physics warnings\n", simulation.time_s(),
+              wall, simulation.time_s() / wall, simulation.warnings().total());
+  print_evaluation(evaluator.metrics(), evaluator.score());
+  if (!options.record.empty()) {
+    io::write_recording(options.record, recorder.recording());
+    std::printf("recording            %s (%zu input changes, %zu checkpoints)\n", options.record.c_str(),
+                recorder.recording().inputs.size(), recorder.recording().checkpoints.size());
+  }
+  return simulation.warnings().total() == 0 ? 0 : 1;
+}
+
+int replay_recording(const std::string& recording_path, const std::string& exercise_path) {
+  const sim::Recording recording = io::read_recording(recording_path);
+  const sim::ExerciseSettings exercise = io::load_exercise(exercise_path);
+  if (recording.scenario != exercise.name) {
+    std::fprintf(stderr, "harboursim: %s was recorded on exercise '%s', not '%s'\n", recording_path.c_str(),
+                 recording.scenario.c_str(), exercise.name.c_str());
+    return 2;
+  }
+  // re-simulate with the evaluator watching, checking the recorded hash every second
+  sim::Simulation simulation(exercise.scenario);
+  sim::Evaluator evaluator(exercise);
+  std::size_t next_input = 0, next_checkpoint = 0;
+  sim::Inputs current;
+  int checked = 0;
+  while (simulation.steps() < recording.total_steps) {
+    while (next_input < recording.inputs.size() && recording.inputs[next_input].step <= simulation.steps())
+      current = recording.inputs[next_input++].inputs;
+    simulation.single_step(current);
+    evaluator.observe(simulation, current);
+    if (next_checkpoint < recording.checkpoints.size() &&
+        recording.checkpoints[next_checkpoint].step == simulation.steps()) {
+      if (recording.checkpoints[next_checkpoint].state_hash != simulation.state_hash()) {
+        std::fprintf(stderr,
+                     "harboursim: replay diverged at t=%.3f s (recorded with a different build or data?)\n",
+                     simulation.time_s());
+        return 1;
+      }
+      ++checked;
+      ++next_checkpoint;
+    }
+  }
+  std::printf("replayed %s: %.1f s, %d of %zu recorded seconds reproduced bit for bit\n",
+              recording_path.c_str(), simulation.time_s(), checked, recording.checkpoints.size());
+  print_evaluation(evaluator.metrics(), evaluator.score());
+  return 0;
+}
+
+}  // namespace harbour::apps
