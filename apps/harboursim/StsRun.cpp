@@ -2,9 +2,13 @@
 
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <tuple>
 
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/io/RecordingFile.h"
+#include "harbour/io/RecordsStore.h"
 #include "harbour/sim/Autopilot.h"
 #include "harbour/sim/Recording.h"
 
@@ -35,7 +39,64 @@ void print_evaluation(const sim::Metrics& m, const sim::Score& s) {
     std::printf("  -%.0f  %s x%d\n", d.points, d.reason.c_str(), d.count);
 }
 
+// stores what the evaluator counted this step, the moment it happened
+void store_progress(io::RecordsStore& db, std::int64_t attempt, const sim::Metrics& before,
+                    const sim::Metrics& now) {
+  for (int n = before.moves_completed; n < now.moves_completed; ++n)
+    db.record_move(attempt, n + 1, now.time_s, now.cycle_times_s[static_cast<std::size_t>(n)]);
+  const std::tuple<const char*, int, int, double> counters[] = {
+      {"collision", before.collisions, now.collisions, now.worst_collision_mps},
+      {"hard_landing", before.hard_landings, now.hard_landings, now.worst_landing_mps},
+      {"twistlock_misuse", before.twistlock_misuse, now.twistlock_misuse, 0.0},
+      {"rope_overload", before.overloads, now.overloads, 0.0},
+      {"limit_switch_hit", before.limit_hits, now.limit_hits, 0.0},
+      {"emergency_stop", before.emergency_stops, now.emergency_stops, 0.0}};
+  for (const auto& [kind, was, is, value] : counters)
+    for (int n = was; n < is; ++n)
+      db.record_event(attempt, now.time_s, kind, value);
+}
+
 }  // namespace
+
+std::string default_database() {
+  const char* xdg = std::getenv("XDG_DATA_HOME");
+  const char* home = std::getenv("HOME");
+  const std::filesystem::path base = xdg && *xdg
+                                         ? std::filesystem::path(xdg)
+                                         : std::filesystem::path(home && *home ? home : ".") / ".local/share";
+  std::filesystem::create_directories(base / "harboursim");
+  return "sqlite3://db=" + (base / "harboursim" / "records.db").string();
+}
+
+int add_trainee(const std::string& database, const std::string& id, const std::string& name) {
+  io::RecordsStore db(database.empty() ? default_database() : database);
+  db.add_trainee(id, name);
+  std::printf("trainee %s (%s) added\n", id.c_str(), name.c_str());
+  return 0;
+}
+
+int list_trainees(const std::string& database) {
+  io::RecordsStore db(database.empty() ? default_database() : database);
+  for (const io::TraineeRow& t : db.trainees())
+    std::printf("%-16s %s\n", t.id.c_str(), t.name.c_str());
+  return 0;
+}
+
+int list_results(const std::string& database, const std::string& trainee) {
+  io::RecordsStore db(database.empty() ? default_database() : database);
+  std::printf("%-8s %-12s %-20s %-9s %6s %6s  %s\n", "attempt", "trainee", "exercise", "status", "moves",
+              "score", "from");
+  for (const io::AttemptRow& a : db.attempts(trainee.empty() ? std::nullopt : std::optional(trainee))) {
+    const std::string score =
+        a.score ? std::to_string(static_cast<int>(*a.score)) + (a.passed ? " P" : " F") : "-";
+    const std::string from =
+        a.parent ? "take-over of " + std::to_string(*a.parent) + " at step " + std::to_string(a.branch_step)
+                 : "";
+    std::printf("%-8lld %-12s %-20s %-9s %6d %6s  %s\n", static_cast<long long>(a.id), a.trainee.c_str(),
+                a.exercise.c_str(), a.status.c_str(), a.moves, score.c_str(), from.c_str());
+  }
+  return 0;
+}
 
 int run_exercise(const RunOptions& options) {
   if (!options.autopilot) {
@@ -47,6 +108,10 @@ int run_exercise(const RunOptions& options) {
   sim::Autopilot pilot(exercise);
   sim::Evaluator evaluator(exercise);
   sim::Recorder recorder(exercise.name);
+  io::RecordsStore db(options.database.empty() ? default_database() : options.database);
+  if (options.trainee == "autopilot" && !db.has_trainee("autopilot"))
+    db.add_trainee("autopilot", "Scripted operator");
+  const std::int64_t attempt = db.begin_attempt(options.trainee, exercise.name);
   std::printf("harboursim: exercise %s, %zu move(s), autopilot, time limit %.0f s\n", exercise.name.c_str(),
               exercise.moves.size(), exercise.rules.time_limit_s);
   const auto wall_start = std::chrono::steady_clock::now();
@@ -54,7 +119,9 @@ int run_exercise(const RunOptions& options) {
   while (!evaluator.finished() && simulation.time_s() < kGiveUpAfter_s) {
     const sim::Inputs in = pilot.next(simulation);
     simulation.step(in);
+    const sim::Metrics before = evaluator.metrics();
     evaluator.observe(simulation, in);
+    store_progress(db, attempt, before, evaluator.metrics());
     if (!options.record.empty()) recorder.after_step(simulation, in);
     if (simulation.time_s() >= next_progress) {
       next_progress += kProgressEvery_s;
@@ -70,9 +137,12 @@ int run_exercise(const RunOptions& options) {
   std::printf("\nsimulated %.1f s in %.2f s (%.0fx real time), %u physics warnings\n", simulation.time_s(),
               wall, simulation.time_s() / wall, simulation.warnings().total());
   print_evaluation(evaluator.metrics(), evaluator.score());
+  if (!options.record.empty()) io::write_recording(options.record, recorder.recording());
+  db.finish_attempt(attempt, evaluator.metrics(), evaluator.score(), options.record);
+  std::printf("stored as attempt %lld of trainee %s\n", static_cast<long long>(attempt),
+              options.trainee.c_str());
   if (!options.record.empty()) {
-    io::write_recording(options.record, recorder.recording());
-    std::printf("recording            %s (%zu input changes, %zu checkpoints)\n", options.record.c_str(),
+    std::printf("recording %s (%zu input changes, %zu checkpoints)\n", options.record.c_str(),
                 recorder.recording().inputs.size(), recorder.recording().checkpoints.size());
   }
   return simulation.warnings().total() == 0 ? 0 : 1;

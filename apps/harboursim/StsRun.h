@@ -8,9 +8,20 @@ namespace harbour::apps {
 struct RunOptions {
   std::string exercise;  ///< exercise file
   bool autopilot = false;
-  std::string record;  ///< recording file to write ("" for none)
+  std::string record;                 ///< recording file to write ("" for none)
+  std::string trainee = "autopilot";  ///< trainee id the attempt is stored under
+  std::string database;               ///< records connection ("" for the default SQLite file)
 };
 int run_exercise(const RunOptions& options);
+
+/// The default records database: $XDG_DATA_HOME/harboursim/records.db (or ~/.local/share/...), as a SOCI
+/// connection string.
+std::string default_database();
+
+/// `harboursim trainees add|list` and `harboursim results`.
+int add_trainee(const std::string& database, const std::string& id, const std::string& name);
+int list_trainees(const std::string& database);
+int list_results(const std::string& database, const std::string& trainee);
 
 /// `harboursim replay`: re-simulates a recording, checks every recorded second's hash, prints the evaluation.
 int replay_recording(const std::string& recording, const std::string& exercise);

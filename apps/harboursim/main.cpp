@@ -18,6 +18,21 @@ int main(int argc, char** argv) {
       ->check(CLI::ExistingFile);
   run_cmd->add_flag("--autopilot", run.autopilot, "let the scripted operator drive");
   run_cmd->add_option("--record", run.record, "write the run's recording (HSRC) to this file");
+  run_cmd->add_option("--trainee", run.trainee, "trainee id to store the attempt under");
+  run_cmd->add_option("--db", run.database,
+                      "records connection (default: SQLite file in the user's data directory)");
+
+  std::string database, trainee_id, trainee_name, results_trainee;
+  CLI::App* trainees_cmd = app.add_subcommand("trainees", "manage trainees");
+  trainees_cmd->require_subcommand(1);
+  trainees_cmd->add_option("--db", database, "records connection");
+  CLI::App* add_cmd = trainees_cmd->add_subcommand("add", "add a trainee");
+  add_cmd->add_option("id", trainee_id, "trainee id")->required();
+  add_cmd->add_option("name", trainee_name, "full name")->required();
+  CLI::App* list_cmd = trainees_cmd->add_subcommand("list", "list trainees");
+  CLI::App* results_cmd = app.add_subcommand("results", "list attempts, newest first");
+  results_cmd->add_option("--trainee", results_trainee, "only this trainee's attempts");
+  results_cmd->add_option("--db", database, "records connection");
 
   std::string recording, replay_exercise;
   CLI::App* replay_cmd = app.add_subcommand("replay", "re-simulate a recording and check it bit for bit");
@@ -37,6 +52,9 @@ int main(int argc, char** argv) {
   try {
     if (*run_cmd) return harbour::apps::run_exercise(run);
     if (*replay_cmd) return harbour::apps::replay_recording(recording, replay_exercise);
+    if (*add_cmd) return harbour::apps::add_trainee(database, trainee_id, trainee_name);
+    if (*list_cmd) return harbour::apps::list_trainees(database);
+    if (*results_cmd) return harbour::apps::list_results(database, results_trainee);
     return harbour::apps::run_bulk_demo(demo);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "harboursim: %s\n", e.what());

@@ -1,0 +1,115 @@
+#include "harbour/io/RecordsStore.h"
+
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <thread>
+
+#include "harbour/sim/Autopilot.h"
+#include "scenes/StsScenes.h"
+
+namespace harbour::io {
+namespace {
+
+std::string fresh_db(const char* name) {
+  const auto path = std::filesystem::temp_directory_path() / name;
+  for (const char* suffix : {"", "-wal", "-shm"})
+    std::filesystem::remove(path.string() + suffix);
+  return "sqlite3://db=" + path.string();
+}
+
+TEST(RecordsStore, StoresTraineesAttemptsMovesAndScores) {
+  RecordsStore db(fresh_db("harbour_records_roundtrip.db"));
+  db.add_trainee("t001", "Ana Pérez");
+  EXPECT_THROW(db.add_trainee("t001", "Again"), std::runtime_error);
+  EXPECT_THROW(db.begin_attempt("t999", "sts_discharge"), std::runtime_error);
+  const auto first = db.begin_attempt("t001", "sts_discharge");
+  db.record_move(first, 1, 93.5, 93.5);
+  db.record_event(first, 40.0, "hard_landing", 0.45);
+  sim::Metrics m;
+  m.moves_completed = 1;
+  sim::Score s;
+  s.total = 95;
+  s.passed = true;
+  db.finish_attempt(first, m, s, "out/a.hsrc");
+  const auto branch = db.begin_attempt("t001", "sts_discharge", first, 7300);  // an instructor's take-over
+  const auto rows = db.attempts(std::string("t001"));
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[0].id, branch);
+  EXPECT_EQ(rows[0].status, "running");
+  EXPECT_EQ(rows[0].parent, first);
+  EXPECT_EQ(rows[0].branch_step, 7300);
+  EXPECT_EQ(rows[1].status, "finished");
+  EXPECT_EQ(rows[1].score, 95.0);
+  EXPECT_TRUE(rows[1].passed);
+  EXPECT_EQ(rows[1].moves, 1);
+  EXPECT_EQ(db.trainees().size(), 1u);
+}
+
+TEST(RecordsStore, ABadConnectionNamesIt) {
+  try {
+    RecordsStore db("sqlite3://db=/nonexistent/dir/records.db");
+    FAIL() << "opened";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/dir/records.db"), std::string::npos) << e.what();
+  }
+}
+
+// A station killed mid-exercise: everything measured before the kill is in the database, consistently.
+TEST(RecordsStore, KillingTheProcessMidExerciseKeepsTheMovesDoneSoFar) {
+  const std::string connection = fresh_db("harbour_records_kill.db");
+  {
+    RecordsStore db(connection);
+    db.add_trainee("t001", "Ana Pérez");
+  }
+  sim::ExerciseSettings exercise = scenes::sts_discharge_exercise(HARBOUR_DATA_DIR);
+  exercise.moves.push_back({"BOX1", {8.0, -9.0, 2.591 / 2}, 0.3});  // then a second box onto the quay
+
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    // the station: run the exercise, storing each move the moment it completes, never finishing
+    RecordsStore db(connection);
+    const auto attempt = db.begin_attempt("t001", exercise.name);
+    sim::Simulation simulation(exercise.scenario);
+    sim::Autopilot pilot(exercise);
+    sim::Evaluator evaluator(exercise);
+    for (int k = 0; k < 600000; ++k) {
+      const sim::Inputs in = pilot.next(simulation);
+      simulation.step(in);
+      const int before = evaluator.metrics().moves_completed;
+      evaluator.observe(simulation, in);
+      if (evaluator.metrics().moves_completed > before)
+        db.record_move(attempt, evaluator.metrics().moves_completed, simulation.time_s(),
+                       evaluator.metrics().cycle_times_s.back());
+    }
+    _exit(0);
+  }
+  // the parent watches the database and kills the station as soon as the first move is stored
+  int moves = 0;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (moves == 0 && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    RecordsStore watcher(connection);
+    const auto rows = watcher.attempts();
+    moves = rows.empty() ? 0 : rows[0].moves;
+  }
+  kill(child, SIGKILL);
+  int status = 0;
+  waitpid(child, &status, 0);
+  ASSERT_TRUE(WIFSIGNALED(status));
+  ASSERT_EQ(moves, 1) << "the station never stored its first move";
+
+  RecordsStore after(connection);
+  const auto rows = after.attempts();
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_EQ(rows[0].status, "running");  // never finished, never half-written
+  EXPECT_EQ(rows[0].moves, 1);
+}
+
+}  // namespace
+}  // namespace harbour::io
