@@ -201,8 +201,9 @@ void HoistSystem::step_drums(double dt, std::span<const DrumCommand> commands) {
     const double ramp = d.max_rope_acceleration_mps2 / d.radius_m * dt;
     st.reference += std::clamp(target - st.reference, -ramp, ramp);
 
-    const bool brake =
-        !command.brake_fault && st.reference == 0.0 && std::abs(st.omega) <= kBrakeSpeedFraction * full;
+    if (!command.motor_enabled) st.reference = 0.0;
+    const bool at_rest = st.reference == 0.0 && std::abs(st.omega) <= kBrakeSpeedFraction * full;
+    const bool brake = !command.brake_fault && (at_rest || !command.motor_enabled);
     if (brake) {
       // the holding brake alone; it slips if the rope torque beats it
       if (std::abs(st.rope_torque) <= d.brake_torque_n_m) {
@@ -211,6 +212,10 @@ void HoistSystem::step_drums(double dt, std::span<const DrumCommand> commands) {
         st.omega +=
             dt * (st.rope_torque - std::copysign(d.brake_torque_n_m, st.rope_torque)) / d.inertia_kg_m2;
       }
+      continue;
+    }
+    if (!command.motor_enabled) {  // no torque and no brake: the rope drives the drum
+      st.omega += dt * st.rope_torque / d.inertia_kg_m2;
       continue;
     }
     // speed control within the motor's torque limit

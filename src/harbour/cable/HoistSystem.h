@@ -27,7 +27,8 @@ struct CableEvent {
 /// Drum commands: normalised lever positions, +1 pays out at full speed (lowers), -1 reels in (hoists).
 struct DrumCommand {
   double lever = 0.0;
-  bool brake_fault = false;  ///< the holding brake does not engage (fault injection)
+  bool brake_fault = false;   ///< the holding brake does not engage (fault injection)
+  bool motor_enabled = true;  ///< false at an emergency stop: no motor torque, the brake sets at once
 };
 
 /// Any block-and-tackle as data (§3.2): drums, sheaves and anchors joined by rope segments. Each segment is

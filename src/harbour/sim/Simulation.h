@@ -9,6 +9,7 @@
 #include "harbour/core/Warnings.h"
 #include "harbour/physics/PhysicsWorld.h"
 #include "harbour/sim/StsCrane.h"
+#include "harbour/sim/Weather.h"
 
 namespace harbour::sim {
 
@@ -34,6 +35,15 @@ struct StaticBlock {
   core::Vec3 position_m;
 };
 
+/// Something the exercise makes happen at a time (a gust, a fault).
+struct ScriptedEvent {
+  enum class Kind { kGust, kHoistBrakeFault, kLandedSensorFault };
+  Kind kind = Kind::kGust;
+  double at_s = 0.0;  ///< [s] exercise time
+  Gust gust;          ///< kGust (it starts at at_s)
+  int corner = 0;     ///< kLandedSensorFault: which twistlock corner (0-3)
+};
+
 /// The initial state of an STS exercise world (settings).
 struct ScenarioSettings {
   std::string name;
@@ -41,6 +51,11 @@ struct ScenarioSettings {
   double gantry_y_m = 0.0, trolley_x_m = 20.0, spreader_z_m = 20.0;  ///< [m] crane pose at the start
   std::vector<StaticBlock> blocks;
   std::vector<ContainerPlacement> containers;
+  WeatherSettings weather;
+  std::vector<ScriptedEvent> events;  ///< in time order
+  double drag_coefficient =
+      1.0;                 ///< [-] boxes and spreader (published 0.6-1.2 by face and stacking; assumed)
+  std::uint64_t seed = 1;  ///< seeds the turbulence
 };
 
 /// What consumers (image generator, console, network, evaluation) see of the simulation: plain data.
@@ -58,6 +73,10 @@ struct Snapshot {
   };
   std::vector<Container> containers;
   double hoisted_load_n = 0.0;
+  core::Vec3 wind_mps;          ///< [m/s] world
+  double time_of_day_h = 12.0;  ///< [h]
+  double visibility_m = 20000.0;
+  double rain_mm_per_h = 0.0;
   std::uint32_t warnings = 0;
 };
 
@@ -95,18 +114,23 @@ class Simulation {
   /// Body of scenario container `index`.
   physics::BodyId container_body(std::size_t index) const { return containers_[index].body; }
   const physics::PhysicsWorld& world() const { return *world_; }
+  const Weather& weather() const { return weather_; }
   StsCrane& crane() { return *crane_; }
   const StsCrane& crane() const { return *crane_; }
   const ScenarioSettings& scenario() const { return scenario_; }
 
  private:
   void advance(const Inputs& inputs);
+  void apply_due_events();
+  void apply_wind();
 
   ScenarioSettings scenario_;
   core::FixedStepClock clock_{kStep_s};
   std::unique_ptr<physics::PhysicsWorld> world_;
   std::unique_ptr<StsCrane> crane_;
   std::vector<ContainerRef> containers_;
+  Weather weather_;
+  std::size_t next_event_ = 0;
   bool held_ = false;
   core::Warnings warnings_;
   StepEvents events_;

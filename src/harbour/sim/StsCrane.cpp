@@ -63,8 +63,9 @@ void StsCrane::step(const StsControls& c, std::span<const ContainerRef> containe
   const DriveOutput t = trolley_.step(c.trolley, trolley_position_m(), dt_s, c.emergency_stop);
   world_.set_slider_motor(trolley_slider_, t.velocity_mps, t.max_force_n);
 
-  // hoist: raising reels rope in (negative pay-out); the e-stop lets the drum ramp down and brake
-  const cable::DrumCommand drum{c.emergency_stop ? 0.0 : -std::clamp(c.hoist, -1.0, 1.0), false};
+  // hoist: raising reels rope in (negative pay-out); the e-stop cuts the motor and sets the brake
+  const cable::DrumCommand drum{c.emergency_stop ? 0.0 : -std::clamp(c.hoist, -1.0, 1.0), hoist_brake_fault_,
+                                !c.emergency_stop};
   hoist_->step(dt_s, {&drum, 1}, *cable_bodies_);
 
   // twistlocks against the container under the spreader, if any
@@ -76,8 +77,9 @@ void StsCrane::step(const StsControls& c, std::span<const ContainerRef> containe
   for (const ContainerRef& box : containers) {
     core::Pose top = world_.pose(box.body);
     top.position = top.to_parent({0, 0, box.half_extents_m.z});
-    const auto corners =
+    auto corners =
         landed_corners(underside, top, box.half_extents_m.x, box.half_extents_m.y, settings_.twistlocks);
+    if (landed_sensor_fault_ >= 0) corners[static_cast<std::size_t>(landed_sensor_fault_)] = false;
     if (corners[0] && corners[1] && corners[2] && corners[3]) {
       landed = corners;
       landed_on = box.body;

@@ -70,6 +70,10 @@ class StsCrane {
   cable::HoistSystem& hoist() { return *hoist_; }
   /// Vertical rope pull on the headblock [N] (the load the hoist carries, spreader included).
   double hoisted_load_n() const;
+  /// Fault injection: the hoist's holding brake does not set.
+  void set_hoist_brake_fault(bool on) { hoist_brake_fault_ = on; }
+  /// Fault injection: one corner's landed sensor (0-3) reads "not landed"; -1 clears it.
+  void set_landed_sensor_fault(int corner) { landed_sensor_fault_ = corner; }
 
  private:
   physics::PhysicsWorld& world_;
@@ -83,6 +87,8 @@ class StsCrane {
   std::unique_ptr<cable::HoistSystem> hoist_;
   std::optional<physics::BodyId> locked_container_;
   int attachment_ = -1;
+  bool hoist_brake_fault_ = false;
+  int landed_sensor_fault_ = -1;
 };
 
 }  // namespace harbour::sim

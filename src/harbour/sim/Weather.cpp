@@ -1,0 +1,56 @@
+#include "harbour/sim/Weather.h"
+
+#include <cmath>
+#include <numbers>
+
+namespace harbour::sim {
+
+Weather::Weather(const WeatherSettings& settings, std::uint64_t seed) : settings_(settings), rng_(seed) {}
+
+void Weather::step(double dt_s) {
+  time_s_ += dt_s;
+  // Ornstein-Uhlenbeck: relaxes with the turbulence time scale, standard deviation I * U
+  const double sigma = settings_.turbulence_intensity * settings_.wind_mean_mps;
+  if (sigma > 0.0) {
+    const double a = std::exp(-dt_s / settings_.turbulence_time_s);
+    const double normal =
+        std::sqrt(-2.0 * std::log(1.0 - rng_.uniform())) * std::cos(2.0 * std::numbers::pi * rng_.uniform());
+    turbulence_ = a * turbulence_ + sigma * std::sqrt(1.0 - a * a) * normal;
+  }
+}
+
+double Weather::speed_mps() const {
+  double u = settings_.wind_mean_mps + turbulence_;
+  for (const Gust& g : gusts_) {
+    const double t = time_s_ - g.start_s;
+    if (t >= 0.0 && t <= g.duration_s)
+      u += 0.5 * g.amplitude_mps * (1.0 - std::cos(2.0 * std::numbers::pi * t / g.duration_s));
+  }
+  return std::max(0.0, u);
+}
+
+core::Vec3 Weather::wind() const {
+  // blowing from `wind_from` (clockwise from north = +y): the air moves the opposite way
+  const double from = settings_.wind_from_rad;
+  const double u = speed_mps();
+  return {-u * std::sin(from), -u * std::cos(from), 0.0};
+}
+
+double Weather::time_of_day_h() const {
+  return std::fmod(settings_.time_of_day_h + time_s_ / 3600.0, 24.0);
+}
+
+core::Vec3 box_drag(const core::Vec3& wind, const core::Vec3& body_velocity, const core::Pose& pose,
+                    const core::Vec3& half_extents_m, double drag_coefficient, double air_density_kg_m3) {
+  core::Vec3 relative = wind - body_velocity;
+  relative.z = 0.0;
+  const double speed = core::length(relative);
+  if (speed <= 0.0) return {};
+  // projected area across the flow: the box's x face and y face weighted by the flow's direction in its frame
+  const core::Vec3 local = pose.direction_to_local(relative * (1.0 / speed));
+  const double area =
+      4.0 * half_extents_m.z * (std::abs(local.x) * half_extents_m.y + std::abs(local.y) * half_extents_m.x);
+  return relative * (0.5 * air_density_kg_m3 * drag_coefficient * area * speed);
+}
+
+}  // namespace harbour::sim

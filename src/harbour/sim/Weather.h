@@ -1,0 +1,60 @@
+#pragma once
+
+#include <vector>
+
+#include "harbour/core/Rng.h"
+#include "harbour/core/Vec3.h"
+
+namespace harbour::sim {
+
+/// Weather at the start of an exercise (settings).
+struct WeatherSettings {
+  double wind_mean_mps = 0.0;         ///< [m/s] 10-minute mean at boom height
+  double wind_from_rad = 0.0;         ///< [rad] direction the wind blows from, clockwise from north (y)
+  double turbulence_intensity = 0.0;  ///< [-] standard deviation / mean of the turbulent part
+  double turbulence_time_s =
+      3.0;                        ///< [s] time scale of the turbulence (first-order; EN 13001 uses 3 s gusts)
+  double visibility_m = 20000.0;  ///< [m] for the image generator's fog
+  double rain_mm_per_h = 0.0;     ///< [mm/h]
+  double time_of_day_h = 12.0;    ///< [h] local solar time at the start
+  double air_density_kg_m3 = 1.225;  ///< [kg/m^3]
+};
+
+/// A discrete "1-cosine" gust: u = amplitude (1 - cos(2 pi (t - start) / duration)) / 2 within the gust.
+struct Gust {
+  double start_s = 0.0;
+  double duration_s = 3.0;     ///< [s]
+  double amplitude_mps = 0.0;  ///< [m/s] peak added to the mean
+};
+
+/// The wind field (uniform over the crane) and the weather state the image generator shows.
+class Weather {
+ public:
+  Weather(const WeatherSettings& settings, std::uint64_t seed);
+
+  /// Advances the turbulence and the clock by `dt_s`.
+  void step(double dt_s);
+  /// Adds a scripted gust.
+  void add_gust(const Gust& gust) { gusts_.push_back(gust); }
+  /// Wind velocity now [m/s], world frame (the air moves towards wind_from + 180 deg).
+  core::Vec3 wind() const;
+  /// Wind speed now [m/s].
+  double speed_mps() const;
+  double time_of_day_h() const;
+  const WeatherSettings& settings() const { return settings_; }
+  double turbulence_mps() const { return turbulence_; }
+
+ private:
+  WeatherSettings settings_;
+  core::Rng rng_;
+  double time_s_ = 0.0;
+  double turbulence_ = 0.0;  // [m/s] first-order (Ornstein-Uhlenbeck) process along the mean wind
+  std::vector<Gust> gusts_;
+};
+
+/// Aerodynamic drag on a box in the wind: F = 1/2 rho Cd A |v_rel| v_rel, with A the box's projected area
+/// across the relative wind (horizontal wind only).
+core::Vec3 box_drag(const core::Vec3& wind, const core::Vec3& body_velocity, const core::Pose& pose,
+                    const core::Vec3& half_extents_m, double drag_coefficient, double air_density_kg_m3);
+
+}  // namespace harbour::sim

@@ -1,0 +1,119 @@
+#include "harbour/sim/Weather.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "harbour/core/Units.h"
+#include "harbour/sim/Simulation.h"
+#include "scenes/StsScenes.h"
+
+namespace harbour::sim {
+namespace {
+
+TEST(Weather, GustFollowsTheOneMinusCosineShape) {
+  WeatherSettings s;
+  s.wind_mean_mps = 5.0;
+  Weather w(s, 1);
+  w.add_gust({1.0, 3.0, 8.0});
+  auto speed_at = [&](double t) {
+    Weather copy = w;
+    for (int k = 0; k < static_cast<int>(std::lround(t / 0.001)); ++k)
+      copy.step(0.001);
+    return copy.speed_mps();
+  };
+  EXPECT_NEAR(speed_at(0.5), 5.0, 1e-9);
+  EXPECT_NEAR(speed_at(1.75), 5.0 + 4.0, 1e-6);  // a quarter in: half the amplitude
+  EXPECT_NEAR(speed_at(2.5), 13.0, 1e-6);        // the peak at mid-gust
+  EXPECT_NEAR(speed_at(4.5), 5.0, 1e-9);
+}
+
+TEST(Weather, TurbulenceHasTheSetIntensity) {
+  WeatherSettings s;
+  s.wind_mean_mps = 10.0;
+  s.turbulence_intensity = 0.15;
+  Weather w(s, 42);
+  double sum = 0, sum2 = 0;
+  const int n = 720000;  // 2 hours at 100 Hz
+  for (int k = 0; k < n; ++k) {
+    w.step(0.01);
+    sum += w.speed_mps();
+    sum2 += w.speed_mps() * w.speed_mps();
+  }
+  const double mean = sum / n, sd = std::sqrt(sum2 / n - mean * mean);
+  EXPECT_NEAR(mean, 10.0, 0.2);
+  EXPECT_NEAR(sd, 1.5, 0.15);
+}
+
+TEST(Weather, DragOnABroadsideBoxFollowsTheFormula) {
+  const core::Vec3 half{12.192 / 2, 2.438 / 2, 2.591 / 2};
+  const core::Vec3 f = box_drag({0, 20, 0}, {}, {}, half, 1.0, 1.225);
+  EXPECT_NEAR(f.y, 0.5 * 1.225 * 1.0 * (12.192 * 2.591) * 400.0, 1e-6);
+  EXPECT_NEAR(f.x, 0.0, 1e-12);
+  const core::Vec3 end_on = box_drag({20, 0, 0}, {}, {}, half, 1.0, 1.225);
+  EXPECT_NEAR(end_on.x, 0.5 * 1.225 * (2.438 * 2.591) * 400.0, 1e-6);
+}
+
+TEST(Weather, SteadyWindDeflectsTheHangingSpreaderBySwingTheory) {
+  ScenarioSettings s = scenes::sts_discharge(HARBOUR_DATA_DIR);
+  s.weather.wind_mean_mps = 20.0;
+  s.weather.wind_from_rad = core::deg_to_rad(180.0);  // from the south: the air moves towards +y
+  Simulation sim(s);
+  for (int k = 0; k < 20000; ++k)
+    sim.step({});
+  double y = 0, fall = 0;
+  const int n = 40000;  // four swing periods
+  for (int k = 0; k < n; ++k) {
+    sim.step({});
+    y += sim.crane().spreader_pose().position.y / n;
+    fall += (s.crane.trolley_rail_height_m - 1.0 - (sim.crane().spreader_pose().position.z + 0.5)) / n;
+  }
+  const double force = 0.5 * 1.225 * 1.0 * (2 * s.crane.spreader_half_extents_m.x) *
+                       (2 * s.crane.spreader_half_extents_m.z) * 400.0;
+  const double expected = fall * force / (s.crane.spreader_mass_kg * 9.80665);
+  EXPECT_NEAR(y, expected, 0.05 * expected);
+  EXPECT_NEAR(sim.snapshot().wind_mps.y, 20.0, 1e-12);
+}
+
+TEST(Weather, AnEmergencyStopHoldsTheLoadUnlessTheBrakeIsFaulty) {
+  for (const bool faulty : {false, true}) {
+    ScenarioSettings s = scenes::sts_discharge(HARBOUR_DATA_DIR);
+    if (faulty) s.events.push_back({ScriptedEvent::Kind::kHoistBrakeFault, 1.0});
+    Simulation sim(s);
+    for (int k = 0; k < 3000; ++k)
+      sim.step({});
+    const double z0 = sim.crane().spreader_pose().position.z;
+    Inputs stop;
+    stop.sts.emergency_stop = true;
+    for (int k = 0; k < 2000; ++k)
+      sim.step(stop);
+    const double dz = sim.crane().spreader_pose().position.z - z0;
+    if (faulty) {
+      EXPECT_LT(dz, -1.0) << "a faulty brake lets the load run down";
+    } else {
+      EXPECT_NEAR(dz, 0.0, 0.01);
+    }
+  }
+}
+
+TEST(Weather, AFailedLandedSensorPreventsLocking) {
+  ScenarioSettings s = scenes::sts_discharge(HARBOUR_DATA_DIR);
+  s.events.push_back({ScriptedEvent::Kind::kLandedSensorFault, 0.0, {}, 2});
+  Simulation sim(s);
+  Inputs lower;
+  lower.sts.hoist = -0.1;
+  for (int k = 0; k < 60000 && sim.crane().spreader_pose().position.z > 8.0 + 2.591 + 0.5; ++k)
+    sim.step(lower);
+  for (int k = 0; k < 1000; ++k)
+    sim.step(lower);  // sitting on the box
+  EXPECT_FALSE(sim.crane().lamps().landed);
+  Inputs lock;
+  lock.sts.lock = true;
+  for (int k = 0; k < 10; ++k)
+    sim.step(lock);
+  EXPECT_FALSE(sim.crane().locked_container().has_value());
+}
+
+}  // namespace
+}  // namespace harbour::sim
