@@ -35,6 +35,15 @@ TEST(ExerciseFiles, ShippedDischargeLoads) {
   EXPECT_EQ(e.rules.time_limit_s, 180.0);
 }
 
+TEST(ExerciseFiles, WeatherAndEventsLoad) {
+  const sim::ExerciseSettings e = load_exercise(HARBOUR_DATA_DIR "/exercises/sts_discharge_gusty.yaml");
+  EXPECT_EQ(e.scenario.weather.wind_mean_mps, 10.0);
+  EXPECT_NEAR(e.scenario.weather.wind_from_rad, 3.14159265358979, 1e-9);
+  ASSERT_EQ(e.scenario.events.size(), 1u);
+  EXPECT_EQ(e.scenario.events[0].kind, sim::ScriptedEvent::Kind::kGust);
+  EXPECT_EQ(e.scenario.events[0].gust.amplitude_mps, 8.0);
+}
+
 TEST(ExerciseFiles, BadExercisesNameTheField) {
   expect_error("type: 40ft, gross_mass_kg: 22000, position_m: [42.0, 0.0",
                "type: 53ft, gross_mass_kg: 22000, position_m: [42.0, 0.0", "exercise.containers[1].type",

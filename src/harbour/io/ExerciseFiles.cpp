@@ -93,6 +93,45 @@ sim::ExerciseSettings load_exercise(const YamlFile& f, const std::string& folder
   }
   if (e.moves.empty()) f.fail(moves, "exercise.moves", "an exercise needs at least one move");
 
+  if (x["weather"].IsDefined()) {
+    const YAML::Node w = x["weather"];
+    const std::string at = "exercise.weather";
+    sim::WeatherSettings& ws = s.weather;
+    ws.wind_mean_mps = f.number_or(w, "wind_mean_mps", at, ws.wind_mean_mps, 0.0, 80.0);
+    ws.wind_from_rad = core::deg_to_rad(f.number_or(w, "wind_from_deg", at, 0.0, 0.0, 360.0));
+    ws.turbulence_intensity = f.number_or(w, "turbulence_intensity", at, ws.turbulence_intensity, 0.0, 1.0);
+    ws.visibility_m = f.number_or(w, "visibility_m", at, ws.visibility_m, 1.0, 1e5);
+    ws.rain_mm_per_h = f.number_or(w, "rain_mm_per_h", at, ws.rain_mm_per_h, 0.0, 500.0);
+    ws.time_of_day_h = f.number_or(w, "time_of_day_h", at, ws.time_of_day_h, 0.0, 24.0, false, true);
+  }
+
+  if (x["events"].IsDefined()) {
+    const YAML::Node events = f.sequence(x, "events", "exercise");
+    for (std::size_t n = 0; n < events.size(); ++n) {
+      const YAML::Node ev = events[n];
+      const std::string at = item("exercise.events", n);
+      sim::ScriptedEvent event;
+      event.at_s = f.number(ev, "at_s", at, 0.0, 86400.0);
+      const std::string kind = f.text(ev, "kind", at);
+      if (kind == "gust") {
+        event.kind = sim::ScriptedEvent::Kind::kGust;
+        event.gust.amplitude_mps = f.number(ev, "amplitude_mps", at, 0.0, 60.0, true);
+        event.gust.duration_s = f.number_or(ev, "duration_s", at, 3.0, 0.0, 600.0, true);
+      } else if (kind == "hoist_brake_fault") {
+        event.kind = sim::ScriptedEvent::Kind::kHoistBrakeFault;
+      } else if (kind == "landed_sensor_fault") {
+        event.kind = sim::ScriptedEvent::Kind::kLandedSensorFault;
+        event.corner = f.integer(ev, "corner", at, 0, 3);
+      } else {
+        f.fail(ev["kind"], at + ".kind",
+               "'" + kind + "' is not gust, hoist_brake_fault or landed_sensor_fault");
+      }
+      if (!s.events.empty() && event.at_s < s.events.back().at_s)
+        f.fail(ev["at_s"], at + ".at_s", "events must be in time order");
+      s.events.push_back(event);
+    }
+  }
+
   if (x["rules"].IsDefined()) {
     const YAML::Node r = x["rules"];
     sim::EvaluationRules& rules = e.rules;

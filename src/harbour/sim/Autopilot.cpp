@@ -12,7 +12,7 @@ constexpr double kCruiseLever = 0.75;     // travel at three quarters of full sp
 constexpr double kSlowZone_m = 1.5;       // lower slowly over the last metre and a half
 constexpr double kSlowLever = 0.08;       // 0.12 m/s at the spreader on the STS hoist
 constexpr double kPosition_tolerance_m = 0.03;
-constexpr double kSettledSway_m = 0.04;
+constexpr double kSettledSwingSpeed_mps = 0.05;  // the swing has slowed enough to start lowering
 constexpr double kButton_s = 0.1;
 constexpr double kSlacken_s = 0.6;
 
@@ -65,8 +65,6 @@ Inputs Autopilot::next(const Simulation& simulation) {
   const core::Vec3 spreader = crane.spreader_pose().position;
   const double fall = settings.trolley_rail_height_m - 1.0 - (spreader.z + 0.5);
   const double period = 2.0 * std::numbers::pi * std::sqrt(std::max(fall, 1.0) / 9.80665);
-  const double sway =
-      std::hypot(spreader.x - crane.trolley_position_m(), spreader.y - crane.gantry_position_m());
   const core::Vec3 destination = carrying_ ? exercise_.moves[goal_].target_m : source(simulation);
   auto enter = [&](Phase p) {
     phase_ = p;
@@ -89,12 +87,18 @@ Inputs Autopilot::next(const Simulation& simulation) {
       if (in.sts.trolley == 0.0 && in.sts.gantry == 0.0) enter(Phase::kSettle);
       break;
     }
-    case Phase::kSettle:
-      if (sway < kSettledSway_m && now - phase_start_ > 0.5) enter(Phase::kLower);
+    case Phase::kSettle: {
+      // wait for the swing to slow (in wind the load hangs off plumb, so the offset itself never vanishes),
+      // or two periods at most
+      const core::Vec3 v = simulation.world().linear_velocity(crane.spreader_body());
+      if ((std::hypot(v.x, v.y) < kSettledSwingSpeed_mps && now - phase_start_ > 0.5) ||
+          now - phase_start_ > 2 * period)
+        enter(Phase::kLower);
       break;
+    }
     case Phase::kLower: {
-      // landing surface: the container's top (pick-up) or the target's floor (set-down, carried box below)
-      const double land_z = carrying_ ? destination.z + 2.591 / 2 + 0.5 : destination.z + 2.591 / 2 + 0.5;
+      // landing surface: the spreader's centre when seated on the box (pick-up) or with the box on its target
+      const double land_z = destination.z + 2.591 / 2 + 0.5;
       const bool slow = spreader.z - land_z < kSlowZone_m && !(carrying_ && defects_.land_fast);
       in.sts.hoist = slow ? -kSlowLever : -0.6;
       if (!carrying_ && crane.lamps().landed) enter(Phase::kLock);
