@@ -50,5 +50,29 @@ TEST(Autopilot, ABadOperatorGetsTheDocumentedPenalties) {
   EXPECT_DOUBLE_EQ(a.score.total, 100.0 - rules.points_hard_landing - rules.points_twistlock_misuse);
 }
 
+TEST(Evaluation, HittingABoxThatIsNotTheTaskIsACollision) {
+  // the task is BOX1; the operator drives the empty spreader down fast onto BOX2, which lies right below it
+  ExerciseSettings exercise = scenes::sts_discharge_exercise(HARBOUR_DATA_DIR);
+  exercise.moves[0].container_id = "BOX1";
+  Simulation sim(exercise.scenario);
+  Evaluator evaluator(exercise);
+  Inputs drop;
+  drop.sts.hoist = -0.6;  // 0.9 m/s at the spreader
+  double speed = 0.0;
+  for (int k = 0; k < 20000 && evaluator.metrics().collisions == 0; ++k) {
+    speed = -sim.world().linear_velocity(sim.crane().spreader_body()).z;
+    sim.step(drop);
+    evaluator.observe(sim, drop);
+  }
+  EXPECT_EQ(evaluator.metrics().collisions, 1);
+  EXPECT_NEAR(evaluator.metrics().worst_collision_mps, speed, 0.1);
+  EXPECT_GT(speed, 0.5);
+  const core::Vec3 at = sim.crane().spreader_pose().position;  // on BOX2's top
+  EXPECT_NEAR(at.y, 0.0, 0.1);
+  EXPECT_NEAR(at.z, 8.0 + 2.591 + 0.5, 0.1);
+  EXPECT_EQ(evaluator.score().total,
+            100.0 - exercise.rules.points_collision - exercise.rules.points_per_move_missing);
+}
+
 }  // namespace
 }  // namespace harbour::sim
