@@ -11,10 +11,7 @@ namespace harbour::io {
 namespace {
 
 std::string shipped() {
-  std::ifstream in(HARBOUR_DATA_DIR "/exercises/sts_discharge.yaml");
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
+  return scenes::read_text(HARBOUR_DATA_DIR "/exercises/sts_discharge.yaml");
 }
 
 void expect_error(const std::string& from, const std::string& to, const std::string& field,

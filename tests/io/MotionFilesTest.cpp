@@ -13,10 +13,7 @@ namespace harbour::io {
 namespace {
 
 std::string shipped_platform() {
-  std::ifstream in(HARBOUR_DATA_DIR "/motion/platform.yaml");
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
+  return scenes::read_text(HARBOUR_DATA_DIR "/motion/platform.yaml");
 }
 
 // one edit to the shipped platform file; the error is expected on the line holding `reported_at` (default:

@@ -5,11 +5,21 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <fstream>
+#include <sstream>
 #include <string>
 
 #include "harbour/io/YamlFile.h"
 
 namespace harbour::scenes {
+
+/// The whole text of a (shipped) data file.
+inline std::string read_text(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
 
 /// 1-based line of the first occurrence of `needle` in `text`.
 inline int line_of(const std::string& text, const std::string& needle) {
