@@ -125,3 +125,21 @@ TEST(StsCrane, LockIsRefusedInTheAir) {
 
 }  // namespace
 }  // namespace harbour::sim
+
+namespace harbour::sim {
+namespace {
+
+TEST(StsCrane, HoistStopsOnItsUpperLimitSwitch) {
+  Quay q;
+  q.run({}, 1000);
+  StsControls up;
+  up.hoist = 1.0;
+  q.run(up, 40000);  // keep pushing up for 40 s
+  const double z = q.crane->spreader_pose().position.z;
+  EXPECT_LE(z, q.settings.hoist_upper_limit_m + 0.05);
+  EXPECT_GE(z, q.settings.hoist_upper_limit_m - 0.1);
+  EXPECT_EQ(q.crane->hoist_limit_hits(), 1u);
+}
+
+}  // namespace
+}  // namespace harbour::sim

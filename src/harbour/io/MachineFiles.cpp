@@ -38,6 +38,11 @@ sim::StsCraneSettings load_sts_crane(const YamlFile& f, const std::string& folde
   s.trolley_mass_kg = f.number(trolley, "mass_kg", "machine.trolley", 0.0, kHuge, true);
   s.trolley_rail_height_m = f.number(trolley, "rail_height_m", "machine.trolley", 0.0, 200.0, true);
   s.trolley_drive = read_drive(f, trolley, "machine.trolley");
+  const YAML::Node hoist_limits = f.required(m, "hoist", "machine");
+  s.hoist_upper_limit_m =
+      f.number(hoist_limits, "upper_limit_m", "machine.hoist", -100.0, s.trolley_rail_height_m - 2.0);
+  s.hoist_lower_limit_m =
+      f.number(hoist_limits, "lower_limit_m", "machine.hoist", -100.0, s.hoist_upper_limit_m, false, true);
   const YAML::Node spreader = f.required(m, "spreader", "machine");
   s.spreader_mass_kg = f.number(spreader, "mass_kg", "machine.spreader", 0.0, kHuge, true);
   s.spreader_half_extents_m = {0.5 * f.number(spreader, "length_m", "machine.spreader", 0.0, 30.0, true),

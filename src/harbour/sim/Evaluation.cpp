@@ -88,7 +88,8 @@ void Evaluator::observe(const Simulation& simulation, const Inputs& inputs) {
   }
   for (const cable::CableEvent& e : simulation.events().ropes)
     if (e.kind == cable::CableEventKind::kOverload) ++metrics_.overloads;
-  const std::uint32_t hits = crane.gantry_drive().limit_hits() + crane.trolley_drive().limit_hits();
+  const std::uint32_t hits =
+      crane.gantry_drive().limit_hits() + crane.trolley_drive().limit_hits() + crane.hoist_limit_hits();
   metrics_.limit_hits += static_cast<int>(hits - limit_hits_seen_);
   limit_hits_seen_ = hits;
   if (inputs.sts.emergency_stop && !was_estop_) ++metrics_.emergency_stops;

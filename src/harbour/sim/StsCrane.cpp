@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "harbour/core/Braking.h"
+
 namespace harbour::sim {
 namespace {
 
@@ -63,9 +65,24 @@ void StsCrane::step(const StsControls& c, std::span<const ContainerRef> containe
   const DriveOutput t = trolley_.step(c.trolley, trolley_position_m(), dt_s, c.emergency_stop);
   world_.set_slider_motor(trolley_slider_, t.velocity_mps, t.max_force_n);
 
+  // hoist limit switches: slow down ahead of them so the spreader stops on them (the spreader moves at half
+  // the rope speed on the 2-fall ropes), and count a push into one
+  const cable::ElementSettings& drum_settings =
+      settings_.hoist.elements[static_cast<std::size_t>(settings_.hoist.ropes[0].path[0])];
+  const double spreader_z = world_.pose(spreader_).position.z;
+  const double full_speed = 0.5 * drum_settings.max_rope_speed_mps;
+  const double deceleration = 0.5 * drum_settings.max_rope_acceleration_mps2;
+  double lever = std::clamp(c.hoist, -1.0, 1.0);
+  const double room_up = std::max(0.0, settings_.hoist_upper_limit_m - spreader_z);
+  const double room_down = std::max(0.0, spreader_z - settings_.hoist_lower_limit_m);
+  lever = std::min(lever, core::discrete_braking_speed(room_up, deceleration, dt_s) / full_speed);
+  lever = std::max(lever, -core::discrete_braking_speed(room_down, deceleration, dt_s) / full_speed);
+  const bool pushing = (c.hoist > 0.0 && room_up <= 0.01) || (c.hoist < 0.0 && room_down <= 0.01);
+  if (pushing && !hoist_at_limit_) ++hoist_limit_hits_;
+  hoist_at_limit_ = pushing;
+
   // hoist: raising reels rope in (negative pay-out); the e-stop cuts the motor and sets the brake
-  const cable::DrumCommand drum{c.emergency_stop ? 0.0 : -std::clamp(c.hoist, -1.0, 1.0), hoist_brake_fault_,
-                                !c.emergency_stop};
+  const cable::DrumCommand drum{c.emergency_stop ? 0.0 : -lever, hoist_brake_fault_, !c.emergency_stop};
   hoist_->step(dt_s, {&drum, 1}, *cable_bodies_);
 
   // twistlocks against the container under the spreader, if any

@@ -22,8 +22,11 @@ struct StsCraneSettings {
   DriveSettings trolley_drive;
   double gantry_mass_kg = 1.2e6;
   double trolley_mass_kg = 30000.0;
-  double trolley_rail_height_m = 49.0;                    ///< [m] trolley body centre above the quay
-  double spreader_mass_kg = 15000.0;                      ///< [kg] headblock and spreader
+  double trolley_rail_height_m = 49.0;  ///< [m] trolley body centre above the quay
+  double spreader_mass_kg = 15000.0;    ///< [kg] headblock and spreader
+  double hoist_upper_limit_m =
+      44.0;  ///< [m] spreader centre height where the upper limit switch stops hoisting
+  double hoist_lower_limit_m = -20.0;  ///< [m] ... and the lower one stops lowering (into a hold)
   core::Vec3 spreader_half_extents_m{6.096, 1.219, 0.5};  ///< [m] at its 40 ft setting
   TwistlockSettings twistlocks;
   cable::ReevingSettings hoist;
@@ -65,6 +68,8 @@ class StsCrane {
   TwistlockLamps lamps() const { return twistlocks_.lamps(); }
   std::vector<TwistlockEvent> take_twistlock_events() { return twistlocks_.take_events(); }
   const Drive& gantry_drive() const { return gantry_; }
+  /// Times the operator drove the hoist into a limit switch.
+  std::uint32_t hoist_limit_hits() const { return hoist_limit_hits_; }
   const Drive& trolley_drive() const { return trolley_; }
   const cable::HoistSystem& hoist() const { return *hoist_; }
   cable::HoistSystem& hoist() { return *hoist_; }
@@ -88,6 +93,8 @@ class StsCrane {
   std::optional<physics::BodyId> locked_container_;
   int attachment_ = -1;
   bool hoist_brake_fault_ = false;
+  bool hoist_at_limit_ = false;
+  std::uint32_t hoist_limit_hits_ = 0;
   int landed_sensor_fault_ = -1;
 };
 
