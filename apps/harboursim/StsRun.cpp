@@ -157,30 +157,19 @@ int replay_recording(const std::string& recording_path, const std::string& exerc
     return 2;
   }
   // re-simulate with the evaluator watching, checking the recorded hash every second
-  sim::Simulation simulation(exercise.scenario);
   sim::Evaluator evaluator(exercise);
-  std::size_t next_input = 0, next_checkpoint = 0;
-  sim::Inputs current;
-  int checked = 0;
-  while (simulation.steps() < recording.total_steps) {
-    while (next_input < recording.inputs.size() && recording.inputs[next_input].step <= simulation.steps())
-      current = recording.inputs[next_input++].inputs;
-    simulation.single_step(current);
-    evaluator.observe(simulation, current);
-    if (next_checkpoint < recording.checkpoints.size() &&
-        recording.checkpoints[next_checkpoint].step == simulation.steps()) {
-      if (recording.checkpoints[next_checkpoint].state_hash != simulation.state_hash()) {
-        std::fprintf(stderr,
-                     "harboursim: replay diverged at t=%.3f s (recorded with a different build or data?)\n",
-                     simulation.time_s());
-        return 1;
-      }
-      ++checked;
-      ++next_checkpoint;
-    }
+  const sim::ReplayResult r =
+      sim::replay(exercise.scenario, recording, -1,
+                  [&](const sim::Simulation& s, const sim::Inputs& in) { evaluator.observe(s, in); });
+  if (r.first_mismatch) {
+    std::fprintf(stderr,
+                 "harboursim: replay diverged at t=%.3f s (recorded with a different build or data?)\n",
+                 static_cast<double>(*r.first_mismatch) * sim::Simulation::kStep_s);
+    return 1;
   }
   std::printf("replayed %s: %.1f s, %d of %zu recorded seconds reproduced bit for bit\n",
-              recording_path.c_str(), simulation.time_s(), checked, recording.checkpoints.size());
+              recording_path.c_str(), r.simulation->time_s(), r.checkpoints_checked,
+              recording.checkpoints.size());
   print_evaluation(evaluator.metrics(), evaluator.score());
   return 0;
 }

@@ -230,7 +230,14 @@ void HoistSystem::step_sheaves(const Rope& rope, double dt) {
   // T' = T - k dL0, gives a tridiagonal system along the rope (sheaves are light against stiff rope)
   const std::size_t m = rope.segments.size() + 1;  // path elements
   if (m < 3) return;
-  std::vector<double> lower(m, 0.0), diag(m, 1.0), upper(m, 0.0), rhs(m, 0.0);
+  std::vector<double>& lower = sheave_lower_;  // scratch reused every step
+  std::vector<double>& diag = sheave_diag_;
+  std::vector<double>& upper = sheave_upper_;
+  std::vector<double>& rhs = sheave_rhs_;
+  lower.assign(m, 0.0);
+  diag.assign(m, 1.0);
+  upper.assign(m, 0.0);
+  rhs.assign(m, 0.0);
   auto element = [&](std::size_t j) {
     return j == 0 ? segments_[rope.segments[0]].a : segments_[rope.segments[j - 1]].b;
   };

@@ -113,6 +113,7 @@ class HoistSystem {
   // scratch for the implicit transport solve (not state)
   std::vector<double> thomas_upper_, thomas_pivot_;
   std::vector<core::Vec3> thomas_rhs_;
+  std::vector<double> sheave_lower_, sheave_diag_, sheave_upper_, sheave_rhs_;
 };
 
 }  // namespace harbour::cable

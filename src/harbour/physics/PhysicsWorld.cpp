@@ -45,6 +45,7 @@ struct PhysicsWorld::Ode {
   std::vector<dJointID> sliders;
   std::vector<double> slider_sign;  // +1 or -1: ODE's slider sign against ours
   std::vector<dJointID> attachments;
+  std::vector<dContact> contact_buffer;
   PhysicsWorld* owner = nullptr;
 };
 
@@ -203,7 +204,8 @@ void PhysicsWorld::step(double dt_s) {
     dBodyID b1 = dGeomGetBody(g1), b2 = dGeomGetBody(g2);
     if (!b1 && !b2) return;
     if (b1 && b2 && dAreConnectedExcluding(b1, b2, dJointTypeContact)) return;
-    std::vector<dContact> contacts(static_cast<std::size_t>(s.max_contacts_per_pair));
+    std::vector<dContact>& contacts = ode->contact_buffer;  // reused: no allocation per colliding pair
+    contacts.resize(static_cast<std::size_t>(s.max_contacts_per_pair));
     const int n = dCollide(g1, g2, s.max_contacts_per_pair, &contacts[0].geom, sizeof(dContact));
     // a pair touching now that did not touch last step is an impact: closing speed along the normal
     PhysicsWorld& self = *ode->owner;

@@ -21,6 +21,12 @@ constexpr double kSlacken_s = 0.6;
 Autopilot::Autopilot(const ExerciseSettings& exercise, OperatorDefects defects)
     : exercise_(exercise), defects_(defects) {}
 
+double Autopilot::goal_half_height(const Simulation& simulation) const {
+  for (const ContainerPlacement& c : simulation.scenario().containers)
+    if (c.id == exercise_.moves[goal_].container_id) return c.half_extents_m.z;
+  return 0.0;
+}
+
 core::Vec3 Autopilot::source(const Simulation& simulation) const {
   const auto& containers = simulation.scenario().containers;
   for (std::size_t c = 0; c < containers.size(); ++c)
@@ -98,7 +104,7 @@ Inputs Autopilot::next(const Simulation& simulation) {
     }
     case Phase::kLower: {
       // landing surface: the spreader's centre when seated on the box (pick-up) or with the box on its target
-      const double land_z = destination.z + 2.591 / 2 + 0.5;
+      const double land_z = destination.z + goal_half_height(simulation) + settings.spreader_half_extents_m.z;
       const bool slow = spreader.z - land_z < kSlowZone_m && !(carrying_ && defects_.land_fast);
       in.sts.hoist = slow ? -kSlowLever : -0.6;
       if (!carrying_ && crane.lamps().landed) enter(Phase::kLock);

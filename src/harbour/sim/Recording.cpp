@@ -14,7 +14,8 @@ void Recorder::after_step(const Simulation& simulation, const Inputs& inputs) {
   recording_.total_steps = simulation.steps();
 }
 
-ReplayResult replay(const ScenarioSettings& scenario, const Recording& recording, std::int64_t stop_step) {
+ReplayResult replay(const ScenarioSettings& scenario, const Recording& recording, std::int64_t stop_step,
+                    const ReplayObserver& observer) {
   ReplayResult result;
   result.simulation = std::make_unique<Simulation>(scenario);
   Simulation& sim = *result.simulation;
@@ -25,6 +26,7 @@ ReplayResult replay(const ScenarioSettings& scenario, const Recording& recording
     while (next_input < recording.inputs.size() && recording.inputs[next_input].step <= sim.steps())
       current = recording.inputs[next_input++].inputs;
     sim.single_step(current);  // replay ignores the freeze: held periods were not recorded as steps
+    if (observer) observer(sim, current);
     while (next_checkpoint < recording.checkpoints.size() &&
            recording.checkpoints[next_checkpoint].step < sim.steps())
       ++next_checkpoint;

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -52,9 +53,12 @@ struct ReplayResult {
   std::optional<std::int64_t> first_mismatch;  ///< step of the first checkpoint whose hash differed
 };
 
+/// Called after every replayed step with the inputs of that step (an evaluator watching the replay).
+using ReplayObserver = std::function<void(const Simulation&, const Inputs&)>;
+
 /// Re-simulates `recording` from `scenario` up to `stop_step` (default: its end), comparing every checkpoint.
-ReplayResult replay(const ScenarioSettings& scenario, const Recording& recording,
-                    std::int64_t stop_step = -1);
+ReplayResult replay(const ScenarioSettings& scenario, const Recording& recording, std::int64_t stop_step = -1,
+                    const ReplayObserver& observer = {});
 
 /// Instructor take-over at `step` of a recording: the simulation restored there (by re-simulation) and a
 /// recorder for the new branch, linked to the original as its parent.
