@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <numbers>
 #include <vector>
 
 namespace harbour::physics {
@@ -104,6 +106,99 @@ TEST(PhysicsWorld, SameInputsGiveTheSameStateHash) {
   };
   EXPECT_EQ(run(1000.0), run(1000.0));
   EXPECT_NE(run(1000.0), run(1000.0001));
+}
+
+TEST(PhysicsWorld, AnImpactCarriesTheMomentumItTookAway) {
+  PhysicsWorld w({});
+  w.add_ground(0.0, 7);
+  const BodyId b = w.add_box(box_at({0, 0, 0.5 + 1.25}, 1000.0));
+  std::vector<ImpactEvent> impacts;
+  for (int k = 0; k < 1000; ++k) {
+    w.step(kDt);
+    for (const ImpactEvent& e : w.take_impacts())
+      impacts.push_back(e);
+  }
+  ASSERT_EQ(impacts.size(), 1u);
+  EXPECT_EQ(impacts[0].other_surface, 7);
+  // the contact stops m v in the impact step, then carries the weight for the rest of the window
+  const double v = std::sqrt(2 * kG * 1.25);
+  const double expected = 1000.0 * v + 1000.0 * kG * kDt * (PhysicsWorld::kImpulseWindowSteps - 1);
+  EXPECT_NEAR(impacts[0].impulse_ns, expected, 0.03 * expected);
+  (void)b;
+}
+
+TEST(PhysicsWorld, AnOffCentreCentreOfMassTipsTheBoxTowardsIt) {
+  auto tilt_after_2s = [](double com_x) {
+    PhysicsWorld w({});
+    w.add_ground(0.0);
+    w.add_static_box({0.1, 1.0, 0.5}, {core::Mat3::identity(), {0, 0, 0.5}});  // a ridge under its middle
+    BoxSettings box = box_at({0, 0, 1.25}, 2000.0);
+    box.half_extents_m = {2.0, 0.5, 0.25};
+    box.center_of_mass_m = {com_x, 0, 0};
+    const BodyId b = w.add_box(box);
+    EXPECT_NEAR(w.pose(b).position.x, 0.0, 1e-12);  // the pose is the box's centre, not its centre of mass
+    for (int k = 0; k < 2000; ++k)
+      w.step(kDt);
+    // height of the +x end above the -x end
+    return w.point_position(b, {2, 0, 0}).z - w.point_position(b, {-2, 0, 0}).z;
+  };
+  EXPECT_NEAR(tilt_after_2s(0.0), 0.0, 1e-6);
+  EXPECT_LT(tilt_after_2s(1.0), -0.5);  // the heavy end went down
+  EXPECT_GT(tilt_after_2s(-1.0), 0.5);
+}
+
+TEST(PhysicsWorld, AKinematicBodyCarriesWhatRestsOnIt) {
+  PhysicsWorld w({});
+  const BodyId deck = w.add_kinematic_body({});
+  w.add_box_shape(deck, {5, 5, 0.5}, {core::Mat3::identity(), {0, 0, -0.5}}, 1);
+  const BodyId box = w.add_box(box_at({0, 0, 0.5}, 1000.0));
+  // the deck heaves 0.2 m at 0.1 Hz: the box rides on it
+  for (int k = 0; k < 10000; ++k) {
+    const double t = k * kDt, omega = 2 * std::numbers::pi * 0.1;
+    core::Pose p;
+    p.position.z = 0.2 * std::sin(omega * t);
+    w.set_kinematic_motion(deck, p, {0, 0, 0.2 * omega * std::cos(omega * t)}, {});
+    w.step(kDt);
+  }
+  EXPECT_NEAR(w.pose(box).position.z - w.pose(deck).position.z, 0.5, 0.003);
+}
+
+TEST(PhysicsWorld, ARestoredStateContinuesBitForBit) {
+  auto build = [](PhysicsWorld& w) {
+    w.add_ground(0.0);
+    const BodyId a = w.add_box(box_at({0, 0, 0.6}, 500.0));
+    const BodyId b = w.add_box(box_at({0.2, 0.1, 1.7}, 800.0));
+    const BodyId c = w.add_box(box_at({3, 0, 0.6}, 300.0));
+    return std::array<BodyId, 3>{a, b, c};
+  };
+  auto push = [](PhysicsWorld& w, std::array<BodyId, 3> bodies, int k) {
+    if (k < 300) w.add_force_at(bodies[2], w.point_position(bodies[2], {0.5, 0.2, 0}), {-4000, 0, 0});
+    if (k == 400) w.attach(bodies[0], bodies[1]);
+  };
+  PhysicsWorld original({});
+  const auto bodies = build(original);
+  core::StateWriter saved;
+  for (int k = 0; k < 2500; ++k) {
+    if (k == 1200) original.save_state(saved);
+    push(original, bodies, k);
+    original.step(kDt);
+  }
+  PhysicsWorld restored({});
+  const auto same = build(restored);
+  core::StateReader reader(saved.bytes());
+  restored.restore_state(reader);
+  EXPECT_TRUE(reader.at_end());
+  for (int k = 1200; k < 2500; ++k) {
+    push(restored, same, k);
+    restored.step(kDt);
+  }
+  EXPECT_EQ(restored.state_hash(), original.state_hash());
+
+  PhysicsWorld other({});
+  other.add_ground(0.0);
+  other.add_box(box_at({0, 0, 0.6}, 500.0));
+  core::StateReader wrong(saved.bytes());
+  EXPECT_THROW(other.restore_state(wrong), core::StateError);  // a state of another world is refused
 }
 
 }  // namespace

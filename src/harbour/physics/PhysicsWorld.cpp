@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <mutex>
 
 #include "harbour/core/Assert.h"
@@ -27,6 +28,14 @@ Vec3 to_vec(const dReal* v) {
   return {v[0], v[1], v[2]};
 }
 
+void to_ode(const core::Mat3& m, dMatrix3 r) {
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j)
+      r[4 * i + j] = m.m[i][j];
+    r[4 * i + 3] = 0.0;
+  }
+}
+
 core::Mat3 to_mat(const dReal* r) {
   core::Mat3 m;
   for (int i = 0; i < 3; ++i)
@@ -38,22 +47,77 @@ core::Mat3 to_mat(const dReal* r) {
 }  // namespace
 
 struct PhysicsWorld::Ode {
+  struct Body {
+    dBodyID id = nullptr;
+    Vec3 shape_offset;  // shape centre relative to the centre of mass, body frame
+  };
+  struct Shape {
+    dGeomID id = nullptr;
+    BodyId body = kWorld;
+    int surface = 0;
+  };
+  struct Attachment {
+    dJointID id = nullptr;
+    BodyId a = kWorld, b = kWorld;
+    std::array<double, 19> pose_a{}, pose_b{};  // each body's raw pose when attached
+  };
+  struct PendingContact {
+    int shape1 = 0, shape2 = 0;  // shape1 < shape2
+    int impact = -1;             // index into open impacts, if this pair's touch is being measured
+    dContact contact;
+  };
   dWorldID world = nullptr;
   dSpaceID space = nullptr;
   dJointGroupID contacts = nullptr;
-  std::vector<dBodyID> bodies;
+  std::vector<Body> bodies;
+  std::vector<Shape> shapes;
   std::vector<dJointID> sliders;
   std::vector<double> slider_sign;  // +1 or -1: ODE's slider sign against ours
-  std::vector<dJointID> attachments;
+  std::vector<Attachment> attachments;
   std::vector<dContact> contact_buffer;
+  std::vector<PendingContact> pending;
+  std::vector<dJointFeedback> feedback;
   PhysicsWorld* owner = nullptr;
+
+  int add_shape(dGeomID g, BodyId body, int surface) {
+    shapes.push_back({g, body, surface});
+    const int index = static_cast<int>(shapes.size()) - 1;
+    dGeomSetData(g, reinterpret_cast<void*>(static_cast<std::intptr_t>(index)));
+    return index;
+  }
+  static int shape_index(dGeomID g) {
+    return static_cast<int>(reinterpret_cast<std::intptr_t>(dGeomGetData(g)));
+  }
+  using RawPose = std::array<double, 19>;  // position, quaternion, rotation matrix (ODE's 3x4)
+  RawPose raw_pose(BodyId b) const {
+    RawPose pose;
+    std::memcpy(pose.data(), dBodyGetPosition(bodies[b].id), 3 * sizeof(dReal));
+    std::memcpy(pose.data() + 3, dBodyGetQuaternion(bodies[b].id), 4 * sizeof(dReal));
+    std::memcpy(pose.data() + 7, dBodyGetRotation(bodies[b].id), 12 * sizeof(dReal));
+    return pose;
+  }
+  // Exact restore: dBodySetQuaternion renormalises (measured: the last bit changes in 2 of 5 steps), so the
+  // saved quaternion and matrix are copied into the body's own storage, which ODE 0.16's getters return;
+  // dBodySetPosition then moves the body's shapes.
+  void set_raw_pose(BodyId b, const RawPose& pose) const {
+    std::memcpy(const_cast<dReal*>(dBodyGetQuaternion(bodies[b].id)), pose.data() + 3, 4 * sizeof(dReal));
+    std::memcpy(const_cast<dReal*>(dBodyGetRotation(bodies[b].id)), pose.data() + 7, 12 * sizeof(dReal));
+    dBodySetPosition(bodies[b].id, pose[0], pose[1], pose[2]);
+  }
+  // the shape centre's offset from the centre of mass, world frame
+  Vec3 world_offset(BodyId b) const {
+    return to_mat(dBodyGetRotation(bodies[b].id)) * bodies[b].shape_offset;
+  }
 };
 
 PhysicsWorld::PhysicsWorld(const WorldSettings& settings)
     : ode_(std::make_unique<Ode>()), settings_(settings) {
   init_ode_once();
   ode_->world = dWorldCreate();
-  ode_->space = dSimpleSpaceCreate(nullptr);
+  // a hash space: cost grows with the shapes near each other, not with all pairs (a vessel has hundreds of
+  // cell guides); its pair order is made canonical in collide()
+  ode_->space = dHashSpaceCreate(nullptr);
+  dHashSpaceSetLevels(ode_->space, -2, 6);
   ode_->contacts = dJointGroupCreate(0);
   ode_->owner = this;
   dWorldSetGravity(ode_->world, settings.gravity.x, settings.gravity.y, settings.gravity.z);
@@ -75,52 +139,86 @@ BodyId PhysicsWorld::add_box(const BoxSettings& box) {
   const Vec3 size = box.half_extents_m * 2.0;
   dMassSetBoxTotal(&mass, box.mass_kg, size.x, size.y, size.z);
   dBodySetMass(b, &mass);
-  dBodySetPosition(b, box.pose.position.x, box.pose.position.y, box.pose.position.z);
+  // ODE keeps the centre of mass at the body origin: the body sits there and its box is offset
+  const Vec3 com = box.pose.to_parent(box.center_of_mass_m);
+  dBodySetPosition(b, com.x, com.y, com.z);
   dMatrix3 r;
-  for (int i = 0; i < 3; ++i) {
-    for (int j = 0; j < 3; ++j)
-      r[4 * i + j] = box.pose.rotation.m[i][j];
-    r[4 * i + 3] = 0.0;
-  }
+  to_ode(box.pose.rotation, r);
   dBodySetRotation(b, r);
+  ode_->bodies.push_back({b, box.center_of_mass_m * -1.0});
+  const BodyId id = static_cast<BodyId>(ode_->bodies.size()) - 1;
+  dBodySetData(b, reinterpret_cast<void*>(static_cast<std::intptr_t>(id)));
   if (box.collides) {
     dGeomID g = dCreateBox(ode_->space, size.x, size.y, size.z);
     dGeomSetBody(g, b);
+    if (box.center_of_mass_m.x != 0.0 || box.center_of_mass_m.y != 0.0 || box.center_of_mass_m.z != 0.0)
+      dGeomSetOffsetPosition(g, -box.center_of_mass_m.x, -box.center_of_mass_m.y, -box.center_of_mass_m.z);
+    ode_->add_shape(g, id, box.surface);
   }
-  ode_->bodies.push_back(b);
+  return id;
+}
+
+BodyId PhysicsWorld::add_kinematic_body(const core::Pose& pose) {
+  dBodyID b = dBodyCreate(ode_->world);
+  dBodySetKinematic(b);
+  dBodySetPosition(b, pose.position.x, pose.position.y, pose.position.z);
+  dMatrix3 r;
+  to_ode(pose.rotation, r);
+  dBodySetRotation(b, r);
+  ode_->bodies.push_back({b, {}});
   const BodyId id = static_cast<BodyId>(ode_->bodies.size()) - 1;
   dBodySetData(b, reinterpret_cast<void*>(static_cast<std::intptr_t>(id)));
   return id;
 }
 
-void PhysicsWorld::add_ground(double z_m) {
-  dCreatePlane(ode_->space, 0, 0, 1, z_m);
+void PhysicsWorld::add_box_shape(BodyId body, const Vec3& half_extents_m, const core::Pose& local,
+                                 int surface) {
+  dGeomID g = dCreateBox(ode_->space, 2 * half_extents_m.x, 2 * half_extents_m.y, 2 * half_extents_m.z);
+  dMatrix3 r;
+  to_ode(local.rotation, r);
+  if (body == kWorld) {
+    dGeomSetPosition(g, local.position.x, local.position.y, local.position.z);
+    dGeomSetRotation(g, r);
+  } else {
+    dGeomSetBody(g, ode_->bodies[body].id);
+    const Vec3 at = local.position + ode_->bodies[body].shape_offset;
+    dGeomSetOffsetPosition(g, at.x, at.y, at.z);
+    dGeomSetOffsetRotation(g, r);
+  }
+  ode_->add_shape(g, body, surface);
 }
 
-void PhysicsWorld::add_static_box(const Vec3& half_extents_m, const core::Pose& pose) {
-  dGeomID g = dCreateBox(ode_->space, 2 * half_extents_m.x, 2 * half_extents_m.y, 2 * half_extents_m.z);
-  dGeomSetPosition(g, pose.position.x, pose.position.y, pose.position.z);
+void PhysicsWorld::add_ground(double z_m, int surface) {
+  ode_->add_shape(dCreatePlane(ode_->space, 0, 0, 1, z_m), kWorld, surface);
+}
+
+void PhysicsWorld::add_static_box(const Vec3& half_extents_m, const core::Pose& pose, int surface) {
+  add_box_shape(kWorld, half_extents_m, pose, surface);
+}
+
+void PhysicsWorld::set_kinematic_motion(BodyId body, const core::Pose& pose, const Vec3& velocity,
+                                        const Vec3& angular_velocity) {
+  dBodyID b = ode_->bodies[body].id;
+  dBodySetPosition(b, pose.position.x, pose.position.y, pose.position.z);
   dMatrix3 r;
-  for (int i = 0; i < 3; ++i) {
-    for (int j = 0; j < 3; ++j)
-      r[4 * i + j] = pose.rotation.m[i][j];
-    r[4 * i + 3] = 0.0;
-  }
-  dGeomSetRotation(g, r);
+  to_ode(pose.rotation, r);
+  dBodySetRotation(b, r);
+  dBodySetLinearVel(b, velocity.x, velocity.y, velocity.z);
+  dBodySetAngularVel(b, angular_velocity.x, angular_velocity.y, angular_velocity.z);
 }
 
 int PhysicsWorld::attach(BodyId a, BodyId b) {
   dJointID j = dJointCreateFixed(ode_->world, nullptr);
-  dJointAttach(j, ode_->bodies[a], ode_->bodies[b]);
+  dJointAttach(j, ode_->bodies[a].id, ode_->bodies[b].id);
   dJointSetFixed(j);
-  ode_->attachments.push_back(j);
+  ode_->attachments.push_back({j, a, b, ode_->raw_pose(a), ode_->raw_pose(b)});
   return static_cast<int>(ode_->attachments.size()) - 1;
 }
 
 void PhysicsWorld::detach(int attachment) {
-  dJointID& j = ode_->attachments[static_cast<std::size_t>(attachment)];
-  if (j) dJointDestroy(j);
-  j = nullptr;
+  Ode::Attachment& a = ode_->attachments[static_cast<std::size_t>(attachment)];
+  if (a.id) dJointDestroy(a.id);
+  a.id = nullptr;
 }
 
 int PhysicsWorld::add_slider(BodyId a, BodyId b, const Vec3& axis) {
@@ -129,9 +227,9 @@ int PhysicsWorld::add_slider(BodyId a, BodyId b, const Vec3& axis) {
   // (a, b) attachment is the numerically stable one (measured: (b, a) diverged under the STS trolley), so the
   // adapter flips its sign: our position and motor speed are b relative to a along +axis.
   if (a == kWorld) {
-    dJointAttach(j, ode_->bodies[b], nullptr);
+    dJointAttach(j, ode_->bodies[b].id, nullptr);
   } else {
-    dJointAttach(j, ode_->bodies[a], ode_->bodies[b]);
+    dJointAttach(j, ode_->bodies[a].id, ode_->bodies[b].id);
   }
   dJointSetSliderAxis(j, axis.x, axis.y, axis.z);
   ode_->slider_sign.push_back(a == kWorld ? 1.0 : -1.0);
@@ -153,91 +251,151 @@ double PhysicsWorld::slider_rate(int slider) const {
 }
 
 core::Pose PhysicsWorld::pose(BodyId body) const {
-  return {to_mat(dBodyGetRotation(ode_->bodies[body])), to_vec(dBodyGetPosition(ode_->bodies[body]))};
+  const dBodyID b = ode_->bodies[body].id;
+  return {to_mat(dBodyGetRotation(b)), to_vec(dBodyGetPosition(b)) + ode_->world_offset(body)};
 }
 Vec3 PhysicsWorld::linear_velocity(BodyId body) const {
-  return to_vec(dBodyGetLinearVel(ode_->bodies[body]));
+  const dBodyID b = ode_->bodies[body].id;
+  return to_vec(dBodyGetLinearVel(b)) + cross(to_vec(dBodyGetAngularVel(b)), ode_->world_offset(body));
 }
 Vec3 PhysicsWorld::angular_velocity(BodyId body) const {
-  return to_vec(dBodyGetAngularVel(ode_->bodies[body]));
+  return to_vec(dBodyGetAngularVel(ode_->bodies[body].id));
 }
 
 double PhysicsWorld::mass_kg(BodyId body) const {
   dMass m;
-  dBodyGetMass(ode_->bodies[body], &m);
+  dBodyGetMass(ode_->bodies[body].id, &m);
   return m.mass;
 }
 
 Vec3 PhysicsWorld::point_position(BodyId body, const Vec3& local) const {
   if (body == kWorld) return local;
+  const Vec3 at = local + ode_->bodies[body].shape_offset;
   dVector3 out;
-  dBodyGetRelPointPos(ode_->bodies[body], local.x, local.y, local.z, out);
+  dBodyGetRelPointPos(ode_->bodies[body].id, at.x, at.y, at.z, out);
   return to_vec(out);
 }
 
 Vec3 PhysicsWorld::point_velocity(BodyId body, const Vec3& local) const {
   if (body == kWorld) return {};
+  const Vec3 at = local + ode_->bodies[body].shape_offset;
   dVector3 out;
-  dBodyGetRelPointVel(ode_->bodies[body], local.x, local.y, local.z, out);
+  dBodyGetRelPointVel(ode_->bodies[body].id, at.x, at.y, at.z, out);
   return to_vec(out);
 }
 
 void PhysicsWorld::add_force_at(BodyId body, const Vec3& p, const Vec3& f) {
   if (body == kWorld) return;
-  dBodyAddForceAtPos(ode_->bodies[body], f.x, f.y, f.z, p.x, p.y, p.z);
+  dBodyAddForceAtPos(ode_->bodies[body].id, f.x, f.y, f.z, p.x, p.y, p.z);
 }
 
 void PhysicsWorld::set_position(BodyId body, const Vec3& p) {
-  dBodySetPosition(ode_->bodies[body], p.x, p.y, p.z);
+  const Vec3 com = p - ode_->world_offset(body);
+  dBodySetPosition(ode_->bodies[body].id, com.x, com.y, com.z);
 }
 void PhysicsWorld::set_linear_velocity(BodyId body, const Vec3& v) {
-  dBodySetLinearVel(ode_->bodies[body], v.x, v.y, v.z);
+  const dBodyID b = ode_->bodies[body].id;
+  const Vec3 com = v - cross(to_vec(dBodyGetAngularVel(b)), ode_->world_offset(body));
+  dBodySetLinearVel(b, com.x, com.y, com.z);
+}
+
+void PhysicsWorld::collide() {
+  // gather every touching pair's contacts with the pair ordered by shape index, then sort by pair: the joint
+  // order (and so the solver's result, bit for bit) depends only on the state, not on the space's history
+  ode_->pending.clear();
+  dSpaceCollide(ode_->space, ode_.get(), [](void* data, dGeomID g1, dGeomID g2) {
+    auto* ode = static_cast<Ode*>(data);
+    dBodyID b1 = dGeomGetBody(g1), b2 = dGeomGetBody(g2);
+    if (!b1 && !b2) return;
+    if (b1 && b2 && (b1 == b2 || dAreConnectedExcluding(b1, b2, dJointTypeContact))) return;
+    if (b1 && b2 && dBodyIsKinematic(b1) && dBodyIsKinematic(b2)) return;
+    if (Ode::shape_index(g1) > Ode::shape_index(g2)) std::swap(g1, g2);
+    const WorldSettings& s = ode->owner->settings_;
+    std::vector<dContact>& contacts = ode->contact_buffer;  // reused: no allocation per colliding pair
+    contacts.resize(static_cast<std::size_t>(s.max_contacts_per_pair));
+    const int n = dCollide(g1, g2, s.max_contacts_per_pair, &contacts[0].geom, sizeof(dContact));
+    for (int i = 0; i < n; ++i)
+      ode->pending.push_back(
+          {Ode::shape_index(g1), Ode::shape_index(g2), -1, contacts[static_cast<std::size_t>(i)]});
+  });
+  std::stable_sort(ode_->pending.begin(), ode_->pending.end(), [](const auto& a, const auto& b) {
+    return a.shape1 != b.shape1 ? a.shape1 < b.shape1 : a.shape2 < b.shape2;
+  });
+
+  // impacts: a pair of (body or static shape, surface) touching after being apart for impact_rearm_s opens an
+  // impact window that measures its closing speed now and its impulse over the next steps
+  const auto rearm = static_cast<std::int64_t>(settings_.impact_rearm_s / step_s_);
+  for (std::size_t i = 0; i < ode_->pending.size(); ++i) {
+    Ode::PendingContact& p = ode_->pending[i];
+    const Ode::Shape& s1 = ode_->shapes[static_cast<std::size_t>(p.shape1)];
+    const Ode::Shape& s2 = ode_->shapes[static_cast<std::size_t>(p.shape2)];
+    const TouchKey key{s1.body == kWorld ? -2 - p.shape1 : s1.body, s1.surface,
+                       s2.body == kWorld ? -2 - p.shape2 : s2.body, s2.surface};
+    const bool same_as_previous =
+        i > 0 && ode_->pending[i - 1].shape1 == p.shape1 && ode_->pending[i - 1].shape2 == p.shape2;
+    if (!same_as_previous) {
+      auto last = last_touch_.find(key);
+      if (last == last_touch_.end() || step_count_ - last->second > rearm) {
+        const dContactGeom& g = p.contact.geom;
+        dVector3 v1{0, 0, 0, 0}, v2{0, 0, 0, 0};
+        if (s1.body != kWorld) dBodyGetPointVel(ode_->bodies[s1.body].id, g.pos[0], g.pos[1], g.pos[2], v1);
+        if (s2.body != kWorld) dBodyGetPointVel(ode_->bodies[s2.body].id, g.pos[0], g.pos[1], g.pos[2], v2);
+        const double closing = std::abs((v1[0] - v2[0]) * g.normal[0] + (v1[1] - v2[1]) * g.normal[1] +
+                                        (v1[2] - v2[2]) * g.normal[2]);
+        ImpactEvent e{s1.body, s2.body, s1.surface, s2.surface, closing, 0.0, {g.pos[0], g.pos[1], g.pos[2]}};
+        if (e.body == kWorld) {  // a body first, static geometry second
+          std::swap(e.body, e.other);
+          std::swap(e.surface, e.other_surface);
+        }
+        open_impacts_.push_back({key, e, kImpulseWindowSteps});
+      }
+      last_touch_[key] = step_count_;
+    }
+    for (std::size_t w = 0; w < open_impacts_.size(); ++w)
+      if (open_impacts_[w].key == key) p.impact = static_cast<int>(w);
+  }
+
+  const WorldSettings& s = settings_;
+  ode_->feedback.resize(ode_->pending.size());  // sized before any joint points into it
+  for (std::size_t i = 0; i < ode_->pending.size(); ++i) {
+    dContact& c = ode_->pending[i].contact;
+    c.surface.mode = dContactSoftERP | dContactSoftCFM | dContactApprox1;
+    c.surface.mu = s.contact_friction;
+    c.surface.soft_erp = s.contact_erp;
+    c.surface.soft_cfm = s.contact_cfm;
+    dJointID j = dJointCreateContact(ode_->world, ode_->contacts, &c);
+    dJointAttach(j, dGeomGetBody(c.geom.g1), dGeomGetBody(c.geom.g2));
+    dJointSetFeedback(j, &ode_->feedback[i]);
+  }
+  contact_count_ = static_cast<int>(ode_->pending.size());
+}
+
+void PhysicsWorld::close_impact_windows(double dt_s) {
+  for (std::size_t i = 0; i < ode_->pending.size(); ++i) {
+    const Ode::PendingContact& p = ode_->pending[i];
+    if (p.impact < 0) continue;
+    const dJointFeedback& f = ode_->feedback[i];
+    const dReal* n = p.contact.geom.normal;
+    const double f1 = std::abs(f.f1[0] * n[0] + f.f1[1] * n[1] + f.f1[2] * n[2]);
+    const double f2 = std::abs(f.f2[0] * n[0] + f.f2[1] * n[1] + f.f2[2] * n[2]);
+    open_impacts_[static_cast<std::size_t>(p.impact)].event.impulse_ns += std::max(f1, f2) * dt_s;
+  }
+  std::size_t kept = 0;
+  for (OpenImpact& w : open_impacts_) {
+    if (--w.steps_left <= 0) {
+      impacts_.push_back(w.event);
+    } else {
+      open_impacts_[kept++] = w;
+    }
+  }
+  open_impacts_.resize(kept);
 }
 
 void PhysicsWorld::step(double dt_s) {
   step_s_ = dt_s;
-  // contacts: every colliding geometry pair in the simple space's fixed order
-  contact_count_ = 0;
-  dSpaceCollide(ode_->space, ode_.get(), [](void* data, dGeomID g1, dGeomID g2) {
-    auto* ode = static_cast<Ode*>(data);
-    const WorldSettings& s = ode->owner->settings_;
-    dBodyID b1 = dGeomGetBody(g1), b2 = dGeomGetBody(g2);
-    if (!b1 && !b2) return;
-    if (b1 && b2 && dAreConnectedExcluding(b1, b2, dJointTypeContact)) return;
-    std::vector<dContact>& contacts = ode->contact_buffer;  // reused: no allocation per colliding pair
-    contacts.resize(static_cast<std::size_t>(s.max_contacts_per_pair));
-    const int n = dCollide(g1, g2, s.max_contacts_per_pair, &contacts[0].geom, sizeof(dContact));
-    // a pair touching now that did not touch last step is an impact: closing speed along the normal
-    PhysicsWorld& self = *ode->owner;
-    const BodyId id1 = b1 ? static_cast<BodyId>(reinterpret_cast<std::intptr_t>(dBodyGetData(b1))) : kWorld;
-    const BodyId id2 = b2 ? static_cast<BodyId>(reinterpret_cast<std::intptr_t>(dBodyGetData(b2))) : kWorld;
-    if (n > 0) {
-      const std::uint64_t key = (static_cast<std::uint64_t>(static_cast<std::uint32_t>(id1)) << 32) |
-                                static_cast<std::uint32_t>(id2);
-      const auto last = self.last_touch_.find(key);
-      const auto rearm = static_cast<std::int64_t>(s.impact_rearm_s / self.step_s_);
-      if (last == self.last_touch_.end() || self.step_count_ - last->second > rearm) {
-        const dContactGeom& g = contacts[0].geom;
-        dVector3 v1{0, 0, 0, 0}, v2{0, 0, 0, 0};
-        if (b1) dBodyGetPointVel(b1, g.pos[0], g.pos[1], g.pos[2], v1);
-        if (b2) dBodyGetPointVel(b2, g.pos[0], g.pos[1], g.pos[2], v2);
-        const double closing = std::abs((v1[0] - v2[0]) * g.normal[0] + (v1[1] - v2[1]) * g.normal[1] +
-                                        (v1[2] - v2[2]) * g.normal[2]);
-        self.impacts_.push_back({id1, id2, closing, {g.pos[0], g.pos[1], g.pos[2]}});
-      }
-      self.last_touch_[key] = self.step_count_;
-    }
-    for (int i = 0; i < n; ++i) {
-      dContact& c = contacts[static_cast<std::size_t>(i)];
-      c.surface.mode = dContactSoftERP | dContactSoftCFM | dContactApprox1;
-      c.surface.mu = s.contact_friction;
-      c.surface.soft_erp = s.contact_erp;
-      c.surface.soft_cfm = s.contact_cfm;
-      dJointAttach(dJointCreateContact(ode->world, ode->contacts, &c), b1, b2);
-    }
-    ode->owner->contact_count_ += n;
-  });
+  collide();
   dWorldStep(ode_->world, dt_s);
+  close_impact_windows(dt_s);
   dJointGroupEmpty(ode_->contacts);
   ++step_count_;
 }
@@ -250,13 +408,101 @@ std::vector<ImpactEvent> PhysicsWorld::take_impacts() {
 
 std::uint64_t PhysicsWorld::state_hash() const {
   core::StateHash hash;
-  for (dBodyID b : ode_->bodies) {
+  for (const Ode::Body& body : ode_->bodies) {
+    const dBodyID b = body.id;
     hash.add_bytes(dBodyGetPosition(b), 3 * sizeof(dReal));
     hash.add_bytes(dBodyGetQuaternion(b), 4 * sizeof(dReal));
     hash.add_bytes(dBodyGetLinearVel(b), 3 * sizeof(dReal));
     hash.add_bytes(dBodyGetAngularVel(b), 3 * sizeof(dReal));
   }
   return hash.value();
+}
+
+namespace {
+constexpr std::uint32_t kPhysicsSection = 0x50485953;  // "PHYS"
+struct Touch {
+  std::array<int, 4> key;
+  std::int64_t step;
+};
+}  // namespace
+
+void PhysicsWorld::save_state(core::StateWriter& out) const {
+  out.section(kPhysicsSection);
+  std::vector<double> bodies;
+  for (std::size_t b = 0; b < ode_->bodies.size(); ++b) {
+    const auto pose = ode_->raw_pose(static_cast<BodyId>(b));
+    bodies.insert(bodies.end(), pose.begin(), pose.end());
+    const dReal* v = dBodyGetLinearVel(ode_->bodies[b].id);
+    const dReal* w = dBodyGetAngularVel(ode_->bodies[b].id);
+    bodies.insert(bodies.end(), {v[0], v[1], v[2], w[0], w[1], w[2]});
+  }
+  out.put(bodies);
+  out.put(static_cast<std::uint64_t>(ode_->attachments.size()));
+  for (const Ode::Attachment& a : ode_->attachments) {
+    out.put(a.id != nullptr);
+    out.put(a.a);
+    out.put(a.b);
+    out.put(a.pose_a);
+    out.put(a.pose_b);
+  }
+  std::vector<Touch> touches;
+  for (const auto& [key, step] : last_touch_)
+    touches.push_back({key, step});
+  out.put(touches);
+  std::vector<OpenImpact> open(open_impacts_.begin(), open_impacts_.end());
+  out.put(open);
+  out.put(step_count_);
+  out.put(step_s_);
+}
+
+void PhysicsWorld::restore_state(core::StateReader& in) {
+  in.section(kPhysicsSection, "physics");
+  std::vector<double> bodies;
+  constexpr std::size_t kPerBody = 19 + 6;
+  in.get(bodies, static_cast<std::int64_t>(ode_->bodies.size() * kPerBody));
+  // attachments first (a fixed joint keeps the relative pose of the moment it was made), then the bodies
+  for (Ode::Attachment& a : ode_->attachments)
+    if (a.id) dJointDestroy(a.id);
+  ode_->attachments.clear();
+  const auto attachments = in.get<std::uint64_t>();
+  for (std::uint64_t n = 0; n < attachments; ++n) {
+    Ode::Attachment a;
+    const bool active = in.get<bool>();
+    in.get(a.a);
+    in.get(a.b);
+    in.get(a.pose_a);
+    in.get(a.pose_b);
+    const auto count = static_cast<BodyId>(ode_->bodies.size());
+    if (a.a < 0 || a.a >= count || a.b < 0 || a.b >= count)
+      throw core::StateError("saved state attaches a body this simulation does not have");
+    if (active) {
+      ode_->set_raw_pose(a.a, a.pose_a);
+      ode_->set_raw_pose(a.b, a.pose_b);
+      a.id = dJointCreateFixed(ode_->world, nullptr);
+      dJointAttach(a.id, ode_->bodies[a.a].id, ode_->bodies[a.b].id);
+      dJointSetFixed(a.id);
+    }
+    ode_->attachments.push_back(a);
+  }
+  for (std::size_t b = 0; b < ode_->bodies.size(); ++b) {
+    const double* v = &bodies[kPerBody * b];
+    Ode::RawPose pose;
+    std::copy(v, v + 19, pose.begin());
+    ode_->set_raw_pose(static_cast<BodyId>(b), pose);
+    dBodySetLinearVel(ode_->bodies[b].id, v[19], v[20], v[21]);
+    dBodySetAngularVel(ode_->bodies[b].id, v[22], v[23], v[24]);
+  }
+  std::vector<Touch> touches;
+  in.get(touches);
+  last_touch_.clear();
+  for (const Touch& t : touches)
+    last_touch_[t.key] = t.step;
+  std::vector<OpenImpact> open;
+  in.get(open);
+  open_impacts_ = open;
+  in.get(step_count_);
+  in.get(step_s_);
+  impacts_.clear();
 }
 
 }  // namespace harbour::physics

@@ -1,10 +1,12 @@
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <map>
 #include <memory>
 #include <vector>
 
+#include "harbour/core/StateArchive.h"
 #include "harbour/core/Vec3.h"
 
 namespace harbour::physics {
@@ -29,12 +31,14 @@ struct WorldSettings {
 };
 
 /// The first contact of two bodies (or a body and static geometry: other = kWorld) after being apart for a
-/// while.
+/// while, reported kImpulseWindowSteps after it began, with the impulse of that window.
 struct ImpactEvent {
   BodyId body = kWorld;
   BodyId other = kWorld;
-  double normal_speed_mps = 0.0;  ///< [m/s] closing speed along the contact normal
-  core::Vec3 point;               ///< [m] world
+  int surface = 0, other_surface = 0;  ///< the touching geometries' surface tags (the caller's categories)
+  double normal_speed_mps = 0.0;       ///< [m/s] closing speed along the contact normal
+  double impulse_ns = 0.0;  ///< [N s] normal contact impulse over the impact window (the first steps)
+  core::Vec3 point;         ///< [m] world
 };
 
 /// A box body (settings).
@@ -43,11 +47,15 @@ struct BoxSettings {
   double mass_kg = 1.0;                      ///< [kg] uniform density
   core::Pose pose;                           ///< initial pose in the world
   bool collides = true;                      ///< has a collision geometry
+  int surface = 0;                           ///< tag reported with its impacts
+  core::Vec3 center_of_mass_m;  ///< [m] box frame: off-centre gravity (a container's uneven cargo)
 };
 
 /// Thin adapter over ODE 0.16 (double precision): bodies, joints, contacts, forces at points, and a
-/// deterministic fixed step (dWorldStep, collision in a simple space: fixed pair order). One instance owns
-/// its ODE world; ODE itself is initialised once per process.
+/// deterministic fixed step (dWorldStep; contacts sorted by geometry before they become joints, so the order
+/// never depends on the collision space's history and a restored state steps exactly as the original). A
+/// body's pose is its shape's centre even when its centre of mass is elsewhere. One instance owns its ODE
+/// world; ODE itself is initialised once per process.
 class PhysicsWorld {
  public:
   explicit PhysicsWorld(const WorldSettings& settings);
@@ -55,11 +63,21 @@ class PhysicsWorld {
   PhysicsWorld(const PhysicsWorld&) = delete;
   PhysicsWorld& operator=(const PhysicsWorld&) = delete;
 
+  static constexpr int kImpulseWindowSteps = 5;
+
   BodyId add_box(const BoxSettings& box);
+  /// A body moved by the caller (set_kinematic_motion): a vessel, a truck. It pushes dynamic bodies and is
+  /// not pushed; its shapes come from add_box_shape.
+  BodyId add_kinematic_body(const core::Pose& pose);
+  /// A box shape on `body` at a pose in the body's frame (kWorld: a static box at a world pose).
+  void add_box_shape(BodyId body, const core::Vec3& half_extents_m, const core::Pose& local, int surface);
   /// A static horizontal ground plane at height `z_m`.
-  void add_ground(double z_m);
+  void add_ground(double z_m, int surface = 0);
   /// A static box (quay furniture, a vessel's deck or hatch cover) at a world pose.
-  void add_static_box(const core::Vec3& half_extents_m, const core::Pose& pose);
+  void add_static_box(const core::Vec3& half_extents_m, const core::Pose& pose, int surface = 0);
+  /// Places a kinematic body and sets the velocities it moves with through the next step.
+  void set_kinematic_motion(BodyId body, const core::Pose& pose, const core::Vec3& velocity,
+                            const core::Vec3& angular_velocity);
   /// Rigidly joins two bodies as they are now (twistlocks locked); returns a handle for detach().
   int attach(BodyId a, BodyId b);
   void detach(int attachment);
@@ -91,13 +109,27 @@ class PhysicsWorld {
   std::vector<ImpactEvent> take_impacts();
   /// Hash of every body's position, orientation and velocities (bit-exact).
   std::uint64_t state_hash() const;
+  /// Bodies, attachments and impact bookkeeping; restore into a world built the same way continues exactly.
+  void save_state(core::StateWriter& out) const;
+  void restore_state(core::StateReader& in);
 
  private:
   struct Ode;
   std::unique_ptr<Ode> ode_;
   WorldSettings settings_;
+  /// Who touches whom, for impacts: a body (or a static shape as -2 - shape index) and its surface, twice.
+  using TouchKey = std::array<int, 4>;
+  struct OpenImpact {
+    TouchKey key{};
+    ImpactEvent event;
+    int steps_left = 0;
+  };
+  void collide();
+  void close_impact_windows(double dt_s);
+
   int contact_count_ = 0;
-  std::map<std::uint64_t, std::int64_t> last_touch_;  // body-pair key -> last step the pair touched
+  std::map<TouchKey, std::int64_t> last_touch_;  // last step each pair touched
+  std::vector<OpenImpact> open_impacts_;
   std::int64_t step_count_ = 0;
   double step_s_ = 0.001;
   std::vector<ImpactEvent> impacts_;

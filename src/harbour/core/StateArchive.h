@@ -1,0 +1,91 @@
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+namespace harbour::core {
+
+/// Raised when a saved state does not fit the simulation it is restored into (truncated, or from another
+/// scenario or build).
+class StateError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Writes the exact bytes of state values (a keyframe). Values are written in the order the component's
+/// save_state lists them; restore_state reads them back in the same order.
+class StateWriter {
+ public:
+  template <typename T>
+  requires std::is_trivially_copyable_v<T>
+  void put(const T& v) {
+    const auto* p = reinterpret_cast<const std::uint8_t*>(&v);
+    bytes_.insert(bytes_.end(), p, p + sizeof v);
+  }
+  template <typename T>
+  requires std::is_trivially_copyable_v<T>
+  void put(const std::vector<T>& values) {
+    put(static_cast<std::uint64_t>(values.size()));
+    const auto* p = reinterpret_cast<const std::uint8_t*>(values.data());
+    bytes_.insert(bytes_.end(), p, p + values.size() * sizeof(T));
+  }
+  /// A tag that restore checks, so a state from another layout is refused instead of misread.
+  void section(std::uint32_t tag) { put(tag); }
+  const std::vector<std::uint8_t>& bytes() const { return bytes_; }
+  std::vector<std::uint8_t> take() { return std::move(bytes_); }
+
+ private:
+  std::vector<std::uint8_t> bytes_;
+};
+
+/// Reads what a StateWriter wrote; throws StateError on truncation, a wrong section tag or a wrong count.
+class StateReader {
+ public:
+  explicit StateReader(const std::vector<std::uint8_t>& bytes) : bytes_(bytes) {}
+
+  template <typename T>
+  requires std::is_trivially_copyable_v<T>
+  void get(T& v) {
+    need(sizeof v);
+    std::memcpy(&v, bytes_.data() + at_, sizeof v);
+    at_ += sizeof v;
+  }
+  template <typename T>
+  requires std::is_trivially_copyable_v<T> T get() {
+    T v{};
+    get(v);
+    return v;
+  }
+  /// Reads a vector; `expected_size` (if not -1) must match, as for arrays whose size the scenario fixes.
+  template <typename T>
+  requires std::is_trivially_copyable_v<T>
+  void get(std::vector<T>& values, std::int64_t expected_size = -1) {
+    const auto n = get<std::uint64_t>();
+    if (expected_size >= 0 && n != static_cast<std::uint64_t>(expected_size))
+      throw StateError("saved state holds " + std::to_string(n) + " entries where the simulation has " +
+                       std::to_string(expected_size));
+    if (n > (bytes_.size() - at_) / sizeof(T)) throw StateError("saved state is truncated");
+    values.resize(static_cast<std::size_t>(n));
+    std::memcpy(values.data(), bytes_.data() + at_, values.size() * sizeof(T));
+    at_ += values.size() * sizeof(T);
+  }
+  void section(std::uint32_t tag, const char* what) {
+    if (get<std::uint32_t>() != tag)
+      throw StateError(std::string("saved state does not match this simulation at its ") + what + " section");
+  }
+  bool at_end() const { return at_ == bytes_.size(); }
+
+ private:
+  void need(std::size_t n) const {
+    if (bytes_.size() - at_ < n) throw StateError("saved state is truncated");
+  }
+  const std::vector<std::uint8_t>& bytes_;
+  std::size_t at_ = 0;
+};
+
+}  // namespace harbour::core
