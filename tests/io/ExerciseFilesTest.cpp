@@ -25,10 +25,17 @@ void expect_error(const std::string& from, const std::string& to, const std::str
 TEST(ExerciseFiles, ShippedDischargeLoads) {
   const sim::ExerciseSettings e = load_exercise(HARBOUR_DATA_DIR "/exercises/sts_discharge.yaml");
   EXPECT_EQ(e.name, "sts_discharge");
-  ASSERT_EQ(e.scenario.containers.size(), 3u);
+  ASSERT_EQ(e.scenario.containers.size(), 3u + 6u);  // and two hatch cover panels on each of three bays
   EXPECT_DOUBLE_EQ(e.scenario.containers[1].half_extents_m.x, 12.192 / 2);  // ISO 668 40 ft
   ASSERT_EQ(e.moves.size(), 1u);
-  EXPECT_EQ(e.moves[0].container_id, "BOX2");
+  EXPECT_EQ(e.moves[0].container_id, "TGHU1000012");
+  EXPECT_NEAR(e.moves[0].target_m.z, 1.5 + 2.591 / 2, 1e-12);  // on the truck's chassis
+  // bay 12, row 01 (first row to starboard of the centreline), tier 82 (first on deck), along the quay
+  EXPECT_NEAR(e.scenario.containers[1].pose.position.x, 31.0 + 2.54 / 2, 1e-9);
+  EXPECT_NEAR(e.scenario.containers[1].pose.position.y, 0.0, 1e-9);
+  EXPECT_NEAR(e.scenario.containers[1].pose.rotation.m[1][0], 1.0, 1e-12);
+  EXPECT_EQ(e.scenario.containers[8].id, "HATCH16S");
+  EXPECT_EQ(e.scenario.containers[8].kind, sim::ContainerPlacement::Kind::kHatchCover);
   EXPECT_EQ(e.rules.time_limit_s, 180.0);
 }
 
@@ -42,14 +49,25 @@ TEST(ExerciseFiles, WeatherAndEventsLoad) {
 }
 
 TEST(ExerciseFiles, BadExercisesNameTheField) {
-  expect_error("type: 40ft, gross_mass_kg: 22000, position_m: [42.0, 0.0",
-               "type: 53ft, gross_mass_kg: 22000, position_m: [42.0, 0.0", "exercise.containers[1].type",
+  expect_error("{id: TGHU1000012, type: 40ft", "{id: TGHU1000012, type: 53ft", "exercise.containers[1].type",
                "unknown container type '53ft'");
-  expect_error("container: BOX2", "container: BOX9", "exercise.moves[0].container", "no container 'BOX9'");
+  expect_error("container: TGHU1000012", "container: TGHU1000099", "exercise.moves[0].container",
+               "no container 'TGHU1000099'");
+  expect_error("slot: [12, 1, 82]", "slot: [12, 9, 82]", "exercise.containers[1].slot", "no row 9");
+  expect_error("slot: [12, 3, 82]", "slot: [13, 3, 82]", "exercise.containers[0].slot", "no 40 ft bay 13");
+  expect_error("slot: [12, 2, 82]", "slot: [12, 2, 81]", "exercise.containers[2].slot", "tier 81");
+  expect_error("{id: TGHU1000014, type: 40ft, gross_mass_kg: 22000, slot: [12, 2, 82]",
+               "{id: TGHU1000014, type: 20ft, gross_mass_kg: 22000, slot: [12, 2, 2]",
+               "exercise.containers[2].type", "the holds have 40 ft cells");
+  expect_error("slot: [12, 2, 82]", "slot: [12, 2, 82], center_of_mass_m: [7.0, 0, 0]",
+               "exercise.containers[2].center_of_mass_m", "outside the container");
+  expect_error("keel_midship_m: [31.0,", "keel_midship_m: [25.0,", "exercise.vessel.keel_midship_m",
+               "overlaps the quay");
+  expect_error("to: truck", "to: trailer", "exercise.moves[0].to", "only 'truck'");
   expect_error("machine: ../machines/sts.yaml", "machine: ../machines/rtg.yaml", "exercise.machine",
                "no such file");
-  expect_error("trolley_x_m: 42.0", "trolley_x_m: 99.0", "exercise.crane.trolley_x_m", "outside");
-  expect_error("{id: BOX3,", "{id: BOX1,", "exercise.containers[2].id", "duplicate container");
+  expect_error("trolley_x_m: 32.27", "trolley_x_m: 99.0", "exercise.crane.trolley_x_m", "outside");
+  expect_error("{id: TGHU1000014,", "{id: TGHU1000010,", "exercise.containers[2].id", "duplicate container");
 }
 
 }  // namespace

@@ -26,7 +26,7 @@ TEST(MachineFiles, ShippedStsLoadsWithItsHoist) {
   const sim::StsCraneSettings s = load_sts_crane(HARBOUR_DATA_DIR "/machines/sts.yaml");
   EXPECT_EQ(s.trolley_drive.max_speed_mps, 4.0);
   EXPECT_EQ(s.hoist.ropes.size(), 4u);
-  EXPECT_DOUBLE_EQ(s.spreader_half_extents_m.x, 12.192 / 2);
+  EXPECT_DOUBLE_EQ(s.spreader_half_extents_m.y, 12.192 / 2);  // along the quay
 }
 
 TEST(MachineFiles, BadStsFilesNameTheField) {

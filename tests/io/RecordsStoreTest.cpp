@@ -67,7 +67,7 @@ TEST(RecordsStore, KillingTheProcessMidExerciseKeepsTheMovesDoneSoFar) {
     db.add_trainee("t001", "Ana Pérez");
   }
   sim::ExerciseSettings exercise = scenes::sts_discharge_exercise(HARBOUR_DATA_DIR);
-  exercise.moves.push_back({"BOX1", {8.0, -9.0, 2.591 / 2}, 0.3});  // then a second box onto the quay
+  exercise.moves.push_back({"TGHU1000010", {-5.0, 0.0, 2.591 / 2}, 0.3});  // then a second box onto the quay
 
   const pid_t child = fork();
   ASSERT_GE(child, 0);

@@ -10,8 +10,9 @@
 
 namespace harbour::scenes {
 
-/// The shipped discharge exercise (data/exercises/sts_discharge.yaml): the crane over a vessel's deck
-/// carrying three 40 ft boxes, a truck chassis on the quay, one move (BOX2 onto the truck).
+/// The shipped discharge exercise (data/exercises/sts_discharge.yaml): the crane over a feeder's bay 12
+/// with three 40 ft boxes on its hatch covers, a truck under the crane, one move (TGHU1000012 onto the
+/// truck).
 inline sim::ExerciseSettings sts_discharge_exercise(const std::string& data_dir) {
   return io::load_exercise(data_dir + "/exercises/sts_discharge.yaml");
 }

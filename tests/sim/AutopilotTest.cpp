@@ -53,9 +53,9 @@ TEST(Autopilot, ABadOperatorGetsTheDocumentedPenalties) {
 }
 
 TEST(Evaluation, HittingABoxThatIsNotTheTaskIsACollision) {
-  // the task is BOX1; the operator drives the empty spreader down fast onto BOX2, which lies right below it
+  // the task is TGHU1000010; the operator drives the empty spreader down fast onto TGHU1000012 right below it
   ExerciseSettings exercise = scenes::sts_discharge_exercise(HARBOUR_DATA_DIR);
-  exercise.moves[0].container_id = "BOX1";
+  exercise.moves[0].container_id = "TGHU1000010";
   Simulation sim(exercise.scenario);
   Evaluator evaluator(exercise);
   Inputs drop;
@@ -72,9 +72,9 @@ TEST(Evaluation, HittingABoxThatIsNotTheTaskIsACollision) {
   EXPECT_EQ(evaluator.metrics().collisions, 1);
   EXPECT_NEAR(evaluator.metrics().worst_collision_mps, speed, 0.1);
   EXPECT_GT(speed, 0.5);
-  const core::Vec3 at = sim.crane().spreader_pose().position;  // on BOX2's top
+  const core::Vec3 at = sim.crane().spreader_pose().position;  // on TGHU1000012's top
   EXPECT_NEAR(at.y, 0.0, 0.1);
-  EXPECT_NEAR(at.z, 8.0 + 2.591 + 0.5, 0.1);
+  EXPECT_NEAR(at.z, 3.3 + 2.591 + 0.5, 0.1);
   EXPECT_EQ(evaluator.score().total,
             100.0 - exercise.rules.points_collision - exercise.rules.points_per_move_missing);
 }

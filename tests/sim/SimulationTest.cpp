@@ -56,11 +56,13 @@ TEST(Simulation, SnapshotShowsTheMachineAndTheContainers) {
   const Snapshot snap = s.snapshot();
   EXPECT_EQ(snap.step, 3000);
   EXPECT_DOUBLE_EQ(snap.time_s, 3.0);
-  EXPECT_GT(snap.trolley_x_m, 42.0);  // moved waterside
-  ASSERT_EQ(snap.containers.size(), 3u);
-  EXPECT_EQ(snap.containers[1].id, "BOX2");
-  EXPECT_NEAR(snap.containers[1].pose.position.z, 8.0 + 2.591 / 2, 0.01);  // standing on deck
-  EXPECT_GT(snap.hoisted_load_n, 0.9 * 15000 * 9.80665);                   // the spreader hangs
+  EXPECT_GT(snap.trolley_x_m, 32.27);          // moved waterside
+  ASSERT_EQ(snap.containers.size(), 3u + 6u);  // and the hatch covers of three bays
+  EXPECT_EQ(snap.containers[1].id, "TGHU1000012");
+  // on the hatch cover: keel -10.5 + depth 11.5 + coaming 1.5 + cover 0.8
+  EXPECT_NEAR(snap.containers[1].pose.position.z, 3.3 + 2.591 / 2, 0.01);
+  EXPECT_EQ(snap.containers[3].id, "HATCH8P");
+  EXPECT_GT(snap.hoisted_load_n, 0.9 * 15000 * 9.80665);  // the spreader hangs
 }
 
 }  // namespace

@@ -103,7 +103,7 @@ TEST(Weather, AFailedLandedSensorPreventsLocking) {
   Simulation sim(s);
   Inputs lower;
   lower.sts.hoist = -0.1;
-  for (int k = 0; k < 60000 && sim.crane().spreader_pose().position.z > 8.0 + 2.591 + 0.5; ++k)
+  for (int k = 0; k < 60000 && sim.crane().spreader_pose().position.z > 3.3 + 2.591 + 0.5; ++k)
     sim.step(lower);
   for (int k = 0; k < 1000; ++k)
     sim.step(lower);  // sitting on the box

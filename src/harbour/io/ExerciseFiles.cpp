@@ -1,10 +1,15 @@
 #include "harbour/io/ExerciseFiles.h"
 
+#include <cmath>
 #include <filesystem>
 #include <map>
+#include <numbers>
+#include <optional>
 
 #include "harbour/core/Units.h"
 #include "harbour/io/MachineFiles.h"
+#include "harbour/io/VesselFiles.h"
+#include "harbour/sim/Trucks.h"
 
 namespace harbour::io {
 namespace {
@@ -19,6 +24,10 @@ const std::map<std::string, core::Vec3>& iso_types() {
                                                           {"45ftHC", {13.716, 2.438, 2.896}}};
   return types;
 }
+
+// ISO 668 corner casting centres [m] (length, width): 20 ft, and 40 ft (also on 45 ft boxes and hatch covers)
+constexpr double kCastings20_m[2] = {5.853, 2.259};
+constexpr double kCastings40_m[2] = {11.985, 2.259};
 
 std::string item(const std::string& list, std::size_t n) {
   return list + "[" + std::to_string(n) + "]";
@@ -44,6 +53,51 @@ sim::ExerciseSettings load_exercise(const YamlFile& f, const std::string& folder
                            s.crane.trolley_drive.max_position_m);
   s.spreader_z_m =
       f.number(crane, "spreader_z_m", "exercise.crane", 0.0, s.crane.trolley_rail_height_m - 2.0, true);
+
+  std::optional<sim::VesselGeometry> vessel;
+  std::vector<sim::ContainerPlacement> hatch_covers;  // listed after the containers
+  if (x["vessel"].IsDefined()) {
+    const YAML::Node v = x["vessel"];
+    const std::string file = f.text(v, "file", "exercise.vessel");
+    const std::string path = (std::filesystem::path(folder) / file).lexically_normal().string();
+    if (!std::filesystem::exists(path)) f.fail(v["file"], "exercise.vessel.file", "no such file: " + path);
+    sim::VesselPlacement placement;
+    placement.vessel = load_vessel(path);
+    placement.keel_midship_m =
+        f.vector3(f.required(v, "keel_midship_m", "exercise.vessel"), "exercise.vessel.keel_midship_m");
+    if (v["sea_state"].IsDefined())
+      placement.sea = read_sea_state(f, v["sea_state"], "exercise.vessel.sea_state");
+    s.quay_edge_x_m = f.number_or(x, "quay_edge_x_m", "exercise", s.quay_edge_x_m, -kHuge, kHuge);
+    if (placement.keel_midship_m.x - placement.vessel.beam_m / 2 < s.quay_edge_x_m)
+      f.fail(v["keel_midship_m"], "exercise.vessel.keel_midship_m",
+             "the hull overlaps the quay (quay_edge_x_m)");
+    s.vessel = placement;
+    vessel.emplace(placement);
+    // the hatch covers, each with lifting pockets where a 40 ft box has its castings
+    const core::Pose at_start = vessel->pose_at(0.0);
+    for (const sim::VesselGeometry::Panel& panel : vessel->hatch_panels()) {
+      sim::ContainerPlacement c;
+      c.id = panel.id;
+      c.kind = sim::ContainerPlacement::Kind::kHatchCover;
+      c.half_extents_m = {panel.half_extents_m.y, panel.half_extents_m.x, panel.half_extents_m.z};
+      c.gross_mass_kg = placement.vessel.hatch_cover_mass_kg;
+      c.pose = {at_start.rotation * core::Mat3::rotation({0, 0, 1}, std::numbers::pi / 2),
+                at_start.to_parent(panel.centre_m)};
+      c.pocket_half_length_m = kCastings40_m[0] / 2;
+      c.pocket_half_width_m = kCastings40_m[1] / 2;
+      c.on_vessel = true;
+      hatch_covers.push_back(c);
+    }
+  }
+  if (x["trucks"].IsDefined()) {
+    const YAML::Node t = x["trucks"];
+    const std::string at = "exercise.trucks";
+    sim::TruckLaneSettings& lane = s.trucks;
+    lane.trucks = f.integer(t, "count", at, 1, 100);
+    lane.lane_x_m = f.number(t, "lane_x_m", at, -kHuge, kHuge);
+    lane.stop_y_m = f.number(t, "stop_y_m", at, -kHuge, kHuge);
+    lane.chassis_top_m = f.number_or(t, "chassis_top_m", at, lane.chassis_top_m, 0.5, 3.0);
+  }
 
   if (x["blocks"].IsDefined()) {
     const YAML::Node blocks = f.sequence(x, "blocks", "exercise");
@@ -71,9 +125,48 @@ sim::ExerciseSettings load_exercise(const YamlFile& f, const std::string& folder
     p.half_extents_m = t->second * 0.5;
     p.gross_mass_kg =
         f.number(c, "gross_mass_kg", at, 1000.0, 40000.0);  // tare .. above the ISO 30 480 kg max gross
-    p.position_m = f.vector3(f.required(c, "position_m", at), at + ".position_m");
-    p.yaw_rad = core::deg_to_rad(f.number_or(c, "yaw_deg", at, 0.0, -360.0, 360.0));
+    const bool twenty = type == "20ft";
+    p.pocket_half_length_m = (twenty ? kCastings20_m[0] : kCastings40_m[0]) / 2;
+    p.pocket_half_width_m = (twenty ? kCastings20_m[1] : kCastings40_m[1]) / 2;
+    if (c["center_of_mass_m"].IsDefined()) {
+      p.center_of_mass_m = f.vector3(c["center_of_mass_m"], at + ".center_of_mass_m");
+      const core::Vec3& h = p.half_extents_m;
+      if (std::abs(p.center_of_mass_m.x) > h.x || std::abs(p.center_of_mass_m.y) > h.y ||
+          std::abs(p.center_of_mass_m.z) > h.z)
+        f.fail(c["center_of_mass_m"], at + ".center_of_mass_m", "lies outside the container");
+    }
+    if (c["slot"].IsDefined() == c["position_m"].IsDefined())
+      f.fail(c, at, "give either slot: [bay, row, tier] on the vessel or position_m, not both");
+    if (c["slot"].IsDefined()) {
+      const YAML::Node slot = c["slot"];
+      if (!vessel) f.fail(slot, at + ".slot", "a slot needs the exercise's vessel");
+      if (!slot.IsSequence() || slot.size() != 3) f.fail(slot, at + ".slot", "must be [bay, row, tier]");
+      sim::SlotAddress address;
+      try {
+        address = {slot[0].as<int>(), slot[1].as<int>(), slot[2].as<int>()};
+      } catch (const YAML::Exception&) {
+        f.fail(slot, at + ".slot", "bay, row and tier must be whole numbers");
+      }
+      std::string why;
+      const std::optional<core::Vec3> centre = vessel->slot_centre(address, 2.0 * p.half_extents_m.z, why);
+      if (!centre) f.fail(slot, at + ".slot", why);
+      if (address.tier < 80 && type != "40ft" && type != "40ftHC")
+        f.fail(c["type"], at + ".type", "the holds have 40 ft cells: " + type + " goes on deck");
+      const core::Pose vessel_pose = vessel->pose_at(0.0);
+      p.pose = {vessel_pose.rotation * core::Mat3::rotation({0, 0, 1}, std::numbers::pi / 2),
+                vessel_pose.to_parent(*centre)};
+      p.on_vessel = true;
+    } else {
+      // on the quay or a chassis: along the quay unless turned
+      const double yaw = core::deg_to_rad(f.number_or(c, "yaw_deg", at, 90.0, -360.0, 360.0));
+      p.pose = {core::Mat3::rotation({0, 0, 1}, yaw), f.vector3(c["position_m"], at + ".position_m")};
+    }
     s.containers.push_back(p);
+  }
+  for (const sim::ContainerPlacement& cover : hatch_covers) {
+    for (const auto& c : s.containers)
+      if (c.id == cover.id) f.fail(containers, "exercise.containers", "'" + c.id + "' is a hatch cover's id");
+    s.containers.push_back(cover);
   }
 
   const YAML::Node moves = f.sequence(x, "moves", "exercise");
@@ -87,7 +180,16 @@ sim::ExerciseSettings load_exercise(const YamlFile& f, const std::string& folder
     if (!known)
       f.fail(moves[n]["container"], at + ".container",
              "no container '" + g.container_id + "' in this exercise");
-    g.target_m = f.vector3(f.required(moves[n], "target_m", at), at + ".target_m");
+    if (moves[n]["to"].IsDefined()) {
+      if (f.text(moves[n], "to", at) != "truck") f.fail(moves[n]["to"], at + ".to", "only 'truck' is known");
+      if (s.trucks.trucks == 0) f.fail(moves[n]["to"], at + ".to", "the exercise has no trucks");
+      double height = 0.0;
+      for (const auto& c : s.containers)
+        if (c.id == g.container_id) height = 2.0 * c.half_extents_m.z;
+      g.target_m = {s.trucks.lane_x_m, s.trucks.stop_y_m, s.trucks.chassis_top_m + height / 2};
+    } else {
+      g.target_m = f.vector3(f.required(moves[n], "target_m", at), at + ".target_m");
+    }
     g.tolerance_m = f.number_or(moves[n], "tolerance_m", at, g.tolerance_m, 0.0, 5.0, true);
     e.moves.push_back(g);
   }

@@ -45,8 +45,10 @@ sim::StsCraneSettings load_sts_crane(const YamlFile& f, const std::string& folde
       f.number(hoist_limits, "lower_limit_m", "machine.hoist", -100.0, s.hoist_upper_limit_m, false, true);
   const YAML::Node spreader = f.required(m, "spreader", "machine");
   s.spreader_mass_kg = f.number(spreader, "mass_kg", "machine.spreader", 0.0, kHuge, true);
-  s.spreader_half_extents_m = {0.5 * f.number(spreader, "length_m", "machine.spreader", 0.0, 30.0, true),
-                               0.5 * f.number(spreader, "width_m", "machine.spreader", 0.0, 10.0, true),
+  // the spreader's length lies along the quay (the crane's y), like the containers on the vessel
+  const double length = f.number(spreader, "length_m", "machine.spreader", 0.0, 30.0, true);
+  s.spreader_half_extents_m = {0.5 * f.number(spreader, "width_m", "machine.spreader", 0.0, 10.0, true),
+                               0.5 * length,
                                0.5 * f.number(spreader, "height_m", "machine.spreader", 0.0, 10.0, true)};
   const YAML::Node t = f.required(m, "twistlocks", "machine");
   s.twistlocks.lateral_tolerance_m = f.number(t, "lateral_tolerance_m", "machine.twistlocks", 0.0, 1.0, true);

@@ -49,7 +49,8 @@ core::Mat3 to_mat(const dReal* r) {
 struct PhysicsWorld::Ode {
   struct Body {
     dBodyID id = nullptr;
-    Vec3 shape_offset;  // shape centre relative to the centre of mass, body frame
+    Vec3 shape_offset;          // shape centre relative to the centre of mass, body frame
+    dSpaceID shapes = nullptr;  // a kinematic body's own space (a vessel has hundreds of shapes)
   };
   struct Shape {
     dGeomID id = nullptr;
@@ -114,10 +115,10 @@ PhysicsWorld::PhysicsWorld(const WorldSettings& settings)
     : ode_(std::make_unique<Ode>()), settings_(settings) {
   init_ode_once();
   ode_->world = dWorldCreate();
-  // a hash space: cost grows with the shapes near each other, not with all pairs (a vessel has hundreds of
-  // cell guides); its pair order is made canonical in collide()
-  ode_->space = dHashSpaceCreate(nullptr);
-  dHashSpaceSetLevels(ode_->space, -2, 6);
+  // a simple space; a kinematic body's shapes sit in a space of their own inside it, only searched for
+  // dynamic bodies that come near (measured: a hash space spent 55 % of an exercise step on the vessel's
+  // moving cell guides). The pair order is made canonical in collide().
+  ode_->space = dSimpleSpaceCreate(nullptr);
   ode_->contacts = dJointGroupCreate(0);
   ode_->owner = this;
   dWorldSetGravity(ode_->world, settings.gravity.x, settings.gravity.y, settings.gravity.z);
@@ -147,6 +148,7 @@ BodyId PhysicsWorld::add_box(const BoxSettings& box) {
   dBodySetRotation(b, r);
   ode_->bodies.push_back({b, box.center_of_mass_m * -1.0});
   const BodyId id = static_cast<BodyId>(ode_->bodies.size()) - 1;
+  if (box.kinematic) dBodySetKinematic(b);
   dBodySetData(b, reinterpret_cast<void*>(static_cast<std::intptr_t>(id)));
   if (box.collides) {
     dGeomID g = dCreateBox(ode_->space, size.x, size.y, size.z);
@@ -165,7 +167,9 @@ BodyId PhysicsWorld::add_kinematic_body(const core::Pose& pose) {
   dMatrix3 r;
   to_ode(pose.rotation, r);
   dBodySetRotation(b, r);
-  ode_->bodies.push_back({b, {}});
+  dSpaceID shapes = dSimpleSpaceCreate(ode_->space);
+  dSpaceSetCleanup(shapes, 1);
+  ode_->bodies.push_back({b, {}, shapes});
   const BodyId id = static_cast<BodyId>(ode_->bodies.size()) - 1;
   dBodySetData(b, reinterpret_cast<void*>(static_cast<std::intptr_t>(id)));
   return id;
@@ -173,7 +177,9 @@ BodyId PhysicsWorld::add_kinematic_body(const core::Pose& pose) {
 
 void PhysicsWorld::add_box_shape(BodyId body, const Vec3& half_extents_m, const core::Pose& local,
                                  int surface) {
-  dGeomID g = dCreateBox(ode_->space, 2 * half_extents_m.x, 2 * half_extents_m.y, 2 * half_extents_m.z);
+  const dSpaceID space =
+      body != kWorld && ode_->bodies[body].shapes ? ode_->bodies[body].shapes : ode_->space;
+  dGeomID g = dCreateBox(space, 2 * half_extents_m.x, 2 * half_extents_m.y, 2 * half_extents_m.z);
   dMatrix3 r;
   to_ode(local.rotation, r);
   if (body == kWorld) {
@@ -194,6 +200,18 @@ void PhysicsWorld::add_ground(double z_m, int surface) {
 
 void PhysicsWorld::add_static_box(const Vec3& half_extents_m, const core::Pose& pose, int surface) {
   add_box_shape(kWorld, half_extents_m, pose, surface);
+}
+
+void PhysicsWorld::set_kinematic(BodyId body, bool kinematic) {
+  if (kinematic) {
+    dBodySetKinematic(ode_->bodies[body].id);
+  } else {
+    dBodySetDynamic(ode_->bodies[body].id);
+  }
+}
+
+bool PhysicsWorld::is_kinematic(BodyId body) const {
+  return dBodyIsKinematic(ode_->bodies[body].id) != 0;
 }
 
 void PhysicsWorld::set_kinematic_motion(BodyId body, const core::Pose& pose, const Vec3& velocity,
@@ -303,12 +321,23 @@ void PhysicsWorld::collide() {
   // gather every touching pair's contacts with the pair ordered by shape index, then sort by pair: the joint
   // order (and so the solver's result, bit for bit) depends only on the state, not on the space's history
   ode_->pending.clear();
-  dSpaceCollide(ode_->space, ode_.get(), [](void* data, dGeomID g1, dGeomID g2) {
+  static dNearCallback* const near = [](void* data, dGeomID g1, dGeomID g2) {
     auto* ode = static_cast<Ode*>(data);
+    if (dGeomIsSpace(g1) || dGeomIsSpace(g2)) {
+      // a kinematic body's shapes: only against a dynamic body's shape
+      if (dGeomIsSpace(g1) && dGeomIsSpace(g2)) return;
+      const dGeomID other = dGeomIsSpace(g1) ? g2 : g1;
+      const dBodyID b = dGeomGetBody(other);
+      if (!b || dBodyIsKinematic(b)) return;
+      dSpaceCollide2(g1, g2, data, near);
+      return;
+    }
     dBodyID b1 = dGeomGetBody(g1), b2 = dGeomGetBody(g2);
     if (!b1 && !b2) return;
     if (b1 && b2 && (b1 == b2 || dAreConnectedExcluding(b1, b2, dJointTypeContact))) return;
-    if (b1 && b2 && dBodyIsKinematic(b1) && dBodyIsKinematic(b2)) return;
+    // kinematic bodies push dynamic ones only: not each other, not static geometry
+    const bool kinematic1 = !b1 || dBodyIsKinematic(b1), kinematic2 = !b2 || dBodyIsKinematic(b2);
+    if (kinematic1 && kinematic2) return;
     if (Ode::shape_index(g1) > Ode::shape_index(g2)) std::swap(g1, g2);
     const WorldSettings& s = ode->owner->settings_;
     std::vector<dContact>& contacts = ode->contact_buffer;  // reused: no allocation per colliding pair
@@ -317,7 +346,8 @@ void PhysicsWorld::collide() {
     for (int i = 0; i < n; ++i)
       ode->pending.push_back(
           {Ode::shape_index(g1), Ode::shape_index(g2), -1, contacts[static_cast<std::size_t>(i)]});
-  });
+  };
+  dSpaceCollide(ode_->space, ode_.get(), near);
   std::stable_sort(ode_->pending.begin(), ode_->pending.end(), [](const auto& a, const auto& b) {
     return a.shape1 != b.shape1 ? a.shape1 < b.shape1 : a.shape2 < b.shape2;
   });
@@ -434,7 +464,8 @@ void PhysicsWorld::save_state(core::StateWriter& out) const {
     bodies.insert(bodies.end(), pose.begin(), pose.end());
     const dReal* v = dBodyGetLinearVel(ode_->bodies[b].id);
     const dReal* w = dBodyGetAngularVel(ode_->bodies[b].id);
-    bodies.insert(bodies.end(), {v[0], v[1], v[2], w[0], w[1], w[2]});
+    bodies.insert(bodies.end(),
+                  {v[0], v[1], v[2], w[0], w[1], w[2], dBodyIsKinematic(ode_->bodies[b].id) ? 1.0 : 0.0});
   }
   out.put(bodies);
   out.put(static_cast<std::uint64_t>(ode_->attachments.size()));
@@ -458,7 +489,7 @@ void PhysicsWorld::save_state(core::StateWriter& out) const {
 void PhysicsWorld::restore_state(core::StateReader& in) {
   in.section(kPhysicsSection, "physics");
   std::vector<double> bodies;
-  constexpr std::size_t kPerBody = 19 + 6;
+  constexpr std::size_t kPerBody = 19 + 6 + 1;
   in.get(bodies, static_cast<std::int64_t>(ode_->bodies.size() * kPerBody));
   // attachments first (a fixed joint keeps the relative pose of the moment it was made), then the bodies
   for (Ode::Attachment& a : ode_->attachments)
@@ -491,6 +522,7 @@ void PhysicsWorld::restore_state(core::StateReader& in) {
     ode_->set_raw_pose(static_cast<BodyId>(b), pose);
     dBodySetLinearVel(ode_->bodies[b].id, v[19], v[20], v[21]);
     dBodySetAngularVel(ode_->bodies[b].id, v[22], v[23], v[24]);
+    set_kinematic(static_cast<BodyId>(b), v[25] != 0.0);
   }
   std::vector<Touch> touches;
   in.get(touches);

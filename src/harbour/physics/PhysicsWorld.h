@@ -49,6 +49,7 @@ struct BoxSettings {
   bool collides = true;                      ///< has a collision geometry
   int surface = 0;                           ///< tag reported with its impacts
   core::Vec3 center_of_mass_m;  ///< [m] box frame: off-centre gravity (a container's uneven cargo)
+  bool kinematic = false;       ///< starts moved by the caller (secured cargo) until set_kinematic(false)
 };
 
 /// Thin adapter over ODE 0.16 (double precision): bodies, joints, contacts, forces at points, and a
@@ -75,6 +76,10 @@ class PhysicsWorld {
   void add_ground(double z_m, int surface = 0);
   /// A static box (quay furniture, a vessel's deck or hatch cover) at a world pose.
   void add_static_box(const core::Vec3& half_extents_m, const core::Pose& pose, int surface = 0);
+  /// Switches a body between kinematic (moved by the caller, pushes others, costs no solver rows) and
+  /// dynamic (keeps its velocity and its mass).
+  void set_kinematic(BodyId body, bool kinematic);
+  bool is_kinematic(BodyId body) const;
   /// Places a kinematic body and sets the velocities it moves with through the next step.
   void set_kinematic_motion(BodyId body, const core::Pose& pose, const core::Vec3& velocity,
                             const core::Vec3& angular_velocity);

@@ -36,19 +36,21 @@ core::Vec3 Autopilot::source(const Simulation& simulation) const {
 }
 
 void Autopilot::start_travel(const core::Vec3& to, double now) {
-  trolley_ = {to.x, 0.0, now, false, 0.0};
-  gantry_ = {to.y, 0.0, now, false, 0.0};
+  trolley_ = {to.x, 0.0, now, false, 0.0, -1.0};
+  gantry_ = {to.y, 0.0, now, false, 0.0, -1.0};
 }
 
 double Autopilot::axis_lever(AxisMove& m, double position, double max_speed, double period,
                              double now) const {
-  // trapezoid in the lever: ramp up over one period, brake over one period when the remaining distance equals
-  // what a linear ramp-down covers (v T / 2), then creep onto the target
+  // trapezoid in the lever: ramp up over exactly one period (so the swing it starts ends with the ramp),
+  // brake over one period when the remaining distance equals what a linear ramp-down covers (v T / 2), then
+  // creep onto the target. A move too short to reach cruise ramps to a lower top, still over one period.
   const double error = m.target - position;
   const double direction = error >= 0.0 ? 1.0 : -1.0;
+  if (m.top < 0.0) m.top = std::min(kCruiseLever, std::abs(error) / (max_speed * period));
   if (!m.decelerating) {
-    m.peak = std::min(kCruiseLever, kCruiseLever * (now - m.ramp_start) / period);
-    if (std::abs(error) <= m.peak * max_speed * period / 2.0) {
+    m.peak = std::min(m.top, m.top * (now - m.ramp_start) / period);
+    if (std::abs(error) <= m.peak * max_speed * period / 2.0 && m.peak > 0.0) {
       m.decelerating = true;
       m.decel_from = m.peak;
       m.ramp_start = now;

@@ -32,6 +32,7 @@ class Autopilot {
     double ramp_start = 0.0;  // [s]
     bool decelerating = false;
     double decel_from = 0.0;  // lever when braking began
+    double top = -1.0;        // lever to ramp to (set on the first step: short moves never reach cruise)
   };
 
   double axis_lever(AxisMove& m, double position, double max_speed, double period, double now) const;

@@ -9,20 +9,41 @@ namespace harbour::sim {
 Simulation::Simulation(const ScenarioSettings& scenario)
     : scenario_(scenario), weather_(scenario.weather, scenario.seed) {
   world_ = std::make_unique<physics::PhysicsWorld>(physics::WorldSettings{});
-  world_->add_ground(0.0);
+  if (scenario.vessel) {
+    // the quay apron up to its edge, the harbour bed under the water
+    constexpr double kQuayDepth_m = 20.0, kQuayLand_m = 500.0;
+    world_->add_static_box(
+        {kQuayLand_m / 2, kQuayLand_m, kQuayDepth_m / 2},
+        {core::Mat3::identity(), {scenario.quay_edge_x_m - kQuayLand_m / 2, 0.0, -kQuayDepth_m / 2}},
+        kSurfaceQuay);
+    world_->add_ground(-kQuayDepth_m, kSurfaceGround);
+    vessel_ = std::make_unique<Vessel>(*world_, *scenario.vessel);
+  } else {
+    world_->add_ground(0.0, kSurfaceQuay);
+  }
   for (const StaticBlock& b : scenario.blocks) {
     core::Pose p;
     p.position = b.position_m;
-    world_->add_static_box(b.half_extents_m, p);
+    world_->add_static_box(b.half_extents_m, p, kSurfaceQuay);
   }
   for (const ContainerPlacement& c : scenario.containers) {
     physics::BoxSettings box;
     box.half_extents_m = c.half_extents_m;
     box.mass_kg = c.gross_mass_kg;
-    box.pose.position = c.position_m;
-    box.pose.rotation = core::Mat3::rotation({0, 0, 1}, c.yaw_rad);
-    containers_.push_back({world_->add_box(box), c.half_extents_m});
+    box.pose = c.pose;
+    box.center_of_mass_m = c.center_of_mass_m;
+    box.surface = c.kind == ContainerPlacement::Kind::kHatchCover ? kSurfaceHatchCover : kSurfaceContainer;
+    box.kinematic = true;
+    containers_.push_back(
+        {world_->add_box(box), c.half_extents_m, c.pocket_half_length_m, c.pocket_half_width_m});
+    secured_.push_back(true);
+    const core::Pose vessel_at_start = vessel_ ? vessel_->geometry().pose_at(0.0) : core::Pose{};
+    stowed_.push_back(c.on_vessel && vessel_
+                          ? core::Pose{vessel_at_start.rotation.transposed() * c.pose.rotation,
+                                       vessel_at_start.to_local(c.pose.position)}
+                          : c.pose);
   }
+  if (scenario.trucks.trucks > 0) trucks_ = std::make_unique<TruckLane>(*world_, scenario.trucks);
   crane_ = std::make_unique<StsCrane>(*world_, scenario.crane, scenario.gantry_y_m, scenario.trolley_x_m,
                                       scenario.spreader_z_m);
 }
@@ -66,13 +87,53 @@ void Simulation::apply_wind() {
   }
 }
 
+void Simulation::move_secured_cargo() {
+  if (!vessel_) return;
+  const double t = clock_.time_s();
+  const core::Pose vessel = vessel_->geometry().pose_at(t);
+  core::Vec3 v, w;
+  vessel_->geometry().velocities_at(t, v, w);
+  const core::Vec3 centre = world_->pose(vessel_->body()).position;  // where v is the velocity
+  for (std::size_t n = 0; n < containers_.size(); ++n) {
+    if (!secured_[n] || !scenario_.containers[n].on_vessel) continue;
+    // the body's reference is its centre of mass: place that, moving with the hull
+    const core::Pose shape{vessel.rotation * stowed_[n].rotation, vessel.to_parent(stowed_[n].position)};
+    const core::Pose body{shape.rotation, shape.to_parent(scenario_.containers[n].center_of_mass_m)};
+    world_->set_kinematic_motion(containers_[n].body, body, v + cross(w, body.position - centre), w);
+  }
+}
+
+void Simulation::release(std::size_t item) {
+  // frees a secured item and, first, whatever is stacked on it (their locks and lashings go with it)
+  if (!secured_[item]) return;
+  secured_[item] = false;
+  world_->set_kinematic(containers_[item].body, false);
+  const core::Pose p = world_->pose(containers_[item].body);
+  const core::Vec3& h = containers_[item].half_extents_m;
+  for (std::size_t n = 0; n < containers_.size(); ++n) {
+    if (!secured_[n]) continue;
+    const core::Pose q = world_->pose(containers_[n].body);
+    const core::Vec3 local = p.to_local(q.position);
+    const double reach_x = h.x + containers_[n].half_extents_m.x,
+                 reach_y = h.y + containers_[n].half_extents_m.y;
+    const bool above = std::abs(local.z - h.z - containers_[n].half_extents_m.z) < 0.05;
+    if (above && std::abs(local.x) < reach_x && std::abs(local.y) < reach_y) release(n);
+  }
+}
+
 void Simulation::advance(const Inputs& inputs) {
   // scripted events, weather and wind, the machine (drives, ropes, twistlocks) pushing on the bodies, then
   // the multibody step
   apply_due_events();
   weather_.step(kStep_s);
   apply_wind();
+  if (vessel_) vessel_->move_to(clock_.time_s());
+  move_secured_cargo();
   crane_->step(inputs.sts, containers_, kStep_s);
+  if (const auto locked = crane_->locked_container())
+    for (std::size_t n = 0; n < containers_.size(); ++n)
+      if (containers_[n].body == *locked) release(n);
+  if (trucks_) trucks_->step(kStep_s, containers_, *crane_);
   world_->step(kStep_s);
   clock_.advance();
   events_.impacts = world_->take_impacts();
@@ -105,6 +166,11 @@ Snapshot Simulation::snapshot() const {
   s.time_of_day_h = weather_.time_of_day_h();
   s.visibility_m = scenario_.weather.visibility_m;
   s.rain_mm_per_h = scenario_.weather.rain_mm_per_h;
+  if (vessel_) s.vessel = vessel_->geometry().pose_at(clock_.time_s());
+  if (trucks_)
+    for (int k = 0; k < scenario_.trucks.trucks; ++k)
+      s.trucks.push_back({core::Mat3::identity(),
+                          {scenario_.trucks.lane_x_m, trucks_->truck_y(k), scenario_.trucks.chassis_top_m}});
   for (std::size_t n = 0; n < containers_.size(); ++n)
     s.containers.push_back({scenario_.containers[n].id, world_->pose(containers_[n].body),
                             crane_->locked_container() == containers_[n].body});

@@ -2,6 +2,8 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -9,6 +11,8 @@
 #include "harbour/core/Warnings.h"
 #include "harbour/physics/PhysicsWorld.h"
 #include "harbour/sim/StsCrane.h"
+#include "harbour/sim/Trucks.h"
+#include "harbour/sim/Vessel.h"
 #include "harbour/sim/Weather.h"
 
 namespace harbour::sim {
@@ -20,13 +24,17 @@ struct Inputs {
   friend bool operator==(const Inputs&, const Inputs&) = default;
 };
 
-/// A container placed in the scenario (ISO 668 sizes).
+/// A container (ISO 668 sizes) or a hatch cover placed in the scenario: anything the spreader lifts.
 struct ContainerPlacement {
+  enum class Kind : std::uint8_t { kContainer, kHatchCover };
   std::string id;
-  core::Vec3 half_extents_m;   ///< [m]
-  double gross_mass_kg = 0.0;  ///< [kg] tare + cargo
-  core::Vec3 position_m;       ///< [m] centre, world
-  double yaw_rad = 0.0;        ///< [rad]
+  Kind kind = Kind::kContainer;
+  core::Vec3 half_extents_m;    ///< [m] x along its length
+  double gross_mass_kg = 0.0;   ///< [kg] tare + cargo
+  core::Pose pose;              ///< centre, world
+  core::Vec3 center_of_mass_m;  ///< [m] from its centre, its frame (unevenly stowed cargo)
+  double pocket_half_length_m = 0.0, pocket_half_width_m = 0.0;  ///< [m] corner castings / lifting pockets
+  bool on_vessel = false;  ///< stowed on the vessel (moves with it while secured)
 };
 
 /// A static block the containers stand on (vessel deck, hatch cover, quay furniture).
@@ -50,6 +58,11 @@ struct ScenarioSettings {
   StsCraneSettings crane;
   double gantry_y_m = 0.0, trolley_x_m = 20.0, spreader_z_m = 20.0;  ///< [m] crane pose at the start
   std::vector<StaticBlock> blocks;
+  /// The quay's waterside edge [m]: with a vessel the quay is a block up to it and the harbour bed lies
+  /// below the water; without one the ground is a plane at the quay's level.
+  double quay_edge_x_m = 18.0;
+  std::optional<VesselPlacement> vessel;
+  TruckLaneSettings trucks;
   std::vector<ContainerPlacement> containers;
   WeatherSettings weather;
   std::vector<ScriptedEvent> events;  ///< in time order
@@ -72,6 +85,8 @@ struct Snapshot {
     bool locked = false;
   };
   std::vector<Container> containers;
+  core::Pose vessel;               ///< vessel frame (keel, midship, centreline) in the world
+  std::vector<core::Pose> trucks;  ///< chassis top centre of each truck
   double hoisted_load_n = 0.0;
   core::Vec3 wind_mps;          ///< [m/s] world
   double time_of_day_h = 12.0;  ///< [h]
@@ -115,12 +130,18 @@ class Simulation {
   physics::BodyId container_body(std::size_t index) const { return containers_[index].body; }
   const physics::PhysicsWorld& world() const { return *world_; }
   const Weather& weather() const { return weather_; }
+  const Vessel* vessel() const { return vessel_.get(); }
+  const TruckLane* trucks() const { return trucks_.get(); }
+  /// Everything the spreader can lift (containers, then hatch covers), in scenario order.
+  std::span<const ContainerRef> liftables() const { return containers_; }
   StsCrane& crane() { return *crane_; }
   const StsCrane& crane() const { return *crane_; }
   const ScenarioSettings& scenario() const { return scenario_; }
 
  private:
   void advance(const Inputs& inputs);
+  void move_secured_cargo();
+  void release(std::size_t item);
   void apply_due_events();
   void apply_wind();
 
@@ -129,7 +150,14 @@ class Simulation {
   std::unique_ptr<physics::PhysicsWorld> world_;
   std::unique_ptr<StsCrane> crane_;
   std::vector<ContainerRef> containers_;
+  /// Cargo at rest is secured (deck boxes twistlocked to the hatch covers and to each other, hold boxes in
+  /// their cells, hatch covers cleated, quay boxes on the ground): kinematic, carried with the vessel, no
+  /// contacts to solve. The spreader locking onto a box releases it and everything stacked on it.
+  std::vector<bool> secured_;
+  std::vector<core::Pose> stowed_;  // secured pose in the vessel frame (on the vessel) or the world
   Weather weather_;
+  std::unique_ptr<Vessel> vessel_;
+  std::unique_ptr<TruckLane> trucks_;
   std::size_t next_event_ = 0;
   bool held_ = false;
   core::Warnings warnings_;

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
+
+#include "harbour/sim/Vessel.h"
 
 #include "harbour/core/Braking.h"
 
@@ -42,6 +45,7 @@ StsCrane::StsCrane(physics::PhysicsWorld& world, const StsCraneSettings& setting
   physics::BoxSettings spreader;
   spreader.mass_kg = settings.spreader_mass_kg;
   spreader.half_extents_m = settings.spreader_half_extents_m;
+  spreader.surface = kSurfaceSpreader;
   spreader.pose.position = {trolley_x_m, gantry_y_m, spreader_z_m};
   spreader_ = world.add_box(spreader);
 
@@ -87,15 +91,17 @@ void StsCrane::step(const StsControls& c, std::span<const ContainerRef> containe
 
   // twistlocks against the container under the spreader, if any
   const core::Pose spreader = world_.pose(spreader_);
+  // twistlock frame: on the underside, x along the spreader's length (the quay's y)
   core::Pose underside = spreader;
   underside.position = spreader.to_parent({0, 0, -settings_.spreader_half_extents_m.z});
+  underside.rotation = spreader.rotation * core::Mat3::rotation({0, 0, 1}, std::numbers::pi / 2);
   std::array<bool, 4> landed{};
   std::optional<physics::BodyId> landed_on;
   for (const ContainerRef& box : containers) {
     core::Pose top = world_.pose(box.body);
     top.position = top.to_parent({0, 0, box.half_extents_m.z});
-    auto corners =
-        landed_corners(underside, top, box.half_extents_m.x, box.half_extents_m.y, settings_.twistlocks);
+    auto corners = landed_corners(underside, top, box.pocket_half_length_m, box.pocket_half_width_m,
+                                  settings_.twistlocks);
     if (landed_sensor_fault_ >= 0) corners[static_cast<std::size_t>(landed_sensor_fault_)] = false;
     if (corners[0] && corners[1] && corners[2] && corners[3]) {
       landed = corners;

@@ -27,7 +27,7 @@ struct StsCraneSettings {
   double hoist_upper_limit_m =
       44.0;  ///< [m] spreader centre height where the upper limit switch stops hoisting
   double hoist_lower_limit_m = -20.0;  ///< [m] ... and the lower one stops lowering (into a hold)
-  core::Vec3 spreader_half_extents_m{6.096, 1.219, 0.5};  ///< [m] at its 40 ft setting
+  core::Vec3 spreader_half_extents_m{1.219, 6.096, 0.5};  ///< [m] x across, y along the quay (40 ft setting)
   TwistlockSettings twistlocks;
   cable::ReevingSettings hoist;
 };
@@ -43,10 +43,12 @@ struct StsControls {
   friend bool operator==(const StsControls&, const StsControls&) = default;
 };
 
-/// A container the spreader may land on: its body and half extents.
+/// Something the spreader may land on and lift (a container, a hatch cover): its body, its shape's half
+/// extents (body frame, x along its length) and where its corner castings or lifting pockets are.
 struct ContainerRef {
   physics::BodyId body = physics::kWorld;
   core::Vec3 half_extents_m;
+  double pocket_half_length_m = 0.0, pocket_half_width_m = 0.0;  ///< [m] casting centres from its centre
 };
 
 /// The STS crane on the physics world: gantry and trolley on motorised sliders driven by Drives, the spreader
@@ -62,6 +64,7 @@ class StsCrane {
   double gantry_position_m() const { return gantry_start_y_ + world_.slider_position(gantry_slider_); }
   double trolley_position_m() const { return trolley_start_x_ + world_.slider_position(trolley_slider_); }
   core::Pose spreader_pose() const { return world_.pose(spreader_); }
+  const core::Vec3& spreader_half_extents_m() const { return settings_.spreader_half_extents_m; }
   physics::BodyId spreader_body() const { return spreader_; }
   /// The container locked to the spreader, if any.
   std::optional<physics::BodyId> locked_container() const { return locked_container_; }
