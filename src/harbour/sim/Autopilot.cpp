@@ -66,8 +66,11 @@ double Autopilot::axis_lever(AxisMove& m, double position, double max_speed, dou
 
 Inputs Autopilot::next(const Simulation& simulation) {
   Inputs in;
-  if (done()) return in;
   const StsCrane& crane = simulation.crane();
+  if (done()) {  // clear the truck: raise the empty spreader to travel height
+    in.sts.hoist = crane.spreader_pose().position.z < kTravelHeight_m ? 1.0 : 0.0;
+    return in;
+  }
   const StsCraneSettings& settings = simulation.scenario().crane;
   const double now = simulation.time_s();
   const core::Vec3 spreader = crane.spreader_pose().position;

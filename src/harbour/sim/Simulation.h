@@ -132,6 +132,9 @@ class Simulation {
   const Weather& weather() const { return weather_; }
   const Vessel* vessel() const { return vessel_.get(); }
   const TruckLane* trucks() const { return trucks_.get(); }
+  /// Frees secured item `index` and what is stacked on it (the spreader locking onto it does this).
+  void release(std::size_t index);
+  bool secured(std::size_t index) const { return secured_[index]; }
   /// Everything the spreader can lift (containers, then hatch covers), in scenario order.
   std::span<const ContainerRef> liftables() const { return containers_; }
   StsCrane& crane() { return *crane_; }
@@ -141,7 +144,6 @@ class Simulation {
  private:
   void advance(const Inputs& inputs);
   void move_secured_cargo();
-  void release(std::size_t item);
   void apply_due_events();
   void apply_wind();
 
