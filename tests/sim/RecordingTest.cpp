@@ -4,6 +4,7 @@
 
 #include <map>
 
+#include "harbour/sim/Autopilot.h"
 #include "scenes/StsScenes.h"
 
 namespace harbour::sim {
@@ -46,6 +47,45 @@ TEST(Recording, ATamperedRecordingIsDetected) {
   tampered.inputs[2].inputs.sts.hoist += 0.01;
   const ReplayResult r = replay(scenes::sts_discharge(HARBOUR_DATA_DIR), tampered);
   ASSERT_TRUE(r.first_mismatch.has_value());
+}
+
+TEST(Recording, ASeekStartsFromAKeyframeAndLandsOnTheRecordedState) {
+  EXPECT_EQ(run().recording.keyframes.size(), 2u);  // at 10 s and 20 s
+  const ReplayResult r = replay(scenes::sts_discharge(HARBOUR_DATA_DIR), run().recording, 15300);
+  EXPECT_EQ(r.keyframes_used, 1);
+  EXPECT_EQ(r.simulation->steps(), 15300);
+  EXPECT_EQ(r.simulation->state_hash(), run().hash_at.at(15300));
+  EXPECT_FALSE(r.first_mismatch.has_value());
+}
+
+TEST(Recording, ARestoredStateContinuesBitForBitWhileCarryingABox) {
+  // the autopilot's run, saved while the box hangs from the spreader and the truck waits
+  const ExerciseSettings e = scenes::sts_discharge_exercise(HARBOUR_DATA_DIR);
+  Simulation original(e.scenario);
+  Autopilot pilot(e);
+  std::vector<std::uint8_t> saved;
+  Autopilot pilot_at_save(e);
+  while (original.time_s() < 60.0) {
+    if (original.steps() == 50000) {
+      ASSERT_TRUE(original.crane().locked_container().has_value());
+      saved = original.save_state();
+      pilot_at_save = pilot;
+    }
+    original.step(pilot.next(original));
+  }
+  Simulation restored(e.scenario);
+  restored.restore_state(saved);
+  EXPECT_TRUE(restored.crane().locked_container().has_value());
+  EXPECT_FALSE(restored.secured(1));  // the lifted box stays released
+  while (restored.time_s() < 60.0)
+    restored.step(pilot_at_save.next(restored));
+  EXPECT_EQ(restored.state_hash(), original.state_hash());
+
+  // a state from another world is refused, naming the part that differs
+  ScenarioSettings other = e.scenario;
+  other.containers.pop_back();
+  Simulation elsewhere(other);
+  EXPECT_THROW(elsewhere.restore_state(saved), core::StateError);
 }
 
 TEST(Recording, TakeOverContinuesFromExactlyTheRecordedState) {

@@ -378,6 +378,59 @@ std::vector<CableEvent> HoistSystem::take_events() {
   return out;
 }
 
+void HoistSystem::save_state(core::StateWriter& out) const {
+  out.section(0x484F4953);  // "HOIS"
+  for (const Segment& s : segments_) {
+    out.put(s.rest_length);
+    out.put(s.length);
+    out.put(s.chord_length);
+    out.put(s.tension);
+    out.put(s.stiffness);
+    out.put(s.switch_tension);
+    out.put(s.oscillating);
+    out.put(s.sag_share);
+    out.put(s.slack);
+    out.put(s.overloaded);
+    out.put(s.breaking);
+    out.put(s.w);
+    out.put(s.u);
+    out.put(s.end_a);
+    out.put(s.end_b);
+    out.put(s.velocity_a);
+    out.put(s.velocity_b);
+  }
+  for (const Rope& r : ropes_)
+    out.put(r.stored_m);
+  out.put(elements_);
+}
+
+void HoistSystem::restore_state(core::StateReader& in) {
+  in.section(0x484F4953, "hoist");
+  for (Segment& s : segments_) {
+    in.get(s.rest_length);
+    in.get(s.length);
+    in.get(s.chord_length);
+    in.get(s.tension);
+    in.get(s.stiffness);
+    in.get(s.switch_tension);
+    in.get(s.oscillating);
+    in.get(s.sag_share);
+    in.get(s.slack);
+    in.get(s.overloaded);
+    in.get(s.breaking);
+    in.get(s.w, static_cast<std::int64_t>(s.w.size()));
+    in.get(s.u, static_cast<std::int64_t>(s.u.size()));
+    in.get(s.end_a);
+    in.get(s.end_b);
+    in.get(s.velocity_a);
+    in.get(s.velocity_b);
+  }
+  for (Rope& r : ropes_)
+    in.get(r.stored_m);
+  in.get(elements_, static_cast<std::int64_t>(elements_.size()));
+  events_.clear();
+}
+
 void HoistSystem::hash_into(core::StateHash& hash) const {
   for (const Segment& s : segments_) {
     hash.add(s.rest_length);

@@ -6,6 +6,7 @@
 
 #include "harbour/cable/CableBodies.h"
 #include "harbour/cable/Reeving.h"
+#include "harbour/core/StateArchive.h"
 #include "harbour/core/StateHash.h"
 
 namespace harbour::cable {
@@ -66,6 +67,10 @@ class HoistSystem {
   std::vector<CableEvent> take_events();
 
   void hash_into(core::StateHash& hash) const;
+
+  /// The dynamic state (rope fields, drums and sheaves) for a keyframe; restore into the same reeving.
+  void save_state(core::StateWriter& out) const;
+  void restore_state(core::StateReader& in);
 
  private:
   struct Segment {

@@ -97,6 +97,13 @@ void write_recording(const std::string& path, const sim::Recording& r) {
     w.put(c.step);
     w.put(c.state_hash);
   }
+  // keyframes: the simulation's own state bytes (native little-endian doubles, as saved)
+  w.put(static_cast<std::uint32_t>(r.keyframes.size()));
+  for (const auto& k : r.keyframes) {
+    w.put(k.step);
+    w.put(static_cast<std::uint32_t>(k.state.size()));
+    w.out.insert(w.out.end(), k.state.begin(), k.state.end());
+  }
   const std::string temporary = path + ".partial";
   {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
@@ -116,7 +123,7 @@ sim::Recording read_recording(const std::string& path) {
   if (std::memcmp(magic, kMagic, 4) != 0)
     throw RecordingFileError(path, 0, "not a harboursim recording (no HSRC magic)");
   const auto version = r.get<std::uint16_t>("version");
-  if (version != kRecordingVersion)
+  if (version != 1 && version != kRecordingVersion)
     throw RecordingFileError(path, 4,
                              "recording version " + std::to_string(version) +
                                  " is not supported (this build reads " + std::to_string(kRecordingVersion) +
@@ -148,7 +155,19 @@ sim::Recording read_recording(const std::string& path) {
     c.state_hash = r.get<std::uint64_t>("checkpoint hash");
     rec.checkpoints.push_back(c);
   }
-  if (!r.done()) r.fail("unexpected bytes after the last checkpoint");
+  if (version >= 2) {
+    const std::uint32_t keyframes = r.count(8 + 4, "keyframes");
+    for (std::uint32_t n = 0; n < keyframes; ++n) {
+      sim::Recording::Keyframe k;
+      k.step = r.get<std::int64_t>("keyframe step");
+      const std::uint32_t size = r.count(1, "keyframe state");
+      for (std::uint32_t b = 0; b < size; ++b)
+        k.state.push_back(r.get<std::uint8_t>("keyframe state"));
+      if (k.step < 0 || k.step > rec.total_steps) r.fail("keyframe step outside the recording");
+      rec.keyframes.push_back(std::move(k));
+    }
+  }
+  if (!r.done()) r.fail("unexpected bytes after the last keyframe");
   return rec;
 }
 

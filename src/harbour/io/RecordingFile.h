@@ -15,7 +15,7 @@ class RecordingFileError : public std::runtime_error {
 };
 
 /// Version of the recording format written by this build ("HSRC" files).
-inline constexpr std::uint16_t kRecordingVersion = 1;
+inline constexpr std::uint16_t kRecordingVersion = 2;  ///< 2 added keyframes; 1 is still read
 
 /// Writes a recording (little-endian, magic "HSRC", version 1; see docs/architecture.md) to a temporary file
 /// and renames it over `path`, so a crash never leaves a half-written recording.

@@ -1,5 +1,7 @@
 #pragma once
 
+#include "harbour/core/StateArchive.h"
+
 #include <cstdint>
 
 namespace harbour::sim {
@@ -39,6 +41,16 @@ class Drive {
   std::uint32_t limit_hits() const { return limit_hits_; }
   bool at_limit() const { return at_limit_; }
   const DriveSettings& settings() const { return settings_; }
+  void save_state(core::StateWriter& out) const {
+    out.put(reference_);
+    out.put(at_limit_);
+    out.put(limit_hits_);
+  }
+  void restore_state(core::StateReader& in) {
+    in.get(reference_);
+    in.get(at_limit_);
+    in.get(limit_hits_);
+  }
 
  private:
   DriveSettings settings_;

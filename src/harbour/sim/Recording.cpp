@@ -11,6 +11,8 @@ void Recorder::after_step(const Simulation& simulation, const Inputs& inputs) {
     recording_.inputs.push_back({applied_at, inputs});
   if (simulation.steps() % kCheckpointEvery == 0)
     recording_.checkpoints.push_back({simulation.steps(), simulation.state_hash()});
+  if (simulation.steps() % kKeyframeEvery == 0)
+    recording_.keyframes.push_back({simulation.steps(), simulation.save_state()});
   recording_.total_steps = simulation.steps();
 }
 
@@ -20,6 +22,15 @@ ReplayResult replay(const ScenarioSettings& scenario, const Recording& recording
   result.simulation = std::make_unique<Simulation>(scenario);
   Simulation& sim = *result.simulation;
   const std::int64_t end = stop_step < 0 ? recording.total_steps : std::min(stop_step, recording.total_steps);
+  if (stop_step >= 0 && !observer) {
+    const Recording::Keyframe* start = nullptr;
+    for (const Recording::Keyframe& k : recording.keyframes)
+      if (k.step <= end) start = &k;
+    if (start) {
+      sim.restore_state(start->state);
+      ++result.keyframes_used;
+    }
+  }
   std::size_t next_input = 0, next_checkpoint = 0;
   Inputs current;
   while (sim.steps() < end) {
@@ -53,6 +64,8 @@ TakeOver take_over(const ScenarioSettings& scenario, const Recording& recording,
     if (change.step < prefix.branch_step) prefix.inputs.push_back(change);
   for (const auto& checkpoint : recording.checkpoints)
     if (checkpoint.step <= prefix.branch_step) prefix.checkpoints.push_back(checkpoint);
+  for (const auto& keyframe : recording.keyframes)
+    if (keyframe.step <= prefix.branch_step) prefix.keyframes.push_back(keyframe);
   return {std::move(r.simulation), Recorder(std::move(prefix))};
 }
 

@@ -11,7 +11,8 @@
 
 namespace harbour::sim {
 
-/// A run as the inputs that drove it plus the state hash at every recorded second: replay is re-simulation.
+/// A run as the inputs that drove it, the state hash at every recorded second and the whole state every
+/// ten seconds (keyframes): replay is re-simulation, from the start or from the keyframe before a moment.
 struct Recording {
   struct InputChange {
     std::int64_t step = 0;  ///< inputs take effect from this step on
@@ -27,12 +28,18 @@ struct Recording {
   std::int64_t total_steps = 0;
   std::vector<InputChange> inputs;      ///< in step order
   std::vector<Checkpoint> checkpoints;  ///< in step order
+  struct Keyframe {
+    std::int64_t step = 0;
+    std::vector<std::uint8_t> state;  ///< Simulation::save_state()
+  };
+  std::vector<Keyframe> keyframes;  ///< in step order
 };
 
 /// Records while a simulation runs: call after each step.
 class Recorder {
  public:
   static constexpr std::int64_t kCheckpointEvery = 1000;  ///< one simulated second at 1 kHz
+  static constexpr std::int64_t kKeyframeEvery = 10000;   ///< ten simulated seconds
 
   explicit Recorder(std::string scenario) { recording_.scenario = std::move(scenario); }
   /// Continues an existing recording's prefix (a take-over branch).
@@ -50,6 +57,7 @@ class Recorder {
 struct ReplayResult {
   std::unique_ptr<Simulation> simulation;  ///< the state at the stop step
   int checkpoints_checked = 0;
+  int keyframes_used = 0;                      ///< 1 when the replay started from a keyframe
   std::optional<std::int64_t> first_mismatch;  ///< step of the first checkpoint whose hash differed
 };
 
@@ -57,11 +65,13 @@ struct ReplayResult {
 using ReplayObserver = std::function<void(const Simulation&, const Inputs&)>;
 
 /// Re-simulates `recording` from `scenario` up to `stop_step` (default: its end), comparing every checkpoint.
+/// Given a stop step and no observer it starts from the last keyframe at or before it (a seek); a whole
+/// replay, or one with an observer, runs every step from the start.
 ReplayResult replay(const ScenarioSettings& scenario, const Recording& recording, std::int64_t stop_step = -1,
                     const ReplayObserver& observer = {});
 
-/// Instructor take-over at `step` of a recording: the simulation restored there (by re-simulation) and a
-/// recorder for the new branch, linked to the original as its parent.
+/// Instructor take-over at `step` of a recording: the simulation restored there (from the keyframe before it,
+/// then re-simulation) and a recorder for the new branch, linked to the original as its parent.
 struct TakeOver {
   std::unique_ptr<Simulation> simulation;
   Recorder recorder;

@@ -190,4 +190,41 @@ std::uint64_t Simulation::state_hash() const {
   return hash.value();
 }
 
+std::vector<std::uint8_t> Simulation::save_state() const {
+  core::StateWriter out;
+  out.section(0x53494D55);  // "SIMU"
+  out.put(clock_.steps());
+  out.put(held_);
+  out.put(next_event_);
+  out.put(warnings_);
+  out.put(std::vector<std::uint8_t>(secured_.begin(), secured_.end()));
+  world_->save_state(out);
+  crane_->save_state(out);
+  weather_.save_state(out);
+  out.put(trucks_ != nullptr);
+  if (trucks_) trucks_->save_state(out);
+  return out.take();
+}
+
+void Simulation::restore_state(const std::vector<std::uint8_t>& state) {
+  core::StateReader in(state);
+  in.section(0x53494D55, "simulation");
+  clock_.reset(in.get<std::int64_t>());
+  in.get(held_);
+  in.get(next_event_);
+  if (next_event_ > scenario_.events.size())
+    throw core::StateError("saved state is past this scenario's events");
+  in.get(warnings_);
+  std::vector<std::uint8_t> secured;
+  in.get(secured, static_cast<std::int64_t>(secured_.size()));
+  secured_.assign(secured.begin(), secured.end());
+  world_->restore_state(in);
+  crane_->restore_state(in);
+  weather_.restore_state(in);
+  if (in.get<bool>() != (trucks_ != nullptr)) throw core::StateError("saved state has other trucks");
+  if (trucks_) trucks_->restore_state(in);
+  if (!in.at_end()) throw core::StateError("saved state is longer than this simulation's");
+  events_ = {};
+}
+
 }  // namespace harbour::sim

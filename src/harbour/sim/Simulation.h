@@ -123,6 +123,10 @@ class Simulation {
   Snapshot snapshot() const;
   /// Hash of the whole dynamic state: bodies, ropes, drives, twistlocks, clock.
   std::uint64_t state_hash() const;
+  /// The whole dynamic state as bytes (a keyframe). Restoring it into a Simulation built from the same
+  /// scenario continues bit for bit; a state from another scenario throws core::StateError.
+  std::vector<std::uint8_t> save_state() const;
+  void restore_state(const std::vector<std::uint8_t>& state);
   const core::Warnings& warnings() const { return warnings_; }
   /// Events of the last step.
   const StepEvents& events() const { return events_; }

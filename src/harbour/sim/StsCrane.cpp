@@ -124,4 +124,33 @@ void StsCrane::step(const StsControls& c, std::span<const ContainerRef> containe
   }
 }
 
+void StsCrane::save_state(core::StateWriter& out) const {
+  out.section(0x53545343);  // "STSC"
+  gantry_.save_state(out);
+  trolley_.save_state(out);
+  twistlocks_.save_state(out);
+  hoist_->save_state(out);
+  out.put(locked_container_.value_or(physics::kWorld));
+  out.put(attachment_);
+  out.put(hoist_brake_fault_);
+  out.put(hoist_at_limit_);
+  out.put(hoist_limit_hits_);
+  out.put(landed_sensor_fault_);
+}
+
+void StsCrane::restore_state(core::StateReader& in) {
+  in.section(0x53545343, "crane");
+  gantry_.restore_state(in);
+  trolley_.restore_state(in);
+  twistlocks_.restore_state(in);
+  hoist_->restore_state(in);
+  const auto locked = in.get<physics::BodyId>();
+  locked_container_ = locked == physics::kWorld ? std::nullopt : std::optional<physics::BodyId>(locked);
+  in.get(attachment_);
+  in.get(hoist_brake_fault_);
+  in.get(hoist_at_limit_);
+  in.get(hoist_limit_hits_);
+  in.get(landed_sensor_fault_);
+}
+
 }  // namespace harbour::sim

@@ -78,6 +78,9 @@ class StsCrane {
   cable::HoistSystem& hoist() { return *hoist_; }
   /// Vertical rope pull on the headblock [N] (the load the hoist carries, spreader included).
   double hoisted_load_n() const;
+  /// Drives, ropes, twistlocks, faults and the locked box for a keyframe (the physics world saves itself).
+  void save_state(core::StateWriter& out) const;
+  void restore_state(core::StateReader& in);
   /// Fault injection: the hoist's holding brake does not set.
   void set_hoist_brake_fault(bool on) { hoist_brake_fault_ = on; }
   /// Fault injection: one corner's landed sensor (0-3) reads "not landed"; -1 clears it.

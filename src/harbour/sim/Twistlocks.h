@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "harbour/core/StateArchive.h"
 #include "harbour/core/Vec3.h"
 
 namespace harbour::sim {
@@ -49,6 +50,17 @@ class Twistlocks {
   TwistlockLamps lamps() const { return {all_landed_, locked_, !locked_}; }
   /// Events since the last call.
   std::vector<TwistlockEvent> take_events();
+  void save_state(core::StateWriter& out) const {
+    for (bool b :
+         {locked_, all_landed_, was_landed_, locked_this_landing_, lock_was_pressed_, unlock_was_pressed_})
+      out.put(b);
+  }
+  void restore_state(core::StateReader& in) {
+    for (bool* b : {&locked_, &all_landed_, &was_landed_, &locked_this_landing_, &lock_was_pressed_,
+                    &unlock_was_pressed_})
+      in.get(*b);
+    events_.clear();
+  }
 
  private:
   bool locked_ = false;

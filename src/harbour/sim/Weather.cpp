@@ -53,4 +53,20 @@ core::Vec3 box_drag(const core::Vec3& wind, const core::Vec3& body_velocity, con
   return relative * (0.5 * air_density_kg_m3 * drag_coefficient * area * speed);
 }
 
+void Weather::save_state(core::StateWriter& out) const {
+  out.section(0x57545852);  // "WTXR"
+  out.put(rng_);
+  out.put(time_s_);
+  out.put(turbulence_);
+  out.put(gusts_);
+}
+
+void Weather::restore_state(core::StateReader& in) {
+  in.section(0x57545852, "weather");
+  in.get(rng_);
+  in.get(time_s_);
+  in.get(turbulence_);
+  in.get(gusts_);
+}
+
 }  // namespace harbour::sim

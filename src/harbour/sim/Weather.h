@@ -1,5 +1,7 @@
 #pragma once
 
+#include "harbour/core/StateArchive.h"
+
 #include <vector>
 
 #include "harbour/core/Rng.h"
@@ -36,6 +38,8 @@ class Weather {
   void step(double dt_s);
   /// Adds a scripted gust.
   void add_gust(const Gust& gust) { gusts_.push_back(gust); }
+  void save_state(core::StateWriter& out) const;
+  void restore_state(core::StateReader& in);
   /// Wind velocity now [m/s], world frame (the air moves towards wind_from + 180 deg).
   core::Vec3 wind() const;
   /// Wind speed now [m/s].
