@@ -25,7 +25,10 @@ void print_evaluation(const sim::Metrics& m, const sim::Score& s) {
   for (std::size_t n = 0; n < m.cycle_times_s.size(); ++n)
     std::printf("  cycle time, move %zu   %8.1f s\n", n + 1, m.cycle_times_s[n]);
   std::printf("  moves per hour       %8.1f\n", m.moves_per_hour);
-  std::printf("  collisions           %8d (worst %.2f m/s)\n", m.collisions, m.worst_collision_mps);
+  std::printf(
+      "  collisions           %8d (worst %.2f m/s, %.0f N s; box %d, cell guide %d, ship %d, other %d)\n",
+      m.collisions, m.worst_collision_mps, m.worst_collision_impulse_ns, m.container_collisions,
+      m.cell_guide_collisions, m.ship_collisions, m.other_collisions);
   std::printf("  hard landings        %8d (worst landing %.2f m/s)\n", m.hard_landings, m.worst_landing_mps);
   for (std::size_t n = 0; n < m.landing_sway_m.size(); ++n)
     std::printf("  sway at landing %zu    %8.3f m\n", n + 1, m.landing_sway_m[n]);

@@ -70,6 +70,10 @@ TEST(Evaluation, HittingABoxThatIsNotTheTaskIsACollision) {
   ASSERT_GT(speeds.size(), static_cast<std::size_t>(physics::PhysicsWorld::kImpulseWindowSteps));
   const double speed = speeds[speeds.size() - physics::PhysicsWorld::kImpulseWindowSteps];
   EXPECT_EQ(evaluator.metrics().collisions, 1);
+  EXPECT_EQ(evaluator.metrics().container_collisions, 1);  // spreader on a box
+  // the impulse stops the 15 t spreader from its impact speed (and carries it for the rest of the window)
+  EXPECT_GT(evaluator.metrics().collision_impulse_ns, 0.8 * 15000 * speed);
+  EXPECT_LT(evaluator.metrics().collision_impulse_ns, 1.2 * 15000 * speed + 15000 * 9.81 * 0.005);
   EXPECT_NEAR(evaluator.metrics().worst_collision_mps, speed, 0.1);
   EXPECT_GT(speed, 0.5);
   const core::Vec3 at = sim.crane().spreader_pose().position;  // on TGHU1000012's top

@@ -38,6 +38,26 @@ double Evaluator::sway_m(const Simulation& simulation) const {
   return std::hypot(s.x - crane.trolley_position_m(), s.y - crane.gantry_position_m());
 }
 
+void Evaluator::count_collision(const physics::ImpactEvent& e) {
+  ++metrics_.collisions;
+  metrics_.worst_collision_mps = std::max(metrics_.worst_collision_mps, e.normal_speed_mps);
+  metrics_.collision_impulse_ns += e.impulse_ns;
+  metrics_.worst_collision_impulse_ns = std::max(metrics_.worst_collision_impulse_ns, e.impulse_ns);
+  auto either = [&](int surface) { return e.surface == surface || e.other_surface == surface; };
+  auto box_or_spreader = [](int s) {
+    return s == kSurfaceContainer || s == kSurfaceHatchCover || s == kSurfaceSpreader;
+  };
+  if (either(kSurfaceCellGuide)) {
+    ++metrics_.cell_guide_collisions;
+  } else if (either(kSurfaceHull)) {
+    ++metrics_.ship_collisions;
+  } else if (box_or_spreader(e.surface) && box_or_spreader(e.other_surface)) {
+    ++metrics_.container_collisions;
+  } else {
+    ++metrics_.other_collisions;
+  }
+}
+
 void Evaluator::observe(const Simulation& simulation, const Inputs& inputs) {
   const EvaluationRules& rules = exercise_.rules;
   const StsCrane& crane = simulation.crane();
@@ -58,8 +78,7 @@ void Evaluator::observe(const Simulation& simulation, const Inputs& inputs) {
       metrics_.worst_landing_mps = std::max(metrics_.worst_landing_mps, e.normal_speed_mps);
       if (e.normal_speed_mps > rules.hard_landing_mps) ++metrics_.hard_landings;
     } else if (!touching_goal_box && e.normal_speed_mps >= rules.collision_speed_mps) {
-      ++metrics_.collisions;
-      metrics_.worst_collision_mps = std::max(metrics_.worst_collision_mps, e.normal_speed_mps);
+      count_collision(e);
     }
   }
 

@@ -50,6 +50,12 @@ struct Metrics {
   double moves_per_hour = 0.0;
   int collisions = 0;
   double worst_collision_mps = 0.0;
+  double collision_impulse_ns = 0.0;        ///< [N s] summed over the collisions
+  double worst_collision_impulse_ns = 0.0;  ///< [N s]
+  int container_collisions = 0;   ///< of them: carried box or spreader against another box or hatch cover
+  int cell_guide_collisions = 0;  ///< spreader or box against a cell guide
+  int ship_collisions = 0;        ///< against the hull or a coaming
+  int other_collisions = 0;       ///< trucks, quay, ground
   int hard_landings = 0;
   double worst_landing_mps = 0.0;
   std::vector<double> landing_sway_m;  ///< at every landing (pick-up and set-down)
@@ -89,6 +95,7 @@ class Evaluator {
   int goal_of(physics::BodyId body, const Simulation& simulation) const;
   double sway_m(const Simulation& simulation) const;
   bool near_target(physics::BodyId box, const Simulation& simulation) const;
+  void count_collision(const physics::ImpactEvent& e);
   void record_landing(const Simulation& simulation);
 
   ExerciseSettings exercise_;
