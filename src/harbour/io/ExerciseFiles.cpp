@@ -3,7 +3,6 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
-#include <numbers>
 #include <optional>
 
 #include "harbour/core/Units.h"
@@ -74,15 +73,13 @@ sim::ExerciseSettings load_exercise(const YamlFile& f, const std::string& folder
     s.vessel = placement;
     vessel.emplace(placement);
     // the hatch covers, each with lifting pockets where a 40 ft box has its castings
-    const core::Pose at_start = vessel->pose_at(0.0);
     for (const sim::VesselGeometry::Panel& panel : vessel->hatch_panels()) {
       sim::ContainerPlacement c;
       c.id = panel.id;
       c.kind = sim::ContainerPlacement::Kind::kHatchCover;
       c.half_extents_m = {panel.half_extents_m.y, panel.half_extents_m.x, panel.half_extents_m.z};
       c.gross_mass_kg = placement.vessel.hatch_cover_mass_kg;
-      c.pose = {at_start.rotation * core::Mat3::rotation({0, 0, 1}, std::numbers::pi / 2),
-                at_start.to_parent(panel.centre_m)};
+      c.pose = vessel->stowed_pose_at(0.0, panel.centre_m);
       c.pocket_half_length_m = kCastings40_m[0] / 2;
       c.pocket_half_width_m = kCastings40_m[1] / 2;
       c.on_vessel = true;
@@ -152,9 +149,7 @@ sim::ExerciseSettings load_exercise(const YamlFile& f, const std::string& folder
       if (!centre) f.fail(slot, at + ".slot", why);
       if (address.tier < 80 && type != "40ft" && type != "40ftHC")
         f.fail(c["type"], at + ".type", "the holds have 40 ft cells: " + type + " goes on deck");
-      const core::Pose vessel_pose = vessel->pose_at(0.0);
-      p.pose = {vessel_pose.rotation * core::Mat3::rotation({0, 0, 1}, std::numbers::pi / 2),
-                vessel_pose.to_parent(*centre)};
+      p.pose = vessel->stowed_pose_at(0.0, *centre);
       p.on_vessel = true;
     } else {
       // on the quay or a chassis: along the quay unless turned

@@ -42,6 +42,13 @@ class Reader {
     at_ += sizeof(T);
     return std::bit_cast<T>(bytes);
   }
+  /// `n` raw bytes appended to `out`.
+  void bytes(std::size_t n, std::vector<std::uint8_t>& out, const char* what) {
+    need(n, what);
+    out.insert(out.end(), in_.begin() + static_cast<std::ptrdiff_t>(at_),
+               in_.begin() + static_cast<std::ptrdiff_t>(at_ + n));
+    at_ += n;
+  }
   std::string text(const char* what) {
     const auto n = get<std::uint32_t>(what);
     need(n, what);
@@ -161,8 +168,7 @@ sim::Recording read_recording(const std::string& path) {
       sim::Recording::Keyframe k;
       k.step = r.get<std::int64_t>("keyframe step");
       const std::uint32_t size = r.count(1, "keyframe state");
-      for (std::uint32_t b = 0; b < size; ++b)
-        k.state.push_back(r.get<std::uint8_t>("keyframe state"));
+      r.bytes(size, k.state, "keyframe state");
       if (k.step < 0 || k.step > rec.total_steps) r.fail("keyframe step outside the recording");
       rec.keyframes.push_back(std::move(k));
     }

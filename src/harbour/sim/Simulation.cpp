@@ -37,10 +37,9 @@ Simulation::Simulation(const ScenarioSettings& scenario)
     containers_.push_back(
         {world_->add_box(box), c.half_extents_m, c.pocket_half_length_m, c.pocket_half_width_m});
     secured_.push_back(true);
-    const core::Pose vessel_at_start = vessel_ ? vessel_->geometry().pose_at(0.0) : core::Pose{};
     stowed_.push_back(c.on_vessel && vessel_
-                          ? core::Pose{vessel_at_start.rotation.transposed() * c.pose.rotation,
-                                       vessel_at_start.to_local(c.pose.position)}
+                          ? core::Pose{vessel_->frame().rotation.transposed() * c.pose.rotation,
+                                       vessel_->frame().to_local(c.pose.position)}
                           : c.pose);
   }
   if (scenario.trucks.trucks > 0) trucks_ = std::make_unique<TruckLane>(*world_, scenario.trucks);
@@ -89,11 +88,9 @@ void Simulation::apply_wind() {
 
 void Simulation::move_secured_cargo() {
   if (!vessel_) return;
-  const double t = clock_.time_s();
-  const core::Pose vessel = vessel_->geometry().pose_at(t);
-  core::Vec3 v, w;
-  vessel_->geometry().velocities_at(t, v, w);
-  const core::Vec3 centre = world_->pose(vessel_->body()).position;  // where v is the velocity
+  const core::Pose& vessel = vessel_->frame();
+  const core::Vec3 &v = vessel_->velocity(), &w = vessel_->angular_velocity();
+  const core::Vec3 centre = vessel_->waterline_centre();  // where v is the velocity
   for (std::size_t n = 0; n < containers_.size(); ++n) {
     if (!secured_[n] || !scenario_.containers[n].on_vessel) continue;
     // the body's reference is its centre of mass: place that, moving with the hull
@@ -166,7 +163,7 @@ Snapshot Simulation::snapshot() const {
   s.time_of_day_h = weather_.time_of_day_h();
   s.visibility_m = scenario_.weather.visibility_m;
   s.rain_mm_per_h = scenario_.weather.rain_mm_per_h;
-  if (vessel_) s.vessel = vessel_->geometry().pose_at(clock_.time_s());
+  if (vessel_) s.vessel = vessel_->geometry().pose_at(clock_.time_s());  // where the step left it
   if (trucks_)
     for (int k = 0; k < scenario_.trucks.trucks; ++k)
       s.trucks.push_back({core::Mat3::identity(),

@@ -65,6 +65,12 @@ core::Pose VesselGeometry::pose_at(double t) const {
   return {r, centre_world - r * centre()};
 }
 
+core::Pose VesselGeometry::stowed_pose_at(double t_s, const core::Vec3& centre_m) const {
+  const core::Pose vessel = pose_at(t_s);
+  return {vessel.rotation * core::Mat3::rotation({0, 0, 1}, std::numbers::pi / 2),
+          vessel.to_parent(centre_m)};
+}
+
 void VesselGeometry::velocities_at(double t, core::Vec3& linear, core::Vec3& angular) const {
   double heave_rate = 0.0, roll_rate = 0.0, pitch_rate = 0.0;
   sum(p_.sea.heave_m, t, &heave_rate);
@@ -154,14 +160,13 @@ std::vector<VesselGeometry::Panel> VesselGeometry::hatch_panels() const {
 Vessel::Vessel(physics::PhysicsWorld& world, const VesselPlacement& placement)
     : world_(world), geometry_(placement) {
   const VesselSettings& v = placement.vessel;
-  const core::Vec3 origin{0, 0, v.draught_m};  // the body's origin: the waterline centre
-  core::Pose start = geometry_.pose_at(0.0);
-  start.position = start.to_parent(origin);
-  body_ = world.add_kinematic_body(start);
+  frame_ = geometry_.pose_at(0.0);
+  geometry_.velocities_at(0.0, velocity_, angular_velocity_);
+  body_ = world.add_kinematic_body({frame_.rotation, waterline_centre()});  // the body's origin
   auto add = [&](const core::Vec3& lo, const core::Vec3& hi, int surface) {
     core::Vec3 half;
     core::Pose local = box_between(lo, hi, half);
-    local.position = local.position - origin;
+    local.position = local.position - origin();
     world.add_box_shape(body_, half, local, surface);
     if (surface == kSurfaceCellGuide) ++cell_guide_shapes_;
   };
@@ -238,12 +243,9 @@ Vessel::Vessel(physics::PhysicsWorld& world, const VesselPlacement& placement)
 }
 
 void Vessel::move_to(double t_s) {
-  const core::Vec3 origin{0, 0, geometry_.placement().vessel.draught_m};
-  core::Pose pose = geometry_.pose_at(t_s);
-  pose.position = pose.to_parent(origin);
-  core::Vec3 linear, angular;
-  geometry_.velocities_at(t_s, linear, angular);
-  world_.set_kinematic_motion(body_, pose, linear, angular);
+  frame_ = geometry_.pose_at(t_s);
+  geometry_.velocities_at(t_s, velocity_, angular_velocity_);
+  world_.set_kinematic_motion(body_, {frame_.rotation, waterline_centre()}, velocity_, angular_velocity_);
 }
 
 }  // namespace harbour::sim

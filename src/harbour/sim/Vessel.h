@@ -84,6 +84,9 @@ class VesselGeometry {
   /// The vessel frame in the world at time t (pose) and its velocities (of the frame origin).
   core::Pose pose_at(double t_s) const;
   void velocities_at(double t_s, core::Vec3& linear, core::Vec3& angular) const;
+  /// World pose at time t of a box stowed lengthwise (its x along the vessel) with its centre at `centre_m`
+  /// (vessel frame).
+  core::Pose stowed_pose_at(double t_s, const core::Vec3& centre_m) const;
   /// Centre of a container of height `height_m` in `slot`, vessel frame; empty (with `why`) if no such slot.
   std::optional<core::Vec3> slot_centre(const SlotAddress& slot, double height_m, std::string& why) const;
   /// Row centre across the beam (vessel frame x) of a row number, if the vessel has that row.
@@ -114,15 +117,25 @@ class Vessel {
 
   /// Places the hull for the step that starts at `t_s`.
   void move_to(double t_s);
+  /// The vessel frame (keel, midship, centreline) in the world as last placed, and the velocities of the
+  /// body's origin (the midship waterline point, `waterline_centre()` in the world).
+  const core::Pose& frame() const { return frame_; }
+  const core::Vec3& velocity() const { return velocity_; }
+  const core::Vec3& angular_velocity() const { return angular_velocity_; }
+  core::Vec3 waterline_centre() const { return frame_.to_parent(origin()); }
   physics::BodyId body() const { return body_; }
   const VesselGeometry& geometry() const { return geometry_; }
   int cell_guide_shapes() const { return cell_guide_shapes_; }
 
  private:
+  core::Vec3 origin() const { return {0, 0, geometry_.placement().vessel.draught_m}; }
+
   physics::PhysicsWorld& world_;
   VesselGeometry geometry_;
   physics::BodyId body_;
   int cell_guide_shapes_ = 0;
+  core::Pose frame_;
+  core::Vec3 velocity_, angular_velocity_;
 };
 
 }  // namespace harbour::sim
