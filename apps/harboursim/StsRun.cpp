@@ -36,10 +36,13 @@ void print_evaluation(const sim::Metrics& m, const sim::Score& s) {
   std::printf("  rope overloads       %8d\n", m.overloads);
   std::printf("  limit switch hits    %8d\n", m.limit_hits);
   std::printf("  emergency stops      %8d\n", m.emergency_stops);
+  std::printf("  gantry without horn  %8d\n", m.unwarned_gantry_travel);
   std::printf("  hoist energy         %8.2f MJ\n", m.hoist_energy_j / 1e6);
   std::printf("score %.0f / 100: %s\n", s.total, s.passed ? "PASSED" : "NOT PASSED");
   for (const auto& d : s.deductions)
-    std::printf("  -%.0f  %s x%d\n", d.points, d.reason.c_str(), d.count);
+    std::printf("  -%.0f  %s x%d (%s)\n", d.points, d.reason.c_str(), d.count, sim::skill_name(d.skill));
+  std::printf("skills: safety %.0f, precision %.0f, productivity %.0f\n", s.skills[0], s.skills[1],
+              s.skills[2]);
 }
 
 // stores what the evaluator counted this step, the moment it happened
@@ -53,7 +56,8 @@ void store_progress(io::RecordsStore& db, std::int64_t attempt, const sim::Metri
       {"twistlock_misuse", before.twistlock_misuse, now.twistlock_misuse, 0.0},
       {"rope_overload", before.overloads, now.overloads, 0.0},
       {"limit_switch_hit", before.limit_hits, now.limit_hits, 0.0},
-      {"emergency_stop", before.emergency_stops, now.emergency_stops, 0.0}};
+      {"emergency_stop", before.emergency_stops, now.emergency_stops, 0.0},
+      {"gantry_travel_without_horn", before.unwarned_gantry_travel, now.unwarned_gantry_travel, 0.0}};
   for (const auto& [kind, was, is, value] : counters)
     for (int n = was; n < is; ++n)
       db.record_event(attempt, now.time_s, kind, value);

@@ -37,6 +37,7 @@ TEST(ExerciseFiles, ShippedDischargeLoads) {
   EXPECT_EQ(e.scenario.containers[8].id, "HATCH16S");
   EXPECT_EQ(e.scenario.containers[8].kind, sim::ContainerPlacement::Kind::kHatchCover);
   EXPECT_EQ(e.rules.time_limit_s, 180.0);
+  EXPECT_EQ(e.rules.points_hard_landing, 5.0);
 }
 
 TEST(ExerciseFiles, WeatherAndEventsLoad) {
@@ -68,6 +69,9 @@ TEST(ExerciseFiles, BadExercisesNameTheField) {
                "no such file");
   expect_error("trolley_x_m: 32.27", "trolley_x_m: 99.0", "exercise.crane.trolley_x_m", "outside");
   expect_error("{id: TGHU1000014,", "{id: TGHU1000010,", "exercise.containers[2].id", "duplicate container");
+  expect_error("hard_landing: 5,", "hard_landings: 5,", "exercise.rules.deductions.hard_landings",
+               "unknown deduction");
+  expect_error("hard_landing: 5,", "hard_landing: 500,", "exercise.rules.deductions.hard_landing", "outside");
 }
 
 }  // namespace

@@ -20,7 +20,12 @@ sim::Recording sample() {
   sim::Inputs b;
   b.sts.hoist = -1.0 / 3.0;
   b.sts.emergency_stop = true;
-  r.inputs = {{0, a}, {2500, b}};
+  sim::Inputs c;  // every cab control of version 3
+  c.sts.boom = 0.5;
+  c.sts.horn = true;
+  c.sts.flipper_down = {true, false, false, true};
+  c.sts.spreader_size_ft = 45;
+  r.inputs = {{0, a}, {2500, b}, {3000, c}};
   r.checkpoints = {{1000, 0x0123456789ABCDEFull}, {2000, 42}};
   return r;
 }
@@ -37,9 +42,10 @@ TEST(RecordingFile, RoundTripsBitForBit) {
   EXPECT_EQ(back.parent, "attempt-7");
   EXPECT_EQ(back.branch_step, 1234);
   EXPECT_EQ(back.total_steps, 5000);
-  ASSERT_EQ(back.inputs.size(), 2u);
+  ASSERT_EQ(back.inputs.size(), 3u);
   EXPECT_TRUE(back.inputs[0].inputs == sample().inputs[0].inputs);
   EXPECT_TRUE(back.inputs[1].inputs == sample().inputs[1].inputs);  // -1/3 exactly
+  EXPECT_TRUE(back.inputs[2].inputs == sample().inputs[2].inputs);
   EXPECT_EQ(back.checkpoints[0].state_hash, 0x0123456789ABCDEFull);
   EXPECT_FALSE(std::filesystem::exists(path + ".partial"));
   std::filesystem::remove(path);
@@ -79,6 +85,39 @@ TEST(RecordingFile, BadFilesNameTheFileAndTheByte) {
   } catch (const RecordingFileError& e) {
     EXPECT_NE(std::string(e.what()).find("version 9 is not supported"), std::string::npos) << e.what();
   }
+  std::filesystem::remove(path);
+}
+
+TEST(RecordingFile, ReadsVersion2InputsWithTheNewControlsAtRest) {
+  // a version-2 file written byte by byte: one input change (trolley 0.5, lock and e-stop), no checkpoints
+  std::string bytes = "HSRC";
+  auto put = [&](auto v) {
+    bytes.append(reinterpret_cast<const char*>(&v), sizeof v);
+  };  // little-endian host
+  put(std::uint16_t{2});
+  put(std::uint16_t{0});
+  put(std::uint32_t{3});
+  bytes += "sts";
+  put(std::uint32_t{0});
+  put(std::int64_t{0});
+  put(std::int64_t{100});
+  put(std::uint32_t{1});
+  put(std::int64_t{7});
+  for (double d : {0.0, 0.5, 0.0})
+    put(d);
+  put(std::uint8_t{1 | 4});
+  put(std::uint32_t{0});
+  put(std::uint32_t{0});
+  const std::string path = temp("harbour_v2.hsrc");
+  { std::ofstream(path, std::ios::binary) << bytes; }
+  const sim::Recording r = read_recording(path);
+  ASSERT_EQ(r.inputs.size(), 1u);
+  sim::Inputs expected;
+  expected.sts.trolley = 0.5;
+  expected.sts.lock = true;
+  expected.sts.emergency_stop = true;
+  EXPECT_EQ(r.inputs[0].step, 7);
+  EXPECT_TRUE(r.inputs[0].inputs == expected);
   std::filesystem::remove(path);
 }
 

@@ -85,3 +85,43 @@ TEST(Evaluation, HittingABoxThatIsNotTheTaskIsACollision) {
 
 }  // namespace
 }  // namespace harbour::sim
+
+namespace harbour::sim {
+namespace {
+
+// drives the gantry 0.5 lever for `steps`, the horn sounding for the first `horn_steps`
+Evaluator travel_gantry(int horn_steps, int steps) {
+  const ExerciseSettings exercise = scenes::sts_discharge_exercise(HARBOUR_DATA_DIR);
+  Simulation sim(exercise.scenario);
+  Evaluator evaluator(exercise);
+  for (int k = 0; k < steps; ++k) {
+    Inputs in;
+    in.sts.horn = k < horn_steps;
+    in.sts.gantry = k >= 1000 ? 0.5 : 0.0;
+    sim.step(in);
+    evaluator.observe(sim, in);
+  }
+  return evaluator;
+}
+
+TEST(Evaluation, GantryTravelWithoutTheHornCountsAgainstSafety) {
+  // 0.375 m/s after a 2.5 s ramp: 1 m is covered after about 4 s, 2.4 m after 8 s
+  const Evaluator silent = travel_gantry(0, 9000);
+  EXPECT_EQ(silent.metrics().unwarned_gantry_travel, 1);
+  const Score s = silent.score();
+  const EvaluationRules rules;
+  ASSERT_FALSE(s.deductions.empty());
+  EXPECT_EQ(s.deductions.front().reason, "gantry travel without the horn");
+  EXPECT_EQ(s.deductions.front().skill, Skill::kSafety);
+  EXPECT_DOUBLE_EQ(s.skills[static_cast<std::size_t>(Skill::kSafety)], 100.0 - rules.points_unwarned_travel);
+  // the moves not made count against productivity alone
+  EXPECT_DOUBLE_EQ(s.skills[static_cast<std::size_t>(Skill::kProductivity)],
+                   100.0 - rules.points_per_move_missing);
+  EXPECT_DOUBLE_EQ(s.skills[static_cast<std::size_t>(Skill::kPrecision)], 100.0);
+
+  EXPECT_EQ(travel_gantry(500, 9000).metrics().unwarned_gantry_travel, 0);  // horn 0.5 s before moving
+  EXPECT_EQ(travel_gantry(0, 3000).metrics().unwarned_gantry_travel, 0);    // a creep under 1 m
+}
+
+}  // namespace
+}  // namespace harbour::sim

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <numbers>
+
 #include "harbour/io/MachineFiles.h"
 
 namespace harbour::sim {
@@ -10,21 +12,22 @@ namespace {
 constexpr double kDt = 0.001;
 constexpr double kG = 9.80665;
 
-// the crane at gantry y = 0, trolley over a 40 ft container (20 t gross) standing on the quay at x = 20
+// the crane at gantry y = 0, trolley over a 40 ft container (20 t gross) along the quay at x = 20
 struct Quay {
   physics::PhysicsWorld world{{}};
   StsCraneSettings settings = io::load_sts_crane(HARBOUR_DATA_DIR "/machines/sts.yaml");
   std::unique_ptr<StsCrane> crane;
   ContainerRef box;
 
-  Quay() {
+  explicit Quay(double trolley_x_m = 20.0, double gantry_y_m = 0.0) {
     world.add_ground(0.0);
     physics::BoxSettings c;
     c.half_extents_m = {12.192 / 2, 2.438 / 2, 2.591 / 2};
     c.mass_kg = 20000;
     c.pose.position = {20, 0, 2.591 / 2};
-    box = {world.add_box(c), c.half_extents_m};
-    crane = std::make_unique<StsCrane>(world, settings, 0.0, 20.0, 10.0);
+    c.pose.rotation = core::Mat3::rotation({0, 0, 1}, std::numbers::pi / 2);  // along the quay
+    box = {world.add_box(c), c.half_extents_m, 11.985 / 2, 2.259 / 2};        // ISO 1161 casting centres
+    crane = std::make_unique<StsCrane>(world, settings, gantry_y_m, trolley_x_m, 10.0);
   }
   void run(const StsControls& c, int steps) {
     for (int k = 0; k < steps; ++k) {
@@ -85,8 +88,8 @@ TEST(StsCrane, PicksUpAndSetsDownAContainer) {
     q.run({}, 1);
     load += q.crane->hoisted_load_n() / 1000;
   }
-  EXPECT_NEAR(load, (q.settings.spreader_mass_kg + 20000) * kG,
-              0.03 * (q.settings.spreader_mass_kg + 20000) * kG);
+  EXPECT_NEAR(load, (q.settings.spreader.mass_kg + 20000) * kG,
+              0.03 * (q.settings.spreader.mass_kg + 20000) * kG);
 
   // unlocking in the air is refused
   StsControls unlock;
@@ -139,6 +142,112 @@ TEST(StsCrane, HoistStopsOnItsUpperLimitSwitch) {
   EXPECT_LE(z, q.settings.hoist_upper_limit_m + 0.05);
   EXPECT_GE(z, q.settings.hoist_upper_limit_m - 0.1);
   EXPECT_EQ(q.crane->hoist_limit_hits(), 1u);
+}
+
+}  // namespace
+}  // namespace harbour::sim
+
+namespace harbour::sim {
+namespace {
+
+// lowers slowly until the lamp shows landed or the spreader rests on something
+bool lower_until_landed(Quay& q, const StsControls& controls) {
+  StsControls lower = controls;
+  lower.hoist = -0.1;
+  for (int k = 0; k < 60000 && !q.crane->lamps().landed; ++k) {
+    q.run(lower, 1);
+    const double underside = q.crane->spreader_pose().position.z - q.crane->spreader_half_extents_m().z;
+    if (underside < 2.591 + 0.05 && q.crane->hoisted_load_n() < 1000.0) break;
+  }
+  return q.crane->lamps().landed;
+}
+
+TEST(StsCrane, FlippersFunnelAnOffsetSpreaderOntoTheCastings) {
+  // 8 cm across or 10 cm along: outside the twistlocks' 3 cm reach, inside the flippers' funnel
+  StsControls flippers_down;
+  flippers_down.flipper_down = {true, true, true, true};
+  for (const auto& [dx, dy] : {std::pair{0.08, 0.0}, std::pair{0.0, 0.10}, std::pair{-0.07, -0.06}}) {
+    Quay without(20.0 + dx, dy);
+    without.run({}, 3000);
+    EXPECT_FALSE(lower_until_landed(without, {})) << dx << " " << dy;
+
+    Quay with(20.0 + dx, dy);
+    with.run(flippers_down, 3500);  // the flippers swing down in 3 s
+    EXPECT_EQ(with.crane->spreader_state().flippers, (std::array<double, 4>{1, 1, 1, 1}));
+    ASSERT_TRUE(lower_until_landed(with, flippers_down)) << dx << " " << dy;
+    StsControls lock = flippers_down;
+    lock.lock = true;
+    with.run(lock, 10);
+    EXPECT_EQ(with.crane->locked_container(), with.box.body);
+    // the flippers pushed the spreader over: it sits on the castings, off plumb under the trolley
+    const core::Vec3 p = with.crane->spreader_pose().position;
+    EXPECT_NEAR(p.x, 20.0, 0.03);
+    EXPECT_NEAR(p.y, 0.0, 0.03);
+  }
+}
+
+TEST(StsCrane, TelescopesBetweenSettingsButNotWhileLanded) {
+  Quay q;
+  q.run({}, 2000);
+  EXPECT_NEAR(q.crane->spreader_half_extents_m().y, 12.192 / 2, 1e-12);
+  StsControls twenty;
+  twenty.spreader_size_ft = 20;
+  q.run(twenty, 10);
+  q.run({}, 5000);
+  const SpreaderState moving = q.crane->spreader_state();
+  EXPECT_EQ(moving.size, SpreaderSize::k20ft);
+  EXPECT_TRUE(moving.telescoping);
+  // each end retracts (11.985 - 5.853) / 2 = 3.066 m at 0.2 m/s: 15.3 s
+  EXPECT_NEAR(moving.length_m, 2 * (11.985 / 2 - 0.2 * 5.01) + (6.058 - 5.853), 1e-9);
+  q.run({}, 10200);
+  EXPECT_TRUE(q.crane->spreader_state().telescoping);
+  q.run({}, 300);
+  EXPECT_FALSE(q.crane->spreader_state().telescoping);
+  EXPECT_NEAR(q.crane->spreader_state().length_m, 6.058, 1e-9);
+
+  // at 20 ft over a 40 ft box: the twistlocks find no castings; back to 40 ft, then landed: it may not move
+  EXPECT_FALSE(lower_until_landed(q, {}));
+  StsControls forty;
+  forty.spreader_size_ft = 40;
+  StsControls raise;
+  raise.hoist = 0.3;
+  q.run(raise, 3000);
+  q.run(forty, 16000);
+  EXPECT_NEAR(q.crane->spreader_state().length_m, 12.192, 1e-9);
+  ASSERT_TRUE(lower_until_landed(q, {}));
+  StsControls forty_five;
+  forty_five.spreader_size_ft = 45;
+  q.run(forty_five, 2000);
+  EXPECT_NEAR(q.crane->spreader_state().length_m, 12.192, 1e-9);
+  EXPECT_EQ(q.crane->spreader_state().size, SpreaderSize::k45ft);  // selected, waits for lift-off
+}
+
+TEST(StsCrane, TheBoomLuffsOnlyWithTheTrolleyParkedAndKeepsItParkedUntilDown) {
+  Quay q;  // trolley at 20 m, waterside of the 10 m park position
+  StsControls up;
+  up.boom = 1.0;
+  q.run(up, 2000);
+  EXPECT_EQ(q.crane->boom_angle_rad(), 0.0);
+  StsControls landside;
+  landside.trolley = -1.0;
+  q.run(landside, 12000);
+  ASSERT_LT(q.crane->trolley_position_m(), q.settings.boom.trolley_park_x_m);
+  q.run(up, 60000);
+  // 80 deg in 300 s at full lever, after a 2 s ramp: (60 - 1) s of travel
+  const BoomSettings& b = q.settings.boom;
+  EXPECT_NEAR(q.crane->boom_angle_rad(), b.drive.max_speed_mps * 59.0, 0.01 * b.drive.max_speed_mps * 59.0);
+  // while the boom is up the trolley stops at the park position
+  StsControls waterside;
+  waterside.trolley = 1.0;
+  q.run(waterside, 20000);
+  EXPECT_LE(q.crane->trolley_position_m(), b.trolley_park_x_m + 0.01);
+  EXPECT_GT(q.crane->trolley_position_m(), b.trolley_park_x_m - 0.2);
+  StsControls down;
+  down.boom = -1.0;
+  q.run(down, 65000);
+  EXPECT_EQ(q.crane->boom_angle_rad(), 0.0);
+  q.run(waterside, 5000);
+  EXPECT_GT(q.crane->trolley_position_m(), b.trolley_park_x_m + 5.0);
 }
 
 }  // namespace

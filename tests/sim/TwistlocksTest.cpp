@@ -17,17 +17,35 @@ core::Pose at(double x, double y, double z, double yaw_deg = 0.0) {
   return p;
 }
 
+std::array<bool, 4> landed_40ft(const core::Pose& underside, const core::Pose& top,
+                                const TwistlockSettings& s) {
+  return landed_corners(underside, kHalfLength40, kHalfWidth, top, kHalfLength40, kHalfWidth, s);
+}
+
 TEST(Twistlocks, LandedOnlyWithinTheCastingTolerances) {
   const core::Pose container = at(10, 5, 2.591);
   const TwistlockSettings s;
-  EXPECT_EQ(landed_corners(at(10.02, 5.0, 2.595), container, kHalfLength40, kHalfWidth, s), kAll);
-  EXPECT_EQ(landed_corners(at(10.05, 5.0, 2.591), container, kHalfLength40, kHalfWidth, s),
+  EXPECT_EQ(landed_40ft(at(10.02, 5.0, 2.595), container, s), kAll);
+  EXPECT_EQ(landed_40ft(at(10.05, 5.0, 2.591), container, s),
             (std::array<bool, 4>{false, false, false, false}));  // 5 cm off: outside the cones' reach
-  EXPECT_EQ(landed_corners(at(10, 5, 2.62), container, kHalfLength40, kHalfWidth, s),
+  EXPECT_EQ(landed_40ft(at(10, 5, 2.62), container, s),
             (std::array<bool, 4>{false, false, false, false}));  // still 3 cm above
   // skewed 0.4 degrees: the far ends move 4 cm sideways, outside the tolerance
-  const auto skewed = landed_corners(at(10, 5, 2.591, 0.4), container, kHalfLength40, kHalfWidth, s);
+  const auto skewed = landed_40ft(at(10, 5, 2.591, 0.4), container, s);
   EXPECT_FALSE(skewed[0] && skewed[1] && skewed[2] && skewed[3]);
+}
+
+TEST(Twistlocks, TheSpreaderSetToAnotherLengthFindsNoCastings) {
+  // ISO 1161 casting centres: 20 ft 5.853 m, 40 ft 11.985 m apart; a spreader at 20 ft over a 40 ft box
+  // puts its twistlocks on the roof, 3 m from the castings
+  const core::Pose container = at(10, 5, 2.591);
+  const TwistlockSettings s;
+  const std::array<bool, 4> none{false, false, false, false};
+  EXPECT_EQ(landed_corners(container, 5.853 / 2, 2.259 / 2, container, 11.985 / 2, 2.259 / 2, s), none);
+  EXPECT_EQ(landed_corners(container, 11.985 / 2, 2.259 / 2, container, 11.985 / 2, 2.259 / 2, s), kAll);
+  // telescoping and 2.5 cm short of the 40 ft setting: within the cones' reach; 4 cm short: not
+  EXPECT_EQ(landed_corners(container, 11.96 / 2, 2.259 / 2, container, 11.985 / 2, 2.259 / 2, s), kAll);
+  EXPECT_EQ(landed_corners(container, 11.905 / 2, 2.259 / 2, container, 11.985 / 2, 2.259 / 2, s), none);
 }
 
 TEST(Twistlocks, LockOnlyWhenAllFourAreLanded) {

@@ -69,9 +69,8 @@ TEST(Weather, SteadyWindDeflectsTheHangingSpreaderBySwingTheory) {
     y += sim.crane().spreader_pose().position.y / n;
     fall += (s.crane.trolley_rail_height_m - 1.0 - (sim.crane().spreader_pose().position.z + 0.5)) / n;
   }
-  const double force = 0.5 * 1.225 * 1.0 * (2 * s.crane.spreader_half_extents_m.x) *
-                       (2 * s.crane.spreader_half_extents_m.z) * 400.0;
-  const double expected = fall * force / (s.crane.spreader_mass_kg * 9.80665);
+  const double force = 0.5 * 1.225 * 1.0 * s.crane.spreader.width_m * s.crane.spreader.height_m * 400.0;
+  const double expected = fall * force / (s.crane.spreader.mass_kg * 9.80665);
   EXPECT_NEAR(y, expected, 0.05 * expected);
   EXPECT_NEAR(sim.snapshot().wind_mps.y, 20.0, 1e-12);
 }

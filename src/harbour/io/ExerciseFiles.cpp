@@ -1,5 +1,6 @@
 #include "harbour/io/ExerciseFiles.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -241,6 +242,36 @@ sim::ExerciseSettings load_exercise(const YamlFile& f, const std::string& folder
         f.number_or(r, "sway_limit_m", "exercise.rules", rules.sway_limit_m, 0.0, 10.0, true);
     rules.collision_speed_mps =
         f.number_or(r, "collision_speed_mps", "exercise.rules", rules.collision_speed_mps, 0.0, 10.0, true);
+    rules.horn_warning_s =
+        f.number_or(r, "horn_warning_s", "exercise.rules", rules.horn_warning_s, 0.0, 600.0, true);
+    if (r["deductions"].IsDefined()) {
+      // points per occurrence, by metric
+      const YAML::Node d = r["deductions"];
+      const std::string at = "exercise.rules.deductions";
+      if (!d.IsMap()) f.fail(d, at, "must be a map of metric: points");
+      const std::pair<const char*, double*> points[] = {
+          {"collision", &rules.points_collision},
+          {"hard_landing", &rules.points_hard_landing},
+          {"landing_while_swaying", &rules.points_sway},
+          {"twistlock_misuse", &rules.points_twistlock_misuse},
+          {"rope_overload", &rules.points_overload},
+          {"limit_switch_hit", &rules.points_limit_hit},
+          {"emergency_stop", &rules.points_emergency_stop},
+          {"gantry_travel_without_horn", &rules.points_unwarned_travel},
+          {"move_not_completed", &rules.points_per_move_missing},
+          {"minute_over_time_limit", &rules.points_per_minute_over}};
+      for (const auto& entry : d) {
+        const std::string key = entry.first.as<std::string>();
+        const auto known =
+            std::find_if(std::begin(points), std::end(points), [&](const auto& p) { return key == p.first; });
+        if (known == std::end(points))
+          f.fail(entry.first, at + "." + key,
+                 "unknown deduction (collision, hard_landing, landing_while_swaying, twistlock_misuse, "
+                 "rope_overload, limit_switch_hit, emergency_stop, gantry_travel_without_horn, "
+                 "move_not_completed, minute_over_time_limit)");
+        *known->second = f.number(d, key, at, 0.0, 100.0);
+      }
+    }
   }
   return e;
 }

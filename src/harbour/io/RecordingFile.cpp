@@ -76,7 +76,26 @@ class Reader {
   std::size_t at_ = 0;
 };
 
-constexpr std::size_t kInputRecord = 8 + 3 * 8 + 1;
+// step, gantry, trolley, hoist, [boom,] buttons[, spreader size] (v3 added the bracketed fields)
+constexpr std::size_t kInputRecord_v2 = 8 + 3 * 8 + 1;
+constexpr std::size_t kInputRecord = 8 + 4 * 8 + 1 + 1;
+
+// button bits: lock, unlock, e-stop, horn, then the four flipper switches
+std::uint8_t button_bits(const sim::StsControls& c) {
+  std::uint8_t bits = (c.lock ? 1 : 0) | (c.unlock ? 2 : 0) | (c.emergency_stop ? 4 : 0) | (c.horn ? 8 : 0);
+  for (std::size_t k = 0; k < 4; ++k)
+    if (c.flipper_down[k]) bits |= static_cast<std::uint8_t>(16 << k);
+  return bits;
+}
+
+void set_buttons(sim::StsControls& c, std::uint8_t bits) {
+  c.lock = bits & 1;
+  c.unlock = bits & 2;
+  c.emergency_stop = bits & 4;
+  c.horn = bits & 8;
+  for (std::size_t k = 0; k < 4; ++k)
+    c.flipper_down[k] = bits & (16 << k);
+}
 constexpr std::size_t kCheckpointRecord = 8 + 8;
 
 }  // namespace
@@ -96,8 +115,9 @@ void write_recording(const std::string& path, const sim::Recording& r) {
     w.put(c.inputs.sts.gantry);
     w.put(c.inputs.sts.trolley);
     w.put(c.inputs.sts.hoist);
-    w.put(static_cast<std::uint8_t>((c.inputs.sts.lock ? 1 : 0) | (c.inputs.sts.unlock ? 2 : 0) |
-                                    (c.inputs.sts.emergency_stop ? 4 : 0)));
+    w.put(c.inputs.sts.boom);
+    w.put(button_bits(c.inputs.sts));
+    w.put(c.inputs.sts.spreader_size_ft);
   }
   w.put(static_cast<std::uint32_t>(r.checkpoints.size()));
   for (const auto& c : r.checkpoints) {
@@ -130,7 +150,7 @@ sim::Recording read_recording(const std::string& path) {
   if (std::memcmp(magic, kMagic, 4) != 0)
     throw RecordingFileError(path, 0, "not a harboursim recording (no HSRC magic)");
   const auto version = r.get<std::uint16_t>("version");
-  if (version != 1 && version != kRecordingVersion)
+  if (version < 1 || version > kRecordingVersion)
     throw RecordingFileError(path, 4,
                              "recording version " + std::to_string(version) +
                                  " is not supported (this build reads " + std::to_string(kRecordingVersion) +
@@ -141,17 +161,21 @@ sim::Recording read_recording(const std::string& path) {
   rec.parent = r.text("parent");
   rec.branch_step = r.get<std::int64_t>("branch step");
   rec.total_steps = r.get<std::int64_t>("total steps");
-  const std::uint32_t inputs = r.count(kInputRecord, "inputs");
+  const std::uint32_t inputs = r.count(version >= 3 ? kInputRecord : kInputRecord_v2, "inputs");
   for (std::uint32_t n = 0; n < inputs; ++n) {
     sim::Recording::InputChange c;
     c.step = r.get<std::int64_t>("input step");
     c.inputs.sts.gantry = r.get<double>("gantry");
     c.inputs.sts.trolley = r.get<double>("trolley");
     c.inputs.sts.hoist = r.get<double>("hoist");
-    const auto flags = r.get<std::uint8_t>("buttons");
-    c.inputs.sts.lock = flags & 1;
-    c.inputs.sts.unlock = flags & 2;
-    c.inputs.sts.emergency_stop = flags & 4;
+    if (version >= 3) c.inputs.sts.boom = r.get<double>("boom");
+    set_buttons(c.inputs.sts, r.get<std::uint8_t>("buttons"));
+    if (version >= 3) {
+      c.inputs.sts.spreader_size_ft = r.get<std::uint8_t>("spreader size");
+      const auto size = c.inputs.sts.spreader_size_ft;
+      if (size != 0 && size != 20 && size != 40 && size != 45)
+        r.fail("spreader size button is not 0, 20, 40 or 45");
+    }
     if (!rec.inputs.empty() && c.step < rec.inputs.back().step) r.fail("input steps out of order");
     rec.inputs.push_back(c);
   }

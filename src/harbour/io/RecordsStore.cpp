@@ -115,6 +115,10 @@ void RecordsStore::finish_attempt(std::int64_t attempt, const sim::Metrics& m, c
                                                    {"overloads", m.overloads},
                                                    {"limit_hits", m.limit_hits},
                                                    {"emergency_stops", m.emergency_stops},
+                                                   {"unwarned_gantry_travel", m.unwarned_gantry_travel},
+                                                   {"skill_safety", s.skills[0]},
+                                                   {"skill_precision", s.skills[1]},
+                                                   {"skill_productivity", s.skills[2]},
                                                    {"hoist_energy_j", m.hoist_energy_j}};
   for (const auto& [name, value] : values) {
     const std::string n = name;

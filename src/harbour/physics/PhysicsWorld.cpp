@@ -175,8 +175,8 @@ BodyId PhysicsWorld::add_kinematic_body(const core::Pose& pose) {
   return id;
 }
 
-void PhysicsWorld::add_box_shape(BodyId body, const Vec3& half_extents_m, const core::Pose& local,
-                                 int surface) {
+int PhysicsWorld::add_box_shape(BodyId body, const Vec3& half_extents_m, const core::Pose& local,
+                                int surface) {
   const dSpaceID space =
       body != kWorld && ode_->bodies[body].shapes ? ode_->bodies[body].shapes : ode_->space;
   dGeomID g = dCreateBox(space, 2 * half_extents_m.x, 2 * half_extents_m.y, 2 * half_extents_m.z);
@@ -191,7 +191,26 @@ void PhysicsWorld::add_box_shape(BodyId body, const Vec3& half_extents_m, const 
     dGeomSetOffsetPosition(g, at.x, at.y, at.z);
     dGeomSetOffsetRotation(g, r);
   }
-  ode_->add_shape(g, body, surface);
+  return ode_->add_shape(g, body, surface);
+}
+
+void PhysicsWorld::set_box_shape(int shape, const Vec3& half_extents_m, const core::Pose& local) {
+  const Ode::Shape& s = ode_->shapes[static_cast<std::size_t>(shape)];
+  dGeomBoxSetLengths(s.id, 2 * half_extents_m.x, 2 * half_extents_m.y, 2 * half_extents_m.z);
+  dMatrix3 r;
+  to_ode(local.rotation, r);
+  const Vec3 at = local.position + ode_->bodies[s.body].shape_offset;
+  dGeomSetOffsetPosition(s.id, at.x, at.y, at.z);
+  dGeomSetOffsetRotation(s.id, r);
+}
+
+void PhysicsWorld::set_shape_enabled(int shape, bool enabled) {
+  const dGeomID g = ode_->shapes[static_cast<std::size_t>(shape)].id;
+  if (enabled) {
+    dGeomEnable(g);
+  } else {
+    dGeomDisable(g);
+  }
 }
 
 void PhysicsWorld::add_ground(double z_m, int surface) {

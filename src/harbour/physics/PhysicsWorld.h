@@ -70,8 +70,13 @@ class PhysicsWorld {
   /// A body moved by the caller (set_kinematic_motion): a vessel, a truck. It pushes dynamic bodies and is
   /// not pushed; its shapes come from add_box_shape.
   BodyId add_kinematic_body(const core::Pose& pose);
-  /// A box shape on `body` at a pose in the body's frame (kWorld: a static box at a world pose).
-  void add_box_shape(BodyId body, const core::Vec3& half_extents_m, const core::Pose& local, int surface);
+  /// A box shape on `body` at a pose in the body's frame (kWorld: a static box at a world pose); returns
+  /// its index for set_box_shape / set_shape_enabled.
+  int add_box_shape(BodyId body, const core::Vec3& half_extents_m, const core::Pose& local, int surface);
+  /// Resizes and moves a body's box shape (a telescoping spreader, its flippers).
+  void set_box_shape(int shape, const core::Vec3& half_extents_m, const core::Pose& local);
+  /// A disabled shape touches nothing (a flipper folded up).
+  void set_shape_enabled(int shape, bool enabled);
   /// A static horizontal ground plane at height `z_m`.
   void add_ground(double z_m, int surface = 0);
   /// A static box (quay furniture, a vessel's deck or hatch cover) at a world pose.

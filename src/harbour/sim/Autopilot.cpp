@@ -15,6 +15,7 @@ constexpr double kPosition_tolerance_m = 0.03;
 constexpr double kSettledSwingSpeed_mps = 0.05;  // the swing has slowed enough to start lowering
 constexpr double kButton_s = 0.1;
 constexpr double kSlacken_s = 0.6;
+constexpr double kHorn_s = 1.0;  // the horn sounds this long before the gantry travels
 
 }  // namespace
 
@@ -35,9 +36,11 @@ core::Vec3 Autopilot::source(const Simulation& simulation) const {
   return {};
 }
 
-void Autopilot::start_travel(const core::Vec3& to, double now) {
+void Autopilot::start_travel(const core::Vec3& to, double gantry_y, double now) {
   trolley_ = {to.x, 0.0, now, false, 0.0, -1.0};
-  gantry_ = {to.y, 0.0, now, false, 0.0, -1.0};
+  // a gantry travel waits for the horn
+  const bool gantry_travels = std::abs(to.y - gantry_y) > kPosition_tolerance_m;
+  gantry_ = {to.y, 0.0, gantry_travels ? now + kHorn_s : now, false, 0.0, -1.0};
 }
 
 double Autopilot::axis_lever(AxisMove& m, double position, double max_speed, double period,
@@ -45,6 +48,7 @@ double Autopilot::axis_lever(AxisMove& m, double position, double max_speed, dou
   // trapezoid in the lever: ramp up over exactly one period (so the swing it starts ends with the ramp),
   // brake over one period when the remaining distance equals what a linear ramp-down covers (v T / 2), then
   // creep onto the target. A move too short to reach cruise ramps to a lower top, still over one period.
+  if (now < m.ramp_start) return 0.0;  // not started yet
   const double error = m.target - position;
   const double direction = error >= 0.0 ? 1.0 : -1.0;
   if (m.top < 0.0) m.top = std::min(kCruiseLever, std::abs(error) / (max_speed * period));
@@ -86,7 +90,7 @@ Inputs Autopilot::next(const Simulation& simulation) {
     case Phase::kRaise:
       in.sts.hoist = 1.0;
       if (spreader.z >= kTravelHeight_m) {
-        start_travel(destination, now);
+        start_travel(destination, crane.gantry_position_m(), now);
         enter(Phase::kTravel);
       }
       break;
@@ -95,7 +99,8 @@ Inputs Autopilot::next(const Simulation& simulation) {
           axis_lever(trolley_, crane.trolley_position_m(), settings.trolley_drive.max_speed_mps, period, now);
       in.sts.gantry =
           axis_lever(gantry_, crane.gantry_position_m(), settings.gantry_drive.max_speed_mps, period, now);
-      if (in.sts.trolley == 0.0 && in.sts.gantry == 0.0) enter(Phase::kSettle);
+      in.sts.horn = now < gantry_.ramp_start;
+      if (in.sts.trolley == 0.0 && in.sts.gantry == 0.0 && !in.sts.horn) enter(Phase::kSettle);
       break;
     }
     case Phase::kSettle: {
@@ -109,7 +114,7 @@ Inputs Autopilot::next(const Simulation& simulation) {
     }
     case Phase::kLower: {
       // landing surface: the spreader's centre when seated on the box (pick-up) or with the box on its target
-      const double land_z = destination.z + goal_half_height(simulation) + settings.spreader_half_extents_m.z;
+      const double land_z = destination.z + goal_half_height(simulation) + crane.spreader_half_extents_m().z;
       const bool slow = spreader.z - land_z < kSlowZone_m && !(carrying_ && defects_.land_fast);
       in.sts.hoist = slow ? -kSlowLever : -0.6;
       if (!carrying_ && crane.lamps().landed) enter(Phase::kLock);

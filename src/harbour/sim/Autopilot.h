@@ -36,7 +36,7 @@ class Autopilot {
   };
 
   double axis_lever(AxisMove& m, double position, double max_speed, double period, double now) const;
-  void start_travel(const core::Vec3& to, double now);
+  void start_travel(const core::Vec3& to, double gantry_y, double now);
   core::Vec3 source(const Simulation& simulation) const;
   double goal_half_height(const Simulation& simulation) const;
 

@@ -5,6 +5,18 @@
 
 namespace harbour::sim {
 
+const char* skill_name(Skill skill) {
+  switch (skill) {
+    case Skill::kSafety:
+      return "safety";
+    case Skill::kPrecision:
+      return "precision";
+    case Skill::kProductivity:
+      return "productivity";
+  }
+  return "?";
+}
+
 Evaluator::Evaluator(const ExerciseSettings& exercise)
     : exercise_(exercise), done_(exercise.moves.size(), false) {}
 
@@ -45,7 +57,7 @@ void Evaluator::count_collision(const physics::ImpactEvent& e) {
   metrics_.worst_collision_impulse_ns = std::max(metrics_.worst_collision_impulse_ns, e.impulse_ns);
   auto either = [&](int surface) { return e.surface == surface || e.other_surface == surface; };
   auto box_or_spreader = [](int s) {
-    return s == kSurfaceContainer || s == kSurfaceHatchCover || s == kSurfaceSpreader;
+    return s == kSurfaceContainer || s == kSurfaceHatchCover || s == kSurfaceSpreader || s == kSurfaceFlipper;
   };
   if (either(kSurfaceCellGuide)) {
     ++metrics_.cell_guide_collisions;
@@ -113,6 +125,21 @@ void Evaluator::observe(const Simulation& simulation, const Inputs& inputs) {
   limit_hits_seen_ = hits;
   if (inputs.sts.emergency_stop && !was_estop_) ++metrics_.emergency_stops;
   was_estop_ = inputs.sts.emergency_stop;
+  // gantry travel (people walk the quay under the sill beams) starts only after a warning on the horn
+  // (a travel: one motion from standstill covering more than gantry_travel_m; positioning creeps are not)
+  if (inputs.sts.horn) last_horn_s_ = metrics_.time_s;
+  const bool gantry_moving = crane.gantry_drive().reference_mps() != 0.0;
+  if (gantry_moving && !gantry_was_moving_) {
+    travel_start_y_ = crane.gantry_position_m();
+    travel_warned_ = metrics_.time_s - last_horn_s_ <= rules.horn_warning_s;
+    travel_counted_ = false;
+  }
+  if (gantry_moving && !travel_warned_ && !travel_counted_ &&
+      std::abs(crane.gantry_position_m() - travel_start_y_) > rules.gantry_travel_m) {
+    ++metrics_.unwarned_gantry_travel;
+    travel_counted_ = true;
+  }
+  gantry_was_moving_ = gantry_moving;
   const double drum_power = -crane.hoist().drum_rope_torque(0) * crane.hoist().drum_rope_speed(0) /
                             simulation.scenario().crane.hoist.elements[0].radius_m;
   metrics_.hoist_energy_j += std::max(0.0, drum_power) * Simulation::kStep_s;
@@ -121,24 +148,29 @@ void Evaluator::observe(const Simulation& simulation, const Inputs& inputs) {
 Score Evaluator::score() const {
   const EvaluationRules& r = exercise_.rules;
   Score s;
-  auto deduct = [&](const char* reason, int count, double points) {
-    if (count <= 0) return;
-    s.deductions.push_back({reason, count, count * points});
+  auto deduct = [&](const char* reason, Skill skill, int count, double points) {
+    if (count <= 0 || points <= 0.0) return;
+    s.deductions.push_back({reason, count, count * points, skill});
     s.total -= count * points;
+    s.skills[static_cast<std::size_t>(skill)] -= count * points;
   };
-  deduct("collision", metrics_.collisions, r.points_collision);
-  deduct("hard landing", metrics_.hard_landings, r.points_hard_landing);
-  deduct("landing while swaying", metrics_.sway_landings, r.points_sway);
-  deduct("twistlock misuse", metrics_.twistlock_misuse, r.points_twistlock_misuse);
-  deduct("rope overload", metrics_.overloads, r.points_overload);
-  deduct("limit switch hit", metrics_.limit_hits, r.points_limit_hit);
-  deduct("emergency stop", metrics_.emergency_stops, r.points_emergency_stop);
-  deduct("move not completed", static_cast<int>(exercise_.moves.size()) - metrics_.moves_completed,
-         r.points_per_move_missing);
+  deduct("collision", Skill::kSafety, metrics_.collisions, r.points_collision);
+  deduct("hard landing", Skill::kPrecision, metrics_.hard_landings, r.points_hard_landing);
+  deduct("landing while swaying", Skill::kPrecision, metrics_.sway_landings, r.points_sway);
+  deduct("twistlock misuse", Skill::kSafety, metrics_.twistlock_misuse, r.points_twistlock_misuse);
+  deduct("rope overload", Skill::kSafety, metrics_.overloads, r.points_overload);
+  deduct("limit switch hit", Skill::kPrecision, metrics_.limit_hits, r.points_limit_hit);
+  deduct("emergency stop", Skill::kSafety, metrics_.emergency_stops, r.points_emergency_stop);
+  deduct("gantry travel without the horn", Skill::kSafety, metrics_.unwarned_gantry_travel,
+         r.points_unwarned_travel);
+  deduct("move not completed", Skill::kProductivity,
+         static_cast<int>(exercise_.moves.size()) - metrics_.moves_completed, r.points_per_move_missing);
   const int minutes_over =
       static_cast<int>(std::ceil(std::max(0.0, metrics_.time_s - r.time_limit_s) / 60.0));
-  deduct("minute over the time limit", minutes_over, r.points_per_minute_over);
+  deduct("minute over the time limit", Skill::kProductivity, minutes_over, r.points_per_minute_over);
   s.total = std::max(0.0, s.total);
+  for (double& skill : s.skills)
+    skill = std::max(0.0, skill);
   s.passed = s.total >= r.pass_score && metrics_.moves_completed == static_cast<int>(exercise_.moves.size());
   return s;
 }

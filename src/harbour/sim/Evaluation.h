@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -23,6 +24,8 @@ struct EvaluationRules {
   double collision_speed_mps = 0.1;  ///< [m/s] impacts at least this fast that are not landings count
   double hard_landing_mps = 0.3;     ///< [m/s] landing a container faster than this is a hard landing
   double sway_limit_m = 0.25;        ///< [m] spreader offset from plumb at a landing counted as swaying
+  double horn_warning_s = 5.0;       ///< [s] gantry travel must start within this long after the horn sounded
+  double gantry_travel_m = 1.0;      ///< [m] a gantry motion longer than this is a travel (needs the horn)
   double points_collision = 10.0;
   double points_hard_landing = 5.0;
   double points_sway = 2.0;
@@ -30,6 +33,7 @@ struct EvaluationRules {
   double points_overload = 15.0;
   double points_limit_hit = 2.0;
   double points_emergency_stop = 5.0;
+  double points_unwarned_travel = 2.0;
   double points_per_move_missing = 20.0;
   double points_per_minute_over = 5.0;
 };
@@ -64,10 +68,16 @@ struct Metrics {
   int overloads = 0;
   int limit_hits = 0;
   int emergency_stops = 0;
-  double hoist_energy_j = 0.0;  ///< [J] mechanical work at the hoist drum (positive part)
+  int unwarned_gantry_travel = 0;  ///< gantry travel started without the horn first
+  double hoist_energy_j = 0.0;     ///< [J] mechanical work at the hoist drum (positive part)
 };
 
-/// The score: 100 minus deductions, with the reasons.
+/// The skills a deduction counts against (docs/evaluation.md).
+enum class Skill : std::uint8_t { kSafety, kPrecision, kProductivity };
+const char* skill_name(Skill skill);
+
+/// The score: 100 minus deductions, with the reasons, and a sub-score per skill (100 minus that skill's
+/// deductions, floor 0).
 struct Score {
   double total = 100.0;
   bool passed = false;
@@ -75,8 +85,10 @@ struct Score {
     std::string reason;
     int count = 0;
     double points = 0.0;
+    Skill skill = Skill::kSafety;
   };
   std::vector<Deduction> deductions;
+  std::array<double, 3> skills{100.0, 100.0, 100.0};  ///< indexed by Skill
 };
 
 /// Watches an attempt step by step and measures it.
@@ -103,6 +115,9 @@ class Evaluator {
   std::vector<bool> done_;
   std::optional<physics::BodyId> carried_;
   bool was_estop_ = false;
+  bool gantry_was_moving_ = false, travel_warned_ = false, travel_counted_ = false;
+  double travel_start_y_ = 0.0;
+  double last_horn_s_ = -1e9;
   std::uint32_t limit_hits_seen_ = 0;
   double last_completion_s_ = 0.0;
 };

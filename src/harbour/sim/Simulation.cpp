@@ -73,9 +73,9 @@ void Simulation::apply_wind() {
   const double rho = scenario_.weather.air_density_kg_m3, cd = scenario_.drag_coefficient;
   const physics::BodyId spreader = crane_->spreader_body();
   const core::Pose sp = world_->pose(spreader);
-  world_->add_force_at(spreader, sp.position,
-                       box_drag(wind, world_->linear_velocity(spreader), sp,
-                                scenario_.crane.spreader_half_extents_m, cd, rho));
+  world_->add_force_at(
+      spreader, sp.position,
+      box_drag(wind, world_->linear_velocity(spreader), sp, crane_->spreader_half_extents_m(), cd, rho));
   if (const auto box = crane_->locked_container()) {
     for (const ContainerRef& c : containers_) {
       if (c.body != *box) continue;
@@ -155,8 +155,11 @@ Snapshot Simulation::snapshot() const {
   s.held = held_;
   s.gantry_y_m = crane_->gantry_position_m();
   s.trolley_x_m = crane_->trolley_position_m();
+  s.boom_angle_rad = crane_->boom_angle_rad();
   s.spreader = crane_->spreader_pose();
+  s.spreader_frame = crane_->spreader_state();
   s.lamps = crane_->lamps();
+  s.horn = crane_->horn();
   s.hoisted_load_n = crane_->hoisted_load_n();
   s.warnings = warnings_.total();
   s.wind_mps = weather_.wind();
@@ -182,6 +185,10 @@ std::uint64_t Simulation::state_hash() const {
   hash.add(crane_->gantry_drive().reference_mps());
   hash.add(crane_->trolley_drive().reference_mps());
   hash.add(crane_->lamps());
+  hash.add(crane_->boom_angle_rad());
+  const SpreaderState spreader = crane_->spreader_state();
+  hash.add(spreader.length_m);
+  hash.add(spreader.flippers);
   hash.add(weather_.turbulence_mps());
   hash.add(next_event_);
   return hash.value();

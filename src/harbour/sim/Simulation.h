@@ -77,8 +77,11 @@ struct Snapshot {
   double time_s = 0.0;
   bool held = false;
   double gantry_y_m = 0.0, trolley_x_m = 0.0;
+  double boom_angle_rad = 0.0;  ///< [rad] above horizontal (0: down and latched for work)
   core::Pose spreader;
+  SpreaderState spreader_frame;  ///< size setting, length, flippers
   TwistlockLamps lamps;
+  bool horn = false;
   struct Container {
     std::string id;
     core::Pose pose;

@@ -24,7 +24,8 @@ StsCrane::StsCrane(physics::PhysicsWorld& world, const StsCraneSettings& setting
       gantry_start_y_(gantry_y_m),
       trolley_start_x_(trolley_x_m),
       gantry_(settings.gantry_drive),
-      trolley_(settings.trolley_drive) {
+      trolley_(settings.trolley_drive),
+      boom_(settings.boom.drive) {
   // gantry: the crane's base frame, on the quay rails
   physics::BoxSettings gantry;
   gantry.mass_kg = settings.gantry_mass_kg;
@@ -42,12 +43,15 @@ StsCrane::StsCrane(physics::PhysicsWorld& world, const StsCraneSettings& setting
   trolley_body_ = world.add_box(trolley);
   trolley_slider_ = world.add_slider(gantry_body_, trolley_body_, {1, 0, 0});
 
+  // the spreader's body; its frame and flippers are shapes the Spreader resizes as it telescopes
+  const SpreaderSettings& frame = settings.spreader;
   physics::BoxSettings spreader;
-  spreader.mass_kg = settings.spreader_mass_kg;
-  spreader.half_extents_m = settings.spreader_half_extents_m;
-  spreader.surface = kSurfaceSpreader;
+  spreader.mass_kg = frame.mass_kg;
+  spreader.half_extents_m = {0.5 * frame.width_m, 0.5 * frame.length_m[1], 0.5 * frame.height_m};
   spreader.pose.position = {trolley_x_m, gantry_y_m, spreader_z_m};
+  spreader.collides = false;
   spreader_ = world.add_box(spreader);
+  spreader_frame_ = std::make_unique<Spreader>(world, spreader_, kSurfaceSpreader, kSurfaceFlipper, frame);
 
   cable_bodies_ = std::make_unique<OdeCableBodies>(
       world, std::vector<physics::BodyId>{gantry_body_, trolley_body_, spreader_});
@@ -63,10 +67,25 @@ double StsCrane::hoisted_load_n() const {
 }
 
 void StsCrane::step(const StsControls& c, std::span<const ContainerRef> containers, double dt_s) {
+  horn_ = c.horn;
+  // the boom luffs only with the trolley parked landside; until it is down again the trolley stays parked
+  const BoomSettings& boom = settings_.boom;
+  const bool trolley_parked = trolley_position_m() <= boom.trolley_park_x_m + 0.01;
+  const DriveOutput b = boom_.step(trolley_parked ? c.boom : 0.0, boom_angle_, dt_s, c.emergency_stop);
+  boom_angle_ =
+      std::clamp(boom_angle_ + b.velocity_mps * dt_s, boom.drive.min_position_m, boom.drive.max_position_m);
+  double trolley_lever = c.trolley;
+  if (boom_angle_ > 0.0 || b.velocity_mps != 0.0) {
+    const DriveSettings& td = settings_.trolley_drive;
+    const double room = std::max(0.0, boom.trolley_park_x_m - trolley_position_m());
+    trolley_lever = std::min(
+        trolley_lever, core::discrete_braking_speed(room, td.deceleration_mps2, dt_s) / td.max_speed_mps);
+  }
+
   // travel drives onto the slider motors
   const DriveOutput g = gantry_.step(c.gantry, gantry_position_m(), dt_s, c.emergency_stop);
   world_.set_slider_motor(gantry_slider_, g.velocity_mps, g.max_force_n);
-  const DriveOutput t = trolley_.step(c.trolley, trolley_position_m(), dt_s, c.emergency_stop);
+  const DriveOutput t = trolley_.step(trolley_lever, trolley_position_m(), dt_s, c.emergency_stop);
   world_.set_slider_motor(trolley_slider_, t.velocity_mps, t.max_force_n);
 
   // hoist limit switches: slow down ahead of them so the spreader stops on them (the spreader moves at half
@@ -93,25 +112,31 @@ void StsCrane::step(const StsControls& c, std::span<const ContainerRef> containe
   const core::Pose spreader = world_.pose(spreader_);
   // twistlock frame: on the underside, x along the spreader's length (the quay's y)
   core::Pose underside = spreader;
-  underside.position = spreader.to_parent({0, 0, -settings_.spreader_half_extents_m.z});
+  underside.position = spreader.to_parent({0, 0, -spreader_frame_->half_extents_m().z});
   underside.rotation = spreader.rotation * core::Mat3::rotation({0, 0, 1}, std::numbers::pi / 2);
+  const double pin_length = spreader_frame_->pin_half_length_m(),
+               pin_width = spreader_frame_->pin_half_width_m();
   std::array<bool, 4> landed{};
   std::optional<physics::BodyId> landed_on;
   for (const ContainerRef& box : containers) {
     core::Pose top = world_.pose(box.body);
     top.position = top.to_parent({0, 0, box.half_extents_m.z});
-    auto corners = landed_corners(underside, top, box.pocket_half_length_m, box.pocket_half_width_m,
-                                  settings_.twistlocks);
-    if (landed_sensor_fault_ >= 0) corners[static_cast<std::size_t>(landed_sensor_fault_)] = false;
-    if (corners[0] && corners[1] && corners[2] && corners[3]) {
-      landed = corners;
-      landed_on = box.body;
-      break;
+    for (const double apertures : {box.pocket_half_length_m, box.end_pocket_half_length_m}) {
+      if (apertures <= 0.0) continue;
+      auto corners = landed_corners(underside, pin_length, pin_width, top, apertures, box.pocket_half_width_m,
+                                    settings_.twistlocks);
+      if (landed_sensor_fault_ >= 0) corners[static_cast<std::size_t>(landed_sensor_fault_)] = false;
+      if (corners[0] && corners[1] && corners[2] && corners[3]) {
+        landed = corners;
+        landed_on = box.body;
+        break;
+      }
     }
+    if (landed_on) break;
   }
   // the load hangs when the ropes carry clearly more than the empty spreader (landing pins stay pressed while
   // a locked container hangs, so "landed" alone cannot tell)
-  const bool load_suspended = hoisted_load_n() > 1.3 * settings_.spreader_mass_kg * 9.80665;
+  const bool load_suspended = hoisted_load_n() > 1.3 * settings_.spreader.mass_kg * 9.80665;
   const bool was_locked = twistlocks_.locked();
   twistlocks_.update(landed, c.lock, c.unlock, load_suspended);
   if (!was_locked && twistlocks_.locked() && landed_on) {
@@ -122,12 +147,23 @@ void StsCrane::step(const StsControls& c, std::span<const ContainerRef> containe
     attachment_ = -1;
     locked_container_.reset();
   }
+  // the spreader's telescope (interlocked while landed or locked) and flippers
+  const SpreaderSize sizes[] = {SpreaderSize::k20ft, SpreaderSize::k40ft, SpreaderSize::k45ft};
+  const SpreaderSize* size_button = nullptr;
+  for (int k = 0; k < 3; ++k)
+    if (c.spreader_size_ft == (k == 0 ? 20 : k == 1 ? 40 : 45)) size_button = &sizes[k];
+  spreader_frame_->step(size_button, c.flipper_down, twistlocks_.lamps().landed || twistlocks_.locked(),
+                        dt_s);
 }
 
 void StsCrane::save_state(core::StateWriter& out) const {
   out.section(0x53545343);  // "STSC"
   gantry_.save_state(out);
   trolley_.save_state(out);
+  boom_.save_state(out);
+  out.put(boom_angle_);
+  out.put(horn_);
+  spreader_frame_->save_state(out);
   twistlocks_.save_state(out);
   hoist_->save_state(out);
   out.put(locked_container_.value_or(physics::kWorld));
@@ -142,6 +178,10 @@ void StsCrane::restore_state(core::StateReader& in) {
   in.section(0x53545343, "crane");
   gantry_.restore_state(in);
   trolley_.restore_state(in);
+  boom_.restore_state(in);
+  in.get(boom_angle_);
+  in.get(horn_);
+  spreader_frame_->restore_state(in);
   twistlocks_.restore_state(in);
   hoist_->restore_state(in);
   const auto locked = in.get<physics::BodyId>();

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -10,9 +11,18 @@
 #include "harbour/physics/PhysicsWorld.h"
 #include "harbour/sim/Drive.h"
 #include "harbour/sim/OdeCableBodies.h"
+#include "harbour/sim/Spreader.h"
 #include "harbour/sim/Twistlocks.h"
 
 namespace harbour::sim {
+
+/// The STS boom's luffing (settings): raised out of the vessel's way at berthing, lowered and latched to
+/// work. Its angle is driven kinematically by a Drive in radians.
+struct BoomSettings {
+  DriveSettings drive{0.0046, 0.002, 0.002, 0.01, 1.0, 1.0, 0.0, 1.396};  ///< [rad]: 80 deg in ~5 min
+  double trolley_park_x_m = 10.0;  ///< [m] the trolley must stand landside of this for the boom to luff,
+                                   ///< and cannot pass it while the boom is not down
+};
 
 /// A ship-to-shore crane (settings, from data/machines/sts.yaml). Frames: the gantry travels along world y on
 /// the quay rails; the trolley along the gantry's x (waterside +x); the hoist reeving's bodies are
@@ -23,11 +33,11 @@ struct StsCraneSettings {
   double gantry_mass_kg = 1.2e6;
   double trolley_mass_kg = 30000.0;
   double trolley_rail_height_m = 49.0;  ///< [m] trolley body centre above the quay
-  double spreader_mass_kg = 15000.0;    ///< [kg] headblock and spreader
   double hoist_upper_limit_m =
       44.0;  ///< [m] spreader centre height where the upper limit switch stops hoisting
   double hoist_lower_limit_m = -20.0;  ///< [m] ... and the lower one stops lowering (into a hold)
-  core::Vec3 spreader_half_extents_m{1.219, 6.096, 0.5};  ///< [m] x across, y along the quay (40 ft setting)
+  SpreaderSettings spreader;
+  BoomSettings boom;
   TwistlockSettings twistlocks;
   cable::ReevingSettings hoist;
 };
@@ -37,9 +47,13 @@ struct StsControls {
   double gantry = 0.0;   ///< [-1, 1] +: along +y
   double trolley = 0.0;  ///< [-1, 1] +: waterside
   double hoist = 0.0;    ///< [-1, 1] +: raise
+  double boom = 0.0;     ///< [-1, 1] +: raise the boom
   bool lock = false;
   bool unlock = false;
   bool emergency_stop = false;
+  bool horn = false;
+  std::uint8_t spreader_size_ft = 0;   ///< a size button held: 20, 40 or 45 (0: none)
+  std::array<bool, 4> flipper_down{};  ///< flipper switches per twistlock corner (true: lowered)
   friend bool operator==(const StsControls&, const StsControls&) = default;
 };
 
@@ -49,6 +63,7 @@ struct ContainerRef {
   physics::BodyId body = physics::kWorld;
   core::Vec3 half_extents_m;
   double pocket_half_length_m = 0.0, pocket_half_width_m = 0.0;  ///< [m] casting centres from its centre
+  double end_pocket_half_length_m = 0.0;                         ///< [m] a 45 ft box's end castings (0: none)
 };
 
 /// The STS crane on the physics world: gantry and trolley on motorised sliders driven by Drives, the spreader
@@ -64,7 +79,11 @@ class StsCrane {
   double gantry_position_m() const { return gantry_start_y_ + world_.slider_position(gantry_slider_); }
   double trolley_position_m() const { return trolley_start_x_ + world_.slider_position(trolley_slider_); }
   core::Pose spreader_pose() const { return world_.pose(spreader_); }
-  const core::Vec3& spreader_half_extents_m() const { return settings_.spreader_half_extents_m; }
+  core::Vec3 spreader_half_extents_m() const { return spreader_frame_->half_extents_m(); }
+  SpreaderState spreader_state() const { return spreader_frame_->state(); }
+  /// Boom angle above horizontal [rad]; the boom is latched for work only at 0.
+  double boom_angle_rad() const { return boom_angle_; }
+  bool horn() const { return horn_; }
   physics::BodyId spreader_body() const { return spreader_; }
   /// The container locked to the spreader, if any.
   std::optional<physics::BodyId> locked_container() const { return locked_container_; }
@@ -92,7 +111,10 @@ class StsCrane {
   physics::BodyId gantry_body_, trolley_body_, spreader_;
   int gantry_slider_, trolley_slider_;
   double gantry_start_y_, trolley_start_x_;
-  Drive gantry_, trolley_;
+  Drive gantry_, trolley_, boom_;
+  double boom_angle_ = 0.0;
+  bool horn_ = false;
+  std::unique_ptr<Spreader> spreader_frame_;
   Twistlocks twistlocks_;
   std::unique_ptr<OdeCableBodies> cable_bodies_;
   std::unique_ptr<cable::HoistSystem> hoist_;

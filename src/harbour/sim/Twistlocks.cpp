@@ -4,17 +4,18 @@
 
 namespace harbour::sim {
 
-std::array<bool, 4> landed_corners(const core::Pose& spreader_underside, const core::Pose& container_top,
-                                   double half_length_m, double half_width_m,
+std::array<bool, 4> landed_corners(const core::Pose& spreader_underside, double pin_half_length_m,
+                                   double pin_half_width_m, const core::Pose& container_top,
+                                   double aperture_half_length_m, double aperture_half_width_m,
                                    const TwistlockSettings& settings) {
   constexpr double kSign[4][2] = {{1, 1}, {-1, 1}, {-1, -1}, {1, -1}};
   std::array<bool, 4> landed{};
   for (int c = 0; c < 4; ++c) {
-    const core::Vec3 corner{kSign[c][0] * half_length_m, kSign[c][1] * half_width_m, 0.0};
-    const core::Vec3 pin = spreader_underside.to_parent(corner);
-    const core::Vec3 in_container =
-        container_top.to_local(pin);  // aperture c sits at `corner` on the top face
-    const double lateral = std::hypot(in_container.x - corner.x, in_container.y - corner.y);
+    const core::Vec3 pin =
+        spreader_underside.to_parent({kSign[c][0] * pin_half_length_m, kSign[c][1] * pin_half_width_m, 0.0});
+    const core::Vec3 aperture{kSign[c][0] * aperture_half_length_m, kSign[c][1] * aperture_half_width_m, 0.0};
+    const core::Vec3 in_container = container_top.to_local(pin);
+    const double lateral = std::hypot(in_container.x - aperture.x, in_container.y - aperture.y);
     landed[c] = lateral <= settings.lateral_tolerance_m && std::abs(in_container.z) <= settings.landed_gap_m;
   }
   return landed;

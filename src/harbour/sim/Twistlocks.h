@@ -30,12 +30,14 @@ enum class TwistlockEvent : std::uint8_t {
   kHoistedUnlocked,         ///< the spreader arrived empty on a container and lifted off without locking
 };
 
-/// Corners (spreader frame: +x +y, -x +y, -x -y, +x -y) that sit in the matching corner castings of a
-/// container: the spreader's twistlock positions within the lateral tolerance of the casting apertures and
-/// its underside within the landed gap of the container's top. Both poses are world poses of the bottom-face
-/// / top-face centres.
-std::array<bool, 4> landed_corners(const core::Pose& spreader_underside, const core::Pose& container_top,
-                                   double half_length_m, double half_width_m,
+/// Corners (twistlock frame, x along the length: +x +y, -x +y, -x -y, +x -y) whose twistlock sits in the
+/// matching corner casting of a container: the twistlock (at +-pin_half_length, +-pin_half_width on the
+/// spreader's underside) within the lateral tolerance of the casting aperture (at +-aperture_half_length,
+/// +-aperture_half_width on the container's top) and the underside within the landed gap of the top. Both
+/// poses are world poses of the bottom-face / top-face centres, x along the length.
+std::array<bool, 4> landed_corners(const core::Pose& spreader_underside, double pin_half_length_m,
+                                   double pin_half_width_m, const core::Pose& container_top,
+                                   double aperture_half_length_m, double aperture_half_width_m,
                                    const TwistlockSettings& settings);
 
 /// The spreader's twistlocks with their interlocks: lock only when all four corners are landed; never unlock
