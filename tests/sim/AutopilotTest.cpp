@@ -125,3 +125,31 @@ TEST(Evaluation, GantryTravelWithoutTheHornCountsAgainstSafety) {
 
 }  // namespace
 }  // namespace harbour::sim
+
+namespace harbour::sim {
+namespace {
+
+TEST(Evaluation, ASpreaderLoweredOffTheCellCountsACellGuideCollision) {
+  // bay 12 with its hatch covers off and its cells empty; row 01's cell is centred at x = 32.27 m. The
+  // spreader comes down 15 cm off to waterside (the guides leave 25 mm a side) and lands on the guides.
+  ExerciseSettings exercise = scenes::sts_discharge_exercise(HARBOUR_DATA_DIR);
+  exercise.scenario.containers.clear();
+  exercise.scenario.trolley_x_m = 32.27 + 0.15;
+  Simulation sim(exercise.scenario);
+  Evaluator evaluator(exercise);
+  Inputs lower;
+  lower.sts.hoist = -0.6;
+  for (int k = 0; k < 40000 && evaluator.metrics().collisions == 0; ++k) {
+    sim.step(lower);
+    evaluator.observe(sim, lower);
+  }
+  EXPECT_EQ(evaluator.metrics().collisions, 1);
+  EXPECT_EQ(evaluator.metrics().cell_guide_collisions, 1);
+  // it stopped on the guides' tops, above the hold
+  const Vessel& vessel = *sim.vessel();
+  const double coaming = vessel.frame().to_parent({0, 0, vessel.geometry().coaming_top_m()}).z;
+  EXPECT_GT(sim.crane().spreader_pose().position.z, coaming - 0.5);
+}
+
+}  // namespace
+}  // namespace harbour::sim

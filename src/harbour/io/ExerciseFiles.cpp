@@ -28,6 +28,7 @@ const std::map<std::string, core::Vec3>& iso_types() {
 // ISO 668 corner casting centres [m] (length, width): 20 ft, and 40 ft (also on 45 ft boxes and hatch covers)
 constexpr double kCastings20_m[2] = {5.853, 2.259};
 constexpr double kCastings40_m[2] = {11.985, 2.259};
+constexpr double kCastings45_m = 13.509;  // a 45 ft box's end castings, lengthwise
 
 std::string item(const std::string& list, std::size_t n) {
   return list + "[" + std::to_string(n) + "]";
@@ -126,6 +127,7 @@ sim::ExerciseSettings load_exercise(const YamlFile& f, const std::string& folder
     const bool twenty = type == "20ft";
     p.pocket_half_length_m = (twenty ? kCastings20_m[0] : kCastings40_m[0]) / 2;
     p.pocket_half_width_m = (twenty ? kCastings20_m[1] : kCastings40_m[1]) / 2;
+    if (type == "45ftHC") p.end_pocket_half_length_m = kCastings45_m / 2;
     if (c["center_of_mass_m"].IsDefined()) {
       p.center_of_mass_m = f.vector3(c["center_of_mass_m"], at + ".center_of_mass_m");
       const core::Vec3& h = p.half_extents_m;
@@ -152,6 +154,7 @@ sim::ExerciseSettings load_exercise(const YamlFile& f, const std::string& folder
         f.fail(c["type"], at + ".type", "the holds have 40 ft cells: " + type + " goes on deck");
       p.pose = vessel->stowed_pose_at(0.0, *centre);
       p.on_vessel = true;
+      p.in_cell = address.tier < 80;
     } else {
       // on the quay or a chassis: along the quay unless turned
       const double yaw = core::deg_to_rad(f.number_or(c, "yaw_deg", at, 90.0, -360.0, 360.0));

@@ -22,18 +22,37 @@ constexpr double kHorn_s = 1.0;  // the horn sounds this long before the gantry 
 Autopilot::Autopilot(const ExerciseSettings& exercise, OperatorDefects defects)
     : exercise_(exercise), defects_(defects) {}
 
+std::size_t Autopilot::goal_index(const Simulation& simulation) const {
+  const auto& items = simulation.scenario().containers;
+  for (std::size_t n = 0; n < items.size(); ++n)
+    if (items[n].id == exercise_.moves[goal_].container_id) return n;
+  throw std::logic_error("exercise move names no scenario item");  // the loader checks it
+}
+
 double Autopilot::goal_half_height(const Simulation& simulation) const {
-  for (const ContainerPlacement& c : simulation.scenario().containers)
-    if (c.id == exercise_.moves[goal_].container_id) return c.half_extents_m.z;
-  return 0.0;
+  return simulation.scenario().containers[goal_index(simulation)].half_extents_m.z;
 }
 
 core::Vec3 Autopilot::source(const Simulation& simulation) const {
-  const auto& containers = simulation.scenario().containers;
-  for (std::size_t c = 0; c < containers.size(); ++c)
-    if (containers[c].id == exercise_.moves[goal_].container_id)
-      return simulation.world().pose(simulation.container_body(c)).position;
-  return {};
+  return simulation.world().pose(simulation.container_body(goal_index(simulation))).position;
+}
+
+std::array<bool, 4> Autopilot::flippers(const Simulation& simulation) const {
+  // down for a box standing free (the flippers would land on a neighbour at the deck's row pitch), up in
+  // the cell guides and for hatch covers (wider than the frame)
+  const std::size_t goal = goal_index(simulation);
+  const ContainerPlacement& item = simulation.scenario().containers[goal];
+  if (item.kind != ContainerPlacement::Kind::kContainer || item.in_cell) return {};
+  const core::Pose at = simulation.world().pose(simulation.container_body(goal));
+  for (const ContainerRef& other : simulation.liftables()) {
+    if (other.body == simulation.container_body(goal)) continue;
+    const core::Vec3 d = at.to_local(simulation.world().pose(other.body).position);
+    const bool beside = std::abs(d.z) < item.half_extents_m.z + other.half_extents_m.z - 0.1 &&
+                        std::abs(d.x) < item.half_extents_m.x + other.half_extents_m.x &&
+                        std::abs(d.y) < item.half_extents_m.y + other.half_extents_m.y + 0.5;
+    if (beside) return {};
+  }
+  return {true, true, true, true};
 }
 
 void Autopilot::start_travel(const core::Vec3& to, double gantry_y, double now) {
@@ -81,6 +100,7 @@ Inputs Autopilot::next(const Simulation& simulation) {
   const double fall = settings.trolley_rail_height_m - 1.0 - (spreader.z + 0.5);
   const double period = 2.0 * std::numbers::pi * std::sqrt(std::max(fall, 1.0) / 9.80665);
   const core::Vec3 destination = carrying_ ? exercise_.moves[goal_].target_m : source(simulation);
+  in.sts.flipper_down = flippers(simulation);
   auto enter = [&](Phase p) {
     phase_ = p;
     phase_start_ = now;
@@ -135,8 +155,11 @@ Inputs Autopilot::next(const Simulation& simulation) {
       }
       break;
     case Phase::kSlacken:
+      // lower on until the ropes carry the spreader alone (the unlock interlock refuses a hanging load)
       in.sts.hoist = -kSlowLever;
-      if (now - phase_start_ > kSlacken_s) enter(Phase::kUnlock);
+      if (now - phase_start_ > kSlacken_s &&
+          crane.hoisted_load_n() < 1.15 * settings.spreader.mass_kg * 9.80665)
+        enter(Phase::kUnlock);
       break;
     case Phase::kUnlock:
       in.sts.unlock = now - phase_start_ < kButton_s;

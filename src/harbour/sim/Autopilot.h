@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <cstdint>
 
 #include "harbour/sim/Evaluation.h"
@@ -39,6 +40,9 @@ class Autopilot {
   void start_travel(const core::Vec3& to, double gantry_y, double now);
   core::Vec3 source(const Simulation& simulation) const;
   double goal_half_height(const Simulation& simulation) const;
+  std::size_t goal_index(const Simulation& simulation) const;  // the goal item in the scenario
+  /// Flipper switches for the goal: down for a box standing free, else up.
+  std::array<bool, 4> flippers(const Simulation& simulation) const;
 
   ExerciseSettings exercise_;
   OperatorDefects defects_;

@@ -34,8 +34,8 @@ Simulation::Simulation(const ScenarioSettings& scenario)
     box.center_of_mass_m = c.center_of_mass_m;
     box.surface = c.kind == ContainerPlacement::Kind::kHatchCover ? kSurfaceHatchCover : kSurfaceContainer;
     box.kinematic = true;
-    containers_.push_back(
-        {world_->add_box(box), c.half_extents_m, c.pocket_half_length_m, c.pocket_half_width_m});
+    containers_.push_back({world_->add_box(box), c.half_extents_m, c.pocket_half_length_m,
+                           c.pocket_half_width_m, c.end_pocket_half_length_m});
     secured_.push_back(true);
     stowed_.push_back(c.on_vessel && vessel_
                           ? core::Pose{vessel_->frame().rotation.transposed() * c.pose.rotation,

@@ -34,7 +34,9 @@ struct ContainerPlacement {
   core::Pose pose;              ///< centre, world
   core::Vec3 center_of_mass_m;  ///< [m] from its centre, its frame (unevenly stowed cargo)
   double pocket_half_length_m = 0.0, pocket_half_width_m = 0.0;  ///< [m] corner castings / lifting pockets
+  double end_pocket_half_length_m = 0.0;                         ///< [m] a 45 ft box's end castings (0: none)
   bool on_vessel = false;  ///< stowed on the vessel (moves with it while secured)
+  bool in_cell = false;    ///< stowed in a hold cell (between cell guides)
 };
 
 /// A static block the containers stand on (vessel deck, hatch cover, quay furniture).
