@@ -1,9 +1,11 @@
 #include "StsRun.h"
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <optional>
 #include <tuple>
 
 #include "harbour/io/ExerciseFiles.h"
@@ -105,6 +107,10 @@ int list_results(const std::string& database, const std::string& trainee) {
   return 0;
 }
 
+int drive_attempt(const sim::ExerciseSettings& exercise, sim::Simulation& simulation, sim::Autopilot& pilot,
+                  sim::Evaluator& evaluator, sim::Recorder& recorder, io::RecordsStore& db,
+                  std::int64_t attempt, const RunOptions& options);
+
 int run_exercise(const RunOptions& options) {
   if (!options.autopilot) {
     std::fprintf(stderr, "harboursim: no input device support yet; run with --autopilot\n");
@@ -121,8 +127,15 @@ int run_exercise(const RunOptions& options) {
   const std::int64_t attempt = db.begin_attempt(options.trainee, exercise.name);
   std::printf("harboursim: exercise %s, %zu move(s), autopilot, time limit %.0f s\n", exercise.name.c_str(),
               exercise.moves.size(), exercise.rules.time_limit_s);
+  return drive_attempt(exercise, simulation, pilot, evaluator, recorder, db, attempt, options);
+}
+
+int drive_attempt(const sim::ExerciseSettings& exercise, sim::Simulation& simulation, sim::Autopilot& pilot,
+                  sim::Evaluator& evaluator, sim::Recorder& recorder, io::RecordsStore& db,
+                  std::int64_t attempt, const RunOptions& options) {
   const auto wall_start = std::chrono::steady_clock::now();
-  double next_progress = kProgressEvery_s;
+  const double start_s = simulation.time_s();
+  double next_progress = start_s + kProgressEvery_s;
   while (!evaluator.finished() && simulation.time_s() < kGiveUpAfter_s) {
     const sim::Inputs in = pilot.next(simulation);
     simulation.step(in);
@@ -141,8 +154,9 @@ int run_exercise(const RunOptions& options) {
     }
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-  std::printf("\nsimulated %.1f s in %.2f s (%.0fx real time), %u physics warnings\n", simulation.time_s(),
-              wall, simulation.time_s() / wall, simulation.warnings().total());
+  std::printf("\nsimulated %.1f s in %.2f s (%.0fx real time), %u physics warnings\n",
+              simulation.time_s() - start_s, wall, (simulation.time_s() - start_s) / wall,
+              simulation.warnings().total());
   print_evaluation(evaluator.metrics(), evaluator.score());
   if (!options.record.empty()) io::write_recording(options.record, recorder.recording());
   db.finish_attempt(attempt, evaluator.metrics(), evaluator.score(), options.record);
@@ -179,6 +193,44 @@ int replay_recording(const std::string& recording_path, const std::string& exerc
               recording.checkpoints.size());
   print_evaluation(evaluator.metrics(), evaluator.score());
   return 0;
+}
+
+int take_over_recording(const std::string& recording_path, const RunOptions& options, double at_s) {
+  const sim::Recording recording = io::read_recording(recording_path);
+  const sim::ExerciseSettings exercise = io::load_exercise(options.exercise);
+  if (recording.scenario != exercise.name) {
+    std::fprintf(stderr, "harboursim: %s was recorded on exercise '%s', not '%s'\n", recording_path.c_str(),
+                 recording.scenario.c_str(), exercise.name.c_str());
+    return 2;
+  }
+  const auto step = static_cast<std::int64_t>(std::llround(at_s / sim::Simulation::kStep_s));
+  if (step < 0 || step > recording.total_steps) {
+    std::fprintf(stderr, "harboursim: --take-over %.3f s is outside the recording (0 to %.3f s)\n", at_s,
+                 static_cast<double>(recording.total_steps) * sim::Simulation::kStep_s);
+    return 2;
+  }
+  // the branch's evaluation includes what the original attempt did up to the take-over
+  sim::Evaluator evaluator(exercise);
+  sim::TakeOver branch =
+      sim::take_over(exercise.scenario, recording, recording_path, step,
+                     [&](const sim::Simulation& s, const sim::Inputs& in) { evaluator.observe(s, in); });
+  io::RecordsStore db(options.database.empty() ? default_database() : options.database);
+  std::optional<std::int64_t> parent;
+  for (const io::AttemptRow& a : db.attempts())
+    if (a.recording == recording_path) parent = a.id;
+  if (options.trainee == "autopilot" && !db.has_trainee("autopilot"))
+    db.add_trainee("autopilot", "Scripted operator");
+  const std::int64_t attempt = db.begin_attempt(options.trainee, exercise.name, parent, step);
+  for (int n = 0; n < evaluator.metrics().moves_completed; ++n)
+    db.record_move(attempt, n + 1, evaluator.metrics().time_s,
+                   evaluator.metrics().cycle_times_s[static_cast<std::size_t>(n)]);
+  std::printf("harboursim: took over %s at t=%.3f s (%d of %zu moves done)%s; the autopilot drives on\n",
+              recording_path.c_str(), branch.simulation->time_s(), evaluator.metrics().moves_completed,
+              exercise.moves.size(),
+              parent ? (", branch of attempt " + std::to_string(*parent)).c_str() : "");
+  sim::Autopilot pilot(exercise);
+  pilot.resume(*branch.simulation, evaluator.metrics().moves_completed);
+  return drive_attempt(exercise, *branch.simulation, pilot, evaluator, branch.recorder, db, attempt, options);
 }
 
 }  // namespace harbour::apps

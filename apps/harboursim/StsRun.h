@@ -26,4 +26,10 @@ int list_results(const std::string& database, const std::string& trainee);
 /// `harboursim replay`: re-simulates a recording, checks every recorded second's hash, prints the evaluation.
 int replay_recording(const std::string& recording, const std::string& exercise);
 
+/// `harboursim replay --take-over <s>`: an instructor takes over the recording at that moment; the run goes
+/// on live from exactly the recorded state (the autopilot drives: no input devices yet), stored as a new
+/// attempt linked to the original's (found by its recording file) and recorded as a branch when
+/// options.record is set.
+int take_over_recording(const std::string& recording, const RunOptions& options, double at_s);
+
 }  // namespace harbour::apps

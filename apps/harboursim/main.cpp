@@ -40,6 +40,16 @@ int main(int argc, char** argv) {
   replay_cmd->add_option("--exercise", replay_exercise, "the exercise it was recorded on")
       ->required()
       ->check(CLI::ExistingFile);
+  double take_over_s = -1.0;
+  harbour::apps::RunOptions branch;
+  replay_cmd
+      ->add_option("--take-over", take_over_s,
+                   "instructor take-over at this time [s]: continue live from the recorded state as a new "
+                   "attempt")
+      ->check(CLI::NonNegativeNumber);
+  replay_cmd->add_option("--record", branch.record, "with --take-over: write the branch's recording here");
+  replay_cmd->add_option("--trainee", branch.trainee, "with --take-over: trainee the branch is stored under");
+  replay_cmd->add_option("--db", branch.database, "with --take-over: records connection");
 
   harbour::apps::BulkDemoOptions demo;
   CLI::App* demo_cmd =
@@ -51,6 +61,11 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   try {
     if (*run_cmd) return harbour::apps::run_exercise(run);
+    if (*replay_cmd && take_over_s >= 0.0) {
+      branch.exercise = replay_exercise;
+      branch.autopilot = true;
+      return harbour::apps::take_over_recording(recording, branch, take_over_s);
+    }
     if (*replay_cmd) return harbour::apps::replay_recording(recording, replay_exercise);
     if (*add_cmd) return harbour::apps::add_trainee(database, trainee_id, trainee_name);
     if (*list_cmd) return harbour::apps::list_trainees(database);

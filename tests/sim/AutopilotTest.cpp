@@ -4,6 +4,7 @@
 
 #include <vector>
 
+#include "harbour/sim/Recording.h"
 #include "scenes/StsScenes.h"
 
 namespace harbour::sim {
@@ -149,6 +150,48 @@ TEST(Evaluation, ASpreaderLoweredOffTheCellCountsACellGuideCollision) {
   const Vessel& vessel = *sim.vessel();
   const double coaming = vessel.frame().to_parent({0, 0, vessel.geometry().coaming_top_m()}).z;
   EXPECT_GT(sim.crane().spreader_pose().position.z, coaming - 0.5);
+}
+
+}  // namespace
+}  // namespace harbour::sim
+
+namespace harbour::sim {
+namespace {
+
+TEST(Autopilot, AnInstructorTakeOverContinuesTheAttemptFromTheRecordedState) {
+  // the original attempt, recorded for 30 s (the spreader is on its way down to the box); the instructor
+  // takes over at 30 s: the branch's evaluator sees the history, the autopilot drives on and finishes
+  const ExerciseSettings exercise = scenes::sts_discharge_exercise(HARBOUR_DATA_DIR);
+  Recorder recorder(exercise.name);
+  {
+    Simulation sim(exercise.scenario);
+    Autopilot pilot(exercise);
+    for (int k = 0; k < 30000; ++k) {
+      const Inputs in = pilot.next(sim);
+      sim.step(in);
+      recorder.after_step(sim, in);
+    }
+  }
+  Evaluator evaluator(exercise);
+  int observed = 0;
+  TakeOver branch = take_over(exercise.scenario, recorder.recording(), "original", 30000,
+                              [&](const Simulation& s, const Inputs& in) {
+                                evaluator.observe(s, in);
+                                ++observed;
+                              });
+  EXPECT_EQ(observed, 30000);  // every step of the history, not a keyframe jump
+  EXPECT_EQ(branch.recorder.recording().parent, "original");
+  EXPECT_EQ(branch.recorder.recording().branch_step, 30000);
+  Autopilot pilot(exercise);
+  pilot.resume(*branch.simulation, evaluator.metrics().moves_completed);
+  for (int k = 0; k < 200000 && !evaluator.finished(); ++k) {
+    const Inputs in = pilot.next(*branch.simulation);
+    branch.simulation->step(in);
+    evaluator.observe(*branch.simulation, in);
+  }
+  EXPECT_TRUE(evaluator.finished());
+  EXPECT_TRUE(evaluator.score().passed);
+  EXPECT_EQ(evaluator.metrics().collisions, 0);
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
 
 namespace harbour::sim {
 namespace {
@@ -85,6 +86,14 @@ double Autopilot::axis_lever(AxisMove& m, double position, double max_speed, dou
   if (braking > 0.0) return direction * braking;
   // creep: proportional, slow enough not to swing the load
   return std::abs(error) > kPosition_tolerance_m ? std::clamp(error * 0.05, -0.02, 0.02) : 0.0;
+}
+
+void Autopilot::resume(const Simulation& simulation, int moves_done) {
+  goal_ = static_cast<std::size_t>(std::max(0, moves_done));
+  phase_ = Phase::kRaise;
+  phase_start_ = simulation.time_s();
+  carrying_ = !done() && simulation.crane().locked_container() ==
+                             std::optional(simulation.container_body(goal_index(simulation)));
 }
 
 Inputs Autopilot::next(const Simulation& simulation) {

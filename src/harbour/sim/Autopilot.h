@@ -24,6 +24,10 @@ class Autopilot {
   /// The controls for the next step, from what the simulation shows now.
   Inputs next(const Simulation& simulation);
   bool done() const { return goal_ >= exercise_.moves.size(); }
+  /// Takes over a running exercise (an instructor's take-over): the first `moves_done` moves are made; if the
+  /// spreader holds the next move's box it carries it on, else it goes to fetch it. It cannot catch a big
+  /// swing: take over where the load hangs calm (at a pick-up, a set-down, before travelling).
+  void resume(const Simulation& simulation, int moves_done);
 
  private:
   enum class Phase { kRaise, kTravel, kSettle, kLower, kLock, kSlacken, kUnlock };

@@ -53,8 +53,8 @@ ReplayResult replay(const ScenarioSettings& scenario, const Recording& recording
 }
 
 TakeOver take_over(const ScenarioSettings& scenario, const Recording& recording,
-                   const std::string& recording_id, std::int64_t step) {
-  ReplayResult r = replay(scenario, recording, step);
+                   const std::string& recording_id, std::int64_t step, const ReplayObserver& observer) {
+  ReplayResult r = replay(scenario, recording, step, observer);
   Recording prefix;
   prefix.scenario = recording.scenario;
   prefix.parent = recording_id;

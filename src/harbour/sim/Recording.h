@@ -71,12 +71,13 @@ ReplayResult replay(const ScenarioSettings& scenario, const Recording& recording
                     const ReplayObserver& observer = {});
 
 /// Instructor take-over at `step` of a recording: the simulation restored there (from the keyframe before it,
-/// then re-simulation) and a recorder for the new branch, linked to the original as its parent.
+/// then re-simulation; from the start when an observer, e.g. the branch's evaluator, must see the history)
+/// and a recorder for the new branch, linked to the original as its parent.
 struct TakeOver {
   std::unique_ptr<Simulation> simulation;
   Recorder recorder;
 };
 TakeOver take_over(const ScenarioSettings& scenario, const Recording& recording,
-                   const std::string& recording_id, std::int64_t step);
+                   const std::string& recording_id, std::int64_t step, const ReplayObserver& observer = {});
 
 }  // namespace harbour::sim
