@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
   CLI::App* trainees_cmd = app.add_subcommand("trainees", "manage trainees");
   trainees_cmd->require_subcommand(1);
   trainees_cmd->add_option("--db", database, "records connection");
+  trainees_cmd->fallthrough();  // --db also after "add ..." or "list"
   CLI::App* add_cmd = trainees_cmd->add_subcommand("add", "add a trainee");
   add_cmd->add_option("id", trainee_id, "trainee id")->required();
   add_cmd->add_option("name", trainee_name, "full name")->required();

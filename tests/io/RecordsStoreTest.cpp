@@ -11,6 +11,7 @@
 
 #include "harbour/sim/Autopilot.h"
 #include "scenes/StsScenes.h"
+#include "support/PostgresServer.h"
 
 namespace harbour::io {
 namespace {
@@ -22,8 +23,24 @@ std::string fresh_db(const char* name) {
   return "sqlite3://db=" + path.string();
 }
 
-TEST(RecordsStore, StoresTraineesAttemptsMovesAndScores) {
-  RecordsStore db(fresh_db("harbour_records_roundtrip.db"));
+// The same tests run on both backends the store takes: an SQLite file and a live PostgreSQL server.
+enum class Backend { sqlite3, postgresql };
+
+std::string fresh_connection(Backend backend, const std::string& name) {
+  if (backend == Backend::sqlite3) return fresh_db(("harbour_" + name + ".db").c_str());
+  static test::PostgresServer server;  // one private server per test process
+  return server.create_database(name);
+}
+
+class RecordsStoreOn : public ::testing::TestWithParam<Backend> {};
+
+INSTANTIATE_TEST_SUITE_P(Backends, RecordsStoreOn, ::testing::Values(Backend::sqlite3, Backend::postgresql),
+                         [](const ::testing::TestParamInfo<Backend>& param_info) {
+                           return std::string(param_info.param == Backend::sqlite3 ? "SQLite" : "PostgreSQL");
+                         });
+
+TEST_P(RecordsStoreOn, StoresTraineesAttemptsMovesAndScores) {
+  RecordsStore db(fresh_connection(GetParam(), "records_roundtrip"));
   db.add_trainee("t001", "Ana Pérez");
   EXPECT_THROW(db.add_trainee("t001", "Again"), std::runtime_error);
   EXPECT_THROW(db.begin_attempt("t999", "sts_discharge"), std::runtime_error);
@@ -57,11 +74,17 @@ TEST(RecordsStore, ABadConnectionNamesIt) {
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("/nonexistent/dir/records.db"), std::string::npos) << e.what();
   }
+  try {
+    RecordsStore db("postgresql://dbname=records host=/nonexistent/socketdir port=5433");
+    FAIL() << "opened";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("host=/nonexistent/socketdir"), std::string::npos) << e.what();
+  }
 }
 
 // A station killed mid-exercise: everything measured before the kill is in the database, consistently.
-TEST(RecordsStore, KillingTheProcessMidExerciseKeepsTheMovesDoneSoFar) {
-  const std::string connection = fresh_db("harbour_records_kill.db");
+TEST_P(RecordsStoreOn, KillingTheProcessMidExerciseKeepsTheMovesDoneSoFar) {
+  const std::string connection = fresh_connection(GetParam(), "records_kill");
   {
     RecordsStore db(connection);
     db.add_trainee("t001", "Ana Pérez");

@@ -18,6 +18,8 @@ RecordsStore::RecordsStore(const std::string& connection) : impl_(std::make_uniq
       sql << "PRAGMA journal_mode=WAL";
       sql << "PRAGMA synchronous=FULL";
       sql << "PRAGMA foreign_keys=ON";
+    } else if (sql.get_backend_name() == "postgresql") {
+      sql << "SET client_min_messages = WARNING";  // no NOTICE lines for tables that already exist
     }
     // the portable subset of SQL that SQLite and PostgreSQL both accept
     sql << "CREATE TABLE IF NOT EXISTS trainees (id TEXT PRIMARY KEY, name TEXT NOT NULL)";
