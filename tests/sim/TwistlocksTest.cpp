@@ -48,13 +48,21 @@ TEST(Twistlocks, TheSpreaderSetToAnotherLengthFindsNoCastings) {
   EXPECT_EQ(landed_corners(container, 11.905 / 2, 2.259 / 2, container, 11.985 / 2, 2.259 / 2, s), none);
 }
 
+constexpr double kStep_s = 0.001;
+
+// Holds the sensors and buttons for a while (the landing logic debounces lift-offs).
+void hold(Twistlocks& t, const std::array<bool, 4>& landed, bool load_suspended, double seconds) {
+  for (double s = 0.0; s < seconds; s += kStep_s)
+    t.update(landed, false, false, load_suspended, kStep_s);
+}
+
 TEST(Twistlocks, LockOnlyWhenAllFourAreLanded) {
   Twistlocks t;
-  t.update({true, true, true, false}, true, false, false);
+  t.update({true, true, true, false}, true, false, false, kStep_s);
   EXPECT_FALSE(t.locked());
   EXPECT_EQ(t.take_events(), std::vector<TwistlockEvent>{TwistlockEvent::kLockRefusedNotLanded});
-  t.update(kAll, false, false, false);
-  t.update(kAll, true, false, false);
+  t.update(kAll, false, false, false, kStep_s);
+  t.update(kAll, true, false, false, kStep_s);
   EXPECT_TRUE(t.locked());
   EXPECT_TRUE(t.lamps().landed);
   EXPECT_TRUE(t.lamps().locked);
@@ -63,9 +71,9 @@ TEST(Twistlocks, LockOnlyWhenAllFourAreLanded) {
 
 TEST(Twistlocks, NeverUnlockUnderLoad) {
   Twistlocks t;
-  t.update(kAll, true, false, false);
-  t.update({false, false, false, false}, false, false, true);  // lifted with the container
-  t.update({false, false, false, false}, false, true, true);   // unlock in the air
+  t.update(kAll, true, false, false, kStep_s);
+  t.update({false, false, false, false}, false, false, true, kStep_s);  // lifted with the container
+  t.update({false, false, false, false}, false, true, true, kStep_s);   // unlock in the air
   EXPECT_TRUE(t.locked());
   EXPECT_EQ(t.take_events(), std::vector<TwistlockEvent>{TwistlockEvent::kUnlockRefusedSuspended});
 }
@@ -73,15 +81,18 @@ TEST(Twistlocks, NeverUnlockUnderLoad) {
 TEST(Twistlocks, ASetDownIsNormalButAnUnlockedPickUpIsMisuse) {
   Twistlocks t;
   // pick-up done right, move, set down, unlock, lift away: no events
-  t.update(kAll, true, false, false);
-  t.update({false, false, false, false}, false, false, true);
-  t.update(kAll, false, false, false);
-  t.update(kAll, false, true, false);
-  t.update({false, false, false, false}, false, false, false);
+  t.update(kAll, true, false, false, kStep_s);
+  hold(t, {false, false, false, false}, true, 1.0);
+  t.update(kAll, false, false, false, kStep_s);
+  t.update(kAll, false, true, false, kStep_s);
+  // the seated sensors flicker as the released spreader settles on the box, then it lifts away
+  hold(t, {false, false, false, false}, false, 0.02);
+  hold(t, kAll, false, 0.3);
+  hold(t, {false, false, false, false}, false, 1.0);
   EXPECT_TRUE(t.take_events().empty());
   // arrive empty on the next box and hoist without locking
-  t.update(kAll, false, false, false);
-  t.update({false, false, false, false}, false, false, false);
+  hold(t, kAll, false, 0.5);
+  hold(t, {false, false, false, false}, false, 1.0);
   EXPECT_EQ(t.take_events(), std::vector<TwistlockEvent>{TwistlockEvent::kHoistedUnlocked});
 }
 

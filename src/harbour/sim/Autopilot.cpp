@@ -13,7 +13,14 @@ constexpr double kCruiseLever = 0.75;     // travel at three quarters of full sp
 constexpr double kSlowZone_m = 1.5;       // lower slowly over the last metre and a half
 constexpr double kSlowLever = 0.08;       // 0.12 m/s at the spreader on the STS hoist
 constexpr double kPosition_tolerance_m = 0.03;
-constexpr double kSettledSwingSpeed_mps = 0.05;  // the swing has slowed enough to start lowering
+constexpr double kSettled_m = 0.05;    // swing and position error small enough to start lowering
+constexpr double kHover_m = 0.5;       // hold this far above the landing until on target and calm
+constexpr double kPickUpAim_m = 0.02;  // the twistlocks' cones reach 30 mm
+constexpr double kLookAhead_s = 0.5;
+constexpr double kFineSpeed_mps = 0.2;  // fine positioning never drives faster
+constexpr double kResting_s = 1.0;      // the spreader sits beside the castings this long: lift off
+constexpr double kLiftOffLever = 0.15;  // ... at 0.22 m/s
+constexpr double kLiftOff_s = 2.0;
 constexpr double kButton_s = 0.1;
 constexpr double kSlacken_s = 0.6;
 constexpr double kHorn_s = 1.0;  // the horn sounds this long before the gantry travels
@@ -84,14 +91,64 @@ double Autopilot::axis_lever(AxisMove& m, double position, double max_speed, dou
   }
   const double braking = m.decel_from * (1.0 - (now - m.ramp_start) / period);
   if (braking > 0.0) return direction * braking;
-  // creep: proportional, slow enough not to swing the load
-  return std::abs(error) > kPosition_tolerance_m ? std::clamp(error * 0.05, -0.02, 0.02) : 0.0;
+  return 0.0;  // braked: fine positioning takes over
+}
+
+double Autopilot::catch_swing(SwingAxis& axis, double target, double axis_position, double axis_speed,
+                              double load_position, double load_speed, double period, double max_speed) {
+  // load offset s from the axis; pendulum: s'' = -w^2 (s - s0) - a_axis. An axis speed k (s - s0) gives
+  // s'' + k s' + w^2 (s - s0) = 0: damping ratio k / 2w. s0, where the load hangs at rest (rope geometry,
+  // wind), is s filtered over a period.
+  const double offset = load_position - axis_position;
+  if (!axis.primed) {
+    axis.rest_offset = offset;
+    axis.last_target = target;
+    axis.primed = true;
+  }
+  // the target moves with the vessel; where the load will be relative to it shortly
+  const double closing = load_speed - (target - axis.last_target) / Simulation::kStep_s;
+  axis.last_target = target;
+  axis.miss =
+      std::max(std::abs(target - load_position), std::abs(target - load_position - closing * kLookAhead_s));
+  axis.rest_offset += (offset - axis.rest_offset) * Simulation::kStep_s / period;
+  const double omega = 2.0 * std::numbers::pi / period;
+  const double swing = offset - axis.rest_offset;
+  axis.swing = std::hypot(swing, (load_speed - axis_speed) / omega);
+  axis.error = target - (axis_position + axis.rest_offset);
+  const double speed = 0.25 * omega * axis.error + omega * swing;
+  return std::clamp(speed, -kFineSpeed_mps, kFineSpeed_mps) / max_speed;
+}
+
+void Autopilot::position_finely(const Simulation& simulation, const core::Vec3& destination, double period,
+                                Inputs& in) {
+  const StsCrane& crane = simulation.crane();
+  const physics::BodyId load = carrying_ ? *crane.locked_container() : crane.spreader_body();
+  const core::Vec3 at = simulation.world().pose(load).position;
+  const core::Vec3 v = simulation.world().linear_velocity(load);
+  const StsCraneSettings& settings = simulation.scenario().crane;
+  in.sts.trolley = catch_swing(trolley_swing_, destination.x, crane.trolley_position_m(),
+                               crane.trolley_drive().reference_mps(), at.x, v.x, period,
+                               settings.trolley_drive.max_speed_mps);
+  in.sts.gantry = catch_swing(gantry_swing_, destination.y, crane.gantry_position_m(),
+                              crane.gantry_drive().reference_mps(), at.y, v.y, period,
+                              settings.gantry_drive.max_speed_mps);
+}
+
+bool Autopilot::will_land_within(double tolerance) const {
+  return trolley_swing_.miss < tolerance && gantry_swing_.miss < tolerance;
+}
+
+bool Autopilot::on_target(double tolerance) const {
+  return trolley_swing_.swing < tolerance && gantry_swing_.swing < tolerance &&
+         std::abs(trolley_swing_.error) < tolerance && std::abs(gantry_swing_.error) < tolerance;
 }
 
 void Autopilot::resume(const Simulation& simulation, int moves_done) {
   goal_ = static_cast<std::size_t>(std::max(0, moves_done));
   phase_ = Phase::kRaise;
   phase_start_ = simulation.time_s();
+  trolley_swing_ = {};
+  gantry_swing_ = {};
   carrying_ = !done() && simulation.crane().locked_container() ==
                              std::optional(simulation.container_body(goal_index(simulation)));
 }
@@ -129,28 +186,49 @@ Inputs Autopilot::next(const Simulation& simulation) {
       in.sts.gantry =
           axis_lever(gantry_, crane.gantry_position_m(), settings.gantry_drive.max_speed_mps, period, now);
       in.sts.horn = now < gantry_.ramp_start;
-      if (in.sts.trolley == 0.0 && in.sts.gantry == 0.0 && !in.sts.horn) enter(Phase::kSettle);
+      if (in.sts.trolley == 0.0 && in.sts.gantry == 0.0 && !in.sts.horn) {
+        trolley_swing_ = {};
+        gantry_swing_ = {};
+        enter(Phase::kSettle);
+      }
       break;
     }
-    case Phase::kSettle: {
-      // wait for the swing to slow (in wind the load hangs off plumb, so the offset itself never vanishes),
-      // or two periods at most
-      const core::Vec3 v = simulation.world().linear_velocity(crane.spreader_body());
-      if ((std::hypot(v.x, v.y) < kSettledSwingSpeed_mps && now - phase_start_ > 0.5) ||
-          now - phase_start_ > 2 * period)
+    case Phase::kSettle:
+      // catch the swing and creep onto the target before lowering (four periods at most)
+      position_finely(simulation, destination, period, in);
+      if ((on_target(kSettled_m) && now - phase_start_ > 0.5) || now - phase_start_ > 4 * period)
         enter(Phase::kLower);
       break;
-    }
     case Phase::kLower: {
+      position_finely(simulation, destination, period, in);
       // landing surface: the spreader's centre when seated on the box (pick-up) or with the box on its target
       const double land_z = destination.z + goal_half_height(simulation) + crane.spreader_half_extents_m().z;
-      const bool slow = spreader.z - land_z < kSlowZone_m && !(carrying_ && defects_.land_fast);
-      in.sts.hoist = slow ? -kSlowLever : -0.6;
+      const double above = spreader.z - land_z;
+      const double aim = carrying_ ? exercise_.moves[goal_].tolerance_m / 4.0 : kPickUpAim_m;
+      const bool slow = above < kSlowZone_m && !(carrying_ && defects_.land_fast);
+      const bool hold = above < kHover_m && !will_land_within(aim) && !(carrying_ && defects_.land_fast);
+      in.sts.hoist = hold ? 0.0 : slow ? -kSlowLever : -0.6;
       if (!carrying_ && crane.lamps().landed) enter(Phase::kLock);
       if (carrying_ && simulation.world().pose(*crane.locked_container()).position.z <= destination.z + 0.01)
         enter(Phase::kSlacken);
+      // sitting on the box beside its castings: lift off and aim again
+      const bool resting = crane.hoisted_load_n() < 0.5 * settings.spreader.mass_kg * 9.80665;
+      if (!carrying_ && !crane.lamps().landed && resting) {
+        if (resting_since_ < 0.0) resting_since_ = now;
+        if (now - resting_since_ > kResting_s) enter(Phase::kLiftOff);
+      } else {
+        resting_since_ = -1.0;
+      }
       break;
     }
+    case Phase::kLiftOff:
+      position_finely(simulation, destination, period, in);
+      in.sts.hoist = kLiftOffLever;
+      if (now - phase_start_ > kLiftOff_s) {
+        resting_since_ = -1.0;
+        enter(Phase::kLower);
+      }
+      break;
     case Phase::kLock:
       if (defects_.forget_lock_once && !lock_skipped_) {
         lock_skipped_ = true;  // hoists straight away without locking, then has to come back down

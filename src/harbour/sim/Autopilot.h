@@ -14,9 +14,12 @@ struct OperatorDefects {
 };
 
 /// A scripted operator that performs an exercise's moves: sway-aware travel (levers ramped up and down over
-/// one pendulum period of the current rope length, which leaves no residual swing), then a creep onto the
-/// target and a wait for the swing to die, fast-then-slow lowering, locking, unlocking. For headless runs,
-/// demos, tests.
+/// one pendulum period of the current rope length, which leaves almost no residual swing), then fine
+/// positioning as a skilled driver does it: the trolley and gantry follow the swing to catch it (a speed
+/// proportional to the load's offset from where it hangs at rest damps the pendulum) while they creep the
+/// load's rest position onto the target; fast-then-slow lowering that holds just above the landing until the
+/// load is on target and calm, lifting off to try again when the spreader sits beside the castings; locking,
+/// unlocking. For headless runs, demos, tests.
 class Autopilot {
  public:
   explicit Autopilot(const ExerciseSettings& exercise, OperatorDefects defects = {});
@@ -30,7 +33,7 @@ class Autopilot {
   void resume(const Simulation& simulation, int moves_done);
 
  private:
-  enum class Phase { kRaise, kTravel, kSettle, kLower, kLock, kSlacken, kUnlock };
+  enum class Phase { kRaise, kTravel, kSettle, kLower, kLiftOff, kLock, kSlacken, kUnlock };
   struct AxisMove {
     double target = 0.0;
     double peak = 0.0;        // lever magnitude reached
@@ -40,7 +43,23 @@ class Autopilot {
     double top = -1.0;        // lever to ramp to (set on the first step: short moves never reach cruise)
   };
 
+  /// Fine positioning of one axis (see the class comment).
+  struct SwingAxis {
+    double rest_offset = 0.0;  // [m] where the load hangs at rest relative to the axis (filtered)
+    bool primed = false;
+    double swing = 0.0;  // [m] estimated swing amplitude about the rest offset
+    double error = 0.0;  // [m] target minus the load's rest position
+    double miss = 0.0;   // [m] the load's distance from the target, now or half a second on
+    double last_target = 0.0;
+  };
   double axis_lever(AxisMove& m, double position, double max_speed, double period, double now) const;
+  static double catch_swing(SwingAxis& axis, double target, double axis_position, double axis_speed,
+                            double load_position, double load_speed, double period, double max_speed);
+  /// Levers of trolley and gantry that catch the swing and creep the load onto `destination`.
+  void position_finely(const Simulation& simulation, const core::Vec3& destination, double period,
+                       Inputs& in);
+  bool on_target(double tolerance) const;  // rest position on target and swing small
+  bool will_land_within(double tolerance) const;
   void start_travel(const core::Vec3& to, double gantry_y, double now);
   core::Vec3 source(const Simulation& simulation) const;
   double goal_half_height(const Simulation& simulation) const;
@@ -55,6 +74,8 @@ class Autopilot {
   Phase phase_ = Phase::kRaise;
   double phase_start_ = 0.0;
   AxisMove trolley_, gantry_;
+  SwingAxis trolley_swing_, gantry_swing_;
+  double resting_since_ = -1.0;  // the spreader sits on something without landing in its castings
   bool lock_skipped_ = false;
 };
 

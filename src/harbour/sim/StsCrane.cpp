@@ -138,7 +138,7 @@ void StsCrane::step(const StsControls& c, std::span<const ContainerRef> containe
   // a locked container hangs, so "landed" alone cannot tell)
   const bool load_suspended = hoisted_load_n() > 1.3 * settings_.spreader.mass_kg * 9.80665;
   const bool was_locked = twistlocks_.locked();
-  twistlocks_.update(landed, c.lock, c.unlock, load_suspended);
+  twistlocks_.update(landed, c.lock, c.unlock, load_suspended, dt_s);
   if (!was_locked && twistlocks_.locked() && landed_on) {
     attachment_ = world_.attach(spreader_, *landed_on);
     locked_container_ = landed_on;
@@ -157,7 +157,7 @@ void StsCrane::step(const StsControls& c, std::span<const ContainerRef> containe
 }
 
 void StsCrane::save_state(core::StateWriter& out) const {
-  out.section(0x53545343);  // "STSC"
+  out.section(0x53545333);  // "STS3": the third layout (twistlock landings debounced)
   gantry_.save_state(out);
   trolley_.save_state(out);
   boom_.save_state(out);
@@ -175,7 +175,7 @@ void StsCrane::save_state(core::StateWriter& out) const {
 }
 
 void StsCrane::restore_state(core::StateReader& in) {
-  in.section(0x53545343, "crane");
+  in.section(0x53545333, "crane");
   gantry_.restore_state(in);
   trolley_.restore_state(in);
   boom_.restore_state(in);

@@ -45,8 +45,9 @@ int TruckLane::departed() const {
   }));
 }
 
-bool TruckLane::loaded(const Truck& truck, std::span<const ContainerRef> boxes, const StsCrane& crane) const {
-  if (crane.locked_container()) return false;
+std::optional<physics::BodyId> TruckLane::load(const Truck& truck, std::span<const ContainerRef> boxes,
+                                               const StsCrane& crane) const {
+  if (crane.locked_container()) return std::nullopt;
   for (const ContainerRef& box : boxes) {
     const core::Vec3 p = world_.pose(box.body).position;
     const bool on_chassis = std::abs(p.x - settings_.lane_x_m) < kChassisHalfWidth_m &&
@@ -54,9 +55,10 @@ bool TruckLane::loaded(const Truck& truck, std::span<const ContainerRef> boxes, 
                             std::abs(p.z - box.half_extents_m.z - settings_.chassis_top_m) < 0.05;
     if (!on_chassis) continue;
     const double spreader_bottom = crane.spreader_pose().position.z - crane.spreader_half_extents_m().z;
-    return spreader_bottom > p.z + box.half_extents_m.z + settings_.clearance_m;
+    if (spreader_bottom > p.z + box.half_extents_m.z + settings_.clearance_m) return box.body;
+    return std::nullopt;
   }
-  return false;
+  return std::nullopt;
 }
 
 void TruckLane::place(const Truck& truck) {
@@ -76,7 +78,8 @@ void TruckLane::step(double dt_s, std::span<const ContainerRef> boxes, const Sts
         break;
       case State::kWaiting:
         t.speed = 0.0;
-        if (loaded(t, boxes, crane)) {
+        if (const auto box = load(t, boxes, crane)) {
+          t.load_attachment = world_.attach(*box, t.body);
           t.state = State::kLeaving;
           if (k + 1 < trucks_.size()) trucks_[k + 1].state = State::kArriving;
         }
@@ -112,12 +115,12 @@ void TruckLane::step(double dt_s, std::span<const ContainerRef> boxes, const Sts
 }
 
 void TruckLane::save_state(core::StateWriter& out) const {
-  out.section(0x5452434B);  // "TRCK"
+  out.section(0x54524B32);  // "TRK2": trucks with their load attachments
   out.put(trucks_);
 }
 
 void TruckLane::restore_state(core::StateReader& in) {
-  in.section(0x5452434B, "trucks");
+  in.section(0x54524B32, "trucks");
   in.get(trucks_, static_cast<std::int64_t>(trucks_.size()));
 }
 

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -10,8 +11,9 @@
 namespace harbour::sim {
 
 /// Terminal trucks serving the crane in one lane under it (settings): one waits under the crane; once a box
-/// sits on its chassis, the locks are open and the spreader has risen clear, it drives off along +y and the
-/// next truck of the queue drives in.
+/// sits on its chassis, the locks are open and the spreader has risen clear, the chassis' locating cones hold
+/// the box (a fixed joint: it no longer rides on friction), the truck drives off along +y and the next truck
+/// of the queue drives in.
 struct TruckLaneSettings {
   int trucks = 0;
   double lane_x_m = 8.0;       ///< [m] chassis centre line across the quay
@@ -45,8 +47,11 @@ class TruckLane {
     physics::BodyId body = physics::kWorld;
     double y = 0.0, speed = 0.0;
     State state = State::kQueued;
+    int load_attachment = -1;  // the box held by the chassis cones
   };
-  bool loaded(const Truck& truck, std::span<const ContainerRef> boxes, const StsCrane& crane) const;
+  /// The box seated on the truck once the spreader is clear of it.
+  std::optional<physics::BodyId> load(const Truck& truck, std::span<const ContainerRef> boxes,
+                                      const StsCrane& crane) const;
   void place(const Truck& truck);
 
   physics::PhysicsWorld& world_;

@@ -22,7 +22,7 @@ std::array<bool, 4> landed_corners(const core::Pose& spreader_underside, double 
 }
 
 void Twistlocks::update(const std::array<bool, 4>& landed, bool lock_button, bool unlock_button,
-                        bool load_suspended) {
+                        bool load_suspended, double dt_s) {
   all_landed_ = landed[0] && landed[1] && landed[2] && landed[3];
   const bool lock_pressed = lock_button && !lock_was_pressed_;
   const bool unlock_pressed = unlock_button && !unlock_was_pressed_;
@@ -44,11 +44,18 @@ void Twistlocks::update(const std::array<bool, 4>& landed, bool lock_button, boo
   // lifting off a landing during which the locks never closed is a pick-up hoisted unlocked; a set-down
   // closes them on arrival (or they stay closed through a carry), unlocks and lifts away: the normal end of a
   // move
-  if (all_landed_ && !was_landed_) locked_this_landing_ = false;
-  if (all_landed_ && locked_) locked_this_landing_ = true;
-  if (was_landed_ && !all_landed_ && !locked_ && !locked_this_landing_)
-    events_.push_back(TwistlockEvent::kHoistedUnlocked);
-  was_landed_ = all_landed_;
+  if (all_landed_) {
+    if (!in_landing_) locked_this_landing_ = false;
+    in_landing_ = true;
+    clear_s_ = 0.0;
+    if (locked_) locked_this_landing_ = true;
+  } else if (in_landing_) {
+    clear_s_ += dt_s;
+    if (clear_s_ >= kLiftOff_s) {
+      in_landing_ = false;
+      if (!locked_ && !locked_this_landing_) events_.push_back(TwistlockEvent::kHoistedUnlocked);
+    }
+  }
 }
 
 std::vector<TwistlockEvent> Twistlocks::take_events() {

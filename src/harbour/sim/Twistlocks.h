@@ -44,9 +44,13 @@ std::array<bool, 4> landed_corners(const core::Pose& spreader_underside, double 
 /// under load; report misuse.
 class Twistlocks {
  public:
-  /// One control step: the four landed sensors, the operator's buttons, and whether the load hangs from the
-  /// spreader (hoist rope tension above the empty-spreader weight).
-  void update(const std::array<bool, 4>& landed, bool lock_button, bool unlock_button, bool load_suspended);
+  /// One control step of `dt_s`: the four landed sensors, the operator's buttons, and whether the load hangs
+  /// from the spreader (hoist rope tension above the empty-spreader weight).
+  void update(const std::array<bool, 4>& landed, bool lock_button, bool unlock_button, bool load_suspended,
+              double dt_s);
+  /// A landing ends when the spreader has been off the castings this long (the seated sensors flicker as the
+  /// spreader settles, e.g. when the locks release its box).
+  static constexpr double kLiftOff_s = 0.5;
 
   bool locked() const { return locked_; }
   TwistlockLamps lamps() const { return {all_landed_, locked_, !locked_}; }
@@ -54,20 +58,23 @@ class Twistlocks {
   std::vector<TwistlockEvent> take_events();
   void save_state(core::StateWriter& out) const {
     for (bool b :
-         {locked_, all_landed_, was_landed_, locked_this_landing_, lock_was_pressed_, unlock_was_pressed_})
+         {locked_, all_landed_, in_landing_, locked_this_landing_, lock_was_pressed_, unlock_was_pressed_})
       out.put(b);
+    out.put(clear_s_);
   }
   void restore_state(core::StateReader& in) {
-    for (bool* b : {&locked_, &all_landed_, &was_landed_, &locked_this_landing_, &lock_was_pressed_,
+    for (bool* b : {&locked_, &all_landed_, &in_landing_, &locked_this_landing_, &lock_was_pressed_,
                     &unlock_was_pressed_})
       in.get(*b);
+    in.get(clear_s_);
     events_.clear();
   }
 
  private:
   bool locked_ = false;
   bool all_landed_ = false;
-  bool was_landed_ = false;
+  bool in_landing_ = false;           // seated on a box, or off it for less than kLiftOff_s
+  double clear_s_ = 0.0;              // [s] off the castings since
   bool locked_this_landing_ = false;  // the locks were closed at some point of the current landing
   bool lock_was_pressed_ = false, unlock_was_pressed_ = false;
   std::vector<TwistlockEvent> events_;
