@@ -5,6 +5,8 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "harbour/sim/Vessel.h"
+
 namespace harbour::sim {
 namespace {
 
@@ -17,9 +19,19 @@ constexpr double kSettled_m = 0.05;    // swing and position error small enough 
 constexpr double kHover_m = 0.5;       // hold this far above the landing until on target and calm
 constexpr double kPickUpAim_m = 0.02;  // the twistlocks' cones reach 30 mm
 constexpr double kLookAhead_s = 0.5;
-constexpr double kFineSpeed_mps = 0.2;  // fine positioning never drives faster
-constexpr double kResting_s = 1.0;      // the spreader sits beside the castings this long: lift off
-constexpr double kLiftOffLever = 0.15;  // ... at 0.22 m/s
+// an operator's hand on a device: new lever positions 50 times a second, at a joystick axis' resolution
+constexpr std::int64_t kDecisionSteps = 20;
+constexpr double kDecision_s = kDecisionSteps * Simulation::kStep_s;
+constexpr double kLeverCounts = 32767.0;
+
+double device_lever(double lever) {
+  return std::round(std::clamp(lever, -1.0, 1.0) * kLeverCounts) / kLeverCounts;
+}
+constexpr double kCellEntryClearance_m = 0.3;  // aim the spreader this far above the coaming top
+constexpr double kCellEntryBand_m = 0.3;       // ... holding within this band below that height
+constexpr double kFineSpeed_mps = 0.2;         // fine positioning never drives faster
+constexpr double kResting_s = 1.0;             // the spreader sits beside the castings this long: lift off
+constexpr double kLiftOffLever = 0.15;         // ... at 0.22 m/s
 constexpr double kLiftOff_s = 2.0;
 constexpr double kButton_s = 0.1;
 constexpr double kSlacken_s = 0.6;
@@ -39,6 +51,14 @@ std::size_t Autopilot::goal_index(const Simulation& simulation) const {
 
 double Autopilot::goal_half_height(const Simulation& simulation) const {
   return simulation.scenario().containers[goal_index(simulation)].half_extents_m.z;
+}
+
+std::optional<double> Autopilot::cell_entry_z(const Simulation& simulation) const {
+  const ContainerPlacement& item = simulation.scenario().containers[goal_index(simulation)];
+  if (!item.in_cell || carrying_ || !simulation.vessel()) return std::nullopt;
+  const Vessel& vessel = *simulation.vessel();
+  const double coaming = vessel.frame().to_parent({0, 0, vessel.geometry().coaming_top_m()}).z;
+  return coaming + kCellEntryClearance_m + simulation.crane().spreader_half_extents_m().z;
 }
 
 core::Vec3 Autopilot::source(const Simulation& simulation) const {
@@ -77,6 +97,7 @@ double Autopilot::axis_lever(AxisMove& m, double position, double max_speed, dou
   // creep onto the target. A move too short to reach cruise ramps to a lower top, still over one period.
   if (now < m.ramp_start) return 0.0;  // not started yet
   const double error = m.target - position;
+  if (!m.decelerating && std::abs(error) < kPosition_tolerance_m) return 0.0;  // fine positioning's job
   const double direction = error >= 0.0 ? 1.0 : -1.0;
   if (m.top < 0.0) m.top = std::min(kCruiseLever, std::abs(error) / (max_speed * period));
   if (!m.decelerating) {
@@ -106,11 +127,11 @@ double Autopilot::catch_swing(SwingAxis& axis, double target, double axis_positi
     axis.primed = true;
   }
   // the target moves with the vessel; where the load will be relative to it shortly
-  const double closing = load_speed - (target - axis.last_target) / Simulation::kStep_s;
+  const double closing = load_speed - (target - axis.last_target) / kDecision_s;
   axis.last_target = target;
   axis.miss =
       std::max(std::abs(target - load_position), std::abs(target - load_position - closing * kLookAhead_s));
-  axis.rest_offset += (offset - axis.rest_offset) * Simulation::kStep_s / period;
+  axis.rest_offset += (offset - axis.rest_offset) * kDecision_s / period;
   const double omega = 2.0 * std::numbers::pi / period;
   const double swing = offset - axis.rest_offset;
   axis.swing = std::hypot(swing, (load_speed - axis_speed) / omega);
@@ -143,10 +164,33 @@ bool Autopilot::on_target(double tolerance) const {
          std::abs(trolley_swing_.error) < tolerance && std::abs(gantry_swing_.error) < tolerance;
 }
 
+const char* Autopilot::activity() const {
+  switch (phase_) {
+    case Phase::kRaise:
+      return "raise";
+    case Phase::kTravel:
+      return "travel";
+    case Phase::kSettle:
+      return "settle";
+    case Phase::kLower:
+      return "lower";
+    case Phase::kLiftOff:
+      return "lift off";
+    case Phase::kLock:
+      return "lock";
+    case Phase::kSlacken:
+      return "slacken";
+    case Phase::kUnlock:
+      return "unlock";
+  }
+  return "";
+}
+
 void Autopilot::resume(const Simulation& simulation, int moves_done) {
   goal_ = static_cast<std::size_t>(std::max(0, moves_done));
   phase_ = Phase::kRaise;
   phase_start_ = simulation.time_s();
+  decided_ = false;
   trolley_swing_ = {};
   gantry_swing_ = {};
   carrying_ = !done() && simulation.crane().locked_container() ==
@@ -154,6 +198,15 @@ void Autopilot::resume(const Simulation& simulation, int moves_done) {
 }
 
 Inputs Autopilot::next(const Simulation& simulation) {
+  if (simulation.steps() % kDecisionSteps != 0 && decided_) return last_;
+  last_ = decide(simulation);
+  for (double* lever : {&last_.sts.gantry, &last_.sts.trolley, &last_.sts.hoist, &last_.sts.boom})
+    *lever = device_lever(*lever);
+  decided_ = true;
+  return last_;
+}
+
+Inputs Autopilot::decide(const Simulation& simulation) {
   Inputs in;
   const StsCrane& crane = simulation.crane();
   if (done()) {  // clear the truck: raise the empty spreader to travel height
@@ -205,8 +258,14 @@ Inputs Autopilot::next(const Simulation& simulation) {
       const double land_z = destination.z + goal_half_height(simulation) + crane.spreader_half_extents_m().z;
       const double above = spreader.z - land_z;
       const double aim = carrying_ ? exercise_.moves[goal_].tolerance_m / 4.0 : kPickUpAim_m;
-      const bool slow = above < kSlowZone_m && !(carrying_ && defects_.land_fast);
-      const bool hold = above < kHover_m && !will_land_within(aim) && !(carrying_ && defects_.land_fast);
+      // into a hold cell: slow down and aim above the cell guides too (25 mm clearance a side)
+      const std::optional<double> entry = cell_entry_z(simulation);
+      const bool at_entry = entry && spreader.z < *entry && spreader.z > *entry - kCellEntryBand_m;
+      const bool slow = (above < kSlowZone_m ||
+                         (entry && spreader.z - *entry < kSlowZone_m && !at_entry && spreader.z > *entry)) &&
+                        !(carrying_ && defects_.land_fast);
+      const bool hold =
+          (above < kHover_m || at_entry) && !will_land_within(aim) && !(carrying_ && defects_.land_fast);
       in.sts.hoist = hold ? 0.0 : slow ? -kSlowLever : -0.6;
       if (!carrying_ && crane.lamps().landed) enter(Phase::kLock);
       if (carrying_ && simulation.world().pose(*crane.locked_container()).position.z <= destination.z + 0.01)

@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 
 #include "harbour/sim/Evaluation.h"
 
@@ -24,9 +25,13 @@ class Autopilot {
  public:
   explicit Autopilot(const ExerciseSettings& exercise, OperatorDefects defects = {});
 
-  /// The controls for the next step, from what the simulation shows now.
+  /// The controls for the next step, from what the simulation shows now (decided 50 times a second, held
+  /// in between, levers at a joystick axis' 16-bit resolution).
   Inputs next(const Simulation& simulation);
   bool done() const { return goal_ >= exercise_.moves.size(); }
+  /// What it is doing now, for progress displays: raise, travel, settle, lower, lift off, lock, slacken,
+  /// unlock.
+  const char* activity() const;
   /// Takes over a running exercise (an instructor's take-over): the first `moves_done` moves are made; if the
   /// spreader holds the next move's box it carries it on, else it goes to fetch it. It cannot catch a big
   /// swing: take over where the load hangs calm (at a pick-up, a set-down, before travelling).
@@ -52,6 +57,7 @@ class Autopilot {
     double miss = 0.0;   // [m] the load's distance from the target, now or half a second on
     double last_target = 0.0;
   };
+  Inputs decide(const Simulation& simulation);
   double axis_lever(AxisMove& m, double position, double max_speed, double period, double now) const;
   static double catch_swing(SwingAxis& axis, double target, double axis_position, double axis_speed,
                             double load_position, double load_speed, double period, double max_speed);
@@ -63,6 +69,8 @@ class Autopilot {
   void start_travel(const core::Vec3& to, double gantry_y, double now);
   core::Vec3 source(const Simulation& simulation) const;
   double goal_half_height(const Simulation& simulation) const;
+  /// Spreader centre height at which to aim before entering the goal's hold cell (none: not in a cell).
+  std::optional<double> cell_entry_z(const Simulation& simulation) const;
   std::size_t goal_index(const Simulation& simulation) const;  // the goal item in the scenario
   /// Flipper switches for the goal: down for a box standing free, else up.
   std::array<bool, 4> flippers(const Simulation& simulation) const;
@@ -77,6 +85,8 @@ class Autopilot {
   SwingAxis trolley_swing_, gantry_swing_;
   double resting_since_ = -1.0;  // the spreader sits on something without landing in its castings
   bool lock_skipped_ = false;
+  Inputs last_;
+  bool decided_ = false;
 };
 
 }  // namespace harbour::sim
