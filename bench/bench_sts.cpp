@@ -1,4 +1,4 @@
-// The STS discharge exercise, headless: physics (ODE) + hoist ropes (cable model) + twistlocks + evaluation,
+// The STS discharge exercises, headless: physics (ODE) + hoist ropes (cable model) + twistlocks + evaluation,
 // driven by the autopilot. Real-time factor = simulated time / compute time. Results: docs/benchmarks.md.
 
 #include <benchmark/benchmark.h>
@@ -9,8 +9,7 @@
 namespace harbour {
 namespace {
 
-void BM_StsExerciseStep(benchmark::State& state) {
-  const sim::ExerciseSettings exercise = scenes::sts_discharge_exercise(HARBOUR_DATA_DIR);
+void run_exercise(benchmark::State& state, const sim::ExerciseSettings& exercise) {
   auto sim = std::make_unique<sim::Simulation>(exercise.scenario);
   auto pilot = std::make_unique<sim::Autopilot>(exercise);
   auto evaluator = std::make_unique<sim::Evaluator>(exercise);
@@ -29,7 +28,16 @@ void BM_StsExerciseStep(benchmark::State& state) {
   state.counters["real_time_factor"] =
       benchmark::Counter(sim::Simulation::kStep_s, benchmark::Counter::kIsIterationInvariantRate);
 }
+void BM_StsExerciseStep(benchmark::State& state) {
+  run_exercise(state, scenes::sts_discharge_exercise(HARBOUR_DATA_DIR));
+}
 BENCHMARK(BM_StsExerciseStep)->Unit(benchmark::kMicrosecond)->MinTime(5.0);
+
+// The hold exercise: more boxes, four trucks, a hatch cover carried, boxes hoisted through the cell guides.
+void BM_StsHoldExerciseStep(benchmark::State& state) {
+  run_exercise(state, io::load_exercise(HARBOUR_DATA_DIR "/exercises/sts_bay12_hold.yaml"));
+}
+BENCHMARK(BM_StsHoldExerciseStep)->Unit(benchmark::kMicrosecond)->MinTime(5.0);
 
 }  // namespace
 }  // namespace harbour

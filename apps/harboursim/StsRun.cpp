@@ -146,10 +146,10 @@ int drive_attempt(const sim::ExerciseSettings& exercise, sim::Simulation& simula
     if (simulation.time_s() >= next_progress) {
       next_progress += kProgressEvery_s;
       const sim::Snapshot s = simulation.snapshot();
-      std::printf("  t=%6.1f s  trolley %6.2f m  spreader z %5.2f m  load %5.1f t  %s  moves %d/%zu\n",
+      std::printf("  t=%6.1f s  trolley %6.2f m  spreader z %5.2f m  load %5.1f t  %s  moves %d/%zu  %s\n",
                   s.time_s, s.trolley_x_m, s.spreader.position.z, s.hoisted_load_n / 9.80665 / 1000.0,
                   s.lamps.locked ? "locked  " : "unlocked", evaluator.metrics().moves_completed,
-                  exercise.moves.size());
+                  exercise.moves.size(), pilot.activity());
       std::fflush(stdout);
     }
   }

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -47,6 +48,31 @@ TEST(ExerciseFiles, WeatherAndEventsLoad) {
   ASSERT_EQ(e.scenario.events.size(), 1u);
   EXPECT_EQ(e.scenario.events[0].kind, sim::ScriptedEvent::Kind::kGust);
   EXPECT_EQ(e.scenario.events[0].gust.amplitude_mps, 8.0);
+}
+
+TEST(ExerciseFiles, EveryShippedExerciseLoadsAndItsMovesAreFeasible) {
+  int files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(HARBOUR_DATA_DIR "/exercises")) {
+    SCOPED_TRACE(entry.path().string());
+    const sim::ExerciseSettings e = load_exercise(entry.path().string());
+    ++files;
+    EXPECT_EQ(e.name + ".yaml", entry.path().filename().string());
+    int to_trucks = 0;
+    for (const sim::MoveGoal& m : e.moves)
+      to_trucks += m.target_m.x == e.scenario.trucks.lane_x_m && m.target_m.y == e.scenario.trucks.stop_y_m;
+    EXPECT_LE(to_trucks, e.scenario.trucks.trucks);  // a truck for every box that goes to one
+  }
+  EXPECT_GE(files, 4);
+}
+
+TEST(ExerciseFiles, TheHoldExerciseLiftsAHatchCoverAndBoxesFromTheCells) {
+  const sim::ExerciseSettings e = load_exercise(HARBOUR_DATA_DIR "/exercises/sts_bay12_hold.yaml");
+  ASSERT_EQ(e.moves.size(), 5u);
+  EXPECT_EQ(e.moves[2].container_id, "HATCH12S");
+  int in_cells = 0;
+  for (const sim::ContainerPlacement& c : e.scenario.containers)
+    in_cells += c.in_cell;
+  EXPECT_EQ(in_cells, 4);  // tiers 02, 04, 06 of row 01 and 06 of row 03
 }
 
 TEST(ExerciseFiles, BadExercisesNameTheField) {

@@ -16,12 +16,13 @@ struct Attempt {
   bool done = false;
 };
 
-Attempt run(OperatorDefects defects = {}) {
-  const ExerciseSettings exercise = scenes::sts_discharge_exercise(HARBOUR_DATA_DIR);
+Attempt run(OperatorDefects defects = {}, const std::string& exercise_file = "sts_discharge.yaml",
+            int max_steps = 240000) {
+  const ExerciseSettings exercise = io::load_exercise(HARBOUR_DATA_DIR "/exercises/" + exercise_file);
   Simulation sim(exercise.scenario);
   Autopilot pilot(exercise, defects);
   Evaluator evaluator(exercise);
-  for (int k = 0; k < 240000 && !evaluator.finished(); ++k) {
+  for (int k = 0; k < max_steps && !evaluator.finished(); ++k) {
     const Inputs in = pilot.next(sim);
     sim.step(in);
     evaluator.observe(sim, in);
@@ -42,6 +43,34 @@ TEST(Autopilot, CompletesTheDischargeWithAPassingScore) {
   EXPECT_LT(a.metrics.time_s, 180.0);
   EXPECT_GT(a.metrics.hoist_energy_j, 0.0);
   RecordProperty("cycle_time_s", std::to_string(a.metrics.cycle_times_s.front()));
+}
+
+// A fresh breeze along the quay (10 m/s, 15 % turbulence) with a 3 s gust of +8 m/s while the box travels,
+// and a swell rolling the feeder (the box to pick up moves some 2.5 cm across): the autopilot catches the
+// swing, follows the box and lands within the twistlocks' reach.
+TEST(Autopilot, LandsInAGustyCrosswindOnARollingShip) {
+  const Attempt a = run({}, "sts_discharge_gusty.yaml");
+  ASSERT_TRUE(a.done) << "moves " << a.metrics.moves_completed << " after " << a.metrics.time_s << " s";
+  EXPECT_TRUE(a.score.passed);
+  EXPECT_EQ(a.metrics.collisions, 0);
+  EXPECT_EQ(a.metrics.hard_landings, 0);
+  EXPECT_EQ(a.metrics.twistlock_misuse, 0);
+  EXPECT_LT(a.metrics.time_s, 180.0);  // the exercise's time limit
+}
+
+// Opening a hold: two deck boxes to the trucks, the 20 t hatch cover to the quay, two boxes up through the
+// cell guides (25 mm clearance a side) to the trucks.
+TEST(Autopilot, OpensAHoldAndDischargesThroughTheCellGuides) {
+  const Attempt a = run({}, "sts_bay12_hold.yaml", 1080000);
+  ASSERT_TRUE(a.done) << "moves " << a.metrics.moves_completed << " after " << a.metrics.time_s << " s";
+  EXPECT_EQ(a.metrics.moves_completed, 5);
+  EXPECT_TRUE(a.score.passed);
+  EXPECT_EQ(a.score.total, 100.0) << a.score.deductions.front().reason;
+  EXPECT_EQ(a.metrics.collisions, 0);  // no spreader on a cell guide, no box on a neighbour
+  EXPECT_EQ(a.metrics.cell_guide_collisions, 0);
+  EXPECT_EQ(a.metrics.twistlock_misuse, 0);
+  EXPECT_EQ(a.metrics.landing_sway_m.size(), 10u);  // a pick-up and a set-down per move
+  RecordProperty("moves_per_hour", std::to_string(a.metrics.moves_per_hour));
 }
 
 TEST(Autopilot, ABadOperatorGetsTheDocumentedPenalties) {
@@ -158,15 +187,21 @@ TEST(Evaluation, ASpreaderLoweredOffTheCellCountsACellGuideCollision) {
 namespace harbour::sim {
 namespace {
 
-TEST(Autopilot, AnInstructorTakeOverContinuesTheAttemptFromTheRecordedState) {
-  // the original attempt, recorded for 30 s (the spreader is on its way down to the box); the instructor
-  // takes over at 30 s: the branch's evaluator sees the history, the autopilot drives on and finishes
+class TakeOverAt : public ::testing::TestWithParam<std::int64_t> {};
+
+// The original attempt is recorded up to the take-over (30 s: the spreader on its way down to the box; 62 s:
+// the box travelling to the truck, swinging); the instructor takes over there: the branch's evaluator sees
+// the history, the autopilot drives on (catching the swing) and finishes.
+INSTANTIATE_TEST_SUITE_P(Moments, TakeOverAt, ::testing::Values(30000, 62000));
+
+TEST_P(TakeOverAt, AnInstructorTakeOverContinuesTheAttemptFromTheRecordedState) {
+  const std::int64_t at = GetParam();
   const ExerciseSettings exercise = scenes::sts_discharge_exercise(HARBOUR_DATA_DIR);
   Recorder recorder(exercise.name);
   {
     Simulation sim(exercise.scenario);
     Autopilot pilot(exercise);
-    for (int k = 0; k < 30000; ++k) {
+    for (std::int64_t k = 0; k < at; ++k) {
       const Inputs in = pilot.next(sim);
       sim.step(in);
       recorder.after_step(sim, in);
@@ -174,14 +209,14 @@ TEST(Autopilot, AnInstructorTakeOverContinuesTheAttemptFromTheRecordedState) {
   }
   Evaluator evaluator(exercise);
   int observed = 0;
-  TakeOver branch = take_over(exercise.scenario, recorder.recording(), "original", 30000,
+  TakeOver branch = take_over(exercise.scenario, recorder.recording(), "original", at,
                               [&](const Simulation& s, const Inputs& in) {
                                 evaluator.observe(s, in);
                                 ++observed;
                               });
-  EXPECT_EQ(observed, 30000);  // every step of the history, not a keyframe jump
+  EXPECT_EQ(observed, at);  // every step of the history, not a keyframe jump
   EXPECT_EQ(branch.recorder.recording().parent, "original");
-  EXPECT_EQ(branch.recorder.recording().branch_step, 30000);
+  EXPECT_EQ(branch.recorder.recording().branch_step, at);
   Autopilot pilot(exercise);
   pilot.resume(*branch.simulation, evaluator.metrics().moves_completed);
   for (int k = 0; k < 200000 && !evaluator.finished(); ++k) {

@@ -33,8 +33,8 @@ class Autopilot {
   /// unlock.
   const char* activity() const;
   /// Takes over a running exercise (an instructor's take-over): the first `moves_done` moves are made; if the
-  /// spreader holds the next move's box it carries it on, else it goes to fetch it. It cannot catch a big
-  /// swing: take over where the load hangs calm (at a pick-up, a set-down, before travelling).
+  /// spreader holds the next move's box it carries it on, else it goes to fetch it (raising first, then
+  /// catching whatever swing the load has before it lowers).
   void resume(const Simulation& simulation, int moves_done);
 
  private:
