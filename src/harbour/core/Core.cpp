@@ -33,6 +33,8 @@ std::string_view to_string(Warning w) {
       return "non-finite value";
     case Warning::kMassDrift:
       return "mass drift";
+    case Warning::kSolverMessage:
+      return "rigid-body solver message";
     case Warning::kNegativeHeight:
       return "negative height";
     case Warning::kSolverLimit:

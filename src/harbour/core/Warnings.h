@@ -12,6 +12,7 @@ enum class Warning : std::uint8_t {
   kMassDrift,       ///< a conservation check failed beyond rounding
   kNegativeHeight,  ///< a bulk cell went below its base
   kSolverLimit,     ///< an iterative solver hit its iteration limit
+  kSolverMessage,   ///< the rigid-body solver reported a numerical problem (an ODE message)
   kCount
 };
 

@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdarg>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <mutex>
 
@@ -16,10 +18,30 @@ namespace {
 
 using core::Vec3;
 
+}  // namespace
+
+void record_solver_message(int number, const char* format, va_list args);
+
+namespace {
+
+// the world stepping on this thread, which ODE's messages are about
+thread_local PhysicsWorld* g_stepping = nullptr;
+
+void on_ode_message(int number, const char* format, va_list args) {
+  if (g_stepping != nullptr) {
+    record_solver_message(number, format, args);
+    return;
+  }
+  std::fprintf(stderr, "ODE message %d: ", number);
+  std::vfprintf(stderr, format, args);
+  std::fprintf(stderr, "\n");
+}
+
 void init_ode_once() {
   static std::once_flag once;
   std::call_once(once, [] {
     dInitODE2(0);
+    dSetMessageHandler(&on_ode_message);
     HARBOUR_ASSERT(dCheckConfiguration("ODE_double_precision"), "ODE must be built in double precision");
   });
 }
@@ -440,10 +462,25 @@ void PhysicsWorld::close_impact_windows(double dt_s) {
   open_impacts_.resize(kept);
 }
 
+void record_solver_message(int number, const char* format, va_list args) {
+  char text[256];
+  std::vsnprintf(text, sizeof text, format, args);
+  ++g_stepping->solver_messages_;
+  g_stepping->last_solver_message_ = "ODE message " + std::to_string(number) + ": " + text;
+}
+
+int PhysicsWorld::take_solver_messages() {
+  const int n = solver_messages_;
+  solver_messages_ = 0;
+  return n;
+}
+
 void PhysicsWorld::step(double dt_s) {
   step_s_ = dt_s;
+  g_stepping = this;
   collide();
   dWorldStep(ode_->world, dt_s);
+  g_stepping = nullptr;
   close_impact_windows(dt_s);
   dJointGroupEmpty(ode_->contacts);
   ++step_count_;

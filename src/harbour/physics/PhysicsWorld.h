@@ -1,9 +1,11 @@
 #pragma once
 
 #include <array>
+#include <cstdarg>
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "harbour/core/StateArchive.h"
@@ -115,6 +117,10 @@ class PhysicsWorld {
   void step(double dt_s);
   /// Contacts generated in the last step.
   int contact_count() const { return contact_count_; }
+  /// Messages ODE reported while this world stepped (e.g. "LCP internal error"), since the last call; the
+  /// last one's text stays in last_solver_message().
+  int take_solver_messages();
+  const std::string& last_solver_message() const { return last_solver_message_; }
   /// Impacts (pairs that touch after being apart for impact_rearm_s) since the last call.
   std::vector<ImpactEvent> take_impacts();
   /// Hash of every body's position, orientation and velocities (bit-exact).
@@ -143,6 +149,9 @@ class PhysicsWorld {
   std::int64_t step_count_ = 0;
   double step_s_ = 0.001;
   std::vector<ImpactEvent> impacts_;
+  int solver_messages_ = 0;
+  std::string last_solver_message_;
+  friend void record_solver_message(int, const char*, va_list);
 };
 
 }  // namespace harbour::physics

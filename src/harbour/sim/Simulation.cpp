@@ -138,6 +138,8 @@ void Simulation::advance(const Inputs& inputs) {
   events_.ropes = crane_->hoist().take_events();
   const core::Vec3 p = crane_->spreader_pose().position;
   if (!std::isfinite(p.x + p.y + p.z)) warnings_.raise(core::Warning::kNonFinite);
+  for (int n = world_->take_solver_messages(); n > 0; --n)
+    warnings_.raise(core::Warning::kSolverMessage);
 }
 
 void Simulation::step(const Inputs& inputs) {
@@ -196,7 +198,7 @@ std::uint64_t Simulation::state_hash() const {
 
 std::vector<std::uint8_t> Simulation::save_state() const {
   core::StateWriter out;
-  out.section(0x53494D55);  // "SIMU"
+  out.section(0x53494D32);  // "SIM2": with solver-message warnings
   out.put(clock_.steps());
   out.put(held_);
   out.put(next_event_);
@@ -212,7 +214,7 @@ std::vector<std::uint8_t> Simulation::save_state() const {
 
 void Simulation::restore_state(const std::vector<std::uint8_t>& state) {
   core::StateReader in(state);
-  in.section(0x53494D55, "simulation");
+  in.section(0x53494D32, "simulation");
   clock_.reset(in.get<std::int64_t>());
   in.get(held_);
   in.get(next_event_);
