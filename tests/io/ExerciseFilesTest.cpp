@@ -72,7 +72,7 @@ TEST(ExerciseFiles, TheHoldExerciseLiftsAHatchCoverAndBoxesFromTheCells) {
   int in_cells = 0;
   for (const sim::ContainerPlacement& c : e.scenario.containers)
     in_cells += c.in_cell;
-  EXPECT_EQ(in_cells, 4);  // tiers 02, 04, 06 of row 01 and 06 of row 03
+  EXPECT_EQ(in_cells, 4);  // tiers 02, 04, 06 of row 01 and 02 of row 03
 }
 
 TEST(ExerciseFiles, BadExercisesNameTheField) {
@@ -98,6 +98,38 @@ TEST(ExerciseFiles, BadExercisesNameTheField) {
   expect_error("hard_landing: 5,", "hard_landings: 5,", "exercise.rules.deductions.hard_landings",
                "unknown deduction");
   expect_error("hard_landing: 5,", "hard_landing: 500,", "exercise.rules.deductions.hard_landing", "outside");
+  // stowage: boxes stand on the box below them
+  expect_error("slot: [12, 3, 82]", "slot: [12, 3, 84]", "exercise.containers[0].slot",
+               "nothing stowed under it in tier 82");
+  expect_error("slot: [12, 1, 82]", "slot: [12, 3, 82]", "exercise.containers[1].slot",
+               "two containers in one slot");
+  // four high cubes (11.58 m) do not fit in the 11.5 m hold: the fourth, three lines further down, is named
+  const std::string text = shipped();
+  const std::string from = "{id: TGHU1000014, type: 40ft, gross_mass_kg: 22000, slot: [12, 2, 82]}";
+  scenes::expect_data_error(
+      text, from,
+      "{id: HC02, type: 40ftHC, gross_mass_kg: 22000, slot: [12, 2, 2]}\n"
+      "    - {id: HC04, type: 40ftHC, gross_mass_kg: 22000, slot: [12, 2, 4]}\n"
+      "    - {id: HC06, type: 40ftHC, gross_mass_kg: 22000, slot: [12, 2, 6]}\n"
+      "    - {id: HC08, type: 40ftHC, gross_mass_kg: 22000, slot: [12, 2, 8]}",
+      [](const YamlFile& f) { load_exercise(f, HARBOUR_DATA_DIR "/exercises"); },
+      scenes::line_of(text, from) + 3, "exercise.containers[5].slot", "into the hatch covers");
+}
+
+// A high cube is a foot taller than a tier: the box stowed on it stands on its roof, not in mid-air or in it.
+TEST(ExerciseFiles, StowedBoxesStandOnTheBoxBelow) {
+  std::string text = shipped();
+  const std::string from = "{id: TGHU1000010, type: 40ft, gross_mass_kg: 22000, slot: [12, 3, 82]}";
+  text.replace(text.find(from), from.size(),
+               "{id: TGHU1000010, type: 40ftHC, gross_mass_kg: 22000, slot: [12, 3, 82]}\n"
+               "    - {id: TGHU1000016, type: 40ft, gross_mass_kg: 22000, slot: [12, 3, 84]}");
+  const sim::ExerciseSettings e =
+      load_exercise(YamlFile::parse(text, "stack.yaml"), HARBOUR_DATA_DIR "/exercises");
+  const auto& hc = e.scenario.containers[0];
+  const auto& on_it = e.scenario.containers[1];
+  EXPECT_NEAR(hc.half_extents_m.z, 2.896 / 2, 1e-9);
+  EXPECT_NEAR(on_it.pose.position.z - hc.pose.position.z, 2.896 / 2 + 2.591 / 2, 1e-9);
+  EXPECT_NEAR(on_it.pose.position.x, hc.pose.position.x, 1e-9);
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <map>
 #include <optional>
+#include <tuple>
 
 #include "harbour/core/Units.h"
 #include "harbour/io/MachineFiles.h"
@@ -110,6 +111,13 @@ sim::ExerciseSettings load_exercise(const YamlFile& f, const std::string& folder
   }
 
   const YAML::Node containers = f.sequence(x, "containers", "exercise");
+  struct Stowed {  // a box given by its slot on the vessel
+    std::size_t index;
+    sim::SlotAddress slot;
+    core::Vec3 lowest_centre;  // vessel frame: where it would stand in its stack's lowest tier
+  };
+  std::vector<Stowed> stowed;
+  auto two_digits = [](int tier) { return (tier < 10 ? "0" : "") + std::to_string(tier); };
   for (std::size_t n = 0; n < containers.size(); ++n) {
     const YAML::Node c = containers[n];
     const std::string at = item("exercise.containers", n);
@@ -155,12 +163,46 @@ sim::ExerciseSettings load_exercise(const YamlFile& f, const std::string& folder
       p.pose = vessel->stowed_pose_at(0.0, *centre);
       p.on_vessel = true;
       p.in_cell = address.tier < 80;
+      const sim::SlotAddress lowest{address.bay, address.row, p.in_cell ? 2 : 82};
+      stowed.push_back({n, address, *vessel->slot_centre(lowest, 2.0 * p.half_extents_m.z, why)});
     } else {
       // on the quay or a chassis: along the quay unless turned
       const double yaw = core::deg_to_rad(f.number_or(c, "yaw_deg", at, 90.0, -360.0, 360.0));
       p.pose = {core::Mat3::rotation({0, 0, 1}, yaw), f.vector3(c["position_m"], at + ".position_m")};
     }
     s.containers.push_back(p);
+  }
+  // each stowed box stands on the one below it in its stack (high cubes are 30 cm taller than a tier): no
+  // gaps, no two in a slot, and a hold stack must fit under the hatch covers
+  std::stable_sort(stowed.begin(), stowed.end(), [](const Stowed& a, const Stowed& b) {
+    return std::tie(a.slot.bay, a.slot.row, a.slot.tier) < std::tie(b.slot.bay, b.slot.row, b.slot.tier);
+  });
+  double stack_top = 0.0;  // vessel frame
+  for (std::size_t k = 0; k < stowed.size(); ++k) {
+    const Stowed& box = stowed[k];
+    sim::ContainerPlacement& p = s.containers[box.index];
+    const std::string at = item("exercise.containers", box.index) + ".slot";
+    const bool same_stack = k > 0 && stowed[k - 1].slot.bay == box.slot.bay &&
+                            stowed[k - 1].slot.row == box.slot.row &&
+                            (stowed[k - 1].slot.tier < 80) == (box.slot.tier < 80);
+    const int lowest_tier = box.slot.tier < 80 ? 2 : 82;
+    const int expected_tier = same_stack ? stowed[k - 1].slot.tier + 2 : lowest_tier;
+    if (box.slot.tier < expected_tier)
+      f.fail(containers[box.index]["slot"], at, "two containers in one slot");
+    if (box.slot.tier > expected_tier)
+      f.fail(containers[box.index]["slot"], at,
+             "nothing stowed under it in tier " + two_digits(box.slot.tier - 2) +
+                 " (stacks start at tier 02 in the hold, 82 on deck)");
+    const double height = 2.0 * p.half_extents_m.z;
+    const double bottom = same_stack ? stack_top : box.lowest_centre.z - height / 2.0;
+    stack_top = bottom + height;
+    const core::Vec3 centre{box.lowest_centre.x, box.lowest_centre.y, bottom + height / 2.0};
+    if (p.in_cell && bottom + height > vessel->coaming_top_m())
+      f.fail(containers[box.index]["slot"], at,
+             "the hold stack would stand " +
+                 std::to_string(std::lround((bottom + height - vessel->coaming_top_m()) * 1000)) +
+                 " mm into the hatch covers");
+    p.pose = vessel->stowed_pose_at(0.0, centre);
   }
   for (const sim::ContainerPlacement& cover : hatch_covers) {
     for (const auto& c : s.containers)
