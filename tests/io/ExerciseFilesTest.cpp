@@ -116,6 +116,27 @@ TEST(ExerciseFiles, BadExercisesNameTheField) {
       scenes::line_of(text, from) + 3, "exercise.containers[5].slot", "into the hatch covers");
 }
 
+// ISO 668 boxes by their cargo: the type's typical tare (reference.md) unless the file gives one.
+TEST(ExerciseFiles, AContainersGrossMassIsTarePlusCargo) {
+  std::string text = shipped();
+  const std::string from = "{id: TGHU1000010, type: 40ft, gross_mass_kg: 22000,";
+  text.replace(text.find(from), from.size(), "{id: TGHU1000010, type: 40ft, cargo_mass_kg: 18000,");
+  const std::string from2 = "{id: TGHU1000014, type: 40ft, gross_mass_kg: 22000,";
+  text.replace(text.find(from2), from2.size(),
+               "{id: TGHU1000014, type: 40ft, cargo_mass_kg: 18000, tare_kg: 4100,");
+  const sim::ExerciseSettings e =
+      load_exercise(YamlFile::parse(text, "cargo.yaml"), HARBOUR_DATA_DIR "/exercises");
+  EXPECT_DOUBLE_EQ(e.scenario.containers[0].gross_mass_kg, 3750.0 + 18000.0);
+  EXPECT_DOUBLE_EQ(e.scenario.containers[2].gross_mass_kg, 4100.0 + 18000.0);
+  EXPECT_DOUBLE_EQ(e.scenario.containers[1].gross_mass_kg, 22000.0);
+  expect_error("{id: TGHU1000012, type: 40ft, gross_mass_kg: 22000,",
+               "{id: TGHU1000012, type: 40ft, gross_mass_kg: 22000, cargo_mass_kg: 100,",
+               "exercise.containers[1]", "either gross_mass_kg or cargo_mass_kg");
+  expect_error("{id: TGHU1000012, type: 40ft, gross_mass_kg: 22000,",
+               "{id: TGHU1000012, type: 40ft, cargo_mass_kg: 39000,", "exercise.containers[1].cargo_mass_kg",
+               "outside");
+}
+
 // A high cube is a foot taller than a tier: the box stowed on it stands on its roof, not in mid-air or in it.
 TEST(ExerciseFiles, StowedBoxesStandOnTheBoxBelow) {
   std::string text = shipped();

@@ -18,11 +18,16 @@ namespace {
 constexpr double kHuge = 1e6;
 
 // ISO 668 external dimensions [m] (length, width, height)
-const std::map<std::string, core::Vec3>& iso_types() {
-  static const std::map<std::string, core::Vec3> types = {{"20ft", {6.058, 2.438, 2.591}},
-                                                          {"40ft", {12.192, 2.438, 2.591}},
-                                                          {"40ftHC", {12.192, 2.438, 2.896}},
-                                                          {"45ftHC", {13.716, 2.438, 2.896}}};
+// ISO 668 external dimensions [m] and typical tare [kg] (../shared/data/reference.md)
+struct IsoType {
+  core::Vec3 size_m;
+  double tare_kg;
+};
+const std::map<std::string, IsoType>& iso_types() {
+  static const std::map<std::string, IsoType> types = {{"20ft", {{6.058, 2.438, 2.591}, 2300}},
+                                                       {"40ft", {{12.192, 2.438, 2.591}, 3750}},
+                                                       {"40ftHC", {{12.192, 2.438, 2.896}, 3940}},
+                                                       {"45ftHC", {{13.716, 2.438, 2.896}, 4820}}};
   return types;
 }
 
@@ -129,9 +134,17 @@ sim::ExerciseSettings load_exercise(const YamlFile& f, const std::string& folder
     const auto t = iso_types().find(type);
     if (t == iso_types().end())
       f.fail(c["type"], at + ".type", "unknown container type '" + type + "' (20ft, 40ft, 40ftHC, 45ftHC)");
-    p.half_extents_m = t->second * 0.5;
-    p.gross_mass_kg =
-        f.number(c, "gross_mass_kg", at, 1000.0, 40000.0);  // tare .. above the ISO 30 480 kg max gross
+    p.half_extents_m = t->second.size_m * 0.5;
+    // the gross mass, or the cargo on the tare (the type's typical tare unless given); up to 40 t, above the
+    // ISO 30 480 kg maximum, so that an exercise can hide an overweight box
+    if (c["gross_mass_kg"].IsDefined() == c["cargo_mass_kg"].IsDefined())
+      f.fail(c, at, "give either gross_mass_kg or cargo_mass_kg (with an optional tare_kg), not both");
+    if (c["gross_mass_kg"].IsDefined()) {
+      p.gross_mass_kg = f.number(c, "gross_mass_kg", at, 1000.0, 40000.0);
+    } else {
+      const double tare = f.number_or(c, "tare_kg", at, t->second.tare_kg, 1000.0, 10000.0);
+      p.gross_mass_kg = tare + f.number(c, "cargo_mass_kg", at, 0.0, 40000.0 - tare);
+    }
     const bool twenty = type == "20ft";
     p.pocket_half_length_m = (twenty ? kCastings20_m[0] : kCastings40_m[0]) / 2;
     p.pocket_half_width_m = (twenty ? kCastings20_m[1] : kCastings40_m[1]) / 2;
