@@ -1,12 +1,16 @@
 #include "StsRun.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <optional>
+#include <stdexcept>
+#include <string>
 #include <tuple>
+#include <vector>
 
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/io/RecordingFile.h"
@@ -116,7 +120,7 @@ int run_exercise(const RunOptions& options) {
     std::fprintf(stderr, "harboursim: no input device support yet; run with --autopilot\n");
     return 2;
   }
-  const sim::ExerciseSettings exercise = io::load_exercise(options.exercise);
+  const sim::ExerciseSettings exercise = io::load_exercise(resolve_exercise(options.exercise));
   sim::Simulation simulation(exercise.scenario);
   sim::Autopilot pilot(exercise);
   sim::Evaluator evaluator(exercise);
@@ -169,9 +173,27 @@ int drive_attempt(const sim::ExerciseSettings& exercise, sim::Simulation& simula
   return simulation.warnings().total() == 0 ? 0 : 1;
 }
 
+std::string resolve_exercise(const std::string& name_or_path) {
+  namespace fs = std::filesystem;
+  if (fs::is_regular_file(name_or_path)) return name_or_path;
+  const fs::path folder = fs::path(HARBOUR_DATA_DIR) / "exercises";
+  const fs::path shipped = folder / (name_or_path + ".yaml");
+  if (fs::is_regular_file(shipped)) return shipped.string();
+  std::vector<std::string> names;
+  if (fs::is_directory(folder))
+    for (const auto& entry : fs::directory_iterator(folder))
+      if (entry.path().extension() == ".yaml") names.push_back(entry.path().stem().string());
+  std::sort(names.begin(), names.end());
+  std::string list;
+  for (const std::string& n : names)
+    list += (list.empty() ? "" : ", ") + n;
+  throw std::runtime_error("no exercise file '" + name_or_path + "' and no shipped exercise of that name (" +
+                           list + ")");
+}
+
 int replay_recording(const std::string& recording_path, const std::string& exercise_path) {
   const sim::Recording recording = io::read_recording(recording_path);
-  const sim::ExerciseSettings exercise = io::load_exercise(exercise_path);
+  const sim::ExerciseSettings exercise = io::load_exercise(resolve_exercise(exercise_path));
   if (recording.scenario != exercise.name) {
     std::fprintf(stderr, "harboursim: %s was recorded on exercise '%s', not '%s'\n", recording_path.c_str(),
                  recording.scenario.c_str(), exercise.name.c_str());
@@ -197,7 +219,7 @@ int replay_recording(const std::string& recording_path, const std::string& exerc
 
 int take_over_recording(const std::string& recording_path, const RunOptions& options, double at_s) {
   const sim::Recording recording = io::read_recording(recording_path);
-  const sim::ExerciseSettings exercise = io::load_exercise(options.exercise);
+  const sim::ExerciseSettings exercise = io::load_exercise(resolve_exercise(options.exercise));
   if (recording.scenario != exercise.name) {
     std::fprintf(stderr, "harboursim: %s was recorded on exercise '%s', not '%s'\n", recording_path.c_str(),
                  recording.scenario.c_str(), exercise.name.c_str());

@@ -6,13 +6,17 @@ namespace harbour::apps {
 
 /// `harboursim run`: an exercise headless with the autopilot, progress lines and the evaluation.
 struct RunOptions {
-  std::string exercise;  ///< exercise file
+  std::string exercise;  ///< exercise file, or the name of a shipped one (resolve_exercise)
   bool autopilot = false;
   std::string record;                 ///< recording file to write ("" for none)
   std::string trainee = "autopilot";  ///< trainee id the attempt is stored under
   std::string database;               ///< records connection ("" for the default SQLite file)
 };
 int run_exercise(const RunOptions& options);
+
+/// An exercise file: `name_or_path` itself when it is a file, else the shipped `data/exercises/<name>.yaml`;
+/// throws naming what it tried and the shipped exercises.
+std::string resolve_exercise(const std::string& name_or_path);
 
 /// The default records database: $XDG_DATA_HOME/harboursim/records.db (or ~/.local/share/...), as a SOCI
 /// connection string.

@@ -13,9 +13,9 @@ int main(int argc, char** argv) {
 
   harbour::apps::RunOptions run;
   CLI::App* run_cmd = app.add_subcommand("run", "run an exercise headless");
-  run_cmd->add_option("--exercise", run.exercise, "exercise file (data/exercises/*.yaml)")
-      ->required()
-      ->check(CLI::ExistingFile);
+  run_cmd
+      ->add_option("--exercise", run.exercise, "exercise file, or a shipped exercise's name (sts_discharge)")
+      ->required();
   run_cmd->add_flag("--autopilot", run.autopilot, "let the scripted operator drive");
   run_cmd->add_option("--record", run.record, "write the run's recording (HSRC) to this file");
   run_cmd->add_option("--trainee", run.trainee, "trainee id to store the attempt under");
@@ -38,9 +38,8 @@ int main(int argc, char** argv) {
   std::string recording, replay_exercise;
   CLI::App* replay_cmd = app.add_subcommand("replay", "re-simulate a recording and check it bit for bit");
   replay_cmd->add_option("recording", recording, "recording file")->required()->check(CLI::ExistingFile);
-  replay_cmd->add_option("--exercise", replay_exercise, "the exercise it was recorded on")
-      ->required()
-      ->check(CLI::ExistingFile);
+  replay_cmd->add_option("--exercise", replay_exercise, "the exercise it was recorded on (file or name)")
+      ->required();
   double take_over_s = -1.0;
   harbour::apps::RunOptions branch;
   replay_cmd
