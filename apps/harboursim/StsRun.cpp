@@ -44,6 +44,7 @@ void print_evaluation(const sim::Metrics& m, const sim::Score& s) {
   std::printf("  emergency stops      %8d\n", m.emergency_stops);
   std::printf("  gantry without horn  %8d\n", m.unwarned_gantry_travel);
   std::printf("  hoist energy         %8.2f MJ\n", m.hoist_energy_j / 1e6);
+  std::printf("  travel energy        %8.2f MJ (gantry and trolley)\n", m.travel_energy_j / 1e6);
   std::printf("score %.0f / 100: %s\n", s.total, s.passed ? "PASSED" : "NOT PASSED");
   for (const auto& d : s.deductions)
     std::printf("  -%.0f  %s x%d (%s)\n", d.points, d.reason.c_str(), d.count, sim::skill_name(d.skill));

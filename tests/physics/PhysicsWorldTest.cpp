@@ -91,6 +91,37 @@ TEST(PhysicsWorld, SliderBetweenTwoBodiesMeasuresTheSecondRelativeToTheFirst) {
   EXPECT_NEAR(w.pose(trolley).position.x - w.pose(gantry).position.x - 5.0, w.slider_position(s), 1e-3);
 }
 
+// The drive's work: a force-limited run-up of mass m to speed v puts in the kinetic energy m v^2 / 2, on the
+// world and between two bodies.
+TEST(PhysicsWorld, SliderForceTimesRateIsTheWorkTheMotorDoes) {
+  PhysicsWorld w({});
+  const BodyId trolley = w.add_box(box_at({0, 0, 10}, 30000.0, false));
+  const int s = w.add_slider(kWorld, trolley, {-2, 0, 0});  // any axis length, either direction
+  w.set_slider_motor(s, 2.0, 3e4);                          // 1 m/s^2 for 2 s
+  double work = 0.0;
+  for (int k = 0; k < 3000; ++k) {
+    w.step(kDt);
+    work += w.slider_force(s) * w.slider_rate(s) * kDt;
+  }
+  EXPECT_NEAR(w.slider_force(s), 0.0, 1.0);  // at speed, no force
+  EXPECT_NEAR(work, 0.5 * 30000.0 * 2.0 * 2.0, 0.005 * 60000.0);
+
+  // a trolley on a gantry that stands on its rails (a world slider across): the trolley's kinetic energy
+  PhysicsWorld two({});
+  const BodyId gantry = two.add_box(box_at({0, 0, 10}, 1e6, false));
+  const BodyId car = two.add_box(box_at({5, 0, 20}, 3e4, false));
+  two.add_slider(kWorld, gantry, {0, 1, 0});
+  const int rail = two.add_slider(gantry, car, {1, 0, 0});
+  two.set_slider_motor(rail, -1.5, 3e4);  // towards -x this time
+  double trolley_work = 0.0;
+  for (int k = 0; k < 3000; ++k) {
+    two.step(kDt);
+    trolley_work += two.slider_force(rail) * two.slider_rate(rail) * kDt;
+  }
+  EXPECT_NEAR(two.slider_rate(rail), -1.5, 1e-3);
+  EXPECT_NEAR(trolley_work, 0.5 * 3e4 * 1.5 * 1.5, 0.005 * 0.5 * 3e4 * 1.5 * 1.5);
+}
+
 TEST(PhysicsWorld, SameInputsGiveTheSameStateHash) {
   auto run = [](double push) {
     PhysicsWorld w({});

@@ -121,7 +121,8 @@ void RecordsStore::finish_attempt(std::int64_t attempt, const sim::Metrics& m, c
                                                    {"skill_safety", s.skills[0]},
                                                    {"skill_precision", s.skills[1]},
                                                    {"skill_productivity", s.skills[2]},
-                                                   {"hoist_energy_j", m.hoist_energy_j}};
+                                                   {"hoist_energy_j", m.hoist_energy_j},
+                                                   {"travel_energy_j", m.travel_energy_j}};
   for (const auto& [name, value] : values) {
     const std::string n = name;
     const double v = value;

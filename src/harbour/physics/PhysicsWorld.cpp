@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <deque>
 #include <mutex>
 
 #include "harbour/core/Assert.h"
@@ -95,7 +96,9 @@ struct PhysicsWorld::Ode {
   std::vector<Body> bodies;
   std::vector<Shape> shapes;
   std::vector<dJointID> sliders;
-  std::vector<double> slider_sign;  // +1 or -1: ODE's slider sign against ours
+  std::vector<double> slider_sign;             // +1 or -1: ODE's slider sign against ours
+  std::deque<dJointFeedback> slider_feedback;  // forces of the last step (stable addresses)
+  std::vector<Vec3> slider_axis;
   std::vector<Attachment> attachments;
   std::vector<dContact> contact_buffer;
   std::vector<PendingContact> pending;
@@ -292,6 +295,8 @@ int PhysicsWorld::add_slider(BodyId a, BodyId b, const Vec3& axis) {
   }
   dJointSetSliderAxis(j, axis.x, axis.y, axis.z);
   ode_->slider_sign.push_back(a == kWorld ? 1.0 : -1.0);
+  dJointSetFeedback(j, &ode_->slider_feedback.emplace_back());
+  ode_->slider_axis.push_back(axis * (1.0 / std::sqrt(dot(axis, axis))));
   ode_->sliders.push_back(j);
   return static_cast<int>(ode_->sliders.size()) - 1;
 }
@@ -307,6 +312,15 @@ double PhysicsWorld::slider_position(int slider) const {
 
 double PhysicsWorld::slider_rate(int slider) const {
   return ode_->slider_sign[slider] * dJointGetSliderPositionRate(ode_->sliders[slider]);
+}
+
+double PhysicsWorld::slider_force(int slider) const {
+  // the force on the moving body b along the axis: on the world b is ODE's body 1; between two bodies ODE's
+  // body 1 is a, which feels the reaction
+  const dJointFeedback& f = ode_->slider_feedback[static_cast<std::size_t>(slider)];
+  const bool on_world = ode_->slider_sign[slider] > 0.0;
+  return on_world ? dot(to_vec(f.f1), ode_->slider_axis[static_cast<std::size_t>(slider)])
+                  : -dot(to_vec(f.f1), ode_->slider_axis[static_cast<std::size_t>(slider)]);
 }
 
 core::Pose PhysicsWorld::pose(BodyId body) const {

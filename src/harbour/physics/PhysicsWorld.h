@@ -101,6 +101,9 @@ class PhysicsWorld {
   /// Slider displacement [m] along its axis from where it was created, and its rate [m/s].
   double slider_position(int slider) const;
   double slider_rate(int slider) const;
+  /// Force the joint (motor, brake) put on the slider's moving body along +axis in the last step [N]:
+  /// times slider_rate, the power the drive delivered.
+  double slider_force(int slider) const;
 
   core::Pose pose(BodyId body) const;
   core::Vec3 linear_velocity(BodyId body) const;

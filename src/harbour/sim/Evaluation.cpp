@@ -143,6 +143,8 @@ void Evaluator::observe(const Simulation& simulation, const Inputs& inputs) {
   const double drum_power = -crane.hoist().drum_rope_torque(0) * crane.hoist().drum_rope_speed(0) /
                             simulation.scenario().crane.hoist.elements[0].radius_m;
   metrics_.hoist_energy_j += std::max(0.0, drum_power) * Simulation::kStep_s;
+  metrics_.travel_energy_j +=
+      (std::max(0.0, crane.gantry_power_w()) + std::max(0.0, crane.trolley_power_w())) * Simulation::kStep_s;
 }
 
 Score Evaluator::score() const {

@@ -70,6 +70,7 @@ struct Metrics {
   int emergency_stops = 0;
   int unwarned_gantry_travel = 0;  ///< gantry travel started without the horn first
   double hoist_energy_j = 0.0;     ///< [J] mechanical work at the hoist drum (positive part)
+  double travel_energy_j = 0.0;    ///< [J] mechanical work of the gantry and trolley drives (positive parts)
 };
 
 /// The skills a deduction counts against (docs/evaluation.md).

@@ -78,6 +78,13 @@ class StsCrane {
 
   double gantry_position_m() const { return gantry_start_y_ + world_.slider_position(gantry_slider_); }
   double trolley_position_m() const { return trolley_start_x_ + world_.slider_position(trolley_slider_); }
+  /// Mechanical power the travel drives delivered in the last step [W] (negative while braking).
+  double gantry_power_w() const {
+    return world_.slider_force(gantry_slider_) * world_.slider_rate(gantry_slider_);
+  }
+  double trolley_power_w() const {
+    return world_.slider_force(trolley_slider_) * world_.slider_rate(trolley_slider_);
+  }
   core::Pose spreader_pose() const { return world_.pose(spreader_); }
   core::Vec3 spreader_half_extents_m() const { return spreader_frame_->half_extents_m(); }
   SpreaderState spreader_state() const { return spreader_frame_->state(); }
