@@ -27,6 +27,12 @@ sim::Recording sample() {
   c.sts.spreader_size_ft = 45;
   r.inputs = {{0, a}, {2500, b}, {3000, c}};
   r.checkpoints = {{1000, 0x0123456789ABCDEFull}, {2000, 42}};
+  sim::InstructorCommand gust;  // version 4: the instructor's commands
+  gust.gust = {0.0, 3.0, 8.0};
+  sim::InstructorCommand fog;
+  fog.kind = sim::InstructorCommand::Kind::kSetVisibility;
+  fog.value = 300.0;
+  r.commands = {{1500, gust}, {2600, fog}};
   return r;
 }
 
@@ -47,6 +53,10 @@ TEST(RecordingFile, RoundTripsBitForBit) {
   EXPECT_TRUE(back.inputs[1].inputs == sample().inputs[1].inputs);  // -1/3 exactly
   EXPECT_TRUE(back.inputs[2].inputs == sample().inputs[2].inputs);
   EXPECT_EQ(back.checkpoints[0].state_hash, 0x0123456789ABCDEFull);
+  ASSERT_EQ(back.commands.size(), 2u);
+  EXPECT_EQ(back.commands[1].step, 2600);
+  EXPECT_TRUE(back.commands[0].command == sample().commands[0].command);
+  EXPECT_TRUE(back.commands[1].command == sample().commands[1].command);
   EXPECT_FALSE(std::filesystem::exists(path + ".partial"));
   std::filesystem::remove(path);
 }
@@ -84,6 +94,20 @@ TEST(RecordingFile, BadFilesNameTheFileAndTheByte) {
     FAIL() << "accepted a future version";
   } catch (const RecordingFileError& e) {
     EXPECT_NE(std::string(e.what()).find("version 9 is not supported"), std::string::npos) << e.what();
+  }
+  // the last instructor command's kind byte (records of 61 bytes at the end; the kind after the step)
+  write_recording(path, sample());
+  {
+    std::fstream f(path, std::ios::binary | std::ios::in | std::ios::out);
+    f.seekp(static_cast<std::streamoff>(size) - 61 + 8);
+    f.put(char(42));
+  }
+  try {
+    read_recording(path);
+    FAIL() << "accepted an unknown command";
+  } catch (const RecordingFileError& e) {
+    EXPECT_NE(std::string(e.what()).find("instructor command kind 42 unknown"), std::string::npos)
+        << e.what();
   }
   std::filesystem::remove(path);
 }

@@ -58,6 +58,95 @@ TEST(Recording, ASeekStartsFromAKeyframeAndLandsOnTheRecordedState) {
   EXPECT_FALSE(r.first_mismatch.has_value());
 }
 
+// The instructor changes the weather and breaks the hoist brake during a run: the recording keeps the
+// commands with their steps, a replay (whole or from a keyframe) applies them again and lands on the same
+// state, and the same inputs without them end elsewhere.
+TEST(Recording, InstructorCommandsAreRecordedAndReplayed) {
+  const ScenarioSettings scenario = scenes::sts_discharge(HARBOUR_DATA_DIR);
+  Simulation s(scenario);
+  Recorder recorder("commands");
+  InstructorCommand wind;
+  wind.kind = InstructorCommand::Kind::kSetWind;
+  wind.wind_mean_mps = 14.0;
+  wind.wind_from_rad = 1.5 * 3.14159265358979;  // from the west: across the quay
+  wind.turbulence = 0.1;
+  InstructorCommand gust;
+  gust.gust = {0.0, 3.0, 9.0};
+  InstructorCommand fog;
+  fog.kind = InstructorCommand::Kind::kSetVisibility;
+  fog.value = 300.0;
+  for (std::int64_t k = 0; k < kRunSteps; ++k) {
+    if (k == 3000 || k == 9000 || k == 12500) {
+      const InstructorCommand& c = k == 3000 ? wind : k == 9000 ? gust : fog;
+      s.command(c);
+      recorder.on_command(s, c);
+    }
+    const Inputs in = scenes::scripted_operator(k);
+    s.step(in);
+    recorder.after_step(s, in);
+  }
+  EXPECT_EQ(s.snapshot().visibility_m, 300.0);
+  const Recording& recording = recorder.recording();
+  ASSERT_EQ(recording.commands.size(), 3u);
+
+  const ReplayResult whole = replay(scenario, recording);
+  EXPECT_FALSE(whole.first_mismatch.has_value()) << "first mismatch at step " << *whole.first_mismatch;
+  EXPECT_EQ(whole.simulation->state_hash(), s.state_hash());
+  EXPECT_EQ(whole.simulation->snapshot().visibility_m, 300.0);
+
+  const ReplayResult seek = replay(scenario, recording, 19000);  // from the 10 s keyframe: fog still to come
+  EXPECT_EQ(seek.keyframes_used, 1);
+  EXPECT_FALSE(seek.first_mismatch.has_value());
+  EXPECT_EQ(seek.simulation->snapshot().visibility_m, 300.0);
+
+  Recording without = recording;
+  without.commands.clear();
+  EXPECT_TRUE(replay(scenario, without).first_mismatch.has_value());
+
+  // dusk on request: the clock jumps there and runs on
+  InstructorCommand dusk;
+  dusk.kind = InstructorCommand::Kind::kSetTimeOfDay;
+  dusk.value = 21.5;
+  s.command(dusk);
+  for (int k = 0; k < 36000; ++k)
+    s.step({});
+  EXPECT_NEAR(s.snapshot().time_of_day_h, 21.51, 1e-9);
+
+  // a command out of range changes nothing
+  InstructorCommand bad;
+  bad.kind = InstructorCommand::Kind::kLandedSensorFault;
+  bad.corner = 7;
+  const std::uint64_t before = s.state_hash();
+  EXPECT_THROW(s.command(bad), std::invalid_argument);
+  EXPECT_EQ(s.state_hash(), before);
+}
+
+// Instructor commands that change the crane: with the hoist brake broken an emergency stop lets the spreader
+// run down; once the instructor clears the faults the brake holds it again.
+TEST(Recording, TheInstructorBreaksAndRepairsTheHoistBrake) {
+  Simulation s(scenes::sts_discharge(HARBOUR_DATA_DIR));
+  for (int k = 0; k < 3000; ++k)
+    s.step({});
+  Inputs stop;
+  stop.sts.emergency_stop = true;
+  auto drop_under_estop = [&] {
+    const double z0 = s.crane().spreader_pose().position.z;
+    for (int k = 0; k < 2000; ++k)
+      s.step(stop);
+    return s.crane().spreader_pose().position.z - z0;
+  };
+  InstructorCommand fault;
+  fault.kind = InstructorCommand::Kind::kHoistBrakeFault;
+  s.command(fault);
+  EXPECT_LT(drop_under_estop(), -1.0);
+  InstructorCommand repair;
+  repair.kind = InstructorCommand::Kind::kClearFaults;
+  s.command(repair);
+  for (int k = 0; k < 15000; ++k)  // the ropes stop bouncing after the run-down
+    s.step({});
+  EXPECT_NEAR(drop_under_estop(), 0.0, 0.01);
+}
+
 TEST(Recording, ARestoredStateContinuesBitForBitWhileCarryingABox) {
   // the autopilot's run, saved while the box hangs from the spreader and the truck waits
   const ExerciseSettings e = scenes::sts_discharge_exercise(HARBOUR_DATA_DIR);

@@ -97,6 +97,8 @@ void set_buttons(sim::StsControls& c, std::uint8_t bits) {
     c.flipper_down[k] = bits & (16 << k);
 }
 constexpr std::size_t kCheckpointRecord = 8 + 8;
+// step, kind, gust duration and amplitude, corner, value, wind mean, direction, turbulence (v4)
+constexpr std::size_t kCommandRecord = 8 + 1 + 2 * 8 + 4 + 4 * 8;
 
 }  // namespace
 
@@ -130,6 +132,18 @@ void write_recording(const std::string& path, const sim::Recording& r) {
     w.put(k.step);
     w.put(static_cast<std::uint32_t>(k.state.size()));
     w.out.insert(w.out.end(), k.state.begin(), k.state.end());
+  }
+  w.put(static_cast<std::uint32_t>(r.commands.size()));
+  for (const auto& c : r.commands) {
+    w.put(c.step);
+    w.put(static_cast<std::uint8_t>(c.command.kind));
+    w.put(c.command.gust.duration_s);
+    w.put(c.command.gust.amplitude_mps);
+    w.put(static_cast<std::int32_t>(c.command.corner));
+    w.put(c.command.value);
+    w.put(c.command.wind_mean_mps);
+    w.put(c.command.wind_from_rad);
+    w.put(c.command.turbulence);
   }
   const std::string temporary = path + ".partial";
   {
@@ -197,7 +211,31 @@ sim::Recording read_recording(const std::string& path) {
       rec.keyframes.push_back(std::move(k));
     }
   }
-  if (!r.done()) r.fail("unexpected bytes after the last keyframe");
+  if (version >= 4) {
+    const std::uint32_t commands = r.count(kCommandRecord, "instructor commands");
+    for (std::uint32_t n = 0; n < commands; ++n) {
+      sim::Recording::Command c;
+      c.step = r.get<std::int64_t>("command step");
+      const auto kind = r.get<std::uint8_t>("command kind");
+      if (kind >= sim::InstructorCommand::kKinds)
+        r.fail("instructor command kind " + std::to_string(kind) + " unknown");
+      c.command.kind = static_cast<sim::InstructorCommand::Kind>(kind);
+      c.command.gust.duration_s = r.get<double>("gust duration");
+      c.command.gust.amplitude_mps = r.get<double>("gust amplitude");
+      c.command.corner = r.get<std::int32_t>("corner");
+      c.command.value = r.get<double>("command value");
+      c.command.wind_mean_mps = r.get<double>("wind mean");
+      c.command.wind_from_rad = r.get<double>("wind direction");
+      c.command.turbulence = r.get<double>("turbulence");
+      if (c.step < 0 || c.step > rec.total_steps) r.fail("instructor command step outside the recording");
+      if (!rec.commands.empty() && c.step < rec.commands.back().step)
+        r.fail("instructor commands out of order");
+      if (const std::string why = sim::why_invalid(c.command); !why.empty())
+        r.fail("instructor command " + std::to_string(n) + ": " + why);
+      rec.commands.push_back(c);
+    }
+  }
+  if (!r.done()) r.fail("unexpected bytes after the last record");
   return rec;
 }
 

@@ -17,7 +17,7 @@ class RecordingFileError : public std::runtime_error {
 /// Version of the recording format written by this build ("HSRC" files).
 /// 3 added the boom lever, horn, flipper and spreader-size controls; 2 added keyframes; 1 and 2 are still
 /// read (their keyframes hold an older machine state: a seek from one is refused with core::StateError)
-inline constexpr std::uint16_t kRecordingVersion = 3;
+inline constexpr std::uint16_t kRecordingVersion = 4;
 
 /// Writes a recording (little-endian, magic "HSRC", version 1; see docs/architecture.md) to a temporary file
 /// and renames it over `path`, so a crash never leaves a half-written recording.

@@ -31,9 +31,14 @@ ReplayResult replay(const ScenarioSettings& scenario, const Recording& recording
       ++result.keyframes_used;
     }
   }
-  std::size_t next_input = 0, next_checkpoint = 0;
+  std::size_t next_input = 0, next_checkpoint = 0, next_command = 0;
+  // a keyframe holds the commands before its step; those at its step came after it was taken
+  while (next_command < recording.commands.size() && recording.commands[next_command].step < sim.steps())
+    ++next_command;
   Inputs current;
   while (sim.steps() < end) {
+    while (next_command < recording.commands.size() && recording.commands[next_command].step == sim.steps())
+      sim.command(recording.commands[next_command++].command);
     while (next_input < recording.inputs.size() && recording.inputs[next_input].step <= sim.steps())
       current = recording.inputs[next_input++].inputs;
     sim.single_step(current);  // replay ignores the freeze: held periods were not recorded as steps
@@ -64,6 +69,8 @@ TakeOver take_over(const ScenarioSettings& scenario, const Recording& recording,
     if (change.step < prefix.branch_step) prefix.inputs.push_back(change);
   for (const auto& checkpoint : recording.checkpoints)
     if (checkpoint.step <= prefix.branch_step) prefix.checkpoints.push_back(checkpoint);
+  for (const auto& command : recording.commands)
+    if (command.step < prefix.branch_step) prefix.commands.push_back(command);
   for (const auto& keyframe : recording.keyframes)
     if (keyframe.step <= prefix.branch_step) prefix.keyframes.push_back(keyframe);
   return {std::move(r.simulation), Recorder(std::move(prefix))};

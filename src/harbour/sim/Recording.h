@@ -11,8 +11,9 @@
 
 namespace harbour::sim {
 
-/// A run as the inputs that drove it, the state hash at every recorded second and the whole state every
-/// ten seconds (keyframes): replay is re-simulation, from the start or from the keyframe before a moment.
+/// A run as the inputs that drove it, the instructor's commands, the state hash at every recorded second and
+/// the whole state every ten seconds (keyframes): replay is re-simulation, from the start or from the
+/// keyframe before a moment.
 struct Recording {
   struct InputChange {
     std::int64_t step = 0;  ///< inputs take effect from this step on
@@ -28,6 +29,11 @@ struct Recording {
   std::int64_t total_steps = 0;
   std::vector<InputChange> inputs;      ///< in step order
   std::vector<Checkpoint> checkpoints;  ///< in step order
+  struct Command {
+    std::int64_t step = 0;  ///< applied before this step
+    InstructorCommand command;
+  };
+  std::vector<Command> commands;  ///< in step order
   struct Keyframe {
     std::int64_t step = 0;
     std::vector<std::uint8_t> state;  ///< Simulation::save_state()
@@ -47,6 +53,10 @@ class Recorder {
 
   /// `inputs` were used for the step that just ended (now at `simulation.steps()`).
   void after_step(const Simulation& simulation, const Inputs& inputs);
+  /// The instructor's command, just applied to `simulation` (before its next step).
+  void on_command(const Simulation& simulation, const InstructorCommand& command) {
+    recording_.commands.push_back({simulation.steps(), command});
+  }
   const Recording& recording() const { return recording_; }
 
  private:

@@ -1,6 +1,8 @@
 #include "harbour/sim/Simulation.h"
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "harbour/core/StateHash.h"
 
@@ -64,6 +66,75 @@ void Simulation::apply_due_events() {
         crane_->set_landed_sensor_fault(e.corner);
         break;
     }
+  }
+}
+
+std::string why_invalid(const InstructorCommand& c) {
+  using Kind = InstructorCommand::Kind;
+  switch (c.kind) {
+    case Kind::kGust:
+      if (!(c.gust.duration_s > 0.0 && c.gust.duration_s <= 600.0 && std::abs(c.gust.amplitude_mps) <= 60.0))
+        return "a gust lasts 0-600 s and peaks within 60 m/s";
+      break;
+    case Kind::kLandedSensorFault:
+      if (c.corner < 0 || c.corner > 3) return "a twistlock corner is 0-3";
+      break;
+    case Kind::kSetWind:
+      if (!(c.wind_mean_mps >= 0.0 && c.wind_mean_mps <= 60.0 && c.turbulence >= 0.0 && c.turbulence <= 1.0 &&
+            std::isfinite(c.wind_from_rad)))
+        return "wind 0-60 m/s, turbulence intensity 0-1";
+      break;
+    case Kind::kSetVisibility:
+      if (!(c.value > 0.0 && c.value <= 1e5)) return "visibility 0-100 km";
+      break;
+    case Kind::kSetRain:
+      if (!(c.value >= 0.0 && c.value <= 500.0)) return "rain 0-500 mm/h";
+      break;
+    case Kind::kSetTimeOfDay:
+      if (!(c.value >= 0.0 && c.value < 24.0)) return "time of day 0-24 h";
+      break;
+    case Kind::kHoistBrakeFault:
+    case Kind::kClearFaults:
+      break;
+    default:
+      return "unknown command kind " + std::to_string(static_cast<int>(c.kind));
+  }
+  return {};
+}
+
+void Simulation::command(const InstructorCommand& c) {
+  using Kind = InstructorCommand::Kind;
+  if (const std::string why = why_invalid(c); !why.empty())
+    throw std::invalid_argument("instructor command: " + why);
+  switch (c.kind) {
+    case Kind::kGust: {
+      Gust g = c.gust;
+      g.start_s = clock_.time_s();
+      weather_.add_gust(g);
+      break;
+    }
+    case Kind::kHoistBrakeFault:
+      crane_->set_hoist_brake_fault(true);
+      break;
+    case Kind::kLandedSensorFault:
+      crane_->set_landed_sensor_fault(c.corner);
+      break;
+    case Kind::kClearFaults:
+      crane_->set_hoist_brake_fault(false);
+      crane_->set_landed_sensor_fault(-1);
+      break;
+    case Kind::kSetWind:
+      weather_.set_wind(c.wind_mean_mps, c.wind_from_rad, c.turbulence);
+      break;
+    case Kind::kSetVisibility:
+      weather_.set_visibility(c.value);
+      break;
+    case Kind::kSetRain:
+      weather_.set_rain(c.value);
+      break;
+    case Kind::kSetTimeOfDay:
+      weather_.set_time_of_day(c.value);
+      break;
   }
 }
 
@@ -166,8 +237,8 @@ Snapshot Simulation::snapshot() const {
   s.warnings = warnings_.total();
   s.wind_mps = weather_.wind();
   s.time_of_day_h = weather_.time_of_day_h();
-  s.visibility_m = scenario_.weather.visibility_m;
-  s.rain_mm_per_h = scenario_.weather.rain_mm_per_h;
+  s.visibility_m = weather_.settings().visibility_m;
+  s.rain_mm_per_h = weather_.settings().rain_mm_per_h;
   if (vessel_) s.vessel = vessel_->geometry().pose_at(clock_.time_s());  // where the step left it
   if (trucks_)
     for (int k = 0; k < scenario_.trucks.trucks; ++k)

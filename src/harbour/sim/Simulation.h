@@ -54,6 +54,31 @@ struct ScriptedEvent {
   int corner = 0;     ///< kLandedSensorFault: which twistlock corner (0-3)
 };
 
+/// A command from the instructor to a running exercise, applied before the next step (the console sends
+/// them; recordings keep them with their step so a replay applies them again).
+struct InstructorCommand {
+  enum class Kind : std::uint8_t {
+    kGust,               ///< a 1-cosine gust starting now (gust)
+    kHoistBrakeFault,    ///< the hoist's holding brake stops setting
+    kLandedSensorFault,  ///< one corner's landed sensor reads "not landed" (corner)
+    kClearFaults,        ///< both faults repaired
+    kSetWind,            ///< mean wind, direction and turbulence (wind_mean_mps, wind_from_rad, turbulence)
+    kSetVisibility,      ///< [m] (value)
+    kSetRain,            ///< [mm/h] (value)
+    kSetTimeOfDay,       ///< [h] (value): the clock jumps there and runs on
+  };
+  static constexpr std::uint8_t kKinds = 8;
+  Kind kind = Kind::kGust;
+  Gust gust;  ///< kGust: duration and amplitude (its start is now)
+  int corner = 0;
+  double value = 0.0;
+  double wind_mean_mps = 0.0, wind_from_rad = 0.0, turbulence = 0.0;
+  friend bool operator==(const InstructorCommand&, const InstructorCommand&) = default;
+};
+
+/// Why a command's values are out of range ("" when they are not).
+std::string why_invalid(const InstructorCommand& command);
+
 /// The initial state of an STS exercise world (settings).
 struct ScenarioSettings {
   std::string name;
@@ -122,6 +147,9 @@ class Simulation {
   bool held() const { return held_; }
   /// One step even while held (the instructor steps a frozen exercise).
   void single_step(const Inputs& inputs);
+  /// Applies an instructor's command now (before the next step); throws std::invalid_argument on a value
+  /// out of range (a corner other than 0-3, a negative visibility, ...), changing nothing.
+  void command(const InstructorCommand& command);
 
   std::int64_t steps() const { return clock_.steps(); }
   double time_s() const { return clock_.time_s(); }

@@ -53,8 +53,21 @@ core::Vec3 box_drag(const core::Vec3& wind, const core::Vec3& body_velocity, con
   return relative * (0.5 * air_density_kg_m3 * drag_coefficient * area * speed);
 }
 
+void Weather::set_wind(double mean_mps, double from_rad, double turbulence_intensity) {
+  settings_.wind_mean_mps = mean_mps;
+  settings_.wind_from_rad = from_rad;
+  settings_.turbulence_intensity = turbulence_intensity;
+}
+
+void Weather::set_time_of_day(double hours) {
+  double start = std::fmod(hours - time_s_ / 3600.0, 24.0);  // what the clock would have read at t = 0
+  if (start < 0.0) start += 24.0;
+  settings_.time_of_day_h = start;
+}
+
 void Weather::save_state(core::StateWriter& out) const {
-  out.section(0x57545852);  // "WTXR"
+  out.section(0x57545832);  // "WTX2": with the instructor's weather
+  out.put(settings_);
   out.put(rng_);
   out.put(time_s_);
   out.put(turbulence_);
@@ -62,7 +75,8 @@ void Weather::save_state(core::StateWriter& out) const {
 }
 
 void Weather::restore_state(core::StateReader& in) {
-  in.section(0x57545852, "weather");
+  in.section(0x57545832, "weather");
+  in.get(settings_);
   in.get(rng_);
   in.get(time_s_);
   in.get(turbulence_);

@@ -27,6 +27,7 @@ struct Gust {
   double start_s = 0.0;
   double duration_s = 3.0;     ///< [s]
   double amplitude_mps = 0.0;  ///< [m/s] peak added to the mean
+  friend bool operator==(const Gust&, const Gust&) = default;
 };
 
 /// The wind field (uniform over the crane) and the weather state the image generator shows.
@@ -38,6 +39,12 @@ class Weather {
   void step(double dt_s);
   /// Adds a scripted gust.
   void add_gust(const Gust& gust) { gusts_.push_back(gust); }
+  /// The instructor changes the weather (part of the saved state from then on).
+  void set_wind(double mean_mps, double from_rad, double turbulence_intensity);
+  void set_visibility(double metres) { settings_.visibility_m = metres; }
+  void set_rain(double mm_per_h) { settings_.rain_mm_per_h = mm_per_h; }
+  /// The clock jumps to `hours` and runs on from there.
+  void set_time_of_day(double hours);
   void save_state(core::StateWriter& out) const;
   void restore_state(core::StateReader& in);
   /// Wind velocity now [m/s], world frame (the air moves towards wind_from + 180 deg).
