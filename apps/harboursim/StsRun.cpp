@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "harbour/io/ExerciseFiles.h"
+#include "harbour/io/InstructorCommandText.h"
 #include "harbour/io/RecordingFile.h"
 #include "harbour/io/RecordsStore.h"
 #include "harbour/sim/Autopilot.h"
@@ -122,6 +123,8 @@ int run_exercise(const RunOptions& options) {
     return 2;
   }
   const sim::ExerciseSettings exercise = io::load_exercise(resolve_exercise(options.exercise));
+  for (const std::string& text : options.commands)
+    io::parse_instructor_command(text);  // a bad one stops the run before it starts
   sim::Simulation simulation(exercise.scenario);
   sim::Autopilot pilot(exercise);
   sim::Evaluator evaluator(exercise);
@@ -141,7 +144,23 @@ int drive_attempt(const sim::ExerciseSettings& exercise, sim::Simulation& simula
   const auto wall_start = std::chrono::steady_clock::now();
   const double start_s = simulation.time_s();
   double next_progress = start_s + kProgressEvery_s;
+  struct Scheduled {
+    io::TimedCommand timed;
+    std::string text;
+  };
+  std::vector<Scheduled> commands;
+  for (const std::string& text : options.commands)
+    commands.push_back({io::parse_instructor_command(text), text});
+  std::stable_sort(commands.begin(), commands.end(),
+                   [](const Scheduled& a, const Scheduled& b) { return a.timed.at_s < b.timed.at_s; });
+  std::size_t next_command = 0;
   while (!evaluator.finished() && simulation.time_s() < kGiveUpAfter_s) {
+    for (; next_command < commands.size() && commands[next_command].timed.at_s <= simulation.time_s();
+         ++next_command) {
+      simulation.command(commands[next_command].timed.command);
+      recorder.on_command(simulation, commands[next_command].timed.command);
+      std::printf("  t=%6.1f s  instructor: %s\n", simulation.time_s(), commands[next_command].text.c_str());
+    }
     const sim::Inputs in = pilot.next(simulation);
     simulation.step(in);
     const sim::Metrics before = evaluator.metrics();

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace harbour::apps {
 
@@ -11,6 +12,8 @@ struct RunOptions {
   std::string record;                 ///< recording file to write ("" for none)
   std::string trainee = "autopilot";  ///< trainee id the attempt is stored under
   std::string database;               ///< records connection ("" for the default SQLite file)
+  std::vector<std::string>
+      commands;  ///< instructor commands, AT:KIND[:VALUES] (io::parse_instructor_command)
 };
 int run_exercise(const RunOptions& options);
 

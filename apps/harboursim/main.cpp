@@ -19,6 +19,10 @@ int main(int argc, char** argv) {
   run_cmd->add_flag("--autopilot", run.autopilot, "let the scripted operator drive");
   run_cmd->add_option("--record", run.record, "write the run's recording (HSRC) to this file");
   run_cmd->add_option("--trainee", run.trainee, "trainee id to store the attempt under");
+  run_cmd->add_option("--command", run.commands,
+                      "instructor command at a time, AT:KIND[:VALUES], repeatable: 40:gust:8:3, "
+                      "60:hoist-brake-fault, 60:landed-sensor-fault:2, 90:clear-faults, 0:wind:12:270:0.15, "
+                      "0:visibility:300, 0:rain:8, 0:time-of-day:21.5");
   run_cmd->add_option("--db", run.database,
                       "records connection (default: SQLite file in the user's data directory)");
 

@@ -1,0 +1,21 @@
+#pragma once
+
+#include <string>
+
+#include "harbour/sim/Simulation.h"
+
+namespace harbour::io {
+
+/// An instructor command written as text, for the command line and scripts:
+/// `AT:KIND[:VALUES]` with AT in seconds of exercise time and KIND one of
+///   gust:AMPLITUDE_MPS:DURATION_S, hoist-brake-fault, landed-sensor-fault:CORNER, clear-faults,
+///   wind:MEAN_MPS:FROM_DEG:TURBULENCE, visibility:METRES, rain:MM_PER_H, time-of-day:HOURS.
+struct TimedCommand {
+  double at_s = 0.0;
+  sim::InstructorCommand command;
+};
+
+/// Parses one; throws std::invalid_argument quoting the text and saying what is wrong.
+TimedCommand parse_instructor_command(const std::string& text);
+
+}  // namespace harbour::io

@@ -1,0 +1,55 @@
+#include "harbour/io/InstructorCommandText.h"
+
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+
+namespace harbour::io {
+namespace {
+
+using Kind = sim::InstructorCommand::Kind;
+
+TEST(InstructorCommandText, ParsesEveryKind) {
+  const TimedCommand gust = parse_instructor_command("45.5:gust:8:3");
+  EXPECT_EQ(gust.at_s, 45.5);
+  EXPECT_EQ(gust.command.kind, Kind::kGust);
+  EXPECT_EQ(gust.command.gust.amplitude_mps, 8.0);
+  EXPECT_EQ(gust.command.gust.duration_s, 3.0);
+  EXPECT_EQ(parse_instructor_command("60:hoist-brake-fault").command.kind, Kind::kHoistBrakeFault);
+  EXPECT_EQ(parse_instructor_command("60:landed-sensor-fault:2").command.corner, 2);
+  EXPECT_EQ(parse_instructor_command("90:clear-faults").command.kind, Kind::kClearFaults);
+  const TimedCommand wind = parse_instructor_command("0:wind:12:270:0.15");
+  EXPECT_EQ(wind.command.wind_mean_mps, 12.0);
+  EXPECT_NEAR(wind.command.wind_from_rad, 1.5 * 3.14159265358979, 1e-12);
+  EXPECT_EQ(wind.command.turbulence, 0.15);
+  EXPECT_EQ(parse_instructor_command("0:visibility:300").command.value, 300.0);
+  EXPECT_EQ(parse_instructor_command("0:rain:8").command.kind, Kind::kSetRain);
+  EXPECT_EQ(parse_instructor_command("0:time-of-day:21.5").command.value, 21.5);
+}
+
+void expect_rejected(const std::string& text, const std::string& says) {
+  try {
+    parse_instructor_command(text);
+    FAIL() << "accepted " << text;
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("'" + text + "'"), std::string::npos) << what;  // quotes what was given
+    EXPECT_NE(what.find(says), std::string::npos) << what;
+  }
+}
+
+TEST(InstructorCommandText, BadCommandsSayWhatIsWrong) {
+  expect_rejected("10:gale:9", "unknown kind 'gale'");
+  expect_rejected("soon:gust:8:3", "time [s] is not a number");
+  expect_rejected("-5:clear-faults", "negative");
+  expect_rejected("10:gust:8", "missing duration");
+  expect_rejected("10:gust:8:3:4", "too many values");
+  expect_rejected("10:landed-sensor-fault:7", "corner is 0-3");
+  expect_rejected("10:landed-sensor-fault:1.5", "whole number");
+  expect_rejected("10:visibility:-1", "visibility");
+  expect_rejected("10:time-of-day:25", "time of day");
+  expect_rejected("10", "missing the kind");
+}
+
+}  // namespace
+}  // namespace harbour::io
