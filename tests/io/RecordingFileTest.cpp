@@ -2,8 +2,17 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <limits>
+
+#include "harbour/core/Rng.h"
+#include "harbour/core/StateArchive.h"
+#include "scenes/StsScenes.h"
 
 namespace harbour::io {
 namespace {
@@ -142,6 +151,134 @@ TEST(RecordingFile, ReadsVersion2InputsWithTheNewControlsAtRest) {
   expected.sts.emergency_stop = true;
   EXPECT_EQ(r.inputs[0].step, 7);
   EXPECT_TRUE(r.inputs[0].inputs == expected);
+  std::filesystem::remove(path);
+}
+
+std::vector<char> file_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+void write_bytes(const std::string& path, const std::vector<char>& bytes) {
+  std::ofstream(path, std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+}
+
+// a file's error for `recording`, "" when it reads
+std::string read_error(const std::string& path, const sim::Recording& recording) {
+  write_recording(path, recording);
+  try {
+    read_recording(path);
+  } catch (const RecordingFileError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(RecordingFile, LeversOutOfRangeAndRecordsOutOfOrderAreRefused) {
+  const std::string path = temp("harbour_ranges.hsrc");
+  sim::Recording r = sample();
+  r.inputs[1].inputs.sts.hoist = -1.5;
+  EXPECT_NE(read_error(path, r).find("hoist lever -1.500000 is outside [-1, 1]"), std::string::npos);
+  r.inputs[1].inputs.sts.hoist = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_NE(read_error(path, r).find("hoist lever nan is outside [-1, 1]"), std::string::npos);
+
+  r = sample();
+  std::swap(r.checkpoints[0], r.checkpoints[1]);
+  EXPECT_NE(read_error(path, r).find("checkpoints out of order"), std::string::npos);
+  r = sample();
+  r.checkpoints[1].step = r.total_steps + 1000;
+  EXPECT_NE(read_error(path, r).find("checkpoint step outside the recording"), std::string::npos);
+  r = sample();
+  r.keyframes = {{2000, {1, 2, 3}}, {1000, {4, 5, 6}}};
+  EXPECT_NE(read_error(path, r).find("keyframes out of order"), std::string::npos);
+  std::filesystem::remove(path);
+}
+
+TEST(RecordingFile, ADamagedKeyframeIsRefusedByItsChecksum) {
+  const std::string path = temp("harbour_keyframe.hsrc");
+  sim::Recording r = sample();
+  const std::vector<std::uint8_t> state = {0xA5, 0x5A, 0xC3, 0x3C, 0x0F, 0xF0, 0x99, 0x66};
+  r.keyframes = {{1000, state}};
+  write_recording(path, r);
+  EXPECT_EQ(read_recording(path).keyframes.at(0).state, state);
+
+  std::vector<char> bytes = file_bytes(path);
+  const auto at = std::search(bytes.begin(), bytes.end(), state.begin(), state.end(),
+                              [](char a, std::uint8_t b) { return static_cast<std::uint8_t>(a) == b; });
+  ASSERT_NE(at, bytes.end());
+  at[3] ^= 0x10;  // one bit
+  write_bytes(path, bytes);
+  try {
+    read_recording(path);
+    FAIL() << "accepted a damaged keyframe";
+  } catch (const RecordingFileError& e) {
+    EXPECT_NE(std::string(e.what()).find("keyframe 0 is damaged"), std::string::npos) << e.what();
+  }
+  std::filesystem::remove(path);
+}
+
+// Damage anywhere in a real recording (one byte changed, over and over): reading refuses it with a
+// RecordingFileError, or a seek from its keyframe refuses it with a StateError, or it replays and the
+// damage shows as a checkpoint mismatch or changes nothing the seek reads. Never another exception, never
+// a crash; damage inside the keyframe's state is always refused at reading.
+TEST(RecordingFile, DamageAnywhereIsRefusedOrReportedNeverACrash) {
+  const sim::ScenarioSettings scenario = scenes::sts_discharge(HARBOUR_DATA_DIR);
+  constexpr std::int64_t kSteps = 11000;  // a keyframe at 10 s, a checkpoint at 11 s
+  sim::Recorder recorder("sts_discharge");
+  {
+    sim::Simulation s(scenario);
+    for (std::int64_t k = 0; k < kSteps; ++k) {
+      const sim::Inputs in = scenes::scripted_operator(k);
+      s.step(in);
+      recorder.after_step(s, in);
+    }
+  }
+  const std::string path = temp("harbour_damage.hsrc");
+  write_recording(path, recorder.recording());
+  const std::vector<char> original = file_bytes(path);
+  const std::vector<std::uint8_t>& state = recorder.recording().keyframes.at(0).state;
+  const auto keyframe_at = static_cast<std::size_t>(
+      std::search(original.begin(), original.end(), state.begin(), state.end(),
+                  [](char a, std::uint8_t b) { return static_cast<std::uint8_t>(a) == b; }) -
+      original.begin());
+  ASSERT_LT(keyframe_at, original.size());
+  const std::size_t outside = original.size() - state.size();
+
+  core::Rng rng(20261122);
+  int refused_reading = 0, refused_seek = 0, mismatched = 0, unchanged = 0;
+  for (int n = 0; n < 160; ++n) {
+    // half anywhere in the file, half in the bytes around the keyframe's state
+    std::size_t at = rng.next_u64() % (n % 2 ? original.size() : outside);
+    if (n % 2 == 0 && at >= keyframe_at) at += state.size();
+    std::vector<char> damaged = original;
+    damaged[at] = static_cast<char>(damaged[at] ^ static_cast<char>(1 + rng.next_u64() % 255));
+    write_bytes(path, damaged);
+    SCOPED_TRACE("byte " + std::to_string(at));
+    sim::Recording read;
+    try {
+      read = read_recording(path);
+    } catch (const RecordingFileError& e) {
+      EXPECT_NE(std::string(e.what()).find(path + ": byte "), std::string::npos) << e.what();
+      ++refused_reading;
+      continue;
+    }
+    EXPECT_FALSE(at >= keyframe_at && at < keyframe_at + state.size()) << "damaged keyframe state was read";
+    try {
+      const sim::ReplayResult r = sim::replay(scenario, read, kSteps);
+      if (r.first_mismatch)
+        ++mismatched;
+      else
+        ++unchanged;
+    } catch (const core::StateError&) {
+      ++refused_seek;
+    }
+  }
+  EXPECT_GT(refused_reading, 0);
+  EXPECT_EQ(refused_reading + refused_seek + mismatched + unchanged, 160);
+  std::printf(
+      "damaged bytes: %d refused reading, %d refused at the seek, %d replayed with a mismatch, %d "
+      "replayed unchanged\n",
+      refused_reading, refused_seek, mismatched, unchanged);
   std::filesystem::remove(path);
 }
 

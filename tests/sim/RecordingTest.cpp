@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <map>
 
 #include "harbour/sim/Autopilot.h"
@@ -40,6 +41,20 @@ TEST(Recording, ReplayReproducesTheHashAtEveryRecordedSecond) {
   EXPECT_FALSE(r.first_mismatch.has_value()) << "first mismatch at step " << *r.first_mismatch;
   EXPECT_EQ(r.simulation->steps(), kRunSteps);
   EXPECT_LT(run().recording.inputs.size(), 20u);  // only changes are stored
+}
+
+TEST(Recording, InputsAreRecordedAsTheMachineReadThem) {
+  Simulation s(scenes::sts_discharge(HARBOUR_DATA_DIR));
+  Recorder recorder("levers");
+  Inputs in;
+  in.sts.trolley = std::numeric_limits<double>::quiet_NaN();
+  in.sts.hoist = 3.0;
+  s.step(in);
+  recorder.after_step(s, in);
+  ASSERT_EQ(recorder.recording().inputs.size(), 1u);
+  EXPECT_EQ(recorder.recording().inputs[0].inputs, in_range(in));
+  EXPECT_EQ(recorder.recording().inputs[0].inputs.sts.trolley, 0.0);
+  EXPECT_EQ(recorder.recording().inputs[0].inputs.sts.hoist, 1.0);
 }
 
 TEST(Recording, ATamperedRecordingIsDetected) {

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <vector>
 
 #include "scenes/StsScenes.h"
@@ -28,6 +29,35 @@ TEST(Simulation, SameInputsGiveTheSameStateHashEverySecond) {
   const auto c = hashes_per_second(1e-9);  // one lever differs by 1e-9 for one millisecond
   EXPECT_EQ(std::vector(a.begin(), a.begin() + 5), std::vector(c.begin(), c.begin() + 5));
   EXPECT_NE(a.back(), c.back());
+}
+
+// A lever beyond its travel reads as the end of it, a non-finite one (a device or link fault) as centred;
+// the state stays finite either way.
+TEST(Simulation, LeversOutOfRangeReadAsTheMachineWouldReadThem) {
+  auto run = [](double trolley_lever, double hoist_lever) {
+    Simulation s(scenes::sts_discharge(HARBOUR_DATA_DIR));
+    Inputs in;
+    in.sts.trolley = trolley_lever;
+    in.sts.hoist = hoist_lever;
+    in.sts.spreader_size_ft = 33;
+    for (int k = 0; k < 2000; ++k)
+      s.step(in);
+    EXPECT_EQ(s.warnings().total(), 0u);
+    return s.state_hash();
+  };
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(run(7.5, 0.0), run(1.0, 0.0));
+  EXPECT_EQ(run(nan, -inf), run(0.0, 0.0));
+  EXPECT_NE(run(1.0, 0.0), run(0.0, 0.0));
+
+  Inputs odd;
+  odd.sts.gantry = nan;
+  odd.sts.boom = -2.0;
+  odd.sts.spreader_size_ft = 33;
+  const Inputs read = in_range(odd);
+  EXPECT_EQ(read.sts.gantry, 0.0);
+  EXPECT_EQ(read.sts.boom, -1.0);
+  EXPECT_EQ(read.sts.spreader_size_ft, 0);
 }
 
 TEST(Simulation, HoldFreezesAndSingleStepAdvances) {

@@ -9,6 +9,8 @@
 #include <iterator>
 #include <vector>
 
+#include "harbour/core/StateHash.h"
+
 namespace harbour::io {
 namespace {
 
@@ -63,6 +65,13 @@ class Reader {
       fail(std::string(what) + ": " + std::to_string(n) + " records do not fit in the file (truncated?)");
     return n;
   }
+  /// A control lever's position: finite, within [-1, 1].
+  double lever(const char* what) {
+    const auto v = get<double>(what);
+    if (!(v >= -1.0 && v <= 1.0))
+      fail(std::string(what) + " lever " + std::to_string(v) + " is outside [-1, 1]");
+    return v;
+  }
   [[noreturn]] void fail(const std::string& problem) const { throw RecordingFileError(file_, at_, problem); }
   std::size_t offset() const { return at_; }
   bool done() const { return at_ == in_.size(); }
@@ -97,6 +106,12 @@ void set_buttons(sim::StsControls& c, std::uint8_t bits) {
     c.flipper_down[k] = bits & (16 << k);
 }
 constexpr std::size_t kCheckpointRecord = 8 + 8;
+
+std::uint64_t checksum(const std::vector<std::uint8_t>& bytes) {
+  core::StateHash h;
+  h.add_bytes(bytes.data(), bytes.size());
+  return h.value();
+}
 // step, kind, gust duration and amplitude, corner, value, wind mean, direction, turbulence (v4)
 constexpr std::size_t kCommandRecord = 8 + 1 + 2 * 8 + 4 + 4 * 8;
 
@@ -131,6 +146,7 @@ void write_recording(const std::string& path, const sim::Recording& r) {
   for (const auto& k : r.keyframes) {
     w.put(k.step);
     w.put(static_cast<std::uint32_t>(k.state.size()));
+    w.put(checksum(k.state));
     w.out.insert(w.out.end(), k.state.begin(), k.state.end());
   }
   w.put(static_cast<std::uint32_t>(r.commands.size()));
@@ -179,10 +195,10 @@ sim::Recording read_recording(const std::string& path) {
   for (std::uint32_t n = 0; n < inputs; ++n) {
     sim::Recording::InputChange c;
     c.step = r.get<std::int64_t>("input step");
-    c.inputs.sts.gantry = r.get<double>("gantry");
-    c.inputs.sts.trolley = r.get<double>("trolley");
-    c.inputs.sts.hoist = r.get<double>("hoist");
-    if (version >= 3) c.inputs.sts.boom = r.get<double>("boom");
+    c.inputs.sts.gantry = r.lever("gantry");
+    c.inputs.sts.trolley = r.lever("trolley");
+    c.inputs.sts.hoist = r.lever("hoist");
+    if (version >= 3) c.inputs.sts.boom = r.lever("boom");
     set_buttons(c.inputs.sts, r.get<std::uint8_t>("buttons"));
     if (version >= 3) {
       c.inputs.sts.spreader_size_ft = r.get<std::uint8_t>("spreader size");
@@ -198,16 +214,22 @@ sim::Recording read_recording(const std::string& path) {
     sim::Recording::Checkpoint c;
     c.step = r.get<std::int64_t>("checkpoint step");
     c.state_hash = r.get<std::uint64_t>("checkpoint hash");
+    if (c.step <= 0 || c.step > rec.total_steps) r.fail("checkpoint step outside the recording");
+    if (!rec.checkpoints.empty() && c.step <= rec.checkpoints.back().step) r.fail("checkpoints out of order");
     rec.checkpoints.push_back(c);
   }
   if (version >= 2) {
-    const std::uint32_t keyframes = r.count(8 + 4, "keyframes");
+    const std::uint32_t keyframes = r.count(version >= 5 ? 8 + 4 + 8 : 8 + 4, "keyframes");
     for (std::uint32_t n = 0; n < keyframes; ++n) {
       sim::Recording::Keyframe k;
       k.step = r.get<std::int64_t>("keyframe step");
       const std::uint32_t size = r.count(1, "keyframe state");
+      const std::uint64_t sum = version >= 5 ? r.get<std::uint64_t>("keyframe checksum") : 0;
       r.bytes(size, k.state, "keyframe state");
+      if (version >= 5 && checksum(k.state) != sum)
+        r.fail("keyframe " + std::to_string(n) + " is damaged (its checksum does not match its bytes)");
       if (k.step < 0 || k.step > rec.total_steps) r.fail("keyframe step outside the recording");
+      if (!rec.keyframes.empty() && k.step <= rec.keyframes.back().step) r.fail("keyframes out of order");
       rec.keyframes.push_back(std::move(k));
     }
   }

@@ -1,11 +1,16 @@
 #include "harbour/sim/Recording.h"
 
 #include <algorithm>
+#include <string>
+
+#include "harbour/core/StateArchive.h"
 
 namespace harbour::sim {
 
-void Recorder::after_step(const Simulation& simulation, const Inputs& inputs) {
-  // store inputs only when they change; the step they were applied at is one before the current
+void Recorder::after_step(const Simulation& simulation, const Inputs& given) {
+  // store inputs as the machine read them, only when they change; the step they were applied at is one
+  // before the current
+  const Inputs inputs = in_range(given);
   const std::int64_t applied_at = simulation.steps() - 1;
   if (recording_.inputs.empty() || !(recording_.inputs.back().inputs == inputs))
     recording_.inputs.push_back({applied_at, inputs});
@@ -29,6 +34,11 @@ ReplayResult replay(const ScenarioSettings& scenario, const Recording& recording
     if (start) {
       sim.restore_state(start->state);
       ++result.keyframes_used;
+      // a keyframe that does not give its second's recorded hash would replay a state that never was
+      for (const Recording::Checkpoint& c : recording.checkpoints)
+        if (c.step == start->step && c.state_hash != sim.state_hash())
+          throw core::StateError("the keyframe at step " + std::to_string(start->step) +
+                                 " does not give the state hash recorded there (a damaged recording)");
     }
   }
   std::size_t next_input = 0, next_checkpoint = 0, next_command = 0;

@@ -1,5 +1,6 @@
 #include "harbour/sim/Simulation.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -197,7 +198,7 @@ void Simulation::advance(const Inputs& inputs) {
   apply_wind();
   if (vessel_) vessel_->move_to(clock_.time_s());
   move_secured_cargo();
-  crane_->step(inputs.sts, containers_, kStep_s);
+  crane_->step(in_range(inputs).sts, containers_, kStep_s);
   if (const auto locked = crane_->locked_container())
     for (std::size_t n = 0; n < containers_.size(); ++n)
       if (containers_[n].body == *locked) release(n);
@@ -211,6 +212,18 @@ void Simulation::advance(const Inputs& inputs) {
   if (!std::isfinite(p.x + p.y + p.z)) warnings_.raise(core::Warning::kNonFinite);
   for (int n = world_->take_solver_messages(); n > 0; --n)
     warnings_.raise(core::Warning::kSolverMessage);
+}
+
+Inputs in_range(const Inputs& inputs) {
+  const auto lever = [](double v) { return std::isfinite(v) ? std::clamp(v, -1.0, 1.0) : 0.0; };
+  Inputs r = inputs;
+  r.sts.gantry = lever(r.sts.gantry);
+  r.sts.trolley = lever(r.sts.trolley);
+  r.sts.hoist = lever(r.sts.hoist);
+  r.sts.boom = lever(r.sts.boom);
+  const auto size = r.sts.spreader_size_ft;
+  if (size != 20 && size != 40 && size != 45) r.sts.spreader_size_ft = 0;
+  return r;
 }
 
 void Simulation::step(const Inputs& inputs) {

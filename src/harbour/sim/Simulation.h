@@ -24,6 +24,10 @@ struct Inputs {
   friend bool operator==(const Inputs&, const Inputs&) = default;
 };
 
+/// The inputs as the machine reads them: levers clamped to [-1, 1], a non-finite lever (a device or link
+/// fault) read as centred, a spreader size other than 20/40/45 ft as no button.
+Inputs in_range(const Inputs& inputs);
+
 /// A container (ISO 668 sizes) or a hatch cover placed in the scenario: anything the spreader lifts.
 struct ContainerPlacement {
   enum class Kind : std::uint8_t { kContainer, kHatchCover };
