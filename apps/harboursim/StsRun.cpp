@@ -99,9 +99,10 @@ int list_trainees(const std::string& database) {
 
 int list_results(const std::string& database, const std::string& trainee) {
   io::RecordsStore db(database.empty() ? default_database() : database);
+  const auto attempts = db.attempts(trainee.empty() ? std::nullopt : std::optional(trainee));
   std::printf("%-8s %-12s %-20s %-9s %6s %6s  %s\n", "attempt", "trainee", "exercise", "status", "moves",
               "score", "from");
-  for (const io::AttemptRow& a : db.attempts(trainee.empty() ? std::nullopt : std::optional(trainee))) {
+  for (const io::AttemptRow& a : attempts) {
     const std::string score =
         a.score ? std::to_string(static_cast<int>(*a.score)) + (a.passed ? " P" : " F") : "-";
     const std::string from =

@@ -2,11 +2,13 @@
 
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <soci/soci.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
 #include <filesystem>
+#include <fstream>
 #include <thread>
 
 #include "harbour/sim/Autopilot.h"
@@ -79,6 +81,64 @@ TEST(RecordsStore, ABadConnectionNamesIt) {
     FAIL() << "opened";
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("host=/nonexistent/socketdir"), std::string::npos) << e.what();
+  }
+}
+
+std::string error_opening(const std::string& connection) {
+  try {
+    RecordsStore db(connection);
+  } catch (const std::runtime_error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// Content nobody of ours wrote: refused with the database and the table or row named, nothing written.
+TEST(RecordsStore, ADatabaseWrittenBySomethingElseIsRefusedNamingItAndWhere) {
+  const auto path = std::filesystem::temp_directory_path() / "harbour_foreign.db";
+  const std::string connection = fresh_db("harbour_foreign.db");
+  { std::ofstream(path) << "a spreadsheet, not a database\n"; }
+  std::string error = error_opening(connection);
+  EXPECT_NE(error.find(path.string()), std::string::npos) << error;
+  EXPECT_NE(error.find("not a database"), std::string::npos) << error;
+
+  fresh_db("harbour_foreign.db");
+  { soci::session(connection) << "CREATE TABLE attempts (id INTEGER, trainee TEXT)"; }
+  error = error_opening(connection);
+  EXPECT_NE(error.find(path.string()), std::string::npos) << error;
+  EXPECT_NE(error.find("table 'attempts' is not the one this build uses"), std::string::npos) << error;
+  {
+    soci::session sql(connection);
+    int tables = 0;
+    sql << "SELECT COUNT(*) FROM sqlite_master WHERE type = 'table' AND name = 'attempts'",
+        soci::into(tables);
+    EXPECT_EQ(tables, 1);
+    int columns = 0;
+    sql << "SELECT COUNT(*) FROM pragma_table_info('attempts')", soci::into(columns);
+    EXPECT_EQ(columns, 2);  // left as it was
+  }
+
+  fresh_db("harbour_foreign.db");
+  {
+    RecordsStore db(connection);
+    db.add_trainee("t001", "Ana Pérez");
+    db.begin_attempt("t001", "sts_discharge");
+    db.begin_attempt("t001", "sts_discharge");
+  }
+  RecordsStore db(connection);
+  for (const char* damage : {"status = 'perhaps'", "passed = 7", "score = 250", "branch_step = -5"}) {
+    soci::session(connection) << "UPDATE attempts SET " << damage << " WHERE id = 2";
+    try {
+      db.attempts();
+      ADD_FAILURE() << "read an attempt with " << damage;
+    } catch (const std::runtime_error& e) {
+      error = e.what();
+    }
+    EXPECT_NE(error.find(path.string()), std::string::npos) << error;
+    EXPECT_NE(error.find("attempt 2"), std::string::npos) << error;
+    soci::session(connection) << "UPDATE attempts SET status = 'running', passed = 0, score = NULL, "
+                                 "branch_step = 0 WHERE id = 2";
+    EXPECT_EQ(db.attempts().size(), 2u);
   }
 }
 

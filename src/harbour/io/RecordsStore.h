@@ -37,7 +37,9 @@ struct AttemptRow {
 class RecordsStore {
  public:
   /// Opens (and creates the schema in) a database; throws std::runtime_error naming the connection on
-  /// failure.
+  /// failure, or when a table of ours exists without the columns this build uses (nothing is written then).
+  /// Every later error names the connection and what was being done; attempts() refuses a row whose status,
+  /// pass flag, score or branch step no run of ours could have written, naming the attempt.
   explicit RecordsStore(const std::string& connection);
   ~RecordsStore();
   RecordsStore(const RecordsStore&) = delete;
