@@ -72,6 +72,11 @@ TEST(Weather, SteadyWindDeflectsTheHangingSpreaderBySwingTheory) {
   const double force = 0.5 * 1.225 * 1.0 * s.crane.spreader.width_m * s.crane.spreader.height_m * 400.0;
   const double expected = fall * force / (s.crane.spreader.mass_kg * 9.80665);
   EXPECT_NEAR(y, expected, 0.05 * expected);
+  // the rest position the evaluation measures sway from is that equilibrium
+  EXPECT_NEAR(sim.crane().pendulum_length_m(), fall, 0.01);
+  const core::Vec3 rest = sim.wind_rest_offset_m(sim.weather().mean_wind(), std::nullopt);
+  EXPECT_NEAR(rest.y, expected, 0.01 * expected);
+  EXPECT_NEAR(rest.x, 0.0, 1e-9);
   EXPECT_NEAR(sim.snapshot().wind_mps.y, 20.0, 1e-12);
 }
 

@@ -71,6 +71,7 @@ class StateReader {
                        std::to_string(expected_size));
     if (n > (bytes_.size() - at_) / sizeof(T)) throw StateError("saved state is truncated");
     values.resize(static_cast<std::size_t>(n));
+    if (n == 0) return;  // an empty vector's data() may be null, which memcpy must not get
     std::memcpy(values.data(), bytes_.data() + at_, values.size() * sizeof(T));
     at_ += values.size() * sizeof(T);
   }

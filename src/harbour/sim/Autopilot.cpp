@@ -15,9 +15,10 @@ constexpr double kCruiseLever = 0.75;     // travel at three quarters of full sp
 constexpr double kSlowZone_m = 1.5;       // lower slowly over the last metre and a half
 constexpr double kSlowLever = 0.08;       // 0.12 m/s at the spreader on the STS hoist
 constexpr double kPosition_tolerance_m = 0.03;
-constexpr double kSettled_m = 0.05;    // swing and position error small enough to start lowering
-constexpr double kHover_m = 0.5;       // hold this far above the landing until on target and calm
-constexpr double kPickUpAim_m = 0.02;  // the twistlocks' cones reach 30 mm
+constexpr double kSettled_m = 0.05;     // swing and position error small enough to start lowering
+constexpr double kHover_m = 0.5;        // hold this far above the landing until on target and calm
+constexpr double kPickUpAim_m = 0.02;   // the twistlocks' cones reach 30 mm
+constexpr double kFlipperAim_m = 0.06;  // lowered flippers guide the spreader in from 8-10 cm
 constexpr double kLookAhead_s = 0.5;
 // an operator's hand on a device: new lever positions 50 times a second, at a joystick axis' resolution
 constexpr std::int64_t kDecisionSteps = 20;
@@ -116,11 +117,13 @@ double Autopilot::axis_lever(AxisMove& m, double position, double max_speed, dou
 }
 
 double Autopilot::catch_swing(SwingAxis& axis, double target, double axis_position, double axis_speed,
-                              double load_position, double load_speed, double period, double max_speed) {
+                              double load_position, double load_speed, double wind_lean, double period,
+                              double max_speed) {
   // load offset s from the axis; pendulum: s'' = -w^2 (s - s0) - a_axis. An axis speed k (s - s0) gives
-  // s'' + k s' + w^2 (s - s0) = 0: damping ratio k / 2w. s0, where the load hangs at rest (rope geometry,
-  // wind), is s filtered over a period.
-  const double offset = load_position - axis_position;
+  // s'' + k s' + w^2 (s - s0) = 0: damping ratio k / 2w. s0, where the load hangs at rest, is the wind's
+  // lean (it changes with the rope length and the gusts) plus the rope geometry's offset, s less the lean
+  // filtered over a period.
+  const double offset = load_position - axis_position - wind_lean;
   if (!axis.primed) {
     axis.rest_offset = offset;
     axis.last_target = target;
@@ -135,7 +138,7 @@ double Autopilot::catch_swing(SwingAxis& axis, double target, double axis_positi
   const double omega = 2.0 * std::numbers::pi / period;
   const double swing = offset - axis.rest_offset;
   axis.swing = std::hypot(swing, (load_speed - axis_speed) / omega);
-  axis.error = target - (axis_position + axis.rest_offset);
+  axis.error = target - (axis_position + axis.rest_offset + wind_lean);
   const double speed = 0.25 * omega * axis.error + omega * swing;
   return std::clamp(speed, -kFineSpeed_mps, kFineSpeed_mps) / max_speed;
 }
@@ -147,11 +150,14 @@ void Autopilot::position_finely(const Simulation& simulation, const core::Vec3& 
   const core::Vec3 at = simulation.world().pose(load).position;
   const core::Vec3 v = simulation.world().linear_velocity(load);
   const StsCraneSettings& settings = simulation.scenario().crane;
+  // where the load would hang in the wind blowing now: the operator leans into the gusts
+  const core::Vec3 lean =
+      simulation.wind_rest_offset_m(simulation.weather().wind(), crane.locked_container());
   in.sts.trolley = catch_swing(trolley_swing_, destination.x, crane.trolley_position_m(),
-                               crane.trolley_drive().reference_mps(), at.x, v.x, period,
+                               crane.trolley_drive().reference_mps(), at.x, v.x, lean.x, period,
                                settings.trolley_drive.max_speed_mps);
   in.sts.gantry = catch_swing(gantry_swing_, destination.y, crane.gantry_position_m(),
-                              crane.gantry_drive().reference_mps(), at.y, v.y, period,
+                              crane.gantry_drive().reference_mps(), at.y, v.y, lean.y, period,
                               settings.gantry_drive.max_speed_mps);
 }
 
@@ -216,8 +222,8 @@ Inputs Autopilot::decide(const Simulation& simulation) {
   const StsCraneSettings& settings = simulation.scenario().crane;
   const double now = simulation.time_s();
   const core::Vec3 spreader = crane.spreader_pose().position;
-  const double fall = settings.trolley_rail_height_m - 1.0 - (spreader.z + 0.5);
-  const double period = 2.0 * std::numbers::pi * std::sqrt(std::max(fall, 1.0) / 9.80665);
+  const double period =
+      2.0 * std::numbers::pi * std::sqrt(std::max(crane.pendulum_length_m(), 1.0) / 9.80665);
   const core::Vec3 destination = carrying_ ? exercise_.moves[goal_].target_m : source(simulation);
   in.sts.flipper_down = flippers(simulation);
   auto enter = [&](Phase p) {
@@ -257,7 +263,10 @@ Inputs Autopilot::decide(const Simulation& simulation) {
       // landing surface: the spreader's centre when seated on the box (pick-up) or with the box on its target
       const double land_z = destination.z + goal_half_height(simulation) + crane.spreader_half_extents_m().z;
       const double above = spreader.z - land_z;
-      const double aim = carrying_ ? exercise_.moves[goal_].tolerance_m / 4.0 : kPickUpAim_m;
+      const bool guided = in.sts.flipper_down == std::array<bool, 4>{true, true, true, true};
+      const double aim = carrying_ ? exercise_.moves[goal_].tolerance_m / 4.0
+                         : guided  ? kFlipperAim_m
+                                   : kPickUpAim_m;
       // into a hold cell: slow down and aim above the cell guides too (25 mm clearance a side)
       const std::optional<double> entry = cell_entry_z(simulation);
       const bool at_entry = entry && spreader.z < *entry && spreader.z > *entry - kCellEntryBand_m;

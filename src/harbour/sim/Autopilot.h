@@ -50,7 +50,7 @@ class Autopilot {
 
   /// Fine positioning of one axis (see the class comment).
   struct SwingAxis {
-    double rest_offset = 0.0;  // [m] where the load hangs at rest relative to the axis (filtered)
+    double rest_offset = 0.0;  // [m] where the load hangs at rest relative to the axis, wind aside (filtered)
     bool primed = false;
     double swing = 0.0;  // [m] estimated swing amplitude about the rest offset
     double error = 0.0;  // [m] target minus the load's rest position
@@ -60,7 +60,8 @@ class Autopilot {
   Inputs decide(const Simulation& simulation);
   double axis_lever(AxisMove& m, double position, double max_speed, double period, double now) const;
   static double catch_swing(SwingAxis& axis, double target, double axis_position, double axis_speed,
-                            double load_position, double load_speed, double period, double max_speed);
+                            double load_position, double load_speed, double wind_lean, double period,
+                            double max_speed);
   /// Levers of trolley and gantry that catch the swing and creep the load onto `destination`.
   void position_finely(const Simulation& simulation, const core::Vec3& destination, double period,
                        Inputs& in);

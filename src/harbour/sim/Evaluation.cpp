@@ -37,17 +37,19 @@ bool Evaluator::near_target(physics::BodyId box, const Simulation& simulation) c
   return std::hypot(p.x - t.x, p.y - t.y) <= 2.0 * exercise_.moves[g].tolerance_m;
 }
 
-void Evaluator::record_landing(const Simulation& simulation) {
-  const double sway = sway_m(simulation);
+void Evaluator::record_landing(const Simulation& simulation, std::optional<physics::BodyId> hanging_box) {
+  const double sway = sway_m(simulation, hanging_box);
   metrics_.landing_sway_m.push_back(sway);
   if (sway > exercise_.rules.sway_limit_m) ++metrics_.sway_landings;
 }
 
-double Evaluator::sway_m(const Simulation& simulation) const {
-  // horizontal offset of the spreader from plumb under the trolley
+double Evaluator::sway_m(const Simulation& simulation, std::optional<physics::BodyId> hanging_box) const {
+  // horizontal offset of the spreader from where it hangs at rest: plumb under the trolley, moved downwind
+  // by the mean wind (a steady lean is not a swing; the turbulence's and gusts' pushes are)
   const StsCrane& crane = simulation.crane();
   const core::Vec3 s = crane.spreader_pose().position;
-  return std::hypot(s.x - crane.trolley_position_m(), s.y - crane.gantry_position_m());
+  const core::Vec3 rest = simulation.wind_rest_offset_m(simulation.weather().mean_wind(), hanging_box);
+  return std::hypot(s.x - crane.trolley_position_m() - rest.x, s.y - crane.gantry_position_m() - rest.y);
 }
 
 void Evaluator::count_collision(const physics::ImpactEvent& e) {
@@ -86,7 +88,7 @@ void Evaluator::observe(const Simulation& simulation, const Inputs& inputs) {
     const bool touching_goal_box = spreader_hit && !carried_ && goal_of(other, simulation) >= 0;
     const bool setting_down = carried_hit && !spreader_hit && near_target(*carried_, simulation);
     if (setting_down) {
-      record_landing(simulation);
+      record_landing(simulation, carried_);
       metrics_.worst_landing_mps = std::max(metrics_.worst_landing_mps, e.normal_speed_mps);
       if (e.normal_speed_mps > rules.hard_landing_mps) ++metrics_.hard_landings;
     } else if (!touching_goal_box && e.normal_speed_mps >= rules.collision_speed_mps) {
@@ -109,7 +111,8 @@ void Evaluator::observe(const Simulation& simulation, const Inputs& inputs) {
       }
     }
   }
-  if (!carried_ && locked) record_landing(simulation);  // pick-up: the spreader landed and locked
+  if (!carried_ && locked)
+    record_landing(simulation, std::nullopt);  // pick-up: the spreader landed and locked
   carried_ = locked;
   if (metrics_.time_s > 0.0) metrics_.moves_per_hour = metrics_.moves_completed * 3600.0 / metrics_.time_s;
 

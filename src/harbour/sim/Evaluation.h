@@ -23,9 +23,9 @@ struct EvaluationRules {
   double pass_score = 70.0;
   double collision_speed_mps = 0.1;  ///< [m/s] impacts at least this fast that are not landings count
   double hard_landing_mps = 0.3;     ///< [m/s] landing a container faster than this is a hard landing
-  double sway_limit_m = 0.25;        ///< [m] spreader offset from plumb at a landing counted as swaying
-  double horn_warning_s = 5.0;       ///< [s] gantry travel must start within this long after the horn sounded
-  double gantry_travel_m = 1.0;      ///< [m] a gantry motion longer than this is a travel (needs the horn)
+  double sway_limit_m = 0.25;  ///< [m] spreader offset from its rest position at a landing counted as swaying
+  double horn_warning_s = 5.0;   ///< [s] gantry travel must start within this long after the horn sounded
+  double gantry_travel_m = 1.0;  ///< [m] a gantry motion longer than this is a travel (needs the horn)
   double points_collision = 10.0;
   double points_hard_landing = 5.0;
   double points_sway = 2.0;
@@ -106,10 +106,10 @@ class Evaluator {
 
  private:
   int goal_of(physics::BodyId body, const Simulation& simulation) const;
-  double sway_m(const Simulation& simulation) const;
+  double sway_m(const Simulation& simulation, std::optional<physics::BodyId> hanging_box) const;
   bool near_target(physics::BodyId box, const Simulation& simulation) const;
   void count_collision(const physics::ImpactEvent& e);
-  void record_landing(const Simulation& simulation);
+  void record_landing(const Simulation& simulation, std::optional<physics::BodyId> hanging_box);
 
   ExerciseSettings exercise_;
   Metrics metrics_;

@@ -158,6 +158,20 @@ void Simulation::apply_wind() {
   }
 }
 
+core::Vec3 Simulation::wind_rest_offset_m(const core::Vec3& wind, std::optional<physics::BodyId> box) const {
+  const double rho = scenario_.weather.air_density_kg_m3, cd = scenario_.drag_coefficient;
+  const physics::BodyId spreader = crane_->spreader_body();
+  core::Vec3 force = box_drag(wind, {}, world_->pose(spreader), crane_->spreader_half_extents_m(), cd, rho);
+  double mass_kg = world_->mass_kg(spreader);
+  for (const ContainerRef& c : containers_)
+    if (box && c.body == *box) {
+      force += box_drag(wind, {}, world_->pose(c.body), c.half_extents_m, cd, rho);
+      mass_kg += world_->mass_kg(c.body);
+    }
+  const double lean = crane_->pendulum_length_m() / (mass_kg * 9.80665);
+  return {force.x * lean, force.y * lean, 0.0};
+}
+
 void Simulation::move_secured_cargo() {
   if (!vessel_) return;
   const core::Pose& vessel = vessel_->frame();

@@ -171,6 +171,10 @@ class Simulation {
   physics::BodyId container_body(std::size_t index) const { return containers_[index].body; }
   const physics::PhysicsWorld& world() const { return *world_; }
   const Weather& weather() const { return weather_; }
+  /// Where the spreader would hang at rest in a steady `wind` [m/s], from plumb under the trolley [m]
+  /// (horizontal): the pendulum's equilibrium L F / (m g), F the wind's drag on the spreader and on `box` if
+  /// it hangs from it.
+  core::Vec3 wind_rest_offset_m(const core::Vec3& wind, std::optional<physics::BodyId> box) const;
   const Vessel* vessel() const { return vessel_.get(); }
   const TruckLane* trucks() const { return trucks_.get(); }
   /// Frees secured item `index` and what is stacked on it (the spreader locking onto it does this).

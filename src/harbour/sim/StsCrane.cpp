@@ -58,6 +58,23 @@ StsCrane::StsCrane(physics::PhysicsWorld& world, const StsCraneSettings& setting
   hoist_ = std::make_unique<cable::HoistSystem>(settings.hoist, *cable_bodies_, core::Vec3{0, 0, -9.80665});
 }
 
+double StsCrane::pendulum_length_m() const {
+  // reeving bodies: 0 gantry, 1 trolley, 2 headblock (the spreader body), as built above
+  const physics::BodyId on[2] = {trolley_body_, spreader_};
+  double z[2] = {0.0, 0.0};
+  for (int b = 0; b < 2; ++b) {
+    core::Vec3 sum;
+    int count = 0;
+    for (const cable::ElementSettings& e : settings_.hoist.elements)
+      if (e.kind == cable::ElementKind::kSheave && e.mount.body == b + 1) {
+        sum = sum + e.mount.local;
+        ++count;
+      }
+    z[b] = world_.pose(on[b]).to_parent(count ? sum * (1.0 / count) : core::Vec3{}).z;
+  }
+  return z[0] - z[1];
+}
+
 double StsCrane::hoisted_load_n() const {
   double total = 0.0;
   for (int r = 0; r < hoist_->rope_count(); ++r)

@@ -104,6 +104,9 @@ class StsCrane {
   cable::HoistSystem& hoist() { return *hoist_; }
   /// Vertical rope pull on the headblock [N] (the load the hoist carries, spreader included).
   double hoisted_load_n() const;
+  /// Length of the pendulum the load hangs on [m]: from the trolley's sheaves down to the headblock's (the
+  /// mean heights of the reeving's sheaves on each).
+  double pendulum_length_m() const;
   /// Drives, ropes, twistlocks, faults and the locked box for a keyframe (the physics world saves itself).
   void save_state(core::StateWriter& out) const;
   void restore_state(core::StateReader& in);

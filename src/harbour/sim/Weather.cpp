@@ -29,11 +29,19 @@ double Weather::speed_mps() const {
   return std::max(0.0, u);
 }
 
+namespace {
+// blowing from `from_rad` (clockwise from north = +y): the air moves the opposite way
+core::Vec3 air_velocity(double speed_mps, double from_rad) {
+  return {-speed_mps * std::sin(from_rad), -speed_mps * std::cos(from_rad), 0.0};
+}
+}  // namespace
+
 core::Vec3 Weather::wind() const {
-  // blowing from `wind_from` (clockwise from north = +y): the air moves the opposite way
-  const double from = settings_.wind_from_rad;
-  const double u = speed_mps();
-  return {-u * std::sin(from), -u * std::cos(from), 0.0};
+  return air_velocity(speed_mps(), settings_.wind_from_rad);
+}
+
+core::Vec3 Weather::mean_wind() const {
+  return air_velocity(settings_.wind_mean_mps, settings_.wind_from_rad);
 }
 
 double Weather::time_of_day_h() const {

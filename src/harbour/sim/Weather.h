@@ -49,6 +49,8 @@ class Weather {
   void restore_state(core::StateReader& in);
   /// Wind velocity now [m/s], world frame (the air moves towards wind_from + 180 deg).
   core::Vec3 wind() const;
+  /// The mean wind alone (no turbulence, no gusts) [m/s], world frame.
+  core::Vec3 mean_wind() const;
   /// Wind speed now [m/s].
   double speed_mps() const;
   double time_of_day_h() const;
