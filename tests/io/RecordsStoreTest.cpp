@@ -142,6 +142,28 @@ TEST(RecordsStore, ADatabaseWrittenBySomethingElseIsRefusedNamingItAndWhere) {
   }
 }
 
+// The console writes to the records while a station is in the middle of writing: it waits for the lock.
+TEST(RecordsStore, WritingWhileAnotherConnectionWritesWaitsForIt) {
+  const std::string connection = fresh_db("harbour_busy.db");
+  { RecordsStore db(connection); }
+  soci::session station(connection);
+  station << "BEGIN EXCLUSIVE";
+  station << "INSERT INTO trainees (id, name) VALUES ('t007', 'Busy')";
+  std::thread commit_later([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+    station << "COMMIT";
+  });
+  try {
+    RecordsStore console(connection);
+    console.add_trainee("t008", "Waiting");  // blocked until the station commits
+    commit_later.join();
+    EXPECT_EQ(console.trainees().size(), 2u);
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << e.what();
+    commit_later.join();
+  }
+}
+
 // A station killed mid-exercise: everything measured before the kill is in the database, consistently.
 TEST_P(RecordsStoreOn, KillingTheProcessMidExerciseKeepsTheMovesDoneSoFar) {
   const std::string connection = fresh_connection(GetParam(), "records_kill");

@@ -46,6 +46,8 @@ RecordsStore::RecordsStore(const std::string& connection) : impl_(std::make_uniq
     impl_->sql.open(connection);
     soci::session& sql = impl_->sql;
     if (sql.get_backend_name() == "sqlite3") {
+      // another station or the console may be writing: wait for its lock instead of failing at once
+      sql << "PRAGMA busy_timeout=10000";
       sql << "PRAGMA journal_mode=WAL";
       sql << "PRAGMA synchronous=FULL";
       sql << "PRAGMA foreign_keys=ON";

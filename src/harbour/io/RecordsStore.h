@@ -31,9 +31,9 @@ struct AttemptRow {
 };
 
 /// The trainee database: trainees, attempts, moves and events as they happen, final metrics and score. One
-/// interface over SOCI: "sqlite3://db=<file>" (the default: one file, WAL) or "postgresql://dbname=...
-/// host=..." for a training centre; the SQL is the portable subset both accept. Every write commits at once,
-/// so a crash loses nothing already measured.
+/// interface over SOCI: "sqlite3://db=<file>" (the default: one file, WAL, waiting up to 10 s for another
+/// writer's lock) or "postgresql://dbname=... host=..." for a training centre; the SQL is the portable subset
+/// both accept. Every write commits at once, so a crash loses nothing already measured.
 class RecordsStore {
  public:
   /// Opens (and creates the schema in) a database; throws std::runtime_error naming the connection on
