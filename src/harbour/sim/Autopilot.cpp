@@ -15,10 +15,9 @@ constexpr double kCruiseLever = 0.75;     // travel at three quarters of full sp
 constexpr double kSlowZone_m = 1.5;       // lower slowly over the last metre and a half
 constexpr double kSlowLever = 0.08;       // 0.12 m/s at the spreader on the STS hoist
 constexpr double kPosition_tolerance_m = 0.03;
-constexpr double kSettled_m = 0.05;     // swing and position error small enough to start lowering
-constexpr double kHover_m = 0.5;        // hold this far above the landing until on target and calm
-constexpr double kPickUpAim_m = 0.02;   // the twistlocks' cones reach 30 mm
-constexpr double kFlipperAim_m = 0.06;  // lowered flippers guide the spreader in from 8-10 cm
+constexpr double kSettled_m = 0.05;    // swing and position error small enough to start lowering
+constexpr double kHover_m = 0.5;       // hold this far above the landing until on target and calm
+constexpr double kPickUpAim_m = 0.02;  // the twistlocks' cones reach 30 mm
 constexpr double kLookAhead_s = 0.5;
 // an operator's hand on a device: new lever positions 50 times a second, at a joystick axis' resolution
 constexpr std::int64_t kDecisionSteps = 20;
@@ -263,10 +262,7 @@ Inputs Autopilot::decide(const Simulation& simulation) {
       // landing surface: the spreader's centre when seated on the box (pick-up) or with the box on its target
       const double land_z = destination.z + goal_half_height(simulation) + crane.spreader_half_extents_m().z;
       const double above = spreader.z - land_z;
-      const bool guided = in.sts.flipper_down == std::array<bool, 4>{true, true, true, true};
-      const double aim = carrying_ ? exercise_.moves[goal_].tolerance_m / 4.0
-                         : guided  ? kFlipperAim_m
-                                   : kPickUpAim_m;
+      const double aim = carrying_ ? exercise_.moves[goal_].tolerance_m / 4.0 : kPickUpAim_m;
       // into a hold cell: slow down and aim above the cell guides too (25 mm clearance a side)
       const std::optional<double> entry = cell_entry_z(simulation);
       const bool at_entry = entry && spreader.z < *entry && spreader.z > *entry - kCellEntryBand_m;
