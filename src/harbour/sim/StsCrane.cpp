@@ -15,6 +15,21 @@ namespace {
 // trolley, headblock, trolley, boom tip): segments 2 and 3
 constexpr int kFallSegments[] = {2, 3};
 
+// reeving bodies: 0 gantry, 1 trolley, 2 headblock (the spreader body), as the constructor builds them
+constexpr int kTrolleyReevingBody = 1, kHeadblockReevingBody = 2;
+
+// mean position of the reeving's sheaves on one body, in its frame
+core::Vec3 mean_sheave_m(const cable::ReevingSettings& reeving, int body) {
+  core::Vec3 sum;
+  int count = 0;
+  for (const cable::ElementSettings& e : reeving.elements)
+    if (e.kind == cable::ElementKind::kSheave && e.mount.body == body) {
+      sum += e.mount.local;
+      ++count;
+    }
+  return count ? sum * (1.0 / count) : core::Vec3{};
+}
+
 }  // namespace
 
 StsCrane::StsCrane(physics::PhysicsWorld& world, const StsCraneSettings& settings, double gantry_y_m,
@@ -25,7 +40,9 @@ StsCrane::StsCrane(physics::PhysicsWorld& world, const StsCraneSettings& setting
       trolley_start_x_(trolley_x_m),
       gantry_(settings.gantry_drive),
       trolley_(settings.trolley_drive),
-      boom_(settings.boom.drive) {
+      boom_(settings.boom.drive),
+      trolley_sheaves_m_(mean_sheave_m(settings.hoist, kTrolleyReevingBody)),
+      headblock_sheaves_m_(mean_sheave_m(settings.hoist, kHeadblockReevingBody)) {
   // gantry: the crane's base frame, on the quay rails
   physics::BoxSettings gantry;
   gantry.mass_kg = settings.gantry_mass_kg;
@@ -59,20 +76,8 @@ StsCrane::StsCrane(physics::PhysicsWorld& world, const StsCraneSettings& setting
 }
 
 double StsCrane::pendulum_length_m() const {
-  // reeving bodies: 0 gantry, 1 trolley, 2 headblock (the spreader body), as built above
-  const physics::BodyId on[2] = {trolley_body_, spreader_};
-  double z[2] = {0.0, 0.0};
-  for (int b = 0; b < 2; ++b) {
-    core::Vec3 sum;
-    int count = 0;
-    for (const cable::ElementSettings& e : settings_.hoist.elements)
-      if (e.kind == cable::ElementKind::kSheave && e.mount.body == b + 1) {
-        sum = sum + e.mount.local;
-        ++count;
-      }
-    z[b] = world_.pose(on[b]).to_parent(count ? sum * (1.0 / count) : core::Vec3{}).z;
-  }
-  return z[0] - z[1];
+  return world_.pose(trolley_body_).to_parent(trolley_sheaves_m_).z -
+         world_.pose(spreader_).to_parent(headblock_sheaves_m_).z;
 }
 
 double StsCrane::hoisted_load_n() const {
