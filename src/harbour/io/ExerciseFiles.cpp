@@ -15,7 +15,11 @@
 namespace harbour::io {
 namespace {
 
-constexpr double kHuge = 1e6;
+// the harbour an exercise takes place in: positions within 2 km of the crane's origin [m]
+constexpr double kSite_m = 2000.0;
+// counts an exercise may hold (docs/reliability.md): far above any real exercise, bounded so that a
+// generated or damaged file cannot make loading or stepping unbounded
+constexpr std::size_t kMaxContainers = 2000, kMaxMoves = 500, kMaxEvents = 500, kMaxBlocks = 200;
 
 // ISO 668 external dimensions [m] (length, width, height)
 // ISO 668 external dimensions [m] and typical tare [kg] (../shared/data/reference.md)
@@ -42,7 +46,9 @@ std::string item(const std::string& list, std::size_t n) {
 
 }  // namespace
 
-sim::ExerciseSettings load_exercise(const YamlFile& f, const std::string& folder) {
+namespace {
+
+sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder) {
   sim::ExerciseSettings e;
   const YAML::Node x = f.required(f.root(), "exercise", "");
   e.name = f.text(x, "name", "exercise");
@@ -50,12 +56,14 @@ sim::ExerciseSettings load_exercise(const YamlFile& f, const std::string& folder
   s.name = e.name;
   const std::string machine = f.text(x, "machine", "exercise");
   const std::string machine_path = (std::filesystem::path(folder) / machine).lexically_normal().string();
-  if (!std::filesystem::exists(machine_path))
+  if (!std::filesystem::is_regular_file(machine_path))
     f.fail(x["machine"], "exercise.machine", "no such file: " + machine_path);
   s.crane = load_sts_crane(machine_path);
 
-  const YAML::Node crane = f.required(x, "crane", "exercise");
-  s.gantry_y_m = f.number(crane, "gantry_y_m", "exercise.crane", -kHuge, kHuge);
+  const YAML::Node crane = f.required_map(x, "crane", "exercise");
+  // the crane starts on its rails
+  s.gantry_y_m = f.number(crane, "gantry_y_m", "exercise.crane", s.crane.gantry_drive.min_position_m,
+                          s.crane.gantry_drive.max_position_m);
   s.trolley_x_m = f.number(crane, "trolley_x_m", "exercise.crane", s.crane.trolley_drive.min_position_m,
                            s.crane.trolley_drive.max_position_m);
   s.spreader_z_m =
@@ -63,18 +71,19 @@ sim::ExerciseSettings load_exercise(const YamlFile& f, const std::string& folder
 
   std::optional<sim::VesselGeometry> vessel;
   std::vector<sim::ContainerPlacement> hatch_covers;  // listed after the containers
-  if (x["vessel"].IsDefined()) {
-    const YAML::Node v = x["vessel"];
+  s.quay_edge_x_m = f.number_or(x, "quay_edge_x_m", "exercise", s.quay_edge_x_m, -kSite_m, kSite_m);
+  if (const auto v_node = f.optional_map(x, "vessel", "exercise")) {
+    const YAML::Node& v = *v_node;
     const std::string file = f.text(v, "file", "exercise.vessel");
     const std::string path = (std::filesystem::path(folder) / file).lexically_normal().string();
-    if (!std::filesystem::exists(path)) f.fail(v["file"], "exercise.vessel.file", "no such file: " + path);
+    if (!std::filesystem::is_regular_file(path))
+      f.fail(v["file"], "exercise.vessel.file", "no such file: " + path);
     sim::VesselPlacement placement;
     placement.vessel = load_vessel(path);
-    placement.keel_midship_m =
-        f.vector3(f.required(v, "keel_midship_m", "exercise.vessel"), "exercise.vessel.keel_midship_m");
-    if (v["sea_state"].IsDefined())
-      placement.sea = read_sea_state(f, v["sea_state"], "exercise.vessel.sea_state");
-    s.quay_edge_x_m = f.number_or(x, "quay_edge_x_m", "exercise", s.quay_edge_x_m, -kHuge, kHuge);
+    placement.keel_midship_m = f.vector3(f.required(v, "keel_midship_m", "exercise.vessel"),
+                                         "exercise.vessel.keel_midship_m", kSite_m);
+    if (const auto sea = f.optional_map(v, "sea_state", "exercise.vessel"))
+      placement.sea = read_sea_state(f, *sea, "exercise.vessel.sea_state");
     if (placement.keel_midship_m.x - placement.vessel.beam_m / 2 < s.quay_edge_x_m)
       f.fail(v["keel_midship_m"], "exercise.vessel.keel_midship_m",
              "the hull overlaps the quay (quay_edge_x_m)");
@@ -94,29 +103,32 @@ sim::ExerciseSettings load_exercise(const YamlFile& f, const std::string& folder
       hatch_covers.push_back(c);
     }
   }
-  if (x["trucks"].IsDefined()) {
-    const YAML::Node t = x["trucks"];
+  if (const auto t_node = f.optional_map(x, "trucks", "exercise")) {
+    const YAML::Node& t = *t_node;
     const std::string at = "exercise.trucks";
     sim::TruckLaneSettings& lane = s.trucks;
     lane.trucks = f.integer(t, "count", at, 1, 100);
-    lane.lane_x_m = f.number(t, "lane_x_m", at, -kHuge, kHuge);
-    lane.stop_y_m = f.number(t, "stop_y_m", at, -kHuge, kHuge);
+    lane.lane_x_m = f.number(t, "lane_x_m", at, -kSite_m, kSite_m);
+    lane.stop_y_m = f.number(t, "stop_y_m", at, -kSite_m, kSite_m);
     lane.chassis_top_m = f.number_or(t, "chassis_top_m", at, lane.chassis_top_m, 0.5, 3.0);
   }
 
-  if (x["blocks"].IsDefined()) {
-    const YAML::Node blocks = f.sequence(x, "blocks", "exercise");
+  if (f.optional(x, "blocks", "exercise")) {
+    const YAML::Node blocks = f.sequence(x, "blocks", "exercise", kMaxBlocks);
     for (std::size_t n = 0; n < blocks.size(); ++n) {
       const std::string at = item("exercise.blocks", n);
-      const core::Vec3 half = f.vector3(f.required(blocks[n], "half_extents_m", at), at + ".half_extents_m");
+      const core::Vec3 half =
+          f.vector3(f.required(blocks[n], "half_extents_m", at), at + ".half_extents_m", kSite_m);
       if (!(half.x > 0 && half.y > 0 && half.z > 0))
         f.fail(blocks[n]["half_extents_m"], at + ".half_extents_m", "must be positive");
-      s.blocks.push_back({half, f.vector3(f.required(blocks[n], "position_m", at), at + ".position_m")});
+      s.blocks.push_back(
+          {half, f.vector3(f.required(blocks[n], "position_m", at), at + ".position_m", kSite_m)});
     }
   }
 
-  const YAML::Node containers = f.sequence(x, "containers", "exercise");
-  struct Stowed {  // a box given by its slot on the vessel
+  const YAML::Node containers = f.sequence(x, "containers", "exercise", kMaxContainers);
+  std::map<std::string, std::size_t> container_index;  // by id
+  struct Stowed {                                      // a box given by its slot on the vessel
     std::size_t index;
     sim::SlotAddress slot;
     core::Vec3 lowest_centre;  // vessel frame: where it would stand in its stack's lowest tier
@@ -128,8 +140,8 @@ sim::ExerciseSettings load_exercise(const YamlFile& f, const std::string& folder
     const std::string at = item("exercise.containers", n);
     sim::ContainerPlacement p;
     p.id = f.text(c, "id", at);
-    for (const auto& other : s.containers)
-      if (other.id == p.id) f.fail(c["id"], at + ".id", "duplicate container '" + p.id + "'");
+    if (!container_index.emplace(p.id, n).second)
+      f.fail(c["id"], at + ".id", "duplicate container '" + p.id + "'");
     const std::string type = f.text(c, "type", at);
     const auto t = iso_types().find(type);
     if (t == iso_types().end())
@@ -137,9 +149,10 @@ sim::ExerciseSettings load_exercise(const YamlFile& f, const std::string& folder
     p.half_extents_m = t->second.size_m * 0.5;
     // the gross mass, or the cargo on the tare (the type's typical tare unless given); up to 40 t, above the
     // ISO 30 480 kg maximum, so that an exercise can hide an overweight box
-    if (c["gross_mass_kg"].IsDefined() == c["cargo_mass_kg"].IsDefined())
+    const bool gross_given = f.optional(c, "gross_mass_kg", at).has_value();
+    if (gross_given == f.optional(c, "cargo_mass_kg", at).has_value())
       f.fail(c, at, "give either gross_mass_kg or cargo_mass_kg (with an optional tare_kg), not both");
-    if (c["gross_mass_kg"].IsDefined()) {
+    if (gross_given) {
       p.gross_mass_kg = f.number(c, "gross_mass_kg", at, 1000.0, 40000.0);
     } else {
       const double tare = f.number_or(c, "tare_kg", at, t->second.tare_kg, 1000.0, 10000.0);
@@ -149,24 +162,32 @@ sim::ExerciseSettings load_exercise(const YamlFile& f, const std::string& folder
     p.pocket_half_length_m = (twenty ? kCastings20_m[0] : kCastings40_m[0]) / 2;
     p.pocket_half_width_m = (twenty ? kCastings20_m[1] : kCastings40_m[1]) / 2;
     if (type == "45ftHC") p.end_pocket_half_length_m = kCastings45_m / 2;
-    if (c["center_of_mass_m"].IsDefined()) {
-      p.center_of_mass_m = f.vector3(c["center_of_mass_m"], at + ".center_of_mass_m");
+    if (const auto com = f.optional(c, "center_of_mass_m", at)) {
+      p.center_of_mass_m = f.vector3(*com, at + ".center_of_mass_m");
       const core::Vec3& h = p.half_extents_m;
       if (std::abs(p.center_of_mass_m.x) > h.x || std::abs(p.center_of_mass_m.y) > h.y ||
           std::abs(p.center_of_mass_m.z) > h.z)
         f.fail(c["center_of_mass_m"], at + ".center_of_mass_m", "lies outside the container");
     }
-    if (c["slot"].IsDefined() == c["position_m"].IsDefined())
+    const std::optional<YAML::Node> slot_node = f.optional(c, "slot", at);
+    if (slot_node.has_value() == f.optional(c, "position_m", at).has_value())
       f.fail(c, at, "give either slot: [bay, row, tier] on the vessel or position_m, not both");
-    if (c["slot"].IsDefined()) {
-      const YAML::Node slot = c["slot"];
+    if (slot_node) {
+      const YAML::Node& slot = *slot_node;
       if (!vessel) f.fail(slot, at + ".slot", "a slot needs the exercise's vessel");
       if (!slot.IsSequence() || slot.size() != 3) f.fail(slot, at + ".slot", "must be [bay, row, tier]");
       sim::SlotAddress address;
-      try {
-        address = {slot[0].as<int>(), slot[1].as<int>(), slot[2].as<int>()};
-      } catch (const YAML::Exception&) {
-        f.fail(slot, at + ".slot", "bay, row and tier must be whole numbers");
+      int* parts[] = {&address.bay, &address.row, &address.tier};
+      for (std::size_t k = 0; k < 3; ++k) {
+        double v = 0.0;
+        try {
+          v = slot[k].as<double>();
+        } catch (const YAML::Exception&) {
+          v = 0.5;  // not a number: refused below
+        }
+        if (!(v >= 0.0 && v <= 200.0 && v == std::floor(v)))
+          f.fail(slot, at + ".slot", "bay, row and tier must be whole numbers 0-200");
+        *parts[k] = static_cast<int>(v);
       }
       std::string why;
       const std::optional<core::Vec3> centre = vessel->slot_centre(address, 2.0 * p.half_extents_m.z, why);
@@ -181,7 +202,8 @@ sim::ExerciseSettings load_exercise(const YamlFile& f, const std::string& folder
     } else {
       // on the quay or a chassis: along the quay unless turned
       const double yaw = core::deg_to_rad(f.number_or(c, "yaw_deg", at, 90.0, -360.0, 360.0));
-      p.pose = {core::Mat3::rotation({0, 0, 1}, yaw), f.vector3(c["position_m"], at + ".position_m")};
+      p.pose = {core::Mat3::rotation({0, 0, 1}, yaw),
+                f.vector3(c["position_m"], at + ".position_m", kSite_m)};
     }
     s.containers.push_back(p);
   }
@@ -218,42 +240,43 @@ sim::ExerciseSettings load_exercise(const YamlFile& f, const std::string& folder
     p.pose = vessel->stowed_pose_at(0.0, centre);
   }
   for (const sim::ContainerPlacement& cover : hatch_covers) {
-    for (const auto& c : s.containers)
-      if (c.id == cover.id) f.fail(containers, "exercise.containers", "'" + c.id + "' is a hatch cover's id");
+    if (!container_index.emplace(cover.id, s.containers.size()).second)
+      f.fail(containers, "exercise.containers", "'" + cover.id + "' is a hatch cover's id");
     s.containers.push_back(cover);
   }
 
-  const YAML::Node moves = f.sequence(x, "moves", "exercise");
+  const YAML::Node moves = f.sequence(x, "moves", "exercise", kMaxMoves);
+  std::map<std::string, std::size_t> moved;  // container id -> the move that takes it
   for (std::size_t n = 0; n < moves.size(); ++n) {
     const std::string at = item("exercise.moves", n);
     sim::MoveGoal g;
     g.container_id = f.text(moves[n], "container", at);
-    bool known = false;
-    for (const auto& c : s.containers)
-      known |= c.id == g.container_id;
-    if (!known)
+    const auto known = container_index.find(g.container_id);
+    if (known == container_index.end())
       f.fail(moves[n]["container"], at + ".container",
              "no container '" + g.container_id + "' in this exercise");
-    if (moves[n]["to"].IsDefined()) {
+    if (const auto [first, fresh] = moved.emplace(g.container_id, n); !fresh)
+      f.fail(moves[n]["container"], at + ".container",
+             "'" + g.container_id + "' is already moved by exercise.moves[" + std::to_string(first->second) +
+                 "]");
+    if (f.optional(moves[n], "to", at)) {
       if (f.text(moves[n], "to", at) != "truck") f.fail(moves[n]["to"], at + ".to", "only 'truck' is known");
       if (s.trucks.trucks == 0) f.fail(moves[n]["to"], at + ".to", "the exercise has no trucks");
-      double height = 0.0;
-      for (const auto& c : s.containers)
-        if (c.id == g.container_id) height = 2.0 * c.half_extents_m.z;
+      const double height = 2.0 * s.containers[known->second].half_extents_m.z;
       g.target_m = {s.trucks.lane_x_m, s.trucks.stop_y_m, s.trucks.chassis_top_m + height / 2};
     } else {
-      g.target_m = f.vector3(f.required(moves[n], "target_m", at), at + ".target_m");
+      g.target_m = f.vector3(f.required(moves[n], "target_m", at), at + ".target_m", kSite_m);
     }
     g.tolerance_m = f.number_or(moves[n], "tolerance_m", at, g.tolerance_m, 0.0, 5.0, true);
     e.moves.push_back(g);
   }
   if (e.moves.empty()) f.fail(moves, "exercise.moves", "an exercise needs at least one move");
 
-  if (x["weather"].IsDefined()) {
-    const YAML::Node w = x["weather"];
+  if (const auto w_node = f.optional_map(x, "weather", "exercise")) {
+    const YAML::Node& w = *w_node;
     const std::string at = "exercise.weather";
     sim::WeatherSettings& ws = s.weather;
-    ws.wind_mean_mps = f.number_or(w, "wind_mean_mps", at, ws.wind_mean_mps, 0.0, 80.0);
+    ws.wind_mean_mps = f.number_or(w, "wind_mean_mps", at, ws.wind_mean_mps, 0.0, sim::kMaxMeanWind_mps);
     ws.wind_from_rad = core::deg_to_rad(f.number_or(w, "wind_from_deg", at, 0.0, 0.0, 360.0));
     ws.turbulence_intensity = f.number_or(w, "turbulence_intensity", at, ws.turbulence_intensity, 0.0, 1.0);
     ws.visibility_m = f.number_or(w, "visibility_m", at, ws.visibility_m, 1.0, 1e5);
@@ -261,8 +284,8 @@ sim::ExerciseSettings load_exercise(const YamlFile& f, const std::string& folder
     ws.time_of_day_h = f.number_or(w, "time_of_day_h", at, ws.time_of_day_h, 0.0, 24.0, false, true);
   }
 
-  if (x["events"].IsDefined()) {
-    const YAML::Node events = f.sequence(x, "events", "exercise");
+  if (f.optional(x, "events", "exercise")) {
+    const YAML::Node events = f.sequence(x, "events", "exercise", kMaxEvents);
     for (std::size_t n = 0; n < events.size(); ++n) {
       const YAML::Node ev = events[n];
       const std::string at = item("exercise.events", n);
@@ -271,7 +294,7 @@ sim::ExerciseSettings load_exercise(const YamlFile& f, const std::string& folder
       const std::string kind = f.text(ev, "kind", at);
       if (kind == "gust") {
         event.kind = sim::ScriptedEvent::Kind::kGust;
-        event.gust.amplitude_mps = f.number(ev, "amplitude_mps", at, 0.0, 60.0, true);
+        event.gust.amplitude_mps = f.number(ev, "amplitude_mps", at, 0.0, sim::kMaxGust_mps, true);
         event.gust.duration_s = f.number_or(ev, "duration_s", at, 3.0, 0.0, 600.0, true);
       } else if (kind == "hoist_brake_fault") {
         event.kind = sim::ScriptedEvent::Kind::kHoistBrakeFault;
@@ -288,8 +311,8 @@ sim::ExerciseSettings load_exercise(const YamlFile& f, const std::string& folder
     }
   }
 
-  if (x["rules"].IsDefined()) {
-    const YAML::Node r = x["rules"];
+  if (const auto r_node = f.optional_map(x, "rules", "exercise")) {
+    const YAML::Node& r = *r_node;
     sim::EvaluationRules& rules = e.rules;
     rules.time_limit_s =
         f.number_or(r, "time_limit_s", "exercise.rules", rules.time_limit_s, 0.0, 86400.0, true);
@@ -302,9 +325,10 @@ sim::ExerciseSettings load_exercise(const YamlFile& f, const std::string& folder
         f.number_or(r, "collision_speed_mps", "exercise.rules", rules.collision_speed_mps, 0.0, 10.0, true);
     rules.horn_warning_s =
         f.number_or(r, "horn_warning_s", "exercise.rules", rules.horn_warning_s, 0.0, 600.0, true);
-    if (r["deductions"].IsDefined()) {
+    rules.overtime_s = f.number_or(r, "overtime_s", "exercise.rules", rules.overtime_s, 0.0, 3600.0);
+    if (const auto d_node = f.optional(r, "deductions", "exercise.rules")) {
       // points per occurrence, by metric
-      const YAML::Node d = r["deductions"];
+      const YAML::Node& d = *d_node;
       const std::string at = "exercise.rules.deductions";
       if (!d.IsMap()) f.fail(d, at, "must be a map of metric: points");
       const std::pair<const char*, double*> points[] = {
@@ -334,8 +358,16 @@ sim::ExerciseSettings load_exercise(const YamlFile& f, const std::string& folder
   return e;
 }
 
+}  // namespace
+
 sim::ExerciseSettings load_exercise(const std::string& path) {
   return load_exercise(YamlFile::load(path), std::filesystem::path(path).parent_path().string());
+}
+
+sim::ExerciseSettings load_exercise(const YamlFile& f, const std::string& folder) {
+  sim::ExerciseSettings e = read_exercise(f, folder);
+  f.check_unknown_keys();
+  return e;
 }
 
 }  // namespace harbour::io

@@ -2,11 +2,21 @@
 
 #include <algorithm>
 #include <map>
+#include <numbers>
 
 namespace harbour::io {
 namespace {
 
-constexpr double kHuge = 1e12;
+// physical ranges (docs/reliability.md)
+constexpr double kSteelModulus_pa = 2.1e11;  ///< [Pa] a rope is no stiffer than a steel bar of its diameter
+constexpr double kSteelDensity_kg_m3 = 7850.0;  ///< [kg/m^3] ... nor heavier
+constexpr double kMaxRopeStress_pa = 2.5e9;     ///< [Pa] ... nor stronger than 2500 MPa wire on all of it
+constexpr double kMount_m = 500.0;              ///< [m] a sheave or anchor lies within this of its body
+constexpr double kMaxTorque_n_m = 1e7;          ///< [N m] drum motors, brakes and bearing friction
+
+double bar_area_m2(double diameter_m) {
+  return std::numbers::pi / 4.0 * diameter_m * diameter_m;
+}
 
 std::string item(const std::string& list, std::size_t n) {
   return list + "[" + std::to_string(n) + "]";
@@ -17,14 +27,14 @@ std::string item(const std::string& list, std::size_t n) {
 ReevingFile load_reeving(const YamlFile& f) {
   ReevingFile out;
   cable::ReevingSettings& r = out.reeving;
-  const YAML::Node root = f.required(f.root(), "reeving", "");
+  const YAML::Node root = f.required_map(f.root(), "reeving", "");
   r.name = f.text(root, "name", "reeving");
-  r.max_substeps = f.integer(root, "max_substeps", "reeving", 0, 10000);
+  r.max_substeps = f.integer(root, "max_substeps", "reeving", 0, 1000);
   r.resume_fraction =
       f.number_or(root, "resume_fraction", "reeving", r.resume_fraction, 0.0, 1.0, true, true);
 
   // bodies by name; "world" is fixed
-  const YAML::Node bodies = f.sequence(root, "bodies", "reeving");
+  const YAML::Node bodies = f.sequence(root, "bodies", "reeving", 16);
   for (std::size_t n = 0; n < bodies.size(); ++n) {
     if (!bodies[n].IsScalar() || bodies[n].Scalar().empty() || bodies[n].Scalar() == "world")
       f.fail(bodies[n], item("reeving.bodies", n), "expected a body name other than 'world'");
@@ -40,27 +50,29 @@ ReevingFile load_reeving(const YamlFile& f) {
 
   // rope types
   std::map<std::string, cable::RopeSettings> types;
-  const YAML::Node type_list = f.sequence(root, "rope_types", "reeving");
+  const YAML::Node type_list = f.sequence(root, "rope_types", "reeving", 64);
   for (std::size_t n = 0; n < type_list.size(); ++n) {
     const YAML::Node t = type_list[n];
     const std::string at = item("reeving.rope_types", n);
     cable::RopeSettings rope;
     rope.name = f.text(t, "name", at);
-    rope.diameter_m = f.number(t, "diameter_m", at, 0.0, 1.0, true);
-    rope.mass_per_m_kg = f.number(t, "mass_per_m_kg", at, 0.0, 1000.0, true);
-    rope.axial_stiffness_n = f.number(t, "axial_stiffness_n", at, 0.0, kHuge, true);
-    rope.min_breaking_force_n = f.number(t, "min_breaking_force_n", at, 0.0, kHuge, true);
+    rope.diameter_m = f.number(t, "diameter_m", at, 0.003, 0.2);
+    const double area = bar_area_m2(rope.diameter_m);
+    rope.mass_per_m_kg = f.number(t, "mass_per_m_kg", at, 0.0, kSteelDensity_kg_m3 * area, true);
+    rope.axial_stiffness_n = f.number(t, "axial_stiffness_n", at, 0.0, kSteelModulus_pa * area, true);
+    rope.min_breaking_force_n = f.number(t, "min_breaking_force_n", at, 0.0, kMaxRopeStress_pa * area, true);
     rope.safety_factor = f.number_or(t, "safety_factor", at, rope.safety_factor, 1.0, 100.0);
     rope.axial_damping_s = f.number_or(t, "axial_damping_s", at, rope.axial_damping_s, 0.0, 1.0);
     rope.transverse_damping_per_s =
         f.number_or(t, "transverse_damping_per_s", at, rope.transverse_damping_per_s, 0.0, 1000.0);
-    rope.nodes = static_cast<int>(f.number_or(t, "nodes", at, rope.nodes, 2, 1000));
+    rope.nodes = static_cast<int>(f.number_or(t, "nodes", at, rope.nodes, 2, 200));
+    if (types.count(rope.name)) f.fail(t["name"], at + ".name", "duplicate rope type '" + rope.name + "'");
     types[rope.name] = rope;
   }
 
   // elements
   std::map<std::string, int> element_index;
-  const YAML::Node elements = f.sequence(root, "elements", "reeving");
+  const YAML::Node elements = f.sequence(root, "elements", "reeving", 512);
   for (std::size_t n = 0; n < elements.size(); ++n) {
     const YAML::Node e = elements[n];
     const std::string at = item("reeving.elements", n);
@@ -77,18 +89,18 @@ ReevingFile load_reeving(const YamlFile& f) {
     else
       f.fail(e["kind"], at + ".kind", "'" + kind + "' is not drum, sheave or anchor");
     el.mount.body = body_index(f.required(e, "body", at), at + ".body");
-    el.mount.local = f.vector3(f.required(e, "at_m", at), at + ".at_m");
+    el.mount.local = f.vector3(f.required(e, "at_m", at), at + ".at_m", kMount_m);
     if (el.kind != cable::ElementKind::kAnchor) {
-      el.radius_m = f.number(e, "radius_m", at, 0.0, 20.0, true);
-      el.inertia_kg_m2 = f.number(e, "inertia_kg_m2", at, 0.0, kHuge, true);
-      el.friction_torque_n_m = f.number_or(e, "friction_torque_n_m", at, 0.0, 0.0, kHuge);
+      el.radius_m = f.number(e, "radius_m", at, 0.05, 5.0);
+      el.inertia_kg_m2 = f.number(e, "inertia_kg_m2", at, 0.01, 1e6);
+      el.friction_torque_n_m = f.number_or(e, "friction_torque_n_m", at, 0.0, 0.0, kMaxTorque_n_m);
     }
     if (el.kind == cable::ElementKind::kDrum) {
-      el.max_rope_speed_mps = f.number(e, "max_rope_speed_mps", at, 0.0, 100.0, true);
-      el.max_rope_acceleration_mps2 = f.number(e, "max_rope_acceleration_mps2", at, 0.0, 100.0, true);
-      el.max_torque_n_m = f.number(e, "max_torque_n_m", at, 0.0, kHuge, true);
-      el.brake_torque_n_m = f.number(e, "brake_torque_n_m", at, 0.0, kHuge);
-      el.stored_rope_m = f.number(e, "stored_rope_m", at, 0.0, 1e5);
+      el.max_rope_speed_mps = f.number(e, "max_rope_speed_mps", at, 0.0, 20.0, true);
+      el.max_rope_acceleration_mps2 = f.number(e, "max_rope_acceleration_mps2", at, 0.0, 20.0, true);
+      el.max_torque_n_m = f.number(e, "max_torque_n_m", at, 0.0, kMaxTorque_n_m, true);
+      el.brake_torque_n_m = f.number(e, "brake_torque_n_m", at, 0.0, kMaxTorque_n_m);
+      el.stored_rope_m = f.number(e, "stored_rope_m", at, 0.0, 5000.0);
     }
     element_index[el.name] = static_cast<int>(r.elements.size());
     r.elements.push_back(el);
@@ -96,7 +108,7 @@ ReevingFile load_reeving(const YamlFile& f) {
 
   // ropes: a drum, sheaves, then an anchor or a drum; each sheave carries one rope
   std::vector<int> sheave_owner(r.elements.size(), -1);
-  const YAML::Node ropes = f.sequence(root, "ropes", "reeving");
+  const YAML::Node ropes = f.sequence(root, "ropes", "reeving", 64);
   for (std::size_t n = 0; n < ropes.size(); ++n) {
     const YAML::Node node = ropes[n];
     const std::string at = item("reeving.ropes", n);
@@ -104,13 +116,17 @@ ReevingFile load_reeving(const YamlFile& f) {
     if (!types.count(type)) f.fail(node["type"], at + ".type", "unknown rope type '" + type + "'");
     cable::RopeSettings rope = types[type];
     rope.name = f.text(node, "name", at);
-    const YAML::Node path = f.sequence(node, "path", at);
+    const YAML::Node path = f.sequence(node, "path", at, 64);
     if (path.size() < 2) f.fail(path, at + ".path", "a rope needs at least two elements");
     for (std::size_t j = 0; j < path.size(); ++j) {
       const std::string field = item(at + ".path", j);
       const std::string name = path[j].IsScalar() ? path[j].Scalar() : "";
       if (!element_index.count(name)) f.fail(path[j], field, "unknown element '" + name + "'");
       const int e = element_index[name];
+      // a rope that meets an element twice (a drum to itself, a sheave passed twice) has a zero-length or
+      // folded segment the wave model cannot carry
+      if (std::find(rope.path.begin(), rope.path.end(), e) != rope.path.end())
+        f.fail(path[j], field, "rope '" + rope.name + "' meets '" + name + "' twice");
       const cable::ElementKind kind = r.elements[e].kind;
       const bool first = j == 0, last = j + 1 == path.size();
       if (first && kind != cable::ElementKind::kDrum)
@@ -130,6 +146,7 @@ ReevingFile load_reeving(const YamlFile& f) {
     r.ropes.push_back(rope);
   }
   if (r.ropes.empty()) f.fail(ropes, "reeving.ropes", "no rope defined");
+  f.check_unknown_keys();
   return out;
 }
 

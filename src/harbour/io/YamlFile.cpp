@@ -1,11 +1,16 @@
 #include "harbour/io/YamlFile.h"
 
 #include <cmath>
-#include <fstream>
 #include <sstream>
+
+#include "harbour/core/Text.h"
+#include "harbour/io/BoundedFile.h"
 
 namespace harbour::io {
 namespace {
+
+// deeper nesting than any data file needs; yaml-cpp itself stops at its own depth limit
+constexpr int kMaxDepth = 64;
 
 std::string describe(double v) {
   std::ostringstream out;
@@ -13,35 +18,96 @@ std::string describe(double v) {
   return out.str();
 }
 
-}  // namespace
+std::string join(const std::string& path, const std::string& key) {
+  return path.empty() ? key : path + "." + key;
+}
 
-YamlFile YamlFile::parse(const std::string& text, const std::string& name) {
-  try {
-    YAML::Node root = YAML::Load(text);
-    if (!root.IsMap()) throw DataError(name, 1, "(document)", "expected a mapping at the top level");
-    return YamlFile(root, name);
-  } catch (const YAML::Exception& e) {
-    throw DataError(name, e.mark.line + 1, "(syntax)", e.msg);
+int line_of(const YAML::Node& node) {
+  return node.Mark().line + 1;
+}
+
+// duplicate keys (yaml-cpp keeps both and reads the first), keys that are not plain names, too deep nesting
+void check_structure(const YAML::Node& node, const std::string& file, const std::string& path, int depth) {
+  if (depth > kMaxDepth) throw DataError(file, line_of(node), path, "nested too deeply");
+  if (node.IsSequence()) {
+    for (std::size_t n = 0; n < node.size(); ++n)
+      check_structure(node[n], file, path + "[" + std::to_string(n) + "]", depth + 1);
+  } else if (node.IsMap()) {
+    std::map<std::string, int> seen;
+    for (const auto& entry : node) {
+      if (!entry.first.IsScalar())
+        throw DataError(file, line_of(entry.first), path,
+                        "a key must be a plain name, not a list or mapping");
+      const std::string& key = entry.first.Scalar();
+      const auto [first, inserted] = seen.emplace(key, line_of(entry.first));
+      if (!inserted)
+        throw DataError(file, line_of(entry.first), join(path, key),
+                        "duplicate key (first given at line " + std::to_string(first->second) + ")");
+      check_structure(entry.second, file, join(path, key), depth + 1);
+    }
   }
 }
 
+}  // namespace
+
+YamlFile YamlFile::parse(const std::string& text, const std::string& name) {
+  std::vector<YAML::Node> documents;
+  try {
+    documents = YAML::LoadAll(text);
+  } catch (const YAML::Exception& e) {
+    throw DataError(name, e.mark.line + 1, "(syntax)", e.msg);
+  }
+  if (documents.empty()) throw DataError(name, 1, "(document)", "the file is empty");
+  if (documents.size() > 1)
+    throw DataError(name, line_of(documents[1]), "(document)",
+                    "a second YAML document: a data file holds exactly one");
+  const YAML::Node& root = documents[0];
+  if (!root.IsMap()) throw DataError(name, 1, "(document)", "expected a mapping at the top level");
+  check_structure(root, name, "", 0);
+  return YamlFile(root, name);
+}
+
 YamlFile YamlFile::load(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw DataError(path, 0, "(file)", "cannot be opened");
-  std::stringstream text;
-  text << in.rdbuf();
-  return parse(text.str(), path);
+  std::string why;
+  const std::optional<std::string> text = read_bounded_file(path, kMaxFileBytes, why);
+  if (!text) throw DataError(path, 0, "(file)", why);
+  return parse(*text, path);
 }
 
 void YamlFile::fail(const YAML::Node& node, const std::string& field, const std::string& problem) const {
-  throw DataError(name_, node.Mark().line + 1, field, problem);
+  throw DataError(name_, line_of(node), field, problem);
+}
+
+void YamlFile::asked(const YAML::Node& map, const std::string& key) const {
+  asked_[map.Mark().pos].insert(key);
+}
+
+std::optional<YAML::Node> YamlFile::optional(const YAML::Node& map, const std::string& key,
+                                             const std::string& path) const {
+  if (!map.IsMap()) fail(map, path, "expected a mapping");
+  asked(map, key);
+  const YAML::Node node = map[key];
+  if (!node.IsDefined() || node.IsNull()) return std::nullopt;
+  return node;
+}
+
+std::optional<YAML::Node> YamlFile::optional_map(const YAML::Node& map, const std::string& key,
+                                                 const std::string& path) const {
+  std::optional<YAML::Node> node = optional(map, key, path);
+  if (node && !node->IsMap()) fail(*node, join(path, key), "expected a mapping");
+  return node;
 }
 
 YAML::Node YamlFile::required(const YAML::Node& map, const std::string& key, const std::string& path) const {
-  const std::string field = path.empty() ? key : path + "." + key;
-  if (!map.IsMap()) fail(map, path, "expected a mapping");
-  YAML::Node node = map[key];
-  if (!node.IsDefined() || node.IsNull()) fail(map, field, "missing");
+  const std::optional<YAML::Node> node = optional(map, key, path);
+  if (!node) fail(map, join(path, key), "missing");
+  return *node;
+}
+
+YAML::Node YamlFile::required_map(const YAML::Node& map, const std::string& key,
+                                  const std::string& path) const {
+  const YAML::Node node = required(map, key, path);
+  if (!node.IsMap()) fail(node, join(path, key), "expected a mapping");
   return node;
 }
 
@@ -51,15 +117,16 @@ double YamlFile::to_number(const YAML::Node& node, const std::string& field) con
   try {
     value = node.as<double>();
   } catch (const YAML::Exception&) {
-    fail(node, field, "'" + node.Scalar() + "' is not a number");
+    fail(node, field, "'" + core::printable(node.Scalar(), 40) + "' is not a number");
   }
-  if (!std::isfinite(value)) fail(node, field, "'" + node.Scalar() + "' is not a finite number");
+  if (!std::isfinite(value))
+    fail(node, field, "'" + core::printable(node.Scalar(), 40) + "' is not a finite number");
   return value;
 }
 
 double YamlFile::number(const YAML::Node& map, const std::string& key, const std::string& path, double min,
                         double max, bool exclusive_min, bool exclusive_max) const {
-  const std::string field = path.empty() ? key : path + "." + key;
+  const std::string field = join(path, key);
   const YAML::Node node = required(map, key, path);
   const double value = to_number(node, field);
   const bool low = exclusive_min ? value <= min : value < min;
@@ -74,35 +141,77 @@ double YamlFile::number(const YAML::Node& map, const std::string& key, const std
 double YamlFile::number_or(const YAML::Node& map, const std::string& key, const std::string& path,
                            double fallback, double min, double max, bool exclusive_min,
                            bool exclusive_max) const {
-  if (!map.IsMap() || !map[key].IsDefined()) return fallback;
+  if (!optional(map, key, path)) return fallback;
   return number(map, key, path, min, max, exclusive_min, exclusive_max);
 }
 
 int YamlFile::integer(const YAML::Node& map, const std::string& key, const std::string& path, int min,
                       int max) const {
   const double value = number(map, key, path, min, max);
-  if (value != std::floor(value)) fail(required(map, key, path), path + "." + key, "must be a whole number");
+  if (value != std::floor(value)) fail(required(map, key, path), join(path, key), "must be a whole number");
   return static_cast<int>(value);
 }
 
 std::string YamlFile::text(const YAML::Node& map, const std::string& key, const std::string& path) const {
-  const std::string field = path.empty() ? key : path + "." + key;
+  const std::string field = join(path, key);
   const YAML::Node node = required(map, key, path);
-  if (!node.IsScalar() || node.Scalar().empty()) fail(node, field, "expected a non-empty string");
+  if (!node.IsScalar()) fail(node, field, "expected a name");
+  if (const std::string why = core::why_bad_name(node.Scalar()); !why.empty())
+    fail(node, field, "the name " + why);
   return node.Scalar();
 }
 
-core::Vec3 YamlFile::vector3(const YAML::Node& node, const std::string& field) const {
+core::Vec3 YamlFile::vector3(const YAML::Node& node, const std::string& field, double limit) const {
   if (!node.IsSequence() || node.size() != 3) fail(node, field, "expected a list of three numbers [x, y, z]");
-  return {to_number(node[0], field + "[0]"), to_number(node[1], field + "[1]"),
-          to_number(node[2], field + "[2]")};
+  core::Vec3 v;
+  double* parts[] = {&v.x, &v.y, &v.z};
+  for (std::size_t k = 0; k < 3; ++k) {
+    const std::string at = field + "[" + std::to_string(k) + "]";
+    *parts[k] = to_number(node[k], at);
+    if (std::abs(*parts[k]) > limit)
+      fail(node[k], at,
+           describe(*parts[k]) + " is outside [" + describe(-limit) + ", " + describe(limit) + "]");
+  }
+  return v;
 }
 
-YAML::Node YamlFile::sequence(const YAML::Node& map, const std::string& key, const std::string& path) const {
-  const std::string field = path.empty() ? key : path + "." + key;
+YAML::Node YamlFile::sequence(const YAML::Node& map, const std::string& key, const std::string& path,
+                              std::size_t max_items) const {
+  const std::string field = join(path, key);
   const YAML::Node node = required(map, key, path);
   if (!node.IsSequence()) fail(node, field, "expected a list");
+  if (node.size() > max_items)
+    fail(node, field,
+         std::to_string(node.size()) + " items, more than the " + std::to_string(max_items) + " allowed");
   return node;
+}
+
+void YamlFile::check_keys_under(const YAML::Node& node, const std::string& path, int depth) const {
+  if (depth > kMaxDepth) return;  // check_structure refused deeper files already
+  if (node.IsSequence()) {
+    for (std::size_t n = 0; n < node.size(); ++n)
+      check_keys_under(node[n], path + "[" + std::to_string(n) + "]", depth + 1);
+    return;
+  }
+  if (!node.IsMap()) return;
+  const auto known = asked_.find(node.Mark().pos);
+  for (const auto& entry : node) {
+    const std::string& key = entry.first.Scalar();
+    if (known == asked_.end() || !known->second.count(key)) {
+      std::string list;
+      if (known != asked_.end())
+        for (const std::string& k : known->second)
+          list += (list.empty() ? "" : ", ") + k;
+      fail(entry.first, join(path, key),
+           "unknown key '" + core::printable(key, 60) + "'" +
+               (list.empty() ? std::string(" (nothing is read here)") : " (known here: " + list + ")"));
+    }
+    check_keys_under(entry.second, join(path, key), depth + 1);
+  }
+}
+
+void YamlFile::check_unknown_keys() const {
+  check_keys_under(root_, "", 0);
 }
 
 }  // namespace harbour::io

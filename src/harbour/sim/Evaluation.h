@@ -20,6 +20,7 @@ struct MoveGoal {
 /// Trigger values and per-occurrence deductions (points of 100); defined in docs/evaluation.md.
 struct EvaluationRules {
   double time_limit_s = 600.0;
+  double overtime_s = 600.0;  ///< [s] a run still unfinished this long after its time limit is stopped
   double pass_score = 70.0;
   double collision_speed_mps = 0.1;  ///< [m/s] impacts at least this fast that are not landings count
   double hard_landing_mps = 0.3;     ///< [m/s] landing a container faster than this is a hard landing

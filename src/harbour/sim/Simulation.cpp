@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 
@@ -74,16 +75,19 @@ std::string why_invalid(const InstructorCommand& c) {
   using Kind = InstructorCommand::Kind;
   switch (c.kind) {
     case Kind::kGust:
-      if (!(c.gust.duration_s > 0.0 && c.gust.duration_s <= 600.0 && std::abs(c.gust.amplitude_mps) <= 60.0))
-        return "a gust lasts 0-600 s and peaks within 60 m/s";
+      if (!(c.gust.duration_s > 0.0 && c.gust.duration_s <= 600.0 && c.gust.amplitude_mps > 0.0 &&
+            c.gust.amplitude_mps <= kMaxGust_mps))
+        return "a gust lasts up to 600 s and peaks at 0-" + std::to_string(static_cast<int>(kMaxGust_mps)) +
+               " m/s over the mean";
       break;
     case Kind::kLandedSensorFault:
       if (c.corner < 0 || c.corner > 3) return "a twistlock corner is 0-3";
       break;
     case Kind::kSetWind:
-      if (!(c.wind_mean_mps >= 0.0 && c.wind_mean_mps <= 60.0 && c.turbulence >= 0.0 && c.turbulence <= 1.0 &&
-            std::isfinite(c.wind_from_rad)))
-        return "wind 0-60 m/s, turbulence intensity 0-1";
+      if (!(c.wind_mean_mps >= 0.0 && c.wind_mean_mps <= kMaxMeanWind_mps && c.turbulence >= 0.0 &&
+            c.turbulence <= 1.0 && c.wind_from_rad >= 0.0 && c.wind_from_rad <= 2.0 * std::numbers::pi))
+        return "wind 0-" + std::to_string(static_cast<int>(kMaxMeanWind_mps)) +
+               " m/s from 0-360 deg, turbulence intensity 0-1";
       break;
     case Kind::kSetVisibility:
       if (!(c.value > 0.0 && c.value <= 1e5)) return "visibility 0-100 km";

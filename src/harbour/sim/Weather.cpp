@@ -1,5 +1,6 @@
 #include "harbour/sim/Weather.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -17,6 +18,8 @@ void Weather::step(double dt_s) {
         std::sqrt(-2.0 * std::log(1.0 - rng_.uniform())) * std::cos(2.0 * std::numbers::pi * rng_.uniform());
     turbulence_ = a * turbulence_ + sigma * std::sqrt(1.0 - a * a) * normal;
   }
+  // a gust that is over adds nothing again: drop it, so that the list stays as short as the gusts blowing
+  std::erase_if(gusts_, [&](const Gust& g) { return time_s_ - g.start_s > g.duration_s; });
 }
 
 double Weather::speed_mps() const {
@@ -26,7 +29,7 @@ double Weather::speed_mps() const {
     if (t >= 0.0 && t <= g.duration_s)
       u += 0.5 * g.amplitude_mps * (1.0 - std::cos(2.0 * std::numbers::pi * t / g.duration_s));
   }
-  return std::max(0.0, u);
+  return std::clamp(u, 0.0, kMaxWindSpeed_mps);
 }
 
 namespace {

@@ -9,6 +9,14 @@
 
 namespace harbour::sim {
 
+/// Physical bounds of the wind model (docs/reliability.md). Cranes stop work at 20-25 m/s and are stowed
+/// against storms; hurricane force (Beaufort 12) begins at 32.7 m/s. Past these the model is not meant to
+/// run.
+inline constexpr double kMaxMeanWind_mps = 50.0;  ///< [m/s] largest mean wind an exercise or instructor sets
+inline constexpr double kMaxGust_mps = 30.0;      ///< [m/s] largest amplitude of one gust
+inline constexpr double kMaxWindSpeed_mps =
+    70.0;  ///< [m/s] mean, turbulence and gusts together saturate here
+
 /// Weather at the start of an exercise (settings).
 struct WeatherSettings {
   double wind_mean_mps = 0.0;         ///< [m/s] 10-minute mean at boom height
@@ -35,7 +43,7 @@ class Weather {
  public:
   Weather(const WeatherSettings& settings, std::uint64_t seed);
 
-  /// Advances the turbulence and the clock by `dt_s`.
+  /// Advances the turbulence and the clock by `dt_s`; forgets gusts that are over.
   void step(double dt_s);
   /// Adds a scripted gust.
   void add_gust(const Gust& gust) { gusts_.push_back(gust); }
@@ -51,7 +59,7 @@ class Weather {
   core::Vec3 wind() const;
   /// The mean wind alone (no turbulence, no gusts) [m/s], world frame.
   core::Vec3 mean_wind() const;
-  /// Wind speed now [m/s].
+  /// Wind speed now [m/s], at most kMaxWindSpeed_mps however many gusts overlap.
   double speed_mps() const;
   double time_of_day_h() const;
   const WeatherSettings& settings() const { return settings_; }

@@ -1,0 +1,21 @@
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <string_view>
+
+namespace harbour::core {
+
+/// Longest name or id a data file, the command line or the records accept [bytes].
+inline constexpr std::size_t kMaxNameBytes = 256;
+
+/// Why `text` cannot be a name ("" when it can): empty, longer than `max_bytes`, not valid UTF-8, or holding
+/// a control character (NUL, newline, escape, DEL, C1). Names are printed to terminals and stored in
+/// databases, so they carry no hidden characters.
+std::string why_bad_name(std::string_view text, std::size_t max_bytes = kMaxNameBytes);
+
+/// `text` safe to print: control characters and bytes that are not UTF-8 become \xHH escapes, and at most
+/// `max_bytes` of it are shown (then "...").
+std::string printable(std::string_view text, std::size_t max_bytes = kMaxNameBytes);
+
+}  // namespace harbour::core
