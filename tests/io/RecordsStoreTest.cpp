@@ -212,7 +212,7 @@ TEST_P(RecordsStoreOn, KillingTheProcessMidExerciseKeepsTheMovesDoneSoFar) {
   RecordsStore after(connection);
   const auto rows = after.attempts();
   ASSERT_EQ(rows.size(), 1u);
-  EXPECT_EQ(rows[0].status, "running");  // never finished, never half-written
+  EXPECT_EQ(rows[0].status, "interrupted");  // never finished, never half-written; its process is gone
   EXPECT_EQ(rows[0].moves, 1);
 }
 

@@ -8,7 +8,7 @@ namespace harbour::core {
 
 /// Physics anomalies the simulation counts instead of throwing (MuJoCo style); tests fail on any.
 enum class Warning : std::uint8_t {
-  kNonFinite,       ///< a NaN or infinity appeared in a state variable
+  kNonFinite,       ///< a NaN, infinity or runaway value appeared in a state: the physics diverged
   kMassDrift,       ///< a conservation check failed beyond rounding
   kNegativeHeight,  ///< a bulk cell went below its base
   kSolverLimit,     ///< an iterative solver hit its iteration limit

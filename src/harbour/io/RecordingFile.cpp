@@ -3,13 +3,18 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cerrno>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <limits>
+#include <optional>
 #include <vector>
 
 #include "harbour/core/StateHash.h"
+#include "harbour/core/Text.h"
+#include "harbour/io/BoundedFile.h"
 
 namespace harbour::io {
 namespace {
@@ -29,6 +34,11 @@ class Writer {
     out.insert(out.end(), s.begin(), s.end());
   }
   std::vector<unsigned char> out;
+};
+
+/// The file ends inside a record (a RecordingFileError unless it is the torn tail of a v6 stream).
+struct Truncated : RecordingFileError {
+  explicit Truncated(const RecordingFileError& e) : RecordingFileError(e) {}
 };
 
 class Reader {
@@ -75,10 +85,12 @@ class Reader {
   [[noreturn]] void fail(const std::string& problem) const { throw RecordingFileError(file_, at_, problem); }
   std::size_t offset() const { return at_; }
   bool done() const { return at_ == in_.size(); }
+  void rewind(std::size_t offset) { at_ = offset; }
 
  private:
   void need(std::size_t n, const char* what) const {
-    if (n > in_.size() - at_) fail(std::string("truncated in ") + what);
+    if (n > in_.size() - at_)
+      throw Truncated(RecordingFileError(file_, at_, std::string("truncated in ") + what));
   }
   std::string file_;
   std::vector<unsigned char> in_;
@@ -115,65 +127,255 @@ std::uint64_t checksum(const std::vector<std::uint8_t>& bytes) {
 // step, kind, gust duration and amplitude, corner, value, wind mean, direction, turbulence (v4)
 constexpr std::size_t kCommandRecord = 8 + 1 + 2 * 8 + 4 + 4 * 8;
 
+// v6 record tags
+constexpr std::uint8_t kTagInput = 'I', kTagCheckpoint = 'C', kTagKeyframe = 'K', kTagCommand = 'M',
+                       kTagEnd = 'E';
+
+void put_input(Writer& w, const sim::Recording::InputChange& c) {
+  w.put(c.step);
+  w.put(c.inputs.sts.gantry);
+  w.put(c.inputs.sts.trolley);
+  w.put(c.inputs.sts.hoist);
+  w.put(c.inputs.sts.boom);
+  w.put(button_bits(c.inputs.sts));
+  w.put(c.inputs.sts.spreader_size_ft);
+}
+
+void put_command(Writer& w, const sim::Recording::Command& c) {
+  w.put(c.step);
+  w.put(static_cast<std::uint8_t>(c.command.kind));
+  w.put(c.command.gust.duration_s);
+  w.put(c.command.gust.amplitude_mps);
+  w.put(static_cast<std::int32_t>(c.command.corner));
+  w.put(c.command.value);
+  w.put(c.command.wind_mean_mps);
+  w.put(c.command.wind_from_rad);
+  w.put(c.command.turbulence);
+}
+
 }  // namespace
 
-void write_recording(const std::string& path, const sim::Recording& r) {
+RecordingWriter::RecordingWriter(const std::string& path, const sim::Recording& prefix) : path_(path) {
+  file_ = std::fopen(path.c_str(), "wb");
+  if (!file_) throw std::runtime_error(path + ": cannot be written (" + std::strerror(errno) + ")");
   Writer w;
   w.out.insert(w.out.end(), std::begin(kMagic), std::end(kMagic));
   w.put(kRecordingVersion);
   w.put(std::uint16_t{0});
-  w.put(r.scenario);
-  w.put(r.parent);
-  w.put(r.branch_step);
-  w.put(r.total_steps);
-  w.put(static_cast<std::uint32_t>(r.inputs.size()));
-  for (const auto& c : r.inputs) {
-    w.put(c.step);
-    w.put(c.inputs.sts.gantry);
-    w.put(c.inputs.sts.trolley);
-    w.put(c.inputs.sts.hoist);
-    w.put(c.inputs.sts.boom);
-    w.put(button_bits(c.inputs.sts));
-    w.put(c.inputs.sts.spreader_size_ft);
+  w.put(prefix.scenario);
+  w.put(prefix.parent);
+  w.put(prefix.branch_step);
+  write(w.out, true);
+  // the prefix in step order, as a run would have streamed it
+  std::size_t i = 0, c = 0, k = 0, m = 0;
+  for (std::int64_t step = 0; i < prefix.inputs.size() || c < prefix.checkpoints.size() ||
+                              k < prefix.keyframes.size() || m < prefix.commands.size();) {
+    for (; m < prefix.commands.size() && prefix.commands[m].step <= step; ++m)
+      on_command(prefix.commands[m]);
+    for (; i < prefix.inputs.size() && prefix.inputs[i].step <= step; ++i)
+      on_input(prefix.inputs[i]);
+    for (; c < prefix.checkpoints.size() && prefix.checkpoints[c].step <= step + 1; ++c)
+      on_checkpoint(prefix.checkpoints[c]);
+    for (; k < prefix.keyframes.size() && prefix.keyframes[k].step <= step + 1; ++k)
+      on_keyframe(prefix.keyframes[k]);
+    // next step anything happens at
+    std::int64_t next = std::numeric_limits<std::int64_t>::max();
+    if (m < prefix.commands.size()) next = std::min(next, prefix.commands[m].step);
+    if (i < prefix.inputs.size()) next = std::min(next, prefix.inputs[i].step);
+    if (c < prefix.checkpoints.size()) next = std::min(next, prefix.checkpoints[c].step - 1);
+    if (k < prefix.keyframes.size()) next = std::min(next, prefix.keyframes[k].step - 1);
+    step = std::max(step + 1, next);
   }
-  w.put(static_cast<std::uint32_t>(r.checkpoints.size()));
-  for (const auto& c : r.checkpoints) {
-    w.put(c.step);
-    w.put(c.state_hash);
-  }
-  // keyframes: the simulation's own state bytes (native little-endian doubles, as saved)
-  w.put(static_cast<std::uint32_t>(r.keyframes.size()));
-  for (const auto& k : r.keyframes) {
-    w.put(k.step);
-    w.put(static_cast<std::uint32_t>(k.state.size()));
-    w.put(checksum(k.state));
-    w.out.insert(w.out.end(), k.state.begin(), k.state.end());
-  }
-  w.put(static_cast<std::uint32_t>(r.commands.size()));
-  for (const auto& c : r.commands) {
-    w.put(c.step);
-    w.put(static_cast<std::uint8_t>(c.command.kind));
-    w.put(c.command.gust.duration_s);
-    w.put(c.command.gust.amplitude_mps);
-    w.put(static_cast<std::int32_t>(c.command.corner));
-    w.put(c.command.value);
-    w.put(c.command.wind_mean_mps);
-    w.put(c.command.wind_from_rad);
-    w.put(c.command.turbulence);
-  }
-  const std::string temporary = path + ".partial";
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    out.write(reinterpret_cast<const char*>(w.out.data()), static_cast<std::streamsize>(w.out.size()));
-    if (!out) throw std::runtime_error(temporary + ": cannot be written");
-  }
-  std::filesystem::rename(temporary, path);
 }
 
+RecordingWriter::~RecordingWriter() {
+  if (file_) std::fclose(file_);  // unfinished: what was written stays a readable, incomplete recording
+}
+
+void RecordingWriter::write(const std::vector<unsigned char>& bytes, bool flush) {
+  if (!file_) throw std::runtime_error(path_ + ": the recording is already finished");
+  if (std::fwrite(bytes.data(), 1, bytes.size(), file_) != bytes.size() || (flush && std::fflush(file_) != 0))
+    throw std::runtime_error(path_ + ": cannot be written (" + std::strerror(errno) + ")");
+}
+
+void RecordingWriter::on_input(const sim::Recording::InputChange& change) {
+  Writer w;
+  w.put(kTagInput);
+  put_input(w, change);
+  write(w.out, false);
+}
+
+void RecordingWriter::on_checkpoint(const sim::Recording::Checkpoint& checkpoint) {
+  Writer w;
+  w.put(kTagCheckpoint);
+  w.put(checkpoint.step);
+  w.put(checkpoint.state_hash);
+  write(w.out, true);  // every simulated second reaches the file: a crash loses at most one
+}
+
+void RecordingWriter::on_keyframe(const sim::Recording::Keyframe& k) {
+  // the simulation's own state bytes (native little-endian doubles, as saved)
+  Writer w;
+  w.put(kTagKeyframe);
+  w.put(k.step);
+  w.put(static_cast<std::uint32_t>(k.state.size()));
+  w.put(checksum(k.state));
+  w.out.insert(w.out.end(), k.state.begin(), k.state.end());
+  write(w.out, true);
+}
+
+void RecordingWriter::on_command(const sim::Recording::Command& command) {
+  Writer w;
+  w.put(kTagCommand);
+  put_command(w, command);
+  write(w.out, true);
+}
+
+void RecordingWriter::finish(std::int64_t total_steps) {
+  Writer w;
+  w.put(kTagEnd);
+  w.put(total_steps);
+  write(w.out, true);
+  const bool closed = std::fclose(file_) == 0;
+  file_ = nullptr;
+  if (!closed) throw std::runtime_error(path_ + ": cannot be written (" + std::strerror(errno) + ")");
+}
+
+void write_recording(const std::string& path, const sim::Recording& r) {
+  RecordingWriter writer(path, r);
+  writer.finish(r.total_steps);
+}
+
+namespace {
+
+sim::Recording::InputChange read_input(Reader& r, std::uint16_t version) {
+  sim::Recording::InputChange c;
+  c.step = r.get<std::int64_t>("input step");
+  c.inputs.sts.gantry = r.lever("gantry");
+  c.inputs.sts.trolley = r.lever("trolley");
+  c.inputs.sts.hoist = r.lever("hoist");
+  if (version >= 3) c.inputs.sts.boom = r.lever("boom");
+  set_buttons(c.inputs.sts, r.get<std::uint8_t>("buttons"));
+  if (version >= 3) {
+    c.inputs.sts.spreader_size_ft = r.get<std::uint8_t>("spreader size");
+    const auto size = c.inputs.sts.spreader_size_ft;
+    if (size != 0 && size != 20 && size != 40 && size != 45)
+      r.fail("spreader size button is not 0, 20, 40 or 45");
+  }
+  return c;
+}
+
+sim::Recording::Keyframe read_keyframe(Reader& r, std::uint16_t version, std::size_t n) {
+  sim::Recording::Keyframe k;
+  k.step = r.get<std::int64_t>("keyframe step");
+  const std::uint32_t size = r.count(1, "keyframe state");
+  const std::uint64_t sum = version >= 5 ? r.get<std::uint64_t>("keyframe checksum") : 0;
+  r.bytes(size, k.state, "keyframe state");
+  if (version >= 5 && checksum(k.state) != sum)
+    r.fail("keyframe " + std::to_string(n) + " is damaged (its checksum does not match its bytes)");
+  return k;
+}
+
+sim::Recording::Command read_command(Reader& r, std::size_t n) {
+  sim::Recording::Command c;
+  c.step = r.get<std::int64_t>("command step");
+  const auto kind = r.get<std::uint8_t>("command kind");
+  if (kind >= sim::InstructorCommand::kKinds)
+    r.fail("instructor command kind " + std::to_string(kind) + " unknown");
+  c.command.kind = static_cast<sim::InstructorCommand::Kind>(kind);
+  c.command.gust.duration_s = r.get<double>("gust duration");
+  c.command.gust.amplitude_mps = r.get<double>("gust amplitude");
+  c.command.corner = r.get<std::int32_t>("corner");
+  c.command.value = r.get<double>("command value");
+  c.command.wind_mean_mps = r.get<double>("wind mean");
+  c.command.wind_from_rad = r.get<double>("wind direction");
+  c.command.turbulence = r.get<double>("turbulence");
+  if (const std::string why = sim::why_invalid(c.command); !why.empty())
+    r.fail("instructor command " + std::to_string(n) + ": " + why);
+  return c;
+}
+
+// records in order, every checkpoint second covered, everything within the recording
+void check_recording(const sim::Recording& rec, Reader& r) {
+  if (rec.total_steps < 0 || rec.total_steps > kMaxRecordingSteps)
+    r.fail("length of " + std::to_string(rec.total_steps) + " steps is outside 0-" +
+           std::to_string(kMaxRecordingSteps) + " (24 h)");
+  if (rec.branch_step < 0 || rec.branch_step > rec.total_steps) r.fail("branch step outside the recording");
+  if (rec.parent.empty() && rec.branch_step != 0) r.fail("a branch step without a parent recording");
+  for (std::size_t n = 1; n < rec.inputs.size(); ++n)
+    if (rec.inputs[n].step < rec.inputs[n - 1].step) r.fail("input steps out of order");
+  // a checkpoint every simulated second: fewer means the header claims more than the data holds
+  const std::int64_t seconds = rec.total_steps / sim::Recorder::kCheckpointEvery;
+  if (static_cast<std::int64_t>(rec.checkpoints.size()) != seconds)
+    r.fail(std::to_string(rec.checkpoints.size()) + " checkpoints for " + std::to_string(seconds) +
+           " recorded seconds (a truncated or altered recording)");
+  for (std::size_t n = 0; n < rec.checkpoints.size(); ++n)
+    if (rec.checkpoints[n].step != static_cast<std::int64_t>(n + 1) * sim::Recorder::kCheckpointEvery)
+      r.fail("checkpoint " + std::to_string(n) + " is not at second " + std::to_string(n + 1));
+  for (std::size_t n = 0; n < rec.keyframes.size(); ++n) {
+    const std::int64_t step = rec.keyframes[n].step;
+    if (step < 0 || step > rec.total_steps) r.fail("keyframe step outside the recording");
+    if (n > 0 && step <= rec.keyframes[n - 1].step) r.fail("keyframes out of order");
+  }
+  for (std::size_t n = 0; n < rec.commands.size(); ++n) {
+    const std::int64_t step = rec.commands[n].step;
+    if (step < 0 || step > rec.total_steps) r.fail("instructor command step outside the recording");
+    if (n > 0 && step < rec.commands[n - 1].step) r.fail("instructor commands out of order");
+  }
+}
+
+// v6: tagged records until the end record; a file without one is what a killed run left
+void read_records(Reader& r, sim::Recording& rec) {
+  bool ended = false;
+  while (!r.done()) {
+    const std::size_t at = r.offset();
+    try {
+      const auto tag = r.get<std::uint8_t>("record tag");
+      if (tag == kTagInput) {
+        rec.inputs.push_back(read_input(r, kRecordingVersion));
+      } else if (tag == kTagCheckpoint) {
+        sim::Recording::Checkpoint c;
+        c.step = r.get<std::int64_t>("checkpoint step");
+        c.state_hash = r.get<std::uint64_t>("checkpoint hash");
+        rec.checkpoints.push_back(c);
+      } else if (tag == kTagKeyframe) {
+        rec.keyframes.push_back(read_keyframe(r, kRecordingVersion, rec.keyframes.size()));
+      } else if (tag == kTagCommand) {
+        rec.commands.push_back(read_command(r, rec.commands.size()));
+      } else if (tag == kTagEnd) {
+        rec.total_steps = r.get<std::int64_t>("total steps");
+        ended = true;
+        break;
+      } else {
+        r.fail("unknown record tag " + std::to_string(tag));
+      }
+    } catch (const Truncated&) {
+      r.rewind(at);  // the torn last record of a killed run
+      break;
+    }
+  }
+  if (ended) {
+    if (!r.done()) r.fail("unexpected bytes after the end record");
+    return;
+  }
+  // incomplete: it replays up to its last checkpoint, with what came before it
+  rec.complete = false;
+  rec.total_steps = rec.checkpoints.empty() ? rec.branch_step : rec.checkpoints.back().step;
+  rec.total_steps = std::max(rec.total_steps, rec.branch_step);
+  std::erase_if(rec.inputs, [&](const auto& c) { return c.step >= rec.total_steps; });
+  std::erase_if(rec.keyframes, [&](const auto& k) { return k.step > rec.total_steps; });
+  std::erase_if(rec.commands, [&](const auto& c) { return c.step >= rec.total_steps; });
+  std::erase_if(rec.checkpoints, [&](const auto& c) { return c.step > rec.total_steps; });
+}
+
+}  // namespace
+
 sim::Recording read_recording(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw RecordingFileError(path, 0, "cannot be opened");
-  Reader r(path, std::vector<unsigned char>(std::istreambuf_iterator<char>(in), {}));
+  std::string why;
+  std::optional<std::string> bytes = read_bounded_file(path, kMaxRecordingBytes, why);
+  if (!bytes) throw RecordingFileError(path, 0, why);
+  Reader r(path, std::vector<unsigned char>(bytes->begin(), bytes->end()));
+  bytes.reset();
   char magic[4];
   for (char& m : magic)
     m = static_cast<char>(r.get<std::uint8_t>("magic"));
@@ -188,76 +390,40 @@ sim::Recording read_recording(const std::string& path) {
   r.get<std::uint16_t>("reserved");
   sim::Recording rec;
   rec.scenario = r.text("scenario name");
+  if (const std::string bad = core::why_bad_name(rec.scenario); !bad.empty())
+    r.fail("the scenario name " + bad);
   rec.parent = r.text("parent");
+  if (const std::string bad = core::why_bad_name(rec.parent, 4096); !rec.parent.empty() && !bad.empty())
+    r.fail("the parent recording's name " + bad);
   rec.branch_step = r.get<std::int64_t>("branch step");
+  if (version >= 6) {
+    read_records(r, rec);
+    check_recording(rec, r);
+    return rec;
+  }
   rec.total_steps = r.get<std::int64_t>("total steps");
   const std::uint32_t inputs = r.count(version >= 3 ? kInputRecord : kInputRecord_v2, "inputs");
-  for (std::uint32_t n = 0; n < inputs; ++n) {
-    sim::Recording::InputChange c;
-    c.step = r.get<std::int64_t>("input step");
-    c.inputs.sts.gantry = r.lever("gantry");
-    c.inputs.sts.trolley = r.lever("trolley");
-    c.inputs.sts.hoist = r.lever("hoist");
-    if (version >= 3) c.inputs.sts.boom = r.lever("boom");
-    set_buttons(c.inputs.sts, r.get<std::uint8_t>("buttons"));
-    if (version >= 3) {
-      c.inputs.sts.spreader_size_ft = r.get<std::uint8_t>("spreader size");
-      const auto size = c.inputs.sts.spreader_size_ft;
-      if (size != 0 && size != 20 && size != 40 && size != 45)
-        r.fail("spreader size button is not 0, 20, 40 or 45");
-    }
-    if (!rec.inputs.empty() && c.step < rec.inputs.back().step) r.fail("input steps out of order");
-    rec.inputs.push_back(c);
-  }
+  for (std::uint32_t n = 0; n < inputs; ++n)
+    rec.inputs.push_back(read_input(r, version));
   const std::uint32_t checkpoints = r.count(kCheckpointRecord, "checkpoints");
   for (std::uint32_t n = 0; n < checkpoints; ++n) {
     sim::Recording::Checkpoint c;
     c.step = r.get<std::int64_t>("checkpoint step");
     c.state_hash = r.get<std::uint64_t>("checkpoint hash");
-    if (c.step <= 0 || c.step > rec.total_steps) r.fail("checkpoint step outside the recording");
-    if (!rec.checkpoints.empty() && c.step <= rec.checkpoints.back().step) r.fail("checkpoints out of order");
     rec.checkpoints.push_back(c);
   }
   if (version >= 2) {
     const std::uint32_t keyframes = r.count(version >= 5 ? 8 + 4 + 8 : 8 + 4, "keyframes");
-    for (std::uint32_t n = 0; n < keyframes; ++n) {
-      sim::Recording::Keyframe k;
-      k.step = r.get<std::int64_t>("keyframe step");
-      const std::uint32_t size = r.count(1, "keyframe state");
-      const std::uint64_t sum = version >= 5 ? r.get<std::uint64_t>("keyframe checksum") : 0;
-      r.bytes(size, k.state, "keyframe state");
-      if (version >= 5 && checksum(k.state) != sum)
-        r.fail("keyframe " + std::to_string(n) + " is damaged (its checksum does not match its bytes)");
-      if (k.step < 0 || k.step > rec.total_steps) r.fail("keyframe step outside the recording");
-      if (!rec.keyframes.empty() && k.step <= rec.keyframes.back().step) r.fail("keyframes out of order");
-      rec.keyframes.push_back(std::move(k));
-    }
+    for (std::uint32_t n = 0; n < keyframes; ++n)
+      rec.keyframes.push_back(read_keyframe(r, version, n));
   }
   if (version >= 4) {
     const std::uint32_t commands = r.count(kCommandRecord, "instructor commands");
-    for (std::uint32_t n = 0; n < commands; ++n) {
-      sim::Recording::Command c;
-      c.step = r.get<std::int64_t>("command step");
-      const auto kind = r.get<std::uint8_t>("command kind");
-      if (kind >= sim::InstructorCommand::kKinds)
-        r.fail("instructor command kind " + std::to_string(kind) + " unknown");
-      c.command.kind = static_cast<sim::InstructorCommand::Kind>(kind);
-      c.command.gust.duration_s = r.get<double>("gust duration");
-      c.command.gust.amplitude_mps = r.get<double>("gust amplitude");
-      c.command.corner = r.get<std::int32_t>("corner");
-      c.command.value = r.get<double>("command value");
-      c.command.wind_mean_mps = r.get<double>("wind mean");
-      c.command.wind_from_rad = r.get<double>("wind direction");
-      c.command.turbulence = r.get<double>("turbulence");
-      if (c.step < 0 || c.step > rec.total_steps) r.fail("instructor command step outside the recording");
-      if (!rec.commands.empty() && c.step < rec.commands.back().step)
-        r.fail("instructor commands out of order");
-      if (const std::string why = sim::why_invalid(c.command); !why.empty())
-        r.fail("instructor command " + std::to_string(n) + ": " + why);
-      rec.commands.push_back(c);
-    }
+    for (std::uint32_t n = 0; n < commands; ++n)
+      rec.commands.push_back(read_command(r, n));
   }
   if (!r.done()) r.fail("unexpected bytes after the last record");
+  check_recording(rec, r);
   return rec;
 }
 

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -15,16 +16,50 @@ class RecordingFileError : public std::runtime_error {
 };
 
 /// Version of the recording format written by this build ("HSRC" files).
-/// 5 added a checksum to every keyframe; 4 added the instructor's commands; 3 the boom lever, horn, flipper
-/// and spreader-size controls; 2 keyframes. Versions 1-4 are still read (the keyframes of 2 and 3 hold an
-/// older machine state: a seek from one is refused with core::StateError).
-inline constexpr std::uint16_t kRecordingVersion = 5;
+/// 6 streams tagged records (inputs, checkpoints, keyframes, commands) as they happen and ends with an end
+/// record, so a killed run leaves a replayable prefix; 5 added a checksum to every keyframe; 4 the
+/// instructor's commands; 3 the boom lever, horn, flipper and spreader-size controls; 2 keyframes. Versions
+/// 1-5 are still read (the keyframes of 2 and 3 hold an older machine state: a seek from one is refused with
+/// core::StateError).
+inline constexpr std::uint16_t kRecordingVersion = 6;
 
-/// Writes a recording (little-endian, magic "HSRC", kRecordingVersion; see docs/architecture.md) to a
-/// temporary file and renames it over `path`, so a crash never leaves a half-written recording.
+/// Longest recording read [steps]: 24 hours at 1 kHz (docs/reliability.md).
+inline constexpr std::int64_t kMaxRecordingSteps = 24LL * 3600 * 1000;
+/// Largest recording file read [bytes].
+inline constexpr std::size_t kMaxRecordingBytes = std::size_t{1} << 30;
+
+/// Streams a recording to a file as it is made (a RecordingSink for sim::Recorder): the header and any prefix
+/// at once, each record as it comes, flushed at every checkpoint (each simulated second). A run that is
+/// killed leaves a file read_recording() reads as an incomplete recording up to its last checkpoint.
+class RecordingWriter final : public sim::RecordingSink {
+ public:
+  /// Creates (or truncates) `path` and writes the header and everything `prefix` already holds; throws
+  /// std::runtime_error naming the file when it cannot be written.
+  RecordingWriter(const std::string& path, const sim::Recording& prefix);
+  ~RecordingWriter() override;
+  RecordingWriter(const RecordingWriter&) = delete;
+  RecordingWriter& operator=(const RecordingWriter&) = delete;
+
+  void on_input(const sim::Recording::InputChange& change) override;
+  void on_checkpoint(const sim::Recording::Checkpoint& checkpoint) override;
+  void on_keyframe(const sim::Recording::Keyframe& keyframe) override;
+  void on_command(const sim::Recording::Command& command) override;
+  /// Writes the end record and closes the file: the recording is complete, `total_steps` long.
+  void finish(std::int64_t total_steps);
+  const std::string& path() const { return path_; }
+
+ private:
+  void write(const std::vector<unsigned char>& bytes, bool flush);
+  std::string path_;
+  std::FILE* file_ = nullptr;
+};
+
+/// Writes a whole recording to `path` (through a RecordingWriter).
 void write_recording(const std::string& path, const sim::Recording& recording);
-/// Reads a recording; throws RecordingFileError (naming the file and byte) for a wrong magic, an unknown
-/// version, truncated data, records out of order, values out of range or a damaged keyframe.
+/// Reads a recording (a regular file of at most kMaxRecordingBytes); throws RecordingFileError (naming the
+/// file and byte) for a wrong magic, an unknown version, truncated data (except the torn last record of an
+/// incomplete v6 recording), records out of order, values out of range, checkpoints that do not cover every
+/// second of it, a branch step beyond it, or a damaged keyframe.
 sim::Recording read_recording(const std::string& path);
 
 }  // namespace harbour::io

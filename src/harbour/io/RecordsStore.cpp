@@ -2,10 +2,22 @@
 
 #include <soci/soci.h>
 
+#include <signal.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <typeinfo>
 #include <utility>
+#include <vector>
+
+#include "harbour/core/Text.h"
 
 namespace harbour::io {
 namespace {
@@ -13,13 +25,82 @@ namespace {
 // every table with the columns this build reads and writes
 constexpr std::pair<const char*, const char*> kTables[] = {
     {"trainees", "id, name"},
-    {"attempts", "id, trainee, exercise, status, score, passed, parent, branch_step, recording"},
+    {"attempts", "id, trainee, exercise, status, score, passed, parent, branch_step, recording, process"},
     {"moves", "attempt, idx, completed_at_s, cycle_time_s"},
     {"events", "attempt, at_s, kind, value"},
     {"metrics", "attempt, name, value"},
 };
 
+constexpr const char* kStatuses[] = {"running", "finished", "interrupted", "diverged"};
+
+// this process as "host:pid:start", the start in clock ticks after boot (a reused pid has another)
+std::string start_ticks(long pid) {
+  std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
+  std::string stat;
+  std::getline(in, stat);
+  const auto close = stat.rfind(')');  // the command name may hold spaces and parentheses
+  if (close == std::string::npos) return {};
+  std::istringstream fields(stat.substr(close + 2));
+  std::string field;
+  for (int n = 3; n <= 22 && fields >> field; ++n)
+    if (n == 22) return field;
+  return {};
+}
+
+std::string host_name() {
+  char name[256] = {};
+  ::gethostname(name, sizeof name - 1);
+  return name;
+}
+
+std::string this_process() {
+  return host_name() + ":" + std::to_string(::getpid()) + ":" + start_ticks(::getpid());
+}
+
+// a process of this host named by this_process() that has ended (false for other hosts: not known here)
+bool ended_here(const std::string& process) {
+  const auto first = process.find(':'), second = process.rfind(':');
+  if (first == std::string::npos || second == first || process.substr(0, first) != host_name()) return false;
+  long pid = 0;
+  try {
+    pid = std::stol(process.substr(first + 1, second - first - 1));
+  } catch (const std::exception&) {
+    return false;
+  }
+  if (pid <= 0) return false;
+  if (::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) return true;
+  return start_ticks(pid) != process.substr(second + 1);
+}
+
 }  // namespace
+
+std::string records_connection(const std::string& connection) {
+  if (connection.rfind("postgresql://", 0) == 0) return connection;
+  std::string file = connection;
+  if (file.rfind("sqlite3://", 0) == 0) {
+    file = file.substr(10);
+    if (file.rfind("db=", 0) == 0) file = file.substr(3);
+    if (file.size() >= 2 && file.front() == '"' && file.back() == '"') file = file.substr(1, file.size() - 2);
+  } else if (connection.find("://") != std::string::npos) {
+    throw std::runtime_error("records database '" + core::printable(connection) +
+                             "': only sqlite3:// and postgresql:// connections are known");
+  }
+  const auto refuse = [&](const std::string& why) {
+    throw std::runtime_error("records database '" + core::printable(connection) + "': " + why);
+  };
+  if (file.empty()) refuse("no database file named");
+  if (file == ":memory:" || file.rfind("file:", 0) == 0)
+    refuse("an in-memory or URI database would lose the records: name a file");
+  if (const std::string why = core::why_bad_name(file, 4096); !why.empty()) refuse("the file name " + why);
+  if (file.find('"') != std::string::npos)
+    refuse("a file name with a double quote cannot be passed to SQLite");
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::is_directory(file, ec)) refuse("is a folder, not a database file");
+  const fs::path folder = fs::path(file).has_parent_path() ? fs::path(file).parent_path() : fs::path(".");
+  if (!fs::is_directory(folder, ec)) refuse("its folder " + folder.string() + " does not exist");
+  return "sqlite3://db=\"" + file + "\"";
+}
 
 struct RecordsStore::Impl {
   std::string connection;
@@ -38,28 +119,109 @@ struct RecordsStore::Impl {
                                ": a value of the wrong type (the database was written by something else?)");
     }
   }
+
+  /// Runs `work` in a transaction that holds the write lock from its start (SQLite: BEGIN IMMEDIATE, so a
+  /// read-then-write never meets another writer's lock half-way; PostgreSQL: the attempts table locked
+  /// against other writers), committed at the end, rolled back on an error.
+  template <typename Work>
+  auto write_transaction(Work&& work) -> decltype(work()) {
+    const bool sqlite = sql.get_backend_name() == "sqlite3";
+    if (sqlite) {
+      sql << "BEGIN IMMEDIATE";
+    } else {
+      sql << "BEGIN";
+      sql << "LOCK TABLE attempts IN SHARE ROW EXCLUSIVE MODE";
+    }
+    try {
+      if constexpr (std::is_void_v<decltype(work())>) {
+        work();
+        sql << "COMMIT";
+      } else {
+        auto result = work();
+        sql << "COMMIT";
+        return result;
+      }
+    } catch (...) {
+      try {
+        sql << "ROLLBACK";
+      } catch (...) {  // the connection is gone: its transaction with it
+      }
+      throw;
+    }
+  }
+
+  /// Names of the tables in the database (its current schema on PostgreSQL).
+  std::vector<std::string> tables() {
+    std::vector<std::string> names;
+    const std::string query =
+        sql.get_backend_name() == "sqlite3"
+            ? "SELECT name FROM sqlite_master WHERE type = 'table' AND name NOT LIKE 'sqlite_%'"
+            : "SELECT table_name FROM information_schema.tables WHERE table_schema = current_schema()";
+    soci::rowset<std::string> rows = (sql.prepare << query);
+    for (const std::string& name : rows)
+      names.push_back(name);
+    return names;
+  }
 };
 
 RecordsStore::RecordsStore(const std::string& connection) : impl_(std::make_unique<Impl>()) {
   impl_->connection = connection;
+  const std::string soci_connection = records_connection(connection);
   try {
-    impl_->sql.open(connection);
-    soci::session& sql = impl_->sql;
-    if (sql.get_backend_name() == "sqlite3") {
+    impl_->sql.open(soci_connection);
+  } catch (const std::exception& e) {
+    throw std::runtime_error("records database '" + connection + "': " + e.what());
+  }
+  soci::session& sql = impl_->sql;
+  const bool sqlite = sql.get_backend_name() == "sqlite3";
+  // settings of this connection only: nothing is written yet
+  impl_->guarded("opening", [&] {
+    if (sqlite) {
       // another station or the console may be writing: wait for its lock instead of failing at once
       sql << "PRAGMA busy_timeout=10000";
-      sql << "PRAGMA journal_mode=WAL";
       sql << "PRAGMA synchronous=FULL";
       sql << "PRAGMA foreign_keys=ON";
-    } else if (sql.get_backend_name() == "postgresql") {
+    } else {
       sql << "SET client_min_messages = WARNING";  // no NOTICE lines for tables that already exist
     }
+  });
+  // a database of something else, or tables of ours from another build: refuse before changing anything
+  bool upgrade_process_column = false;
+  const std::vector<std::string> existing =
+      impl_->guarded("checking its tables", [&] { return impl_->tables(); });
+  for (const std::string& table : existing)
+    if (std::none_of(std::begin(kTables), std::end(kTables), [&](const auto& t) { return table == t.first; }))
+      throw std::runtime_error("records database '" + connection + "': it holds table '" +
+                               core::printable(table) +
+                               "', which is not harboursim's: a database of something else");
+  for (const auto& [table, columns] : kTables) {
+    if (std::find(existing.begin(), existing.end(), table) == existing.end()) continue;
+    if (std::string(table) == "attempts") {
+      // databases of the build before the process column gain it (the only difference allowed)
+      try {
+        sql << "SELECT process FROM attempts WHERE 1 = 0";
+      } catch (const soci::soci_error&) {
+        upgrade_process_column = true;
+      }
+    }
+    const std::string wanted =
+        upgrade_process_column && std::string(table) == "attempts"
+            ? "id, trainee, exercise, status, score, passed, parent, branch_step, recording"
+            : columns;
+    impl_->guarded(
+        std::string("table '") + table + "' is not the one this build uses (columns " + columns + ")",
+        [&] { sql << "SELECT " << wanted << " FROM " << table << " WHERE 1 = 0"; });
+  }
+  impl_->guarded("creating its tables", [&] {
+    if (sqlite) sql << "PRAGMA journal_mode=WAL";
+    if (upgrade_process_column) sql << "ALTER TABLE attempts ADD COLUMN process TEXT NOT NULL DEFAULT ''";
     // the portable subset of SQL that SQLite and PostgreSQL both accept
     sql << "CREATE TABLE IF NOT EXISTS trainees (id TEXT PRIMARY KEY, name TEXT NOT NULL)";
     sql << "CREATE TABLE IF NOT EXISTS attempts (id BIGINT PRIMARY KEY, trainee TEXT NOT NULL REFERENCES "
            "trainees(id),"
            " exercise TEXT NOT NULL, status TEXT NOT NULL, score DOUBLE PRECISION, passed INTEGER NOT NULL,"
-           " parent BIGINT, branch_step BIGINT NOT NULL, recording TEXT NOT NULL)";
+           " parent BIGINT, branch_step BIGINT NOT NULL, recording TEXT NOT NULL, process TEXT NOT NULL "
+           "DEFAULT '')";
     sql << "CREATE TABLE IF NOT EXISTS moves (attempt BIGINT NOT NULL REFERENCES attempts(id), idx INTEGER "
            "NOT NULL,"
            " completed_at_s DOUBLE PRECISION NOT NULL, cycle_time_s DOUBLE PRECISION NOT NULL, PRIMARY KEY "
@@ -69,20 +231,52 @@ RecordsStore::RecordsStore(const std::string& connection) : impl_(std::make_uniq
     sql << "CREATE TABLE IF NOT EXISTS metrics (attempt BIGINT NOT NULL REFERENCES attempts(id), name TEXT "
            "NOT NULL,"
            " value DOUBLE PRECISION NOT NULL, PRIMARY KEY (attempt, name))";
-  } catch (const std::exception& e) {
-    throw std::runtime_error("records database '" + connection + "': " + e.what());
-  }
-  // tables of the same name made by something else: refuse before anything is written into them
-  for (const auto& [table, columns] : kTables)
-    impl_->guarded(
-        std::string("table '") + table + "' is not the one this build uses (columns " + columns + ")",
-        [&] { impl_->sql << "SELECT " << columns << " FROM " << table << " WHERE 1 = 0"; });
+  });
+  mark_interrupted_attempts();
+}
+
+int RecordsStore::mark_interrupted_attempts() {
+  return impl_->guarded("marking interrupted attempts", [&] {
+    std::vector<std::pair<long long, std::string>> running;
+    soci::rowset<soci::row> rows =
+        (impl_->sql.prepare << "SELECT id, process FROM attempts WHERE status = 'running'");
+    for (const soci::row& r : rows)
+      running.emplace_back(r.get<long long>(0), r.get<std::string>(1));
+    int marked = 0;
+    for (const auto& [id, process] : running) {
+      if (!ended_here(process)) continue;
+      const long long a = id;
+      impl_->sql << "UPDATE attempts SET status = 'interrupted' WHERE id = :a AND status = 'running'",
+          soci::use(a);
+      ++marked;
+    }
+    return marked;
+  });
 }
 
 RecordsStore::~RecordsStore() = default;
 
+namespace {
+
+void check_trainee(const std::string& id, const std::string& name) {
+  if (const std::string why = core::why_bad_name(id, 64); !why.empty())
+    throw std::invalid_argument("trainee id '" + core::printable(id, 64) + "' " + why);
+  if (const std::string why = core::why_bad_name(name); !why.empty())
+    throw std::invalid_argument("trainee name '" + core::printable(name) + "' " + why);
+}
+
+}  // namespace
+
+void RecordsStore::ensure_trainee(const std::string& id, const std::string& name) {
+  check_trainee(id, name);
+  impl_->guarded("adding trainee '" + id + "'", [&] {
+    impl_->sql << "INSERT INTO trainees (id, name) VALUES (:id, :name) ON CONFLICT (id) DO NOTHING",
+        soci::use(id), soci::use(name);
+  });
+}
+
 void RecordsStore::add_trainee(const std::string& id, const std::string& name) {
-  if (id.empty() || name.empty()) throw std::runtime_error("a trainee needs an id and a name");
+  check_trainee(id, name);
   if (has_trainee(id)) throw std::runtime_error("trainee '" + id + "' already exists");
   impl_->guarded("adding trainee '" + id + "'", [&] {
     impl_->sql << "INSERT INTO trainees (id, name) VALUES (:id, :name)", soci::use(id), soci::use(name);
@@ -108,25 +302,29 @@ std::vector<TraineeRow> RecordsStore::trainees() {
 }
 
 std::int64_t RecordsStore::begin_attempt(const std::string& trainee, const std::string& exercise,
-                                         std::optional<std::int64_t> parent, std::int64_t branch_step) {
+                                         std::optional<std::int64_t> parent, std::int64_t branch_step,
+                                         const std::string& recording) {
   if (!has_trainee(trainee))
-    throw std::runtime_error("no trainee '" + trainee + "' (add it with: harboursim trainees add)");
+    throw std::runtime_error("no trainee '" + core::printable(trainee) +
+                             "' (add it with: harboursim trainees add)");
+  const std::string process = this_process();
   return impl_->guarded("starting an attempt of trainee '" + trainee + "'", [&] {
-    soci::transaction tr(impl_->sql);
-    long long last = 0;
-    soci::indicator ind = soci::i_null;
-    impl_->sql << "SELECT MAX(id) FROM attempts", soci::into(last, ind);
-    const long long id = (ind == soci::i_ok ? last : 0) + 1;
-    long long parent_id = parent.value_or(0);
-    soci::indicator parent_ind = parent ? soci::i_ok : soci::i_null;
-    const long long branch = branch_step;
-    impl_->sql << "INSERT INTO attempts (id, trainee, exercise, status, score, passed, parent, branch_step, "
-                  "recording)"
-                  " VALUES (:id, :trainee, :exercise, 'running', NULL, 0, :parent, :branch, '')",
-        soci::use(id), soci::use(trainee), soci::use(exercise), soci::use(parent_id, parent_ind),
-        soci::use(branch);
-    tr.commit();
-    return static_cast<std::int64_t>(id);
+    return impl_->write_transaction([&] {
+      long long last = 0;
+      soci::indicator ind = soci::i_null;
+      impl_->sql << "SELECT MAX(id) FROM attempts", soci::into(last, ind);
+      const long long id = (ind == soci::i_ok ? last : 0) + 1;
+      long long parent_id = parent.value_or(0);
+      soci::indicator parent_ind = parent ? soci::i_ok : soci::i_null;
+      const long long branch = branch_step;
+      impl_->sql
+          << "INSERT INTO attempts (id, trainee, exercise, status, score, passed, parent, branch_step, "
+             "recording, process)"
+             " VALUES (:id, :trainee, :exercise, 'running', NULL, 0, :parent, :branch, :recording, :process)",
+          soci::use(id), soci::use(trainee), soci::use(exercise), soci::use(parent_id, parent_ind),
+          soci::use(branch), soci::use(recording), soci::use(process);
+      return static_cast<std::int64_t>(id);
+    });
   });
 }
 
@@ -147,7 +345,9 @@ void RecordsStore::record_event(std::int64_t attempt, double at_s, const std::st
 }
 
 void RecordsStore::finish_attempt(std::int64_t attempt, const sim::Metrics& m, const sim::Score& s,
-                                  const std::string& recording) {
+                                  const std::string& recording, const std::string& status) {
+  if (status != "finished" && status != "interrupted" && status != "diverged")
+    throw std::invalid_argument("an attempt ends finished, interrupted or diverged, not '" + status + "'");
   impl_->guarded("finishing attempt " + std::to_string(attempt), [&] {
     // the final figures in one transaction: an attempt is either still running or completely finished
     soci::transaction tr(impl_->sql);
@@ -182,9 +382,8 @@ void RecordsStore::finish_attempt(std::int64_t attempt, const sim::Metrics& m, c
     }
     const double score = s.total;
     const int passed = s.passed ? 1 : 0;
-    impl_->sql
-        << "UPDATE attempts SET status = 'finished', score = :s, passed = :p, recording = :r WHERE id = :a",
-        soci::use(score), soci::use(passed), soci::use(recording), soci::use(a);
+    impl_->sql << "UPDATE attempts SET status = :st, score = :s, passed = :p, recording = :r WHERE id = :a",
+        soci::use(status), soci::use(score), soci::use(passed), soci::use(recording), soci::use(a);
     tr.commit();
   });
 }
@@ -211,8 +410,9 @@ std::vector<AttemptRow> RecordsStore::attempts(const std::optional<std::string>&
         a.branch_step = r.get<long long>(7);
         a.recording = r.get<std::string>(8);
         const int passed = r.get<int>(5);
-        if (a.status != "running" && a.status != "finished")
-          throw soci::soci_error("status '" + a.status + "' is neither running nor finished");
+        if (std::find(std::begin(kStatuses), std::end(kStatuses), a.status) == std::end(kStatuses))
+          throw soci::soci_error("status '" + core::printable(a.status) +
+                                 "' is not running, finished, interrupted or diverged");
         if (passed != 0 && passed != 1)
           throw soci::soci_error("passed is " + std::to_string(passed) + ", not 0 or 1");
         if (a.score && !(*a.score >= 0.0 && *a.score <= 100.0))

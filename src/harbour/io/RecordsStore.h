@@ -21,23 +21,31 @@ struct AttemptRow {
   std::int64_t id = 0;
   std::string trainee;
   std::string exercise;
-  std::string status;  ///< running, finished
+  std::string status;  ///< running, finished, interrupted (its process ended first), diverged (physics)
   std::optional<double> score;
   bool passed = false;
   std::optional<std::int64_t> parent;  ///< the attempt an instructor took over from
   std::int64_t branch_step = 0;
-  std::string recording;
-  int moves = 0;  ///< moves stored so far
+  std::string recording;  ///< recording file (given at the start: an interrupted one's replayable prefix)
+  int moves = 0;          ///< moves stored so far
 };
+
+/// The SOCI connection string for `connection`: "sqlite3://db=FILE", "sqlite3://FILE" or a plain FILE (an
+/// SQLite file that must persist: not ":memory:", not empty, its folder must exist), or
+/// "postgresql://..." as it is. Throws std::invalid_argument saying what is wrong.
+std::string records_connection(const std::string& connection);
 
 /// The trainee database: trainees, attempts, moves and events as they happen, final metrics and score. One
 /// interface over SOCI: "sqlite3://db=<file>" (the default: one file, WAL, waiting up to 10 s for another
 /// writer's lock) or "postgresql://dbname=... host=..." for a training centre; the SQL is the portable subset
-/// both accept. Every write commits at once, so a crash loses nothing already measured.
+/// both accept. Every write commits at once, so a crash loses nothing already measured; any number of
+/// stations may write at once. An attempt remembers the process running it: when a database is opened,
+/// attempts still "running" whose process on this host is gone are marked interrupted.
 class RecordsStore {
  public:
   /// Opens (and creates the schema in) a database; throws std::runtime_error naming the connection on
-  /// failure, or when a table of ours exists without the columns this build uses (nothing is written then).
+  /// failure, when the database holds tables that are not ours, or when a table of ours lacks the columns
+  /// this build uses: checked before anything is written, so a refused database is left as it was.
   /// Every later error names the connection and what was being done; attempts() refuses a row whose status,
   /// pass flag, score or branch step no run of ours could have written, naming the attempt.
   explicit RecordsStore(const std::string& connection);
@@ -45,17 +53,26 @@ class RecordsStore {
   RecordsStore(const RecordsStore&) = delete;
   RecordsStore& operator=(const RecordsStore&) = delete;
 
+  /// Adds a trainee; the id and name are names (core::why_bad_name), the id at most 64 bytes.
   void add_trainee(const std::string& id, const std::string& name);
+  /// Adds the trainee unless one with this id exists (two stations may do so at once).
+  void ensure_trainee(const std::string& id, const std::string& name);
   std::vector<TraineeRow> trainees();
   bool has_trainee(const std::string& id);
 
-  /// Starts an attempt and returns its id.
+  /// Starts an attempt, owned by this process, and returns its id.
   std::int64_t begin_attempt(const std::string& trainee, const std::string& exercise,
-                             std::optional<std::int64_t> parent = std::nullopt, std::int64_t branch_step = 0);
+                             std::optional<std::int64_t> parent = std::nullopt, std::int64_t branch_step = 0,
+                             const std::string& recording = "");
   void record_move(std::int64_t attempt, int index, double completed_at_s, double cycle_time_s);
   void record_event(std::int64_t attempt, double at_s, const std::string& kind, double value);
+  /// Stores the final metrics and score; `status` is finished, interrupted (stopped before its end, e.g.
+  /// Ctrl-C) or diverged (the physics stopped it).
   void finish_attempt(std::int64_t attempt, const sim::Metrics& metrics, const sim::Score& score,
-                      const std::string& recording);
+                      const std::string& recording, const std::string& status = "finished");
+  /// Marks attempts still running whose process on this host has ended as interrupted; returns how many.
+  /// (The constructor does this.)
+  int mark_interrupted_attempts();
   /// Attempts, newest first, optionally of one trainee.
   std::vector<AttemptRow> attempts(const std::optional<std::string>& trainee = std::nullopt);
 

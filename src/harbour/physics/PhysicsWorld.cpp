@@ -10,6 +10,8 @@
 #include <cstring>
 #include <deque>
 #include <mutex>
+#include <stdexcept>
+#include <string>
 
 #include "harbour/core/Assert.h"
 #include "harbour/core/StateHash.h"
@@ -38,11 +40,37 @@ void on_ode_message(int number, const char* format, va_list args) {
   std::fprintf(stderr, "\n");
 }
 
+// ODE's errors and internal asserts (e.g. "dxNormalize4") abort the process once their handler returns;
+// thrown instead, they unwind out of dWorldStep to PhysicsWorld::step, which stops that world
+struct OdeFatal : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+void on_ode_fatal(int number, const char* format, va_list args) {
+  char text[256];
+  std::vsnprintf(text, sizeof text, format, args);
+  throw OdeFatal("ODE error " + std::to_string(number) + ": " + text);
+}
+
+// bounds of anything that moves in a harbour, far above the fastest real motion (a box falling 60 m reaches
+// 34 m/s); a body beyond them has diverged (docs/reliability.md)
+constexpr double kMaxSpeed_mps = 300.0;
+constexpr double kMaxAngularSpeed_rad_s = 200.0;
+constexpr double kMaxDistance_m = 1e5;
+constexpr double kMaxForce_n = 1e9;
+constexpr double kMaxTorque_n_m = 1e10;
+
+double norm(const dReal* v) {
+  return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+}
+
 void init_ode_once() {
   static std::once_flag once;
   std::call_once(once, [] {
     dInitODE2(0);
     dSetMessageHandler(&on_ode_message);
+    dSetErrorHandler(&on_ode_fatal);
+    dSetDebugHandler(&on_ode_fatal);
     HARBOUR_ASSERT(dCheckConfiguration("ODE_double_precision"), "ODE must be built in double precision");
   });
 }
@@ -489,12 +517,42 @@ int PhysicsWorld::take_solver_messages() {
   return n;
 }
 
+std::string PhysicsWorld::find_divergence(bool forces) const {
+  for (std::size_t n = 0; n < ode_->bodies.size(); ++n) {
+    const dBodyID b = ode_->bodies[n].id;
+    const dReal* q = dBodyGetQuaternion(b);
+    const double checks[][2] = {{norm(dBodyGetPosition(b)), kMaxDistance_m},
+                                {norm(dBodyGetLinearVel(b)), kMaxSpeed_mps},
+                                {norm(dBodyGetAngularVel(b)), kMaxAngularSpeed_rad_s},
+                                {std::abs(q[0]) + norm(q + 1), 2.0},
+                                {forces ? norm(dBodyGetForce(b)) : 0.0, kMaxForce_n},
+                                {forces ? norm(dBodyGetTorque(b)) : 0.0, kMaxTorque_n_m}};
+    const char* names[] = {"position",    "speed",         "angular speed",
+                           "orientation", "applied force", "applied torque"};
+    for (std::size_t k = 0; k < std::size(checks); ++k)
+      if (!(checks[k][0] <= checks[k][1]))  // also true for NaN
+        return "body " + std::to_string(n) + ": " + names[k] + " " + std::to_string(checks[k][0]) +
+               " is beyond " + std::to_string(checks[k][1]);
+  }
+  return {};
+}
+
 void PhysicsWorld::step(double dt_s) {
+  if (diverged()) return;
   step_s_ = dt_s;
+  // what ODE would be handed: a diverged state stops the world before it reaches ODE's asserts
+  divergence_ = find_divergence(true);
+  if (diverged()) return;
   g_stepping = this;
-  collide();
-  dWorldStep(ode_->world, dt_s);
+  try {
+    collide();
+    dWorldStep(ode_->world, dt_s);
+  } catch (const OdeFatal& e) {
+    divergence_ = e.what();
+  }
   g_stepping = nullptr;
+  if (!diverged()) divergence_ = find_divergence(false);
+  if (diverged()) return;
   close_impact_windows(dt_s);
   dJointGroupEmpty(ode_->contacts);
   ++step_count_;

@@ -116,8 +116,14 @@ class PhysicsWorld {
   void set_position(BodyId body, const core::Vec3& position);
   void set_linear_velocity(BodyId body, const core::Vec3& velocity);
 
-  /// Collides, steps the world by `dt_s` with dWorldStep, and clears contacts and forces.
+  /// Collides, steps the world by `dt_s` with dWorldStep, and clears contacts and forces. A world whose state
+  /// or applied forces are not finite or run away (diverged()) is not stepped: ODE is never handed a state
+  /// that would trip its internal asserts, and an error ODE reports anyway stops the world instead of the
+  /// program.
   void step(double dt_s);
+  /// The world stopped because its state diverged; why() names the body and the value.
+  bool diverged() const { return !divergence_.empty(); }
+  const std::string& divergence() const { return divergence_; }
   /// Contacts generated in the last step.
   int contact_count() const { return contact_count_; }
   /// Messages ODE reported while this world stepped (e.g. "LCP internal error"), since the last call; the
@@ -145,6 +151,9 @@ class PhysicsWorld {
   };
   void collide();
   void close_impact_windows(double dt_s);
+  /// "" when every body's state (and, with `forces`, the forces applied to it) is finite and within the
+  /// bounds of anything in a harbour; else what is not.
+  std::string find_divergence(bool forces) const;
 
   int contact_count_ = 0;
   std::map<TouchKey, std::int64_t> last_touch_;  // last step each pair touched
@@ -152,6 +161,7 @@ class PhysicsWorld {
   std::int64_t step_count_ = 0;
   double step_s_ = 0.001;
   std::vector<ImpactEvent> impacts_;
+  std::string divergence_;
   int solver_messages_ = 0;
   std::string last_solver_message_;
   friend void record_solver_message(int, const char*, va_list);

@@ -12,13 +12,24 @@ void Recorder::after_step(const Simulation& simulation, const Inputs& given) {
   // before the current
   const Inputs inputs = in_range(given);
   const std::int64_t applied_at = simulation.steps() - 1;
-  if (recording_.inputs.empty() || !(recording_.inputs.back().inputs == inputs))
+  if (recording_.inputs.empty() || !(recording_.inputs.back().inputs == inputs)) {
     recording_.inputs.push_back({applied_at, inputs});
-  if (simulation.steps() % kCheckpointEvery == 0)
+    if (sink_) sink_->on_input(recording_.inputs.back());
+  }
+  if (simulation.steps() % kCheckpointEvery == 0) {
     recording_.checkpoints.push_back({simulation.steps(), simulation.state_hash()});
-  if (simulation.steps() % kKeyframeEvery == 0)
+    if (sink_) sink_->on_checkpoint(recording_.checkpoints.back());
+  }
+  if (simulation.steps() % kKeyframeEvery == 0) {
     recording_.keyframes.push_back({simulation.steps(), simulation.save_state()});
+    if (sink_) sink_->on_keyframe(recording_.keyframes.back());
+  }
   recording_.total_steps = simulation.steps();
+}
+
+void Recorder::on_command(const Simulation& simulation, const InstructorCommand& command) {
+  recording_.commands.push_back({simulation.steps(), command});
+  if (sink_) sink_->on_command(recording_.commands.back());
 }
 
 ReplayResult replay(const ScenarioSettings& scenario, const Recording& recording, std::int64_t stop_step,

@@ -39,6 +39,18 @@ struct Recording {
     std::vector<std::uint8_t> state;  ///< Simulation::save_state()
   };
   std::vector<Keyframe> keyframes;  ///< in step order
+  /// false for the prefix a crashed or killed run left: it replays up to its last checkpoint (total_steps)
+  bool complete = true;
+};
+
+/// Where a Recorder streams what it records, as it records it (a file that a crash leaves replayable).
+class RecordingSink {
+ public:
+  virtual ~RecordingSink() = default;
+  virtual void on_input(const Recording::InputChange& change) = 0;
+  virtual void on_checkpoint(const Recording::Checkpoint& checkpoint) = 0;
+  virtual void on_keyframe(const Recording::Keyframe& keyframe) = 0;
+  virtual void on_command(const Recording::Command& command) = 0;
 };
 
 /// Records while a simulation runs: call after each step.
@@ -54,13 +66,14 @@ class Recorder {
   /// `inputs` were used for the step that just ended (now at `simulation.steps()`).
   void after_step(const Simulation& simulation, const Inputs& inputs);
   /// The instructor's command, just applied to `simulation` (before its next step).
-  void on_command(const Simulation& simulation, const InstructorCommand& command) {
-    recording_.commands.push_back({simulation.steps(), command});
-  }
+  void on_command(const Simulation& simulation, const InstructorCommand& command);
   const Recording& recording() const { return recording_; }
+  /// Streams everything recorded from now on to `sink` as well (nullptr: none).
+  void set_sink(RecordingSink* sink) { sink_ = sink; }
 
  private:
   Recording recording_;
+  RecordingSink* sink_ = nullptr;
 };
 
 /// Outcome of a replay.

@@ -209,6 +209,7 @@ void Simulation::release(std::size_t item) {
 }
 
 void Simulation::advance(const Inputs& inputs) {
+  if (world_->diverged()) return;  // stopped where it diverged
   // scripted events, weather and wind, the machine (drives, ropes, twistlocks) pushing on the bodies, then
   // the multibody step
   apply_due_events();
@@ -222,6 +223,10 @@ void Simulation::advance(const Inputs& inputs) {
       if (containers_[n].body == *locked) release(n);
   if (trucks_) trucks_->step(kStep_s, containers_, *crane_);
   world_->step(kStep_s);
+  if (world_->diverged()) {
+    warnings_.raise(core::Warning::kNonFinite);
+    return;
+  }
   clock_.advance();
   events_.impacts = world_->take_impacts();
   events_.twistlocks = crane_->take_twistlock_events();

@@ -165,6 +165,10 @@ class Simulation {
   std::vector<std::uint8_t> save_state() const;
   void restore_state(const std::vector<std::uint8_t>& state);
   const core::Warnings& warnings() const { return warnings_; }
+  /// The physics diverged (a non-finite or runaway state, counted as a kNonFinite warning): the simulation
+  /// stopped there and steps no more; divergence() says where.
+  bool diverged() const { return world_->diverged(); }
+  const std::string& divergence() const { return world_->divergence(); }
   /// Events of the last step.
   const StepEvents& events() const { return events_; }
   /// Body of scenario container `index`.

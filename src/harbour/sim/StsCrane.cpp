@@ -11,12 +11,25 @@
 namespace harbour::sim {
 namespace {
 
-// the headblock's rope segments under the trolley in each rope of the 4-rope reeving (path: drum, backreach,
-// trolley, headblock, trolley, boom tip): segments 2 and 3
-constexpr int kFallSegments[] = {2, 3};
-
 // reeving bodies: 0 gantry, 1 trolley, 2 headblock (the spreader body), as the constructor builds them
 constexpr int kTrolleyReevingBody = 1, kHeadblockReevingBody = 2;
+
+// the falls: each rope's segments with an end on a headblock sheave (segment k joins path[k] and path[k+1];
+// in the 4-rope reeving drum, backreach, trolley, headblock, trolley, boom tip: segments 2 and 3)
+std::vector<std::pair<int, int>> fall_segments(const cable::ReevingSettings& reeving) {
+  std::vector<std::pair<int, int>> falls;
+  const auto on_headblock = [&](int element) {
+    const cable::ElementSettings& e = reeving.elements[static_cast<std::size_t>(element)];
+    return e.kind == cable::ElementKind::kSheave && e.mount.body == kHeadblockReevingBody;
+  };
+  for (std::size_t r = 0; r < reeving.ropes.size(); ++r) {
+    const std::vector<int>& path = reeving.ropes[r].path;
+    for (std::size_t k = 0; k + 1 < path.size(); ++k)
+      if (on_headblock(path[k]) || on_headblock(path[k + 1]))
+        falls.emplace_back(static_cast<int>(r), static_cast<int>(k));
+  }
+  return falls;
+}
 
 // mean position of the reeving's sheaves on one body, in its frame
 core::Vec3 mean_sheave_m(const cable::ReevingSettings& reeving, int body) {
@@ -42,7 +55,8 @@ StsCrane::StsCrane(physics::PhysicsWorld& world, const StsCraneSettings& setting
       trolley_(settings.trolley_drive),
       boom_(settings.boom.drive),
       trolley_sheaves_m_(mean_sheave_m(settings.hoist, kTrolleyReevingBody)),
-      headblock_sheaves_m_(mean_sheave_m(settings.hoist, kHeadblockReevingBody)) {
+      headblock_sheaves_m_(mean_sheave_m(settings.hoist, kHeadblockReevingBody)),
+      falls_(fall_segments(settings.hoist)) {
   // gantry: the crane's base frame, on the quay rails
   physics::BoxSettings gantry;
   gantry.mass_kg = settings.gantry_mass_kg;
@@ -82,9 +96,8 @@ double StsCrane::pendulum_length_m() const {
 
 double StsCrane::hoisted_load_n() const {
   double total = 0.0;
-  for (int r = 0; r < hoist_->rope_count(); ++r)
-    for (int s : kFallSegments)
-      total += hoist_->tension(r, s);
+  for (const auto& [rope, segment] : falls_)
+    total += hoist_->tension(rope, segment);
   return total;
 }
 

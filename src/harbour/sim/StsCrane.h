@@ -123,6 +123,7 @@ class StsCrane {
   double gantry_start_y_, trolley_start_x_;
   Drive gantry_, trolley_, boom_;
   core::Vec3 trolley_sheaves_m_, headblock_sheaves_m_;  // mean sheave positions, body frames
+  std::vector<std::pair<int, int>> falls_;  // (rope, segment) of the ropes' falls to the headblock
   double boom_angle_ = 0.0;
   bool horn_ = false;
   std::unique_ptr<Spreader> spreader_frame_;
