@@ -12,6 +12,10 @@
 #include <tuple>
 #include <vector>
 
+#include <csignal>
+
+#include "harbour/core/Text.h"
+#include "harbour/io/BoundedFile.h"
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/io/InstructorCommandText.h"
 #include "harbour/io/RecordingFile.h"
@@ -23,7 +27,48 @@ namespace harbour::apps {
 namespace {
 
 constexpr double kProgressEvery_s = 10.0;
-constexpr double kGiveUpAfter_s = 3600.0;
+
+// Ctrl-C or a termination request: the run stops between steps and stores the attempt as interrupted
+volatile std::sig_atomic_t g_stop_requested = 0;
+extern "C" void request_stop(int) {
+  g_stop_requested = 1;
+}
+
+/// Stops the run on SIGINT/SIGTERM while alive (restoring the default handlers after).
+struct StopOnSignal {
+  StopOnSignal() {
+    g_stop_requested = 0;
+    std::signal(SIGINT, request_stop);
+    std::signal(SIGTERM, request_stop);
+  }
+  ~StopOnSignal() {
+    std::signal(SIGINT, SIG_DFL);
+    std::signal(SIGTERM, SIG_DFL);
+  }
+};
+
+// everything a run writes is checked before it starts: a bad output never costs a whole exercise
+void check_outputs(const RunOptions& options) {
+  if (!options.record.empty())
+    if (const std::string why = io::why_not_writable(options.record); !why.empty())
+      throw std::runtime_error("--record " + core::printable(options.record) + ": " + why);
+  if (const std::string why = core::why_bad_name(options.trainee, 64); !why.empty())
+    throw std::runtime_error("--trainee '" + core::printable(options.trainee, 64) + "' " + why);
+}
+
+// the instructor's commands in time order, each with its text (checked before the run starts)
+struct Scheduled {
+  io::TimedCommand timed;
+  std::string text;
+};
+std::vector<Scheduled> schedule(const std::vector<std::string>& texts) {
+  std::vector<Scheduled> commands;
+  for (const std::string& text : texts)
+    commands.push_back({io::parse_instructor_command(text), text});
+  std::stable_sort(commands.begin(), commands.end(),
+                   [](const Scheduled& a, const Scheduled& b) { return a.timed.at_s < b.timed.at_s; });
+  return commands;
+}
 
 void print_evaluation(const sim::Metrics& m, const sim::Score& s) {
   std::printf("\nevaluation\n");
@@ -93,14 +138,14 @@ int add_trainee(const std::string& database, const std::string& id, const std::s
 int list_trainees(const std::string& database) {
   io::RecordsStore db(database.empty() ? default_database() : database);
   for (const io::TraineeRow& t : db.trainees())
-    std::printf("%-16s %s\n", t.id.c_str(), t.name.c_str());
+    std::printf("%-16s %s\n", core::printable(t.id).c_str(), core::printable(t.name).c_str());
   return 0;
 }
 
 int list_results(const std::string& database, const std::string& trainee) {
   io::RecordsStore db(database.empty() ? default_database() : database);
   const auto attempts = db.attempts(trainee.empty() ? std::nullopt : std::optional(trainee));
-  std::printf("%-8s %-12s %-20s %-9s %6s %6s  %s\n", "attempt", "trainee", "exercise", "status", "moves",
+  std::printf("%-8s %-12s %-20s %-11s %6s %6s  %s\n", "attempt", "trainee", "exercise", "status", "moves",
               "score", "from");
   for (const io::AttemptRow& a : attempts) {
     const std::string score =
@@ -108,54 +153,85 @@ int list_results(const std::string& database, const std::string& trainee) {
     const std::string from =
         a.parent ? "take-over of " + std::to_string(*a.parent) + " at step " + std::to_string(a.branch_step)
                  : "";
-    std::printf("%-8lld %-12s %-20s %-9s %6d %6s  %s\n", static_cast<long long>(a.id), a.trainee.c_str(),
-                a.exercise.c_str(), a.status.c_str(), a.moves, score.c_str(), from.c_str());
+    std::printf("%-8lld %-12s %-20s %-11s %6d %6s  %s\n", static_cast<long long>(a.id),
+                core::printable(a.trainee).c_str(), core::printable(a.exercise).c_str(),
+                core::printable(a.status).c_str(), a.moves, score.c_str(), from.c_str());
   }
   return 0;
 }
 
 int drive_attempt(const sim::ExerciseSettings& exercise, sim::Simulation& simulation, sim::Autopilot& pilot,
                   sim::Evaluator& evaluator, sim::Recorder& recorder, io::RecordsStore& db,
-                  std::int64_t attempt, const RunOptions& options);
+                  std::optional<std::int64_t> parent, std::int64_t branch_step, const RunOptions& options);
 
 int run_exercise(const RunOptions& options) {
   if (!options.autopilot) {
     std::fprintf(stderr, "harboursim: no input device support yet; run with --autopilot\n");
     return 2;
   }
+  check_outputs(options);
+  schedule(options.commands);  // a bad command stops the run before it starts
   const sim::ExerciseSettings exercise = io::load_exercise(resolve_exercise(options.exercise));
-  for (const std::string& text : options.commands)
-    io::parse_instructor_command(text);  // a bad one stops the run before it starts
   sim::Simulation simulation(exercise.scenario);
   sim::Autopilot pilot(exercise);
   sim::Evaluator evaluator(exercise);
   sim::Recorder recorder(exercise.name);
   io::RecordsStore db(options.database.empty() ? default_database() : options.database);
-  if (options.trainee == "autopilot" && !db.has_trainee("autopilot"))
-    db.add_trainee("autopilot", "Scripted operator");
-  const std::int64_t attempt = db.begin_attempt(options.trainee, exercise.name);
   std::printf("harboursim: exercise %s, %zu move(s), autopilot, time limit %.0f s\n", exercise.name.c_str(),
               exercise.moves.size(), exercise.rules.time_limit_s);
-  return drive_attempt(exercise, simulation, pilot, evaluator, recorder, db, attempt, options);
+  return drive_attempt(exercise, simulation, pilot, evaluator, recorder, db, std::nullopt, 0, options);
 }
 
+int drive(const sim::ExerciseSettings& exercise, sim::Simulation& simulation, sim::Autopilot& pilot,
+          sim::Evaluator& evaluator, sim::Recorder& recorder, io::RecordsStore& db, std::int64_t attempt,
+          const RunOptions& options, std::optional<io::RecordingWriter>& writer);
+
+// Runs an attempt to its end: the exercise done, its time limit and overtime past, the physics diverged, or
+// Ctrl-C. The recording streams as it goes and the attempt is stored with how it ended; an error on the way
+// (a full disk, a lost database) still marks the attempt interrupted where it can.
 int drive_attempt(const sim::ExerciseSettings& exercise, sim::Simulation& simulation, sim::Autopilot& pilot,
                   sim::Evaluator& evaluator, sim::Recorder& recorder, io::RecordsStore& db,
-                  std::int64_t attempt, const RunOptions& options) {
+                  std::optional<std::int64_t> parent, std::int64_t branch_step, const RunOptions& options) {
+  if (options.trainee == "autopilot") db.ensure_trainee("autopilot", "Scripted operator");
+  if (!db.has_trainee(options.trainee))
+    throw std::runtime_error("no trainee '" + core::printable(options.trainee) +
+                             "' (add it with: harboursim trainees add)");
+  std::optional<io::RecordingWriter> writer;
+  if (!options.record.empty()) {
+    writer.emplace(options.record, recorder.recording());
+    recorder.set_sink(&*writer);
+  }
+  const std::int64_t attempt =
+      db.begin_attempt(options.trainee, exercise.name, parent, branch_step, options.record);
+  std::printf("attempt %lld of trainee %s%s\n", static_cast<long long>(attempt), options.trainee.c_str(),
+              options.record.empty() ? "" : (", recording " + options.record).c_str());
+  for (int n = 0; n < evaluator.metrics().moves_completed; ++n)  // a take-over's moves before the branch
+    db.record_move(attempt, n + 1, evaluator.metrics().time_s,
+                   evaluator.metrics().cycle_times_s[static_cast<std::size_t>(n)]);
+  try {
+    return drive(exercise, simulation, pilot, evaluator, recorder, db, attempt, options, writer);
+  } catch (...) {
+    try {
+      db.finish_attempt(attempt, evaluator.metrics(), evaluator.score(), options.record, "interrupted");
+    } catch (...) {  // the database itself failed: the next opening marks the attempt interrupted
+    }
+    throw;
+  }
+}
+
+int drive(const sim::ExerciseSettings& exercise, sim::Simulation& simulation, sim::Autopilot& pilot,
+          sim::Evaluator& evaluator, sim::Recorder& recorder, io::RecordsStore& db, std::int64_t attempt,
+          const RunOptions& options, std::optional<io::RecordingWriter>& writer) {
+  const StopOnSignal stop_on_signal;
   const auto wall_start = std::chrono::steady_clock::now();
   const double start_s = simulation.time_s();
   double next_progress = start_s + kProgressEvery_s;
-  struct Scheduled {
-    io::TimedCommand timed;
-    std::string text;
-  };
-  std::vector<Scheduled> commands;
-  for (const std::string& text : options.commands)
-    commands.push_back({io::parse_instructor_command(text), text});
-  std::stable_sort(commands.begin(), commands.end(),
-                   [](const Scheduled& a, const Scheduled& b) { return a.timed.at_s < b.timed.at_s; });
+  const std::vector<Scheduled> commands = schedule(options.commands);
+  // the exercise bounds its run: past its time limit and the overtime its rules allow, it stops
+  const double stop_at_s = exercise.rules.time_limit_s + exercise.rules.overtime_s;
   std::size_t next_command = 0;
-  while (!evaluator.finished() && simulation.time_s() < kGiveUpAfter_s) {
+  while (!evaluator.finished() && !simulation.diverged() && !g_stop_requested &&
+         simulation.time_s() < stop_at_s) {
     for (; next_command < commands.size() && commands[next_command].timed.at_s <= simulation.time_s();
          ++next_command) {
       simulation.command(commands[next_command].timed.command);
@@ -182,15 +258,30 @@ int drive_attempt(const sim::ExerciseSettings& exercise, sim::Simulation& simula
   std::printf("\nsimulated %.1f s in %.2f s (%.0fx real time), %u physics warnings\n",
               simulation.time_s() - start_s, wall, (simulation.time_s() - start_s) / wall,
               simulation.warnings().total());
+  const char* status = "finished";
+  if (simulation.diverged()) {
+    status = "diverged";
+    std::printf("STOPPED: the physics diverged at t=%.3f s (%s); the attempt is stored as diverged\n",
+                simulation.time_s(), simulation.divergence().c_str());
+  } else if (g_stop_requested) {
+    status = "interrupted";
+    std::printf("STOPPED by a signal at t=%.3f s; the attempt is stored as interrupted\n",
+                simulation.time_s());
+  } else if (!evaluator.finished()) {
+    std::printf("STOPPED: %.0f s past the time limit (the exercise's overtime), moves not done count\n",
+                exercise.rules.overtime_s);
+  }
   print_evaluation(evaluator.metrics(), evaluator.score());
-  if (!options.record.empty()) io::write_recording(options.record, recorder.recording());
-  db.finish_attempt(attempt, evaluator.metrics(), evaluator.score(), options.record);
-  std::printf("stored as attempt %lld of trainee %s\n", static_cast<long long>(attempt),
-              options.trainee.c_str());
+  if (writer) writer->finish(recorder.recording().total_steps);
+  db.finish_attempt(attempt, evaluator.metrics(), evaluator.score(), options.record, status);
+  std::printf("stored as attempt %lld of trainee %s (%s)\n", static_cast<long long>(attempt),
+              options.trainee.c_str(), status);
   if (!options.record.empty()) {
     std::printf("recording %s (%zu input changes, %zu checkpoints)\n", options.record.c_str(),
                 recorder.recording().inputs.size(), recorder.recording().checkpoints.size());
   }
+  if (simulation.diverged()) return 3;
+  if (g_stop_requested) return 130;
   return simulation.warnings().total() == 0 ? 0 : 1;
 }
 
@@ -231,9 +322,10 @@ int replay_recording(const std::string& recording_path, const std::string& exerc
                  static_cast<double>(*r.first_mismatch) * sim::Simulation::kStep_s);
     return 1;
   }
-  std::printf("replayed %s: %.1f s, %d of %zu recorded seconds reproduced bit for bit\n",
+  std::printf("replayed %s: %.1f s, %d of %zu recorded seconds reproduced bit for bit%s\n",
               recording_path.c_str(), r.simulation->time_s(), r.checkpoints_checked,
-              recording.checkpoints.size());
+              recording.checkpoints.size(),
+              recording.complete ? "" : " (an incomplete recording: its run was interrupted there)");
   print_evaluation(evaluator.metrics(), evaluator.score());
   return 0;
 }
@@ -252,6 +344,8 @@ int take_over_recording(const std::string& recording_path, const RunOptions& opt
                  static_cast<double>(recording.total_steps) * sim::Simulation::kStep_s);
     return 2;
   }
+  check_outputs(options);
+  schedule(options.commands);
   // the branch's evaluation includes what the original attempt did up to the take-over
   sim::Evaluator evaluator(exercise);
   sim::TakeOver branch =
@@ -261,19 +355,14 @@ int take_over_recording(const std::string& recording_path, const RunOptions& opt
   std::optional<std::int64_t> parent;
   for (const io::AttemptRow& a : db.attempts())
     if (a.recording == recording_path) parent = a.id;
-  if (options.trainee == "autopilot" && !db.has_trainee("autopilot"))
-    db.add_trainee("autopilot", "Scripted operator");
-  const std::int64_t attempt = db.begin_attempt(options.trainee, exercise.name, parent, step);
-  for (int n = 0; n < evaluator.metrics().moves_completed; ++n)
-    db.record_move(attempt, n + 1, evaluator.metrics().time_s,
-                   evaluator.metrics().cycle_times_s[static_cast<std::size_t>(n)]);
   std::printf("harboursim: took over %s at t=%.3f s (%d of %zu moves done)%s; the autopilot drives on\n",
               recording_path.c_str(), branch.simulation->time_s(), evaluator.metrics().moves_completed,
               exercise.moves.size(),
               parent ? (", branch of attempt " + std::to_string(*parent)).c_str() : "");
   sim::Autopilot pilot(exercise);
   pilot.resume(*branch.simulation, evaluator.metrics().moves_completed);
-  return drive_attempt(exercise, *branch.simulation, pilot, evaluator, branch.recorder, db, attempt, options);
+  return drive_attempt(exercise, *branch.simulation, pilot, evaluator, branch.recorder, db, parent, step,
+                       options);
 }
 
 }  // namespace harbour::apps

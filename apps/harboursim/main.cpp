@@ -1,5 +1,6 @@
 #include <CLI/CLI.hpp>
 
+#include <cmath>
 #include <cstdio>
 #include <exception>
 #include <string>
@@ -64,6 +65,20 @@ int main(int argc, char** argv) {
 
   CLI11_PARSE(app, argc, argv);
   try {
+    if (*replay_cmd) {
+      // a take-over's options mean nothing without it; a time that is not a number is no time
+      const bool taking_over = replay_cmd->count("--take-over") > 0;
+      if (taking_over && !(std::isfinite(take_over_s) && take_over_s >= 0.0)) {
+        std::fprintf(stderr, "harboursim: --take-over needs a time in seconds, 0 or more\n");
+        return 2;
+      }
+      for (const char* option : {"--record", "--trainee", "--db"})
+        if (!taking_over && replay_cmd->count(option) > 0) {
+          std::fprintf(stderr, "harboursim: replay %s is only for a take-over (add --take-over SECONDS)\n",
+                       option);
+          return 2;
+        }
+    }
     if (*run_cmd) return harbour::apps::run_exercise(run);
     if (*replay_cmd && take_over_s >= 0.0) {
       branch.exercise = replay_exercise;

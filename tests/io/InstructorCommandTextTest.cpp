@@ -1,5 +1,7 @@
 #include "harbour/io/InstructorCommandText.h"
 
+#include "harbour/core/Text.h"
+
 #include <gtest/gtest.h>
 
 #include <stdexcept>
@@ -33,15 +35,26 @@ void expect_rejected(const std::string& text, const std::string& says) {
     FAIL() << "accepted " << text;
   } catch (const std::invalid_argument& e) {
     const std::string what = e.what();
-    EXPECT_NE(what.find("'" + text + "'"), std::string::npos) << what;  // quotes what was given
+    EXPECT_NE(what.find("'" + core::printable(text, 100) + "'"), std::string::npos)
+        << what;  // quoted, escaped  // quotes what was given
     EXPECT_NE(what.find(says), std::string::npos) << what;
   }
 }
 
 TEST(InstructorCommandText, BadCommandsSayWhatIsWrong) {
   expect_rejected("10:gale:9", "unknown kind 'gale'");
-  expect_rejected("soon:gust:8:3", "time [s] is not a number");
-  expect_rejected("-5:clear-faults", "negative");
+  expect_rejected("soon:gust:8:3", "time [s] is not a decimal number");
+  expect_rejected("-5:clear-faults", "the time is outside 0-86400 s");
+  // what the exercise files forbid, the command line forbids too
+  expect_rejected("1e300:clear-faults", "the time is outside 0-86400 s");
+  expect_rejected("0x10:clear-faults", "time [s] is not a decimal number");
+  expect_rejected("inf:clear-faults", "time [s] is not a decimal number");
+  expect_rejected("10:gust:-8:3", "peaks at 0-30 m/s");
+  expect_rejected("10:gust:31:3", "peaks at 0-30 m/s");
+  expect_rejected("10:wind:51:90:0.1", "wind 0-50 m/s");
+  expect_rejected("10:wind:12:400:0.1", "direction is outside 0-360 deg");
+  expect_rejected("10:\x1b[31mgale", "unknown kind '\\x1B[31mgale'");
+  expect_rejected(std::string(300, '1'), "longer than 200 characters");
   expect_rejected("10:gust:8", "missing duration");
   expect_rejected("10:gust:8:3:4", "too many values");
   expect_rejected("10:landed-sensor-fault:7", "corner is 0-3");

@@ -29,8 +29,9 @@ std::optional<std::string> read_bounded_file(const std::string& path, std::size_
   } else if (static_cast<unsigned long long>(st.st_size) > max_bytes) {
     why = "is " + std::to_string(st.st_size) + " bytes, over the limit of " + std::to_string(max_bytes);
   } else {
+    // room for the size fstat gave, and one byte more to notice a file that grew since
     std::string bytes;
-    bytes.resize(max_bytes + 1);
+    bytes.resize(static_cast<std::size_t>(st.st_size) + 1);
     std::size_t have = 0;
     while (have < bytes.size()) {
       const ::ssize_t n = ::read(fd, bytes.data() + have, bytes.size() - have);
@@ -42,8 +43,8 @@ std::optional<std::string> read_bounded_file(const std::string& path, std::size_
       if (n == 0) break;
       have += static_cast<std::size_t>(n);
     }
-    if (why.empty() && have > max_bytes)
-      why = "grew over the limit of " + std::to_string(max_bytes) + " bytes";
+    if (why.empty() && have > static_cast<std::size_t>(st.st_size))
+      why = "grew while it was read (still being written?)";
     if (why.empty()) {
       bytes.resize(have);
       out = std::move(bytes);

@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "harbour/core/Text.h"
 #include "harbour/core/Units.h"
 
 namespace harbour::io {
@@ -25,20 +26,25 @@ std::vector<std::string> split(const std::string& text) {
 
 TimedCommand parse_instructor_command(const std::string& text) {
   auto fail = [&](const std::string& why) -> void {
-    throw std::invalid_argument("instructor command '" + text + "': " + why);
+    throw std::invalid_argument("instructor command '" + core::printable(text, 100) + "': " + why);
   };
+  if (text.size() > kMaxCommandBytes) fail("longer than " + std::to_string(kMaxCommandBytes) + " characters");
   const std::vector<std::string> parts = split(text);
   auto number = [&](std::size_t k, const char* what) {
     if (k >= parts.size()) fail(std::string("missing ") + what);
+    // plain decimal numbers only, as in the exercise files (no hex, inf or nan)
+    const std::string& p = parts[k];
+    const bool decimal = !p.empty() && p.find_first_not_of("0123456789.-+eE") == std::string::npos &&
+                         std::isdigit(static_cast<unsigned char>(p.back())) != 0;
     char* end = nullptr;
-    const double v = std::strtod(parts[k].c_str(), &end);
-    if (parts[k].empty() || *end != '\0' || !std::isfinite(v)) fail(std::string(what) + " is not a number");
+    const double v = decimal ? std::strtod(p.c_str(), &end) : 0.0;
+    if (!decimal || *end != '\0' || !std::isfinite(v)) fail(std::string(what) + " is not a decimal number");
     return v;
   };
   using Kind = sim::InstructorCommand::Kind;
   TimedCommand t;
   t.at_s = number(0, "time [s]");
-  if (t.at_s < 0.0) fail("the time is negative");
+  if (!(t.at_s >= 0.0 && t.at_s <= kMaxCommandTime_s)) fail("the time is outside 0-86400 s (a day)");
   if (parts.size() < 2) fail("missing the kind");
   const std::string& kind = parts[1];
   std::size_t values = 0;
@@ -61,7 +67,9 @@ TimedCommand parse_instructor_command(const std::string& text) {
   } else if (kind == "wind") {
     c.kind = Kind::kSetWind;
     c.wind_mean_mps = number(2, "mean speed [m/s]");
-    c.wind_from_rad = core::deg_to_rad(number(3, "direction it blows from [deg]"));
+    const double from_deg = number(3, "direction it blows from [deg]");
+    if (!(from_deg >= 0.0 && from_deg <= 360.0)) fail("the direction is outside 0-360 deg");
+    c.wind_from_rad = core::deg_to_rad(from_deg);
     c.turbulence = number(4, "turbulence intensity");
     values = 3;
   } else if (kind == "visibility" || kind == "rain" || kind == "time-of-day") {
@@ -73,7 +81,7 @@ TimedCommand parse_instructor_command(const std::string& text) {
                                              : "time [h]");
     values = 1;
   } else {
-    fail("unknown kind '" + kind +
+    fail("unknown kind '" + core::printable(kind, 40) +
          "' (gust, hoist-brake-fault, landed-sensor-fault, clear-faults, wind, visibility, rain, "
          "time-of-day)");
   }

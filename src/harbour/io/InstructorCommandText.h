@@ -10,12 +10,17 @@ namespace harbour::io {
 /// `AT:KIND[:VALUES]` with AT in seconds of exercise time and KIND one of
 ///   gust:AMPLITUDE_MPS:DURATION_S, hoist-brake-fault, landed-sensor-fault:CORNER, clear-faults,
 ///   wind:MEAN_MPS:FROM_DEG:TURBULENCE, visibility:METRES, rain:MM_PER_H, time-of-day:HOURS.
+/// Longest command text read, and the latest time a command may be set for (a day) [s].
+inline constexpr std::size_t kMaxCommandBytes = 200;
+inline constexpr double kMaxCommandTime_s = 86400.0;
+
 struct TimedCommand {
   double at_s = 0.0;
   sim::InstructorCommand command;
 };
 
-/// Parses one; throws std::invalid_argument quoting the text and saying what is wrong.
+/// Parses one (plain decimal numbers, the ranges of sim::why_invalid); throws std::invalid_argument quoting
+/// the text (control characters escaped) and saying what is wrong.
 TimedCommand parse_instructor_command(const std::string& text);
 
 }  // namespace harbour::io
