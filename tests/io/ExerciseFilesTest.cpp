@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
+
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -16,11 +18,11 @@ std::string shipped() {
 }
 
 void expect_error(const std::string& from, const std::string& to, const std::string& field,
-                  const std::string& says) {
+                  const std::string& says, int lines_below = 0) {
   const std::string text = shipped();
   scenes::expect_data_error(
       text, from, to, [](const YamlFile& f) { load_exercise(f, HARBOUR_DATA_DIR "/exercises"); },
-      scenes::line_of(text, from), field, says);
+      scenes::line_of(text, from) + lines_below, field, says);
 }
 
 TEST(ExerciseFiles, ShippedDischargeLoads) {
@@ -151,6 +153,75 @@ TEST(ExerciseFiles, StowedBoxesStandOnTheBoxBelow) {
   EXPECT_NEAR(hc.half_extents_m.z, 2.896 / 2, 1e-9);
   EXPECT_NEAR(on_it.pose.position.z - hc.pose.position.z, 2.896 / 2 + 2.591 / 2, 1e-9);
   EXPECT_NEAR(on_it.pose.position.x, hc.pose.position.x, 1e-9);
+}
+
+}  // namespace
+}  // namespace harbour::io
+
+namespace harbour::io {
+namespace {
+
+// Strictness: a file the instructor mistyped is refused, never run as a different exercise.
+TEST(ExerciseFiles, UnknownDuplicateAndOutOfRangeKeysNameFileLineAndField) {
+  expect_error("    time_limit_s: 180", "    time_limit: 180", "exercise.rules.time_limit",
+               "unknown key 'time_limit' (known here: collision_speed_mps, deductions");
+  expect_error("    pass_score: 70", "    pass_score: 70\n    pass_score: 90", "exercise.rules.pass_score",
+               "duplicate key (first given at line", 1);
+  expect_error("  quay_edge_x_m: 18.0", "  weather: {wind_mean: 70}\n  quay_edge_x_m: 18.0",
+               "exercise.weather.wind_mean", "unknown key 'wind_mean'");
+  expect_error("  quay_edge_x_m: 18.0", "  weather: {wind_mean_mps: 75}\n  quay_edge_x_m: 18.0",
+               "exercise.weather.wind_mean_mps", "75 is outside [0, 50]");
+  expect_error("  quay_edge_x_m: 18.0", "  weather: 5\n  quay_edge_x_m: 18.0", "exercise.weather",
+               "expected a mapping");
+  expect_error("gantry_y_m: 0.0", "gantry_y_m: 1e300", "exercise.crane.gantry_y_m",
+               "1e+300 is outside [-200, 200]");
+  expect_error("{container: TGHU1000012, to: truck, tolerance_m: 0.3}",
+               "{container: TGHU1000012, to: truck}\n    - {container: TGHU1000012, to: truck}",
+               "exercise.moves[1].container", "is already moved by exercise.moves[0]", 1);
+  expect_error("id: TGHU1000010", "id: \"TGHU\\n1000010\"", "exercise.containers[0].id",
+               "the name holds a control character");
+  expect_error("  name: sts_discharge", "  name: sts\xc3\x28", "exercise.name", "is not valid UTF-8");
+  expect_error("  name: sts_discharge", "  name: " + std::string(300, 'x'), "exercise.name",
+               "is 300 bytes long (at most 256)");
+}
+
+TEST(ExerciseFiles, ASecondDocumentOrAFileThatIsNotOneIsRefused) {
+  EXPECT_THROW(load_exercise(YamlFile::parse(shipped() + "---\nexercise: {}\n", "two.yaml"),
+                             HARBOUR_DATA_DIR "/exercises"),
+               DataError);
+  for (const char* path : {"/dev/zero", "/tmp", "/nonexistent.yaml"}) {
+    try {
+      load_exercise(path);
+      FAIL() << "read " << path;
+    } catch (const DataError& e) {
+      EXPECT_EQ(e.file(), path);
+      EXPECT_EQ(e.field(), "(file)");
+    }
+  }
+}
+
+TEST(ExerciseFiles, LoadingGrowsLinearlyWithTheContainers) {
+  // 2000 boxes on the quay and 500 moves (the limits): the look-ups are by map, not by scanning
+  std::string text = "exercise:\n  name: many\n  machine: ../machines/sts.yaml\n"
+                     "  crane: {gantry_y_m: 0, trolley_x_m: 20, spreader_z_m: 20}\n  containers:\n";
+  std::string moves = "  moves:\n";
+  for (int n = 0; n < 2000; ++n) {
+    const std::string id = "BOX" + std::to_string(n);
+    text += "    - {id: " + id + ", type: 20ft, gross_mass_kg: 20000, position_m: [" + std::to_string(n % 40 * 3) +
+            ", " + std::to_string(n / 40 * 7) + ", 1.3]}\n";
+    if (n < 500) moves += "    - {container: " + id + ", target_m: [0, 0, 1.3]}\n";  // the most moves
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const sim::ExerciseSettings e = load_exercise(YamlFile::parse(text + moves, "many.yaml"),
+                                                HARBOUR_DATA_DIR "/exercises");
+  EXPECT_EQ(e.moves.size(), 500u);
+  // a quadratic loader took seconds here; generous for a slow sanitizer build
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 20.0);
+  EXPECT_THROW(load_exercise(YamlFile::parse(text + "    - {id: ONEMORE, type: 20ft, gross_mass_kg: 20000, "
+                                                    "position_m: [0, -50, 1.3]}\n" + moves,
+                                             "too_many.yaml"),
+                             HARBOUR_DATA_DIR "/exercises"),
+               DataError);
 }
 
 }  // namespace

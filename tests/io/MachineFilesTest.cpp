@@ -17,11 +17,11 @@ std::string shipped_sts() {
 }
 
 void expect_error(const std::string& from, const std::string& to, const std::string& field,
-                  const std::string& says) {
+                  const std::string& says, int lines_below = 0) {
   const std::string text = shipped_sts();
   scenes::expect_data_error(
       text, from, to, [](const YamlFile& f) { load_sts_crane(f, HARBOUR_DATA_DIR "/machines"); },
-      scenes::line_of(text, from), field, says);
+      scenes::line_of(text, from) + lines_below, field, says);
 }
 
 TEST(MachineFiles, ShippedStsLoadsWithItsHoist) {
@@ -49,6 +49,21 @@ TEST(MachineFiles, BadStsFilesNameTheField) {
   expect_error("initial_size: 40ft", "initial_size: 30ft", "machine.spreader.initial_size", "unknown size");
   expect_error("trolley_park_x_m: 10.0", "trolley_park_x_m: -40", "machine.boom.trolley_park_x_m",
                "landside");
+}
+
+}  // namespace
+}  // namespace harbour::io
+
+namespace harbour::io {
+namespace {
+
+TEST(MachineFiles, UnphysicalValuesAndTyposAreRefused) {
+  expect_error("    mass_kg: 15000", "    mass_kg: 1", "machine.spreader.mass_kg", "1 is outside [1000, 50000]");
+  expect_error("    mass_kg: 30000", "    mass_kg: 1e-300", "machine.trolley.mass_kg", "is outside [5000, 500000]");
+  expect_error("    rail_height_m: 49.0", "    rail_height_m: 49.0\n    rail_hieght_m: 49.0",
+               "machine.trolley.rail_hieght_m", "unknown key 'rail_hieght_m'", 1);
+  expect_error("    initial_size: 40ft", "    initial_size: 40ft\n    initial_size: 20ft",
+               "machine.spreader.initial_size", "duplicate key", 1);
 }
 
 }  // namespace

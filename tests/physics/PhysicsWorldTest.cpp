@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <vector>
 
@@ -230,6 +231,38 @@ TEST(PhysicsWorld, ARestoredStateContinuesBitForBit) {
   other.add_box(box_at({0, 0, 0.6}, 500.0));
   core::StateReader wrong(saved.bytes());
   EXPECT_THROW(other.restore_state(wrong), core::StateError);  // a state of another world is refused
+}
+
+}  // namespace
+}  // namespace harbour::physics
+
+namespace harbour::physics {
+namespace {
+
+// What would drive ODE into its internal asserts (an abort) stops the world instead, saying where.
+TEST(PhysicsWorld, ADivergingStateStopsTheWorldBeforeODESeesIt) {
+  const core::Vec3 bad_forces[] = {{1e300, 0, 0}, {std::numeric_limits<double>::quiet_NaN(), 0, 0}};
+  for (const core::Vec3& force : bad_forces) {
+    PhysicsWorld w(WorldSettings{});
+    const BodyId b = w.add_box(box_at({0, 0, 10}, 10.0, false));
+    w.step(0.001);
+    ASSERT_FALSE(w.diverged());
+    const std::uint64_t before = w.state_hash();
+    w.add_force_at(b, w.pose(b).position, force);
+    w.step(0.001);
+    EXPECT_TRUE(w.diverged());
+    EXPECT_NE(w.divergence().find("body 0: applied force"), std::string::npos) << w.divergence();
+    EXPECT_EQ(w.state_hash(), before);  // not stepped
+    w.step(0.001);                       // and never again
+    EXPECT_EQ(w.state_hash(), before);
+  }
+  // a finite force that would throw the body faster than anything in a harbour: stopped after the step
+  PhysicsWorld w(WorldSettings{});
+  const BodyId b = w.add_box(box_at({0, 0, 10}, 10.0, false));
+  w.add_force_at(b, w.pose(b).position, {5e8, 0, 0});  // 5e7 m/s^2 for 1 ms: 50 000 m/s
+  w.step(0.001);
+  EXPECT_TRUE(w.diverged());
+  EXPECT_NE(w.divergence().find("body 0: speed"), std::string::npos) << w.divergence();
 }
 
 }  // namespace

@@ -121,3 +121,26 @@ TEST(Weather, AFailedLandedSensorPreventsLocking) {
 
 }  // namespace
 }  // namespace harbour::sim
+
+namespace harbour::sim {
+namespace {
+
+TEST(Weather, OverlappingGustsSaturateAndFinishedOnesAreForgotten) {
+  WeatherSettings settings;
+  settings.wind_mean_mps = 20.0;
+  Weather w(settings, 1);
+  for (int n = 0; n < 1000; ++n)  // a thousand 30 m/s gusts peaking together: 30 020 m/s unbounded
+    w.add_gust({0.0, 2.0, kMaxGust_mps});
+  for (int k = 0; k < 1000; ++k)
+    w.step(0.001);
+  EXPECT_EQ(w.speed_mps(), kMaxWindSpeed_mps);  // at the peak, t = 1 s
+  for (int k = 0; k < 1001; ++k)
+    w.step(0.001);
+  EXPECT_EQ(w.speed_mps(), 20.0);  // all over: the mean again
+  core::StateWriter out;
+  w.save_state(out);
+  EXPECT_LT(out.take().size(), 200u);  // and the thousand gusts are not carried in the state
+}
+
+}  // namespace
+}  // namespace harbour::sim
