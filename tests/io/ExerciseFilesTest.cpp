@@ -202,23 +202,26 @@ TEST(ExerciseFiles, ASecondDocumentOrAFileThatIsNotOneIsRefused) {
 
 TEST(ExerciseFiles, LoadingGrowsLinearlyWithTheContainers) {
   // 2000 boxes on the quay and 500 moves (the limits): the look-ups are by map, not by scanning
-  std::string text = "exercise:\n  name: many\n  machine: ../machines/sts.yaml\n"
-                     "  crane: {gantry_y_m: 0, trolley_x_m: 20, spreader_z_m: 20}\n  containers:\n";
+  std::string text =
+      "exercise:\n  name: many\n  machine: ../machines/sts.yaml\n"
+      "  crane: {gantry_y_m: 0, trolley_x_m: 20, spreader_z_m: 20}\n  containers:\n";
   std::string moves = "  moves:\n";
   for (int n = 0; n < 2000; ++n) {
     const std::string id = "BOX" + std::to_string(n);
-    text += "    - {id: " + id + ", type: 20ft, gross_mass_kg: 20000, position_m: [" + std::to_string(n % 40 * 3) +
-            ", " + std::to_string(n / 40 * 7) + ", 1.3]}\n";
+    text += "    - {id: " + id + ", type: 20ft, gross_mass_kg: 20000, position_m: [" +
+            std::to_string(n % 40 * 3) + ", " + std::to_string(n / 40 * 7) + ", 1.3]}\n";
     if (n < 500) moves += "    - {container: " + id + ", target_m: [0, 0, 1.3]}\n";  // the most moves
   }
   const auto start = std::chrono::steady_clock::now();
-  const sim::ExerciseSettings e = load_exercise(YamlFile::parse(text + moves, "many.yaml"),
-                                                HARBOUR_DATA_DIR "/exercises");
+  const sim::ExerciseSettings e =
+      load_exercise(YamlFile::parse(text + moves, "many.yaml"), HARBOUR_DATA_DIR "/exercises");
   EXPECT_EQ(e.moves.size(), 500u);
   // a quadratic loader took seconds here; generous for a slow sanitizer build
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 20.0);
-  EXPECT_THROW(load_exercise(YamlFile::parse(text + "    - {id: ONEMORE, type: 20ft, gross_mass_kg: 20000, "
-                                                    "position_m: [0, -50, 1.3]}\n" + moves,
+  EXPECT_THROW(load_exercise(YamlFile::parse(text +
+                                                 "    - {id: ONEMORE, type: 20ft, gross_mass_kg: 20000, "
+                                                 "position_m: [0, -50, 1.3]}\n" +
+                                                 moves,
                                              "too_many.yaml"),
                              HARBOUR_DATA_DIR "/exercises"),
                DataError);

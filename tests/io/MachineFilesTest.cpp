@@ -58,8 +58,10 @@ namespace harbour::io {
 namespace {
 
 TEST(MachineFiles, UnphysicalValuesAndTyposAreRefused) {
-  expect_error("    mass_kg: 15000", "    mass_kg: 1", "machine.spreader.mass_kg", "1 is outside [1000, 50000]");
-  expect_error("    mass_kg: 30000", "    mass_kg: 1e-300", "machine.trolley.mass_kg", "is outside [5000, 500000]");
+  expect_error("    mass_kg: 15000", "    mass_kg: 1", "machine.spreader.mass_kg",
+               "1 is outside [1000, 50000]");
+  expect_error("    mass_kg: 30000", "    mass_kg: 1e-300", "machine.trolley.mass_kg",
+               "is outside [5000, 500000]");
   expect_error("    rail_height_m: 49.0", "    rail_height_m: 49.0\n    rail_hieght_m: 49.0",
                "machine.trolley.rail_hieght_m", "unknown key 'rail_hieght_m'", 1);
   expect_error("    initial_size: 40ft", "    initial_size: 40ft\n    initial_size: 20ft",

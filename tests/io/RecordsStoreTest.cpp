@@ -218,3 +218,78 @@ TEST_P(RecordsStoreOn, KillingTheProcessMidExerciseKeepsTheMovesDoneSoFar) {
 
 }  // namespace
 }  // namespace harbour::io
+
+namespace harbour::io {
+namespace {
+
+// Eight stations of a centre writing at once, each on its own connection: every attempt is stored, with its
+// own id, its moves and its final figures; none fails on a lock or on the shared trainee.
+TEST_P(RecordsStoreOn, EightConcurrentWritersAllStoreTheirAttempts) {
+  const std::string connection = fresh_connection(GetParam(), "records_eight");
+  RecordsStore(connection).add_trainee("t001", "Ana Pérez");  // the schema exists before the stations start
+  std::vector<std::thread> stations;
+  std::vector<std::string> errors(8);
+  for (int n = 0; n < 8; ++n)
+    stations.emplace_back([&, n] {
+      try {
+        RecordsStore db(connection);
+        db.ensure_trainee("autopilot", "Scripted operator");
+        for (int k = 0; k < 3; ++k) {
+          const auto attempt = db.begin_attempt(n % 2 ? "t001" : "autopilot", "sts_discharge");
+          db.record_move(attempt, 1, 90.0, 90.0);
+          db.record_event(attempt, 40.0, "collision", 0.2);
+          sim::Metrics m;
+          m.moves_completed = 1;
+          sim::Score s;
+          s.total = 90;
+          db.finish_attempt(attempt, m, s, "");
+        }
+      } catch (const std::exception& e) {
+        errors[static_cast<std::size_t>(n)] = e.what();
+      }
+    });
+  for (std::thread& t : stations)
+    t.join();
+  for (const std::string& e : errors)
+    EXPECT_EQ(e, "");
+  RecordsStore db(connection);
+  const auto rows = db.attempts();
+  ASSERT_EQ(rows.size(), 24u);
+  for (const AttemptRow& a : rows) {
+    EXPECT_EQ(a.status, "finished");
+    EXPECT_EQ(a.moves, 1);
+  }
+}
+
+TEST(RecordsStore, WhatCannotPersistIsRefusedAndAForeignDatabaseIsLeftUntouched) {
+  for (const char* connection : {"sqlite3://db=:memory:", "sqlite3://db=", "sqlite3://", "mysql://x"})
+    EXPECT_THROW(RecordsStore db(connection), std::runtime_error) << connection;
+  // a path with a space persists under its whole name
+  const auto spaced = std::filesystem::temp_directory_path() / "harbour records with space.db";
+  std::filesystem::remove(spaced);
+  RecordsStore(spaced.string()).add_trainee("t001", "Ana");
+  EXPECT_TRUE(std::filesystem::exists(spaced));
+  EXPECT_EQ(RecordsStore("sqlite3://db=" + spaced.string()).trainees().size(), 1u);
+  // someone else's database: refused before a table is created or the journal mode changed
+  const auto foreign = std::filesystem::temp_directory_path() / "harbour_foreign.db";
+  std::filesystem::remove(foreign);
+  soci::session("sqlite3://db=" + foreign.string()) << "CREATE TABLE bookmarks (url TEXT)";
+  const auto bytes_before = std::filesystem::file_size(foreign);
+  EXPECT_NE(
+      error_opening("sqlite3://db=" + foreign.string()).find("table 'bookmarks', which is not harboursim's"),
+      std::string::npos);
+  EXPECT_EQ(std::filesystem::file_size(foreign), bytes_before);
+  EXPECT_FALSE(std::filesystem::exists(foreign.string() + "-wal"));
+  int tables = 0;
+  soci::session("sqlite3://db=" + foreign.string()) << "SELECT COUNT(*) FROM sqlite_master",
+      soci::into(tables);
+  EXPECT_EQ(tables, 1);
+  // names that would garble a terminal are refused
+  RecordsStore db(fresh_db("harbour_names.db"));
+  EXPECT_THROW(db.add_trainee("t\x1b[31m", "Ana"), std::invalid_argument);
+  EXPECT_THROW(db.add_trainee("t002", std::string("An\0a", 4)), std::invalid_argument);
+  EXPECT_THROW(db.add_trainee("t003", std::string(50 << 20, 'a')), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace harbour::io

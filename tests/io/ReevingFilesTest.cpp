@@ -66,8 +66,8 @@ TEST(ReevingFiles, StructureTheWaveModelCannotCarryIsRefused) {
   expect_error("path: [drum, sheave, dead_end]", "path: [drum, sheave, drum]", 14, "reeving.ropes[0].path[2]",
                "rope 'hoist' meets 'drum' twice");
   // a rope stiffer than a steel bar of its diameter, a sheave far beyond its body
-  expect_error("axial_stiffness_n: 3.1e7", "axial_stiffness_n: 1e12", 6, "reeving.rope_types[0].axial_stiffness_n",
-               "is outside (0, ");
+  expect_error("axial_stiffness_n: 3.1e7", "axial_stiffness_n: 1e12", 6,
+               "reeving.rope_types[0].axial_stiffness_n", "is outside (0, ");
   expect_error("at_m: [0, 0, 0]", "at_m: [1e300, 0, 0]", 11, "reeving.elements[1].at_m[0]",
                "is outside [-500, 500]");
   expect_error("  max_substeps: 8", "  max_substeps: 8\n  max_substep: 9", 4, "reeving.max_substep",

@@ -253,7 +253,7 @@ TEST(PhysicsWorld, ADivergingStateStopsTheWorldBeforeODESeesIt) {
     EXPECT_TRUE(w.diverged());
     EXPECT_NE(w.divergence().find("body 0: applied force"), std::string::npos) << w.divergence();
     EXPECT_EQ(w.state_hash(), before);  // not stepped
-    w.step(0.001);                       // and never again
+    w.step(0.001);                      // and never again
     EXPECT_EQ(w.state_hash(), before);
   }
   // a finite force that would throw the body faster than anything in a harbour: stopped after the step

@@ -1,0 +1,126 @@
+// harboursim run as a person or a centre runs it: a separate process, killed or run eight at a time.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "harbour/io/ExerciseFiles.h"
+#include "harbour/io/RecordingFile.h"
+#include "harbour/io/RecordsStore.h"
+#include "harbour/sim/Recording.h"
+
+namespace harbour::apps {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path fresh_folder(const std::string& name) {
+  const fs::path folder = fs::temp_directory_path() / name;
+  fs::remove_all(folder);
+  fs::create_directories(folder);
+  return folder;
+}
+
+// starts `harboursim run` on the shipped discharge exercise, its output to a log in `folder`
+pid_t start_run(const fs::path& folder, const std::string& db, const std::string& record, int n) {
+  const pid_t child = fork();
+  if (child == 0) {
+    const std::string log = (folder / ("run" + std::to_string(n) + ".log")).string();
+    freopen(log.c_str(), "w", stdout);
+    freopen(log.c_str(), "a", stderr);
+    std::vector<std::string> args = {HARBOUR_APP, "run", "--exercise", "sts_discharge", "--autopilot",
+                                     "--db",      db};
+    if (!record.empty()) args.insert(args.end(), {"--record", record});
+    std::vector<char*> argv;
+    for (std::string& a : args)
+      argv.push_back(a.data());
+    argv.push_back(nullptr);
+    execv(HARBOUR_APP, argv.data());
+    _exit(127);
+  }
+  return child;
+}
+
+TEST(Run, KilledMidExerciseItsAttemptIsInterruptedAndItsRecordingPrefixReplays) {
+  const fs::path folder = fresh_folder("harbour_kill9");
+  const std::string db = "sqlite3://db=" + (folder / "records.db").string();
+  const std::string record = (folder / "run.hsrc").string();
+  const pid_t child = start_run(folder, db, record, 0);
+  // wait until the streamed recording holds a keyframe (10 s) and a few seconds more, then kill -9
+  sim::Recording seen;
+  for (int tries = 0; tries < 600 && seen.checkpoints.size() < 13; ++tries) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    try {
+      seen = io::read_recording(record);  // while it is being written
+    } catch (const std::exception&) {
+    }
+  }
+  ASSERT_GE(seen.checkpoints.size(), 13u) << "the run did not get going";
+  kill(child, SIGKILL);
+  int status = 0;
+  waitpid(child, &status, 0);
+  ASSERT_TRUE(WIFSIGNALED(status));
+
+  // opening the database marks the attempt whose process is gone; its recording is linked from the start
+  io::RecordsStore store(db);
+  const auto attempts = store.attempts();
+  ASSERT_EQ(attempts.size(), 1u);
+  EXPECT_EQ(attempts[0].status, "interrupted");
+  EXPECT_EQ(attempts[0].recording, record);
+
+  const sim::Recording prefix = io::read_recording(record);
+  EXPECT_FALSE(prefix.complete);
+  ASSERT_GE(prefix.keyframes.size(), 1u);
+  EXPECT_EQ(prefix.total_steps, prefix.checkpoints.back().step);
+  const sim::ExerciseSettings exercise = io::load_exercise(HARBOUR_DATA_DIR "/exercises/sts_discharge.yaml");
+  // bit for bit from the start to its last second, and from its last keyframe (an instructor's take-over)
+  const sim::ReplayResult whole = sim::replay(exercise.scenario, prefix);
+  EXPECT_FALSE(whole.first_mismatch);
+  EXPECT_EQ(whole.checkpoints_checked, static_cast<int>(prefix.checkpoints.size()));
+  const sim::ReplayResult seek = sim::replay(exercise.scenario, prefix, prefix.total_steps);
+  EXPECT_EQ(seek.keyframes_used, 1);
+  EXPECT_FALSE(seek.first_mismatch);
+  EXPECT_EQ(seek.simulation->state_hash(), whole.simulation->state_hash());
+}
+
+TEST(Run, EightStationsOnOneSqliteDatabaseAllStoreTheirAttempts) {
+  const fs::path folder = fresh_folder("harbour_eight");
+  const std::string db = "sqlite3://db=" + (folder / "records.db").string();
+  std::vector<pid_t> runs;
+  for (int n = 0; n < 8; ++n)
+    runs.push_back(start_run(folder, db, "", n));
+  for (const pid_t run : runs) {
+    int status = 0;
+    waitpid(run, &status, 0);
+    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "see " << folder;
+  }
+  io::RecordsStore store(db);
+  const auto attempts = store.attempts();
+  ASSERT_EQ(attempts.size(), 8u);
+  for (const io::AttemptRow& a : attempts) {
+    EXPECT_EQ(a.status, "finished");
+    EXPECT_EQ(a.moves, 1);
+  }
+}
+
+TEST(Run, ABadRecordingPathIsRefusedBeforeTheRunAndNothingIsStored) {
+  const fs::path folder = fresh_folder("harbour_badrecord");
+  const std::string db = "sqlite3://db=" + (folder / "records.db").string();
+  for (const std::string& record : {(folder / "missing" / "run.hsrc").string(), folder.string()}) {
+    const pid_t child = start_run(folder, db, record, 0);
+    int status = 0;
+    waitpid(child, &status, 0);
+    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 1);
+  }
+  EXPECT_FALSE(fs::exists(folder / "records.db"));  // refused before the database was even opened
+  EXPECT_FALSE(fs::exists(folder / "missing"));
+}
+
+}  // namespace
+}  // namespace harbour::apps
