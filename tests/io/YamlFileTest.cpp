@@ -42,3 +42,39 @@ TEST(YamlFile, ErrorMessageReadsFileLineField) {
 
 }  // namespace
 }  // namespace harbour::io
+
+namespace harbour::io {
+namespace {
+
+TEST(YamlFile, OneDocumentNoDuplicatesNoUnknownKeys) {
+  // yaml-cpp 0.7's LoadAll loops for ever on a document starting with ','; found by the fuzzer
+  EXPECT_THROW(YamlFile::parse(",", "comma.yaml"), DataError);
+  EXPECT_THROW(YamlFile::parse("a: 1\n---\n,\n", "comma2.yaml"), DataError);
+  EXPECT_NO_THROW(YamlFile::parse("---\na: 1\n...\n", "marked.yaml"));
+  try {
+    YamlFile::parse("a: 1\n---\nb: 2\n", "two.yaml");
+    FAIL() << "two documents read";
+  } catch (const DataError& e) {
+    EXPECT_EQ(e.line(), 2);
+  }
+  try {
+    YamlFile::parse("a: 1\nb:\n  c: 2\n  c: 3\n", "dup.yaml");
+    FAIL() << "duplicate read";
+  } catch (const DataError& e) {
+    EXPECT_STREQ(e.what(), "dup.yaml:4: b.c: duplicate key (first given at line 3)");
+  }
+  const YamlFile f = YamlFile::parse("a: 1\nb: {c: 2, d: 3}\n", "typo.yaml");
+  f.number(f.root(), "a", "", 0, 2);
+  const YAML::Node b = f.required_map(f.root(), "b", "");
+  f.number_or(b, "c", "b", 0, 0, 5);
+  f.number_or(b, "e", "b", 0, 0, 5);
+  try {
+    f.check_unknown_keys();
+    FAIL() << "unknown key d accepted";
+  } catch (const DataError& e) {
+    EXPECT_STREQ(e.what(), "typo.yaml:2: b.d: unknown key 'd' (known here: c, e)");
+  }
+}
+
+}  // namespace
+}  // namespace harbour::io

@@ -1,7 +1,9 @@
 #include "harbour/io/YamlFile.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <string_view>
 
 #include "harbour/core/Text.h"
 #include "harbour/io/BoundedFile.h"
@@ -48,20 +50,45 @@ void check_structure(const YAML::Node& node, const std::string& file, const std:
   }
 }
 
+// 1-based line of a second YAML document's marker ("---" or "..." at the start of a line after content, or a
+// second "---"), 0 if there is none. (yaml-cpp 0.7's LoadAll loops for ever on a document that starts with a
+// stray ',', so the documents are found here and the one document is parsed with Load.)
+int second_document_line(const std::string& text) {
+  bool content = false, ended = false;
+  int line = 0;
+  for (std::size_t at = 0; at < text.size();) {
+    const std::size_t end = std::min(text.find('\n', at), text.size());
+    const std::string_view row(text.data() + at, end - at);
+    ++line;
+    const auto marker = [&](std::string_view m) {
+      return row.substr(0, 3) == m && (row.size() == 3 || row[3] == ' ' || row[3] == '\t' || row[3] == '\r');
+    };
+    if (marker("---")) {
+      if (content || ended) return line;
+    } else if (marker("...")) {
+      ended = true;  // the document ends: nothing may follow
+    } else if (const auto first = row.find_first_not_of(" \t\r");
+               first != std::string_view::npos && row[first] != '#') {
+      if (ended) return line;
+      content = true;
+    }
+    at = end + 1;
+  }
+  return 0;
+}
+
 }  // namespace
 
 YamlFile YamlFile::parse(const std::string& text, const std::string& name) {
-  std::vector<YAML::Node> documents;
+  if (const int line = second_document_line(text); line > 0)
+    throw DataError(name, line, "(document)", "a second YAML document: a data file holds exactly one");
+  YAML::Node root;
   try {
-    documents = YAML::LoadAll(text);
+    root = YAML::Load(text);
   } catch (const YAML::Exception& e) {
     throw DataError(name, e.mark.line + 1, "(syntax)", e.msg);
   }
-  if (documents.empty()) throw DataError(name, 1, "(document)", "the file is empty");
-  if (documents.size() > 1)
-    throw DataError(name, line_of(documents[1]), "(document)",
-                    "a second YAML document: a data file holds exactly one");
-  const YAML::Node& root = documents[0];
+  if (!root.IsDefined() || root.IsNull()) throw DataError(name, 1, "(document)", "the file is empty");
   if (!root.IsMap()) throw DataError(name, 1, "(document)", "expected a mapping at the top level");
   check_structure(root, name, "", 0);
   return YamlFile(root, name);
