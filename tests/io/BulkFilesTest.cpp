@@ -75,6 +75,11 @@ TEST(BulkFiles, BadScenarioNamesLineAndField) {
   expect_data_error(kScenario, "- grid: yard", "- grid: hold", load, 9, "bulk.heaps[0].grid");
   expect_data_error(kScenario, "x_m: 0.5", "x_m: 5", load, 10, "bulk.heaps[0].x_m");  // off the 1 m grid
   expect_data_error(kScenario, "capacity_m3: 10", "capacity_m3: [10]", load, 19, "bulk.grab.capacity_m3");
+  // a grid at 1.8e308 m never settled; a typo was read as nothing
+  expect_data_error(kScenario, "cell_size_m: 0.1", "cell_size_m: 0.1\n      origin_x_m: 1.79e308", load, 8,
+                    "bulk.grids[0].origin_x_m", "is outside [-2000, 2000]");
+  expect_data_error(kScenario, "capacity_m3: 10", "capacity_m3: 10\n    capacity: 20", load, 20,
+                    "bulk.grab.capacity", "unknown key 'capacity'");
 }
 
 TEST(BulkFiles, AFailedLoadLeavesTheCallersDataUntouched) {

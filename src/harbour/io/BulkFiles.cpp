@@ -1,14 +1,15 @@
 #include "harbour/io/BulkFiles.h"
 
 #include <algorithm>
-#include <limits>
 
 #include "harbour/core/Units.h"
 
 namespace harbour::io {
 namespace {
 
-constexpr double kHuge = std::numeric_limits<double>::max();
+// a bulk grid lies in the harbour: its origin and spill level within 2 km (docs/reliability.md); a grid at
+// 1.8e308 m made the relaxation's arithmetic never settle
+constexpr double kSite_m = 2000.0;
 
 std::string item(const std::string& list, std::size_t n) {
   return list + "[" + std::to_string(n) + "]";
@@ -35,6 +36,7 @@ std::vector<bulk::Material> load_materials(const YamlFile& file) {
     materials.push_back(material);
   }
   if (materials.empty()) file.fail(list, "materials", "no material defined");
+  file.check_unknown_keys();
   return materials;
 }
 
@@ -52,7 +54,7 @@ BulkScenario load_bulk_scenario(const YamlFile& file, const std::vector<bulk::Ma
   if (found == materials.end())
     file.fail(bulk["material"], "bulk.material", "unknown material '" + material + "'");
   scenario.material = *found;
-  scenario.spill_level_m = file.number_or(bulk, "spill_level_m", "bulk", 0.0, -kHuge, kHuge);
+  scenario.spill_level_m = file.number_or(bulk, "spill_level_m", "bulk", 0.0, -kSite_m, kSite_m);
 
   const YAML::Node grids = file.sequence(bulk, "grids", "bulk");
   for (std::size_t n = 0; n < grids.size(); ++n) {
@@ -63,9 +65,9 @@ BulkScenario load_bulk_scenario(const YamlFile& file, const std::vector<bulk::Ma
     grid.settings.cells_x = file.integer(g, "cells_x", path, 1, 8192);
     grid.settings.cells_y = file.integer(g, "cells_y", path, 1, 8192);
     grid.settings.cell_size_m = file.number(g, "cell_size_m", path, 0.0, 100.0, true);
-    grid.origin_x_m = file.number_or(g, "origin_x_m", path, 0.0, -kHuge, kHuge);
-    grid.origin_y_m = file.number_or(g, "origin_y_m", path, 0.0, -kHuge, kHuge);
-    grid.origin_z_m = file.number_or(g, "origin_z_m", path, 0.0, -kHuge, kHuge);
+    grid.origin_x_m = file.number_or(g, "origin_x_m", path, 0.0, -kSite_m, kSite_m);
+    grid.origin_y_m = file.number_or(g, "origin_y_m", path, 0.0, -kSite_m, kSite_m);
+    grid.origin_z_m = file.number_or(g, "origin_z_m", path, 0.0, -kSite_m, kSite_m);
     grid.yaw_rad = core::deg_to_rad(file.number_or(g, "yaw_deg", path, 0.0, -360.0, 360.0));
     grid.roll_amplitude_rad = core::deg_to_rad(file.number_or(g, "roll_amplitude_deg", path, 0.0, 0.0, 30.0));
     grid.roll_period_s = file.number_or(g, "roll_period_s", path, 0.0, 0.0, 600.0);
@@ -73,7 +75,7 @@ BulkScenario load_bulk_scenario(const YamlFile& file, const std::vector<bulk::Ma
   }
   if (scenario.grids.empty()) file.fail(grids, "bulk.grids", "no grid defined");
 
-  if (bulk["heaps"].IsDefined()) {
+  if (file.optional(bulk, "heaps", "bulk")) {
     const YAML::Node heaps = file.sequence(bulk, "heaps", "bulk");
     for (std::size_t n = 0; n < heaps.size(); ++n) {
       const YAML::Node h = heaps[n];
@@ -100,6 +102,7 @@ BulkScenario load_bulk_scenario(const YamlFile& file, const std::vector<bulk::Ma
   s.spill_speed_mps = file.number(grab, "spill_speed_mps", "bulk.grab", 0.0, 50.0, true);
   s.capacity_m3 = file.number(grab, "capacity_m3", "bulk.grab", 0.0, 500.0, true);
   s.closing_time_s = file.number(grab, "closing_time_s", "bulk.grab", 0.0, 120.0, true);
+  file.check_unknown_keys();
   return scenario;
 }
 

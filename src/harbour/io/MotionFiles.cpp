@@ -91,6 +91,7 @@ PlatformFile load_platform(const YamlFile& f) {
                    " m, outside its stroke [" + format_length(g.min_length_m) + ", " +
                    format_length(g.max_length_m) + "] m");
   }
+  f.check_unknown_keys();
   return out;
 }
 
@@ -112,9 +113,11 @@ void read_translational(const YamlFile& f, const YAML::Node& n, const std::strin
 
 void read_channels(const YamlFile& f, const YAML::Node& n, const std::string& at,
                    motion::WashoutSettings& w) {
-  read_translational(f, n["surge_sway"], at + ".surge_sway", w.surge_sway);
-  read_translational(f, n["heave"], at + ".heave", w.heave);
-  if (const YAML::Node t = n["tilt"]; t.IsDefined()) {
+  if (const auto c = f.optional_map(n, "surge_sway", at))
+    read_translational(f, *c, at + ".surge_sway", w.surge_sway);
+  if (const auto c = f.optional_map(n, "heave", at)) read_translational(f, *c, at + ".heave", w.heave);
+  if (const auto tilt = f.optional_map(n, "tilt", at)) {
+    const YAML::Node& t = *tilt;
     const std::string tat = at + ".tilt";
     w.tilt.gain = f.number_or(t, "gain", tat, w.tilt.gain, 0.0, 10.0);
     w.tilt.limit_mps2 = f.number_or(t, "limit_mps2", tat, w.tilt.limit_mps2, 0.0, 100.0, true);
@@ -125,7 +128,8 @@ void read_channels(const YamlFile& f, const YAML::Node& n, const std::string& at
     w.tilt.max_rate_rad_s = deg_to_rad(
         f.number_or(t, "max_rate_deg_s", tat, core::rad_to_deg(w.tilt.max_rate_rad_s), 0.0, 90.0, true));
   }
-  if (const YAML::Node r = n["rotation"]; r.IsDefined()) {
+  if (const auto rotation = f.optional_map(n, "rotation", at)) {
+    const YAML::Node& r = *rotation;
     const std::string rat = at + ".rotation";
     w.rotation.gain = f.number_or(r, "gain", rat, w.rotation.gain, 0.0, 10.0);
     w.rotation.limit_rad_s = deg_to_rad(
@@ -140,11 +144,20 @@ void read_channels(const YamlFile& f, const YAML::Node& n, const std::string& at
 motion::WashoutSettings load_washout(const YamlFile& f, const std::string& machine) {
   motion::WashoutSettings w;
   w.rate_hz = f.number(f.root(), "rate_hz", "", 1.0, 10000.0);
-  if (f.root()["defaults"].IsDefined()) read_channels(f, f.root()["defaults"], "defaults", w);
-  const YAML::Node machines = f.required(f.root(), "machines", "");
-  const YAML::Node m = machines[machine];
-  if (!m.IsDefined()) f.fail(machines, "machines", "no washout settings for machine '" + machine + "'");
-  read_channels(f, m, "machines." + machine, w);
+  if (const auto defaults = f.optional_map(f.root(), "defaults", ""))
+    read_channels(f, *defaults, "defaults", w);
+  const YAML::Node machines = f.required_map(f.root(), "machines", "");
+  // every machine's section is checked (a typo in another machine's section is still a typo)
+  bool found = false;
+  for (const auto& entry : machines) {
+    const std::string name = entry.first.Scalar();
+    motion::WashoutSettings scratch = w;
+    const YAML::Node section = f.required_map(machines, name, "machines");
+    read_channels(f, section, "machines." + name, name == machine ? w : scratch);
+    found |= name == machine;
+  }
+  if (!found) f.fail(machines, "machines", "no washout settings for machine '" + machine + "'");
+  f.check_unknown_keys();
   return w;
 }
 

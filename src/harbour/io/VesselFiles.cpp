@@ -8,7 +8,7 @@ namespace {
 std::vector<sim::Harmonic> read_harmonics(const YamlFile& f, const YAML::Node& sea, const std::string& key,
                                           const std::string& at, bool angle) {
   std::vector<sim::Harmonic> out;
-  if (!sea[key].IsDefined()) return out;
+  if (!f.optional(sea, key, at)) return out;
   const YAML::Node list = f.sequence(sea, key, at);
   for (std::size_t n = 0; n < list.size(); ++n) {
     const std::string p = at + "." + key + "[" + std::to_string(n) + "]";
@@ -78,6 +78,7 @@ sim::VesselSettings load_vessel(const YamlFile& f) {
     s.bays.push_back(b);
   }
   if (s.bays.empty()) f.fail(bays, at + ".bays", "a vessel needs at least one bay");
+  f.check_unknown_keys();
   return s;
 }
 
