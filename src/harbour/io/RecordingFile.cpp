@@ -8,7 +8,6 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
-#include <limits>
 #include <optional>
 #include <vector>
 
@@ -166,25 +165,33 @@ RecordingWriter::RecordingWriter(const std::string& path, const sim::Recording& 
   w.put(prefix.parent);
   w.put(prefix.branch_step);
   write(w.out, true);
-  // the prefix in step order, as a run would have streamed it
-  std::size_t i = 0, c = 0, k = 0, m = 0;
-  for (std::int64_t step = 0; i < prefix.inputs.size() || c < prefix.checkpoints.size() ||
-                              k < prefix.keyframes.size() || m < prefix.commands.size();) {
-    for (; m < prefix.commands.size() && prefix.commands[m].step <= step; ++m)
-      on_command(prefix.commands[m]);
-    for (; i < prefix.inputs.size() && prefix.inputs[i].step <= step; ++i)
-      on_input(prefix.inputs[i]);
-    for (; c < prefix.checkpoints.size() && prefix.checkpoints[c].step <= step + 1; ++c)
-      on_checkpoint(prefix.checkpoints[c]);
-    for (; k < prefix.keyframes.size() && prefix.keyframes[k].step <= step + 1; ++k)
-      on_keyframe(prefix.keyframes[k]);
-    // next step anything happens at
-    std::int64_t next = std::numeric_limits<std::int64_t>::max();
-    if (m < prefix.commands.size()) next = std::min(next, prefix.commands[m].step);
-    if (i < prefix.inputs.size()) next = std::min(next, prefix.inputs[i].step);
-    if (c < prefix.checkpoints.size()) next = std::min(next, prefix.checkpoints[c].step - 1);
-    if (k < prefix.keyframes.size()) next = std::min(next, prefix.keyframes[k].step - 1);
-    step = std::max(step + 1, next);
+  // the prefix merged in the order a run streams it: before step s the commands of s, after it the input
+  // change applied at s and the checkpoint and keyframe of s + 1 (each list is written in its own order)
+  const std::size_t sizes[] = {prefix.commands.size(), prefix.inputs.size(), prefix.checkpoints.size(),
+                               prefix.keyframes.size()};
+  std::size_t next[] = {0, 0, 0, 0};
+  const auto streamed_at = [&](std::size_t kind) -> std::pair<std::int64_t, std::size_t> {
+    switch (kind) {
+      case 0:
+        return {prefix.commands[next[0]].step, 0};
+      case 1:
+        return {prefix.inputs[next[1]].step, 1};
+      case 2:
+        return {prefix.checkpoints[next[2]].step - 1, 2};
+      default:
+        return {prefix.keyframes[next[3]].step - 1, 3};
+    }
+  };
+  for (;;) {
+    std::size_t first = 4;
+    for (std::size_t kind = 0; kind < 4; ++kind)
+      if (next[kind] < sizes[kind] && (first == 4 || streamed_at(kind) < streamed_at(first))) first = kind;
+    if (first == 4) break;
+    const std::size_t n = next[first]++;
+    if (first == 0) on_command(prefix.commands[n]);
+    if (first == 1) on_input(prefix.inputs[n]);
+    if (first == 2) on_checkpoint(prefix.checkpoints[n]);
+    if (first == 3) on_keyframe(prefix.keyframes[n]);
   }
 }
 
