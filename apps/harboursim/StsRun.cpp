@@ -175,7 +175,7 @@ int run_exercise(const RunOptions& options) {
   sim::Simulation simulation(exercise.scenario);
   sim::Autopilot pilot(exercise);
   sim::Evaluator evaluator(exercise);
-  sim::Recorder recorder(exercise.name);
+  sim::Recorder recorder(exercise.name, simulation.control_table());
   io::RecordsStore db(options.database.empty() ? default_database() : options.database);
   std::printf("harboursim: exercise %s, %zu move(s), autopilot, time limit %.0f s\n", exercise.name.c_str(),
               exercise.moves.size(), exercise.rules.time_limit_s);
@@ -238,7 +238,7 @@ int drive(const sim::ExerciseSettings& exercise, sim::Simulation& simulation, si
       recorder.on_command(simulation, commands[next_command].timed.command);
       std::printf("  t=%6.1f s  instructor: %s\n", simulation.time_s(), commands[next_command].text.c_str());
     }
-    const sim::Inputs in = pilot.next(simulation);
+    const sim::Controls in = pilot.next(simulation);
     simulation.step(in);
     const sim::Metrics before = evaluator.metrics();
     evaluator.observe(simulation, in);
@@ -246,11 +246,11 @@ int drive(const sim::ExerciseSettings& exercise, sim::Simulation& simulation, si
     if (!options.record.empty()) recorder.after_step(simulation, in);
     if (simulation.time_s() >= next_progress) {
       next_progress += kProgressEvery_s;
-      const sim::Snapshot s = simulation.snapshot();
+      const sim::StsCrane& crane = simulation.crane();
       std::printf("  t=%6.1f s  trolley %6.2f m  spreader z %5.2f m  load %5.1f t  %s  moves %d/%zu  %s\n",
-                  s.time_s, s.trolley_x_m, s.spreader.position.z, s.hoisted_load_n / 9.80665 / 1000.0,
-                  s.lamps.locked ? "locked  " : "unlocked", evaluator.metrics().moves_completed,
-                  exercise.moves.size(), pilot.activity());
+                  simulation.time_s(), crane.trolley_position_m(), crane.spreader_pose().position.z,
+                  crane.hoisted_load_n() / 9.80665 / 1000.0, crane.lamps().locked ? "locked  " : "unlocked",
+                  evaluator.metrics().moves_completed, exercise.moves.size(), pilot.activity());
       std::fflush(stdout);
     }
   }
@@ -315,7 +315,7 @@ int replay_recording(const std::string& recording_path, const std::string& exerc
   sim::Evaluator evaluator(exercise);
   const sim::ReplayResult r =
       sim::replay(exercise.scenario, recording, -1,
-                  [&](const sim::Simulation& s, const sim::Inputs& in) { evaluator.observe(s, in); });
+                  [&](const sim::Simulation& s, const sim::Controls& in) { evaluator.observe(s, in); });
   if (r.first_mismatch) {
     std::fprintf(stderr,
                  "harboursim: replay diverged at t=%.3f s (recorded with a different build or data?)\n",
@@ -350,7 +350,7 @@ int take_over_recording(const std::string& recording_path, const RunOptions& opt
   sim::Evaluator evaluator(exercise);
   sim::TakeOver branch =
       sim::take_over(exercise.scenario, recording, recording_path, step,
-                     [&](const sim::Simulation& s, const sim::Inputs& in) { evaluator.observe(s, in); });
+                     [&](const sim::Simulation& s, const sim::Controls& in) { evaluator.observe(s, in); });
   io::RecordsStore db(options.database.empty() ? default_database() : options.database);
   std::optional<std::int64_t> parent;
   for (const io::AttemptRow& a : db.attempts())

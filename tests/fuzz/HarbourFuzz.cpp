@@ -70,11 +70,11 @@ void step_a_while(const harbour::sim::StsCraneSettings& crane) {
       std::clamp(scenario.gantry_y_m, crane.gantry_drive.min_position_m, crane.gantry_drive.max_position_m);
   scenario.spreader_z_m = std::min(scenario.spreader_z_m, crane.trolley_rail_height_m - 3.0);
   harbour::sim::Simulation simulation(scenario);
-  harbour::sim::Inputs in;
-  in.sts.hoist = -1.0;
-  in.sts.trolley = 1.0;
+  harbour::sim::StsControls in;
+  in.hoist = -1.0;
+  in.trolley = 1.0;
   for (int k = 0; k < 300; ++k)
-    simulation.step(in);
+    simulation.step(simulation.crane().controls(in));
 }
 
 const std::map<std::string, std::function<void(const std::string&)>>& targets() {

@@ -23,18 +23,19 @@ sim::Recording sample() {
   r.parent = "attempt-7";
   r.branch_step = 1234;
   r.total_steps = 5000;
-  sim::Inputs a;
-  a.sts.trolley = 0.25;
-  a.sts.lock = true;
-  sim::Inputs b;
-  b.sts.hoist = -1.0 / 3.0;
-  b.sts.emergency_stop = true;
-  sim::Inputs c;  // every cab control of version 3
-  c.sts.boom = 0.5;
-  c.sts.horn = true;
-  c.sts.flipper_down = {true, false, false, true};
-  c.sts.spreader_size_ft = 45;
-  r.inputs = {{0, a}, {2500, b}, {3000, c}};
+  sim::StsControls a;
+  a.trolley = 0.25;
+  a.lock = true;
+  sim::StsControls b;
+  b.hoist = -1.0 / 3.0;
+  b.emergency_stop = true;
+  sim::StsControls c;  // every cab control of version 3
+  c.boom = 0.5;
+  c.horn = true;
+  c.flipper_down = {true, false, false, true};
+  c.spreader_size_ft = 45;
+  r.control_labels = sim::legacy_sts_control_labels();  // the shipped table's order
+  r.inputs = {{0, scenes::cab(a)}, {2500, scenes::cab(b)}, {3000, scenes::cab(c)}};
   r.checkpoints = {{1000, 0x0123456789ABCDEFull}, {2000, 42}, {3000, 43}, {4000, 44}, {5000, 45}};
   sim::InstructorCommand gust;  // version 4: the instructor's commands
   gust.gust = {0.0, 3.0, 8.0};
@@ -58,9 +59,9 @@ TEST(RecordingFile, RoundTripsBitForBit) {
   EXPECT_EQ(back.branch_step, 1234);
   EXPECT_EQ(back.total_steps, 5000);
   ASSERT_EQ(back.inputs.size(), 3u);
-  EXPECT_TRUE(back.inputs[0].inputs == sample().inputs[0].inputs);
-  EXPECT_TRUE(back.inputs[1].inputs == sample().inputs[1].inputs);  // -1/3 exactly
-  EXPECT_TRUE(back.inputs[2].inputs == sample().inputs[2].inputs);
+  EXPECT_TRUE(back.inputs[0].controls == sample().inputs[0].controls);
+  EXPECT_TRUE(back.inputs[1].controls == sample().inputs[1].controls);  // -1/3 exactly
+  EXPECT_TRUE(back.inputs[2].controls == sample().inputs[2].controls);
   EXPECT_EQ(back.checkpoints[0].state_hash, 0x0123456789ABCDEFull);
   ASSERT_EQ(back.commands.size(), 2u);
   EXPECT_EQ(back.commands[1].step, 2600);
@@ -164,12 +165,13 @@ TEST(RecordingFile, ReadsVersion2InputsWithTheNewControlsAtRest) {
   { std::ofstream(path, std::ios::binary) << bytes; }
   const sim::Recording r = read_recording(path);
   ASSERT_EQ(r.inputs.size(), 1u);
-  sim::Inputs expected;
-  expected.sts.trolley = 0.5;
-  expected.sts.lock = true;
-  expected.sts.emergency_stop = true;
+  sim::StsControls expected;
+  expected.trolley = 0.5;
+  expected.lock = true;
+  expected.emergency_stop = true;
   EXPECT_EQ(r.inputs[0].step, 7);
-  EXPECT_TRUE(r.inputs[0].inputs == expected);
+  EXPECT_EQ(r.control_labels, sim::legacy_sts_control_labels());
+  EXPECT_TRUE(r.inputs[0].controls == scenes::cab(expected));
   std::filesystem::remove(path);
 }
 
@@ -187,10 +189,15 @@ std::string read_error(const std::string& path, const sim::Recording& recording)
 TEST(RecordingFile, LeversOutOfRangeAndRecordsOutOfOrderAreRefused) {
   const std::string path = temp("harbour_ranges.hsrc");
   sim::Recording r = sample();
-  r.inputs[1].inputs.sts.hoist = -1.5;
-  EXPECT_NE(read_error(path, r).find("hoist lever -1.500000 is outside [-1, 1]"), std::string::npos);
-  r.inputs[1].inputs.sts.hoist = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_NE(read_error(path, r).find("hoist lever nan is outside [-1, 1]"), std::string::npos);
+  r.inputs[1].controls.value[2] = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_NE(read_error(path, r).find("control 'hoist' is not a finite value"), std::string::npos);
+  r = sample();
+  r.control_labels.push_back("hoist");
+  EXPECT_NE(read_error(path, r).find("control 'hoist' is listed twice"), std::string::npos);
+  // a value out of a control's range reads (the file does not know the machine) but does not replay
+  r = sample();
+  r.inputs[1].controls.value[2] = -1.5;
+  EXPECT_EQ(read_error(path, r), "");
 
   r = sample();
   std::swap(r.checkpoints[0], r.checkpoints[1]);
@@ -249,13 +256,13 @@ TEST(RecordingFile, ADamagedKeyframeIsRefusedByItsChecksum) {
 TEST(RecordingFile, DamageAnywhereIsRefusedOrReportedNeverACrash) {
   const sim::ScenarioSettings scenario = scenes::sts_discharge(HARBOUR_DATA_DIR);
   constexpr std::int64_t kSteps = 11000;  // a keyframe at 10 s, a checkpoint at 11 s
-  sim::Recorder recorder("sts_discharge");
+  sim::Recorder recorder("sts_discharge", sim::sts_control_table());
   {
     sim::Simulation s(scenario);
     for (std::int64_t k = 0; k < kSteps; ++k) {
-      const sim::Inputs in = scenes::scripted_operator(k);
-      s.step(in);
-      recorder.after_step(s, in);
+      const sim::StsControls in = scenes::scripted_operator(k);
+      s.step(scenes::cab(in));
+      recorder.after_step(s, scenes::cab(in));
     }
   }
   const std::string path = temp("harbour_damage.hsrc");
@@ -305,6 +312,23 @@ TEST(RecordingFile, DamageAnywhereIsRefusedOrReportedNeverACrash) {
       "replayed unchanged\n",
       refused_reading, refused_seek, mismatched, unchanged);
   std::filesystem::remove(path);
+}
+
+// A recording written by the v6 build (2026-11-23, `harboursim run --exercise sts_discharge --autopilot
+// --command 20:gust:6:3`): its STS fields are read by label and it replays bit for bit on today's build.
+TEST(RecordingFile, ACommittedVersion6RecordingStillReplaysBitForBit) {
+  const sim::Recording r =
+      read_recording(std::string(HARBOUR_DATA_DIR) + "/../tests/data/recordings/sts_discharge_v6.hsrc");
+  EXPECT_EQ(r.control_labels, sim::legacy_sts_control_labels());
+  ASSERT_EQ(r.checkpoints.size(), 94u);
+  const sim::ScenarioSettings scenario = scenes::sts_discharge(HARBOUR_DATA_DIR);
+  const sim::ReplayResult whole = sim::replay(scenario, r);
+  EXPECT_EQ(whole.checkpoints_checked, 94);
+  EXPECT_FALSE(whole.first_mismatch.has_value()) << "first mismatch at step " << *whole.first_mismatch;
+  // and a seek from one of its keyframes (saved by the old build) lands on the recorded state too
+  const sim::ReplayResult seek = sim::replay(scenario, r, 61000);
+  EXPECT_EQ(seek.keyframes_used, 1);
+  EXPECT_FALSE(seek.first_mismatch.has_value());
 }
 
 }  // namespace

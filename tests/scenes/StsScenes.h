@@ -22,21 +22,30 @@ inline sim::ScenarioSettings sts_discharge(const std::string& data_dir) {
   return sts_discharge_exercise(data_dir).scenario;
 }
 
+/// The STS cab's controls as the executive takes them (the shipped STS control table, which scenes use).
+inline sim::Controls cab(const sim::StsControls& sts) {
+  static const sim::ControlTable table = sim::sts_control_table();
+  static const sim::StsControlSlots slots(table);
+  sim::Controls c = table.neutral();
+  slots.write(sts, c);
+  return c;
+}
+
 /// A scripted operator: trolley out and back, lowering, a lock attempt, hoisting with some gantry travel.
-inline sim::Inputs scripted_operator(std::int64_t step) {
+inline sim::StsControls scripted_operator(std::int64_t step) {
   const double t = static_cast<double>(step) * 0.001;
-  sim::Inputs in;
+  sim::StsControls in;
   if (t < 3.0)
-    in.sts.trolley = 0.3;
+    in.trolley = 0.3;
   else if (t < 6.0)
-    in.sts.trolley = -0.3;
+    in.trolley = -0.3;
   else if (t < 11.0)
-    in.sts.hoist = -0.25;
+    in.hoist = -0.25;
   else if (t < 11.2)
-    in.sts.lock = true;
+    in.lock = true;
   else if (t < 18.0) {
-    in.sts.hoist = 0.4;
-    in.sts.gantry = 0.5;
+    in.hoist = 0.4;
+    in.gantry = 0.5;
   }
   return in;
 }

@@ -26,7 +26,7 @@ Attempt run(const ExerciseSettings& exercise, OperatorDefects defects = {}, int 
   Autopilot pilot(exercise, defects);
   Evaluator evaluator(exercise);
   for (int k = 0; k < max_steps && !evaluator.finished(); ++k) {
-    const Inputs in = pilot.next(sim);
+    const Controls in = pilot.next(sim);
     sim.step(in);
     evaluator.observe(sim, in);
   }
@@ -132,14 +132,14 @@ TEST(Evaluation, HittingABoxThatIsNotTheTaskIsACollision) {
   exercise.moves[0].container_id = "TGHU1000010";
   Simulation sim(exercise.scenario);
   Evaluator evaluator(exercise);
-  Inputs drop;
-  drop.sts.hoist = -0.6;  // 0.9 m/s at the spreader
+  StsControls drop;
+  drop.hoist = -0.6;  // 0.9 m/s at the spreader
   // the impact is reported when its impulse window closes: compare with the speed just before it began
   std::vector<double> speeds;
   for (int k = 0; k < 20000 && evaluator.metrics().collisions == 0; ++k) {
     speeds.push_back(-sim.world().linear_velocity(sim.crane().spreader_body()).z);
-    sim.step(drop);
-    evaluator.observe(sim, drop);
+    sim.step(scenes::cab(drop));
+    evaluator.observe(sim, scenes::cab(drop));
   }
   ASSERT_GT(speeds.size(), static_cast<std::size_t>(physics::PhysicsWorld::kImpulseWindowSteps));
   const double speed = speeds[speeds.size() - physics::PhysicsWorld::kImpulseWindowSteps];
@@ -169,11 +169,11 @@ Evaluator travel_gantry(int horn_steps, int steps) {
   Simulation sim(exercise.scenario);
   Evaluator evaluator(exercise);
   for (int k = 0; k < steps; ++k) {
-    Inputs in;
-    in.sts.horn = k < horn_steps;
-    in.sts.gantry = k >= 1000 ? 0.5 : 0.0;
-    sim.step(in);
-    evaluator.observe(sim, in);
+    StsControls in;
+    in.horn = k < horn_steps;
+    in.gantry = k >= 1000 ? 0.5 : 0.0;
+    sim.step(scenes::cab(in));
+    evaluator.observe(sim, scenes::cab(in));
   }
   return evaluator;
 }
@@ -211,11 +211,11 @@ TEST(Evaluation, ASpreaderLoweredOffTheCellCountsACellGuideCollision) {
   exercise.scenario.trolley_x_m = 32.27 + 0.15;
   Simulation sim(exercise.scenario);
   Evaluator evaluator(exercise);
-  Inputs lower;
-  lower.sts.hoist = -0.6;
+  StsControls lower;
+  lower.hoist = -0.6;
   for (int k = 0; k < 40000 && evaluator.metrics().collisions == 0; ++k) {
-    sim.step(lower);
-    evaluator.observe(sim, lower);
+    sim.step(scenes::cab(lower));
+    evaluator.observe(sim, scenes::cab(lower));
   }
   EXPECT_EQ(evaluator.metrics().collisions, 1);
   EXPECT_EQ(evaluator.metrics().cell_guide_collisions, 1);
@@ -241,12 +241,12 @@ INSTANTIATE_TEST_SUITE_P(Moments, TakeOverAt, ::testing::Values(30000, 62000));
 TEST_P(TakeOverAt, AnInstructorTakeOverContinuesTheAttemptFromTheRecordedState) {
   const std::int64_t at = GetParam();
   const ExerciseSettings exercise = scenes::sts_discharge_exercise(HARBOUR_DATA_DIR);
-  Recorder recorder(exercise.name);
+  Recorder recorder(exercise.name, sts_control_table());
   {
     Simulation sim(exercise.scenario);
     Autopilot pilot(exercise);
     for (std::int64_t k = 0; k < at; ++k) {
-      const Inputs in = pilot.next(sim);
+      const Controls in = pilot.next(sim);
       sim.step(in);
       recorder.after_step(sim, in);
     }
@@ -254,7 +254,7 @@ TEST_P(TakeOverAt, AnInstructorTakeOverContinuesTheAttemptFromTheRecordedState) 
   Evaluator evaluator(exercise);
   int observed = 0;
   TakeOver branch = take_over(exercise.scenario, recorder.recording(), "original", at,
-                              [&](const Simulation& s, const Inputs& in) {
+                              [&](const Simulation& s, const Controls& in) {
                                 evaluator.observe(s, in);
                                 ++observed;
                               });
@@ -264,7 +264,7 @@ TEST_P(TakeOverAt, AnInstructorTakeOverContinuesTheAttemptFromTheRecordedState) 
   Autopilot pilot(exercise);
   pilot.resume(*branch.simulation, evaluator.metrics().moves_completed);
   for (int k = 0; k < 200000 && !evaluator.finished(); ++k) {
-    const Inputs in = pilot.next(*branch.simulation);
+    const Controls in = pilot.next(*branch.simulation);
     branch.simulation->step(in);
     evaluator.observe(*branch.simulation, in);
   }

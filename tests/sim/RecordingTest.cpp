@@ -19,11 +19,11 @@ struct RecordedRun {
   std::map<std::int64_t, std::uint64_t> hash_at;
   RecordedRun() {
     Simulation s(scenes::sts_discharge(HARBOUR_DATA_DIR));
-    Recorder recorder("sts_discharge_test");
+    Recorder recorder("sts_discharge_test", sts_control_table());
     for (std::int64_t k = 0; k < kRunSteps; ++k) {
-      const Inputs in = scenes::scripted_operator(k);
-      s.step(in);
-      recorder.after_step(s, in);
+      const StsControls in = scenes::scripted_operator(k);
+      s.step(scenes::cab(in));
+      recorder.after_step(s, scenes::cab(in));
       if (s.steps() % 100 == 0) hash_at[s.steps()] = s.state_hash();
     }
     recording = recorder.recording();
@@ -45,21 +45,25 @@ TEST(Recording, ReplayReproducesTheHashAtEveryRecordedSecond) {
 
 TEST(Recording, InputsAreRecordedAsTheMachineReadThem) {
   Simulation s(scenes::sts_discharge(HARBOUR_DATA_DIR));
-  Recorder recorder("levers");
-  Inputs in;
-  in.sts.trolley = std::numeric_limits<double>::quiet_NaN();
-  in.sts.hoist = 3.0;
-  s.step(in);
-  recorder.after_step(s, in);
+  Recorder recorder("levers", sts_control_table());
+  StsControls in;
+  in.trolley = std::numeric_limits<double>::quiet_NaN();
+  in.hoist = 3.0;
+  s.step(scenes::cab(in));
+  recorder.after_step(s, scenes::cab(in));
   ASSERT_EQ(recorder.recording().inputs.size(), 1u);
-  EXPECT_EQ(recorder.recording().inputs[0].inputs, in_range(in));
-  EXPECT_EQ(recorder.recording().inputs[0].inputs.sts.trolley, 0.0);
-  EXPECT_EQ(recorder.recording().inputs[0].inputs.sts.hoist, 1.0);
+  const ControlTable& table = s.control_table();
+  EXPECT_EQ(recorder.recording().inputs[0].controls, table.in_range(scenes::cab(in)));
+  EXPECT_EQ(recorder.recording().inputs[0].controls.value[static_cast<std::size_t>(table.find("trolley"))],
+            0.0);
+  EXPECT_EQ(recorder.recording().inputs[0].controls.value[static_cast<std::size_t>(table.find("hoist"))],
+            1.0);
+  EXPECT_EQ(recorder.recording().control_labels[static_cast<std::size_t>(table.find("hoist"))], "hoist");
 }
 
 TEST(Recording, ATamperedRecordingIsDetected) {
   Recording tampered = run().recording;
-  tampered.inputs[2].inputs.sts.hoist += 0.01;
+  tampered.inputs[2].controls.value[static_cast<std::size_t>(sts_control_table().find("hoist"))] += 0.01;
   const ReplayResult r = replay(scenes::sts_discharge(HARBOUR_DATA_DIR), tampered);
   ASSERT_TRUE(r.first_mismatch.has_value());
 }
@@ -79,7 +83,7 @@ TEST(Recording, ASeekStartsFromAKeyframeAndLandsOnTheRecordedState) {
 TEST(Recording, InstructorCommandsAreRecordedAndReplayed) {
   const ScenarioSettings scenario = scenes::sts_discharge(HARBOUR_DATA_DIR);
   Simulation s(scenario);
-  Recorder recorder("commands");
+  Recorder recorder("commands", sts_control_table());
   InstructorCommand wind;
   wind.kind = InstructorCommand::Kind::kSetWind;
   wind.wind_mean_mps = 14.0;
@@ -96,23 +100,23 @@ TEST(Recording, InstructorCommandsAreRecordedAndReplayed) {
       s.command(c);
       recorder.on_command(s, c);
     }
-    const Inputs in = scenes::scripted_operator(k);
-    s.step(in);
-    recorder.after_step(s, in);
+    const StsControls in = scenes::scripted_operator(k);
+    s.step(scenes::cab(in));
+    recorder.after_step(s, scenes::cab(in));
   }
-  EXPECT_EQ(s.snapshot().visibility_m, 300.0);
+  EXPECT_EQ(s.snapshot()->visibility_m, 300.0);
   const Recording& recording = recorder.recording();
   ASSERT_EQ(recording.commands.size(), 3u);
 
   const ReplayResult whole = replay(scenario, recording);
   EXPECT_FALSE(whole.first_mismatch.has_value()) << "first mismatch at step " << *whole.first_mismatch;
   EXPECT_EQ(whole.simulation->state_hash(), s.state_hash());
-  EXPECT_EQ(whole.simulation->snapshot().visibility_m, 300.0);
+  EXPECT_EQ(whole.simulation->snapshot()->visibility_m, 300.0);
 
   const ReplayResult seek = replay(scenario, recording, 19000);  // from the 10 s keyframe: fog still to come
   EXPECT_EQ(seek.keyframes_used, 1);
   EXPECT_FALSE(seek.first_mismatch.has_value());
-  EXPECT_EQ(seek.simulation->snapshot().visibility_m, 300.0);
+  EXPECT_EQ(seek.simulation->snapshot()->visibility_m, 300.0);
 
   Recording without = recording;
   without.commands.clear();
@@ -125,7 +129,7 @@ TEST(Recording, InstructorCommandsAreRecordedAndReplayed) {
   s.command(dusk);
   for (int k = 0; k < 36000; ++k)
     s.step({});
-  EXPECT_NEAR(s.snapshot().time_of_day_h, 21.51, 1e-9);
+  EXPECT_NEAR(s.snapshot()->time_of_day_h, 21.51, 1e-9);
 
   // a command out of range changes nothing
   InstructorCommand bad;
@@ -142,12 +146,12 @@ TEST(Recording, TheInstructorBreaksAndRepairsTheHoistBrake) {
   Simulation s(scenes::sts_discharge(HARBOUR_DATA_DIR));
   for (int k = 0; k < 3000; ++k)
     s.step({});
-  Inputs stop;
-  stop.sts.emergency_stop = true;
+  StsControls stop;
+  stop.emergency_stop = true;
   auto drop_under_estop = [&] {
     const double z0 = s.crane().spreader_pose().position.z;
     for (int k = 0; k < 2000; ++k)
-      s.step(stop);
+      s.step(scenes::cab(stop));
     return s.crane().spreader_pose().position.z - z0;
   };
   InstructorCommand fault;
@@ -199,11 +203,11 @@ TEST(Recording, TakeOverContinuesFromExactlyTheRecordedState) {
   EXPECT_EQ(t.simulation->state_hash(), run().hash_at.at(at));
 
   // the instructor raises the spreader instead; the branch is its own recording, linked to the original
-  Inputs raise;
-  raise.sts.hoist = 0.5;
+  StsControls raise;
+  raise.hoist = 0.5;
   for (int k = 0; k < 3000; ++k) {
-    t.simulation->step(raise);
-    t.recorder.after_step(*t.simulation, raise);
+    t.simulation->step(scenes::cab(raise));
+    t.recorder.after_step(*t.simulation, scenes::cab(raise));
   }
   const Recording& branch = t.recorder.recording();
   EXPECT_EQ(branch.parent, "attempt-1");

@@ -14,9 +14,9 @@ std::vector<std::uint64_t> hashes_per_second(double nudge = 0.0) {
   Simulation s(scenes::sts_discharge(HARBOUR_DATA_DIR));
   std::vector<std::uint64_t> out;
   for (std::int64_t k = 0; k < 15000; ++k) {
-    Inputs in = scenes::scripted_operator(k);
-    if (k == 5000) in.sts.gantry += nudge;  // the gantry is idle then: any change moves it
-    s.step(in);
+    StsControls in = scenes::scripted_operator(k);
+    if (k == 5000) in.gantry += nudge;  // the gantry is idle then: any change moves it
+    s.step(scenes::cab(in));
     if (s.steps() % 1000 == 0) out.push_back(s.state_hash());
   }
   EXPECT_EQ(s.warnings().total(), 0u);
@@ -36,12 +36,12 @@ TEST(Simulation, SameInputsGiveTheSameStateHashEverySecond) {
 TEST(Simulation, LeversOutOfRangeReadAsTheMachineWouldReadThem) {
   auto run = [](double trolley_lever, double hoist_lever) {
     Simulation s(scenes::sts_discharge(HARBOUR_DATA_DIR));
-    Inputs in;
-    in.sts.trolley = trolley_lever;
-    in.sts.hoist = hoist_lever;
-    in.sts.spreader_size_ft = 33;
+    StsControls in;
+    in.trolley = trolley_lever;
+    in.hoist = hoist_lever;
+    in.spreader_size_ft = 33;
     for (int k = 0; k < 2000; ++k)
-      s.step(in);
+      s.step(scenes::cab(in));
     EXPECT_EQ(s.warnings().total(), 0u);
     return s.state_hash();
   };
@@ -50,49 +50,83 @@ TEST(Simulation, LeversOutOfRangeReadAsTheMachineWouldReadThem) {
   EXPECT_EQ(run(nan, -inf), run(0.0, 0.0));
   EXPECT_NE(run(1.0, 0.0), run(0.0, 0.0));
 
-  Inputs odd;
-  odd.sts.gantry = nan;
-  odd.sts.boom = -2.0;
-  odd.sts.spreader_size_ft = 33;
-  const Inputs read = in_range(odd);
-  EXPECT_EQ(read.sts.gantry, 0.0);
-  EXPECT_EQ(read.sts.boom, -1.0);
-  EXPECT_EQ(read.sts.spreader_size_ft, 0);
+  // the table reads a control as the machine will: levers clamped, a non-finite value neutral, a button 0/1,
+  // a switch at a whole position
+  const ControlTable table = sts_control_table();
+  Controls odd = table.neutral();
+  odd.value[static_cast<std::size_t>(table.find("gantry"))] = nan;
+  odd.value[static_cast<std::size_t>(table.find("boom"))] = -2.0;
+  odd.value[static_cast<std::size_t>(table.find("horn"))] = 7.0;
+  odd.value[static_cast<std::size_t>(table.find("flipper_2"))] = 0.7;
+  odd.value[static_cast<std::size_t>(table.find("flipper_3"))] = 9.0;
+  const Controls read = table.in_range(odd);
+  EXPECT_EQ(read.value[static_cast<std::size_t>(table.find("gantry"))], 0.0);
+  EXPECT_EQ(read.value[static_cast<std::size_t>(table.find("boom"))], -1.0);
+  EXPECT_EQ(read.value[static_cast<std::size_t>(table.find("horn"))], 1.0);
+  EXPECT_EQ(read.value[static_cast<std::size_t>(table.find("flipper_2"))], 1.0);
+  EXPECT_EQ(read.value[static_cast<std::size_t>(table.find("flipper_3"))], 1.0);
+  // two size buttons at once select no size
+  StsControls both;
+  both.spreader_size_ft = 20;
+  Controls two = scenes::cab(both);
+  two.value[static_cast<std::size_t>(table.find("spreader_40"))] = 1.0;
+  EXPECT_EQ(StsControlSlots(table).read(two).spreader_size_ft, 0);
+  EXPECT_EQ(StsControlSlots(table).read(scenes::cab(both)).spreader_size_ft, 20);
 }
 
 TEST(Simulation, HoldFreezesAndSingleStepAdvances) {
   Simulation s(scenes::sts_discharge(HARBOUR_DATA_DIR));
   for (std::int64_t k = 0; k < 2000; ++k)
-    s.step(scenes::scripted_operator(k));
+    s.step(scenes::cab(scenes::scripted_operator(k)));
   s.hold();
   const std::uint64_t frozen = s.state_hash();
   for (int k = 0; k < 500; ++k)
-    s.step(scenes::scripted_operator(2000));
+    s.step(scenes::cab(scenes::scripted_operator(2000)));
   EXPECT_EQ(s.state_hash(), frozen);
   EXPECT_EQ(s.steps(), 2000);
-  EXPECT_TRUE(s.snapshot().held);
-  s.single_step(scenes::scripted_operator(2000));
+  EXPECT_TRUE(s.snapshot()->held);
+  s.single_step(scenes::cab(scenes::scripted_operator(2000)));
   EXPECT_EQ(s.steps(), 2001);
   EXPECT_NE(s.state_hash(), frozen);
   s.resume();
-  s.step(scenes::scripted_operator(2001));
+  s.step(scenes::cab(scenes::scripted_operator(2001)));
   EXPECT_EQ(s.steps(), 2002);
 }
 
 TEST(Simulation, SnapshotShowsTheMachineAndTheContainers) {
   Simulation s(scenes::sts_discharge(HARBOUR_DATA_DIR));
   for (std::int64_t k = 0; k < 3000; ++k)
-    s.step(scenes::scripted_operator(k));
-  const Snapshot snap = s.snapshot();
+    s.step(scenes::cab(scenes::scripted_operator(k)));
+  const Snapshot snap = *s.snapshot();
+  const SceneDescription scene = s.scene();
+  EXPECT_EQ(snap.version, kSnapshotVersion);
   EXPECT_EQ(snap.step, 3000);
   EXPECT_DOUBLE_EQ(snap.time_s, 3.0);
-  EXPECT_GT(snap.trolley_x_m, 32.27);          // moved waterside
-  ASSERT_EQ(snap.containers.size(), 3u + 6u);  // and the hatch covers of three bays
-  EXPECT_EQ(snap.containers[1].id, "TGHU1000012");
+  const auto indicator = [&](const std::string& name) {
+    for (std::size_t n = 0; n < scene.indicators.size(); ++n)
+      if (scene.indicators[n] == name) return snap.indicators[n];
+    ADD_FAILURE() << "no indicator " << name;
+    return 0.0;
+  };
+  EXPECT_EQ(snap.indicator_count, static_cast<int>(scene.indicators.size()));
+  EXPECT_GT(indicator("trolley_x_m"), 32.27);  // moved waterside
+  EXPECT_GT(indicator("load_t"), 0.9 * 15.0);  // the spreader hangs
+  // gantry, trolley, spreader, vessel, a truck, 3 boxes and the hatch covers of three bays
+  ASSERT_EQ(snap.entity_count, static_cast<int>(scene.entities.size()));
+  ASSERT_EQ(scene.entities.size(), 5u + 3u + 6u);
+  EXPECT_EQ(scene.entities[6].name, "TGHU1000012");
+  EXPECT_EQ(scene.entities[6].visual, "container.40ft");
   // on the hatch cover: keel -10.5 + depth 11.5 + coaming 1.5 + cover 0.8
-  EXPECT_NEAR(snap.containers[1].pose.position.z, 3.3 + 2.591 / 2, 0.01);
-  EXPECT_EQ(snap.containers[3].id, "HATCH8P");
-  EXPECT_GT(snap.hoisted_load_n, 0.9 * 15000 * 9.80665);  // the spreader hangs
+  EXPECT_NEAR(snap.entities[6].pose.position.z, 3.3 + 2.591 / 2, 0.01);
+  EXPECT_EQ(scene.entities[8].name, "HATCH8P");
+  EXPECT_EQ(scene.entities[8].visual, "hatch_cover");
+  EXPECT_NEAR(snap.entities[2].pose.position.z, s.crane().spreader_pose().position.z, 0.0);
+  // the four hoist ropes, each a polyline from the drum over the trolley down to the headblock and back
+  EXPECT_EQ(snap.rope_count, 4);
+  for (int r = 0; r < snap.rope_count; ++r)
+    EXPECT_GE(snap.rope_points[static_cast<std::size_t>(r)], 3);
+  // at rest in the cab the operator's head feels 1 g up
+  EXPECT_NEAR(snap.cab.specific_force_mps2.z, 9.80665, 0.5);
 }
 
 }  // namespace

@@ -77,7 +77,7 @@ TEST(Weather, SteadyWindDeflectsTheHangingSpreaderBySwingTheory) {
   const core::Vec3 rest = sim.wind_rest_offset_m(sim.weather().mean_wind(), std::nullopt);
   EXPECT_NEAR(rest.y, expected, 0.01 * expected);
   EXPECT_NEAR(rest.x, 0.0, 1e-9);
-  EXPECT_NEAR(sim.snapshot().wind_mps.y, 20.0, 1e-12);
+  EXPECT_NEAR(sim.snapshot()->wind_mps.y, 20.0, 1e-12);
 }
 
 TEST(Weather, AnEmergencyStopHoldsTheLoadUnlessTheBrakeIsFaulty) {
@@ -88,10 +88,10 @@ TEST(Weather, AnEmergencyStopHoldsTheLoadUnlessTheBrakeIsFaulty) {
     for (int k = 0; k < 3000; ++k)
       sim.step({});
     const double z0 = sim.crane().spreader_pose().position.z;
-    Inputs stop;
-    stop.sts.emergency_stop = true;
+    StsControls stop;
+    stop.emergency_stop = true;
     for (int k = 0; k < 2000; ++k)
-      sim.step(stop);
+      sim.step(scenes::cab(stop));
     const double dz = sim.crane().spreader_pose().position.z - z0;
     if (faulty) {
       EXPECT_LT(dz, -1.0) << "a faulty brake lets the load run down";
@@ -105,17 +105,17 @@ TEST(Weather, AFailedLandedSensorPreventsLocking) {
   ScenarioSettings s = scenes::sts_discharge(HARBOUR_DATA_DIR);
   s.events.push_back({ScriptedEvent::Kind::kLandedSensorFault, 0.0, {}, 2});
   Simulation sim(s);
-  Inputs lower;
-  lower.sts.hoist = -0.1;
+  StsControls lower;
+  lower.hoist = -0.1;
   for (int k = 0; k < 60000 && sim.crane().spreader_pose().position.z > 3.3 + 2.591 + 0.5; ++k)
-    sim.step(lower);
+    sim.step(scenes::cab(lower));
   for (int k = 0; k < 1000; ++k)
-    sim.step(lower);  // sitting on the box
+    sim.step(scenes::cab(lower));  // sitting on the box
   EXPECT_FALSE(sim.crane().lamps().landed);
-  Inputs lock;
-  lock.sts.lock = true;
+  StsControls lock;
+  lock.lock = true;
   for (int k = 0; k < 10; ++k)
-    sim.step(lock);
+    sim.step(scenes::cab(lock));
   EXPECT_FALSE(sim.crane().locked_container().has_value());
 }
 

@@ -22,6 +22,7 @@ Vec3 perpendicular(const Vec3& v, const Vec3& e) {
 
 HoistSystem::HoistSystem(const ReevingSettings& settings, const CableBodies& bodies, const Vec3& gravity)
     : settings_(settings), gravity_(gravity), elements_(settings.elements.size()) {
+  events_.reserve(64);
   for (int e = 0; e < static_cast<int>(settings.elements.size()); ++e)
     if (settings.elements[e].kind == ElementKind::kDrum) drums_.push_back(e);
   for (int r = 0; r < static_cast<int>(settings.ropes.size()); ++r) {
@@ -374,8 +375,28 @@ double HoistSystem::energy() const {
 
 std::vector<CableEvent> HoistSystem::take_events() {
   std::vector<CableEvent> out;
-  out.swap(events_);
+  drain_events(out);
   return out;
+}
+
+void HoistSystem::drain_events(std::vector<CableEvent>& into) {
+  into.insert(into.end(), events_.begin(), events_.end());
+  events_.clear();
+}
+
+int HoistSystem::polyline(int rope, int segment, std::span<core::Vec3> out) const {
+  const Segment& s = segment_at(rope, segment);
+  if (out.size() < 2) return 0;
+  const std::size_t interior = s.w.size(), room = out.size() - 2;
+  const std::size_t stride = interior > room ? (interior + room - 1) / room : 1;
+  std::size_t n = 0;
+  out[n++] = s.end_a;
+  for (std::size_t i = stride - 1; i < interior && n + 1 < out.size(); i += stride) {
+    const double f = static_cast<double>(i + 1) / static_cast<double>(interior + 1);
+    out[n++] = s.end_a + (s.end_b - s.end_a) * f + s.w[i];
+  }
+  out[n++] = s.end_b;
+  return static_cast<int>(n);
 }
 
 void HoistSystem::save_state(core::StateWriter& out) const {

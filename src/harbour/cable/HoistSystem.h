@@ -65,6 +65,11 @@ class HoistSystem {
   double energy() const;
   /// Events since the last call.
   std::vector<CableEvent> take_events();
+  /// Appends the events since the last call to `into` (no allocation while its capacity lasts).
+  void drain_events(std::vector<CableEvent>& into);
+  /// Segment `segment` of `rope` as a polyline in the world: its ends and interior nodes (chord plus
+  /// transverse displacement), at most out.size() points spread along it; returns how many were written.
+  int polyline(int rope, int segment, std::span<core::Vec3> out) const;
 
   void hash_into(core::StateHash& hash) const;
 

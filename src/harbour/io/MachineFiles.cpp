@@ -1,8 +1,10 @@
 #include "harbour/io/MachineFiles.h"
 
 #include <filesystem>
+#include <stdexcept>
 
 #include "harbour/core/Units.h"
+#include "harbour/io/ControlFiles.h"
 #include "harbour/io/ReevingFiles.h"
 
 namespace harbour::io {
@@ -138,6 +140,15 @@ sim::StsCraneSettings read_sts_crane(const YamlFile& f, const std::string& folde
            "the hoist reeving's bodies must be [gantry, trolley, headblock]");
   check_sts_hoist(f, m["hoist_reeving"], hoist.reeving);
   s.hoist = hoist.reeving;
+  s.controls = read_control_table(f, m, "machine");
+  try {
+    const sim::StsControlSlots slots(s.controls);  // every control the STS reads, of its kind
+  } catch (const std::invalid_argument& e) {
+    f.fail(m["controls"], "machine.controls", e.what());
+  }
+  const YAML::Node cab = f.required_map(m, "cab", "machine");
+  s.cab_position_m = f.vector3(f.required(cab, "position_m", "machine.cab"), "machine.cab.position_m", 100.0);
+  s.eye_m = f.vector3(f.required(cab, "eye_m", "machine.cab"), "machine.cab.eye_m", 5.0);
   return s;
 }
 

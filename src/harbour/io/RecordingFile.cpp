@@ -4,6 +4,7 @@
 #include <array>
 #include <bit>
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -100,22 +101,8 @@ class Reader {
 constexpr std::size_t kInputRecord_v2 = 8 + 3 * 8 + 1;
 constexpr std::size_t kInputRecord = 8 + 4 * 8 + 1 + 1;
 
-// button bits: lock, unlock, e-stop, horn, then the four flipper switches
-std::uint8_t button_bits(const sim::StsControls& c) {
-  std::uint8_t bits = (c.lock ? 1 : 0) | (c.unlock ? 2 : 0) | (c.emergency_stop ? 4 : 0) | (c.horn ? 8 : 0);
-  for (std::size_t k = 0; k < 4; ++k)
-    if (c.flipper_down[k]) bits |= static_cast<std::uint8_t>(16 << k);
-  return bits;
-}
-
-void set_buttons(sim::StsControls& c, std::uint8_t bits) {
-  c.lock = bits & 1;
-  c.unlock = bits & 2;
-  c.emergency_stop = bits & 4;
-  c.horn = bits & 8;
-  for (std::size_t k = 0; k < 4; ++k)
-    c.flipper_down[k] = bits & (16 << k);
-}
+// button bits (before v7): lock, unlock, e-stop, horn, then the four flipper switches
+constexpr std::uint8_t kLegacyButtons[] = {4, 5, 6, 7, 11, 12, 13, 14};  // their legacy label slots
 constexpr std::size_t kCheckpointRecord = 8 + 8;
 
 std::uint64_t checksum(const std::vector<std::uint8_t>& bytes) {
@@ -130,14 +117,19 @@ constexpr std::size_t kCommandRecord = 8 + 1 + 2 * 8 + 4 + 4 * 8;
 constexpr std::uint8_t kTagInput = 'I', kTagCheckpoint = 'C', kTagKeyframe = 'K', kTagCommand = 'M',
                        kTagEnd = 'E';
 
-void put_input(Writer& w, const sim::Recording::InputChange& c) {
+// v7: the step, then the values that changed since the previous input record (slot, value)
+void put_input(Writer& w, const sim::Recording::InputChange& c, const sim::Controls& previous,
+               std::size_t controls) {
   w.put(c.step);
-  w.put(c.inputs.sts.gantry);
-  w.put(c.inputs.sts.trolley);
-  w.put(c.inputs.sts.hoist);
-  w.put(c.inputs.sts.boom);
-  w.put(button_bits(c.inputs.sts));
-  w.put(c.inputs.sts.spreader_size_ft);
+  std::uint8_t changed = 0;
+  for (std::size_t n = 0; n < controls; ++n)
+    if (c.controls.value[n] != previous.value[n]) ++changed;
+  w.put(changed);
+  for (std::size_t n = 0; n < controls; ++n)
+    if (c.controls.value[n] != previous.value[n]) {
+      w.put(static_cast<std::uint8_t>(n));
+      w.put(c.controls.value[n]);
+    }
 }
 
 void put_command(Writer& w, const sim::Recording::Command& c) {
@@ -164,6 +156,12 @@ RecordingWriter::RecordingWriter(const std::string& path, const sim::Recording& 
   w.put(prefix.scenario);
   w.put(prefix.parent);
   w.put(prefix.branch_step);
+  if (prefix.control_labels.size() > static_cast<std::size_t>(sim::kMaxControls))
+    throw std::runtime_error(path + ": more than " + std::to_string(sim::kMaxControls) + " controls");
+  control_count_ = prefix.control_labels.size();
+  w.put(static_cast<std::uint8_t>(control_count_));
+  for (const std::string& label : prefix.control_labels)
+    w.put(label);
   write(w.out, true);
   // the prefix merged in the order a run streams it: before step s the commands of s, after it the input
   // change applied at s and the checkpoint and keyframe of s + 1 (each list is written in its own order)
@@ -208,7 +206,8 @@ void RecordingWriter::write(const std::vector<unsigned char>& bytes, bool flush)
 void RecordingWriter::on_input(const sim::Recording::InputChange& change) {
   Writer w;
   w.put(kTagInput);
-  put_input(w, change);
+  put_input(w, change, last_input_, control_count_);
+  last_input_ = change.controls;
   write(w.out, false);
 }
 
@@ -255,19 +254,41 @@ void write_recording(const std::string& path, const sim::Recording& r) {
 
 namespace {
 
-sim::Recording::InputChange read_input(Reader& r, std::uint16_t version) {
+// before v7: the STS cab's fields, stored by the legacy labels (sim::legacy_sts_control_labels)
+sim::Recording::InputChange read_legacy_input(Reader& r, std::uint16_t version) {
   sim::Recording::InputChange c;
   c.step = r.get<std::int64_t>("input step");
-  c.inputs.sts.gantry = r.lever("gantry");
-  c.inputs.sts.trolley = r.lever("trolley");
-  c.inputs.sts.hoist = r.lever("hoist");
-  if (version >= 3) c.inputs.sts.boom = r.lever("boom");
-  set_buttons(c.inputs.sts, r.get<std::uint8_t>("buttons"));
+  auto& v = c.controls.value;
+  v[0] = r.lever("gantry");
+  v[1] = r.lever("trolley");
+  v[2] = r.lever("hoist");
+  if (version >= 3) v[3] = r.lever("boom");
+  const auto bits = r.get<std::uint8_t>("buttons");
+  for (std::size_t k = 0; k < std::size(kLegacyButtons); ++k)
+    v[kLegacyButtons[k]] = (bits >> k) & 1 ? 1.0 : 0.0;
   if (version >= 3) {
-    c.inputs.sts.spreader_size_ft = r.get<std::uint8_t>("spreader size");
-    const auto size = c.inputs.sts.spreader_size_ft;
+    const auto size = r.get<std::uint8_t>("spreader size");
     if (size != 0 && size != 20 && size != 40 && size != 45)
       r.fail("spreader size button is not 0, 20, 40 or 45");
+    v[8] = size == 20;
+    v[9] = size == 40;
+    v[10] = size == 45;
+  }
+  return c;
+}
+
+sim::Recording::InputChange read_input(Reader& r, const sim::Recording& rec) {
+  sim::Recording::InputChange c;
+  c.step = r.get<std::int64_t>("input step");
+  c.controls = rec.inputs.empty() ? sim::Controls{} : rec.inputs.back().controls;
+  const auto changed = r.get<std::uint8_t>("changed controls");
+  for (std::uint8_t k = 0; k < changed; ++k) {
+    const auto slot = r.get<std::uint8_t>("control");
+    if (slot >= rec.control_labels.size())
+      r.fail("input control " + std::to_string(slot) + " of " + std::to_string(rec.control_labels.size()));
+    const double value = r.get<double>("control value");
+    if (!std::isfinite(value)) r.fail("control '" + rec.control_labels[slot] + "' is not a finite value");
+    c.controls.value[slot] = value;
   }
   return c;
 }
@@ -332,14 +353,14 @@ void check_recording(const sim::Recording& rec, Reader& r) {
 }
 
 // v6: tagged records until the end record; a file without one is what a killed run left
-void read_records(Reader& r, sim::Recording& rec) {
+void read_records(Reader& r, sim::Recording& rec, std::uint16_t version) {
   bool ended = false;
   while (!r.done()) {
     const std::size_t at = r.offset();
     try {
       const auto tag = r.get<std::uint8_t>("record tag");
       if (tag == kTagInput) {
-        rec.inputs.push_back(read_input(r, kRecordingVersion));
+        rec.inputs.push_back(version >= 7 ? read_input(r, rec) : read_legacy_input(r, version));
       } else if (tag == kTagCheckpoint) {
         sim::Recording::Checkpoint c;
         c.step = r.get<std::int64_t>("checkpoint step");
@@ -403,15 +424,29 @@ sim::Recording read_recording(const std::string& path) {
   if (const std::string bad = core::why_bad_name(rec.parent, 4096); !rec.parent.empty() && !bad.empty())
     r.fail("the parent recording's name " + bad);
   rec.branch_step = r.get<std::int64_t>("branch step");
+  if (version >= 7) {
+    const auto controls = r.get<std::uint8_t>("control count");
+    if (controls > sim::kMaxControls) r.fail(std::to_string(controls) + " controls (at most 32)");
+    for (std::uint8_t n = 0; n < controls; ++n) {
+      std::string label = r.text("control label");
+      if (const std::string bad = core::why_bad_name(label, 64); !bad.empty())
+        r.fail("a control label " + bad);
+      if (std::find(rec.control_labels.begin(), rec.control_labels.end(), label) != rec.control_labels.end())
+        r.fail("control '" + label + "' is listed twice");
+      rec.control_labels.push_back(std::move(label));
+    }
+  } else {
+    rec.control_labels = sim::legacy_sts_control_labels();
+  }
   if (version >= 6) {
-    read_records(r, rec);
+    read_records(r, rec, version);
     check_recording(rec, r);
     return rec;
   }
   rec.total_steps = r.get<std::int64_t>("total steps");
   const std::uint32_t inputs = r.count(version >= 3 ? kInputRecord : kInputRecord_v2, "inputs");
   for (std::uint32_t n = 0; n < inputs; ++n)
-    rec.inputs.push_back(read_input(r, version));
+    rec.inputs.push_back(read_legacy_input(r, version));
   const std::uint32_t checkpoints = r.count(kCheckpointRecord, "checkpoints");
   for (std::uint32_t n = 0; n < checkpoints; ++n) {
     sim::Recording::Checkpoint c;

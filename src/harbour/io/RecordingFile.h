@@ -21,7 +21,7 @@ class RecordingFileError : public std::runtime_error {
 /// instructor's commands; 3 the boom lever, horn, flipper and spreader-size controls; 2 keyframes. Versions
 /// 1-5 are still read (the keyframes of 2 and 3 hold an older machine state: a seek from one is refused with
 /// core::StateError).
-inline constexpr std::uint16_t kRecordingVersion = 6;
+inline constexpr std::uint16_t kRecordingVersion = 7;
 
 /// Longest recording read [steps]: 24 hours at 1 kHz (docs/reliability.md).
 inline constexpr std::int64_t kMaxRecordingSteps = 24LL * 3600 * 1000;
@@ -51,6 +51,8 @@ class RecordingWriter final : public sim::RecordingSink {
  private:
   void write(const std::vector<unsigned char>& bytes, bool flush);
   std::string path_;
+  sim::Controls last_input_;  // the last input change written (the next is stored as its difference)
+  std::size_t control_count_ = 0;
   std::FILE* file_ = nullptr;
 };
 

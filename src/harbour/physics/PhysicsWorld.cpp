@@ -117,6 +117,7 @@ struct PhysicsWorld::Ode {
     int shape1 = 0, shape2 = 0;  // shape1 < shape2
     int impact = -1;             // index into open impacts, if this pair's touch is being measured
     dContact contact;
+    int order = 0;  // as found (the sort's tie-break: contacts of a pair keep dCollide's order)
   };
   dWorldID world = nullptr;
   dSpaceID space = nullptr;
@@ -174,6 +175,12 @@ PhysicsWorld::PhysicsWorld(const WorldSettings& settings)
   ode_->space = dSimpleSpaceCreate(nullptr);
   ode_->contacts = dJointGroupCreate(0);
   ode_->owner = this;
+  // buffers a step reuses, sized for a busy scene: stepping allocates only if one is outgrown
+  ode_->pending.reserve(1024);
+  ode_->feedback.reserve(1024);
+  last_touch_.reserve(1024);
+  open_impacts_.reserve(256);
+  impacts_.reserve(256);
   dWorldSetGravity(ode_->world, settings.gravity.x, settings.gravity.y, settings.gravity.z);
   dWorldSetERP(ode_->world, settings.erp);
   dWorldSetCFM(ode_->world, settings.cfm);
@@ -427,12 +434,15 @@ void PhysicsWorld::collide() {
     contacts.resize(static_cast<std::size_t>(s.max_contacts_per_pair));
     const int n = dCollide(g1, g2, s.max_contacts_per_pair, &contacts[0].geom, sizeof(dContact));
     for (int i = 0; i < n; ++i)
-      ode->pending.push_back(
-          {Ode::shape_index(g1), Ode::shape_index(g2), -1, contacts[static_cast<std::size_t>(i)]});
+      ode->pending.push_back({Ode::shape_index(g1), Ode::shape_index(g2), -1,
+                              contacts[static_cast<std::size_t>(i)], static_cast<int>(ode->pending.size())});
   };
   dSpaceCollide(ode_->space, ode_.get(), near);
-  std::stable_sort(ode_->pending.begin(), ode_->pending.end(), [](const auto& a, const auto& b) {
-    return a.shape1 != b.shape1 ? a.shape1 < b.shape1 : a.shape2 < b.shape2;
+  // a total order (a stable sort's result without its temporary buffer)
+  std::sort(ode_->pending.begin(), ode_->pending.end(), [](const auto& a, const auto& b) {
+    return a.shape1 != b.shape1   ? a.shape1 < b.shape1
+           : a.shape2 != b.shape2 ? a.shape2 < b.shape2
+                                  : a.order < b.order;
   });
 
   // impacts: a pair of (body or static shape, surface) touching after being apart for impact_rearm_s opens an
@@ -447,8 +457,10 @@ void PhysicsWorld::collide() {
     const bool same_as_previous =
         i > 0 && ode_->pending[i - 1].shape1 == p.shape1 && ode_->pending[i - 1].shape2 == p.shape2;
     if (!same_as_previous) {
-      auto last = last_touch_.find(key);
-      if (last == last_touch_.end() || step_count_ - last->second > rearm) {
+      auto last = std::lower_bound(last_touch_.begin(), last_touch_.end(), key,
+                                   [](const auto& entry, const TouchKey& k) { return entry.first < k; });
+      const bool known = last != last_touch_.end() && last->first == key;
+      if (!known || step_count_ - last->second > rearm) {
         const dContactGeom& g = p.contact.geom;
         dVector3 v1{0, 0, 0, 0}, v2{0, 0, 0, 0};
         if (s1.body != kWorld) dBodyGetPointVel(ode_->bodies[s1.body].id, g.pos[0], g.pos[1], g.pos[2], v1);
@@ -462,11 +474,17 @@ void PhysicsWorld::collide() {
         }
         open_impacts_.push_back({key, e, kImpulseWindowSteps});
       }
-      last_touch_[key] = step_count_;
+      if (known)
+        last->second = step_count_;
+      else
+        last_touch_.insert(last, {key, step_count_});
     }
     for (std::size_t w = 0; w < open_impacts_.size(); ++w)
       if (open_impacts_[w].key == key) p.impact = static_cast<int>(w);
   }
+
+  // a pair apart for longer than the re-arm time counts as never having touched: forget it
+  std::erase_if(last_touch_, [&](const auto& entry) { return step_count_ - entry.second > rearm; });
 
   const WorldSettings& s = settings_;
   ode_->feedback.resize(ode_->pending.size());  // sized before any joint points into it
@@ -560,8 +578,13 @@ void PhysicsWorld::step(double dt_s) {
 
 std::vector<ImpactEvent> PhysicsWorld::take_impacts() {
   std::vector<ImpactEvent> out;
-  out.swap(impacts_);
+  drain_impacts(out);
   return out;
+}
+
+void PhysicsWorld::drain_impacts(std::vector<ImpactEvent>& into) {
+  into.insert(into.end(), impacts_.begin(), impacts_.end());
+  impacts_.clear();
 }
 
 std::uint64_t PhysicsWorld::state_hash() const {
@@ -656,7 +679,8 @@ void PhysicsWorld::restore_state(core::StateReader& in) {
   in.get(touches);
   last_touch_.clear();
   for (const Touch& t : touches)
-    last_touch_[t.key] = t.step;
+    last_touch_.push_back({t.key, t.step});
+  std::sort(last_touch_.begin(), last_touch_.end());
   std::vector<OpenImpact> open;
   in.get(open);
   open_impacts_ = open;

@@ -3,9 +3,9 @@
 #include <array>
 #include <cstdarg>
 #include <cstdint>
-#include <map>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "harbour/core/StateArchive.h"
@@ -132,6 +132,8 @@ class PhysicsWorld {
   const std::string& last_solver_message() const { return last_solver_message_; }
   /// Impacts (pairs that touch after being apart for impact_rearm_s) since the last call.
   std::vector<ImpactEvent> take_impacts();
+  /// Appends the impacts closed since the last call to `into` (its capacity reused: no allocation).
+  void drain_impacts(std::vector<ImpactEvent>& into);
   /// Hash of every body's position, orientation and velocities (bit-exact).
   std::uint64_t state_hash() const;
   /// Bodies, attachments and impact bookkeeping; restore into a world built the same way continues exactly.
@@ -156,7 +158,7 @@ class PhysicsWorld {
   std::string find_divergence(bool forces) const;
 
   int contact_count_ = 0;
-  std::map<TouchKey, std::int64_t> last_touch_;  // last step each pair touched
+  std::vector<std::pair<TouchKey, std::int64_t>> last_touch_;  // last step each pair touched, by key
   std::vector<OpenImpact> open_impacts_;
   std::int64_t step_count_ = 0;
   double step_s_ = 0.001;

@@ -143,7 +143,7 @@ double Autopilot::catch_swing(SwingAxis& axis, double target, double axis_positi
 }
 
 void Autopilot::position_finely(const Simulation& simulation, const core::Vec3& destination, double period,
-                                Inputs& in) {
+                                StsControls& in) {
   const StsCrane& crane = simulation.crane();
   const physics::BodyId load = carrying_ ? *crane.locked_container() : crane.spreader_body();
   const core::Vec3 at = simulation.world().pose(load).position;
@@ -152,12 +152,12 @@ void Autopilot::position_finely(const Simulation& simulation, const core::Vec3& 
   // where the load would hang in the wind blowing now: the operator leans into the gusts
   const core::Vec3 lean =
       simulation.wind_rest_offset_m(simulation.weather().wind(), crane.locked_container());
-  in.sts.trolley = catch_swing(trolley_swing_, destination.x, crane.trolley_position_m(),
-                               crane.trolley_drive().reference_mps(), at.x, v.x, lean.x, period,
-                               settings.trolley_drive.max_speed_mps);
-  in.sts.gantry = catch_swing(gantry_swing_, destination.y, crane.gantry_position_m(),
-                              crane.gantry_drive().reference_mps(), at.y, v.y, lean.y, period,
-                              settings.gantry_drive.max_speed_mps);
+  in.trolley = catch_swing(trolley_swing_, destination.x, crane.trolley_position_m(),
+                           crane.trolley_drive().reference_mps(), at.x, v.x, lean.x, period,
+                           settings.trolley_drive.max_speed_mps);
+  in.gantry = catch_swing(gantry_swing_, destination.y, crane.gantry_position_m(),
+                          crane.gantry_drive().reference_mps(), at.y, v.y, lean.y, period,
+                          settings.gantry_drive.max_speed_mps);
 }
 
 bool Autopilot::will_land_within(double tolerance) const {
@@ -202,20 +202,21 @@ void Autopilot::resume(const Simulation& simulation, int moves_done) {
                              std::optional(simulation.container_body(goal_index(simulation)));
 }
 
-Inputs Autopilot::next(const Simulation& simulation) {
-  if (simulation.steps() % kDecisionSteps != 0 && decided_) return last_;
+Controls Autopilot::next(const Simulation& simulation) {
+  if (simulation.steps() % kDecisionSteps != 0 && decided_) return last_controls_;
   last_ = decide(simulation);
-  for (double* lever : {&last_.sts.gantry, &last_.sts.trolley, &last_.sts.hoist, &last_.sts.boom})
+  for (double* lever : {&last_.gantry, &last_.trolley, &last_.hoist, &last_.boom})
     *lever = device_lever(*lever);
+  last_controls_ = simulation.crane().controls(last_);
   decided_ = true;
-  return last_;
+  return last_controls_;
 }
 
-Inputs Autopilot::decide(const Simulation& simulation) {
-  Inputs in;
+StsControls Autopilot::decide(const Simulation& simulation) {
+  StsControls in;
   const StsCrane& crane = simulation.crane();
   if (done()) {  // clear the truck: raise the empty spreader to travel height
-    in.sts.hoist = crane.spreader_pose().position.z < kTravelHeight_m ? 1.0 : 0.0;
+    in.hoist = crane.spreader_pose().position.z < kTravelHeight_m ? 1.0 : 0.0;
     return in;
   }
   const StsCraneSettings& settings = simulation.scenario().crane;
@@ -224,7 +225,7 @@ Inputs Autopilot::decide(const Simulation& simulation) {
   const double period =
       2.0 * std::numbers::pi * std::sqrt(std::max(crane.pendulum_length_m(), 1.0) / 9.80665);
   const core::Vec3 destination = carrying_ ? exercise_.moves[goal_].target_m : source(simulation);
-  in.sts.flipper_down = flippers(simulation);
+  in.flipper_down = flippers(simulation);
   auto enter = [&](Phase p) {
     phase_ = p;
     phase_start_ = now;
@@ -232,19 +233,19 @@ Inputs Autopilot::decide(const Simulation& simulation) {
 
   switch (phase_) {
     case Phase::kRaise:
-      in.sts.hoist = 1.0;
+      in.hoist = 1.0;
       if (spreader.z >= kTravelHeight_m) {
         start_travel(destination, crane.gantry_position_m(), now);
         enter(Phase::kTravel);
       }
       break;
     case Phase::kTravel: {
-      in.sts.trolley =
+      in.trolley =
           axis_lever(trolley_, crane.trolley_position_m(), settings.trolley_drive.max_speed_mps, period, now);
-      in.sts.gantry =
+      in.gantry =
           axis_lever(gantry_, crane.gantry_position_m(), settings.gantry_drive.max_speed_mps, period, now);
-      in.sts.horn = now < gantry_.ramp_start;
-      if (in.sts.trolley == 0.0 && in.sts.gantry == 0.0 && !in.sts.horn) {
+      in.horn = now < gantry_.ramp_start;
+      if (in.trolley == 0.0 && in.gantry == 0.0 && !in.horn) {
         trolley_swing_ = {};
         gantry_swing_ = {};
         enter(Phase::kSettle);
@@ -271,7 +272,7 @@ Inputs Autopilot::decide(const Simulation& simulation) {
                         !(carrying_ && defects_.land_fast);
       const bool hold =
           (above < kHover_m || at_entry) && !will_land_within(aim) && !(carrying_ && defects_.land_fast);
-      in.sts.hoist = hold ? 0.0 : slow ? -kSlowLever : -0.6;
+      in.hoist = hold ? 0.0 : slow ? -kSlowLever : -0.6;
       if (!carrying_ && crane.lamps().landed) enter(Phase::kLock);
       if (carrying_ && simulation.world().pose(*crane.locked_container()).position.z <= destination.z + 0.01)
         enter(Phase::kSlacken);
@@ -287,7 +288,7 @@ Inputs Autopilot::decide(const Simulation& simulation) {
     }
     case Phase::kLiftOff:
       position_finely(simulation, destination, period, in);
-      in.sts.hoist = kLiftOffLever;
+      in.hoist = kLiftOffLever;
       if (now - phase_start_ > kLiftOff_s) {
         resting_since_ = -1.0;
         enter(Phase::kLower);
@@ -299,7 +300,7 @@ Inputs Autopilot::decide(const Simulation& simulation) {
         enter(Phase::kRaise);
         break;
       }
-      in.sts.lock = now - phase_start_ < kButton_s;
+      in.lock = now - phase_start_ < kButton_s;
       if (now - phase_start_ > 2 * kButton_s && crane.locked_container()) {
         carrying_ = true;
         enter(Phase::kRaise);
@@ -307,13 +308,13 @@ Inputs Autopilot::decide(const Simulation& simulation) {
       break;
     case Phase::kSlacken:
       // lower on until the ropes carry the spreader alone (the unlock interlock refuses a hanging load)
-      in.sts.hoist = -kSlowLever;
+      in.hoist = -kSlowLever;
       if (now - phase_start_ > kSlacken_s &&
           crane.hoisted_load_n() < 1.15 * settings.spreader.mass_kg * 9.80665)
         enter(Phase::kUnlock);
       break;
     case Phase::kUnlock:
-      in.sts.unlock = now - phase_start_ < kButton_s;
+      in.unlock = now - phase_start_ < kButton_s;
       if (now - phase_start_ > 2 * kButton_s && !crane.locked_container()) {
         carrying_ = false;
         ++goal_;

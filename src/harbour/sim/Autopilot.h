@@ -27,7 +27,7 @@ class Autopilot {
 
   /// The controls for the next step, from what the simulation shows now (decided 50 times a second, held
   /// in between, levers at a joystick axis' 16-bit resolution).
-  Inputs next(const Simulation& simulation);
+  Controls next(const Simulation& simulation);
   bool done() const { return goal_ >= exercise_.moves.size(); }
   /// What it is doing now, for progress displays: raise, travel, settle, lower, lift off, lock, slacken,
   /// unlock.
@@ -57,14 +57,14 @@ class Autopilot {
     double miss = 0.0;   // [m] the load's distance from the target, now or half a second on
     double last_target = 0.0;
   };
-  Inputs decide(const Simulation& simulation);
+  StsControls decide(const Simulation& simulation);
   double axis_lever(AxisMove& m, double position, double max_speed, double period, double now) const;
   static double catch_swing(SwingAxis& axis, double target, double axis_position, double axis_speed,
                             double load_position, double load_speed, double wind_lean, double period,
                             double max_speed);
   /// Levers of trolley and gantry that catch the swing and creep the load onto `destination`.
   void position_finely(const Simulation& simulation, const core::Vec3& destination, double period,
-                       Inputs& in);
+                       StsControls& in);
   bool on_target(double tolerance) const;  // rest position on target and swing small
   bool will_land_within(double tolerance) const;
   void start_travel(const core::Vec3& to, double gantry_y, double now);
@@ -86,7 +86,8 @@ class Autopilot {
   SwingAxis trolley_swing_, gantry_swing_;
   double resting_since_ = -1.0;  // the spreader sits on something without landing in its castings
   bool lock_skipped_ = false;
-  Inputs last_;
+  StsControls last_;
+  Controls last_controls_;
   bool decided_ = false;
 };
 

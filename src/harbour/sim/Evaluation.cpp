@@ -72,7 +72,8 @@ void Evaluator::count_collision(const physics::ImpactEvent& e) {
   }
 }
 
-void Evaluator::observe(const Simulation& simulation, const Inputs& inputs) {
+void Evaluator::observe(const Simulation& simulation, const Controls& controls) {
+  const StsControls cab = simulation.crane().read(controls);
   const EvaluationRules& rules = exercise_.rules;
   const StsCrane& crane = simulation.crane();
   metrics_.time_s = simulation.time_s();
@@ -126,11 +127,11 @@ void Evaluator::observe(const Simulation& simulation, const Inputs& inputs) {
       crane.gantry_drive().limit_hits() + crane.trolley_drive().limit_hits() + crane.hoist_limit_hits();
   metrics_.limit_hits += static_cast<int>(hits - limit_hits_seen_);
   limit_hits_seen_ = hits;
-  if (inputs.sts.emergency_stop && !was_estop_) ++metrics_.emergency_stops;
-  was_estop_ = inputs.sts.emergency_stop;
+  if (cab.emergency_stop && !was_estop_) ++metrics_.emergency_stops;
+  was_estop_ = cab.emergency_stop;
   // gantry travel (people walk the quay under the sill beams) starts only after a warning on the horn
   // (a travel: one motion from standstill covering more than gantry_travel_m; positioning creeps are not)
-  if (inputs.sts.horn) last_horn_s_ = metrics_.time_s;
+  if (cab.horn) last_horn_s_ = metrics_.time_s;
   const bool gantry_moving = crane.gantry_drive().reference_mps() != 0.0;
   if (gantry_moving && !gantry_was_moving_) {
     travel_start_y_ = crane.gantry_position_m();

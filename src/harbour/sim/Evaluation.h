@@ -99,7 +99,7 @@ class Evaluator {
   explicit Evaluator(const ExerciseSettings& exercise);
 
   /// Call after every simulation step with the inputs that drove it.
-  void observe(const Simulation& simulation, const Inputs& inputs);
+  void observe(const Simulation& simulation, const Controls& controls);
   /// All goals done.
   bool finished() const { return metrics_.moves_completed == static_cast<int>(exercise_.moves.size()); }
   const Metrics& metrics() const { return metrics_; }

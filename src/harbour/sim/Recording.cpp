@@ -7,13 +7,25 @@
 
 namespace harbour::sim {
 
-void Recorder::after_step(const Simulation& simulation, const Inputs& given) {
-  // store inputs as the machine read them, only when they change; the step they were applied at is one
+Recorder::Recorder(std::string scenario, const ControlTable& controls) {
+  recording_.scenario = std::move(scenario);
+  for (const ControlSpec& c : controls.controls())
+    recording_.control_labels.push_back(c.label);
+}
+
+std::vector<std::string> legacy_sts_control_labels() {
+  return {"gantry",      "trolley",        "hoist",     "boom",        "lock",
+          "unlock",      "emergency_stop", "horn",      "spreader_20", "spreader_40",
+          "spreader_45", "flipper_1",      "flipper_2", "flipper_3",   "flipper_4"};
+}
+
+void Recorder::after_step(const Simulation& simulation, const Controls& given) {
+  // store the controls as the machine read them, only when they change; the step they were applied at is one
   // before the current
-  const Inputs inputs = in_range(given);
+  const Controls controls = simulation.control_table().in_range(given);
   const std::int64_t applied_at = simulation.steps() - 1;
-  if (recording_.inputs.empty() || !(recording_.inputs.back().inputs == inputs)) {
-    recording_.inputs.push_back({applied_at, inputs});
+  if (recording_.inputs.empty() || !(recording_.inputs.back().controls == controls)) {
+    recording_.inputs.push_back({applied_at, controls});
     if (sink_) sink_->on_input(recording_.inputs.back());
   }
   if (simulation.steps() % kCheckpointEvery == 0) {
@@ -31,6 +43,38 @@ void Recorder::on_command(const Simulation& simulation, const InstructorCommand&
   recording_.commands.push_back({simulation.steps(), command});
   if (sink_) sink_->on_command(recording_.commands.back());
 }
+
+namespace {
+// recorded values (by the recording's labels) at this machine's slots
+class BySlot {
+ public:
+  BySlot(const std::vector<std::string>& labels, const ControlTable& table) : table_(table) {
+    for (const std::string& label : labels) {
+      slot_of_.push_back(table.find(label));
+      if (slot_of_.back() < 0)
+        throw core::StateError("the recording has a control '" + label + "' this machine does not");
+    }
+  }
+  /// Throws core::StateError at a value the control cannot take (the recorder stores them as read).
+  Controls operator()(const Controls& recorded) const {
+    Controls c = table_.neutral();
+    for (std::size_t n = 0; n < slot_of_.size(); ++n)
+      c.value[static_cast<std::size_t>(slot_of_[n])] = recorded.value[n];
+    const Controls read = table_.in_range(c);
+    for (std::size_t n = 0; n < slot_of_.size(); ++n) {
+      const auto slot = static_cast<std::size_t>(slot_of_[n]);
+      if (!(read.value[slot] == c.value[slot]))
+        throw core::StateError("the recording's control '" + table_[slot_of_[n]].label + "' holds " +
+                               std::to_string(c.value[slot]) + ", a value it cannot take");
+    }
+    return c;
+  }
+
+ private:
+  const ControlTable& table_;
+  std::vector<int> slot_of_;
+};
+}  // namespace
 
 ReplayResult replay(const ScenarioSettings& scenario, const Recording& recording, std::int64_t stop_step,
                     const ReplayObserver& observer) {
@@ -56,12 +100,13 @@ ReplayResult replay(const ScenarioSettings& scenario, const Recording& recording
   // a keyframe holds the commands before its step; those at its step came after it was taken
   while (next_command < recording.commands.size() && recording.commands[next_command].step < sim.steps())
     ++next_command;
-  Inputs current;
+  const BySlot by_slot(recording.control_labels, sim.control_table());
+  Controls current = sim.control_table().neutral();
   while (sim.steps() < end) {
     while (next_command < recording.commands.size() && recording.commands[next_command].step == sim.steps())
       sim.command(recording.commands[next_command++].command);
     while (next_input < recording.inputs.size() && recording.inputs[next_input].step <= sim.steps())
-      current = recording.inputs[next_input++].inputs;
+      current = by_slot(recording.inputs[next_input++].controls);
     sim.single_step(current);  // replay ignores the freeze: held periods were not recorded as steps
     if (observer) observer(sim, current);
     while (next_checkpoint < recording.checkpoints.size() &&
@@ -86,8 +131,13 @@ TakeOver take_over(const ScenarioSettings& scenario, const Recording& recording,
   prefix.parent = recording_id;
   prefix.branch_step = r.simulation->steps();
   prefix.total_steps = r.simulation->steps();
+  // the branch records by this machine's labels: the prefix's controls are carried over to them
+  const ControlTable& table = r.simulation->control_table();
+  for (const ControlSpec& c : table.controls())
+    prefix.control_labels.push_back(c.label);
+  const BySlot by_slot(recording.control_labels, table);
   for (const auto& change : recording.inputs)
-    if (change.step < prefix.branch_step) prefix.inputs.push_back(change);
+    if (change.step < prefix.branch_step) prefix.inputs.push_back({change.step, by_slot(change.controls)});
   for (const auto& checkpoint : recording.checkpoints)
     if (checkpoint.step <= prefix.branch_step) prefix.checkpoints.push_back(checkpoint);
   for (const auto& command : recording.commands)

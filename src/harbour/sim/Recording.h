@@ -16,8 +16,8 @@ namespace harbour::sim {
 /// keyframe before a moment.
 struct Recording {
   struct InputChange {
-    std::int64_t step = 0;  ///< inputs take effect from this step on
-    Inputs inputs;
+    std::int64_t step = 0;  ///< the controls take effect from this step on
+    Controls controls;      ///< values by control_labels (slot n: control_labels[n])
   };
   struct Checkpoint {
     std::int64_t step = 0;
@@ -27,6 +27,9 @@ struct Recording {
   std::string parent;            ///< recording this one branched from (take-over), empty if none
   std::int64_t branch_step = 0;  ///< step of the parent where the branch starts
   std::int64_t total_steps = 0;
+  /// The labels of the controls the values are stored by (a replay reads them by label, whatever slots the
+  /// machine's table gives them now).
+  std::vector<std::string> control_labels;
   std::vector<InputChange> inputs;      ///< in step order
   std::vector<Checkpoint> checkpoints;  ///< in step order
   struct Command {
@@ -59,12 +62,12 @@ class Recorder {
   static constexpr std::int64_t kCheckpointEvery = 1000;  ///< one simulated second at 1 kHz
   static constexpr std::int64_t kKeyframeEvery = 10000;   ///< ten simulated seconds
 
-  explicit Recorder(std::string scenario) { recording_.scenario = std::move(scenario); }
+  Recorder(std::string scenario, const ControlTable& controls);
   /// Continues an existing recording's prefix (a take-over branch).
   explicit Recorder(Recording prefix) : recording_(std::move(prefix)) {}
 
-  /// `inputs` were used for the step that just ended (now at `simulation.steps()`).
-  void after_step(const Simulation& simulation, const Inputs& inputs);
+  /// `controls` were used for the step that just ended (now at `simulation.steps()`).
+  void after_step(const Simulation& simulation, const Controls& controls);
   /// The instructor's command, just applied to `simulation` (before its next step).
   void on_command(const Simulation& simulation, const InstructorCommand& command);
   const Recording& recording() const { return recording_; }
@@ -84,8 +87,11 @@ struct ReplayResult {
   std::optional<std::int64_t> first_mismatch;  ///< step of the first checkpoint whose hash differed
 };
 
-/// Called after every replayed step with the inputs of that step (an evaluator watching the replay).
-using ReplayObserver = std::function<void(const Simulation&, const Inputs&)>;
+/// Called after every replayed step with the controls of that step (an evaluator watching the replay).
+using ReplayObserver = std::function<void(const Simulation&, const Controls&)>;
+
+/// The STS labels recordings before version 7 stored their controls as (in this order).
+std::vector<std::string> legacy_sts_control_labels();
 
 /// Re-simulates `recording` from `scenario` up to `stop_step` (default: its end), comparing every checkpoint.
 /// Given a stop step and no observer it starts from the last keyframe at or before it (a seek); a whole

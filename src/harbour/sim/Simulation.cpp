@@ -49,6 +49,11 @@ Simulation::Simulation(const ScenarioSettings& scenario)
   if (scenario.trucks.trucks > 0) trucks_ = std::make_unique<TruckLane>(*world_, scenario.trucks);
   crane_ = std::make_unique<StsCrane>(*world_, scenario.crane, scenario.gantry_y_m, scenario.trolley_x_m,
                                       scenario.spreader_z_m);
+  // event buffers sized once: a step appends to them without allocating
+  events_.impacts.reserve(256);
+  events_.twistlocks.reserve(64);
+  events_.ropes.reserve(256);
+  cab_velocity_ = world_->point_velocity(crane_->trolley_body(), crane_->eye_in_trolley_m());
 }
 
 void Simulation::apply_due_events() {
@@ -208,7 +213,7 @@ void Simulation::release(std::size_t item) {
   }
 }
 
-void Simulation::advance(const Inputs& inputs) {
+void Simulation::advance(const Controls& controls) {
   if (world_->diverged()) return;  // stopped where it diverged
   // scripted events, weather and wind, the machine (drives, ropes, twistlocks) pushing on the bodies, then
   // the multibody step
@@ -217,7 +222,7 @@ void Simulation::advance(const Inputs& inputs) {
   apply_wind();
   if (vessel_) vessel_->move_to(clock_.time_s());
   move_secured_cargo();
-  crane_->step(in_range(inputs).sts, containers_, kStep_s);
+  crane_->step(crane_->read(controls), containers_, kStep_s);
   if (const auto locked = crane_->locked_container())
     for (std::size_t n = 0; n < containers_.size(); ++n)
       if (containers_[n].body == *locked) release(n);
@@ -228,61 +233,149 @@ void Simulation::advance(const Inputs& inputs) {
     return;
   }
   clock_.advance();
-  events_.impacts = world_->take_impacts();
-  events_.twistlocks = crane_->take_twistlock_events();
-  events_.ropes = crane_->hoist().take_events();
+  events_.impacts.clear();
+  events_.twistlocks.clear();
+  events_.ropes.clear();
+  world_->drain_impacts(events_.impacts);
+  crane_->drain_twistlock_events(events_.twistlocks);
+  crane_->hoist().drain_events(events_.ropes);
+  update_cab_cues();
   const core::Vec3 p = crane_->spreader_pose().position;
   if (!std::isfinite(p.x + p.y + p.z)) warnings_.raise(core::Warning::kNonFinite);
   for (int n = world_->take_solver_messages(); n > 0; --n)
     warnings_.raise(core::Warning::kSolverMessage);
 }
 
-Inputs in_range(const Inputs& inputs) {
-  const auto lever = [](double v) { return std::isfinite(v) ? std::clamp(v, -1.0, 1.0) : 0.0; };
-  Inputs r = inputs;
-  r.sts.gantry = lever(r.sts.gantry);
-  r.sts.trolley = lever(r.sts.trolley);
-  r.sts.hoist = lever(r.sts.hoist);
-  r.sts.boom = lever(r.sts.boom);
-  const auto size = r.sts.spreader_size_ft;
-  if (size != 20 && size != 40 && size != 45) r.sts.spreader_size_ft = 0;
-  return r;
+void Simulation::update_cab_cues() {
+  // the specific force at the operator's head: its acceleration (by difference over the step) minus gravity
+  const core::Vec3 v = world_->point_velocity(crane_->trolley_body(), crane_->eye_in_trolley_m());
+  cab_specific_force_ = (v - cab_velocity_) * (1.0 / kStep_s) + core::Vec3{0.0, 0.0, 9.80665};
+  cab_velocity_ = v;
 }
 
-void Simulation::step(const Inputs& inputs) {
-  if (!held_) advance(inputs);
+void Simulation::step(const Controls& controls) {
+  if (!held_) advance(controls);
 }
 
-void Simulation::single_step(const Inputs& inputs) {
-  advance(inputs);
+void Simulation::single_step(const Controls& controls) {
+  advance(controls);
 }
 
-Snapshot Simulation::snapshot() const {
-  Snapshot s;
+namespace {
+// the indicators an STS publishes, in snapshot order
+constexpr const char* kStsIndicators[] = {
+    "gantry_y_m", "trolley_x_m", "boom_angle_rad", "spreader_length_m", "spreader_size_ft", "flipper_1",
+    "flipper_2",  "flipper_3",   "flipper_4",      "lamp_landed",       "lamp_locked",      "lamp_unlocked",
+    "horn",       "load_t"};
+constexpr std::uint32_t kFixedEntities = 3;  // gantry, trolley, spreader
+}  // namespace
+
+SceneDescription Simulation::scene() const {
+  SceneDescription d;
+  d.machine = "sts";
+  d.entities.push_back({"gantry", "sts.gantry", {}});
+  d.entities.push_back({"trolley", "sts.trolley", {}});
+  d.entities.push_back({"spreader", "sts.spreader", crane_->spreader_half_extents_m()});
+  if (vessel_) d.entities.push_back({"vessel", "vessel", {}});
+  if (trucks_)
+    for (int k = 0; k < scenario_.trucks.trucks; ++k)
+      d.entities.push_back({"truck " + std::to_string(k + 1), "truck", {}});
+  for (const ContainerPlacement& c : scenario_.containers) {
+    const bool cover = c.kind == ContainerPlacement::Kind::kHatchCover;
+    const double feet = 2.0 * c.half_extents_m.x / 0.3048;
+    d.entities.push_back({c.id,
+                          cover       ? "hatch_cover"
+                          : feet < 30 ? "container.20ft"
+                          : feet < 42 ? "container.40ft"
+                                      : "container.45ft",
+                          c.half_extents_m});
+  }
+  d.indicators.assign(std::begin(kStsIndicators), std::end(kStsIndicators));
+  d.rope_count = std::min(crane_->hoist().rope_count(), kMaxRopes);
+  return d;
+}
+
+void Simulation::write_snapshot(Snapshot& s) const {
+  s.version = kSnapshotVersion;
   s.step = clock_.steps();
   s.time_s = clock_.time_s();
   s.held = held_;
-  s.gantry_y_m = crane_->gantry_position_m();
-  s.trolley_x_m = crane_->trolley_position_m();
-  s.boom_angle_rad = crane_->boom_angle_rad();
-  s.spreader = crane_->spreader_pose();
-  s.spreader_frame = crane_->spreader_state();
-  s.lamps = crane_->lamps();
-  s.horn = crane_->horn();
-  s.hoisted_load_n = crane_->hoisted_load_n();
+  s.diverged = world_->diverged();
   s.warnings = warnings_.total();
   s.wind_mps = weather_.wind();
   s.time_of_day_h = weather_.time_of_day_h();
   s.visibility_m = weather_.settings().visibility_m;
   s.rain_mm_per_h = weather_.settings().rain_mm_per_h;
-  if (vessel_) s.vessel = vessel_->geometry().pose_at(clock_.time_s());  // where the step left it
+
+  const core::Pose cab = crane_->cab_pose();
+  s.cab.pose = cab;
+  s.cab.eye_m = crane_->eye_m();
+  s.cab.specific_force_mps2 = cab.direction_to_local(cab_specific_force_);
+  s.cab.angular_velocity_radps = cab.direction_to_local(world_->angular_velocity(crane_->trolley_body()));
+
+  int n = 0;
+  const auto entity = [&](core::Pose pose, std::uint32_t flags) {
+    if (n >= kMaxEntities) return;
+    s.entities[static_cast<std::size_t>(n)] = {static_cast<std::uint32_t>(n), flags, pose};
+    ++n;
+  };
+  entity(world_->pose(crane_->gantry_body()), 0);
+  entity(world_->pose(crane_->trolley_body()), 0);
+  entity(crane_->spreader_pose(), 0);
+  if (vessel_) entity(vessel_->geometry().pose_at(clock_.time_s()), 0);  // where the step left it
   if (trucks_)
     for (int k = 0; k < scenario_.trucks.trucks; ++k)
-      s.trucks.push_back({core::Mat3::identity(),
-                          {scenario_.trucks.lane_x_m, trucks_->truck_y(k), scenario_.trucks.chassis_top_m}});
-  for (std::size_t n = 0; n < containers_.size(); ++n)
-    s.containers.push_back({scenario_.containers[n].id, world_->pose(containers_[n].body),
-                            crane_->locked_container() == containers_[n].body});
+      entity({core::Mat3::identity(),
+              {scenario_.trucks.lane_x_m, trucks_->truck_y(k), scenario_.trucks.chassis_top_m}},
+             0);
+  const auto locked = crane_->locked_container();
+  for (const ContainerRef& c : containers_)
+    entity(world_->pose(c.body), locked == c.body ? Snapshot::kLocked : 0);
+  s.entity_count = n;
+
+  const cable::HoistSystem& hoist = crane_->hoist();
+  s.rope_count = std::min(hoist.rope_count(), kMaxRopes);
+  std::size_t used = 0;
+  for (int r = 0; r < s.rope_count; ++r) {
+    s.rope_first[static_cast<std::size_t>(r)] = static_cast<std::uint16_t>(used);
+    for (int g = 0; g < hoist.segment_count(r); ++g) {
+      // consecutive segments share their end at a sheave: drop the repeated point
+      const int skip = g > 0 ? 1 : 0;
+      std::array<core::Vec3, 64> points;
+      const int k = hoist.polyline(r, g, points);
+      for (int p = skip; p < k && used < kMaxRopePoints; ++p)
+        s.points[used++] = points[static_cast<std::size_t>(p)];
+    }
+    s.rope_points[static_cast<std::size_t>(r)] =
+        static_cast<std::uint16_t>(used - s.rope_first[static_cast<std::size_t>(r)]);
+  }
+
+  const SpreaderState spreader = crane_->spreader_state();
+  const TwistlockLamps lamps = crane_->lamps();
+  const double values[] = {crane_->gantry_position_m(),
+                           crane_->trolley_position_m(),
+                           crane_->boom_angle_rad(),
+                           spreader.length_m,
+                           spreader.size == SpreaderSize::k20ft   ? 20.0
+                           : spreader.size == SpreaderSize::k40ft ? 40.0
+                                                                  : 45.0,
+                           spreader.flippers[0],
+                           spreader.flippers[1],
+                           spreader.flippers[2],
+                           spreader.flippers[3],
+                           lamps.landed ? 1.0 : 0.0,
+                           lamps.locked ? 1.0 : 0.0,
+                           lamps.unlocked ? 1.0 : 0.0,
+                           crane_->horn() ? 1.0 : 0.0,
+                           crane_->hoisted_load_n() / 9.80665 / 1000.0};
+  static_assert(std::size(values) == std::size(kStsIndicators));
+  s.indicator_count = static_cast<int>(std::size(values));
+  std::copy(std::begin(values), std::end(values), s.indicators.begin());
+}
+
+std::unique_ptr<Snapshot> Simulation::snapshot() const {
+  auto s = std::make_unique<Snapshot>();
+  write_snapshot(*s);
   return s;
 }
 
@@ -337,7 +430,10 @@ void Simulation::restore_state(const std::vector<std::uint8_t>& state) {
   if (in.get<bool>() != (trucks_ != nullptr)) throw core::StateError("saved state has other trucks");
   if (trucks_) trucks_->restore_state(in);
   if (!in.at_end()) throw core::StateError("saved state is longer than this simulation's");
-  events_ = {};
+  events_.impacts.clear();
+  events_.twistlocks.clear();
+  events_.ropes.clear();
+  cab_velocity_ = world_->point_velocity(crane_->trolley_body(), crane_->eye_in_trolley_m());
 }
 
 }  // namespace harbour::sim

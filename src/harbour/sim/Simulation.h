@@ -10,23 +10,14 @@
 #include "harbour/core/FixedStepClock.h"
 #include "harbour/core/Warnings.h"
 #include "harbour/physics/PhysicsWorld.h"
+#include "harbour/sim/Controls.h"
+#include "harbour/sim/Snapshot.h"
 #include "harbour/sim/StsCrane.h"
 #include "harbour/sim/Trucks.h"
 #include "harbour/sim/Vessel.h"
 #include "harbour/sim/Weather.h"
 
 namespace harbour::sim {
-
-/// Everything the executive consumes each step: the station's labelled, normalised controls. Plain data, so
-/// the recorder can store it bit for bit.
-struct Inputs {
-  StsControls sts;
-  friend bool operator==(const Inputs&, const Inputs&) = default;
-};
-
-/// The inputs as the machine reads them: levers clamped to [-1, 1], a non-finite lever (a device or link
-/// fault) read as centred, a spreader size other than 20/40/45 ft as no button.
-Inputs in_range(const Inputs& inputs);
 
 /// A container (ISO 668 sizes) or a hatch cover placed in the scenario: anything the spreader lifts.
 struct ContainerPlacement {
@@ -102,34 +93,7 @@ struct ScenarioSettings {
   std::uint64_t seed = 1;  ///< seeds the turbulence
 };
 
-/// What consumers (image generator, console, network, evaluation) see of the simulation: plain data.
-struct Snapshot {
-  std::int64_t step = 0;
-  double time_s = 0.0;
-  bool held = false;
-  double gantry_y_m = 0.0, trolley_x_m = 0.0;
-  double boom_angle_rad = 0.0;  ///< [rad] above horizontal (0: down and latched for work)
-  core::Pose spreader;
-  SpreaderState spreader_frame;  ///< size setting, length, flippers
-  TwistlockLamps lamps;
-  bool horn = false;
-  struct Container {
-    std::string id;
-    core::Pose pose;
-    bool locked = false;
-  };
-  std::vector<Container> containers;
-  core::Pose vessel;               ///< vessel frame (keel, midship, centreline) in the world
-  std::vector<core::Pose> trucks;  ///< chassis top centre of each truck
-  double hoisted_load_n = 0.0;
-  core::Vec3 wind_mps;          ///< [m/s] world
-  double time_of_day_h = 12.0;  ///< [h]
-  double visibility_m = 20000.0;
-  double rain_mm_per_h = 0.0;
-  std::uint32_t warnings = 0;
-};
-
-/// What happened during the last step, for evaluation and the instructor.
+/// What happened during the last step, for evaluation and the instructor (buffers reused step to step).
 struct StepEvents {
   std::vector<physics::ImpactEvent> impacts;
   std::vector<TwistlockEvent> twistlocks;
@@ -144,20 +108,28 @@ class Simulation {
 
   explicit Simulation(const ScenarioSettings& scenario);
 
-  /// One physics step with these inputs; does nothing while held.
-  void step(const Inputs& inputs);
+  /// One physics step with these controls (read through the machine's control table); does nothing while
+  /// held. Never throws; allocates nothing once warmed up.
+  void step(const Controls& controls);
   void hold() { held_ = true; }
   void resume() { held_ = false; }
   bool held() const { return held_; }
   /// One step even while held (the instructor steps a frozen exercise).
-  void single_step(const Inputs& inputs);
+  void single_step(const Controls& controls);
   /// Applies an instructor's command now (before the next step); throws std::invalid_argument on a value
   /// out of range (a corner other than 0-3, a negative visibility, ...), changing nothing.
   void command(const InstructorCommand& command);
 
   std::int64_t steps() const { return clock_.steps(); }
   double time_s() const { return clock_.time_s(); }
-  Snapshot snapshot() const;
+  /// The machine's controls, by label.
+  const ControlTable& control_table() const { return crane_->control_table(); }
+  /// What is in the scene (fixed for this simulation): entities and indicator names, by snapshot index.
+  SceneDescription scene() const;
+  /// Writes the published state into `out` without allocating.
+  void write_snapshot(Snapshot& out) const;
+  /// The published state (allocated: tests and tools; a station writes into its buffers).
+  std::unique_ptr<Snapshot> snapshot() const;
   /// Hash of the whole dynamic state: bodies, ropes, drives, twistlocks, clock.
   std::uint64_t state_hash() const;
   /// The whole dynamic state as bytes (a keyframe). Restoring it into a Simulation built from the same
@@ -191,7 +163,8 @@ class Simulation {
   const ScenarioSettings& scenario() const { return scenario_; }
 
  private:
-  void advance(const Inputs& inputs);
+  void advance(const Controls& controls);
+  void update_cab_cues();
   void move_secured_cargo();
   void apply_due_events();
   void apply_wind();
@@ -213,6 +186,7 @@ class Simulation {
   bool held_ = false;
   core::Warnings warnings_;
   StepEvents events_;
+  core::Vec3 cab_velocity_, cab_specific_force_{0.0, 0.0, 9.80665};  // world
 };
 
 }  // namespace harbour::sim

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
 
 #include "harbour/sim/Vessel.h"
 
@@ -45,10 +46,107 @@ core::Vec3 mean_sheave_m(const cable::ReevingSettings& reeving, int body) {
 
 }  // namespace
 
+ControlTable sts_control_table() {
+  using K = ControlKind;
+  const auto axis = [](const char* label, const char* meaning) {
+    return ControlSpec{label, K::kAxis, -1.0, 1.0, {}, 0.0, 0.0, meaning};
+  };
+  const auto button = [](const char* label, const char* meaning) {
+    return ControlSpec{label, K::kButton, 0.0, 1.0, {}, 0.0, 0.0, meaning};
+  };
+  const auto flipper = [](const char* label, const char* meaning) {
+    return ControlSpec{label, K::kSwitch, 0.0, 1.0, {"up", "down"}, 0.0, 0.0, meaning};
+  };
+  return ControlTable(
+      {axis("gantry", "gantry travel along the quay, + towards +y"),
+       axis("trolley", "trolley travel, + waterside"), axis("hoist", "hoist, + raises"),
+       axis("boom", "boom luffing, + raises"), button("lock", "twistlocks lock"),
+       button("unlock", "twistlocks unlock"),
+       button("emergency_stop", "every drive stops on its emergency ramp"), button("horn", "warning horn"),
+       button("spreader_20", "spreader to 20 ft"), button("spreader_40", "spreader to 40 ft"),
+       button("spreader_45", "spreader to 45 ft"), flipper("flipper_1", "flipper of corner 1"),
+       flipper("flipper_2", "flipper of corner 2"), flipper("flipper_3", "flipper of corner 3"),
+       flipper("flipper_4", "flipper of corner 4")});
+}
+
+StsControlSlots::StsControlSlots(const ControlTable& t)
+    : gantry(t.slot("gantry", ControlKind::kAxis)),
+      trolley(t.slot("trolley", ControlKind::kAxis)),
+      hoist(t.slot("hoist", ControlKind::kAxis)),
+      boom(t.slot("boom", ControlKind::kAxis)),
+      lock(t.slot("lock", ControlKind::kButton)),
+      unlock(t.slot("unlock", ControlKind::kButton)),
+      emergency_stop(t.slot("emergency_stop", ControlKind::kButton)),
+      horn(t.slot("horn", ControlKind::kButton)),
+      spreader_20(t.slot("spreader_20", ControlKind::kButton)),
+      spreader_40(t.slot("spreader_40", ControlKind::kButton)),
+      spreader_45(t.slot("spreader_45", ControlKind::kButton)),
+      flipper{t.slot("flipper_1", ControlKind::kSwitch), t.slot("flipper_2", ControlKind::kSwitch),
+              t.slot("flipper_3", ControlKind::kSwitch), t.slot("flipper_4", ControlKind::kSwitch)} {
+  for (const int f : flipper)
+    if (t[f].positions.size() != 2)
+      throw std::invalid_argument("a flipper switch has two positions: up, down");
+  for (const int lever : {gantry, trolley, hoist, boom})
+    if (t[lever].min != -1.0 || t[lever].max != 1.0)
+      throw std::invalid_argument("the STS levers read -1 to 1 ('" + t[lever].label + "')");
+}
+
+StsControls StsControlSlots::read(const Controls& c) const {
+  const auto at = [&](int slot) { return c.value[static_cast<std::size_t>(slot)]; };
+  const auto lever = [&](int slot) {
+    return std::isfinite(at(slot)) ? std::clamp(at(slot), -1.0, 1.0) : 0.0;
+  };
+  const auto pressed = [&](int slot) { return std::isfinite(at(slot)) && at(slot) != 0.0; };
+  StsControls s;
+  s.gantry = lever(gantry);
+  s.trolley = lever(trolley);
+  s.hoist = lever(hoist);
+  s.boom = lever(boom);
+  s.lock = pressed(lock);
+  s.unlock = pressed(unlock);
+  s.emergency_stop = pressed(emergency_stop);
+  s.horn = pressed(horn);
+  // one size button at a time selects a size; several at once select none
+  const int sizes = pressed(spreader_20) + pressed(spreader_40) + pressed(spreader_45);
+  if (sizes == 1) s.spreader_size_ft = pressed(spreader_20) ? 20 : pressed(spreader_40) ? 40 : 45;
+  for (std::size_t k = 0; k < 4; ++k)
+    s.flipper_down[k] = std::isfinite(at(flipper[k])) && std::round(at(flipper[k])) >= 1.0;
+  return s;
+}
+
+void StsControlSlots::write(const StsControls& s, Controls& c) const {
+  const auto set = [&](int slot, double v) { c.value[static_cast<std::size_t>(slot)] = v; };
+  set(gantry, s.gantry);
+  set(trolley, s.trolley);
+  set(hoist, s.hoist);
+  set(boom, s.boom);
+  set(lock, s.lock);
+  set(unlock, s.unlock);
+  set(emergency_stop, s.emergency_stop);
+  set(horn, s.horn);
+  set(spreader_20, s.spreader_size_ft == 20);
+  set(spreader_40, s.spreader_size_ft == 40);
+  set(spreader_45, s.spreader_size_ft == 45);
+  for (std::size_t k = 0; k < 4; ++k)
+    set(flipper[k], s.flipper_down[k] ? 1.0 : 0.0);
+}
+
+core::Pose StsCrane::cab_pose() const {
+  const core::Pose trolley = world_.pose(trolley_body_);
+  return {trolley.rotation, trolley.to_parent(settings_.cab_position_m)};
+}
+
+Controls StsCrane::controls(const StsControls& sts) const {
+  Controls c = settings_.controls.neutral();
+  slots_.write(sts, c);
+  return c;
+}
+
 StsCrane::StsCrane(physics::PhysicsWorld& world, const StsCraneSettings& settings, double gantry_y_m,
                    double trolley_x_m, double spreader_z_m)
     : world_(world),
       settings_(settings),
+      slots_(settings.controls),
       gantry_start_y_(gantry_y_m),
       trolley_start_x_(trolley_x_m),
       gantry_(settings.gantry_drive),

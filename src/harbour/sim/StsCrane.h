@@ -9,6 +9,7 @@
 
 #include "harbour/cable/HoistSystem.h"
 #include "harbour/physics/PhysicsWorld.h"
+#include "harbour/sim/Controls.h"
 #include "harbour/sim/Drive.h"
 #include "harbour/sim/OdeCableBodies.h"
 #include "harbour/sim/Spreader.h"
@@ -23,6 +24,10 @@ struct BoomSettings {
   double trolley_park_x_m = 10.0;  ///< [m] the trolley must stand landside of this for the boom to luff,
                                    ///< and cannot pass it while the boom is not down
 };
+
+/// The STS cab's controls as shipped (data/machines/sts.yaml declares the same): gantry, trolley, hoist and
+/// boom levers, lock/unlock, emergency stop, horn, the spreader size buttons and four flipper switches.
+ControlTable sts_control_table();
 
 /// A ship-to-shore crane (settings, from data/machines/sts.yaml). Frames: the gantry travels along world y on
 /// the quay rails; the trolley along the gantry's x (waterside +x); the hoist reeving's bodies are
@@ -40,6 +45,11 @@ struct StsCraneSettings {
   BoomSettings boom;
   TwistlockSettings twistlocks;
   cable::ReevingSettings hoist;
+  ControlTable controls = sts_control_table();  ///< the cab's controls, by label
+  /// The operator's cab hangs under the trolley: its centre in the trolley's frame [m], and the design eye
+  /// point in the cab's frame (x waterside, the way the operator faces; z up) [m].
+  core::Vec3 cab_position_m{3.0, 0.0, -3.5};
+  core::Vec3 eye_m{0.3, 0.0, 0.6};
 };
 
 /// The operator's controls, normalised (cab joysticks and buttons).
@@ -55,6 +65,18 @@ struct StsControls {
   std::uint8_t spreader_size_ft = 0;   ///< a size button held: 20, 40 or 45 (0: none)
   std::array<bool, 4> flipper_down{};  ///< flipper switches per twistlock corner (true: lowered)
   friend bool operator==(const StsControls&, const StsControls&) = default;
+};
+
+/// Where the STS reads each of its controls in a Controls (slots of its control table, found by label).
+struct StsControlSlots {
+  int gantry, trolley, hoist, boom, lock, unlock, emergency_stop, horn, spreader_20, spreader_40, spreader_45;
+  std::array<int, 4> flipper;
+  /// Throws std::invalid_argument naming a control the table lacks or has of another kind.
+  explicit StsControlSlots(const ControlTable& table);
+  /// The cab's controls read from `controls` (in range).
+  StsControls read(const Controls& controls) const;
+  /// `sts` written into `controls` (the other slots kept).
+  void write(const StsControls& sts, Controls& controls) const;
 };
 
 /// Something the spreader may land on and lift (a container, a hatch cover): its body, its shape's half
@@ -76,6 +98,12 @@ class StsCrane {
   /// Drives, hoist ropes (forces onto the bodies) and twistlocks; the caller then steps the physics world.
   void step(const StsControls& controls, std::span<const ContainerRef> containers, double dt_s);
 
+  const ControlTable& control_table() const { return settings_.controls; }
+  const StsControlSlots& control_slots() const { return slots_; }
+  /// The cab's controls as labelled Controls (the other slots neutral), and back.
+  Controls controls(const StsControls& sts) const;
+  StsControls read(const Controls& controls) const { return slots_.read(controls); }
+
   double gantry_position_m() const { return gantry_start_y_ + world_.slider_position(gantry_slider_); }
   double trolley_position_m() const { return trolley_start_x_ + world_.slider_position(trolley_slider_); }
   /// Mechanical power the travel drives delivered in the last step [W] (negative while braking).
@@ -92,10 +120,17 @@ class StsCrane {
   double boom_angle_rad() const { return boom_angle_; }
   bool horn() const { return horn_; }
   physics::BodyId spreader_body() const { return spreader_; }
+  physics::BodyId gantry_body() const { return gantry_body_; }
+  physics::BodyId trolley_body() const { return trolley_body_; }
+  /// The cab's frame in the world (it rides on the trolley) and its design eye point in that frame.
+  core::Pose cab_pose() const;
+  const core::Vec3& eye_m() const { return settings_.eye_m; }
+  core::Vec3 eye_in_trolley_m() const { return settings_.cab_position_m + settings_.eye_m; }
   /// The container locked to the spreader, if any.
   std::optional<physics::BodyId> locked_container() const { return locked_container_; }
   TwistlockLamps lamps() const { return twistlocks_.lamps(); }
   std::vector<TwistlockEvent> take_twistlock_events() { return twistlocks_.take_events(); }
+  void drain_twistlock_events(std::vector<TwistlockEvent>& into) { twistlocks_.drain_events(into); }
   const Drive& gantry_drive() const { return gantry_; }
   /// Times the operator drove the hoist into a limit switch.
   std::uint32_t hoist_limit_hits() const { return hoist_limit_hits_; }
@@ -118,6 +153,7 @@ class StsCrane {
  private:
   physics::PhysicsWorld& world_;
   StsCraneSettings settings_;
+  StsControlSlots slots_;
   physics::BodyId gantry_body_, trolley_body_, spreader_;
   int gantry_slider_, trolley_slider_;
   double gantry_start_y_, trolley_start_x_;

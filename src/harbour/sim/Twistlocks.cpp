@@ -60,7 +60,7 @@ void Twistlocks::update(const std::array<bool, 4>& landed, bool lock_button, boo
 
 std::vector<TwistlockEvent> Twistlocks::take_events() {
   std::vector<TwistlockEvent> out;
-  out.swap(events_);
+  drain_events(out);
   return out;
 }
 

@@ -44,6 +44,7 @@ std::array<bool, 4> landed_corners(const core::Pose& spreader_underside, double 
 /// under load; report misuse.
 class Twistlocks {
  public:
+  Twistlocks() { events_.reserve(16); }
   /// One control step of `dt_s`: the four landed sensors, the operator's buttons, and whether the load hangs
   /// from the spreader (hoist rope tension above the empty-spreader weight).
   void update(const std::array<bool, 4>& landed, bool lock_button, bool unlock_button, bool load_suspended,
@@ -56,6 +57,10 @@ class Twistlocks {
   TwistlockLamps lamps() const { return {all_landed_, locked_, !locked_}; }
   /// Events since the last call.
   std::vector<TwistlockEvent> take_events();
+  void drain_events(std::vector<TwistlockEvent>& into) {
+    into.insert(into.end(), events_.begin(), events_.end());
+    events_.clear();
+  }
   void save_state(core::StateWriter& out) const {
     for (bool b :
          {locked_, all_landed_, in_landing_, locked_this_landing_, lock_was_pressed_, unlock_was_pressed_})

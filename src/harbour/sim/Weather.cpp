@@ -6,7 +6,9 @@
 
 namespace harbour::sim {
 
-Weather::Weather(const WeatherSettings& settings, std::uint64_t seed) : settings_(settings), rng_(seed) {}
+Weather::Weather(const WeatherSettings& settings, std::uint64_t seed) : settings_(settings), rng_(seed) {
+  gusts_.reserve(32);
+}
 
 void Weather::step(double dt_s) {
   time_s_ += dt_s;

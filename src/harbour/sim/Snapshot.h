@@ -1,0 +1,80 @@
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "harbour/core/Vec3.h"
+
+namespace harbour::sim {
+
+inline constexpr std::uint32_t kSnapshotVersion = 1;
+inline constexpr int kMaxEntities = 2200;  ///< 2000 containers, the machine's bodies, vessel, trucks
+inline constexpr int kMaxRopes = 8;
+inline constexpr int kMaxRopePoints = 1024;
+inline constexpr int kMaxIndicators = 32;
+
+/// What a scene holds, fixed for a session: entities (what they look like and how big) and the names of the
+/// indicators. Consumers read it once; each Snapshot then carries only numbers by index (as CIGI does).
+struct SceneDescription {
+  struct Entity {
+    std::string name;           ///< "gantry", "spreader", a container's id, "truck 2"
+    std::string visual;         ///< look key (data): "sts.gantry", "container.40ft", "hatch_cover", ...
+    core::Vec3 half_extents_m;  ///< [m] box bounds in its frame (x along its length)
+  };
+  std::string machine;  ///< machine kind: "sts", ...
+  std::vector<Entity> entities;
+  std::vector<std::string> indicators;  ///< "trolley_x_m", "load_t", "lamp_locked", ...
+  int rope_count = 0;
+};
+
+/// The published state of a running simulation: plain, fixed-size data (no allocation to write or copy),
+/// written once per step into a triple buffer; the image generator, the console and the network read only
+/// this. Versioned; step and time let a reader interpolate between two.
+struct Snapshot {
+  // header
+  std::uint32_t version = kSnapshotVersion;
+  std::uint32_t warnings = 0;  ///< physics warnings so far
+  std::int64_t step = 0;
+  double time_s = 0.0;
+  bool held = false;      ///< frozen by the instructor
+  bool diverged = false;  ///< the physics stopped
+
+  // environment
+  core::Vec3 wind_mps;  ///< [m/s] world
+  double time_of_day_h = 12.0;
+  double visibility_m = 20000.0;
+  double rain_mm_per_h = 0.0;
+
+  /// The operator's cab: where it is, where the eye sits in it, and what the operator's head feels (motion
+  /// cues, in the cab frame: x forward, y left, z up).
+  struct Cab {
+    core::Pose pose;                 ///< cab frame in the world
+    core::Vec3 eye_m;                ///< [m] design eye point, cab frame
+    core::Vec3 specific_force_mps2;  ///< [m/s^2] acceleration minus gravity at the head (1 g up at rest)
+    core::Vec3 angular_velocity_radps;
+  } cab;
+
+  struct Entity {
+    std::uint32_t index = 0;  ///< into SceneDescription::entities
+    std::uint32_t flags = 0;  ///< kLocked, ...
+    core::Pose pose;          ///< centre, world
+  };
+  static constexpr std::uint32_t kLocked = 1;  ///< held by the machine (on the spreader)
+  int entity_count = 0;
+  std::array<Entity, kMaxEntities> entities;
+
+  /// Rope polylines: rope r's points are points[rope_first[r], rope_first[r] + rope_points[r]).
+  int rope_count = 0;
+  std::array<std::uint16_t, kMaxRopes> rope_first{}, rope_points{};
+  std::array<core::Vec3, kMaxRopePoints> points;
+
+  /// Indicator values, named by SceneDescription::indicators.
+  int indicator_count = 0;
+  std::array<double, kMaxIndicators> indicators{};
+};
+static_assert(std::is_trivially_copyable_v<Snapshot>);
+
+}  // namespace harbour::sim
