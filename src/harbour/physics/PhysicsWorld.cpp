@@ -179,6 +179,16 @@ PhysicsWorld::PhysicsWorld(const WorldSettings& settings)
   ode_->pending.reserve(1024);
   ode_->feedback.reserve(1024);
   last_touch_.reserve(1024);
+  ode_->contact_buffer.resize(static_cast<std::size_t>(std::max(settings.max_contacts_per_pair, 1)));
+  ode_->attachments.reserve(256);
+  // the contact joint group's arena grown once to a busy scene's contacts (ODE keeps its blocks when the
+  // group is emptied): a step with more contacts than any before does not allocate
+  for (int n = 0; n < 2048; ++n) {
+    dContact c{};
+    dJointCreateContact(ode_->world, ode_->contacts, &c);
+  }
+  dJointGroupEmpty(ode_->contacts);
+
   open_impacts_.reserve(256);
   impacts_.reserve(256);
   dWorldSetGravity(ode_->world, settings.gravity.x, settings.gravity.y, settings.gravity.z);
@@ -310,6 +320,10 @@ int PhysicsWorld::attach(BodyId a, BodyId b) {
   dJointSetFixed(j);
   ode_->attachments.push_back({j, a, b, ode_->raw_pose(a), ode_->raw_pose(b)});
   return static_cast<int>(ode_->attachments.size()) - 1;
+}
+
+int PhysicsWorld::attachments_made() const {
+  return static_cast<int>(ode_->attachments.size());
 }
 
 void PhysicsWorld::detach(int attachment) {

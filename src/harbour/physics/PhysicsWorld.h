@@ -91,8 +91,11 @@ class PhysicsWorld {
   void set_kinematic_motion(BodyId body, const core::Pose& pose, const core::Vec3& velocity,
                             const core::Vec3& angular_velocity);
   /// Rigidly joins two bodies as they are now (twistlocks locked); returns a handle for detach().
+  /// ODE allocates the fixed joint: one allocation per attachment made (an event, not every step).
   int attach(BodyId a, BodyId b);
   void detach(int attachment);
+  /// Attachments made so far (including detached ones).
+  int attachments_made() const;
   /// A prismatic joint letting `b` slide along world `axis` relative to `a` (kWorld: the ground); returns its
   /// index.
   int add_slider(BodyId a, BodyId b, const core::Vec3& axis);

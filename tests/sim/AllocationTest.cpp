@@ -1,0 +1,100 @@
+// Steady-state stepping allocates nothing: this binary replaces the global operator new and ODE's allocator
+// with counting ones, runs a whole exercise under the autopilot and counts what each step allocated.
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <new>
+
+#include <ode/ode.h>
+
+#include "harbour/io/ExerciseFiles.h"
+#include "harbour/sim/Autopilot.h"
+#include "harbour/sim/Simulation.h"
+
+// the replacements below pair malloc with free on purpose
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+
+namespace {
+std::atomic<long> g_allocations{0};
+}  // namespace
+
+void* operator new(std::size_t size) {
+  ++g_allocations;
+  if (void* p = std::malloc(size ? size : 1)) return p;
+  throw std::bad_alloc();
+}
+void* operator new[](std::size_t size) {
+  return operator new(size);
+}
+void operator delete(void* p) noexcept {
+  std::free(p);
+}
+void operator delete[](void* p) noexcept {
+  std::free(p);
+}
+void operator delete(void* p, std::size_t) noexcept {
+  std::free(p);
+}
+void operator delete[](void* p, std::size_t) noexcept {
+  std::free(p);
+}
+
+namespace harbour::sim {
+namespace {
+
+void* ode_alloc(dsizeint size) {
+  ++g_allocations;
+  return std::malloc(size);
+}
+void* ode_realloc(void* p, dsizeint, dsizeint size) {
+  ++g_allocations;
+  return std::realloc(p, size);
+}
+void ode_free(void* p, dsizeint) {
+  std::free(p);
+}
+
+struct Count {
+  long steps = 0;       // after the warm-up
+  long allocating = 0;  // steps that allocated, other than ...
+  long attaching = 0;   // ... those that fixed a load on the spreader or a truck (ODE allocates the joint)
+};
+
+// Steps `exercise` under the autopilot and counts the steps after `warm_up_s` that allocated.
+Count count_allocations(const std::string& exercise_name, double warm_up_s, double run_s) {
+  dSetAllocHandler(ode_alloc);
+  dSetReallocHandler(ode_realloc);
+  dSetFreeHandler(ode_free);
+  const ExerciseSettings exercise =
+      io::load_exercise(std::string(HARBOUR_DATA_DIR) + "/exercises/" + exercise_name + ".yaml");
+  Simulation simulation(exercise.scenario);
+  Autopilot pilot(exercise);
+  Count count;
+  while (simulation.time_s() < run_s) {
+    const Controls controls = pilot.next(simulation);  // the station's side: decided outside the step
+    const int attachments = simulation.world().attachments_made();
+    const long before = g_allocations.load();
+    simulation.step(controls);
+    const bool allocated = g_allocations.load() != before;
+    if (simulation.time_s() <= warm_up_s) continue;
+    ++count.steps;
+    if (simulation.world().attachments_made() != attachments)
+      ++count.attaching;
+    else if (allocated)
+      ++count.allocating;
+  }
+  return count;
+}
+
+TEST(Allocation, AHoldDischargeStepsWithoutAllocatingOnceWarm) {
+  // sts_bay12_hold: deck boxes, a hatch cover and hold boxes through the cell guides; contacts come and go
+  const Count count = count_allocations("sts_bay12_hold", 5.0, 200.0);
+  EXPECT_GT(count.steps, 190000);
+  EXPECT_GE(count.attaching, 3);  // boxes locked on and set down on trucks: contacts come and go
+  EXPECT_EQ(count.allocating, 0) << count.allocating << " of " << count.steps << " steps allocated";
+}
+
+}  // namespace
+}  // namespace harbour::sim
