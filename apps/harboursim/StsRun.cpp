@@ -98,24 +98,6 @@ void print_evaluation(const sim::Metrics& m, const sim::Score& s) {
               s.skills[2]);
 }
 
-// stores what the evaluator counted this step, the moment it happened
-void store_progress(io::RecordsStore& db, std::int64_t attempt, const sim::Metrics& before,
-                    const sim::Metrics& now) {
-  for (int n = before.moves_completed; n < now.moves_completed; ++n)
-    db.record_move(attempt, n + 1, now.time_s, now.cycle_times_s[static_cast<std::size_t>(n)]);
-  const std::tuple<const char*, int, int, double> counters[] = {
-      {"collision", before.collisions, now.collisions, now.worst_collision_mps},
-      {"hard_landing", before.hard_landings, now.hard_landings, now.worst_landing_mps},
-      {"twistlock_misuse", before.twistlock_misuse, now.twistlock_misuse, 0.0},
-      {"rope_overload", before.overloads, now.overloads, 0.0},
-      {"limit_switch_hit", before.limit_hits, now.limit_hits, 0.0},
-      {"emergency_stop", before.emergency_stops, now.emergency_stops, 0.0},
-      {"gantry_travel_without_horn", before.unwarned_gantry_travel, now.unwarned_gantry_travel, 0.0}};
-  for (const auto& [kind, was, is, value] : counters)
-    for (int n = was; n < is; ++n)
-      db.record_event(attempt, now.time_s, kind, value);
-}
-
 }  // namespace
 
 std::string default_database() {
@@ -242,7 +224,7 @@ int drive(const sim::ExerciseSettings& exercise, sim::Simulation& simulation, si
     simulation.step(in);
     const sim::Metrics before = evaluator.metrics();
     evaluator.observe(simulation, in);
-    store_progress(db, attempt, before, evaluator.metrics());
+    io::record_progress(db, attempt, before, evaluator.metrics());
     if (!options.record.empty()) recorder.after_step(simulation, in);
     if (simulation.time_s() >= next_progress) {
       next_progress += kProgressEvery_s;

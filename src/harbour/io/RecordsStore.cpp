@@ -1,5 +1,7 @@
 #include "harbour/io/RecordsStore.h"
 
+#include <tuple>
+
 #include <soci/soci.h>
 
 #include <signal.h>
@@ -427,6 +429,23 @@ std::vector<AttemptRow> RecordsStore::attempts(const std::optional<std::string>&
     }
   });
   return out;
+}
+
+void record_progress(RecordsStore& db, std::int64_t attempt, const sim::Metrics& before,
+                     const sim::Metrics& now) {
+  for (int n = before.moves_completed; n < now.moves_completed; ++n)
+    db.record_move(attempt, n + 1, now.time_s, now.cycle_times_s[static_cast<std::size_t>(n)]);
+  const std::tuple<const char*, int, int, double> counters[] = {
+      {"collision", before.collisions, now.collisions, now.worst_collision_mps},
+      {"hard_landing", before.hard_landings, now.hard_landings, now.worst_landing_mps},
+      {"twistlock_misuse", before.twistlock_misuse, now.twistlock_misuse, 0.0},
+      {"rope_overload", before.overloads, now.overloads, 0.0},
+      {"limit_switch_hit", before.limit_hits, now.limit_hits, 0.0},
+      {"emergency_stop", before.emergency_stops, now.emergency_stops, 0.0},
+      {"gantry_travel_without_horn", before.unwarned_gantry_travel, now.unwarned_gantry_travel, 0.0}};
+  for (const auto& [kind, was, is, value] : counters)
+    for (int n = was; n < is; ++n)
+      db.record_event(attempt, now.time_s, kind, value);
 }
 
 }  // namespace harbour::io

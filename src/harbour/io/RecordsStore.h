@@ -81,4 +81,9 @@ class RecordsStore {
   std::unique_ptr<Impl> impl_;
 };
 
+/// Stores what the evaluator counted since `before` (moves done, collisions, hard landings, ...) as moves
+/// and events of `attempt`, stamped with the moment they happened.
+void record_progress(RecordsStore& db, std::int64_t attempt, const sim::Metrics& before,
+                     const sim::Metrics& now);
+
 }  // namespace harbour::io

@@ -129,6 +129,7 @@ struct PhysicsWorld::Ode {
   std::deque<dJointFeedback> slider_feedback;  // forces of the last step (stable addresses)
   std::vector<Vec3> slider_axis;
   std::vector<Attachment> attachments;
+  dThreadingImplementationID threading = nullptr;
   std::vector<dContact> contact_buffer;
   std::vector<PendingContact> pending;
   std::vector<dJointFeedback> feedback;
@@ -191,6 +192,11 @@ PhysicsWorld::PhysicsWorld(const WorldSettings& settings)
 
   open_impacts_.reserve(256);
   impacts_.reserve(256);
+  // a threading implementation of its own: worlds stepping on different threads (the station's live world
+  // and its recorder's shadow) share no job list
+  ode_->threading = dThreadingAllocateSelfThreadedImplementation();
+  dWorldSetStepThreadingImplementation(ode_->world, dThreadingImplementationGetFunctions(ode_->threading),
+                                       ode_->threading);
   dWorldSetGravity(ode_->world, settings.gravity.x, settings.gravity.y, settings.gravity.z);
   dWorldSetERP(ode_->world, settings.erp);
   dWorldSetCFM(ode_->world, settings.cfm);
@@ -202,6 +208,7 @@ PhysicsWorld::~PhysicsWorld() {
   dJointGroupDestroy(ode_->contacts);
   dSpaceDestroy(ode_->space);
   dWorldDestroy(ode_->world);
+  dThreadingFreeImplementation(ode_->threading);
 }
 
 BodyId PhysicsWorld::add_box(const BoxSettings& box) {
@@ -576,6 +583,13 @@ void PhysicsWorld::step(double dt_s) {
   divergence_ = find_divergence(true);
   if (diverged()) return;
   g_stepping = this;
+  // ODE's per-thread collision data, once for each thread that steps a world
+  thread_local const bool ode_thread_ready = dAllocateODEDataForThread(dAllocateMaskAll) != 0;
+  if (!ode_thread_ready) {
+    divergence_ = "ODE could not allocate its data for this thread";
+    g_stepping = nullptr;
+    return;
+  }
   try {
     collide();
     dWorldStep(ode_->world, dt_s);

@@ -55,6 +55,9 @@ struct Snapshot {
     core::Vec3 eye_m;                ///< [m] design eye point, cab frame
     core::Vec3 specific_force_mps2;  ///< [m/s^2] acceleration minus gravity at the head (1 g up at rest)
     core::Vec3 angular_velocity_radps;
+    /// Head tracking (the station fills these): the eye's offset from the design eye point [m, cab frame]
+    /// and the head's yaw, pitch, roll [rad].
+    core::Vec3 head_offset_m, head_yaw_pitch_roll_rad;
   } cab;
 
   struct Entity {

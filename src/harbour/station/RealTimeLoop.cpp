@@ -1,0 +1,211 @@
+#include "harbour/station/RealTimeLoop.h"
+
+#include <algorithm>
+
+#include <sys/prctl.h>
+
+namespace harbour::station {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+}  // namespace
+
+RealTimeLoop::RealTimeLoop(sim::Simulation& simulation, const LoopSettings& settings)
+    : simulation_(simulation), settings_(settings), records_(settings.record_capacity) {
+  latched_ = simulation.control_table().neutral();
+  controls_in_.back() = latched_;
+  controls_in_.publish();
+  for (int n = 0; n < std::max(settings.snapshot_readers, 1); ++n)
+    snapshots_.push_back(std::make_unique<TripleBuffer<sim::Snapshot>>());
+  publish();  // readers see the start
+}
+
+RealTimeLoop::~RealTimeLoop() {
+  stop();
+}
+
+void RealTimeLoop::set_head_offset(const core::Vec3& position_m, const core::Vec3& yaw_pitch_roll_rad) {
+  const std::lock_guard lock(head_mutex_);
+  head_position_m_ = position_m;
+  head_angles_rad_ = yaw_pitch_roll_rad;
+}
+
+void RealTimeLoop::start() {
+  if (running_.exchange(true)) return;
+  stop_requested_ = false;
+  thread_ = std::thread([this] { run(); });
+}
+
+void RealTimeLoop::stop() {
+  stop_requested_ = true;
+  join();
+}
+
+void RealTimeLoop::join() {
+  if (thread_.joinable()) thread_.join();
+}
+
+void RealTimeLoop::submit_controls(const sim::Controls& controls) {
+  controls_in_.back() = controls;
+  controls_in_.publish();
+}
+
+bool RealTimeLoop::post(const LoopCommand& command, std::string* why) {
+  if (command.kind == LoopCommand::Kind::kInstructor) {
+    // checked here, at the edge: the step thread applies only valid commands
+    if (const std::string problem = sim::why_invalid(command.instructor); !problem.empty()) {
+      if (why) *why = problem;
+      return false;
+    }
+  }
+  const std::lock_guard lock(commands_mutex_);
+  if (command_count_ == commands_.size()) {
+    if (why) *why = "the loop's command queue is full";
+    return false;
+  }
+  commands_[command_count_++] = command;
+  return true;
+}
+
+LoopStats RealTimeLoop::stats() const {
+  const std::lock_guard lock(stats_mutex_);
+  return stats_;
+}
+
+void RealTimeLoop::run() {
+  prctl(PR_SET_TIMERSLACK, 1000UL);  // wake within ~1 us of the tick, not the default 50 us
+  // one tick per simulation step (1 ms), scaled for a fast-forward
+  const auto period = std::chrono::duration_cast<Clock::duration>(
+      std::chrono::duration<double>(sim::Simulation::kStep_s / settings_.time_scale));
+  const Clock::time_point start = Clock::now();
+  std::int64_t ticks = 0;  // ticks started (or given up)
+  while (!stop_requested_.load(std::memory_order_relaxed)) {
+    const Clock::time_point due_at = start + ticks * period;
+    Clock::time_point now = Clock::now();
+    if (now < due_at) {
+      std::this_thread::sleep_until(due_at);
+      now = Clock::now();
+    }
+    const auto behind = now - due_at;
+    const auto bound =
+        std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(settings_.max_catch_up_s));
+    if (behind > bound) {
+      // too far behind to catch up without a burst the trainee would see: give the time up
+      const std::int64_t lost = (behind - bound) / period + 1;
+      ticks += lost;
+      const std::lock_guard lock(stats_mutex_);
+      stats_.skipped_ticks += lost;
+      ++stats_.catch_up_limits;
+      stats_.keeping_real_time = false;
+      continue;
+    }
+    tick();
+    const double work_s = std::chrono::duration<double>(Clock::now() - now).count();
+    ++ticks;
+    {
+      const std::lock_guard lock(stats_mutex_);
+      stats_.ticks = ticks;
+      stats_.steps = simulation_.steps();
+      const double late_s = std::chrono::duration<double>(behind).count();
+      if (behind >= period) ++stats_.late_ticks;
+      stats_.worst_lateness_s = std::max(stats_.worst_lateness_s, late_s);
+      stats_.longest_tick_s = std::max(stats_.longest_tick_s, work_s);
+      busy_s_ += work_s;
+      stats_.mean_tick_s = busy_s_ / static_cast<double>(ticks - stats_.skipped_ticks);
+      const double wall_s = std::chrono::duration<double>(Clock::now() - start).count();
+      stats_.real_time_factor =
+          wall_s > 0.0 ? static_cast<double>(ticks - stats_.skipped_ticks) * sim::Simulation::kStep_s / wall_s
+                       : 0.0;
+    }
+    if (simulation_.diverged() || (stop_when_ && stop_when_(simulation_))) break;
+  }
+  running_ = false;
+}
+
+void RealTimeLoop::tick() {
+  apply_commands();
+  if (!simulation_.held()) step_once();
+  if (simulation_.steps() % settings_.snapshot_every_steps == 0 || simulation_.held()) publish();
+}
+
+void RealTimeLoop::apply_commands() {
+  std::size_t count = 0;
+  {
+    const std::lock_guard lock(commands_mutex_);
+    count = command_count_;
+    std::copy_n(commands_.begin(), count, applying_.begin());
+    command_count_ = 0;
+  }
+  for (std::size_t n = 0; n < count; ++n) {
+    const LoopCommand& c = applying_[n];
+    switch (c.kind) {
+      case LoopCommand::Kind::kHold:
+        simulation_.hold();
+        break;
+      case LoopCommand::Kind::kResume:
+        simulation_.resume();
+        break;
+      case LoopCommand::Kind::kSingleStep:
+        if (simulation_.held()) step_once();
+        break;
+      case LoopCommand::Kind::kInstructor: {
+        simulation_.command(c.instructor);  // valid: post() checked it
+        StepRecord r;
+        r.kind = StepRecord::Kind::kCommand;
+        r.step = simulation_.steps();
+        r.command = c.instructor;
+        hand_off(r);
+        break;
+      }
+      case LoopCommand::Kind::kStop:
+        stop_requested_ = true;
+        break;
+    }
+  }
+}
+
+void RealTimeLoop::step_once() {
+  latched_ = pilot_ ? pilot_(simulation_) : *controls_in_.latest();
+  simulation_.single_step(latched_);
+  StepRecord r;
+  r.kind = StepRecord::Kind::kStep;
+  r.step = simulation_.steps();
+  r.controls = latched_;
+  hand_off(r);
+  if (simulation_.steps() % 1000 == 0) {
+    StepRecord c;
+    c.kind = StepRecord::Kind::kCheckpoint;
+    c.step = simulation_.steps();
+    c.state_hash = simulation_.state_hash();
+    hand_off(c);
+  }
+}
+
+void RealTimeLoop::hand_off(const StepRecord& record) {
+  // the recording must be whole: with the recorder's queue full (it fell 32 s behind) the loop waits
+  if (records_.push(record)) return;
+  {
+    const std::lock_guard lock(stats_mutex_);
+    ++stats_.record_waits;
+  }
+  while (!records_.push(record))
+    std::this_thread::sleep_for(std::chrono::microseconds(100));
+}
+
+void RealTimeLoop::publish() {
+  core::Vec3 head_position, head_angles;
+  {
+    const std::lock_guard lock(head_mutex_);
+    head_position = head_position_m_;
+    head_angles = head_angles_rad_;
+  }
+  for (const auto& buffer : snapshots_) {
+    sim::Snapshot& s = buffer->back();
+    simulation_.write_snapshot(s);
+    s.cab.head_offset_m = head_position;
+    s.cab.head_yaw_pitch_roll_rad = head_angles;
+    buffer->publish();
+  }
+}
+
+}  // namespace harbour::station

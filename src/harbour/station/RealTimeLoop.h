@@ -1,0 +1,140 @@
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+#include "harbour/sim/Simulation.h"
+#include "harbour/station/SpscRing.h"
+#include "harbour/station/TripleBuffer.h"
+
+namespace harbour::station {
+
+/// What the step thread hands to whoever records and evaluates (off the step thread): every step it took,
+/// with the controls it stepped with and the instructor commands applied before it, in order.
+struct StepRecord {
+  enum class Kind : std::uint8_t {
+    kStep,        ///< one step with `controls` (the simulation is now at `step`)
+    kCommand,     ///< `command` applied before step `step` + 1
+    kCheckpoint,  ///< the live state hash at `step` (the recorder's shadow checks it)
+  };
+  Kind kind = Kind::kStep;
+  std::int64_t step = 0;
+  sim::Controls controls;
+  sim::InstructorCommand command;
+  std::uint64_t state_hash = 0;
+};
+
+/// A request to the running loop from another thread, applied between steps.
+struct LoopCommand {
+  enum class Kind : std::uint8_t { kHold, kResume, kSingleStep, kInstructor, kStop };
+  Kind kind = Kind::kHold;
+  sim::InstructorCommand instructor;
+};
+
+/// How the loop keeps (or fails to keep) real time.
+struct LoopStats {
+  std::int64_t ticks = 0;            ///< 1 ms ticks since the start (held ones included)
+  std::int64_t steps = 0;            ///< simulation steps taken
+  std::int64_t late_ticks = 0;       ///< ticks that started a whole period or more after their time
+  std::int64_t skipped_ticks = 0;    ///< ticks given up when the loop fell too far behind (time lost)
+  std::int64_t catch_up_limits = 0;  ///< times it fell more than the catch-up bound behind
+  std::int64_t record_waits = 0;     ///< ticks that waited for the recorder (its queue full)
+  double longest_tick_s = 0.0;       ///< longest work of one tick (step, publish, hand-off)
+  double worst_lateness_s = 0.0;
+  double mean_tick_s = 0.0;
+  double real_time_factor = 0.0;  ///< simulated time over wall time, while not held
+  bool keeping_real_time = true;  ///< false once it has had to give up ticks
+};
+
+struct LoopSettings {
+  double max_catch_up_s = 0.05;  ///< behind by more than this, the loop gives the time up instead of racing
+  double time_scale = 1.0;       ///< simulated seconds per wall second (an instructor's fast-forward; tests)
+  int snapshot_every_steps = 4;  ///< publish rate: 250 Hz (readers interpolate by step and time)
+  int snapshot_readers = 2;      ///< one triple buffer each (image generator, console, ...)
+  std::size_t record_capacity = 1 << 15;  ///< steps of hand-off to the recorder (32 s)
+};
+
+/// The station's real-time loop: the simulation at its fixed 1 kHz step on its own thread, paced to the wall
+/// clock. Each tick it applies queued commands, latches the controls (the newest from the input side, or
+/// from `pilot`), steps, hands the step to the recorder's queue and publishes a snapshot. It never spirals:
+/// behind by more than max_catch_up_s it gives the time up and reports that it cannot keep real time.
+class RealTimeLoop {
+ public:
+  /// Controls decided on the step thread from the simulation (an autopilot); empty: the input side's.
+  using Pilot = std::function<sim::Controls(const sim::Simulation&)>;
+  /// Asked after every tick on the step thread: true stops the loop (the exercise is over).
+  using StopWhen = std::function<bool(const sim::Simulation&)>;
+
+  RealTimeLoop(sim::Simulation& simulation, const LoopSettings& settings = {});
+  ~RealTimeLoop();
+  RealTimeLoop(const RealTimeLoop&) = delete;
+  RealTimeLoop& operator=(const RealTimeLoop&) = delete;
+
+  void set_pilot(Pilot pilot) { pilot_ = std::move(pilot); }
+  void set_stop_when(StopWhen stop_when) { stop_when_ = std::move(stop_when); }
+  /// The eye point's offset from head tracking, written into every published snapshot (any thread).
+  void set_head_offset(const core::Vec3& position_m, const core::Vec3& yaw_pitch_roll_rad);
+
+  /// Starts the step thread.
+  void start();
+  /// Asks the loop to stop after the current tick and waits for it.
+  void stop();
+  /// Waits until the loop has stopped (by stop(), a kStop command, stop_when or divergence).
+  void join();
+  bool running() const { return running_.load(); }
+
+  /// Input side (one thread): the controls the next steps use, until newer ones come.
+  void submit_controls(const sim::Controls& controls);
+  /// Any thread: a command for the loop, applied before the next step. An instructor command out of range
+  /// is refused here (false, with why); so is one when the queue is full.
+  bool post(const LoopCommand& command, std::string* why = nullptr);
+
+  /// Reader `n`'s newest snapshot (nullptr before the first).
+  const sim::Snapshot* latest_snapshot(int reader) {
+    return snapshots_[static_cast<std::size_t>(reader)]->latest();
+  }
+  /// The recorder's side of the step hand-off (one consumer thread).
+  SpscRing<StepRecord>& records() { return records_; }
+  LoopStats stats() const;
+  /// The controls the last step used (step thread's copy; read when stopped).
+  const sim::Controls& last_controls() const { return latched_; }
+
+ private:
+  void run();
+  void tick();
+  void apply_commands();
+  void step_once();
+  void hand_off(const StepRecord& record);
+  void publish();
+
+  sim::Simulation& simulation_;
+  LoopSettings settings_;
+  Pilot pilot_;
+  StopWhen stop_when_;
+  std::thread thread_;
+  std::atomic<bool> running_{false}, stop_requested_{false};
+
+  TripleBuffer<sim::Controls> controls_in_;
+  sim::Controls latched_;
+  std::vector<std::unique_ptr<TripleBuffer<sim::Snapshot>>> snapshots_;
+  SpscRing<StepRecord> records_;
+
+  std::mutex commands_mutex_;
+  std::array<LoopCommand, 256> commands_{};
+  std::size_t command_count_ = 0;
+  std::array<LoopCommand, 256> applying_{};  // step thread's copy
+
+  std::mutex head_mutex_;
+  core::Vec3 head_position_m_, head_angles_rad_;
+
+  mutable std::mutex stats_mutex_;
+  LoopStats stats_;
+  double busy_s_ = 0.0;
+};
+
+}  // namespace harbour::station

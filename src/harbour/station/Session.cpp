@@ -1,0 +1,115 @@
+#include "harbour/station/Session.h"
+
+#include <chrono>
+#include <stdexcept>
+
+namespace harbour::station {
+
+Session::Session(const sim::ExerciseSettings& exercise, const SessionOptions& options)
+    : exercise_(exercise),
+      options_(options),
+      simulation_(std::make_unique<sim::Simulation>(exercise.scenario)),
+      shadow_(std::make_unique<sim::Simulation>(exercise.scenario)),
+      evaluator_(exercise),
+      recorder_(exercise.name, simulation_->control_table()) {
+  db_ = std::make_unique<io::RecordsStore>(options.database);
+  if (!db_->has_trainee(options.trainee))
+    throw std::runtime_error("no trainee '" + options.trainee + "' (add it with: harboursim trainees add)");
+  if (!options.record.empty()) {
+    writer_.emplace(options.record, recorder_.recording());
+    recorder_.set_sink(&*writer_);
+  }
+  attempt_ = db_->begin_attempt(options.trainee, exercise.name, std::nullopt, 0, options.record);
+  loop_ = std::make_unique<RealTimeLoop>(*simulation_, options.loop);
+  // the exercise bounds the run: its moves done (the keeper says so), or its time and overtime past
+  const double stop_at_s = exercise.rules.time_limit_s + exercise.rules.overtime_s;
+  loop_->set_stop_when(
+      [this, stop_at_s](const sim::Simulation& s) { return over_.load() || s.time_s() >= stop_at_s; });
+}
+
+Session::~Session() {
+  if (!finished_) {
+    try {
+      finish(true);
+    } catch (...) {  // the database itself failed: its next opening marks the attempt interrupted
+    }
+  }
+}
+
+void Session::start() {
+  keeper_ = std::thread([this] { keep(); });
+  loop_->start();
+}
+
+sim::Metrics Session::metrics() const {
+  const std::lock_guard lock(metrics_mutex_);
+  return metrics_;
+}
+
+void Session::keep() {
+  try {
+    StepRecord record;
+    for (;;) {
+      if (loop_->records().pop(record)) {
+        keep(record);
+        continue;
+      }
+      if (loop_done_.load()) {
+        if (!loop_->records().pop(record)) break;
+        keep(record);
+        continue;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+  } catch (const std::exception& e) {
+    keeper_error_ = e.what();  // reported by finish(); the loop is told to stop
+    over_ = true;
+  }
+}
+
+void Session::keep(const StepRecord& record) {
+  switch (record.kind) {
+    case StepRecord::Kind::kCommand:
+      shadow_->command(record.command);
+      recorder_.on_command(*shadow_, record.command);
+      break;
+    case StepRecord::Kind::kCheckpoint:
+      if (shadow_->steps() != record.step || shadow_->state_hash() != record.state_hash) ++hash_mismatches_;
+      break;
+    case StepRecord::Kind::kStep: {
+      shadow_->single_step(record.controls);
+      const sim::Metrics before = evaluator_.metrics();
+      evaluator_.observe(*shadow_, record.controls);
+      io::record_progress(*db_, attempt_, before, evaluator_.metrics());
+      if (writer_) recorder_.after_step(*shadow_, record.controls);
+      {
+        const std::lock_guard lock(metrics_mutex_);
+        metrics_ = evaluator_.metrics();
+      }
+      if (evaluator_.finished() || shadow_->diverged()) over_ = true;
+      break;
+    }
+  }
+}
+
+SessionResult Session::finish(bool interrupted) {
+  finished_ = true;
+  loop_->stop();
+  loop_done_ = true;
+  if (keeper_.joinable()) keeper_.join();
+  SessionResult result;
+  result.attempt = attempt_;
+  result.loop = loop_->stats();
+  result.hash_mismatches = hash_mismatches_.load();
+  result.metrics = evaluator_.metrics();
+  result.score = evaluator_.score();
+  result.status = simulation_->diverged()                 ? "diverged"
+                  : interrupted || !keeper_error_.empty() ? "interrupted"
+                                                          : "finished";
+  if (writer_) writer_->finish(recorder_.recording().total_steps);
+  db_->finish_attempt(attempt_, result.metrics, result.score, options_.record, result.status);
+  if (!keeper_error_.empty()) throw std::runtime_error("record keeper: " + keeper_error_);
+  return result;
+}
+
+}  // namespace harbour::station

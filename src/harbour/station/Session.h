@@ -1,0 +1,81 @@
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+
+#include "harbour/io/RecordingFile.h"
+#include "harbour/io/RecordsStore.h"
+#include "harbour/sim/Evaluation.h"
+#include "harbour/sim/Recording.h"
+#include "harbour/station/RealTimeLoop.h"
+
+namespace harbour::station {
+
+struct SessionOptions {
+  std::string trainee;   ///< stored under this trainee (must exist)
+  std::string record;    ///< recording file ("" for none)
+  std::string database;  ///< records connection
+  LoopSettings loop;
+};
+
+/// How a session ended.
+struct SessionResult {
+  std::string status;  ///< finished, interrupted, diverged (as stored)
+  std::int64_t attempt = 0;
+  sim::Metrics metrics;
+  sim::Score score;
+  LoopStats loop;
+  std::int64_t hash_mismatches = 0;  ///< live checkpoints the recorder's shadow did not reproduce (0)
+};
+
+/// One trainee's live attempt at an exercise: the simulation on the real-time loop, and on a thread of its
+/// own the record keeper, which re-steps a shadow of the simulation with every step's controls and commands
+/// (determinism makes it the same state) to evaluate, record (checkpoints, keyframes, the streamed file) and
+/// store the attempt's progress in the database, all off the step thread.
+class Session {
+ public:
+  /// Opens the database and the recording and begins the attempt; throws naming what failed.
+  Session(const sim::ExerciseSettings& exercise, const SessionOptions& options);
+  ~Session();
+
+  sim::Simulation& simulation() { return *simulation_; }
+  RealTimeLoop& loop() { return *loop_; }
+  std::int64_t attempt() const { return attempt_; }
+  /// Starts the loop and the record keeper.
+  void start();
+  /// Whether the exercise is over (its moves done, past its time and overtime, or diverged).
+  bool over() const { return over_.load(); }
+  /// The evaluation so far (the keeper's copy).
+  sim::Metrics metrics() const;
+  /// Stops the loop (if still running), lets the keeper catch up, closes the recording and stores the
+  /// attempt: `interrupted` when the trainee or a signal stopped it before the end.
+  SessionResult finish(bool interrupted);
+
+ private:
+  void keep();
+  void keep(const StepRecord& record);
+
+  sim::ExerciseSettings exercise_;
+  SessionOptions options_;
+  std::unique_ptr<sim::Simulation> simulation_, shadow_;
+  std::unique_ptr<RealTimeLoop> loop_;
+  sim::Evaluator evaluator_;
+  sim::Recorder recorder_;
+  std::optional<io::RecordingWriter> writer_;
+  std::unique_ptr<io::RecordsStore> db_;
+  std::int64_t attempt_ = 0;
+  std::thread keeper_;
+  std::atomic<bool> over_{false}, loop_done_{false};
+  std::atomic<std::int64_t> hash_mismatches_{0};
+  mutable std::mutex metrics_mutex_;
+  sim::Metrics metrics_;
+  std::string keeper_error_;
+  bool finished_ = false;
+};
+
+}  // namespace harbour::station
