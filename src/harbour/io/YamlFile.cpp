@@ -179,6 +179,15 @@ int YamlFile::integer(const YAML::Node& map, const std::string& key, const std::
   return static_cast<int>(value);
 }
 
+bool YamlFile::flag(const YAML::Node& map, const std::string& key, const std::string& path,
+                    bool fallback) const {
+  const std::optional<YAML::Node> node = optional(map, key, path);
+  if (!node) return fallback;
+  if (node->IsScalar() && (node->Scalar() == "true" || node->Scalar() == "false"))
+    return node->Scalar() == "true";
+  fail(*node, join(path, key), "expected true or false");
+}
+
 std::string YamlFile::text(const YAML::Node& map, const std::string& key, const std::string& path) const {
   const std::string field = join(path, key);
   const YAML::Node node = required(map, key, path);

@@ -52,6 +52,10 @@ class YamlFile {
                    double min, double max, bool exclusive_min = false, bool exclusive_max = false) const;
   /// A whole number in [min, max].
   int integer(const YAML::Node& map, const std::string& key, const std::string& path, int min, int max) const;
+  /// true or false, `fallback` when the key is absent.
+  bool flag(const YAML::Node& map, const std::string& key, const std::string& path, bool fallback) const;
+  /// A number read from a list item or other bare node (errors name `field`).
+  double number_at(const YAML::Node& node, const std::string& field) const { return to_number(node, field); }
   /// A name: non-empty, at most core::kMaxNameBytes, valid UTF-8, no control characters.
   std::string text(const YAML::Node& map, const std::string& key, const std::string& path) const;
   /// A list of three finite numbers [x, y, z], each within [-limit, limit].

@@ -39,8 +39,9 @@ struct Snapshot {
   std::uint32_t warnings = 0;  ///< physics warnings so far
   std::int64_t step = 0;
   double time_s = 0.0;
-  bool held = false;      ///< frozen by the instructor
-  bool diverged = false;  ///< the physics stopped
+  bool held = false;        ///< frozen by the instructor
+  bool diverged = false;    ///< the physics stopped
+  int devices_missing = 0;  ///< input devices of the station's mapping not present (their controls read safe)
 
   // environment
   core::Vec3 wind_mps;  ///< [m/s] world

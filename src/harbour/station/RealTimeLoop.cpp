@@ -165,7 +165,7 @@ void RealTimeLoop::apply_commands() {
 }
 
 void RealTimeLoop::step_once() {
-  latched_ = pilot_ ? pilot_(simulation_) : *controls_in_.latest();
+  latched_ = pilot_ ? pilot_(simulation_) : sampler_ ? sampler_() : *controls_in_.latest();
   simulation_.single_step(latched_);
   StepRecord r;
   r.kind = StepRecord::Kind::kStep;
@@ -204,6 +204,7 @@ void RealTimeLoop::publish() {
     simulation_.write_snapshot(s);
     s.cab.head_offset_m = head_position;
     s.cab.head_yaw_pitch_roll_rad = head_angles;
+    s.devices_missing = devices_missing_.load(std::memory_order_relaxed);
     buffer->publish();
   }
 }

@@ -76,6 +76,11 @@ class RealTimeLoop {
   RealTimeLoop& operator=(const RealTimeLoop&) = delete;
 
   void set_pilot(Pilot pilot) { pilot_ = std::move(pilot); }
+  /// Controls read on the step thread right before each step (the input devices' sample(): a device change
+  /// reaches the very next step); without one, the newest submit_controls().
+  void set_sampler(std::function<sim::Controls()> sampler) { sampler_ = std::move(sampler); }
+  /// How many input devices are missing now (any thread): published in every snapshot for the displays.
+  void set_devices_missing(int count) { devices_missing_ = count; }
   void set_stop_when(StopWhen stop_when) { stop_when_ = std::move(stop_when); }
   /// The eye point's offset from head tracking, written into every published snapshot (any thread).
   void set_head_offset(const core::Vec3& position_m, const core::Vec3& yaw_pitch_roll_rad);
@@ -115,6 +120,8 @@ class RealTimeLoop {
   sim::Simulation& simulation_;
   LoopSettings settings_;
   Pilot pilot_;
+  std::function<sim::Controls()> sampler_;
+  std::atomic<int> devices_missing_{0};
   StopWhen stop_when_;
   std::thread thread_;
   std::atomic<bool> running_{false}, stop_requested_{false};

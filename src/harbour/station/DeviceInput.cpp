@@ -1,0 +1,197 @@
+#include "harbour/station/DeviceInput.h"
+
+#include <SDL.h>
+
+#include <chrono>
+#include <stdexcept>
+
+namespace harbour::station {
+
+namespace {
+std::string guid_of(SDL_JoystickGUID guid) {
+  char text[33];
+  SDL_JoystickGetGUIDString(guid, text, sizeof text);
+  return text;
+}
+
+bool matches(const DeviceMatch& m, const std::string& name, const std::string& guid) {
+  if (m.keyboard) return false;
+  if (!m.guid.empty() && SDL_strcasecmp(m.guid.c_str(), guid.c_str()) != 0) return false;
+  if (!m.name.empty() && name.find(m.name) == std::string::npos) return false;
+  return true;
+}
+
+std::string joined(const std::vector<std::string>& labels) {
+  std::string s;
+  for (const std::string& l : labels)
+    s += (s.empty() ? "" : ", ") + l;
+  return s;
+}
+}  // namespace
+
+DeviceInput::DeviceInput(const sim::ControlTable& table, DeviceMapping mapping)
+    : mapper_(table, std::move(mapping)) {
+  SDL_SetHint(SDL_HINT_JOYSTICK_ALLOW_BACKGROUND_EVENTS, "1");
+  if (SDL_InitSubSystem(SDL_INIT_JOYSTICK) != 0)
+    throw std::runtime_error(std::string("SDL joystick subsystem: ") + SDL_GetError());
+  const std::size_t devices = mapper_.mapping().devices.size();
+  bound_.resize(devices);
+  states_.resize(devices);
+  unfit_.resize(devices);
+  last_ = mapper_.map(states_, keyboard_);
+}
+
+DeviceInput::~DeviceInput() {
+  stop();
+  {
+    const std::lock_guard lock(mutex_);
+    for (std::size_t d = 0; d < bound_.size(); ++d)
+      if (bound_[d].joystick) SDL_JoystickClose(bound_[d].joystick);
+  }
+  SDL_QuitSubSystem(SDL_INIT_JOYSTICK);
+}
+
+std::vector<DeviceInfo> DeviceInput::list() {
+  std::vector<DeviceInfo> out;
+  SDL_JoystickUpdate();
+  for (int i = 0; i < SDL_NumJoysticks(); ++i) {
+    DeviceInfo info;
+    info.instance = SDL_JoystickGetDeviceInstanceID(i);
+    const char* name = SDL_JoystickNameForIndex(i);
+    info.name = name ? name : "";
+    info.guid = guid_of(SDL_JoystickGetDeviceGUID(i));
+    if (SDL_Joystick* j = SDL_JoystickOpen(i)) {
+      info.axes = SDL_JoystickNumAxes(j);
+      info.buttons = SDL_JoystickNumButtons(j);
+      info.hats = SDL_JoystickNumHats(j);
+      SDL_JoystickClose(j);
+    }
+    out.push_back(info);
+  }
+  return out;
+}
+
+sim::Controls DeviceInput::sample() {
+  const std::unique_lock lock(mutex_, std::try_to_lock);
+  if (!lock.owns_lock()) return last_;  // maintain() is binding a device: the previous sample, one step old
+  SDL_JoystickUpdate();
+  for (std::size_t d = 0; d < bound_.size(); ++d) {
+    DeviceState& state = states_[d];
+    SDL_Joystick* j = bound_[d].joystick;
+    state.connected = j && SDL_JoystickGetAttached(j);
+    if (!state.connected) continue;
+    for (std::size_t a = 0; a < state.axes.size(); ++a)
+      state.axes[a] = SDL_JoystickGetAxis(j, static_cast<int>(a));
+    for (std::size_t b = 0; b < state.buttons.size(); ++b)
+      state.buttons[b] = SDL_JoystickGetButton(j, static_cast<int>(b)) != 0;
+    for (std::size_t h = 0; h < state.hats.size(); ++h)
+      state.hats[h] = SDL_JoystickGetHat(j, static_cast<int>(h));
+  }
+  if (SDL_WasInit(SDL_INIT_VIDEO)) {
+    int keys = 0;
+    const Uint8* pressed = SDL_GetKeyboardState(&keys);
+    keyboard_.resize(static_cast<std::size_t>(keys));
+    for (int k = 0; k < keys; ++k)
+      keyboard_[static_cast<std::size_t>(k)] = pressed[k] != 0;
+  }
+  last_ = mapper_.map(states_, keyboard_);
+  return last_;
+}
+
+void DeviceInput::event(DeviceEvent e) {
+  const std::lock_guard lock(events_mutex_);
+  events_.push_back(std::move(e));
+}
+
+void DeviceInput::drop(std::size_t d, bool lost) {
+  if (bound_[d].joystick) SDL_JoystickClose(bound_[d].joystick);
+  if (lost)
+    event({DeviceEvent::Kind::kLost, mapper_.mapping().devices[d].id, bound_[d].name,
+           "safe: " + joined(mapper_.controls_of(static_cast<int>(d)))});
+  bound_[d] = {};
+  states_[d].connected = false;
+}
+
+void DeviceInput::maintain() {
+  const std::lock_guard lock(mutex_);
+  SDL_JoystickUpdate();
+  // lost devices first: their slots free for a device that comes back
+  for (std::size_t d = 0; d < bound_.size(); ++d)
+    if (bound_[d].joystick && !SDL_JoystickGetAttached(bound_[d].joystick)) drop(d, true);
+  const DeviceMapping& mapping = mapper_.mapping();
+  std::vector<int> seen(mapping.devices.size(), 0);  // matching devices passed per mapping device
+  const int count = SDL_NumJoysticks();
+  for (int i = 0; i < count; ++i) {
+    const SDL_JoystickID instance = SDL_JoystickGetDeviceInstanceID(i);
+    const char* raw_name = SDL_JoystickNameForIndex(i);
+    const std::string name = raw_name ? raw_name : "", guid = guid_of(SDL_JoystickGetDeviceGUID(i));
+    bool taken = false;
+    for (const Bound& b : bound_)
+      taken = taken || b.instance == instance;
+    for (std::size_t d = 0; d < mapping.devices.size(); ++d) {
+      if (!matches(mapping.devices[d], name, guid)) continue;
+      if (seen[d]++ != mapping.devices[d].nth) continue;  // the nth alike device is this mapping device
+      if (taken || bound_[d].joystick) break;
+      SDL_Joystick* j = SDL_JoystickOpen(i);
+      if (!j) break;
+      const int axes = SDL_JoystickNumAxes(j), buttons = SDL_JoystickNumButtons(j),
+                hats = SDL_JoystickNumHats(j);
+      if (const std::string why = why_unfit(mapping, static_cast<int>(d), axes, buttons, hats);
+          !why.empty()) {
+        SDL_JoystickClose(j);
+        if (unfit_[d] != why) event({DeviceEvent::Kind::kUnfit, mapping.devices[d].id, name, why});
+        unfit_[d] = why;
+        break;
+      }
+      unfit_[d].clear();
+      bound_[d] = {j, instance, name};
+      states_[d].axes.assign(static_cast<std::size_t>(axes), 0.0);
+      states_[d].buttons.assign(static_cast<std::size_t>(buttons), false);
+      states_[d].hats.assign(static_cast<std::size_t>(hats), 0);
+      event({DeviceEvent::Kind::kConnected, mapping.devices[d].id, name,
+             joined(mapper_.controls_of(static_cast<int>(d)))});
+      break;
+    }
+  }
+}
+
+void DeviceInput::start(double rate_hz) {
+  if (running_.exchange(true)) return;
+  thread_ = std::thread([this, rate_hz] {
+    const auto period = std::chrono::duration<double>(1.0 / rate_hz);
+    while (running_.load()) {
+      maintain();
+      std::this_thread::sleep_for(period);
+    }
+  });
+}
+
+void DeviceInput::stop() {
+  running_ = false;
+  if (thread_.joinable()) thread_.join();
+}
+
+std::vector<DeviceEvent> DeviceInput::take_events() {
+  const std::lock_guard lock(events_mutex_);
+  std::vector<DeviceEvent> out;
+  out.swap(events_);
+  return out;
+}
+
+int DeviceInput::bound_devices() const {
+  const std::lock_guard lock(mutex_);
+  int n = 0;
+  for (const Bound& b : bound_)
+    n += b.joystick != nullptr;
+  return n;
+}
+
+int DeviceInput::missing_devices() const {
+  const std::lock_guard lock(mutex_);
+  int n = 0;
+  for (std::size_t d = 0; d < bound_.size(); ++d)
+    n += !mapper_.mapping().devices[d].keyboard && bound_[d].joystick == nullptr;
+  return n;
+}
+
+}  // namespace harbour::station

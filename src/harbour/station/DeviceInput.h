@@ -1,0 +1,89 @@
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "harbour/station/DeviceMapping.h"
+
+struct _SDL_Joystick;
+
+namespace harbour::station {
+
+/// Something that happened to an input device, for the trainee's display, the instructor and the records.
+struct DeviceEvent {
+  enum class Kind : std::uint8_t {
+    kConnected,  ///< a mapping device found (again)
+    kLost,       ///< gone: its controls read safe until it comes back
+    kUnfit,      ///< found but it lacks an axis, button or hat the mapping binds (detail says which)
+  };
+  Kind kind = Kind::kConnected;
+  std::string device;  ///< the mapping's id (left, right, pad)
+  std::string name;    ///< the SDL device's name
+  std::string detail;  ///< the controls affected, or why it does not fit
+};
+
+/// A joystick SDL sees now.
+struct DeviceInfo {
+  int instance = -1;
+  std::string name, guid;
+  int axes = 0, buttons = 0, hats = 0;
+};
+
+/// The station's input sensorisation over SDL2: any number of joysticks and game controllers, hot-plugged.
+/// Devices are bound to a mapping's devices by GUID and/or name; sample() reads them and maps them to
+/// Controls (fast, no allocation: the real-time loop calls it right before it latches, so a device change
+/// reaches the very next step); maintain() finds, binds and drops devices (the input thread calls it).
+/// A device that disappears makes its controls read safe in the same sample and raises an event; one that
+/// comes back is bound again.
+class DeviceInput {
+ public:
+  /// Initialises SDL's joystick subsystem (throws naming SDL's error).
+  DeviceInput(const sim::ControlTable& table, DeviceMapping mapping);
+  ~DeviceInput();
+  DeviceInput(const DeviceInput&) = delete;
+  DeviceInput& operator=(const DeviceInput&) = delete;
+
+  /// Reads the bound devices and maps them (any thread; one at a time).
+  sim::Controls sample();
+  /// Finds new devices, binds them, drops lost ones (call a few tens of times a second).
+  void maintain();
+  /// maintain() at `rate_hz` on a thread of its own until stop().
+  void start(double rate_hz = 50.0);
+  void stop();
+
+  /// Events since the last call.
+  std::vector<DeviceEvent> take_events();
+  /// Mapping devices that are bound now / missing now.
+  int bound_devices() const;
+  int missing_devices() const;
+  /// What SDL sees (for `harboursim devices`).
+  static std::vector<DeviceInfo> list();
+  const ControlMapper& mapper() const { return mapper_; }
+
+ private:
+  struct Bound {
+    _SDL_Joystick* joystick = nullptr;
+    int instance = -1;
+    std::string name;
+  };
+  void drop(std::size_t device, bool lost);
+  void event(DeviceEvent e);
+
+  ControlMapper mapper_;
+  mutable std::mutex mutex_;         // the bound devices: sample() and maintain()
+  std::vector<Bound> bound_;         // per mapping device
+  std::vector<DeviceState> states_;  // per mapping device
+  std::vector<std::string> unfit_;   // per mapping device: the last unfit reason reported
+  std::vector<bool> keyboard_;
+  sim::Controls last_;
+  std::mutex events_mutex_;
+  std::vector<DeviceEvent> events_;
+  std::thread thread_;
+  std::atomic<bool> running_{false};
+};
+
+}  // namespace harbour::station

@@ -1,0 +1,95 @@
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "harbour/sim/Controls.h"
+
+namespace harbour::station {
+
+/// Which physical device a mapping means: by SDL GUID and/or by name (exact), the n-th of several alike.
+struct DeviceMatch {
+  std::string id;    ///< the mapping's name for it: left, right, pad, pedals, keyboard
+  std::string guid;  ///< SDL GUID (32 hex characters), "" for any
+  std::string
+      name;     ///< a part of the SDL device name ("" for any): "T.16000M" matches "Thrustmaster T.16000M"
+  int nth = 0;  ///< 0: the first device that matches, 1: the second, ...
+  bool keyboard = false;  ///< the keyboard (and mouse buttons): always present where there is a window
+};
+
+/// Two-sided (min, centre, max) or one-sided (min, max: a pedal or throttle) raw axis calibration.
+struct Calibration {
+  double min = -32768.0, center = 0.0, max = 32767.0;
+  bool centered = true;
+};
+
+/// One physical control bound to one control label.
+struct Binding {
+  enum class Source : std::uint8_t { kAxis, kButton, kHat, kKeys };
+  std::string control;  ///< label in the machine's control table
+  int slot = -1;        ///< its slot (resolved against the table)
+  int device = 0;       ///< index into DeviceMapping::devices
+  Source source = Source::kAxis;
+  int index = 0;                    ///< axis, button or hat index (kKeys: unused)
+  int hat_direction = 0;            ///< SDL_HAT_UP/RIGHT/DOWN/LEFT bits for kHat
+  std::array<int, 2> keys{-1, -1};  ///< kKeys: SDL scancodes for + and - (a key pair as a lever)
+  Calibration calibration;
+  double dead_zone = 0.0;  ///< [-] share of the travel around the centre (or the rest end) that reads 0
+  double expo = 0.0;       ///< [-] response curve: (1 - e) x + e x^3
+  bool invert = false;
+  std::vector<double> detents;  ///< an axis driving a switch: the normalised positions of its detents
+  bool toggle = false;          ///< a button driving a switch: each press moves it to the next position
+  double value = 1.0;           ///< a button, hat or key on an axis control: the value while held
+  int line = 0;                 ///< where it is in its file (errors name it)
+};
+
+/// A mapping file (data/devices/*.yaml): devices and their bindings to a machine's control labels.
+struct DeviceMapping {
+  std::string name;
+  std::string file;  ///< where it was read from
+  std::vector<DeviceMatch> devices;
+  std::vector<Binding> bindings;
+};
+
+/// One device's raw state as SDL reports it (or a test sets it).
+struct DeviceState {
+  bool connected = false;
+  std::vector<double> axes;  ///< raw -32768..32767
+  std::vector<bool> buttons;
+  std::vector<int> hats;  ///< SDL_HAT_* bits
+};
+
+/// Why mapping device `device` cannot be bound to a device with these counts ("" if it can): an axis, button
+/// or hat index beyond it, named by file, line and field.
+std::string why_unfit(const DeviceMapping& mapping, int device, int axes, int buttons, int hats);
+
+/// The normalised reading of one axis binding: calibration, dead zone, expo and inversion, in [-1, 1]
+/// (two-sided) or [0, 1] (one-sided).
+double shape_axis(const Binding& binding, double raw);
+
+/// Turns device states into Controls through a mapping: axes by their calibration and curve into the
+/// control's range, buttons, hats and keys, detents and toggles for switches. A control bound to a device
+/// that is not connected reads its safe value; the rest read neutral when untouched.
+class ControlMapper {
+ public:
+  ControlMapper(const sim::ControlTable& table, DeviceMapping mapping);
+
+  /// The controls for these device states (one per mapping device, in its order). `keyboard` holds the
+  /// pressed scancodes' flags (SDL_NUM_SCANCODES entries, or empty when there is no keyboard).
+  sim::Controls map(const std::vector<DeviceState>& devices, const std::vector<bool>& keyboard = {});
+  const DeviceMapping& mapping() const { return mapping_; }
+  const sim::ControlTable& table() const { return table_; }
+  /// Labels of the controls bound to mapping device `device`.
+  std::vector<std::string> controls_of(int device) const;
+
+ private:
+  sim::ControlTable table_;
+  DeviceMapping mapping_;
+  std::vector<bool> was_pressed_;  // per binding: a toggle's previous button state
+  std::vector<double> toggled_;    // per slot: a toggled switch's position
+};
+
+}  // namespace harbour::station

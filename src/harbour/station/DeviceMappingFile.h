@@ -1,0 +1,18 @@
+#pragma once
+
+#include <string>
+
+#include "harbour/io/YamlFile.h"
+#include "harbour/station/DeviceMapping.h"
+
+namespace harbour::station {
+
+/// Reads a device mapping file (data/devices/*.yaml) against a machine's control table: every binding's
+/// control must be one of its labels and fit its kind. Errors (io::DataError) name file, line and field.
+DeviceMapping load_device_mapping(const io::YamlFile& file, const sim::ControlTable& table);
+DeviceMapping load_device_mapping(const std::string& path, const sim::ControlTable& table);
+
+/// The mapping as a file load_device_mapping reads back (what `harboursim devices` writes).
+std::string device_mapping_text(const DeviceMapping& mapping);
+
+}  // namespace harbour::station

@@ -1,0 +1,209 @@
+#include "harbour/station/DeviceMapping.h"
+
+#include <gtest/gtest.h>
+
+#include <SDL.h>
+
+#include <filesystem>
+
+#include "harbour/io/DataError.h"
+#include "harbour/sim/StsCrane.h"
+#include "harbour/station/DeviceMappingFile.h"
+
+namespace harbour::station {
+namespace {
+
+TEST(DeviceMapping, AxisShapingMatchesHandComputedValues) {
+  Binding b;
+  b.dead_zone = 0.1;
+  b.expo = 0.5;
+  // n = 16384 / 32767; live = (n - 0.1) / 0.9; 0.5 live + 0.5 live^3
+  EXPECT_NEAR(shape_axis(b, 16384), 0.26613147100002016, 1e-12);
+  // below the centre the lower half's span counts: n = -8000 / 32768
+  EXPECT_NEAR(shape_axis(b, -8000), -0.08213213086128235, 1e-12);
+  EXPECT_EQ(shape_axis(b, 3000), 0.0);  // inside the dead zone (3000 / 32767 < 0.1)
+  EXPECT_EQ(shape_axis(b, 32767), 1.0);
+  EXPECT_EQ(shape_axis(b, -32768), -1.0);
+  EXPECT_EQ(shape_axis(b, 40000), 1.0);  // beyond the calibration: clamped
+  b.invert = true;
+  EXPECT_NEAR(shape_axis(b, 16384), -0.26613147100002016, 1e-12);
+  // a pedal: one-sided 1000..9000, dead zone at rest, inverted (pressed reads low)
+  Binding pedal;
+  pedal.calibration = {1000.0, 0.0, 9000.0, false};
+  pedal.dead_zone = 0.05;
+  pedal.invert = true;
+  EXPECT_NEAR(shape_axis(pedal, 5000), 0.5263157894736842, 1e-12);  // 1 - (0.5 - 0.05) / 0.95
+  // a calibration whose centre is off the middle: each half scales to its own end
+  Binding off;
+  off.calibration = {0.0, 1000.0, 5000.0, true};
+  EXPECT_DOUBLE_EQ(shape_axis(off, 500), -0.5);
+  EXPECT_DOUBLE_EQ(shape_axis(off, 3000), 0.5);
+}
+
+sim::ControlTable gear_table() {
+  using K = sim::ControlKind;
+  return sim::ControlTable({{"throttle", K::kAxis, 0.0, 1.0, {}, 0.0, 0.0, ""},
+                            {"steer", K::kAxis, -1.0, 1.0, {}, 0.0, 0.0, ""},
+                            {"brake", K::kAxis, 0.0, 1.0, {}, 0.0, 1.0, "safe: full brake"},
+                            {"gear", K::kSwitch, 0, 2, {"reverse", "neutral", "drive"}, 1.0, 1.0, ""},
+                            {"horn", K::kButton, 0, 1, {}, 0.0, 0.0, ""}});
+}
+
+TEST(DeviceMapping, ControlsFollowAxesButtonsDetentsAndToggles) {
+  DeviceMapping m;
+  m.devices = {{"wheel", "", "Wheel", 0, false}, {"pedals", "", "Pedals", 0, false}};
+  const sim::ControlTable table = gear_table();
+  Binding steer;
+  steer.control = "steer";
+  steer.slot = table.find("steer");
+  steer.index = 0;
+  Binding throttle;  // one-sided pedal onto a 0..1 axis
+  throttle.control = "throttle";
+  throttle.slot = table.find("throttle");
+  throttle.device = 1;
+  throttle.calibration = {0.0, 0.0, 1000.0, false};
+  Binding brake = throttle;
+  brake.control = "brake";
+  brake.slot = table.find("brake");
+  brake.index = 1;
+  Binding gear;  // a three-position lever read from an axis with detents
+  gear.control = "gear";
+  gear.slot = table.find("gear");
+  gear.index = 1;
+  gear.detents = {-1.0, 0.0, 1.0};
+  Binding horn;
+  horn.control = "horn";
+  horn.slot = table.find("horn");
+  horn.source = Binding::Source::kButton;
+  horn.index = 2;
+  m.bindings = {steer, throttle, brake, gear, horn};
+  ControlMapper mapper(table, m);
+
+  std::vector<DeviceState> states(2);
+  states[0] = {true, {16383.5, 30000.0}, {false, false, true}, {}};
+  states[1] = {true, {250.0, 0.0}, {}, {}};
+  sim::Controls c = mapper.map(states);
+  EXPECT_NEAR(c.value[1], 0.5, 1e-4);  // steer: half right
+  EXPECT_DOUBLE_EQ(c.value[0], 0.25);  // throttle: a quarter pressed
+  EXPECT_DOUBLE_EQ(c.value[2], 0.0);   // brake released
+  EXPECT_DOUBLE_EQ(c.value[3], 2.0);   // gear lever near +1: drive
+  EXPECT_DOUBLE_EQ(c.value[4], 1.0);   // horn held
+  states[0].axes[1] = -200.0;
+  EXPECT_DOUBLE_EQ(mapper.map(states).value[3], 1.0);  // near the middle detent: neutral
+
+  // the pedals unplugged: throttle and brake read their safe values at once (brake full on)
+  states[1].connected = false;
+  c = mapper.map(states);
+  EXPECT_DOUBLE_EQ(c.value[0], 0.0);
+  EXPECT_DOUBLE_EQ(c.value[2], 1.0);
+  EXPECT_NEAR(c.value[1], 0.5, 1e-4);  // the wheel still steers
+}
+
+TEST(DeviceMapping, AToggleButtonStepsASwitchOnEachPress) {
+  const sim::ControlTable table = sim::sts_control_table();
+  DeviceMapping m;
+  m.devices = {{"pad", "", "pad", 0, false}};
+  Binding b;
+  b.control = "flipper_2";
+  b.slot = table.find("flipper_2");
+  b.source = Binding::Source::kButton;
+  b.toggle = true;
+  m.bindings = {b};
+  ControlMapper mapper(table, m);
+  std::vector<DeviceState> s{{true, {}, {false}, {}}};
+  const auto at = static_cast<std::size_t>(b.slot);
+  EXPECT_EQ(mapper.map(s).value[at], 0.0);
+  s[0].buttons[0] = true;
+  EXPECT_EQ(mapper.map(s).value[at], 1.0);  // pressed: down
+  EXPECT_EQ(mapper.map(s).value[at], 1.0);  // held: stays
+  s[0].buttons[0] = false;
+  EXPECT_EQ(mapper.map(s).value[at], 1.0);
+  s[0].buttons[0] = true;
+  EXPECT_EQ(mapper.map(s).value[at], 0.0);  // pressed again: up
+}
+
+std::string error_of(const std::string& text) {
+  try {
+    load_device_mapping(io::YamlFile::parse(text, "bad.yaml"), sim::sts_control_table());
+  } catch (const io::DataError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(DeviceMapping, BadMappingsNameFileLineAndField) {
+  const std::string head = "mapping:\n  name: x\n  devices:\n    - {id: s, name: Stick}\n  bindings:\n";
+  EXPECT_EQ(error_of(head + "    - {control: hoist, device: s, axis: 1}\n"), "");
+  EXPECT_NE(error_of(head + "    - {control: slew, device: s, axis: 1}\n")
+                .find("bad.yaml:6: mapping.bindings[0].control: the machine has no control 'slew'"),
+            std::string::npos);
+  EXPECT_NE(
+      error_of(head +
+               "    - {control: hoist, device: s, axis: 1, calibration: {min: 10, center: 0, max: 5}}\n")
+          .find("bad.yaml:6: mapping.bindings[0].calibration: needs min < center < max"),
+      std::string::npos);
+  EXPECT_NE(error_of(head + "    - {control: hoist, device: s, axis: 1, calibration: {min: 10, max: 5}}\n")
+                .find("calibration.min: min must be below max"),
+            std::string::npos);
+  EXPECT_NE(error_of(head + "    - {control: hoist, device: s, axis: one}\n")
+                .find("bad.yaml:6: mapping.bindings[0].axis: 'one' is not a number"),
+            std::string::npos);
+  EXPECT_NE(error_of(head + "    - {control: hoist, device: t, axis: 1}\n").find("no device 't'"),
+            std::string::npos);
+  EXPECT_NE(error_of(head + "    - {control: hoist, device: s, axis: 1, button: 2}\n").find("exactly one of"),
+            std::string::npos);
+  EXPECT_NE(error_of(head + "    - {control: flipper_1, device: s, axis: 1}\n").find("needs detents"),
+            std::string::npos);
+  EXPECT_NE(error_of(head + "    - {control: hoist, device: s, axis: 1, dead_zone: 2}\n").find("dead_zone"),
+            std::string::npos);
+  EXPECT_NE(
+      error_of(head + "    - {control: hoist, device: s, axis: 1, curve: 2}\n").find("unknown key 'curve'"),
+      std::string::npos);
+  EXPECT_NE(error_of("mapping:\n  name: x\n  devices:\n    - {id: k, keyboard: true}\n  bindings:\n    - "
+                     "{control: lock, device: k, key: Hyperspace}\n")
+                .find("'Hyperspace' is not a key SDL knows"),
+            std::string::npos);
+
+  // an axis index beyond the device is found when the device is: named by file, line and field
+  const DeviceMapping m = load_device_mapping(
+      io::YamlFile::parse(head + "    - {control: hoist, device: s, axis: 5}\n", "bad.yaml"),
+      sim::sts_control_table());
+  EXPECT_EQ(why_unfit(m, 0, 4, 12, 1),
+            "bad.yaml:6: bindings.hoist: axis 5 is beyond device 's', which has 4");
+  EXPECT_EQ(why_unfit(m, 0, 6, 12, 1), "");
+}
+
+TEST(DeviceMapping, EveryShippedMappingLoadsAndWritesBackTheSame) {
+  const sim::ControlTable sts = sim::sts_control_table();
+  using K = sim::ControlKind;
+  // the slewing machines' labels (their machine files come with them)
+  const sim::ControlTable slewing({{"slew", K::kAxis, -1, 1, {}, 0, 0, ""},
+                                   {"luff", K::kAxis, -1, 1, {}, 0, 0, ""},
+                                   {"hoist", K::kAxis, -1, 1, {}, 0, 0, ""},
+                                   {"grab_close", K::kAxis, -1, 1, {}, 0, 0, ""},
+                                   {"horn", K::kButton, 0, 1, {}, 0, 0, ""},
+                                   {"emergency_stop", K::kButton, 0, 1, {}, 0, 0, ""}});
+  int files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(std::string(HARBOUR_DATA_DIR) + "/devices")) {
+    const std::string path = entry.path().string();
+    const bool lever = entry.path().filename().string().rfind("levers_", 0) == 0;
+    const DeviceMapping m = load_device_mapping(path, lever ? slewing : sts);
+    EXPECT_FALSE(m.bindings.empty()) << path;
+    // what `harboursim devices` writes reads back to the same bindings
+    const DeviceMapping back = load_device_mapping(
+        io::YamlFile::parse(device_mapping_text(m), "written.yaml"), lever ? slewing : sts);
+    ASSERT_EQ(back.bindings.size(), m.bindings.size()) << path;
+    for (std::size_t n = 0; n < m.bindings.size(); ++n) {
+      EXPECT_EQ(back.bindings[n].slot, m.bindings[n].slot);
+      EXPECT_EQ(back.bindings[n].index, m.bindings[n].index);
+      EXPECT_EQ(back.bindings[n].keys, m.bindings[n].keys);
+      EXPECT_EQ(back.bindings[n].invert, m.bindings[n].invert);
+      EXPECT_EQ(back.bindings[n].dead_zone, m.bindings[n].dead_zone);
+    }
+    ++files;
+  }
+  EXPECT_EQ(files, 5);
+}
+
+}  // namespace
+}  // namespace harbour::station
