@@ -119,39 +119,44 @@ void DeviceInput::maintain() {
   for (std::size_t d = 0; d < bound_.size(); ++d)
     if (bound_[d].joystick && !SDL_JoystickGetAttached(bound_[d].joystick)) drop(d, true);
   const DeviceMapping& mapping = mapper_.mapping();
-  std::vector<int> seen(mapping.devices.size(), 0);  // matching devices passed per mapping device
   const int count = SDL_NumJoysticks();
-  for (int i = 0; i < count; ++i) {
-    const SDL_JoystickID instance = SDL_JoystickGetDeviceInstanceID(i);
-    const char* raw_name = SDL_JoystickNameForIndex(i);
-    const std::string name = raw_name ? raw_name : "", guid = guid_of(SDL_JoystickGetDeviceGUID(i));
+  for (std::size_t d = 0; d < mapping.devices.size(); ++d) {
+    if (bound_[d].joystick || mapping.devices[d].keyboard) continue;
+    // the nth joystick that matches this mapping device (in SDL's device order)
+    int rank = 0, index = -1;
+    std::string name;
+    for (int i = 0; i < count && index < 0; ++i) {
+      const char* raw_name = SDL_JoystickNameForIndex(i);
+      const std::string n = raw_name ? raw_name : "";
+      if (!matches(mapping.devices[d], n, guid_of(SDL_JoystickGetDeviceGUID(i)))) continue;
+      if (rank++ == mapping.devices[d].nth) {
+        index = i;
+        name = n;
+      }
+    }
+    if (index < 0) continue;
+    const SDL_JoystickID instance = SDL_JoystickGetDeviceInstanceID(index);
     bool taken = false;
     for (const Bound& b : bound_)
       taken = taken || b.instance == instance;
-    for (std::size_t d = 0; d < mapping.devices.size(); ++d) {
-      if (!matches(mapping.devices[d], name, guid)) continue;
-      if (seen[d]++ != mapping.devices[d].nth) continue;  // the nth alike device is this mapping device
-      if (taken || bound_[d].joystick) break;
-      SDL_Joystick* j = SDL_JoystickOpen(i);
-      if (!j) break;
-      const int axes = SDL_JoystickNumAxes(j), buttons = SDL_JoystickNumButtons(j),
-                hats = SDL_JoystickNumHats(j);
-      if (const std::string why = why_unfit(mapping, static_cast<int>(d), axes, buttons, hats);
-          !why.empty()) {
-        SDL_JoystickClose(j);
-        if (unfit_[d] != why) event({DeviceEvent::Kind::kUnfit, mapping.devices[d].id, name, why});
-        unfit_[d] = why;
-        break;
-      }
-      unfit_[d].clear();
-      bound_[d] = {j, instance, name};
-      states_[d].axes.assign(static_cast<std::size_t>(axes), 0.0);
-      states_[d].buttons.assign(static_cast<std::size_t>(buttons), false);
-      states_[d].hats.assign(static_cast<std::size_t>(hats), 0);
-      event({DeviceEvent::Kind::kConnected, mapping.devices[d].id, name,
-             joined(mapper_.controls_of(static_cast<int>(d)))});
-      break;
+    if (taken) continue;
+    SDL_Joystick* j = SDL_JoystickOpen(index);
+    if (!j) continue;
+    const int axes = SDL_JoystickNumAxes(j), buttons = SDL_JoystickNumButtons(j),
+              hats = SDL_JoystickNumHats(j);
+    if (const std::string why = why_unfit(mapping, static_cast<int>(d), axes, buttons, hats); !why.empty()) {
+      SDL_JoystickClose(j);
+      if (unfit_[d] != why) event({DeviceEvent::Kind::kUnfit, mapping.devices[d].id, name, why});
+      unfit_[d] = why;
+      continue;
     }
+    unfit_[d].clear();
+    bound_[d] = {j, instance, name};
+    states_[d].axes.assign(static_cast<std::size_t>(axes), 0.0);
+    states_[d].buttons.assign(static_cast<std::size_t>(buttons), false);
+    states_[d].hats.assign(static_cast<std::size_t>(hats), 0);
+    event({DeviceEvent::Kind::kConnected, mapping.devices[d].id, name,
+           joined(mapper_.controls_of(static_cast<int>(d)))});
   }
 }
 

@@ -51,12 +51,20 @@ struct LoopStats {
   bool keeping_real_time = true;  ///< false once it has had to give up ticks
 };
 
+/// Who reads which snapshot buffer (each its own triple buffer, at its own rate).
+enum SnapshotReader : int {
+  kImageGeneratorReader = 0,
+  kConsoleReader = 1,
+  kMotionReader = 2,
+  kSnapshotReaders = 3
+};
+
 struct LoopSettings {
   double max_catch_up_s = 0.05;  ///< behind by more than this, the loop gives the time up instead of racing
   double time_scale = 1.0;       ///< simulated seconds per wall second (an instructor's fast-forward; tests)
   int snapshot_every_steps = 4;  ///< publish rate: 250 Hz (readers interpolate by step and time)
-  int snapshot_readers = 2;      ///< one triple buffer each (image generator, console, ...)
-  std::size_t record_capacity = 1 << 15;  ///< steps of hand-off to the recorder (32 s)
+  int snapshot_readers = kSnapshotReaders;  ///< one triple buffer each (SnapshotReader)
+  std::size_t record_capacity = 1 << 15;    ///< steps of hand-off to the recorder (32 s)
 };
 
 /// The station's real-time loop: the simulation at its fixed 1 kHz step on its own thread, paced to the wall

@@ -46,10 +46,26 @@ sim::Metrics Session::metrics() const {
   return metrics_;
 }
 
+void Session::note_event(const std::string& kind, double value) {
+  const std::lock_guard lock(notes_mutex_);
+  notes_.emplace_back(kind, value);
+}
+
+void Session::store_notes() {
+  std::vector<std::pair<std::string, double>> notes;
+  {
+    const std::lock_guard lock(notes_mutex_);
+    notes.swap(notes_);
+  }
+  for (const auto& [kind, value] : notes)
+    db_->record_event(attempt_, shadow_->time_s(), kind, value);
+}
+
 void Session::keep() {
   try {
     StepRecord record;
     for (;;) {
+      store_notes();
       if (loop_->records().pop(record)) {
         keep(record);
         continue;
@@ -97,6 +113,7 @@ SessionResult Session::finish(bool interrupted) {
   loop_->stop();
   loop_done_ = true;
   if (keeper_.joinable()) keeper_.join();
+  store_notes();
   SessionResult result;
   result.attempt = attempt_;
   result.loop = loop_->stats();

@@ -52,6 +52,9 @@ class Session {
   bool over() const { return over_.load(); }
   /// The evaluation so far (the keeper's copy).
   sim::Metrics metrics() const;
+  /// Something the station saw (an input device lost or back): stored with the attempt's events at the
+  /// simulated time the keeper has reached (any thread).
+  void note_event(const std::string& kind, double value = 0.0);
   /// Stops the loop (if still running), lets the keeper catch up, closes the recording and stores the
   /// attempt: `interrupted` when the trainee or a signal stopped it before the end.
   SessionResult finish(bool interrupted);
@@ -75,6 +78,9 @@ class Session {
   mutable std::mutex metrics_mutex_;
   sim::Metrics metrics_;
   std::string keeper_error_;
+  std::mutex notes_mutex_;
+  std::vector<std::pair<std::string, double>> notes_;
+  void store_notes();
   bool finished_ = false;
 };
 

@@ -1,0 +1,257 @@
+// The station driven through real SDL2 joysticks (virtual ones, SDL_JoystickAttachVirtualEx) and a shipped
+// mapping: a scripted person moves the sticks and presses the buttons; nothing reaches the simulation but
+// what SDL reports through the mapping.
+
+#include <gtest/gtest.h>
+
+#include <SDL.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <thread>
+
+#include "harbour/io/RecordingFile.h"
+#include "harbour/sim/Autopilot.h"
+#include "harbour/station/DeviceMappingFile.h"
+#include "harbour/station/Station.h"
+#include "scenes/StsScenes.h"
+
+namespace harbour::station {
+namespace {
+
+std::string temp(const std::string& name) {
+  return (std::filesystem::temp_directory_path() / name).string();
+}
+
+// A T.16000M-like flight stick: x, y, twist, throttle; 16 buttons; a hat.
+int attach_stick() {
+  SDL_VirtualJoystickDesc desc{};
+  desc.version = SDL_VIRTUAL_JOYSTICK_DESC_VERSION;
+  desc.type = SDL_JOYSTICK_TYPE_FLIGHT_STICK;
+  desc.naxes = 4;
+  desc.nbuttons = 16;
+  desc.nhats = 1;
+  desc.name = "Thrustmaster T.16000M";
+  const int index = SDL_JoystickAttachVirtualEx(&desc);
+  EXPECT_GE(index, 0) << SDL_GetError();
+  return SDL_JoystickGetDeviceInstanceID(index);
+}
+
+int index_of(SDL_JoystickID instance) {
+  for (int i = 0; i < SDL_NumJoysticks(); ++i)
+    if (SDL_JoystickGetDeviceInstanceID(i) == instance) return i;
+  return -1;
+}
+
+// The raw axis value that reads `value` through binding `b` (inverse of calibration, dead zone, expo).
+Sint16 raw_for(const Binding& b, double value) {
+  double s = b.invert ? -value : value;
+  if (std::abs(s) < 1e-9) return static_cast<Sint16>(b.calibration.center);
+  const double target = std::min(std::abs(s), 1.0);
+  double x = target;  // solve (1 - e) x + e x^3 = target
+  for (int k = 0; k < 30; ++k)
+    x -= ((1.0 - b.expo) * x + b.expo * x * x * x - target) / ((1.0 - b.expo) + 3.0 * b.expo * x * x);
+  const double n = b.dead_zone + x * (1.0 - b.dead_zone);
+  const double raw = s > 0 ? b.calibration.center + n * (b.calibration.max - b.calibration.center)
+                           : b.calibration.center - n * (b.calibration.center - b.calibration.min);
+  return static_cast<Sint16>(std::lround(std::clamp(raw, -32768.0, 32767.0)));
+}
+
+// A person at the desk: decides like the autopilot, acts only through the sticks' axes, buttons and hats.
+class StickPerson {
+ public:
+  StickPerson(const sim::ExerciseSettings& exercise, const DeviceMapping& mapping)
+      : pilot_(exercise), mapping_(mapping) {
+    for (const DeviceMatch& d : mapping.devices)
+      plug(d.id);
+  }
+  ~StickPerson() {
+    for (auto& [id, stick] : sticks_)
+      SDL_JoystickClose(stick.joystick);
+  }
+  void plug(const std::string& id) {
+    Stick& s = sticks_[id];
+    s.instance = attach_stick();
+    s.joystick = SDL_JoystickOpen(index_of(s.instance));
+  }
+  void unplug(const std::string& id) {
+    Stick& s = sticks_[id];
+    SDL_JoystickClose(s.joystick);
+    SDL_JoystickDetachVirtual(index_of(s.instance));
+    s = {};
+  }
+  // on the step thread, before the station samples the devices
+  void act(const sim::Simulation& sim) {
+    const sim::Controls want = pilot_.next(sim);
+    std::map<std::pair<std::string, int>, Uint8> hats;
+    for (std::size_t n = 0; n < mapping_.bindings.size(); ++n) {
+      const Binding& b = mapping_.bindings[n];
+      const std::string& id = mapping_.devices[static_cast<std::size_t>(b.device)].id;
+      SDL_Joystick* j = sticks_[id].joystick;
+      if (!j) continue;
+      const double v = want.value[static_cast<std::size_t>(b.slot)];
+      switch (b.source) {
+        case Binding::Source::kAxis:
+          SDL_JoystickSetVirtualAxis(j, b.index, raw_for(b, v));
+          break;
+        case Binding::Source::kHat:
+          if (v * b.value > 0.5)
+            hats[{id, b.index}] |= static_cast<Uint8>(b.hat_direction);
+          else
+            hats[{id, b.index}] |= 0;
+          break;
+        case Binding::Source::kButton:
+          if (b.toggle) {
+            // a toggle: press once when the switch should change, release the next step
+            bool& pressed = toggle_pressed_[n];
+            double& position = toggle_position_[b.slot];
+            const bool press = !pressed && position != v;
+            if (press) position = v;
+            pressed = press;
+            SDL_JoystickSetVirtualButton(j, b.index, press);
+          } else {
+            SDL_JoystickSetVirtualButton(j, b.index, v != 0.0);
+          }
+          break;
+        case Binding::Source::kKeys:
+          break;
+      }
+    }
+    for (const auto& [at, bits] : hats)
+      if (SDL_Joystick* j = sticks_[at.first].joystick) SDL_JoystickSetVirtualHat(j, at.second, bits);
+  }
+
+ private:
+  struct Stick {
+    SDL_JoystickID instance = -1;
+    SDL_Joystick* joystick = nullptr;
+  };
+  sim::Autopilot pilot_;
+  DeviceMapping mapping_;
+  std::map<std::string, Stick> sticks_;
+  std::map<std::size_t, bool> toggle_pressed_;
+  std::map<int, double> toggle_position_;
+};
+
+struct Desk {
+  sim::ExerciseSettings exercise = scenes::sts_discharge_exercise(HARBOUR_DATA_DIR);
+  SessionOptions options;
+  std::unique_ptr<Session> session;
+  std::unique_ptr<Station> station;
+  std::unique_ptr<StickPerson> person;
+  DeviceMapping mapping;
+
+  explicit Desk(const std::string& name) {
+    SDL_InitSubSystem(SDL_INIT_JOYSTICK);
+    const std::string db = temp(name + ".db");
+    std::filesystem::remove(db);
+    io::RecordsStore(std::string("sqlite3://db=") + db).ensure_trainee("t1", "Trainee One");
+    options.trainee = "t1";
+    options.database = "sqlite3://db=" + db;
+    options.record = temp(name + ".hsrc");
+    options.loop.time_scale = 10.0;
+    session = std::make_unique<Session>(exercise, options);
+    mapping = load_device_mapping(std::string(HARBOUR_DATA_DIR) + "/devices/sts_dual_joystick.yaml",
+                                  session->simulation().control_table());
+    person = std::make_unique<StickPerson>(exercise, mapping);
+    station = std::make_unique<Station>(*session);
+    station->use_devices(std::make_unique<DeviceInput>(session->simulation().control_table(), mapping));
+  }
+  ~Desk() { SDL_QuitSubSystem(SDL_INIT_JOYSTICK); }
+};
+
+TEST(Devices, APersonOnTwoJoysticksDischargesABoxOntoTheTruck) {
+  Desk desk("harbour_desk_discharge");
+  ASSERT_EQ(desk.station->devices()->bound_devices(), 2);
+  DeviceInput* input = desk.station->devices();
+  StickPerson* person = desk.person.get();
+  desk.session->loop().set_sampler([&] {
+    person->act(desk.session->simulation());
+    return input->sample();
+  });
+  desk.station->start();
+  desk.session->start();
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (!desk.session->over() && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  desk.station->stop();
+  const SessionResult result = desk.session->finish(false);
+  EXPECT_EQ(result.metrics.moves_completed, 1);  // the box is on the truck
+  EXPECT_EQ(result.metrics.collisions, 0);
+  EXPECT_EQ(result.status, "finished");
+  EXPECT_EQ(result.hash_mismatches, 0);
+  const sim::Recording recording = io::read_recording(desk.options.record);
+  const sim::ReplayResult replay = sim::replay(desk.exercise.scenario, recording);
+  EXPECT_FALSE(replay.first_mismatch.has_value());
+  EXPECT_EQ(replay.checkpoints_checked, static_cast<int>(recording.checkpoints.size()));
+}
+
+TEST(Devices, UnpluggingTheHoistStickStopsTheLoadSmoothlyAndPluggingItBackResumes) {
+  Desk desk("harbour_desk_unplug");
+  DeviceInput* input = desk.station->devices();
+  StickPerson* person = desk.person.get();
+  RealTimeLoop& loop = desk.session->loop();
+  const int hoist = desk.session->simulation().control_table().find("hoist");
+  std::int64_t unplugged_at = -1, replugged_at = -1;
+  double hoist_after_unplug = 99.0, worst_jerk_mps2 = 0.0, last_vz = 0.0, speed_at_unplug = 0.0;
+  std::int64_t stopped_at = -1;
+  loop.set_sampler([&] {
+    const sim::Simulation& sim = desk.session->simulation();
+    const double vz = sim.world().linear_velocity(sim.crane().spreader_body()).z;
+    if (unplugged_at < 0 && sim.crane().locked_container() && vz > 0.5) {
+      person->unplug("right");  // hoisting a locked box at speed: the hoist stick's cable comes out
+      unplugged_at = sim.steps();
+      speed_at_unplug = vz;
+    } else if (unplugged_at >= 0 && replugged_at < 0) {
+      if (sim.steps() == unplugged_at + 1)
+        hoist_after_unplug = loop.last_controls().value[static_cast<std::size_t>(hoist)];
+      worst_jerk_mps2 = std::max(worst_jerk_mps2, std::abs(vz - last_vz) / sim::Simulation::kStep_s);
+      if (stopped_at < 0 && std::abs(vz) < 0.01) stopped_at = sim.steps();
+      if (sim.steps() == unplugged_at + 5000) {
+        person->plug("right");
+        replugged_at = sim.steps();
+      }
+    }
+    last_vz = vz;
+    person->act(sim);
+    return input->sample();
+  });
+  desk.station->start();
+  desk.session->start();
+  bool saw_lost = false, saw_back = false, display_showed_it = false;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(90);
+  while (!desk.session->over() && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    for (const std::string& m : desk.station->take_messages()) {
+      saw_lost =
+          saw_lost || m.find("input device right (Thrustmaster T.16000M) LOST: safe: hoist, lock, unlock") !=
+                          std::string::npos;
+      saw_back = saw_back || (saw_lost && m.find("input device right (Thrustmaster T.16000M) connected") !=
+                                              std::string::npos);
+    }
+    const sim::Snapshot* s = loop.latest_snapshot(kConsoleReader);
+    display_showed_it = display_showed_it || (s && s->devices_missing == 1);
+  }
+  desk.station->stop();
+  const SessionResult result = desk.session->finish(false);
+  ASSERT_GE(unplugged_at, 0);
+  EXPECT_EQ(hoist_after_unplug, 0.0);  // the very next step reads the lever neutral
+  ASSERT_GE(stopped_at, 0);
+  const double stop_s = static_cast<double>(stopped_at - unplugged_at) * sim::Simulation::kStep_s;
+  std::printf("unplugged at %.2f m/s: stopped in %.2f s, worst change of speed %.2f m/s^2\n", speed_at_unplug,
+              stop_s, worst_jerk_mps2);
+  EXPECT_LT(stop_s, 4.0);           // the hoist drive ramps the load to a stop ...
+  EXPECT_GT(stop_s, 0.2);           // ... it does not halt it in a step
+  EXPECT_LT(worst_jerk_mps2, 8.0);  // no jump (the rope bounces a little): a one-step halt is ~500 m/s^2
+  EXPECT_TRUE(saw_lost);
+  EXPECT_TRUE(display_showed_it);
+  EXPECT_TRUE(saw_back);
+  EXPECT_GE(replugged_at, 0);
+  EXPECT_EQ(result.metrics.moves_completed, 1);  // picked up again and finished
+  EXPECT_EQ(result.hash_mismatches, 0);
+}
+
+}  // namespace
+}  // namespace harbour::station
