@@ -1,0 +1,211 @@
+#include "harbour/station/Station.h"
+
+#include <gtest/gtest.h>
+
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <numbers>
+#include <thread>
+
+#include "harbour/io/DataError.h"
+#include "harbour/sim/Autopilot.h"
+#include "harbour/station/HeadTracker.h"
+#include "harbour/station/MotionLink.h"
+#include "harbour/station/Profile.h"
+#include "scenes/StsScenes.h"
+
+namespace harbour::station {
+namespace {
+
+std::string temp(const std::string& name) {
+  return (std::filesystem::temp_directory_path() / name).string();
+}
+
+std::vector<std::uint8_t> opentrack_datagram(const double (&v)[6]) {
+  std::vector<std::uint8_t> bytes(48);
+  for (int k = 0; k < 6; ++k) {
+    std::uint64_t bits;
+    std::memcpy(&bits, &v[k], 8);
+    for (int b = 0; b < 8; ++b)
+      bytes[static_cast<std::size_t>(8 * k + b)] = static_cast<std::uint8_t>(bits >> (8 * b));
+  }
+  return bytes;
+}
+
+void send_to(std::uint16_t port, const std::vector<std::uint8_t>& bytes) {
+  const int s = ::socket(AF_INET, SOCK_DGRAM, 0);
+  sockaddr_in to{};
+  to.sin_family = AF_INET;
+  to.sin_port = htons(port);
+  to.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  ::sendto(s, bytes.data(), bytes.size(), 0, reinterpret_cast<sockaddr*>(&to), sizeof to);
+  ::close(s);
+}
+
+struct LiveSession {
+  sim::ExerciseSettings exercise = scenes::sts_discharge_exercise(HARBOUR_DATA_DIR);
+  std::unique_ptr<Session> session;
+  std::unique_ptr<sim::Autopilot> pilot;
+  explicit LiveSession(const std::string& name) {
+    const std::string db = temp(name + ".db");
+    std::filesystem::remove(db);
+    io::RecordsStore(std::string("sqlite3://db=") + db).ensure_trainee("t1", "Trainee One");
+    SessionOptions options;
+    options.trainee = "t1";
+    options.database = "sqlite3://db=" + db;
+    session = std::make_unique<Session>(exercise, options);
+    pilot = std::make_unique<sim::Autopilot>(exercise);
+    session->loop().set_pilot([this](const sim::Simulation& s) { return pilot->next(s); });
+  }
+};
+
+TEST(HeadTracking, OpenTrackDatagramsConvertToTheCabFrameWithinLimits) {
+  core::Vec3 offset, angles;
+  const HeadLimits limits;
+  ASSERT_TRUE(head_pose_from_opentrack(opentrack_datagram({10.0, 5.0, -20.0, 30.0, -15.0, 2.0}), limits,
+                                       offset, angles));
+  EXPECT_DOUBLE_EQ(offset.x, -0.20);  // OpenTrack z (towards the screen) is the cab's forward x
+  EXPECT_DOUBLE_EQ(offset.y, -0.10);  // OpenTrack x right is the cab's -y
+  EXPECT_DOUBLE_EQ(offset.z, 0.05);
+  EXPECT_DOUBLE_EQ(angles.x, 30.0 * std::numbers::pi / 180.0);
+  EXPECT_DOUBLE_EQ(angles.y, -15.0 * std::numbers::pi / 180.0);
+  ASSERT_TRUE(
+      head_pose_from_opentrack(opentrack_datagram({500.0, 0, 0, 400.0, 0, 0}), limits, offset, angles));
+  EXPECT_DOUBLE_EQ(offset.y, -limits.max_offset_m);  // a head 5 m to the right: held at the limit
+  EXPECT_DOUBLE_EQ(angles.x, limits.max_yaw_rad);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(head_pose_from_opentrack(opentrack_datagram({nan, 0, 0, 0, 0, 0}), limits, offset, angles));
+  EXPECT_FALSE(head_pose_from_opentrack(std::vector<std::uint8_t>(47), limits, offset, angles));
+}
+
+TEST(HeadTracking, PacketsOverLoopbackMoveThePublishedEyePoint) {
+  LiveSession live("harbour_head");
+  Station station(*live.session);
+  station.use_head_tracking(std::make_unique<HeadTracker>(0));  // any free port
+  const std::uint16_t port = station.head_tracker()->port();
+  station.start();
+  live.session->start();
+  send_to(port, {1, 2, 3});  // not OpenTrack: refused, nothing moves
+  send_to(port, opentrack_datagram({-8.0, 4.0, 12.0, -20.0, 10.0, 0.0}));
+  bool moved = false;
+  for (int k = 0; k < 200 && !moved; ++k) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    const sim::Snapshot* s = live.session->loop().latest_snapshot(kImageGeneratorReader);
+    moved = s && std::abs(s->cab.head_offset_m.x - 0.12) < 1e-12 &&
+            std::abs(s->cab.head_offset_m.y - 0.08) < 1e-12 &&
+            std::abs(s->cab.head_offset_m.z - 0.04) < 1e-12 &&
+            std::abs(s->cab.head_yaw_pitch_roll_rad.x + 20.0 * std::numbers::pi / 180.0) < 1e-12;
+  }
+  station.stop();
+  live.session->finish(true);
+  EXPECT_TRUE(moved);
+  EXPECT_EQ(station.head_tracker()->refused(), 1);
+  EXPECT_EQ(station.head_tracker()->received(), 1);
+}
+
+TEST(MotionPlatform, TheCabsCuesDriveThePlatformOverUdp) {
+  // a platform stand-in: counts the driver's packets on a loopback port
+  const int listener = ::socket(AF_INET, SOCK_DGRAM, 0);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  ASSERT_EQ(::bind(listener, reinterpret_cast<sockaddr*>(&address), sizeof address), 0);
+  socklen_t size = sizeof address;
+  ::getsockname(listener, reinterpret_cast<sockaddr*>(&address), &size);
+  timeval timeout{0, 200000};
+  ::setsockopt(listener, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
+
+  const Profile profile = load_profile(resolve_profile("immersive", HARBOUR_DATA_DIR));
+  ASSERT_TRUE(profile.motion.has_value());
+  io::DriverSettings driver = profile.motion->driver;
+  driver.port = ntohs(address.sin_port);
+  LiveSession live("harbour_motion");
+  Station station(*live.session);
+  station.use_motion(std::make_unique<MotionLink>(io::load_platform(profile.motion->platform),
+                                                  io::load_washout(profile.motion->washout, "sts"), driver));
+  station.start();
+  live.session->start();
+  int packets = 0;
+  std::uint8_t buffer[256];
+  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(2);
+  while (std::chrono::steady_clock::now() < until)
+    if (::recv(listener, buffer, sizeof buffer, 0) == static_cast<ssize_t>(io::kGenericPacketSize)) ++packets;
+  const motion::PlatformState state = station.motion()->state();
+  const long frames = station.motion()->frames();
+  const motion::PlatformPose pose = station.motion()->last_frame().pose;
+  bool finite = true;
+  for (const double d : pose.dof)
+    finite = finite && std::isfinite(d);
+  station.stop();  // parks the platform
+  live.session->finish(true);
+  ::close(listener);
+  std::printf("motion: %d packets in 2 s, %ld frames, state %d\n", packets, frames, static_cast<int>(state));
+  EXPECT_GT(packets, 150);  // the washout's 100 Hz
+  EXPECT_LT(packets, 260);
+  EXPECT_NE(state, motion::PlatformState::kParked);  // engaging or engaged while the exercise runs
+  EXPECT_TRUE(finite);
+  EXPECT_EQ(station.motion()->state(), motion::PlatformState::kParked);
+}
+
+TEST(Profiles, TheThreeShippedConfigurationsLoad) {
+  const Profile desktop = load_profile(resolve_profile("desktop", HARBOUR_DATA_DIR));
+  EXPECT_EQ(desktop.displays.size(), 1u);
+  EXPECT_EQ(desktop.opentrack_port, 4242);
+  EXPECT_FALSE(desktop.motion.has_value());
+  EXPECT_EQ(desktop.mappings.size(), 3u);
+  const Profile medium = load_profile(resolve_profile("medium", HARBOUR_DATA_DIR));
+  EXPECT_EQ(medium.displays[0].width, 3840);
+  const Profile immersive = load_profile(resolve_profile("immersive", HARBOUR_DATA_DIR));
+  EXPECT_EQ(immersive.displays.size(), 4u);
+  EXPECT_TRUE(immersive.motion.has_value());
+  EXPECT_NEAR(immersive.displays[1].yaw_rad, std::numbers::pi / 3.0, 1e-12);
+  EXPECT_THROW(resolve_profile("cockpit", HARBOUR_DATA_DIR), std::runtime_error);
+}
+
+std::string profile_error(const std::string& text) {
+  const std::string path = temp("harbour_profile.yaml");
+  { std::ofstream(path) << text; }
+  try {
+    load_profile(path);
+  } catch (const io::DataError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Profiles, BadProfilesNameFileLineAndField) {
+  const std::string display =
+      "    - {name: m, width: 1920, height: 1080, view: {yaw_deg: 0, pitch_deg: 0, roll_deg: 0}, fov: "
+      "{horizontal_deg: 60, vertical_deg: 40}}\n";
+  const std::string ok =
+      "profile:\n  name: p\n  devices: []\n  displays:\n" + display + "  motion: off\n  head_tracking: off\n";
+  EXPECT_EQ(profile_error(ok), "");
+  EXPECT_NE(profile_error("profile:\n  name: p\n  devices: [nowhere.yaml]\n  displays:\n" + display +
+                          "  motion: off\n  head_tracking: off\n")
+                .find("harbour_profile.yaml:3: profile.devices[0]: no such file"),
+            std::string::npos);
+  EXPECT_NE(profile_error(
+                "profile:\n  name: p\n  devices: []\n  displays: []\n  motion: off\n  head_tracking: off\n")
+                .find("profile.displays: at least one display"),
+            std::string::npos);
+  EXPECT_NE(profile_error(ok + "  steroe: true\n").find("unknown key 'steroe'"), std::string::npos);
+  EXPECT_NE(profile_error("profile:\n  name: p\n  devices: []\n  displays:\n" + display +
+                          "  motion: maybe\n  head_tracking: off\n")
+                .find("profile.motion: expected off or a mapping"),
+            std::string::npos);
+  EXPECT_NE(profile_error("profile:\n  name: p\n  devices: []\n  displays:\n" + display +
+                          "  motion: off\n  head_tracking: {opentrack_port: 70000}\n")
+                .find("opentrack_port"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace harbour::station

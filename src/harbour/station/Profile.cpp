@@ -1,0 +1,94 @@
+#include "harbour/station/Profile.h"
+
+#include <filesystem>
+#include <numbers>
+#include <stdexcept>
+
+namespace harbour::station {
+
+namespace {
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+std::string existing(const io::YamlFile& f, const YAML::Node& map, const std::string& key,
+                     const std::string& at, const std::string& folder) {
+  const std::string name = f.text(map, key, at);
+  const std::string path = (std::filesystem::path(folder) / name).lexically_normal().string();
+  if (!std::filesystem::is_regular_file(path)) f.fail(map[key], at + "." + key, "no such file: " + path);
+  return path;
+}
+
+// `off`, or a mapping
+std::optional<YAML::Node> switched(const io::YamlFile& f, const YAML::Node& map, const std::string& key,
+                                   const std::string& at) {
+  const YAML::Node node = f.required(map, key, at);
+  if (node.IsScalar() && node.Scalar() == "off") return std::nullopt;
+  if (!node.IsMap()) f.fail(node, at + "." + key, "expected off or a mapping");
+  return f.required_map(map, key, at);
+}
+}  // namespace
+
+Profile load_profile(const std::string& path) {
+  const io::YamlFile f = io::YamlFile::load(path);
+  const std::string folder = std::filesystem::path(path).parent_path().string();
+  Profile p;
+  p.file = path;
+  const YAML::Node root = f.required_map(f.root(), "profile", "");
+  p.name = f.text(root, "name", "profile");
+  const YAML::Node devices = f.sequence(root, "devices", "profile", 16);
+  for (std::size_t n = 0; n < devices.size(); ++n) {
+    const std::string field = "profile.devices[" + std::to_string(n) + "]";
+    if (!devices[n].IsScalar()) f.fail(devices[n], field, "expected a mapping file");
+    const std::string file =
+        (std::filesystem::path(folder) / devices[n].Scalar()).lexically_normal().string();
+    if (!std::filesystem::is_regular_file(file)) f.fail(devices[n], field, "no such file: " + file);
+    p.mappings.push_back(file);
+  }
+  const YAML::Node displays = f.sequence(root, "displays", "profile", 8);
+  if (displays.size() == 0) f.fail(displays, "profile.displays", "at least one display");
+  for (std::size_t n = 0; n < displays.size(); ++n) {
+    const std::string at = "profile.displays[" + std::to_string(n) + "]";
+    const YAML::Node d = displays[n];
+    DisplayChannel c;
+    c.name = f.text(d, "name", at);
+    c.width = f.integer(d, "width", at, 320, 16384);
+    c.height = f.integer(d, "height", at, 200, 16384);
+    c.fullscreen = f.flag(d, "fullscreen", at, false);
+    const YAML::Node view = f.required_map(d, "view", at);
+    c.yaw_rad = f.number(view, "yaw_deg", at + ".view", -180.0, 180.0) * kDeg;
+    c.pitch_rad = f.number(view, "pitch_deg", at + ".view", -90.0, 90.0) * kDeg;
+    c.roll_rad = f.number(view, "roll_deg", at + ".view", -180.0, 180.0) * kDeg;
+    const YAML::Node fov = f.required_map(d, "fov", at);
+    c.fov_horizontal_rad = f.number(fov, "horizontal_deg", at + ".fov", 10.0, 170.0) * kDeg;
+    c.fov_vertical_rad = f.number(fov, "vertical_deg", at + ".fov", 10.0, 170.0) * kDeg;
+    p.displays.push_back(c);
+  }
+  p.stereo = f.flag(root, "stereo", "profile", false);
+  if (const auto motion = switched(f, root, "motion", "profile")) {
+    Profile::Motion m;
+    m.platform = existing(f, *motion, "platform", "profile.motion", folder);
+    m.washout = existing(f, *motion, "washout", "profile.motion", folder);
+    m.driver.host = f.text(*motion, "host", "profile.motion");
+    m.driver.port = static_cast<std::uint16_t>(f.integer(*motion, "port", "profile.motion", 1, 65535));
+    const std::string format = f.text(*motion, "format", "profile.motion");
+    if (format != "generic" && format != "moog")
+      f.fail((*motion)["format"], "profile.motion.format", "'" + format + "' is not generic or moog");
+    m.driver.format = format == "moog" ? io::PacketFormat::kMoogDof : io::PacketFormat::kGeneric;
+    p.motion = m;
+  }
+  if (const auto head = switched(f, root, "head_tracking", "profile"))
+    p.opentrack_port =
+        static_cast<std::uint16_t>(f.integer(*head, "opentrack_port", "profile.head_tracking", 1, 65535));
+  f.check_unknown_keys();
+  return p;
+}
+
+std::string resolve_profile(const std::string& name_or_path, const std::string& data_dir) {
+  namespace fs = std::filesystem;
+  if (fs::is_regular_file(name_or_path)) return name_or_path;
+  const fs::path shipped = fs::path(data_dir) / "profiles" / (name_or_path + ".yaml");
+  if (fs::is_regular_file(shipped)) return shipped.string();
+  throw std::runtime_error("no profile file '" + name_or_path +
+                           "' and no shipped profile of that name (desktop, medium, immersive)");
+}
+
+}  // namespace harbour::station

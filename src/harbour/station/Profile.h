@@ -1,0 +1,44 @@
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "harbour/io/PlatformLink.h"
+#include "harbour/io/YamlFile.h"
+
+namespace harbour::station {
+
+/// One display channel of the image generator: a window or projector, and where it looks from the eye.
+struct DisplayChannel {
+  std::string name;
+  int width = 1920, height = 1080;
+  bool fullscreen = false;
+  double yaw_rad = 0.0, pitch_rad = 0.0, roll_rad = 0.0;     ///< view offset from the cab's forward axis
+  double fov_horizontal_rad = 1.2, fov_vertical_rad = 0.75;  ///< symmetric frustum
+};
+
+/// A hardware configuration (data/profiles/*.yaml): desktop, medium or fully immersive.
+struct Profile {
+  std::string name;
+  std::string file;
+  std::vector<std::string> mappings;  ///< device mapping files, in order of preference
+  std::vector<DisplayChannel> displays;
+  bool stereo = false;
+  struct Motion {
+    std::string platform, washout;  ///< files
+    io::DriverSettings driver;
+  };
+  std::optional<Motion> motion;
+  std::optional<std::uint16_t> opentrack_port;
+};
+
+/// Reads and checks a profile (every file it names exists; displays 1-8, sizes, angles); errors name file,
+/// line and field.
+Profile load_profile(const std::string& path);
+
+/// A shipped profile's file (<data_dir>/profiles/<name>.yaml), or `name_or_path` itself when it is a file.
+std::string resolve_profile(const std::string& name_or_path, const std::string& data_dir);
+
+}  // namespace harbour::station
