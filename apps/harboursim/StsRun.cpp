@@ -47,15 +47,6 @@ struct StopOnSignal {
   }
 };
 
-// everything a run writes is checked before it starts: a bad output never costs a whole exercise
-void check_outputs(const RunOptions& options) {
-  if (!options.record.empty())
-    if (const std::string why = io::why_not_writable(options.record); !why.empty())
-      throw std::runtime_error("--record " + core::printable(options.record) + ": " + why);
-  if (const std::string why = core::why_bad_name(options.trainee, 64); !why.empty())
-    throw std::runtime_error("--trainee '" + core::printable(options.trainee, 64) + "' " + why);
-}
-
 // the instructor's commands in time order, each with its text (checked before the run starts)
 struct Scheduled {
   io::TimedCommand timed;
@@ -68,6 +59,17 @@ std::vector<Scheduled> schedule(const std::vector<std::string>& texts) {
   std::stable_sort(commands.begin(), commands.end(),
                    [](const Scheduled& a, const Scheduled& b) { return a.timed.at_s < b.timed.at_s; });
   return commands;
+}
+
+}  // namespace
+
+// everything a run writes is checked before it starts: a bad output never costs a whole exercise
+void check_outputs(const RunOptions& options) {
+  if (!options.record.empty())
+    if (const std::string why = io::why_not_writable(options.record); !why.empty())
+      throw std::runtime_error("--record " + core::printable(options.record) + ": " + why);
+  if (const std::string why = core::why_bad_name(options.trainee, 64); !why.empty())
+    throw std::runtime_error("--trainee '" + core::printable(options.trainee, 64) + "' " + why);
 }
 
 void print_evaluation(const sim::Metrics& m, const sim::Score& s) {
@@ -97,8 +99,6 @@ void print_evaluation(const sim::Metrics& m, const sim::Score& s) {
   std::printf("skills: safety %.0f, precision %.0f, productivity %.0f\n", s.skills[0], s.skills[1],
               s.skills[2]);
 }
-
-}  // namespace
 
 std::string default_database() {
   const char* xdg = std::getenv("XDG_DATA_HOME");

@@ -3,6 +3,8 @@
 #include <string>
 #include <vector>
 
+#include "harbour/sim/Evaluation.h"
+
 namespace harbour::apps {
 
 /// `harboursim run`: an exercise headless with the autopilot, progress lines and the evaluation.
@@ -16,6 +18,11 @@ struct RunOptions {
       commands;  ///< instructor commands, AT:KIND[:VALUES] (io::parse_instructor_command)
 };
 int run_exercise(const RunOptions& options);
+
+/// Everything a run writes, checked before it starts (a bad output never costs a whole exercise).
+void check_outputs(const RunOptions& options);
+/// The evaluation as the trainee reads it.
+void print_evaluation(const sim::Metrics& metrics, const sim::Score& score);
 
 /// An exercise file: `name_or_path` itself when it is a file, else the shipped `data/exercises/<name>.yaml`;
 /// throws naming what it tried and the shipped exercises.

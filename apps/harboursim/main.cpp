@@ -6,6 +6,7 @@
 #include <string>
 
 #include "BulkDemo.h"
+#include "StationRun.h"
 #include "StsRun.h"
 
 int main(int argc, char** argv) {
@@ -56,6 +57,35 @@ int main(int argc, char** argv) {
   replay_cmd->add_option("--trainee", branch.trainee, "with --take-over: trainee the branch is stored under");
   replay_cmd->add_option("--db", branch.database, "with --take-over: records connection");
 
+  harbour::apps::StationOptions live;
+  CLI::App* station_cmd = app.add_subcommand("station", "a trainee runs an exercise live at the station");
+  station_cmd->add_option("--exercise", live.exercise, "exercise file, or a shipped exercise's name")
+      ->required();
+  station_cmd->add_option("--profile", live.profile, "desktop, medium, immersive, or a profile file");
+  station_cmd->add_option("--trainee", live.trainee, "trainee id to store the attempt under");
+  station_cmd->add_option("--record", live.record, "write the attempt's recording (HSRC) to this file");
+  station_cmd->add_option("--db", live.database, "records connection");
+  station_cmd->add_flag("--autopilot", live.autopilot,
+                        "the scripted operator drives (no input devices needed)");
+  station_cmd->add_option("--time-scale", live.time_scale, "simulated seconds per second (fast-forward)")
+      ->check(CLI::Range(0.1, 50.0));
+  station_cmd->add_option("--seconds", live.seconds, "stop after this many seconds (interrupted)")
+      ->check(CLI::NonNegativeNumber);
+
+  harbour::apps::DevicesOptions devices;
+  CLI::App* devices_cmd = app.add_subcommand("devices", "list, watch, bind and calibrate input devices");
+  devices_cmd->add_flag("--watch", devices.watch, "show live values (q quits)");
+  devices_cmd->add_option("--bind", devices.bind,
+                          "walk through the machine's controls and write this mapping file");
+  devices_cmd->add_option("--machine", devices.machine,
+                          "machine file whose controls are bound (default: the STS)");
+  devices_cmd->add_option("--name", devices.name, "the mapping's name");
+  devices_cmd->add_option("--virtual", devices.virtual_device,
+                          "NAME:AXES:BUTTONS:HATS: add a virtual joystick (testing without hardware)");
+  devices_cmd->add_option(
+      "--virtual-port", devices.virtual_port,
+      "UDP port on loopback that moves the virtual joystick ('axis 1 -32768', 'button 0 1')");
+
   harbour::apps::BulkDemoOptions demo;
   CLI::App* demo_cmd =
       app.add_subcommand("bulk-demo", "a grab digs coal from a yard heap into a rolling hold");
@@ -80,6 +110,8 @@ int main(int argc, char** argv) {
         }
     }
     if (*run_cmd) return harbour::apps::run_exercise(run);
+    if (*station_cmd) return harbour::apps::run_station(live);
+    if (*devices_cmd) return harbour::apps::run_devices(devices);
     if (*replay_cmd && take_over_s >= 0.0) {
       branch.exercise = replay_exercise;
       branch.autopilot = true;

@@ -71,6 +71,23 @@ std::vector<DeviceInfo> DeviceInput::list() {
   return out;
 }
 
+bool DeviceInput::all_present(const DeviceMapping& mapping, bool keyboard) {
+  SDL_JoystickUpdate();
+  for (const DeviceMatch& d : mapping.devices) {
+    if (d.keyboard) {
+      if (!keyboard) return false;
+      continue;
+    }
+    int rank = 0;
+    for (int i = 0; i < SDL_NumJoysticks(); ++i) {
+      const char* name = SDL_JoystickNameForIndex(i);
+      rank += matches(d, name ? name : "", guid_of(SDL_JoystickGetDeviceGUID(i)));
+    }
+    if (rank <= d.nth) return false;
+  }
+  return true;
+}
+
 sim::Controls DeviceInput::sample() {
   const std::unique_lock lock(mutex_, std::try_to_lock);
   if (!lock.owns_lock()) return last_;  // maintain() is binding a device: the previous sample, one step old

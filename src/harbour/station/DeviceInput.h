@@ -62,6 +62,9 @@ class DeviceInput {
   int missing_devices() const;
   /// What SDL sees (for `harboursim devices`).
   static std::vector<DeviceInfo> list();
+  /// Whether every joystick `mapping` names is present now (the keyboard counts as present only where
+  /// there is a window: `keyboard`). SDL's joystick subsystem must be initialised.
+  static bool all_present(const DeviceMapping& mapping, bool keyboard);
   const ControlMapper& mapper() const { return mapper_; }
 
  private:

@@ -3,6 +3,7 @@
 #include <SDL.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cstdio>
 #include <sstream>
 
@@ -157,7 +158,11 @@ DeviceMapping load_device_mapping(const std::string& path, const sim::ControlTab
 
 std::string device_mapping_text(const DeviceMapping& m) {
   std::ostringstream out;
-  out.precision(17);
+  const auto num = [](double v) {  // the shortest text that reads back to the same double
+    char text[32];
+    const auto end = std::to_chars(text, text + sizeof text, v).ptr;
+    return std::string(text, end);
+  };
   const auto quoted = [](const std::string& s) {
     std::string q = "\"";
     for (const char c : s)
@@ -179,9 +184,9 @@ std::string device_mapping_text(const DeviceMapping& m) {
         << ", device: " << m.devices[static_cast<std::size_t>(b.device)].id;
     switch (b.source) {
       case Binding::Source::kAxis:
-        out << ", axis: " << b.index << ", calibration: {min: " << b.calibration.min;
-        if (b.calibration.centered) out << ", center: " << b.calibration.center;
-        out << ", max: " << b.calibration.max << "}";
+        out << ", axis: " << b.index << ", calibration: {min: " << num(b.calibration.min);
+        if (b.calibration.centered) out << ", center: " << num(b.calibration.center);
+        out << ", max: " << num(b.calibration.max) << "}";
         break;
       case Binding::Source::kButton:
         if (m.devices[static_cast<std::size_t>(b.device)].keyboard)
@@ -201,11 +206,11 @@ std::string device_mapping_text(const DeviceMapping& m) {
             << quoted(SDL_GetScancodeName(static_cast<SDL_Scancode>(b.keys[1]))) << "]";
         break;
     }
-    if (b.dead_zone != 0.0) out << ", dead_zone: " << b.dead_zone;
-    if (b.expo != 0.0) out << ", expo: " << b.expo;
+    if (b.dead_zone != 0.0) out << ", dead_zone: " << num(b.dead_zone);
+    if (b.expo != 0.0) out << ", expo: " << num(b.expo);
     if (b.invert) out << ", invert: true";
     if (b.toggle) out << ", toggle: true";
-    if (b.value != 1.0) out << ", value: " << b.value;
+    if (b.value != 1.0) out << ", value: " << num(b.value);
     if (!b.detents.empty()) {
       out << ", detents: [";
       for (std::size_t k = 0; k < b.detents.size(); ++k)

@@ -1,0 +1,162 @@
+#include "StationRun.h"
+
+#include <SDL.h>
+
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <optional>
+#include <stdexcept>
+#include <thread>
+
+#include "StsRun.h"
+#include "harbour/core/Text.h"
+#include "harbour/io/ExerciseFiles.h"
+#include "harbour/io/MotionFiles.h"
+#include "harbour/sim/Autopilot.h"
+#include "harbour/station/DeviceMappingFile.h"
+#include "harbour/station/HeadTracker.h"
+#include "harbour/station/MotionLink.h"
+#include "harbour/station/Profile.h"
+#include "harbour/station/Station.h"
+
+namespace harbour::apps {
+namespace {
+
+volatile std::sig_atomic_t g_stop = 0;
+extern "C" void on_stop_signal(int) {
+  g_stop = 1;
+}
+
+// the value of a named indicator in a snapshot (machine-blind: names come from the scene description)
+std::optional<double> indicator(const sim::SceneDescription& scene, const sim::Snapshot& s,
+                                const char* name) {
+  for (std::size_t n = 0; n < scene.indicators.size() && static_cast<int>(n) < s.indicator_count; ++n)
+    if (scene.indicators[n] == name) return s.indicators[n];
+  return std::nullopt;
+}
+
+// the first mapping of the profile whose devices are all here
+std::unique_ptr<station::DeviceInput> open_devices(const station::Profile& profile,
+                                                   const sim::ControlTable& table) {
+  if (SDL_InitSubSystem(SDL_INIT_JOYSTICK) != 0)
+    throw std::runtime_error(std::string("SDL joystick subsystem: ") + SDL_GetError());
+  std::string tried;
+  for (const std::string& file : profile.mappings) {
+    station::DeviceMapping mapping = station::load_device_mapping(file, table);
+    if (station::DeviceInput::all_present(mapping, false)) {
+      std::printf("input: %s (%s)\n", mapping.name.c_str(), file.c_str());
+      SDL_QuitSubSystem(SDL_INIT_JOYSTICK);
+      return std::make_unique<station::DeviceInput>(table, std::move(mapping));
+    }
+    tried += "\n  " + mapping.name + " (" + file + "): ";
+    for (const station::DeviceMatch& d : mapping.devices)
+      tried += d.keyboard ? "the keyboard (needs the station's window) " : "'" + d.name + "' ";
+  }
+  SDL_QuitSubSystem(SDL_INIT_JOYSTICK);
+  std::string present;
+  for (const station::DeviceInfo& d : station::DeviceInput::list())
+    present += "\n  " + d.name + " (" + d.guid + ")";
+  throw std::runtime_error("no input devices for profile '" + profile.name + "'; it tried:" + tried +
+                           "\ndevices present:" + (present.empty() ? std::string(" none") : present) +
+                           "\n(bind yours with: harboursim devices --bind FILE; or run with --autopilot)");
+}
+
+}  // namespace
+
+int run_station(const StationOptions& options) {
+  RunOptions outputs;
+  outputs.record = options.record;
+  outputs.trainee = options.trainee;
+  check_outputs(outputs);
+  const sim::ExerciseSettings exercise = io::load_exercise(resolve_exercise(options.exercise));
+  const station::Profile profile =
+      station::load_profile(station::resolve_profile(options.profile, HARBOUR_DATA_DIR));
+  const std::string database = options.database.empty() ? default_database() : options.database;
+  if (options.trainee == "autopilot")
+    io::RecordsStore(database).ensure_trainee("autopilot", "Scripted operator");
+
+  station::SessionOptions session_options;
+  session_options.trainee = options.trainee;
+  session_options.record = options.record;
+  session_options.database = database;
+  session_options.loop.time_scale = options.time_scale;
+  station::Session session(exercise, session_options);
+  station::Station station(session);
+  std::optional<sim::Autopilot> pilot;
+  if (options.autopilot) {
+    pilot.emplace(exercise);
+    session.loop().set_pilot([&](const sim::Simulation& s) { return pilot->next(s); });
+  } else {
+    station.use_devices(open_devices(profile, session.simulation().control_table()));
+  }
+  if (profile.opentrack_port) {
+    station.use_head_tracking(std::make_unique<station::HeadTracker>(*profile.opentrack_port));
+    std::printf("head tracking: OpenTrack UDP on port %u\n", static_cast<unsigned>(*profile.opentrack_port));
+  }
+  if (profile.motion) {
+    station.use_motion(std::make_unique<station::MotionLink>(io::load_platform(profile.motion->platform),
+                                                             io::load_washout(profile.motion->washout, "sts"),
+                                                             profile.motion->driver));
+    std::printf("motion platform: %s:%u\n", profile.motion->driver.host.c_str(),
+                static_cast<unsigned>(profile.motion->driver.port));
+  }
+  std::printf("station (%s): exercise %s, %zu move(s), %s, attempt %lld of trainee %s%s\n",
+              profile.name.c_str(), exercise.name.c_str(), exercise.moves.size(),
+              options.autopilot ? "autopilot" : "trainee at the controls",
+              static_cast<long long>(session.attempt()), options.trainee.c_str(),
+              options.record.empty() ? "" : (", recording " + options.record).c_str());
+  std::printf("Ctrl-C ends the attempt (stored as interrupted)\n");
+  std::fflush(stdout);
+
+  g_stop = 0;
+  std::signal(SIGINT, on_stop_signal);
+  std::signal(SIGTERM, on_stop_signal);
+  const sim::SceneDescription scene = session.simulation().scene();
+  const auto start = std::chrono::steady_clock::now();
+  session.start();
+  station.start();
+  int next_line = 0;
+  while (!session.over() && !g_stop && session.loop().running()) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (options.seconds > 0.0 && wall >= options.seconds) break;
+    for (const std::string& m : station.take_messages())
+      std::printf("  %s\n", core::printable(m).c_str());
+    if (wall < next_line * 2.0) continue;
+    ++next_line;
+    const sim::Snapshot* s = session.loop().latest_snapshot(station::kConsoleReader);
+    if (!s) continue;
+    const station::LoopStats stats = session.loop().stats();
+    const sim::Metrics m = session.metrics();
+    std::printf(
+        "  t=%6.1f s  trolley %6.2f m  load %5.1f t  %s  moves %d/%zu  | %.3fx real time, %lld late, "
+        "longest %.1f ms%s%s\n",
+        s->time_s, indicator(scene, *s, "trolley_x_m").value_or(0.0),
+        indicator(scene, *s, "load_t").value_or(0.0),
+        indicator(scene, *s, "lamp_locked").value_or(0.0) > 0.5 ? "locked  " : "unlocked", m.moves_completed,
+        exercise.moves.size(), stats.real_time_factor, static_cast<long long>(stats.late_ticks),
+        stats.longest_tick_s * 1e3, s->held ? "  HELD" : "",
+        s->devices_missing ? "  INPUT DEVICE MISSING: its controls are neutral" : "");
+    std::fflush(stdout);
+  }
+  const bool interrupted = g_stop || (!session.over() && options.seconds > 0.0);
+  station.stop();
+  const station::SessionResult result = session.finish(interrupted);
+  std::signal(SIGINT, SIG_DFL);
+  std::signal(SIGTERM, SIG_DFL);
+  const station::LoopStats& l = result.loop;
+  std::printf(
+      "\nloop: %lld ticks, %lld late, %lld given up, longest %.2f ms, mean %.1f us, %.3fx real time%s\n",
+      static_cast<long long>(l.ticks), static_cast<long long>(l.late_ticks),
+      static_cast<long long>(l.skipped_ticks), l.longest_tick_s * 1e3, l.mean_tick_s * 1e6,
+      l.real_time_factor, l.keeping_real_time ? "" : " (COULD NOT KEEP REAL TIME)");
+  print_evaluation(result.metrics, result.score);
+  std::printf("stored as attempt %lld of trainee %s (%s)\n", static_cast<long long>(result.attempt),
+              options.trainee.c_str(), result.status.c_str());
+  if (!options.record.empty()) std::printf("recording %s\n", options.record.c_str());
+  if (result.status == "diverged") return 3;
+  return interrupted ? 130 : 0;
+}
+
+}  // namespace harbour::apps

@@ -1,0 +1,31 @@
+#pragma once
+
+#include <string>
+
+namespace harbour::apps {
+
+/// `harboursim station`: a trainee runs an exercise live at the station.
+struct StationOptions {
+  std::string exercise;             ///< file or shipped name
+  std::string profile = "desktop";  ///< desktop, medium, immersive or a profile file
+  std::string trainee = "autopilot";
+  std::string record;
+  std::string database;
+  bool autopilot = false;   ///< the scripted operator drives (a demonstration, no devices needed)
+  double time_scale = 1.0;  ///< an instructor's fast-forward
+  double seconds = 0.0;     ///< stop after this much wall time (0: at the exercise's end)
+};
+int run_station(const StationOptions& options);
+
+/// `harboursim devices`: list, watch, bind and calibrate input devices, write a mapping file.
+struct DevicesOptions {
+  bool watch = false;
+  std::string bind;     ///< write a mapping file here, walking through the machine's controls
+  std::string machine;  ///< the machine file whose controls are bound (default: the STS)
+  std::string name = "My desk";
+  std::string virtual_device;  ///< NAME:AXES:BUTTONS:HATS: a virtual joystick (tests; no /dev/uinput here)
+  int virtual_port = 0;  ///< UDP port moving the virtual joystick: "axis I V", "button I 0|1", "hat I BITS"
+};
+int run_devices(const DevicesOptions& options);
+
+}  // namespace harbour::apps

@@ -1,0 +1,126 @@
+// `harboursim devices --bind` used as a person uses it: in a terminal (tmux), answering its prompts. The
+// person's hand on the stick is a virtual SDL joystick inside the tool, moved over loopback UDP (this machine
+// has no /dev/uinput for a real device).
+#include <gtest/gtest.h>
+
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <array>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <thread>
+
+#include "harbour/sim/StsCrane.h"
+#include "harbour/station/DeviceMappingFile.h"
+
+namespace harbour::apps {
+namespace {
+
+std::string run(const std::string& command) {
+  std::string out;
+  if (FILE* p = popen(command.c_str(), "r")) {
+    std::array<char, 4096> buffer;
+    while (std::fgets(buffer.data(), buffer.size(), p))
+      out += buffer.data();
+    pclose(p);
+  }
+  return out;
+}
+
+class Terminal {
+ public:
+  explicit Terminal(const std::string& command) {
+    run("tmux kill-session -t " + kSession + " 2>/dev/null");
+    run("tmux new-session -d -s " + kSession + " -x 150 -y 60 \"" + command + "; sleep 60\"");
+  }
+  ~Terminal() { run("tmux kill-session -t " + kSession + " 2>/dev/null"); }
+  std::string screen() const { return run("tmux capture-pane -p -S -200 -t " + kSession); }
+  // waits until the screen shows `text` (true) or 20 s pass
+  bool wait_for(const std::string& text) const {
+    for (int k = 0; k < 400; ++k) {
+      if (screen().find(text) != std::string::npos) return true;
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+    return false;
+  }
+  void keys(const std::string& keys) const { run("tmux send-keys -t " + kSession + " " + keys); }
+
+ private:
+  const std::string kSession = "harbour_devices_test";
+};
+
+// the hand: datagrams to the tool's virtual stick
+void hand(std::uint16_t port, const std::string& move) {
+  const int s = ::socket(AF_INET, SOCK_DGRAM, 0);
+  sockaddr_in to{};
+  to.sin_family = AF_INET;
+  to.sin_port = htons(port);
+  to.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  ::sendto(s, move.data(), move.size(), 0, reinterpret_cast<sockaddr*>(&to), sizeof to);
+  ::close(s);
+  std::this_thread::sleep_for(std::chrono::milliseconds(60));
+}
+
+TEST(DevicesTool, APersonBindsAndCalibratesAStickInATerminal) {
+  if (run("command -v tmux").empty()) GTEST_SKIP() << "tmux is not installed (./harbour setup installs it)";
+  const std::string file = (std::filesystem::temp_directory_path() / "harbour_bound.yaml").string();
+  std::filesystem::remove(file);
+  const std::uint16_t port = 47000 + static_cast<std::uint16_t>(getpid() % 1000);
+  const Terminal t(std::string(HARBOUR_APP) + " devices --bind " + file +
+                   " --name 'Test desk' --virtual 'Test Stick:4:12:1' --virtual-port " +
+                   std::to_string(port));
+  ASSERT_TRUE(t.wait_for("Move the control you use for GANTRY")) << t.screen();
+  EXPECT_NE(t.screen().find("Test Stick"), std::string::npos);  // the device list first
+  hand(port, "axis 0 30000");                                   // pushed right: gantry +
+  ASSERT_TRUE(t.wait_for("Now move GANTRY through its whole range")) << t.screen();
+  for (const char* m : {"axis 0 32767", "axis 0 -32768", "axis 0 120"})
+    hand(port, m);
+  t.keys("Enter");
+  ASSERT_TRUE(t.wait_for("calibrated: min -32768, centre 120, max 32767")) << t.screen();
+
+  ASSERT_TRUE(t.wait_for("Move the control you use for TROLLEY")) << t.screen();
+  hand(port, "axis 1 -31000");  // pushed forward, which this stick reports as negative: inverted
+  ASSERT_TRUE(t.wait_for("Now move TROLLEY")) << t.screen();
+  for (const char* m : {"axis 1 -32768", "axis 1 32767", "axis 1 0"})
+    hand(port, m);
+  t.keys("Enter");
+  ASSERT_TRUE(t.wait_for("Move the control you use for HOIST")) << t.screen();
+  t.keys("Enter");  // skipped
+  ASSERT_TRUE(t.wait_for("Move the control you use for BOOM")) << t.screen();
+  t.keys("Enter");
+  ASSERT_TRUE(t.wait_for("Move the control you use for LOCK")) << t.screen();
+  hand(port, "button 3 1");
+  hand(port, "button 3 0");
+  ASSERT_TRUE(t.wait_for("button 3 of Test Stick")) << t.screen();
+  ASSERT_TRUE(t.wait_for("Move the control you use for UNLOCK")) << t.screen();
+  t.keys("q");
+  ASSERT_TRUE(t.wait_for("wrote " + file + ": 3 binding(s) on 1 device(s)")) << t.screen();
+  std::printf("%s\n", t.screen().c_str());
+
+  const sim::ControlTable table = sim::sts_control_table();
+  const station::DeviceMapping m = station::load_device_mapping(file, table);
+  ASSERT_EQ(m.devices.size(), 1u);
+  EXPECT_EQ(m.devices[0].name, "Test Stick");
+  ASSERT_EQ(m.bindings.size(), 3u);
+  EXPECT_EQ(m.bindings[0].control, "gantry");
+  EXPECT_EQ(m.bindings[0].index, 0);
+  EXPECT_FALSE(m.bindings[0].invert);
+  EXPECT_EQ(m.bindings[0].calibration.center, 120.0);
+  EXPECT_EQ(m.bindings[1].control, "trolley");
+  EXPECT_TRUE(m.bindings[1].invert);
+  EXPECT_EQ(m.bindings[2].control, "lock");
+  EXPECT_EQ(m.bindings[2].source, station::Binding::Source::kButton);
+  EXPECT_EQ(m.bindings[2].index, 3);
+  // the stick now drives the gantry through the written mapping: full right is +1
+  station::ControlMapper mapper(table, m);
+  std::vector<station::DeviceState> s{{true, {32767, 0, 0, 0}, std::vector<bool>(12), {0}}};
+  EXPECT_DOUBLE_EQ(mapper.map(s).value[static_cast<std::size_t>(table.find("gantry"))], 1.0);
+}
+
+}  // namespace
+}  // namespace harbour::apps
