@@ -355,8 +355,7 @@ int bind(const DevicesOptions& options, std::vector<Opened>& devices, VirtualSti
 }  // namespace
 
 int run_devices(const DevicesOptions& options) {
-  SDL_SetHint(SDL_HINT_JOYSTICK_ALLOW_BACKGROUND_EVENTS, "1");
-  if (SDL_Init(SDL_INIT_JOYSTICK) != 0) throw std::runtime_error(std::string("SDL: ") + SDL_GetError());
+  station::init_sdl_joysticks();
   struct Quit {
     ~Quit() { SDL_Quit(); }
   } quit;

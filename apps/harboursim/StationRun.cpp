@@ -39,8 +39,7 @@ std::optional<double> indicator(const sim::SceneDescription& scene, const sim::S
 // the first mapping of the profile whose devices are all here
 std::unique_ptr<station::DeviceInput> open_devices(const station::Profile& profile,
                                                    const sim::ControlTable& table) {
-  if (SDL_InitSubSystem(SDL_INIT_JOYSTICK) != 0)
-    throw std::runtime_error(std::string("SDL joystick subsystem: ") + SDL_GetError());
+  station::init_sdl_joysticks();
   std::string tried;
   for (const std::string& file : profile.mappings) {
     station::DeviceMapping mapping = station::load_device_mapping(file, table);
@@ -64,7 +63,9 @@ std::unique_ptr<station::DeviceInput> open_devices(const station::Profile& profi
 
 }  // namespace
 
-int run_station(const StationOptions& options) {
+int run_station(const StationOptions& given) {
+  StationOptions options = given;
+  if (options.trainee.empty()) options.trainee = options.autopilot ? "autopilot" : "guest";
   RunOptions outputs;
   outputs.record = options.record;
   outputs.trainee = options.trainee;

@@ -8,7 +8,7 @@ namespace harbour::apps {
 struct StationOptions {
   std::string exercise;             ///< file or shipped name
   std::string profile = "desktop";  ///< desktop, medium, immersive or a profile file
-  std::string trainee = "autopilot";
+  std::string trainee;              ///< "" : autopilot with --autopilot, else guest (both made on first use)
   std::string record;
   std::string database;
   bool autopilot = false;   ///< the scripted operator drives (a demonstration, no devices needed)

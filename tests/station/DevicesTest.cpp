@@ -144,7 +144,7 @@ struct Desk {
   DeviceMapping mapping;
 
   explicit Desk(const std::string& name) {
-    SDL_InitSubSystem(SDL_INIT_JOYSTICK);
+    init_sdl_joysticks();
     const std::string db = temp(name + ".db");
     std::filesystem::remove(db);
     io::RecordsStore(std::string("sqlite3://db=") + db).ensure_trainee("t1", "Trainee One");

@@ -2,7 +2,9 @@
 
 #include <SDL.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <stdexcept>
 
 namespace harbour::station {
@@ -29,15 +31,29 @@ std::string joined(const std::vector<std::string>& labels) {
 }
 }  // namespace
 
-DeviceInput::DeviceInput(const sim::ControlTable& table, DeviceMapping mapping)
-    : mapper_(table, std::move(mapping)) {
+void init_sdl_joysticks() {
   SDL_SetHint(SDL_HINT_JOYSTICK_ALLOW_BACKGROUND_EVENTS, "1");
+  setenv("SDL_JOYSTICK_DISABLE_UDEV", "1", 0);
   if (SDL_InitSubSystem(SDL_INIT_JOYSTICK) != 0)
     throw std::runtime_error(std::string("SDL joystick subsystem: ") + SDL_GetError());
+}
+
+DeviceInput::DeviceInput(const sim::ControlTable& table, DeviceMapping mapping)
+    : mapper_(table, std::move(mapping)) {
+  init_sdl_joysticks();
   const std::size_t devices = mapper_.mapping().devices.size();
   bound_.resize(devices);
   states_.resize(devices);
   unfit_.resize(devices);
+  used_.resize(devices);
+  for (const Binding& b : mapper_.mapping().bindings) {
+    Used& u = used_[static_cast<std::size_t>(b.device)];
+    std::vector<int>& list = b.source == Binding::Source::kAxis     ? u.axes
+                             : b.source == Binding::Source::kButton ? u.buttons
+                                                                    : u.hats;
+    if (b.source != Binding::Source::kKeys && std::find(list.begin(), list.end(), b.index) == list.end())
+      list.push_back(b.index);
+  }
   last_ = mapper_.map(states_, keyboard_);
 }
 
@@ -97,12 +113,14 @@ sim::Controls DeviceInput::sample() {
     SDL_Joystick* j = bound_[d].joystick;
     state.connected = j && SDL_JoystickGetAttached(j);
     if (!state.connected) continue;
-    for (std::size_t a = 0; a < state.axes.size(); ++a)
-      state.axes[a] = SDL_JoystickGetAxis(j, static_cast<int>(a));
-    for (std::size_t b = 0; b < state.buttons.size(); ++b)
-      state.buttons[b] = SDL_JoystickGetButton(j, static_cast<int>(b)) != 0;
-    for (std::size_t h = 0; h < state.hats.size(); ++h)
-      state.hats[h] = SDL_JoystickGetHat(j, static_cast<int>(h));
+    // only what the mapping binds (maintain() checked the device has them)
+    const Used& u = used_[d];
+    for (const int a : u.axes)
+      state.axes[static_cast<std::size_t>(a)] = SDL_JoystickGetAxis(j, a);
+    for (const int b : u.buttons)
+      state.buttons[static_cast<std::size_t>(b)] = SDL_JoystickGetButton(j, b) != 0;
+    for (const int h : u.hats)
+      state.hats[static_cast<std::size_t>(h)] = SDL_JoystickGetHat(j, h);
   }
   if (SDL_WasInit(SDL_INIT_VIDEO)) {
     int keys = 0;

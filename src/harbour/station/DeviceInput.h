@@ -26,6 +26,12 @@ struct DeviceEvent {
   std::string detail;  ///< the controls affected, or why it does not fit
 };
 
+/// Starts SDL's joystick subsystem the station's way (reference counted: pair with SDL_QuitSubSystem
+/// (SDL_INIT_JOYSTICK)); throws naming SDL's error. Hot-plug is watched through inotify on /dev/input rather
+/// than a udev poll() in every SDL_JoystickUpdate: the step thread's sample costs 2.2 us instead of 4.7
+/// (bench_station). SDL_JOYSTICK_DISABLE_UDEV=0 in the environment keeps udev.
+void init_sdl_joysticks();
+
 /// A joystick SDL sees now.
 struct DeviceInfo {
   int instance = -1;
@@ -81,6 +87,10 @@ class DeviceInput {
   std::vector<Bound> bound_;         // per mapping device
   std::vector<DeviceState> states_;  // per mapping device
   std::vector<std::string> unfit_;   // per mapping device: the last unfit reason reported
+  struct Used {
+    std::vector<int> axes, buttons, hats;  // what the mapping binds: only these are read
+  };
+  std::vector<Used> used_;  // per mapping device
   std::vector<bool> keyboard_;
   sim::Controls last_;
   std::mutex events_mutex_;

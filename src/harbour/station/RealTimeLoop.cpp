@@ -15,9 +15,13 @@ RealTimeLoop::RealTimeLoop(sim::Simulation& simulation, const LoopSettings& sett
   latched_ = simulation.control_table().neutral();
   controls_in_.back() = latched_;
   controls_in_.publish();
-  for (int n = 0; n < std::max(settings.snapshot_readers, 1); ++n)
+  for (int n = 0; n < kSnapshotReaders; ++n) {
     snapshots_.push_back(std::make_unique<TripleBuffer<sim::Snapshot>>());
-  publish();  // readers see the start
+    settings_.snapshot_every_steps[static_cast<std::size_t>(n)] =
+        std::max(settings_.snapshot_every_steps[static_cast<std::size_t>(n)], 1);
+  }
+  for (int n = 0; n < kSnapshotReaders; ++n)
+    publish(n);  // readers see the start
 }
 
 RealTimeLoop::~RealTimeLoop() {
@@ -125,7 +129,10 @@ void RealTimeLoop::run() {
 void RealTimeLoop::tick() {
   apply_commands();
   if (!simulation_.held()) step_once();
-  if (simulation_.steps() % settings_.snapshot_every_steps == 0 || simulation_.held()) publish();
+  for (int n = 0; n < kSnapshotReaders; ++n)
+    if (simulation_.steps() % settings_.snapshot_every_steps[static_cast<std::size_t>(n)] == 0 ||
+        simulation_.held())
+      publish(n);
 }
 
 void RealTimeLoop::apply_commands() {
@@ -192,21 +199,20 @@ void RealTimeLoop::hand_off(const StepRecord& record) {
     std::this_thread::sleep_for(std::chrono::microseconds(100));
 }
 
-void RealTimeLoop::publish() {
+void RealTimeLoop::publish(int reader) {
   core::Vec3 head_position, head_angles;
   {
-    const std::lock_guard lock(head_mutex_);
+    const std::lock_guard lock(head_mutex_);  // uncontended: the station writes it at 500 Hz
     head_position = head_position_m_;
     head_angles = head_angles_rad_;
   }
-  for (const auto& buffer : snapshots_) {
-    sim::Snapshot& s = buffer->back();
-    simulation_.write_snapshot(s);
-    s.cab.head_offset_m = head_position;
-    s.cab.head_yaw_pitch_roll_rad = head_angles;
-    s.devices_missing = devices_missing_.load(std::memory_order_relaxed);
-    buffer->publish();
-  }
+  TripleBuffer<sim::Snapshot>& buffer = *snapshots_[static_cast<std::size_t>(reader)];
+  sim::Snapshot& s = buffer.back();
+  simulation_.write_snapshot(s);
+  s.cab.head_offset_m = head_position;
+  s.cab.head_yaw_pitch_roll_rad = head_angles;
+  s.devices_missing = devices_missing_.load(std::memory_order_relaxed);
+  buffer.publish();
 }
 
 }  // namespace harbour::station

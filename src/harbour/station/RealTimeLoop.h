@@ -62,9 +62,10 @@ enum SnapshotReader : int {
 struct LoopSettings {
   double max_catch_up_s = 0.05;  ///< behind by more than this, the loop gives the time up instead of racing
   double time_scale = 1.0;       ///< simulated seconds per wall second (an instructor's fast-forward; tests)
-  int snapshot_every_steps = 4;  ///< publish rate: 250 Hz (readers interpolate by step and time)
-  int snapshot_readers = kSnapshotReaders;  ///< one triple buffer each (SnapshotReader)
-  std::size_t record_capacity = 1 << 15;    ///< steps of hand-off to the recorder (32 s)
+  /// Each reader's publish period in steps (SnapshotReader order): the image generator at 250 Hz (it
+  /// interpolates by step and time), the console at 50 Hz, the motion platform at 200 Hz (washout at 100 Hz).
+  std::array<int, kSnapshotReaders> snapshot_every_steps{4, 20, 5};
+  std::size_t record_capacity = 1 << 15;  ///< steps of hand-off to the recorder (32 s)
 };
 
 /// The station's real-time loop: the simulation at its fixed 1 kHz step on its own thread, paced to the wall
@@ -95,6 +96,11 @@ class RealTimeLoop {
 
   /// Starts the step thread.
   void start();
+  /// `ticks` ticks now on the calling thread, unpaced (benchmarks, tools); not while the thread runs.
+  void run_ticks(int ticks) {
+    for (int n = 0; n < ticks; ++n)
+      tick();
+  }
   /// Asks the loop to stop after the current tick and waits for it.
   void stop();
   /// Waits until the loop has stopped (by stop(), a kStop command, stop_when or divergence).
@@ -123,7 +129,7 @@ class RealTimeLoop {
   void apply_commands();
   void step_once();
   void hand_off(const StepRecord& record);
-  void publish();
+  void publish(int reader);
 
   sim::Simulation& simulation_;
   LoopSettings settings_;

@@ -1,0 +1,187 @@
+// The station's real-time loop: what it adds to each simulation step (input sampling through SDL and the
+// mapping, the command queue, the hand-off to the record keeper, snapshots), and how long a device change
+// takes to reach the step that uses it. Results: docs/benchmarks.md.
+
+#include <benchmark/benchmark.h>
+
+#include <SDL.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <thread>
+#include <vector>
+
+#include "harbour/sim/Autopilot.h"
+#include "harbour/station/DeviceInput.h"
+#include "harbour/station/DeviceMappingFile.h"
+#include "harbour/station/RealTimeLoop.h"
+#include "scenes/StsScenes.h"
+
+namespace harbour {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// two T.16000M-like sticks, bound through the shipped desk mapping
+struct Sticks {
+  std::vector<SDL_Joystick*> sticks;
+  Sticks() {
+    station::init_sdl_joysticks();
+    for (int n = 0; n < 2; ++n) {
+      SDL_VirtualJoystickDesc desc{};
+      desc.version = SDL_VIRTUAL_JOYSTICK_DESC_VERSION;
+      desc.type = SDL_JOYSTICK_TYPE_FLIGHT_STICK;
+      desc.naxes = 4;
+      desc.nbuttons = 16;
+      desc.nhats = 1;
+      desc.name = "Thrustmaster T.16000M";
+      sticks.push_back(SDL_JoystickOpen(SDL_JoystickAttachVirtualEx(&desc)));
+    }
+  }
+  ~Sticks() {
+    for (SDL_Joystick* j : sticks)
+      SDL_JoystickClose(j);
+    while (SDL_NumJoysticks() > 0)
+      SDL_JoystickDetachVirtual(0);
+    SDL_QuitSubSystem(SDL_INIT_JOYSTICK);
+  }
+};
+
+std::unique_ptr<station::DeviceInput> desk_input(const sim::ControlTable& table) {
+  auto input = std::make_unique<station::DeviceInput>(
+      table, station::load_device_mapping(HARBOUR_DATA_DIR "/devices/sts_dual_joystick.yaml", table));
+  input->maintain();
+  return input;
+}
+
+// The simulation alone: the autopilot's controls and one step (what the loop wraps).
+void BM_SimulationStep(benchmark::State& state) {
+  const sim::ExerciseSettings exercise = scenes::sts_discharge_exercise(HARBOUR_DATA_DIR);
+  auto sim = std::make_unique<sim::Simulation>(exercise.scenario);
+  auto pilot = std::make_unique<sim::Autopilot>(exercise);
+  for (auto _ : state) {
+    if (sim->steps() >= 60000) {
+      state.PauseTiming();
+      sim = std::make_unique<sim::Simulation>(exercise.scenario);
+      pilot = std::make_unique<sim::Autopilot>(exercise);
+      state.ResumeTiming();
+    }
+    sim->single_step(pilot->next(*sim));
+  }
+}
+BENCHMARK(BM_SimulationStep)->Unit(benchmark::kMicrosecond)->MinTime(3.0);
+
+// The same steps through the loop's tick: plus command queue, hand-off, snapshots to three readers every
+// fourth step, and the controls sampled from two SDL sticks (the autopilot still decides; the sample is
+// taken and discarded so the station's input cost is in the tick).
+void BM_LoopTick(benchmark::State& state) {
+  const Sticks sticks;
+  const sim::ExerciseSettings exercise = scenes::sts_discharge_exercise(HARBOUR_DATA_DIR);
+  auto sim = std::make_unique<sim::Simulation>(exercise.scenario);
+  auto pilot = std::make_unique<sim::Autopilot>(exercise);
+  auto input = desk_input(sim->control_table());
+  auto loop = std::make_unique<station::RealTimeLoop>(*sim);
+  const auto wire = [&] {
+    loop->set_pilot([&](const sim::Simulation& s) {
+      benchmark::DoNotOptimize(input->sample());
+      return pilot->next(s);
+    });
+  };
+  wire();
+  station::StepRecord drained;
+  for (auto _ : state) {
+    if (sim->steps() % 1000 == 0) {  // the record keeper's side, off the clock
+      state.PauseTiming();
+      while (loop->records().pop(drained)) {
+      }
+      if (sim->steps() >= 60000) {
+        loop.reset();
+        sim = std::make_unique<sim::Simulation>(exercise.scenario);
+        pilot = std::make_unique<sim::Autopilot>(exercise);
+        loop = std::make_unique<station::RealTimeLoop>(*sim);
+        wire();
+      }
+      state.ResumeTiming();
+    }
+    loop->run_ticks(1);
+  }
+}
+BENCHMARK(BM_LoopTick)->Unit(benchmark::kMicrosecond)->MinTime(3.0);
+
+// The pieces on their own.
+void BM_SampleTwoSticks(benchmark::State& state) {
+  const Sticks sticks;
+  const sim::ControlTable table = sim::sts_control_table();
+  auto input = desk_input(table);
+  for (auto _ : state)
+    benchmark::DoNotOptimize(input->sample());
+}
+BENCHMARK(BM_SampleTwoSticks)->Unit(benchmark::kMicrosecond);
+
+void BM_WriteSnapshot(benchmark::State& state) {
+  const sim::ExerciseSettings exercise = scenes::sts_discharge_exercise(HARBOUR_DATA_DIR);
+  const sim::Simulation sim(exercise.scenario);
+  auto snapshot = std::make_unique<sim::Snapshot>();
+  for (auto _ : state) {
+    sim.write_snapshot(*snapshot);
+    benchmark::DoNotOptimize(snapshot->entity_count);
+  }
+}
+BENCHMARK(BM_WriteSnapshot)->Unit(benchmark::kMicrosecond);
+
+// A device change to the step that steps with it: the loop paced at 1 kHz samples the sticks right before
+// each step; the hoist stick moves at a random moment and the time to the first step whose controls hold
+// it is the iteration time.
+void BM_DeviceToStepLatency(benchmark::State& state) {
+  const Sticks sticks;
+  const sim::ExerciseSettings exercise = scenes::sts_discharge_exercise(HARBOUR_DATA_DIR);
+  sim::Simulation sim(exercise.scenario);
+  auto input = desk_input(sim.control_table());
+  const auto hoist = static_cast<std::size_t>(sim.control_table().find("hoist"));
+  station::RealTimeLoop loop(sim);
+  std::atomic<double> wanted{0.0};
+  std::atomic<Clock::rep> seen_at{0};
+  loop.set_sampler([&] {
+    const sim::Controls c = input->sample();
+    if (seen_at.load() == 0 && c.value[hoist] != 0.0 && (c.value[hoist] > 0.0) == (wanted.load() > 0.0))
+      seen_at = Clock::now().time_since_epoch().count();
+    return c;
+  });
+  std::thread drain([&] {
+    station::StepRecord r;
+    while (loop.running() || !loop.records().empty())
+      if (!loop.records().pop(r)) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  });
+  loop.start();
+  std::vector<double> latencies;
+  std::uint64_t seed = 12345;
+  Sint16 value = 20000;
+  for (auto _ : state) {
+    seed = seed * 6364136223846793005ull + 1442695040888963407ull;
+    std::this_thread::sleep_for(std::chrono::microseconds(2000 + (seed >> 33) % 3000));  // a random moment
+    value = static_cast<Sint16>(-value);
+    wanted = value;
+    seen_at = 0;
+    const Clock::time_point moved = Clock::now();
+    SDL_JoystickSetVirtualAxis(sticks.sticks[1], 1, value);
+    while (seen_at.load() == 0)
+      std::this_thread::yield();
+    const double latency =
+        std::chrono::duration<double>(Clock::duration(seen_at.load()) - moved.time_since_epoch()).count();
+    latencies.push_back(latency);
+    state.SetIterationTime(latency);
+  }
+  loop.stop();
+  drain.join();
+  std::sort(latencies.begin(), latencies.end());
+  state.counters["median_ms"] = latencies[latencies.size() / 2] * 1e3;
+  state.counters["p99_ms"] = latencies[latencies.size() * 99 / 100] * 1e3;
+  state.counters["max_ms"] = latencies.back() * 1e3;
+}
+BENCHMARK(BM_DeviceToStepLatency)->UseManualTime()->Unit(benchmark::kMicrosecond)->Iterations(1000);
+
+}  // namespace
+}  // namespace harbour
+
+BENCHMARK_MAIN();
