@@ -76,6 +76,7 @@ int run_station(const StationOptions& given) {
   const std::string database = options.database.empty() ? default_database() : options.database;
   if (options.trainee == "autopilot")
     io::RecordsStore(database).ensure_trainee("autopilot", "Scripted operator");
+  if (options.trainee == "guest") io::RecordsStore(database).ensure_trainee("guest", "Guest at the station");
 
   station::SessionOptions session_options;
   session_options.trainee = options.trainee;
