@@ -32,6 +32,7 @@
 #include "harbour/io/RecordingFile.h"
 #include "harbour/io/ReevingFiles.h"
 #include "harbour/sim/Simulation.h"
+#include "harbour/station/DeviceMappingFile.h"
 
 namespace {
 
@@ -97,6 +98,20 @@ const std::map<std::string, std::function<void(const std::string&)>>& targets() 
          harbour::io::read_recording(path);
        }},
       {"command", [](const std::string& text) { harbour::io::parse_instructor_command(text); }},
+      {"mapping",
+       [](const std::string& text) {
+         // a mapping read against the STS's controls, then mapped from devices of every size it may meet
+         const harbour::sim::ControlTable table = harbour::sim::sts_control_table();
+         const harbour::station::DeviceMapping m =
+             harbour::station::load_device_mapping(YamlFile::parse(text, "fuzz.yaml"), table);
+         harbour::station::ControlMapper mapper(table, m);
+         std::vector<harbour::station::DeviceState> states(m.devices.size());
+         for (harbour::station::DeviceState& s : states)
+           s = {true, {-32768.0, 32767.0}, {true}, {1}};
+         mapper.map(states, std::vector<bool>(512, true));
+         for (std::size_t d = 0; d < m.devices.size(); ++d)
+           harbour::station::why_unfit(m, static_cast<int>(d), 2, 1, 1);
+       }},
   };
   return all;
 }
@@ -197,7 +212,7 @@ std::string mutate(const std::string& in, const std::vector<std::string>& corpus
 int main(int argc, char** argv) {
   if (argc < 3 || !targets().count(argv[1])) {
     std::fprintf(stderr,
-                 "usage: harbour_fuzz exercise|machine|reeving|recording|command CORPUS_DIR "
+                 "usage: harbour_fuzz exercise|machine|reeving|recording|command|mapping CORPUS_DIR "
                  "[--seconds S] [--seed N]\n");
     return 2;
   }
