@@ -12,6 +12,7 @@
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/sim/Autopilot.h"
 #include "harbour/sim/Simulation.h"
+#include "harbour/station/RealTimeLoop.h"
 
 // the replacements below pair malloc with free on purpose
 #pragma GCC diagnostic ignored "-Wmismatched-new-delete"
@@ -94,6 +95,43 @@ TEST(Allocation, AHoldDischargeStepsWithoutAllocatingOnceWarm) {
   EXPECT_GT(count.steps, 190000);
   EXPECT_GE(count.attaching, 3);  // boxes locked on and set down on trucks: contacts come and go
   EXPECT_EQ(count.allocating, 0) << count.allocating << " of " << count.steps << " steps allocated";
+}
+
+TEST(Allocation, TheStationsTickAndItsSnapshotsAllocateNothing) {
+  const ExerciseSettings exercise =
+      io::load_exercise(std::string(HARBOUR_DATA_DIR) + "/exercises/sts_bay12_hold.yaml");
+  Simulation simulation(exercise.scenario);
+  Autopilot pilot(exercise);
+  station::RealTimeLoop loop(simulation);
+  loop.set_pilot([&](const Simulation& s) { return pilot.next(s); });
+  station::StepRecord record;
+  const auto drain = [&] {  // the record keeper's side (another thread in a station)
+    while (loop.records().pop(record)) {
+    }
+  };
+  loop.run_ticks(5000);
+  drain();
+  long allocating = 0, ticks = 0;
+  for (int batch = 0; batch < 60; ++batch) {
+    for (int k = 0; k < 1000; ++k) {
+      const int attachments = simulation.world().attachments_made();
+      const long before = g_allocations.load();
+      loop.run_ticks(1);  // commands, controls, the step, the hand-off, snapshots to every reader
+      if (g_allocations.load() != before && simulation.world().attachments_made() == attachments)
+        ++allocating;
+      ++ticks;
+    }
+    drain();
+  }
+  EXPECT_EQ(allocating, 0) << allocating << " of " << ticks << " ticks allocated";
+  // a snapshot is written into a reader's buffer without allocating, and the readers get the newest
+  auto mine = std::make_unique<Snapshot>();
+  const long before = g_allocations.load();
+  simulation.write_snapshot(*mine);
+  EXPECT_EQ(g_allocations.load(), before);
+  const Snapshot* s = loop.latest_snapshot(station::kImageGeneratorReader);
+  ASSERT_NE(s, nullptr);
+  EXPECT_EQ(s->step, simulation.steps());
 }
 
 }  // namespace

@@ -1,11 +1,14 @@
-// `harboursim devices --bind` used as a person uses it: in a terminal (tmux), answering its prompts. The
-// person's hand on the stick is a virtual SDL joystick inside the tool, moved over loopback UDP (this machine
-// has no /dev/uinput for a real device).
+// `harboursim devices --bind` and `harboursim station` used as a person uses them: the binding walk in a
+// terminal (tmux), answering its prompts, the person's hand on the stick a virtual SDL joystick inside the
+// tool moved over loopback UDP (this machine has no /dev/uinput for a real device); the station ended by
+// Ctrl-C.
 #include <gtest/gtest.h>
 
 #include <arpa/inet.h>
 #include <netinet/in.h>
+#include <signal.h>
 #include <sys/socket.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <array>
@@ -15,6 +18,9 @@
 #include <string>
 #include <thread>
 
+#include "harbour/io/ExerciseFiles.h"
+#include "harbour/io/RecordingFile.h"
+#include "harbour/io/RecordsStore.h"
 #include "harbour/sim/StsCrane.h"
 #include "harbour/station/DeviceMappingFile.h"
 
@@ -120,6 +126,46 @@ TEST(DevicesTool, APersonBindsAndCalibratesAStickInATerminal) {
   station::ControlMapper mapper(table, m);
   std::vector<station::DeviceState> s{{true, {32767, 0, 0, 0}, std::vector<bool>(12), {0}}};
   EXPECT_DOUBLE_EQ(mapper.map(s).value[static_cast<std::size_t>(table.find("gantry"))], 1.0);
+}
+
+// `harboursim station` as a separate process: Ctrl-C ends the attempt, stored as interrupted, with a complete
+// recording that replays.
+TEST(StationCommand, CtrlCStoresTheAttemptAndClosesTheRecording) {
+  const std::filesystem::path folder = std::filesystem::temp_directory_path() / "harbour_station_cli";
+  std::filesystem::remove_all(folder);
+  std::filesystem::create_directories(folder);
+  const std::string db = "sqlite3://db=" + (folder / "records.db").string();
+  const std::string record = (folder / "live.hsrc").string(), log = (folder / "station.log").string();
+  const pid_t child = fork();
+  if (child == 0) {
+    freopen(log.c_str(), "w", stdout);
+    freopen(log.c_str(), "a", stderr);
+    execl(HARBOUR_APP, HARBOUR_APP, "station", "--exercise", "sts_discharge", "--profile", "medium",
+          "--autopilot", "--time-scale", "5", "--db", db.c_str(), "--record", record.c_str(),
+          static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  std::this_thread::sleep_for(std::chrono::seconds(3));
+  kill(child, SIGINT);
+  int status = 0;
+  waitpid(child, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 130);
+  const std::string output = run("cat " + log);
+  EXPECT_NE(output.find("station (medium)"), std::string::npos) << output;
+  EXPECT_NE(output.find("(interrupted)"), std::string::npos) << output;
+
+  io::RecordsStore store(db);
+  const auto attempts = store.attempts();
+  ASSERT_EQ(attempts.size(), 1u);
+  EXPECT_EQ(attempts[0].status, "interrupted");
+  EXPECT_EQ(attempts[0].trainee, "autopilot");
+  const sim::Recording r = io::read_recording(record);
+  EXPECT_TRUE(r.complete);         // closed cleanly, not a torn prefix
+  EXPECT_GE(r.total_steps, 5000);  // ~3 s at 5x
+  const sim::ReplayResult replay = sim::replay(
+      io::load_exercise(std::string(HARBOUR_DATA_DIR) + "/exercises/sts_discharge.yaml").scenario, r);
+  EXPECT_FALSE(replay.first_mismatch.has_value());
 }
 
 }  // namespace
