@@ -50,7 +50,9 @@ std::unique_ptr<station::DeviceInput> open_devices(const station::Profile& profi
     }
     tried += "\n  " + mapping.name + " (" + file + "): ";
     for (const station::DeviceMatch& d : mapping.devices)
-      tried += d.keyboard ? "the keyboard (needs the station's window) " : "'" + d.name + "' ";
+      tried += d.window_device() ? (d.keyboard ? "the keyboard (needs the station's window) "
+                                               : "the mouse (needs the station's window) ")
+                                 : "'" + d.name + "' ";
   }
   SDL_QuitSubSystem(SDL_INIT_JOYSTICK);
   std::string present;

@@ -99,6 +99,33 @@ TEST(DeviceMapping, ControlsFollowAxesButtonsDetentsAndToggles) {
   EXPECT_NEAR(c.value[1], 0.5, 1e-4);  // the wheel still steers
 }
 
+TEST(DeviceMapping, KeysAndTheMouseDriveLeversAndButtons) {
+  const sim::ControlTable table = sim::sts_control_table();
+  const DeviceMapping m =
+      load_device_mapping(std::string(HARBOUR_DATA_DIR) + "/devices/keyboard.yaml", table);
+  ControlMapper mapper(table, m);
+  const auto at = [&](const char* label) { return static_cast<std::size_t>(table.find(label)); };
+  std::vector<bool> keys(SDL_NUM_SCANCODES, false);
+  keys[SDL_SCANCODE_S] = true;      // hoist down
+  keys[SDL_SCANCODE_RIGHT] = true;  // gantry +
+  keys[SDL_SCANCODE_L] = true;
+  // the mouse a quarter of the window right of centre and at the top (no window: no mouse, nothing lost)
+  std::vector<DeviceState> states(2);
+  sim::Controls c = mapper.map(states, keys);
+  EXPECT_EQ(c.value[at("hoist")], -1.0);
+  EXPECT_EQ(c.value[at("gantry")], 1.0);
+  EXPECT_EQ(c.value[at("lock")], 1.0);
+  EXPECT_EQ(c.value[at("trolley")], 0.0);
+  states[1] = {true, {0.25 * 32767.0, -32768.0}, {false, false, true}, {}};
+  keys[SDL_SCANCODE_S] = false;
+  c = mapper.map(states, keys);
+  // x: (0.25 - 0.15) / 0.85 = 2/17, then 0.5 x + 0.5 x^3
+  const double x = 0.1 / 0.85;
+  EXPECT_NEAR(c.value[at("trolley")], 0.5 * x + 0.5 * x * x * x, 1e-12);
+  EXPECT_EQ(c.value[at("hoist")], 1.0);   // the top of the window raises
+  EXPECT_EQ(c.value[at("unlock")], 1.0);  // right button
+}
+
 TEST(DeviceMapping, AToggleButtonStepsASwitchOnEachPress) {
   const sim::ControlTable table = sim::sts_control_table();
   DeviceMapping m;
@@ -159,6 +186,10 @@ TEST(DeviceMapping, BadMappingsNameFileLineAndField) {
   EXPECT_NE(
       error_of(head + "    - {control: hoist, device: s, axis: 1, curve: 2}\n").find("unknown key 'curve'"),
       std::string::npos);
+  EXPECT_NE(error_of("mapping:\n  name: x\n  devices:\n    - {id: m, mouse: true}\n  bindings:\n    - "
+                     "{control: hoist, device: m, axis: 2}\n")
+                .find("the mouse has axes 0 (x) and 1 (y)"),
+            std::string::npos);
   EXPECT_NE(error_of("mapping:\n  name: x\n  devices:\n    - {id: k, keyboard: true}\n  bindings:\n    - "
                      "{control: lock, device: k, key: Hyperspace}\n")
                 .find("'Hyperspace' is not a key SDL knows"),
@@ -202,7 +233,7 @@ TEST(DeviceMapping, EveryShippedMappingLoadsAndWritesBackTheSame) {
     }
     ++files;
   }
-  EXPECT_EQ(files, 5);
+  EXPECT_EQ(files, 5);  // keyboard.yaml includes the mouse
 }
 
 }  // namespace

@@ -17,7 +17,7 @@ std::string guid_of(SDL_JoystickGUID guid) {
 }
 
 bool matches(const DeviceMatch& m, const std::string& name, const std::string& guid) {
-  if (m.keyboard) return false;
+  if (m.window_device()) return false;
   if (!m.guid.empty() && SDL_strcasecmp(m.guid.c_str(), guid.c_str()) != 0) return false;
   if (!m.name.empty() && name.find(m.name) == std::string::npos) return false;
   return true;
@@ -46,6 +46,8 @@ DeviceInput::DeviceInput(const sim::ControlTable& table, DeviceMapping mapping)
   states_.resize(devices);
   unfit_.resize(devices);
   used_.resize(devices);
+  for (std::size_t d = 0; d < devices; ++d)
+    if (mapper_.mapping().devices[d].mouse) states_[d] = {false, {0.0, 0.0}, {false, false, false}, {}};
   for (const Binding& b : mapper_.mapping().bindings) {
     Used& u = used_[static_cast<std::size_t>(b.device)];
     std::vector<int>& list = b.source == Binding::Source::kAxis     ? u.axes
@@ -90,7 +92,7 @@ std::vector<DeviceInfo> DeviceInput::list() {
 bool DeviceInput::all_present(const DeviceMapping& mapping, bool keyboard) {
   SDL_JoystickUpdate();
   for (const DeviceMatch& d : mapping.devices) {
-    if (d.keyboard) {
+    if (d.window_device()) {
       if (!keyboard) return false;
       continue;
     }
@@ -109,6 +111,7 @@ sim::Controls DeviceInput::sample() {
   if (!lock.owns_lock()) return last_;  // maintain() is binding a device: the previous sample, one step old
   SDL_JoystickUpdate();
   for (std::size_t d = 0; d < bound_.size(); ++d) {
+    if (mapper_.mapping().devices[d].window_device()) continue;
     DeviceState& state = states_[d];
     SDL_Joystick* j = bound_[d].joystick;
     state.connected = j && SDL_JoystickGetAttached(j);
@@ -123,6 +126,20 @@ sim::Controls DeviceInput::sample() {
       state.hats[static_cast<std::size_t>(h)] = SDL_JoystickGetHat(j, h);
   }
   if (SDL_WasInit(SDL_INIT_VIDEO)) {
+    // the mouse across the station's window, as a device of two axes from its centre and three buttons
+    int x = 0, y = 0, w = 0, h = 0;
+    const Uint32 buttons = SDL_GetMouseState(&x, &y);
+    SDL_Window* window = SDL_GetMouseFocus();
+    if (window) SDL_GetWindowSize(window, &w, &h);
+    for (std::size_t d = 0; d < states_.size(); ++d) {
+      if (!mapper_.mapping().devices[d].mouse) continue;
+      DeviceState& m = states_[d];
+      m.connected = window && w > 0 && h > 0;
+      const auto raw = [](double n) { return n >= 0.0 ? n * 32767.0 : n * 32768.0; };  // a joystick's range
+      m.axes = {m.connected ? raw(2.0 * x / w - 1.0) : 0.0, m.connected ? raw(2.0 * y / h - 1.0) : 0.0};
+      m.buttons = {(buttons & SDL_BUTTON_LMASK) != 0, (buttons & SDL_BUTTON_MMASK) != 0,
+                   (buttons & SDL_BUTTON_RMASK) != 0};
+    }
     int keys = 0;
     const Uint8* pressed = SDL_GetKeyboardState(&keys);
     keyboard_.resize(static_cast<std::size_t>(keys));
@@ -156,7 +173,7 @@ void DeviceInput::maintain() {
   const DeviceMapping& mapping = mapper_.mapping();
   const int count = SDL_NumJoysticks();
   for (std::size_t d = 0; d < mapping.devices.size(); ++d) {
-    if (bound_[d].joystick || mapping.devices[d].keyboard) continue;
+    if (bound_[d].joystick || mapping.devices[d].window_device()) continue;
     // the nth joystick that matches this mapping device (in SDL's device order)
     int rank = 0, index = -1;
     std::string name;
@@ -230,7 +247,7 @@ int DeviceInput::missing_devices() const {
   const std::lock_guard lock(mutex_);
   int n = 0;
   for (std::size_t d = 0; d < bound_.size(); ++d)
-    n += !mapper_.mapping().devices[d].keyboard && bound_[d].joystick == nullptr;
+    n += !mapper_.mapping().devices[d].window_device() && bound_[d].joystick == nullptr;
   return n;
 }
 

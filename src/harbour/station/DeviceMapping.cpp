@@ -68,7 +68,7 @@ sim::Controls ControlMapper::map(const std::vector<DeviceState>& devices, const 
     const sim::ControlSpec& spec = table_[b.slot];
     const DeviceMatch& match = mapping_.devices[static_cast<std::size_t>(b.device)];
     const DeviceState* state = nullptr;
-    if (!match.keyboard) {
+    if (!match.keyboard) {  // a joystick, or the mouse (a state the input fills while there is a window)
       state = static_cast<std::size_t>(b.device) < devices.size()
                   ? &devices[static_cast<std::size_t>(b.device)]
                   : nullptr;
@@ -79,7 +79,7 @@ sim::Controls ControlMapper::map(const std::vector<DeviceState>& devices, const 
            static_cast<std::size_t>(b.index) < state->buttons.size()) &&
           (b.source != Binding::Source::kHat || static_cast<std::size_t>(b.index) < state->hats.size());
       if (!present) {
-        lost[slot] = true;
+        if (!match.mouse) lost[slot] = true;  // no window (yet) is not a lost device
         continue;
       }
     }

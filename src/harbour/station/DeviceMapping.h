@@ -17,7 +17,10 @@ struct DeviceMatch {
   std::string
       name;     ///< a part of the SDL device name ("" for any): "T.16000M" matches "Thrustmaster T.16000M"
   int nth = 0;  ///< 0: the first device that matches, 1: the second, ...
-  bool keyboard = false;  ///< the keyboard (and mouse buttons): always present where there is a window
+  bool keyboard = false;  ///< the keyboard: present where the station has a window
+  bool mouse = false;     ///< the mouse in the station's window: axes 0 (x) and 1 (y) across the window from
+                          ///< its centre, buttons 0 left, 1 middle, 2 right
+  bool window_device() const { return keyboard || mouse; }
 };
 
 /// Two-sided (min, centre, max) or one-sided (min, max: a pedal or throttle) raw axis calibration.

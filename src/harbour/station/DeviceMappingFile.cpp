@@ -60,6 +60,8 @@ DeviceMapping load_device_mapping(const io::YamlFile& f, const sim::ControlTable
     for (const DeviceMatch& other : m.devices)
       if (other.id == match.id) f.fail(d["id"], at + ".id", "'" + match.id + "' is declared twice");
     match.keyboard = f.flag(d, "keyboard", at, false);
+    match.mouse = f.flag(d, "mouse", at, false);
+    if (match.keyboard && match.mouse) f.fail(d, at, "a device is the keyboard or the mouse, not both");
     if (f.optional(d, "guid", at)) {
       match.guid = f.text(d, "guid", at);
       if (match.guid.size() != 32 ||
@@ -68,8 +70,8 @@ DeviceMapping load_device_mapping(const io::YamlFile& f, const sim::ControlTable
     }
     if (f.optional(d, "name", at)) match.name = f.text(d, "name", at);
     match.nth = static_cast<int>(f.number_or(d, "nth", at, 0.0, 0.0, 15.0));
-    if (!match.keyboard && match.guid.empty() && match.name.empty())
-      f.fail(d, at, "a device is matched by guid, name or both (or is the keyboard: keyboard: true)");
+    if (!match.window_device() && match.guid.empty() && match.name.empty())
+      f.fail(d, at, "a device is matched by guid, name or both (or is keyboard: true or mouse: true)");
     m.devices.push_back(match);
   }
   const YAML::Node bindings = f.sequence(root, "bindings", "mapping", 128);
@@ -102,6 +104,9 @@ DeviceMapping load_device_mapping(const io::YamlFile& f, const sim::ControlTable
       f.fail(e, at, "binds exactly one of axis, button, hat, key or keys");
     if (d->keyboard != (keys || key))
       f.fail(e, at, d->keyboard ? "the keyboard binds key or keys" : "key and keys bind only the keyboard");
+    if (d->mouse && (hat || (axis && f.integer(e, "axis", at, 0, 255) > 1) ||
+                     (button && f.integer(e, "button", at, 0, 255) > 2)))
+      f.fail(e, at, "the mouse has axes 0 (x) and 1 (y) and buttons 0 (left), 1 (middle), 2 (right)");
     if (axis) {
       b.source = Binding::Source::kAxis;
       b.index = static_cast<int>(f.integer(e, "axis", at, 0, 255));
@@ -173,6 +178,7 @@ std::string device_mapping_text(const DeviceMapping& m) {
   for (const DeviceMatch& d : m.devices) {
     out << "    - {id: " << d.id;
     if (d.keyboard) out << ", keyboard: true";
+    if (d.mouse) out << ", mouse: true";
     if (!d.guid.empty()) out << ", guid: \"" << d.guid << "\"";
     if (!d.name.empty()) out << ", name: " << quoted(d.name);
     if (d.nth) out << ", nth: " << d.nth;
