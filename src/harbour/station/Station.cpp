@@ -11,6 +11,7 @@ Station::Station(Session& session) : session_(session) {}
 
 Station::~Station() {
   stop();
+  if (input_) session_.loop().stop();  // the loop samples these devices: it stops before they go
 }
 
 void Station::use_devices(std::unique_ptr<DeviceInput> input) {
