@@ -140,7 +140,7 @@ TEST(MotionPlatform, TheCabsCuesDriveThePlatformOverUdp) {
     if (::recv(listener, buffer, sizeof buffer, 0) == static_cast<ssize_t>(io::kGenericPacketSize)) ++packets;
   const motion::PlatformState state = station.motion()->state();
   const long frames = station.motion()->frames();
-  const motion::PlatformPose pose = station.motion()->last_frame().pose;
+  const motion::PlatformPose pose = station.motion()->last_frame().pose;  // a copy, taken under its lock
   bool finite = true;
   for (const double d : pose.dof)
     finite = finite && std::isfinite(d);

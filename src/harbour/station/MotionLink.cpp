@@ -22,6 +22,7 @@ MotionLink::MotionLink(const io::PlatformFile& platform, const motion::WashoutSe
       park_time_s_(platform.sequencer.park_time_s) {}
 
 void MotionLink::update(RealTimeLoop& loop) {
+  const std::lock_guard lock(mutex_);
   const double now = now_s();
   if (now < next_s_) return;
   next_s_ += period_s_;
@@ -38,10 +39,16 @@ void MotionLink::update(RealTimeLoop& loop) {
 }
 
 void MotionLink::park_and_wait() {
-  driver_.park();
+  {
+    const std::lock_guard lock(mutex_);
+    driver_.park();
+  }
   const double until = now_s() + park_time_s_ + 0.5;
-  while (now_s() < until && driver_.state() != motion::PlatformState::kParked) {
-    driver_.tick(now_s());
+  while (now_s() < until && state() != motion::PlatformState::kParked) {
+    {
+      const std::lock_guard lock(mutex_);
+      driver_.tick(now_s());
+    }
     std::this_thread::sleep_for(std::chrono::duration<double>(period_s_));
   }
 }

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <memory>
+#include <mutex>
 
 #include "harbour/io/MotionFiles.h"
 #include "harbour/io/PlatformLink.h"
@@ -18,19 +19,33 @@ class MotionLink {
   MotionLink(const io::PlatformFile& platform, const motion::WashoutSettings& washout,
              const io::DriverSettings& driver);
 
-  void engage() { driver_.engage(); }
+  void engage() {
+    const std::lock_guard lock(mutex_);
+    driver_.engage();
+  }
   /// Parks the platform and keeps sending until it is down (the sequencer's park time).
   void park_and_wait();
   /// Called often by the station: one platform frame when its period has come.
   void update(RealTimeLoop& loop);
-  motion::PlatformState state() const { return driver_.state(); }
-  long frames() const { return frames_; }
-  const motion::PlatformFrame& last_frame() const { return last_; }
+  /// What it is doing (any thread).
+  motion::PlatformState state() const {
+    const std::lock_guard lock(mutex_);
+    return driver_.state();
+  }
+  long frames() const {
+    const std::lock_guard lock(mutex_);
+    return frames_;
+  }
+  motion::PlatformFrame last_frame() const {
+    const std::lock_guard lock(mutex_);
+    return last_;
+  }
 
  private:
   using Clock = std::chrono::steady_clock;
   double now_s() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
 
+  mutable std::mutex mutex_;  // the station's monitor updates; the console and tests look
   motion::MotionSystem motion_;
   io::PlatformDriver driver_;
   double period_s_;
