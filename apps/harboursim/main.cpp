@@ -6,6 +6,7 @@
 #include <string>
 
 #include "BulkDemo.h"
+#include "Screenshot.h"
 #include "StationRun.h"
 #include "StsRun.h"
 
@@ -86,6 +87,19 @@ int main(int argc, char** argv) {
       "--virtual-port", devices.virtual_port,
       "UDP port on loopback that moves the virtual joystick ('axis 1 -32768', 'button 0 1')");
 
+  harbour::apps::ScreenshotOptions shot;
+  double shot_time_of_day = -1.0, shot_visibility = -1.0;
+  std::string shot_size = "1280x720";
+  CLI::App* shot_cmd = app.add_subcommand("screenshot", "draw a moment of an exercise (headless) into a PNG");
+  shot_cmd->add_option("--exercise", shot.exercise, "exercise file or shipped name")->required();
+  shot_cmd->add_option("--at", shot.at_s, "seconds into the exercise (the autopilot drives there)")
+      ->check(CLI::Range(0.0, 3600.0));
+  shot_cmd->add_option("--view", shot.view, "cab or chase");
+  shot_cmd->add_option("--size", shot_size, "WIDTHxHEIGHT");
+  shot_cmd->add_option("--out", shot.out, "PNG file")->required();
+  shot_cmd->add_option("--time-of-day", shot_time_of_day, "hours, 0-24")->check(CLI::Range(0.0, 23.999));
+  shot_cmd->add_option("--visibility", shot_visibility, "metres")->check(CLI::Range(1.0, 1e5));
+
   harbour::apps::BulkDemoOptions demo;
   CLI::App* demo_cmd =
       app.add_subcommand("bulk-demo", "a grab digs coal from a yard heap into a rolling hold");
@@ -112,6 +126,16 @@ int main(int argc, char** argv) {
     if (*run_cmd) return harbour::apps::run_exercise(run);
     if (*station_cmd) return harbour::apps::run_station(live);
     if (*devices_cmd) return harbour::apps::run_devices(devices);
+    if (*shot_cmd) {
+      if (std::sscanf(shot_size.c_str(), "%dx%d", &shot.width, &shot.height) != 2 || shot.width < 16 ||
+          shot.height < 16 || shot.width > 8192 || shot.height > 8192) {
+        std::fprintf(stderr, "harboursim: --size %s: WIDTHxHEIGHT, 16-8192 each\n", shot_size.c_str());
+        return 2;
+      }
+      if (shot_time_of_day >= 0.0) shot.time_of_day_h = shot_time_of_day;
+      if (shot_visibility > 0.0) shot.visibility_m = shot_visibility;
+      return harbour::apps::take_screenshot(shot);
+    }
     if (*replay_cmd && take_over_s >= 0.0) {
       branch.exercise = replay_exercise;
       branch.autopilot = true;

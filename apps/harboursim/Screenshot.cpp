@@ -1,0 +1,51 @@
+#include "Screenshot.h"
+
+#include <cstdio>
+#include <stdexcept>
+
+#include "StsRun.h"
+#include "harbour/ig/ImageGenerator.h"
+#include "harbour/io/BoundedFile.h"
+#include "harbour/io/ExerciseFiles.h"
+#include "harbour/sim/Autopilot.h"
+
+namespace harbour::apps {
+
+int take_screenshot(const ScreenshotOptions& options) {
+  if (const std::string why = io::why_not_writable(options.out); !why.empty())
+    throw std::runtime_error("--out " + options.out + ": " + why);
+  if (options.view != "cab" && options.view != "chase")
+    throw std::runtime_error("--view " + options.view + ": one of cab, chase");
+  const sim::ExerciseSettings exercise = io::load_exercise(resolve_exercise(options.exercise));
+  sim::Simulation simulation(exercise.scenario);
+  sim::Autopilot pilot(exercise);
+  if (options.time_of_day_h) {
+    sim::InstructorCommand c;
+    c.kind = sim::InstructorCommand::Kind::kSetTimeOfDay;
+    c.value = *options.time_of_day_h;
+    simulation.command(c);
+  }
+  if (options.visibility_m) {
+    sim::InstructorCommand c;
+    c.kind = sim::InstructorCommand::Kind::kSetVisibility;
+    c.value = *options.visibility_m;
+    simulation.command(c);
+  }
+  while (simulation.time_s() < options.at_s && !simulation.diverged())
+    simulation.step(pilot.next(simulation));
+  ig::ImageGenerator generator(simulation.scene(),
+                               ig::load_visuals(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml"),
+                               options.width, options.height);
+  generator.update(*simulation.snapshot());
+  ig::View view;
+  view.kind = options.view == "cab" ? ig::View::Kind::kCab : ig::View::Kind::kChase;
+  generator.set_view(view);
+  generator.render();
+  if (!generator.write_png(options.out)) throw std::runtime_error(options.out + ": cannot be written");
+  std::printf("%s: %s at t=%.1f s, %s view, %dx%d (%s)\n", options.out.c_str(), exercise.name.c_str(),
+              simulation.time_s(), options.view.c_str(), options.width, options.height,
+              generator.renderer().c_str());
+  return 0;
+}
+
+}  // namespace harbour::apps

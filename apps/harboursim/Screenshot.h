@@ -1,0 +1,20 @@
+#pragma once
+
+#include <optional>
+#include <string>
+
+namespace harbour::apps {
+
+/// `harboursim screenshot`: the exercise driven by the autopilot to a moment, drawn by the image generator
+/// (headless) from a view, written as a PNG.
+struct ScreenshotOptions {
+  std::string exercise;
+  double at_s = 10.0;
+  std::string view = "cab";  ///< cab, chase
+  int width = 1280, height = 720;
+  std::string out;
+  std::optional<double> time_of_day_h, visibility_m;  ///< instructor settings applied at the start
+};
+int take_screenshot(const ScreenshotOptions& options);
+
+}  // namespace harbour::apps

@@ -1,0 +1,262 @@
+#include "harbour/ig/ImageGenerator.h"
+
+#include <osg/Fog>
+#include <osg/Geode>
+#include <osg/Geometry>
+#include <osg/Image>
+#include <osg/LightModel>
+#include <osg/LightSource>
+#include <osg/LineWidth>
+#include <osg/Material>
+#include <osg/MatrixTransform>
+#include <osg/ShapeDrawable>
+#include <osgDB/WriteFile>
+#include <osgViewer/Viewer>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include "harbour/ig/HeadlessContext.h"
+
+namespace harbour::ig {
+
+namespace {
+constexpr double kPi = std::numbers::pi;
+constexpr double kLatitude_rad = 40.0 * kPi / 180.0;  // a mid-latitude harbour at the equinox (assumed)
+constexpr double kWaterLevel_m = -2.0;                // below the quay's top (assumed)
+
+osg::Vec3 to_osg(const core::Vec3& v) {
+  return {static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z)};
+}
+
+osg::Matrixd to_osg(const core::Pose& p) {
+  // OSG multiplies row vectors: element (i, j) is the rotation's (j, i), the translation the last row
+  const core::Mat3& r = p.rotation;
+  return osg::Matrixd(r.m[0][0], r.m[1][0], r.m[2][0], 0.0, r.m[0][1], r.m[1][1], r.m[2][1], 0.0, r.m[0][2],
+                      r.m[1][2], r.m[2][2], 0.0, p.position.x, p.position.y, p.position.z, 1.0);
+}
+
+osg::Vec4 rgba(const core::Vec3& c) {
+  return {static_cast<float>(c.x), static_cast<float>(c.y), static_cast<float>(c.z), 1.0f};
+}
+
+// a flat rectangle at height z, cut into cells so that per-vertex fog and lighting vary over it
+osg::ref_ptr<osg::Geode> tessellated_plane(double x0, double x1, double y0, double y1, double z, double cell,
+                                           const core::Vec3& color) {
+  osg::ref_ptr<osg::Geometry> geometry = new osg::Geometry();
+  osg::ref_ptr<osg::Vec3Array> vertices = new osg::Vec3Array();
+  osg::ref_ptr<osg::Vec3Array> normals = new osg::Vec3Array();
+  const int nx = std::max(1, static_cast<int>((x1 - x0) / cell)),
+            ny = std::max(1, static_cast<int>((y1 - y0) / cell));
+  for (int i = 0; i < nx; ++i)
+    for (int j = 0; j < ny; ++j) {
+      const double xa = x0 + (x1 - x0) * i / nx, xb = x0 + (x1 - x0) * (i + 1) / nx;
+      const double ya = y0 + (y1 - y0) * j / ny, yb = y0 + (y1 - y0) * (j + 1) / ny;
+      for (const auto& [x, y] :
+           {std::pair{xa, ya}, std::pair{xb, ya}, std::pair{xb, yb}, std::pair{xa, yb}}) {
+        vertices->push_back(osg::Vec3(static_cast<float>(x), static_cast<float>(y), static_cast<float>(z)));
+        normals->push_back(osg::Vec3(0, 0, 1));
+      }
+    }
+  geometry->setVertexArray(vertices);
+  geometry->setNormalArray(normals, osg::Array::BIND_PER_VERTEX);
+  osg::ref_ptr<osg::Vec4Array> colors = new osg::Vec4Array();
+  colors->push_back(rgba(color));
+  geometry->setColorArray(colors, osg::Array::BIND_OVERALL);
+  geometry->addPrimitiveSet(new osg::DrawArrays(GL_QUADS, 0, static_cast<int>(vertices->size())));
+  osg::ref_ptr<osg::Geode> geode = new osg::Geode();
+  geode->addDrawable(geometry);
+  return geode;
+}
+
+// the sun at time of day t (equinox, kLatitude): elevation and the direction towards it (x east, y north)
+core::Vec3 sun_direction(double t_h, double& elevation) {
+  const double hour_angle = (t_h - 12.0) / 24.0 * 2.0 * kPi;
+  const double sin_e = std::cos(kLatitude_rad) * std::cos(hour_angle);
+  elevation = std::asin(sin_e);
+  // horizontal part: east in the morning, south at noon, west in the evening
+  const core::Vec3 d{-std::sin(hour_angle), -std::sin(kLatitude_rad) * std::cos(hour_angle), sin_e};
+  const double n = std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
+  return {d.x / n, d.y / n, d.z / n};
+}
+
+// the sky at the horizon for a sun elevation: day blue, dusk orange, night dark blue
+core::Vec3 sky_color(double elevation) {
+  const core::Vec3 day{0.45, 0.63, 0.90}, dusk{0.80, 0.45, 0.30}, night{0.01, 0.015, 0.04};
+  const double deg = elevation * 180.0 / kPi;
+  const auto mix = [](const core::Vec3& a, const core::Vec3& b, double f) {
+    f = std::clamp(f, 0.0, 1.0);
+    return core::Vec3{a.x + (b.x - a.x) * f, a.y + (b.y - a.y) * f, a.z + (b.z - a.z) * f};
+  };
+  if (deg >= 10.0) return day;
+  if (deg >= 0.0) return mix(dusk, day, deg / 10.0);
+  return mix(night, dusk, (deg + 8.0) / 8.0);
+}
+}  // namespace
+
+ImageGenerator::ImageGenerator(const sim::SceneDescription& scene, std::map<std::string, Visual> visuals,
+                               int width, int height)
+    : visuals_(std::move(visuals)), width_(width), height_(height) {
+  context_ = std::make_unique<HeadlessContext>(width, height);
+  viewer_ = std::make_unique<osgViewer::Viewer>();
+  viewer_->setUpViewerAsEmbeddedInWindow(0, 0, width, height);
+  viewer_->setThreadingModel(osgViewer::Viewer::SingleThreaded);
+  viewer_->setLightingMode(osg::View::NO_LIGHT);
+  build(scene);
+  viewer_->setSceneData(root_);
+  image_ = new osg::Image;
+  image_->allocateImage(width, height, 1, GL_RGB, GL_UNSIGNED_BYTE);
+  viewer_->getCamera()->attach(osg::Camera::COLOR_BUFFER, image_.get());
+  viewer_->realize();
+}
+
+ImageGenerator::~ImageGenerator() = default;
+
+std::string ImageGenerator::renderer() const {
+  return context_->renderer();
+}
+
+void ImageGenerator::build(const sim::SceneDescription& scene) {
+  root_ = new osg::Group;
+  osg::StateSet* state = root_->getOrCreateStateSet();
+  sun_ = new osg::LightSource;
+  sun_->getLight()->setLightNum(0);
+  root_->addChild(sun_);
+  state->setMode(GL_LIGHTING, osg::StateAttribute::ON);
+  state->setMode(GL_LIGHT0, osg::StateAttribute::ON);
+  state->setMode(GL_NORMALIZE, osg::StateAttribute::ON);
+  osg::ref_ptr<osg::Material> material = new osg::Material();
+  material->setColorMode(osg::Material::AMBIENT_AND_DIFFUSE);  // the geometry's colours, lit
+  state->setAttribute(material);
+  fog_ = new osg::Fog;
+  fog_->setMode(osg::Fog::EXP);
+  fog_->setFogCoordinateSource(osg::Fog::FRAGMENT_DEPTH);
+  state->setAttributeAndModes(fog_, osg::StateAttribute::ON);
+
+  // the quay (its top at z = 0, up to its edge at x = 18 m) and the harbour's water beyond
+  root_->addChild(tessellated_plane(-300.0, 18.0, -400.0, 400.0, 0.0, 20.0, {0.42, 0.42, 0.40}));
+  root_->addChild(tessellated_plane(18.0, 900.0, -900.0, 900.0, kWaterLevel_m, 30.0, {0.05, 0.16, 0.22}));
+
+  std::size_t index = 0;
+  for (const sim::SceneDescription::Entity& e : scene.entities) {
+    osg::ref_ptr<osg::MatrixTransform> transform = new osg::MatrixTransform();
+    const auto look = visuals_.find(e.visual);
+    osg::ref_ptr<osg::Geode> geode = new osg::Geode();
+    if (look != visuals_.end()) {
+      for (const VisualPart& part : look->second.parts) {
+        const core::Vec3 size = part.size_m ? *part.size_m : e.half_extents_m * 2.0;
+        osg::ref_ptr<osg::ShapeDrawable> box =
+            new osg::ShapeDrawable(new osg::Box(to_osg(part.centre_m), static_cast<float>(size.x),
+                                                static_cast<float>(size.y), static_cast<float>(size.z)));
+        const core::Vec3 color =
+            part.livery ? look->second.liveries[index % look->second.liveries.size()] : part.color;
+        box->setColor(rgba(color));
+        geode->addDrawable(box);
+      }
+    }
+    transform->addChild(geode);
+    root_->addChild(transform);
+    entities_.push_back(transform);
+    ++index;
+  }
+  osg::ref_ptr<osg::Geode> ropes = new osg::Geode();
+  ropes->getOrCreateStateSet()->setAttributeAndModes(new osg::LineWidth(2.0f));
+  ropes->getOrCreateStateSet()->setMode(GL_LIGHTING, osg::StateAttribute::OFF);
+  for (int r = 0; r < scene.rope_count; ++r) {
+    osg::ref_ptr<osg::Geometry> geometry = new osg::Geometry();
+    geometry->setUseDisplayList(false);
+    geometry->setUseVertexBufferObjects(true);
+    geometry->setDataVariance(osg::Object::DYNAMIC);
+    geometry->setVertexArray(new osg::Vec3Array);
+    osg::ref_ptr<osg::Vec4Array> colors = new osg::Vec4Array();
+    colors->push_back(osg::Vec4(0.08f, 0.08f, 0.08f, 1.0f));
+    geometry->setColorArray(colors, osg::Array::BIND_OVERALL);
+    geometry->addPrimitiveSet(new osg::DrawArrays(GL_LINE_STRIP, 0, 0));
+    ropes->addDrawable(geometry);
+    ropes_.push_back(geometry);
+  }
+  root_->addChild(ropes);
+}
+
+void ImageGenerator::update(const sim::Snapshot& s) {
+  for (int n = 0; n < s.entity_count; ++n) {
+    const sim::Snapshot::Entity& e = s.entities[static_cast<std::size_t>(n)];
+    if (e.index < entities_.size()) entities_[e.index]->setMatrix(to_osg(e.pose));
+  }
+  for (std::size_t r = 0; r < ropes_.size(); ++r) {
+    auto* vertices = static_cast<osg::Vec3Array*>(ropes_[r]->getVertexArray());
+    vertices->clear();
+    if (static_cast<int>(r) < s.rope_count)
+      for (int p = 0; p < s.rope_points[r]; ++p)
+        vertices->push_back(to_osg(s.points[s.rope_first[r] + static_cast<std::size_t>(p)]));
+    vertices->dirty();
+    static_cast<osg::DrawArrays*>(ropes_[r]->getPrimitiveSet(0))
+        ->setCount(static_cast<int>(vertices->size()));
+    ropes_[r]->dirtyBound();
+  }
+  // the sun and the sky from the time of day; fog from the visibility (Koschmieder: 2 % contrast at V)
+  const core::Vec3 to_sun = sun_direction(s.time_of_day_h, sun_elevation_);
+  const double daylight = std::clamp(std::sin(sun_elevation_) * 2.5, 0.0, 1.0);
+  const core::Vec3 sky = sky_color(sun_elevation_);
+  osg::Light* light = sun_->getLight();
+  light->setPosition(osg::Vec4(to_osg(to_sun), 0.0f));
+  const float diffuse = static_cast<float>(0.85 * daylight);
+  const float ambient = static_cast<float>(0.08 + 0.30 * daylight);
+  light->setDiffuse(osg::Vec4(diffuse, diffuse * 0.97f, diffuse * 0.92f, 1.0f));
+  light->setAmbient(osg::Vec4(ambient, ambient, ambient * 1.1f, 1.0f));
+  viewer_->getCamera()->setClearColor(rgba(sky));
+  fog_->setColor(rgba(sky));
+  fog_->setDensity(static_cast<float>(3.912 / std::max(s.visibility_m, 1.0)));
+  cab_ = s.cab;
+}
+
+void ImageGenerator::set_view(const View& view) {
+  view_ = view;
+}
+
+void ImageGenerator::place_camera() {
+  osg::Camera* camera = viewer_->getCamera();
+  const double aspect = static_cast<double>(width_) / height_;
+  camera->setProjectionMatrixAsPerspective(view_.fov_vertical_rad * 180.0 / kPi, aspect, 0.5, 6000.0);
+  camera->setViewport(0, 0, width_, height_);
+  const core::Pose& cab = cab_.pose;
+  if (view_.kind == View::Kind::kCab) {
+    // the eye in the cab (plus the head's offset), looking along the cab's x turned by the view's offsets
+    const core::Vec3 eye = cab.to_parent(cab_.eye_m + cab_.head_offset_m);
+    const double yaw = view_.yaw_rad + cab_.head_yaw_pitch_roll_rad.x,
+                 pitch = view_.pitch_rad + cab_.head_yaw_pitch_roll_rad.y;
+    const core::Vec3 local{std::cos(pitch) * std::cos(yaw), std::cos(pitch) * std::sin(yaw), std::sin(pitch)};
+    const core::Vec3 forward = cab.direction_to_parent(local);
+    const core::Vec3 up = cab.direction_to_parent({0.0, 0.0, 1.0});
+    camera->setViewMatrixAsLookAt(to_osg(eye), to_osg(eye + forward), to_osg(up));
+  } else {
+    const core::Vec3 target = cab.position;
+    const core::Vec3 back = cab.direction_to_parent({-1.0, -0.8, 0.0});
+    const core::Vec3 eye =
+        target + back * (view_.chase_distance_m / 1.28) + core::Vec3{0.0, 0.0, view_.chase_distance_m * 0.25};
+    camera->setViewMatrixAsLookAt(to_osg(eye), to_osg(target + core::Vec3{0, 0, -20.0}), osg::Vec3(0, 0, 1));
+  }
+}
+
+const osg::Image& ImageGenerator::render() {
+  place_camera();
+  viewer_->frame();
+  return *image_;
+}
+
+bool ImageGenerator::write_png(const std::string& path) const {
+  return osgDB::writeImageFile(*image_, path);  // the PNG writer turns OpenGL's bottom-first rows over
+}
+
+std::optional<std::pair<double, double>> ImageGenerator::project(const core::Vec3& world) const {
+  const osg::Camera* camera = viewer_->getCamera();
+  const osg::Vec4d clip =
+      osg::Vec4d(world.x, world.y, world.z, 1.0) * camera->getViewMatrix() * camera->getProjectionMatrix();
+  if (clip.w() <= 0.0) return std::nullopt;
+  const double x = clip.x() / clip.w(), y = clip.y() / clip.w();
+  return std::pair{(x + 1.0) / 2.0 * width_, (1.0 - y) / 2.0 * height_};
+}
+
+}  // namespace harbour::ig

@@ -1,0 +1,81 @@
+#pragma once
+
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <osg/ref_ptr>
+
+#include "harbour/ig/Visuals.h"
+#include "harbour/sim/Snapshot.h"
+
+namespace osg {
+class Image;
+class Group;
+class MatrixTransform;
+class Geometry;
+class Fog;
+class LightSource;
+}  // namespace osg
+namespace osgViewer {
+class Viewer;
+}
+
+namespace harbour::ig {
+
+class HeadlessContext;
+
+/// Where a view looks from.
+struct View {
+  enum class Kind { kCab, kChase };
+  Kind kind = Kind::kCab;
+  double yaw_rad = 0.0, pitch_rad = -1.3,
+         roll_rad = 0.0;           ///< cab: offset from the cab's forward axis (down 75 deg)
+  double fov_vertical_rad = 0.75;  ///< the aspect ratio comes from the image
+  double chase_distance_m = 90.0;  ///< chase: from behind and above the cab, at it
+};
+
+/// The image generator: reads only a SceneDescription (once) and Snapshots (every frame), and draws the
+/// looks the visual data give each entity's key; no machine-specific code. Headless (EGL) for tests,
+/// screenshots and videos.
+class ImageGenerator {
+ public:
+  ImageGenerator(const sim::SceneDescription& scene, std::map<std::string, Visual> visuals, int width,
+                 int height);
+  ~ImageGenerator();
+
+  /// Entity poses, ropes and the environment (sun, sky, fog) from the published state.
+  void update(const sim::Snapshot& snapshot);
+  void set_view(const View& view);
+  /// Draws one frame and returns it (RGB, bottom row first as OpenGL reads it).
+  const osg::Image& render();
+  /// Writes the last frame as a PNG; false if it could not be written.
+  bool write_png(const std::string& path) const;
+  /// Where a world point lands in the image (pixels from the top-left), if in front of the camera.
+  std::optional<std::pair<double, double>> project(const core::Vec3& world) const;
+  /// The sun's elevation above the horizon [rad] at the last update.
+  double sun_elevation_rad() const { return sun_elevation_; }
+  std::string renderer() const;
+
+ private:
+  void build(const sim::SceneDescription& scene);
+  void place_camera();
+
+  std::map<std::string, Visual> visuals_;
+  int width_, height_;
+  std::unique_ptr<HeadlessContext> context_;
+  std::unique_ptr<osgViewer::Viewer> viewer_;
+  osg::ref_ptr<osg::Group> root_;
+  std::vector<osg::ref_ptr<osg::MatrixTransform>> entities_;
+  std::vector<osg::ref_ptr<osg::Geometry>> ropes_;
+  osg::ref_ptr<osg::Fog> fog_;
+  osg::ref_ptr<osg::LightSource> sun_;
+  osg::ref_ptr<osg::Image> image_;
+  View view_;
+  sim::Snapshot::Cab cab_{};
+  double sun_elevation_ = 1.0;
+};
+
+}  // namespace harbour::ig

@@ -1,0 +1,55 @@
+#include "harbour/ig/Visuals.h"
+
+#include "harbour/io/YamlFile.h"
+
+namespace harbour::ig {
+
+namespace {
+core::Vec3 color_of(const io::YamlFile& f, const YAML::Node& node, const std::string& field) {
+  const core::Vec3 c = f.vector3(node, field, 1.0);
+  if (c.x < 0 || c.y < 0 || c.z < 0) f.fail(node, field, "colour components are 0-1");
+  return c;
+}
+}  // namespace
+
+std::map<std::string, Visual> load_visuals(const std::string& path) {
+  const io::YamlFile f = io::YamlFile::load(path);
+  std::map<std::string, Visual> out;
+  const YAML::Node list = f.sequence(f.root(), "visuals", "", 1000);
+  for (std::size_t n = 0; n < list.size(); ++n) {
+    const std::string at = "visuals[" + std::to_string(n) + "]";
+    const YAML::Node v = list[n];
+    const std::string key = f.text(v, "key", at);
+    if (out.count(key)) f.fail(v["key"], at + ".key", "'" + key + "' is declared twice");
+    Visual visual;
+    if (f.optional(v, "liveries", at)) {
+      const YAML::Node liveries = f.sequence(v, "liveries", at, 64);
+      for (std::size_t k = 0; k < liveries.size(); ++k)
+        visual.liveries.push_back(color_of(f, liveries[k], at + ".liveries[" + std::to_string(k) + "]"));
+    }
+    const YAML::Node parts = f.sequence(v, "parts", at, 256);
+    for (std::size_t k = 0; k < parts.size(); ++k) {
+      const std::string pat = at + ".parts[" + std::to_string(k) + "]";
+      const YAML::Node p = parts[k];
+      VisualPart part;
+      const YAML::Node size = f.required(p, "size", pat);
+      if (!(size.IsScalar() && size.Scalar() == "entity"))
+        part.size_m = f.vector3(size, pat + ".size", 1000.0);
+      part.centre_m = f.vector3(f.required(p, "at", pat), pat + ".at", 1000.0);
+      const YAML::Node color = f.required(p, "color", pat);
+      if (color.IsScalar() && color.Scalar() == "livery") {
+        if (visual.liveries.empty())
+          f.fail(color, pat + ".color", "a livery colour needs the look's liveries");
+        part.livery = true;
+      } else {
+        part.color = color_of(f, color, pat + ".color");
+      }
+      visual.parts.push_back(part);
+    }
+    out[key] = visual;
+  }
+  f.check_unknown_keys();
+  return out;
+}
+
+}  // namespace harbour::ig

@@ -1,0 +1,29 @@
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "harbour/core/Vec3.h"
+
+namespace harbour::ig {
+
+/// One box of a look, in the entity's frame.
+struct VisualPart {
+  std::optional<core::Vec3> size_m;  ///< full size; empty: the entity's own size
+  core::Vec3 centre_m;
+  core::Vec3 color{0.5, 0.5, 0.5};  ///< linear RGB
+  bool livery = false;              ///< coloured by the entity's livery instead
+};
+
+/// What a visual key looks like (data/visuals/*.yaml).
+struct Visual {
+  std::vector<VisualPart> parts;
+  std::vector<core::Vec3> liveries;  ///< colours picked by entity index
+};
+
+/// Every look by its key. Errors name file, line and field.
+std::map<std::string, Visual> load_visuals(const std::string& path);
+
+}  // namespace harbour::ig

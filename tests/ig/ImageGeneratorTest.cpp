@@ -1,0 +1,234 @@
+// The image generator drawing hand-made published states (it reads nothing else): measured properties of
+// the pictures, headless through EGL on llvmpipe.
+#include "harbour/ig/ImageGenerator.h"
+
+#include <gtest/gtest.h>
+
+#include <osg/Image>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+
+#include "harbour/core/Vec3.h"
+#include "harbour/io/DataError.h"
+#include "harbour/io/ExerciseFiles.h"
+#include "harbour/sim/Simulation.h"
+
+namespace harbour::ig {
+namespace {
+
+constexpr int kWidth = 320, kHeight = 240;
+
+// a scene of its own: a "camera mast" whose cab the view rides, and two 40 ft boxes
+sim::SceneDescription scene() {
+  sim::SceneDescription d;
+  d.machine = "test";
+  d.entities.push_back({"mast", "none", {}});
+  d.entities.push_back({"near box", "test.box", {6.1, 1.22, 1.3}});
+  d.entities.push_back({"far box", "test.box", {6.1, 1.22, 1.3}});
+  d.rope_count = 1;
+  return d;
+}
+
+std::map<std::string, Visual> looks() {
+  Visual box;
+  VisualPart
+      part;  // a box end on: a panel square to the view, so its pixels centre on its centre's projection
+  part.size_m = core::Vec3{0.2, 2.44, 2.6};
+  part.color = {0.9, 0.1, 0.1};
+  box.parts.push_back(part);
+  return {{"test.box", box}};
+}
+
+// the cab at 10 m looking along +x, level; boxes ahead at `near_x` and `far_x`, lifted into the sky's view
+sim::Snapshot state(double near_x, double far_x, double visibility_m, double time_of_day_h) {
+  sim::Snapshot s;
+  s.time_of_day_h = time_of_day_h;
+  s.visibility_m = visibility_m;
+  s.cab.pose.position = {0.0, 0.0, 10.0};
+  s.entity_count = 3;
+  s.entities[0] = {0, 0, {}};
+  s.entities[1] = {1, 0, {core::Mat3::identity(), {near_x, 0.0, 14.0}}};
+  s.entities[2] = {2, 0, {core::Mat3::identity(), {far_x, 0.0, 14.0 + (far_x - near_x) * 0.04}}};
+  return s;
+}
+
+View level() {
+  View v;
+  v.pitch_rad = 0.0;
+  v.fov_vertical_rad = 0.6;
+  return v;
+}
+
+osg::Vec3 pixel(const osg::Image& image, double x, double y_from_top) {
+  const int col = std::clamp(static_cast<int>(std::lround(x)), 0, image.s() - 1);
+  const int row = std::clamp(image.t() - 1 - static_cast<int>(std::lround(y_from_top)), 0, image.t() - 1);
+  const unsigned char* p = image.data(col, row);
+  return {p[0] / 255.0f, p[1] / 255.0f, p[2] / 255.0f};
+}
+
+double luminance(const osg::Vec3& c) {
+  return 0.2126 * c.x() + 0.7152 * c.y() + 0.0722 * c.z();
+}
+
+double mean_luminance(const osg::Image& image) {
+  double sum = 0.0;
+  for (int y = 0; y < image.t(); ++y)
+    for (int x = 0; x < image.s(); ++x)
+      sum += luminance(pixel(image, x, y));
+  return sum / (image.s() * image.t());
+}
+
+TEST(ImageGenerator, TheSkyIsBrighterAtNoonThanAtDuskAndDarkAtNight) {
+  ImageGenerator ig(scene(), looks(), kWidth, kHeight);
+  ig.set_view(level());
+  double noon = 0, dusk = 0, night = 0;
+  for (auto [t, out] : {std::pair{12.0, &noon}, std::pair{18.3, &dusk}, std::pair{23.0, &night}}) {
+    ig.update(state(40.0, 200.0, 20000.0, t));
+    *out = mean_luminance(ig.render());
+  }
+  std::printf("mean luminance: noon %.3f, dusk %.3f, night %.3f (%s)\n", noon, dusk, night,
+              ig.renderer().c_str());
+  EXPECT_GT(noon, dusk * 1.3);
+  EXPECT_GT(dusk, night * 3.0);
+  EXPECT_LT(night, 0.05);
+}
+
+TEST(ImageGenerator, FogHidesAFarBoxMoreThanANearOne) {
+  ImageGenerator ig(scene(), looks(), kWidth, kHeight);
+  ig.set_view(level());
+  const auto contrast = [&](double visibility) {
+    ig.update(state(30.0, 250.0, visibility, 12.0));
+    const osg::Image& image = ig.render();
+    const auto near = ig.project({30.0, 0.0, 14.0}), far = ig.project({250.0, 0.0, 14.0 + 220.0 * 0.04});
+    const osg::Vec3 sky = pixel(image, 5, 5);
+    const auto c = [&](const std::pair<double, double>& at) {
+      const osg::Vec3 p = pixel(image, at.first, at.second);
+      return (p - sky).length() / std::max(sky.length(), 1e-3f);
+    };
+    return std::pair{c(*near), c(*far)};
+  };
+  const auto [near_clear, far_clear] = contrast(20000.0);
+  const auto [near_fog, far_fog] = contrast(300.0);
+  std::printf("contrast against the sky: clear near %.3f far %.3f; fog 300 m near %.3f far %.3f\n",
+              near_clear, far_clear, near_fog, far_fog);
+  EXPECT_GT(far_clear, 0.5);              // both stand out in clear air
+  EXPECT_GT(near_fog, 0.5 * near_clear);  // at 30 m in 300 m fog a box keeps most of its contrast
+  EXPECT_LT(far_fog, 0.25 * far_clear);   // at 250 m it has nearly gone (Koschmieder: e^(-3.9 250/300))
+  EXPECT_LT(far_fog / far_clear, near_fog / near_clear);
+}
+
+TEST(ImageGenerator, MovingAContainerInThePublishedStateMovesItsPixelsWhereProjectionSays) {
+  ImageGenerator ig(scene(), looks(), kWidth, kHeight);
+  ig.set_view(level());
+  const auto red_centroid = [&](const osg::Image& image) {
+    double sx = 0, sy = 0, n = 0;
+    for (int y = 0; y < image.t(); ++y)
+      for (int x = 0; x < image.s(); ++x) {
+        const osg::Vec3 p = pixel(image, x, y);
+        if (p.x() > 0.3 && p.x() > 2.5 * p.y() && p.x() > 2.5 * p.z()) {
+          sx += x;
+          sy += y;
+          ++n;
+        }
+      }
+    return std::tuple{sx / std::max(n, 1.0), sy / std::max(n, 1.0), n};
+  };
+  sim::Snapshot s = state(40.0, 5000.0, 20000.0, 12.0);  // the far box out of sight
+  ig.update(s);
+  const auto [x0, y0, n0] = red_centroid(ig.render());
+  const auto p0 = ig.project({40.0, 0.0, 14.0});
+  s.entities[1].pose.position = {40.0, 6.0, 11.0};  // 6 m to the left, 3 m lower
+  ig.update(s);
+  const auto [x1, y1, n1] = red_centroid(ig.render());
+  const auto p1 = ig.project({40.0, 6.0, 11.0});
+  ASSERT_GT(n0, 50.0);
+  ASSERT_GT(n1, 50.0);
+  EXPECT_NEAR(x0, p0->first, 2.0);
+  EXPECT_NEAR(y0, p0->second, 2.0);
+  EXPECT_NEAR(x1, p1->first, 2.0);
+  EXPECT_NEAR(y1, p1->second, 2.0);
+  EXPECT_LT(x1, x0 - 20.0);  // left in the picture
+  EXPECT_GT(y1, y0 + 10.0);  // and lower
+}
+
+TEST(ImageGenerator, ARopesOscillationMovesItsPixels) {
+  ImageGenerator ig(scene(), looks(), kWidth, kHeight);
+  ig.set_view(level());
+  sim::Snapshot s = state(40.0, 5000.0, 20000.0, 12.0);
+  s.entity_count = 1;  // the rope alone
+  s.rope_count = 1;
+  s.rope_first[0] = 0;
+  s.rope_points[0] = 21;
+  const auto hang = [&](double amplitude) -> const osg::Image& {
+    for (int k = 0; k <= 20; ++k) {
+      const double f = k / 20.0;
+      s.points[static_cast<std::size_t>(k)] = {30.0, amplitude * std::sin(std::numbers::pi * f),
+                                               18.0 - 8.0 * f};
+    }
+    ig.update(s);
+    return ig.render();
+  };
+  const osg::Image& straight = hang(0.0);
+  const auto mid_straight = ig.project({30.0, 0.0, 14.0});
+  const double dark_straight = luminance(pixel(straight, mid_straight->first, mid_straight->second));
+  const osg::Image& bent = hang(1.5);  // the wave's midspan displacement
+  const auto mid_bent = ig.project({30.0, 1.5, 14.0});
+  const double at_old = luminance(pixel(bent, mid_straight->first, mid_straight->second));
+  const double at_new = luminance(pixel(bent, mid_bent->first, mid_bent->second));
+  EXPECT_LT(dark_straight, 0.2);  // the rope is drawn where it hangs
+  EXPECT_LT(at_new, 0.2);         // and where it swung to
+  EXPECT_GT(at_old, 0.4);         // the sky shows where it was
+}
+
+}  // namespace
+}  // namespace harbour::ig
+
+namespace harbour::ig {
+namespace {
+
+TEST(Visuals, EveryLookTheShippedExercisesPublishIsInTheData) {
+  const auto visuals = load_visuals(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml");
+  for (const char* name : {"sts_discharge", "sts_bay12_hold", "sts_bay12_deck"}) {
+    const sim::ExerciseSettings e =
+        io::load_exercise(std::string(HARBOUR_DATA_DIR) + "/exercises/" + name + ".yaml");
+    for (const sim::SceneDescription::Entity& entity : sim::Simulation(e.scenario).scene().entities)
+      EXPECT_TRUE(visuals.count(entity.visual)) << name << ": no look for '" << entity.visual << "'";
+  }
+}
+
+TEST(Visuals, BadLooksNameFileLineAndField) {
+  const std::string path = (std::filesystem::temp_directory_path() / "harbour_looks.yaml").string();
+  const auto error = [&](const std::string& text) {
+    { std::ofstream(path) << text; }
+    try {
+      load_visuals(path);
+    } catch (const io::DataError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(
+      error("visuals:\n  - key: a\n    parts:\n      - {size: entity, at: [0, 0, 0], color: [1, 0, 0]}\n"),
+      "");
+  EXPECT_NE(
+      error("visuals:\n  - key: a\n    parts:\n      - {size: entity, at: [0, 0, 0], color: livery}\n")
+          .find("harbour_looks.yaml:4: visuals[0].parts[0].color: a livery colour needs the look's liveries"),
+      std::string::npos);
+  EXPECT_NE(
+      error("visuals:\n  - key: a\n    parts:\n      - {size: [1, 2], at: [0, 0, 0], color: [1, 0, 0]}\n")
+          .find("visuals[0].parts[0].size"),
+      std::string::npos);
+  EXPECT_NE(
+      error("visuals:\n  - key: a\n    parts:\n      - {size: entity, at: [0, 0, 0], color: [2, 0, 0]}\n")
+          .find("color"),
+      std::string::npos);
+  EXPECT_NE(
+      error("visuals:\n  - key: a\n    parts: []\n  - key: a\n    parts: []\n").find("'a' is declared twice"),
+      std::string::npos);
+}
+
+}  // namespace
+}  // namespace harbour::ig
