@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <thread>
 
+#include "harbour/ig/RenderThread.h"
 #include "harbour/io/RecordingFile.h"
 #include "harbour/sim/Autopilot.h"
 #include "harbour/station/Session.h"
@@ -65,6 +66,37 @@ TEST(RealTimeLoop, ASixtySecondLiveRunKeepsOneKilohertz) {
   EXPECT_GE(replay.checkpoints_checked, 59);
   EXPECT_FALSE(replay.first_mismatch.has_value());
   std::filesystem::remove(options.record);
+}
+
+// The image generator drawing the cab view as fast as it can beside the loop: the step keeps its time.
+TEST(RealTimeLoop, TheImageGeneratorDrawingAlongsideDoesNotHoldTheStepBack) {
+  const sim::ExerciseSettings exercise = scenes::sts_discharge_exercise(HARBOUR_DATA_DIR);
+  SessionOptions options;
+  options.trainee = "t1";
+  options.database = fresh_database("harbour_station_render.db");
+  Session session(exercise, options);
+  sim::Autopilot pilot(exercise);
+  session.loop().set_pilot([&](const sim::Simulation& s) { return pilot.next(s); });
+  ig::RenderThread render(
+      session.simulation().scene(), ig::load_visuals(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml"),
+      1280, 720, ig::View{}, [&] { return session.loop().latest_snapshot(kImageGeneratorReader); });
+  session.start();
+  std::this_thread::sleep_for(std::chrono::seconds(20));
+  const double fps = render.fps();
+  const long frames = render.frames();
+  render.stop();
+  const SessionResult result = session.finish(true);
+  const LoopStats& s = result.loop;
+  std::printf(
+      "20 s live with the cab view drawn at 1280x720: %.1f fps (%ld frames); %lld ticks, %lld late, %lld "
+      "given up, longest tick %.2f ms, real-time factor %.4f\n",
+      fps, frames, static_cast<long long>(s.ticks), static_cast<long long>(s.late_ticks),
+      static_cast<long long>(s.skipped_ticks), s.longest_tick_s * 1e3, s.real_time_factor);
+  EXPECT_EQ(render.error(), "");
+  EXPECT_GT(frames, 100);  // it does draw (>= 5 fps)
+  EXPECT_EQ(s.skipped_ticks, 0);
+  EXPECT_LT(static_cast<double>(s.late_ticks), 0.02 * static_cast<double>(s.ticks));
+  EXPECT_NEAR(s.real_time_factor, 1.0, 0.01);
 }
 
 }  // namespace

@@ -1,0 +1,75 @@
+#include "harbour/ig/RenderThread.h"
+
+#include <sched.h>
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+
+#include <chrono>
+
+namespace harbour::ig {
+
+RenderThread::RenderThread(sim::SceneDescription scene, std::map<std::string, Visual> visuals, int width,
+                           int height, View view, Source source, FrameSink sink, double max_fps)
+    : source_(std::move(source)), sink_(std::move(sink)), max_fps_(max_fps) {
+  thread_ = std::thread([this, scene = std::move(scene), visuals = std::move(visuals), width, height,
+                         view]() mutable { run(std::move(scene), std::move(visuals), width, height, view); });
+}
+
+RenderThread::~RenderThread() {
+  stop();
+}
+
+void RenderThread::stop() {
+  running_ = false;
+  if (thread_.joinable()) thread_.join();
+}
+
+double RenderThread::fps() const {
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  return s > 0.0 ? static_cast<double>(frames_.load()) / s : 0.0;
+}
+
+std::string RenderThread::error() const {
+  const std::lock_guard lock(error_mutex_);
+  return error_;
+}
+
+void RenderThread::run(sim::SceneDescription scene, std::map<std::string, Visual> visuals, int width,
+                       int height, View view) {
+  // below the simulation: this thread and the renderer's workers it starts run only when the step and the
+  // record keeper leave a core free (SCHED_IDLE; nice +10 where that is refused)
+  const sched_param idle{0};
+  if (sched_setscheduler(0, SCHED_IDLE, &idle) != 0)
+    setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), 10);
+  try {
+    ImageGenerator generator(scene, std::move(visuals), width, height);
+    generator.set_view(view);
+    std::int64_t last_step = -1;
+    start_ = std::chrono::steady_clock::now();
+    auto next_frame = start_;
+    const auto period = std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+        std::chrono::duration<double>(max_fps_ > 0.0 ? 1.0 / max_fps_ : 0.0));
+    while (running_.load()) {
+      if (max_fps_ > 0.0) {
+        std::this_thread::sleep_until(next_frame);
+        next_frame = std::max(next_frame + period, std::chrono::steady_clock::now() - period);
+      }
+      const sim::Snapshot* s = source_();
+      if (!s || s->step == last_step) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        continue;
+      }
+      last_step = s->step;
+      generator.update(*s);
+      generator.render();
+      ++frames_;
+      if (sink_) sink_(generator, *s);
+    }
+  } catch (const std::exception& e) {
+    const std::lock_guard lock(error_mutex_);
+    error_ = e.what();
+  }
+}
+
+}  // namespace harbour::ig

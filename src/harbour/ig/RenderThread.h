@@ -1,0 +1,50 @@
+#pragma once
+
+#include <atomic>
+#include <functional>
+#include <map>
+#include <mutex>
+#include <string>
+#include <thread>
+
+#include "harbour/ig/ImageGenerator.h"
+
+namespace harbour::ig {
+
+/// The image generator on a thread of its own (its OpenGL context lives there): it draws the newest snapshot
+/// the source hands it, at most `max_fps` frames a second (a display's refresh; 0: as fast as it can), in the
+/// lowest scheduling class (SCHED_IDLE, which the renderer's worker threads inherit), so drawing never holds
+/// the 1 kHz step back.
+class RenderThread {
+ public:
+  /// The newest snapshot (nullptr while there is none); called on the render thread only.
+  using Source = std::function<const sim::Snapshot*()>;
+  /// Called with each frame on the render thread (a window's swap, a file, a video encoder).
+  using FrameSink = std::function<void(ImageGenerator&, const sim::Snapshot&)>;
+
+  RenderThread(sim::SceneDescription scene, std::map<std::string, Visual> visuals, int width, int height,
+               View view, Source source, FrameSink sink = {}, double max_fps = 60.0);
+  ~RenderThread();
+  void stop();
+  long frames() const { return frames_.load(); }
+  /// Frames per second since the start.
+  double fps() const;
+  /// Why the thread stopped early ("" while it runs or after stop()).
+  std::string error() const;
+
+ private:
+  void run(sim::SceneDescription scene, std::map<std::string, Visual> visuals, int width, int height,
+           View view);
+
+  Source source_;
+  FrameSink sink_;
+  double max_fps_;
+  std::thread thread_;
+  std::atomic<bool> running_{true};
+  std::atomic<long> frames_{0};
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+  mutable std::mutex error_mutex_;
+  std::string error_;
+};
+
+}  // namespace harbour::ig
