@@ -2,15 +2,21 @@
 
 #include <SDL.h>
 
+#include <osg/Image>
+
+#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <optional>
 #include <stdexcept>
 #include <thread>
 
+#include "StationWindow.h"
 #include "StsRun.h"
 #include "harbour/core/Text.h"
+#include "harbour/ig/RenderThread.h"
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/io/MotionFiles.h"
 #include "harbour/sim/Autopilot.h"
@@ -38,12 +44,12 @@ std::optional<double> indicator(const sim::SceneDescription& scene, const sim::S
 
 // the first mapping of the profile whose devices are all here
 std::unique_ptr<station::DeviceInput> open_devices(const station::Profile& profile,
-                                                   const sim::ControlTable& table) {
+                                                   const sim::ControlTable& table, bool window) {
   station::init_sdl_joysticks();
   std::string tried;
   for (const std::string& file : profile.mappings) {
     station::DeviceMapping mapping = station::load_device_mapping(file, table);
-    if (station::DeviceInput::all_present(mapping, false)) {
+    if (station::DeviceInput::all_present(mapping, window)) {
       std::printf("input: %s (%s)\n", mapping.name.c_str(), file.c_str());
       SDL_QuitSubSystem(SDL_INIT_JOYSTICK);
       return std::make_unique<station::DeviceInput>(table, std::move(mapping));
@@ -85,6 +91,16 @@ int run_station(const StationOptions& given) {
   session_options.record = options.record;
   session_options.database = database;
   session_options.loop.time_scale = options.time_scale;
+  // the trainee's window (before the devices: the keyboard and mouse need it)
+  const bool display = std::getenv("DISPLAY") || std::getenv("WAYLAND_DISPLAY");
+  if (options.window != "on" && options.window != "off" && options.window != "auto")
+    throw std::runtime_error("--window " + options.window + ": on, off or auto");
+  const station::DisplayChannel& channel = profile.displays.front();
+  const int width = std::min(channel.width, 1920), height = std::min(channel.height, 1080);
+  std::unique_ptr<StationWindow> window;
+  if (options.window == "on" || (options.window == "auto" && display))
+    window = std::make_unique<StationWindow>(width, height,
+                                             "harboursim: " + exercise.name + " (" + profile.name + ")");
   station::Session session(exercise, session_options);
   station::Station station(session);
   std::optional<sim::Autopilot> pilot;
@@ -92,7 +108,7 @@ int run_station(const StationOptions& given) {
     pilot.emplace(exercise);
     session.loop().set_pilot([&](const sim::Simulation& s) { return pilot->next(s); });
   } else {
-    station.use_devices(open_devices(profile, session.simulation().control_table()));
+    station.use_devices(open_devices(profile, session.simulation().control_table(), window != nullptr));
   }
   if (profile.opentrack_port) {
     station.use_head_tracking(std::make_unique<station::HeadTracker>(*profile.opentrack_port));
@@ -117,12 +133,32 @@ int run_station(const StationOptions& given) {
   std::signal(SIGINT, on_stop_signal);
   std::signal(SIGTERM, on_stop_signal);
   const sim::SceneDescription scene = session.simulation().scene();
+  std::unique_ptr<ig::RenderThread> render;
+  if (window) {
+    ig::View view;
+    view.yaw_rad = channel.yaw_rad;
+    view.pitch_rad = channel.pitch_rad;
+    view.roll_rad = channel.roll_rad;
+    view.fov_vertical_rad = channel.fov_vertical_rad;
+    StationWindow* shown = window.get();
+    render = std::make_unique<ig::RenderThread>(
+        scene, ig::load_visuals(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml"), width, height, view,
+        [&session] { return session.loop().latest_snapshot(station::kImageGeneratorReader); },
+        [shown](ig::ImageGenerator& generator, const sim::Snapshot&) {
+          const osg::Image& image = generator.render_result();
+          shown->hand_over(image.data(), image.s(), image.t(),
+                           static_cast<int>(image.getPixelSizeInBits() / 8), image.getRowStepInBytes());
+        });
+    std::printf("window: %dx%d, the cab view (%s)\n", width, height, profile.name.c_str());
+  }
   const auto start = std::chrono::steady_clock::now();
   session.start();
   station.start();
   int next_line = 0;
-  while (!session.over() && !g_stop && session.loop().running()) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  bool window_open = true;
+  while (!session.over() && !g_stop && session.loop().running() && window_open) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(window ? 15 : 100));
+    if (window) window_open = window->pump();
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (options.seconds > 0.0 && wall >= options.seconds) break;
     for (const std::string& m : station.take_messages())
@@ -144,7 +180,13 @@ int run_station(const StationOptions& given) {
         s->devices_missing ? "  INPUT DEVICE MISSING: its controls are neutral" : "");
     std::fflush(stdout);
   }
-  const bool interrupted = g_stop || (!session.over() && options.seconds > 0.0);
+  const bool interrupted = g_stop || !window_open || (!session.over() && options.seconds > 0.0);
+  if (render) {
+    std::printf("window: %ld frames drawn (%.1f fps), %ld shown\n", render->frames(), render->fps(),
+                window->frames_shown());
+    if (!render->error().empty()) std::printf("image generator stopped: %s\n", render->error().c_str());
+    render->stop();
+  }
   station.stop();
   const station::SessionResult result = session.finish(interrupted);
   std::signal(SIGINT, SIG_DFL);

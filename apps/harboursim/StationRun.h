@@ -11,9 +11,10 @@ struct StationOptions {
   std::string trainee;              ///< "" : autopilot with --autopilot, else guest (both made on first use)
   std::string record;
   std::string database;
-  bool autopilot = false;   ///< the scripted operator drives (a demonstration, no devices needed)
-  double time_scale = 1.0;  ///< an instructor's fast-forward
-  double seconds = 0.0;     ///< stop after this much wall time (0: at the exercise's end)
+  bool autopilot = false;       ///< the scripted operator drives (a demonstration, no devices needed)
+  double time_scale = 1.0;      ///< an instructor's fast-forward
+  double seconds = 0.0;         ///< stop after this much wall time (0: at the exercise's end)
+  std::string window = "auto";  ///< the trainee's window: on, off, auto (where there is a display)
 };
 int run_station(const StationOptions& options);
 

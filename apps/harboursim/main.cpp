@@ -72,6 +72,8 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.1, 50.0));
   station_cmd->add_option("--seconds", live.seconds, "stop after this many seconds (interrupted)")
       ->check(CLI::NonNegativeNumber);
+  station_cmd->add_option("--window", live.window,
+                          "the trainee's window: on, off, auto (where there is a display)");
 
   harbour::apps::DevicesOptions devices;
   CLI::App* devices_cmd = app.add_subcommand("devices", "list, watch, bind and calibrate input devices");

@@ -168,5 +168,41 @@ TEST(StationCommand, CtrlCStoresTheAttemptAndClosesTheRecording) {
   EXPECT_FALSE(replay.first_mismatch.has_value());
 }
 
+// The trainee's window on an X server (Xvfb): the image generator's frames reach it while the loop keeps
+// time.
+TEST(StationCommand, TheWindowShowsTheCabViewWhileTheExerciseRuns) {
+  if (run("command -v Xvfb").empty()) GTEST_SKIP() << "Xvfb is not installed (./harbour setup installs it)";
+  const std::string display = ":" + std::to_string(90 + getpid() % 100);
+  const pid_t server = fork();
+  if (server == 0) {
+    execlp("Xvfb", "Xvfb", display.c_str(), "-screen", "0", "1920x1200x24", "-nolisten", "tcp",
+           static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  std::this_thread::sleep_for(std::chrono::seconds(1));
+  const std::filesystem::path folder = std::filesystem::temp_directory_path() / "harbour_station_window";
+  std::filesystem::remove_all(folder);
+  std::filesystem::create_directories(folder);
+  const std::string output =
+      run("DISPLAY=" + display + " " + HARBOUR_APP +
+          " station --exercise sts_discharge --profile desktop --autopilot " +
+          "--window on --seconds 4 --db sqlite3://db=" + (folder / "records.db").string() + " 2>&1");
+  kill(server, SIGTERM);
+  waitpid(server, nullptr, 0);
+  EXPECT_NE(output.find("window: 1920x1080, the cab view (desktop)"), std::string::npos) << output;
+  long drawn = 0, shown = 0;
+  double fps = 0.0;
+  const auto at = output.find("window: ", output.find("the cab view") + 1);
+  ASSERT_NE(at, std::string::npos) << output;
+  ASSERT_EQ(
+      std::sscanf(output.c_str() + at, "window: %ld frames drawn (%lf fps), %ld shown", &drawn, &fps, &shown),
+      3)
+      << output;
+  std::printf("window: %ld frames drawn (%.1f fps), %ld shown\n", drawn, fps, shown);
+  EXPECT_GT(drawn, 20);
+  EXPECT_GT(shown, 20);
+  EXPECT_NE(output.find("0 given up"), std::string::npos) << output;
+}
+
 }  // namespace
 }  // namespace harbour::apps

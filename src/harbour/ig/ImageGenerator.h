@@ -51,6 +51,8 @@ class ImageGenerator {
   void set_view(const View& view);
   /// Draws one frame and returns it (RGB, bottom row first as OpenGL reads it).
   const osg::Image& render();
+  /// The last frame drawn.
+  const osg::Image& render_result() const { return *image_; }
   /// Writes the last frame as a PNG; false if it could not be written.
   bool write_png(const std::string& path) const;
   /// Where a world point lands in the image (pixels from the top-left), if in front of the camera.
