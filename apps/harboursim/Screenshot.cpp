@@ -33,9 +33,9 @@ int take_screenshot(const ScreenshotOptions& options) {
   }
   while (simulation.time_s() < options.at_s && !simulation.diverged())
     simulation.step(pilot.next(simulation));
-  ig::ImageGenerator generator(simulation.scene(),
-                               ig::load_visuals(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml"),
-                               options.width, options.height);
+  ig::Looks looks = ig::load_looks(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml");
+  ig::ImageGenerator generator(simulation.scene(), std::move(looks.visuals), options.width, options.height);
+  generator.set_hud(std::move(looks.hud));
   generator.update(*simulation.snapshot());
   ig::View view;
   view.kind = options.view == "cab" ? ig::View::Kind::kCab : ig::View::Kind::kChase;

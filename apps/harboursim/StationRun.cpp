@@ -142,7 +142,7 @@ int run_station(const StationOptions& given) {
     view.fov_vertical_rad = channel.fov_vertical_rad;
     StationWindow* shown = window.get();
     render = std::make_unique<ig::RenderThread>(
-        scene, ig::load_visuals(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml"), width, height, view,
+        scene, ig::load_looks(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml"), width, height, view,
         [&session] { return session.loop().latest_snapshot(station::kImageGeneratorReader); },
         [shown](ig::ImageGenerator& generator, const sim::Snapshot&) {
           const osg::Image& image = generator.render_result();

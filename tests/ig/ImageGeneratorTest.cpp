@@ -232,3 +232,44 @@ TEST(Visuals, BadLooksNameFileLineAndField) {
 
 }  // namespace
 }  // namespace harbour::ig
+
+namespace harbour::ig {
+namespace {
+
+TEST(ImageGenerator, TheHudShowsTheMachinesIndicatorsByNameAndTheAlarms) {
+  sim::SceneDescription d = scene();
+  d.indicators = {"load_t", "lamp_locked", "gear"};
+  ImageGenerator ig(d, looks(), kWidth, kHeight);
+  ig.set_hud({{"load_t", "load", "t", 1, false},
+              {"lamp_locked", "LOCKED", "", 0, true},
+              {"absent", "x", "", 0, false}});
+  ig.set_view(level());
+  sim::Snapshot s = state(40.0, 5000.0, 20000.0, 12.0);
+  s.time_s = 12.345;
+  s.wind_mps = {3.0, 4.0, 0.0};
+  s.indicator_count = 3;
+  s.indicators[0] = 41.26;
+  s.indicators[1] = 0.0;
+  ig.update(s);
+  EXPECT_EQ(ig.hud_text(), "t 12.3 s   wind 5.0 m/s   load 41.3 t");
+  const osg::Image& plain = ig.render();
+  const auto top_band = [&](const osg::Image& image) {  // the HUD's lines: the top 15 % of the picture
+    double sum = 0.0;
+    for (int y = 0; y < kHeight * 15 / 100; ++y)
+      for (int x = 0; x < kWidth; ++x)
+        sum += luminance(pixel(image, x, y));
+    return sum;
+  };
+  const double before = top_band(plain);
+  s.indicators[1] = 1.0;
+  s.devices_missing = 1;
+  ig.update(s);
+  EXPECT_EQ(
+      ig.hud_text(),
+      "t 12.3 s   wind 5.0 m/s   load 41.3 t   LOCKED\nINPUT DEVICE MISSING: ITS CONTROLS ARE NEUTRAL   ");
+  const double after = top_band(ig.render());
+  EXPECT_NE(after, before);  // the lamp and the alarm are drawn
+}
+
+}  // namespace
+}  // namespace harbour::ig

@@ -11,6 +11,7 @@
 #include <osg/MatrixTransform>
 #include <osg/ShapeDrawable>
 #include <osgDB/WriteFile>
+#include <osgText/Text>
 #include <osgViewer/Viewer>
 
 #include <algorithm>
@@ -178,6 +179,40 @@ void ImageGenerator::build(const sim::SceneDescription& scene) {
     ropes_.push_back(geometry);
   }
   root_->addChild(ropes);
+
+  // the heads-up display: an orthographic camera drawn last, in pixels
+  indicators_ = scene.indicators;
+  osg::ref_ptr<osg::Camera> hud = new osg::Camera;
+  hud->setReferenceFrame(osg::Transform::ABSOLUTE_RF);
+  hud->setProjectionMatrixAsOrtho2D(0, width_, 0, height_);
+  hud->setViewMatrix(osg::Matrix::identity());
+  // drawn within the main camera's frame (last, over everything), so the read-back frame holds it
+  hud->setClearMask(0);
+  hud->setRenderOrder(osg::Camera::NESTED_RENDER);
+  hud->getOrCreateStateSet()->setRenderBinDetails(1000, "RenderBin");
+  hud->getOrCreateStateSet()->setMode(GL_DEPTH_TEST, osg::StateAttribute::OFF);
+  hud->setAllowEventFocus(false);
+  hud->getOrCreateStateSet()->setMode(GL_LIGHTING, osg::StateAttribute::OFF);
+  hud->getOrCreateStateSet()->setMode(GL_FOG, osg::StateAttribute::OFF);
+  const float size = std::max(14.0f, static_cast<float>(height_) / 32.0f);
+  const auto text = [&](const osg::Vec4& color, const osg::Vec3& at) {
+    osg::ref_ptr<osgText::Text> t = new osgText::Text;
+    t->setCharacterSize(size);
+    t->setColor(color);
+    t->setPosition(at);
+    t->setBackdropType(osgText::Text::OUTLINE);
+    t->setDataVariance(osg::Object::DYNAMIC);
+    return t;
+  };
+  hud_ = text(osg::Vec4(1.0f, 1.0f, 0.9f, 1.0f),
+              osg::Vec3(size * 0.6f, static_cast<float>(height_) - size * 1.4f, 0.0f));
+  alarm_ = text(osg::Vec4(1.0f, 0.25f, 0.2f, 1.0f),
+                osg::Vec3(size * 0.6f, static_cast<float>(height_) - size * 2.8f, 0.0f));
+  osg::ref_ptr<osg::Geode> lines = new osg::Geode;
+  lines->addDrawable(hud_);
+  lines->addDrawable(alarm_);
+  hud->addChild(lines);
+  root_->addChild(hud);
 }
 
 void ImageGenerator::update(const sim::Snapshot& s) {
@@ -210,6 +245,32 @@ void ImageGenerator::update(const sim::Snapshot& s) {
   fog_->setColor(rgba(sky));
   fog_->setDensity(static_cast<float>(3.912 / std::max(s.visibility_m, 1.0)));
   cab_ = s.cab;
+
+  // the HUD: time, wind, then the machine's indicators the look file names; alarms on their own line
+  char buffer[96];
+  std::snprintf(buffer, sizeof buffer, "t %.1f s   wind %.1f m/s", s.time_s,
+                std::hypot(s.wind_mps.x, s.wind_mps.y));
+  std::string line = buffer;
+  for (const HudItem& item : hud_items_) {
+    const auto at = std::find(indicators_.begin(), indicators_.end(), item.indicator);
+    const auto index = static_cast<int>(at - indicators_.begin());
+    if (at == indicators_.end() || index >= s.indicator_count) continue;
+    const double v = s.indicators[static_cast<std::size_t>(index)];
+    if (item.lamp) {
+      if (v > 0.5) line += "   " + item.label;
+      continue;
+    }
+    std::snprintf(buffer, sizeof buffer, "   %s %.*f %s", item.label.c_str(), item.decimals, v,
+                  item.unit.c_str());
+    line += buffer;
+  }
+  std::string alarm;
+  if (s.held) alarm += "FROZEN BY THE INSTRUCTOR   ";
+  if (s.devices_missing > 0) alarm += "INPUT DEVICE MISSING: ITS CONTROLS ARE NEUTRAL   ";
+  if (s.diverged) alarm += "SIMULATION STOPPED   ";
+  hud_line_ = line + (alarm.empty() ? "" : "\n" + alarm);
+  hud_->setText(line);
+  alarm_->setText(alarm);
 }
 
 void ImageGenerator::set_view(const View& view) {

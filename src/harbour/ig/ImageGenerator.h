@@ -19,6 +19,9 @@ class Geometry;
 class Fog;
 class LightSource;
 }  // namespace osg
+namespace osgText {
+class Text;
+}
 namespace osgViewer {
 class Viewer;
 }
@@ -46,6 +49,10 @@ class ImageGenerator {
                  int height);
   ~ImageGenerator();
 
+  /// The heads-up display's lines (none by default).
+  void set_hud(std::vector<HudItem> items) { hud_items_ = std::move(items); }
+  /// The HUD's text as last drawn (tests).
+  const std::string& hud_text() const { return hud_line_; }
   /// Entity poses, ropes and the environment (sun, sky, fog) from the published state.
   void update(const sim::Snapshot& snapshot);
   void set_view(const View& view);
@@ -75,6 +82,10 @@ class ImageGenerator {
   osg::ref_ptr<osg::Fog> fog_;
   osg::ref_ptr<osg::LightSource> sun_;
   osg::ref_ptr<osg::Image> image_;
+  osg::ref_ptr<osgText::Text> hud_, alarm_;
+  std::vector<HudItem> hud_items_;
+  std::vector<std::string> indicators_;
+  std::string hud_line_;
   View view_;
   sim::Snapshot::Cab cab_{};
   double sun_elevation_ = 1.0;

@@ -9,11 +9,11 @@
 
 namespace harbour::ig {
 
-RenderThread::RenderThread(sim::SceneDescription scene, std::map<std::string, Visual> visuals, int width,
-                           int height, View view, Source source, FrameSink sink, double max_fps)
+RenderThread::RenderThread(sim::SceneDescription scene, Looks looks, int width, int height, View view,
+                           Source source, FrameSink sink, double max_fps)
     : source_(std::move(source)), sink_(std::move(sink)), max_fps_(max_fps) {
-  thread_ = std::thread([this, scene = std::move(scene), visuals = std::move(visuals), width, height,
-                         view]() mutable { run(std::move(scene), std::move(visuals), width, height, view); });
+  thread_ = std::thread([this, scene = std::move(scene), looks = std::move(looks), width, height,
+                         view]() mutable { run(std::move(scene), std::move(looks), width, height, view); });
 }
 
 RenderThread::~RenderThread() {
@@ -35,15 +35,15 @@ std::string RenderThread::error() const {
   return error_;
 }
 
-void RenderThread::run(sim::SceneDescription scene, std::map<std::string, Visual> visuals, int width,
-                       int height, View view) {
+void RenderThread::run(sim::SceneDescription scene, Looks looks, int width, int height, View view) {
   // below the simulation: this thread and the renderer's workers it starts run only when the step and the
   // record keeper leave a core free (SCHED_IDLE; nice +10 where that is refused)
   const sched_param idle{0};
   if (sched_setscheduler(0, SCHED_IDLE, &idle) != 0)
     setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), 10);
   try {
-    ImageGenerator generator(scene, std::move(visuals), width, height);
+    ImageGenerator generator(scene, std::move(looks.visuals), width, height);
+    generator.set_hud(std::move(looks.hud));
     generator.set_view(view);
     std::int64_t last_step = -1;
     start_ = std::chrono::steady_clock::now();

@@ -22,8 +22,8 @@ class RenderThread {
   /// Called with each frame on the render thread (a window's swap, a file, a video encoder).
   using FrameSink = std::function<void(ImageGenerator&, const sim::Snapshot&)>;
 
-  RenderThread(sim::SceneDescription scene, std::map<std::string, Visual> visuals, int width, int height,
-               View view, Source source, FrameSink sink = {}, double max_fps = 60.0);
+  RenderThread(sim::SceneDescription scene, Looks looks, int width, int height, View view, Source source,
+               FrameSink sink = {}, double max_fps = 60.0);
   ~RenderThread();
   void stop();
   long frames() const { return frames_.load(); }
@@ -33,8 +33,7 @@ class RenderThread {
   std::string error() const;
 
  private:
-  void run(sim::SceneDescription scene, std::map<std::string, Visual> visuals, int width, int height,
-           View view);
+  void run(sim::SceneDescription scene, Looks looks, int width, int height, View view);
 
   Source source_;
   FrameSink sink_;

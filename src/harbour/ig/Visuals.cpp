@@ -13,8 +13,13 @@ core::Vec3 color_of(const io::YamlFile& f, const YAML::Node& node, const std::st
 }  // namespace
 
 std::map<std::string, Visual> load_visuals(const std::string& path) {
+  return load_looks(path).visuals;
+}
+
+Looks load_looks(const std::string& path) {
   const io::YamlFile f = io::YamlFile::load(path);
-  std::map<std::string, Visual> out;
+  Looks looks;
+  std::map<std::string, Visual>& out = looks.visuals;
   const YAML::Node list = f.sequence(f.root(), "visuals", "", 1000);
   for (std::size_t n = 0; n < list.size(); ++n) {
     const std::string at = "visuals[" + std::to_string(n) + "]";
@@ -48,8 +53,21 @@ std::map<std::string, Visual> load_visuals(const std::string& path) {
     }
     out[key] = visual;
   }
+  if (f.optional(f.root(), "hud", "")) {
+    const YAML::Node hud = f.sequence(f.root(), "hud", "", 32);
+    for (std::size_t n = 0; n < hud.size(); ++n) {
+      const std::string at = "hud[" + std::to_string(n) + "]";
+      HudItem item;
+      item.indicator = f.text(hud[n], "indicator", at);
+      item.label = f.text(hud[n], "label", at);
+      if (f.optional(hud[n], "unit", at)) item.unit = f.text(hud[n], "unit", at);
+      item.decimals = f.optional(hud[n], "decimals", at) ? f.integer(hud[n], "decimals", at, 0, 6) : 1;
+      item.lamp = f.flag(hud[n], "lamp", at, false);
+      looks.hud.push_back(item);
+    }
+  }
   f.check_unknown_keys();
-  return out;
+  return looks;
 }
 
 }  // namespace harbour::ig

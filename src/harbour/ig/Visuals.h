@@ -23,7 +23,24 @@ struct Visual {
   std::vector<core::Vec3> liveries;  ///< colours picked by entity index
 };
 
-/// Every look by its key. Errors name file, line and field.
+/// One line of the trainee's heads-up display: an indicator by name (SceneDescription::indicators).
+struct HudItem {
+  std::string indicator;
+  std::string label;
+  std::string unit;
+  int decimals = 1;
+  bool lamp = false;  ///< shown as its label while the indicator is on (> 0.5), hidden while off
+};
+
+/// A look file: the looks by key, and the HUD's lines.
+struct Looks {
+  std::map<std::string, Visual> visuals;
+  std::vector<HudItem> hud;
+};
+
+/// Reads a look file (data/visuals/*.yaml). Errors name file, line and field.
+Looks load_looks(const std::string& path);
+/// Its looks alone.
 std::map<std::string, Visual> load_visuals(const std::string& path);
 
 }  // namespace harbour::ig
