@@ -31,11 +31,17 @@ int take_screenshot(const ScreenshotOptions& options) {
     c.value = *options.visibility_m;
     simulation.command(c);
   }
+  if (options.rain_mm_per_h) {
+    sim::InstructorCommand c;
+    c.kind = sim::InstructorCommand::Kind::kSetRain;
+    c.value = *options.rain_mm_per_h;
+    simulation.command(c);
+  }
   while (simulation.time_s() < options.at_s && !simulation.diverged())
     simulation.step(pilot.next(simulation));
   ig::Looks looks = ig::load_looks(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml");
   ig::ImageGenerator generator(simulation.scene(), std::move(looks.visuals), options.width, options.height);
-  generator.set_hud(std::move(looks.hud));
+  generator.use(looks);
   generator.update(*simulation.snapshot());
   ig::View view;
   view.kind = options.view == "cab" ? ig::View::Kind::kCab : ig::View::Kind::kChase;

@@ -13,7 +13,7 @@ struct ScreenshotOptions {
   std::string view = "cab";  ///< cab, chase
   int width = 1280, height = 720;
   std::string out;
-  std::optional<double> time_of_day_h, visibility_m;  ///< instructor settings applied at the start
+  std::optional<double> time_of_day_h, visibility_m, rain_mm_per_h;  ///< instructor settings at the start
 };
 int take_screenshot(const ScreenshotOptions& options);
 

@@ -90,7 +90,7 @@ int main(int argc, char** argv) {
       "UDP port on loopback that moves the virtual joystick ('axis 1 -32768', 'button 0 1')");
 
   harbour::apps::ScreenshotOptions shot;
-  double shot_time_of_day = -1.0, shot_visibility = -1.0;
+  double shot_time_of_day = -1.0, shot_visibility = -1.0, shot_rain = -1.0;
   std::string shot_size = "1280x720";
   CLI::App* shot_cmd = app.add_subcommand("screenshot", "draw a moment of an exercise (headless) into a PNG");
   shot_cmd->add_option("--exercise", shot.exercise, "exercise file or shipped name")->required();
@@ -101,6 +101,7 @@ int main(int argc, char** argv) {
   shot_cmd->add_option("--out", shot.out, "PNG file")->required();
   shot_cmd->add_option("--time-of-day", shot_time_of_day, "hours, 0-24")->check(CLI::Range(0.0, 23.999));
   shot_cmd->add_option("--visibility", shot_visibility, "metres")->check(CLI::Range(1.0, 1e5));
+  shot_cmd->add_option("--rain", shot_rain, "mm/h")->check(CLI::Range(0.0, 500.0));
 
   harbour::apps::BulkDemoOptions demo;
   CLI::App* demo_cmd =
@@ -136,6 +137,7 @@ int main(int argc, char** argv) {
       }
       if (shot_time_of_day >= 0.0) shot.time_of_day_h = shot_time_of_day;
       if (shot_visibility > 0.0) shot.visibility_m = shot_visibility;
+      if (shot_rain >= 0.0) shot.rain_mm_per_h = shot_rain;
       return harbour::apps::take_screenshot(shot);
     }
     if (*replay_cmd && take_over_s >= 0.0) {

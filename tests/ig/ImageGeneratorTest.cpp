@@ -273,3 +273,63 @@ TEST(ImageGenerator, TheHudShowsTheMachinesIndicatorsByNameAndTheAlarms) {
 
 }  // namespace
 }  // namespace harbour::ig
+
+namespace harbour::ig {
+namespace {
+
+// the view from 40 m above the quay's apron, looking straight down at (0, 0, 0)
+sim::Snapshot over_the_quay(double time_of_day_h, double rain_mm_per_h) {
+  sim::Snapshot s = state(5000.0, 5000.0, 20000.0, time_of_day_h);
+  s.cab.pose.position = {-10.0, 0.0, 40.0};
+  s.rain_mm_per_h = rain_mm_per_h;
+  return s;
+}
+
+View down() {
+  View v;
+  v.pitch_rad = -std::numbers::pi / 2.0 + 1e-3;
+  v.fov_vertical_rad = 0.5;
+  return v;
+}
+
+double centre_luminance(const osg::Image& image) {
+  double sum = 0.0;
+  for (int y = kHeight / 2 - 10; y < kHeight / 2 + 10; ++y)
+    for (int x = kWidth / 2 - 10; x < kWidth / 2 + 10; ++x)
+      sum += luminance(pixel(image, x, y));
+  return sum / 400.0;
+}
+
+TEST(ImageGenerator, FloodlightsLightTheQuayAtNightOnly) {
+  ImageGenerator ig(scene(), looks(), kWidth, kHeight);
+  ig.set_view(down());
+  ig.update(over_the_quay(23.0, 0.0));
+  const double dark = centre_luminance(ig.render());
+  ig.set_floodlights({{{-10.0, 0.0, 30.0}, {1.0, 0.9, 0.75}, 60.0}});
+  ig.update(over_the_quay(23.0, 0.0));
+  const double lit = centre_luminance(ig.render());
+  ig.update(over_the_quay(12.0, 0.0));
+  const double noon_with = centre_luminance(ig.render());
+  ig.set_floodlights({});
+  ig.update(over_the_quay(12.0, 0.0));
+  const double noon_without = centre_luminance(ig.render());
+  std::printf("quay at night %.3f, under a floodlight %.3f; at noon %.3f with, %.3f without\n", dark, lit,
+              noon_with, noon_without);
+  EXPECT_GT(lit, 2.0 * dark);
+  EXPECT_NEAR(noon_with, noon_without, 1e-6);  // off by day
+}
+
+TEST(ImageGenerator, RainWetsAndDarkensTheQuay) {
+  ImageGenerator ig(scene(), looks(), kWidth, kHeight);
+  ig.set_view(down());
+  ig.update(over_the_quay(12.0, 0.0));
+  const double dry = centre_luminance(ig.render());
+  ig.update(over_the_quay(12.0, 10.0));
+  const double wet = centre_luminance(ig.render());
+  std::printf("quay luminance dry %.3f, in 10 mm/h rain %.3f\n", dry, wet);
+  EXPECT_LT(wet, 0.8 * dry);
+  EXPECT_GT(wet, 0.4 * dry);
+}
+
+}  // namespace
+}  // namespace harbour::ig

@@ -11,10 +11,12 @@
 #include <osg/MatrixTransform>
 #include <osg/ShapeDrawable>
 #include <osgDB/WriteFile>
+#include <osgParticle/PrecipitationEffect>
 #include <osgText/Text>
 #include <osgViewer/Viewer>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -61,6 +63,8 @@ osg::ref_ptr<osg::Geode> tessellated_plane(double x0, double x1, double y0, doub
         normals->push_back(osg::Vec3(0, 0, 1));
       }
     }
+  geometry->setUseDisplayList(false);  // buffer objects: a colour change (wet) reaches the next frame
+  geometry->setUseVertexBufferObjects(true);
   geometry->setVertexArray(vertices);
   geometry->setNormalArray(normals, osg::Array::BIND_PER_VERTEX);
   osg::ref_ptr<osg::Vec4Array> colors = new osg::Vec4Array();
@@ -137,7 +141,20 @@ void ImageGenerator::build(const sim::SceneDescription& scene) {
   state->setAttributeAndModes(fog_, osg::StateAttribute::ON);
 
   // the quay (its top at z = 0, up to its edge at x = 18 m) and the harbour's water beyond
-  root_->addChild(tessellated_plane(-300.0, 18.0, -400.0, 400.0, 0.0, 20.0, {0.42, 0.42, 0.40}));
+  // (finer near the crane, where floodlight pools fall: the lighting is per vertex)
+  osg::ref_ptr<osg::Geode> apron = tessellated_plane(-60.0, 18.0, -80.0, 80.0, 0.0, 3.0, {0.42, 0.42, 0.40});
+  quay_color_ = static_cast<osg::Vec4Array*>(apron->getDrawable(0)->asGeometry()->getColorArray());
+  root_->addChild(apron);
+  for (const auto& [x0, x1, y0, y1] :
+       {std::array{-300.0, -60.0, -400.0, 400.0}, std::array{-60.0, 18.0, -400.0, -80.0},
+        std::array{-60.0, 18.0, 80.0, 400.0}}) {
+    osg::ref_ptr<osg::Geode> part = tessellated_plane(x0, x1, y0, y1, 0.0, 20.0, {0.42, 0.42, 0.40});
+    part->getDrawable(0)->asGeometry()->setColorArray(quay_color_, osg::Array::BIND_OVERALL);  // wet together
+    root_->addChild(part);
+  }
+  rain_ = new osgParticle::PrecipitationEffect;
+  rain_->setNodeMask(0);  // dry until the weather says otherwise
+  root_->addChild(rain_);
   root_->addChild(tessellated_plane(18.0, 900.0, -900.0, 900.0, kWaterLevel_m, 30.0, {0.05, 0.16, 0.22}));
 
   std::size_t index = 0;
@@ -244,6 +261,22 @@ void ImageGenerator::update(const sim::Snapshot& s) {
   viewer_->getCamera()->setClearColor(rgba(sky));
   fog_->setColor(rgba(sky));
   fog_->setDensity(static_cast<float>(3.912 / std::max(s.visibility_m, 1.0)));
+  // rain: particles falling with the wind, and the quay darkens as it wets (assumed: -35 % when wet through)
+  const double intensity = std::clamp(s.rain_mm_per_h / 50.0, 0.0, 1.0);
+  rain_->setNodeMask(intensity > 0.0 ? ~0u : 0u);
+  if (intensity > 0.0) {
+    rain_->rain(static_cast<float>(intensity));
+    rain_->setWind(to_osg(s.wind_mps));
+    rain_->getFog()->setDensity(fog_->getDensity());
+  }
+  const float dry = 1.0f - 0.35f * static_cast<float>(std::clamp(s.rain_mm_per_h / 2.0, 0.0, 1.0));
+  (*quay_color_)[0] = osg::Vec4(0.42f * dry, 0.42f * dry, 0.40f * dry, 1.0f);
+  quay_color_->dirty();
+  // floodlights from dusk to dawn
+  const bool dark = sun_elevation_ < 0.02;
+  for (std::size_t n = 0; n < floodlights_.size(); ++n)
+    root_->getOrCreateStateSet()->setMode(GL_LIGHT1 + static_cast<GLenum>(n),
+                                          dark ? osg::StateAttribute::ON : osg::StateAttribute::OFF);
   cab_ = s.cab;
 
   // the HUD: time, wind, then the machine's indicators the look file names; alarms on their own line
@@ -271,6 +304,26 @@ void ImageGenerator::update(const sim::Snapshot& s) {
   hud_line_ = line + (alarm.empty() ? "" : "\n" + alarm);
   hud_->setText(line);
   alarm_->setText(alarm);
+}
+
+void ImageGenerator::set_floodlights(const std::vector<Floodlight>& lights) {
+  for (const auto& light : floodlights_)
+    root_->removeChild(light);
+  floodlights_.clear();
+  for (std::size_t n = 0; n < lights.size() && n < 7; ++n) {
+    osg::ref_ptr<osg::LightSource> source = new osg::LightSource;
+    osg::Light* light = source->getLight();
+    light->setLightNum(static_cast<int>(n) + 1);
+    light->setPosition(osg::Vec4(to_osg(lights[n].position_m), 1.0f));
+    light->setDiffuse(rgba(lights[n].color));
+    light->setAmbient(osg::Vec4(0, 0, 0, 1));
+    light->setSpecular(osg::Vec4(0, 0, 0, 1));
+    // a tenth of the light at its range: 1 / (1 + q r^2) = 0.1
+    light->setConstantAttenuation(1.0f);
+    light->setQuadraticAttenuation(static_cast<float>(9.0 / (lights[n].range_m * lights[n].range_m)));
+    root_->addChild(source);
+    floodlights_.push_back(source);
+  }
 }
 
 void ImageGenerator::set_view(const View& view) {

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include <osg/Array>
 #include <osg/ref_ptr>
 
 #include "harbour/ig/Visuals.h"
@@ -19,6 +20,9 @@ class Geometry;
 class Fog;
 class LightSource;
 }  // namespace osg
+namespace osgParticle {
+class PrecipitationEffect;
+}
 namespace osgText {
 class Text;
 }
@@ -49,6 +53,13 @@ class ImageGenerator {
                  int height);
   ~ImageGenerator();
 
+  /// Floodlights lit while the sun is below the horizon.
+  void set_floodlights(const std::vector<Floodlight>& lights);
+  /// Everything a look file gives beyond the looks: the HUD and the floodlights.
+  void use(const Looks& looks) {
+    set_hud(looks.hud);
+    set_floodlights(looks.floodlights);
+  }
   /// The heads-up display's lines (none by default).
   void set_hud(std::vector<HudItem> items) { hud_items_ = std::move(items); }
   /// The HUD's text as last drawn (tests).
@@ -80,6 +91,9 @@ class ImageGenerator {
   std::vector<osg::ref_ptr<osg::MatrixTransform>> entities_;
   std::vector<osg::ref_ptr<osg::Geometry>> ropes_;
   osg::ref_ptr<osg::Fog> fog_;
+  osg::ref_ptr<osgParticle::PrecipitationEffect> rain_;
+  osg::ref_ptr<osg::Vec4Array> quay_color_;
+  std::vector<osg::ref_ptr<osg::LightSource>> floodlights_;
   osg::ref_ptr<osg::LightSource> sun_;
   osg::ref_ptr<osg::Image> image_;
   osg::ref_ptr<osgText::Text> hud_, alarm_;

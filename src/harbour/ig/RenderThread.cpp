@@ -43,7 +43,7 @@ void RenderThread::run(sim::SceneDescription scene, Looks looks, int width, int 
     setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), 10);
   try {
     ImageGenerator generator(scene, std::move(looks.visuals), width, height);
-    generator.set_hud(std::move(looks.hud));
+    generator.use(looks);
     generator.set_view(view);
     std::int64_t last_step = -1;
     start_ = std::chrono::steady_clock::now();

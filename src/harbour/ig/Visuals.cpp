@@ -66,6 +66,17 @@ Looks load_looks(const std::string& path) {
       looks.hud.push_back(item);
     }
   }
+  if (f.optional(f.root(), "floodlights", "")) {
+    const YAML::Node lights = f.sequence(f.root(), "floodlights", "", 7);  // OpenGL's 8 lights, one the sun
+    for (std::size_t n = 0; n < lights.size(); ++n) {
+      const std::string at = "floodlights[" + std::to_string(n) + "]";
+      Floodlight light;
+      light.position_m = f.vector3(f.required(lights[n], "at", at), at + ".at", 2000.0);
+      light.color = color_of(f, f.required(lights[n], "color", at), at + ".color");
+      light.range_m = f.number(lights[n], "range_m", at, 5.0, 500.0);
+      looks.floodlights.push_back(light);
+    }
+  }
   f.check_unknown_keys();
   return looks;
 }

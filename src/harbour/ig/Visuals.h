@@ -32,10 +32,18 @@ struct HudItem {
   bool lamp = false;  ///< shown as its label while the indicator is on (> 0.5), hidden while off
 };
 
-/// A look file: the looks by key, and the HUD's lines.
+/// A floodlight on the quay, lit from dusk to dawn (world frame).
+struct Floodlight {
+  core::Vec3 position_m;
+  core::Vec3 color{1.0, 0.9, 0.75};
+  double range_m = 60.0;  ///< where its light has fallen to a tenth
+};
+
+/// A look file: the looks by key, the HUD's lines, the quay's floodlights.
 struct Looks {
   std::map<std::string, Visual> visuals;
   std::vector<HudItem> hud;
+  std::vector<Floodlight> floodlights;
 };
 
 /// Reads a look file (data/visuals/*.yaml). Errors name file, line and field.
