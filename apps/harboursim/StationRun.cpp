@@ -95,8 +95,14 @@ int run_station(const StationOptions& given) {
   const bool display = std::getenv("DISPLAY") || std::getenv("WAYLAND_DISPLAY");
   if (options.window != "on" && options.window != "off" && options.window != "auto")
     throw std::runtime_error("--window " + options.window + ": on, off or auto");
-  const station::DisplayChannel& channel = profile.displays.front();
-  const int width = std::min(channel.width, 1920), height = std::min(channel.height, 1080);
+  // the profile's display channels side by side in one window (a cabin's projectors stand in a row), at most
+  // 1920 pixels across; each channel keeps its aspect ratio
+  const station::DisplayChannel& first = profile.displays.front();
+  const int channels = static_cast<int>(profile.displays.size());
+  const int tile_width = std::min(first.width, 1920 / channels);
+  const int width = tile_width * channels,
+            height = std::min(1080, static_cast<int>(std::lround(static_cast<double>(tile_width) *
+                                                                 first.height / first.width)));
   std::unique_ptr<StationWindow> window;
   if (options.window == "on" || (options.window == "auto" && display))
     window = std::make_unique<StationWindow>(width, height,
@@ -135,21 +141,28 @@ int run_station(const StationOptions& given) {
   const sim::SceneDescription scene = session.simulation().scene();
   std::unique_ptr<ig::RenderThread> render;
   if (window) {
-    ig::View view;
-    view.yaw_rad = channel.yaw_rad;
-    view.pitch_rad = channel.pitch_rad;
-    view.roll_rad = channel.roll_rad;
-    view.fov_vertical_rad = channel.fov_vertical_rad;
+    std::vector<ig::View> views;
+    for (const station::DisplayChannel& c : profile.displays) {
+      ig::View view;
+      view.yaw_rad = c.yaw_rad;
+      view.pitch_rad = c.pitch_rad;
+      view.roll_rad = c.roll_rad;
+      view.fov_vertical_rad = c.fov_vertical_rad;
+      view.hud = views.empty();  // on the first channel
+      views.push_back(view);
+    }
     StationWindow* shown = window.get();
     render = std::make_unique<ig::RenderThread>(
-        scene, ig::load_looks(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml"), width, height, view,
-        [&session] { return session.loop().latest_snapshot(station::kImageGeneratorReader); },
-        [shown](ig::ImageGenerator& generator, const sim::Snapshot&) {
+        scene, ig::load_looks(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml"), tile_width, height,
+        views, [&session] { return session.loop().latest_snapshot(station::kImageGeneratorReader); },
+        [shown, channels](ig::ImageGenerator& generator, const sim::Snapshot&, int channel) {
           const osg::Image& image = generator.render_result();
           shown->hand_over(image.data(), image.s(), image.t(),
-                           static_cast<int>(image.getPixelSizeInBits() / 8), image.getRowStepInBytes());
+                           static_cast<int>(image.getPixelSizeInBits() / 8), image.getRowStepInBytes(),
+                           channel, channels);
         });
-    std::printf("window: %dx%d, the cab view (%s)\n", width, height, profile.name.c_str());
+    std::printf("window: %dx%d, the cab view (%s, %d channel%s)\n", width, height, profile.name.c_str(),
+                channels, channels == 1 ? "" : "s");
   }
   const auto start = std::chrono::steady_clock::now();
   session.start();

@@ -29,15 +29,15 @@ StationWindow::~StationWindow() {
 }
 
 void StationWindow::hand_over(const unsigned char* pixels, int width, int height, int pixel_bytes,
-                              std::size_t row_bytes) {
-  if (width != width_ || height != height_ || (pixel_bytes != 3 && pixel_bytes != 4)) return;
-  const std::size_t row = static_cast<std::size_t>(width) * 3;
+                              std::size_t row_bytes, int channel, int channels) {
+  if (width * channels != width_ || height != height_ || (pixel_bytes != 3 && pixel_bytes != 4)) return;
+  const std::size_t row = static_cast<std::size_t>(width_) * 3, tile = static_cast<std::size_t>(width) * 3;
   const std::lock_guard lock(mutex_);
   for (int y = 0; y < height; ++y) {  // OpenGL's bottom row first to the window's top row first
     const unsigned char* from = pixels + static_cast<std::size_t>(height - 1 - y) * row_bytes;
-    unsigned char* to = &frame_[static_cast<std::size_t>(y) * row];
+    unsigned char* to = &frame_[static_cast<std::size_t>(y) * row + static_cast<std::size_t>(channel) * tile];
     if (pixel_bytes == 3) {
-      std::memcpy(to, from, row);
+      std::memcpy(to, from, tile);
     } else {
       for (int x = 0; x < width; ++x)
         std::memcpy(to + 3 * x, from + 4 * x, 3);

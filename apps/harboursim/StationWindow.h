@@ -24,7 +24,9 @@ class StationWindow {
 
   /// Render thread: a frame of RGB or RGBA pixels (`pixel_bytes` 3 or 4), rows `row_bytes` apart, bottom row
   /// first (as OpenGL reads them).
-  void hand_over(const unsigned char* pixels, int width, int height, int pixel_bytes, std::size_t row_bytes);
+  /// Channel `channel` of `channels` fills its tile (the window split side by side).
+  void hand_over(const unsigned char* pixels, int width, int height, int pixel_bytes, std::size_t row_bytes,
+                 int channel = 0, int channels = 1);
   /// Window thread: events, then the newest frame if there is one; false once the window is closed.
   bool pump();
   /// What the window shows now (RGB, top row first): for tests.

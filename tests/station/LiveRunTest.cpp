@@ -77,9 +77,9 @@ TEST(RealTimeLoop, TheImageGeneratorDrawingAlongsideDoesNotHoldTheStepBack) {
   Session session(exercise, options);
   sim::Autopilot pilot(exercise);
   session.loop().set_pilot([&](const sim::Simulation& s) { return pilot.next(s); });
-  ig::RenderThread render(session.simulation().scene(),
-                          ig::load_looks(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml"), 1280, 720,
-                          ig::View{}, [&] { return session.loop().latest_snapshot(kImageGeneratorReader); });
+  ig::RenderThread render(
+      session.simulation().scene(), ig::load_looks(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml"),
+      1280, 720, {ig::View{}}, [&] { return session.loop().latest_snapshot(kImageGeneratorReader); });
   session.start();
   std::this_thread::sleep_for(std::chrono::seconds(20));
   const double fps = render.fps();

@@ -230,6 +230,7 @@ void ImageGenerator::build(const sim::SceneDescription& scene) {
   lines->addDrawable(alarm_);
   hud->addChild(lines);
   root_->addChild(hud);
+  hud_camera_ = hud;
 }
 
 void ImageGenerator::update(const sim::Snapshot& s) {
@@ -331,6 +332,7 @@ void ImageGenerator::set_view(const View& view) {
 }
 
 void ImageGenerator::place_camera() {
+  hud_camera_->setNodeMask(view_.hud ? ~0u : 0u);
   osg::Camera* camera = viewer_->getCamera();
   const double aspect = static_cast<double>(width_) / height_;
   camera->setProjectionMatrixAsPerspective(view_.fov_vertical_rad * 180.0 / kPi, aspect, 0.5, 6000.0);

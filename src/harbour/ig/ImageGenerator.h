@@ -16,6 +16,7 @@ namespace osg {
 class Image;
 class Group;
 class MatrixTransform;
+class Camera;
 class Geometry;
 class Fog;
 class LightSource;
@@ -41,6 +42,7 @@ struct View {
   double yaw_rad = 0.0, pitch_rad = -1.3,
          roll_rad = 0.0;           ///< cab: offset from the cab's forward axis (down 75 deg)
   double fov_vertical_rad = 0.75;  ///< the aspect ratio comes from the image
+  bool hud = true;  ///< the heads-up display on this view (one channel of several carries it)
   double chase_distance_m = 90.0;  ///< chase: from behind and above the cab, at it
 };
 
@@ -97,6 +99,7 @@ class ImageGenerator {
   osg::ref_ptr<osg::LightSource> sun_;
   osg::ref_ptr<osg::Image> image_;
   osg::ref_ptr<osgText::Text> hud_, alarm_;
+  osg::ref_ptr<osg::Camera> hud_camera_;
   std::vector<HudItem> hud_items_;
   std::vector<std::string> indicators_;
   std::string hud_line_;

@@ -9,11 +9,13 @@
 
 namespace harbour::ig {
 
-RenderThread::RenderThread(sim::SceneDescription scene, Looks looks, int width, int height, View view,
-                           Source source, FrameSink sink, double max_fps)
+RenderThread::RenderThread(sim::SceneDescription scene, Looks looks, int width, int height,
+                           std::vector<View> views, Source source, FrameSink sink, double max_fps)
     : source_(std::move(source)), sink_(std::move(sink)), max_fps_(max_fps) {
   thread_ = std::thread([this, scene = std::move(scene), looks = std::move(looks), width, height,
-                         view]() mutable { run(std::move(scene), std::move(looks), width, height, view); });
+                         views = std::move(views)]() mutable {
+    run(std::move(scene), std::move(looks), width, height, std::move(views));
+  });
 }
 
 RenderThread::~RenderThread() {
@@ -35,7 +37,8 @@ std::string RenderThread::error() const {
   return error_;
 }
 
-void RenderThread::run(sim::SceneDescription scene, Looks looks, int width, int height, View view) {
+void RenderThread::run(sim::SceneDescription scene, Looks looks, int width, int height,
+                       std::vector<View> views) {
   // below the simulation: this thread and the renderer's workers it starts run only when the step and the
   // record keeper leave a core free (SCHED_IDLE; nice +10 where that is refused)
   const sched_param idle{0};
@@ -44,7 +47,6 @@ void RenderThread::run(sim::SceneDescription scene, Looks looks, int width, int 
   try {
     ImageGenerator generator(scene, std::move(looks.visuals), width, height);
     generator.use(looks);
-    generator.set_view(view);
     std::int64_t last_step = -1;
     start_ = std::chrono::steady_clock::now();
     auto next_frame = start_;
@@ -62,9 +64,12 @@ void RenderThread::run(sim::SceneDescription scene, Looks looks, int width, int 
       }
       last_step = s->step;
       generator.update(*s);
-      generator.render();
+      for (std::size_t c = 0; c < views.size(); ++c) {  // every display channel of the same moment
+        generator.set_view(views[c]);
+        generator.render();
+        if (sink_) sink_(generator, *s, static_cast<int>(c));
+      }
       ++frames_;
-      if (sink_) sink_(generator, *s);
     }
   } catch (const std::exception& e) {
     const std::lock_guard lock(error_mutex_);

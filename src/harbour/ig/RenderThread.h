@@ -6,6 +6,7 @@
 #include <mutex>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "harbour/ig/ImageGenerator.h"
 
@@ -19,11 +20,11 @@ class RenderThread {
  public:
   /// The newest snapshot (nullptr while there is none); called on the render thread only.
   using Source = std::function<const sim::Snapshot*()>;
-  /// Called with each frame on the render thread (a window's swap, a file, a video encoder).
-  using FrameSink = std::function<void(ImageGenerator&, const sim::Snapshot&)>;
+  /// Called with each display channel's picture of a frame on the render thread (a window, a file, a video).
+  using FrameSink = std::function<void(ImageGenerator&, const sim::Snapshot&, int channel)>;
 
-  RenderThread(sim::SceneDescription scene, Looks looks, int width, int height, View view, Source source,
-               FrameSink sink = {}, double max_fps = 60.0);
+  RenderThread(sim::SceneDescription scene, Looks looks, int width, int height, std::vector<View> views,
+               Source source, FrameSink sink = {}, double max_fps = 60.0);
   ~RenderThread();
   void stop();
   long frames() const { return frames_.load(); }
@@ -33,7 +34,7 @@ class RenderThread {
   std::string error() const;
 
  private:
-  void run(sim::SceneDescription scene, Looks looks, int width, int height, View view);
+  void run(sim::SceneDescription scene, Looks looks, int width, int height, std::vector<View> views);
 
   Source source_;
   FrameSink sink_;
