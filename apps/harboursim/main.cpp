@@ -6,6 +6,7 @@
 #include <string>
 
 #include "BulkDemo.h"
+#include "RenderVideo.h"
 #include "Screenshot.h"
 #include "StationRun.h"
 #include "StsRun.h"
@@ -103,6 +104,21 @@ int main(int argc, char** argv) {
   shot_cmd->add_option("--visibility", shot_visibility, "metres")->check(CLI::Range(1.0, 1e5));
   shot_cmd->add_option("--rain", shot_rain, "mm/h")->check(CLI::Range(0.0, 500.0));
 
+  harbour::apps::RenderOptions video;
+  std::string video_size = "960x540";
+  CLI::App* render_cmd =
+      app.add_subcommand("render", "draw a recording into a debrief video (MP4, with ffmpeg)");
+  render_cmd->add_option("recording", video.recording, "recording file")
+      ->required()
+      ->check(CLI::ExistingFile);
+  render_cmd->add_option("--exercise", video.exercise, "the exercise it was recorded on")->required();
+  render_cmd->add_option("--out", video.out, "MP4 file")->required();
+  render_cmd->add_option("--view", video.view, "cab or chase")->check(CLI::IsMember({"cab", "chase"}));
+  render_cmd->add_option("--size", video_size, "WIDTHxHEIGHT (even numbers)");
+  render_cmd->add_option("--fps", video.fps, "frames per second")->check(CLI::Range(1.0, 60.0));
+  render_cmd->add_option("--from", video.from_s, "start [s]")->check(CLI::Range(0.0, 86400.0));
+  render_cmd->add_option("--to", video.to_s, "end [s]")->check(CLI::Range(0.0, 86400.0));
+
   harbour::apps::BulkDemoOptions demo;
   CLI::App* demo_cmd =
       app.add_subcommand("bulk-demo", "a grab digs coal from a yard heap into a rolling hold");
@@ -129,6 +145,16 @@ int main(int argc, char** argv) {
     if (*run_cmd) return harbour::apps::run_exercise(run);
     if (*station_cmd) return harbour::apps::run_station(live);
     if (*devices_cmd) return harbour::apps::run_devices(devices);
+    if (*render_cmd) {
+      if (std::sscanf(video_size.c_str(), "%dx%d", &video.width, &video.height) != 2 || video.width < 16 ||
+          video.height < 16 || video.width > 3840 || video.height > 2160 || video.width % 2 ||
+          video.height % 2) {
+        std::fprintf(stderr, "harboursim: --size %s: WIDTHxHEIGHT, even, 16-3840 by 16-2160\n",
+                     video_size.c_str());
+        return 2;
+      }
+      return harbour::apps::render_video(video);
+    }
     if (*shot_cmd) {
       if (std::sscanf(shot_size.c_str(), "%dx%d", &shot.width, &shot.height) != 2 || shot.width < 16 ||
           shot.height < 16 || shot.width > 8192 || shot.height > 8192) {

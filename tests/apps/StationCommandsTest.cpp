@@ -209,5 +209,33 @@ TEST(StationCommand, TheWindowShowsTheCabViewWhileTheExerciseRuns) {
   waitpid(server, nullptr, 0);
 }
 
+// A debrief video of a recording: re-simulated, drawn with the HUD, encoded by ffmpeg.
+TEST(RenderCommand, ARecordingBecomesADebriefVideo) {
+  if (run("command -v ffmpeg").empty())
+    GTEST_SKIP() << "ffmpeg is not installed (./harbour setup installs it)";
+  const std::string out = (std::filesystem::temp_directory_path() / "harbour_debrief.mp4").string();
+  std::filesystem::remove(out);
+  const std::string output =
+      run(std::string(HARBOUR_APP) + " render " + HARBOUR_DATA_DIR +
+          "/../tests/data/recordings/sts_discharge_v6.hsrc --exercise sts_discharge --from 40 "
+          "--to 42 --size 320x180 --fps 25 --out " +
+          out + " 2>&1");
+  EXPECT_NE(output.find("51 frames (40.0-42.0 s at 25 fps, chase view, 320x180)"), std::string::npos)
+      << output;
+  const std::string probe =
+      run("ffprobe -v error -select_streams v:0 -count_frames -show_entries "
+          "stream=width,height,nb_read_frames -of "
+          "csv=p=0 " +
+          out);
+  EXPECT_EQ(probe, "320,180,51\n") << probe;
+  // a bad size is refused before anything is drawn
+  EXPECT_NE(
+      run(std::string(HARBOUR_APP) + " render " + HARBOUR_DATA_DIR +
+          "/../tests/data/recordings/sts_discharge_v6.hsrc --exercise sts_discharge --size 321x180 --out " +
+          out + " 2>&1")
+          .find("even"),
+      std::string::npos);
+}
+
 }  // namespace
 }  // namespace harbour::apps

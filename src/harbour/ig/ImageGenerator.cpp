@@ -304,7 +304,7 @@ void ImageGenerator::update(const sim::Snapshot& s) {
   if (s.diverged) alarm += "SIMULATION STOPPED   ";
   hud_line_ = line + (alarm.empty() ? "" : "\n" + alarm);
   hud_->setText(line);
-  alarm_->setText(alarm);
+  alarm_->setText(alarm.empty() ? caption_ : alarm + "\n" + caption_);
 }
 
 void ImageGenerator::set_floodlights(const std::vector<Floodlight>& lights) {

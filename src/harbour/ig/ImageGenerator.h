@@ -42,7 +42,7 @@ struct View {
   double yaw_rad = 0.0, pitch_rad = -1.3,
          roll_rad = 0.0;           ///< cab: offset from the cab's forward axis (down 75 deg)
   double fov_vertical_rad = 0.75;  ///< the aspect ratio comes from the image
-  bool hud = true;  ///< the heads-up display on this view (one channel of several carries it)
+  bool hud = true;                 ///< the heads-up display on this view (one channel of several carries it)
   double chase_distance_m = 90.0;  ///< chase: from behind and above the cab, at it
 };
 
@@ -64,6 +64,8 @@ class ImageGenerator {
   }
   /// The heads-up display's lines (none by default).
   void set_hud(std::vector<HudItem> items) { hud_items_ = std::move(items); }
+  /// A caption under the HUD, set by the application (a debrief's latest events); "" for none.
+  void set_caption(const std::string& caption) { caption_ = caption; }
   /// The HUD's text as last drawn (tests).
   const std::string& hud_text() const { return hud_line_; }
   /// Entity poses, ropes and the environment (sun, sky, fog) from the published state.
@@ -103,6 +105,7 @@ class ImageGenerator {
   std::vector<HudItem> hud_items_;
   std::vector<std::string> indicators_;
   std::string hud_line_;
+  std::string caption_;
   View view_;
   sim::Snapshot::Cab cab_{};
   double sun_elevation_ = 1.0;

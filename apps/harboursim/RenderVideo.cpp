@@ -1,0 +1,151 @@
+#include "RenderVideo.h"
+
+#include <osg/Image>
+
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <deque>
+#include <stdexcept>
+#include <vector>
+
+#include "StsRun.h"
+#include "harbour/ig/ImageGenerator.h"
+#include "harbour/io/BoundedFile.h"
+#include "harbour/io/ExerciseFiles.h"
+#include "harbour/io/RecordingFile.h"
+#include "harbour/sim/Recording.h"
+
+namespace harbour::apps {
+
+namespace {
+
+/// ffmpeg reading raw RGB frames on its standard input (started without a shell: a file name is never a
+/// command).
+class Encoder {
+ public:
+  Encoder(const std::string& out, int width, int height, double fps) {
+    int fds[2];
+    if (pipe(fds) != 0) throw std::runtime_error("render: no pipe to ffmpeg");
+    pid_ = fork();
+    if (pid_ == 0) {
+      dup2(fds[0], STDIN_FILENO);
+      close(fds[0]);
+      close(fds[1]);
+      const std::string size = std::to_string(width) + "x" + std::to_string(height),
+                        rate = std::to_string(fps);
+      execlp("ffmpeg", "ffmpeg", "-y", "-loglevel", "error", "-f", "rawvideo", "-pix_fmt", "rgb24", "-s",
+             size.c_str(), "-r", rate.c_str(), "-i", "-", "-pix_fmt", "yuv420p", "-c:v", "libx264", "-preset",
+             "veryfast", out.c_str(), static_cast<char*>(nullptr));
+      _exit(127);
+    }
+    close(fds[0]);
+    if (pid_ < 0) throw std::runtime_error("render: cannot start ffmpeg");
+    pipe_ = fdopen(fds[1], "wb");
+  }
+  ~Encoder() { finish(); }
+  void frame(const osg::Image& image) {
+    // OpenGL's rows bottom first; a video's top first
+    const std::size_t row = static_cast<std::size_t>(image.s()) * 3;
+    const int bytes = static_cast<int>(image.getPixelSizeInBits() / 8);
+    row_.resize(row);
+    for (int y = image.t() - 1; y >= 0; --y) {
+      const unsigned char* from = image.data(0, y);
+      for (int x = 0; x < image.s(); ++x)
+        for (int c = 0; c < 3; ++c)
+          row_[static_cast<std::size_t>(3 * x + c)] = from[bytes * x + c];
+      if (std::fwrite(row_.data(), 1, row, pipe_) != row)
+        throw std::runtime_error("render: ffmpeg stopped reading");
+    }
+  }
+  /// Closes the stream and waits; true if ffmpeg wrote the file.
+  bool finish() {
+    if (!pipe_) return status_ == 0;
+    std::fclose(pipe_);
+    pipe_ = nullptr;
+    int status = 0;
+    waitpid(pid_, &status, 0);
+    status_ = WIFEXITED(status) ? WEXITSTATUS(status) : 1;
+    return status_ == 0;
+  }
+
+ private:
+  pid_t pid_ = -1;
+  std::FILE* pipe_ = nullptr;
+  int status_ = 1;
+  std::vector<unsigned char> row_;
+};
+
+}  // namespace
+
+int render_video(const RenderOptions& options) {
+  if (const std::string why = io::why_not_writable(options.out); !why.empty())
+    throw std::runtime_error("--out " + options.out + ": " + why);
+  const sim::Recording recording = io::read_recording(options.recording);
+  const sim::ExerciseSettings exercise = io::load_exercise(resolve_exercise(options.exercise));
+  if (recording.scenario != exercise.name)
+    throw std::runtime_error(options.recording + " was recorded on exercise '" + recording.scenario +
+                             "', not '" + exercise.name + "'");
+  const double end_s = options.to_s >= 0.0
+                           ? options.to_s
+                           : static_cast<double>(recording.total_steps) * sim::Simulation::kStep_s;
+  const auto stop_step = static_cast<std::int64_t>(end_s / sim::Simulation::kStep_s);
+  ig::Looks looks = ig::load_looks(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml");
+  std::unique_ptr<ig::ImageGenerator> generator;
+  ig::View view;
+  view.kind = options.view == "cab" ? ig::View::Kind::kCab : ig::View::Kind::kChase;
+  Encoder encoder(options.out, options.width, options.height, options.fps);
+  sim::Evaluator evaluator(exercise);
+  auto snapshot = std::make_unique<sim::Snapshot>();
+  std::deque<std::pair<double, std::string>> events;  // the evaluation's events, shown for 6 s each
+  double next_frame_s = options.from_s;
+  long frames = 0;
+  const sim::ReplayResult result = sim::replay(
+      exercise.scenario, recording, stop_step, [&](const sim::Simulation& s, const sim::Controls& controls) {
+        const sim::Metrics before = evaluator.metrics();
+        evaluator.observe(s, controls);
+        const sim::Metrics& now = evaluator.metrics();
+        const auto note = [&](int was, int is, const char* what) {
+          for (int n = was; n < is; ++n) {
+            char text[96];
+            std::snprintf(text, sizeof text, "%.1f s: %s", s.time_s(), what);
+            events.emplace_back(s.time_s(), text);
+          }
+        };
+        note(before.moves_completed, now.moves_completed, "move completed");
+        note(before.collisions, now.collisions, "COLLISION");
+        note(before.hard_landings, now.hard_landings, "hard landing");
+        note(before.twistlock_misuse, now.twistlock_misuse, "twistlock misuse");
+        note(before.overloads, now.overloads, "rope overload");
+        note(before.emergency_stops, now.emergency_stops, "emergency stop");
+        if (s.time_s() + 1e-9 < next_frame_s) return;
+        next_frame_s += 1.0 / options.fps;
+        if (!generator) {
+          generator =
+              std::make_unique<ig::ImageGenerator>(s.scene(), looks.visuals, options.width, options.height);
+          generator->use(looks);
+          generator->set_view(view);
+        }
+        while (!events.empty() && events.front().first < s.time_s() - 6.0)
+          events.pop_front();
+        std::string caption;
+        for (const auto& [at, text] : events)
+          caption += text + "   ";
+        generator->set_caption(caption);
+        s.write_snapshot(*snapshot);
+        generator->update(*snapshot);
+        encoder.frame(generator->render());
+        ++frames;
+      });
+  const bool written = encoder.finish();
+  if (!written) throw std::runtime_error(options.out + ": ffmpeg could not write the video");
+  std::printf("%s: %ld frames (%.1f-%.1f s at %.0f fps, %s view, %dx%d)%s\n", options.out.c_str(), frames,
+              options.from_s, end_s, options.fps, options.view.c_str(), options.width, options.height,
+              result.first_mismatch ? " -- the replay diverged from the recording (another build?)" : "");
+  print_evaluation(evaluator.metrics(), evaluator.score());
+  return result.first_mismatch ? 1 : 0;
+}
+
+}  // namespace harbour::apps
