@@ -6,6 +6,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <deque>
 #include <stdexcept>
@@ -94,8 +95,7 @@ int render_video(const RenderOptions& options) {
   const auto stop_step = static_cast<std::int64_t>(end_s / sim::Simulation::kStep_s);
   ig::Looks looks = ig::load_looks(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml");
   std::unique_ptr<ig::ImageGenerator> generator;
-  ig::View view;
-  view.kind = options.view == "cab" ? ig::View::Kind::kCab : ig::View::Kind::kChase;
+  const ig::View view = ig::view_named(options.view);
   Encoder encoder(options.out, options.width, options.height, options.fps);
   sim::Evaluator evaluator(exercise);
   auto snapshot = std::make_unique<sim::Snapshot>();
@@ -126,6 +126,9 @@ int render_video(const RenderOptions& options) {
           generator =
               std::make_unique<ig::ImageGenerator>(s.scene(), looks.visuals, options.width, options.height);
           generator->use(looks);
+          const std::vector<std::string> names = generator->view_names();
+          if (std::find(names.begin(), names.end(), options.view) == names.end())
+            throw std::runtime_error("--view " + options.view + ": not a view of this scene");
           generator->set_view(view);
         }
         while (!events.empty() && events.front().first < s.time_s() - 6.0)

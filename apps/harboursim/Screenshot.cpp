@@ -1,5 +1,6 @@
 #include "Screenshot.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <stdexcept>
 
@@ -14,8 +15,6 @@ namespace harbour::apps {
 int take_screenshot(const ScreenshotOptions& options) {
   if (const std::string why = io::why_not_writable(options.out); !why.empty())
     throw std::runtime_error("--out " + options.out + ": " + why);
-  if (options.view != "cab" && options.view != "chase")
-    throw std::runtime_error("--view " + options.view + ": one of cab, chase");
   const sim::ExerciseSettings exercise = io::load_exercise(resolve_exercise(options.exercise));
   sim::Simulation simulation(exercise.scenario);
   sim::Autopilot pilot(exercise);
@@ -43,9 +42,14 @@ int take_screenshot(const ScreenshotOptions& options) {
   ig::ImageGenerator generator(simulation.scene(), std::move(looks.visuals), options.width, options.height);
   generator.use(looks);
   generator.update(*simulation.snapshot());
-  ig::View view;
-  view.kind = options.view == "cab" ? ig::View::Kind::kCab : ig::View::Kind::kChase;
-  generator.set_view(view);
+  const std::vector<std::string> names = generator.view_names();
+  if (std::find(names.begin(), names.end(), options.view) == names.end()) {
+    std::string list;
+    for (const std::string& n : names)
+      list += (list.empty() ? "" : ", ") + n;
+    throw std::runtime_error("--view " + options.view + ": one of " + list);
+  }
+  generator.set_view(ig::view_named(options.view));
   generator.render();
   if (!generator.write_png(options.out)) throw std::runtime_error(options.out + ": cannot be written");
   std::printf("%s: %s at t=%.1f s, %s view, %dx%d (%s)\n", options.out.c_str(), exercise.name.c_str(),

@@ -97,7 +97,7 @@ int main(int argc, char** argv) {
   shot_cmd->add_option("--exercise", shot.exercise, "exercise file or shipped name")->required();
   shot_cmd->add_option("--at", shot.at_s, "seconds into the exercise (the autopilot drives there)")
       ->check(CLI::Range(0.0, 3600.0));
-  shot_cmd->add_option("--view", shot.view, "cab or chase");
+  shot_cmd->add_option("--view", shot.view, "cab, chase, free, spreader, boom_tip");
   shot_cmd->add_option("--size", shot_size, "WIDTHxHEIGHT");
   shot_cmd->add_option("--out", shot.out, "PNG file")->required();
   shot_cmd->add_option("--time-of-day", shot_time_of_day, "hours, 0-24")->check(CLI::Range(0.0, 23.999));
@@ -113,7 +113,7 @@ int main(int argc, char** argv) {
       ->check(CLI::ExistingFile);
   render_cmd->add_option("--exercise", video.exercise, "the exercise it was recorded on")->required();
   render_cmd->add_option("--out", video.out, "MP4 file")->required();
-  render_cmd->add_option("--view", video.view, "cab or chase")->check(CLI::IsMember({"cab", "chase"}));
+  render_cmd->add_option("--view", video.view, "cab, chase, free, spreader, boom_tip");
   render_cmd->add_option("--size", video_size, "WIDTHxHEIGHT (even numbers)");
   render_cmd->add_option("--fps", video.fps, "frames per second")->check(CLI::Range(1.0, 60.0));
   render_cmd->add_option("--from", video.from_s, "start [s]")->check(CLI::Range(0.0, 86400.0));

@@ -333,3 +333,31 @@ TEST(ImageGenerator, RainWetsAndDarkensTheQuay) {
 
 }  // namespace
 }  // namespace harbour::ig
+
+namespace harbour::ig {
+namespace {
+
+TEST(ImageGenerator, ACameraRidingAnEntityMovesWithIt) {
+  ImageGenerator ig(scene(), looks(), kWidth, kHeight);
+  Looks extra;
+  extra.cameras.push_back({"mast", "none", {0.0, 0.0, 0.0}, {1.0, 0.0, 0.0}, {0.0, 0.0, 1.0}, 0.6});
+  ig.use(extra);
+  EXPECT_EQ(ig.view_names(), (std::vector<std::string>{"cab", "chase", "free", "mast"}));
+  ig.set_view(view_named("mast"));
+  sim::Snapshot s = state(40.0, 5000.0, 20000.0, 12.0);
+  s.entities[0].pose.position = {0.0, 0.0, 14.0};
+  ig.update(s);
+  ig.render();
+  const auto centred = ig.project({40.0, 0.0, 14.0});
+  EXPECT_NEAR(centred->first, kWidth / 2.0, 0.5);
+  EXPECT_NEAR(centred->second, kHeight / 2.0, 0.5);
+  s.entities[0].pose.position = {0.0, -6.0, 14.0};  // the mast moves 6 m to the right of the box
+  ig.update(s);
+  ig.render();
+  EXPECT_LT(ig.project({40.0, 0.0, 14.0})->first, kWidth / 2.0 - 20.0);  // the box is now left of centre
+  ig.set_view(view_named("hook"));
+  EXPECT_THROW(ig.render(), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace harbour::ig

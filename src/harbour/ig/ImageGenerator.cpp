@@ -158,6 +158,9 @@ void ImageGenerator::build(const sim::SceneDescription& scene) {
   root_->addChild(tessellated_plane(18.0, 900.0, -900.0, 900.0, kWaterLevel_m, 30.0, {0.05, 0.16, 0.22}));
 
   std::size_t index = 0;
+  for (const sim::SceneDescription::Entity& e : scene.entities)
+    entity_visuals_.push_back(e.visual);
+  entity_poses_.assign(scene.entities.size(), core::Pose{});
   for (const sim::SceneDescription::Entity& e : scene.entities) {
     osg::ref_ptr<osg::MatrixTransform> transform = new osg::MatrixTransform();
     const auto look = visuals_.find(e.visual);
@@ -236,7 +239,10 @@ void ImageGenerator::build(const sim::SceneDescription& scene) {
 void ImageGenerator::update(const sim::Snapshot& s) {
   for (int n = 0; n < s.entity_count; ++n) {
     const sim::Snapshot::Entity& e = s.entities[static_cast<std::size_t>(n)];
-    if (e.index < entities_.size()) entities_[e.index]->setMatrix(to_osg(e.pose));
+    if (e.index < entities_.size()) {
+      entities_[e.index]->setMatrix(to_osg(e.pose));
+      entity_poses_[e.index] = e.pose;
+    }
   }
   for (std::size_t r = 0; r < ropes_.size(); ++r) {
     auto* vertices = static_cast<osg::Vec3Array*>(ropes_[r]->getVertexArray());
@@ -347,6 +353,24 @@ void ImageGenerator::place_camera() {
     const core::Vec3 forward = cab.direction_to_parent(local);
     const core::Vec3 up = cab.direction_to_parent({0.0, 0.0, 1.0});
     camera->setViewMatrixAsLookAt(to_osg(eye), to_osg(eye + forward), to_osg(up));
+  } else if (view_.kind == View::Kind::kEntity) {
+    const auto camera_it = std::find_if(cameras_.begin(), cameras_.end(),
+                                        [&](const EntityCamera& c) { return c.name == view_.camera; });
+    const auto entity_it = camera_it == cameras_.end()
+                               ? entity_visuals_.end()
+                               : std::find(entity_visuals_.begin(), entity_visuals_.end(), camera_it->entity);
+    if (entity_it == entity_visuals_.end())
+      throw std::invalid_argument("no camera '" + view_.camera + "' on an entity of this scene");
+    const core::Pose& pose = entity_poses_[static_cast<std::size_t>(entity_it - entity_visuals_.begin())];
+    const core::Vec3 eye = pose.to_parent(camera_it->at_m);
+    camera->setProjectionMatrixAsPerspective(camera_it->fov_vertical_rad * 180.0 / kPi, aspect, 0.3, 6000.0);
+    camera->setViewMatrixAsLookAt(to_osg(eye), to_osg(eye + pose.direction_to_parent(camera_it->look)),
+                                  to_osg(pose.direction_to_parent(camera_it->up)));
+  } else if (view_.kind == View::Kind::kFree) {
+    const core::Vec3 forward{std::cos(view_.pitch_rad) * std::cos(view_.yaw_rad),
+                             std::cos(view_.pitch_rad) * std::sin(view_.yaw_rad), std::sin(view_.pitch_rad)};
+    camera->setViewMatrixAsLookAt(to_osg(view_.position_m), to_osg(view_.position_m + forward),
+                                  osg::Vec3(0, 0, 1));
   } else {
     const core::Vec3 target = cab.position;
     const core::Vec3 back = cab.direction_to_parent({-1.0, -0.8, 0.0});
@@ -354,6 +378,23 @@ void ImageGenerator::place_camera() {
         target + back * (view_.chase_distance_m / 1.28) + core::Vec3{0.0, 0.0, view_.chase_distance_m * 0.25};
     camera->setViewMatrixAsLookAt(to_osg(eye), to_osg(target + core::Vec3{0, 0, -20.0}), osg::Vec3(0, 0, 1));
   }
+}
+
+View view_named(const std::string& name) {
+  View v;
+  if (name == "cab") return v;
+  v.kind = name == "chase" ? View::Kind::kChase : name == "free" ? View::Kind::kFree : View::Kind::kEntity;
+  if (v.kind == View::Kind::kFree) v.pitch_rad = -0.35, v.yaw_rad = 0.9;  // over the quay towards the crane
+  if (v.kind == View::Kind::kEntity) v.camera = name;
+  return v;
+}
+
+std::vector<std::string> ImageGenerator::view_names() const {
+  std::vector<std::string> names{"cab", "chase", "free"};
+  for (const EntityCamera& c : cameras_)
+    if (std::find(entity_visuals_.begin(), entity_visuals_.end(), c.entity) != entity_visuals_.end())
+      names.push_back(c.name);
+  return names;
 }
 
 const osg::Image& ImageGenerator::render() {

@@ -37,14 +37,24 @@ class HeadlessContext;
 
 /// Where a view looks from.
 struct View {
-  enum class Kind { kCab, kChase };
+  enum class Kind {
+    kCab,     ///< from the operator's eye
+    kChase,   ///< from behind and above the cab
+    kEntity,  ///< a camera of the look file riding an entity (`camera`: spreader, boom_tip, ...)
+    kFree,    ///< the instructor's: `position_m`, looking by yaw (from +x towards +y) and pitch
+  };
   Kind kind = Kind::kCab;
   double yaw_rad = 0.0, pitch_rad = -1.3,
          roll_rad = 0.0;           ///< cab: offset from the cab's forward axis (down 75 deg)
   double fov_vertical_rad = 0.75;  ///< the aspect ratio comes from the image
   bool hud = true;                 ///< the heads-up display on this view (one channel of several carries it)
   double chase_distance_m = 90.0;  ///< chase: from behind and above the cab, at it
+  std::string camera;              ///< kEntity: the camera's name in the look file
+  core::Vec3 position_m{-40.0, -60.0, 40.0};  ///< kFree
 };
+
+/// A view by name: cab, chase, free, or a camera of the look file (as View::Kind::kEntity).
+View view_named(const std::string& name);
 
 /// The image generator: reads only a SceneDescription (once) and Snapshots (every frame), and draws the
 /// looks the visual data give each entity's key; no machine-specific code. Headless (EGL) for tests,
@@ -61,7 +71,10 @@ class ImageGenerator {
   void use(const Looks& looks) {
     set_hud(looks.hud);
     set_floodlights(looks.floodlights);
+    cameras_ = looks.cameras;
   }
+  /// The names of the views it can take: cab, chase, free and the look file's cameras.
+  std::vector<std::string> view_names() const;
   /// The heads-up display's lines (none by default).
   void set_hud(std::vector<HudItem> items) { hud_items_ = std::move(items); }
   /// A caption under the HUD, set by the application (a debrief's latest events); "" for none.
@@ -104,6 +117,9 @@ class ImageGenerator {
   osg::ref_ptr<osg::Camera> hud_camera_;
   std::vector<HudItem> hud_items_;
   std::vector<std::string> indicators_;
+  std::vector<std::string> entity_visuals_;  // visual key by entity index
+  std::vector<core::Pose> entity_poses_;     // as last published
+  std::vector<EntityCamera> cameras_;
   std::string hud_line_;
   std::string caption_;
   View view_;

@@ -1,5 +1,7 @@
 #include "harbour/ig/Visuals.h"
 
+#include <cmath>
+
 #include "harbour/io/YamlFile.h"
 
 namespace harbour::ig {
@@ -75,6 +77,23 @@ Looks load_looks(const std::string& path) {
       light.color = color_of(f, f.required(lights[n], "color", at), at + ".color");
       light.range_m = f.number(lights[n], "range_m", at, 5.0, 500.0);
       looks.floodlights.push_back(light);
+    }
+  }
+  if (f.optional(f.root(), "cameras", "")) {
+    const YAML::Node cameras = f.sequence(f.root(), "cameras", "", 16);
+    for (std::size_t n = 0; n < cameras.size(); ++n) {
+      const std::string at = "cameras[" + std::to_string(n) + "]";
+      EntityCamera c;
+      c.name = f.text(cameras[n], "name", at);
+      c.entity = f.text(cameras[n], "entity", at);
+      c.at_m = f.vector3(f.required(cameras[n], "at", at), at + ".at", 1000.0);
+      c.look = f.vector3(f.required(cameras[n], "look", at), at + ".look", 1.0);
+      if (f.optional(cameras[n], "up", at)) c.up = f.vector3(cameras[n]["up"], at + ".up", 1.0);
+      c.fov_vertical_rad =
+          f.number(cameras[n], "fov_vertical_deg", at, 5.0, 150.0) * 3.141592653589793 / 180.0;
+      if (std::abs(c.look.x) + std::abs(c.look.y) + std::abs(c.look.z) < 1e-6)
+        f.fail(cameras[n]["look"], at + ".look", "a direction, not zero");
+      looks.cameras.push_back(c);
     }
   }
   f.check_unknown_keys();

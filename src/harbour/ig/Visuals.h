@@ -39,11 +39,22 @@ struct Floodlight {
   double range_m = 60.0;  ///< where its light has fallen to a tenth
 };
 
-/// A look file: the looks by key, the HUD's lines, the quay's floodlights.
+/// A camera riding an entity (by its visual key): the spreader's camera, the boom tip's.
+struct EntityCamera {
+  std::string name;    ///< the view's name: spreader, boom_tip, ...
+  std::string entity;  ///< visual key of the entity it rides (the first with it)
+  core::Vec3 at_m;     ///< in the entity's frame
+  core::Vec3 look;     ///< direction, entity frame
+  core::Vec3 up{1.0, 0.0, 0.0};
+  double fov_vertical_rad = 1.0;
+};
+
+/// A look file: the looks by key, the HUD's lines, the quay's floodlights, the entity cameras.
 struct Looks {
   std::map<std::string, Visual> visuals;
   std::vector<HudItem> hud;
   std::vector<Floodlight> floodlights;
+  std::vector<EntityCamera> cameras;
 };
 
 /// Reads a look file (data/visuals/*.yaml). Errors name file, line and field.
