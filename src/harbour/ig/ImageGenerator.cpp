@@ -1,5 +1,6 @@
 #include "harbour/ig/ImageGenerator.h"
 
+#include <osg/Depth>
 #include <osg/Fog>
 #include <osg/Geode>
 #include <osg/Geometry>
@@ -99,6 +100,25 @@ core::Vec3 sky_color(double elevation) {
   if (deg >= 0.0) return mix(dusk, day, deg / 10.0);
   return mix(night, dusk, (deg + 8.0) / 8.0);
 }
+// the sky's colour towards `d` (unit, world) with the sun towards `sun`: the horizon's colour (fog's)
+// blending into a deeper zenith with height, a halo and a disc round the sun while it is up
+osg::Vec4 sky_towards(const core::Vec3& d, const core::Vec3& sun, double sun_elevation) {
+  const core::Vec3 horizon = sky_color(sun_elevation);
+  const double daylight = std::clamp(std::sin(sun_elevation) * 4.0 + 0.3, 0.0, 1.0);
+  const core::Vec3 zenith{horizon.x * (0.35 + 0.15 * (1 - daylight)), horizon.y * 0.62, horizon.z * 0.92};
+  const double up = std::sqrt(std::clamp(d.z, 0.0, 1.0));  // most of the change near the horizon
+  core::Vec3 c{horizon.x + (zenith.x - horizon.x) * up, horizon.y + (zenith.y - horizon.y) * up,
+               horizon.z + (zenith.z - horizon.z) * up};
+  const double cos_angle = d.x * sun.x + d.y * sun.y + d.z * sun.z;
+  if (sun_elevation > -0.1) {
+    const double visible = std::clamp((sun_elevation + 0.1) / 0.2, 0.0, 1.0);
+    const double halo = 0.35 * std::exp((cos_angle - 1.0) / 0.02) * visible;  // ~11 deg wide
+    const double disc = cos_angle > 0.99996 ? visible : 0.0;                  // ~0.5 deg across
+    c = {c.x + halo + disc, c.y + halo * 0.9 + disc, c.z + halo * 0.7 + disc * 0.9};
+  }
+  return {static_cast<float>(std::min(c.x, 1.0)), static_cast<float>(std::min(c.y, 1.0)),
+          static_cast<float>(std::min(c.z, 1.0)), 1.0f};
+}
 }  // namespace
 
 ImageGenerator::ImageGenerator(const sim::SceneDescription& scene, std::map<std::string, Visual> visuals,
@@ -139,6 +159,52 @@ void ImageGenerator::build(const sim::SceneDescription& scene) {
   fog_->setMode(osg::Fog::EXP);
   fog_->setFogCoordinateSource(osg::Fog::FRAGMENT_DEPTH);
   state->setAttributeAndModes(fog_, osg::StateAttribute::ON);
+
+  // the sky: a dome round the eye, drawn first, unlit, unfogged, behind everything
+  {
+    constexpr int kRings = 16, kSegments = 48;
+    constexpr double kRadius = 4000.0;
+    osg::ref_ptr<osg::Geometry> dome = new osg::Geometry;
+    dome->setUseDisplayList(false);
+    dome->setUseVertexBufferObjects(true);
+    osg::ref_ptr<osg::Vec3Array> vertices = new osg::Vec3Array;
+    sky_directions_ = new osg::Vec3Array;
+    sky_colors_ = new osg::Vec4Array;
+    for (int r = 0; r <= kRings; ++r) {
+      const double elevation = -0.2 + (kPi / 2.0 + 0.2) * r / kRings;
+      for (int k = 0; k <= kSegments; ++k) {
+        const double azimuth = 2.0 * kPi * k / kSegments;
+        const osg::Vec3 d(static_cast<float>(std::cos(elevation) * std::cos(azimuth)),
+                          static_cast<float>(std::cos(elevation) * std::sin(azimuth)),
+                          static_cast<float>(std::sin(elevation)));
+        sky_directions_->push_back(d);
+        vertices->push_back(d * static_cast<float>(kRadius));
+        sky_colors_->push_back(osg::Vec4(0.5f, 0.6f, 0.9f, 1.0f));
+      }
+    }
+    for (int r = 0; r < kRings; ++r) {
+      osg::ref_ptr<osg::DrawElementsUShort> strip = new osg::DrawElementsUShort(GL_TRIANGLE_STRIP);
+      for (int k = 0; k <= kSegments; ++k) {
+        strip->push_back(static_cast<unsigned short>((r + 1) * (kSegments + 1) + k));
+        strip->push_back(static_cast<unsigned short>(r * (kSegments + 1) + k));
+      }
+      dome->addPrimitiveSet(strip);
+    }
+    dome->setVertexArray(vertices);
+    dome->setColorArray(sky_colors_, osg::Array::BIND_PER_VERTEX);
+    osg::ref_ptr<osg::Geode> geode = new osg::Geode;
+    geode->addDrawable(dome);
+    osg::StateSet* sky_state = geode->getOrCreateStateSet();
+    sky_state->setMode(GL_LIGHTING, osg::StateAttribute::OFF | osg::StateAttribute::PROTECTED);
+    sky_state->setMode(GL_FOG, osg::StateAttribute::OFF | osg::StateAttribute::PROTECTED);
+    sky_state->setMode(GL_CULL_FACE, osg::StateAttribute::OFF);
+    sky_state->setAttributeAndModes(new osg::Depth(osg::Depth::ALWAYS, 0.0, 1.0, false));
+    sky_state->setRenderBinDetails(-1, "RenderBin");
+    sky_ = new osg::MatrixTransform;
+    sky_->setCullingActive(false);
+    sky_->addChild(geode);
+    root_->addChild(sky_);
+  }
 
   // the quay (its top at z = 0, up to its edge at x = 18 m) and the harbour's water beyond
   // (finer near the crane, where floodlight pools fall: the lighting is per vertex)
@@ -266,6 +332,11 @@ void ImageGenerator::update(const sim::Snapshot& s) {
   light->setDiffuse(osg::Vec4(diffuse, diffuse * 0.97f, diffuse * 0.92f, 1.0f));
   light->setAmbient(osg::Vec4(ambient, ambient, ambient * 1.1f, 1.0f));
   viewer_->getCamera()->setClearColor(rgba(sky));
+  for (std::size_t n = 0; n < sky_directions_->size(); ++n) {
+    const osg::Vec3& d = (*sky_directions_)[n];
+    (*sky_colors_)[n] = sky_towards({d.x(), d.y(), d.z()}, to_sun, sun_elevation_);
+  }
+  sky_colors_->dirty();
   fog_->setColor(rgba(sky));
   fog_->setDensity(static_cast<float>(3.912 / std::max(s.visibility_m, 1.0)));
   // rain: particles falling with the wind, and the quay darkens as it wets (assumed: -35 % when wet through)
@@ -399,6 +470,9 @@ std::vector<std::string> ImageGenerator::view_names() const {
 
 const osg::Image& ImageGenerator::render() {
   place_camera();
+  osg::Vec3d eye, centre, up;
+  viewer_->getCamera()->getViewMatrixAsLookAt(eye, centre, up);
+  sky_->setMatrix(osg::Matrixd::translate(eye));
   viewer_->frame();
   return *image_;
 }

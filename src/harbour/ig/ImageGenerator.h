@@ -108,6 +108,9 @@ class ImageGenerator {
   std::vector<osg::ref_ptr<osg::MatrixTransform>> entities_;
   std::vector<osg::ref_ptr<osg::Geometry>> ropes_;
   osg::ref_ptr<osg::Fog> fog_;
+  osg::ref_ptr<osg::MatrixTransform> sky_;       // the dome, centred on the eye
+  osg::ref_ptr<osg::Vec3Array> sky_directions_;  // unit directions of its vertices
+  osg::ref_ptr<osg::Vec4Array> sky_colors_;
   osg::ref_ptr<osgParticle::PrecipitationEffect> rain_;
   osg::ref_ptr<osg::Vec4Array> quay_color_;
   std::vector<osg::ref_ptr<osg::LightSource>> floodlights_;
