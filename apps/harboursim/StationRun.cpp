@@ -149,6 +149,8 @@ int run_station(const StationOptions& given) {
       view.roll_rad = c.roll_rad;
       view.fov_vertical_rad = c.fov_vertical_rad;
       view.hud = views.empty();  // on the first channel
+      // a tracked head looks through the desktop's monitor as through a window
+      view.off_axis = profile.opentrack_port.has_value();
       views.push_back(view);
     }
     StationWindow* shown = window.get();

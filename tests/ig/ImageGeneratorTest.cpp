@@ -361,3 +361,35 @@ TEST(ImageGenerator, ACameraRidingAnEntityMovesWithIt) {
 
 }  // namespace
 }  // namespace harbour::ig
+
+namespace harbour::ig {
+namespace {
+
+// Head tracking on a desktop monitor: the screen is a window; what lies in its plane stays put as the head
+// moves, what lies far beyond it moves with the head (motion parallax), as through a real window.
+TEST(ImageGenerator, OffAxisProjectionMakesTheScreenAWindow) {
+  ImageGenerator ig(scene(), looks(), kWidth, kHeight);
+  View v = level();
+  v.off_axis = true;
+  v.screen_distance_m = 0.6;
+  ig.set_view(v);
+  sim::Snapshot s = state(5000.0, 5000.0, 20000.0, 12.0);
+  const core::Vec3 on_screen{0.6, 0.05, 10.1}, far{100.0, 0.0, 10.0};
+  ig.update(s);
+  ig.render();
+  const auto screen_before = *ig.project(on_screen), far_before = *ig.project(far);
+  s.cab.head_offset_m = {0.0, -0.10, 0.05};  // 10 cm to the right, 5 cm up
+  ig.update(s);
+  ig.render();
+  const auto screen_after = *ig.project(on_screen), far_after = *ig.project(far);
+  EXPECT_NEAR(screen_after.first, screen_before.first, 0.01);
+  EXPECT_NEAR(screen_after.second, screen_before.second, 0.01);
+  // the far point keeps its direction from the moved eye: through the window it shows right and up by nearly
+  // the head's offset (0.0994 m and 0.0497 m on a window 0.6 tan(0.3) m in half height)
+  const double pixels_per_m = (kHeight / 2.0) / (0.6 * std::tan(0.3));
+  EXPECT_NEAR(far_after.first - far_before.first, 0.0994 * pixels_per_m, 1.0);
+  EXPECT_NEAR(far_after.second - far_before.second, -0.0497 * pixels_per_m, 1.0);  // rows count downwards
+}
+
+}  // namespace
+}  // namespace harbour::ig

@@ -415,7 +415,26 @@ void ImageGenerator::place_camera() {
   camera->setProjectionMatrixAsPerspective(view_.fov_vertical_rad * 180.0 / kPi, aspect, 0.5, 6000.0);
   camera->setViewport(0, 0, width_, height_);
   const core::Pose& cab = cab_.pose;
-  if (view_.kind == View::Kind::kCab) {
+  if (view_.kind == View::Kind::kCab && view_.off_axis) {
+    // the screen is a window in front of the design eye, square to the view; the head moves the eye behind it
+    const double yaw = view_.yaw_rad, pitch = view_.pitch_rad;
+    const core::Vec3 forward_local{std::cos(pitch) * std::cos(yaw), std::cos(pitch) * std::sin(yaw),
+                                   std::sin(pitch)};
+    const core::Vec3 right_local{std::sin(yaw), -std::cos(yaw), 0.0};
+    const core::Vec3 up_local{-std::sin(pitch) * std::cos(yaw), -std::sin(pitch) * std::sin(yaw),
+                              std::cos(pitch)};
+    const core::Vec3& head = cab_.head_offset_m;
+    const double ahead = dot(head, forward_local), right = dot(head, right_local), up = dot(head, up_local);
+    const double d = std::max(view_.screen_distance_m - ahead, 0.05);  // eye to the screen's plane
+    const double half_height = view_.screen_distance_m * std::tan(view_.fov_vertical_rad / 2.0);
+    const double half_width = half_height * aspect, near = 0.5, scale = near / d;
+    camera->setProjectionMatrixAsFrustum((-half_width - right) * scale, (half_width - right) * scale,
+                                         (-half_height - up) * scale, (half_height - up) * scale, near,
+                                         6000.0);
+    const core::Vec3 eye = cab.to_parent(cab_.eye_m + head);
+    camera->setViewMatrixAsLookAt(to_osg(eye), to_osg(eye + cab.direction_to_parent(forward_local)),
+                                  to_osg(cab.direction_to_parent(up_local)));
+  } else if (view_.kind == View::Kind::kCab) {
     // the eye in the cab (plus the head's offset), looking along the cab's x turned by the view's offsets
     const core::Vec3 eye = cab.to_parent(cab_.eye_m + cab_.head_offset_m);
     const double yaw = view_.yaw_rad + cab_.head_yaw_pitch_roll_rad.x,

@@ -48,8 +48,13 @@ struct View {
          roll_rad = 0.0;           ///< cab: offset from the cab's forward axis (down 75 deg)
   double fov_vertical_rad = 0.75;  ///< the aspect ratio comes from the image
   bool hud = true;                 ///< the heads-up display on this view (one channel of several carries it)
-  double chase_distance_m = 90.0;  ///< chase: from behind and above the cab, at it
-  std::string camera;              ///< kEntity: the camera's name in the look file
+  /// cab: the picture is a window fixed in front of the design eye (a desktop monitor `screen_distance_m`
+  /// away): the tracked head moves the eye and skews the frustum through that window (off-axis projection)
+  /// instead of turning the view.
+  bool off_axis = false;
+  double screen_distance_m = 0.6;
+  double chase_distance_m = 90.0;             ///< chase: from behind and above the cab, at it
+  std::string camera;                         ///< kEntity: the camera's name in the look file
   core::Vec3 position_m{-40.0, -60.0, 40.0};  ///< kFree
 };
 
