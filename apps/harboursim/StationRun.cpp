@@ -148,6 +148,7 @@ int run_station(const StationOptions& given) {
       view.pitch_rad = c.pitch_rad;
       view.roll_rad = c.roll_rad;
       view.fov_vertical_rad = c.fov_vertical_rad;
+      view.frustum_rad = c.frustum_rad;
       view.hud = views.empty();  // on the first channel
       // a tracked head looks through the desktop's monitor as through a window
       view.off_axis = profile.opentrack_port.has_value();

@@ -393,3 +393,24 @@ TEST(ImageGenerator, OffAxisProjectionMakesTheScreenAWindow) {
 
 }  // namespace
 }  // namespace harbour::ig
+
+namespace harbour::ig {
+namespace {
+
+TEST(ImageGenerator, AnAsymmetricFrustumPutsTheViewAxisOffCentre) {
+  ImageGenerator ig(scene(), looks(), kWidth, kHeight);
+  View v = level();
+  const double deg = std::numbers::pi / 180.0;
+  v.frustum_rad = std::array{-30.0 * deg, 10.0 * deg, -20.0 * deg, 5.0 * deg};
+  ig.set_view(v);
+  ig.update(state(5000.0, 5000.0, 20000.0, 12.0));
+  ig.render();
+  const auto axis = *ig.project({1000.0, 0.0, 10.0});  // straight ahead of the eye
+  const double t = std::tan(30.0 * deg) / (std::tan(30.0 * deg) + std::tan(10.0 * deg));
+  const double u = std::tan(5.0 * deg) / (std::tan(20.0 * deg) + std::tan(5.0 * deg));
+  EXPECT_NEAR(axis.first, t * kWidth, 0.5);
+  EXPECT_NEAR(axis.second, u * kHeight, 0.5);
+}
+
+}  // namespace
+}  // namespace harbour::ig

@@ -167,6 +167,9 @@ TEST(Profiles, TheThreeShippedConfigurationsLoad) {
   EXPECT_EQ(immersive.displays.size(), 4u);
   EXPECT_TRUE(immersive.motion.has_value());
   EXPECT_NEAR(immersive.displays[1].yaw_rad, std::numbers::pi / 3.0, 1e-12);
+  ASSERT_TRUE(immersive.displays[3].frustum_rad.has_value());  // the floor window behind the eye
+  EXPECT_NEAR((*immersive.displays[3].frustum_rad)[2], -28.0 * std::numbers::pi / 180.0, 1e-12);
+  EXPECT_FALSE(immersive.displays[0].frustum_rad.has_value());
   EXPECT_THROW(resolve_profile("cockpit", HARBOUR_DATA_DIR), std::runtime_error);
 }
 
@@ -197,6 +200,13 @@ TEST(Profiles, BadProfilesNameFileLineAndField) {
                 .find("profile.displays: at least one display"),
             std::string::npos);
   EXPECT_NE(profile_error(ok + "  steroe: true\n").find("unknown key 'steroe'"), std::string::npos);
+  const std::string skewed =
+      "    - {name: m, width: 1920, height: 1080, view: {yaw_deg: 0, pitch_deg: 0, roll_deg: 0}, fov: "
+      "{left_deg: 10, right_deg: -10, bottom_deg: -5, top_deg: 5}}\n";
+  EXPECT_NE(profile_error("profile:\n  name: p\n  devices: []\n  displays:\n" + skewed +
+                          "  motion: off\n  head_tracking: off\n")
+                .find("needs left < right and bottom < top"),
+            std::string::npos);
   EXPECT_NE(profile_error("profile:\n  name: p\n  devices: []\n  displays:\n" + display +
                           "  motion: maybe\n  head_tracking: off\n")
                 .find("profile.motion: expected off or a mapping"),

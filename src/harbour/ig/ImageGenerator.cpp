@@ -435,6 +435,12 @@ void ImageGenerator::place_camera() {
     camera->setViewMatrixAsLookAt(to_osg(eye), to_osg(eye + cab.direction_to_parent(forward_local)),
                                   to_osg(cab.direction_to_parent(up_local)));
   } else if (view_.kind == View::Kind::kCab) {
+    if (view_.frustum_rad) {
+      const auto& [left, right, bottom, top] = *view_.frustum_rad;
+      const double near = 0.5;
+      camera->setProjectionMatrixAsFrustum(near * std::tan(left), near * std::tan(right),
+                                           near * std::tan(bottom), near * std::tan(top), near, 6000.0);
+    }
     // the eye in the cab (plus the head's offset), looking along the cab's x turned by the view's offsets
     const core::Vec3 eye = cab.to_parent(cab_.eye_m + cab_.head_offset_m);
     const double yaw = view_.yaw_rad + cab_.head_yaw_pitch_roll_rad.x,

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <map>
 #include <memory>
 #include <optional>
@@ -53,6 +54,9 @@ struct View {
   /// instead of turning the view.
   bool off_axis = false;
   double screen_distance_m = 0.6;
+  /// cab: an asymmetric frustum, the angles of its left, right, bottom, top edges from the view axis [rad]
+  /// (a cabin's projection screen off the eye's axis); empty: symmetric from fov_vertical_rad and the image.
+  std::optional<std::array<double, 4>> frustum_rad;
   double chase_distance_m = 90.0;             ///< chase: from behind and above the cab, at it
   std::string camera;                         ///< kEntity: the camera's name in the look file
   core::Vec3 position_m{-40.0, -60.0, 40.0};  ///< kFree

@@ -58,8 +58,21 @@ Profile load_profile(const std::string& path) {
     c.pitch_rad = f.number(view, "pitch_deg", at + ".view", -90.0, 90.0) * kDeg;
     c.roll_rad = f.number(view, "roll_deg", at + ".view", -180.0, 180.0) * kDeg;
     const YAML::Node fov = f.required_map(d, "fov", at);
-    c.fov_horizontal_rad = f.number(fov, "horizontal_deg", at + ".fov", 10.0, 170.0) * kDeg;
-    c.fov_vertical_rad = f.number(fov, "vertical_deg", at + ".fov", 10.0, 170.0) * kDeg;
+    if (f.optional(fov, "left_deg", at + ".fov")) {
+      // an asymmetric frustum: each edge's angle from the view axis
+      const std::string fat = at + ".fov";
+      const double left = f.number(fov, "left_deg", fat, -85.0, 85.0),
+                   right = f.number(fov, "right_deg", fat, -85.0, 85.0),
+                   bottom = f.number(fov, "bottom_deg", fat, -85.0, 85.0),
+                   top = f.number(fov, "top_deg", fat, -85.0, 85.0);
+      if (!(left < right && bottom < top)) f.fail(fov, fat, "needs left < right and bottom < top");
+      c.frustum_rad = std::array{left * kDeg, right * kDeg, bottom * kDeg, top * kDeg};
+      c.fov_horizontal_rad = (right - left) * kDeg;
+      c.fov_vertical_rad = (top - bottom) * kDeg;
+    } else {
+      c.fov_horizontal_rad = f.number(fov, "horizontal_deg", at + ".fov", 10.0, 170.0) * kDeg;
+      c.fov_vertical_rad = f.number(fov, "vertical_deg", at + ".fov", 10.0, 170.0) * kDeg;
+    }
     p.displays.push_back(c);
   }
   p.stereo = f.flag(root, "stereo", "profile", false);

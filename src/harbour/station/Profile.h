@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -17,6 +18,9 @@ struct DisplayChannel {
   bool fullscreen = false;
   double yaw_rad = 0.0, pitch_rad = 0.0, roll_rad = 0.0;     ///< view offset from the cab's forward axis
   double fov_horizontal_rad = 1.2, fov_vertical_rad = 0.75;  ///< symmetric frustum
+  /// An asymmetric frustum (a projection screen not centred on the eye): angles of its left, right, bottom
+  /// and top edges from the view axis [rad], left and bottom negative; empty: the symmetric one above.
+  std::optional<std::array<double, 4>> frustum_rad;
 };
 
 /// A hardware configuration (data/profiles/*.yaml): desktop, medium or fully immersive.
