@@ -414,3 +414,42 @@ TEST(ImageGenerator, AnAsymmetricFrustumPutsTheViewAxisOffCentre) {
 
 }  // namespace
 }  // namespace harbour::ig
+
+namespace harbour::ig {
+namespace {
+
+TEST(ImageGenerator, AContainersIsoCodeIsPaintedOnItsSides) {
+  sim::SceneDescription d;
+  d.entities.push_back({"mast", "none", {}});
+  d.entities.push_back({"TGHU1234567", "test.container", {6.1, 1.22, 1.3}});
+  const auto white_pixels = [&](bool labelled) {
+    Visual look;
+    VisualPart part;
+    part.color = {0.1, 0.25, 0.6};
+    look.parts.push_back(part);
+    look.name_on_sides = labelled;
+    ImageGenerator ig(d, {{"test.container", look}}, kWidth, kHeight);
+    View v = level();
+    v.hud = false;
+    ig.set_view(v);
+    sim::Snapshot s = state(5000.0, 5000.0, 20000.0, 12.0);
+    s.entity_count = 2;
+    // 7 m ahead, its long side towards the eye (its length across the view)
+    s.entities[1] = {1, 0, {core::Mat3::rotation({0.0, 0.0, 1.0}, std::numbers::pi / 2.0), {7.0, 0.0, 10.0}}};
+    ig.update(s);
+    const osg::Image& image = ig.render();
+    int white = 0;  // bright pixels on the box's side (the rows it spans), which is dark blue
+    const double top = ig.project({7.0, 0.0, 11.2})->second, bottom = ig.project({7.0, 0.0, 8.8})->second;
+    for (int y = static_cast<int>(top); y <= static_cast<int>(bottom); ++y)
+      for (int x = 0; x < kWidth; ++x)
+        white += luminance(pixel(image, x, y)) > 0.6;
+    return white;
+  };
+  const int plain = white_pixels(false), labelled = white_pixels(true);
+  std::printf("white pixels on the box's side: %d plain, %d with its code\n", plain, labelled);
+  EXPECT_EQ(plain, 0);
+  EXPECT_GT(labelled, 80);  // "TGHU1234567" in 0.32 m letters 7 m away
+}
+
+}  // namespace
+}  // namespace harbour::ig

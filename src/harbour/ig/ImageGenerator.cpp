@@ -243,6 +243,24 @@ void ImageGenerator::build(const sim::SceneDescription& scene) {
         geode->addDrawable(box);
       }
     }
+    if (look != visuals_.end() && look->second.name_on_sides) {
+      // the name (a container's ISO code) high on both long sides, facing out (x along the length, y across)
+      for (const double side : {-1.0, 1.0}) {
+        osg::ref_ptr<osgText::Text> label = new osgText::Text;
+        label->setText(e.name);
+        label->setCharacterSize(0.32f);
+        label->setColor(osg::Vec4(0.95f, 0.95f, 0.95f, 1.0f));
+        label->setAlignment(osgText::Text::CENTER_CENTER);
+        label->setAxisAlignment(osgText::Text::USER_DEFINED_ROTATION);
+        // text lies in its xy plane reading along x: turn it upright onto the side face, reading along the
+        // box
+        const osg::Quat upright(osg::PI_2, osg::Vec3(1, 0, 0));
+        label->setRotation(side < 0 ? upright : upright * osg::Quat(osg::PI, osg::Vec3(0, 0, 1)));
+        label->setPosition(osg::Vec3(0.0f, static_cast<float>(side * (e.half_extents_m.y + 0.01)),
+                                     static_cast<float>(e.half_extents_m.z * 0.55)));
+        geode->addDrawable(label);
+      }
+    }
     transform->addChild(geode);
     root_->addChild(transform);
     entities_.push_back(transform);

@@ -34,6 +34,7 @@ Looks load_looks(const std::string& path) {
       for (std::size_t k = 0; k < liveries.size(); ++k)
         visual.liveries.push_back(color_of(f, liveries[k], at + ".liveries[" + std::to_string(k) + "]"));
     }
+    visual.name_on_sides = f.flag(v, "name_on_sides", at, false);
     const YAML::Node parts = f.sequence(v, "parts", at, 256);
     for (std::size_t k = 0; k < parts.size(); ++k) {
       const std::string pat = at + ".parts[" + std::to_string(k) + "]";

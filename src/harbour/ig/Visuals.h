@@ -21,6 +21,7 @@ struct VisualPart {
 struct Visual {
   std::vector<VisualPart> parts;
   std::vector<core::Vec3> liveries;  ///< colours picked by entity index
+  bool name_on_sides = false;        ///< the entity's name painted on its long sides (a container's ISO code)
 };
 
 /// One line of the trainee's heads-up display: an indicator by name (SceneDescription::indicators).
