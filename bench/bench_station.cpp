@@ -16,6 +16,7 @@
 #include "harbour/station/DeviceInput.h"
 #include "harbour/station/DeviceMappingFile.h"
 #include "harbour/station/RealTimeLoop.h"
+#include "scenes/StationScenes.h"
 #include "scenes/StsScenes.h"
 
 namespace harbour {
@@ -28,16 +29,8 @@ struct Sticks {
   std::vector<SDL_Joystick*> sticks;
   Sticks() {
     station::init_sdl_joysticks();
-    for (int n = 0; n < 2; ++n) {
-      SDL_VirtualJoystickDesc desc{};
-      desc.version = SDL_VIRTUAL_JOYSTICK_DESC_VERSION;
-      desc.type = SDL_JOYSTICK_TYPE_FLIGHT_STICK;
-      desc.naxes = 4;
-      desc.nbuttons = 16;
-      desc.nhats = 1;
-      desc.name = "Thrustmaster T.16000M";
-      sticks.push_back(SDL_JoystickOpen(SDL_JoystickAttachVirtualEx(&desc)));
-    }
+    for (int n = 0; n < 2; ++n)
+      sticks.push_back(SDL_JoystickOpen(scenes::attach_flight_stick()));
   }
   ~Sticks() {
     for (SDL_Joystick* j : sticks)

@@ -16,25 +16,15 @@
 #include "harbour/sim/Autopilot.h"
 #include "harbour/station/DeviceMappingFile.h"
 #include "harbour/station/Station.h"
+#include "scenes/StationScenes.h"
 #include "scenes/StsScenes.h"
 
 namespace harbour::station {
 namespace {
 
-std::string temp(const std::string& name) {
-  return (std::filesystem::temp_directory_path() / name).string();
-}
-
-// A T.16000M-like flight stick: x, y, twist, throttle; 16 buttons; a hat.
+// A T.16000M-like flight stick; its instance id.
 int attach_stick() {
-  SDL_VirtualJoystickDesc desc{};
-  desc.version = SDL_VIRTUAL_JOYSTICK_DESC_VERSION;
-  desc.type = SDL_JOYSTICK_TYPE_FLIGHT_STICK;
-  desc.naxes = 4;
-  desc.nbuttons = 16;
-  desc.nhats = 1;
-  desc.name = "Thrustmaster T.16000M";
-  const int index = SDL_JoystickAttachVirtualEx(&desc);
+  const int index = scenes::attach_flight_stick();
   EXPECT_GE(index, 0) << SDL_GetError();
   return SDL_JoystickGetDeviceInstanceID(index);
 }
@@ -145,12 +135,9 @@ struct Desk {
 
   explicit Desk(const std::string& name) {
     init_sdl_joysticks();
-    const std::string db = temp(name + ".db");
-    std::filesystem::remove(db);
-    io::RecordsStore(std::string("sqlite3://db=") + db).ensure_trainee("t1", "Trainee One");
     options.trainee = "t1";
-    options.database = "sqlite3://db=" + db;
-    options.record = temp(name + ".hsrc");
+    options.database = scenes::fresh_database(name + ".db");
+    options.record = scenes::temp_path(name + ".hsrc");
     options.loop.time_scale = 10.0;
     session = std::make_unique<Session>(exercise, options);
     mapping = load_device_mapping(std::string(HARBOUR_DATA_DIR) + "/devices/sts_dual_joystick.yaml",

@@ -11,22 +11,11 @@
 #include "harbour/io/RecordingFile.h"
 #include "harbour/sim/Autopilot.h"
 #include "harbour/station/Session.h"
+#include "scenes/StationScenes.h"
 #include "scenes/StsScenes.h"
 
 namespace harbour::station {
 namespace {
-
-std::string temp(const std::string& name) {
-  return (std::filesystem::temp_directory_path() / name).string();
-}
-
-std::string fresh_database(const std::string& name) {
-  const std::string path = temp(name);
-  std::filesystem::remove(path);
-  io::RecordsStore db("sqlite3://db=" + path);
-  db.ensure_trainee("t1", "Trainee One");
-  return "sqlite3://db=" + path;
-}
 
 // A 60 s live session on this machine: the autopilot drives at 1 kHz paced to the wall clock, the keeper
 // records and evaluates off the step thread; then the recording replays bit for bit.
@@ -34,8 +23,8 @@ TEST(RealTimeLoop, ASixtySecondLiveRunKeepsOneKilohertz) {
   const sim::ExerciseSettings exercise = scenes::sts_discharge_exercise(HARBOUR_DATA_DIR);
   SessionOptions options;
   options.trainee = "t1";
-  options.database = fresh_database("harbour_station_live.db");
-  options.record = temp("harbour_station_live.hsrc");
+  options.database = scenes::fresh_database("harbour_station_live.db");
+  options.record = scenes::temp_path("harbour_station_live.hsrc");
   Session session(exercise, options);
   sim::Autopilot pilot(exercise);
   session.loop().set_pilot([&](const sim::Simulation& s) { return pilot.next(s); });
@@ -73,7 +62,7 @@ TEST(RealTimeLoop, TheImageGeneratorDrawingAlongsideDoesNotHoldTheStepBack) {
   const sim::ExerciseSettings exercise = scenes::sts_discharge_exercise(HARBOUR_DATA_DIR);
   SessionOptions options;
   options.trainee = "t1";
-  options.database = fresh_database("harbour_station_render.db");
+  options.database = scenes::fresh_database("harbour_station_render.db");
   Session session(exercise, options);
   sim::Autopilot pilot(exercise);
   session.loop().set_pilot([&](const sim::Simulation& s) { return pilot.next(s); });

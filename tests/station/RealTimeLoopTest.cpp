@@ -10,29 +10,18 @@
 #include "harbour/io/RecordingFile.h"
 #include "harbour/sim/Autopilot.h"
 #include "harbour/station/Session.h"
+#include "scenes/StationScenes.h"
 #include "scenes/StsScenes.h"
 
 namespace harbour::station {
 namespace {
 
-std::string temp(const std::string& name) {
-  return (std::filesystem::temp_directory_path() / name).string();
-}
-
-std::string fresh_database(const std::string& name) {
-  const std::string path = temp(name);
-  std::filesystem::remove(path);
-  io::RecordsStore db("sqlite3://db=" + path);
-  db.ensure_trainee("t1", "Trainee One");
-  return "sqlite3://db=" + path;
-}
-
 TEST(RealTimeLoop, CommandsFromOtherThreadsLandBetweenStepsAndAreRecorded) {
   const sim::ExerciseSettings exercise = scenes::sts_discharge_exercise(HARBOUR_DATA_DIR);
   SessionOptions options;
   options.trainee = "t1";
-  options.database = fresh_database("harbour_station_commands.db");
-  options.record = temp("harbour_station_commands.hsrc");
+  options.database = scenes::fresh_database("harbour_station_commands.db");
+  options.record = scenes::temp_path("harbour_station_commands.hsrc");
   options.loop.time_scale = 10.0;
   Session session(exercise, options);
   sim::Autopilot pilot(exercise);

@@ -20,14 +20,11 @@
 #include "harbour/station/HeadTracker.h"
 #include "harbour/station/MotionLink.h"
 #include "harbour/station/Profile.h"
+#include "scenes/StationScenes.h"
 #include "scenes/StsScenes.h"
 
 namespace harbour::station {
 namespace {
-
-std::string temp(const std::string& name) {
-  return (std::filesystem::temp_directory_path() / name).string();
-}
 
 std::vector<std::uint8_t> opentrack_datagram(const double (&v)[6]) {
   std::vector<std::uint8_t> bytes(48);
@@ -55,12 +52,9 @@ struct LiveSession {
   std::unique_ptr<Session> session;
   std::unique_ptr<sim::Autopilot> pilot;
   explicit LiveSession(const std::string& name) {
-    const std::string db = temp(name + ".db");
-    std::filesystem::remove(db);
-    io::RecordsStore(std::string("sqlite3://db=") + db).ensure_trainee("t1", "Trainee One");
     SessionOptions options;
     options.trainee = "t1";
-    options.database = "sqlite3://db=" + db;
+    options.database = scenes::fresh_database(name + ".db");
     session = std::make_unique<Session>(exercise, options);
     pilot = std::make_unique<sim::Autopilot>(exercise);
     session->loop().set_pilot([this](const sim::Simulation& s) { return pilot->next(s); });
@@ -174,7 +168,7 @@ TEST(Profiles, TheThreeShippedConfigurationsLoad) {
 }
 
 std::string profile_error(const std::string& text) {
-  const std::string path = temp("harbour_profile.yaml");
+  const std::string path = scenes::temp_path("harbour_profile.yaml");
   { std::ofstream(path) << text; }
   try {
     load_profile(path);

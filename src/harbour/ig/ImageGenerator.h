@@ -101,8 +101,6 @@ class ImageGenerator {
   bool write_png(const std::string& path) const;
   /// Where a world point lands in the image (pixels from the top-left), if in front of the camera.
   std::optional<std::pair<double, double>> project(const core::Vec3& world) const;
-  /// The sun's elevation above the horizon [rad] at the last update.
-  double sun_elevation_rad() const { return sun_elevation_; }
   std::string renderer() const;
 
  private:

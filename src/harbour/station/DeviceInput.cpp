@@ -3,7 +3,6 @@
 #include <SDL.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cstdlib>
 #include <stdexcept>
 
@@ -60,7 +59,6 @@ DeviceInput::DeviceInput(const sim::ControlTable& table, DeviceMapping mapping)
 }
 
 DeviceInput::~DeviceInput() {
-  stop();
   {
     const std::lock_guard lock(mutex_);
     for (std::size_t d = 0; d < bound_.size(); ++d)
@@ -210,22 +208,6 @@ void DeviceInput::maintain() {
     event({DeviceEvent::Kind::kConnected, mapping.devices[d].id, name,
            joined(mapper_.controls_of(static_cast<int>(d)))});
   }
-}
-
-void DeviceInput::start(double rate_hz) {
-  if (running_.exchange(true)) return;
-  thread_ = std::thread([this, rate_hz] {
-    const auto period = std::chrono::duration<double>(1.0 / rate_hz);
-    while (running_.load()) {
-      maintain();
-      std::this_thread::sleep_for(period);
-    }
-  });
-}
-
-void DeviceInput::stop() {
-  running_ = false;
-  if (thread_.joinable()) thread_.join();
 }
 
 std::vector<DeviceEvent> DeviceInput::take_events() {

@@ -1,10 +1,8 @@
 #pragma once
 
-#include <atomic>
 #include <cstdint>
 #include <mutex>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "harbour/station/DeviceMapping.h"
@@ -55,11 +53,8 @@ class DeviceInput {
 
   /// Reads the bound devices and maps them (any thread; one at a time).
   sim::Controls sample();
-  /// Finds new devices, binds them, drops lost ones (call a few tens of times a second).
+  /// Finds new devices, binds them, drops lost ones (the station calls it 50 times a second).
   void maintain();
-  /// maintain() at `rate_hz` on a thread of its own until stop().
-  void start(double rate_hz = 50.0);
-  void stop();
 
   /// Events since the last call.
   std::vector<DeviceEvent> take_events();
@@ -71,7 +66,6 @@ class DeviceInput {
   /// Whether every joystick `mapping` names is present now (the keyboard counts as present only where
   /// there is a window: `keyboard`). SDL's joystick subsystem must be initialised.
   static bool all_present(const DeviceMapping& mapping, bool keyboard);
-  const ControlMapper& mapper() const { return mapper_; }
 
  private:
   struct Bound {
@@ -95,8 +89,6 @@ class DeviceInput {
   sim::Controls last_;
   std::mutex events_mutex_;
   std::vector<DeviceEvent> events_;
-  std::thread thread_;
-  std::atomic<bool> running_{false};
 };
 
 }  // namespace harbour::station

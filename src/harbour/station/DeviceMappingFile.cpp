@@ -69,7 +69,7 @@ DeviceMapping load_device_mapping(const io::YamlFile& f, const sim::ControlTable
         f.fail(d["guid"], at + ".guid", "an SDL GUID is 32 hexadecimal digits");
     }
     if (f.optional(d, "name", at)) match.name = f.text(d, "name", at);
-    match.nth = static_cast<int>(f.number_or(d, "nth", at, 0.0, 0.0, 15.0));
+    match.nth = f.optional(d, "nth", at) ? f.integer(d, "nth", at, 0, 15) : 0;
     if (!match.window_device() && match.guid.empty() && match.name.empty())
       f.fail(d, at, "a device is matched by guid, name or both (or is keyboard: true or mouse: true)");
     m.devices.push_back(match);

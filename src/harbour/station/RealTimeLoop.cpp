@@ -13,8 +13,6 @@ using Clock = std::chrono::steady_clock;
 RealTimeLoop::RealTimeLoop(sim::Simulation& simulation, const LoopSettings& settings)
     : simulation_(simulation), settings_(settings), records_(settings.record_capacity) {
   latched_ = simulation.control_table().neutral();
-  controls_in_.back() = latched_;
-  controls_in_.publish();
   for (int n = 0; n < kSnapshotReaders; ++n) {
     snapshots_.push_back(std::make_unique<TripleBuffer<sim::Snapshot>>());
     settings_.snapshot_every_steps[static_cast<std::size_t>(n)] =
@@ -47,11 +45,6 @@ void RealTimeLoop::stop() {
 
 void RealTimeLoop::join() {
   if (thread_.joinable()) thread_.join();
-}
-
-void RealTimeLoop::submit_controls(const sim::Controls& controls) {
-  controls_in_.back() = controls;
-  controls_in_.publish();
 }
 
 bool RealTimeLoop::post(const LoopCommand& command, std::string* why) {
@@ -172,7 +165,10 @@ void RealTimeLoop::apply_commands() {
 }
 
 void RealTimeLoop::step_once() {
-  latched_ = pilot_ ? pilot_(simulation_) : sampler_ ? sampler_() : *controls_in_.latest();
+  if (pilot_)
+    latched_ = pilot_(simulation_);
+  else if (sampler_)
+    latched_ = sampler_();
   simulation_.single_step(latched_);
   StepRecord r;
   r.kind = StepRecord::Kind::kStep;

@@ -86,7 +86,7 @@ class RealTimeLoop {
 
   void set_pilot(Pilot pilot) { pilot_ = std::move(pilot); }
   /// Controls read on the step thread right before each step (the input devices' sample(): a device change
-  /// reaches the very next step); without one, the newest submit_controls().
+  /// reaches the very next step); with neither a pilot nor a sampler the controls stay neutral.
   void set_sampler(std::function<sim::Controls()> sampler) { sampler_ = std::move(sampler); }
   /// How many input devices are missing now (any thread): published in every snapshot for the displays.
   void set_devices_missing(int count) { devices_missing_ = count; }
@@ -107,8 +107,6 @@ class RealTimeLoop {
   void join();
   bool running() const { return running_.load(); }
 
-  /// Input side (one thread): the controls the next steps use, until newer ones come.
-  void submit_controls(const sim::Controls& controls);
   /// Any thread: a command for the loop, applied before the next step. An instructor command out of range
   /// is refused here (false, with why); so is one when the queue is full.
   bool post(const LoopCommand& command, std::string* why = nullptr);
@@ -140,7 +138,6 @@ class RealTimeLoop {
   std::thread thread_;
   std::atomic<bool> running_{false}, stop_requested_{false};
 
-  TripleBuffer<sim::Controls> controls_in_;
   sim::Controls latched_;
   std::vector<std::unique_ptr<TripleBuffer<sim::Snapshot>>> snapshots_;
   SpscRing<StepRecord> records_;

@@ -50,7 +50,7 @@ class Session {
   void start();
   /// Whether the exercise is over (its moves done, past its time and overtime, or diverged).
   bool over() const { return over_.load(); }
-  /// The evaluation so far (the keeper's copy).
+  /// The evaluation so far (the keeper's copy, refreshed every 50 steps and at each move).
   sim::Metrics metrics() const;
   /// Something the station saw (an input device lost or back): stored with the attempt's events at the
   /// simulated time the keeper has reached (any thread).

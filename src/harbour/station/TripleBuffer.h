@@ -26,8 +26,6 @@ class TripleBuffer {
     }
     return has_value_ ? &(*buffers_)[front_] : nullptr;
   }
-  /// Reader: whether a value newer than the one latest() last returned is waiting.
-  bool fresh() const { return (state_.load(std::memory_order_acquire) & kFresh) != 0; }
 
  private:
   static constexpr unsigned kIndex = 3, kFresh = 4;
