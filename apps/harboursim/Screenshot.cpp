@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <numbers>
 #include <stdexcept>
 
 #include "StsRun.h"
@@ -49,7 +50,14 @@ int take_screenshot(const ScreenshotOptions& options) {
       list += (list.empty() ? "" : ", ") + n;
     throw std::runtime_error("--view " + options.view + ": one of " + list);
   }
-  generator.set_view(ig::view_named(options.view));
+  ig::View view = ig::view_named(options.view);
+  if (!options.camera.empty()) {
+    if (view.kind != ig::View::Kind::kFree) throw std::runtime_error("--camera is for --view free");
+    view.position_m = {options.camera[0], options.camera[1], options.camera[2]};
+    view.yaw_rad = options.camera[3] * std::numbers::pi / 180.0;
+    view.pitch_rad = options.camera[4] * std::numbers::pi / 180.0;
+  }
+  generator.set_view(view);
   generator.render();
   if (!generator.write_png(options.out)) throw std::runtime_error(options.out + ": cannot be written");
   std::printf("%s: %s at t=%.1f s, %s view, %dx%d (%s)\n", options.out.c_str(), exercise.name.c_str(),

@@ -2,6 +2,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace harbour::apps {
 
@@ -14,6 +15,8 @@ struct ScreenshotOptions {
   int width = 1280, height = 720;
   std::string out;
   std::optional<double> time_of_day_h, visibility_m, rain_mm_per_h;  ///< instructor settings at the start
+  /// the free view's camera: x, y, z [m], yaw and pitch [deg] (yaw from +x towards +y)
+  std::vector<double> camera;
 };
 int take_screenshot(const ScreenshotOptions& options);
 

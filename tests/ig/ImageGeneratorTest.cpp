@@ -453,3 +453,124 @@ TEST(ImageGenerator, AContainersIsoCodeIsPaintedOnItsSides) {
 
 }  // namespace
 }  // namespace harbour::ig
+
+namespace harbour::ig {
+namespace {
+
+View free_camera(const core::Vec3& at, double yaw, double pitch) {
+  View v = view_named("free");
+  v.position_m = at;
+  v.yaw_rad = yaw;
+  v.pitch_rad = pitch;
+  v.hud = false;
+  return v;
+}
+
+// The wind sea (Tessendorf's FFT waves) breaks the water's reflection of the sky into a pattern: the
+// water's luminance varies across the picture in a fresh breeze far more than in a calm.
+TEST(ImageGenerator, WindRoughensTheWater) {
+  ImageGenerator ig(scene(), looks(), kWidth, kHeight);
+  ig.set_view(free_camera({200.0, 0.0, 6.0}, 0.0, -0.35));  // over open water, looking down the wind
+  const auto spread = [&](double wind) {
+    sim::Snapshot s = state(-500.0, -600.0, 20000.0, 11.0);  // the boxes behind the camera
+    s.wind_mps = {wind, 0.0, 0.0};
+    s.time_s = 30.0;
+    ig.update(s);
+    const osg::Image& image = ig.render();
+    double sum = 0.0,
+           n = 0.0;  // mean change of luminance from pixel to pixel (the gradient of distance aside)
+    for (int y = kHeight * 3 / 10; y < kHeight * 6 / 10; ++y)  // water only, where it mirrors the sky most
+      for (int x = 0; x < kWidth; ++x) {
+        sum += std::abs(luminance(pixel(image, x, y)) - luminance(pixel(image, x, y - 1)));
+        ++n;
+      }
+    if (wind > 0.0) ig.write_png(::testing::TempDir() + "/wind_sea.png");
+    return sum / n;
+  };
+  const double calm = spread(0.0), breeze = spread(12.0);
+  std::printf("water luminance change pixel to pixel: calm %.4f, 12 m/s %.4f\n", calm, breeze);
+  EXPECT_GT(breeze, 3.0 * calm);
+}
+
+// The swell through the vessel's reference point rises and falls with the vessel's heave: a post standing
+// there, seen from beside it along the crests, shows the waterline where projection puts the heaved level.
+TEST(ImageGenerator, TheWaterlineFollowsTheVesselsHeave) {
+  ImageGenerator ig(scene(), looks(), kWidth, kHeight);
+  const core::Vec3 post{60.0, 0.0, -3.5};
+  ig.set_view(free_camera({post.x, post.y - 14.0, post.z + 1.2}, std::numbers::pi / 2.0, -0.08));
+  std::vector<double> rows, projected;
+  for (const double phase : {std::numbers::pi / 2.0, -std::numbers::pi / 2.0, 0.0}) {
+    sim::Snapshot s = state(-500.0, -600.0, 20000.0, 12.0);
+    s.sea.water_level_m = post.z;
+    s.sea.reference_m = post;
+    s.sea.swell_count = 1;
+    s.sea.swells[0] = {0.6, 9.0, phase,
+                       std::numbers::pi};  // running along -x: the camera looks along a crest
+    s.entities[1] = {1, 0, {core::Mat3::rotation({0, 0, 1}, std::numbers::pi / 2.0), post}};  // the red panel
+    ig.update(s);
+    const osg::Image& image = ig.render();
+    const auto at = ig.project(post);
+    ASSERT_TRUE(at);
+    int lowest_red = -1;
+    for (int y = 0; y < kHeight; ++y) {
+      const osg::Vec3 p = pixel(image, at->first, y);
+      if (p.x() > 0.3 && p.x() > 2.5 * p.y() && p.x() > 2.5 * p.z()) lowest_red = y;
+    }
+    const double heave = 0.6 * std::sin(phase);
+    const auto waterline = ig.project({post.x, post.y - 0.1, post.z + heave});  // the panel's near face
+    std::printf("heave %+.2f m: waterline at row %d, projected %.1f\n", heave, lowest_red, waterline->second);
+    EXPECT_NEAR(lowest_red, waterline->second, 3.0);
+    rows.push_back(lowest_red);
+    projected.push_back(waterline->second);
+  }
+  // crest to trough: the waterline moves as far as projection says (within a tenth)
+  EXPECT_NEAR(rows[1] - rows[0], projected[1] - projected[0], 0.1 * (projected[1] - projected[0]));
+}
+
+}  // namespace
+}  // namespace harbour::ig
+
+namespace harbour::ig {
+namespace {
+
+// The sun casts shadows (osgShadow's view-dependent shadow map): a box held 6 m over the quay darkens the
+// quay where the sun's ray through it lands (computed from the sun's position for the time of day), not the
+// spot as far the other way; the shadow moves with the sun.
+TEST(ImageGenerator, TheSunCastsAShadowWhereItsRaysSay) {
+  ImageGenerator ig(scene(), looks(), kWidth, kHeight);
+  View v = free_camera({-20.0, 0.0, 60.0}, 0.0, -std::numbers::pi / 2.0 + 1e-3);
+  v.fov_vertical_rad = 0.9;
+  ig.set_view(v);
+  for (const double hour : {10.0, 14.0}) {
+    sim::Snapshot s = state(5000.0, 5000.0, 20000.0, hour);
+    const core::Vec3 box{-20.0, 0.0, 6.0};
+    s.entities[1] = {1, 0, {core::Mat3::rotation({0, 0, 1}, std::numbers::pi / 2.0), box}};
+    ig.update(s);
+    const osg::Image& image = ig.render();
+    // the sun's direction as the image generator computes it (equinox, 40 deg N): its hour angle and
+    // the horizontal and vertical parts
+    const double h = (hour - 12.0) / 24.0 * 2.0 * std::numbers::pi, lat = 40.0 * std::numbers::pi / 180.0;
+    const double declination =
+        23.45 * std::numbers::pi / 180.0 * std::sin(2.0 * std::numbers::pi * 364.0 / 365.0);
+    const core::Vec3 to_sun{
+        -std::cos(declination) * std::sin(h),
+        std::cos(lat) * std::sin(declination) - std::sin(lat) * std::cos(declination) * std::cos(h),
+        std::sin(lat) * std::sin(declination) + std::cos(lat) * std::cos(declination) * std::cos(h)};
+    const core::Vec3 shadow = box - to_sun * (box.z / to_sun.z), mirror = box + (box - shadow);
+    const auto around = [&](const core::Vec3& p) {
+      const auto at = ig.project({p.x, p.y, 0.0});
+      double sum = 0.0;
+      for (int dy = -2; dy <= 2; ++dy)
+        for (int dx = -2; dx <= 2; ++dx)
+          sum += luminance(pixel(image, at->first + dx, at->second + dy));
+      return sum / 25.0;
+    };
+    const double in_shadow = around(shadow), across = around({mirror.x, mirror.y, 0.0});
+    std::printf("%.0f h: quay %.3f where the shadow should fall, %.3f as far the other way\n", hour,
+                in_shadow, across);
+    EXPECT_LT(in_shadow, 0.7 * across);
+  }
+}
+
+}  // namespace
+}  // namespace harbour::ig

@@ -10,9 +10,13 @@
 #include <osg/LineWidth>
 #include <osg/Material>
 #include <osg/MatrixTransform>
+#include <osg/Program>
 #include <osg/ShapeDrawable>
+#include <osg/Uniform>
 #include <osgDB/WriteFile>
 #include <osgParticle/PrecipitationEffect>
+#include <osgShadow/ShadowedScene>
+#include <osgShadow/ViewDependentShadowMap>
 #include <osgText/Text>
 #include <osgViewer/Viewer>
 
@@ -28,8 +32,10 @@ namespace harbour::ig {
 
 namespace {
 constexpr double kPi = std::numbers::pi;
-constexpr double kLatitude_rad = 40.0 * kPi / 180.0;  // a mid-latitude harbour at the equinox (assumed)
-constexpr double kWaterLevel_m = -2.0;                // below the quay's top (assumed)
+constexpr double kFetch_m = 2000.0;  // the harbour basin's open water upwind, for the wind sea (assumed)
+constexpr int kWaterColumns = 128,
+              kWaterRows = 96;          // the water's grid, laid over the screen (projected grid)
+constexpr double kWaterFar_m = 3000.0;  // where it ends; a flat sea beyond
 
 osg::Vec3 to_osg(const core::Vec3& v) {
   return {static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z)};
@@ -77,15 +83,23 @@ osg::ref_ptr<osg::Geode> tessellated_plane(double x0, double x1, double y0, doub
   return geode;
 }
 
-// the sun at time of day t (equinox, kLatitude): elevation and the direction towards it (x east, y north)
-core::Vec3 sun_direction(double t_h, double& elevation) {
-  const double hour_angle = (t_h - 12.0) / 24.0 * 2.0 * kPi;
-  const double sin_e = std::cos(kLatitude_rad) * std::cos(hour_angle);
-  elevation = std::asin(sin_e);
-  // horizontal part: east in the morning, south at noon, west in the evening
-  const core::Vec3 d{-std::sin(hour_angle), -std::sin(kLatitude_rad) * std::cos(hour_angle), sin_e};
-  const double n = std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
-  return {d.x / n, d.y / n, d.z / n};
+// a body of declination `declination` seen at hour angle `hour_angle` from `latitude`: the direction
+// towards it (x east, y north, z up)
+core::Vec3 sky_direction(double hour_angle, double declination, double latitude) {
+  return {-std::cos(declination) * std::sin(hour_angle),
+          std::cos(latitude) * std::sin(declination) -
+              std::sin(latitude) * std::cos(declination) * std::cos(hour_angle),
+          std::sin(latitude) * std::sin(declination) +
+              std::cos(latitude) * std::cos(declination) * std::cos(hour_angle)};
+}
+
+// the sun at solar time t on a day of the year (declination after Cooper 1969) from a latitude
+core::Vec3 sun_direction(double t_h, double day_of_year, double latitude_deg, double& elevation) {
+  const double declination = 23.45 * kPi / 180.0 * std::sin(2.0 * kPi * (284.0 + day_of_year) / 365.0);
+  const core::Vec3 d =
+      sky_direction((t_h - 12.0) / 24.0 * 2.0 * kPi, declination, latitude_deg * kPi / 180.0);
+  elevation = std::asin(std::clamp(d.z, -1.0, 1.0));
+  return d;
 }
 
 // the sky at the horizon for a sun elevation: day blue, dusk orange, night dark blue
@@ -119,6 +133,48 @@ osg::Vec4 sky_towards(const core::Vec3& d, const core::Vec3& sun, double sun_ele
   return {static_cast<float>(std::min(c.x, 1.0)), static_cast<float>(std::min(c.y, 1.0)),
           static_cast<float>(std::min(c.z, 1.0)), 1.0f};
 }
+// The lit scene's shading: the fixed pipeline's per-vertex lighting (the geometry's colour as ambient and
+// diffuse; the sun as light 0, floodlights as lights 1..n with their attenuation) and its exponential fog,
+// with the sun's diffuse part dimmed where the shadow map says the sun is hidden.
+constexpr char kLitVertexShader[] = R"(#version 120
+uniform int floodlights;  // lights 1..floodlights are on
+varying vec4 unshadowed;  // ambient and floodlight
+varying vec4 sunlit;      // the sun's diffuse part
+varying float fog_depth;
+void main() {
+  vec4 eye = gl_ModelViewMatrix * gl_Vertex;
+  vec3 n = normalize(gl_NormalMatrix * gl_Normal);
+  vec4 colour = gl_Color;
+  unshadowed = gl_LightModel.ambient * colour + gl_LightSource[0].ambient * colour;
+  sunlit = max(dot(n, normalize(gl_LightSource[0].position.xyz)), 0.0) * gl_LightSource[0].diffuse * colour;
+  for (int i = 1; i < 8; ++i) {
+    if (i > floodlights) break;
+    vec3 to_light = gl_LightSource[i].position.xyz - eye.xyz;
+    float d = length(to_light);
+    float attenuation = 1.0 / (gl_LightSource[i].constantAttenuation + gl_LightSource[i].linearAttenuation * d +
+                               gl_LightSource[i].quadraticAttenuation * d * d);
+    unshadowed += max(dot(n, to_light / d), 0.0) * attenuation * gl_LightSource[i].diffuse * colour;
+  }
+  gl_TexCoord[1] = vec4(dot(eye, gl_EyePlaneS[1]), dot(eye, gl_EyePlaneT[1]), dot(eye, gl_EyePlaneR[1]),
+                        dot(eye, gl_EyePlaneQ[1]));
+  fog_depth = length(eye.xyz);
+  gl_Position = gl_ProjectionMatrix * eye;
+}
+)";
+constexpr char kLitFragmentShader[] = R"(#version 120
+uniform sampler2DShadow shadowTexture0;
+varying vec4 unshadowed;
+varying vec4 sunlit;
+varying float fog_depth;
+void main() {
+  vec4 at = gl_TexCoord[1];
+  at.z -= 0.0006 * at.w;  // a little towards the sun: no self-shadowing speckle on lit faces
+  float lit = shadow2DProj(shadowTexture0, at).r;
+  vec4 colour = min(unshadowed + sunlit * lit, vec4(1.0));
+  float fog = clamp(exp(-gl_Fog.density * fog_depth), 0.0, 1.0);
+  gl_FragColor = vec4(mix(gl_Fog.color.rgb, colour.rgb, fog), 1.0);
+}
+)";
 }  // namespace
 
 ImageGenerator::ImageGenerator(const sim::SceneDescription& scene, std::map<std::string, Visual> visuals,
@@ -155,6 +211,25 @@ void ImageGenerator::build(const sim::SceneDescription& scene) {
   osg::ref_ptr<osg::Material> material = new osg::Material();
   material->setColorMode(osg::Material::AMBIENT_AND_DIFFUSE);  // the geometry's colours, lit
   state->setAttribute(material);
+  // what the sun lights: the quay and every entity, casting and receiving the sun's shadows
+  {
+    osg::ref_ptr<osgShadow::ShadowSettings> settings = new osgShadow::ShadowSettings;
+    settings->setLightNum(0);
+    settings->setShaderHint(osgShadow::ShadowSettings::NO_SHADERS);  // the lit scene's own shading, below
+    settings->setBaseShadowTextureUnit(1);
+    settings->setTextureSize(osg::Vec2s(2048, 2048));
+    settings->setMaximumShadowMapDistance(600.0);
+    settings->setShadowMapProjectionHint(osgShadow::ShadowSettings::ORTHOGRAPHIC_SHADOW_MAP);
+    shadowed_ = new osgShadow::ShadowedScene(new osgShadow::ViewDependentShadowMap);
+    shadowed_->setShadowSettings(settings);
+    osg::ref_ptr<osg::Program> program = new osg::Program;
+    program->addShader(new osg::Shader(osg::Shader::VERTEX, kLitVertexShader));
+    program->addShader(new osg::Shader(osg::Shader::FRAGMENT, kLitFragmentShader));
+    osg::StateSet* lit = shadowed_->getOrCreateStateSet();
+    lit->setAttribute(program);
+    floodlights_on_ = new osg::Uniform("floodlights", 0);
+    lit->addUniform(floodlights_on_);
+  }
   fog_ = new osg::Fog;
   fog_->setMode(osg::Fog::EXP);
   fog_->setFogCoordinateSource(osg::Fog::FRAGMENT_DEPTH);
@@ -210,18 +285,44 @@ void ImageGenerator::build(const sim::SceneDescription& scene) {
   // (finer near the crane, where floodlight pools fall: the lighting is per vertex)
   osg::ref_ptr<osg::Geode> apron = tessellated_plane(-60.0, 18.0, -80.0, 80.0, 0.0, 3.0, {0.42, 0.42, 0.40});
   quay_color_ = static_cast<osg::Vec4Array*>(apron->getDrawable(0)->asGeometry()->getColorArray());
-  root_->addChild(apron);
+  shadowed_->addChild(apron);
   for (const auto& [x0, x1, y0, y1] :
        {std::array{-300.0, -60.0, -400.0, 400.0}, std::array{-60.0, 18.0, -400.0, -80.0},
         std::array{-60.0, 18.0, 80.0, 400.0}}) {
     osg::ref_ptr<osg::Geode> part = tessellated_plane(x0, x1, y0, y1, 0.0, 20.0, {0.42, 0.42, 0.40});
     part->getDrawable(0)->asGeometry()->setColorArray(quay_color_, osg::Array::BIND_OVERALL);  // wet together
-    root_->addChild(part);
+    shadowed_->addChild(part);
   }
   rain_ = new osgParticle::PrecipitationEffect;
   rain_->setNodeMask(0);  // dry until the weather says otherwise
   root_->addChild(rain_);
-  root_->addChild(tessellated_plane(18.0, 900.0, -900.0, 900.0, kWaterLevel_m, 30.0, {0.05, 0.16, 0.22}));
+  // the water: a grid round the eye moved every frame, over a flat sea to the horizon (below its troughs)
+  far_water_ = new osg::MatrixTransform;
+  far_water_->addChild(tessellated_plane(-4000.0, 4000.0, -4000.0, 4000.0, -4.0, 400.0, {0.04, 0.12, 0.17}));
+  root_->addChild(far_water_);
+  {
+    water_ = new osg::Geometry;
+    water_->setUseDisplayList(false);
+    water_->setUseVertexBufferObjects(true);
+    water_->setDataVariance(osg::Object::DYNAMIC);
+    const int row = kWaterColumns + 1;
+    water_->setVertexArray(new osg::Vec3Array(row * (kWaterRows + 1)));
+    water_->setColorArray(new osg::Vec4Array(row * (kWaterRows + 1)), osg::Array::BIND_PER_VERTEX);
+    for (int j = 0; j < kWaterRows; ++j) {
+      osg::ref_ptr<osg::DrawElementsUShort> strip = new osg::DrawElementsUShort(GL_TRIANGLE_STRIP);
+      for (int i = 0; i <= kWaterColumns; ++i) {
+        strip->push_back(static_cast<unsigned short>((j + 1) * row + i));
+        strip->push_back(static_cast<unsigned short>(j * row + i));
+      }
+      water_->addPrimitiveSet(strip);
+    }
+    water_->setCullingActive(false);  // it moves with the eye
+    osg::ref_ptr<osg::Geode> geode = new osg::Geode;
+    geode->addDrawable(water_);
+    geode->getOrCreateStateSet()->setMode(GL_LIGHTING, osg::StateAttribute::OFF);  // shaded per vertex here
+    geode->getOrCreateStateSet()->setMode(GL_CULL_FACE, osg::StateAttribute::OFF);
+    root_->addChild(geode);
+  }
 
   std::size_t index = 0;
   for (const sim::SceneDescription::Entity& e : scene.entities)
@@ -262,10 +363,11 @@ void ImageGenerator::build(const sim::SceneDescription& scene) {
       }
     }
     transform->addChild(geode);
-    root_->addChild(transform);
+    shadowed_->addChild(transform);
     entities_.push_back(transform);
     ++index;
   }
+  root_->addChild(shadowed_);
   osg::ref_ptr<osg::Geode> ropes = new osg::Geode();
   ropes->getOrCreateStateSet()->setAttributeAndModes(new osg::LineWidth(2.0f));
   ropes->getOrCreateStateSet()->setMode(GL_LIGHTING, osg::StateAttribute::OFF);
@@ -340,7 +442,7 @@ void ImageGenerator::update(const sim::Snapshot& s) {
     ropes_[r]->dirtyBound();
   }
   // the sun and the sky from the time of day; fog from the visibility (Koschmieder: 2 % contrast at V)
-  const core::Vec3 to_sun = sun_direction(s.time_of_day_h, sun_elevation_);
+  const core::Vec3 to_sun = sun_direction(s.time_of_day_h, s.day_of_year, s.latitude_deg, sun_elevation_);
   const double daylight = std::clamp(std::sin(sun_elevation_) * 2.5, 0.0, 1.0);
   const core::Vec3 sky = sky_color(sun_elevation_);
   osg::Light* light = sun_->getLight();
@@ -373,7 +475,14 @@ void ImageGenerator::update(const sim::Snapshot& s) {
   for (std::size_t n = 0; n < floodlights_.size(); ++n)
     root_->getOrCreateStateSet()->setMode(GL_LIGHT1 + static_cast<GLenum>(n),
                                           dark ? osg::StateAttribute::ON : osg::StateAttribute::OFF);
+  floodlights_on_->set(dark ? static_cast<int>(floodlights_.size()) : 0);
   cab_ = s.cab;
+  sea_ = s.sea;
+  time_s_ = s.time_s;
+  wind_mps_ = s.wind_mps;
+  to_sun_ = to_sun;
+  daylight_ = daylight;
+  far_water_->setMatrix(osg::Matrixd::translate(0.0, 0.0, s.sea.water_level_m));
 
   // the HUD: time, wind, then the machine's indicators the look file names; alarms on their own line
   char buffer[96];
@@ -511,11 +620,97 @@ std::vector<std::string> ImageGenerator::view_names() const {
   return names;
 }
 
+void ImageGenerator::update_water(const osg::Vec3d& eye) {
+  // the wind sea for the wind as it blows now (synthesised again when it has changed by a quarter)
+  const double wind = std::hypot(wind_mps_.x, wind_mps_.y);
+  if (!wind_sea_ || std::abs(wind - wind_sea_speed_mps_) > 0.25 * wind_sea_speed_mps_ + 0.5) {
+    const Jonswap spectrum = Jonswap::fetch_limited(wind, kFetch_m);
+    const double peak_wavelength = 2.0 * kPi * 9.81 / (spectrum.omega_peak_radps * spectrum.omega_peak_radps);
+    wind_sea_ = std::make_unique<OceanPatch>(64, 10.0 * peak_wavelength, spectrum,
+                                             std::atan2(wind_mps_.y, wind_mps_.x), 0x5EA);
+    wind_sea_speed_mps_ = wind;
+  }
+  wind_sea_->evaluate(time_s_);
+  const double finest = wind_sea_->length_m() / wind_sea_->size();
+  const double level = sea_.water_level_m;
+  auto& vertices = static_cast<osg::Vec3Array&>(*water_->getVertexArray());
+  auto& colors = static_cast<osg::Vec4Array&>(*water_->getColorArray());
+  const core::Vec3 deep{0.02 + 0.03 * daylight_, 0.06 + 0.10 * daylight_, 0.08 + 0.12 * daylight_};
+  const core::Vec3 eye_m{eye.x(), eye.y(), eye.z()};
+  // a projected grid (Johanson 2004): rays through a grid over the screen (a little wider) meet the still
+  // water; rays that miss it end at the far distance, so every cell covers about the same part of the image
+  const osg::Camera& camera = *viewer_->getCamera();
+  const osg::Matrixd to_world = osg::Matrixd::inverse(camera.getViewMatrix() * camera.getProjectionMatrix());
+  const int row = kWaterColumns + 1;
+  water_base_.resize(static_cast<std::size_t>(row * (kWaterRows + 1)));
+  for (int j = 0; j <= kWaterRows; ++j)
+    for (int i = 0; i <= kWaterColumns; ++i) {
+      const double u = -1.1 + 2.2 * i / kWaterColumns, v = -1.1 + 2.2 * j / kWaterRows;
+      const osg::Vec3d through = osg::Vec3d(u, v, 1.0) * to_world;  // on the far plane
+      osg::Vec3d ray = through - eye;
+      ray.normalize();
+      const double t = std::abs(ray.z()) > 1e-9 ? (level - eye.z()) / ray.z() : -1.0;
+      osg::Vec3d hit;
+      if (t > 0.0 && t < kWaterFar_m) {
+        hit = eye + ray * t;
+      } else {
+        osg::Vec3d flat(ray.x(), ray.y(), 0.0);
+        if (flat.normalize() < 1e-9) flat.set(1.0, 0.0, 0.0);
+        hit = osg::Vec3d(eye.x(), eye.y(), level) + flat * kWaterFar_m;
+      }
+      water_base_[static_cast<std::size_t>(j * row + i)] = {hit.x(), hit.y()};
+    }
+  for (int j = 0; j <= kWaterRows; ++j)
+    for (int i = 0; i <= kWaterColumns; ++i) {
+      const auto base = [&](int a, int b) {
+        return water_base_[static_cast<std::size_t>(std::min(b, kWaterRows) * row +
+                                                    std::min(a, kWaterColumns))];
+      };
+      const auto [x, y] = base(i, j);
+      const double cell = std::max(std::hypot(base(i + 1, j).first - x, base(i + 1, j).second - y),
+                                   std::hypot(base(i, j + 1).first - x, base(i, j + 1).second - y));
+      // the wind sea fades where the mesh is too coarse to carry it
+      const double fade = std::clamp(2.0 - cell / (2.0 * finest), 0.0, 1.0);
+      const double dx = 0.5;  // the swell's slope by central differences
+      const double swell = swell_elevation_m(sea_, time_s_, x, y);
+      const double swell_sx =
+          (swell_elevation_m(sea_, time_s_, x + dx, y) - swell_elevation_m(sea_, time_s_, x - dx, y)) /
+          (2 * dx);
+      const double swell_sy =
+          (swell_elevation_m(sea_, time_s_, x, y + dx) - swell_elevation_m(sea_, time_s_, x, y - dx)) /
+          (2 * dx);
+      const double px = x + fade * wind_sea_->displacement_x_at(x, y),
+                   py = y + fade * wind_sea_->displacement_y_at(x, y),
+                   pz = level + swell + fade * wind_sea_->height_at(x, y);
+      core::Vec3 n{-(swell_sx + fade * wind_sea_->slope_x_at(x, y)),
+                   -(swell_sy + fade * wind_sea_->slope_y_at(x, y)), 1.0};
+      n = n * (1.0 / std::sqrt(dot(n, n)));
+      core::Vec3 v{eye_m.x - px, eye_m.y - py, eye_m.z - pz};
+      v = v * (1.0 / std::max(std::sqrt(dot(v, v)), 1e-6));
+      const double cos_view = std::max(dot(n, v), 0.0);
+      core::Vec3 r = n * (2.0 * cos_view) - v;  // the reflected view ray: what the water mirrors
+      r.z = std::max(r.z, 0.02);
+      r = r * (1.0 / std::sqrt(dot(r, r)));
+      const double f = water_fresnel(cos_view);
+      const osg::Vec4 sky = sky_towards(r, to_sun_, sun_elevation_);
+      const double glint = daylight_ * std::pow(std::max(dot(r, to_sun_), 0.0), 400.0);
+      const std::size_t k = static_cast<std::size_t>(j * row + i);
+      vertices[k].set(static_cast<float>(px), static_cast<float>(py), static_cast<float>(pz));
+      colors[k].set(static_cast<float>(std::min((1 - f) * deep.x + f * sky.r() + glint, 1.0)),
+                    static_cast<float>(std::min((1 - f) * deep.y + f * sky.g() + glint, 1.0)),
+                    static_cast<float>(std::min((1 - f) * deep.z + f * sky.b() + glint * 0.9, 1.0)), 1.0f);
+    }
+  vertices.dirty();
+  colors.dirty();
+  water_->dirtyBound();
+}
+
 const osg::Image& ImageGenerator::render() {
   place_camera();
   osg::Vec3d eye, centre, up;
   viewer_->getCamera()->getViewMatrixAsLookAt(eye, centre, up);
   sky_->setMatrix(osg::Matrixd::translate(eye));
+  update_water(eye);
   viewer_->frame();
   return *image_;
 }

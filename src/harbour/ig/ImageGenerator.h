@@ -10,6 +10,7 @@
 #include <osg/Array>
 #include <osg/ref_ptr>
 
+#include "harbour/ig/Ocean.h"
 #include "harbour/ig/Visuals.h"
 #include "harbour/sim/Snapshot.h"
 
@@ -21,7 +22,11 @@ class Camera;
 class Geometry;
 class Fog;
 class LightSource;
+class Uniform;
 }  // namespace osg
+namespace osgShadow {
+class ShadowedScene;
+}
 namespace osgParticle {
 class PrecipitationEffect;
 }
@@ -106,12 +111,16 @@ class ImageGenerator {
  private:
   void build(const sim::SceneDescription& scene);
   void place_camera();
+  // the water round the eye: swell plus the wind sea, shaded by its Fresnel reflection of the sky
+  void update_water(const osg::Vec3d& eye);
 
   std::map<std::string, Visual> visuals_;
   int width_, height_;
   std::unique_ptr<HeadlessContext> context_;
   std::unique_ptr<osgViewer::Viewer> viewer_;
   osg::ref_ptr<osg::Group> root_;
+  osg::ref_ptr<osgShadow::ShadowedScene> shadowed_;  // the quay and the entities, in the sun's shadows
+  osg::ref_ptr<osg::Uniform> floodlights_on_;
   std::vector<osg::ref_ptr<osg::MatrixTransform>> entities_;
   std::vector<osg::ref_ptr<osg::Geometry>> ropes_;
   osg::ref_ptr<osg::Fog> fog_;
@@ -120,6 +129,14 @@ class ImageGenerator {
   osg::ref_ptr<osg::Vec4Array> sky_colors_;
   osg::ref_ptr<osgParticle::PrecipitationEffect> rain_;
   osg::ref_ptr<osg::Vec4Array> quay_color_;
+  osg::ref_ptr<osg::Geometry> water_;
+  osg::ref_ptr<osg::MatrixTransform> far_water_;
+  std::unique_ptr<OceanPatch> wind_sea_;
+  double wind_sea_speed_mps_ = -1.0;                   // the wind the patch was synthesised for
+  std::vector<std::pair<double, double>> water_base_;  // the water grid's points on the still level
+  sim::Snapshot::Sea sea_{};
+  core::Vec3 wind_mps_, to_sun_{0.0, 0.0, 1.0};
+  double time_s_ = 0.0, daylight_ = 1.0;
   std::vector<osg::ref_ptr<osg::LightSource>> floodlights_;
   osg::ref_ptr<osg::LightSource> sun_;
   osg::ref_ptr<osg::Image> image_;

@@ -282,6 +282,8 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
     ws.visibility_m = f.number_or(w, "visibility_m", at, ws.visibility_m, 1.0, 1e5);
     ws.rain_mm_per_h = f.number_or(w, "rain_mm_per_h", at, ws.rain_mm_per_h, 0.0, 500.0);
     ws.time_of_day_h = f.number_or(w, "time_of_day_h", at, ws.time_of_day_h, 0.0, 24.0, false, true);
+    ws.day_of_year = f.number_or(w, "day_of_year", at, ws.day_of_year, 1.0, 366.0);
+    ws.latitude_deg = f.number_or(w, "latitude_deg", at, ws.latitude_deg, -80.0, 80.0);
   }
 
   if (f.optional(x, "events", "exercise")) {

@@ -306,6 +306,20 @@ void Simulation::write_snapshot(Snapshot& s) const {
   s.time_of_day_h = weather_.time_of_day_h();
   s.visibility_m = weather_.settings().visibility_m;
   s.rain_mm_per_h = weather_.settings().rain_mm_per_h;
+  s.day_of_year = weather_.settings().day_of_year;
+  s.latitude_deg = weather_.settings().latitude_deg;
+  s.sea.swell_count = 0;
+  if (vessel_) {
+    // the vessel's heave harmonics as beam swell running onto the quay (-x), in phase at its waterline centre
+    const VesselPlacement& placement = vessel_->geometry().placement();
+    s.sea.water_level_m = placement.keel_midship_m.z + placement.vessel.draught_m;
+    s.sea.reference_m = placement.keel_midship_m + core::Vec3{0.0, 0.0, placement.vessel.draught_m};
+    for (const Harmonic& h : placement.sea.heave_m) {
+      if (s.sea.swell_count == kMaxSwells) break;
+      s.sea.swells[static_cast<std::size_t>(s.sea.swell_count++)] = {h.amplitude, h.period_s, h.phase_rad,
+                                                                     std::numbers::pi};
+    }
+  }
 
   const core::Pose cab = crane_->cab_pose();
   s.cab.pose = cab;

@@ -10,7 +10,8 @@
 
 namespace harbour::sim {
 
-inline constexpr std::uint32_t kSnapshotVersion = 1;
+inline constexpr std::uint32_t kSnapshotVersion = 2;
+inline constexpr int kMaxSwells = 4;
 inline constexpr int kMaxEntities = 2200;  ///< 2000 containers, the machine's bodies, vessel, trucks
 inline constexpr int kMaxRopes = 8;
 inline constexpr int kMaxRopePoints = 1024;
@@ -48,6 +49,23 @@ struct Snapshot {
   double time_of_day_h = 12.0;
   double visibility_m = 20000.0;
   double rain_mm_per_h = 0.0;
+  double day_of_year = 80.0;   ///< sun and moon positions (80: the March equinox)
+  double latitude_deg = 40.0;  ///< the harbour's
+
+  /// The sea: its still level and the swell that moves the moored vessel, one long-crested wave per heave
+  /// harmonic, in phase with the vessel's heave at `reference_m` (the vessel's midship waterline point), so
+  /// the water round the hull rises and falls with it. The wind sea on top is the image generator's own,
+  /// from the wind.
+  struct Swell {
+    double amplitude_m = 0.0, period_s = 10.0, phase_rad = 0.0;
+    double direction_rad = 0.0;  ///< it travels towards (cos, sin) of this, world
+  };
+  struct Sea {
+    double water_level_m = -3.5;
+    core::Vec3 reference_m;
+    int swell_count = 0;
+    std::array<Swell, kMaxSwells> swells{};
+  } sea;
 
   /// The operator's cab: where it is, where the eye sits in it, and what the operator's head feels (motion
   /// cues, in the cab frame: x forward, y left, z up).

@@ -80,7 +80,12 @@ void Weather::set_time_of_day(double hours) {
 
 void Weather::save_state(core::StateWriter& out) const {
   out.section(0x57545832);  // "WTX2": with the instructor's weather
-  out.put(settings_);
+  // what the instructor can change, in the layout of version 2 (the date and the latitude stay the
+  // scenario's)
+  for (const double* v : {&settings_.wind_mean_mps, &settings_.wind_from_rad, &settings_.turbulence_intensity,
+                          &settings_.turbulence_time_s, &settings_.visibility_m, &settings_.rain_mm_per_h,
+                          &settings_.time_of_day_h, &settings_.air_density_kg_m3})
+    out.put(*v);
   out.put(rng_);
   out.put(time_s_);
   out.put(turbulence_);
@@ -89,7 +94,10 @@ void Weather::save_state(core::StateWriter& out) const {
 
 void Weather::restore_state(core::StateReader& in) {
   in.section(0x57545832, "weather");
-  in.get(settings_);
+  for (double* v : {&settings_.wind_mean_mps, &settings_.wind_from_rad, &settings_.turbulence_intensity,
+                    &settings_.turbulence_time_s, &settings_.visibility_m, &settings_.rain_mm_per_h,
+                    &settings_.time_of_day_h, &settings_.air_density_kg_m3})
+    in.get(*v);
   in.get(rng_);
   in.get(time_s_);
   in.get(turbulence_);

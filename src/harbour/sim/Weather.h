@@ -28,6 +28,8 @@ struct WeatherSettings {
   double rain_mm_per_h = 0.0;     ///< [mm/h]
   double time_of_day_h = 12.0;    ///< [h] local solar time at the start
   double air_density_kg_m3 = 1.225;  ///< [kg/m^3]
+  double day_of_year = 80.0;         ///< 1..366, for the sun's declination and the moon (80: March equinox)
+  double latitude_deg = 40.0;  ///< [deg] the harbour's, north positive; neither is part of the saved state
 };
 
 /// A discrete "1-cosine" gust: u = amplitude (1 - cos(2 pi (t - start) / duration)) / 2 within the gust.
