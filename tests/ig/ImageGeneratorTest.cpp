@@ -574,3 +574,63 @@ TEST(ImageGenerator, TheSunCastsAShadowWhereItsRaysSay) {
 
 }  // namespace
 }  // namespace harbour::ig
+
+#include "harbour/bulk/BulkPublish.h"
+
+namespace harbour::ig {
+namespace {
+
+bulk::BulkWorld sand_yard() {
+  bulk::Material sand;
+  sand.name = "sand";
+  sand.bulk_density_kg_m3 = 1600.0;
+  sand.angle_of_repose_rad = 34.0 * std::numbers::pi / 180.0;
+  bulk::BulkWorld world(sand, bulk::BulkWorldSettings{});
+  world.add_grid({256, 256, 0.1}, {core::Mat3::identity(), {-12.8, -12.8, 0.0}});  // 8 x 8 tiles, on the quay
+  return world;
+}
+
+// Bulk material is drawn from its published view, tile by tile: the first view meshes every tile, a change in
+// one place re-meshes only the tiles whose version moved on, and the heap shows where it lies.
+TEST(ImageGenerator, ABulkUpdateReMeshesOnlyTheTilesThatChanged) {
+  bulk::BulkWorld world = sand_yard();
+  world.add_heap(0, 12.8, 12.8, 20.0);  // a cone in the middle of the grid
+  sim::BulkView view;
+  EXPECT_EQ(bulk::publish(world, view), 64);
+  std::map<std::string, Visual> visuals = looks();
+  Visual bulk_look;
+  bulk_look.parts.push_back({});
+  bulk_look.parts[0].color = {0.9, 0.8, 0.1};
+  visuals["bulk"] = bulk_look;
+  ImageGenerator ig(scene(), visuals, kWidth, kHeight);
+  ig.set_view(free_camera({0.0, -25.0, 20.0}, std::numbers::pi / 2.0, -0.6));
+  ig.update(state(5000.0, 5000.0, 20000.0, 12.0));
+  ig.update_bulk(view);
+  EXPECT_EQ(ig.bulk_tiles_meshed(), 64);
+  const osg::Image& image = ig.render();
+  const auto top = ig.project({0.0, 0.0, 1.0});
+  const osg::Vec3 heap = pixel(image, top->first, top->second);
+  std::printf("heap pixel %.2f %.2f %.2f\n", heap.x(), heap.y(), heap.z());
+  EXPECT_GT(heap.x(), 1.5 * heap.z());  // the sand's yellow, not the grey quay
+
+  // nothing changed: nothing re-meshed
+  EXPECT_EQ(bulk::publish(world, view), 0);
+  ig.update_bulk(view);
+  EXPECT_EQ(ig.bulk_tiles_meshed(), 64);
+  // a little poured into one cell deep inside tile (1, 1): that tile only
+  world.grid(0).add_volume(40, 40, 0.0001);  // 1 cm: below the critical drop, it stays
+  EXPECT_EQ(bulk::publish(world, view), 1);
+  ig.update_bulk(view);
+  EXPECT_EQ(ig.bulk_tiles_meshed(), 65);
+  // material flowing over a tile border changes both
+  world.grid(0).add_volume(63, 10, 0.002);  // 0.2 m on one cell: it slides into the next tile
+  world.step(0.001, {});
+  const int copied = bulk::publish(world, view);
+  ig.update_bulk(view);
+  std::printf("a pour at a tile border: %d tiles changed\n", copied);
+  EXPECT_EQ(copied, 2);
+  EXPECT_EQ(ig.bulk_tiles_meshed(), 65 + copied);
+}
+
+}  // namespace
+}  // namespace harbour::ig

@@ -43,6 +43,7 @@ HeightGrid::HeightGrid(const GridSettings& settings, const Material& material,
   for (int k = 0; k < kStencil; ++k)
     neighbour_offset_[k] =
         static_cast<std::ptrdiff_t>(kStencilDy[k]) * static_cast<std::ptrdiff_t>(stride_) + kStencilDx[k];
+  tile_version_.assign(static_cast<std::size_t>(tiles_x() * tiles_y()), 0);
   update_slope_offsets();
 }
 
@@ -70,6 +71,8 @@ void HeightGrid::set_pose(const core::Pose& pose, const core::Vec3& linear_veloc
 }
 
 void HeightGrid::mark(std::size_t cell) {
+  const int i = static_cast<int>(cell % stride_) - kPad, j = static_cast<int>(cell / stride_) - kPad;
+  ++tile_version_[static_cast<std::size_t>((j / kTileCells) * tiles_x() + i / kTileCells)];
   if (active_stamp_[cell] == epoch_) return;
   active_stamp_[cell] = epoch_;
   active_.push_back(cell);

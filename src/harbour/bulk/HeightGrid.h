@@ -89,6 +89,16 @@ class HeightGrid {
   /// Relaxation updates rejected because they were not finite (a physics anomaly; should stay 0).
   std::uint32_t non_finite_count() const { return non_finite_; }
 
+  /// Cells per side of a tile, the unit in which readers (the image generator) follow changes.
+  static constexpr int kTileCells = 32;
+  int tiles_x() const { return (nx_ + kTileCells - 1) / kTileCells; }
+  int tiles_y() const { return (ny_ + kTileCells - 1) / kTileCells; }
+  /// A counter per tile that moves on whenever a height or compression in it changes (not part of the
+  /// state: readers compare it with the one they last saw).
+  std::uint32_t tile_version(int ti, int tj) const {
+    return tile_version_[static_cast<std::size_t>(tj * tiles_x() + ti)];
+  }
+
   /// Adds heights, compression, tilt and active list to a determinism hash.
   void hash_into(core::StateHash& hash) const;
 
@@ -112,6 +122,7 @@ class HeightGrid {
   double pair_fraction_;  // c / 16: keeps total outflow of a cell below c times its height
   RelaxationSettings relaxation_;
   std::size_t stride_;
+  std::vector<std::uint32_t> tile_version_;
 
   core::Pose pose_;
   core::Vec3 linear_velocity_, angular_velocity_;

@@ -10,6 +10,7 @@
 #include <osg/LineWidth>
 #include <osg/Material>
 #include <osg/MatrixTransform>
+#include <osg/Point>
 #include <osg/Program>
 #include <osg/ShapeDrawable>
 #include <osg/Uniform>
@@ -529,6 +530,120 @@ void ImageGenerator::set_floodlights(const std::vector<Floodlight>& lights) {
     root_->addChild(source);
     floodlights_.push_back(source);
   }
+}
+
+void ImageGenerator::mesh_bulk_tile(const sim::BulkView::Grid& grid, int ti, int tj, osg::Geometry& tile) {
+  // vertices at the cell centres of the tile and one row and column beyond (tiles join), quads only where
+  // there is material
+  const int i0 = ti * grid.tile_cells, j0 = tj * grid.tile_cells;
+  const int i1 = std::min(i0 + grid.tile_cells, grid.cells_x - 1),
+            j1 = std::min(j0 + grid.tile_cells, grid.cells_y - 1);
+  const auto h = [&](int i, int j) {
+    return grid.heights[static_cast<std::size_t>(std::clamp(j, 0, grid.cells_y - 1) * grid.cells_x +
+                                                 std::clamp(i, 0, grid.cells_x - 1))];
+  };
+  auto& vertices = static_cast<osg::Vec3Array&>(*tile.getVertexArray());
+  auto& normals = static_cast<osg::Vec3Array&>(*tile.getNormalArray());
+  auto& quads = static_cast<osg::DrawElementsUInt&>(*tile.getPrimitiveSet(0));
+  vertices.clear();
+  normals.clear();
+  quads.clear();
+  const int columns = i1 - i0 + 1;
+  const float cell = static_cast<float>(grid.cell_m);
+  for (int j = j0; j <= j1; ++j)
+    for (int i = i0; i <= i1; ++i) {
+      vertices.push_back(
+          osg::Vec3((static_cast<float>(i) + 0.5f) * cell, (static_cast<float>(j) + 0.5f) * cell, h(i, j)));
+      osg::Vec3 n(-(h(i + 1, j) - h(i - 1, j)) / (2.0f * cell), -(h(i, j + 1) - h(i, j - 1)) / (2.0f * cell),
+                  1.0f);
+      n.normalize();
+      normals.push_back(n);
+    }
+  for (int j = j0; j < j1; ++j)
+    for (int i = i0; i < i1; ++i) {
+      if (h(i, j) <= 0.0f && h(i + 1, j) <= 0.0f && h(i, j + 1) <= 0.0f && h(i + 1, j + 1) <= 0.0f) continue;
+      const unsigned a = static_cast<unsigned>((j - j0) * columns + (i - i0));
+      for (const unsigned v :
+           {a, a + 1, a + 1 + static_cast<unsigned>(columns), a + static_cast<unsigned>(columns)})
+        quads.push_back(v);
+    }
+  vertices.dirty();
+  normals.dirty();
+  quads.dirty();
+  tile.dirtyBound();
+  ++bulk_tiles_meshed_;
+}
+
+void ImageGenerator::update_bulk(const sim::BulkView& view) {
+  const auto look = visuals_.find("bulk");
+  const core::Vec3 colour = look != visuals_.end() && !look->second.parts.empty()
+                                ? look->second.parts[0].color
+                                : core::Vec3{0.2, 0.2, 0.2};
+  for (std::size_t g = bulk_grids_.size(); g < view.grids.size(); ++g) {
+    const sim::BulkView::Grid& grid = view.grids[g];
+    BulkGridNode node;
+    node.frame = new osg::MatrixTransform;
+    osg::ref_ptr<osg::Geode> geode = new osg::Geode;
+    osg::ref_ptr<osg::Vec4Array> colours = new osg::Vec4Array;
+    colours->push_back(rgba(colour));
+    for (int t = 0; t < grid.tiles_x * grid.tiles_y; ++t) {
+      osg::ref_ptr<osg::Geometry> tile = new osg::Geometry;
+      tile->setUseDisplayList(false);
+      tile->setUseVertexBufferObjects(true);
+      tile->setDataVariance(osg::Object::DYNAMIC);
+      tile->setVertexArray(new osg::Vec3Array);
+      tile->setNormalArray(new osg::Vec3Array, osg::Array::BIND_PER_VERTEX);
+      tile->setColorArray(colours, osg::Array::BIND_OVERALL);
+      tile->addPrimitiveSet(new osg::DrawElementsUInt(GL_QUADS));
+      geode->addDrawable(tile);
+      node.tiles.push_back(tile);
+    }
+    node.versions.assign(node.tiles.size(), 0);
+    node.frame->addChild(geode);
+    shadowed_->addChild(node.frame);
+    bulk_grids_.push_back(node);
+    for (int t = 0; t < grid.tiles_x * grid.tiles_y; ++t) {  // everything once
+      mesh_bulk_tile(grid, t % grid.tiles_x, t / grid.tiles_x, *node.tiles[static_cast<std::size_t>(t)]);
+      bulk_grids_.back().versions[static_cast<std::size_t>(t)] =
+          grid.tile_version[static_cast<std::size_t>(t)];
+    }
+  }
+  for (std::size_t g = 0; g < view.grids.size(); ++g) {
+    const sim::BulkView::Grid& grid = view.grids[g];
+    BulkGridNode& node = bulk_grids_[g];
+    node.frame->setMatrix(to_osg(grid.pose));
+    for (std::size_t t = 0; t < node.tiles.size() && t < grid.tile_version.size(); ++t)
+      if (node.versions[t] != grid.tile_version[t]) {
+        mesh_bulk_tile(grid, static_cast<int>(t) % grid.tiles_x, static_cast<int>(t) / grid.tiles_x,
+                       *node.tiles[t]);
+        node.versions[t] = grid.tile_version[t];
+      }
+  }
+  // the material in flight: points, a cell or two across
+  if (!parcels_) {
+    parcels_ = new osg::Geometry;
+    parcels_->setUseDisplayList(false);
+    parcels_->setUseVertexBufferObjects(true);
+    parcels_->setDataVariance(osg::Object::DYNAMIC);
+    parcels_->setVertexArray(new osg::Vec3Array);
+    osg::ref_ptr<osg::Vec4Array> colours = new osg::Vec4Array;
+    colours->push_back(rgba(colour * 0.8));
+    parcels_->setColorArray(colours, osg::Array::BIND_OVERALL);
+    parcels_->addPrimitiveSet(new osg::DrawArrays(GL_POINTS, 0, 0));
+    parcels_->setCullingActive(false);
+    osg::ref_ptr<osg::Geode> geode = new osg::Geode;
+    geode->addDrawable(parcels_);
+    geode->getOrCreateStateSet()->setAttributeAndModes(new osg::Point(4.0f));
+    geode->getOrCreateStateSet()->setMode(GL_LIGHTING, osg::StateAttribute::OFF);
+    root_->addChild(geode);
+  }
+  auto& points = static_cast<osg::Vec3Array&>(*parcels_->getVertexArray());
+  points.clear();
+  for (const sim::BulkView::Parcel& p : view.parcels)
+    points.push_back(to_osg(p.position_m));
+  points.dirty();
+  static_cast<osg::DrawArrays*>(parcels_->getPrimitiveSet(0))->setCount(static_cast<int>(points.size()));
+  parcels_->dirtyBound();
 }
 
 void ImageGenerator::set_view(const View& view) {

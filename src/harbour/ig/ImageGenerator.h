@@ -12,6 +12,7 @@
 
 #include "harbour/ig/Ocean.h"
 #include "harbour/ig/Visuals.h"
+#include "harbour/sim/BulkView.h"
 #include "harbour/sim/Snapshot.h"
 
 namespace osg {
@@ -97,6 +98,11 @@ class ImageGenerator {
   const std::string& hud_text() const { return hud_line_; }
   /// Entity poses, ropes and the environment (sun, sky, fog) from the published state.
   void update(const sim::Snapshot& snapshot);
+  /// Bulk material from its published view: re-meshes only the tiles whose version moved on (the first
+  /// call meshes them all) and draws the material in flight as points. The look key "bulk" colours it.
+  void update_bulk(const sim::BulkView& view);
+  /// Bulk tiles meshed so far (tests, the benchmark).
+  long bulk_tiles_meshed() const { return bulk_tiles_meshed_; }
   void set_view(const View& view);
   /// Draws one frame and returns it (RGB, bottom row first as OpenGL reads it).
   const osg::Image& render();
@@ -113,6 +119,7 @@ class ImageGenerator {
   void place_camera();
   // the water round the eye: swell plus the wind sea, shaded by its Fresnel reflection of the sky
   void update_water(const osg::Vec3d& eye);
+  void mesh_bulk_tile(const sim::BulkView::Grid& grid, int ti, int tj, osg::Geometry& tile);
 
   std::map<std::string, Visual> visuals_;
   int width_, height_;
@@ -120,6 +127,14 @@ class ImageGenerator {
   std::unique_ptr<osgViewer::Viewer> viewer_;
   osg::ref_ptr<osg::Group> root_;
   osg::ref_ptr<osgShadow::ShadowedScene> shadowed_;  // the quay and the entities, in the sun's shadows
+  struct BulkGridNode {
+    osg::ref_ptr<osg::MatrixTransform> frame;
+    std::vector<osg::ref_ptr<osg::Geometry>> tiles;
+    std::vector<std::uint32_t> versions;  // as last meshed
+  };
+  std::vector<BulkGridNode> bulk_grids_;
+  osg::ref_ptr<osg::Geometry> parcels_;
+  long bulk_tiles_meshed_ = 0;
   osg::ref_ptr<osg::Uniform> floodlights_on_;
   std::vector<osg::ref_ptr<osg::MatrixTransform>> entities_;
   std::vector<osg::ref_ptr<osg::Geometry>> ropes_;
