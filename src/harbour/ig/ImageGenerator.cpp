@@ -477,6 +477,14 @@ void ImageGenerator::update(const sim::Snapshot& s) {
     root_->getOrCreateStateSet()->setMode(GL_LIGHT1 + static_cast<GLenum>(n),
                                           dark ? osg::StateAttribute::ON : osg::StateAttribute::OFF);
   floodlights_on_->set(dark ? static_cast<int>(floodlights_.size()) : 0);
+  for (std::size_t n = 0; n < floodlights_.size(); ++n) {  // the machine's own lamps ride it
+    const Floodlight& lamp = floodlight_settings_[n];
+    if (lamp.entity.empty()) continue;
+    const auto it = std::find(entity_visuals_.begin(), entity_visuals_.end(), lamp.entity);
+    if (it == entity_visuals_.end()) continue;
+    const core::Pose& pose = entity_poses_[static_cast<std::size_t>(it - entity_visuals_.begin())];
+    floodlights_[n]->getLight()->setPosition(osg::Vec4(to_osg(pose.to_parent(lamp.position_m)), 1.0f));
+  }
   cab_ = s.cab;
   sea_ = s.sea;
   time_s_ = s.time_s;
@@ -512,10 +520,33 @@ void ImageGenerator::update(const sim::Snapshot& s) {
   alarm_->setText(alarm.empty() ? caption_ : alarm + "\n" + caption_);
 }
 
+void ImageGenerator::set_scenery(const std::vector<SceneryPart>& parts) {
+  if (scenery_) shadowed_->removeChild(scenery_);
+  scenery_ = new osg::Group;
+  osg::ref_ptr<osg::Geode> geode = new osg::Geode;
+  for (const SceneryPart& part : parts)
+    for (int k = 0; k < part.repeat; ++k) {
+      const osg::Vec3 centre = to_osg(part.centre_m + part.step_m * static_cast<double>(k));
+      osg::ref_ptr<osg::Shape> shape;
+      if (part.shape == SceneryPart::Shape::kCylinder)
+        shape = new osg::Cylinder(centre, static_cast<float>(part.size_m.x / 2.0),
+                                  static_cast<float>(part.size_m.z));
+      else
+        shape = new osg::Box(centre, static_cast<float>(part.size_m.x), static_cast<float>(part.size_m.y),
+                             static_cast<float>(part.size_m.z));
+      osg::ref_ptr<osg::ShapeDrawable> drawable = new osg::ShapeDrawable(shape);
+      drawable->setColor(rgba(part.color));
+      geode->addDrawable(drawable);
+    }
+  scenery_->addChild(geode);
+  shadowed_->addChild(scenery_);
+}
+
 void ImageGenerator::set_floodlights(const std::vector<Floodlight>& lights) {
   for (const auto& light : floodlights_)
     root_->removeChild(light);
   floodlights_.clear();
+  floodlight_settings_ = lights;
   for (std::size_t n = 0; n < lights.size() && n < 7; ++n) {
     osg::ref_ptr<osg::LightSource> source = new osg::LightSource;
     osg::Light* light = source->getLight();

@@ -86,8 +86,11 @@ class ImageGenerator {
   void use(const Looks& looks) {
     set_hud(looks.hud);
     set_floodlights(looks.floodlights);
+    set_scenery(looks.scenery);
     cameras_ = looks.cameras;
   }
+  /// The harbour's fixed parts (replaces those set before).
+  void set_scenery(const std::vector<SceneryPart>& parts);
   /// The names of the views it can take: cab, chase, free and the look file's cameras.
   std::vector<std::string> view_names() const;
   /// The heads-up display's lines (none by default).
@@ -153,6 +156,8 @@ class ImageGenerator {
   core::Vec3 wind_mps_, to_sun_{0.0, 0.0, 1.0};
   double time_s_ = 0.0, daylight_ = 1.0;
   std::vector<osg::ref_ptr<osg::LightSource>> floodlights_;
+  std::vector<Floodlight> floodlight_settings_;
+  osg::ref_ptr<osg::Group> scenery_;
   osg::ref_ptr<osg::LightSource> sun_;
   osg::ref_ptr<osg::Image> image_;
   osg::ref_ptr<osgText::Text> hud_, alarm_;

@@ -75,6 +75,7 @@ Looks load_looks(const std::string& path) {
       const std::string at = "floodlights[" + std::to_string(n) + "]";
       Floodlight light;
       light.position_m = f.vector3(f.required(lights[n], "at", at), at + ".at", 2000.0);
+      if (f.optional(lights[n], "entity", at)) light.entity = f.text(lights[n], "entity", at);
       light.color = color_of(f, f.required(lights[n], "color", at), at + ".color");
       light.range_m = f.number(lights[n], "range_m", at, 5.0, 500.0);
       looks.floodlights.push_back(light);
@@ -95,6 +96,31 @@ Looks load_looks(const std::string& path) {
       if (std::abs(c.look.x) + std::abs(c.look.y) + std::abs(c.look.z) < 1e-6)
         f.fail(cameras[n]["look"], at + ".look", "a direction, not zero");
       looks.cameras.push_back(c);
+    }
+  }
+  if (f.optional(f.root(), "scenery", "")) {
+    const YAML::Node parts = f.sequence(f.root(), "scenery", "", 256);
+    for (std::size_t n = 0; n < parts.size(); ++n) {
+      const std::string at = "scenery[" + std::to_string(n) + "]";
+      const YAML::Node p = parts[n];
+      SceneryPart part;
+      if (f.optional(p, "shape", at)) {
+        const std::string shape = f.text(p, "shape", at);
+        if (shape == "cylinder")
+          part.shape = SceneryPart::Shape::kCylinder;
+        else if (shape != "box")
+          f.fail(p["shape"], at + ".shape", "'" + shape + "' is not a shape: box or cylinder");
+      }
+      part.centre_m = f.vector3(f.required(p, "at", at), at + ".at", 5000.0);
+      part.size_m = f.vector3(f.required(p, "size", at), at + ".size", 5000.0);
+      if (part.size_m.x <= 0 || part.size_m.y <= 0 || part.size_m.z <= 0)
+        f.fail(p["size"], at + ".size", "sizes are positive");
+      part.color = color_of(f, f.required(p, "color", at), at + ".color");
+      if (f.optional(p, "repeat", at)) {
+        part.repeat = f.integer(p, "repeat", at, 1, 500);
+        part.step_m = f.vector3(f.required(p, "step", at), at + ".step", 1000.0);
+      }
+      looks.scenery.push_back(part);
     }
   }
   f.check_unknown_keys();

@@ -33,11 +33,13 @@ struct HudItem {
   bool lamp = false;  ///< shown as its label while the indicator is on (> 0.5), hidden while off
 };
 
-/// A floodlight on the quay, lit from dusk to dawn (world frame).
+/// A floodlight lit from dusk to dawn: on the quay (world frame) or on a machine (riding the first entity
+/// with the look `entity`, in its frame: the crane's own lamps).
 struct Floodlight {
   core::Vec3 position_m;
   core::Vec3 color{1.0, 0.9, 0.75};
   double range_m = 60.0;  ///< where its light has fallen to a tenth
+  std::string entity;     ///< empty: on the quay
 };
 
 /// A camera riding an entity (by its visual key): the spreader's camera, the boom tip's.
@@ -50,12 +52,24 @@ struct EntityCamera {
   double fov_vertical_rad = 1.0;
 };
 
-/// A look file: the looks by key, the HUD's lines, the quay's floodlights, the entity cameras.
+/// A fixed piece of the harbour (world frame): the quay wall, crane rails, bollards, markings. A box, or an
+/// upright cylinder (diameter size.x, height size.z); `repeat` copies `step_m` apart.
+struct SceneryPart {
+  enum class Shape { kBox, kCylinder };
+  Shape shape = Shape::kBox;
+  core::Vec3 centre_m, size_m;
+  core::Vec3 color{0.5, 0.5, 0.5};
+  int repeat = 1;
+  core::Vec3 step_m;
+};
+
+/// A look file: the looks by key, the HUD's lines, the floodlights, the entity cameras, the scenery.
 struct Looks {
   std::map<std::string, Visual> visuals;
   std::vector<HudItem> hud;
   std::vector<Floodlight> floodlights;
   std::vector<EntityCamera> cameras;
+  std::vector<SceneryPart> scenery;
 };
 
 /// Reads a look file (data/visuals/*.yaml). Errors name file, line and field.
