@@ -634,3 +634,43 @@ TEST(ImageGenerator, ABulkUpdateReMeshesOnlyTheTilesThatChanged) {
 
 }  // namespace
 }  // namespace harbour::ig
+
+namespace harbour::ig {
+namespace {
+
+// The night sky: stars come out when the sun is well down, and the moon stands where its model puts it, lit.
+TEST(ImageGenerator, StarsShowAtNightAndTheMoonWhereItsOrbitSays) {
+  ImageGenerator ig(scene(), looks(), kWidth, kHeight);
+  double illuminated = 0.0;
+  const core::Vec3 to_moon =
+      moon_direction(22.0, 80.0, 40.0, illuminated);  // waning gibbous, east-south-east
+  ASSERT_GT(to_moon.z, 0.2);
+  const double yaw = std::atan2(to_moon.y, to_moon.x), pitch = std::asin(to_moon.z);
+  ig.set_view(free_camera({0.0, 0.0, 20.0}, yaw + 0.3, pitch));  // the moon off centre
+  const auto sky_speckles = [&](double hour) {
+    ig.update(state(5000.0, 5000.0, 20000.0, hour));
+    const osg::Image& image = ig.render();
+    int bright = 0;  // pixels much brighter than their neighbours two to the side
+    for (int y = 2; y < kHeight / 3; ++y)
+      for (int x = 2; x < kWidth - 2; ++x) {
+        const double l = luminance(pixel(image, x, y));
+        bright +=
+            l > luminance(pixel(image, x - 2, y)) + 0.15 && l > luminance(pixel(image, x + 2, y)) + 0.15;
+      }
+    return bright;
+  };
+  const int noon = sky_speckles(12.0), night = sky_speckles(22.0);
+  ig.update(state(5000.0, 5000.0, 20000.0, 22.0));
+  const osg::Image& image = ig.render();
+  const auto at = ig.project(core::Vec3{0.0, 0.0, 20.0} + to_moon * 3000.0);
+  ASSERT_TRUE(at);
+  const double moon = luminance(pixel(image, at->first, at->second));
+  std::printf("star speckles: noon %d, night %d; moon (%.0f%% lit) at (%.0f, %.0f): luminance %.2f\n", noon,
+              night, illuminated * 100.0, at->first, at->second, moon);
+  EXPECT_EQ(noon, 0);
+  EXPECT_GT(night, 10);
+  EXPECT_GT(moon, 0.5);
+}
+
+}  // namespace
+}  // namespace harbour::ig

@@ -27,6 +27,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "harbour/core/Rng.h"
 #include "harbour/ig/HeadlessContext.h"
 
 namespace harbour::ig {
@@ -94,14 +95,16 @@ core::Vec3 sky_direction(double hour_angle, double declination, double latitude)
               std::cos(latitude) * std::cos(declination) * std::cos(hour_angle)};
 }
 
-// the sun at solar time t on a day of the year (declination after Cooper 1969) from a latitude
-core::Vec3 sun_direction(double t_h, double day_of_year, double latitude_deg, double& elevation) {
-  const double declination = 23.45 * kPi / 180.0 * std::sin(2.0 * kPi * (284.0 + day_of_year) / 365.0);
-  const core::Vec3 d =
-      sky_direction((t_h - 12.0) / 24.0 * 2.0 * kPi, declination, latitude_deg * kPi / 180.0);
-  elevation = std::asin(std::clamp(d.z, -1.0, 1.0));
-  return d;
+// the local sidereal angle: the sun's hour angle plus its right ascension (0 at the March equinox)
+double sidereal_angle(double t_h, double day_of_year) {
+  return (t_h - 12.0) / 24.0 * 2.0 * kPi + 2.0 * kPi * (day_of_year - 80.0) / 365.25;
 }
+
+constexpr double kObliquity = 23.44 * kPi / 180.0;
+constexpr double kSynodicMonth_d = 29.53;
+constexpr double kNewMoonDay = 5.0;  // a new moon on 5 January (a year's phases repeat; assumed)
+constexpr int kStars = 900;
+constexpr double kDomeRadius_m = 3900.0;
 
 // the sky at the horizon for a sun elevation: day blue, dusk orange, night dark blue
 core::Vec3 sky_color(double elevation) {
@@ -177,6 +180,28 @@ void main() {
 }
 )";
 }  // namespace
+
+core::Vec3 sun_direction(double t_h, double day_of_year, double latitude_deg, double& elevation) {
+  const double declination = 23.45 * kPi / 180.0 * std::sin(2.0 * kPi * (284.0 + day_of_year) / 365.0);
+  const core::Vec3 d =
+      sky_direction((t_h - 12.0) / 24.0 * 2.0 * kPi, declination, latitude_deg * kPi / 180.0);
+  elevation = std::asin(std::clamp(d.z, -1.0, 1.0));
+  return d;
+}
+
+core::Vec3 moon_direction(double t_h, double day_of_year, double latitude_deg, double& illuminated) {
+  // the moon on the ecliptic, its elongation from the sun growing through a synodic month (5 deg of
+  // inclination and the equation of time left out)
+  const double sun_longitude = 2.0 * kPi * (day_of_year - 80.0) / 365.25;
+  const double age = std::fmod(day_of_year + t_h / 24.0 - kNewMoonDay, kSynodicMonth_d) / kSynodicMonth_d;
+  const double elongation = 2.0 * kPi * (age < 0.0 ? age + 1.0 : age);
+  const double longitude = sun_longitude + elongation;
+  const double declination = std::asin(std::sin(kObliquity) * std::sin(longitude));
+  const double right_ascension = std::atan2(std::cos(kObliquity) * std::sin(longitude), std::cos(longitude));
+  illuminated = (1.0 - std::cos(elongation)) / 2.0;
+  return sky_direction(sidereal_angle(t_h, day_of_year) - right_ascension, declination,
+                       latitude_deg * kPi / 180.0);
+}
 
 ImageGenerator::ImageGenerator(const sim::SceneDescription& scene, std::map<std::string, Visual> visuals,
                                int width, int height)
@@ -275,11 +300,44 @@ void ImageGenerator::build(const sim::SceneDescription& scene) {
     sky_state->setMode(GL_FOG, osg::StateAttribute::OFF | osg::StateAttribute::PROTECTED);
     sky_state->setMode(GL_CULL_FACE, osg::StateAttribute::OFF);
     sky_state->setAttributeAndModes(new osg::Depth(osg::Depth::ALWAYS, 0.0, 1.0, false));
-    sky_state->setRenderBinDetails(-1, "RenderBin");
+    sky_state->setRenderBinDetails(-2, "RenderBin");
     sky_ = new osg::MatrixTransform;
     sky_->setCullingActive(false);
     sky_->addChild(geode);
     root_->addChild(sky_);
+
+    // stars (fixed on the celestial sphere, turned by the sidereal angle) and the moon with its phase, on
+    // the dome after the sky, faded in by the dark
+    core::Rng rng(0x57A125);
+    star_positions_.resize(kStars);
+    for (auto& [right_ascension, declination, brightness] : star_positions_) {
+      right_ascension = rng.uniform(0.0, 2.0 * kPi);
+      declination = std::asin(rng.uniform(-1.0, 1.0));
+      brightness = 0.25 + 0.75 * std::pow(rng.uniform(), 4.0);  // few bright, many faint
+    }
+    const auto sky_points = [&](GLenum mode, int count) {
+      osg::ref_ptr<osg::Geometry> g = new osg::Geometry;
+      g->setUseDisplayList(false);
+      g->setUseVertexBufferObjects(true);
+      g->setDataVariance(osg::Object::DYNAMIC);
+      g->setVertexArray(new osg::Vec3Array(count));
+      g->setColorArray(new osg::Vec4Array(count), osg::Array::BIND_PER_VERTEX);
+      g->addPrimitiveSet(new osg::DrawArrays(mode, 0, count));
+      return g;
+    };
+    stars_ = sky_points(GL_POINTS, kStars);
+    moon_ = sky_points(GL_TRIANGLES, kMoonRings * kMoonSegments * 6);
+    osg::ref_ptr<osg::Geode> night = new osg::Geode;
+    night->addDrawable(stars_);
+    night->addDrawable(moon_);
+    osg::StateSet* night_state = night->getOrCreateStateSet();
+    night_state->setMode(GL_LIGHTING, osg::StateAttribute::OFF | osg::StateAttribute::PROTECTED);
+    night_state->setMode(GL_FOG, osg::StateAttribute::OFF | osg::StateAttribute::PROTECTED);
+    night_state->setMode(GL_CULL_FACE, osg::StateAttribute::OFF);
+    night_state->setAttributeAndModes(new osg::Depth(osg::Depth::ALWAYS, 0.0, 1.0, false));
+    night_state->setAttributeAndModes(new osg::Point(2.0f));
+    night_state->setRenderBinDetails(-1, "RenderBin");
+    sky_->addChild(night);
   }
 
   // the quay (its top at z = 0, up to its edge at x = 18 m) and the harbour's water beyond
@@ -444,6 +502,7 @@ void ImageGenerator::update(const sim::Snapshot& s) {
   }
   // the sun and the sky from the time of day; fog from the visibility (Koschmieder: 2 % contrast at V)
   const core::Vec3 to_sun = sun_direction(s.time_of_day_h, s.day_of_year, s.latitude_deg, sun_elevation_);
+  to_sun_ = to_sun;
   const double daylight = std::clamp(std::sin(sun_elevation_) * 2.5, 0.0, 1.0);
   const core::Vec3 sky = sky_color(sun_elevation_);
   osg::Light* light = sun_->getLight();
@@ -458,6 +517,7 @@ void ImageGenerator::update(const sim::Snapshot& s) {
     (*sky_colors_)[n] = sky_towards({d.x(), d.y(), d.z()}, to_sun, sun_elevation_);
   }
   sky_colors_->dirty();
+  update_night_sky(s, sky);
   fog_->setColor(rgba(sky));
   fog_->setDensity(static_cast<float>(3.912 / std::max(s.visibility_m, 1.0)));
   // rain: particles falling with the wind, and the quay darkens as it wets (assumed: -35 % when wet through)
@@ -489,7 +549,6 @@ void ImageGenerator::update(const sim::Snapshot& s) {
   sea_ = s.sea;
   time_s_ = s.time_s;
   wind_mps_ = s.wind_mps;
-  to_sun_ = to_sun;
   daylight_ = daylight;
   far_water_->setMatrix(osg::Matrixd::translate(0.0, 0.0, s.sea.water_level_m));
 
@@ -518,6 +577,64 @@ void ImageGenerator::update(const sim::Snapshot& s) {
   hud_line_ = line + (alarm.empty() ? "" : "\n" + alarm);
   hud_->setText(line);
   alarm_->setText(alarm.empty() ? caption_ : alarm + "\n" + caption_);
+}
+
+void ImageGenerator::update_night_sky(const sim::Snapshot& s, const core::Vec3& horizon) {
+  // stars show from nautical dusk on (sun 4-12 deg down), dimmed by haze and fog
+  const double dark = std::clamp((-sun_elevation_ * 180.0 / kPi - 4.0) / 8.0, 0.0, 1.0) *
+                      std::clamp(s.visibility_m / 8000.0, 0.0, 1.0);
+  const double lat = s.latitude_deg * kPi / 180.0, sidereal = sidereal_angle(s.time_of_day_h, s.day_of_year);
+  auto& star_vertices = static_cast<osg::Vec3Array&>(*stars_->getVertexArray());
+  auto& star_colours = static_cast<osg::Vec4Array&>(*stars_->getColorArray());
+  for (std::size_t n = 0; n < star_positions_.size(); ++n) {
+    const auto& [right_ascension, declination, brightness] = star_positions_[n];
+    const core::Vec3 d = sky_direction(sidereal - right_ascension, declination, lat);
+    star_vertices[n] = to_osg(d * kDomeRadius_m);
+    const float b = static_cast<float>(brightness * dark * std::clamp(d.z * 8.0, 0.0, 1.0));  // haze low down
+    const osg::Vec4 behind = sky_towards(d, to_sun_, sun_elevation_);  // the dome's colour there
+    star_colours[n].set(behind.r() + b, behind.g() + b, behind.b() + b, 1.0f);
+  }
+  star_vertices.dirty();
+  star_colours.dirty();
+  stars_->dirtyBound();
+
+  // the moon: a disc 0.52 deg across, each point lit where the sphere behind it faces the sun
+  double illuminated = 0.0;
+  const core::Vec3 to_moon = moon_direction(s.time_of_day_h, s.day_of_year, s.latitude_deg, illuminated);
+  core::Vec3 across =
+      std::abs(to_moon.z) < 0.9 ? core::Vec3{-to_moon.y, to_moon.x, 0.0} : core::Vec3{1, 0, 0};
+  across = across * (1.0 / std::sqrt(dot(across, across)));
+  const core::Vec3 up = cross(to_moon, across);
+  const double radius = kDomeRadius_m * std::tan(0.26 * kPi / 180.0);
+  const double daylight = std::clamp(std::sin(sun_elevation_) * 2.5 + 0.3, 0.0, 1.0);
+  auto& moon_vertices = static_cast<osg::Vec3Array&>(*moon_->getVertexArray());
+  auto& moon_colours = static_cast<osg::Vec4Array&>(*moon_->getColorArray());
+  std::size_t k = 0;
+  const auto point = [&](int ring, int segment) {
+    const double r = static_cast<double>(ring) / kMoonRings, a = 2.0 * kPi * segment / kMoonSegments;
+    const double u = r * std::cos(a), v = r * std::sin(a);
+    // the sphere's normal there: towards the viewer (-to_moon) and out across the disc
+    const core::Vec3 normal = across * u + up * v - to_moon * std::sqrt(std::max(1.0 - r * r, 0.0));
+    const double lit = std::clamp(dot(normal, to_sun_) * 6.0, 0.0, 1.0) * 0.9 + 0.04;  // and earthshine
+    const double l = lit * (1.0 - 0.75 * daylight);
+    moon_vertices[k] = to_osg(to_moon * kDomeRadius_m + (across * u + up * v) * radius);
+    moon_colours[k] =
+        osg::Vec4(static_cast<float>(std::max(l, horizon.x)), static_cast<float>(std::max(l, horizon.y)),
+                  static_cast<float>(std::max(l * 0.95, horizon.z)), 1.0f);
+    ++k;
+  };
+  for (int ring = 0; ring < kMoonRings; ++ring)
+    for (int segment = 0; segment < kMoonSegments; ++segment) {
+      point(ring, segment);
+      point(ring + 1, segment);
+      point(ring + 1, segment + 1);
+      point(ring, segment);
+      point(ring + 1, segment + 1);
+      point(ring, segment + 1);
+    }
+  moon_vertices.dirty();
+  moon_colours.dirty();
+  moon_->dirtyBound();
 }
 
 void ImageGenerator::set_scenery(const std::vector<SceneryPart>& parts) {

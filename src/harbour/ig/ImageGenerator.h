@@ -68,6 +68,13 @@ struct View {
   core::Vec3 position_m{-40.0, -60.0, 40.0};  ///< kFree
 };
 
+/// The sun seen at local solar time t_h on a day of the year from a latitude (declination after Cooper
+/// 1969): the direction towards it (x east, y north, z up) and its elevation [rad].
+core::Vec3 sun_direction(double t_h, double day_of_year, double latitude_deg, double& elevation);
+/// The moon (on the ecliptic, a mean synodic month): the direction towards it and the lit fraction of its
+/// disc.
+core::Vec3 moon_direction(double t_h, double day_of_year, double latitude_deg, double& illuminated);
+
 /// A view by name: cab, chase, free, or a camera of the look file (as View::Kind::kEntity).
 View view_named(const std::string& name);
 
@@ -122,6 +129,7 @@ class ImageGenerator {
   void place_camera();
   // the water round the eye: swell plus the wind sea, shaded by its Fresnel reflection of the sky
   void update_water(const osg::Vec3d& eye);
+  void update_night_sky(const sim::Snapshot& s, const core::Vec3& horizon);
   void mesh_bulk_tile(const sim::BulkView::Grid& grid, int ti, int tj, osg::Geometry& tile);
 
   std::map<std::string, Visual> visuals_;
@@ -145,6 +153,9 @@ class ImageGenerator {
   osg::ref_ptr<osg::MatrixTransform> sky_;       // the dome, centred on the eye
   osg::ref_ptr<osg::Vec3Array> sky_directions_;  // unit directions of its vertices
   osg::ref_ptr<osg::Vec4Array> sky_colors_;
+  static constexpr int kMoonRings = 6, kMoonSegments = 24;
+  std::vector<std::array<double, 3>> star_positions_;  // right ascension, declination, brightness
+  osg::ref_ptr<osg::Geometry> stars_, moon_;
   osg::ref_ptr<osgParticle::PrecipitationEffect> rain_;
   osg::ref_ptr<osg::Vec4Array> quay_color_;
   osg::ref_ptr<osg::Geometry> water_;
