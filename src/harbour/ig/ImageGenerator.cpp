@@ -243,7 +243,7 @@ void ImageGenerator::build(const sim::SceneDescription& scene) {
     settings->setLightNum(0);
     settings->setShaderHint(osgShadow::ShadowSettings::NO_SHADERS);  // the lit scene's own shading, below
     settings->setBaseShadowTextureUnit(1);
-    settings->setTextureSize(osg::Vec2s(2048, 2048));
+    settings->setTextureSize(osg::Vec2s(1024, 1024));
     settings->setMaximumShadowMapDistance(600.0);
     settings->setShadowMapProjectionHint(osgShadow::ShadowSettings::ORTHOGRAPHIC_SHADOW_MAP);
     shadowed_ = new osgShadow::ShadowedScene(new osgShadow::ViewDependentShadowMap);
@@ -956,7 +956,8 @@ void ImageGenerator::update_water(const osg::Vec3d& eye) {
       r = r * (1.0 / std::sqrt(dot(r, r)));
       const double f = water_fresnel(cos_view);
       const osg::Vec4 sky = sky_towards(r, to_sun_, sun_elevation_);
-      const double glint = daylight_ * std::pow(std::max(dot(r, to_sun_), 0.0), 400.0);
+      const double towards_sun = dot(r, to_sun_);
+      const double glint = towards_sun > 0.97 ? daylight_ * std::pow(towards_sun, 400.0) : 0.0;
       const std::size_t k = static_cast<std::size_t>(j * row + i);
       vertices[k].set(static_cast<float>(px), static_cast<float>(py), static_cast<float>(pz));
       colors[k].set(static_cast<float>(std::min((1 - f) * deep.x + f * sky.r() + glint, 1.0)),
