@@ -228,6 +228,20 @@ TEST(Visuals, BadLooksNameFileLineAndField) {
   EXPECT_NE(
       error("visuals:\n  - key: a\n    parts: []\n  - key: a\n    parts: []\n").find("'a' is declared twice"),
       std::string::npos);
+  const std::string no_looks = "visuals:\n  - key: a\n    parts: []\n";
+  EXPECT_NE(
+      error(no_looks + "scenery:\n  - {shape: cone, at: [0, 0, 0], size: [1, 1, 1], color: [1, 1, 1]}\n")
+          .find("harbour_looks.yaml:5: scenery[0].shape: 'cone' is not a shape: box or cylinder"),
+      std::string::npos);
+  EXPECT_NE(error(no_looks + "scenery:\n  - {at: [0, 0, 0], size: [1, 0, 1], color: [1, 1, 1]}\n")
+                .find("scenery[0].size: sizes are positive"),
+            std::string::npos);
+  EXPECT_NE(error(no_looks + "scenery:\n  - {at: [0, 0, 0], size: [1, 1, 1], color: [1, 1, 1], repeat: 3}\n")
+                .find("scenery[0].step"),
+            std::string::npos);
+  EXPECT_NE(error(no_looks + "floodlights:\n  - {entity: 7, at: [0, 0, 0], color: [1, 1, 1], range_m: 1}\n")
+                .find("floodlights[0].range_m"),
+            std::string::npos);
 }
 
 }  // namespace
