@@ -40,7 +40,6 @@ int publish(const BulkWorld& world, sim::BulkView& view) {
   view.parcels.clear();
   for (const Parcel& p : world.parcels())
     view.parcels.push_back({p.position, p.volume_m3});
-  ++view.parcels_version;
   return copied;
 }
 

@@ -27,7 +27,6 @@ struct BulkView {
     double volume_m3 = 0.0;
   };
   std::vector<Parcel> parcels;
-  std::uint64_t parcels_version = 0;  ///< moves on whenever the parcels are published
 };
 
 }  // namespace harbour::sim
