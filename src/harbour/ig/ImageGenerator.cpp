@@ -35,9 +35,11 @@ namespace harbour::ig {
 namespace {
 constexpr double kPi = std::numbers::pi;
 constexpr double kFetch_m = 2000.0;  // the harbour basin's open water upwind, for the wind sea (assumed)
-constexpr int kWaterColumns = 128,
-              kWaterRows = 96;          // the water's grid, laid over the screen (projected grid)
+constexpr int kWaterColumns = 96,
+              kWaterRows = 64;          // the water's grid, laid over the screen (projected grid)
 constexpr double kWaterFar_m = 3000.0;  // where it ends; a flat sea beyond
+// node masks: what draws into the sun's shadow map (the ground and flat markings only receive)
+constexpr unsigned kCastsShadow = 0x2u, kReceivesOnly = ~kCastsShadow;
 
 osg::Vec3 to_osg(const core::Vec3& v) {
   return {static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z)};
@@ -118,25 +120,29 @@ core::Vec3 sky_color(double elevation) {
   if (deg >= 0.0) return mix(dusk, day, deg / 10.0);
   return mix(night, dusk, (deg + 8.0) / 8.0);
 }
-// the sky's colour towards `d` (unit, world) with the sun towards `sun`: the horizon's colour (fog's)
-// blending into a deeper zenith with height, a halo and a disc round the sun while it is up
-osg::Vec4 sky_towards(const core::Vec3& d, const core::Vec3& sun, double sun_elevation) {
-  const core::Vec3 horizon = sky_color(sun_elevation);
-  const double daylight = std::clamp(std::sin(sun_elevation) * 4.0 + 0.3, 0.0, 1.0);
-  const core::Vec3 zenith{horizon.x * (0.35 + 0.15 * (1 - daylight)), horizon.y * 0.62, horizon.z * 0.92};
-  const double up = std::sqrt(std::clamp(d.z, 0.0, 1.0));  // most of the change near the horizon
-  core::Vec3 c{horizon.x + (zenith.x - horizon.x) * up, horizon.y + (zenith.y - horizon.y) * up,
-               horizon.z + (zenith.z - horizon.z) * up};
-  const double cos_angle = d.x * sun.x + d.y * sun.y + d.z * sun.z;
-  if (sun_elevation > -0.1) {
-    const double visible = std::clamp((sun_elevation + 0.1) / 0.2, 0.0, 1.0);
-    const double halo = 0.35 * std::exp((cos_angle - 1.0) / 0.02) * visible;  // ~11 deg wide
-    const double disc = cos_angle > 0.99996 ? visible : 0.0;                  // ~0.5 deg across
-    c = {c.x + halo + disc, c.y + halo * 0.9 + disc, c.z + halo * 0.7 + disc * 0.9};
+// the sky's colours for a sun: the horizon's (fog's) blending into a deeper zenith with height, a halo and
+// a disc round the sun while it is up (the water's shader mirrors `towards`)
+struct SkyShade {
+  core::Vec3 horizon, zenith, sun;
+  double sun_visible = 0.0;
+
+  SkyShade(const core::Vec3& to_sun, double sun_elevation) : horizon(sky_color(sun_elevation)), sun(to_sun) {
+    const double daylight = std::clamp(std::sin(sun_elevation) * 4.0 + 0.3, 0.0, 1.0);
+    zenith = {horizon.x * (0.35 + 0.15 * (1 - daylight)), horizon.y * 0.62, horizon.z * 0.92};
+    sun_visible = sun_elevation > -0.1 ? std::clamp((sun_elevation + 0.1) / 0.2, 0.0, 1.0) : 0.0;
   }
-  return {static_cast<float>(std::min(c.x, 1.0)), static_cast<float>(std::min(c.y, 1.0)),
-          static_cast<float>(std::min(c.z, 1.0)), 1.0f};
-}
+  osg::Vec4 towards(const core::Vec3& d) const {
+    const double up = std::sqrt(std::clamp(d.z, 0.0, 1.0));  // most of the change near the horizon
+    core::Vec3 c = horizon + (zenith - horizon) * up;
+    const double cos_angle = dot(d, sun);
+    const double halo = 0.35 * std::exp((cos_angle - 1.0) / 0.02) * sun_visible;  // ~11 deg wide
+    const double disc = cos_angle > 0.99996 ? sun_visible : 0.0;                  // ~0.5 deg across
+    c = {c.x + halo + disc, c.y + halo * 0.9 + disc, c.z + halo * 0.7 + disc * 0.9};
+    return {static_cast<float>(std::min(c.x, 1.0)), static_cast<float>(std::min(c.y, 1.0)),
+            static_cast<float>(std::min(c.z, 1.0)), 1.0f};
+  }
+};
+
 // The lit scene's shading: the fixed pipeline's per-vertex lighting (the geometry's colour as ambient and
 // diffuse; the sun as light 0, floodlights as lights 1..n with their attenuation) and its exponential fog,
 // with the sun's diffuse part dimmed where the shadow map says the sun is hidden.
@@ -177,6 +183,47 @@ void main() {
   vec4 colour = min(unshadowed + sunlit * lit, vec4(1.0));
   float fog = clamp(exp(-gl_Fog.density * fog_depth), 0.0, 1.0);
   gl_FragColor = vec4(mix(gl_Fog.color.rgb, colour.rgb, fog), 1.0);
+}
+)";
+// The water's shading per pixel: the normal from the slopes of the swell and the wind sea (interpolated
+// from the grid's vertices, the wind sea faded where the grid is too coarse to carry it), the sky it mirrors
+// by Fresnel's reflectance (Schlick's approximation, R0 = 0.02 for water) over the deep water's colour, the
+// sun's glint, then the fog. World coordinates throughout (the grid is laid in them).
+constexpr char kWaterVertexShader[] = R"(#version 120
+varying vec3 world;
+varying vec2 slope;
+varying float fog;
+void main() {
+  world = gl_Vertex.xyz;
+  slope = gl_MultiTexCoord0.xy;
+  vec4 eye = gl_ModelViewMatrix * gl_Vertex;
+  fog = clamp(exp(-gl_Fog.density * length(eye.xyz)), 0.0, 1.0);
+  gl_Position = gl_ProjectionMatrix * eye;
+}
+)";
+constexpr char kWaterFragmentShader[] = R"(#version 120
+uniform vec3 eye_world;
+uniform vec3 to_sun;
+uniform vec3 horizon;
+uniform vec3 zenith;
+uniform vec3 deep;
+uniform float daylight;
+varying vec3 world;
+varying vec2 slope;
+varying float fog;
+void main() {
+  vec3 n = normalize(vec3(-slope, 1.0));
+  vec3 v = normalize(eye_world - world);
+  float cos_view = clamp(dot(n, v), 0.0, 1.0);
+  vec3 r = 2.0 * cos_view * n - v;  // the reflected view ray: what the water mirrors
+  r.z = max(r.z, 0.02);
+  r = normalize(r);
+  float m = 1.0 - cos_view;
+  float f = 0.02 + 0.98 * m * m * m * m * m;
+  vec3 sky = mix(horizon, zenith, sqrt(r.z));
+  float glint = daylight * pow(max(dot(r, to_sun), 0.0), 400.0);
+  vec3 colour = min((1.0 - f) * deep + f * sky + glint * vec3(1.0, 1.0, 0.9), vec3(1.0));
+  gl_FragColor = vec4(mix(gl_Fog.color.rgb, colour, fog), 1.0);
 }
 )";
 }  // namespace
@@ -246,6 +293,7 @@ void ImageGenerator::build(const sim::SceneDescription& scene) {
     settings->setTextureSize(osg::Vec2s(1024, 1024));
     settings->setMaximumShadowMapDistance(600.0);
     settings->setShadowMapProjectionHint(osgShadow::ShadowSettings::ORTHOGRAPHIC_SHADOW_MAP);
+    settings->setCastsShadowTraversalMask(kCastsShadow);
     shadowed_ = new osgShadow::ShadowedScene(new osgShadow::ViewDependentShadowMap);
     shadowed_->setShadowSettings(settings);
     osg::ref_ptr<osg::Program> program = new osg::Program;
@@ -344,12 +392,14 @@ void ImageGenerator::build(const sim::SceneDescription& scene) {
   // (finer near the crane, where floodlight pools fall: the lighting is per vertex)
   osg::ref_ptr<osg::Geode> apron = tessellated_plane(-60.0, 18.0, -80.0, 80.0, 0.0, 3.0, {0.42, 0.42, 0.40});
   quay_color_ = static_cast<osg::Vec4Array*>(apron->getDrawable(0)->asGeometry()->getColorArray());
+  apron->setNodeMask(kReceivesOnly);
   shadowed_->addChild(apron);
   for (const auto& [x0, x1, y0, y1] :
        {std::array{-300.0, -60.0, -400.0, 400.0}, std::array{-60.0, 18.0, -400.0, -80.0},
         std::array{-60.0, 18.0, 80.0, 400.0}}) {
     osg::ref_ptr<osg::Geode> part = tessellated_plane(x0, x1, y0, y1, 0.0, 20.0, {0.42, 0.42, 0.40});
     part->getDrawable(0)->asGeometry()->setColorArray(quay_color_, osg::Array::BIND_OVERALL);  // wet together
+    part->setNodeMask(kReceivesOnly);
     shadowed_->addChild(part);
   }
   rain_ = new osgParticle::PrecipitationEffect;
@@ -365,8 +415,9 @@ void ImageGenerator::build(const sim::SceneDescription& scene) {
     water_->setUseVertexBufferObjects(true);
     water_->setDataVariance(osg::Object::DYNAMIC);
     const int row = kWaterColumns + 1;
-    water_->setVertexArray(new osg::Vec3Array(row * (kWaterRows + 1)));
-    water_->setColorArray(new osg::Vec4Array(row * (kWaterRows + 1)), osg::Array::BIND_PER_VERTEX);
+    const auto points = static_cast<unsigned>(row * (kWaterRows + 1));
+    water_->setVertexArray(new osg::Vec3Array(points));
+    water_->setTexCoordArray(0, new osg::Vec2Array(points), osg::Array::BIND_PER_VERTEX);  // the slope
     for (int j = 0; j < kWaterRows; ++j) {
       osg::ref_ptr<osg::DrawElementsUShort> strip = new osg::DrawElementsUShort(GL_TRIANGLE_STRIP);
       for (int i = 0; i <= kWaterColumns; ++i) {
@@ -378,8 +429,17 @@ void ImageGenerator::build(const sim::SceneDescription& scene) {
     water_->setCullingActive(false);  // it moves with the eye
     osg::ref_ptr<osg::Geode> geode = new osg::Geode;
     geode->addDrawable(water_);
-    geode->getOrCreateStateSet()->setMode(GL_LIGHTING, osg::StateAttribute::OFF);  // shaded per vertex here
-    geode->getOrCreateStateSet()->setMode(GL_CULL_FACE, osg::StateAttribute::OFF);
+    osg::StateSet* shading = geode->getOrCreateStateSet();
+    shading->setMode(GL_LIGHTING, osg::StateAttribute::OFF);
+    shading->setMode(GL_CULL_FACE, osg::StateAttribute::OFF);
+    osg::ref_ptr<osg::Program> program = new osg::Program;
+    program->addShader(new osg::Shader(osg::Shader::VERTEX, kWaterVertexShader));
+    program->addShader(new osg::Shader(osg::Shader::FRAGMENT, kWaterFragmentShader));
+    shading->setAttribute(program);
+    shading->addUniform(new osg::Uniform("daylight", 0.0f));
+    for (const char* name : {"eye_world", "to_sun", "horizon", "zenith", "deep"})
+      shading->addUniform(new osg::Uniform(name, osg::Vec3(0.0f, 0.0f, 1.0f)));
+    water_shading_ = shading;
     root_->addChild(geode);
   }
 
@@ -459,13 +519,17 @@ void ImageGenerator::build(const sim::SceneDescription& scene) {
   hud->setAllowEventFocus(false);
   hud->getOrCreateStateSet()->setMode(GL_LIGHTING, osg::StateAttribute::OFF);
   hud->getOrCreateStateSet()->setMode(GL_FOG, osg::StateAttribute::OFF);
+  hud->getOrCreateStateSet()->setMode(GL_BLEND, osg::StateAttribute::ON);
   const float size = std::max(14.0f, static_cast<float>(height_) / 32.0f);
   const auto text = [&](const osg::Vec4& color, const osg::Vec3& at) {
     osg::ref_ptr<osgText::Text> t = new osgText::Text;
     t->setCharacterSize(size);
     t->setColor(color);
     t->setPosition(at);
-    t->setBackdropType(osgText::Text::OUTLINE);
+    // on a translucent dark box: readable over sky and quay (an outlined font costs llvmpipe ~30 ms a frame)
+    t->setDrawMode(osgText::Text::TEXT | osgText::Text::FILLEDBOUNDINGBOX);
+    t->setBoundingBoxColor(osg::Vec4(0.0f, 0.0f, 0.0f, 0.45f));
+    t->setBoundingBoxMargin(size * 0.2f);
     t->setDataVariance(osg::Object::DYNAMIC);
     return t;
   };
@@ -512,9 +576,10 @@ void ImageGenerator::update(const sim::Snapshot& s) {
   light->setDiffuse(osg::Vec4(diffuse, diffuse * 0.97f, diffuse * 0.92f, 1.0f));
   light->setAmbient(osg::Vec4(ambient, ambient, ambient * 1.1f, 1.0f));
   viewer_->getCamera()->setClearColor(rgba(sky));
+  const SkyShade shade(to_sun, sun_elevation_);
   for (std::size_t n = 0; n < sky_directions_->size(); ++n) {
     const osg::Vec3& d = (*sky_directions_)[n];
-    (*sky_colors_)[n] = sky_towards({d.x(), d.y(), d.z()}, to_sun, sun_elevation_);
+    (*sky_colors_)[n] = shade.towards({d.x(), d.y(), d.z()});
   }
   sky_colors_->dirty();
   update_night_sky(s, sky);
@@ -591,7 +656,7 @@ void ImageGenerator::update_night_sky(const sim::Snapshot& s, const core::Vec3& 
     const core::Vec3 d = sky_direction(sidereal - right_ascension, declination, lat);
     star_vertices[n] = to_osg(d * kDomeRadius_m);
     const float b = static_cast<float>(brightness * dark * std::clamp(d.z * 8.0, 0.0, 1.0));  // haze low down
-    const osg::Vec4 behind = sky_towards(d, to_sun_, sun_elevation_);  // the dome's colour there
+    const osg::Vec4 behind = SkyShade(to_sun_, sun_elevation_).towards(d);  // the dome's colour there
     star_colours[n].set(behind.r() + b, behind.g() + b, behind.b() + b, 1.0f);
   }
   star_vertices.dirty();
@@ -640,7 +705,8 @@ void ImageGenerator::update_night_sky(const sim::Snapshot& s, const core::Vec3& 
 void ImageGenerator::set_scenery(const std::vector<SceneryPart>& parts) {
   if (scenery_) shadowed_->removeChild(scenery_);
   scenery_ = new osg::Group;
-  osg::ref_ptr<osg::Geode> geode = new osg::Geode;
+  osg::ref_ptr<osg::Geode> standing = new osg::Geode, flat = new osg::Geode;  // flat: markings, no shadow
+  flat->setNodeMask(kReceivesOnly);
   for (const SceneryPart& part : parts)
     for (int k = 0; k < part.repeat; ++k) {
       const osg::Vec3 centre = to_osg(part.centre_m + part.step_m * static_cast<double>(k));
@@ -653,9 +719,10 @@ void ImageGenerator::set_scenery(const std::vector<SceneryPart>& parts) {
                              static_cast<float>(part.size_m.z));
       osg::ref_ptr<osg::ShapeDrawable> drawable = new osg::ShapeDrawable(shape);
       drawable->setColor(rgba(part.color));
-      geode->addDrawable(drawable);
+      (part.size_m.z < 0.05 ? flat : standing)->addDrawable(drawable);
     }
-  scenery_->addChild(geode);
+  scenery_->addChild(standing);
+  scenery_->addChild(flat);
   shadowed_->addChild(scenery_);
 }
 
@@ -894,12 +961,20 @@ void ImageGenerator::update_water(const osg::Vec3d& eye) {
     wind_sea_speed_mps_ = wind;
   }
   wind_sea_->evaluate(time_s_);
+  // the shading's uniforms: the eye, the sky it mirrors, the deep water's colour
+  const SkyShade sky(to_sun_, sun_elevation_);
+  const auto set = [&](const char* name, const auto& value) { water_shading_->getUniform(name)->set(value); };
+  set("daylight", static_cast<float>(daylight_));
+  set("eye_world", osg::Vec3(eye));
+  set("to_sun", to_osg(to_sun_));
+  set("horizon", to_osg(sky.horizon));
+  set("zenith", to_osg(sky.zenith));
+  set("deep", to_osg(core::Vec3{0.02 + 0.03 * daylight_, 0.06 + 0.10 * daylight_, 0.08 + 0.12 * daylight_}));
+
   const double finest = wind_sea_->length_m() / wind_sea_->size();
   const double level = sea_.water_level_m;
   auto& vertices = static_cast<osg::Vec3Array&>(*water_->getVertexArray());
-  auto& colors = static_cast<osg::Vec4Array&>(*water_->getColorArray());
-  const core::Vec3 deep{0.02 + 0.03 * daylight_, 0.06 + 0.10 * daylight_, 0.08 + 0.12 * daylight_};
-  const core::Vec3 eye_m{eye.x(), eye.y(), eye.z()};
+  auto& slopes = static_cast<osg::Vec2Array&>(*water_->getTexCoordArray(0));
   // a projected grid (Johanson 2004): rays through a grid over the screen (a little wider) meet the still
   // water; rays that miss it end at the far distance, so every cell covers about the same part of the image
   const osg::Camera& camera = *viewer_->getCamera();
@@ -942,30 +1017,15 @@ void ImageGenerator::update_water(const osg::Vec3d& eye) {
       const double swell_sy =
           (swell_elevation_m(sea_, time_s_, x, y + dx) - swell_elevation_m(sea_, time_s_, x, y - dx)) /
           (2 * dx);
-      const double px = x + fade * wind_sea_->displacement_x_at(x, y),
-                   py = y + fade * wind_sea_->displacement_y_at(x, y),
-                   pz = level + swell + fade * wind_sea_->height_at(x, y);
-      core::Vec3 n{-(swell_sx + fade * wind_sea_->slope_x_at(x, y)),
-                   -(swell_sy + fade * wind_sea_->slope_y_at(x, y)), 1.0};
-      n = n * (1.0 / std::sqrt(dot(n, n)));
-      core::Vec3 v{eye_m.x - px, eye_m.y - py, eye_m.z - pz};
-      v = v * (1.0 / std::max(std::sqrt(dot(v, v)), 1e-6));
-      const double cos_view = std::max(dot(n, v), 0.0);
-      core::Vec3 r = n * (2.0 * cos_view) - v;  // the reflected view ray: what the water mirrors
-      r.z = std::max(r.z, 0.02);
-      r = r * (1.0 / std::sqrt(dot(r, r)));
-      const double f = water_fresnel(cos_view);
-      const osg::Vec4 sky = sky_towards(r, to_sun_, sun_elevation_);
-      const double towards_sun = dot(r, to_sun_);
-      const double glint = towards_sun > 0.97 ? daylight_ * std::pow(towards_sun, 400.0) : 0.0;
       const std::size_t k = static_cast<std::size_t>(j * row + i);
-      vertices[k].set(static_cast<float>(px), static_cast<float>(py), static_cast<float>(pz));
-      colors[k].set(static_cast<float>(std::min((1 - f) * deep.x + f * sky.r() + glint, 1.0)),
-                    static_cast<float>(std::min((1 - f) * deep.y + f * sky.g() + glint, 1.0)),
-                    static_cast<float>(std::min((1 - f) * deep.z + f * sky.b() + glint * 0.9, 1.0)), 1.0f);
+      vertices[k].set(static_cast<float>(x + fade * wind_sea_->displacement_x_at(x, y)),
+                      static_cast<float>(y + fade * wind_sea_->displacement_y_at(x, y)),
+                      static_cast<float>(level + swell + fade * wind_sea_->height_at(x, y)));
+      slopes[k].set(static_cast<float>(swell_sx + fade * wind_sea_->slope_x_at(x, y)),
+                    static_cast<float>(swell_sy + fade * wind_sea_->slope_y_at(x, y)));
     }
   vertices.dirty();
-  colors.dirty();
+  slopes.dirty();
   water_->dirtyBound();
 }
 

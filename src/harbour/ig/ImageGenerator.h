@@ -24,6 +24,7 @@ class Geometry;
 class Fog;
 class LightSource;
 class Uniform;
+class StateSet;
 }  // namespace osg
 namespace osgShadow {
 class ShadowedScene;
@@ -159,6 +160,7 @@ class ImageGenerator {
   osg::ref_ptr<osgParticle::PrecipitationEffect> rain_;
   osg::ref_ptr<osg::Vec4Array> quay_color_;
   osg::ref_ptr<osg::Geometry> water_;
+  osg::ref_ptr<osg::StateSet> water_shading_;  // its shader's uniforms
   osg::ref_ptr<osg::MatrixTransform> far_water_;
   std::unique_ptr<OceanPatch> wind_sea_;
   double wind_sea_speed_mps_ = -1.0;                   // the wind the patch was synthesised for
