@@ -426,6 +426,59 @@ TEST(ImageGenerator, AnAsymmetricFrustumPutsTheViewAxisOffCentre) {
   EXPECT_NEAR(axis.second, u * kHeight, 0.5);
 }
 
+// Stereo (parallel axes, asymmetric frusta): each eye sees a point at distance d where the other does plus
+// a disparity of s (1/d - 1/c) / tan(half the horizontal field) half-widths: crossed in front of the
+// convergence distance c, none at it, uncrossed behind it. Measured on the drawn box, not only on the
+// matrices.
+TEST(ImageGenerator, StereoEyesSeeParallaxThatVanishesAtTheConvergenceDistance) {
+  const auto red_x = [](const osg::Image& image) {
+    double sx = 0, n = 0;
+    for (int y = 0; y < image.t(); ++y)
+      for (int x = 0; x < image.s(); ++x) {
+        const osg::Vec3 p = pixel(image, x, y);
+        if (p.x() > 0.3 && p.x() > 2.5 * p.y() && p.x() > 2.5 * p.z()) {
+          sx += x;
+          ++n;
+        }
+      }
+    return sx / std::max(n, 1.0);
+  };
+  ImageGenerator ig(scene(), looks(), kWidth, kHeight);
+  constexpr double separation = 0.065, convergence = 12.0;
+  const double tan_half = std::tan(level().fov_vertical_rad / 2.0) * kWidth / kHeight;
+  for (const double distance : {6.0, 12.0, 40.0}) {
+    sim::Snapshot s = state(distance, 5000.0, 20000.0, 12.0);
+    s.entities[1].pose.position.z = 10.0;  // at the eye's height, straight ahead
+    ig.update(s);
+    double seen[2];
+    for (const int eye : {0, 1}) {
+      View v = level();
+      v.eye_offset_m = (eye == 0 ? -0.5 : 0.5) * separation;
+      v.convergence_m = convergence;
+      ig.set_view(v);
+      seen[eye] = red_x(ig.render());
+    }
+    const double expected = separation * (1.0 / distance - 1.0 / convergence) / tan_half * kWidth / 2.0;
+    EXPECT_NEAR(seen[0] - seen[1], expected, 0.6) << "at " << distance << " m";
+  }
+}
+
+// The cab view's roll turns the picture about the view axis: rolled right, a point right of the axis rises.
+TEST(ImageGenerator, TheViewsRollTurnsThePictureAboutItsAxis) {
+  ImageGenerator ig(scene(), looks(), kWidth, kHeight);
+  ig.update(state(5000.0, 5000.0, 20000.0, 12.0));
+  View v = level();
+  const double roll = 0.3;
+  v.roll_rad = roll;
+  ig.set_view(v);
+  ig.render();
+  // 100 m ahead, 20 m to the right (-y) of the eye at (0, 0, 10)
+  const auto at = *ig.project({100.0, -20.0, 10.0});
+  const double focal = kHeight / 2.0 / std::tan(v.fov_vertical_rad / 2.0);  // pixels
+  EXPECT_NEAR(at.first, kWidth / 2.0 + focal * 0.2 * std::cos(roll), 0.5);
+  EXPECT_NEAR(at.second, kHeight / 2.0 - focal * 0.2 * std::sin(roll), 0.5);
+}
+
 }  // namespace
 }  // namespace harbour::ig
 

@@ -868,7 +868,7 @@ void ImageGenerator::set_view(const View& view) {
 void ImageGenerator::place_camera() {
   hud_camera_->setNodeMask(view_.hud ? ~0u : 0u);
   osg::Camera* camera = viewer_->getCamera();
-  const double aspect = static_cast<double>(width_) / height_;
+  const double aspect = static_cast<double>(width_) * view_.pixel_aspect / height_;
   camera->setProjectionMatrixAsPerspective(view_.fov_vertical_rad * 180.0 / kPi, aspect, 0.5, 6000.0);
   camera->setViewport(0, 0, width_, height_);
   const core::Pose& cab = cab_.pose;
@@ -903,9 +903,16 @@ void ImageGenerator::place_camera() {
     const double yaw = view_.yaw_rad + cab_.head_yaw_pitch_roll_rad.x,
                  pitch = view_.pitch_rad + cab_.head_yaw_pitch_roll_rad.y;
     const core::Vec3 local{std::cos(pitch) * std::cos(yaw), std::cos(pitch) * std::sin(yaw), std::sin(pitch)};
+    // up square to the view, then turned about it by the view's and the head's roll (positive: the right
+    // side down, the picture turning anticlockwise)
+    const core::Vec3 level_up{-std::sin(pitch) * std::cos(yaw), -std::sin(pitch) * std::sin(yaw),
+                              std::cos(pitch)};
+    const core::Vec3 right = cross(local, level_up);
+    const double roll = view_.roll_rad + cab_.head_yaw_pitch_roll_rad.z;
+    const core::Vec3 up_local = level_up * std::cos(roll) + right * std::sin(roll);
     const core::Vec3 forward = cab.direction_to_parent(local);
-    const core::Vec3 up = cab.direction_to_parent({0.0, 0.0, 1.0});
-    camera->setViewMatrixAsLookAt(to_osg(eye), to_osg(eye + forward), to_osg(up));
+    camera->setViewMatrixAsLookAt(to_osg(eye), to_osg(eye + forward),
+                                  to_osg(cab.direction_to_parent(up_local)));
   } else if (view_.kind == View::Kind::kEntity) {
     const auto camera_it = std::find_if(cameras_.begin(), cameras_.end(),
                                         [&](const EntityCamera& c) { return c.name == view_.camera; });
@@ -930,6 +937,15 @@ void ImageGenerator::place_camera() {
     const core::Vec3 eye =
         target + back * (view_.chase_distance_m / 1.28) + core::Vec3{0.0, 0.0, view_.chase_distance_m * 0.25};
     camera->setViewMatrixAsLookAt(to_osg(eye), to_osg(target + core::Vec3{0, 0, -20.0}), osg::Vec3(0, 0, 1));
+  }
+  if (view_.eye_offset_m != 0.0) {
+    // one eye of a stereo pair: moved along the view's right axis, its frustum shifted the other way so that
+    // the window at the convergence distance stays where it was (parallel axes, asymmetric frusta)
+    double left, right, bottom, top, near, far;
+    camera->getProjectionMatrixAsFrustum(left, right, bottom, top, near, far);
+    const double shift = view_.eye_offset_m * near / view_.convergence_m;
+    camera->setProjectionMatrixAsFrustum(left - shift, right - shift, bottom, top, near, far);
+    camera->setViewMatrix(camera->getViewMatrix() * osg::Matrixd::translate(-view_.eye_offset_m, 0.0, 0.0));
   }
 }
 

@@ -53,7 +53,7 @@ struct View {
   };
   Kind kind = Kind::kCab;
   double yaw_rad = 0.0, pitch_rad = -1.3,
-         roll_rad = 0.0;           ///< cab: offset from the cab's forward axis (down 75 deg)
+         roll_rad = 0.0;           ///< cab: offset from the cab's forward axis (down 75 deg), roll about it
   double fov_vertical_rad = 0.75;  ///< the aspect ratio comes from the image
   bool hud = true;                 ///< the heads-up display on this view (one channel of several carries it)
   /// cab: the picture is a window fixed in front of the design eye (a desktop monitor `screen_distance_m`
@@ -64,6 +64,13 @@ struct View {
   /// cab: an asymmetric frustum, the angles of its left, right, bottom, top edges from the view axis [rad]
   /// (a cabin's projection screen off the eye's axis); empty: symmetric from fov_vertical_rad and the image.
   std::optional<std::array<double, 4>> frustum_rad;
+  /// A pixel's width over its height: 2 where each eye's half of a side-by-side stereo frame is stretched
+  /// back to the whole screen.
+  double pixel_aspect = 1.0;
+  /// Stereo: the eye moved along the view's right axis (+ half the eye separation for the right eye), the
+  /// axes parallel, the frustum skewed so that the picture has no parallax at `convergence_m` (the screen).
+  double eye_offset_m = 0.0;
+  double convergence_m = 3.0;
   double chase_distance_m = 90.0;             ///< chase: from behind and above the cab, at it
   std::string camera;                         ///< kEntity: the camera's name in the look file
   core::Vec3 position_m{-40.0, -60.0, 40.0};  ///< kFree
