@@ -21,6 +21,7 @@
 #include "harbour/io/MotionFiles.h"
 #include "harbour/sim/Autopilot.h"
 #include "harbour/station/DeviceMappingFile.h"
+#include "harbour/station/DisplayLayout.h"
 #include "harbour/station/HeadTracker.h"
 #include "harbour/station/MotionLink.h"
 #include "harbour/station/Profile.h"
@@ -95,18 +96,17 @@ int run_station(const StationOptions& given) {
   const bool display = std::getenv("DISPLAY") || std::getenv("WAYLAND_DISPLAY");
   if (options.window != "on" && options.window != "off" && options.window != "auto")
     throw std::runtime_error("--window " + options.window + ": on, off or auto");
-  // the profile's display channels side by side in one window (a cabin's projectors stand in a row), at most
-  // 1920 pixels across; each channel keeps its aspect ratio
-  const station::DisplayChannel& first = profile.displays.front();
-  const int channels = static_cast<int>(profile.displays.size());
-  const int tile_width = std::min(first.width, 1920 / channels);
-  const int width = tile_width * channels,
-            height = std::min(1080, static_cast<int>(std::lround(static_cast<double>(tile_width) *
-                                                                 first.height / first.width)));
-  std::unique_ptr<StationWindow> window;
+  // the profile's displays: side by side in one window or a window each, two eyes each in stereo
+  const station::DisplayLayout layout = station::layout_displays(profile);
+  std::vector<std::unique_ptr<StationWindow>> windows;
   if (options.window == "on" || (options.window == "auto" && display))
-    window = std::make_unique<StationWindow>(width, height,
-                                             "harboursim: " + exercise.name + " (" + profile.name + ")");
+    for (const station::DisplayLayout::Window& w : layout.windows) {
+      const station::DisplayChannel& d = profile.displays[static_cast<std::size_t>(w.display)];
+      const std::string title = "harboursim: " + exercise.name + " (" + profile.name +
+                                (layout.windows.size() > 1 ? ", " + d.name : std::string()) + ")";
+      windows.push_back(std::make_unique<StationWindow>(
+          w.width, w.height, title, layout.windows.size() > 1 && d.fullscreen, w.display));
+    }
   station::Session session(exercise, session_options);
   station::Station station(session);
   std::optional<sim::Autopilot> pilot;
@@ -114,7 +114,7 @@ int run_station(const StationOptions& given) {
     pilot.emplace(exercise);
     session.loop().set_pilot([&](const sim::Simulation& s) { return pilot->next(s); });
   } else {
-    station.use_devices(open_devices(profile, session.simulation().control_table(), window != nullptr));
+    station.use_devices(open_devices(profile, session.simulation().control_table(), !windows.empty()));
   }
   if (profile.opentrack_port) {
     station.use_head_tracking(std::make_unique<station::HeadTracker>(*profile.opentrack_port));
@@ -140,32 +140,57 @@ int run_station(const StationOptions& given) {
   std::signal(SIGTERM, on_stop_signal);
   const sim::SceneDescription scene = session.simulation().scene();
   std::unique_ptr<ig::RenderThread> render;
-  if (window) {
+  if (!windows.empty()) {
     std::vector<ig::View> views;
-    for (const station::DisplayChannel& c : profile.displays) {
+    std::vector<bool> last_of_window(layout.pictures.size(), false);  // the frame's last picture there
+    for (std::size_t k = 0; k < layout.pictures.size(); ++k) {
+      const station::DisplayLayout::Picture& picture = layout.pictures[k];
+      const station::DisplayChannel& c = profile.displays[static_cast<std::size_t>(picture.channel)];
       ig::View view;
       view.yaw_rad = c.yaw_rad;
       view.pitch_rad = c.pitch_rad;
       view.roll_rad = c.roll_rad;
       view.fov_vertical_rad = c.fov_vertical_rad;
       view.frustum_rad = c.frustum_rad;
-      view.hud = views.empty();  // on the first channel
+      view.hud = picture.channel == 0;  // on the first channel
+      view.eye_offset_m = picture.eye_offset_m;
+      view.pixel_aspect = picture.pixel_aspect;
+      if (profile.stereo) view.convergence_m = profile.stereo->convergence_m;
       // a tracked head looks through the desktop's monitor as through a window
       view.off_axis = profile.opentrack_port.has_value();
       views.push_back(view);
+      for (std::size_t j = 0; j < k; ++j)
+        if (layout.pictures[j].window == picture.window) last_of_window[j] = false;
+      last_of_window[k] = true;
     }
-    StationWindow* shown = window.get();
+    std::vector<StationWindow*> shown;
+    for (const auto& w : windows)
+      shown.push_back(w.get());
     render = std::make_unique<ig::RenderThread>(
-        scene, ig::load_looks(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml"), tile_width, height,
-        views, [&session] { return session.loop().latest_snapshot(station::kImageGeneratorReader); },
-        [shown, channels](ig::ImageGenerator& generator, const sim::Snapshot&, int channel) {
+        scene, ig::load_looks(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml"), layout.render_width,
+        layout.render_height, views,
+        [&session] { return session.loop().latest_snapshot(station::kImageGeneratorReader); },
+        [shown, pictures = layout.pictures, last_of_window](ig::ImageGenerator& generator,
+                                                            const sim::Snapshot&, int k) {
+          const station::DisplayLayout::Picture& picture = pictures[static_cast<std::size_t>(k)];
           const osg::Image& image = generator.render_result();
-          shown->hand_over(image.data(), image.s(), image.t(),
-                           static_cast<int>(image.getPixelSizeInBits() / 8), image.getRowStepInBytes(),
-                           channel, channels);
+          shown[static_cast<std::size_t>(picture.window)]->hand_over(
+              image.data(), image.s(), image.t(), static_cast<int>(image.getPixelSizeInBits() / 8),
+              image.getRowStepInBytes(), picture.x0, picture.colours,
+              last_of_window[static_cast<std::size_t>(k)]);
         });
-    std::printf("window: %dx%d, the cab view (%s, %d channel%s)\n", width, height, profile.name.c_str(),
-                channels, channels == 1 ? "" : "s");
+    const int channels = static_cast<int>(profile.displays.size());
+    const std::string stereo = !profile.stereo ? ""
+                               : profile.stereo->mode == station::Profile::Stereo::Mode::kAnaglyph
+                                   ? ", stereo: anaglyph"
+                                   : ", stereo: side by side";
+    if (windows.size() == 1)
+      std::printf("window: %dx%d, the cab view (%s, %d channel%s%s)\n", layout.windows[0].width,
+                  layout.windows[0].height, profile.name.c_str(), channels, channels == 1 ? "" : "s",
+                  stereo.c_str());
+    else
+      std::printf("windows: %zu of %dx%d, one per display, the cab view (%s%s)\n", windows.size(),
+                  layout.windows[0].width, layout.windows[0].height, profile.name.c_str(), stereo.c_str());
   }
   const auto start = std::chrono::steady_clock::now();
   session.start();
@@ -173,8 +198,9 @@ int run_station(const StationOptions& given) {
   int next_line = 0;
   bool window_open = true;
   while (!session.over() && !g_stop && session.loop().running() && window_open) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(window ? 15 : 100));
-    if (window) window_open = window->pump();
+    std::this_thread::sleep_for(std::chrono::milliseconds(windows.empty() ? 100 : 15));
+    for (const auto& w : windows)
+      window_open = w->pump() && window_open;
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (options.seconds > 0.0 && wall >= options.seconds) break;
     for (const std::string& m : station.take_messages())
@@ -198,8 +224,11 @@ int run_station(const StationOptions& given) {
   }
   const bool interrupted = g_stop || !window_open || (!session.over() && options.seconds > 0.0);
   if (render) {
-    std::printf("window: %ld frames drawn (%.1f fps), %ld shown\n", render->frames(), render->fps(),
-                window->frames_shown());
+    long shown = windows.front()->frames_shown();
+    for (const auto& w : windows)
+      shown = std::min(shown, w->frames_shown());
+    std::printf("window: %ld frames drawn (%.1f fps), %ld shown%s\n", render->frames(), render->fps(), shown,
+                windows.size() > 1 ? " in every window" : "");
     if (!render->error().empty()) std::printf("image generator stopped: %s\n", render->error().c_str());
     render->stop();
   }

@@ -5,14 +5,20 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "harbour/station/DisplayLayout.h"
+
 namespace harbour::apps {
 
-StationWindow::StationWindow(int width, int height, const std::string& title)
+StationWindow::StationWindow(int width, int height, const std::string& title, bool fullscreen, int output)
     : width_(width), height_(height) {
   if (SDL_InitSubSystem(SDL_INIT_VIDEO) != 0)
     throw std::runtime_error(std::string("no window: ") + SDL_GetError());
-  window_ = SDL_CreateWindow(title.c_str(), SDL_WINDOWPOS_CENTERED, SDL_WINDOWPOS_CENTERED, width, height,
-                             SDL_WINDOW_SHOWN);
+  const int outputs = SDL_GetNumVideoDisplays();
+  const int on = output < outputs ? output : 0;
+  window_ = SDL_CreateWindow(
+      title.c_str(), static_cast<int>(SDL_WINDOWPOS_CENTERED_DISPLAY(on)),
+      static_cast<int>(SDL_WINDOWPOS_CENTERED_DISPLAY(on)), width, height,
+      SDL_WINDOW_SHOWN | (fullscreen && output < outputs ? SDL_WINDOW_FULLSCREEN_DESKTOP : 0));
   if (!window_) throw std::runtime_error(std::string("no window: ") + SDL_GetError());
   renderer_ = SDL_CreateRenderer(window_, -1, SDL_RENDERER_SOFTWARE);
   if (!renderer_) throw std::runtime_error(std::string("no window renderer: ") + SDL_GetError());
@@ -29,21 +35,12 @@ StationWindow::~StationWindow() {
 }
 
 void StationWindow::hand_over(const unsigned char* pixels, int width, int height, int pixel_bytes,
-                              std::size_t row_bytes, int channel, int channels) {
-  if (width * channels != width_ || height != height_ || (pixel_bytes != 3 && pixel_bytes != 4)) return;
-  const std::size_t row = static_cast<std::size_t>(width_) * 3, tile = static_cast<std::size_t>(width) * 3;
+                              std::size_t row_bytes, int x0, std::uint8_t colours, bool last) {
   const std::lock_guard lock(mutex_);
-  for (int y = 0; y < height; ++y) {  // OpenGL's bottom row first to the window's top row first
-    const unsigned char* from = pixels + static_cast<std::size_t>(height - 1 - y) * row_bytes;
-    unsigned char* to = &frame_[static_cast<std::size_t>(y) * row + static_cast<std::size_t>(channel) * tile];
-    if (pixel_bytes == 3) {
-      std::memcpy(to, from, tile);
-    } else {
-      for (int x = 0; x < width; ++x)
-        std::memcpy(to + 3 * x, from + 4 * x, 3);
-    }
-  }
-  fresh_ = true;
+  if (station::copy_picture(frame_, width_, height_, pixels, width, height, pixel_bytes, row_bytes, x0,
+                            colours) &&
+      last)
+    fresh_ = true;
 }
 
 bool StationWindow::pump() {

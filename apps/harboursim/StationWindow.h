@@ -16,17 +16,19 @@ namespace harbour::apps {
 /// thread that made it.
 class StationWindow {
  public:
-  /// Opens the window (throws naming SDL's error when there is no display).
-  StationWindow(int width, int height, const std::string& title);
+  /// Opens the window (throws naming SDL's error when there is no display), full screen on the display
+  /// system's output `output` when asked and that output exists (else a window on the first).
+  StationWindow(int width, int height, const std::string& title, bool fullscreen = false, int output = 0);
   ~StationWindow();
   StationWindow(const StationWindow&) = delete;
   StationWindow& operator=(const StationWindow&) = delete;
 
-  /// Render thread: a frame of RGB or RGBA pixels (`pixel_bytes` 3 or 4), rows `row_bytes` apart, bottom row
-  /// first (as OpenGL reads them).
-  /// Channel `channel` of `channels` fills its tile (the window split side by side).
+  /// Render thread: a picture of RGB or RGBA pixels (`pixel_bytes` 3 or 4), rows `row_bytes` apart, bottom
+  /// row first (as OpenGL reads them), into its tile from column `x0`, writing the colours `colours` names
+  /// (station::copy_picture); shown once the `last` picture of a frame is in (not an eye of one frame beside
+  /// the other eye of the previous).
   void hand_over(const unsigned char* pixels, int width, int height, int pixel_bytes, std::size_t row_bytes,
-                 int channel = 0, int channels = 1);
+                 int x0 = 0, std::uint8_t colours = 0b111, bool last = true);
   /// Window thread: events, then the newest frame if there is one; false once the window is closed.
   bool pump();
   /// What the window shows now (RGB, top row first): for tests.

@@ -15,6 +15,8 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <thread>
 
@@ -183,10 +185,23 @@ TEST(StationCommand, TheWindowShowsTheCabViewWhileTheExerciseRuns) {
   const std::filesystem::path folder = std::filesystem::temp_directory_path() / "harbour_station_window";
   std::filesystem::remove_all(folder);
   std::filesystem::create_directories(folder);
-  // the desktop's one window channel, and the immersive cabin's four projector channels side by side
+  // the desktop's one window channel, the immersive cabin's four projectors a window each, and a desktop
+  // in red-cyan stereo
+  const std::string anaglyph = (folder / "anaglyph.yaml").string();
+  {
+    std::ifstream desktop(std::string(HARBOUR_DATA_DIR) + "/profiles/desktop.yaml");
+    std::string text((std::istreambuf_iterator<char>(desktop)), std::istreambuf_iterator<char>());
+    text.replace(text.find("stereo: off"), 11,
+                 "stereo: {mode: anaglyph, eye_separation_mm: 64, convergence_m: 3}");
+    while (text.find(" ../devices/") != std::string::npos)
+      text.replace(text.find(" ../devices/"), 12, " " + std::string(HARBOUR_DATA_DIR) + "/devices/");
+    std::ofstream(anaglyph) << text;
+  }
   for (const auto& [profile, window] :
-       {std::pair{"desktop", "window: 1920x1080, the cab view (desktop, 1 channel)"},
-        std::pair{"immersive", "window: 1920x300, the cab view (immersive, 4 channels)"}}) {
+       {std::pair{std::string("desktop"), "window: 1920x1080, the cab view (desktop, 1 channel)"},
+        std::pair{std::string("immersive"),
+                  "windows: 4 of 480x300, one per display, the cab view (immersive)"},
+        std::pair{anaglyph, "window: 1920x1080, the cab view (desktop, 1 channel, stereo: anaglyph)"}}) {
     const std::string output = run(
         "DISPLAY=" + display + " " + HARBOUR_APP + " station --exercise sts_discharge --profile " + profile +
         " --autopilot --window on --seconds 4 --db sqlite3://db=" + (folder / "records.db").string() +
@@ -200,7 +215,7 @@ TEST(StationCommand, TheWindowShowsTheCabViewWhileTheExerciseRuns) {
                           &shown),
               3)
         << output;
-    std::printf("%s: %ld frames drawn (%.1f fps), %ld shown\n", profile, drawn, fps, shown);
+    std::printf("%s: %ld frames drawn (%.1f fps), %ld shown\n", profile.c_str(), drawn, fps, shown);
     EXPECT_GT(drawn, 20);
     EXPECT_GT(shown, 20);
     EXPECT_NE(output.find("0 given up"), std::string::npos) << output;

@@ -164,6 +164,9 @@ TEST(Profiles, TheThreeShippedConfigurationsLoad) {
   ASSERT_TRUE(immersive.displays[3].frustum_rad.has_value());  // the floor window behind the eye
   EXPECT_NEAR((*immersive.displays[3].frustum_rad)[2], -28.0 * std::numbers::pi / 180.0, 1e-12);
   EXPECT_FALSE(immersive.displays[0].frustum_rad.has_value());
+  EXPECT_EQ(immersive.windows, Profile::Windows::kPerDisplay);  // a window on each projector
+  EXPECT_EQ(desktop.windows, Profile::Windows::kShared);
+  EXPECT_FALSE(desktop.stereo.has_value());
   EXPECT_THROW(resolve_profile("cockpit", HARBOUR_DATA_DIR), std::runtime_error);
 }
 
@@ -208,6 +211,34 @@ TEST(Profiles, BadProfilesNameFileLineAndField) {
   EXPECT_NE(profile_error("profile:\n  name: p\n  devices: []\n  displays:\n" + display +
                           "  motion: off\n  head_tracking: {opentrack_port: 70000}\n")
                 .find("opentrack_port"),
+            std::string::npos);
+  // stereo and windows
+  const std::string stereo = "profile:\n  name: p\n  devices: []\n  displays:\n" + display +
+                             "  motion: off\n  head_tracking: off\n  windows: per_display\n  stereo: ";
+  EXPECT_EQ(profile_error(stereo + "{mode: anaglyph, eye_separation_mm: 63, convergence_m: 2.5}\n"), "");
+  {
+    const std::string path = scenes::temp_path("harbour_profile.yaml");
+    const Profile p = load_profile(path);
+    ASSERT_TRUE(p.stereo.has_value());
+    EXPECT_EQ(p.stereo->mode, Profile::Stereo::Mode::kAnaglyph);
+    EXPECT_NEAR(p.stereo->eye_separation_m, 0.063, 1e-12);
+    EXPECT_NEAR(p.stereo->convergence_m, 2.5, 1e-12);
+    EXPECT_EQ(p.windows, Profile::Windows::kPerDisplay);
+  }
+  EXPECT_NE(
+      profile_error(stereo + "{mode: quad_buffer, eye_separation_mm: 64, convergence_m: 3}\n")
+          .find("harbour_profile.yaml:9: profile.stereo.mode: quad_buffer needs an OpenGL stereo visual"),
+      std::string::npos);
+  EXPECT_NE(profile_error(stereo + "{mode: sbs, eye_separation_mm: 64, convergence_m: 3}\n")
+                .find("'sbs' is not side_by_side or anaglyph"),
+            std::string::npos);
+  EXPECT_NE(profile_error(stereo + "{mode: anaglyph, eye_separation_mm: 640, convergence_m: 3}\n")
+                .find("eye_separation_mm"),
+            std::string::npos);
+  EXPECT_EQ(profile_error(stereo + "off\n"), "");
+  EXPECT_NE(profile_error("profile:\n  name: p\n  devices: []\n  displays:\n" + display +
+                          "  motion: off\n  head_tracking: off\n  windows: many\n")
+                .find("profile.windows: 'many' is not shared or per_display"),
             std::string::npos);
 }
 

@@ -75,7 +75,28 @@ Profile load_profile(const std::string& path) {
     }
     p.displays.push_back(c);
   }
-  p.stereo = f.flag(root, "stereo", "profile", false);
+  if (f.optional(root, "windows", "profile")) {
+    const std::string windows = f.text(root, "windows", "profile");
+    if (windows != "shared" && windows != "per_display")
+      f.fail(root["windows"], "profile.windows", "'" + windows + "' is not shared or per_display");
+    p.windows = windows == "per_display" ? Profile::Windows::kPerDisplay : Profile::Windows::kShared;
+  }
+  if (const auto stereo =
+          f.optional(root, "stereo", "profile") ? switched(f, root, "stereo", "profile") : std::nullopt) {
+    Profile::Stereo st;
+    const std::string mode = f.text(*stereo, "mode", "profile.stereo");
+    if (mode == "quad_buffer")
+      f.fail(
+          (*stereo)["mode"], "profile.stereo.mode",
+          "quad_buffer needs an OpenGL stereo visual, and the station shows its frames through SDL windows: "
+          "use side_by_side or anaglyph");
+    if (mode != "side_by_side" && mode != "anaglyph")
+      f.fail((*stereo)["mode"], "profile.stereo.mode", "'" + mode + "' is not side_by_side or anaglyph");
+    st.mode = mode == "anaglyph" ? Profile::Stereo::Mode::kAnaglyph : Profile::Stereo::Mode::kSideBySide;
+    st.eye_separation_m = f.number(*stereo, "eye_separation_mm", "profile.stereo", 40.0, 80.0) / 1000.0;
+    st.convergence_m = f.number(*stereo, "convergence_m", "profile.stereo", 0.3, 1000.0);
+    p.stereo = st;
+  }
   if (const auto motion = switched(f, root, "motion", "profile")) {
     Profile::Motion m;
     m.platform = existing(f, *motion, "platform", "profile.motion", folder);

@@ -29,7 +29,18 @@ struct Profile {
   std::string file;
   std::vector<std::string> mappings;  ///< device mapping files, in order of preference
   std::vector<DisplayChannel> displays;
-  bool stereo = false;
+  /// One window for all the displays, side by side (a desktop, or projectors on one wide desktop), or one
+  /// window per display, each full screen on its own output where the display system has one.
+  enum class Windows { kShared, kPerDisplay };
+  Windows windows = Windows::kShared;
+  /// Stereo: each eye drawn with the eyes `eye_separation_m` apart and no parallax at `convergence_m`;
+  /// side by side (each eye half the width: 3D televisions and projectors) or a red-cyan anaglyph.
+  struct Stereo {
+    enum class Mode { kSideBySide, kAnaglyph };
+    Mode mode = Mode::kSideBySide;
+    double eye_separation_m = 0.064, convergence_m = 3.0;
+  };
+  std::optional<Stereo> stereo;
   struct Motion {
     std::string platform, washout;  ///< files
     io::DriverSettings driver;
