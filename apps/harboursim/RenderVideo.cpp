@@ -8,8 +8,8 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <deque>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "StsRun.h"
@@ -96,30 +96,44 @@ int render_video(const RenderOptions& options) {
   ig::Looks looks = ig::load_looks(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml");
   std::unique_ptr<ig::ImageGenerator> generator;
   const ig::View view = ig::view_named(options.view);
-  Encoder encoder(options.out, options.width, options.height, options.fps);
+  // first the attempt's events, for the timeline bar and the captions: a replay without drawing
+  struct Event {
+    double time_s;
+    std::string text;
+    core::Vec3 color;
+  };
+  std::vector<Event> events;
   sim::Evaluator evaluator(exercise);
+  sim::replay(exercise.scenario, recording, stop_step,
+              [&](const sim::Simulation& s, const sim::Controls& controls) {
+                const sim::Metrics before = evaluator.metrics();
+                evaluator.observe(s, controls);
+                const sim::Metrics& now = evaluator.metrics();
+                const auto note = [&](int was, int is, const char* what, const core::Vec3& color) {
+                  for (int n = was; n < is; ++n) {
+                    char text[96];
+                    std::snprintf(text, sizeof text, "%.1f s: %s", s.time_s(), what);
+                    events.push_back({s.time_s(), text, color});
+                  }
+                };
+                const core::Vec3 good{0.3, 0.9, 0.3}, bad{1.0, 0.2, 0.15}, warning{1.0, 0.75, 0.1};
+                note(before.moves_completed, now.moves_completed, "move completed", good);
+                note(before.collisions, now.collisions, "COLLISION", bad);
+                note(before.hard_landings, now.hard_landings, "hard landing", warning);
+                note(before.twistlock_misuse, now.twistlock_misuse, "twistlock misuse", bad);
+                note(before.overloads, now.overloads, "rope overload", bad);
+                note(before.emergency_stops, now.emergency_stops, "emergency stop", warning);
+              });
+  std::vector<ig::ImageGenerator::TimelineMark> marks;
+  for (const Event& e : events)
+    if (e.time_s >= options.from_s && e.time_s <= end_s) marks.push_back({e.time_s, e.color});
+
+  Encoder encoder(options.out, options.width, options.height, options.fps);
   auto snapshot = std::make_unique<sim::Snapshot>();
-  std::deque<std::pair<double, std::string>> events;  // the evaluation's events, shown for 6 s each
   double next_frame_s = options.from_s;
   long frames = 0;
   const sim::ReplayResult result = sim::replay(
-      exercise.scenario, recording, stop_step, [&](const sim::Simulation& s, const sim::Controls& controls) {
-        const sim::Metrics before = evaluator.metrics();
-        evaluator.observe(s, controls);
-        const sim::Metrics& now = evaluator.metrics();
-        const auto note = [&](int was, int is, const char* what) {
-          for (int n = was; n < is; ++n) {
-            char text[96];
-            std::snprintf(text, sizeof text, "%.1f s: %s", s.time_s(), what);
-            events.emplace_back(s.time_s(), text);
-          }
-        };
-        note(before.moves_completed, now.moves_completed, "move completed");
-        note(before.collisions, now.collisions, "COLLISION");
-        note(before.hard_landings, now.hard_landings, "hard landing");
-        note(before.twistlock_misuse, now.twistlock_misuse, "twistlock misuse");
-        note(before.overloads, now.overloads, "rope overload");
-        note(before.emergency_stops, now.emergency_stops, "emergency stop");
+      exercise.scenario, recording, stop_step, [&](const sim::Simulation& s, const sim::Controls&) {
         if (s.time_s() + 1e-9 < next_frame_s) return;
         next_frame_s += 1.0 / options.fps;
         if (!generator) {
@@ -130,12 +144,11 @@ int render_video(const RenderOptions& options) {
           if (std::find(names.begin(), names.end(), options.view) == names.end())
             throw std::runtime_error("--view " + options.view + ": not a view of this scene");
           generator->set_view(view);
+          generator->set_timeline(options.from_s, end_s, marks);
         }
-        while (!events.empty() && events.front().first < s.time_s() - 6.0)
-          events.pop_front();
-        std::string caption;
-        for (const auto& [at, text] : events)
-          caption += text + "   ";
+        std::string caption;  // the events of the last 6 s
+        for (const Event& e : events)
+          if (e.time_s <= s.time_s() && e.time_s > s.time_s() - 6.0) caption += e.text + "   ";
         generator->set_caption(caption);
         s.write_snapshot(*snapshot);
         generator->update(*snapshot);

@@ -463,6 +463,29 @@ TEST(ImageGenerator, StereoEyesSeeParallaxThatVanishesAtTheConvergenceDistance) 
   }
 }
 
+// The debrief's timeline bar: filled up to the published time, a tick in its colour at each event.
+TEST(ImageGenerator, TheTimelineBarFillsUpToNowAndMarksTheEvents) {
+  ImageGenerator ig(scene(), looks(), kWidth, kHeight);
+  ig.set_view(level());
+  ig.set_timeline(0.0, 100.0, {{50.0, {1.0, 0.0, 0.0}}});
+  sim::Snapshot s = state(5000.0, 5000.0, 20000.0, 0.5);  // a dark night sky behind the bar
+  s.time_s = 25.0;
+  ig.update(s);
+  const osg::Image& image = ig.render();
+  const double margin = kWidth * 0.03, length = kWidth - 2.0 * margin;
+  const double y = kHeight - kHeight * 0.03 - 3.0;  // within the bar, from the top
+  const auto at = [&](double t) { return pixel(image, margin + length * t / 100.0, y); };
+  EXPECT_GT(luminance(at(10.0)), 0.5);  // the past: filled
+  EXPECT_LT(luminance(at(75.0)), 0.1);  // the future: the dark track
+  const osg::Vec3 mark = at(50.0);
+  EXPECT_GT(mark.x(), 0.8);
+  EXPECT_LT(mark.y(), 0.2);
+  // no span: no bar
+  ig.set_timeline(0.0, 0.0, {});
+  ig.update(s);
+  EXPECT_LT(luminance(pixel(ig.render(), margin + length * 0.1, y)), 0.1);
+}
+
 // The cab view's roll turns the picture about the view axis: rolled right, a point right of the axis rises.
 TEST(ImageGenerator, TheViewsRollTurnsThePictureAboutItsAxis) {
   ImageGenerator ig(scene(), looks(), kWidth, kHeight);

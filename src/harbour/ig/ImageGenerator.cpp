@@ -540,6 +540,14 @@ void ImageGenerator::build(const sim::SceneDescription& scene) {
   osg::ref_ptr<osg::Geode> lines = new osg::Geode;
   lines->addDrawable(hud_);
   lines->addDrawable(alarm_);
+  timeline_ = new osg::Geometry;
+  timeline_->setUseDisplayList(false);
+  timeline_->setUseVertexBufferObjects(true);
+  timeline_->setDataVariance(osg::Object::DYNAMIC);
+  timeline_->setVertexArray(new osg::Vec3Array);
+  timeline_->setColorArray(new osg::Vec4Array, osg::Array::BIND_PER_VERTEX);
+  timeline_->addPrimitiveSet(new osg::DrawArrays(GL_QUADS, 0, 0));
+  lines->addDrawable(timeline_);
   hud->addChild(lines);
   root_->addChild(hud);
   hud_camera_ = hud;
@@ -639,9 +647,51 @@ void ImageGenerator::update(const sim::Snapshot& s) {
   if (s.held) alarm += "FROZEN BY THE INSTRUCTOR   ";
   if (s.devices_missing > 0) alarm += "INPUT DEVICE MISSING: ITS CONTROLS ARE NEUTRAL   ";
   if (s.diverged) alarm += "SIMULATION STOPPED   ";
+  update_timeline(s.time_s);
   hud_line_ = line + (alarm.empty() ? "" : "\n" + alarm);
   hud_->setText(line);
   alarm_->setText(alarm.empty() ? caption_ : alarm + "\n" + caption_);
+}
+
+void ImageGenerator::set_timeline(double from_s, double to_s, std::vector<TimelineMark> marks) {
+  timeline_from_s_ = from_s;
+  timeline_to_s_ = to_s;
+  timeline_marks_ = std::move(marks);
+}
+
+void ImageGenerator::update_timeline(double now_s) {
+  auto& vertices = static_cast<osg::Vec3Array&>(*timeline_->getVertexArray());
+  auto& colors = static_cast<osg::Vec4Array&>(*timeline_->getColorArray());
+  vertices.clear();
+  colors.clear();
+  const double span = timeline_to_s_ - timeline_from_s_;
+  if (span > 0.0) {
+    // the bar: a dark track the width of the picture less a margin, filled up to now, a tick per mark
+    const float margin = static_cast<float>(width_) * 0.03f, y0 = static_cast<float>(height_) * 0.03f,
+                y1 = y0 + std::max(6.0f, static_cast<float>(height_) * 0.02f);
+    const float length = static_cast<float>(width_) - 2.0f * margin;
+    const auto x_at = [&](double t) {
+      return margin + length * static_cast<float>(std::clamp((t - timeline_from_s_) / span, 0.0, 1.0));
+    };
+    const auto quad = [&](float xa, float xb, float ya, float yb, const osg::Vec4& c) {
+      for (const osg::Vec3& v : {osg::Vec3(xa, ya, 0.0f), osg::Vec3(xb, ya, 0.0f), osg::Vec3(xb, yb, 0.0f),
+                                 osg::Vec3(xa, yb, 0.0f)}) {
+        vertices.push_back(v);
+        colors.push_back(c);
+      }
+    };
+    quad(margin, margin + length, y0, y1, osg::Vec4(0.0f, 0.0f, 0.0f, 0.55f));
+    quad(margin, x_at(now_s), y0, y1, osg::Vec4(0.85f, 0.85f, 0.8f, 0.8f));
+    const float tick = std::max(1.5f, static_cast<float>(width_) * 0.002f);
+    for (const TimelineMark& mark : timeline_marks_) {
+      const float x = x_at(mark.time_s);
+      quad(x - tick, x + tick, y0 - (y1 - y0) * 0.5f, y1 + (y1 - y0) * 0.5f, rgba(mark.color));
+    }
+  }
+  vertices.dirty();
+  colors.dirty();
+  static_cast<osg::DrawArrays*>(timeline_->getPrimitiveSet(0))->setCount(static_cast<int>(vertices.size()));
+  timeline_->dirtyBound();
 }
 
 void ImageGenerator::update_night_sky(const sim::Snapshot& s, const core::Vec3& horizon) {

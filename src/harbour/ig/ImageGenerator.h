@@ -112,6 +112,14 @@ class ImageGenerator {
   void set_hud(std::vector<HudItem> items) { hud_items_ = std::move(items); }
   /// A caption under the HUD, set by the application (a debrief's latest events); "" for none.
   void set_caption(const std::string& caption) { caption_ = caption; }
+  /// A moment on the timeline bar, in its colour.
+  struct TimelineMark {
+    double time_s = 0.0;
+    core::Vec3 color{1.0, 0.2, 0.2};
+  };
+  /// A bar along the foot of the picture (debrief videos): the span from..to, filled up to the published
+  /// time, a tick at each mark. Empty span: no bar.
+  void set_timeline(double from_s, double to_s, std::vector<TimelineMark> marks);
   /// The HUD's text as last drawn (tests).
   const std::string& hud_text() const { return hud_line_; }
   /// Entity poses, ropes and the environment (sun, sky, fog) from the published state.
@@ -189,6 +197,10 @@ class ImageGenerator {
   std::vector<EntityCamera> cameras_;
   std::string hud_line_;
   std::string caption_;
+  double timeline_from_s_ = 0.0, timeline_to_s_ = 0.0;
+  std::vector<TimelineMark> timeline_marks_;
+  osg::ref_ptr<osg::Geometry> timeline_;
+  void update_timeline(double now_s);
   View view_;
   sim::Snapshot::Cab cab_{};
   double sun_elevation_ = 1.0;
