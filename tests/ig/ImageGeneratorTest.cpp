@@ -242,6 +242,75 @@ TEST(Visuals, BadLooksNameFileLineAndField) {
   EXPECT_NE(error(no_looks + "floodlights:\n  - {entity: 7, at: [0, 0, 0], color: [1, 1, 1], range_m: 1}\n")
                 .find("floodlights[0].range_m"),
             std::string::npos);
+  // parts that are lattices or meshes
+  const std::string part = "visuals:\n  - key: a\n    parts:\n      - ";
+  EXPECT_EQ(error(part + "{shape: lattice, size: [10, 1, 1], at: [0, 0, 0], bay_m: 2, color: [1, 0, 0]}\n"),
+            "");
+  EXPECT_NE(
+      error(part + "{shape: cone, size: [1, 1, 1], at: [0, 0, 0], color: [1, 0, 0]}\n")
+          .find(
+              "harbour_looks.yaml:4: visuals[0].parts[0].shape: 'cone' is not a shape: box, lattice or mesh"),
+      std::string::npos);
+  EXPECT_NE(error(part + "{shape: lattice, size: [10, 1, 1], at: [0, 0, 0], member_m: 9, color: [1, 0, 0]}\n")
+                .find("visuals[0].parts[0].member_m"),
+            std::string::npos);
+  EXPECT_NE(error(part + "{shape: mesh, file: nowhere.obj, at: [0, 0, 0], color: [1, 0, 0]}\n")
+                .find("visuals[0].parts[0].file: no such file"),
+            std::string::npos);
+  const std::string junk = (std::filesystem::temp_directory_path() / "harbour_junk.obj").string();
+  { std::ofstream(junk) << "this is not a model\n"; }
+  EXPECT_NE(error(part + "{shape: mesh, file: harbour_junk.obj, at: [0, 0, 0], color: [1, 0, 0]}\n")
+                .find("visuals[0].parts[0].file: osgDB could not read a model from"),
+            std::string::npos);
+}
+
+// A lattice girder lets the sky through between its members; a mesh part (the shipped funnel, OBJ through
+// osgDB) draws where its geometry is, in the part's colour where the file gives none.
+TEST(ImageGenerator, LatticeAndMeshPartsDrawAsTheirGeometry) {
+  const auto red_pixels = [](const osg::Image& image) {
+    int n = 0;
+    for (int y = 0; y < image.t(); ++y)
+      for (int x = 0; x < image.s(); ++x) {
+        const osg::Vec3 p = pixel(image, x, y);
+        n += p.x() > 0.3 && p.x() > 2.5 * p.y() && p.x() > 2.5 * p.z();
+      }
+    return n;
+  };
+  const auto drawn = [&](const VisualPart& part) {
+    Visual look;
+    look.parts.push_back(part);
+    ImageGenerator ig(scene(), {{"test.box", look}}, kWidth, kHeight);
+    ig.set_view(level());
+    ig.update(state(40.0, 5000.0, 20000.0, 12.0));
+    return red_pixels(ig.render());
+  };
+  VisualPart solid;  // a 2 x 2 m section, 6 m tall, side on
+  solid.size_m = core::Vec3{2.0, 2.0, 6.0};
+  solid.color = {0.9, 0.1, 0.1};
+  VisualPart lattice = solid;
+  lattice.shape = VisualPart::Shape::kLattice;
+  lattice.bay_m = 2.0;
+  lattice.member_m = 0.15;
+  const int solid_pixels = drawn(solid), lattice_pixels = drawn(lattice);
+  EXPECT_GT(solid_pixels, 200);
+  EXPECT_GT(lattice_pixels, solid_pixels / 10);     // its members show
+  EXPECT_LT(lattice_pixels, solid_pixels * 2 / 3);  // and the sky between them
+  VisualPart mesh;
+  mesh.shape = VisualPart::Shape::kMesh;
+  mesh.mesh = std::string(HARBOUR_DATA_DIR) + "/visuals/meshes/funnel.obj";
+  mesh.centre_m = {0.0, 0.0, -4.0};  // the funnel's foot 4 m below the box's place: 9 m tall
+  ASSERT_TRUE(read_mesh(mesh.mesh));
+  Visual look;
+  look.parts.push_back(mesh);
+  ImageGenerator ig(scene(), {{"test.box", look}}, kWidth, kHeight);
+  ig.set_view(level());
+  ig.update(state(40.0, 5000.0, 20000.0, 12.0));
+  const osg::Image& image = ig.render();
+  // dark (its material) where the funnel stands, sky beside it
+  const auto middle = ig.project({40.0, 0.0, 14.0});
+  const auto beside = ig.project({40.0, 8.0, 14.0});
+  EXPECT_LT(luminance(pixel(image, middle->first, middle->second)), 0.2);
+  EXPECT_GT(luminance(pixel(image, beside->first, beside->second)), 0.3);
 }
 
 }  // namespace

@@ -14,6 +14,7 @@
 #include <osg/Program>
 #include <osg/ShapeDrawable>
 #include <osg/Uniform>
+#include <osgDB/ReadFile>
 #include <osgDB/WriteFile>
 #include <osgParticle/PrecipitationEffect>
 #include <osgShadow/ShadowedScene>
@@ -85,6 +86,80 @@ osg::ref_ptr<osg::Geode> tessellated_plane(double x0, double x1, double y0, doub
   osg::ref_ptr<osg::Geode> geode = new osg::Geode();
   geode->addDrawable(geometry);
   return geode;
+}
+
+// The part's colour on a mesh's geometry that brings none of its own (the lit shader reads vertex colours;
+// a material's diffuse colour, where the file has one, wins).
+void paint_uncoloured(osg::Node& mesh, const osg::Vec4& color) {
+  struct Painter : osg::NodeVisitor {
+    osg::Vec4 color;
+    explicit Painter(const osg::Vec4& c) : osg::NodeVisitor(TRAVERSE_ALL_CHILDREN), color(c) {}
+    void apply(osg::Drawable& drawable) override {
+      osg::Geometry* geometry = drawable.asGeometry();
+      if (!geometry || geometry->getColorArray()) return;
+      osg::Vec4 paint = color;
+      for (const osg::StateSet* state : {geometry->getStateSet(), geometry->getParent(0)->getStateSet()})
+        if (state)
+          if (const auto* material =
+                  dynamic_cast<const osg::Material*>(state->getAttribute(osg::StateAttribute::MATERIAL)))
+            paint = material->getDiffuse(osg::Material::FRONT);
+      osg::ref_ptr<osg::Vec4Array> colors = new osg::Vec4Array;
+      colors->push_back(paint);
+      geometry->setColorArray(colors, osg::Array::BIND_OVERALL);
+    }
+  } painter(color);
+  mesh.accept(painter);
+}
+
+// A lattice girder filling the box of `size` round `centre`: four chords along its longest side, at every
+// panel point a vertical in each side face and a strut in the top and bottom faces, Warren diagonals (one
+// way, then the other) in all four faces. Members are square bars `member` thick.
+void add_lattice(osg::Geode& geode, const core::Vec3& centre, const core::Vec3& size, double bay,
+                 double member, const osg::Vec4& color) {
+  // the girder's axes: a along the longest side, b and c across it
+  const std::array<double, 3> sides{size.x, size.y, size.z};
+  const int a = static_cast<int>(std::max_element(sides.begin(), sides.end()) - sides.begin());
+  const int b = (a + 1) % 3, c = (a + 2) % 3;
+  const auto point = [&](double along, double across_b, double across_c) {
+    std::array<double, 3> p{};
+    p[static_cast<std::size_t>(a)] = along;
+    p[static_cast<std::size_t>(b)] = across_b;
+    p[static_cast<std::size_t>(c)] = across_c;
+    return centre + core::Vec3{p[0], p[1], p[2]};
+  };
+  const auto bar = [&](const core::Vec3& from, const core::Vec3& to) {
+    const core::Vec3 d = to - from;
+    const double length = std::sqrt(dot(d, d));
+    osg::ref_ptr<osg::Box> box = new osg::Box(to_osg((from + to) * 0.5), static_cast<float>(member),
+                                              static_cast<float>(member), static_cast<float>(length));
+    osg::Quat onto;
+    onto.makeRotate(osg::Vec3d(0.0, 0.0, 1.0), osg::Vec3d(d.x, d.y, d.z));  // the box's z along the bar
+    box->setRotation(onto);
+    osg::ref_ptr<osg::ShapeDrawable> drawable = new osg::ShapeDrawable(box);
+    drawable->setColor(color);
+    geode.addDrawable(drawable);
+  };
+  const double length = sides[static_cast<std::size_t>(a)];
+  const double hb = (sides[static_cast<std::size_t>(b)] - member) / 2.0,
+               hc = (sides[static_cast<std::size_t>(c)] - member) / 2.0;
+  const int bays = std::max(1, static_cast<int>(std::lround(length / bay)));
+  const double step = length / bays, start = -length / 2.0;
+  for (const double sb : {-hb, hb})
+    for (const double sc : {-hc, hc})
+      bar(point(start, sb, sc), point(-start, sb, sc));  // chords
+  // the four faces, each by its two corners (b, c) round the girder
+  const std::array<std::array<double, 4>, 4> faces{
+      {{-hb, -hc, -hb, hc}, {hb, -hc, hb, hc}, {-hb, -hc, hb, -hc}, {-hb, hc, hb, hc}}};
+  for (int k = 0; k <= bays; ++k) {
+    const double x = start + step * k;
+    for (const auto& f : faces) {
+      bar(point(x, f[0], f[1]), point(x, f[2], f[3]));  // vertical or strut
+      if (k == bays) continue;
+      const bool rising = k % 2 == 0;  // Warren: the diagonals alternate
+      bar(point(x, rising ? f[0] : f[2], rising ? f[1] : f[3]),
+          point(x + step, rising ? f[2] : f[0], rising ? f[3] : f[1]));
+    }
+  }
 }
 
 // a body of declination `declination` seen at hour angle `hour_angle` from `latitude`: the direction
@@ -454,11 +529,26 @@ void ImageGenerator::build(const sim::SceneDescription& scene) {
     if (look != visuals_.end()) {
       for (const VisualPart& part : look->second.parts) {
         const core::Vec3 size = part.size_m ? *part.size_m : e.half_extents_m * 2.0;
+        const core::Vec3 color =
+            part.livery ? look->second.liveries[index % look->second.liveries.size()] : part.color;
+        if (part.shape == VisualPart::Shape::kMesh) {
+          osg::ref_ptr<osg::Node> mesh = read_mesh(part.mesh);
+          if (!mesh) throw std::runtime_error("osgDB could not read the mesh " + part.mesh);
+          paint_uncoloured(*mesh, rgba(color));
+          osg::ref_ptr<osg::MatrixTransform> placed =
+              new osg::MatrixTransform(osg::Matrixd::scale(part.scale, part.scale, part.scale) *
+                                       osg::Matrixd::translate(to_osg(part.centre_m)));
+          placed->addChild(mesh);
+          transform->addChild(placed);
+          continue;
+        }
+        if (part.shape == VisualPart::Shape::kLattice) {
+          add_lattice(*geode, part.centre_m, size, part.bay_m, part.member_m, rgba(color));
+          continue;
+        }
         osg::ref_ptr<osg::ShapeDrawable> box =
             new osg::ShapeDrawable(new osg::Box(to_osg(part.centre_m), static_cast<float>(size.x),
                                                 static_cast<float>(size.y), static_cast<float>(size.z)));
-        const core::Vec3 color =
-            part.livery ? look->second.liveries[index % look->second.liveries.size()] : part.color;
         box->setColor(rgba(color));
         geode->addDrawable(box);
       }

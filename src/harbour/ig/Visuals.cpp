@@ -1,6 +1,9 @@
 #include "harbour/ig/Visuals.h"
 
+#include <osgDB/ReadFile>
+
 #include <cmath>
+#include <filesystem>
 
 #include "harbour/io/YamlFile.h"
 
@@ -13,6 +16,11 @@ core::Vec3 color_of(const io::YamlFile& f, const YAML::Node& node, const std::st
   return c;
 }
 }  // namespace
+
+osg::ref_ptr<osg::Node> read_mesh(const std::string& path) {
+  osg::ref_ptr<osgDB::Options> options = new osgDB::Options("noRotation");
+  return osgDB::readRefNodeFile(path, options.get());
+}
 
 std::map<std::string, Visual> load_visuals(const std::string& path) {
   return load_looks(path).visuals;
@@ -40,9 +48,34 @@ Looks load_looks(const std::string& path) {
       const std::string pat = at + ".parts[" + std::to_string(k) + "]";
       const YAML::Node p = parts[k];
       VisualPart part;
-      const YAML::Node size = f.required(p, "size", pat);
-      if (!(size.IsScalar() && size.Scalar() == "entity"))
-        part.size_m = f.vector3(size, pat + ".size", 1000.0);
+      if (f.optional(p, "shape", pat)) {
+        const std::string shape = f.text(p, "shape", pat);
+        if (shape == "lattice")
+          part.shape = VisualPart::Shape::kLattice;
+        else if (shape == "mesh")
+          part.shape = VisualPart::Shape::kMesh;
+        else if (shape != "box")
+          f.fail(p["shape"], pat + ".shape", "'" + shape + "' is not a shape: box, lattice or mesh");
+      }
+      if (part.shape == VisualPart::Shape::kMesh) {
+        const std::string file = f.text(p, "file", pat);
+        part.mesh = (std::filesystem::path(path).parent_path() / file).lexically_normal().string();
+        if (!std::filesystem::is_regular_file(part.mesh))
+          f.fail(p["file"], pat + ".file", "no such file: " + part.mesh);
+        if (!read_mesh(part.mesh))
+          f.fail(p["file"], pat + ".file", "osgDB could not read a model from " + part.mesh);
+        part.scale = f.number_or(p, "scale", pat, 1.0, 1e-3, 1e3);
+      } else {
+        const YAML::Node size = f.required(p, "size", pat);
+        if (!(size.IsScalar() && size.Scalar() == "entity"))
+          part.size_m = f.vector3(size, pat + ".size", 1000.0);
+        if (part.size_m && (part.size_m->x <= 0 || part.size_m->y <= 0 || part.size_m->z <= 0))
+          f.fail(size, pat + ".size", "every side must be positive");
+      }
+      if (part.shape == VisualPart::Shape::kLattice) {
+        part.bay_m = f.number_or(p, "bay_m", pat, 3.0, 0.2, 50.0);
+        part.member_m = f.number_or(p, "member_m", pat, 0.25, 0.01, 2.0);
+      }
       part.centre_m = f.vector3(f.required(p, "at", pat), pat + ".at", 1000.0);
       const YAML::Node color = f.required(p, "color", pat);
       if (color.IsScalar() && color.Scalar() == "livery") {

@@ -5,16 +5,26 @@
 #include <string>
 #include <vector>
 
+#include <osg/Node>
+#include <osg/ref_ptr>
+
 #include "harbour/core/Vec3.h"
 
 namespace harbour::ig {
 
-/// One box of a look, in the entity's frame.
+/// One part of a look, in the entity's frame: a box; a lattice girder filling the box (four chords along its
+/// longest side, verticals and Warren diagonals in its faces, a bay `bay_m` long, members `member_m` thick);
+/// or a mesh read through osgDB (OBJ, STL, PLY, .osgt, ...), placed at the centre, scaled by `scale`.
 struct VisualPart {
+  enum class Shape { kBox, kLattice, kMesh };
+  Shape shape = Shape::kBox;
   std::optional<core::Vec3> size_m;  ///< full size; empty: the entity's own size
   core::Vec3 centre_m;
-  core::Vec3 color{0.5, 0.5, 0.5};  ///< linear RGB
-  bool livery = false;              ///< coloured by the entity's livery instead
+  core::Vec3 color{0.5, 0.5, 0.5};      ///< linear RGB
+  bool livery = false;                  ///< coloured by the entity's livery instead
+  double bay_m = 3.0, member_m = 0.25;  ///< lattice
+  std::string mesh;                     ///< mesh: its file (resolved against the look file's folder)
+  double scale = 1.0;                   ///< mesh
 };
 
 /// What a visual key looks like (data/visuals/*.yaml).
@@ -71,6 +81,10 @@ struct Looks {
   std::vector<EntityCamera> cameras;
   std::vector<SceneryPart> scenery;
 };
+
+/// A mesh part's model through osgDB, in the entity's frame as written (z up: the OBJ reader's y-up turn
+/// off); nullptr where it cannot be read.
+osg::ref_ptr<osg::Node> read_mesh(const std::string& path);
 
 /// Reads a look file (data/visuals/*.yaml). Errors name file, line and field.
 Looks load_looks(const std::string& path);
