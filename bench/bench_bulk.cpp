@@ -49,19 +49,19 @@ void pour(benchmark::State& state, bool full_sweep) {
       if (r < radius) grid.add_volume(i, j, (radius - r) * t * grid.cell_area_m2());
     }
   for (int n = 0; n < 200000 && grid.active_count() > 0; ++n)
-    grid.relax_active();
+    grid.relax_active(0.001);
   const int top = cells / 2;
   for (int n = 0; n < 3000; ++n) {  // reach a steady avalanche regime
     grid.add_volume(top, top, 0.002);
-    grid.relax_active();
+    grid.relax_active(0.001);
   }
   double examined = 0;
   for (auto _ : state) {
     grid.add_volume(top, top, 0.002);  // 2 m^3/s at 1 kHz
     if (full_sweep)
-      grid.relax_full_sweep();
+      grid.relax_full_sweep(0.001);
     else
-      grid.relax_active();
+      grid.relax_active(0.001);
     examined += static_cast<double>(grid.examined_count());
   }
   state.counters["cells_per_step"] = benchmark::Counter(examined, benchmark::Counter::kAvgIterations);
@@ -75,6 +75,30 @@ void BM_PourFullSweep(benchmark::State& state) {
 }
 BENCHMARK(BM_PourActiveList)->Arg(5)->Arg(10)->Arg(20)->Arg(40)->Arg(80)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_PourFullSweep)->Arg(5)->Arg(10)->Arg(20)->Arg(40)->Arg(80)->Unit(benchmark::kMicrosecond);
+
+// A granular column (aspect a = 2) collapsing on a floor to rest, radius r at cell size dx (issue 15's
+// targets): simulated time to rest against sqrt(H/g), runout against Lube et al. (2004), wall time.
+void BM_ColumnCollapse(benchmark::State& state) {
+  const double radius = static_cast<double>(state.range(0)) / 10.0,
+               cell = static_cast<double>(state.range(1)) / 1000.0;
+  scenes::ColumnCollapse c;
+  for (auto _ : state)
+    c = scenes::collapse_column(radius, 2.0, cell, 60.0, 34.0, 3.0);
+  state.counters["rest_s"] = c.time_to_rest_s;
+  state.counters["rest_over_sqrt_H_g"] = c.time_to_rest_s / std::sqrt(2.0 * radius / 9.81);
+  state.counters["runout"] = (c.runout_m - radius) / radius;
+  state.counters["cells"] = c.cells;
+  state.counters["updates"] = static_cast<double>(c.cell_updates);
+}
+BENCHMARK(BM_ColumnCollapse)
+    ->Args({16, 50})
+    ->Args({32, 50})
+    ->Args({64, 50})
+    ->Args({16, 25})
+    ->Args({16, 100})
+    ->ArgNames({"r_dm", "cell_mm"})
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1);
 
 }  // namespace
 }  // namespace harbour

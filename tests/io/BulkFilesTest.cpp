@@ -14,7 +14,7 @@ const char* kGoodMaterials = R"(materials:
   - name: coal
     bulk_density_kg_m3: 960
     angle_of_repose_deg: 35
-    flow_fraction: 0.5
+    flow_friction_deg: 28
 )";
 
 const char* kScenario = R"(bulk:
@@ -63,7 +63,10 @@ TEST(BulkFiles, BadMaterialsNameLineAndField) {
                     "materials[0].bulk_density_kg_m3");
   expect_data_error(kGoodMaterials, "bulk_density_kg_m3: 960", "bulk_density_kg_m3: -960", load, 3,
                     "materials[0].bulk_density_kg_m3");
-  expect_data_error(kGoodMaterials, "    flow_fraction: 0.5\n", "", load, 2, "materials[0].flow_fraction");
+  expect_data_error(kGoodMaterials, "    flow_friction_deg: 28\n", "", load, 2,
+                    "materials[0].flow_friction_deg");
+  expect_data_error(kGoodMaterials, "flow_friction_deg: 28", "flow_friction_deg: 36", load, 5,
+                    "materials[0].flow_friction_deg");  // steeper than the repose angle
 }
 
 TEST(BulkFiles, BadScenarioNamesLineAndField) {

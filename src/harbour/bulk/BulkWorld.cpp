@@ -141,9 +141,9 @@ void BulkWorld::step(double dt_s, std::span<const GrabCommand> grab_commands) {
   for (HeightGrid& g : grids_) {
     const std::uint32_t rejected = g.non_finite_count();
     if (full_sweep_)
-      g.relax_full_sweep();
+      g.relax_full_sweep(dt_s);
     else
-      g.relax_active();
+      g.relax_active(dt_s);
     if (g.non_finite_count() != rejected) warnings_.raise(core::Warning::kNonFinite);
   }
 }

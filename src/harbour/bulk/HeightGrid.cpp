@@ -24,14 +24,17 @@ HeightGrid::HeightGrid(const GridSettings& settings, const Material& material,
       ny_(settings.cells_y),
       cell_m_(settings.cell_size_m),
       tan_repose_(std::tan(material.angle_of_repose_rad)),
-      pair_fraction_(material.flow_fraction / kStencil),
+      tan_flow_(std::tan(material.flow_friction_rad)),
       relaxation_(relaxation),
       stride_(static_cast<std::size_t>(settings.cells_x + 2 * kPad)) {
   HARBOUR_ASSERT(nx_ > 0 && ny_ > 0 && cell_m_ > 0.0, "grid settings must be validated by the loader");
-  HARBOUR_ASSERT(material.flow_fraction > 0.0 && material.flow_fraction < 1.0,
-                 "flow fraction outside (0, 1)");
+  HARBOUR_ASSERT(
+      material.flow_friction_rad > 0.0 && material.flow_friction_rad <= material.angle_of_repose_rad,
+      "flow friction outside (0, repose]");
   const std::size_t padded = stride_ * static_cast<std::size_t>(ny_ + 2 * kPad);
   h_.assign(padded, 0.0);
+  vel_.assign(padded * kPipes, 0.0);
+  out_scale_.assign(padded, 1.0);
   comp_.assign(padded, kWall);
   active_stamp_.assign(padded, 0);
   examine_stamp_.assign(padded, kNeverExamine);
@@ -55,6 +58,10 @@ void HeightGrid::update_slope_offsets() {
     rise_[k] = slope_up_.x * dx + slope_up_.y * dy;  // world elevation gained by the grid's tilt
     level_offset_[k] = -std::sqrt(squared_distance_[k]) * tan_repose_;
   }
+  // pipe k carries a share 1 / (4 n) of the flow, n its length in cells: the axis, diagonal and knight pipes
+  // each pass a quarter, a quarter and a half of a uniform flow in any direction (isotropic)
+  for (int pipe = 0; pipe < kPipes; ++pipe)
+    pipe_width_[pipe] = cell_m_ * cell_m_ / (4.0 * std::sqrt(squared_distance_[2 * pipe]));
 }
 
 void HeightGrid::set_pose(const core::Pose& pose, const core::Vec3& linear_velocity,
@@ -140,15 +147,69 @@ double HeightGrid::max_height_m() const {
 }
 
 template <bool kLevel>
-double HeightGrid::net_inflow(std::size_t cell, bool& moved) const {
-  // gather the flows across all 16 pairs of this cell from the previous heights (synchronous update);
-  // flow p->q = c/16 * min(excess, h_p), excess = world elevation drop minus horizontal distance *
-  // tan(repose)
+void HeightGrid::update_pipes(std::size_t cell, double dt, double* velocities) const {
+  // each pipe from this cell to a stencil neighbour: du/dt = g (slope - mu_flow sign u) minus the advection
+  // of u along the pipe's line (Burgers, Engquist-Osher flux between pipes end to end), from rest only where
+  // the slope beats the repose angle; Coulomb friction stops it rather than turning it round
+  const double g = relaxation_.gravity_mps2;
+  const double sp = h_[cell] + comp_[cell];
+  const double* u_here = &vel_[cell * kPipes];
+  for (int pipe = 0; pipe < kPipes; ++pipe) {
+    const int k = 2 * pipe;
+    const std::size_t q = cell + neighbour_offset_[k], behind = cell - neighbour_offset_[k];
+    if (is_wall(q)) {
+      velocities[pipe] = 0.0;
+      continue;
+    }
+    const double ds = sp - (h_[q] + comp_[q]);
+    double drop, run;  // world elevation lost towards the neighbour, horizontal distance to it
+    if constexpr (kLevel) {
+      drop = ds;
+      run = std::sqrt(squared_distance_[k]);
+    } else {
+      drop = slope_up_.z * ds - rise_[k];
+      run = std::sqrt(std::max(squared_distance_[k] + ds * ds - drop * drop, 1e-12 * squared_distance_[k]));
+    }
+    const double u = u_here[pipe];
+    const double u_behind = is_wall(behind) ? 0.0 : vel_[behind * kPipes + pipe];
+    const double u_ahead = vel_[q * kPipes + pipe];
+    if (u == 0.0 && u_behind <= 0.0 && u_ahead >= 0.0 &&
+        std::abs(drop) - run * tan_repose_ <= relaxation_.flow_start_excess_m) {
+      velocities[pipe] = 0.0;  // at rest, no momentum arriving, not steep enough to start
+      continue;
+    }
+    const auto flux = [](double left, double right) {
+      return 0.5 * (std::max(left, 0.0) * std::max(left, 0.0) + std::min(right, 0.0) * std::min(right, 0.0));
+    };
+    const double length = std::sqrt(squared_distance_[k]);
+    double v = u - dt * (flux(u, u_ahead) - flux(u_behind, u)) / length + dt * g * drop / run;
+    const double friction = dt * g * tan_flow_;
+    v = std::abs(v) <= friction ? 0.0 : v - std::copysign(friction, v);
+    velocities[pipe] = v;
+  }
+}
+
+double HeightGrid::pipe_flux(std::size_t cell, int pipe, double dt) const {
+  // height moved from `cell` to its neighbour (negative: back), from the upstream cell's height
+  const double u = vel_[cell * kPipes + pipe];
+  if (u == 0.0) return 0.0;
+  const std::size_t from = u > 0.0 ? cell : cell + neighbour_offset_[2 * pipe];
+  return u * dt / cell_m_ * (pipe_width_[pipe] / cell_m_) * h_[from] * out_scale_[from];
+}
+
+template <bool kLevel>
+double HeightGrid::residual_inflow(std::size_t cell) const {
+  // the paper's rule on the pairs whose pipe is at rest: flow p->q = c/16 min(excess, h_p), excess the
+  // world elevation drop beyond the repose angle's over the pair's horizontal distance
+  const double fraction = relaxation_.residual_fraction / kStencil;
   const double hp = h_[cell];
   const double sp = hp + comp_[cell];
   double delta = 0.0;
   for (int k = 0; k < kStencil; ++k) {
     const std::size_t q = cell + neighbour_offset_[k];
+    const double pipe_velocity =
+        k % 2 == 0 ? vel_[cell * kPipes + k / 2] : vel_[q * kPipes + (k ^ 1) / 2];  // the pair's pipe
+    if (pipe_velocity != 0.0) continue;
     const double hq = h_[q];
     const double ds = sp - (hq + comp_[q]);
     double drop, critical_drop;
@@ -156,44 +217,53 @@ double HeightGrid::net_inflow(std::size_t cell, bool& moved) const {
       drop = ds;
       critical_drop = -level_offset_[k];
     } else {
-      // on a tilted grid the height difference also shifts the points horizontally
       drop = slope_up_.z * ds - rise_[k];
       critical_drop = std::sqrt(std::max(0.0, squared_distance_[k] + ds * ds - drop * drop)) * tan_repose_;
     }
-    const double out_excess = drop - critical_drop;
-    const double in_excess = -drop - critical_drop;
-    if (out_excess > relaxation_.min_excess_m) {
-      const double flow = pair_fraction_ * std::min(out_excess, hp);
-      if (flow > 0.0) {
-        delta -= flow;
-        moved = true;
-      }
-    } else if (in_excess > relaxation_.min_excess_m) {
-      const double flow = pair_fraction_ * std::min(in_excess, hq);
-      if (flow > 0.0) {
-        delta += flow;
-        moved = true;
-      }
-    }
+    const double out_excess = drop - critical_drop, in_excess = -drop - critical_drop;
+    if (out_excess > relaxation_.min_excess_m)
+      delta -= fraction * std::min(out_excess, hp);
+    else if (in_excess > relaxation_.min_excess_m)
+      delta += fraction * std::min(in_excess, hq);
   }
   return delta;
 }
 
-void HeightGrid::examine(const std::vector<std::size_t>& cells) {
-  deltas_.resize(cells.size());
-  moved_.resize(cells.size());
-  for (std::size_t n = 0; n < cells.size(); ++n) {
-    bool moved = false;
-    deltas_[n] = level_ ? net_inflow<true>(cells[n], moved) : net_inflow<false>(cells[n], moved);
-    moved_[n] = moved;
+void HeightGrid::flow(const std::vector<std::size_t>& cells, double dt) {
+  // 1. the pipes' new velocities, all from the old state (synchronous: order-independent)
+  new_vel_.resize(cells.size() * kPipes);
+  for (std::size_t n = 0; n < cells.size(); ++n)
+    level_ ? update_pipes<true>(cells[n], dt, &new_vel_[n * kPipes])
+           : update_pipes<false>(cells[n], dt, &new_vel_[n * kPipes]);
+  for (std::size_t n = 0; n < cells.size(); ++n)
+    std::copy_n(&new_vel_[n * kPipes], kPipes, &vel_[cells[n] * kPipes]);
+  // 2. no cell gives more than it holds: its outflows scaled down together where they would, leaving room for
+  // the residual relaxation's share
+  for (const std::size_t c : cells) {
+    double out = 0.0;  // share of the height leaving per sub-step
+    for (int pipe = 0; pipe < kPipes; ++pipe) {
+      const double mine = vel_[c * kPipes + pipe];
+      const double theirs = vel_[(c - neighbour_offset_[2 * pipe]) * kPipes + pipe];
+      out += (std::max(mine, 0.0) - std::min(theirs, 0.0)) * pipe_width_[pipe];
+    }
+    out *= dt / (cell_m_ * cell_m_);
+    const double room = 1.0 - relaxation_.residual_fraction;
+    out_scale_[c] = out > room ? room / out : 1.0;
   }
-  examined_ = cells.size();
-  apply(cells, deltas_, moved_);
-}
-
-void HeightGrid::apply(const std::vector<std::size_t>& cells, const std::vector<double>& deltas,
-                       const std::vector<std::uint8_t>& moved) {
-  // a new epoch: cells that moved now are examined next step
+  // 3. heights from the pipes' fluxes (each flux computed alike from both its ends: mass exact)
+  deltas_.resize(cells.size());
+  for (std::size_t n = 0; n < cells.size(); ++n) {
+    const std::size_t c = cells[n];
+    double delta = 0.0;
+    for (int pipe = 0; pipe < kPipes; ++pipe)
+      delta += pipe_flux(c - neighbour_offset_[2 * pipe], pipe, dt) - pipe_flux(c, pipe, dt);
+    deltas_[n] = delta;
+  }
+  // 4. the residual relaxation on the pairs at rest, from the same heights
+  residual_.resize(cells.size());
+  for (std::size_t n = 0; n < cells.size(); ++n)
+    residual_[n] = level_ ? residual_inflow<true>(cells[n]) : residual_inflow<false>(cells[n]);
+  // 5. a new epoch: cells whose height changed or whose pipes move are examined next
   active_.clear();
   if (++epoch_ == kNeverExamine) {
     epoch_ = 1;
@@ -202,18 +272,29 @@ void HeightGrid::apply(const std::vector<std::size_t>& cells, const std::vector<
     std::replace_if(
         examine_stamp_.begin(), examine_stamp_.end(), [](std::uint32_t s) { return s != kNeverExamine; }, 0u);
   }
+  fastest_mps_ = 0.0;
   for (std::size_t n = 0; n < cells.size(); ++n) {
-    if (!moved[n]) continue;
-    if (!std::isfinite(deltas[n])) {  // never let a NaN into the heights: count it and skip the cell
+    const std::size_t c = cells[n];
+    bool moving = deltas_[n] != 0.0 || residual_[n] != 0.0;
+    for (int pipe = 0; pipe < kPipes; ++pipe) {
+      const double u = vel_[c * kPipes + pipe];
+      if (u == 0.0) continue;
+      moving = true;
+      fastest_mps_ = std::max(fastest_mps_, std::abs(u));
+      mark(c + neighbour_offset_[2 * pipe]);  // the pipe's far end moves too
+    }
+    if (!moving) continue;
+    if (!std::isfinite(deltas_[n]) || !std::isfinite(residual_[n])) {  // never let a NaN into the heights
       ++non_finite_;
       continue;
     }
-    h_[cells[n]] += deltas[n];
-    mark(cells[n]);
+    h_[c] = std::max(h_[c] + deltas_[n] + residual_[n], 0.0);
+    mark(c);
   }
+  examined_ = cells.size();
 }
 
-void HeightGrid::relax_active() {
+void HeightGrid::collect_examined() {
   // cells to examine: the active ones and every stencil neighbour, each once
   examine_.clear();
   for (const std::size_t cell : active_) {
@@ -228,15 +309,28 @@ void HeightGrid::relax_active() {
       examine_.push_back(q);
     }
   }
-  examine(examine_);
 }
 
-void HeightGrid::relax_full_sweep() {
-  examine_.clear();
-  for (int j = 0; j < ny_; ++j)
-    for (int i = 0; i < nx_; ++i)
-      examine_.push_back(index(i, j));
-  examine(examine_);
+void HeightGrid::relax_active(double dt_s) {
+  // sub-steps: the fastest pipe moves material at most max_courant cells per sub-step
+  substeps_ =
+      std::max(1, static_cast<int>(std::ceil(fastest_mps_ * dt_s / (relaxation_.max_courant * cell_m_))));
+  for (int n = 0; n < substeps_; ++n) {
+    collect_examined();
+    flow(examine_, dt_s / substeps_);
+  }
+}
+
+void HeightGrid::relax_full_sweep(double dt_s) {
+  substeps_ =
+      std::max(1, static_cast<int>(std::ceil(fastest_mps_ * dt_s / (relaxation_.max_courant * cell_m_))));
+  for (int n = 0; n < substeps_; ++n) {
+    examine_.clear();
+    for (int j = 0; j < ny_; ++j)
+      for (int i = 0; i < nx_; ++i)
+        examine_.push_back(index(i, j));
+    flow(examine_, dt_s / substeps_);
+  }
 }
 
 void HeightGrid::activate_loaded_cells() {
@@ -248,6 +342,7 @@ void HeightGrid::activate_loaded_cells() {
 void HeightGrid::hash_into(core::StateHash& hash) const {
   hash.add(std::span<const double>(h_));
   hash.add(std::span<const double>(comp_));
+  hash.add(std::span<const double>(vel_));
   hash.add(slope_up_);
   hash.add(active_.size());
 }

@@ -19,10 +19,17 @@ struct GridSettings {
   double cell_size_m = 0.1;  ///< [m] side of a square cell
 };
 
-/// Relaxation tuning shared by every grid of a bulk world.
+/// Flow tuning shared by every grid of a bulk world.
 struct RelaxationSettings {
-  double min_excess_m = 1e-5;        ///< [m] slope excess below which no material moves (ends avalanches)
+  double min_excess_m = 1e-5;  ///< [m] slope excess below which material at rest stays at rest
+  /// [m] slope excess over a neighbour pair beyond which material at rest starts to flow (the pair's pipe
+  /// accelerates); smaller excesses are relaxed by the paper's critical-slope rule, moving
+  /// `residual_fraction` of the excess per step (a heap built slowly stays at its angle of repose)
+  double flow_start_excess_m = 0.05;
+  double residual_fraction = 0.5;
   double tilt_quantum_rad = 8.7e-4;  ///< [rad] tilt change (0.05 deg) that re-examines a moving grid
+  double gravity_mps2 = 9.81;
+  double max_courant = 0.4;  ///< a step is cut into sub-steps so no pipe moves material further (cells/step)
 };
 
 /// Cell coordinates inside a grid.
@@ -31,8 +38,12 @@ struct CellIndex {
   int j = 0;
 };
 
-/// One active region of bulk material: a height field on square cells relaxed by the
-/// cellular automaton of García-Fernández et al. §3.1, extended to a 16-neighbour stencil.
+/// One active region of bulk material: a height field on square cells whose rest state is the critical-slope
+/// rule of García-Fernández et al. §3.1 (every neighbour pair of a 16-neighbour stencil at most at the angle
+/// of repose) and whose flow is physical: a depth-averaged Coulomb flow (Savage-Hutter) carried by "pipes"
+/// between neighbour pairs, each with a velocity accelerated by the surface slope along it, slowed by the
+/// material's flow friction, advected along its line (momentum: inertial runout) and started from rest only
+/// where the slope exceeds the repose angle. docs/models/bulk.md.
 class HeightGrid {
  public:
   HeightGrid(const GridSettings& settings, const Material& material, const RelaxationSettings& relaxation);
@@ -75,10 +86,16 @@ class HeightGrid {
   /// Largest cell height [m].
   double max_height_m() const;
 
-  /// One synchronous relaxation step examining only the active cells (the paper's active list).
-  void relax_active();
+  /// Advances the flow by `dt_s` examining only the active cells (the paper's active list); cut into
+  /// sub-steps where the fastest pipe would move material more than `max_courant` cells.
+  void relax_active(double dt_s);
   /// The same step examining every cell: the reference for tests and the benchmark baseline.
-  void relax_full_sweep();
+  void relax_full_sweep(double dt_s);
+  /// Velocity of the pipe from cell (i, j) to its stencil neighbour `pipe` (0-7: (1, 0), (0, 1), (1, 1),
+  /// (1, -1), (2, 1), (1, 2), (-1, 2), (-2, 1)) [m/s], positive towards the neighbour.
+  double pipe_velocity(int i, int j, int pipe) const { return vel_[index(i, j) * kPipes + pipe]; }
+  /// Sub-steps the last step was cut into.
+  int substeps() const { return substeps_; }
   /// Cells that changed in the last step or were edited since; the next step starts from them.
   std::size_t active_count() const { return active_.size(); }
   /// Cells examined by the last relaxation step.
@@ -105,21 +122,24 @@ class HeightGrid {
  private:
   static constexpr int kPad = 2;  // stencil radius: knight moves reach two cells
   static constexpr int kStencil = 16;
-  static constexpr double kWall = 1e30;  // compression of the padding ring: nothing flows in or out
+  static constexpr int kPipes = kStencil / 2;  // one per neighbour pair, owned by the cell it leaves
+  static constexpr double kWall = 1e30;        // compression of the padding ring: nothing flows in or out
 
   std::size_t index(int i, int j) const { return static_cast<std::size_t>(j + kPad) * stride_ + (i + kPad); }
   void mark(std::size_t cell);
   void update_slope_offsets();
+  bool is_wall(std::size_t cell) const { return comp_[cell] == kWall; }
   template <bool kLevel>
-  double net_inflow(std::size_t cell, bool& moved) const;
-  void examine(const std::vector<std::size_t>& cells);
-  void apply(const std::vector<std::size_t>& cells, const std::vector<double>& deltas,
-             const std::vector<std::uint8_t>& moved);
+  void update_pipes(std::size_t cell, double dt, double* velocities) const;
+  double pipe_flux(std::size_t cell, int pipe, double dt) const;  // height moved along it this sub-step
+  template <bool kLevel>
+  double residual_inflow(std::size_t cell) const;  // the critical-slope rule over the pairs at rest
+  void flow(const std::vector<std::size_t>& cells, double dt);
+  void collect_examined();
 
   int nx_, ny_;
   double cell_m_;
-  double tan_repose_;
-  double pair_fraction_;  // c / 16: keeps total outflow of a cell below c times its height
+  double tan_repose_, tan_flow_;
   RelaxationSettings relaxation_;
   std::size_t stride_;
   std::vector<std::uint32_t> tile_version_;
@@ -133,9 +153,13 @@ class HeightGrid {
   std::array<double, kStencil> level_offset_{};      // minus the critical drop to neighbour k on a level grid
   std::array<double, kStencil> rise_{};              // world elevation gained moving to neighbour k (tilt)
   std::array<double, kStencil> squared_distance_{};  // [m^2] grid-plane distance to neighbour k
+  std::array<double, kPipes> pipe_width_{};          // [cells] a pipe's share of the flow (isotropic)
 
   std::vector<double> h_;     // material height per cell, padded
   std::vector<double> comp_;  // artificial compression height per cell, padded (walls: kWall)
+  std::vector<double> vel_;   // pipe velocities, kPipes per cell, padded [m/s]
+  double fastest_mps_ = 0.0;  // the fastest pipe after the last sub-step: sets the next step's sub-steps
+  int substeps_ = 0;
 
   // active list: cells to examine next, deduplicated by stamp
   std::vector<std::size_t> active_;
@@ -147,8 +171,9 @@ class HeightGrid {
 
   // scratch buffers reused across steps (not state)
   std::vector<std::size_t> examine_;
-  std::vector<double> deltas_;
-  std::vector<std::uint8_t> moved_;
+  std::vector<double> deltas_, residual_;
+  std::vector<double> new_vel_;    // per examined cell, kPipes
+  std::vector<double> out_scale_;  // per cell (padded): outflow limiter of this sub-step
 };
 
 }  // namespace harbour::bulk

@@ -9,9 +9,8 @@ struct Material {
   std::string name;
   double bulk_density_kg_m3 = 0.0;   ///< [kg/m^3] loose bulk density
   double angle_of_repose_rad = 0.0;  ///< [rad] critical slope angle of a relaxed pile
-  double flow_fraction =
-      0.5;  ///< [-] the paper's c: share of a slope excess moved per relaxation step, (0, 1)
-  double compression_gain = 1.0;  ///< [-] artificial height per metre of contact penetration (§3.1.2)
+  double flow_friction_rad = 0.0;  ///< [rad] Coulomb friction angle of flowing material, <= the repose angle
+  double compression_gain = 1.0;   ///< [-] artificial height per metre of contact penetration (§3.1.2)
 };
 
 }  // namespace harbour::bulk

@@ -31,7 +31,11 @@ std::vector<bulk::Material> load_materials(const YamlFile& file) {
     material.bulk_density_kg_m3 = file.number(m, "bulk_density_kg_m3", path, 0.0, 25000.0, true);
     material.angle_of_repose_rad =
         core::deg_to_rad(file.number(m, "angle_of_repose_deg", path, 0.0, 90.0, true, true));
-    material.flow_fraction = file.number(m, "flow_fraction", path, 0.0, 1.0, true, true);
+    material.flow_friction_rad =
+        core::deg_to_rad(file.number(m, "flow_friction_deg", path, 0.0, 90.0, true, true));
+    if (material.flow_friction_rad > material.angle_of_repose_rad)
+      file.fail(m["flow_friction_deg"], path + ".flow_friction_deg",
+                "flowing material cannot hold a steeper slope than the angle of repose");
     material.compression_gain = file.number_or(m, "compression_gain", path, 1.0, 0.0, 1000.0);
     materials.push_back(material);
   }
