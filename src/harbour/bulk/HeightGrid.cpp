@@ -1,6 +1,7 @@
 #include "harbour/bulk/HeightGrid.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 
@@ -34,14 +35,14 @@ HeightGrid::HeightGrid(const GridSettings& settings, const Material& material,
   const std::size_t padded = stride_ * static_cast<std::size_t>(ny_ + 2 * kPad);
   h_.assign(padded, 0.0);
   vel_.assign(padded * kPipes, 0.0);
+  flux_.assign(padded * kPipes, 0.0);
   out_scale_.assign(padded, 1.0);
   comp_.assign(padded, kWall);
   active_stamp_.assign(padded, 0);
-  examine_stamp_.assign(padded, kNeverExamine);
+  examine_bits_.assign((padded + 63) / 64, 0);
   for (int j = 0; j < ny_; ++j)
     for (int i = 0; i < nx_; ++i) {
       comp_[index(i, j)] = 0.0;
-      examine_stamp_[index(i, j)] = 0;
     }
   for (int k = 0; k < kStencil; ++k)
     neighbour_offset_[k] =
@@ -56,12 +57,13 @@ void HeightGrid::update_slope_offsets() {
     const double dx = kStencilDx[k] * cell_m_, dy = kStencilDy[k] * cell_m_;
     squared_distance_[k] = dx * dx + dy * dy;
     rise_[k] = slope_up_.x * dx + slope_up_.y * dy;  // world elevation gained by the grid's tilt
-    level_offset_[k] = -std::sqrt(squared_distance_[k]) * tan_repose_;
+    distance_[k] = std::sqrt(squared_distance_[k]);
+    level_offset_[k] = -distance_[k] * tan_repose_;
   }
   // pipe k carries a share 1 / (4 n) of the flow, n its length in cells: the axis, diagonal and knight pipes
   // each pass a quarter, a quarter and a half of a uniform flow in any direction (isotropic)
   for (int pipe = 0; pipe < kPipes; ++pipe)
-    pipe_width_[pipe] = cell_m_ * cell_m_ / (4.0 * std::sqrt(squared_distance_[2 * pipe]));
+    pipe_share_[pipe] = 1.0 / (4.0 * distance_[2 * pipe]);
 }
 
 void HeightGrid::set_pose(const core::Pose& pose, const core::Vec3& linear_velocity,
@@ -80,6 +82,10 @@ void HeightGrid::set_pose(const core::Pose& pose, const core::Vec3& linear_veloc
 void HeightGrid::mark(std::size_t cell) {
   const int i = static_cast<int>(cell % stride_) - kPad, j = static_cast<int>(cell / stride_) - kPad;
   ++tile_version_[static_cast<std::size_t>((j / kTileCells) * tiles_x() + i / kTileCells)];
+  activate(cell);
+}
+
+void HeightGrid::activate(std::size_t cell) {
   if (active_stamp_[cell] == epoch_) return;
   active_stamp_[cell] = epoch_;
   active_.push_back(cell);
@@ -146,7 +152,7 @@ double HeightGrid::max_height_m() const {
   return *std::max_element(h_.begin(), h_.end());
 }
 
-template <bool kLevel>
+template <bool kLevel, bool kStill>
 void HeightGrid::update_pipes(std::size_t cell, double dt, double* velocities) const {
   // each pipe from this cell to a stencil neighbour: du/dt = g (slope - mu_flow sign u) minus the advection
   // of u along the pipe's line (Burgers, Engquist-Osher flux between pipes end to end), from rest only where
@@ -165,14 +171,15 @@ void HeightGrid::update_pipes(std::size_t cell, double dt, double* velocities) c
     double drop, run;  // world elevation lost towards the neighbour, horizontal distance to it
     if constexpr (kLevel) {
       drop = ds;
-      run = std::sqrt(squared_distance_[k]);
+      run = distance_[k];
     } else {
       drop = slope_up_.z * ds - rise_[k];
       run = std::sqrt(std::max(squared_distance_[k] + ds * ds - drop * drop, 1e-12 * squared_distance_[k]));
     }
-    const double u = u_here[pipe];
-    const double u_behind = is_wall(behind) ? 0.0 : vel_[behind * kPipes + pipe];
-    const double u_ahead = vel_[q * kPipes + pipe];
+    // kStill: no pipe of the grid moves (a dig, a slow pour): nothing to read
+    const double u = kStill ? 0.0 : u_here[pipe];
+    const double u_behind = kStill || is_wall(behind) ? 0.0 : vel_[behind * kPipes + pipe];
+    const double u_ahead = kStill ? 0.0 : vel_[q * kPipes + pipe];
     if (u == 0.0 && u_behind <= 0.0 && u_ahead >= 0.0 &&
         std::abs(drop) - run * tan_repose_ <= relaxation_.flow_start_excess_m) {
       velocities[pipe] = 0.0;  // at rest, no momentum arriving, not steep enough to start
@@ -181,7 +188,7 @@ void HeightGrid::update_pipes(std::size_t cell, double dt, double* velocities) c
     const auto flux = [](double left, double right) {
       return 0.5 * (std::max(left, 0.0) * std::max(left, 0.0) + std::min(right, 0.0) * std::min(right, 0.0));
     };
-    const double length = std::sqrt(squared_distance_[k]);
+    const double length = distance_[k];
     double v = u - dt * (flux(u, u_ahead) - flux(u_behind, u)) / length + dt * g * drop / run;
     const double friction = dt * g * tan_flow_;
     v = std::abs(v) <= friction ? 0.0 : v - std::copysign(friction, v);
@@ -194,10 +201,10 @@ double HeightGrid::pipe_flux(std::size_t cell, int pipe, double dt) const {
   const double u = vel_[cell * kPipes + pipe];
   if (u == 0.0) return 0.0;
   const std::size_t from = u > 0.0 ? cell : cell + neighbour_offset_[2 * pipe];
-  return u * dt / cell_m_ * (pipe_width_[pipe] / cell_m_) * h_[from] * out_scale_[from];
+  return u * dt * pipe_share_[pipe] * h_[from] * out_scale_[from];
 }
 
-template <bool kLevel>
+template <bool kLevel, bool kStill>
 double HeightGrid::residual_inflow(std::size_t cell) const {
   // the paper's rule on the pairs whose pipe is at rest: flow p->q = c/16 min(excess, h_p), excess the
   // world elevation drop beyond the repose angle's over the pair's horizontal distance
@@ -207,9 +214,11 @@ double HeightGrid::residual_inflow(std::size_t cell) const {
   double delta = 0.0;
   for (int k = 0; k < kStencil; ++k) {
     const std::size_t q = cell + neighbour_offset_[k];
-    const double pipe_velocity =
-        k % 2 == 0 ? vel_[cell * kPipes + k / 2] : vel_[q * kPipes + (k ^ 1) / 2];  // the pair's pipe
-    if (pipe_velocity != 0.0) continue;
+    if constexpr (!kStill) {
+      const double pipe_velocity =
+          k % 2 == 0 ? vel_[cell * kPipes + k / 2] : vel_[q * kPipes + (k ^ 1) / 2];  // the pair's pipe
+      if (pipe_velocity != 0.0) continue;
+    }
     const double hq = h_[q];
     const double ds = sp - (hq + comp_[q]);
     double drop, critical_drop;
@@ -232,56 +241,73 @@ double HeightGrid::residual_inflow(std::size_t cell) const {
 void HeightGrid::flow(const std::vector<std::size_t>& cells, double dt) {
   // 1. the pipes' new velocities, all from the old state (synchronous: order-independent)
   new_vel_.resize(cells.size() * kPipes);
-  for (std::size_t n = 0; n < cells.size(); ++n)
-    level_ ? update_pipes<true>(cells[n], dt, &new_vel_[n * kPipes])
-           : update_pipes<false>(cells[n], dt, &new_vel_[n * kPipes]);
-  for (std::size_t n = 0; n < cells.size(); ++n)
-    std::copy_n(&new_vel_[n * kPipes], kPipes, &vel_[cells[n] * kPipes]);
-  // 2. no cell gives more than it holds: its outflows scaled down together where they would, leaving room for
-  // the residual relaxation's share
-  for (const std::size_t c : cells) {
-    double out = 0.0;  // share of the height leaving per sub-step
-    for (int pipe = 0; pipe < kPipes; ++pipe) {
-      const double mine = vel_[c * kPipes + pipe];
-      const double theirs = vel_[(c - neighbour_offset_[2 * pipe]) * kPipes + pipe];
-      out += (std::max(mine, 0.0) - std::min(theirs, 0.0)) * pipe_width_[pipe];
-    }
-    out *= dt / (cell_m_ * cell_m_);
-    const double room = 1.0 - relaxation_.residual_fraction;
-    out_scale_[c] = out > room ? room / out : 1.0;
-  }
-  // 3. heights from the pipes' fluxes (each flux computed alike from both its ends: mass exact)
-  deltas_.resize(cells.size());
+  bool still = moving_pipes_ == 0;  // no pipe moved last sub-step
   for (std::size_t n = 0; n < cells.size(); ++n) {
-    const std::size_t c = cells[n];
-    double delta = 0.0;
-    for (int pipe = 0; pipe < kPipes; ++pipe)
-      delta += pipe_flux(c - neighbour_offset_[2 * pipe], pipe, dt) - pipe_flux(c, pipe, dt);
-    deltas_[n] = delta;
+    double* v = &new_vel_[n * kPipes];
+    if (still)
+      level_ ? update_pipes<true, true>(cells[n], dt, v) : update_pipes<false, true>(cells[n], dt, v);
+    else
+      level_ ? update_pipes<true, false>(cells[n], dt, v) : update_pipes<false, false>(cells[n], dt, v);
+  }
+  if (still)  // and none starts now: the pipes' passes have nothing to do
+    still = std::all_of(new_vel_.begin(), new_vel_.end(), [](double v) { return v == 0.0; });
+  deltas_.assign(cells.size(), 0.0);
+  if (!still) {
+    for (std::size_t n = 0; n < cells.size(); ++n)
+      std::copy_n(&new_vel_[n * kPipes], kPipes, &vel_[cells[n] * kPipes]);
+    // 2. no cell gives more than it holds: its outflows scaled down together where they would, leaving room
+    // for the residual relaxation's share
+    for (const std::size_t c : cells) {
+      double out = 0.0;  // share of the height leaving per sub-step
+      for (int pipe = 0; pipe < kPipes; ++pipe) {
+        const double mine = vel_[c * kPipes + pipe];
+        const double theirs = vel_[(c - neighbour_offset_[2 * pipe]) * kPipes + pipe];
+        out += (std::max(mine, 0.0) - std::min(theirs, 0.0)) * pipe_share_[pipe];
+      }
+      out *= dt;
+      const double room = 1.0 - relaxation_.residual_fraction;
+      out_scale_[c] = out > room ? room / out : 1.0;
+    }
+    // 3. heights from the pipes' fluxes: each moving pipe's flux once, read by both its ends (mass exact)
+    for (const std::size_t c : cells)
+      for (int pipe = 0; pipe < kPipes; ++pipe)
+        flux_[c * kPipes + pipe] = pipe_flux(c, pipe, dt);
+    for (std::size_t n = 0; n < cells.size(); ++n) {
+      const std::size_t c = cells[n];
+      double delta = 0.0;
+      for (int pipe = 0; pipe < kPipes; ++pipe) {
+        const std::size_t from = (c - neighbour_offset_[2 * pipe]) * kPipes + pipe;  // its pipe towards c
+        if (vel_[from] != 0.0) delta += flux_[from];  // a moving pipe's owner is examined: its flux is fresh
+        delta -= flux_[c * kPipes + pipe];
+      }
+      deltas_[n] = delta;
+    }
   }
   // 4. the residual relaxation on the pairs at rest, from the same heights
   residual_.resize(cells.size());
   for (std::size_t n = 0; n < cells.size(); ++n)
-    residual_[n] = level_ ? residual_inflow<true>(cells[n]) : residual_inflow<false>(cells[n]);
+    residual_[n] =
+        still ? (level_ ? residual_inflow<true, true>(cells[n]) : residual_inflow<false, true>(cells[n]))
+              : (level_ ? residual_inflow<true, false>(cells[n]) : residual_inflow<false, false>(cells[n]));
   // 5. a new epoch: cells whose height changed or whose pipes move are examined next
   active_.clear();
   if (++epoch_ == kNeverExamine) {
     epoch_ = 1;
     std::replace_if(
         active_stamp_.begin(), active_stamp_.end(), [](std::uint32_t s) { return s != 0; }, 0u);
-    std::replace_if(
-        examine_stamp_.begin(), examine_stamp_.end(), [](std::uint32_t s) { return s != kNeverExamine; }, 0u);
   }
   fastest_mps_ = 0.0;
+  moving_pipes_ = 0;
   for (std::size_t n = 0; n < cells.size(); ++n) {
     const std::size_t c = cells[n];
     bool moving = deltas_[n] != 0.0 || residual_[n] != 0.0;
-    for (int pipe = 0; pipe < kPipes; ++pipe) {
+    for (int pipe = 0; pipe < kPipes && !still; ++pipe) {
       const double u = vel_[c * kPipes + pipe];
       if (u == 0.0) continue;
       moving = true;
+      ++moving_pipes_;
       fastest_mps_ = std::max(fastest_mps_, std::abs(u));
-      mark(c + neighbour_offset_[2 * pipe]);  // the pipe's far end moves too
+      activate(c + neighbour_offset_[2 * pipe]);  // the pipe's far end is examined next too
     }
     if (!moving) continue;
     if (!std::isfinite(deltas_[n]) || !std::isfinite(residual_[n])) {  // never let a NaN into the heights
@@ -295,18 +321,26 @@ void HeightGrid::flow(const std::vector<std::size_t>& cells, double dt) {
 }
 
 void HeightGrid::collect_examined() {
-  // cells to examine: the active ones and every stencil neighbour, each once
-  examine_.clear();
+  // cells to examine: the active ones and every stencil neighbour, each once, in memory order (a bit per
+  // cell, then a scan of the rows they touch: the passes over them then walk memory forwards)
+  std::size_t first = examine_bits_.size(), last = 0;  // words touched
   for (const std::size_t cell : active_) {
-    if (examine_stamp_[cell] != epoch_) {
-      examine_stamp_[cell] = epoch_;
-      examine_.push_back(cell);
+    for (int k = -1; k < kStencil; ++k) {
+      const std::size_t q = k < 0 ? cell : cell + neighbour_offset_[k];
+      if (is_wall(q)) continue;
+      const std::size_t word = q / 64;
+      examine_bits_[word] |= std::uint64_t{1} << (q % 64);
+      first = std::min(first, word);
+      last = std::max(last, word);
     }
-    for (const std::ptrdiff_t off : neighbour_offset_) {
-      const std::size_t q = cell + off;
-      if (examine_stamp_[q] == epoch_ || examine_stamp_[q] == kNeverExamine) continue;
-      examine_stamp_[q] = epoch_;
-      examine_.push_back(q);
+  }
+  examine_.clear();
+  for (std::size_t word = first; word <= last && first < examine_bits_.size(); ++word) {
+    std::uint64_t bits = examine_bits_[word];
+    examine_bits_[word] = 0;
+    while (bits != 0) {
+      examine_.push_back(word * 64 + static_cast<std::size_t>(std::countr_zero(bits)));
+      bits &= bits - 1;
     }
   }
 }

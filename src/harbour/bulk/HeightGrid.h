@@ -126,13 +126,14 @@ class HeightGrid {
   static constexpr double kWall = 1e30;        // compression of the padding ring: nothing flows in or out
 
   std::size_t index(int i, int j) const { return static_cast<std::size_t>(j + kPad) * stride_ + (i + kPad); }
-  void mark(std::size_t cell);
+  void mark(std::size_t cell);      // changed (its tile's version moves on) and examined next
+  void activate(std::size_t cell);  // examined next
   void update_slope_offsets();
   bool is_wall(std::size_t cell) const { return comp_[cell] == kWall; }
-  template <bool kLevel>
+  template <bool kLevel, bool kStill>
   void update_pipes(std::size_t cell, double dt, double* velocities) const;
   double pipe_flux(std::size_t cell, int pipe, double dt) const;  // height moved along it this sub-step
-  template <bool kLevel>
+  template <bool kLevel, bool kStill>
   double residual_inflow(std::size_t cell) const;  // the critical-slope rule over the pairs at rest
   void flow(const std::vector<std::size_t>& cells, double dt);
   void collect_examined();
@@ -153,18 +154,22 @@ class HeightGrid {
   std::array<double, kStencil> level_offset_{};      // minus the critical drop to neighbour k on a level grid
   std::array<double, kStencil> rise_{};              // world elevation gained moving to neighbour k (tilt)
   std::array<double, kStencil> squared_distance_{};  // [m^2] grid-plane distance to neighbour k
-  std::array<double, kPipes> pipe_width_{};          // [cells] a pipe's share of the flow (isotropic)
+  std::array<double, kStencil> distance_{};          // [m] grid-plane distance to neighbour k
+  // a pipe's width w = s / (4 n) over the cell's area s^2, n its length in cells [1/m]: height moved per
+  // sub-step = u dt share h_up
+  std::array<double, kPipes> pipe_share_{};
 
-  std::vector<double> h_;     // material height per cell, padded
-  std::vector<double> comp_;  // artificial compression height per cell, padded (walls: kWall)
-  std::vector<double> vel_;   // pipe velocities, kPipes per cell, padded [m/s]
-  double fastest_mps_ = 0.0;  // the fastest pipe after the last sub-step: sets the next step's sub-steps
+  std::vector<double> h_;         // material height per cell, padded
+  std::vector<double> comp_;      // artificial compression height per cell, padded (walls: kWall)
+  std::vector<double> vel_;       // pipe velocities, kPipes per cell, padded [m/s]
+  double fastest_mps_ = 0.0;      // the fastest pipe after the last sub-step: sets the next step's sub-steps
+  std::size_t moving_pipes_ = 0;  // pipes moving after the last sub-step (0: the fast path)
   int substeps_ = 0;
 
   // active list: cells to examine next, deduplicated by stamp
   std::vector<std::size_t> active_;
   std::vector<std::uint32_t> active_stamp_;
-  std::vector<std::uint32_t> examine_stamp_;
+  std::vector<std::uint64_t> examine_bits_;  // cells to examine in the next sub-step, a bit each
   std::uint32_t epoch_ = 1;
   std::uint32_t non_finite_ = 0;
   std::size_t examined_ = 0;
@@ -174,6 +179,7 @@ class HeightGrid {
   std::vector<double> deltas_, residual_;
   std::vector<double> new_vel_;    // per examined cell, kPipes
   std::vector<double> out_scale_;  // per cell (padded): outflow limiter of this sub-step
+  std::vector<double> flux_;       // per pipe (padded): height it moves this sub-step
 };
 
 }  // namespace harbour::bulk
