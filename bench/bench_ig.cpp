@@ -64,6 +64,7 @@ void BM_BulkTileRemesh(benchmark::State& state) {
   coal.name = "coal";
   coal.bulk_density_kg_m3 = 850.0;
   coal.angle_of_repose_rad = 0.6;
+  coal.flow_friction_rad = 0.51;
   bulk::BulkWorld world(coal, bulk::BulkWorldSettings{});
   world.add_grid({1024, 1024, 0.05}, {core::Mat3::identity(), {-25.6, -25.6, 0.0}});
   world.add_heap(0, 25.6, 25.6, 400.0);

@@ -744,6 +744,7 @@ bulk::BulkWorld sand_yard() {
   sand.name = "sand";
   sand.bulk_density_kg_m3 = 1600.0;
   sand.angle_of_repose_rad = 34.0 * std::numbers::pi / 180.0;
+  sand.flow_friction_rad = 0.85 * sand.angle_of_repose_rad;
   bulk::BulkWorld world(sand, bulk::BulkWorldSettings{});
   world.add_grid({256, 256, 0.1}, {core::Mat3::identity(), {-12.8, -12.8, 0.0}});  // 8 x 8 tiles, on the quay
   return world;
