@@ -739,8 +739,17 @@ void ImageGenerator::update(const sim::Snapshot& s) {
   if (s.diverged) alarm += "SIMULATION STOPPED   ";
   update_timeline(s.time_s);
   hud_line_ = line + (alarm.empty() ? "" : "\n" + alarm);
-  hud_->setText(line);
-  alarm_->setText(alarm.empty() ? caption_ : alarm + "\n" + caption_);
+  // each line at its size, smaller where it would run off a narrow picture
+  const float size = std::max(14.0f, static_cast<float>(height_) / 32.0f);
+  for (const auto& [text, content] :
+       {std::pair{hud_.get(), line},
+        std::pair{alarm_.get(), alarm.empty() ? caption_ : alarm + "\n" + caption_}}) {
+    text->setCharacterSize(size);
+    text->setText(content);
+    const osg::BoundingBox& box = text->getBoundingBox();
+    const float room = static_cast<float>(width_) - 1.2f * size, wide = box.xMax() - box.xMin();
+    if (box.valid() && wide > room) text->setCharacterSize(size * room / wide);
+  }
 }
 
 void ImageGenerator::set_timeline(double from_s, double to_s, std::vector<TimelineMark> marks) {
