@@ -34,8 +34,8 @@ HeightGrid::HeightGrid(const GridSettings& settings, const Material& material,
       "flow friction outside (0, repose]");
   const std::size_t padded = stride_ * static_cast<std::size_t>(ny_ + 2 * kPad);
   h_.assign(padded, 0.0);
-  vel_.assign(padded * kPipes, 0.0);
-  flux_.assign(padded * kPipes, 0.0);
+  vel_.assign(padded * kPipes, 0.0f);
+  flux_.assign(padded * kPipes, 0.0f);
   out_scale_.assign(padded, 1.0);
   comp_.assign(padded, kWall);
   active_stamp_.assign(padded, 0);
@@ -153,13 +153,13 @@ double HeightGrid::max_height_m() const {
 }
 
 template <bool kLevel, bool kStill>
-void HeightGrid::update_pipes(std::size_t cell, double dt, double* velocities) const {
+void HeightGrid::update_pipes(std::size_t cell, double dt, float* velocities) const {
   // each pipe from this cell to a stencil neighbour: du/dt = g (slope - mu_flow sign u) minus the advection
   // of u along the pipe's line (Burgers, Engquist-Osher flux between pipes end to end), from rest only where
   // the slope beats the repose angle; Coulomb friction stops it rather than turning it round
   const double g = relaxation_.gravity_mps2;
   const double sp = h_[cell] + comp_[cell];
-  const double* u_here = &vel_[cell * kPipes];
+  const float* u_here = &vel_[cell * kPipes];
   for (int pipe = 0; pipe < kPipes; ++pipe) {
     const int k = 2 * pipe;
     const std::size_t q = cell + neighbour_offset_[k], behind = cell - neighbour_offset_[k];
@@ -192,7 +192,7 @@ void HeightGrid::update_pipes(std::size_t cell, double dt, double* velocities) c
     double v = u - dt * (flux(u, u_ahead) - flux(u_behind, u)) / length + dt * g * drop / run;
     const double friction = dt * g * tan_flow_;
     v = std::abs(v) <= friction ? 0.0 : v - std::copysign(friction, v);
-    velocities[pipe] = v;
+    velocities[pipe] = static_cast<float>(v);
   }
 }
 
@@ -243,7 +243,7 @@ void HeightGrid::flow(const std::vector<std::size_t>& cells, double dt) {
   new_vel_.resize(cells.size() * kPipes);
   bool still = moving_pipes_ == 0;  // no pipe moved last sub-step
   for (std::size_t n = 0; n < cells.size(); ++n) {
-    double* v = &new_vel_[n * kPipes];
+    float* v = &new_vel_[n * kPipes];
     if (still)
       level_ ? update_pipes<true, true>(cells[n], dt, v) : update_pipes<false, true>(cells[n], dt, v);
     else
@@ -271,7 +271,7 @@ void HeightGrid::flow(const std::vector<std::size_t>& cells, double dt) {
     // 3. heights from the pipes' fluxes: each moving pipe's flux once, read by both its ends (mass exact)
     for (const std::size_t c : cells)
       for (int pipe = 0; pipe < kPipes; ++pipe)
-        flux_[c * kPipes + pipe] = pipe_flux(c, pipe, dt);
+        flux_[c * kPipes + pipe] = static_cast<float>(pipe_flux(c, pipe, dt));
     for (std::size_t n = 0; n < cells.size(); ++n) {
       const std::size_t c = cells[n];
       double delta = 0.0;
@@ -376,7 +376,8 @@ void HeightGrid::activate_loaded_cells() {
 void HeightGrid::hash_into(core::StateHash& hash) const {
   hash.add(std::span<const double>(h_));
   hash.add(std::span<const double>(comp_));
-  hash.add(std::span<const double>(vel_));
+  for (const float v : vel_)
+    hash.add(static_cast<double>(v));
   hash.add(slope_up_);
   hash.add(active_.size());
 }

@@ -131,7 +131,7 @@ class HeightGrid {
   void update_slope_offsets();
   bool is_wall(std::size_t cell) const { return comp_[cell] == kWall; }
   template <bool kLevel, bool kStill>
-  void update_pipes(std::size_t cell, double dt, double* velocities) const;
+  void update_pipes(std::size_t cell, double dt, float* velocities) const;
   double pipe_flux(std::size_t cell, int pipe, double dt) const;  // height moved along it this sub-step
   template <bool kLevel, bool kStill>
   double residual_inflow(std::size_t cell) const;  // the critical-slope rule over the pairs at rest
@@ -161,7 +161,7 @@ class HeightGrid {
 
   std::vector<double> h_;         // material height per cell, padded
   std::vector<double> comp_;      // artificial compression height per cell, padded (walls: kWall)
-  std::vector<double> vel_;       // pipe velocities, kPipes per cell, padded [m/s]
+  std::vector<float> vel_;        // pipe velocities, kPipes per cell, padded [m/s] (float: memory-bound)
   double fastest_mps_ = 0.0;      // the fastest pipe after the last sub-step: sets the next step's sub-steps
   std::size_t moving_pipes_ = 0;  // pipes moving after the last sub-step (0: the fast path)
   int substeps_ = 0;
@@ -177,9 +177,9 @@ class HeightGrid {
   // scratch buffers reused across steps (not state)
   std::vector<std::size_t> examine_;
   std::vector<double> deltas_, residual_;
-  std::vector<double> new_vel_;    // per examined cell, kPipes
+  std::vector<float> new_vel_;     // per examined cell, kPipes
   std::vector<double> out_scale_;  // per cell (padded): outflow limiter of this sub-step
-  std::vector<double> flux_;       // per pipe (padded): height it moves this sub-step
+  std::vector<float> flux_;        // per pipe (padded): height it moves this sub-step
 };
 
 }  // namespace harbour::bulk
