@@ -205,7 +205,7 @@ double HeightGrid::pipe_flux(std::size_t cell, int pipe, double dt) const {
 }
 
 template <bool kLevel, bool kStill>
-double HeightGrid::residual_inflow(std::size_t cell) const {
+double HeightGrid::residual_inflow(std::size_t cell, bool& may_start) const {
   // the paper's rule on the pairs whose pipe is at rest: flow p->q = c/16 min(excess, h_p), excess the
   // world elevation drop beyond the repose angle's over the pair's horizontal distance
   const double fraction = relaxation_.residual_fraction / kStencil;
@@ -230,6 +230,10 @@ double HeightGrid::residual_inflow(std::size_t cell) const {
       critical_drop = std::sqrt(std::max(0.0, squared_distance_[k] + ds * ds - drop * drop)) * tan_repose_;
     }
     const double out_excess = drop - critical_drop, in_excess = -drop - critical_drop;
+    // a pipe this cell owns may start (update_pipes decides; the margin covers its horizontal run's rounding)
+    if constexpr (kStill)
+      if (k % 2 == 0 && std::max(out_excess, in_excess) > relaxation_.flow_start_excess_m - 1e-6)
+        may_start = true;
     if (out_excess > relaxation_.min_excess_m)
       delta -= fraction * std::min(out_excess, hp);
     else if (in_excess > relaxation_.min_excess_m)
@@ -239,9 +243,28 @@ double HeightGrid::residual_inflow(std::size_t cell) const {
 }
 
 void HeightGrid::flow(const std::vector<std::size_t>& cells, double dt) {
-  // 1. the pipes' new velocities, all from the old state (synchronous: order-independent)
-  new_vel_.resize(cells.size() * kPipes);
+  // the residual relaxation on the pairs at rest, all from the old state (synchronous: order-independent)
+  bool may_start = false;
+  const auto relax_residual = [&](bool pipes_still) {
+    residual_.resize(cells.size());
+    for (std::size_t n = 0; n < cells.size(); ++n)
+      residual_[n] = pipes_still ? (level_ ? residual_inflow<true, true>(cells[n], may_start)
+                                           : residual_inflow<false, true>(cells[n], may_start))
+                                 : (level_ ? residual_inflow<true, false>(cells[n], may_start)
+                                           : residual_inflow<false, false>(cells[n], may_start));
+  };
   bool still = moving_pipes_ == 0;  // no pipe moved last sub-step
+  deltas_.assign(cells.size(), 0.0);
+  if (still) {  // the fast path: the residual rule alone, unless some pair is steep enough for a pipe to
+                // start
+    relax_residual(true);
+    if (!may_start) {
+      finish_sub_step(cells, true);
+      return;
+    }
+  }
+  // 1. the pipes' new velocities, all from the old state
+  new_vel_.resize(cells.size() * kPipes);
   for (std::size_t n = 0; n < cells.size(); ++n) {
     float* v = &new_vel_[n * kPipes];
     if (still)
@@ -251,7 +274,6 @@ void HeightGrid::flow(const std::vector<std::size_t>& cells, double dt) {
   }
   if (still)  // and none starts now: the pipes' passes have nothing to do
     still = std::all_of(new_vel_.begin(), new_vel_.end(), [](double v) { return v == 0.0; });
-  deltas_.assign(cells.size(), 0.0);
   if (!still) {
     for (std::size_t n = 0; n < cells.size(); ++n)
       std::copy_n(&new_vel_[n * kPipes], kPipes, &vel_[cells[n] * kPipes]);
@@ -283,12 +305,13 @@ void HeightGrid::flow(const std::vector<std::size_t>& cells, double dt) {
       deltas_[n] = delta;
     }
   }
-  // 4. the residual relaxation on the pairs at rest, from the same heights
-  residual_.resize(cells.size());
-  for (std::size_t n = 0; n < cells.size(); ++n)
-    residual_[n] =
-        still ? (level_ ? residual_inflow<true, true>(cells[n]) : residual_inflow<false, true>(cells[n]))
-              : (level_ ? residual_inflow<true, false>(cells[n]) : residual_inflow<false, false>(cells[n]));
+  // 4. the residual relaxation on the pairs at rest, from the same heights (done above while the pipes stay
+  // still)
+  if (!still) relax_residual(false);
+  finish_sub_step(cells, still);
+}
+
+void HeightGrid::finish_sub_step(const std::vector<std::size_t>& cells, bool still) {
   // 5. a new epoch: cells whose height changed or whose pipes move are examined next
   active_.clear();
   if (++epoch_ == kNeverExamine) {

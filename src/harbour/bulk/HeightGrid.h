@@ -133,8 +133,11 @@ class HeightGrid {
   template <bool kLevel, bool kStill>
   void update_pipes(std::size_t cell, double dt, float* velocities) const;
   double pipe_flux(std::size_t cell, int pipe, double dt) const;  // height moved along it this sub-step
+  // the critical-slope rule over the pairs at rest; `may_start` set where an owned pair is steep enough for
+  // its pipe to start
   template <bool kLevel, bool kStill>
-  double residual_inflow(std::size_t cell) const;  // the critical-slope rule over the pairs at rest
+  double residual_inflow(std::size_t cell, bool& may_start) const;
+  void finish_sub_step(const std::vector<std::size_t>& cells, bool still);  // heights, the next active list
   void flow(const std::vector<std::size_t>& cells, double dt);
   void collect_examined();
 
