@@ -123,6 +123,55 @@ TEST(PhysicsWorld, SliderForceTimesRateIsTheWorkTheMotorDoes) {
   EXPECT_NEAR(trolley_work, 0.5 * 3e4 * 1.5 * 1.5, 0.005 * 0.5 * 3e4 * 1.5 * 1.5);
 }
 
+// A compound pendulum on a hinge: a 2 m bar hung from its top end swings with the small-angle period
+// 2 pi sqrt(I_pivot / (m g d)), I_pivot = m (w^2 + l^2) / 12 + m d^2, d = l / 2.
+TEST(PhysicsWorld, AHingedBarSwingsWithTheCompoundPendulumsPeriod) {
+  PhysicsWorld w({});
+  const double mass = 10.0, width = 0.2, length = 2.0;
+  BoxSettings bar = box_at({0, 0, 10.0 - length / 2}, mass, false);
+  bar.half_extents_m = {width / 2, width / 2, length / 2};
+  const BodyId b = w.add_box(bar);
+  const int hinge = w.add_hinge(kWorld, b, {0, 0, 10.0}, {0, 1, 0});
+  w.set_linear_velocity(b, {0.05 * length / 2, 0, 0});  // a small push: ~0.05 rad/s at the centre
+  std::vector<double> crossings;                        // times the angle passes zero going up
+  double last = w.hinge_angle(hinge);
+  for (int k = 1; k <= 20000; ++k) {
+    w.step(kDt);
+    const double now = w.hinge_angle(hinge);
+    if (last < 0.0 && now >= 0.0) crossings.push_back((k - now / (now - last)) * kDt);
+    last = now;
+  }
+  ASSERT_GE(crossings.size(), 5u);
+  const double measured = (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
+  const double d = length / 2, pivot_inertia = mass * (width * width + length * length) / 12.0 + mass * d * d;
+  const double expected = 2.0 * std::numbers::pi * std::sqrt(pivot_inertia / (mass * kG * d));
+  EXPECT_NEAR(measured, expected, 0.002 * expected);
+  // it stays on its pivot: the bar's top end at the anchor
+  EXPECT_NEAR(core::length(w.point_position(b, {0, 0, length / 2}) - core::Vec3{0, 0, 10.0}), 0.0, 1e-4);
+}
+
+// A hinge motor spinning up a flywheel puts in its kinetic energy I w^2 / 2 (torque times rate, summed).
+TEST(PhysicsWorld, HingeTorqueTimesRateIsTheWorkTheMotorDoes) {
+  PhysicsWorld w({});
+  BoxSettings disc = box_at({3, 0, 5}, 800.0, false);
+  disc.half_extents_m = {1.0, 1.0, 0.25};
+  const BodyId b = w.add_box(disc);
+  const int hinge = w.add_hinge(kWorld, b, {3, 0, 5}, {0, 0, 2});  // about its own vertical axis
+  w.set_hinge_motor(hinge, 1.5, 400.0);
+  double work = 0.0;
+  for (int k = 0; k < 4000; ++k) {
+    w.step(kDt);
+    work += w.hinge_torque(hinge) * w.hinge_rate(hinge) * kDt;
+  }
+  const double inertia = 800.0 * (2.0 * 2.0 + 2.0 * 2.0) / 12.0;  // about z: m (a^2 + b^2) / 12
+  EXPECT_NEAR(w.hinge_rate(hinge), 1.5, 1e-3);
+  EXPECT_NEAR(w.hinge_torque(hinge), 0.0, 1.0);  // at speed, no torque
+  EXPECT_NEAR(work, 0.5 * inertia * 1.5 * 1.5, 0.005 * 0.5 * inertia * 1.5 * 1.5);
+  // the run-up took I w / T_max; the angle is reported in (-pi, pi]
+  EXPECT_NEAR(w.hinge_angle(hinge),
+              std::remainder(1.5 * (4.0 - 0.5 * inertia * 1.5 / 400.0), 2.0 * std::numbers::pi), 0.01);
+}
+
 TEST(PhysicsWorld, SameInputsGiveTheSameStateHash) {
   auto run = [](double push) {
     PhysicsWorld w({});

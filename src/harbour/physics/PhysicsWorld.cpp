@@ -128,6 +128,13 @@ struct PhysicsWorld::Ode {
   std::vector<double> slider_sign;             // +1 or -1: ODE's slider sign against ours
   std::deque<dJointFeedback> slider_feedback;  // forces of the last step (stable addresses)
   std::vector<Vec3> slider_axis;
+  struct Hinge {
+    dJointID id = nullptr;
+    BodyId body = kWorld;  // the turning body b (ODE's body 1)
+    Vec3 axis;             // unit, world at creation
+  };
+  std::vector<Hinge> hinges;
+  std::deque<dJointFeedback> hinge_feedback;  // torques of the last step (stable addresses)
   std::vector<Attachment> attachments;
   dThreadingImplementationID threading = nullptr;
   std::vector<dContact> contact_buffer;
@@ -377,6 +384,44 @@ double PhysicsWorld::slider_force(int slider) const {
   const bool on_world = ode_->slider_sign[slider] > 0.0;
   return on_world ? dot(to_vec(f.f1), ode_->slider_axis[static_cast<std::size_t>(slider)])
                   : -dot(to_vec(f.f1), ode_->slider_axis[static_cast<std::size_t>(slider)]);
+}
+
+int PhysicsWorld::add_hinge(BodyId a, BodyId b, const Vec3& anchor_m, const Vec3& axis) {
+  dJointID j = dJointCreateHinge(ode_->world, nullptr);
+  // b is ODE's body 1, so ODE's angle and rate are b relative to a directly
+  dJointAttach(j, ode_->bodies[b].id, a == kWorld ? nullptr : ode_->bodies[a].id);
+  dJointSetHingeAnchor(j, anchor_m.x, anchor_m.y, anchor_m.z);  // world coordinates
+  dJointSetHingeAxis(j, axis.x, axis.y, axis.z);
+  dJointSetFeedback(j, &ode_->hinge_feedback.emplace_back());
+  ode_->hinges.push_back({j, b, axis * (1.0 / std::sqrt(dot(axis, axis)))});
+  return static_cast<int>(ode_->hinges.size()) - 1;
+}
+
+void PhysicsWorld::set_hinge_motor(int hinge, double rate_radps, double max_torque_nm) {
+  dJointSetHingeParam(ode_->hinges[static_cast<std::size_t>(hinge)].id, dParamVel, rate_radps);
+  dJointSetHingeParam(ode_->hinges[static_cast<std::size_t>(hinge)].id, dParamFMax, max_torque_nm);
+}
+
+double PhysicsWorld::hinge_angle(int hinge) const {
+  return dJointGetHingeAngle(ode_->hinges[static_cast<std::size_t>(hinge)].id);
+}
+
+double PhysicsWorld::hinge_rate(int hinge) const {
+  return dJointGetHingeAngleRate(ode_->hinges[static_cast<std::size_t>(hinge)].id);
+}
+
+double PhysicsWorld::hinge_torque(int hinge) const {
+  // ODE reports the joint's force and torque on b at its centre of mass; about the anchor the force has no
+  // moment, so the torque left about the axis is the motor's (the hinge constrains only the other two axes)
+  const Ode::Hinge& h = ode_->hinges[static_cast<std::size_t>(hinge)];
+  const dJointFeedback& f = ode_->hinge_feedback[static_cast<std::size_t>(hinge)];
+  dVector3 anchor;
+  dJointGetHingeAnchor(h.id, anchor);
+  const Vec3 com = to_vec(dBodyGetPosition(ode_->bodies[h.body].id));
+  dVector3 axis;
+  dJointGetHingeAxis(h.id, axis);
+  const Vec3 about_anchor = to_vec(f.t1) - cross(to_vec(anchor) - com, to_vec(f.f1));
+  return dot(about_anchor, to_vec(axis));
 }
 
 core::Pose PhysicsWorld::pose(BodyId body) const {

@@ -108,6 +108,19 @@ class PhysicsWorld {
   /// times slider_rate, the power the drive delivered.
   double slider_force(int slider) const;
 
+  /// A revolute joint letting `b` turn relative to `a` (kWorld: the ground) about the world `axis` through
+  /// the world point `anchor_m` (a slewing superstructure, a luffing boom, a wheel); returns its index.
+  int add_hinge(BodyId a, BodyId b, const core::Vec3& anchor_m, const core::Vec3& axis);
+  /// Drives a hinge at `rate_radps` with at most `max_torque_nm` (0 frees it).
+  void set_hinge_motor(int hinge, double rate_radps, double max_torque_nm);
+  /// Hinge angle [rad] of `b` relative to `a` about +axis from where it was created, in (-pi, pi] (a machine
+  /// that turns further counts the turns), and its rate [rad/s].
+  double hinge_angle(int hinge) const;
+  double hinge_rate(int hinge) const;
+  /// Torque the joint (motor, brake) put on `b` about +axis in the last step [N m]: times hinge_rate, the
+  /// power the drive delivered.
+  double hinge_torque(int hinge) const;
+
   core::Pose pose(BodyId body) const;
   core::Vec3 linear_velocity(BodyId body) const;
   core::Vec3 angular_velocity(BodyId body) const;
