@@ -369,23 +369,25 @@ void HeightGrid::collect_examined() {
 }
 
 void HeightGrid::relax_active(double dt_s) {
-  // sub-steps: the fastest pipe moves material at most max_courant cells per sub-step
-  substeps_ =
-      std::max(1, static_cast<int>(std::ceil(fastest_mps_ * dt_s / (relaxation_.max_courant * cell_m_))));
-  for (int n = 0; n < substeps_; ++n) {
-    collect_examined();
-    flow(examine_, dt_s / substeps_);
-  }
+  advance(dt_s, false);
 }
 
 void HeightGrid::relax_full_sweep(double dt_s) {
+  advance(dt_s, true);
+}
+
+void HeightGrid::advance(double dt_s, bool full_sweep) {
+  // sub-steps: the fastest pipe moves material at most max_courant cells per sub-step
   substeps_ =
       std::max(1, static_cast<int>(std::ceil(fastest_mps_ * dt_s / (relaxation_.max_courant * cell_m_))));
-  for (int n = 0; n < substeps_; ++n) {
+  if (full_sweep) {
     examine_.clear();
     for (int j = 0; j < ny_; ++j)
       for (int i = 0; i < nx_; ++i)
         examine_.push_back(index(i, j));
+  }
+  for (int n = 0; n < substeps_; ++n) {
+    if (!full_sweep) collect_examined();
     flow(examine_, dt_s / substeps_);
   }
 }

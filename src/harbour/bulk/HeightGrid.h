@@ -140,6 +140,7 @@ class HeightGrid {
   void finish_sub_step(const std::vector<std::size_t>& cells, bool still);  // heights, the next active list
   void flow(const std::vector<std::size_t>& cells, double dt);
   void collect_examined();
+  void advance(double dt_s, bool full_sweep);  // sub-steps over the active cells or every cell
 
   int nx_, ny_;
   double cell_m_;

@@ -98,7 +98,9 @@ void paint_uncoloured(osg::Node& mesh, const osg::Vec4& color) {
       osg::Geometry* geometry = drawable.asGeometry();
       if (!geometry || geometry->getColorArray()) return;
       osg::Vec4 paint = color;
-      for (const osg::StateSet* state : {geometry->getStateSet(), geometry->getParent(0)->getStateSet()})
+      osg::StateSet* parent_state =
+          geometry->getNumParents() > 0 ? geometry->getParent(0)->getStateSet() : nullptr;
+      for (const osg::StateSet* state : {geometry->getStateSet(), parent_state})
         if (state)
           if (const auto* material =
                   dynamic_cast<const osg::Material*>(state->getAttribute(osg::StateAttribute::MATERIAL)))
