@@ -228,7 +228,7 @@ int drive(const sim::ExerciseSettings& exercise, sim::Simulation& simulation, si
     if (!options.record.empty()) recorder.after_step(simulation, in);
     if (simulation.time_s() >= next_progress) {
       next_progress += kProgressEvery_s;
-      const sim::StsCrane& crane = simulation.crane();
+      const sim::StsCrane& crane = simulation.sts();
       std::printf("  t=%6.1f s  trolley %6.2f m  spreader z %5.2f m  load %5.1f t  %s  moves %d/%zu  %s\n",
                   simulation.time_s(), crane.trolley_position_m(), crane.spreader_pose().position.z,
                   crane.hoisted_load_n() / 9.80665 / 1000.0, crane.lamps().locked ? "locked  " : "unlocked",

@@ -23,7 +23,7 @@
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/io/RecordingFile.h"
 #include "harbour/io/RecordsStore.h"
-#include "harbour/sim/StsCrane.h"
+#include "harbour/machines/sts/StsCrane.h"
 #include "harbour/station/DeviceMappingFile.h"
 
 namespace harbour::apps {

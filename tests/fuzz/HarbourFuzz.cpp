@@ -64,18 +64,19 @@ void step_a_while(const harbour::sim::StsCraneSettings& crane) {
   static const harbour::sim::ExerciseSettings exercise =
       harbour::io::load_exercise(kData + "/exercises/sts_discharge.yaml");
   harbour::sim::ScenarioSettings scenario = exercise.scenario;
-  scenario.crane = crane;
-  scenario.trolley_x_m = std::clamp(scenario.trolley_x_m, crane.trolley_drive.min_position_m,
-                                    crane.trolley_drive.max_position_m);
-  scenario.gantry_y_m =
-      std::clamp(scenario.gantry_y_m, crane.gantry_drive.min_position_m, crane.gantry_drive.max_position_m);
-  scenario.spreader_z_m = std::min(scenario.spreader_z_m, crane.trolley_rail_height_m - 3.0);
+  harbour::sim::StsSetup& sts = scenario.sts();
+  sts.crane = crane;
+  sts.trolley_x_m =
+      std::clamp(sts.trolley_x_m, crane.trolley_drive.min_position_m, crane.trolley_drive.max_position_m);
+  sts.gantry_y_m =
+      std::clamp(sts.gantry_y_m, crane.gantry_drive.min_position_m, crane.gantry_drive.max_position_m);
+  sts.spreader_z_m = std::min(sts.spreader_z_m, crane.trolley_rail_height_m - 3.0);
   harbour::sim::Simulation simulation(scenario);
   harbour::sim::StsControls in;
   in.hoist = -1.0;
   in.trolley = 1.0;
   for (int k = 0; k < 300; ++k)
-    simulation.step(simulation.crane().controls(in));
+    simulation.step(simulation.sts().controls(in));
 }
 
 const std::map<std::string, std::function<void(const std::string&)>>& targets() {

@@ -80,7 +80,7 @@ TEST(Autopilot, LandsInAStrongCrossQuayWindWithoutCountingTheLeanAsSway) {
     constexpr int kSteps = 40000;  // four periods
     for (int k = 0; k < kSteps; ++k) {
       still.step({});
-      mean_offset += (still.crane().spreader_pose().position.x - still.crane().trolley_position_m()) / kSteps;
+      mean_offset += (still.sts().spreader_pose().position.x - still.sts().trolley_position_m()) / kSteps;
     }
     const core::Vec3 lean = still.wind_rest_offset_m(still.weather().mean_wind(), std::nullopt);
     EXPECT_GT(lean.x, 0.15);
@@ -137,7 +137,7 @@ TEST(Evaluation, HittingABoxThatIsNotTheTaskIsACollision) {
   // the impact is reported when its impulse window closes: compare with the speed just before it began
   std::vector<double> speeds;
   for (int k = 0; k < 20000 && evaluator.metrics().collisions == 0; ++k) {
-    speeds.push_back(-sim.world().linear_velocity(sim.crane().spreader_body()).z);
+    speeds.push_back(-sim.world().linear_velocity(sim.sts().spreader_body()).z);
     sim.step(scenes::cab(drop));
     evaluator.observe(sim, scenes::cab(drop));
   }
@@ -150,7 +150,7 @@ TEST(Evaluation, HittingABoxThatIsNotTheTaskIsACollision) {
   EXPECT_LT(evaluator.metrics().collision_impulse_ns, 1.2 * 15000 * speed + 15000 * 9.81 * 0.005);
   EXPECT_NEAR(evaluator.metrics().worst_collision_mps, speed, 0.1);
   EXPECT_GT(speed, 0.5);
-  const core::Vec3 at = sim.crane().spreader_pose().position;  // on TGHU1000012's top
+  const core::Vec3 at = sim.sts().spreader_pose().position;  // on TGHU1000012's top
   EXPECT_NEAR(at.y, 0.0, 0.1);
   EXPECT_NEAR(at.z, 3.3 + 2.591 + 0.5, 0.1);
   EXPECT_EQ(evaluator.score().total,
@@ -208,7 +208,7 @@ TEST(Evaluation, ASpreaderLoweredOffTheCellCountsACellGuideCollision) {
   // spreader comes down 15 cm off to waterside (the guides leave 25 mm a side) and lands on the guides.
   ExerciseSettings exercise = scenes::sts_discharge_exercise(HARBOUR_DATA_DIR);
   exercise.scenario.containers.clear();
-  exercise.scenario.trolley_x_m = 32.27 + 0.15;
+  exercise.scenario.sts().trolley_x_m = 32.27 + 0.15;
   Simulation sim(exercise.scenario);
   Evaluator evaluator(exercise);
   StsControls lower;
@@ -222,7 +222,7 @@ TEST(Evaluation, ASpreaderLoweredOffTheCellCountsACellGuideCollision) {
   // it stopped on the guides' tops, above the hold
   const Vessel& vessel = *sim.vessel();
   const double coaming = vessel.frame().to_parent({0, 0, vessel.geometry().coaming_top_m()}).z;
-  EXPECT_GT(sim.crane().spreader_pose().position.z, coaming - 0.5);
+  EXPECT_GT(sim.sts().spreader_pose().position.z, coaming - 0.5);
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-#include "harbour/sim/Drive.h"
+#include "harbour/machines/parts/Drive.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "harbour/sim/OdeCableBodies.h"
+#include "harbour/machines/parts/OdeCableBodies.h"
 
 #include <gtest/gtest.h>
 

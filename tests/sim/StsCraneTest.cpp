@@ -1,4 +1,4 @@
-#include "harbour/sim/StsCrane.h"
+#include "harbour/machines/sts/StsCrane.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "harbour/sim/Twistlocks.h"
+#include "harbour/machines/parts/Twistlocks.h"
 
 #include <gtest/gtest.h>
 

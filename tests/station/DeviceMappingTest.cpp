@@ -7,7 +7,7 @@
 #include <filesystem>
 
 #include "harbour/io/DataError.h"
-#include "harbour/sim/StsCrane.h"
+#include "harbour/machines/sts/StsCrane.h"
 #include "harbour/station/DeviceMappingFile.h"
 
 namespace harbour::station {

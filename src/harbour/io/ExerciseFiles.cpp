@@ -58,16 +58,20 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
   const std::string machine_path = (std::filesystem::path(folder) / machine).lexically_normal().string();
   if (!std::filesystem::is_regular_file(machine_path))
     f.fail(x["machine"], "exercise.machine", "no such file: " + machine_path);
-  s.crane = load_sts_crane(machine_path);
-
+  const std::string machine_kind = machine_file_kind(machine_path);
   const YAML::Node crane = f.required_map(x, "crane", "exercise");
-  // the crane starts on its rails
-  s.gantry_y_m = f.number(crane, "gantry_y_m", "exercise.crane", s.crane.gantry_drive.min_position_m,
-                          s.crane.gantry_drive.max_position_m);
-  s.trolley_x_m = f.number(crane, "trolley_x_m", "exercise.crane", s.crane.trolley_drive.min_position_m,
-                           s.crane.trolley_drive.max_position_m);
-  s.spreader_z_m =
-      f.number(crane, "spreader_z_m", "exercise.crane", 0.0, s.crane.trolley_rail_height_m - 2.0, true);
+  if (machine_kind == "sts") {
+    // the crane starts on its rails
+    sim::StsSetup sts;
+    sts.crane = load_sts_crane(machine_path);
+    sts.gantry_y_m = f.number(crane, "gantry_y_m", "exercise.crane", sts.crane.gantry_drive.min_position_m,
+                              sts.crane.gantry_drive.max_position_m);
+    sts.trolley_x_m = f.number(crane, "trolley_x_m", "exercise.crane", sts.crane.trolley_drive.min_position_m,
+                               sts.crane.trolley_drive.max_position_m);
+    sts.spreader_z_m =
+        f.number(crane, "spreader_z_m", "exercise.crane", 0.0, sts.crane.trolley_rail_height_m - 2.0, true);
+    s.machine = std::move(sts);
+  }
 
   std::optional<sim::VesselGeometry> vessel;
   std::vector<sim::ContainerPlacement> hatch_covers;  // listed after the containers

@@ -107,7 +107,9 @@ void check_sts_hoist(const YamlFile& f, const YAML::Node& at, const cable::Reevi
 sim::StsCraneSettings read_sts_crane(const YamlFile& f, const std::string& folder) {
   sim::StsCraneSettings s;
   const YAML::Node m = f.required_map(f.root(), "machine", "");
-  f.text(m, "name", "machine");  // the machine's label in the file (the kind is the loader's)
+  if (const std::string kind = f.text(m, "kind", "machine"); kind != "sts")
+    f.fail(m["kind"], "machine.kind", "this is an STS file (kind: sts), not a '" + kind + "'");
+  f.text(m, "name", "machine");  // the machine's label
   const YAML::Node gantry = f.required_map(m, "gantry", "machine");
   // a quay crane's structure: 600-2000 t; its trolley (with cab and machinery) 20-150 t
   s.gantry_mass_kg = f.number(gantry, "mass_kg", "machine.gantry", 1e5, 1e7);
@@ -162,6 +164,14 @@ sim::StsCraneSettings load_sts_crane(const YamlFile& f, const std::string& folde
 
 sim::StsCraneSettings load_sts_crane(const std::string& path) {
   return load_sts_crane(YamlFile::load(path), std::filesystem::path(path).parent_path().string());
+}
+
+std::string machine_file_kind(const std::string& path) {
+  const YamlFile f = YamlFile::load(path);
+  const YAML::Node m = f.required_map(f.root(), "machine", "");
+  const std::string kind = f.text(m, "kind", "machine");
+  if (kind != "sts") f.fail(m["kind"], "machine.kind", "a machine is one of: sts (not '" + kind + "')");
+  return kind;
 }
 
 }  // namespace harbour::io

@@ -3,7 +3,7 @@
 #include <string>
 
 #include "harbour/io/YamlFile.h"
-#include "harbour/sim/StsCrane.h"
+#include "harbour/machines/sts/StsCrane.h"
 
 namespace harbour::io {
 
@@ -11,5 +11,7 @@ namespace harbour::io {
 /// machine file's folder).
 sim::StsCraneSettings load_sts_crane(const YamlFile& file, const std::string& folder);
 sim::StsCraneSettings load_sts_crane(const std::string& path);
+/// The kind a machine file declares (`machine.kind`: sts, ...); throws DataError naming the field.
+std::string machine_file_kind(const std::string& path);
 
 }  // namespace harbour::io

@@ -410,6 +410,23 @@ double PhysicsWorld::hinge_rate(int hinge) const {
   return dJointGetHingeAngleRate(ode_->hinges[static_cast<std::size_t>(hinge)].id);
 }
 
+PhysicsWorld::Wrench PhysicsWorld::hinge_reaction(int hinge, const Vec3& about_m) const {
+  const Ode::Hinge& h = ode_->hinges[static_cast<std::size_t>(hinge)];
+  const dJointFeedback& f = ode_->hinge_feedback[static_cast<std::size_t>(hinge)];
+  const Vec3 com = to_vec(dBodyGetPosition(ode_->bodies[h.body].id));
+  const Vec3 force = to_vec(f.f1);
+  return {force, to_vec(f.t1) + cross(com - about_m, force)};
+}
+
+void PhysicsWorld::set_slider_limits(int slider, double low_m, double high_m) {
+  // ODE's position is ours times the sign: flip the stops with it (high first keeps lo <= hi on the way)
+  const double sign = ode_->slider_sign[slider];
+  const double lo = sign > 0 ? low_m : -high_m, hi = sign > 0 ? high_m : -low_m;
+  dJointSetSliderParam(ode_->sliders[slider], dParamLoStop, -dInfinity);
+  dJointSetSliderParam(ode_->sliders[slider], dParamHiStop, hi);
+  dJointSetSliderParam(ode_->sliders[slider], dParamLoStop, lo);
+}
+
 double PhysicsWorld::hinge_torque(int hinge) const {
   // ODE reports the joint's force and torque on b at its centre of mass; about the anchor the force has no
   // moment, so the torque left about the axis is the motor's (the hinge constrains only the other two axes)

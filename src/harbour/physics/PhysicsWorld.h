@@ -120,6 +120,14 @@ class PhysicsWorld {
   /// Torque the joint (motor, brake) put on `b` about +axis in the last step [N m]: times hinge_rate, the
   /// power the drive delivered.
   double hinge_torque(int hinge) const;
+  /// Force the hinge put on `b` in the last step and its moment about the world point `about_m` [N, N m]
+  /// (what `a` carries is the opposite: the load a slewing house puts on its undercarriage).
+  struct Wrench {
+    core::Vec3 force, moment;
+  };
+  Wrench hinge_reaction(int hinge, const core::Vec3& about_m) const;
+  /// Limits a slider's travel to [low_m, high_m] about where it was created (hard stops).
+  void set_slider_limits(int slider, double low_m, double high_m);
 
   core::Pose pose(BodyId body) const;
   core::Vec3 linear_velocity(BodyId body) const;

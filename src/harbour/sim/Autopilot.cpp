@@ -58,7 +58,7 @@ std::optional<double> Autopilot::cell_entry_z(const Simulation& simulation) cons
   if (!item.in_cell || carrying_ || !simulation.vessel()) return std::nullopt;
   const Vessel& vessel = *simulation.vessel();
   const double coaming = vessel.frame().to_parent({0, 0, vessel.geometry().coaming_top_m()}).z;
-  return coaming + kCellEntryClearance_m + simulation.crane().spreader_half_extents_m().z;
+  return coaming + kCellEntryClearance_m + simulation.sts().spreader_half_extents_m().z;
 }
 
 core::Vec3 Autopilot::source(const Simulation& simulation) const {
@@ -144,11 +144,11 @@ double Autopilot::catch_swing(SwingAxis& axis, double target, double axis_positi
 
 void Autopilot::position_finely(const Simulation& simulation, const core::Vec3& destination, double period,
                                 StsControls& in) {
-  const StsCrane& crane = simulation.crane();
+  const StsCrane& crane = simulation.sts();
   const physics::BodyId load = carrying_ ? *crane.locked_container() : crane.spreader_body();
   const core::Vec3 at = simulation.world().pose(load).position;
   const core::Vec3 v = simulation.world().linear_velocity(load);
-  const StsCraneSettings& settings = simulation.scenario().crane;
+  const StsCraneSettings& settings = simulation.scenario().sts().crane;
   // where the load would hang in the wind blowing now: the operator leans into the gusts
   const core::Vec3 lean =
       simulation.wind_rest_offset_m(simulation.weather().wind(), crane.locked_container());
@@ -198,7 +198,7 @@ void Autopilot::resume(const Simulation& simulation, int moves_done) {
   decided_ = false;
   trolley_swing_ = {};
   gantry_swing_ = {};
-  carrying_ = !done() && simulation.crane().locked_container() ==
+  carrying_ = !done() && simulation.sts().locked_container() ==
                              std::optional(simulation.container_body(goal_index(simulation)));
 }
 
@@ -207,19 +207,19 @@ Controls Autopilot::next(const Simulation& simulation) {
   last_ = decide(simulation);
   for (double* lever : {&last_.gantry, &last_.trolley, &last_.hoist, &last_.boom})
     *lever = device_lever(*lever);
-  last_controls_ = simulation.crane().controls(last_);
+  last_controls_ = simulation.sts().controls(last_);
   decided_ = true;
   return last_controls_;
 }
 
 StsControls Autopilot::decide(const Simulation& simulation) {
   StsControls in;
-  const StsCrane& crane = simulation.crane();
+  const StsCrane& crane = simulation.sts();
   if (done()) {  // clear the truck: raise the empty spreader to travel height
     in.hoist = crane.spreader_pose().position.z < kTravelHeight_m ? 1.0 : 0.0;
     return in;
   }
-  const StsCraneSettings& settings = simulation.scenario().crane;
+  const StsCraneSettings& settings = simulation.scenario().sts().crane;
   const double now = simulation.time_s();
   const core::Vec3 spreader = crane.spreader_pose().position;
   const double period =

@@ -46,7 +46,7 @@ void Evaluator::record_landing(const Simulation& simulation, std::optional<physi
 double Evaluator::sway_m(const Simulation& simulation, std::optional<physics::BodyId> hanging_box) const {
   // horizontal offset of the spreader from where it hangs at rest: plumb under the trolley, moved downwind
   // by the mean wind (a steady lean is not a swing; the turbulence's and gusts' pushes are)
-  const StsCrane& crane = simulation.crane();
+  const StsCrane& crane = simulation.sts();
   const core::Vec3 s = crane.spreader_pose().position;
   const core::Vec3 rest = simulation.wind_rest_offset_m(simulation.weather().mean_wind(), hanging_box);
   return std::hypot(s.x - crane.trolley_position_m() - rest.x, s.y - crane.gantry_position_m() - rest.y);
@@ -73,9 +73,9 @@ void Evaluator::count_collision(const physics::ImpactEvent& e) {
 }
 
 void Evaluator::observe(const Simulation& simulation, const Controls& controls) {
-  const StsControls cab = simulation.crane().read(controls);
+  const StsControls cab = simulation.sts().read(controls);
   const EvaluationRules& rules = exercise_.rules;
-  const StsCrane& crane = simulation.crane();
+  const StsCrane& crane = simulation.sts();
   metrics_.time_s = simulation.time_s();
   const physics::BodyId spreader = crane.spreader_body();
 
@@ -145,7 +145,7 @@ void Evaluator::observe(const Simulation& simulation, const Controls& controls) 
   }
   gantry_was_moving_ = gantry_moving;
   const double drum_power = -crane.hoist().drum_rope_torque(0) * crane.hoist().drum_rope_speed(0) /
-                            simulation.scenario().crane.hoist.elements[0].radius_m;
+                            simulation.scenario().sts().crane.hoist.elements[0].radius_m;
   metrics_.hoist_energy_j += std::max(0.0, drum_power) * Simulation::kStep_s;
   metrics_.travel_energy_j +=
       (std::max(0.0, crane.gantry_power_w()) + std::max(0.0, crane.trolley_power_w())) * Simulation::kStep_s;

@@ -10,6 +10,41 @@
 
 namespace harbour::sim {
 
+const char* machine_kind(const MachineSetup& setup) {
+  return std::visit([](const auto& m) -> const char* {
+    using T = std::decay_t<decltype(m)>;
+    if constexpr (std::is_same_v<T, StsSetup>) return "sts";
+  }, setup);
+}
+
+const StsSetup& ScenarioSettings::sts() const {
+  if (const auto* sts = std::get_if<StsSetup>(&machine)) return *sts;
+  throw std::logic_error(std::string("the scenario's machine is an ") + machine_kind(machine) + ", not an sts");
+}
+
+StsSetup& ScenarioSettings::sts() {
+  return const_cast<StsSetup&>(std::as_const(*this).sts());
+}
+
+namespace {
+std::unique_ptr<Machine> make_machine(physics::PhysicsWorld& world, const MachineSetup& setup) {
+  return std::visit([&](const auto& m) -> std::unique_ptr<Machine> {
+    using T = std::decay_t<decltype(m)>;
+    if constexpr (std::is_same_v<T, StsSetup>)
+      return std::make_unique<StsCrane>(world, m.crane, m.gantry_y_m, m.trolley_x_m, m.spreader_z_m);
+  }, setup);
+}
+}  // namespace
+
+StsCrane& Simulation::sts() {
+  return const_cast<StsCrane&>(std::as_const(*this).sts());
+}
+
+const StsCrane& Simulation::sts() const {
+  if (const auto* sts = dynamic_cast<const StsCrane*>(machine_.get())) return *sts;
+  throw std::logic_error(std::string("the simulation's machine is an ") + machine_->kind() + ", not an sts");
+}
+
 Simulation::Simulation(const ScenarioSettings& scenario)
     : scenario_(scenario), weather_(scenario.weather, scenario.seed) {
   world_ = std::make_unique<physics::PhysicsWorld>(physics::WorldSettings{});
@@ -47,13 +82,12 @@ Simulation::Simulation(const ScenarioSettings& scenario)
                           : c.pose);
   }
   if (scenario.trucks.trucks > 0) trucks_ = std::make_unique<TruckLane>(*world_, scenario.trucks);
-  crane_ = std::make_unique<StsCrane>(*world_, scenario.crane, scenario.gantry_y_m, scenario.trolley_x_m,
-                                      scenario.spreader_z_m);
+  machine_ = make_machine(*world_, scenario.machine);
   // event buffers sized once: a step appends to them without allocating
   events_.impacts.reserve(256);
   events_.twistlocks.reserve(64);
   events_.ropes.reserve(256);
-  cab_velocity_ = world_->point_velocity(crane_->trolley_body(), crane_->eye_in_trolley_m());
+  cab_velocity_ = world_->point_velocity(machine_->cab_body(), machine_->eye_on_cab_body_m());
 }
 
 void Simulation::apply_due_events() {
@@ -67,10 +101,11 @@ void Simulation::apply_due_events() {
         break;
       }
       case ScriptedEvent::Kind::kHoistBrakeFault:
-        crane_->set_hoist_brake_fault(true);
+        if (machine_->has_fault(MachineFault::kHoistBrake)) machine_->inject_fault(MachineFault::kHoistBrake, 0);
         break;
       case ScriptedEvent::Kind::kLandedSensorFault:
-        crane_->set_landed_sensor_fault(e.corner);
+        if (machine_->has_fault(MachineFault::kLandedSensor))
+          machine_->inject_fault(MachineFault::kLandedSensor, e.corner);
         break;
     }
   }
@@ -116,6 +151,12 @@ void Simulation::command(const InstructorCommand& c) {
   using Kind = InstructorCommand::Kind;
   if (const std::string why = why_invalid(c); !why.empty())
     throw std::invalid_argument("instructor command: " + why);
+  const auto fault = c.kind == Kind::kHoistBrakeFault     ? std::optional(MachineFault::kHoistBrake)
+                     : c.kind == Kind::kLandedSensorFault ? std::optional(MachineFault::kLandedSensor)
+                                                          : std::nullopt;
+  if (fault && !machine_->has_fault(*fault))
+    throw std::invalid_argument(std::string("instructor command: the ") + machine_->kind() +
+                                " has no such part to fail");
   switch (c.kind) {
     case Kind::kGust: {
       Gust g = c.gust;
@@ -124,14 +165,13 @@ void Simulation::command(const InstructorCommand& c) {
       break;
     }
     case Kind::kHoistBrakeFault:
-      crane_->set_hoist_brake_fault(true);
+      machine_->inject_fault(MachineFault::kHoistBrake, 0);
       break;
     case Kind::kLandedSensorFault:
-      crane_->set_landed_sensor_fault(c.corner);
+      machine_->inject_fault(MachineFault::kLandedSensor, c.corner);
       break;
     case Kind::kClearFaults:
-      crane_->set_hoist_brake_fault(false);
-      crane_->set_landed_sensor_fault(-1);
+      machine_->clear_faults();
       break;
     case Kind::kSetWind:
       weather_.set_wind(c.wind_mean_mps, c.wind_from_rad, c.turbulence);
@@ -148,36 +188,40 @@ void Simulation::command(const InstructorCommand& c) {
   }
 }
 
+const ContainerRef* Simulation::liftable(physics::BodyId body) const {
+  for (const ContainerRef& c : containers_)
+    if (c.body == body) return &c;
+  return nullptr;
+}
+
 void Simulation::apply_wind() {
-  // drag on the spreader and on the box it carries
+  // drag on the machine's exposed parts and on the item it carries
   const core::Vec3 wind = weather_.wind();
   const double rho = scenario_.weather.air_density_kg_m3, cd = scenario_.drag_coefficient;
-  const physics::BodyId spreader = crane_->spreader_body();
-  const core::Pose sp = world_->pose(spreader);
-  world_->add_force_at(
-      spreader, sp.position,
-      box_drag(wind, world_->linear_velocity(spreader), sp, crane_->spreader_half_extents_m(), cd, rho));
-  if (const auto box = crane_->locked_container()) {
-    for (const ContainerRef& c : containers_) {
-      if (c.body != *box) continue;
-      const core::Pose p = world_->pose(c.body);
-      world_->add_force_at(c.body, p.position,
-                           box_drag(wind, world_->linear_velocity(c.body), p, c.half_extents_m, cd, rho));
-    }
-  }
+  const auto push = [&](physics::BodyId body, const core::Vec3& half_extents_m) {
+    const core::Pose p = world_->pose(body);
+    world_->add_force_at(body, p.position,
+                         box_drag(wind, world_->linear_velocity(body), p, half_extents_m, cd, rho));
+  };
+  for (const WindArea& area : machine_->wind_areas())
+    push(area.body, area.half_extents_m);
+  if (const auto held = machine_->held_item())
+    if (const ContainerRef* item = liftable(*held)) push(item->body, item->half_extents_m);
 }
 
 core::Vec3 Simulation::wind_rest_offset_m(const core::Vec3& wind, std::optional<physics::BodyId> box) const {
   const double rho = scenario_.weather.air_density_kg_m3, cd = scenario_.drag_coefficient;
-  const physics::BodyId spreader = crane_->spreader_body();
-  core::Vec3 force = box_drag(wind, {}, world_->pose(spreader), crane_->spreader_half_extents_m(), cd, rho);
-  double mass_kg = world_->mass_kg(spreader);
-  for (const ContainerRef& c : containers_)
-    if (box && c.body == *box) {
-      force += box_drag(wind, {}, world_->pose(c.body), c.half_extents_m, cd, rho);
-      mass_kg += world_->mass_kg(c.body);
-    }
-  const double lean = crane_->pendulum_length_m() / (mass_kg * 9.80665);
+  core::Vec3 force;
+  double mass_kg = 0.0;
+  const auto add = [&](physics::BodyId body, const core::Vec3& half_extents_m) {
+    force += box_drag(wind, {}, world_->pose(body), half_extents_m, cd, rho);
+    mass_kg += world_->mass_kg(body);
+  };
+  for (const WindArea& area : machine_->wind_areas())
+    add(area.body, area.half_extents_m);
+  if (box)
+    if (const ContainerRef* item = liftable(*box)) add(item->body, item->half_extents_m);
+  const double lean = machine_->pendulum_length_m() / (mass_kg * 9.80665);
   return {force.x * lean, force.y * lean, 0.0};
 }
 
@@ -222,11 +266,11 @@ void Simulation::advance(const Controls& controls) {
   apply_wind();
   if (vessel_) vessel_->move_to(clock_.time_s());
   move_secured_cargo();
-  crane_->step(crane_->read(controls), containers_, kStep_s);
-  if (const auto locked = crane_->locked_container())
+  machine_->step(controls, containers_, kStep_s);
+  if (const auto held = machine_->held_item())
     for (std::size_t n = 0; n < containers_.size(); ++n)
-      if (containers_[n].body == *locked) release(n);
-  if (trucks_) trucks_->step(kStep_s, containers_, *crane_);
+      if (containers_[n].body == *held) release(n);
+  if (trucks_) trucks_->step(kStep_s, containers_, machine_->held_item(), machine_->attachment_bottom_z_m());
   world_->step(kStep_s);
   if (world_->diverged()) {
     warnings_.raise(core::Warning::kNonFinite);
@@ -237,18 +281,16 @@ void Simulation::advance(const Controls& controls) {
   events_.twistlocks.clear();
   events_.ropes.clear();
   world_->drain_impacts(events_.impacts);
-  crane_->drain_twistlock_events(events_.twistlocks);
-  crane_->hoist().drain_events(events_.ropes);
+  machine_->drain_events(events_);
   update_cab_cues();
-  const core::Vec3 p = crane_->spreader_pose().position;
-  if (!std::isfinite(p.x + p.y + p.z)) warnings_.raise(core::Warning::kNonFinite);
+  if (!std::isfinite(machine_->attachment_bottom_z_m())) warnings_.raise(core::Warning::kNonFinite);
   for (int n = world_->take_solver_messages(); n > 0; --n)
     warnings_.raise(core::Warning::kSolverMessage);
 }
 
 void Simulation::update_cab_cues() {
   // the specific force at the operator's head: its acceleration (by difference over the step) minus gravity
-  const core::Vec3 v = world_->point_velocity(crane_->trolley_body(), crane_->eye_in_trolley_m());
+  const core::Vec3 v = world_->point_velocity(machine_->cab_body(), machine_->eye_on_cab_body_m());
   cab_specific_force_ = (v - cab_velocity_) * (1.0 / kStep_s) + core::Vec3{0.0, 0.0, 9.80665};
   cab_velocity_ = v;
 }
@@ -261,21 +303,9 @@ void Simulation::single_step(const Controls& controls) {
   advance(controls);
 }
 
-namespace {
-// the indicators an STS publishes, in snapshot order
-constexpr const char* kStsIndicators[] = {
-    "gantry_y_m", "trolley_x_m", "boom_angle_rad", "spreader_length_m", "spreader_size_ft", "flipper_1",
-    "flipper_2",  "flipper_3",   "flipper_4",      "lamp_landed",       "lamp_locked",      "lamp_unlocked",
-    "horn",       "load_t"};
-constexpr std::uint32_t kFixedEntities = 3;  // gantry, trolley, spreader
-}  // namespace
-
 SceneDescription Simulation::scene() const {
   SceneDescription d;
-  d.machine = "sts";
-  d.entities.push_back({"gantry", "sts.gantry", {}});
-  d.entities.push_back({"trolley", "sts.trolley", {}});
-  d.entities.push_back({"spreader", "sts.spreader", crane_->spreader_half_extents_m()});
+  machine_->describe(d);
   if (vessel_) d.entities.push_back({"vessel", "vessel", {}});
   if (trucks_)
     for (int k = 0; k < scenario_.trucks.trucks; ++k)
@@ -290,8 +320,6 @@ SceneDescription Simulation::scene() const {
                                       : "container.45ft",
                           c.half_extents_m});
   }
-  d.indicators.assign(std::begin(kStsIndicators), std::end(kStsIndicators));
-  d.rope_count = std::min(crane_->hoist().rope_count(), kMaxRopes);
   return d;
 }
 
@@ -321,71 +349,32 @@ void Simulation::write_snapshot(Snapshot& s) const {
     }
   }
 
-  const core::Pose cab = crane_->cab_pose();
+  const core::Pose cab = machine_->cab_pose();
   s.cab.pose = cab;
-  s.cab.eye_m = crane_->eye_m();
+  s.cab.eye_m = machine_->eye_m();
   s.cab.specific_force_mps2 = cab.direction_to_local(cab_specific_force_);
-  s.cab.angular_velocity_radps = cab.direction_to_local(world_->angular_velocity(crane_->trolley_body()));
+  s.cab.angular_velocity_radps = cab.direction_to_local(world_->angular_velocity(machine_->cab_body()));
 
-  int n = 0;
+  s.rope_count = 0;
+  s.indicator_count = 0;
+  int n = machine_->publish(s, 0);
   const auto entity = [&](core::Pose pose, std::uint32_t flags) {
     if (n >= kMaxEntities) return;
     s.entities[static_cast<std::size_t>(n)] = {static_cast<std::uint32_t>(n), flags, pose};
     ++n;
   };
-  entity(world_->pose(crane_->gantry_body()), 0);
-  entity(world_->pose(crane_->trolley_body()), 0);
-  entity(crane_->spreader_pose(), 0);
   if (vessel_) entity(vessel_->geometry().pose_at(clock_.time_s()), 0);  // where the step left it
   if (trucks_)
     for (int k = 0; k < scenario_.trucks.trucks; ++k)
       entity({core::Mat3::identity(),
               {scenario_.trucks.lane_x_m, trucks_->truck_y(k), scenario_.trucks.chassis_top_m}},
              0);
-  const auto locked = crane_->locked_container();
+  const auto held = machine_->held_item();
   for (const ContainerRef& c : containers_)
-    entity(world_->pose(c.body), locked == c.body ? Snapshot::kLocked : 0);
+    entity(world_->pose(c.body), held == c.body ? Snapshot::kLocked : 0);
   s.entity_count = n;
-
-  const cable::HoistSystem& hoist = crane_->hoist();
-  s.rope_count = std::min(hoist.rope_count(), kMaxRopes);
-  std::size_t used = 0;
-  for (int r = 0; r < s.rope_count; ++r) {
-    s.rope_first[static_cast<std::size_t>(r)] = static_cast<std::uint16_t>(used);
-    for (int g = 0; g < hoist.segment_count(r); ++g) {
-      // consecutive segments share their end at a sheave: drop the repeated point
-      const int skip = g > 0 ? 1 : 0;
-      std::array<core::Vec3, 64> points;
-      const int k = hoist.polyline(r, g, points);
-      for (int p = skip; p < k && used < kMaxRopePoints; ++p)
-        s.points[used++] = points[static_cast<std::size_t>(p)];
-    }
-    s.rope_points[static_cast<std::size_t>(r)] =
-        static_cast<std::uint16_t>(used - s.rope_first[static_cast<std::size_t>(r)]);
-  }
-
-  const SpreaderState spreader = crane_->spreader_state();
-  const TwistlockLamps lamps = crane_->lamps();
-  const double values[] = {crane_->gantry_position_m(),
-                           crane_->trolley_position_m(),
-                           crane_->boom_angle_rad(),
-                           spreader.length_m,
-                           spreader.size == SpreaderSize::k20ft   ? 20.0
-                           : spreader.size == SpreaderSize::k40ft ? 40.0
-                                                                  : 45.0,
-                           spreader.flippers[0],
-                           spreader.flippers[1],
-                           spreader.flippers[2],
-                           spreader.flippers[3],
-                           lamps.landed ? 1.0 : 0.0,
-                           lamps.locked ? 1.0 : 0.0,
-                           lamps.unlocked ? 1.0 : 0.0,
-                           crane_->horn() ? 1.0 : 0.0,
-                           crane_->hoisted_load_n() / 9.80665 / 1000.0};
-  static_assert(std::size(values) == std::size(kStsIndicators));
-  s.indicator_count = static_cast<int>(std::size(values));
-  std::copy(std::begin(values), std::end(values), s.indicators.begin());
 }
+
 
 std::unique_ptr<Snapshot> Simulation::snapshot() const {
   auto s = std::make_unique<Snapshot>();
@@ -397,14 +386,7 @@ std::uint64_t Simulation::state_hash() const {
   core::StateHash hash;
   hash.add(clock_.steps());
   hash.add(world_->state_hash());
-  crane_->hoist().hash_into(hash);
-  hash.add(crane_->gantry_drive().reference_mps());
-  hash.add(crane_->trolley_drive().reference_mps());
-  hash.add(crane_->lamps());
-  hash.add(crane_->boom_angle_rad());
-  const SpreaderState spreader = crane_->spreader_state();
-  hash.add(spreader.length_m);
-  hash.add(spreader.flippers);
+  machine_->hash_into(hash);
   hash.add(weather_.turbulence_mps());
   hash.add(next_event_);
   return hash.value();
@@ -419,7 +401,7 @@ std::vector<std::uint8_t> Simulation::save_state() const {
   out.put(warnings_);
   out.put(std::vector<std::uint8_t>(secured_.begin(), secured_.end()));
   world_->save_state(out);
-  crane_->save_state(out);
+  machine_->save_state(out);
   weather_.save_state(out);
   out.put(trucks_ != nullptr);
   if (trucks_) trucks_->save_state(out);
@@ -439,7 +421,7 @@ void Simulation::restore_state(const std::vector<std::uint8_t>& state) {
   in.get(secured, static_cast<std::int64_t>(secured_.size()));
   secured_.assign(secured.begin(), secured.end());
   world_->restore_state(in);
-  crane_->restore_state(in);
+  machine_->restore_state(in);
   weather_.restore_state(in);
   if (in.get<bool>() != (trucks_ != nullptr)) throw core::StateError("saved state has other trucks");
   if (trucks_) trucks_->restore_state(in);
@@ -447,7 +429,7 @@ void Simulation::restore_state(const std::vector<std::uint8_t>& state) {
   events_.impacts.clear();
   events_.twistlocks.clear();
   events_.ropes.clear();
-  cab_velocity_ = world_->point_velocity(crane_->trolley_body(), crane_->eye_in_trolley_m());
+  cab_velocity_ = world_->point_velocity(machine_->cab_body(), machine_->eye_on_cab_body_m());
 }
 
 }  // namespace harbour::sim

@@ -5,6 +5,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "harbour/core/FixedStepClock.h"
@@ -12,7 +13,7 @@
 #include "harbour/physics/PhysicsWorld.h"
 #include "harbour/sim/Controls.h"
 #include "harbour/sim/Snapshot.h"
-#include "harbour/sim/StsCrane.h"
+#include "harbour/machines/sts/StsCrane.h"
 #include "harbour/sim/Trucks.h"
 #include "harbour/sim/Vessel.h"
 #include "harbour/sim/Weather.h"
@@ -74,11 +75,25 @@ struct InstructorCommand {
 /// Why a command's values are out of range ("" when they are not).
 std::string why_invalid(const InstructorCommand& command);
 
-/// The initial state of an STS exercise world (settings).
-struct ScenarioSettings {
-  std::string name;
+/// An STS and where it starts (settings).
+struct StsSetup {
   StsCraneSettings crane;
   double gantry_y_m = 0.0, trolley_x_m = 20.0, spreader_z_m = 20.0;  ///< [m] crane pose at the start
+};
+
+/// The machine an exercise runs, with its start.
+using MachineSetup = std::variant<StsSetup>;
+
+/// The kind of machine a setup builds ("sts", ...), as files name it.
+const char* machine_kind(const MachineSetup& setup);
+
+/// The initial state of an exercise world (settings).
+struct ScenarioSettings {
+  std::string name;
+  MachineSetup machine;
+  /// The STS setup; throws std::logic_error when the machine is another.
+  const StsSetup& sts() const;
+  StsSetup& sts();
   std::vector<StaticBlock> blocks;
   /// The quay's waterside edge [m]: with a vessel the quay is a block up to it and the harbour bed lies
   /// below the water; without one the ground is a plane at the quay's level.
@@ -91,13 +106,6 @@ struct ScenarioSettings {
   double drag_coefficient =
       1.0;                 ///< [-] boxes and spreader (published 0.6-1.2 by face and stacking; assumed)
   std::uint64_t seed = 1;  ///< seeds the turbulence
-};
-
-/// What happened during the last step, for evaluation and the instructor (buffers reused step to step).
-struct StepEvents {
-  std::vector<physics::ImpactEvent> impacts;
-  std::vector<TwistlockEvent> twistlocks;
-  std::vector<cable::CableEvent> ropes;
 };
 
 /// The executive: a pure function of its inputs at a fixed 1 kHz step (no clocks, files or threads). The
@@ -123,7 +131,7 @@ class Simulation {
   std::int64_t steps() const { return clock_.steps(); }
   double time_s() const { return clock_.time_s(); }
   /// The machine's controls, by label.
-  const ControlTable& control_table() const { return crane_->control_table(); }
+  const ControlTable& control_table() const { return machine_->control_table(); }
   /// What is in the scene (fixed for this simulation): entities and indicator names, by snapshot index.
   SceneDescription scene() const;
   /// Writes the published state into `out` without allocating.
@@ -147,9 +155,9 @@ class Simulation {
   physics::BodyId container_body(std::size_t index) const { return containers_[index].body; }
   const physics::PhysicsWorld& world() const { return *world_; }
   const Weather& weather() const { return weather_; }
-  /// Where the spreader would hang at rest in a steady `wind` [m/s], from plumb under the trolley [m]
-  /// (horizontal): the pendulum's equilibrium L F / (m g), F the wind's drag on the spreader and on `box` if
-  /// it hangs from it.
+  /// Where the machine's load would hang at rest in a steady `wind` [m/s], from plumb under its sheaves [m]
+  /// (horizontal): the pendulum's equilibrium L F / (m g), F the wind's drag on its wind areas and on `box`
+  /// if it hangs from them.
   core::Vec3 wind_rest_offset_m(const core::Vec3& wind, std::optional<physics::BodyId> box) const;
   const Vessel* vessel() const { return vessel_.get(); }
   const TruckLane* trucks() const { return trucks_.get(); }
@@ -158,8 +166,11 @@ class Simulation {
   bool secured(std::size_t index) const { return secured_[index]; }
   /// Everything the spreader can lift (containers, then hatch covers), in scenario order.
   std::span<const ContainerRef> liftables() const { return containers_; }
-  StsCrane& crane() { return *crane_; }
-  const StsCrane& crane() const { return *crane_; }
+  Machine& machine() { return *machine_; }
+  const Machine& machine() const { return *machine_; }
+  /// The machine as an STS; throws std::logic_error when it is another.
+  StsCrane& sts();
+  const StsCrane& sts() const;
   const ScenarioSettings& scenario() const { return scenario_; }
 
  private:
@@ -168,11 +179,12 @@ class Simulation {
   void move_secured_cargo();
   void apply_due_events();
   void apply_wind();
+  const ContainerRef* liftable(physics::BodyId body) const;
 
   ScenarioSettings scenario_;
   core::FixedStepClock clock_{kStep_s};
   std::unique_ptr<physics::PhysicsWorld> world_;
-  std::unique_ptr<StsCrane> crane_;
+  std::unique_ptr<Machine> machine_;
   std::vector<ContainerRef> containers_;
   /// Cargo at rest is secured (deck boxes twistlocked to the hatch covers and to each other, hold boxes in
   /// their cells, hatch covers cleated, quay boxes on the ground): kinematic, carried with the vessel, no

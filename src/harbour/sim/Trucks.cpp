@@ -46,16 +46,16 @@ int TruckLane::departed() const {
 }
 
 std::optional<physics::BodyId> TruckLane::load(const Truck& truck, std::span<const ContainerRef> boxes,
-                                               const StsCrane& crane) const {
-  if (crane.locked_container()) return std::nullopt;
+                                               std::optional<physics::BodyId> held,
+                                               double attachment_bottom_z_m) const {
+  if (held) return std::nullopt;
   for (const ContainerRef& box : boxes) {
     const core::Vec3 p = world_.pose(box.body).position;
     const bool on_chassis = std::abs(p.x - settings_.lane_x_m) < kChassisHalfWidth_m &&
                             std::abs(p.y - truck.y) < kChassisHalfLength_m &&
                             std::abs(p.z - box.half_extents_m.z - settings_.chassis_top_m) < 0.05;
     if (!on_chassis) continue;
-    const double spreader_bottom = crane.spreader_pose().position.z - crane.spreader_half_extents_m().z;
-    if (spreader_bottom > p.z + box.half_extents_m.z + settings_.clearance_m) return box.body;
+    if (attachment_bottom_z_m > p.z + box.half_extents_m.z + settings_.clearance_m) return box.body;
     return std::nullopt;
   }
   return std::nullopt;
@@ -67,7 +67,8 @@ void TruckLane::place(const Truck& truck) {
   world_.set_kinematic_motion(truck.body, pose, {0, truck.speed, 0}, {});
 }
 
-void TruckLane::step(double dt_s, std::span<const ContainerRef> boxes, const StsCrane& crane) {
+void TruckLane::step(double dt_s, std::span<const ContainerRef> boxes, std::optional<physics::BodyId> held,
+                     double attachment_bottom_z_m) {
   const double a = settings_.acceleration_mps2;
   for (std::size_t k = 0; k < trucks_.size(); ++k) {
     Truck& t = trucks_[k];
@@ -78,7 +79,7 @@ void TruckLane::step(double dt_s, std::span<const ContainerRef> boxes, const Sts
         break;
       case State::kWaiting:
         t.speed = 0.0;
-        if (const auto box = load(t, boxes, crane)) {
+        if (const auto box = load(t, boxes, held, attachment_bottom_z_m)) {
           t.load_attachment = world_.attach(*box, t.body);
           t.state = State::kLeaving;
           if (k + 1 < trucks_.size()) trucks_[k + 1].state = State::kArriving;

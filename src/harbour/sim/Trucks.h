@@ -6,7 +6,7 @@
 
 #include "harbour/core/StateArchive.h"
 #include "harbour/physics/PhysicsWorld.h"
-#include "harbour/sim/StsCrane.h"
+#include "harbour/machines/Machine.h"
 
 namespace harbour::sim {
 
@@ -32,7 +32,8 @@ class TruckLane {
   TruckLane(physics::PhysicsWorld& world, const TruckLaneSettings& settings);
 
   /// Moves the trucks through the step that starts now.
-  void step(double dt_s, std::span<const ContainerRef> boxes, const StsCrane& crane);
+  void step(double dt_s, std::span<const ContainerRef> boxes, std::optional<physics::BodyId> held,
+            double attachment_bottom_z_m);
   /// The centre of a container of height `height_m` seated on the truck waiting under the crane.
   core::Vec3 load_centre(double height_m) const;
   /// Trucks that left loaded.
@@ -51,7 +52,7 @@ class TruckLane {
   };
   /// The box seated on the truck once the spreader is clear of it.
   std::optional<physics::BodyId> load(const Truck& truck, std::span<const ContainerRef> boxes,
-                                      const StsCrane& crane) const;
+                                      std::optional<physics::BodyId> held, double attachment_bottom_z_m) const;
   void place(const Truck& truck);
 
   physics::PhysicsWorld& world_;

@@ -8,12 +8,14 @@
 #include <vector>
 
 #include "harbour/cable/HoistSystem.h"
+#include "harbour/machines/Machine.h"
 #include "harbour/physics/PhysicsWorld.h"
 #include "harbour/sim/Controls.h"
-#include "harbour/sim/Drive.h"
-#include "harbour/sim/OdeCableBodies.h"
-#include "harbour/sim/Spreader.h"
-#include "harbour/sim/Twistlocks.h"
+#include "harbour/machines/parts/Drive.h"
+#include "harbour/machines/parts/LimitSwitches.h"
+#include "harbour/machines/parts/OdeCableBodies.h"
+#include "harbour/machines/parts/Spreader.h"
+#include "harbour/machines/parts/Twistlocks.h"
 
 namespace harbour::sim {
 
@@ -79,18 +81,9 @@ struct StsControlSlots {
   void write(const StsControls& sts, Controls& controls) const;
 };
 
-/// Something the spreader may land on and lift (a container, a hatch cover): its body, its shape's half
-/// extents (body frame, x along its length) and where its corner castings or lifting pockets are.
-struct ContainerRef {
-  physics::BodyId body = physics::kWorld;
-  core::Vec3 half_extents_m;
-  double pocket_half_length_m = 0.0, pocket_half_width_m = 0.0;  ///< [m] casting centres from its centre
-  double end_pocket_half_length_m = 0.0;                         ///< [m] a 45 ft box's end castings (0: none)
-};
-
 /// The STS crane on the physics world: gantry and trolley on motorised sliders driven by Drives, the spreader
 /// hanging from the 4-rope hoist (cable model), twistlocks that lock a landed container to the spreader.
-class StsCrane {
+class StsCrane final : public Machine {
  public:
   StsCrane(physics::PhysicsWorld& world, const StsCraneSettings& settings, double gantry_y_m,
            double trolley_x_m, double spreader_z_m);
@@ -98,7 +91,24 @@ class StsCrane {
   /// Drives, hoist ropes (forces onto the bodies) and twistlocks; the caller then steps the physics world.
   void step(const StsControls& controls, std::span<const ContainerRef> containers, double dt_s);
 
-  const ControlTable& control_table() const { return settings_.controls; }
+  // Machine
+  const char* kind() const override { return "sts"; }
+  const ControlTable& control_table() const override { return settings_.controls; }
+  void step(const Controls& controls, std::span<const ContainerRef> liftables, double dt_s) override {
+    step(read(controls), liftables, dt_s);
+  }
+  std::optional<physics::BodyId> held_item() const override { return locked_container_; }
+  double attachment_bottom_z_m() const override;
+  std::span<const WindArea> wind_areas() const override { return wind_areas_; }
+  physics::BodyId cab_body() const override { return trolley_body_; }
+  core::Vec3 eye_on_cab_body_m() const override { return settings_.cab_position_m + settings_.eye_m; }
+  void describe(SceneDescription& scene) const override;
+  int publish(Snapshot& snapshot, int entities) const override;
+  void drain_events(StepEvents& events) override;
+  bool has_fault(MachineFault) const override { return true; }
+  void inject_fault(MachineFault fault, int detail) override;
+  void clear_faults() override;
+  void hash_into(core::StateHash& hash) const override;
   const StsControlSlots& control_slots() const { return slots_; }
   /// The cab's controls as labelled Controls (the other slots neutral), and back.
   Controls controls(const StsControls& sts) const;
@@ -123,17 +133,15 @@ class StsCrane {
   physics::BodyId gantry_body() const { return gantry_body_; }
   physics::BodyId trolley_body() const { return trolley_body_; }
   /// The cab's frame in the world (it rides on the trolley) and its design eye point in that frame.
-  core::Pose cab_pose() const;
-  const core::Vec3& eye_m() const { return settings_.eye_m; }
-  core::Vec3 eye_in_trolley_m() const { return settings_.cab_position_m + settings_.eye_m; }
+  core::Pose cab_pose() const override;
+  core::Vec3 eye_m() const override { return settings_.eye_m; }
   /// The container locked to the spreader, if any.
   std::optional<physics::BodyId> locked_container() const { return locked_container_; }
   TwistlockLamps lamps() const { return twistlocks_.lamps(); }
   std::vector<TwistlockEvent> take_twistlock_events() { return twistlocks_.take_events(); }
-  void drain_twistlock_events(std::vector<TwistlockEvent>& into) { twistlocks_.drain_events(into); }
   const Drive& gantry_drive() const { return gantry_; }
   /// Times the operator drove the hoist into a limit switch.
-  std::uint32_t hoist_limit_hits() const { return hoist_limit_hits_; }
+  std::uint32_t hoist_limit_hits() const { return hoist_limits_.hits(); }
   const Drive& trolley_drive() const { return trolley_; }
   const cable::HoistSystem& hoist() const { return *hoist_; }
   cable::HoistSystem& hoist() { return *hoist_; }
@@ -141,14 +149,10 @@ class StsCrane {
   double hoisted_load_n() const;
   /// Length of the pendulum the load hangs on [m]: from the trolley's sheaves down to the headblock's (the
   /// mean heights of the reeving's sheaves on each).
-  double pendulum_length_m() const;
+  double pendulum_length_m() const override;
   /// Drives, ropes, twistlocks, faults and the locked box for a keyframe (the physics world saves itself).
-  void save_state(core::StateWriter& out) const;
-  void restore_state(core::StateReader& in);
-  /// Fault injection: the hoist's holding brake does not set.
-  void set_hoist_brake_fault(bool on) { hoist_brake_fault_ = on; }
-  /// Fault injection: one corner's landed sensor (0-3) reads "not landed"; -1 clears it.
-  void set_landed_sensor_fault(int corner) { landed_sensor_fault_ = corner; }
+  void save_state(core::StateWriter& out) const override;
+  void restore_state(core::StateReader& in) override;
 
  private:
   physics::PhysicsWorld& world_;
@@ -169,9 +173,9 @@ class StsCrane {
   std::optional<physics::BodyId> locked_container_;
   int attachment_ = -1;
   bool hoist_brake_fault_ = false;
-  bool hoist_at_limit_ = false;
-  std::uint32_t hoist_limit_hits_ = 0;
+  LimitSwitches hoist_limits_;
   int landed_sensor_fault_ = -1;
+  std::array<WindArea, 1> wind_areas_;
 };
 
 }  // namespace harbour::sim

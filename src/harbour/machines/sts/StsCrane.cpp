@@ -1,4 +1,4 @@
-#include "harbour/sim/StsCrane.h"
+#include "harbour/machines/sts/StsCrane.h"
 
 #include <algorithm>
 #include <cmath>
@@ -154,7 +154,8 @@ StsCrane::StsCrane(physics::PhysicsWorld& world, const StsCraneSettings& setting
       boom_(settings.boom.drive),
       trolley_sheaves_m_(mean_sheave_m(settings.hoist, kTrolleyReevingBody)),
       headblock_sheaves_m_(mean_sheave_m(settings.hoist, kHeadblockReevingBody)),
-      falls_(fall_segments(settings.hoist)) {
+      falls_(fall_segments(settings.hoist)),
+      hoist_limits_(settings.hoist_lower_limit_m, settings.hoist_upper_limit_m) {
   // gantry: the crane's base frame, on the quay rails
   physics::BoxSettings gantry;
   gantry.mass_kg = settings.gantry_mass_kg;
@@ -185,6 +186,11 @@ StsCrane::StsCrane(physics::PhysicsWorld& world, const StsCraneSettings& setting
   cable_bodies_ = std::make_unique<OdeCableBodies>(
       world, std::vector<physics::BodyId>{gantry_body_, trolley_body_, spreader_});
   hoist_ = std::make_unique<cable::HoistSystem>(settings.hoist, *cable_bodies_, core::Vec3{0, 0, -9.80665});
+  wind_areas_[0] = {spreader_, spreader_frame_->half_extents_m()};
+}
+
+double StsCrane::attachment_bottom_z_m() const {
+  return world_.pose(spreader_).position.z - spreader_frame_->half_extents_m().z;
 }
 
 double StsCrane::pendulum_length_m() const {
@@ -226,16 +232,8 @@ void StsCrane::step(const StsControls& c, std::span<const ContainerRef> containe
   const cable::ElementSettings& drum_settings =
       settings_.hoist.elements[static_cast<std::size_t>(settings_.hoist.ropes[0].path[0])];
   const double spreader_z = world_.pose(spreader_).position.z;
-  const double full_speed = 0.5 * drum_settings.max_rope_speed_mps;
-  const double deceleration = 0.5 * drum_settings.max_rope_acceleration_mps2;
-  double lever = std::clamp(c.hoist, -1.0, 1.0);
-  const double room_up = std::max(0.0, settings_.hoist_upper_limit_m - spreader_z);
-  const double room_down = std::max(0.0, spreader_z - settings_.hoist_lower_limit_m);
-  lever = std::min(lever, core::discrete_braking_speed(room_up, deceleration, dt_s) / full_speed);
-  lever = std::max(lever, -core::discrete_braking_speed(room_down, deceleration, dt_s) / full_speed);
-  const bool pushing = (c.hoist > 0.0 && room_up <= 0.01) || (c.hoist < 0.0 && room_down <= 0.01);
-  if (pushing && !hoist_at_limit_) ++hoist_limit_hits_;
-  hoist_at_limit_ = pushing;
+  const double lever = hoist_limits_.limit(c.hoist, spreader_z, 0.5 * drum_settings.max_rope_speed_mps,
+                                           0.5 * drum_settings.max_rope_acceleration_mps2, dt_s);
 
   // hoist: raising reels rope in (negative pay-out); the e-stop cuts the motor and sets the brake
   const cable::DrumCommand drum{c.emergency_stop ? 0.0 : -lever, hoist_brake_fault_, !c.emergency_stop};
@@ -287,6 +285,89 @@ void StsCrane::step(const StsControls& c, std::span<const ContainerRef> containe
     if (c.spreader_size_ft == (k == 0 ? 20 : k == 1 ? 40 : 45)) size_button = &sizes[k];
   spreader_frame_->step(size_button, c.flipper_down, twistlocks_.lamps().landed || twistlocks_.locked(),
                         dt_s);
+  wind_areas_[0].half_extents_m = spreader_frame_->half_extents_m();
+}
+
+namespace {
+// the indicators an STS publishes, in snapshot order
+constexpr const char* kStsIndicators[] = {
+    "gantry_y_m", "trolley_x_m", "boom_angle_rad", "spreader_length_m", "spreader_size_ft", "flipper_1",
+    "flipper_2",  "flipper_3",   "flipper_4",      "lamp_landed",       "lamp_locked",      "lamp_unlocked",
+    "horn",       "load_t"};
+}  // namespace
+
+void StsCrane::describe(SceneDescription& d) const {
+  d.machine = kind();
+  d.entities.push_back({"gantry", "sts.gantry", {}});
+  d.entities.push_back({"trolley", "sts.trolley", {}});
+  d.entities.push_back({"spreader", "sts.spreader", spreader_frame_->half_extents_m()});
+  d.indicators.assign(std::begin(kStsIndicators), std::end(kStsIndicators));
+  d.rope_count = std::min(hoist_->rope_count(), kMaxRopes);
+}
+
+int StsCrane::publish(Snapshot& s, int first) const {
+  int n = first;
+  for (const core::Pose& pose : {world_.pose(gantry_body_), world_.pose(trolley_body_), spreader_pose()})
+    if (n < kMaxEntities) {
+      s.entities[static_cast<std::size_t>(n)] = {static_cast<std::uint32_t>(n), 0, pose};
+      ++n;
+    }
+  publish_ropes(*hoist_, s);
+
+  const SpreaderState spreader = spreader_state();
+  const TwistlockLamps lamps = twistlocks_.lamps();
+  const double values[] = {gantry_position_m(),
+                           trolley_position_m(),
+                           boom_angle_,
+                           spreader.length_m,
+                           spreader.size == SpreaderSize::k20ft   ? 20.0
+                           : spreader.size == SpreaderSize::k40ft ? 40.0
+                                                                  : 45.0,
+                           spreader.flippers[0],
+                           spreader.flippers[1],
+                           spreader.flippers[2],
+                           spreader.flippers[3],
+                           lamps.landed ? 1.0 : 0.0,
+                           lamps.locked ? 1.0 : 0.0,
+                           lamps.unlocked ? 1.0 : 0.0,
+                           horn_ ? 1.0 : 0.0,
+                           hoisted_load_n() / 9.80665 / 1000.0};
+  static_assert(std::size(values) == std::size(kStsIndicators));
+  s.indicator_count = static_cast<int>(std::size(values));
+  std::copy(std::begin(values), std::end(values), s.indicators.begin());
+  return n - first;
+}
+
+void StsCrane::drain_events(StepEvents& events) {
+  twistlocks_.drain_events(events.twistlocks);
+  hoist_->drain_events(events.ropes);
+}
+
+void StsCrane::inject_fault(MachineFault fault, int detail) {
+  switch (fault) {
+    case MachineFault::kHoistBrake:
+      hoist_brake_fault_ = true;
+      break;
+    case MachineFault::kLandedSensor:
+      landed_sensor_fault_ = detail;
+      break;
+  }
+}
+
+void StsCrane::clear_faults() {
+  hoist_brake_fault_ = false;
+  landed_sensor_fault_ = -1;
+}
+
+void StsCrane::hash_into(core::StateHash& hash) const {
+  hoist_->hash_into(hash);
+  hash.add(gantry_.reference_mps());
+  hash.add(trolley_.reference_mps());
+  hash.add(twistlocks_.lamps());
+  hash.add(boom_angle_);
+  const SpreaderState spreader = spreader_state();
+  hash.add(spreader.length_m);
+  hash.add(spreader.flippers);
 }
 
 void StsCrane::save_state(core::StateWriter& out) const {
@@ -302,8 +383,7 @@ void StsCrane::save_state(core::StateWriter& out) const {
   out.put(locked_container_.value_or(physics::kWorld));
   out.put(attachment_);
   out.put(hoist_brake_fault_);
-  out.put(hoist_at_limit_);
-  out.put(hoist_limit_hits_);
+  hoist_limits_.save_state(out);
   out.put(landed_sensor_fault_);
 }
 
@@ -321,9 +401,9 @@ void StsCrane::restore_state(core::StateReader& in) {
   locked_container_ = locked == physics::kWorld ? std::nullopt : std::optional<physics::BodyId>(locked);
   in.get(attachment_);
   in.get(hoist_brake_fault_);
-  in.get(hoist_at_limit_);
-  in.get(hoist_limit_hits_);
+  hoist_limits_.restore_state(in);
   in.get(landed_sensor_fault_);
+  wind_areas_[0].half_extents_m = spreader_frame_->half_extents_m();
 }
 
 }  // namespace harbour::sim

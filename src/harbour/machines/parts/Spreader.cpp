@@ -1,4 +1,4 @@
-#include "harbour/sim/Spreader.h"
+#include "harbour/machines/parts/Spreader.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,0 +1,26 @@
+#include "harbour/machines/Machine.h"
+
+#include <array>
+
+namespace harbour::sim {
+
+void publish_ropes(const cable::HoistSystem& hoist, Snapshot& s) {
+  std::size_t used = s.rope_count > 0 ? s.rope_first[static_cast<std::size_t>(s.rope_count - 1)] +
+                                            s.rope_points[static_cast<std::size_t>(s.rope_count - 1)]
+                                      : 0;
+  for (int r = 0; r < hoist.rope_count() && s.rope_count < kMaxRopes; ++r) {
+    const auto rope = static_cast<std::size_t>(s.rope_count++);
+    s.rope_first[rope] = static_cast<std::uint16_t>(used);
+    for (int g = 0; g < hoist.segment_count(r); ++g) {
+      // consecutive segments share their end at a sheave: drop the repeated point
+      const int skip = g > 0 ? 1 : 0;
+      std::array<core::Vec3, 64> points;
+      const int k = hoist.polyline(r, g, points);
+      for (int p = skip; p < k && used < kMaxRopePoints; ++p)
+        s.points[used++] = points[static_cast<std::size_t>(p)];
+    }
+    s.rope_points[rope] = static_cast<std::uint16_t>(used - s.rope_first[rope]);
+  }
+}
+
+}  // namespace harbour::sim

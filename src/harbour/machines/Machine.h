@@ -1,0 +1,101 @@
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "harbour/cable/HoistSystem.h"
+#include "harbour/core/StateArchive.h"
+#include "harbour/core/StateHash.h"
+#include "harbour/machines/parts/Twistlocks.h"
+#include "harbour/physics/PhysicsWorld.h"
+#include "harbour/sim/Controls.h"
+#include "harbour/sim/Snapshot.h"
+
+namespace harbour::sim {
+
+/// Something a machine may land on and lift (a container, a hatch cover): its body, its shape's half extents
+/// (body frame, x along its length) and where its corner castings or lifting pockets are. The world owns
+/// them; the machine is handed them each step.
+struct ContainerRef {
+  physics::BodyId body = physics::kWorld;
+  core::Vec3 half_extents_m;
+  double pocket_half_length_m = 0.0, pocket_half_width_m = 0.0;  ///< [m] casting centres from its centre
+  double end_pocket_half_length_m = 0.0;                         ///< [m] a 45 ft box's end castings (0: none)
+};
+
+/// What happened during the last step, for evaluation and the instructor (buffers reused step to step).
+struct StepEvents {
+  std::vector<physics::ImpactEvent> impacts;
+  std::vector<TwistlockEvent> twistlocks;
+  std::vector<cable::CableEvent> ropes;
+};
+
+/// A body of the machine the wind pushes on, as a box (drag by face, see Weather.h).
+struct WindArea {
+  physics::BodyId body = physics::kWorld;
+  core::Vec3 half_extents_m;
+};
+
+/// A fault the instructor injects into a machine.
+enum class MachineFault : std::uint8_t {
+  kHoistBrake,    ///< the hoist's holding brake does not set
+  kLandedSensor,  ///< one twistlock corner's landed sensor reads "not landed" (detail: the corner, 0-3)
+};
+
+/// One machine on the executive: what the simulation, the recorder, the station and the image generator need
+/// of it without knowing which machine it is. The world (quay, vessel, cargo, bulk, weather, trucks) stays
+/// outside; the machine pushes on the physics world's bodies in step() and the executive then steps it.
+class Machine {
+ public:
+  virtual ~Machine() = default;
+
+  /// Its kind as exercise and machine files name it ("sts", "mhc").
+  virtual const char* kind() const = 0;
+  /// Its controls, by label (Controls carry one value per slot of this table).
+  virtual const ControlTable& control_table() const = 0;
+  /// Drives, ropes and tools for one step with these controls (any values: the machine reads them in range);
+  /// `liftables` are the items it may pick up.
+  virtual void step(const Controls& controls, std::span<const ContainerRef> liftables, double dt_s) = 0;
+
+  /// The item it holds (a container locked to its spreader), if any.
+  virtual std::optional<physics::BodyId> held_item() const = 0;
+  /// Height of the lowest point of its load-handling attachment (spreader, grab, hook) [m].
+  virtual double attachment_bottom_z_m() const = 0;
+  /// Length of the pendulum its load hangs on [m] (0 when nothing hangs).
+  virtual double pendulum_length_m() const = 0;
+  /// Its bodies the wind pushes on (a carried item is the executive's to add).
+  virtual std::span<const WindArea> wind_areas() const = 0;
+
+  /// The operator's cab: the body it rides on, the design eye point on that body, the cab's frame in the
+  /// world and the eye point in the cab's frame (x the way the operator faces, z up).
+  virtual physics::BodyId cab_body() const = 0;
+  virtual core::Vec3 eye_on_cab_body_m() const = 0;
+  virtual core::Pose cab_pose() const = 0;
+  virtual core::Vec3 eye_m() const = 0;
+
+  /// Appends its entities (first in the scene), names its indicators and counts its ropes.
+  virtual void describe(SceneDescription& scene) const = 0;
+  /// Writes its entities' poses from `entities` on (in describe()'s order; returns how many), its ropes and
+  /// its indicators. Allocates nothing.
+  virtual int publish(Snapshot& snapshot, int entities) const = 0;
+  /// Moves this step's events (twistlocks, ropes) into `events`.
+  virtual void drain_events(StepEvents& events) = 0;
+
+  /// Whether it has the part this fault breaks; inject_fault() is called only for those.
+  virtual bool has_fault(MachineFault fault) const = 0;
+  virtual void inject_fault(MachineFault fault, int detail) = 0;
+  virtual void clear_faults() = 0;
+
+  /// Its dynamic state beyond the physics world's bodies (drives, ropes, latches, faults).
+  virtual void hash_into(core::StateHash& hash) const = 0;
+  virtual void save_state(core::StateWriter& out) const = 0;
+  virtual void restore_state(core::StateReader& in) = 0;
+};
+
+/// Appends `hoist`'s ropes to the snapshot's rope polylines (after those already there; what does not fit in
+/// kMaxRopes ropes or kMaxRopePoints points is left out).
+void publish_ropes(const cable::HoistSystem& hoist, Snapshot& snapshot);
+
+}  // namespace harbour::sim
