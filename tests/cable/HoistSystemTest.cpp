@@ -291,14 +291,14 @@ TEST(HoistSystem, GrabClosesWhenTheClosingWinchReelsInAgainstTheHoldingWinch) {
   scenes::build_mhc(s, HARBOUR_DATA_DIR);
   for (int k = 0; k < 5000; ++k)
     s.step();
-  const double gap = s.bodies.bodies[1].position.z - s.bodies.bodies[2].position.z;
+  const double gap = s.bodies.bodies[2].position.z - s.bodies.bodies[3].position.z;
   s.commands[1].lever = -0.5;  // closing winch reels in, holding winch braked
   for (int k = 0; k < 3000; ++k)
     s.step();
   s.commands[1].lever = 0.0;
   for (int k = 0; k < 3000; ++k)
     s.step();
-  const double closed_gap = s.bodies.bodies[1].position.z - s.bodies.bodies[2].position.z;
+  const double closed_gap = s.bodies.bodies[2].position.z - s.bodies.bodies[3].position.z;
   // 4 falls between head and lower block: the block rises by a quarter of the rope reeled in
   EXPECT_LT(closed_gap, gap - 0.2);
   EXPECT_GT(s.hoist->tension(2, 2), 0.0);

@@ -48,6 +48,7 @@ inline void build_sts(HoistScene& s, const std::string& data_dir, int max_subste
 /// MHC grab: boom head fixed at (30, 0, 35); grab head (18 t) and lower block with a full bite (13.5 t).
 inline void build_mhc(HoistScene& s, const std::string& data_dir, int max_substeps = 8) {
   const io::ReevingFile f = io::load_reeving(data_dir + "/reeving/mhc_grab.yaml");
+  s.bodies.add({0, 0, 0}, 190000, true);   // house (its frame: the slewing ring)
   s.bodies.add({30, 0, 35}, 60000, true);  // boom head
   s.bodies.add({30, 0, 15}, 18000);        // grab head
   s.bodies.add({30, 0, 13.5}, 13500);      // lower block with the load

@@ -388,10 +388,10 @@ int HoistSystem::polyline(int rope, int segment, std::span<core::Vec3> out) cons
   const Segment& s = segment_at(rope, segment);
   if (out.size() < 2) return 0;
   const std::size_t interior = s.w.size(), room = out.size() - 2;
-  const std::size_t stride = interior > room ? (interior + room - 1) / room : 1;
+  const std::size_t stride = room == 0 ? interior + 1 : interior > room ? (interior + room - 1) / room : 1;
   std::size_t n = 0;
   out[n++] = s.end_a;
-  for (std::size_t i = stride - 1; i < interior && n + 1 < out.size(); i += stride) {
+  for (std::size_t i = stride - 1; room > 0 && i < interior && n + 1 < out.size(); i += stride) {
     const double f = static_cast<double>(i + 1) / static_cast<double>(interior + 1);
     out[n++] = s.end_a + (s.end_b - s.end_a) * f + s.w[i];
   }

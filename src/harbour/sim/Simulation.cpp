@@ -11,15 +11,19 @@
 namespace harbour::sim {
 
 const char* machine_kind(const MachineSetup& setup) {
-  return std::visit([](const auto& m) -> const char* {
-    using T = std::decay_t<decltype(m)>;
-    if constexpr (std::is_same_v<T, StsSetup>) return "sts";
-  }, setup);
+  return std::visit(
+      [](const auto& m) -> const char* {
+        using T = std::decay_t<decltype(m)>;
+        if constexpr (std::is_same_v<T, StsSetup>) return "sts";
+        if constexpr (std::is_same_v<T, MhcSetup>) return "mhc";
+      },
+      setup);
 }
 
 const StsSetup& ScenarioSettings::sts() const {
   if (const auto* sts = std::get_if<StsSetup>(&machine)) return *sts;
-  throw std::logic_error(std::string("the scenario's machine is an ") + machine_kind(machine) + ", not an sts");
+  throw std::logic_error(std::string("the scenario's machine is an ") + machine_kind(machine) +
+                         ", not an sts");
 }
 
 StsSetup& ScenarioSettings::sts() {
@@ -28,11 +32,15 @@ StsSetup& ScenarioSettings::sts() {
 
 namespace {
 std::unique_ptr<Machine> make_machine(physics::PhysicsWorld& world, const MachineSetup& setup) {
-  return std::visit([&](const auto& m) -> std::unique_ptr<Machine> {
-    using T = std::decay_t<decltype(m)>;
-    if constexpr (std::is_same_v<T, StsSetup>)
-      return std::make_unique<StsCrane>(world, m.crane, m.gantry_y_m, m.trolley_x_m, m.spreader_z_m);
-  }, setup);
+  return std::visit(
+      [&](const auto& m) -> std::unique_ptr<Machine> {
+        using T = std::decay_t<decltype(m)>;
+        if constexpr (std::is_same_v<T, StsSetup>)
+          return std::make_unique<StsCrane>(world, m.crane, m.gantry_y_m, m.trolley_x_m, m.spreader_z_m);
+        if constexpr (std::is_same_v<T, MhcSetup>)
+          return std::make_unique<MobileHarbourCrane>(world, m.crane, m.start);
+      },
+      setup);
 }
 }  // namespace
 
@@ -101,7 +109,8 @@ void Simulation::apply_due_events() {
         break;
       }
       case ScriptedEvent::Kind::kHoistBrakeFault:
-        if (machine_->has_fault(MachineFault::kHoistBrake)) machine_->inject_fault(MachineFault::kHoistBrake, 0);
+        if (machine_->has_fault(MachineFault::kHoistBrake))
+          machine_->inject_fault(MachineFault::kHoistBrake, 0);
         break;
       case ScriptedEvent::Kind::kLandedSensorFault:
         if (machine_->has_fault(MachineFault::kLandedSensor))
@@ -374,7 +383,6 @@ void Simulation::write_snapshot(Snapshot& s) const {
     entity(world_->pose(c.body), held == c.body ? Snapshot::kLocked : 0);
   s.entity_count = n;
 }
-
 
 std::unique_ptr<Snapshot> Simulation::snapshot() const {
   auto s = std::make_unique<Snapshot>();

@@ -10,10 +10,11 @@
 
 #include "harbour/core/FixedStepClock.h"
 #include "harbour/core/Warnings.h"
+#include "harbour/machines/mhc/MobileHarbourCrane.h"
+#include "harbour/machines/sts/StsCrane.h"
 #include "harbour/physics/PhysicsWorld.h"
 #include "harbour/sim/Controls.h"
 #include "harbour/sim/Snapshot.h"
-#include "harbour/machines/sts/StsCrane.h"
 #include "harbour/sim/Trucks.h"
 #include "harbour/sim/Vessel.h"
 #include "harbour/sim/Weather.h"
@@ -81,8 +82,14 @@ struct StsSetup {
   double gantry_y_m = 0.0, trolley_x_m = 20.0, spreader_z_m = 20.0;  ///< [m] crane pose at the start
 };
 
+/// A mobile harbour crane and where it stands (settings).
+struct MhcSetup {
+  MhcSettings crane;
+  MhcStart start;
+};
+
 /// The machine an exercise runs, with its start.
-using MachineSetup = std::variant<StsSetup>;
+using MachineSetup = std::variant<StsSetup, MhcSetup>;
 
 /// The kind of machine a setup builds ("sts", ...), as files name it.
 const char* machine_kind(const MachineSetup& setup);

@@ -8,8 +8,8 @@
 
 namespace harbour::sim {
 
-/// Limit switches at both ends of an axis a lever moves at a speed (a hoist, a rope-luffed boom): the lever is
-/// slowed ahead of them so the axis stops on them, and a push into one is counted.
+/// Limit switches at both ends of an axis a lever moves at a speed (a hoist, a rope-luffed boom): the lever
+/// is slowed ahead of them so the axis stops on them, and a push into one is counted.
 class LimitSwitches {
  public:
   LimitSwitches(double lower, double upper) : lower_(lower), upper_(upper) {}

@@ -1,0 +1,437 @@
+#include "harbour/machines/mhc/MobileHarbourCrane.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+namespace harbour::sim {
+namespace {
+
+constexpr double kG = 9.80665;
+// reeving bodies, as the constructor maps them
+constexpr int kHouse = 0, kBoom = 1, kGrabHead = 2, kGrabLower = 3;
+
+core::Mat3 yaw(double rad) {
+  return core::Mat3::rotation({0, 0, 1}, rad);
+}
+
+// the boom's orientation: x from foot to head, raised `angle` above the house's horizontal x
+core::Mat3 boom_rotation(double slew_rad, double angle_rad) {
+  return yaw(slew_rad) * core::Mat3::rotation({0, 1, 0}, -angle_rad);
+}
+
+// segments joining a mount on body `from` to one on a body in `to`
+std::vector<std::pair<int, int>> segments_between(const cable::ReevingSettings& reeving, int from,
+                                                  std::initializer_list<int> to) {
+  std::vector<std::pair<int, int>> found;
+  const auto body = [&](int element) {
+    return reeving.elements[static_cast<std::size_t>(element)].mount.body;
+  };
+  for (std::size_t r = 0; r < reeving.ropes.size(); ++r) {
+    const std::vector<int>& path = reeving.ropes[r].path;
+    for (std::size_t k = 0; k + 1 < path.size(); ++k) {
+      const int a = body(path[k]), b = body(path[k + 1]);
+      for (const int t : to)
+        if ((a == from && b == t) || (b == from && a == t))
+          found.emplace_back(static_cast<int>(r), static_cast<int>(k));
+    }
+  }
+  return found;
+}
+
+const cable::ElementSettings& first_drum(const cable::ReevingSettings& reeving) {
+  for (const cable::ElementSettings& e : reeving.elements)
+    if (e.kind == cable::ElementKind::kDrum) return e;
+  throw std::invalid_argument("reeving '" + reeving.name + "' has no drum");
+}
+
+constexpr const char* kMhcIndicators[] = {
+    "slew_deg",     "boom_angle_deg", "radius_m", "load_t",   "capacity_t", "utilisation", "limiter_stop",
+    "grab_opening", "pad_1_kn",       "pad_2_kn", "pad_3_kn", "pad_4_kn",   "horn"};
+
+}  // namespace
+
+ControlTable mhc_control_table() {
+  using K = ControlKind;
+  const auto axis = [](const char* label, const char* meaning) {
+    return ControlSpec{label, K::kAxis, -1.0, 1.0, {}, 0.0, 0.0, meaning};
+  };
+  const auto button = [](const char* label, const char* meaning) {
+    return ControlSpec{label, K::kButton, 0.0, 1.0, {}, 0.0, 0.0, meaning};
+  };
+  return ControlTable({axis("slew", "slewing, + turns anticlockwise seen from above"),
+                       axis("luff", "boom luffing, + raises the boom (less radius)"),
+                       axis("hoist", "hoist, both winches, + raises"),
+                       axis("grab", "grab, the closing winch against the holding winch, + closes"),
+                       button("emergency_stop", "every drive stops, the brakes set"),
+                       button("horn", "warning horn")});
+}
+
+PadForces pad_forces(double down_n, const core::Vec3& moment_nm, double a_m, double b_m, double yaw_rad) {
+  // pads push up F_i at p_i: sum F_i = down, sum F_i y_i = -M_x, sum F_i x_i = M_y; the plane share
+  // F_i = down/4 + x_i M_y / (4 a^2) - y_i M_x / (4 b^2) in the pads' frame
+  const core::Vec3 m = yaw(-yaw_rad) * moment_nm;
+  const double sx[] = {1, -1, -1, 1}, sy[] = {1, 1, -1, -1};
+  PadForces f{};
+  for (std::size_t i = 0; i < 4; ++i) {
+    const double x = sx[i] * a_m, y = sy[i] * b_m;
+    f[i] = down_n / 4 + x * m.y / (4 * a_m * a_m) - y * m.x / (4 * b_m * b_m);
+  }
+  return f;
+}
+
+MobileHarbourCrane::MobileHarbourCrane(physics::PhysicsWorld& world, const MhcSettings& settings,
+                                       const MhcStart& start)
+    : world_(world),
+      settings_(settings),
+      slew_slot_(settings.controls.slot("slew", ControlKind::kAxis)),
+      luff_slot_(settings.controls.slot("luff", ControlKind::kAxis)),
+      hoist_slot_(settings.controls.slot("hoist", ControlKind::kAxis)),
+      grab_slot_(settings.controls.slot("grab", ControlKind::kAxis)),
+      stop_slot_(settings.controls.slot("emergency_stop", ControlKind::kButton)),
+      horn_slot_(settings.controls.slot("horn", ControlKind::kButton)),
+      position_(start.position_m),
+      slew_drive_(settings.slew_drive),
+      luff_limits_(settings.boom_min_angle_rad, settings.boom_max_angle_rad),
+      hoist_limits_(settings.hoist_lower_limit_m, settings.hoist_upper_limit_m),
+      grab_limits_(0.0, 1.0),
+      grab_falls_(segments_between(settings.hoist, kBoom, {kGrabHead, kGrabLower})),
+      house_origin_in_body_m_(settings.house_com_m * -1.0),
+      boom_head_in_body_m_{0.5 * settings.boom_length_m, 0.0, 0.0},
+      slew_(start.slew_rad) {
+  for (const auto& [rope, segment] : segments_between(settings.luffing, kHouse, {kBoom})) {
+    const std::vector<int>& path = settings.luffing.ropes[static_cast<std::size_t>(rope)].path;
+    const int far = path[static_cast<std::size_t>(segment) + 1];
+    luff_falls_.push_back(
+        {rope, segment, settings.luffing.elements[static_cast<std::size_t>(far)].mount.body == kBoom});
+  }
+  const auto tackle = segments_between(settings.hoist, kGrabHead, {kGrabLower});
+  int closing_ropes = 0;
+  for (std::size_t r = 0; r < settings.hoist.ropes.size(); ++r)
+    closing_ropes += std::any_of(tackle.begin(), tackle.end(),
+                                 [&](const auto& f) { return f.first == static_cast<int>(r); });
+  tackle_falls_ = closing_ropes > 0 ? static_cast<int>(tackle.size()) / closing_ropes : 1;
+  const core::Mat3 house_rotation = yaw(start.slew_rad);
+  physics::BoxSettings house;
+  house.mass_kg = settings.house_mass_kg;
+  house.half_extents_m = settings.house_half_extents_m;
+  house.pose = {house_rotation, position_ + house_rotation * settings.house_com_m};
+  house.collides = false;
+  house_ = world.add_box(house);
+  slew_hinge_ = world.add_hinge(physics::kWorld, house_, position_, {0, 0, 1});
+
+  const core::Vec3 foot = position_ + house_rotation * settings.boom_foot_m;
+  const core::Mat3 boom_rotation_now = boom_rotation(start.slew_rad, start.boom_rad);
+  physics::BoxSettings boom;
+  boom.mass_kg = settings.boom_mass_kg;
+  boom.half_extents_m = {0.5 * settings.boom_length_m, settings.boom_half_width_m,
+                         settings.boom_half_width_m};
+  boom.pose = {boom_rotation_now, foot + boom_rotation_now * core::Vec3{0.5 * settings.boom_length_m, 0, 0}};
+  boom.collides = false;
+  boom_ = world.add_box(boom);
+  boom_hinge_ = world.add_hinge(house_, boom_, foot, house_rotation * core::Vec3{0, 1, 0});
+
+  const core::Vec3 head = boom.pose.to_parent(boom_head_in_body_m_);
+  physics::BoxSettings grab_head;
+  grab_head.mass_kg = settings.grab_head_mass_kg;
+  grab_head.half_extents_m = settings.grab_head_half_extents_m;
+  grab_head.pose = {house_rotation, {head.x, head.y, start.grab_z_m}};
+  grab_head.collides = false;
+  grab_head_ = world.add_box(grab_head);
+  physics::BoxSettings grab_lower;
+  grab_lower.mass_kg = settings.grab_lower_mass_kg;
+  grab_lower.half_extents_m = settings.grab_lower_half_extents_m;
+  grab_lower.pose = {house_rotation, {head.x, head.y, start.grab_z_m - settings.grab_open_gap_m}};
+  grab_lower_ = world.add_box(grab_lower);
+  // the shells' linkage: the lower block slides up towards the head (shutting) between two stops
+  grab_slider_ = world.add_slider(grab_head_, grab_lower_, {0, 0, 1});
+  world.set_slider_limits(grab_slider_, 0.0, settings.grab_open_gap_m - settings.grab_closed_gap_m);
+
+  luffing_bodies_ = std::make_unique<OdeCableBodies>(
+      world, std::vector<physics::BodyId>{house_, boom_},
+      std::vector<core::Vec3>{house_origin_in_body_m_, boom_head_in_body_m_});
+  luffing_ = std::make_unique<cable::HoistSystem>(settings.luffing, *luffing_bodies_, core::Vec3{0, 0, -kG});
+  hoist_bodies_ = std::make_unique<OdeCableBodies>(
+      world, std::vector<physics::BodyId>{house_, boom_, grab_head_, grab_lower_},
+      std::vector<core::Vec3>{house_origin_in_body_m_, boom_head_in_body_m_, {}, {}});
+  hoist_ = std::make_unique<cable::HoistSystem>(settings.hoist, *hoist_bodies_, core::Vec3{0, 0, -kG});
+  wind_areas_ = {WindArea{grab_head_, settings.grab_head_half_extents_m},
+                 WindArea{grab_lower_, settings.grab_lower_half_extents_m},
+                 WindArea{house_, settings.house_half_extents_m}};
+  last_hinge_angle_ = world.hinge_angle(slew_hinge_);
+}
+
+double MobileHarbourCrane::track_slew() {
+  // the hinge reads (-pi, pi]: add the change since the last step, unwrapped
+  const double angle = world_.hinge_angle(slew_hinge_);
+  double change = angle - last_hinge_angle_;
+  if (change > std::numbers::pi) change -= 2 * std::numbers::pi;
+  if (change < -std::numbers::pi) change += 2 * std::numbers::pi;
+  last_hinge_angle_ = angle;
+  slew_ += change;
+  return slew_;
+}
+
+double MobileHarbourCrane::boom_angle_rad() const {
+  const core::Vec3 along = world_.pose(boom_).rotation.column(0);
+  return std::atan2(along.z, std::hypot(along.x, along.y));
+}
+
+core::Vec3 MobileHarbourCrane::boom_head_m() const {
+  return world_.pose(boom_).to_parent(boom_head_in_body_m_);
+}
+
+double MobileHarbourCrane::radius_m() const {
+  const core::Vec3 head = boom_head_m();
+  return std::hypot(head.x - position_.x, head.y - position_.y);
+}
+
+double MobileHarbourCrane::hoisted_load_n() const {
+  // the falls below the boom head, their vertical share
+  double total = 0.0;
+  std::array<core::Vec3, 2> ends;
+  for (const auto& [rope, segment] : grab_falls_) {
+    hoist_->polyline(rope, segment, ends);
+    const core::Vec3 d = ends[1] - ends[0];
+    const double length = std::sqrt(dot(d, d));
+    total += hoist_->tension(rope, segment) * (length > 0 ? std::abs(d.z) / length : 1.0);
+  }
+  return total;
+}
+
+double MobileHarbourCrane::capacity_t() const {
+  const std::vector<CapacityPoint>& chart = settings_.capacity_chart;
+  const double r = radius_m();
+  if (r <= chart.front().radius_m) return chart.front().capacity_t;
+  for (std::size_t k = 1; k < chart.size(); ++k)
+    if (r <= chart[k].radius_m) {
+      const double s = (r - chart[k - 1].radius_m) / (chart[k].radius_m - chart[k - 1].radius_m);
+      return chart[k - 1].capacity_t + s * (chart[k].capacity_t - chart[k - 1].capacity_t);
+    }
+  return 0.0;  // beyond the chart nothing may hang
+}
+
+double MobileHarbourCrane::utilisation() const {
+  const double capacity = capacity_t();
+  const double load_t = limiter_load_n_ / kG / 1000.0;
+  return capacity > 0.0 ? load_t / capacity : (load_t > 0.0 ? 1e9 : 0.0);
+}
+
+double MobileHarbourCrane::grab_opening() const {
+  const double travel = settings_.grab_open_gap_m - settings_.grab_closed_gap_m;
+  return std::clamp(1.0 - world_.slider_position(grab_slider_) / travel, 0.0, 1.0);
+}
+
+PadForces MobileHarbourCrane::pad_forces_n() const {
+  // the house's load through the slewing ring (the opposite of the hinge's push on it), plus the
+  // undercarriage's own weight on the axis
+  const physics::PhysicsWorld::Wrench on_house = world_.hinge_reaction(slew_hinge_, position_);
+  return pad_forces(on_house.force.z + settings_.undercarriage_mass_kg * kG, on_house.moment * -1.0,
+                    settings_.pad_half_spread_x_m, settings_.pad_half_spread_y_m, 0.0);
+}
+
+double MobileHarbourCrane::luffing_tension_n() const {
+  return luffing_->tension(0, 1);
+}
+
+double MobileHarbourCrane::attachment_bottom_z_m() const {
+  return world_.pose(grab_lower_).position.z - settings_.grab_lower_half_extents_m.z;
+}
+
+double MobileHarbourCrane::pendulum_length_m() const {
+  return boom_head_m().z - world_.pose(grab_head_).position.z;
+}
+
+core::Vec3 MobileHarbourCrane::eye_on_cab_body_m() const {
+  return house_origin_in_body_m_ + settings_.cab_position_m + settings_.eye_m;
+}
+
+core::Pose MobileHarbourCrane::cab_pose() const {
+  const core::Pose house = world_.pose(house_);
+  return {house.rotation, house.to_parent(house_origin_in_body_m_ + settings_.cab_position_m)};
+}
+
+void MobileHarbourCrane::step(const Controls& raw, std::span<const ContainerRef>, double dt_s) {
+  const Controls c = settings_.controls.in_range(raw);
+  const auto at = [&](int slot) { return c.value[static_cast<std::size_t>(slot)]; };
+  const bool stop = at(stop_slot_) != 0.0;
+  horn_ = at(horn_slot_) != 0.0;
+
+  // slewing: a speed-controlled drive on the slewing ring's hinge
+  const DriveOutput slew = slew_drive_.step(at(slew_slot_), track_slew(), dt_s, stop);
+  world_.set_hinge_motor(slew_hinge_, slew.velocity_mps, slew.max_force_n);
+
+  // load-moment limiter on the low-passed load (the ropes' bounce filtered out): moves that raise the moment
+  // (luffing out, hoisting) slow above the chart's slow-down share and stop at the chart; a trip counts once
+  // until the moment is back below the slow-down share
+  limiter_load_n_ += (hoisted_load_n() - limiter_load_n_) * std::min(1.0, dt_s / settings_.limiter_filter_s);
+  const double u = utilisation();
+  const double allowed = std::clamp((1.0 - u) / (1.0 - settings_.limiter_slow_from), 0.0, 1.0);
+  double luff = at(luff_slot_), hoist = at(hoist_slot_);
+  const bool raising_moment = luff < 0.0 || hoist > 0.0;
+  // once stopped, the cut-off holds until the operator lets the lever back or the moment falls below the
+  // slow-down share (the load's bounce does not let the boom creep out)
+  limiter_stopping_ =
+      raising_moment && (allowed == 0.0 || (limiter_stopping_ && u >= settings_.limiter_slow_from));
+  if (limiter_stopping_) {
+    if (limiter_armed_) ++limiter_trips_;
+    limiter_armed_ = false;
+  }
+  if (u < settings_.limiter_slow_from) limiter_armed_ = true;
+  const double share = limiter_stopping_ ? 0.0 : allowed;
+  if (luff < 0.0) luff *= share;
+  if (hoist > 0.0) hoist *= share;
+
+  // luffing: rope speed to boom rate from the geometry (d rope length / d angle over the falls), the limit
+  // switches on the boom angle
+  const core::Pose house = world_.pose(house_);
+  const core::Vec3 foot = house.to_parent(house_origin_in_body_m_ + settings_.boom_foot_m);
+  const core::Vec3 raise_axis = house.rotation * core::Vec3{0, -1, 0};
+  double rope_per_rad = 0.0;
+  std::array<core::Vec3, 2> ends;
+  for (const LuffFall& fall : luff_falls_) {
+    luffing_->polyline(fall.rope, fall.segment, ends);
+    const core::Vec3 d = ends[1] - ends[0];
+    const double length = std::sqrt(dot(d, d));
+    const core::Vec3 on_boom = fall.end_on_boom ? ends[1] : ends[0];
+    const core::Vec3 moves = cross(raise_axis, on_boom - foot);
+    rope_per_rad += length > 0 ? dot(d, moves) / length * (fall.end_on_boom ? 1.0 : -1.0) : 0.0;
+  }
+  const cable::ElementSettings& luff_drum = first_drum(settings_.luffing);
+  const double per_rad = std::max(std::abs(rope_per_rad), 1.0);
+  luff = luff_limits_.limit(luff, boom_angle_rad(), luff_drum.max_rope_speed_mps / per_rad,
+                            luff_drum.max_rope_acceleration_mps2 / per_rad, dt_s);
+  const cable::DrumCommand luff_command{stop ? 0.0 : -luff, false, !stop};
+  luffing_->step(dt_s, {&luff_command, 1}, *luffing_bodies_);
+
+  // hoist and grab: both winches hoist; the closing winch alone shuts (reels in) and opens the shells
+  const cable::ElementSettings& hoist_drum = first_drum(settings_.hoist);
+  hoist = hoist_limits_.limit(hoist, world_.pose(grab_head_).position.z, hoist_drum.max_rope_speed_mps,
+                              hoist_drum.max_rope_acceleration_mps2, dt_s);
+  // the shells' end switches: the closing winch stops on its own when they are shut or fully open
+  const double travel = settings_.grab_open_gap_m - settings_.grab_closed_gap_m;
+  const double shut_rate = hoist_drum.max_rope_speed_mps / (tackle_falls_ * travel);
+  const double grab =
+      grab_limits_.limit(at(grab_slot_), 1.0 - grab_opening(), shut_rate,
+                         hoist_drum.max_rope_acceleration_mps2 / (tackle_falls_ * travel), dt_s);
+  const double close = std::clamp(hoist + grab, -1.0, 1.0);
+  const std::array<cable::DrumCommand, 2> hoist_commands{
+      cable::DrumCommand{stop ? 0.0 : -hoist, hoist_brake_fault_, !stop},
+      cable::DrumCommand{stop ? 0.0 : -close, hoist_brake_fault_, !stop}};
+  hoist_->step(dt_s, hoist_commands, *hoist_bodies_);
+
+  // outrigger pads: a pad whose share goes below zero lifts off
+  const PadForces pads = pad_forces_n();
+  const bool lifted = *std::min_element(pads.begin(), pads.end()) < 0.0;
+  if (lifted && !pad_lifted_) ++pad_lift_offs_;
+  pad_lifted_ = lifted;
+}
+
+void MobileHarbourCrane::describe(SceneDescription& d) const {
+  d.machine = kind();
+  d.entities.push_back({"undercarriage",
+                        "mhc.undercarriage",
+                        {settings_.pad_half_spread_x_m, settings_.pad_half_spread_y_m, 2.0}});
+  d.entities.push_back({"house", "mhc.house", settings_.house_half_extents_m});
+  d.entities.push_back(
+      {"boom",
+       "mhc.boom",
+       {0.5 * settings_.boom_length_m, settings_.boom_half_width_m, settings_.boom_half_width_m}});
+  d.entities.push_back({"grab head", "mhc.grab_head", settings_.grab_head_half_extents_m});
+  d.entities.push_back({"grab", "mhc.grab", settings_.grab_lower_half_extents_m});
+  d.indicators.assign(std::begin(kMhcIndicators), std::end(kMhcIndicators));
+  d.rope_count = std::min(luffing_->rope_count() + hoist_->rope_count(), kMaxRopes);
+}
+
+int MobileHarbourCrane::publish(Snapshot& s, int first) const {
+  int n = first;
+  const core::Pose undercarriage{core::Mat3::identity(), position_ + core::Vec3{0, 0, 2.0}};
+  for (const core::Pose& pose : {undercarriage, world_.pose(house_), world_.pose(boom_),
+                                 world_.pose(grab_head_), world_.pose(grab_lower_)})
+    if (n < kMaxEntities) {
+      s.entities[static_cast<std::size_t>(n)] = {static_cast<std::uint32_t>(n), 0, pose};
+      ++n;
+    }
+  publish_ropes(*luffing_, s);
+  publish_ropes(*hoist_, s);
+  const PadForces pads = pad_forces_n();
+  const double values[] = {slew_ * 180.0 / std::numbers::pi,
+                           boom_angle_rad() * 180.0 / std::numbers::pi,
+                           radius_m(),
+                           hoisted_load_n() / kG / 1000.0,
+                           capacity_t(),
+                           utilisation(),
+                           limiter_stopping_ ? 1.0 : 0.0,
+                           grab_opening(),
+                           pads[0] / 1000.0,
+                           pads[1] / 1000.0,
+                           pads[2] / 1000.0,
+                           pads[3] / 1000.0,
+                           horn_ ? 1.0 : 0.0};
+  static_assert(std::size(values) == std::size(kMhcIndicators));
+  s.indicator_count = static_cast<int>(std::size(values));
+  std::copy(std::begin(values), std::end(values), s.indicators.begin());
+  return n - first;
+}
+
+void MobileHarbourCrane::drain_events(StepEvents& events) {
+  luffing_->drain_events(events.ropes);
+  hoist_->drain_events(events.ropes);
+}
+
+void MobileHarbourCrane::inject_fault(MachineFault fault, int) {
+  if (fault == MachineFault::kHoistBrake) hoist_brake_fault_ = true;
+}
+
+void MobileHarbourCrane::hash_into(core::StateHash& hash) const {
+  luffing_->hash_into(hash);
+  hoist_->hash_into(hash);
+  hash.add(slew_drive_.reference_mps());
+  hash.add(slew_);
+  hash.add(limiter_trips_);
+  hash.add(limiter_load_n_);
+  hash.add(pad_lift_offs_);
+}
+
+void MobileHarbourCrane::save_state(core::StateWriter& out) const {
+  out.section(0x4D484331);  // "MHC1"
+  slew_drive_.save_state(out);
+  luff_limits_.save_state(out);
+  hoist_limits_.save_state(out);
+  grab_limits_.save_state(out);
+  luffing_->save_state(out);
+  hoist_->save_state(out);
+  out.put(slew_);
+  out.put(last_hinge_angle_);
+  out.put(horn_);
+  out.put(hoist_brake_fault_);
+  out.put(limiter_stopping_);
+  out.put(limiter_armed_);
+  out.put(limiter_load_n_);
+  out.put(pad_lifted_);
+  out.put(limiter_trips_);
+  out.put(pad_lift_offs_);
+}
+
+void MobileHarbourCrane::restore_state(core::StateReader& in) {
+  in.section(0x4D484331, "mobile harbour crane");
+  slew_drive_.restore_state(in);
+  luff_limits_.restore_state(in);
+  hoist_limits_.restore_state(in);
+  grab_limits_.restore_state(in);
+  luffing_->restore_state(in);
+  hoist_->restore_state(in);
+  in.get(slew_);
+  in.get(last_hinge_angle_);
+  in.get(horn_);
+  in.get(hoist_brake_fault_);
+  in.get(limiter_stopping_);
+  in.get(limiter_armed_);
+  in.get(limiter_load_n_);
+  in.get(pad_lifted_);
+  in.get(limiter_trips_);
+  in.get(pad_lift_offs_);
+}
+
+}  // namespace harbour::sim

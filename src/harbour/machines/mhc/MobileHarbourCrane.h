@@ -1,0 +1,183 @@
+#pragma once
+
+#include <array>
+#include <memory>
+#include <optional>
+#include <span>
+#include <utility>
+#include <vector>
+
+#include "harbour/bulk/Grab.h"
+#include "harbour/cable/HoistSystem.h"
+#include "harbour/machines/Machine.h"
+#include "harbour/machines/parts/Drive.h"
+#include "harbour/machines/parts/LimitSwitches.h"
+#include "harbour/machines/parts/OdeCableBodies.h"
+#include "harbour/physics/PhysicsWorld.h"
+
+namespace harbour::sim {
+
+/// The MHC cab's controls as shipped (data/machines/mhc.yaml declares the same): slew, luff, hoist and grab
+/// levers, emergency stop and horn.
+ControlTable mhc_control_table();
+
+/// One point of the load-moment limiter's capacity chart: what may hang at a radius.
+struct CapacityPoint {
+  double radius_m = 0.0;
+  double capacity_t = 0.0;
+};
+
+/// A mobile harbour crane with a 4-rope grab (settings, from data/machines/mhc.yaml). Frames: the machine's
+/// frame has its origin on the slewing axis at quay level, z up; the house's frame has its origin there too
+/// and turns with it (x towards the boom); the boom's frame has its origin at the boom head, x along the
+/// boom (from foot to head). The reevings' bodies are [house, boom] (luffing) and [house, boom, grab_head,
+/// grab_lower] (hoist), mounts given in those frames; grab bodies from their centres.
+struct MhcSettings {
+  // undercarriage on four outriggers (fixed to the quay while working)
+  double undercarriage_mass_kg = 180e3;
+  double undercarriage_com_z_m = 3.0;  ///< [m] its centre of mass above the quay, on the axis
+  double pad_half_spread_x_m = 6.5;    ///< [m] outrigger pads at (+-x, +-y) in the machine's frame
+  double pad_half_spread_y_m = 6.5;
+  // slewing house: tower, machinery, counterweight, cab (a box about its centre of mass)
+  double house_mass_kg = 190e3;
+  core::Vec3 house_com_m{-2.5, 0.0, 9.0};  ///< [m] house frame
+  core::Vec3 house_half_extents_m{5.0, 3.0, 6.0};
+  DriveSettings slew_drive;  ///< in rad, rad/s, N m (position limits unused: it turns round)
+  // boom, hinged at its foot, luffed by ropes
+  double boom_mass_kg = 40e3;
+  double boom_length_m = 48.0;             ///< [m] foot pivot to head sheaves
+  double boom_half_width_m = 1.2;          ///< [m] box section for inertia and looks
+  core::Vec3 boom_foot_m{2.0, 0.0, 14.0};  ///< [m] pivot, house frame
+  double boom_min_angle_rad = 0.26;        ///< [rad] limit switches of the luffing
+  double boom_max_angle_rad = 1.40;
+  cable::ReevingSettings luffing;  ///< one drum: reeling in raises the boom
+  // grab and its hoist: holding drum first, then closing drum
+  cable::ReevingSettings hoist;
+  double grab_head_mass_kg = 3000.0;
+  double grab_lower_mass_kg = 12000.0;  ///< [kg] shells and their hinge block
+  core::Vec3 grab_head_half_extents_m{1.0, 1.2, 0.6};
+  core::Vec3 grab_lower_half_extents_m{1.6, 1.2, 0.8};  ///< shells' box when closed
+  double grab_closed_gap_m = 1.6;  ///< [m] head centre to lower centre when the shells are shut
+  double grab_open_gap_m = 3.4;    ///< [m] ... and when they are fully open
+  bulk::GrabSettings grab;
+  double hoist_upper_limit_m = 40.0;  ///< [m] grab head centre height the upper limit switch stops
+  double hoist_lower_limit_m = -25.0;
+  // load-moment limiter
+  std::vector<CapacityPoint> capacity_chart{{12.0, 64.0}, {30.0, 64.0}, {48.0, 40.0}};
+  double limiter_slow_from = 0.9;  ///< [-] share of the chart above which moment-raising moves slow down
+  double limiter_filter_s = 0.5;   ///< [s] time constant of the load signal's low-pass (rope bounce)
+  // the cab on the tower
+  core::Vec3 cab_position_m{1.5, -2.5, 24.0};  ///< [m] house frame
+  core::Vec3 eye_m{0.3, 0.0, 0.6};             ///< [m] cab frame (x along the house's x)
+  ControlTable controls = mhc_control_table();
+};
+
+/// Where the MHC stands and how it starts.
+struct MhcStart {
+  core::Vec3 position_m;   ///< [m] slewing axis at quay level
+  double slew_rad = 0.0;   ///< house x from world x, about z
+  double boom_rad = 0.8;   ///< boom angle above horizontal
+  double grab_z_m = 10.0;  ///< [m] grab head centre height
+};
+
+/// The vertical forces on the four outrigger pads [N] (pads in order (+x,+y), (-x,+y), (-x,-y), (+x,-y) of
+/// the machine's frame), as a rigid undercarriage on four equal pad springs shares them.
+using PadForces = std::array<double, 4>;
+
+/// Shares a vertical load `down_n` and a moment `moment_nm` (about the machine's origin on the quay, world
+/// frame, x and y used) onto pads at (+-a, +-b) rotated by `yaw_rad`: equilibrium plus the least-squares
+/// (plane) share.
+PadForces pad_forces(double down_n, const core::Vec3& moment_nm, double a_m, double b_m, double yaw_rad);
+
+/// A mobile harbour crane on the physics world: the house slews on a hinge on the fixed undercarriage, the
+/// boom luffs on a hinge at its foot held by the luffing ropes, the 4-rope grab hangs on its holding and
+/// closing ropes (cable model); its shells open and shut as the closing ropes pull the lower block towards
+/// the head against the holding ropes.
+class MobileHarbourCrane final : public Machine {
+ public:
+  MobileHarbourCrane(physics::PhysicsWorld& world, const MhcSettings& settings, const MhcStart& start);
+
+  // Machine
+  const char* kind() const override { return "mhc"; }
+  const ControlTable& control_table() const override { return settings_.controls; }
+  void step(const Controls& controls, std::span<const ContainerRef> liftables, double dt_s) override;
+  std::optional<physics::BodyId> held_item() const override { return std::nullopt; }
+  double attachment_bottom_z_m() const override;
+  double pendulum_length_m() const override;
+  std::span<const WindArea> wind_areas() const override { return wind_areas_; }
+  physics::BodyId cab_body() const override { return house_; }
+  core::Vec3 eye_on_cab_body_m() const override;
+  core::Pose cab_pose() const override;
+  core::Vec3 eye_m() const override { return settings_.eye_m; }
+  void describe(SceneDescription& scene) const override;
+  int publish(Snapshot& snapshot, int entities) const override;
+  void drain_events(StepEvents& events) override;
+  bool has_fault(MachineFault fault) const override { return fault == MachineFault::kHoistBrake; }
+  void inject_fault(MachineFault fault, int detail) override;
+  void clear_faults() override { hoist_brake_fault_ = false; }
+  void hash_into(core::StateHash& hash) const override;
+  void save_state(core::StateWriter& out) const override;
+  void restore_state(core::StateReader& in) override;
+
+  /// Slew angle [rad], counted through full turns; boom angle above horizontal [rad].
+  double slew_rad() const { return slew_; }
+  double boom_angle_rad() const;
+  /// Horizontal distance from the slewing axis to the boom head's sheaves [m].
+  double radius_m() const;
+  core::Vec3 boom_head_m() const;
+  /// What hangs on the ropes below the boom head [N, vertical] and the chart's capacity at this radius [t].
+  double hoisted_load_n() const;
+  double capacity_t() const;
+  /// Load over capacity [-] (1: the chart's limit), from the limiter's filtered load signal.
+  double utilisation() const;
+  /// The limiter's load signal [N]: hoisted_load_n() low-passed over limiter_filter_s.
+  double limiter_load_n() const { return limiter_load_n_; }
+  std::uint32_t limiter_trips() const { return limiter_trips_; }
+  /// Shell opening [0 shut, 1 fully open].
+  double grab_opening() const;
+  /// Pad forces from the last physics step; lift-offs counted when a pad's force first goes below zero.
+  PadForces pad_forces_n() const;
+  std::uint32_t pad_lift_offs() const { return pad_lift_offs_; }
+  /// Tension in the luffing ropes' falls [N] (the first fall off the A-frame).
+  double luffing_tension_n() const;
+  const cable::HoistSystem& hoist() const { return *hoist_; }
+  const cable::HoistSystem& luffing() const { return *luffing_; }
+  physics::BodyId house_body() const { return house_; }
+  physics::BodyId boom_body() const { return boom_; }
+  physics::BodyId grab_head_body() const { return grab_head_; }
+  physics::BodyId grab_lower_body() const { return grab_lower_; }
+  int slew_hinge() const { return slew_hinge_; }
+  int boom_hinge() const { return boom_hinge_; }
+  const MhcSettings& settings() const { return settings_; }
+  const core::Vec3& position_m() const { return position_; }
+
+ private:
+  double track_slew();
+  physics::PhysicsWorld& world_;
+  MhcSettings settings_;
+  int slew_slot_, luff_slot_, hoist_slot_, grab_slot_, stop_slot_, horn_slot_;
+  core::Vec3 position_;
+  physics::BodyId house_, boom_, grab_head_, grab_lower_;
+  int slew_hinge_, boom_hinge_, grab_slider_;
+  Drive slew_drive_;
+  LimitSwitches luff_limits_, hoist_limits_;
+  LimitSwitches grab_limits_;  // on the shells' shut share: 0 fully open, 1 shut
+  std::unique_ptr<OdeCableBodies> luffing_bodies_, hoist_bodies_;
+  std::unique_ptr<cable::HoistSystem> luffing_, hoist_;
+  std::vector<std::pair<int, int>> grab_falls_;  // (rope, segment) from the boom head down to the grab
+  struct LuffFall {
+    int rope, segment;
+    bool end_on_boom;  // the segment's far end (towards the dead end) rides on the boom
+  };
+  std::vector<LuffFall> luff_falls_;
+  core::Vec3 house_origin_in_body_m_, boom_head_in_body_m_;
+  double slew_ = 0.0, last_hinge_angle_ = 0.0;
+  int tackle_falls_ = 1;  // closing-rope falls between the grab's head and its lower block, per rope
+  double limiter_load_n_ = 0.0;
+  bool horn_ = false, hoist_brake_fault_ = false, limiter_stopping_ = false, limiter_armed_ = true;
+  bool pad_lifted_ = false;
+  std::uint32_t limiter_trips_ = 0, pad_lift_offs_ = 0;
+  std::array<WindArea, 3> wind_areas_;
+};
+
+}  // namespace harbour::sim

@@ -1,0 +1,313 @@
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <numbers>
+
+#include "scenes/MhcScenes.h"
+
+namespace harbour::sim {
+namespace {
+
+constexpr double kG = 9.80665;
+
+Controls mhc_controls(const Simulation& sim, std::initializer_list<std::pair<const char*, double>> values) {
+  Controls c = sim.control_table().neutral();
+  for (const auto& [label, value] : values)
+    c.value[static_cast<std::size_t>(sim.control_table().find(label))] = value;
+  return c;
+}
+
+const MobileHarbourCrane& mhc(const Simulation& sim) {
+  return dynamic_cast<const MobileHarbourCrane&>(sim.machine());
+}
+
+// The statics tests damp the ropes' stretching more (it changes no static force) so the start's bounce (the
+// ropes are built unstretched) dies out in seconds.
+ScenarioSettings damped(ScenarioSettings s) {
+  auto& crane = std::get<MhcSetup>(s.machine).crane;
+  for (cable::ReevingSettings* reeving : {&crane.luffing, &crane.hoist})
+    for (cable::RopeSettings& rope : reeving->ropes)
+      rope.axial_damping_s = 0.05;
+  return s;
+}
+
+void run(Simulation& sim, double seconds, const Controls& controls) {
+  for (int k = 0; k < static_cast<int>(std::lround(seconds / Simulation::kStep_s)); ++k)
+    sim.step(controls);
+  ASSERT_FALSE(sim.diverged()) << sim.divergence();
+}
+
+// a rope segment's ends in the world
+std::array<core::Vec3, 2> ends(const cable::HoistSystem& ropes, int rope, int segment) {
+  std::array<core::Vec3, 2> e;
+  ropes.polyline(rope, segment, e);
+  return e;
+}
+
+TEST(Mhc, TheLuffingRopesCarryTheBoomsStaticMoment) {
+  // about the boom's foot: the boom's weight, the hoist ropes' pulls at the head and the ropes' own weight
+  // (half of each fall at its boom end) balance the luffing falls' pulls: predict their tension from that
+  Simulation sim(damped(scenes::mhc_on_quay(HARBOUR_DATA_DIR)));
+  const Controls neutral = sim.control_table().neutral();
+  run(sim, 15.0, neutral);
+  const MobileHarbourCrane& m = mhc(sim);
+  const MhcSettings& settings = m.settings();
+  const auto balance = [&] {
+    const core::Pose house = sim.world().pose(m.house_body());
+    const core::Vec3 foot = house.to_parent(settings.house_com_m * -1.0 + settings.boom_foot_m);
+    const core::Vec3 axis = house.rotation * core::Vec3{0, 1, 0};
+    const auto moment = [&](const core::Vec3& at, const core::Vec3& force) {
+      return dot(cross(at - foot, force), axis);
+    };
+    // pulls of the segments with an end on the boom (reeving body 1), towards their other end
+    const auto pulls_on_boom = [&](const cable::HoistSystem& ropes, const cable::ReevingSettings& reeving,
+                                   bool with_tension, double& arm_sum) {
+      double sum = 0.0;
+      for (int r = 0; r < ropes.rope_count(); ++r) {
+        const std::vector<int>& path = reeving.ropes[static_cast<std::size_t>(r)].path;
+        for (int g = 0; g < ropes.segment_count(r); ++g) {
+          const int a =
+              reeving.elements[static_cast<std::size_t>(path[static_cast<std::size_t>(g)])].mount.body;
+          const int b =
+              reeving.elements[static_cast<std::size_t>(path[static_cast<std::size_t>(g) + 1])].mount.body;
+          if ((a == 1) == (b == 1)) continue;
+          const auto [end_a, end_b] = ends(ropes, r, g);
+          const core::Vec3 on_boom = a == 1 ? end_a : end_b, other = a == 1 ? end_b : end_a;
+          const core::Vec3 d = other - on_boom;
+          const core::Vec3 u = d * (1.0 / std::sqrt(dot(d, d)));
+          const double weight = 0.5 * ropes.unstretched_length(r, g) *
+                                reeving.ropes[static_cast<std::size_t>(r)].mass_per_m_kg * kG;
+          sum += moment(on_boom, {0, 0, -weight});
+          if (with_tension)
+            sum += moment(on_boom, u * ropes.tension(r, g));
+          else
+            arm_sum += moment(on_boom, u);
+        }
+      }
+      return sum;
+    };
+    double luffing_arms = 0.0, unused = 0.0;
+    double other = moment(sim.world().pose(m.boom_body()).position, {0, 0, -settings.boom_mass_kg * kG});
+    other += pulls_on_boom(m.hoist(), settings.hoist, true, unused);
+    other += pulls_on_boom(m.luffing(), settings.luffing, false, luffing_arms);
+    const double predicted = -other / luffing_arms;
+    double measured = 0.0;
+    for (int g = 1; g <= 4; ++g)
+      measured += m.luffing().tension(0, g) / 4.0;
+    return std::pair{measured, predicted};
+  };
+  // averaged over 2 s, every step: the ropes' transverse waves swing each instant's end forces by a few %
+  double measured = 0.0, predicted = 0.0;
+  for (int k = 0; k < 2000; ++k) {
+    sim.step(neutral);
+    const auto [t, p] = balance();
+    measured += t / 2000;
+    predicted += p / 2000;
+  }
+  EXPECT_NEAR(measured, predicted, 0.02 * predicted);
+  EXPECT_GT(predicted, 1e5);  // a real load: the boom and the grab at 35 m
+}
+
+TEST(Mhc, OutriggerPadsCarryTheMachinesWeightAndBalanceItsMoment) {
+  Simulation sim(damped(scenes::mhc_on_quay(HARBOUR_DATA_DIR)));
+  run(sim, 15.0, sim.control_table().neutral());
+  const MobileHarbourCrane& m = mhc(sim);
+  const MhcSettings& settings = m.settings();
+  double weight = settings.undercarriage_mass_kg * kG, moment_y = 0.0;
+  for (const physics::BodyId body :
+       {m.house_body(), m.boom_body(), m.grab_head_body(), m.grab_lower_body()}) {
+    const double w = sim.world().mass_kg(body) * kG;
+    weight += w;
+    moment_y += w * (sim.world().pose(body).position.x - m.position_m().x);
+  }
+  // the ropes' weight, each at its segments' middles
+  for (const auto& [ropes, reeving] :
+       {std::pair{&m.luffing(), &settings.luffing}, std::pair{&m.hoist(), &settings.hoist}})
+    for (int r = 0; r < ropes->rope_count(); ++r)
+      for (int g = 0; g < ropes->segment_count(r); ++g) {
+        const auto [a, b] = ends(*ropes, r, g);
+        const double w =
+            ropes->unstretched_length(r, g) * reeving->ropes[static_cast<std::size_t>(r)].mass_per_m_kg * kG;
+        weight += w;
+        moment_y += w * (0.5 * (a.x + b.x) - m.position_m().x);
+      }
+  const PadForces pads = m.pad_forces_n();
+  double sum = 0.0, pad_moment_y = 0.0, pad_moment_x = 0.0;
+  const double sx[] = {1, -1, -1, 1}, sy[] = {1, 1, -1, -1};
+  for (std::size_t i = 0; i < 4; ++i) {
+    sum += pads[i];
+    pad_moment_y += pads[i] * sx[i] * settings.pad_half_spread_x_m;
+    pad_moment_x += pads[i] * sy[i] * settings.pad_half_spread_y_m;
+  }
+  EXPECT_NEAR(sum, weight, 0.002 * weight);
+  EXPECT_NEAR(pad_moment_y, moment_y, 0.01 * std::abs(moment_y));
+  EXPECT_NEAR(pad_moment_x, 0.0, 0.002 * std::abs(moment_y));  // the boom points along x
+  // the boom side's pads carry more, none lifts off
+  EXPECT_GT(pads[0], pads[1]);
+  EXPECT_GT(*std::min_element(pads.begin(), pads.end()), 0.0);
+  EXPECT_EQ(m.pad_lift_offs(), 0u);
+}
+
+TEST(Mhc, PadForcesShareALoadAndMomentByTheRigidPlane) {
+  // 1000 kN down, 2000 kN m about +y (the +x side pressed) on pads at +-5, +-4
+  const PadForces f = pad_forces(1e6, {0.0, 2e6, 0.0}, 5.0, 4.0, 0.0);
+  EXPECT_NEAR(f[0], 250e3 + 5.0 * 2e6 / 100.0, 1e-6);
+  EXPECT_NEAR(f[1], 250e3 - 5.0 * 2e6 / 100.0, 1e-6);
+  EXPECT_NEAR(f[2], f[1], 1e-6);
+  EXPECT_NEAR(f[3], f[0], 1e-6);
+}
+
+TEST(Mhc, SlewTorqueAcceleratesTheHouseAndBoomByTheirInertia) {
+  ScenarioSettings s = damped(scenes::mhc_on_quay(HARBOUR_DATA_DIR));
+  MhcSettings& settings = std::get<MhcSetup>(s.machine).crane;
+  settings.slew_drive.max_force_n = 1.0e6;  // [N m]: the motor saturates under the steep reference ramp
+  settings.slew_drive.acceleration_mps2 = 1.0;
+  // light ropes: the check is of the house and boom's inertia (the ropes' mass turns with them too)
+  for (cable::ReevingSettings* reeving : {&settings.luffing, &settings.hoist})
+    for (cable::RopeSettings& rope : reeving->ropes)
+      rope.mass_per_m_kg *= 0.01;
+  Simulation sim(s);
+  run(sim, 10.0, sim.control_table().neutral());
+  const MobileHarbourCrane& m = mhc(sim);
+  // the slope of the slewing rate over 0.02-0.27 s by least squares (the rate carries the ropes' vibration)
+  const Controls slew = mhc_controls(sim, {{"slew", 1.0}});
+  run(sim, 0.02, slew);
+  double st = 0, sr = 0, stt = 0, str = 0;
+  const int n = 250;
+  for (int k = 0; k < n; ++k) {
+    sim.step(slew);
+    const double t = k * Simulation::kStep_s, rate = sim.world().hinge_rate(m.slew_hinge());
+    st += t, sr += rate, stt += t * t, str += t * rate;
+  }
+  const double measured = (n * str - st * sr) / (n * stt - st * st);
+  // the inertia about the slewing axis: each body's own (its box about its centre, turned into the world)
+  // plus its mass at its distance from the axis (the grab hangs on ropes: no share in 0.25 s)
+  double inertia = 0.0;
+  for (const auto& [body, half] :
+       {std::pair{m.house_body(), settings.house_half_extents_m},
+        std::pair{m.boom_body(), core::Vec3{0.5 * settings.boom_length_m, settings.boom_half_width_m,
+                                            settings.boom_half_width_m}}}) {
+    const double mass = sim.world().mass_kg(body);
+    const core::Vec3 own{mass / 3 * (half.y * half.y + half.z * half.z),
+                         mass / 3 * (half.x * half.x + half.z * half.z),
+                         mass / 3 * (half.x * half.x + half.y * half.y)};
+    const core::Pose p = sim.world().pose(body);
+    for (int k = 0; k < 3; ++k)
+      inertia += p.rotation.m[2][k] * p.rotation.m[2][k] * (k == 0 ? own.x : k == 1 ? own.y : own.z);
+    const double dx = p.position.x - m.position_m().x, dy = p.position.y - m.position_m().y;
+    inertia += mass * (dx * dx + dy * dy);
+  }
+  EXPECT_NEAR(measured, 1.0e6 / inertia, 0.01 * 1.0e6 / inertia);
+  EXPECT_NEAR(sim.world().hinge_torque(m.slew_hinge()), 1.0e6, 1e3);
+}
+
+TEST(Mhc, TheGrabSwingsAcrossTheBoomWithThePendulumsPeriod) {
+  // across the boom the two holding ropes hang parallel: the open grab (its closing ropes slack) swings as
+  // a point on a string as long as they are
+  Simulation sim(damped(scenes::mhc_on_quay(HARBOUR_DATA_DIR)));
+  const Controls neutral = sim.control_table().neutral();
+  run(sim, 10.0, neutral);
+  const MobileHarbourCrane& m = mhc(sim);
+  auto& world = const_cast<physics::PhysicsWorld&>(sim.world());
+  for (const physics::BodyId b : {m.grab_head_body(), m.grab_lower_body()})
+    world.set_linear_velocity(b, {0.0, 0.3, 0.0});
+  const auto [sheave, anchor] = ends(m.hoist(), 0, 1);  // holding rope 1: boom head sheave to the grab
+  const double length = std::sqrt(dot(anchor - sheave, anchor - sheave));
+  std::vector<double> crossings;
+  double last = sim.world().pose(m.grab_head_body()).position.y - m.boom_head_m().y;
+  for (int k = 0; k < 40000 && crossings.size() < 7; ++k) {
+    sim.step(neutral);
+    const double y = sim.world().pose(m.grab_head_body()).position.y - m.boom_head_m().y;
+    if ((last < 0.0) != (y < 0.0)) crossings.push_back(sim.time_s());
+    last = y;
+  }
+  ASSERT_EQ(crossings.size(), 7u);
+  const double period = (crossings[6] - crossings[0]) / 3.0;
+  const double expected = 2 * std::numbers::pi * std::sqrt(length / kG);
+  EXPECT_NEAR(period, expected, 0.02 * expected);
+}
+
+TEST(Mhc, TheGrabShutsWhenTheClosingRopesReelInAndOpensWhenTheyPayOut) {
+  Simulation sim(damped(scenes::mhc_on_quay(HARBOUR_DATA_DIR)));
+  run(sim, 5.0, sim.control_table().neutral());
+  const MobileHarbourCrane& m = mhc(sim);
+  EXPECT_GT(m.grab_opening(), 0.95);
+  const double head_z = sim.world().pose(m.grab_head_body()).position.z;
+  run(sim, 6.0, mhc_controls(sim, {{"grab", 1.0}}));
+  run(sim, 2.0, sim.control_table().neutral());
+  EXPECT_LT(m.grab_opening(), 0.05);
+  // the holding winch stood and the closing winch stopped on the shut switch: the head stays where it hung
+  // (the ropes stretch a little under the shells' weight moving onto the closing ropes)
+  EXPECT_NEAR(sim.world().pose(m.grab_head_body()).position.z, head_z, 0.15);
+  run(sim, 6.0, mhc_controls(sim, {{"grab", -1.0}}));
+  run(sim, 2.0, sim.control_table().neutral());
+  EXPECT_GT(m.grab_opening(), 0.95);
+}
+
+TEST(Mhc, TheLoadMomentLimiterStopsLuffingOutBeforeTheChartIsExceeded) {
+  // 40 t shells (about 44 t under the head) at 35 m: the chart allows 57 t there and 44.5 t at 44.6 m
+  // (the grab hangs high: luffing out lowers the head by some 13 m)
+  ScenarioSettings s = damped(scenes::mhc_on_quay(HARBOUR_DATA_DIR));
+  std::get<MhcSetup>(s.machine).crane.grab_lower_mass_kg = 40000.0;
+  std::get<MhcSetup>(s.machine).start.grab_z_m = 38.0;
+  Simulation sim(s);
+  run(sim, 10.0, sim.control_table().neutral());
+  const MobileHarbourCrane& m = mhc(sim);
+  EXPECT_LT(m.utilisation(), 0.85);
+  const Controls luff_out = mhc_controls(sim, {{"luff", -1.0}});
+  double worst = 0.0;
+  for (int k = 0; k < 60000; ++k) {
+    sim.step(luff_out);
+    worst = std::max(worst, m.utilisation());
+  }
+  const double angle = m.boom_angle_rad();
+  run(sim, 5.0, luff_out);
+  EXPECT_NEAR(m.boom_angle_rad(), angle, 1e-3);  // stopped, though the lever is held out
+  EXPECT_GT(m.boom_angle_rad(), m.settings().boom_min_angle_rad + 0.05);  // by the limiter, not the switch
+  EXPECT_GT(worst, 0.97);
+  EXPECT_LT(worst, 1.02);
+  EXPECT_EQ(m.limiter_trips(), 1u);
+  // luffing in (reducing the moment) is allowed at once
+  run(sim, 3.0, mhc_controls(sim, {{"luff", 1.0}}));
+  EXPECT_GT(m.boom_angle_rad(), angle + 0.01);
+}
+
+TEST(Mhc, StepsAreAPureFunctionOfTheInputsAndKeyframesContinueBitForBit) {
+  const ScenarioSettings s = scenes::mhc_on_quay(HARBOUR_DATA_DIR);
+  const auto script = [](const Simulation& sim, std::int64_t step) {
+    const double t = static_cast<double>(step) * Simulation::kStep_s;
+    return mhc_controls(sim, {{"slew", t < 1.0 ? 0.8 : 0.0},
+                              {"luff", t < 2.0 ? -0.5 : 0.3},
+                              {"hoist", t > 1.5 ? -0.6 : 0.0},
+                              {"grab", t > 2.5 ? 1.0 : 0.0}});
+  };
+  Simulation a(s), b(s);
+  std::vector<std::uint8_t> keyframe;
+  for (std::int64_t k = 0; k < 3000; ++k) {
+    if (k == 1500) keyframe = a.save_state();
+    a.step(script(a, k));
+    b.step(script(b, k));
+  }
+  EXPECT_EQ(a.state_hash(), b.state_hash());
+  Simulation c(s);
+  c.restore_state(keyframe);
+  for (std::int64_t k = 1500; k < 3000; ++k)
+    c.step(script(c, k));
+  EXPECT_EQ(c.state_hash(), a.state_hash());
+  EXPECT_NE(mhc(a).slew_rad(), 0.0);
+}
+
+TEST(Mhc, AnInstructorFaultTheMachineLacksIsRefusedWithoutChange) {
+  Simulation sim(scenes::mhc_on_quay(HARBOUR_DATA_DIR));
+  const std::uint64_t before = sim.state_hash();
+  InstructorCommand c;
+  c.kind = InstructorCommand::Kind::kLandedSensorFault;
+  EXPECT_THROW(sim.command(c), std::invalid_argument);
+  EXPECT_EQ(sim.state_hash(), before);
+  EXPECT_THROW(static_cast<void>(sim.sts()), std::logic_error);
+  EXPECT_EQ(sim.scene().machine, "mhc");
+}
+
+}  // namespace
+}  // namespace harbour::sim
