@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
 
 #include "StsRun.h"
@@ -18,7 +19,9 @@ int take_screenshot(const ScreenshotOptions& options) {
     throw std::runtime_error("--out " + options.out + ": " + why);
   const sim::ExerciseSettings exercise = io::load_exercise(resolve_exercise(options.exercise));
   sim::Simulation simulation(exercise.scenario);
-  sim::Autopilot pilot(exercise);
+  // the autopilot drives container exercises; other machines stand at their controls' rest
+  std::optional<sim::Autopilot> pilot;
+  if (!exercise.moves.empty()) pilot.emplace(exercise);
   if (options.time_of_day_h) {
     sim::InstructorCommand c;
     c.kind = sim::InstructorCommand::Kind::kSetTimeOfDay;
@@ -38,7 +41,7 @@ int take_screenshot(const ScreenshotOptions& options) {
     simulation.command(c);
   }
   while (simulation.time_s() < options.at_s && !simulation.diverged())
-    simulation.step(pilot.next(simulation));
+    simulation.step(pilot ? pilot->next(simulation) : simulation.control_table().neutral());
   ig::Looks looks = ig::load_looks(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml");
   ig::ImageGenerator generator(simulation.scene(), std::move(looks.visuals), options.width, options.height);
   generator.use(looks);

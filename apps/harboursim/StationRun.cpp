@@ -149,6 +149,7 @@ int run_station(const StationOptions& given) {
       ig::View view;
       view.yaw_rad = c.yaw_rad;
       view.pitch_rad = c.pitch_rad;
+      view.from_sight = c.pitch_from_sight;
       view.roll_rad = c.roll_rad;
       view.fov_vertical_rad = c.fov_vertical_rad;
       view.frustum_rad = c.frustum_rad;

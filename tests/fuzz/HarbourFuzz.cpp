@@ -79,6 +79,22 @@ void step_a_while(const harbour::sim::StsCraneSettings& crane) {
     simulation.step(simulation.sts().controls(in));
 }
 
+// ... and an MHC file: 300 steps on the quay with every lever out
+void step_a_while(const harbour::sim::MhcSettings& crane) {
+  harbour::sim::ScenarioSettings scenario;
+  harbour::sim::MhcSetup mhc;
+  mhc.crane = crane;
+  mhc.start.boom_rad = 0.5 * (crane.boom_min_angle_rad + crane.boom_max_angle_rad);
+  mhc.start.grab_z_m = std::clamp(10.0, crane.hoist_lower_limit_m, crane.hoist_upper_limit_m);
+  scenario.machine = mhc;
+  harbour::sim::Simulation simulation(scenario);
+  harbour::sim::Controls in = simulation.control_table().neutral();
+  for (const char* lever : {"slew", "luff", "hoist", "grab"})
+    in.value[static_cast<std::size_t>(simulation.control_table().find(lever))] = 1.0;
+  for (int k = 0; k < 300; ++k)
+    simulation.step(in);
+}
+
 const std::map<std::string, std::function<void(const std::string&)>>& targets() {
   static const std::map<std::string, std::function<void(const std::string&)>> all = {
       {"exercise",
@@ -87,7 +103,13 @@ const std::map<std::string, std::function<void(const std::string&)>>& targets() 
        }},
       {"machine",
        [](const std::string& text) {
-         step_a_while(harbour::io::load_sts_crane(YamlFile::parse(text, "fuzz.yaml"), kData + "/machines"));
+         const YamlFile f = YamlFile::parse(text, "fuzz.yaml");
+         const YAML::Node machine = f.root().IsMap() ? f.root()["machine"] : YAML::Node();
+         const YAML::Node kind = machine.IsMap() ? machine["kind"] : YAML::Node();
+         if (kind.IsScalar() && kind.Scalar() == "mhc")
+           step_a_while(harbour::io::load_mhc(f, kData + "/machines"));
+         else
+           step_a_while(harbour::io::load_sts_crane(f, kData + "/machines"));
        }},
       {"reeving",
        [](const std::string& text) { harbour::io::load_reeving(YamlFile::parse(text, "fuzz.yaml")); }},

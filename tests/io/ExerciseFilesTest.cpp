@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <numbers>
+#include <variant>
+
 #include <chrono>
 
 #include <filesystem>
@@ -23,6 +26,32 @@ void expect_error(const std::string& from, const std::string& to, const std::str
   scenes::expect_data_error(
       text, from, to, [](const YamlFile& f) { load_exercise(f, HARBOUR_DATA_DIR "/exercises"); },
       scenes::line_of(text, from) + lines_below, field, says);
+}
+
+TEST(ExerciseFiles, AnMhcExerciseStartsTheCraneWhereItSays) {
+  const sim::ExerciseSettings e = load_exercise(HARBOUR_DATA_DIR "/exercises/mhc_free_practice.yaml");
+  const auto& mhc = std::get<sim::MhcSetup>(e.scenario.machine);
+  EXPECT_NEAR(mhc.start.boom_rad, 46.0 * std::numbers::pi / 180.0, 1e-12);
+  EXPECT_EQ(mhc.start.grab_z_m, 20.0);
+  EXPECT_TRUE(e.moves.empty());
+  EXPECT_STREQ(sim::machine_kind(e.scenario.machine), "mhc");
+}
+
+TEST(ExerciseFiles, AnExerciseTheMachineCannotDoNamesTheField) {
+  const std::string text = scenes::read_text(HARBOUR_DATA_DIR "/exercises/mhc_free_practice.yaml");
+  const auto expect = [&](const std::string& from, const std::string& to, const std::string& field,
+                          const std::string& says, int lines_below) {
+    scenes::expect_data_error(
+        text, from, to, [](const YamlFile& f) { load_exercise(f, HARBOUR_DATA_DIR "/exercises"); },
+        scenes::line_of(text, from) + lines_below, field, says);
+  };
+  expect("  quay_edge_x_m: 18.0", "  quay_edge_x_m: 18.0\n  moves:\n    - {container: X, to: truck}",
+         "exercise.moves", "not containers", 2);
+  expect("slew_deg: 0,", "gantry_y_m: 0,", "exercise.crane.slew_deg", "missing", 0);
+  expect("boom_deg: 46", "boom_deg: 5", "exercise.crane.boom_deg", "outside", 0);
+  expect("  quay_edge_x_m: 18.0",
+         "  quay_edge_x_m: 18.0\n  events:\n    - {at_s: 1, kind: landed_sensor_fault, corner: 0}",
+         "exercise.events[0].kind", "no twistlocks", 2);
 }
 
 TEST(ExerciseFiles, ShippedDischargeLoads) {

@@ -68,5 +68,46 @@ TEST(MachineFiles, UnphysicalValuesAndTyposAreRefused) {
                "machine.spreader.initial_size", "duplicate key", 1);
 }
 
+void expect_mhc_error(const std::string& from, const std::string& to, const std::string& field,
+                      const std::string& says, int lines_below = 0) {
+  const std::string text = scenes::read_text(HARBOUR_DATA_DIR "/machines/mhc.yaml");
+  scenes::expect_data_error(
+      text, from, to, [](const YamlFile& f) { load_mhc(f, HARBOUR_DATA_DIR "/machines"); },
+      scenes::line_of(text, from) + lines_below, field, says);
+}
+
+TEST(MachineFiles, ShippedMhcLoadsWithItsReevings) {
+  const sim::MhcSettings m = load_mhc(HARBOUR_DATA_DIR "/machines/mhc.yaml");
+  EXPECT_EQ(m.luffing.ropes.size(), 1u);
+  EXPECT_EQ(m.hoist.ropes.size(), 4u);
+  EXPECT_NEAR(m.boom_min_angle_rad, 15.0 * std::numbers::pi / 180.0, 1e-12);
+  ASSERT_EQ(m.capacity_chart.size(), 3u);
+  EXPECT_EQ(m.capacity_chart[2].capacity_t, 40.0);
+  EXPECT_EQ(m.controls.find("grab"), 3);
+  EXPECT_EQ(machine_file_kind(HARBOUR_DATA_DIR "/machines/mhc.yaml"), "mhc");
+}
+
+TEST(MachineFiles, BadMhcFilesNameTheField) {
+  expect_mhc_error("kind: mhc", "kind: sts", "machine.kind", "MHC file");
+  expect_mhc_error("luffing_reeving: ../reeving/boom_luffing.yaml",
+                   "luffing_reeving: ../reeving/mhc_grab.yaml", "machine.boom.luffing_reeving",
+                   "bodies must be [house, boom]");
+  expect_mhc_error("hoist_reeving: ../reeving/mhc_grab.yaml", "hoist_reeving: ../reeving/boom_luffing.yaml",
+                   "machine.grab.hoist_reeving", "bodies must be");
+  expect_mhc_error("chart: [[12.0, 64.0], [30.0, 64.0], [48.0, 40.0]]",
+                   "chart: [[12.0, 64.0], [48.0, 64.0], [30.0, 40.0]]",
+                   "machine.load_moment_limiter.chart[2]", "radii must increase");
+  expect_mhc_error("chart: [[12.0, 64.0], [30.0, 64.0], [48.0, 40.0]]", "chart: [[12.0, 64.0]]",
+                   "machine.load_moment_limiter.chart", "at least two");
+  expect_mhc_error("open_gap_m: 3.4", "open_gap_m: 1.65", "machine.grab.open_gap_m", "shells' travel");
+  expect_mhc_error("max_angle_deg: 80", "max_angle_deg: 16", "machine.boom.max_angle_deg", "must exceed");
+  expect_mhc_error("hoist_limits_m: [-25.0, 40.0]", "hoist_limits_m: [40.0, -25.0]",
+                   "machine.grab.hoist_limits_m", "above lower");
+  expect_mhc_error("    - {label: grab, kind: axis,", "    - {label: grip, kind: axis,", "machine.controls",
+                   "'grab'", -3);  // at the controls' list
+  expect_mhc_error("    mass_kg: 40000", "    mass_kg: 40000\n    mass_kg_typo: 1",
+                   "machine.boom.mass_kg_typo", "mass_kg", 1);
+}
+
 }  // namespace
 }  // namespace harbour::io

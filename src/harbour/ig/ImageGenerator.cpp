@@ -1025,7 +1025,8 @@ void ImageGenerator::place_camera() {
   const core::Pose& cab = cab_.pose;
   if (view_.kind == View::Kind::kCab && view_.off_axis) {
     // the screen is a window in front of the design eye, square to the view; the head moves the eye behind it
-    const double yaw = view_.yaw_rad, pitch = view_.pitch_rad;
+    const double yaw = view_.yaw_rad,
+                 pitch = view_.pitch_rad + (view_.from_sight ? cab_.sight_pitch_rad : 0.0);
     const core::Vec3 forward_local{std::cos(pitch) * std::cos(yaw), std::cos(pitch) * std::sin(yaw),
                                    std::sin(pitch)};
     const core::Vec3 right_local{std::sin(yaw), -std::cos(yaw), 0.0};
@@ -1052,7 +1053,8 @@ void ImageGenerator::place_camera() {
     // the eye in the cab (plus the head's offset), looking along the cab's x turned by the view's offsets
     const core::Vec3 eye = cab.to_parent(cab_.eye_m + cab_.head_offset_m);
     const double yaw = view_.yaw_rad + cab_.head_yaw_pitch_roll_rad.x,
-                 pitch = view_.pitch_rad + cab_.head_yaw_pitch_roll_rad.y;
+                 pitch = view_.pitch_rad + (view_.from_sight ? cab_.sight_pitch_rad : 0.0) +
+                         cab_.head_yaw_pitch_roll_rad.y;
     const core::Vec3 local{std::cos(pitch) * std::cos(yaw), std::cos(pitch) * std::sin(yaw), std::sin(pitch)};
     // up square to the view, then turned about it by the view's and the head's roll (positive: the right
     // side down, the picture turning anticlockwise)
@@ -1102,7 +1104,11 @@ void ImageGenerator::place_camera() {
 
 View view_named(const std::string& name) {
   View v;
-  if (name == "cab") return v;
+  if (name == "cab") {
+    v.from_sight = true;  // along the machine's design line of sight
+    v.pitch_rad = 0.0;
+    return v;
+  }
   v.kind = name == "chase" ? View::Kind::kChase : name == "free" ? View::Kind::kFree : View::Kind::kEntity;
   if (v.kind == View::Kind::kFree) v.pitch_rad = -0.35, v.yaw_rad = 0.9;  // over the quay towards the crane
   if (v.kind == View::Kind::kEntity) v.camera = name;

@@ -71,7 +71,27 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
     sts.spreader_z_m =
         f.number(crane, "spreader_z_m", "exercise.crane", 0.0, sts.crane.trolley_rail_height_m - 2.0, true);
     s.machine = std::move(sts);
+  } else {
+    // the MHC stands on its outriggers on the quay
+    sim::MhcSetup mhc;
+    mhc.crane = load_mhc(machine_path);
+    const std::string at = "exercise.crane";
+    mhc.start.position_m = f.vector3(f.required(crane, "position_m", at), at + ".position_m", kSite_m);
+    mhc.start.slew_rad = core::deg_to_rad(f.number(crane, "slew_deg", at, -360.0, 360.0));
+    mhc.start.boom_rad =
+        core::deg_to_rad(f.number(crane, "boom_deg", at, core::rad_to_deg(mhc.crane.boom_min_angle_rad),
+                                  core::rad_to_deg(mhc.crane.boom_max_angle_rad)));
+    mhc.start.grab_z_m =
+        f.number(crane, "grab_z_m", at, mhc.crane.hoist_lower_limit_m, mhc.crane.hoist_upper_limit_m);
+    s.machine = std::move(mhc);
   }
+  // container exercises (the STS); the MHC's grab handles bulk
+  const bool handles_containers = machine_kind == "sts";
+  if (!handles_containers)
+    for (const char* key : {"containers", "moves"})
+      if (f.optional(x, key, "exercise"))
+        f.fail(x[key], std::string("exercise.") + key,
+               "the " + machine_kind + " handles bulk with its grab, not containers");
 
   std::optional<sim::VesselGeometry> vessel;
   std::vector<sim::ContainerPlacement> hatch_covers;  // listed after the containers
@@ -130,7 +150,8 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
     }
   }
 
-  const YAML::Node containers = f.sequence(x, "containers", "exercise", kMaxContainers);
+  const YAML::Node containers = handles_containers ? f.sequence(x, "containers", "exercise", kMaxContainers)
+                                                   : YAML::Node(YAML::NodeType::Sequence);
   std::map<std::string, std::size_t> container_index;  // by id
   struct Stowed {                                      // a box given by its slot on the vessel
     std::size_t index;
@@ -249,7 +270,8 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
     s.containers.push_back(cover);
   }
 
-  const YAML::Node moves = f.sequence(x, "moves", "exercise", kMaxMoves);
+  const YAML::Node moves = handles_containers ? f.sequence(x, "moves", "exercise", kMaxMoves)
+                                              : YAML::Node(YAML::NodeType::Sequence);
   std::map<std::string, std::size_t> moved;  // container id -> the move that takes it
   for (std::size_t n = 0; n < moves.size(); ++n) {
     const std::string at = item("exercise.moves", n);
@@ -274,7 +296,8 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
     g.tolerance_m = f.number_or(moves[n], "tolerance_m", at, g.tolerance_m, 0.0, 5.0, true);
     e.moves.push_back(g);
   }
-  if (e.moves.empty()) f.fail(moves, "exercise.moves", "an exercise needs at least one move");
+  if (handles_containers && e.moves.empty())
+    f.fail(moves, "exercise.moves", "an exercise needs at least one move");
 
   if (const auto w_node = f.optional_map(x, "weather", "exercise")) {
     const YAML::Node& w = *w_node;
@@ -305,6 +328,8 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
       } else if (kind == "hoist_brake_fault") {
         event.kind = sim::ScriptedEvent::Kind::kHoistBrakeFault;
       } else if (kind == "landed_sensor_fault") {
+        if (!handles_containers)
+          f.fail(ev["kind"], at + ".kind", "the " + machine_kind + " has no twistlocks to fail");
         event.kind = sim::ScriptedEvent::Kind::kLandedSensorFault;
         event.corner = f.integer(ev, "corner", at, 0, 3);
       } else {

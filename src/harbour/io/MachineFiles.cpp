@@ -1,6 +1,7 @@
 #include "harbour/io/MachineFiles.h"
 
 #include <filesystem>
+#include <numbers>
 #include <stdexcept>
 
 #include "harbour/core/Units.h"
@@ -15,7 +16,9 @@ namespace {
 constexpr double kMaxForce_n = 1e8;  ///< [N] 10 000 t: above any crane drive or brake
 constexpr double kRails_m = 2000.0;  ///< [m] a quay's rails and a trolley's girder lie within this
 
-sim::DriveSettings read_drive(const YamlFile& f, const YAML::Node& parent, const std::string& at) {
+// `turns`: a rotary axis without end switches (slewing): no positions read
+sim::DriveSettings read_drive(const YamlFile& f, const YAML::Node& parent, const std::string& at,
+                              bool turns = false) {
   const YAML::Node d = f.required(parent, "drive", at);
   const std::string p = at + ".drive";
   sim::DriveSettings s;
@@ -25,6 +28,7 @@ sim::DriveSettings read_drive(const YamlFile& f, const YAML::Node& parent, const
   s.emergency_deceleration_mps2 = f.number(d, "emergency_deceleration_mps2", p, 0.0, 100.0, true);
   s.max_force_n = f.number(d, "max_force_n", p, 0.0, kMaxForce_n, true);
   s.brake_force_n = f.number(d, "brake_force_n", p, 0.0, kMaxForce_n, true);
+  if (turns) return s;
   s.min_position_m = f.number(d, "min_position_m", p, -kRails_m, kRails_m);
   s.max_position_m = f.number(d, "max_position_m", p, -kRails_m, kRails_m);
   if (s.max_position_m <= s.min_position_m)
@@ -151,10 +155,164 @@ sim::StsCraneSettings read_sts_crane(const YamlFile& f, const std::string& folde
   const YAML::Node cab = f.required_map(m, "cab", "machine");
   s.cab_position_m = f.vector3(f.required(cab, "position_m", "machine.cab"), "machine.cab.position_m", 100.0);
   s.eye_m = f.vector3(f.required(cab, "eye_m", "machine.cab"), "machine.cab.eye_m", 5.0);
+  s.sight_pitch_rad = core::deg_to_rad(f.number(cab, "sight_pitch_deg", "machine.cab", -90.0, 30.0));
+  return s;
+}
+
+cable::ReevingSettings read_reeving_file(const YamlFile& f, const YAML::Node& map, const std::string& key,
+                                         const std::string& at, const std::string& folder,
+                                         const std::vector<std::string>& bodies, int drums) {
+  const std::string file = f.text(map, key, at);
+  const std::string path = (std::filesystem::path(folder) / file).lexically_normal().string();
+  if (!std::filesystem::is_regular_file(path)) f.fail(map[key], at + "." + key, "no such file: " + path);
+  const ReevingFile reeving = load_reeving(path);
+  if (reeving.bodies != bodies) {
+    std::string list;
+    for (const std::string& b : bodies)
+      list += (list.empty() ? "" : ", ") + b;
+    f.fail(map[key], at + "." + key, "the reeving's bodies must be [" + list + "]");
+  }
+  int found = 0;
+  for (const cable::ElementSettings& e : reeving.reeving.elements)
+    found += e.kind == cable::ElementKind::kDrum ? 1 : 0;
+  if (found != drums)
+    f.fail(map[key], at + "." + key,
+           "needs " + std::to_string(drums) + " drum(s); the reeving has " + std::to_string(found));
+  return reeving.reeving;
+}
+
+// every rope of the reeving passes a mount on `body` (reeving body index)
+void check_ropes_pass(const YamlFile& f, const YAML::Node& at, const std::string& field,
+                      const cable::ReevingSettings& r, int body, const std::string& what) {
+  for (const cable::RopeSettings& rope : r.ropes) {
+    bool passes = false;
+    for (const int e : rope.path)
+      passes |= r.elements[static_cast<std::size_t>(e)].mount.body == body;
+    if (!passes) f.fail(at, field, "rope '" + rope.name + "' " + what);
+  }
+}
+
+sim::MhcSettings read_mhc(const YamlFile& f, const std::string& folder) {
+  sim::MhcSettings s;
+  const YAML::Node m = f.required_map(f.root(), "machine", "");
+  if (const std::string kind = f.text(m, "kind", "machine"); kind != "mhc")
+    f.fail(m["kind"], "machine.kind", "this is an MHC file (kind: mhc), not a '" + kind + "'");
+  f.text(m, "name", "machine");
+
+  const YAML::Node u = f.required_map(m, "undercarriage", "machine");
+  s.undercarriage_mass_kg = f.number(u, "mass_kg", "machine.undercarriage", 1e4, 5e6);
+  s.undercarriage_com_z_m = f.number(u, "com_z_m", "machine.undercarriage", 0.0, 20.0);
+  s.pad_half_spread_x_m = f.number(u, "pad_half_spread_x_m", "machine.undercarriage", 1.0, 50.0);
+  s.pad_half_spread_y_m = f.number(u, "pad_half_spread_y_m", "machine.undercarriage", 1.0, 50.0);
+
+  const YAML::Node h = f.required_map(m, "house", "machine");
+  s.house_mass_kg = f.number(h, "mass_kg", "machine.house", 1e4, 5e6);
+  s.house_com_m = f.vector3(f.required(h, "com_m", "machine.house"), "machine.house.com_m", 50.0);
+  s.house_half_extents_m =
+      f.vector3(f.required(h, "half_extents_m", "machine.house"), "machine.house.half_extents_m", 50.0);
+  if (!(s.house_half_extents_m.x > 0.1 && s.house_half_extents_m.y > 0.1 && s.house_half_extents_m.z > 0.1))
+    f.fail(h["half_extents_m"], "machine.house.half_extents_m", "must be over 0.1 m each");
+  s.slew_drive = read_drive(f, f.required_map(h, "slew", "machine.house"), "machine.house.slew", true);
+
+  const YAML::Node b = f.required_map(m, "boom", "machine");
+  s.boom_mass_kg = f.number(b, "mass_kg", "machine.boom", 1e3, 1e6);
+  s.boom_length_m = f.number(b, "length_m", "machine.boom", 5.0, 150.0);
+  s.boom_half_width_m = f.number(b, "half_width_m", "machine.boom", 0.1, 10.0);
+  s.boom_foot_m = f.vector3(f.required(b, "foot_m", "machine.boom"), "machine.boom.foot_m", 50.0);
+  s.boom_min_angle_rad = f.number(b, "min_angle_deg", "machine.boom", 0.0, 85.0) * std::numbers::pi / 180.0;
+  s.boom_max_angle_rad = f.number(b, "max_angle_deg", "machine.boom", 0.0, 89.0) * std::numbers::pi / 180.0;
+  if (s.boom_max_angle_rad <= s.boom_min_angle_rad + 0.05)
+    f.fail(b["max_angle_deg"], "machine.boom.max_angle_deg", "must exceed min_angle_deg by 3 degrees");
+  // luffing: [house, boom], one drum, every rope reaching the boom (it holds it up)
+  s.luffing = read_reeving_file(f, b, "luffing_reeving", "machine.boom", folder, {"house", "boom"}, 1);
+  check_ropes_pass(f, b["luffing_reeving"], "machine.boom.luffing_reeving", s.luffing, 1,
+                   "passes nothing on the boom, so it cannot hold it");
+
+  const YAML::Node g = f.required_map(m, "grab", "machine");
+  const std::string at = "machine.grab";
+  // hoist: [house, boom, grab_head, grab_lower], the holding drum then the closing drum, every rope over the
+  // boom head
+  s.hoist =
+      read_reeving_file(f, g, "hoist_reeving", at, folder, {"house", "boom", "grab_head", "grab_lower"}, 2);
+  check_ropes_pass(f, g["hoist_reeving"], at + ".hoist_reeving", s.hoist, 1,
+                   "passes nothing on the boom head, so it cannot carry the grab");
+  s.grab_head_mass_kg = f.number(g, "head_mass_kg", at, 100.0, 1e5);
+  s.grab_lower_mass_kg = f.number(g, "lower_mass_kg", at, 100.0, 2e5);
+  s.grab_head_half_extents_m =
+      f.vector3(f.required(g, "head_half_extents_m", at), at + ".head_half_extents_m", 5.0);
+  s.grab_lower_half_extents_m =
+      f.vector3(f.required(g, "lower_half_extents_m", at), at + ".lower_half_extents_m", 5.0);
+  for (const auto& [half, key] : {std::pair{s.grab_head_half_extents_m, "head_half_extents_m"},
+                                  std::pair{s.grab_lower_half_extents_m, "lower_half_extents_m"}})
+    if (!(half.x >= 0.1 && half.y >= 0.1 && half.z >= 0.1))
+      f.fail(g[key], at + "." + key, "must be at least 0.1 m each");
+  s.grab_closed_gap_m = f.number(g, "closed_gap_m", at, 0.1, 10.0);
+  s.grab_open_gap_m = f.number(g, "open_gap_m", at, 0.1, 10.0);
+  if (s.grab_open_gap_m < s.grab_closed_gap_m + 0.2)
+    f.fail(g["open_gap_m"], at + ".open_gap_m", "must exceed closed_gap_m by 0.2 m (the shells' travel)");
+  s.grab.width_m = f.number(g, "width_m", at, 0.5, 10.0);
+  s.grab.max_opening_m = f.number(g, "max_opening_m", at, 0.5, 15.0);
+  s.grab.capacity_m3 = f.number(g, "capacity_m3", at, 0.5, 100.0);
+  const YAML::Node limits = f.required(g, "hoist_limits_m", at);
+  if (!limits.IsSequence() || limits.size() != 2)
+    f.fail(limits, at + ".hoist_limits_m", "is [lower, upper] in metres");
+  s.hoist_lower_limit_m = f.number_at(limits[0], at + ".hoist_limits_m[0]");
+  s.hoist_upper_limit_m = f.number_at(limits[1], at + ".hoist_limits_m[1]");
+  if (!(s.hoist_lower_limit_m >= -100.0 && s.hoist_upper_limit_m <= 200.0 &&
+        s.hoist_upper_limit_m > s.hoist_lower_limit_m + 1.0))
+    f.fail(limits, at + ".hoist_limits_m", "lower >= -100, upper <= 200 and 1 m above lower");
+
+  const YAML::Node l = f.required_map(m, "load_moment_limiter", "machine");
+  const std::string lat = "machine.load_moment_limiter";
+  const YAML::Node chart = f.sequence(l, "chart", lat, 100);
+  if (chart.size() < 2)
+    f.fail(l["chart"], lat + ".chart", "needs at least two [radius m, capacity t] points");
+  s.capacity_chart.clear();
+  for (std::size_t n = 0; n < chart.size(); ++n) {
+    const std::string p = lat + ".chart[" + std::to_string(n) + "]";
+    if (!chart[n].IsSequence() || chart[n].size() != 2) f.fail(chart[n], p, "is [radius m, capacity t]");
+    const sim::CapacityPoint point{f.number_at(chart[n][0], p + "[0]"), f.number_at(chart[n][1], p + "[1]")};
+    if (!(point.radius_m > 0.0 && point.radius_m < 200.0 && point.capacity_t > 0.0 &&
+          point.capacity_t < 1000.0))
+      f.fail(chart[n], p, "radius 0-200 m, capacity 0-1000 t");
+    if (!s.capacity_chart.empty() && point.radius_m <= s.capacity_chart.back().radius_m)
+      f.fail(chart[n], p, "radii must increase down the chart");
+    s.capacity_chart.push_back(point);
+  }
+  s.limiter_slow_from = f.number(l, "slow_from", lat, 0.5, 1.0, false, true);
+  s.limiter_filter_s = f.number(l, "filter_s", lat, 0.0, 10.0, true);
+
+  const YAML::Node cab = f.required_map(m, "cab", "machine");
+  s.cab_position_m = f.vector3(f.required(cab, "position_m", "machine.cab"), "machine.cab.position_m", 100.0);
+  s.eye_m = f.vector3(f.required(cab, "eye_m", "machine.cab"), "machine.cab.eye_m", 5.0);
+  s.sight_pitch_rad = core::deg_to_rad(f.number(cab, "sight_pitch_deg", "machine.cab", -90.0, 30.0));
+  s.controls = read_control_table(f, m, "machine");
+  for (const auto& [label, kind] : {std::pair{"slew", sim::ControlKind::kAxis},
+                                    {"luff", sim::ControlKind::kAxis},
+                                    {"hoist", sim::ControlKind::kAxis},
+                                    {"grab", sim::ControlKind::kAxis},
+                                    {"emergency_stop", sim::ControlKind::kButton},
+                                    {"horn", sim::ControlKind::kButton}}) {
+    try {
+      s.controls.slot(label, kind);
+    } catch (const std::invalid_argument& e) {
+      f.fail(m["controls"], "machine.controls", e.what());
+    }
+  }
   return s;
 }
 
 }  // namespace
+
+sim::MhcSettings load_mhc(const YamlFile& f, const std::string& folder) {
+  sim::MhcSettings s = read_mhc(f, folder);
+  f.check_unknown_keys();
+  return s;
+}
+
+sim::MhcSettings load_mhc(const std::string& path) {
+  return load_mhc(YamlFile::load(path), std::filesystem::path(path).parent_path().string());
+}
 
 sim::StsCraneSettings load_sts_crane(const YamlFile& f, const std::string& folder) {
   sim::StsCraneSettings s = read_sts_crane(f, folder);
@@ -170,7 +328,8 @@ std::string machine_file_kind(const std::string& path) {
   const YamlFile f = YamlFile::load(path);
   const YAML::Node m = f.required_map(f.root(), "machine", "");
   const std::string kind = f.text(m, "kind", "machine");
-  if (kind != "sts") f.fail(m["kind"], "machine.kind", "a machine is one of: sts (not '" + kind + "')");
+  if (kind != "sts" && kind != "mhc")
+    f.fail(m["kind"], "machine.kind", "a machine is one of: sts, mhc (not '" + kind + "')");
   return kind;
 }
 

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "harbour/io/YamlFile.h"
+#include "harbour/machines/mhc/MobileHarbourCrane.h"
 #include "harbour/machines/sts/StsCrane.h"
 
 namespace harbour::io {
@@ -11,7 +12,10 @@ namespace harbour::io {
 /// machine file's folder).
 sim::StsCraneSettings load_sts_crane(const YamlFile& file, const std::string& folder);
 sim::StsCraneSettings load_sts_crane(const std::string& path);
-/// The kind a machine file declares (`machine.kind`: sts, ...); throws DataError naming the field.
+/// Reads a mobile harbour crane file (data/machines/mhc.yaml) and the luffing and hoist reevings it names.
+sim::MhcSettings load_mhc(const YamlFile& file, const std::string& folder);
+sim::MhcSettings load_mhc(const std::string& path);
+/// The kind a machine file declares (`machine.kind`: sts, mhc); throws DataError naming the field.
 std::string machine_file_kind(const std::string& path);
 
 }  // namespace harbour::io

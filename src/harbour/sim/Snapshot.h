@@ -72,6 +72,7 @@ struct Snapshot {
   struct Cab {
     core::Pose pose;                 ///< cab frame in the world
     core::Vec3 eye_m;                ///< [m] design eye point, cab frame
+    double sight_pitch_rad = 0.0;    ///< the design line of sight above the cab's x axis (negative: down)
     core::Vec3 specific_force_mps2;  ///< [m/s^2] acceleration minus gravity at the head (1 g up at rest)
     core::Vec3 angular_velocity_radps;
     /// Head tracking (the station fills these): the eye's offset from the design eye point [m, cab frame]

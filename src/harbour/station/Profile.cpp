@@ -55,7 +55,9 @@ Profile load_profile(const std::string& path) {
     c.fullscreen = f.flag(d, "fullscreen", at, false);
     const YAML::Node view = f.required_map(d, "view", at);
     c.yaw_rad = f.number(view, "yaw_deg", at + ".view", -180.0, 180.0) * kDeg;
-    c.pitch_rad = f.number(view, "pitch_deg", at + ".view", -90.0, 90.0) * kDeg;
+    // without a pitch the channel looks along the machine's design line of sight (a desktop monitor)
+    c.pitch_from_sight = !f.optional(view, "pitch_deg", at + ".view").has_value();
+    c.pitch_rad = c.pitch_from_sight ? 0.0 : f.number(view, "pitch_deg", at + ".view", -90.0, 90.0) * kDeg;
     c.roll_rad = f.number(view, "roll_deg", at + ".view", -180.0, 180.0) * kDeg;
     const YAML::Node fov = f.required_map(d, "fov", at);
     if (f.optional(fov, "left_deg", at + ".fov")) {

@@ -9,13 +9,13 @@
 
 #include "harbour/cable/HoistSystem.h"
 #include "harbour/machines/Machine.h"
-#include "harbour/physics/PhysicsWorld.h"
-#include "harbour/sim/Controls.h"
 #include "harbour/machines/parts/Drive.h"
 #include "harbour/machines/parts/LimitSwitches.h"
 #include "harbour/machines/parts/OdeCableBodies.h"
 #include "harbour/machines/parts/Spreader.h"
 #include "harbour/machines/parts/Twistlocks.h"
+#include "harbour/physics/PhysicsWorld.h"
+#include "harbour/sim/Controls.h"
 
 namespace harbour::sim {
 
@@ -52,6 +52,7 @@ struct StsCraneSettings {
   /// point in the cab's frame (x waterside, the way the operator faces; z up) [m].
   core::Vec3 cab_position_m{3.0, 0.0, -3.5};
   core::Vec3 eye_m{0.3, 0.0, 0.6};
+  double sight_pitch_rad = -1.3;  ///< the operator looks down through the cab's floor onto the spreader
 };
 
 /// The operator's controls, normalised (cab joysticks and buttons).
@@ -135,6 +136,7 @@ class StsCrane final : public Machine {
   /// The cab's frame in the world (it rides on the trolley) and its design eye point in that frame.
   core::Pose cab_pose() const override;
   core::Vec3 eye_m() const override { return settings_.eye_m; }
+  double sight_pitch_rad() const override { return settings_.sight_pitch_rad; }
   /// The container locked to the spreader, if any.
   std::optional<physics::BodyId> locked_container() const { return locked_container_; }
   TwistlockLamps lamps() const { return twistlocks_.lamps(); }
