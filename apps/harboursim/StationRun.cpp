@@ -43,12 +43,16 @@ std::optional<double> indicator(const sim::SceneDescription& scene, const sim::S
   return std::nullopt;
 }
 
-// the first mapping of the profile whose devices are all here
+// the first mapping of the profile that fits the machine's controls and whose devices are all here
 std::unique_ptr<station::DeviceInput> open_devices(const station::Profile& profile,
                                                    const sim::ControlTable& table, bool window) {
   station::init_sdl_joysticks();
   std::string tried;
   for (const std::string& file : profile.mappings) {
+    if (const std::string why = station::why_mapping_does_not_fit(file, table); !why.empty()) {
+      tried += "\n  " + file + ": for another machine (" + why + ")";
+      continue;
+    }
     station::DeviceMapping mapping = station::load_device_mapping(file, table);
     if (station::DeviceInput::all_present(mapping, window)) {
       std::printf("input: %s (%s)\n", mapping.name.c_str(), file.c_str());

@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "harbour/io/DataError.h"
+#include "harbour/io/MachineFiles.h"
 #include "harbour/machines/sts/StsCrane.h"
 #include "harbour/station/DeviceMappingFile.h"
 
@@ -206,18 +207,14 @@ TEST(DeviceMapping, BadMappingsNameFileLineAndField) {
 
 TEST(DeviceMapping, EveryShippedMappingLoadsAndWritesBackTheSame) {
   const sim::ControlTable sts = sim::sts_control_table();
-  using K = sim::ControlKind;
-  // the slewing machines' labels (their machine files come with them)
-  const sim::ControlTable slewing({{"slew", K::kAxis, -1, 1, {}, 0, 0, ""},
-                                   {"luff", K::kAxis, -1, 1, {}, 0, 0, ""},
-                                   {"hoist", K::kAxis, -1, 1, {}, 0, 0, ""},
-                                   {"grab_close", K::kAxis, -1, 1, {}, 0, 0, ""},
-                                   {"horn", K::kButton, 0, 1, {}, 0, 0, ""},
-                                   {"emergency_stop", K::kButton, 0, 1, {}, 0, 0, ""}});
+  // the slewing machines' controls: the shipped MHC's
+  const sim::ControlTable slewing = io::load_mhc(HARBOUR_DATA_DIR "/machines/mhc.yaml").controls;
   int files = 0;
   for (const auto& entry : std::filesystem::directory_iterator(std::string(HARBOUR_DATA_DIR) + "/devices")) {
     const std::string path = entry.path().string();
-    const bool lever = entry.path().filename().string().rfind("levers_", 0) == 0;
+    // each fits one machine: the profiles skip those for another
+    const bool lever = why_mapping_does_not_fit(path, slewing).empty();
+    EXPECT_NE(why_mapping_does_not_fit(path, lever ? sts : slewing), "") << path;
     const DeviceMapping m = load_device_mapping(path, lever ? slewing : sts);
     EXPECT_FALSE(m.bindings.empty()) << path;
     // what `harboursim devices` writes reads back to the same bindings
@@ -233,7 +230,7 @@ TEST(DeviceMapping, EveryShippedMappingLoadsAndWritesBackTheSame) {
     }
     ++files;
   }
-  EXPECT_EQ(files, 5);  // keyboard.yaml includes the mouse
+  EXPECT_EQ(files, 6);  // keyboard.yaml includes the mouse
 }
 
 }  // namespace

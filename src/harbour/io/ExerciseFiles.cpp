@@ -88,7 +88,7 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
   // container exercises (the STS); the MHC's grab handles bulk
   const bool handles_containers = machine_kind == "sts";
   if (!handles_containers)
-    for (const char* key : {"containers", "moves"})
+    for (const char* key : {"containers", "moves", "trucks"})
       if (f.optional(x, key, "exercise"))
         f.fail(x[key], std::string("exercise.") + key,
                "the " + machine_kind + " handles bulk with its grab, not containers");

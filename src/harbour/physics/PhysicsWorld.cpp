@@ -484,6 +484,11 @@ void PhysicsWorld::set_position(BodyId body, const Vec3& p) {
   const Vec3 com = p - ode_->world_offset(body);
   dBodySetPosition(ode_->bodies[body].id, com.x, com.y, com.z);
 }
+void PhysicsWorld::stop_body(BodyId body) {
+  dBodySetLinearVel(ode_->bodies[body].id, 0.0, 0.0, 0.0);
+  dBodySetAngularVel(ode_->bodies[body].id, 0.0, 0.0, 0.0);
+}
+
 void PhysicsWorld::set_linear_velocity(BodyId body, const Vec3& v) {
   const dBodyID b = ode_->bodies[body].id;
   const Vec3 com = v - cross(to_vec(dBodyGetAngularVel(b)), ode_->world_offset(body));

@@ -139,6 +139,8 @@ class PhysicsWorld {
   void add_force_at(BodyId body, const core::Vec3& world_point, const core::Vec3& force);
   void set_position(BodyId body, const core::Vec3& position);
   void set_linear_velocity(BodyId body, const core::Vec3& velocity);
+  /// Stops a body: no linear or angular velocity.
+  void stop_body(BodyId body);
 
   /// Collides, steps the world by `dt_s` with dWorldStep, and clears contacts and forces. A world whose state
   /// or applied forces are not finite or run away (diverged()) is not stepped: ODE is never handed a state

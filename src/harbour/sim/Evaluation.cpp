@@ -73,10 +73,29 @@ void Evaluator::count_collision(const physics::ImpactEvent& e) {
 }
 
 void Evaluator::observe(const Simulation& simulation, const Controls& controls) {
-  const StsControls cab = simulation.sts().read(controls);
-  const EvaluationRules& rules = exercise_.rules;
-  const StsCrane& crane = simulation.sts();
   metrics_.time_s = simulation.time_s();
+  if (const auto* sts = dynamic_cast<const StsCrane*>(&simulation.machine()))
+    observe_containers(simulation, controls, *sts);
+  else
+    observe_any_machine(simulation, controls);
+}
+
+void Evaluator::observe_any_machine(const Simulation& simulation, const Controls& controls) {
+  // what every machine shows: its impacts, rope overloads and emergency stops (the MHC's own metrics come with
+  // its bulk exercises)
+  for (const physics::ImpactEvent& e : simulation.events().impacts)
+    if (e.normal_speed_mps >= exercise_.rules.collision_speed_mps) count_collision(e);
+  for (const cable::CableEvent& e : simulation.events().ropes)
+    if (e.kind == cable::CableEventKind::kOverload) ++metrics_.overloads;
+  const int stop = simulation.control_table().find("emergency_stop");
+  const bool estop = stop >= 0 && controls.value[static_cast<std::size_t>(stop)] != 0.0;
+  if (estop && !was_estop_) ++metrics_.emergency_stops;
+  was_estop_ = estop;
+}
+
+void Evaluator::observe_containers(const Simulation& simulation, const Controls& controls, const StsCrane& crane) {
+  const StsControls cab = crane.read(controls);
+  const EvaluationRules& rules = exercise_.rules;
   const physics::BodyId spreader = crane.spreader_body();
 
   // impacts: landings (spreader onto a container, a carried container onto anything) or collisions

@@ -100,12 +100,16 @@ class Evaluator {
 
   /// Call after every simulation step with the inputs that drove it.
   void observe(const Simulation& simulation, const Controls& controls);
-  /// All goals done.
-  bool finished() const { return metrics_.moves_completed == static_cast<int>(exercise_.moves.size()); }
+  /// All goals done (an exercise without goals, a free practice, runs to its time limit and overtime).
+  bool finished() const {
+    return !exercise_.moves.empty() && metrics_.moves_completed == static_cast<int>(exercise_.moves.size());
+  }
   const Metrics& metrics() const { return metrics_; }
   Score score() const;
 
  private:
+  void observe_containers(const Simulation& simulation, const Controls& controls, const StsCrane& crane);
+  void observe_any_machine(const Simulation& simulation, const Controls& controls);
   int goal_of(physics::BodyId body, const Simulation& simulation) const;
   double sway_m(const Simulation& simulation, std::optional<physics::BodyId> hanging_box) const;
   bool near_target(physics::BodyId box, const Simulation& simulation) const;

@@ -228,4 +228,18 @@ std::string device_mapping_text(const DeviceMapping& m) {
   return out.str();
 }
 
+std::string why_mapping_does_not_fit(const std::string& path, const sim::ControlTable& table) {
+  try {
+    const io::YamlFile f = io::YamlFile::load(path);
+    const YAML::Node bindings = f.root()["mapping"]["bindings"];
+    if (!bindings.IsSequence()) return {};
+    for (const YAML::Node& b : bindings)
+      if (b.IsMap() && b["control"].IsScalar() && table.find(b["control"].Scalar()) < 0)
+        return "no control '" + b["control"].Scalar() + "'";
+  } catch (const std::exception&) {
+    // a broken file: the loader names the line and field
+  }
+  return {};
+}
+
 }  // namespace harbour::station

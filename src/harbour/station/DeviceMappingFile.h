@@ -11,6 +11,9 @@ namespace harbour::station {
 /// control must be one of its labels and fit its kind. Errors (io::DataError) name file, line and field.
 DeviceMapping load_device_mapping(const io::YamlFile& file, const sim::ControlTable& table);
 DeviceMapping load_device_mapping(const std::string& path, const sim::ControlTable& table);
+/// Why the mapping at `path` is for another machine: the first control it binds that `table` lacks ("" when
+/// it binds only the machine's controls, or when the file is broken: load_device_mapping says how).
+std::string why_mapping_does_not_fit(const std::string& path, const sim::ControlTable& table);
 
 /// The mapping as a file load_device_mapping reads back (what `harboursim devices` writes).
 std::string device_mapping_text(const DeviceMapping& mapping);

@@ -160,6 +160,39 @@ MobileHarbourCrane::MobileHarbourCrane(physics::PhysicsWorld& world, const MhcSe
                  WindArea{grab_lower_, settings.grab_lower_half_extents_m},
                  WindArea{house_, settings.house_half_extents_m}};
   last_hinge_angle_ = world.hinge_angle(slew_hinge_);
+  settle();
+}
+
+void MobileHarbourCrane::settle() {
+  // dynamic relaxation with kinetic damping: step the machine at rest (drums braked), and each time its
+  // bodies' kinetic energy passes a peak stop them all; the ropes stretch to their static load in a few
+  // bounces instead of the grab and boom dropping on unstretched ropes when the exercise starts
+  const std::array<physics::BodyId, 4> bodies{house_, boom_, grab_head_, grab_lower_};
+  const std::array<cable::DrumCommand, 2> braked{};
+  const cable::DrumCommand luff_braked{};
+  constexpr double kDt = 0.001;
+  double last_energy = 0.0;
+  for (int k = 0; k < kSettleSteps; ++k) {
+    world_.set_hinge_motor(slew_hinge_, 0.0, settings_.slew_drive.brake_force_n);
+    luffing_->step(kDt, {&luff_braked, 1}, *luffing_bodies_);
+    hoist_->step(kDt, braked, *hoist_bodies_);
+    world_.step(kDt);
+    double energy = 0.0;
+    for (const physics::BodyId b : bodies) {
+      const core::Vec3 v = world_.linear_velocity(b), w = world_.angular_velocity(b);
+      energy += world_.mass_kg(b) * dot(v, v) + dot(w, w) * world_.mass_kg(b);  // a measure, not joules
+    }
+    if (energy < last_energy) {
+      for (const physics::BodyId b : bodies)
+        world_.stop_body(b);
+      energy = 0.0;
+    }
+    last_energy = energy;
+  }
+  luffing_->drain_events(settle_events_);
+  hoist_->drain_events(settle_events_);
+  settle_events_.clear();
+  last_hinge_angle_ = world_.hinge_angle(slew_hinge_);
 }
 
 double MobileHarbourCrane::track_slew() {

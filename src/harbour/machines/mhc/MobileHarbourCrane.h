@@ -155,6 +155,10 @@ class MobileHarbourCrane final : public Machine {
 
  private:
   double track_slew();
+  /// Brings the machine to rest on its ropes before the exercise starts (kSettleSteps of the world).
+  void settle();
+  static constexpr int kSettleSteps = 4000;
+  std::vector<cable::CableEvent> settle_events_;
   physics::PhysicsWorld& world_;
   MhcSettings settings_;
   int slew_slot_, luff_slot_, hoist_slot_, grab_slot_, stop_slot_, horn_slot_;
