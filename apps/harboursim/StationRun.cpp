@@ -84,6 +84,9 @@ int run_station(const StationOptions& given) {
   outputs.trainee = options.trainee;
   check_outputs(outputs);
   const sim::ExerciseSettings exercise = io::load_exercise(resolve_exercise(options.exercise));
+  if (options.autopilot)
+    if (const std::string why = sim::Autopilot::why_cannot_drive(exercise); !why.empty())
+      throw std::runtime_error(exercise.name + ": " + why + " (drive it yourself: no --autopilot)");
   const station::Profile profile =
       station::load_profile(station::resolve_profile(options.profile, HARBOUR_DATA_DIR));
   const std::string database = options.database.empty() ? default_database() : options.database;
@@ -216,15 +219,19 @@ int run_station(const StationOptions& given) {
     if (!s) continue;
     const station::LoopStats stats = session.loop().stats();
     const sim::Metrics m = session.metrics();
-    std::printf(
-        "  t=%6.1f s  trolley %6.2f m  load %5.1f t  %s  moves %d/%zu  | %.3fx real time, %lld late, "
-        "longest %.1f ms%s%s\n",
-        s->time_s, indicator(scene, *s, "trolley_x_m").value_or(0.0),
-        indicator(scene, *s, "load_t").value_or(0.0),
-        indicator(scene, *s, "lamp_locked").value_or(0.0) > 0.5 ? "locked  " : "unlocked", m.moves_completed,
-        exercise.moves.size(), stats.real_time_factor, static_cast<long long>(stats.late_ticks),
-        stats.longest_tick_s * 1e3, s->held ? "  HELD" : "",
-        s->devices_missing ? "  INPUT DEVICE MISSING: its controls are neutral" : "");
+    // the machine's first indicators (whatever the machine: names as it publishes them), then the goals
+    std::string shown;
+    for (std::size_t n = 0; n < scene.indicators.size() && n < 3 && static_cast<int>(n) < s->indicator_count;
+         ++n)
+      shown += "  " + scene.indicators[n] + " " + std::to_string(s->indicators[n]).substr(0, 7);
+    if (const auto load = indicator(scene, *s, "load_t"))
+      shown += "  load_t " + std::to_string(*load).substr(0, 5);
+    if (!exercise.moves.empty())
+      shown += "  moves " + std::to_string(m.moves_completed) + "/" + std::to_string(exercise.moves.size());
+    std::printf("  t=%6.1f s%s  | %.3fx real time, %lld late, longest %.1f ms%s%s\n", s->time_s,
+                shown.c_str(), stats.real_time_factor, static_cast<long long>(stats.late_ticks),
+                stats.longest_tick_s * 1e3, s->held ? "  HELD" : "",
+                s->devices_missing ? "  INPUT DEVICE MISSING: its controls are neutral" : "");
     std::fflush(stdout);
   }
   const bool interrupted = g_stop || !window_open || (!session.over() && options.seconds > 0.0);

@@ -154,6 +154,8 @@ int run_exercise(const RunOptions& options) {
   check_outputs(options);
   schedule(options.commands);  // a bad command stops the run before it starts
   const sim::ExerciseSettings exercise = io::load_exercise(resolve_exercise(options.exercise));
+  if (const std::string why = sim::Autopilot::why_cannot_drive(exercise); !why.empty())
+    throw std::runtime_error(exercise.name + ": " + why);
   sim::Simulation simulation(exercise.scenario);
   sim::Autopilot pilot(exercise);
   sim::Evaluator evaluator(exercise);

@@ -345,7 +345,8 @@ TEST(Mhc, AFreePracticeIsEvaluatedOnWhatEveryMachineShows) {
   EXPECT_EQ(evaluator.metrics().emergency_stops, 1);
   EXPECT_FALSE(evaluator.finished());
   const Score score = evaluator.score();
-  EXPECT_NEAR(score.total, 100.0 - exercise.rules.points_collision - exercise.rules.points_emergency_stop, 1e-9);
+  EXPECT_NEAR(score.total, 100.0 - exercise.rules.points_collision - exercise.rules.points_emergency_stop,
+              1e-9);
 }
 
 }  // namespace

@@ -242,3 +242,71 @@ TEST(Devices, UnpluggingTheHoistStickStopsTheLoadSmoothlyAndPluggingItBackResume
 
 }  // namespace
 }  // namespace harbour::station
+
+namespace harbour::station {
+namespace {
+
+// Two operator-chair levers as an interface box presents them (the name levers_iso.yaml matches).
+int attach_lever() {
+  SDL_VirtualJoystickDesc desc{};
+  desc.version = SDL_VIRTUAL_JOYSTICK_DESC_VERSION;
+  desc.type = SDL_JOYSTICK_TYPE_FLIGHT_STICK;
+  desc.naxes = 2;
+  desc.nbuttons = 4;
+  desc.name = "Lever";
+  const int index = SDL_JoystickAttachVirtualEx(&desc);
+  EXPECT_GE(index, 0) << SDL_GetError();
+  return index;
+}
+
+TEST(Devices, APersonOnTwoLeversSlewsTheMobileHarbourCraneAndShutsItsGrab) {
+  // the ISO pattern: left lever sideways slews, right lever sideways works the grab (right shuts)
+  init_sdl_joysticks();
+  const sim::ExerciseSettings exercise =
+      io::load_exercise(HARBOUR_DATA_DIR "/exercises/mhc_free_practice.yaml");
+  SessionOptions options;
+  options.trainee = "t1";
+  options.database = scenes::fresh_database("harbour_desk_mhc.db");
+  options.record = scenes::temp_path("harbour_desk_mhc.hsrc");
+  options.loop.time_scale = 10.0;
+  Session session(exercise, options);
+  const sim::ControlTable& table = session.simulation().control_table();
+  ASSERT_EQ(why_mapping_does_not_fit(HARBOUR_DATA_DIR "/devices/levers_iso.yaml", table), "");
+  EXPECT_NE(why_mapping_does_not_fit(HARBOUR_DATA_DIR "/devices/sts_dual_joystick.yaml", table), "");
+  DeviceMapping mapping =
+      load_device_mapping(std::string(HARBOUR_DATA_DIR) + "/devices/levers_iso.yaml", table);
+  const int left_index = attach_lever(), right_index = attach_lever();
+  SDL_Joystick* left = SDL_JoystickOpen(left_index);
+  SDL_Joystick* right = SDL_JoystickOpen(right_index);
+  ASSERT_TRUE(left && right);
+  Station station(session);
+  station.use_devices(std::make_unique<DeviceInput>(table, mapping));
+  ASSERT_EQ(station.devices()->bound_devices(), 2);
+  DeviceInput* input = station.devices();
+  const auto& crane = dynamic_cast<const sim::MobileHarbourCrane&>(session.simulation().machine());
+  session.loop().set_sampler([&] {
+    const bool working = session.simulation().time_s() < 8.0;
+    SDL_JoystickSetVirtualAxis(left, 0, working ? 32767 : 0);   // slew
+    SDL_JoystickSetVirtualAxis(right, 0, working ? 32767 : 0);  // shut the grab
+    return input->sample();
+  });
+  station.start();
+  session.start();
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (session.simulation().time_s() < 12.0 && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  station.stop();
+  const SessionResult result = session.finish(true);
+  EXPECT_GT(crane.slew_rad(), 0.3);  // about 8 s at up to 0.126 rad/s after its ramp
+  EXPECT_LT(crane.grab_opening(), 0.05);
+  EXPECT_EQ(result.hash_mismatches, 0);
+  const sim::Recording recording = io::read_recording(options.record);
+  const sim::ReplayResult replay = sim::replay(exercise.scenario, recording);
+  EXPECT_FALSE(replay.first_mismatch.has_value());
+  SDL_JoystickClose(left);
+  SDL_JoystickClose(right);
+  SDL_QuitSubSystem(SDL_INIT_JOYSTICK);
+}
+
+}  // namespace
+}  // namespace harbour::station

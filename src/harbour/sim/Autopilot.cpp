@@ -39,8 +39,19 @@ constexpr double kHorn_s = 1.0;  // the horn sounds this long before the gantry 
 
 }  // namespace
 
+std::string Autopilot::why_cannot_drive(const ExerciseSettings& exercise) {
+  const char* machine = machine_kind(exercise.scenario.machine);
+  if (std::string(machine) != "sts")
+    return std::string("the autopilot drives the STS's container moves; the ") + machine +
+           "'s comes with its bulk exercises";
+  if (exercise.moves.empty()) return "the exercise has no moves for the autopilot to make";
+  return {};
+}
+
 Autopilot::Autopilot(const ExerciseSettings& exercise, OperatorDefects defects)
-    : exercise_(exercise), defects_(defects) {}
+    : exercise_(exercise), defects_(defects) {
+  if (const std::string why = why_cannot_drive(exercise); !why.empty()) throw std::invalid_argument(why);
+}
 
 std::size_t Autopilot::goal_index(const Simulation& simulation) const {
   const auto& items = simulation.scenario().containers;

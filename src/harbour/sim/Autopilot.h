@@ -23,6 +23,9 @@ struct OperatorDefects {
 /// unlocking. For headless runs, demos, tests.
 class Autopilot {
  public:
+  /// Why it cannot drive `exercise` ("" when it can): it drives the STS's container moves.
+  static std::string why_cannot_drive(const ExerciseSettings& exercise);
+  /// Throws std::invalid_argument with why_cannot_drive() when it cannot.
   explicit Autopilot(const ExerciseSettings& exercise, OperatorDefects defects = {});
 
   /// The controls for the next step, from what the simulation shows now (decided 50 times a second, held

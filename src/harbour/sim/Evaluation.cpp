@@ -81,8 +81,8 @@ void Evaluator::observe(const Simulation& simulation, const Controls& controls) 
 }
 
 void Evaluator::observe_any_machine(const Simulation& simulation, const Controls& controls) {
-  // what every machine shows: its impacts, rope overloads and emergency stops (the MHC's own metrics come with
-  // its bulk exercises)
+  // what every machine shows: its impacts, rope overloads and emergency stops (the MHC's own metrics come
+  // with its bulk exercises)
   for (const physics::ImpactEvent& e : simulation.events().impacts)
     if (e.normal_speed_mps >= exercise_.rules.collision_speed_mps) count_collision(e);
   for (const cable::CableEvent& e : simulation.events().ropes)
@@ -93,7 +93,8 @@ void Evaluator::observe_any_machine(const Simulation& simulation, const Controls
   was_estop_ = estop;
 }
 
-void Evaluator::observe_containers(const Simulation& simulation, const Controls& controls, const StsCrane& crane) {
+void Evaluator::observe_containers(const Simulation& simulation, const Controls& controls,
+                                   const StsCrane& crane) {
   const StsControls cab = crane.read(controls);
   const EvaluationRules& rules = exercise_.rules;
   const physics::BodyId spreader = crane.spreader_body();
