@@ -116,3 +116,37 @@ TEST(BulkWorld, FallingMaterialLandsOnTheGridBelowOrIsSpilled) {
 
 }  // namespace
 }  // namespace harbour::bulk
+
+namespace harbour::bulk {
+namespace {
+
+TEST(BulkWorld, AKeyframeContinuesBitForBit) {
+  // mid-cycle: the grab carrying a bite over the hold, parcels in the air, the pile still flowing
+  ShuttleScene a;
+  for (long n = 0; n < 14500; ++n)
+    a.step(n);
+  ASSERT_FALSE(a.world.parcels().empty());
+  core::StateWriter out;
+  a.world.save_state(out);
+  const std::vector<std::uint8_t> keyframe = out.take();
+  ShuttleScene b;
+  core::StateReader in(keyframe);
+  b.world.restore_state(in);
+  EXPECT_TRUE(in.at_end());
+  b.command = a.command;  // the scene's own state: where the grab is commanded
+  EXPECT_EQ(b.world.state_hash(), a.world.state_hash());
+  for (long n = 14500; n < 30000; ++n) {
+    a.step(n);
+    b.step(n);
+  }
+  EXPECT_EQ(b.world.state_hash(), a.world.state_hash());
+  EXPECT_EQ(b.world.balance().spilled_m3, a.world.balance().spilled_m3);
+  // a world of other grids refuses it, changing nothing
+  BulkWorld other(scenes::test_material(35.0), BulkWorldSettings{});
+  other.add_grid({40, 40, 0.1}, {});
+  core::StateReader again(keyframe);
+  EXPECT_THROW(other.restore_state(again), core::StateError);
+}
+
+}  // namespace
+}  // namespace harbour::bulk

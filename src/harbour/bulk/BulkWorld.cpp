@@ -289,4 +289,44 @@ std::uint64_t BulkWorld::state_hash() const {
   return hash.value();
 }
 
+void BulkWorld::save_state(core::StateWriter& out) const {
+  out.section(0x424C4B31);  // "BLK1"
+  out.put(grids_.size());
+  for (const HeightGrid& g : grids_)
+    g.save_state(out);
+  out.put(grabs_);
+  out.put(parcels_);
+  out.put(pressed_);
+  out.put(pressing_);
+  out.put(added_m3_);
+  out.put(spilled_m3_);
+  out.put(loaded_m3_);
+  out.put(unloaded_m3_);
+  out.put(full_sweep_);
+  out.put(warnings_);
+}
+
+void BulkWorld::restore_state(core::StateReader& in) {
+  in.section(0x424C4B31, "bulk");
+  if (in.get<std::size_t>() != grids_.size()) throw core::StateError("saved state has other bulk grids");
+  for (HeightGrid& g : grids_)
+    g.restore_state(in);
+  in.get(grabs_, static_cast<std::int64_t>(grabs_.size()));
+  in.get(parcels_);
+  in.get(pressed_);
+  in.get(pressing_);
+  for (const auto* cells : {&pressed_, &pressing_})
+    for (const PressedCell& c : *cells)
+      if (c.grid < 0 || c.grid >= grid_count() || c.i < 0 || c.j < 0 ||
+          c.i >= grids_[static_cast<std::size_t>(c.grid)].cells_x() ||
+          c.j >= grids_[static_cast<std::size_t>(c.grid)].cells_y())
+        throw core::StateError("saved bulk state presses a cell off its grids");
+  in.get(added_m3_);
+  in.get(spilled_m3_);
+  in.get(loaded_m3_);
+  in.get(unloaded_m3_);
+  in.get(full_sweep_);
+  in.get(warnings_);
+}
+
 }  // namespace harbour::bulk

@@ -86,6 +86,11 @@ class BulkWorld {
 
   const core::Warnings& warnings() const { return warnings_; }
   std::uint64_t state_hash() const;
+  /// The dynamic state (grids, grabs, falling parcels, pressed cells, the balance's counters) for a keyframe;
+  /// restoring it into a world with the same grids and grabs continues bit for bit; another world throws
+  /// core::StateError.
+  void save_state(core::StateWriter& out) const;
+  void restore_state(core::StateReader& in);
 
  private:
   void step_grab(GrabSettings const& settings, GrabState& state, const GrabCommand& command, double dt_s);

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "harbour/bulk/Material.h"
+#include "harbour/core/StateArchive.h"
 #include "harbour/core/StateHash.h"
 #include "harbour/core/Vec3.h"
 
@@ -118,6 +119,10 @@ class HeightGrid {
 
   /// Adds heights, compression, tilt and active list to a determinism hash.
   void hash_into(core::StateHash& hash) const;
+  /// The dynamic state (heights, compression, pipes, the active list, pose) for a keyframe; restoring it into a
+  /// grid of the same settings continues bit for bit (another size throws core::StateError).
+  void save_state(core::StateWriter& out) const;
+  void restore_state(core::StateReader& in);
 
  private:
   static constexpr int kPad = 2;  // stencil radius: knight moves reach two cells
