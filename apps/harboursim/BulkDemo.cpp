@@ -46,38 +46,14 @@ Vec3 dig_target(const bulk::HeightGrid& yard) {
   return yard.pose().to_parent(yard.cell_centre(top.i, top.j));
 }
 
-// rolling about the hold's longitudinal centre line
-void move_hold(bulk::HeightGrid& hold, const io::ScenarioGrid& g, double t) {
-  if (g.roll_period_s <= 0.0) return;
-  const double w = 2.0 * std::numbers::pi / g.roll_period_s;
-  const double roll = g.roll_amplitude_rad * std::sin(w * t),
-               roll_rate = g.roll_amplitude_rad * w * std::cos(w * t);
-  const Vec3 origin{g.origin_x_m, g.origin_y_m, g.origin_z_m};
-  const Vec3 centre_line{0.0, 0.5 * g.settings.cells_y * g.settings.cell_size_m, 0.0};
-  core::Pose pose;
-  pose.rotation = core::Mat3::rotation({1, 0, 0}, roll);
-  pose.position = origin + centre_line - pose.rotation * centre_line;
-  const Vec3 omega{roll_rate, 0, 0};
-  hold.set_pose(pose, core::cross(omega, pose.position - (origin + centre_line)), omega);
-}
-
 }  // namespace
 
 int run_bulk_demo(const BulkDemoOptions& options) {
   const auto materials = io::load_materials(options.data_dir + "/materials.yaml");
   const auto scenario = io::load_bulk_scenario(options.data_dir + "/scenarios/bulk_demo.yaml", materials);
 
-  bulk::BulkWorldSettings settings;
-  settings.spill_level_m = scenario.spill_level_m;
-  bulk::BulkWorld world(scenario.material, settings);
-  for (const auto& g : scenario.grids) {
-    core::Pose pose;
-    pose.rotation = core::Mat3::rotation({0, 0, 1}, g.yaw_rad);
-    pose.position = {g.origin_x_m, g.origin_y_m, g.origin_z_m};
-    world.add_grid(g.settings, pose);
-  }
-  for (const auto& h : scenario.heaps)
-    world.add_heap(h.grid, h.x_m, h.y_m, h.volume_m3);
+  const std::unique_ptr<bulk::BulkWorld> built = bulk::build_bulk_world(scenario);
+  bulk::BulkWorld& world = *built;
   const int grab = world.add_grab(scenario.grab);
   const int yard = 0, hold = scenario.grids.size() > 1 ? 1 : 0;
 
@@ -97,7 +73,7 @@ int run_bulk_demo(const BulkDemoOptions& options) {
   double next_progress_s = kProgressEvery_s;
 
   while (cycle < options.cycles) {
-    move_hold(world.grid(hold), scenario.grids[static_cast<std::size_t>(hold)], clock.time_s());
+    bulk::move_grids(world, scenario, clock.time_s());
     const Vec3 before = command.pose.position;
     const bulk::GrabState& state = world.grab(grab);
     command.close_rate = 0.0;
@@ -180,7 +156,7 @@ int run_bulk_demo(const BulkDemoOptions& options) {
 
   // let the last drop land and the piles settle
   for (int n = 0; n < 3000 || !world.parcels().empty(); ++n) {
-    move_hold(world.grid(hold), scenario.grids[static_cast<std::size_t>(hold)], clock.time_s());
+    bulk::move_grids(world, scenario, clock.time_s());
     command.velocity = {};
     command.close_rate = 0.0;
     world.step(kStep_s, {&command, 1});

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "StsRun.h"
+#include "harbour/bulk/BulkPublish.h"
 #include "harbour/ig/ImageGenerator.h"
 #include "harbour/io/BoundedFile.h"
 #include "harbour/io/ExerciseFiles.h"
@@ -46,6 +47,11 @@ int take_screenshot(const ScreenshotOptions& options) {
   ig::ImageGenerator generator(simulation.scene(), std::move(looks.visuals), options.width, options.height);
   generator.use(looks);
   generator.update(*simulation.snapshot());
+  if (const bulk::BulkWorld* material = simulation.bulk()) {
+    sim::BulkView view;
+    bulk::publish(*material, view);
+    generator.update_bulk(view);
+  }
   const std::vector<std::string> names = generator.view_names();
   if (std::find(names.begin(), names.end(), options.view) == names.end()) {
     std::string list;

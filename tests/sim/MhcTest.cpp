@@ -351,3 +351,36 @@ TEST(Mhc, AFreePracticeIsEvaluatedOnWhatEveryMachineShows) {
 
 }  // namespace
 }  // namespace harbour::sim
+
+namespace harbour::sim {
+namespace {
+
+TEST(Mhc, TheExercisesBulkMaterialIsInTheStateAndItsKeyframes) {
+  const ExerciseSettings exercise = io::load_exercise(HARBOUR_DATA_DIR "/exercises/mhc_free_practice.yaml");
+  ASSERT_TRUE(exercise.scenario.bulk.has_value());
+  Simulation a(exercise.scenario);
+  ASSERT_NE(a.bulk(), nullptr);
+  const bulk::VolumeBalance start = a.bulk()->balance();
+  EXPECT_NEAR(start.in_grids_m3, 250.0, 0.05 * 250.0);  // a relaxed cone of about the volume asked for
+  const Controls slew = mhc_controls(a, {{"slew", 1.0}});
+  for (int k = 0; k < 500; ++k)
+    a.step(slew);
+  const std::vector<std::uint8_t> keyframe = a.save_state();
+  Simulation b(exercise.scenario);
+  b.restore_state(keyframe);
+  for (int k = 0; k < 500; ++k) {
+    a.step(slew);
+    b.step(slew);
+  }
+  EXPECT_EQ(a.state_hash(), b.state_hash());
+  EXPECT_NEAR(a.bulk()->balance().discrepancy_m3(), 0.0, 1e-9);
+  // the same crane without the pile is another scenario: its keyframes do not mix
+  ScenarioSettings bare = exercise.scenario;
+  bare.bulk.reset();
+  Simulation c(bare);
+  EXPECT_THROW(c.restore_state(keyframe), core::StateError);
+  EXPECT_NE(c.state_hash(), Simulation(exercise.scenario).state_hash());
+}
+
+}  // namespace
+}  // namespace harbour::sim

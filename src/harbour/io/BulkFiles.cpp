@@ -48,23 +48,22 @@ std::vector<bulk::Material> load_materials(const std::string& path) {
   return load_materials(YamlFile::load(path));
 }
 
-BulkScenario load_bulk_scenario(const YamlFile& file, const std::vector<bulk::Material>& materials) {
-  BulkScenario scenario;
-  const YAML::Node bulk = file.required(file.root(), "bulk", "");
-
-  const std::string material = file.text(bulk, "material", "bulk");
+bulk::BulkScene read_bulk_scene(const YamlFile& file, const YAML::Node& section, const std::string& at,
+                                const std::vector<bulk::Material>& materials) {
+  bulk::BulkScene scenario;
+  const std::string material = file.text(section, "material", at);
   const auto found =
       std::find_if(materials.begin(), materials.end(), [&](const auto& m) { return m.name == material; });
   if (found == materials.end())
-    file.fail(bulk["material"], "bulk.material", "unknown material '" + material + "'");
+    file.fail(section["material"], at + ".material", "unknown material '" + material + "'");
   scenario.material = *found;
-  scenario.spill_level_m = file.number_or(bulk, "spill_level_m", "bulk", 0.0, -kSite_m, kSite_m);
+  scenario.spill_level_m = file.number_or(section, "spill_level_m", at, 0.0, -kSite_m, kSite_m);
 
-  const YAML::Node grids = file.sequence(bulk, "grids", "bulk");
+  const YAML::Node grids = file.sequence(section, "grids", at);
   for (std::size_t n = 0; n < grids.size(); ++n) {
     const YAML::Node g = grids[n];
-    const std::string path = item("bulk.grids", n);
-    ScenarioGrid grid;
+    const std::string path = item(at + ".grids", n);
+    bulk::GridPlacement grid;
     grid.name = file.text(g, "name", path);
     grid.settings.cells_x = file.integer(g, "cells_x", path, 1, 8192);
     grid.settings.cells_y = file.integer(g, "cells_y", path, 1, 8192);
@@ -77,14 +76,14 @@ BulkScenario load_bulk_scenario(const YamlFile& file, const std::vector<bulk::Ma
     grid.roll_period_s = file.number_or(g, "roll_period_s", path, 0.0, 0.0, 600.0);
     scenario.grids.push_back(grid);
   }
-  if (scenario.grids.empty()) file.fail(grids, "bulk.grids", "no grid defined");
+  if (scenario.grids.empty()) file.fail(grids, at + ".grids", "no grid defined");
 
-  if (file.optional(bulk, "heaps", "bulk")) {
-    const YAML::Node heaps = file.sequence(bulk, "heaps", "bulk");
+  if (file.optional(section, "heaps", at)) {
+    const YAML::Node heaps = file.sequence(section, "heaps", at);
     for (std::size_t n = 0; n < heaps.size(); ++n) {
       const YAML::Node h = heaps[n];
-      const std::string path = item("bulk.heaps", n);
-      ScenarioHeap heap;
+      const std::string path = item(at + ".heaps", n);
+      bulk::HeapPlacement heap;
       const std::string grid = file.text(h, "grid", path);
       const auto g =
           std::find_if(scenario.grids.begin(), scenario.grids.end(), [&](auto& s) { return s.name == grid; });
@@ -97,7 +96,14 @@ BulkScenario load_bulk_scenario(const YamlFile& file, const std::vector<bulk::Ma
     }
   }
 
-  const YAML::Node grab = file.required(bulk, "grab", "bulk");
+  return scenario;
+}
+
+BulkScenario load_bulk_scenario(const YamlFile& file, const std::vector<bulk::Material>& materials) {
+  BulkScenario scenario;
+  const YAML::Node section = file.required(file.root(), "bulk", "");
+  static_cast<bulk::BulkScene&>(scenario) = read_bulk_scene(file, section, "bulk", materials);
+  const YAML::Node grab = file.required(section, "grab", "bulk");
   bulk::GrabSettings& s = scenario.grab;
   s.width_m = file.number(grab, "width_m", "bulk.grab", 0.0, 50.0, true);
   s.max_opening_m = file.number(grab, "max_opening_m", "bulk.grab", 0.0, 50.0, true);

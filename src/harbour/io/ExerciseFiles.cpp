@@ -8,6 +8,7 @@
 #include <tuple>
 
 #include "harbour/core/Units.h"
+#include "harbour/io/BulkFiles.h"
 #include "harbour/io/MachineFiles.h"
 #include "harbour/io/VesselFiles.h"
 #include "harbour/sim/Trucks.h"
@@ -298,6 +299,15 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
   }
   if (handles_containers && e.moves.empty())
     f.fail(moves, "exercise.moves", "an exercise needs at least one move");
+
+  if (const auto b_node = f.optional_map(x, "bulk", "exercise")) {
+    // bulk material: the materials file (relative to the exercise), the material, grids and heaps
+    const std::string file = f.text(*b_node, "materials", "exercise.bulk");
+    const std::string path = (std::filesystem::path(folder) / file).lexically_normal().string();
+    if (!std::filesystem::is_regular_file(path))
+      f.fail((*b_node)["materials"], "exercise.bulk.materials", "no such file: " + path);
+    s.bulk = read_bulk_scene(f, *b_node, "exercise.bulk", load_materials(path));
+  }
 
   if (const auto w_node = f.optional_map(x, "weather", "exercise")) {
     const YAML::Node& w = *w_node;

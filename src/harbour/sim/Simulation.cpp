@@ -91,6 +91,7 @@ Simulation::Simulation(const ScenarioSettings& scenario)
   }
   if (scenario.trucks.trucks > 0) trucks_ = std::make_unique<TruckLane>(*world_, scenario.trucks);
   machine_ = make_machine(*world_, scenario.machine);
+  if (scenario.bulk) bulk_ = bulk::build_bulk_world(*scenario.bulk);
   // event buffers sized once: a step appends to them without allocating
   events_.impacts.reserve(256);
   events_.twistlocks.reserve(64);
@@ -280,6 +281,11 @@ void Simulation::advance(const Controls& controls) {
     for (std::size_t n = 0; n < containers_.size(); ++n)
       if (containers_[n].body == *held) release(n);
   if (trucks_) trucks_->step(kStep_s, containers_, machine_->held_item(), machine_->attachment_bottom_z_m());
+  if (bulk_) {
+    // the bulk material flows (the grab's bite and contact come with the MHC's bulk exercises)
+    bulk::move_grids(*bulk_, *scenario_.bulk, clock_.time_s());
+    bulk_->step(kStep_s, {});
+  }
   world_->step(kStep_s);
   if (world_->diverged()) {
     warnings_.raise(core::Warning::kNonFinite);
@@ -396,6 +402,7 @@ std::uint64_t Simulation::state_hash() const {
   hash.add(clock_.steps());
   hash.add(world_->state_hash());
   machine_->hash_into(hash);
+  if (bulk_) hash.add(bulk_->state_hash());
   hash.add(weather_.turbulence_mps());
   hash.add(next_event_);
   return hash.value();
@@ -414,6 +421,7 @@ std::vector<std::uint8_t> Simulation::save_state() const {
   weather_.save_state(out);
   out.put(trucks_ != nullptr);
   if (trucks_) trucks_->save_state(out);
+  if (bulk_) bulk_->save_state(out);
   return out.take();
 }
 
@@ -434,6 +442,7 @@ void Simulation::restore_state(const std::vector<std::uint8_t>& state) {
   weather_.restore_state(in);
   if (in.get<bool>() != (trucks_ != nullptr)) throw core::StateError("saved state has other trucks");
   if (trucks_) trucks_->restore_state(in);
+  if (bulk_) bulk_->restore_state(in);
   if (!in.at_end()) throw core::StateError("saved state is longer than this simulation's");
   events_.impacts.clear();
   events_.twistlocks.clear();

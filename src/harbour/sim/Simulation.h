@@ -8,6 +8,7 @@
 #include <variant>
 #include <vector>
 
+#include "harbour/bulk/BulkScene.h"
 #include "harbour/core/FixedStepClock.h"
 #include "harbour/core/Warnings.h"
 #include "harbour/machines/mhc/MobileHarbourCrane.h"
@@ -109,7 +110,8 @@ struct ScenarioSettings {
   TruckLaneSettings trucks;
   std::vector<ContainerPlacement> containers;
   WeatherSettings weather;
-  std::vector<ScriptedEvent> events;  ///< in time order
+  std::vector<ScriptedEvent> events;    ///< in time order
+  std::optional<bulk::BulkScene> bulk;  ///< bulk material: piles, hoppers, holds
   double drag_coefficient =
       1.0;                 ///< [-] boxes and spreader (published 0.6-1.2 by face and stacking; assumed)
   std::uint64_t seed = 1;  ///< seeds the turbulence
@@ -162,6 +164,8 @@ class Simulation {
   physics::BodyId container_body(std::size_t index) const { return containers_[index].body; }
   const physics::PhysicsWorld& world() const { return *world_; }
   const Weather& weather() const { return weather_; }
+  /// The scene's bulk material, if it has any.
+  const bulk::BulkWorld* bulk() const { return bulk_.get(); }
   /// Where the machine's load would hang at rest in a steady `wind` [m/s], from plumb under its sheaves [m]
   /// (horizontal): the pendulum's equilibrium L F / (m g), F the wind's drag on its wind areas and on `box`
   /// if it hangs from them.
@@ -201,6 +205,7 @@ class Simulation {
   Weather weather_;
   std::unique_ptr<Vessel> vessel_;
   std::unique_ptr<TruckLane> trucks_;
+  std::unique_ptr<bulk::BulkWorld> bulk_;
   std::size_t next_event_ = 0;
   bool held_ = false;
   core::Warnings warnings_;
