@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "harbour/io/BulkFiles.h"
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/sim/Evaluation.h"
 #include "scenes/MhcScenes.h"
@@ -380,6 +381,62 @@ TEST(Mhc, TheExercisesBulkMaterialIsInTheStateAndItsKeyframes) {
   Simulation c(bare);
   EXPECT_THROW(c.restore_state(keyframe), core::StateError);
   EXPECT_NE(c.state_hash(), Simulation(exercise.scenario).state_hash());
+}
+
+}  // namespace
+}  // namespace harbour::sim
+
+namespace harbour::sim {
+namespace {
+
+// The MHC with a coal heap right under its grab (20 m x 20 m of 10 cm cells).
+ScenarioSettings mhc_over_a_heap() {
+  ScenarioSettings s = scenes::mhc_on_quay(HARBOUR_DATA_DIR);
+  bulk::BulkScene scene;
+  const auto materials = io::load_materials(HARBOUR_DATA_DIR "/materials.yaml");
+  for (const bulk::Material& m : materials)
+    if (m.name == "coal") scene.material = m;
+  scene.spill_level_m = -3.5;
+  bulk::GridPlacement yard;
+  yard.name = "yard";
+  yard.settings = {200, 200, 0.1};
+  yard.origin_x_m = 25.5;
+  yard.origin_y_m = -10.0;
+  scene.grids.push_back(yard);
+  scene.heaps.push_back({0, 10.0, 10.0, 150.0});
+  s.bulk = scene;
+  return s;
+}
+
+TEST(Mhc, TheGrabBitesTheHeapAndItsLoadHangsOnTheRopes) {
+  Simulation sim(mhc_over_a_heap());
+  const MobileHarbourCrane& m = mhc(sim);
+  const double empty_kg = m.settings().grab_head_mass_kg + m.settings().grab_lower_mass_kg;
+  const double heap_m3 = sim.bulk()->balance().in_grids_m3;
+  run(sim, 4.0, sim.control_table().neutral());  // the bite model's jaws open with the shells
+  // down onto the heap: the ropes go slack as the shells rest on it
+  const Controls lower = mhc_controls(sim, {{"hoist", -0.5}});
+  int k = 0;
+  for (; k < 30000 && m.hoisted_load_n() > 0.5 * empty_kg * kG; ++k)
+    sim.step(lower);
+  ASSERT_LT(k, 30000) << "the grab never came to rest on the heap";
+  const double resting_z = m.attachment_bottom_z_m();
+  EXPECT_GT(resting_z, 1.0);  // on the heap (4 m high), not the quay
+  run(sim, 0.5, lower);
+  run(sim, 6.0, mhc_controls(sim, {{"grab", 1.0}}));  // shut: the jaws cut in
+  const double bite_m3 = sim.bulk()->grab(sim.bulk_grab()).load_m3;
+  EXPECT_GT(bite_m3, 2.0);
+  EXPECT_LE(bite_m3, m.settings().grab.capacity_m3 + 1e-9);
+  run(sim, 8.0, mhc_controls(sim, {{"hoist", 0.5}}));  // lift it clear
+  run(sim, 4.0, sim.control_table().neutral());
+  EXPECT_GT(m.attachment_bottom_z_m(), resting_z + 2.0);
+  // the bite's weight hangs on the ropes with the grab's (the limiter's filtered load)
+  const double bite_kg = sim.bulk()->mass_kg(sim.bulk()->grab(sim.bulk_grab()).load_m3);
+  EXPECT_NEAR(m.limiter_load_n() / kG, empty_kg + bite_kg, 0.05 * (empty_kg + bite_kg));
+  // nothing lost: heap, grab and anything in the air add up to what was there
+  const bulk::VolumeBalance b = sim.bulk()->balance();
+  EXPECT_NEAR(b.in_grids_m3 + b.in_grabs_m3 + b.in_flight_m3 + b.spilled_m3, heap_m3, 1e-9 * heap_m3);
+  EXPECT_FALSE(sim.diverged());
 }
 
 }  // namespace

@@ -253,6 +253,9 @@ sim::MhcSettings read_mhc(const YamlFile& f, const std::string& folder) {
   s.grab.width_m = f.number(g, "width_m", at, 0.5, 10.0);
   s.grab.max_opening_m = f.number(g, "max_opening_m", at, 0.5, 15.0);
   s.grab.capacity_m3 = f.number(g, "capacity_m3", at, 0.5, 100.0);
+  s.grab.sinking_speed_mps = f.number(g, "sinking_speed_mps", at, 0.0, 5.0, true);
+  s.grab.max_depth_m = f.number(g, "max_depth_m", at, 0.0, 10.0, true);
+  s.grab.spill_speed_mps = f.number(g, "spill_speed_mps", at, 0.0, 20.0, true);
   const YAML::Node limits = f.required(g, "hoist_limits_m", at);
   if (!limits.IsSequence() || limits.size() != 2)
     f.fail(limits, at + ".hoist_limits_m", "is [lower, upper] in metres");

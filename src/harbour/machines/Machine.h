@@ -5,6 +5,7 @@
 #include <span>
 #include <vector>
 
+#include "harbour/bulk/Grab.h"
 #include "harbour/cable/HoistSystem.h"
 #include "harbour/core/StateArchive.h"
 #include "harbour/core/StateHash.h"
@@ -36,6 +37,17 @@ struct StepEvents {
 struct WindArea {
   physics::BodyId body = physics::kWorld;
   core::Vec3 half_extents_m;
+};
+
+/// A tool that works bulk material (a grab), as the machine leaves it after its step: the body its contact
+/// points ride on, where its jaw tips are and how far its shells are open.
+struct BulkTool {
+  physics::BodyId body = physics::kWorld;
+  std::span<const core::Vec3> contact_points_m;  ///< [m] on `body`, its frame: pressed into the material
+  bulk::GrabSettings grab;                       ///< jaw width, opening, capacity, bite and spill figures
+  core::Pose jaws;                               ///< jaw-tip centre: x across the jaws, y along the hinge
+  core::Vec3 jaws_velocity_mps;
+  double opening_m = 0.0;  ///< [m] between the jaw tips now
 };
 
 /// A fault the instructor injects into a machine.
@@ -82,6 +94,10 @@ class Machine {
   /// Writes its entities' poses from `entities` on (in describe()'s order; returns how many), its ropes and
   /// its indicators. Allocates nothing.
   virtual int publish(Snapshot& snapshot, int entities) const = 0;
+  /// Its tool for bulk material, if it has one (updated by step()).
+  virtual const BulkTool* bulk_tool() const { return nullptr; }
+  /// The material its tool holds [kg] (its weight hangs on the tool until the next call).
+  virtual void carry_bulk(double /*mass_kg*/) {}
   /// Moves this step's events (twistlocks, ropes) into `events`.
   virtual void drain_events(StepEvents& events) = 0;
 

@@ -91,7 +91,10 @@ Simulation::Simulation(const ScenarioSettings& scenario)
   }
   if (scenario.trucks.trucks > 0) trucks_ = std::make_unique<TruckLane>(*world_, scenario.trucks);
   machine_ = make_machine(*world_, scenario.machine);
-  if (scenario.bulk) bulk_ = bulk::build_bulk_world(*scenario.bulk);
+  if (scenario.bulk) {
+    bulk_ = bulk::build_bulk_world(*scenario.bulk);
+    if (const BulkTool* tool = machine_->bulk_tool()) bulk_grab_ = bulk_->add_grab(tool->grab);
+  }
   // event buffers sized once: a step appends to them without allocating
   events_.impacts.reserve(256);
   events_.twistlocks.reserve(64);
@@ -281,11 +284,7 @@ void Simulation::advance(const Controls& controls) {
     for (std::size_t n = 0; n < containers_.size(); ++n)
       if (containers_[n].body == *held) release(n);
   if (trucks_) trucks_->step(kStep_s, containers_, machine_->held_item(), machine_->attachment_bottom_z_m());
-  if (bulk_) {
-    // the bulk material flows (the grab's bite and contact come with the MHC's bulk exercises)
-    bulk::move_grids(*bulk_, *scenario_.bulk, clock_.time_s());
-    bulk_->step(kStep_s, {});
-  }
+  if (bulk_) step_bulk();
   world_->step(kStep_s);
   if (world_->diverged()) {
     warnings_.raise(core::Warning::kNonFinite);
@@ -301,6 +300,28 @@ void Simulation::advance(const Controls& controls) {
   if (!std::isfinite(machine_->attachment_bottom_z_m())) warnings_.raise(core::Warning::kNonFinite);
   for (int n = world_->take_solver_messages(); n > 0; --n)
     warnings_.raise(core::Warning::kSolverMessage);
+}
+
+void Simulation::step_bulk() {
+  // the grids move (a rolling hold); the machine's tool presses into the material (penalty forces on its
+  // body, compression of the pressed cells) and bites or spills; its load hangs on it; the material flows
+  bulk::move_grids(*bulk_, *scenario_.bulk, clock_.time_s());
+  const BulkTool* tool = bulk_grab_ >= 0 ? machine_->bulk_tool() : nullptr;
+  std::array<bulk::GrabCommand, 1> command;
+  if (tool) {
+    const bulk::ContactResult contact =
+        bulk_->contact({world_->pose(tool->body), world_->linear_velocity(tool->body),
+                        world_->angular_velocity(tool->body), tool->contact_points_m});
+    if (contact.points_in_contact > 0) world_->add_force_at(tool->body, contact.point, contact.force);
+    // the bite follows the shells: close (or open) at the rate that brings the model's jaws to theirs
+    const double opening = bulk_->grab(bulk_grab_).opening_m;
+    const double per_step = tool->grab.max_opening_m / tool->grab.closing_time_s * kStep_s;
+    command[0] = {tool->jaws, tool->jaws_velocity_mps,
+                  std::clamp((opening - tool->opening_m) / per_step, -1.0, 1.0)};
+  }
+  bulk_->step(kStep_s,
+              tool ? std::span<const bulk::GrabCommand>(command) : std::span<const bulk::GrabCommand>());
+  if (tool) machine_->carry_bulk(bulk_->mass_kg(bulk_->grab(bulk_grab_).load_m3));
 }
 
 void Simulation::update_cab_cues() {

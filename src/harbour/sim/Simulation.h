@@ -164,8 +164,9 @@ class Simulation {
   physics::BodyId container_body(std::size_t index) const { return containers_[index].body; }
   const physics::PhysicsWorld& world() const { return *world_; }
   const Weather& weather() const { return weather_; }
-  /// The scene's bulk material, if it has any.
+  /// The scene's bulk material, if it has any, and the machine's tool in it (-1: none).
   const bulk::BulkWorld* bulk() const { return bulk_.get(); }
+  int bulk_grab() const { return bulk_grab_; }
   /// Where the machine's load would hang at rest in a steady `wind` [m/s], from plumb under its sheaves [m]
   /// (horizontal): the pendulum's equilibrium L F / (m g), F the wind's drag on its wind areas and on `box`
   /// if it hangs from them.
@@ -190,6 +191,7 @@ class Simulation {
   void move_secured_cargo();
   void apply_due_events();
   void apply_wind();
+  void step_bulk();
   const ContainerRef* liftable(physics::BodyId body) const;
 
   ScenarioSettings scenario_;
@@ -206,6 +208,7 @@ class Simulation {
   std::unique_ptr<Vessel> vessel_;
   std::unique_ptr<TruckLane> trucks_;
   std::unique_ptr<bulk::BulkWorld> bulk_;
+  int bulk_grab_ = -1;  // the machine's tool in the bulk world
   std::size_t next_event_ = 0;
   bool held_ = false;
   core::Warnings warnings_;

@@ -160,7 +160,29 @@ MobileHarbourCrane::MobileHarbourCrane(physics::PhysicsWorld& world, const MhcSe
                  WindArea{grab_lower_, settings.grab_lower_half_extents_m},
                  WindArea{house_, settings.house_half_extents_m}};
   last_hinge_angle_ = world.hinge_angle(slew_hinge_);
+  // the grab as a bulk tool: nine points over the shells' underside, the jaw tips at its centre; its bite
+  // closes in the time the closing ropes take to shut it
+  const core::Vec3& h = settings.grab_lower_half_extents_m;
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b)
+      shell_points_[static_cast<std::size_t>(3 * a + b)] = {(a - 1) * h.x, (b - 1) * h.y, -h.z};
+  tool_.body = grab_lower_;
+  tool_.contact_points_m = shell_points_;
+  tool_.grab = settings.grab;
+  tool_.grab.closing_time_s = tackle_falls_ * (settings.grab_open_gap_m - settings.grab_closed_gap_m) /
+                              first_drum(settings.hoist).max_rope_speed_mps;
   settle();
+  update_tool();
+}
+
+void MobileHarbourCrane::update_tool() {
+  const core::Pose lower = world_.pose(grab_lower_);
+  tool_.jaws = {lower.rotation, lower.to_parent({0, 0, -settings_.grab_lower_half_extents_m.z})};
+  tool_.jaws_velocity_mps =
+      world_.point_velocity(grab_lower_, {0, 0, -settings_.grab_lower_half_extents_m.z});
+  // shut within a centimetre is shut: the shells on their stop do not leak
+  const double opening = grab_opening() * settings_.grab.max_opening_m;
+  tool_.opening_m = opening < 0.01 ? 0.0 : opening;
 }
 
 void MobileHarbourCrane::settle() {
@@ -354,6 +376,11 @@ void MobileHarbourCrane::step(const Controls& raw, std::span<const ContainerRef>
       cable::DrumCommand{stop ? 0.0 : -close, hoist_brake_fault_, !stop}};
   hoist_->step(dt_s, hoist_commands, *hoist_bodies_);
 
+  // the material in the grab hangs on its lower block
+  if (carried_kg_ > 0.0)
+    world_.add_force_at(grab_lower_, world_.pose(grab_lower_).position, {0, 0, -carried_kg_ * kG});
+  update_tool();
+
   // outrigger pads: a pad whose share goes below zero lifts off
   const PadForces pads = pad_forces_n();
   const bool lifted = *std::min_element(pads.begin(), pads.end()) < 0.0;
@@ -424,6 +451,7 @@ void MobileHarbourCrane::hash_into(core::StateHash& hash) const {
   hash.add(slew_);
   hash.add(limiter_trips_);
   hash.add(limiter_load_n_);
+  hash.add(carried_kg_);
   hash.add(pad_lift_offs_);
 }
 
@@ -445,6 +473,7 @@ void MobileHarbourCrane::save_state(core::StateWriter& out) const {
   out.put(pad_lifted_);
   out.put(limiter_trips_);
   out.put(pad_lift_offs_);
+  out.put(carried_kg_);
 }
 
 void MobileHarbourCrane::restore_state(core::StateReader& in) {
@@ -465,6 +494,8 @@ void MobileHarbourCrane::restore_state(core::StateReader& in) {
   in.get(pad_lifted_);
   in.get(limiter_trips_);
   in.get(pad_lift_offs_);
+  in.get(carried_kg_);
+  update_tool();
 }
 
 }  // namespace harbour::sim

@@ -114,6 +114,9 @@ class MobileHarbourCrane final : public Machine {
   void describe(SceneDescription& scene) const override;
   int publish(Snapshot& snapshot, int entities) const override;
   void drain_events(StepEvents& events) override;
+  const BulkTool* bulk_tool() const override { return &tool_; }
+  void carry_bulk(double mass_kg) override { carried_kg_ = mass_kg; }
+  double carried_bulk_kg() const { return carried_kg_; }
   bool has_fault(MachineFault fault) const override { return fault == MachineFault::kHoistBrake; }
   void inject_fault(MachineFault fault, int detail) override;
   void clear_faults() override { hoist_brake_fault_ = false; }
@@ -157,6 +160,7 @@ class MobileHarbourCrane final : public Machine {
   double track_slew();
   /// Brings the machine to rest on its ropes before the exercise starts (kSettleSteps of the world).
   void settle();
+  void update_tool();
   static constexpr int kSettleSteps = 4000;
   std::vector<cable::CableEvent> settle_events_;
   physics::PhysicsWorld& world_;
@@ -184,6 +188,9 @@ class MobileHarbourCrane final : public Machine {
   bool pad_lifted_ = false;
   std::uint32_t limiter_trips_ = 0, pad_lift_offs_ = 0;
   std::array<WindArea, 3> wind_areas_;
+  std::array<core::Vec3, 9> shell_points_;  // contact points on the shells' underside, lower block frame
+  BulkTool tool_;
+  double carried_kg_ = 0.0;  // material in the grab: its weight hangs on the lower block
 };
 
 }  // namespace harbour::sim
