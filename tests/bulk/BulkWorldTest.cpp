@@ -150,3 +150,26 @@ TEST(BulkWorld, AKeyframeContinuesBitForBit) {
 
 }  // namespace
 }  // namespace harbour::bulk
+
+namespace harbour::bulk {
+namespace {
+
+TEST(BulkWorld, AHopperDeliversWhatFallsInAtItsOutletsRate) {
+  // a 6 m hopper with a 20 m^3 heap in it, drained at 0.5 m^3/s: 5 m^3 in 10 s, then empty after 40 s
+  BulkWorld world(scenes::test_material(35.0), BulkWorldSettings{});
+  const int hopper = world.add_grid({30, 30, 0.2}, {});
+  const double heap = world.add_heap(hopper, 3.0, 3.0, 20.0);
+  world.set_outflow(hopper, 0.5);
+  for (int k = 0; k < 10000; ++k)
+    world.step(0.001, {});
+  EXPECT_NEAR(world.balance().delivered_m3, 5.0, 1e-9);
+  EXPECT_NEAR(world.balance().discrepancy_m3(), 0.0, 1e-9);
+  for (int k = 0; k < 35000; ++k)
+    world.step(0.001, {});
+  EXPECT_NEAR(world.balance().delivered_m3, heap, 1e-6);  // all of it, no more
+  EXPECT_LT(world.grid(hopper).total_volume_m3(), 1e-6);
+  EXPECT_NEAR(world.balance().discrepancy_m3(), 0.0, 1e-9);
+}
+
+}  // namespace
+}  // namespace harbour::bulk

@@ -32,7 +32,8 @@ std::unique_ptr<BulkWorld> build_bulk_world(const BulkScene& scene) {
   auto world = std::make_unique<BulkWorld>(scene.material, settings);
   for (const GridPlacement& g : scene.grids) {
     core::Vec3 v, w;
-    world->add_grid(g.settings, g.pose_at(0.0, v, w));
+    const int id = world->add_grid(g.settings, g.pose_at(0.0, v, w));
+    world->set_outflow(id, g.outflow_m3_per_s);
   }
   for (const HeapPlacement& h : scene.heaps)
     world->add_heap(h.grid, h.x_m, h.y_m, h.volume_m3);

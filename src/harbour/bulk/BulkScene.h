@@ -16,6 +16,7 @@ struct GridPlacement {
   double yaw_rad = 0;                                     ///< [rad] about world z
   double roll_amplitude_rad = 0;                          ///< [rad] rolling about the grid's centre line
   double roll_period_s = 0;                               ///< [s] 0: no motion
+  double outflow_m3_per_s = 0;  ///< [m^3/s] a hopper: what is in it leaves through its outlet (delivered)
   /// Its pose at time `t_s` (turned by the yaw, rolling about its centre line along x) and the velocities of
   /// its frame's origin and of its turning.
   core::Pose pose_at(double t_s, core::Vec3& linear_velocity, core::Vec3& angular_velocity) const;

@@ -25,7 +25,30 @@ BulkWorld::BulkWorld(const Material& material, const BulkWorldSettings& settings
 int BulkWorld::add_grid(const GridSettings& grid, const core::Pose& pose) {
   grids_.emplace_back(grid, material_, settings_.relaxation);
   grids_.back().set_pose(pose);
+  outflow_m3_per_s_.push_back(0.0);
   return static_cast<int>(grids_.size()) - 1;
+}
+
+void BulkWorld::set_outflow(int id, double m3_per_s) {
+  HARBOUR_ASSERT(m3_per_s >= 0.0, "a hopper's outflow is not negative");
+  outflow_m3_per_s_[static_cast<std::size_t>(id)] = m3_per_s;
+}
+
+void BulkWorld::drain_hoppers(double dt_s) {
+  // a hopper's outlet takes up to its rate from the material in it, the same share of every cell (the
+  // material above sinks evenly towards the outlet)
+  for (std::size_t n = 0; n < grids_.size(); ++n) {
+    if (outflow_m3_per_s_[n] <= 0.0) continue;
+    HeightGrid& g = grids_[n];
+    const double held = g.total_volume_m3();
+    if (held <= 0.0) continue;
+    const double share = std::min(1.0, outflow_m3_per_s_[n] * dt_s / held);
+    double taken = 0.0;
+    for (int j = 0; j < g.cells_y(); ++j)
+      for (int i = 0; i < g.cells_x(); ++i)
+        if (const double h = g.height(i, j); h > 0.0) taken += g.remove_layer(i, j, h * share);
+    delivered_m3_ += taken;
+  }
 }
 
 int BulkWorld::add_grab(const GrabSettings& grab) {
@@ -138,6 +161,7 @@ void BulkWorld::step(double dt_s, std::span<const GrabCommand> grab_commands) {
   for (std::size_t n = 0; n < grabs_.size(); ++n)
     step_grab(grab_settings_[n], grabs_[n], grab_commands[n], dt_s);
   step_parcels(dt_s);
+  drain_hoppers(dt_s);
   for (HeightGrid& g : grids_) {
     const std::uint32_t rejected = g.non_finite_count();
     if (full_sweep_)
@@ -268,6 +292,7 @@ VolumeBalance BulkWorld::balance() const {
   for (const Parcel& p : parcels_)
     b.in_flight_m3 += p.volume_m3;
   b.spilled_m3 = spilled_m3_;
+  b.delivered_m3 = delivered_m3_;
   b.added_m3 = added_m3_;
   return b;
 }
@@ -285,6 +310,7 @@ std::uint64_t BulkWorld::state_hash() const {
   for (const Parcel& p : parcels_)
     hash.add(p);
   hash.add(spilled_m3_);
+  hash.add(delivered_m3_);
   hash.add(added_m3_);
   return hash.value();
 }
@@ -300,6 +326,7 @@ void BulkWorld::save_state(core::StateWriter& out) const {
   out.put(pressing_);
   out.put(added_m3_);
   out.put(spilled_m3_);
+  out.put(delivered_m3_);
   out.put(loaded_m3_);
   out.put(unloaded_m3_);
   out.put(full_sweep_);
@@ -323,6 +350,7 @@ void BulkWorld::restore_state(core::StateReader& in) {
         throw core::StateError("saved bulk state presses a cell off its grids");
   in.get(added_m3_);
   in.get(spilled_m3_);
+  in.get(delivered_m3_);
   in.get(loaded_m3_);
   in.get(unloaded_m3_);
   in.get(full_sweep_);

@@ -25,9 +25,12 @@ struct VolumeBalance {
   double in_grabs_m3 = 0.0;
   double in_flight_m3 = 0.0;
   double spilled_m3 = 0.0;
-  double added_m3 = 0.0;  ///< everything ever poured in
-  /// in_grids + in_grabs + in_flight + spilled - added: zero up to rounding.
-  double discrepancy_m3() const { return in_grids_m3 + in_grabs_m3 + in_flight_m3 + spilled_m3 - added_m3; }
+  double delivered_m3 = 0.0;  ///< left through a hopper's outlet
+  double added_m3 = 0.0;      ///< everything ever poured in
+  /// in_grids + in_grabs + in_flight + spilled + delivered - added: zero up to rounding.
+  double discrepancy_m3() const {
+    return in_grids_m3 + in_grabs_m3 + in_flight_m3 + spilled_m3 + delivered_m3 - added_m3;
+  }
 };
 
 /// Material falling from a grab: a point parcel in free flight.
@@ -52,6 +55,8 @@ class BulkWorld {
   const HeightGrid& grid(int id) const { return grids_[static_cast<std::size_t>(id)]; }
   int grid_count() const { return static_cast<int>(grids_.size()); }
 
+  /// Makes grid `id` a hopper: material in it leaves through its outlet at up to `m3_per_s` (delivered).
+  void set_outflow(int id, double m3_per_s);
   /// Adds a grab and returns its index.
   int add_grab(const GrabSettings& grab);
   const GrabState& grab(int id) const { return grabs_[static_cast<std::size_t>(id)]; }
@@ -96,11 +101,13 @@ class BulkWorld {
   void step_grab(GrabSettings const& settings, GrabState& state, const GrabCommand& command, double dt_s);
   double dig(const GrabSettings& settings, GrabState& state, double dt_s);
   void step_parcels(double dt_s);
+  void drain_hoppers(double dt_s);
   bool land(const Parcel& parcel);
 
   Material material_;
   BulkWorldSettings settings_;
   std::vector<HeightGrid> grids_;
+  std::vector<double> outflow_m3_per_s_;  // per grid: a hopper's outlet (0: none)
   std::vector<GrabSettings> grab_settings_;
   std::vector<GrabState> grabs_;
   std::vector<Parcel> parcels_;
@@ -114,6 +121,7 @@ class BulkWorld {
   std::vector<CellIndex> footprint_;   // scratch
   double added_m3_ = 0.0;
   double spilled_m3_ = 0.0;
+  double delivered_m3_ = 0.0;
   double loaded_m3_ = 0.0;
   double unloaded_m3_ = 0.0;
   bool full_sweep_ = false;

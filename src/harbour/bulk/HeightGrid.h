@@ -119,8 +119,8 @@ class HeightGrid {
 
   /// Adds heights, compression, tilt and active list to a determinism hash.
   void hash_into(core::StateHash& hash) const;
-  /// The dynamic state (heights, compression, pipes, the active list, pose) for a keyframe; restoring it into a
-  /// grid of the same settings continues bit for bit (another size throws core::StateError).
+  /// The dynamic state (heights, compression, pipes, the active list, pose) for a keyframe; restoring it into
+  /// a grid of the same settings continues bit for bit (another size throws core::StateError).
   void save_state(core::StateWriter& out) const;
   void restore_state(core::StateReader& in);
 

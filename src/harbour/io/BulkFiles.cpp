@@ -74,6 +74,7 @@ bulk::BulkScene read_bulk_scene(const YamlFile& file, const YAML::Node& section,
     grid.yaw_rad = core::deg_to_rad(file.number_or(g, "yaw_deg", path, 0.0, -360.0, 360.0));
     grid.roll_amplitude_rad = core::deg_to_rad(file.number_or(g, "roll_amplitude_deg", path, 0.0, 0.0, 30.0));
     grid.roll_period_s = file.number_or(g, "roll_period_s", path, 0.0, 0.0, 600.0);
+    grid.outflow_m3_per_s = file.number_or(g, "outflow_m3_per_s", path, 0.0, 0.0, 100.0);
     scenario.grids.push_back(grid);
   }
   if (scenario.grids.empty()) file.fail(grids, at + ".grids", "no grid defined");
