@@ -71,7 +71,8 @@ std::unique_ptr<station::DeviceInput> open_devices(const station::Profile& profi
     present += "\n  " + d.name + " (" + d.guid + ")";
   throw std::runtime_error("no input devices for profile '" + profile.name + "'; it tried:" + tried +
                            "\ndevices present:" + (present.empty() ? std::string(" none") : present) +
-                           "\n(bind yours with: harboursim devices --bind FILE; or run with --autopilot)");
+                           "\n(bind yours with: harboursim devices --bind FILE; or, for a container "
+                           "exercise, run with --autopilot)");
 }
 
 }  // namespace
@@ -254,7 +255,7 @@ int run_station(const StationOptions& given) {
       static_cast<long long>(l.ticks), static_cast<long long>(l.late_ticks),
       static_cast<long long>(l.skipped_ticks), l.longest_tick_s * 1e3, l.mean_tick_s * 1e6,
       l.real_time_factor, l.keeping_real_time ? "" : " (COULD NOT KEEP REAL TIME)");
-  print_evaluation(result.metrics, result.score);
+  print_evaluation(result.metrics, result.score, !exercise.moves.empty());
   std::printf("stored as attempt %lld of trainee %s (%s)\n", static_cast<long long>(result.attempt),
               options.trainee.c_str(), result.status.c_str());
   if (!options.record.empty()) std::printf("recording %s\n", options.record.c_str());

@@ -72,27 +72,35 @@ void check_outputs(const RunOptions& options) {
     throw std::runtime_error("--trainee '" + core::printable(options.trainee, 64) + "' " + why);
 }
 
-void print_evaluation(const sim::Metrics& m, const sim::Score& s) {
+void print_evaluation(const sim::Metrics& m, const sim::Score& s, bool container_moves) {
   std::printf("\nevaluation\n");
   std::printf("  time                 %8.1f s\n", m.time_s);
-  std::printf("  moves completed      %8d\n", m.moves_completed);
-  for (std::size_t n = 0; n < m.cycle_times_s.size(); ++n)
-    std::printf("  cycle time, move %zu   %8.1f s\n", n + 1, m.cycle_times_s[n]);
-  std::printf("  moves per hour       %8.1f\n", m.moves_per_hour);
-  std::printf(
-      "  collisions           %8d (worst %.2f m/s, %.0f N s; box %d, cell guide %d, ship %d, other %d)\n",
-      m.collisions, m.worst_collision_mps, m.worst_collision_impulse_ns, m.container_collisions,
-      m.cell_guide_collisions, m.ship_collisions, m.other_collisions);
-  std::printf("  hard landings        %8d (worst landing %.2f m/s)\n", m.hard_landings, m.worst_landing_mps);
-  for (std::size_t n = 0; n < m.landing_sway_m.size(); ++n)
-    std::printf("  sway at landing %zu    %8.3f m\n", n + 1, m.landing_sway_m[n]);
-  std::printf("  twistlock misuse     %8d\n", m.twistlock_misuse);
-  std::printf("  rope overloads       %8d\n", m.overloads);
-  std::printf("  limit switch hits    %8d\n", m.limit_hits);
-  std::printf("  emergency stops      %8d\n", m.emergency_stops);
-  std::printf("  gantry without horn  %8d\n", m.unwarned_gantry_travel);
-  std::printf("  hoist energy         %8.2f MJ\n", m.hoist_energy_j / 1e6);
-  std::printf("  travel energy        %8.2f MJ (gantry and trolley)\n", m.travel_energy_j / 1e6);
+  if (!container_moves) {
+    std::printf("  collisions           %8d (worst %.2f m/s, %.0f N s)\n", m.collisions,
+                m.worst_collision_mps, m.worst_collision_impulse_ns);
+    std::printf("  rope overloads       %8d\n", m.overloads);
+    std::printf("  emergency stops      %8d\n", m.emergency_stops);
+  } else {
+    std::printf("  moves completed      %8d\n", m.moves_completed);
+    for (std::size_t n = 0; n < m.cycle_times_s.size(); ++n)
+      std::printf("  cycle time, move %zu   %8.1f s\n", n + 1, m.cycle_times_s[n]);
+    std::printf("  moves per hour       %8.1f\n", m.moves_per_hour);
+    std::printf(
+        "  collisions           %8d (worst %.2f m/s, %.0f N s; box %d, cell guide %d, ship %d, other %d)\n",
+        m.collisions, m.worst_collision_mps, m.worst_collision_impulse_ns, m.container_collisions,
+        m.cell_guide_collisions, m.ship_collisions, m.other_collisions);
+    std::printf("  hard landings        %8d (worst landing %.2f m/s)\n", m.hard_landings,
+                m.worst_landing_mps);
+    for (std::size_t n = 0; n < m.landing_sway_m.size(); ++n)
+      std::printf("  sway at landing %zu    %8.3f m\n", n + 1, m.landing_sway_m[n]);
+    std::printf("  twistlock misuse     %8d\n", m.twistlock_misuse);
+    std::printf("  rope overloads       %8d\n", m.overloads);
+    std::printf("  limit switch hits    %8d\n", m.limit_hits);
+    std::printf("  emergency stops      %8d\n", m.emergency_stops);
+    std::printf("  gantry without horn  %8d\n", m.unwarned_gantry_travel);
+    std::printf("  hoist energy         %8.2f MJ\n", m.hoist_energy_j / 1e6);
+    std::printf("  travel energy        %8.2f MJ (gantry and trolley)\n", m.travel_energy_j / 1e6);
+  }
   std::printf("score %.0f / 100: %s\n", s.total, s.passed ? "PASSED" : "NOT PASSED");
   for (const auto& d : s.deductions)
     std::printf("  -%.0f  %s x%d (%s)\n", d.points, d.reason.c_str(), d.count, sim::skill_name(d.skill));

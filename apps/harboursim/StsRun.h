@@ -22,7 +22,9 @@ int run_exercise(const RunOptions& options);
 /// Everything a run writes, checked before it starts (a bad output never costs a whole exercise).
 void check_outputs(const RunOptions& options);
 /// The evaluation as the trainee reads it.
-void print_evaluation(const sim::Metrics& metrics, const sim::Score& score);
+/// The attempt's metrics and score; `container_moves`: with the STS's move, landing, twistlock and travel
+/// figures (an exercise without container moves shows what every machine is measured on).
+void print_evaluation(const sim::Metrics& metrics, const sim::Score& score, bool container_moves = true);
 
 /// An exercise file: `name_or_path` itself when it is a file, else the shipped `data/exercises/<name>.yaml`;
 /// throws naming what it tried and the shipped exercises.
