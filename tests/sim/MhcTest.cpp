@@ -319,42 +319,28 @@ TEST(Mhc, AnInstructorFaultTheMachineLacksIsRefusedWithoutChange) {
   EXPECT_EQ(sim.scene().machine, "mhc");
 }
 
-}  // namespace
-}  // namespace harbour::sim
-
-namespace harbour::sim {
-namespace {
-
 TEST(Mhc, AFreePracticeIsEvaluatedOnWhatEveryMachineShows) {
   // the grab lowered at full speed onto the quay is a collision; an emergency stop is counted; without goals
   // the practice runs to its time limit
   const ExerciseSettings exercise = io::load_exercise(HARBOUR_DATA_DIR "/exercises/mhc_free_practice.yaml");
   Simulation sim(exercise.scenario);
   Evaluator evaluator(exercise);
-  const Controls lower = mhc_controls(sim, {{"hoist", -1.0}});
-  for (int k = 0; k < 20000 && evaluator.metrics().collisions == 0; ++k) {
-    sim.step(lower);
-    evaluator.observe(sim, lower);
-  }
+  const auto observed = [&](const Controls& controls, int steps, auto until) {
+    for (int k = 0; k < steps && !until(); ++k) {
+      sim.step(controls);
+      evaluator.observe(sim, controls);
+    }
+  };
+  observed(mhc_controls(sim, {{"hoist", -1.0}}), 20000, [&] { return evaluator.metrics().collisions > 0; });
   EXPECT_EQ(evaluator.metrics().collisions, 1);
   EXPECT_LT(mhc(sim).attachment_bottom_z_m(), 0.3);  // on the quay
-  const Controls stop = mhc_controls(sim, {{"emergency_stop", 1.0}});
-  for (int k = 0; k < 100; ++k) {
-    sim.step(stop);
-    evaluator.observe(sim, stop);
-  }
+  observed(mhc_controls(sim, {{"emergency_stop", 1.0}}), 100, [] { return false; });
   EXPECT_EQ(evaluator.metrics().emergency_stops, 1);
   EXPECT_FALSE(evaluator.finished());
   const Score score = evaluator.score();
   EXPECT_NEAR(score.total, 100.0 - exercise.rules.points_collision - exercise.rules.points_emergency_stop,
               1e-9);
 }
-
-}  // namespace
-}  // namespace harbour::sim
-
-namespace harbour::sim {
-namespace {
 
 TEST(Mhc, TheExercisesBulkMaterialIsInTheStateAndItsKeyframes) {
   const ExerciseSettings exercise = io::load_exercise(HARBOUR_DATA_DIR "/exercises/mhc_free_practice.yaml");
@@ -382,12 +368,6 @@ TEST(Mhc, TheExercisesBulkMaterialIsInTheStateAndItsKeyframes) {
   EXPECT_THROW(c.restore_state(keyframe), core::StateError);
   EXPECT_NE(c.state_hash(), Simulation(exercise.scenario).state_hash());
 }
-
-}  // namespace
-}  // namespace harbour::sim
-
-namespace harbour::sim {
-namespace {
 
 // The MHC with a coal heap right under its grab (20 m x 20 m of 10 cm cells).
 ScenarioSettings mhc_over_a_heap() {

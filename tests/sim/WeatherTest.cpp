@@ -69,7 +69,8 @@ TEST(Weather, SteadyWindDeflectsTheHangingSpreaderBySwingTheory) {
     y += sim.sts().spreader_pose().position.y / n;
     fall += (s.sts().crane.trolley_rail_height_m - 1.0 - (sim.sts().spreader_pose().position.z + 0.5)) / n;
   }
-  const double force = 0.5 * 1.225 * 1.0 * s.sts().crane.spreader.width_m * s.sts().crane.spreader.height_m * 400.0;
+  const double force =
+      0.5 * 1.225 * 1.0 * s.sts().crane.spreader.width_m * s.sts().crane.spreader.height_m * 400.0;
   const double expected = fall * force / (s.sts().crane.spreader.mass_kg * 9.80665);
   EXPECT_NEAR(y, expected, 0.05 * expected);
   // the rest position the evaluation measures sway from is that equilibrium

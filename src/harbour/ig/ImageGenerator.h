@@ -53,7 +53,7 @@ struct View {
   };
   Kind kind = Kind::kCab;
   double yaw_rad = 0.0, pitch_rad = -1.3,
-         roll_rad = 0.0;           ///< cab: offset from the cab's forward axis (down 75 deg), roll about it
+         roll_rad = 0.0;  ///< cab: offset from the cab's forward axis (down 75 deg), roll about it
   /// cab: pitch_rad is from the machine's design line of sight (Snapshot::Cab::sight_pitch_rad), not from the
   /// cab's x axis
   bool from_sight = false;

@@ -201,7 +201,6 @@ sim::MhcSettings read_mhc(const YamlFile& f, const std::string& folder) {
 
   const YAML::Node u = f.required_map(m, "undercarriage", "machine");
   s.undercarriage_mass_kg = f.number(u, "mass_kg", "machine.undercarriage", 1e4, 5e6);
-  s.undercarriage_com_z_m = f.number(u, "com_z_m", "machine.undercarriage", 0.0, 20.0);
   s.pad_half_spread_x_m = f.number(u, "pad_half_spread_x_m", "machine.undercarriage", 1.0, 50.0);
   s.pad_half_spread_y_m = f.number(u, "pad_half_spread_y_m", "machine.undercarriage", 1.0, 50.0);
 

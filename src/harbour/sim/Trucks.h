@@ -5,8 +5,8 @@
 #include <vector>
 
 #include "harbour/core/StateArchive.h"
-#include "harbour/physics/PhysicsWorld.h"
 #include "harbour/machines/Machine.h"
+#include "harbour/physics/PhysicsWorld.h"
 
 namespace harbour::sim {
 
@@ -52,7 +52,8 @@ class TruckLane {
   };
   /// The box seated on the truck once the spreader is clear of it.
   std::optional<physics::BodyId> load(const Truck& truck, std::span<const ContainerRef> boxes,
-                                      std::optional<physics::BodyId> held, double attachment_bottom_z_m) const;
+                                      std::optional<physics::BodyId> held,
+                                      double attachment_bottom_z_m) const;
   void place(const Truck& truck);
 
   physics::PhysicsWorld& world_;

@@ -16,7 +16,7 @@ struct DisplayChannel {
   std::string name;
   int width = 1920, height = 1080;
   bool fullscreen = false;
-  double yaw_rad = 0.0, pitch_rad = 0.0, roll_rad = 0.0;     ///< view offset from the cab's forward axis
+  double yaw_rad = 0.0, pitch_rad = 0.0, roll_rad = 0.0;  ///< view offset from the cab's forward axis
   bool pitch_from_sight = false;  ///< no pitch given: pitch_rad is from the machine's design line of sight
   double fov_horizontal_rad = 1.2, fov_vertical_rad = 0.75;  ///< symmetric frustum
   /// An asymmetric frustum (a projection screen not centred on the eye): angles of its left, right, bottom

@@ -211,9 +211,8 @@ void MobileHarbourCrane::settle() {
     }
     last_energy = energy;
   }
-  luffing_->drain_events(settle_events_);
-  hoist_->drain_events(settle_events_);
-  settle_events_.clear();
+  static_cast<void>(luffing_->take_events());  // the settling's rope events are not the exercise's
+  static_cast<void>(hoist_->take_events());
   last_hinge_angle_ = world_.hinge_angle(slew_hinge_);
 }
 

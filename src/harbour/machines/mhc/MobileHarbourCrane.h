@@ -35,8 +35,7 @@ struct CapacityPoint {
 struct MhcSettings {
   // undercarriage on four outriggers (fixed to the quay while working)
   double undercarriage_mass_kg = 180e3;
-  double undercarriage_com_z_m = 3.0;  ///< [m] its centre of mass above the quay, on the axis
-  double pad_half_spread_x_m = 6.5;    ///< [m] outrigger pads at (+-x, +-y) in the machine's frame
+  double pad_half_spread_x_m = 6.5;  ///< [m] outrigger pads at (+-x, +-y) in the machine's frame
   double pad_half_spread_y_m = 6.5;
   // slewing house: tower, machinery, counterweight, cab (a box about its centre of mass)
   double house_mass_kg = 190e3;
@@ -162,7 +161,6 @@ class MobileHarbourCrane final : public Machine {
   void settle();
   void update_tool();
   static constexpr int kSettleSteps = 4000;
-  std::vector<cable::CableEvent> settle_events_;
   physics::PhysicsWorld& world_;
   MhcSettings settings_;
   int slew_slot_, luff_slot_, hoist_slot_, grab_slot_, stop_slot_, horn_slot_;
