@@ -403,11 +403,23 @@ TEST(Mhc, TheGrabBitesTheHeapAndItsLoadHangsOnTheRopes) {
   const double resting_z = m.attachment_bottom_z_m();
   EXPECT_GT(resting_z, 1.0);  // on the heap (4 m high), not the quay
   run(sim, 0.5, lower);
-  run(sim, 6.0, mhc_controls(sim, {{"grab", 1.0}}));  // shut: the jaws cut in
+  // shut: the holding winch follows, the jaws cut in; the bite is the paper's w W v dt summed over the
+  // steps the jaws cut (w the opening as they cut, v the sinking speed)
+  const Controls shut = mhc_controls(sim, {{"grab", 1.0}});
+  const bulk::GrabSettings& g = sim.bulk()->grab_settings(sim.bulk_grab());
+  double formula_m3 = 0.0;
+  for (int n = 0; n < 6000; ++n) {
+    const double opening = sim.bulk()->grab(sim.bulk_grab()).opening_m;
+    sim.step(shut);
+    if (sim.bulk()->grab(sim.bulk_grab()).digging)
+      formula_m3 += opening * g.width_m * g.sinking_speed_mps * Simulation::kStep_s;
+  }
   const double bite_m3 = sim.bulk()->grab(sim.bulk_grab()).load_m3;
-  EXPECT_GT(bite_m3, 2.0);
+  EXPECT_GT(bite_m3, 0.4 * m.settings().grab.capacity_m3);  // the grab stays down while it shuts
   EXPECT_LE(bite_m3, m.settings().grab.capacity_m3 + 1e-9);
-  run(sim, 8.0, mhc_controls(sim, {{"hoist", 0.5}}));  // lift it clear
+  EXPECT_NEAR(bite_m3, formula_m3, 0.05 * formula_m3);
+  EXPECT_LT(m.attachment_bottom_z_m(), resting_z - 0.5);  // it sank into the heap as it cut
+  run(sim, 8.0, mhc_controls(sim, {{"hoist", 0.5}}));     // lift it clear
   run(sim, 4.0, sim.control_table().neutral());
   EXPECT_GT(m.attachment_bottom_z_m(), resting_z + 2.0);
   // the bite's weight hangs on the ropes with the grab's (the limiter's filtered load)

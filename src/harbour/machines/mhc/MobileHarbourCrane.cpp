@@ -9,6 +9,7 @@ namespace harbour::sim {
 namespace {
 
 constexpr double kG = 9.80665;
+constexpr double kRestingShare = 0.5;  // ropes carrying less of the grab than this: it rests on something
 // reeving bodies, as the constructor maps them
 constexpr int kHouse = 0, kBoom = 1, kGrabHead = 2, kGrabLower = 3;
 
@@ -161,7 +162,7 @@ MobileHarbourCrane::MobileHarbourCrane(physics::PhysicsWorld& world, const MhcSe
                  WindArea{house_, settings.house_half_extents_m}};
   last_hinge_angle_ = world.hinge_angle(slew_hinge_);
   // the grab as a bulk tool: nine points over the shells' underside, the jaw tips at its centre; its bite
-  // closes in the time the closing ropes take to shut it
+  // closes in the time the closing ropes take to shut it resting on material (the holding winch following)
   const core::Vec3& h = settings.grab_lower_half_extents_m;
   for (int a = 0; a < 3; ++a)
     for (int b = 0; b < 3; ++b)
@@ -169,7 +170,8 @@ MobileHarbourCrane::MobileHarbourCrane(physics::PhysicsWorld& world, const MhcSe
   tool_.body = grab_lower_;
   tool_.contact_points_m = shell_points_;
   tool_.grab = settings.grab;
-  tool_.grab.closing_time_s = tackle_falls_ * (settings.grab_open_gap_m - settings.grab_closed_gap_m) /
+  tool_.grab.closing_time_s = std::max(tackle_falls_ - 1, 1) *
+                              (settings.grab_open_gap_m - settings.grab_closed_gap_m) /
                               first_drum(settings.hoist).max_rope_speed_mps;
   settle();
   update_tool();
@@ -370,8 +372,13 @@ void MobileHarbourCrane::step(const Controls& raw, std::span<const ContainerRef>
       grab_limits_.limit(at(grab_slot_), 1.0 - grab_opening(), shut_rate,
                          hoist_drum.max_rope_acceleration_mps2 / (tackle_falls_ * travel), dt_s);
   const double close = std::clamp(hoist + grab, -1.0, 1.0);
+  // closing on material the holding winch follows (slack-rope control): it pays out what keeps the lower
+  // block where it rests, so the head comes down to it and the jaws cut in under the grab's weight
+  const double grab_kg = settings_.grab_head_mass_kg + settings_.grab_lower_mass_kg + carried_kg_;
+  const bool resting = hoisted_load_n() < kRestingShare * grab_kg * kG;
+  const double follow = resting && grab > 0.0 ? grab / std::max(tackle_falls_ - 1, 1) : 0.0;
   const std::array<cable::DrumCommand, 2> hoist_commands{
-      cable::DrumCommand{stop ? 0.0 : -hoist, hoist_brake_fault_, !stop},
+      cable::DrumCommand{stop ? 0.0 : std::clamp(follow - hoist, -1.0, 1.0), hoist_brake_fault_, !stop},
       cable::DrumCommand{stop ? 0.0 : -close, hoist_brake_fault_, !stop}};
   hoist_->step(dt_s, hoist_commands, *hoist_bodies_);
 
