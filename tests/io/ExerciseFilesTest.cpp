@@ -54,6 +54,38 @@ TEST(ExerciseFiles, AnExerciseTheMachineCannotDoNamesTheField) {
          "exercise.events[0].kind", "no twistlocks", 2);
 }
 
+TEST(ExerciseFiles, ABulkExerciseNamesTheFieldItCannotPlace) {
+  const std::string text = scenes::read_text(HARBOUR_DATA_DIR "/exercises/mhc_coal_discharge.yaml");
+  const auto expect = [&](const std::string& from, const std::string& to, const std::string& field,
+                          const std::string& says, const std::string& on_line_of = "") {
+    scenes::expect_data_error(
+        text, from, to, [](const YamlFile& f) { load_exercise(f, HARBOUR_DATA_DIR "/exercises"); },
+        scenes::line_of(text, on_line_of.empty() ? from : on_line_of), field, says);
+  };
+  expect("vessel_hold: 3,", "vessel_hold: 7,", "exercise.bulk.grids[0].vessel_hold", "no hold 7");
+  expect("vessel_hold: 3,", "vessel_hold: 3, cells_x: 10,", "exercise.bulk.grids[0].cells_x", "moves with");
+  expect("  deliver: {into: hopper, tonnes: 36}", "  deliver: {into: chute, tonnes: 36}",
+         "exercise.deliver.into", "no bulk grid named 'chute'");
+  // the hold of a container vessel is no bulk hold
+  expect("handysize_bulk.yaml", "feeder_1100teu.yaml", "exercise.bulk.grids[0].vessel_hold", "bulk carrier",
+         "vessel_hold: 3,");
+}
+
+TEST(ExerciseFiles, TheCoalDischargeLoadsItsHoldOnTheBulkCarrier) {
+  const sim::ExerciseSettings e = load_exercise(HARBOUR_DATA_DIR "/exercises/mhc_coal_discharge.yaml");
+  ASSERT_TRUE(e.scenario.vessel && e.scenario.bulk && e.deliver);
+  EXPECT_EQ(e.scenario.vessel->vessel.kind, sim::VesselKind::kBulk);
+  const bulk::GridPlacement& hold = e.scenario.bulk->grids[0];
+  EXPECT_TRUE(hold.on_vessel);
+  // side shell to side shell (30 m beam less two 0.4 m shells), between the cross decks (20 m + coamings)
+  EXPECT_EQ(hold.settings.cells_x, 146);
+  EXPECT_EQ(hold.settings.cells_y, 103);
+  EXPECT_NEAR(hold.origin_z_m, 1.6, 1e-12);
+  EXPECT_EQ(e.deliver->grid_index, 1);
+  EXPECT_EQ(e.deliver->tonnes, 36.0);
+  EXPECT_TRUE(e.scenario.containers.empty());  // a bulk carrier's open hatches are no hatch-cover boxes
+}
+
 TEST(ExerciseFiles, ShippedDischargeLoads) {
   const sim::ExerciseSettings e = load_exercise(HARBOUR_DATA_DIR "/exercises/sts_discharge.yaml");
   EXPECT_EQ(e.name, "sts_discharge");

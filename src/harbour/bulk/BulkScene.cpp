@@ -26,27 +26,44 @@ core::Pose GridPlacement::pose_at(double t_s, core::Vec3& linear_velocity,
   return pose;
 }
 
-std::unique_ptr<BulkWorld> build_bulk_world(const BulkScene& scene) {
+namespace {
+
+// a grid's pose and velocities riding on the vessel's frame
+core::Pose on_carrier(const GridPlacement& g, const CarrierMotion& vessel, core::Vec3& v, core::Vec3& w) {
+  core::Vec3 unused_v, unused_w;
+  const core::Pose local = g.pose_at(0.0, unused_v, unused_w);
+  const core::Pose pose{vessel.frame.rotation * local.rotation, vessel.frame.to_parent(local.position)};
+  w = vessel.angular_velocity;
+  v = vessel.linear_velocity + cross(w, pose.position - vessel.frame.position);
+  return pose;
+}
+
+}  // namespace
+
+std::unique_ptr<BulkWorld> build_bulk_world(const BulkScene& scene, const CarrierMotion& vessel) {
   BulkWorldSettings settings;
   settings.spill_level_m = scene.spill_level_m;
   auto world = std::make_unique<BulkWorld>(scene.material, settings);
   for (const GridPlacement& g : scene.grids) {
     core::Vec3 v, w;
-    const int id = world->add_grid(g.settings, g.pose_at(0.0, v, w));
+    const int id =
+        world->add_grid(g.settings, g.on_vessel ? on_carrier(g, vessel, v, w) : g.pose_at(0.0, v, w));
     world->set_outflow(id, g.outflow_m3_per_s);
+    if (g.fill_m > 0.0) world->fill_level(id, g.fill_m);
   }
   for (const HeapPlacement& h : scene.heaps)
     world->add_heap(h.grid, h.x_m, h.y_m, h.volume_m3);
   return world;
 }
 
-void move_grids(BulkWorld& world, const BulkScene& scene, double t_s) {
+void move_grids(BulkWorld& world, const BulkScene& scene, double t_s, const CarrierMotion& vessel) {
   for (std::size_t n = 0; n < scene.grids.size(); ++n) {
     const GridPlacement& g = scene.grids[n];
-    if (g.roll_period_s <= 0.0) continue;
     core::Vec3 v, w;
-    const core::Pose pose = g.pose_at(t_s, v, w);
-    world.grid(static_cast<int>(n)).set_pose(pose, v, w);
+    if (g.on_vessel)
+      world.grid(static_cast<int>(n)).set_pose(on_carrier(g, vessel, v, w), v, w);
+    else if (g.roll_period_s > 0.0)
+      world.grid(static_cast<int>(n)).set_pose(g.pose_at(t_s, v, w), v, w);
   }
 }
 

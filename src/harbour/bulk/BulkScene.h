@@ -17,6 +17,8 @@ struct GridPlacement {
   double roll_amplitude_rad = 0;                          ///< [rad] rolling about the grid's centre line
   double roll_period_s = 0;                               ///< [s] 0: no motion
   double outflow_m3_per_s = 0;  ///< [m^3/s] a hopper: what is in it leaves through its outlet (delivered)
+  double fill_m = 0;            ///< [m] filled level to this depth at the start
+  bool on_vessel = false;       ///< origin and yaw are in the vessel's frame: the grid moves with the vessel
   /// Its pose at time `t_s` (turned by the yaw, rolling about its centre line along x) and the velocities of
   /// its frame's origin and of its turning.
   core::Pose pose_at(double t_s, core::Vec3& linear_velocity, core::Vec3& angular_velocity) const;
@@ -37,9 +39,16 @@ struct BulkScene {
   std::vector<HeapPlacement> heaps;
 };
 
-/// The scene's world: its grids at their poses at time 0 and its heaps.
-std::unique_ptr<BulkWorld> build_bulk_world(const BulkScene& scene);
-/// Moves the rolling grids to time `t_s`.
-void move_grids(BulkWorld& world, const BulkScene& scene, double t_s);
+/// A moving frame grids ride on (the moored vessel): its pose and the velocities of its origin.
+struct CarrierMotion {
+  core::Pose frame;
+  core::Vec3 linear_velocity, angular_velocity;
+};
+
+/// The scene's world: its grids at their poses at time 0 (those on the vessel on `vessel`), their fills and
+/// its heaps.
+std::unique_ptr<BulkWorld> build_bulk_world(const BulkScene& scene, const CarrierMotion& vessel = {});
+/// Moves the rolling grids to time `t_s`, and those on the vessel with it.
+void move_grids(BulkWorld& world, const BulkScene& scene, double t_s, const CarrierMotion& vessel = {});
 
 }  // namespace harbour::bulk

@@ -26,7 +26,17 @@ int BulkWorld::add_grid(const GridSettings& grid, const core::Pose& pose) {
   grids_.emplace_back(grid, material_, settings_.relaxation);
   grids_.back().set_pose(pose);
   outflow_m3_per_s_.push_back(0.0);
+  landed_m3_.push_back(0.0);
   return static_cast<int>(grids_.size()) - 1;
+}
+
+void BulkWorld::fill_level(int grid_id, double depth_m) {
+  HeightGrid& g = grid(grid_id);
+  const double per_cell = depth_m * g.cell_area_m2();
+  for (int j = 0; j < g.cells_y(); ++j)
+    for (int i = 0; i < g.cells_x(); ++i)
+      g.add_volume(i, j, per_cell);
+  added_m3_ += per_cell * g.cells_x() * g.cells_y();
 }
 
 void BulkWorld::set_outflow(int id, double m3_per_s) {
@@ -178,16 +188,19 @@ void BulkWorld::step_grab(const GrabSettings& settings, GrabState& state, const 
   state.velocity = command.velocity;
   const double rate = std::clamp(command.close_rate, -1.0, 1.0);
   const bool closing = rate > 0.0 && state.opening_m > 0.0;
-  state.digging = closing && dig(settings, state, dt_s);
+  state.digging = closing && dig(settings, state, rate * dt_s);  // the jaws cut as fast as they close
   state.opening_m =
       std::clamp(state.opening_m - rate * settings.max_opening_m / settings.closing_time_s * dt_s, 0.0,
                  settings.max_opening_m);
   if (rate < 0.0) state.cut_depth_m = 0.0;
 
-  // an open grab spills through its opening w x W at v0, as a falling parcel
-  if (rate <= 0.0 && state.opening_m > 0.0 && state.load_m3 > 0.0) {
-    const double out =
-        std::min(state.load_m3, state.opening_m * settings.width_m * settings.spill_speed_mps * dt_s);
+  // a grab opened wider than it held its load spills through the gap (w - w_held) x W at v0, as a falling
+  // parcel: material cut and held at an opening stays wedged there
+  if (state.load_m3 <= 0.0) state.held_opening_m = state.opening_m;
+  state.held_opening_m = std::min(state.held_opening_m, state.opening_m);
+  const double gap = state.opening_m - state.held_opening_m;
+  if (rate <= 0.0 && gap > 0.0 && state.load_m3 > 0.0) {
+    const double out = std::min(state.load_m3, gap * settings.width_m * settings.spill_speed_mps * dt_s);
     state.load_m3 -= out;
     unloaded_m3_ += out;
     parcels_.push_back(
@@ -227,7 +240,8 @@ double BulkWorld::dig(const GrabSettings& settings, GrabState& state, double dt_
     }
     if (cells.empty()) return false;
 
-    // one layer v*dt off every cell, never more than the cell holds nor than the grab has room for
+    // one layer v*dt off every cell (dt scaled by the closing rate), never more than the cell holds nor than
+    // the grab has room for
     const double layer = settings.sinking_speed_mps * dt_s;
     const double room = settings.capacity_m3 - state.load_m3;
     const double scale = std::min(1.0, room / (static_cast<double>(cells.size()) * layer * g.cell_area_m2()));
@@ -259,7 +273,8 @@ void BulkWorld::step_parcels(double dt_s) {
 }
 
 bool BulkWorld::land(const Parcel& parcel) {
-  for (HeightGrid& g : grids_) {
+  for (std::size_t n = 0; n < grids_.size(); ++n) {
+    HeightGrid& g = grids_[n];
     const core::Vec3 local = g.pose().to_local(parcel.position);
     if (!g.contains(local.x, local.y) || local.z > g.surface_height(local.x, local.y)) continue;
 
@@ -278,6 +293,7 @@ bool BulkWorld::land(const Parcel& parcel) {
     const double share = parcel.volume_m3 / static_cast<double>(cells.size());
     for (const CellIndex& c : cells)
       g.add_volume(c.i, c.j, share);
+    landed_m3_[n] += parcel.volume_m3;
     return true;
   }
   return false;
@@ -312,6 +328,8 @@ std::uint64_t BulkWorld::state_hash() const {
   hash.add(spilled_m3_);
   hash.add(delivered_m3_);
   hash.add(added_m3_);
+  for (double landed : landed_m3_)
+    hash.add(landed);
   return hash.value();
 }
 
@@ -329,6 +347,7 @@ void BulkWorld::save_state(core::StateWriter& out) const {
   out.put(delivered_m3_);
   out.put(loaded_m3_);
   out.put(unloaded_m3_);
+  out.put(landed_m3_);
   out.put(full_sweep_);
   out.put(warnings_);
 }
@@ -353,6 +372,7 @@ void BulkWorld::restore_state(core::StateReader& in) {
   in.get(delivered_m3_);
   in.get(loaded_m3_);
   in.get(unloaded_m3_);
+  in.get(landed_m3_, static_cast<std::int64_t>(grids_.size()));
   in.get(full_sweep_);
   in.get(warnings_);
 }

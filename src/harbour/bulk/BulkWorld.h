@@ -66,6 +66,9 @@ class BulkWorld {
   /// pile). Returns false, adding nothing, when the point is off the grid.
   bool pour(int grid_id, double x, double y, double volume_m3);
 
+  /// Fills grid `grid_id` level to `depth_m` (a loaded hold).
+  void fill_level(int grid_id, double depth_m);
+
   /// Builds a relaxed cone of about `volume_m3` at the angle of repose centred at grid-frame (x, y),
   /// clipped by the grid's walls; returns the volume added [m^3].
   double add_heap(int grid_id, double x, double y, double volume_m3);
@@ -85,6 +88,10 @@ class BulkWorld {
   /// Total volume loaded into grabs so far [m^3].
   double loaded_m3() const { return loaded_m3_; }
   const std::vector<Parcel>& parcels() const { return parcels_; }
+  /// Falling material that has landed on grid `id` so far [m^3] (dropped into a hopper: delivered).
+  double landed_m3(int id) const { return landed_m3_[static_cast<std::size_t>(id)]; }
+  /// Falling material lost below the spill level outside every grid so far [m^3].
+  double spilled_m3() const { return spilled_m3_; }
 
   /// Selects the relaxation used by step(): the active list (default) or the full-sweep reference.
   void use_full_sweep(bool on) { full_sweep_ = on; }
@@ -108,6 +115,7 @@ class BulkWorld {
   BulkWorldSettings settings_;
   std::vector<HeightGrid> grids_;
   std::vector<double> outflow_m3_per_s_;  // per grid: a hopper's outlet (0: none)
+  std::vector<double> landed_m3_;         // per grid: falling material landed on it
   std::vector<GrabSettings> grab_settings_;
   std::vector<GrabState> grabs_;
   std::vector<Parcel> parcels_;

@@ -26,10 +26,11 @@ struct GrabCommand {
 struct GrabState {
   core::Pose pose;
   core::Vec3 velocity;
-  double opening_m = 0.0;    ///< [m] current jaw opening w
-  double load_m3 = 0.0;      ///< [m^3] material held
-  double cut_depth_m = 0.0;  ///< [m] depth the jaws have cut in this bite
-  bool digging = false;      ///< jaws closing in contact with material this step
+  double opening_m = 0.0;       ///< [m] current jaw opening w
+  double load_m3 = 0.0;         ///< [m^3] material held
+  double cut_depth_m = 0.0;     ///< [m] depth the jaws have cut in this bite
+  double held_opening_m = 0.0;  ///< [m] the narrowest opening since it took its load (the load fills it)
+  bool digging = false;         ///< jaws closing in contact with material this step
 };
 
 }  // namespace harbour::bulk

@@ -48,8 +48,43 @@ std::vector<bulk::Material> load_materials(const std::string& path) {
   return load_materials(YamlFile::load(path));
 }
 
+namespace {
+
+// a grid on a bulk carrier's hold floor: it moves with the vessel
+void read_vessel_hold(const YamlFile& file, const YAML::Node& g, const std::string& path,
+                      const sim::VesselGeometry* vessel, bulk::GridPlacement& grid) {
+  for (const char* key : {"cells_x", "cells_y", "origin_x_m", "origin_y_m", "origin_z_m", "yaw_deg",
+                          "roll_amplitude_deg", "roll_period_s"})
+    if (file.optional(g, key, path))
+      file.fail(g[key], path + "." + key, "a vessel hold's grid is its floor and moves with the vessel");
+  const int number = file.integer(g, "vessel_hold", path, 1, 20);
+  if (!vessel || vessel->placement().vessel.kind != sim::VesselKind::kBulk)
+    file.fail(g["vessel_hold"], path + ".vessel_hold",
+              "a vessel hold needs the exercise's vessel to be a bulk carrier");
+  const sim::VesselSettings::Hold* hold = vessel->hold(number);
+  if (!hold)
+    file.fail(g["vessel_hold"], path + ".vessel_hold",
+              "vessel " + vessel->placement().vessel.name + " has no hold " + std::to_string(number));
+  const sim::VesselGeometry::Floor floor = vessel->hold_floor(*hold);
+  const double cell = grid.settings.cell_size_m;
+  grid.settings.cells_x = static_cast<int>(std::floor(floor.breadth_m / cell));
+  grid.settings.cells_y = static_cast<int>(std::floor(floor.length_m / cell));
+  if (grid.settings.cells_x < 1 || grid.settings.cells_y < 1 || grid.settings.cells_x > 8192 ||
+      grid.settings.cells_y > 8192)
+    file.fail(g["cell_size_m"], path + ".cell_size_m",
+              "does not divide the hold floor into 1 to 8192 cells a side");
+  // centred on the floor (vessel frame x across the beam is the grid's x, y along the vessel its y)
+  grid.on_vessel = true;
+  grid.origin_x_m = floor.corner_m.x + 0.5 * (floor.breadth_m - grid.settings.cells_x * cell);
+  grid.origin_y_m = floor.corner_m.y + 0.5 * (floor.length_m - grid.settings.cells_y * cell);
+  grid.origin_z_m = floor.corner_m.z;
+}
+
+}  // namespace
+
 bulk::BulkScene read_bulk_scene(const YamlFile& file, const YAML::Node& section, const std::string& at,
-                                const std::vector<bulk::Material>& materials) {
+                                const std::vector<bulk::Material>& materials,
+                                const sim::VesselGeometry* vessel) {
   bulk::BulkScene scenario;
   const std::string material = file.text(section, "material", at);
   const auto found =
@@ -65,16 +100,24 @@ bulk::BulkScene read_bulk_scene(const YamlFile& file, const YAML::Node& section,
     const std::string path = item(at + ".grids", n);
     bulk::GridPlacement grid;
     grid.name = file.text(g, "name", path);
-    grid.settings.cells_x = file.integer(g, "cells_x", path, 1, 8192);
-    grid.settings.cells_y = file.integer(g, "cells_y", path, 1, 8192);
+    for (std::size_t k = 0; k < n; ++k)
+      if (scenario.grids[k].name == grid.name) file.fail(g["name"], path + ".name", "grid listed twice");
     grid.settings.cell_size_m = file.number(g, "cell_size_m", path, 0.0, 100.0, true);
-    grid.origin_x_m = file.number_or(g, "origin_x_m", path, 0.0, -kSite_m, kSite_m);
-    grid.origin_y_m = file.number_or(g, "origin_y_m", path, 0.0, -kSite_m, kSite_m);
-    grid.origin_z_m = file.number_or(g, "origin_z_m", path, 0.0, -kSite_m, kSite_m);
-    grid.yaw_rad = core::deg_to_rad(file.number_or(g, "yaw_deg", path, 0.0, -360.0, 360.0));
-    grid.roll_amplitude_rad = core::deg_to_rad(file.number_or(g, "roll_amplitude_deg", path, 0.0, 0.0, 30.0));
-    grid.roll_period_s = file.number_or(g, "roll_period_s", path, 0.0, 0.0, 600.0);
+    if (file.optional(g, "vessel_hold", path)) {
+      read_vessel_hold(file, g, path, vessel, grid);
+    } else {
+      grid.settings.cells_x = file.integer(g, "cells_x", path, 1, 8192);
+      grid.settings.cells_y = file.integer(g, "cells_y", path, 1, 8192);
+      grid.origin_x_m = file.number_or(g, "origin_x_m", path, 0.0, -kSite_m, kSite_m);
+      grid.origin_y_m = file.number_or(g, "origin_y_m", path, 0.0, -kSite_m, kSite_m);
+      grid.origin_z_m = file.number_or(g, "origin_z_m", path, 0.0, -kSite_m, kSite_m);
+      grid.yaw_rad = core::deg_to_rad(file.number_or(g, "yaw_deg", path, 0.0, -360.0, 360.0));
+      grid.roll_amplitude_rad =
+          core::deg_to_rad(file.number_or(g, "roll_amplitude_deg", path, 0.0, 0.0, 30.0));
+      grid.roll_period_s = file.number_or(g, "roll_period_s", path, 0.0, 0.0, 600.0);
+    }
     grid.outflow_m3_per_s = file.number_or(g, "outflow_m3_per_s", path, 0.0, 0.0, 100.0);
+    grid.fill_m = file.number_or(g, "fill_m", path, 0.0, 0.0, 50.0);
     scenario.grids.push_back(grid);
   }
   if (scenario.grids.empty()) file.fail(grids, at + ".grids", "no grid defined");

@@ -8,6 +8,7 @@
 #include "harbour/bulk/HeightGrid.h"
 #include "harbour/bulk/Material.h"
 #include "harbour/io/YamlFile.h"
+#include "harbour/sim/Vessel.h"
 
 namespace harbour::io {
 
@@ -24,9 +25,11 @@ struct BulkScenario : bulk::BulkScene {
 };
 
 /// Reads a `bulk:` section's material, spill level, grids and heaps (`at` names it in errors:
-/// "bulk", "exercise.bulk"); `materials` resolves the material's name.
+/// "bulk", "exercise.bulk"); `materials` resolves the material's name; a grid on a hold (`vessel_hold`) needs
+/// the scene's bulk carrier.
 bulk::BulkScene read_bulk_scene(const YamlFile& file, const YAML::Node& section, const std::string& at,
-                                const std::vector<bulk::Material>& materials);
+                                const std::vector<bulk::Material>& materials,
+                                const sim::VesselGeometry* vessel = nullptr);
 
 /// Reads a bulk scenario; `materials` resolves its material name.
 BulkScenario load_bulk_scenario(const YamlFile& file, const std::vector<bulk::Material>& materials);

@@ -306,7 +306,23 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
     const std::string path = (std::filesystem::path(folder) / file).lexically_normal().string();
     if (!std::filesystem::is_regular_file(path))
       f.fail((*b_node)["materials"], "exercise.bulk.materials", "no such file: " + path);
-    s.bulk = read_bulk_scene(f, *b_node, "exercise.bulk", load_materials(path));
+    s.bulk = read_bulk_scene(f, *b_node, "exercise.bulk", load_materials(path), vessel ? &*vessel : nullptr);
+  }
+
+  if (const auto d_node = f.optional_map(x, "deliver", "exercise")) {
+    // a bulk goal: tonnes dropped into one of the bulk section's grids (a hopper)
+    const std::string at = "exercise.deliver";
+    if (!s.bulk) f.fail(*d_node, at, "a delivery goal needs the exercise's bulk section");
+    sim::BulkGoal goal;
+    goal.grid = f.text(*d_node, "into", at);
+    const auto& grids = s.bulk->grids;
+    const auto found =
+        std::find_if(grids.begin(), grids.end(), [&](const auto& g) { return g.name == goal.grid; });
+    if (found == grids.end())
+      f.fail((*d_node)["into"], at + ".into", "no bulk grid named '" + goal.grid + "'");
+    goal.grid_index = static_cast<int>(found - grids.begin());
+    goal.tonnes = f.number(*d_node, "tonnes", at, 0.0, 1e6, true);
+    e.deliver = goal;
   }
 
   if (const auto w_node = f.optional_map(x, "weather", "exercise")) {
@@ -367,6 +383,7 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
     rules.horn_warning_s =
         f.number_or(r, "horn_warning_s", "exercise.rules", rules.horn_warning_s, 0.0, 600.0, true);
     rules.overtime_s = f.number_or(r, "overtime_s", "exercise.rules", rules.overtime_s, 0.0, 3600.0);
+    rules.poor_bite_fill = f.number_or(r, "poor_bite_fill", "exercise.rules", rules.poor_bite_fill, 0.0, 1.0);
     if (const auto d_node = f.optional(r, "deductions", "exercise.rules")) {
       // points per occurrence, by metric
       const YAML::Node& d = *d_node;
@@ -382,7 +399,12 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
           {"emergency_stop", &rules.points_emergency_stop},
           {"gantry_travel_without_horn", &rules.points_unwarned_travel},
           {"move_not_completed", &rules.points_per_move_missing},
-          {"minute_over_time_limit", &rules.points_per_minute_over}};
+          {"minute_over_time_limit", &rules.points_per_minute_over},
+          {"tonne_spilled", &rules.points_per_spilled_t},
+          {"tonne_short", &rules.points_per_missing_t},
+          {"poor_bite", &rules.points_poor_bite},
+          {"limiter_trip", &rules.points_limiter_trip},
+          {"pad_lift_off", &rules.points_pad_lift_off}};
       for (const auto& entry : d) {
         const std::string key = entry.first.as<std::string>();
         const auto known =
@@ -391,7 +413,8 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
           f.fail(entry.first, at + "." + key,
                  "unknown deduction (collision, hard_landing, landing_while_swaying, twistlock_misuse, "
                  "rope_overload, limit_switch_hit, emergency_stop, gantry_travel_without_horn, "
-                 "move_not_completed, minute_over_time_limit)");
+                 "move_not_completed, minute_over_time_limit, tonne_spilled, tonne_short, poor_bite, "
+                 "limiter_trip, pad_lift_off)");
         *known->second = f.number(d, key, at, 0.0, 100.0);
       }
     }

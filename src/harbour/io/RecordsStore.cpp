@@ -354,28 +354,10 @@ void RecordsStore::finish_attempt(std::int64_t attempt, const sim::Metrics& m, c
     // the final figures in one transaction: an attempt is either still running or completely finished
     soci::transaction tr(impl_->sql);
     const long long a = attempt;
-    const std::pair<const char*, double> values[] = {{"time_s", m.time_s},
-                                                     {"moves_completed", m.moves_completed},
-                                                     {"moves_per_hour", m.moves_per_hour},
-                                                     {"collisions", m.collisions},
-                                                     {"worst_collision_mps", m.worst_collision_mps},
-                                                     {"collision_impulse_ns", m.collision_impulse_ns},
-                                                     {"container_collisions", m.container_collisions},
-                                                     {"cell_guide_collisions", m.cell_guide_collisions},
-                                                     {"ship_collisions", m.ship_collisions},
-                                                     {"hard_landings", m.hard_landings},
-                                                     {"worst_landing_mps", m.worst_landing_mps},
-                                                     {"sway_landings", m.sway_landings},
-                                                     {"twistlock_misuse", m.twistlock_misuse},
-                                                     {"overloads", m.overloads},
-                                                     {"limit_hits", m.limit_hits},
-                                                     {"emergency_stops", m.emergency_stops},
-                                                     {"unwarned_gantry_travel", m.unwarned_gantry_travel},
-                                                     {"skill_safety", s.skills[0]},
-                                                     {"skill_precision", s.skills[1]},
-                                                     {"skill_productivity", s.skills[2]},
-                                                     {"hoist_energy_j", m.hoist_energy_j},
-                                                     {"travel_energy_j", m.travel_energy_j}};
+    std::vector<std::pair<std::string, double>> values = m.rows();
+    values.insert(values.end(), {{"skill_safety", s.skills[0]},
+                                 {"skill_precision", s.skills[1]},
+                                 {"skill_productivity", s.skills[2]}});
     for (const auto& [name, value] : values) {
       const std::string n = name;
       const double v = value;
@@ -442,7 +424,10 @@ void record_progress(RecordsStore& db, std::int64_t attempt, const sim::Metrics&
       {"rope_overload", before.overloads, now.overloads, 0.0},
       {"limit_switch_hit", before.limit_hits, now.limit_hits, 0.0},
       {"emergency_stop", before.emergency_stops, now.emergency_stops, 0.0},
-      {"gantry_travel_without_horn", before.unwarned_gantry_travel, now.unwarned_gantry_travel, 0.0}};
+      {"gantry_travel_without_horn", before.unwarned_gantry_travel, now.unwarned_gantry_travel, 0.0},
+      {"limiter_trip", before.limiter_trips, now.limiter_trips, 0.0},
+      {"pad_lift_off", before.pad_lift_offs, now.pad_lift_offs, 0.0},
+      {"poor_bite", before.poor_bites, now.poor_bites, 0.0}};
   for (const auto& [kind, was, is, value] : counters)
     for (int n = was; n < is; ++n)
       db.record_event(attempt, now.time_s, kind, value);

@@ -1,5 +1,7 @@
 #include "harbour/io/VesselFiles.h"
 
+#include <cmath>
+
 #include "harbour/core/Units.h"
 
 namespace harbour::io {
@@ -20,6 +22,32 @@ std::vector<sim::Harmonic> read_harmonics(const YamlFile& f, const YAML::Node& s
     out.push_back(h);
   }
   return out;
+}
+
+// a bulk carrier's open hatches: one breadth, each hold's opening length along the vessel
+sim::VesselSettings load_bulk_holds(const YamlFile& f, const YAML::Node& v, const std::string& at,
+                                    sim::VesselSettings s) {
+  s.kind = sim::VesselKind::kBulk;
+  s.hatch_breadth_m = f.number(v, "hatch_breadth_m", at, 2.0, s.beam_m - 2.0);
+  const YAML::Node holds = f.sequence(v, "holds", at);
+  for (std::size_t n = 0; n < holds.size(); ++n) {
+    const std::string p = at + ".holds[" + std::to_string(n) + "]";
+    sim::VesselSettings::Hold h;
+    h.number = f.integer(holds[n], "hold", p, 1, 20);
+    h.opening_length_m = f.number(holds[n], "opening_length_m", p, 2.0, 60.0);
+    h.open = f.flag(holds[n], "open", p, true);
+    const double half = h.opening_length_m / 2 + 1.0;  // with its coamings and a cross deck
+    h.centre_m = f.number(holds[n], "centre_m", p, -s.length_m / 2 + half, s.length_m / 2 - half);
+    for (const auto& other : s.holds) {
+      if (other.number == h.number) f.fail(holds[n]["hold"], p + ".hold", "hold listed twice");
+      if (std::abs(other.centre_m - h.centre_m) < half + other.opening_length_m / 2 + 1.0)
+        f.fail(holds[n]["centre_m"], p + ".centre_m", "overlaps hold " + std::to_string(other.number));
+    }
+    s.holds.push_back(h);
+  }
+  if (s.holds.empty()) f.fail(holds, at + ".holds", "a bulk carrier needs at least one hold");
+  f.check_unknown_keys();
+  return s;
 }
 
 }  // namespace
@@ -43,6 +71,11 @@ sim::VesselSettings load_vessel(const YamlFile& f) {
   s.draught_m = f.number(v, "draught_m", at, 0.5, s.depth_m, false, true);
   s.tank_top_m = f.number(v, "tank_top_m", at, 0.0, s.depth_m, false, true);
   s.coaming_height_m = f.number(v, "coaming_height_m", at, 0.0, 5.0);
+  if (f.optional(v, "kind", at)) {
+    const std::string kind = f.text(v, "kind", at);
+    if (kind == "bulk") return load_bulk_holds(f, v, at, s);
+    if (kind != "container") f.fail(v["kind"], at + ".kind", "'" + kind + "' is neither container nor bulk");
+  }
   s.rows = f.integer(v, "rows", at, 1, 30);
   s.row_pitch_m = f.number(v, "row_pitch_m", at, 2.5, 3.0);  // a 2.438 m box plus its guides
   s.hold_tiers = f.integer(v, "hold_tiers", at, 0, 12);

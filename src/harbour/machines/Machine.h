@@ -50,6 +50,14 @@ struct BulkTool {
   double opening_m = 0.0;  ///< [m] between the jaw tips now
 };
 
+/// What a machine's safety systems counted since the start and how its hanging load swings now: the
+/// evaluation reads it without knowing the machine (counters a machine lacks stay zero).
+struct MachineTally {
+  std::uint32_t limiter_trips = 0;  ///< load-moment limiter stops
+  std::uint32_t pad_lift_offs = 0;  ///< outrigger pads lifting off
+  double swing_m = 0.0;             ///< [m] the hanging tool's horizontal offset from plumb under its sheaves
+};
+
 /// A fault the instructor injects into a machine.
 enum class MachineFault : std::uint8_t {
   kHoistBrake,    ///< the hoist's holding brake does not set
@@ -98,6 +106,8 @@ class Machine {
   virtual const BulkTool* bulk_tool() const { return nullptr; }
   /// The material its tool holds [kg] (its weight hangs on the tool until the next call).
   virtual void carry_bulk(double /*mass_kg*/) {}
+  /// What its safety systems counted since the start and how its load swings now (for the evaluation).
+  virtual MachineTally tally() const { return {}; }
   /// Moves this step's events (twistlocks, ropes) into `events`.
   virtual void drain_events(StepEvents& events) = 0;
 

@@ -78,11 +78,48 @@ void Evaluator::observe(const Simulation& simulation, const Controls& controls) 
     observe_containers(simulation, controls, *sts);
   else
     observe_any_machine(simulation, controls);
+  if (simulation.bulk()) observe_bulk(simulation);
+}
+
+bool Evaluator::goals_met() const {
+  return metrics_.moves_completed == static_cast<int>(exercise_.moves.size()) &&
+         (!exercise_.deliver || metrics_.delivered_t >= exercise_.deliver->tonnes);
+}
+
+bool Evaluator::finished() const {
+  return (!exercise_.moves.empty() || exercise_.deliver) && goals_met();
+}
+
+void Evaluator::observe_bulk(const Simulation& simulation) {
+  // tonnes delivered, handled and spilled; each bite's fill as the grab starts to discharge it, and the
+  // grab's swing then
+  const bulk::BulkWorld& bulk = *simulation.bulk();
+  const double t_per_m3 = bulk.material().bulk_density_kg_m3 / 1000.0;
+  metrics_.bulk = true;
+  if (exercise_.deliver) metrics_.delivered_t = bulk.landed_m3(exercise_.deliver->grid_index) * t_per_m3;
+  metrics_.handled_t = bulk.unloaded_m3() * t_per_m3;
+  metrics_.spilled_t = bulk.spilled_m3() * t_per_m3;
+  metrics_.spilled_percent = metrics_.handled_t > 0 ? 100.0 * metrics_.spilled_t / metrics_.handled_t : 0.0;
+  metrics_.tonnes_per_hour = metrics_.time_s > 0 ? metrics_.delivered_t * 3600.0 / metrics_.time_s : 0.0;
+  const MachineTally tally = simulation.machine().tally();
+  metrics_.limiter_trips = static_cast<int>(tally.limiter_trips);
+  metrics_.pad_lift_offs = static_cast<int>(tally.pad_lift_offs);
+  if (simulation.bulk_grab() < 0) return;
+  const double load = bulk.grab(simulation.bulk_grab()).load_m3;
+  if (!discharging_ && load < bite_peak_m3_ - 1e-6) {  // it opened: the bite is what it held
+    const double fill = bite_peak_m3_ / bulk.grab_settings(simulation.bulk_grab()).capacity_m3;
+    metrics_.bite_fill.push_back(fill);
+    if (fill < exercise_.rules.poor_bite_fill) ++metrics_.poor_bites;
+    metrics_.release_swing_m.push_back(tally.swing_m);
+    if (tally.swing_m > exercise_.rules.sway_limit_m) ++metrics_.swinging_releases;
+    discharging_ = true;
+  }
+  if (load <= 0.0) discharging_ = false, bite_peak_m3_ = 0.0;
+  if (!discharging_) bite_peak_m3_ = std::max(bite_peak_m3_, load);
 }
 
 void Evaluator::observe_any_machine(const Simulation& simulation, const Controls& controls) {
-  // what every machine shows: its impacts, rope overloads and emergency stops (the MHC's own metrics come
-  // with its bulk exercises)
+  // what every machine shows: its impacts, rope overloads and emergency stops
   for (const physics::ImpactEvent& e : simulation.events().impacts)
     if (e.normal_speed_mps >= exercise_.rules.collision_speed_mps) count_collision(e);
   for (const cable::CableEvent& e : simulation.events().ropes)
@@ -191,14 +228,72 @@ Score Evaluator::score() const {
          r.points_unwarned_travel);
   deduct("move not completed", Skill::kProductivity,
          static_cast<int>(exercise_.moves.size()) - metrics_.moves_completed, r.points_per_move_missing);
+  deduct("discharge while swinging", Skill::kPrecision, metrics_.swinging_releases, r.points_sway);
+  deduct("tonne spilled", Skill::kPrecision, static_cast<int>(std::ceil(metrics_.spilled_t - 1e-9)),
+         r.points_per_spilled_t);
+  deduct("poor bite", Skill::kProductivity, metrics_.poor_bites, r.points_poor_bite);
+  deduct("load-moment limiter trip", Skill::kSafety, metrics_.limiter_trips, r.points_limiter_trip);
+  deduct("outrigger pad lift-off", Skill::kSafety, metrics_.pad_lift_offs, r.points_pad_lift_off);
+  if (exercise_.deliver)
+    deduct(
+        "tonne short of the delivery", Skill::kProductivity,
+        static_cast<int>(std::ceil(std::max(0.0, exercise_.deliver->tonnes - metrics_.delivered_t) - 1e-9)),
+        r.points_per_missing_t);
   const int minutes_over =
       static_cast<int>(std::ceil(std::max(0.0, metrics_.time_s - r.time_limit_s) / 60.0));
   deduct("minute over the time limit", Skill::kProductivity, minutes_over, r.points_per_minute_over);
   s.total = std::max(0.0, s.total);
   for (double& skill : s.skills)
     skill = std::max(0.0, skill);
-  s.passed = s.total >= r.pass_score && metrics_.moves_completed == static_cast<int>(exercise_.moves.size());
+  s.passed = s.total >= r.pass_score && goals_met();
   return s;
+}
+
+}  // namespace harbour::sim
+
+namespace harbour::sim {
+
+std::vector<std::pair<std::string, double>> Metrics::rows() const {
+  std::vector<std::pair<std::string, double>> r = {{"time_s", time_s},
+                                                   {"moves_completed", moves_completed},
+                                                   {"moves_per_hour", moves_per_hour},
+                                                   {"collisions", collisions},
+                                                   {"worst_collision_mps", worst_collision_mps},
+                                                   {"collision_impulse_ns", collision_impulse_ns},
+                                                   {"container_collisions", container_collisions},
+                                                   {"cell_guide_collisions", cell_guide_collisions},
+                                                   {"ship_collisions", ship_collisions},
+                                                   {"hard_landings", hard_landings},
+                                                   {"worst_landing_mps", worst_landing_mps},
+                                                   {"sway_landings", sway_landings},
+                                                   {"twistlock_misuse", twistlock_misuse},
+                                                   {"overloads", overloads},
+                                                   {"limit_hits", limit_hits},
+                                                   {"emergency_stops", emergency_stops},
+                                                   {"unwarned_gantry_travel", unwarned_gantry_travel},
+                                                   {"hoist_energy_j", hoist_energy_j},
+                                                   {"travel_energy_j", travel_energy_j}};
+  if (!bulk) return r;
+  double fill_sum = 0.0, swing_max = 0.0;
+  for (double f : bite_fill)
+    fill_sum += f;
+  for (double s : release_swing_m)
+    swing_max = std::max(swing_max, s);
+  const std::pair<std::string, double> more[] = {
+      {"delivered_t", delivered_t},
+      {"handled_t", handled_t},
+      {"spilled_t", spilled_t},
+      {"spilled_percent", spilled_percent},
+      {"tonnes_per_hour", tonnes_per_hour},
+      {"bites", static_cast<double>(bite_fill.size())},
+      {"mean_bite_fill", bite_fill.empty() ? 0.0 : fill_sum / static_cast<double>(bite_fill.size())},
+      {"poor_bites", poor_bites},
+      {"worst_release_swing_m", swing_max},
+      {"swinging_releases", swinging_releases},
+      {"limiter_trips", limiter_trips},
+      {"pad_lift_offs", pad_lift_offs}};
+  r.insert(r.end(), std::begin(more), std::end(more));
+  return r;
 }
 
 }  // namespace harbour::sim

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "harbour/sim/Simulation.h"
@@ -37,6 +38,20 @@ struct EvaluationRules {
   double points_unwarned_travel = 2.0;
   double points_per_move_missing = 20.0;
   double points_per_minute_over = 5.0;
+  // bulk handling
+  double poor_bite_fill = 0.4;  ///< [-] a bite filling less of the grab than this is a poor bite
+  double points_per_spilled_t = 2.0;
+  double points_per_missing_t = 1.0;  ///< per tonne short of the delivery goal
+  double points_poor_bite = 1.0;
+  double points_limiter_trip = 5.0;
+  double points_pad_lift_off = 20.0;
+};
+
+/// A bulk delivery goal: this many tonnes dropped into a grid (a hopper).
+struct BulkGoal {
+  std::string grid;  ///< its name in the exercise's bulk section
+  int grid_index = 0;
+  double tonnes = 0.0;
 };
 
 /// An exercise: a scenario, the moves to make and the rules that score them (settings).
@@ -44,6 +59,7 @@ struct ExerciseSettings {
   std::string name;
   ScenarioSettings scenario;
   std::vector<MoveGoal> moves;
+  std::optional<BulkGoal> deliver;
   EvaluationRules rules;
 };
 
@@ -72,6 +88,22 @@ struct Metrics {
   int unwarned_gantry_travel = 0;  ///< gantry travel started without the horn first
   double hoist_energy_j = 0.0;     ///< [J] mechanical work at the hoist drum (positive part)
   double travel_energy_j = 0.0;    ///< [J] mechanical work of the gantry and trolley drives (positive parts)
+  // bulk handling (exercises with bulk material)
+  bool bulk = false;
+  double delivered_t = 0.0;       ///< [t] dropped into the goal's hopper
+  double handled_t = 0.0;         ///< [t] discharged from the grab anywhere
+  double spilled_t = 0.0;         ///< [t] lost outside every grid (into the water, onto the quay)
+  double spilled_percent = 0.0;   ///< [%] of handled
+  double tonnes_per_hour = 0.0;   ///< delivered over the time so far
+  std::vector<double> bite_fill;  ///< per bite: the load the grab closed on over its capacity
+  int poor_bites = 0;
+  std::vector<double> release_swing_m;  ///< per discharge: the grab's swing as it opened
+  int swinging_releases = 0;
+  int limiter_trips = 0;
+  int pad_lift_offs = 0;
+  /// Every figure by name (the records store them as rows): the container figures, and the bulk ones for a
+  /// bulk exercise.
+  std::vector<std::pair<std::string, double>> rows() const;
 };
 
 /// The skills a deduction counts against (docs/evaluation.md).
@@ -101,15 +133,15 @@ class Evaluator {
   /// Call after every simulation step with the inputs that drove it.
   void observe(const Simulation& simulation, const Controls& controls);
   /// All goals done (an exercise without goals, a free practice, runs to its time limit and overtime).
-  bool finished() const {
-    return !exercise_.moves.empty() && metrics_.moves_completed == static_cast<int>(exercise_.moves.size());
-  }
+  bool finished() const;
   const Metrics& metrics() const { return metrics_; }
   Score score() const;
 
  private:
   void observe_containers(const Simulation& simulation, const Controls& controls, const StsCrane& crane);
   void observe_any_machine(const Simulation& simulation, const Controls& controls);
+  void observe_bulk(const Simulation& simulation);
+  bool goals_met() const;
   int goal_of(physics::BodyId body, const Simulation& simulation) const;
   double sway_m(const Simulation& simulation, std::optional<physics::BodyId> hanging_box) const;
   bool near_target(physics::BodyId box, const Simulation& simulation) const;
@@ -126,6 +158,8 @@ class Evaluator {
   double last_horn_s_ = -1e9;
   std::uint32_t limit_hits_seen_ = 0;
   double last_completion_s_ = 0.0;
+  double bite_peak_m3_ = 0.0;  // the grab's load since it last closed on material
+  bool discharging_ = false;
 };
 
 }  // namespace harbour::sim

@@ -92,7 +92,7 @@ Simulation::Simulation(const ScenarioSettings& scenario)
   if (scenario.trucks.trucks > 0) trucks_ = std::make_unique<TruckLane>(*world_, scenario.trucks);
   machine_ = make_machine(*world_, scenario.machine);
   if (scenario.bulk) {
-    bulk_ = bulk::build_bulk_world(*scenario.bulk);
+    bulk_ = bulk::build_bulk_world(*scenario.bulk, vessel_motion());
     if (const BulkTool* tool = machine_->bulk_tool()) bulk_grab_ = bulk_->add_grab(tool->grab);
   }
   // event buffers sized once: a step appends to them without allocating
@@ -302,10 +302,18 @@ void Simulation::advance(const Controls& controls) {
     warnings_.raise(core::Warning::kSolverMessage);
 }
 
+bulk::CarrierMotion Simulation::vessel_motion() const {
+  if (!vessel_) return {};
+  // the body's velocity is its origin's (the waterline centre); the grids want the frame origin's
+  const core::Vec3& w = vessel_->angular_velocity();
+  return {vessel_->frame(),
+          vessel_->velocity() + cross(w, vessel_->frame().position - vessel_->waterline_centre()), w};
+}
+
 void Simulation::step_bulk() {
   // the grids move (a rolling hold); the machine's tool presses into the material (penalty forces on its
   // body, compression of the pressed cells) and bites or spills; its load hangs on it; the material flows
-  bulk::move_grids(*bulk_, *scenario_.bulk, clock_.time_s());
+  bulk::move_grids(*bulk_, *scenario_.bulk, clock_.time_s(), vessel_motion());
   const BulkTool* tool = bulk_grab_ >= 0 ? machine_->bulk_tool() : nullptr;
   std::array<bulk::GrabCommand, 1> command;
   if (tool) {
@@ -313,11 +321,15 @@ void Simulation::step_bulk() {
         bulk_->contact({world_->pose(tool->body), world_->linear_velocity(tool->body),
                         world_->angular_velocity(tool->body), tool->contact_points_m});
     if (contact.points_in_contact > 0) world_->add_force_at(tool->body, contact.point, contact.force);
-    // the bite follows the shells: close (or open) at the rate that brings the model's jaws to theirs
-    const double opening = bulk_->grab(bulk_grab_).opening_m;
+    // the bite follows the shells: close (or open) at the rate that brings the model's jaws to theirs; shells
+    // opened by less than the teeth's play beyond the model's jaws hold (their jitter on the ropes does not
+    // open the bite)
+    constexpr double kShellPlay_m = 0.02;
+    const double difference = bulk_->grab(bulk_grab_).opening_m - tool->opening_m;
     const double per_step = tool->grab.max_opening_m / tool->grab.closing_time_s * kStep_s;
+    const bool in_play = difference <= 0.0 && difference > -kShellPlay_m;
     command[0] = {tool->jaws, tool->jaws_velocity_mps,
-                  std::clamp((opening - tool->opening_m) / per_step, -1.0, 1.0)};
+                  in_play ? 0.0 : std::clamp(difference / per_step, -1.0, 1.0)};
   }
   bulk_->step(kStep_s,
               tool ? std::span<const bulk::GrabCommand>(command) : std::span<const bulk::GrabCommand>());
@@ -342,7 +354,7 @@ void Simulation::single_step(const Controls& controls) {
 SceneDescription Simulation::scene() const {
   SceneDescription d;
   machine_->describe(d);
-  if (vessel_) d.entities.push_back({"vessel", "vessel", {}});
+  if (vessel_) d.entities.push_back({"vessel", "vessel." + vessel_->geometry().placement().vessel.name, {}});
   if (trucks_)
     for (int k = 0; k < scenario_.trucks.trucks; ++k)
       d.entities.push_back({"truck " + std::to_string(k + 1), "truck", {}});

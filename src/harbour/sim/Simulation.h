@@ -192,6 +192,7 @@ class Simulation {
   void apply_due_events();
   void apply_wind();
   void step_bulk();
+  bulk::CarrierMotion vessel_motion() const;
   const ContainerRef* liftable(physics::BodyId body) const;
 
   ScenarioSettings scenario_;

@@ -12,6 +12,7 @@ constexpr double kCoamingWall_m = 0.3;   // coaming plate and hatch cover overla
 constexpr double kDeckPlate_m = 0.5;     // deck and cross-deck structure depth, assumed
 constexpr double kShellPlate_m = 0.4;    // side shell (double hull simplified), assumed
 constexpr double kHatchGirder_m = 0.02;  // half width of the centreline girder under split covers
+constexpr double kHatchLid_m = 0.6;      // a bulk carrier's closed hatch cover, assumed
 
 double sum(const std::vector<Harmonic>& hs, double t, double* rate) {
   double value = 0.0, d = 0.0;
@@ -127,17 +128,42 @@ std::optional<core::Vec3> VesselGeometry::slot_centre(const SlotAddress& slot, d
   return core::Vec3{*x, b->centre_m, bottom + height_m / 2.0};
 }
 
-double VesselGeometry::hold_opening_half_length_m() const {
+std::vector<VesselGeometry::Opening> VesselGeometry::hatch_openings() const {
   const VesselSettings& v = p_.vessel;
-  return kIsoHalfLength40_m + v.cell_clearance_m + v.cell_guide_thickness_m + 0.1;
+  std::vector<Opening> openings;
+  if (v.kind == VesselKind::kBulk) {
+    for (const VesselSettings::Hold& h : v.holds)
+      openings.push_back({h.centre_m, v.hatch_breadth_m / 2, h.opening_length_m / 2});
+  } else {
+    const double half_length = kIsoHalfLength40_m + v.cell_clearance_m + v.cell_guide_thickness_m + 0.1;
+    for (const VesselSettings::Bay& b : v.bays)
+      openings.push_back({b.centre_m, v.rows * v.row_pitch_m / 2.0, half_length});
+  }
+  std::sort(openings.begin(), openings.end(),
+            [](const auto& a, const auto& b) { return a.centre_m < b.centre_m; });
+  return openings;
+}
+
+const VesselSettings::Hold* VesselGeometry::hold(int number) const {
+  for (const VesselSettings::Hold& h : p_.vessel.holds)
+    if (h.number == number) return &h;
+  return nullptr;
+}
+
+VesselGeometry::Floor VesselGeometry::hold_floor(const VesselSettings::Hold& hold) const {
+  const VesselSettings& v = p_.vessel;
+  const double half_breadth = v.beam_m / 2 - kShellPlate_m;
+  const double half_length = hold.opening_length_m / 2 + kCoamingWall_m;
+  return {{-half_breadth, hold.centre_m - half_length, v.tank_top_m}, 2 * half_breadth, 2 * half_length};
 }
 
 std::vector<VesselGeometry::Panel> VesselGeometry::hatch_panels() const {
   const VesselSettings& v = p_.vessel;
-  const double half_opening = v.rows * v.row_pitch_m / 2.0;
-  const double half_length = hold_opening_half_length_m() + kCoamingWall_m;
-  const double z = coaming_top_m() + v.hatch_cover_thickness_m / 2.0;
   std::vector<Panel> panels;
+  if (v.kind == VesselKind::kBulk) return panels;  // discharging: the hatches are open
+  const double half_opening = v.rows * v.row_pitch_m / 2.0;
+  const double half_length = hatch_openings().front().half_length_m + kCoamingWall_m;
+  const double z = coaming_top_m() + v.hatch_cover_thickness_m / 2.0;
   for (const VesselSettings::Bay& b : v.bays) {
     const std::string bay = std::to_string(b.number);
     if (v.hatch_panels == 1) {
@@ -171,8 +197,8 @@ Vessel::Vessel(physics::PhysicsWorld& world, const VesselPlacement& placement)
     if (surface == kSurfaceCellGuide) ++cell_guide_shapes_;
   };
   const double half_beam = v.beam_m / 2, half_length = v.length_m / 2;
-  const double half_opening = v.rows * v.row_pitch_m / 2.0;
-  const double opening_half_length = geometry_.hold_opening_half_length_m();
+  const std::vector<VesselGeometry::Opening> openings = geometry_.hatch_openings();
+  const double half_opening = openings.front().half_breadth_m;  // every hatch has the same breadth
   const double top = geometry_.coaming_top_m(), deck = v.depth_m;
 
   // double bottom, side shells and the deck outboard of the hatch coamings
@@ -184,39 +210,41 @@ Vessel::Vessel(physics::PhysicsWorld& world, const VesselPlacement& placement)
     add({side > 0 ? inner : -half_beam + kShellPlate_m, -half_length, deck - kDeckPlate_m},
         {side > 0 ? half_beam - kShellPlate_m : -inner, half_length, deck}, kSurfaceHull);
   }
-  // cross decks fore and aft of every hatch, from the vessel's ends between the bays
+  // cross decks fore and aft of every hatch, from the vessel's ends between the hatches
   double aft_end = -half_length;
-  std::vector<VesselSettings::Bay> bays = v.bays;
-  std::sort(bays.begin(), bays.end(), [](const auto& a, const auto& b) { return a.centre_m < b.centre_m; });
-  for (const VesselSettings::Bay& b : bays) {
-    const double aft = b.centre_m - opening_half_length - kCoamingWall_m;
+  for (const VesselGeometry::Opening& o : openings) {
+    const double aft = o.centre_m - o.half_length_m - kCoamingWall_m;
     if (aft > aft_end)
       add({-half_opening - kCoamingWall_m, aft_end, v.tank_top_m}, {half_opening + kCoamingWall_m, aft, deck},
           kSurfaceHull);
-    aft_end = b.centre_m + opening_half_length + kCoamingWall_m;
+    aft_end = o.centre_m + o.half_length_m + kCoamingWall_m;
   }
   if (aft_end < half_length)
     add({-half_opening - kCoamingWall_m, aft_end, v.tank_top_m},
         {half_opening + kCoamingWall_m, half_length, deck}, kSurfaceHull);
 
   const double c = v.cell_clearance_m, t = v.cell_guide_thickness_m, leg = v.cell_guide_leg_m;
-  for (const VesselSettings::Bay& b : bays) {
-    const double y0 = b.centre_m;
+  for (const VesselGeometry::Opening& o : openings) {
+    const double y0 = o.centre_m, hl = o.half_length_m;
     // hatch coamings: port and starboard, fore and aft walls up to the covers
     for (double s : {-1.0, 1.0}) {
-      add({s > 0 ? half_opening : -half_opening - kCoamingWall_m, y0 - opening_half_length - kCoamingWall_m,
+      add({s > 0 ? half_opening : -half_opening - kCoamingWall_m, y0 - hl - kCoamingWall_m,
            deck - kDeckPlate_m},
-          {s > 0 ? half_opening + kCoamingWall_m : -half_opening, y0 + opening_half_length + kCoamingWall_m,
-           top},
+          {s > 0 ? half_opening + kCoamingWall_m : -half_opening, y0 + hl + kCoamingWall_m, top},
           kSurfaceHull);
-      add({-half_opening, s > 0 ? y0 + opening_half_length : y0 - opening_half_length - kCoamingWall_m,
-           deck - kDeckPlate_m},
-          {half_opening, s > 0 ? y0 + opening_half_length + kCoamingWall_m : y0 - opening_half_length, top},
-          kSurfaceHull);
+      add({-half_opening, s > 0 ? y0 + hl : y0 - hl - kCoamingWall_m, deck - kDeckPlate_m},
+          {half_opening, s > 0 ? y0 + hl + kCoamingWall_m : y0 - hl, top}, kSurfaceHull);
+    }
+    if (v.kind == VesselKind::kBulk) {
+      const auto hold =
+          std::find_if(v.holds.begin(), v.holds.end(), [&](const auto& h) { return h.centre_m == y0; });
+      if (hold != v.holds.end() && !hold->open)
+        add({-half_opening - kCoamingWall_m, y0 - hl - kCoamingWall_m, top},
+            {half_opening + kCoamingWall_m, y0 + hl + kCoamingWall_m, top + kHatchLid_m}, kSurfaceHatchCover);
+      continue;
     }
     if (v.hatch_panels == 2)
-      add({-kHatchGirder_m, y0 - opening_half_length, top - 0.5},
-          {kHatchGirder_m, y0 + opening_half_length, top}, kSurfaceHull);
+      add({-kHatchGirder_m, y0 - hl, top - 0.5}, {kHatchGirder_m, y0 + hl, top}, kSurfaceHull);
     // cell guides: an angle bar at each corner of every cell, from the tank top to just under the hatch
     // covers (they do not carry them)
     const double guide_top = top - 0.05;

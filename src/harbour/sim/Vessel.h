@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -36,11 +37,17 @@ struct SeaState {
   std::vector<Harmonic> heave_m, roll_rad, pitch_rad;
 };
 
-/// A cellular container vessel (settings, data/vessels/*.yaml). Vessel frame: origin at the keel, midship, on
-/// the centreline; x to starboard, y forward, z up. Only 40 ft bays are modelled (even bay numbers); the
-/// holds have cell guides, the hatches pontoon covers the crane lifts off like containers.
+/// What a vessel carries: containers in cell-guided holds, or bulk in open holds.
+enum class VesselKind : std::uint8_t { kContainer, kBulk };
+
+/// A vessel (settings, data/vessels/*.yaml). Vessel frame: origin at the keel, midship, on the centreline;
+/// x to starboard, y forward, z up. A cellular container vessel: only 40 ft bays are modelled (even bay
+/// numbers); the holds have cell guides, the hatches pontoon covers the crane lifts off like containers. A
+/// bulk carrier: holds under open hatches of one breadth, each hold from side shell to side shell and between
+/// its cross decks (hopper and topside tanks are not modelled).
 struct VesselSettings {
   std::string name;
+  VesselKind kind = VesselKind::kContainer;
   double length_m = 150.0;
   double beam_m = 23.0;
   double depth_m = 11.5;          ///< [m] keel to main deck
@@ -61,6 +68,14 @@ struct VesselSettings {
     double centre_m = 0.0;  ///< [m] along the vessel from midship, + forward
   };
   std::vector<Bay> bays;
+  double hatch_breadth_m = 0.0;  ///< [m] a bulk carrier's hatch openings, across the beam
+  struct Hold {
+    int number = 0;
+    double centre_m = 0.0;          ///< [m] along the vessel from midship, + forward
+    double opening_length_m = 0.0;  ///< [m] its hatch opening along the vessel
+    bool open = true;               ///< false: its hatch cover is on (a fixed lid on the coamings)
+  };
+  std::vector<Hold> holds;  ///< a bulk carrier's
 };
 
 /// Where a container sits on a vessel: ISO 9711 bay, row, tier (rows 01, 03, ... to starboard and 02,
@@ -98,7 +113,20 @@ class VesselGeometry {
     core::Vec3 centre_m, half_extents_m;
   };
   std::vector<Panel> hatch_panels() const;
-  double hold_opening_half_length_m() const;
+  /// Hatch openings inside the coamings: one per bay (container vessel) or hold (bulk carrier).
+  struct Opening {
+    double centre_m = 0.0;  ///< [m] along the vessel
+    double half_breadth_m = 0.0, half_length_m = 0.0;
+  };
+  std::vector<Opening> hatch_openings() const;
+  const VesselSettings::Hold* hold(int number) const;
+  /// A bulk hold's floor (vessel frame): the tank top from side shell to side shell and between the cross
+  /// decks.
+  struct Floor {
+    core::Vec3 corner_m;  ///< [m] its aft port corner
+    double breadth_m = 0.0, length_m = 0.0;
+  };
+  Floor hold_floor(const VesselSettings::Hold& hold) const;
   double coaming_top_m() const { return p_.vessel.depth_m + p_.vessel.coaming_height_m; }
   const VesselPlacement& placement() const { return p_; }
 

@@ -161,7 +161,8 @@ MobileHarbourCrane::MobileHarbourCrane(physics::PhysicsWorld& world, const MhcSe
                  WindArea{grab_lower_, settings.grab_lower_half_extents_m},
                  WindArea{house_, settings.house_half_extents_m}};
   last_hinge_angle_ = world.hinge_angle(slew_hinge_);
-  // the grab as a bulk tool: nine points over the shells' underside, the jaw tips at its centre; its bite
+  // the grab as a bulk tool: nine points over the shells' underside (moved with the jaws by update_tool),
+  // the jaw tips at its centre; its bite
   // closes in the time the closing ropes take to shut it resting on material (the holding winch following)
   const core::Vec3& h = settings.grab_lower_half_extents_m;
   for (int a = 0; a < 3; ++a)
@@ -185,6 +186,12 @@ void MobileHarbourCrane::update_tool() {
   // shut within a centimetre is shut: the shells on their stop do not leak
   const double opening = grab_opening() * settings_.grab.max_opening_m;
   tool_.opening_m = opening < 0.01 ? 0.0 : opening;
+  // the shells' underside follows the jaw tips: its outer points come in as the jaws close (onto the
+  // material they are cutting away, so the grab sinks as it cuts), out to the block's sides when open
+  const double half_span = std::min(0.5 * opening, settings_.grab_lower_half_extents_m.x);
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b)
+      shell_points_[static_cast<std::size_t>(3 * a + b)].x = (a - 1) * half_span;
 }
 
 void MobileHarbourCrane::settle() {
@@ -287,6 +294,39 @@ PadForces MobileHarbourCrane::pad_forces_n() const {
                     settings_.pad_half_spread_x_m, settings_.pad_half_spread_y_m, 0.0);
 }
 
+double MobileHarbourCrane::luffing_rope_per_rad() const {
+  // each fall's length change as the boom turns about its foot (the raising axis), summed over the falls
+  const core::Pose house = world_.pose(house_);
+  const core::Vec3 foot = house.to_parent(house_origin_in_body_m_ + settings_.boom_foot_m);
+  const core::Vec3 raise_axis = house.rotation * core::Vec3{0, -1, 0};
+  double rope_per_rad = 0.0;
+  std::array<core::Vec3, 2> ends;
+  for (const LuffFall& fall : luff_falls_) {
+    luffing_->polyline(fall.rope, fall.segment, ends);
+    const core::Vec3 d = ends[1] - ends[0];
+    const double length = std::sqrt(dot(d, d));
+    const core::Vec3 on_boom = fall.end_on_boom ? ends[1] : ends[0];
+    const core::Vec3 moves = cross(raise_axis, on_boom - foot);
+    rope_per_rad += length > 0 ? dot(d, moves) / length * (fall.end_on_boom ? 1.0 : -1.0) : 0.0;
+  }
+  return rope_per_rad;
+}
+
+double MobileHarbourCrane::luffing_radius_rate_mps() const {
+  const double per_rad = std::max(std::abs(luffing_rope_per_rad()), 1.0);
+  return settings_.boom_length_m * std::sin(boom_angle_rad()) *
+         first_drum(settings_.luffing).max_rope_speed_mps / per_rad;
+}
+
+core::Vec3 MobileHarbourCrane::grab_lower_position_m() const {
+  return world_.pose(grab_lower_).position;
+}
+
+MachineTally MobileHarbourCrane::tally() const {
+  const core::Vec3 head = boom_head_m(), grab = grab_lower_position_m();
+  return {limiter_trips_, pad_lift_offs_, std::hypot(grab.x - head.x, grab.y - head.y)};
+}
+
 double MobileHarbourCrane::luffing_tension_n() const {
   return luffing_->tension(0, 1);
 }
@@ -341,19 +381,7 @@ void MobileHarbourCrane::step(const Controls& raw, std::span<const ContainerRef>
 
   // luffing: rope speed to boom rate from the geometry (d rope length / d angle over the falls), the limit
   // switches on the boom angle
-  const core::Pose house = world_.pose(house_);
-  const core::Vec3 foot = house.to_parent(house_origin_in_body_m_ + settings_.boom_foot_m);
-  const core::Vec3 raise_axis = house.rotation * core::Vec3{0, -1, 0};
-  double rope_per_rad = 0.0;
-  std::array<core::Vec3, 2> ends;
-  for (const LuffFall& fall : luff_falls_) {
-    luffing_->polyline(fall.rope, fall.segment, ends);
-    const core::Vec3 d = ends[1] - ends[0];
-    const double length = std::sqrt(dot(d, d));
-    const core::Vec3 on_boom = fall.end_on_boom ? ends[1] : ends[0];
-    const core::Vec3 moves = cross(raise_axis, on_boom - foot);
-    rope_per_rad += length > 0 ? dot(d, moves) / length * (fall.end_on_boom ? 1.0 : -1.0) : 0.0;
-  }
+  const double rope_per_rad = luffing_rope_per_rad();
   const cable::ElementSettings& luff_drum = first_drum(settings_.luffing);
   const double per_rad = std::max(std::abs(rope_per_rad), 1.0);
   luff = luff_limits_.limit(luff, boom_angle_rad(), luff_drum.max_rope_speed_mps / per_rad,
@@ -375,7 +403,7 @@ void MobileHarbourCrane::step(const Controls& raw, std::span<const ContainerRef>
   // closing on material the holding winch follows (slack-rope control): it pays out what keeps the lower
   // block where it rests, so the head comes down to it and the jaws cut in under the grab's weight
   const double grab_kg = settings_.grab_head_mass_kg + settings_.grab_lower_mass_kg + carried_kg_;
-  const bool resting = hoisted_load_n() < kRestingShare * grab_kg * kG;
+  const bool resting = limiter_load_n_ < kRestingShare * grab_kg * kG;  // filtered: not a bounce's dip
   const double follow = resting && grab > 0.0 ? grab / std::max(tackle_falls_ - 1, 1) : 0.0;
   const std::array<cable::DrumCommand, 2> hoist_commands{
       cable::DrumCommand{stop ? 0.0 : std::clamp(follow - hoist, -1.0, 1.0), hoist_brake_fault_, !stop},

@@ -137,11 +137,18 @@ class MobileHarbourCrane final : public Machine {
   /// The limiter's load signal [N]: hoisted_load_n() low-passed over limiter_filter_s.
   double limiter_load_n() const { return limiter_load_n_; }
   std::uint32_t limiter_trips() const { return limiter_trips_; }
+  /// The grab's lower block (its shells' hinge) in the world [m].
+  core::Vec3 grab_lower_position_m() const;
   /// Shell opening [0 shut, 1 fully open].
   double grab_opening() const;
   /// Pad forces from the last physics step; lift-offs counted when a pad's force first goes below zero.
   PadForces pad_forces_n() const;
   std::uint32_t pad_lift_offs() const { return pad_lift_offs_; }
+  MachineTally tally() const override;
+  /// Luffing rope reeled in per radian of boom raising [m/rad], and the boom head's radius rate at full
+  /// luffing speed [m/s], from the falls' geometry now.
+  double luffing_rope_per_rad() const;
+  double luffing_radius_rate_mps() const;
   /// Tension in the luffing ropes' falls [N] (the first fall off the A-frame).
   double luffing_tension_n() const;
   const cable::HoistSystem& hoist() const { return *hoist_; }

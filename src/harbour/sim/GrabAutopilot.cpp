@@ -1,0 +1,235 @@
+#include "harbour/sim/GrabAutopilot.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include "harbour/machines/mhc/MobileHarbourCrane.h"
+
+namespace harbour::sim {
+namespace {
+
+constexpr std::int64_t kDecisionSteps = 20;  // 50 Hz
+constexpr double kG = 9.80665;
+constexpr double kCoamingClearance_m = 2.5;  // grab bottom over the coaming top while it slews
+constexpr double kDischargeHeight_m = 3.0;   // grab bottom over the hopper's floor when it opens
+constexpr double kSpotMargin_m = 1.0;        // dig spots inside the coamings by the grab's half size and this
+constexpr double kCreepGain_per_s = 0.25;    // head speed towards the target per metre off it
+constexpr double kSwingGain_per_s = 0.6;     // head speed towards the grab per metre of swing
+constexpr double kCalm_m = 0.35;             // swing at which the grab counts as calm
+constexpr double kLeverTravel_s = 1.0;       // a lever from neutral to full
+
+double wrap(double a) {
+  return std::remainder(a, 2.0 * std::numbers::pi);
+}
+
+const VesselSettings::Hold* open_hold(const VesselSettings& vessel) {
+  for (const VesselSettings::Hold& h : vessel.holds)
+    if (h.open) return &h;
+  return nullptr;
+}
+
+}  // namespace
+
+std::string GrabAutopilot::why_cannot_drive(const ExerciseSettings& exercise) {
+  if (!std::holds_alternative<MhcSetup>(exercise.scenario.machine))
+    return "the grab autopilot drives the mobile harbour crane";
+  if (!exercise.deliver) return "the exercise has no delivery goal (exercise.deliver)";
+  const auto& vessel = exercise.scenario.vessel;
+  if (!vessel || vessel->vessel.kind != VesselKind::kBulk || !open_hold(vessel->vessel))
+    return "the grab autopilot digs from a bulk carrier's open hold";
+  return "";
+}
+
+GrabAutopilot::GrabAutopilot(const ExerciseSettings& exercise, GrabOperatorDefects defects)
+    : exercise_(exercise), defects_(defects) {
+  if (const std::string why = why_cannot_drive(exercise); !why.empty()) throw std::invalid_argument(why);
+  // a 3 x 3 pattern over the open hatch, centre first, then its sides, then its corners
+  const VesselGeometry geometry(*exercise.scenario.vessel);
+  const VesselSettings::Hold& hold = *open_hold(exercise.scenario.vessel->vessel);
+  const MhcSettings& crane = std::get<MhcSetup>(exercise.scenario.machine).crane;
+  const double reach_x =
+      geometry.placement().vessel.hatch_breadth_m / 2 - crane.grab_lower_half_extents_m.x - kSpotMargin_m;
+  const double reach_y = hold.opening_length_m / 2 - crane.grab_lower_half_extents_m.x - kSpotMargin_m;
+  const double top = geometry.placement().vessel.tank_top_m;
+  for (const auto& [fx, fy] :
+       {std::pair{0, 0}, {-1, 0}, {1, 0}, {0, -1}, {0, 1}, {-1, -1}, {1, 1}, {-1, 1}, {1, -1}})
+    spots_.push_back({0.6 * fx * reach_x, hold.centre_m + 0.6 * fy * reach_y, top});
+}
+
+const char* GrabAutopilot::activity() const {
+  switch (phase_) {
+    case Phase::kToDig:
+      return "to dig";
+    case Phase::kLower:
+      return "lower";
+    case Phase::kShut:
+      return "shut";
+    case Phase::kHoist:
+      return "hoist";
+    case Phase::kToHopper:
+      return "to hopper";
+    case Phase::kDischarge:
+      return "discharge";
+    case Phase::kDone:
+      return "done";
+  }
+  return "";
+}
+
+Controls GrabAutopilot::next(const Simulation& simulation) {
+  if (simulation.steps() % kDecisionSteps != 0 && decided_) return last_;
+  const auto* crane = dynamic_cast<const MobileHarbourCrane*>(&simulation.machine());
+  if (!crane || !simulation.bulk() || simulation.bulk_grab() < 0)
+    throw std::logic_error("the grab autopilot's exercise runs on another machine");
+  last_ = decide(simulation, *crane);
+  decided_ = true;
+  return last_;
+}
+
+GrabAutopilot::Target GrabAutopilot::target_of(const MobileHarbourCrane& crane,
+                                               const core::Vec3& point) const {
+  const core::Vec3 d = point - crane.position_m();
+  return {std::atan2(d.y, d.x), std::hypot(d.x, d.y)};
+}
+
+bool GrabAutopilot::steer(const MobileHarbourCrane& crane, const Target& target, double tolerance_m,
+                          double& slew, double& luff) const {
+  const core::Vec3 head = crane.boom_head_m(), p = crane.position_m();
+  const double r = crane.radius_m();
+  const core::Vec3 radial = core::Vec3{head.x - p.x, head.y - p.y, 0.0} * (1.0 / std::max(r, 1.0));
+  const core::Vec3 tangential{-radial.y, radial.x, 0.0};  // + slew: anticlockwise seen from above
+  const MhcSettings& s = crane.settings();
+  const double e_t = wrap(target.slew_rad - crane.slew_rad()) * r, e_r = target.radius_m - r;
+  // the grab's offset from plumb under the head: the head follows it to damp the swing
+  const core::Vec3 lower = crane.grab_lower_position_m();
+  const core::Vec3 swing{lower.x - head.x, lower.y - head.y, 0.0};
+  const double s_t = dot(swing, tangential), s_r = dot(swing, radial);
+  const double v_t_max = s.slew_drive.max_speed_mps * r, v_r_max = crane.luffing_radius_rate_mps();
+  const double v_t = std::clamp(kCreepGain_per_s * e_t, -v_t_max, v_t_max) + kSwingGain_per_s * s_t;
+  const double v_r = std::clamp(kCreepGain_per_s * e_r, -v_r_max, v_r_max) + kSwingGain_per_s * s_r;
+  slew = std::clamp(v_t / v_t_max, -1.0, 1.0);
+  luff = std::clamp(-v_r / v_r_max, -1.0, 1.0);  // + raises the boom: less radius
+  const double off = std::hypot(e_t + s_t, e_r + s_r);
+  return off < tolerance_m && std::hypot(s_t, s_r) < kCalm_m;
+}
+
+core::Vec3 GrabAutopilot::dig_spot(const Simulation& simulation) const {
+  const VesselGeometry geometry(*exercise_.scenario.vessel);
+  const core::Vec3& local = spots_[static_cast<std::size_t>(bites_) % spots_.size()];
+  return geometry.pose_at(simulation.time_s()).to_parent(local);
+}
+
+Controls GrabAutopilot::decide(const Simulation& simulation, const MobileHarbourCrane& crane) {
+  const ControlTable& table = simulation.control_table();
+  Controls out = table.neutral();
+  double slew = 0.0, luff = 0.0, hoist = 0.0, grab = 0.0;
+  const double now = simulation.time_s();
+  auto enter = [&](Phase p) {
+    phase_ = p;
+    phase_start_s_ = now;
+  };
+  const bulk::BulkWorld& bulk = *simulation.bulk();
+  const double load_m3 = bulk.grab(simulation.bulk_grab()).load_m3;
+  const double bottom = crane.attachment_bottom_z_m();
+  const VesselGeometry geometry(*exercise_.scenario.vessel);
+  const double coaming_top = geometry.pose_at(now).to_parent({0, 0, geometry.coaming_top_m()}).z;
+  const double travel_z =
+      defects_.travel_below_the_coaming ? coaming_top - 1.0 : coaming_top + kCoamingClearance_m;
+  const bulk::GridPlacement& hopper =
+      exercise_.scenario.bulk->grids[static_cast<std::size_t>(exercise_.deliver->grid_index)];
+  const double hopper_half = 0.5 * hopper.settings.cell_size_m;
+  const core::Vec3 hopper_centre{hopper.origin_x_m + hopper_half * hopper.settings.cells_x,
+                                 hopper.origin_y_m + hopper_half * hopper.settings.cells_y,
+                                 hopper.origin_z_m};
+  const double empty_kg = crane.settings().grab_head_mass_kg + crane.settings().grab_lower_mass_kg;
+  const double t_per_m3 = bulk.material().bulk_density_kg_m3 / 1000.0;
+  double in_flight_m3 = 0.0;
+  for (const bulk::Parcel& p : bulk.parcels())
+    in_flight_m3 += p.volume_m3;
+  const bool delivered =
+      (bulk.landed_m3(exercise_.deliver->grid_index) + in_flight_m3) * t_per_m3 >= exercise_.deliver->tonnes;
+  // a height held gently (a dead band, a low gain): the grab bounces on its ropes if the hoist hunts
+  const auto hold_height = [&](double z) {
+    const double error = z - bottom;
+    return std::abs(error) < 0.3 ? 0.0 : std::clamp(0.25 * error, -1.0, 1.0);
+  };
+
+  switch (phase_) {
+    case Phase::kToDig: {
+      grab = -1.0;  // open on the way
+      hoist = hold_height(travel_z + 0.5);
+      if (bottom > travel_z - 0.5 && steer(crane, target_of(crane, dig_spot(simulation)), 0.4, slew, luff) &&
+          crane.grab_opening() > 0.95)
+        enter(Phase::kLower);
+      break;
+    }
+    case Phase::kLower: {
+      const core::Vec3 spot = dig_spot(simulation);
+      double surface = spot.z;
+      for (int g = 0; g < bulk.grid_count(); ++g) {
+        const core::Vec3 local = bulk.grid(g).pose().to_local(spot);
+        if (bulk.grid(g).contains(local.x, local.y))
+          surface = bulk.grid(g)
+                        .pose()
+                        .to_parent({local.x, local.y, bulk.grid(g).surface_height(local.x, local.y)})
+                        .z;
+      }
+      steer(crane, target_of(crane, spot), 0.4, slew, luff);
+      hoist = bottom - surface > 3.0 ? -1.0 : -0.3;
+      // resting on the material: the ropes' filtered load below half the grab's weight, near the surface
+      if (bottom - surface < 1.0 && crane.limiter_load_n() < 0.5 * empty_kg * kG) enter(Phase::kShut);
+      break;
+    }
+    case Phase::kShut:
+      grab = 1.0;
+      if (crane.grab_opening() < 0.001 || now - phase_start_s_ > 8.0) {
+        ++bites_;
+        enter(Phase::kHoist);
+      }
+      break;
+    case Phase::kHoist:
+      grab = 1.0;  // the closing winch keeps the shells shut while the load comes onto the ropes
+      hoist = now - phase_start_s_ < 3.0 ? 0.3 : 1.0;
+      if (bottom > travel_z) enter(Phase::kToHopper);
+      break;
+    case Phase::kToHopper: {
+      grab = 1.0;
+      hoist = hold_height(std::max(travel_z, hopper_centre.z + kDischargeHeight_m));
+      const Target target = target_of(crane, hopper_centre);
+      const bool over = steer(crane, target, 0.5, slew, luff);
+      // the bad operator opens half way, over the gap between quay and ship
+      if (defects_.open_over_the_quay_edge && std::abs(wrap(target.slew_rad - crane.slew_rad())) < 0.6 &&
+          std::abs(wrap(target.slew_rad - crane.slew_rad())) > 0.4)
+        grab = -1.0;
+      if (over) enter(Phase::kDischarge);
+      break;
+    }
+    case Phase::kDischarge:
+      grab = -1.0;
+      hoist = hold_height(hopper_centre.z + kDischargeHeight_m);
+      steer(crane, target_of(crane, hopper_centre), 0.5, slew, luff);
+      if (load_m3 <= 0.0 && crane.grab_opening() > 0.95) enter(delivered ? Phase::kDone : Phase::kToDig);
+      break;
+    case Phase::kDone:
+      hoist = hold_height(travel_z);
+      break;
+  }
+  // levers moved as a hand moves them: full travel in no less than kLeverTravel_s
+  const double step = kDecisionSteps * Simulation::kStep_s / kLeverTravel_s;
+  const auto set = [&](const char* label, double value) {
+    if (const int slot = table.find(label); slot >= 0) {
+      double& lever = out.value[static_cast<std::size_t>(slot)];
+      const double was = last_.value[static_cast<std::size_t>(slot)];
+      lever = std::clamp(value, was - step, was + step);
+    }
+  };
+  set("slew", slew);
+  set("luff", luff);
+  set("hoist", hoist);
+  set("grab", grab);
+  return out;
+}
+
+}  // namespace harbour::sim

@@ -1,0 +1,63 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "harbour/core/Vec3.h"
+#include "harbour/sim/Evaluation.h"
+
+namespace harbour::sim {
+
+class MobileHarbourCrane;
+
+/// Deliberate faults for a scripted bad grab operator (tests of the evaluation).
+struct GrabOperatorDefects {
+  bool open_over_the_quay_edge = false;   ///< opens the loaded grab on its way, over the gap to the ship
+  bool travel_below_the_coaming = false;  ///< slews back into the hold with the grab below the coaming top
+};
+
+/// A scripted grab operator for a bulk delivery exercise on a slewing, luffing crane: hoists clear of the
+/// hatch coaming, slews and luffs over the next dig spot in the open hold while it opens the grab, lowers
+/// (fast, then slowly near the material), shuts the grab on the material, hoists clear, slews and luffs over
+/// the hopper and opens the grab there once the swing is small, and again until the exercise's tonnes are
+/// delivered. The boom head follows the grab's swing (a speed proportional to the grab's offset from plumb
+/// under it damps the pendulum) while it creeps onto its target. Dig spots: a 3 x 3 pattern over the open
+/// hold's hatch, inside the coamings by the grab's half size and a margin.
+class GrabAutopilot {
+ public:
+  /// Why it cannot drive `exercise` ("" when it can): a delivery goal on the MHC with a bulk carrier's open
+  /// hold.
+  static std::string why_cannot_drive(const ExerciseSettings& exercise);
+  /// Throws std::invalid_argument with why_cannot_drive() when it cannot.
+  explicit GrabAutopilot(const ExerciseSettings& exercise, GrabOperatorDefects defects = {});
+
+  /// The controls for the next step (decided 50 times a second, held in between).
+  Controls next(const Simulation& simulation);
+  /// What it is doing now: to dig, lower, shut, hoist, to hopper, discharge, done.
+  const char* activity() const;
+  int bites() const { return bites_; }
+
+ private:
+  enum class Phase { kToDig, kLower, kShut, kHoist, kToHopper, kDischarge, kDone };
+  struct Target {
+    double slew_rad = 0.0, radius_m = 0.0;
+  };
+  Controls decide(const Simulation& simulation, const MobileHarbourCrane& crane);
+  Target target_of(const MobileHarbourCrane& crane, const core::Vec3& point) const;
+  /// Slew and luff levers that bring the boom head over `target` while they damp the grab's swing; true when
+  /// the grab is within `tolerance_m` of plumb over it and calm.
+  bool steer(const MobileHarbourCrane& crane, const Target& target, double tolerance_m, double& slew,
+             double& luff) const;
+  core::Vec3 dig_spot(const Simulation& simulation) const;
+
+  ExerciseSettings exercise_;
+  GrabOperatorDefects defects_;
+  Phase phase_ = Phase::kToDig;
+  int bites_ = 0;
+  double phase_start_s_ = 0.0;
+  std::vector<core::Vec3> spots_;  // vessel frame
+  Controls last_{};
+  bool decided_ = false;
+};
+
+}  // namespace harbour::sim
