@@ -45,8 +45,9 @@ std::string GrabAutopilot::why_cannot_drive(const ExerciseSettings& exercise) {
 GrabAutopilot::GrabAutopilot(const ExerciseSettings& exercise, GrabOperatorDefects defects)
     : exercise_(exercise), defects_(defects) {
   if (const std::string why = why_cannot_drive(exercise); !why.empty()) throw std::invalid_argument(why);
+  vessel_.emplace(*exercise.scenario.vessel);
   // a 3 x 3 pattern over the open hatch, centre first, then its sides, then its corners
-  const VesselGeometry geometry(*exercise.scenario.vessel);
+  const VesselGeometry& geometry = *vessel_;
   const VesselSettings::Hold& hold = *open_hold(exercise.scenario.vessel->vessel);
   const MhcSettings& crane = std::get<MhcSetup>(exercise.scenario.machine).crane;
   const double reach_x =
@@ -116,7 +117,7 @@ bool GrabAutopilot::steer(const MobileHarbourCrane& crane, const Target& target,
 }
 
 core::Vec3 GrabAutopilot::dig_spot(const Simulation& simulation) const {
-  const VesselGeometry geometry(*exercise_.scenario.vessel);
+  const VesselGeometry& geometry = *vessel_;
   const core::Vec3& local = spots_[static_cast<std::size_t>(bites_) % spots_.size()];
   return geometry.pose_at(simulation.time_s()).to_parent(local);
 }
@@ -133,7 +134,7 @@ Controls GrabAutopilot::decide(const Simulation& simulation, const MobileHarbour
   const bulk::BulkWorld& bulk = *simulation.bulk();
   const double load_m3 = bulk.grab(simulation.bulk_grab()).load_m3;
   const double bottom = crane.attachment_bottom_z_m();
-  const VesselGeometry geometry(*exercise_.scenario.vessel);
+  const VesselGeometry& geometry = *vessel_;
   const double coaming_top = geometry.pose_at(now).to_parent({0, 0, geometry.coaming_top_m()}).z;
   const double travel_z =
       defects_.travel_below_the_coaming ? coaming_top - 1.0 : coaming_top + kCoamingClearance_m;

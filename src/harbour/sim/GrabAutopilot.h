@@ -1,5 +1,6 @@
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -55,7 +56,8 @@ class GrabAutopilot {
   Phase phase_ = Phase::kToDig;
   int bites_ = 0;
   double phase_start_s_ = 0.0;
-  std::vector<core::Vec3> spots_;  // vessel frame
+  std::optional<VesselGeometry> vessel_;  // the scenario's bulk carrier, built once
+  std::vector<core::Vec3> spots_;         // vessel frame
   Controls last_{};
   bool decided_ = false;
 };
