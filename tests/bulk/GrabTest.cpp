@@ -93,12 +93,29 @@ TEST(Grab, SpillsThroughItsOpeningAtTheSpillSpeed) {
   }
 }
 
-TEST(Grab, AnOpenGrabClearOfMaterialLoadsNothing) {
+TEST(Grab, AGrabShuttingBeyondItsTipsReachLoadsNothing) {
   BedScene s;
-  GrabCommand c = scenes::grab_at({5.0, 5.0, 2.5}, 1.0);  // closing 0.5 m above the bed
+  // the tips swing down d = 1 m on their arc as the jaws shut: from 1.5 m above the bed they never reach it
+  GrabCommand c = scenes::grab_at({5.0, 5.0, 3.5}, 1.0);
   for (int n = 0; n < 6000; ++n)
     s.world.step(kDt, {&c, 1});
   EXPECT_EQ(s.world.grab(s.grab).load_m3, 0.0);
+}
+
+TEST(Grab, TheJawTipsSwingDownTheirArcIntoTheMaterial) {
+  // held 0.5 m above the bed, the tips (d (1 - w / w_max) below the jaws) reach it half shut and cut down
+  // with their arc: the bite is the triangle under it, depth 0.5 m at the middle, 1.5 m wide: W d w_max / 8
+  BedScene s;
+  GrabCommand c = scenes::grab_at({5.0, 5.0, 2.5}, 1.0);
+  for (int n = 0; n < 6000; ++n) {
+    const double closed = 1.0 - s.world.grab(s.grab).opening_m / s.settings.max_opening_m;
+    s.world.step(kDt, {&c, 1});
+    if (closed * s.settings.max_depth_m < 0.5 - 0.03) {
+      ASSERT_EQ(s.world.grab(s.grab).load_m3, 0.0) << n;
+    }
+  }
+  const double triangle = s.settings.width_m * s.settings.max_depth_m * s.settings.max_opening_m / 8;
+  EXPECT_NEAR(s.world.grab(s.grab).load_m3, triangle, 0.1 * triangle);
 }
 
 }  // namespace

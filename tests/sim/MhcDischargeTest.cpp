@@ -52,31 +52,72 @@ Attempt drive(const ExerciseSettings& exercise, GrabOperatorDefects defects, dou
   return a;
 }
 
-TEST(MhcDischarge, TheAutopilotWorksTheGrabCycleAndMassIsExactOverTheRun) {
-  // dig in the vessel's hold, hoist clear of the coaming, slew and luff to the hopper, open, return: every
-  // bite that leaves the hold arrives in the hopper; hold, grab, air, hopper, its outlet and the spill add up
+double limit_of(const ExerciseSettings& exercise) {
+  return exercise.rules.time_limit_s + exercise.rules.overtime_s;
+}
+
+double deducted(const Score& score, const std::string& reason) {
+  double points = 0.0;
+  for (const Score::Deduction& d : score.deductions)
+    if (d.reason == reason) points += d.points;
+  return points;
+}
+
+TEST(MhcDischarge, TheAutopilotClearsTheExerciseAndMassIsExactOverTheRun) {
+  // dig in the vessel's hold, hoist clear of the coaming, slew and luff to the hopper, open, return until the
+  // goal's tonnes are in: every bite that leaves the hold arrives in the hopper; hold, grab, air, hopper, its
+  // outlet and the spill add up
   const ExerciseSettings exercise = discharge();
-  const Attempt a = drive(exercise, {}, 400.0);
-  EXPECT_GE(a.bites, 4);
-  EXPECT_GE(static_cast<int>(a.metrics.bite_fill.size()), a.bites - 1);  // the last may be on its way
-  EXPECT_LE(static_cast<int>(a.metrics.bite_fill.size()), a.bites);
-  EXPECT_GT(a.metrics.delivered_t, 5.0);
+  const Attempt a = drive(exercise, {}, limit_of(exercise));
+  ASSERT_TRUE(a.finished);
+  EXPECT_LE(a.metrics.time_s, exercise.rules.time_limit_s);
+  EXPECT_GE(a.metrics.delivered_t, exercise.deliver->tonnes);
+  // full bites off a level fill: the jaws' arc and the grab's weight take the rated volume
+  ASSERT_GE(a.metrics.bite_fill.size(), 3u);
+  for (const double fill : a.metrics.bite_fill)
+    EXPECT_GT(fill, 0.8);
   // what left the grab landed in the hopper, back in the hold, is falling or was spilled
   EXPECT_NEAR(a.metrics.delivered_t + a.back_in_hold_t + a.in_flight_t + a.metrics.spilled_t,
               a.metrics.handled_t, 1e-9 * a.metrics.handled_t);
-  EXPECT_LT(a.metrics.spilled_percent, 5.0);
-  EXPECT_EQ(a.metrics.ship_collisions, 0);
+  EXPECT_LT(a.metrics.spilled_percent, 1.0);
   EXPECT_LT(a.worst_discrepancy_m3, 1e-9 * a.added_m3);
-  // the score is 100 less its deductions, and the unmet delivery fails it
-  double deducted = 0.0;
+  // a clean run: the ropes within their working load, the pads down, the limiter never stopping it
+  EXPECT_EQ(a.metrics.ship_collisions, 0);
+  EXPECT_EQ(a.metrics.overloads, 0);
+  EXPECT_EQ(a.metrics.pad_lift_offs, 0);
+  EXPECT_EQ(a.metrics.limiter_trips, 0);
+  EXPECT_EQ(a.metrics.swinging_releases, 0);
+  EXPECT_TRUE(a.score.passed);
+  EXPECT_GE(a.score.total, exercise.rules.pass_score);
+  double all = 0.0;
   for (const Score::Deduction& d : a.score.deductions)
-    deducted += d.points;
-  EXPECT_NEAR(a.score.total, std::max(0.0, 100.0 - deducted), 1e-9);
-  EXPECT_FALSE(a.score.passed);
+    all += d.points;
+  EXPECT_NEAR(a.score.total, std::max(0.0, 100.0 - all), 1e-9);
   bool has_delivered = false;
   for (const auto& [name, value] : a.metrics.rows())
     has_delivered |= name == "delivered_t" && value == a.metrics.delivered_t;
   EXPECT_TRUE(has_delivered);
+}
+
+TEST(MhcDischarge, OpeningOverTheQuayEdgeSpillsAndCosts) {
+  // the bad operator opens the loaded grab on its way, over the gap between ship and quay: that coal is in
+  // the water or on the quay, counted as spilled and deducted per tonne
+  const ExerciseSettings exercise = discharge();
+  const Attempt a = drive(exercise, {.open_over_the_quay_edge = true}, 200.0);
+  EXPECT_GT(a.metrics.spilled_t, 1.0);
+  EXPECT_NEAR(deducted(a.score, "tonne spilled"),  // per tonne begun
+              std::ceil(a.metrics.spilled_t) * exercise.rules.points_per_spilled_t, 1e-9);
+  EXPECT_NEAR(a.metrics.delivered_t + a.back_in_hold_t + a.in_flight_t + a.metrics.spilled_t,
+              a.metrics.handled_t, 1e-9 * a.metrics.handled_t);
+}
+
+TEST(MhcDischarge, TravellingBelowTheCoamingHitsTheShip) {
+  // slewing back into the hold with the grab below the coaming's top strikes the coaming: a ship collision,
+  // deducted as a collision
+  const ExerciseSettings exercise = discharge();
+  const Attempt a = drive(exercise, {.travel_below_the_coaming = true}, 200.0);
+  EXPECT_GT(a.metrics.ship_collisions, 0);
+  EXPECT_GE(deducted(a.score, "collision"), exercise.rules.points_collision * a.metrics.ship_collisions);
 }
 
 TEST(MhcDischarge, TheHoldMovesWithTheVessel) {

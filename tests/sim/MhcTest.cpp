@@ -96,8 +96,9 @@ TEST(Mhc, TheLuffingRopesCarryTheBoomsStaticMoment) {
     other += pulls_on_boom(m.luffing(), settings.luffing, false, luffing_arms);
     const double predicted = -other / luffing_arms;
     double measured = 0.0;
-    for (int g = 1; g <= 4; ++g)
-      measured += m.luffing().tension(0, g) / 4.0;
+    const int falls = m.luffing().segment_count(0) - 1;  // the drum's lead to the A-frame is not a fall
+    for (int g = 1; g <= falls; ++g)
+      measured += m.luffing().tension(0, g) / falls;
     return std::pair{measured, predicted};
   };
   // averaged over 2 s, every step: the ropes' transverse waves swing each instant's end forces by a few %
@@ -109,7 +110,7 @@ TEST(Mhc, TheLuffingRopesCarryTheBoomsStaticMoment) {
     predicted += p / 2000;
   }
   EXPECT_NEAR(measured, predicted, 0.02 * predicted);
-  EXPECT_GT(predicted, 1e5);  // a real load: the boom and the grab at 35 m
+  EXPECT_GT(predicted, 5e4);  // a real load on each of the six falls: the boom and the grab at 35 m
 }
 
 TEST(Mhc, OutriggerPadsCarryTheMachinesWeightAndBalanceItsMoment) {
@@ -418,7 +419,8 @@ TEST(Mhc, TheGrabBitesTheHeapAndItsLoadHangsOnTheRopes) {
       formula_m3 += opening * g.width_m * g.sinking_speed_mps * closed / (g.max_opening_m / g.closing_time_s);
   }
   const double bite_m3 = sim.bulk()->grab(sim.bulk_grab()).load_m3;
-  EXPECT_GT(bite_m3, 0.3 * m.settings().grab.capacity_m3);  // the grab stays down while it shuts
+  // a full bite: the jaw tips swing down their arc into the heap and the grab stays down while it shuts
+  EXPECT_GT(bite_m3, 0.8 * m.settings().grab.capacity_m3);
   EXPECT_LE(bite_m3, m.settings().grab.capacity_m3 + 1e-9);
   // what the jaws cut is the formula's; what they keep is all but what their jitter on the ropes let fall
   const double cut_m3 = sim.bulk()->loaded_m3() - cut_before_m3;

@@ -192,7 +192,10 @@ void BulkWorld::step_grab(const GrabSettings& settings, GrabState& state, const 
   state.opening_m =
       std::clamp(state.opening_m - rate * settings.max_opening_m / settings.closing_time_s * dt_s, 0.0,
                  settings.max_opening_m);
-  if (rate < 0.0) state.cut_depth_m = 0.0;
+  // opening, the tips swing back up their arc: the cut they can deepen starts from there
+  if (rate < 0.0)
+    state.cut_depth_m =
+        std::min(state.cut_depth_m, settings.max_depth_m * (1.0 - state.opening_m / settings.max_opening_m));
 
   // a grab opened wider than it held its load spills through the gap (w - w_held) x W at v0, as a falling
   // parcel: material cut and held at an opening stays wedged there
@@ -212,7 +215,10 @@ double BulkWorld::dig(const GrabSettings& settings, GrabState& state, double dt_
   // the grid under the jaw tips, if they touch its surface
   for (int gid = 0; gid < grid_count(); ++gid) {
     HeightGrid& g = grid(gid);
-    const core::Vec3 tip = g.pose().to_local(state.pose.position);
+    // the jaw tips swing down on their arc as the shells close: d below the jaws' reference when shut
+    const double closed_share = 1.0 - state.opening_m / settings.max_opening_m;
+    const core::Vec3 tip =
+        g.pose().to_local(state.pose.to_parent({0.0, 0.0, -settings.max_depth_m * closed_share}));
     if (!g.contains(tip.x, tip.y) || tip.z > g.surface_height(tip.x, tip.y) + kGrabTouchTolerance_m) continue;
     if (state.cut_depth_m >= settings.max_depth_m || state.load_m3 >= settings.capacity_m3) return false;
 

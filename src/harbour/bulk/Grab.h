@@ -8,7 +8,8 @@ namespace harbour::bulk {
 struct GrabSettings {
   double width_m = 2.4;             ///< [m] W: jaw width along the hinge axis
   double max_opening_m = 3.6;       ///< [m] w when fully open, across the hinge axis
-  double max_depth_m = 1.2;         ///< [m] d: deepest cut below the surface the jaws reach
+  double max_depth_m = 1.2;         ///< [m] d: deepest cut of a bite, and how far the jaw tips swing down
+                                    ///< on their arc below the jaws' reference from open to shut
   double sinking_speed_mps = 0.25;  ///< [m/s] v: speed the closing jaws cut into material
   double spill_speed_mps = 2.0;     ///< [m/s] v0: speed material leaves an open grab
   double capacity_m3 = 12.0;        ///< [m^3] struck volume

@@ -4,6 +4,12 @@
 #include <cmath>
 
 namespace harbour::sim {
+namespace {
+
+constexpr double kReleasedShare =
+    0.05;  // of the grab's capacity let go at once: the grab opened to discharge
+
+}  // namespace
 
 const char* skill_name(Skill skill) {
   switch (skill) {
@@ -106,8 +112,10 @@ void Evaluator::observe_bulk(const Simulation& simulation) {
   metrics_.pad_lift_offs = static_cast<int>(tally.pad_lift_offs);
   if (simulation.bulk_grab() < 0) return;
   const double load = bulk.grab(simulation.bulk_grab()).load_m3;
-  if (!discharging_ && load < bite_peak_m3_ - 1e-6) {  // it opened: the bite is what it held
-    const double fill = bite_peak_m3_ / bulk.grab_settings(simulation.bulk_grab()).capacity_m3;
+  // it opened: the bite is what it held (a shell's jitter while it digs lets a little go, not a release)
+  const double capacity = bulk.grab_settings(simulation.bulk_grab()).capacity_m3;
+  if (!discharging_ && load < bite_peak_m3_ - kReleasedShare * capacity) {
+    const double fill = bite_peak_m3_ / capacity;
     metrics_.bite_fill.push_back(fill);
     if (fill < exercise_.rules.poor_bite_fill) ++metrics_.poor_bites;
     metrics_.release_swing_m.push_back(tally.swing_m);

@@ -18,6 +18,7 @@ constexpr double kSpotMargin_m = 1.0;        // dig spots inside the coamings by
 constexpr double kCreepGain_per_s = 0.25;    // head speed towards the target per metre off it
 constexpr double kSwingGain_per_s = 0.6;     // head speed towards the grab per metre of swing
 constexpr double kCalm_m = 0.35;             // swing at which the grab counts as calm
+constexpr double kSwingFilter_s = 1.0;       // time constant of the swing and height the levers follow
 constexpr double kLeverTravel_s = 1.0;       // a lever from neutral to full
 
 double wrap(double a) {
@@ -103,9 +104,8 @@ bool GrabAutopilot::steer(const MobileHarbourCrane& crane, const Target& target,
   const core::Vec3 tangential{-radial.y, radial.x, 0.0};  // + slew: anticlockwise seen from above
   const MhcSettings& s = crane.settings();
   const double e_t = wrap(target.slew_rad - crane.slew_rad()) * r, e_r = target.radius_m - r;
-  // the grab's offset from plumb under the head: the head follows it to damp the swing
-  const core::Vec3 lower = crane.grab_lower_position_m();
-  const core::Vec3 swing{lower.x - head.x, lower.y - head.y, 0.0};
+  // the grab's offset from plumb under the head, low-passed: the head follows it to damp the swing
+  const core::Vec3& swing = swing_m_;
   const double s_t = dot(swing, tangential), s_r = dot(swing, radial);
   const double v_t_max = s.slew_drive.max_speed_mps * r, v_r_max = crane.luffing_radius_rate_mps();
   const double v_t = std::clamp(kCreepGain_per_s * e_t, -v_t_max, v_t_max) + kSwingGain_per_s * s_t;
@@ -131,9 +131,17 @@ Controls GrabAutopilot::decide(const Simulation& simulation, const MobileHarbour
     phase_ = p;
     phase_start_s_ = now;
   };
+  // the swing seen through a low-pass: the boom's bounce on its ropes (about 1 Hz) moves the head to and fro
+  // under the grab, and a lever that followed it would pump the bounce
+  const core::Vec3 head = crane.boom_head_m(), lower = crane.grab_lower_position_m();
+  const core::Vec3 swing{lower.x - head.x, lower.y - head.y, 0.0};
+  const double decision_s = kDecisionSteps * Simulation::kStep_s;
+  const double smoothing = decided_ ? decision_s / (kSwingFilter_s + decision_s) : 1.0;
+  swing_m_ += (swing - swing_m_) * smoothing;
   const bulk::BulkWorld& bulk = *simulation.bulk();
   const double load_m3 = bulk.grab(simulation.bulk_grab()).load_m3;
   const double bottom = crane.attachment_bottom_z_m();
+  held_bottom_m_ += (bottom - held_bottom_m_) * smoothing;  // the height it holds, through the same low-pass
   const VesselGeometry& geometry = *vessel_;
   const double coaming_top = geometry.pose_at(now).to_parent({0, 0, geometry.coaming_top_m()}).z;
   const double travel_z =
@@ -151,10 +159,11 @@ Controls GrabAutopilot::decide(const Simulation& simulation, const MobileHarbour
     in_flight_m3 += p.volume_m3;
   const bool delivered =
       (bulk.landed_m3(exercise_.deliver->grid_index) + in_flight_m3) * t_per_m3 >= exercise_.deliver->tonnes;
-  // a height held gently (a dead band, a low gain): the grab bounces on its ropes if the hoist hunts
+  // a height held gently (a low gain beyond a dead band, no step at its edge): the grab bounces on its ropes
+  // if the hoist hunts
   const auto hold_height = [&](double z) {
-    const double error = z - bottom;
-    return std::abs(error) < 0.3 ? 0.0 : std::clamp(0.25 * error, -1.0, 1.0);
+    const double error = z - held_bottom_m_;
+    return std::clamp(0.25 * std::copysign(std::max(0.0, std::abs(error) - 0.3), error), -1.0, 1.0);
   };
 
   switch (phase_) {

@@ -58,6 +58,8 @@ class GrabAutopilot {
   double phase_start_s_ = 0.0;
   std::optional<VesselGeometry> vessel_;  // the scenario's bulk carrier, built once
   std::vector<core::Vec3> spots_;         // vessel frame
+  core::Vec3 swing_m_;                    // the grab's offset from plumb under the boom head, low-passed
+  double held_bottom_m_ = 0.0;            // the grab's bottom height, low-passed
   Controls last_{};
   bool decided_ = false;
 };

@@ -10,6 +10,8 @@ namespace {
 
 constexpr double kG = 9.80665;
 constexpr double kRestingShare = 0.5;  // ropes carrying less of the grab than this: it rests on something
+constexpr double kShutOpening = 0.05;  // shells this little open count as shut (their play on the ropes)
+constexpr double kShareGain = 0.5;     // holding winch speed (share of full) per unit of excess load share
 // reeving bodies, as the constructor maps them
 constexpr int kHouse = 0, kBoom = 1, kGrabHead = 2, kGrabLower = 3;
 
@@ -108,10 +110,10 @@ MobileHarbourCrane::MobileHarbourCrane(physics::PhysicsWorld& world, const MhcSe
         {rope, segment, settings.luffing.elements[static_cast<std::size_t>(far)].mount.body == kBoom});
   }
   const auto tackle = segments_between(settings.hoist, kGrabHead, {kGrabLower});
-  int closing_ropes = 0;
   for (std::size_t r = 0; r < settings.hoist.ropes.size(); ++r)
-    closing_ropes += std::any_of(tackle.begin(), tackle.end(),
-                                 [&](const auto& f) { return f.first == static_cast<int>(r); });
+    closing_rope_.push_back(std::any_of(tackle.begin(), tackle.end(),
+                                        [&](const auto& f) { return f.first == static_cast<int>(r); }));
+  const int closing_ropes = static_cast<int>(std::count(closing_rope_.begin(), closing_rope_.end(), true));
   tackle_falls_ = closing_ropes > 0 ? static_cast<int>(tackle.size()) / closing_ropes : 1;
   const core::Mat3 house_rotation = yaw(start.slew_rad);
   physics::BoxSettings house;
@@ -263,6 +265,20 @@ double MobileHarbourCrane::hoisted_load_n() const {
   return total;
 }
 
+double MobileHarbourCrane::holding_share() const {
+  double holding = 0.0, total = 0.0;
+  std::array<core::Vec3, 2> ends;
+  for (const auto& [rope, segment] : grab_falls_) {
+    hoist_->polyline(rope, segment, ends);
+    const core::Vec3 d = ends[1] - ends[0];
+    const double length = std::sqrt(dot(d, d));
+    const double up = hoist_->tension(rope, segment) * (length > 0 ? std::abs(d.z) / length : 1.0);
+    total += up;
+    if (!closing_rope_[static_cast<std::size_t>(rope)]) holding += up;
+  }
+  return total > 0.0 ? holding / total : 0.5;
+}
+
 double MobileHarbourCrane::capacity_t() const {
   const std::vector<CapacityPoint>& chart = settings_.capacity_chart;
   const double r = radius_m();
@@ -399,14 +415,24 @@ void MobileHarbourCrane::step(const Controls& raw, std::span<const ContainerRef>
   const double grab =
       grab_limits_.limit(at(grab_slot_), 1.0 - grab_opening(), shut_rate,
                          hoist_drum.max_rope_acceleration_mps2 / (tackle_falls_ * travel), dt_s);
-  const double close = std::clamp(hoist + grab, -1.0, 1.0);
+  // the closing winch runs at hoist + grab; beyond its full speed both winches give up the excess, so the
+  // grab lever keeps its difference while hoisting
+  const double wanted_close = hoist + grab;
+  const double excess = wanted_close - std::clamp(wanted_close, -1.0, 1.0);
+  const double close = wanted_close - excess;
   // closing on material the holding winch follows (slack-rope control): it pays out what keeps the lower
   // block where it rests, so the head comes down to it and the jaws cut in under the grab's weight
   const double grab_kg = settings_.grab_head_mass_kg + settings_.grab_lower_mass_kg + carried_kg_;
   const bool resting = limiter_load_n_ < kRestingShare * grab_kg * kG;  // filtered: not a bounce's dip
   const double follow = resting && grab > 0.0 ? grab / std::max(tackle_falls_ - 1, 1) : 0.0;
+  // a shut grab hanging on its ropes: the holding winch shares the load evenly with the closing winch
+  // (load equalisation), so the closing ropes hold the shells shut and neither pair carries it all
+  holding_share_ += (holding_share() - holding_share_) * std::min(1.0, dt_s / settings_.limiter_filter_s);
+  const bool sharing = !resting && grab >= 0.0 && grab_opening() < kShutOpening;
+  const double equalise = sharing ? kShareGain * (holding_share_ - 0.5) : 0.0;
   const std::array<cable::DrumCommand, 2> hoist_commands{
-      cable::DrumCommand{stop ? 0.0 : std::clamp(follow - hoist, -1.0, 1.0), hoist_brake_fault_, !stop},
+      cable::DrumCommand{stop ? 0.0 : std::clamp(follow - hoist + excess + equalise, -1.0, 1.0),
+                         hoist_brake_fault_, !stop},
       cable::DrumCommand{stop ? 0.0 : -close, hoist_brake_fault_, !stop}};
   hoist_->step(dt_s, hoist_commands, *hoist_bodies_);
 
@@ -487,6 +513,7 @@ void MobileHarbourCrane::hash_into(core::StateHash& hash) const {
   hash.add(limiter_load_n_);
   hash.add(carried_kg_);
   hash.add(pad_lift_offs_);
+  hash.add(holding_share_);
 }
 
 void MobileHarbourCrane::save_state(core::StateWriter& out) const {
@@ -508,6 +535,7 @@ void MobileHarbourCrane::save_state(core::StateWriter& out) const {
   out.put(limiter_trips_);
   out.put(pad_lift_offs_);
   out.put(carried_kg_);
+  out.put(holding_share_);
 }
 
 void MobileHarbourCrane::restore_state(core::StateReader& in) {
@@ -529,6 +557,7 @@ void MobileHarbourCrane::restore_state(core::StateReader& in) {
   in.get(limiter_trips_);
   in.get(pad_lift_offs_);
   in.get(carried_kg_);
+  in.get(holding_share_);
   update_tool();
 }
 

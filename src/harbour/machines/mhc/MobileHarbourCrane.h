@@ -132,6 +132,8 @@ class MobileHarbourCrane final : public Machine {
   /// What hangs on the ropes below the boom head [N, vertical] and the chart's capacity at this radius [t].
   double hoisted_load_n() const;
   double capacity_t() const;
+  /// [-] the holding ropes' share of the load under the boom head (the rest is on the closing ropes).
+  double holding_share() const;
   /// Load over capacity [-] (1: the chart's limit), from the limiter's filtered load signal.
   double utilisation() const;
   /// The limiter's load signal [N]: hoisted_load_n() low-passed over limiter_filter_s.
@@ -180,6 +182,7 @@ class MobileHarbourCrane final : public Machine {
   std::unique_ptr<OdeCableBodies> luffing_bodies_, hoist_bodies_;
   std::unique_ptr<cable::HoistSystem> luffing_, hoist_;
   std::vector<std::pair<int, int>> grab_falls_;  // (rope, segment) from the boom head down to the grab
+  std::vector<bool> closing_rope_;               // per hoist rope: reeved through the shells' tackle
   struct LuffFall {
     int rope, segment;
     bool end_on_boom;  // the segment's far end (towards the dead end) rides on the boom
@@ -195,7 +198,8 @@ class MobileHarbourCrane final : public Machine {
   std::array<WindArea, 3> wind_areas_;
   std::array<core::Vec3, 9> shell_points_;  // contact points on the shells' underside, lower block frame
   BulkTool tool_;
-  double carried_kg_ = 0.0;  // material in the grab: its weight hangs on the lower block
+  double carried_kg_ = 0.0;     // material in the grab: its weight hangs on the lower block
+  double holding_share_ = 0.5;  // the holding ropes' share of the load, low-passed like the limiter's load
 };
 
 }  // namespace harbour::sim
