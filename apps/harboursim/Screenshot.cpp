@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <memory>
 #include <numbers>
 #include <optional>
 #include <stdexcept>
@@ -11,7 +12,7 @@
 #include "harbour/ig/ImageGenerator.h"
 #include "harbour/io/BoundedFile.h"
 #include "harbour/io/ExerciseFiles.h"
-#include "harbour/sim/Autopilot.h"
+#include "harbour/sim/Pilot.h"
 
 namespace harbour::apps {
 
@@ -20,9 +21,9 @@ int take_screenshot(const ScreenshotOptions& options) {
     throw std::runtime_error("--out " + options.out + ": " + why);
   const sim::ExerciseSettings exercise = io::load_exercise(resolve_exercise(options.exercise));
   sim::Simulation simulation(exercise.scenario);
-  // the autopilot drives container exercises; other machines stand at their controls' rest
-  std::optional<sim::Autopilot> pilot;
-  if (!exercise.moves.empty()) pilot.emplace(exercise);
+  // a scripted operator drives the exercises it can (container moves, grab deliveries); else the levers rest
+  std::unique_ptr<sim::Pilot> pilot;
+  if (sim::why_no_pilot(exercise).empty()) pilot = sim::make_pilot(exercise);
   if (options.time_of_day_h) {
     sim::InstructorCommand c;
     c.kind = sim::InstructorCommand::Kind::kSetTimeOfDay;

@@ -9,6 +9,7 @@
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <thread>
@@ -19,7 +20,7 @@
 #include "harbour/ig/RenderThread.h"
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/io/MotionFiles.h"
-#include "harbour/sim/Autopilot.h"
+#include "harbour/sim/Pilot.h"
 #include "harbour/station/DeviceMappingFile.h"
 #include "harbour/station/DisplayLayout.h"
 #include "harbour/station/HeadTracker.h"
@@ -86,7 +87,7 @@ int run_station(const StationOptions& given) {
   check_outputs(outputs);
   const sim::ExerciseSettings exercise = io::load_exercise(resolve_exercise(options.exercise));
   if (options.autopilot)
-    if (const std::string why = sim::Autopilot::why_cannot_drive(exercise); !why.empty())
+    if (const std::string why = sim::why_no_pilot(exercise); !why.empty())
       throw std::runtime_error(exercise.name + ": " + why + " (drive it yourself: no --autopilot)");
   const station::Profile profile =
       station::load_profile(station::resolve_profile(options.profile, HARBOUR_DATA_DIR));
@@ -117,9 +118,9 @@ int run_station(const StationOptions& given) {
     }
   station::Session session(exercise, session_options);
   station::Station station(session);
-  std::optional<sim::Autopilot> pilot;
+  std::unique_ptr<sim::Pilot> pilot;
   if (options.autopilot) {
-    pilot.emplace(exercise);
+    pilot = sim::make_pilot(exercise);
     session.loop().set_pilot([&](const sim::Simulation& s) { return pilot->next(s); });
   } else {
     station.use_devices(open_devices(profile, session.simulation().control_table(), !windows.empty()));

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -20,7 +21,7 @@
 #include "harbour/io/InstructorCommandText.h"
 #include "harbour/io/RecordingFile.h"
 #include "harbour/io/RecordsStore.h"
-#include "harbour/sim/Autopilot.h"
+#include "harbour/sim/Pilot.h"
 #include "harbour/sim/Recording.h"
 
 namespace harbour::apps {
@@ -61,6 +62,24 @@ std::vector<Scheduled> schedule(const std::vector<std::string>& texts) {
   return commands;
 }
 
+// the exercise's goal and how far it is, in words
+std::string goal_text(const sim::ExerciseSettings& exercise) {
+  char text[96];
+  if (exercise.deliver)
+    std::snprintf(text, sizeof text, "deliver %.0f t", exercise.deliver->tonnes);
+  else
+    std::snprintf(text, sizeof text, "%zu move(s)", exercise.moves.size());
+  return text;
+}
+std::string progress_text(const sim::ExerciseSettings& exercise, const sim::Metrics& metrics) {
+  char text[96];
+  if (exercise.deliver)
+    std::snprintf(text, sizeof text, "delivered %5.1f/%.0f t", metrics.delivered_t, exercise.deliver->tonnes);
+  else
+    std::snprintf(text, sizeof text, "moves %d/%zu", metrics.moves_completed, exercise.moves.size());
+  return text;
+}
+
 }  // namespace
 
 // everything a run writes is checked before it starts: a bad output never costs a whole exercise
@@ -75,7 +94,20 @@ void check_outputs(const RunOptions& options) {
 void print_evaluation(const sim::Metrics& m, const sim::Score& s, bool container_moves) {
   std::printf("\nevaluation\n");
   std::printf("  time                 %8.1f s\n", m.time_s);
-  if (!container_moves) {
+  if (m.bulk) {
+    std::printf("  delivered            %8.2f t (%.0f t/h)\n", m.delivered_t, m.tonnes_per_hour);
+    std::printf("  handled              %8.2f t\n", m.handled_t);
+    std::printf("  spilled              %8.2f t (%.1f %% of handled)\n", m.spilled_t, m.spilled_percent);
+    for (std::size_t n = 0; n < m.bite_fill.size(); ++n)
+      std::printf("  bite %zu                 %5.0f %% full, swing at release %.2f m\n", n + 1,
+                  100.0 * m.bite_fill[n], n < m.release_swing_m.size() ? m.release_swing_m[n] : 0.0);
+    std::printf("  collisions           %8d (worst %.2f m/s; ship %d, other %d)\n", m.collisions,
+                m.worst_collision_mps, m.ship_collisions, m.other_collisions);
+    std::printf("  rope overloads       %8d\n", m.overloads);
+    std::printf("  limiter trips        %8d\n", m.limiter_trips);
+    std::printf("  pad lift-offs        %8d\n", m.pad_lift_offs);
+    std::printf("  emergency stops      %8d\n", m.emergency_stops);
+  } else if (!container_moves) {
     std::printf("  collisions           %8d (worst %.2f m/s, %.0f N s)\n", m.collisions,
                 m.worst_collision_mps, m.worst_collision_impulse_ns);
     std::printf("  rope overloads       %8d\n", m.overloads);
@@ -150,7 +182,7 @@ int list_results(const std::string& database, const std::string& trainee) {
   return 0;
 }
 
-int drive_attempt(const sim::ExerciseSettings& exercise, sim::Simulation& simulation, sim::Autopilot& pilot,
+int drive_attempt(const sim::ExerciseSettings& exercise, sim::Simulation& simulation, sim::Pilot& pilot,
                   sim::Evaluator& evaluator, sim::Recorder& recorder, io::RecordsStore& db,
                   std::optional<std::int64_t> parent, std::int64_t branch_step, const RunOptions& options);
 
@@ -162,26 +194,26 @@ int run_exercise(const RunOptions& options) {
   check_outputs(options);
   schedule(options.commands);  // a bad command stops the run before it starts
   const sim::ExerciseSettings exercise = io::load_exercise(resolve_exercise(options.exercise));
-  if (const std::string why = sim::Autopilot::why_cannot_drive(exercise); !why.empty())
+  if (const std::string why = sim::why_no_pilot(exercise); !why.empty())
     throw std::runtime_error(exercise.name + ": " + why);
   sim::Simulation simulation(exercise.scenario);
-  sim::Autopilot pilot(exercise);
+  const std::unique_ptr<sim::Pilot> pilot = sim::make_pilot(exercise);
   sim::Evaluator evaluator(exercise);
   sim::Recorder recorder(exercise.name, simulation.control_table());
   io::RecordsStore db(options.database.empty() ? default_database() : options.database);
-  std::printf("harboursim: exercise %s, %zu move(s), autopilot, time limit %.0f s\n", exercise.name.c_str(),
-              exercise.moves.size(), exercise.rules.time_limit_s);
-  return drive_attempt(exercise, simulation, pilot, evaluator, recorder, db, std::nullopt, 0, options);
+  std::printf("harboursim: exercise %s on the %s, %s, autopilot, time limit %.0f s\n", exercise.name.c_str(),
+              simulation.machine().kind(), goal_text(exercise).c_str(), exercise.rules.time_limit_s);
+  return drive_attempt(exercise, simulation, *pilot, evaluator, recorder, db, std::nullopt, 0, options);
 }
 
-int drive(const sim::ExerciseSettings& exercise, sim::Simulation& simulation, sim::Autopilot& pilot,
+int drive(const sim::ExerciseSettings& exercise, sim::Simulation& simulation, sim::Pilot& pilot,
           sim::Evaluator& evaluator, sim::Recorder& recorder, io::RecordsStore& db, std::int64_t attempt,
           const RunOptions& options, std::optional<io::RecordingWriter>& writer);
 
 // Runs an attempt to its end: the exercise done, its time limit and overtime past, the physics diverged, or
 // Ctrl-C. The recording streams as it goes and the attempt is stored with how it ended; an error on the way
 // (a full disk, a lost database) still marks the attempt interrupted where it can.
-int drive_attempt(const sim::ExerciseSettings& exercise, sim::Simulation& simulation, sim::Autopilot& pilot,
+int drive_attempt(const sim::ExerciseSettings& exercise, sim::Simulation& simulation, sim::Pilot& pilot,
                   sim::Evaluator& evaluator, sim::Recorder& recorder, io::RecordsStore& db,
                   std::optional<std::int64_t> parent, std::int64_t branch_step, const RunOptions& options) {
   if (options.trainee == "autopilot") db.ensure_trainee("autopilot", "Scripted operator");
@@ -211,7 +243,7 @@ int drive_attempt(const sim::ExerciseSettings& exercise, sim::Simulation& simula
   }
 }
 
-int drive(const sim::ExerciseSettings& exercise, sim::Simulation& simulation, sim::Autopilot& pilot,
+int drive(const sim::ExerciseSettings& exercise, sim::Simulation& simulation, sim::Pilot& pilot,
           sim::Evaluator& evaluator, sim::Recorder& recorder, io::RecordsStore& db, std::int64_t attempt,
           const RunOptions& options, std::optional<io::RecordingWriter>& writer) {
   const StopOnSignal stop_on_signal;
@@ -238,11 +270,10 @@ int drive(const sim::ExerciseSettings& exercise, sim::Simulation& simulation, si
     if (!options.record.empty()) recorder.after_step(simulation, in);
     if (simulation.time_s() >= next_progress) {
       next_progress += kProgressEvery_s;
-      const sim::StsCrane& crane = simulation.sts();
-      std::printf("  t=%6.1f s  trolley %6.2f m  spreader z %5.2f m  load %5.1f t  %s  moves %d/%zu  %s\n",
-                  simulation.time_s(), crane.trolley_position_m(), crane.spreader_pose().position.z,
-                  crane.hoisted_load_n() / 9.80665 / 1000.0, crane.lamps().locked ? "locked  " : "unlocked",
-                  evaluator.metrics().moves_completed, exercise.moves.size(), pilot.activity());
+      std::printf("  t=%6.1f s  %s z %6.2f m  %s  %s\n", simulation.time_s(),
+                  simulation.machine().held_item() ? "load" : "attachment",
+                  simulation.machine().attachment_bottom_z_m(),
+                  progress_text(exercise, evaluator.metrics()).c_str(), pilot.activity());
       std::fflush(stdout);
     }
   }
@@ -347,13 +378,13 @@ int take_over_recording(const std::string& recording_path, const RunOptions& opt
   std::optional<std::int64_t> parent;
   for (const io::AttemptRow& a : db.attempts())
     if (a.recording == recording_path) parent = a.id;
-  std::printf("harboursim: took over %s at t=%.3f s (%d of %zu moves done)%s; the autopilot drives on\n",
-              recording_path.c_str(), branch.simulation->time_s(), evaluator.metrics().moves_completed,
-              exercise.moves.size(),
+  std::printf("harboursim: took over %s at t=%.3f s (%s)%s; the autopilot drives on\n",
+              recording_path.c_str(), branch.simulation->time_s(),
+              progress_text(exercise, evaluator.metrics()).c_str(),
               parent ? (", branch of attempt " + std::to_string(*parent)).c_str() : "");
-  sim::Autopilot pilot(exercise);
-  pilot.resume(*branch.simulation, evaluator.metrics().moves_completed);
-  return drive_attempt(exercise, *branch.simulation, pilot, evaluator, branch.recorder, db, parent, step,
+  const std::unique_ptr<sim::Pilot> pilot = sim::make_pilot(exercise);
+  pilot->resume(*branch.simulation, evaluator.metrics().moves_completed);
+  return drive_attempt(exercise, *branch.simulation, *pilot, evaluator, branch.recorder, db, parent, step,
                        options);
 }
 

@@ -6,6 +6,8 @@
 #include "harbour/machines/mhc/MobileHarbourCrane.h"
 #include "harbour/sim/Evaluation.h"
 #include "harbour/sim/GrabAutopilot.h"
+#include "harbour/sim/Pilot.h"
+#include "harbour/sim/Recording.h"
 
 namespace harbour::sim {
 namespace {
@@ -118,6 +120,43 @@ TEST(MhcDischarge, TravellingBelowTheCoamingHitsTheShip) {
   const Attempt a = drive(exercise, {.travel_below_the_coaming = true}, 200.0);
   EXPECT_GT(a.metrics.ship_collisions, 0);
   EXPECT_GE(deducted(a.score, "collision"), exercise.rules.points_collision * a.metrics.ship_collisions);
+}
+
+TEST(MhcDischarge, AnInstructorTakeOverWithTheGrabLoadedFinishesTheDelivery) {
+  // the original attempt recorded to 125 s (the second bite hoisting out of the hold); taken over there, the
+  // scripted operator the factory picks for the exercise resumes with the loaded grab and clears it
+  const ExerciseSettings exercise = discharge();
+  constexpr std::int64_t kAt = 125000;
+  Recorder recorder(exercise.name, Simulation(exercise.scenario).control_table());
+  {
+    Simulation sim(exercise.scenario);
+    const std::unique_ptr<Pilot> pilot = make_pilot(exercise);
+    for (std::int64_t k = 0; k < kAt; ++k) {
+      const Controls in = pilot->next(sim);
+      sim.step(in);
+      recorder.after_step(sim, in);
+    }
+  }
+  Evaluator evaluator(exercise);
+  TakeOver branch = take_over(exercise.scenario, recorder.recording(), "original", kAt,
+                              [&](const Simulation& s, const Controls& in) { evaluator.observe(s, in); });
+  const Simulation& at = *branch.simulation;
+  ASSERT_GT(at.bulk()->grab(at.bulk_grab()).load_m3,
+            0.5 * at.bulk()->grab_settings(at.bulk_grab()).capacity_m3);
+  const double delivered_before = evaluator.metrics().delivered_t;
+  EXPECT_GT(delivered_before, 0.0);
+  const std::unique_ptr<Pilot> pilot = make_pilot(exercise);
+  pilot->resume(at, evaluator.metrics().moves_completed);
+  while (!evaluator.finished() && branch.simulation->time_s() < limit_of(exercise)) {
+    const Controls in = pilot->next(*branch.simulation);
+    branch.simulation->step(in);
+    evaluator.observe(*branch.simulation, in);
+  }
+  EXPECT_TRUE(evaluator.finished());
+  EXPECT_TRUE(evaluator.score().passed);
+  EXPECT_EQ(evaluator.metrics().overloads, 0);
+  for (const double fill : evaluator.metrics().bite_fill)  // it digs where the material stands highest
+    EXPECT_GT(fill, 0.8);
 }
 
 TEST(MhcDischarge, TheHoldMovesWithTheVessel) {

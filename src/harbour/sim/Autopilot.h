@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "harbour/sim/Evaluation.h"
+#include "harbour/sim/Pilot.h"
 
 namespace harbour::sim {
 
@@ -21,7 +22,7 @@ struct OperatorDefects {
 /// load's rest position onto the target; fast-then-slow lowering that holds just above the landing until the
 /// load is on target and calm, lifting off to try again when the spreader sits beside the castings; locking,
 /// unlocking. For headless runs, demos, tests.
-class Autopilot {
+class Autopilot final : public Pilot {
  public:
   /// Why it cannot drive `exercise` ("" when it can): it drives the STS's container moves.
   static std::string why_cannot_drive(const ExerciseSettings& exercise);
@@ -30,15 +31,15 @@ class Autopilot {
 
   /// The controls for the next step, from what the simulation shows now (decided 50 times a second, held
   /// in between, levers at a joystick axis' 16-bit resolution).
-  Controls next(const Simulation& simulation);
+  Controls next(const Simulation& simulation) override;
   bool done() const { return goal_ >= exercise_.moves.size(); }
   /// What it is doing now, for progress displays: raise, travel, settle, lower, lift off, lock, slacken,
   /// unlock.
-  const char* activity() const;
+  const char* activity() const override;
   /// Takes over a running exercise (an instructor's take-over): the first `moves_done` moves are made; if the
   /// spreader holds the next move's box it carries it on, else it goes to fetch it (raising first, then
   /// catching whatever swing the load has before it lowers).
-  void resume(const Simulation& simulation, int moves_done);
+  void resume(const Simulation& simulation, int moves_done) override;
 
  private:
   enum class Phase { kRaise, kTravel, kSettle, kLower, kLiftOff, kLock, kSlacken, kUnlock };

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 
@@ -15,11 +16,24 @@ constexpr double kG = 9.80665;
 constexpr double kCoamingClearance_m = 2.5;  // grab bottom over the coaming top while it slews
 constexpr double kDischargeHeight_m = 3.0;   // grab bottom over the hopper's floor when it opens
 constexpr double kSpotMargin_m = 1.0;        // dig spots inside the coamings by the grab's half size and this
+constexpr double kSpotTie_m = 0.05;          // dig spots whose material stands within this count as level
 constexpr double kCreepGain_per_s = 0.25;    // head speed towards the target per metre off it
 constexpr double kSwingGain_per_s = 0.6;     // head speed towards the grab per metre of swing
 constexpr double kCalm_m = 0.35;             // swing at which the grab counts as calm
 constexpr double kSwingFilter_s = 1.0;       // time constant of the swing and height the levers follow
 constexpr double kLeverTravel_s = 1.0;       // a lever from neutral to full
+
+// the material's surface height over `point` (the point's own height where no grid lies under it)
+double surface_z(const bulk::BulkWorld& bulk, const core::Vec3& point) {
+  double surface = point.z;
+  for (int g = 0; g < bulk.grid_count(); ++g) {
+    const core::Vec3 local = bulk.grid(g).pose().to_local(point);
+    if (bulk.grid(g).contains(local.x, local.y))
+      surface =
+          bulk.grid(g).pose().to_parent({local.x, local.y, bulk.grid(g).surface_height(local.x, local.y)}).z;
+  }
+  return surface;
+}
 
 double wrap(double a) {
   return std::remainder(a, 2.0 * std::numbers::pi);
@@ -90,6 +104,14 @@ Controls GrabAutopilot::next(const Simulation& simulation) {
   return last_;
 }
 
+void GrabAutopilot::resume(const Simulation& simulation, int /*moves_done*/) {
+  const bool loaded = simulation.bulk() && simulation.bulk_grab() >= 0 &&
+                      simulation.bulk()->grab(simulation.bulk_grab()).load_m3 > 0.0;
+  phase_ = loaded ? Phase::kHoist : Phase::kToDig;
+  phase_start_s_ = simulation.time_s();
+  decided_ = false;  // its filters start again from what it sees
+}
+
 GrabAutopilot::Target GrabAutopilot::target_of(const MobileHarbourCrane& crane,
                                                const core::Vec3& point) const {
   const core::Vec3 d = point - crane.position_m();
@@ -117,9 +139,17 @@ bool GrabAutopilot::steer(const MobileHarbourCrane& crane, const Target& target,
 }
 
 core::Vec3 GrabAutopilot::dig_spot(const Simulation& simulation) const {
-  const VesselGeometry& geometry = *vessel_;
-  const core::Vec3& local = spots_[static_cast<std::size_t>(bites_) % spots_.size()];
-  return geometry.pose_at(simulation.time_s()).to_parent(local);
+  return vessel_->pose_at(simulation.time_s()).to_parent(spots_[spot_]);
+}
+
+void GrabAutopilot::choose_dig_spot(const Simulation& simulation) {
+  // where the material stands highest (the first of the pattern among equals)
+  const core::Pose vessel = vessel_->pose_at(simulation.time_s());
+  double highest = -std::numeric_limits<double>::infinity();
+  for (std::size_t n = 0; n < spots_.size(); ++n) {
+    const double z = surface_z(*simulation.bulk(), vessel.to_parent(spots_[n]));
+    if (z > highest + kSpotTie_m) highest = z, spot_ = n;
+  }
 }
 
 Controls GrabAutopilot::decide(const Simulation& simulation, const MobileHarbourCrane& crane) {
@@ -130,7 +160,9 @@ Controls GrabAutopilot::decide(const Simulation& simulation, const MobileHarbour
   auto enter = [&](Phase p) {
     phase_ = p;
     phase_start_s_ = now;
+    if (p == Phase::kToDig) choose_dig_spot(simulation);
   };
+  if (!decided_ && phase_ == Phase::kToDig) choose_dig_spot(simulation);
   // the swing seen through a low-pass: the boom's bounce on its ropes (about 1 Hz) moves the head to and fro
   // under the grab, and a lever that followed it would pump the bounce
   const core::Vec3 head = crane.boom_head_m(), lower = crane.grab_lower_position_m();
@@ -177,15 +209,7 @@ Controls GrabAutopilot::decide(const Simulation& simulation, const MobileHarbour
     }
     case Phase::kLower: {
       const core::Vec3 spot = dig_spot(simulation);
-      double surface = spot.z;
-      for (int g = 0; g < bulk.grid_count(); ++g) {
-        const core::Vec3 local = bulk.grid(g).pose().to_local(spot);
-        if (bulk.grid(g).contains(local.x, local.y))
-          surface = bulk.grid(g)
-                        .pose()
-                        .to_parent({local.x, local.y, bulk.grid(g).surface_height(local.x, local.y)})
-                        .z;
-      }
+      const double surface = surface_z(bulk, spot);
       steer(crane, target_of(crane, spot), 0.4, slew, luff);
       hoist = bottom - surface > 3.0 ? -1.0 : -0.3;
       // resting on the material: the ropes' filtered load below half the grab's weight, near the surface

@@ -6,6 +6,7 @@
 
 #include "harbour/core/Vec3.h"
 #include "harbour/sim/Evaluation.h"
+#include "harbour/sim/Pilot.h"
 
 namespace harbour::sim {
 
@@ -23,8 +24,9 @@ struct GrabOperatorDefects {
 /// the hopper and opens the grab there once the swing is small, and again until the exercise's tonnes are
 /// delivered. The boom head follows the grab's swing (a speed proportional to the grab's offset from plumb
 /// under it damps the pendulum) while it creeps onto its target. Dig spots: a 3 x 3 pattern over the open
-/// hold's hatch, inside the coamings by the grab's half size and a margin.
-class GrabAutopilot {
+/// hold's hatch, inside the coamings by the grab's half size and a margin; it digs where the material stands
+/// highest.
+class GrabAutopilot final : public Pilot {
  public:
   /// Why it cannot drive `exercise` ("" when it can): a delivery goal on the MHC with a bulk carrier's open
   /// hold.
@@ -33,9 +35,11 @@ class GrabAutopilot {
   explicit GrabAutopilot(const ExerciseSettings& exercise, GrabOperatorDefects defects = {});
 
   /// The controls for the next step (decided 50 times a second, held in between).
-  Controls next(const Simulation& simulation);
+  Controls next(const Simulation& simulation) override;
   /// What it is doing now: to dig, lower, shut, hoist, to hopper, discharge, done.
-  const char* activity() const;
+  const char* activity() const override;
+  /// Takes over a running exercise: hoists a loaded grab out to the hopper, or goes to dig with an empty one.
+  void resume(const Simulation& simulation, int moves_done) override;
   int bites() const { return bites_; }
 
  private:
@@ -50,6 +54,7 @@ class GrabAutopilot {
   bool steer(const MobileHarbourCrane& crane, const Target& target, double tolerance_m, double& slew,
              double& luff) const;
   core::Vec3 dig_spot(const Simulation& simulation) const;
+  void choose_dig_spot(const Simulation& simulation);
 
   ExerciseSettings exercise_;
   GrabOperatorDefects defects_;
@@ -58,6 +63,7 @@ class GrabAutopilot {
   double phase_start_s_ = 0.0;
   std::optional<VesselGeometry> vessel_;  // the scenario's bulk carrier, built once
   std::vector<core::Vec3> spots_;         // vessel frame
+  std::size_t spot_ = 0;                  // the one it digs next
   core::Vec3 swing_m_;                    // the grab's offset from plumb under the boom head, low-passed
   double held_bottom_m_ = 0.0;            // the grab's bottom height, low-passed
   Controls last_{};

@@ -1,0 +1,24 @@
+#include "harbour/sim/Pilot.h"
+
+#include <stdexcept>
+
+#include "harbour/sim/Autopilot.h"
+#include "harbour/sim/GrabAutopilot.h"
+
+namespace harbour::sim {
+
+std::string why_no_pilot(const ExerciseSettings& exercise) {
+  const std::string container = Autopilot::why_cannot_drive(exercise);
+  if (container.empty()) return "";
+  const std::string grab = GrabAutopilot::why_cannot_drive(exercise);
+  if (grab.empty()) return "";
+  return "no scripted operator drives it (" + container + "; " + grab + ")";
+}
+
+std::unique_ptr<Pilot> make_pilot(const ExerciseSettings& exercise) {
+  if (Autopilot::why_cannot_drive(exercise).empty()) return std::make_unique<Autopilot>(exercise);
+  if (GrabAutopilot::why_cannot_drive(exercise).empty()) return std::make_unique<GrabAutopilot>(exercise);
+  throw std::invalid_argument(why_no_pilot(exercise));
+}
+
+}  // namespace harbour::sim

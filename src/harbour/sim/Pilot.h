@@ -1,0 +1,33 @@
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "harbour/sim/Controls.h"
+
+namespace harbour::sim {
+
+struct ExerciseSettings;
+class Simulation;
+
+/// A scripted operator for an exercise, whichever machine runs it: headless runs, demos, the station's
+/// --autopilot, take-overs, tests.
+class Pilot {
+ public:
+  virtual ~Pilot() = default;
+  /// The controls for the next step, from what the simulation shows now.
+  virtual Controls next(const Simulation& simulation) = 0;
+  /// What it is doing now, for progress displays.
+  virtual const char* activity() const = 0;
+  /// Takes over a running exercise (an instructor's take-over) of which `moves_done` container moves are
+  /// made.
+  virtual void resume(const Simulation& simulation, int moves_done) = 0;
+};
+
+/// Why no scripted operator can drive `exercise` ("" when one can): the STS's container moves and the MHC's
+/// grab deliveries have one.
+std::string why_no_pilot(const ExerciseSettings& exercise);
+/// The scripted operator for `exercise`; throws std::invalid_argument with why_no_pilot() when there is none.
+std::unique_ptr<Pilot> make_pilot(const ExerciseSettings& exercise);
+
+}  // namespace harbour::sim
