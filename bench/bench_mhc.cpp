@@ -5,7 +5,12 @@
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <memory>
+#include <string>
 
+#include "harbour/io/ExerciseFiles.h"
+#include "harbour/sim/Evaluation.h"
+#include "harbour/sim/Pilot.h"
 #include "scenes/MhcScenes.h"
 
 namespace harbour {
@@ -42,6 +47,42 @@ void BM_MhcStep(benchmark::State& state) {
       benchmark::Counter(sim::Simulation::kStep_s, benchmark::Counter::kIsIterationInvariantRate);
 }
 BENCHMARK(BM_MhcStep)->Unit(benchmark::kMicrosecond)->MinTime(5.0);
+
+// The coal discharge on a 1024^2 bulk area at 10 or 5 cm cells (bench/data/mhc_discharge_1024_*.yaml) under
+// the grab autopilot: ODE, the boom and grab ropes' wave segments, the grab's contact and bite, the hold
+// riding on the vessel, the hopper's outflow, the material flowing, the evaluation; the first 120 s of the
+// exercise (a bite dug, hoisted, slewed and dropped into the hopper), then again.
+void BM_MhcDischarge1024(benchmark::State& state, const char* file) {
+  const sim::ExerciseSettings exercise = io::load_exercise(std::string(HARBOUR_BENCH_DATA_DIR "/") + file);
+  auto sim = std::make_unique<sim::Simulation>(exercise.scenario);
+  auto pilot = sim::make_pilot(exercise);
+  auto evaluator = std::make_unique<sim::Evaluator>(exercise);
+  for (auto _ : state) {
+    if (sim->time_s() >= 120.0) {
+      state.PauseTiming();
+      sim = std::make_unique<sim::Simulation>(exercise.scenario);
+      pilot = sim::make_pilot(exercise);
+      evaluator = std::make_unique<sim::Evaluator>(exercise);
+      state.ResumeTiming();
+    }
+    const sim::Controls in = pilot->next(*sim);
+    sim->step(in);
+    evaluator->observe(*sim, in);
+  }
+  if (sim->diverged()) state.SkipWithError(sim->divergence().c_str());
+  state.counters["real_time_factor"] =
+      benchmark::Counter(sim::Simulation::kStep_s, benchmark::Counter::kIsIterationInvariantRate);
+  long cells = 0;
+  for (int g = 0; g < sim->bulk()->grid_count(); ++g)
+    cells += static_cast<long>(sim->bulk()->grid(g).cells_x()) * sim->bulk()->grid(g).cells_y();
+  state.counters["bulk_cells"] = static_cast<double>(cells);
+}
+BENCHMARK_CAPTURE(BM_MhcDischarge1024, cells_10cm, "mhc_discharge_1024_10cm.yaml")
+    ->Unit(benchmark::kMicrosecond)
+    ->MinTime(10.0);
+BENCHMARK_CAPTURE(BM_MhcDischarge1024, cells_5cm, "mhc_discharge_1024_5cm.yaml")
+    ->Unit(benchmark::kMicrosecond)
+    ->MinTime(10.0);
 
 }  // namespace
 }  // namespace harbour

@@ -52,12 +52,7 @@ void BulkWorld::drain_hoppers(double dt_s) {
     HeightGrid& g = grids_[n];
     const double held = g.total_volume_m3();
     if (held <= 0.0) continue;
-    const double share = std::min(1.0, outflow_m3_per_s_[n] * dt_s / held);
-    double taken = 0.0;
-    for (int j = 0; j < g.cells_y(); ++j)
-      for (int i = 0; i < g.cells_x(); ++i)
-        if (const double h = g.height(i, j); h > 0.0) taken += g.remove_layer(i, j, h * share);
-    delivered_m3_ += taken;
+    delivered_m3_ += g.sink_evenly(std::min(1.0, outflow_m3_per_s_[n] * dt_s / held));
   }
 }
 

@@ -107,6 +107,21 @@ double HeightGrid::remove_layer(int i, int j, double thickness_m) {
   return removed * cell_area_m2();
 }
 
+double HeightGrid::sink_evenly(double share) {
+  double removed = 0.0;
+  for (int j = 0; j < ny_; ++j)
+    for (int i = 0; i < nx_; ++i) {
+      const std::size_t c = index(i, j);
+      if (h_[c] <= 0.0) continue;
+      const double layer = h_[c] * share;
+      h_[c] -= layer;
+      removed += layer;
+      ++tile_version_[static_cast<std::size_t>((j / kTileCells) * tiles_x() + i / kTileCells)];
+      if (comp_[c] != 0.0) activate(c);
+    }
+  return removed * cell_area_m2();
+}
+
 void HeightGrid::set_compression(int i, int j, double height_m) {
   const std::size_t c = index(i, j);
   if (comp_[c] == height_m) return;

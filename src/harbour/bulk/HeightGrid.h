@@ -70,6 +70,10 @@ class HeightGrid {
   void add_volume(int i, int j, double volume_m3);
   /// Removes up to `thickness_m` of material from a cell; returns the volume removed [m^3].
   double remove_layer(int i, int j, double thickness_m);
+  /// Takes the same share of every cell's material (a hopper's outlet); returns the volume removed [m^3].
+  /// Every height scaled down by one factor scales every slope down, so cells at rest stay at rest: only
+  /// pressed cells are woken.
+  double sink_evenly(double share);
   /// Sets the artificial compression height of a cell [m].
   void set_compression(int i, int j, double height_m);
 
