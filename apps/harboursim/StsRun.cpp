@@ -133,6 +133,9 @@ void print_evaluation(const sim::Metrics& m, const sim::Score& s, bool container
     std::printf("  hoist energy         %8.2f MJ\n", m.hoist_energy_j / 1e6);
     std::printf("  travel energy        %8.2f MJ (gantry and trolley)\n", m.travel_energy_j / 1e6);
   }
+  for (const sim::Metrics::Smoothness& axis : m.smoothness)
+    std::printf("  %-20s %8d harsh moves (RMS jerk %.2f m/s^3)\n", axis.axis.c_str(), axis.harsh_moves,
+                axis.rms_jerk_mps3);
   std::printf("score %.0f / 100: %s\n", s.total, s.passed ? "PASSED" : "NOT PASSED");
   for (const auto& d : s.deductions)
     std::printf("  -%.0f  %s x%d (%s)\n", d.points, d.reason.c_str(), d.count, sim::skill_name(d.skill));

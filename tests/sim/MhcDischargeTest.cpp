@@ -89,6 +89,8 @@ TEST(MhcDischarge, TheAutopilotClearsTheExerciseAndMassIsExactOverTheRun) {
   EXPECT_EQ(a.metrics.pad_lift_offs, 0);
   EXPECT_EQ(a.metrics.limiter_trips, 0);
   EXPECT_EQ(a.metrics.swinging_releases, 0);
+  ASSERT_EQ(a.metrics.smoothness.size(), 2u);  // slew and luff, each with its jerk
+  EXPECT_GT(a.metrics.smoothness[0].rms_jerk_mps3, 0.0);
   EXPECT_TRUE(a.score.passed);
   EXPECT_GE(a.score.total, exercise.rules.pass_score);
   double all = 0.0;
@@ -157,6 +159,31 @@ TEST(MhcDischarge, AnInstructorTakeOverWithTheGrabLoadedFinishesTheDelivery) {
   EXPECT_EQ(evaluator.metrics().overloads, 0);
   for (const double fill : evaluator.metrics().bite_fill)  // it digs where the material stands highest
     EXPECT_GT(fill, 0.8);
+}
+
+TEST(MhcDischarge, SlammingTheSlewLeverIsHarshAndSteadyDrivingIsNot) {
+  // the same 60 s of slewing: the lever slammed from full one way to full the other every 4 s, and the lever
+  // held at half: the slam's jerk at the boom head shows in the RMS and counts harsh moves, steady driving
+  // not
+  const ExerciseSettings exercise = discharge();
+  const auto slew_smoothness = [&](bool slam) {
+    Simulation sim(exercise.scenario);
+    Evaluator evaluator(exercise);
+    Controls c = sim.control_table().neutral();
+    const std::size_t slew = static_cast<std::size_t>(sim.control_table().find("slew"));
+    for (int k = 0; k < 60000; ++k) {
+      c.value[slew] = slam ? ((k / 4000) % 2 == 0 ? 1.0 : -1.0) : (k < 30000 ? 0.5 : 0.0);
+      sim.step(c);
+      evaluator.observe(sim, c);
+    }
+    EXPECT_EQ(evaluator.metrics().smoothness.size(), 2u);
+    return evaluator.metrics().smoothness.at(0);
+  };
+  const Metrics::Smoothness slammed = slew_smoothness(true), steady = slew_smoothness(false);
+  EXPECT_EQ(slammed.axis, "slew");
+  EXPECT_GT(slammed.harsh_moves, 5);
+  EXPECT_EQ(steady.harsh_moves, 0);
+  EXPECT_GT(slammed.rms_jerk_mps3, 3.0 * steady.rms_jerk_mps3);
 }
 
 TEST(MhcDischarge, TheHoldMovesWithTheVessel) {

@@ -384,6 +384,8 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
         f.number_or(r, "horn_warning_s", "exercise.rules", rules.horn_warning_s, 0.0, 600.0, true);
     rules.overtime_s = f.number_or(r, "overtime_s", "exercise.rules", rules.overtime_s, 0.0, 3600.0);
     rules.poor_bite_fill = f.number_or(r, "poor_bite_fill", "exercise.rules", rules.poor_bite_fill, 0.0, 1.0);
+    rules.harsh_jerk_mps3 =
+        f.number_or(r, "harsh_jerk_mps3", "exercise.rules", rules.harsh_jerk_mps3, 0.0, 1000.0, true);
     if (const auto d_node = f.optional(r, "deductions", "exercise.rules")) {
       // points per occurrence, by metric
       const YAML::Node& d = *d_node;
@@ -404,7 +406,8 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
           {"tonne_short", &rules.points_per_missing_t},
           {"poor_bite", &rules.points_poor_bite},
           {"limiter_trip", &rules.points_limiter_trip},
-          {"pad_lift_off", &rules.points_pad_lift_off}};
+          {"pad_lift_off", &rules.points_pad_lift_off},
+          {"harsh_move", &rules.points_harsh_move}};
       for (const auto& entry : d) {
         const std::string key = entry.first.as<std::string>();
         const auto known =
@@ -414,7 +417,7 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
                  "unknown deduction (collision, hard_landing, landing_while_swaying, twistlock_misuse, "
                  "rope_overload, limit_switch_hit, emergency_stop, gantry_travel_without_horn, "
                  "move_not_completed, minute_over_time_limit, tonne_spilled, tonne_short, poor_bite, "
-                 "limiter_trip, pad_lift_off)");
+                 "limiter_trip, pad_lift_off, harsh_move)");
         *known->second = f.number(d, key, at, 0.0, 100.0);
       }
     }

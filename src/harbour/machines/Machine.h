@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -52,10 +53,18 @@ struct BulkTool {
 
 /// What a machine's safety systems counted since the start and how its hanging load swings now: the
 /// evaluation reads it without knowing the machine (counters a machine lacks stay zero).
+/// The speed a machine's drive is commanded along one of its named motions (after its ramps), for the
+/// evaluation of how smoothly it is driven.
+struct AxisSpeed {
+  const char* name = nullptr;  ///< e.g. "slew"; nullptr: unused
+  double speed_mps = 0.0;      ///< [m/s] a slew as the speed its boom head travels round
+};
+
 struct MachineTally {
   std::uint32_t limiter_trips = 0;  ///< load-moment limiter stops
   std::uint32_t pad_lift_offs = 0;  ///< outrigger pads lifting off
   double swing_m = 0.0;             ///< [m] the hanging tool's horizontal offset from plumb under its sheaves
+  std::array<AxisSpeed, 3> axes{};  ///< the motions an operator drives smoothly or not
 };
 
 /// A fault the instructor injects into a machine.

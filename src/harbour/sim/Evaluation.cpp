@@ -6,8 +6,10 @@
 namespace harbour::sim {
 namespace {
 
-constexpr double kReleasedShare =
-    0.05;  // of the grab's capacity let go at once: the grab opened to discharge
+// a grab letting go of this share of its capacity at once opened to discharge
+constexpr double kReleasedShare = 0.05;
+constexpr double kAxisSample_s = 0.1;  // the motions' speeds sampled this often for their jerk
+constexpr double kMoving_mps = 0.05;   // a motion slower than this (now and at the last sample) stands
 
 }  // namespace
 
@@ -85,6 +87,38 @@ void Evaluator::observe(const Simulation& simulation, const Controls& controls) 
   else
     observe_any_machine(simulation, controls);
   if (simulation.bulk()) observe_bulk(simulation);
+  observe_smoothness(simulation);
+}
+
+void Evaluator::observe_smoothness(const Simulation& simulation) {
+  // every 0.1 s: each named motion's acceleration and jerk by differences of its speed; the jerk's RMS while
+  // it moves, and each onset of a jerk above the rules' limit (a lever slammed, a move stopped short)
+  if (simulation.time_s() + 1e-9 < next_axis_sample_s_) return;
+  next_axis_sample_s_ = simulation.time_s() + kAxisSample_s;
+  const MachineTally tally = simulation.machine().tally();
+  for (std::size_t n = 0; n < tally.axes.size() && tally.axes[n].name; ++n) {
+    if (n >= axes_.size()) {
+      axes_.push_back({});
+      metrics_.smoothness.push_back({tally.axes[n].name});
+    }
+    AxisTrack& a = axes_[n];
+    const double v = tally.axes[n].speed_mps;
+    const double acceleration = (v - a.speed_mps) / kAxisSample_s;
+    const double jerk = (acceleration - a.acceleration_mps2) / kAxisSample_s;
+    const bool moving = std::abs(v) > kMoving_mps || std::abs(a.speed_mps) > kMoving_mps;
+    if (a.samples >= 2 && moving) {
+      a.jerk_squares += jerk * jerk;
+      ++a.moving_samples;
+      const bool harsh = std::abs(jerk) > exercise_.rules.harsh_jerk_mps3;
+      if (harsh && !a.harsh) ++metrics_.smoothness[n].harsh_moves;
+      a.harsh = harsh;
+    }
+    ++a.samples;
+    a.speed_mps = v;
+    a.acceleration_mps2 = acceleration;
+    if (a.moving_samples > 0)
+      metrics_.smoothness[n].rms_jerk_mps3 = std::sqrt(a.jerk_squares / a.moving_samples);
+  }
 }
 
 bool Evaluator::goals_met() const {
@@ -242,6 +276,10 @@ Score Evaluator::score() const {
   deduct("poor bite", Skill::kProductivity, metrics_.poor_bites, r.points_poor_bite);
   deduct("load-moment limiter trip", Skill::kSafety, metrics_.limiter_trips, r.points_limiter_trip);
   deduct("outrigger pad lift-off", Skill::kSafety, metrics_.pad_lift_offs, r.points_pad_lift_off);
+  int harsh = 0;
+  for (const Metrics::Smoothness& axis : metrics_.smoothness)
+    harsh += axis.harsh_moves;
+  deduct("harsh move", Skill::kPrecision, harsh, r.points_harsh_move);
   if (exercise_.deliver)
     deduct(
         "tonne short of the delivery", Skill::kProductivity,
@@ -281,6 +319,10 @@ std::vector<std::pair<std::string, double>> Metrics::rows() const {
                                                    {"unwarned_gantry_travel", unwarned_gantry_travel},
                                                    {"hoist_energy_j", hoist_energy_j},
                                                    {"travel_energy_j", travel_energy_j}};
+  for (const Smoothness& axis : smoothness) {
+    r.emplace_back(axis.axis + "_rms_jerk_mps3", axis.rms_jerk_mps3);
+    r.emplace_back(axis.axis + "_harsh_moves", axis.harsh_moves);
+  }
   if (!bulk) return r;
   double fill_sum = 0.0, swing_max = 0.0;
   for (double f : bite_fill)

@@ -39,12 +39,14 @@ struct EvaluationRules {
   double points_per_move_missing = 20.0;
   double points_per_minute_over = 5.0;
   // bulk handling
-  double poor_bite_fill = 0.4;  ///< [-] a bite filling less of the grab than this is a poor bite
+  double poor_bite_fill = 0.4;    ///< [-] a bite filling less of the grab than this is a poor bite
+  double harsh_jerk_mps3 = 10.0;  ///< [m/s^3] a slew or luff jerking harder than this is a harsh move
   double points_per_spilled_t = 2.0;
   double points_per_missing_t = 1.0;  ///< per tonne short of the delivery goal
   double points_poor_bite = 1.0;
   double points_limiter_trip = 5.0;
   double points_pad_lift_off = 20.0;
+  double points_harsh_move = 1.0;
 };
 
 /// A bulk delivery goal: this many tonnes dropped into a grid (a hopper).
@@ -101,6 +103,13 @@ struct Metrics {
   int swinging_releases = 0;
   int limiter_trips = 0;
   int pad_lift_offs = 0;
+  /// How smoothly each of the machine's named motions was driven (jerk from its speed sampled every 0.1 s).
+  struct Smoothness {
+    std::string axis;
+    double rms_jerk_mps3 = 0.0;  ///< [m/s^3] over the samples while it moved
+    int harsh_moves = 0;         ///< onsets of a jerk above rules.harsh_jerk_mps3
+  };
+  std::vector<Smoothness> smoothness;
   /// Every figure by name (the records store them as rows): the container figures, and the bulk ones for a
   /// bulk exercise.
   std::vector<std::pair<std::string, double>> rows() const;
@@ -141,6 +150,7 @@ class Evaluator {
   void observe_containers(const Simulation& simulation, const Controls& controls, const StsCrane& crane);
   void observe_any_machine(const Simulation& simulation, const Controls& controls);
   void observe_bulk(const Simulation& simulation);
+  void observe_smoothness(const Simulation& simulation);
   bool goals_met() const;
   int goal_of(physics::BodyId body, const Simulation& simulation) const;
   double sway_m(const Simulation& simulation, std::optional<physics::BodyId> hanging_box) const;
@@ -160,6 +170,13 @@ class Evaluator {
   double last_completion_s_ = 0.0;
   double bite_peak_m3_ = 0.0;  // the grab's load since it last closed on material
   bool discharging_ = false;
+  struct AxisTrack {  // the last samples of one motion's speed and acceleration
+    double speed_mps = 0.0, acceleration_mps2 = 0.0, jerk_squares = 0.0;
+    int samples = 0, moving_samples = 0;
+    bool harsh = false;
+  };
+  std::vector<AxisTrack> axes_;
+  double next_axis_sample_s_ = 0.0;
 };
 
 }  // namespace harbour::sim

@@ -340,7 +340,12 @@ core::Vec3 MobileHarbourCrane::grab_lower_position_m() const {
 
 MachineTally MobileHarbourCrane::tally() const {
   const core::Vec3 head = boom_head_m(), grab = grab_lower_position_m();
-  return {limiter_trips_, pad_lift_offs_, std::hypot(grab.x - head.x, grab.y - head.y)};
+  // the speeds the operator drives the boom head at: the slewing drive's reference round the axis, the
+  // luffing winch's along the radius (the boom's bounce on its ropes is the machine's, not the operator's)
+  return {limiter_trips_,
+          pad_lift_offs_,
+          std::hypot(grab.x - head.x, grab.y - head.y),
+          {AxisSpeed{"slew", slew_drive_.reference_mps() * radius_m()}, AxisSpeed{"luff", luff_speed_mps_}}};
 }
 
 double MobileHarbourCrane::luffing_tension_n() const {
@@ -402,6 +407,7 @@ void MobileHarbourCrane::step(const Controls& raw, std::span<const ContainerRef>
   const double per_rad = std::max(std::abs(rope_per_rad), 1.0);
   luff = luff_limits_.limit(luff, boom_angle_rad(), luff_drum.max_rope_speed_mps / per_rad,
                             luff_drum.max_rope_acceleration_mps2 / per_rad, dt_s);
+  luff_speed_mps_ = stop ? 0.0 : -luff * luffing_radius_rate_mps();  // + raises: the radius shrinks
   const cable::DrumCommand luff_command{stop ? 0.0 : -luff, false, !stop};
   luffing_->step(dt_s, {&luff_command, 1}, *luffing_bodies_);
 
@@ -514,6 +520,7 @@ void MobileHarbourCrane::hash_into(core::StateHash& hash) const {
   hash.add(carried_kg_);
   hash.add(pad_lift_offs_);
   hash.add(holding_share_);
+  hash.add(luff_speed_mps_);
 }
 
 void MobileHarbourCrane::save_state(core::StateWriter& out) const {
@@ -536,6 +543,7 @@ void MobileHarbourCrane::save_state(core::StateWriter& out) const {
   out.put(pad_lift_offs_);
   out.put(carried_kg_);
   out.put(holding_share_);
+  out.put(luff_speed_mps_);
 }
 
 void MobileHarbourCrane::restore_state(core::StateReader& in) {
@@ -558,6 +566,7 @@ void MobileHarbourCrane::restore_state(core::StateReader& in) {
   in.get(pad_lift_offs_);
   in.get(carried_kg_);
   in.get(holding_share_);
+  in.get(luff_speed_mps_);
   update_tool();
 }
 

@@ -198,8 +198,9 @@ class MobileHarbourCrane final : public Machine {
   std::array<WindArea, 3> wind_areas_;
   std::array<core::Vec3, 9> shell_points_;  // contact points on the shells' underside, lower block frame
   BulkTool tool_;
-  double carried_kg_ = 0.0;     // material in the grab: its weight hangs on the lower block
-  double holding_share_ = 0.5;  // the holding ropes' share of the load, low-passed like the limiter's load
+  double carried_kg_ = 0.0;      // material in the grab: its weight hangs on the lower block
+  double holding_share_ = 0.5;   // the holding ropes' share of the load, low-passed like the limiter's load
+  double luff_speed_mps_ = 0.0;  // the boom head's radial speed the luffing winch was last commanded
 };
 
 }  // namespace harbour::sim
