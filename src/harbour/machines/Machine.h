@@ -51,8 +51,6 @@ struct BulkTool {
   double opening_m = 0.0;  ///< [m] between the jaw tips now
 };
 
-/// What a machine's safety systems counted since the start and how its hanging load swings now: the
-/// evaluation reads it without knowing the machine (counters a machine lacks stay zero).
 /// The speed a machine's drive is commanded along one of its named motions (after its ramps), for the
 /// evaluation of how smoothly it is driven.
 struct AxisSpeed {
@@ -60,6 +58,9 @@ struct AxisSpeed {
   double speed_mps = 0.0;      ///< [m/s] a slew as the speed its boom head travels round
 };
 
+/// What a machine's safety systems counted since the start, how its hanging load swings and how fast its
+/// motions are driven now: the evaluation reads it without knowing the machine (what a machine lacks stays
+/// zero).
 struct MachineTally {
   std::uint32_t limiter_trips = 0;  ///< load-moment limiter stops
   std::uint32_t pad_lift_offs = 0;  ///< outrigger pads lifting off
