@@ -84,6 +84,9 @@ void Session::keep() {
 }
 
 void Session::keep(const StepRecord& record) {
+  // the attempt ends on the step its goals were met: the steps the live loop ran on before it stopped are
+  // neither evaluated (a bulk delivery would go on growing) nor recorded
+  if (over_.load()) return;
   switch (record.kind) {
     case StepRecord::Kind::kCommand:
       shadow_->command(record.command);
