@@ -252,31 +252,23 @@ double MobileHarbourCrane::radius_m() const {
   return std::hypot(head.x - position_.x, head.y - position_.y);
 }
 
-double MobileHarbourCrane::hoisted_load_n() const {
-  // the falls below the boom head, their vertical share
-  double total = 0.0;
-  std::array<core::Vec3, 2> ends;
-  for (const auto& [rope, segment] : grab_falls_) {
-    hoist_->polyline(rope, segment, ends);
-    const core::Vec3 d = ends[1] - ends[0];
-    const double length = std::sqrt(dot(d, d));
-    total += hoist_->tension(rope, segment) * (length > 0 ? std::abs(d.z) / length : 1.0);
-  }
-  return total;
-}
-
-double MobileHarbourCrane::holding_share() const {
-  double holding = 0.0, total = 0.0;
+MobileHarbourCrane::FallPulls MobileHarbourCrane::fall_pulls() const {
+  // the falls below the boom head, their vertical share; the holding ropes' part of it
+  FallPulls pulls;
   std::array<core::Vec3, 2> ends;
   for (const auto& [rope, segment] : grab_falls_) {
     hoist_->polyline(rope, segment, ends);
     const core::Vec3 d = ends[1] - ends[0];
     const double length = std::sqrt(dot(d, d));
     const double up = hoist_->tension(rope, segment) * (length > 0 ? std::abs(d.z) / length : 1.0);
-    total += up;
-    if (!closing_rope_[static_cast<std::size_t>(rope)]) holding += up;
+    pulls.total_n += up;
+    if (!closing_rope_[static_cast<std::size_t>(rope)]) pulls.holding_n += up;
   }
-  return total > 0.0 ? holding / total : 0.5;
+  return pulls;
+}
+
+double MobileHarbourCrane::hoisted_load_n() const {
+  return fall_pulls().total_n;
 }
 
 double MobileHarbourCrane::capacity_t() const {
@@ -382,7 +374,8 @@ void MobileHarbourCrane::step(const Controls& raw, std::span<const ContainerRef>
   // load-moment limiter on the low-passed load (the ropes' bounce filtered out): moves that raise the moment
   // (luffing out, hoisting) slow above the chart's slow-down share and stop at the chart; a trip counts once
   // until the moment is back below the slow-down share
-  limiter_load_n_ += (hoisted_load_n() - limiter_load_n_) * std::min(1.0, dt_s / settings_.limiter_filter_s);
+  const FallPulls pulls = fall_pulls();
+  limiter_load_n_ += (pulls.total_n - limiter_load_n_) * std::min(1.0, dt_s / settings_.limiter_filter_s);
   const double u = utilisation();
   const double allowed = std::clamp((1.0 - u) / (1.0 - settings_.limiter_slow_from), 0.0, 1.0);
   double luff = at(luff_slot_), hoist = at(hoist_slot_);
@@ -433,7 +426,8 @@ void MobileHarbourCrane::step(const Controls& raw, std::span<const ContainerRef>
   const double follow = resting && grab > 0.0 ? grab / std::max(tackle_falls_ - 1, 1) : 0.0;
   // a shut grab hanging on its ropes: the holding winch shares the load evenly with the closing winch
   // (load equalisation), so the closing ropes hold the shells shut and neither pair carries it all
-  holding_share_ += (holding_share() - holding_share_) * std::min(1.0, dt_s / settings_.limiter_filter_s);
+  holding_share_ +=
+      (pulls.holding_share() - holding_share_) * std::min(1.0, dt_s / settings_.limiter_filter_s);
   const bool sharing = !resting && grab >= 0.0 && grab_opening() < kShutOpening;
   const double equalise = sharing ? kShareGain * (holding_share_ - 0.5) : 0.0;
   const std::array<cable::DrumCommand, 2> hoist_commands{

@@ -132,8 +132,6 @@ class MobileHarbourCrane final : public Machine {
   /// What hangs on the ropes below the boom head [N, vertical] and the chart's capacity at this radius [t].
   double hoisted_load_n() const;
   double capacity_t() const;
-  /// [-] the holding ropes' share of the load under the boom head (the rest is on the closing ropes).
-  double holding_share() const;
   /// Load over capacity [-] (1: the chart's limit), from the limiter's filtered load signal.
   double utilisation() const;
   /// The limiter's load signal [N]: hoisted_load_n() low-passed over limiter_filter_s.
@@ -169,6 +167,12 @@ class MobileHarbourCrane final : public Machine {
   /// Brings the machine to rest on its ropes before the exercise starts (kSettleSteps of the world).
   void settle();
   void update_tool();
+  /// The vertical pull of the falls below the boom head [N], and the holding ropes' part of it.
+  struct FallPulls {
+    double holding_n = 0.0, total_n = 0.0;
+    double holding_share() const { return total_n > 0.0 ? holding_n / total_n : 0.5; }
+  };
+  FallPulls fall_pulls() const;
   static constexpr int kSettleSteps = 4000;
   physics::PhysicsWorld& world_;
   MhcSettings settings_;
