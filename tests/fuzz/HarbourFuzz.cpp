@@ -85,7 +85,7 @@ void step_a_while(const harbour::sim::MhcSettings& crane) {
   harbour::sim::MhcSetup mhc;
   mhc.crane = crane;
   mhc.start.boom_rad = 0.5 * (crane.boom_min_angle_rad + crane.boom_max_angle_rad);
-  mhc.start.grab_z_m = std::clamp(10.0, crane.hoist_lower_limit_m, crane.hoist_upper_limit_m);
+  mhc.start.hanging_z_m = std::clamp(10.0, crane.hoist_lower_limit_m, crane.hoist_upper_limit_m);
   scenario.machine = mhc;
   harbour::sim::Simulation simulation(scenario);
   harbour::sim::Controls in = simulation.control_table().neutral();

@@ -32,7 +32,7 @@ TEST(ExerciseFiles, AnMhcExerciseStartsTheCraneWhereItSays) {
   const sim::ExerciseSettings e = load_exercise(HARBOUR_DATA_DIR "/exercises/mhc_free_practice.yaml");
   const auto& mhc = std::get<sim::MhcSetup>(e.scenario.machine);
   EXPECT_NEAR(mhc.start.boom_rad, 46.0 * std::numbers::pi / 180.0, 1e-12);
-  EXPECT_EQ(mhc.start.grab_z_m, 20.0);
+  EXPECT_EQ(mhc.start.hanging_z_m, 20.0);
   EXPECT_TRUE(e.moves.empty());
   EXPECT_STREQ(sim::machine_kind(e.scenario.machine), "mhc");
 }
@@ -46,12 +46,30 @@ TEST(ExerciseFiles, AnExerciseTheMachineCannotDoNamesTheField) {
         scenes::line_of(text, from) + lines_below, field, says);
   };
   expect("  quay_edge_x_m: 18.0", "  quay_edge_x_m: 18.0\n  moves:\n    - {container: X, to: truck}",
-         "exercise.moves", "not containers", 2);
+         "exercise.moves", "crane.tool: hook", 2);
+  expect("grab_z_m: 20.0}", "grab_z_m: 20.0, tool: crane}", "exercise.crane.tool", "grab or hook", 0);
+  expect("grab_z_m: 20.0}", "hook_z_m: 20.0, tool: hook}", "exercise.cargo", "missing", -2);
   expect("slew_deg: 0,", "gantry_y_m: 0,", "exercise.crane.slew_deg", "missing", 0);
   expect("boom_deg: 46", "boom_deg: 5", "exercise.crane.boom_deg", "outside", 0);
   expect("  quay_edge_x_m: 18.0",
          "  quay_edge_x_m: 18.0\n  events:\n    - {at_s: 1, kind: landed_sensor_fault, corner: 0}",
          "exercise.events[0].kind", "no twistlocks", 2);
+}
+
+TEST(ExerciseFiles, AHookExerciseNamesTheFieldItCannotPlace) {
+  const std::string text = scenes::read_text(HARBOUR_DATA_DIR "/exercises/mhc_hook_lift.yaml");
+  const auto expect = [&](const std::string& from, const std::string& to, const std::string& field,
+                          const std::string& says, const std::string& on_line_of = "") {
+    scenes::expect_data_error(
+        text, from, to, [](const YamlFile& f) { load_exercise(f, HARBOUR_DATA_DIR "/exercises"); },
+        scenes::line_of(text, on_line_of.empty() ? from : on_line_of), field, says);
+  };
+  expect("{cargo: TRAFO-1,", "{cargo: TRAFO-2,", "exercise.moves[0].cargo", "no cargo 'TRAFO-2'");
+  expect("{cargo: TRAFO-1,", "{container: TRAFO-1,", "exercise.moves[0].cargo", "missing");
+  expect("size_m: [5.0, 3.0, 3.5]", "size_m: [5.0, 0.2, 3.5]", "exercise.cargo[0].size_m", "at least 0.5 m");
+  expect("mass_kg: 30000", "mass_kg: -3", "exercise.cargo[0].mass_kg", "outside");
+  expect("hook_z_m: 14.0, tool: hook", "grab_z_m: 14.0", "exercise.cargo", "crane.tool: hook",
+         "    - {id: TRAFO-1");
 }
 
 TEST(ExerciseFiles, ABulkExerciseNamesTheFieldItCannotPlace) {

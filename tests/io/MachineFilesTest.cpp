@@ -84,6 +84,12 @@ TEST(MachineFiles, ShippedMhcLoadsWithItsReevings) {
   ASSERT_EQ(m.capacity_chart.size(), 3u);
   EXPECT_EQ(m.capacity_chart[2].capacity_t, 40.0);
   EXPECT_EQ(m.controls.find("grab"), 3);
+  EXPECT_EQ(m.controls.find("sling"), 4);
+  ASSERT_TRUE(m.hook);
+  EXPECT_EQ(m.hook->hoist.ropes.size(), 4u);
+  EXPECT_EQ(m.hook->block_mass_kg, 3500.0);
+  ASSERT_EQ(m.hook->capacity_chart.size(), 3u);
+  EXPECT_EQ(m.hook->capacity_chart[0].capacity_t, 63.0);
   EXPECT_EQ(machine_file_kind(HARBOUR_DATA_DIR "/machines/mhc.yaml"), "mhc");
 }
 
@@ -105,6 +111,13 @@ TEST(MachineFiles, BadMhcFilesNameTheField) {
                    "machine.grab.hoist_limits_m", "above lower");
   expect_mhc_error("    - {label: grab, kind: axis,", "    - {label: grip, kind: axis,", "machine.controls",
                    "'grab'", -3);  // at the controls' list
+  expect_mhc_error("hoist_reeving: ../reeving/mhc_hook.yaml", "hoist_reeving: ../reeving/mhc_grab.yaml",
+                   "machine.hook.hoist_reeving", "bodies must be [house, boom, hook]");
+  expect_mhc_error("chart: [[12.0, 63.0], [25.0, 50.0], [48.0, 22.0]]", "chart: [[12.0, 63.0]]",
+                   "machine.hook.chart", "at least two");
+  expect_mhc_error("slinger_reach_m: 1.0", "slinger_reach_m: 50", "machine.hook.slinger_reach_m", "outside");
+  expect_mhc_error("    - {label: sling, kind: button,", "    - {label: slings, kind: button,",
+                   "machine.controls", "'sling' button", -4);  // at the controls' list
   expect_mhc_error("    mass_kg: 40000", "    mass_kg: 40000\n    mass_kg_typo: 1",
                    "machine.boom.mass_kg_typo", "mass_kg", 1);
 }

@@ -119,8 +119,7 @@ TEST(Mhc, OutriggerPadsCarryTheMachinesWeightAndBalanceItsMoment) {
   const MobileHarbourCrane& m = mhc(sim);
   const MhcSettings& settings = m.settings();
   double weight = settings.undercarriage_mass_kg * kG, moment_y = 0.0;
-  for (const physics::BodyId body :
-       {m.house_body(), m.boom_body(), m.grab_head_body(), m.grab_lower_body()}) {
+  for (const physics::BodyId body : {m.house_body(), m.boom_body(), m.block_body(), m.grab_lower_body()}) {
     const double w = sim.world().mass_kg(body) * kG;
     weight += w;
     moment_y += w * (sim.world().pose(body).position.x - m.position_m().x);
@@ -221,15 +220,15 @@ TEST(Mhc, TheGrabSwingsAcrossTheBoomWithThePendulumsPeriod) {
   run(sim, 10.0, neutral);
   const MobileHarbourCrane& m = mhc(sim);
   auto& world = const_cast<physics::PhysicsWorld&>(sim.world());
-  for (const physics::BodyId b : {m.grab_head_body(), m.grab_lower_body()})
+  for (const physics::BodyId b : {m.block_body(), m.grab_lower_body()})
     world.set_linear_velocity(b, {0.0, 0.3, 0.0});
   const auto [sheave, anchor] = ends(m.hoist(), 0, 1);  // holding rope 1: boom head sheave to the grab
   const double length = std::sqrt(dot(anchor - sheave, anchor - sheave));
   std::vector<double> crossings;
-  double last = sim.world().pose(m.grab_head_body()).position.y - m.boom_head_m().y;
+  double last = sim.world().pose(m.block_body()).position.y - m.boom_head_m().y;
   for (int k = 0; k < 40000 && crossings.size() < 7; ++k) {
     sim.step(neutral);
-    const double y = sim.world().pose(m.grab_head_body()).position.y - m.boom_head_m().y;
+    const double y = sim.world().pose(m.block_body()).position.y - m.boom_head_m().y;
     if ((last < 0.0) != (y < 0.0)) crossings.push_back(sim.time_s());
     last = y;
   }
@@ -244,13 +243,13 @@ TEST(Mhc, TheGrabShutsWhenTheClosingRopesReelInAndOpensWhenTheyPayOut) {
   run(sim, 5.0, sim.control_table().neutral());
   const MobileHarbourCrane& m = mhc(sim);
   EXPECT_GT(m.grab_opening(), 0.95);
-  const double head_z = sim.world().pose(m.grab_head_body()).position.z;
+  const double head_z = sim.world().pose(m.block_body()).position.z;
   run(sim, 6.0, mhc_controls(sim, {{"grab", 1.0}}));
   run(sim, 2.0, sim.control_table().neutral());
   EXPECT_LT(m.grab_opening(), 0.05);
   // the holding winch stood and the closing winch stopped on the shut switch: the head stays where it hung
   // (the ropes stretch a little under the shells' weight moving onto the closing ropes)
-  EXPECT_NEAR(sim.world().pose(m.grab_head_body()).position.z, head_z, 0.15);
+  EXPECT_NEAR(sim.world().pose(m.block_body()).position.z, head_z, 0.15);
   run(sim, 6.0, mhc_controls(sim, {{"grab", -1.0}}));
   run(sim, 2.0, sim.control_table().neutral());
   EXPECT_GT(m.grab_opening(), 0.95);
@@ -261,7 +260,7 @@ TEST(Mhc, TheLoadMomentLimiterStopsLuffingOutBeforeTheChartIsExceeded) {
   // (the grab hangs high: luffing out lowers the head by some 13 m)
   ScenarioSettings s = damped(scenes::mhc_on_quay(HARBOUR_DATA_DIR));
   std::get<MhcSetup>(s.machine).crane.grab_lower_mass_kg = 40000.0;
-  std::get<MhcSetup>(s.machine).start.grab_z_m = 38.0;
+  std::get<MhcSetup>(s.machine).start.hanging_z_m = 38.0;
   Simulation sim(s);
   run(sim, 10.0, sim.control_table().neutral());
   const MobileHarbourCrane& m = mhc(sim);

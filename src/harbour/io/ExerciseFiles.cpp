@@ -82,17 +82,29 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
     mhc.start.boom_rad =
         core::deg_to_rad(f.number(crane, "boom_deg", at, core::rad_to_deg(mhc.crane.boom_min_angle_rad),
                                   core::rad_to_deg(mhc.crane.boom_max_angle_rad)));
-    mhc.start.grab_z_m =
-        f.number(crane, "grab_z_m", at, mhc.crane.hoist_lower_limit_m, mhc.crane.hoist_upper_limit_m);
+    // on its grab (bulk) or its hook block (general cargo)
+    const std::string tool = f.optional(crane, "tool", at) ? f.text(crane, "tool", at) : "grab";
+    if (tool != "grab" && tool != "hook") f.fail(crane["tool"], at + ".tool", "is grab or hook");
+    mhc.start.on_hook = tool == "hook";
+    if (mhc.start.on_hook && !mhc.crane.hook)
+      f.fail(crane["tool"], at + ".tool", "the machine file has no hook (machine.hook)");
+    mhc.start.hanging_z_m = f.number(crane, mhc.start.on_hook ? "hook_z_m" : "grab_z_m", at,
+                                     mhc.crane.hoist_lower_limit_m, mhc.crane.hoist_upper_limit_m);
     s.machine = std::move(mhc);
   }
-  // container exercises (the STS); the MHC's grab handles bulk
+  // container exercises (the STS), general cargo on a hook, bulk on a grab
   const bool handles_containers = machine_kind == "sts";
-  if (!handles_containers)
-    for (const char* key : {"containers", "moves", "trucks"})
-      if (f.optional(x, key, "exercise"))
-        f.fail(x[key], std::string("exercise.") + key,
-               "the " + machine_kind + " handles bulk with its grab, not containers");
+  const bool on_hook = !handles_containers && std::get<sim::MhcSetup>(s.machine).start.on_hook;
+  const std::string handles = handles_containers ? "containers with its spreader"
+                              : on_hook          ? "general cargo on its hook (exercise.cargo)"
+                                                 : "bulk with its grab (crane.tool: hook for general cargo)";
+  for (const char* key : {"containers", "trucks", "cargo", "moves"}) {
+    const bool fits = handles_containers
+                          ? std::string(key) != "cargo"
+                          : on_hook && (std::string(key) == "cargo" || std::string(key) == "moves");
+    if (!fits && f.optional(x, key, "exercise"))
+      f.fail(x[key], std::string("exercise.") + key, "the " + machine_kind + " handles " + handles);
+  }
 
   std::optional<sim::VesselGeometry> vessel;
   std::vector<sim::ContainerPlacement> hatch_covers;  // listed after the containers
@@ -271,19 +283,41 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
     s.containers.push_back(cover);
   }
 
-  const YAML::Node moves = handles_containers ? f.sequence(x, "moves", "exercise", kMaxMoves)
-                                              : YAML::Node(YAML::NodeType::Sequence);
-  std::map<std::string, std::size_t> moved;  // container id -> the move that takes it
+  // general cargo pieces for the hook: boxes of a given size and mass standing on the quay
+  const YAML::Node cargo =
+      on_hook ? f.sequence(x, "cargo", "exercise", kMaxContainers) : YAML::Node(YAML::NodeType::Sequence);
+  for (std::size_t n = 0; n < cargo.size(); ++n) {
+    const YAML::Node c = cargo[n];
+    const std::string at = item("exercise.cargo", n);
+    sim::ContainerPlacement p;
+    p.kind = sim::ContainerPlacement::Kind::kGeneralCargo;
+    p.id = f.text(c, "id", at);
+    if (!container_index.emplace(p.id, s.containers.size()).second)
+      f.fail(c["id"], at + ".id", "duplicate cargo '" + p.id + "'");
+    p.half_extents_m = f.vector3(f.required(c, "size_m", at), at + ".size_m", 50.0) * 0.5;
+    if (!(p.half_extents_m.x >= 0.25 && p.half_extents_m.y >= 0.25 && p.half_extents_m.z >= 0.25))
+      f.fail(c["size_m"], at + ".size_m", "must be at least 0.5 m each");
+    p.gross_mass_kg = f.number(c, "mass_kg", at, 100.0, 500000.0);
+    const double yaw = core::deg_to_rad(f.number_or(c, "yaw_deg", at, 0.0, -360.0, 360.0));
+    p.pose = {core::Mat3::rotation({0, 0, 1}, yaw),
+              f.vector3(f.required(c, "position_m", at), at + ".position_m", kSite_m)};
+    s.containers.push_back(p);
+  }
+
+  const YAML::Node moves = handles_containers || on_hook ? f.sequence(x, "moves", "exercise", kMaxMoves)
+                                                         : YAML::Node(YAML::NodeType::Sequence);
+  const char* moved_key = on_hook ? "cargo" : "container";  // what a move names
+  std::map<std::string, std::size_t> moved;                 // container or cargo id -> the move that takes it
   for (std::size_t n = 0; n < moves.size(); ++n) {
     const std::string at = item("exercise.moves", n);
     sim::MoveGoal g;
-    g.container_id = f.text(moves[n], "container", at);
+    g.container_id = f.text(moves[n], moved_key, at);
     const auto known = container_index.find(g.container_id);
     if (known == container_index.end())
-      f.fail(moves[n]["container"], at + ".container",
-             "no container '" + g.container_id + "' in this exercise");
+      f.fail(moves[n][moved_key], at + "." + moved_key,
+             std::string("no ") + moved_key + " '" + g.container_id + "' in this exercise");
     if (const auto [first, fresh] = moved.emplace(g.container_id, n); !fresh)
-      f.fail(moves[n]["container"], at + ".container",
+      f.fail(moves[n][moved_key], at + "." + moved_key,
              "'" + g.container_id + "' is already moved by exercise.moves[" + std::to_string(first->second) +
                  "]");
     if (f.optional(moves[n], "to", at)) {
@@ -297,7 +331,7 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
     g.tolerance_m = f.number_or(moves[n], "tolerance_m", at, g.tolerance_m, 0.0, 5.0, true);
     e.moves.push_back(g);
   }
-  if (handles_containers && e.moves.empty())
+  if ((handles_containers || cargo.size() > 0) && e.moves.empty())
     f.fail(moves, "exercise.moves", "an exercise needs at least one move");
 
   if (const auto b_node = f.optional_map(x, "bulk", "exercise")) {

@@ -192,6 +192,27 @@ void check_ropes_pass(const YamlFile& f, const YAML::Node& at, const std::string
   }
 }
 
+// a load-moment limiter's capacity chart: [radius m, capacity t] points, radii increasing
+std::vector<sim::CapacityPoint> read_capacity_chart(const YamlFile& f, const YAML::Node& map,
+                                                    const std::string& at) {
+  const YAML::Node chart = f.sequence(map, "chart", at, 100);
+  if (chart.size() < 2)
+    f.fail(map["chart"], at + ".chart", "needs at least two [radius m, capacity t] points");
+  std::vector<sim::CapacityPoint> points;
+  for (std::size_t n = 0; n < chart.size(); ++n) {
+    const std::string p = at + ".chart[" + std::to_string(n) + "]";
+    if (!chart[n].IsSequence() || chart[n].size() != 2) f.fail(chart[n], p, "is [radius m, capacity t]");
+    const sim::CapacityPoint point{f.number_at(chart[n][0], p + "[0]"), f.number_at(chart[n][1], p + "[1]")};
+    if (!(point.radius_m > 0.0 && point.radius_m < 200.0 && point.capacity_t > 0.0 &&
+          point.capacity_t < 1000.0))
+      f.fail(chart[n], p, "radius 0-200 m, capacity 0-1000 t");
+    if (!points.empty() && point.radius_m <= points.back().radius_m)
+      f.fail(chart[n], p, "radii must increase down the chart");
+    points.push_back(point);
+  }
+  return points;
+}
+
 sim::MhcSettings read_mhc(const YamlFile& f, const std::string& folder) {
   sim::MhcSettings s;
   const YAML::Node m = f.required_map(f.root(), "machine", "");
@@ -264,23 +285,29 @@ sim::MhcSettings read_mhc(const YamlFile& f, const std::string& folder) {
         s.hoist_upper_limit_m > s.hoist_lower_limit_m + 1.0))
     f.fail(limits, at + ".hoist_limits_m", "lower >= -100, upper <= 200 and 1 m above lower");
 
+  if (const auto k = f.optional_map(m, "hook", "machine")) {
+    // the hook block on the same winches: [house, boom, hook], the holding drum then the closing drum
+    const std::string hat = "machine.hook";
+    sim::MhcHookSettings hook;
+    hook.hoist = read_reeving_file(f, *k, "hoist_reeving", hat, folder, {"house", "boom", "hook"}, 2);
+    check_ropes_pass(f, (*k)["hoist_reeving"], hat + ".hoist_reeving", hook.hoist, 1,
+                     "passes nothing on the boom head, so it cannot carry the hook");
+    hook.block_mass_kg = f.number(*k, "block_mass_kg", hat, 100.0, 1e5);
+    hook.block_half_extents_m =
+        f.vector3(f.required(*k, "block_half_extents_m", hat), hat + ".block_half_extents_m", 5.0);
+    const core::Vec3& half = hook.block_half_extents_m;
+    if (!(half.x >= 0.1 && half.y >= 0.1 && half.z >= 0.1))
+      f.fail((*k)["block_half_extents_m"], hat + ".block_half_extents_m", "must be at least 0.1 m each");
+    hook.slinger_reach_m = f.number(*k, "slinger_reach_m", hat, 0.1, 5.0);
+    hook.sling_length_m = f.number(*k, "sling_length_m", hat, 0.5, 30.0);
+    hook.tag_line_damping_ratio = f.number(*k, "tag_line_damping_ratio", hat, 0.0, 1.0);
+    hook.capacity_chart = read_capacity_chart(f, *k, hat);
+    s.hook = std::move(hook);
+  }
+
   const YAML::Node l = f.required_map(m, "load_moment_limiter", "machine");
   const std::string lat = "machine.load_moment_limiter";
-  const YAML::Node chart = f.sequence(l, "chart", lat, 100);
-  if (chart.size() < 2)
-    f.fail(l["chart"], lat + ".chart", "needs at least two [radius m, capacity t] points");
-  s.capacity_chart.clear();
-  for (std::size_t n = 0; n < chart.size(); ++n) {
-    const std::string p = lat + ".chart[" + std::to_string(n) + "]";
-    if (!chart[n].IsSequence() || chart[n].size() != 2) f.fail(chart[n], p, "is [radius m, capacity t]");
-    const sim::CapacityPoint point{f.number_at(chart[n][0], p + "[0]"), f.number_at(chart[n][1], p + "[1]")};
-    if (!(point.radius_m > 0.0 && point.radius_m < 200.0 && point.capacity_t > 0.0 &&
-          point.capacity_t < 1000.0))
-      f.fail(chart[n], p, "radius 0-200 m, capacity 0-1000 t");
-    if (!s.capacity_chart.empty() && point.radius_m <= s.capacity_chart.back().radius_m)
-      f.fail(chart[n], p, "radii must increase down the chart");
-    s.capacity_chart.push_back(point);
-  }
+  s.capacity_chart = read_capacity_chart(f, l, lat);
   s.limiter_slow_from = f.number(l, "slow_from", lat, 0.5, 1.0, false, true);
   s.limiter_filter_s = f.number(l, "filter_s", lat, 0.0, 10.0, true);
 
@@ -301,6 +328,12 @@ sim::MhcSettings read_mhc(const YamlFile& f, const std::string& folder) {
       f.fail(m["controls"], "machine.controls", e.what());
     }
   }
+  if (s.hook && s.controls.find("sling") < 0)
+    f.fail(m["controls"], "machine.controls",
+           "a machine with a hook needs a 'sling' button (the slinger's call)");
+  if (const int sling = s.controls.find("sling");
+      sling >= 0 && s.controls[sling].kind != sim::ControlKind::kButton)
+    f.fail(m["controls"], "machine.controls", "'sling' must be a button");
   return s;
 }
 

@@ -4,10 +4,29 @@
 
 namespace harbour::sim {
 
+namespace {
+
+// the rope points the snapshot's polylines use so far
+std::size_t points_used(const Snapshot& s) {
+  return s.rope_count > 0 ? s.rope_first[static_cast<std::size_t>(s.rope_count - 1)] +
+                                s.rope_points[static_cast<std::size_t>(s.rope_count - 1)]
+                          : 0;
+}
+
+}  // namespace
+
+void publish_polyline(std::span<const core::Vec3> points, Snapshot& s) {
+  if (s.rope_count >= kMaxRopes) return;
+  std::size_t used = points_used(s);
+  const auto line = static_cast<std::size_t>(s.rope_count++);
+  s.rope_first[line] = static_cast<std::uint16_t>(used);
+  for (std::size_t p = 0; p < points.size() && used < kMaxRopePoints; ++p)
+    s.points[used++] = points[p];
+  s.rope_points[line] = static_cast<std::uint16_t>(used - s.rope_first[line]);
+}
+
 void publish_ropes(const cable::HoistSystem& hoist, Snapshot& s) {
-  std::size_t used = s.rope_count > 0 ? s.rope_first[static_cast<std::size_t>(s.rope_count - 1)] +
-                                            s.rope_points[static_cast<std::size_t>(s.rope_count - 1)]
-                                      : 0;
+  std::size_t used = points_used(s);
   for (int r = 0; r < hoist.rope_count() && s.rope_count < kMaxRopes; ++r) {
     const auto rope = static_cast<std::size_t>(s.rope_count++);
     s.rope_first[rope] = static_cast<std::uint16_t>(used);

@@ -135,5 +135,8 @@ class Machine {
 /// Appends `hoist`'s ropes to the snapshot's rope polylines (after those already there; what does not fit in
 /// kMaxRopes ropes or kMaxRopePoints points is left out).
 void publish_ropes(const cable::HoistSystem& hoist, Snapshot& snapshot);
+/// Appends one polyline (a sling) to the snapshot's ropes; with no points it draws nothing but keeps its
+/// place among them.
+void publish_polyline(std::span<const core::Vec3> points, Snapshot& snapshot);
 
 }  // namespace harbour::sim

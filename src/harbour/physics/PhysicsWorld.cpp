@@ -112,7 +112,19 @@ struct PhysicsWorld::Ode {
     dJointID id = nullptr;
     BodyId a = kWorld, b = kWorld;
     std::array<double, 19> pose_a{}, pose_b{};  // each body's raw pose when attached
+    bool pivot = false;                         // a ball joint at `anchor` (world, when attached), not fixed
+    Vec3 anchor;
   };
+  // the joint an attachment's record describes, made between its bodies (at their poses of the moment)
+  dJointID make_joint(const Attachment& a) const {
+    dJointID j = a.pivot ? dJointCreateBall(world, nullptr) : dJointCreateFixed(world, nullptr);
+    dJointAttach(j, bodies[a.a].id, bodies[a.b].id);
+    if (a.pivot)
+      dJointSetBallAnchor(j, a.anchor.x, a.anchor.y, a.anchor.z);
+    else
+      dJointSetFixed(j);
+    return j;
+  }
   struct PendingContact {
     int shape1 = 0, shape2 = 0;  // shape1 < shape2
     int impact = -1;             // index into open impacts, if this pair's touch is being measured
@@ -329,10 +341,16 @@ void PhysicsWorld::set_kinematic_motion(BodyId body, const core::Pose& pose, con
 }
 
 int PhysicsWorld::attach(BodyId a, BodyId b) {
-  dJointID j = dJointCreateFixed(ode_->world, nullptr);
-  dJointAttach(j, ode_->bodies[a].id, ode_->bodies[b].id);
-  dJointSetFixed(j);
-  ode_->attachments.push_back({j, a, b, ode_->raw_pose(a), ode_->raw_pose(b)});
+  Ode::Attachment made{nullptr, a, b, ode_->raw_pose(a), ode_->raw_pose(b)};
+  made.id = ode_->make_joint(made);
+  ode_->attachments.push_back(made);
+  return static_cast<int>(ode_->attachments.size()) - 1;
+}
+
+int PhysicsWorld::attach_pivot(BodyId a, BodyId b, const Vec3& anchor_m) {
+  Ode::Attachment made{nullptr, a, b, ode_->raw_pose(a), ode_->raw_pose(b), true, anchor_m};
+  made.id = ode_->make_joint(made);
+  ode_->attachments.push_back(made);
   return static_cast<int>(ode_->attachments.size()) - 1;
 }
 
@@ -478,6 +496,11 @@ Vec3 PhysicsWorld::point_velocity(BodyId body, const Vec3& local) const {
 void PhysicsWorld::add_force_at(BodyId body, const Vec3& p, const Vec3& f) {
   if (body == kWorld) return;
   dBodyAddForceAtPos(ode_->bodies[body].id, f.x, f.y, f.z, p.x, p.y, p.z);
+}
+
+void PhysicsWorld::add_torque(BodyId body, const Vec3& t) {
+  if (body == kWorld) return;
+  dBodyAddTorque(ode_->bodies[body].id, t.x, t.y, t.z);
 }
 
 void PhysicsWorld::set_position(BodyId body, const Vec3& p) {
@@ -716,11 +739,13 @@ void PhysicsWorld::save_state(core::StateWriter& out) const {
   out.put(bodies);
   out.put(static_cast<std::uint64_t>(ode_->attachments.size()));
   for (const Ode::Attachment& a : ode_->attachments) {
-    out.put(a.id != nullptr);
+    // 0 detached, 1 fixed, 2 pivot (followed by its anchor): states saved before pivots read the same
+    out.put(static_cast<std::uint8_t>(a.id == nullptr ? 0 : a.pivot ? 2 : 1));
     out.put(a.a);
     out.put(a.b);
     out.put(a.pose_a);
     out.put(a.pose_b);
+    if (a.id && a.pivot) out.put(std::array<double, 3>{a.anchor.x, a.anchor.y, a.anchor.z});
   }
   std::vector<Touch> touches;
   for (const auto& [key, step] : last_touch_)
@@ -744,20 +769,25 @@ void PhysicsWorld::restore_state(core::StateReader& in) {
   const auto attachments = in.get<std::uint64_t>();
   for (std::uint64_t n = 0; n < attachments; ++n) {
     Ode::Attachment a;
-    const bool active = in.get<bool>();
+    const auto joint = in.get<std::uint8_t>();
+    if (joint > 2) throw core::StateError("saved state has an attachment of an unknown kind");
+    const bool active = joint != 0;
+    a.pivot = joint == 2;
     in.get(a.a);
     in.get(a.b);
     in.get(a.pose_a);
     in.get(a.pose_b);
+    if (a.pivot) {
+      const auto anchor = in.get<std::array<double, 3>>();
+      a.anchor = {anchor[0], anchor[1], anchor[2]};
+    }
     const auto count = static_cast<BodyId>(ode_->bodies.size());
     if (a.a < 0 || a.a >= count || a.b < 0 || a.b >= count)
       throw core::StateError("saved state attaches a body this simulation does not have");
     if (active) {
       ode_->set_raw_pose(a.a, a.pose_a);
       ode_->set_raw_pose(a.b, a.pose_b);
-      a.id = dJointCreateFixed(ode_->world, nullptr);
-      dJointAttach(a.id, ode_->bodies[a.a].id, ode_->bodies[a.b].id);
-      dJointSetFixed(a.id);
+      a.id = ode_->make_joint(a);
     }
     ode_->attachments.push_back(a);
   }

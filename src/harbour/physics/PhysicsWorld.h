@@ -93,6 +93,9 @@ class PhysicsWorld {
   /// Rigidly joins two bodies as they are now (twistlocks locked); returns a handle for detach().
   /// ODE allocates the fixed joint: one allocation per attachment made (an event, not every step).
   int attach(BodyId a, BodyId b);
+  /// Joins two bodies at the world point `anchor_m` as they are now, free to turn about it (a load in its
+  /// slings on a crane hook); returns a handle for detach().
+  int attach_pivot(BodyId a, BodyId b, const core::Vec3& anchor_m);
   void detach(int attachment);
   /// Attachments made so far (including detached ones).
   int attachments_made() const;
@@ -137,6 +140,8 @@ class PhysicsWorld {
   core::Vec3 point_velocity(BodyId body, const core::Vec3& local) const;
   /// A world force at a world point for the next step (cleared by the step).
   void add_force_at(BodyId body, const core::Vec3& world_point, const core::Vec3& force);
+  /// A world torque for the next step (cleared by the step).
+  void add_torque(BodyId body, const core::Vec3& torque);
   void set_position(BodyId body, const core::Vec3& position);
   void set_linear_velocity(BodyId body, const core::Vec3& velocity);
   /// Stops a body: no linear or angular velocity.

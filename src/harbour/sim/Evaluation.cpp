@@ -53,8 +53,11 @@ void Evaluator::record_landing(const Simulation& simulation, std::optional<physi
 
 double Evaluator::sway_m(const Simulation& simulation, std::optional<physics::BodyId> hanging_box) const {
   // horizontal offset of the spreader from where it hangs at rest: plumb under the trolley, moved downwind
-  // by the mean wind (a steady lean is not a swing; the turbulence's and gusts' pushes are)
-  const StsCrane& crane = simulation.sts();
+  // by the mean wind (a steady lean is not a swing; the turbulence's and gusts' pushes are); another
+  // machine's load from plumb under its sheaves
+  const auto* sts = dynamic_cast<const StsCrane*>(&simulation.machine());
+  if (!sts) return simulation.machine().tally().swing_m;
+  const StsCrane& crane = *sts;
   const core::Vec3 s = crane.spreader_pose().position;
   const core::Vec3 rest = simulation.wind_rest_offset_m(simulation.weather().mean_wind(), hanging_box);
   return std::hypot(s.x - crane.trolley_position_m() - rest.x, s.y - crane.gantry_position_m() - rest.y);
@@ -161,15 +164,45 @@ void Evaluator::observe_bulk(const Simulation& simulation) {
 }
 
 void Evaluator::observe_any_machine(const Simulation& simulation, const Controls& controls) {
-  // what every machine shows: its impacts, rope overloads and emergency stops
-  for (const physics::ImpactEvent& e : simulation.events().impacts)
-    if (e.normal_speed_mps >= exercise_.rules.collision_speed_mps) count_collision(e);
+  // what every machine shows: its impacts (the load it carries set down near its target is a landing), its
+  // moves, rope overloads and emergency stops
+  for (const physics::ImpactEvent& e : simulation.events().impacts) {
+    const bool carried_hit = carried_ && (e.body == *carried_ || e.other == *carried_);
+    if (carried_hit && near_target(*carried_, simulation)) {
+      record_landing(simulation, carried_);
+      metrics_.worst_landing_mps = std::max(metrics_.worst_landing_mps, e.normal_speed_mps);
+      if (e.normal_speed_mps > exercise_.rules.hard_landing_mps) ++metrics_.hard_landings;
+    } else if (e.normal_speed_mps >= exercise_.rules.collision_speed_mps) {
+      count_collision(e);
+    }
+  }
+  const std::optional<physics::BodyId> held = simulation.machine().held_item();
+  observe_moves(simulation, held);
+  carried_ = held;
   for (const cable::CableEvent& e : simulation.events().ropes)
     if (e.kind == cable::CableEventKind::kOverload) ++metrics_.overloads;
   const int stop = simulation.control_table().find("emergency_stop");
   const bool estop = stop >= 0 && controls.value[static_cast<std::size_t>(stop)] != 0.0;
   if (estop && !was_estop_) ++metrics_.emergency_stops;
   was_estop_ = estop;
+}
+
+void Evaluator::observe_moves(const Simulation& simulation, std::optional<physics::BodyId> held) {
+  // moves: a goal item held (locked to the spreader, slung to the hook), then let go of at its target
+  if (carried_ && !held) {
+    const int g = goal_of(*carried_, simulation);
+    if (g >= 0 && !done_[g]) {
+      const core::Vec3 p = simulation.world().pose(*carried_).position;
+      const core::Vec3 t = exercise_.moves[g].target_m;
+      if (std::hypot(p.x - t.x, p.y - t.y) <= exercise_.moves[g].tolerance_m && std::abs(p.z - t.z) < 0.2) {
+        done_[g] = true;
+        ++metrics_.moves_completed;
+        metrics_.cycle_times_s.push_back(metrics_.time_s - last_completion_s_);
+        last_completion_s_ = metrics_.time_s;
+      }
+    }
+  }
+  if (metrics_.time_s > 0.0) metrics_.moves_per_hour = metrics_.moves_completed * 3600.0 / metrics_.time_s;
 }
 
 void Evaluator::observe_containers(const Simulation& simulation, const Controls& controls,
@@ -196,25 +229,11 @@ void Evaluator::observe_containers(const Simulation& simulation, const Controls&
     }
   }
 
-  // moves: a goal container locked, then unlocked at its target
   const std::optional<physics::BodyId> locked = crane.locked_container();
-  if (carried_ && !locked) {
-    const int g = goal_of(*carried_, simulation);
-    if (g >= 0 && !done_[g]) {
-      const core::Vec3 p = simulation.world().pose(*carried_).position;
-      const core::Vec3 t = exercise_.moves[g].target_m;
-      if (std::hypot(p.x - t.x, p.y - t.y) <= exercise_.moves[g].tolerance_m && std::abs(p.z - t.z) < 0.2) {
-        done_[g] = true;
-        ++metrics_.moves_completed;
-        metrics_.cycle_times_s.push_back(metrics_.time_s - last_completion_s_);
-        last_completion_s_ = metrics_.time_s;
-      }
-    }
-  }
+  observe_moves(simulation, locked);
   if (!carried_ && locked)
     record_landing(simulation, std::nullopt);  // pick-up: the spreader landed and locked
   carried_ = locked;
-  if (metrics_.time_s > 0.0) metrics_.moves_per_hour = metrics_.moves_completed * 3600.0 / metrics_.time_s;
 
   for (const TwistlockEvent e : simulation.events().twistlocks) {
     (void)e;

@@ -150,6 +150,8 @@ class Evaluator {
   void observe_containers(const Simulation& simulation, const Controls& controls, const StsCrane& crane);
   void observe_any_machine(const Simulation& simulation, const Controls& controls);
   void observe_bulk(const Simulation& simulation);
+  /// Counts a goal item let go of at its target as a completed move (`held`: what the machine holds now).
+  void observe_moves(const Simulation& simulation, std::optional<physics::BodyId> held);
   void observe_smoothness(const Simulation& simulation);
   bool goals_met() const;
   int goal_of(physics::BodyId body, const Simulation& simulation) const;

@@ -17,11 +17,6 @@ constexpr double kCoamingClearance_m = 2.5;  // grab bottom over the coaming top
 constexpr double kDischargeHeight_m = 3.0;   // grab bottom over the hopper's floor when it opens
 constexpr double kSpotMargin_m = 1.0;        // dig spots inside the coamings by the grab's half size and this
 constexpr double kSpotTie_m = 0.05;          // dig spots whose material stands within this count as level
-constexpr double kCreepGain_per_s = 0.25;    // head speed towards the target per metre off it
-constexpr double kSwingGain_per_s = 0.6;     // head speed towards the grab per metre of swing
-constexpr double kCalm_m = 0.35;             // swing at which the grab counts as calm
-constexpr double kSwingFilter_s = 1.0;       // time constant of the swing and height the levers follow
-constexpr double kLeverTravel_s = 1.0;       // a lever from neutral to full
 
 // the material's surface height over `point` (the point's own height where no grid lies under it)
 double surface_z(const bulk::BulkWorld& bulk, const core::Vec3& point) {
@@ -50,6 +45,7 @@ const VesselSettings::Hold* open_hold(const VesselSettings& vessel) {
 std::string GrabAutopilot::why_cannot_drive(const ExerciseSettings& exercise) {
   if (!std::holds_alternative<MhcSetup>(exercise.scenario.machine))
     return "the grab autopilot drives the mobile harbour crane";
+  if (std::get<MhcSetup>(exercise.scenario.machine).start.on_hook) return "the crane works on its hook";
   if (!exercise.deliver) return "the exercise has no delivery goal (exercise.deliver)";
   const auto& vessel = exercise.scenario.vessel;
   if (!vessel || vessel->vessel.kind != VesselKind::kBulk || !open_hold(vessel->vessel))
@@ -112,32 +108,6 @@ void GrabAutopilot::resume(const Simulation& simulation, int /*moves_done*/) {
   decided_ = false;  // its filters start again from what it sees
 }
 
-GrabAutopilot::Target GrabAutopilot::target_of(const MobileHarbourCrane& crane,
-                                               const core::Vec3& point) const {
-  const core::Vec3 d = point - crane.position_m();
-  return {std::atan2(d.y, d.x), std::hypot(d.x, d.y)};
-}
-
-bool GrabAutopilot::steer(const MobileHarbourCrane& crane, const Target& target, double tolerance_m,
-                          double& slew, double& luff) const {
-  const core::Vec3 head = crane.boom_head_m(), p = crane.position_m();
-  const double r = crane.radius_m();
-  const core::Vec3 radial = core::Vec3{head.x - p.x, head.y - p.y, 0.0} * (1.0 / std::max(r, 1.0));
-  const core::Vec3 tangential{-radial.y, radial.x, 0.0};  // + slew: anticlockwise seen from above
-  const MhcSettings& s = crane.settings();
-  const double e_t = wrap(target.slew_rad - crane.slew_rad()) * r, e_r = target.radius_m - r;
-  // the grab's offset from plumb under the head, low-passed: the head follows it to damp the swing
-  const core::Vec3& swing = swing_m_;
-  const double s_t = dot(swing, tangential), s_r = dot(swing, radial);
-  const double v_t_max = s.slew_drive.max_speed_mps * r, v_r_max = crane.luffing_radius_rate_mps();
-  const double v_t = std::clamp(kCreepGain_per_s * e_t, -v_t_max, v_t_max) + kSwingGain_per_s * s_t;
-  const double v_r = std::clamp(kCreepGain_per_s * e_r, -v_r_max, v_r_max) + kSwingGain_per_s * s_r;
-  slew = std::clamp(v_t / v_t_max, -1.0, 1.0);
-  luff = std::clamp(-v_r / v_r_max, -1.0, 1.0);  // + raises the boom: less radius
-  const double off = std::hypot(e_t + s_t, e_r + s_r);
-  return off < tolerance_m && std::hypot(s_t, s_r) < kCalm_m;
-}
-
 core::Vec3 GrabAutopilot::dig_spot(const Simulation& simulation) const {
   return vessel_->pose_at(simulation.time_s()).to_parent(spots_[spot_]);
 }
@@ -153,8 +123,6 @@ void GrabAutopilot::choose_dig_spot(const Simulation& simulation) {
 }
 
 Controls GrabAutopilot::decide(const Simulation& simulation, const MobileHarbourCrane& crane) {
-  const ControlTable& table = simulation.control_table();
-  Controls out = table.neutral();
   double slew = 0.0, luff = 0.0, hoist = 0.0, grab = 0.0;
   const double now = simulation.time_s();
   auto enter = [&](Phase p) {
@@ -163,17 +131,11 @@ Controls GrabAutopilot::decide(const Simulation& simulation, const MobileHarbour
     if (p == Phase::kToDig) choose_dig_spot(simulation);
   };
   if (!decided_ && phase_ == Phase::kToDig) choose_dig_spot(simulation);
-  // the swing seen through a low-pass: the boom's bounce on its ropes (about 1 Hz) moves the head to and fro
-  // under the grab, and a lever that followed it would pump the bounce
-  const core::Vec3 head = crane.boom_head_m(), lower = crane.grab_lower_position_m();
-  const core::Vec3 swing{lower.x - head.x, lower.y - head.y, 0.0};
   const double decision_s = kDecisionSteps * Simulation::kStep_s;
-  const double smoothing = decided_ ? decision_s / (kSwingFilter_s + decision_s) : 1.0;
-  swing_m_ += (swing - swing_m_) * smoothing;
+  steering_.observe(crane, decision_s, !decided_);
   const bulk::BulkWorld& bulk = *simulation.bulk();
   const double load_m3 = bulk.grab(simulation.bulk_grab()).load_m3;
   const double bottom = crane.attachment_bottom_z_m();
-  held_bottom_m_ += (bottom - held_bottom_m_) * smoothing;  // the height it holds, through the same low-pass
   const VesselGeometry& geometry = *vessel_;
   const double coaming_top = geometry.pose_at(now).to_parent({0, 0, geometry.coaming_top_m()}).z;
   const double travel_z =
@@ -191,18 +153,18 @@ Controls GrabAutopilot::decide(const Simulation& simulation, const MobileHarbour
     in_flight_m3 += p.volume_m3;
   const bool delivered =
       (bulk.landed_m3(exercise_.deliver->grid_index) + in_flight_m3) * t_per_m3 >= exercise_.deliver->tonnes;
-  // a height held gently (a low gain beyond a dead band, no step at its edge): the grab bounces on its ropes
-  // if the hoist hunts
-  const auto hold_height = [&](double z) {
-    const double error = z - held_bottom_m_;
-    return std::clamp(0.25 * std::copysign(std::max(0.0, std::abs(error) - 0.3), error), -1.0, 1.0);
+  const auto hold_height = [&](double z) { return steering_.hold_height(z); };
+  const auto steer = [&](const BoomSteering::Target& target, double tolerance_m, double& slew_lever,
+                         double& luff_lever) {
+    return steering_.steer(crane, target, tolerance_m, slew_lever, luff_lever);
   };
+  const auto target_of = [&](const core::Vec3& point) { return BoomSteering::target_of(crane, point); };
 
   switch (phase_) {
     case Phase::kToDig: {
       grab = -1.0;  // open on the way
       hoist = hold_height(travel_z + 0.5);
-      if (bottom > travel_z - 0.5 && steer(crane, target_of(crane, dig_spot(simulation)), 0.4, slew, luff) &&
+      if (bottom > travel_z - 0.5 && steer(target_of(dig_spot(simulation)), 0.4, slew, luff) &&
           crane.grab_opening() > 0.95)
         enter(Phase::kLower);
       break;
@@ -210,7 +172,7 @@ Controls GrabAutopilot::decide(const Simulation& simulation, const MobileHarbour
     case Phase::kLower: {
       const core::Vec3 spot = dig_spot(simulation);
       const double surface = surface_z(bulk, spot);
-      steer(crane, target_of(crane, spot), 0.4, slew, luff);
+      steer(target_of(spot), 0.4, slew, luff);
       hoist = bottom - surface > 3.0 ? -1.0 : -0.3;
       // resting on the material: the ropes' filtered load below half the grab's weight, near the surface
       if (bottom - surface < 1.0 && crane.limiter_load_n() < 0.5 * empty_kg * kG) enter(Phase::kShut);
@@ -231,8 +193,8 @@ Controls GrabAutopilot::decide(const Simulation& simulation, const MobileHarbour
     case Phase::kToHopper: {
       grab = 1.0;
       hoist = hold_height(std::max(travel_z, hopper_centre.z + kDischargeHeight_m));
-      const Target target = target_of(crane, hopper_centre);
-      const bool over = steer(crane, target, 0.5, slew, luff);
+      const BoomSteering::Target target = target_of(hopper_centre);
+      const bool over = steer(target, 0.5, slew, luff);
       // the bad operator opens half way, over the gap between quay and ship
       if (defects_.open_over_the_quay_edge && std::abs(wrap(target.slew_rad - crane.slew_rad())) < 0.6 &&
           std::abs(wrap(target.slew_rad - crane.slew_rad())) > 0.4)
@@ -243,27 +205,15 @@ Controls GrabAutopilot::decide(const Simulation& simulation, const MobileHarbour
     case Phase::kDischarge:
       grab = -1.0;
       hoist = hold_height(hopper_centre.z + kDischargeHeight_m);
-      steer(crane, target_of(crane, hopper_centre), 0.5, slew, luff);
+      steer(target_of(hopper_centre), 0.5, slew, luff);
       if (load_m3 <= 0.0 && crane.grab_opening() > 0.95) enter(delivered ? Phase::kDone : Phase::kToDig);
       break;
     case Phase::kDone:
       hoist = hold_height(travel_z);
       break;
   }
-  // levers moved as a hand moves them: full travel in no less than kLeverTravel_s
-  const double step = kDecisionSteps * Simulation::kStep_s / kLeverTravel_s;
-  const auto set = [&](const char* label, double value) {
-    if (const int slot = table.find(label); slot >= 0) {
-      double& lever = out.value[static_cast<std::size_t>(slot)];
-      const double was = last_.value[static_cast<std::size_t>(slot)];
-      lever = std::clamp(value, was - step, was + step);
-    }
-  };
-  set("slew", slew);
-  set("luff", luff);
-  set("hoist", hoist);
-  set("grab", grab);
-  return out;
+  return hand_levers(simulation.control_table(), last_, decision_s,
+                     {{"slew", slew}, {"luff", luff}, {"hoist", hoist}, {"grab", grab}});
 }
 
 }  // namespace harbour::sim

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "harbour/core/Vec3.h"
+#include "harbour/sim/BoomSteering.h"
 #include "harbour/sim/Evaluation.h"
 #include "harbour/sim/Pilot.h"
 
@@ -44,15 +45,7 @@ class GrabAutopilot final : public Pilot {
 
  private:
   enum class Phase { kToDig, kLower, kShut, kHoist, kToHopper, kDischarge, kDone };
-  struct Target {
-    double slew_rad = 0.0, radius_m = 0.0;
-  };
   Controls decide(const Simulation& simulation, const MobileHarbourCrane& crane);
-  Target target_of(const MobileHarbourCrane& crane, const core::Vec3& point) const;
-  /// Slew and luff levers that bring the boom head over `target` while they damp the grab's swing; true when
-  /// the grab is within `tolerance_m` of plumb over it and calm.
-  bool steer(const MobileHarbourCrane& crane, const Target& target, double tolerance_m, double& slew,
-             double& luff) const;
   core::Vec3 dig_spot(const Simulation& simulation) const;
   void choose_dig_spot(const Simulation& simulation);
 
@@ -64,8 +57,7 @@ class GrabAutopilot final : public Pilot {
   std::optional<VesselGeometry> vessel_;  // the scenario's bulk carrier, built once
   std::vector<core::Vec3> spots_;         // vessel frame
   std::size_t spot_ = 0;                  // the one it digs next
-  core::Vec3 swing_m_;                    // the grab's offset from plumb under the boom head, low-passed
-  double held_bottom_m_ = 0.0;            // the grab's bottom height, low-passed
+  BoomSteering steering_;
   Controls last_{};
   bool decided_ = false;
 };

@@ -4,6 +4,7 @@
 
 #include "harbour/sim/Autopilot.h"
 #include "harbour/sim/GrabAutopilot.h"
+#include "harbour/sim/HookAutopilot.h"
 
 namespace harbour::sim {
 
@@ -12,12 +13,15 @@ std::string why_no_pilot(const ExerciseSettings& exercise) {
   if (container.empty()) return "";
   const std::string grab = GrabAutopilot::why_cannot_drive(exercise);
   if (grab.empty()) return "";
-  return "no scripted operator drives it (" + container + "; " + grab + ")";
+  const std::string hook = HookAutopilot::why_cannot_drive(exercise);
+  if (hook.empty()) return "";
+  return "no scripted operator drives it (" + container + "; " + grab + "; " + hook + ")";
 }
 
 std::unique_ptr<Pilot> make_pilot(const ExerciseSettings& exercise) {
   if (Autopilot::why_cannot_drive(exercise).empty()) return std::make_unique<Autopilot>(exercise);
   if (GrabAutopilot::why_cannot_drive(exercise).empty()) return std::make_unique<GrabAutopilot>(exercise);
+  if (HookAutopilot::why_cannot_drive(exercise).empty()) return std::make_unique<HookAutopilot>(exercise);
   throw std::invalid_argument(why_no_pilot(exercise));
 }
 

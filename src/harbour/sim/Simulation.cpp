@@ -359,13 +359,13 @@ SceneDescription Simulation::scene() const {
     for (int k = 0; k < scenario_.trucks.trucks; ++k)
       d.entities.push_back({"truck " + std::to_string(k + 1), "truck", {}});
   for (const ContainerPlacement& c : scenario_.containers) {
-    const bool cover = c.kind == ContainerPlacement::Kind::kHatchCover;
     const double feet = 2.0 * c.half_extents_m.x / 0.3048;
     d.entities.push_back({c.id,
-                          cover       ? "hatch_cover"
-                          : feet < 30 ? "container.20ft"
-                          : feet < 42 ? "container.40ft"
-                                      : "container.45ft",
+                          c.kind == ContainerPlacement::Kind::kHatchCover     ? "hatch_cover"
+                          : c.kind == ContainerPlacement::Kind::kGeneralCargo ? "cargo"
+                          : feet < 30                                         ? "container.20ft"
+                          : feet < 42                                         ? "container.40ft"
+                                                                              : "container.45ft",
                           c.half_extents_m});
   }
   return d;

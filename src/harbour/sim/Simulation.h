@@ -22,9 +22,10 @@
 
 namespace harbour::sim {
 
-/// A container (ISO 668 sizes) or a hatch cover placed in the scenario: anything the spreader lifts.
+/// A container (ISO 668 sizes), a hatch cover or a general cargo piece placed in the scenario: anything a
+/// spreader or a hook lifts.
 struct ContainerPlacement {
-  enum class Kind : std::uint8_t { kContainer, kHatchCover };
+  enum class Kind : std::uint8_t { kContainer, kHatchCover, kGeneralCargo };
   std::string id;
   Kind kind = Kind::kContainer;
   core::Vec3 half_extents_m;    ///< [m] x along its length

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 
@@ -12,8 +13,10 @@ constexpr double kG = 9.80665;
 constexpr double kRestingShare = 0.5;  // ropes carrying less of the grab than this: it rests on something
 constexpr double kShutOpening = 0.05;  // shells this little open count as shut (their play on the ropes)
 constexpr double kShareGain = 0.5;     // holding winch speed (share of full) per unit of excess load share
-// reeving bodies, as the constructor maps them
-constexpr int kHouse = 0, kBoom = 1, kGrabHead = 2, kGrabLower = 3;
+// reeving bodies, as the constructor maps them (kBlock: the grab's head, or the hook block)
+constexpr int kHouse = 0, kBoom = 1, kBlock = 2, kGrabLower = 3;
+constexpr int kSlingLegs = 4;          // drawn from the hook to a slung load's top corners
+constexpr double kSlungResting = 0.5;  // a slung load the ropes carry less of than this rests (unslinging)
 
 core::Mat3 yaw(double rad) {
   return core::Mat3::rotation({0, 0, 1}, rad);
@@ -51,7 +54,7 @@ const cable::ElementSettings& first_drum(const cable::ReevingSettings& reeving) 
 
 constexpr const char* kMhcIndicators[] = {
     "slew_deg",     "boom_angle_deg", "radius_m", "load_t",   "capacity_t", "utilisation", "limiter_stop",
-    "grab_opening", "pad_1_kn",       "pad_2_kn", "pad_3_kn", "pad_4_kn",   "horn"};
+    "grab_opening", "pad_1_kn",       "pad_2_kn", "pad_3_kn", "pad_4_kn",   "horn",        "slung"};
 
 }  // namespace
 
@@ -63,12 +66,13 @@ ControlTable mhc_control_table() {
   const auto button = [](const char* label, const char* meaning) {
     return ControlSpec{label, K::kButton, 0.0, 1.0, {}, 0.0, 0.0, meaning};
   };
-  return ControlTable({axis("slew", "slewing, + turns anticlockwise seen from above"),
-                       axis("luff", "boom luffing, + raises the boom (less radius)"),
-                       axis("hoist", "hoist, both winches, + raises"),
-                       axis("grab", "grab, the closing winch against the holding winch, + closes"),
-                       button("emergency_stop", "every drive stops, the brakes set"),
-                       button("horn", "warning horn")});
+  return ControlTable(
+      {axis("slew", "slewing, + turns anticlockwise seen from above"),
+       axis("luff", "boom luffing, + raises the boom (less radius)"),
+       axis("hoist", "hoist, both winches, + raises"),
+       axis("grab", "grab, the closing winch against the holding winch, + closes"),
+       button("sling", "the slinger slings the load under the hook on, or off (hook operation)"),
+       button("emergency_stop", "every drive stops, the brakes set"), button("horn", "warning horn")});
 }
 
 PadForces pad_forces(double down_n, const core::Vec3& moment_nm, double a_m, double b_m, double yaw_rad) {
@@ -88,10 +92,12 @@ MobileHarbourCrane::MobileHarbourCrane(physics::PhysicsWorld& world, const MhcSe
                                        const MhcStart& start)
     : world_(world),
       settings_(settings),
+      start_on_hook_(start.on_hook),
       slew_slot_(settings.controls.slot("slew", ControlKind::kAxis)),
       luff_slot_(settings.controls.slot("luff", ControlKind::kAxis)),
       hoist_slot_(settings.controls.slot("hoist", ControlKind::kAxis)),
       grab_slot_(settings.controls.slot("grab", ControlKind::kAxis)),
+      sling_slot_(settings.controls.find("sling")),
       stop_slot_(settings.controls.slot("emergency_stop", ControlKind::kButton)),
       horn_slot_(settings.controls.slot("horn", ControlKind::kButton)),
       position_(start.position_m),
@@ -99,18 +105,24 @@ MobileHarbourCrane::MobileHarbourCrane(physics::PhysicsWorld& world, const MhcSe
       luff_limits_(settings.boom_min_angle_rad, settings.boom_max_angle_rad),
       hoist_limits_(settings.hoist_lower_limit_m, settings.hoist_upper_limit_m),
       grab_limits_(0.0, 1.0),
-      grab_falls_(segments_between(settings.hoist, kBoom, {kGrabHead, kGrabLower})),
       house_origin_in_body_m_(settings.house_com_m * -1.0),
       boom_head_in_body_m_{0.5 * settings.boom_length_m, 0.0, 0.0},
       slew_(start.slew_rad) {
+  if (start.on_hook && !settings.hook) throw std::invalid_argument("this MHC has no hook block");
+  if (start.on_hook && sling_slot_ < 0)
+    throw std::invalid_argument("an MHC on its hook needs a 'sling' button");
+  if (on_hook()) settings_.capacity_chart = settings.hook->capacity_chart;
+  const cable::ReevingSettings& hoisting = on_hook() ? settings.hook->hoist : settings.hoist;
+  grab_falls_ = segments_between(hoisting, kBoom, {kBlock, kGrabLower});
   for (const auto& [rope, segment] : segments_between(settings.luffing, kHouse, {kBoom})) {
     const std::vector<int>& path = settings.luffing.ropes[static_cast<std::size_t>(rope)].path;
     const int far = path[static_cast<std::size_t>(segment) + 1];
     luff_falls_.push_back(
         {rope, segment, settings.luffing.elements[static_cast<std::size_t>(far)].mount.body == kBoom});
   }
-  const auto tackle = segments_between(settings.hoist, kGrabHead, {kGrabLower});
-  for (std::size_t r = 0; r < settings.hoist.ropes.size(); ++r)
+  const auto tackle =
+      on_hook() ? std::vector<std::pair<int, int>>{} : segments_between(hoisting, kBlock, {kGrabLower});
+  for (std::size_t r = 0; r < hoisting.ropes.size(); ++r)
     closing_rope_.push_back(std::any_of(tackle.begin(), tackle.end(),
                                         [&](const auto& f) { return f.first == static_cast<int>(r); }));
   const int closing_ropes = static_cast<int>(std::count(closing_rope_.begin(), closing_rope_.end(), true));
@@ -135,52 +147,65 @@ MobileHarbourCrane::MobileHarbourCrane(physics::PhysicsWorld& world, const MhcSe
   boom_ = world.add_box(boom);
   boom_hinge_ = world.add_hinge(house_, boom_, foot, house_rotation * core::Vec3{0, 1, 0});
 
+  // under the boom head: the grab's head and its lower block on the shells' linkage, or the hook block
   const core::Vec3 head = boom.pose.to_parent(boom_head_in_body_m_);
-  physics::BoxSettings grab_head;
-  grab_head.mass_kg = settings.grab_head_mass_kg;
-  grab_head.half_extents_m = settings.grab_head_half_extents_m;
-  grab_head.pose = {house_rotation, {head.x, head.y, start.grab_z_m}};
-  grab_head.collides = false;
-  grab_head_ = world.add_box(grab_head);
-  physics::BoxSettings grab_lower;
-  grab_lower.mass_kg = settings.grab_lower_mass_kg;
-  grab_lower.half_extents_m = settings.grab_lower_half_extents_m;
-  grab_lower.pose = {house_rotation, {head.x, head.y, start.grab_z_m - settings.grab_open_gap_m}};
-  grab_lower_ = world.add_box(grab_lower);
-  // the shells' linkage: the lower block slides up towards the head (shutting) between two stops
-  grab_slider_ = world.add_slider(grab_head_, grab_lower_, {0, 0, 1});
-  world.set_slider_limits(grab_slider_, 0.0, settings.grab_open_gap_m - settings.grab_closed_gap_m);
+  physics::BoxSettings block;
+  block.mass_kg = on_hook() ? settings.hook->block_mass_kg : settings.grab_head_mass_kg;
+  block.half_extents_m = block_half_extents_m();
+  block.pose = {house_rotation, {head.x, head.y, start.hanging_z_m}};
+  block.collides = on_hook();  // the hook block lands on what it is lowered onto
+  block_ = world.add_box(block);
+  std::vector<physics::BodyId> hoisted{house_, boom_, block_};
+  if (!on_hook()) {
+    physics::BoxSettings grab_lower;
+    grab_lower.mass_kg = settings.grab_lower_mass_kg;
+    grab_lower.half_extents_m = settings.grab_lower_half_extents_m;
+    grab_lower.pose = {house_rotation, {head.x, head.y, start.hanging_z_m - settings.grab_open_gap_m}};
+    grab_lower_ = world.add_box(grab_lower);
+    hoisted.push_back(grab_lower_);
+    // the shells' linkage: the lower block slides up towards the head (shutting) between two stops
+    grab_slider_ = world.add_slider(block_, grab_lower_, {0, 0, 1});
+    world.set_slider_limits(grab_slider_, 0.0, settings.grab_open_gap_m - settings.grab_closed_gap_m);
+  }
 
   luffing_bodies_ = std::make_unique<OdeCableBodies>(
       world, std::vector<physics::BodyId>{house_, boom_},
       std::vector<core::Vec3>{house_origin_in_body_m_, boom_head_in_body_m_});
   luffing_ = std::make_unique<cable::HoistSystem>(settings.luffing, *luffing_bodies_, core::Vec3{0, 0, -kG});
-  hoist_bodies_ = std::make_unique<OdeCableBodies>(
-      world, std::vector<physics::BodyId>{house_, boom_, grab_head_, grab_lower_},
-      std::vector<core::Vec3>{house_origin_in_body_m_, boom_head_in_body_m_, {}, {}});
-  hoist_ = std::make_unique<cable::HoistSystem>(settings.hoist, *hoist_bodies_, core::Vec3{0, 0, -kG});
-  wind_areas_ = {WindArea{grab_head_, settings.grab_head_half_extents_m},
-                 WindArea{grab_lower_, settings.grab_lower_half_extents_m},
-                 WindArea{house_, settings.house_half_extents_m}};
+  std::vector<core::Vec3> origins{house_origin_in_body_m_, boom_head_in_body_m_};
+  origins.resize(hoisted.size());
+  hoist_bodies_ = std::make_unique<OdeCableBodies>(world, hoisted, origins);
+  hoist_ = std::make_unique<cable::HoistSystem>(hoisting, *hoist_bodies_, core::Vec3{0, 0, -kG});
+  wind_areas_.clear();
+  wind_areas_.push_back({block_, block_half_extents_m()});
+  if (!on_hook()) wind_areas_.push_back({grab_lower_, settings.grab_lower_half_extents_m});
+  wind_areas_.push_back({house_, settings.house_half_extents_m});
   last_hinge_angle_ = world.hinge_angle(slew_hinge_);
-  // the grab as a bulk tool: nine points over the shells' underside (moved with the jaws by update_tool),
-  // the jaw tips at its centre; its bite
-  // closes in the time the closing ropes take to shut it resting on material (the holding winch following)
-  const core::Vec3& h = settings.grab_lower_half_extents_m;
-  for (int a = 0; a < 3; ++a)
-    for (int b = 0; b < 3; ++b)
-      shell_points_[static_cast<std::size_t>(3 * a + b)] = {(a - 1) * h.x, (b - 1) * h.y, -h.z};
-  tool_.body = grab_lower_;
-  tool_.contact_points_m = shell_points_;
-  tool_.grab = settings.grab;
-  tool_.grab.closing_time_s = std::max(tackle_falls_ - 1, 1) *
-                              (settings.grab_open_gap_m - settings.grab_closed_gap_m) /
-                              first_drum(settings.hoist).max_rope_speed_mps;
+  if (!on_hook()) {
+    // the grab as a bulk tool: nine points over the shells' underside (moved with the jaws by update_tool),
+    // the jaw tips at its centre; its bite closes in the time the closing ropes take to shut it resting on
+    // material (the holding winch following)
+    const core::Vec3& h = settings.grab_lower_half_extents_m;
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b)
+        shell_points_[static_cast<std::size_t>(3 * a + b)] = {(a - 1) * h.x, (b - 1) * h.y, -h.z};
+    tool_.body = grab_lower_;
+    tool_.contact_points_m = shell_points_;
+    tool_.grab = settings.grab;
+    tool_.grab.closing_time_s = std::max(tackle_falls_ - 1, 1) *
+                                (settings.grab_open_gap_m - settings.grab_closed_gap_m) /
+                                first_drum(settings.hoist).max_rope_speed_mps;
+  }
   settle();
   update_tool();
 }
 
+const core::Vec3& MobileHarbourCrane::block_half_extents_m() const {
+  return on_hook() ? settings_.hook->block_half_extents_m : settings_.grab_head_half_extents_m;
+}
+
 void MobileHarbourCrane::update_tool() {
+  if (on_hook()) return;
   const core::Pose lower = world_.pose(grab_lower_);
   tool_.jaws = {lower.rotation, lower.to_parent({0, 0, -settings_.grab_lower_half_extents_m.z})};
   tool_.jaws_velocity_mps =
@@ -200,7 +225,8 @@ void MobileHarbourCrane::settle() {
   // dynamic relaxation with kinetic damping: step the machine at rest (drums braked), and each time its
   // bodies' kinetic energy passes a peak stop them all; the ropes stretch to their static load in a few
   // bounces instead of the grab and boom dropping on unstretched ropes when the exercise starts
-  const std::array<physics::BodyId, 4> bodies{house_, boom_, grab_head_, grab_lower_};
+  std::vector<physics::BodyId> bodies{house_, boom_, block_};
+  if (!on_hook()) bodies.push_back(grab_lower_);
   const std::array<cable::DrumCommand, 2> braked{};
   const cable::DrumCommand luff_braked{};
   constexpr double kDt = 0.001;
@@ -247,6 +273,20 @@ core::Vec3 MobileHarbourCrane::boom_head_m() const {
   return world_.pose(boom_).to_parent(boom_head_in_body_m_);
 }
 
+core::Vec3 MobileHarbourCrane::suspension_point_m() const {
+  core::Vec3 sum;
+  double top = -std::numeric_limits<double>::infinity();
+  std::array<core::Vec3, 2> ends;
+  for (const auto& [rope, segment] : grab_falls_) {
+    hoist_->polyline(rope, segment, ends);
+    const core::Vec3& upper = ends[0].z > ends[1].z ? ends[0] : ends[1];
+    sum += upper;
+    top = std::max(top, upper.z);
+  }
+  const double n = static_cast<double>(grab_falls_.size());
+  return {sum.x / n, sum.y / n, top};
+}
+
 double MobileHarbourCrane::radius_m() const {
   const core::Vec3 head = boom_head_m();
   return std::hypot(head.x - position_.x, head.y - position_.y);
@@ -290,6 +330,7 @@ double MobileHarbourCrane::utilisation() const {
 }
 
 double MobileHarbourCrane::grab_opening() const {
+  if (on_hook()) return 0.0;
   const double travel = settings_.grab_open_gap_m - settings_.grab_closed_gap_m;
   return std::clamp(1.0 - world_.slider_position(grab_slider_) / travel, 0.0, 1.0);
 }
@@ -326,12 +367,18 @@ double MobileHarbourCrane::luffing_radius_rate_mps() const {
          first_drum(settings_.luffing).max_rope_speed_mps / per_rad;
 }
 
-core::Vec3 MobileHarbourCrane::grab_lower_position_m() const {
-  return world_.pose(grab_lower_).position;
+core::Vec3 MobileHarbourCrane::load_position_m() const {
+  if (!on_hook()) return world_.pose(grab_lower_).position;
+  return world_.pose(slung_ != physics::kWorld ? slung_ : block_).position;
+}
+
+std::optional<physics::BodyId> MobileHarbourCrane::held_item() const {
+  if (slung_ == physics::kWorld) return std::nullopt;
+  return slung_;
 }
 
 MachineTally MobileHarbourCrane::tally() const {
-  const core::Vec3 head = boom_head_m(), grab = grab_lower_position_m();
+  const core::Vec3 head = suspension_point_m(), grab = load_position_m();
   // the speeds the operator drives the boom head at: the slewing drive's reference round the axis, the
   // luffing winch's along the radius (the boom's bounce on its ropes is the machine's, not the operator's)
   return {limiter_trips_,
@@ -345,11 +392,12 @@ double MobileHarbourCrane::luffing_tension_n() const {
 }
 
 double MobileHarbourCrane::attachment_bottom_z_m() const {
+  if (on_hook()) return world_.pose(block_).position.z - block_half_extents_m().z;
   return world_.pose(grab_lower_).position.z - settings_.grab_lower_half_extents_m.z;
 }
 
 double MobileHarbourCrane::pendulum_length_m() const {
-  return boom_head_m().z - world_.pose(grab_head_).position.z;
+  return suspension_point_m().z - world_.pose(block_).position.z;
 }
 
 core::Vec3 MobileHarbourCrane::eye_on_cab_body_m() const {
@@ -361,7 +409,7 @@ core::Pose MobileHarbourCrane::cab_pose() const {
   return {house.rotation, house.to_parent(house_origin_in_body_m_ + settings_.cab_position_m)};
 }
 
-void MobileHarbourCrane::step(const Controls& raw, std::span<const ContainerRef>, double dt_s) {
+void MobileHarbourCrane::step(const Controls& raw, std::span<const ContainerRef> liftables, double dt_s) {
   const Controls c = settings_.controls.in_range(raw);
   const auto at = [&](int slot) { return c.value[static_cast<std::size_t>(slot)]; };
   const bool stop = at(stop_slot_) != 0.0;
@@ -404,36 +452,51 @@ void MobileHarbourCrane::step(const Controls& raw, std::span<const ContainerRef>
   const cable::DrumCommand luff_command{stop ? 0.0 : -luff, false, !stop};
   luffing_->step(dt_s, {&luff_command, 1}, *luffing_bodies_);
 
-  // hoist and grab: both winches hoist; the closing winch alone shuts (reels in) and opens the shells
-  const cable::ElementSettings& hoist_drum = first_drum(settings_.hoist);
-  hoist = hoist_limits_.limit(hoist, world_.pose(grab_head_).position.z, hoist_drum.max_rope_speed_mps,
+  // hoist: both winches together; on the grab the closing winch alone shuts (reels in) and opens the shells
+  const cable::ElementSettings& hoist_drum = first_drum(hoisting());
+  hoist = hoist_limits_.limit(hoist, world_.pose(block_).position.z, hoist_drum.max_rope_speed_mps,
                               hoist_drum.max_rope_acceleration_mps2, dt_s);
-  // the shells' end switches: the closing winch stops on its own when they are shut or fully open
-  const double travel = settings_.grab_open_gap_m - settings_.grab_closed_gap_m;
-  const double shut_rate = hoist_drum.max_rope_speed_mps / (tackle_falls_ * travel);
-  const double grab =
-      grab_limits_.limit(at(grab_slot_), 1.0 - grab_opening(), shut_rate,
-                         hoist_drum.max_rope_acceleration_mps2 / (tackle_falls_ * travel), dt_s);
-  // the closing winch runs at hoist + grab; beyond its full speed both winches give up the excess, so the
-  // grab lever keeps its difference while hoisting
-  const double wanted_close = hoist + grab;
-  const double excess = wanted_close - std::clamp(wanted_close, -1.0, 1.0);
-  const double close = wanted_close - excess;
-  // closing on material the holding winch follows (slack-rope control): it pays out what keeps the lower
-  // block where it rests, so the head comes down to it and the jaws cut in under the grab's weight
-  const double grab_kg = settings_.grab_head_mass_kg + settings_.grab_lower_mass_kg + carried_kg_;
-  const bool resting = limiter_load_n_ < kRestingShare * grab_kg * kG;  // filtered: not a bounce's dip
-  const double follow = resting && grab > 0.0 ? grab / std::max(tackle_falls_ - 1, 1) : 0.0;
-  // a shut grab hanging on its ropes: the holding winch shares the load evenly with the closing winch
-  // (load equalisation), so the closing ropes hold the shells shut and neither pair carries it all
-  holding_share_ +=
-      (pulls.holding_share() - holding_share_) * std::min(1.0, dt_s / settings_.limiter_filter_s);
-  const bool sharing = !resting && grab >= 0.0 && grab_opening() < kShutOpening;
-  const double equalise = sharing ? kShareGain * (holding_share_ - 0.5) : 0.0;
-  const std::array<cable::DrumCommand, 2> hoist_commands{
-      cable::DrumCommand{stop ? 0.0 : std::clamp(follow - hoist + excess + equalise, -1.0, 1.0),
-                         hoist_brake_fault_, !stop},
-      cable::DrumCommand{stop ? 0.0 : -close, hoist_brake_fault_, !stop}};
+  std::array<cable::DrumCommand, 2> hoist_commands{cable::DrumCommand{0.0, hoist_brake_fault_, !stop},
+                                                   cable::DrumCommand{0.0, hoist_brake_fault_, !stop}};
+  if (on_hook()) {
+    const bool pressed = at(sling_slot_) != 0.0;
+    if (pressed && !sling_pressed_) sling(liftables);
+    sling_pressed_ = pressed;
+    for (cable::DrumCommand& drum : hoist_commands)
+      drum.lever = stop ? 0.0 : -hoist;
+    if (slung_ != physics::kWorld) {
+      // tag lines: a torque against the load's rocking relative to the hook (about horizontal axes)
+      const core::Vec3 w = world_.angular_velocity(slung_) - world_.angular_velocity(block_);
+      const core::Vec3 torque{-rocking_damping_nms_ * w.x, -rocking_damping_nms_ * w.y, 0.0};
+      world_.add_torque(slung_, torque);
+      world_.add_torque(block_, torque * -1.0);
+    }
+  } else {
+    // the shells' end switches: the closing winch stops on its own when they are shut or fully open
+    const double travel = settings_.grab_open_gap_m - settings_.grab_closed_gap_m;
+    const double shut_rate = hoist_drum.max_rope_speed_mps / (tackle_falls_ * travel);
+    const double grab =
+        grab_limits_.limit(at(grab_slot_), 1.0 - grab_opening(), shut_rate,
+                           hoist_drum.max_rope_acceleration_mps2 / (tackle_falls_ * travel), dt_s);
+    // the closing winch runs at hoist + grab; beyond its full speed both winches give up the excess, so the
+    // grab lever keeps its difference while hoisting
+    const double wanted_close = hoist + grab;
+    const double excess = wanted_close - std::clamp(wanted_close, -1.0, 1.0);
+    const double close = wanted_close - excess;
+    // closing on material the holding winch follows (slack-rope control): it pays out what keeps the lower
+    // block where it rests, so the head comes down to it and the jaws cut in under the grab's weight
+    const double grab_kg = settings_.grab_head_mass_kg + settings_.grab_lower_mass_kg + carried_kg_;
+    const bool resting = limiter_load_n_ < kRestingShare * grab_kg * kG;  // filtered: not a bounce's dip
+    const double follow = resting && grab > 0.0 ? grab / std::max(tackle_falls_ - 1, 1) : 0.0;
+    // a shut grab hanging on its ropes: the holding winch shares the load evenly with the closing winch
+    // (load equalisation), so the closing ropes hold the shells shut and neither pair carries it all
+    holding_share_ +=
+        (pulls.holding_share() - holding_share_) * std::min(1.0, dt_s / settings_.limiter_filter_s);
+    const bool sharing = !resting && grab >= 0.0 && grab_opening() < kShutOpening;
+    const double equalise = sharing ? kShareGain * (holding_share_ - 0.5) : 0.0;
+    hoist_commands[0].lever = stop ? 0.0 : std::clamp(follow - hoist + excess + equalise, -1.0, 1.0);
+    hoist_commands[1].lever = stop ? 0.0 : -close;
+  }
   hoist_->step(dt_s, hoist_commands, *hoist_bodies_);
 
   // the material in the grab hangs on its lower block
@@ -448,6 +511,46 @@ void MobileHarbourCrane::step(const Controls& raw, std::span<const ContainerRef>
   pad_lifted_ = lifted;
 }
 
+void MobileHarbourCrane::sling(std::span<const ContainerRef> liftables) {
+  if (slung_ != physics::kWorld) {
+    // off: only once the load rests (the ropes carry little more than the hook block)
+    const double slung_kg = world_.mass_kg(slung_);
+    if (hoisted_load_n() > (settings_.hook->block_mass_kg + kSlungResting * slung_kg) * kG) {
+      ++slings_refused_;
+      return;
+    }
+    world_.detach(sling_attachment_);
+    slung_ = physics::kWorld;
+    sling_attachment_ = -1;
+    rocking_damping_nms_ = 0.0;
+    return;
+  }
+  // on: the hook within the slinger's reach of plumb over a load's centre and no higher over its top than
+  // the slings reach; the slings hang from the hook's bottom
+  const core::Pose hook = world_.pose(block_);
+  const core::Vec3 eye = hook.to_parent({0, 0, -block_half_extents_m().z});
+  for (const ContainerRef& item : liftables) {
+    const core::Pose load = world_.pose(item.body);
+    const double top = load.position.z + item.half_extents_m.z;
+    const double above = eye.z - top;
+    if (std::hypot(eye.x - load.position.x, eye.y - load.position.y) <= settings_.hook->slinger_reach_m &&
+        above > 0.0 && above <= settings_.hook->sling_length_m) {
+      slung_ = item.body;
+      slung_half_extents_m_ = item.half_extents_m;
+      sling_attachment_ = world_.attach_pivot(block_, item.body, eye);
+      // the rocking mode about the hook: a box's moment of inertia about a horizontal axis through its centre
+      // (the larger of the two), carried to the hook; ω² = m g d / I
+      const core::Vec3& h = item.half_extents_m;
+      const double m = world_.mass_kg(item.body), d = eye.z - load.position.z;
+      const double inertia = m / 3.0 * (std::max(h.x, h.y) * std::max(h.x, h.y) + h.z * h.z) + m * d * d;
+      rocking_damping_nms_ =
+          2.0 * settings_.hook->tag_line_damping_ratio * inertia * std::sqrt(m * kG * d / inertia);
+      return;
+    }
+  }
+  ++slings_refused_;
+}
+
 void MobileHarbourCrane::describe(SceneDescription& d) const {
   d.machine = kind();
   d.entities.push_back({"undercarriage",
@@ -458,23 +561,43 @@ void MobileHarbourCrane::describe(SceneDescription& d) const {
       {"boom",
        "mhc.boom",
        {0.5 * settings_.boom_length_m, settings_.boom_half_width_m, settings_.boom_half_width_m}});
-  d.entities.push_back({"grab head", "mhc.grab_head", settings_.grab_head_half_extents_m});
-  d.entities.push_back({"grab", "mhc.grab", settings_.grab_lower_half_extents_m});
+  if (on_hook()) {
+    d.entities.push_back({"hook", "mhc.hook", block_half_extents_m()});
+  } else {
+    d.entities.push_back({"grab head", "mhc.grab_head", settings_.grab_head_half_extents_m});
+    d.entities.push_back({"grab", "mhc.grab", settings_.grab_lower_half_extents_m});
+  }
   d.indicators.assign(std::begin(kMhcIndicators), std::end(kMhcIndicators));
-  d.rope_count = std::min(luffing_->rope_count() + hoist_->rope_count(), kMaxRopes);
+  d.rope_count =
+      std::min(luffing_->rope_count() + hoist_->rope_count() + (on_hook() ? kSlingLegs : 0), kMaxRopes);
 }
 
 int MobileHarbourCrane::publish(Snapshot& s, int first) const {
   int n = first;
   const core::Pose undercarriage{core::Mat3::identity(), position_ + core::Vec3{0, 0, 2.0}};
-  for (const core::Pose& pose : {undercarriage, world_.pose(house_), world_.pose(boom_),
-                                 world_.pose(grab_head_), world_.pose(grab_lower_)})
+  const int bodies = on_hook() ? 4 : 5;
+  const core::Pose poses[] = {undercarriage, world_.pose(house_), world_.pose(boom_), world_.pose(block_),
+                              on_hook() ? core::Pose{} : world_.pose(grab_lower_)};
+  for (const core::Pose& pose : std::span(poses, static_cast<std::size_t>(bodies)))
     if (n < kMaxEntities) {
       s.entities[static_cast<std::size_t>(n)] = {static_cast<std::uint32_t>(n), 0, pose};
       ++n;
     }
   publish_ropes(*luffing_, s);
   publish_ropes(*hoist_, s);
+  if (on_hook())
+    for (int leg = 0; leg < kSlingLegs; ++leg) {
+      // four legs from the hook to the slung load's top corners (a little in from its edges)
+      std::array<core::Vec3, 2> line;
+      if (slung_ != physics::kWorld) {
+        const core::Vec3 h = slung_half_extents_m_;
+        const double sx = leg == 0 || leg == 3 ? 1.0 : -1.0, sy = leg < 2 ? 1.0 : -1.0;
+        line = {world_.pose(block_).to_parent({0, 0, -block_half_extents_m().z}),
+                world_.pose(slung_).to_parent(
+                    {sx * std::max(h.x - 0.2, 0.0), sy * std::max(h.y - 0.2, 0.0), h.z})};
+      }
+      publish_polyline(std::span(line.data(), slung_ != physics::kWorld ? line.size() : 0), s);
+    }
   const PadForces pads = pad_forces_n();
   const double values[] = {slew_ * 180.0 / std::numbers::pi,
                            boom_angle_rad() * 180.0 / std::numbers::pi,
@@ -488,7 +611,8 @@ int MobileHarbourCrane::publish(Snapshot& s, int first) const {
                            pads[1] / 1000.0,
                            pads[2] / 1000.0,
                            pads[3] / 1000.0,
-                           horn_ ? 1.0 : 0.0};
+                           horn_ ? 1.0 : 0.0,
+                           slung_ != physics::kWorld ? 1.0 : 0.0};
   static_assert(std::size(values) == std::size(kMhcIndicators));
   s.indicator_count = static_cast<int>(std::size(values));
   std::copy(std::begin(values), std::end(values), s.indicators.begin());
@@ -515,6 +639,9 @@ void MobileHarbourCrane::hash_into(core::StateHash& hash) const {
   hash.add(pad_lift_offs_);
   hash.add(holding_share_);
   hash.add(luff_speed_mps_);
+  hash.add(slung_);
+  hash.add(rocking_damping_nms_);
+  hash.add(slings_refused_);
 }
 
 void MobileHarbourCrane::save_state(core::StateWriter& out) const {
@@ -538,6 +665,12 @@ void MobileHarbourCrane::save_state(core::StateWriter& out) const {
   out.put(carried_kg_);
   out.put(holding_share_);
   out.put(luff_speed_mps_);
+  out.put(slung_);
+  out.put(sling_attachment_);
+  out.put(rocking_damping_nms_);
+  out.put(std::array<double, 3>{slung_half_extents_m_.x, slung_half_extents_m_.y, slung_half_extents_m_.z});
+  out.put(sling_pressed_);
+  out.put(slings_refused_);
 }
 
 void MobileHarbourCrane::restore_state(core::StateReader& in) {
@@ -561,6 +694,16 @@ void MobileHarbourCrane::restore_state(core::StateReader& in) {
   in.get(carried_kg_);
   in.get(holding_share_);
   in.get(luff_speed_mps_);
+  in.get(slung_);
+  in.get(sling_attachment_);
+  in.get(rocking_damping_nms_);
+  const auto slung_half = in.get<std::array<double, 3>>();
+  slung_half_extents_m_ = {slung_half[0], slung_half[1], slung_half[2]};
+  in.get(sling_pressed_);
+  in.get(slings_refused_);
+  if ((slung_ != physics::kWorld) != (sling_attachment_ >= 0) ||
+      sling_attachment_ >= world_.attachments_made())
+    throw core::StateError("saved state slings a load this mobile harbour crane cannot have");
   update_tool();
 }
 

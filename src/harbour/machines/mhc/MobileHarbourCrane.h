@@ -18,13 +18,28 @@
 namespace harbour::sim {
 
 /// The MHC cab's controls as shipped (data/machines/mhc.yaml declares the same): slew, luff, hoist and grab
-/// levers, emergency stop and horn.
+/// levers, the slinger's call (hook operation), emergency stop and horn.
 ControlTable mhc_control_table();
 
 /// One point of the load-moment limiter's capacity chart: what may hang at a radius.
 struct CapacityPoint {
   double radius_m = 0.0;
   double capacity_t = 0.0;
+};
+
+/// The hook block the MHC works general cargo with instead of its grab (the grab taken off, the holding and
+/// closing ropes reeved to the block; settings): both winches hoist it together, and a slinger on the ground
+/// slings a load onto it or off it when the operator asks (the `sling` button).
+struct MhcHookSettings {
+  cable::ReevingSettings hoist;  ///< bodies [house, boom, hook]; the holding drum, then the closing drum
+  double block_mass_kg = 3500.0;
+  core::Vec3 block_half_extents_m{0.5, 0.8, 0.9};
+  double slinger_reach_m = 1.0;  ///< [m] the hook this near plumb over a load's centre can be slung to it
+  double sling_length_m = 5.0;   ///< [m] the longest slings: the hook at most this far above the load's top
+  /// [-] the slinger's tag lines and the slings' friction on the hook damp a slung load's rocking about the
+  /// hook, as a share of its rocking mode's critical damping
+  double tag_line_damping_ratio = 0.1;
+  std::vector<CapacityPoint> capacity_chart{{12.0, 63.0}, {25.0, 50.0}, {48.0, 22.0}};
 };
 
 /// A mobile harbour crane with a 4-rope grab (settings, from data/machines/mhc.yaml). Frames: the machine's
@@ -61,7 +76,8 @@ struct MhcSettings {
   bulk::GrabSettings grab;
   double hoist_upper_limit_m = 40.0;  ///< [m] grab head centre height the upper limit switch stops
   double hoist_lower_limit_m = -25.0;
-  // load-moment limiter
+  std::optional<MhcHookSettings> hook;  ///< a machine without one works only with its grab
+  // load-moment limiter (the grab curve)
   std::vector<CapacityPoint> capacity_chart{{12.0, 64.0}, {30.0, 64.0}, {48.0, 40.0}};
   double limiter_slow_from = 0.9;  ///< [-] share of the chart above which moment-raising moves slow down
   double limiter_filter_s = 0.5;   ///< [s] time constant of the load signal's low-pass (rope bounce)
@@ -74,10 +90,11 @@ struct MhcSettings {
 
 /// Where the MHC stands and how it starts.
 struct MhcStart {
-  core::Vec3 position_m;   ///< [m] slewing axis at quay level
-  double slew_rad = 0.0;   ///< house x from world x, about z
-  double boom_rad = 0.8;   ///< boom angle above horizontal
-  double grab_z_m = 10.0;  ///< [m] grab head centre height
+  core::Vec3 position_m;      ///< [m] slewing axis at quay level
+  double slew_rad = 0.0;      ///< house x from world x, about z
+  double boom_rad = 0.8;      ///< boom angle above horizontal
+  double hanging_z_m = 10.0;  ///< [m] centre height of the grab's head or the hook block
+  bool on_hook = false;       ///< the hook block instead of the grab (MhcSettings::hook)
 };
 
 /// The vertical forces on the four outrigger pads [N] (pads in order (+x,+y), (-x,+y), (-x,-y), (+x,-y) of
@@ -92,7 +109,8 @@ PadForces pad_forces(double down_n, const core::Vec3& moment_nm, double a_m, dou
 /// A mobile harbour crane on the physics world: the house slews on a hinge on the fixed undercarriage, the
 /// boom luffs on a hinge at its foot held by the luffing ropes, the 4-rope grab hangs on its holding and
 /// closing ropes (cable model); its shells open and shut as the closing ropes pull the lower block towards
-/// the head against the holding ropes.
+/// the head against the holding ropes. On its hook (MhcStart::on_hook) the ropes carry the hook block and a
+/// load slung to it hangs from the hook on a pivot (its slings).
 class MobileHarbourCrane final : public Machine {
  public:
   MobileHarbourCrane(physics::PhysicsWorld& world, const MhcSettings& settings, const MhcStart& start);
@@ -101,7 +119,7 @@ class MobileHarbourCrane final : public Machine {
   const char* kind() const override { return "mhc"; }
   const ControlTable& control_table() const override { return settings_.controls; }
   void step(const Controls& controls, std::span<const ContainerRef> liftables, double dt_s) override;
-  std::optional<physics::BodyId> held_item() const override { return std::nullopt; }
+  std::optional<physics::BodyId> held_item() const override;
   double attachment_bottom_z_m() const override;
   double pendulum_length_m() const override;
   std::span<const WindArea> wind_areas() const override { return wind_areas_; }
@@ -113,7 +131,7 @@ class MobileHarbourCrane final : public Machine {
   void describe(SceneDescription& scene) const override;
   int publish(Snapshot& snapshot, int entities) const override;
   void drain_events(StepEvents& events) override;
-  const BulkTool* bulk_tool() const override { return &tool_; }
+  const BulkTool* bulk_tool() const override { return on_hook() ? nullptr : &tool_; }
   void carry_bulk(double mass_kg) override { carried_kg_ = mass_kg; }
   double carried_bulk_kg() const { return carried_kg_; }
   bool has_fault(MachineFault fault) const override { return fault == MachineFault::kHoistBrake; }
@@ -129,6 +147,9 @@ class MobileHarbourCrane final : public Machine {
   /// Horizontal distance from the slewing axis to the boom head's sheaves [m].
   double radius_m() const;
   core::Vec3 boom_head_m() const;
+  /// Where the hoist's falls leave the boom head's sheaves (their mean, horizontally; the highest): what the
+  /// grab or hook hangs plumb under at rest [m].
+  core::Vec3 suspension_point_m() const;
   /// What hangs on the ropes below the boom head [N, vertical] and the chart's capacity at this radius [t].
   double hoisted_load_n() const;
   double capacity_t() const;
@@ -137,8 +158,14 @@ class MobileHarbourCrane final : public Machine {
   /// The limiter's load signal [N]: hoisted_load_n() low-passed over limiter_filter_s.
   double limiter_load_n() const { return limiter_load_n_; }
   std::uint32_t limiter_trips() const { return limiter_trips_; }
-  /// The grab's lower block (its shells' hinge) in the world [m].
-  core::Vec3 grab_lower_position_m() const;
+  /// Working on the hook block instead of the grab.
+  bool on_hook() const { return settings_.hook && start_on_hook_; }
+  /// Where the load hangs in the world [m]: the grab's lower block (its shells' hinge), or on the hook what
+  /// is slung to it (the hook block when nothing is).
+  core::Vec3 load_position_m() const;
+  /// Slings refused since the start: the hook not over a load within the slinger's reach, or a slung load
+  /// not yet resting when asked to unsling it.
+  std::uint32_t slings_refused() const { return slings_refused_; }
   /// Shell opening [0 shut, 1 fully open].
   double grab_opening() const;
   /// Pad forces from the last physics step; lift-offs counted when a pad's force first goes below zero.
@@ -155,7 +182,9 @@ class MobileHarbourCrane final : public Machine {
   const cable::HoistSystem& luffing() const { return *luffing_; }
   physics::BodyId house_body() const { return house_; }
   physics::BodyId boom_body() const { return boom_; }
-  physics::BodyId grab_head_body() const { return grab_head_; }
+  /// The body hanging on the ropes under the boom head: the grab's head or the hook block.
+  physics::BodyId block_body() const { return block_; }
+  /// The grab's lower block (kWorld on the hook).
   physics::BodyId grab_lower_body() const { return grab_lower_; }
   int slew_hinge() const { return slew_hinge_; }
   int boom_hinge() const { return boom_hinge_; }
@@ -167,6 +196,14 @@ class MobileHarbourCrane final : public Machine {
   /// Brings the machine to rest on its ropes before the exercise starts (kSettleSteps of the world).
   void settle();
   void update_tool();
+  /// The slinger slings a load within reach under the hook, or takes a resting one off.
+  void sling(std::span<const ContainerRef> liftables);
+  /// The hoist's reeving: to the grab, or to the hook block.
+  const cable::ReevingSettings& hoisting() const {
+    return on_hook() ? settings_.hook->hoist : settings_.hoist;
+  }
+  /// Half extents of the body hanging on the ropes (grab head or hook block).
+  const core::Vec3& block_half_extents_m() const;
   /// The vertical pull of the falls below the boom head [N], and the holding ropes' part of it.
   struct FallPulls {
     double holding_n = 0.0, total_n = 0.0;
@@ -176,10 +213,11 @@ class MobileHarbourCrane final : public Machine {
   static constexpr int kSettleSteps = 4000;
   physics::PhysicsWorld& world_;
   MhcSettings settings_;
-  int slew_slot_, luff_slot_, hoist_slot_, grab_slot_, stop_slot_, horn_slot_;
+  bool start_on_hook_;
+  int slew_slot_, luff_slot_, hoist_slot_, grab_slot_, sling_slot_, stop_slot_, horn_slot_;
   core::Vec3 position_;
-  physics::BodyId house_, boom_, grab_head_, grab_lower_;
-  int slew_hinge_, boom_hinge_, grab_slider_;
+  physics::BodyId house_, boom_, block_, grab_lower_ = physics::kWorld;
+  int slew_hinge_, boom_hinge_, grab_slider_ = -1;
   Drive slew_drive_;
   LimitSwitches luff_limits_, hoist_limits_;
   LimitSwitches grab_limits_;  // on the shells' shut share: 0 fully open, 1 shut
@@ -199,12 +237,19 @@ class MobileHarbourCrane final : public Machine {
   bool horn_ = false, hoist_brake_fault_ = false, limiter_stopping_ = false, limiter_armed_ = true;
   bool pad_lifted_ = false;
   std::uint32_t limiter_trips_ = 0, pad_lift_offs_ = 0;
-  std::array<WindArea, 3> wind_areas_;
+  std::vector<WindArea> wind_areas_;
   std::array<core::Vec3, 9> shell_points_;  // contact points on the shells' underside, lower block frame
   BulkTool tool_;
   double carried_kg_ = 0.0;      // material in the grab: its weight hangs on the lower block
   double holding_share_ = 0.5;   // the holding ropes' share of the load, low-passed like the limiter's load
   double luff_speed_mps_ = 0.0;  // the boom head's radial speed the luffing winch was last commanded
+  // on the hook: what is slung to it (its body, its pivot attachment), the sling button's last state
+  physics::BodyId slung_ = physics::kWorld;
+  int sling_attachment_ = -1;
+  double rocking_damping_nms_ = 0.0;  // [N m s] on the slung load's rocking relative to the hook
+  core::Vec3 slung_half_extents_m_;   // the slung load's shape (its slings are drawn to its corners)
+  bool sling_pressed_ = false;
+  std::uint32_t slings_refused_ = 0;
 };
 
 }  // namespace harbour::sim

@@ -1,0 +1,76 @@
+#include "harbour/sim/BoomSteering.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "harbour/machines/mhc/MobileHarbourCrane.h"
+
+namespace harbour::sim {
+namespace {
+
+constexpr double kCreepGain_per_s = 0.25;   // head speed towards the target per metre off it
+constexpr double kSwingGain_per_s = 0.6;    // head speed towards the load per metre of swing
+constexpr double kCalm_m = 0.35;            // swing at which the load counts as calm
+constexpr double kSwingFilter_s = 1.0;      // time constant of the swing and height the levers follow
+constexpr double kHeightBand_m = 0.3;       // height error the hoist leaves alone
+constexpr double kHeightGain_per_m = 0.25;  // hoist lever per metre beyond it
+constexpr double kLeverTravel_s = 1.0;      // a lever from neutral to full
+
+double wrap(double a) {
+  return std::remainder(a, 2.0 * std::numbers::pi);
+}
+
+}  // namespace
+
+BoomSteering::Target BoomSteering::target_of(const MobileHarbourCrane& crane, const core::Vec3& point) {
+  const core::Vec3 d = point - crane.position_m();
+  return {std::atan2(d.y, d.x), std::hypot(d.x, d.y)};
+}
+
+void BoomSteering::observe(const MobileHarbourCrane& crane, double decision_s, bool restart) {
+  const core::Vec3 head = crane.suspension_point_m(), load = crane.load_position_m();
+  const core::Vec3 swing{load.x - head.x, load.y - head.y, 0.0};
+  const double smoothing = restart ? 1.0 : decision_s / (kSwingFilter_s + decision_s);
+  swing_m_ += (swing - swing_m_) * smoothing;
+  held_bottom_m_ += (crane.attachment_bottom_z_m() - held_bottom_m_) * smoothing;
+}
+
+bool BoomSteering::steer(const MobileHarbourCrane& crane, const Target& target, double tolerance_m,
+                         double& slew, double& luff) const {
+  // the load hangs plumb under the falls at rest: that point is steered over the target
+  const core::Vec3 head = crane.suspension_point_m(), p = crane.position_m();
+  const double r = std::hypot(head.x - p.x, head.y - p.y);
+  const core::Vec3 radial = core::Vec3{head.x - p.x, head.y - p.y, 0.0} * (1.0 / std::max(r, 1.0));
+  const core::Vec3 tangential{-radial.y, radial.x, 0.0};  // + slew: anticlockwise seen from above
+  const MhcSettings& s = crane.settings();
+  const double e_t = wrap(target.slew_rad - crane.slew_rad()) * r, e_r = target.radius_m - r;
+  const double s_t = dot(swing_m_, tangential), s_r = dot(swing_m_, radial);
+  const double v_t_max = s.slew_drive.max_speed_mps * r, v_r_max = crane.luffing_radius_rate_mps();
+  const double v_t = std::clamp(kCreepGain_per_s * e_t, -v_t_max, v_t_max) + kSwingGain_per_s * s_t;
+  const double v_r = std::clamp(kCreepGain_per_s * e_r, -v_r_max, v_r_max) + kSwingGain_per_s * s_r;
+  slew = std::clamp(v_t / v_t_max, -1.0, 1.0);
+  luff = std::clamp(-v_r / v_r_max, -1.0, 1.0);  // + raises the boom: less radius
+  const double off = std::hypot(e_t + s_t, e_r + s_r);
+  return off < tolerance_m && std::hypot(s_t, s_r) < kCalm_m;
+}
+
+double BoomSteering::hold_height(double z_m) const {
+  const double error = z_m - held_bottom_m_;
+  return std::clamp(kHeightGain_per_m * std::copysign(std::max(0.0, std::abs(error) - kHeightBand_m), error),
+                    -1.0, 1.0);
+}
+
+Controls hand_levers(const ControlTable& table, const Controls& last, double decision_s,
+                     std::initializer_list<std::pair<const char*, double>> wanted) {
+  Controls out = table.neutral();
+  const double step = decision_s / kLeverTravel_s;
+  for (const auto& [label, value] : wanted)
+    if (const int slot = table.find(label); slot >= 0) {
+      const double was = last.value[static_cast<std::size_t>(slot)];
+      out.value[static_cast<std::size_t>(slot)] = std::clamp(value, was - step, was + step);
+    }
+  return out;
+}
+
+}  // namespace harbour::sim

@@ -1,0 +1,48 @@
+#pragma once
+
+#include <initializer_list>
+#include <utility>
+
+#include "harbour/core/Vec3.h"
+#include "harbour/sim/Controls.h"
+
+namespace harbour::sim {
+
+class MobileHarbourCrane;
+
+/// How a scripted operator drives a slewing, luffing crane's boom head: over a point while it damps the
+/// load's swing (the head follows the load's offset from plumb under the falls), and the load at a height
+/// held gently. It sees the swing and the height through a low-pass: the boom's bounce on its ropes (about 1
+/// Hz) moves the head to and fro under the load, and levers that followed it would pump the bounce.
+class BoomSteering {
+ public:
+  /// Where a point lies from the slewing axis.
+  struct Target {
+    double slew_rad = 0.0, radius_m = 0.0;
+  };
+  static Target target_of(const MobileHarbourCrane& crane, const core::Vec3& point);
+
+  /// Takes in what the crane shows now, once a decision (every `decision_s`); `restart`: the filters start
+  /// again from it (the first decision, a take-over).
+  void observe(const MobileHarbourCrane& crane, double decision_s, bool restart);
+  /// Slew and luff levers that bring the boom head over `target` while they damp the load's swing; true when
+  /// the load is within `tolerance_m` of plumb over it and calm.
+  bool steer(const MobileHarbourCrane& crane, const Target& target, double tolerance_m, double& slew,
+             double& luff) const;
+  /// The hoist lever that holds the attachment's bottom at `z_m` (a low gain beyond a dead band, no step at
+  /// its edge: the load bounces on its ropes if the hoist hunts).
+  double hold_height(double z_m) const;
+  /// The attachment's bottom height as it sees it [m] (low-passed).
+  double bottom_m() const { return held_bottom_m_; }
+
+ private:
+  core::Vec3 swing_m_;  // the load's offset from plumb under the falls, low-passed
+  double held_bottom_m_ = 0.0;
+};
+
+/// Levers moved as a hand moves them: each labelled lever goes towards its wanted value by at most
+/// `decision_s / lever_travel_s` of full travel from where it was (`last`); the others stay neutral.
+Controls hand_levers(const ControlTable& table, const Controls& last, double decision_s,
+                     std::initializer_list<std::pair<const char*, double>> wanted);
+
+}  // namespace harbour::sim

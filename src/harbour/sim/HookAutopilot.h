@@ -1,0 +1,48 @@
+#pragma once
+
+#include <string>
+
+#include "harbour/sim/BoomSteering.h"
+#include "harbour/sim/Evaluation.h"
+#include "harbour/sim/Pilot.h"
+
+namespace harbour::sim {
+
+class MobileHarbourCrane;
+
+/// A scripted hook operator for general-cargo moves on a slewing, luffing crane: hoists the hook to travel
+/// height, brings it over the piece's centre (the head damping the hook's swing), lowers it to just above the
+/// piece's top and calls the slinger, lifts the piece gently until its slings take it and then clear of the
+/// quay, slews and luffs it over its target, lowers it (slowly for the last metre and a half), calls the
+/// slinger to unsling it once it rests, and goes on to the next move.
+class HookAutopilot final : public Pilot {
+ public:
+  /// Why it cannot drive `exercise` ("" when it can): moves for the MHC on its hook.
+  static std::string why_cannot_drive(const ExerciseSettings& exercise);
+  /// Throws std::invalid_argument with why_cannot_drive() when it cannot.
+  explicit HookAutopilot(const ExerciseSettings& exercise);
+
+  /// The controls for the next step (decided 50 times a second, held in between).
+  Controls next(const Simulation& simulation) override;
+  /// What it is doing now: to piece, lower, sling, lift, to target, set down, unsling, done.
+  const char* activity() const override;
+  /// Takes over a running exercise: carries a slung piece to its target, or goes to the next piece.
+  void resume(const Simulation& simulation, int moves_done) override;
+
+ private:
+  enum class Phase { kToPiece, kLower, kSling, kLift, kToTarget, kSetDown, kUnsling, kDone };
+  Controls decide(const Simulation& simulation, const MobileHarbourCrane& crane);
+  /// The scenario's index of the move's piece.
+  std::size_t piece_index(const Simulation& simulation) const;
+
+  ExerciseSettings exercise_;
+  Phase phase_ = Phase::kToPiece;
+  std::size_t move_ = 0;  // the move it is making
+  double phase_start_s_ = 0.0;
+  double resting_since_s_ = 0.0;  // setting down: since when the piece rests
+  BoomSteering steering_;
+  Controls last_{};
+  bool decided_ = false;
+};
+
+}  // namespace harbour::sim

@@ -1,0 +1,206 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "harbour/io/ExerciseFiles.h"
+#include "harbour/machines/mhc/MobileHarbourCrane.h"
+#include "harbour/sim/Evaluation.h"
+#include "harbour/sim/HookAutopilot.h"
+
+namespace harbour::sim {
+namespace {
+
+constexpr double kG = 9.80665;
+
+ExerciseSettings hook_lift() {
+  return io::load_exercise(HARBOUR_DATA_DIR "/exercises/mhc_hook_lift.yaml");
+}
+
+const MobileHarbourCrane& mhc(const Simulation& sim) {
+  return dynamic_cast<const MobileHarbourCrane&>(sim.machine());
+}
+
+Controls levers(const Simulation& sim, std::initializer_list<std::pair<const char*, double>> values) {
+  Controls c = sim.control_table().neutral();
+  for (const auto& [label, value] : values)
+    c.value[static_cast<std::size_t>(sim.control_table().find(label))] = value;
+  return c;
+}
+
+void run(Simulation& sim, double seconds, const Controls& controls) {
+  for (int k = 0; k < static_cast<int>(std::lround(seconds / Simulation::kStep_s)); ++k)
+    sim.step(controls);
+  ASSERT_FALSE(sim.diverged()) << sim.divergence();
+}
+
+// Lets the autopilot drive until it starts `activity` (or 300 s pass).
+void drive_until(Simulation& sim, HookAutopilot& pilot, const std::string& activity,
+                 Evaluator* evaluator = nullptr) {
+  for (int k = 0; k < 300000 && std::string(pilot.activity()) != activity; ++k) {
+    const Controls c = pilot.next(sim);
+    sim.step(c);
+    if (evaluator) evaluator->observe(sim, c);
+  }
+  ASSERT_EQ(std::string(pilot.activity()), activity);
+  ASSERT_FALSE(sim.diverged()) << sim.divergence();
+}
+
+TEST(MhcHook, TheSlingerSlingsOnlyUnderTheHookAndTakesOffOnlyAPieceAtRest) {
+  const ExerciseSettings exercise = hook_lift();
+  Simulation sim(exercise.scenario);
+  // the hook over the quay 20 m from the piece: the slinger cannot reach
+  run(sim, 0.1, levers(sim, {{"sling", 1.0}}));
+  EXPECT_FALSE(sim.machine().held_item());
+  EXPECT_EQ(mhc(sim).slings_refused(), 1u);
+  // plumb over its centre, 1 m above its top
+  HookAutopilot pilot(exercise);
+  drive_until(sim, pilot, "sling");
+  run(sim, 0.1, levers(sim, {{"sling", 0.0}}));
+  run(sim, 0.1, levers(sim, {{"sling", 1.0}}));
+  ASSERT_EQ(sim.machine().held_item(), sim.container_body(0));
+  EXPECT_EQ(mhc(sim).slings_refused(), 1u);
+  // lifted: the piece hangs and the slinger will not take it off
+  run(sim, 10.0, levers(sim, {{"hoist", 0.2}}));
+  EXPECT_GT(sim.world().pose(sim.container_body(0)).position.z, 1.75 + 0.5);
+  run(sim, 0.1, levers(sim, {{"sling", 0.0}}));
+  run(sim, 0.1, levers(sim, {{"sling", 1.0}}));
+  EXPECT_EQ(sim.machine().held_item(), sim.container_body(0));
+  EXPECT_EQ(mhc(sim).slings_refused(), 2u);
+  // set down again and resting: off
+  run(sim, 14.0, levers(sim, {{"hoist", -0.2}}));
+  EXPECT_NEAR(sim.world().pose(sim.container_body(0)).position.z, 1.75, 0.01);
+  run(sim, 0.1, levers(sim, {{"sling", 0.0}}));
+  run(sim, 0.1, levers(sim, {{"sling", 1.0}}));
+  EXPECT_FALSE(sim.machine().held_item());
+}
+
+// The load on the falls over 5 s braked (the load's bounce on the ropes, ~0.7 s, averages out).
+double mean_hoisted_load_n(Simulation& sim) {
+  double sum = 0.0;
+  constexpr int kSteps = 5000;
+  for (int k = 0; k < kSteps; ++k) {
+    sim.step(sim.control_table().neutral());
+    sum += mhc(sim).hoisted_load_n();
+  }
+  return sum / kSteps;
+}
+
+TEST(MhcHook, ASlungPieceHangsItsWeightOnTheRopesAndTheHookCurveLimitsIt) {
+  const ExerciseSettings exercise = hook_lift();
+  Simulation sim(exercise.scenario);
+  HookAutopilot pilot(exercise);
+  drive_until(sim, pilot, "sling");
+  run(sim, 5.0, sim.control_table().neutral());
+  const double empty_n = mean_hoisted_load_n(sim);
+  run(sim, 0.1, levers(sim, {{"sling", 1.0}}));
+  ASSERT_TRUE(sim.machine().held_item());
+  run(sim, 8.0, levers(sim, {{"hoist", 0.2}}));
+  run(sim, 10.0, sim.control_table().neutral());  // braked
+  const double piece_kg = exercise.scenario.containers[0].gross_mass_kg;
+  // the piece's weight came onto the falls (the hook rose 1.6 m: 12.8 m less rope hangs, 57 kg of it)
+  const double added_n = mean_hoisted_load_n(sim) - empty_n;
+  EXPECT_NEAR(added_n, piece_kg * kG, 0.01 * piece_kg * kG);
+  std::printf("the falls took %.2f kN of the piece's %.2f kN\n", added_n / 1000, piece_kg * kG / 1000);
+  // the hook curve: 63 t to 12 m, 50 t at 25 m
+  const double r = mhc(sim).radius_m();
+  ASSERT_GT(r, 12.0);
+  ASSERT_LT(r, 25.0);
+  EXPECT_NEAR(mhc(sim).capacity_t(), 63.0 + (r - 12.0) / 13.0 * (50.0 - 63.0), 1e-9);
+}
+
+struct Attempt {
+  Metrics metrics;
+  Score score;
+  bool finished = false;
+  core::Vec3 placed_m;
+};
+
+Attempt attempt(const ExerciseSettings& exercise, bool drop_it = false) {
+  Simulation sim(exercise.scenario);
+  Evaluator evaluator(exercise);
+  HookAutopilot pilot(exercise);
+  const auto steps = static_cast<std::int64_t>(exercise.rules.time_limit_s / Simulation::kStep_s);
+  for (std::int64_t k = 0; k < steps && !evaluator.finished(); ++k) {
+    Controls c = pilot.next(sim);
+    // the bad operator lets the piece down at full speed onto its place
+    if (drop_it && std::string(pilot.activity()) == "set down")
+      c.value[static_cast<std::size_t>(sim.control_table().find("hoist"))] = -1.0;
+    sim.step(c);
+    evaluator.observe(sim, c);
+    EXPECT_FALSE(sim.diverged());
+  }
+  return {evaluator.metrics(), evaluator.score(), evaluator.finished(),
+          sim.world().pose(sim.container_body(0)).position};
+}
+
+TEST(MhcHook, TheAutopilotSetsThePieceDownGentlyOnItsPlace) {
+  const ExerciseSettings exercise = hook_lift();
+  const Attempt a = attempt(exercise);
+  ASSERT_TRUE(a.finished);
+  EXPECT_EQ(a.metrics.moves_completed, 1);
+  EXPECT_TRUE(a.score.passed);
+  const core::Vec3 target = exercise.moves[0].target_m;
+  EXPECT_LT(std::hypot(a.placed_m.x - target.x, a.placed_m.y - target.y), exercise.moves[0].tolerance_m);
+  EXPECT_NEAR(a.placed_m.z, target.z, 0.01);
+  EXPECT_EQ(a.metrics.collisions, 0);
+  EXPECT_EQ(a.metrics.hard_landings, 0);
+  EXPECT_EQ(a.metrics.overloads, 0);
+  EXPECT_EQ(a.metrics.limiter_trips, 0);
+  EXPECT_EQ(a.metrics.pad_lift_offs, 0);
+  ASSERT_EQ(a.metrics.landing_sway_m.size(), 1u);
+  EXPECT_LT(a.metrics.landing_sway_m[0], exercise.rules.sway_limit_m);
+  EXPECT_LT(a.metrics.worst_landing_mps, 0.15);
+  std::printf("hook lift: %.1f s, landing %.3f m/s, sway %.3f m, placed %.3f m off, score %.0f\n",
+              a.metrics.time_s, a.metrics.worst_landing_mps, a.metrics.landing_sway_m[0],
+              std::hypot(a.placed_m.x - target.x, a.placed_m.y - target.y), a.score.total);
+}
+
+TEST(MhcHook, LettingThePieceDownAtFullSpeedIsAHardLanding) {
+  const ExerciseSettings exercise = hook_lift();
+  const Attempt a = attempt(exercise, true);
+  EXPECT_GE(a.metrics.hard_landings, 1);
+  EXPECT_GT(a.metrics.worst_landing_mps, exercise.rules.hard_landing_mps);
+  double points = 0.0;
+  for (const Score::Deduction& d : a.score.deductions)
+    if (d.reason == "hard landing") points += d.points;
+  EXPECT_EQ(points, a.metrics.hard_landings * exercise.rules.points_hard_landing);
+}
+
+TEST(MhcHook, AKeyframeWithAPieceOnTheHookContinuesBitForBit) {
+  const ExerciseSettings exercise = hook_lift();
+  Simulation sim(exercise.scenario);
+  HookAutopilot pilot(exercise);
+  drive_until(sim, pilot, "to target");
+  ASSERT_TRUE(sim.machine().held_item());
+  const std::vector<std::uint8_t> keyframe = sim.save_state();
+  const Controls slewing = levers(sim, {{"slew", 0.6}, {"hoist", 0.3}});
+  run(sim, 5.0, slewing);
+  Simulation restored(exercise.scenario);
+  restored.restore_state(keyframe);
+  ASSERT_EQ(restored.machine().held_item(), restored.container_body(0));
+  run(restored, 5.0, slewing);
+  EXPECT_EQ(restored.state_hash(), sim.state_hash());
+}
+
+TEST(MhcHook, ATakeOverWithThePieceSlungCarriesItToItsPlace) {
+  const ExerciseSettings exercise = hook_lift();
+  Simulation sim(exercise.scenario);
+  Evaluator evaluator(exercise);
+  HookAutopilot trainee(exercise);
+  drive_until(sim, trainee, "to target", &evaluator);
+  run(sim, 3.0, levers(sim, {{"slew", 0.5}}));  // the trainee slews on, then the instructor takes over
+  HookAutopilot instructor(exercise);
+  instructor.resume(sim, evaluator.metrics().moves_completed);
+  EXPECT_EQ(std::string(instructor.activity()), "lift");
+  for (int k = 0; k < 200000 && !evaluator.finished(); ++k) {
+    const Controls c = instructor.next(sim);
+    sim.step(c);
+    evaluator.observe(sim, c);
+  }
+  EXPECT_TRUE(evaluator.finished());
+  EXPECT_EQ(evaluator.metrics().moves_completed, 1);
+}
+
+}  // namespace
+}  // namespace harbour::sim
