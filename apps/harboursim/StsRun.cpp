@@ -97,6 +97,7 @@ void print_evaluation(const sim::Metrics& m, const sim::Score& s, bool container
   if (m.bulk) {
     std::printf("  delivered            %8.2f t (%.0f t/h)\n", m.delivered_t, m.tonnes_per_hour);
     std::printf("  handled              %8.2f t\n", m.handled_t);
+    if (m.trim) std::printf("  pile top             %8.2f m\n", m.pile_top_m);
     std::printf("  spilled              %8.2f t (%.1f %% of handled)\n", m.spilled_t, m.spilled_percent);
     for (std::size_t n = 0; n < m.bite_fill.size(); ++n)
       std::printf("  bite %zu                 %5.0f %% full, swing at release %.2f m\n", n + 1,

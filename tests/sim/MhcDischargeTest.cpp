@@ -204,3 +204,52 @@ TEST(MhcDischarge, TheHoldMovesWithTheVessel) {
 
 }  // namespace
 }  // namespace harbour::sim
+
+namespace harbour::sim {
+namespace {
+
+ExerciseSettings pile_trim() {
+  return io::load_exercise(HARBOUR_DATA_DIR "/exercises/mhc_pile_trim.yaml");
+}
+
+TEST(MhcPileTrim, TheAutopilotTakesThePilesTopDownAndKeepsItsMaterialOnTheStockpile) {
+  // dig where the pile stands highest, drop the bite where the stockpile lies lowest, again until its top is
+  // down to the goal: the material stays on the stockpile, the volume balance exact
+  const ExerciseSettings exercise = pile_trim();
+  const Simulation start(exercise.scenario);
+  const double top_at_start = pile_top_m(*start.bulk(), exercise.trim->grid_index);
+  EXPECT_GT(top_at_start, exercise.trim->top_m + 2.0);
+  const Attempt a = drive(exercise, {}, limit_of(exercise));
+  ASSERT_TRUE(a.finished);
+  EXPECT_TRUE(a.metrics.trim);
+  EXPECT_LE(a.metrics.pile_top_m, exercise.trim->top_m);
+  EXPECT_LE(a.metrics.time_s, exercise.rules.time_limit_s);
+  EXPECT_GE(a.metrics.bite_fill.size(), 3u);
+  EXPECT_EQ(a.metrics.spilled_t, 0.0);
+  EXPECT_NEAR(a.back_in_hold_t, a.metrics.handled_t, 1e-9 * a.metrics.handled_t);  // all landed on the pile
+  EXPECT_LT(a.worst_discrepancy_m3, 1e-9 * a.added_m3);
+  EXPECT_EQ(a.metrics.overloads, 0);
+  EXPECT_EQ(a.metrics.limiter_trips, 0);
+  EXPECT_EQ(a.metrics.pad_lift_offs, 0);
+  EXPECT_TRUE(a.score.passed);
+  EXPECT_EQ(deducted(a.score, "decimetre above the trim height"), 0.0);
+  std::printf("trim: %.2f m -> %.2f m in %.0f s, %zu bites, %.1f t moved, score %.0f\n", top_at_start,
+              a.metrics.pile_top_m, a.metrics.time_s, a.metrics.bite_fill.size(), a.metrics.handled_t,
+              a.score.total);
+}
+
+TEST(MhcPileTrim, StoppingWithThePileStillHighCostsPerDecimetre) {
+  // one bite in a minute: the top is still above the goal, each decimetre over it deducted
+  const ExerciseSettings exercise = pile_trim();
+  const Attempt a = drive(exercise, {}, 60.0);
+  EXPECT_FALSE(a.finished);
+  ASSERT_GT(a.metrics.pile_top_m, exercise.trim->top_m);
+  EXPECT_NEAR(deducted(a.score, "decimetre above the trim height"),
+              std::ceil((a.metrics.pile_top_m - exercise.trim->top_m) * 10.0 - 1e-9) *
+                  exercise.rules.points_per_trim_dm,
+              1e-9);
+  EXPECT_FALSE(a.score.passed);
+}
+
+}  // namespace
+}  // namespace harbour::sim

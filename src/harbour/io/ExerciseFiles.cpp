@@ -358,6 +358,22 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
     goal.tonnes = f.number(*d_node, "tonnes", at, 0.0, 1e6, true);
     e.deliver = goal;
   }
+  if (const auto t_node = f.optional_map(x, "trim", "exercise")) {
+    // a bulk goal: a pile's top brought down to a height
+    const std::string at = "exercise.trim";
+    if (!s.bulk) f.fail(*t_node, at, "a trim goal needs the exercise's bulk section");
+    if (e.deliver) f.fail(*t_node, at, "an exercise has a delivery goal or a trim goal, not both");
+    sim::TrimGoal goal;
+    goal.grid = f.text(*t_node, "grid", at);
+    const auto& grids = s.bulk->grids;
+    const auto found =
+        std::find_if(grids.begin(), grids.end(), [&](const auto& g) { return g.name == goal.grid; });
+    if (found == grids.end() || found->on_vessel || found->outflow_m3_per_s > 0.0)
+      f.fail((*t_node)["grid"], at + ".grid", "no pile on the quay named '" + goal.grid + "'");
+    goal.grid_index = static_cast<int>(found - grids.begin());
+    goal.top_m = f.number(*t_node, "top_m", at, -100.0, 100.0);
+    e.trim = goal;
+  }
 
   if (const auto w_node = f.optional_map(x, "weather", "exercise")) {
     const YAML::Node& w = *w_node;
@@ -441,7 +457,8 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
           {"poor_bite", &rules.points_poor_bite},
           {"limiter_trip", &rules.points_limiter_trip},
           {"pad_lift_off", &rules.points_pad_lift_off},
-          {"harsh_move", &rules.points_harsh_move}};
+          {"harsh_move", &rules.points_harsh_move},
+          {"decimetre_above_trim", &rules.points_per_trim_dm}};
       for (const auto& entry : d) {
         const std::string key = entry.first.as<std::string>();
         const auto known =
@@ -451,7 +468,7 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
                  "unknown deduction (collision, hard_landing, landing_while_swaying, twistlock_misuse, "
                  "rope_overload, limit_switch_hit, emergency_stop, gantry_travel_without_horn, "
                  "move_not_completed, minute_over_time_limit, tonne_spilled, tonne_short, poor_bite, "
-                 "limiter_trip, pad_lift_off, harsh_move)");
+                 "limiter_trip, pad_lift_off, harsh_move, decimetre_above_trim)");
         *known->second = f.number(d, key, at, 0.0, 100.0);
       }
     }

@@ -3,13 +3,16 @@
 #include <algorithm>
 #include <cmath>
 
+#include "harbour/bulk/PileMeasure.h"
+
 namespace harbour::sim {
 namespace {
 
 // a grab letting go of this share of its capacity at once opened to discharge
 constexpr double kReleasedShare = 0.05;
-constexpr double kAxisSample_s = 0.1;  // the motions' speeds sampled this often for their jerk
-constexpr double kMoving_mps = 0.05;   // a motion slower than this (now and at the last sample) stands
+constexpr double kAxisSample_s = 0.1;   // the motions' speeds sampled this often for their jerk
+constexpr double kMoving_mps = 0.05;    // a motion slower than this (now and at the last sample) stands
+constexpr double kPileMeasure_s = 0.5;  // a trimmed pile's top measured this often
 
 }  // namespace
 
@@ -126,11 +129,19 @@ void Evaluator::observe_smoothness(const Simulation& simulation) {
 
 bool Evaluator::goals_met() const {
   return metrics_.moves_completed == static_cast<int>(exercise_.moves.size()) &&
-         (!exercise_.deliver || metrics_.delivered_t >= exercise_.deliver->tonnes);
+         (!exercise_.deliver || metrics_.delivered_t >= exercise_.deliver->tonnes) &&
+         (!exercise_.trim || trimmed_);
 }
 
 bool Evaluator::finished() const {
-  return (!exercise_.moves.empty() || exercise_.deliver) && goals_met();
+  return (!exercise_.moves.empty() || exercise_.deliver || exercise_.trim) && goals_met();
+}
+
+double pile_top_m(const bulk::BulkWorld& bulk, int grid) {
+  const bulk::HeightGrid& g = bulk.grid(grid);
+  const bulk::CellIndex top = bulk::highest_cell(g);
+  const core::Vec3 centre = g.cell_centre(top.i, top.j);
+  return g.pose().to_parent({centre.x, centre.y, g.height(top.i, top.j)}).z;
 }
 
 void Evaluator::observe_bulk(const Simulation& simulation) {
@@ -144,6 +155,15 @@ void Evaluator::observe_bulk(const Simulation& simulation) {
   metrics_.spilled_t = bulk.spilled_m3() * t_per_m3;
   metrics_.spilled_percent = metrics_.handled_t > 0 ? 100.0 * metrics_.spilled_t / metrics_.handled_t : 0.0;
   metrics_.tonnes_per_hour = metrics_.time_s > 0 ? metrics_.delivered_t * 3600.0 / metrics_.time_s : 0.0;
+  if (exercise_.trim && simulation.time_s() + 1e-9 >= next_pile_measure_s_) {
+    // trimmed once the top is down with the material moved: nothing in the grab or on its way down
+    metrics_.trim = true;
+    metrics_.pile_top_m = pile_top_m(bulk, exercise_.trim->grid_index);
+    const bool placed = bulk.parcels().empty() &&
+                        (simulation.bulk_grab() < 0 || bulk.grab(simulation.bulk_grab()).load_m3 <= 0.0);
+    trimmed_ = placed && metrics_.pile_top_m <= exercise_.trim->top_m;
+    next_pile_measure_s_ = simulation.time_s() + kPileMeasure_s;
+  }
   const MachineTally tally = simulation.machine().tally();
   metrics_.limiter_trips = static_cast<int>(tally.limiter_trips);
   metrics_.pad_lift_offs = static_cast<int>(tally.pad_lift_offs);
@@ -304,6 +324,11 @@ Score Evaluator::score() const {
         "tonne short of the delivery", Skill::kProductivity,
         static_cast<int>(std::ceil(std::max(0.0, exercise_.deliver->tonnes - metrics_.delivered_t) - 1e-9)),
         r.points_per_missing_t);
+  if (exercise_.trim)
+    deduct(
+        "decimetre above the trim height", Skill::kProductivity,
+        static_cast<int>(std::ceil(std::max(0.0, metrics_.pile_top_m - exercise_.trim->top_m) * 10.0 - 1e-9)),
+        r.points_per_trim_dm);
   const int minutes_over =
       static_cast<int>(std::ceil(std::max(0.0, metrics_.time_s - r.time_limit_s) / 60.0));
   deduct("minute over the time limit", Skill::kProductivity, minutes_over, r.points_per_minute_over);
@@ -360,7 +385,8 @@ std::vector<std::pair<std::string, double>> Metrics::rows() const {
       {"worst_release_swing_m", swing_max},
       {"swinging_releases", swinging_releases},
       {"limiter_trips", limiter_trips},
-      {"pad_lift_offs", pad_lift_offs}};
+      {"pad_lift_offs", pad_lift_offs},
+      {"pile_top_m", pile_top_m}};
   r.insert(r.end(), std::begin(more), std::end(more));
   return r;
 }

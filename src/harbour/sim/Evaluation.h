@@ -47,6 +47,7 @@ struct EvaluationRules {
   double points_limiter_trip = 5.0;
   double points_pad_lift_off = 20.0;
   double points_harsh_move = 1.0;
+  double points_per_trim_dm = 2.0;  ///< per decimetre a trimmed pile still stands above its goal
 };
 
 /// A bulk delivery goal: this many tonnes dropped into a grid (a hopper).
@@ -56,12 +57,20 @@ struct BulkGoal {
   double tonnes = 0.0;
 };
 
+/// A trim goal: a pile's top brought down to a height (the material moved onto its low parts).
+struct TrimGoal {
+  std::string grid;  ///< the pile's name in the exercise's bulk section
+  int grid_index = 0;
+  double top_m = 0.0;  ///< [m] world height its surface may reach at most
+};
+
 /// An exercise: a scenario, the moves to make and the rules that score them (settings).
 struct ExerciseSettings {
   std::string name;
   ScenarioSettings scenario;
   std::vector<MoveGoal> moves;
   std::optional<BulkGoal> deliver;
+  std::optional<TrimGoal> trim;
   EvaluationRules rules;
 };
 
@@ -103,6 +112,8 @@ struct Metrics {
   int swinging_releases = 0;
   int limiter_trips = 0;
   int pad_lift_offs = 0;
+  bool trim = false;        ///< a trim goal's pile is measured
+  double pile_top_m = 0.0;  ///< [m] a trim goal's pile: its highest surface (measured every 0.5 s)
   /// How smoothly each of the machine's named motions was driven (jerk from its speed sampled every 0.1 s).
   struct Smoothness {
     std::string axis;
@@ -133,6 +144,9 @@ struct Score {
   std::vector<Deduction> deductions;
   std::array<double, 3> skills{100.0, 100.0, 100.0};  ///< indexed by Skill
 };
+
+/// The highest point of bulk grid `grid`'s surface, in the world [m].
+double pile_top_m(const bulk::BulkWorld& bulk, int grid);
 
 /// Watches an attempt step by step and measures it.
 class Evaluator {
@@ -179,6 +193,8 @@ class Evaluator {
   };
   std::vector<AxisTrack> axes_;
   double next_axis_sample_s_ = 0.0;
+  double next_pile_measure_s_ = 0.0;
+  bool trimmed_ = false;  // the trim goal's pile measured down to its goal with the material placed
 };
 
 }  // namespace harbour::sim

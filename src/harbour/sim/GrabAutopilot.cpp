@@ -17,6 +17,8 @@ constexpr double kCoamingClearance_m = 2.5;  // grab bottom over the coaming top
 constexpr double kDischargeHeight_m = 3.0;   // grab bottom over the hopper's floor when it opens
 constexpr double kSpotMargin_m = 1.0;        // dig spots inside the coamings by the grab's half size and this
 constexpr double kSpotTie_m = 0.05;          // dig spots whose material stands within this count as level
+constexpr double kLattice_m = 0.5;           // trimming: the spots it looks at over the pile
+constexpr double kDumpApart_m = 10.0;        // trimming: the drop spot at least this far from the dig spot
 
 // the material's surface height over `point` (the point's own height where no grid lies under it)
 double surface_z(const bulk::BulkWorld& bulk, const core::Vec3& point) {
@@ -46,7 +48,8 @@ std::string GrabAutopilot::why_cannot_drive(const ExerciseSettings& exercise) {
   if (!std::holds_alternative<MhcSetup>(exercise.scenario.machine))
     return "the grab autopilot drives the mobile harbour crane";
   if (std::get<MhcSetup>(exercise.scenario.machine).start.on_hook) return "the crane works on its hook";
-  if (!exercise.deliver) return "the exercise has no delivery goal (exercise.deliver)";
+  if (exercise.trim) return "";
+  if (!exercise.deliver) return "the exercise has no delivery or trim goal (exercise.deliver, exercise.trim)";
   const auto& vessel = exercise.scenario.vessel;
   if (!vessel || vessel->vessel.kind != VesselKind::kBulk || !open_hold(vessel->vessel))
     return "the grab autopilot digs from a bulk carrier's open hold";
@@ -56,6 +59,7 @@ std::string GrabAutopilot::why_cannot_drive(const ExerciseSettings& exercise) {
 GrabAutopilot::GrabAutopilot(const ExerciseSettings& exercise, GrabOperatorDefects defects)
     : exercise_(exercise), defects_(defects) {
   if (const std::string why = why_cannot_drive(exercise); !why.empty()) throw std::invalid_argument(why);
+  if (exercise.trim) return;  // it digs where the pile stands highest and drops where it lies lowest
   vessel_.emplace(*exercise.scenario.vessel);
   // a 3 x 3 pattern over the open hatch, centre first, then its sides, then its corners
   const VesselGeometry& geometry = *vessel_;
@@ -80,8 +84,8 @@ const char* GrabAutopilot::activity() const {
       return "shut";
     case Phase::kHoist:
       return "hoist";
-    case Phase::kToHopper:
-      return "to hopper";
+    case Phase::kToDrop:
+      return "to drop";
     case Phase::kDischarge:
       return "discharge";
     case Phase::kDone:
@@ -109,7 +113,37 @@ void GrabAutopilot::resume(const Simulation& simulation, int /*moves_done*/) {
 }
 
 core::Vec3 GrabAutopilot::dig_spot(const Simulation& simulation) const {
+  if (exercise_.trim) return pile_dig_m_;
   return vessel_->pose_at(simulation.time_s()).to_parent(spots_[spot_]);
+}
+
+void GrabAutopilot::choose_trim_spots(const Simulation& simulation, const MobileHarbourCrane& crane) {
+  // over a 0.5 m lattice on the pile, inside its edges by the grab's half size and a margin: dig where it
+  // stands highest, drop where it lies lowest at least kDumpApart_m from there and within the chart's reach
+  const bulk::BulkWorld& bulk = *simulation.bulk();
+  const bulk::HeightGrid& grid = bulk.grid(exercise_.trim->grid_index);
+  const int step = std::max(1, static_cast<int>(std::lround(kLattice_m / grid.cell_size_m())));
+  const int inset = static_cast<int>(
+      std::ceil((crane.settings().grab_lower_half_extents_m.x + kSpotMargin_m) / grid.cell_size_m()));
+  const auto world = [&](int i, int j) {
+    const core::Vec3 c = grid.cell_centre(i, j);
+    return grid.pose().to_parent({c.x, c.y, grid.height(i, j)});
+  };
+  double highest = -std::numeric_limits<double>::infinity();
+  for (int j = inset; j < grid.cells_y() - inset; j += step)
+    for (int i = inset; i < grid.cells_x() - inset; i += step)
+      if (const core::Vec3 p = world(i, j); p.z > highest + kSpotTie_m) highest = p.z, pile_dig_m_ = p;
+  const double reach = crane.settings().capacity_chart.back().radius_m - kSpotMargin_m;
+  double lowest = std::numeric_limits<double>::infinity();
+  for (int j = inset; j < grid.cells_y() - inset; j += step)
+    for (int i = inset; i < grid.cells_x() - inset; i += step) {
+      const core::Vec3 p = world(i, j);
+      const bool apart = std::hypot(p.x - pile_dig_m_.x, p.y - pile_dig_m_.y) >= kDumpApart_m;
+      const core::Vec3 from_axis = p - crane.position_m();
+      if (apart && std::hypot(from_axis.x, from_axis.y) < reach && p.z < lowest - kSpotTie_m)
+        lowest = p.z, dump_m_ = p;
+    }
+  travel_z_m_ = pile_top_m(bulk, exercise_.trim->grid_index) + kCoamingClearance_m;
 }
 
 void GrabAutopilot::choose_dig_spot(const Simulation& simulation) {
@@ -125,34 +159,48 @@ void GrabAutopilot::choose_dig_spot(const Simulation& simulation) {
 Controls GrabAutopilot::decide(const Simulation& simulation, const MobileHarbourCrane& crane) {
   double slew = 0.0, luff = 0.0, hoist = 0.0, grab = 0.0;
   const double now = simulation.time_s();
+  const auto choose = [&] {
+    if (exercise_.trim)
+      choose_trim_spots(simulation, crane);
+    else
+      choose_dig_spot(simulation);
+  };
   auto enter = [&](Phase p) {
     phase_ = p;
     phase_start_s_ = now;
-    if (p == Phase::kToDig) choose_dig_spot(simulation);
+    if (p == Phase::kToDig) choose();
   };
-  if (!decided_ && phase_ == Phase::kToDig) choose_dig_spot(simulation);
+  if (!decided_) choose();
   const double decision_s = kDecisionSteps * Simulation::kStep_s;
   steering_.observe(crane, decision_s, !decided_);
   const bulk::BulkWorld& bulk = *simulation.bulk();
   const double load_m3 = bulk.grab(simulation.bulk_grab()).load_m3;
   const double bottom = crane.attachment_bottom_z_m();
-  const VesselGeometry& geometry = *vessel_;
-  const double coaming_top = geometry.pose_at(now).to_parent({0, 0, geometry.coaming_top_m()}).z;
-  const double travel_z =
-      defects_.travel_below_the_coaming ? coaming_top - 1.0 : coaming_top + kCoamingClearance_m;
-  const bulk::GridPlacement& hopper =
-      exercise_.scenario.bulk->grids[static_cast<std::size_t>(exercise_.deliver->grid_index)];
-  const double hopper_half = 0.5 * hopper.settings.cell_size_m;
-  const core::Vec3 hopper_centre{hopper.origin_x_m + hopper_half * hopper.settings.cells_x,
-                                 hopper.origin_y_m + hopper_half * hopper.settings.cells_y,
-                                 hopper.origin_z_m};
+  // the height it travels at (over the coaming, over the pile), where it drops the bite (over the hopper's
+  // floor, over the pile's lowest spot) and whether the goal is met with what is on its way
+  double travel_z = travel_z_m_;
+  core::Vec3 drop = dump_m_;
+  bool delivered = false;
+  if (exercise_.trim) {
+    drop.z = surface_z(bulk, dump_m_);
+    delivered = pile_top_m(bulk, exercise_.trim->grid_index) <= exercise_.trim->top_m;
+  } else {
+    const VesselGeometry& geometry = *vessel_;
+    const double coaming_top = geometry.pose_at(now).to_parent({0, 0, geometry.coaming_top_m()}).z;
+    travel_z = defects_.travel_below_the_coaming ? coaming_top - 1.0 : coaming_top + kCoamingClearance_m;
+    const bulk::GridPlacement& hopper =
+        exercise_.scenario.bulk->grids[static_cast<std::size_t>(exercise_.deliver->grid_index)];
+    const double hopper_half = 0.5 * hopper.settings.cell_size_m;
+    drop = {hopper.origin_x_m + hopper_half * hopper.settings.cells_x,
+            hopper.origin_y_m + hopper_half * hopper.settings.cells_y, hopper.origin_z_m};
+    const double t_per_m3 = bulk.material().bulk_density_kg_m3 / 1000.0;
+    double in_flight_m3 = 0.0;
+    for (const bulk::Parcel& p : bulk.parcels())
+      in_flight_m3 += p.volume_m3;
+    delivered = (bulk.landed_m3(exercise_.deliver->grid_index) + in_flight_m3) * t_per_m3 >=
+                exercise_.deliver->tonnes;
+  }
   const double empty_kg = crane.settings().grab_head_mass_kg + crane.settings().grab_lower_mass_kg;
-  const double t_per_m3 = bulk.material().bulk_density_kg_m3 / 1000.0;
-  double in_flight_m3 = 0.0;
-  for (const bulk::Parcel& p : bulk.parcels())
-    in_flight_m3 += p.volume_m3;
-  const bool delivered =
-      (bulk.landed_m3(exercise_.deliver->grid_index) + in_flight_m3) * t_per_m3 >= exercise_.deliver->tonnes;
   const auto hold_height = [&](double z) { return steering_.hold_height(z); };
   const auto steer = [&](const BoomSteering::Target& target, double tolerance_m, double& slew_lever,
                          double& luff_lever) {
@@ -188,12 +236,12 @@ Controls GrabAutopilot::decide(const Simulation& simulation, const MobileHarbour
     case Phase::kHoist:
       grab = 1.0;  // the closing winch keeps the shells shut while the load comes onto the ropes
       hoist = now - phase_start_s_ < 3.0 ? 0.3 : 1.0;
-      if (bottom > travel_z) enter(Phase::kToHopper);
+      if (bottom > travel_z) enter(Phase::kToDrop);
       break;
-    case Phase::kToHopper: {
+    case Phase::kToDrop: {
       grab = 1.0;
-      hoist = hold_height(std::max(travel_z, hopper_centre.z + kDischargeHeight_m));
-      const BoomSteering::Target target = target_of(hopper_centre);
+      hoist = hold_height(std::max(travel_z, drop.z + kDischargeHeight_m));
+      const BoomSteering::Target target = target_of(drop);
       const bool over = steer(target, 0.5, slew, luff);
       // the bad operator opens half way, over the gap between quay and ship
       if (defects_.open_over_the_quay_edge && std::abs(wrap(target.slew_rad - crane.slew_rad())) < 0.6 &&
@@ -204,8 +252,8 @@ Controls GrabAutopilot::decide(const Simulation& simulation, const MobileHarbour
     }
     case Phase::kDischarge:
       grab = -1.0;
-      hoist = hold_height(hopper_centre.z + kDischargeHeight_m);
-      steer(target_of(hopper_centre), 0.5, slew, luff);
+      hoist = hold_height(drop.z + kDischargeHeight_m);
+      steer(target_of(drop), 0.5, slew, luff);
       if (load_m3 <= 0.0 && crane.grab_opening() > 0.95) enter(delivered ? Phase::kDone : Phase::kToDig);
       break;
     case Phase::kDone:

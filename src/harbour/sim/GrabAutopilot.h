@@ -26,28 +26,32 @@ struct GrabOperatorDefects {
 /// delivered. The boom head follows the grab's swing (a speed proportional to the grab's offset from plumb
 /// under it damps the pendulum) while it creeps onto its target. Dig spots: a 3 x 3 pattern over the open
 /// hold's hatch, inside the coamings by the grab's half size and a margin; it digs where the material stands
-/// highest.
+/// highest. Trimming a pile on the quay it digs where the pile stands highest and drops the bite where it
+/// lies lowest, away from there, until the pile's top is down to the goal.
 class GrabAutopilot final : public Pilot {
  public:
   /// Why it cannot drive `exercise` ("" when it can): a delivery goal on the MHC with a bulk carrier's open
-  /// hold.
+  /// hold, or a trim goal.
   static std::string why_cannot_drive(const ExerciseSettings& exercise);
   /// Throws std::invalid_argument with why_cannot_drive() when it cannot.
   explicit GrabAutopilot(const ExerciseSettings& exercise, GrabOperatorDefects defects = {});
 
   /// The controls for the next step (decided 50 times a second, held in between).
   Controls next(const Simulation& simulation) override;
-  /// What it is doing now: to dig, lower, shut, hoist, to hopper, discharge, done.
+  /// What it is doing now: to dig, lower, shut, hoist, to drop (the hopper, the pile's low spot), discharge,
+  /// done.
   const char* activity() const override;
   /// Takes over a running exercise: hoists a loaded grab out to the hopper, or goes to dig with an empty one.
   void resume(const Simulation& simulation, int moves_done) override;
   int bites() const { return bites_; }
 
  private:
-  enum class Phase { kToDig, kLower, kShut, kHoist, kToHopper, kDischarge, kDone };
+  enum class Phase { kToDig, kLower, kShut, kHoist, kToDrop, kDischarge, kDone };
   Controls decide(const Simulation& simulation, const MobileHarbourCrane& crane);
   core::Vec3 dig_spot(const Simulation& simulation) const;
   void choose_dig_spot(const Simulation& simulation);
+  /// Trimming a pile: the dig and drop spots and the travel height from the pile as it stands now.
+  void choose_trim_spots(const Simulation& simulation, const MobileHarbourCrane& crane);
 
   ExerciseSettings exercise_;
   GrabOperatorDefects defects_;
@@ -58,6 +62,8 @@ class GrabAutopilot final : public Pilot {
   std::vector<core::Vec3> spots_;         // vessel frame
   std::size_t spot_ = 0;                  // the one it digs next
   BoomSteering steering_;
+  core::Vec3 pile_dig_m_, dump_m_;  // trimming: where it digs and drops (world)
+  double travel_z_m_ = 0.0;         // trimming: the grab's bottom height while it travels
   Controls last_{};
   bool decided_ = false;
 };
