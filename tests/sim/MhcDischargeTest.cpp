@@ -101,6 +101,15 @@ TEST(MhcDischarge, TheAutopilotClearsTheExerciseAndMassIsExactOverTheRun) {
   for (const auto& [name, value] : a.metrics.rows())
     has_delivered |= name == "delivered_t" && value == a.metrics.delivered_t;
   EXPECT_TRUE(has_delivered);
+  double swing = 0.0;
+  for (const double m : a.metrics.release_swing_m)
+    swing = std::max(swing, m);
+  std::printf("discharge: %.1f s, %.2f t (%.0f t/h), bites", a.metrics.time_s, a.metrics.delivered_t,
+              a.metrics.tonnes_per_hour);
+  for (const double fill : a.metrics.bite_fill)
+    std::printf(" %.0f %%", 100.0 * fill);
+  std::printf(", %.2f t back in the hold, worst release swing %.2f m, score %.0f\n", a.back_in_hold_t, swing,
+              a.score.total);
 }
 
 TEST(MhcDischarge, OpeningOverTheQuayEdgeSpillsAndCosts) {
@@ -109,6 +118,8 @@ TEST(MhcDischarge, OpeningOverTheQuayEdgeSpillsAndCosts) {
   const ExerciseSettings exercise = discharge();
   const Attempt a = drive(exercise, {.open_over_the_quay_edge = true}, 200.0);
   EXPECT_GT(a.metrics.spilled_t, 1.0);
+  std::printf("opening over the quay edge: %.2f t spilled of %.2f t handled\n", a.metrics.spilled_t,
+              a.metrics.handled_t);
   EXPECT_NEAR(deducted(a.score, "tonne spilled"),  // per tonne begun
               std::ceil(a.metrics.spilled_t) * exercise.rules.points_per_spilled_t, 1e-9);
   EXPECT_NEAR(a.metrics.delivered_t + a.back_in_hold_t + a.in_flight_t + a.metrics.spilled_t,
@@ -121,6 +132,7 @@ TEST(MhcDischarge, TravellingBelowTheCoamingHitsTheShip) {
   const ExerciseSettings exercise = discharge();
   const Attempt a = drive(exercise, {.travel_below_the_coaming = true}, 200.0);
   EXPECT_GT(a.metrics.ship_collisions, 0);
+  std::printf("travelling below the coaming: %d ship collisions\n", a.metrics.ship_collisions);
   EXPECT_GE(deducted(a.score, "collision"), exercise.rules.points_collision * a.metrics.ship_collisions);
 }
 
@@ -159,6 +171,8 @@ TEST(MhcDischarge, AnInstructorTakeOverWithTheGrabLoadedFinishesTheDelivery) {
   EXPECT_EQ(evaluator.metrics().overloads, 0);
   for (const double fill : evaluator.metrics().bite_fill)  // it digs where the material stands highest
     EXPECT_GT(fill, 0.8);
+  std::printf("taken over at 125 s: finished at %.1f s, score %.0f\n", evaluator.metrics().time_s,
+              evaluator.score().total);
 }
 
 TEST(MhcDischarge, SlammingTheSlewLeverIsHarshAndSteadyDrivingIsNot) {
