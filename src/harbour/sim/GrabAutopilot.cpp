@@ -14,7 +14,8 @@ namespace {
 constexpr std::int64_t kDecisionSteps = 20;  // 50 Hz
 constexpr double kG = 9.80665;
 constexpr double kCoamingClearance_m = 2.5;  // grab bottom over the coaming top while it slews
-constexpr double kDischargeHeight_m = 3.0;   // grab bottom over the hopper's floor when it opens
+constexpr double kDischargeHeight_m = 4.0;   // grab bottom over the floor it drops onto when it opens (at 3 m
+                                             // the shells sat in the heap they built under them)
 constexpr double kSpotMargin_m = 1.0;        // dig spots inside the coamings by the grab's half size and this
 constexpr double kSpotTie_m = 0.05;          // dig spots whose material stands within this count as level
 constexpr double kLattice_m = 0.5;           // trimming: the spots it looks at over the pile
