@@ -385,9 +385,9 @@ std::vector<std::pair<std::string, double>> Metrics::rows() const {
       {"worst_release_swing_m", swing_max},
       {"swinging_releases", swinging_releases},
       {"limiter_trips", limiter_trips},
-      {"pad_lift_offs", pad_lift_offs},
-      {"pile_top_m", pile_top_m}};
+      {"pad_lift_offs", pad_lift_offs}};
   r.insert(r.end(), std::begin(more), std::end(more));
+  if (trim) r.emplace_back("pile_top_m", pile_top_m);
   return r;
 }
 
