@@ -1,0 +1,49 @@
+#pragma once
+
+#include "harbour/core/Vec3.h"
+#include "harbour/physics/PhysicsWorld.h"
+
+namespace harbour::sim {
+
+/// A pneumatic tyre as data: its vertical spring, its cornering stiffness, rolling resistance and the
+/// friction it has on the ground (settings; values for large off-road tyres on dry concrete are assumed
+/// unless a machine file gives them).
+struct TyreSettings {
+  double radius_m = 0.8;
+  double vertical_stiffness_n_per_m = 2.0e6;     ///< [N/m] the tyre's spring under its load
+  double vertical_damping_ns_per_m = 4.0e4;      ///< [N s/m]
+  double cornering_stiffness_n_per_rad = 4.0e5;  ///< [N/rad] lateral force per slip angle at small angles
+  double rolling_resistance = 0.015;             ///< [-] resistance over load while rolling
+  double friction = 0.8;                         ///< [-] road friction coefficient: the most force over load
+  double creep_speed_mps = 0.2;  ///< [m/s] below this speed the slip is measured against it (standing)
+};
+
+/// What acts on a wheel this step: where it points, the drive torque at its axle and its brake.
+struct TyreCommand {
+  double steer_rad = 0.0;        ///< wheel heading from the body's x, about the body's z
+  double drive_torque_nm = 0.0;  ///< [N m] + drives forward (along the wheel's heading)
+  double brake_torque_nm = 0.0;  ///< [N m] the most the brake holds (>= 0)
+};
+
+/// The forces a tyre passes to the ground this step, in the world [N], and how it grips.
+struct TyreForces {
+  double normal_n = 0.0;        ///< [N] the ground's push on it (0: off the ground)
+  double longitudinal_n = 0.0;  ///< [N] along its heading (+ forward)
+  double lateral_n = 0.0;       ///< [N] across it (+ to its left)
+  bool sliding = false;         ///< the friction circle limits it (a locked or spinning wheel, a skid)
+};
+
+/// A tyre's forces from its contact's state (a pure function): the vertical spring-damper on the compression
+/// `sag_m` (and its rate); the drive or the brake along the heading, a locked brake sliding at µ·Fz; rolling
+/// resistance against the rolling; a lateral force −Cα·α with the slip angle α from the contact's velocity
+/// across and along the heading (measured against at least the creep speed); both together limited to µ·Fz
+/// (the friction circle).
+TyreForces tyre_forces(const TyreSettings& tyre, const TyreCommand& command, double sag_m,
+                       double sag_rate_mps, double forward_mps, double sideways_mps);
+
+/// Pushes on `body` what a tyre on a flat ground at `ground_z_m` (world) passes it this step: the wheel's
+/// centre at `hub_m` (body frame), the body's z up. Returns its forces.
+TyreForces apply_tyre(physics::PhysicsWorld& world, physics::BodyId body, const core::Vec3& hub_m,
+                      const TyreSettings& tyre, const TyreCommand& command, double ground_z_m);
+
+}  // namespace harbour::sim
