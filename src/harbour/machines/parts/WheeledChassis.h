@@ -1,0 +1,84 @@
+#pragma once
+
+#include <utility>
+#include <vector>
+
+#include "harbour/machines/parts/Tyre.h"
+#include "harbour/physics/PhysicsWorld.h"
+
+namespace harbour::sim {
+
+/// One axle of a wheeled machine (settings): where it is on the chassis body (its frame: x forward, z up),
+/// whether it steers and whether the drivetrain drives it.
+struct AxleSettings {
+  double x_m = 0.0;           ///< [m] along the chassis
+  double half_track_m = 1.0;  ///< [m] wheels at ±this across
+  double hub_z_m = -0.5;      ///< [m] wheel centres' height on the chassis body
+  bool steered = false;
+  bool driven = false;
+  int tyres_per_side = 1;  ///< twin tyres count twice (one force element of twice the stiffnesses)
+};
+
+/// An engine and an automatic gearbox (settings): the wheel torque at a throttle and road speed.
+struct DrivetrainSettings {
+  std::vector<std::pair<double, double>> torque_curve{{800, 500}, {1400, 700}, {2200, 600}};  ///< [rpm, N m]
+  std::vector<double> gear_ratios{5.0, 2.5, 1.4, 1.0};
+  double final_drive = 6.0;
+  double efficiency = 0.85;
+};
+
+/// A wheeled machine's chassis as data (settings): its axles, tyres, drivetrain, brakes and steering.
+struct WheeledChassisSettings {
+  std::vector<AxleSettings> axles;
+  TyreSettings tyre;
+  DrivetrainSettings drivetrain;
+  double brake_torque_per_wheel_nm = 20000.0;  ///< [N m] at full pedal
+  double max_steer_rad = 0.6;                  ///< the bicycle angle at full steering (at the steered axle)
+};
+
+/// The driver's commands.
+struct ChassisCommand {
+  double throttle = 0.0;  ///< [0, 1]
+  bool reverse = false;   ///< the gear selector in reverse (first gear's ratio backwards)
+  double brake = 0.0;     ///< [0, 1]
+  double steer = 0.0;     ///< [-1, 1], + turns left
+};
+
+/// The wheel torque an engine and an ideal automatic gearbox give at `wheel_speed_mps` (the gear with the
+/// most torque whose engine speed stays within the curve; the engine's speed held at the curve's first point
+/// when slower) [N m at one driven axle's share of 1], and the gear it uses (1-based).
+std::pair<double, int> drivetrain_wheel_torque_nm(const DrivetrainSettings& drivetrain, double tyre_radius_m,
+                                                  double throttle, double wheel_speed_mps);
+
+/// A wheeled chassis on one physics body: Ackermann steering about the non-steered axles' centre (front,
+/// rear or all-wheel steering alike), an automatic drivetrain shared by the driven wheels, brakes on every
+/// wheel, and a tyre at each wheel (the body carried on them over a flat ground). It keeps no state of its
+/// own beyond the body (nothing to save).
+class WheeledChassis {
+ public:
+  WheeledChassis(const WheeledChassisSettings& settings, physics::BodyId body);
+
+  /// Pushes the tyres' forces on the body for the next physics step; the ground is flat at `ground_z_m`.
+  void step(physics::PhysicsWorld& world, const ChassisCommand& command, double ground_z_m);
+
+  /// The steering angle of a wheel at (x, y) on the chassis for a steering command [rad] (Ackermann: every
+  /// wheel square to the line to the turn's centre on the reference axle's line).
+  double wheel_angle_rad(double x_m, double y_m, double steer) const;
+  /// The turn's radius at the reference point for a steering command [m] (+ to the left; 0 steering:
+  /// infinite).
+  double turn_radius_m(double steer) const;
+  /// The reference point's x: the centre of the non-steered axles (where the turn's centre lies across).
+  double reference_x_m() const { return reference_x_; }
+  /// Last step's tyre forces, wheel by wheel (axle by axle, left then right).
+  const std::vector<TyreForces>& tyre_forces() const { return forces_; }
+  const WheeledChassisSettings& settings() const { return settings_; }
+
+ private:
+  WheeledChassisSettings settings_;
+  physics::BodyId body_;
+  double reference_x_ = 0.0, steer_base_m_ = 1.0;
+  int driven_wheels_ = 0;
+  std::vector<TyreForces> forces_;
+};
+
+}  // namespace harbour::sim
