@@ -124,3 +124,29 @@ TEST(MachineFiles, BadMhcFilesNameTheField) {
 
 }  // namespace
 }  // namespace harbour::io
+
+namespace harbour::io {
+namespace {
+
+void expect_tractor_error(const std::string& from, const std::string& to, const std::string& field,
+                          const std::string& says) {
+  const std::string text = scenes::read_text(HARBOUR_DATA_DIR "/machines/tractor.yaml");
+  scenes::expect_data_error(
+      text, from, to, [](const YamlFile& f) { load_tractor(f); }, scenes::line_of(text, from), field, says);
+}
+
+TEST(MachineFiles, ShippedTractorLoadsAndBadOnesNameTheField) {
+  const sim::TractorSettings t = load_tractor(HARBOUR_DATA_DIR "/machines/tractor.yaml");
+  ASSERT_EQ(t.chassis.axles.size(), 2u);
+  EXPECT_NEAR(t.chassis.axles[0].x_m - t.chassis.axles[1].x_m, 2.95, 1e-12);  // published wheelbase
+  EXPECT_EQ(t.chassis.drivetrain.torque_curve[1].second, 705.0);               // published peak torque
+  EXPECT_EQ(machine_file_kind(HARBOUR_DATA_DIR "/machines/tractor.yaml"), "tractor");
+  expect_tractor_error("kind: tractor", "kind: mhc", "machine.kind", "tractor file");
+  expect_tractor_error("steered: true, driven: false", "steered: false, driven: false", "machine.axles",
+                       "steered and a driven");
+  expect_tractor_error("[2200, 560]]", "[1200, 560]]", "machine.drivetrain.torque_curve[2]", "must increase");
+  expect_tractor_error("friction: 0.8", "friction: 7", "machine.tyre.friction", "outside");
+}
+
+}  // namespace
+}  // namespace harbour::io

@@ -310,3 +310,21 @@ TEST(Devices, APersonOnTwoLeversSlewsTheMobileHarbourCraneAndShutsItsGrab) {
 
 }  // namespace
 }  // namespace harbour::station
+
+namespace harbour::station {
+namespace {
+
+TEST(Devices, TheDrivingKeyboardFitsTheTractorAndTheCranesKeyboardsDoNot) {
+  // a profile's keyboards are tried in order: each machine finds the one made for it
+  const sim::Simulation tractor(
+      io::load_exercise(HARBOUR_DATA_DIR "/exercises/tractor_free_practice.yaml").scenario);
+  const sim::ControlTable& table = tractor.control_table();
+  EXPECT_EQ(why_mapping_does_not_fit(HARBOUR_DATA_DIR "/devices/keyboard_driving.yaml", table), "");
+  EXPECT_NE(why_mapping_does_not_fit(HARBOUR_DATA_DIR "/devices/keyboard.yaml", table), "");
+  EXPECT_NE(why_mapping_does_not_fit(HARBOUR_DATA_DIR "/devices/keyboard_slewing.yaml", table), "");
+  const sim::Simulation mhc(io::load_exercise(HARBOUR_DATA_DIR "/exercises/mhc_free_practice.yaml").scenario);
+  EXPECT_NE(why_mapping_does_not_fit(HARBOUR_DATA_DIR "/devices/keyboard_driving.yaml", mhc.control_table()), "");
+}
+
+}  // namespace
+}  // namespace harbour::station

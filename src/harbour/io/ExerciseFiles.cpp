@@ -60,8 +60,17 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
   if (!std::filesystem::is_regular_file(machine_path))
     f.fail(x["machine"], "exercise.machine", "no such file: " + machine_path);
   const std::string machine_kind = machine_file_kind(machine_path);
-  const YAML::Node crane = f.required_map(x, "crane", "exercise");
-  if (machine_kind == "sts") {
+  const bool vehicle = machine_kind == "tractor";
+  const YAML::Node crane = f.required_map(x, vehicle ? "vehicle" : "crane", "exercise");
+  if (vehicle) {
+    // the vehicle stands on the quay
+    sim::TractorSetup tractor;
+    tractor.vehicle = load_tractor(machine_path);
+    const std::string at = "exercise.vehicle";
+    tractor.start.position_m = f.vector3(f.required(crane, "position_m", at), at + ".position_m", kSite_m);
+    tractor.start.heading_rad = core::deg_to_rad(f.number(crane, "heading_deg", at, -360.0, 360.0));
+    s.machine = std::move(tractor);
+  } else if (machine_kind == "sts") {
     // the crane starts on its rails
     sim::StsSetup sts;
     sts.crane = load_sts_crane(machine_path);
@@ -94,10 +103,12 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
   }
   // container exercises (the STS), general cargo on a hook, bulk on a grab
   const bool handles_containers = machine_kind == "sts";
-  const bool on_hook = !handles_containers && std::get<sim::MhcSetup>(s.machine).start.on_hook;
+  const auto* mhc = std::get_if<sim::MhcSetup>(&s.machine);
+  const bool on_hook = mhc && mhc->start.on_hook;
   const std::string handles = handles_containers ? "containers with its spreader"
                               : on_hook          ? "general cargo on its hook (exercise.cargo)"
-                                                 : "bulk with its grab (crane.tool: hook for general cargo)";
+                              : mhc              ? "bulk with its grab (crane.tool: hook for general cargo)"
+                                                 : "no load yet (trailers come later)";
   for (const char* key : {"containers", "trucks", "cargo", "moves"}) {
     const bool fits = handles_containers
                           ? std::string(key) != "cargo"

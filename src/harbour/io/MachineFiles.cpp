@@ -339,6 +339,99 @@ sim::MhcSettings read_mhc(const YamlFile& f, const std::string& folder) {
 
 }  // namespace
 
+sim::TractorSettings read_tractor(const YamlFile& f) {
+  sim::TractorSettings s;
+  const YAML::Node m = f.required_map(f.root(), "machine", "");
+  if (const std::string kind = f.text(m, "kind", "machine"); kind != "tractor")
+    f.fail(m["kind"], "machine.kind", "this is a tractor file (kind: tractor), not a '" + kind + "'");
+  f.text(m, "name", "machine");
+  const YAML::Node c = f.required_map(m, "chassis", "machine");
+  s.mass_kg = f.number(c, "mass_kg", "machine.chassis", 500.0, 1e5);
+  s.half_extents_m =
+      f.vector3(f.required(c, "half_extents_m", "machine.chassis"), "machine.chassis.half_extents_m", 10.0);
+  const core::Vec3& half = s.half_extents_m;
+  if (!(half.x >= 0.2 && half.y >= 0.2 && half.z >= 0.1))
+    f.fail(c["half_extents_m"], "machine.chassis.half_extents_m", "must be at least [0.2, 0.2, 0.1] m");
+  sim::WheeledChassisSettings& w = s.chassis;
+  const YAML::Node axles = f.sequence(m, "axles", "machine", 8);
+  if (axles.size() < 2) f.fail(axles, "machine.axles", "needs at least two axles");
+  bool steered = false, driven = false;
+  for (std::size_t n = 0; n < axles.size(); ++n) {
+    const std::string at = "machine.axles[" + std::to_string(n) + "]";
+    sim::AxleSettings a;
+    a.x_m = f.number(axles[n], "x_m", at, -20.0, 20.0);
+    a.half_track_m = f.number(axles[n], "half_track_m", at, 0.3, 5.0);
+    a.hub_z_m = f.number(axles[n], "hub_z_m", at, -5.0, 5.0);
+    a.steered = f.flag(axles[n], "steered", at, false);
+    a.driven = f.flag(axles[n], "driven", at, false);
+    a.tyres_per_side = f.integer(axles[n], "tyres_per_side", at, 1, 4);
+    steered |= a.steered;
+    driven |= a.driven;
+    w.axles.push_back(a);
+  }
+  if (!steered || !driven) f.fail(axles, "machine.axles", "needs a steered and a driven axle");
+  const YAML::Node t = f.required_map(m, "tyre", "machine");
+  const std::string tat = "machine.tyre";
+  w.tyre.radius_m = f.number(t, "radius_m", tat, 0.2, 2.0);
+  w.tyre.vertical_stiffness_n_per_m = f.number(t, "vertical_stiffness_n_per_m", tat, 1e4, 1e8);
+  w.tyre.vertical_damping_ns_per_m = f.number(t, "vertical_damping_ns_per_m", tat, 0.0, 1e7, true);
+  w.tyre.cornering_stiffness_n_per_rad = f.number(t, "cornering_stiffness_n_per_rad", tat, 1e3, 1e7);
+  w.tyre.rolling_resistance = f.number(t, "rolling_resistance", tat, 0.0, 0.2, true);
+  w.tyre.friction = f.number(t, "friction", tat, 0.05, 2.0);
+  const YAML::Node d = f.required_map(m, "drivetrain", "machine");
+  const std::string dat = "machine.drivetrain";
+  const YAML::Node curve = f.sequence(d, "torque_curve", dat, 50);
+  if (curve.size() < 2)
+    f.fail(d["torque_curve"], dat + ".torque_curve", "needs at least two [rpm, N m] points");
+  w.drivetrain.torque_curve.clear();
+  for (std::size_t n = 0; n < curve.size(); ++n) {
+    const std::string p = dat + ".torque_curve[" + std::to_string(n) + "]";
+    if (!curve[n].IsSequence() || curve[n].size() != 2) f.fail(curve[n], p, "is [rpm, N m]");
+    const double rpm = f.number_at(curve[n][0], p + "[0]"), torque = f.number_at(curve[n][1], p + "[1]");
+    if (!(rpm > 0.0 && rpm < 20000.0 && torque >= 0.0 && torque < 1e5))
+      f.fail(curve[n], p, "rpm 0-20000, 0-100000 N m");
+    if (!w.drivetrain.torque_curve.empty() && rpm <= w.drivetrain.torque_curve.back().first)
+      f.fail(curve[n], p, "engine speeds must increase down the curve");
+    w.drivetrain.torque_curve.emplace_back(rpm, torque);
+  }
+  const YAML::Node gears = f.sequence(d, "gear_ratios", dat, 20);
+  if (gears.size() < 1) f.fail(d["gear_ratios"], dat + ".gear_ratios", "needs a gear");
+  w.drivetrain.gear_ratios.clear();
+  for (std::size_t n = 0; n < gears.size(); ++n) {
+    const std::string p = dat + ".gear_ratios[" + std::to_string(n) + "]";
+    const double ratio = f.number_at(gears[n], p);
+    if (!(ratio > 0.05 && ratio < 50.0)) f.fail(gears[n], p, "a ratio 0.05-50");
+    w.drivetrain.gear_ratios.push_back(ratio);
+  }
+  w.drivetrain.final_drive = f.number(d, "final_drive", dat, 0.5, 50.0);
+  w.drivetrain.efficiency = f.number(d, "efficiency", dat, 0.1, 1.0);
+  w.brake_torque_per_wheel_nm = f.number(m, "brake_torque_per_wheel_nm", "machine", 0.0, 1e6);
+  w.max_steer_rad = core::deg_to_rad(f.number(m, "max_steer_deg", "machine", 1.0, 80.0));
+  s.steer_rate_per_s = f.number(m, "steer_rate_per_s", "machine", 0.05, 20.0);
+  const YAML::Node cab = f.required_map(m, "cab", "machine");
+  s.cab_position_m = f.vector3(f.required(cab, "position_m", "machine.cab"), "machine.cab.position_m", 20.0);
+  s.eye_m = f.vector3(f.required(cab, "eye_m", "machine.cab"), "machine.cab.eye_m", 5.0);
+  s.sight_pitch_rad = core::deg_to_rad(f.number(cab, "sight_pitch_deg", "machine.cab", -90.0, 30.0));
+  s.controls = read_control_table(f, m, "machine");
+  for (const auto& [label, kind] : {std::pair{"steer", sim::ControlKind::kAxis},
+                                    {"throttle", sim::ControlKind::kAxis},
+                                    {"brake", sim::ControlKind::kAxis},
+                                    {"direction", sim::ControlKind::kSwitch},
+                                    {"emergency_stop", sim::ControlKind::kButton},
+                                    {"horn", sim::ControlKind::kButton}}) {
+    try {
+      s.controls.slot(label, kind);
+    } catch (const std::invalid_argument& e) {
+      f.fail(m["controls"], "machine.controls", e.what());
+    }
+  }
+  if (const int d_slot = s.controls.find("direction");
+      s.controls[d_slot].positions != std::vector<std::string>{"reverse", "neutral", "forward"})
+    f.fail(m["controls"], "machine.controls",
+           "'direction' must have the positions [reverse, neutral, forward]");
+  return s;
+}
+
 sim::MhcSettings load_mhc(const YamlFile& f, const std::string& folder) {
   sim::MhcSettings s = read_mhc(f, folder);
   f.check_unknown_keys();
@@ -359,12 +452,22 @@ sim::StsCraneSettings load_sts_crane(const std::string& path) {
   return load_sts_crane(YamlFile::load(path), std::filesystem::path(path).parent_path().string());
 }
 
+sim::TractorSettings load_tractor(const YamlFile& f) {
+  sim::TractorSettings s = read_tractor(f);
+  f.check_unknown_keys();
+  return s;
+}
+
+sim::TractorSettings load_tractor(const std::string& path) {
+  return load_tractor(YamlFile::load(path));
+}
+
 std::string machine_file_kind(const std::string& path) {
   const YamlFile f = YamlFile::load(path);
   const YAML::Node m = f.required_map(f.root(), "machine", "");
   const std::string kind = f.text(m, "kind", "machine");
-  if (kind != "sts" && kind != "mhc")
-    f.fail(m["kind"], "machine.kind", "a machine is one of: sts, mhc (not '" + kind + "')");
+  if (kind != "sts" && kind != "mhc" && kind != "tractor")
+    f.fail(m["kind"], "machine.kind", "a machine is one of: sts, mhc, tractor (not '" + kind + "')");
   return kind;
 }
 

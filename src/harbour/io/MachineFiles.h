@@ -5,6 +5,7 @@
 #include "harbour/io/YamlFile.h"
 #include "harbour/machines/mhc/MobileHarbourCrane.h"
 #include "harbour/machines/sts/StsCrane.h"
+#include "harbour/machines/tractor/TerminalTractor.h"
 
 namespace harbour::io {
 
@@ -15,7 +16,10 @@ sim::StsCraneSettings load_sts_crane(const std::string& path);
 /// Reads a mobile harbour crane file (data/machines/mhc.yaml) and the luffing and hoist reevings it names.
 sim::MhcSettings load_mhc(const YamlFile& file, const std::string& folder);
 sim::MhcSettings load_mhc(const std::string& path);
-/// The kind a machine file declares (`machine.kind`: sts, mhc); throws DataError naming the field.
+/// Reads a terminal tractor file (data/machines/tractor.yaml).
+sim::TractorSettings load_tractor(const YamlFile& file);
+sim::TractorSettings load_tractor(const std::string& path);
+/// The kind a machine file declares (`machine.kind`: sts, mhc, tractor); throws DataError naming the field.
 std::string machine_file_kind(const std::string& path);
 
 }  // namespace harbour::io

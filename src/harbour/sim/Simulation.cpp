@@ -16,6 +16,7 @@ const char* machine_kind(const MachineSetup& setup) {
         using T = std::decay_t<decltype(m)>;
         if constexpr (std::is_same_v<T, StsSetup>) return "sts";
         if constexpr (std::is_same_v<T, MhcSetup>) return "mhc";
+        if constexpr (std::is_same_v<T, TractorSetup>) return "tractor";
       },
       setup);
 }
@@ -39,6 +40,8 @@ std::unique_ptr<Machine> make_machine(physics::PhysicsWorld& world, const Machin
           return std::make_unique<StsCrane>(world, m.crane, m.gantry_y_m, m.trolley_x_m, m.spreader_z_m);
         if constexpr (std::is_same_v<T, MhcSetup>)
           return std::make_unique<MobileHarbourCrane>(world, m.crane, m.start);
+        if constexpr (std::is_same_v<T, TractorSetup>)
+          return std::make_unique<TerminalTractor>(world, m.vehicle, m.start);
       },
       setup);
 }

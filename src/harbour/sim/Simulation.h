@@ -13,6 +13,7 @@
 #include "harbour/core/Warnings.h"
 #include "harbour/machines/mhc/MobileHarbourCrane.h"
 #include "harbour/machines/sts/StsCrane.h"
+#include "harbour/machines/tractor/TerminalTractor.h"
 #include "harbour/physics/PhysicsWorld.h"
 #include "harbour/sim/Controls.h"
 #include "harbour/sim/Snapshot.h"
@@ -90,8 +91,14 @@ struct MhcSetup {
   MhcStart start;
 };
 
+/// A terminal tractor and where it stands (settings).
+struct TractorSetup {
+  TractorSettings vehicle;
+  TractorStart start;
+};
+
 /// The machine an exercise runs, with its start.
-using MachineSetup = std::variant<StsSetup, MhcSetup>;
+using MachineSetup = std::variant<StsSetup, MhcSetup, TractorSetup>;
 
 /// The kind of machine a setup builds ("sts", ...), as files name it.
 const char* machine_kind(const MachineSetup& setup);

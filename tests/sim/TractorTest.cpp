@@ -1,0 +1,135 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "harbour/io/ExerciseFiles.h"
+#include "harbour/sim/Evaluation.h"
+
+namespace harbour::sim {
+namespace {
+
+constexpr double kG = 9.80665;
+
+ExerciseSettings free_practice() {
+  return io::load_exercise(HARBOUR_DATA_DIR "/exercises/tractor_free_practice.yaml");
+}
+
+const TerminalTractor& tractor(const Simulation& sim) {
+  return dynamic_cast<const TerminalTractor&>(sim.machine());
+}
+
+// the cab's controls: a throttle holding `speed_mps` (brake above it) in `direction`, the wheel at `steer`
+Controls driving(const Simulation& sim, double speed_mps, double steer, const char* direction = "forward") {
+  const ControlTable& table = sim.control_table();
+  Controls c = table.neutral();
+  const double error = speed_mps - std::abs(tractor(sim).forward_mps());
+  c.value[static_cast<std::size_t>(table.find("throttle"))] = std::clamp(0.5 * error, 0.0, 1.0);
+  c.value[static_cast<std::size_t>(table.find("brake"))] = std::clamp(-0.5 * error, 0.0, 1.0);
+  c.value[static_cast<std::size_t>(table.find("steer"))] = steer;
+  const std::vector<std::string>& positions = table[table.find("direction")].positions;
+  c.value[static_cast<std::size_t>(table.find("direction"))] =
+      static_cast<double>(std::find(positions.begin(), positions.end(), direction) - positions.begin());
+  return c;
+}
+
+void drive(Simulation& sim, double seconds, double speed_mps, double steer,
+           const char* direction = "forward") {
+  for (int k = 0; k < static_cast<int>(std::lround(seconds / Simulation::kStep_s)); ++k)
+    sim.step(driving(sim, speed_mps, steer, direction));
+  ASSERT_FALSE(sim.diverged()) << sim.divergence();
+}
+
+TEST(Tractor, AtFullLockItTurnsOnTheAckermannCircle) {
+  // the shipped tractor at walking pace, the wheel at full lock: the rear axle's centre turns at L / tan δ
+  Simulation sim(free_practice().scenario);
+  drive(sim, 25.0, 1.5, 1.0);
+  const TerminalTractor& t = tractor(sim);
+  const WheeledChassisSettings& c = t.settings().chassis;
+  const double wheelbase = c.axles[0].x_m - c.axles[1].x_m;
+  const double expected = wheelbase / std::tan(c.max_steer_rad);
+  const core::Vec3 rear = sim.world().point_velocity(t.body(), {c.axles[1].x_m, 0, 0});
+  const double radius = std::hypot(rear.x, rear.y) / std::abs(sim.world().angular_velocity(t.body()).z);
+  EXPECT_NEAR(radius, expected, 0.05 * expected);
+  EXPECT_NEAR(t.steering(), 1.0, 1e-12);
+  std::printf("tractor at full lock: %.3f m against L / tan(delta) = %.3f m\n", radius, expected);
+}
+
+TEST(Tractor, FullBrakesStopItInTheDistanceItsGripAndBrakesAllow) {
+  // braking moves load onto the front axle (m a h / L): the unloaded rear wheels lock and slide at µ·Fz, the
+  // loaded front wheels' grip exceeds their brakes and they hold the brake torque / r; the deceleration
+  // solves a = (F_front(a) + F_rear(a)) / m, the stop v² / (2a)
+  Simulation sim(free_practice().scenario);
+  drive(sim, 15.0, 6.0, 0.0);
+  const TerminalTractor& t = tractor(sim);
+  const double v = t.forward_mps();
+  ASSERT_GT(v, 5.0);
+  const core::Vec3 from = sim.world().pose(t.body()).position;
+  const WheeledChassisSettings& c = t.settings().chassis;
+  const double m = t.settings().mass_kg, mu = c.tyre.friction, h = from.z;
+  const double front = c.axles[0].x_m, rear = -c.axles[1].x_m, wheelbase = front + rear;
+  double a = 0.0;
+  for (int k = 0; k < 100; ++k) {
+    const double shift = m * a * h / wheelbase;
+    const double on_front = m * kG * rear / wheelbase + shift, on_rear = m * kG * front / wheelbase - shift;
+    const double braking_front = std::min(2 * c.brake_torque_per_wheel_nm / c.tyre.radius_m, mu * on_front);
+    const double braking_rear =
+        std::min(2 * c.axles[1].tyres_per_side * c.brake_torque_per_wheel_nm / c.tyre.radius_m, mu * on_rear);
+    a = (braking_front + braking_rear) / m;
+  }
+  Controls brake = sim.control_table().neutral();
+  brake.value[static_cast<std::size_t>(sim.control_table().find("brake"))] = 1.0;
+  for (int k = 0; k < 10000 && t.forward_mps() > 0.01; ++k)
+    sim.step(brake);
+  const core::Vec3 to = sim.world().pose(t.body()).position;
+  const double expected = v * v / (2 * a);
+  EXPECT_LT(a, mu * kG);  // the front brakes, not the grip, limit it
+  EXPECT_NEAR(std::hypot(to.x - from.x, to.y - from.y), expected, 0.05 * expected);
+  std::printf(
+      "tractor braking from %.2f m/s: %.3f m against %.3f m (a = %.2f m/s^2; sliding all round: %.3f m)\n", v,
+      std::hypot(to.x - from.x, to.y - from.y), expected, a, v * v / (2 * mu * kG));
+}
+
+TEST(Tractor, NeutralDoesNotDriveAndReverseDrivesBackwards) {
+  Simulation sim(free_practice().scenario);
+  drive(sim, 5.0, 3.0, 0.0, "neutral");
+  EXPECT_LT(std::abs(tractor(sim).forward_mps()), 0.01);
+  drive(sim, 10.0, 2.0, 0.0, "reverse");
+  EXPECT_NEAR(tractor(sim).forward_mps(), -2.0, 0.3);
+}
+
+TEST(Tractor, StepsAreAPureFunctionOfTheInputsAndKeyframesContinueBitForBit) {
+  const ExerciseSettings exercise = free_practice();
+  Simulation a(exercise.scenario), b(exercise.scenario);
+  drive(a, 8.0, 4.0, 0.4);
+  drive(b, 8.0, 4.0, 0.4);
+  EXPECT_EQ(a.state_hash(), b.state_hash());
+  const std::vector<std::uint8_t> keyframe = a.save_state();
+  drive(a, 5.0, 4.0, -0.7);
+  Simulation restored(exercise.scenario);
+  restored.restore_state(keyframe);
+  drive(restored, 5.0, 4.0, -0.7);
+  EXPECT_EQ(restored.state_hash(), a.state_hash());
+}
+
+TEST(Tractor, ItsDrivingIsEvaluatedForHarshBraking) {
+  // slamming the brakes from speed is a harsh move on its drive; the free practice has no goals
+  const ExerciseSettings exercise = free_practice();
+  Simulation sim(exercise.scenario);
+  Evaluator evaluator(exercise);
+  for (int k = 0; k < 20000; ++k) {
+    Controls c = driving(sim, 6.0, 0.0);
+    if (k >= 15000) {
+      c = sim.control_table().neutral();
+      c.value[static_cast<std::size_t>(sim.control_table().find("brake"))] = 1.0;
+    }
+    sim.step(c);
+    evaluator.observe(sim, c);
+  }
+  ASSERT_EQ(evaluator.metrics().smoothness.size(), 1u);
+  EXPECT_EQ(evaluator.metrics().smoothness[0].axis, "drive");
+  EXPECT_GE(evaluator.metrics().smoothness[0].harsh_moves, 1);
+  EXPECT_FALSE(evaluator.finished());
+}
+
+}  // namespace
+}  // namespace harbour::sim
