@@ -206,20 +206,27 @@ TEST(DeviceMapping, BadMappingsNameFileLineAndField) {
 }
 
 TEST(DeviceMapping, EveryShippedMappingLoadsAndWritesBackTheSame) {
-  const sim::ControlTable sts = sim::sts_control_table();
-  // the slewing machines' controls: the shipped MHC's
-  const sim::ControlTable slewing = io::load_mhc(HARBOUR_DATA_DIR "/machines/mhc.yaml").controls;
+  // the three families' controls: the STS's, the slewing machines' (the shipped MHC's), the vehicles' (the
+  // shipped tractor's)
+  const std::vector<sim::ControlTable> machines{
+      sim::sts_control_table(), io::load_mhc(HARBOUR_DATA_DIR "/machines/mhc.yaml").controls,
+      io::load_tractor(HARBOUR_DATA_DIR "/machines/tractor.yaml").controls};
   int files = 0;
   for (const auto& entry : std::filesystem::directory_iterator(std::string(HARBOUR_DATA_DIR) + "/devices")) {
     const std::string path = entry.path().string();
-    // each fits one machine: the profiles skip those for another
-    const bool lever = why_mapping_does_not_fit(path, slewing).empty();
-    EXPECT_NE(why_mapping_does_not_fit(path, lever ? sts : slewing), "") << path;
-    const DeviceMapping m = load_device_mapping(path, lever ? slewing : sts);
+    // each fits exactly one family: the profiles skip those for another
+    const sim::ControlTable* fits = nullptr;
+    for (const sim::ControlTable& table : machines)
+      if (why_mapping_does_not_fit(path, table).empty()) {
+        EXPECT_EQ(fits, nullptr) << path << " fits two machines";
+        fits = &table;
+      }
+    ASSERT_NE(fits, nullptr) << path << " fits no machine";
+    const DeviceMapping m = load_device_mapping(path, *fits);
     EXPECT_FALSE(m.bindings.empty()) << path;
     // what `harboursim devices` writes reads back to the same bindings
-    const DeviceMapping back = load_device_mapping(
-        io::YamlFile::parse(device_mapping_text(m), "written.yaml"), lever ? slewing : sts);
+    const DeviceMapping back =
+        load_device_mapping(io::YamlFile::parse(device_mapping_text(m), "written.yaml"), *fits);
     ASSERT_EQ(back.bindings.size(), m.bindings.size()) << path;
     for (std::size_t n = 0; n < m.bindings.size(); ++n) {
       EXPECT_EQ(back.bindings[n].slot, m.bindings[n].slot);
@@ -227,10 +234,11 @@ TEST(DeviceMapping, EveryShippedMappingLoadsAndWritesBackTheSame) {
       EXPECT_EQ(back.bindings[n].keys, m.bindings[n].keys);
       EXPECT_EQ(back.bindings[n].invert, m.bindings[n].invert);
       EXPECT_EQ(back.bindings[n].dead_zone, m.bindings[n].dead_zone);
+      EXPECT_EQ(back.bindings[n].toggle, m.bindings[n].toggle);
     }
     ++files;
   }
-  EXPECT_EQ(files, 6);  // keyboard.yaml includes the mouse
+  EXPECT_EQ(files, 7);  // keyboard.yaml includes the mouse
 }
 
 }  // namespace
