@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/sim/Evaluation.h"
@@ -129,6 +130,60 @@ TEST(Tractor, ItsDrivingIsEvaluatedForHarshBraking) {
   EXPECT_EQ(evaluator.metrics().smoothness[0].axis, "drive");
   EXPECT_GE(evaluator.metrics().smoothness[0].harsh_moves, 1);
   EXPECT_FALSE(evaluator.finished());
+}
+
+// The free practice's tractor with a 40 ft mafi (18 t with its load) coupled over its rear axle: the
+// trailer's single axle 10.1 m behind the kingpin, its tyres carrying it level.
+ScenarioSettings with_a_mafi() {
+  ScenarioSettings s = free_practice().scenario;
+  TractorSetup& setup = std::get<TractorSetup>(s.machine);
+  TrailerSettings mafi;
+  mafi.mass_kg = 18000.0;
+  mafi.kingpin_m = {5.6, 0.0, 0.3};
+  mafi.wheels.tyre = setup.vehicle.chassis.tyre;
+  mafi.wheels.tyre.radius_m = 0.4;
+  const double centre_z = setup.vehicle.chassis.tyre.radius_m - setup.vehicle.chassis.axles[0].hub_z_m +
+                          setup.vehicle.hitch_m.z - mafi.kingpin_m.z;
+  mafi.wheels.axles = {{-4.5, 1.0, -(centre_z - mafi.wheels.tyre.radius_m), false, false, 2}};
+  mafi.wheels.brake_torque_per_wheel_nm = setup.vehicle.chassis.brake_torque_per_wheel_nm;
+  setup.start.trailer = mafi;
+  return s;
+}
+
+TEST(Tractor, ATrailerOffTracksOnASteadyTurnByTheKinematicModel) {
+  // the hitch over the tractor's rear axle turning at R1: the trailer's axle, L2 behind the hitch, runs on
+  // the circle sqrt(R1² − L2²) inside it
+  Simulation sim(with_a_mafi());
+  const TerminalTractor& t = tractor(sim);
+  ASSERT_NE(t.trailer_body(), physics::kWorld);
+  const WheeledChassisSettings& c = t.settings().chassis;
+  const double wheelbase = c.axles[0].x_m - c.axles[1].x_m, r1 = 15.0;
+  const double steer = std::atan(wheelbase / r1) / c.max_steer_rad;
+  drive(sim, 80.0, 1.5, steer);
+  const auto radius_at = [&](physics::BodyId body, const core::Vec3& point) {
+    const core::Vec3 v = sim.world().point_velocity(body, point);
+    return std::hypot(v.x, v.y) / std::abs(sim.world().angular_velocity(body).z);
+  };
+  const double tractor_r = radius_at(t.body(), {c.axles[1].x_m, 0, 0});
+  const double l2 = 5.6 - (-4.5);
+  const double expected = std::sqrt(tractor_r * tractor_r - l2 * l2);
+  const double trailer_r = radius_at(t.trailer_body(), {-4.5, 0, 0});
+  EXPECT_NEAR(tractor_r, r1, 0.05 * r1);
+  EXPECT_NEAR(trailer_r, expected, 0.05 * expected);
+  EXPECT_EQ(t.jackknifes(), 0u);
+  std::printf(
+      "mafi on a %.2f m turn: its axle on %.2f m against sqrt(R1^2 - L2^2) = %.2f m, hitch %.1f deg\n",
+      tractor_r, trailer_r, expected, t.hitch_angle_rad() * 180.0 / std::numbers::pi);
+}
+
+TEST(Tractor, ReversingWithTheWheelTurnedFoldsTheTrailerIntoAJackknife) {
+  // backing a trailer is unstable: held steering folds it until the hitch angle passes the set limit, once
+  Simulation sim(with_a_mafi());
+  drive(sim, 5.0, 1.0, 0.0);
+  EXPECT_EQ(tractor(sim).jackknifes(), 0u);
+  drive(sim, 40.0, 1.0, 0.6, "reverse");
+  EXPECT_EQ(tractor(sim).jackknifes(), 1u);
+  EXPECT_GT(std::abs(tractor(sim).hitch_angle_rad()), tractor(sim).settings().jackknife_angle_rad);
 }
 
 }  // namespace

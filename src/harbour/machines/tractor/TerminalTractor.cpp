@@ -54,7 +54,29 @@ TerminalTractor::TerminalTractor(physics::PhysicsWorld& world, const TractorSett
       horn_slot_(settings.controls.slot("horn", ControlKind::kButton)),
       body_(add_chassis(world, settings, start)),
       chassis_(settings.chassis, body_),
-      wind_area_{body_, settings.half_extents_m} {}
+      wind_areas_{WindArea{body_, settings.half_extents_m}, WindArea{}} {
+  if (!start.trailer) return;
+  // in line behind it, its kingpin on the hitch, standing on its tyres' sag
+  const TrailerSettings& t = *start.trailer;
+  const core::Pose chassis = world.pose(body_);
+  const core::Vec3 hitch = chassis.to_parent(settings.hitch_m);
+  physics::BoxSettings box;
+  box.mass_kg = t.mass_kg;
+  box.half_extents_m = t.half_extents_m;
+  box.pose = {chassis.rotation, hitch - chassis.rotation * t.kingpin_m};
+  trailer_body_ = world.add_box(box);
+  world.attach_pivot(body_, trailer_body_, hitch);
+  trailer_wheels_.emplace(t.wheels, trailer_body_);
+  trailer_half_extents_m_ = t.half_extents_m;
+  wind_areas_[1] = {trailer_body_, t.half_extents_m};
+}
+
+double TerminalTractor::hitch_angle_rad() const {
+  if (trailer_body_ == physics::kWorld) return 0.0;
+  const core::Vec3 a = world_.pose(body_).rotation.column(0),
+                   b = world_.pose(trailer_body_).rotation.column(0);
+  return std::atan2(a.x * b.y - a.y * b.x, a.x * b.x + a.y * b.y);
+}
 
 double TerminalTractor::forward_mps() const {
   return dot(world_.linear_velocity(body_), world_.pose(body_).rotation.column(0));
@@ -75,6 +97,13 @@ void TerminalTractor::step(const Controls& raw, std::span<const ContainerRef>, d
   command.reverse = direction == kReverse;
   command.brake = stop ? 1.0 : at(brake_slot_);
   chassis_.step(world_, command, 0.0);
+  if (trailer_wheels_) {
+    // the trailer's brakes work with the tractor's (air brakes on the coupling)
+    trailer_wheels_->step(world_, {0.0, false, command.brake, 0.0}, 0.0);
+    const bool folded = std::abs(hitch_angle_rad()) > settings_.jackknife_angle_rad;
+    if (folded && !jackknifed_) ++jackknifes_;
+    jackknifed_ = folded;
+  }
 }
 
 double TerminalTractor::attachment_bottom_z_m() const {
@@ -96,13 +125,18 @@ MachineTally TerminalTractor::tally() const {
 void TerminalTractor::describe(SceneDescription& d) const {
   d.machine = kind();
   d.entities.push_back({"tractor", "tractor.chassis", settings_.half_extents_m});
+  if (trailer_body_ != physics::kWorld) d.entities.push_back({"trailer", "trailer", trailer_half_extents_m_});
   d.indicators.assign(std::begin(kTractorIndicators), std::end(kTractorIndicators));
   d.rope_count = 0;
 }
 
 int TerminalTractor::publish(Snapshot& s, int first) const {
-  if (first < kMaxEntities)
-    s.entities[static_cast<std::size_t>(first)] = {static_cast<std::uint32_t>(first), 0, world_.pose(body_)};
+  int n = first;
+  for (const physics::BodyId b : {body_, trailer_body_})
+    if (b != physics::kWorld && n < kMaxEntities) {
+      s.entities[static_cast<std::size_t>(n)] = {static_cast<std::uint32_t>(n), 0, world_.pose(b)};
+      ++n;
+    }
   const double speed = forward_mps();
   const double values[] = {
       speed * 3.6,
@@ -113,24 +147,29 @@ int TerminalTractor::publish(Snapshot& s, int first) const {
   static_assert(std::size(values) == std::size(kTractorIndicators));
   s.indicator_count = static_cast<int>(std::size(values));
   std::copy(std::begin(values), std::end(values), s.indicators.begin());
-  return first < kMaxEntities ? 1 : 0;
+  return n - first;
 }
 
 void TerminalTractor::hash_into(core::StateHash& hash) const {
   hash.add(steering_);
   hash.add(horn_);
+  hash.add(jackknifes_);
 }
 
 void TerminalTractor::save_state(core::StateWriter& out) const {
   out.section(0x54524331);  // "TRC1"
   out.put(steering_);
   out.put(horn_);
+  out.put(jackknifed_);
+  out.put(jackknifes_);
 }
 
 void TerminalTractor::restore_state(core::StateReader& in) {
   in.section(0x54524331, "terminal tractor");
   in.get(steering_);
   in.get(horn_);
+  in.get(jackknifed_);
+  in.get(jackknifes_);
 }
 
 }  // namespace harbour::sim

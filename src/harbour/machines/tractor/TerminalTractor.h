@@ -1,6 +1,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <optional>
 #include <span>
 
@@ -14,6 +15,16 @@ namespace harbour::sim {
 /// accelerator and brake pedals, the direction selector, horn and emergency stop.
 ControlTable tractor_control_table();
 
+/// A trailer the tractor tows (settings): a roll trailer (mafi) on its gooseneck or a semi-trailer on the
+/// fifth wheel; its front rests on the hitch, its rear on its own axles. Frame: its centre of mass, x
+/// forward.
+struct TrailerSettings {
+  double mass_kg = 9000.0;                    ///< [kg] tare and payload
+  core::Vec3 half_extents_m{6.1, 1.25, 0.4};  ///< a 40 ft mafi's deck, about its centre of mass
+  core::Vec3 kingpin_m{5.6, 0.0, 0.3};        ///< [m] the hitch on it (trailer frame)
+  WheeledChassisSettings wheels;              ///< its axles (none steered or driven), tyres and brakes
+};
+
 /// A terminal (ro-ro) tractor (settings, from data/machines/tractor.yaml): a chassis body on its wheels.
 /// Frame: the chassis body's centre is its centre of mass; x forward, z up; axles and the cab given in it.
 struct TractorSettings {
@@ -24,13 +35,16 @@ struct TractorSettings {
   core::Vec3 cab_position_m{1.4, 0.4, 1.3};
   core::Vec3 eye_m{0.0, 0.0, 0.5};
   double sight_pitch_rad = -0.1;
+  core::Vec3 hitch_m{-1.45, 0.0, 0.7};  ///< [m] the fifth wheel / gooseneck coupling point (chassis frame)
+  double jackknife_angle_rad = 1.4;     ///< the hitch angle counted as a jack-knife
   ControlTable controls = tractor_control_table();
 };
 
 /// Where the tractor stands.
 struct TractorStart {
-  core::Vec3 position_m;     ///< [m] the point under its centre of mass on the ground
-  double heading_rad = 0.0;  ///< its x from world x, about z
+  core::Vec3 position_m;                   ///< [m] the point under its centre of mass on the ground
+  double heading_rad = 0.0;                ///< its x from world x, about z
+  std::optional<TrailerSettings> trailer;  ///< coupled at the start, in line behind it
 };
 
 /// A terminal tractor on the physics world: a chassis body carried by its tyres (the shared wheeled chassis:
@@ -47,7 +61,9 @@ class TerminalTractor final : public Machine {
   std::optional<physics::BodyId> held_item() const override { return std::nullopt; }
   double attachment_bottom_z_m() const override;
   double pendulum_length_m() const override { return 0.0; }
-  std::span<const WindArea> wind_areas() const override { return {&wind_area_, 1}; }
+  std::span<const WindArea> wind_areas() const override {
+    return {wind_areas_.data(), trailer_body_ == physics::kWorld ? 1u : 2u};
+  }
   physics::BodyId cab_body() const override { return body_; }
   core::Vec3 eye_on_cab_body_m() const override { return settings_.cab_position_m + settings_.eye_m; }
   core::Pose cab_pose() const override;
@@ -70,6 +86,12 @@ class TerminalTractor final : public Machine {
   /// The steering as it stands now [-1, 1] (it follows the wheel at the steering's rate).
   double steering() const { return steering_; }
   const WheeledChassis& chassis() const { return chassis_; }
+  /// The coupled trailer's body (kWorld: none).
+  physics::BodyId trailer_body() const { return trailer_body_; }
+  /// The hitch angle [rad]: the trailer's heading from the tractor's (+ the trailer swung to the tractor's
+  /// left); 0 without a trailer.
+  double hitch_angle_rad() const;
+  std::uint32_t jackknifes() const { return jackknifes_; }
   const TractorSettings& settings() const { return settings_; }
 
  private:
@@ -78,9 +100,13 @@ class TerminalTractor final : public Machine {
   int steer_slot_, throttle_slot_, brake_slot_, direction_slot_, stop_slot_, horn_slot_;
   physics::BodyId body_;
   WheeledChassis chassis_;
-  WindArea wind_area_;
+  std::array<WindArea, 2> wind_areas_;
+  physics::BodyId trailer_body_ = physics::kWorld;
+  std::optional<WheeledChassis> trailer_wheels_;
+  core::Vec3 trailer_half_extents_m_;
   double steering_ = 0.0;
-  bool horn_ = false;
+  bool horn_ = false, jackknifed_ = false;
+  std::uint32_t jackknifes_ = 0;
 };
 
 }  // namespace harbour::sim
