@@ -139,7 +139,7 @@ TEST(MachineFiles, ShippedTractorLoadsAndBadOnesNameTheField) {
   const sim::TractorSettings t = load_tractor(HARBOUR_DATA_DIR "/machines/tractor.yaml");
   ASSERT_EQ(t.chassis.axles.size(), 2u);
   EXPECT_NEAR(t.chassis.axles[0].x_m - t.chassis.axles[1].x_m, 2.95, 1e-12);  // published wheelbase
-  EXPECT_EQ(t.chassis.drivetrain.torque_curve[1].second, 705.0);               // published peak torque
+  EXPECT_EQ(t.chassis.drivetrain.torque_curve[1].second, 705.0);              // published peak torque
   EXPECT_EQ(machine_file_kind(HARBOUR_DATA_DIR "/machines/tractor.yaml"), "tractor");
   expect_tractor_error("kind: tractor", "kind: mhc", "machine.kind", "tractor file");
   expect_tractor_error("steered: true, driven: false", "steered: false, driven: false", "machine.axles",

@@ -323,7 +323,8 @@ TEST(Devices, TheDrivingKeyboardFitsTheTractorAndTheCranesKeyboardsDoNot) {
   EXPECT_NE(why_mapping_does_not_fit(HARBOUR_DATA_DIR "/devices/keyboard.yaml", table), "");
   EXPECT_NE(why_mapping_does_not_fit(HARBOUR_DATA_DIR "/devices/keyboard_slewing.yaml", table), "");
   const sim::Simulation mhc(io::load_exercise(HARBOUR_DATA_DIR "/exercises/mhc_free_practice.yaml").scenario);
-  EXPECT_NE(why_mapping_does_not_fit(HARBOUR_DATA_DIR "/devices/keyboard_driving.yaml", mhc.control_table()), "");
+  EXPECT_NE(why_mapping_does_not_fit(HARBOUR_DATA_DIR "/devices/keyboard_driving.yaml", mhc.control_table()),
+            "");
 }
 
 }  // namespace

@@ -108,6 +108,31 @@ void check_sts_hoist(const YamlFile& f, const YAML::Node& at, const cable::Reevi
   }
 }
 
+// the operator's cab: where it sits (within `reach_m` of the frame it is given in), the eye in it and the
+// design line of sight
+struct CabFields {
+  core::Vec3 position_m, eye_m;
+  double sight_pitch_rad = 0.0;
+};
+CabFields read_cab(const YamlFile& f, const YAML::Node& machine, double reach_m) {
+  const YAML::Node cab = f.required_map(machine, "cab", "machine");
+  return {f.vector3(f.required(cab, "position_m", "machine.cab"), "machine.cab.position_m", reach_m),
+          f.vector3(f.required(cab, "eye_m", "machine.cab"), "machine.cab.eye_m", 5.0),
+          core::deg_to_rad(f.number(cab, "sight_pitch_deg", "machine.cab", -90.0, 30.0))};
+}
+
+// every control the machine reads is in its table, of its kind; a missing or mistyped one names the list
+void require_controls(const YamlFile& f, const YAML::Node& machine, const sim::ControlTable& table,
+                      std::initializer_list<std::pair<const char*, sim::ControlKind>> needed) {
+  for (const auto& [label, kind] : needed) {
+    try {
+      table.slot(label, kind);
+    } catch (const std::invalid_argument& e) {
+      f.fail(machine["controls"], "machine.controls", e.what());
+    }
+  }
+}
+
 sim::StsCraneSettings read_sts_crane(const YamlFile& f, const std::string& folder) {
   sim::StsCraneSettings s;
   const YAML::Node m = f.required_map(f.root(), "machine", "");
@@ -152,10 +177,10 @@ sim::StsCraneSettings read_sts_crane(const YamlFile& f, const std::string& folde
   } catch (const std::invalid_argument& e) {
     f.fail(m["controls"], "machine.controls", e.what());
   }
-  const YAML::Node cab = f.required_map(m, "cab", "machine");
-  s.cab_position_m = f.vector3(f.required(cab, "position_m", "machine.cab"), "machine.cab.position_m", 100.0);
-  s.eye_m = f.vector3(f.required(cab, "eye_m", "machine.cab"), "machine.cab.eye_m", 5.0);
-  s.sight_pitch_rad = core::deg_to_rad(f.number(cab, "sight_pitch_deg", "machine.cab", -90.0, 30.0));
+  const CabFields cab = read_cab(f, m, 100.0);
+  s.cab_position_m = cab.position_m;
+  s.eye_m = cab.eye_m;
+  s.sight_pitch_rad = cab.sight_pitch_rad;
   return s;
 }
 
@@ -311,23 +336,18 @@ sim::MhcSettings read_mhc(const YamlFile& f, const std::string& folder) {
   s.limiter_slow_from = f.number(l, "slow_from", lat, 0.5, 1.0, false, true);
   s.limiter_filter_s = f.number(l, "filter_s", lat, 0.0, 10.0, true);
 
-  const YAML::Node cab = f.required_map(m, "cab", "machine");
-  s.cab_position_m = f.vector3(f.required(cab, "position_m", "machine.cab"), "machine.cab.position_m", 100.0);
-  s.eye_m = f.vector3(f.required(cab, "eye_m", "machine.cab"), "machine.cab.eye_m", 5.0);
-  s.sight_pitch_rad = core::deg_to_rad(f.number(cab, "sight_pitch_deg", "machine.cab", -90.0, 30.0));
+  const CabFields cab = read_cab(f, m, 100.0);
+  s.cab_position_m = cab.position_m;
+  s.eye_m = cab.eye_m;
+  s.sight_pitch_rad = cab.sight_pitch_rad;
   s.controls = read_control_table(f, m, "machine");
-  for (const auto& [label, kind] : {std::pair{"slew", sim::ControlKind::kAxis},
-                                    {"luff", sim::ControlKind::kAxis},
-                                    {"hoist", sim::ControlKind::kAxis},
-                                    {"grab", sim::ControlKind::kAxis},
-                                    {"emergency_stop", sim::ControlKind::kButton},
-                                    {"horn", sim::ControlKind::kButton}}) {
-    try {
-      s.controls.slot(label, kind);
-    } catch (const std::invalid_argument& e) {
-      f.fail(m["controls"], "machine.controls", e.what());
-    }
-  }
+  require_controls(f, m, s.controls,
+                   {{"slew", sim::ControlKind::kAxis},
+                    {"luff", sim::ControlKind::kAxis},
+                    {"hoist", sim::ControlKind::kAxis},
+                    {"grab", sim::ControlKind::kAxis},
+                    {"emergency_stop", sim::ControlKind::kButton},
+                    {"horn", sim::ControlKind::kButton}});
   if (s.hook && s.controls.find("sling") < 0)
     f.fail(m["controls"], "machine.controls",
            "a machine with a hook needs a 'sling' button (the slinger's call)");
@@ -408,23 +428,18 @@ sim::TractorSettings read_tractor(const YamlFile& f) {
   w.brake_torque_per_wheel_nm = f.number(m, "brake_torque_per_wheel_nm", "machine", 0.0, 1e6);
   w.max_steer_rad = core::deg_to_rad(f.number(m, "max_steer_deg", "machine", 1.0, 80.0));
   s.steer_rate_per_s = f.number(m, "steer_rate_per_s", "machine", 0.05, 20.0);
-  const YAML::Node cab = f.required_map(m, "cab", "machine");
-  s.cab_position_m = f.vector3(f.required(cab, "position_m", "machine.cab"), "machine.cab.position_m", 20.0);
-  s.eye_m = f.vector3(f.required(cab, "eye_m", "machine.cab"), "machine.cab.eye_m", 5.0);
-  s.sight_pitch_rad = core::deg_to_rad(f.number(cab, "sight_pitch_deg", "machine.cab", -90.0, 30.0));
+  const CabFields cab = read_cab(f, m, 20.0);
+  s.cab_position_m = cab.position_m;
+  s.eye_m = cab.eye_m;
+  s.sight_pitch_rad = cab.sight_pitch_rad;
   s.controls = read_control_table(f, m, "machine");
-  for (const auto& [label, kind] : {std::pair{"steer", sim::ControlKind::kAxis},
-                                    {"throttle", sim::ControlKind::kAxis},
-                                    {"brake", sim::ControlKind::kAxis},
-                                    {"direction", sim::ControlKind::kSwitch},
-                                    {"emergency_stop", sim::ControlKind::kButton},
-                                    {"horn", sim::ControlKind::kButton}}) {
-    try {
-      s.controls.slot(label, kind);
-    } catch (const std::invalid_argument& e) {
-      f.fail(m["controls"], "machine.controls", e.what());
-    }
-  }
+  require_controls(f, m, s.controls,
+                   {{"steer", sim::ControlKind::kAxis},
+                    {"throttle", sim::ControlKind::kAxis},
+                    {"brake", sim::ControlKind::kAxis},
+                    {"direction", sim::ControlKind::kSwitch},
+                    {"emergency_stop", sim::ControlKind::kButton},
+                    {"horn", sim::ControlKind::kButton}});
   if (const int d_slot = s.controls.find("direction");
       s.controls[d_slot].positions != std::vector<std::string>{"reverse", "neutral", "forward"})
     f.fail(m["controls"], "machine.controls",

@@ -49,7 +49,6 @@ WheeledChassis::WheeledChassis(const WheeledChassisSettings& settings, physics::
   steer_base_m_ = 0.0;
   for (const AxleSettings& a : settings.axles)
     if (a.steered) steer_base_m_ = std::max(steer_base_m_, std::abs(a.x_m - reference_x_));
-  forces_.resize(2 * settings.axles.size());
 }
 
 double WheeledChassis::turn_radius_m(double steer) const {
@@ -72,7 +71,6 @@ void WheeledChassis::step(physics::PhysicsWorld& world, const ChassisCommand& co
           .first *
       (command.reverse ? -1.0 : 1.0);
   const double brake = std::clamp(command.brake, 0.0, 1.0) * settings_.brake_torque_per_wheel_nm;
-  std::size_t n = 0;
   for (const AxleSettings& a : settings_.axles) {
     TyreSettings tyre = settings_.tyre;  // twin tyres: one element of twice the stiffnesses
     tyre.vertical_stiffness_n_per_m *= a.tyres_per_side;
@@ -84,7 +82,7 @@ void WheeledChassis::step(physics::PhysicsWorld& world, const ChassisCommand& co
       c.steer_rad = a.steered ? wheel_angle_rad(a.x_m, y, command.steer) : 0.0;
       c.drive_torque_nm = a.driven && driven_wheels_ > 0 ? axle_torque / driven_wheels_ : 0.0;
       c.brake_torque_nm = brake * a.tyres_per_side;
-      forces_[n++] = apply_tyre(world, body_, {a.x_m, y, a.hub_z_m}, tyre, c, ground_z_m);
+      apply_tyre(world, body_, {a.x_m, y, a.hub_z_m}, tyre, c, ground_z_m);
     }
   }
 }

@@ -69,16 +69,12 @@ class WheeledChassis {
   double turn_radius_m(double steer) const;
   /// The reference point's x: the centre of the non-steered axles (where the turn's centre lies across).
   double reference_x_m() const { return reference_x_; }
-  /// Last step's tyre forces, wheel by wheel (axle by axle, left then right).
-  const std::vector<TyreForces>& tyre_forces() const { return forces_; }
-  const WheeledChassisSettings& settings() const { return settings_; }
 
  private:
   WheeledChassisSettings settings_;
   physics::BodyId body_;
   double reference_x_ = 0.0, steer_base_m_ = 1.0;
   int driven_wheels_ = 0;
-  std::vector<TyreForces> forces_;
 };
 
 }  // namespace harbour::sim

@@ -85,7 +85,6 @@ class TerminalTractor final : public Machine {
   double forward_mps() const;
   /// The steering as it stands now [-1, 1] (it follows the wheel at the steering's rate).
   double steering() const { return steering_; }
-  const WheeledChassis& chassis() const { return chassis_; }
   /// The coupled trailer's body (kWorld: none).
   physics::BodyId trailer_body() const { return trailer_body_; }
   /// The hitch angle [rad]: the trailer's heading from the tractor's (+ the trailer swung to the tractor's
