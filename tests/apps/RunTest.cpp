@@ -6,6 +6,8 @@
 
 #include <chrono>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <thread>
 #include <vector>
@@ -25,6 +27,11 @@ fs::path fresh_folder(const std::string& name) {
   fs::remove_all(folder);
   fs::create_directories(folder);
   return folder;
+}
+
+std::string read_text(const fs::path& file) {
+  std::ifstream in(file);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 // starts `harboursim run` on the shipped discharge exercise, its output to a log in `folder`
@@ -95,10 +102,13 @@ TEST(Run, EightStationsOnOneSqliteDatabaseAllStoreTheirAttempts) {
   std::vector<pid_t> runs;
   for (int n = 0; n < 8; ++n)
     runs.push_back(start_run(folder, db, "", n));
-  for (const pid_t run : runs) {
+  for (std::size_t n = 0; n < runs.size(); ++n) {
     int status = 0;
-    waitpid(run, &status, 0);
-    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "see " << folder;
+    waitpid(runs[n], &status, 0);
+    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0)
+        << "run " << n << (WIFSIGNALED(status) ? " killed by signal " + std::to_string(WTERMSIG(status)) : "")
+        << ", its log:\n"
+        << read_text(folder / ("run" + std::to_string(n) + ".log"));
   }
   io::RecordsStore store(db);
   const auto attempts = store.attempts();

@@ -69,6 +69,22 @@ TEST_P(RecordsStoreOn, StoresTraineesAttemptsMovesAndScores) {
   EXPECT_EQ(db.trainees().size(), 1u);
 }
 
+// A database of the build before attempts named their process gains the column and keeps its rows.
+TEST_P(RecordsStoreOn, ADatabaseOfTheBuildBeforeTheProcessColumnGainsIt) {
+  const std::string connection = fresh_connection(GetParam(), "records_upgrade");
+  {
+    RecordsStore db(connection);
+    db.add_trainee("t001", "Ana Pérez");
+    db.begin_attempt("t001", "sts_discharge");
+  }
+  soci::session(records_connection(connection)) << "ALTER TABLE attempts DROP COLUMN process";
+  RecordsStore db(connection);
+  const auto rows = db.attempts();
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_EQ(rows[0].status, "running");  // no process named: nobody can tell it ended
+  EXPECT_EQ(db.begin_attempt("t001", "sts_discharge"), 2);
+}
+
 TEST(RecordsStore, ABadConnectionNamesIt) {
   try {
     RecordsStore db("sqlite3://db=/nonexistent/dir/records.db");

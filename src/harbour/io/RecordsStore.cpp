@@ -164,6 +164,20 @@ struct RecordsStore::Impl {
       names.push_back(name);
     return names;
   }
+
+  /// Whether `table` has a column `column` (read from the schema: a busy or lost database is an error, not
+  /// a missing column).
+  bool has_column(const std::string& table, const std::string& column) {
+    int n = 0;
+    if (sql.get_backend_name() == "sqlite3")
+      sql << "SELECT COUNT(*) FROM pragma_table_info(:t) WHERE name = :c", soci::use(table),
+          soci::use(column), soci::into(n);
+    else
+      sql << "SELECT COUNT(*) FROM information_schema.columns WHERE table_schema = current_schema()"
+             " AND table_name = :t AND column_name = :c",
+          soci::use(table), soci::use(column), soci::into(n);
+    return n > 0;
+  }
 };
 
 RecordsStore::RecordsStore(const std::string& connection) : impl_(std::make_unique<Impl>()) {
@@ -200,11 +214,8 @@ RecordsStore::RecordsStore(const std::string& connection) : impl_(std::make_uniq
     if (std::find(existing.begin(), existing.end(), table) == existing.end()) continue;
     if (std::string(table) == "attempts") {
       // databases of the build before the process column gain it (the only difference allowed)
-      try {
-        sql << "SELECT process FROM attempts WHERE 1 = 0";
-      } catch (const soci::soci_error&) {
-        upgrade_process_column = true;
-      }
+      upgrade_process_column = !impl_->guarded("checking table 'attempts'",
+                                               [&] { return impl_->has_column("attempts", "process"); });
     }
     const std::string wanted =
         upgrade_process_column && std::string(table) == "attempts"
