@@ -108,6 +108,18 @@ void print_evaluation(const sim::Metrics& m, const sim::Score& s, bool container
     std::printf("  limiter trips        %8d\n", m.limiter_trips);
     std::printf("  pad lift-offs        %8d\n", m.pad_lift_offs);
     std::printf("  emergency stops      %8d\n", m.emergency_stops);
+  } else if (m.vehicle) {
+    std::printf("  moves completed      %8d\n", m.moves_completed);
+    for (std::size_t n = 0; n < m.placement_offset_m.size(); ++n)
+      std::printf("  parked, move %zu      %8.2f m off its mark%s\n", n + 1, m.placement_offset_m[n],
+                  n < m.placement_skew_deg.size()
+                      ? (", " + std::to_string(m.placement_skew_deg[n]).substr(0, 4) + " deg skew").c_str()
+                      : "");
+    std::printf("  collisions           %8d (worst %.2f m/s)\n", m.collisions, m.worst_collision_mps);
+    std::printf("  jack-knives          %8d\n", m.jackknifes);
+    std::printf("  speeding             %8d (worst %.1f km/h over)\n", m.overspeeds,
+                std::max(0.0, m.worst_overspeed_kmh));
+    std::printf("  emergency stops      %8d\n", m.emergency_stops);
   } else if (!container_moves) {
     std::printf("  collisions           %8d (worst %.2f m/s, %.0f N s)\n", m.collisions,
                 m.worst_collision_mps, m.worst_collision_impulse_ns);
@@ -274,10 +286,17 @@ int drive(const sim::ExerciseSettings& exercise, sim::Simulation& simulation, si
     if (!options.record.empty()) recorder.after_step(simulation, in);
     if (simulation.time_s() >= next_progress) {
       next_progress += kProgressEvery_s;
-      std::printf("  t=%6.1f s  %s z %6.2f m  %s  %s\n", simulation.time_s(),
-                  simulation.machine().held_item() ? "load" : "attachment",
-                  simulation.machine().attachment_bottom_z_m(),
-                  progress_text(exercise, evaluator.metrics()).c_str(), pilot.activity());
+      if (evaluator.metrics().vehicle) {
+        const core::Vec3 v = simulation.world().linear_velocity(simulation.machine().cab_body());
+        std::printf("  t=%6.1f s  speed %5.1f km/h  %s  %s\n", simulation.time_s(),
+                    std::hypot(v.x, v.y) * 3.6, progress_text(exercise, evaluator.metrics()).c_str(),
+                    pilot.activity());
+      } else {
+        std::printf("  t=%6.1f s  %s z %6.2f m  %s  %s\n", simulation.time_s(),
+                    simulation.machine().held_item() ? "load" : "attachment",
+                    simulation.machine().attachment_bottom_z_m(),
+                    progress_text(exercise, evaluator.metrics()).c_str(), pilot.activity());
+      }
       std::fflush(stdout);
     }
   }

@@ -72,6 +72,71 @@ TEST(ExerciseFiles, AHookExerciseNamesTheFieldItCannotPlace) {
          "    - {id: TRAFO-1");
 }
 
+TEST(ExerciseFiles, ATrailerExerciseCouplesItLevelAndNamesTheFieldItCannotPlace) {
+  const sim::ExerciseSettings e = load_exercise(HARBOUR_DATA_DIR "/exercises/tractor_mafi_park.yaml");
+  const auto& tractor = std::get<sim::TractorSetup>(e.scenario.machine);
+  ASSERT_TRUE(tractor.start.trailer);
+  EXPECT_EQ(tractor.start.trailer->id, "mafi_1");
+  EXPECT_EQ(tractor.start.trailer->mass_kg, 8500.0 + 30000.0);  // tare and payload
+  ASSERT_EQ(e.moves.size(), 1u);
+  EXPECT_TRUE(e.moves[0].on_wheels);
+  EXPECT_NEAR(*e.moves[0].heading_rad, std::numbers::pi, 1e-12);
+  ASSERT_EQ(e.speed_zones.size(), 2u);
+  EXPECT_EQ(e.speed_zones[1].limit_kmh, 10.0);
+
+  const std::string text = scenes::read_text(HARBOUR_DATA_DIR "/exercises/tractor_mafi_park.yaml");
+  const auto expect = [&](const std::string& from, const std::string& to, const std::string& field,
+                          const std::string& says, int lines_below = 0) {
+    scenes::expect_data_error(
+        text, from, to, [](const YamlFile& f) { load_exercise(f, HARBOUR_DATA_DIR "/exercises"); },
+        scenes::line_of(text, from) + lines_below, field, says);
+  };
+  expect("{trailer: mafi_1,", "{trailer: mafi_2,", "exercise.moves[0].trailer", "no trailer 'mafi_2'");
+  expect("payload_kg: 30000", "payload_kg: 90000", "exercise.vehicle.trailer.payload_kg", "outside");
+  expect("file: ../trailers/mafi_40ft.yaml", "file: ../trailers/none.yaml", "exercise.vehicle.trailer.file",
+         "no such file");
+  expect("heading_deg: 180, heading_tolerance_deg: 3,", "heading_tolerance_deg: 3,",
+         "exercise.moves[0].heading_tolerance_deg", "needs a heading_deg");
+  expect("min_m: [-80, 10], max_m: [-20, 20]", "min_m: [-80, 10], max_m: [-90, 20]",
+         "exercise.speed_zones[1].max_m", "beyond min_m");
+  expect("    trailer: {id: mafi_1, file: ../trailers/mafi_40ft.yaml, payload_kg: 30000}\n", "",
+         "exercise.moves", "a trailer (exercise.vehicle.trailer)", 2);
+}
+
+TEST(ExerciseFiles, ATrailerThatWouldNotRideLevelOrStandOnItsLegsIsRefused) {
+  const std::string exercise = scenes::read_text(HARBOUR_DATA_DIR "/exercises/tractor_mafi_park.yaml");
+  const std::string trailer = scenes::read_text(HARBOUR_DATA_DIR "/trailers/mafi_40ft.yaml");
+  const auto error_with = [&](const std::string& from, const std::string& to) {
+    const std::filesystem::path folder = std::filesystem::temp_directory_path() / "harbour_trailer_check";
+    std::filesystem::create_directories(folder / "exercises");
+    std::filesystem::create_directories(folder / "trailers");
+    std::filesystem::create_directories(folder / "machines");
+    std::filesystem::copy_file(HARBOUR_DATA_DIR "/machines/tractor.yaml", folder / "machines/tractor.yaml",
+                               std::filesystem::copy_options::overwrite_existing);
+    std::string changed = trailer;
+    const auto at = changed.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    changed.replace(at, from.size(), to);
+    std::ofstream(folder / "trailers/mafi_40ft.yaml") << changed;
+    std::ofstream(folder / "exercises/tractor_mafi_park.yaml") << exercise;
+    try {
+      load_exercise((folder / "exercises/tractor_mafi_park.yaml").string());
+    } catch (const std::exception& e) {
+      return std::string(e.what());
+    }
+    return std::string("loaded");
+  };
+  EXPECT_EQ(error_with("tare_kg: 8500", "tare_kg: 8500"), "loaded");
+  std::string error = error_with("kingpin_m: [5.6, 0.0, 1.0]", "kingpin_m: [5.6, 0.0, 0.5]");
+  EXPECT_NE(error.find("exercise.vehicle.trailer.file"), std::string::npos) << error;
+  EXPECT_NE(error.find("would not ride level"), std::string::npos) << error;
+  error = error_with("foot_z_m: -0.75", "foot_z_m: -0.5");
+  EXPECT_NE(error.find("its legs stand 0.35 m clear"), std::string::npos) << error;
+  error = error_with("{x_m: -4.5, half_track_m: 0.95,", "{x_m: -4.5, steered: true, half_track_m: 0.95,");
+  EXPECT_NE(error.find("trailer.axles[0]"), std::string::npos) << error;
+  EXPECT_NE(error.find("neither steer nor drive"), std::string::npos) << error;
+}
+
 TEST(ExerciseFiles, ABulkExerciseNamesTheFieldItCannotPlace) {
   const std::string text = scenes::read_text(HARBOUR_DATA_DIR "/exercises/mhc_coal_discharge.yaml");
   const auto expect = [&](const std::string& from, const std::string& to, const std::string& field,

@@ -5,6 +5,7 @@
 
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/sim/Evaluation.h"
+#include "harbour/sim/Pilot.h"
 
 namespace harbour::sim {
 namespace {
@@ -184,6 +185,176 @@ TEST(Tractor, ReversingWithTheWheelTurnedFoldsTheTrailerIntoAJackknife) {
   drive(sim, 40.0, 1.0, 0.6, "reverse");
   EXPECT_EQ(tractor(sim).jackknifes(), 1u);
   EXPECT_GT(std::abs(tractor(sim).hitch_angle_rad()), tractor(sim).settings().jackknife_angle_rad);
+}
+
+}  // namespace
+}  // namespace harbour::sim
+
+namespace harbour::sim {
+namespace {
+
+ExerciseSettings mafi_park() {
+  return io::load_exercise(HARBOUR_DATA_DIR "/exercises/tractor_mafi_park.yaml");
+}
+
+// `controls` with the couple button held (or not)
+Controls coupling(const Simulation& sim, Controls c, bool pressed) {
+  c.value[static_cast<std::size_t>(sim.control_table().find("couple"))] = pressed ? 1.0 : 0.0;
+  return c;
+}
+
+void hold(Simulation& sim, double seconds, const Controls& c) {
+  for (int k = 0; k < static_cast<int>(std::lround(seconds / Simulation::kStep_s)); ++k)
+    sim.step(c);
+}
+
+TEST(Tractor, ItDropsATrailerOnlyAtAStandstillAndCouplesItAgainFromBelow) {
+  Simulation sim(mafi_park().scenario);
+  const TerminalTractor& t = tractor(sim);
+  ASSERT_TRUE(t.coupled());
+  EXPECT_EQ(t.held_item(), t.trailer_body());
+  // settled at the start: the combination stands still on its springs
+  hold(sim, 1.0, driving(sim, 0.0, 0.0));
+  EXPECT_LT(std::abs(t.forward_mps()), 0.01);
+  EXPECT_LT(core::length(t.jaw_m() - t.kingpin_m()), 0.03);
+
+  // moving: the button does nothing
+  drive(sim, 6.0, 2.0, 0.0);
+  hold(sim, 0.1, coupling(sim, driving(sim, 2.0, 0.0), true));
+  hold(sim, 4.0, driving(sim, 2.0, 0.0));
+  EXPECT_TRUE(t.coupled());
+  EXPECT_DOUBLE_EQ(t.lift(), 1.0);
+
+  // standing: the plate lowers the front onto its legs, then the jaw opens
+  drive(sim, 5.0, 0.0, 0.0);
+  const double kingpin_up = t.kingpin_m().z;
+  hold(sim, 0.1, coupling(sim, driving(sim, 0.0, 0.0), true));
+  hold(sim, 4.0, driving(sim, 0.0, 0.0));
+  EXPECT_FALSE(t.coupled());
+  EXPECT_FALSE(t.held_item());
+  EXPECT_DOUBLE_EQ(t.lift(), 0.0);
+  const double kingpin_down = t.kingpin_m().z;
+  EXPECT_LT(kingpin_down, kingpin_up - 0.05);   // resting on its legs (about 0.1 m clear while lifted)
+  EXPECT_LT(t.jaw_m().z, kingpin_down - 0.15);  // and the plate came 0.3 m down, off it
+
+  // driving away leaves it standing where it is
+  const core::Vec3 dropped = sim.world().pose(t.trailer_body()).position;
+  drive(sim, 8.0, 1.5, 0.0);
+  drive(sim, 4.0, 0.0, 0.0);
+  EXPECT_LT(core::length(sim.world().pose(t.trailer_body()).position - dropped), 0.02);
+  EXPECT_GT(core::length(t.jaw_m() - t.kingpin_m()), 5.0);
+  // out of reach: the button does nothing
+  hold(sim, 0.1, coupling(sim, driving(sim, 0.0, 0.0), true));
+  hold(sim, 0.5, driving(sim, 0.0, 0.0));
+  EXPECT_FALSE(t.coupled());
+
+  // backed under it until the jaw is within reach, it couples and lifts the front off the legs
+  for (int k = 0; k < 60000 && std::hypot(t.jaw_m().x - t.kingpin_m().x, t.jaw_m().y - t.kingpin_m().y) > 0.1;
+       ++k)
+    sim.step(driving(sim, 0.5, 0.0, "reverse"));
+  drive(sim, 3.0, 0.0, 0.0, "reverse");
+  hold(sim, 0.1, coupling(sim, driving(sim, 0.0, 0.0), true));
+  hold(sim, 5.0, driving(sim, 0.0, 0.0));
+  EXPECT_TRUE(t.coupled());
+  EXPECT_DOUBLE_EQ(t.lift(), 1.0);
+  EXPECT_NEAR(t.kingpin_m().z, kingpin_up, 0.02);
+  EXPECT_LT(std::hypot(t.jaw_m().x - t.kingpin_m().x, t.jaw_m().y - t.kingpin_m().y), 0.01);
+  // and it tows it away
+  const core::Vec3 before = sim.world().pose(t.trailer_body()).position;
+  drive(sim, 8.0, 2.0, 0.0);
+  EXPECT_GT(core::length(sim.world().pose(t.trailer_body()).position - before), 5.0);
+  EXPECT_FALSE(sim.diverged());
+}
+
+struct ParkRun {
+  Metrics metrics;
+  Score score;
+};
+
+// The park exercise under a pilot's controls, `adjust` changing them (a bad driver), to its end.
+template <typename Adjust>
+ParkRun run_park(Adjust adjust) {
+  const ExerciseSettings exercise = mafi_park();
+  Simulation sim(exercise.scenario);
+  const std::unique_ptr<Pilot> pilot = make_pilot(exercise);
+  Evaluator evaluator(exercise);
+  while (!evaluator.finished() && sim.time_s() < exercise.rules.time_limit_s) {
+    const Controls c = adjust(sim, pilot->next(sim));
+    sim.step(c);
+    evaluator.observe(sim, c);
+  }
+  return {evaluator.metrics(), evaluator.score()};
+}
+
+TEST(TractorPark, TheAutopilotParksTheMafiSquareOnItsMark) {
+  const ParkRun run = run_park([](const Simulation&, const Controls& c) { return c; });
+  EXPECT_EQ(run.metrics.moves_completed, 1);
+  ASSERT_EQ(run.metrics.placement_offset_m.size(), 1u);
+  EXPECT_LT(run.metrics.placement_offset_m[0], 0.3);
+  ASSERT_EQ(run.metrics.placement_skew_deg.size(), 1u);
+  EXPECT_LT(run.metrics.placement_skew_deg[0], 1.5);
+  EXPECT_EQ(run.metrics.jackknifes, 0);
+  EXPECT_EQ(run.metrics.overspeeds, 0);
+  EXPECT_EQ(run.metrics.collisions, 0);
+  EXPECT_TRUE(run.score.passed);
+  EXPECT_GE(run.score.total, 95.0);
+  std::printf("mafi parked in %.1f s, %.2f m off its mark, %.2f deg skew, score %.0f\n", run.metrics.time_s,
+              run.metrics.placement_offset_m[0], run.metrics.placement_skew_deg[0], run.score.total);
+}
+
+TEST(TractorPark, SpeedingIntoTheLanesAndStoppingShortArePenalised) {
+  // a driver who keeps his foot down into the marshalling lanes (10 km/h) and brakes late, short of the mark
+  const ParkRun run = run_park([](const Simulation& sim, Controls c) {
+    const ControlTable& table = sim.control_table();
+    const core::Vec3 p = sim.world().pose(sim.machine().cab_body()).position;
+    if (p.x < -20.0 && p.x > -40.0 && p.y > 10.0) {
+      c.value[static_cast<std::size_t>(table.find("throttle"))] = 1.0;
+      c.value[static_cast<std::size_t>(table.find("brake"))] = 0.0;
+    } else if (p.x <= -40.0) {
+      c.value[static_cast<std::size_t>(table.find("throttle"))] = 0.0;
+      c.value[static_cast<std::size_t>(table.find("brake"))] = 1.0;
+    }
+    return c;
+  });
+  EXPECT_GE(run.metrics.overspeeds, 1);
+  EXPECT_GT(run.metrics.worst_overspeed_kmh, 1.0);
+  EXPECT_EQ(run.metrics.moves_completed, 0);  // dropped far from the mark, or never
+  EXPECT_FALSE(run.score.passed);
+  const auto has = [&](const std::string& reason) {
+    return std::any_of(run.score.deductions.begin(), run.score.deductions.end(),
+                       [&](const Score::Deduction& d) { return d.reason == reason; });
+  };
+  EXPECT_TRUE(has("speeding"));
+  EXPECT_TRUE(has("move not completed"));
+  EXPECT_TRUE(has("harsh move"));  // the slammed brake
+  std::printf("the bad driver: %d speeding (worst %.1f km/h over), score %.0f\n", run.metrics.overspeeds,
+              run.metrics.worst_overspeed_kmh, run.score.total);
+}
+
+TEST(TractorPark, KeyframesMidDropContinueBitForBit) {
+  const ExerciseSettings exercise = mafi_park();
+  Simulation sim(exercise.scenario);
+  const std::unique_ptr<Pilot> pilot = make_pilot(exercise);
+  while (std::string(pilot->activity()) != "drop" && sim.time_s() < 120.0)
+    sim.step(pilot->next(sim));
+  ASSERT_EQ(std::string(pilot->activity()), "drop");
+  for (int k = 0; k < 1000; ++k)  // the plate on its way down
+    sim.step(pilot->next(sim));
+  ASSERT_TRUE(tractor(sim).coupled());
+  ASSERT_GT(tractor(sim).lift(), 0.0);
+  ASSERT_LT(tractor(sim).lift(), 1.0);
+  const std::vector<std::uint8_t> keyframe = sim.save_state();
+  std::vector<Controls> inputs;
+  for (int k = 0; k < 4000; ++k) {
+    inputs.push_back(pilot->next(sim));
+    sim.step(inputs.back());
+  }
+  EXPECT_FALSE(tractor(sim).coupled());
+  Simulation again(exercise.scenario);
+  again.restore_state(keyframe);
+  for (const Controls& c : inputs)
+    again.step(c);
+  EXPECT_EQ(again.state_hash(), sim.state_hash());
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <map>
 #include <optional>
@@ -45,6 +46,45 @@ std::string item(const std::string& list, std::size_t n) {
   return list + "[" + std::to_string(n) + "]";
 }
 
+// The trailer a tractor starts coupled to (`at`: {id, file, payload_kg}), checked to stand level on its
+// plate.
+sim::TrailerSettings read_coupled_trailer(const YamlFile& f, const YAML::Node& t, const std::string& at,
+                                          const std::string& folder, const sim::TractorSettings& tractor) {
+  const std::string file = f.text(t, "file", at);
+  const std::string path = (std::filesystem::path(folder) / file).lexically_normal().string();
+  if (!std::filesystem::is_regular_file(path)) f.fail(t["file"], at + ".file", "no such file: " + path);
+  sim::TrailerSettings trailer = load_trailer(path);
+  trailer.id = f.text(t, "id", at);
+  trailer.mass_kg += f.number(t, "payload_kg", at, 0.0, trailer.max_payload_kg, true);
+  // level when coupled: its kingpin as high as the plate, up; its legs clear then and down with the plate
+  const sim::AxleSettings& front = tractor.chassis.axles.front();
+  const double plate_m = tractor.chassis.tyre.radius_m - front.hub_z_m + tractor.hitch_m.z;
+  const sim::AxleSettings& axle = trailer.wheels.axles.front();
+  const double centre_m = trailer.wheels.tyre.radius_m - axle.hub_z_m;
+  const double kingpin_m = centre_m + trailer.kingpin_m.z;
+  const auto metres = [](double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.2f", v);
+    return std::string(text);
+  };
+  if (std::abs(kingpin_m - plate_m) > 0.15)
+    f.fail(t["file"], at + ".file",
+           "its kingpin stands " + metres(kingpin_m) + " m high on its wheels, the tractor's plate " +
+               metres(plate_m) + " m: it would not ride level");
+  if (trailer.legs) {
+    const sim::AxleSettings& legs = trailer.legs->axles.front();
+    const double foot_m = centre_m + legs.hub_z_m - trailer.legs->tyre.radius_m;
+    const double drop_m =
+        tractor.fifth_wheel.lift_m * (legs.x_m - axle.x_m) / (trailer.kingpin_m.x - axle.x_m);
+    if (foot_m < 0.02 || foot_m > drop_m - 0.03)
+      f.fail(t["file"], at + ".file",
+             "its legs stand " + metres(foot_m) +
+                 " m clear when coupled: they must clear the ground and reach it as the plate lowers (" +
+                 metres(drop_m) + " m there)");
+  }
+  return trailer;
+}
+
 }  // namespace
 
 namespace {
@@ -69,6 +109,8 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
     const std::string at = "exercise.vehicle";
     tractor.start.position_m = f.vector3(f.required(crane, "position_m", at), at + ".position_m", kSite_m);
     tractor.start.heading_rad = core::deg_to_rad(f.number(crane, "heading_deg", at, -360.0, 360.0));
+    if (const auto t = f.optional_map(crane, "trailer", at))
+      tractor.start.trailer = read_coupled_trailer(f, *t, at + ".trailer", folder, tractor.vehicle);
     s.machine = std::move(tractor);
   } else if (machine_kind == "sts") {
     // the crane starts on its rails
@@ -105,14 +147,17 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
   const bool handles_containers = machine_kind == "sts";
   const auto* mhc = std::get_if<sim::MhcSetup>(&s.machine);
   const bool on_hook = mhc && mhc->start.on_hook;
+  const auto* tractor = std::get_if<sim::TractorSetup>(&s.machine);
+  const bool tows = tractor && tractor->start.trailer;
   const std::string handles = handles_containers ? "containers with its spreader"
                               : on_hook          ? "general cargo on its hook (exercise.cargo)"
                               : mhc              ? "bulk with its grab (crane.tool: hook for general cargo)"
-                                                 : "no load yet (trailers come later)";
+                              : tows             ? "its trailer (exercise.vehicle.trailer)"
+                                                 : "a trailer (exercise.vehicle.trailer)";
   for (const char* key : {"containers", "trucks", "cargo", "moves"}) {
-    const bool fits = handles_containers
-                          ? std::string(key) != "cargo"
-                          : on_hook && (std::string(key) == "cargo" || std::string(key) == "moves");
+    const bool fits = handles_containers ? std::string(key) != "cargo"
+                      : on_hook          ? std::string(key) == "cargo" || std::string(key) == "moves"
+                                         : tows && std::string(key) == "moves";
     if (!fits && f.optional(x, key, "exercise"))
       f.fail(x[key], std::string("exercise.") + key, "the " + machine_kind + " handles " + handles);
   }
@@ -315,10 +360,12 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
     s.containers.push_back(p);
   }
 
-  const YAML::Node moves = handles_containers || on_hook ? f.sequence(x, "moves", "exercise", kMaxMoves)
-                                                         : YAML::Node(YAML::NodeType::Sequence);
-  const char* moved_key = on_hook ? "cargo" : "container";  // what a move names
-  std::map<std::string, std::size_t> moved;                 // container or cargo id -> the move that takes it
+  const YAML::Node moves = handles_containers || on_hook || tows
+                               ? f.sequence(x, "moves", "exercise", kMaxMoves)
+                               : YAML::Node(YAML::NodeType::Sequence);
+  const char* moved_key = on_hook ? "cargo" : tows ? "trailer" : "container";  // what a move names
+  if (tows) container_index[tractor->start.trailer->id] = s.containers.size();
+  std::map<std::string, std::size_t> moved;  // container or cargo id -> the move that takes it
   for (std::size_t n = 0; n < moves.size(); ++n) {
     const std::string at = item("exercise.moves", n);
     sim::MoveGoal g;
@@ -340,6 +387,15 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
       g.target_m = f.vector3(f.required(moves[n], "target_m", at), at + ".target_m", kSite_m);
     }
     g.tolerance_m = f.number_or(moves[n], "tolerance_m", at, g.tolerance_m, 0.0, 5.0, true);
+    g.on_wheels = tows;  // a trailer stands where its wheels carry it: its height is not checked
+    if (f.optional(moves[n], "heading_deg", at)) {
+      // placed square: a box either way round, a trailer facing the way it should
+      g.heading_rad = core::deg_to_rad(f.number(moves[n], "heading_deg", at, -360.0, 360.0));
+      g.heading_tolerance_rad =
+          core::deg_to_rad(f.number_or(moves[n], "heading_tolerance_deg", at, 3.0, 0.0, 90.0, true));
+    } else if (f.optional(moves[n], "heading_tolerance_deg", at)) {
+      f.fail(moves[n]["heading_tolerance_deg"], at + ".heading_tolerance_deg", "needs a heading_deg");
+    }
     e.moves.push_back(g);
   }
   if ((handles_containers || cargo.size() > 0) && e.moves.empty())
@@ -427,6 +483,33 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
         f.fail(ev["at_s"], at + ".at_s", "events must be in time order");
       s.events.push_back(event);
     }
+  }
+
+  if (f.optional(x, "speed_zones", "exercise")) {
+    // areas with a speed limit for a vehicle: [{name, min_m: [x, y], max_m: [x, y], limit_kmh}]
+    const YAML::Node zones = f.sequence(x, "speed_zones", "exercise", 64);
+    for (std::size_t n = 0; n < zones.size(); ++n) {
+      const std::string at = item("exercise.speed_zones", n);
+      sim::SpeedZone z;
+      z.name = f.text(zones[n], "name", at);
+      const auto corner = [&](const char* key, double& x_m, double& y_m) {
+        const YAML::Node c = f.required(zones[n], key, at);
+        if (!c.IsSequence() || c.size() != 2) f.fail(c, at + "." + key, "is [x, y] in metres");
+        x_m = f.number_at(c[0], at + "." + key + "[0]");
+        y_m = f.number_at(c[1], at + "." + key + "[1]");
+        if (!(std::abs(x_m) <= kSite_m && std::abs(y_m) <= kSite_m))
+          f.fail(c, at + "." + key, "lies off the site");
+      };
+      corner("min_m", z.min_x_m, z.min_y_m);
+      corner("max_m", z.max_x_m, z.max_y_m);
+      if (!(z.max_x_m > z.min_x_m && z.max_y_m > z.min_y_m))
+        f.fail(zones[n]["max_m"], at + ".max_m", "must lie beyond min_m in x and y");
+      z.limit_kmh = f.number(zones[n], "limit_kmh", at, 1.0, 100.0);
+      e.speed_zones.push_back(z);
+    }
+    if (!vehicle && zones.size() > 0)
+      f.fail(zones, "exercise.speed_zones",
+             "only a vehicle's speed is limited (the " + machine_kind + " is a crane)");
   }
 
   if (const auto r_node = f.optional_map(x, "rules", "exercise")) {

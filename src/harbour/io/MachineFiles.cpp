@@ -357,6 +357,39 @@ sim::MhcSettings read_mhc(const YamlFile& f, const std::string& folder) {
   return s;
 }
 
+// A wheeled machine's or trailer's axles (`path`.axles).
+std::vector<sim::AxleSettings> read_axles(const YamlFile& f, const YAML::Node& m, const std::string& path) {
+  std::vector<sim::AxleSettings> out;
+  const YAML::Node axles = f.sequence(m, "axles", path, 8);
+  if (axles.size() < 1) f.fail(axles, path + ".axles", "needs an axle");
+  for (std::size_t n = 0; n < axles.size(); ++n) {
+    const std::string at = path + ".axles[" + std::to_string(n) + "]";
+    sim::AxleSettings a;
+    a.x_m = f.number(axles[n], "x_m", at, -20.0, 20.0);
+    a.half_track_m = f.number(axles[n], "half_track_m", at, 0.3, 5.0);
+    a.hub_z_m = f.number(axles[n], "hub_z_m", at, -5.0, 5.0);
+    a.steered = f.flag(axles[n], "steered", at, false);
+    a.driven = f.flag(axles[n], "driven", at, false);
+    a.tyres_per_side = f.integer(axles[n], "tyres_per_side", at, 1, 4);
+    out.push_back(a);
+  }
+  return out;
+}
+
+// A tyre (`path`.tyre).
+sim::TyreSettings read_tyre(const YamlFile& f, const YAML::Node& m, const std::string& path) {
+  sim::TyreSettings tyre;
+  const YAML::Node t = f.required_map(m, "tyre", path);
+  const std::string tat = path + ".tyre";
+  tyre.radius_m = f.number(t, "radius_m", tat, 0.05, 2.0);
+  tyre.vertical_stiffness_n_per_m = f.number(t, "vertical_stiffness_n_per_m", tat, 1e4, 1e8);
+  tyre.vertical_damping_ns_per_m = f.number(t, "vertical_damping_ns_per_m", tat, 0.0, 1e7, true);
+  tyre.cornering_stiffness_n_per_rad = f.number(t, "cornering_stiffness_n_per_rad", tat, 1e3, 1e7);
+  tyre.rolling_resistance = f.number(t, "rolling_resistance", tat, 0.0, 0.2, true);
+  tyre.friction = f.number(t, "friction", tat, 0.05, 2.0);
+  return tyre;
+}
+
 }  // namespace
 
 sim::TractorSettings read_tractor(const YamlFile& f) {
@@ -373,31 +406,12 @@ sim::TractorSettings read_tractor(const YamlFile& f) {
   if (!(half.x >= 0.2 && half.y >= 0.2 && half.z >= 0.1))
     f.fail(c["half_extents_m"], "machine.chassis.half_extents_m", "must be at least [0.2, 0.2, 0.1] m");
   sim::WheeledChassisSettings& w = s.chassis;
-  const YAML::Node axles = f.sequence(m, "axles", "machine", 8);
-  if (axles.size() < 2) f.fail(axles, "machine.axles", "needs at least two axles");
-  bool steered = false, driven = false;
-  for (std::size_t n = 0; n < axles.size(); ++n) {
-    const std::string at = "machine.axles[" + std::to_string(n) + "]";
-    sim::AxleSettings a;
-    a.x_m = f.number(axles[n], "x_m", at, -20.0, 20.0);
-    a.half_track_m = f.number(axles[n], "half_track_m", at, 0.3, 5.0);
-    a.hub_z_m = f.number(axles[n], "hub_z_m", at, -5.0, 5.0);
-    a.steered = f.flag(axles[n], "steered", at, false);
-    a.driven = f.flag(axles[n], "driven", at, false);
-    a.tyres_per_side = f.integer(axles[n], "tyres_per_side", at, 1, 4);
-    steered |= a.steered;
-    driven |= a.driven;
-    w.axles.push_back(a);
-  }
-  if (!steered || !driven) f.fail(axles, "machine.axles", "needs a steered and a driven axle");
-  const YAML::Node t = f.required_map(m, "tyre", "machine");
-  const std::string tat = "machine.tyre";
-  w.tyre.radius_m = f.number(t, "radius_m", tat, 0.2, 2.0);
-  w.tyre.vertical_stiffness_n_per_m = f.number(t, "vertical_stiffness_n_per_m", tat, 1e4, 1e8);
-  w.tyre.vertical_damping_ns_per_m = f.number(t, "vertical_damping_ns_per_m", tat, 0.0, 1e7, true);
-  w.tyre.cornering_stiffness_n_per_rad = f.number(t, "cornering_stiffness_n_per_rad", tat, 1e3, 1e7);
-  w.tyre.rolling_resistance = f.number(t, "rolling_resistance", tat, 0.0, 0.2, true);
-  w.tyre.friction = f.number(t, "friction", tat, 0.05, 2.0);
+  w.axles = read_axles(f, m, "machine");
+  const bool steered = std::any_of(w.axles.begin(), w.axles.end(), [](const auto& a) { return a.steered; });
+  const bool driven = std::any_of(w.axles.begin(), w.axles.end(), [](const auto& a) { return a.driven; });
+  if (!steered || !driven) f.fail(m["axles"], "machine.axles", "needs a steered and a driven axle");
+  if (w.axles.size() < 2) f.fail(m["axles"], "machine.axles", "needs at least two axles");
+  w.tyre = read_tyre(f, m, "machine");
   const YAML::Node d = f.required_map(m, "drivetrain", "machine");
   const std::string dat = "machine.drivetrain";
   const YAML::Node curve = f.sequence(d, "torque_curve", dat, 50);
@@ -439,7 +453,8 @@ sim::TractorSettings read_tractor(const YamlFile& f) {
                     {"brake", sim::ControlKind::kAxis},
                     {"direction", sim::ControlKind::kSwitch},
                     {"emergency_stop", sim::ControlKind::kButton},
-                    {"horn", sim::ControlKind::kButton}});
+                    {"horn", sim::ControlKind::kButton},
+                    {"couple", sim::ControlKind::kButton}});
   if (const int d_slot = s.controls.find("direction");
       s.controls[d_slot].positions != std::vector<std::string>{"reverse", "neutral", "forward"})
     f.fail(m["controls"], "machine.controls",
@@ -475,6 +490,56 @@ sim::TractorSettings load_tractor(const YamlFile& f) {
 
 sim::TractorSettings load_tractor(const std::string& path) {
   return load_tractor(YamlFile::load(path));
+}
+
+sim::TrailerSettings load_trailer(const YamlFile& f) {
+  sim::TrailerSettings s;
+  const YAML::Node t = f.required_map(f.root(), "trailer", "");
+  const std::string kind = f.text(t, "kind", "trailer");
+  if (kind != "mafi" && kind != "semi")
+    f.fail(t["kind"], "trailer.kind", "a trailer is a mafi (roll trailer) or a semi (not '" + kind + "')");
+  f.text(t, "name", "trailer");
+  s.mass_kg = f.number(t, "tare_kg", "trailer", 500.0, 1e5);
+  s.max_payload_kg = f.number(t, "max_payload_kg", "trailer", 0.0, 2e5, true);
+  s.half_extents_m =
+      f.vector3(f.required(t, "deck_half_extents_m", "trailer"), "trailer.deck_half_extents_m", 15.0);
+  const core::Vec3& half = s.half_extents_m;
+  if (!(half.x >= 0.5 && half.y >= 0.5 && half.z >= 0.05))
+    f.fail(t["deck_half_extents_m"], "trailer.deck_half_extents_m", "must be at least [0.5, 0.5, 0.05] m");
+  s.kingpin_m = f.vector3(f.required(t, "kingpin_m", "trailer"), "trailer.kingpin_m", 20.0);
+  s.wheels.axles = read_axles(f, t, "trailer");
+  for (std::size_t n = 0; n < s.wheels.axles.size(); ++n)
+    if (s.wheels.axles[n].steered || s.wheels.axles[n].driven)
+      f.fail(t["axles"][n], "trailer.axles[" + std::to_string(n) + "]",
+             "a trailer's axles neither steer nor drive");
+  if (s.wheels.axles.back().x_m >= s.kingpin_m.x - 1.0)
+    f.fail(t["axles"], "trailer.axles", "must lie behind the kingpin (at least 1 m)");
+  s.wheels.tyre = read_tyre(f, t, "trailer");
+  s.wheels.brake_torque_per_wheel_nm = f.number(t, "brake_torque_per_wheel_nm", "trailer", 0.0, 1e6);
+  if (const auto l = f.optional_map(t, "legs", "trailer")) {
+    // feet that do not roll: a stiff pad held by a brake far beyond its grip
+    const std::string at = "trailer.legs";
+    sim::WheeledChassisSettings legs;
+    sim::AxleSettings a;
+    a.x_m = f.number(*l, "x_m", at, -20.0, 20.0);
+    a.half_track_m = f.number(*l, "half_track_m", at, 0.1, 5.0);
+    legs.tyre.radius_m = 0.1;
+    legs.tyre.vertical_stiffness_n_per_m = 2.0e6;
+    legs.tyre.vertical_damping_ns_per_m = 4.0e4;
+    legs.tyre.cornering_stiffness_n_per_rad = 5.0e5;
+    legs.tyre.rolling_resistance = 0.0;
+    legs.tyre.friction = f.number(*l, "friction", at, 0.05, 2.0);
+    a.hub_z_m = f.number(*l, "foot_z_m", at, -5.0, 5.0) + legs.tyre.radius_m;
+    legs.axles = {a};
+    legs.brake_torque_per_wheel_nm = 1e7;
+    s.legs = legs;
+  }
+  f.check_unknown_keys();
+  return s;
+}
+
+sim::TrailerSettings load_trailer(const std::string& path) {
+  return load_trailer(YamlFile::load(path));
 }
 
 std::string machine_file_kind(const std::string& path) {

@@ -19,6 +19,10 @@ sim::MhcSettings load_mhc(const std::string& path);
 /// Reads a terminal tractor file (data/machines/tractor.yaml).
 sim::TractorSettings load_tractor(const YamlFile& file);
 sim::TractorSettings load_tractor(const std::string& path);
+/// A trailer file (data/trailers): its tare mass (an exercise adds the payload), deck, kingpin, axles, tyres,
+/// brakes and legs.
+sim::TrailerSettings load_trailer(const YamlFile& file);
+sim::TrailerSettings load_trailer(const std::string& path);
 /// The kind a machine file declares (`machine.kind`: sts, mhc, tractor); throws DataError naming the field.
 std::string machine_file_kind(const std::string& path);
 

@@ -4,6 +4,8 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "harbour/bulk/Grab.h"
@@ -66,6 +68,8 @@ struct MachineTally {
   std::uint32_t pad_lift_offs = 0;  ///< outrigger pads lifting off
   double swing_m = 0.0;             ///< [m] the hanging tool's horizontal offset from plumb under its sheaves
   std::array<AxisSpeed, 3> axes{};  ///< the motions an operator drives smoothly or not
+  bool vehicle = false;             ///< driven about the site (its jack-knives and speeding are measured)
+  std::uint32_t jackknifes = 0;     ///< a towed trailer folded past its hitch angle limit
 };
 
 /// A fault the instructor injects into a machine.
@@ -91,6 +95,8 @@ class Machine {
 
   /// The item it holds (a container locked to its spreader), if any.
   virtual std::optional<physics::BodyId> held_item() const = 0;
+  /// Items the machine brings with it, by the exercise's names (a tractor's trailer); goals may name them.
+  virtual std::vector<std::pair<std::string, physics::BodyId>> own_items() const { return {}; }
   /// Height of the lowest point of its load-handling attachment (spreader, grab, hook) [m].
   virtual double attachment_bottom_z_m() const = 0;
   /// Length of the pendulum its load hangs on [m] (0 when nothing hangs).

@@ -133,6 +133,12 @@ struct PhysicsWorld::Ode {
   };
   dWorldID world = nullptr;
   dSpaceID space = nullptr;
+  std::vector<std::pair<dBodyID, dBodyID>> excluded;  // pairs that never touch (few: a linear search)
+  bool is_excluded(dBodyID a, dBodyID b) const {
+    return std::any_of(excluded.begin(), excluded.end(), [&](const auto& pair) {
+      return (pair.first == a && pair.second == b) || (pair.first == b && pair.second == a);
+    });
+  }
   dJointGroupID contacts = nullptr;
   std::vector<Body> bodies;
   std::vector<Shape> shapes;
@@ -518,6 +524,10 @@ void PhysicsWorld::set_linear_velocity(BodyId body, const Vec3& v) {
   dBodySetLinearVel(b, com.x, com.y, com.z);
 }
 
+void PhysicsWorld::exclude_contacts(BodyId a, BodyId b) {
+  ode_->excluded.emplace_back(ode_->bodies[a].id, ode_->bodies[b].id);
+}
+
 void PhysicsWorld::collide() {
   // gather every touching pair's contacts with the pair ordered by shape index, then sort by pair: the joint
   // order (and so the solver's result, bit for bit) depends only on the state, not on the space's history
@@ -535,7 +545,9 @@ void PhysicsWorld::collide() {
     }
     dBodyID b1 = dGeomGetBody(g1), b2 = dGeomGetBody(g2);
     if (!b1 && !b2) return;
-    if (b1 && b2 && (b1 == b2 || dAreConnectedExcluding(b1, b2, dJointTypeContact))) return;
+    if (b1 && b2 &&
+        (b1 == b2 || dAreConnectedExcluding(b1, b2, dJointTypeContact) || ode->is_excluded(b1, b2)))
+      return;
     // kinematic bodies push dynamic ones only: not each other, not static geometry
     const bool kinematic1 = !b1 || dBodyIsKinematic(b1), kinematic2 = !b2 || dBodyIsKinematic(b2);
     if (kinematic1 && kinematic2) return;

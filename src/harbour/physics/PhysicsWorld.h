@@ -97,6 +97,9 @@ class PhysicsWorld {
   /// slings on a crane hook); returns a handle for detach().
   int attach_pivot(BodyId a, BodyId b, const core::Vec3& anchor_m);
   void detach(int attachment);
+  /// Bodies `a` and `b` never touch each other (parts of one machine whose boxes overlap: a trailer's front
+  /// over its tractor); set once when the scene is built, like the bodies themselves.
+  void exclude_contacts(BodyId a, BodyId b);
   /// Attachments made so far (including detached ones).
   int attachments_made() const;
   /// A prismatic joint letting `b` slide along world `axis` relative to `a` (kWorld: the ground); returns its

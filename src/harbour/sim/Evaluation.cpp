@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "harbour/bulk/PileMeasure.h"
 
@@ -32,11 +33,14 @@ Evaluator::Evaluator(const ExerciseSettings& exercise)
     : exercise_(exercise), done_(exercise.moves.size(), false) {}
 
 int Evaluator::goal_of(physics::BodyId body, const Simulation& simulation) const {
-  for (std::size_t g = 0; g < exercise_.moves.size(); ++g)
+  for (std::size_t g = 0; g < exercise_.moves.size(); ++g) {
     for (std::size_t c = 0; c < simulation.scenario().containers.size(); ++c)
       if (simulation.scenario().containers[c].id == exercise_.moves[g].container_id &&
           simulation.container_body(c) == body)
         return static_cast<int>(g);
+    for (const auto& [id, item] : simulation.machine().own_items())
+      if (id == exercise_.moves[g].container_id && item == body) return static_cast<int>(g);
+  }
   return -1;
 }
 
@@ -94,6 +98,26 @@ void Evaluator::observe(const Simulation& simulation, const Controls& controls) 
     observe_any_machine(simulation, controls);
   if (simulation.bulk()) observe_bulk(simulation);
   observe_smoothness(simulation);
+  observe_speed_zones(simulation);
+  const MachineTally tally = simulation.machine().tally();
+  metrics_.vehicle = tally.vehicle;
+  metrics_.jackknifes = static_cast<int>(tally.jackknifes);
+}
+
+void Evaluator::observe_speed_zones(const Simulation& simulation) {
+  // the cab's ground speed in the zone it is in: each onset of a speed over the zone's limit
+  if (exercise_.speed_zones.empty()) return;
+  const physics::BodyId cab = simulation.machine().cab_body();
+  const core::Vec3 p = simulation.world().pose(cab).position, v = simulation.world().linear_velocity(cab);
+  const double kmh = std::hypot(v.x, v.y) * 3.6;
+  double over = -1e9;
+  for (const SpeedZone& z : exercise_.speed_zones)
+    if (p.x >= z.min_x_m && p.x <= z.max_x_m && p.y >= z.min_y_m && p.y <= z.max_y_m)
+      over = std::max(over, kmh - z.limit_kmh);
+  metrics_.worst_overspeed_kmh = std::max(metrics_.worst_overspeed_kmh, over);
+  const bool speeding = over > exercise_.rules.overspeed_margin_kmh;
+  if (speeding && !speeding_) ++metrics_.overspeeds;
+  speeding_ = over > 0.0 && (speeding || speeding_);  // until back within the limit
 }
 
 void Evaluator::observe_smoothness(const Simulation& simulation) {
@@ -212,13 +236,26 @@ void Evaluator::observe_moves(const Simulation& simulation, std::optional<physic
   if (carried_ && !held) {
     const int g = goal_of(*carried_, simulation);
     if (g >= 0 && !done_[g]) {
-      const core::Vec3 p = simulation.world().pose(*carried_).position;
-      const core::Vec3 t = exercise_.moves[g].target_m;
-      if (std::hypot(p.x - t.x, p.y - t.y) <= exercise_.moves[g].tolerance_m && std::abs(p.z - t.z) < 0.2) {
+      const MoveGoal& goal = exercise_.moves[g];
+      const core::Pose pose = simulation.world().pose(*carried_);
+      const core::Vec3 p = pose.position, t = goal.target_m;
+      const double offset = std::hypot(p.x - t.x, p.y - t.y);
+      // skew: its heading from the goal's, a box's either way round
+      double skew = 0.0;
+      if (goal.heading_rad) {
+        const core::Vec3 x = pose.rotation.column(0);
+        const double period = goal.on_wheels ? 2.0 * std::numbers::pi : std::numbers::pi;
+        skew = std::remainder(std::atan2(x.y, x.x) - *goal.heading_rad, period);
+      }
+      if (offset <= goal.tolerance_m && (goal.on_wheels || std::abs(p.z - t.z) < 0.2) &&
+          std::abs(skew) <= goal.heading_tolerance_rad) {
         done_[g] = true;
         ++metrics_.moves_completed;
         metrics_.cycle_times_s.push_back(metrics_.time_s - last_completion_s_);
         last_completion_s_ = metrics_.time_s;
+        metrics_.placement_offset_m.push_back(offset);
+        if (goal.heading_rad)
+          metrics_.placement_skew_deg.push_back(std::abs(skew) * 180.0 / std::numbers::pi);
       }
     }
   }
@@ -315,6 +352,8 @@ Score Evaluator::score() const {
   deduct("poor bite", Skill::kProductivity, metrics_.poor_bites, r.points_poor_bite);
   deduct("load-moment limiter trip", Skill::kSafety, metrics_.limiter_trips, r.points_limiter_trip);
   deduct("outrigger pad lift-off", Skill::kSafety, metrics_.pad_lift_offs, r.points_pad_lift_off);
+  deduct("jack-knife", Skill::kSafety, metrics_.jackknifes, r.points_jackknife);
+  deduct("speeding", Skill::kSafety, metrics_.overspeeds, r.points_overspeed);
   int harsh = 0;
   for (const Metrics::Smoothness& axis : metrics_.smoothness)
     harsh += axis.harsh_moves;
@@ -366,6 +405,17 @@ std::vector<std::pair<std::string, double>> Metrics::rows() const {
   for (const Smoothness& axis : smoothness) {
     r.emplace_back(axis.axis + "_rms_jerk_mps3", axis.rms_jerk_mps3);
     r.emplace_back(axis.axis + "_harsh_moves", axis.harsh_moves);
+  }
+  if (!placement_offset_m.empty())
+    r.emplace_back("worst_placement_offset_m",
+                   *std::max_element(placement_offset_m.begin(), placement_offset_m.end()));
+  if (!placement_skew_deg.empty())
+    r.emplace_back("worst_placement_skew_deg",
+                   *std::max_element(placement_skew_deg.begin(), placement_skew_deg.end()));
+  if (vehicle) {
+    r.emplace_back("jackknifes", jackknifes);
+    r.emplace_back("overspeeds", overspeeds);
+    r.emplace_back("worst_overspeed_kmh", std::max(0.0, worst_overspeed_kmh));
   }
   if (!bulk) return r;
   double fill_sum = 0.0, swing_max = 0.0;

@@ -14,8 +14,11 @@ namespace harbour::sim {
 /// One move to make: a container to a target position (e.g. a truck's chassis under the crane).
 struct MoveGoal {
   std::string container_id;
-  core::Vec3 target_m;       ///< [m] container centre when correctly set down
-  double tolerance_m = 0.3;  ///< [m] horizontal distance from target still counted as done
+  core::Vec3 target_m;                ///< [m] container centre when correctly set down
+  double tolerance_m = 0.3;           ///< [m] horizontal distance from target still counted as done
+  bool on_wheels = false;             ///< a trailer: its height is its wheels' business, not checked
+  std::optional<double> heading_rad;  ///< the heading it is set down at (a box either way round), if checked
+  double heading_tolerance_rad = 0.05;  ///< its skew still counted as done
 };
 
 /// Trigger values and per-occurrence deductions (points of 100); defined in docs/evaluation.md.
@@ -48,6 +51,10 @@ struct EvaluationRules {
   double points_pad_lift_off = 20.0;
   double points_harsh_move = 1.0;
   double points_per_trim_dm = 2.0;  ///< per decimetre a trimmed pile still stands above its goal
+  // vehicles
+  double overspeed_margin_kmh = 1.0;  ///< [km/h] over a zone's limit by more than this is speeding
+  double points_jackknife = 10.0;
+  double points_overspeed = 5.0;
 };
 
 /// A bulk delivery goal: this many tonnes dropped into a grid (a hopper).
@@ -64,11 +71,19 @@ struct TrimGoal {
   double top_m = 0.0;  ///< [m] world height its surface may reach at most
 };
 
+/// An area of the site with a speed limit for the vehicle (a ramp, a deck, a yard lane).
+struct SpeedZone {
+  std::string name;
+  double min_x_m = 0.0, min_y_m = 0.0, max_x_m = 0.0, max_y_m = 0.0;  ///< [m] the area on the ground
+  double limit_kmh = 10.0;
+};
+
 /// An exercise: a scenario, the moves to make and the rules that score them (settings).
 struct ExerciseSettings {
   std::string name;
   ScenarioSettings scenario;
   std::vector<MoveGoal> moves;
+  std::vector<SpeedZone> speed_zones;
   std::optional<BulkGoal> deliver;
   std::optional<TrimGoal> trim;
   EvaluationRules rules;
@@ -114,6 +129,13 @@ struct Metrics {
   int pad_lift_offs = 0;
   bool trim = false;        ///< a trim goal's pile is measured
   double pile_top_m = 0.0;  ///< [m] a trim goal's pile: its highest surface (measured every 0.5 s)
+  /// Each completed move's placement: the item's horizontal offset from its target and, where the goal
+  /// gives a heading, its skew from it.
+  std::vector<double> placement_offset_m, placement_skew_deg;
+  bool vehicle = false;  ///< a vehicle's figures are measured
+  int jackknifes = 0;
+  int overspeeds = 0;                ///< onsets of speeding in a speed zone
+  double worst_overspeed_kmh = 0.0;  ///< [km/h] the most over a zone's limit
   /// How smoothly each of the machine's named motions was driven (jerk from its speed sampled every 0.1 s).
   struct Smoothness {
     std::string axis;
@@ -167,6 +189,7 @@ class Evaluator {
   /// Counts a goal item let go of at its target as a completed move (`held`: what the machine holds now).
   void observe_moves(const Simulation& simulation, std::optional<physics::BodyId> held);
   void observe_smoothness(const Simulation& simulation);
+  void observe_speed_zones(const Simulation& simulation);
   bool goals_met() const;
   int goal_of(physics::BodyId body, const Simulation& simulation) const;
   double sway_m(const Simulation& simulation, std::optional<physics::BodyId> hanging_box) const;
@@ -195,6 +218,7 @@ class Evaluator {
   double next_axis_sample_s_ = 0.0;
   double next_pile_measure_s_ = 0.0;
   bool trimmed_ = false;  // the trim goal's pile measured down to its goal with the material placed
+  bool speeding_ = false;
 };
 
 }  // namespace harbour::sim

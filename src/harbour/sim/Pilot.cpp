@@ -5,6 +5,7 @@
 #include "harbour/sim/Autopilot.h"
 #include "harbour/sim/GrabAutopilot.h"
 #include "harbour/sim/HookAutopilot.h"
+#include "harbour/sim/TractorAutopilot.h"
 
 namespace harbour::sim {
 
@@ -15,13 +16,17 @@ std::string why_no_pilot(const ExerciseSettings& exercise) {
   if (grab.empty()) return "";
   const std::string hook = HookAutopilot::why_cannot_drive(exercise);
   if (hook.empty()) return "";
-  return "no scripted operator drives it (" + container + "; " + grab + "; " + hook + ")";
+  const std::string tractor = TractorAutopilot::why_cannot_drive(exercise);
+  if (tractor.empty()) return "";
+  return "no scripted operator drives it (" + container + "; " + grab + "; " + hook + "; " + tractor + ")";
 }
 
 std::unique_ptr<Pilot> make_pilot(const ExerciseSettings& exercise) {
   if (Autopilot::why_cannot_drive(exercise).empty()) return std::make_unique<Autopilot>(exercise);
   if (GrabAutopilot::why_cannot_drive(exercise).empty()) return std::make_unique<GrabAutopilot>(exercise);
   if (HookAutopilot::why_cannot_drive(exercise).empty()) return std::make_unique<HookAutopilot>(exercise);
+  if (TractorAutopilot::why_cannot_drive(exercise).empty())
+    return std::make_unique<TractorAutopilot>(exercise);
   throw std::invalid_argument(why_no_pilot(exercise));
 }
 

@@ -36,6 +36,33 @@ std::pair<double, int> drivetrain_wheel_torque_nm(const DrivetrainSettings& d, d
   return {std::clamp(throttle, 0.0, 1.0) * best, gear};
 }
 
+std::vector<SupportSpring> tyre_springs(const WheeledChassisSettings& chassis) {
+  std::vector<SupportSpring> springs;
+  for (const AxleSettings& a : chassis.axles)
+    springs.push_back({a.x_m, 2.0 * a.tyres_per_side * chassis.tyre.vertical_stiffness_n_per_m, 0.0});
+  return springs;
+}
+
+Settling settle(const std::vector<SupportSpring>& springs, double weight_n,
+                const std::vector<std::pair<double, double>>& loads) {
+  // heave h and pitch θ: Σ k (h + θx − b) = W + ΣL, Σ k x (h + θx − b) = Σ L x
+  double k0 = 0.0, k1 = 0.0, k2 = 0.0, force = weight_n, moment = 0.0;
+  for (const SupportSpring& s : springs) {
+    k0 += s.stiffness_n_per_m;
+    k1 += s.stiffness_n_per_m * s.x_m;
+    k2 += s.stiffness_n_per_m * s.x_m * s.x_m;
+    force += s.stiffness_n_per_m * s.base_drop_m;
+    moment += s.stiffness_n_per_m * s.base_drop_m * s.x_m;
+  }
+  for (const auto& [x, load] : loads) {
+    force += load;
+    moment += load * x;
+  }
+  const double det = k0 * k2 - k1 * k1;
+  if (!(std::abs(det) > 1e-9 * k0 * k2)) throw std::invalid_argument("settling needs springs at two places");
+  return {(force * k2 - moment * k1) / det, (k0 * moment - k1 * force) / det};
+}
+
 WheeledChassis::WheeledChassis(const WheeledChassisSettings& settings, physics::BodyId body)
     : settings_(settings), body_(body) {
   double fixed_x = 0.0;

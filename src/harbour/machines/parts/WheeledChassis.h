@@ -50,6 +50,29 @@ struct ChassisCommand {
 std::pair<double, int> drivetrain_wheel_torque_nm(const DrivetrainSettings& drivetrain, double tyre_radius_m,
                                                   double throttle, double wheel_speed_mps);
 
+/// A rigid body's static settling on vertical springs (its tyres and any supports): how far its centre of
+/// mass sags and how far it pitches (+ nose down), the sag at x along it being sag + pitch·x.
+struct Settling {
+  double sag_m = 0.0;
+  double pitch_rad = 0.0;
+  double sag_at(double x_m) const { return sag_m + pitch_rad * x_m; }
+};
+
+/// A vertical spring under a body at x along it [m], its stiffness [N/m] and how far its base sits below
+/// where it touches unloaded [m].
+struct SupportSpring {
+  double x_m = 0.0;
+  double stiffness_n_per_m = 0.0;
+  double base_drop_m = 0.0;
+};
+
+/// The springs a chassis's tyres make (each axle's two sides and twins together).
+std::vector<SupportSpring> tyre_springs(const WheeledChassisSettings& chassis);
+/// How a body of `weight_n` with point loads [(x, N), down] settles on `springs` (the small-angle statics of
+/// a rigid body on linear springs; it needs springs at two places at least).
+Settling settle(const std::vector<SupportSpring>& springs, double weight_n,
+                const std::vector<std::pair<double, double>>& loads);
+
 /// A wheeled chassis on one physics body: Ackermann steering about the non-steered axles' centre (front,
 /// rear or all-wheel steering alike), an automatic drivetrain shared by the driven wheels, brakes on every
 /// wheel, and a tyre at each wheel (the body carried on them over a flat ground). It keeps no state of its

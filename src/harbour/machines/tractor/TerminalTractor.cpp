@@ -10,15 +10,54 @@ namespace {
 constexpr const char* kTractorIndicators[] = {"speed_kmh", "gear", "steering", "horn"};
 constexpr int kReverse = 0, kNeutral = 1;  // the direction selector's positions: reverse, neutral, forward
 
-physics::BodyId add_chassis(physics::PhysicsWorld& world, const TractorSettings& s,
-                            const TractorStart& start) {
-  // standing on the tyres' static sag (the rear axle's twins stiffer: the mean is near enough, it settles)
-  const AxleSettings& axle = s.chassis.axles.front();
+// Where the tractor and its trailer stand at the start: settled on their tyres, the trailer's front on the
+// plate (the small-angle statics of both bodies on their springs, solved in turn until they agree).
+struct StartPoses {
+  core::Pose tractor, trailer;
+};
+
+StartPoses start_poses(const TractorSettings& s, const TractorStart& start) {
+  constexpr double kG = 9.80665;
+  const auto level_springs = [](const WheeledChassisSettings& c) {
+    // each tyre's gap to the ground with the body level and the first axle's tyres just touching
+    std::vector<SupportSpring> springs = tyre_springs(c);
+    for (std::size_t n = 0; n < springs.size(); ++n)
+      springs[n].base_drop_m = c.axles[n].hub_z_m - c.axles.front().hub_z_m;
+    return springs;
+  };
+  const double tractor_z = s.chassis.tyre.radius_m - s.chassis.axles.front().hub_z_m;
+  const core::Mat3 heading = core::Mat3::rotation({0, 0, 1}, start.heading_rad);
+  const auto pose = [&](double z, const Settling& settled, const core::Vec3& xy) {
+    return core::Pose{heading * core::Mat3::rotation({0, 1, 0}, settled.pitch_rad),
+                      {xy.x, xy.y, z - settled.sag_m}};
+  };
+  Settling tractor = settle(level_springs(s.chassis), s.mass_kg * kG, {});
+  StartPoses poses{pose(tractor_z, tractor, start.position_m), {}};
+  if (!start.trailer) return poses;
+  const TrailerSettings& t = *start.trailer;
+  const double trailer_z = t.wheels.tyre.radius_m - t.wheels.axles.front().hub_z_m;
+  const double plate_k = s.fifth_wheel.stiffness_n_per_m;
+  Settling trailer;
+  for (int pass = 0; pass < 5; ++pass) {
+    const double hitch_z = tractor_z + s.hitch_m.z - tractor.sag_at(s.hitch_m.x);
+    std::vector<SupportSpring> springs = level_springs(t.wheels);
+    springs.push_back({t.kingpin_m.x, plate_k, trailer_z + t.kingpin_m.z - hitch_z});
+    trailer = settle(springs, t.mass_kg * kG, {});
+    const double kingpin_n = plate_k * (trailer.sag_at(t.kingpin_m.x) - springs.back().base_drop_m);
+    tractor = settle(level_springs(s.chassis), s.mass_kg * kG, {{s.hitch_m.x, kingpin_n}});
+  }
+  poses.tractor = pose(tractor_z, tractor, start.position_m);
+  const core::Vec3 hitch = poses.tractor.to_parent(s.hitch_m);
+  poses.trailer = pose(trailer_z, trailer, hitch - heading * t.kingpin_m);
+  return poses;
+}
+
+physics::BodyId add_body(physics::PhysicsWorld& world, double mass_kg, const core::Vec3& half_extents_m,
+                         const core::Pose& pose) {
   physics::BoxSettings box;
-  box.mass_kg = s.mass_kg;
-  box.half_extents_m = s.half_extents_m;
-  box.pose = {core::Mat3::rotation({0, 0, 1}, start.heading_rad),
-              start.position_m + core::Vec3{0, 0, s.chassis.tyre.radius_m - axle.hub_z_m}};
+  box.mass_kg = mass_kg;
+  box.half_extents_m = half_extents_m;
+  box.pose = pose;
   return world.add_box(box);
 }
 
@@ -39,7 +78,8 @@ ControlTable tractor_control_table() {
                    1.0,
                    "direction selector"},
        ControlSpec{"emergency_stop", K::kButton, 0.0, 1.0, {}, 0.0, 0.0, "full brakes, no drive"},
-       ControlSpec{"horn", K::kButton, 0.0, 1.0, {}, 0.0, 0.0, "horn"}});
+       ControlSpec{"horn", K::kButton, 0.0, 1.0, {}, 0.0, 0.0, "horn"},
+       ControlSpec{"couple", K::kButton, 0.0, 1.0, {}, 0.0, 0.0, "couple or drop the trailer"}});
 }
 
 TerminalTractor::TerminalTractor(physics::PhysicsWorld& world, const TractorSettings& settings,
@@ -52,23 +92,86 @@ TerminalTractor::TerminalTractor(physics::PhysicsWorld& world, const TractorSett
       direction_slot_(settings.controls.slot("direction", ControlKind::kSwitch)),
       stop_slot_(settings.controls.slot("emergency_stop", ControlKind::kButton)),
       horn_slot_(settings.controls.slot("horn", ControlKind::kButton)),
-      body_(add_chassis(world, settings, start)),
+      couple_slot_(settings.controls.slot("couple", ControlKind::kButton)),
+      body_(add_body(world, settings.mass_kg, settings.half_extents_m, start_poses(settings, start).tractor)),
       chassis_(settings.chassis, body_),
       wind_areas_{WindArea{body_, settings.half_extents_m}, WindArea{}} {
   if (!start.trailer) return;
-  // in line behind it, its kingpin on the hitch, standing on its tyres' sag
+  // in line behind it, its kingpin on the lifted plate, locked in the jaw
   const TrailerSettings& t = *start.trailer;
-  const core::Pose chassis = world.pose(body_);
-  const core::Vec3 hitch = chassis.to_parent(settings.hitch_m);
-  physics::BoxSettings box;
-  box.mass_kg = t.mass_kg;
-  box.half_extents_m = t.half_extents_m;
-  box.pose = {chassis.rotation, hitch - chassis.rotation * t.kingpin_m};
-  trailer_body_ = world.add_box(box);
-  world.attach_pivot(body_, trailer_body_, hitch);
+  trailer_body_ = add_body(world, t.mass_kg, t.half_extents_m, start_poses(settings, start).trailer);
+  world.exclude_contacts(body_, trailer_body_);  // its front reaches over the chassis
   trailer_wheels_.emplace(t.wheels, trailer_body_);
+  if (t.legs) trailer_legs_.emplace(*t.legs, trailer_body_);
+  trailer_id_ = t.id;
+  trailer_kingpin_m_ = t.kingpin_m;
   trailer_half_extents_m_ = t.half_extents_m;
   wind_areas_[1] = {trailer_body_, t.half_extents_m};
+  coupled_ = true;
+  lift_ = lift_target_ = 1.0;
+}
+
+core::Vec3 TerminalTractor::kingpin_m() const {
+  if (trailer_body_ == physics::kWorld) return {};
+  return world_.pose(trailer_body_).to_parent(trailer_kingpin_m_);
+}
+
+core::Vec3 TerminalTractor::jaw_m() const {
+  const FifthWheelSettings& w = settings_.fifth_wheel;
+  return world_.pose(body_).to_parent(settings_.hitch_m - core::Vec3{0, 0, (1.0 - lift_) * w.lift_m});
+}
+
+std::optional<physics::BodyId> TerminalTractor::held_item() const {
+  if (coupled_) return trailer_body_;
+  return std::nullopt;
+}
+
+std::vector<std::pair<std::string, physics::BodyId>> TerminalTractor::own_items() const {
+  if (trailer_body_ == physics::kWorld) return {};
+  return {{trailer_id_, trailer_body_}};
+}
+
+void TerminalTractor::step_coupling(bool couple_pressed, double dt_s) {
+  const FifthWheelSettings& w = settings_.fifth_wheel;
+  if (couple_pressed && !couple_was_pressed_) {
+    if (coupled_) {
+      // drop: at a standstill, onto legs it has
+      if (std::abs(forward_mps()) < w.standstill_mps && trailer_legs_) lift_target_ = 0.0;
+    } else {
+      // couple: the kingpin within the jaw's reach across and not below the plate
+      const core::Vec3 jaw = jaw_m(), kingpin = kingpin_m();
+      const core::Vec3 across{kingpin.x - jaw.x, kingpin.y - jaw.y, 0.0};
+      if (std::sqrt(dot(across, across)) <= w.capture_m && kingpin.z >= jaw.z - 0.05) {
+        coupled_ = true;
+        capture_offset_m_ = across;
+        lift_target_ = 1.0;
+      }
+    }
+  }
+  couple_was_pressed_ = couple_pressed;
+  const double most = w.lift_rate_mps / w.lift_m * dt_s;
+  lift_ += std::clamp(lift_target_ - lift_, -most, most);
+  if (coupled_ && lift_target_ == 0.0 && lift_ == 0.0) coupled_ = false;  // down: the jaw opens
+  // the jaw draws a captured kingpin home
+  const double offset = std::sqrt(dot(capture_offset_m_, capture_offset_m_));
+  if (offset > 0.0)
+    capture_offset_m_ = capture_offset_m_ * (std::max(0.0, offset - w.capture_rate_mps * dt_s) / offset);
+}
+
+void TerminalTractor::push_coupling() {
+  // the plate carries the kingpin from below; the locked jaw holds it across
+  if (!coupled_) return;
+  const FifthWheelSettings& w = settings_.fifth_wheel;
+  const core::Vec3 jaw = jaw_m(), kingpin = kingpin_m();
+  const core::Vec3 v = world_.point_velocity(body_, world_.pose(body_).to_local(jaw)) -
+                       world_.point_velocity(trailer_body_, trailer_kingpin_m_);
+  core::Vec3 f{w.stiffness_n_per_m * (jaw.x + capture_offset_m_.x - kingpin.x) + w.damping_ns_per_m * v.x,
+               w.stiffness_n_per_m * (jaw.y + capture_offset_m_.y - kingpin.y) + w.damping_ns_per_m * v.y,
+               0.0};
+  const double sag = jaw.z - kingpin.z;
+  if (sag > 0.0) f.z = std::max(0.0, w.stiffness_n_per_m * sag + w.damping_ns_per_m * v.z);
+  world_.add_force_at(trailer_body_, kingpin, f);
+  world_.add_force_at(body_, jaw, f * -1.0);
 }
 
 double TerminalTractor::hitch_angle_rad() const {
@@ -97,13 +200,15 @@ void TerminalTractor::step(const Controls& raw, std::span<const ContainerRef>, d
   command.reverse = direction == kReverse;
   command.brake = stop ? 1.0 : at(brake_slot_);
   chassis_.step(world_, command, 0.0);
-  if (trailer_wheels_) {
-    // the trailer's brakes work with the tractor's (air brakes on the coupling)
-    trailer_wheels_->step(world_, {0.0, false, command.brake, 0.0}, 0.0);
-    const bool folded = std::abs(hitch_angle_rad()) > settings_.jackknife_angle_rad;
-    if (folded && !jackknifed_) ++jackknifes_;
-    jackknifed_ = folded;
-  }
+  if (!trailer_wheels_) return;
+  step_coupling(at(couple_slot_) != 0.0, dt_s);
+  push_coupling();
+  // the trailer's brakes work with the tractor's while coupled (air brakes); dropped, its spring brakes hold
+  trailer_wheels_->step(world_, {0.0, false, coupled_ ? command.brake : 1.0, 0.0}, 0.0);
+  if (trailer_legs_) trailer_legs_->step(world_, {0.0, false, 1.0, 0.0}, 0.0);
+  const bool folded = coupled_ && std::abs(hitch_angle_rad()) > settings_.jackknife_angle_rad;
+  if (folded && !jackknifed_) ++jackknifes_;
+  jackknifed_ = folded;
 }
 
 double TerminalTractor::attachment_bottom_z_m() const {
@@ -119,6 +224,8 @@ MachineTally TerminalTractor::tally() const {
   // how smoothly it is driven: its speed (harsh braking and starts)
   MachineTally t;
   t.axes[0] = {"drive", forward_mps()};
+  t.vehicle = true;
+  t.jackknifes = jackknifes_;
   return t;
 }
 
@@ -154,22 +261,37 @@ void TerminalTractor::hash_into(core::StateHash& hash) const {
   hash.add(steering_);
   hash.add(horn_);
   hash.add(jackknifes_);
+  hash.add(coupled_);
+  hash.add(lift_);
+  hash.add(lift_target_);
+  hash.add(capture_offset_m_.x);
+  hash.add(capture_offset_m_.y);
 }
 
 void TerminalTractor::save_state(core::StateWriter& out) const {
-  out.section(0x54524331);  // "TRC1"
+  out.section(0x54524332);  // "TRC2"
   out.put(steering_);
   out.put(horn_);
   out.put(jackknifed_);
   out.put(jackknifes_);
+  out.put(coupled_);
+  out.put(couple_was_pressed_);
+  out.put(lift_);
+  out.put(lift_target_);
+  out.put(capture_offset_m_);
 }
 
 void TerminalTractor::restore_state(core::StateReader& in) {
-  in.section(0x54524331, "terminal tractor");
+  in.section(0x54524332, "terminal tractor");
   in.get(steering_);
   in.get(horn_);
   in.get(jackknifed_);
   in.get(jackknifes_);
+  in.get(coupled_);
+  in.get(couple_was_pressed_);
+  in.get(lift_);
+  in.get(lift_target_);
+  in.get(capture_offset_m_);
 }
 
 }  // namespace harbour::sim

@@ -4,6 +4,9 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "harbour/machines/Machine.h"
 #include "harbour/machines/parts/WheeledChassis.h"
@@ -15,16 +18,33 @@ namespace harbour::sim {
 /// accelerator and brake pedals, the direction selector, horn and emergency stop.
 ControlTable tractor_control_table();
 
-/// A trailer the tractor tows (settings): a roll trailer (mafi) on its gooseneck or a semi-trailer on the
-/// fifth wheel; its front rests on the hitch, its rear on its own axles. Frame: its centre of mass, x
-/// forward.
+/// A trailer the tractor tows (settings, from a data/trailers file): a roll trailer (mafi) on the gooseneck
+/// or a semi-trailer on the fifth wheel. Its front rests on the coupling's plate, or on its legs when
+/// dropped; its rear on its own axles. Frame: its centre of mass, x forward.
 struct TrailerSettings {
+  std::string id = "trailer";                 ///< the exercise's name for it (goals name it)
   double mass_kg = 9000.0;                    ///< [kg] tare and payload
+  double max_payload_kg = 60000.0;            ///< [kg] its rating
   core::Vec3 half_extents_m{6.1, 1.25, 0.4};  ///< a 40 ft mafi's deck, about its centre of mass
   core::Vec3 kingpin_m{5.6, 0.0, 0.3};        ///< [m] the hitch on it (trailer frame)
   WheeledChassisSettings wheels;              ///< its axles (none steered or driven), tyres and brakes
+  /// Its front supports (skids or landing legs) as one axle of feet that do not roll (none: it never stands
+  /// uncoupled); the feet's tyre is their contact with the ground.
+  std::optional<WheeledChassisSettings> legs;
 };
 
+/// The coupling (settings): a hydraulic gooseneck or lifting fifth wheel whose jaw locks the trailer's
+/// kingpin and whose plate lifts the trailer's front off its legs. The plate carries the kingpin from below
+/// and the jaw holds it across, both as stiff spring-dampers.
+struct FifthWheelSettings {
+  double lift_m = 0.3;               ///< [m] the plate's travel from down to up (hitch_m is up)
+  double lift_rate_mps = 0.1;        ///< [m/s]
+  double capture_m = 0.3;            ///< [m] the kingpin this near the jaw (across) locks into it
+  double capture_rate_mps = 0.2;     ///< [m/s] how fast the jaw draws a captured kingpin home
+  double stiffness_n_per_m = 1.0e7;  ///< the jaw's and the plate's
+  double damping_ns_per_m = 2.0e5;   ///< the jaw's and the plate's
+  double standstill_mps = 0.3;       ///< [m/s] a trailer is dropped only slower than this
+};
 /// A terminal (ro-ro) tractor (settings, from data/machines/tractor.yaml): a chassis body on its wheels.
 /// Frame: the chassis body's centre is its centre of mass; x forward, z up; axles and the cab given in it.
 struct TractorSettings {
@@ -35,8 +55,9 @@ struct TractorSettings {
   core::Vec3 cab_position_m{1.4, 0.4, 1.3};
   core::Vec3 eye_m{0.0, 0.0, 0.5};
   double sight_pitch_rad = -0.1;
-  core::Vec3 hitch_m{-1.45, 0.0, 0.7};  ///< [m] the fifth wheel / gooseneck coupling point (chassis frame)
-  double jackknife_angle_rad = 1.4;     ///< the hitch angle counted as a jack-knife
+  core::Vec3 hitch_m{-1.45, 0.0, 0.7};  ///< [m] the coupling's plate, up (chassis frame)
+  FifthWheelSettings fifth_wheel;
+  double jackknife_angle_rad = 1.4;  ///< the hitch angle counted as a jack-knife
   ControlTable controls = tractor_control_table();
 };
 
@@ -44,12 +65,14 @@ struct TractorSettings {
 struct TractorStart {
   core::Vec3 position_m;                   ///< [m] the point under its centre of mass on the ground
   double heading_rad = 0.0;                ///< its x from world x, about z
-  std::optional<TrailerSettings> trailer;  ///< coupled at the start, in line behind it
+  std::optional<TrailerSettings> trailer;  ///< coupled and lifted at the start, in line behind it
 };
 
 /// A terminal tractor on the physics world: a chassis body carried by its tyres (the shared wheeled chassis:
 /// Ackermann steering on the front axle, the drivetrain on the twin-tyred rear axle, brakes on every wheel)
-/// over a flat ground at quay level.
+/// over a flat ground at quay level, and its trailer. The `couple` button drops a coupled trailer at a
+/// standstill (the plate lowers its front onto its legs, then the jaw opens) and couples one whose kingpin
+/// is within reach (the jaw locks, the plate lifts it). Its held item is the trailer while coupled.
 class TerminalTractor final : public Machine {
  public:
   TerminalTractor(physics::PhysicsWorld& world, const TractorSettings& settings, const TractorStart& start);
@@ -58,7 +81,8 @@ class TerminalTractor final : public Machine {
   const char* kind() const override { return "tractor"; }
   const ControlTable& control_table() const override { return settings_.controls; }
   void step(const Controls& controls, std::span<const ContainerRef> liftables, double dt_s) override;
-  std::optional<physics::BodyId> held_item() const override { return std::nullopt; }
+  std::optional<physics::BodyId> held_item() const override;
+  std::vector<std::pair<std::string, physics::BodyId>> own_items() const override;
   double attachment_bottom_z_m() const override;
   double pendulum_length_m() const override { return 0.0; }
   std::span<const WindArea> wind_areas() const override {
@@ -91,20 +115,34 @@ class TerminalTractor final : public Machine {
   /// left); 0 without a trailer.
   double hitch_angle_rad() const;
   std::uint32_t jackknifes() const { return jackknifes_; }
+  /// The jaw locked on the trailer's kingpin.
+  bool coupled() const { return coupled_; }
+  /// The plate's height [0 down, 1 up].
+  double lift() const { return lift_; }
+  /// The trailer's kingpin and the coupling's jaw now (world) [m].
+  core::Vec3 kingpin_m() const;
+  core::Vec3 jaw_m() const;
   const TractorSettings& settings() const { return settings_; }
 
  private:
   physics::PhysicsWorld& world_;
   TractorSettings settings_;
-  int steer_slot_, throttle_slot_, brake_slot_, direction_slot_, stop_slot_, horn_slot_;
+  void step_coupling(bool couple_pressed, double dt_s);
+  void push_coupling();
+
+  int steer_slot_, throttle_slot_, brake_slot_, direction_slot_, stop_slot_, horn_slot_, couple_slot_;
   physics::BodyId body_;
   WheeledChassis chassis_;
   std::array<WindArea, 2> wind_areas_;
   physics::BodyId trailer_body_ = physics::kWorld;
-  std::optional<WheeledChassis> trailer_wheels_;
-  core::Vec3 trailer_half_extents_m_;
+  std::optional<WheeledChassis> trailer_wheels_, trailer_legs_;
+  std::string trailer_id_;
+  core::Vec3 trailer_half_extents_m_, trailer_kingpin_m_;
   double steering_ = 0.0;
   bool horn_ = false, jackknifed_ = false;
+  bool coupled_ = false, couple_was_pressed_ = false;
+  double lift_ = 0.0, lift_target_ = 0.0;
+  core::Vec3 capture_offset_m_;  ///< the captured kingpin's offset from the jaw, drawn home (world, across)
   std::uint32_t jackknifes_ = 0;
 };
 

@@ -1,0 +1,193 @@
+#include "harbour/sim/TractorAutopilot.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "harbour/machines/tractor/TerminalTractor.h"
+
+namespace harbour::sim {
+namespace {
+
+constexpr std::int64_t kDecisionSteps = 20;  // 50 Hz
+constexpr double kCruise_mps = 3.0;          // 10.8 km/h
+constexpr double kCorner_mps = 2.0;          // with the wheel turned more than kCornerSteer
+constexpr double kCornerSteer = 0.3;
+constexpr double kStopping_mps2 = 0.3;  // the deceleration it plans its stop with
+constexpr double kLookahead_m = 5.0;    // at least; 1.5 s of travel at speed
+constexpr double kOvershoot_m = 30.0;   // the path goes on past the goal (something to look ahead to)
+constexpr double kSpeedGain = 0.4;      // pedal per m/s of speed error
+constexpr double kStanding_mps = 0.05;
+constexpr double kPedalRate_per_s = 0.5;  // how fast a foot moves a pedal (a smooth driver)
+
+core::Vec3 flat(core::Vec3 v) {
+  v.z = 0.0;
+  return v;
+}
+
+double rear_axle_x(const TractorSettings& s) {
+  double x = 0.0;
+  int n = 0;
+  for (const AxleSettings& a : s.chassis.axles)
+    if (!a.steered) x += a.x_m, ++n;
+  return n > 0 ? x / n : 0.0;
+}
+
+double front_axle_x(const TractorSettings& s) {
+  for (const AxleSettings& a : s.chassis.axles)
+    if (a.steered) return a.x_m;
+  return 0.0;
+}
+
+}  // namespace
+
+std::string TractorAutopilot::why_cannot_drive(const ExerciseSettings& exercise) {
+  const auto* tractor = std::get_if<TractorSetup>(&exercise.scenario.machine);
+  if (!tractor || !tractor->start.trailer) return "the tractor autopilot drives a tractor with a trailer";
+  if (exercise.moves.size() != 1 || !exercise.moves[0].heading_rad)
+    return "the exercise has no parking move with a heading for its trailer (exercise.moves)";
+  return "";
+}
+
+TractorAutopilot::TractorAutopilot(const ExerciseSettings& exercise) : exercise_(exercise) {
+  if (const std::string why = why_cannot_drive(exercise); !why.empty()) throw std::invalid_argument(why);
+}
+
+const char* TractorAutopilot::activity() const {
+  switch (phase_) {
+    case Phase::kDrive:
+      return "drive";
+    case Phase::kStop:
+      return "stop";
+    case Phase::kDrop:
+      return "drop";
+    case Phase::kDone:
+      return "done";
+  }
+  return "";
+}
+
+Controls TractorAutopilot::next(const Simulation& simulation) {
+  if (simulation.steps() % kDecisionSteps != 0 && decided_) return last_;
+  const auto* tractor = dynamic_cast<const TerminalTractor*>(&simulation.machine());
+  if (!tractor) throw std::logic_error("the tractor autopilot's exercise runs on another machine");
+  if (!planned_) plan(simulation, *tractor);
+  last_ = decide(simulation, *tractor);
+  decided_ = true;
+  return last_;
+}
+
+void TractorAutopilot::resume(const Simulation& simulation, int moves_done) {
+  phase_ = moves_done >= 1 ? Phase::kDone : Phase::kDrive;
+  phase_start_s_ = simulation.time_s();
+  planned_ = false;
+  decided_ = false;
+}
+
+void TractorAutopilot::plan(const Simulation& simulation, const TerminalTractor& tractor) {
+  // from its rear axle now, along its heading to the corner on the final line, along that line to where its
+  // rear axle stands when the trailer's centre is on the target, and on
+  const MoveGoal& goal = exercise_.moves[0];
+  const TractorSettings& s = tractor.settings();
+  const core::Pose pose = simulation.world().pose(tractor.body());
+  const core::Vec3 start = flat(pose.to_parent({rear_axle_x(s), 0, 0}));
+  const core::Vec3 heading =
+      flat(pose.rotation.column(0)) * (1.0 / core::length(flat(pose.rotation.column(0))));
+  const core::Vec3 along{std::cos(*goal.heading_rad), std::sin(*goal.heading_rad), 0.0};
+  const TrailerSettings& trailer = *std::get<TractorSetup>(exercise_.scenario.machine).start.trailer;
+  const double trailer_to_rear_axle = trailer.kingpin_m.x + (rear_axle_x(s) - s.hitch_m.x);
+  const core::Vec3 end = flat(goal.target_m) + along * trailer_to_rear_axle;
+  path_ = {start};
+  // the corner: start + t·heading on the line end + u·along
+  const double cross_z = heading.x * along.y - heading.y * along.x;
+  if (std::abs(cross_z) > 1e-3) {
+    const core::Vec3 d = end - start;
+    const double t = (d.x * along.y - d.y * along.x) / cross_z;
+    if (t > 0.0) path_.push_back(start + heading * t);
+  }
+  path_.push_back(end);
+  path_.push_back(end + along * kOvershoot_m);
+  planned_ = true;
+}
+
+double TractorAutopilot::remaining_m(const Simulation& simulation, const TerminalTractor& tractor) const {
+  const MoveGoal& goal = exercise_.moves[0];
+  const core::Vec3 along{std::cos(*goal.heading_rad), std::sin(*goal.heading_rad), 0.0};
+  return dot(flat(goal.target_m - simulation.world().pose(tractor.trailer_body()).position), along);
+}
+
+Controls TractorAutopilot::decide(const Simulation& simulation, const TerminalTractor& tractor) {
+  const ControlTable& table = simulation.control_table();
+  Controls c = table.neutral();
+  const auto set = [&](const char* label, double value) {
+    c.value[static_cast<std::size_t>(table.find(label))] = value;
+  };
+  // the pedals move as a foot moves them, from where they were
+  const double decision_s = static_cast<double>(kDecisionSteps) * Simulation::kStep_s;
+  const auto press = [&](const char* label, double value) {
+    const auto slot = static_cast<std::size_t>(table.find(label));
+    const double was = decided_ ? last_.value[slot] : 0.0, most = kPedalRate_per_s * decision_s;
+    c.value[slot] = was + std::clamp(value - was, -most, most);
+  };
+  const double now = simulation.time_s();
+  const double speed = tractor.forward_mps();
+  set("direction", 2.0);  // forward
+  const auto enter = [&](Phase next) {
+    phase_ = next;
+    phase_start_s_ = now;
+  };
+  if (phase_ == Phase::kDrive) {
+    // pure pursuit: the arc from the rear axle through a point on the path a look-ahead away
+    const TractorSettings& s = tractor.settings();
+    const core::Pose pose = simulation.world().pose(tractor.body());
+    const core::Vec3 rear = flat(pose.to_parent({rear_axle_x(s), 0, 0}));
+    std::size_t nearest_segment = 0;
+    double nearest = 1e18, nearest_t = 0.0;
+    for (std::size_t k = 0; k + 1 < path_.size(); ++k) {
+      const core::Vec3 a = path_[k], b = path_[k + 1];
+      const double t = std::clamp(dot(rear - a, b - a) / dot(b - a, b - a), 0.0, 1.0);
+      const double d = core::length(rear - (a + (b - a) * t));
+      if (d < nearest) nearest = d, nearest_segment = k, nearest_t = t;
+    }
+    double ahead = std::max(kLookahead_m, 1.5 * std::abs(speed));
+    core::Vec3 target = path_.back();
+    for (std::size_t k = nearest_segment; k + 1 < path_.size(); ++k) {
+      const core::Vec3 a = path_[k], b = path_[k + 1];
+      const double left = core::length(b - a) * (k == nearest_segment ? 1.0 - nearest_t : 1.0);
+      const core::Vec3 from = k == nearest_segment ? a + (b - a) * nearest_t : a;
+      if (ahead <= left) {
+        target = from + (b - a) * (ahead / core::length(b - a));
+        break;
+      }
+      ahead -= left;
+    }
+    const core::Vec3 x = flat(pose.rotation.column(0));
+    const core::Vec3 to = target - rear;
+    const double alpha = std::atan2(x.x * to.y - x.y * to.x, x.x * to.x + x.y * to.y);
+    const double wheelbase = front_axle_x(s) - rear_axle_x(s);
+    const double steer =
+        std::atan(2.0 * wheelbase * std::sin(alpha) / core::length(to)) / s.chassis.max_steer_rad;
+    set("steer", std::clamp(steer, -1.0, 1.0));
+    // speed: cruising, slower in corners, and a planned stop with the trailer's centre on its target
+    const double remaining = remaining_m(simulation, tractor);
+    double wanted = std::abs(tractor.steering()) > kCornerSteer ? kCorner_mps : kCruise_mps;
+    wanted = std::min(wanted, std::sqrt(2.0 * kStopping_mps2 * std::max(0.0, remaining)));
+    press("throttle", std::clamp(kSpeedGain * (wanted - speed), 0.0, 1.0));
+    press("brake", std::clamp(kSpeedGain * (speed - wanted) - 0.05, 0.0, 1.0));
+    if (remaining <= 0.0) enter(Phase::kStop);
+  } else if (phase_ == Phase::kStop) {
+    press("brake", 0.6);
+    if (std::abs(speed) < kStanding_mps && now - phase_start_s_ > 1.0) enter(Phase::kDrop);
+  } else if (phase_ == Phase::kDrop) {
+    // a press, then the plate lowers and the jaw opens
+    press("brake", 0.6);
+    set("couple", now - phase_start_s_ < 0.2 ? 1.0 : 0.0);
+    if (!tractor.coupled()) enter(Phase::kDone);
+  } else {
+    press("brake", 0.6);
+    set("direction", 1.0);  // neutral
+  }
+  return c;
+}
+
+}  // namespace harbour::sim

@@ -1,0 +1,47 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "harbour/sim/Evaluation.h"
+#include "harbour/sim/Pilot.h"
+
+namespace harbour::sim {
+
+class TerminalTractor;
+
+/// A scripted tractor driver for a trailer's parking move: drives on from where it stands to the line the
+/// trailer is to stand on (through the corner where its heading's line meets that line), steering by pure
+/// pursuit of a point ahead on that path from its rear axle, brings the trailer straight on the final line,
+/// eases to a stop with the trailer's centre on its target, and drops it.
+class TractorAutopilot final : public Pilot {
+ public:
+  /// Why it cannot drive `exercise` ("" when it can): a move of the tractor's trailer.
+  static std::string why_cannot_drive(const ExerciseSettings& exercise);
+  /// Throws std::invalid_argument with why_cannot_drive() when it cannot.
+  explicit TractorAutopilot(const ExerciseSettings& exercise);
+
+  /// The controls for the next step (decided 50 times a second, held in between).
+  Controls next(const Simulation& simulation) override;
+  /// What it is doing now: drive, stop, drop, done.
+  const char* activity() const override;
+  /// Takes over a running exercise: plans its path again from where the tractor stands.
+  void resume(const Simulation& simulation, int moves_done) override;
+
+ private:
+  enum class Phase { kDrive, kStop, kDrop, kDone };
+  Controls decide(const Simulation& simulation, const TerminalTractor& tractor);
+  void plan(const Simulation& simulation, const TerminalTractor& tractor);
+  /// How far the trailer's centre still is from its target along the goal's heading [m].
+  double remaining_m(const Simulation& simulation, const TerminalTractor& tractor) const;
+
+  ExerciseSettings exercise_;
+  Phase phase_ = Phase::kDrive;
+  std::vector<core::Vec3> path_;  // the polyline its rear axle follows (ground plane)
+  bool planned_ = false;
+  double phase_start_s_ = 0.0;
+  Controls last_{};
+  bool decided_ = false;
+};
+
+}  // namespace harbour::sim
