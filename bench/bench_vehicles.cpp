@@ -1,0 +1,44 @@
+// The wheeled machines' exercises under their autopilots, at the simulation's fixed step.
+#include <benchmark/benchmark.h>
+
+#include <memory>
+
+#include "harbour/io/ExerciseFiles.h"
+#include "harbour/sim/Evaluation.h"
+#include "harbour/sim/Pilot.h"
+
+namespace harbour {
+namespace {
+
+// An exercise end to end: ODE, the tyres' force elements, the coupling, the autopilot and the evaluation;
+// from the start again when it ends.
+void BM_VehicleExercise(benchmark::State& state, const char* name) {
+  const sim::ExerciseSettings exercise =
+      io::load_exercise(std::string(HARBOUR_DATA_DIR "/exercises/") + name + ".yaml");
+  auto sim = std::make_unique<sim::Simulation>(exercise.scenario);
+  auto pilot = sim::make_pilot(exercise);
+  auto evaluator = std::make_unique<sim::Evaluator>(exercise);
+  for (auto _ : state) {
+    if (evaluator->finished() || sim->time_s() >= exercise.rules.time_limit_s) {
+      state.PauseTiming();
+      sim = std::make_unique<sim::Simulation>(exercise.scenario);
+      pilot = sim::make_pilot(exercise);
+      evaluator = std::make_unique<sim::Evaluator>(exercise);
+      state.ResumeTiming();
+    }
+    const sim::Controls in = pilot->next(*sim);
+    sim->step(in);
+    evaluator->observe(*sim, in);
+  }
+  if (sim->diverged()) state.SkipWithError(sim->divergence().c_str());
+  state.counters["real_time_factor"] =
+      benchmark::Counter(sim::Simulation::kStep_s, benchmark::Counter::kIsIterationInvariantRate);
+}
+BENCHMARK_CAPTURE(BM_VehicleExercise, tractor_mafi_park, "tractor_mafi_park")
+    ->Unit(benchmark::kMicrosecond)
+    ->MinTime(5.0);
+
+}  // namespace
+}  // namespace harbour
+
+BENCHMARK_MAIN();
