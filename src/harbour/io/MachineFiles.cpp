@@ -542,6 +542,50 @@ sim::TrailerSettings load_trailer(const std::string& path) {
   return load_trailer(YamlFile::load(path));
 }
 
+sim::ReachStackerSettings load_reach_stacker(const YamlFile& f) {
+  sim::ReachStackerSettings s;
+  const YAML::Node m = f.required_map(f.root(), "machine", "");
+  if (const std::string kind = f.text(m, "kind", "machine"); kind != "reach_stacker")
+    f.fail(m["kind"], "machine.kind", "this is a reach stacker file (kind: reach_stacker), not a '" + kind + "'");
+  f.text(m, "name", "machine");
+  const YAML::Node c = f.required_map(m, "chassis", "machine");
+  s.mass_kg = f.number(c, "mass_kg", "machine.chassis", 1000.0, 3e5);
+  s.half_extents_m =
+      f.vector3(f.required(c, "half_extents_m", "machine.chassis"), "machine.chassis.half_extents_m", 10.0);
+  s.chassis.axles = read_axles(f, m, "machine");
+  if (s.chassis.axles.size() < 2) f.fail(m["axles"], "machine.axles", "needs at least two axles");
+  if (sim::tipping_axle_x_m(s) <= 0.0)
+    f.fail(m["axles"], "machine.axles", "the front axle must lie ahead of the centre of mass");
+  s.chassis.tyre = read_tyre(f, m, "machine");
+  const YAML::Node b = f.required_map(m, "boom", "machine");
+  s.boom_mass_kg = f.number(b, "mass_kg", "machine.boom", 100.0, 1e5);
+  s.boom_pivot_m = f.vector3(f.required(b, "pivot_m", "machine.boom"), "machine.boom.pivot_m", 20.0);
+  s.spreader_mass_kg = f.number(m, "spreader_mass_kg", "machine", 100.0, 5e4);
+  const YAML::Node l = f.required_map(m, "load_chart", "machine");
+  const std::string lat = "machine.load_chart";
+  const YAML::Node rows = f.sequence(l, "row_reach_m", lat, 6);
+  if (rows.size() < 1) f.fail(l["row_reach_m"], lat + ".row_reach_m", "needs a row");
+  s.row_reach_m.clear();
+  for (std::size_t n = 0; n < rows.size(); ++n) {
+    const std::string p = lat + ".row_reach_m[" + std::to_string(n) + "]";
+    const double reach = f.number_at(rows[n], p);
+    if (!(reach > 0.5 && reach < 30.0)) f.fail(rows[n], p, "a reach of 0.5-30 m");
+    if (!s.row_reach_m.empty() && reach <= s.row_reach_m.back()) f.fail(rows[n], p, "rows must lie further out");
+    s.row_reach_m.push_back(reach);
+  }
+  s.rated_limit_kg = f.number(l, "rated_limit_kg", lat, 1000.0, 2e5);
+  s.stability_margin = f.number(l, "stability_margin", lat, 1.0, 3.0);
+  s.warn_from = f.number(l, "warn_from", lat, 0.5, 1.0);
+  if (sim::tipping_load_kg(s, s.row_reach_m.back()) <= 0.0)
+    f.fail(l["row_reach_m"], lat + ".row_reach_m", "the machine tips over with nothing on it at its last row");
+  f.check_unknown_keys();
+  return s;
+}
+
+sim::ReachStackerSettings load_reach_stacker(const std::string& path) {
+  return load_reach_stacker(YamlFile::load(path));
+}
+
 std::string machine_file_kind(const std::string& path) {
   const YamlFile f = YamlFile::load(path);
   const YAML::Node m = f.required_map(f.root(), "machine", "");

@@ -4,6 +4,7 @@
 
 #include "harbour/io/YamlFile.h"
 #include "harbour/machines/mhc/MobileHarbourCrane.h"
+#include "harbour/machines/reach_stacker/ReachStackerStability.h"
 #include "harbour/machines/sts/StsCrane.h"
 #include "harbour/machines/tractor/TerminalTractor.h"
 
@@ -23,6 +24,10 @@ sim::TractorSettings load_tractor(const std::string& path);
 /// brakes and legs.
 sim::TrailerSettings load_trailer(const YamlFile& file);
 sim::TrailerSettings load_trailer(const std::string& path);
+/// A reach stacker file: its masses, axles, tyres and load chart (its stability; the machine on the executive
+/// comes later).
+sim::ReachStackerSettings load_reach_stacker(const YamlFile& file);
+sim::ReachStackerSettings load_reach_stacker(const std::string& path);
 /// The kind a machine file declares (`machine.kind`: sts, mhc, tractor); throws DataError naming the field.
 std::string machine_file_kind(const std::string& path);
 
