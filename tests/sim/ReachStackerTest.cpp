@@ -28,7 +28,8 @@ TEST(ReachStacker, ItsLoadChartGivesThePublishedRowRatings) {
     const double rated_t = rated_load_kg(s, s.row_reach_m[row]) / 1000.0;
     EXPECT_NEAR(rated_t, published_t[row], 0.03 * published_t[row]) << "row " << row + 1;
     std::printf("row %zu at %.2f m: rated %.1f t (published %.0f t), tipping at %.1f t\n", row + 1,
-                s.row_reach_m[row], rated_t, published_t[row], tipping_load_kg(s, s.row_reach_m[row]) / 1000.0);
+                s.row_reach_m[row], rated_t, published_t[row],
+                tipping_load_kg(s, s.row_reach_m[row]) / 1000.0);
   }
   // the 1st row is the structure's rating, not its stability's
   EXPECT_GT(tipping_load_kg(s, s.row_reach_m[0]) / s.stability_margin, s.rated_limit_kg);
@@ -62,7 +63,7 @@ double load_lifting_the_rear_axle_kg(const ReachStackerSettings& s, double reach
     const double t = k * kDt;
     if (t > 3.0) load_kg += rate_kg_s * kDt;
     const core::Pose pose = world.pose(body);
-    chassis.step(world, {0.0, false, 1.0, 0.0}, 0.0);
+    chassis.step(world, {0.0, false, 1.0, 0.0}, FlatGround());
     world.add_force_at(body, pose.to_parent(boom_centre), {0, 0, -s.boom_mass_kg * kG});
     world.add_force_at(body, pose.to_parent(head), {0, 0, -(s.spreader_mass_kg + load_kg) * kG});
     world.step(kDt);

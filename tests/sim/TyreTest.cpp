@@ -35,7 +35,7 @@ struct Cart {
   double step(const TyreCommand& command) {
     double normal = 0.0;
     for (const core::Vec3& hub : hubs)
-      normal += apply_tyre(world, body, hub, tyre, command, 0.0).normal_n;
+      normal += apply_tyre(world, body, hub, tyre, command, FlatGround()).normal_n;
     world.step(kDt);
     return normal;
   }

@@ -35,8 +35,9 @@ struct Tractor {
   void drive(double seconds, double speed_mps, double steer) {
     for (int k = 0; k < static_cast<int>(std::lround(seconds / kDt)); ++k) {
       const double error = speed_mps - forward_mps();
-      chassis->step(
-          world, {std::clamp(0.5 * error, 0.0, 1.0), false, std::clamp(-0.5 * error, 0.0, 1.0), steer}, 0.0);
+      chassis->step(world,
+                    {std::clamp(0.5 * error, 0.0, 1.0), false, std::clamp(-0.5 * error, 0.0, 1.0), steer},
+                    FlatGround());
       world.step(kDt);
     }
   }

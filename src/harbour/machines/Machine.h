@@ -12,6 +12,7 @@
 #include "harbour/cable/HoistSystem.h"
 #include "harbour/core/StateArchive.h"
 #include "harbour/core/StateHash.h"
+#include "harbour/machines/parts/Ground.h"
 #include "harbour/machines/parts/Twistlocks.h"
 #include "harbour/physics/PhysicsWorld.h"
 #include "harbour/sim/Controls.h"
@@ -95,6 +96,9 @@ class Machine {
 
   /// The item it holds (a container locked to its spreader), if any.
   virtual std::optional<physics::BodyId> held_item() const = 0;
+  /// The ground its wheels stand on from now on (the world's; it outlives the machine). Machines on rails or
+  /// outriggers ignore it.
+  virtual void stand_on(const Ground&) {}
   /// Items the machine brings with it, by the exercise's names (a tractor's trailer); goals may name them.
   virtual std::vector<std::pair<std::string, physics::BodyId>> own_items() const { return {}; }
   /// Height of the lowest point of its load-handling attachment (spreader, grab, hook) [m].

@@ -36,24 +36,29 @@ TyreForces tyre_forces(const TyreSettings& tyre, const TyreCommand& command, dou
 }
 
 TyreForces apply_tyre(physics::PhysicsWorld& world, physics::BodyId body, const core::Vec3& hub_m,
-                      const TyreSettings& tyre, const TyreCommand& command, double ground_z_m) {
+                      const TyreSettings& tyre, const TyreCommand& command, const Ground& ground) {
   const core::Pose pose = world.pose(body);
   const core::Vec3 hub = pose.to_parent(hub_m);
-  const core::Vec3 contact{hub.x, hub.y, ground_z_m};
-  const double sag = ground_z_m - (hub.z - tyre.radius_m);
+  const GroundContact g = ground.at(hub.x, hub.y);
+  const core::Vec3 n = g.normal;
+  // the wheel's lowest point toward the ground and how far it is pressed into it, along the normal
+  const core::Vec3 on_ground{hub.x, hub.y, g.z_m};
+  const double sag = dot(on_ground - (hub - n * tyre.radius_m), n);
   if (sag <= 0.0) return {};
-  // the wheel's heading on the ground: the body's x turned by the steering about the body's z, flattened
+  const core::Vec3 contact = hub - n * (tyre.radius_m - sag);
+  // the wheel's heading along the ground: the body's x turned by the steering about the body's z, in the
+  // plane
   const core::Vec3 heading_body{std::cos(command.steer_rad), std::sin(command.steer_rad), 0.0};
   core::Vec3 heading = pose.rotation * heading_body;
-  heading.z = 0.0;
+  heading = heading - n * dot(heading, n);
   const double length = std::sqrt(dot(heading, heading));
   if (length < 1e-9) return {};
   heading = heading * (1.0 / length);
-  const core::Vec3 left{-heading.y, heading.x, 0.0};
+  const core::Vec3 left = cross(n, heading);
   const core::Vec3 v = world.point_velocity(body, pose.to_local(contact));
-  const TyreForces f = tyre_forces(tyre, command, sag, -v.z, dot(v, heading), dot(v, left));
-  world.add_force_at(body, contact,
-                     core::Vec3{0, 0, f.normal_n} + heading * f.longitudinal_n + left * f.lateral_n);
+  const TyreForces f =
+      tyre_forces(tyre, command, sag, g.rise_mps * n.z - dot(v, n), dot(v, heading), dot(v, left));
+  world.add_force_at(body, contact, n * f.normal_n + heading * f.longitudinal_n + left * f.lateral_n);
   return f;
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 
 #include "harbour/core/Vec3.h"
+#include "harbour/machines/parts/Ground.h"
 #include "harbour/physics/PhysicsWorld.h"
 
 namespace harbour::sim {
@@ -41,9 +42,10 @@ struct TyreForces {
 TyreForces tyre_forces(const TyreSettings& tyre, const TyreCommand& command, double sag_m,
                        double sag_rate_mps, double forward_mps, double sideways_mps);
 
-/// Pushes on `body` what a tyre on a flat ground at `ground_z_m` (world) passes it this step: the wheel's
-/// centre at `hub_m` (body frame), the body's z up. Returns its forces.
+/// Pushes on `body` what a tyre on `ground` passes it this step: the wheel's centre at `hub_m` (body frame),
+/// the body's z up. The ground is the plane under the hub: the tyre presses along its normal, its heading
+/// runs along it, its sag rate counts the ground's rise. Returns its forces.
 TyreForces apply_tyre(physics::PhysicsWorld& world, physics::BodyId body, const core::Vec3& hub_m,
-                      const TyreSettings& tyre, const TyreCommand& command, double ground_z_m);
+                      const TyreSettings& tyre, const TyreCommand& command, const Ground& ground);
 
 }  // namespace harbour::sim

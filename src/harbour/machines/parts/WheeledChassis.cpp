@@ -90,7 +90,7 @@ double WheeledChassis::wheel_angle_rad(double x_m, double y_m, double steer) con
   return std::atan((x_m - reference_x_) / (r - y_m));
 }
 
-void WheeledChassis::step(physics::PhysicsWorld& world, const ChassisCommand& command, double ground_z_m) {
+void WheeledChassis::step(physics::PhysicsWorld& world, const ChassisCommand& command, const Ground& ground) {
   const core::Pose pose = world.pose(body_);
   const double forward = dot(world.linear_velocity(body_), pose.rotation.column(0));
   const double axle_torque =
@@ -109,7 +109,7 @@ void WheeledChassis::step(physics::PhysicsWorld& world, const ChassisCommand& co
       c.steer_rad = a.steered ? wheel_angle_rad(a.x_m, y, command.steer) : 0.0;
       c.drive_torque_nm = a.driven && driven_wheels_ > 0 ? axle_torque / driven_wheels_ : 0.0;
       c.brake_torque_nm = brake * a.tyres_per_side;
-      apply_tyre(world, body_, {a.x_m, y, a.hub_z_m}, tyre, c, ground_z_m);
+      apply_tyre(world, body_, {a.x_m, y, a.hub_z_m}, tyre, c, ground);
     }
   }
 }

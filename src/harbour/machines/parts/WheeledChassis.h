@@ -75,14 +75,14 @@ Settling settle(const std::vector<SupportSpring>& springs, double weight_n,
 
 /// A wheeled chassis on one physics body: Ackermann steering about the non-steered axles' centre (front,
 /// rear or all-wheel steering alike), an automatic drivetrain shared by the driven wheels, brakes on every
-/// wheel, and a tyre at each wheel (the body carried on them over a flat ground). It keeps no state of its
+/// wheel, and a tyre at each wheel (the body carried on them over the ground). It keeps no state of its
 /// own beyond the body (nothing to save).
 class WheeledChassis {
  public:
   WheeledChassis(const WheeledChassisSettings& settings, physics::BodyId body);
 
-  /// Pushes the tyres' forces on the body for the next physics step; the ground is flat at `ground_z_m`.
-  void step(physics::PhysicsWorld& world, const ChassisCommand& command, double ground_z_m);
+  /// Pushes the tyres' forces on the body for the next physics step, its wheels on `ground`.
+  void step(physics::PhysicsWorld& world, const ChassisCommand& command, const Ground& ground);
 
   /// The steering angle of a wheel at (x, y) on the chassis for a steering command [rad] (Ackermann: every
   /// wheel square to the line to the turn's centre on the reference axle's line).

@@ -199,13 +199,13 @@ void TerminalTractor::step(const Controls& raw, std::span<const ContainerRef>, d
   command.throttle = stop || direction == kNeutral ? 0.0 : at(throttle_slot_);
   command.reverse = direction == kReverse;
   command.brake = stop ? 1.0 : at(brake_slot_);
-  chassis_.step(world_, command, 0.0);
+  chassis_.step(world_, command, *ground_);
   if (!trailer_wheels_) return;
   step_coupling(at(couple_slot_) != 0.0, dt_s);
   push_coupling();
   // the trailer's brakes work with the tractor's while coupled (air brakes); dropped, its spring brakes hold
-  trailer_wheels_->step(world_, {0.0, false, coupled_ ? command.brake : 1.0, 0.0}, 0.0);
-  if (trailer_legs_) trailer_legs_->step(world_, {0.0, false, 1.0, 0.0}, 0.0);
+  trailer_wheels_->step(world_, {0.0, false, coupled_ ? command.brake : 1.0, 0.0}, *ground_);
+  if (trailer_legs_) trailer_legs_->step(world_, {0.0, false, 1.0, 0.0}, *ground_);
   const bool folded = coupled_ && std::abs(hitch_angle_rad()) > settings_.jackknife_angle_rad;
   if (folded && !jackknifed_) ++jackknifes_;
   jackknifed_ = folded;

@@ -83,6 +83,7 @@ class TerminalTractor final : public Machine {
   void step(const Controls& controls, std::span<const ContainerRef> liftables, double dt_s) override;
   std::optional<physics::BodyId> held_item() const override;
   std::vector<std::pair<std::string, physics::BodyId>> own_items() const override;
+  void stand_on(const Ground& ground) override { ground_ = &ground; }
   double attachment_bottom_z_m() const override;
   double pendulum_length_m() const override { return 0.0; }
   std::span<const WindArea> wind_areas() const override {
@@ -127,6 +128,8 @@ class TerminalTractor final : public Machine {
  private:
   physics::PhysicsWorld& world_;
   TractorSettings settings_;
+  FlatGround quay_;
+  const Ground* ground_ = &quay_;
   void step_coupling(bool couple_pressed, double dt_s);
   void push_coupling();
 
