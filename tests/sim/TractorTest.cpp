@@ -4,6 +4,7 @@
 #include <numbers>
 
 #include "harbour/io/ExerciseFiles.h"
+#include "harbour/io/MachineFiles.h"
 #include "harbour/sim/Evaluation.h"
 #include "harbour/sim/Pilot.h"
 
@@ -355,6 +356,154 @@ TEST(TractorPark, KeyframesMidDropContinueBitForBit) {
   for (const Controls& c : inputs)
     again.step(c);
   EXPECT_EQ(again.state_hash(), sim.state_hash());
+}
+
+}  // namespace
+}  // namespace harbour::sim
+
+namespace harbour::sim {
+namespace {
+
+// The free practice's tractor 40 m before a long stern ramp rising 3.6 m over 36 m (1:10) up the +y axis,
+// wet (its grip half the quay's), towing the shipped 40 ft mafi with `payload_kg` over its axle (little of it
+// on the kingpin, so little on the drive axle).
+ScenarioSettings before_a_wet_ramp(double payload_kg) {
+  ScenarioSettings s = free_practice().scenario;
+  TractorSetup& setup = std::get<TractorSetup>(s.machine);
+  setup.start.position_m = {0.0, -40.0, 0.0};
+  setup.start.heading_rad = std::numbers::pi / 2;
+  TrailerSettings mafi = io::load_trailer(HARBOUR_DATA_DIR "/trailers/mafi_40ft.yaml");
+  const double axle_x = mafi.wheels.axles.front().x_m;
+  mafi.center_of_mass_x_m = payload_kg * axle_x / (mafi.mass_kg + payload_kg);
+  mafi.mass_kg += payload_kg;
+  setup.start.trailer = mafi;
+  RampSettings ramp;
+  ramp.toe_m = {0.0, 0.0, 0.0};
+  ramp.heading_rad = std::numbers::pi / 2;
+  ramp.length_m = 36.0;
+  ramp.deck_height_m = 3.6;
+  ramp.grip = 0.5;
+  s.ramp = ramp;
+  return s;
+}
+
+// The drive axle's grip left over when the combination climbs the ramp steadily [N] (< 0: it cannot): the
+// statics of both bodies on the slope, with the load each axle gains or loses from the drawbar pull at the
+// hitch's height and the weights' components along the slope at their centres' heights; the drive tyres push
+// µ·N_rear along the ramp at most.
+double traction_margin_n(const ScenarioSettings& s) {
+  const TractorSetup& setup = std::get<TractorSetup>(s.machine);
+  const TractorSettings& v = setup.vehicle;
+  const WheeledChassisSettings& c = v.chassis;
+  const TrailerSettings& t = *setup.start.trailer;
+  const double slope = std::atan2(s.ramp->deck_height_m, s.ramp->length_m);
+  const double sn = std::sin(slope), cs = std::cos(slope), crr = c.tyre.rolling_resistance;
+  const double mu = c.tyre.friction * s.ramp->grip;
+  // heights over the ground: the tractor's centre of mass and hitch, the mafi's centre and kingpin
+  const double tractor_h = c.tyre.radius_m - c.axles[0].hub_z_m, hitch_h = tractor_h + v.hitch_m.z;
+  const double trailer_h = t.wheels.tyre.radius_m - t.wheels.axles.front().hub_z_m;
+  const double axle_x = t.wheels.axles.front().x_m, front_x = c.axles[0].x_m, rear_x = c.axles[1].x_m;
+  const double mt = t.mass_kg * kG, mT = v.mass_kg * kG;
+  // the mafi: pulled by P along the ramp at the kingpin, carried by K there and by its axle
+  double pull = 0.0, kingpin = 0.0;
+  for (int pass = 0; pass < 20; ++pass) {  // P depends on the axle's rolling resistance, its load on K
+    kingpin = ((t.center_of_mass_x_m - axle_x) * mt * cs - trailer_h * mt * sn + hitch_h * pull) /
+              (t.kingpin_m.x - axle_x);
+    pull = mt * sn + crr * (mt * cs - kingpin);
+  }
+  // the tractor: moments about its rear axle's contact (the hitch straight over it)
+  const double front_n = (-rear_x * mT * cs - tractor_h * mT * sn - hitch_h * pull) / (front_x - rear_x);
+  const double rear_n = mT * cs + kingpin - front_n;
+  return mu * rear_n - (pull + mT * sn + crr * front_n);
+}
+
+// The payload over the mafi's axle at which the grip just holds the climb (bisection on the margin).
+double limit_payload_kg() {
+  double low = 0.0, high = 60000.0;
+  for (int k = 0; k < 60; ++k) {
+    const double mid = 0.5 * (low + high);
+    (traction_margin_n(before_a_wet_ramp(mid)) > 0.0 ? low : high) = mid;
+  }
+  return low;
+}
+
+struct Climb {
+  bool on_deck = false;    // the mafi's centre reached the deck
+  double climbed_m = 0.0;  // the tractor's rise after the hill start
+};
+
+// Up the ramp at walking pace until the whole combination is on it, a stop, then a hill start at full
+// throttle for 60 s.
+Climb hill_start(double payload_kg) {
+  Simulation sim(before_a_wet_ramp(payload_kg));
+  const TerminalTractor& t = tractor(sim);
+  const auto trailer_axle_y = [&] {
+    return sim.world().pose(t.trailer_body()).to_parent({-4.5, 0.0, 0.0}).y;
+  };
+  for (int k = 0; k < 120000 && trailer_axle_y() < 2.0; ++k)
+    sim.step(driving(sim, 1.0, 0.0));
+  drive(sim, 3.0, 0.0, 0.0);
+  const double start_z = sim.world().pose(t.body()).position.z;
+  Climb result;
+  Controls c = driving(sim, 0.0, 0.0);
+  c.value[static_cast<std::size_t>(sim.control_table().find("throttle"))] = 1.0;
+  c.value[static_cast<std::size_t>(sim.control_table().find("brake"))] = 0.0;
+  for (int k = 0; k < 60000 && !result.on_deck; ++k) {
+    sim.step(c);
+    result.on_deck = sim.world().pose(t.trailer_body()).position.y > 36.0 + 6.1;
+  }
+  result.climbed_m = sim.world().pose(t.body()).position.z - start_z;
+  EXPECT_FALSE(sim.diverged());
+  return result;
+}
+
+TEST(TractorRamp, TheClimbFailsWhenTheLoadExceedsWhatTheDriveAxlesGripCanPull) {
+  const double limit_kg = limit_payload_kg();
+  ASSERT_GT(limit_kg, 5000.0);
+  ASSERT_LT(limit_kg, 40000.0);
+  // the engine (its converter at stall) could pull more: the grip decides
+  const TractorSettings vehicle = std::get<TractorSetup>(free_practice().scenario.machine).vehicle;
+  const double stall_pull_n =
+      drivetrain_wheel_torque_nm(vehicle.chassis.drivetrain, vehicle.chassis.tyre.radius_m, 1.0, 0.0).first /
+      vehicle.chassis.tyre.radius_m;
+  const double slope = std::atan2(3.6, 36.0);
+  ASSERT_GT(stall_pull_n,
+            (8000.0 + 8500.0 + 1.2 * limit_kg) * kG * (std::sin(slope) + 0.012 * std::cos(slope)));
+
+  const Climb light = hill_start(0.8 * limit_kg);
+  EXPECT_TRUE(light.on_deck);
+  const Climb heavy = hill_start(1.2 * limit_kg);
+  EXPECT_FALSE(heavy.on_deck);
+  EXPECT_LT(heavy.climbed_m, 0.05);  // the wheels spin where it stands (or it slides back)
+  std::printf(
+      "wet 1:10 ramp: the grip holds up to %.1f t over the mafi's axle; from a standstill on the ramp "
+      "%.1f t climbs onto the deck, %.1f t rises %.2f m in 60 s\n",
+      limit_kg / 1000.0, 0.8 * limit_kg / 1000.0, 1.2 * limit_kg / 1000.0, heavy.climbed_m);
+}
+
+TEST(TractorRamp, TheDeckRisesAndFallsWithTheTideAndSwellAndTheRampWithIt) {
+  RampSettings s;
+  s.toe_m = {0.0, 0.0, 0.0};
+  s.length_m = 18.0;
+  s.deck_height_m = 1.8;
+  s.tide = {1.0, 12.42 * 3600.0, 0.0};
+  s.heave = {0.2, 8.0, 0.0};
+  RoRoRamp ramp(s);
+  ramp.move_to(2.0);  // a quarter of the swell
+  const double expected = 1.8 + std::sin(2.0 * std::numbers::pi * 2.0 / (12.42 * 3600.0)) + 0.2;
+  EXPECT_NEAR(ramp.deck_height_m(), expected, 1e-9);
+  EXPECT_NEAR(ramp.at(9.0, 0.0).z_m, expected / 2, 1e-9);  // half way up the ramp
+  EXPECT_NEAR(ramp.at(30.0, 0.0).z_m, expected, 1e-9);     // on the deck
+  EXPECT_NEAR(ramp.at(30.0, 5.0).z_m, 0.0, 1e-12);         // beside the ramp: the quay
+  EXPECT_NEAR(ramp.slope_rad(), std::atan2(expected, 18.0), 1e-12);
+  const core::Vec3 n = ramp.at(9.0, 0.0).normal;
+  EXPECT_NEAR(std::atan2(-n.x, n.z), ramp.slope_rad(), 1e-12);
+  ramp.move_to(4.0);  // half the swell: the heave's speed at its most, the deck falling
+  EXPECT_NEAR(ramp.at(30.0, 0.0).rise_mps,
+              0.2 * 2.0 * std::numbers::pi / 8.0 * std::cos(std::numbers::pi) +
+                  1.0 * 2.0 * std::numbers::pi / (12.42 * 3600.0) *
+                      std::cos(2.0 * std::numbers::pi * 4.0 / (12.42 * 3600.0)),
+              1e-9);
 }
 
 }  // namespace

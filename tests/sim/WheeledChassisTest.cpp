@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 
 #include "harbour/machines/parts/WheeledChassis.h"
 
@@ -102,6 +103,16 @@ TEST(WheeledChassis, TheGearboxPicksTheGearWithTheMostTorqueWithinTheEngineSpeed
   EXPECT_GT(fast, 0.0);
   EXPECT_EQ(drivetrain_wheel_torque_nm(d, r, 1.0, 40.0).first, 0.0);  // beyond top gear's governor
   EXPECT_NEAR(drivetrain_wheel_torque_nm(d, r, 0.5, 0.0).first, 0.5 * standing, 1e-9);
+
+  // a torque converter multiplies the held engine's torque: by its stall ratio standing, by 1 at the curve's
+  // first engine speed (800 rpm in first: 800 / 30 / 60 * 2π * 0.55 m = 1.536 m/s)
+  DrivetrainSettings converter = d;
+  converter.converter_stall_ratio = 2.2;
+  EXPECT_NEAR(drivetrain_wheel_torque_nm(converter, r, 1.0, 0.0).first, 2.2 * standing, 1e-9);
+  const double coupling_mps = 800.0 / (5.0 * 6.0) / 60.0 * 2.0 * std::numbers::pi * r;
+  EXPECT_NEAR(drivetrain_wheel_torque_nm(converter, r, 1.0, 0.5 * coupling_mps).first, 1.6 * standing, 1e-6);
+  EXPECT_NEAR(drivetrain_wheel_torque_nm(converter, r, 1.0, coupling_mps * 1.0001).first,
+              drivetrain_wheel_torque_nm(d, r, 1.0, coupling_mps * 1.0001).first, 1e-9);
 }
 
 }  // namespace

@@ -55,7 +55,12 @@ sim::TrailerSettings read_coupled_trailer(const YamlFile& f, const YAML::Node& t
   if (!std::filesystem::is_regular_file(path)) f.fail(t["file"], at + ".file", "no such file: " + path);
   sim::TrailerSettings trailer = load_trailer(path);
   trailer.id = f.text(t, "id", at);
-  trailer.mass_kg += f.number(t, "payload_kg", at, 0.0, trailer.max_payload_kg, true);
+  // the payload's centre along the deck (a load over the axle leaves little on the kingpin)
+  const double payload_kg = f.number(t, "payload_kg", at, 0.0, trailer.max_payload_kg, true);
+  const double payload_x_m =
+      f.number_or(t, "payload_centre_m", at, 0.0, -trailer.half_extents_m.x, trailer.half_extents_m.x);
+  trailer.center_of_mass_x_m = payload_kg * payload_x_m / (trailer.mass_kg + payload_kg);
+  trailer.mass_kg += payload_kg;
   // level when coupled: its kingpin as high as the plate, up; its legs clear then and down with the plate
   const sim::AxleSettings& front = tractor.chassis.axles.front();
   const double plate_m = tractor.chassis.tyre.radius_m - front.hub_z_m + tractor.hitch_m.z;
@@ -483,6 +488,35 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
         f.fail(ev["at_s"], at + ".at_s", "events must be in time order");
       s.events.push_back(event);
     }
+  }
+
+  if (const auto r = f.optional_map(x, "ramp", "exercise")) {
+    // a ro-ro vessel's stern ramp and vehicle deck: the ground a vehicle drives on
+    const std::string at = "exercise.ramp";
+    if (!vehicle)
+      f.fail(x["ramp"], at, "only a vehicle drives up a ramp (the " + machine_kind + " is a crane)");
+    sim::RampSettings ramp;
+    ramp.toe_m = f.vector3(f.required(*r, "toe_m", at), at + ".toe_m", kSite_m);
+    ramp.heading_rad = core::deg_to_rad(f.number(*r, "heading_deg", at, -360.0, 360.0));
+    ramp.length_m = f.number(*r, "length_m", at, 3.0, 60.0);
+    ramp.width_m = f.number(*r, "width_m", at, 3.0, 40.0);
+    ramp.deck_length_m = f.number(*r, "deck_length_m", at, 5.0, 300.0);
+    ramp.deck_height_m = f.number(*r, "deck_height_m", at, -5.0, 10.0);
+    const auto swing = [&](const char* key, sim::Harmonic& h, double most_m) {
+      const auto node = f.optional_map(*r, key, at);
+      if (!node) return;
+      const std::string p = at + "." + key;
+      h.amplitude = f.number(*node, "amplitude_m", p, 0.0, most_m);
+      h.period_s = f.number(*node, "period_s", p, 1.0, 1e6);
+      h.phase_rad = core::deg_to_rad(f.number_or(*node, "phase_deg", p, 0.0, -360.0, 360.0));
+    };
+    swing("tide", ramp.tide, 6.0);
+    swing("heave", ramp.heave, 2.0);
+    ramp.grip = f.number_or(*r, "grip", at, 1.0, 0.05, 1.5);
+    const double steepest = std::abs(ramp.deck_height_m) + ramp.tide.amplitude + ramp.heave.amplitude;
+    if (steepest / ramp.length_m > 0.25)
+      f.fail(x["ramp"], at, "is steeper than 1:4 at the tide's and swell's extremes");
+    s.ramp = ramp;
   }
 
   if (f.optional(x, "speed_zones", "exercise")) {

@@ -439,6 +439,8 @@ sim::TractorSettings read_tractor(const YamlFile& f) {
   }
   w.drivetrain.final_drive = f.number(d, "final_drive", dat, 0.5, 50.0);
   w.drivetrain.efficiency = f.number(d, "efficiency", dat, 0.1, 1.0);
+  w.drivetrain.converter_stall_ratio =
+      f.number_or(d, "converter_stall_ratio", dat, w.drivetrain.converter_stall_ratio, 1.0, 5.0);
   w.brake_torque_per_wheel_nm = f.number(m, "brake_torque_per_wheel_nm", "machine", 0.0, 1e6);
   w.max_steer_rad = core::deg_to_rad(f.number(m, "max_steer_deg", "machine", 1.0, 80.0));
   s.steer_rate_per_s = f.number(m, "steer_rate_per_s", "machine", 0.05, 20.0);

@@ -94,6 +94,11 @@ Simulation::Simulation(const ScenarioSettings& scenario)
   }
   if (scenario.trucks.trucks > 0) trucks_ = std::make_unique<TruckLane>(*world_, scenario.trucks);
   machine_ = make_machine(*world_, scenario.machine);
+  if (scenario.ramp) {
+    ramp_ = std::make_unique<RoRoRamp>(*scenario.ramp);
+    ramp_->move_to(0.0);
+    machine_->stand_on(*ramp_);
+  }
   if (scenario.bulk) {
     bulk_ = bulk::build_bulk_world(*scenario.bulk, vessel_motion());
     if (const BulkTool* tool = machine_->bulk_tool()) bulk_grab_ = bulk_->add_grab(tool->grab);
@@ -281,6 +286,7 @@ void Simulation::advance(const Controls& controls) {
   weather_.step(kStep_s);
   apply_wind();
   if (vessel_) vessel_->move_to(clock_.time_s());
+  if (ramp_) ramp_->move_to(clock_.time_s());
   move_secured_cargo();
   machine_->step(controls, containers_, kStep_s);
   if (const auto held = machine_->held_item())
@@ -358,6 +364,10 @@ SceneDescription Simulation::scene() const {
   SceneDescription d;
   machine_->describe(d);
   if (vessel_) d.entities.push_back({"vessel", "vessel." + vessel_->geometry().placement().vessel.name, {}});
+  if (ramp_) {
+    d.entities.push_back({"stern ramp", "roro.ramp", ramp_->ramp_half_extents_m()});
+    d.entities.push_back({"vehicle deck", "roro.deck", ramp_->deck_half_extents_m()});
+  }
   if (trucks_)
     for (int k = 0; k < scenario_.trucks.trucks; ++k)
       d.entities.push_back({"truck " + std::to_string(k + 1), "truck", {}});
@@ -416,6 +426,10 @@ void Simulation::write_snapshot(Snapshot& s) const {
     ++n;
   };
   if (vessel_) entity(vessel_->geometry().pose_at(clock_.time_s()), 0);  // where the step left it
+  if (ramp_) {
+    entity(ramp_->ramp_pose(), 0);
+    entity(ramp_->deck_pose(), 0);
+  }
   if (trucks_)
     for (int k = 0; k < scenario_.trucks.trucks; ++k)
       entity({core::Mat3::identity(),
@@ -465,6 +479,7 @@ void Simulation::restore_state(const std::vector<std::uint8_t>& state) {
   core::StateReader in(state);
   in.section(0x53494D32, "simulation");
   clock_.reset(in.get<std::int64_t>());
+  if (ramp_) ramp_->move_to(clock_.time_s());
   in.get(held_);
   in.get(next_event_);
   if (next_event_ > scenario_.events.size())

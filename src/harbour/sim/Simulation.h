@@ -16,6 +16,7 @@
 #include "harbour/machines/tractor/TerminalTractor.h"
 #include "harbour/physics/PhysicsWorld.h"
 #include "harbour/sim/Controls.h"
+#include "harbour/sim/RoRoRamp.h"
 #include "harbour/sim/Snapshot.h"
 #include "harbour/sim/Trucks.h"
 #include "harbour/sim/Vessel.h"
@@ -115,6 +116,7 @@ struct ScenarioSettings {
   /// below the water; without one the ground is a plane at the quay's level.
   double quay_edge_x_m = 18.0;
   std::optional<VesselPlacement> vessel;
+  std::optional<RampSettings> ramp;  ///< a ro-ro vessel's stern ramp and deck, the ground vehicles drive on
   TruckLaneSettings trucks;
   std::vector<ContainerPlacement> containers;
   WeatherSettings weather;
@@ -215,6 +217,7 @@ class Simulation {
   std::vector<core::Pose> stowed_;  // secured pose in the vessel frame (on the vessel) or the world
   Weather weather_;
   std::unique_ptr<Vessel> vessel_;
+  std::unique_ptr<RoRoRamp> ramp_;
   std::unique_ptr<TruckLane> trucks_;
   std::unique_ptr<bulk::BulkWorld> bulk_;
   int bulk_grab_ = -1;  // the machine's tool in the bulk world

@@ -56,8 +56,10 @@ TyreForces apply_tyre(physics::PhysicsWorld& world, physics::BodyId body, const 
   heading = heading * (1.0 / length);
   const core::Vec3 left = cross(n, heading);
   const core::Vec3 v = world.point_velocity(body, pose.to_local(contact));
+  TyreSettings gripping = tyre;
+  gripping.friction *= g.grip;
   const TyreForces f =
-      tyre_forces(tyre, command, sag, g.rise_mps * n.z - dot(v, n), dot(v, heading), dot(v, left));
+      tyre_forces(gripping, command, sag, g.rise_mps * n.z - dot(v, n), dot(v, heading), dot(v, left));
   world.add_force_at(body, contact, n * f.normal_n + heading * f.longitudinal_n + left * f.lateral_n);
   return f;
 }

@@ -30,7 +30,10 @@ std::pair<double, int> drivetrain_wheel_torque_nm(const DrivetrainSettings& d, d
     const double ratio = d.gear_ratios[g] * d.final_drive;
     const double rpm = wheel_rpm * ratio;
     if (rpm > d.torque_curve.back().first) continue;  // this gear would over-speed the engine
-    const double torque = engine_torque_nm(d.torque_curve, rpm) * ratio * d.efficiency;
+    const double idle_rpm = d.torque_curve.front().first;
+    const double converter =
+        rpm < idle_rpm ? d.converter_stall_ratio - (d.converter_stall_ratio - 1.0) * rpm / idle_rpm : 1.0;
+    const double torque = engine_torque_nm(d.torque_curve, rpm) * converter * ratio * d.efficiency;
     if (torque > best) best = torque, gear = static_cast<int>(g) + 1;
   }
   return {std::clamp(throttle, 0.0, 1.0) * best, gear};

@@ -25,6 +25,10 @@ struct DrivetrainSettings {
   std::vector<double> gear_ratios{5.0, 2.5, 1.4, 1.0};
   double final_drive = 6.0;
   double efficiency = 0.85;
+  /// A torque converter's torque ratio at stall (1: none): below the curve's first engine speed the engine
+  /// holds that speed and the converter multiplies its torque, by this much at a standstill, falling linearly
+  /// to 1 at that speed.
+  double converter_stall_ratio = 1.0;
 };
 
 /// A wheeled machine's chassis as data (settings): its axles, tyres, drivetrain, brakes and steering.
@@ -46,7 +50,8 @@ struct ChassisCommand {
 
 /// The wheel torque an engine and an ideal automatic gearbox give at `wheel_speed_mps` (the gear with the
 /// most torque whose engine speed stays within the curve; the engine's speed held at the curve's first point
-/// when slower) [N m at one driven axle's share of 1], and the gear it uses (1-based).
+/// when slower, the torque converter multiplying its torque there) [N m at one driven axle's share of 1], and
+/// the gear it uses (1-based).
 std::pair<double, int> drivetrain_wheel_torque_nm(const DrivetrainSettings& drivetrain, double tyre_radius_m,
                                                   double throttle, double wheel_speed_mps);
 

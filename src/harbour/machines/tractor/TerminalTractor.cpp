@@ -42,7 +42,7 @@ StartPoses start_poses(const TractorSettings& s, const TractorStart& start) {
     const double hitch_z = tractor_z + s.hitch_m.z - tractor.sag_at(s.hitch_m.x);
     std::vector<SupportSpring> springs = level_springs(t.wheels);
     springs.push_back({t.kingpin_m.x, plate_k, trailer_z + t.kingpin_m.z - hitch_z});
-    trailer = settle(springs, t.mass_kg * kG, {});
+    trailer = settle(springs, 0.0, {{t.center_of_mass_x_m, t.mass_kg * kG}});
     const double kingpin_n = plate_k * (trailer.sag_at(t.kingpin_m.x) - springs.back().base_drop_m);
     tractor = settle(level_springs(s.chassis), s.mass_kg * kG, {{s.hitch_m.x, kingpin_n}});
   }
@@ -53,11 +53,12 @@ StartPoses start_poses(const TractorSettings& s, const TractorStart& start) {
 }
 
 physics::BodyId add_body(physics::PhysicsWorld& world, double mass_kg, const core::Vec3& half_extents_m,
-                         const core::Pose& pose) {
+                         const core::Pose& pose, const core::Vec3& center_of_mass_m = {}) {
   physics::BoxSettings box;
   box.mass_kg = mass_kg;
   box.half_extents_m = half_extents_m;
   box.pose = pose;
+  box.center_of_mass_m = center_of_mass_m;
   return world.add_box(box);
 }
 
@@ -99,7 +100,8 @@ TerminalTractor::TerminalTractor(physics::PhysicsWorld& world, const TractorSett
   if (!start.trailer) return;
   // in line behind it, its kingpin on the lifted plate, locked in the jaw
   const TrailerSettings& t = *start.trailer;
-  trailer_body_ = add_body(world, t.mass_kg, t.half_extents_m, start_poses(settings, start).trailer);
+  trailer_body_ = add_body(world, t.mass_kg, t.half_extents_m, start_poses(settings, start).trailer,
+                           {t.center_of_mass_x_m, 0.0, 0.0});
   world.exclude_contacts(body_, trailer_body_);  // its front reaches over the chassis
   trailer_wheels_.emplace(t.wheels, trailer_body_);
   if (t.legs) trailer_legs_.emplace(*t.legs, trailer_body_);

@@ -20,10 +20,11 @@ ControlTable tractor_control_table();
 
 /// A trailer the tractor tows (settings, from a data/trailers file): a roll trailer (mafi) on the gooseneck
 /// or a semi-trailer on the fifth wheel. Its front rests on the coupling's plate, or on its legs when
-/// dropped; its rear on its own axles. Frame: its centre of mass, x forward.
+/// dropped; its rear on its own axles. Frame: its deck's centre, x forward.
 struct TrailerSettings {
   std::string id = "trailer";                 ///< the exercise's name for it (goals name it)
   double mass_kg = 9000.0;                    ///< [kg] tare and payload
+  double center_of_mass_x_m = 0.0;            ///< [m] tare and payload's centre of mass along the deck
   double max_payload_kg = 60000.0;            ///< [kg] its rating
   core::Vec3 half_extents_m{6.1, 1.25, 0.4};  ///< a 40 ft mafi's deck, about its centre of mass
   core::Vec3 kingpin_m{5.6, 0.0, 0.3};        ///< [m] the hitch on it (trailer frame)
