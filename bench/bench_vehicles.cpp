@@ -37,6 +37,9 @@ void BM_VehicleExercise(benchmark::State& state, const char* name) {
 BENCHMARK_CAPTURE(BM_VehicleExercise, tractor_mafi_park, "tractor_mafi_park")
     ->Unit(benchmark::kMicrosecond)
     ->MinTime(5.0);
+BENCHMARK_CAPTURE(BM_VehicleExercise, tractor_ramp_mafi, "tractor_ramp_mafi")
+    ->Unit(benchmark::kMicrosecond)
+    ->MinTime(5.0);
 
 }  // namespace
 }  // namespace harbour

@@ -508,3 +508,51 @@ TEST(TractorRamp, TheDeckRisesAndFallsWithTheTideAndSwellAndTheRampWithIt) {
 
 }  // namespace
 }  // namespace harbour::sim
+
+namespace harbour::sim {
+namespace {
+
+TEST(TractorRamp, TheAutopilotTowsTheMafiUpTheRampAndDropsItInItsDeckLane) {
+  const ExerciseSettings exercise = io::load_exercise(HARBOUR_DATA_DIR "/exercises/tractor_ramp_mafi.yaml");
+  ASSERT_TRUE(exercise.scenario.ramp);
+  Simulation sim(exercise.scenario);
+  const std::unique_ptr<Pilot> pilot = make_pilot(exercise);
+  Evaluator evaluator(exercise);
+  std::vector<std::uint8_t> keyframe;
+  std::vector<Controls> after;
+  std::uint64_t hash_after = 0;
+  double highest_trailer_z = 0.0;
+  while (!evaluator.finished() && sim.time_s() < exercise.rules.time_limit_s) {
+    const Controls c = pilot->next(sim);
+    if (keyframe.empty() && sim.world().pose(tractor(sim).body()).position.x > 20.0)
+      keyframe = sim.save_state();
+    const bool recording = !keyframe.empty() && after.size() < 5000;
+    if (recording) after.push_back(c);
+    sim.step(c);
+    if (recording && after.size() == 5000) hash_after = sim.state_hash();
+    evaluator.observe(sim, c);
+    highest_trailer_z = std::max(highest_trailer_z, sim.world().pose(tractor(sim).trailer_body()).position.z);
+  }
+  const Metrics& m = evaluator.metrics();
+  EXPECT_EQ(m.moves_completed, 1);
+  ASSERT_EQ(m.placement_offset_m.size(), 1u);
+  EXPECT_LT(m.placement_offset_m[0], 0.3);
+  EXPECT_EQ(m.overspeeds, 0);  // 5 km/h on the ramp, 10 on the deck
+  EXPECT_TRUE(evaluator.score().passed);
+  EXPECT_GE(evaluator.score().total, 95.0);
+  // up on the deck: the mafi's centre about the deck's height (1.8 m and the tide's rise) over its level one
+  EXPECT_GT(highest_trailer_z, 0.85 + 1.8);
+  std::printf("mafi up the ramp and parked on the deck in %.1f s, %.2f m off its mark, score %.0f\n",
+              m.time_s, m.placement_offset_m[0], evaluator.score().total);
+
+  // a keyframe on the ramp continues bit for bit: the deck where the clock puts it
+  ASSERT_EQ(after.size(), 5000u);
+  Simulation again(exercise.scenario);
+  again.restore_state(keyframe);
+  for (const Controls& c : after)
+    again.step(c);
+  EXPECT_EQ(again.state_hash(), hash_after);
+}
+
+}  // namespace
+}  // namespace harbour::sim

@@ -13,11 +13,14 @@ constexpr std::int64_t kDecisionSteps = 20;  // 50 Hz
 constexpr double kCruise_mps = 3.0;          // 10.8 km/h
 constexpr double kCorner_mps = 2.0;          // with the wheel turned more than kCornerSteer
 constexpr double kCornerSteer = 0.3;
-constexpr double kStopping_mps2 = 0.3;  // the deceleration it plans its stop with
-constexpr double kLookahead_m = 5.0;    // at least; 1.5 s of travel at speed
-constexpr double kOvershoot_m = 30.0;   // the path goes on past the goal (something to look ahead to)
-constexpr double kSpeedGain = 0.4;      // pedal per m/s of speed error
+constexpr double kStopping_mps2 = 0.3;        // the deceleration it plans its stop with
+constexpr double kLookahead_m = 5.0;          // at least; 1.5 s of travel at speed
+constexpr double kOvershoot_m = 30.0;         // the path goes on past the goal (something to look ahead to)
+constexpr double kSpeedGain = 0.4;            // pedal per m/s of speed error
+constexpr double kSpeedIntegral_per_s = 0.3;  // pedal per metre short of the wanted speed over time
 constexpr double kStanding_mps = 0.05;
+constexpr double kZoneShare = 0.8;        // of a zone's speed limit
+constexpr double kZoneLookahead_m = 8.0;  // a zone is slowed for this far before the stopping distance
 constexpr double kPedalRate_per_s = 0.5;  // how fast a foot moves a pedal (a smooth driver)
 
 core::Vec3 flat(core::Vec3 v) {
@@ -71,7 +74,7 @@ Controls TractorAutopilot::next(const Simulation& simulation) {
   if (simulation.steps() % kDecisionSteps != 0 && decided_) return last_;
   const auto* tractor = dynamic_cast<const TerminalTractor*>(&simulation.machine());
   if (!tractor) throw std::logic_error("the tractor autopilot's exercise runs on another machine");
-  if (!planned_) plan(simulation, *tractor);
+  if (!planned_) plan(simulation, *tractor), speed_integral_ = 0.0;
   last_ = decide(simulation, *tractor);
   decided_ = true;
   return last_;
@@ -171,9 +174,21 @@ Controls TractorAutopilot::decide(const Simulation& simulation, const TerminalTr
     // speed: cruising, slower in corners, and a planned stop with the trailer's centre on its target
     const double remaining = remaining_m(simulation, tractor);
     double wanted = std::abs(tractor.steering()) > kCornerSteer ? kCorner_mps : kCruise_mps;
+    // within the speed limit of where it is and of where it will be within its stopping distance
+    const core::Vec3 ahead_point = rear + x * (speed * speed / (2.0 * kStopping_mps2) + kZoneLookahead_m);
+    for (const SpeedZone& z : exercise_.speed_zones)
+      for (const core::Vec3& p : {rear, ahead_point})
+        if (p.x >= z.min_x_m && p.x <= z.max_x_m && p.y >= z.min_y_m && p.y <= z.max_y_m)
+          wanted = std::min(wanted, kZoneShare * z.limit_kmh / 3.6);
     wanted = std::min(wanted, std::sqrt(2.0 * kStopping_mps2 * std::max(0.0, remaining)));
-    press("throttle", std::clamp(kSpeedGain * (wanted - speed), 0.0, 1.0));
-    press("brake", std::clamp(kSpeedGain * (speed - wanted) - 0.05, 0.0, 1.0));
+    // a foot that presses harder while it is short of speed (uphill, a heavy trailer): proportional and
+    // integral, the integral held while the pedal is at its stop
+    const double error = wanted - speed;
+    const double throttle = kSpeedGain * error + speed_integral_;
+    if ((throttle < 1.0 || error < 0.0) && (throttle > 0.0 || error > 0.0))
+      speed_integral_ = std::max(0.0, speed_integral_ + kSpeedIntegral_per_s * error * decision_s);
+    press("throttle", std::clamp(throttle, 0.0, 1.0));
+    press("brake", std::clamp(-kSpeedGain * error - 0.05, 0.0, 1.0));
     if (remaining <= 0.0) enter(Phase::kStop);
   } else if (phase_ == Phase::kStop) {
     press("brake", 0.6);

@@ -40,6 +40,7 @@ class TractorAutopilot final : public Pilot {
   std::vector<core::Vec3> path_;  // the polyline its rear axle follows (ground plane)
   bool planned_ = false;
   double phase_start_s_ = 0.0;
+  double speed_integral_ = 0.0;  // its throttle's integral part
   Controls last_{};
   bool decided_ = false;
 };
