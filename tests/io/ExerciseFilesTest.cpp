@@ -103,6 +103,34 @@ TEST(ExerciseFiles, ATrailerExerciseCouplesItLevelAndNamesTheFieldItCannotPlace)
          "exercise.moves", "a trailer (exercise.vehicle.trailer)", 2);
 }
 
+TEST(ExerciseFiles, ARampExerciseLoadsItsRampAndNamesTheFieldItCannotPlace) {
+  const sim::ExerciseSettings e = load_exercise(HARBOUR_DATA_DIR "/exercises/tractor_ramp_mafi.yaml");
+  ASSERT_TRUE(e.scenario.ramp);
+  EXPECT_EQ(e.scenario.ramp->deck_height_m, 1.8);
+  EXPECT_EQ(e.scenario.ramp->tide.amplitude, 0.4);
+  EXPECT_EQ(e.scenario.ramp->heave.period_s, 9.0);
+  const std::string text = scenes::read_text(HARBOUR_DATA_DIR "/exercises/tractor_ramp_mafi.yaml");
+  const auto expect = [&](const std::string& from, const std::string& to, const std::string& field,
+                          const std::string& says, int lines_below = 0) {
+    scenes::expect_data_error(
+        text, from, to, [](const YamlFile& f) { load_exercise(f, HARBOUR_DATA_DIR "/exercises"); },
+        scenes::line_of(text, from) + lines_below, field, says);
+  };
+  expect("deck_height_m: 1.8", "deck_height_m: 4.5", "exercise.ramp", "steeper than 1:4", -5);
+  expect("length_m: 18", "length_m: -18", "exercise.ramp.length_m", "outside");
+  expect("heave: {amplitude_m: 0.08,", "heave: {amplitude_m: 8,", "exercise.ramp.heave.amplitude_m",
+         "outside");
+  expect("grip: 0.8", "grip: 0", "exercise.ramp.grip", "outside");
+  // a crane does not drive up a ramp
+  const std::string mhc = scenes::read_text(HARBOUR_DATA_DIR "/exercises/mhc_free_practice.yaml");
+  scenes::expect_data_error(
+      mhc, "  quay_edge_x_m: 18.0",
+      "  quay_edge_x_m: 18.0\n  ramp: {toe_m: [0, 0, 0], heading_deg: 0, length_m: 18, width_m: 8, "
+      "deck_length_m: 40, deck_height_m: 1.8}",
+      [](const YamlFile& f) { load_exercise(f, HARBOUR_DATA_DIR "/exercises"); },
+      scenes::line_of(mhc, "  quay_edge_x_m: 18.0") + 1, "exercise.ramp", "only a vehicle");
+}
+
 TEST(ExerciseFiles, ATrailerThatWouldNotRideLevelOrStandOnItsLegsIsRefused) {
   const std::string exercise = scenes::read_text(HARBOUR_DATA_DIR "/exercises/tractor_mafi_park.yaml");
   const std::string trailer = scenes::read_text(HARBOUR_DATA_DIR "/trailers/mafi_40ft.yaml");
