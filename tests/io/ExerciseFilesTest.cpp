@@ -83,6 +83,11 @@ TEST(ExerciseFiles, ATrailerExerciseCouplesItLevelAndNamesTheFieldItCannotPlace)
   EXPECT_NEAR(*e.moves[0].heading_rad, std::numbers::pi, 1e-12);
   ASSERT_EQ(e.speed_zones.size(), 2u);
   EXPECT_EQ(e.speed_zones[1].limit_kmh, 10.0);
+  // its bay painted on the quay: the trailer's footprint and the tolerance around it
+  ASSERT_EQ(e.scenario.markings.size(), 1u);
+  EXPECT_EQ(e.scenario.markings[0].name, "bay mafi_1");
+  EXPECT_NEAR(e.scenario.markings[0].half_length_m, 6.1 + 0.5, 1e-12);
+  EXPECT_NEAR(e.scenario.markings[0].half_width_m, 1.3 + 0.5, 1e-12);
 
   const std::string text = scenes::read_text(HARBOUR_DATA_DIR "/exercises/tractor_mafi_park.yaml");
   const auto expect = [&](const std::string& from, const std::string& to, const std::string& field,

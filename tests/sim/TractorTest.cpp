@@ -545,6 +545,20 @@ TEST(TractorRamp, TheAutopilotTowsTheMafiUpTheRampAndDropsItInItsDeckLane) {
   std::printf("mafi up the ramp and parked on the deck in %.1f s, %.2f m off its mark, score %.0f\n",
               m.time_s, m.placement_offset_m[0], evaluator.score().total);
 
+  // its bay is painted on the deck, as high as the deck stands now
+  const SceneDescription scene = sim.scene();
+  const auto bay = std::find_if(scene.entities.begin(), scene.entities.end(),
+                                [](const auto& e) { return e.name == "bay mafi_1"; });
+  ASSERT_NE(bay, scene.entities.end());
+  EXPECT_EQ(bay->visual, "marking.bay");
+  const auto snapshot = sim.snapshot();
+  const core::Pose painted = snapshot->entities[static_cast<std::size_t>(bay - scene.entities.begin())].pose;
+  EXPECT_NEAR(painted.position.x, 68.0, 1e-9);
+  EXPECT_NEAR(painted.position.z,
+              1.8 + 0.4 * std::sin(2.0 * std::numbers::pi * sim.time_s() / 44712.0) +
+                  0.08 * std::sin(2.0 * std::numbers::pi * sim.time_s() / 9.0),
+              0.02);
+
   // a keyframe on the ramp continues bit for bit: the deck where the clock puts it
   ASSERT_EQ(after.size(), 5000u);
   Simulation again(exercise.scenario);

@@ -401,6 +401,12 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
     } else if (f.optional(moves[n], "heading_tolerance_deg", at)) {
       f.fail(moves[n]["heading_tolerance_deg"], at + ".heading_tolerance_deg", "needs a heading_deg");
     }
+    if (tows && g.heading_rad) {
+      // its bay painted where it is to stand: the trailer's footprint and the tolerance around it
+      const core::Vec3& half = tractor->start.trailer->half_extents_m;
+      s.markings.push_back({"bay " + g.container_id, g.target_m, *g.heading_rad, half.x + g.tolerance_m,
+                            half.y + g.tolerance_m});
+    }
     e.moves.push_back(g);
   }
   if ((handles_containers || cargo.size() > 0) && e.moves.empty())

@@ -361,6 +361,7 @@ void Simulation::single_step(const Controls& controls) {
 }
 
 SceneDescription Simulation::scene() const {
+  constexpr double kMarkingHalfThickness_m = 0.005;
   SceneDescription d;
   machine_->describe(d);
   if (vessel_) d.entities.push_back({"vessel", "vessel." + vessel_->geometry().placement().vessel.name, {}});
@@ -368,6 +369,8 @@ SceneDescription Simulation::scene() const {
     d.entities.push_back({"stern ramp", "roro.ramp", ramp_->ramp_half_extents_m()});
     d.entities.push_back({"vehicle deck", "roro.deck", ramp_->deck_half_extents_m()});
   }
+  for (const GroundMarking& m : scenario_.markings)
+    d.entities.push_back({m.name, "marking.bay", {m.half_length_m, m.half_width_m, kMarkingHalfThickness_m}});
   if (trucks_)
     for (int k = 0; k < scenario_.trucks.trucks; ++k)
       d.entities.push_back({"truck " + std::to_string(k + 1), "truck", {}});
@@ -385,6 +388,7 @@ SceneDescription Simulation::scene() const {
 }
 
 void Simulation::write_snapshot(Snapshot& s) const {
+  constexpr double kMarkingHalfThickness_m = 0.005;
   s.version = kSnapshotVersion;
   s.step = clock_.steps();
   s.time_s = clock_.time_s();
@@ -429,6 +433,13 @@ void Simulation::write_snapshot(Snapshot& s) const {
   if (ramp_) {
     entity(ramp_->ramp_pose(), 0);
     entity(ramp_->deck_pose(), 0);
+  }
+  for (const GroundMarking& m : scenario_.markings) {
+    // paint on the ground under its centre, as that ground lies now
+    const double ground_z = ramp_ ? ramp_->at(m.centre_m.x, m.centre_m.y).z_m : 0.0;
+    entity({core::Mat3::rotation({0, 0, 1}, m.heading_rad),
+            {m.centre_m.x, m.centre_m.y, ground_z + kMarkingHalfThickness_m}},
+           0);
   }
   if (trucks_)
     for (int k = 0; k < scenario_.trucks.trucks; ++k)

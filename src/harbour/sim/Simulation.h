@@ -46,6 +46,15 @@ struct StaticBlock {
   core::Vec3 position_m;
 };
 
+/// A bay painted on the ground (a trailer's parking place): a rectangle about its centre, long along its
+/// heading; it lies on whatever ground is there (the quay, a vessel's deck).
+struct GroundMarking {
+  std::string name;
+  core::Vec3 centre_m;  ///< [m] x and y; z is the ground's
+  double heading_rad = 0.0;
+  double half_length_m = 1.0, half_width_m = 1.0;
+};
+
 /// Something the exercise makes happen at a time (a gust, a fault).
 struct ScriptedEvent {
   enum class Kind { kGust, kHoistBrakeFault, kLandedSensorFault };
@@ -117,6 +126,7 @@ struct ScenarioSettings {
   double quay_edge_x_m = 18.0;
   std::optional<VesselPlacement> vessel;
   std::optional<RampSettings> ramp;  ///< a ro-ro vessel's stern ramp and deck, the ground vehicles drive on
+  std::vector<GroundMarking> markings;
   TruckLaneSettings trucks;
   std::vector<ContainerPlacement> containers;
   WeatherSettings weather;
