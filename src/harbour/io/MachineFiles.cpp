@@ -3,6 +3,8 @@
 #include <filesystem>
 #include <numbers>
 #include <stdexcept>
+#include <tuple>
+#include <utility>
 
 #include "harbour/core/Units.h"
 #include "harbour/io/ControlFiles.h"
@@ -357,6 +359,18 @@ sim::MhcSettings read_mhc(const YamlFile& f, const std::string& folder) {
   return s;
 }
 
+// A wheeled machine's chassis body (machine.chassis): its mass and its box about its centre of mass.
+std::pair<double, core::Vec3> read_chassis_box(const YamlFile& f, const YAML::Node& m, double min_kg,
+                                               double max_kg) {
+  const YAML::Node c = f.required_map(m, "chassis", "machine");
+  const double mass_kg = f.number(c, "mass_kg", "machine.chassis", min_kg, max_kg);
+  const core::Vec3 half =
+      f.vector3(f.required(c, "half_extents_m", "machine.chassis"), "machine.chassis.half_extents_m", 10.0);
+  if (!(half.x >= 0.2 && half.y >= 0.2 && half.z >= 0.1))
+    f.fail(c["half_extents_m"], "machine.chassis.half_extents_m", "must be at least [0.2, 0.2, 0.1] m");
+  return {mass_kg, half};
+}
+
 // A wheeled machine's or trailer's axles (`path`.axles).
 std::vector<sim::AxleSettings> read_axles(const YamlFile& f, const YAML::Node& m, const std::string& path) {
   std::vector<sim::AxleSettings> out;
@@ -398,13 +412,7 @@ sim::TractorSettings read_tractor(const YamlFile& f) {
   if (const std::string kind = f.text(m, "kind", "machine"); kind != "tractor")
     f.fail(m["kind"], "machine.kind", "this is a tractor file (kind: tractor), not a '" + kind + "'");
   f.text(m, "name", "machine");
-  const YAML::Node c = f.required_map(m, "chassis", "machine");
-  s.mass_kg = f.number(c, "mass_kg", "machine.chassis", 500.0, 1e5);
-  s.half_extents_m =
-      f.vector3(f.required(c, "half_extents_m", "machine.chassis"), "machine.chassis.half_extents_m", 10.0);
-  const core::Vec3& half = s.half_extents_m;
-  if (!(half.x >= 0.2 && half.y >= 0.2 && half.z >= 0.1))
-    f.fail(c["half_extents_m"], "machine.chassis.half_extents_m", "must be at least [0.2, 0.2, 0.1] m");
+  std::tie(s.mass_kg, s.half_extents_m) = read_chassis_box(f, m, 500.0, 1e5);
   sim::WheeledChassisSettings& w = s.chassis;
   w.axles = read_axles(f, m, "machine");
   const bool steered = std::any_of(w.axles.begin(), w.axles.end(), [](const auto& a) { return a.steered; });
@@ -510,12 +518,12 @@ sim::TrailerSettings load_trailer(const YamlFile& f) {
     f.fail(t["deck_half_extents_m"], "trailer.deck_half_extents_m", "must be at least [0.5, 0.5, 0.05] m");
   s.kingpin_m = f.vector3(f.required(t, "kingpin_m", "trailer"), "trailer.kingpin_m", 20.0);
   s.wheels.axles = read_axles(f, t, "trailer");
-  for (std::size_t n = 0; n < s.wheels.axles.size(); ++n)
-    if (s.wheels.axles[n].steered || s.wheels.axles[n].driven)
-      f.fail(t["axles"][n], "trailer.axles[" + std::to_string(n) + "]",
-             "a trailer's axles neither steer nor drive");
-  if (s.wheels.axles.back().x_m >= s.kingpin_m.x - 1.0)
-    f.fail(t["axles"], "trailer.axles", "must lie behind the kingpin (at least 1 m)");
+  for (std::size_t n = 0; n < s.wheels.axles.size(); ++n) {
+    const sim::AxleSettings& a = s.wheels.axles[n];
+    const std::string at = "trailer.axles[" + std::to_string(n) + "]";
+    if (a.steered || a.driven) f.fail(t["axles"][n], at, "a trailer's axles neither steer nor drive");
+    if (a.x_m >= s.kingpin_m.x - 1.0) f.fail(t["axles"][n], at, "must lie behind the kingpin (at least 1 m)");
+  }
   s.wheels.tyre = read_tyre(f, t, "trailer");
   s.wheels.brake_torque_per_wheel_nm = f.number(t, "brake_torque_per_wheel_nm", "trailer", 0.0, 1e6);
   if (const auto l = f.optional_map(t, "legs", "trailer")) {
@@ -548,12 +556,10 @@ sim::ReachStackerSettings load_reach_stacker(const YamlFile& f) {
   sim::ReachStackerSettings s;
   const YAML::Node m = f.required_map(f.root(), "machine", "");
   if (const std::string kind = f.text(m, "kind", "machine"); kind != "reach_stacker")
-    f.fail(m["kind"], "machine.kind", "this is a reach stacker file (kind: reach_stacker), not a '" + kind + "'");
+    f.fail(m["kind"], "machine.kind",
+           "this is a reach stacker file (kind: reach_stacker), not a '" + kind + "'");
   f.text(m, "name", "machine");
-  const YAML::Node c = f.required_map(m, "chassis", "machine");
-  s.mass_kg = f.number(c, "mass_kg", "machine.chassis", 1000.0, 3e5);
-  s.half_extents_m =
-      f.vector3(f.required(c, "half_extents_m", "machine.chassis"), "machine.chassis.half_extents_m", 10.0);
+  std::tie(s.mass_kg, s.half_extents_m) = read_chassis_box(f, m, 1000.0, 3e5);
   s.chassis.axles = read_axles(f, m, "machine");
   if (s.chassis.axles.size() < 2) f.fail(m["axles"], "machine.axles", "needs at least two axles");
   if (sim::tipping_axle_x_m(s) <= 0.0)
@@ -572,14 +578,16 @@ sim::ReachStackerSettings load_reach_stacker(const YamlFile& f) {
     const std::string p = lat + ".row_reach_m[" + std::to_string(n) + "]";
     const double reach = f.number_at(rows[n], p);
     if (!(reach > 0.5 && reach < 30.0)) f.fail(rows[n], p, "a reach of 0.5-30 m");
-    if (!s.row_reach_m.empty() && reach <= s.row_reach_m.back()) f.fail(rows[n], p, "rows must lie further out");
+    if (!s.row_reach_m.empty() && reach <= s.row_reach_m.back())
+      f.fail(rows[n], p, "rows must lie further out");
     s.row_reach_m.push_back(reach);
   }
   s.rated_limit_kg = f.number(l, "rated_limit_kg", lat, 1000.0, 2e5);
   s.stability_margin = f.number(l, "stability_margin", lat, 1.0, 3.0);
   s.warn_from = f.number(l, "warn_from", lat, 0.5, 1.0);
   if (sim::tipping_load_kg(s, s.row_reach_m.back()) <= 0.0)
-    f.fail(l["row_reach_m"], lat + ".row_reach_m", "the machine tips over with nothing on it at its last row");
+    f.fail(l["row_reach_m"], lat + ".row_reach_m",
+           "the machine tips over with nothing on it at its last row");
   f.check_unknown_keys();
   return s;
 }

@@ -32,6 +32,8 @@ StsSetup& ScenarioSettings::sts() {
 }
 
 namespace {
+
+constexpr double kMarkingHalfThickness_m = 0.005;  // a painted bay, drawn as a thin plate on the ground
 std::unique_ptr<Machine> make_machine(physics::PhysicsWorld& world, const MachineSetup& setup) {
   return std::visit(
       [&](const auto& m) -> std::unique_ptr<Machine> {
@@ -361,7 +363,6 @@ void Simulation::single_step(const Controls& controls) {
 }
 
 SceneDescription Simulation::scene() const {
-  constexpr double kMarkingHalfThickness_m = 0.005;
   SceneDescription d;
   machine_->describe(d);
   if (vessel_) d.entities.push_back({"vessel", "vessel." + vessel_->geometry().placement().vessel.name, {}});
@@ -388,7 +389,6 @@ SceneDescription Simulation::scene() const {
 }
 
 void Simulation::write_snapshot(Snapshot& s) const {
-  constexpr double kMarkingHalfThickness_m = 0.005;
   s.version = kSnapshotVersion;
   s.step = clock_.steps();
   s.time_s = clock_.time_s();

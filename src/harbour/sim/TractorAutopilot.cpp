@@ -28,20 +28,6 @@ core::Vec3 flat(core::Vec3 v) {
   return v;
 }
 
-double rear_axle_x(const TractorSettings& s) {
-  double x = 0.0;
-  int n = 0;
-  for (const AxleSettings& a : s.chassis.axles)
-    if (!a.steered) x += a.x_m, ++n;
-  return n > 0 ? x / n : 0.0;
-}
-
-double front_axle_x(const TractorSettings& s) {
-  for (const AxleSettings& a : s.chassis.axles)
-    if (a.steered) return a.x_m;
-  return 0.0;
-}
-
 }  // namespace
 
 std::string TractorAutopilot::why_cannot_drive(const ExerciseSettings& exercise) {
@@ -93,12 +79,13 @@ void TractorAutopilot::plan(const Simulation& simulation, const TerminalTractor&
   const MoveGoal& goal = exercise_.moves[0];
   const TractorSettings& s = tractor.settings();
   const core::Pose pose = simulation.world().pose(tractor.body());
-  const core::Vec3 start = flat(pose.to_parent({rear_axle_x(s), 0, 0}));
+  const double rear_x = tractor.chassis().reference_x_m();
+  const core::Vec3 start = flat(pose.to_parent({rear_x, 0, 0}));
   const core::Vec3 heading =
       flat(pose.rotation.column(0)) * (1.0 / core::length(flat(pose.rotation.column(0))));
   const core::Vec3 along{std::cos(*goal.heading_rad), std::sin(*goal.heading_rad), 0.0};
   const TrailerSettings& trailer = *std::get<TractorSetup>(exercise_.scenario.machine).start.trailer;
-  const double trailer_to_rear_axle = trailer.kingpin_m.x + (rear_axle_x(s) - s.hitch_m.x);
+  const double trailer_to_rear_axle = trailer.kingpin_m.x + (rear_x - s.hitch_m.x);
   const core::Vec3 end = flat(goal.target_m) + along * trailer_to_rear_axle;
   path_ = {start};
   // the corner: start + t·heading on the line end + u·along
@@ -143,7 +130,7 @@ Controls TractorAutopilot::decide(const Simulation& simulation, const TerminalTr
     // pure pursuit: the arc from the rear axle through a point on the path a look-ahead away
     const TractorSettings& s = tractor.settings();
     const core::Pose pose = simulation.world().pose(tractor.body());
-    const core::Vec3 rear = flat(pose.to_parent({rear_axle_x(s), 0, 0}));
+    const core::Vec3 rear = flat(pose.to_parent({tractor.chassis().reference_x_m(), 0, 0}));
     std::size_t nearest_segment = 0;
     double nearest = 1e18, nearest_t = 0.0;
     for (std::size_t k = 0; k + 1 < path_.size(); ++k) {
@@ -167,7 +154,7 @@ Controls TractorAutopilot::decide(const Simulation& simulation, const TerminalTr
     const core::Vec3 x = flat(pose.rotation.column(0));
     const core::Vec3 to = target - rear;
     const double alpha = std::atan2(x.x * to.y - x.y * to.x, x.x * to.x + x.y * to.y);
-    const double wheelbase = front_axle_x(s) - rear_axle_x(s);
+    const double wheelbase = tractor.chassis().steer_base_m();
     const double steer =
         std::atan(2.0 * wheelbase * std::sin(alpha) / core::length(to)) / s.chassis.max_steer_rad;
     set("steer", std::clamp(steer, -1.0, 1.0));

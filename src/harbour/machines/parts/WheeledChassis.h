@@ -97,6 +97,9 @@ class WheeledChassis {
   double turn_radius_m(double steer) const;
   /// The reference point's x: the centre of the non-steered axles (where the turn's centre lies across).
   double reference_x_m() const { return reference_x_; }
+  /// The steering base: the steered axle's distance from the reference point (a bicycle's wheelbase).
+  double steer_base_m() const { return steer_base_m_; }
+  const WheeledChassisSettings& settings() const { return settings_; }
 
  private:
   WheeledChassisSettings settings_;

@@ -10,13 +10,41 @@ namespace {
 constexpr const char* kTractorIndicators[] = {"speed_kmh", "gear", "steering", "horn"};
 constexpr int kReverse = 0, kNeutral = 1;  // the direction selector's positions: reverse, neutral, forward
 
+physics::BodyId add_body(physics::PhysicsWorld& world, double mass_kg, const core::Vec3& half_extents_m,
+                         const core::Pose& pose, const core::Vec3& center_of_mass_m = {}) {
+  physics::BoxSettings box;
+  box.mass_kg = mass_kg;
+  box.half_extents_m = half_extents_m;
+  box.pose = pose;
+  box.center_of_mass_m = center_of_mass_m;
+  return world.add_box(box);
+}
+
+}  // namespace
+
+ControlTable tractor_control_table() {
+  using K = ControlKind;
+  return ControlTable(
+      {ControlSpec{"steer", K::kAxis, -1.0, 1.0, {}, 0.0, 0.0, "steering wheel, + turns left"},
+       ControlSpec{"throttle", K::kAxis, 0.0, 1.0, {}, 0.0, 0.0, "accelerator pedal"},
+       ControlSpec{"brake", K::kAxis, 0.0, 1.0, {}, 0.0, 1.0, "brake pedal"},
+       ControlSpec{"direction",
+                   K::kSwitch,
+                   0.0,
+                   2.0,
+                   {"reverse", "neutral", "forward"},
+                   1.0,
+                   1.0,
+                   "direction selector"},
+       ControlSpec{"emergency_stop", K::kButton, 0.0, 1.0, {}, 0.0, 0.0, "full brakes, no drive"},
+       ControlSpec{"horn", K::kButton, 0.0, 1.0, {}, 0.0, 0.0, "horn"},
+       ControlSpec{"couple", K::kButton, 0.0, 1.0, {}, 0.0, 0.0, "couple or drop the trailer"}});
+}
+
 // Where the tractor and its trailer stand at the start: settled on their tyres, the trailer's front on the
 // plate (the small-angle statics of both bodies on their springs, solved in turn until they agree).
-struct StartPoses {
-  core::Pose tractor, trailer;
-};
-
-StartPoses start_poses(const TractorSettings& s, const TractorStart& start) {
+TerminalTractor::StartPoses TerminalTractor::start_poses(const TractorSettings& s,
+                                                         const TractorStart& start) {
   constexpr double kG = 9.80665;
   const auto level_springs = [](const WheeledChassisSettings& c) {
     // each tyre's gap to the ground with the body level and the first axle's tyres just touching
@@ -52,39 +80,12 @@ StartPoses start_poses(const TractorSettings& s, const TractorStart& start) {
   return poses;
 }
 
-physics::BodyId add_body(physics::PhysicsWorld& world, double mass_kg, const core::Vec3& half_extents_m,
-                         const core::Pose& pose, const core::Vec3& center_of_mass_m = {}) {
-  physics::BoxSettings box;
-  box.mass_kg = mass_kg;
-  box.half_extents_m = half_extents_m;
-  box.pose = pose;
-  box.center_of_mass_m = center_of_mass_m;
-  return world.add_box(box);
-}
-
-}  // namespace
-
-ControlTable tractor_control_table() {
-  using K = ControlKind;
-  return ControlTable(
-      {ControlSpec{"steer", K::kAxis, -1.0, 1.0, {}, 0.0, 0.0, "steering wheel, + turns left"},
-       ControlSpec{"throttle", K::kAxis, 0.0, 1.0, {}, 0.0, 0.0, "accelerator pedal"},
-       ControlSpec{"brake", K::kAxis, 0.0, 1.0, {}, 0.0, 1.0, "brake pedal"},
-       ControlSpec{"direction",
-                   K::kSwitch,
-                   0.0,
-                   2.0,
-                   {"reverse", "neutral", "forward"},
-                   1.0,
-                   1.0,
-                   "direction selector"},
-       ControlSpec{"emergency_stop", K::kButton, 0.0, 1.0, {}, 0.0, 0.0, "full brakes, no drive"},
-       ControlSpec{"horn", K::kButton, 0.0, 1.0, {}, 0.0, 0.0, "horn"},
-       ControlSpec{"couple", K::kButton, 0.0, 1.0, {}, 0.0, 0.0, "couple or drop the trailer"}});
-}
-
 TerminalTractor::TerminalTractor(physics::PhysicsWorld& world, const TractorSettings& settings,
                                  const TractorStart& start)
+    : TerminalTractor(world, settings, start, start_poses(settings, start)) {}
+
+TerminalTractor::TerminalTractor(physics::PhysicsWorld& world, const TractorSettings& settings,
+                                 const TractorStart& start, const StartPoses& poses)
     : world_(world),
       settings_(settings),
       steer_slot_(settings.controls.slot("steer", ControlKind::kAxis)),
@@ -94,14 +95,14 @@ TerminalTractor::TerminalTractor(physics::PhysicsWorld& world, const TractorSett
       stop_slot_(settings.controls.slot("emergency_stop", ControlKind::kButton)),
       horn_slot_(settings.controls.slot("horn", ControlKind::kButton)),
       couple_slot_(settings.controls.slot("couple", ControlKind::kButton)),
-      body_(add_body(world, settings.mass_kg, settings.half_extents_m, start_poses(settings, start).tractor)),
+      body_(add_body(world, settings.mass_kg, settings.half_extents_m, poses.tractor)),
       chassis_(settings.chassis, body_),
       wind_areas_{WindArea{body_, settings.half_extents_m}, WindArea{}} {
   if (!start.trailer) return;
   // in line behind it, its kingpin on the lifted plate, locked in the jaw
   const TrailerSettings& t = *start.trailer;
-  trailer_body_ = add_body(world, t.mass_kg, t.half_extents_m, start_poses(settings, start).trailer,
-                           {t.center_of_mass_x_m, 0.0, 0.0});
+  trailer_body_ =
+      add_body(world, t.mass_kg, t.half_extents_m, poses.trailer, {t.center_of_mass_x_m, 0.0, 0.0});
   world.exclude_contacts(body_, trailer_body_);  // its front reaches over the chassis
   trailer_wheels_.emplace(t.wheels, trailer_body_);
   if (t.legs) trailer_legs_.emplace(*t.legs, trailer_body_);

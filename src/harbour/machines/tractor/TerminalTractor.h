@@ -107,6 +107,8 @@ class TerminalTractor final : public Machine {
   void restore_state(core::StateReader& in) override;
 
   physics::BodyId body() const { return body_; }
+  /// Its wheels: their steering geometry (the turn's reference point, the steering base).
+  const WheeledChassis& chassis() const { return chassis_; }
   /// Speed along its heading [m/s] (+ forward).
   double forward_mps() const;
   /// The steering as it stands now [-1, 1] (it follows the wheel at the steering's rate).
@@ -131,6 +133,12 @@ class TerminalTractor final : public Machine {
   TractorSettings settings_;
   FlatGround quay_;
   const Ground* ground_ = &quay_;
+  struct StartPoses {
+    core::Pose tractor, trailer;
+  };
+  TerminalTractor(physics::PhysicsWorld& world, const TractorSettings& settings, const TractorStart& start,
+                  const StartPoses& poses);
+  static StartPoses start_poses(const TractorSettings& settings, const TractorStart& start);
   void step_coupling(bool couple_pressed, double dt_s);
   void push_coupling();
 
