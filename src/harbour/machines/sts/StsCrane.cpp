@@ -239,52 +239,19 @@ void StsCrane::step(const StsControls& c, std::span<const ContainerRef> containe
   const cable::DrumCommand drum{c.emergency_stop ? 0.0 : -lever, hoist_brake_fault_, !c.emergency_stop};
   hoist_->step(dt_s, {&drum, 1}, *cable_bodies_);
 
-  // twistlocks against the container under the spreader, if any
-  const core::Pose spreader = world_.pose(spreader_);
-  // twistlock frame: on the underside, x along the spreader's length (the quay's y)
-  core::Pose underside = spreader;
-  underside.position = spreader.to_parent({0, 0, -spreader_frame_->half_extents_m().z});
-  underside.rotation = spreader.rotation * core::Mat3::rotation({0, 0, 1}, std::numbers::pi / 2);
-  const double pin_length = spreader_frame_->pin_half_length_m(),
-               pin_width = spreader_frame_->pin_half_width_m();
-  std::array<bool, 4> landed{};
-  std::optional<physics::BodyId> landed_on;
-  for (const ContainerRef& box : containers) {
-    core::Pose top = world_.pose(box.body);
-    top.position = top.to_parent({0, 0, box.half_extents_m.z});
-    for (const double apertures : {box.pocket_half_length_m, box.end_pocket_half_length_m}) {
-      if (apertures <= 0.0) continue;
-      auto corners = landed_corners(underside, pin_length, pin_width, top, apertures, box.pocket_half_width_m,
-                                    settings_.twistlocks);
-      if (landed_sensor_fault_ >= 0) corners[static_cast<std::size_t>(landed_sensor_fault_)] = false;
-      if (corners[0] && corners[1] && corners[2] && corners[3]) {
-        landed = corners;
-        landed_on = box.body;
-        break;
-      }
-    }
-    if (landed_on) break;
-  }
-  // the load hangs when the ropes carry clearly more than the empty spreader (landing pins stay pressed while
-  // a locked container hangs, so "landed" alone cannot tell)
+  // twistlocks against the container under the spreader, if any; the load hangs when the ropes carry
+  // clearly more than the empty spreader (landing pins stay pressed while a locked container hangs, so
+  // "landed" alone cannot tell)
   const bool load_suspended = hoisted_load_n() > 1.3 * settings_.spreader.mass_kg * 9.80665;
-  const bool was_locked = twistlocks_.locked();
-  twistlocks_.update(landed, c.lock, c.unlock, load_suspended, dt_s);
-  if (!was_locked && twistlocks_.locked() && landed_on) {
-    attachment_ = world_.attach(spreader_, *landed_on);
-    locked_container_ = landed_on;
-  } else if (was_locked && !twistlocks_.locked() && attachment_ >= 0) {
-    world_.detach(attachment_);
-    attachment_ = -1;
-    locked_container_.reset();
-  }
+  locks_.step(world_, spreader_, *spreader_frame_, containers, settings_.twistlocks, c.lock, c.unlock,
+              load_suspended, landed_sensor_fault_, dt_s);
   // the spreader's telescope (interlocked while landed or locked) and flippers
   const SpreaderSize sizes[] = {SpreaderSize::k20ft, SpreaderSize::k40ft, SpreaderSize::k45ft};
   const SpreaderSize* size_button = nullptr;
   for (int k = 0; k < 3; ++k)
     if (c.spreader_size_ft == (k == 0 ? 20 : k == 1 ? 40 : 45)) size_button = &sizes[k];
-  spreader_frame_->step(size_button, c.flipper_down, twistlocks_.lamps().landed || twistlocks_.locked(),
-                        dt_s);
+  spreader_frame_->step(size_button, c.flipper_down,
+                        locks_.twistlocks().lamps().landed || locks_.twistlocks().locked(), dt_s);
   wind_areas_[0].half_extents_m = spreader_frame_->half_extents_m();
 }
 
@@ -315,7 +282,7 @@ int StsCrane::publish(Snapshot& s, int first) const {
   publish_ropes(*hoist_, s);
 
   const SpreaderState spreader = spreader_state();
-  const TwistlockLamps lamps = twistlocks_.lamps();
+  const TwistlockLamps lamps = locks_.twistlocks().lamps();
   const double values[] = {gantry_position_m(),
                            trolley_position_m(),
                            boom_angle_,
@@ -339,7 +306,7 @@ int StsCrane::publish(Snapshot& s, int first) const {
 }
 
 void StsCrane::drain_events(StepEvents& events) {
-  twistlocks_.drain_events(events.twistlocks);
+  locks_.twistlocks().drain_events(events.twistlocks);
   hoist_->drain_events(events.ropes);
 }
 
@@ -363,7 +330,7 @@ void StsCrane::hash_into(core::StateHash& hash) const {
   hoist_->hash_into(hash);
   hash.add(gantry_.reference_mps());
   hash.add(trolley_.reference_mps());
-  hash.add(twistlocks_.lamps());
+  hash.add(locks_.twistlocks().lamps());
   hash.add(boom_angle_);
   const SpreaderState spreader = spreader_state();
   hash.add(spreader.length_m);
@@ -378,10 +345,9 @@ void StsCrane::save_state(core::StateWriter& out) const {
   out.put(boom_angle_);
   out.put(horn_);
   spreader_frame_->save_state(out);
-  twistlocks_.save_state(out);
+  locks_.twistlocks().save_state(out);
   hoist_->save_state(out);
-  out.put(locked_container_.value_or(physics::kWorld));
-  out.put(attachment_);
+  locks_.save_joint(out);
   out.put(hoist_brake_fault_);
   hoist_limits_.save_state(out);
   out.put(landed_sensor_fault_);
@@ -395,11 +361,9 @@ void StsCrane::restore_state(core::StateReader& in) {
   in.get(boom_angle_);
   in.get(horn_);
   spreader_frame_->restore_state(in);
-  twistlocks_.restore_state(in);
+  locks_.twistlocks().restore_state(in);
   hoist_->restore_state(in);
-  const auto locked = in.get<physics::BodyId>();
-  locked_container_ = locked == physics::kWorld ? std::nullopt : std::optional<physics::BodyId>(locked);
-  in.get(attachment_);
+  locks_.restore_joint(in);
   in.get(hoist_brake_fault_);
   hoist_limits_.restore_state(in);
   in.get(landed_sensor_fault_);

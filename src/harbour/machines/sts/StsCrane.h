@@ -13,7 +13,7 @@
 #include "harbour/machines/parts/LimitSwitches.h"
 #include "harbour/machines/parts/OdeCableBodies.h"
 #include "harbour/machines/parts/Spreader.h"
-#include "harbour/machines/parts/Twistlocks.h"
+#include "harbour/machines/parts/SpreaderLocks.h"
 #include "harbour/physics/PhysicsWorld.h"
 #include "harbour/sim/Controls.h"
 
@@ -98,7 +98,7 @@ class StsCrane final : public Machine {
   void step(const Controls& controls, std::span<const ContainerRef> liftables, double dt_s) override {
     step(read(controls), liftables, dt_s);
   }
-  std::optional<physics::BodyId> held_item() const override { return locked_container_; }
+  std::optional<physics::BodyId> held_item() const override { return locks_.locked_container(); }
   double attachment_bottom_z_m() const override;
   std::span<const WindArea> wind_areas() const override { return wind_areas_; }
   physics::BodyId cab_body() const override { return trolley_body_; }
@@ -138,9 +138,9 @@ class StsCrane final : public Machine {
   core::Vec3 eye_m() const override { return settings_.eye_m; }
   double sight_pitch_rad() const override { return settings_.sight_pitch_rad; }
   /// The container locked to the spreader, if any.
-  std::optional<physics::BodyId> locked_container() const { return locked_container_; }
-  TwistlockLamps lamps() const { return twistlocks_.lamps(); }
-  std::vector<TwistlockEvent> take_twistlock_events() { return twistlocks_.take_events(); }
+  std::optional<physics::BodyId> locked_container() const { return locks_.locked_container(); }
+  TwistlockLamps lamps() const { return locks_.twistlocks().lamps(); }
+  std::vector<TwistlockEvent> take_twistlock_events() { return locks_.twistlocks().take_events(); }
   const Drive& gantry_drive() const { return gantry_; }
   /// Times the operator drove the hoist into a limit switch.
   std::uint32_t hoist_limit_hits() const { return hoist_limits_.hits(); }
@@ -169,11 +169,9 @@ class StsCrane final : public Machine {
   double boom_angle_ = 0.0;
   bool horn_ = false;
   std::unique_ptr<Spreader> spreader_frame_;
-  Twistlocks twistlocks_;
+  SpreaderLocks locks_;
   std::unique_ptr<OdeCableBodies> cable_bodies_;
   std::unique_ptr<cable::HoistSystem> hoist_;
-  std::optional<physics::BodyId> locked_container_;
-  int attachment_ = -1;
   bool hoist_brake_fault_ = false;
   LimitSwitches hoist_limits_;
   int landed_sensor_fault_ = -1;

@@ -1,0 +1,56 @@
+#include "harbour/machines/parts/SpreaderLocks.h"
+
+#include <numbers>
+
+namespace harbour::sim {
+
+void SpreaderLocks::step(physics::PhysicsWorld& world, physics::BodyId spreader, const Spreader& frame,
+                         std::span<const ContainerRef> containers, const TwistlockSettings& settings,
+                         bool lock, bool unlock, bool load_suspended, int faulty_corner, double dt_s) {
+  // twistlock frame: on the underside, x along the spreader's length (the body's y)
+  const core::Pose body = world.pose(spreader);
+  core::Pose underside = body;
+  underside.position = body.to_parent({0, 0, -frame.half_extents_m().z});
+  underside.rotation = body.rotation * core::Mat3::rotation({0, 0, 1}, std::numbers::pi / 2);
+  std::array<bool, 4> landed{};
+  std::optional<physics::BodyId> landed_on;
+  for (const ContainerRef& box : containers) {
+    core::Pose top = world.pose(box.body);
+    top.position = top.to_parent({0, 0, box.half_extents_m.z});
+    for (const double apertures : {box.pocket_half_length_m, box.end_pocket_half_length_m}) {
+      if (apertures <= 0.0) continue;
+      auto corners = landed_corners(underside, frame.pin_half_length_m(), frame.pin_half_width_m(), top,
+                                    apertures, box.pocket_half_width_m, settings);
+      if (faulty_corner >= 0 && faulty_corner < 4) corners[static_cast<std::size_t>(faulty_corner)] = false;
+      if (corners[0] && corners[1] && corners[2] && corners[3]) {
+        landed = corners;
+        landed_on = box.body;
+        break;
+      }
+    }
+    if (landed_on) break;
+  }
+  const bool was_locked = twistlocks_.locked();
+  twistlocks_.update(landed, lock, unlock, load_suspended, dt_s);
+  if (!was_locked && twistlocks_.locked() && landed_on) {
+    attachment_ = world.attach(spreader, *landed_on);
+    locked_ = landed_on;
+  } else if (was_locked && !twistlocks_.locked() && attachment_ >= 0) {
+    world.detach(attachment_);
+    attachment_ = -1;
+    locked_.reset();
+  }
+}
+
+void SpreaderLocks::save_joint(core::StateWriter& out) const {
+  out.put(locked_.value_or(physics::kWorld));
+  out.put(attachment_);
+}
+
+void SpreaderLocks::restore_joint(core::StateReader& in) {
+  const auto locked = in.get<physics::BodyId>();
+  locked_ = locked == physics::kWorld ? std::nullopt : std::optional<physics::BodyId>(locked);
+  in.get(attachment_);
+}
+
+}  // namespace harbour::sim
