@@ -105,9 +105,22 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
   if (!std::filesystem::is_regular_file(machine_path))
     f.fail(x["machine"], "exercise.machine", "no such file: " + machine_path);
   const std::string machine_kind = machine_file_kind(machine_path);
-  const bool vehicle = machine_kind == "tractor";
+  const bool vehicle = machine_kind == "tractor" || machine_kind == "reach_stacker";
   const YAML::Node crane = f.required_map(x, vehicle ? "vehicle" : "crane", "exercise");
-  if (vehicle) {
+  if (machine_kind == "reach_stacker") {
+    // it stands on the quay, its boom set
+    sim::ReachStackerSetup stacker;
+    stacker.vehicle = load_reach_stacker(machine_path);
+    const sim::ReachStackerSettings& v = stacker.vehicle;
+    const std::string at = "exercise.vehicle";
+    stacker.start.position_m = f.vector3(f.required(crane, "position_m", at), at + ".position_m", kSite_m);
+    stacker.start.heading_rad = core::deg_to_rad(f.number(crane, "heading_deg", at, -360.0, 360.0));
+    stacker.start.boom_rad =
+        core::deg_to_rad(f.number(crane, "boom_deg", at, core::rad_to_deg(v.luff.min_position_m),
+                                  core::rad_to_deg(v.luff.max_position_m)));
+    stacker.start.extension_m = f.number_or(crane, "extension_m", at, 0.0, 0.0, v.telescope.max_position_m);
+    s.machine = std::move(stacker);
+  } else if (vehicle) {
     // the vehicle stands on the quay
     sim::TractorSetup tractor;
     tractor.vehicle = load_tractor(machine_path);
@@ -149,7 +162,7 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
     s.machine = std::move(mhc);
   }
   // container exercises (the STS), general cargo on a hook, bulk on a grab
-  const bool handles_containers = machine_kind == "sts";
+  const bool handles_containers = machine_kind == "sts" || machine_kind == "reach_stacker";
   const auto* mhc = std::get_if<sim::MhcSetup>(&s.machine);
   const bool on_hook = mhc && mhc->start.on_hook;
   const auto* tractor = std::get_if<sim::TractorSetup>(&s.machine);
@@ -486,9 +499,11 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
           f.fail(ev["kind"], at + ".kind", "the " + machine_kind + " has no twistlocks to fail");
         event.kind = sim::ScriptedEvent::Kind::kLandedSensorFault;
         event.corner = f.integer(ev, "corner", at, 0, 3);
+      } else if (kind == "limiter_fault") {
+        event.kind = sim::ScriptedEvent::Kind::kLimiterFault;
       } else {
         f.fail(ev["kind"], at + ".kind",
-               "'" + kind + "' is not gust, hoist_brake_fault or landed_sensor_fault");
+               "'" + kind + "' is not gust, hoist_brake_fault, landed_sensor_fault or limiter_fault");
       }
       if (!s.events.empty() && event.at_s < s.events.back().at_s)
         f.fail(ev["at_s"], at + ".at_s", "events must be in time order");

@@ -62,6 +62,8 @@ TimedCommand parse_instructor_command(const std::string& text) {
     if (corner != std::floor(corner)) fail("the corner is a whole number 0-3");
     c.corner = static_cast<int>(corner);
     values = 1;
+  } else if (kind == "limiter-fault") {
+    c.kind = Kind::kLimiterFault;
   } else if (kind == "clear-faults") {
     c.kind = Kind::kClearFaults;
   } else if (kind == "wind") {
@@ -82,8 +84,8 @@ TimedCommand parse_instructor_command(const std::string& text) {
     values = 1;
   } else {
     fail("unknown kind '" + core::printable(kind, 40) +
-         "' (gust, hoist-brake-fault, landed-sensor-fault, clear-faults, wind, visibility, rain, "
-         "time-of-day)");
+         "' (gust, hoist-brake-fault, landed-sensor-fault, limiter-fault, clear-faults, wind, visibility, "
+         "rain, time-of-day)");
   }
   if (parts.size() > 2 + values) fail("too many values for '" + kind + "'");
   if (const std::string why = sim::why_invalid(c); !why.empty()) fail(why);

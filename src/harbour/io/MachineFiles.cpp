@@ -67,6 +67,7 @@ sim::SpreaderSettings read_spreader(const YamlFile& f, const YAML::Node& m) {
     f.fail(node["initial_size"], at + ".initial_size", "unknown size '" + initial + "' (20ft, 40ft, 45ft)");
   }
   s.telescope_speed_mps = f.number(node, "telescope_speed_mps", at, 0.0, 5.0, true);
+  if (!f.optional(node, "flippers", at)) return s;  // none: they never come down
   const YAML::Node flippers = f.required_map(node, "flippers", at);
   const std::string fp = at + ".flippers";
   s.flipper_time_s = f.number(flippers, "swing_time_s", fp, 0.0, 60.0, true);
@@ -404,22 +405,9 @@ sim::TyreSettings read_tyre(const YamlFile& f, const YAML::Node& m, const std::s
   return tyre;
 }
 
-}  // namespace
-
-sim::TractorSettings read_tractor(const YamlFile& f) {
-  sim::TractorSettings s;
-  const YAML::Node m = f.required_map(f.root(), "machine", "");
-  if (const std::string kind = f.text(m, "kind", "machine"); kind != "tractor")
-    f.fail(m["kind"], "machine.kind", "this is a tractor file (kind: tractor), not a '" + kind + "'");
-  f.text(m, "name", "machine");
-  std::tie(s.mass_kg, s.half_extents_m) = read_chassis_box(f, m, 500.0, 1e5);
-  sim::WheeledChassisSettings& w = s.chassis;
-  w.axles = read_axles(f, m, "machine");
-  const bool steered = std::any_of(w.axles.begin(), w.axles.end(), [](const auto& a) { return a.steered; });
-  const bool driven = std::any_of(w.axles.begin(), w.axles.end(), [](const auto& a) { return a.driven; });
-  if (!steered || !driven) f.fail(m["axles"], "machine.axles", "needs a steered and a driven axle");
-  if (w.axles.size() < 2) f.fail(m["axles"], "machine.axles", "needs at least two axles");
-  w.tyre = read_tyre(f, m, "machine");
+// An engine and automatic gearbox (machine.drivetrain).
+sim::DrivetrainSettings read_drivetrain(const YamlFile& f, const YAML::Node& m) {
+  sim::WheeledChassisSettings w;
   const YAML::Node d = f.required_map(m, "drivetrain", "machine");
   const std::string dat = "machine.drivetrain";
   const YAML::Node curve = f.sequence(d, "torque_curve", dat, 50);
@@ -449,26 +437,60 @@ sim::TractorSettings read_tractor(const YamlFile& f) {
   w.drivetrain.efficiency = f.number(d, "efficiency", dat, 0.1, 1.0);
   w.drivetrain.converter_stall_ratio =
       f.number_or(d, "converter_stall_ratio", dat, w.drivetrain.converter_stall_ratio, 1.0, 5.0);
+  return w.drivetrain;
+}
+
+// A driven and steered machine's wheels (machine.axles, tyre, drivetrain, brake_torque_per_wheel_nm,
+// max_steer_deg).
+sim::WheeledChassisSettings read_wheels(const YamlFile& f, const YAML::Node& m) {
+  sim::WheeledChassisSettings w;
+  w.axles = read_axles(f, m, "machine");
+  const bool steered = std::any_of(w.axles.begin(), w.axles.end(), [](const auto& a) { return a.steered; });
+  const bool driven = std::any_of(w.axles.begin(), w.axles.end(), [](const auto& a) { return a.driven; });
+  if (!steered || !driven) f.fail(m["axles"], "machine.axles", "needs a steered and a driven axle");
+  if (w.axles.size() < 2) f.fail(m["axles"], "machine.axles", "needs at least two axles");
+  w.tyre = read_tyre(f, m, "machine");
+  w.drivetrain = read_drivetrain(f, m);
   w.brake_torque_per_wheel_nm = f.number(m, "brake_torque_per_wheel_nm", "machine", 0.0, 1e6);
   w.max_steer_rad = core::deg_to_rad(f.number(m, "max_steer_deg", "machine", 1.0, 80.0));
+  return w;
+}
+
+// A vehicle's driving controls: steering wheel, pedals, the direction selector (reverse, neutral, forward),
+// emergency stop and horn.
+void require_driving_controls(const YamlFile& f, const YAML::Node& m, const sim::ControlTable& controls) {
+  using K = sim::ControlKind;
+  require_controls(f, m, controls,
+                   {{"steer", K::kAxis},
+                    {"throttle", K::kAxis},
+                    {"brake", K::kAxis},
+                    {"direction", K::kSwitch},
+                    {"emergency_stop", K::kButton},
+                    {"horn", K::kButton}});
+  if (controls[controls.find("direction")].positions !=
+      std::vector<std::string>{"reverse", "neutral", "forward"})
+    f.fail(m["controls"], "machine.controls",
+           "'direction' must have the positions [reverse, neutral, forward]");
+}
+
+}  // namespace
+
+sim::TractorSettings read_tractor(const YamlFile& f) {
+  sim::TractorSettings s;
+  const YAML::Node m = f.required_map(f.root(), "machine", "");
+  if (const std::string kind = f.text(m, "kind", "machine"); kind != "tractor")
+    f.fail(m["kind"], "machine.kind", "this is a tractor file (kind: tractor), not a '" + kind + "'");
+  f.text(m, "name", "machine");
+  std::tie(s.mass_kg, s.half_extents_m) = read_chassis_box(f, m, 500.0, 1e5);
+  s.chassis = read_wheels(f, m);
   s.steer_rate_per_s = f.number(m, "steer_rate_per_s", "machine", 0.05, 20.0);
   const CabFields cab = read_cab(f, m, 20.0);
   s.cab_position_m = cab.position_m;
   s.eye_m = cab.eye_m;
   s.sight_pitch_rad = cab.sight_pitch_rad;
   s.controls = read_control_table(f, m, "machine");
-  require_controls(f, m, s.controls,
-                   {{"steer", sim::ControlKind::kAxis},
-                    {"throttle", sim::ControlKind::kAxis},
-                    {"brake", sim::ControlKind::kAxis},
-                    {"direction", sim::ControlKind::kSwitch},
-                    {"emergency_stop", sim::ControlKind::kButton},
-                    {"horn", sim::ControlKind::kButton},
-                    {"couple", sim::ControlKind::kButton}});
-  if (const int d_slot = s.controls.find("direction");
-      s.controls[d_slot].positions != std::vector<std::string>{"reverse", "neutral", "forward"})
-    f.fail(m["controls"], "machine.controls",
-           "'direction' must have the positions [reverse, neutral, forward]");
+  require_driving_controls(f, m, s.controls);
+  require_controls(f, m, s.controls, {{"couple", sim::ControlKind::kButton}});
   return s;
 }
 
@@ -552,6 +574,36 @@ sim::TrailerSettings load_trailer(const std::string& path) {
   return load_trailer(YamlFile::load(path));
 }
 
+namespace {
+
+// A hydraulic motion (`at`.`key`): its travel, speed, ramp and force; rotary ones in degrees and N m. The
+// cylinders hold the load on their valves (the brake: three times the force) and stop in a quarter of the
+// ramp at an emergency stop.
+sim::DriveSettings read_hydraulics(const YamlFile& f, const YAML::Node& parent, const std::string& key,
+                                   const std::string& at, bool rotary, double max_force) {
+  const YAML::Node n = f.required_map(parent, key, at);
+  const std::string p = at + "." + key;
+  const double unit = rotary ? core::deg_to_rad(1.0) : 1.0;
+  const char* min_key = rotary ? "min_deg" : "min_m";
+  const char* max_key = rotary ? "max_deg" : "max_m";
+  const double range = rotary ? 360.0 : 50.0;
+  sim::DriveSettings d;
+  d.min_position_m = f.number(n, min_key, p, -range, range) * unit;
+  d.max_position_m = f.number(n, max_key, p, -range, range) * unit;
+  if (d.max_position_m <= d.min_position_m)
+    f.fail(n[max_key], p + "." + max_key, std::string("must exceed ") + min_key);
+  d.max_speed_mps =
+      f.number(n, rotary ? "speed_deg_s" : "speed_mps", p, 0.0, rotary ? 90.0 : 5.0, true) * unit;
+  const double ramp_s = f.number(n, "ramp_s", p, 0.05, 10.0);
+  d.acceleration_mps2 = d.deceleration_mps2 = d.max_speed_mps / ramp_s;
+  d.emergency_deceleration_mps2 = 4.0 * d.acceleration_mps2;
+  d.max_force_n = f.number(n, rotary ? "torque_nm" : "force_n", p, 0.0, max_force, true);
+  d.brake_force_n = 3.0 * d.max_force_n;
+  return d;
+}
+
+}  // namespace
+
 sim::ReachStackerSettings load_reach_stacker(const YamlFile& f) {
   sim::ReachStackerSettings s;
   const YAML::Node m = f.required_map(f.root(), "machine", "");
@@ -560,15 +612,35 @@ sim::ReachStackerSettings load_reach_stacker(const YamlFile& f) {
            "this is a reach stacker file (kind: reach_stacker), not a '" + kind + "'");
   f.text(m, "name", "machine");
   std::tie(s.mass_kg, s.half_extents_m) = read_chassis_box(f, m, 1000.0, 3e5);
-  s.chassis.axles = read_axles(f, m, "machine");
-  if (s.chassis.axles.size() < 2) f.fail(m["axles"], "machine.axles", "needs at least two axles");
+  s.chassis = read_wheels(f, m);
   if (sim::tipping_axle_x_m(s) <= 0.0)
     f.fail(m["axles"], "machine.axles", "the front axle must lie ahead of the centre of mass");
-  s.chassis.tyre = read_tyre(f, m, "machine");
+  s.steer_rate_per_s = f.number(m, "steer_rate_per_s", "machine", 0.05, 20.0);
   const YAML::Node b = f.required_map(m, "boom", "machine");
-  s.boom_mass_kg = f.number(b, "mass_kg", "machine.boom", 100.0, 1e5);
-  s.boom_pivot_m = f.vector3(f.required(b, "pivot_m", "machine.boom"), "machine.boom.pivot_m", 20.0);
+  const std::string bat = "machine.boom";
+  s.boom_mass_kg = f.number(b, "mass_kg", bat, 100.0, 1e5);
+  s.boom_pivot_m = f.vector3(f.required(b, "pivot_m", bat), bat + ".pivot_m", 20.0);
+  s.boom_length_m = f.number(b, "length_m", bat, 1.0, 40.0);
+  s.luff = read_hydraulics(f, b, "lift", bat, true, kMaxForce_n);
+  if (s.luff.min_position_m < -core::deg_to_rad(30.0) || s.luff.max_position_m > core::deg_to_rad(80.0))
+    f.fail(b["lift"], bat + ".lift", "the boom works between -30 and 80 deg");
+  s.telescope = read_hydraulics(f, b, "telescope", bat, false, kMaxForce_n);
+  if (s.telescope.min_position_m != 0.0)
+    f.fail(b["telescope"], bat + ".telescope.min_m", "the telescope's travel starts at 0 (in)");
   s.spreader_mass_kg = f.number(m, "spreader_mass_kg", "machine", 100.0, 5e4);
+  s.spreader = read_spreader(f, m);
+  if (sim::rotator_mass_kg(s) < 200.0)
+    f.fail(m["spreader"], "machine.spreader.mass_kg",
+           "leaves less than 200 kg of spreader_mass_kg for the rotator between it and the boom");
+  const YAML::Node r = f.required_map(m, "rotator", "machine");
+  const std::string rat = "machine.rotator";
+  s.head_drop_m = f.number(r, "head_drop_m", rat, 0.8 + 0.5 * s.spreader.height_m, 5.0);
+  s.tilt_damping_nms_per_rad = f.number(r, "tilt_damping_nms_per_rad", rat, 0.0, 1e8);
+  s.rotate = read_hydraulics(f, r, "rotation", rat, true, 1e7);
+  s.side_shift = read_hydraulics(f, r, "side_shift", rat, false, 1e7);
+  const YAML::Node t = f.required_map(m, "twistlocks", "machine");
+  s.twistlocks.lateral_tolerance_m = f.number(t, "lateral_tolerance_m", "machine.twistlocks", 0.0, 1.0, true);
+  s.twistlocks.landed_gap_m = f.number(t, "landed_gap_m", "machine.twistlocks", 0.0, 1.0, true);
   const YAML::Node l = f.required_map(m, "load_chart", "machine");
   const std::string lat = "machine.load_chart";
   const YAML::Node rows = f.sequence(l, "row_reach_m", lat, 6);
@@ -585,9 +657,27 @@ sim::ReachStackerSettings load_reach_stacker(const YamlFile& f) {
   s.rated_limit_kg = f.number(l, "rated_limit_kg", lat, 1000.0, 2e5);
   s.stability_margin = f.number(l, "stability_margin", lat, 1.0, 3.0);
   s.warn_from = f.number(l, "warn_from", lat, 0.5, 1.0);
+  s.load_filter_s = f.number(l, "load_filter_s", lat, 0.01, 10.0);
   if (sim::tipping_load_kg(s, s.row_reach_m.back()) <= 0.0)
     f.fail(l["row_reach_m"], lat + ".row_reach_m",
            "the machine tips over with nothing on it at its last row");
+  s.tip_over_rad = core::deg_to_rad(f.number(m, "tip_over_deg", "machine", 1.0, 45.0));
+  const CabFields cab = read_cab(f, m, 20.0);
+  s.cab_position_m = cab.position_m;
+  s.eye_m = cab.eye_m;
+  s.sight_pitch_rad = cab.sight_pitch_rad;
+  s.controls = read_control_table(f, m, "machine");
+  using K = sim::ControlKind;
+  require_driving_controls(f, m, s.controls);
+  require_controls(f, m, s.controls,
+                   {{"boom", K::kAxis},
+                    {"telescope", K::kAxis},
+                    {"rotate", K::kAxis},
+                    {"side_shift", K::kAxis},
+                    {"lock", K::kButton},
+                    {"unlock", K::kButton},
+                    {"spreader_20", K::kButton},
+                    {"spreader_40", K::kButton}});
   f.check_unknown_keys();
   return s;
 }
@@ -600,8 +690,9 @@ std::string machine_file_kind(const std::string& path) {
   const YamlFile f = YamlFile::load(path);
   const YAML::Node m = f.required_map(f.root(), "machine", "");
   const std::string kind = f.text(m, "kind", "machine");
-  if (kind != "sts" && kind != "mhc" && kind != "tractor")
-    f.fail(m["kind"], "machine.kind", "a machine is one of: sts, mhc, tractor (not '" + kind + "')");
+  if (kind != "sts" && kind != "mhc" && kind != "tractor" && kind != "reach_stacker")
+    f.fail(m["kind"], "machine.kind",
+           "a machine is one of: sts, mhc, tractor, reach_stacker (not '" + kind + "')");
   return kind;
 }
 

@@ -71,12 +71,14 @@ struct MachineTally {
   std::array<AxisSpeed, 3> axes{};  ///< the motions an operator drives smoothly or not
   bool vehicle = false;             ///< driven about the site (its jack-knives and speeding are measured)
   std::uint32_t jackknifes = 0;     ///< a towed trailer folded past its hitch angle limit
+  std::uint32_t tip_overs = 0;      ///< the machine tipped over on its wheels
 };
 
 /// A fault the instructor injects into a machine.
 enum class MachineFault : std::uint8_t {
   kHoistBrake,    ///< the hoist's holding brake does not set
   kLandedSensor,  ///< one twistlock corner's landed sensor reads "not landed" (detail: the corner, 0-3)
+  kLoadMomentLimiter,  ///< the load-moment limiter no longer stops moment-raising motions (it still warns)
 };
 
 /// One machine on the executive: what the simulation, the recorder, the station and the image generator need

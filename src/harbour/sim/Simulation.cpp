@@ -17,6 +17,7 @@ const char* machine_kind(const MachineSetup& setup) {
         if constexpr (std::is_same_v<T, StsSetup>) return "sts";
         if constexpr (std::is_same_v<T, MhcSetup>) return "mhc";
         if constexpr (std::is_same_v<T, TractorSetup>) return "tractor";
+        if constexpr (std::is_same_v<T, ReachStackerSetup>) return "reach_stacker";
       },
       setup);
 }
@@ -44,6 +45,8 @@ std::unique_ptr<Machine> make_machine(physics::PhysicsWorld& world, const Machin
           return std::make_unique<MobileHarbourCrane>(world, m.crane, m.start);
         if constexpr (std::is_same_v<T, TractorSetup>)
           return std::make_unique<TerminalTractor>(world, m.vehicle, m.start);
+        if constexpr (std::is_same_v<T, ReachStackerSetup>)
+          return std::make_unique<ReachStacker>(world, m.vehicle, m.start);
       },
       setup);
 }
@@ -130,6 +133,10 @@ void Simulation::apply_due_events() {
         if (machine_->has_fault(MachineFault::kLandedSensor))
           machine_->inject_fault(MachineFault::kLandedSensor, e.corner);
         break;
+      case ScriptedEvent::Kind::kLimiterFault:
+        if (machine_->has_fault(MachineFault::kLoadMomentLimiter))
+          machine_->inject_fault(MachineFault::kLoadMomentLimiter, 0);
+        break;
     }
   }
 }
@@ -162,6 +169,7 @@ std::string why_invalid(const InstructorCommand& c) {
       if (!(c.value >= 0.0 && c.value < 24.0)) return "time of day 0-24 h";
       break;
     case Kind::kHoistBrakeFault:
+    case Kind::kLimiterFault:
     case Kind::kClearFaults:
       break;
     default:
@@ -176,6 +184,7 @@ void Simulation::command(const InstructorCommand& c) {
     throw std::invalid_argument("instructor command: " + why);
   const auto fault = c.kind == Kind::kHoistBrakeFault     ? std::optional(MachineFault::kHoistBrake)
                      : c.kind == Kind::kLandedSensorFault ? std::optional(MachineFault::kLandedSensor)
+                     : c.kind == Kind::kLimiterFault      ? std::optional(MachineFault::kLoadMomentLimiter)
                                                           : std::nullopt;
   if (fault && !machine_->has_fault(*fault))
     throw std::invalid_argument(std::string("instructor command: the ") + machine_->kind() +
@@ -192,6 +201,9 @@ void Simulation::command(const InstructorCommand& c) {
       break;
     case Kind::kLandedSensorFault:
       machine_->inject_fault(MachineFault::kLandedSensor, c.corner);
+      break;
+    case Kind::kLimiterFault:
+      machine_->inject_fault(MachineFault::kLoadMomentLimiter, 0);
       break;
     case Kind::kClearFaults:
       machine_->clear_faults();

@@ -12,6 +12,7 @@
 #include "harbour/core/FixedStepClock.h"
 #include "harbour/core/Warnings.h"
 #include "harbour/machines/mhc/MobileHarbourCrane.h"
+#include "harbour/machines/reach_stacker/ReachStacker.h"
 #include "harbour/machines/sts/StsCrane.h"
 #include "harbour/machines/tractor/TerminalTractor.h"
 #include "harbour/physics/PhysicsWorld.h"
@@ -57,7 +58,7 @@ struct GroundMarking {
 
 /// Something the exercise makes happen at a time (a gust, a fault).
 struct ScriptedEvent {
-  enum class Kind { kGust, kHoistBrakeFault, kLandedSensorFault };
+  enum class Kind { kGust, kHoistBrakeFault, kLandedSensorFault, kLimiterFault };
   Kind kind = Kind::kGust;
   double at_s = 0.0;  ///< [s] exercise time
   Gust gust;          ///< kGust (it starts at at_s)
@@ -71,13 +72,14 @@ struct InstructorCommand {
     kGust,               ///< a 1-cosine gust starting now (gust)
     kHoistBrakeFault,    ///< the hoist's holding brake stops setting
     kLandedSensorFault,  ///< one corner's landed sensor reads "not landed" (corner)
-    kClearFaults,        ///< both faults repaired
+    kClearFaults,        ///< every fault repaired
     kSetWind,            ///< mean wind, direction and turbulence (wind_mean_mps, wind_from_rad, turbulence)
     kSetVisibility,      ///< [m] (value)
     kSetRain,            ///< [mm/h] (value)
     kSetTimeOfDay,       ///< [h] (value): the clock jumps there and runs on
+    kLimiterFault,       ///< the load-moment limiter stops nothing (it still warns)
   };
-  static constexpr std::uint8_t kKinds = 8;
+  static constexpr std::uint8_t kKinds = 9;
   Kind kind = Kind::kGust;
   Gust gust;  ///< kGust: duration and amplitude (its start is now)
   int corner = 0;
@@ -107,8 +109,14 @@ struct TractorSetup {
   TractorStart start;
 };
 
+/// A reach stacker and where it stands (settings).
+struct ReachStackerSetup {
+  ReachStackerSettings vehicle;
+  ReachStackerStart start;
+};
+
 /// The machine an exercise runs, with its start.
-using MachineSetup = std::variant<StsSetup, MhcSetup, TractorSetup>;
+using MachineSetup = std::variant<StsSetup, MhcSetup, TractorSetup, ReachStackerSetup>;
 
 /// The kind of machine a setup builds ("sts", ...), as files name it.
 const char* machine_kind(const MachineSetup& setup);

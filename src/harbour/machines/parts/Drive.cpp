@@ -39,4 +39,15 @@ DriveOutput Drive::step(double lever, double position_m, double dt_s, bool emerg
   return out;
 }
 
+DriveOutput HydraulicDrive::step(double lever, double position_m, double dt_s, bool emergency_stop) {
+  DriveOutput out = drive_.step(lever, position_m, dt_s, emergency_stop);
+  if (!out.brake) {
+    holding_ = false;
+    return out;
+  }
+  if (!holding_) held_at_m_ = position_m, holding_ = true;
+  out.velocity_mps = (held_at_m_ - position_m) / kHold_s;
+  return out;
+}
+
 }  // namespace harbour::sim

@@ -59,4 +59,32 @@ class Drive {
   std::uint32_t limit_hits_ = 0;
 };
 
+/// A hydraulic cylinder's drive: a Drive whose stopped cylinder holds where it stopped on its valves. The
+/// joint's motor is driven back to that position (the solver's constraint softness lets a motor held at zero
+/// speed creep under a large steady load: about 1e-3 m/s per MN at the world's default softness).
+class HydraulicDrive {
+ public:
+  explicit HydraulicDrive(const DriveSettings& settings) : drive_(settings) {}
+
+  DriveOutput step(double lever, double position_m, double dt_s, bool emergency_stop);
+  const Drive& drive() const { return drive_; }
+  double reference_mps() const { return drive_.reference_mps(); }
+  void save_state(core::StateWriter& out) const {
+    drive_.save_state(out);
+    out.put(holding_);
+    out.put(held_at_m_);
+  }
+  void restore_state(core::StateReader& in) {
+    drive_.restore_state(in);
+    in.get(holding_);
+    in.get(held_at_m_);
+  }
+
+ private:
+  static constexpr double kHold_s = 0.2;  ///< [s] the time constant it returns to its held position with
+  Drive drive_;
+  bool holding_ = false;
+  double held_at_m_ = 0.0;
+};
+
 }  // namespace harbour::sim

@@ -318,6 +318,8 @@ void StsCrane::inject_fault(MachineFault fault, int detail) {
     case MachineFault::kLandedSensor:
       landed_sensor_fault_ = detail;
       break;
+    case MachineFault::kLoadMomentLimiter:  // it has none
+      break;
   }
 }
 

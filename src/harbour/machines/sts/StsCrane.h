@@ -106,7 +106,7 @@ class StsCrane final : public Machine {
   void describe(SceneDescription& scene) const override;
   int publish(Snapshot& snapshot, int entities) const override;
   void drain_events(StepEvents& events) override;
-  bool has_fault(MachineFault) const override { return true; }
+  bool has_fault(MachineFault fault) const override { return fault != MachineFault::kLoadMomentLimiter; }
   void inject_fault(MachineFault fault, int detail) override;
   void clear_faults() override;
   void hash_into(core::StateHash& hash) const override;

@@ -1,0 +1,126 @@
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+
+#include "harbour/machines/Machine.h"
+#include "harbour/machines/parts/Drive.h"
+#include "harbour/machines/parts/Spreader.h"
+#include "harbour/machines/parts/SpreaderLocks.h"
+#include "harbour/machines/parts/WheeledChassis.h"
+#include "harbour/machines/reach_stacker/ReachStackerStability.h"
+
+namespace harbour::sim {
+
+/// Where the reach stacker stands and how its boom is set at the start.
+struct ReachStackerStart {
+  core::Vec3 position_m;     ///< [m] the point under its centre of mass on the ground
+  double heading_rad = 0.0;  ///< its x from world x, about z
+  double boom_rad = 0.2;     ///< the boom's angle above the chassis's x
+  double extension_m = 0.0;  ///< the telescope out
+};
+
+/// A reach stacker on the physics world: a chassis body on the shared wheeled chassis (the front axle drives,
+/// the rear one steers), the boom's outer section on a hinge at its pivot (the lift cylinders as the hinge's
+/// speed-controlled motor), the inner section on a slider in it (the extension cylinder), and at its head a
+/// rotator hanging free on the head pin (damped in pitch), turning the spreader about the vertical and
+/// shifting it along its length. The twistlocks hold a container to the spreader (SpreaderLocks). The
+/// load-moment indicator reads the load on the head pin against the load chart at the head's reach: it
+/// warns from warn_from and stops the boom lowering and extending at the chart (the limiter fault leaves
+/// them free); the machine can then tip forward in the physics, counted when its chassis tilts past
+/// tip_over_rad.
+class ReachStacker final : public Machine {
+ public:
+  ReachStacker(physics::PhysicsWorld& world, const ReachStackerSettings& settings,
+               const ReachStackerStart& start);
+
+  // Machine
+  const char* kind() const override { return "reach_stacker"; }
+  const ControlTable& control_table() const override { return settings_.controls; }
+  void step(const Controls& controls, std::span<const ContainerRef> liftables, double dt_s) override;
+  std::optional<physics::BodyId> held_item() const override { return locks_.locked_container(); }
+  void stand_on(const Ground& ground) override { ground_ = &ground; }
+  double attachment_bottom_z_m() const override;
+  double pendulum_length_m() const override { return settings_.head_drop_m; }
+  std::span<const WindArea> wind_areas() const override { return wind_areas_; }
+  physics::BodyId cab_body() const override { return body_; }
+  core::Vec3 eye_on_cab_body_m() const override { return settings_.cab_position_m + settings_.eye_m; }
+  core::Pose cab_pose() const override;
+  core::Vec3 eye_m() const override { return settings_.eye_m; }
+  double sight_pitch_rad() const override { return settings_.sight_pitch_rad; }
+  void describe(SceneDescription& scene) const override;
+  int publish(Snapshot& snapshot, int entities) const override;
+  MachineTally tally() const override;
+  void drain_events(StepEvents& events) override { locks_.twistlocks().drain_events(events.twistlocks); }
+  bool has_fault(MachineFault fault) const override;
+  void inject_fault(MachineFault fault, int detail) override;
+  void clear_faults() override;
+  void hash_into(core::StateHash& hash) const override;
+  void save_state(core::StateWriter& out) const override;
+  void restore_state(core::StateReader& in) override;
+
+  physics::BodyId body() const { return body_; }
+  physics::BodyId spreader_body() const { return spreader_; }
+  const WheeledChassis& chassis() const { return chassis_; }
+  const ReachStackerSettings& settings() const { return settings_; }
+  /// Speed along its heading [m/s] (+ forward).
+  double forward_mps() const;
+  double steering() const { return steering_; }
+  /// The boom's angle above the chassis's x [rad] and the telescope's extension [m].
+  double boom_angle_rad() const { return start_boom_rad_ + world_.hinge_angle(luff_hinge_); }
+  double extension_m() const { return start_extension_m_ + world_.slider_position(telescope_slider_); }
+  /// The spreader's rotation from square to the boom [rad] and its side-shift [m].
+  double rotation_rad() const { return world_.hinge_angle(rotate_hinge_); }
+  double side_shift_m() const { return world_.slider_position(shift_slider_); }
+  /// The boom's head pin (world) [m] and its reach: how far ahead of the front axle it is (chassis frame).
+  core::Vec3 head_m() const;
+  double reach_m() const;
+  /// The load on the head pin beyond the spreader and rotator, low-passed [kg] (what the indicator reads).
+  double measured_load_kg() const { return measured_load_kg_; }
+  /// The load-moment indicator: the load's share of the chart at the head's reach.
+  double load_moment_share() const;
+  /// The limiter holds the boom from lowering and extending.
+  bool limiter_stopping() const { return limiter_stopping_; }
+  /// The chassis's tilt from level [rad] (pitch and roll together).
+  double tilt_rad() const;
+  std::uint32_t tip_overs() const { return tip_overs_; }
+  core::Pose spreader_pose() const { return world_.pose(spreader_); }
+  TwistlockLamps lamps() const { return locks_.twistlocks().lamps(); }
+
+ private:
+  struct StartPoses {
+    core::Pose chassis, outer, inner, rotator, slew, spreader;
+    core::Vec3 pivot, head;
+  };
+  ReachStacker(physics::PhysicsWorld& world, const ReachStackerSettings& settings,
+               const ReachStackerStart& start, const StartPoses& poses);
+  static StartPoses start_poses(const ReachStackerSettings& settings, const ReachStackerStart& start);
+  void step_limiter(double dt_s);
+
+  physics::PhysicsWorld& world_;
+  ReachStackerSettings settings_;
+  FlatGround quay_;
+  const Ground* ground_ = &quay_;
+  int steer_slot_, throttle_slot_, brake_slot_, direction_slot_, stop_slot_, horn_slot_;
+  int boom_slot_, telescope_slot_, rotate_slot_, shift_slot_, lock_slot_, unlock_slot_, size_20_slot_,
+      size_40_slot_;
+  physics::BodyId body_, outer_, inner_, rotator_, slew_, spreader_;
+  WheeledChassis chassis_;
+  int luff_hinge_, telescope_slider_, tilt_hinge_, rotate_hinge_, shift_slider_;
+  double start_boom_rad_, start_extension_m_;
+  HydraulicDrive luff_, telescope_, rotate_, side_shift_;
+  std::unique_ptr<Spreader> frame_;
+  SpreaderLocks locks_;
+  std::array<WindArea, 3> wind_areas_;
+  double steering_ = 0.0;
+  bool horn_ = false;
+  double measured_load_kg_ = 0.0;
+  bool limiter_stopping_ = false, limiter_armed_ = true, limiter_fault_ = false, tipped_ = false;
+  int landed_sensor_fault_ = -1;
+  std::uint32_t limiter_trips_ = 0, tip_overs_ = 0;
+};
+
+}  // namespace harbour::sim
