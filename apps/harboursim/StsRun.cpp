@@ -111,7 +111,7 @@ void print_evaluation(const sim::Metrics& m, const sim::Score& s, bool container
   } else if (m.vehicle) {
     std::printf("  moves completed      %8d\n", m.moves_completed);
     for (std::size_t n = 0; n < m.placement_offset_m.size(); ++n)
-      std::printf("  parked, move %zu      %8.2f m off its mark%s\n", n + 1, m.placement_offset_m[n],
+      std::printf("  placed, move %zu      %8.2f m off its mark%s\n", n + 1, m.placement_offset_m[n],
                   n < m.placement_skew_deg.size()
                       ? (", " + std::to_string(m.placement_skew_deg[n]).substr(0, 4) + " deg skew").c_str()
                       : "");

@@ -5,6 +5,7 @@
 #include "harbour/sim/Autopilot.h"
 #include "harbour/sim/GrabAutopilot.h"
 #include "harbour/sim/HookAutopilot.h"
+#include "harbour/sim/ReachStackerAutopilot.h"
 #include "harbour/sim/TractorAutopilot.h"
 
 namespace harbour::sim {
@@ -18,7 +19,10 @@ std::string why_no_pilot(const ExerciseSettings& exercise) {
   if (hook.empty()) return "";
   const std::string tractor = TractorAutopilot::why_cannot_drive(exercise);
   if (tractor.empty()) return "";
-  return "no scripted operator drives it (" + container + "; " + grab + "; " + hook + "; " + tractor + ")";
+  const std::string stacker = ReachStackerAutopilot::why_cannot_drive(exercise);
+  if (stacker.empty()) return "";
+  return "no scripted operator drives it (" + container + "; " + grab + "; " + hook + "; " + tractor + "; " +
+         stacker + ")";
 }
 
 std::unique_ptr<Pilot> make_pilot(const ExerciseSettings& exercise) {
@@ -27,6 +31,8 @@ std::unique_ptr<Pilot> make_pilot(const ExerciseSettings& exercise) {
   if (HookAutopilot::why_cannot_drive(exercise).empty()) return std::make_unique<HookAutopilot>(exercise);
   if (TractorAutopilot::why_cannot_drive(exercise).empty())
     return std::make_unique<TractorAutopilot>(exercise);
+  if (ReachStackerAutopilot::why_cannot_drive(exercise).empty())
+    return std::make_unique<ReachStackerAutopilot>(exercise);
   throw std::invalid_argument(why_no_pilot(exercise));
 }
 

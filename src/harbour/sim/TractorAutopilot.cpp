@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "harbour/machines/tractor/TerminalTractor.h"
+#include "harbour/sim/PurePursuit.h"
 
 namespace harbour::sim {
 namespace {
@@ -128,36 +129,11 @@ Controls TractorAutopilot::decide(const Simulation& simulation, const TerminalTr
   };
   if (phase_ == Phase::kDrive) {
     // pure pursuit: the arc from the rear axle through a point on the path a look-ahead away
-    const TractorSettings& s = tractor.settings();
     const core::Pose pose = simulation.world().pose(tractor.body());
     const core::Vec3 rear = flat(pose.to_parent({tractor.chassis().reference_x_m(), 0, 0}));
-    std::size_t nearest_segment = 0;
-    double nearest = 1e18, nearest_t = 0.0;
-    for (std::size_t k = 0; k + 1 < path_.size(); ++k) {
-      const core::Vec3 a = path_[k], b = path_[k + 1];
-      const double t = std::clamp(dot(rear - a, b - a) / dot(b - a, b - a), 0.0, 1.0);
-      const double d = core::length(rear - (a + (b - a) * t));
-      if (d < nearest) nearest = d, nearest_segment = k, nearest_t = t;
-    }
-    double ahead = std::max(kLookahead_m, 1.5 * std::abs(speed));
-    core::Vec3 target = path_.back();
-    for (std::size_t k = nearest_segment; k + 1 < path_.size(); ++k) {
-      const core::Vec3 a = path_[k], b = path_[k + 1];
-      const double left = core::length(b - a) * (k == nearest_segment ? 1.0 - nearest_t : 1.0);
-      const core::Vec3 from = k == nearest_segment ? a + (b - a) * nearest_t : a;
-      if (ahead <= left) {
-        target = from + (b - a) * (ahead / core::length(b - a));
-        break;
-      }
-      ahead -= left;
-    }
     const core::Vec3 x = flat(pose.rotation.column(0));
-    const core::Vec3 to = target - rear;
-    const double alpha = std::atan2(x.x * to.y - x.y * to.x, x.x * to.x + x.y * to.y);
-    const double wheelbase = tractor.chassis().steer_base_m();
-    const double steer =
-        std::atan(2.0 * wheelbase * std::sin(alpha) / core::length(to)) / s.chassis.max_steer_rad;
-    set("steer", std::clamp(steer, -1.0, 1.0));
+    const core::Vec3 target = point_ahead(path_, rear, std::max(kLookahead_m, 1.5 * std::abs(speed)));
+    set("steer", pursuit_steer(pose, tractor.chassis(), target));
     // speed: cruising, slower in corners, and a planned stop with the trailer's centre on its target
     const double remaining = remaining_m(simulation, tractor);
     double wanted = std::abs(tractor.steering()) > kCornerSteer ? kCorner_mps : kCruise_mps;

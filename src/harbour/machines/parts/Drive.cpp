@@ -41,12 +41,10 @@ DriveOutput Drive::step(double lever, double position_m, double dt_s, bool emerg
 
 DriveOutput HydraulicDrive::step(double lever, double position_m, double dt_s, bool emergency_stop) {
   DriveOutput out = drive_.step(lever, position_m, dt_s, emergency_stop);
-  if (!out.brake) {
-    holding_ = false;
-    return out;
-  }
-  if (!holding_) held_at_m_ = position_m, holding_ = true;
-  out.velocity_mps = (held_at_m_ - position_m) / kHold_s;
+  if (!tracking_) target_m_ = position_m, tracking_ = true;
+  target_m_ += out.velocity_mps * dt_s;
+  target_m_ = std::clamp(target_m_, position_m - kSlack_m, position_m + kSlack_m);
+  out.velocity_mps += (target_m_ - position_m) / kFollow_s;
   return out;
 }
 

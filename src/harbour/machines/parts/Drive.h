@@ -59,9 +59,10 @@ class Drive {
   std::uint32_t limit_hits_ = 0;
 };
 
-/// A hydraulic cylinder's drive: a Drive whose stopped cylinder holds where it stopped on its valves. The
-/// joint's motor is driven back to that position (the solver's constraint softness lets a motor held at zero
-/// speed creep under a large steady load: about 1e-3 m/s per MN at the world's default softness).
+/// A hydraulic cylinder's drive: the valve's flow sets the cylinder's speed whatever its load (up to its
+/// relief force), so its position is the integral of the Drive's speed, and a stopped cylinder holds on its
+/// valves. The joint's motor follows that position (the solver's constraint softness would otherwise let a
+/// motor lag its speed under a large steady load: about 1e-3 m/s per MN at the world's default softness).
 class HydraulicDrive {
  public:
   explicit HydraulicDrive(const DriveSettings& settings) : drive_(settings) {}
@@ -71,20 +72,21 @@ class HydraulicDrive {
   double reference_mps() const { return drive_.reference_mps(); }
   void save_state(core::StateWriter& out) const {
     drive_.save_state(out);
-    out.put(holding_);
-    out.put(held_at_m_);
+    out.put(tracking_);
+    out.put(target_m_);
   }
   void restore_state(core::StateReader& in) {
     drive_.restore_state(in);
-    in.get(holding_);
-    in.get(held_at_m_);
+    in.get(tracking_);
+    in.get(target_m_);
   }
 
  private:
-  static constexpr double kHold_s = 0.2;  ///< [s] the time constant it returns to its held position with
+  static constexpr double kFollow_s = 0.2;   ///< [s] the time constant the joint follows its position with
+  static constexpr double kSlack_m = 0.01;   ///< [m] the most the position runs ahead of a stalled cylinder
   Drive drive_;
-  bool holding_ = false;
-  double held_at_m_ = 0.0;
+  bool tracking_ = false;
+  double target_m_ = 0.0;
 };
 
 }  // namespace harbour::sim

@@ -1,0 +1,59 @@
+#pragma once
+
+#include <string>
+
+#include "harbour/sim/Evaluation.h"
+#include "harbour/sim/Pilot.h"
+
+namespace harbour::sim {
+
+class ReachStacker;
+
+/// A scripted reach stacker driver for one box's move along its lane: drives up to the box ahead, brings
+/// the spreader over it, lands, locks and lifts it, carries it low towards its target further along the
+/// lane, stops short of the stacks in front of the target to raise it over them, creeps on to where the
+/// target lies within reach, reaches out over it, sets it down, unlocks, and lifts the spreader clear. The
+/// boom's head is steered along straight lines (the lift and extension levers from the head's wanted velocity
+/// through the boom's geometry); the side-shift and rotation square the spreader on the box.
+class ReachStackerAutopilot final : public Pilot {
+ public:
+  /// Why it cannot drive `exercise` ("" when it can): a reach stacker with one move whose box lies ahead of
+  /// it on its line and whose target lies further along that line.
+  static std::string why_cannot_drive(const ExerciseSettings& exercise);
+  /// Throws std::invalid_argument with why_cannot_drive() when it cannot.
+  explicit ReachStackerAutopilot(const ExerciseSettings& exercise);
+
+  /// The controls for the next step (decided 50 times a second, held in between).
+  Controls next(const Simulation& simulation) override;
+  /// What it is doing now: approach, pick, lock, lift, carry, raise, creep, reach, set, unlock, clear, done.
+  const char* activity() const override;
+  /// Takes over a running exercise from where the machine stands and what it holds.
+  void resume(const Simulation& simulation, int moves_done) override;
+
+ private:
+  enum class Phase {
+    kApproach,
+    kPick,
+    kLock,
+    kLift,
+    kCarry,
+    kRaise,
+    kCreep,
+    kReach,
+    kSet,
+    kUnlock,
+    kClear,
+    kDone
+  };
+  Controls decide(const Simulation& simulation, const ReachStacker& machine);
+
+  ExerciseSettings exercise_;
+  Phase phase_ = Phase::kApproach;
+  double phase_start_s_ = 0.0;
+  core::Vec3 lane_start_m_, lane_along_;  // the lane's line: from where it started, along its heading
+  std::size_t box_index_ = 0;             // the moved box among the scenario's containers
+  Controls last_{};
+  bool decided_ = false;
+};
+
+}  // namespace harbour::sim
