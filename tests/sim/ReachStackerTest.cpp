@@ -7,8 +7,11 @@
 #include <iterator>
 #include <memory>
 
+#include "harbour/io/ExerciseFiles.h"
 #include "harbour/io/MachineFiles.h"
 #include "harbour/machines/reach_stacker/ReachStackerStability.h"
+#include "harbour/sim/Evaluation.h"
+#include "harbour/sim/Pilot.h"
 
 namespace harbour::sim {
 namespace {
@@ -112,6 +115,145 @@ TEST(ReachStacker, BadFilesNameTheField) {
   EXPECT_NE(e.find("tips over with nothing on it"), std::string::npos) << e;
   e = error("stability_margin: 1.29", "stability_margin: 0.9");
   EXPECT_NE(e.find("machine.load_chart.stability_margin"), std::string::npos) << e;
+  e = error("lift: {min_deg: 0, max_deg: 60", "lift: {min_deg: 0, max_deg: 85");
+  EXPECT_NE(e.find("machine.boom.lift"), std::string::npos) << e;
+  e = error("mass_kg: 6000", "mass_kg: 7900");
+  EXPECT_NE(e.find("machine.spreader.mass_kg"), std::string::npos) << e;
+  e = error("{label: telescope, kind: axis", "{label: telescopes, kind: axis");
+  EXPECT_NE(e.find("telescope"), std::string::npos) << e;
+}
+
+// The stacking exercise with its box's mass changed, run by the autopilot until it carries the box.
+struct Carrying {
+  std::unique_ptr<Simulation> sim;
+  const ReachStacker* machine = nullptr;
+};
+Carrying carry_box_of(double mass_kg) {
+  ExerciseSettings e = io::load_exercise(HARBOUR_DATA_DIR "/exercises/reach_stacker_stack.yaml");
+  e.scenario.containers[0].gross_mass_kg = mass_kg;
+  Carrying c{std::make_unique<Simulation>(e.scenario)};
+  c.machine = &dynamic_cast<const ReachStacker&>(c.sim->machine());
+  const std::unique_ptr<Pilot> pilot = make_pilot(e);
+  while (std::string(pilot->activity()) != "carry" && c.sim->time_s() < 60.0)
+    c.sim->step(pilot->next(*c.sim));
+  EXPECT_TRUE(c.machine->held_item().has_value());
+  return c;
+}
+
+// Holds the brakes and works one lever for `seconds` (the others neutral), or until `stop` says so.
+template <typename Stop>
+void work(Simulation& sim, const char* lever, double value, double seconds, Stop stop) {
+  const ControlTable& table = sim.control_table();
+  Controls c = table.neutral();
+  c.value[static_cast<std::size_t>(table.find("brake"))] = 1.0;
+  c.value[static_cast<std::size_t>(table.find(lever))] = value;
+  for (const double end = sim.time_s() + seconds; sim.time_s() < end && !stop();)
+    sim.step(c);
+  ASSERT_FALSE(sim.diverged()) << sim.divergence();
+}
+
+TEST(ReachStacker, ItsLoadMomentIndicatorReadsTheBoxOnItsHeadPin) {
+  // the low-passed load on the head pin beyond the spreader, the box hanging still: its mass
+  Carrying c = carry_box_of(24000.0);
+  work(*c.sim, "boom", 0.0, 5.0, [] { return false; });
+  EXPECT_NEAR(c.machine->measured_load_kg(), 24000.0, 0.01 * 24000.0);
+  EXPECT_NEAR(c.machine->load_moment_share(),
+              24000.0 / rated_load_kg(c.machine->settings(), c.machine->reach_m()), 0.01);
+}
+
+TEST(ReachStacker, TheLimiterStopsTheTelescopeAtTheChartAndWithItsFaultTheMachineTips) {
+  // 30 t extended from the first row outward: the chart's rating falls to 30 t between the first and second
+  // rows, where the limiter stops the extension; with the limiter failed the extension goes on until the
+  // steer axle lifts where the statics of the front axle balance 30 t, and the machine tips over
+  constexpr double kBox_kg = 30000.0;
+  {
+    Carrying c = carry_box_of(kBox_kg);
+    const ReachStacker& m = *c.machine;
+    work(*c.sim, "telescope", 0.3, 40.0, [] { return false; });
+    EXPECT_TRUE(m.limiter_stopping());
+    EXPECT_EQ(m.tally().limiter_trips, 1u);
+    EXPECT_EQ(m.tip_overs(), 0u);
+    const double rated_kg = rated_load_kg(m.settings(), m.reach_m());
+    EXPECT_NEAR(rated_kg, kBox_kg, 0.03 * kBox_kg);  // stopped at the chart
+    EXPECT_LT(m.tilt_rad(), 0.02);
+    std::printf("30 t: the limiter stopped the telescope at %.2f m reach (chart %.1f t there)\n", m.reach_m(),
+                rated_kg / 1000.0);
+  }
+  {
+    Carrying c = carry_box_of(kBox_kg);
+    const ReachStacker& m = *c.machine;
+    c.sim->command({InstructorCommand::Kind::kLimiterFault});
+    const AxleSettings& rear = m.settings().chassis.axles.back();
+    const auto rear_lifted = [&] {
+      const core::Vec3 hub = c.sim->world().pose(m.body()).to_parent({rear.x_m, 0.0, rear.hub_z_m});
+      return hub.z - m.settings().chassis.tyre.radius_m > 0.0;
+    };
+    work(*c.sim, "telescope", 0.3, 40.0, rear_lifted);
+    ASSERT_TRUE(rear_lifted());
+    const double statics_kg = tipping_load_kg(m.settings(), m.reach_m());
+    EXPECT_NEAR(statics_kg, kBox_kg, 0.05 * kBox_kg);
+    std::printf(
+        "30 t, limiter failed: the steer axle lifted at %.2f m reach, where the statics tip at %.1f t\n",
+        m.reach_m(), statics_kg / 1000.0);
+    work(*c.sim, "telescope", 0.3, 15.0, [] { return false; });
+    EXPECT_GE(m.tip_overs(), 1u);
+    EXPECT_EQ(c.sim->machine().tally().tip_overs, m.tip_overs());
+  }
+}
+
+TEST(ReachStacker, AtFullLockItTurnsOnTheAckermannCircleAboutItsFrontAxle) {
+  // rear-wheel steering: the turn's centre on the front (drive) axle's line, its centre at L / tan δ from it
+  Simulation sim(io::load_exercise(HARBOUR_DATA_DIR "/exercises/reach_stacker_free_practice.yaml").scenario);
+  const auto& m = dynamic_cast<const ReachStacker&>(sim.machine());
+  const ControlTable& table = sim.control_table();
+  Controls c = table.neutral();
+  c.value[static_cast<std::size_t>(table.find("direction"))] = 2.0;
+  c.value[static_cast<std::size_t>(table.find("steer"))] = 1.0;
+  for (int k = 0; k < static_cast<int>(20.0 / Simulation::kStep_s); ++k) {
+    c.value[static_cast<std::size_t>(table.find("throttle"))] =
+        std::clamp(0.3 * (1.0 - m.forward_mps()), 0.0, 1.0);
+    sim.step(c);
+  }
+  const ReachStackerSettings& s = m.settings();
+  const double front = tipping_axle_x_m(s);
+  const double expected = m.chassis().steer_base_m() / std::tan(s.chassis.max_steer_rad);
+  const core::Vec3 v = sim.world().point_velocity(m.body(), {front, 0, 0});
+  const double radius = std::hypot(v.x, v.y) / std::abs(sim.world().angular_velocity(m.body()).z);
+  EXPECT_NEAR(radius, expected, 0.05 * expected);
+  std::printf("reach stacker at full lock: %.3f m against L / tan(delta) = %.3f m\n", radius, expected);
+}
+
+TEST(ReachStacker, TheAutopilotStacksTheBoxThreeHighInTheSecondRowAndAKeyframeContinuesExactly) {
+  const ExerciseSettings e = io::load_exercise(HARBOUR_DATA_DIR "/exercises/reach_stacker_stack.yaml");
+  Simulation sim(e.scenario);
+  const std::unique_ptr<Pilot> pilot = make_pilot(e);
+  Evaluator evaluator(e);
+  std::vector<std::uint8_t> keyframe;  // taken while it reaches out over the stacks
+  std::vector<Controls> after;
+  std::uint64_t hash_after = 0;
+  while (!evaluator.finished() && sim.time_s() < e.rules.time_limit_s) {
+    const Controls c = pilot->next(sim);
+    if (sim.time_s() >= 60.0 && keyframe.empty()) keyframe = sim.save_state();
+    if (!keyframe.empty() && after.size() < 2000) after.push_back(c);
+    sim.step(c);
+    if (after.size() == 2000 && hash_after == 0) hash_after = sim.state_hash();
+    evaluator.observe(sim, c);
+  }
+  const Metrics& m = evaluator.metrics();
+  EXPECT_EQ(m.moves_completed, 1);
+  ASSERT_EQ(m.placement_offset_m.size(), 1u);
+  EXPECT_LT(m.placement_offset_m[0], 0.05);  // on the box below
+  EXPECT_EQ(m.collisions, 0);
+  EXPECT_GE(evaluator.score().total, 90.0);
+  std::printf("stacked three high in the second row in %.1f s, %.3f m off, score %.0f\n", m.time_s,
+              m.placement_offset_m[0], evaluator.score().total);
+  // a keyframe taken on the way continues bit for bit
+  ASSERT_EQ(after.size(), 2000u);
+  Simulation again(e.scenario);
+  again.restore_state(keyframe);
+  for (const Controls& c : after)
+    again.step(c);
+  EXPECT_EQ(again.state_hash(), hash_after);
 }
 
 }  // namespace

@@ -178,6 +178,10 @@ double ReachStacker::load_moment_share() const {
   return sim::load_moment_share(settings_, std::max(reach_m(), 0.1), std::max(0.0, measured_load_kg_));
 }
 
+double ReachStacker::pin_force_n() const {
+  return world_.hinge_reaction(tilt_hinge_, head_m()).force.z;
+}
+
 double ReachStacker::tilt_rad() const {
   return std::acos(std::clamp(world_.pose(body_).rotation.column(2).z, -1.0, 1.0));
 }
@@ -188,8 +192,9 @@ double ReachStacker::forward_mps() const {
 
 void ReachStacker::step_limiter(double dt_s) {
   // the load on the head pin (the pin carries the rotator, the spreader and what it holds), low-passed
-  const core::Vec3 head = head_m();
-  const double pin_kg = world_.hinge_reaction(tilt_hinge_, head).force.z / kG;
+  // (the joint's force from the world's last step: a keyframe carries it, as the world does not)
+  const double pin_kg = (restored_pin_n_ ? *restored_pin_n_ : pin_force_n()) / kG;
+  restored_pin_n_.reset();
   const double load_kg = pin_kg - settings_.spreader_mass_kg;
   measured_load_kg_ += (load_kg - measured_load_kg_) * std::min(1.0, dt_s / settings_.load_filter_s);
   const double share = load_moment_share();
@@ -354,6 +359,7 @@ void ReachStacker::save_state(core::StateWriter& out) const {
   out.put(landed_sensor_fault_);
   out.put(limiter_trips_);
   out.put(tip_overs_);
+  out.put(pin_force_n());
 }
 
 void ReachStacker::restore_state(core::StateReader& in) {
@@ -373,6 +379,7 @@ void ReachStacker::restore_state(core::StateReader& in) {
   in.get(landed_sensor_fault_);
   in.get(limiter_trips_);
   in.get(tip_overs_);
+  restored_pin_n_ = in.get<double>();
   wind_areas_[2].half_extents_m = frame_->half_extents_m();
 }
 

@@ -99,6 +99,8 @@ class ReachStacker final : public Machine {
                const ReachStackerStart& start, const StartPoses& poses);
   static StartPoses start_poses(const ReachStackerSettings& settings, const ReachStackerStart& start);
   void step_limiter(double dt_s);
+  /// The head pin's upward force on the rotator in the world's last step [N].
+  double pin_force_n() const;
 
   physics::PhysicsWorld& world_;
   ReachStackerSettings settings_;
@@ -121,6 +123,7 @@ class ReachStacker final : public Machine {
   bool limiter_stopping_ = false, limiter_armed_ = true, limiter_fault_ = false, tipped_ = false;
   int landed_sensor_fault_ = -1;
   std::uint32_t limiter_trips_ = 0, tip_overs_ = 0;
+  std::optional<double> restored_pin_n_;  // a keyframe's pin force, read by the first step after it
 };
 
 }  // namespace harbour::sim
