@@ -117,6 +117,7 @@ void print_evaluation(const sim::Metrics& m, const sim::Score& s, bool container
                       : "");
     std::printf("  collisions           %8d (worst %.2f m/s)\n", m.collisions, m.worst_collision_mps);
     std::printf("  jack-knives          %8d\n", m.jackknifes);
+    std::printf("  tip-overs            %8d\n", m.tip_overs);
     std::printf("  speeding             %8d (worst %.1f km/h over)\n", m.overspeeds,
                 std::max(0.0, m.worst_overspeed_kmh));
     std::printf("  emergency stops      %8d\n", m.emergency_stops);

@@ -127,35 +127,43 @@ TEST(ReachStacker, BadFilesNameTheField) {
 struct Carrying {
   std::unique_ptr<Simulation> sim;
   const ReachStacker* machine = nullptr;
+  std::unique_ptr<Evaluator> evaluator;
 };
 Carrying carry_box_of(double mass_kg) {
   ExerciseSettings e = io::load_exercise(HARBOUR_DATA_DIR "/exercises/reach_stacker_stack.yaml");
   e.scenario.containers[0].gross_mass_kg = mass_kg;
   Carrying c{std::make_unique<Simulation>(e.scenario)};
   c.machine = &dynamic_cast<const ReachStacker&>(c.sim->machine());
+  c.evaluator = std::make_unique<Evaluator>(e);
   const std::unique_ptr<Pilot> pilot = make_pilot(e);
-  while (std::string(pilot->activity()) != "carry" && c.sim->time_s() < 60.0)
-    c.sim->step(pilot->next(*c.sim));
+  while (std::string(pilot->activity()) != "carry" && c.sim->time_s() < 60.0) {
+    const Controls controls = pilot->next(*c.sim);
+    c.sim->step(controls);
+    c.evaluator->observe(*c.sim, controls);
+  }
   EXPECT_TRUE(c.machine->held_item().has_value());
   return c;
 }
 
 // Holds the brakes and works one lever for `seconds` (the others neutral), or until `stop` says so.
 template <typename Stop>
-void work(Simulation& sim, const char* lever, double value, double seconds, Stop stop) {
+void work(Carrying& carrying, const char* lever, double value, double seconds, Stop stop) {
+  Simulation& sim = *carrying.sim;
   const ControlTable& table = sim.control_table();
   Controls c = table.neutral();
   c.value[static_cast<std::size_t>(table.find("brake"))] = 1.0;
   c.value[static_cast<std::size_t>(table.find(lever))] = value;
-  for (const double end = sim.time_s() + seconds; sim.time_s() < end && !stop();)
+  for (const double end = sim.time_s() + seconds; sim.time_s() < end && !stop();) {
     sim.step(c);
+    carrying.evaluator->observe(sim, c);
+  }
   ASSERT_FALSE(sim.diverged()) << sim.divergence();
 }
 
 TEST(ReachStacker, ItsLoadMomentIndicatorReadsTheBoxOnItsHeadPin) {
   // the low-passed load on the head pin beyond the spreader, the box hanging still: its mass
   Carrying c = carry_box_of(24000.0);
-  work(*c.sim, "boom", 0.0, 5.0, [] { return false; });
+  work(c, "boom", 0.0, 5.0, [] { return false; });
   EXPECT_NEAR(c.machine->measured_load_kg(), 24000.0, 0.01 * 24000.0);
   EXPECT_NEAR(c.machine->load_moment_share(),
               24000.0 / rated_load_kg(c.machine->settings(), c.machine->reach_m()), 0.01);
@@ -169,7 +177,7 @@ TEST(ReachStacker, TheLimiterStopsTheTelescopeAtTheChartAndWithItsFaultTheMachin
   {
     Carrying c = carry_box_of(kBox_kg);
     const ReachStacker& m = *c.machine;
-    work(*c.sim, "telescope", 0.3, 40.0, [] { return false; });
+    work(c, "telescope", 0.3, 40.0, [] { return false; });
     EXPECT_TRUE(m.limiter_stopping());
     EXPECT_EQ(m.tally().limiter_trips, 1u);
     EXPECT_EQ(m.tip_overs(), 0u);
@@ -188,16 +196,21 @@ TEST(ReachStacker, TheLimiterStopsTheTelescopeAtTheChartAndWithItsFaultTheMachin
       const core::Vec3 hub = c.sim->world().pose(m.body()).to_parent({rear.x_m, 0.0, rear.hub_z_m});
       return hub.z - m.settings().chassis.tyre.radius_m > 0.0;
     };
-    work(*c.sim, "telescope", 0.3, 40.0, rear_lifted);
+    work(c, "telescope", 0.3, 40.0, rear_lifted);
     ASSERT_TRUE(rear_lifted());
     const double statics_kg = tipping_load_kg(m.settings(), m.reach_m());
     EXPECT_NEAR(statics_kg, kBox_kg, 0.05 * kBox_kg);
     std::printf(
         "30 t, limiter failed: the steer axle lifted at %.2f m reach, where the statics tip at %.1f t\n",
         m.reach_m(), statics_kg / 1000.0);
-    work(*c.sim, "telescope", 0.3, 15.0, [] { return false; });
+    work(c, "telescope", 0.3, 15.0, [] { return false; });
     EXPECT_GE(m.tip_overs(), 1u);
-    EXPECT_EQ(c.sim->machine().tally().tip_overs, m.tip_overs());
+    // the evaluation counts it, 50 points off safety
+    EXPECT_EQ(c.evaluator->metrics().tip_overs, static_cast<int>(m.tip_overs()));
+    bool deducted = false;
+    for (const Score::Deduction& d : c.evaluator->score().deductions)
+      deducted |= d.reason == "tip-over" && d.points == 50.0 * d.count && d.skill == Skill::kSafety;
+    EXPECT_TRUE(deducted);
   }
 }
 

@@ -102,6 +102,7 @@ void Evaluator::observe(const Simulation& simulation, const Controls& controls) 
   const MachineTally tally = simulation.machine().tally();
   metrics_.vehicle = tally.vehicle;
   metrics_.jackknifes = static_cast<int>(tally.jackknifes);
+  metrics_.tip_overs = static_cast<int>(tally.tip_overs);
 }
 
 void Evaluator::observe_speed_zones(const Simulation& simulation) {
@@ -223,6 +224,7 @@ void Evaluator::observe_any_machine(const Simulation& simulation, const Controls
   const std::optional<physics::BodyId> held = simulation.machine().held_item();
   observe_moves(simulation, held);
   carried_ = held;
+  metrics_.twistlock_misuse += static_cast<int>(simulation.events().twistlocks.size());
   for (const cable::CableEvent& e : simulation.events().ropes)
     if (e.kind == cable::CableEventKind::kOverload) ++metrics_.overloads;
   const int stop = simulation.control_table().find("emergency_stop");
@@ -353,6 +355,7 @@ Score Evaluator::score() const {
   deduct("load-moment limiter trip", Skill::kSafety, metrics_.limiter_trips, r.points_limiter_trip);
   deduct("outrigger pad lift-off", Skill::kSafety, metrics_.pad_lift_offs, r.points_pad_lift_off);
   deduct("jack-knife", Skill::kSafety, metrics_.jackknifes, r.points_jackknife);
+  deduct("tip-over", Skill::kSafety, metrics_.tip_overs, r.points_tip_over);
   deduct("speeding", Skill::kSafety, metrics_.overspeeds, r.points_overspeed);
   int harsh = 0;
   for (const Metrics::Smoothness& axis : metrics_.smoothness)
@@ -414,6 +417,7 @@ std::vector<std::pair<std::string, double>> Metrics::rows() const {
                    *std::max_element(placement_skew_deg.begin(), placement_skew_deg.end()));
   if (vehicle) {
     r.emplace_back("jackknifes", jackknifes);
+    r.emplace_back("tip_overs", tip_overs);
     r.emplace_back("overspeeds", overspeeds);
     r.emplace_back("worst_overspeed_kmh", std::max(0.0, worst_overspeed_kmh));
   }
