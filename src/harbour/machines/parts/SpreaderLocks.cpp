@@ -14,19 +14,25 @@ void SpreaderLocks::step(physics::PhysicsWorld& world, physics::BodyId spreader,
   underside.rotation = body.rotation * core::Mat3::rotation({0, 0, 1}, std::numbers::pi / 2);
   std::array<bool, 4> landed{};
   std::optional<physics::BodyId> landed_on;
+  // a box's castings are the same either way round: the spreader seats on it turned half a turn too
+  const core::Mat3 half_turn = core::Mat3::rotation({0, 0, 1}, std::numbers::pi);
   for (const ContainerRef& box : containers) {
     core::Pose top = world.pose(box.body);
     top.position = top.to_parent({0, 0, box.half_extents_m.z});
+    const core::Pose turned{top.rotation * half_turn, top.position};
     for (const double apertures : {box.pocket_half_length_m, box.end_pocket_half_length_m}) {
       if (apertures <= 0.0) continue;
-      auto corners = landed_corners(underside, frame.pin_half_length_m(), frame.pin_half_width_m(), top,
-                                    apertures, box.pocket_half_width_m, settings);
-      if (faulty_corner >= 0 && faulty_corner < 4) corners[static_cast<std::size_t>(faulty_corner)] = false;
-      if (corners[0] && corners[1] && corners[2] && corners[3]) {
-        landed = corners;
-        landed_on = box.body;
-        break;
+      for (const core::Pose& seat : {top, turned}) {
+        auto corners = landed_corners(underside, frame.pin_half_length_m(), frame.pin_half_width_m(), seat,
+                                      apertures, box.pocket_half_width_m, settings);
+        if (faulty_corner >= 0 && faulty_corner < 4) corners[static_cast<std::size_t>(faulty_corner)] = false;
+        if (corners[0] && corners[1] && corners[2] && corners[3]) {
+          landed = corners;
+          landed_on = box.body;
+          break;
+        }
       }
+      if (landed_on) break;
     }
     if (landed_on) break;
   }

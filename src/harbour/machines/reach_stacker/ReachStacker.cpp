@@ -293,7 +293,7 @@ void ReachStacker::describe(SceneDescription& d) const {
   d.entities.push_back({"boom_inner", "reach_stacker.boom", inner_half_extents(settings_)});
   d.entities.push_back({"rotator", "reach_stacker.rotator", kLinkHalf_m});
   d.entities.push_back({"rotator_frame", "reach_stacker.rotator", kSlewHalf_m});
-  d.entities.push_back({"spreader", "spreader", frame_->half_extents_m()});
+  d.entities.push_back({"spreader", "reach_stacker.spreader", frame_->half_extents_m()});
   d.indicators.assign(std::begin(kIndicators), std::end(kIndicators));
   d.rope_count = 0;
 }
