@@ -10,8 +10,8 @@
 namespace harbour {
 namespace {
 
-// An exercise end to end: ODE, the tyres' force elements, the coupling, the autopilot and the evaluation;
-// from the start again when it ends.
+// An exercise end to end: ODE, the tyres' force elements, the coupling or the boom, the autopilot and the
+// evaluation; from the start again when it ends.
 void BM_VehicleExercise(benchmark::State& state, const char* name) {
   const sim::ExerciseSettings exercise =
       io::load_exercise(std::string(HARBOUR_DATA_DIR "/exercises/") + name + ".yaml");
@@ -38,6 +38,9 @@ BENCHMARK_CAPTURE(BM_VehicleExercise, tractor_mafi_park, "tractor_mafi_park")
     ->Unit(benchmark::kMicrosecond)
     ->MinTime(5.0);
 BENCHMARK_CAPTURE(BM_VehicleExercise, tractor_ramp_mafi, "tractor_ramp_mafi")
+    ->Unit(benchmark::kMicrosecond)
+    ->MinTime(5.0);
+BENCHMARK_CAPTURE(BM_VehicleExercise, reach_stacker_stack, "reach_stacker_stack")
     ->Unit(benchmark::kMicrosecond)
     ->MinTime(5.0);
 
