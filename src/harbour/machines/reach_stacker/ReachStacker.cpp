@@ -10,7 +10,6 @@ namespace harbour::sim {
 namespace {
 
 constexpr double kG = 9.80665;
-constexpr int kReverse = 0, kNeutral = 1;  // the direction selector's positions: reverse, neutral, forward
 constexpr const char* kIndicators[] = {
     "speed_kmh",  "boom_angle_deg", "extension_m",  "reach_m",      "rotation_deg", "side_shift_m", "load_t",
     "capacity_t", "utilisation",    "limiter_warn", "limiter_stop", "lamp_landed",  "lamp_locked",  "horn"};
@@ -56,25 +55,17 @@ ControlTable reach_stacker_control_table() {
   const auto button = [](const char* label, const char* meaning) {
     return ControlSpec{label, K::kButton, 0.0, 1.0, {}, 0.0, 0.0, meaning};
   };
-  return ControlTable({axis("steer", "steering wheel, + turns left"),
-                       ControlSpec{"throttle", K::kAxis, 0.0, 1.0, {}, 0.0, 0.0, "accelerator pedal"},
-                       ControlSpec{"brake", K::kAxis, 0.0, 1.0, {}, 0.0, 1.0, "brake pedal"},
-                       ControlSpec{"direction",
-                                   K::kSwitch,
-                                   0.0,
-                                   2.0,
-                                   {"reverse", "neutral", "forward"},
-                                   1.0,
-                                   1.0,
-                                   "direction selector"},
-                       button("emergency_stop", "full brakes, no drive, every hydraulic motion stops"),
-                       button("horn", "horn"), axis("boom", "boom lift, + raises"),
-                       axis("telescope", "boom extension, + out"),
-                       axis("rotate", "spreader rotation, + anticlockwise seen from above"),
-                       axis("side_shift", "spreader side-shift, + to the left"),
-                       button("lock", "twistlocks lock"), button("unlock", "twistlocks unlock"),
-                       button("spreader_20", "spreader to 20 ft"),
-                       button("spreader_40", "spreader to 40 ft")});
+  std::vector<ControlSpec> controls = driving_controls();
+  for (ControlSpec& c : controls)
+    if (c.label == "emergency_stop") c.meaning = "full brakes, no drive, every hydraulic motion stops";
+  for (ControlSpec c :
+       {axis("boom", "boom lift, + raises"), axis("telescope", "boom extension, + out"),
+        axis("rotate", "spreader rotation, + anticlockwise seen from above"),
+        axis("side_shift", "spreader side-shift, + to the left"), button("lock", "twistlocks lock"),
+        button("unlock", "twistlocks unlock"), button("spreader_20", "spreader to 20 ft"),
+        button("spreader_40", "spreader to 40 ft")})
+    controls.push_back(std::move(c));
+  return ControlTable(std::move(controls));
 }
 
 // Where the bodies stand at the start: the chassis settled on its tyres under the boom's and spreader's
@@ -116,12 +107,7 @@ ReachStacker::ReachStacker(physics::PhysicsWorld& world, const ReachStackerSetti
                            const ReachStackerStart& start, const StartPoses& p)
     : world_(world),
       settings_(s),
-      steer_slot_(s.controls.slot("steer", ControlKind::kAxis)),
-      throttle_slot_(s.controls.slot("throttle", ControlKind::kAxis)),
-      brake_slot_(s.controls.slot("brake", ControlKind::kAxis)),
-      direction_slot_(s.controls.slot("direction", ControlKind::kSwitch)),
-      stop_slot_(s.controls.slot("emergency_stop", ControlKind::kButton)),
-      horn_slot_(s.controls.slot("horn", ControlKind::kButton)),
+      cab_(s.controls, s.steer_rate_per_s),
       boom_slot_(s.controls.slot("boom", ControlKind::kAxis)),
       telescope_slot_(s.controls.slot("telescope", ControlKind::kAxis)),
       rotate_slot_(s.controls.slot("rotate", ControlKind::kAxis)),
@@ -207,18 +193,9 @@ void ReachStacker::step_limiter(double dt_s) {
 void ReachStacker::step(const Controls& raw, std::span<const ContainerRef> containers, double dt_s) {
   const Controls c = settings_.controls.in_range(raw);
   const auto at = [&](int slot) { return c.value[static_cast<std::size_t>(slot)]; };
-  const bool stop = at(stop_slot_) != 0.0;
-  horn_ = at(horn_slot_) != 0.0;
-
-  // driving: hydraulic steering follows the wheel at its rate
-  const double most = settings_.steer_rate_per_s * dt_s;
-  steering_ += std::clamp(at(steer_slot_) - steering_, -most, most);
-  const int direction = static_cast<int>(std::lround(at(direction_slot_)));
-  ChassisCommand command;
-  command.steer = steering_;
-  command.throttle = stop || direction == kNeutral ? 0.0 : at(throttle_slot_);
-  command.reverse = direction == kReverse;
-  command.brake = stop ? 1.0 : at(brake_slot_);
+  // driving
+  const ChassisCommand command = cab_.step(c, dt_s);
+  const bool stop = cab_.emergency_stop();
   chassis_.step(world_, command, *ground_);
 
   // the boom: at the chart the limiter holds it from lowering and extending (unless it has failed)
@@ -322,7 +299,7 @@ int ReachStacker::publish(Snapshot& s, int first) const {
                            limiter_stopping_ ? 1.0 : 0.0,
                            lamps.landed ? 1.0 : 0.0,
                            lamps.locked ? 1.0 : 0.0,
-                           horn_ ? 1.0 : 0.0};
+                           cab_.horn() ? 1.0 : 0.0};
   static_assert(std::size(values) == std::size(kIndicators));
   s.indicator_count = static_cast<int>(std::size(values));
   std::copy(std::begin(values), std::end(values), s.indicators.begin());
@@ -330,7 +307,7 @@ int ReachStacker::publish(Snapshot& s, int first) const {
 }
 
 void ReachStacker::hash_into(core::StateHash& hash) const {
-  hash.add(steering_);
+  hash.add(cab_.steering());
   hash.add(luff_.reference_mps());
   hash.add(telescope_.reference_mps());
   hash.add(rotate_.reference_mps());
@@ -344,8 +321,7 @@ void ReachStacker::hash_into(core::StateHash& hash) const {
 
 void ReachStacker::save_state(core::StateWriter& out) const {
   out.section(0x52535431);  // "RST1"
-  out.put(steering_);
-  out.put(horn_);
+  cab_.save_state(out);
   luff_.save_state(out);
   telescope_.save_state(out);
   rotate_.save_state(out);
@@ -364,8 +340,7 @@ void ReachStacker::save_state(core::StateWriter& out) const {
 
 void ReachStacker::restore_state(core::StateReader& in) {
   in.section(0x52535431, "reach stacker");
-  in.get(steering_);
-  in.get(horn_);
+  cab_.restore_state(in);
   luff_.restore_state(in);
   telescope_.restore_state(in);
   rotate_.restore_state(in);

@@ -8,6 +8,7 @@
 
 #include "harbour/machines/Machine.h"
 #include "harbour/machines/parts/Drive.h"
+#include "harbour/machines/parts/DrivingCab.h"
 #include "harbour/machines/parts/Spreader.h"
 #include "harbour/machines/parts/SpreaderLocks.h"
 #include "harbour/machines/parts/WheeledChassis.h"
@@ -68,7 +69,7 @@ class ReachStacker final : public Machine {
   const ReachStackerSettings& settings() const { return settings_; }
   /// Speed along its heading [m/s] (+ forward).
   double forward_mps() const;
-  double steering() const { return steering_; }
+  double steering() const { return cab_.steering(); }
   /// The boom's angle above the chassis's x [rad] and the telescope's extension [m].
   double boom_angle_rad() const { return start_boom_rad_ + world_.hinge_angle(luff_hinge_); }
   double extension_m() const { return start_extension_m_ + world_.slider_position(telescope_slider_); }
@@ -106,7 +107,7 @@ class ReachStacker final : public Machine {
   ReachStackerSettings settings_;
   FlatGround quay_;
   const Ground* ground_ = &quay_;
-  int steer_slot_, throttle_slot_, brake_slot_, direction_slot_, stop_slot_, horn_slot_;
+  DrivingCab cab_;
   int boom_slot_, telescope_slot_, rotate_slot_, shift_slot_, lock_slot_, unlock_slot_, size_20_slot_,
       size_40_slot_;
   physics::BodyId body_, outer_, inner_, rotator_, slew_, spreader_;
@@ -117,8 +118,6 @@ class ReachStacker final : public Machine {
   std::unique_ptr<Spreader> frame_;
   SpreaderLocks locks_;
   std::array<WindArea, 3> wind_areas_;
-  double steering_ = 0.0;
-  bool horn_ = false;
   double measured_load_kg_ = 0.0;
   bool limiter_stopping_ = false, limiter_armed_ = true, limiter_fault_ = false, tipped_ = false;
   int landed_sensor_fault_ = -1;

@@ -8,7 +8,6 @@ namespace harbour::sim {
 namespace {
 
 constexpr const char* kTractorIndicators[] = {"speed_kmh", "gear", "steering", "horn"};
-constexpr int kReverse = 0, kNeutral = 1;  // the direction selector's positions: reverse, neutral, forward
 
 physics::BodyId add_body(physics::PhysicsWorld& world, double mass_kg, const core::Vec3& half_extents_m,
                          const core::Pose& pose, const core::Vec3& center_of_mass_m = {}) {
@@ -23,22 +22,9 @@ physics::BodyId add_body(physics::PhysicsWorld& world, double mass_kg, const cor
 }  // namespace
 
 ControlTable tractor_control_table() {
-  using K = ControlKind;
-  return ControlTable(
-      {ControlSpec{"steer", K::kAxis, -1.0, 1.0, {}, 0.0, 0.0, "steering wheel, + turns left"},
-       ControlSpec{"throttle", K::kAxis, 0.0, 1.0, {}, 0.0, 0.0, "accelerator pedal"},
-       ControlSpec{"brake", K::kAxis, 0.0, 1.0, {}, 0.0, 1.0, "brake pedal"},
-       ControlSpec{"direction",
-                   K::kSwitch,
-                   0.0,
-                   2.0,
-                   {"reverse", "neutral", "forward"},
-                   1.0,
-                   1.0,
-                   "direction selector"},
-       ControlSpec{"emergency_stop", K::kButton, 0.0, 1.0, {}, 0.0, 0.0, "full brakes, no drive"},
-       ControlSpec{"horn", K::kButton, 0.0, 1.0, {}, 0.0, 0.0, "horn"},
-       ControlSpec{"couple", K::kButton, 0.0, 1.0, {}, 0.0, 0.0, "couple or drop the trailer"}});
+  std::vector<ControlSpec> controls = driving_controls();
+  controls.push_back({"couple", ControlKind::kButton, 0.0, 1.0, {}, 0.0, 0.0, "couple or drop the trailer"});
+  return ControlTable(std::move(controls));
 }
 
 // Where the tractor and its trailer stand at the start: settled on their tyres, the trailer's front on the
@@ -88,12 +74,7 @@ TerminalTractor::TerminalTractor(physics::PhysicsWorld& world, const TractorSett
                                  const TractorStart& start, const StartPoses& poses)
     : world_(world),
       settings_(settings),
-      steer_slot_(settings.controls.slot("steer", ControlKind::kAxis)),
-      throttle_slot_(settings.controls.slot("throttle", ControlKind::kAxis)),
-      brake_slot_(settings.controls.slot("brake", ControlKind::kAxis)),
-      direction_slot_(settings.controls.slot("direction", ControlKind::kSwitch)),
-      stop_slot_(settings.controls.slot("emergency_stop", ControlKind::kButton)),
-      horn_slot_(settings.controls.slot("horn", ControlKind::kButton)),
+      cab_(settings.controls, settings.steer_rate_per_s),
       couple_slot_(settings.controls.slot("couple", ControlKind::kButton)),
       body_(add_body(world, settings.mass_kg, settings.half_extents_m, poses.tractor)),
       chassis_(settings.chassis, body_),
@@ -191,17 +172,7 @@ double TerminalTractor::forward_mps() const {
 void TerminalTractor::step(const Controls& raw, std::span<const ContainerRef>, double dt_s) {
   const Controls c = settings_.controls.in_range(raw);
   const auto at = [&](int slot) { return c.value[static_cast<std::size_t>(slot)]; };
-  const bool stop = at(stop_slot_) != 0.0;
-  horn_ = at(horn_slot_) != 0.0;
-  // hydraulic steering: the wheels follow the steering wheel at the steering's rate
-  const double most = settings_.steer_rate_per_s * dt_s;
-  steering_ += std::clamp(at(steer_slot_) - steering_, -most, most);
-  const int direction = static_cast<int>(std::lround(at(direction_slot_)));
-  ChassisCommand command;
-  command.steer = steering_;
-  command.throttle = stop || direction == kNeutral ? 0.0 : at(throttle_slot_);
-  command.reverse = direction == kReverse;
-  command.brake = stop ? 1.0 : at(brake_slot_);
+  const ChassisCommand command = cab_.step(c, dt_s);
   chassis_.step(world_, command, *ground_);
   if (!trailer_wheels_) return;
   step_coupling(at(couple_slot_) != 0.0, dt_s);
@@ -253,7 +224,7 @@ int TerminalTractor::publish(Snapshot& s, int first) const {
       static_cast<double>(drivetrain_wheel_torque_nm(settings_.chassis.drivetrain,
                                                      settings_.chassis.tyre.radius_m, 1.0, speed)
                               .second),
-      steering_, horn_ ? 1.0 : 0.0};
+      cab_.steering(), cab_.horn() ? 1.0 : 0.0};
   static_assert(std::size(values) == std::size(kTractorIndicators));
   s.indicator_count = static_cast<int>(std::size(values));
   std::copy(std::begin(values), std::end(values), s.indicators.begin());
@@ -261,8 +232,8 @@ int TerminalTractor::publish(Snapshot& s, int first) const {
 }
 
 void TerminalTractor::hash_into(core::StateHash& hash) const {
-  hash.add(steering_);
-  hash.add(horn_);
+  hash.add(cab_.steering());
+  hash.add(cab_.horn());
   hash.add(jackknifes_);
   hash.add(coupled_);
   hash.add(lift_);
@@ -273,8 +244,7 @@ void TerminalTractor::hash_into(core::StateHash& hash) const {
 
 void TerminalTractor::save_state(core::StateWriter& out) const {
   out.section(0x54524332);  // "TRC2"
-  out.put(steering_);
-  out.put(horn_);
+  cab_.save_state(out);
   out.put(jackknifed_);
   out.put(jackknifes_);
   out.put(coupled_);
@@ -286,8 +256,7 @@ void TerminalTractor::save_state(core::StateWriter& out) const {
 
 void TerminalTractor::restore_state(core::StateReader& in) {
   in.section(0x54524332, "terminal tractor");
-  in.get(steering_);
-  in.get(horn_);
+  cab_.restore_state(in);
   in.get(jackknifed_);
   in.get(jackknifes_);
   in.get(coupled_);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "harbour/machines/Machine.h"
+#include "harbour/machines/parts/DrivingCab.h"
 #include "harbour/machines/parts/WheeledChassis.h"
 #include "harbour/physics/PhysicsWorld.h"
 
@@ -112,7 +113,7 @@ class TerminalTractor final : public Machine {
   /// Speed along its heading [m/s] (+ forward).
   double forward_mps() const;
   /// The steering as it stands now [-1, 1] (it follows the wheel at the steering's rate).
-  double steering() const { return steering_; }
+  double steering() const { return cab_.steering(); }
   /// The coupled trailer's body (kWorld: none).
   physics::BodyId trailer_body() const { return trailer_body_; }
   /// The hitch angle [rad]: the trailer's heading from the tractor's (+ the trailer swung to the tractor's
@@ -142,7 +143,8 @@ class TerminalTractor final : public Machine {
   void step_coupling(bool couple_pressed, double dt_s);
   void push_coupling();
 
-  int steer_slot_, throttle_slot_, brake_slot_, direction_slot_, stop_slot_, horn_slot_, couple_slot_;
+  DrivingCab cab_;
+  int couple_slot_;
   physics::BodyId body_;
   WheeledChassis chassis_;
   std::array<WindArea, 2> wind_areas_;
@@ -150,8 +152,7 @@ class TerminalTractor final : public Machine {
   std::optional<WheeledChassis> trailer_wheels_, trailer_legs_;
   std::string trailer_id_;
   core::Vec3 trailer_half_extents_m_, trailer_kingpin_m_;
-  double steering_ = 0.0;
-  bool horn_ = false, jackknifed_ = false;
+  bool jackknifed_ = false;
   bool coupled_ = false, couple_was_pressed_ = false;
   double lift_ = 0.0, lift_target_ = 0.0;
   core::Vec3 capture_offset_m_;  ///< the captured kingpin's offset from the jaw, drawn home (world, across)

@@ -1,0 +1,54 @@
+#include "harbour/machines/parts/DrivingCab.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace harbour::sim {
+namespace {
+
+constexpr int kReverse = 0, kNeutral = 1;  // the direction selector's positions: reverse, neutral, forward
+
+}  // namespace
+
+std::vector<ControlSpec> driving_controls() {
+  using K = ControlKind;
+  return {ControlSpec{"steer", K::kAxis, -1.0, 1.0, {}, 0.0, 0.0, "steering wheel, + turns left"},
+          ControlSpec{"throttle", K::kAxis, 0.0, 1.0, {}, 0.0, 0.0, "accelerator pedal"},
+          ControlSpec{"brake", K::kAxis, 0.0, 1.0, {}, 0.0, 1.0, "brake pedal"},
+          ControlSpec{"direction",
+                      K::kSwitch,
+                      0.0,
+                      2.0,
+                      {"reverse", "neutral", "forward"},
+                      1.0,
+                      1.0,
+                      "direction selector"},
+          ControlSpec{"emergency_stop", K::kButton, 0.0, 1.0, {}, 0.0, 0.0, "full brakes, no drive"},
+          ControlSpec{"horn", K::kButton, 0.0, 1.0, {}, 0.0, 0.0, "horn"}};
+}
+
+DrivingCab::DrivingCab(const ControlTable& table, double steer_rate_per_s)
+    : steer_slot_(table.slot("steer", ControlKind::kAxis)),
+      throttle_slot_(table.slot("throttle", ControlKind::kAxis)),
+      brake_slot_(table.slot("brake", ControlKind::kAxis)),
+      direction_slot_(table.slot("direction", ControlKind::kSwitch)),
+      stop_slot_(table.slot("emergency_stop", ControlKind::kButton)),
+      horn_slot_(table.slot("horn", ControlKind::kButton)),
+      steer_rate_per_s_(steer_rate_per_s) {}
+
+ChassisCommand DrivingCab::step(const Controls& c, double dt_s) {
+  const auto at = [&](int slot) { return c.value[static_cast<std::size_t>(slot)]; };
+  stop_ = at(stop_slot_) != 0.0;
+  horn_ = at(horn_slot_) != 0.0;
+  const double most = steer_rate_per_s_ * dt_s;
+  steering_ += std::clamp(at(steer_slot_) - steering_, -most, most);
+  const int direction = static_cast<int>(std::lround(at(direction_slot_)));
+  ChassisCommand command;
+  command.steer = steering_;
+  command.throttle = stop_ || direction == kNeutral ? 0.0 : at(throttle_slot_);
+  command.reverse = direction == kReverse;
+  command.brake = stop_ ? 1.0 : at(brake_slot_);
+  return command;
+}
+
+}  // namespace harbour::sim

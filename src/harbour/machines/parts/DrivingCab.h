@@ -1,0 +1,46 @@
+#pragma once
+
+#include <vector>
+
+#include "harbour/core/StateArchive.h"
+#include "harbour/machines/parts/WheeledChassis.h"
+#include "harbour/sim/Controls.h"
+
+namespace harbour::sim {
+
+/// The controls every driven vehicle's cab has, for its ControlTable: the steering wheel (+ turns left), the
+/// accelerator and brake pedals, the direction selector (reverse, neutral, forward), the emergency stop and
+/// the horn.
+std::vector<ControlSpec> driving_controls();
+
+/// A vehicle's driving controls at work: hydraulic steering that follows the wheel at its rate, the drive cut
+/// in neutral, the emergency stop cutting the drive and braking fully. Shared by the tractor and the reach
+/// stacker.
+class DrivingCab {
+ public:
+  /// `table` has driving_controls() among its own (throws std::invalid_argument naming one it lacks).
+  DrivingCab(const ControlTable& table, double steer_rate_per_s);
+
+  /// The chassis's command for one step of `dt_s` from controls already in range.
+  ChassisCommand step(const Controls& controls, double dt_s);
+  /// The steering as it stands now [-1, 1].
+  double steering() const { return steering_; }
+  bool horn() const { return horn_; }
+  bool emergency_stop() const { return stop_; }
+  void save_state(core::StateWriter& out) const {
+    out.put(steering_);
+    out.put(horn_);
+  }
+  void restore_state(core::StateReader& in) {
+    in.get(steering_);
+    in.get(horn_);
+  }
+
+ private:
+  int steer_slot_, throttle_slot_, brake_slot_, direction_slot_, stop_slot_, horn_slot_;
+  double steer_rate_per_s_;
+  double steering_ = 0.0;
+  bool horn_ = false, stop_ = false;
+};
+
+}  // namespace harbour::sim
