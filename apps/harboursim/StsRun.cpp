@@ -115,7 +115,9 @@ void print_evaluation(const sim::Metrics& m, const sim::Score& s, bool container
                   n < m.placement_skew_deg.size()
                       ? (", " + std::to_string(m.placement_skew_deg[n]).substr(0, 4) + " deg skew").c_str()
                       : "");
-    std::printf("  collisions           %8d (worst %.2f m/s)\n", m.collisions, m.worst_collision_mps);
+    std::printf("  collisions           %8d (worst %.2f m/s; stack %d, vehicle %d, ship %d, other %d)\n",
+                m.collisions, m.worst_collision_mps, m.container_collisions, m.vehicle_collisions,
+                m.ship_collisions, m.other_collisions);
     std::printf("  jack-knives          %8d\n", m.jackknifes);
     std::printf("  tip-overs            %8d\n", m.tip_overs);
     std::printf("  speeding             %8d (worst %.1f km/h over)\n", m.overspeeds,
@@ -132,9 +134,10 @@ void print_evaluation(const sim::Metrics& m, const sim::Score& s, bool container
       std::printf("  cycle time, move %zu   %8.1f s\n", n + 1, m.cycle_times_s[n]);
     std::printf("  moves per hour       %8.1f\n", m.moves_per_hour);
     std::printf(
-        "  collisions           %8d (worst %.2f m/s, %.0f N s; box %d, cell guide %d, ship %d, other %d)\n",
+        "  collisions           %8d (worst %.2f m/s, %.0f N s; box %d, cell guide %d, ship %d, vehicle %d, "
+        "other %d)\n",
         m.collisions, m.worst_collision_mps, m.worst_collision_impulse_ns, m.container_collisions,
-        m.cell_guide_collisions, m.ship_collisions, m.other_collisions);
+        m.cell_guide_collisions, m.ship_collisions, m.vehicle_collisions, m.other_collisions);
     std::printf("  hard landings        %8d (worst landing %.2f m/s)\n", m.hard_landings,
                 m.worst_landing_mps);
     for (std::size_t n = 0; n < m.landing_sway_m.size(); ++n)

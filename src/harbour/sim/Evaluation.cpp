@@ -83,8 +83,11 @@ void Evaluator::count_collision(const physics::ImpactEvent& e) {
     ++metrics_.cell_guide_collisions;
   } else if (either(kSurfaceHull)) {
     ++metrics_.ship_collisions;
-  } else if (box_or_spreader(e.surface) && box_or_spreader(e.other_surface)) {
-    ++metrics_.container_collisions;
+  } else if ((box_or_spreader(e.surface) && box_or_spreader(e.other_surface)) ||
+             (either(kSurfaceVehicle) && (either(kSurfaceContainer) || either(kSurfaceHatchCover)))) {
+    ++metrics_.container_collisions;  // a stack hit by the spreader, a box or a vehicle
+  } else if (either(kSurfaceTruck) || either(kSurfaceVehicle)) {
+    ++metrics_.vehicle_collisions;
   } else {
     ++metrics_.other_collisions;
   }
@@ -395,6 +398,7 @@ std::vector<std::pair<std::string, double>> Metrics::rows() const {
                                                    {"container_collisions", container_collisions},
                                                    {"cell_guide_collisions", cell_guide_collisions},
                                                    {"ship_collisions", ship_collisions},
+                                                   {"vehicle_collisions", vehicle_collisions},
                                                    {"hard_landings", hard_landings},
                                                    {"worst_landing_mps", worst_landing_mps},
                                                    {"sway_landings", sway_landings},

@@ -103,7 +103,8 @@ struct Metrics {
   int container_collisions = 0;   ///< of them: carried box or spreader against another box or hatch cover
   int cell_guide_collisions = 0;  ///< spreader or box against a cell guide
   int ship_collisions = 0;        ///< against the hull or a coaming
-  int other_collisions = 0;       ///< trucks, quay, ground
+  int vehicle_collisions = 0;     ///< against a truck, a vehicle or a trailer (not a stack)
+  int other_collisions = 0;       ///< quay, ground
   int hard_landings = 0;
   double worst_landing_mps = 0.0;
   std::vector<double> landing_sway_m;  ///< at every landing (pick-up and set-down)

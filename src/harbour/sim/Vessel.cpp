@@ -52,6 +52,8 @@ const char* surface_name(int surface) {
       return "truck";
     case kSurfaceFlipper:
       return "flipper";
+    case kSurfaceVehicle:
+      return "vehicle";
     default:
       return "unknown";
   }

@@ -21,6 +21,7 @@ enum Surface : int {
   kSurfaceHatchCover,
   kSurfaceTruck,
   kSurfaceFlipper,
+  kSurfaceVehicle,  ///< a wheeled machine's chassis or trailer
 };
 const char* surface_name(int surface);
 

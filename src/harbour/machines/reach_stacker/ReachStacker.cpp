@@ -116,7 +116,7 @@ ReachStacker::ReachStacker(physics::PhysicsWorld& world, const ReachStackerSetti
       unlock_slot_(s.controls.slot("unlock", ControlKind::kButton)),
       size_20_slot_(s.controls.slot("spreader_20", ControlKind::kButton)),
       size_40_slot_(s.controls.slot("spreader_40", ControlKind::kButton)),
-      body_(add_body(world, s.mass_kg, s.half_extents_m, p.chassis, true, kSurfaceQuay)),
+      body_(add_body(world, s.mass_kg, s.half_extents_m, p.chassis, true, kSurfaceVehicle)),
       outer_(add_body(world, s.boom_mass_kg / 2, outer_half_extents(s), p.outer, true, kSurfaceSpreader)),
       inner_(add_body(world, s.boom_mass_kg / 2, inner_half_extents(s), p.inner, false, kSurfaceSpreader)),
       rotator_(add_body(world, rotator_mass_kg(s) / 2, kLinkHalf_m, p.rotator, false, kSurfaceSpreader)),

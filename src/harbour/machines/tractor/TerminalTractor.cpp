@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "harbour/sim/Vessel.h"
+
 namespace harbour::sim {
 namespace {
 
@@ -16,6 +18,7 @@ physics::BodyId add_body(physics::PhysicsWorld& world, double mass_kg, const cor
   box.half_extents_m = half_extents_m;
   box.pose = pose;
   box.center_of_mass_m = center_of_mass_m;
+  box.surface = kSurfaceVehicle;
   return world.add_box(box);
 }
 
