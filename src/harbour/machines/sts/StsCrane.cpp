@@ -10,41 +10,6 @@
 #include "harbour/core/Braking.h"
 
 namespace harbour::sim {
-namespace {
-
-// reeving bodies: 0 gantry, 1 trolley, 2 headblock (the spreader body), as the constructor builds them
-constexpr int kTrolleyReevingBody = 1, kHeadblockReevingBody = 2;
-
-// the falls: each rope's segments with an end on a headblock sheave (segment k joins path[k] and path[k+1];
-// in the 4-rope reeving drum, backreach, trolley, headblock, trolley, boom tip: segments 2 and 3)
-std::vector<std::pair<int, int>> fall_segments(const cable::ReevingSettings& reeving) {
-  std::vector<std::pair<int, int>> falls;
-  const auto on_headblock = [&](int element) {
-    const cable::ElementSettings& e = reeving.elements[static_cast<std::size_t>(element)];
-    return e.kind == cable::ElementKind::kSheave && e.mount.body == kHeadblockReevingBody;
-  };
-  for (std::size_t r = 0; r < reeving.ropes.size(); ++r) {
-    const std::vector<int>& path = reeving.ropes[r].path;
-    for (std::size_t k = 0; k + 1 < path.size(); ++k)
-      if (on_headblock(path[k]) || on_headblock(path[k + 1]))
-        falls.emplace_back(static_cast<int>(r), static_cast<int>(k));
-  }
-  return falls;
-}
-
-// mean position of the reeving's sheaves on one body, in its frame
-core::Vec3 mean_sheave_m(const cable::ReevingSettings& reeving, int body) {
-  core::Vec3 sum;
-  int count = 0;
-  for (const cable::ElementSettings& e : reeving.elements)
-    if (e.kind == cable::ElementKind::kSheave && e.mount.body == body) {
-      sum += e.mount.local;
-      ++count;
-    }
-  return count ? sum * (1.0 / count) : core::Vec3{};
-}
-
-}  // namespace
 
 ControlTable sts_control_table() {
   using K = ControlKind;
@@ -151,11 +116,7 @@ StsCrane::StsCrane(physics::PhysicsWorld& world, const StsCraneSettings& setting
       trolley_start_x_(trolley_x_m),
       gantry_(settings.gantry_drive),
       trolley_(settings.trolley_drive),
-      boom_(settings.boom.drive),
-      trolley_sheaves_m_(mean_sheave_m(settings.hoist, kTrolleyReevingBody)),
-      headblock_sheaves_m_(mean_sheave_m(settings.hoist, kHeadblockReevingBody)),
-      falls_(fall_segments(settings.hoist)),
-      hoist_limits_(settings.hoist_lower_limit_m, settings.hoist_upper_limit_m) {
+      boom_(settings.boom.drive) {
   // gantry: the crane's base frame, on the quay rails
   physics::BoxSettings gantry;
   gantry.mass_kg = settings.gantry_mass_kg;
@@ -173,36 +134,15 @@ StsCrane::StsCrane(physics::PhysicsWorld& world, const StsCraneSettings& setting
   trolley_body_ = world.add_box(trolley);
   trolley_slider_ = world.add_slider(gantry_body_, trolley_body_, {1, 0, 0});
 
-  // the spreader's body; its frame and flippers are shapes the Spreader resizes as it telescopes
-  const SpreaderSettings& frame = settings.spreader;
-  physics::BoxSettings spreader;
-  spreader.mass_kg = frame.mass_kg;
-  spreader.half_extents_m = {0.5 * frame.width_m, 0.5 * frame.length_m[1], 0.5 * frame.height_m};
-  spreader.pose.position = {trolley_x_m, gantry_y_m, spreader_z_m};
-  spreader.collides = false;
-  spreader_ = world.add_box(spreader);
-  spreader_frame_ = std::make_unique<Spreader>(world, spreader_, kSurfaceSpreader, kSurfaceFlipper, frame);
-
-  cable_bodies_ = std::make_unique<OdeCableBodies>(
-      world, std::vector<physics::BodyId>{gantry_body_, trolley_body_, spreader_});
-  hoist_ = std::make_unique<cable::HoistSystem>(settings.hoist, *cable_bodies_, core::Vec3{0, 0, -9.80665});
-  wind_areas_[0] = {spreader_, spreader_frame_->half_extents_m()};
+  // the spreader hangs from the trolley on the hoist reeving's bodies [gantry, trolley, headblock]
+  rig_ = std::make_unique<SpreaderHoist>(world, settings.spreader_hoist(),
+                                         std::vector<physics::BodyId>{gantry_body_, trolley_body_},
+                                         core::Vec3{trolley_x_m, gantry_y_m, spreader_z_m});
+  wind_areas_[0] = {rig_->spreader_body(), rig_->spreader().half_extents_m()};
 }
 
 double StsCrane::attachment_bottom_z_m() const {
-  return world_.pose(spreader_).position.z - spreader_frame_->half_extents_m().z;
-}
-
-double StsCrane::pendulum_length_m() const {
-  return world_.pose(trolley_body_).to_parent(trolley_sheaves_m_).z -
-         world_.pose(spreader_).to_parent(headblock_sheaves_m_).z;
-}
-
-double StsCrane::hoisted_load_n() const {
-  double total = 0.0;
-  for (const auto& [rope, segment] : falls_)
-    total += hoist_->tension(rope, segment);
-  return total;
+  return rig_->attachment_bottom_z_m();
 }
 
 void StsCrane::step(const StsControls& c, std::span<const ContainerRef> containers, double dt_s) {
@@ -227,32 +167,9 @@ void StsCrane::step(const StsControls& c, std::span<const ContainerRef> containe
   const DriveOutput t = trolley_.step(trolley_lever, trolley_position_m(), dt_s, c.emergency_stop);
   world_.set_slider_motor(trolley_slider_, t.velocity_mps, t.max_force_n);
 
-  // hoist limit switches: slow down ahead of them so the spreader stops on them (the spreader moves at half
-  // the rope speed on the 2-fall ropes), and count a push into one
-  const cable::ElementSettings& drum_settings =
-      settings_.hoist.elements[static_cast<std::size_t>(settings_.hoist.ropes[0].path[0])];
-  const double spreader_z = world_.pose(spreader_).position.z;
-  const double lever = hoist_limits_.limit(c.hoist, spreader_z, 0.5 * drum_settings.max_rope_speed_mps,
-                                           0.5 * drum_settings.max_rope_acceleration_mps2, dt_s);
-
-  // hoist: raising reels rope in (negative pay-out); the e-stop cuts the motor and sets the brake
-  const cable::DrumCommand drum{c.emergency_stop ? 0.0 : -lever, hoist_brake_fault_, !c.emergency_stop};
-  hoist_->step(dt_s, {&drum, 1}, *cable_bodies_);
-
-  // twistlocks against the container under the spreader, if any; the load hangs when the ropes carry
-  // clearly more than the empty spreader (landing pins stay pressed while a locked container hangs, so
-  // "landed" alone cannot tell)
-  const bool load_suspended = hoisted_load_n() > 1.3 * settings_.spreader.mass_kg * 9.80665;
-  locks_.step(world_, spreader_, *spreader_frame_, containers, settings_.twistlocks, c.lock, c.unlock,
-              load_suspended, landed_sensor_fault_, dt_s);
-  // the spreader's telescope (interlocked while landed or locked) and flippers
-  const SpreaderSize sizes[] = {SpreaderSize::k20ft, SpreaderSize::k40ft, SpreaderSize::k45ft};
-  const SpreaderSize* size_button = nullptr;
-  for (int k = 0; k < 3; ++k)
-    if (c.spreader_size_ft == (k == 0 ? 20 : k == 1 ? 40 : 45)) size_button = &sizes[k];
-  spreader_frame_->step(size_button, c.flipper_down,
-                        locks_.twistlocks().lamps().landed || locks_.twistlocks().locked(), dt_s);
-  wind_areas_[0].half_extents_m = spreader_frame_->half_extents_m();
+  rig_->step({c.hoist, c.lock, c.unlock, c.emergency_stop, c.spreader_size_ft, c.flipper_down}, containers,
+             dt_s);
+  wind_areas_[0].half_extents_m = rig_->spreader().half_extents_m();
 }
 
 namespace {
@@ -267,9 +184,9 @@ void StsCrane::describe(SceneDescription& d) const {
   d.machine = kind();
   d.entities.push_back({"gantry", "sts.gantry", {}});
   d.entities.push_back({"trolley", "sts.trolley", {}});
-  d.entities.push_back({"spreader", "sts.spreader", spreader_frame_->half_extents_m()});
+  d.entities.push_back({"spreader", "sts.spreader", rig_->spreader().half_extents_m()});
   d.indicators.assign(std::begin(kStsIndicators), std::end(kStsIndicators));
-  d.rope_count = std::min(hoist_->rope_count(), kMaxRopes);
+  d.rope_count = std::min(rig_->hoist().rope_count(), kMaxRopes);
 }
 
 int StsCrane::publish(Snapshot& s, int first) const {
@@ -279,10 +196,10 @@ int StsCrane::publish(Snapshot& s, int first) const {
       s.entities[static_cast<std::size_t>(n)] = {static_cast<std::uint32_t>(n), 0, pose};
       ++n;
     }
-  publish_ropes(*hoist_, s);
+  publish_ropes(rig_->hoist(), s);
 
   const SpreaderState spreader = spreader_state();
-  const TwistlockLamps lamps = locks_.twistlocks().lamps();
+  const TwistlockLamps lamps = rig_->locks().twistlocks().lamps();
   const double values[] = {gantry_position_m(),
                            trolley_position_m(),
                            boom_angle_,
@@ -306,17 +223,17 @@ int StsCrane::publish(Snapshot& s, int first) const {
 }
 
 void StsCrane::drain_events(StepEvents& events) {
-  locks_.twistlocks().drain_events(events.twistlocks);
-  hoist_->drain_events(events.ropes);
+  rig_->locks().twistlocks().drain_events(events.twistlocks);
+  rig_->hoist().drain_events(events.ropes);
 }
 
 void StsCrane::inject_fault(MachineFault fault, int detail) {
   switch (fault) {
     case MachineFault::kHoistBrake:
-      hoist_brake_fault_ = true;
+      rig_->inject_brake_fault();
       break;
     case MachineFault::kLandedSensor:
-      landed_sensor_fault_ = detail;
+      rig_->inject_landed_sensor_fault(detail);
       break;
     case MachineFault::kLoadMomentLimiter:  // it has none
       break;
@@ -324,15 +241,14 @@ void StsCrane::inject_fault(MachineFault fault, int detail) {
 }
 
 void StsCrane::clear_faults() {
-  hoist_brake_fault_ = false;
-  landed_sensor_fault_ = -1;
+  rig_->clear_faults();
 }
 
 void StsCrane::hash_into(core::StateHash& hash) const {
-  hoist_->hash_into(hash);
+  rig_->hoist().hash_into(hash);
   hash.add(gantry_.reference_mps());
   hash.add(trolley_.reference_mps());
-  hash.add(locks_.twistlocks().lamps());
+  hash.add(rig_->locks().twistlocks().lamps());
   hash.add(boom_angle_);
   const SpreaderState spreader = spreader_state();
   hash.add(spreader.length_m);
@@ -346,13 +262,7 @@ void StsCrane::save_state(core::StateWriter& out) const {
   boom_.save_state(out);
   out.put(boom_angle_);
   out.put(horn_);
-  spreader_frame_->save_state(out);
-  locks_.twistlocks().save_state(out);
-  hoist_->save_state(out);
-  locks_.save_joint(out);
-  out.put(hoist_brake_fault_);
-  hoist_limits_.save_state(out);
-  out.put(landed_sensor_fault_);
+  rig_->save_state(out);
 }
 
 void StsCrane::restore_state(core::StateReader& in) {
@@ -362,14 +272,8 @@ void StsCrane::restore_state(core::StateReader& in) {
   boom_.restore_state(in);
   in.get(boom_angle_);
   in.get(horn_);
-  spreader_frame_->restore_state(in);
-  locks_.twistlocks().restore_state(in);
-  hoist_->restore_state(in);
-  locks_.restore_joint(in);
-  in.get(hoist_brake_fault_);
-  hoist_limits_.restore_state(in);
-  in.get(landed_sensor_fault_);
-  wind_areas_[0].half_extents_m = spreader_frame_->half_extents_m();
+  rig_->restore_state(in);
+  wind_areas_[0].half_extents_m = rig_->spreader().half_extents_m();
 }
 
 }  // namespace harbour::sim

@@ -10,10 +10,7 @@
 #include "harbour/cable/HoistSystem.h"
 #include "harbour/machines/Machine.h"
 #include "harbour/machines/parts/Drive.h"
-#include "harbour/machines/parts/LimitSwitches.h"
-#include "harbour/machines/parts/OdeCableBodies.h"
-#include "harbour/machines/parts/Spreader.h"
-#include "harbour/machines/parts/SpreaderLocks.h"
+#include "harbour/machines/parts/SpreaderHoist.h"
 #include "harbour/physics/PhysicsWorld.h"
 #include "harbour/sim/Controls.h"
 
@@ -53,6 +50,10 @@ struct StsCraneSettings {
   core::Vec3 cab_position_m{3.0, 0.0, -3.5};
   core::Vec3 eye_m{0.3, 0.0, 0.6};
   double sight_pitch_rad = -1.3;  ///< the operator looks down through the cab's floor onto the spreader
+  /// The spreader on its hoist, as the shared part takes it.
+  SpreaderHoistSettings spreader_hoist() const {
+    return {spreader, twistlocks, hoist, hoist_upper_limit_m, hoist_lower_limit_m};
+  }
 };
 
 /// The operator's controls, normalised (cab joysticks and buttons).
@@ -98,7 +99,7 @@ class StsCrane final : public Machine {
   void step(const Controls& controls, std::span<const ContainerRef> liftables, double dt_s) override {
     step(read(controls), liftables, dt_s);
   }
-  std::optional<physics::BodyId> held_item() const override { return locks_.locked_container(); }
+  std::optional<physics::BodyId> held_item() const override { return rig_->locked_container(); }
   double attachment_bottom_z_m() const override;
   std::span<const WindArea> wind_areas() const override { return wind_areas_; }
   physics::BodyId cab_body() const override { return trolley_body_; }
@@ -124,13 +125,13 @@ class StsCrane final : public Machine {
   double trolley_power_w() const {
     return world_.slider_force(trolley_slider_) * world_.slider_rate(trolley_slider_);
   }
-  core::Pose spreader_pose() const { return world_.pose(spreader_); }
-  core::Vec3 spreader_half_extents_m() const { return spreader_frame_->half_extents_m(); }
-  SpreaderState spreader_state() const { return spreader_frame_->state(); }
+  core::Pose spreader_pose() const { return world_.pose(rig_->spreader_body()); }
+  core::Vec3 spreader_half_extents_m() const { return rig_->spreader().half_extents_m(); }
+  SpreaderState spreader_state() const { return rig_->spreader_state(); }
   /// Boom angle above horizontal [rad]; the boom is latched for work only at 0.
   double boom_angle_rad() const { return boom_angle_; }
   bool horn() const { return horn_; }
-  physics::BodyId spreader_body() const { return spreader_; }
+  physics::BodyId spreader_body() const { return rig_->spreader_body(); }
   physics::BodyId gantry_body() const { return gantry_body_; }
   physics::BodyId trolley_body() const { return trolley_body_; }
   /// The cab's frame in the world (it rides on the trolley) and its design eye point in that frame.
@@ -138,20 +139,20 @@ class StsCrane final : public Machine {
   core::Vec3 eye_m() const override { return settings_.eye_m; }
   double sight_pitch_rad() const override { return settings_.sight_pitch_rad; }
   /// The container locked to the spreader, if any.
-  std::optional<physics::BodyId> locked_container() const { return locks_.locked_container(); }
-  TwistlockLamps lamps() const { return locks_.twistlocks().lamps(); }
-  std::vector<TwistlockEvent> take_twistlock_events() { return locks_.twistlocks().take_events(); }
+  std::optional<physics::BodyId> locked_container() const { return rig_->locked_container(); }
+  TwistlockLamps lamps() const { return rig_->locks().twistlocks().lamps(); }
+  std::vector<TwistlockEvent> take_twistlock_events() { return rig_->locks().twistlocks().take_events(); }
   const Drive& gantry_drive() const { return gantry_; }
   /// Times the operator drove the hoist into a limit switch.
-  std::uint32_t hoist_limit_hits() const { return hoist_limits_.hits(); }
+  std::uint32_t hoist_limit_hits() const { return rig_->limit_hits(); }
   const Drive& trolley_drive() const { return trolley_; }
-  const cable::HoistSystem& hoist() const { return *hoist_; }
-  cable::HoistSystem& hoist() { return *hoist_; }
+  const cable::HoistSystem& hoist() const { return rig_->hoist(); }
+  cable::HoistSystem& hoist() { return rig_->hoist(); }
   /// Vertical rope pull on the headblock [N] (the load the hoist carries, spreader included).
-  double hoisted_load_n() const;
+  double hoisted_load_n() const { return rig_->hoisted_load_n(); }
   /// Length of the pendulum the load hangs on [m]: from the trolley's sheaves down to the headblock's (the
   /// mean heights of the reeving's sheaves on each).
-  double pendulum_length_m() const override;
+  double pendulum_length_m() const override { return rig_->pendulum_length_m(); }
   /// Drives, ropes, twistlocks, faults and the locked box for a keyframe (the physics world saves itself).
   void save_state(core::StateWriter& out) const override;
   void restore_state(core::StateReader& in) override;
@@ -160,21 +161,13 @@ class StsCrane final : public Machine {
   physics::PhysicsWorld& world_;
   StsCraneSettings settings_;
   StsControlSlots slots_;
-  physics::BodyId gantry_body_, trolley_body_, spreader_;
+  physics::BodyId gantry_body_, trolley_body_;
   int gantry_slider_, trolley_slider_;
   double gantry_start_y_, trolley_start_x_;
   Drive gantry_, trolley_, boom_;
-  core::Vec3 trolley_sheaves_m_, headblock_sheaves_m_;  // mean sheave positions, body frames
-  std::vector<std::pair<int, int>> falls_;  // (rope, segment) of the ropes' falls to the headblock
   double boom_angle_ = 0.0;
   bool horn_ = false;
-  std::unique_ptr<Spreader> spreader_frame_;
-  SpreaderLocks locks_;
-  std::unique_ptr<OdeCableBodies> cable_bodies_;
-  std::unique_ptr<cable::HoistSystem> hoist_;
-  bool hoist_brake_fault_ = false;
-  LimitSwitches hoist_limits_;
-  int landed_sensor_fault_ = -1;
+  std::unique_ptr<SpreaderHoist> rig_;  // the spreader on its hoist ropes
   std::array<WindArea, 1> wind_areas_;
 };
 

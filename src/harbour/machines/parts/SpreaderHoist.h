@@ -1,0 +1,92 @@
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+#include <utility>
+#include <vector>
+
+#include "harbour/cable/HoistSystem.h"
+#include "harbour/machines/Machine.h"
+#include "harbour/machines/parts/LimitSwitches.h"
+#include "harbour/machines/parts/OdeCableBodies.h"
+#include "harbour/machines/parts/Spreader.h"
+#include "harbour/machines/parts/SpreaderLocks.h"
+
+namespace harbour::sim {
+
+/// A container spreader hanging from a trolley on a cable reeving (settings): the STS's and the RTG's.
+struct SpreaderHoistSettings {
+  SpreaderSettings spreader;
+  TwistlockSettings twistlocks;
+  cable::ReevingSettings
+      hoist;                    ///< its last body is the headblock (the spreader), the one before the trolley
+  double upper_limit_m = 44.0;  ///< [m] spreader centre height where the upper limit switch stops hoisting
+  double lower_limit_m = -20.0;  ///< [m] ... and the lower one stops lowering
+};
+
+/// What the operator asks of the hoist and the spreader in one step.
+struct SpreaderHoistCommand {
+  double hoist = 0.0;  ///< [-1, 1] +: raise
+  bool lock = false, unlock = false, emergency_stop = false;
+  std::uint8_t spreader_size_ft = 0;   ///< a size button held: 20, 40 or 45 (0: none)
+  std::array<bool, 4> flipper_down{};  ///< flipper switches per corner (true: lowered)
+};
+
+/// The spreader on its hoist ropes: the winch with its limit switches, the telescoping frame and flippers,
+/// and the twistlocks that lock a landed container to it. Its faults: a hoist brake that does not set and a
+/// corner's landed sensor reading "not landed".
+class SpreaderHoist {
+ public:
+  /// `bodies`: the reeving's bodies but the last (the trolley last among them); the headblock is the
+  /// spreader's body, built here at `spreader_position_m`.
+  SpreaderHoist(physics::PhysicsWorld& world, const SpreaderHoistSettings& settings,
+                std::vector<physics::BodyId> bodies, const core::Vec3& spreader_position_m);
+
+  void step(const SpreaderHoistCommand& command, std::span<const ContainerRef> containers, double dt_s);
+
+  physics::BodyId spreader_body() const { return spreader_; }
+  const Spreader& spreader() const { return *frame_; }
+  SpreaderState spreader_state() const { return frame_->state(); }
+  const SpreaderLocks& locks() const { return locks_; }
+  SpreaderLocks& locks() { return locks_; }
+  std::optional<physics::BodyId> locked_container() const { return locks_.locked_container(); }
+  const cable::HoistSystem& hoist() const { return *hoist_; }
+  cable::HoistSystem& hoist() { return *hoist_; }
+  /// Vertical rope pull on the headblock [N] (the load the hoist carries, spreader included).
+  double hoisted_load_n() const;
+  /// From the trolley's sheaves down to the headblock's (their mean heights) [m].
+  double pendulum_length_m() const;
+  double attachment_bottom_z_m() const;
+  /// The spreader's speed at full lever [m/s] (the drum's rope speed over the falls per rope).
+  double full_hoist_speed_mps() const;
+  std::uint32_t limit_hits() const { return limits_.hits(); }
+  bool at_limit() const { return limits_.at_limit(); }
+
+  void inject_brake_fault() { brake_fault_ = true; }
+  void inject_landed_sensor_fault(int corner) { landed_sensor_fault_ = corner; }
+  void clear_faults();
+
+  /// The frame, twistlocks, ropes, joint, faults and limit switches, in that order.
+  void save_state(core::StateWriter& out) const;
+  void restore_state(core::StateReader& in);
+
+ private:
+  physics::PhysicsWorld& world_;
+  SpreaderHoistSettings settings_;
+  physics::BodyId trolley_, spreader_;
+  core::Vec3 trolley_sheaves_m_, headblock_sheaves_m_;  // mean sheave positions, body frames
+  std::vector<std::pair<int, int>> falls_;  // (rope, segment) of the ropes' falls to the headblock
+  double falls_per_rope_ = 1.0;
+  std::unique_ptr<Spreader> frame_;
+  SpreaderLocks locks_;
+  std::unique_ptr<OdeCableBodies> cable_bodies_;
+  std::unique_ptr<cable::HoistSystem> hoist_;
+  LimitSwitches limits_;
+  bool brake_fault_ = false;
+  int landed_sensor_fault_ = -1;
+};
+
+}  // namespace harbour::sim
