@@ -45,19 +45,25 @@ int TruckLane::departed() const {
   }));
 }
 
+const ContainerRef* TruckLane::on_chassis(const Truck& truck, std::span<const ContainerRef> boxes) const {
+  for (const ContainerRef& box : boxes) {
+    const core::Vec3 p = world_.pose(box.body).position;
+    if (std::abs(p.x - settings_.lane_x_m) < kChassisHalfWidth_m &&
+        std::abs(p.y - truck.y) < kChassisHalfLength_m &&
+        std::abs(p.z - box.half_extents_m.z - settings_.chassis_top_m) < 0.05)
+      return &box;
+  }
+  return nullptr;
+}
+
 std::optional<physics::BodyId> TruckLane::load(const Truck& truck, std::span<const ContainerRef> boxes,
                                                std::optional<physics::BodyId> held,
                                                double attachment_bottom_z_m) const {
   if (held) return std::nullopt;
-  for (const ContainerRef& box : boxes) {
-    const core::Vec3 p = world_.pose(box.body).position;
-    const bool on_chassis = std::abs(p.x - settings_.lane_x_m) < kChassisHalfWidth_m &&
-                            std::abs(p.y - truck.y) < kChassisHalfLength_m &&
-                            std::abs(p.z - box.half_extents_m.z - settings_.chassis_top_m) < 0.05;
-    if (!on_chassis) continue;
-    if (attachment_bottom_z_m > p.z + box.half_extents_m.z + settings_.clearance_m) return box.body;
-    return std::nullopt;
-  }
+  const ContainerRef* box = on_chassis(truck, boxes);
+  if (!box) return std::nullopt;
+  const double top = world_.pose(box->body).position.z + box->half_extents_m.z;
+  if (attachment_bottom_z_m > top + settings_.clearance_m) return box->body;
   return std::nullopt;
 }
 
@@ -79,7 +85,14 @@ void TruckLane::step(double dt_s, std::span<const ContainerRef> boxes, std::opti
         break;
       case State::kWaiting:
         t.speed = 0.0;
-        if (const auto box = load(t, boxes, held, attachment_bottom_z_m)) {
+        if (settings_.delivering) {
+          // its box lifted off and the spreader clear of the chassis: it leaves empty
+          const bool clear = attachment_bottom_z_m > settings_.chassis_top_m + settings_.clearance_m;
+          if (!on_chassis(t, boxes) && clear) {
+            t.state = State::kLeaving;
+            if (k + 1 < trucks_.size()) trucks_[k + 1].state = State::kArriving;
+          }
+        } else if (const auto box = load(t, boxes, held, attachment_bottom_z_m)) {
           t.load_attachment = world_.attach(*box, t.body);
           t.state = State::kLeaving;
           if (k + 1 < trucks_.size()) trucks_[k + 1].state = State::kArriving;

@@ -13,7 +13,8 @@ namespace harbour::sim {
 /// Terminal trucks serving the crane in one lane under it (settings): one waits under the crane; once a box
 /// sits on its chassis, the locks are open and the spreader has risen clear, the chassis' locating cones hold
 /// the box (a fixed joint: it no longer rides on friction), the truck drives off along +y and the next truck
-/// of the queue drives in.
+/// of the queue drives in. Delivering trucks bring a box instead (the exercise seats it on the waiting one):
+/// each drives off once its chassis is empty and the spreader clear.
 struct TruckLaneSettings {
   int trucks = 0;
   double lane_x_m = 8.0;       ///< [m] chassis centre line across the quay
@@ -24,6 +25,7 @@ struct TruckLaneSettings {
   double queue_start_m = 60.0;  ///< [m] first queued truck this far behind the stop
   double queue_gap_m = 25.0;    ///< [m] truck to truck in the queue and where loaded trucks park
   double clearance_m = 1.0;     ///< [m] spreader underside above the box before the truck leaves
+  bool delivering = false;      ///< the trucks bring boxes to the crane rather than take them away
 };
 
 /// The trucks as kinematic bodies (chassis and cab).
@@ -51,6 +53,8 @@ class TruckLane {
     int load_attachment = -1;  // the box held by the chassis cones
   };
   /// The box seated on the truck once the spreader is clear of it.
+  /// A box stands on the truck's chassis (none: nullopt).
+  const ContainerRef* on_chassis(const Truck& truck, std::span<const ContainerRef> boxes) const;
   std::optional<physics::BodyId> load(const Truck& truck, std::span<const ContainerRef> boxes,
                                       std::optional<physics::BodyId> held,
                                       double attachment_bottom_z_m) const;
