@@ -270,7 +270,7 @@ TEST(ExerciseFiles, BadExercisesNameTheField) {
   expect_error("keel_midship_m: [31.0,", "keel_midship_m: [25.0,", "exercise.vessel.keel_midship_m",
                "overlaps the quay");
   expect_error("to: truck", "to: trailer", "exercise.moves[0].to", "only 'truck'");
-  expect_error("machine: ../machines/sts.yaml", "machine: ../machines/rtg.yaml", "exercise.machine",
+  expect_error("machine: ../machines/sts.yaml", "machine: ../machines/nowhere.yaml", "exercise.machine",
                "no such file");
   expect_error("trolley_x_m: 32.27", "trolley_x_m: 99.0", "exercise.crane.trolley_x_m", "outside");
   expect_error("{id: TGHU1000014,", "{id: TGHU1000010,", "exercise.containers[2].id", "duplicate container");

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <numbers>
 #include <optional>
 #include <tuple>
 
@@ -94,6 +95,28 @@ sim::TrailerSettings read_coupled_trailer(const YamlFile& f, const YAML::Node& t
 
 namespace {
 
+// a [bay, row, tier] in the exercise's yard block: the centre of a box standing there
+core::Vec3 block_slot_centre(const YamlFile& f, const YAML::Node& slot, const std::string& at,
+                             const std::optional<sim::YardBlock>& block) {
+  if (!block) f.fail(slot, at, "a block slot needs the exercise's yard_block");
+  if (!slot.IsSequence() || slot.size() != 3) f.fail(slot, at, "must be [bay, row, tier]");
+  int parts[3] = {};
+  for (std::size_t k = 0; k < 3; ++k) {
+    double v = 0.5;
+    try {
+      v = slot[k].as<double>();
+    } catch (const YAML::Exception&) {
+    }
+    if (!(v >= 0.0 && v <= 200.0 && v == std::floor(v)))
+      f.fail(slot, at, "bay, row and tier must be whole numbers");
+    parts[k] = static_cast<int>(v);
+  }
+  std::string why;
+  const std::optional<core::Vec3> centre = block->slot_centre(parts[0], parts[1], parts[2], why);
+  if (!centre) f.fail(slot, at, why);
+  return *centre;
+}
+
 sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder) {
   sim::ExerciseSettings e;
   const YAML::Node x = f.required(f.root(), "exercise", "");
@@ -130,6 +153,18 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
     if (const auto t = f.optional_map(crane, "trailer", at))
       tractor.start.trailer = read_coupled_trailer(f, *t, at + ".trailer", folder, tractor.vehicle);
     s.machine = std::move(tractor);
+  } else if (machine_kind == "rtg") {
+    // the RTG stands over its block, its wheels along it
+    sim::RtgSetup rtg;
+    rtg.crane = load_rtg(machine_path);
+    const std::string at = "exercise.crane";
+    rtg.start.position_m = f.vector3(f.required(crane, "position_m", at), at + ".position_m", kSite_m);
+    rtg.start.heading_rad = core::deg_to_rad(f.number_or(crane, "heading_deg", at, 0.0, -360.0, 360.0));
+    rtg.start.trolley_x_m = f.number(crane, "trolley_x_m", at, rtg.crane.trolley_drive.min_position_m,
+                                     rtg.crane.trolley_drive.max_position_m);
+    rtg.start.spreader_z_m = f.number(crane, "spreader_z_m", at, 1.0, rtg.crane.trolley_rail_height_m - 2.0);
+    rtg.start.steer_bias_rad = core::deg_to_rad(f.number_or(crane, "steer_bias_deg", at, 0.0, -2.0, 2.0));
+    s.machine = std::move(rtg);
   } else if (machine_kind == "sts") {
     // the crane starts on its rails
     sim::StsSetup sts;
@@ -162,7 +197,8 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
     s.machine = std::move(mhc);
   }
   // container exercises (the STS), general cargo on a hook, bulk on a grab
-  const bool handles_containers = machine_kind == "sts" || machine_kind == "reach_stacker";
+  const bool handles_containers =
+      machine_kind == "sts" || machine_kind == "reach_stacker" || machine_kind == "rtg";
   const auto* mhc = std::get_if<sim::MhcSetup>(&s.machine);
   const bool on_hook = mhc && mhc->start.on_hook;
   const auto* tractor = std::get_if<sim::TractorSetup>(&s.machine);
@@ -222,6 +258,23 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
     lane.lane_x_m = f.number(t, "lane_x_m", at, -kSite_m, kSite_m);
     lane.stop_y_m = f.number(t, "stop_y_m", at, -kSite_m, kSite_m);
     lane.chassis_top_m = f.number_or(t, "chassis_top_m", at, lane.chassis_top_m, 0.5, 3.0);
+    lane.delivering = f.flag(t, "delivering", at, false);
+  }
+
+  if (const auto y_node = f.optional_map(x, "yard_block", "exercise")) {
+    const YAML::Node& y = *y_node;
+    const std::string at = "exercise.yard_block";
+    sim::YardBlock block;
+    block.first_slot_m = f.vector3(f.required(y, "first_slot_m", at), at + ".first_slot_m", kSite_m);
+    block.bays = f.integer(y, "bays", at, 1, 100);
+    block.rows = f.integer(y, "rows", at, 1, 20);
+    block.tiers = f.integer(y, "tiers", at, 1, 10);
+    block.bay_pitch_m = f.number(y, "bay_pitch_m", at, 6.1, 10.0);
+    block.row_pitch_m = f.number(y, "row_pitch_m", at, -6.0, 6.0);
+    if (std::abs(block.row_pitch_m) < 2.5)
+      f.fail(y["row_pitch_m"], at + ".row_pitch_m", "rows lie 2.5-6 m apart");
+    block.tier_height_m = f.number(y, "tier_height_m", at, 2.5, 3.0);
+    s.yard_block = block;
   }
 
   if (f.optional(x, "blocks", "exercise")) {
@@ -282,9 +335,30 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
         f.fail(c["center_of_mass_m"], at + ".center_of_mass_m", "lies outside the container");
     }
     const std::optional<YAML::Node> slot_node = f.optional(c, "slot", at);
-    if (slot_node.has_value() == f.optional(c, "position_m", at).has_value())
-      f.fail(c, at, "give either slot: [bay, row, tier] on the vessel or position_m, not both");
-    if (slot_node) {
+    const std::optional<YAML::Node> block_node = f.optional(c, "block_slot", at);
+    if (slot_node.has_value() + block_node.has_value() + f.optional(c, "position_m", at).has_value() != 1)
+      f.fail(
+          c, at,
+          "give one of slot: [bay, row, tier] on the vessel, block_slot: [bay, row, tier] in the yard block "
+          "or position_m");
+    if (block_node) {
+      const core::Vec3 centre = block_slot_centre(f, *block_node, at + ".block_slot", s.yard_block);
+      if (std::abs(2.0 * p.half_extents_m.z - s.yard_block->tier_height_m) > 1e-3)
+        f.fail(c["type"], at + ".type",
+               "the yard block stacks boxes " + std::to_string(s.yard_block->tier_height_m).substr(0, 5) +
+                   " m high (exercise.yard_block.tier_height_m)");
+      if (centre.z > s.yard_block->first_slot_m.z + s.yard_block->tier_height_m) {
+        bool stands = false;  // on a box in the tier below whose length spans its centre
+        for (const sim::ContainerPlacement& other : s.containers)
+          stands |= std::abs(other.pose.position.z + s.yard_block->tier_height_m - centre.z) < 0.05 &&
+                    std::abs(other.pose.position.x - centre.x) < 0.05 &&
+                    std::abs(other.pose.position.y - centre.y) < other.half_extents_m.x;
+        if (!stands)
+          f.fail(*block_node, at + ".block_slot",
+                 "nothing stands under it in the tier below (list boxes bottom up)");
+      }
+      p.pose = {core::Mat3::rotation({0, 0, 1}, 0.5 * std::numbers::pi), centre};
+    } else if (slot_node) {
       const YAML::Node& slot = *slot_node;
       if (!vessel) f.fail(slot, at + ".slot", "a slot needs the exercise's vessel");
       if (!slot.IsSequence() || slot.size() != 3) f.fail(slot, at + ".slot", "must be [bay, row, tier]");
@@ -401,6 +475,8 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
       if (s.trucks.trucks == 0) f.fail(moves[n]["to"], at + ".to", "the exercise has no trucks");
       const double height = 2.0 * s.containers[known->second].half_extents_m.z;
       g.target_m = {s.trucks.lane_x_m, s.trucks.stop_y_m, s.trucks.chassis_top_m + height / 2};
+    } else if (const auto slot = f.optional(moves[n], "block_slot", at)) {
+      g.target_m = block_slot_centre(f, *slot, at + ".block_slot", s.yard_block);
     } else {
       g.target_m = f.vector3(f.required(moves[n], "target_m", at), at + ".target_m", kSite_m);
     }

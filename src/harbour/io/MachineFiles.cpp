@@ -90,25 +90,54 @@ sim::BoomSettings read_boom(const YamlFile& f, const YAML::Node& m) {
   return s;
 }
 
-// the structure StsCrane relies on: one hoist drum (the crane commands one), and every rope passing a
-// sheave on the headblock (its falls carry the load)
-void check_sts_hoist(const YamlFile& f, const YAML::Node& at, const cable::ReevingSettings& r) {
-  constexpr int kHeadblock = 2;  // reeving body index, as checked above
+// the structure a spreader hoist relies on: one drum (the cab commands one), and every rope passing a sheave
+// on the headblock, the reeving's last body (its falls carry the load)
+void check_spreader_hoist(const YamlFile& f, const YAML::Node& at, const cable::ReevingSettings& r,
+                          int headblock) {
   int drums = 0;
   for (const cable::ElementSettings& e : r.elements)
     drums += e.kind == cable::ElementKind::kDrum ? 1 : 0;
   if (drums != 1)
-    f.fail(at, "machine.hoist_reeving",
-           "the STS hoist has one drum; the reeving has " + std::to_string(drums));
+    f.fail(at, "machine.hoist_reeving", "the hoist has one drum; the reeving has " + std::to_string(drums));
   for (const cable::RopeSettings& rope : r.ropes) {
     bool on_headblock = false;
     for (const int e : rope.path)
       on_headblock |= r.elements[static_cast<std::size_t>(e)].kind == cable::ElementKind::kSheave &&
-                      r.elements[static_cast<std::size_t>(e)].mount.body == kHeadblock;
+                      r.elements[static_cast<std::size_t>(e)].mount.body == headblock;
     if (!on_headblock)
       f.fail(at, "machine.hoist_reeving",
              "rope '" + rope.name + "' passes no sheave on the headblock, so it cannot carry the spreader");
   }
+}
+
+// a container spreader on its hoist ropes under a trolley whose centre runs `rail_height_m` up: the limit
+// switches (machine.hoist), the spreader, its twistlocks and the reeving (over `bodies`, the headblock last)
+sim::SpreaderHoistSettings read_spreader_hoist(const YamlFile& f, const YAML::Node& m,
+                                               const std::string& folder,
+                                               const std::vector<std::string>& bodies, double rail_height_m) {
+  sim::SpreaderHoistSettings s;
+  const YAML::Node hoist_limits = f.required_map(m, "hoist", "machine");
+  s.upper_limit_m = f.number(hoist_limits, "upper_limit_m", "machine.hoist", -100.0, rail_height_m - 2.0);
+  s.lower_limit_m =
+      f.number(hoist_limits, "lower_limit_m", "machine.hoist", -100.0, s.upper_limit_m, false, true);
+  s.spreader = read_spreader(f, m);
+  const YAML::Node t = f.required_map(m, "twistlocks", "machine");
+  s.twistlocks.lateral_tolerance_m = f.number(t, "lateral_tolerance_m", "machine.twistlocks", 0.0, 1.0, true);
+  s.twistlocks.landed_gap_m = f.number(t, "landed_gap_m", "machine.twistlocks", 0.0, 1.0, true);
+  const std::string reeving = f.text(m, "hoist_reeving", "machine");
+  const std::string reeving_path = (std::filesystem::path(folder) / reeving).lexically_normal().string();
+  if (!std::filesystem::is_regular_file(reeving_path))
+    f.fail(m["hoist_reeving"], "machine.hoist_reeving", "no such file: " + reeving_path);
+  const ReevingFile file = load_reeving(reeving_path);
+  if (file.bodies != bodies) {
+    std::string list;
+    for (const std::string& b : bodies)
+      list += (list.empty() ? "" : ", ") + b;
+    f.fail(m["hoist_reeving"], "machine.hoist_reeving", "the hoist reeving's bodies must be [" + list + "]");
+  }
+  check_spreader_hoist(f, m["hoist_reeving"], file.reeving, static_cast<int>(bodies.size()) - 1);
+  s.hoist = file.reeving;
+  return s;
 }
 
 // the operator's cab: where it sits (within `reach_m` of the frame it is given in), the eye in it and the
@@ -150,30 +179,17 @@ sim::StsCraneSettings read_sts_crane(const YamlFile& f, const std::string& folde
   s.trolley_mass_kg = f.number(trolley, "mass_kg", "machine.trolley", 5000.0, 5e5);
   s.trolley_rail_height_m = f.number(trolley, "rail_height_m", "machine.trolley", 10.0, 100.0);
   s.trolley_drive = read_drive(f, trolley, "machine.trolley");
-  const YAML::Node hoist_limits = f.required_map(m, "hoist", "machine");
-  s.hoist_upper_limit_m =
-      f.number(hoist_limits, "upper_limit_m", "machine.hoist", -100.0, s.trolley_rail_height_m - 2.0);
-  s.hoist_lower_limit_m =
-      f.number(hoist_limits, "lower_limit_m", "machine.hoist", -100.0, s.hoist_upper_limit_m, false, true);
-  s.spreader = read_spreader(f, m);
+  const sim::SpreaderHoistSettings rig =
+      read_spreader_hoist(f, m, folder, {"gantry", "trolley", "headblock"}, s.trolley_rail_height_m);
+  s.hoist_upper_limit_m = rig.upper_limit_m;
+  s.hoist_lower_limit_m = rig.lower_limit_m;
+  s.spreader = rig.spreader;
+  s.twistlocks = rig.twistlocks;
+  s.hoist = rig.hoist;
   s.boom = read_boom(f, m);
   if (s.boom.trolley_park_x_m < s.trolley_drive.min_position_m)
     f.fail(m["boom"]["trolley_park_x_m"], "machine.boom.trolley_park_x_m",
            "is landside of the trolley's travel (machine.trolley.drive.min_position_m)");
-  const YAML::Node t = f.required_map(m, "twistlocks", "machine");
-  s.twistlocks.lateral_tolerance_m = f.number(t, "lateral_tolerance_m", "machine.twistlocks", 0.0, 1.0, true);
-  s.twistlocks.landed_gap_m = f.number(t, "landed_gap_m", "machine.twistlocks", 0.0, 1.0, true);
-
-  const std::string reeving = f.text(m, "hoist_reeving", "machine");
-  const std::string reeving_path = (std::filesystem::path(folder) / reeving).lexically_normal().string();
-  if (!std::filesystem::is_regular_file(reeving_path))
-    f.fail(m["hoist_reeving"], "machine.hoist_reeving", "no such file: " + reeving_path);
-  const ReevingFile hoist = load_reeving(reeving_path);
-  if (hoist.bodies != std::vector<std::string>{"gantry", "trolley", "headblock"})
-    f.fail(m["hoist_reeving"], "machine.hoist_reeving",
-           "the hoist reeving's bodies must be [gantry, trolley, headblock]");
-  check_sts_hoist(f, m["hoist_reeving"], hoist.reeving);
-  s.hoist = hoist.reeving;
   s.controls = read_control_table(f, m, "machine");
   try {
     const sim::StsControlSlots slots(s.controls);  // every control the STS reads, of its kind
@@ -686,13 +702,62 @@ sim::ReachStackerSettings load_reach_stacker(const std::string& path) {
   return load_reach_stacker(YamlFile::load(path));
 }
 
+sim::RtgSettings load_rtg(const YamlFile& f, const std::string& folder) {
+  sim::RtgSettings s;
+  const YAML::Node m = f.required_map(f.root(), "machine", "");
+  if (const std::string kind = f.text(m, "kind", "machine"); kind != "rtg")
+    f.fail(m["kind"], "machine.kind", "this is an RTG file (kind: rtg), not a '" + kind + "'");
+  f.text(m, "name", "machine");
+  const YAML::Node g = f.required_map(m, "gantry", "machine");
+  const std::string gat = "machine.gantry";
+  // RTGs weigh 120-200 t unladen (reference.md); the structure without its trolley
+  s.frame_mass_kg = f.number(g, "mass_kg", gat, 2e4, 5e5);
+  s.frame_centre_height_m = f.number(g, "centre_of_mass_height_m", gat, 1.0, 40.0);
+  s.span_m = f.number(g, "span_m", gat, 5.0, 60.0);
+  s.wheelbase_m = f.number(g, "wheelbase_m", gat, 2.0, 30.0);
+  s.bogie_tyre_spacing_m = f.number(g, "bogie_tyre_spacing_m", gat, 0.5, s.wheelbase_m - 0.5);
+  s.sill_height_m = f.number(g, "sill_height_m", gat, 0.3, 5.0);
+  s.leg_width_m = f.number(g, "leg_width_m", gat, 0.3, 4.0);
+  s.gantry_drive = read_drive(f, g, gat);
+  s.gantry_loaded_speed_mps = f.number(g, "loaded_speed_mps", gat, 0.0, s.gantry_drive.max_speed_mps, true);
+  s.max_steer_rad = core::deg_to_rad(f.number(g, "max_steer_deg", gat, 0.0, 20.0, true));
+  s.wheel_turn_time_s = f.number(g, "wheel_turn_time_s", gat, 1.0, 600.0);
+  s.tyre = read_tyre(f, g, gat);
+  if (s.tyre.radius_m >= s.sill_height_m)
+    f.fail(g["sill_height_m"], gat + ".sill_height_m", "the sills must clear the tyres (tyre.radius_m)");
+  const YAML::Node t = f.required_map(m, "trolley", "machine");
+  const std::string tat = "machine.trolley";
+  s.trolley_mass_kg = f.number(t, "mass_kg", tat, 1000.0, 2e5);
+  s.trolley_rail_height_m = f.number(t, "rail_height_m", tat, s.sill_height_m + 5.0, 60.0);
+  s.trolley_drive = read_drive(f, t, tat);
+  if (s.trolley_drive.min_position_m < -0.5 * s.span_m || s.trolley_drive.max_position_m > 0.5 * s.span_m)
+    f.fail(t["drive"], tat + ".drive", "the trolley runs between the legs (within half the span)");
+  s.rig = read_spreader_hoist(f, m, folder, {"trolley", "headblock"}, s.trolley_rail_height_m);
+  const CabFields cab = read_cab(f, m, 10.0);
+  s.cab_position_m = cab.position_m;
+  s.eye_m = cab.eye_m;
+  s.sight_pitch_rad = cab.sight_pitch_rad;
+  s.controls = read_control_table(f, m, "machine");
+  try {
+    const sim::RtgControlSlots slots(s.controls);  // every control the RTG reads, of its kind
+  } catch (const std::invalid_argument& e) {
+    f.fail(m["controls"], "machine.controls", e.what());
+  }
+  f.check_unknown_keys();
+  return s;
+}
+
+sim::RtgSettings load_rtg(const std::string& path) {
+  return load_rtg(YamlFile::load(path), std::filesystem::path(path).parent_path().string());
+}
+
 std::string machine_file_kind(const std::string& path) {
   const YamlFile f = YamlFile::load(path);
   const YAML::Node m = f.required_map(f.root(), "machine", "");
   const std::string kind = f.text(m, "kind", "machine");
-  if (kind != "sts" && kind != "mhc" && kind != "tractor" && kind != "reach_stacker")
+  if (kind != "sts" && kind != "mhc" && kind != "tractor" && kind != "reach_stacker" && kind != "rtg")
     f.fail(m["kind"], "machine.kind",
-           "a machine is one of: sts, mhc, tractor, reach_stacker (not '" + kind + "')");
+           "a machine is one of: sts, rtg, mhc, tractor, reach_stacker (not '" + kind + "')");
   return kind;
 }
 

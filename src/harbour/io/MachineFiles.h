@@ -5,6 +5,7 @@
 #include "harbour/io/YamlFile.h"
 #include "harbour/machines/mhc/MobileHarbourCrane.h"
 #include "harbour/machines/reach_stacker/ReachStackerStability.h"
+#include "harbour/machines/rtg/RubberTyredGantry.h"
 #include "harbour/machines/sts/StsCrane.h"
 #include "harbour/machines/tractor/TerminalTractor.h"
 
@@ -24,11 +25,14 @@ sim::TractorSettings load_tractor(const std::string& path);
 /// brakes and legs.
 sim::TrailerSettings load_trailer(const YamlFile& file);
 sim::TrailerSettings load_trailer(const std::string& path);
-/// A reach stacker file: its masses, axles, tyres and load chart (its stability; the machine on the executive
-/// comes later).
+/// A reach stacker file (data/machines/reach_stacker.yaml): masses, axles, tyres, boom, rotator, load chart.
 sim::ReachStackerSettings load_reach_stacker(const YamlFile& file);
 sim::ReachStackerSettings load_reach_stacker(const std::string& path);
-/// The kind a machine file declares (`machine.kind`: sts, mhc, tractor); throws DataError naming the field.
+/// An RTG file (data/machines/rtg.yaml); its hoist reeving is read relative to `folder`.
+sim::RtgSettings load_rtg(const YamlFile& file, const std::string& folder);
+sim::RtgSettings load_rtg(const std::string& path);
+/// The kind a machine file declares (`machine.kind`: sts, rtg, mhc, tractor, reach_stacker); throws
+/// DataError naming the field.
 std::string machine_file_kind(const std::string& path);
 
 }  // namespace harbour::io

@@ -10,10 +10,13 @@
 namespace harbour::sim {
 namespace {
 
-constexpr double kTravelHeight_m = 22.0;  // spreader centre while travelling: clears the vessel's stack
-constexpr double kCruiseLever = 0.75;     // travel at three quarters of full speed
-constexpr double kSlowZone_m = 1.5;       // lower slowly over the last metre and a half
-constexpr double kSlowLever = 0.08;       // 0.12 m/s at the spreader on the STS hoist
+constexpr double kTravelHeight_m = 22.0;      // spreader centre while travelling: clears the vessel's stack
+constexpr double kBelowUpperLimit_m = 0.3;    // ... or, on a lower crane, this far under its upper limit
+constexpr double kCruiseLever = 0.75;         // travel at three quarters of full speed
+constexpr double kSlowZone_m = 1.5;           // lower slowly over the last metre and a half
+constexpr double kSlowLever = 0.08;           // 0.12 m/s at the spreader on the STS hoist
+constexpr double kTunedHoistSpeed_mps = 1.5;  // the hoist levers are set for a spreader this fast at full
+                                              // lever (the STS's); a slower hoist gets them scaled up
 constexpr double kPosition_tolerance_m = 0.03;
 constexpr double kSettled_m = 0.05;    // swing and position error small enough to start lowering
 constexpr double kHover_m = 0.5;       // hold this far above the landing until on target and calm
@@ -41,9 +44,12 @@ constexpr double kHorn_s = 1.0;  // the horn sounds this long before the gantry 
 
 std::string Autopilot::why_cannot_drive(const ExerciseSettings& exercise) {
   const char* machine = machine_kind(exercise.scenario.machine);
-  if (std::string(machine) != "sts")
-    return std::string("the autopilot drives the STS's container moves; the ") + machine +
-           "'s comes with its bulk exercises";
+  const auto* rtg = std::get_if<RtgSetup>(&exercise.scenario.machine);
+  if (std::string(machine) != "sts" && !rtg)
+    return std::string("the autopilot drives the STS's and the RTG's container moves; not the ") + machine +
+           "'s";
+  if (rtg && std::abs(std::remainder(rtg->start.heading_rad, 2.0 * std::numbers::pi)) > 1e-9)
+    return "the autopilot drives an RTG standing square to the world (heading 0)";
   if (exercise.moves.empty()) return "the exercise has no moves for the autopilot to make";
   return {};
 }
@@ -51,6 +57,11 @@ std::string Autopilot::why_cannot_drive(const ExerciseSettings& exercise) {
 Autopilot::Autopilot(const ExerciseSettings& exercise, OperatorDefects defects)
     : exercise_(exercise), defects_(defects) {
   if (const std::string why = why_cannot_drive(exercise); !why.empty()) throw std::invalid_argument(why);
+}
+
+const GantryCrane& Autopilot::crane(const Simulation& simulation) {
+  if (const auto* crane = dynamic_cast<const GantryCrane*>(&simulation.machine())) return *crane;
+  throw std::logic_error("the autopilot drives a gantry crane");  // why_cannot_drive() refused the others
 }
 
 std::size_t Autopilot::goal_index(const Simulation& simulation) const {
@@ -69,7 +80,7 @@ std::optional<double> Autopilot::cell_entry_z(const Simulation& simulation) cons
   if (!item.in_cell || carrying_ || !simulation.vessel()) return std::nullopt;
   const Vessel& vessel = *simulation.vessel();
   const double coaming = vessel.frame().to_parent({0, 0, vessel.geometry().coaming_top_m()}).z;
-  return coaming + kCellEntryClearance_m + simulation.sts().spreader_half_extents_m().z;
+  return coaming + kCellEntryClearance_m + crane(simulation).spreader_hoist().spreader().half_extents_m().z;
 }
 
 core::Vec3 Autopilot::source(const Simulation& simulation) const {
@@ -155,20 +166,18 @@ double Autopilot::catch_swing(SwingAxis& axis, double target, double axis_positi
 
 void Autopilot::position_finely(const Simulation& simulation, const core::Vec3& destination, double period,
                                 StsControls& in) {
-  const StsCrane& crane = simulation.sts();
-  const physics::BodyId load = carrying_ ? *crane.locked_container() : crane.spreader_body();
+  const GantryCrane& c = crane(simulation);
+  const SpreaderHoist& hoist = c.spreader_hoist();
+  const physics::BodyId load = carrying_ ? *hoist.locked_container() : hoist.spreader_body();
   const core::Vec3 at = simulation.world().pose(load).position;
   const core::Vec3 v = simulation.world().linear_velocity(load);
-  const StsCraneSettings& settings = simulation.scenario().sts().crane;
   // where the load would hang in the wind blowing now: the operator leans into the gusts
   const core::Vec3 lean =
-      simulation.wind_rest_offset_m(simulation.weather().wind(), crane.locked_container());
-  in.trolley = catch_swing(trolley_swing_, destination.x, crane.trolley_position_m(),
-                           crane.trolley_drive().reference_mps(), at.x, v.x, lean.x, period,
-                           settings.trolley_drive.max_speed_mps);
-  in.gantry = catch_swing(gantry_swing_, destination.y, crane.gantry_position_m(),
-                          crane.gantry_drive().reference_mps(), at.y, v.y, lean.y, period,
-                          settings.gantry_drive.max_speed_mps);
+      simulation.wind_rest_offset_m(simulation.weather().wind(), hoist.locked_container());
+  in.trolley = catch_swing(trolley_swing_, destination.x, c.trolley_x_m(), c.trolley_reference_mps(), at.x,
+                           v.x, lean.x, period, c.trolley_max_speed_mps());
+  in.gantry = catch_swing(gantry_swing_, destination.y, c.gantry_y_m(), c.gantry_reference_mps(), at.y, v.y,
+                          lean.y, period, c.gantry_max_speed_mps());
 }
 
 bool Autopilot::will_land_within(double tolerance) const {
@@ -209,7 +218,7 @@ void Autopilot::resume(const Simulation& simulation, int moves_done) {
   decided_ = false;
   trolley_swing_ = {};
   gantry_swing_ = {};
-  carrying_ = !done() && simulation.sts().locked_container() ==
+  carrying_ = !done() && crane(simulation).spreader_hoist().locked_container() ==
                              std::optional(simulation.container_body(goal_index(simulation)));
 }
 
@@ -218,23 +227,27 @@ Controls Autopilot::next(const Simulation& simulation) {
   last_ = decide(simulation);
   for (double* lever : {&last_.gantry, &last_.trolley, &last_.hoist, &last_.boom})
     *lever = device_lever(*lever);
-  last_controls_ = simulation.sts().controls(last_);
+  last_controls_ = crane(simulation).crane_controls(last_);
   decided_ = true;
   return last_controls_;
 }
 
 StsControls Autopilot::decide(const Simulation& simulation) {
   StsControls in;
-  const StsCrane& crane = simulation.sts();
+  const GantryCrane& crane = Autopilot::crane(simulation);
+  const SpreaderHoist& hoist = crane.spreader_hoist();
+  const core::Vec3 spreader = simulation.world().pose(hoist.spreader_body()).position;
+  const double travel_height = std::min(kTravelHeight_m, hoist.upper_limit_m() - kBelowUpperLimit_m);
   if (done()) {  // clear the truck: raise the empty spreader to travel height
-    in.hoist = crane.spreader_pose().position.z < kTravelHeight_m ? 1.0 : 0.0;
+    in.hoist = spreader.z < travel_height ? 1.0 : 0.0;
     return in;
   }
-  const StsCraneSettings& settings = simulation.scenario().sts().crane;
   const double now = simulation.time_s();
-  const core::Vec3 spreader = crane.spreader_pose().position;
+  const double spreader_weight_n = hoist.spreader_mass_kg() * 9.80665;
+  const double hoist_scale = std::max(1.0, kTunedHoistSpeed_mps / hoist.full_hoist_speed_mps());
+  const auto hoist_lever = [&](double lever) { return std::clamp(lever * hoist_scale, -1.0, 1.0); };
   const double period =
-      2.0 * std::numbers::pi * std::sqrt(std::max(crane.pendulum_length_m(), 1.0) / 9.80665);
+      2.0 * std::numbers::pi * std::sqrt(std::max(hoist.pendulum_length_m(), 1.0) / 9.80665);
   const core::Vec3 destination = carrying_ ? exercise_.moves[goal_].target_m : source(simulation);
   in.flipper_down = flippers(simulation);
   auto enter = [&](Phase p) {
@@ -245,16 +258,14 @@ StsControls Autopilot::decide(const Simulation& simulation) {
   switch (phase_) {
     case Phase::kRaise:
       in.hoist = 1.0;
-      if (spreader.z >= kTravelHeight_m) {
-        start_travel(destination, crane.gantry_position_m(), now);
+      if (spreader.z >= travel_height) {
+        start_travel(destination, crane.gantry_y_m(), now);
         enter(Phase::kTravel);
       }
       break;
     case Phase::kTravel: {
-      in.trolley =
-          axis_lever(trolley_, crane.trolley_position_m(), settings.trolley_drive.max_speed_mps, period, now);
-      in.gantry =
-          axis_lever(gantry_, crane.gantry_position_m(), settings.gantry_drive.max_speed_mps, period, now);
+      in.trolley = axis_lever(trolley_, crane.trolley_x_m(), crane.trolley_max_speed_mps(), period, now);
+      in.gantry = axis_lever(gantry_, crane.gantry_y_m(), crane.gantry_max_speed_mps(), period, now);
       in.horn = now < gantry_.ramp_start;
       if (in.trolley == 0.0 && in.gantry == 0.0 && !in.horn) {
         trolley_swing_ = {};
@@ -272,7 +283,8 @@ StsControls Autopilot::decide(const Simulation& simulation) {
     case Phase::kLower: {
       position_finely(simulation, destination, period, in);
       // landing surface: the spreader's centre when seated on the box (pick-up) or with the box on its target
-      const double land_z = destination.z + goal_half_height(simulation) + crane.spreader_half_extents_m().z;
+      const double land_z =
+          destination.z + goal_half_height(simulation) + hoist.spreader().half_extents_m().z;
       const double above = spreader.z - land_z;
       const double aim = carrying_ ? exercise_.moves[goal_].tolerance_m / 4.0 : kPickUpAim_m;
       // into a hold cell: slow down and aim above the cell guides too (25 mm clearance a side)
@@ -283,13 +295,13 @@ StsControls Autopilot::decide(const Simulation& simulation) {
                         !(carrying_ && defects_.land_fast);
       const bool hold =
           (above < kHover_m || at_entry) && !will_land_within(aim) && !(carrying_ && defects_.land_fast);
-      in.hoist = hold ? 0.0 : slow ? -kSlowLever : -0.6;
-      if (!carrying_ && crane.lamps().landed) enter(Phase::kLock);
-      if (carrying_ && simulation.world().pose(*crane.locked_container()).position.z <= destination.z + 0.01)
+      in.hoist = hold ? 0.0 : hoist_lever(slow ? -kSlowLever : -0.6);
+      if (!carrying_ && hoist.locks().twistlocks().lamps().landed) enter(Phase::kLock);
+      if (carrying_ && simulation.world().pose(*hoist.locked_container()).position.z <= destination.z + 0.01)
         enter(Phase::kSlacken);
       // sitting on the box beside its castings: lift off and aim again
-      const bool resting = crane.hoisted_load_n() < 0.5 * settings.spreader.mass_kg * 9.80665;
-      if (!carrying_ && !crane.lamps().landed && resting) {
+      const bool resting = hoist.hoisted_load_n() < 0.5 * spreader_weight_n;
+      if (!carrying_ && !hoist.locks().twistlocks().lamps().landed && resting) {
         if (resting_since_ < 0.0) resting_since_ = now;
         if (now - resting_since_ > kResting_s) enter(Phase::kLiftOff);
       } else {
@@ -299,7 +311,7 @@ StsControls Autopilot::decide(const Simulation& simulation) {
     }
     case Phase::kLiftOff:
       position_finely(simulation, destination, period, in);
-      in.hoist = kLiftOffLever;
+      in.hoist = hoist_lever(kLiftOffLever);
       if (now - phase_start_ > kLiftOff_s) {
         resting_since_ = -1.0;
         enter(Phase::kLower);
@@ -312,21 +324,20 @@ StsControls Autopilot::decide(const Simulation& simulation) {
         break;
       }
       in.lock = now - phase_start_ < kButton_s;
-      if (now - phase_start_ > 2 * kButton_s && crane.locked_container()) {
+      if (now - phase_start_ > 2 * kButton_s && hoist.locked_container()) {
         carrying_ = true;
         enter(Phase::kRaise);
       }
       break;
     case Phase::kSlacken:
       // lower on until the ropes carry the spreader alone (the unlock interlock refuses a hanging load)
-      in.hoist = -kSlowLever;
-      if (now - phase_start_ > kSlacken_s &&
-          crane.hoisted_load_n() < 1.15 * settings.spreader.mass_kg * 9.80665)
+      in.hoist = hoist_lever(-kSlowLever);
+      if (now - phase_start_ > kSlacken_s && hoist.hoisted_load_n() < 1.15 * spreader_weight_n)
         enter(Phase::kUnlock);
       break;
     case Phase::kUnlock:
       in.unlock = now - phase_start_ < kButton_s;
-      if (now - phase_start_ > 2 * kButton_s && !crane.locked_container()) {
+      if (now - phase_start_ > 2 * kButton_s && !hoist.locked_container()) {
         carrying_ = false;
         ++goal_;
         enter(Phase::kRaise);

@@ -24,7 +24,8 @@ struct OperatorDefects {
 /// unlocking. For headless runs, demos, tests.
 class Autopilot final : public Pilot {
  public:
-  /// Why it cannot drive `exercise` ("" when it can): it drives the STS's container moves.
+  /// Why it cannot drive `exercise` ("" when it can): it drives the container moves of a gantry crane (the
+  /// STS, an RTG square to the world).
   static std::string why_cannot_drive(const ExerciseSettings& exercise);
   /// Throws std::invalid_argument with why_cannot_drive() when it cannot.
   explicit Autopilot(const ExerciseSettings& exercise, OperatorDefects defects = {});
@@ -61,6 +62,7 @@ class Autopilot final : public Pilot {
     double miss = 0.0;   // [m] the load's distance from the target, now or half a second on
     double last_target = 0.0;
   };
+  static const GantryCrane& crane(const Simulation& simulation);
   StsControls decide(const Simulation& simulation);
   double axis_lever(AxisMove& m, double position, double max_speed, double period, double now) const;
   static double catch_swing(SwingAxis& axis, double target, double axis_position, double axis_speed,

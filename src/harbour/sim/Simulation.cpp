@@ -18,6 +18,7 @@ const char* machine_kind(const MachineSetup& setup) {
         if constexpr (std::is_same_v<T, MhcSetup>) return "mhc";
         if constexpr (std::is_same_v<T, TractorSetup>) return "tractor";
         if constexpr (std::is_same_v<T, ReachStackerSetup>) return "reach_stacker";
+        if constexpr (std::is_same_v<T, RtgSetup>) return "rtg";
       },
       setup);
 }
@@ -47,6 +48,8 @@ std::unique_ptr<Machine> make_machine(physics::PhysicsWorld& world, const Machin
           return std::make_unique<TerminalTractor>(world, m.vehicle, m.start);
         if constexpr (std::is_same_v<T, ReachStackerSetup>)
           return std::make_unique<ReachStacker>(world, m.vehicle, m.start);
+        if constexpr (std::is_same_v<T, RtgSetup>)
+          return std::make_unique<RubberTyredGantry>(world, m.crane, m.start);
       },
       setup);
 }

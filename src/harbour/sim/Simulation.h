@@ -13,6 +13,7 @@
 #include "harbour/core/Warnings.h"
 #include "harbour/machines/mhc/MobileHarbourCrane.h"
 #include "harbour/machines/reach_stacker/ReachStacker.h"
+#include "harbour/machines/rtg/RubberTyredGantry.h"
 #include "harbour/machines/sts/StsCrane.h"
 #include "harbour/machines/tractor/TerminalTractor.h"
 #include "harbour/physics/PhysicsWorld.h"
@@ -22,6 +23,7 @@
 #include "harbour/sim/Trucks.h"
 #include "harbour/sim/Vessel.h"
 #include "harbour/sim/Weather.h"
+#include "harbour/sim/YardBlock.h"
 
 namespace harbour::sim {
 
@@ -115,8 +117,14 @@ struct ReachStackerSetup {
   ReachStackerStart start;
 };
 
+/// A rubber-tyred gantry and where it stands (settings).
+struct RtgSetup {
+  RtgSettings crane;
+  RtgStart start;
+};
+
 /// The machine an exercise runs, with its start.
-using MachineSetup = std::variant<StsSetup, MhcSetup, TractorSetup, ReachStackerSetup>;
+using MachineSetup = std::variant<StsSetup, MhcSetup, TractorSetup, ReachStackerSetup, RtgSetup>;
 
 /// The kind of machine a setup builds ("sts", ...), as files name it.
 const char* machine_kind(const MachineSetup& setup);
@@ -136,6 +144,7 @@ struct ScenarioSettings {
   std::optional<RampSettings> ramp;  ///< a ro-ro vessel's stern ramp and deck, the ground vehicles drive on
   std::vector<GroundMarking> markings;
   TruckLaneSettings trucks;
+  std::optional<YardBlock> yard_block;  ///< a container block's ground slots (bay, row, tier)
   std::vector<ContainerPlacement> containers;
   WeatherSettings weather;
   std::vector<ScriptedEvent> events;    ///< in time order

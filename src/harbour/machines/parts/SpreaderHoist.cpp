@@ -38,16 +38,22 @@ core::Vec3 mean_sheave_m(const cable::ReevingSettings& reeving, int body) {
 }  // namespace
 
 SpreaderHoist::SpreaderHoist(physics::PhysicsWorld& world, const SpreaderHoistSettings& settings,
-                             std::vector<physics::BodyId> bodies, const core::Vec3& spreader_position_m)
+                             std::vector<physics::BodyId> bodies, const core::Pose& spreader_pose)
     : world_(world), settings_(settings), limits_(settings.lower_limit_m, settings.upper_limit_m) {
   if (bodies.empty() || settings.hoist.ropes.empty())
     throw std::invalid_argument("a spreader hoist needs a trolley and ropes");
-  const int headblock = static_cast<int>(bodies.size()), trolley = headblock - 1;
-  trolley_ = bodies.back();
-  trolley_sheaves_m_ = mean_sheave_m(settings.hoist, trolley);
+  const int headblock = static_cast<int>(bodies.size());
   headblock_sheaves_m_ = mean_sheave_m(settings.hoist, headblock);
   falls_ = fall_segments(settings.hoist, headblock);
   falls_per_rope_ = static_cast<double>(falls_.size()) / static_cast<double>(settings.hoist.ropes.size());
+  for (const auto& [rope, segment] : falls_) {
+    const std::vector<int>& path = settings.hoist.ropes[static_cast<std::size_t>(rope)].path;
+    for (const int end :
+         {path[static_cast<std::size_t>(segment)], path[static_cast<std::size_t>(segment) + 1]}) {
+      const cable::Mount& mount = settings.hoist.elements[static_cast<std::size_t>(end)].mount;
+      if (mount.body != headblock) fall_tops_.push_back(mount);
+    }
+  }
   if (falls_.empty()) throw std::invalid_argument("the hoist's ropes reach no sheave on the headblock");
 
   // the spreader's body; its frame and flippers are shapes the Spreader resizes as it telescopes
@@ -55,7 +61,7 @@ SpreaderHoist::SpreaderHoist(physics::PhysicsWorld& world, const SpreaderHoistSe
   physics::BoxSettings spreader;
   spreader.mass_kg = frame.mass_kg;
   spreader.half_extents_m = {0.5 * frame.width_m, 0.5 * frame.length_m[1], 0.5 * frame.height_m};
-  spreader.pose.position = spreader_position_m;
+  spreader.pose = spreader_pose;
   spreader.collides = false;
   spreader_ = world.add_box(spreader);
   frame_ = std::make_unique<Spreader>(world, spreader_, kSurfaceSpreader, kSurfaceFlipper, frame);
@@ -70,7 +76,11 @@ double SpreaderHoist::attachment_bottom_z_m() const {
 }
 
 double SpreaderHoist::pendulum_length_m() const {
-  return world_.pose(trolley_).to_parent(trolley_sheaves_m_).z -
+  // the falls' mean height at their upper ends (trolley sheaves, the drum, dead ends) over their lower ends
+  double top = 0.0;
+  for (const cable::Mount& m : fall_tops_)
+    top += cable_bodies_->point_position(m.body, m.local).z;
+  return top / static_cast<double>(fall_tops_.size()) -
          world_.pose(spreader_).to_parent(headblock_sheaves_m_).z;
 }
 

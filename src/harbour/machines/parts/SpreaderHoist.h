@@ -40,14 +40,16 @@ struct SpreaderHoistCommand {
 /// corner's landed sensor reading "not landed".
 class SpreaderHoist {
  public:
-  /// `bodies`: the reeving's bodies but the last (the trolley last among them); the headblock is the
-  /// spreader's body, built here at `spreader_position_m`.
+  /// `bodies`: the reeving's bodies but the last (the trolley among them); the headblock is the
+  /// spreader's body, built here at `spreader_pose` (its length along its y).
   SpreaderHoist(physics::PhysicsWorld& world, const SpreaderHoistSettings& settings,
-                std::vector<physics::BodyId> bodies, const core::Vec3& spreader_position_m);
+                std::vector<physics::BodyId> bodies, const core::Pose& spreader_pose);
 
   void step(const SpreaderHoistCommand& command, std::span<const ContainerRef> containers, double dt_s);
 
   physics::BodyId spreader_body() const { return spreader_; }
+  double spreader_mass_kg() const { return settings_.spreader.mass_kg; }
+  double upper_limit_m() const { return settings_.upper_limit_m; }
   const Spreader& spreader() const { return *frame_; }
   SpreaderState spreader_state() const { return frame_->state(); }
   const SpreaderLocks& locks() const { return locks_; }
@@ -57,7 +59,8 @@ class SpreaderHoist {
   cable::HoistSystem& hoist() { return *hoist_; }
   /// Vertical rope pull on the headblock [N] (the load the hoist carries, spreader included).
   double hoisted_load_n() const;
-  /// From the trolley's sheaves down to the headblock's (their mean heights) [m].
+  /// The falls' length: from their upper ends (the trolley's sheaves, a drum or dead end the rope comes
+  /// down from) to the headblock's sheaves, mean heights [m].
   double pendulum_length_m() const;
   double attachment_bottom_z_m() const;
   /// The spreader's speed at full lever [m/s] (the drum's rope speed over the falls per rope).
@@ -76,9 +79,10 @@ class SpreaderHoist {
  private:
   physics::PhysicsWorld& world_;
   SpreaderHoistSettings settings_;
-  physics::BodyId trolley_, spreader_;
-  core::Vec3 trolley_sheaves_m_, headblock_sheaves_m_;  // mean sheave positions, body frames
+  physics::BodyId spreader_;
+  core::Vec3 headblock_sheaves_m_;          // their mean position, the headblock's frame
   std::vector<std::pair<int, int>> falls_;  // (rope, segment) of the ropes' falls to the headblock
+  std::vector<cable::Mount> fall_tops_;     // the falls' upper ends
   double falls_per_rope_ = 1.0;
   std::unique_ptr<Spreader> frame_;
   SpreaderLocks locks_;

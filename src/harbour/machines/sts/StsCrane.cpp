@@ -135,9 +135,9 @@ StsCrane::StsCrane(physics::PhysicsWorld& world, const StsCraneSettings& setting
   trolley_slider_ = world.add_slider(gantry_body_, trolley_body_, {1, 0, 0});
 
   // the spreader hangs from the trolley on the hoist reeving's bodies [gantry, trolley, headblock]
-  rig_ = std::make_unique<SpreaderHoist>(world, settings.spreader_hoist(),
-                                         std::vector<physics::BodyId>{gantry_body_, trolley_body_},
-                                         core::Vec3{trolley_x_m, gantry_y_m, spreader_z_m});
+  rig_ = std::make_unique<SpreaderHoist>(
+      world, settings.spreader_hoist(), std::vector<physics::BodyId>{gantry_body_, trolley_body_},
+      core::Pose{core::Mat3::identity(), {trolley_x_m, gantry_y_m, spreader_z_m}});
   wind_areas_[0] = {rig_->spreader_body(), rig_->spreader().half_extents_m()};
 }
 

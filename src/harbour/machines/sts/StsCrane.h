@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "harbour/cable/HoistSystem.h"
+#include "harbour/machines/GantryCrane.h"
 #include "harbour/machines/Machine.h"
 #include "harbour/machines/parts/Drive.h"
 #include "harbour/machines/parts/SpreaderHoist.h"
@@ -85,7 +86,7 @@ struct StsControlSlots {
 
 /// The STS crane on the physics world: gantry and trolley on motorised sliders driven by Drives, the spreader
 /// hanging from the 4-rope hoist (cable model), twistlocks that lock a landed container to the spreader.
-class StsCrane final : public Machine {
+class StsCrane final : public Machine, public GantryCrane {
  public:
   StsCrane(physics::PhysicsWorld& world, const StsCraneSettings& settings, double gantry_y_m,
            double trolley_x_m, double spreader_z_m);
@@ -111,6 +112,16 @@ class StsCrane final : public Machine {
   void inject_fault(MachineFault fault, int detail) override;
   void clear_faults() override;
   void hash_into(core::StateHash& hash) const override;
+  // GantryCrane (the gantry's slider starts at x = 0)
+  double gantry_y_m() const override { return gantry_position_m(); }
+  double trolley_x_m() const override { return trolley_position_m(); }
+  double gantry_reference_mps() const override { return gantry_.reference_mps(); }
+  double trolley_reference_mps() const override { return trolley_.reference_mps(); }
+  double gantry_max_speed_mps() const override { return settings_.gantry_drive.max_speed_mps; }
+  double trolley_max_speed_mps() const override { return settings_.trolley_drive.max_speed_mps; }
+  const SpreaderHoist& spreader_hoist() const override { return *rig_; }
+  Controls crane_controls(const StsControls& levers) const override { return controls(levers); }
+
   const StsControlSlots& control_slots() const { return slots_; }
   /// The cab's controls as labelled Controls (the other slots neutral), and back.
   Controls controls(const StsControls& sts) const;

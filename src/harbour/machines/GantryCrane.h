@@ -1,0 +1,29 @@
+#pragma once
+
+#include "harbour/machines/parts/SpreaderHoist.h"
+#include "harbour/sim/Controls.h"
+
+namespace harbour::sim {
+
+struct StsControls;
+
+/// A portal crane whose trolley carries a spreader hoist across its gantry: the gantry travels along world
+/// y, the trolley along world x (the STS; an RTG standing square to the world). What a scripted operator
+/// needs to drive one by where its load hangs, whichever it is.
+class GantryCrane {
+ public:
+  virtual ~GantryCrane() = default;
+  /// The gantry's and the trolley's world positions [m] and the speeds their drives are asked [m/s].
+  virtual double gantry_y_m() const = 0;
+  virtual double trolley_x_m() const = 0;
+  virtual double gantry_reference_mps() const = 0;
+  virtual double trolley_reference_mps() const = 0;
+  /// Their speeds at full lever now [m/s] (a gantry may travel slower laden).
+  virtual double gantry_max_speed_mps() const = 0;
+  virtual double trolley_max_speed_mps() const = 0;
+  virtual const SpreaderHoist& spreader_hoist() const = 0;
+  /// Its controls with these levers and buttons (those it lacks ignored, the others neutral).
+  virtual Controls crane_controls(const StsControls& levers) const = 0;
+};
+
+}  // namespace harbour::sim

@@ -1,0 +1,219 @@
+// The rubber-tyred gantry: its tyres, travel, steering and wheel turn, its spreader's pendulum, its block's
+// 1-over-5 stacking, and the autopilot clearing its exercise.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "harbour/io/ExerciseFiles.h"
+#include "harbour/io/MachineFiles.h"
+#include "harbour/sim/Evaluation.h"
+#include "harbour/sim/Pilot.h"
+
+namespace harbour::sim {
+namespace {
+
+constexpr double kG = 9.80665;
+
+ExerciseSettings truck_to_block() {
+  return io::load_exercise(HARBOUR_DATA_DIR "/exercises/rtg_truck_to_block.yaml");
+}
+
+RubberTyredGantry& rtg(Simulation& simulation) {
+  return dynamic_cast<RubberTyredGantry&>(simulation.machine());
+}
+
+// Neutral controls with some set by label.
+Controls with(const Simulation& simulation, std::initializer_list<std::pair<const char*, double>> values) {
+  const ControlTable& table = simulation.control_table();
+  Controls c = table.neutral();
+  for (const auto& [label, value] : values) {
+    const ControlKind kind = std::string(label) == "wheel_turn" ? ControlKind::kSwitch : ControlKind::kAxis;
+    c.value[static_cast<std::size_t>(table.slot(label, kind))] = value;
+  }
+  return c;
+}
+
+// Steps `seconds` with these controls.
+void run(Simulation& simulation, const Controls& controls, double seconds) {
+  const auto steps = static_cast<int>(std::lround(seconds / Simulation::kStep_s));
+  for (int k = 0; k < steps; ++k)
+    simulation.step(controls);
+}
+
+// The exercise's scene without its boxes and truck (an empty yard).
+ScenarioSettings empty_yard() {
+  ScenarioSettings scenario = truck_to_block().scenario;
+  scenario.containers.clear();
+  scenario.trucks.trucks = 0;
+  return scenario;
+}
+
+TEST(Rtg, ItsEightTyresCarryItsWeight) {
+  // standing, the tyres' sag is the crane's weight over their stiffness: the frame's centre sits that much
+  // under its unladen height
+  Simulation simulation(truck_to_block().scenario);
+  const RubberTyredGantry& c = rtg(simulation);
+  for (int k = 0; k < 5000; ++k)
+    simulation.step(simulation.control_table().neutral());
+  const RtgSettings& s = c.settings();
+  const double weight_n = (s.frame_mass_kg + s.trolley_mass_kg + s.rig.spreader.mass_kg) * kG;
+  const double sag = weight_n / (8.0 * s.tyre.vertical_stiffness_n_per_m);
+  const double z = simulation.world().pose(c.frame_body()).position.z;
+  std::printf("frame centre %.4f m, statics %.4f m (sag %.1f mm)\n", z, s.frame_centre_height_m - sag,
+              sag * 1e3);
+  EXPECT_NEAR(z, s.frame_centre_height_m - sag, 0.1 * sag);
+  EXPECT_LT(std::abs(c.yaw_rad()), 1e-4);
+}
+TEST(Rtg, TravelsAtItsPublishedSpeedAndStopsOnItsRamp) {
+  Simulation simulation(empty_yard());
+  const RubberTyredGantry& c = rtg(simulation);
+  run(simulation, with(simulation, {{"gantry", 1.0}}), 20.0);
+  const double speed = c.travel_speed_mps();
+  std::printf("empty gantry speed %.3f m/s = %.1f m/min (published 130)\n", speed, speed * 60.0);
+  EXPECT_NEAR(speed * 60.0, 130.0, 0.02 * 130.0);
+  EXPECT_LT(std::abs(c.lane_offset_m()),
+            0.05);  // the tyres roll along the frame's y: straight within tyre slip
+  // lever released: the drive's deceleration ramp, then the holding brakes
+  const double y0 = c.gantry_y_m();
+  run(simulation, simulation.control_table().neutral(), 15.0);
+  const double stop = c.gantry_y_m() - y0;
+  const double ramp = speed * speed / (2.0 * c.settings().gantry_drive.deceleration_mps2);
+  std::printf("stopping distance %.2f m, v^2/2a %.2f m\n", stop, ramp);
+  EXPECT_NEAR(stop, ramp, 0.05 * ramp);
+  EXPECT_LT(std::abs(c.travel_speed_mps()), 0.01);
+}
+
+TEST(Rtg, ASteeringBiasCurvesItsPathAsTheSteeringGeometrySaysAndTheOperatorCorrectsIt) {
+  // front and rear bogies steered ±δ turn the frame about its middle on a radius R = b / (2 tan δ): after a
+  // distance s along the block it is s² / 2R off its line
+  ScenarioSettings scenario = empty_yard();
+  const double bias = 0.5 * std::numbers::pi / 180.0;
+  std::get<RtgSetup>(scenario.machine).start.steer_bias_rad = bias;
+  Simulation drifting(scenario);
+  run(drifting, with(drifting, {{"gantry", 1.0}}), 22.0);
+  const RubberTyredGantry& c = rtg(drifting);
+  const double s = c.gantry_y_m();
+  const double radius = c.settings().wheelbase_m / (2.0 * std::tan(bias));
+  const double expected = -s * s / (2.0 * radius);  // + steering turns left: towards -x going +y
+  std::printf("after %.1f m: %.3f m off the line, kinematics %.3f m (R %.0f m)\n", s, c.lane_offset_m(),
+              expected, radius);
+  EXPECT_NEAR(c.lane_offset_m(), expected, 0.15 * std::abs(expected));
+  // the operator holds the line by steering against the bias
+  Simulation held(scenario);
+  run(held, with(held, {{"gantry", 1.0}, {"steer", -bias / rtg(held).settings().max_steer_rad}}), 22.0);
+  std::printf("steered against it: %.3f m off\n", rtg(held).lane_offset_m());
+  EXPECT_LT(std::abs(rtg(held).lane_offset_m()), 0.05);
+}
+
+TEST(Rtg, ItsWheelsTurnForABlockChangeOnlyAtAStandstill) {
+  Simulation simulation(empty_yard());
+  const RubberTyredGantry& c = rtg(simulation);
+  run(simulation, with(simulation, {{"gantry", 1.0}}), 5.0);
+  run(simulation, with(simulation, {{"gantry", 1.0}, {"wheel_turn", 1.0}}), 2.0);
+  EXPECT_EQ(c.wheel_turn_refusals(), 1u);  // asked once while travelling: refused, counted once
+  EXPECT_EQ(c.wheel_turn(), 0.0);
+  run(simulation, with(simulation, {{"wheel_turn", 1.0}}), 15.0);  // stopped, the switch still asking
+  EXPECT_EQ(c.wheel_turn(), 0.0) << "a refused turn waits for the switch to go back";
+  run(simulation, simulation.control_table().neutral(), 1.0);
+  run(simulation, with(simulation, {{"wheel_turn", 1.0}}), 30.0);
+  EXPECT_NEAR(c.wheel_turn(), 30.0 / c.settings().wheel_turn_time_s, 1e-3);
+  // the gantry lever does nothing while the wheels turn
+  run(simulation, with(simulation, {{"wheel_turn", 1.0}, {"gantry", 1.0}}), 5.0);
+  EXPECT_LT(std::abs(c.travel_speed_mps()), 0.01);
+  run(simulation, with(simulation, {{"wheel_turn", 1.0}}), 30.0);
+  EXPECT_EQ(c.wheel_turn(), 1.0);
+  // turned: it travels across the block
+  const core::Vec3 start = simulation.world().pose(c.frame_body()).position;
+  run(simulation, with(simulation, {{"wheel_turn", 1.0}, {"gantry", 0.3}}), 10.0);
+  const core::Vec3 at = simulation.world().pose(c.frame_body()).position;
+  std::printf("turned: %.2f m across, %.3f m along\n", at.x - start.x, at.y - start.y);
+  EXPECT_GT(at.x - start.x, 3.0);
+  EXPECT_LT(std::abs(at.y - start.y), 0.05);
+  EXPECT_EQ(c.wheel_turn_refusals(), 1u);
+}
+
+TEST(Rtg, TheSpreaderSwingsWithThePeriodOfItsPendulum) {
+  Simulation simulation(empty_yard());
+  const RubberTyredGantry& c = rtg(simulation);
+  run(simulation, with(simulation, {{"trolley", -1.0}}), 3.0);  // a trolley start sets it swinging
+  run(simulation, simulation.control_table().neutral(), 5.0);
+  // upward zero crossings of the spreader's offset from under the trolley
+  std::vector<double> crossings;
+  double last = 0.0;
+  const double length = c.pendulum_length_m();
+  while (crossings.size() < 6) {
+    simulation.step(simulation.control_table().neutral());
+    const double offset = c.spreader_pose().position.x - c.trolley_x_m();
+    if (last < 0.0 && offset >= 0.0) crossings.push_back(simulation.time_s());
+    last = offset;
+  }
+  const double period = (crossings.back() - crossings.front()) / 5.0;
+  const double expected = 2.0 * std::numbers::pi * std::sqrt(length / kG);
+  std::printf("swing period %.3f s, 2 pi sqrt(L/g) %.3f s (L %.2f m)\n", period, expected, length);
+  EXPECT_NEAR(period, expected, 0.03 * expected);
+}
+
+TEST(Rtg, ItCarriesAHighCubeOneOverFiveAndTheBlockStacksFiveHigh) {
+  // at the upper limit a carried high cube's underside clears a five-high stack (1-over-5)
+  const RtgSettings s = io::load_rtg(HARBOUR_DATA_DIR "/machines/rtg.yaml");
+  const double high_cube = 2.896;
+  const double lift = s.rig.upper_limit_m - 0.5 * s.rig.spreader.height_m;
+  const double clearance = lift - high_cube - 5 * high_cube;
+  std::printf("lift %.2f m under the spreader: a carried high cube clears five high by %.2f m\n", lift,
+              clearance);
+  EXPECT_NEAR(lift, 18.0, 1e-9);  // published
+  EXPECT_GT(clearance, 0.3);
+  EXPECT_LT(clearance, high_cube);  // not six high
+  // a sixth tier is no slot of the block
+  YardBlock block;
+  block.bays = 5;
+  std::string why;
+  EXPECT_TRUE(block.slot_centre(2, 1, 5, why).has_value());
+  EXPECT_FALSE(block.slot_centre(2, 1, 6, why).has_value());
+  EXPECT_NE(why.find("stacks 5 high"), std::string::npos) << why;
+}
+
+TEST(Rtg, TheAutopilotStacksTheTrucksBoxAndAKeyframeContinuesBitForBit) {
+  const ExerciseSettings exercise = truck_to_block();
+  Simulation simulation(exercise.scenario);
+  std::unique_ptr<Pilot> pilot = make_pilot(exercise);
+  Evaluator evaluator(exercise);
+  std::vector<std::uint8_t> keyframe;
+  std::vector<Controls> after_keyframe;
+  std::uint64_t hash = 0;
+  constexpr std::int64_t kKeyframeStep = 60000, kCompareStep = 63000;
+  while (!evaluator.finished() && simulation.time_s() < exercise.rules.time_limit_s &&
+         !simulation.diverged()) {
+    if (simulation.steps() == kKeyframeStep) keyframe = simulation.save_state();
+    const Controls c = pilot->next(simulation);
+    if (simulation.steps() >= kKeyframeStep && simulation.steps() < kCompareStep) after_keyframe.push_back(c);
+    simulation.step(c);
+    evaluator.observe(simulation, c);
+    if (simulation.steps() == kCompareStep) hash = simulation.state_hash();
+  }
+  ASSERT_FALSE(simulation.diverged()) << simulation.divergence();
+  const Metrics& m = evaluator.metrics();
+  ASSERT_EQ(m.moves_completed, 1);
+  std::printf("autopilot: %.1f s, placed %.3f m off, %.2f deg skew, score %.0f\n", simulation.time_s(),
+              m.placement_offset_m[0], m.placement_skew_deg[0], evaluator.score().total);
+  EXPECT_LT(m.placement_offset_m[0], exercise.moves[0].tolerance_m);
+  EXPECT_EQ(m.collisions, 0);
+  EXPECT_GE(evaluator.score().total, exercise.rules.pass_score);
+  EXPECT_EQ(simulation.trucks()->departed(),
+            1);  // the truck left once its box was off and the spreader clear
+
+  // a keyframe taken a minute in continues to the same state on the same controls
+  Simulation resumed(exercise.scenario);
+  resumed.restore_state(keyframe);
+  for (const Controls& c : after_keyframe)
+    resumed.step(c);
+  EXPECT_EQ(resumed.state_hash(), hash);
+}
+
+}  // namespace
+}  // namespace harbour::sim
