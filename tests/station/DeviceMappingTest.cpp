@@ -206,12 +206,13 @@ TEST(DeviceMapping, BadMappingsNameFileLineAndField) {
 }
 
 TEST(DeviceMapping, EveryShippedMappingLoadsAndWritesBackTheSame) {
-  // the four families' controls: the STS's, the slewing machines' (the shipped MHC's), the tractor's and the
-  // reach stacker's
+  // the five families' controls: the STS's, the slewing machines' (the shipped MHC's), the tractor's, the
+  // reach stacker's and the RTG's
   const std::vector<sim::ControlTable> machines{
       sim::sts_control_table(), io::load_mhc(HARBOUR_DATA_DIR "/machines/mhc.yaml").controls,
       io::load_tractor(HARBOUR_DATA_DIR "/machines/tractor.yaml").controls,
-      io::load_reach_stacker(HARBOUR_DATA_DIR "/machines/reach_stacker.yaml").controls};
+      io::load_reach_stacker(HARBOUR_DATA_DIR "/machines/reach_stacker.yaml").controls,
+      io::load_rtg(HARBOUR_DATA_DIR "/machines/rtg.yaml").controls};
   int files = 0;
   for (const auto& entry : std::filesystem::directory_iterator(std::string(HARBOUR_DATA_DIR) + "/devices")) {
     const std::string path = entry.path().string();
@@ -239,7 +240,7 @@ TEST(DeviceMapping, EveryShippedMappingLoadsAndWritesBackTheSame) {
     }
     ++files;
   }
-  EXPECT_EQ(files, 8);  // keyboard.yaml includes the mouse
+  EXPECT_EQ(files, 9);  // keyboard.yaml and keyboard_rtg.yaml include the mouse
 }
 
 }  // namespace

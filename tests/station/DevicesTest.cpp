@@ -325,6 +325,12 @@ TEST(Devices, TheDrivingKeyboardFitsTheTractorAndTheCranesKeyboardsDoNot) {
   const sim::Simulation mhc(io::load_exercise(HARBOUR_DATA_DIR "/exercises/mhc_free_practice.yaml").scenario);
   EXPECT_NE(why_mapping_does_not_fit(HARBOUR_DATA_DIR "/devices/keyboard_driving.yaml", mhc.control_table()),
             "");
+  // the RTG lacks the STS's boom and flippers: its own keyboard comes before the STS's does not fit it
+  const sim::Simulation rtg(
+      io::load_exercise(HARBOUR_DATA_DIR "/exercises/rtg_truck_to_block.yaml").scenario);
+  EXPECT_EQ(why_mapping_does_not_fit(HARBOUR_DATA_DIR "/devices/keyboard_rtg.yaml", rtg.control_table()), "");
+  EXPECT_NE(why_mapping_does_not_fit(HARBOUR_DATA_DIR "/devices/keyboard.yaml", rtg.control_table()), "");
+  EXPECT_NE(why_mapping_does_not_fit(HARBOUR_DATA_DIR "/devices/keyboard_rtg.yaml", table), "");
 }
 
 }  // namespace

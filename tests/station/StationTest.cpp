@@ -154,8 +154,9 @@ TEST(Profiles, TheThreeShippedConfigurationsLoad) {
   EXPECT_EQ(desktop.displays.size(), 1u);
   EXPECT_EQ(desktop.opentrack_port, 4242);
   EXPECT_FALSE(desktop.motion.has_value());
-  // the STS's three, the slewing machines' levers and keyboard, the tractor's and the reach stacker's keyboards
-  EXPECT_EQ(desktop.mappings.size(), 7u);
+  // the STS's three, the slewing machines' levers and keyboard, the tractor's, the reach stacker's and the
+  // RTG's keyboards
+  EXPECT_EQ(desktop.mappings.size(), 8u);
   EXPECT_TRUE(desktop.displays[0].pitch_from_sight);  // a monitor looks along the machine's line of sight
   EXPECT_FALSE(load_profile(resolve_profile("immersive", HARBOUR_DATA_DIR)).displays[0].pitch_from_sight);
   const Profile medium = load_profile(resolve_profile("medium", HARBOUR_DATA_DIR));
