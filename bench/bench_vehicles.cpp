@@ -1,4 +1,5 @@
-// The wheeled machines' exercises under their autopilots, at the simulation's fixed step.
+// The wheeled machines' exercises (the RTG's on its tyres too) under their autopilots, at the simulation's
+// fixed step.
 #include <benchmark/benchmark.h>
 
 #include <memory>
@@ -41,6 +42,9 @@ BENCHMARK_CAPTURE(BM_VehicleExercise, tractor_ramp_mafi, "tractor_ramp_mafi")
     ->Unit(benchmark::kMicrosecond)
     ->MinTime(5.0);
 BENCHMARK_CAPTURE(BM_VehicleExercise, reach_stacker_stack, "reach_stacker_stack")
+    ->Unit(benchmark::kMicrosecond)
+    ->MinTime(5.0);
+BENCHMARK_CAPTURE(BM_VehicleExercise, rtg_truck_to_block, "rtg_truck_to_block")
     ->Unit(benchmark::kMicrosecond)
     ->MinTime(5.0);
 
