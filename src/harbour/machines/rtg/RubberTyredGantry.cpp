@@ -132,9 +132,16 @@ core::Vec3 RubberTyredGantry::plumb_m() const {
   return {trolley.position.x, trolley.position.y, 0.0};
 }
 
+// the cab's frame in the trolley's: turned a quarter turn, its x (the way the operator faces) along the
+// trolley's +y, towards the spreader hanging beside it
 core::Pose RubberTyredGantry::cab_pose() const {
   const core::Pose trolley = world_.pose(trolley_);
-  return {trolley.rotation, trolley.to_parent(settings_.cab_position_m)};
+  return {trolley.rotation * core::Mat3::rotation({0, 0, 1}, kHalfPi),
+          trolley.to_parent(settings_.cab_position_m)};
+}
+
+core::Vec3 RubberTyredGantry::eye_on_cab_body_m() const {
+  return settings_.cab_position_m + core::Mat3::rotation({0, 0, 1}, kHalfPi) * settings_.eye_m;
 }
 
 void RubberTyredGantry::step(const Controls& raw, std::span<const ContainerRef> containers, double dt_s) {

@@ -37,7 +37,8 @@ struct RtgSettings {
   double trolley_rail_height_m = 22.0;  ///< [m] the trolley's centre above the ground
   SpreaderHoistSettings rig;            ///< its reeving's bodies: [trolley, headblock]
   ControlTable controls;
-  core::Vec3 cab_position_m{0.0, -3.0, -2.5};  ///< [m] the cab's centre in the trolley's frame
+  core::Vec3 cab_position_m{0.0, -3.0, -2.5};  ///< [m] the cab's centre in the trolley's frame; the operator
+                                               ///< faces along the trolley's +y, towards the spreader
   core::Vec3 eye_m{0.3, 0.0, 0.6};             ///< [m] the eye in the cab's frame (x the way it faces)
   double sight_pitch_rad = -1.0;
 };
@@ -79,7 +80,7 @@ class RubberTyredGantry final : public Machine, public GantryCrane {
   double pendulum_length_m() const override { return rig_->pendulum_length_m(); }
   std::span<const WindArea> wind_areas() const override { return wind_areas_; }
   physics::BodyId cab_body() const override { return trolley_; }
-  core::Vec3 eye_on_cab_body_m() const override { return settings_.cab_position_m + settings_.eye_m; }
+  core::Vec3 eye_on_cab_body_m() const override;
   core::Pose cab_pose() const override;
   core::Vec3 eye_m() const override { return settings_.eye_m; }
   double sight_pitch_rad() const override { return settings_.sight_pitch_rad; }
