@@ -95,24 +95,31 @@ sim::TrailerSettings read_coupled_trailer(const YamlFile& f, const YAML::Node& t
 
 namespace {
 
-// a [bay, row, tier] in the exercise's yard block: the centre of a box standing there
-core::Vec3 block_slot_centre(const YamlFile& f, const YAML::Node& slot, const std::string& at,
-                             const std::optional<sim::YardBlock>& block) {
-  if (!block) f.fail(slot, at, "a block slot needs the exercise's yard_block");
+// a slot address [bay, row, tier] of whole numbers 0-200 (on a vessel or in a yard block)
+sim::SlotAddress read_slot_address(const YamlFile& f, const YAML::Node& slot, const std::string& at) {
   if (!slot.IsSequence() || slot.size() != 3) f.fail(slot, at, "must be [bay, row, tier]");
-  int parts[3] = {};
+  sim::SlotAddress address;
+  int* parts[] = {&address.bay, &address.row, &address.tier};
   for (std::size_t k = 0; k < 3; ++k) {
-    double v = 0.5;
+    double v = 0.5;  // not a number: refused below
     try {
       v = slot[k].as<double>();
     } catch (const YAML::Exception&) {
     }
     if (!(v >= 0.0 && v <= 200.0 && v == std::floor(v)))
-      f.fail(slot, at, "bay, row and tier must be whole numbers");
-    parts[k] = static_cast<int>(v);
+      f.fail(slot, at, "bay, row and tier must be whole numbers 0-200");
+    *parts[k] = static_cast<int>(v);
   }
+  return address;
+}
+
+// a [bay, row, tier] in the exercise's yard block: the centre of a box standing there
+core::Vec3 block_slot_centre(const YamlFile& f, const YAML::Node& slot, const std::string& at,
+                             const std::optional<sim::YardBlock>& block) {
+  if (!block) f.fail(slot, at, "a block slot needs the exercise's yard_block");
+  const sim::SlotAddress a = read_slot_address(f, slot, at);
   std::string why;
-  const std::optional<core::Vec3> centre = block->slot_centre(parts[0], parts[1], parts[2], why);
+  const std::optional<core::Vec3> centre = block->slot_centre(a.bay, a.row, a.tier, why);
   if (!centre) f.fail(slot, at, why);
   return *centre;
 }
@@ -361,20 +368,7 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
     } else if (slot_node) {
       const YAML::Node& slot = *slot_node;
       if (!vessel) f.fail(slot, at + ".slot", "a slot needs the exercise's vessel");
-      if (!slot.IsSequence() || slot.size() != 3) f.fail(slot, at + ".slot", "must be [bay, row, tier]");
-      sim::SlotAddress address;
-      int* parts[] = {&address.bay, &address.row, &address.tier};
-      for (std::size_t k = 0; k < 3; ++k) {
-        double v = 0.0;
-        try {
-          v = slot[k].as<double>();
-        } catch (const YAML::Exception&) {
-          v = 0.5;  // not a number: refused below
-        }
-        if (!(v >= 0.0 && v <= 200.0 && v == std::floor(v)))
-          f.fail(slot, at + ".slot", "bay, row and tier must be whole numbers 0-200");
-        *parts[k] = static_cast<int>(v);
-      }
+      const sim::SlotAddress address = read_slot_address(f, slot, at + ".slot");
       std::string why;
       const std::optional<core::Vec3> centre = vessel->slot_centre(address, 2.0 * p.half_extents_m.z, why);
       if (!centre) f.fail(slot, at + ".slot", why);

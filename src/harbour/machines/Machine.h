@@ -76,8 +76,8 @@ struct MachineTally {
 
 /// A fault the instructor injects into a machine.
 enum class MachineFault : std::uint8_t {
-  kHoistBrake,    ///< the hoist's holding brake does not set
-  kLandedSensor,  ///< one twistlock corner's landed sensor reads "not landed" (detail: the corner, 0-3)
+  kHoistBrake,         ///< the hoist's holding brake does not set
+  kLandedSensor,       ///< one twistlock corner's landed sensor reads "not landed" (detail: the corner, 0-3)
   kLoadMomentLimiter,  ///< the load-moment limiter no longer stops moment-raising motions (it still warns)
 };
 

@@ -136,7 +136,7 @@ struct Metrics {
   std::vector<double> placement_offset_m, placement_skew_deg;
   bool vehicle = false;  ///< a vehicle's figures are measured
   int jackknifes = 0;
-  int tip_overs = 0;  ///< the machine tipped over on its wheels (Machine::tally)
+  int tip_overs = 0;                 ///< the machine tipped over on its wheels (Machine::tally)
   int overspeeds = 0;                ///< onsets of speeding in a speed zone
   double worst_overspeed_kmh = 0.0;  ///< [km/h] the most over a zone's limit
   /// How smoothly each of the machine's named motions was driven (jerk from its speed sampled every 0.1 s).

@@ -82,8 +82,8 @@ class HydraulicDrive {
   }
 
  private:
-  static constexpr double kFollow_s = 0.2;   ///< [s] the time constant the joint follows its position with
-  static constexpr double kSlack_m = 0.01;   ///< [m] the most the position runs ahead of a stalled cylinder
+  static constexpr double kFollow_s = 0.2;  ///< [s] the time constant the joint follows its position with
+  static constexpr double kSlack_m = 0.01;  ///< [m] the most the position runs ahead of a stalled cylinder
   Drive drive_;
   bool tracking_ = false;
   double target_m_ = 0.0;

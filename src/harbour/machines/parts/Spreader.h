@@ -12,6 +12,11 @@ namespace harbour::sim {
 /// The telescopic spreader's length settings.
 enum class SpreaderSize : std::uint8_t { k20ft = 0, k40ft = 1, k45ft = 2 };
 
+/// A size's nominal length in feet (20, 40, 45), as cabs show it.
+inline double size_ft(SpreaderSize size) {
+  return size == SpreaderSize::k20ft ? 20.0 : size == SpreaderSize::k40ft ? 40.0 : 45.0;
+}
+
 /// A telescopic single-lift spreader with four flippers (settings, from the machine file). Lengths follow
 /// ISO 668 box lengths, twistlock spans ISO 1161 corner casting centres.
 struct SpreaderSettings {

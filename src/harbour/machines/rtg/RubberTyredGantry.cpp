@@ -172,9 +172,8 @@ void RubberTyredGantry::step(const Controls& raw, std::span<const ContainerRef> 
   // gantry travel: the drive's speed reference (slower with a box on), followed on each side of the frame
   // by its own PI speed controller whose force that side's four tyres share; the sides' references follow
   // the steering's turn (an electronic differential: ω = 2 v tan δ / b about the frame's middle)
-  const double loaded =
-      held_item() ? settings_.gantry_loaded_speed_mps / settings_.gantry_drive.max_speed_mps : 1.0;
-  const double lever = square ? std::clamp(at(slots_.gantry), -1.0, 1.0) * std::min(1.0, loaded) : 0.0;
+  const double top_share = gantry_max_speed_mps() / settings_.gantry_drive.max_speed_mps;
+  const double lever = square ? std::clamp(at(slots_.gantry), -1.0, 1.0) * top_share : 0.0;
   const DriveOutput g = gantry_.step(lever, 0.0, dt_s, stop);
   const bool across = wheel_turn_ == 1.0;  // travelling along the frame's x
   const core::Pose frame = world_.pose(frame_);
@@ -274,18 +273,11 @@ int RubberTyredGantry::publish(Snapshot& s, int first) const {
   publish_ropes(rig_->hoist(), s);
   const SpreaderState spreader = rig_->spreader_state();
   const TwistlockLamps lamps = rig_->locks().twistlocks().lamps();
-  const double values[] = {travel_speed_mps(),
-                           trolley_position_m(),
-                           90.0 * wheel_turn_,
-                           lane_offset_m(),
-                           spreader.size == SpreaderSize::k20ft   ? 20.0
-                           : spreader.size == SpreaderSize::k40ft ? 40.0
-                                                                  : 45.0,
-                           lamps.landed ? 1.0 : 0.0,
-                           lamps.locked ? 1.0 : 0.0,
-                           lamps.unlocked ? 1.0 : 0.0,
-                           horn_ ? 1.0 : 0.0,
-                           rig_->hoisted_load_n() / kG / 1000.0};
+  const double values[] = {travel_speed_mps(),       trolley_position_m(),
+                           90.0 * wheel_turn_,       lane_offset_m(),
+                           size_ft(spreader.size),   lamps.landed ? 1.0 : 0.0,
+                           lamps.locked ? 1.0 : 0.0, lamps.unlocked ? 1.0 : 0.0,
+                           horn_ ? 1.0 : 0.0,        rig_->hoisted_load_n() / kG / 1000.0};
   static_assert(std::size(values) == std::size(kRtgIndicators));
   s.indicator_count = static_cast<int>(std::size(values));
   std::copy(std::begin(values), std::end(values), s.indicators.begin());

@@ -204,9 +204,7 @@ int StsCrane::publish(Snapshot& s, int first) const {
                            trolley_position_m(),
                            boom_angle_,
                            spreader.length_m,
-                           spreader.size == SpreaderSize::k20ft   ? 20.0
-                           : spreader.size == SpreaderSize::k40ft ? 40.0
-                                                                  : 45.0,
+                           size_ft(spreader.size),
                            spreader.flippers[0],
                            spreader.flippers[1],
                            spreader.flippers[2],
