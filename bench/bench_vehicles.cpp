@@ -47,6 +47,15 @@ BENCHMARK_CAPTURE(BM_VehicleExercise, reach_stacker_stack, "reach_stacker_stack"
 BENCHMARK_CAPTURE(BM_VehicleExercise, rtg_truck_to_block, "rtg_truck_to_block")
     ->Unit(benchmark::kMicrosecond)
     ->MinTime(5.0);
+BENCHMARK_CAPTURE(BM_VehicleExercise, rtg_rehandle, "rtg_rehandle")
+    ->Unit(benchmark::kMicrosecond)
+    ->MinTime(5.0);
+BENCHMARK_CAPTURE(BM_VehicleExercise, reach_stacker_truck_slalom, "reach_stacker_truck_slalom")
+    ->Unit(benchmark::kMicrosecond)
+    ->MinTime(5.0);
+BENCHMARK_CAPTURE(BM_VehicleExercise, tractor_semi_reverse, "tractor_semi_reverse")
+    ->Unit(benchmark::kMicrosecond)
+    ->MinTime(5.0);
 
 }  // namespace
 }  // namespace harbour

@@ -9,11 +9,14 @@
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <stdexcept>
 #include <thread>
 
+#include "StationNet.h"
 #include "StationWindow.h"
 #include "StsRun.h"
 #include "harbour/core/Text.h"
@@ -76,9 +79,10 @@ std::unique_ptr<station::DeviceInput> open_devices(const station::Profile& profi
                            "exercise, run with --autopilot)");
 }
 
-}  // namespace
-
-int run_station(const StationOptions& given) {
+// One attempt at the station, start to end; with a link, seen and commanded from the centre's consoles
+// (`reset`: a console asked for the attempt again).
+int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset) {
+  reset = false;
   StationOptions options = given;
   if (options.trainee.empty()) options.trainee = options.autopilot ? "autopilot" : "guest";
   RunOptions outputs;
@@ -101,6 +105,8 @@ int run_station(const StationOptions& given) {
   session_options.record = options.record;
   session_options.database = database;
   session_options.loop.time_scale = options.time_scale;
+  if (!options.take_over_recording.empty())
+    session_options.take_over = station::TakeOverFrom{options.take_over_recording, options.take_over_step};
   // the trainee's window (before the devices: the keyboard and mouse need it)
   const bool display = std::getenv("DISPLAY") || std::getenv("WAYLAND_DISPLAY");
   if (options.window != "on" && options.window != "off" && options.window != "auto")
@@ -121,13 +127,20 @@ int run_station(const StationOptions& given) {
   std::unique_ptr<sim::Pilot> pilot;
   if (options.autopilot) {
     pilot = sim::make_pilot(exercise);
+    if (session_options.take_over) pilot->resume(session.simulation(), session.moves_before_start());
     session.loop().set_pilot([&](const sim::Simulation& s) { return pilot->next(s); });
   } else {
     station.use_devices(open_devices(profile, session.simulation().control_table(), !windows.empty()));
   }
-  if (profile.opentrack_port) {
-    station.use_head_tracking(std::make_unique<station::HeadTracker>(*profile.opentrack_port));
-    std::printf("head tracking: OpenTrack UDP on port %u\n", static_cast<unsigned>(*profile.opentrack_port));
+  if (profile.opentrack_port && !windows.empty()) {  // the tracked head moves only the drawn view
+    // without its tracker (its port taken by another station on this PC) the view stays at the design eye
+    try {
+      station.use_head_tracking(std::make_unique<station::HeadTracker>(*profile.opentrack_port));
+      std::printf("head tracking: OpenTrack UDP on port %u\n",
+                  static_cast<unsigned>(*profile.opentrack_port));
+    } catch (const std::runtime_error& e) {
+      std::printf("%s: the view stays at the design eye point\n", e.what());
+    }
   }
   if (profile.motion) {
     station.use_motion(std::make_unique<station::MotionLink>(io::load_platform(profile.motion->platform),
@@ -144,9 +157,6 @@ int run_station(const StationOptions& given) {
   std::printf("Ctrl-C ends the attempt (stored as interrupted)\n");
   std::fflush(stdout);
 
-  g_stop = 0;
-  std::signal(SIGINT, on_stop_signal);
-  std::signal(SIGTERM, on_stop_signal);
   const sim::SceneDescription scene = session.simulation().scene();
   std::unique_ptr<ig::RenderThread> render;
   if (!windows.empty()) {
@@ -202,19 +212,27 @@ int run_station(const StationOptions& given) {
       std::printf("windows: %zu of %dx%d, one per display, the cab view (%s%s)\n", windows.size(),
                   layout.windows[0].width, layout.windows[0].height, profile.name.c_str(), stereo.c_str());
   }
+  std::optional<AttemptPresence> presence;
+  if (link) presence.emplace(*link, session, exercise, options.trainee);
   const auto start = std::chrono::steady_clock::now();
   session.start();
   station.start();
+  AttemptPresence::Next next = AttemptPresence::Next::kRun;
   int next_line = 0;
   bool window_open = true;
-  while (!session.over() && !g_stop && session.loop().running() && window_open) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(windows.empty() ? 100 : 15));
+  while (!session.over() && !g_stop && session.loop().running() && window_open &&
+         next == AttemptPresence::Next::kRun) {
+    // a console's command waits at most this long (its round trip's share)
+    std::this_thread::sleep_for(std::chrono::milliseconds(presence ? 5 : windows.empty() ? 100 : 15));
+    if (presence) next = presence->service();
     for (const auto& w : windows)
       window_open = w->pump() && window_open;
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (options.seconds > 0.0 && wall >= options.seconds) break;
-    for (const std::string& m : station.take_messages())
+    for (const std::string& m : station.take_messages()) {
       std::printf("  %s\n", core::printable(m).c_str());
+      if (presence) presence->note("station", m);
+    }
     if (wall < next_line * 2.0) continue;
     ++next_line;
     const sim::Snapshot* s = session.loop().latest_snapshot(station::kConsoleReader);
@@ -236,7 +254,9 @@ int run_station(const StationOptions& given) {
                 s->devices_missing ? "  INPUT DEVICE MISSING: its controls are neutral" : "");
     std::fflush(stdout);
   }
-  const bool interrupted = g_stop || !window_open || (!session.over() && options.seconds > 0.0);
+  const bool interrupted = g_stop || !window_open || next != AttemptPresence::Next::kRun ||
+                           (!session.over() && options.seconds > 0.0);
+  reset = next == AttemptPresence::Next::kReset;
   if (render) {
     long shown = windows.front()->frames_shown();
     for (const auto& w : windows)
@@ -248,8 +268,7 @@ int run_station(const StationOptions& given) {
   }
   station.stop();
   const station::SessionResult result = session.finish(interrupted);
-  std::signal(SIGINT, SIG_DFL);
-  std::signal(SIGTERM, SIG_DFL);
+  if (presence) presence->publish_end(result);
   const station::LoopStats& l = result.loop;
   std::printf(
       "\nloop: %lld ticks, %lld late, %lld given up, longest %.2f ms, mean %.1f us, %.3fx real time%s\n",
@@ -262,6 +281,94 @@ int run_station(const StationOptions& given) {
   if (!options.record.empty()) std::printf("recording %s\n", options.record.c_str());
   if (result.status == "diverged") return 3;
   return interrupted ? 130 : 0;
+}
+
+// where a served station keeps its attempts' recordings (beside the default records)
+std::string recording_for(const std::string& station, const std::string& exercise) {
+  const std::string database = default_database();
+  const std::filesystem::path folder =
+      std::filesystem::path(database.substr(database.find('=') + 1)).parent_path() / "recordings";
+  std::filesystem::create_directories(folder);
+  char stamp[32];
+  const std::time_t now = std::time(nullptr);
+  std::tm local{};
+  localtime_r(&now, &local);
+  std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", &local);
+  return (folder / (station + "-" + stamp + "-" + exercise + ".hsrc")).string();
+}
+
+// An exercise a console names: a shipped one, by name (no paths from the network).
+std::string why_bad_exercise_name(const std::string& name) {
+  if (const std::string why = net::why_bad_node_name(name); !why.empty()) return why;
+  if (name.find("..") != std::string::npos) return "a shipped exercise's name, not a path";
+  return "";
+}
+
+}  // namespace
+
+int run_station(const StationOptions& options) {
+  g_stop = 0;
+  std::signal(SIGINT, on_stop_signal);
+  std::signal(SIGTERM, on_stop_signal);
+  struct RestoreSignals {
+    ~RestoreSignals() {
+      std::signal(SIGINT, SIG_DFL);
+      std::signal(SIGTERM, SIG_DFL);
+    }
+  } restore;
+  std::unique_ptr<net::StationLink> link;
+  if (!options.name.empty()) {
+    link = std::make_unique<net::StationLink>(options.name, options.domain);
+    std::printf("on the network as station %s (DDS domain %d)\n", options.name.c_str(), options.domain);
+  }
+  bool reset = false;
+  if (!options.serve) {
+    int status = run_attempt(options, link.get(), reset);
+    while (reset && !g_stop)
+      status = run_attempt(options, link.get(), reset);
+    return status;
+  }
+  if (!link) throw std::runtime_error("--serve needs --name: the station's name on the network");
+  std::printf("station %s waits for a console to start an exercise (Ctrl-C ends it)\n", options.name.c_str());
+  std::fflush(stdout);
+  std::string message = "ready";
+  while (!g_stop) {
+    IdlePresence idle(*link, message);
+    std::optional<StartRequest> start;
+    while (!g_stop && !(start = idle.service()))
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    if (!start) break;
+    StationOptions attempt = options;
+    attempt.exercise = start->exercise;
+    attempt.trainee = start->trainee;
+    attempt.autopilot = options.autopilot || start->autopilot;
+    attempt.seconds = 0.0;
+    attempt.take_over_recording = start->take_over ? start->take_over->recording : "";
+    attempt.take_over_step = start->take_over ? start->take_over->step : 0;
+    std::printf("%s starts %s for trainee %s%s\n", start->user.c_str(), start->exercise.c_str(),
+                start->trainee.empty() ? "(none)" : start->trainee.c_str(),
+                attempt.autopilot ? " (autopilot)" : "");
+    std::fflush(stdout);
+    try {
+      if (const std::string why = why_bad_exercise_name(attempt.exercise); !why.empty())
+        throw std::runtime_error("exercise '" + core::printable(attempt.exercise) + "': " + why);
+      do {
+        attempt.record = recording_for(options.name, attempt.exercise);  // each attempt its own
+        run_attempt(attempt, link.get(), reset);
+        attempt.take_over_recording.clear();  // a reset starts the exercise anew
+      } while (reset && !g_stop);
+      message = "ready; last: " + attempt.exercise;
+    } catch (const std::exception& e) {
+      message = std::string("could not run ") + attempt.exercise + ": " + e.what();
+      std::printf("%s\n", core::printable(message).c_str());
+      std::fflush(stdout);
+      net::StationEvent event;
+      event.kind("start_failed");
+      event.text(message.substr(0, 255));
+      link->publish(event);
+    }
+  }
+  return 0;
 }
 
 }  // namespace harbour::apps

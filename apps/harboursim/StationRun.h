@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdint>
 #include <string>
 
 namespace harbour::apps {
@@ -11,10 +12,15 @@ struct StationOptions {
   std::string trainee;              ///< "" : autopilot with --autopilot, else guest (both made on first use)
   std::string record;
   std::string database;
-  bool autopilot = false;       ///< the scripted operator drives (a demonstration, no devices needed)
-  double time_scale = 1.0;      ///< an instructor's fast-forward
-  double seconds = 0.0;         ///< stop after this much wall time (0: at the exercise's end)
-  std::string window = "auto";  ///< the trainee's window: on, off, auto (where there is a display)
+  bool autopilot = false;           ///< the scripted operator drives (a demonstration, no devices needed)
+  double time_scale = 1.0;          ///< an instructor's fast-forward
+  double seconds = 0.0;             ///< stop after this much wall time (0: at the exercise's end)
+  std::string window = "auto";      ///< the trainee's window: on, off, auto (where there is a display)
+  std::string name;                 ///< the station's name on the centre's network ("": not on it)
+  int domain = 0;                   ///< the centre's DDS domain
+  bool serve = false;               ///< wait for consoles to start exercises, one after another
+  std::string take_over_recording;  ///< continue this recording's attempt live (a console's take-over)
+  std::int64_t take_over_step = 0;
 };
 int run_station(const StationOptions& options);
 

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "BulkDemo.h"
+#include "Console.h"
 #include "RenderVideo.h"
 #include "Screenshot.h"
 #include "StationRun.h"
@@ -61,8 +62,9 @@ int main(int argc, char** argv) {
 
   harbour::apps::StationOptions live;
   CLI::App* station_cmd = app.add_subcommand("station", "a trainee runs an exercise live at the station");
-  station_cmd->add_option("--exercise", live.exercise, "exercise file, or a shipped exercise's name")
-      ->required();
+  station_cmd->add_option("--exercise", live.exercise,
+                          "exercise file, or a shipped exercise's name (not with --serve: the console "
+                          "chooses)");
   station_cmd->add_option("--profile", live.profile, "desktop, medium, immersive, or a profile file");
   station_cmd->add_option("--trainee", live.trainee, "trainee id to store the attempt under");
   station_cmd->add_option("--record", live.record, "write the attempt's recording (HSRC) to this file");
@@ -75,6 +77,12 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   station_cmd->add_option("--window", live.window,
                           "the trainee's window: on, off, auto (where there is a display)");
+  station_cmd->add_option("--name", live.name,
+                          "the station's name on the centre's network: consoles see and command it");
+  station_cmd->add_option("--domain", live.domain, "the centre's DDS domain (0-232)")
+      ->check(CLI::Range(0, 232));
+  station_cmd->add_flag("--serve", live.serve,
+                        "wait for a console to start exercises, one after another (needs --name)");
 
   harbour::apps::DevicesOptions devices;
   CLI::App* devices_cmd = app.add_subcommand("devices", "list, watch, bind and calibrate input devices");
@@ -123,6 +131,32 @@ int main(int argc, char** argv) {
   render_cmd->add_option("--from", video.from_s, "start [s]")->check(CLI::Range(0.0, 86400.0));
   render_cmd->add_option("--to", video.to_s, "end [s]")->check(CLI::Range(0.0, 86400.0));
 
+  harbour::apps::ConsoleOptions console;
+  CLI::App* console_cmd = app.add_subcommand(
+      "console", "the instructor console: a web application watching and commanding stations");
+  console_cmd->add_option("--bind", console.bind, "the address to listen on (default: this machine only)");
+  console_cmd->add_option("--port", console.port, "HTTP port (0: any free one)")->check(CLI::Range(0, 65535));
+  console_cmd->add_option("--db", console.database,
+                          "records connection (accounts, audit, trainees, attempts)");
+  console_cmd->add_option("--domain", console.domain, "the centre's DDS domain (0-232)")
+      ->check(CLI::Range(0, 232));
+  console_cmd->add_option("--name", console.name, "the console's name on the network");
+  console_cmd->add_option("--web", console.web_root, "the built pages (default: web/dist)");
+  console_cmd->add_option("--seconds", console.seconds, "stop after this long (default: Ctrl-C)")
+      ->check(CLI::NonNegativeNumber);
+
+  std::string account_name, account_role, account_trainee, account_db;
+  CLI::App* accounts_cmd = app.add_subcommand("accounts", "console accounts");
+  accounts_cmd->require_subcommand(1);
+  accounts_cmd->add_option("--db", account_db, "records connection");
+  accounts_cmd->fallthrough();
+  CLI::App* account_add_cmd =
+      accounts_cmd->add_subcommand("add", "add an account; its password is read from standard input");
+  account_add_cmd->add_option("name", account_name, "account name")->required();
+  account_add_cmd->add_option("--role", account_role, "administrator, instructor or trainee")->required();
+  account_add_cmd->add_option("--trainee", account_trainee, "a trainee account's trainee id");
+  CLI::App* account_list_cmd = accounts_cmd->add_subcommand("list", "list accounts (name and role)");
+
   harbour::apps::BulkDemoOptions demo;
   CLI::App* demo_cmd =
       app.add_subcommand("bulk-demo", "a grab digs coal from a yard heap into a rolling hold");
@@ -147,7 +181,22 @@ int main(int argc, char** argv) {
         }
     }
     if (*run_cmd) return harbour::apps::run_exercise(run);
-    if (*station_cmd) return harbour::apps::run_station(live);
+    if (*console_cmd) return harbour::apps::run_console(console);
+    if (*account_list_cmd) return harbour::apps::list_accounts(account_db);
+    if (*account_add_cmd)
+      return harbour::apps::add_account(account_db, account_name, account_role, account_trainee);
+    if (*station_cmd) {
+      if (live.serve == !live.exercise.empty()) {
+        std::fprintf(stderr, "harboursim: station needs --exercise, or --serve (a console chooses it)\n");
+        return 2;
+      }
+      if (live.serve && live.name.empty()) {
+        std::fprintf(stderr,
+                     "harboursim: station --serve needs --name (the station's name on the network)\n");
+        return 2;
+      }
+      return harbour::apps::run_station(live);
+    }
     if (*devices_cmd) return harbour::apps::run_devices(devices);
     if (*render_cmd) {
       if (std::sscanf(video_size.c_str(), "%dx%d", &video.width, &video.height) != 2 || video.width < 16 ||

@@ -108,6 +108,24 @@ TEST(ExerciseFiles, ATrailerExerciseCouplesItLevelAndNamesTheFieldItCannotPlace)
          "exercise.moves", "a trailer (exercise.vehicle.trailer)", 2);
 }
 
+TEST(ExerciseFiles, ARouteIsReadInOrderAndABadPointIsNamed) {
+  const sim::ExerciseSettings e =
+      load_exercise(HARBOUR_DATA_DIR "/exercises/reach_stacker_truck_slalom.yaml");
+  ASSERT_EQ(e.route_m.size(), 8u);
+  EXPECT_EQ(e.route_m[1].x, -121.0);
+  EXPECT_EQ(e.route_m[3].y, -47.0);
+  const std::string text = scenes::read_text(HARBOUR_DATA_DIR "/exercises/reach_stacker_truck_slalom.yaml");
+  const auto expect = [&](const std::string& from, const std::string& to, const std::string& field,
+                          const std::string& says) {
+    scenes::expect_data_error(
+        text, from, to, [](const YamlFile& f) { load_exercise(f, HARBOUR_DATA_DIR "/exercises"); },
+        scenes::line_of(text, from), field, says);
+  };
+  expect("[-109.0, -33.0]", "[-109.0]", "exercise.route_m[2]", "is [x, y] in metres");
+  expect("[-109.0, -33.0]", "[-120.5, -33.0]", "exercise.route_m[2]", "within a metre");
+  expect("[-109.0, -33.0]", "[-109.0, 5000.0]", "exercise.route_m[2]", "off the site");
+}
+
 TEST(ExerciseFiles, ARampExerciseLoadsItsRampAndNamesTheFieldItCannotPlace) {
   const sim::ExerciseSettings e = load_exercise(HARBOUR_DATA_DIR "/exercises/tractor_ramp_mafi.yaml");
   ASSERT_TRUE(e.scenario.ramp);
@@ -340,8 +358,9 @@ namespace {
 
 // Strictness: a file the instructor mistyped is refused, never run as a different exercise.
 TEST(ExerciseFiles, UnknownDuplicateAndOutOfRangeKeysNameFileLineAndField) {
-  expect_error("    time_limit_s: 180", "    time_limit: 180", "exercise.rules.time_limit",
-               "unknown key 'time_limit' (known here: collision_speed_mps, deductions");
+  expect_error(
+      "    time_limit_s: 180", "    time_limit: 180", "exercise.rules.time_limit",
+      "unknown key 'time_limit' (known here: body_contact_impulse_ns, collision_speed_mps, deductions");
   expect_error("    pass_score: 70", "    pass_score: 70\n    pass_score: 90", "exercise.rules.pass_score",
                "duplicate key (first given at line", 1);
   expect_error("  quay_edge_x_m: 18.0", "  weather: {wind_mean: 70}\n  quay_edge_x_m: 18.0",

@@ -45,6 +45,11 @@ TEST_P(RecordsStoreOn, StoresTraineesAttemptsMovesAndScores) {
   RecordsStore db(fresh_connection(GetParam(), "records_roundtrip"));
   db.add_trainee("t001", "Ana Pérez");
   EXPECT_THROW(db.add_trainee("t001", "Again"), std::runtime_error);
+  db.rename_trainee("t001", "Ana Pérez Gil");
+  EXPECT_EQ(db.trainees().at(0).name, "Ana Pérez Gil");
+  EXPECT_THROW(db.rename_trainee("t999", "Nobody"), std::out_of_range);
+  EXPECT_THROW(db.rename_trainee("t001", "bad\x1b[31m"), std::invalid_argument);
+  EXPECT_EQ(db.trainees().at(0).name, "Ana Pérez Gil");
   EXPECT_THROW(db.begin_attempt("t999", "sts_discharge"), std::runtime_error);
   const auto first = db.begin_attempt("t001", "sts_discharge");
   db.record_move(first, 1, 93.5, 93.5);

@@ -12,6 +12,7 @@
 #include "harbour/machines/reach_stacker/ReachStackerStability.h"
 #include "harbour/sim/Evaluation.h"
 #include "harbour/sim/Pilot.h"
+#include "harbour/sim/ReachStackerAutopilot.h"
 
 namespace harbour::sim {
 namespace {
@@ -267,6 +268,39 @@ TEST(ReachStacker, TheAutopilotStacksTheBoxThreeHighInTheSecondRowAndAKeyframeCo
   for (const Controls& c : after)
     again.step(c);
   EXPECT_EQ(again.state_hash(), hash_after);
+}
+
+TEST(ReachStacker, TheAutopilotTakesTheTrucksBoxThroughTheSlalomAndABadDriverHitsAPost) {
+  // the box comes off the truck, the truck drives off, the box goes laden round three posts on the lane's
+  // line and down square on its mark; a driver who ignores the route drives it into the first post
+  const ExerciseSettings e = io::load_exercise(HARBOUR_DATA_DIR "/exercises/reach_stacker_truck_slalom.yaml");
+  const auto attempt = [&](DriverDefects defects) {
+    Simulation sim(e.scenario);
+    ReachStackerAutopilot pilot(e, defects);
+    Evaluator evaluator(e);
+    while (!evaluator.finished() && sim.time_s() < e.rules.time_limit_s && !sim.diverged()) {
+      const Controls c = pilot.next(sim);
+      sim.step(c);
+      evaluator.observe(sim, c);
+    }
+    EXPECT_FALSE(sim.diverged()) << sim.divergence();
+    return std::pair{evaluator.metrics(), evaluator.score().total};
+  };
+  const auto [good, good_score] = attempt({});
+  ASSERT_EQ(good.moves_completed, 1);
+  std::printf("slalom: %.1f s, placed %.3f m off, %.2f deg skew, %d collisions, score %.0f\n", good.time_s,
+              good.placement_offset_m.at(0), good.placement_skew_deg.at(0), good.collisions, good_score);
+  EXPECT_LT(good.placement_offset_m[0], 0.1);
+  EXPECT_EQ(good.collisions, 0);
+  EXPECT_EQ(good.hard_landings, 0);
+  EXPECT_EQ(good.tip_overs, 0);
+  EXPECT_GE(good_score, e.rules.pass_score);
+
+  const auto [bad, bad_score] = attempt({.ignore_route = true});
+  std::printf("straight through: %d collisions (%d with boxes), %d moves, score %.0f\n", bad.collisions,
+              bad.container_collisions, bad.moves_completed, bad_score);
+  EXPECT_GE(bad.container_collisions, 1);
+  EXPECT_LE(bad_score, good_score - e.rules.points_collision);
 }
 
 }  // namespace

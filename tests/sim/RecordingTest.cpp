@@ -77,6 +77,24 @@ TEST(Recording, ASeekStartsFromAKeyframeAndLandsOnTheRecordedState) {
   EXPECT_FALSE(r.first_mismatch.has_value());
 }
 
+// The console's replay: scrubbing back and forth and playing on lands on the recorded state every time.
+TEST(Recording, APlayerScrubsBackAndForthAndPlaysOnToTheRecordedStates) {
+  const ScenarioSettings scenario = scenes::sts_discharge(HARBOUR_DATA_DIR);
+  ReplayPlayer player(scenario, run().recording);
+  for (const std::int64_t step : {15300, 4200, 4900, 19900, 10000, 12700}) {
+    player.seek(step);
+    ASSERT_EQ(player.simulation().steps(), step);
+    EXPECT_EQ(player.simulation().state_hash(), run().hash_at.at(step)) << "at step " << step;
+  }
+  EXPECT_EQ(player.keyframes_used(),
+            3);              // 15300 and 19900 from theirs, 10000 from its own; 4200 from the start
+  player.advance_to(17000);  // play on
+  EXPECT_EQ(player.simulation().state_hash(), run().hash_at.at(17000));
+  player.advance_to(kRunSteps + 5000);  // stops at the end
+  EXPECT_EQ(player.simulation().steps(), kRunSteps);
+  EXPECT_FALSE(player.first_mismatch().has_value());
+}
+
 // The instructor changes the weather and breaks the hoist brake during a run: the recording keeps the
 // commands with their steps, a replay (whole or from a keyframe) applies them again and lands on the same
 // state, and the same inputs without them end elsewhere.

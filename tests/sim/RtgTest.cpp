@@ -11,6 +11,7 @@
 
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/io/MachineFiles.h"
+#include "harbour/sim/Autopilot.h"
 #include "harbour/sim/Evaluation.h"
 #include "harbour/sim/Pilot.h"
 
@@ -213,6 +214,72 @@ TEST(Rtg, TheAutopilotStacksTheTrucksBoxAndAKeyframeContinuesBitForBit) {
   for (const Controls& c : after_keyframe)
     resumed.step(c);
   EXPECT_EQ(resumed.state_hash(), hash);
+}
+
+// An exercise driven to its end by the autopilot with these defects, and how far the crane strayed off its
+// line on the way.
+struct Drive {
+  Metrics metrics;
+  double score = 0.0;
+  double time_s = 0.0;
+  double worst_lane_offset_m = 0.0;
+};
+Drive drive_exercise(const char* name, OperatorDefects defects = {}) {
+  const ExerciseSettings exercise =
+      io::load_exercise(std::string(HARBOUR_DATA_DIR "/exercises/") + name + ".yaml");
+  Simulation simulation(exercise.scenario);
+  Autopilot pilot(exercise, defects);
+  Evaluator evaluator(exercise);
+  Drive d;
+  while (!evaluator.finished() && simulation.time_s() < exercise.rules.time_limit_s &&
+         !simulation.diverged()) {
+    const Controls c = pilot.next(simulation);
+    simulation.step(c);
+    evaluator.observe(simulation, c);
+    d.worst_lane_offset_m = std::max(d.worst_lane_offset_m, std::abs(rtg(simulation).lane_offset_m()));
+  }
+  EXPECT_FALSE(simulation.diverged()) << simulation.divergence();
+  d.metrics = evaluator.metrics();
+  d.score = evaluator.score().total;
+  d.time_s = simulation.time_s();
+  return d;
+}
+
+TEST(Rtg, TheAutopilotDigsTheWantedBoxOutFromUnderTwoOthersAndSetsItOnTheTruck) {
+  const Drive d = drive_exercise("rtg_rehandle");
+  std::printf("re-handle: %.1f s, 3 moves placed %.3f, %.3f, %.3f m off, score %.0f\n", d.time_s,
+              d.metrics.placement_offset_m.at(0), d.metrics.placement_offset_m.at(1),
+              d.metrics.placement_offset_m.at(2), d.score);
+  ASSERT_EQ(d.metrics.moves_completed, 3);
+  EXPECT_EQ(d.metrics.collisions, 0);  // setting the spreader down on a box to lift is a landing
+  EXPECT_EQ(d.metrics.hard_landings, 0);
+  EXPECT_GE(d.score, 70.0);
+}
+
+TEST(Rtg, OnAGantryMoveTheOperatorSteersAgainstTheBiasAndABadOneHitsTheNextBlock) {
+  // a 0.5 deg bias curves the crane 2.0 m off its line over the 38.4 m to bay 14 (s^2 / 2R), where the next
+  // block's boxes stand with their faces 1.55 m outside the line of its -x tyres (the bogies' outer parts
+  // meet them some 0.7 m off the line)
+  const Drive good = drive_exercise("rtg_gantry_move");
+  std::printf(
+      "gantry move: %.1f s, placed %.3f m off, %.2f deg skew, %.3f m off its line at worst, score %.0f\n",
+      good.time_s, good.metrics.placement_offset_m.at(0), good.metrics.placement_skew_deg.at(0),
+      good.worst_lane_offset_m, good.score);
+  ASSERT_EQ(good.metrics.moves_completed, 1);
+  EXPECT_EQ(good.metrics.collisions, 0);
+  EXPECT_EQ(good.metrics.unwarned_gantry_travel, 0);
+  EXPECT_LT(good.worst_lane_offset_m, 0.3);
+  EXPECT_GE(good.score, 70.0);
+
+  // never steering, no horn: the legs run into the next block's stacks, and the travel went unwarned
+  const Drive bad = drive_exercise("rtg_gantry_move", {.never_steer = true, .skip_horn = true});
+  std::printf("bad operator: %.3f m off its line, %d collisions (%d with stacks), %d unwarned, score %.0f\n",
+              bad.worst_lane_offset_m, bad.metrics.collisions, bad.metrics.container_collisions,
+              bad.metrics.unwarned_gantry_travel, bad.score);
+  EXPECT_GT(bad.worst_lane_offset_m, 0.5);
+  EXPECT_GE(bad.metrics.container_collisions, 1);
+  EXPECT_EQ(bad.metrics.unwarned_gantry_travel, 1);
+  EXPECT_LE(bad.score, good.score - 10.0 - 2.0);  // the documented 10 per collision, 2 per unwarned travel
 }
 
 }  // namespace

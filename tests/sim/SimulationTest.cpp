@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <limits>
 #include <vector>
 
@@ -91,6 +94,57 @@ TEST(Simulation, HoldFreezesAndSingleStepAdvances) {
   s.resume();
   s.step(scenes::cab(scenes::scripted_operator(2001)));
   EXPECT_EQ(s.steps(), 2002);
+}
+
+// The instructor's emergency stop holds the machine's own stop pressed: the trolley, driven at full lever,
+// brakes on its emergency ramp (v^2 / 2a) and stays stopped; the trainee's controls are left as they were;
+// the stop survives a keyframe; released, the lever drives it again.
+TEST(Simulation, TheInstructorsEmergencyStopBrakesTheMachineUntilReleased) {
+  const ScenarioSettings scenario = scenes::sts_discharge(HARBOUR_DATA_DIR);
+  Simulation s(scenario);
+  const auto& names = s.scene().indicators;
+  const auto slot =
+      static_cast<std::size_t>(std::find(names.begin(), names.end(), "trolley_x_m") - names.begin());
+  ASSERT_LT(slot, names.size());
+  auto trolley_x = [&] { return s.snapshot()->indicators[slot]; };
+  StsControls in;
+  in.trolley = -1.0;  // landward, full lever
+  in.spreader_size_ft = 40;
+  for (int k = 0; k < 6000; ++k)
+    s.step(scenes::cab(in));
+  const double before = trolley_x();
+  s.step(scenes::cab(in));
+  const double speed = (trolley_x() - before) / Simulation::kStep_s;
+  ASSERT_GT(std::abs(speed), 1.0) << "the trolley runs at full lever";
+
+  s.command({InstructorCommand::Kind::kEmergencyStop});
+  const double at_stop = trolley_x();
+  for (int k = 0; k < 8000; ++k)
+    s.step(scenes::cab(in));  // the trainee still pushes the lever
+  const double stopped_at = trolley_x();
+  const double ramp = scenario.sts().crane.trolley_drive.emergency_deceleration_mps2;
+  const double expected = speed * speed / (2.0 * ramp);
+  std::printf("trolley at %.2f m/s stops in %.3f m on its %.2f m/s^2 emergency ramp (v^2/2a = %.3f m)\n",
+              std::abs(speed), std::abs(stopped_at - at_stop), ramp, expected);
+  EXPECT_NEAR(std::abs(stopped_at - at_stop), expected, 0.15 * expected + 0.05)
+      << "stopping distance at " << speed << " m/s on a " << ramp << " m/s^2 ramp";
+
+  // a keyframe holds the stop
+  Simulation copy(scenario);
+  copy.restore_state(s.save_state());
+  EXPECT_EQ(copy.state_hash(), s.state_hash());
+  for (int k = 0; k < 1000; ++k) {
+    s.step(scenes::cab(in));
+    copy.step(scenes::cab(in));
+  }
+  EXPECT_EQ(copy.state_hash(), s.state_hash());
+  EXPECT_NEAR(trolley_x(), stopped_at, 1e-3) << "it stays stopped";
+
+  s.command({InstructorCommand::Kind::kReleaseEmergencyStop});
+  for (int k = 0; k < 3000; ++k)
+    s.step(scenes::cab(in));
+  EXPECT_GT(std::abs(trolley_x() - stopped_at), 1.0) << "released, the lever drives it again";
+  EXPECT_EQ(s.warnings().total(), 0u);
 }
 
 TEST(Simulation, SnapshotShowsTheMachineAndTheContainers) {

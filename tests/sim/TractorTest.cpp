@@ -7,6 +7,7 @@
 #include "harbour/io/MachineFiles.h"
 #include "harbour/sim/Evaluation.h"
 #include "harbour/sim/Pilot.h"
+#include "harbour/sim/TractorAutopilot.h"
 
 namespace harbour::sim {
 namespace {
@@ -566,6 +567,62 @@ TEST(TractorRamp, TheAutopilotTowsTheMafiUpTheRampAndDropsItInItsDeckLane) {
   for (const Controls& c : after)
     again.step(c);
   EXPECT_EQ(again.state_hash(), hash_after);
+}
+
+}  // namespace
+}  // namespace harbour::sim
+
+namespace harbour::sim {
+namespace {
+
+// The reversing exercise driven to its end; the largest hitch angle on the way.
+struct Reversal {
+  Metrics metrics;
+  double score = 0.0;
+  double worst_hitch_rad = 0.0;
+};
+Reversal reverse_into_bay(DriverDefects defects) {
+  const ExerciseSettings exercise =
+      io::load_exercise(HARBOUR_DATA_DIR "/exercises/tractor_semi_reverse.yaml");
+  Simulation sim(exercise.scenario);
+  TractorAutopilot pilot(exercise, defects);
+  Evaluator evaluator(exercise);
+  Reversal r;
+  while (!evaluator.finished() && sim.time_s() < exercise.rules.time_limit_s && !sim.diverged()) {
+    const Controls c = pilot.next(sim);
+    sim.step(c);
+    evaluator.observe(sim, c);
+    r.worst_hitch_rad = std::max(r.worst_hitch_rad, std::abs(tractor(sim).hitch_angle_rad()));
+  }
+  EXPECT_FALSE(sim.diverged()) << sim.divergence();
+  r.metrics = evaluator.metrics();
+  r.score = evaluator.score().total;
+  return r;
+}
+
+TEST(TractorReverse, TheAutopilotBacksTheSemiTrailerIntoItsBayAndAWrongWayDriverDoesNot) {
+  // the bay lies behind, 3 m to the side, between two standing boxes: the trailer's axles follow a path onto
+  // its line; the tractor's steering holds the hitch angle that curves them so
+  const Reversal good = reverse_into_bay({});
+  ASSERT_EQ(good.metrics.moves_completed, 1);
+  std::printf("reversed in %.1f s: %.3f m off, %.2f deg skew, hitch at most %.2f rad, score %.0f\n",
+              good.metrics.time_s, good.metrics.placement_offset_m.at(0),
+              good.metrics.placement_skew_deg.at(0), good.worst_hitch_rad, good.score);
+  EXPECT_LT(good.metrics.placement_offset_m[0], 0.3);
+  EXPECT_LT(good.metrics.placement_skew_deg.at(0), 2.0);
+  EXPECT_EQ(good.metrics.collisions, 0);
+  EXPECT_EQ(good.metrics.jackknifes, 0);
+  EXPECT_GT(good.worst_hitch_rad, 0.05);  // it did turn the trailer
+  EXPECT_GE(good.score, 70.0);
+
+  // steering the way the trailer's rear is to go, the hitch angle runs away: a jack-knife or a box hit
+  const Reversal bad = reverse_into_bay({.reverse_steering_wrong = true});
+  std::printf("wrong way: hitch at most %.2f rad, %d jack-knives, %d collisions, %d moves, score %.0f\n",
+              bad.worst_hitch_rad, bad.metrics.jackknifes, bad.metrics.collisions,
+              bad.metrics.moves_completed, bad.score);
+  EXPECT_EQ(bad.metrics.moves_completed, 0);
+  EXPECT_GE(bad.metrics.jackknifes + bad.metrics.collisions, 1);
+  EXPECT_LE(bad.score, good.score - 30.0 - 20.0);  // the exercise's 30 per jack-knife, 20 per move not made
 }
 
 }  // namespace

@@ -637,6 +637,23 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
              "only a vehicle's speed is limited (the " + machine_kind + " is a crane)");
   }
 
+  if (f.optional(x, "route_m", "exercise")) {
+    // the way a vehicle takes with its load: [[x, y], ...]
+    const YAML::Node route = f.sequence(x, "route_m", "exercise", 64);
+    for (std::size_t n = 0; n < route.size(); ++n) {
+      const std::string at = item("exercise.route_m", n);
+      if (!route[n].IsSequence() || route[n].size() != 2) f.fail(route[n], at, "is [x, y] in metres");
+      const core::Vec3 p{f.number_at(route[n][0], at + "[0]"), f.number_at(route[n][1], at + "[1]"), 0.0};
+      if (!(std::abs(p.x) <= kSite_m && std::abs(p.y) <= kSite_m)) f.fail(route[n], at, "lies off the site");
+      if (n > 0 && core::length(p - e.route_m.back()) < 1.0)
+        f.fail(route[n], at, "lies within a metre of the point before it");
+      e.route_m.push_back(p);
+    }
+    if (!vehicle && route.size() > 0)
+      f.fail(route, "exercise.route_m",
+             "only a vehicle drives a route (the " + machine_kind + " is a crane)");
+  }
+
   if (const auto r_node = f.optional_map(x, "rules", "exercise")) {
     const YAML::Node& r = *r_node;
     sim::EvaluationRules& rules = e.rules;
@@ -649,6 +666,8 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
         f.number_or(r, "sway_limit_m", "exercise.rules", rules.sway_limit_m, 0.0, 10.0, true);
     rules.collision_speed_mps =
         f.number_or(r, "collision_speed_mps", "exercise.rules", rules.collision_speed_mps, 0.0, 10.0, true);
+    rules.body_contact_impulse_ns = f.number_or(r, "body_contact_impulse_ns", "exercise.rules",
+                                                rules.body_contact_impulse_ns, 0.0, 1e7, true);
     rules.horn_warning_s =
         f.number_or(r, "horn_warning_s", "exercise.rules", rules.horn_warning_s, 0.0, 600.0, true);
     rules.overtime_s = f.number_or(r, "overtime_s", "exercise.rules", rules.overtime_s, 0.0, 3600.0);
@@ -677,6 +696,9 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
           {"limiter_trip", &rules.points_limiter_trip},
           {"pad_lift_off", &rules.points_pad_lift_off},
           {"harsh_move", &rules.points_harsh_move},
+          {"jackknife", &rules.points_jackknife},
+          {"tip_over", &rules.points_tip_over},
+          {"speeding", &rules.points_overspeed},
           {"decimetre_above_trim", &rules.points_per_trim_dm}};
       for (const auto& entry : d) {
         const std::string key = entry.first.as<std::string>();

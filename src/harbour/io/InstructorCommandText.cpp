@@ -66,6 +66,10 @@ TimedCommand parse_instructor_command(const std::string& text) {
     c.kind = Kind::kLimiterFault;
   } else if (kind == "clear-faults") {
     c.kind = Kind::kClearFaults;
+  } else if (kind == "emergency-stop") {
+    c.kind = Kind::kEmergencyStop;
+  } else if (kind == "release-emergency-stop") {
+    c.kind = Kind::kReleaseEmergencyStop;
   } else if (kind == "wind") {
     c.kind = Kind::kSetWind;
     c.wind_mean_mps = number(2, "mean speed [m/s]");
@@ -84,7 +88,8 @@ TimedCommand parse_instructor_command(const std::string& text) {
     values = 1;
   } else {
     fail("unknown kind '" + core::printable(kind, 40) +
-         "' (gust, hoist-brake-fault, landed-sensor-fault, limiter-fault, clear-faults, wind, visibility, "
+         "' (gust, hoist-brake-fault, landed-sensor-fault, limiter-fault, clear-faults, emergency-stop, "
+         "release-emergency-stop, wind, visibility, "
          "rain, time-of-day)");
   }
   if (parts.size() > 2 + values) fail("too many values for '" + kind + "'");

@@ -9,6 +9,9 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <chrono>
+#include <cstdio>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -31,6 +34,8 @@ constexpr std::pair<const char*, const char*> kTables[] = {
     {"moves", "attempt, idx, completed_at_s, cycle_time_s"},
     {"events", "attempt, at_s, kind, value"},
     {"metrics", "attempt, name, value"},
+    {"accounts", "name, role, password_hash, trainee"},
+    {"audit", "at, account, action, target, detail"},
 };
 
 constexpr const char* kStatuses[] = {"running", "finished", "interrupted", "diverged"};
@@ -244,6 +249,11 @@ RecordsStore::RecordsStore(const std::string& connection) : impl_(std::make_uniq
     sql << "CREATE TABLE IF NOT EXISTS metrics (attempt BIGINT NOT NULL REFERENCES attempts(id), name TEXT "
            "NOT NULL,"
            " value DOUBLE PRECISION NOT NULL, PRIMARY KEY (attempt, name))";
+    // the console's accounts (the password as its Argon2id hash string) and what their holders did
+    sql << "CREATE TABLE IF NOT EXISTS accounts (name TEXT PRIMARY KEY, role TEXT NOT NULL,"
+           " password_hash TEXT NOT NULL, trainee TEXT REFERENCES trainees(id))";
+    sql << "CREATE TABLE IF NOT EXISTS audit (at TEXT NOT NULL, account TEXT NOT NULL, action TEXT NOT NULL,"
+           " target TEXT NOT NULL, detail TEXT NOT NULL)";
   });
   mark_interrupted_attempts();
 }
@@ -293,6 +303,14 @@ void RecordsStore::add_trainee(const std::string& id, const std::string& name) {
   if (has_trainee(id)) throw std::runtime_error("trainee '" + id + "' already exists");
   impl_->guarded("adding trainee '" + id + "'", [&] {
     impl_->sql << "INSERT INTO trainees (id, name) VALUES (:id, :name)", soci::use(id), soci::use(name);
+  });
+}
+
+void RecordsStore::rename_trainee(const std::string& id, const std::string& name) {
+  check_trainee(id, name);
+  if (!has_trainee(id)) throw std::out_of_range("no trainee '" + id + "'");
+  impl_->guarded("renaming trainee '" + id + "'", [&] {
+    impl_->sql << "UPDATE trainees SET name = :name WHERE id = :id", soci::use(name), soci::use(id);
   });
 }
 
@@ -424,24 +442,130 @@ std::vector<AttemptRow> RecordsStore::attempts(const std::optional<std::string>&
   return out;
 }
 
+void RecordsStore::add_account(const AccountRow& account) {
+  if (account.role != "administrator" && account.role != "instructor" && account.role != "trainee")
+    throw std::invalid_argument("account role '" + core::printable(account.role) +
+                                "': administrator, instructor or trainee");
+  if (const std::string why = core::why_bad_name(account.name, 64); !why.empty())
+    throw std::invalid_argument("account name " + why);
+  if (account.role == "trainee" && !has_trainee(account.trainee))
+    throw std::invalid_argument("account " + account.name + ": no trainee '" +
+                                core::printable(account.trainee) + "' in the records");
+  impl_->guarded("adding account " + account.name, [&] {
+    impl_->write_transaction([&] {
+      int n = 0;
+      impl_->sql << "SELECT COUNT(*) FROM accounts WHERE name = :n", soci::use(account.name), soci::into(n);
+      if (n > 0) throw std::invalid_argument("account " + account.name + " exists");
+      std::string trainee = account.trainee;
+      soci::indicator present = trainee.empty() ? soci::i_null : soci::i_ok;
+      impl_->sql << "INSERT INTO accounts (name, role, password_hash, trainee) VALUES (:n, :r, :h, :t)",
+          soci::use(account.name), soci::use(account.role), soci::use(account.password_hash),
+          soci::use(trainee, present);
+    });
+  });
+}
+
+namespace {
+// a row of SELECT name, role, password_hash, trainee FROM accounts
+AccountRow account_row(const soci::row& r) {
+  return {r.get<std::string>(0), r.get<std::string>(1), r.get<std::string>(2),
+          r.get_indicator(3) == soci::i_null ? std::string() : r.get<std::string>(3)};
+}
+}  // namespace
+
+std::optional<AccountRow> RecordsStore::account(const std::string& name) {
+  return impl_->guarded("reading account", [&]() -> std::optional<AccountRow> {
+    soci::rowset<soci::row> rows = (impl_->sql.prepare << "SELECT name, role, password_hash, trainee FROM "
+                                                          "accounts WHERE name = :n",
+                                    soci::use(name));
+    for (const soci::row& r : rows)
+      return account_row(r);
+    return std::nullopt;
+  });
+}
+
+std::vector<AccountRow> RecordsStore::accounts() {
+  return impl_->guarded("reading accounts", [&] {
+    std::vector<AccountRow> accounts;
+    soci::rowset<soci::row> rows =
+        (impl_->sql.prepare << "SELECT name, role, password_hash, trainee FROM accounts ORDER BY name");
+    for (const soci::row& r : rows)
+      accounts.push_back(account_row(r));
+    return accounts;
+  });
+}
+
+int RecordsStore::account_count() {
+  return impl_->guarded("counting accounts", [&] {
+    int n = 0;
+    impl_->sql << "SELECT COUNT(*) FROM accounts", soci::into(n);
+    return n;
+  });
+}
+
+void RecordsStore::audit(const std::string& account, const std::string& action, const std::string& target,
+                         const std::string& detail) {
+  const auto now = std::chrono::system_clock::now();
+  const std::time_t seconds = std::chrono::system_clock::to_time_t(now);
+  const auto micros =
+      std::chrono::duration_cast<std::chrono::microseconds>(now.time_since_epoch()).count() % 1000000;
+  std::tm utc{};
+  gmtime_r(&seconds, &utc);
+  char at[40];
+  const std::size_t n = std::strftime(at, sizeof at, "%Y-%m-%dT%H:%M:%S", &utc);
+  std::snprintf(at + n, sizeof at - n, ".%06lldZ", static_cast<long long>(micros));
+  const std::string when = at;  // soci::use binds a reference: no temporaries
+  impl_->guarded("writing the audit log", [&] {
+    impl_->sql << "INSERT INTO audit (at, account, action, target, detail) VALUES (:a, :u, :c, :t, :d)",
+        soci::use(when), soci::use(account), soci::use(action), soci::use(target), soci::use(detail);
+  });
+}
+
+std::vector<AuditRow> RecordsStore::audit_log(int newest) {
+  return impl_->guarded("reading the audit log", [&] {
+    std::vector<AuditRow> log;
+    soci::rowset<soci::row> rows =
+        (impl_->sql.prepare << "SELECT at, account, action, target, detail FROM audit ORDER BY at DESC LIMIT "
+                            << std::max(0, newest));
+    for (const soci::row& r : rows)
+      log.push_back({r.get<std::string>(0), r.get<std::string>(1), r.get<std::string>(2),
+                     r.get<std::string>(3), r.get<std::string>(4)});
+    return log;
+  });
+}
+
+std::vector<EventRow> RecordsStore::events(std::int64_t attempt) {
+  return impl_->guarded("reading attempt " + std::to_string(attempt) + "'s events", [&] {
+    std::vector<EventRow> events;
+    const long long id = attempt;
+    soci::rowset<soci::row> rows =
+        (impl_->sql.prepare << "SELECT at_s, kind, value FROM events WHERE attempt = :a ORDER BY at_s",
+         soci::use(id));
+    for (const soci::row& r : rows)
+      events.push_back({r.get<double>(0), r.get<std::string>(1), r.get<double>(2)});
+    return events;
+  });
+}
+
+std::vector<std::pair<std::string, double>> RecordsStore::metrics(std::int64_t attempt) {
+  return impl_->guarded("reading attempt " + std::to_string(attempt) + "'s metrics", [&] {
+    std::vector<std::pair<std::string, double>> metrics;
+    const long long id = attempt;
+    soci::rowset<soci::row> rows =
+        (impl_->sql.prepare << "SELECT name, value FROM metrics WHERE attempt = :a ORDER BY name",
+         soci::use(id));
+    for (const soci::row& r : rows)
+      metrics.emplace_back(r.get<std::string>(0), r.get<double>(1));
+    return metrics;
+  });
+}
+
 void record_progress(RecordsStore& db, std::int64_t attempt, const sim::Metrics& before,
                      const sim::Metrics& now) {
   for (int n = before.moves_completed; n < now.moves_completed; ++n)
     db.record_move(attempt, n + 1, now.time_s, now.cycle_times_s[static_cast<std::size_t>(n)]);
-  const std::tuple<const char*, int, int, double> counters[] = {
-      {"collision", before.collisions, now.collisions, now.worst_collision_mps},
-      {"hard_landing", before.hard_landings, now.hard_landings, now.worst_landing_mps},
-      {"twistlock_misuse", before.twistlock_misuse, now.twistlock_misuse, 0.0},
-      {"rope_overload", before.overloads, now.overloads, 0.0},
-      {"limit_switch_hit", before.limit_hits, now.limit_hits, 0.0},
-      {"emergency_stop", before.emergency_stops, now.emergency_stops, 0.0},
-      {"gantry_travel_without_horn", before.unwarned_gantry_travel, now.unwarned_gantry_travel, 0.0},
-      {"limiter_trip", before.limiter_trips, now.limiter_trips, 0.0},
-      {"pad_lift_off", before.pad_lift_offs, now.pad_lift_offs, 0.0},
-      {"poor_bite", before.poor_bites, now.poor_bites, 0.0}};
-  for (const auto& [kind, was, is, value] : counters)
-    for (int n = was; n < is; ++n)
-      db.record_event(attempt, now.time_s, kind, value);
+  for (const sim::CountedEvent& e : sim::counted_events(before, now))
+    db.record_event(attempt, now.time_s, e.kind, e.value);
 }
 
 }  // namespace harbour::io

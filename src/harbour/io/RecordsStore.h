@@ -4,6 +4,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "harbour/sim/Evaluation.h"
@@ -28,6 +29,26 @@ struct AttemptRow {
   std::int64_t branch_step = 0;
   std::string recording;  ///< recording file (given at the start: an interrupted one's replayable prefix)
   int moves = 0;          ///< moves stored so far
+};
+
+/// A console account: an administrator, an instructor, or a trainee (who sees only their own results).
+struct AccountRow {
+  std::string name;
+  std::string role;           ///< administrator, instructor, trainee
+  std::string password_hash;  ///< the Argon2id hash string (libsodium's crypto_pwhash_str)
+  std::string trainee;        ///< a trainee account's trainee id ("" for the others)
+};
+
+/// One instructor action in the audit log: who, when (UTC, ISO 8601 with microseconds), what, on what.
+struct AuditRow {
+  std::string at, account, action, target, detail;
+};
+
+/// An event of an attempt as stored (a collision, a hard landing, an instructor's command, ...).
+struct EventRow {
+  double at_s = 0.0;
+  std::string kind;
+  double value = 0.0;
 };
 
 /// The SOCI connection string for `connection`: "sqlite3://db=FILE", "sqlite3://FILE" or a plain FILE (an
@@ -57,6 +78,9 @@ class RecordsStore {
   void add_trainee(const std::string& id, const std::string& name);
   /// Adds the trainee unless one with this id exists (two stations may do so at once).
   void ensure_trainee(const std::string& id, const std::string& name);
+  /// Changes a trainee's name (the id stays: attempts refer to it). Throws std::invalid_argument for a bad
+  /// name, std::out_of_range for an unknown trainee.
+  void rename_trainee(const std::string& id, const std::string& name);
   std::vector<TraineeRow> trainees();
   bool has_trainee(const std::string& id);
 
@@ -75,6 +99,22 @@ class RecordsStore {
   int mark_interrupted_attempts();
   /// Attempts, newest first, optionally of one trainee.
   std::vector<AttemptRow> attempts(const std::optional<std::string>& trainee = std::nullopt);
+  /// An attempt's events in time order, and its final metrics by name.
+  std::vector<EventRow> events(std::int64_t attempt);
+  std::vector<std::pair<std::string, double>> metrics(std::int64_t attempt);
+
+  /// Adds a console account; throws std::invalid_argument for a bad name or role, a trainee account whose
+  /// trainee is not in the records, or a name taken.
+  void add_account(const AccountRow& account);
+  std::optional<AccountRow> account(const std::string& name);
+  int account_count();
+  /// Every account by name (the password hashes included: for the console's own use).
+  std::vector<AccountRow> accounts();
+  /// Appends to the audit log (every instructor action, who and when).
+  void audit(const std::string& account, const std::string& action, const std::string& target,
+             const std::string& detail);
+  /// The newest `newest` entries, newest first.
+  std::vector<AuditRow> audit_log(int newest);
 
  private:
   struct Impl;

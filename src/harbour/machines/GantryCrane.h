@@ -22,6 +22,13 @@ class GantryCrane {
   virtual double gantry_max_speed_mps() const = 0;
   virtual double trolley_max_speed_mps() const = 0;
   virtual const SpreaderHoist& spreader_hoist() const = 0;
+  /// A gantry on tyres steers to hold its line along the block: how far its middle is off that line [m,
+  /// along world x], its heading off it [rad, anticlockwise], and the steering lever that turns it at a yaw
+  /// rate [rad/s] at its present speed (what a driver learns of the steering). A crane on rails holds its
+  /// line: 0, 0, and no steering.
+  virtual double lane_offset_m() const { return 0.0; }
+  virtual double yaw_rad() const { return 0.0; }
+  virtual double steer_lever(double /*yaw_rate_radps*/) const { return 0.0; }
   /// Its controls with these levers and buttons (those it lacks ignored, the others neutral).
   virtual Controls crane_controls(const StsControls& levers) const = 0;
 };

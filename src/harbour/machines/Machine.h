@@ -98,6 +98,9 @@ class Machine {
 
   /// The item it holds (a container locked to its spreader), if any.
   virtual std::optional<physics::BodyId> held_item() const = 0;
+  /// The body that takes hold of items (a spreader), if it has one: setting it down on the item it is to
+  /// pick up is a landing, not a collision.
+  virtual std::optional<physics::BodyId> gripper_body() const { return std::nullopt; }
   /// The ground its wheels stand on from now on (the world's; it outlives the machine). Machines on rails or
   /// outriggers ignore it.
   virtual void stand_on(const Ground&) {}

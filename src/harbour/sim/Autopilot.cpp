@@ -10,10 +10,13 @@
 namespace harbour::sim {
 namespace {
 
-constexpr double kTravelHeight_m = 22.0;      // spreader centre while travelling: clears the vessel's stack
-constexpr double kBelowUpperLimit_m = 0.3;    // ... or, on a lower crane, this far under its upper limit
-constexpr double kCruiseLever = 0.75;         // travel at three quarters of full speed
-constexpr double kSlowZone_m = 1.5;           // lower slowly over the last metre and a half
+constexpr double kTravelHeight_m = 22.0;    // spreader centre while travelling: clears the vessel's stack
+constexpr double kBelowUpperLimit_m = 0.3;  // ... or, on a lower crane, this far under its upper limit
+constexpr double kStackClearance_m = 1.0;   // in a yard: the load's underside this far over the stacks
+constexpr double kCruiseLever = 0.75;       // travel at three quarters of full speed
+constexpr double kSlowZone_m = 1.5;         // lower slowly over the last metre and a half
+constexpr double kEaseRaise_s = 1.0;        // the raise slows over its last second
+constexpr double kEasedRaiseLever = 0.2;
 constexpr double kSlowLever = 0.08;           // 0.12 m/s at the spreader on the STS hoist
 constexpr double kTunedHoistSpeed_mps = 1.5;  // the hoist levers are set for a spreader this fast at full
                                               // lever (the STS's); a slower hoist gets them scaled up
@@ -39,6 +42,13 @@ constexpr double kLiftOff_s = 2.0;
 constexpr double kButton_s = 0.1;
 constexpr double kSlacken_s = 0.6;
 constexpr double kHorn_s = 1.0;  // the horn sounds this long before the gantry travels
+// holding a steered gantry's line: the offset closes over kLaneClose_s (its integral over kLaneIntegral_s
+// takes out a steering bias), the heading reaches its aim over kHeadingClose_s
+constexpr double kLaneClose_s = 5.0;
+constexpr double kLaneIntegral_s = 8.0;
+constexpr double kHeadingClose_s = 1.5;
+constexpr double kMaxHeadingAim_rad = 0.03;
+constexpr double kSteerFromSpeed_mps = 0.1;
 
 }  // namespace
 
@@ -105,10 +115,41 @@ std::array<bool, 4> Autopilot::flippers(const Simulation& simulation) const {
   return {true, true, true, true};
 }
 
+double Autopilot::height_over_stacks(const Simulation& simulation, const core::Vec3& destination) const {
+  // the spreader's centre height at which the load's underside clears every box under its way from here to
+  // the destination (the footprints' bounding boxes at both ends and between) by kStackClearance_m
+  const SpreaderHoist& hoist = crane(simulation).spreader_hoist();
+  const physics::BodyId load = carrying_ ? *hoist.locked_container() : hoist.spreader_body();
+  const core::Pose at = simulation.world().pose(load);
+  const core::Vec3 half = carrying_ ? simulation.scenario().containers[goal_index(simulation)].half_extents_m
+                                    : hoist.spreader().half_extents_m();
+  // half the bounding box of a box's footprint along world x and y
+  const auto reach = [](const core::Pose& pose, const core::Vec3& h) {
+    const core::Vec3 a = pose.rotation.column(0), b = pose.rotation.column(1);
+    return std::pair{std::abs(a.x) * h.x + std::abs(b.x) * h.y, std::abs(a.y) * h.x + std::abs(b.y) * h.y};
+  };
+  const auto [load_x, load_y] = reach(at, half);
+  const double min_x = std::min(at.position.x, destination.x) - load_x;
+  const double max_x = std::max(at.position.x, destination.x) + load_x;
+  const double min_y = std::min(at.position.y, destination.y) - load_y;
+  const double max_y = std::max(at.position.y, destination.y) + load_y;
+  double top = destination.z;
+  for (const ContainerRef& box : simulation.liftables()) {
+    if (box.body == load) continue;
+    const core::Pose pose = simulation.world().pose(box.body);
+    const auto [bx, by] = reach(pose, box.half_extents_m);
+    if (pose.position.x + bx > min_x && pose.position.x - bx < max_x && pose.position.y + by > min_y &&
+        pose.position.y - by < max_y)
+      top = std::max(top, pose.position.z + box.half_extents_m.z);
+  }
+  const double hanging = carrying_ ? 2.0 * half.z : 0.0;  // the box below the spreader
+  return top + kStackClearance_m + hanging + hoist.spreader().half_extents_m().z;
+}
+
 void Autopilot::start_travel(const core::Vec3& to, double gantry_y, double now) {
   trolley_ = {to.x, 0.0, now, false, 0.0, -1.0};
   // a gantry travel waits for the horn
-  const bool gantry_travels = std::abs(to.y - gantry_y) > kPosition_tolerance_m;
+  const bool gantry_travels = std::abs(to.y - gantry_y) > kPosition_tolerance_m && !defects_.skip_horn;
   gantry_ = {to.y, 0.0, gantry_travels ? now + kHorn_s : now, false, 0.0, -1.0};
 }
 
@@ -225,11 +266,25 @@ void Autopilot::resume(const Simulation& simulation, int moves_done) {
 Controls Autopilot::next(const Simulation& simulation) {
   if (simulation.steps() % kDecisionSteps != 0 && decided_) return last_controls_;
   last_ = decide(simulation);
-  for (double* lever : {&last_.gantry, &last_.trolley, &last_.hoist, &last_.boom})
+  last_.steer = steer(simulation);
+  for (double* lever : {&last_.gantry, &last_.trolley, &last_.hoist, &last_.boom, &last_.steer})
     *lever = device_lever(*lever);
   last_controls_ = crane(simulation).crane_controls(last_);
   decided_ = true;
   return last_controls_;
+}
+
+double Autopilot::steer(const Simulation& simulation) {
+  // as a driver holds a line: aim the heading back at it (the offset e closes as de/dt = -v ψ, so the aim
+  // ψ = e / (v τ) closes it over τ) and turn at the rate that reaches that aim
+  const GantryCrane& c = crane(simulation);
+  const double v = c.gantry_reference_mps();
+  if (std::abs(v) < kSteerFromSpeed_mps || defects_.never_steer) return 0.0;
+  const double offset = c.lane_offset_m();
+  lane_integral_ += offset * kDecision_s;
+  const double aim = std::clamp((offset + lane_integral_ / kLaneIntegral_s) / (v * kLaneClose_s),
+                                -kMaxHeadingAim_rad, kMaxHeadingAim_rad);
+  return c.steer_lever((aim - c.yaw_rad()) / kHeadingClose_s);
 }
 
 StsControls Autopilot::decide(const Simulation& simulation) {
@@ -237,18 +292,21 @@ StsControls Autopilot::decide(const Simulation& simulation) {
   const GantryCrane& crane = Autopilot::crane(simulation);
   const SpreaderHoist& hoist = crane.spreader_hoist();
   const core::Vec3 spreader = simulation.world().pose(hoist.spreader_body()).position;
-  const double travel_height = std::min(kTravelHeight_m, hoist.upper_limit_m() - kBelowUpperLimit_m);
+  const double highest_travel = std::min(kTravelHeight_m, hoist.upper_limit_m() - kBelowUpperLimit_m);
   if (done()) {  // clear the truck: raise the empty spreader to travel height
-    in.hoist = spreader.z < travel_height ? 1.0 : 0.0;
+    in.hoist = spreader.z < highest_travel ? 1.0 : 0.0;
     return in;
   }
   const double now = simulation.time_s();
+  const core::Vec3 destination = carrying_ ? exercise_.moves[goal_].target_m : source(simulation);
+  const double travel_height = simulation.vessel()
+                                   ? highest_travel
+                                   : std::min(highest_travel, height_over_stacks(simulation, destination));
   const double spreader_weight_n = hoist.spreader_mass_kg() * 9.80665;
   const double hoist_scale = std::max(1.0, kTunedHoistSpeed_mps / hoist.full_hoist_speed_mps());
   const auto hoist_lever = [&](double lever) { return std::clamp(lever * hoist_scale, -1.0, 1.0); };
   const double period =
       2.0 * std::numbers::pi * std::sqrt(std::max(hoist.pendulum_length_m(), 1.0) / 9.80665);
-  const core::Vec3 destination = carrying_ ? exercise_.moves[goal_].target_m : source(simulation);
   in.flipper_down = flippers(simulation);
   auto enter = [&](Phase p) {
     phase_ = p;
@@ -257,7 +315,9 @@ StsControls Autopilot::decide(const Simulation& simulation) {
 
   switch (phase_) {
     case Phase::kRaise:
-      in.hoist = 1.0;
+      // easing the lever over the last second's rise (a hoist stopped from full speed jerks the load)
+      in.hoist = std::clamp((travel_height - spreader.z) / (hoist.full_hoist_speed_mps() * kEaseRaise_s),
+                            kEasedRaiseLever, 1.0);
       if (spreader.z >= travel_height) {
         start_travel(destination, crane.gantry_y_m(), now);
         enter(Phase::kTravel);
@@ -267,7 +327,9 @@ StsControls Autopilot::decide(const Simulation& simulation) {
       in.trolley = axis_lever(trolley_, crane.trolley_x_m(), crane.trolley_max_speed_mps(), period, now);
       in.gantry = axis_lever(gantry_, crane.gantry_y_m(), crane.gantry_max_speed_mps(), period, now);
       in.horn = now < gantry_.ramp_start;
-      if (in.trolley == 0.0 && in.gantry == 0.0 && !in.horn) {
+      // (at an axis' ramp start its lever is still 0)
+      const bool started = now > std::max(trolley_.ramp_start, gantry_.ramp_start);
+      if (in.trolley == 0.0 && in.gantry == 0.0 && !in.horn && started) {
         trolley_swing_ = {};
         gantry_swing_ = {};
         enter(Phase::kSettle);

@@ -13,6 +13,8 @@ namespace harbour::sim {
 struct OperatorDefects {
   bool land_fast = false;         ///< set containers down at full lowering speed
   bool forget_lock_once = false;  ///< hoist away from the first pick-up without locking, then come back
+  bool never_steer = false;       ///< a gantry on tyres: leave the steering alone, whatever its bias
+  bool skip_horn = false;         ///< travel the gantry without sounding the horn first
 };
 
 /// A scripted operator that performs an exercise's moves: sway-aware travel (levers ramped up and down over
@@ -64,6 +66,8 @@ class Autopilot final : public Pilot {
   };
   static const GantryCrane& crane(const Simulation& simulation);
   StsControls decide(const Simulation& simulation);
+  /// The steering lever that holds a gantry on tyres on its line.
+  double steer(const Simulation& simulation);
   double axis_lever(AxisMove& m, double position, double max_speed, double period, double now) const;
   static double catch_swing(SwingAxis& axis, double target, double axis_position, double axis_speed,
                             double load_position, double load_speed, double wind_lean, double period,
@@ -73,6 +77,8 @@ class Autopilot final : public Pilot {
                        StsControls& in);
   bool on_target(double tolerance) const;  // rest position on target and swing small
   bool will_land_within(double tolerance) const;
+  /// In a yard: the spreader height at which the load clears the stacks on its way to `destination`.
+  double height_over_stacks(const Simulation& simulation, const core::Vec3& destination) const;
   void start_travel(const core::Vec3& to, double gantry_y, double now);
   core::Vec3 source(const Simulation& simulation) const;
   double goal_half_height(const Simulation& simulation) const;
@@ -92,6 +98,7 @@ class Autopilot final : public Pilot {
   SwingAxis trolley_swing_, gantry_swing_;
   double resting_since_ = -1.0;  // the spreader sits on something without landing in its castings
   bool lock_skipped_ = false;
+  double lane_integral_ = 0.0;  // [m s] the gantry's offset from its line, integrated while it travels
   StsControls last_;
   Controls last_controls_;
   bool decided_ = false;

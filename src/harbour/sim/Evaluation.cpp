@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <tuple>
 
 #include "harbour/bulk/PileMeasure.h"
+#include "harbour/machines/GantryCrane.h"
 
 namespace harbour::sim {
 namespace {
@@ -212,15 +214,26 @@ void Evaluator::observe_bulk(const Simulation& simulation) {
 }
 
 void Evaluator::observe_any_machine(const Simulation& simulation, const Controls& controls) {
-  // what every machine shows: its impacts (the load it carries set down near its target is a landing), its
-  // moves, rope overloads and emergency stops
+  // what every machine shows: its impacts (the load it carries set down near its target, or its empty
+  // gripper set down on the item it is to pick up, is a landing), its moves, rope overloads, emergency stops
+  // and, on a gantry crane, gantry travel without the horn
+  const std::optional<physics::BodyId> gripper = simulation.machine().gripper_body();
   for (const physics::ImpactEvent& e : simulation.events().impacts) {
     const bool carried_hit = carried_ && (e.body == *carried_ || e.other == *carried_);
+    const bool gripper_hit = gripper && (e.body == *gripper || e.other == *gripper);
+    const bool body_hit = e.surface == kSurfaceVehicle || e.other_surface == kSurfaceVehicle;
+    const physics::BodyId other = e.body == gripper ? e.other : e.body;
+    if (gripper_hit && !carried_ && goal_of(other, simulation) >= 0) {  // set down on the box to lift
+      metrics_.worst_landing_mps = std::max(metrics_.worst_landing_mps, e.normal_speed_mps);
+      if (e.normal_speed_mps > exercise_.rules.hard_landing_mps) ++metrics_.hard_landings;
+      continue;
+    }
     if (carried_hit && near_target(*carried_, simulation)) {
       record_landing(simulation, carried_);
       metrics_.worst_landing_mps = std::max(metrics_.worst_landing_mps, e.normal_speed_mps);
       if (e.normal_speed_mps > exercise_.rules.hard_landing_mps) ++metrics_.hard_landings;
-    } else if (e.normal_speed_mps >= exercise_.rules.collision_speed_mps) {
+    } else if (e.normal_speed_mps >= exercise_.rules.collision_speed_mps ||
+               (body_hit && e.impulse_ns >= exercise_.rules.body_contact_impulse_ns)) {
       count_collision(e);
     }
   }
@@ -234,6 +247,11 @@ void Evaluator::observe_any_machine(const Simulation& simulation, const Controls
   const bool estop = stop >= 0 && controls.value[static_cast<std::size_t>(stop)] != 0.0;
   if (estop && !was_estop_) ++metrics_.emergency_stops;
   was_estop_ = estop;
+  if (const auto* crane = dynamic_cast<const GantryCrane*>(&simulation.machine())) {
+    const int horn = simulation.control_table().find("horn");
+    observe_gantry_warning(horn >= 0 && controls.value[static_cast<std::size_t>(horn)] != 0.0,
+                           crane->gantry_reference_mps() != 0.0, crane->gantry_y_m());
+  }
 }
 
 void Evaluator::observe_moves(const Simulation& simulation, std::optional<physics::BodyId> held) {
@@ -309,26 +327,27 @@ void Evaluator::observe_containers(const Simulation& simulation, const Controls&
   limit_hits_seen_ = hits;
   if (cab.emergency_stop && !was_estop_) ++metrics_.emergency_stops;
   was_estop_ = cab.emergency_stop;
-  // gantry travel (people walk the quay under the sill beams) starts only after a warning on the horn
-  // (a travel: one motion from standstill covering more than gantry_travel_m; positioning creeps are not)
-  if (cab.horn) last_horn_s_ = metrics_.time_s;
-  const bool gantry_moving = crane.gantry_drive().reference_mps() != 0.0;
-  if (gantry_moving && !gantry_was_moving_) {
-    travel_start_y_ = crane.gantry_position_m();
-    travel_warned_ = metrics_.time_s - last_horn_s_ <= rules.horn_warning_s;
-    travel_counted_ = false;
-  }
-  if (gantry_moving && !travel_warned_ && !travel_counted_ &&
-      std::abs(crane.gantry_position_m() - travel_start_y_) > rules.gantry_travel_m) {
-    ++metrics_.unwarned_gantry_travel;
-    travel_counted_ = true;
-  }
-  gantry_was_moving_ = gantry_moving;
+  observe_gantry_warning(cab.horn, crane.gantry_drive().reference_mps() != 0.0, crane.gantry_position_m());
   const double drum_power = -crane.hoist().drum_rope_torque(0) * crane.hoist().drum_rope_speed(0) /
                             simulation.scenario().sts().crane.hoist.elements[0].radius_m;
   metrics_.hoist_energy_j += std::max(0.0, drum_power) * Simulation::kStep_s;
   metrics_.travel_energy_j +=
       (std::max(0.0, crane.gantry_power_w()) + std::max(0.0, crane.trolley_power_w())) * Simulation::kStep_s;
+}
+
+void Evaluator::observe_gantry_warning(bool horn, bool gantry_moving, double gantry_position_m) {
+  if (horn) last_horn_s_ = metrics_.time_s;
+  if (gantry_moving && !gantry_was_moving_) {
+    travel_start_y_ = gantry_position_m;
+    travel_warned_ = metrics_.time_s - last_horn_s_ <= exercise_.rules.horn_warning_s;
+    travel_counted_ = false;
+  }
+  if (gantry_moving && !travel_warned_ && !travel_counted_ &&
+      std::abs(gantry_position_m - travel_start_y_) > exercise_.rules.gantry_travel_m) {
+    ++metrics_.unwarned_gantry_travel;
+    travel_counted_ = true;
+  }
+  gantry_was_moving_ = gantry_moving;
 }
 
 Score Evaluator::score() const {
@@ -447,6 +466,30 @@ std::vector<std::pair<std::string, double>> Metrics::rows() const {
   r.insert(r.end(), std::begin(more), std::end(more));
   if (trim) r.emplace_back("pile_top_m", pile_top_m);
   return r;
+}
+
+std::vector<CountedEvent> counted_events(const Metrics& before, const Metrics& now) {
+  const std::tuple<const char*, int, int, double> counters[] = {
+      {"collision", before.collisions, now.collisions, now.worst_collision_mps},
+      {"hard_landing", before.hard_landings, now.hard_landings, now.worst_landing_mps},
+      {"sway_landing", before.sway_landings, now.sway_landings, 0.0},
+      {"twistlock_misuse", before.twistlock_misuse, now.twistlock_misuse, 0.0},
+      {"rope_overload", before.overloads, now.overloads, 0.0},
+      {"limit_switch_hit", before.limit_hits, now.limit_hits, 0.0},
+      {"emergency_stop", before.emergency_stops, now.emergency_stops, 0.0},
+      {"gantry_travel_without_horn", before.unwarned_gantry_travel, now.unwarned_gantry_travel, 0.0},
+      {"limiter_trip", before.limiter_trips, now.limiter_trips, 0.0},
+      {"pad_lift_off", before.pad_lift_offs, now.pad_lift_offs, 0.0},
+      {"poor_bite", before.poor_bites, now.poor_bites, 0.0},
+      {"swinging_release", before.swinging_releases, now.swinging_releases, 0.0},
+      {"jackknife", before.jackknifes, now.jackknifes, 0.0},
+      {"tip_over", before.tip_overs, now.tip_overs, 0.0},
+      {"speeding", before.overspeeds, now.overspeeds, now.worst_overspeed_kmh}};
+  std::vector<CountedEvent> events;
+  for (const auto& [kind, was, is, value] : counters)
+    for (int n = was; n < is; ++n)
+      events.push_back({kind, value});
+  return events;
 }
 
 }  // namespace harbour::sim

@@ -27,7 +27,10 @@ struct EvaluationRules {
   double overtime_s = 600.0;  ///< [s] a run still unfinished this long after its time limit is stopped
   double pass_score = 70.0;
   double collision_speed_mps = 0.1;  ///< [m/s] impacts at least this fast that are not landings count
-  double hard_landing_mps = 0.3;     ///< [m/s] landing a container faster than this is a hard landing
+  /// [N s] a machine's body (a vehicle's chassis, a gantry's legs) meeting something with at least this
+  /// impulse counts however slowly it closed: a heavy machine steering into a stack
+  double body_contact_impulse_ns = 1000.0;
+  double hard_landing_mps = 0.3;  ///< [m/s] landing a container faster than this is a hard landing
   double sway_limit_m = 0.25;  ///< [m] spreader offset from its rest position at a landing counted as swaying
   double horn_warning_s = 5.0;   ///< [s] gantry travel must start within this long after the horn sounded
   double gantry_travel_m = 1.0;  ///< [m] a gantry motion longer than this is a travel (needs the horn)
@@ -85,6 +88,9 @@ struct ExerciseSettings {
   ScenarioSettings scenario;
   std::vector<MoveGoal> moves;
   std::vector<SpeedZone> speed_zones;
+  /// [m] ground points a vehicle is to pass in order with its load, from where it picks it up to its
+  /// target's line (a slalom's gates); empty: straight on
+  std::vector<core::Vec3> route_m;
   std::optional<BulkGoal> deliver;
   std::optional<TrimGoal> trim;
   EvaluationRules rules;
@@ -170,6 +176,16 @@ struct Score {
   std::array<double, 3> skills{100.0, 100.0, 100.0};  ///< indexed by Skill
 };
 
+/// Something the evaluator counted between two looks at the metrics (a collision, a hard landing, ...),
+/// by the name the records and the console use, with its figure (the impact speed, the overspeed).
+struct CountedEvent {
+  const char* kind = "";
+  double value = 0.0;
+};
+/// Every event counted between `before` and `now`, one per count (moves are not events: see
+/// Metrics::moves_completed).
+std::vector<CountedEvent> counted_events(const Metrics& before, const Metrics& now);
+
 /// The highest point of bulk grid `grid`'s surface, in the world [m].
 double pile_top_m(const bulk::BulkWorld& bulk, int grid);
 
@@ -188,6 +204,9 @@ class Evaluator {
  private:
   void observe_containers(const Simulation& simulation, const Controls& controls, const StsCrane& crane);
   void observe_any_machine(const Simulation& simulation, const Controls& controls);
+  /// Gantry travel (people walk under the portal) starts only after a warning on the horn: one motion from
+  /// standstill covering more than the rules' gantry_travel_m (positioning creeps are not travels).
+  void observe_gantry_warning(bool horn, bool gantry_moving, double gantry_position_m);
   void observe_bulk(const Simulation& simulation);
   /// Counts a goal item let go of at its target as a completed move (`held`: what the machine holds now).
   void observe_moves(const Simulation& simulation, std::optional<physics::BodyId> held);

@@ -24,6 +24,12 @@ class Pilot {
   virtual void resume(const Simulation& simulation, int moves_done) = 0;
 };
 
+/// Deliberate faults for a scripted bad driver of a vehicle (tests of the evaluation).
+struct DriverDefects {
+  bool ignore_route = false;            ///< drive straight for the target, whatever stands in the way
+  bool reverse_steering_wrong = false;  ///< reversing a trailer, steer the way its rear is to go
+};
+
 /// Why no scripted operator can drive `exercise` ("" when one can): the STS's container moves and the MHC's
 /// grab deliveries have one.
 std::string why_no_pilot(const ExerciseSettings& exercise);

@@ -13,6 +13,13 @@ namespace {
 
 constexpr std::int64_t kDecisionSteps = 20;  // 50 Hz
 constexpr double kCruise_mps = 2.0;          // laden or not, in a stacking lane
+constexpr double kCorner_mps = 1.0;          // with the wheel turned kCornerSteer or more
+constexpr double kCornerSteer = 0.3;
+constexpr double kLiftOff_m = 0.3;     // the box lifted this far off what it stood on before it is carried
+constexpr double kTruckGone_m = 20.0;  // a truck this far from its stop has left the way clear
+constexpr double kTwentyFootHalfLength_m = 4.0;  // a box shorter than this takes the spreader at 20 ft
+constexpr double kRaisedFirst_m = 0.2;           // the head this near its hover height before it reaches out
+constexpr double kOnTheLine_m = 2.0;             // stacks this close to the target's line stand in the way
 constexpr double kCreep_mps = 0.5;
 constexpr double kStopping_mps2 = 0.3;  // the deceleration it plans its stops with
 constexpr double kSpeedGain = 0.5;      // pedal per m/s of speed error
@@ -80,16 +87,20 @@ std::string ReachStackerAutopilot::why_cannot_drive(const ExerciseSettings& exer
     if (c.id == goal.container_id) box = &c;
   if (!box) return "the move's box is not in the exercise";
   const core::Vec3 to_box = flat(box->pose.position - setup->start.position_m);
+  if (std::abs(dot(to_box, left)) > 0.5 || dot(to_box, along) <= 0.0)
+    return "the reach stacker autopilot picks the box ahead on its line";
+  if (!exercise.route_m.empty()) return "";  // it drives the route to the target
   const core::Vec3 to_target = flat(goal.target_m - setup->start.position_m);
-  if (std::abs(dot(to_box, left)) > 0.5 || std::abs(dot(to_target, left)) > 0.5 ||
-      dot(to_box, along) <= 0.0 || dot(to_target, along) <= dot(to_box, along))
-    return "the reach stacker autopilot drives along one lane: the box ahead on its line, the target further "
-           "along it";
+  if (std::abs(dot(to_target, left)) > 0.5 || dot(to_target, along) <= dot(to_box, along))
+    return "the reach stacker autopilot drives along one lane without a route (exercise.route_m): the target "
+           "further along the box's line";
   return "";
 }
 
-ReachStackerAutopilot::ReachStackerAutopilot(const ExerciseSettings& exercise) : exercise_(exercise) {
-  if (const std::string why = why_cannot_drive(exercise); !why.empty()) throw std::invalid_argument(why);
+ReachStackerAutopilot::ReachStackerAutopilot(const ExerciseSettings& exercise, DriverDefects defects)
+    : exercise_(exercise), defects_(defects) {
+  if (defects_.ignore_route) exercise_.route_m.clear();
+  if (const std::string why = why_cannot_drive(exercise_); !why.empty()) throw std::invalid_argument(why);
   const auto& setup = std::get<ReachStackerSetup>(exercise.scenario.machine);
   lane_start_m_ = flat(setup.start.position_m);
   lane_along_ = {std::cos(setup.start.heading_rad), std::sin(setup.start.heading_rad), 0.0};
@@ -117,6 +128,14 @@ void ReachStackerAutopilot::resume(const Simulation& simulation, int moves_done)
   phase_ = moves_done >= 1 ? Phase::kDone : machine && machine->held_item() ? Phase::kLift : Phase::kApproach;
   phase_start_s_ = simulation.time_s();
   decided_ = false;
+}
+
+bool ReachStackerAutopilot::way_clear(const Simulation& simulation) const {
+  const TruckLane* trucks = simulation.trucks();
+  const TruckLaneSettings& lane = exercise_.scenario.trucks;
+  for (int k = 0; trucks && k < lane.trucks; ++k)
+    if (std::abs(trucks->truck_y(k) - lane.stop_y_m) < kTruckGone_m) return false;
+  return true;
 }
 
 Controls ReachStackerAutopilot::decide(const Simulation& simulation, const ReachStacker& m) {
@@ -153,12 +172,16 @@ Controls ReachStackerAutopilot::decide(const Simulation& simulation, const Reach
   const double target_along = dot(flat(goal.target_m) - lane_start_m_, lane_along_);
   const double picked_along =
       dot(flat(exercise_.scenario.containers[box_index_].pose.position) - lane_start_m_, lane_along_);
+  const double from_along = carry_path_.empty() ? picked_along : 0.0;  // on a route: from its last point
+  const core::Vec3 lane_left{-lane_along_.y, lane_along_.x, 0.0};
   double nearest_face = target_along - box_ref->half_extents_m.y, highest_top = 0.0;
   for (const ContainerRef& other : simulation.liftables()) {
     if (other.body == box) continue;
     const core::Pose p = world.pose(other.body);
     const double along = dot(flat(p.position) - lane_start_m_, lane_along_);
-    if (along >= target_along - 0.5 || along <= picked_along) continue;
+    if (along >= target_along - 0.5 || along <= from_along ||
+        std::abs(dot(flat(p.position) - lane_start_m_, lane_left)) > kOnTheLine_m)
+      continue;
     nearest_face = std::min(nearest_face, along - other.half_extents_m.y);
     highest_top = std::max(highest_top, p.position.z + other.half_extents_m.z);
   }
@@ -167,11 +190,19 @@ Controls ReachStackerAutopilot::decide(const Simulation& simulation, const Reach
   // driving: along the lane's line to a stop, the brake held while the boom works
   set("direction", 2.0);
   const auto drive_to = [&](double stop_along, double cruise_mps) {
-    const core::Vec3 path[] = {lane_start_m_, lane_start_m_ + lane_along_ * (stop_along + 50.0)};
+    // along the lane's line, or the route and then the target's line
+    std::vector<core::Vec3> path = carry_path_;
+    if (path.empty()) path.push_back(lane_start_m_);
+    path.push_back(lane_start_m_ + lane_along_ * (stop_along + 50.0));
     const core::Vec3 reference = flat(chassis.to_parent({m.chassis().reference_x_m(), 0, 0}));
-    set("steer", pursuit_steer(chassis, m.chassis(), point_ahead(path, reference, kLookahead_m)));
+    const double steer = pursuit_steer(chassis, m.chassis(), point_ahead(path, reference, kLookahead_m));
+    set("steer", steer);
     const double remaining = stop_along - at_along;
-    const double wanted = std::min(cruise_mps, std::sqrt(2.0 * kStopping_mps2 * std::max(0.0, remaining)));
+    // slower the more the wheel is turned (laden, a reach stacker tips sideways in a fast tight turn)
+    const double cruise =
+        std::min(cruise_mps,
+                 kCruise_mps - (kCruise_mps - kCorner_mps) * std::min(1.0, std::abs(steer) / kCornerSteer));
+    const double wanted = std::min(cruise, std::sqrt(2.0 * kStopping_mps2 * std::max(0.0, remaining)));
     const double error = wanted - m.forward_mps();
     press("throttle", std::clamp(kSpeedGain * error, 0.0, 1.0));
     press("brake", remaining <= 0.0 ? 0.6 : std::clamp(-kSpeedGain * error, 0.0, 1.0));
@@ -209,12 +240,19 @@ Controls ReachStackerAutopilot::decide(const Simulation& simulation, const Reach
 
   const core::Pose box_pose = world.pose(box);
   const double box_top = box_pose.position.z + box_ref->half_extents_m.z;
+  // the spreader's length for the box: its button held until it is there
+  if (phase_ == Phase::kApproach || phase_ == Phase::kPick) {
+    const bool twenty = box_ref->half_extents_m.x < kTwentyFootHalfLength_m;
+    set(twenty ? "spreader_20" : "spreader_40", 1.0);
+  }
   switch (phase_) {
     case Phase::kApproach: {
       // to where the box lies at the first row's reach, the spreader brought over it on the way
+      // (raised over the box's top before it reaches out: a box on a truck stands higher than the head)
       const double stop = dot(flat(box_pose.position) - lane_start_m_, lane_along_) - s.row_reach_m.front();
-      core::Vec3 goal_head = box_pose.position;
-      goal_head.z = head_z_over(m, box_top, kHover_m);
+      const double hover_z = head_z_over(m, box_top, kHover_m);
+      core::Vec3 goal_head = m.head_m().z > hover_z - kRaisedFirst_m ? box_pose.position : m.head_m();
+      goal_head.z = hover_z;
       head_to(goal_head, kHeadSpeed_mps);
       if (drive_to(stop, kCruise_mps)) enter(Phase::kPick);
       break;
@@ -240,16 +278,33 @@ Controls ReachStackerAutopilot::decide(const Simulation& simulation, const Reach
       break;
     }
     case Phase::kLift: {
-      // up to carrying height, kept at its reach
+      // up off what it stood on (a truck's chassis: the truck leaves), kept at its reach; it waits for the
+      // way to clear
       hold();
+      const ContainerPlacement& picked = exercise_.scenario.containers[box_index_];
+      const double picked_bottom = picked.pose.position.z - picked.half_extents_m.z;
       core::Vec3 goal_head = m.head_m();
-      goal_head.z = head_z_over(m, kCarryClearance_m + box_height, 0.0);
-      if (head_to(goal_head, kHeadSpeed_mps)) enter(Phase::kCarry);
+      goal_head.z = head_z_over(m, std::max(kCarryClearance_m, picked_bottom + kLiftOff_m) + box_height, 0.0);
+      if (head_to(goal_head, kHeadSpeed_mps) && way_clear(simulation)) {
+        if (!exercise_.route_m.empty()) {
+          // on along the route, then the line from its last point to the target
+          carry_path_ = {flat(chassis.to_parent({m.chassis().reference_x_m(), 0, 0}))};
+          carry_path_.insert(carry_path_.end(), exercise_.route_m.begin(), exercise_.route_m.end());
+          lane_start_m_ = exercise_.route_m.back();
+          lane_along_ = unit(flat(goal.target_m) - lane_start_m_);
+        }
+        enter(Phase::kCarry);
+      }
       break;
     }
-    case Phase::kCarry:
+    case Phase::kCarry: {
+      // down to carrying height (off a truck) on the way
+      core::Vec3 goal_head = m.head_m();
+      goal_head.z = head_z_over(m, kCarryClearance_m + box_height, 0.0);
+      head_to(goal_head, kHeadSpeed_mps);
       if (drive_to(final_stop - kRaiseShort_m, kCruise_mps)) enter(Phase::kRaise);
       break;
+    }
     case Phase::kRaise: {
       hold();
       core::Vec3 goal_head = m.head_m();

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "harbour/sim/Evaluation.h"
 #include "harbour/sim/Pilot.h"
@@ -21,7 +22,7 @@ class ReachStackerAutopilot final : public Pilot {
   /// it on its line and whose target lies further along that line.
   static std::string why_cannot_drive(const ExerciseSettings& exercise);
   /// Throws std::invalid_argument with why_cannot_drive() when it cannot.
-  explicit ReachStackerAutopilot(const ExerciseSettings& exercise);
+  explicit ReachStackerAutopilot(const ExerciseSettings& exercise, DriverDefects defects = {});
 
   /// The controls for the next step (decided 50 times a second, held in between).
   Controls next(const Simulation& simulation) override;
@@ -46,11 +47,16 @@ class ReachStackerAutopilot final : public Pilot {
     kDone
   };
   Controls decide(const Simulation& simulation, const ReachStacker& machine);
+  /// No truck stands in or near its lane's stop (the one it took the box from has driven off).
+  bool way_clear(const Simulation& simulation) const;
 
   ExerciseSettings exercise_;
+  DriverDefects defects_;
   Phase phase_ = Phase::kApproach;
   double phase_start_s_ = 0.0;
-  core::Vec3 lane_start_m_, lane_along_;  // the lane's line: from where it started, along its heading
+  core::Vec3 lane_start_m_, lane_along_;  // the lane's line: from where it started, along its heading; on a
+                                          // route, from its last point to the target once it carries
+  std::vector<core::Vec3> carry_path_;    // the route from where it picked the box (empty: none)
   std::size_t box_index_ = 0;             // the moved box among the scenario's containers
   Controls last_{};
   bool decided_ = false;

@@ -44,7 +44,6 @@ void Recorder::on_command(const Simulation& simulation, const InstructorCommand&
   if (sink_) sink_->on_command(recording_.commands.back());
 }
 
-namespace {
 // recorded values (by the recording's labels) at this machine's slots
 class BySlot {
  public:
@@ -74,52 +73,81 @@ class BySlot {
   const ControlTable& table_;
   std::vector<int> slot_of_;
 };
-}  // namespace
+
+ReplayPlayer::ReplayPlayer(const ScenarioSettings& scenario, const Recording& recording)
+    : scenario_(scenario), recording_(recording), simulation_(std::make_unique<Simulation>(scenario)) {
+  by_slot_ = std::make_unique<BySlot>(recording.control_labels, simulation_->control_table());
+  current_ = simulation_->control_table().neutral();
+}
+
+ReplayPlayer::~ReplayPlayer() = default;
+
+void ReplayPlayer::seek(std::int64_t step) {
+  const std::int64_t end = std::clamp<std::int64_t>(step, 0, recording_.total_steps);
+  const Recording::Keyframe* start = nullptr;
+  for (const Recording::Keyframe& k : recording_.keyframes)
+    if (k.step <= end) start = &k;
+  // forward within the next keyframe's span: on from here; otherwise from the keyframe (or the start)
+  const bool onward = simulation_->steps() <= end && (!start || start->step <= simulation_->steps());
+  if (!onward) {
+    simulation_ = std::make_unique<Simulation>(scenario_);
+    by_slot_ =
+        std::make_unique<BySlot>(recording_.control_labels, simulation_->control_table());  // its table
+    next_input_ = next_checkpoint_ = next_command_ = 0;
+    current_ = simulation_->control_table().neutral();
+    if (start) {
+      simulation_->restore_state(start->state);
+      ++keyframes_used_;
+      // a keyframe that does not give its second's recorded hash would replay a state that never was
+      for (const Recording::Checkpoint& c : recording_.checkpoints)
+        if (c.step == start->step && c.state_hash != simulation_->state_hash())
+          throw core::StateError("the keyframe at step " + std::to_string(start->step) +
+                                 " does not give the state hash recorded there (a damaged recording)");
+      // a keyframe holds the commands before its step; those at its step came after it was taken
+      while (next_command_ < recording_.commands.size() &&
+             recording_.commands[next_command_].step < simulation_->steps())
+        ++next_command_;
+    }
+  }
+  advance_to(end);
+}
+
+void ReplayPlayer::advance_to(std::int64_t step, const ReplayObserver& observer) {
+  const std::int64_t end = std::min(step, recording_.total_steps);
+  Simulation& sim = *simulation_;
+  while (sim.steps() < end) {
+    while (next_command_ < recording_.commands.size() &&
+           recording_.commands[next_command_].step == sim.steps())
+      sim.command(recording_.commands[next_command_++].command);
+    while (next_input_ < recording_.inputs.size() && recording_.inputs[next_input_].step <= sim.steps())
+      current_ = (*by_slot_)(recording_.inputs[next_input_++].controls);
+    sim.single_step(current_);  // replay ignores the freeze: held periods were not recorded as steps
+    if (observer) observer(sim, current_);
+    while (next_checkpoint_ < recording_.checkpoints.size() &&
+           recording_.checkpoints[next_checkpoint_].step < sim.steps())
+      ++next_checkpoint_;
+    if (next_checkpoint_ < recording_.checkpoints.size() &&
+        recording_.checkpoints[next_checkpoint_].step == sim.steps()) {
+      ++checkpoints_checked_;
+      if (!first_mismatch_ && recording_.checkpoints[next_checkpoint_].state_hash != sim.state_hash())
+        first_mismatch_ = sim.steps();
+      ++next_checkpoint_;
+    }
+  }
+}
 
 ReplayResult replay(const ScenarioSettings& scenario, const Recording& recording, std::int64_t stop_step,
                     const ReplayObserver& observer) {
+  ReplayPlayer player(scenario, recording);
+  if (stop_step >= 0 && !observer)
+    player.seek(stop_step);
+  else
+    player.advance_to(stop_step < 0 ? recording.total_steps : stop_step, observer);
   ReplayResult result;
-  result.simulation = std::make_unique<Simulation>(scenario);
-  Simulation& sim = *result.simulation;
-  const std::int64_t end = stop_step < 0 ? recording.total_steps : std::min(stop_step, recording.total_steps);
-  if (stop_step >= 0 && !observer) {
-    const Recording::Keyframe* start = nullptr;
-    for (const Recording::Keyframe& k : recording.keyframes)
-      if (k.step <= end) start = &k;
-    if (start) {
-      sim.restore_state(start->state);
-      ++result.keyframes_used;
-      // a keyframe that does not give its second's recorded hash would replay a state that never was
-      for (const Recording::Checkpoint& c : recording.checkpoints)
-        if (c.step == start->step && c.state_hash != sim.state_hash())
-          throw core::StateError("the keyframe at step " + std::to_string(start->step) +
-                                 " does not give the state hash recorded there (a damaged recording)");
-    }
-  }
-  std::size_t next_input = 0, next_checkpoint = 0, next_command = 0;
-  // a keyframe holds the commands before its step; those at its step came after it was taken
-  while (next_command < recording.commands.size() && recording.commands[next_command].step < sim.steps())
-    ++next_command;
-  const BySlot by_slot(recording.control_labels, sim.control_table());
-  Controls current = sim.control_table().neutral();
-  while (sim.steps() < end) {
-    while (next_command < recording.commands.size() && recording.commands[next_command].step == sim.steps())
-      sim.command(recording.commands[next_command++].command);
-    while (next_input < recording.inputs.size() && recording.inputs[next_input].step <= sim.steps())
-      current = by_slot(recording.inputs[next_input++].controls);
-    sim.single_step(current);  // replay ignores the freeze: held periods were not recorded as steps
-    if (observer) observer(sim, current);
-    while (next_checkpoint < recording.checkpoints.size() &&
-           recording.checkpoints[next_checkpoint].step < sim.steps())
-      ++next_checkpoint;
-    if (next_checkpoint < recording.checkpoints.size() &&
-        recording.checkpoints[next_checkpoint].step == sim.steps()) {
-      ++result.checkpoints_checked;
-      if (!result.first_mismatch && recording.checkpoints[next_checkpoint].state_hash != sim.state_hash())
-        result.first_mismatch = sim.steps();
-      ++next_checkpoint;
-    }
-  }
+  result.checkpoints_checked = player.checkpoints_checked();
+  result.keyframes_used = player.keyframes_used();
+  result.first_mismatch = player.first_mismatch();
+  result.simulation = player.release_simulation();
   return result;
 }
 

@@ -93,6 +93,36 @@ using ReplayObserver = std::function<void(const Simulation&, const Controls&)>;
 /// The STS labels recordings before version 7 stored their controls as (in this order).
 std::vector<std::string> legacy_sts_control_labels();
 
+class BySlot;
+
+/// Plays a recording back step by step (the console's replay): seek to any step (from the keyframe at or
+/// before it, or on from where it is when that is nearer), then advance as fast as wanted; every checkpoint
+/// passed is compared. Keeps references to `scenario` and `recording`: they must outlive it.
+class ReplayPlayer {
+ public:
+  ReplayPlayer(const ScenarioSettings& scenario, const Recording& recording);
+  ~ReplayPlayer();
+  void seek(std::int64_t step);
+  /// Re-simulates on to `step` (at most the recording's end).
+  void advance_to(std::int64_t step, const ReplayObserver& observer = {});
+  const Simulation& simulation() const { return *simulation_; }
+  std::int64_t total_steps() const { return recording_.total_steps; }
+  int checkpoints_checked() const { return checkpoints_checked_; }
+  int keyframes_used() const { return keyframes_used_; }
+  std::optional<std::int64_t> first_mismatch() const { return first_mismatch_; }
+  std::unique_ptr<Simulation> release_simulation() { return std::move(simulation_); }
+
+ private:
+  const ScenarioSettings& scenario_;
+  const Recording& recording_;
+  std::unique_ptr<Simulation> simulation_;
+  std::unique_ptr<BySlot> by_slot_;
+  Controls current_;
+  std::size_t next_input_ = 0, next_checkpoint_ = 0, next_command_ = 0;
+  int checkpoints_checked_ = 0, keyframes_used_ = 0;
+  std::optional<std::int64_t> first_mismatch_;
+};
+
 /// Re-simulates `recording` from `scenario` up to `stop_step` (default: its end), comparing every checkpoint.
 /// Given a stop step and no observer it starts from the last keyframe at or before it (a seek); a whole
 /// replay, or one with an observer, runs every step from the start.

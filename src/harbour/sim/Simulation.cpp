@@ -9,6 +9,11 @@
 #include "harbour/core/StateHash.h"
 
 namespace harbour::sim {
+namespace {
+constexpr const char* kEmergencyStopControl = "emergency_stop";  // every machine's (its control table)
+constexpr std::uint32_t kSimulationSectionV2 = 0x53494D32;       // "SIM2": with solver-message warnings
+constexpr std::uint32_t kSimulationSection = 0x53494D33;         // "SIM3": and the instructor's stop
+}  // namespace
 
 const char* machine_kind(const MachineSetup& setup) {
   return std::visit(
@@ -174,6 +179,8 @@ std::string why_invalid(const InstructorCommand& c) {
     case Kind::kHoistBrakeFault:
     case Kind::kLimiterFault:
     case Kind::kClearFaults:
+    case Kind::kEmergencyStop:
+    case Kind::kReleaseEmergencyStop:
       break;
     default:
       return "unknown command kind " + std::to_string(static_cast<int>(c.kind));
@@ -181,17 +188,31 @@ std::string why_invalid(const InstructorCommand& c) {
   return {};
 }
 
+namespace {
+std::optional<MachineFault> fault_of(const InstructorCommand& c) {
+  using Kind = InstructorCommand::Kind;
+  return c.kind == Kind::kHoistBrakeFault     ? std::optional(MachineFault::kHoistBrake)
+         : c.kind == Kind::kLandedSensorFault ? std::optional(MachineFault::kLandedSensor)
+         : c.kind == Kind::kLimiterFault      ? std::optional(MachineFault::kLoadMomentLimiter)
+                                              : std::nullopt;
+}
+}  // namespace
+
+std::string Simulation::why_refused(const InstructorCommand& c) const {
+  if (std::string why = why_invalid(c); !why.empty()) return why;
+  if (const auto fault = fault_of(c); fault && !machine_->has_fault(*fault))
+    return std::string("the ") + machine_->kind() + " has no such part to fail";
+  if ((c.kind == InstructorCommand::Kind::kEmergencyStop ||
+       c.kind == InstructorCommand::Kind::kReleaseEmergencyStop) &&
+      control_table().find(kEmergencyStopControl) < 0)
+    return std::string("the ") + machine_->kind() + " has no emergency stop";
+  return "";
+}
+
 void Simulation::command(const InstructorCommand& c) {
   using Kind = InstructorCommand::Kind;
-  if (const std::string why = why_invalid(c); !why.empty())
+  if (const std::string why = why_refused(c); !why.empty())
     throw std::invalid_argument("instructor command: " + why);
-  const auto fault = c.kind == Kind::kHoistBrakeFault     ? std::optional(MachineFault::kHoistBrake)
-                     : c.kind == Kind::kLandedSensorFault ? std::optional(MachineFault::kLandedSensor)
-                     : c.kind == Kind::kLimiterFault      ? std::optional(MachineFault::kLoadMomentLimiter)
-                                                          : std::nullopt;
-  if (fault && !machine_->has_fault(*fault))
-    throw std::invalid_argument(std::string("instructor command: the ") + machine_->kind() +
-                                " has no such part to fail");
   switch (c.kind) {
     case Kind::kGust: {
       Gust g = c.gust;
@@ -222,6 +243,12 @@ void Simulation::command(const InstructorCommand& c) {
       break;
     case Kind::kSetTimeOfDay:
       weather_.set_time_of_day(c.value);
+      break;
+    case Kind::kEmergencyStop:
+      instructor_stop_ = true;
+      break;
+    case Kind::kReleaseEmergencyStop:
+      instructor_stop_ = false;
       break;
   }
 }
@@ -305,7 +332,14 @@ void Simulation::advance(const Controls& controls) {
   if (vessel_) vessel_->move_to(clock_.time_s());
   if (ramp_) ramp_->move_to(clock_.time_s());
   move_secured_cargo();
-  machine_->step(controls, containers_, kStep_s);
+  if (instructor_stop_) {
+    // the trainee's controls are recorded and evaluated as they were; the machine reads its stop pressed
+    Controls stopped = controls;
+    stopped.value[static_cast<std::size_t>(control_table().find(kEmergencyStopControl))] = 1.0;
+    machine_->step(stopped, containers_, kStep_s);
+  } else {
+    machine_->step(controls, containers_, kStep_s);
+  }
   if (const auto held = machine_->held_item())
     for (std::size_t n = 0; n < containers_.size(); ++n)
       if (containers_[n].body == *held) release(n);
@@ -387,6 +421,9 @@ SceneDescription Simulation::scene() const {
   }
   for (const GroundMarking& m : scenario_.markings)
     d.entities.push_back({m.name, "marking.bay", {m.half_length_m, m.half_width_m, kMarkingHalfThickness_m}});
+  for (std::size_t k = 0; k < scenario_.blocks.size(); ++k)
+    d.entities.push_back(
+        {"block " + std::to_string(k + 1), "scenery.block", scenario_.blocks[k].half_extents_m});
   if (trucks_)
     for (int k = 0; k < scenario_.trucks.trucks; ++k)
       d.entities.push_back({"truck " + std::to_string(k + 1), "truck", {}});
@@ -456,6 +493,8 @@ void Simulation::write_snapshot(Snapshot& s) const {
             {m.centre_m.x, m.centre_m.y, ground_z + kMarkingHalfThickness_m}},
            0);
   }
+  for (const StaticBlock& b : scenario_.blocks)
+    entity({core::Mat3::identity(), b.position_m}, 0);
   if (trucks_)
     for (int k = 0; k < scenario_.trucks.trucks; ++k)
       entity({core::Mat3::identity(),
@@ -481,16 +520,18 @@ std::uint64_t Simulation::state_hash() const {
   if (bulk_) hash.add(bulk_->state_hash());
   hash.add(weather_.turbulence_mps());
   hash.add(next_event_);
+  if (instructor_stop_) hash.add(std::uint8_t{1});  // (states before the stop existed hash as they did)
   return hash.value();
 }
 
 std::vector<std::uint8_t> Simulation::save_state() const {
   core::StateWriter out;
-  out.section(0x53494D32);  // "SIM2": with solver-message warnings
+  out.section(kSimulationSection);
   out.put(clock_.steps());
   out.put(held_);
   out.put(next_event_);
   out.put(warnings_);
+  out.put(instructor_stop_);
   out.put(std::vector<std::uint8_t>(secured_.begin(), secured_.end()));
   world_->save_state(out);
   machine_->save_state(out);
@@ -503,7 +544,9 @@ std::vector<std::uint8_t> Simulation::save_state() const {
 
 void Simulation::restore_state(const std::vector<std::uint8_t>& state) {
   core::StateReader in(state);
-  in.section(0x53494D32, "simulation");
+  const auto section = in.get<std::uint32_t>();
+  if (section != kSimulationSection && section != kSimulationSectionV2)
+    throw core::StateError("saved state does not match this simulation at its simulation section");
   clock_.reset(in.get<std::int64_t>());
   if (ramp_) ramp_->move_to(clock_.time_s());
   in.get(held_);
@@ -511,6 +554,7 @@ void Simulation::restore_state(const std::vector<std::uint8_t>& state) {
   if (next_event_ > scenario_.events.size())
     throw core::StateError("saved state is past this scenario's events");
   in.get(warnings_);
+  instructor_stop_ = section == kSimulationSection ? in.get<bool>() : false;
   std::vector<std::uint8_t> secured;
   in.get(secured, static_cast<std::int64_t>(secured_.size()));
   secured_.assign(secured.begin(), secured.end());

@@ -80,8 +80,10 @@ struct InstructorCommand {
     kSetRain,            ///< [mm/h] (value)
     kSetTimeOfDay,       ///< [h] (value): the clock jumps there and runs on
     kLimiterFault,       ///< the load-moment limiter stops nothing (it still warns)
+    kEmergencyStop,      ///< the instructor stops the machine: its emergency stop held pressed until released
+    kReleaseEmergencyStop,
   };
-  static constexpr std::uint8_t kKinds = 9;
+  static constexpr std::uint8_t kKinds = 11;
   Kind kind = Kind::kGust;
   Gust gust;  ///< kGust: duration and amplitude (its start is now)
   int corner = 0;
@@ -170,8 +172,12 @@ class Simulation {
   bool held() const { return held_; }
   /// One step even while held (the instructor steps a frozen exercise).
   void single_step(const Controls& controls);
-  /// Applies an instructor's command now (before the next step); throws std::invalid_argument on a value
-  /// out of range (a corner other than 0-3, a negative visibility, ...), changing nothing.
+  /// Why `command` would be refused ("" when it would not): values out of range, or a fault of a part this
+  /// machine lacks. Reads only what a machine has, not its state (any thread).
+  std::string why_refused(const InstructorCommand& command) const;
+  /// Applies an instructor's command now (before the next step); throws std::invalid_argument when
+  /// why_refused says why (a corner other than 0-3, a negative visibility, a part the machine lacks),
+  /// changing nothing.
   void command(const InstructorCommand& command);
 
   std::int64_t steps() const { return clock_.steps(); }
@@ -250,6 +256,7 @@ class Simulation {
   int bulk_grab_ = -1;  // the machine's tool in the bulk world
   std::size_t next_event_ = 0;
   bool held_ = false;
+  bool instructor_stop_ = false;  // the instructor holds the machine's emergency stop pressed
   core::Warnings warnings_;
   StepEvents events_;
   core::Vec3 cab_velocity_, cab_specific_force_{0.0, 0.0, 9.80665};  // world

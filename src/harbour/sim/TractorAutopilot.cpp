@@ -23,6 +23,13 @@ constexpr double kStanding_mps = 0.05;
 constexpr double kZoneShare = 0.8;        // of a zone's speed limit
 constexpr double kZoneLookahead_m = 8.0;  // a zone is slowed for this far before the stopping distance
 constexpr double kPedalRate_per_s = 0.5;  // how fast a foot moves a pedal (a smooth driver)
+// reversing a trailer: walking pace; the axles' path onto the bay's line from this far out; a point this far
+// behind the axles to steer for; the hitch angle closes on its aim over kHitchClose_m of travel
+constexpr double kReverse_mps = 1.0;
+constexpr double kBayEntry_m = 16.0;
+constexpr double kReverseLookahead_m = 7.0;
+constexpr double kHitchClose_m = 2.5;
+constexpr double kMostHitch_rad = 0.6;  // the hitch angle it asks at most (a jack-knife is counted at 1.4)
 
 core::Vec3 flat(core::Vec3 v) {
   v.z = 0.0;
@@ -39,7 +46,8 @@ std::string TractorAutopilot::why_cannot_drive(const ExerciseSettings& exercise)
   return "";
 }
 
-TractorAutopilot::TractorAutopilot(const ExerciseSettings& exercise) : exercise_(exercise) {
+TractorAutopilot::TractorAutopilot(const ExerciseSettings& exercise, DriverDefects defects)
+    : exercise_(exercise), defects_(defects) {
   if (const std::string why = why_cannot_drive(exercise); !why.empty()) throw std::invalid_argument(why);
 }
 
@@ -74,10 +82,31 @@ void TractorAutopilot::resume(const Simulation& simulation, int moves_done) {
   decided_ = false;
 }
 
+double TractorAutopilot::trailer_axles_x_m() const {
+  const TrailerSettings& trailer = *std::get<TractorSetup>(exercise_.scenario.machine).start.trailer;
+  double sum = 0.0;
+  for (const AxleSettings& axle : trailer.wheels.axles)
+    sum += axle.x_m;
+  return trailer.wheels.axles.empty() ? 0.0 : sum / static_cast<double>(trailer.wheels.axles.size());
+}
+
 void TractorAutopilot::plan(const Simulation& simulation, const TerminalTractor& tractor) {
+  const MoveGoal& goal = exercise_.moves[0];
+  const core::Pose trailer_pose = simulation.world().pose(tractor.trailer_body());
+  reversing_ = dot(flat(goal.target_m - trailer_pose.position), flat(trailer_pose.rotation.column(0))) < 0.0;
+  if (reversing_) {
+    // the trailer's axles: from where they stand onto the bay's line kBayEntry_m out, along it to where they
+    // stand with the trailer's centre on the target, and on
+    const core::Vec3 bay{std::cos(*goal.heading_rad), std::sin(*goal.heading_rad), 0.0};
+    const double axles_x = trailer_axles_x_m();
+    const core::Vec3 end = flat(goal.target_m) + bay * axles_x;
+    path_ = {flat(trailer_pose.to_parent({axles_x, 0, 0})), end + bay * kBayEntry_m, end,
+             end - bay * kOvershoot_m};
+    planned_ = true;
+    return;
+  }
   // from its rear axle now, along its heading to the corner on the final line, along that line to where its
   // rear axle stands when the trailer's centre is on the target, and on
-  const MoveGoal& goal = exercise_.moves[0];
   const TractorSettings& s = tractor.settings();
   const core::Pose pose = simulation.world().pose(tractor.body());
   const double rear_x = tractor.chassis().reference_x_m();
@@ -107,6 +136,33 @@ double TractorAutopilot::remaining_m(const Simulation& simulation, const Termina
   return dot(flat(goal.target_m - simulation.world().pose(tractor.trailer_body()).position), along);
 }
 
+double TractorAutopilot::reversing_steer(const Simulation& simulation, const TerminalTractor& tractor) const {
+  // backing at u with the hitch at the tractor's rear axle: the trailer's heading θ2 turns at (u / L2) sin ψ,
+  // the tractor's θ1 at -(u / L1) tan δ, so the hitch angle ψ = θ2 - θ1 runs at
+  // (u / L2) sin ψ + (u / L1) tan δ. The trailer's path curves (left +) by κ = sin ψ / L2; pure pursuit of a
+  // point behind its axles asks κ = 2 sin α / d, hence the hitch angle's aim, and the steering
+  // tan δ = -(L1 / L2) sin ψ - (L1 / kHitchClose_m) (ψ - aim) closes on it
+  const TrailerSettings& settings = *std::get<TractorSetup>(exercise_.scenario.machine).start.trailer;
+  const core::Pose trailer = simulation.world().pose(tractor.trailer_body());
+  const core::Pose pose = simulation.world().pose(tractor.body());
+  const double axles_x = trailer_axles_x_m();
+  const core::Vec3 axles = flat(trailer.to_parent({axles_x, 0, 0}));
+  const core::Vec3 back = flat(trailer.rotation.column(0)) * -1.0;
+  const core::Vec3 to = point_ahead(path_, axles, kReverseLookahead_m) - axles;
+  const double alpha = std::atan2(back.x * to.y - back.y * to.x, back.x * to.x + back.y * to.y);
+  const double trailer_base = settings.kingpin_m.x - axles_x;
+  const double curvature = 2.0 * std::sin(alpha) / std::max(core::length(to), 1.0);
+  const double aim =
+      std::clamp(std::asin(std::clamp(curvature * trailer_base, -1.0, 1.0)), -kMostHitch_rad, kMostHitch_rad);
+  const core::Vec3 x1 = flat(pose.rotation.column(0)), x2 = flat(trailer.rotation.column(0));
+  const double hitch = std::atan2(x1.x * x2.y - x1.y * x2.x, x1.x * x2.x + x1.y * x2.y);  // θ2 - θ1
+  const double base = tractor.chassis().steer_base_m();
+  const double tan_delta = -(base / trailer_base) * std::sin(hitch) - base / kHitchClose_m * (hitch - aim);
+  const double steer =
+      std::clamp(std::atan(tan_delta) / tractor.chassis().settings().max_steer_rad, -1.0, 1.0);
+  return defects_.reverse_steering_wrong ? -steer : steer;
+}
+
 Controls TractorAutopilot::decide(const Simulation& simulation, const TerminalTractor& tractor) {
   const ControlTable& table = simulation.control_table();
   Controls c = table.neutral();
@@ -121,22 +177,30 @@ Controls TractorAutopilot::decide(const Simulation& simulation, const TerminalTr
     c.value[slot] = was + std::clamp(value - was, -most, most);
   };
   const double now = simulation.time_s();
-  const double speed = tractor.forward_mps();
-  set("direction", 2.0);  // forward
+  const double speed = reversing_ ? -tractor.forward_mps() : tractor.forward_mps();  // along the way it goes
+  set("direction", reversing_ ? 0.0 : 2.0);
   const auto enter = [&](Phase next) {
     phase_ = next;
     phase_start_s_ = now;
   };
   if (phase_ == Phase::kDrive) {
-    // pure pursuit: the arc from the rear axle through a point on the path a look-ahead away
+    // pure pursuit: the arc from the rear axle through a point on the path a look-ahead away (reversing: the
+    // trailer's axles' arc, through the hitch angle)
     const core::Pose pose = simulation.world().pose(tractor.body());
     const core::Vec3 rear = flat(pose.to_parent({tractor.chassis().reference_x_m(), 0, 0}));
-    const core::Vec3 x = flat(pose.rotation.column(0));
-    const core::Vec3 target = point_ahead(path_, rear, std::max(kLookahead_m, 1.5 * std::abs(speed)));
-    set("steer", pursuit_steer(pose, tractor.chassis(), target));
+    const core::Vec3 x = flat(pose.rotation.column(0)) * (reversing_ ? -1.0 : 1.0);
+    if (reversing_) {
+      set("steer", reversing_steer(simulation, tractor));
+    } else {
+      const core::Vec3 target = point_ahead(path_, rear, std::max(kLookahead_m, 1.5 * std::abs(speed)));
+      set("steer", pursuit_steer(pose, tractor.chassis(), target));
+    }
     // speed: cruising, slower in corners, and a planned stop with the trailer's centre on its target
-    const double remaining = remaining_m(simulation, tractor);
-    double wanted = std::abs(tractor.steering()) > kCornerSteer ? kCorner_mps : kCruise_mps;
+    const double remaining =
+        reversing_ ? -remaining_m(simulation, tractor) : remaining_m(simulation, tractor);
+    double wanted = reversing_                                    ? kReverse_mps
+                    : std::abs(tractor.steering()) > kCornerSteer ? kCorner_mps
+                                                                  : kCruise_mps;
     // within the speed limit of where it is and of where it will be within its stopping distance
     const core::Vec3 ahead_point = rear + x * (speed * speed / (2.0 * kStopping_mps2) + kZoneLookahead_m);
     for (const SpeedZone& z : exercise_.speed_zones)

@@ -13,13 +13,16 @@ class TerminalTractor;
 /// A scripted tractor driver for a trailer's parking move: drives on from where it stands to the line the
 /// trailer is to stand on (through the corner where its heading's line meets that line), steering by pure
 /// pursuit of a point ahead on that path from its rear axle, brings the trailer straight on the final line,
-/// eases to a stop with the trailer's centre on its target, and drops it.
+/// eases to a stop with the trailer's centre on its target, and drops it. A target behind the trailer it
+/// reverses into: the trailer's axles follow a path onto the bay's line (pure pursuit of a point behind
+/// them gives the trailer's curvature, hence the hitch angle that turns it so), and the tractor's steering
+/// holds that hitch angle (reversing, the hitch angle runs away by itself; the steering leads it back).
 class TractorAutopilot final : public Pilot {
  public:
   /// Why it cannot drive `exercise` ("" when it can): a move of the tractor's trailer.
   static std::string why_cannot_drive(const ExerciseSettings& exercise);
   /// Throws std::invalid_argument with why_cannot_drive() when it cannot.
-  explicit TractorAutopilot(const ExerciseSettings& exercise);
+  explicit TractorAutopilot(const ExerciseSettings& exercise, DriverDefects defects = {});
 
   /// The controls for the next step (decided 50 times a second, held in between).
   Controls next(const Simulation& simulation) override;
@@ -35,7 +38,14 @@ class TractorAutopilot final : public Pilot {
   /// How far the trailer's centre still is from its target along the goal's heading [m].
   double remaining_m(const Simulation& simulation, const TerminalTractor& tractor) const;
 
+  /// Reversing: the steering that turns the trailer's axles onto the path behind them.
+  double reversing_steer(const Simulation& simulation, const TerminalTractor& tractor) const;
+  /// The trailer's axles' centre along its x [m] (its frame).
+  double trailer_axles_x_m() const;
+
   ExerciseSettings exercise_;
+  DriverDefects defects_;
+  bool reversing_ = false;  // the target lies behind the trailer
   Phase phase_ = Phase::kDrive;
   std::vector<core::Vec3> path_;  // the polyline its rear axle follows (ground plane)
   bool planned_ = false;

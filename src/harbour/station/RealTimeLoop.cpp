@@ -50,7 +50,7 @@ void RealTimeLoop::join() {
 bool RealTimeLoop::post(const LoopCommand& command, std::string* why) {
   if (command.kind == LoopCommand::Kind::kInstructor) {
     // checked here, at the edge: the step thread applies only valid commands
-    if (const std::string problem = sim::why_invalid(command.instructor); !problem.empty()) {
+    if (const std::string problem = simulation_.why_refused(command.instructor); !problem.empty()) {
       if (why) *why = problem;
       return false;
     }

@@ -16,11 +16,19 @@
 
 namespace harbour::station {
 
+/// An instructor's take-over: the attempt continues a stored one live from a moment of its recording (a new
+/// attempt, branched from the recorded one).
+struct TakeOverFrom {
+  std::string recording;  ///< the recording file
+  std::int64_t step = 0;  ///< where the new attempt begins
+};
+
 struct SessionOptions {
   std::string trainee;   ///< stored under this trainee (must exist)
   std::string record;    ///< recording file ("" for none)
   std::string database;  ///< records connection
   LoopSettings loop;
+  std::optional<TakeOverFrom> take_over;
 };
 
 /// How a session ended.
@@ -39,19 +47,25 @@ struct SessionResult {
 /// store the attempt's progress in the database, all off the step thread.
 class Session {
  public:
-  /// Opens the database and the recording and begins the attempt; throws naming what failed.
+  /// Opens the database and the recording and begins the attempt; throws naming what failed. With a
+  /// take-over the simulation is the recorded one at that step (re-simulated: the evaluation sees what the
+  /// first attempt did), the recording continues the original's prefix and the attempt names its parent.
   Session(const sim::ExerciseSettings& exercise, const SessionOptions& options);
   ~Session();
 
   sim::Simulation& simulation() { return *simulation_; }
   RealTimeLoop& loop() { return *loop_; }
   std::int64_t attempt() const { return attempt_; }
+  /// The moves the evaluation counted before the loop started (a take-over's: the pilot resumes after them).
+  int moves_before_start() const { return moves_before_start_; }
   /// Starts the loop and the record keeper.
   void start();
   /// Whether the exercise is over (its moves done, past its time and overtime, or diverged).
   bool over() const { return over_.load(); }
   /// The evaluation so far (the keeper's copy, refreshed every 50 steps and at each move).
   sim::Metrics metrics() const;
+  /// The score on the figures so far (refreshed with them).
+  sim::Score score() const;
   /// Something the station saw (an input device lost or back): stored with the attempt's events at the
   /// simulated time the keeper has reached (any thread).
   void note_event(const std::string& kind, double value = 0.0);
@@ -77,11 +91,13 @@ class Session {
   std::atomic<std::int64_t> hash_mismatches_{0};
   mutable std::mutex metrics_mutex_;
   sim::Metrics metrics_;
+  sim::Score score_;
   std::string keeper_error_;
   std::mutex notes_mutex_;
   std::vector<std::pair<std::string, double>> notes_;
   void store_notes();
   bool finished_ = false;
+  int moves_before_start_ = 0;
 };
 
 }  // namespace harbour::station

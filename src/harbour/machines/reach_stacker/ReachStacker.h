@@ -43,6 +43,7 @@ class ReachStacker final : public Machine {
   const ControlTable& control_table() const override { return settings_.controls; }
   void step(const Controls& controls, std::span<const ContainerRef> liftables, double dt_s) override;
   std::optional<physics::BodyId> held_item() const override { return locks_.locked_container(); }
+  std::optional<physics::BodyId> gripper_body() const override { return spreader_; }
   void stand_on(const Ground& ground) override { ground_ = &ground; }
   double attachment_bottom_z_m() const override;
   double pendulum_length_m() const override { return settings_.head_drop_m; }

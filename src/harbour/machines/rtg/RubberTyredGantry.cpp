@@ -122,6 +122,14 @@ double RubberTyredGantry::lane_offset_m() const {
   return dot(world_.pose(frame_).position - start_.position_m, across);
 }
 
+double RubberTyredGantry::steer_lever(double yaw_rate_radps) const {
+  // the bogies' angle for ω = 2 v tan δ / b at the drive's speed now (the auto-steer's bias unknown)
+  const double v = gantry_.reference_mps();
+  if (std::abs(v) < kStandstill_mps || wheel_turn_ != 0.0) return 0.0;
+  const double delta = std::atan(yaw_rate_radps * settings_.wheelbase_m / (2.0 * v));
+  return std::clamp(delta / settings_.max_steer_rad, -1.0, 1.0);
+}
+
 double RubberTyredGantry::yaw_rad() const {
   const core::Vec3 x = world_.pose(frame_).rotation.column(0);
   return std::remainder(std::atan2(x.y, x.x) - start_.heading_rad, 2.0 * std::numbers::pi);
@@ -236,6 +244,7 @@ Controls RubberTyredGantry::crane_controls(const StsControls& in) const {
   const auto set = [&](int slot, double v) { c.value[static_cast<std::size_t>(slot)] = v; };
   set(slots_.gantry, in.gantry);
   set(slots_.trolley, in.trolley);
+  set(slots_.steer, in.steer);
   set(slots_.hoist, in.hoist);
   set(slots_.lock, in.lock);
   set(slots_.unlock, in.unlock);

@@ -75,6 +75,7 @@ class RubberTyredGantry final : public Machine, public GantryCrane {
   const ControlTable& control_table() const override { return settings_.controls; }
   void step(const Controls& controls, std::span<const ContainerRef> liftables, double dt_s) override;
   std::optional<physics::BodyId> held_item() const override { return rig_->locked_container(); }
+  std::optional<physics::BodyId> gripper_body() const override { return rig_->spreader_body(); }
   void stand_on(const Ground& ground) override { ground_ = &ground; }
   double attachment_bottom_z_m() const override { return rig_->attachment_bottom_z_m(); }
   double pendulum_length_m() const override { return rig_->pendulum_length_m(); }
@@ -104,6 +105,11 @@ class RubberTyredGantry final : public Machine, public GantryCrane {
   double trolley_max_speed_mps() const override { return settings_.trolley_drive.max_speed_mps; }
   const SpreaderHoist& spreader_hoist() const override { return *rig_; }
   Controls crane_controls(const StsControls& levers) const override;
+  /// The frame's centre off the line it started on, across the block [m] (+ towards its +x).
+  double lane_offset_m() const override;
+  /// The frame's yaw from its start heading [rad].
+  double yaw_rad() const override;
+  double steer_lever(double yaw_rate_radps) const override;
 
   const RtgSettings& settings() const { return settings_; }
   physics::BodyId frame_body() const { return frame_; }
@@ -114,10 +120,6 @@ class RubberTyredGantry final : public Machine, public GantryCrane {
   double wheel_turn() const { return wheel_turn_; }
   /// Turns asked for while the crane moved (each refused, counted once per switch movement).
   std::uint32_t wheel_turn_refusals() const { return turn_refusals_; }
-  /// The frame's centre off the line it started on, across the block [m] (+ towards its +x).
-  double lane_offset_m() const;
-  /// The frame's yaw from its start heading [rad].
-  double yaw_rad() const;
   double trolley_position_m() const { return trolley_start_x_ + world_.slider_position(trolley_slider_); }
   core::Pose spreader_pose() const { return world_.pose(rig_->spreader_body()); }
   /// Where the trolley's sheaves hang the spreader (world, horizontal) [m].

@@ -63,6 +63,7 @@ struct StsControls {
   double trolley = 0.0;  ///< [-1, 1] +: waterside
   double hoist = 0.0;    ///< [-1, 1] +: raise
   double boom = 0.0;     ///< [-1, 1] +: raise the boom
+  double steer = 0.0;    ///< [-1, 1] +: turn left; a gantry on tyres (an RTG's: the STS runs on rails)
   bool lock = false;
   bool unlock = false;
   bool emergency_stop = false;

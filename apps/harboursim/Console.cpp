@@ -1,0 +1,1318 @@
+// The instructor console's server: static files, the JSON API and the live WebSocket, over Boost.Beast
+// (kept in this one translation unit: Beast is slow to compile). One thread runs everything: the HTTP and
+// WebSocket sessions, the records database and the DDS link, polled every few milliseconds.
+#include "Console.h"
+
+#include <sodium.h>
+#include <unistd.h>
+
+#include <utility>  // before Boost.Asio 1.74, which uses std::exchange without it
+
+#include <boost/asio.hpp>
+#include <boost/beast.hpp>
+#include <boost/beast/websocket.hpp>
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <deque>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "StationNet.h"
+#include "StsRun.h"
+#include "harbour/core/Text.h"
+#include "harbour/ig/Visuals.h"
+#include "harbour/io/ExerciseFiles.h"
+#include "harbour/io/RecordingFile.h"
+#include "harbour/io/RecordsStore.h"
+#include "harbour/net/DdsLink.h"
+#include "harbour/sim/Recording.h"
+
+namespace harbour::apps {
+namespace {
+
+namespace asio = boost::asio;
+namespace beast = boost::beast;
+namespace http = beast::http;
+namespace websocket = beast::websocket;
+using tcp = asio::ip::tcp;
+using json = nlohmann::json;
+using Clock = std::chrono::steady_clock;
+
+constexpr std::size_t kMaxBodyBytes = 64 * 1024;     // the API's requests are small
+constexpr std::size_t kMaxSocketMessage = 4 * 1024;  // a browser's WebSocket messages are smaller still
+constexpr int kMaxJsonDepth = 8;
+constexpr auto kSessionLifetime = std::chrono::hours(12);
+constexpr auto kAckTimeout = std::chrono::seconds(3);
+constexpr int kLoginFailuresAllowed = 5;  // per minute, per address and per account
+constexpr auto kLoginWindow = std::chrono::seconds(60);
+
+volatile std::sig_atomic_t g_stop = 0;
+extern "C" void on_console_signal(int) {
+  g_stop = 1;
+}
+
+std::string random_token() {
+  unsigned char bytes[32];
+  randombytes_buf(bytes, sizeof bytes);
+  char hex[sizeof bytes * 2 + 1];
+  sodium_bin2hex(hex, sizeof hex, bytes, sizeof bytes);
+  return hex;
+}
+
+std::string hash_password(const std::string& password) {
+  char hash[crypto_pwhash_STRBYTES];
+  if (crypto_pwhash_str(hash, password.data(), password.size(), crypto_pwhash_OPSLIMIT_INTERACTIVE,
+                        crypto_pwhash_MEMLIMIT_INTERACTIVE) != 0)
+    throw std::runtime_error("hashing the password: out of memory");
+  return hash;
+}
+
+// how deep `text` nests arrays and objects (outside strings): refused before parsing when too deep
+int json_depth(const std::string& text) {
+  int depth = 0, deepest = 0;
+  bool in_string = false, escaped = false;
+  for (const char c : text) {
+    if (in_string) {
+      if (escaped)
+        escaped = false;
+      else if (c == '\\')
+        escaped = true;
+      else if (c == '"')
+        in_string = false;
+      continue;
+    }
+    if (c == '"')
+      in_string = true;
+    else if (c == '[' || c == '{')
+      deepest = std::max(deepest, ++depth);
+    else if (c == ']' || c == '}')
+      --depth;
+  }
+  return deepest;
+}
+
+// a JSON object from a request or message body, or why not
+std::optional<json> parse_object(const std::string& text, std::string& why) {
+  if (json_depth(text) > kMaxJsonDepth) {
+    why = "JSON nested too deep";
+    return std::nullopt;
+  }
+  json value = json::parse(text, nullptr, false);
+  if (value.is_discarded() || !value.is_object()) {
+    why = "the body is not a JSON object";
+    return std::nullopt;
+  }
+  return value;
+}
+
+// a string field of at most `longest` bytes, printable; "" and a reason when missing or bad
+std::optional<std::string> text_field(const json& body, const char* field, std::size_t longest,
+                                      std::string& why, bool required = true) {
+  const auto found = body.find(field);
+  if (found == body.end() || found->is_null()) {
+    if (required) why = std::string("field '") + field + "' is missing";
+    return required ? std::nullopt : std::optional<std::string>("");
+  }
+  if (!found->is_string()) {
+    why = std::string("field '") + field + "' is not a string";
+    return std::nullopt;
+  }
+  const std::string value = found->get<std::string>();
+  if (value.size() > longest) {
+    why = std::string("field '") + field + "' is longer than " + std::to_string(longest) + " bytes";
+    return std::nullopt;
+  }
+  for (const unsigned char c : value)
+    if (c < 0x20 || c == 0x7f) {
+      why = std::string("field '") + field + "' holds control characters";
+      return std::nullopt;
+    }
+  return value;
+}
+
+// JSON text; strings that are not UTF-8 (a foreign DDS peer's, a database's) are repaired, not thrown on
+std::string dump(const json& value) {
+  return value.dump(-1, ' ', false, json::error_handler_t::replace);
+}
+
+std::string content_type(const std::filesystem::path& file) {
+  const std::string ext = file.extension().string();
+  if (ext == ".html") return "text/html; charset=utf-8";
+  if (ext == ".js") return "text/javascript; charset=utf-8";
+  if (ext == ".css") return "text/css; charset=utf-8";
+  if (ext == ".json") return "application/json";
+  if (ext == ".png") return "image/png";
+  if (ext == ".svg") return "image/svg+xml";
+  return "application/octet-stream";
+}
+
+json status_json(const std::string& name, const net::ConsoleLink::Station& s) {
+  const net::StationStatus& st = s.status;
+  return {{"station", name},
+          {"host", st.host().to_string()},
+          {"state", s.gone   ? "offline"
+                    : s.lost ? "lost"
+                             : st.state().to_string()},
+          {"machine", st.machine().to_string()},
+          {"exercise", st.exercise().to_string()},
+          {"trainee", st.trainee().to_string()},
+          {"attempt", st.attempt()},
+          {"time_s", st.time_s()},
+          {"time_limit_s", st.time_limit_s()},
+          {"real_time_factor", st.real_time_factor()},
+          {"late_ticks", st.late_ticks()},
+          {"skipped_ticks", st.skipped_ticks()},
+          {"keeping_real_time", st.keeping_real_time()},
+          {"devices_missing", st.devices_missing()},
+          {"physics_warnings", st.physics_warnings()},
+          {"diverged", st.diverged()},
+          {"score", st.score()},
+          {"moves_done", st.moves_done()},
+          {"moves_total", st.moves_total()},
+          {"collisions", st.collisions()},
+          {"message", st.message().to_string()},
+          {"states_received", s.state_count}};
+}
+
+json event_json(const net::StationEvent& e) {
+  return {{"type", "event"},
+          {"station", e.station().to_string()},
+          {"attempt", e.attempt()},
+          {"time_s", e.time_s()},
+          {"kind", e.kind().to_string()},
+          {"value", e.value()},
+          {"text", e.text().to_string()}};
+}
+
+// a figure for the 3D view, to `unit` (a millimetre, a quaternion's 1e-5): the JSON stays short
+double rounded(float value, double per_unit) {
+  return std::round(static_cast<double>(value) * per_unit) / per_unit;
+}
+
+json vec3_json(const core::Vec3& v) {
+  return {v.x, v.y, v.z};
+}
+
+// A station's (or a replay's) state for a browser: indicators by name; with `view`, the entities' poses (x,
+// y, z, qx, qy, qz, qw each, in the scene's order) and the ropes' polylines.
+json state_json(const std::string& station, const net::StationState& st, const net::StationScene* scene,
+                bool view) {
+  json indicators = json::object();
+  if (scene)
+    for (std::size_t n = 0; n < st.indicators().size() && n < scene->indicator_names().size(); ++n)
+      indicators[scene->indicator_names()[n].to_string()] = st.indicators()[n];
+  json state{{"type", "state"},
+             {"station", station},
+             {"attempt", st.attempt()},
+             {"time_s", st.time_s()},
+             {"held", st.held()},
+             {"wind_mps", {st.wind_mps()[0], st.wind_mps()[1], st.wind_mps()[2]}},
+             {"time_of_day_h", st.time_of_day_h()},
+             {"visibility_m", st.visibility_m()},
+             {"rain_mm_per_h", st.rain_mm_per_h()},
+             {"indicators", indicators}};
+  if (!view) return state;
+  json poses = json::array();
+  for (std::size_t n = 0; n < st.entity_poses().size(); ++n)
+    poses.push_back(rounded(st.entity_poses()[n], n % 7 < 3 ? 1e3 : 1e5));
+  json points = json::array();
+  for (const float v : st.rope_points_m())
+    points.push_back(rounded(v, 1e3));
+  state["water_level_m"] = st.water_level_m();
+  state["poses"] = std::move(poses);
+  state["ropes"] = {{"counts", st.rope_point_counts()}, {"points", std::move(points)}};
+  return state;
+}
+
+// What a station's 3D view draws: its entities' names, looks and half sizes, once per attempt.
+json scene_json(const std::string& station, const net::StationScene& scene) {
+  json entities = json::array();
+  const auto& extents = scene.entity_half_extents_m();
+  for (std::size_t n = 0; n < scene.entity_names().size() && n < scene.entity_visuals().size(); ++n)
+    entities.push_back(
+        {{"name", scene.entity_names()[n].to_string()},
+         {"visual", scene.entity_visuals()[n].to_string()},
+         {"half_m", 3 * n + 2 < extents.size() ? json{extents[3 * n], extents[3 * n + 1], extents[3 * n + 2]}
+                                               : json{0.5, 0.5, 0.5}}});
+  return {{"type", "scene"},
+          {"station", station},
+          {"attempt", scene.attempt()},
+          {"machine", scene.machine().to_string()},
+          {"entities", std::move(entities)}};
+}
+
+// The looks (data/visuals/*.yaml) as the browser's 3D view reads them; a mesh part is drawn as the box it
+// fills.
+json looks_json(const ig::Looks& looks) {
+  json visuals = json::object();
+  for (const auto& [key, visual] : looks.visuals) {
+    json parts = json::array();
+    for (const ig::VisualPart& part : visual.parts) {
+      static constexpr const char* kShapes[] = {"box", "lattice", "mesh"};
+      parts.push_back({{"shape", kShapes[static_cast<int>(part.shape)]},
+                       {"size_m", part.size_m ? vec3_json(*part.size_m) : json(nullptr)},
+                       {"at_m", vec3_json(part.centre_m)},
+                       {"color", vec3_json(part.color)},
+                       {"livery", part.livery},
+                       {"bay_m", part.bay_m},
+                       {"member_m", part.member_m}});
+    }
+    json liveries = json::array();
+    for (const core::Vec3& c : visual.liveries)
+      liveries.push_back(vec3_json(c));
+    visuals[key] = {{"parts", std::move(parts)}, {"liveries", std::move(liveries)}};
+  }
+  json scenery = json::array();
+  for (const ig::SceneryPart& part : looks.scenery)
+    scenery.push_back({{"shape", part.shape == ig::SceneryPart::Shape::kBox ? "box" : "cylinder"},
+                       {"at_m", vec3_json(part.centre_m)},
+                       {"size_m", vec3_json(part.size_m)},
+                       {"color", vec3_json(part.color)},
+                       {"repeat", part.repeat},
+                       {"step_m", vec3_json(part.step_m)}});
+  return {{"visuals", std::move(visuals)}, {"scenery", std::move(scenery)}};
+}
+
+struct Account {
+  std::string name, role, trainee;
+  bool instructs() const { return role == "administrator" || role == "instructor"; }
+};
+
+struct LoginSession {
+  Account account;
+  std::string csrf;
+  Clock::time_point expires;
+};
+
+class Console;
+
+// A stored attempt played back in the console: re-simulated from its recording, seeking through keyframes,
+// at 0.25-8x; browsers subscribe to it as to a station ("replay-ID").
+struct Replay {
+  static constexpr int kMostOpen = 4;
+  static constexpr std::int64_t kMostStepsPerPoll = 400;  // the server stays responsive while it plays
+  std::int64_t id = 0, attempt = 0;
+  sim::ExerciseSettings exercise;
+  sim::Recording recording;
+  std::string recording_file, trainee;
+  std::unique_ptr<sim::ReplayPlayer> player;
+  std::unique_ptr<sim::Snapshot> snapshot = std::make_unique<sim::Snapshot>();
+  net::StationScene scene;  // as a station publishes its own
+  double speed = 1.0;
+  bool playing = false;
+  double position_steps = 0.0;  // where playing has got to (fractions carried between polls)
+  Clock::time_point last_poll = Clock::now();
+  std::string owner;
+};
+
+// One WebSocket client: the stations' statuses on change, one station's state at up to 10 Hz (the one it
+// subscribed to), every event. Writes queue: one at a time on the socket.
+class LiveSocket : public std::enable_shared_from_this<LiveSocket> {
+ public:
+  LiveSocket(tcp::socket socket, Console& console, std::string token)
+      : ws_(std::move(socket)), console_(console), token_(std::move(token)) {}
+  void start(http::request<http::string_body> request);
+  void send(std::string text);
+  const std::string& subscribed() const { return station_; }
+  /// It draws the 3D view: send it the scene and the entities' poses and ropes with each state.
+  bool wants_view() const { return view_; }
+  /// The scene it has ("station attempt"), sent once per attempt.
+  std::string& scene_sent() { return scene_sent_; }
+  const std::string& token() const { return token_; }
+  bool open() const { return open_; }
+  /// Closes it (its login ended).
+  void close(const std::string& why);
+
+ private:
+  void read();
+  void on_message(const std::string& text);
+  void write_next();
+
+  websocket::stream<beast::tcp_stream> ws_;
+  Console& console_;
+  std::string token_, station_, scene_sent_;
+  bool view_ = false;
+  beast::flat_buffer buffer_;
+  std::deque<std::string> queue_;
+  bool writing_ = false, open_ = true;
+};
+
+// One HTTP connection (keep-alive): requests in turn, or the upgrade to a LiveSocket.
+class HttpSession : public std::enable_shared_from_this<HttpSession> {
+ public:
+  HttpSession(tcp::socket socket, Console& console) : stream_(std::move(socket)), console_(console) {}
+  void start() { read(); }
+  void reply(http::response<http::string_body> response);
+
+ private:
+  void read();
+  void on_request();
+
+  beast::tcp_stream stream_;
+  Console& console_;
+  beast::flat_buffer buffer_;
+  std::optional<http::request_parser<http::string_body>> parser_;
+  bool keep_alive_ = false;
+};
+
+class Console {
+ public:
+  Console(const ConsoleOptions& options, asio::io_context& io)
+      : options_(options),
+        io_(io),
+        link_(options.name, options.domain),
+        db_(options.database),
+        poll_timer_(io) {}
+
+  void start_polling() { poll(); }
+  int accounts() { return db_.account_count(); }
+  void handle(const http::request<http::string_body>& request, const std::string& peer,
+              std::shared_ptr<HttpSession> session);
+  std::optional<Account> account_of(const std::string& token);
+  std::string token_of(const http::request<http::string_body>& request) const;
+  void attach(std::shared_ptr<LiveSocket> socket) {
+    sockets_.push_back(socket);
+    socket->send(stations_message());
+  }
+  std::string stations_message() const;
+
+ private:
+  using Response = http::response<http::string_body>;
+  Response json_reply(const http::request<http::string_body>& request, http::status status,
+                      const json& body) const;
+  Response error(const http::request<http::string_body>& request, http::status status,
+                 const std::string& why) const {
+    return json_reply(request, status, {{"error", why}});
+  }
+  Response file(const http::request<http::string_body>& request) const;
+  Response login(const http::request<http::string_body>& request, const std::string& peer);
+  void command(const http::request<http::string_body>& request, const Account& account,
+               const std::string& station, std::shared_ptr<HttpSession> session);
+  Response api(const http::request<http::string_body>& request, const Account& account,
+               const std::string& token, const std::string& target);
+  bool login_blocked(const std::string& key, Clock::time_point now);
+  void poll();
+
+  ConsoleOptions options_;
+  asio::io_context& io_;
+  net::ConsoleLink link_;
+  io::RecordsStore db_;
+  asio::steady_timer poll_timer_;
+  std::map<std::string, LoginSession> sessions_;
+  std::map<std::string, std::deque<Clock::time_point>> login_failures_;
+  struct Pending {
+    http::request<http::string_body> request;
+    std::shared_ptr<HttpSession> session;
+    Account account;
+    std::string station, kind;
+    Clock::time_point deadline;
+  };
+  std::map<std::uint64_t, Pending> pending_;
+  std::vector<std::shared_ptr<LiveSocket>> sockets_;
+  Clock::time_point next_state_push_{}, next_stations_push_{};
+  bool stations_changed_ = false;
+  std::map<std::int64_t, Replay> replays_;
+  std::int64_t next_replay_ = 1;
+  Response open_replay(const http::request<http::string_body>& request, const Account& account);
+  /// nullopt: a take-over sent to a station, answered when it acknowledges
+  std::optional<Response> control_replay(const http::request<http::string_body>& request,
+                                         const Account& account, std::int64_t id,
+                                         std::shared_ptr<HttpSession> session);
+  void play_replays(Clock::time_point now);
+  json replay_state(Replay& replay, bool view = false);
+  /// Sends a socket its subscription's scene (when it draws the 3D view and has not got this attempt's)
+  /// and state.
+  void push_state(LiveSocket& socket, const std::string& station, const net::StationScene* scene,
+                  const std::function<json(bool)>& state_of);
+  std::string looks_ =
+      dump(looks_json(ig::load_looks(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml")));
+};
+
+// ---------------------------------------------------------------------------------------------------
+// HTTP
+
+void HttpSession::read() {
+  parser_.emplace();
+  parser_->body_limit(kMaxBodyBytes);
+  parser_->header_limit(16 * 1024);
+  stream_.expires_after(std::chrono::seconds(60));
+  http::async_read(
+      stream_, buffer_, *parser_, [self = shared_from_this()](beast::error_code ec, std::size_t) {
+        if (ec == http::error::end_of_stream || ec == beast::error::timeout || ec == asio::error::eof) {
+          beast::error_code ignored;
+          self->stream_.socket().shutdown(tcp::socket::shutdown_both, ignored);
+          return;
+        }
+        if (ec) {
+          // a malformed or oversized request: a clear 4xx, then the connection closes
+          http::response<http::string_body> r{ec == http::error::body_limit || ec == http::error::header_limit
+                                                  ? http::status::payload_too_large
+                                                  : http::status::bad_request,
+                                              11};
+          r.set(http::field::content_type, "application/json");
+          r.body() = dump(json{{"error", "bad request: " + ec.message()}});
+          r.keep_alive(false);
+          r.prepare_payload();
+          self->keep_alive_ = false;
+          self->reply(std::move(r));
+          return;
+        }
+        self->on_request();
+      });
+}
+
+void HttpSession::on_request() {
+  http::request<http::string_body> request = parser_->release();
+  keep_alive_ = request.keep_alive();
+  beast::error_code ec;
+  const tcp::endpoint peer = stream_.socket().remote_endpoint(ec);
+  const std::string address = ec ? "?" : peer.address().to_string();
+  if (websocket::is_upgrade(request)) {
+    const std::string token = console_.token_of(request);
+    if (request.target() != "/api/live" || !console_.account_of(token)) {
+      http::response<http::string_body> r{http::status::unauthorized, request.version()};
+      r.set(http::field::content_type, "application/json");
+      r.body() = dump(json{{"error", "log in first (the live socket is /api/live)"}});
+      r.keep_alive(false);
+      r.prepare_payload();
+      keep_alive_ = false;
+      reply(std::move(r));
+      return;
+    }
+    stream_.expires_never();
+    auto socket = std::make_shared<LiveSocket>(stream_.release_socket(), console_, token);
+    socket->start(std::move(request));
+    return;
+  }
+  console_.handle(request, address, shared_from_this());
+}
+
+void HttpSession::reply(http::response<http::string_body> response) {
+  auto shared = std::make_shared<http::response<http::string_body>>(std::move(response));
+  shared->keep_alive(keep_alive_ && shared->keep_alive());
+  http::async_write(stream_, *shared, [self = shared_from_this(), shared](beast::error_code ec, std::size_t) {
+    if (ec || !shared->keep_alive()) {
+      beast::error_code ignored;
+      self->stream_.socket().shutdown(tcp::socket::shutdown_both, ignored);
+      return;
+    }
+    self->read();
+  });
+}
+
+// ---------------------------------------------------------------------------------------------------
+// WebSocket
+
+void LiveSocket::start(http::request<http::string_body> request) {
+  ws_.read_message_max(kMaxSocketMessage);
+  ws_.set_option(websocket::stream_base::timeout::suggested(beast::role_type::server));
+  ws_.async_accept(request, [self = shared_from_this()](beast::error_code ec) {
+    if (ec) {
+      self->open_ = false;
+      return;
+    }
+    self->console_.attach(self);
+    self->read();
+  });
+}
+
+void LiveSocket::read() {
+  ws_.async_read(buffer_, [self = shared_from_this()](beast::error_code ec, std::size_t) {
+    if (ec == websocket::error::message_too_big) {
+      self->open_ = false;
+      self->ws_.async_close({websocket::close_code::too_big, "message over 4 KiB"},
+                            [self](beast::error_code) {});
+      return;
+    }
+    if (ec) {
+      self->open_ = false;
+      return;
+    }
+    const std::string text = beast::buffers_to_string(self->buffer_.data());
+    self->buffer_.consume(self->buffer_.size());
+    self->on_message(text);
+    self->read();
+  });
+}
+
+void LiveSocket::on_message(const std::string& text) {
+  std::string why;
+  const std::optional<json> message = parse_object(text, why);
+  if (!message) {
+    send(dump(json{{"type", "error"}, {"error", why}}));
+    return;
+  }
+  const std::optional<std::string> type = text_field(*message, "type", 32, why);
+  if (!type) {
+    send(dump(json{{"type", "error"}, {"error", why}}));
+    return;
+  }
+  if (*type == "subscribe") {
+    const std::optional<std::string> station = text_field(*message, "station", 64, why, false);
+    if (!station) {
+      send(dump(json{{"type", "error"}, {"error", why}}));
+      return;
+    }
+    const auto view = message->find("view");
+    if (view != message->end() && !view->is_boolean()) {
+      send(dump(json{{"type", "error"}, {"error", "field 'view': true or false"}}));
+      return;
+    }
+    station_ = *station;
+    view_ = view != message->end() && view->get<bool>();
+    scene_sent_.clear();
+    send(dump(json{{"type", "subscribed"}, {"station", station_}, {"view", view_}}));
+    return;
+  }
+  send(dump(json{{"type", "error"}, {"error", "unknown message type '" + core::printable(*type) + "'"}}));
+}
+
+void LiveSocket::close(const std::string& why) {
+  if (!open_) return;
+  open_ = false;
+  ws_.async_close({websocket::close_code::policy_error, why},
+                  [self = shared_from_this()](beast::error_code) {});
+}
+
+void LiveSocket::send(std::string text) {
+  if (!open_) return;
+  if (queue_.size() > 64) queue_.pop_front();  // a slow browser loses old states, not the console
+  queue_.push_back(std::move(text));
+  if (!writing_) write_next();
+}
+
+void LiveSocket::write_next() {
+  if (queue_.empty() || !open_) {
+    writing_ = false;
+    return;
+  }
+  writing_ = true;
+  ws_.text(true);
+  ws_.async_write(asio::buffer(queue_.front()),
+                  [self = shared_from_this()](beast::error_code ec, std::size_t) {
+                    self->queue_.pop_front();
+                    if (ec) {
+                      self->open_ = false;
+                      self->writing_ = false;
+                      return;
+                    }
+                    self->write_next();
+                  });
+}
+
+// ---------------------------------------------------------------------------------------------------
+// The console
+
+std::string Console::token_of(const http::request<http::string_body>& request) const {
+  const auto cookie = request.find(http::field::cookie);
+  if (cookie == request.end()) return "";
+  const std::string header(cookie->value());
+  std::size_t at = 0;
+  while (at < header.size()) {
+    const std::size_t end = std::min(header.find(';', at), header.size());
+    std::string pair = header.substr(at, end - at);
+    while (!pair.empty() && pair.front() == ' ')
+      pair.erase(0, 1);
+    if (pair.rfind("hs_session=", 0) == 0) return pair.substr(11);
+    at = end + 1;
+  }
+  return "";
+}
+
+std::optional<Account> Console::account_of(const std::string& token) {
+  const auto found = sessions_.find(token);
+  if (token.empty() || found == sessions_.end()) return std::nullopt;
+  if (Clock::now() > found->second.expires) {
+    sessions_.erase(found);
+    return std::nullopt;
+  }
+  return found->second.account;
+}
+
+Console::Response Console::json_reply(const http::request<http::string_body>& request, http::status status,
+                                      const json& body) const {
+  Response r{status, request.version()};
+  r.set(http::field::content_type, "application/json");
+  r.set(http::field::cache_control, "no-store");
+  r.set("X-Content-Type-Options", "nosniff");
+  r.body() = dump(body);
+  r.keep_alive(request.keep_alive());
+  r.prepare_payload();
+  return r;
+}
+
+Console::Response Console::file(const http::request<http::string_body>& request) const {
+  std::string target(request.target());
+  target = target.substr(0, target.find('?'));
+  if (target == "/") target = "/index.html";
+  namespace fs = std::filesystem;
+  if (target.find("..") != std::string::npos || target.find('\\') != std::string::npos)
+    return error(request, http::status::bad_request, "bad path");
+  const fs::path path = fs::path(options_.web_root) / target.substr(1);
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) return error(request, http::status::not_found, "no such page");
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  Response r{http::status::ok, request.version()};
+  r.set(http::field::content_type, content_type(path));
+  r.set("X-Content-Type-Options", "nosniff");
+  r.set("Content-Security-Policy",
+        "default-src 'self'; connect-src 'self'; img-src 'self' data:; style-src 'self' 'unsafe-inline'");
+  r.body() = bytes.str();
+  r.keep_alive(request.keep_alive());
+  r.prepare_payload();
+  return r;
+}
+
+bool Console::login_blocked(const std::string& key, Clock::time_point now) {
+  std::deque<Clock::time_point>& failures = login_failures_[key];
+  while (!failures.empty() && now - failures.front() > kLoginWindow)
+    failures.pop_front();
+  return static_cast<int>(failures.size()) >= kLoginFailuresAllowed;
+}
+
+Console::Response Console::login(const http::request<http::string_body>& request, const std::string& peer) {
+  std::string why;
+  const std::optional<json> body = parse_object(request.body(), why);
+  if (!body) return error(request, http::status::bad_request, why);
+  const std::optional<std::string> name = text_field(*body, "name", 64, why);
+  const std::optional<std::string> password = name ? text_field(*body, "password", 256, why) : std::nullopt;
+  if (!name || !password) return error(request, http::status::bad_request, why);
+  const Clock::time_point now = Clock::now();
+  if (login_blocked("address " + peer, now) || login_blocked("account " + *name, now))
+    return error(request, http::status::too_many_requests, "too many failed logins: wait a minute");
+  const std::optional<io::AccountRow> row = db_.account(*name);
+  if (!row || crypto_pwhash_str_verify(row->password_hash.c_str(), password->data(), password->size()) != 0) {
+    login_failures_["address " + peer].push_back(now);
+    login_failures_["account " + *name].push_back(now);
+    db_.audit(*name, "login_failed", "", "from " + peer);
+    return error(request, http::status::unauthorized, "wrong name or password");
+  }
+  const std::string token = random_token();
+  LoginSession session{{row->name, row->role, row->trainee}, random_token(), now + kSessionLifetime};
+  sessions_[token] = session;
+  db_.audit(row->name, "login", "", "from " + peer);
+  Response r = json_reply(
+      request, http::status::ok,
+      {{"name", row->name}, {"role", row->role}, {"trainee", row->trainee}, {"csrf", session.csrf}});
+  r.set(http::field::set_cookie,
+        "hs_session=" + token + "; Path=/; HttpOnly; SameSite=Strict; Max-Age=43200");
+  return r;
+}
+
+std::string Console::stations_message() const {
+  json list = json::array();
+  for (const auto& [name, station] : link_.stations())
+    list.push_back(status_json(name, station));
+  return dump(json{{"type", "stations"}, {"stations", list}});
+}
+
+void Console::command(const http::request<http::string_body>& request, const Account& account,
+                      const std::string& station, std::shared_ptr<HttpSession> session) {
+  std::string why;
+  const std::optional<json> body = parse_object(request.body(), why);
+  if (!body) return session->reply(error(request, http::status::bad_request, why));
+  const std::optional<std::string> kind = text_field(*body, "kind", 48, why);
+  const std::optional<std::string> exercise =
+      kind ? text_field(*body, "exercise", 128, why, false) : std::nullopt;
+  const std::optional<std::string> trainee =
+      exercise ? text_field(*body, "trainee", 64, why, false) : std::nullopt;
+  if (!kind || !exercise || !trainee) return session->reply(error(request, http::status::bad_request, why));
+  const auto autopilot = body->find("autopilot");
+  if (autopilot != body->end() && !autopilot->is_boolean())
+    return session->reply(
+        error(request, http::status::bad_request, "field 'autopilot' is not true or false"));
+  const auto found = link_.stations().find(station);
+  if (found == link_.stations().end())
+    return session->reply(
+        error(request, http::status::not_found, "no station '" + core::printable(station) + "'"));
+  if (found->second.lost || found->second.gone)
+    return session->reply(
+        error(request, http::status::conflict, "station " + station + " is not on the network"));
+  if (*kind == "start") {
+    if (exercise->empty())
+      return session->reply(error(request, http::status::bad_request, "start needs an exercise"));
+    if (!trainee->empty() && !db_.has_trainee(*trainee))
+      return session->reply(
+          error(request, http::status::bad_request, "no trainee '" + core::printable(*trainee) + "'"));
+  }
+  net::StationCommand c;
+  c.station(station);
+  c.user(account.name);
+  c.kind(*kind);
+  c.exercise(*exercise);
+  c.trainee(*trainee);
+  c.autopilot(autopilot != body->end() && autopilot->get<bool>());
+  const std::uint64_t id = link_.send(c);
+  pending_[id] = Pending{request, session, account, station, *kind, Clock::now() + kAckTimeout};
+}
+
+Console::Response Console::api(const http::request<http::string_body>& request, const Account& account,
+                               const std::string& token, const std::string& target) {
+  const bool get = request.method() == http::verb::get;
+  const auto forbidden = [&] { return error(request, http::status::forbidden, "not for a " + account.role); };
+  if (target == "/api/me" && get)
+    return json_reply(request, http::status::ok,
+                      {{"name", account.name},
+                       {"role", account.role},
+                       {"trainee", account.trainee},
+                       {"csrf", sessions_.at(token).csrf}});
+  if (target == "/api/logout" && request.method() == http::verb::post) {
+    sessions_.erase(token);
+    db_.audit(account.name, "logout", "", "");
+    Response r = json_reply(request, http::status::ok, {{"ok", true}});
+    r.set(http::field::set_cookie, "hs_session=; Path=/; HttpOnly; SameSite=Strict; Max-Age=0");
+    return r;
+  }
+  if (target == "/api/stations" && get) {
+    if (!account.instructs()) return forbidden();
+    return json_reply(request, http::status::ok, json::parse(stations_message())["stations"]);
+  }
+  if (target == "/api/looks" && get) {
+    Response r = json_reply(request, http::status::ok, json::object());
+    r.body() = looks_;
+    r.prepare_payload();
+    return r;
+  }
+  if (target == "/api/exercises" && get) {
+    json names = json::array();
+    std::vector<std::string> found;
+    for (const auto& entry :
+         std::filesystem::directory_iterator(std::string(HARBOUR_DATA_DIR) + "/exercises"))
+      if (entry.path().extension() == ".yaml") found.push_back(entry.path().stem().string());
+    std::sort(found.begin(), found.end());
+    for (const std::string& n : found)
+      names.push_back(n);
+    return json_reply(request, http::status::ok, names);
+  }
+  if (target == "/api/trainees" && get) {
+    if (!account.instructs()) return forbidden();
+    json list = json::array();
+    for (const io::TraineeRow& t : db_.trainees())
+      list.push_back({{"id", t.id}, {"name", t.name}});
+    return json_reply(request, http::status::ok, list);
+  }
+  const bool adds = request.method() == http::verb::post;  // a new trainee; PATCH renames one
+  if (target == "/api/trainees" && (adds || request.method() == http::verb::patch)) {
+    if (!account.instructs()) return forbidden();
+    std::string why;
+    const std::optional<json> body = parse_object(request.body(), why);
+    const std::optional<std::string> id = body ? text_field(*body, "id", 64, why) : std::nullopt;
+    const std::optional<std::string> name = id ? text_field(*body, "name", 128, why) : std::nullopt;
+    if (!name) return error(request, http::status::bad_request, why);
+    try {
+      if (adds)
+        db_.add_trainee(*id, *name);
+      else
+        db_.rename_trainee(*id, *name);
+    } catch (const std::out_of_range& e) {
+      return error(request, http::status::not_found, e.what());
+    } catch (const std::exception& e) {
+      return error(request, http::status::bad_request, e.what());
+    }
+    db_.audit(account.name, adds ? "add_trainee" : "rename_trainee", *id, *name);
+    return json_reply(request, adds ? http::status::created : http::status::ok,
+                      {{"id", *id}, {"name", *name}});
+  }
+  if (target.rfind("/api/attempts", 0) == 0 && get) {
+    const std::string rest = target.substr(13);
+    if (rest.empty() || rest[0] == '?') {
+      std::optional<std::string> trainee;
+      const std::string query = request.target().find('?') == std::string::npos
+                                    ? ""
+                                    : std::string(request.target().substr(request.target().find('?') + 1));
+      if (query.rfind("trainee=", 0) == 0) trainee = query.substr(8);
+      if (!account.instructs()) {
+        if (trainee && *trainee != account.trainee) return forbidden();
+        trainee = account.trainee;  // a trainee sees only their own
+      }
+      json list = json::array();
+      for (const io::AttemptRow& a : db_.attempts(trainee))
+        list.push_back({{"id", a.id},
+                        {"trainee", a.trainee},
+                        {"exercise", a.exercise},
+                        {"status", a.status},
+                        {"score", a.score ? json(*a.score) : json(nullptr)},
+                        {"passed", a.passed},
+                        {"moves", a.moves},
+                        {"parent", a.parent ? json(*a.parent) : json(nullptr)}});
+      return json_reply(request, http::status::ok, list);
+    }
+    if (rest[0] != '/') return error(request, http::status::not_found, "no such API");
+    std::int64_t id = 0;
+    try {
+      std::size_t used = 0;
+      id = std::stoll(rest.substr(1), &used);
+      if (used != rest.size() - 1 || id <= 0) throw std::invalid_argument("not a positive number");
+    } catch (const std::exception&) {
+      return error(request, http::status::bad_request, "attempt id: a positive number");
+    }
+    for (const io::AttemptRow& a :
+         db_.attempts(account.instructs() ? std::nullopt : std::optional(account.trainee))) {
+      if (a.id != id) continue;
+      json events = json::array(), metrics = json::object();
+      for (const io::EventRow& e : db_.events(id))
+        events.push_back({{"at_s", e.at_s}, {"kind", e.kind}, {"value", e.value}});
+      for (const auto& [name, value] : db_.metrics(id))
+        metrics[name] = value;
+      return json_reply(request, http::status::ok,
+                        {{"id", a.id},
+                         {"trainee", a.trainee},
+                         {"exercise", a.exercise},
+                         {"status", a.status},
+                         {"score", a.score ? json(*a.score) : json(nullptr)},
+                         {"passed", a.passed},
+                         {"events", events},
+                         {"metrics", metrics}});
+    }
+    return error(request, http::status::not_found, "no attempt " + std::to_string(id) + " for you");
+  }
+  if (target == "/api/replays" && request.method() == http::verb::post) {
+    if (!account.instructs()) return forbidden();
+    return open_replay(request, account);
+  }
+  if (target == "/api/audit" && get) {
+    if (!account.instructs()) return forbidden();
+    json list = json::array();
+    for (const io::AuditRow& a : db_.audit_log(200))
+      list.push_back({{"at", a.at},
+                      {"account", a.account},
+                      {"action", a.action},
+                      {"target", a.target},
+                      {"detail", a.detail}});
+    return json_reply(request, http::status::ok, list);
+  }
+  if (target == "/api/accounts" && request.method() == http::verb::post) {
+    if (account.role != "administrator") return forbidden();
+    std::string why;
+    const std::optional<json> body = parse_object(request.body(), why);
+    const std::optional<std::string> name = body ? text_field(*body, "name", 64, why) : std::nullopt;
+    const std::optional<std::string> password = name ? text_field(*body, "password", 256, why) : std::nullopt;
+    const std::optional<std::string> role = password ? text_field(*body, "role", 16, why) : std::nullopt;
+    const std::optional<std::string> trainee =
+        role ? text_field(*body, "trainee", 64, why, false) : std::nullopt;
+    if (!trainee) return error(request, http::status::bad_request, why);
+    if (password->size() < 8)
+      return error(request, http::status::bad_request, "a password of 8 characters or more");
+    try {
+      db_.add_account({*name, *role, hash_password(*password), *trainee});
+    } catch (const std::invalid_argument& e) {
+      return error(request, http::status::bad_request, e.what());
+    }
+    db_.audit(account.name, "add_account", *name, *role);
+    return json_reply(request, http::status::created, {{"name", *name}, {"role", *role}});
+  }
+  return error(request, http::status::not_found, "no such API: " + core::printable(target));
+}
+
+Console::Response Console::open_replay(const http::request<http::string_body>& request,
+                                       const Account& account) {
+  std::string why;
+  const std::optional<json> body = parse_object(request.body(), why);
+  if (!body) return error(request, http::status::bad_request, why);
+  const auto attempt = body->find("attempt");
+  if (attempt == body->end() || !attempt->is_number_integer() || attempt->get<std::int64_t>() <= 0)
+    return error(request, http::status::bad_request, "field 'attempt': an attempt id");
+  const std::int64_t id = attempt->get<std::int64_t>();
+  std::optional<io::AttemptRow> row;
+  for (const io::AttemptRow& a : db_.attempts())
+    if (a.id == id) row = a;
+  if (!row) return error(request, http::status::not_found, "no attempt " + std::to_string(id));
+  if (row->recording.empty())
+    return error(request, http::status::conflict, "attempt " + std::to_string(id) + " was not recorded");
+  if (static_cast<int>(replays_.size()) >= Replay::kMostOpen)
+    return error(request, http::status::too_many_requests,
+                 "already " + std::to_string(Replay::kMostOpen) + " replays open: close one");
+  Replay replay;
+  try {
+    replay.exercise = io::load_exercise(resolve_exercise(row->exercise));
+    replay.recording = io::read_recording(row->recording);
+  } catch (const std::exception& e) {
+    return error(request, http::status::conflict, std::string("cannot replay: ") + e.what());
+  }
+  replay.id = next_replay_++;
+  replay.attempt = id;
+  replay.recording_file = row->recording;
+  replay.trainee = row->trainee;
+  replay.owner = account.name;
+  auto [it, added] = replays_.emplace(replay.id, std::move(replay));
+  Replay& r = it->second;
+  try {
+    r.player = std::make_unique<sim::ReplayPlayer>(r.exercise.scenario, r.recording);
+  } catch (const std::exception& e) {
+    replays_.erase(it);
+    return error(request, http::status::conflict, std::string("cannot replay: ") + e.what());
+  }
+  r.scene = scene_message(r.player->simulation().scene(), r.attempt);
+  json events = json::array();
+  for (const io::EventRow& e : db_.events(id))
+    events.push_back({{"at_s", e.at_s}, {"kind", e.kind}, {"value", e.value}});
+  // by InstructorCommand::Kind, as the command line writes them
+  static constexpr const char* kCommandNames[sim::InstructorCommand::kKinds] = {"gust",
+                                                                                "hoist-brake-fault",
+                                                                                "landed-sensor-fault",
+                                                                                "clear-faults",
+                                                                                "wind",
+                                                                                "visibility",
+                                                                                "rain",
+                                                                                "time-of-day",
+                                                                                "limiter-fault",
+                                                                                "emergency-stop",
+                                                                                "release-emergency-stop"};
+  for (const sim::Recording::Command& c : r.recording.commands)
+    events.push_back({{"at_s", static_cast<double>(c.step) * sim::Simulation::kStep_s},
+                      {"kind", std::string("instructor ") + kCommandNames[static_cast<int>(c.command.kind)]},
+                      {"value", 0.0}});
+  std::sort(events.begin(), events.end(),
+            [](const json& a, const json& b) { return a["at_s"].get<double>() < b["at_s"].get<double>(); });
+  db_.audit(account.name, "open_replay", "attempt " + std::to_string(id), r.recording_file);
+  return json_reply(request, http::status::created,
+                    {{"replay", r.id},
+                     {"station", "replay-" + std::to_string(r.id)},
+                     {"attempt", id},
+                     {"exercise", r.exercise.name},
+                     {"trainee", r.trainee},
+                     {"duration_s", static_cast<double>(r.recording.total_steps) * sim::Simulation::kStep_s},
+                     {"complete", r.recording.complete},
+                     {"events", events}});
+}
+
+std::optional<Console::Response> Console::control_replay(const http::request<http::string_body>& request,
+                                                         const Account& account, std::int64_t id,
+                                                         std::shared_ptr<HttpSession> session) {
+  const auto found = replays_.find(id);
+  if (found == replays_.end())
+    return error(request, http::status::not_found, "no replay " + std::to_string(id));
+  Replay& r = found->second;
+  std::string why;
+  const std::optional<json> body = parse_object(request.body(), why);
+  const std::optional<std::string> action = body ? text_field(*body, "action", 16, why) : std::nullopt;
+  if (!action) return error(request, http::status::bad_request, why);
+  const auto number = [&](const char* field, double low, double high) -> std::optional<double> {
+    const auto f = body->find(field);
+    if (f == body->end() || !f->is_number() || !(f->get<double>() >= low && f->get<double>() <= high)) {
+      why = std::string("field '") + field + "': a number from " + std::to_string(low) + " to " +
+            std::to_string(high);
+      return std::nullopt;
+    }
+    return f->get<double>();
+  };
+  const double duration_s = static_cast<double>(r.recording.total_steps) * sim::Simulation::kStep_s;
+  if (*action == "play" || *action == "pause") {
+    r.playing = *action == "play";
+    if (body->contains("speed")) {
+      const std::optional<double> speed = number("speed", 0.25, 8.0);
+      if (!speed) return error(request, http::status::bad_request, why);
+      r.speed = *speed;
+    }
+    r.last_poll = Clock::now();
+  } else if (*action == "seek") {
+    const std::optional<double> at = number("at_s", 0.0, duration_s);
+    if (!at) return error(request, http::status::bad_request, why);
+    try {
+      r.player->seek(static_cast<std::int64_t>(std::llround(*at / sim::Simulation::kStep_s)));
+    } catch (const std::exception& e) {
+      return error(request, http::status::conflict, std::string("cannot seek: ") + e.what());
+    }
+    r.position_steps = static_cast<double>(r.player->simulation().steps());
+  } else if (*action == "take-over") {
+    // the attempt continues live at a station from the moment shown, as a new attempt of a trainee
+    const std::optional<std::string> station = text_field(*body, "station", 64, why);
+    const std::optional<std::string> trainee =
+        station ? text_field(*body, "trainee", 64, why, false) : std::nullopt;
+    if (!trainee) return error(request, http::status::bad_request, why);
+    const auto found_station = link_.stations().find(*station);
+    if (found_station == link_.stations().end() || found_station->second.lost || found_station->second.gone)
+      return error(request, http::status::not_found,
+                   "no station '" + core::printable(*station) + "' on the network");
+    if (!trainee->empty() && !db_.has_trainee(*trainee))
+      return error(request, http::status::bad_request, "no trainee '" + core::printable(*trainee) + "'");
+    const auto autopilot = body->find("autopilot");
+    r.playing = false;
+    net::StationCommand c;
+    c.station(*station);
+    c.user(account.name);
+    c.kind("take-over");
+    c.exercise(r.exercise.name);
+    c.trainee(trainee->empty() ? r.trainee : *trainee);
+    c.autopilot(autopilot != body->end() && autopilot->is_boolean() && autopilot->get<bool>());
+    c.recording(r.recording_file);
+    c.step(r.player->simulation().steps());
+    const std::uint64_t command = link_.send(c);
+    pending_[command] = Pending{request,
+                                session,
+                                account,
+                                *station,
+                                "take-over of attempt " + std::to_string(r.attempt) + " at step " +
+                                    std::to_string(r.player->simulation().steps()),
+                                Clock::now() + kAckTimeout};
+    return std::nullopt;
+  } else if (*action == "close") {
+    db_.audit(account.name, "close_replay", "attempt " + std::to_string(r.attempt), "");
+    replays_.erase(found);
+    return json_reply(request, http::status::ok, {{"closed", id}});
+  } else {
+    return error(request, http::status::bad_request, "action: play, pause, seek, take-over or close");
+  }
+  json state = replay_state(r);
+  state["playing"] = r.playing;
+  state["speed"] = r.speed;
+  return json_reply(request, http::status::ok, state);
+}
+
+json Console::replay_state(Replay& r, bool view) {
+  const sim::Simulation& sim = r.player->simulation();
+  sim.write_snapshot(*r.snapshot);
+  json state = state_json("replay-" + std::to_string(r.id),
+                          state_message(*r.snapshot, sim.scene().entities.size(), r.attempt), &r.scene, view);
+  state["held"] = !r.playing;
+  state["replay"] = r.id;
+  state["checkpoint_mismatch"] = r.player->first_mismatch().has_value();
+  return state;
+}
+
+void Console::push_state(LiveSocket& socket, const std::string& station, const net::StationScene* scene,
+                         const std::function<json(bool)>& state_of) {
+  if (socket.wants_view() && scene) {
+    const std::string key = station + " " + std::to_string(scene->attempt());
+    if (socket.scene_sent() != key) {
+      socket.send(dump(scene_json(station, *scene)));
+      socket.scene_sent() = key;
+    }
+  }
+  socket.send(dump(state_of(socket.wants_view())));
+}
+
+void Console::play_replays(Clock::time_point now) {
+  for (auto& [id, r] : replays_) {
+    const double dt = std::chrono::duration<double>(now - r.last_poll).count();
+    r.last_poll = now;
+    if (!r.playing) continue;
+    r.position_steps =
+        std::min(r.position_steps + dt * r.speed / sim::Simulation::kStep_s,
+                 static_cast<double>(r.player->simulation().steps() + Replay::kMostStepsPerPoll));
+    try {
+      r.player->advance_to(static_cast<std::int64_t>(r.position_steps));
+    } catch (const std::exception&) {
+      r.playing = false;  // a damaged recording: it stops where it could go no further
+    }
+    if (r.player->simulation().steps() >= r.player->total_steps()) r.playing = false;
+  }
+}
+
+void Console::handle(const http::request<http::string_body>& request, const std::string& peer,
+                     std::shared_ptr<HttpSession> session) {
+  const std::string target(request.target().substr(0, request.target().find('?')));
+  try {
+    if (target.rfind("/api/", 0) != 0) {
+      if (request.method() != http::verb::get && request.method() != http::verb::head)
+        return session->reply(error(request, http::status::method_not_allowed, "pages are read only"));
+      return session->reply(file(request));
+    }
+    const bool changes = request.method() != http::verb::get && request.method() != http::verb::head;
+    if (changes) {
+      // a state-changing request must come from our own pages: JSON, and (a browser's) same origin
+      const auto type = request.find(http::field::content_type);
+      if (type == request.end() || std::string(type->value()).rfind("application/json", 0) != 0)
+        return session->reply(error(request, http::status::unsupported_media_type, "send application/json"));
+    }
+    if (target == "/api/login" && request.method() == http::verb::post)
+      return session->reply(login(request, peer));
+    const std::string token = token_of(request);
+    const std::optional<Account> account = account_of(token);
+    if (!account) return session->reply(error(request, http::status::unauthorized, "log in first"));
+    if (changes) {
+      const auto csrf = request.find("X-CSRF-Token");
+      if (csrf == request.end() || std::string(csrf->value()) != sessions_.at(token).csrf)
+        return session->reply(error(request, http::status::forbidden, "missing or wrong X-CSRF-Token"));
+    }
+    const std::string prefix = "/api/stations/";
+    if (target.rfind(prefix, 0) == 0 && target.size() > prefix.size() + 8 &&
+        target.compare(target.size() - 8, 8, "/command") == 0 && request.method() == http::verb::post) {
+      if (!account->instructs())
+        return session->reply(error(request, http::status::forbidden, "not for a " + account->role));
+      return command(request, *account, target.substr(prefix.size(), target.size() - prefix.size() - 8),
+                     session);
+    }
+    if (target.rfind("/api/replays/", 0) == 0 && request.method() == http::verb::post) {
+      if (!account->instructs())
+        return session->reply(error(request, http::status::forbidden, "not for a " + account->role));
+      const std::string number = target.substr(13);
+      if (number.empty() || number.size() > 12 || number.find_first_not_of("0123456789") != std::string::npos)
+        return session->reply(error(request, http::status::bad_request, "replay id: a positive number"));
+      if (std::optional<Response> r = control_replay(request, *account, std::stoll(number), session))
+        session->reply(std::move(*r));
+      return;  // a take-over answers when the station does
+    }
+    session->reply(api(request, *account, token, target));
+  } catch (const std::exception& e) {
+    session->reply(error(request, http::status::internal_server_error, e.what()));
+  }
+}
+
+void Console::poll() {
+  const Clock::time_point now = Clock::now();
+  const std::vector<std::string> changed = link_.poll(now);
+  std::erase_if(sockets_, [](const std::shared_ptr<LiveSocket>& s) { return !s->open(); });
+  // sockets of sessions logged out or expired are closed
+  for (const auto& s : sockets_)
+    if (!account_of(s->token())) s->close("logged out");
+  std::erase_if(sockets_, [](const std::shared_ptr<LiveSocket>& s) { return !s->open(); });
+  // the stations' table at most 5 times a second, whatever the number of stations
+  stations_changed_ = stations_changed_ || !changed.empty();
+  if (stations_changed_ && now >= next_stations_push_) {
+    const std::string message = stations_message();
+    for (const auto& s : sockets_)
+      s->send(message);
+    stations_changed_ = false;
+    next_stations_push_ = now + std::chrono::milliseconds(200);
+  }
+  for (const net::StationEvent& e : link_.take_events()) {
+    const std::string message = dump(event_json(e));
+    for (const auto& s : sockets_)
+      s->send(message);
+  }
+  play_replays(now);
+  if (now >= next_state_push_) {
+    next_state_push_ = now + std::chrono::milliseconds(100);
+    for (const auto& s : sockets_) {
+      if (s->subscribed().rfind("replay-", 0) == 0) {
+        for (auto& [id, r] : replays_)
+          if (s->subscribed() == "replay-" + std::to_string(id))
+            push_state(*s, s->subscribed(), &r.scene, [&](bool view) { return replay_state(r, view); });
+        continue;
+      }
+      const auto found = link_.stations().find(s->subscribed());
+      if (s->subscribed().empty() || found == link_.stations().end() || !found->second.state) continue;
+      const net::StationState& st = *found->second.state;
+      const net::StationScene* scene = found->second.scene ? &*found->second.scene : nullptr;
+      push_state(*s, s->subscribed(), scene,
+                 [&](bool view) { return state_json(s->subscribed(), st, scene, view); });
+    }
+  }
+  for (auto it = pending_.begin(); it != pending_.end();) {
+    Pending& p = it->second;
+    const std::optional<net::CommandAck> ack = link_.take_ack(it->first);
+    if (!ack && now < p.deadline) {
+      ++it;
+      continue;
+    }
+    const std::string outcome = !ack        ? "no answer"
+                                : ack->ok() ? "done"
+                                            : "refused: " + ack->message().to_string();
+    db_.audit(p.account.name, "command " + p.kind, p.station, outcome);
+    if (!ack)
+      p.session->reply(error(p.request, http::status::gateway_timeout,
+                             "station " + p.station + " did not answer within 3 s"));
+    else
+      p.session->reply(json_reply(p.request, ack->ok() ? http::status::ok : http::status::conflict,
+                                  {{"ok", ack->ok()}, {"message", ack->message().to_string()}}));
+    it = pending_.erase(it);
+  }
+  if (g_stop) {
+    io_.stop();
+    return;
+  }
+  poll_timer_.expires_after(std::chrono::milliseconds(2));
+  poll_timer_.async_wait([this](beast::error_code ec) {
+    if (!ec) poll();
+  });
+}
+
+void accept(tcp::acceptor& acceptor, Console& console) {
+  acceptor.async_accept([&acceptor, &console](beast::error_code ec, tcp::socket socket) {
+    if (!ec) std::make_shared<HttpSession>(std::move(socket), console)->start();
+    accept(acceptor, console);
+  });
+}
+
+}  // namespace
+
+int run_console(const ConsoleOptions& given) {
+  if (sodium_init() < 0) throw std::runtime_error("libsodium could not start");
+  ConsoleOptions options = given;
+  if (options.name.empty()) options.name = "console-" + std::to_string(getpid());
+  if (options.database.empty()) options.database = default_database();
+  if (options.web_root.empty()) options.web_root = std::string(HARBOUR_WEB_DIR);
+  boost::system::error_code ec;
+  const asio::ip::address address = asio::ip::make_address(options.bind, ec);
+  if (ec) throw std::runtime_error("--bind " + options.bind + ": not an IP address");
+  if (!address.is_loopback())
+    throw std::runtime_error(
+        "--bind " + options.bind +
+        ": only this machine's loopback for now (TLS for a console on the centre's network "
+        "is not built yet)");
+  if (!std::filesystem::is_regular_file(std::filesystem::path(options.web_root) / "index.html"))
+    throw std::runtime_error("the console's pages are not built: " + options.web_root +
+                             "/index.html is missing (./harbour build builds them)");
+  asio::io_context io;
+  Console console(options, io);
+  tcp::acceptor acceptor(io);
+  const tcp::endpoint endpoint(address, static_cast<unsigned short>(options.port));
+  acceptor.open(endpoint.protocol());
+  acceptor.set_option(asio::socket_base::reuse_address(true));
+  acceptor.bind(endpoint, ec);
+  if (ec)
+    throw std::runtime_error("console: cannot listen on " + options.bind + ":" +
+                             std::to_string(options.port) + ": " + ec.message());
+  acceptor.listen();
+  g_stop = 0;
+  std::signal(SIGINT, on_console_signal);
+  std::signal(SIGTERM, on_console_signal);
+  std::signal(SIGPIPE, SIG_IGN);
+  if (console.accounts() == 0)
+    std::printf(
+        "no accounts yet: add the first administrator with\n  harboursim accounts add admin --role "
+        "administrator%s\n(its password on standard input)\n",
+        given.database.empty() ? "" : (" --db " + given.database).c_str());
+  std::printf("console %s: http://%s:%u/ (DDS domain %d, records %s)\n", options.name.c_str(),
+              options.bind.c_str(), static_cast<unsigned>(acceptor.local_endpoint().port()), options.domain,
+              options.database.c_str());
+  std::fflush(stdout);
+  accept(acceptor, console);
+  console.start_polling();
+  if (options.seconds > 0.0)
+    io.run_for(std::chrono::milliseconds(static_cast<std::int64_t>(options.seconds * 1e3)));
+  else
+    io.run();
+  std::signal(SIGINT, SIG_DFL);
+  std::signal(SIGTERM, SIG_DFL);
+  return 0;
+}
+
+int list_accounts(const std::string& database) {
+  io::RecordsStore db(database.empty() ? default_database() : database);
+  for (const io::AccountRow& a : db.accounts())
+    std::printf("%-24s %s\n", core::printable(a.name).c_str(), a.role.c_str());
+  return 0;
+}
+
+int add_account(const std::string& database, const std::string& name, const std::string& role,
+                const std::string& trainee) {
+  if (sodium_init() < 0) throw std::runtime_error("libsodium could not start");
+  std::string password;
+  if (!std::getline(std::cin, password)) throw std::runtime_error("no password on standard input");
+  if (password.size() < 8 || password.size() > 256)
+    throw std::runtime_error("the password: 8 to 256 characters");
+  io::RecordsStore db(database.empty() ? default_database() : database);
+  db.add_account({name, role, hash_password(password), trainee});
+  db.audit("(command line)", "add_account", name, role);
+  std::printf("account %s (%s) added\n", name.c_str(), role.c_str());
+  return 0;
+}
+
+}  // namespace harbour::apps

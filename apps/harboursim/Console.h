@@ -1,0 +1,28 @@
+#pragma once
+
+#include <string>
+
+namespace harbour::apps {
+
+/// `harboursim console`: the instructor console, a web application and its API served over HTTP and
+/// WebSocket (Boost.Beast), watching and commanding the centre's stations over DDS.
+struct ConsoleOptions {
+  std::string bind = "127.0.0.1";  ///< only this machine, unless told otherwise
+  int port = 8470;
+  std::string database;  ///< records connection (accounts, audit, trainees, attempts)
+  int domain = 0;        ///< the centre's DDS domain
+  std::string name;      ///< the console's name on the network ("" : console-<pid>)
+  std::string web_root;  ///< the built front end (web/dist)
+  double seconds = 0.0;  ///< stop after this long (tests; 0: until Ctrl-C)
+};
+int run_console(const ConsoleOptions& options);
+
+/// `harboursim accounts add NAME --role ROLE [--trainee ID]`: the password is read from standard input
+/// (its first line), hashed with Argon2id and stored; nothing is stored if anything is wrong.
+int add_account(const std::string& database, const std::string& name, const std::string& role,
+                const std::string& trainee);
+
+/// `harboursim accounts list`: name and role, a line each.
+int list_accounts(const std::string& database);
+
+}  // namespace harbour::apps

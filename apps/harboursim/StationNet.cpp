@@ -1,0 +1,324 @@
+#include "StationNet.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "harbour/io/InstructorCommandText.h"
+
+namespace harbour::apps {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr auto kStatusPeriod = std::chrono::milliseconds(static_cast<int>(net::kStatusPeriod_s * 1e3));
+constexpr auto kStatePeriod = std::chrono::milliseconds(100);  // 10 Hz: plots and the console's 3D view
+
+std::string host_name() {
+  char name[256] = {};
+  if (gethostname(name, sizeof name - 1) != 0) return "";
+  return name;
+}
+
+net::StationStatus base_status(const std::string& state) {
+  net::StationStatus s;
+  s.host(host_name());
+  s.process_id(static_cast<std::uint32_t>(getpid()));
+  s.state(state);
+  s.keeping_real_time(true);
+  return s;
+}
+
+// a rotation matrix as a unit quaternion x, y, z, w (Shepperd: from the largest diagonal term)
+std::array<double, 4> quaternion(const core::Mat3& r) {
+  const auto& m = r.m;
+  const double trace = m[0][0] + m[1][1] + m[2][2];
+  if (trace > 0.0) {
+    const double s = 2.0 * std::sqrt(1.0 + trace);
+    return {(m[2][1] - m[1][2]) / s, (m[0][2] - m[2][0]) / s, (m[1][0] - m[0][1]) / s, 0.25 * s};
+  }
+  if (m[0][0] > m[1][1] && m[0][0] > m[2][2]) {
+    const double s = 2.0 * std::sqrt(1.0 + m[0][0] - m[1][1] - m[2][2]);
+    return {0.25 * s, (m[0][1] + m[1][0]) / s, (m[0][2] + m[2][0]) / s, (m[2][1] - m[1][2]) / s};
+  }
+  if (m[1][1] > m[2][2]) {
+    const double s = 2.0 * std::sqrt(1.0 + m[1][1] - m[0][0] - m[2][2]);
+    return {(m[0][1] + m[1][0]) / s, 0.25 * s, (m[1][2] + m[2][1]) / s, (m[0][2] - m[2][0]) / s};
+  }
+  const double s = 2.0 * std::sqrt(1.0 + m[2][2] - m[0][0] - m[1][1]);
+  return {(m[0][2] + m[2][0]) / s, (m[1][2] + m[2][1]) / s, 0.25 * s, (m[1][0] - m[0][1]) / s};
+}
+
+// the commands a running loop takes as they are
+std::optional<station::LoopCommand::Kind> loop_kind(const std::string& kind) {
+  using K = station::LoopCommand::Kind;
+  if (kind == "hold") return K::kHold;
+  if (kind == "resume") return K::kResume;
+  if (kind == "step") return K::kSingleStep;
+  return std::nullopt;
+}
+
+}  // namespace
+
+net::StationScene scene_message(const sim::SceneDescription& description, std::int64_t attempt) {
+  net::StationScene scene;
+  scene.attempt(attempt);
+  scene.machine(description.machine);
+  const std::size_t count = std::min<std::size_t>(description.entities.size(), sim::kMaxEntities);
+  std::vector<eprosima::fastrtps::fixed_string<48>> names, visuals;
+  std::vector<float> extents;
+  for (std::size_t n = 0; n < count; ++n) {
+    names.emplace_back(description.entities[n].name.substr(0, 48));
+    visuals.emplace_back(description.entities[n].visual.substr(0, 48));
+    const core::Vec3& e = description.entities[n].half_extents_m;
+    extents.insert(extents.end(),
+                   {static_cast<float>(e.x), static_cast<float>(e.y), static_cast<float>(e.z)});
+  }
+  scene.entity_names(names);
+  scene.entity_visuals(visuals);
+  scene.entity_half_extents_m(extents);
+  std::vector<eprosima::fastrtps::fixed_string<48>> indicators;
+  for (std::size_t n = 0; n < description.indicators.size() && n < sim::kMaxIndicators; ++n)
+    indicators.emplace_back(description.indicators[n].substr(0, 48));
+  scene.indicator_names(indicators);
+  return scene;
+}
+
+net::StationState state_message(const sim::Snapshot& snapshot, std::size_t entity_count,
+                                std::int64_t attempt) {
+  net::StationState state;
+  state.attempt(attempt);
+  state.step(snapshot.step);
+  state.time_s(snapshot.time_s);
+  state.held(snapshot.held);
+  state.wind_mps({static_cast<float>(snapshot.wind_mps.x), static_cast<float>(snapshot.wind_mps.y),
+                  static_cast<float>(snapshot.wind_mps.z)});
+  state.time_of_day_h(snapshot.time_of_day_h);
+  state.visibility_m(snapshot.visibility_m);
+  state.rain_mm_per_h(snapshot.rain_mm_per_h);
+  state.water_level_m(snapshot.sea.water_level_m);
+  state.indicators().assign(snapshot.indicators.begin(),
+                            snapshot.indicators.begin() + snapshot.indicator_count);
+  // every entity in scene order (an entity not in this snapshot keeps a zero pose: not drawn)
+  std::vector<float>& poses = state.entity_poses();
+  poses.assign(std::min<std::size_t>(entity_count, sim::kMaxEntities) * 7, 0.0f);
+  for (int n = 0; n < snapshot.entity_count; ++n) {
+    const sim::Snapshot::Entity& e = snapshot.entities[static_cast<std::size_t>(n)];
+    if (e.index * 7 + 7 > poses.size()) continue;
+    const std::array<double, 4> q = quaternion(e.pose.rotation);
+    float* p = &poses[e.index * 7];
+    p[0] = static_cast<float>(e.pose.position.x);
+    p[1] = static_cast<float>(e.pose.position.y);
+    p[2] = static_cast<float>(e.pose.position.z);
+    for (int k = 0; k < 4; ++k)
+      p[3 + k] = static_cast<float>(q[static_cast<std::size_t>(k)]);
+  }
+  for (int r = 0; r < snapshot.rope_count; ++r) {
+    const std::size_t first = snapshot.rope_first[static_cast<std::size_t>(r)];
+    const std::size_t count = snapshot.rope_points[static_cast<std::size_t>(r)];
+    state.rope_point_counts().push_back(static_cast<std::uint16_t>(count));
+    for (std::size_t k = first; k < first + count && k < snapshot.points.size(); ++k)
+      state.rope_points_m().insert(state.rope_points_m().end(), {static_cast<float>(snapshot.points[k].x),
+                                                                 static_cast<float>(snapshot.points[k].y),
+                                                                 static_cast<float>(snapshot.points[k].z)});
+  }
+  return state;
+}
+
+IdlePresence::IdlePresence(net::StationLink& link, const std::string& last_message)
+    : link_(link), message_(last_message) {}
+
+std::optional<StartRequest> IdlePresence::service() {
+  std::optional<StartRequest> start;
+  for (const net::StationCommand& c : link_.take_commands()) {
+    const std::string kind = c.kind().to_string();
+    const bool starts = kind == "start" || kind == "take-over";
+    if (starts && !start) {
+      start = StartRequest{c.exercise().to_string(), c.trainee().to_string(), c.user().to_string(),
+                           c.autopilot(), std::nullopt};
+      if (kind == "take-over") start->take_over = station::TakeOverFrom{c.recording().to_string(), c.step()};
+      link_.acknowledge(c, true, (kind == "start" ? "starting " : "taking over ") + start->exercise);
+    } else {
+      link_.acknowledge(
+          c, false,
+          starts ? "already starting an exercise" : "nothing runs at this station: start an exercise first");
+    }
+  }
+  const Clock::time_point now = Clock::now();
+  if (start || now >= next_status_) {
+    net::StationStatus s = base_status(start ? "starting" : "idle");
+    if (start) {
+      s.exercise(start->exercise);
+      s.trainee(start->trainee);
+    }
+    s.message(message_.substr(0, 255));
+    link_.publish(s);
+    next_status_ = now + kStatusPeriod;
+  }
+  return start;
+}
+
+AttemptPresence::AttemptPresence(net::StationLink& link, station::Session& session,
+                                 const sim::ExerciseSettings& exercise, const std::string& trainee)
+    : link_(link),
+      session_(session),
+      exercise_(exercise),
+      trainee_(trainee),
+      scene_(session.simulation().scene()) {
+  link_.publish(scene_message(scene_, session.attempt()));
+}
+
+net::StationStatus AttemptPresence::status(const std::string& state, const sim::Snapshot* snapshot) const {
+  net::StationStatus s = base_status(state);
+  s.machine(scene_.machine);
+  s.exercise(exercise_.name);
+  s.trainee(trainee_);
+  s.attempt(session_.attempt());
+  s.time_limit_s(exercise_.rules.time_limit_s);
+  const station::LoopStats loop = session_.loop().stats();
+  s.real_time_factor(loop.real_time_factor);
+  s.late_ticks(loop.late_ticks);
+  s.skipped_ticks(loop.skipped_ticks);
+  s.keeping_real_time(loop.keeping_real_time);
+  const sim::Metrics m = session_.metrics();
+  s.score(session_.score().total);
+  s.moves_done(m.moves_completed);
+  s.moves_total(static_cast<std::int32_t>(exercise_.moves.size()));
+  s.collisions(m.collisions);
+  if (snapshot) {
+    s.time_s(snapshot->time_s);
+    s.devices_missing(snapshot->devices_missing);
+    s.physics_warnings(snapshot->warnings);
+    s.diverged(snapshot->diverged);
+  }
+  return s;
+}
+
+void AttemptPresence::publish_state(const sim::Snapshot& snapshot) {
+  link_.publish(state_message(snapshot, scene_.entities.size(), session_.attempt()));
+}
+
+double AttemptPresence::published_time_s() {
+  const sim::Snapshot* snapshot = session_.loop().latest_snapshot(station::kConsoleReader);
+  return snapshot ? snapshot->time_s : 0.0;
+}
+
+const sim::Snapshot* AttemptPresence::snapshot() {
+  return session_.loop().latest_snapshot(station::kConsoleReader);
+}
+
+bool AttemptPresence::apply(const net::StationCommand& command, std::string& answer, Next& next) {
+  const std::string kind = command.kind().to_string();
+  if (kind == "start" || kind == "take-over") {
+    answer = "already running " + exercise_.name + ": stop it first";
+    return false;
+  }
+  if (kind == "stop" || kind == "reset") {
+    next = kind == "stop" ? Next::kStop : Next::kReset;
+    answer = kind == "stop" ? "stopping: the attempt is stored as interrupted"
+                            : "resetting: the attempt is stored as interrupted and starts again";
+    return true;
+  }
+  station::LoopCommand loop;
+  if (const auto k = loop_kind(kind)) {
+    loop.kind = *k;
+    if (*k == station::LoopCommand::Kind::kSingleStep && !was_held_) {
+      answer = "single steps only while held";
+      return false;
+    }
+  } else {
+    try {
+      loop.kind = station::LoopCommand::Kind::kInstructor;
+      loop.instructor = io::parse_instructor_command("0:" + kind).command;
+    } catch (const std::invalid_argument& e) {
+      answer = e.what();
+      return false;
+    }
+  }
+  if (!session_.loop().post(loop, &answer)) return false;
+  answer = "done: " + kind;
+  return true;
+}
+
+AttemptPresence::Next AttemptPresence::service() {
+  Next next = Next::kRun;
+  bool changed = false;
+  for (const net::StationCommand& c : link_.take_commands()) {
+    std::string answer;
+    const bool ok = apply(c, answer, next);
+    link_.acknowledge(c, ok, answer);
+    if (ok) {
+      net::StationEvent e;
+      e.attempt(session_.attempt());
+      e.time_s(published_time_s());
+      e.kind("instructor");
+      e.text((c.kind().to_string() + " by " + c.user().to_string()).substr(0, 255));
+      link_.publish(e);
+      changed = true;
+    }
+  }
+  const sim::Metrics now = session_.metrics();
+  for (const sim::CountedEvent& counted : sim::counted_events(seen_, now)) {
+    net::StationEvent e;
+    e.attempt(session_.attempt());
+    e.time_s(now.time_s);
+    e.kind(counted.kind);
+    e.value(counted.value);
+    link_.publish(e);
+  }
+  for (int n = seen_.moves_completed; n < now.moves_completed; ++n) {
+    net::StationEvent e;
+    e.attempt(session_.attempt());
+    e.time_s(now.time_s);
+    e.kind("move_done");
+    e.value(n + 1);
+    link_.publish(e);
+    changed = true;
+  }
+  seen_ = now;
+  const Clock::time_point t = Clock::now();
+  const sim::Snapshot* snapshot = this->snapshot();  // stable until the next read (none below)
+  const bool held = snapshot && snapshot->held;
+  if (held != was_held_) changed = true;
+  was_held_ = held;
+  if (changed || t >= next_status_) {
+    link_.publish(status(held ? "held" : "running", snapshot));
+    next_status_ = t + kStatusPeriod;
+  }
+  if (snapshot && t >= next_state_) {
+    publish_state(*snapshot);
+    next_state_ = t + kStatePeriod;
+  }
+  return next;
+}
+
+void AttemptPresence::note(const std::string& kind, const std::string& text) {
+  net::StationEvent e;
+  e.attempt(session_.attempt());
+  e.time_s(published_time_s());
+  e.kind(kind.substr(0, 32));
+  e.text(text.substr(0, 255));
+  link_.publish(e);
+}
+
+void AttemptPresence::publish_end(const station::SessionResult& result) {
+  net::StationStatus s = status("finished", nullptr);
+  s.score(result.score.total);
+  s.moves_done(result.metrics.moves_completed);
+  s.collisions(result.metrics.collisions);
+  s.time_s(result.metrics.time_s);
+  s.message(("attempt " + std::to_string(result.attempt) + " " + result.status +
+             (result.status == "finished" ? (result.score.passed ? ", passed" : ", not passed") : ""))
+                .substr(0, 255));
+  link_.publish(s);
+  net::StationEvent e;
+  e.attempt(result.attempt);
+  e.time_s(result.metrics.time_s);
+  e.kind("attempt_end");
+  e.value(result.score.total);
+  e.text(result.status);
+  link_.publish(e);
+}
+
+}  // namespace harbour::apps

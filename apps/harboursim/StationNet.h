@@ -1,0 +1,75 @@
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "harbour/net/DdsLink.h"
+#include "harbour/sim/Evaluation.h"
+#include "harbour/station/Session.h"
+
+namespace harbour::apps {
+
+/// The network's form of a scene and of a published state (entities in scene order, poses as x, y, z and
+/// a quaternion x, y, z, w; an entity missing from the snapshot keeps a zero pose): what the stations
+/// publish and the console's replays send alike.
+net::StationScene scene_message(const sim::SceneDescription& scene, std::int64_t attempt);
+net::StationState state_message(const sim::Snapshot& snapshot, std::size_t entity_count,
+                                std::int64_t attempt);
+
+/// What a console asked a station to do next (run an exercise, or nothing new).
+struct StartRequest {
+  std::string exercise, trainee, user;
+  bool autopilot = false;
+  std::optional<station::TakeOverFrom> take_over;  ///< continue a stored attempt from a moment
+};
+
+/// A station's presence on the centre's network while idle: its status at 2 Hz and the commands it takes
+/// (start, take-over; anything else is refused, nothing runs).
+class IdlePresence {
+ public:
+  IdlePresence(net::StationLink& link, const std::string& last_message);
+  /// Publishes what is due and answers commands; a start request when one came.
+  std::optional<StartRequest> service();
+
+ private:
+  net::StationLink& link_;
+  std::string message_;
+  std::chrono::steady_clock::time_point next_status_{};
+};
+
+/// A station's presence while an attempt runs: status at 2 Hz (and at once on every change), the scene
+/// once, the published state at 10 Hz, the evaluation's events as they are counted, and the console's
+/// commands applied to the running loop (each acknowledged).
+class AttemptPresence {
+ public:
+  enum class Next { kRun, kStop, kReset };
+  AttemptPresence(net::StationLink& link, station::Session& session, const sim::ExerciseSettings& exercise,
+                  const std::string& trainee);
+  /// Publishes what is due and applies the commands that came; says whether the attempt goes on.
+  Next service();
+  /// Tells the consoles how the attempt ended.
+  void publish_end(const station::SessionResult& result);
+  /// A line for the consoles' event logs (a device lost, the image generator stopped). Call from the
+  /// thread that calls service() (it reads the console's snapshots).
+  void note(const std::string& kind, const std::string& text);
+
+ private:
+  net::StationStatus status(const std::string& state, const sim::Snapshot* snapshot) const;
+  const sim::Snapshot* snapshot();  // the console reader's newest (one reader: this thread)
+  void publish_state(const sim::Snapshot& snapshot);
+  double published_time_s();  // the simulated time of the newest snapshot (not the stepping simulation's)
+  bool apply(const net::StationCommand& command, std::string& answer, Next& next);
+
+  net::StationLink& link_;
+  station::Session& session_;
+  const sim::ExerciseSettings& exercise_;
+  std::string trainee_;
+  sim::SceneDescription scene_;
+  sim::Metrics seen_;
+  bool was_held_ = false;
+  std::chrono::steady_clock::time_point next_status_{}, next_state_{};
+};
+
+}  // namespace harbour::apps

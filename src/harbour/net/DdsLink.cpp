@@ -1,0 +1,280 @@
+#include "harbour/net/DdsLink.h"
+
+#include <fastdds/dds/domain/DomainParticipant.hpp>
+#include <fastdds/dds/domain/DomainParticipantFactory.hpp>
+#include <fastdds/dds/publisher/DataWriter.hpp>
+#include <fastdds/dds/publisher/Publisher.hpp>
+#include <fastdds/dds/publisher/qos/DataWriterQos.hpp>
+#include <fastdds/dds/subscriber/DataReader.hpp>
+#include <fastdds/dds/subscriber/SampleInfo.hpp>
+#include <fastdds/dds/subscriber/Subscriber.hpp>
+#include <fastdds/dds/subscriber/qos/DataReaderQos.hpp>
+#include <fastdds/dds/topic/TypeSupport.hpp>
+#include <mutex>
+#include <stdexcept>
+
+#include "harbour_consolePubSubTypes.h"
+
+namespace harbour::net {
+
+namespace dds = eprosima::fastdds::dds;
+using eprosima::fastrtps::types::ReturnCode_t;
+
+std::string why_bad_node_name(const std::string& name) {
+  if (name.empty() || name.size() > 64) return "1 to 64 characters";
+  for (const char c : name)
+    if (!((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '-' ||
+          c == '_' || c == '.'))
+      return "letters, digits, '-', '_' and '.' only";
+  return "";
+}
+
+namespace {
+
+enum class Delivery { kLatestKept, kStream, kBestEffort };
+
+constexpr int kMostNodes = 256;  // stations and consoles on one domain
+
+// a writer's or a reader's QoS for one of the three kinds of delivery
+template <class Qos>
+Qos endpoint_qos(Qos q, Delivery delivery, int depth) {
+  q.reliability().kind =
+      delivery == Delivery::kBestEffort ? dds::BEST_EFFORT_RELIABILITY_QOS : dds::RELIABLE_RELIABILITY_QOS;
+  q.durability().kind =
+      delivery == Delivery::kLatestKept ? dds::TRANSIENT_LOCAL_DURABILITY_QOS : dds::VOLATILE_DURABILITY_QOS;
+  q.history().kind = dds::KEEP_LAST_HISTORY_QOS;
+  q.history().depth = depth;
+  // one instance per station or console (Fast DDS's default allows 10)
+  q.resource_limits().max_instances = kMostNodes;
+  q.resource_limits().max_samples_per_instance = depth;
+  q.resource_limits().max_samples = kMostNodes * depth;
+  // the big samples (scene, state) are not preallocated at their bound for every slot
+  q.endpoint().history_memory_policy = eprosima::fastrtps::rtps::DYNAMIC_REUSABLE_MEMORY_MODE;
+  return q;
+}
+
+// Events and commands may come in bursts (an instructor's several clicks, a collision series): deep enough
+// histories that none is dropped (KEEP_LAST 1 drops samples under bursts).
+constexpr int kEventDepth = 256, kCommandDepth = 64, kAckDepth = 256;
+
+}  // namespace
+
+/// One DDS participant with the six topics.
+struct Participant {
+  dds::DomainParticipant* participant = nullptr;
+  dds::Publisher* publisher = nullptr;
+  dds::Subscriber* subscriber = nullptr;
+  std::map<std::string, dds::Topic*> topics;
+  dds::DataWriter *status = nullptr, *scene = nullptr, *state = nullptr, *event = nullptr, *command = nullptr,
+                  *ack = nullptr;
+  dds::DataReader *status_in = nullptr, *scene_in = nullptr, *state_in = nullptr, *event_in = nullptr,
+                  *command_in = nullptr, *ack_in = nullptr;
+  std::mutex write_mutex;
+
+  Participant(int domain, const std::string& name) {
+    if (domain < 0 || domain > 232)
+      throw std::runtime_error("DDS domain " + std::to_string(domain) + ": 0-232");
+    dds::DomainParticipantQos qos = dds::PARTICIPANT_QOS_DEFAULT;
+    qos.name(name);
+    participant = dds::DomainParticipantFactory::get_instance()->create_participant(
+        static_cast<dds::DomainId_t>(domain), qos);
+    if (!participant) throw std::runtime_error("DDS: cannot join domain " + std::to_string(domain));
+    register_type<StationStatusPubSubType>(kStatusTopic);
+    register_type<StationScenePubSubType>(kSceneTopic);
+    register_type<StationStatePubSubType>(kStateTopic);
+    register_type<StationEventPubSubType>(kEventTopic);
+    register_type<StationCommandPubSubType>(kCommandTopic);
+    register_type<CommandAckPubSubType>(kAckTopic);
+    publisher = participant->create_publisher(dds::PUBLISHER_QOS_DEFAULT);
+    subscriber = participant->create_subscriber(dds::SUBSCRIBER_QOS_DEFAULT);
+    if (!publisher || !subscriber) fail("a publisher or subscriber");
+  }
+  ~Participant() {
+    if (!participant) return;
+    participant->delete_contained_entities();
+    dds::DomainParticipantFactory::get_instance()->delete_participant(participant);
+  }
+
+  template <class PubSubType>
+  void register_type(const char* topic_name) {
+    dds::TypeSupport type(new PubSubType());
+    if (type.register_type(participant) != ReturnCode_t::RETCODE_OK) fail(topic_name);
+    dds::Topic* topic = participant->create_topic(topic_name, type.get_type_name(), dds::TOPIC_QOS_DEFAULT);
+    if (!topic) fail(topic_name);
+    topics[topic_name] = topic;
+  }
+  dds::DataWriter* writer(const char* topic, Delivery delivery, int depth) {
+    dds::DataWriter* w = publisher->create_datawriter(
+        topics.at(topic), endpoint_qos(dds::DATAWRITER_QOS_DEFAULT, delivery, depth));
+    if (!w) fail(std::string("a writer of ") + topic);
+    return w;
+  }
+  dds::DataReader* reader(const char* topic, Delivery delivery, int depth) {
+    dds::DataReader* r = subscriber->create_datareader(
+        topics.at(topic), endpoint_qos(dds::DATAREADER_QOS_DEFAULT, delivery, depth));
+    if (!r) fail(std::string("a reader of ") + topic);
+    return r;
+  }
+  [[noreturn]] void fail(const std::string& what) { throw std::runtime_error("DDS: cannot create " + what); }
+
+  template <class Sample>
+  void write(dds::DataWriter* w, const Sample& sample) {
+    std::lock_guard lock(write_mutex);
+    w->write(const_cast<Sample*>(&sample));
+  }
+  // every valid sample waiting in `r`, and whether an instance was disposed (its key in `disposed`)
+  template <class Sample, class Each>
+  void take(dds::DataReader* r, Each each) {
+    Sample sample;
+    dds::SampleInfo info;
+    while (r->take_next_sample(&sample, &info) == ReturnCode_t::RETCODE_OK)
+      each(sample, info);
+  }
+};
+
+StationLink::StationLink(const std::string& station, int domain) : station_(station) {
+  if (const std::string why = why_bad_node_name(station); !why.empty())
+    throw std::runtime_error("station name '" + station + "': " + why);
+  dds_ = std::make_unique<Participant>(domain, "harbour station " + station);
+  dds_->status = dds_->writer(kStatusTopic, Delivery::kLatestKept, 1);
+  dds_->scene = dds_->writer(kSceneTopic, Delivery::kLatestKept, 1);
+  dds_->state = dds_->writer(kStateTopic, Delivery::kBestEffort, 1);
+  dds_->event = dds_->writer(kEventTopic, Delivery::kStream, kEventDepth);
+  dds_->ack = dds_->writer(kAckTopic, Delivery::kStream, kAckDepth);
+  // every station reads every command and keeps its own (a content filter would need the types' TypeObject)
+  dds_->command_in = dds_->reader(kCommandTopic, Delivery::kStream, kCommandDepth);
+}
+
+StationLink::~StationLink() {
+  StationStatus key;
+  key.station(station_);
+  std::lock_guard lock(dds_->write_mutex);
+  dds_->status->dispose(&key, dds_->status->lookup_instance(&key));
+  // reliable: let the consoles have it before the participant goes
+  dds_->status->wait_for_acknowledgments(eprosima::fastrtps::Duration_t(1, 0));
+}
+
+void StationLink::publish(StationStatus status) {
+  status.station(station_);
+  status.sequence_number(++status_sequence_);
+  dds_->write(dds_->status, status);
+}
+void StationLink::publish(StationScene scene) {
+  scene.station(station_);
+  dds_->write(dds_->scene, scene);
+}
+void StationLink::publish(StationState state) {
+  state.station(station_);
+  dds_->write(dds_->state, state);
+}
+void StationLink::publish(StationEvent event) {
+  event.station(station_);
+  event.sequence_number(++event_sequence_);
+  dds_->write(dds_->event, event);
+}
+
+std::vector<StationCommand> StationLink::take_commands() {
+  std::vector<StationCommand> commands;
+  dds_->take<StationCommand>(dds_->command_in, [&](const StationCommand& c, const dds::SampleInfo& info) {
+    if (info.valid_data && c.station().to_string() == station_) commands.push_back(c);
+  });
+  return commands;
+}
+
+void StationLink::acknowledge(const StationCommand& command, bool ok, const std::string& message) {
+  CommandAck ack;
+  ack.console(command.console());
+  ack.id(command.id());
+  ack.station(station_);
+  ack.ok(ok);
+  ack.message(message.substr(0, 255));
+  dds_->write(dds_->ack, ack);
+}
+
+ConsoleLink::ConsoleLink(const std::string& console, int domain) : console_(console) {
+  if (const std::string why = why_bad_node_name(console); !why.empty())
+    throw std::runtime_error("console name '" + console + "': " + why);
+  dds_ = std::make_unique<Participant>(domain, "harbour console " + console);
+  dds_->command = dds_->writer(kCommandTopic, Delivery::kStream, kCommandDepth);
+  dds_->status_in = dds_->reader(kStatusTopic, Delivery::kLatestKept, 1);
+  dds_->scene_in = dds_->reader(kSceneTopic, Delivery::kLatestKept, 1);
+  dds_->state_in = dds_->reader(kStateTopic, Delivery::kBestEffort, 1);
+  dds_->event_in = dds_->reader(kEventTopic, Delivery::kStream, kEventDepth);
+  dds_->ack_in = dds_->reader(kAckTopic, Delivery::kStream, kAckDepth);
+}
+
+ConsoleLink::~ConsoleLink() = default;
+
+std::vector<std::string> ConsoleLink::poll(Clock::time_point now) {
+  std::vector<std::string> changed;
+  const auto note = [&](const std::string& name) {
+    if (changed.empty() || changed.back() != name) changed.push_back(name);
+  };
+  dds_->take<StationStatus>(dds_->status_in, [&](const StationStatus& s, const dds::SampleInfo& info) {
+    const std::string name = s.station().to_string();
+    if (info.valid_data) {
+      Station& station = stations_[name];
+      station.status = s;
+      station.instance = info.instance_handle;
+      station.heard = now;
+      station.lost = station.gone = false;
+      note(name);
+    } else if (info.instance_state == dds::NOT_ALIVE_DISPOSED_INSTANCE_STATE) {
+      // an invalid sample carries only its instance (Fast DDS 2.9 does not give the key back from it)
+      for (auto& [n, station] : stations_)
+        if (station.instance == info.instance_handle && !station.gone) {
+          station.gone = true;
+          note(n);
+        }
+    }
+  });
+  dds_->take<StationScene>(dds_->scene_in, [&](const StationScene& s, const dds::SampleInfo& info) {
+    if (!info.valid_data) return;
+    stations_[s.station().to_string()].scene = s;
+    note(s.station().to_string());
+  });
+  dds_->take<StationState>(dds_->state_in, [&](const StationState& s, const dds::SampleInfo& info) {
+    if (!info.valid_data) return;
+    Station& station = stations_[s.station().to_string()];
+    station.state = s;
+    ++station.state_count;
+  });
+  dds_->take<StationEvent>(dds_->event_in, [&](const StationEvent& e, const dds::SampleInfo& info) {
+    if (info.valid_data) events_.push_back(e);
+  });
+  dds_->take<CommandAck>(dds_->ack_in, [&](const CommandAck& a, const dds::SampleInfo& info) {
+    if (info.valid_data && a.console().to_string() == console_) acks_[a.id()] = a;
+  });
+  for (auto& [name, station] : stations_) {
+    const bool lost =
+        !station.gone && std::chrono::duration<double>(now - station.heard).count() > kLostAfter_s;
+    if (lost != station.lost) {
+      station.lost = lost;
+      note(name);
+    }
+  }
+  return changed;
+}
+
+std::vector<StationEvent> ConsoleLink::take_events() {
+  std::vector<StationEvent> events;
+  events.swap(events_);
+  return events;
+}
+
+std::uint64_t ConsoleLink::send(StationCommand command) {
+  command.console(console_);
+  command.id(next_id_++);
+  dds_->write(dds_->command, command);
+  return command.id();
+}
+
+std::optional<CommandAck> ConsoleLink::take_ack(std::uint64_t id) {
+  const auto found = acks_.find(id);
+  if (found == acks_.end()) return std::nullopt;
+  CommandAck ack = found->second;
+  acks_.erase(found);
+  return ack;
+}
+
+}  // namespace harbour::net

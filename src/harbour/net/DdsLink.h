@@ -1,0 +1,104 @@
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <fastdds/rtps/common/InstanceHandle.h>
+
+#include "harbour_console.h"  // generated from idl/harbour_console.idl by fastddsgen
+
+namespace harbour::net {
+
+/// The DDS topics of `idl/harbour_console.idl`.
+inline constexpr const char* kStatusTopic = "harbour/station_status";
+inline constexpr const char* kSceneTopic = "harbour/station_scene";
+inline constexpr const char* kStateTopic = "harbour/station_state";
+inline constexpr const char* kEventTopic = "harbour/station_event";
+inline constexpr const char* kCommandTopic = "harbour/station_command";
+inline constexpr const char* kAckTopic = "harbour/command_ack";
+
+/// How often a station says it is there, and how long a console waits before it shows it as lost.
+inline constexpr double kStatusPeriod_s = 0.5;
+inline constexpr double kLostAfter_s = 3.0;
+
+/// Why `name` cannot name a station or a console on the network ("" when it can): 1 to 64 characters of
+/// letters, digits, '-', '_' and '.'.
+std::string why_bad_node_name(const std::string& name);
+
+struct Participant;
+
+/// A station's side of the centre's network: it publishes its status, scene, state and events and takes
+/// the commands addressed to it, answering each. Thread-safe.
+class StationLink {
+ public:
+  /// Joins DDS domain `domain` (0-232) as station `station`; throws std::runtime_error saying what failed.
+  StationLink(const std::string& station, int domain);
+  /// Disposes the station's status: consoles show it as gone at once (a killed process is seen as lost).
+  ~StationLink();
+  StationLink(const StationLink&) = delete;
+  StationLink& operator=(const StationLink&) = delete;
+
+  const std::string& name() const { return station_; }
+  /// Each fills in the station's name (and an event its sequence number) before it is written.
+  void publish(StationStatus status);
+  void publish(StationScene scene);
+  void publish(StationState state);
+  void publish(StationEvent event);
+  /// The commands for this station that arrived since the last call, in order.
+  std::vector<StationCommand> take_commands();
+  void acknowledge(const StationCommand& command, bool ok, const std::string& message);
+
+ private:
+  std::string station_;
+  std::unique_ptr<Participant> dds_;
+  std::uint64_t status_sequence_ = 0, event_sequence_ = 0;
+};
+
+/// A console's side: every station on the domain, its newest status, scene and state, the events, and
+/// commands sent with their acknowledgements. Not thread-safe: one thread polls and sends.
+class ConsoleLink {
+ public:
+  using Clock = std::chrono::steady_clock;
+  struct Station {
+    StationStatus status;
+    Clock::time_point heard;  ///< when its last status arrived
+    bool lost = false;        ///< no status for kLostAfter_s (its process gone or its network)
+    bool gone = false;        ///< it left the network in order
+    std::optional<StationScene> scene;
+    std::optional<StationState> state;
+    std::uint64_t state_count = 0;                        ///< states received (the console's rate figures)
+    eprosima::fastrtps::rtps::InstanceHandle_t instance;  ///< its status instance (to see it disposed)
+  };
+
+  ConsoleLink(const std::string& console, int domain);
+  ~ConsoleLink();
+  ConsoleLink(const ConsoleLink&) = delete;
+  ConsoleLink& operator=(const ConsoleLink&) = delete;
+
+  const std::string& name() const { return console_; }
+  /// Takes everything that arrived; marks stations lost. Returns the stations whose status, scene or
+  /// lost flag changed.
+  std::vector<std::string> poll(Clock::time_point now = Clock::now());
+  const std::map<std::string, Station>& stations() const { return stations_; }
+  /// Events since the last call, in arrival order.
+  std::vector<StationEvent> take_events();
+  /// Sends a command (its console and id filled in here) and returns its id.
+  std::uint64_t send(StationCommand command);
+  /// The acknowledgement of command `id`, once it has arrived (taken out).
+  std::optional<CommandAck> take_ack(std::uint64_t id);
+
+ private:
+  std::string console_;
+  std::unique_ptr<Participant> dds_;
+  std::map<std::string, Station> stations_;
+  std::vector<StationEvent> events_;
+  std::map<std::uint64_t, CommandAck> acks_;
+  std::uint64_t next_id_ = 1;
+};
+
+}  // namespace harbour::net

@@ -1,0 +1,318 @@
+// The instructor console in the browser: log in, watch every station, command one, plot its telemetry,
+// follow its events, manage trainees and open results. Talks to `harboursim console` only (same origin).
+import uPlot from "uplot";
+import { View3D, type Looks, type SceneMessage, type ViewState } from "./view3d";
+
+interface Me { name: string; role: string; trainee: string; csrf: string; }
+interface Station {
+  station: string; state: string; machine: string; exercise: string; trainee: string; attempt: number;
+  time_s: number; time_limit_s: number; real_time_factor: number; late_ticks: number; skipped_ticks: number;
+  keeping_real_time: boolean; devices_missing: number; physics_warnings: number; diverged: boolean;
+  score: number; moves_done: number; moves_total: number; collisions: number; message: string;
+}
+interface StateMessage extends ViewState {
+  type: "state"; station: string; time_s: number; held: boolean; wind_mps: number[];
+  indicators: Record<string, number>;
+}
+interface EventMessage { type: "event"; station: string; time_s: number; kind: string; value: number; text: string; }
+
+const $ = <T extends HTMLElement>(id: string) => document.getElementById(id) as T;
+let me: Me | null = null;
+let selected = "";
+let socket: WebSocket | null = null;
+let plot: uPlot | null = null;
+let plotted: string[] = [];
+const series: number[][] = [];
+let view: View3D | null = null;
+const viewOn = () => $<HTMLInputElement>("view-on").checked;
+const subscribe = () => socket?.send(JSON.stringify({ type: "subscribe", station: selected, view: viewOn() }));
+
+async function api(path: string, method = "GET", body?: unknown): Promise<{ status: number; data: any }> {
+  const headers: Record<string, string> = {};
+  if (method !== "GET") {
+    headers["Content-Type"] = "application/json";
+    if (me) headers["X-CSRF-Token"] = me.csrf;
+  }
+  const r = await fetch(path, { method, headers, body: body === undefined ? undefined : JSON.stringify(body) });
+  let data: any = null;
+  try { data = await r.json(); } catch { data = null; }
+  return { status: r.status, data };
+}
+
+function text(cell: HTMLElement, value: string | number) { cell.textContent = String(value); }
+
+function health(s: Station): string {
+  const issues: string[] = [];
+  if (!s.keeping_real_time || s.skipped_ticks > 0) issues.push("not keeping real time");
+  else if (s.late_ticks > 0) issues.push(`${s.late_ticks} late steps`);
+  if (s.devices_missing > 0) issues.push("device lost");
+  if (s.physics_warnings > 0) issues.push(`${s.physics_warnings} physics warnings`);
+  if (s.diverged) issues.push("physics stopped");
+  return issues.length ? issues.join(", ") : (s.state === "running" ? `${s.real_time_factor.toFixed(2)}× real time` : "");
+}
+
+function showStations(stations: Station[]) {
+  const takeover = $<HTMLSelectElement>("takeover-station");
+  const chosen = takeover.value;
+  takeover.replaceChildren();
+  for (const s of stations.filter((s) => s.state === "idle")) takeover.add(new Option(s.station, s.station));
+  takeover.value = chosen;
+  // rows are kept and updated in place (a click on one is never lost to a redraw)
+  const body = $("stations").querySelector("tbody")!;
+  const seen = new Set<string>();
+  for (const s of stations) {
+    seen.add(s.station);
+    let row = body.querySelector<HTMLTableRowElement>(`tr[data-station="${CSS.escape(s.station)}"]`);
+    if (!row) {
+      row = document.createElement("tr");
+      row.dataset.station = s.station;
+      for (let n = 0; n < 10; ++n) row.appendChild(document.createElement("td"));
+      row.addEventListener("click", () => select(s.station));
+      body.appendChild(row);
+    }
+    row.classList.toggle("selected", s.station === selected);
+    const values = [s.station, s.state, s.machine, s.exercise, s.trainee,
+      s.state === "idle" ? "" : `${s.time_s.toFixed(1)} / ${s.time_limit_s.toFixed(0)} s`,
+      s.state === "idle" ? "" : s.score.toFixed(0), s.moves_total ? `${s.moves_done}/${s.moves_total}` : "",
+      s.collisions, health(s) || s.message];
+    values.forEach((v, n) => { if (row!.children[n].textContent !== String(v)) text(row!.children[n] as HTMLElement, v); });
+    (row.children[1] as HTMLElement).className = `state-${s.state}`;
+  }
+  for (const row of [...body.querySelectorAll<HTMLTableRowElement>("tr")])
+    if (!seen.has(row.dataset.station!)) row.remove();
+}
+
+interface ReplayInfo { replay: number; station: string; attempt: number; exercise: string; trainee: string;
+  duration_s: number; events: { at_s: number; kind: string; value: number }[]; }
+let replay: ReplayInfo | null = null;
+
+function select(station: string) {
+  selected = station;
+  text($("selected"), station);
+  const replaying = station.startsWith("replay-");
+  $("control-panel").hidden = replaying;
+  $("replay-panel").hidden = !replaying;
+  $("watch").hidden = false;
+  for (const row of $("stations").querySelectorAll("tbody tr"))
+    row.classList.toggle("selected", (row as HTMLElement).dataset.station === station);
+  plotted = [];
+  series.length = 0;
+  plot?.destroy();
+  plot = null;
+  $("events").replaceChildren();
+  text($("live"), "");
+  subscribe();
+}
+
+function showState(m: StateMessage) {
+  if (m.station !== selected) return;
+  const wind = Math.hypot(m.wind_mps[0], m.wind_mps[1]);
+  const live = $("live");
+  live.dataset.wind = wind.toFixed(2);
+  text(live, `t ${m.time_s.toFixed(1)} s${m.held ? " (held)" : ""}   wind ${wind.toFixed(1)} m/s   ` +
+    Object.entries(m.indicators).slice(0, 8).map(([k, v]) => `${k} ${v.toFixed(2)}`).join("   "));
+  // the machine's continuous figures (lamps, buttons and flippers are on/off)
+  const names = Object.keys(m.indicators).filter((n) => !/^(lamp_|flipper|horn|button|size)/.test(n)).slice(0, 5);
+  if (!plot || names.join() !== plotted.join()) {
+    plotted = names;
+    series.length = 0;
+    series.push([], []);
+    for (let n = 0; n < names.length; ++n) series.push([]);
+    plot?.destroy();
+    plot = new uPlot({
+      width: Math.min(1100, window.innerWidth - 80), height: 260, title: `${selected}: telemetry`,
+      series: [{ label: "time [s]" }, { label: "wind [m/s]", stroke: "#457b9d" },
+        ...names.map((n, k) => ({ label: n, stroke: ["#e63946", "#2a9d8f", "#f4a261", "#6a4c93", "#264653"][k] }))],
+      axes: [{}, {}], scales: { x: { time: false } },
+    }, series as uPlot.AlignedData, $("plot"));
+  }
+  if (replay && m.station === replay.station) {
+    const scrub = $<HTMLInputElement>("replay-scrub");
+    if (document.activeElement !== scrub) scrub.value = String(m.time_s);
+    text($("replay-time"), `${m.time_s.toFixed(1)} / ${replay.duration_s.toFixed(1)} s`);
+    const last = series[0].length ? series[0][series[0].length - 1] : m.time_s;
+    if (m.time_s < last || m.time_s - last > 1) for (const s of series) s.length = 0;  // a seek
+  }
+  series[0].push(m.time_s);
+  series[1].push(wind);
+  names.forEach((n, k) => series[2 + k].push(m.indicators[n]));
+  if (series[0].length > 600) for (const s of series) s.shift();
+  plot.setData(series as uPlot.AlignedData);
+}
+
+function showEvent(e: EventMessage) {
+  if (selected && e.station !== selected) return;
+  const li = document.createElement("li");
+  text(li, `${e.time_s.toFixed(1)} s  ${e.station}  ${e.kind}${e.value ? " " + e.value.toFixed(2) : ""}${e.text ? "  " + e.text : ""}`);
+  li.className = `event-${e.kind}`;
+  $("events").prepend(li);
+  if (e.kind === "attempt_end") loadRecords();
+}
+
+function connect() {
+  socket = new WebSocket(`${location.protocol === "https:" ? "wss" : "ws"}://${location.host}/api/live`);
+  socket.onmessage = (message) => {
+    const m = JSON.parse(message.data);
+    if (m.type === "stations") showStations(m.stations);
+    else if (m.type === "state") { showState(m); if (m.station === selected && viewOn()) view?.update(m); }
+    else if (m.type === "scene") { if (m.station === selected) view?.setScene(m as SceneMessage); }
+    else if (m.type === "event") showEvent(m);
+  };
+  socket.onopen = () => { if (selected) subscribe(); };
+  socket.onclose = () => { if (me) setTimeout(connect, 1000); };
+}
+
+async function command(kind: string) {
+  const body: Record<string, unknown> = { kind };
+  if (kind === "start") {
+    body.exercise = $<HTMLSelectElement>("exercise").value;
+    body.trainee = $<HTMLSelectElement>("trainee").value;
+    body.autopilot = $<HTMLInputElement>("autopilot").checked;
+  }
+  const result = $("command-result");
+  text(result, `${kind}…`);
+  const r = await api(`/api/stations/${encodeURIComponent(selected)}/command`, "POST", body);
+  result.className = r.status === 200 ? "" : "refused";
+  text(result, r.status === 200 ? `${kind}: ${r.data.message}` : `${kind} refused (${r.status}): ${r.data?.error ?? r.data?.message}`);
+}
+
+async function replayAction(body: Record<string, unknown>) {
+  if (!replay) return;
+  const r = await api(`/api/replays/${replay.replay}`, "POST", body);
+  if (r.status !== 200) text($("replay-time"), `${body.action}: ${r.data?.error ?? r.status}`);
+}
+
+async function openReplay(attempt: number) {
+  const r = await api("/api/replays", "POST", { attempt });
+  if (r.status !== 201) { text($("replay-result"), r.data?.error ?? `error ${r.status}`); return; }
+  replay = r.data as ReplayInfo;
+  text($("replay-title"), `attempt ${replay.attempt}: ${replay.exercise}, ${replay.trainee}`);
+  const scrub = $<HTMLInputElement>("replay-scrub");
+  scrub.max = String(replay.duration_s);
+  scrub.value = "0";
+  const list = $("replay-events");
+  list.replaceChildren();
+  for (const e of replay.events) {
+    const li = document.createElement("li");
+    text(li, `${e.at_s.toFixed(1)} s  ${e.kind}${e.value ? " " + e.value.toFixed(2) : ""}`);
+    li.addEventListener("click", () => replayAction({ action: "seek", at_s: Math.max(0, e.at_s - 3) }));
+    list.appendChild(li);
+  }
+  if (!socket) connect();
+  select(replay.station);
+  await replayAction({ action: "seek", at_s: 0 });
+}
+
+async function loadRecords() {
+  const attempts = await api("/api/attempts");
+  const body = $("attempts").querySelector("tbody")!;
+  body.replaceChildren();
+  for (const a of attempts.data ?? []) {
+    const row = document.createElement("tr");
+    for (const v of [a.id, a.trainee, a.exercise, a.status, a.score === null ? "" : a.score.toFixed(1), a.passed ? "yes" : "no", a.moves]) {
+      const td = document.createElement("td"); text(td, v); row.appendChild(td);
+    }
+    row.addEventListener("click", async () => {
+      const detail = await api(`/api/attempts/${a.id}`);
+      text($("attempt-detail"), JSON.stringify(detail.data, null, 1));
+      $("attempt-actions").hidden = me?.role === "trainee";
+      $("open-replay").dataset.attempt = String(a.id);
+    });
+    body.appendChild(row);
+  }
+  if (!me || me.role === "trainee") return;
+  const trainees = await api("/api/trainees");
+  for (const id of ["trainee", "takeover-trainee", "rename-trainee"]) {
+    const select = $<HTMLSelectElement>(id);
+    select.replaceChildren();
+    for (const t of trainees.data ?? []) select.add(new Option(`${t.id} (${t.name})`, t.id));
+  }
+  const exercises = await api("/api/exercises");
+  const exercise = $<HTMLSelectElement>("exercise");
+  exercise.replaceChildren();
+  for (const e of exercises.data ?? []) exercise.add(new Option(e, e));
+}
+
+async function enter(who: Me) {
+  me = who;
+  $("login-view").hidden = true;
+  $("main-view").hidden = false;
+  $("logout").hidden = false;
+  text($("who"), `${who.name} (${who.role})`);
+  for (const e of document.querySelectorAll<HTMLElement>(".instructor-only"))
+    e.hidden = who.role === "trainee" || e.id === "control-panel" || e.id === "attempt-actions";
+  await loadRecords();
+  if (who.role === "trainee") return;
+  const looks = await api("/api/looks");
+  if (looks.status === 200)
+    view = new View3D($("view3d"), $("plan"), $("plan-labels"), looks.data as Looks);
+  (window as unknown as { harbourView: View3D | null }).harbourView = view;  // for the browser tests
+  connect();
+}
+
+function wire() {
+  $("login-form").addEventListener("submit", async (e) => {
+    e.preventDefault();
+    const r = await api("/api/login", "POST", { name: $<HTMLInputElement>("login-name").value,
+      password: $<HTMLInputElement>("login-password").value });
+    if (r.status === 200) enter(r.data);
+    else text($("login-error"), r.data?.error ?? `error ${r.status}`);
+  });
+  $("logout").addEventListener("click", async () => {
+    await api("/api/logout", "POST", {});
+    me = null;
+    socket?.close();
+    location.reload();
+  });
+  for (const b of document.querySelectorAll<HTMLButtonElement>("button[data-kind]"))
+    b.addEventListener("click", () => command(b.dataset.kind!));
+  const value = (id: string) => $<HTMLInputElement>(id).value;
+  $("set-wind").addEventListener("click", () => command(`wind:${value("wind-speed")}:${value("wind-from")}:0.15`));
+  $("set-visibility").addEventListener("click", () => command(`visibility:${value("visibility")}`));
+  $("set-rain").addEventListener("click", () => command(`rain:${value("rain")}`));
+  $("set-time").addEventListener("click", () => command(`time-of-day:${value("time-of-day")}`));
+  $("view-on").addEventListener("change", () => { $("views").hidden = !viewOn(); if (selected) subscribe(); });
+  $("open-replay").addEventListener("click", () => openReplay(Number($("open-replay").dataset.attempt)));
+  const speed = () => Number($<HTMLSelectElement>("replay-speed").value);
+  $("replay-play").addEventListener("click", () => replayAction({ action: "play", speed: speed() }));
+  $("replay-pause").addEventListener("click", () => replayAction({ action: "pause" }));
+  $("replay-speed").addEventListener("change", () => replayAction({ action: "play", speed: speed() }));
+  $("replay-scrub").addEventListener("change", () =>
+    replayAction({ action: "seek", at_s: Number($<HTMLInputElement>("replay-scrub").value) }));
+  $("take-over").addEventListener("click", async () => {
+    if (!replay) return;
+    const station = $<HTMLSelectElement>("takeover-station").value;
+    text($("takeover-result"), "taking over…");
+    const r = await api(`/api/replays/${replay.replay}`, "POST", { action: "take-over", station,
+      trainee: $<HTMLSelectElement>("takeover-trainee").value, autopilot: $<HTMLInputElement>("takeover-autopilot").checked });
+    text($("takeover-result"), r.status === 200 ? `${station}: ${r.data.message}` : `refused (${r.status}): ${r.data?.error ?? r.data?.message}`);
+    if (r.status === 200) select(station);
+  });
+  $("replay-close").addEventListener("click", async () => {
+    await replayAction({ action: "close" });
+    replay = null;
+    $("replay-panel").hidden = true;
+    $("watch").hidden = true;
+    selected = "";
+  });
+  $("rename-form").addEventListener("submit", async (e) => {
+    e.preventDefault();
+    const r = await api("/api/trainees", "PATCH", { id: $<HTMLSelectElement>("rename-trainee").value, name: value("rename-name") });
+    text($("rename-result"), r.status === 200 ? `${r.data.id} is now ${r.data.name}` : r.data?.error ?? `error ${r.status}`);
+    if (r.status === 200) loadRecords();
+  });
+  $("trainee-form").addEventListener("submit", async (e) => {
+    e.preventDefault();
+    const r = await api("/api/trainees", "POST", { id: value("new-trainee-id"), name: value("new-trainee-name") });
+    text($("trainee-result"), r.status === 201 ? `added ${r.data.id}` : r.data?.error ?? `error ${r.status}`);
+    if (r.status === 201) loadRecords();
+  });
+}
+
+async function main() {
+  wire();
+  const r = await api("/api/me");
+  if (r.status === 200) enter(r.data);
+  else $("login-view").hidden = false;
+}
+main();

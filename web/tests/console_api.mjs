@@ -1,0 +1,168 @@
+// The console's API on its error paths, two consoles commanding one station, and a station process killed
+// mid-exercise (lost, its attempt stored). Usage: node console_api.mjs HARBOURSIM DOMAIN
+import { Harness, sleep, webSocket, frame } from "./harness.mjs";
+import { randomBytes } from "node:crypto";
+import { mkdtempSync } from "node:fs";
+import { tmpdir } from "node:os";
+import net from "node:net";
+import path from "node:path";
+
+const [app, domain] = process.argv.slice(2);
+const dir = mkdtempSync(path.join(tmpdir(), "harbour-api-"));
+const db = `sqlite3://db=${dir}/records.db`;
+const h = new Harness(app);
+const check = h.check.bind(h), run = h.run.bind(h), start = h.start.bind(h), until = h.until.bind(h);
+const consoleAt = (name) => h.console(db, domain, name);
+async function login(base, name, password) {
+  const r = await fetch(base + "api/login", { method: "POST", headers: { "Content-Type": "application/json" }, body: JSON.stringify({ name, password }) });
+  const cookie = (r.headers.get("set-cookie") ?? "").split(";")[0];
+  const body = await r.json();
+  return { status: r.status, cookie, csrf: body.csrf };
+}
+function client(base, who) {
+  return async (p, method = "GET", body, headers = {}) => {
+    const h = { Cookie: who.cookie, ...headers };
+    if (method !== "GET") { h["Content-Type"] ??= "application/json"; h["X-CSRF-Token"] ??= who.csrf; }
+    const r = await fetch(base + p, { method, headers: h, body: typeof body === "string" ? body : body && JSON.stringify(body) });
+    let data = null;
+    try { data = await r.json(); } catch { /* not JSON */ }
+    return { status: r.status, data };
+  };
+}
+function raw(port, text) {
+  return new Promise((resolve) => {
+    const s = net.connect(Number(port), "127.0.0.1", () => s.end(text));
+    let got = "";
+    s.on("data", (d) => { got += d; });
+    s.on("close", () => resolve(got));
+    s.on("error", () => resolve(got));
+  });
+}
+
+try {
+  run(["trainees", "add", "carl", "Carl Nyberg", "--db", db]);
+  run(["accounts", "add", "ines", "--role", "instructor", "--db", db], "ines-password\n");
+  const [baseA, portA] = await consoleAt("console-a");
+  const [baseB] = await consoleAt("console-b");
+  const station = start(["station", "--serve", "--name", "api-1", "--domain", domain, "--db", db, "--window", "off"]);
+
+  // logins: wrong ones are counted, and the sixth in a minute is refused before the password is checked
+  for (let n = 0; n < 5; ++n) check((await login(baseA, "ines", "nope")).status === 401, `wrong password ${n + 1}: 401`);
+  check((await login(baseA, "ines", "ines-password")).status === 429, "then even the right one waits: 429");
+  const whoB = await login(baseB, "ines", "ines-password");
+  check(whoB.status === 200, "console B lets ines in (its own counter)");
+  const b = client(baseB, whoB);
+
+  // bad requests change nothing and say why
+  const cases = [
+    ["not JSON", "api/trainees", "POST", "{ nope", 400],
+    ["deeply nested", "api/trainees", "POST", "[".repeat(100) + "]".repeat(100), 400],
+    ["a JSON array", "api/trainees", "POST", "[1,2]", 400],
+    ["a field of the wrong type", "api/trainees", "POST", { id: 7, name: "x" }, 400],
+    ["a field missing", "api/trainees", "POST", { id: "dora" }, 400],
+    ["control characters", "api/trainees", "POST", { id: "a\u0001b", name: "x" }, 400],
+    ["an unknown station", "api/stations/nowhere/command", "POST", { kind: "hold" }, 404],
+    ["a command without kind", "api/stations/api-1/command", "POST", {}, 400],
+    ["start for an unknown trainee", "api/stations/api-1/command", "POST", { kind: "start", exercise: "sts_discharge", trainee: "zed" }, 400],
+    ["an unknown API", "api/nothing", "GET", undefined, 404],
+    ["an attempt id that is no number", "api/attempts/x1", "GET", undefined, 400],
+    ["a missing attempt", "api/attempts/999", "GET", undefined, 404],
+    ["renaming an unknown trainee", "api/trainees", "PATCH", { id: "zed", name: "Zed" }, 404],
+    ["renaming to control characters", "api/trainees", "PATCH", { id: "carl", name: "C\u001b[31marl" }, 400],
+    ["renaming without a name", "api/trainees", "PATCH", { id: "carl" }, 400],
+  ];
+  await until("the station is seen", async () => (await b("api/stations")).data?.some((s) => s.station === "api-1"));
+  for (const [what, p, method, body, want] of cases) {
+    const r = await b(p, method, body);
+    check(r.status === want && typeof r.data?.error === "string", `${what}: ${r.status} (${r.data?.error})`);
+  }
+  check((await b("api/trainees", "POST", { id: "x", name: "y" }, { "X-CSRF-Token": "forged" })).status === 403, "a forged CSRF token: 403");
+  check((await b("api/trainees", "POST", "id=x", { "Content-Type": "application/x-www-form-urlencoded" })).status === 415, "a form post: 415");
+  check((await fetch(baseB + "api/stations")).status === 401, "no session: 401");
+  check((await fetch(baseB + "api/looks")).status === 401, "no session, no looks: 401");
+  const big = await b("api/trainees", "POST", JSON.stringify({ id: "x", name: "y".repeat(70000) }));
+  check(big.status === 413, `a 70 kB body: ${big.status}`);
+  const garbage = await raw(portA, "GARBAGE\r\n\r\n");
+  check(/^HTTP\/1\.1 400/.test(garbage), `a request line that is no HTTP: ${garbage.split("\r\n")[0]}`);
+  const truncated = await raw(portA, "POST /api/login HTTP/1.1\r\nContent-Length: 50\r\nContent-Type: application/json\r\n\r\n{\"na");
+  check(truncated === "" || /^HTTP\/1\.1 4/.test(truncated), `a truncated body: ${truncated.split("\r\n")[0] || "closed"}`);
+  check((await b("api/trainees")).data.length === 1, "none of them added a trainee");
+  check((await b("api/trainees")).data[0].name === "Carl Nyberg", "nor renamed one");
+  const renamed = await b("api/trainees", "PATCH", { id: "carl", name: "Carl Nyberg Berg" });
+  check(renamed.status === 200 && (await b("api/trainees")).data[0].name === "Carl Nyberg Berg",
+    `an instructor renames a trainee: ${renamed.status}`);
+  check((await b("api/audit")).data.some((a) => a.action === "rename_trainee" && a.target === "carl"), "the rename is audited");
+
+  // the live socket: refused without a login; random, truncated and oversized messages answered or the
+  // socket closed, the console unharmed
+  check((await webSocket(portA, "hs_session=forged")).status === 401, "a live socket without a login: 401");
+  const portB = baseB.match(/:(\d+)\//)[1];
+  const live = await webSocket(portB, whoB.cookie);
+  check(live.status === 101, `a live socket: ${live.status}`);
+  await until("it gets the stations at once", () => live.messages.some((m) => m.type === "stations"));
+  live.socket.write(frame("{ nope"));
+  live.socket.write(frame(JSON.stringify({ type: "subscribe", station: 5 })));
+  live.socket.write(frame(JSON.stringify({ type: "dance" })));
+  live.socket.write(frame(JSON.stringify({ type: "subscribe", station: "api-1", view: "yes" })));
+  live.socket.write(frame(JSON.stringify({ type: "subscribe", station: "api-1", view: true })));
+  await until("each bad message gets an error, the good one its answer", () =>
+    live.messages.filter((m) => m.type === "error").length === 4 &&
+    live.messages.some((m) => m.type === "subscribed" && m.view === true));
+  const looks = await b("api/looks");
+  check(looks.status === 200 && looks.data.visuals["sts.gantry"]?.parts.length > 5 && looks.data.scenery.length > 0,
+    "the 3D view's looks are served (the image generator's data/visuals/harbour.yaml)");
+  let fuzzed = 0;
+  for (let n = 0; n < 200; ++n) {
+    const ws = await webSocket(portB, whoB.cookie);
+    const bytes = randomBytes(1 + Math.floor(Math.random() * 300));
+    const kind = n % 4;
+    if (kind === 0) ws.socket.write(frame(bytes));                                 // random text frame
+    else if (kind === 1) ws.socket.write(frame(bytes).subarray(0, 3 + (n % 7)));  // truncated frame
+    else if (kind === 2) ws.socket.write(bytes);                                  // not a frame at all
+    else ws.socket.write(frame(JSON.stringify({ type: "subscribe", station: bytes.toString("latin1") }).slice(0, 40 + (n % 30))));
+    ws.socket.end();
+    fuzzed++;
+  }
+  const huge = await webSocket(portB, whoB.cookie);
+  huge.socket.write(frame("x".repeat(5000)));
+  await until("a message over 4 KiB closes its socket", () => huge.closed || huge.closeCode !== undefined);
+  check((await b("api/stations")).status === 200, `the console answers after ${fuzzed} fuzzed sockets`);
+  const after = await webSocket(portB, whoB.cookie);
+  await until("a new live socket still gets the stations", () => after.messages.some((m) => m.type === "stations"));
+  for (const ws of [live, after]) ws.socket.destroy();
+
+  // two consoles command one station: each gets its own answer
+  const whoA = await login(baseA, "ines", "ines-password");
+  check(whoA.status === 429, "console A still makes ines wait (its counter)");
+  const c2 = await consoleAt("console-c");
+  const whoC = await login(c2[0], "ines", "ines-password");
+  const c = client(c2[0], whoC);
+  await until("console C sees the station", async () => (await c("api/stations")).data?.some((s) => s.station === "api-1"));
+  const started = await b("api/stations/api-1/command", "POST", { kind: "start", exercise: "sts_discharge", trainee: "carl", autopilot: true });
+  check(started.status === 200, `console B starts the exercise: ${started.data?.message}`);
+  await until("it runs", async () => (await c("api/stations")).data?.find((s) => s.station === "api-1")?.state === "running");
+  const [holdB, holdC] = await Promise.all([b("api/stations/api-1/command", "POST", { kind: "hold" }),
+    c("api/stations/api-1/command", "POST", { kind: "wind:10:200:0.1" })]);
+  check(holdB.status === 200 && holdC.status === 200, `both consoles' commands done (${holdB.data?.message}; ${holdC.data?.message})`);
+  const again = await c("api/stations/api-1/command", "POST", { kind: "start", exercise: "sts_discharge", trainee: "carl" });
+  check(again.status === 409, `a second start while running: 409 (${again.data?.message})`);
+  await b("api/stations/api-1/command", "POST", { kind: "resume" });
+  await sleep(3000);
+
+  // the station's process killed mid-exercise: lost at the console, its attempt stored so far
+  station.kill("SIGKILL");
+  const t0 = Date.now();
+  await until("the killed station shows as lost", async () => (await b("api/stations")).data?.find((s) => s.station === "api-1")?.state === "lost", 10);
+  console.log(`     lost after ${((Date.now() - t0) / 1000).toFixed(1)} s`);
+  const stored = (await b("api/attempts")).data.find((x) => x.trainee === "carl");
+  check(stored !== undefined, `its attempt is in the records (status ${stored?.status})`);
+  const results = run(["results", "--db", db]);
+  check(/interrupted/.test(results), "a later look at the records marks it interrupted");
+  const audit = (await b("api/audit")).data;
+  check(audit.some((x) => x.action === "command start" && x.target === "api-1" && x.account === "ines"), "the start is audited with who");
+  check(audit.filter((x) => x.action === "login_failed").length >= 5, "failed logins are audited");
+} catch (e) {
+  check(false, `error: ${e.stack ?? e}`);
+} finally {
+  await h.finish();
+}

@@ -1,0 +1,172 @@
+// End to end in a real browser (Debian chromium driven by playwright-core): an instructor logs in, starts an
+// exercise on a station process, changes the wind and sees it in the telemetry, injects a hoist brake
+// fault and sees the event, holds and resumes; a trainee is refused instructor actions and sees only their
+// own results. Usage: node console_e2e.mjs HARBOURSIM OUT_DIR DOMAIN
+import { chromium } from "playwright-core";
+import { Harness, sleep } from "./harness.mjs";
+import { mkdtempSync, mkdirSync } from "node:fs";
+import { tmpdir } from "node:os";
+import path from "node:path";
+
+const [app, out, domain] = process.argv.slice(2);
+if (!app || !out || !domain) { console.error("usage: console_e2e.mjs HARBOURSIM OUT_DIR DOMAIN"); process.exit(2); }
+mkdirSync(out, { recursive: true });
+const dir = mkdtempSync(path.join(tmpdir(), "harbour-e2e-"));
+const db = `sqlite3://db=${dir}/records.db`;
+const h = new Harness(app);
+const check = h.check.bind(h), run = h.run.bind(h), start = h.start.bind(h), until = h.until.bind(h);
+
+let browser;
+try {
+  run(["trainees", "add", "anna", "Anna Berg", "--db", db]);
+  run(["trainees", "add", "ben", "Ben Olsen", "--db", db]);
+  run(["accounts", "add", "ines", "--role", "instructor", "--db", db], "ines-password\n");
+  run(["accounts", "add", "anna", "--role", "trainee", "--trainee", "anna", "--db", db], "anna-password\n");
+  const [url] = await h.console(db, domain);
+  start(["station", "--serve", "--name", "e2e-1", "--domain", domain, "--db", db, "--window", "off"]);
+
+  browser = await chromium.launch({ executablePath: "/usr/bin/chromium", args: ["--headless", "--no-sandbox",
+    "--disable-gpu", "--enable-unsafe-swiftshader", "--disable-quic", "--no-first-run", "--disable-background-networking",
+    "--disable-component-update", "--disable-sync"] });
+  const page = await browser.newPage({ viewport: { width: 1280, height: 1000 } });
+  await page.goto(url);
+  await page.fill("#login-name", "ines");
+  await page.fill("#login-password", "wrong-password");
+  await page.click("#login-form button");
+  await until("a wrong password is refused", async () => (await page.textContent("#login-error")).includes("wrong"));
+  await page.fill("#login-password", "ines-password");
+  await page.click("#login-form button");
+  await until("the station shows, idle", async () =>
+    (await page.locator("#stations tr[data-station=e2e-1] td:nth-child(2)").textContent().catch(() => "")) === "idle");
+  await page.click("#stations tr[data-station=e2e-1]");
+  await page.selectOption("#exercise", "sts_discharge");
+  await page.selectOption("#trainee", "ben");
+  await page.check("#autopilot");
+  await page.click("button[data-kind=start]");
+  await until("the exercise runs", async () =>
+    (await page.locator("#stations tr[data-station=e2e-1] td:nth-child(2)").textContent()) === "running", 40);
+  await until("telemetry arrives", async () => ((await page.getAttribute("#live", "data-wind")) ?? "") !== "");
+  // the 3D view and the plan draw the station's entities with their looks; a drag orbits the view
+  const view = (what) => page.evaluate((w) => window.harbourView?.[w]() ?? null, what);
+  await until("the 3D view draws the station's entities", async () => (await view("visibleEntities")) > 10);
+  const pixels = (id) => page.$eval(id, (canvas) => {
+    const copy = document.createElement("canvas");
+    copy.width = canvas.width; copy.height = canvas.height;
+    const c = copy.getContext("2d"); c.drawImage(canvas, 0, 0);
+    const data = c.getImageData(0, 0, copy.width, copy.height).data;
+    const colours = new Set();
+    let orange = 0;  // the STS's own paint (data/visuals/harbour.yaml, linear 0.80 0.25 0.10), lit
+    for (let k = 0; k < data.length; k += 4) {
+      colours.add((data[k] << 16) | (data[k + 1] << 8) | data[k + 2]);
+      if (data[k] > 120 && data[k] > 1.4 * data[k + 1] && data[k + 1] > 1.2 * data[k + 2]) ++orange;
+    }
+    return { colours: colours.size, orange: orange / (data.length / 4) };
+  });
+  const drawn = await pixels("#view3d"), plan = await pixels("#plan");
+  check(drawn.colours > 40 && drawn.orange > 0.005, `the 3D view shows the crane (${drawn.colours} colours, ${(100 * drawn.orange).toFixed(1)} % crane paint)`);
+  check(plan.colours > 10 && plan.orange > 0.005, `the plan shows the crane from above (${plan.colours} colours, ${(100 * plan.orange).toFixed(1)} % crane paint)`);
+  const eye = await view("cameraPosition");
+  const box = await page.locator("#view3d").boundingBox();
+  await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
+  await page.mouse.down();
+  await page.mouse.move(box.x + box.width / 2 + 200, box.y + box.height / 2 + 40, { steps: 10 });
+  await page.mouse.up();
+  const moved = Math.hypot(...(await view("cameraPosition")).map((v, k) => v - eye[k]));
+  check(moved > 10, `a drag orbits the 3D view (the eye moved ${moved.toFixed(1)} m)`);
+  await page.locator("#watch").screenshot({ path: path.join(out, "console_3d_view.png"), timeout: 60000 });
+  const calm = Number(await page.getAttribute("#live", "data-wind"));
+  await page.fill("#wind-speed", "18");
+  await page.click("#set-wind");
+  await until("the wind command is done", async () => (await page.textContent("#command-result")).includes("done"));
+  await until("the wind shows in the telemetry", async () => Number(await page.getAttribute("#live", "data-wind")) > 12);
+  check(calm < 12, `the wind before: ${calm} m/s`);
+  await page.click("button[data-kind=hoist-brake-fault]");
+  await until("the fault's event is logged", async () => (await page.textContent("#events")).includes("hoist-brake-fault by ines"));
+  await page.click("button[data-kind=emergency-stop]");
+  await until("the emergency stop is logged", async () => (await page.textContent("#events")).includes("emergency-stop by ines"));
+  await page.click("button[data-kind=release-emergency-stop]");
+  await until("its release is logged", async () => (await page.textContent("#events")).includes("release-emergency-stop by ines"));
+  await page.click("button[data-kind=hold]");
+  await until("the station is held", async () =>
+    (await page.locator("#stations tr[data-station=e2e-1] td:nth-child(2)").textContent()) === "held");
+  const heldAt = await page.textContent("#stations tr[data-station=e2e-1] td:nth-child(6)");
+  await sleep(1000);
+  check(heldAt === await page.textContent("#stations tr[data-station=e2e-1] td:nth-child(6)"), `held time stays at ${heldAt}`);
+  await page.click("button[data-kind=resume]");
+  await until("it runs again", async () =>
+    (await page.locator("#stations tr[data-station=e2e-1] td:nth-child(2)").textContent()) === "running");
+  const stationTime = async () => parseFloat(await page.textContent("#stations tr[data-station=e2e-1] td:nth-child(6)"));
+  await until("12 s of the exercise have run (a keyframe at 10 s)", async () => (await stationTime()) >= 12.5, 40);
+  await page.screenshot({ path: path.join(out, "console_instructor.png"), fullPage: true });
+  await page.click("button[data-kind=stop]");
+  let original;
+  await until("the stopped attempt is stored", async () => {
+    const r = await page.evaluate(async () => (await fetch("/api/attempts")).json());
+    original = r.find((a) => a.trainee === "ben" && a.status === "interrupted");
+    return original !== undefined;
+  });
+
+  // replay it: scrub to 11 s (from the keyframe), play at 8x, then take over there on the station
+  await page.click(`#attempts tbody tr:has(td:text-is("${original.id}"))`);
+  await page.click("#open-replay");
+  await until("the replay opens at 0 s", async () => (await page.textContent("#replay-time")).startsWith("0.0 /"));
+  await page.$eval("#replay-scrub", (e) => { e.value = "11"; e.dispatchEvent(new Event("change")); });
+  const replayTime = async () => parseFloat(await page.textContent("#replay-time"));
+  if (!(await until("the replay shows 11 s", async () => Math.abs((await replayTime()) - 11) < 0.05)))
+    console.log(`     the replay says: ${await page.textContent("#replay-time")}`);
+  await until("the 3D view draws the replay", async () =>
+    (await view("drawnStation")).startsWith("replay-") && (await view("visibleEntities")) > 10);
+  await page.selectOption("#replay-speed", "2");
+  await until("it plays on at 2x", async () => (await replayTime()) > 11.5);
+  await page.click("#replay-pause");
+  await page.waitForTimeout(300);
+  const takenAt = await replayTime();
+  await page.screenshot({ path: path.join(out, "console_replay.png"), fullPage: true });
+  await until("the stopped station is idle again", async () =>
+    (await page.locator("#stations tr[data-station=e2e-1] td:nth-child(2)").textContent()) === "idle");
+  await page.selectOption("#takeover-station", "e2e-1");
+  await page.selectOption("#takeover-trainee", "anna");
+  await page.check("#takeover-autopilot");
+  await page.click("#take-over");
+  await until("the take-over is accepted", async () => (await page.textContent("#takeover-result")).includes("taking over"));
+  await until("the station runs the branch", async () =>
+    (await page.locator("#stations tr[data-station=e2e-1] td:nth-child(2)").textContent()) === "running");
+  const branchStart = await stationTime();
+  check(branchStart >= takenAt - 0.01, `the branch starts at the replay's moment (${branchStart} s, taken at ${takenAt} s)`);
+  const branch = (await page.evaluate(async () => (await fetch("/api/attempts")).json())).find((a) => a.parent === original.id);
+  check(branch?.trainee === "anna", `the branch is a new attempt of anna's with attempt ${original.id} as its parent`);
+  await page.click("button[data-kind=stop]");
+
+  // a trainee: own results only, no instructor actions
+  const trainee = await browser.newPage();
+  await trainee.goto(url);
+  await trainee.fill("#login-name", "anna");
+  await trainee.fill("#login-password", "anna-password");
+  await trainee.click("#login-form button");
+  await until("the trainee is in", async () => (await trainee.textContent("#who")).includes("anna (trainee)"));
+  const refused = await trainee.evaluate(async () => {
+    const me = await (await fetch("/api/me")).json();
+    const post = (p, b) => fetch(p, { method: "POST", headers: { "Content-Type": "application/json", "X-CSRF-Token": me.csrf }, body: JSON.stringify(b) });
+    return {
+      stations: (await fetch("/api/stations")).status,
+      command: (await post("/api/stations/e2e-1/command", { kind: "hold" })).status,
+      trainee: (await post("/api/trainees", { id: "x", name: "X" })).status,
+      rename: (await fetch("/api/trainees", { method: "PATCH", headers: { "Content-Type": "application/json", "X-CSRF-Token": me.csrf }, body: JSON.stringify({ id: "anna", name: "Queen Anna" }) })).status,
+      others: (await fetch("/api/attempts?trainee=ben")).status,
+      own: await (await fetch("/api/attempts")).json(),
+    };
+  });
+  check(refused.stations === 403, `a trainee may not list stations (${refused.stations})`);
+  check(refused.command === 403, `a trainee may not command a station (${refused.command})`);
+  check(refused.trainee === 403, `a trainee may not add trainees (${refused.trainee})`);
+  check(refused.rename === 403, `a trainee may not rename trainees, not even themselves (${refused.rename})`);
+  check(refused.others === 403, `a trainee may not read another's results (${refused.others})`);
+  check(refused.own.every((a) => a.trainee === "anna"), `a trainee sees only their own attempts (${refused.own.length})`);
+  check(!(await trainee.isVisible("#stations-panel")), "a trainee's page has no station panel");
+  await trainee.screenshot({ path: path.join(out, "console_trainee.png"), fullPage: true });
+} catch (e) {
+  check(false, `error: ${e.stack ?? e}`);
+} finally {
+  await browser?.close();
+  await h.finish();
+}
