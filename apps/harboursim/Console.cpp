@@ -8,9 +8,14 @@
 
 #include <utility>  // before Boost.Asio 1.74, which uses std::exchange without it
 
+#include <openssl/err.h>
+#include <openssl/x509.h>
 #include <boost/asio.hpp>
+#include <boost/asio/ssl.hpp>
 #include <boost/beast.hpp>
+#include <boost/beast/ssl.hpp>
 #include <boost/beast/websocket.hpp>
+#include <boost/beast/websocket/ssl.hpp>
 #include <nlohmann/json.hpp>
 
 #include <chrono>
@@ -28,6 +33,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "StationNet.h"
@@ -320,11 +326,12 @@ struct Replay {
 
 // One WebSocket client: the stations' statuses on change, one station's state at up to 10 Hz (the one it
 // subscribed to), every event. Writes queue: one at a time on the socket.
+// Plain on loopback, TLS on the network: the stream type is LiveSocketOver's.
 class LiveSocket : public std::enable_shared_from_this<LiveSocket> {
  public:
-  LiveSocket(tcp::socket socket, Console& console, std::string token)
-      : ws_(std::move(socket)), console_(console), token_(std::move(token)) {}
-  void start(http::request<http::string_body> request);
+  LiveSocket(Console& console, std::string token) : console_(console), token_(std::move(token)) {}
+  virtual ~LiveSocket() = default;
+  virtual void start(http::request<http::string_body> request) = 0;
   void send(std::string text);
   const std::string& subscribed() const { return station_; }
   /// It draws the 3D view: send it the scene and the entities' poses and ropes with each state.
@@ -334,34 +341,66 @@ class LiveSocket : public std::enable_shared_from_this<LiveSocket> {
   const std::string& token() const { return token_; }
   bool open() const { return open_; }
   /// Closes it (its login ended).
-  void close(const std::string& why);
+  virtual void close(const std::string& why) = 0;
 
- private:
-  void read();
+ protected:
   void on_message(const std::string& text);
-  void write_next();
+  virtual void write_next() = 0;
 
-  websocket::stream<beast::tcp_stream> ws_;
   Console& console_;
   std::string token_, station_, scene_sent_;
   bool view_ = false;
-  beast::flat_buffer buffer_;
   std::deque<std::string> queue_;
   bool writing_ = false, open_ = true;
+};
+
+using TlsStream = beast::ssl_stream<beast::tcp_stream>;
+template <class Stream>
+constexpr bool kTls = std::is_same_v<Stream, TlsStream>;
+
+template <class Stream>
+class LiveSocketOver final : public LiveSocket {
+ public:
+  LiveSocketOver(Stream stream, Console& console, std::string token)
+      : LiveSocket(console, std::move(token)), ws_(std::move(stream)) {}
+  void start(http::request<http::string_body> request) override;
+  void close(const std::string& why) override;
+
+ private:
+  void read();
+  void write_next() override;
+  std::shared_ptr<LiveSocketOver> self() {
+    return std::static_pointer_cast<LiveSocketOver>(shared_from_this());
+  }
+
+  websocket::stream<Stream> ws_;
+  beast::flat_buffer buffer_;
 };
 
 // One HTTP connection (keep-alive): requests in turn, or the upgrade to a LiveSocket.
 class HttpSession : public std::enable_shared_from_this<HttpSession> {
  public:
-  HttpSession(tcp::socket socket, Console& console) : stream_(std::move(socket)), console_(console) {}
-  void start() { read(); }
-  void reply(http::response<http::string_body> response);
+  virtual ~HttpSession() = default;
+  virtual void reply(http::response<http::string_body> response) = 0;
+};
+
+template <class Stream>
+class HttpConnection final : public HttpSession {
+ public:
+  HttpConnection(Stream stream, Console& console) : stream_(std::move(stream)), console_(console) {}
+  /// Reads the first request (after the TLS handshake on a TLS connection).
+  void start();
+  void reply(http::response<http::string_body> response) override;
 
  private:
   void read();
   void on_request();
+  void shut();
+  std::shared_ptr<HttpConnection> self() {
+    return std::static_pointer_cast<HttpConnection>(shared_from_this());
+  }
 
-  beast::tcp_stream stream_;
+  Stream stream_;
   Console& console_;
   beast::flat_buffer buffer_;
   std::optional<http::request_parser<http::string_body>> parser_;
@@ -404,6 +443,8 @@ class Console {
   Response api(const http::request<http::string_body>& request, const Account& account,
                const std::string& token, const std::string& target);
   bool login_blocked(const std::string& key, Clock::time_point now);
+  /// Over TLS the browser sends the session cookie only over TLS.
+  std::string secure_cookie() const { return options_.tls_certificate.empty() ? "" : "; Secure"; }
   void poll();
 
   ConsoleOptions options_;
@@ -444,41 +485,61 @@ class Console {
 // ---------------------------------------------------------------------------------------------------
 // HTTP
 
-void HttpSession::read() {
+template <class Stream>
+void HttpConnection<Stream>::start() {
+  if constexpr (kTls<Stream>) {
+    beast::get_lowest_layer(stream_).expires_after(std::chrono::seconds(30));
+    stream_.async_handshake(asio::ssl::stream_base::server, [self = self()](beast::error_code ec) {
+      if (ec) return self->shut();  // not TLS, or a certificate the browser refused: nothing to answer
+      self->read();
+    });
+  } else {
+    read();
+  }
+}
+
+template <class Stream>
+void HttpConnection<Stream>::shut() {
+  beast::error_code ignored;
+  beast::get_lowest_layer(stream_).socket().shutdown(tcp::socket::shutdown_both, ignored);
+}
+
+template <class Stream>
+void HttpConnection<Stream>::read() {
   parser_.emplace();
   parser_->body_limit(kMaxBodyBytes);
   parser_->header_limit(16 * 1024);
-  stream_.expires_after(std::chrono::seconds(60));
-  http::async_read(
-      stream_, buffer_, *parser_, [self = shared_from_this()](beast::error_code ec, std::size_t) {
-        if (ec == http::error::end_of_stream || ec == beast::error::timeout || ec == asio::error::eof) {
-          beast::error_code ignored;
-          self->stream_.socket().shutdown(tcp::socket::shutdown_both, ignored);
-          return;
-        }
-        if (ec) {
-          // a malformed or oversized request: a clear 4xx, then the connection closes
-          http::response<http::string_body> r{ec == http::error::body_limit || ec == http::error::header_limit
-                                                  ? http::status::payload_too_large
-                                                  : http::status::bad_request,
-                                              11};
-          r.set(http::field::content_type, "application/json");
-          r.body() = dump(json{{"error", "bad request: " + ec.message()}});
-          r.keep_alive(false);
-          r.prepare_payload();
-          self->keep_alive_ = false;
-          self->reply(std::move(r));
-          return;
-        }
-        self->on_request();
-      });
+  beast::get_lowest_layer(stream_).expires_after(std::chrono::seconds(60));
+  http::async_read(stream_, buffer_, *parser_, [self = self()](beast::error_code ec, std::size_t) {
+    if (ec == http::error::end_of_stream || ec == beast::error::timeout || ec == asio::error::eof ||
+        ec == asio::ssl::error::stream_truncated) {
+      self->shut();
+      return;
+    }
+    if (ec) {
+      // a malformed or oversized request: a clear 4xx, then the connection closes
+      http::response<http::string_body> r{ec == http::error::body_limit || ec == http::error::header_limit
+                                              ? http::status::payload_too_large
+                                              : http::status::bad_request,
+                                          11};
+      r.set(http::field::content_type, "application/json");
+      r.body() = dump(json{{"error", "bad request: " + ec.message()}});
+      r.keep_alive(false);
+      r.prepare_payload();
+      self->keep_alive_ = false;
+      self->reply(std::move(r));
+      return;
+    }
+    self->on_request();
+  });
 }
 
-void HttpSession::on_request() {
+template <class Stream>
+void HttpConnection<Stream>::on_request() {
   http::request<http::string_body> request = parser_->release();
   keep_alive_ = request.keep_alive();
   beast::error_code ec;
-  const tcp::endpoint peer = stream_.socket().remote_endpoint(ec);
+  const tcp::endpoint peer = beast::get_lowest_layer(stream_).socket().remote_endpoint(ec);
   const std::string address = ec ? "?" : peer.address().to_string();
   if (websocket::is_upgrade(request)) {
     const std::string token = console_.token_of(request);
@@ -492,21 +553,21 @@ void HttpSession::on_request() {
       reply(std::move(r));
       return;
     }
-    stream_.expires_never();
-    auto socket = std::make_shared<LiveSocket>(stream_.release_socket(), console_, token);
+    beast::get_lowest_layer(stream_).expires_never();
+    auto socket = std::make_shared<LiveSocketOver<Stream>>(std::move(stream_), console_, token);
     socket->start(std::move(request));
     return;
   }
   console_.handle(request, address, shared_from_this());
 }
 
-void HttpSession::reply(http::response<http::string_body> response) {
+template <class Stream>
+void HttpConnection<Stream>::reply(http::response<http::string_body> response) {
   auto shared = std::make_shared<http::response<http::string_body>>(std::move(response));
   shared->keep_alive(keep_alive_ && shared->keep_alive());
-  http::async_write(stream_, *shared, [self = shared_from_this(), shared](beast::error_code ec, std::size_t) {
+  http::async_write(stream_, *shared, [self = self(), shared](beast::error_code ec, std::size_t) {
     if (ec || !shared->keep_alive()) {
-      beast::error_code ignored;
-      self->stream_.socket().shutdown(tcp::socket::shutdown_both, ignored);
+      self->shut();
       return;
     }
     self->read();
@@ -516,10 +577,11 @@ void HttpSession::reply(http::response<http::string_body> response) {
 // ---------------------------------------------------------------------------------------------------
 // WebSocket
 
-void LiveSocket::start(http::request<http::string_body> request) {
+template <class Stream>
+void LiveSocketOver<Stream>::start(http::request<http::string_body> request) {
   ws_.read_message_max(kMaxSocketMessage);
   ws_.set_option(websocket::stream_base::timeout::suggested(beast::role_type::server));
-  ws_.async_accept(request, [self = shared_from_this()](beast::error_code ec) {
+  ws_.async_accept(request, [self = self()](beast::error_code ec) {
     if (ec) {
       self->open_ = false;
       return;
@@ -529,8 +591,9 @@ void LiveSocket::start(http::request<http::string_body> request) {
   });
 }
 
-void LiveSocket::read() {
-  ws_.async_read(buffer_, [self = shared_from_this()](beast::error_code ec, std::size_t) {
+template <class Stream>
+void LiveSocketOver<Stream>::read() {
+  ws_.async_read(buffer_, [self = self()](beast::error_code ec, std::size_t) {
     if (ec == websocket::error::message_too_big) {
       self->open_ = false;
       self->ws_.async_close({websocket::close_code::too_big, "message over 4 KiB"},
@@ -580,11 +643,11 @@ void LiveSocket::on_message(const std::string& text) {
   send(dump(json{{"type", "error"}, {"error", "unknown message type '" + core::printable(*type) + "'"}}));
 }
 
-void LiveSocket::close(const std::string& why) {
+template <class Stream>
+void LiveSocketOver<Stream>::close(const std::string& why) {
   if (!open_) return;
   open_ = false;
-  ws_.async_close({websocket::close_code::policy_error, why},
-                  [self = shared_from_this()](beast::error_code) {});
+  ws_.async_close({websocket::close_code::policy_error, why}, [self = self()](beast::error_code) {});
 }
 
 void LiveSocket::send(std::string text) {
@@ -594,23 +657,23 @@ void LiveSocket::send(std::string text) {
   if (!writing_) write_next();
 }
 
-void LiveSocket::write_next() {
+template <class Stream>
+void LiveSocketOver<Stream>::write_next() {
   if (queue_.empty() || !open_) {
     writing_ = false;
     return;
   }
   writing_ = true;
   ws_.text(true);
-  ws_.async_write(asio::buffer(queue_.front()),
-                  [self = shared_from_this()](beast::error_code ec, std::size_t) {
-                    self->queue_.pop_front();
-                    if (ec) {
-                      self->open_ = false;
-                      self->writing_ = false;
-                      return;
-                    }
-                    self->write_next();
-                  });
+  ws_.async_write(asio::buffer(queue_.front()), [self = self()](beast::error_code ec, std::size_t) {
+    self->queue_.pop_front();
+    if (ec) {
+      self->open_ = false;
+      self->writing_ = false;
+      return;
+    }
+    self->write_next();
+  });
 }
 
 // ---------------------------------------------------------------------------------------------------
@@ -710,7 +773,7 @@ Console::Response Console::login(const http::request<http::string_body>& request
       request, http::status::ok,
       {{"name", row->name}, {"role", row->role}, {"trainee", row->trainee}, {"csrf", session.csrf}});
   r.set(http::field::set_cookie,
-        "hs_session=" + token + "; Path=/; HttpOnly; SameSite=Strict; Max-Age=43200");
+        "hs_session=" + token + "; Path=/; HttpOnly; SameSite=Strict; Max-Age=43200" + secure_cookie());
   return r;
 }
 
@@ -775,7 +838,8 @@ Console::Response Console::api(const http::request<http::string_body>& request, 
     sessions_.erase(token);
     db_.audit(account.name, "logout", "", "");
     Response r = json_reply(request, http::status::ok, {{"ok", true}});
-    r.set(http::field::set_cookie, "hs_session=; Path=/; HttpOnly; SameSite=Strict; Max-Age=0");
+    r.set(http::field::set_cookie,
+          "hs_session=; Path=/; HttpOnly; SameSite=Strict; Max-Age=0" + secure_cookie());
     return r;
   }
   if (target == "/api/stations" && get) {
@@ -1233,11 +1297,41 @@ void Console::poll() {
   });
 }
 
-void accept(tcp::acceptor& acceptor, Console& console) {
-  acceptor.async_accept([&acceptor, &console](beast::error_code ec, tcp::socket socket) {
-    if (!ec) std::make_shared<HttpSession>(std::move(socket), console)->start();
-    accept(acceptor, console);
+void accept(tcp::acceptor& acceptor, Console& console, asio::ssl::context* tls) {
+  acceptor.async_accept([&acceptor, &console, tls](beast::error_code ec, tcp::socket socket) {
+    if (!ec && tls)
+      std::make_shared<HttpConnection<TlsStream>>(TlsStream(std::move(socket), *tls), console)->start();
+    else if (!ec)
+      std::make_shared<HttpConnection<beast::tcp_stream>>(beast::tcp_stream(std::move(socket)), console)
+          ->start();
+    accept(acceptor, console, tls);
   });
+}
+
+// The server's TLS context from PEM files (TLS 1.2 and later); an error names the file.
+std::unique_ptr<asio::ssl::context> tls_context(const ConsoleOptions& options) {
+  if (options.tls_certificate.empty() != options.tls_key.empty())
+    throw std::runtime_error("TLS needs both --tls-cert and --tls-key");
+  if (options.tls_certificate.empty()) return nullptr;
+  auto context = std::make_unique<asio::ssl::context>(asio::ssl::context::tls_server);
+  context->set_options(asio::ssl::context::default_workarounds | asio::ssl::context::no_sslv2 |
+                       asio::ssl::context::no_sslv3 | asio::ssl::context::no_tlsv1 |
+                       asio::ssl::context::no_tlsv1_1 | asio::ssl::context::single_dh_use);
+  boost::system::error_code ec;
+  context->use_certificate_chain_file(options.tls_certificate, ec);
+  if (ec)
+    throw std::runtime_error("--tls-cert " + options.tls_certificate +
+                             ": not a readable PEM certificate chain (" + ec.message() + ")");
+  context->use_private_key_file(options.tls_key, asio::ssl::context::pem, ec);
+  const bool mismatch =
+      ec && ERR_GET_REASON(static_cast<unsigned long>(ec.value())) == X509_R_KEY_VALUES_MISMATCH;
+  if (mismatch || (!ec && SSL_CTX_check_private_key(context->native_handle()) != 1))
+    throw std::runtime_error("--tls-key " + options.tls_key + ": not the key of --tls-cert " +
+                             options.tls_certificate);
+  if (ec)
+    throw std::runtime_error("--tls-key " + options.tls_key + ": not a readable PEM private key (" +
+                             ec.message() + ")");
+  return context;
 }
 
 }  // namespace
@@ -1251,11 +1345,11 @@ int run_console(const ConsoleOptions& given) {
   boost::system::error_code ec;
   const asio::ip::address address = asio::ip::make_address(options.bind, ec);
   if (ec) throw std::runtime_error("--bind " + options.bind + ": not an IP address");
-  if (!address.is_loopback())
-    throw std::runtime_error(
-        "--bind " + options.bind +
-        ": only this machine's loopback for now (TLS for a console on the centre's network "
-        "is not built yet)");
+  const std::unique_ptr<asio::ssl::context> tls = tls_context(options);
+  if (!address.is_loopback() && !tls)
+    throw std::runtime_error("--bind " + options.bind +
+                             ": a console on the centre's network serves TLS only: give its certificate "
+                             "and key with --tls-cert and --tls-key (PEM files)");
   if (!std::filesystem::is_regular_file(std::filesystem::path(options.web_root) / "index.html"))
     throw std::runtime_error("the console's pages are not built: " + options.web_root +
                              "/index.html is missing (./harbour build builds them)");
@@ -1279,11 +1373,12 @@ int run_console(const ConsoleOptions& given) {
         "no accounts yet: add the first administrator with\n  harboursim accounts add admin --role "
         "administrator%s\n(its password on standard input)\n",
         given.database.empty() ? "" : (" --db " + given.database).c_str());
-  std::printf("console %s: http://%s:%u/ (DDS domain %d, records %s)\n", options.name.c_str(),
-              options.bind.c_str(), static_cast<unsigned>(acceptor.local_endpoint().port()), options.domain,
+  std::printf("console %s: %s://%s:%u/ (DDS domain %d, records %s)\n", options.name.c_str(),
+              tls ? "https" : "http", options.bind.c_str(),
+              static_cast<unsigned>(acceptor.local_endpoint().port()), options.domain,
               options.database.c_str());
   std::fflush(stdout);
-  accept(acceptor, console);
+  accept(acceptor, console, tls.get());
   console.start_polling();
   if (options.seconds > 0.0)
     io.run_for(std::chrono::milliseconds(static_cast<std::int64_t>(options.seconds * 1e3)));

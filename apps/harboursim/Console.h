@@ -14,6 +14,8 @@ struct ConsoleOptions {
   std::string name;      ///< the console's name on the network ("" : console-<pid>)
   std::string web_root;  ///< the built front end (web/dist)
   double seconds = 0.0;  ///< stop after this long (tests; 0: until Ctrl-C)
+  /// TLS (required off loopback): the certificate chain and its private key, PEM files
+  std::string tls_certificate, tls_key;
 };
 int run_console(const ConsoleOptions& options);
 

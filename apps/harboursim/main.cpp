@@ -8,6 +8,7 @@
 #include "BulkDemo.h"
 #include "Console.h"
 #include "RenderVideo.h"
+#include "RoutesTool.h"
 #include "Screenshot.h"
 #include "StationRun.h"
 #include "StsRun.h"
@@ -18,9 +19,11 @@ int main(int argc, char** argv) {
 
   harbour::apps::RunOptions run;
   CLI::App* run_cmd = app.add_subcommand("run", "run an exercise headless");
-  run_cmd
-      ->add_option("--exercise", run.exercise, "exercise file, or a shipped exercise's name (sts_discharge)")
-      ->required();
+  run_cmd->add_option("--exercise", run.exercise,
+                      "exercise file, or a shipped exercise's name (sts_discharge)");
+  run_cmd->add_option(
+      "--route", run.route,
+      "a training route the trainee is enrolled in: run its next stage (harboursim routes list)");
   run_cmd->add_flag("--autopilot", run.autopilot, "let the scripted operator drive");
   run_cmd->add_option("--record", run.record, "write the run's recording (HSRC) to this file");
   run_cmd->add_option("--trainee", run.trainee, "trainee id to store the attempt under");
@@ -67,6 +70,8 @@ int main(int argc, char** argv) {
                           "chooses)");
   station_cmd->add_option("--profile", live.profile, "desktop, medium, immersive, or a profile file");
   station_cmd->add_option("--trainee", live.trainee, "trainee id to store the attempt under");
+  station_cmd->add_option("--route", live.route,
+                          "a training route the trainee is enrolled in: the station runs its next stage");
   station_cmd->add_option("--record", live.record, "write the attempt's recording (HSRC) to this file");
   station_cmd->add_option("--db", live.database, "records connection");
   station_cmd->add_flag("--autopilot", live.autopilot,
@@ -141,6 +146,9 @@ int main(int argc, char** argv) {
   console_cmd->add_option("--domain", console.domain, "the centre's DDS domain (0-232)")
       ->check(CLI::Range(0, 232));
   console_cmd->add_option("--name", console.name, "the console's name on the network");
+  console_cmd->add_option("--tls-cert", console.tls_certificate,
+                          "serve HTTPS with this PEM certificate chain (required with a network --bind)");
+  console_cmd->add_option("--tls-key", console.tls_key, "the certificate's PEM private key");
   console_cmd->add_option("--web", console.web_root, "the built pages (default: web/dist)");
   console_cmd->add_option("--seconds", console.seconds, "stop after this long (default: Ctrl-C)")
       ->check(CLI::NonNegativeNumber);
@@ -156,6 +164,30 @@ int main(int argc, char** argv) {
   account_add_cmd->add_option("--role", account_role, "administrator, instructor or trainee")->required();
   account_add_cmd->add_option("--trainee", account_trainee, "a trainee account's trainee id");
   CLI::App* account_list_cmd = accounts_cmd->add_subcommand("list", "list accounts (name and role)");
+
+  std::string route_id, route_trainee, route_stage, route_reason, route_db;
+  CLI::App* routes_cmd = app.add_subcommand("routes", "training routes: stages, enrolment, progress");
+  routes_cmd->require_subcommand(1);
+  routes_cmd->add_option("--db", route_db, "records connection");
+  routes_cmd->fallthrough();
+  CLI::App* routes_list_cmd = routes_cmd->add_subcommand("list", "the shipped routes and their stages");
+  CLI::App* routes_show_cmd =
+      routes_cmd->add_subcommand("show", "a route's stages, with a trainee's progress");
+  routes_show_cmd->add_option("route", route_id, "route name")->required();
+  routes_show_cmd->add_option("--trainee", route_trainee, "show this trainee's progress");
+  CLI::App* routes_enrol_cmd = routes_cmd->add_subcommand("enrol", "enrol a trainee in a route");
+  routes_enrol_cmd->add_option("trainee", route_trainee, "trainee id")->required();
+  routes_enrol_cmd->add_option("route", route_id, "route name")->required();
+  CLI::App* decision_cmds[2];
+  const char* decisions[2][2] = {{"sign-off", "count a stage as passed (an instructor's decision)"},
+                                 {"retry", "grant a blocked stage another round of attempts"}};
+  for (int n = 0; n < 2; ++n) {
+    decision_cmds[n] = routes_cmd->add_subcommand(decisions[n][0], decisions[n][1]);
+    decision_cmds[n]->add_option("trainee", route_trainee, "trainee id")->required();
+    decision_cmds[n]->add_option("route", route_id, "route name")->required();
+    decision_cmds[n]->add_option("stage", route_stage, "stage id")->required();
+    decision_cmds[n]->add_option("--reason", route_reason, "why (stored with the decision)")->required();
+  }
 
   harbour::apps::BulkDemoOptions demo;
   CLI::App* demo_cmd =
@@ -180,14 +212,29 @@ int main(int argc, char** argv) {
           return 2;
         }
     }
-    if (*run_cmd) return harbour::apps::run_exercise(run);
+    if (*run_cmd) {
+      if (run.exercise.empty() == run.route.empty()) {
+        std::fprintf(stderr, "harboursim: run needs --exercise or --route (one of them)\n");
+        return 2;
+      }
+      return harbour::apps::run_exercise(run);
+    }
+    if (*routes_list_cmd) return harbour::apps::list_routes();
+    if (*routes_show_cmd) return harbour::apps::show_route(route_db, route_id, route_trainee);
+    if (*routes_enrol_cmd) return harbour::apps::enrol_trainee(route_db, route_trainee, route_id);
+    for (int n = 0; n < 2; ++n)
+      if (*decision_cmds[n])
+        return harbour::apps::decide_stage(route_db, route_trainee, route_id, route_stage,
+                                           n == 0 ? "sign_off" : "retry", route_reason);
     if (*console_cmd) return harbour::apps::run_console(console);
     if (*account_list_cmd) return harbour::apps::list_accounts(account_db);
     if (*account_add_cmd)
       return harbour::apps::add_account(account_db, account_name, account_role, account_trainee);
     if (*station_cmd) {
-      if (live.serve == !live.exercise.empty()) {
-        std::fprintf(stderr, "harboursim: station needs --exercise, or --serve (a console chooses it)\n");
+      if (live.serve == (!live.exercise.empty() || !live.route.empty()) ||
+          (!live.exercise.empty() && !live.route.empty())) {
+        std::fprintf(stderr,
+                     "harboursim: station needs --exercise or --route, or --serve (a console chooses it)\n");
         return 2;
       }
       if (live.serve && live.name.empty()) {
