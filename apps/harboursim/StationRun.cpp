@@ -1,5 +1,7 @@
 #include "StationRun.h"
 
+#include "RoutesTool.h"
+
 #include <SDL.h>
 
 #include <osg/Image>
@@ -89,18 +91,31 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
   outputs.record = options.record;
   outputs.trainee = options.trainee;
   check_outputs(outputs);
-  const sim::ExerciseSettings exercise = io::load_exercise(resolve_exercise(options.exercise));
+  const std::string database = options.database.empty() ? default_database() : options.database;
+  station::SessionOptions session_options;
+  std::string exercise_file;
+  if (!options.route.empty()) {
+    io::RecordsStore db(database);
+    const RouteStage next = next_route_stage(db, options.trainee, options.route);
+    exercise_file = next.stage.exercise_file;
+    session_options.route = next.route.id;
+    session_options.stage = next.stage.id;
+    std::printf("route %s, stage %s (%s)\n", next.route.id.c_str(), next.stage.id.c_str(),
+                next.stage.goal.c_str());
+  } else {
+    exercise_file = resolve_exercise(options.exercise);
+  }
+  session_options.exercise_version = io::exercise_version(exercise_file);
+  const sim::ExerciseSettings exercise = io::load_exercise(exercise_file);
   if (options.autopilot)
     if (const std::string why = sim::why_no_pilot(exercise); !why.empty())
       throw std::runtime_error(exercise.name + ": " + why + " (drive it yourself: no --autopilot)");
   const station::Profile profile =
       station::load_profile(station::resolve_profile(options.profile, HARBOUR_DATA_DIR));
-  const std::string database = options.database.empty() ? default_database() : options.database;
   if (options.trainee == "autopilot")
     io::RecordsStore(database).ensure_trainee("autopilot", "Scripted operator");
   if (options.trainee == "guest") io::RecordsStore(database).ensure_trainee("guest", "Guest at the station");
 
-  station::SessionOptions session_options;
   session_options.trainee = options.trainee;
   session_options.record = options.record;
   session_options.database = database;

@@ -1,5 +1,7 @@
 #include "StsRun.h"
 
+#include "RoutesTool.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -213,17 +215,29 @@ int run_exercise(const RunOptions& options) {
   }
   check_outputs(options);
   schedule(options.commands);  // a bad command stops the run before it starts
-  const sim::ExerciseSettings exercise = io::load_exercise(resolve_exercise(options.exercise));
+  io::RecordsStore db(options.database.empty() ? default_database() : options.database);
+  RunOptions run = options;
+  std::string exercise_file;
+  if (!options.route.empty()) {
+    const RouteStage next = next_route_stage(db, options.trainee, options.route);
+    run.stage = next.stage.id;
+    exercise_file = next.stage.exercise_file;
+    std::printf("harboursim: route %s, stage %s (%s)\n", next.route.id.c_str(), next.stage.id.c_str(),
+                next.stage.goal.c_str());
+  } else {
+    exercise_file = resolve_exercise(options.exercise);
+  }
+  run.exercise_version = io::exercise_version(exercise_file);
+  const sim::ExerciseSettings exercise = io::load_exercise(exercise_file);
   if (const std::string why = sim::why_no_pilot(exercise); !why.empty())
     throw std::runtime_error(exercise.name + ": " + why);
   sim::Simulation simulation(exercise.scenario);
   const std::unique_ptr<sim::Pilot> pilot = sim::make_pilot(exercise);
   sim::Evaluator evaluator(exercise);
   sim::Recorder recorder(exercise.name, simulation.control_table());
-  io::RecordsStore db(options.database.empty() ? default_database() : options.database);
   std::printf("harboursim: exercise %s on the %s, %s, autopilot, time limit %.0f s\n", exercise.name.c_str(),
               simulation.machine().kind(), goal_text(exercise).c_str(), exercise.rules.time_limit_s);
-  return drive_attempt(exercise, simulation, *pilot, evaluator, recorder, db, std::nullopt, 0, options);
+  return drive_attempt(exercise, simulation, *pilot, evaluator, recorder, db, std::nullopt, 0, run);
 }
 
 int drive(const sim::ExerciseSettings& exercise, sim::Simulation& simulation, sim::Pilot& pilot,
@@ -246,7 +260,8 @@ int drive_attempt(const sim::ExerciseSettings& exercise, sim::Simulation& simula
     recorder.set_sink(&*writer);
   }
   const std::int64_t attempt =
-      db.begin_attempt(options.trainee, exercise.name, parent, branch_step, options.record);
+      db.begin_attempt({options.trainee, exercise.name, parent, branch_step, options.record, options.route,
+                        options.stage, options.exercise_version});
   std::printf("attempt %lld of trainee %s%s\n", static_cast<long long>(attempt), options.trainee.c_str(),
               options.record.empty() ? "" : (", recording " + options.record).c_str());
   for (int n = 0; n < evaluator.metrics().moves_completed; ++n)  // a take-over's moves before the branch

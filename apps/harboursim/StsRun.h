@@ -16,6 +16,10 @@ struct RunOptions {
   std::string database;               ///< records connection ("" for the default SQLite file)
   std::vector<std::string>
       commands;  ///< instructor commands, AT:KIND[:VALUES] (io::parse_instructor_command)
+  /// a training route (data/routes): the trainee, enrolled in it, runs its next stage's exercise
+  std::string route;
+  std::string stage;             ///< set by the run: the route's stage it runs
+  std::string exercise_version;  ///< set by the run: io::exercise_version of the exercise file
 };
 int run_exercise(const RunOptions& options);
 

@@ -36,6 +36,9 @@ std::string fresh_connection(Backend backend, const std::string& name) {
 
 class RecordsStoreOn : public ::testing::TestWithParam<Backend> {};
 
+// What opening `connection` throws ("" when it opens).
+std::string error_opening(const std::string& connection);
+
 INSTANTIATE_TEST_SUITE_P(Backends, RecordsStoreOn, ::testing::Values(Backend::sqlite3, Backend::postgresql),
                          [](const ::testing::TestParamInfo<Backend>& param_info) {
                            return std::string(param_info.param == Backend::sqlite3 ? "SQLite" : "PostgreSQL");
@@ -74,20 +77,152 @@ TEST_P(RecordsStoreOn, StoresTraineesAttemptsMovesAndScores) {
   EXPECT_EQ(db.trainees().size(), 1u);
 }
 
-// A database of the build before attempts named their process gains the column and keeps its rows.
-TEST_P(RecordsStoreOn, ADatabaseOfTheBuildBeforeTheProcessColumnGainsIt) {
-  const std::string connection = fresh_connection(GetParam(), "records_upgrade");
-  {
+// The schemas earlier builds made, as they made them: version 1 (the first records) and version 2 (the
+// build before this one: attempts name their process; the console's accounts and audit log).
+const char* const kSchemaV1[] = {
+    "CREATE TABLE trainees (id TEXT PRIMARY KEY, name TEXT NOT NULL)",
+    "CREATE TABLE attempts (id BIGINT PRIMARY KEY, trainee TEXT NOT NULL REFERENCES trainees(id), exercise "
+    "TEXT "
+    "NOT NULL, status TEXT NOT NULL, score DOUBLE PRECISION, passed INTEGER NOT NULL, parent BIGINT, "
+    "branch_step "
+    "BIGINT NOT NULL, recording TEXT NOT NULL)",
+    "CREATE TABLE moves (attempt BIGINT NOT NULL REFERENCES attempts(id), idx INTEGER NOT NULL, "
+    "completed_at_s "
+    "DOUBLE PRECISION NOT NULL, cycle_time_s DOUBLE PRECISION NOT NULL, PRIMARY KEY (attempt, idx))",
+    "CREATE TABLE events (attempt BIGINT NOT NULL REFERENCES attempts(id), at_s DOUBLE PRECISION NOT NULL, "
+    "kind "
+    "TEXT NOT NULL, value DOUBLE PRECISION NOT NULL)",
+    "CREATE TABLE metrics (attempt BIGINT NOT NULL REFERENCES attempts(id), name TEXT NOT NULL, value DOUBLE "
+    "PRECISION NOT NULL, PRIMARY KEY (attempt, name))"};
+const char* const kSchemaV2[] = {"ALTER TABLE attempts ADD COLUMN process TEXT NOT NULL DEFAULT ''",
+                                 "CREATE TABLE accounts (name TEXT PRIMARY KEY, role TEXT NOT NULL, "
+                                 "password_hash TEXT NOT NULL, trainee TEXT "
+                                 "REFERENCES trainees(id))",
+                                 "CREATE TABLE audit (at TEXT NOT NULL, account TEXT NOT NULL, action TEXT "
+                                 "NOT NULL, target TEXT NOT NULL, "
+                                 "detail TEXT NOT NULL)"};
+
+// a database as the build of schema `version` (1 or 2) left it: a trainee, a finished attempt with a move,
+// an event and a metric
+void make_old_database(const std::string& connection, int version) {
+  soci::session sql(records_connection(connection));
+  for (const char* statement : kSchemaV1)
+    sql << statement;
+  if (version >= 2)
+    for (const char* statement : kSchemaV2)
+      sql << statement;
+  sql << "INSERT INTO trainees (id, name) VALUES ('t001', 'Ana Pérez')";
+  sql << "INSERT INTO attempts (id, trainee, exercise, status, score, passed, parent, branch_step, recording)"
+         " VALUES (1, 't001', 'sts_discharge', 'finished', 95.0, 1, NULL, 0, 'a.hsrc')";
+  sql << "INSERT INTO moves (attempt, idx, completed_at_s, cycle_time_s) VALUES (1, 1, 93.5, 93.5)";
+  sql << "INSERT INTO events (attempt, at_s, kind, value) VALUES (1, 40.0, 'hard_landing', 0.45)";
+  sql << "INSERT INTO metrics (attempt, name, value) VALUES (1, 'collisions', 0)";
+}
+
+// Databases of earlier builds are upgraded in place, their rows kept; the new columns read as empty.
+TEST_P(RecordsStoreOn, DatabasesOfEarlierBuildsAreUpgradedInPlace) {
+  for (int version : {1, 2}) {
+    const std::string connection =
+        fresh_connection(GetParam(), "records_upgrade_v" + std::to_string(version));
+    make_old_database(connection, version);
     RecordsStore db(connection);
-    db.add_trainee("t001", "Ana Pérez");
-    db.begin_attempt("t001", "sts_discharge");
+    EXPECT_EQ(db.schema_version(), 3) << "from version " << version;
+    const auto rows = db.attempts();
+    ASSERT_EQ(rows.size(), 1u);
+    EXPECT_EQ(rows[0].status, "finished");
+    EXPECT_EQ(rows[0].score, 95.0);
+    EXPECT_EQ(rows[0].moves, 1);
+    EXPECT_EQ(rows[0].route, "");
+    EXPECT_EQ(rows[0].exercise_version, "");
+    EXPECT_EQ(db.events(1).size(), 1u);
+    EXPECT_EQ(db.metrics(1).size(), 1u);
+    EXPECT_EQ(
+        db.begin_attempt({"t001", "sts_discharge", std::nullopt, 0, "", "sts_basic", "single_lift", "abc"}),
+        2);
+    EXPECT_TRUE(db.enrol("t001", "sts_basic", "ines"));
+    EXPECT_EQ(db.attempts()[0].stage, "single_lift");
+    RecordsStore again(connection);  // opening an upgraded database changes nothing
+    EXPECT_EQ(again.attempts().size(), 2u);
   }
-  soci::session(records_connection(connection)) << "ALTER TABLE attempts DROP COLUMN process";
+}
+
+// An upgrade that fails half-way (here a table of version 3 is already there, made by something else) is
+// rolled back whole: the database stays at version 2 with its rows, and the error says which step failed.
+TEST_P(RecordsStoreOn, AFailedUpgradeLeavesTheDatabaseAsItWas) {
+  const std::string connection = fresh_connection(GetParam(), "records_upgrade_fails");
+  make_old_database(connection, 2);
+  soci::session(records_connection(connection)) << "CREATE TABLE route_overrides (x INTEGER)";
+  std::string error;
+  try {
+    RecordsStore db(connection);
+  } catch (const std::runtime_error& e) {
+    error = e.what();
+  }
+  EXPECT_NE(error.find("from schema version 2 to 3"), std::string::npos) << error;
+  EXPECT_NE(error.find("nothing was changed"), std::string::npos) << error;
+  soci::session sql(records_connection(connection));
+  std::string route;
+  bool has_route = true;
+  try {
+    sql << "SELECT route FROM attempts", soci::into(route);
+  } catch (const soci::soci_error&) {
+    has_route = false;
+  }
+  EXPECT_FALSE(has_route) << "the first step of the upgrade stayed";
+  int attempts = 0;
+  sql << "SELECT COUNT(*) FROM attempts", soci::into(attempts);
+  EXPECT_EQ(attempts, 1);
+  // with the stray table gone the upgrade goes through
+  sql << "DROP TABLE route_overrides";
   RecordsStore db(connection);
-  const auto rows = db.attempts();
-  ASSERT_EQ(rows.size(), 1u);
-  EXPECT_EQ(rows[0].status, "running");  // no process named: nobody can tell it ended
-  EXPECT_EQ(db.begin_attempt("t001", "sts_discharge"), 2);
+  EXPECT_EQ(db.schema_version(), 3);
+}
+
+// A database a newer build has upgraded is refused, not read wrongly or downgraded.
+TEST(RecordsStore, ADatabaseOfANewerBuildIsRefused) {
+  const std::string connection = fresh_db("harbour_newer.db");
+  { RecordsStore db(connection); }
+  soci::session(records_connection(connection)) << "UPDATE schema_version SET version = 9";
+  const std::string error = error_opening(connection);
+  EXPECT_NE(error.find("schema version 9 was made by a newer harboursim"), std::string::npos) << error;
+}
+
+// Enrolments, an instructor's decisions and the attempts at a route's stages with their metrics.
+TEST_P(RecordsStoreOn, StoresEnrolmentsDecisionsAndStageAttempts) {
+  RecordsStore db(fresh_connection(GetParam(), "records_routes"));
+  db.add_trainee("t001", "Ana Pérez");
+  EXPECT_THROW(db.enrol("t999", "sts_basic", "ines"), std::out_of_range);
+  EXPECT_TRUE(db.enrol("t001", "sts_basic", "ines"));
+  EXPECT_FALSE(db.enrol("t001", "sts_basic", "ines"));
+  ASSERT_EQ(db.enrolments(std::string("t001")).size(), 1u);
+  EXPECT_EQ(db.enrolments()[0].account, "ines");
+  EXPECT_THROW(db.add_override("t001", "sts_basic", {"single_lift", "promote", "why", "ines", ""}),
+               std::invalid_argument);
+  EXPECT_THROW(db.add_override("t001", "sts_basic", {"single_lift", "sign_off", "", "ines", ""}),
+               std::invalid_argument);
+  EXPECT_THROW(db.add_override("t001", "mhc_bulk", {"hook_lift", "sign_off", "why", "ines", ""}),
+               std::out_of_range);
+  db.add_override("t001", "sts_basic",
+                  {"single_lift", "sign_off", "passed it on the real crane", "ines", ""});
+  const auto decisions = db.overrides("t001", "sts_basic");
+  ASSERT_EQ(decisions.size(), 1u);
+  EXPECT_EQ(decisions[0].reason, "passed it on the real crane");
+  EXPECT_FALSE(decisions[0].at.empty());
+  const auto a =
+      db.begin_attempt({"t001", "sts_bay12_deck", std::nullopt, 0, "", "sts_basic", "deck_discharge", "v1"});
+  sim::Metrics m;
+  m.collisions = 2;
+  sim::Score s;
+  s.total = 80;
+  s.passed = true;
+  db.finish_attempt(a, m, s, "");
+  db.begin_attempt("t001", "sts_discharge");  // not on the route
+  const auto attempts = db.stage_attempts("t001", "sts_basic");
+  ASSERT_EQ(attempts.size(), 1u);
+  EXPECT_EQ(attempts[0].stage, "deck_discharge");
+  EXPECT_EQ(attempts[0].score, 80.0);
+  EXPECT_EQ(attempts[0].metrics.at("collisions"), 2.0);
+  EXPECT_EQ(attempts[0].metrics.at("skill_safety"), 100.0);
 }
 
 TEST(RecordsStore, ABadConnectionNamesIt) {
@@ -127,7 +262,7 @@ TEST(RecordsStore, ADatabaseWrittenBySomethingElseIsRefusedNamingItAndWhere) {
   { soci::session(connection) << "CREATE TABLE attempts (id INTEGER, trainee TEXT)"; }
   error = error_opening(connection);
   EXPECT_NE(error.find(path.string()), std::string::npos) << error;
-  EXPECT_NE(error.find("table 'attempts' is not the one this build uses"), std::string::npos) << error;
+  EXPECT_NE(error.find("table 'attempts' is not the one of schema version 1"), std::string::npos) << error;
   {
     soci::session sql(connection);
     int tables = 0;

@@ -1,9 +1,12 @@
 #include "harbour/io/ExerciseFiles.h"
 
+#include <sodium.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <numbers>
 #include <optional>
@@ -718,6 +721,27 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
 }
 
 }  // namespace
+
+std::string exercise_version(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw DataError(path, 0, "(file)", "cannot be read");
+  std::string bytes;
+  bytes.resize(YamlFile::kMaxFileBytes + 1);
+  in.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  bytes.resize(static_cast<std::size_t>(in.gcount()));
+  if (bytes.size() > YamlFile::kMaxFileBytes)
+    throw DataError(path, 0, "(file)", "larger than a data file may be");
+  if (sodium_init() < 0) throw std::runtime_error("libsodium could not start");
+  unsigned char digest[crypto_hash_sha256_BYTES];
+  crypto_hash_sha256(digest, reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size());
+  static constexpr char kHex[] = "0123456789abcdef";
+  std::string version;
+  for (int n = 0; n < 8; ++n) {
+    version += kHex[digest[n] >> 4];
+    version += kHex[digest[n] & 15];
+  }
+  return version;
+}
 
 sim::ExerciseSettings load_exercise(const std::string& path) {
   return load_exercise(YamlFile::load(path), std::filesystem::path(path).parent_path().string());

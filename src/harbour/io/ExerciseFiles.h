@@ -12,4 +12,9 @@ namespace harbour::io {
 sim::ExerciseSettings load_exercise(const YamlFile& file, const std::string& folder);
 sim::ExerciseSettings load_exercise(const std::string& path);
 
+/// The exercise file's version: the first 16 hex digits of the SHA-256 of its bytes. Attempts store it, so
+/// results stay comparable when an exercise is edited (the machine and vessel files it names are not
+/// hashed). Throws DataError when the file cannot be read.
+std::string exercise_version(const std::string& path);
+
 }  // namespace harbour::io

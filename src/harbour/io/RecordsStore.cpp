@@ -27,16 +27,99 @@
 namespace harbour::io {
 namespace {
 
-// every table with the columns this build reads and writes
-constexpr std::pair<const char*, const char*> kTables[] = {
-    {"trainees", "id, name"},
-    {"attempts", "id, trainee, exercise, status, score, passed, parent, branch_step, recording, process"},
-    {"moves", "attempt, idx, completed_at_s, cycle_time_s"},
-    {"events", "attempt, at_s, kind, value"},
-    {"metrics", "attempt, name, value"},
-    {"accounts", "name, role, password_hash, trainee"},
-    {"audit", "at, account, action, target, detail"},
+// The schema's versions. 1: the first records (trainees, attempts, moves, events, metrics); 2: attempts
+// remember their process, console accounts and the audit log; 3: routes (enrolments, instructors'
+// overrides), attempts name their route stage and the exercise version they ran. Databases before version 3
+// have no schema_version table: 2 when attempts has the process column, else 1.
+constexpr int kSchemaVersion = 3;
+
+// every table of a schema version with the columns this build reads (and, for the latest, writes)
+struct TableColumns {
+  const char* table;
+  const char* columns;
+  int since, changed;  // the version that made it, and the last one that changed its columns
 };
+constexpr TableColumns kTables[] = {
+    {"trainees", "id, name", 1, 1},
+    {"attempts",
+     "id, trainee, exercise, status, score, passed, parent, branch_step, recording, process, route, stage, "
+     "exercise_version",
+     1, 3},
+    {"moves", "attempt, idx, completed_at_s, cycle_time_s", 1, 1},
+    {"events", "attempt, at_s, kind, value", 1, 1},
+    {"metrics", "attempt, name, value", 1, 1},
+    {"accounts", "name, role, password_hash, trainee", 2, 2},
+    {"audit", "at, account, action, target, detail", 2, 2},
+    {"enrolments", "trainee, route, at, account", 3, 3},
+    {"route_overrides", "trainee, route, stage, action, reason, account, at", 3, 3},
+    {"schema_version", "version", 3, 3},
+};
+
+// the columns `table` had at `version` ("" : not there yet)
+std::string columns_at(const TableColumns& t, int version) {
+  if (version < t.since) return "";
+  if (version >= t.changed) return t.columns;
+  // attempts before version 3; before version 2 without process
+  return version >= 2
+             ? "id, trainee, exercise, status, score, passed, parent, branch_step, recording, process"
+             : "id, trainee, exercise, status, score, passed, parent, branch_step, recording";
+}
+
+// The statements that take a database from version - 1 to version: the portable subset of SQL that SQLite
+// and PostgreSQL both accept. Run in one transaction with the version's row.
+std::vector<std::string> migration(int version) {
+  switch (version) {
+    case 1:
+      return {
+          "CREATE TABLE trainees (id TEXT PRIMARY KEY, name TEXT NOT NULL)",
+          "CREATE TABLE attempts (id BIGINT PRIMARY KEY, trainee TEXT NOT NULL REFERENCES trainees(id),"
+          " exercise TEXT NOT NULL, status TEXT NOT NULL, score DOUBLE PRECISION, passed INTEGER NOT NULL,"
+          " parent BIGINT, branch_step BIGINT NOT NULL, recording TEXT NOT NULL)",
+          "CREATE TABLE moves (attempt BIGINT NOT NULL REFERENCES attempts(id), idx INTEGER NOT NULL,"
+          " completed_at_s DOUBLE PRECISION NOT NULL, cycle_time_s DOUBLE PRECISION NOT NULL,"
+          " PRIMARY KEY (attempt, idx))",
+          "CREATE TABLE events (attempt BIGINT NOT NULL REFERENCES attempts(id),"
+          " at_s DOUBLE PRECISION NOT NULL, kind TEXT NOT NULL, value DOUBLE PRECISION NOT NULL)",
+          "CREATE TABLE metrics (attempt BIGINT NOT NULL REFERENCES attempts(id), name TEXT NOT NULL,"
+          " value DOUBLE PRECISION NOT NULL, PRIMARY KEY (attempt, name))"};
+    case 2:
+      // builds of version 2 made accounts and audit only when the console first ran
+      return {
+          "ALTER TABLE attempts ADD COLUMN process TEXT NOT NULL DEFAULT ''",
+          "CREATE TABLE IF NOT EXISTS accounts (name TEXT PRIMARY KEY, role TEXT NOT NULL,"
+          " password_hash TEXT NOT NULL, trainee TEXT REFERENCES trainees(id))",
+          "CREATE TABLE IF NOT EXISTS audit (at TEXT NOT NULL, account TEXT NOT NULL, action TEXT NOT NULL,"
+          " target TEXT NOT NULL, detail TEXT NOT NULL)"};
+    case 3:
+      return {
+          "ALTER TABLE attempts ADD COLUMN route TEXT NOT NULL DEFAULT ''",
+          "ALTER TABLE attempts ADD COLUMN stage TEXT NOT NULL DEFAULT ''",
+          "ALTER TABLE attempts ADD COLUMN exercise_version TEXT NOT NULL DEFAULT ''",
+          "CREATE TABLE enrolments (trainee TEXT NOT NULL REFERENCES trainees(id), route TEXT NOT NULL,"
+          " at TEXT NOT NULL, account TEXT NOT NULL, PRIMARY KEY (trainee, route))",
+          "CREATE TABLE route_overrides (trainee TEXT NOT NULL REFERENCES trainees(id), route TEXT NOT NULL,"
+          " stage TEXT NOT NULL, action TEXT NOT NULL, reason TEXT NOT NULL, account TEXT NOT NULL,"
+          " at TEXT NOT NULL)",
+          "CREATE TABLE schema_version (version INTEGER NOT NULL)",
+          "INSERT INTO schema_version (version) VALUES (0)"};
+    default:
+      return {};
+  }
+}
+
+// now, UTC, ISO 8601 with microseconds
+std::string utc_now() {
+  const auto now = std::chrono::system_clock::now();
+  const std::time_t seconds = std::chrono::system_clock::to_time_t(now);
+  const auto micros =
+      std::chrono::duration_cast<std::chrono::microseconds>(now.time_since_epoch()).count() % 1000000;
+  std::tm utc{};
+  gmtime_r(&seconds, &utc);
+  char at[40];
+  const std::size_t n = std::strftime(at, sizeof at, "%Y-%m-%dT%H:%M:%S", &utc);
+  std::snprintf(at + n, sizeof at - n, ".%06lldZ", static_cast<long long>(micros));
+  return at;
+}
 
 constexpr const char* kStatuses[] = {"running", "finished", "interrupted", "diverged"};
 
@@ -170,6 +253,83 @@ struct RecordsStore::Impl {
     return names;
   }
 
+  /// The schema's version as the database says (see kSchemaVersion; 0: empty), after checking that every
+  /// table is ours with the columns of that version. Throws naming the table otherwise.
+  int checked_version() {
+    const std::vector<std::string> existing = guarded("checking its tables", [&] { return tables(); });
+    for (const std::string& table : existing)
+      if (std::none_of(std::begin(kTables), std::end(kTables),
+                       [&](const TableColumns& t) { return table == t.table; }))
+        throw std::runtime_error("records database '" + connection + "': it holds table '" +
+                                 core::printable(table) +
+                                 "', which is not harboursim's: a database of something else");
+    const auto has = [&](const char* t) {
+      return std::find(existing.begin(), existing.end(), t) != existing.end();
+    };
+    int version = 0;
+    if (has("schema_version")) {
+      guarded("reading its schema version", [&] {
+        soci::indicator ind = soci::i_null;
+        sql << "SELECT MAX(version) FROM schema_version", soci::into(version, ind);
+        if (ind != soci::i_ok) version = 0;
+      });
+      if (version > kSchemaVersion)
+        throw std::runtime_error("records database '" + connection + "': schema version " +
+                                 std::to_string(version) +
+                                 " was made by a newer harboursim (this build knows " +
+                                 std::to_string(kSchemaVersion) + "): refused, left as it was");
+      if (version < 3)
+        throw std::runtime_error("records database '" + connection + "': schema version " +
+                                 std::to_string(version) + " in a table that came with version 3");
+    } else if (has("attempts")) {
+      version =
+          guarded("checking table 'attempts'", [&] { return has_column("attempts", "process"); }) ? 2 : 1;
+    } else if (!existing.empty()) {
+      version = 2;  // a version-2 database the console made before any attempt
+    }
+    for (const TableColumns& t : kTables) {
+      const std::string columns = columns_at(t, version);
+      if (!has(t.table) || columns.empty()) continue;
+      guarded(std::string("table '") + t.table + "' is not the one of schema version " +
+                  std::to_string(version) + " (columns " + columns + ")",
+              [&] { sql << "SELECT " << columns << " FROM " << t.table << " WHERE 1 = 0"; });
+    }
+    return version;
+  }
+
+  /// Brings the schema to kSchemaVersion, every step and the version's row in one transaction: a database is
+  /// at its old version or at the new one, never between (another process upgrading at the same time
+  /// waits, then finds it done).
+  void upgrade() {
+    if (checked_version() == kSchemaVersion) return;
+    const bool sqlite = sql.get_backend_name() == "sqlite3";
+    guarded("upgrading its schema", [&] {
+      sql << (sqlite ? "BEGIN IMMEDIATE" : "BEGIN");
+      try {
+        if (!sqlite) sql << "SELECT pg_advisory_xact_lock(74707)";  // one upgrader at a time
+        const int from = checked_version();
+        for (int version = from + 1; version <= kSchemaVersion; ++version) {
+          for (const std::string& statement : migration(version)) {
+            try {
+              sql << statement;
+            } catch (const soci::soci_error& e) {
+              throw soci::soci_error("from schema version " + std::to_string(version - 1) + " to " +
+                                     std::to_string(version) + ": " + e.what() + " (nothing was changed)");
+            }
+          }
+        }
+        if (from < kSchemaVersion) sql << "UPDATE schema_version SET version = " << kSchemaVersion;
+        sql << "COMMIT";
+      } catch (...) {
+        try {
+          sql << "ROLLBACK";
+        } catch (...) {  // the connection is gone: its transaction with it
+        }
+        throw;
+      }
+    });
+  }
+
   /// Whether `table` has a column `column` (read from the schema: a busy or lost database is an error, not
   /// a missing column).
   bool has_column(const std::string& table, const std::string& column) {
@@ -206,55 +366,8 @@ RecordsStore::RecordsStore(const std::string& connection) : impl_(std::make_uniq
       sql << "SET client_min_messages = WARNING";  // no NOTICE lines for tables that already exist
     }
   });
-  // a database of something else, or tables of ours from another build: refuse before changing anything
-  bool upgrade_process_column = false;
-  const std::vector<std::string> existing =
-      impl_->guarded("checking its tables", [&] { return impl_->tables(); });
-  for (const std::string& table : existing)
-    if (std::none_of(std::begin(kTables), std::end(kTables), [&](const auto& t) { return table == t.first; }))
-      throw std::runtime_error("records database '" + connection + "': it holds table '" +
-                               core::printable(table) +
-                               "', which is not harboursim's: a database of something else");
-  for (const auto& [table, columns] : kTables) {
-    if (std::find(existing.begin(), existing.end(), table) == existing.end()) continue;
-    if (std::string(table) == "attempts") {
-      // databases of the build before the process column gain it (the only difference allowed)
-      upgrade_process_column = !impl_->guarded("checking table 'attempts'",
-                                               [&] { return impl_->has_column("attempts", "process"); });
-    }
-    const std::string wanted =
-        upgrade_process_column && std::string(table) == "attempts"
-            ? "id, trainee, exercise, status, score, passed, parent, branch_step, recording"
-            : columns;
-    impl_->guarded(
-        std::string("table '") + table + "' is not the one this build uses (columns " + columns + ")",
-        [&] { sql << "SELECT " << wanted << " FROM " << table << " WHERE 1 = 0"; });
-  }
-  impl_->guarded("creating its tables", [&] {
-    if (sqlite) sql << "PRAGMA journal_mode=WAL";
-    if (upgrade_process_column) sql << "ALTER TABLE attempts ADD COLUMN process TEXT NOT NULL DEFAULT ''";
-    // the portable subset of SQL that SQLite and PostgreSQL both accept
-    sql << "CREATE TABLE IF NOT EXISTS trainees (id TEXT PRIMARY KEY, name TEXT NOT NULL)";
-    sql << "CREATE TABLE IF NOT EXISTS attempts (id BIGINT PRIMARY KEY, trainee TEXT NOT NULL REFERENCES "
-           "trainees(id),"
-           " exercise TEXT NOT NULL, status TEXT NOT NULL, score DOUBLE PRECISION, passed INTEGER NOT NULL,"
-           " parent BIGINT, branch_step BIGINT NOT NULL, recording TEXT NOT NULL, process TEXT NOT NULL "
-           "DEFAULT '')";
-    sql << "CREATE TABLE IF NOT EXISTS moves (attempt BIGINT NOT NULL REFERENCES attempts(id), idx INTEGER "
-           "NOT NULL,"
-           " completed_at_s DOUBLE PRECISION NOT NULL, cycle_time_s DOUBLE PRECISION NOT NULL, PRIMARY KEY "
-           "(attempt, idx))";
-    sql << "CREATE TABLE IF NOT EXISTS events (attempt BIGINT NOT NULL REFERENCES attempts(id),"
-           " at_s DOUBLE PRECISION NOT NULL, kind TEXT NOT NULL, value DOUBLE PRECISION NOT NULL)";
-    sql << "CREATE TABLE IF NOT EXISTS metrics (attempt BIGINT NOT NULL REFERENCES attempts(id), name TEXT "
-           "NOT NULL,"
-           " value DOUBLE PRECISION NOT NULL, PRIMARY KEY (attempt, name))";
-    // the console's accounts (the password as its Argon2id hash string) and what their holders did
-    sql << "CREATE TABLE IF NOT EXISTS accounts (name TEXT PRIMARY KEY, role TEXT NOT NULL,"
-           " password_hash TEXT NOT NULL, trainee TEXT REFERENCES trainees(id))";
-    sql << "CREATE TABLE IF NOT EXISTS audit (at TEXT NOT NULL, account TEXT NOT NULL, action TEXT NOT NULL,"
-           " target TEXT NOT NULL, detail TEXT NOT NULL)";
-  });
+  if (sqlite) impl_->guarded("setting WAL mode", [&] { sql << "PRAGMA journal_mode=WAL"; });
+  impl_->upgrade();
   mark_interrupted_attempts();
 }
 
@@ -335,6 +448,11 @@ std::vector<TraineeRow> RecordsStore::trainees() {
 std::int64_t RecordsStore::begin_attempt(const std::string& trainee, const std::string& exercise,
                                          std::optional<std::int64_t> parent, std::int64_t branch_step,
                                          const std::string& recording) {
+  return begin_attempt(AttemptStart{trainee, exercise, parent, branch_step, recording, "", "", ""});
+}
+
+std::int64_t RecordsStore::begin_attempt(const AttemptStart& start) {
+  const std::string& trainee = start.trainee;
   if (!has_trainee(trainee))
     throw std::runtime_error("no trainee '" + core::printable(trainee) +
                              "' (add it with: harboursim trainees add)");
@@ -345,15 +463,17 @@ std::int64_t RecordsStore::begin_attempt(const std::string& trainee, const std::
       soci::indicator ind = soci::i_null;
       impl_->sql << "SELECT MAX(id) FROM attempts", soci::into(last, ind);
       const long long id = (ind == soci::i_ok ? last : 0) + 1;
-      long long parent_id = parent.value_or(0);
-      soci::indicator parent_ind = parent ? soci::i_ok : soci::i_null;
-      const long long branch = branch_step;
+      long long parent_id = start.parent.value_or(0);
+      soci::indicator parent_ind = start.parent ? soci::i_ok : soci::i_null;
+      const long long branch = start.branch_step;
       impl_->sql
           << "INSERT INTO attempts (id, trainee, exercise, status, score, passed, parent, branch_step, "
-             "recording, process)"
-             " VALUES (:id, :trainee, :exercise, 'running', NULL, 0, :parent, :branch, :recording, :process)",
-          soci::use(id), soci::use(trainee), soci::use(exercise), soci::use(parent_id, parent_ind),
-          soci::use(branch), soci::use(recording), soci::use(process);
+             "recording, process, route, stage, exercise_version)"
+             " VALUES (:id, :trainee, :exercise, 'running', NULL, 0, :parent, :branch, :recording, :process,"
+             " :route, :stage, :version)",
+          soci::use(id), soci::use(trainee), soci::use(start.exercise), soci::use(parent_id, parent_ind),
+          soci::use(branch), soci::use(start.recording), soci::use(process), soci::use(start.route),
+          soci::use(start.stage), soci::use(start.exercise_version);
       return static_cast<std::int64_t>(id);
     });
   });
@@ -408,7 +528,8 @@ std::vector<AttemptRow> RecordsStore::attempts(const std::optional<std::string>&
     soci::rowset<soci::row> rows =
         (impl_->sql.prepare
              << "SELECT a.id, a.trainee, a.exercise, a.status, a.score, a.passed, a.parent, a.branch_step,"
-                " a.recording FROM attempts a WHERE :who = '' OR a.trainee = :who2 ORDER BY a.id DESC",
+                " a.recording, a.route, a.stage, a.exercise_version FROM attempts a WHERE :who = '' OR "
+                "a.trainee = :who2 ORDER BY a.id DESC",
          soci::use(who), soci::use(who));
     for (const soci::row& r : rows) {
       AttemptRow a;
@@ -422,6 +543,9 @@ std::vector<AttemptRow> RecordsStore::attempts(const std::optional<std::string>&
         if (r.get_indicator(6) == soci::i_ok) a.parent = r.get<long long>(6);
         a.branch_step = r.get<long long>(7);
         a.recording = r.get<std::string>(8);
+        a.route = r.get<std::string>(9);
+        a.stage = r.get<std::string>(10);
+        a.exercise_version = r.get<std::string>(11);
         const int passed = r.get<int>(5);
         if (std::find(std::begin(kStatuses), std::end(kStatuses), a.status) == std::end(kStatuses))
           throw soci::soci_error("status '" + core::printable(a.status) +
@@ -505,16 +629,7 @@ int RecordsStore::account_count() {
 
 void RecordsStore::audit(const std::string& account, const std::string& action, const std::string& target,
                          const std::string& detail) {
-  const auto now = std::chrono::system_clock::now();
-  const std::time_t seconds = std::chrono::system_clock::to_time_t(now);
-  const auto micros =
-      std::chrono::duration_cast<std::chrono::microseconds>(now.time_since_epoch()).count() % 1000000;
-  std::tm utc{};
-  gmtime_r(&seconds, &utc);
-  char at[40];
-  const std::size_t n = std::strftime(at, sizeof at, "%Y-%m-%dT%H:%M:%S", &utc);
-  std::snprintf(at + n, sizeof at - n, ".%06lldZ", static_cast<long long>(micros));
-  const std::string when = at;  // soci::use binds a reference: no temporaries
+  const std::string when = utc_now();  // soci::use binds a reference: no temporaries
   impl_->guarded("writing the audit log", [&] {
     impl_->sql << "INSERT INTO audit (at, account, action, target, detail) VALUES (:a, :u, :c, :t, :d)",
         soci::use(when), soci::use(account), soci::use(action), soci::use(target), soci::use(detail);
@@ -558,6 +673,110 @@ std::vector<std::pair<std::string, double>> RecordsStore::metrics(std::int64_t a
       metrics.emplace_back(r.get<std::string>(0), r.get<double>(1));
     return metrics;
   });
+}
+
+int RecordsStore::schema_version() {
+  return impl_->guarded("reading its schema version", [&] {
+    int version = 0;
+    impl_->sql << "SELECT MAX(version) FROM schema_version", soci::into(version);
+    return version;
+  });
+}
+
+bool RecordsStore::enrol(const std::string& trainee, const std::string& route, const std::string& account) {
+  if (!has_trainee(trainee)) throw std::out_of_range("no trainee '" + core::printable(trainee) + "'");
+  if (const std::string why = core::why_bad_name(route, 64); !why.empty())
+    throw std::invalid_argument("route '" + core::printable(route, 64) + "' " + why);
+  const std::string when = utc_now();
+  return impl_->guarded("enrolling trainee '" + trainee + "' in route '" + route + "'", [&] {
+    return impl_->write_transaction([&] {
+      int n = 0;
+      impl_->sql << "SELECT COUNT(*) FROM enrolments WHERE trainee = :t AND route = :r", soci::use(trainee),
+          soci::use(route), soci::into(n);
+      if (n > 0) return false;
+      impl_->sql << "INSERT INTO enrolments (trainee, route, at, account) VALUES (:t, :r, :a, :u)",
+          soci::use(trainee), soci::use(route), soci::use(when), soci::use(account);
+      return true;
+    });
+  });
+}
+
+std::vector<EnrolmentRow> RecordsStore::enrolments(const std::optional<std::string>& trainee) {
+  const std::string who = trainee.value_or("");
+  return impl_->guarded("reading the enrolments", [&] {
+    std::vector<EnrolmentRow> out;
+    soci::rowset<soci::row> rows =
+        (impl_->sql.prepare
+             << "SELECT trainee, route, at, account FROM enrolments WHERE :w = '' OR trainee = "
+                ":w2 ORDER BY at, trainee, route",
+         soci::use(who), soci::use(who));
+    for (const soci::row& r : rows)
+      out.push_back(
+          {r.get<std::string>(0), r.get<std::string>(1), r.get<std::string>(2), r.get<std::string>(3)});
+    return out;
+  });
+}
+
+void RecordsStore::add_override(const std::string& trainee, const std::string& route,
+                                const training::Override& decision) {
+  if (decision.action != "sign_off" && decision.action != "retry")
+    throw std::invalid_argument("a decision on a stage is sign_off or retry, not '" +
+                                core::printable(decision.action) + "'");
+  if (const std::string why = core::why_bad_name(decision.reason, 500); !why.empty())
+    throw std::invalid_argument("the reason " + why);
+  if (const std::string why = core::why_bad_name(decision.stage, 64); !why.empty())
+    throw std::invalid_argument("the stage " + why);
+  const auto enrolled = enrolments(trainee);
+  if (std::none_of(enrolled.begin(), enrolled.end(), [&](const EnrolmentRow& e) { return e.route == route; }))
+    throw std::out_of_range("trainee '" + core::printable(trainee) + "' is not enrolled in route '" +
+                            core::printable(route) + "'");
+  const std::string when = utc_now();
+  impl_->guarded("storing a decision on '" + trainee + "' " + route + "/" + decision.stage, [&] {
+    impl_->sql << "INSERT INTO route_overrides (trainee, route, stage, action, reason, account, at)"
+                  " VALUES (:t, :r, :s, :a, :why, :u, :at)",
+        soci::use(trainee), soci::use(route), soci::use(decision.stage), soci::use(decision.action),
+        soci::use(decision.reason), soci::use(decision.account), soci::use(when);
+  });
+}
+
+std::vector<training::Override> RecordsStore::overrides(const std::string& trainee,
+                                                        const std::string& route) {
+  return impl_->guarded("reading the decisions on '" + trainee + "' " + route, [&] {
+    std::vector<training::Override> out;
+    soci::rowset<soci::row> rows =
+        (impl_->sql.prepare << "SELECT stage, action, reason, account, at FROM route_overrides"
+                               " WHERE trainee = :t AND route = :r ORDER BY at",
+         soci::use(trainee), soci::use(route));
+    for (const soci::row& r : rows)
+      out.push_back({r.get<std::string>(0), r.get<std::string>(1), r.get<std::string>(2),
+                     r.get<std::string>(3), r.get<std::string>(4)});
+    return out;
+  });
+}
+
+std::vector<training::StageAttempt> RecordsStore::stage_attempts(const std::string& trainee,
+                                                                 const std::string& route) {
+  std::vector<training::StageAttempt> out;
+  std::vector<long long> ids;
+  impl_->guarded("reading '" + trainee + "''s attempts on route " + route, [&] {
+    soci::rowset<soci::row> rows =
+        (impl_->sql.prepare << "SELECT id, stage, status, score, passed FROM attempts"
+                               " WHERE trainee = :t AND route = :r ORDER BY id",
+         soci::use(trainee), soci::use(route));
+    for (const soci::row& r : rows) {
+      training::StageAttempt a;
+      ids.push_back(r.get<long long>(0));
+      a.stage = r.get<std::string>(1);
+      a.status = r.get<std::string>(2);
+      if (r.get_indicator(3) == soci::i_ok) a.score = r.get<double>(3);
+      a.passed = r.get<int>(4) == 1;
+      out.push_back(a);
+    }
+  });
+  for (std::size_t n = 0; n < out.size(); ++n)
+    for (const auto& [name, value] : metrics(ids[n]))
+      out[n].metrics[name] = value;
+  return out;
 }
 
 void record_progress(RecordsStore& db, std::int64_t attempt, const sim::Metrics& before,

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "harbour/sim/Evaluation.h"
+#include "harbour/training/Route.h"
 
 namespace harbour::io {
 
@@ -27,8 +28,24 @@ struct AttemptRow {
   bool passed = false;
   std::optional<std::int64_t> parent;  ///< the attempt an instructor took over from
   std::int64_t branch_step = 0;
-  std::string recording;  ///< recording file (given at the start: an interrupted one's replayable prefix)
-  int moves = 0;          ///< moves stored so far
+  std::string recording;     ///< recording file (given at the start: an interrupted one's replayable prefix)
+  int moves = 0;             ///< moves stored so far
+  std::string route, stage;  ///< the training route stage it was run for ("" : none)
+  std::string exercise_version;  ///< the exercise file's content hash (io::exercise_version; "" : before)
+};
+
+/// What an attempt starts with.
+struct AttemptStart {
+  std::string trainee, exercise;
+  std::optional<std::int64_t> parent;  ///< the attempt an instructor took over from
+  std::int64_t branch_step = 0;
+  std::string recording;
+  std::string route, stage, exercise_version;
+};
+
+/// A trainee enrolled in a route: when and by whom (UTC, ISO 8601).
+struct EnrolmentRow {
+  std::string trainee, route, at, account;
 };
 
 /// A console account: an administrator, an instructor, or a trainee (who sees only their own results).
@@ -88,6 +105,7 @@ class RecordsStore {
   std::int64_t begin_attempt(const std::string& trainee, const std::string& exercise,
                              std::optional<std::int64_t> parent = std::nullopt, std::int64_t branch_step = 0,
                              const std::string& recording = "");
+  std::int64_t begin_attempt(const AttemptStart& start);
   void record_move(std::int64_t attempt, int index, double completed_at_s, double cycle_time_s);
   void record_event(std::int64_t attempt, double at_s, const std::string& kind, double value);
   /// Stores the final metrics and score; `status` is finished, interrupted (stopped before its end, e.g.
@@ -115,6 +133,22 @@ class RecordsStore {
              const std::string& detail);
   /// The newest `newest` entries, newest first.
   std::vector<AuditRow> audit_log(int newest);
+
+  /// The schema version of the database (the build's latest once opened: opening upgrades it).
+  int schema_version();
+
+  /// Enrols a trainee in a route (by its id, the route file's stem); enrolling again changes nothing and
+  /// returns false. Throws std::out_of_range for an unknown trainee.
+  bool enrol(const std::string& trainee, const std::string& route, const std::string& account);
+  /// Enrolments, of one trainee or of all, in the order they were made.
+  std::vector<EnrolmentRow> enrolments(const std::optional<std::string>& trainee = std::nullopt);
+  /// Stores an instructor's decision on a trainee's route stage (sign_off or retry) with its reason;
+  /// throws std::invalid_argument for another action or an empty reason, std::out_of_range when the trainee
+  /// is not enrolled in the route.
+  void add_override(const std::string& trainee, const std::string& route, const training::Override& decision);
+  std::vector<training::Override> overrides(const std::string& trainee, const std::string& route);
+  /// The trainee's attempts at the route's stages with their stored metrics, oldest first.
+  std::vector<training::StageAttempt> stage_attempts(const std::string& trainee, const std::string& route);
 
  private:
   struct Impl;

@@ -44,7 +44,8 @@ Session::Session(const sim::ExerciseSettings& exercise, const SessionOptions& op
     writer_.emplace(options.record, recorder_.recording());
     recorder_.set_sink(&*writer_);
   }
-  attempt_ = db_->begin_attempt(options.trainee, exercise.name, parent, branch_step, options.record);
+  attempt_ = db_->begin_attempt({options.trainee, exercise.name, parent, branch_step, options.record,
+                                 options.route, options.stage, options.exercise_version});
   loop_ = std::make_unique<RealTimeLoop>(*simulation_, options.loop);
   // the exercise bounds the run: its moves done (the keeper says so), or its time and overtime past
   const double stop_at_s = exercise.rules.time_limit_s + exercise.rules.overtime_s;

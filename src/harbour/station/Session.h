@@ -29,6 +29,8 @@ struct SessionOptions {
   std::string database;  ///< records connection
   LoopSettings loop;
   std::optional<TakeOverFrom> take_over;
+  std::string route, stage;      ///< the training route stage it runs ("" : none)
+  std::string exercise_version;  ///< io::exercise_version of its file
 };
 
 /// How a session ended.

@@ -1,0 +1,142 @@
+#include "RoutesTool.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <stdexcept>
+
+#include "StsRun.h"
+#include "harbour/core/Text.h"
+#include "harbour/io/RouteFiles.h"
+
+namespace harbour::apps {
+namespace {
+
+const std::string kRoutes = std::string(HARBOUR_DATA_DIR) + "/routes";
+const std::string kExercises = std::string(HARBOUR_DATA_DIR) + "/exercises";
+
+std::string criteria(const training::Stage& s) {
+  char text[64];
+  std::string out = s.min_score ? (std::snprintf(text, sizeof text, "score >= %g", *s.min_score), text)
+                                : "the exercise's pass mark";
+  for (const training::MetricBound& b : s.bounds) {
+    if (b.min) out += (std::snprintf(text, sizeof text, ", %s >= %g", b.metric.c_str(), *b.min), text);
+    if (b.max) out += (std::snprintf(text, sizeof text, ", %s <= %g", b.metric.c_str(), *b.max), text);
+  }
+  return out;
+}
+
+}  // namespace
+
+training::Route load_shipped_route(const std::string& id) {
+  if (const std::string why = core::why_bad_name(id, 64); !why.empty() || id.find('/') != std::string::npos)
+    throw std::runtime_error("route '" + core::printable(id, 64) +
+                             "': a route's name, as harboursim routes list shows");
+  const std::string file = kRoutes + "/" + id + ".yaml";
+  if (!std::filesystem::is_regular_file(file)) {
+    std::string known;
+    for (const training::Route& r : io::load_routes(kRoutes, kExercises))
+      known += (known.empty() ? "" : ", ") + r.id;
+    throw std::runtime_error("no route '" + id + "' (the shipped ones: " + known + ")");
+  }
+  return io::load_route(file, kExercises);
+}
+
+RouteStage next_route_stage(io::RecordsStore& db, const std::string& trainee, const std::string& route_id) {
+  const training::Route route = load_shipped_route(route_id);
+  const auto enrolled = db.enrolments(trainee);
+  if (std::none_of(enrolled.begin(), enrolled.end(),
+                   [&](const io::EnrolmentRow& e) { return e.route == route.id; }))
+    throw std::runtime_error("trainee '" + trainee + "' is not enrolled in route '" + route.id +
+                             "' (harboursim routes enrol " + trainee + " " + route.id + ")");
+  const training::RouteProgress p =
+      training::progress(route, db.stage_attempts(trainee, route.id), db.overrides(trainee, route.id));
+  if (p.complete)
+    throw std::runtime_error("trainee '" + trainee + "' has passed every stage of route '" + route.id + "'");
+  if (!p.next) {
+    std::string blocked;
+    for (const training::StageProgress& s : p.stages)
+      if (s.state == training::StageState::kBlocked) blocked += (blocked.empty() ? "" : ", ") + s.stage;
+    throw std::runtime_error("route '" + route.id + "': no stage open for '" + trainee +
+                             "'; blocked after their attempts: " + blocked +
+                             " (an instructor decides: harboursim routes sign-off|retry)");
+  }
+  return {route, *route.stage(*p.next)};
+}
+
+int list_routes() {
+  for (const training::Route& r : io::load_routes(kRoutes, kExercises)) {
+    std::printf("%-16s %s (%s): ", r.id.c_str(), r.name.c_str(), r.machine.c_str());
+    std::string last_goal;
+    for (const training::Stage& s : r.stages) {
+      if (s.goal != last_goal)
+        std::printf("%s%s: ", last_goal.empty() ? "" : "; ", s.goal.c_str());
+      else
+        std::printf(", ");
+      std::printf("%s", s.id.c_str());
+      last_goal = s.goal;
+    }
+    std::printf("\n");
+  }
+  return 0;
+}
+
+int show_route(const std::string& database, const std::string& route_id, const std::string& trainee) {
+  const training::Route route = load_shipped_route(route_id);
+  std::optional<training::RouteProgress> p;
+  if (!trainee.empty()) {
+    io::RecordsStore db(database.empty() ? default_database() : database);
+    if (!db.has_trainee(trainee)) throw std::runtime_error("no trainee '" + core::printable(trainee) + "'");
+    p = training::progress(route, db.stage_attempts(trainee, route.id), db.overrides(trainee, route.id));
+  }
+  std::printf("route %s: %s (%s)%s\n", route.id.c_str(), route.name.c_str(), route.machine.c_str(),
+              trainee.empty() ? "" : (", trainee " + trainee).c_str());
+  std::string last_goal;
+  for (std::size_t n = 0; n < route.stages.size(); ++n) {
+    const training::Stage& s = route.stages[n];
+    if (s.goal != last_goal) std::printf("  %s\n", s.goal.c_str());
+    last_goal = s.goal;
+    std::string requires_text;
+    for (const std::string& r : s.requires_stages)
+      requires_text += (requires_text.empty() ? "" : ", ") + r;
+    std::printf("    %-18s %-26s %d of %d attempts pass: %s%s\n", s.id.c_str(), s.exercise.c_str(),
+                s.repetitions, s.max_attempts, criteria(s).c_str(),
+                requires_text.empty() ? "" : ("; after " + requires_text).c_str());
+    if (!p) continue;
+    const training::StageProgress& sp = p->stages[n];
+    char best[32] = "-";
+    if (sp.best_score) std::snprintf(best, sizeof best, "%.1f", *sp.best_score);
+    std::printf("      %-8s %d/%d passes, %d/%d attempts, best %s%s%s\n", training::state_name(sp.state),
+                sp.passes, s.repetitions, sp.attempts, sp.attempts_allowed, best,
+                sp.signed_off ? ", signed off" : "", p->next == s.id ? "  <- next" : "");
+  }
+  if (p)
+    std::printf("%s\n", p->complete ? "route complete"
+                        : p->next   ? ""
+                                    : "no stage open: an instructor decides");
+  return 0;
+}
+
+int enrol_trainee(const std::string& database, const std::string& trainee, const std::string& route_id) {
+  const training::Route route = load_shipped_route(route_id);
+  io::RecordsStore db(database.empty() ? default_database() : database);
+  const bool added = db.enrol(trainee, route.id, "(command line)");
+  if (added) db.audit("(command line)", "enrol", trainee, route.id);
+  std::printf("trainee %s %s route %s\n", trainee.c_str(), added ? "enrolled in" : "was already enrolled in",
+              route.id.c_str());
+  return 0;
+}
+
+int decide_stage(const std::string& database, const std::string& trainee, const std::string& route_id,
+                 const std::string& stage, const std::string& action, const std::string& reason) {
+  const training::Route route = load_shipped_route(route_id);
+  if (!route.stage(stage))
+    throw std::runtime_error("route '" + route.id + "' has no stage '" + core::printable(stage) + "'");
+  io::RecordsStore db(database.empty() ? default_database() : database);
+  db.add_override(trainee, route.id, {stage, action, reason, "(command line)", ""});
+  db.audit("(command line)", action, trainee + " " + route.id + "/" + stage, reason);
+  std::printf("%s: %s %s/%s (%s)\n", action.c_str(), trainee.c_str(), route.id.c_str(), stage.c_str(),
+              reason.c_str());
+  return 0;
+}
+
+}  // namespace harbour::apps
