@@ -43,6 +43,7 @@
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/io/RecordingFile.h"
 #include "harbour/io/RecordsStore.h"
+#include "harbour/io/RouteFiles.h"
 #include "harbour/net/DdsLink.h"
 #include "harbour/sim/Recording.h"
 
@@ -305,6 +306,26 @@ struct LoginSession {
 
 class Console;
 
+json route_json(const training::Route& r) {
+  json stages = json::array();
+  for (const training::Stage& s : r.stages) {
+    json bounds = json::array();
+    for (const training::MetricBound& b : s.bounds)
+      bounds.push_back({{"metric", b.metric},
+                        {"min", b.min ? json(*b.min) : json(nullptr)},
+                        {"max", b.max ? json(*b.max) : json(nullptr)}});
+    stages.push_back({{"id", s.id},
+                      {"goal", s.goal},
+                      {"exercise", s.exercise},
+                      {"min_score", s.min_score ? json(*s.min_score) : json(nullptr)},
+                      {"bounds", bounds},
+                      {"repetitions", s.repetitions},
+                      {"max_attempts", s.max_attempts},
+                      {"requires", s.requires_stages}});
+  }
+  return {{"id", r.id}, {"name", r.name}, {"machine", r.machine}, {"stages", stages}};
+}
+
 // A stored attempt played back in the console: re-simulated from its recording, seeking through keyframes,
 // at 0.25-8x; browsers subscribe to it as to a station ("replay-ID").
 struct Replay {
@@ -480,6 +501,9 @@ class Console {
                   const std::function<json(bool)>& state_of);
   std::string looks_ =
       dump(looks_json(ig::load_looks(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml")));
+  /// the training routes (data/routes), checked at start: a bad one stops the console naming it
+  std::vector<training::Route> routes_ = io::load_routes(std::string(HARBOUR_DATA_DIR) + "/routes",
+                                                         std::string(HARBOUR_DATA_DIR) + "/exercises");
 };
 
 // ---------------------------------------------------------------------------------------------------
@@ -828,6 +852,9 @@ Console::Response Console::api(const http::request<http::string_body>& request, 
                                const std::string& token, const std::string& target) {
   const bool get = request.method() == http::verb::get;
   const auto forbidden = [&] { return error(request, http::status::forbidden, "not for a " + account.role); };
+  const auto question = request.target().find('?');
+  const std::string query =
+      question == std::string::npos ? "" : std::string(request.target().substr(question + 1));
   if (target == "/api/me" && get)
     return json_reply(request, http::status::ok,
                       {{"name", account.name},
@@ -896,9 +923,6 @@ Console::Response Console::api(const http::request<http::string_body>& request, 
     const std::string rest = target.substr(13);
     if (rest.empty() || rest[0] == '?') {
       std::optional<std::string> trainee;
-      const std::string query = request.target().find('?') == std::string::npos
-                                    ? ""
-                                    : std::string(request.target().substr(request.target().find('?') + 1));
       if (query.rfind("trainee=", 0) == 0) trainee = query.substr(8);
       if (!account.instructs()) {
         if (trainee && *trainee != account.trainee) return forbidden();
@@ -913,7 +937,10 @@ Console::Response Console::api(const http::request<http::string_body>& request, 
                         {"score", a.score ? json(*a.score) : json(nullptr)},
                         {"passed", a.passed},
                         {"moves", a.moves},
-                        {"parent", a.parent ? json(*a.parent) : json(nullptr)}});
+                        {"parent", a.parent ? json(*a.parent) : json(nullptr)},
+                        {"route", a.route},
+                        {"stage", a.stage},
+                        {"exercise_version", a.exercise_version}});
       return json_reply(request, http::status::ok, list);
     }
     if (rest[0] != '/') return error(request, http::status::not_found, "no such API");
@@ -948,6 +975,95 @@ Console::Response Console::api(const http::request<http::string_body>& request, 
   if (target == "/api/replays" && request.method() == http::verb::post) {
     if (!account.instructs()) return forbidden();
     return open_replay(request, account);
+  }
+  if (target == "/api/routes" && get) {
+    json list = json::array();
+    for (const training::Route& r : routes_)
+      list.push_back(route_json(r));
+    return json_reply(request, http::status::ok, list);
+  }
+  if (target.rfind("/api/progress", 0) == 0 && get) {
+    std::string trainee = query.rfind("trainee=", 0) == 0 ? query.substr(8) : "";
+    if (!account.instructs()) {
+      if (!trainee.empty() && trainee != account.trainee) return forbidden();
+      trainee = account.trainee;  // a trainee sees only their own
+    }
+    if (trainee.empty()) return error(request, http::status::bad_request, "progress of whom: ?trainee=ID");
+    if (!db_.has_trainee(trainee))
+      return error(request, http::status::not_found, "no trainee '" + core::printable(trainee) + "'");
+    json list = json::array();
+    for (const io::EnrolmentRow& e : db_.enrolments(trainee)) {
+      const auto route =
+          std::find_if(routes_.begin(), routes_.end(), [&](const auto& r) { return r.id == e.route; });
+      if (route == routes_.end()) continue;  // a route of another centre's folder
+      const training::RouteProgress p = training::progress(*route, db_.stage_attempts(trainee, route->id),
+                                                           db_.overrides(trainee, route->id));
+      json stages = json::array();
+      for (const training::StageProgress& sp : p.stages)
+        stages.push_back({{"stage", sp.stage},
+                          {"state", training::state_name(sp.state)},
+                          {"attempts", sp.attempts},
+                          {"attempts_allowed", sp.attempts_allowed},
+                          {"passes", sp.passes},
+                          {"best_score", sp.best_score ? json(*sp.best_score) : json(nullptr)},
+                          {"signed_off", sp.signed_off},
+                          {"missing", sp.missing}});
+      json decisions = json::array();
+      for (const training::Override& o : db_.overrides(trainee, route->id))
+        decisions.push_back({{"stage", o.stage},
+                             {"action", o.action},
+                             {"reason", o.reason},
+                             {"account", o.account},
+                             {"at", o.at}});
+      list.push_back({{"route", e.route},
+                      {"enrolled_at", e.at},
+                      {"next", p.next ? json(*p.next) : json(nullptr)},
+                      {"complete", p.complete},
+                      {"stages", stages},
+                      {"decisions", decisions}});
+    }
+    return json_reply(request, http::status::ok, {{"trainee", trainee}, {"routes", list}});
+  }
+  if ((target == "/api/enrolments" || target == "/api/decisions") && request.method() == http::verb::post) {
+    if (!account.instructs()) return forbidden();
+    std::string why;
+    const std::optional<json> body = parse_object(request.body(), why);
+    const std::optional<std::string> trainee = body ? text_field(*body, "trainee", 64, why) : std::nullopt;
+    const std::optional<std::string> route_id = trainee ? text_field(*body, "route", 64, why) : std::nullopt;
+    if (!route_id) return error(request, http::status::bad_request, why);
+    const auto route =
+        std::find_if(routes_.begin(), routes_.end(), [&](const auto& r) { return r.id == *route_id; });
+    if (route == routes_.end())
+      return error(request, http::status::not_found,
+                   "field 'route': no route '" + core::printable(*route_id) + "'");
+    if (!db_.has_trainee(*trainee))
+      return error(request, http::status::not_found,
+                   "field 'trainee': no trainee '" + core::printable(*trainee) + "'");
+    if (target == "/api/enrolments") {
+      const bool added = db_.enrol(*trainee, route->id, account.name);
+      if (added) db_.audit(account.name, "enrol", *trainee, route->id);
+      return json_reply(request, added ? http::status::created : http::status::ok,
+                        {{"trainee", *trainee}, {"route", route->id}, {"enrolled", true}});
+    }
+    const std::optional<std::string> stage = text_field(*body, "stage", 64, why);
+    const std::optional<std::string> action = stage ? text_field(*body, "action", 16, why) : std::nullopt;
+    const std::optional<std::string> reason = action ? text_field(*body, "reason", 500, why) : std::nullopt;
+    if (!reason) return error(request, http::status::bad_request, why);
+    if (!route->stage(*stage))
+      return error(request, http::status::bad_request,
+                   "field 'stage': route '" + route->id + "' has no stage '" + core::printable(*stage) + "'");
+    if (*action != "sign_off" && *action != "retry")
+      return error(request, http::status::bad_request, "field 'action': sign_off or retry");
+    try {
+      db_.add_override(*trainee, route->id, {*stage, *action, *reason, account.name, ""});
+    } catch (const std::out_of_range& e) {
+      return error(request, http::status::conflict, e.what());
+    } catch (const std::invalid_argument& e) {
+      return error(request, http::status::bad_request, e.what());
+    }
+    db_.audit(account.name, *action, *trainee + " " + route->id + "/" + *stage, *reason);
+    return json_reply(request, http::status::created,
+                      {{"trainee", *trainee}, {"route", route->id}, {"stage", *stage}, {"action", *action}});
   }
   if (target == "/api/audit" && get) {
     if (!account.instructs()) return forbidden();

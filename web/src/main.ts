@@ -222,7 +222,7 @@ async function loadRecords() {
   }
   if (!me || me.role === "trainee") return;
   const trainees = await api("/api/trainees");
-  for (const id of ["trainee", "takeover-trainee", "rename-trainee"]) {
+  for (const id of ["trainee", "takeover-trainee", "rename-trainee", "progress-trainee"]) {
     const select = $<HTMLSelectElement>(id);
     select.replaceChildren();
     for (const t of trainees.data ?? []) select.add(new Option(`${t.id} (${t.name})`, t.id));
@@ -231,6 +231,53 @@ async function loadRecords() {
   const exercise = $<HTMLSelectElement>("exercise");
   exercise.replaceChildren();
   for (const e of exercises.data ?? []) exercise.add(new Option(e, e));
+}
+
+interface StageProgress { stage: string; state: string; attempts: number; attempts_allowed: number; passes: number;
+  best_score: number | null; signed_off: boolean; missing: string[]; }
+interface RouteInfo { id: string; name: string; machine: string;
+  stages: { id: string; goal: string; exercise: string; repetitions: number; }[]; }
+let routes: RouteInfo[] = [];
+
+// A trainee's progress on each route they are enrolled in: a table of stages with their state.
+async function loadProgress() {
+  const trainee = me?.role === "trainee" ? me.trainee : $<HTMLSelectElement>("progress-trainee").value;
+  const box = $("progress");
+  box.replaceChildren();
+  if (!trainee) return;
+  const r = await api(`/api/progress?trainee=${encodeURIComponent(trainee)}`);
+  if (r.status !== 200) { text(box, r.data?.error ?? `error ${r.status}`); return; }
+  const stageSelect = $<HTMLSelectElement>("decision-stage");
+  stageSelect.replaceChildren();
+  for (const enrolled of r.data.routes) {
+    const route = routes.find((x) => x.id === enrolled.route);
+    const title = document.createElement("h3");
+    text(title, `${route?.name ?? enrolled.route}: ${enrolled.complete ? "complete" : enrolled.next ? `next ${enrolled.next}` :
+      "no stage open: an instructor decides"}`);
+    const table = document.createElement("table");
+    table.className = "progress";
+    table.dataset.route = enrolled.route;
+    const head = document.createElement("tr");
+    for (const h of ["goal", "stage", "exercise", "state", "passes", "attempts", "best"]) {
+      const th = document.createElement("th"); text(th, h); head.appendChild(th);
+    }
+    table.appendChild(head);
+    for (const sp of enrolled.stages as StageProgress[]) {
+      const stage = route?.stages.find((x) => x.id === sp.stage);
+      const row = document.createElement("tr");
+      row.dataset.stage = sp.stage;
+      row.className = `state-${sp.state}`;
+      for (const v of [stage?.goal ?? "", sp.stage, stage?.exercise ?? "", sp.state + (sp.signed_off ? " (signed off)" : ""),
+        `${sp.passes}/${stage?.repetitions ?? "?"}`, `${sp.attempts}/${sp.attempts_allowed}`,
+        sp.best_score === null ? "" : sp.best_score.toFixed(1)]) {
+        const td = document.createElement("td"); text(td, v); row.appendChild(td);
+      }
+      table.appendChild(row);
+      stageSelect.add(new Option(`${enrolled.route} / ${sp.stage}`, `${enrolled.route}/${sp.stage}`));
+    }
+    box.append(title, table);
+  }
+  if (r.data.routes.length === 0) text(box, `${trainee} is enrolled in no route`);
 }
 
 async function enter(who: Me) {
@@ -242,6 +289,11 @@ async function enter(who: Me) {
   for (const e of document.querySelectorAll<HTMLElement>(".instructor-only"))
     e.hidden = who.role === "trainee" || e.id === "control-panel" || e.id === "attempt-actions";
   await loadRecords();
+  routes = (await api("/api/routes")).data ?? [];
+  const routeSelect = $<HTMLSelectElement>("route");
+  routeSelect.replaceChildren();
+  for (const r of routes) routeSelect.add(new Option(`${r.name} (${r.id})`, r.id));
+  await loadProgress();
   if (who.role === "trainee") return;
   const looks = await api("/api/looks");
   if (looks.status === 200)
@@ -300,6 +352,22 @@ function wire() {
     const r = await api("/api/trainees", "PATCH", { id: $<HTMLSelectElement>("rename-trainee").value, name: value("rename-name") });
     text($("rename-result"), r.status === 200 ? `${r.data.id} is now ${r.data.name}` : r.data?.error ?? `error ${r.status}`);
     if (r.status === 200) loadRecords();
+  });
+  $("enrol-form").addEventListener("submit", async (e) => {
+    e.preventDefault();
+    const r = await api("/api/enrolments", "POST", { trainee: $<HTMLSelectElement>("progress-trainee").value,
+      route: $<HTMLSelectElement>("route").value });
+    text($("enrol-result"), r.status === 201 ? "enrolled" : r.status === 200 ? "already enrolled" : r.data?.error ?? `error ${r.status}`);
+    loadProgress();
+  });
+  $("show-progress").addEventListener("click", () => loadProgress());
+  $("decision-form").addEventListener("submit", async (e) => {
+    e.preventDefault();
+    const [route, stage] = $<HTMLSelectElement>("decision-stage").value.split("/");
+    const r = await api("/api/decisions", "POST", { trainee: $<HTMLSelectElement>("progress-trainee").value, route, stage,
+      action: $<HTMLSelectElement>("decision-action").value, reason: value("decision-reason") });
+    text($("decision-result"), r.status === 201 ? "recorded" : r.data?.error ?? `error ${r.status}`);
+    loadProgress();
   });
   $("trainee-form").addEventListener("submit", async (e) => {
     e.preventDefault();

@@ -70,6 +70,15 @@ try {
     ["renaming an unknown trainee", "api/trainees", "PATCH", { id: "zed", name: "Zed" }, 404],
     ["renaming to control characters", "api/trainees", "PATCH", { id: "carl", name: "C\u001b[31marl" }, 400],
     ["renaming without a name", "api/trainees", "PATCH", { id: "carl" }, 400],
+    ["enrolling in an unknown route", "api/enrolments", "POST", { trainee: "carl", route: "sts_advanced" }, 404],
+    ["enrolling an unknown trainee", "api/enrolments", "POST", { trainee: "zed", route: "sts_basic" }, 404],
+    ["enrolling without a route", "api/enrolments", "POST", { trainee: "carl" }, 400],
+    ["a decision before enrolment", "api/decisions", "POST", { trainee: "carl", route: "sts_basic", stage: "single_lift", action: "retry", reason: "x" }, 409],
+    ["a decision on an unknown stage", "api/decisions", "POST", { trainee: "carl", route: "sts_basic", stage: "flying", action: "retry", reason: "x" }, 400],
+    ["a decision of an unknown kind", "api/decisions", "POST", { trainee: "carl", route: "sts_basic", stage: "single_lift", action: "promote", reason: "x" }, 400],
+    ["a decision without a reason", "api/decisions", "POST", { trainee: "carl", route: "sts_basic", stage: "single_lift", action: "retry", reason: "" }, 400],
+    ["progress of nobody", "api/progress", "GET", undefined, 400],
+    ["progress of an unknown trainee", "api/progress?trainee=zed", "GET", undefined, 404],
   ];
   await until("the station is seen", async () => (await b("api/stations")).data?.some((s) => s.station === "api-1"));
   for (const [what, p, method, body, want] of cases) {
@@ -92,6 +101,25 @@ try {
   check(renamed.status === 200 && (await b("api/trainees")).data[0].name === "Carl Nyberg Berg",
     `an instructor renames a trainee: ${renamed.status}`);
   check((await b("api/audit")).data.some((a) => a.action === "rename_trainee" && a.target === "carl"), "the rename is audited");
+
+  // training routes: the shipped ones, an enrolment, the progress it gives and an instructor's decision
+  const routes = (await b("api/routes")).data;
+  check(routes.length === 5 && routes.find((r) => r.id === "sts_basic")?.stages[0].id === "single_lift",
+    `five routes, sts_basic starting with single_lift (${routes.map((r) => r.id)})`);
+  check((await b("api/enrolments", "POST", { trainee: "carl", route: "sts_basic" })).status === 201, "carl enrolled: 201");
+  check((await b("api/enrolments", "POST", { trainee: "carl", route: "sts_basic" })).status === 200, "enrolled again: 200");
+  let progress = (await b("api/progress?trainee=carl")).data.routes;
+  check(progress.length === 1 && progress[0].next === "single_lift" && progress[0].stages[1].state === "locked",
+    `carl's next stage is single_lift, deck_discharge locked (${JSON.stringify(progress[0]?.stages?.slice(0, 2))})`);
+  const decided = await b("api/decisions", "POST", { trainee: "carl", route: "sts_basic", stage: "single_lift",
+    action: "sign_off", reason: "certified on the quay crane" });
+  progress = (await b("api/progress?trainee=carl")).data.routes;
+  check(decided.status === 201 && progress[0].stages[0].state === "passed" && progress[0].next === "deck_discharge",
+    `a sign-off passes the stage and opens the next (${decided.status}, next ${progress[0].next})`);
+  check(progress[0].decisions[0]?.reason === "certified on the quay crane" && progress[0].decisions[0]?.account === "ines",
+    "the decision is stored with its reason and who");
+  check((await b("api/audit")).data.some((a) => a.action === "sign_off" && a.target === "carl sts_basic/single_lift"),
+    "the decision is audited");
 
   // the live socket: refused without a login; random, truncated and oversized messages answered or the
   // socket closed, the console unharmed

@@ -137,6 +137,17 @@ try {
   check(branch?.trainee === "anna", `the branch is a new attempt of anna's with attempt ${original.id} as its parent`);
   await page.click("button[data-kind=stop]");
 
+  // training routes: anna enrolled in the STS route from the panel; her progress shows the first stage open
+  await page.selectOption("#progress-trainee", "anna");
+  await page.selectOption("#route", "sts_basic");
+  await page.click("#enrol-form button[type=submit]");
+  await until("anna is enrolled", async () => (await page.textContent("#enrol-result")) === "enrolled");
+  const stageState = (p, stage) => p.locator(`#progress table[data-route=sts_basic] tr[data-stage=${stage}] td:nth-child(4)`)
+    .textContent().catch(() => "");
+  await until("her progress shows single_lift open, deck_discharge locked", async () =>
+    (await stageState(page, "single_lift")) === "open" && (await stageState(page, "deck_discharge")) === "locked");
+  await page.locator("#routes-panel").screenshot({ path: path.join(out, "console_routes.png") });
+
   // a trainee: own results only, no instructor actions
   const trainee = await browser.newPage();
   await trainee.goto(url);
@@ -153,6 +164,8 @@ try {
       trainee: (await post("/api/trainees", { id: "x", name: "X" })).status,
       rename: (await fetch("/api/trainees", { method: "PATCH", headers: { "Content-Type": "application/json", "X-CSRF-Token": me.csrf }, body: JSON.stringify({ id: "anna", name: "Queen Anna" }) })).status,
       others: (await fetch("/api/attempts?trainee=ben")).status,
+      othersProgress: (await fetch("/api/progress?trainee=ben")).status,
+      enrol: (await post("/api/enrolments", { trainee: "anna", route: "mhc_bulk" })).status,
       own: await (await fetch("/api/attempts")).json(),
     };
   });
@@ -162,7 +175,12 @@ try {
   check(refused.rename === 403, `a trainee may not rename trainees, not even themselves (${refused.rename})`);
   check(refused.others === 403, `a trainee may not read another's results (${refused.others})`);
   check(refused.own.every((a) => a.trainee === "anna"), `a trainee sees only their own attempts (${refused.own.length})`);
+  check(refused.othersProgress === 403 && refused.enrol === 403,
+    `a trainee may not read another's progress (${refused.othersProgress}) nor enrol (${refused.enrol})`);
+  await until("a trainee sees their own progress", async () => (await stageState(trainee, "single_lift")) === "open");
   check(!(await trainee.isVisible("#stations-panel")), "a trainee's page has no station panel");
+  for (const form of ["#trainee-form", "#rename-form", "#enrol-form", "#decision-form", "#attempt-actions"])
+    check(!(await trainee.isVisible(form)), `a trainee's page shows no ${form}`);
   await trainee.screenshot({ path: path.join(out, "console_trainee.png"), fullPage: true });
 } catch (e) {
   check(false, `error: ${e.stack ?? e}`);

@@ -1,0 +1,131 @@
+// A scripted cohort on a training route: autopilots with the bad-operator defects at three levels run the
+// route's stages through the real pipeline (exercise loader, simulation, evaluation, records), and the
+// progress read back from the records unlocks, blocks and completes as the attempts say.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+
+#include "harbour/io/ExerciseFiles.h"
+#include "harbour/io/RecordsStore.h"
+#include "harbour/io/RouteFiles.h"
+#include "harbour/sim/Autopilot.h"
+#include "harbour/training/Route.h"
+
+namespace harbour::training {
+namespace {
+
+struct Result {
+  sim::Metrics metrics;
+  sim::Score score;
+};
+
+Result run(const std::string& exercise_file, sim::OperatorDefects defects) {
+  const sim::ExerciseSettings exercise = io::load_exercise(exercise_file);
+  sim::Simulation simulation(exercise.scenario);
+  sim::Autopilot pilot(exercise, defects);
+  sim::Evaluator evaluator(exercise);
+  const double stop_s = exercise.rules.time_limit_s + exercise.rules.overtime_s;
+  while (!evaluator.finished() && simulation.time_s() < stop_s) {
+    const sim::Controls in = pilot.next(simulation);
+    simulation.step(in);
+    evaluator.observe(simulation, in);
+  }
+  return {evaluator.metrics(), evaluator.score()};
+}
+
+TEST(Cohort, ProgressOnARouteFollowsWhatTheAttemptsSay) {
+  const auto folder = std::filesystem::temp_directory_path() / "harbour_cohort";
+  std::filesystem::remove_all(folder);
+  std::filesystem::create_directories(folder);
+  std::ofstream(folder / "sts_cohort.yaml") << R"(name: STS cohort
+machine: STS
+goals:
+  - goal: A single lift
+    stages:
+      - id: lift
+        exercise: sts_discharge
+        pass: {score: 70, metrics: {hard_landings: {max: 0}, twistlock_misuse: {max: 0}}}
+        repetitions: 2
+        max_attempts: 3
+  - goal: Weather
+    stages:
+      - id: gusty
+        exercise: sts_discharge_gusty
+        pass: {score: 70, metrics: {sway_landings: {max: 1}}}
+)";
+  const Route route = io::load_route((folder / "sts_cohort.yaml").string(), HARBOUR_DATA_DIR "/exercises");
+  const std::string connection = "sqlite3://db=" + (folder / "records.db").string();
+  io::RecordsStore db(connection);
+
+  // the defect levels: none; the twistlocks forgotten once; and landing fast as well
+  const std::map<std::string, sim::OperatorDefects> cohort = {
+      {"level0", {}},
+      {"level1", {.forget_lock_once = true}},
+      {"level2", {.land_fast = true, .forget_lock_once = true}}};
+  std::map<std::string, Result> lift;  // each level's lift, once: the simulation is deterministic
+  for (const auto& [trainee, defects] : cohort) {
+    db.add_trainee(trainee, "Trainee " + trainee);
+    ASSERT_TRUE(db.enrol(trainee, route.id, "ines"));
+    lift[trainee] = run(route.stages[0].exercise_file, defects);
+  }
+  const auto store = [&](const std::string& trainee, const Stage& stage, const Result& r) {
+    const auto attempt = db.begin_attempt({trainee, stage.exercise, std::nullopt, 0, "", route.id, stage.id,
+                                           io::exercise_version(stage.exercise_file)});
+    db.finish_attempt(attempt, r.metrics, r.score, "");
+  };
+  const auto progress_of = [&](const std::string& trainee) {
+    return progress(route, db.stage_attempts(trainee, route.id), db.overrides(trainee, route.id));
+  };
+
+  // what the runs measured: the defects show where the evaluation says they do
+  EXPECT_EQ(lift["level0"].metrics.hard_landings + lift["level0"].metrics.twistlock_misuse, 0);
+  EXPECT_EQ(lift["level1"].metrics.twistlock_misuse, 1);
+  EXPECT_EQ(lift["level1"].metrics.hard_landings, 0);
+  EXPECT_EQ(lift["level2"].metrics.hard_landings, 1);
+  EXPECT_GT(lift["level0"].score.total, lift["level1"].score.total);
+  EXPECT_GT(lift["level1"].score.total, lift["level2"].score.total);
+
+  // level 0: one pass leaves the lift open and the weather locked; the second unlocks it; passing it ends
+  // the route
+  store("level0", route.stages[0], lift["level0"]);
+  RouteProgress p = progress_of("level0");
+  EXPECT_EQ(p.stages[0].state, StageState::kOpen);
+  EXPECT_EQ(p.stages[1].state, StageState::kLocked);
+  EXPECT_EQ(p.next, "lift");
+  store("level0", route.stages[0], lift["level0"]);
+  p = progress_of("level0");
+  EXPECT_EQ(p.stages[0].state, StageState::kPassed);
+  EXPECT_EQ(p.next, "gusty");
+  const Result gusty = run(route.stages[1].exercise_file, {});
+  store("level0", route.stages[1], gusty);
+  p = progress_of("level0");
+  EXPECT_TRUE(p.complete) << "gusty: score " << gusty.score.total << ", sway landings "
+                          << gusty.metrics.sway_landings;
+
+  // level 1 passes the score (one twistlock misuse costs 10 points) but not the bound: three attempts and the
+  // stage is blocked; the instructor grants another round
+  EXPECT_GE(lift["level1"].score.total, 70.0);
+  for (int n = 0; n < 3; ++n)
+    store("level1", route.stages[0], lift["level1"]);
+  p = progress_of("level1");
+  EXPECT_EQ(p.stages[0].passes, 0);
+  EXPECT_EQ(p.stages[0].attempts, 3);
+  EXPECT_EQ(p.stages[0].state, StageState::kBlocked);
+  EXPECT_FALSE(p.next.has_value());
+  db.add_override("level1", route.id, {"lift", "retry", "talked through the twistlock sequence", "ines", ""});
+  p = progress_of("level1");
+  EXPECT_EQ(p.next, "lift");
+  EXPECT_EQ(p.stages[0].attempts_allowed, 6);
+
+  // level 2: a failed attempt, still open; the best score is the stored one
+  store("level2", route.stages[0], lift["level2"]);
+  p = progress_of("level2");
+  EXPECT_EQ(p.stages[0].state, StageState::kOpen);
+  EXPECT_EQ(p.stages[0].best_score, lift["level2"].score.total);
+  EXPECT_EQ(p.stages[1].state, StageState::kLocked);
+}
+
+}  // namespace
+}  // namespace harbour::training
