@@ -464,6 +464,12 @@ class Console {
   Response api(const http::request<http::string_body>& request, const Account& account,
                const std::string& token, const std::string& target);
   bool login_blocked(const std::string& key, Clock::time_point now);
+  /// A trainee's finished attempts oldest first with score and skills, and where their best score on each
+  /// exercise version stands among every trainee's best on it (percentile rank).
+  json evolution(const std::string& trainee);
+  /// Attempts (of one trainee or all) as CSV: one row each with the skills; text cells quoted, and
+  /// those a spreadsheet would run as a formula prefixed with an apostrophe.
+  std::string attempts_csv(const std::optional<std::string>& trainee);
   /// Over TLS the browser sends the session cookie only over TLS.
   std::string secure_cookie() const { return options_.tls_certificate.empty() ? "" : "; Secure"; }
   void poll();
@@ -919,7 +925,7 @@ Console::Response Console::api(const http::request<http::string_body>& request, 
     return json_reply(request, adds ? http::status::created : http::status::ok,
                       {{"id", *id}, {"name", *name}});
   }
-  if (target.rfind("/api/attempts", 0) == 0 && get) {
+  if (target.rfind("/api/attempts", 0) == 0 && target.rfind("/api/attempts.csv", 0) != 0 && get) {
     const std::string rest = target.substr(13);
     if (rest.empty() || rest[0] == '?') {
       std::optional<std::string> trainee;
@@ -975,6 +981,26 @@ Console::Response Console::api(const http::request<http::string_body>& request, 
   if (target == "/api/replays" && request.method() == http::verb::post) {
     if (!account.instructs()) return forbidden();
     return open_replay(request, account);
+  }
+  if ((target.rfind("/api/evolution", 0) == 0 || target.rfind("/api/attempts.csv", 0) == 0) && get) {
+    std::string trainee = query.rfind("trainee=", 0) == 0 ? query.substr(8) : "";
+    if (!account.instructs()) {
+      if (!trainee.empty() && trainee != account.trainee) return forbidden();
+      trainee = account.trainee;  // a trainee sees only their own
+    }
+    if (trainee.empty() && target.rfind("/api/evolution", 0) == 0)
+      return error(request, http::status::bad_request, "evolution of whom: ?trainee=ID");
+    if (!trainee.empty() && !db_.has_trainee(trainee))
+      return error(request, http::status::not_found, "no trainee '" + core::printable(trainee) + "'");
+    if (target.rfind("/api/attempts.csv", 0) == 0) {
+      Response r = json_reply(request, http::status::ok, json::object());
+      r.set(http::field::content_type, "text/csv; charset=utf-8");
+      r.set(http::field::content_disposition, "attachment; filename=\"attempts.csv\"");
+      r.body() = attempts_csv(trainee.empty() ? std::nullopt : std::optional(trainee));
+      r.prepare_payload();
+      return r;
+    }
+    return json_reply(request, http::status::ok, evolution(trainee));
   }
   if (target == "/api/routes" && get) {
     json list = json::array();
@@ -1411,6 +1437,81 @@ void Console::poll() {
   poll_timer_.async_wait([this](beast::error_code ec) {
     if (!ec) poll();
   });
+}
+
+json Console::evolution(const std::string& trainee) {
+  std::vector<io::AttemptRow> all = db_.attempts();
+  std::reverse(all.begin(), all.end());  // oldest first
+  json attempts = json::array();
+  std::map<std::pair<std::string, std::string>, std::map<std::string, double>> best;  // version -> trainee
+  for (const io::AttemptRow& a : all) {
+    if (a.status != "finished" || !a.score) continue;
+    double& b = best[{a.exercise, a.exercise_version}].try_emplace(a.trainee, *a.score).first->second;
+    b = std::max(b, *a.score);
+    if (a.trainee != trainee) continue;
+    json skills = json::object();
+    for (const auto& [name, value] : db_.metrics(a.id))
+      if (name.rfind("skill_", 0) == 0) skills[name.substr(6)] = value;
+    attempts.push_back({{"id", a.id},
+                        {"exercise", a.exercise},
+                        {"exercise_version", a.exercise_version},
+                        {"route", a.route},
+                        {"stage", a.stage},
+                        {"score", *a.score},
+                        {"passed", a.passed},
+                        {"skills", skills}});
+  }
+  json cohort = json::array();
+  for (const auto& [version, by_trainee] : best) {
+    const auto own = by_trainee.find(trainee);
+    if (own == by_trainee.end()) continue;
+    std::vector<double> scores;
+    for (const auto& [who, score] : by_trainee)
+      scores.push_back(score);
+    cohort.push_back({{"exercise", version.first},
+                      {"exercise_version", version.second},
+                      {"best", own->second},
+                      {"trainees", scores.size()},
+                      {"percentile", training::percentile_rank(scores, own->second)}});
+  }
+  return {{"trainee", trainee}, {"attempts", attempts}, {"cohort", cohort}};
+}
+
+std::string Console::attempts_csv(const std::optional<std::string>& trainee) {
+  const auto cell = [](const std::string& text) {
+    std::string out = "\"";
+    if (!text.empty() && std::string("=+-@\t\r").find(text[0]) != std::string::npos) out += '\'';
+    for (char c : text)
+      out += c == '"' ? std::string("\"\"") : std::string(1, c);
+    return out + "\"";
+  };
+  std::string csv =
+      "id,trainee,exercise,exercise_version,route,stage,status,score,passed,moves,skill_safety,skill_"
+      "precision,"
+      "skill_productivity\r\n";
+  std::vector<io::AttemptRow> rows = db_.attempts(trainee);
+  std::reverse(rows.begin(), rows.end());
+  for (const io::AttemptRow& a : rows) {
+    std::map<std::string, double> skills;
+    for (const auto& [name, value] : db_.metrics(a.id))
+      skills[name] = value;
+    const auto figure = [](std::optional<double> v) {
+      if (!v) return std::string();
+      char text[32];
+      std::snprintf(text, sizeof text, "%.6g", *v);
+      return std::string(text);
+    };
+    const auto skill = [&](const char* name) {
+      const auto found = skills.find(name);
+      return figure(found == skills.end() ? std::nullopt : std::optional(found->second));
+    };
+    csv += std::to_string(a.id) + "," + cell(a.trainee) + "," + cell(a.exercise) + "," +
+           cell(a.exercise_version) + "," + cell(a.route) + "," + cell(a.stage) + "," + cell(a.status) + "," +
+           figure(a.score) + "," + (a.passed ? "1" : "0") + "," + std::to_string(a.moves) + "," +
+           skill("skill_safety") + "," + skill("skill_precision") + "," + skill("skill_productivity") +
+           "\r\n";
+  }
+  return csv;
 }
 
 void accept(tcp::acceptor& acceptor, Console& console, asio::ssl::context* tls) {

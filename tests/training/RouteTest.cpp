@@ -171,5 +171,14 @@ TEST(RouteProgress, TheExercisesPassMarkAndUnmeasuredFigures) {
   EXPECT_EQ(why, "collisions not measured");
 }
 
+// The percentile rank of a value among a cohort's: below it, plus half the ties (worked by hand).
+TEST(Cohort, PercentileRankCountsHalfTheTies) {
+  const std::vector<double> best = {55, 70, 70, 85, 100};
+  EXPECT_DOUBLE_EQ(percentile_rank(best, 70), 100.0 * (1 + 0.5 * 2) / 5);  // 40
+  EXPECT_DOUBLE_EQ(percentile_rank(best, 100), 90.0);
+  EXPECT_DOUBLE_EQ(percentile_rank(best, 40), 0.0);
+  EXPECT_DOUBLE_EQ(percentile_rank({}, 40), 100.0);
+}
+
 }  // namespace
 }  // namespace harbour::training

@@ -278,6 +278,36 @@ async function loadProgress() {
     box.append(title, table);
   }
   if (r.data.routes.length === 0) text(box, `${trainee} is enrolled in no route`);
+  await loadEvolution(trainee);
+}
+
+// The score and the three skills over a trainee's finished attempts, and where their best stands in the cohort.
+let evolutionPlot: uPlot | null = null;
+async function loadEvolution(trainee: string) {
+  $<HTMLAnchorElement>("csv").href = `/api/attempts.csv?trainee=${encodeURIComponent(trainee)}`;
+  const r = await api(`/api/evolution?trainee=${encodeURIComponent(trainee)}`);
+  evolutionPlot?.destroy();
+  evolutionPlot = null;
+  const body = $("cohort").querySelector("tbody")!;
+  body.replaceChildren();
+  if (r.status !== 200) return;
+  const attempts = r.data.attempts as { score: number; skills: Record<string, number> }[];
+  const data = [attempts.map((_, n) => n + 1), attempts.map((a) => a.score),
+    ...["safety", "precision", "productivity"].map((k) => attempts.map((a) => a.skills[k] ?? null))];
+  evolutionPlot = new uPlot({ width: 640, height: 220, scales: { x: { time: false }, y: { range: [0, 100] } },
+    axes: [{ incrs: [1, 2, 5, 10, 20, 50, 100] }, {}],
+    series: [{ label: "attempt" }, { label: "score", stroke: "#1a237e", width: 2 }, { label: "safety", stroke: "#c62828" },
+      { label: "precision", stroke: "#2e7d32" }, { label: "productivity", stroke: "#ef6c00" }] },
+    data as uPlot.AlignedData, $("evolution"));
+  $("evolution").dataset.attempts = String(attempts.length);
+  for (const c of r.data.cohort) {
+    const row = document.createElement("tr");
+    row.dataset.exercise = c.exercise;
+    for (const v of [c.exercise, c.exercise_version, c.best.toFixed(1), c.trainees, c.percentile.toFixed(0)]) {
+      const td = document.createElement("td"); text(td, v); row.appendChild(td);
+    }
+    body.appendChild(row);
+  }
 }
 
 async function enter(who: Me) {

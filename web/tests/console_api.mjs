@@ -41,6 +41,9 @@ function raw(port, text) {
 
 try {
   run(["trainees", "add", "carl", "Carl Nyberg", "--db", db]);
+  // two finished attempts for the evolution and the cohort (the same autopilot: the same score, a tie)
+  run(["trainees", "add", "=dora", "Dora Lind", "--db", db]);
+  for (const who of ["carl", "=dora"]) run(["run", "--exercise", "sts_discharge", "--autopilot", "--trainee", who, "--db", db]);
   run(["accounts", "add", "ines", "--role", "instructor", "--db", db], "ines-password\n");
   const [baseA, portA] = await consoleAt("console-a");
   const [baseB] = await consoleAt("console-b");
@@ -95,12 +98,28 @@ try {
   check(/^HTTP\/1\.1 400/.test(garbage), `a request line that is no HTTP: ${garbage.split("\r\n")[0]}`);
   const truncated = await raw(portA, "POST /api/login HTTP/1.1\r\nContent-Length: 50\r\nContent-Type: application/json\r\n\r\n{\"na");
   check(truncated === "" || /^HTTP\/1\.1 4/.test(truncated), `a truncated body: ${truncated.split("\r\n")[0] || "closed"}`);
-  check((await b("api/trainees")).data.length === 1, "none of them added a trainee");
-  check((await b("api/trainees")).data[0].name === "Carl Nyberg", "nor renamed one");
+  check((await b("api/trainees")).data.length === 2, "none of them added a trainee");
+  check((await b("api/trainees")).data.find((t) => t.id === "carl").name === "Carl Nyberg", "nor renamed one");
   const renamed = await b("api/trainees", "PATCH", { id: "carl", name: "Carl Nyberg Berg" });
-  check(renamed.status === 200 && (await b("api/trainees")).data[0].name === "Carl Nyberg Berg",
+  check(renamed.status === 200 && (await b("api/trainees")).data.find((t) => t.id === "carl").name === "Carl Nyberg Berg",
     `an instructor renames a trainee: ${renamed.status}`);
   check((await b("api/audit")).data.some((a) => a.action === "rename_trainee" && a.target === "carl"), "the rename is audited");
+
+  // evolution: carl's finished attempt with its skills; tied with dora's best, so the 50th percentile
+  const evolution = (await b("api/evolution?trainee=carl")).data;
+  check(evolution.attempts.length === 1 && evolution.attempts[0].score === 100 && evolution.attempts[0].skills.safety === 100
+    && /^[0-9a-f]{16}$/.test(evolution.attempts[0].exercise_version),
+    `carl's evolution: one finished attempt with score, skills and exercise version (${JSON.stringify(evolution.attempts)})`);
+  check(evolution.cohort.length === 1 && evolution.cohort[0].trainees === 2 && evolution.cohort[0].percentile === 50,
+    `carl against the cohort on sts_discharge: 2 trainees, a tie, percentile 50 (${JSON.stringify(evolution.cohort)})`);
+  check((await b("api/evolution")).status === 400 && (await b("api/evolution?trainee=zed")).status === 404,
+    "evolution of nobody 400, of an unknown trainee 404");
+  const csv = await fetch(baseB + "api/attempts.csv", { headers: { Cookie: whoB.cookie } });
+  const lines = (await csv.text()).trim().split("\r\n");
+  check(csv.status === 200 && csv.headers.get("content-type").startsWith("text/csv") && lines.length === 3 &&
+    lines[0].startsWith("id,trainee,exercise,exercise_version"), `the attempts as CSV: a header and two rows (${lines.length} lines)`);
+  check(lines.some((l) => l.includes(`"'=dora"`)) && !lines.some((l) => l.includes(`,"=dora"`)),
+    "a cell a spreadsheet would run as a formula is defused with an apostrophe");
 
   // training routes: the shipped ones, an enrolment, the progress it gives and an instructor's decision
   const routes = (await b("api/routes")).data;

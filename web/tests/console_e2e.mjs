@@ -62,7 +62,10 @@ try {
     }
     return { colours: colours.size, orange: orange / (data.length / 4) };
   });
-  const drawn = await pixels("#view3d"), plan = await pixels("#plan");
+  // the plan is redrawn with the states that follow: wait for its first picture
+  let plan = await pixels("#plan");
+  await until("the plan has drawn", async () => (plan = await pixels("#plan")).colours > 10, 10);
+  const drawn = await pixels("#view3d");
   check(drawn.colours > 40 && drawn.orange > 0.005, `the 3D view shows the crane (${drawn.colours} colours, ${(100 * drawn.orange).toFixed(1)} % crane paint)`);
   check(plan.colours > 10 && plan.orange > 0.005, `the plan shows the crane from above (${plan.colours} colours, ${(100 * plan.orange).toFixed(1)} % crane paint)`);
   const eye = await view("cameraPosition");

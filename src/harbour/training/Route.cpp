@@ -112,4 +112,14 @@ RouteProgress progress(const Route& route, const std::vector<StageAttempt>& atte
   return out;
 }
 
+double percentile_rank(const std::vector<double>& cohort, double value) {
+  if (cohort.empty()) return 100.0;
+  double below = 0.0, equal = 0.0;
+  for (double v : cohort) {
+    below += v < value ? 1.0 : 0.0;
+    equal += v == value ? 1.0 : 0.0;
+  }
+  return 100.0 * (below + 0.5 * equal) / static_cast<double>(cohort.size());
+}
+
 }  // namespace harbour::training

@@ -84,4 +84,8 @@ bool meets(const Stage& stage, const StageAttempt& attempt, std::string* why = n
 RouteProgress progress(const Route& route, const std::vector<StageAttempt>& attempts,
                        const std::vector<Override>& overrides);
 
+/// Where `value` stands in `cohort` (the value included or not): the percentile rank, 100 x (values below
+/// + half the values equal) / count, in [0, 100]; 100 for an empty cohort.
+double percentile_rank(const std::vector<double>& cohort, double value);
+
 }  // namespace harbour::training
