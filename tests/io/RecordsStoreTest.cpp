@@ -144,6 +144,18 @@ TEST_P(RecordsStoreOn, DatabasesOfEarlierBuildsAreUpgradedInPlace) {
     RecordsStore again(connection);  // opening an upgraded database changes nothing
     EXPECT_EQ(again.attempts().size(), 2u);
   }
+  // a version-2 database of the builds before the console: no accounts, no audit log
+  const std::string connection = fresh_connection(GetParam(), "records_upgrade_v2_no_console");
+  make_old_database(connection, 2);
+  {
+    soci::session sql(records_connection(connection));
+    sql << "DROP TABLE audit";
+    sql << "DROP TABLE accounts";
+  }
+  RecordsStore db(connection);
+  EXPECT_EQ(db.account_count(), 0);
+  db.audit("ines", "login", "", "");
+  EXPECT_EQ(db.audit_log(5).size(), 1u);
 }
 
 // An upgrade that fails half-way (here a table of version 3 is already there, made by something else) is

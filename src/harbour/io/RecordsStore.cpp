@@ -91,7 +91,12 @@ std::vector<std::string> migration(int version) {
           "CREATE TABLE IF NOT EXISTS audit (at TEXT NOT NULL, account TEXT NOT NULL, action TEXT NOT NULL,"
           " target TEXT NOT NULL, detail TEXT NOT NULL)"};
     case 3:
+      // builds between the process column and the console made version-2 databases without its tables
       return {
+          "CREATE TABLE IF NOT EXISTS accounts (name TEXT PRIMARY KEY, role TEXT NOT NULL,"
+          " password_hash TEXT NOT NULL, trainee TEXT REFERENCES trainees(id))",
+          "CREATE TABLE IF NOT EXISTS audit (at TEXT NOT NULL, account TEXT NOT NULL, action TEXT NOT NULL,"
+          " target TEXT NOT NULL, detail TEXT NOT NULL)",
           "ALTER TABLE attempts ADD COLUMN route TEXT NOT NULL DEFAULT ''",
           "ALTER TABLE attempts ADD COLUMN stage TEXT NOT NULL DEFAULT ''",
           "ALTER TABLE attempts ADD COLUMN exercise_version TEXT NOT NULL DEFAULT ''",
