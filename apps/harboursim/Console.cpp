@@ -886,15 +886,8 @@ Console::Response Console::api(const http::request<http::string_body>& request, 
     return r;
   }
   if (target == "/api/exercises" && get) {
-    json names = json::array();
-    std::vector<std::string> found;
-    for (const auto& entry :
-         std::filesystem::directory_iterator(std::string(HARBOUR_DATA_DIR) + "/exercises"))
-      if (entry.path().extension() == ".yaml") found.push_back(entry.path().stem().string());
-    std::sort(found.begin(), found.end());
-    for (const std::string& n : found)
-      names.push_back(n);
-    return json_reply(request, http::status::ok, names);
+    return json_reply(request, http::status::ok,
+                      io::exercise_names(std::string(HARBOUR_DATA_DIR) + "/exercises"));
   }
   if (target == "/api/trainees" && get) {
     if (!account.instructs()) return forbidden();
@@ -1022,8 +1015,9 @@ Console::Response Console::api(const http::request<http::string_body>& request, 
       const auto route =
           std::find_if(routes_.begin(), routes_.end(), [&](const auto& r) { return r.id == e.route; });
       if (route == routes_.end()) continue;  // a route of another centre's folder
-      const training::RouteProgress p = training::progress(*route, db_.stage_attempts(trainee, route->id),
-                                                           db_.overrides(trainee, route->id));
+      const std::vector<training::Override> decided = db_.overrides(trainee, route->id);
+      const training::RouteProgress p =
+          training::progress(*route, db_.stage_attempts(trainee, route->id), decided);
       json stages = json::array();
       for (const training::StageProgress& sp : p.stages)
         stages.push_back({{"stage", sp.stage},
@@ -1035,7 +1029,7 @@ Console::Response Console::api(const http::request<http::string_body>& request, 
                           {"signed_off", sp.signed_off},
                           {"missing", sp.missing}});
       json decisions = json::array();
-      for (const training::Override& o : db_.overrides(trainee, route->id))
+      for (const training::Override& o : decided)
         decisions.push_back({{"stage", o.stage},
                              {"action", o.action},
                              {"reason", o.reason},

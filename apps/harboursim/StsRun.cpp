@@ -356,13 +356,8 @@ std::string resolve_exercise(const std::string& name_or_path) {
   const fs::path folder = fs::path(HARBOUR_DATA_DIR) / "exercises";
   const fs::path shipped = folder / (name_or_path + ".yaml");
   if (fs::is_regular_file(shipped)) return shipped.string();
-  std::vector<std::string> names;
-  if (fs::is_directory(folder))
-    for (const auto& entry : fs::directory_iterator(folder))
-      if (entry.path().extension() == ".yaml") names.push_back(entry.path().stem().string());
-  std::sort(names.begin(), names.end());
   std::string list;
-  for (const std::string& n : names)
+  for (const std::string& n : io::exercise_names(folder.string()))
     list += (list.empty() ? "" : ", ") + n;
   throw std::runtime_error("no exercise file '" + name_or_path + "' and no shipped exercise of that name (" +
                            list + ")");

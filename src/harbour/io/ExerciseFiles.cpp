@@ -722,6 +722,15 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
 
 }  // namespace
 
+std::vector<std::string> exercise_names(const std::string& folder) {
+  std::vector<std::string> names;
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(folder, ec))
+    if (entry.path().extension() == ".yaml") names.push_back(entry.path().stem().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
 std::string exercise_version(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw DataError(path, 0, "(file)", "cannot be read");

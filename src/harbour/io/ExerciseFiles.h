@@ -1,6 +1,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "harbour/io/YamlFile.h"
 #include "harbour/sim/Evaluation.h"
@@ -11,6 +12,9 @@ namespace harbour::io {
 /// folder), static blocks, containers by ISO 668 type, the moves to make and the evaluation rules.
 sim::ExerciseSettings load_exercise(const YamlFile& file, const std::string& folder);
 sim::ExerciseSettings load_exercise(const std::string& path);
+
+/// The names of the exercises in `folder` (the stems of its *.yaml files), sorted; none for a missing folder.
+std::vector<std::string> exercise_names(const std::string& folder);
 
 /// The exercise file's version: the first 16 hex digits of the SHA-256 of its bytes. Attempts store it, so
 /// results stay comparable when an exercise is edited (the machine and vessel files it names are not

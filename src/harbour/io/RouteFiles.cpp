@@ -45,13 +45,8 @@ std::string stage_exercise_file(const std::string& exercise, const std::string& 
 namespace {
 
 std::string known_exercises(const std::string& folder) {
-  std::vector<std::string> names;
-  std::error_code ec;
-  for (const auto& entry : fs::directory_iterator(folder, ec))
-    if (entry.path().extension() == ".yaml") names.push_back(entry.path().stem().string());
-  std::sort(names.begin(), names.end());
   std::string list;
-  for (const std::string& n : names)
+  for (const std::string& n : exercise_names(folder))
     list += (list.empty() ? "" : ", ") + n;
   return list;
 }
