@@ -33,9 +33,11 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <type_traits>
 #include <vector>
 
+#include "Reports.h"
 #include "StationNet.h"
 #include "StsRun.h"
 #include "harbour/core/Text.h"
@@ -109,6 +111,34 @@ int json_depth(const std::string& text) {
       --depth;
   }
   return deepest;
+}
+
+// a query parameter's value, percent-decoded ('+' a space); "" when absent or not decodable
+std::string query_param(const std::string& query, const std::string& key) {
+  std::size_t start = 0;
+  while (start <= query.size()) {
+    const std::size_t end = std::min(query.find('&', start), query.size());
+    const std::string pair = query.substr(start, end - start);
+    if (pair.rfind(key + "=", 0) == 0) {
+      std::string value;
+      for (std::size_t i = key.size() + 1; i < pair.size(); ++i) {
+        if (pair[i] == '+') {
+          value += ' ';
+        } else if (pair[i] == '%') {
+          if (i + 2 >= pair.size() || !std::isxdigit(static_cast<unsigned char>(pair[i + 1])) ||
+              !std::isxdigit(static_cast<unsigned char>(pair[i + 2])))
+            return "";
+          value += static_cast<char>(std::stoi(pair.substr(i + 1, 2), nullptr, 16));
+          i += 2;
+        } else {
+          value += pair[i];
+        }
+      }
+      return value;
+    }
+    start = end + 1;
+  }
+  return "";
 }
 
 // a JSON object from a request or message body, or why not
@@ -437,6 +467,12 @@ class Console {
         db_(options.database),
         poll_timer_(io) {}
 
+  ~Console() {
+    for (auto& [id, printer] : printers_)
+      printer.join();  // its answer then waits in io_, which outlives the console
+  }
+  Console(const Console&) = delete;
+  Console& operator=(const Console&) = delete;
   void start_polling() { poll(); }
   int accounts() { return db_.account_count(); }
   void handle(const http::request<http::string_body>& request, const std::string& peer,
@@ -467,6 +503,14 @@ class Console {
   /// A trainee's finished attempts oldest first with score and skills, and where their best score on each
   /// exercise version stands among every trainee's best on it (percentile rank).
   json evolution(const std::string& trainee);
+  /// The class overview, a comparison of two trainees, and the reports (HTML, or PDF printed by chromium:
+  /// nullopt, answered when it is done).
+  std::optional<Response> cohort_views(const http::request<http::string_body>& request,
+                                       const Account& account, const std::string& target,
+                                       const std::string& query, std::shared_ptr<HttpSession> session);
+  static constexpr int kMostPrintsAtOnce = 2;
+  int printing_ = 0;  ///< PDFs being printed (changed on the console's thread only)
+  std::map<std::thread::id, std::thread> printers_;  ///< joined when done, or when the console ends
   /// Attempts (of one trainee or all) as CSV: one row each with the skills; text cells quoted, and
   /// those a spreadsheet would run as a formula prefixed with an apostrophe.
   std::string attempts_csv(const std::optional<std::string>& trainee);
@@ -922,7 +966,7 @@ Console::Response Console::api(const http::request<http::string_body>& request, 
     const std::string rest = target.substr(13);
     if (rest.empty() || rest[0] == '?') {
       std::optional<std::string> trainee;
-      if (query.rfind("trainee=", 0) == 0) trainee = query.substr(8);
+      if (const std::string asked = query_param(query, "trainee"); !asked.empty()) trainee = asked;
       if (!account.instructs()) {
         if (trainee && *trainee != account.trainee) return forbidden();
         trainee = account.trainee;  // a trainee sees only their own
@@ -976,7 +1020,7 @@ Console::Response Console::api(const http::request<http::string_body>& request, 
     return open_replay(request, account);
   }
   if ((target.rfind("/api/evolution", 0) == 0 || target.rfind("/api/attempts.csv", 0) == 0) && get) {
-    std::string trainee = query.rfind("trainee=", 0) == 0 ? query.substr(8) : "";
+    std::string trainee = query_param(query, "trainee");
     if (!account.instructs()) {
       if (!trainee.empty() && trainee != account.trainee) return forbidden();
       trainee = account.trainee;  // a trainee sees only their own
@@ -1002,7 +1046,7 @@ Console::Response Console::api(const http::request<http::string_body>& request, 
     return json_reply(request, http::status::ok, list);
   }
   if (target.rfind("/api/progress", 0) == 0 && get) {
-    std::string trainee = query.rfind("trainee=", 0) == 0 ? query.substr(8) : "";
+    std::string trainee = query_param(query, "trainee");
     if (!account.instructs()) {
       if (!trainee.empty() && trainee != account.trainee) return forbidden();
       trainee = account.trainee;  // a trainee sees only their own
@@ -1358,6 +1402,13 @@ void Console::handle(const http::request<http::string_body>& request, const std:
         session->reply(std::move(*r));
       return;  // a take-over answers when the station does
     }
+    if ((target == "/api/class" || target == "/api/compare" || target.rfind("/api/reports/", 0) == 0) &&
+        request.method() == http::verb::get) {
+      const std::string query(request.target().substr(std::min(request.target().size(), target.size() + 1)));
+      if (std::optional<Response> r = cohort_views(request, *account, target, query, session))
+        session->reply(std::move(*r));
+      return;  // a PDF answers when chromium is done
+    }
     session->reply(api(request, *account, token, target));
   } catch (const std::exception& e) {
     session->reply(error(request, http::status::internal_server_error, e.what()));
@@ -1434,18 +1485,15 @@ void Console::poll() {
 }
 
 json Console::evolution(const std::string& trainee) {
-  std::vector<io::AttemptRow> all = db_.attempts();
-  std::reverse(all.begin(), all.end());  // oldest first
+  const std::vector<training::AttemptFigures> all = db_.attempt_figures();
   json attempts = json::array();
-  std::map<std::pair<std::string, std::string>, std::map<std::string, double>> best;  // version -> trainee
-  for (const io::AttemptRow& a : all) {
-    if (a.status != "finished" || !a.score) continue;
-    double& b = best[{a.exercise, a.exercise_version}].try_emplace(a.trainee, *a.score).first->second;
-    b = std::max(b, *a.score);
-    if (a.trainee != trainee) continue;
-    json skills = json::object();
-    for (const auto& [name, value] : db_.metrics(a.id))
+  for (const training::AttemptFigures& a : all) {
+    if (a.trainee != trainee || a.status != "finished" || !a.score) continue;
+    json skills = json::object(), metrics = json::object();
+    for (const auto& [name, value] : a.metrics) {
+      metrics[name] = value;
       if (name.rfind("skill_", 0) == 0) skills[name.substr(6)] = value;
+    }
     attempts.push_back({{"id", a.id},
                         {"exercise", a.exercise},
                         {"exercise_version", a.exercise_version},
@@ -1453,22 +1501,166 @@ json Console::evolution(const std::string& trainee) {
                         {"stage", a.stage},
                         {"score", *a.score},
                         {"passed", a.passed},
-                        {"skills", skills}});
+                        {"skills", skills},
+                        {"metrics", metrics}});
   }
-  json cohort = json::array();
-  for (const auto& [version, by_trainee] : best) {
-    const auto own = by_trainee.find(trainee);
-    if (own == by_trainee.end()) continue;
-    std::vector<double> scores;
-    for (const auto& [who, score] : by_trainee)
-      scores.push_back(score);
-    cohort.push_back({{"exercise", version.first},
-                      {"exercise_version", version.second},
-                      {"best", own->second},
-                      {"trainees", scores.size()},
-                      {"percentile", training::percentile_rank(scores, own->second)}});
+  json cohort = json::array(), standings = json::array();
+  for (const training::Standing& s : training::standings(all, trainee)) {
+    json line = {{"exercise", s.exercise},
+                 {"exercise_version", s.exercise_version},
+                 {"figure", s.figure},
+                 {"higher_better", s.higher_better},
+                 {"best", s.best},
+                 {"trainees", s.trainees},
+                 {"percentile", s.percentile}};
+    if (s.figure == "score") cohort.push_back(line);
+    standings.push_back(std::move(line));
   }
-  return {{"trainee", trainee}, {"attempts", attempts}, {"cohort", cohort}};
+  json routes = json::array();
+  for (const training::RouteStanding& r : route_standings(db_, routes_, trainee)) {
+    int passed = 0;
+    for (const training::StageProgress& p : r.progress.stages)
+      passed += p.state == training::StageState::kPassed ? 1 : 0;
+    routes.push_back({{"route", r.route.id},
+                      {"name", r.route.name},
+                      {"stages", r.progress.stages.size()},
+                      {"passed", passed},
+                      {"next", r.progress.next ? json(*r.progress.next) : json(nullptr)},
+                      {"complete", r.progress.complete}});
+  }
+  return {{"trainee", trainee},
+          {"attempts", attempts},
+          {"cohort", cohort},
+          {"standings", standings},
+          {"routes", routes}};
+}
+
+std::optional<Console::Response> Console::cohort_views(const http::request<http::string_body>& request,
+                                                       const Account& account, const std::string& target,
+                                                       const std::string& query,
+                                                       std::shared_ptr<HttpSession> session) {
+  const auto forbidden = [&] { return error(request, http::status::forbidden, "not for a " + account.role); };
+  const auto unknown = [&](const std::string& id) {
+    return error(request, http::status::not_found, "no trainee '" + core::printable(id) + "'");
+  };
+  const auto optional_number = [](const std::optional<double>& v) { return v ? json(*v) : json(nullptr); };
+  if (target == "/api/class") {
+    if (!account.instructs()) return forbidden();
+    const training::ClassReportData d = class_report_data(db_, routes_);
+    json lines = json::array();
+    for (std::size_t i = 0; i < d.lines.size(); ++i) {
+      const training::TraineeSummary& t = d.lines[i];
+      json routes = json::array();
+      for (const training::RouteStanding& r : d.routes[i]) {
+        int passed = 0;
+        for (const training::StageProgress& p : r.progress.stages)
+          passed += p.state == training::StageState::kPassed ? 1 : 0;
+        routes.push_back({{"route", r.route.id},
+                          {"stages", r.progress.stages.size()},
+                          {"passed", passed},
+                          {"next", r.progress.next ? json(*r.progress.next) : json(nullptr)},
+                          {"complete", r.progress.complete}});
+      }
+      lines.push_back({{"trainee", t.trainee},
+                       {"name", d.names[i]},
+                       {"attempts", t.attempts},
+                       {"finished", t.finished},
+                       {"passed", t.passed},
+                       {"first_score", optional_number(t.first_score)},
+                       {"last_score", optional_number(t.last_score)},
+                       {"best_score", optional_number(t.best_score)},
+                       {"recent_score", optional_number(t.recent_score)},
+                       {"recent_skills",
+                        {{"safety", optional_number(t.recent_skills[0])},
+                         {"precision", optional_number(t.recent_skills[1])},
+                         {"productivity", optional_number(t.recent_skills[2])}}},
+                       {"trend", optional_number(t.trend)},
+                       {"routes", routes}});
+    }
+    return json_reply(request, http::status::ok, lines);
+  }
+  if (target == "/api/compare") {
+    if (!account.instructs()) return forbidden();
+    const std::string first = query_param(query, "a"), second = query_param(query, "b");
+    if (first.empty() || second.empty())
+      return error(request, http::status::bad_request, "compare whom: ?a=ID&b=ID");
+    for (const std::string& id : {first, second})
+      if (!db_.has_trainee(id)) return unknown(id);
+    json figures = json::array();
+    for (const training::Compared& c : training::compare(db_.attempt_figures(), first, second))
+      figures.push_back({{"exercise", c.exercise},
+                         {"exercise_version", c.exercise_version},
+                         {"figure", c.figure},
+                         {"higher_better", c.higher_better},
+                         {"a", optional_number(c.first)},
+                         {"b", optional_number(c.second)}});
+    return json_reply(request, http::status::ok, {{"a", first}, {"b", second}, {"figures", figures}});
+  }
+  // reports: /api/reports/trainee?trainee=ID, /api/reports/class, each also as .pdf
+  const bool pdf = target.size() > 4 && target.compare(target.size() - 4, 4, ".pdf") == 0;
+  const std::string page = pdf ? target.substr(0, target.size() - 4) : target;
+  std::string html, name;
+  if (page == "/api/reports/trainee") {
+    std::string trainee = query_param(query, "trainee");
+    if (!account.instructs()) {
+      if (!trainee.empty() && trainee != account.trainee) return forbidden();
+      trainee = account.trainee;  // a trainee has only their own
+    }
+    if (trainee.empty()) return error(request, http::status::bad_request, "a report on whom: ?trainee=ID");
+    if (!db_.has_trainee(trainee)) return unknown(trainee);
+    html = training::trainee_report_html(trainee_report_data(db_, routes_, trainee));
+    name = "trainee-" + trainee;
+  } else if (page == "/api/reports/class") {
+    if (!account.instructs()) return forbidden();
+    html = training::class_report_html(class_report_data(db_, routes_));
+    name = "class";
+  } else {
+    return error(request, http::status::not_found, "no such API: " + core::printable(target));
+  }
+  // a file name a browser may save under: letters, digits, - and _ only
+  for (char& c : name)
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_') c = '_';
+  if (!pdf) {
+    Response r = json_reply(request, http::status::ok, json::object());
+    r.set(http::field::content_type, "text/html; charset=utf-8");
+    r.body() = std::move(html);
+    r.prepare_payload();
+    return r;
+  }
+  if (printing_ >= kMostPrintsAtOnce)
+    return error(request, http::status::service_unavailable, "reports are being printed; try again shortly");
+  ++printing_;
+  db_.audit(account.name, "report", name, "pdf");
+  // chromium prints on a thread of its own; the answer comes back on the console's thread
+  std::thread printer([this, request, session, html = std::move(html), name] {
+    Response r = json_reply(request, http::status::ok, json::object());
+    try {
+      char folder[] = "/tmp/harboursim-pdf-XXXXXX";
+      if (!mkdtemp(folder)) throw std::runtime_error("cannot make a temporary folder");
+      const std::filesystem::path file = std::filesystem::path(folder) / "report.pdf";
+      try {
+        print_pdf(html, file);
+        std::ifstream in(file, std::ios::binary);
+        r.body().assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+      } catch (...) {
+        std::filesystem::remove_all(folder);
+        throw;
+      }
+      std::filesystem::remove_all(folder);
+      r.set(http::field::content_type, "application/pdf");
+      r.set(http::field::content_disposition, "attachment; filename=\"" + name + ".pdf\"");
+      r.prepare_payload();
+    } catch (const std::exception& e) {
+      r = error(request, http::status::internal_server_error, e.what());
+    }
+    asio::post(io_, [this, session, r = std::move(r), id = std::this_thread::get_id()]() mutable {
+      --printing_;
+      if (auto done = printers_.extract(id)) done.mapped().join();  // it has nothing left to do
+      session->reply(std::move(r));
+    });
+  });
+  printers_.emplace(printer.get_id(), std::move(printer));
+  return std::nullopt;
 }
 
 std::string Console::attempts_csv(const std::optional<std::string>& trainee) {

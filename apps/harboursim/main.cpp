@@ -8,6 +8,7 @@
 #include "BulkDemo.h"
 #include "Console.h"
 #include "RenderVideo.h"
+#include "Reports.h"
 #include "RoutesTool.h"
 #include "Screenshot.h"
 #include "StationRun.h"
@@ -189,6 +190,18 @@ int main(int argc, char** argv) {
     decision_cmds[n]->add_option("--reason", route_reason, "why (stored with the decision)")->required();
   }
 
+  std::string report_db, report_trainee, report_out;
+  CLI::App* report_cmd = app.add_subcommand("report", "a trainee's or the class's report, as PDF or HTML");
+  report_cmd->require_subcommand(1);
+  report_cmd->add_option("--db", report_db, "records connection");
+  report_cmd->add_option("--out", report_out, "the file to write: .pdf (printed by chromium) or .html")
+      ->required();
+  report_cmd->fallthrough();
+  CLI::App* report_trainee_cmd = report_cmd->add_subcommand(
+      "trainee", "a trainee's evolution, routes, attempts and standing in the cohort");
+  report_trainee_cmd->add_option("trainee", report_trainee, "trainee id")->required();
+  CLI::App* report_class_cmd = report_cmd->add_subcommand("class", "every trainee side by side");
+
   harbour::apps::BulkDemoOptions demo;
   CLI::App* demo_cmd =
       app.add_subcommand("bulk-demo", "a grab digs coal from a yard heap into a rolling hold");
@@ -226,6 +239,12 @@ int main(int argc, char** argv) {
       if (*decision_cmds[n])
         return harbour::apps::decide_stage(route_db, route_trainee, route_id, route_stage,
                                            n == 0 ? "sign_off" : "retry", route_reason);
+    if (*report_trainee_cmd && report_trainee.empty()) {
+      std::fprintf(stderr, "harboursim: report trainee needs a trainee id\n");
+      return 2;
+    }
+    if (*report_trainee_cmd) return harbour::apps::write_report(report_db, report_trainee, report_out);
+    if (*report_class_cmd) return harbour::apps::write_report(report_db, "", report_out);
     if (*console_cmd) return harbour::apps::run_console(console);
     if (*account_list_cmd) return harbour::apps::list_accounts(account_db);
     if (*account_add_cmd)

@@ -222,10 +222,13 @@ async function loadRecords() {
   }
   if (!me || me.role === "trainee") return;
   const trainees = await api("/api/trainees");
-  for (const id of ["trainee", "takeover-trainee", "rename-trainee", "progress-trainee"]) {
+  for (const id of ["trainee", "takeover-trainee", "rename-trainee", "progress-trainee", "compare-with"]) {
     const select = $<HTMLSelectElement>(id);
+    const kept = select.value;
     select.replaceChildren();
+    if (id === "compare-with") select.add(new Option("nobody", ""));
     for (const t of trainees.data ?? []) select.add(new Option(`${t.id} (${t.name})`, t.id));
+    if ([...select.options].some((o) => o.value === kept)) select.value = kept;
   }
   const exercises = await api("/api/exercises");
   const exercise = $<HTMLSelectElement>("exercise");
@@ -281,32 +284,118 @@ async function loadProgress() {
   await loadEvolution(trainee);
 }
 
-// The score and the three skills over a trainee's finished attempts, and where their best stands in the cohort.
+interface EvolutionAttempt { score: number; skills: Record<string, number>; metrics: Record<string, number>; }
+interface Standing { exercise: string; exercise_version: string; figure: string; higher_better: boolean; best: number;
+  trainees: number; percentile: number; }
+const number = (v: number | null | undefined, digits = 1) => v === null || v === undefined ? "" : v.toFixed(digits);
+const figureText = (v: number) => Math.abs(v) >= 1000 ? v.toExponential(3) : String(Number(v.toPrecision(4)));
+function row(values: (string | number)[]): HTMLTableRowElement {
+  const tr = document.createElement("tr");
+  for (const v of values) { const td = document.createElement("td"); text(td, v); tr.appendChild(td); }
+  return tr;
+}
+
+// A trainee's evolution over their finished attempts: the score and the three skills, or any one stored figure
+// (with another trainee's for comparison); where their best on it stands in the cohort; a comparison table.
 let evolutionPlot: uPlot | null = null;
 async function loadEvolution(trainee: string) {
-  $<HTMLAnchorElement>("csv").href = `/api/attempts.csv?trainee=${encodeURIComponent(trainee)}`;
-  const r = await api(`/api/evolution?trainee=${encodeURIComponent(trainee)}`);
+  const query = `trainee=${encodeURIComponent(trainee)}`;
+  $<HTMLAnchorElement>("csv").href = `/api/attempts.csv?${query}`;
+  $<HTMLAnchorElement>("report-html").href = `/api/reports/trainee?${query}`;
+  $<HTMLAnchorElement>("report-pdf").href = `/api/reports/trainee.pdf?${query}`;
+  const figure = $<HTMLSelectElement>("evolution-figure");
+  const other = me?.role === "trainee" ? "" : $<HTMLSelectElement>("compare-with").value;
+  const [r, o] = await Promise.all([api(`/api/evolution?${query}`),
+    other ? api(`/api/evolution?trainee=${encodeURIComponent(other)}`) : Promise.resolve(null)]);
   evolutionPlot?.destroy();
   evolutionPlot = null;
   const body = $("cohort").querySelector("tbody")!;
   body.replaceChildren();
   if (r.status !== 200) return;
-  const attempts = r.data.attempts as { score: number; skills: Record<string, number> }[];
-  const data = [attempts.map((_, n) => n + 1), attempts.map((a) => a.score),
-    ...["safety", "precision", "productivity"].map((k) => attempts.map((a) => a.skills[k] ?? null))];
-  evolutionPlot = new uPlot({ width: 640, height: 220, scales: { x: { time: false }, y: { range: [0, 100] } },
-    axes: [{ incrs: [1, 2, 5, 10, 20, 50, 100] }, {}],
-    series: [{ label: "attempt" }, { label: "score", stroke: "#1a237e", width: 2 }, { label: "safety", stroke: "#c62828" },
-      { label: "precision", stroke: "#2e7d32" }, { label: "productivity", stroke: "#ef6c00" }] },
-    data as uPlot.AlignedData, $("evolution"));
-  $("evolution").dataset.attempts = String(attempts.length);
-  for (const c of r.data.cohort) {
-    const row = document.createElement("tr");
-    row.dataset.exercise = c.exercise;
-    for (const v of [c.exercise, c.exercise_version, c.best.toFixed(1), c.trainees, c.percentile.toFixed(0)]) {
-      const td = document.createElement("td"); text(td, v); row.appendChild(td);
+  const attempts = r.data.attempts as EvolutionAttempt[];
+  const theirs = (o?.status === 200 ? o.data.attempts : []) as EvolutionAttempt[];
+  // the figures this trainee has: the selector keeps the one chosen
+  const chosen = figure.value;
+  const names = [...new Set(attempts.flatMap((a) => Object.keys(a.metrics)))].sort();
+  figure.replaceChildren(new Option("score and skills", ""), new Option("score", "score"),
+    ...names.map((n) => new Option(n, n)));
+  figure.value = names.includes(chosen) || chosen === "score" ? chosen : "";
+  const n = Math.max(attempts.length, theirs.length);
+  const index = Array.from({ length: n }, (_, k) => k + 1);
+  const valueOf = (a: EvolutionAttempt | undefined, f: string) =>
+    a === undefined ? null : f === "score" ? a.score : a.metrics[f] ?? null;
+  let series: uPlot.Series[], data: (number | null)[][];
+  if (figure.value === "") {
+    series = [{ label: "score", stroke: "#1a237e", width: 2 }, { label: "safety", stroke: "#c62828" },
+      { label: "precision", stroke: "#2e7d32" }, { label: "productivity", stroke: "#ef6c00" }];
+    data = [index.map((k) => attempts[k - 1]?.score ?? null),
+      ...["safety", "precision", "productivity"].map((s) => index.map((k) => attempts[k - 1]?.skills[s] ?? null))];
+  } else {
+    series = [{ label: trainee, stroke: "#1a237e", width: 2 }];
+    data = [index.map((k) => valueOf(attempts[k - 1], figure.value))];
+    if (other) {
+      series.push({ label: other, stroke: "#ef6c00", width: 2, dash: [6, 4] });
+      data.push(index.map((k) => valueOf(theirs[k - 1], figure.value)));
     }
-    body.appendChild(row);
+  }
+  const fixedRange = figure.value === "" || figure.value === "score" || figure.value.startsWith("skill_");
+  evolutionPlot = new uPlot({ width: 640, height: 220,
+    scales: { x: { time: false }, y: fixedRange ? { range: [0, 100] } : { auto: true } },
+    axes: [{ incrs: [1, 2, 5, 10, 20, 50, 100] }, {}], series: [{ label: "attempt" }, ...series] },
+    [index, ...data] as uPlot.AlignedData, $("evolution"));
+  $("evolution").dataset.attempts = String(attempts.length);
+  $("evolution").dataset.figure = figure.value;
+  const shown = figure.value === "" ? "score" : figure.value;
+  for (const c of r.data.standings as Standing[]) {
+    if (c.figure !== shown) continue;
+    const tr = row([c.exercise, c.exercise_version.slice(0, 8), c.figure, figureText(c.best),
+      c.higher_better ? "higher" : "lower", c.trainees, c.percentile.toFixed(0)]);
+    tr.dataset.exercise = c.exercise;
+    body.appendChild(tr);
+  }
+  await loadComparison(trainee, other, shown);
+}
+
+// Two trainees' bests side by side on one figure (or on every figure, for the score and skills view).
+async function loadComparison(a: string, b: string, figure: string) {
+  const table = $("comparison");
+  table.hidden = !b;
+  const body = table.querySelector("tbody")!;
+  body.replaceChildren();
+  if (!b) return;
+  text($("compare-a"), a);
+  text($("compare-b"), b);
+  const r = await api(`/api/compare?a=${encodeURIComponent(a)}&b=${encodeURIComponent(b)}`);
+  if (r.status !== 200) { body.appendChild(row([r.data?.error ?? `error ${r.status}`])); return; }
+  for (const c of r.data.figures as { exercise: string; exercise_version: string; figure: string; higher_better: boolean;
+    a: number | null; b: number | null }[]) {
+    if (figure !== "score" ? c.figure !== figure : !(c.figure === "score" || c.figure.startsWith("skill_"))) continue;
+    const ahead = c.a === null || c.b === null ? "" : c.a === c.b ? "tie" :
+      (c.a > c.b) === c.higher_better ? a : b;
+    body.appendChild(row([c.exercise, c.exercise_version.slice(0, 8), c.figure, c.a === null ? "" : figureText(c.a),
+      c.b === null ? "" : figureText(c.b), ahead]));
+  }
+}
+
+// Every trainee's line: attempts, passes, best and recent score, trend, skills, routes.
+async function loadClass() {
+  const body = $("class").querySelector("tbody")!;
+  body.replaceChildren();
+  const r = await api("/api/class");
+  if (r.status !== 200) return;
+  for (const t of r.data) {
+    const routesText = t.routes.map((x: { route: string; passed: number; stages: number; complete: boolean; next: string | null }) =>
+      `${x.route} ${x.passed}/${x.stages}${x.complete ? " done" : x.next ? ` → ${x.next}` : " blocked"}`).join("; ");
+    const tr = row([t.trainee, t.name, t.attempts, `${t.passed}/${t.finished}`, number(t.best_score),
+      number(t.recent_score), t.trend === null ? "" : (t.trend >= 0 ? "+" : "") + t.trend.toFixed(1),
+      number(t.recent_skills.safety), number(t.recent_skills.precision), number(t.recent_skills.productivity), routesText]);
+    tr.dataset.trainee = t.trainee;
+    tr.addEventListener("click", () => {
+      $<HTMLSelectElement>("progress-trainee").value = t.trainee;
+      loadProgress();
+      $("routes-panel").scrollIntoView();
+    });
+    body.appendChild(tr);
   }
 }
 
@@ -325,6 +414,7 @@ async function enter(who: Me) {
   for (const r of routes) routeSelect.add(new Option(`${r.name} (${r.id})`, r.id));
   await loadProgress();
   if (who.role === "trainee") return;
+  await loadClass();
   const looks = await api("/api/looks");
   if (looks.status === 200)
     view = new View3D($("view3d"), $("plan"), $("plan-labels"), looks.data as Looks);
@@ -391,6 +481,11 @@ function wire() {
     loadProgress();
   });
   $("show-progress").addEventListener("click", () => loadProgress());
+  for (const id of ["evolution-figure", "compare-with"])
+    $(id).addEventListener("change", () => {
+      const trainee = me?.role === "trainee" ? me.trainee : $<HTMLSelectElement>("progress-trainee").value;
+      if (trainee) loadEvolution(trainee);
+    });
   $("decision-form").addEventListener("submit", async (e) => {
     e.preventDefault();
     const [route, stage] = $<HTMLSelectElement>("decision-stage").value.split("/");

@@ -45,6 +45,7 @@ try {
   run(["trainees", "add", "=dora", "Dora Lind", "--db", db]);
   for (const who of ["carl", "=dora"]) run(["run", "--exercise", "sts_discharge", "--autopilot", "--trainee", who, "--db", db]);
   run(["accounts", "add", "ines", "--role", "instructor", "--db", db], "ines-password\n");
+  run(["accounts", "add", "dora", "--role", "trainee", "--trainee", "=dora", "--db", db], "dora-password\n");
   const [baseA, portA] = await consoleAt("console-a");
   const [baseB] = await consoleAt("console-b");
   const station = start(["station", "--serve", "--name", "api-1", "--domain", domain, "--db", db, "--window", "off"]);
@@ -139,6 +140,51 @@ try {
     "the decision is stored with its reason and who");
   check((await b("api/audit")).data.some((a) => a.action === "sign_off" && a.target === "carl sts_basic/single_lift"),
     "the decision is audited");
+
+  // the cohort views: every figure's standing, a trainee id that needs percent-encoding, the class, a comparison
+  const dora = await b("api/evolution?trainee=%3Ddora");
+  check(dora.status === 200 && dora.data.trainee === "=dora" && dora.data.attempts.length === 1,
+    `a percent-encoded trainee id is decoded (${dora.status} ${dora.data?.trainee})`);
+  const collisions = evolution.standings.find((s) => s.figure === "collisions");
+  check(collisions?.higher_better === false && collisions.percentile === 50 && collisions.trainees === 2 &&
+    evolution.standings.some((s) => s.figure === "skill_safety" && s.higher_better),
+    `standings on every figure, with its direction (collisions: ${JSON.stringify(collisions)})`);
+  check(Object.keys(evolution.attempts[0].metrics).includes("time_s"), "each attempt carries every stored metric");
+  const overview = (await b("api/class")).data;
+  const carlLine = overview.find((t) => t.trainee === "carl");
+  check(overview.length === 2 && carlLine.best_score === 100 && carlLine.finished === 1 && carlLine.trend === null &&
+    carlLine.routes[0]?.route === "sts_basic" && carlLine.routes[0]?.passed === 1 && carlLine.name === "Carl Nyberg Berg",
+    `the class overview: two lines, carl's best 100, one stage of sts_basic passed (${JSON.stringify(carlLine)})`);
+  const compared = await b("api/compare?a=carl&b=%3Ddora");
+  const scoreLine = compared.data?.figures?.find((f) => f.figure === "score");
+  check(compared.status === 200 && scoreLine?.a === 100 && scoreLine?.b === 100,
+    `carl and dora compared: both 100 on the score (${JSON.stringify(scoreLine)})`);
+  check((await b("api/compare?a=carl")).status === 400 && (await b("api/compare?a=carl&b=zed")).status === 404,
+    "a comparison with one trainee 400, with an unknown one 404");
+  const reportPage = await fetch(baseB + "api/reports/trainee?trainee=carl", { headers: { Cookie: whoB.cookie } });
+  const reportHtml = await reportPage.text();
+  check(reportPage.status === 200 && reportPage.headers.get("content-type").startsWith("text/html") &&
+    reportHtml.includes("Trainee report: Carl Nyberg Berg") && reportHtml.includes("<svg"),
+    `carl's report page: HTML with his name and the plots (${reportPage.status})`);
+  let printed = false;
+  const printing = Promise.all(["api/reports/trainee.pdf?trainee=carl", "api/reports/class.pdf"].map((p) =>
+    fetch(baseB + p, { headers: { Cookie: whoB.cookie } }))).then((r) => { printed = true; return r; });
+  const during = await b("api/stations");
+  check(during.status === 200 && !printed, "the console answers while chromium prints");
+  const pdfs = await printing;
+  const pdfBytes = await Promise.all(pdfs.map(async (r) => Buffer.from(await r.arrayBuffer())));
+  check(pdfs.every((r) => r.status === 200 && r.headers.get("content-type") === "application/pdf") &&
+    pdfBytes.every((bytes) => bytes.subarray(0, 5).toString() === "%PDF-"),
+    `carl's and the class report as PDF, printed at once (${pdfs.map((r) => r.status)})`);
+  check((await b("api/reports/nobody")).status === 404 && (await b("api/reports/trainee?trainee=zed")).status === 404,
+    "an unknown report 404, a report on an unknown trainee 404");
+  const doraWho = await login(baseB, "dora", "dora-password");
+  const d = client(baseB, doraWho);
+  const own = await fetch(baseB + "api/reports/trainee", { headers: { Cookie: doraWho.cookie } });
+  check(own.status === 200 && (await own.text()).includes("Trainee report: Dora Lind"), `a trainee gets their own report (${own.status})`);
+  const refused = await Promise.all(["api/reports/trainee?trainee=carl", "api/reports/class", "api/reports/class.pdf",
+    "api/class", "api/compare?a=carl&b=%3Ddora", "api/evolution?trainee=carl"].map(async (p) => (await d(p)).status));
+  check(refused.every((s) => s === 403), `a trainee is refused others' reports, the class and comparisons: ${refused}`);
 
   // the live socket: refused without a login; random, truncated and oversized messages answered or the
   // socket closed, the console unharmed

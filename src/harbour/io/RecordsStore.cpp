@@ -14,6 +14,7 @@
 #include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -678,6 +679,28 @@ std::vector<std::pair<std::string, double>> RecordsStore::metrics(std::int64_t a
       metrics.emplace_back(r.get<std::string>(0), r.get<double>(1));
     return metrics;
   });
+}
+
+std::vector<training::AttemptFigures> RecordsStore::attempt_figures(
+    const std::optional<std::string>& trainee) {
+  std::vector<AttemptRow> rows = attempts(trainee);  // checked as attempts() checks them
+  std::reverse(rows.begin(), rows.end());
+  std::map<std::int64_t, std::map<std::string, double>> metrics_of;
+  impl_->guarded("reading the attempts' metrics", [&] {
+    const std::string who = trainee.value_or("");
+    soci::rowset<soci::row> metric_rows =
+        (impl_->sql.prepare << "SELECT m.attempt, m.name, m.value FROM metrics m JOIN attempts a ON a.id = "
+                               "m.attempt WHERE :who = '' OR a.trainee = :who2",
+         soci::use(who), soci::use(who));
+    for (const soci::row& r : metric_rows)
+      metrics_of[r.get<long long>(0)][r.get<std::string>(1)] = r.get<double>(2);
+  });
+  std::vector<training::AttemptFigures> out;
+  out.reserve(rows.size());
+  for (const AttemptRow& a : rows)
+    out.push_back({a.id, a.trainee, a.exercise, a.exercise_version, a.route, a.stage, a.status, a.score,
+                   a.passed, std::move(metrics_of[a.id])});
+  return out;
 }
 
 int RecordsStore::schema_version() {

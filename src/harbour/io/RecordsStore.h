@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "harbour/sim/Evaluation.h"
+#include "harbour/training/Cohort.h"
 #include "harbour/training/Route.h"
 
 namespace harbour::io {
@@ -120,6 +121,10 @@ class RecordsStore {
   /// An attempt's events in time order, and its final metrics by name.
   std::vector<EventRow> events(std::int64_t attempt);
   std::vector<std::pair<std::string, double>> metrics(std::int64_t attempt);
+  /// Attempts, oldest first, optionally of one trainee, each with its stored metrics (one read of each
+  /// table): what the cohort views and the reports are made of.
+  std::vector<training::AttemptFigures> attempt_figures(
+      const std::optional<std::string>& trainee = std::nullopt);
 
   /// Adds a console account; throws std::invalid_argument for a bad name or role, a trainee account whose
   /// trainee is not in the records, or a name taken.

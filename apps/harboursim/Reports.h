@@ -1,0 +1,37 @@
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "harbour/io/RecordsStore.h"
+#include "harbour/training/Report.h"
+
+namespace harbour::apps {
+
+/// The current time in UTC as a report prints it ("2026-11-25 09:30 UTC").
+std::string utc_now();
+
+/// A trainee's routes (those of `routes` they are enrolled in) and their progress on each.
+std::vector<training::RouteStanding> route_standings(io::RecordsStore& db,
+                                                     const std::vector<training::Route>& routes,
+                                                     const std::string& trainee);
+
+/// What a trainee's report holds, read from the records; throws std::out_of_range for an unknown trainee.
+training::TraineeReportData trainee_report_data(io::RecordsStore& db,
+                                                const std::vector<training::Route>& routes,
+                                                const std::string& trainee);
+/// What the class report holds: every trainee in the records.
+training::ClassReportData class_report_data(io::RecordsStore& db, const std::vector<training::Route>& routes);
+
+/// Prints an HTML page to a PDF file with Debian's chromium, headless, in a private profile;
+/// the page is written next to the PDF's temporary and both are replaced only when chromium succeeded, so
+/// a failed print leaves no half-written PDF. Throws std::runtime_error with chromium's last words when it
+/// fails or takes longer than 60 s.
+void print_pdf(const std::string& html, const std::filesystem::path& pdf);
+
+/// `harboursim report trainee ID` / `harboursim report class`: writes the report to `out` (a .pdf, or the
+/// page itself for a .html).
+int write_report(const std::string& database, const std::string& trainee, const std::string& out);
+
+}  // namespace harbour::apps
