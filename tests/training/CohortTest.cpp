@@ -11,6 +11,7 @@
 #include "harbour/io/RecordsStore.h"
 #include "harbour/io/RouteFiles.h"
 #include "harbour/sim/Autopilot.h"
+#include "harbour/training/Cohort.h"
 #include "harbour/training/Route.h"
 
 namespace harbour::training {
@@ -125,6 +126,31 @@ goals:
   EXPECT_EQ(p.stages[0].state, StageState::kOpen);
   EXPECT_EQ(p.stages[0].best_score, lift["level2"].score.total);
   EXPECT_EQ(p.stages[1].state, StageState::kLocked);
+
+  // the cohort views read back from the records say what the runs measured: on the lift's version the score
+  // ranks level0 > level1 > level2, hard landings (fewer is better) put level2 last
+  const std::vector<AttemptFigures> stored = db.attempt_figures();
+  ASSERT_EQ(stored.size(), 7u);
+  const auto standing = [&](const std::string& trainee, const std::string& figure) {
+    for (const Standing& s : standings(stored, trainee))
+      if (s.exercise == "sts_discharge" && s.figure == figure) return s;
+    ADD_FAILURE() << trainee << " has no standing on " << figure;
+    return Standing{};
+  };
+  EXPECT_NEAR(standing("level0", "score").percentile, 100.0 * 2.5 / 3.0, 1e-9);
+  EXPECT_NEAR(standing("level1", "score").percentile, 100.0 * 1.5 / 3.0, 1e-9);
+  EXPECT_NEAR(standing("level2", "score").percentile, 100.0 * 0.5 / 3.0, 1e-9);
+  EXPECT_DOUBLE_EQ(standing("level2", "hard_landings").best, 1.0);
+  EXPECT_NEAR(standing("level2", "hard_landings").percentile, 100.0 * 0.5 / 3.0, 1e-9);
+  EXPECT_NEAR(standing("level0", "hard_landings").percentile, 100.0 * (1.0 + 0.5 * 2.0) / 3.0, 1e-9);
+  EXPECT_EQ(standing("level0", "score").trainees, 3);
+  // the evolution plotted for level0 is its three stored scores in order, and the class sees the same
+  const std::vector<TraineeSummary> lines = class_overview(stored, {"level0", "level1", "level2"});
+  EXPECT_EQ(lines[0].first_score, lift["level0"].score.total);
+  EXPECT_EQ(lines[0].last_score, gusty.score.total);
+  EXPECT_EQ(lines[1].finished, 3);
+  EXPECT_NEAR(*lines[1].trend, 0.0, 1e-12);  // the same run three times
+  EXPECT_EQ(lines[2].best_score, lift["level2"].score.total);
 }
 
 }  // namespace

@@ -234,6 +234,7 @@ async function loadRecords() {
   const exercise = $<HTMLSelectElement>("exercise");
   exercise.replaceChildren();
   for (const e of exercises.data ?? []) exercise.add(new Option(e, e));
+  await loadClass();
 }
 
 interface StageProgress { stage: string; state: string; attempts: number; attempts_allowed: number; passes: number;
@@ -414,7 +415,6 @@ async function enter(who: Me) {
   for (const r of routes) routeSelect.add(new Option(`${r.name} (${r.id})`, r.id));
   await loadProgress();
   if (who.role === "trainee") return;
-  await loadClass();
   const looks = await api("/api/looks");
   if (looks.status === 200)
     view = new View3D($("view3d"), $("plan"), $("plan-labels"), looks.data as Looks);
@@ -479,6 +479,7 @@ function wire() {
       route: $<HTMLSelectElement>("route").value });
     text($("enrol-result"), r.status === 201 ? "enrolled" : r.status === 200 ? "already enrolled" : r.data?.error ?? `error ${r.status}`);
     loadProgress();
+    loadClass();
   });
   $("show-progress").addEventListener("click", () => loadProgress());
   for (const id of ["evolution-figure", "compare-with"])
@@ -493,6 +494,7 @@ function wire() {
       action: $<HTMLSelectElement>("decision-action").value, reason: value("decision-reason") });
     text($("decision-result"), r.status === 201 ? "recorded" : r.data?.error ?? `error ${r.status}`);
     loadProgress();
+    loadClass();
   });
   $("trainee-form").addEventListener("submit", async (e) => {
     e.preventDefault();

@@ -20,6 +20,8 @@ let browser;
 try {
   run(["trainees", "add", "anna", "Anna Berg", "--db", db]);
   run(["trainees", "add", "ben", "Ben Olsen", "--db", db]);
+  // a finished attempt each, for the evolution, the comparison and the class overview
+  for (const who of ["anna", "ben"]) run(["run", "--exercise", "sts_discharge", "--autopilot", "--trainee", who, "--db", db]);
   run(["accounts", "add", "ines", "--role", "instructor", "--db", db], "ines-password\n");
   run(["accounts", "add", "anna", "--role", "trainee", "--trainee", "anna", "--db", db], "anna-password\n");
   const [url] = await h.console(db, domain);
@@ -151,6 +153,31 @@ try {
     (await stageState(page, "single_lift")) === "open" && (await stageState(page, "deck_discharge")) === "locked");
   await page.locator("#routes-panel").screenshot({ path: path.join(out, "console_routes.png") });
 
+  // evolution on one figure against another trainee, and the class overview
+  await until("anna's figures are offered", async () =>
+    (await page.locator("#evolution-figure option[value=time_s]").count()) === 1);
+  await page.selectOption("#evolution-figure", "time_s");
+  await page.selectOption("#compare-with", "ben");
+  await until("the plot shows time_s for anna and ben", async () =>
+    (await page.getAttribute("#evolution", "data-figure")) === "time_s" &&
+    (await page.locator("#evolution .u-legend .u-series").count()) === 3);
+  await until("the comparison table shows time_s", async () => (await page.isVisible("#comparison")) &&
+    (await page.locator("#comparison tbody tr").count()) >= 1 &&
+    (await page.locator("#comparison tbody tr td:nth-child(3)").first().textContent()) === "time_s");
+  check((await page.locator("#cohort tbody tr td:nth-child(3)").first().textContent()) === "time_s",
+    "anna's standing is shown on time_s");
+  await page.locator("#routes-panel").screenshot({ path: path.join(out, "console_compare.png") });
+  await until("the class overview lists anna and ben", async () =>
+    (await page.locator("#class tbody tr").count()) === 2 &&
+    Number(await page.locator("#class tr[data-trainee=anna] td:nth-child(3)").textContent()) >= 2);
+  const classReport = await page.evaluate(async () => {
+    const r = await fetch("/api/reports/class");
+    return { status: r.status, text: await r.text() };
+  });
+  check(classReport.status === 200 && classReport.text.includes("Class report") && classReport.text.includes("anna"),
+    `the class report page (${classReport.status})`);
+  await page.locator("#class-panel").screenshot({ path: path.join(out, "console_class.png") });
+
   // a trainee: own results only, no instructor actions
   const trainee = await browser.newPage();
   await trainee.goto(url);
@@ -182,7 +209,8 @@ try {
     `a trainee may not read another's progress (${refused.othersProgress}) nor enrol (${refused.enrol})`);
   await until("a trainee sees their own progress", async () => (await stageState(trainee, "single_lift")) === "open");
   check(!(await trainee.isVisible("#stations-panel")), "a trainee's page has no station panel");
-  for (const form of ["#trainee-form", "#rename-form", "#enrol-form", "#decision-form", "#attempt-actions"])
+  for (const form of ["#trainee-form", "#rename-form", "#enrol-form", "#decision-form", "#attempt-actions", "#class-panel",
+    "#compare-with"])
     check(!(await trainee.isVisible(form)), `a trainee's page shows no ${form}`);
   await trainee.screenshot({ path: path.join(out, "console_trainee.png"), fullPage: true });
 } catch (e) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <set>
+#include <string_view>
 #include <tuple>
 
 #include "harbour/training/Route.h"
@@ -16,8 +17,18 @@ bool counts(const AttemptFigures& a) {
 
 using VersionKey = std::pair<std::string, std::string>;  // exercise, version
 
+// The order figures are shown in: the score, the skills, then the rest by name.
+struct FigureOrder {
+  static int rank(const std::string& figure) {
+    return figure == "score" ? 0 : figure.rfind("skill_", 0) == 0 ? 1 : 2;
+  }
+  bool operator()(const std::string& a, const std::string& b) const {
+    return std::make_pair(rank(a), std::string_view(a)) < std::make_pair(rank(b), std::string_view(b));
+  }
+};
+
 // Per exercise version, per figure, per trainee: the best value (by the figure's direction).
-using Bests = std::map<VersionKey, std::map<std::string, std::map<std::string, double>>>;
+using Bests = std::map<VersionKey, std::map<std::string, std::map<std::string, double>, FigureOrder>>;
 
 Bests bests_of(const std::vector<AttemptFigures>& attempts) {
   Bests bests;

@@ -40,7 +40,7 @@ struct Standing {
 };
 
 /// The trainee's standings on every figure of every exercise version they finished (finished attempts with
-/// a score only), by exercise, version and figure.
+/// a score only), by exercise and version, then the score, the skills and the other figures by name.
 std::vector<Standing> standings(const std::vector<AttemptFigures>& attempts, const std::string& trainee);
 
 /// One trainee's line in a class overview.
@@ -68,7 +68,7 @@ struct Compared {
   std::optional<double> first, second;
 };
 
-/// Every figure of every exercise version either trainee finished.
+/// Every figure of every exercise version either trainee finished, in the order of standings().
 std::vector<Compared> compare(const std::vector<AttemptFigures>& attempts, const std::string& first,
                               const std::string& second);
 

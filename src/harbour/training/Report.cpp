@@ -140,7 +140,10 @@ std::string svg_plot(const std::vector<Series>& series, double y_min, double y_m
     for (std::size_t i = 0; i < s.values.size(); ++i)
       points += (i ? " " : "") + number(x_of(i)) + "," + number(y_of(s.values[i]));
     const std::string colour = escape_html(s.colour);
-    out += "<polyline fill=\"none\" stroke=\"" + colour + "\" stroke-width=\"2\" points=\"" + points + "\"/>";
+    // the first series widest, so that a later one on the same values still shows the earlier beneath
+    const double width = 2.0 + 1.5 * static_cast<double>(series.size() - 1 - k);
+    out += "<polyline fill=\"none\" stroke=\"" + colour + "\" stroke-width=\"" + number(width) +
+           "\" points=\"" + points + "\"/>";
     for (std::size_t i = 0; i < s.values.size(); ++i)
       out += "<circle cx=\"" + number(x_of(i)) + "\" cy=\"" + number(y_of(s.values[i])) +
              "\" r=\"3\" fill=\"" + colour + "\"/>";
@@ -287,7 +290,10 @@ std::string class_report_html(const ClassReportData& d) {
                  route_numeric);
     }
   }
-  out += "</table>\n</body></html>\n";
+  out += "</table>\n";
+  if (std::all_of(d.routes.begin(), d.routes.end(), [](const auto& r) { return r.empty(); }))
+    out += "<p>No trainee is enrolled in a route.</p>\n";
+  out += "</body></html>\n";
   return out;
 }
 
