@@ -1,10 +1,12 @@
 #include "harbour/io/RecordsStore.h"
 
 #include <gtest/gtest.h>
+
 #include <signal.h>
 #include <soci/soci.h>
 #include <sys/wait.h>
 #include <unistd.h>
+#include <regex>
 
 #include <chrono>
 #include <filesystem>
@@ -126,7 +128,7 @@ TEST_P(RecordsStoreOn, DatabasesOfEarlierBuildsAreUpgradedInPlace) {
         fresh_connection(GetParam(), "records_upgrade_v" + std::to_string(version));
     make_old_database(connection, version);
     RecordsStore db(connection);
-    EXPECT_EQ(db.schema_version(), 3) << "from version " << version;
+    EXPECT_EQ(db.schema_version(), 4) << "from version " << version;
     const auto rows = db.attempts();
     ASSERT_EQ(rows.size(), 1u);
     EXPECT_EQ(rows[0].status, "finished");
@@ -156,6 +158,80 @@ TEST_P(RecordsStoreOn, DatabasesOfEarlierBuildsAreUpgradedInPlace) {
   EXPECT_EQ(db.account_count(), 0);
   db.audit("ines", "login", "", "");
   EXPECT_EQ(db.audit_log(5).size(), 1u);
+
+  // a version-3 database (routes, no xAPI outbox) gets the outbox; its attempts keep no statements
+  const std::string v3 = fresh_connection(GetParam(), "records_upgrade_v3");
+  {
+    RecordsStore made(v3);
+    made.add_trainee("t001", "Ana");
+    made.begin_attempt("t001", "sts_discharge");
+    soci::session sql(records_connection(v3));
+    sql << "DROP TABLE xapi_outbox";
+    sql << "UPDATE schema_version SET version = 3";
+  }
+  RecordsStore upgraded(v3);
+  EXPECT_EQ(upgraded.schema_version(), 4);
+  EXPECT_TRUE(upgraded.xapi_outbox().empty());
+  EXPECT_EQ(upgraded.attempts().size(), 1u);
+}
+
+// Each attempt queues its xAPI statements in the transaction that begins or ends it; the outbox hands out
+// what is due, keeps failures with their error until their next try, and never again what was sent or
+// rejected.
+TEST_P(RecordsStoreOn, AttemptsQueueTheirXapiStatementsWithThem) {
+  RecordsStore db(fresh_connection(GetParam(), "records_xapi"));
+  db.add_trainee("t001", "Ana Pérez");
+  const auto a =
+      db.begin_attempt({"t001", "sts_discharge", std::nullopt, 0, "", "sts_basic", "single_lift", "v1"});
+  std::vector<XapiRow> out = db.xapi_outbox();
+  ASSERT_EQ(out.size(), 2u);
+  EXPECT_EQ(out[0].verb, "launched");
+  EXPECT_EQ(out[1].verb, "attempted");
+  const std::regex uuid4("[0-9a-f]{8}-[0-9a-f]{4}-4[0-9a-f]{3}-[89ab][0-9a-f]{3}-[0-9a-f]{12}");
+  EXPECT_TRUE(std::regex_match(out[0].statement_id, uuid4)) << out[0].statement_id;
+  EXPECT_NE(out[0].statement_id, out[1].statement_id);
+  EXPECT_NE(out[0].statement.find("\"name\":\"t001\""), std::string::npos) << out[0].statement;
+  EXPECT_NE(out[0].statement.find("/routes/sts_basic/single_lift"), std::string::npos) << out[0].statement;
+  sim::Metrics m;
+  m.time_s = 88.625;
+  m.collisions = 2;
+  sim::Score score;
+  score.total = 95.0;
+  score.passed = true;
+  db.finish_attempt(a, m, score, "");
+  out = db.xapi_outbox();
+  ASSERT_EQ(out.size(), 4u);
+  EXPECT_EQ(out[2].verb, "passed");
+  EXPECT_EQ(out[3].verb, "completed");
+  for (const char* expected : {"\"scaled\":0.95", "\"raw\":95.0", "\"success\":true",
+                               "\"duration\":\"PT88.62S\"", "/metrics/collisions\":2.0"})
+    EXPECT_NE(out[2].statement.find(expected), std::string::npos) << expected << " in " << out[2].statement;
+  EXPECT_EQ(out[2].statement.find(out[0].statement_id), std::string::npos);
+  // an interrupted attempt terminates, incomplete
+  const auto b = db.begin_attempt("t001", "sts_discharge");
+  db.finish_attempt(b, m, score, "", "interrupted");
+  out = db.xapi_outbox();
+  ASSERT_EQ(out.size(), 7u);
+  EXPECT_EQ(out[6].verb, "terminated");
+  EXPECT_NE(out[6].statement.find("\"completion\":false"), std::string::npos) << out[6].statement;
+
+  // the outbox: due in order; a failure waits for its next try; sent and rejected are done
+  const std::string now = out[6].queued_at;
+  ASSERT_EQ(db.xapi_due(now, 100).size(), 7u);
+  EXPECT_EQ(db.xapi_due(now, 3).size(), 3u);
+  db.xapi_failed(out[0].id, "connection refused", "2999-01-01T00:00:00.000Z", false);
+  db.xapi_sent(out[1].id, now);
+  db.xapi_failed(out[2].id, "400: bad statement", now, true);
+  const std::vector<XapiRow> due = db.xapi_due(now, 100);
+  ASSERT_EQ(due.size(), 4u);
+  EXPECT_EQ(due[0].id, out[3].id);
+  EXPECT_EQ(db.xapi_due("2999-01-01T00:00:00.000Z", 100).size(), 5u);  // the failed one's time has come
+  out = db.xapi_outbox();
+  EXPECT_EQ(out[0].tries, 1);
+  EXPECT_EQ(out[0].last_error, "connection refused");
+  EXPECT_EQ(out[1].state, "sent");
+  EXPECT_EQ(out[2].state, "rejected");
+  EXPECT_EQ(out[2].last_error, "400: bad statement");
 }
 
 // An upgrade that fails half-way (here a table of version 3 is already there, made by something else) is
@@ -187,7 +263,7 @@ TEST_P(RecordsStoreOn, AFailedUpgradeLeavesTheDatabaseAsItWas) {
   // with the stray table gone the upgrade goes through
   sql << "DROP TABLE route_overrides";
   RecordsStore db(connection);
-  EXPECT_EQ(db.schema_version(), 3);
+  EXPECT_EQ(db.schema_version(), 4);
 }
 
 // A database a newer build has upgraded is refused, not read wrongly or downgraded.

@@ -3,6 +3,7 @@
 #include <tuple>
 
 #include <soci/soci.h>
+#include <sodium.h>
 
 #include <signal.h>
 #include <unistd.h>
@@ -24,6 +25,7 @@
 #include <vector>
 
 #include "harbour/core/Text.h"
+#include "harbour/training/Xapi.h"
 
 namespace harbour::io {
 namespace {
@@ -31,8 +33,8 @@ namespace {
 // The schema's versions. 1: the first records (trainees, attempts, moves, events, metrics); 2: attempts
 // remember their process, console accounts and the audit log; 3: routes (enrolments, instructors'
 // overrides), attempts name their route stage and the exercise version they ran. Databases before version 3
-// have no schema_version table: 2 when attempts has the process column, else 1.
-constexpr int kSchemaVersion = 3;
+// have no schema_version table: 2 when attempts has the process column, else 1. 4: the xAPI outbox.
+constexpr int kSchemaVersion = 4;
 
 // every table of a schema version with the columns this build reads (and, for the latest, writes)
 struct TableColumns {
@@ -54,6 +56,9 @@ constexpr TableColumns kTables[] = {
     {"enrolments", "trainee, route, at, account", 3, 3},
     {"route_overrides", "trainee, route, stage, action, reason, account, at", 3, 3},
     {"schema_version", "version", 3, 3},
+    {"xapi_outbox",
+     "id, statement_id, attempt, verb, statement, queued_at, state, tries, next_try_at, last_error, sent_at",
+     4, 4},
 };
 
 // the columns `table` had at `version` ("" : not there yet)
@@ -108,6 +113,13 @@ std::vector<std::string> migration(int version) {
           " at TEXT NOT NULL)",
           "CREATE TABLE schema_version (version INTEGER NOT NULL)",
           "INSERT INTO schema_version (version) VALUES (0)"};
+    case 4:
+      // the attempts' xAPI statements, queued in the transaction that makes them true, until an LRS has them
+      return {
+          "CREATE TABLE xapi_outbox (id BIGINT PRIMARY KEY, statement_id TEXT NOT NULL UNIQUE,"
+          " attempt BIGINT NOT NULL REFERENCES attempts(id), verb TEXT NOT NULL, statement TEXT NOT NULL,"
+          " queued_at TEXT NOT NULL, state TEXT NOT NULL, tries INTEGER NOT NULL, next_try_at TEXT NOT NULL,"
+          " last_error TEXT NOT NULL, sent_at TEXT NOT NULL)"};
     default:
       return {};
   }
@@ -125,6 +137,33 @@ std::string utc_now() {
   const std::size_t n = std::strftime(at, sizeof at, "%Y-%m-%dT%H:%M:%S", &utc);
   std::snprintf(at + n, sizeof at - n, ".%06lldZ", static_cast<long long>(micros));
   return at;
+}
+
+// a random (version 4) UUID, as xAPI statement ids are
+std::string random_uuid() {
+  if (sodium_init() < 0) throw std::runtime_error("libsodium could not start (no random numbers)");
+  unsigned char b[16];
+  randombytes_buf(b, sizeof b);
+  b[6] = static_cast<unsigned char>((b[6] & 0x0f) | 0x40);
+  b[8] = static_cast<unsigned char>((b[8] & 0x3f) | 0x80);
+  char text[37];
+  std::snprintf(text, sizeof text, "%02x%02x%02x%02x-%02x%02x-%02x%02x-%02x%02x-%02x%02x%02x%02x%02x%02x",
+                b[0], b[1], b[2], b[3], b[4], b[5], b[6], b[7], b[8], b[9], b[10], b[11], b[12], b[13], b[14],
+                b[15]);
+  return text;
+}
+
+std::vector<std::string> random_uuids(int n) {
+  std::vector<std::string> ids;
+  for (int i = 0; i < n; ++i)
+    ids.push_back(random_uuid());
+  return ids;
+}
+
+// now, UTC, ISO 8601 with milliseconds: an xAPI timestamp
+std::string xapi_time_now() {
+  const std::string micro = utc_now();  // ...SS.ffffffZ
+  return micro.substr(0, micro.size() - 4) + "Z";
 }
 
 constexpr const char* kStatuses[] = {"running", "finished", "interrupted", "diverged"};
@@ -219,6 +258,35 @@ struct RecordsStore::Impl {
   /// Runs `work` in a transaction that holds the write lock from its start (SQLite: BEGIN IMMEDIATE, so a
   /// read-then-write never meets another writer's lock half-way; PostgreSQL: the attempts table locked
   /// against other writers), committed at the end, rolled back on an error.
+  /// What an attempt's xAPI statements say of it (inside the caller's transaction).
+  training::xapi::AttemptFacts facts_of(long long attempt) {
+    training::xapi::AttemptFacts f;
+    f.attempt = attempt;
+    sql << "SELECT a.trainee, t.name, a.exercise, a.exercise_version, a.route, a.stage FROM attempts a JOIN "
+           "trainees t ON t.id = a.trainee WHERE a.id = :a",
+        soci::use(attempt), soci::into(f.trainee), soci::into(f.trainee_name), soci::into(f.exercise),
+        soci::into(f.exercise_version), soci::into(f.route), soci::into(f.stage);
+    if (!sql.got_data()) throw std::out_of_range("no attempt " + std::to_string(attempt));
+    return f;
+  }
+
+  /// Queues statements in the xAPI outbox (inside the caller's write transaction).
+  void queue(long long attempt, const std::vector<training::xapi::Statement>& statements,
+             const std::string& at) {
+    for (const training::xapi::Statement& st : statements) {
+      long long last = 0;
+      soci::indicator ind = soci::i_null;
+      sql << "SELECT MAX(id) FROM xapi_outbox", soci::into(last, ind);
+      const long long id = (ind == soci::i_ok ? last : 0) + 1;
+      sql << "INSERT INTO xapi_outbox (id, statement_id, attempt, verb, statement, queued_at, state, tries,"
+             " next_try_at, last_error, sent_at) VALUES (:id, :sid, :a, :verb, :st, :at, 'queued', 0, :next, "
+             "'',"
+             " '')",
+          soci::use(id), soci::use(st.id), soci::use(attempt), soci::use(st.verb), soci::use(st.json),
+          soci::use(at), soci::use(at);
+    }
+  }
+
   template <typename Work>
   auto write_transaction(Work&& work) -> decltype(work()) {
     const bool sqlite = sql.get_backend_name() == "sqlite3";
@@ -388,9 +456,18 @@ int RecordsStore::mark_interrupted_attempts() {
     for (const auto& [id, process] : running) {
       if (!ended_here(process)) continue;
       const long long a = id;
-      impl_->sql << "UPDATE attempts SET status = 'interrupted' WHERE id = :a AND status = 'running'",
-          soci::use(a);
-      ++marked;
+      const bool marked_here = impl_->write_transaction([&] {
+        std::string now_status;
+        impl_->sql << "SELECT status FROM attempts WHERE id = :a", soci::use(a), soci::into(now_status);
+        if (now_status != "running") return false;  // another process marked it first
+        impl_->sql << "UPDATE attempts SET status = 'interrupted' WHERE id = :a", soci::use(a);
+        training::xapi::AttemptFacts facts = impl_->facts_of(a);
+        facts.status = "interrupted";
+        const std::string at = xapi_time_now();
+        impl_->queue(a, training::xapi::at_end(facts, at, random_uuids(1)), at);
+        return true;
+      });
+      marked += marked_here ? 1 : 0;
     }
     return marked;
   });
@@ -480,6 +557,11 @@ std::int64_t RecordsStore::begin_attempt(const AttemptStart& start) {
           soci::use(id), soci::use(trainee), soci::use(start.exercise), soci::use(parent_id, parent_ind),
           soci::use(branch), soci::use(start.recording), soci::use(process), soci::use(start.route),
           soci::use(start.stage), soci::use(start.exercise_version);
+      const std::string at = xapi_time_now();
+      impl_->queue(id,
+                   training::xapi::at_start(impl_->facts_of(id), at,
+                                            random_uuids(training::xapi::statements_at_start())),
+                   at);
       return static_cast<std::int64_t>(id);
     });
   });
@@ -506,24 +588,34 @@ void RecordsStore::finish_attempt(std::int64_t attempt, const sim::Metrics& m, c
   if (status != "finished" && status != "interrupted" && status != "diverged")
     throw std::invalid_argument("an attempt ends finished, interrupted or diverged, not '" + status + "'");
   impl_->guarded("finishing attempt " + std::to_string(attempt), [&] {
-    // the final figures in one transaction: an attempt is either still running or completely finished
-    soci::transaction tr(impl_->sql);
-    const long long a = attempt;
-    std::vector<std::pair<std::string, double>> values = m.rows();
-    values.insert(values.end(), {{"skill_safety", s.skills[0]},
-                                 {"skill_precision", s.skills[1]},
-                                 {"skill_productivity", s.skills[2]}});
-    for (const auto& [name, value] : values) {
-      const std::string n = name;
-      const double v = value;
-      impl_->sql << "INSERT INTO metrics (attempt, name, value) VALUES (:a, :n, :v)", soci::use(a),
-          soci::use(n), soci::use(v);
-    }
-    const double score = s.total;
-    const int passed = s.passed ? 1 : 0;
-    impl_->sql << "UPDATE attempts SET status = :st, score = :s, passed = :p, recording = :r WHERE id = :a",
-        soci::use(status), soci::use(score), soci::use(passed), soci::use(recording), soci::use(a);
-    tr.commit();
+    // the final figures and the xAPI statements saying so in one transaction: an attempt is either still
+    // running or completely finished
+    impl_->write_transaction([&] {
+      const long long a = attempt;
+      std::vector<std::pair<std::string, double>> values = m.rows();
+      values.insert(values.end(), {{"skill_safety", s.skills[0]},
+                                   {"skill_precision", s.skills[1]},
+                                   {"skill_productivity", s.skills[2]}});
+      for (const auto& [name, value] : values) {
+        const std::string n = name;
+        const double v = value;
+        impl_->sql << "INSERT INTO metrics (attempt, name, value) VALUES (:a, :n, :v)", soci::use(a),
+            soci::use(n), soci::use(v);
+      }
+      const double score = s.total;
+      const int passed = s.passed ? 1 : 0;
+      impl_->sql << "UPDATE attempts SET status = :st, score = :s, passed = :p, recording = :r WHERE id = :a",
+          soci::use(status), soci::use(score), soci::use(passed), soci::use(recording), soci::use(a);
+      training::xapi::AttemptFacts facts = impl_->facts_of(a);
+      facts.status = status;
+      facts.score = s.total;
+      facts.passed = s.passed;
+      facts.duration_s = m.time_s;
+      facts.metrics = std::move(values);
+      const std::string at = xapi_time_now();
+      impl_->queue(
+          a, training::xapi::at_end(facts, at, random_uuids(training::xapi::statements_at_end(facts))), at);
+    });
   });
 }
 
@@ -701,6 +793,76 @@ std::vector<training::AttemptFigures> RecordsStore::attempt_figures(
     out.push_back({a.id, a.trainee, a.exercise, a.exercise_version, a.route, a.stage, a.status, a.score,
                    a.passed, std::move(metrics_of[a.id])});
   return out;
+}
+
+namespace {
+
+XapiRow xapi_row(const soci::row& r) {
+  XapiRow x;
+  x.id = r.get<long long>(0);
+  x.statement_id = r.get<std::string>(1);
+  x.attempt = r.get<long long>(2);
+  x.verb = r.get<std::string>(3);
+  x.statement = r.get<std::string>(4);
+  x.queued_at = r.get<std::string>(5);
+  x.state = r.get<std::string>(6);
+  x.tries = r.get<int>(7);
+  x.next_try_at = r.get<std::string>(8);
+  x.last_error = r.get<std::string>(9);
+  x.sent_at = r.get<std::string>(10);
+  return x;
+}
+
+constexpr const char* kXapiColumns =
+    "SELECT id, statement_id, attempt, verb, statement, queued_at, state, tries, next_try_at, last_error, "
+    "sent_at"
+    " FROM xapi_outbox ";
+
+}  // namespace
+
+std::vector<XapiRow> RecordsStore::xapi_due(const std::string& now, int most) {
+  return impl_->guarded("reading the xAPI outbox", [&] {
+    std::vector<XapiRow> due;
+    soci::rowset<soci::row> rows =
+        (impl_->sql.prepare << std::string(kXapiColumns) +
+                                   "WHERE state = 'queued' AND next_try_at <= :now ORDER BY id LIMIT :most",
+         soci::use(now), soci::use(most));
+    for (const soci::row& r : rows)
+      due.push_back(xapi_row(r));
+    return due;
+  });
+}
+
+std::vector<XapiRow> RecordsStore::xapi_outbox() {
+  return impl_->guarded("reading the xAPI outbox", [&] {
+    std::vector<XapiRow> all;
+    soci::rowset<soci::row> rows = (impl_->sql.prepare << std::string(kXapiColumns) + "ORDER BY id");
+    for (const soci::row& r : rows)
+      all.push_back(xapi_row(r));
+    return all;
+  });
+}
+
+void RecordsStore::xapi_sent(std::int64_t id, const std::string& at) {
+  impl_->guarded("marking xAPI statement " + std::to_string(id) + " sent", [&] {
+    const long long row = id;
+    impl_->sql << "UPDATE xapi_outbox SET state = 'sent', tries = tries + 1, sent_at = :at, last_error = ''"
+                  " WHERE id = :id",
+        soci::use(at), soci::use(row);
+  });
+}
+
+void RecordsStore::xapi_failed(std::int64_t id, const std::string& error, const std::string& next_try_at,
+                               bool rejected) {
+  impl_->guarded("marking xAPI statement " + std::to_string(id) + " failed", [&] {
+    const long long row = id;
+    const std::string state = rejected ? "rejected" : "queued";
+    const std::string why = error.substr(0, 2000);
+    impl_->sql
+        << "UPDATE xapi_outbox SET state = :state, tries = tries + 1, next_try_at = :next, last_error = :e"
+           " WHERE id = :id",
+        soci::use(state), soci::use(next_try_at), soci::use(why), soci::use(row);
+  });
 }
 
 int RecordsStore::schema_version() {

@@ -69,6 +69,14 @@ struct EventRow {
   double value = 0.0;
 };
 
+/// An xAPI statement in the outbox: queued (to be sent when next_try_at has come), sent, or rejected (the
+/// LRS refused it: sending it again would not help).
+struct XapiRow {
+  std::int64_t id = 0, attempt = 0;
+  std::string statement_id, verb, statement, queued_at, state, next_try_at, last_error, sent_at;
+  int tries = 0;
+};
+
 /// The SOCI connection string for `connection`: "sqlite3://db=FILE", "sqlite3://FILE" or a plain FILE (an
 /// SQLite file that must persist: not ":memory:", not empty, its folder must exist), or
 /// "postgresql://..." as it is. Throws std::invalid_argument saying what is wrong.
@@ -138,6 +146,15 @@ class RecordsStore {
              const std::string& detail);
   /// The newest `newest` entries, newest first.
   std::vector<AuditRow> audit_log(int newest);
+
+  /// Queued xAPI statements whose next try has come (`now`: UTC ISO 8601, as they are stored), oldest first,
+  /// at most `most`. Each attempt's statements are queued in the transaction that begins or ends it.
+  std::vector<XapiRow> xapi_due(const std::string& now, int most);
+  /// Every statement of the outbox, oldest first (for a status and the tests).
+  std::vector<XapiRow> xapi_outbox();
+  void xapi_sent(std::int64_t id, const std::string& at);
+  /// A try that failed: queued again for `next_try_at`, or rejected for good; the error is kept.
+  void xapi_failed(std::int64_t id, const std::string& error, const std::string& next_try_at, bool rejected);
 
   /// The schema version of the database (the build's latest once opened: opening upgrades it).
   int schema_version();
