@@ -13,6 +13,7 @@
 #include "Screenshot.h"
 #include "StationRun.h"
 #include "StsRun.h"
+#include "XapiSender.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"harboursim: harbour crane training simulator"};
@@ -202,6 +203,21 @@ int main(int argc, char** argv) {
   report_trainee_cmd->add_option("trainee", report_trainee, "trainee id")->required();
   CLI::App* report_class_cmd = report_cmd->add_subcommand("class", "every trainee side by side");
 
+  std::string xapi_db, xapi_lrs, xapi_auth_file;
+  bool xapi_watch = false;
+  CLI::App* xapi_cmd =
+      app.add_subcommand("xapi", "the attempts' xAPI statements and the Learning Record Store");
+  xapi_cmd->require_subcommand(1);
+  xapi_cmd->add_option("--db", xapi_db, "records connection");
+  xapi_cmd->fallthrough();
+  CLI::App* xapi_status_cmd =
+      xapi_cmd->add_subcommand("status", "the outbox: queued, sent, rejected, errors");
+  CLI::App* xapi_send_cmd = xapi_cmd->add_subcommand("send", "send the due statements to an LRS");
+  xapi_send_cmd->add_option("--lrs", xapi_lrs, "the LRS's xAPI endpoint (http://HOST:PORT/xAPI/)")
+      ->required();
+  xapi_send_cmd->add_option("--lrs-auth-file", xapi_auth_file, "a file holding one line user:password");
+  xapi_send_cmd->add_flag("--watch", xapi_watch, "keep sending as statements come, until Ctrl-C");
+
   harbour::apps::BulkDemoOptions demo;
   CLI::App* demo_cmd =
       app.add_subcommand("bulk-demo", "a grab digs coal from a yard heap into a rolling hold");
@@ -239,6 +255,8 @@ int main(int argc, char** argv) {
       if (*decision_cmds[n])
         return harbour::apps::decide_stage(route_db, route_trainee, route_id, route_stage,
                                            n == 0 ? "sign_off" : "retry", route_reason);
+    if (*xapi_status_cmd) return harbour::apps::xapi_status(xapi_db);
+    if (*xapi_send_cmd) return harbour::apps::xapi_send(xapi_db, xapi_lrs, xapi_auth_file, xapi_watch);
     if (*report_trainee_cmd && report_trainee.empty()) {
       std::fprintf(stderr, "harboursim: report trainee needs a trainee id\n");
       return 2;

@@ -1,0 +1,230 @@
+#include "XapiSender.h"
+
+#include <sodium.h>
+
+#include <utility>  // before Boost.Asio 1.74, which uses std::exchange without it
+
+#include <boost/asio.hpp>
+#include <boost/asio/ssl.hpp>
+#include <boost/beast.hpp>
+#include <boost/beast/ssl.hpp>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <ctime>
+#include <fstream>
+#include <map>
+#include <stdexcept>
+#include <thread>
+
+#include "StsRun.h"
+#include "harbour/core/Text.h"
+
+namespace harbour::apps {
+
+namespace {
+
+namespace asio = boost::asio;
+namespace beast = boost::beast;
+namespace http = beast::http;
+using tcp = asio::ip::tcp;
+
+struct Endpoint {
+  bool tls = false;
+  std::string host, port, path;  // path ends with '/'
+};
+
+Endpoint parse_endpoint(const std::string& url) {
+  Endpoint e;
+  std::string rest;
+  if (url.rfind("http://", 0) == 0) {
+    rest = url.substr(7);
+  } else if (url.rfind("https://", 0) == 0) {
+    e.tls = true;
+    rest = url.substr(8);
+  } else {
+    throw std::invalid_argument("--lrs '" + core::printable(url) + "': an http:// or https:// URL");
+  }
+  const auto slash = rest.find('/');
+  const std::string authority = rest.substr(0, slash);
+  e.path = slash == std::string::npos ? "/" : rest.substr(slash);
+  if (e.path.back() != '/') e.path += '/';
+  const auto colon = authority.rfind(':');
+  e.host = authority.substr(0, colon);
+  e.port = colon == std::string::npos ? (e.tls ? "443" : "80") : authority.substr(colon + 1);
+  if (e.host.empty() || e.port.empty() || e.port.find_first_not_of("0123456789") != std::string::npos ||
+      authority.find('@') != std::string::npos)
+    throw std::invalid_argument("--lrs '" + core::printable(url) +
+                                "': http(s)://HOST[:PORT]/PATH/ (credentials go in --lrs-auth-file)");
+  return e;
+}
+
+// UTC ISO 8601 with milliseconds, `seconds` from now: the outbox's times compare as text
+std::string utc_after(double seconds) {
+  const auto at =
+      std::chrono::system_clock::now() +
+      std::chrono::duration_cast<std::chrono::system_clock::duration>(std::chrono::duration<double>(seconds));
+  const std::time_t whole = std::chrono::system_clock::to_time_t(at);
+  const auto millis =
+      std::chrono::duration_cast<std::chrono::milliseconds>(at.time_since_epoch()).count() % 1000;
+  std::tm utc{};
+  gmtime_r(&whole, &utc);
+  char text[40];
+  const std::size_t n = std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%S", &utc);
+  std::snprintf(text + n, sizeof text - n, ".%03lldZ", static_cast<long long>(millis));
+  return text;
+}
+
+std::string base64(const std::string& text) {
+  if (sodium_init() < 0) throw std::runtime_error("libsodium could not start");
+  std::string out(sodium_base64_encoded_len(text.size(), sodium_base64_VARIANT_ORIGINAL), '\0');
+  sodium_bin2base64(out.data(), out.size(), reinterpret_cast<const unsigned char*>(text.data()), text.size(),
+                    sodium_base64_VARIANT_ORIGINAL);
+  out.resize(out.find('\0'));
+  return out;
+}
+
+// one PUT; the HTTP status, or throws (no answer) saying why
+template <class Stream>
+http::response<http::string_body> round_trip(Stream& stream,
+                                             const http::request<http::string_body>& request) {
+  http::write(stream, request);
+  beast::flat_buffer buffer;
+  http::response_parser<http::string_body> parser;
+  parser.body_limit(1 << 20);
+  http::read(stream, buffer, parser);
+  return parser.release();
+}
+
+http::response<http::string_body> put_statement(const Endpoint& e, const LrsOptions& lrs,
+                                                const io::XapiRow& row) {
+  http::request<http::string_body> request{http::verb::put,
+                                           e.path + "statements?statementId=" + row.statement_id, 11};
+  request.set(http::field::host, e.host);
+  request.set(http::field::content_type, "application/json");
+  request.set("X-Experience-API-Version", "1.0.3");
+  if (!lrs.credentials.empty()) request.set(http::field::authorization, "Basic " + base64(lrs.credentials));
+  request.body() = row.statement;
+  request.prepare_payload();
+  asio::io_context io;
+  tcp::resolver resolver(io);
+  const auto addresses = resolver.resolve(e.host, e.port);
+  const auto timeout = std::chrono::milliseconds(static_cast<long>(lrs.timeout_s * 1000.0));
+  if (!e.tls) {
+    beast::tcp_stream stream(io);
+    stream.expires_after(timeout);
+    stream.connect(addresses);
+    return round_trip(stream, request);
+  }
+  asio::ssl::context context(asio::ssl::context::tls_client);
+  context.set_default_verify_paths();
+  context.set_verify_mode(asio::ssl::verify_peer);
+  beast::ssl_stream<beast::tcp_stream> stream(io, context);
+  if (!SSL_set_tlsext_host_name(stream.native_handle(), e.host.c_str()))
+    throw std::runtime_error("TLS: cannot name the host");
+  stream.set_verify_callback(asio::ssl::host_name_verification(e.host));
+  beast::get_lowest_layer(stream).expires_after(timeout);
+  beast::get_lowest_layer(stream).connect(addresses);
+  stream.handshake(asio::ssl::stream_base::client);
+  return round_trip(stream, request);
+}
+
+volatile std::sig_atomic_t g_stop = 0;
+extern "C" void stop_watching(int) {
+  g_stop = 1;
+}
+
+std::string read_credentials(const std::string& file) {
+  if (file.empty()) return "";
+  std::ifstream in(file);
+  std::string line;
+  if (!in || !std::getline(in, line))
+    throw std::runtime_error("--lrs-auth-file " + file + ": cannot read it (one line: user:password)");
+  if (!line.empty() && line.back() == '\r') line.pop_back();
+  if (line.find(':') == std::string::npos)
+    throw std::runtime_error("--lrs-auth-file " + file + ": one line user:password");
+  return line;
+}
+
+}  // namespace
+
+SendReport send_due(io::RecordsStore& db, const LrsOptions& lrs, int most) {
+  const Endpoint e = parse_endpoint(lrs.endpoint);
+  SendReport report;
+  const std::string now = utc_after(0.0);
+  for (const io::XapiRow& row : db.xapi_due("9999", most)) {  // every queued one, in order
+    if (row.next_try_at > now) break;  // a failed one waits: those after it wait too, so that order holds
+    const double wait_s = std::min(300.0, 2.0 * static_cast<double>(1 << std::min(row.tries, 8)));
+    try {
+      const auto answer = put_statement(e, lrs, row);
+      const int status = answer.result_int();
+      if (status == 200 || status == 204) {
+        db.xapi_sent(row.id, utc_after(0.0));
+        ++report.sent;
+        continue;
+      }
+      report.last_error =
+          "LRS answered " + std::to_string(status) + ": " + core::printable(answer.body(), 500);
+      if (status == 400 || status == 409 || status == 413) {
+        db.xapi_failed(row.id, report.last_error, row.next_try_at, true);
+        ++report.rejected;
+        continue;
+      }
+    } catch (const std::exception& ex) {
+      report.last_error = std::string("no answer from the LRS: ") + ex.what();
+    }
+    db.xapi_failed(row.id, report.last_error, utc_after(wait_s), false);
+    ++report.retry;
+    break;  // down or refusing: not asked again before the next try
+  }
+  return report;
+}
+
+int xapi_status(const std::string& database) {
+  io::RecordsStore db(database.empty() ? default_database() : database);
+  std::map<std::string, int> by_state;
+  const std::vector<io::XapiRow> rows = db.xapi_outbox();
+  for (const io::XapiRow& r : rows)
+    ++by_state[r.state];
+  std::printf("xAPI outbox: %d queued, %d sent, %d rejected\n", by_state["queued"], by_state["sent"],
+              by_state["rejected"]);
+  for (const io::XapiRow& r : rows)
+    if (!r.last_error.empty())
+      std::printf("  %s %s (attempt %lld, %d tries, %s): %s\n", r.state.c_str(), r.verb.c_str(),
+                  static_cast<long long>(r.attempt), r.tries,
+                  r.state == "queued" ? ("next at " + r.next_try_at).c_str() : "not retried",
+                  r.last_error.c_str());
+  return 0;
+}
+
+int xapi_send(const std::string& database, const std::string& endpoint, const std::string& credentials_file,
+              bool watch) {
+  io::RecordsStore db(database.empty() ? default_database() : database);
+  const LrsOptions lrs{endpoint, read_credentials(credentials_file)};
+  parse_endpoint(endpoint);  // a bad URL stops it before anything is tried
+  g_stop = 0;
+  if (watch) {
+    std::signal(SIGINT, stop_watching);
+    std::signal(SIGTERM, stop_watching);
+  }
+  int waiting = 0;
+  do {
+    const SendReport r = send_due(db, lrs);
+    if (r.sent || r.retry || r.rejected) {
+      std::printf("xapi: %d sent, %d to retry, %d rejected%s%s\n", r.sent, r.retry, r.rejected,
+                  r.last_error.empty() ? "" : "; ", r.last_error.c_str());
+      std::fflush(stdout);
+    }
+    waiting = r.retry;
+    if (watch)
+      for (int n = 0; n < 10 && !g_stop; ++n)
+        std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  } while (watch && !g_stop);
+  if (watch) {
+    std::signal(SIGINT, SIG_DFL);
+    std::signal(SIGTERM, SIG_DFL);
+  }
+  return waiting ? 3 : 0;
+}
+
+}  // namespace harbour::apps

@@ -1,0 +1,39 @@
+#pragma once
+
+#include <string>
+
+#include "harbour/io/RecordsStore.h"
+
+namespace harbour::apps {
+
+/// A Learning Record Store: its xAPI endpoint (http:// or https://, e.g. "http://lrs.centre:8080/xAPI/") and
+/// the HTTP Basic credentials "user:password" ("" : none).
+struct LrsOptions {
+  std::string endpoint;
+  std::string credentials;
+  double timeout_s = 10.0;
+};
+
+/// What one pass over the outbox did.
+struct SendReport {
+  int sent = 0;
+  int retry = 0;     ///< failed, queued for a later try (the LRS down, busy, or refusing the credentials)
+  int rejected = 0;  ///< refused for good (an invalid statement, or another statement under its id)
+  std::string last_error;
+};
+
+/// Sends the queued statements of the outbox in order up to the first whose next try has not come, each by
+/// PUT statements?statementId=ID (xAPI 1.0.3: the LRS keeps one statement per id, so a statement sent twice,
+/// its answer lost, is stored once). 200/204 mark it sent; 400, 409 and 413 reject it; anything else, or no
+/// answer, queues it again after 2 s x 2^tries (at most 5 min) and ends the pass (the LRS is not asked again
+/// until then).
+SendReport send_due(io::RecordsStore& db, const LrsOptions& lrs, int most = 200);
+
+/// `harboursim xapi status`: the outbox by state, and the errors of those failing.
+int xapi_status(const std::string& database);
+/// `harboursim xapi send`: one pass (exit 0: nothing due is left unsent, 3: some wait for a retry), or with
+/// `watch` a pass every second until SIGINT/SIGTERM. The credentials are read from `credentials_file`.
+int xapi_send(const std::string& database, const std::string& endpoint, const std::string& credentials_file,
+              bool watch);
+
+}  // namespace harbour::apps
