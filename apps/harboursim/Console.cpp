@@ -868,7 +868,10 @@ void Console::command(const http::request<http::string_body>& request, const Acc
       kind ? text_field(*body, "exercise", 128, why, false) : std::nullopt;
   const std::optional<std::string> trainee =
       exercise ? text_field(*body, "trainee", 64, why, false) : std::nullopt;
-  if (!kind || !exercise || !trainee) return session->reply(error(request, http::status::bad_request, why));
+  const std::optional<std::string> route_id =
+      trainee ? text_field(*body, "route", 64, why, false) : std::nullopt;
+  if (!kind || !exercise || !trainee || !route_id)
+    return session->reply(error(request, http::status::bad_request, why));
   const auto autopilot = body->find("autopilot");
   if (autopilot != body->end() && !autopilot->is_boolean())
     return session->reply(
@@ -880,9 +883,33 @@ void Console::command(const http::request<http::string_body>& request, const Acc
   if (found->second.lost || found->second.gone)
     return session->reply(
         error(request, http::status::conflict, "station " + station + " is not on the network"));
+  std::string to_run = *exercise;
+  if (*kind == "start" && !route_id->empty()) {
+    // the trainee's next stage of the route, as the station will find it in the records
+    const auto route =
+        std::find_if(routes_.begin(), routes_.end(), [&](const auto& r) { return r.id == *route_id; });
+    if (route == routes_.end())
+      return session->reply(error(request, http::status::not_found,
+                                  "field 'route': no route '" + core::printable(*route_id) + "'"));
+    if (trainee->empty() || !db_.has_trainee(*trainee))
+      return session->reply(error(request, http::status::bad_request,
+                                  "field 'trainee': a route's stage is run by a trainee in the records"));
+    const auto enrolled = db_.enrolments(*trainee);
+    if (std::none_of(enrolled.begin(), enrolled.end(), [&](const auto& e) { return e.route == route->id; }))
+      return session->reply(error(request, http::status::conflict,
+                                  *trainee + " is not enrolled in route '" + route->id + "'"));
+    const training::RouteProgress p = training::progress(*route, db_.stage_attempts(*trainee, route->id),
+                                                         db_.overrides(*trainee, route->id));
+    if (!p.next)
+      return session->reply(error(request, http::status::conflict,
+                                  p.complete ? *trainee + " has passed every stage of " + route->id
+                                             : "no stage of " + route->id + " is open for " + *trainee +
+                                                   ": an instructor decides (sign off or retry)"));
+    to_run = route->stage(*p.next)->exercise;
+  }
   if (*kind == "start") {
-    if (exercise->empty())
-      return session->reply(error(request, http::status::bad_request, "start needs an exercise"));
+    if (to_run.empty())
+      return session->reply(error(request, http::status::bad_request, "start needs an exercise or a route"));
     if (!trainee->empty() && !db_.has_trainee(*trainee))
       return session->reply(
           error(request, http::status::bad_request, "no trainee '" + core::printable(*trainee) + "'"));
@@ -891,8 +918,9 @@ void Console::command(const http::request<http::string_body>& request, const Acc
   c.station(station);
   c.user(account.name);
   c.kind(*kind);
-  c.exercise(*exercise);
+  c.exercise(to_run);
   c.trainee(*trainee);
+  c.route(*kind == "start" ? *route_id : "");
   c.autopilot(autopilot != body->end() && autopilot->get<bool>());
   const std::uint64_t id = link_.send(c);
   pending_[id] = Pending{request, session, account, station, *kind, Clock::now() + kAckTimeout};

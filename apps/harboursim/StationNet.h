@@ -21,6 +21,7 @@ net::StationState state_message(const sim::Snapshot& snapshot, std::size_t entit
 /// What a console asked a station to do next (run an exercise, or nothing new).
 struct StartRequest {
   std::string exercise, trainee, user;
+  std::string route;  ///< a training route: the trainee's next stage of it (the exercise then names it)
   bool autopilot = false;
   std::optional<station::TakeOverFrom> take_over;  ///< continue a stored attempt from a moment
 };

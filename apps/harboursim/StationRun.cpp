@@ -355,6 +355,7 @@ int run_station(const StationOptions& options) {
     if (!start) break;
     StationOptions attempt = options;
     attempt.exercise = start->exercise;
+    attempt.route = start->route;  // run_attempt takes the trainee's next stage of it from the records
     attempt.trainee = start->trainee;
     attempt.autopilot = options.autopilot || start->autopilot;
     attempt.seconds = 0.0;

@@ -168,6 +168,8 @@ async function command(kind: string) {
     body.exercise = $<HTMLSelectElement>("exercise").value;
     body.trainee = $<HTMLSelectElement>("trainee").value;
     body.autopilot = $<HTMLInputElement>("autopilot").checked;
+    const route = $<HTMLSelectElement>("start-route").value;
+    if (route) { body.route = route; body.exercise = ""; }  // the trainee's next stage of it
   }
   const result = $("command-result");
   text(result, `${kind}…`);
@@ -413,6 +415,7 @@ async function enter(who: Me) {
   const routeSelect = $<HTMLSelectElement>("route");
   routeSelect.replaceChildren();
   for (const r of routes) routeSelect.add(new Option(`${r.name} (${r.id})`, r.id));
+  for (const r of routes) $<HTMLSelectElement>("start-route").add(new Option(`${r.name}: next stage`, r.id));
   await loadProgress();
   if (who.role === "trainee") return;
   const looks = await api("/api/looks");

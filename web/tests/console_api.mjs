@@ -231,6 +231,28 @@ try {
   const whoC = await login(c2[0], "ines", "ines-password");
   const c = client(c2[0], whoC);
   await until("console C sees the station", async () => (await c("api/stations")).data?.some((s) => s.station === "api-1"));
+  // a route's next stage started from the console: carl's single_lift is signed off, so deck_discharge
+  const command = (body) => b("api/stations/api-1/command", "POST", body);
+  for (const [body, status, what] of [
+    [{ kind: "start", route: "sts_advanced", trainee: "carl" }, 404, "an unknown route"],
+    [{ kind: "start", route: "sts_basic", trainee: "=dora" }, 409, "a trainee not enrolled"],
+    [{ kind: "start", route: "sts_basic" }, 400, "no trainee"]]) {
+    const r = await command(body);
+    check(r.status === status, `a route start with ${what}: ${r.status} (${r.data?.error})`);
+  }
+  const routed = await command({ kind: "start", route: "sts_basic", trainee: "carl", autopilot: true });
+  check(routed.status === 200 && /sts_bay12_deck/.test(routed.data?.message),
+    `the route's next stage starts: ${routed.status} ${routed.data?.message}`);
+  await until("the station runs carl's deck_discharge", async () => {
+    const s = (await c("api/stations")).data?.find((x) => x.station === "api-1");
+    return s?.state === "running" && s.exercise === "sts_bay12_deck";
+  });
+  await command({ kind: "stop" });
+  await until("the station is idle again", async () => (await c("api/stations")).data?.find((x) => x.station === "api-1")?.state === "idle");
+  const staged = (await b("api/attempts?trainee=carl")).data[0];
+  check(staged?.route === "sts_basic" && staged?.stage === "deck_discharge" && staged?.exercise === "sts_bay12_deck",
+    `its attempt is stored for the route's stage (${staged?.route}/${staged?.stage}, ${staged?.exercise})`);
+
   const started = await b("api/stations/api-1/command", "POST", { kind: "start", exercise: "sts_discharge", trainee: "carl", autopilot: true });
   check(started.status === 200, `console B starts the exercise: ${started.data?.message}`);
   await until("it runs", async () => (await c("api/stations")).data?.find((s) => s.station === "api-1")?.state === "running");
