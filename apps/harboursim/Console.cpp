@@ -37,6 +37,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "Designer.h"
 #include "Reports.h"
 #include "StationNet.h"
 #include "StsRun.h"
@@ -508,6 +509,13 @@ class Console {
   std::optional<Response> cohort_views(const http::request<http::string_body>& request,
                                        const Account& account, const std::string& target,
                                        const std::string& query, std::shared_ptr<HttpSession> session);
+  /// The exercise designer: GET /api/designer/source?exercise=NAME, POST /api/designer/check {text} (the
+  /// loader's verdict, a summary and the scene to preview), POST /api/designer/save {text}.
+  Response designer(const http::request<http::string_body>& request, const Account& account,
+                    const std::string& target, const std::string& query);
+  std::string exercise_folder() const {
+    return options_.exercises.empty() ? std::string(HARBOUR_DATA_DIR) + "/exercises" : options_.exercises;
+  }
   static constexpr int kMostPrintsAtOnce = 2;
   int printing_ = 0;  ///< PDFs being printed (changed on the console's thread only)
   std::map<std::thread::id, std::thread> printers_;  ///< joined when done, or when the console ends
@@ -896,8 +904,8 @@ void Console::command(const http::request<http::string_body>& request, const Acc
                                   "field 'trainee': a route's stage is run by a trainee in the records"));
     const auto enrolled = db_.enrolments(*trainee);
     if (std::none_of(enrolled.begin(), enrolled.end(), [&](const auto& e) { return e.route == route->id; }))
-      return session->reply(error(request, http::status::conflict,
-                                  *trainee + " is not enrolled in route '" + route->id + "'"));
+      return session->reply(
+          error(request, http::status::conflict, *trainee + " is not enrolled in route '" + route->id + "'"));
     const training::RouteProgress p = training::progress(*route, db_.stage_attempts(*trainee, route->id),
                                                          db_.overrides(*trainee, route->id));
     if (!p.next)
@@ -958,8 +966,15 @@ Console::Response Console::api(const http::request<http::string_body>& request, 
     return r;
   }
   if (target == "/api/exercises" && get) {
-    return json_reply(request, http::status::ok,
-                      io::exercise_names(std::string(HARBOUR_DATA_DIR) + "/exercises"));
+    std::set<std::string> names;
+    for (const std::string& folder : {std::string(HARBOUR_DATA_DIR) + "/exercises", exercise_folder()})
+      for (const std::string& n : io::exercise_names(folder))
+        names.insert(n);
+    return json_reply(request, http::status::ok, names);
+  }
+  if (target.rfind("/api/designer/", 0) == 0) {
+    if (!account.instructs()) return forbidden();
+    return designer(request, account, target, query);
   }
   if (target == "/api/trainees" && get) {
     if (!account.instructs()) return forbidden();
@@ -1561,6 +1576,74 @@ json Console::evolution(const std::string& trainee) {
           {"cohort", cohort},
           {"standings", standings},
           {"routes", routes}};
+}
+
+Console::Response Console::designer(const http::request<http::string_body>& request, const Account& account,
+                                    const std::string& target, const std::string& query) {
+  if (target == "/api/designer/source" && request.method() == http::verb::get) {
+    const std::string name = query_param(query, "exercise");
+    for (const std::string& folder : {exercise_folder(), std::string(HARBOUR_DATA_DIR) + "/exercises"}) {
+      try {
+        const std::string text = design_source(folder, name);
+        return json_reply(request, http::status::ok,
+                          {{"exercise", name}, {"text", text}, {"designed", designed(text)}});
+      } catch (const std::out_of_range&) {
+      }
+    }
+    return error(request, http::status::not_found, "no exercise '" + core::printable(name) + "'");
+  }
+  const bool check = target == "/api/designer/check", save = target == "/api/designer/save";
+  if ((!check && !save) || request.method() != http::verb::post)
+    return error(request, http::status::not_found, "no such API: " + core::printable(target));
+  std::string why;
+  const std::optional<json> body = parse_object(request.body(), why);
+  const auto text = body ? body->find("text") : json::const_iterator{};
+  if (!body || text == body->end() || !text->is_string())
+    return error(request, http::status::bad_request, body ? "field 'text': the exercise's YAML" : why);
+  DesignCheck design;
+  try {
+    design = check_design(exercise_folder(), text->get<std::string>());
+  } catch (const std::invalid_argument& e) {
+    return error(request, http::status::unprocessable_entity, e.what());
+  }
+  if (save) {
+    std::string file;
+    try {
+      file = save_design(exercise_folder(), design);
+    } catch (const std::logic_error& e) {
+      return error(request, http::status::conflict, e.what());
+    }
+    db_.audit(account.name, "save_exercise", design.exercise.name, design.version);
+    return json_reply(request, http::status::created,
+                      {{"exercise", design.exercise.name}, {"version", design.version}, {"file", file}});
+  }
+  // the preview: the exercise's world at its first instant, drawn by the same 3D view as a station's
+  json scene, state;
+  try {
+    const sim::Simulation simulation(design.exercise.scenario);
+    auto snapshot = std::make_unique<sim::Snapshot>();
+    simulation.write_snapshot(*snapshot);
+    const net::StationScene published = scene_message(simulation.scene(), 0);
+    scene = scene_json("designer", published);
+    state = state_json("designer", state_message(*snapshot, simulation.scene().entities.size(), 0),
+                       &published, true);
+  } catch (const std::exception& e) {
+    return error(request, http::status::unprocessable_entity,
+                 std::string("the design loads but its world cannot be built: ") + e.what());
+  }
+  const sim::ExerciseSettings& x = design.exercise;
+  return json_reply(request, http::status::ok,
+                    {{"exercise", x.name},
+                     {"machine", sim::machine_kind(x.scenario.machine)},
+                     {"version", design.version},
+                     {"containers", x.scenario.containers.size()},
+                     {"moves", x.moves.size()},
+                     {"events", x.scenario.events.size()},
+                     {"time_limit_s", x.rules.time_limit_s},
+                     {"pass_score", x.rules.pass_score},
+                     {"wind_mps", x.scenario.weather.wind_mean_mps},
+                     {"scene", scene},
+                     {"state", state}});
 }
 
 std::optional<Console::Response> Console::cohort_views(const http::request<http::string_body>& request,

@@ -136,7 +136,7 @@ std::optional<StartRequest> IdlePresence::service() {
     const bool starts = kind == "start" || kind == "take-over";
     if (starts && !start) {
       start = StartRequest{c.exercise().to_string(), c.trainee().to_string(), c.user().to_string(),
-                           c.route().to_string(), c.autopilot(), std::nullopt};
+                           c.route().to_string(),    c.autopilot(),           std::nullopt};
       if (kind == "take-over") start->take_over = station::TakeOverFrom{c.recording().to_string(), c.step()};
       link_.acknowledge(c, true, (kind == "start" ? "starting " : "taking over ") + start->exercise);
     } else {

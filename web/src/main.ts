@@ -233,9 +233,13 @@ async function loadRecords() {
     if ([...select.options].some((o) => o.value === kept)) select.value = kept;
   }
   const exercises = await api("/api/exercises");
-  const exercise = $<HTMLSelectElement>("exercise");
-  exercise.replaceChildren();
-  for (const e of exercises.data ?? []) exercise.add(new Option(e, e));
+  for (const id of ["exercise", "design-base"]) {
+    const select = $<HTMLSelectElement>(id);
+    const kept = select.value;
+    select.replaceChildren();
+    for (const e of exercises.data ?? []) select.add(new Option(e, e));
+    if ((exercises.data ?? []).includes(kept)) select.value = kept;
+  }
   await loadClass();
 }
 
@@ -402,6 +406,32 @@ async function loadClass() {
   }
 }
 
+// The exercise designer: load an exercise's YAML, check it with the simulator's loader and preview its world,
+// save it (a new version).
+let designView: View3D | null = null;
+let looks: Looks | null = null;
+async function designerAction(action: "check" | "save") {
+  const result = $("design-result");
+  result.className = "";
+  text(result, action === "check" ? "checking…" : "saving…");
+  const r = await api(`/api/designer/${action}`, "POST", { text: $<HTMLTextAreaElement>("design-text").value });
+  const ok = r.status === 200 || r.status === 201;
+  result.className = ok ? "" : "refused";
+  if (!ok) { text(result, `${action} refused (${r.status}): ${r.data?.error}`); return; }
+  if (action === "save") {
+    text(result, `saved ${r.data.exercise}, version ${r.data.version}`);
+    await loadRecords();  // the exercise lists
+    return;
+  }
+  text(result, `${r.data.exercise}: valid (version ${r.data.version} when saved)`);
+  text($("design-summary"), `machine ${r.data.machine}, ${r.data.containers} containers, ${r.data.moves} moves, ` +
+    `${r.data.events} scripted events\ntime limit ${r.data.time_limit_s} s, pass ${r.data.pass_score}, wind ${r.data.wind_mps} m/s`);
+  if (!designView && looks) designView = new View3D($("design-view"), $("design-plan"), $("design-plan-labels"), looks);
+  designView?.setScene(r.data.scene as SceneMessage);
+  designView?.update(r.data.state);
+  $("design-view").dataset.entities = String(designView?.visibleEntities() ?? 0);
+}
+
 async function enter(who: Me) {
   me = who;
   $("login-view").hidden = true;
@@ -418,9 +448,11 @@ async function enter(who: Me) {
   for (const r of routes) $<HTMLSelectElement>("start-route").add(new Option(`${r.name}: next stage`, r.id));
   await loadProgress();
   if (who.role === "trainee") return;
-  const looks = await api("/api/looks");
-  if (looks.status === 200)
-    view = new View3D($("view3d"), $("plan"), $("plan-labels"), looks.data as Looks);
+  const looksReply = await api("/api/looks");
+  if (looksReply.status === 200) {
+    looks = looksReply.data as Looks;
+    view = new View3D($("view3d"), $("plan"), $("plan-labels"), looks);
+  }
   (window as unknown as { harbourView: View3D | null }).harbourView = view;  // for the browser tests
   connect();
 }
@@ -485,6 +517,15 @@ function wire() {
     loadClass();
   });
   $("show-progress").addEventListener("click", () => loadProgress());
+  $("design-load").addEventListener("click", async () => {
+    const name = $<HTMLSelectElement>("design-base").value;
+    const r = await api(`/api/designer/source?exercise=${encodeURIComponent(name)}`);
+    if (r.status === 200) $<HTMLTextAreaElement>("design-text").value = r.data.text;
+    text($("design-result"), r.status === 200 ? `loaded ${name}${r.data.designed ? " (designed here)" : " (shipped: save it under a new exercise.name)"}`
+      : r.data?.error ?? `error ${r.status}`);
+  });
+  $("design-check").addEventListener("click", () => designerAction("check"));
+  $("design-save").addEventListener("click", () => designerAction("save"));
   for (const id of ["evolution-figure", "compare-with"])
     $(id).addEventListener("change", () => {
       const trainee = me?.role === "trainee" ? me.trainee : $<HTMLSelectElement>("progress-trainee").value;

@@ -1,0 +1,106 @@
+// The exercise designer's round trip in a real browser: an instructor starts from a shipped exercise, breaks it
+// (refused, the line and field named), fixes it, sees the preview, saves it in the centre's folder; the saved
+// exercise runs under the autopilot and its attempt, with the saved version, shows in the trainee's evolution.
+// Usage: node console_designer.mjs HARBOURSIM OUT_DIR DATA_DIR
+import { chromium } from "playwright-core";
+import { Harness } from "./harness.mjs";
+import { mkdtempSync, mkdirSync, readdirSync, readFileSync, existsSync, symlinkSync, writeFileSync } from "node:fs";
+import { tmpdir } from "node:os";
+import path from "node:path";
+
+const [app, out, data] = process.argv.slice(2);
+mkdirSync(out, { recursive: true });
+const dir = mkdtempSync(path.join(tmpdir(), "harbour-designer-"));
+const db = `sqlite3://db=${dir}/records.db`;
+const h = new Harness(app);
+const check = h.check.bind(h), run = h.run.bind(h), until = h.until.bind(h);
+// the centre's folders: its own exercises beside the shipped machines, vessels, ... (linked)
+const centre = path.join(dir, "centre");
+const exercises = path.join(centre, "exercises");
+mkdirSync(exercises, { recursive: true });
+for (const entry of readdirSync(data)) if (entry !== "exercises") symlinkSync(path.join(data, entry), path.join(centre, entry));
+
+let browser;
+try {
+  run(["trainees", "add", "eva", "Eva Lind", "--db", db]);
+  run(["accounts", "add", "ines", "--role", "instructor", "--db", db], "ines-password\n");
+  const c = h.start(["console", "--db", db, "--domain", "205", "--port", "0", "--exercises", exercises]);
+  await until("the console listens", () => /http:\/\/127\.0\.0\.1:\d+\//.test(c.output));
+  const url = c.output.match(/http:\/\/127\.0\.0\.1:\d+\//)[0];
+  browser = await chromium.launch({ executablePath: "/usr/bin/chromium", args: ["--headless", "--no-sandbox",
+    "--disable-gpu", "--enable-unsafe-swiftshader", "--no-first-run", "--disable-background-networking"] });
+  const page = await browser.newPage({ viewport: { width: 1400, height: 1000 } });
+  await page.goto(url);
+  await page.fill("#login-name", "ines");
+  await page.fill("#login-password", "ines-password");
+  await page.click("#login-form button");
+  await until("the designer offers the shipped exercises", async () =>
+    (await page.locator("#design-base option[value=sts_discharge]").count()) === 1);
+  await page.selectOption("#design-base", "sts_discharge");
+  await page.click("#design-load");
+  await until("the shipped exercise is loaded", async () => (await page.inputValue("#design-text")).includes("name: sts_discharge"));
+  const shipped = await page.inputValue("#design-text");
+
+  // broken: a time limit that is no number is refused with its line and field
+  const broken = shipped.replace("name: sts_discharge", "name: sts_long_discharge").replace("time_limit_s: 180", "time_limit_s: soon");
+  const brokenLine = broken.split("\n").findIndex((l) => l.includes("time_limit_s: soon")) + 1;
+  await page.fill("#design-text", broken);
+  await page.click("#design-check");
+  await until("the broken design is refused", async () => (await page.textContent("#design-result")).includes("refused"));
+  const refusal = await page.textContent("#design-result");
+  check(/422/.test(refusal) && refusal.includes("time_limit_s") && refusal.includes(`:${brokenLine}`) && refusal.includes("the design"),
+    `refused with the line (${brokenLine}) and field named: ${refusal}`);
+  await page.click("#design-save");
+  await until("and not saved", async () => (await page.textContent("#design-result")).includes("save refused"));
+  check(!existsSync(path.join(exercises, "sts_long_discharge.yaml")), "a refused design writes no file");
+
+  // fixed: valid, previewed, saved
+  await page.fill("#design-text", broken.replace("time_limit_s: soon", "time_limit_s: 240"));
+  await page.click("#design-check");
+  await until("the design is valid", async () => (await page.textContent("#design-result")).includes("valid"));
+  check((await page.textContent("#design-summary")).includes("time limit 240 s"), "the summary shows the new time limit");
+  await until("the preview draws its world", async () => Number(await page.getAttribute("#design-view", "data-entities")) > 10);
+  await page.locator("#designer-panel").screenshot({ path: path.join(out, "console_designer.png") });
+  await page.click("#design-save");
+  await until("it is saved", async () => (await page.textContent("#design-result")).startsWith("saved"));
+  const version = (await page.textContent("#design-result")).match(/version ([0-9a-f]{16})/)?.[1];
+  const file = path.join(exercises, "sts_long_discharge.yaml");
+  check(existsSync(file) && readFileSync(file, "utf8").includes("time_limit_s: 240") &&
+    existsSync(path.join(exercises, "versions", `sts_long_discharge-${version}.yaml`)),
+    `saved in the centre's folder with its version kept (${version})`);
+  await until("the exercise lists offer it", async () => (await page.locator("#exercise option[value=sts_long_discharge]").count()) === 1);
+
+  // the saved exercise runs; its attempt records the saved version and shows in eva's evolution
+  run(["run", "--exercise", file, "--autopilot", "--trainee", "eva", "--db", db]);
+  const evolution = await page.evaluate(async () => (await fetch("/api/evolution?trainee=eva")).json());
+  check(evolution.attempts.length === 1 && evolution.attempts[0].exercise_version === version,
+    `eva's attempt ran version ${evolution.attempts[0]?.exercise_version} (${evolution.attempts[0]?.exercise})`);
+  await page.selectOption("#progress-trainee", "eva");
+  await page.click("#show-progress");
+  await until("her evolution plots the attempt", async () => (await page.getAttribute("#evolution", "data-attempts")) === "1");
+
+  // a second version: the first is kept for the attempts that ran it
+  await page.fill("#design-text", broken.replace("time_limit_s: soon", "time_limit_s: 300"));
+  await page.click("#design-save");
+  await until("the second version is saved", async () => {
+    const t = await page.textContent("#design-result");
+    return t.startsWith("saved") && !t.includes(version);
+  });
+  check(readdirSync(path.join(exercises, "versions")).length === 2, "both versions are kept");
+
+  // what the designer may not overwrite, and who may not design
+  writeFileSync(path.join(exercises, "handmade.yaml"), shipped.replace("name: sts_discharge", "name: handmade"));
+  const conflict = await page.evaluate(async (text) => {
+    const me = await (await fetch("/api/me")).json();
+    const r = await fetch("/api/designer/save", { method: "POST", headers: { "Content-Type": "application/json",
+      "X-CSRF-Token": me.csrf }, body: JSON.stringify({ text }) });
+    return { status: r.status, error: (await r.json()).error };
+  }, shipped.replace("name: sts_discharge", "name: handmade"));
+  check(conflict.status === 409 && !readFileSync(path.join(exercises, "handmade.yaml"), "utf8").includes("designed in"),
+    `an exercise not made by the designer is not overwritten: ${conflict.status} ${conflict.error}`);
+} catch (e) {
+  check(false, `error: ${e.stack ?? e}`);
+} finally {
+  await browser?.close();
+  await h.finish();
+}
