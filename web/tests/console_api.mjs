@@ -183,8 +183,16 @@ try {
   const own = await fetch(baseB + "api/reports/trainee", { headers: { Cookie: doraWho.cookie } });
   check(own.status === 200 && (await own.text()).includes("Trainee report: Dora Lind"), `a trainee gets their own report (${own.status})`);
   const refused = await Promise.all(["api/reports/trainee?trainee=carl", "api/reports/class", "api/reports/class.pdf",
-    "api/class", "api/compare?a=carl&b=%3Ddora", "api/evolution?trainee=carl"].map(async (p) => (await d(p)).status));
-  check(refused.every((s) => s === 403), `a trainee is refused others' reports, the class and comparisons: ${refused}`);
+    "api/class", "api/compare?a=carl&b=%3Ddora", "api/evolution?trainee=carl", "api/designer/source?exercise=sts_discharge"]
+    .map(async (p) => (await d(p)).status));
+  const design = await d("api/designer/check", "POST", { text: "exercise: {name: x}" });
+  check(refused.every((s) => s === 403) && design.status === 403,
+    `a trainee is refused others' reports, the class, comparisons and the designer: ${refused}, ${design.status}`);
+  const designErrors = await Promise.all([b("api/designer/check", "POST", { text: 5 }), b("api/designer/check", "POST", {}),
+    b("api/designer/check", "POST", { text: "exercise: [" }), b("api/designer/source?exercise=../../etc/passwd"),
+    b("api/designer/nothing", "POST", { text: "" })]);
+  check(designErrors.map((r) => r.status).join() === "400,400,422,404,404",
+    `the designer's bad requests: ${designErrors.map((r) => `${r.status} ${r.data?.error}`).join("; ")}`);
 
   // the live socket: refused without a login; random, truncated and oversized messages answered or the
   // socket closed, the console unharmed
