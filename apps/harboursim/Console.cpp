@@ -41,6 +41,7 @@
 #include "Reports.h"
 #include "StationNet.h"
 #include "StsRun.h"
+#include "XapiSender.h"
 #include "harbour/core/Text.h"
 #include "harbour/ig/Visuals.h"
 #include "harbour/io/ExerciseFiles.h"
@@ -466,7 +467,11 @@ class Console {
         io_(io),
         link_(options.name, options.domain),
         db_(options.database),
-        poll_timer_(io) {}
+        poll_timer_(io) {
+    if (!options.lrs.empty())
+      xapi_ = std::make_unique<XapiWorker>(
+          options.database, LrsOptions{options.lrs, read_lrs_credentials(options.lrs_auth_file)});
+  }
 
   ~Console() {
     for (auto& [id, printer] : printers_)
@@ -519,6 +524,7 @@ class Console {
   static constexpr int kMostPrintsAtOnce = 2;
   int printing_ = 0;  ///< PDFs being printed (changed on the console's thread only)
   std::map<std::thread::id, std::thread> printers_;  ///< joined when done, or when the console ends
+  std::unique_ptr<XapiWorker> xapi_;                 ///< the xAPI sender, with --lrs
   /// Attempts (of one trainee or all) as CSV: one row each with the skills; text cells quoted, and
   /// those a spreadsheet would run as a formula prefixed with an apostrophe.
   std::string attempts_csv(const std::optional<std::string>& trainee);
@@ -971,6 +977,16 @@ Console::Response Console::api(const http::request<http::string_body>& request, 
       for (const std::string& n : io::exercise_names(folder))
         names.insert(n);
     return json_reply(request, http::status::ok, names);
+  }
+  if (target == "/api/xapi" && get) {
+    if (!account.instructs()) return forbidden();
+    std::map<std::string, int> by_state = db_.xapi_counts();
+    return json_reply(request, http::status::ok,
+                      {{"lrs", options_.lrs},
+                       {"queued", by_state["queued"]},
+                       {"sent", by_state["sent"]},
+                       {"rejected", by_state["rejected"]},
+                       {"last", xapi_ ? xapi_->last_report() : ""}});
   }
   if (target.rfind("/api/designer/", 0) == 0) {
     if (!account.instructs()) return forbidden();

@@ -9,10 +9,11 @@ namespace harbour::apps {
 struct ConsoleOptions {
   std::string bind = "127.0.0.1";  ///< only this machine, unless told otherwise
   int port = 8470;
-  std::string database;   ///< records connection (accounts, audit, trainees, attempts)
-  int domain = 0;         ///< the centre's DDS domain
-  std::string name;       ///< the console's name on the network ("" : console-<pid>)
-  std::string web_root;   ///< the built front end (web/dist)
+  std::string database;            ///< records connection (accounts, audit, trainees, attempts)
+  int domain = 0;                  ///< the centre's DDS domain
+  std::string name;                ///< the console's name on the network ("" : console-<pid>)
+  std::string web_root;            ///< the built front end (web/dist)
+  std::string lrs, lrs_auth_file;  ///< a Learning Record Store to send the xAPI statements to ("" : none)
   std::string exercises;  ///< the centre's exercise folder the designer saves in ("" : data/exercises)
   double seconds = 0.0;   ///< stop after this long (tests; 0: until Ctrl-C)
   /// TLS (required off loopback): the certificate chain and its private key, PEM files

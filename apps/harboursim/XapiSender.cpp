@@ -14,6 +14,7 @@
 #include <ctime>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <stdexcept>
 #include <thread>
 
@@ -134,7 +135,9 @@ extern "C" void stop_watching(int) {
   g_stop = 1;
 }
 
-std::string read_credentials(const std::string& file) {
+}  // namespace
+
+std::string read_lrs_credentials(const std::string& file) {
   if (file.empty()) return "";
   std::ifstream in(file);
   std::string line;
@@ -145,8 +148,6 @@ std::string read_credentials(const std::string& file) {
     throw std::runtime_error("--lrs-auth-file " + file + ": one line user:password");
   return line;
 }
-
-}  // namespace
 
 SendReport send_due(io::RecordsStore& db, const LrsOptions& lrs, int most) {
   const Endpoint e = parse_endpoint(lrs.endpoint);
@@ -180,12 +181,52 @@ SendReport send_due(io::RecordsStore& db, const LrsOptions& lrs, int most) {
   return report;
 }
 
+XapiWorker::XapiWorker(std::string database, LrsOptions lrs)
+    : database_(std::move(database)), lrs_(std::move(lrs)) {
+  parse_endpoint(lrs_.endpoint);  // a bad URL stops the console before it starts
+  thread_ = std::thread([this] { run(); });
+}
+
+XapiWorker::~XapiWorker() {
+  {
+    std::lock_guard lock(mutex_);
+    stop_ = true;
+  }
+  wake_.notify_all();
+  thread_.join();
+}
+
+std::string XapiWorker::last_report() const {
+  std::lock_guard lock(mutex_);
+  return last_;
+}
+
+void XapiWorker::run() {
+  std::unique_ptr<io::RecordsStore> db;
+  std::unique_lock lock(mutex_);
+  while (!stop_) {
+    lock.unlock();
+    std::string said;
+    try {
+      if (!db) db = std::make_unique<io::RecordsStore>(database_);
+      const SendReport r = send_due(*db, lrs_);
+      if (r.sent || r.retry || r.rejected)
+        said = std::to_string(r.sent) + " sent, " + std::to_string(r.retry) + " to retry, " +
+               std::to_string(r.rejected) + " rejected" + (r.last_error.empty() ? "" : "; " + r.last_error);
+    } catch (const std::exception& e) {
+      said = std::string("the records: ") + e.what();
+      db.reset();  // opened again on the next pass
+    }
+    lock.lock();
+    if (!said.empty()) last_ = utc_after(0.0) + ": " + said;
+    wake_.wait_for(lock, std::chrono::seconds(1), [this] { return stop_; });
+  }
+}
+
 int xapi_status(const std::string& database) {
   io::RecordsStore db(database.empty() ? default_database() : database);
-  std::map<std::string, int> by_state;
+  std::map<std::string, int> by_state = db.xapi_counts();
   const std::vector<io::XapiRow> rows = db.xapi_outbox();
-  for (const io::XapiRow& r : rows)
-    ++by_state[r.state];
   std::printf("xAPI outbox: %d queued, %d sent, %d rejected\n", by_state["queued"], by_state["sent"],
               by_state["rejected"]);
   for (const io::XapiRow& r : rows)
@@ -200,7 +241,7 @@ int xapi_status(const std::string& database) {
 int xapi_send(const std::string& database, const std::string& endpoint, const std::string& credentials_file,
               bool watch) {
   io::RecordsStore db(database.empty() ? default_database() : database);
-  const LrsOptions lrs{endpoint, read_credentials(credentials_file)};
+  const LrsOptions lrs{endpoint, read_lrs_credentials(credentials_file)};
   parse_endpoint(endpoint);  // a bad URL stops it before anything is tried
   g_stop = 0;
   if (watch) {

@@ -1,6 +1,10 @@
 #pragma once
 
+#include <atomic>
+#include <condition_variable>
+#include <mutex>
 #include <string>
+#include <thread>
 
 #include "harbour/io/RecordsStore.h"
 
@@ -28,6 +32,31 @@ struct SendReport {
 /// answer, queues it again after 2 s x 2^tries (at most 5 min) and ends the pass (the LRS is not asked again
 /// until then).
 SendReport send_due(io::RecordsStore& db, const LrsOptions& lrs, int most = 200);
+
+/// The credentials in an LRS credentials file: one line user:password; throws naming the file.
+std::string read_lrs_credentials(const std::string& file);
+
+/// The console's sender: send_due every second on a thread of its own, with its own connection to the
+/// records, until destroyed.
+class XapiWorker {
+ public:
+  XapiWorker(std::string database, LrsOptions lrs);
+  ~XapiWorker();
+  XapiWorker(const XapiWorker&) = delete;
+  XapiWorker& operator=(const XapiWorker&) = delete;
+  /// What the last pass that did something said ("" : none yet).
+  std::string last_report() const;
+
+ private:
+  void run();
+  std::string database_;
+  LrsOptions lrs_;
+  mutable std::mutex mutex_;
+  std::condition_variable wake_;
+  bool stop_ = false;
+  std::string last_;
+  std::thread thread_;
+};
 
 /// `harboursim xapi status`: the outbox by state, and the errors of those failing.
 int xapi_status(const std::string& database);

@@ -152,6 +152,10 @@ int main(int argc, char** argv) {
                           "serve HTTPS with this PEM certificate chain (required with a network --bind)");
   console_cmd->add_option("--tls-key", console.tls_key, "the certificate's PEM private key");
   console_cmd->add_option("--web", console.web_root, "the built pages (default: web/dist)");
+  console_cmd->add_option("--lrs", console.lrs,
+                          "send the attempts' xAPI statements to this LRS (http://HOST:PORT/xAPI/)");
+  console_cmd->add_option("--lrs-auth-file", console.lrs_auth_file,
+                          "the LRS's credentials: one line user:password");
   console_cmd->add_option("--exercises", console.exercises,
                           "the centre's exercise folder the designer saves in (default: data/exercises)");
   console_cmd->add_option("--seconds", console.seconds, "stop after this long (default: Ctrl-C)")

@@ -99,9 +99,20 @@ try {
   sender.kill("SIGTERM");
   await until("the sender stops on SIGTERM", () => sender.exitCode !== null, 5);
 
+  // the console sends them too (harboursim console --lrs): a fourth attempt's statements arrive through it
+  const consoleSender = start(app, ["console", "--db", db, "--port", "0", "--domain", "206", "--lrs", endpoint,
+    "--lrs-auth-file", auth]);
+  await until("the console is up", () => /http:\/\/127\.0\.0\.1:\d+\//.test(consoleSender.output));
+  run(["run", "--exercise", "sts_discharge", "--autopilot", "--trainee", "ana", "--db", db]);
+  await until("the console's sender delivers them", () => /0 queued, 16 sent, 1 rejected/.test(run(["xapi", "status", "--db", db])));
+  check((await lrsStatements()).length === 16, "the LRS holds 16");
+  consoleSender.kill("SIGTERM");
+  await until("the console stops with its sender", () => consoleSender.exitCode !== null, 10);
+
   // refusals
   for (const [args, what] of [[["xapi", "send", "--db", db, "--lrs", "ftp://x/"], "an ftp URL"],
-    [["xapi", "send", "--db", db, "--lrs", endpoint, "--lrs-auth-file", path.join(dir, "none")], "a missing credentials file"]]) {
+    [["xapi", "send", "--db", db, "--lrs", endpoint, "--lrs-auth-file", path.join(dir, "none")], "a missing credentials file"],
+    [["console", "--db", db, "--port", "0", "--lrs", "lrs.centre:8080", "--seconds", "1"], "a console with an LRS that is no URL"]]) {
     let error = "";
     try { execFileSync(app, args, { encoding: "utf8", stdio: "pipe" }); } catch (e) { error = String(e.stderr); }
     check(error.length > 0 && !/Assertion|terminate/.test(error), `${what} is refused: ${error.trim()}`);

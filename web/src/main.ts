@@ -388,6 +388,10 @@ async function loadComparison(a: string, b: string, figure: string) {
 async function loadClass() {
   const body = $("class").querySelector("tbody")!;
   body.replaceChildren();
+  const x = await api("/api/xapi");
+  if (x.status === 200)
+    text($("xapi-status"), `xAPI statements: ${x.data.queued} queued, ${x.data.sent} sent, ${x.data.rejected} rejected` +
+      (x.data.lrs ? ` (to ${x.data.lrs}${x.data.last ? `; last: ${x.data.last}` : ""})` : " (no LRS configured: harboursim console --lrs URL)"));
   const r = await api("/api/class");
   if (r.status !== 200) return;
   for (const t of r.data) {

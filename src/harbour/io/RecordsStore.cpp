@@ -843,6 +843,18 @@ std::vector<XapiRow> RecordsStore::xapi_outbox() {
   });
 }
 
+std::map<std::string, int> RecordsStore::xapi_counts() {
+  return impl_->guarded("counting the xAPI outbox", [&] {
+    std::map<std::string, int> counts;
+    for (const std::string state : {"queued", "sent", "rejected"}) {
+      int n = 0;
+      impl_->sql << "SELECT COUNT(*) FROM xapi_outbox WHERE state = :s", soci::use(state), soci::into(n);
+      counts[state] = n;
+    }
+    return counts;
+  });
+}
+
 void RecordsStore::xapi_sent(std::int64_t id, const std::string& at) {
   impl_->guarded("marking xAPI statement " + std::to_string(id) + " sent", [&] {
     const long long row = id;

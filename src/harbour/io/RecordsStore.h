@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -152,6 +153,8 @@ class RecordsStore {
   std::vector<XapiRow> xapi_due(const std::string& now, int most);
   /// Every statement of the outbox, oldest first (for a status and the tests).
   std::vector<XapiRow> xapi_outbox();
+  /// How many statements are queued, sent and rejected.
+  std::map<std::string, int> xapi_counts();
   void xapi_sent(std::int64_t id, const std::string& at);
   /// A try that failed: queued again for `next_try_at`, or rejected for good; the error is kept.
   void xapi_failed(std::int64_t id, const std::string& error, const std::string& next_try_at, bool rejected);
