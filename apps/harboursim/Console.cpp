@@ -1658,6 +1658,7 @@ Console::Response Console::designer(const http::request<http::string_body>& requ
                      {"time_limit_s", x.rules.time_limit_s},
                      {"pass_score", x.rules.pass_score},
                      {"wind_mps", x.scenario.weather.wind_mean_mps},
+                     {"form", design_form(exercise_folder(), design)},
                      {"scene", scene},
                      {"state", state}});
 }

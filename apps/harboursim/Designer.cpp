@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -9,7 +10,10 @@
 #include <stdexcept>
 
 #include "harbour/core/Text.h"
+#include "harbour/io/BulkFiles.h"
 #include "harbour/io/ExerciseFiles.h"
+#include "harbour/sim/Simulation.h"
+#include "harbour/sim/Vessel.h"
 
 namespace harbour::apps {
 
@@ -96,6 +100,73 @@ std::string save_design(const std::string& folder, const DesignCheck& design) {
   write_file(partial, design.text);
   fs::rename(partial, file);
   return file.string();
+}
+
+nlohmann::json design_form(const std::string& folder, const DesignCheck& design) {
+  using json = nlohmann::json;
+  const sim::ScenarioSettings& s = design.exercise.scenario;
+  const std::string machine = sim::machine_kind(s.machine);
+  json form = {{"machine", machine}};
+  if (s.vessel) {
+    const sim::VesselSettings& v = s.vessel->vessel;
+    const sim::VesselGeometry geometry(*s.vessel);
+    json rows = json::array(), bays = json::array(), hold = json::array(), deck = json::array(),
+         holds = json::array();
+    std::vector<std::pair<double, int>> by_x;  // port (-x) to starboard
+    for (int row = 0; row <= v.rows + 1; ++row)
+      if (const auto x = geometry.row_x(row)) by_x.emplace_back(*x, row);
+    std::sort(by_x.begin(), by_x.end());
+    for (const auto& [x, row] : by_x)
+      rows.push_back(row);
+    for (const sim::VesselSettings::Bay& bay : v.bays)
+      bays.push_back(bay.number);
+    for (int tier = 2; tier <= 2 * v.hold_tiers; tier += 2)
+      hold.push_back(tier);
+    for (int tier = 82; tier < 82 + 2 * v.deck_tiers; tier += 2)
+      deck.push_back(tier);
+    for (const sim::VesselSettings::Hold& h : v.holds)
+      holds.push_back(h.number);
+    form["vessel"] = {{"name", v.name},     {"kind", v.kind == sim::VesselKind::kBulk ? "bulk" : "container"},
+                      {"bays", bays},       {"rows", rows},
+                      {"hold_tiers", hold}, {"deck_tiers", deck},
+                      {"holds", holds}};
+  }
+  if (s.yard_block)
+    form["yard_block"] = {
+        {"bays", 2 * s.yard_block->bays - 1}, {"rows", s.yard_block->rows}, {"tiers", s.yard_block->tiers}};
+  const auto figures = [&](const std::vector<io::RuleField>& fields) {
+    json list = json::array();
+    for (const io::RuleField& f : fields)
+      list.push_back(
+          {{"key", f.key}, {"value", design.exercise.rules.*f.value}, {"min", f.min}, {"max", f.max}});
+    return list;
+  };
+  form["rules"] = {{"thresholds", figures(io::rule_thresholds())},
+                   {"deductions", figures(io::rule_deductions())}};
+  const bool twistlocks = machine == "sts" || machine == "rtg" || machine == "reach_stacker";
+  form["event_kinds"] = twistlocks ? json{"gust", "hoist_brake_fault", "landed_sensor_fault", "limiter_fault"}
+                                   : json{"gust", "hoist_brake_fault", "limiter_fault"};
+  json vessels = json::array(), materials = json::array();
+  const fs::path vessel_folder = fs::path(folder) / ".." / "vessels";
+  std::error_code ec;
+  std::vector<std::string> files;
+  for (const auto& entry : fs::directory_iterator(vessel_folder, ec))
+    if (entry.path().extension() == ".yaml")
+      files.push_back("../vessels/" + entry.path().filename().string());
+  std::sort(files.begin(), files.end());
+  for (const std::string& f : files)
+    vessels.push_back(f);
+  if (s.bulk) {
+    try {
+      for (const bulk::Material& m :
+           io::load_materials((fs::path(folder) / ".." / "materials.yaml").string()))
+        materials.push_back(m.name);
+    } catch (const std::exception&) {
+      materials.push_back(s.bulk->material.name);  // the design's own materials file names it
+    }
+  }
+  form["catalogue"] = {{"vessels", vessels}, {"materials", materials}};
+  return form;
 }
 
 std::string design_source(const std::string& folder, const std::string& name) {

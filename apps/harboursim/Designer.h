@@ -2,6 +2,8 @@
 
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "harbour/sim/Evaluation.h"
 
 namespace harbour::apps {
@@ -28,6 +30,12 @@ DesignCheck check_design(const std::string& folder, const std::string& yaml);
 /// still finds what it ran. Throws std::logic_error when NAME is an exercise the designer did not make.
 /// Returns the file saved.
 std::string save_design(const std::string& folder, const DesignCheck& design);
+
+/// What the designer's forms need of a checked design beyond its YAML: the vessel's bays, rows (port to
+/// starboard) and tiers and the yard block's slots to click, the rubric's figures as in force (defaults where
+/// the design sets none) with their ranges, the scripted events this machine takes, and the vessel files and
+/// bulk materials beside the centre's exercise folder to choose from.
+nlohmann::json design_form(const std::string& folder, const DesignCheck& design);
 
 /// The text of an exercise in `folder` by name, to start a design from; std::out_of_range when none.
 std::string design_source(const std::string& folder, const std::string& name);

@@ -295,6 +295,12 @@ TEST(ExerciseFiles, BadExercisesNameTheField) {
   expect_error("hard_landing: 5,", "hard_landings: 5,", "exercise.rules.deductions.hard_landings",
                "unknown deduction");
   expect_error("hard_landing: 5,", "hard_landing: 500,", "exercise.rules.deductions.hard_landing", "outside");
+  // the error lists every deduction an exercise may set (the vehicles' ones too)
+  for (const RuleField& field : rule_deductions())
+    expect_error("hard_landing: 5,", "hard_landings: 5,", "exercise.rules.deductions.hard_landings",
+                 std::string(field.key));
+  expect_error("hard_landing: 5,", "hard_landings: 5,", "exercise.rules.deductions.hard_landings",
+               "speeding");
   // stowage: boxes stand on the box below them
   expect_error("slot: [12, 3, 82]", "slot: [12, 3, 84]", "exercise.containers[0].slot",
                "nothing stowed under it in tier 82");
@@ -311,6 +317,27 @@ TEST(ExerciseFiles, BadExercisesNameTheField) {
       "    - {id: HC08, type: 40ftHC, gross_mass_kg: 22000, slot: [12, 2, 8]}",
       [](const YamlFile& f) { load_exercise(f, HARBOUR_DATA_DIR "/exercises"); },
       scenes::line_of(text, from) + 3, "exercise.containers[5].slot", "into the hatch covers");
+}
+
+// Each rubric key sets the figure it names (the designer's forms and the loader share the table).
+TEST(ExerciseFiles, EachRubricKeySetsTheFigureItNames) {
+  std::string text = shipped();
+  const std::string from = "deductions: {collision: 10,";
+  text.replace(text.find(from), from.size(),
+               "harsh_jerk_mps3: 12.5\n    overtime_s: 90\n    deductions: {collision: 11, speeding: 7, "
+               "jackknife: 9, decimetre_above_trim: 4, landing_while_swaying: 3,");
+  const sim::EvaluationRules r =
+      load_exercise(YamlFile::parse(text, "rubric.yaml"), HARBOUR_DATA_DIR "/exercises").rules;
+  EXPECT_EQ(r.harsh_jerk_mps3, 12.5);
+  EXPECT_EQ(r.overtime_s, 90.0);
+  EXPECT_EQ(r.time_limit_s, 180.0);
+  EXPECT_EQ(r.points_collision, 11.0);
+  EXPECT_EQ(r.points_overspeed, 7.0);
+  EXPECT_EQ(r.points_jackknife, 9.0);
+  EXPECT_EQ(r.points_per_trim_dm, 4.0);
+  EXPECT_EQ(r.points_sway, 3.0);
+  EXPECT_EQ(r.points_hard_landing, 5.0);
+  EXPECT_EQ(r.points_tip_over, sim::EvaluationRules{}.points_tip_over);  // not set: the default
 }
 
 // ISO 668 boxes by their cargo: the type's typical tare (reference.md) unless the file gives one.

@@ -660,60 +660,25 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
   if (const auto r_node = f.optional_map(x, "rules", "exercise")) {
     const YAML::Node& r = *r_node;
     sim::EvaluationRules& rules = e.rules;
-    rules.time_limit_s =
-        f.number_or(r, "time_limit_s", "exercise.rules", rules.time_limit_s, 0.0, 86400.0, true);
-    rules.pass_score = f.number_or(r, "pass_score", "exercise.rules", rules.pass_score, 0.0, 100.0);
-    rules.hard_landing_mps =
-        f.number_or(r, "hard_landing_mps", "exercise.rules", rules.hard_landing_mps, 0.0, 10.0, true);
-    rules.sway_limit_m =
-        f.number_or(r, "sway_limit_m", "exercise.rules", rules.sway_limit_m, 0.0, 10.0, true);
-    rules.collision_speed_mps =
-        f.number_or(r, "collision_speed_mps", "exercise.rules", rules.collision_speed_mps, 0.0, 10.0, true);
-    rules.body_contact_impulse_ns = f.number_or(r, "body_contact_impulse_ns", "exercise.rules",
-                                                rules.body_contact_impulse_ns, 0.0, 1e7, true);
-    rules.horn_warning_s =
-        f.number_or(r, "horn_warning_s", "exercise.rules", rules.horn_warning_s, 0.0, 600.0, true);
-    rules.overtime_s = f.number_or(r, "overtime_s", "exercise.rules", rules.overtime_s, 0.0, 3600.0);
-    rules.poor_bite_fill = f.number_or(r, "poor_bite_fill", "exercise.rules", rules.poor_bite_fill, 0.0, 1.0);
-    rules.harsh_jerk_mps3 =
-        f.number_or(r, "harsh_jerk_mps3", "exercise.rules", rules.harsh_jerk_mps3, 0.0, 1000.0, true);
+    for (const RuleField& field : rule_thresholds())
+      rules.*field.value = f.number_or(r, field.key, "exercise.rules", rules.*field.value, field.min,
+                                       field.max, field.above_min);
     if (const auto d_node = f.optional(r, "deductions", "exercise.rules")) {
-      // points per occurrence, by metric
       const YAML::Node& d = *d_node;
       const std::string at = "exercise.rules.deductions";
       if (!d.IsMap()) f.fail(d, at, "must be a map of metric: points");
-      const std::pair<const char*, double*> points[] = {
-          {"collision", &rules.points_collision},
-          {"hard_landing", &rules.points_hard_landing},
-          {"landing_while_swaying", &rules.points_sway},
-          {"twistlock_misuse", &rules.points_twistlock_misuse},
-          {"rope_overload", &rules.points_overload},
-          {"limit_switch_hit", &rules.points_limit_hit},
-          {"emergency_stop", &rules.points_emergency_stop},
-          {"gantry_travel_without_horn", &rules.points_unwarned_travel},
-          {"move_not_completed", &rules.points_per_move_missing},
-          {"minute_over_time_limit", &rules.points_per_minute_over},
-          {"tonne_spilled", &rules.points_per_spilled_t},
-          {"tonne_short", &rules.points_per_missing_t},
-          {"poor_bite", &rules.points_poor_bite},
-          {"limiter_trip", &rules.points_limiter_trip},
-          {"pad_lift_off", &rules.points_pad_lift_off},
-          {"harsh_move", &rules.points_harsh_move},
-          {"jackknife", &rules.points_jackknife},
-          {"tip_over", &rules.points_tip_over},
-          {"speeding", &rules.points_overspeed},
-          {"decimetre_above_trim", &rules.points_per_trim_dm}};
       for (const auto& entry : d) {
         const std::string key = entry.first.as<std::string>();
+        const auto& points = rule_deductions();
         const auto known =
-            std::find_if(std::begin(points), std::end(points), [&](const auto& p) { return key == p.first; });
-        if (known == std::end(points))
-          f.fail(entry.first, at + "." + key,
-                 "unknown deduction (collision, hard_landing, landing_while_swaying, twistlock_misuse, "
-                 "rope_overload, limit_switch_hit, emergency_stop, gantry_travel_without_horn, "
-                 "move_not_completed, minute_over_time_limit, tonne_spilled, tonne_short, poor_bite, "
-                 "limiter_trip, pad_lift_off, harsh_move, decimetre_above_trim)");
-        *known->second = f.number(d, key, at, 0.0, 100.0);
+            std::find_if(points.begin(), points.end(), [&](const RuleField& p) { return key == p.key; });
+        if (known == points.end()) {
+          std::string names;
+          for (const RuleField& p : points)
+            names += (names.empty() ? "" : ", ") + std::string(p.key);
+          f.fail(entry.first, at + "." + key, "unknown deduction (" + names + ")");
+        }
+        rules.*known->value = f.number(d, key, at, known->min, known->max, known->above_min);
       }
     }
   }
@@ -721,6 +686,48 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
 }
 
 }  // namespace
+
+const std::vector<RuleField>& rule_thresholds() {
+  using R = sim::EvaluationRules;
+  static const std::vector<RuleField> fields = {
+      {"time_limit_s", &R::time_limit_s, 0.0, 86400.0, true},
+      {"pass_score", &R::pass_score, 0.0, 100.0, false},
+      {"hard_landing_mps", &R::hard_landing_mps, 0.0, 10.0, true},
+      {"sway_limit_m", &R::sway_limit_m, 0.0, 10.0, true},
+      {"collision_speed_mps", &R::collision_speed_mps, 0.0, 10.0, true},
+      {"body_contact_impulse_ns", &R::body_contact_impulse_ns, 0.0, 1e7, true},
+      {"horn_warning_s", &R::horn_warning_s, 0.0, 600.0, true},
+      {"overtime_s", &R::overtime_s, 0.0, 3600.0, false},
+      {"poor_bite_fill", &R::poor_bite_fill, 0.0, 1.0, false},
+      {"harsh_jerk_mps3", &R::harsh_jerk_mps3, 0.0, 1000.0, true}};
+  return fields;
+}
+
+const std::vector<RuleField>& rule_deductions() {
+  using R = sim::EvaluationRules;
+  static const std::vector<RuleField> fields = {
+      {"collision", &R::points_collision, 0.0, 100.0, false},
+      {"hard_landing", &R::points_hard_landing, 0.0, 100.0, false},
+      {"landing_while_swaying", &R::points_sway, 0.0, 100.0, false},
+      {"twistlock_misuse", &R::points_twistlock_misuse, 0.0, 100.0, false},
+      {"rope_overload", &R::points_overload, 0.0, 100.0, false},
+      {"limit_switch_hit", &R::points_limit_hit, 0.0, 100.0, false},
+      {"emergency_stop", &R::points_emergency_stop, 0.0, 100.0, false},
+      {"gantry_travel_without_horn", &R::points_unwarned_travel, 0.0, 100.0, false},
+      {"move_not_completed", &R::points_per_move_missing, 0.0, 100.0, false},
+      {"minute_over_time_limit", &R::points_per_minute_over, 0.0, 100.0, false},
+      {"tonne_spilled", &R::points_per_spilled_t, 0.0, 100.0, false},
+      {"tonne_short", &R::points_per_missing_t, 0.0, 100.0, false},
+      {"poor_bite", &R::points_poor_bite, 0.0, 100.0, false},
+      {"limiter_trip", &R::points_limiter_trip, 0.0, 100.0, false},
+      {"pad_lift_off", &R::points_pad_lift_off, 0.0, 100.0, false},
+      {"harsh_move", &R::points_harsh_move, 0.0, 100.0, false},
+      {"jackknife", &R::points_jackknife, 0.0, 100.0, false},
+      {"tip_over", &R::points_tip_over, 0.0, 100.0, false},
+      {"speeding", &R::points_overspeed, 0.0, 100.0, false},
+      {"decimetre_above_trim", &R::points_per_trim_dm, 0.0, 100.0, false}};
+  return fields;
+}
 
 std::vector<std::string> exercise_names(const std::string& folder) {
   std::vector<std::string> names;

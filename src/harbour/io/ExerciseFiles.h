@@ -13,6 +13,18 @@ namespace harbour::io {
 sim::ExerciseSettings load_exercise(const YamlFile& file, const std::string& folder);
 sim::ExerciseSettings load_exercise(const std::string& path);
 
+/// A figure of an exercise's rubric by its key under exercise.rules (a threshold) or
+/// exercise.rules.deductions (points per occurrence), with the range the loader accepts (open at min when
+/// `above_min`).
+struct RuleField {
+  const char* key;
+  double sim::EvaluationRules::*value;
+  double min, max;
+  bool above_min;
+};
+const std::vector<RuleField>& rule_thresholds();
+const std::vector<RuleField>& rule_deductions();
+
 /// The names of the exercises in `folder` (the stems of its *.yaml files), sorted; none for a missing folder.
 std::vector<std::string> exercise_names(const std::string& folder);
 
