@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "harbour/core/Text.h"
+#include "harbour/core/Units.h"
 #include "harbour/io/BulkFiles.h"
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/sim/Simulation.h"
@@ -143,6 +144,13 @@ nlohmann::json design_form(const std::string& folder, const DesignCheck& design)
   };
   form["rules"] = {{"thresholds", figures(io::rule_thresholds())},
                    {"deductions", figures(io::rule_deductions())}};
+  const sim::WeatherSettings& w = s.weather;
+  form["weather"] = {{"wind_mean_mps", w.wind_mean_mps},
+                     {"wind_from_deg", core::rad_to_deg(w.wind_from_rad)},
+                     {"turbulence_intensity", w.turbulence_intensity},
+                     {"visibility_m", w.visibility_m},
+                     {"rain_mm_per_h", w.rain_mm_per_h},
+                     {"time_of_day_h", w.time_of_day_h}};
   const bool twistlocks = machine == "sts" || machine == "rtg" || machine == "reach_stacker";
   form["event_kinds"] = twistlocks ? json{"gust", "hoist_brake_fault", "landed_sensor_fault", "limiter_fault"}
                                    : json{"gust", "hoist_brake_fault", "limiter_fault"};

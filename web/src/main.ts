@@ -2,6 +2,7 @@
 // follow its events, manage trainees and open results. Talks to `harboursim console` only (same origin).
 import uPlot from "uplot";
 import { View3D, type Looks, type SceneMessage, type ViewState } from "./view3d";
+import { DesignerForms } from "./designer";
 
 interface Me { name: string; role: string; trainee: string; csrf: string; }
 interface Station {
@@ -414,6 +415,10 @@ async function loadClass() {
 // save it (a new version).
 let designView: View3D | null = null;
 let looks: Looks | null = null;
+let designForms: DesignerForms | null = null;
+let designTimer = 0;
+// a check (and preview) shortly after the design last changed
+const checkSoon = (ms: number) => { clearTimeout(designTimer); designTimer = window.setTimeout(() => designerAction("check"), ms); };
 async function designerAction(action: "check" | "save") {
   const result = $("design-result");
   result.className = "";
@@ -428,6 +433,7 @@ async function designerAction(action: "check" | "save") {
     return;
   }
   text(result, `${r.data.exercise}: valid (version ${r.data.version} when saved)`);
+  designForms?.setForm(r.data.form);
   text($("design-summary"), `machine ${r.data.machine}, ${r.data.containers} containers, ${r.data.moves} moves, ` +
     `${r.data.events} scripted events\ntime limit ${r.data.time_limit_s} s, pass ${r.data.pass_score}, wind ${r.data.wind_mps} m/s`);
   if (!designView && looks) designView = new View3D($("design-view"), $("design-plan"), $("design-plan-labels"), looks);
@@ -524,9 +530,18 @@ function wire() {
   $("design-load").addEventListener("click", async () => {
     const name = $<HTMLSelectElement>("design-base").value;
     const r = await api(`/api/designer/source?exercise=${encodeURIComponent(name)}`);
-    if (r.status === 200) $<HTMLTextAreaElement>("design-text").value = r.data.text;
+    if (r.status === 200) {
+      $<HTMLTextAreaElement>("design-text").value = r.data.text;
+      designForms?.readSource();
+      checkSoon(0);
+    }
     text($("design-result"), r.status === 200 ? `loaded ${name}${r.data.designed ? " (designed here)" : " (shipped: save it under a new exercise.name)"}`
       : r.data?.error ?? `error ${r.status}`);
+  });
+  designForms = new DesignerForms($("design-forms"), $<HTMLTextAreaElement>("design-text"), () => checkSoon(400));
+  $("design-text").addEventListener("input", () => {
+    clearTimeout(designTimer);
+    designTimer = window.setTimeout(() => { designForms?.readSource(); designerAction("check"); }, 800);
   });
   $("design-check").addEventListener("click", () => designerAction("check"));
   $("design-save").addEventListener("click", () => designerAction("save"));

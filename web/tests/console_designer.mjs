@@ -55,17 +55,60 @@ try {
   check(!existsSync(path.join(exercises, "sts_long_discharge.yaml")), "a refused design writes no file");
 
   // fixed: valid, previewed, saved
-  await page.fill("#design-text", broken.replace("time_limit_s: soon", "time_limit_s: 240"));
+  await page.fill("#design-text", broken.replace("time_limit_s: soon", "time_limit_s: 240").replace("name: sts_long_discharge", "name: sts_draft"));
   await page.click("#design-check");
   await until("the design is valid", async () => (await page.textContent("#design-result")).includes("valid"));
   check((await page.textContent("#design-summary")).includes("time limit 240 s"), "the summary shows the new time limit");
   await until("the preview draws its world", async () => Number(await page.getAttribute("#design-view", "data-entities")) > 10);
+
+  // the forms edit the same YAML: stowage by clicking slots, events on the timeline, weather, the rubric
+  const yaml = () => page.inputValue("#design-text");
+  const entities = async () => Number(await page.getAttribute("#design-view", "data-entities"));
+  await until("the stowage grid shows bay 12", async () =>
+    (await page.getAttribute('#design-stowage td[data-slot="12,1,82"]', "class"))?.includes("moved"));
+  const before = await entities();
+  await page.click('#design-stowage td[data-slot="12,5,82"]');
+  await until("a box is stowed in the clicked slot", async () => (await yaml()).includes("slot: [12, 5, 82]"));
+  check((await yaml()).startsWith("# First STS exercise"), "the file's comments are kept");
+  await until("the preview shows it", async () => (await entities()) === before + 1);
+  // a box with nothing under it: the loader's refusal names its slot field
+  await page.click('#design-stowage td[data-slot="12,7,84"]');
+  await until("a box on nothing is refused", async () => (await page.textContent("#design-result")).includes("nothing stowed under it"));
+  check((await page.textContent("#design-result")).includes("exercise.containers[4].slot"), "the refusal names the box's slot");
+  await page.click("#design-box-remove");
+  await until("removed, the design is valid again", async () => (await page.textContent("#design-result")).includes("valid") &&
+    !(await yaml()).includes("[12, 7, 84]"));
+  await page.fill("#design-name", "sts_long_discharge");
+  await page.press("#design-name", "Enter");
+  await page.fill("#design-rule-time_limit_s", "250");
+  await page.press("#design-rule-time_limit_s", "Enter");
+  check(await page.getAttribute("#design-rule-hard_landing_mps", "placeholder") === "0.3", "a threshold the design leaves shows its default");
+  await page.fill("#design-rule-collision", "25");
+  await page.press("#design-rule-collision", "Enter");
+  await page.fill("#design-wind", "6");
+  await page.press("#design-wind", "Enter");
+  // two gusts put on the timeline, the second moved before the first: kept in time order
+  for (const [x, at] of [[400, 60], [500, 20]]) {
+    await page.click("#design-timeline", { position: { x, y: 30 } });
+    await until("an event is added", async () => (await page.locator("#design-event-at").count()) === 1);
+    await page.fill("#design-event-at", String(at));
+    await page.press("#design-event-at", "Enter");
+    await until(`it is at ${at} s`, async () => (await yaml()).includes(`at_s: ${at}`));
+  }
+  const text = await yaml();
+  check(text.indexOf("at_s: 20") < text.indexOf("at_s: 60") && /collision: 25/.test(text) && /wind_mean_mps: 6/.test(text) &&
+    /time_limit_s: 250/.test(text) && /name: sts_long_discharge/.test(text), `the forms wrote the YAML:\n${text}`);
+  await until("the edited design is valid", async () => (await page.textContent("#design-result")).includes("sts_long_discharge: valid"));
+  check((await page.textContent("#design-summary")).includes("2 scripted events"), "the check counts the scripted events");
+  await page.click('#design-stowage td[data-slot="12,5,82"]');
+  await until("the new box is selected", async () => (await page.locator("#design-box").count()) === 1);
   await page.locator("#designer-panel").screenshot({ path: path.join(out, "console_designer.png") });
   await page.click("#design-save");
   await until("it is saved", async () => (await page.textContent("#design-result")).startsWith("saved"));
   const version = (await page.textContent("#design-result")).match(/version ([0-9a-f]{16})/)?.[1];
   const file = path.join(exercises, "sts_long_discharge.yaml");
-  check(existsSync(file) && readFileSync(file, "utf8").includes("time_limit_s: 240") &&
+  check(existsSync(file) && readFileSync(file, "utf8").includes("time_limit_s: 250") &&
+    readFileSync(file, "utf8").includes("slot: [12, 5, 82]") && readFileSync(file, "utf8").includes("collision: 25") &&
     existsSync(path.join(exercises, "versions", `sts_long_discharge-${version}.yaml`)),
     `saved in the centre's folder with its version kept (${version})`);
   await until("the exercise lists offer it", async () => (await page.locator("#exercise option[value=sts_long_discharge]").count()) === 1);
@@ -87,6 +130,31 @@ try {
     return t.startsWith("saved") && !t.includes(version);
   });
   check(readdirSync(path.join(exercises, "versions")).length === 2, "both versions are kept");
+
+  // a yard block: a box's goal set by clicking the slot it is to go to
+  const load = async (name) => {
+    await page.selectOption("#design-base", name);
+    await page.click("#design-load");
+    await until(`${name} is loaded and checked`, async () => (await page.textContent("#design-result")).includes(`${name}: valid`));
+  };
+  await load("rtg_rehandle");
+  await until("the block grid shows bay 06", async () => (await page.locator("#design-block td.box").count()) > 0);
+  check((await page.getAttribute('#design-block td[data-slot="6,2,1"]', "class")) === "target",
+    "a move's target slot is marked in the grid");
+  await page.click('#design-block td[data-slot="6,1,2"]');
+  await page.selectOption("#design-box-goal", "slot");
+  await page.click('#design-block td[data-slot="6,5,2"]');
+  await until("the move to the clicked slot is written", async () =>
+    /\{container: MSKU7100012, block_slot: \[6, 5, 2\]/.test(await yaml()));
+  await until("and the design stays valid", async () => (await page.textContent("#design-result")).includes("rtg_rehandle: valid") &&
+    (await page.textContent("#design-summary")).includes("4 moves"));
+  await page.locator("#design-block-set").screenshot({ path: path.join(out, "console_designer_block.png") });
+  // bulk: a heap added on the stockpile
+  await load("mhc_pile_trim");
+  await page.click("#design-add-heap");
+  await until("a second heap is written", async () => ((await yaml()).match(/\{grid: stockpile, x_m/g) ?? []).length === 2);
+  await until("and checked", async () => (await page.textContent("#design-result")).includes("mhc_pile_trim: valid"));
+  await page.locator("#design-bulk").screenshot({ path: path.join(out, "console_designer_bulk.png") });
 
   // what the designer may not overwrite, and who may not design
   writeFileSync(path.join(exercises, "handmade.yaml"), shipped.replace("name: sts_discharge", "name: handmade"));
