@@ -1241,8 +1241,11 @@ Console::Response Console::open_replay(const http::request<http::string_body>& r
     return error(request, http::status::too_many_requests,
                  "already " + std::to_string(Replay::kMostOpen) + " replays open: close one");
   Replay replay;
+  std::string version;  // of the exercise file replayed: the attempt's where the designer kept it
   try {
-    replay.exercise = io::load_exercise(resolve_exercise(row->exercise));
+    const std::string file = resolve_exercise(row->exercise, exercise_folder(), row->exercise_version);
+    replay.exercise = load_resolved_exercise(file);
+    version = io::exercise_version(file);
     replay.recording = io::read_recording(row->recording);
   } catch (const std::exception& e) {
     return error(request, http::status::conflict, std::string("cannot replay: ") + e.what());
@@ -1288,6 +1291,7 @@ Console::Response Console::open_replay(const http::request<http::string_body>& r
                      {"station", "replay-" + std::to_string(r.id)},
                      {"attempt", id},
                      {"exercise", r.exercise.name},
+                     {"exercise_version", version},
                      {"trainee", r.trainee},
                      {"duration_s", static_cast<double>(r.recording.total_steps) * sim::Simulation::kStep_s},
                      {"complete", r.recording.complete},

@@ -7,7 +7,8 @@ namespace harbour::apps {
 
 /// `harboursim station`: a trainee runs an exercise live at the station.
 struct StationOptions {
-  std::string exercise;             ///< file or shipped name
+  std::string exercise;             ///< file or name (in `exercises`, then the shipped ones)
+  std::string exercises;            ///< the centre's exercise folder ("": only data/exercises)
   std::string route;                ///< or a training route: its next stage for the trainee
   std::string profile = "desktop";  ///< desktop, medium, immersive or a profile file
   std::string trainee;              ///< "" : autopilot with --autopilot, else guest (both made on first use)

@@ -350,17 +350,35 @@ int drive(const sim::ExerciseSettings& exercise, sim::Simulation& simulation, si
   return simulation.warnings().total() == 0 ? 0 : 1;
 }
 
-std::string resolve_exercise(const std::string& name_or_path) {
+std::string resolve_exercise(const std::string& name_or_path, const std::string& centre,
+                             const std::string& version) {
   namespace fs = std::filesystem;
   if (fs::is_regular_file(name_or_path)) return name_or_path;
-  const fs::path folder = fs::path(HARBOUR_DATA_DIR) / "exercises";
-  const fs::path shipped = folder / (name_or_path + ".yaml");
-  if (fs::is_regular_file(shipped)) return shipped.string();
+  const fs::path shipped_folder = fs::path(HARBOUR_DATA_DIR) / "exercises";
+  std::vector<fs::path> folders;
+  if (!centre.empty()) folders.push_back(centre);
+  folders.push_back(shipped_folder);
+  for (const fs::path& folder : folders) {
+    const fs::path file = folder / (name_or_path + ".yaml");
+    if (!fs::is_regular_file(file)) continue;
+    // an earlier version the designer kept, when the exercise has changed since
+    const fs::path kept = folder / "versions" / (name_or_path + "-" + version + ".yaml");
+    if (!version.empty() && io::exercise_version(file.string()) != version && fs::is_regular_file(kept))
+      return kept.string();
+    return file.string();
+  }
   std::string list;
-  for (const std::string& n : io::exercise_names(folder.string()))
-    list += (list.empty() ? "" : ", ") + n;
-  throw std::runtime_error("no exercise file '" + name_or_path + "' and no shipped exercise of that name (" +
-                           list + ")");
+  for (const fs::path& folder : folders)
+    for (const std::string& n : io::exercise_names(folder.string()))
+      list += (list.empty() ? "" : ", ") + n;
+  throw std::runtime_error("no exercise file '" + name_or_path + "' and no exercise of that name (" + list +
+                           ")");
+}
+
+sim::ExerciseSettings load_resolved_exercise(const std::string& file) {
+  const std::filesystem::path folder = std::filesystem::path(file).parent_path();
+  if (folder.filename() != "versions") return io::load_exercise(file);
+  return io::load_exercise(io::YamlFile::load(file), folder.parent_path().string());
 }
 
 int replay_recording(const std::string& recording_path, const std::string& exercise_path) {

@@ -30,9 +30,15 @@ void check_outputs(const RunOptions& options);
 /// figures (an exercise without container moves shows what every machine is measured on).
 void print_evaluation(const sim::Metrics& metrics, const sim::Score& score, bool container_moves = true);
 
-/// An exercise file: `name_or_path` itself when it is a file, else the shipped `data/exercises/<name>.yaml`;
-/// throws naming what it tried and the shipped exercises.
-std::string resolve_exercise(const std::string& name_or_path);
+/// An exercise file: `name_or_path` itself when it is a file, else `<name>.yaml` in the centre's exercise
+/// folder (when given: the designer's), then the shipped `data/exercises`. With `version` (an attempt's): the
+/// version the designer kept (`versions/<name>-<version>.yaml`) when the exercise has changed since. Throws
+/// naming what it tried and the exercises there are.
+std::string resolve_exercise(const std::string& name_or_path, const std::string& centre = "",
+                             const std::string& version = "");
+/// Loads what resolve_exercise found: a version the designer kept (in the folder's `versions/`) as if it
+/// stood in the folder itself, where its relative paths (../machines/...) were written for.
+sim::ExerciseSettings load_resolved_exercise(const std::string& file);
 
 /// The default records database: $XDG_DATA_HOME/harboursim/records.db (or ~/.local/share/...), as a SOCI
 /// connection string.

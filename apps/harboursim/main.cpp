@@ -88,6 +88,8 @@ int main(int argc, char** argv) {
                           "the station's name on the centre's network: consoles see and command it");
   station_cmd->add_option("--domain", live.domain, "the centre's DDS domain (0-232)")
       ->check(CLI::Range(0, 232));
+  station_cmd->add_option("--exercises", live.exercises,
+                          "the centre's exercise folder, searched by name before the shipped exercises");
   station_cmd->add_flag("--serve", live.serve,
                         "wait for a console to start exercises, one after another (needs --name)");
 

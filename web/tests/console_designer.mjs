@@ -114,7 +114,7 @@ try {
   await until("the exercise lists offer it", async () => (await page.locator("#exercise option[value=sts_long_discharge]").count()) === 1);
 
   // the saved exercise runs; its attempt records the saved version and shows in eva's evolution
-  run(["run", "--exercise", file, "--autopilot", "--trainee", "eva", "--db", db]);
+  run(["run", "--exercise", file, "--autopilot", "--trainee", "eva", "--db", db, "--record", path.join(dir, "eva.hsrec")]);
   const evolution = await page.evaluate(async () => (await fetch("/api/evolution?trainee=eva")).json());
   check(evolution.attempts.length === 1 && evolution.attempts[0].exercise_version === version,
     `eva's attempt ran version ${evolution.attempts[0]?.exercise_version} (${evolution.attempts[0]?.exercise})`);
@@ -130,6 +130,15 @@ try {
     return t.startsWith("saved") && !t.includes(version);
   });
   check(readdirSync(path.join(exercises, "versions")).length === 2, "both versions are kept");
+  // eva's attempt replays on the version it ran, which the designer kept, not on the one saved since
+  const replay = await page.evaluate(async (attempt) => {
+    const me = await (await fetch("/api/me")).json();
+    const r = await fetch("/api/replays", { method: "POST", headers: { "Content-Type": "application/json",
+      "X-CSRF-Token": me.csrf }, body: JSON.stringify({ attempt }) });
+    return { status: r.status, body: await r.json() };
+  }, evolution.attempts[0].id);
+  check(replay.status === 201 && replay.body.exercise_version === version,
+    `the replay of eva's attempt opens on version ${replay.body.exercise_version ?? replay.body.error} (${version} ran)`);
 
   // a yard block: a box's goal set by clicking the slot it is to go to
   const load = async (name) => {
