@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "StsRun.h"
+#include "harbour/bulk/BulkPublish.h"
 #include "harbour/ig/ImageGenerator.h"
 #include "harbour/io/BoundedFile.h"
 #include "harbour/io/ExerciseFiles.h"
@@ -132,6 +133,7 @@ int render_video(const RenderOptions& options) {
   auto snapshot = std::make_unique<sim::Snapshot>();
   double next_frame_s = options.from_s;
   long frames = 0;
+  sim::BulkView bulk_view;  // the material's heights, copied tile by tile as they change
   const sim::ReplayResult result = sim::replay(
       exercise.scenario, recording, stop_step, [&](const sim::Simulation& s, const sim::Controls&) {
         if (s.time_s() + 1e-9 < next_frame_s) return;
@@ -152,6 +154,10 @@ int render_video(const RenderOptions& options) {
         generator->set_caption(caption);
         s.write_snapshot(*snapshot);
         generator->update(*snapshot);
+        if (const bulk::BulkWorld* material = s.bulk()) {
+          bulk::publish(*material, bulk_view);
+          generator->update_bulk(bulk_view);
+        }
         encoder.frame(generator->render());
         ++frames;
       });

@@ -735,6 +735,11 @@ TEST(ImageGenerator, TheSunCastsAShadowWhereItsRaysSay) {
 }  // namespace harbour::ig
 
 #include "harbour/bulk/BulkPublish.h"
+#include "harbour/ig/RenderThread.h"
+
+#include <atomic>
+#include <chrono>
+#include <thread>
 
 namespace harbour::ig {
 namespace {
@@ -790,6 +795,36 @@ TEST(ImageGenerator, ABulkUpdateReMeshesOnlyTheTilesThatChanged) {
   std::printf("a pour at a tile border: %d tiles changed\n", copied);
   EXPECT_EQ(copied, 2);
   EXPECT_EQ(ig.bulk_tiles_meshed(), 65 + copied);
+}
+
+// The station's render thread draws the bulk material its source hands it (the real-time loop's view), with
+// every frame's snapshot: the trainee sees the pile the grab digs.
+TEST(RenderThread, DrawsTheBulkMaterialItIsHanded) {
+  bulk::BulkWorld world = sand_yard();
+  world.add_heap(0, 12.8, 12.8, 20.0);
+  sim::BulkView view;
+  bulk::publish(world, view);
+  Looks looks;
+  looks.visuals = ig::looks();
+  looks.visuals["bulk"].parts.push_back({});
+  looks.visuals["bulk"].parts[0].color = {0.9, 0.8, 0.1};
+  const auto snapshot = std::make_unique<sim::Snapshot>(state(5000.0, 5000.0, 20000.0, 12.0));
+  std::atomic<long> meshed{0};
+  std::atomic<int> frames{0};
+  RenderThread render(
+      scene(), looks, 320, 180, {free_camera({0.0, -25.0, 20.0}, std::numbers::pi / 2.0, -0.6)},
+      [&]() -> const sim::Snapshot* { return snapshot.get(); },
+      [&](ImageGenerator& generator, const sim::Snapshot&, int) {
+        meshed = generator.bulk_tiles_meshed();
+        ++frames;
+      },
+      0.0, [&]() -> const sim::BulkView* { return &view; });
+  for (int wait = 0; wait < 200 && frames.load() == 0; ++wait)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  render.stop();
+  EXPECT_EQ(render.error(), "");
+  ASSERT_GT(frames.load(), 0);
+  EXPECT_EQ(meshed.load(), 64);  // every tile of the grid, once
 }
 
 }  // namespace

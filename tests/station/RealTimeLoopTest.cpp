@@ -7,8 +7,11 @@
 #include <filesystem>
 #include <thread>
 
+#include "harbour/bulk/BulkWorld.h"
+#include "harbour/io/ExerciseFiles.h"
 #include "harbour/io/RecordingFile.h"
 #include "harbour/sim/Autopilot.h"
+#include "harbour/sim/Pilot.h"
 #include "harbour/station/Session.h"
 #include "scenes/StationScenes.h"
 #include "scenes/StsScenes.h"
@@ -67,6 +70,48 @@ TEST(RealTimeLoop, CommandsFromOtherThreadsLandBetweenStepsAndAreRecorded) {
   const sim::ReplayResult replay = sim::replay(exercise.scenario, recording);
   EXPECT_FALSE(replay.first_mismatch.has_value());
   std::filesystem::remove(options.record);
+}
+
+// The bulk material reaches the image generator from the step thread: every grid, its heights as the
+// simulation has them at the last hand-off (20 Hz), as the grab digs; an exercise without material hands
+// none.
+TEST(RealTimeLoop, TheBulkMaterialIsHandedToTheImageGeneratorAsItChanges) {
+  const sim::ExerciseSettings exercise =
+      io::load_exercise(std::string(HARBOUR_DATA_DIR) + "/exercises/mhc_coal_discharge.yaml");
+  sim::Simulation simulation(exercise.scenario);
+  const std::unique_ptr<sim::Pilot> pilot = sim::make_pilot(exercise);  // the grab's
+  RealTimeLoop loop(simulation);
+  loop.set_pilot([&](const sim::Simulation& s) { return pilot->next(s); });
+  const sim::BulkView* start = loop.latest_bulk();
+  ASSERT_NE(start, nullptr);
+  ASSERT_EQ(start->grids.size(), 2u);  // the hold and the hopper
+  const std::vector<float> hold_at_start = start->grids[0].heights;
+  const bulk::BulkWorld& world = *simulation.bulk();
+  StepRecord record;
+  for (int second = 0; second < 40; ++second) {  // the grab's first bite is out of the hold
+    loop.run_ticks(1000);                        // (every 50th step: a hand-off)
+    while (loop.records().pop(record)) {         // the record keeper's side
+    }
+  }
+  const sim::BulkView* now = loop.latest_bulk();
+  ASSERT_NE(now, nullptr);
+  std::size_t changed = 0, differing = 0;
+  for (std::size_t g = 0; g < now->grids.size(); ++g) {
+    const sim::BulkView::Grid& grid = now->grids[g];
+    ASSERT_EQ(grid.cells_x, world.grid(static_cast<int>(g)).cells_x());
+    for (int j = 0; j < grid.cells_y; ++j)
+      for (int i = 0; i < grid.cells_x; ++i) {
+        const float h = grid.heights[static_cast<std::size_t>(j * grid.cells_x + i)];
+        differing += h != static_cast<float>(world.grid(static_cast<int>(g)).height(i, j));
+        if (g == 0) changed += h != hold_at_start[static_cast<std::size_t>(j * grid.cells_x + i)];
+      }
+  }
+  EXPECT_EQ(differing, 0u);  // the simulation's heights at the last hand-off (step 40000)
+  EXPECT_GT(changed, 100u);  // a bite: the hold's surface is not as it was
+
+  const sim::ExerciseSettings boxes = scenes::sts_discharge_exercise(HARBOUR_DATA_DIR);
+  sim::Simulation containers(boxes.scenario);
+  EXPECT_EQ(RealTimeLoop(containers).latest_bulk(), nullptr);
 }
 
 TEST(TripleBuffer, TheReaderAlwaysGetsTheNewestWholeValue) {

@@ -10,8 +10,9 @@
 namespace harbour::ig {
 
 RenderThread::RenderThread(sim::SceneDescription scene, Looks looks, int width, int height,
-                           std::vector<View> views, Source source, FrameSink sink, double max_fps)
-    : source_(std::move(source)), sink_(std::move(sink)), max_fps_(max_fps) {
+                           std::vector<View> views, Source source, FrameSink sink, double max_fps,
+                           BulkSource bulk)
+    : source_(std::move(source)), sink_(std::move(sink)), bulk_(std::move(bulk)), max_fps_(max_fps) {
   thread_ = std::thread([this, scene = std::move(scene), looks = std::move(looks), width, height,
                          views = std::move(views)]() mutable {
     run(std::move(scene), std::move(looks), width, height, std::move(views));
@@ -64,6 +65,8 @@ void RenderThread::run(sim::SceneDescription scene, Looks looks, int width, int 
       }
       last_step = s->step;
       generator.update(*s);
+      if (const sim::BulkView* material = bulk_ ? bulk_() : nullptr)
+        generator.update_bulk(*material);               // meshes again only the tiles that changed
       for (std::size_t c = 0; c < views.size(); ++c) {  // every display channel of the same moment
         generator.set_view(views[c]);
         generator.render();

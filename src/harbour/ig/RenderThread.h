@@ -23,8 +23,11 @@ class RenderThread {
   /// Called with each display channel's picture of a frame on the render thread (a window, a file, a video).
   using FrameSink = std::function<void(ImageGenerator&, const sim::Snapshot&, int channel)>;
 
+  /// The newest view of the bulk material (nullptr where there is none); called on the render thread only.
+  using BulkSource = std::function<const sim::BulkView*()>;
+
   RenderThread(sim::SceneDescription scene, Looks looks, int width, int height, std::vector<View> views,
-               Source source, FrameSink sink = {}, double max_fps = 60.0);
+               Source source, FrameSink sink = {}, double max_fps = 60.0, BulkSource bulk = {});
   ~RenderThread();
   void stop();
   long frames() const { return frames_.load(); }
@@ -38,6 +41,7 @@ class RenderThread {
 
   Source source_;
   FrameSink sink_;
+  BulkSource bulk_;
   double max_fps_;
   std::thread thread_;
   std::atomic<bool> running_{true};

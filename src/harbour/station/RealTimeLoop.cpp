@@ -4,6 +4,8 @@
 
 #include <sys/prctl.h>
 
+#include "harbour/bulk/BulkPublish.h"
+
 namespace harbour::station {
 
 namespace {
@@ -18,8 +20,10 @@ RealTimeLoop::RealTimeLoop(sim::Simulation& simulation, const LoopSettings& sett
     settings_.snapshot_every_steps[static_cast<std::size_t>(n)] =
         std::max(settings_.snapshot_every_steps[static_cast<std::size_t>(n)], 1);
   }
+  settings_.bulk_every_steps = std::max(settings_.bulk_every_steps, 1);
   for (int n = 0; n < kSnapshotReaders; ++n)
     publish(n);  // readers see the start
+  publish_bulk();
 }
 
 RealTimeLoop::~RealTimeLoop() {
@@ -126,6 +130,7 @@ void RealTimeLoop::tick() {
     if (simulation_.steps() % settings_.snapshot_every_steps[static_cast<std::size_t>(n)] == 0 ||
         simulation_.held())
       publish(n);
+  if (simulation_.steps() % settings_.bulk_every_steps == 0 && !simulation_.held()) publish_bulk();
 }
 
 void RealTimeLoop::apply_commands() {
@@ -193,6 +198,13 @@ void RealTimeLoop::hand_off(const StepRecord& record) {
   }
   while (!records_.push(record))
     std::this_thread::sleep_for(std::chrono::microseconds(100));
+}
+
+void RealTimeLoop::publish_bulk() {
+  const bulk::BulkWorld* material = simulation_.bulk();
+  if (!material) return;
+  bulk::publish(*material, bulk_.back());
+  bulk_.publish();
 }
 
 void RealTimeLoop::publish(int reader) {

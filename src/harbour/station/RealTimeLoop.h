@@ -8,6 +8,7 @@
 #include <thread>
 #include <vector>
 
+#include "harbour/sim/BulkView.h"
 #include "harbour/sim/Simulation.h"
 #include "harbour/station/SpscRing.h"
 #include "harbour/station/TripleBuffer.h"
@@ -65,6 +66,8 @@ struct LoopSettings {
   /// Each reader's publish period in steps (SnapshotReader order): the image generator at 250 Hz (it
   /// interpolates by step and time), the console at 50 Hz, the motion platform at 200 Hz (washout at 100 Hz).
   std::array<int, kSnapshotReaders> snapshot_every_steps{4, 20, 5};
+  /// The bulk material's heights for the image generator (tiles changed since copied): 20 Hz, as it flows.
+  int bulk_every_steps = 50;
   std::size_t record_capacity = 1 << 15;  ///< steps of hand-off to the recorder (32 s)
 };
 
@@ -115,6 +118,8 @@ class RealTimeLoop {
   const sim::Snapshot* latest_snapshot(int reader) {
     return snapshots_[static_cast<std::size_t>(reader)]->latest();
   }
+  /// The image generator's newest view of the bulk material (nullptr in an exercise without any).
+  const sim::BulkView* latest_bulk() { return simulation_.bulk() ? bulk_.latest() : nullptr; }
   /// The recorder's side of the step hand-off (one consumer thread).
   SpscRing<StepRecord>& records() { return records_; }
   LoopStats stats() const;
@@ -128,6 +133,7 @@ class RealTimeLoop {
   void step_once();
   void hand_off(const StepRecord& record);
   void publish(int reader);
+  void publish_bulk();
 
   sim::Simulation& simulation_;
   LoopSettings settings_;
@@ -140,6 +146,7 @@ class RealTimeLoop {
 
   sim::Controls latched_;
   std::vector<std::unique_ptr<TripleBuffer<sim::Snapshot>>> snapshots_;
+  TripleBuffer<sim::BulkView> bulk_;  // each of its three keeps its own tile versions: copies what changed
   SpscRing<StepRecord> records_;
 
   std::mutex commands_mutex_;
