@@ -42,6 +42,7 @@
 #include "StationNet.h"
 #include "StsRun.h"
 #include "XapiSender.h"
+#include "harbour/bulk/BulkPublish.h"
 #include "harbour/core/Text.h"
 #include "harbour/ig/Visuals.h"
 #include "harbour/io/ExerciseFiles.h"
@@ -276,6 +277,36 @@ json state_json(const std::string& station, const net::StationState& st, const n
   return state;
 }
 
+// A station's (or a replay's, or a design's) bulk material for the 3D view: each grid's samples, spacing,
+// pose (its corner) and heights above its floor [cm resolution].
+json bulk_json(const std::string& station, const net::StationBulk& bulk) {
+  json grids = json::array();
+  std::size_t first = 0;
+  for (std::size_t g = 0; g < bulk.samples_x().size() && g < bulk.samples_y().size() &&
+                          g < bulk.sample_m().size() && 7 * g + 7 <= bulk.grid_poses().size();
+       ++g) {
+    const std::size_t count = std::size_t{bulk.samples_x()[g]} * bulk.samples_y()[g];
+    if (first + count > bulk.heights_m().size()) break;  // a damaged sample: what is whole
+    json heights = json::array();
+    for (std::size_t k = first; k < first + count; ++k)
+      heights.push_back(rounded(bulk.heights_m()[k], 1e2));
+    first += count;
+    json pose = json::array();
+    for (std::size_t k = 7 * g; k < 7 * g + 7; ++k)
+      pose.push_back(rounded(bulk.grid_poses()[k], 1e4));
+    grids.push_back({{"nx", bulk.samples_x()[g]},
+                     {"ny", bulk.samples_y()[g]},
+                     {"step_m", bulk.sample_m()[g]},
+                     {"pose", std::move(pose)},
+                     {"heights", std::move(heights)}});
+  }
+  return {{"type", "bulk"},
+          {"station", station},
+          {"attempt", bulk.attempt()},
+          {"time_s", bulk.time_s()},
+          {"grids", std::move(grids)}};
+}
+
 // What a station's 3D view draws: its entities' names, looks and half sizes, once per attempt.
 json scene_json(const std::string& station, const net::StationScene& scene) {
   json entities = json::array();
@@ -370,6 +401,7 @@ struct Replay {
   std::unique_ptr<sim::ReplayPlayer> player;
   std::unique_ptr<sim::Snapshot> snapshot = std::make_unique<sim::Snapshot>();
   net::StationScene scene;  // as a station publishes its own
+  sim::BulkView bulk;       // its material's heights (tiles copied as they change)
   double speed = 1.0;
   bool playing = false;
   double position_steps = 0.0;  // where playing has got to (fractions carried between polls)
@@ -391,6 +423,8 @@ class LiveSocket : public std::enable_shared_from_this<LiveSocket> {
   bool wants_view() const { return view_; }
   /// The scene it has ("station attempt"), sent once per attempt.
   std::string& scene_sent() { return scene_sent_; }
+  /// The bulk surfaces it has ("station count").
+  std::string& bulk_sent() { return bulk_sent_; }
   const std::string& token() const { return token_; }
   bool open() const { return open_; }
   /// Closes it (its login ended).
@@ -401,7 +435,7 @@ class LiveSocket : public std::enable_shared_from_this<LiveSocket> {
   virtual void write_next() = 0;
 
   Console& console_;
-  std::string token_, station_, scene_sent_;
+  std::string token_, station_, scene_sent_, bulk_sent_;
   bool view_ = false;
   std::deque<std::string> queue_;
   bool writing_ = false, open_ = true;
@@ -1508,6 +1542,19 @@ void Console::poll() {
         for (auto& [id, r] : replays_)
           if (s->subscribed() == "replay-" + std::to_string(id))
             push_state(*s, s->subscribed(), &r.scene, [&](bool view) { return replay_state(r, view); });
+        for (auto& [id, r] : replays_)
+          if (s->subscribed() == "replay-" + std::to_string(id) && s->wants_view())
+            if (const bulk::BulkWorld* material = r.player->simulation().bulk()) {
+              // each second of the replay's time (and after a seek)
+              const std::string key =
+                  s->subscribed() + " " + std::to_string(std::lround(r.player->simulation().time_s()));
+              if (s->bulk_sent() != key) {
+                bulk::publish(*material, r.bulk);
+                s->send(dump(bulk_json(s->subscribed(),
+                                       bulk_message(r.bulk, r.attempt, r.player->simulation().time_s()))));
+                s->bulk_sent() = key;
+              }
+            }
         continue;
       }
       const auto found = link_.stations().find(s->subscribed());
@@ -1516,6 +1563,13 @@ void Console::poll() {
       const net::StationScene* scene = found->second.scene ? &*found->second.scene : nullptr;
       push_state(*s, s->subscribed(), scene,
                  [&](bool view) { return state_json(s->subscribed(), st, scene, view); });
+      if (s->wants_view() && found->second.bulk) {
+        const std::string key = s->subscribed() + " " + std::to_string(found->second.bulk_count);
+        if (s->bulk_sent() != key) {
+          s->send(dump(bulk_json(s->subscribed(), *found->second.bulk)));
+          s->bulk_sent() = key;
+        }
+      }
     }
   }
   for (auto it = pending_.begin(); it != pending_.end();) {
@@ -1638,7 +1692,7 @@ Console::Response Console::designer(const http::request<http::string_body>& requ
                       {{"exercise", design.exercise.name}, {"version", design.version}, {"file", file}});
   }
   // the preview: the exercise's world at its first instant, drawn by the same 3D view as a station's
-  json scene, state;
+  json scene, state, bulk;
   try {
     const sim::Simulation simulation(design.exercise.scenario);
     auto snapshot = std::make_unique<sim::Snapshot>();
@@ -1647,6 +1701,11 @@ Console::Response Console::designer(const http::request<http::string_body>& requ
     scene = scene_json("designer", published);
     state = state_json("designer", state_message(*snapshot, simulation.scene().entities.size(), 0),
                        &published, true);
+    if (const bulk::BulkWorld* material = simulation.bulk()) {
+      sim::BulkView view;
+      bulk::publish(*material, view);
+      bulk = bulk_json("designer", bulk_message(view, 0, 0.0));
+    }
   } catch (const std::exception& e) {
     return error(request, http::status::unprocessable_entity,
                  std::string("the design loads but its world cannot be built: ") + e.what());
@@ -1664,7 +1723,8 @@ Console::Response Console::designer(const http::request<http::string_body>& requ
                      {"wind_mps", x.scenario.weather.wind_mean_mps},
                      {"form", design_form(exercise_folder(), design)},
                      {"scene", scene},
-                     {"state", state}});
+                     {"state", state},
+                     {"bulk", bulk}});
 }
 
 std::optional<Console::Response> Console::cohort_views(const http::request<http::string_body>& request,

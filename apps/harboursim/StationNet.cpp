@@ -14,6 +14,7 @@ namespace {
 using Clock = std::chrono::steady_clock;
 constexpr auto kStatusPeriod = std::chrono::milliseconds(static_cast<int>(net::kStatusPeriod_s * 1e3));
 constexpr auto kStatePeriod = std::chrono::milliseconds(100);  // 10 Hz: plots and the console's 3D view
+constexpr auto kBulkPeriod = std::chrono::seconds(1);          // the material's surfaces: it moves slowly
 
 std::string host_name() {
   char name[256] = {};
@@ -83,6 +84,39 @@ net::StationScene scene_message(const sim::SceneDescription& description, std::i
     indicators.emplace_back(description.indicators[n].substr(0, 48));
   scene.indicator_names(indicators);
   return scene;
+}
+
+net::StationBulk bulk_message(const sim::BulkView& view, std::int64_t attempt, double time_s) {
+  net::StationBulk bulk;
+  bulk.attempt(attempt);
+  bulk.time_s(time_s);
+  const std::size_t grids = std::min<std::size_t>(view.grids.size(), kMostBulkGrids);
+  // every grid the same budget of samples, at most 64 x 64
+  const int budget = std::min(kMostBulkSamplesPerSide * kMostBulkSamplesPerSide,
+                              static_cast<int>(kMostBulkSamples / std::max<std::size_t>(grids, 1)));
+  for (std::size_t g = 0; g < grids; ++g) {
+    const sim::BulkView::Grid& grid = view.grids[g];
+    int block = 1;  // cells per sample side
+    while ((grid.cells_x + block - 1) / block * ((grid.cells_y + block - 1) / block) > budget)
+      ++block;
+    const int nx = (grid.cells_x + block - 1) / block, ny = (grid.cells_y + block - 1) / block;
+    bulk.samples_x().push_back(static_cast<std::uint16_t>(nx));
+    bulk.samples_y().push_back(static_cast<std::uint16_t>(ny));
+    bulk.sample_m().push_back(static_cast<float>(grid.cell_m * block));
+    const std::array<double, 4> q = quaternion(grid.pose.rotation);
+    for (const double v :
+         {grid.pose.position.x, grid.pose.position.y, grid.pose.position.z, q[0], q[1], q[2], q[3]})
+      bulk.grid_poses().push_back(static_cast<float>(v));
+    for (int sj = 0; sj < ny; ++sj)
+      for (int si = 0; si < nx; ++si) {
+        float top = 0.0f;  // the block's highest cell: a pile's crest stays
+        for (int j = sj * block; j < std::min((sj + 1) * block, grid.cells_y); ++j)
+          for (int i = si * block; i < std::min((si + 1) * block, grid.cells_x); ++i)
+            top = std::max(top, grid.heights[static_cast<std::size_t>(j * grid.cells_x + i)]);
+        bulk.heights_m().push_back(top);
+      }
+  }
+  return bulk;
 }
 
 net::StationState state_message(const sim::Snapshot& snapshot, std::size_t entity_count,
@@ -289,6 +323,11 @@ AttemptPresence::Next AttemptPresence::service() {
   if (snapshot && t >= next_state_) {
     publish_state(*snapshot);
     next_state_ = t + kStatePeriod;
+  }
+  if (t >= next_bulk_) {
+    if (const sim::BulkView* bulk = session_.loop().latest_bulk(station::kConsoleReader))
+      link_.publish(bulk_message(*bulk, session_.attempt(), published_time_s()));
+    next_bulk_ = t + kBulkPeriod;
   }
   return next;
 }

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "harbour/net/DdsLink.h"
+#include "harbour/sim/BulkView.h"
 #include "harbour/sim/Evaluation.h"
 #include "harbour/station/Session.h"
 
@@ -17,6 +18,12 @@ namespace harbour::apps {
 net::StationScene scene_message(const sim::SceneDescription& scene, std::int64_t attempt);
 net::StationState state_message(const sim::Snapshot& snapshot, std::size_t entity_count,
                                 std::int64_t attempt);
+/// The bulk material's surfaces as the console's 3D view draws them: at most kMostBulkGrids grids, each
+/// coarsened to blocks of cells (the block's highest cell) so that all fit in kMostBulkSamples samples, at
+/// most 64 on a side.
+inline constexpr std::size_t kMostBulkGrids = 8, kMostBulkSamples = 16384;
+inline constexpr int kMostBulkSamplesPerSide = 64;
+net::StationBulk bulk_message(const sim::BulkView& view, std::int64_t attempt, double time_s);
 
 /// What a console asked a station to do next (run an exercise, or nothing new).
 struct StartRequest {
@@ -70,7 +77,7 @@ class AttemptPresence {
   sim::SceneDescription scene_;
   sim::Metrics seen_;
   bool was_held_ = false;
-  std::chrono::steady_clock::time_point next_status_{}, next_state_{};
+  std::chrono::steady_clock::time_point next_status_{}, next_state_{}, next_bulk_{};
 };
 
 }  // namespace harbour::apps

@@ -214,7 +214,7 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
               image.getRowStepInBytes(), picture.x0, picture.colours,
               last_of_window[static_cast<std::size_t>(k)]);
         },
-        60.0, [&session] { return session.loop().latest_bulk(); });
+        60.0, [&session] { return session.loop().latest_bulk(station::kImageGeneratorReader); });
     const int channels = static_cast<int>(profile.displays.size());
     const std::string stereo = !profile.stereo ? ""
                                : profile.stereo->mode == station::Profile::Stereo::Mode::kAnaglyph

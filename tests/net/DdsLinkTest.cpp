@@ -124,6 +124,20 @@ TEST(DdsLink, ALateConsoleSeesTheStationsStatusAndSceneAtOnceAndTheStateAtItsSiz
   EXPECT_EQ(got.entity_poses().size(), 15400u);
   EXPECT_EQ(got.entity_poses().back(), 2.5f);
   EXPECT_EQ(got.rope_points_m().size(), 3072u);
+
+  // a full bulk sample (four 64 x 64 grids): fragmented and whole
+  StationBulk bulk;
+  bulk.samples_x(std::vector<std::uint16_t>(4, 64));
+  bulk.samples_y(std::vector<std::uint16_t>(4, 64));
+  bulk.sample_m(std::vector<float>(4, 0.4f));
+  bulk.grid_poses(std::vector<float>(28, 0.5f));
+  bulk.heights_m(std::vector<float>(16384, 4.25f));
+  ASSERT_TRUE(wait_for(console, [&] {
+    station.publish(bulk);
+    return console.stations().at("rtg-3").bulk.has_value();
+  }));
+  EXPECT_EQ(console.stations().at("rtg-3").bulk->heights_m().size(), 16384u);
+  EXPECT_EQ(console.stations().at("rtg-3").bulk->heights_m().back(), 4.25f);
 }
 
 TEST(DdsLink, BadNamesAndDomainsAreRefused) {

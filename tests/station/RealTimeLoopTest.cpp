@@ -82,7 +82,7 @@ TEST(RealTimeLoop, TheBulkMaterialIsHandedToTheImageGeneratorAsItChanges) {
   const std::unique_ptr<sim::Pilot> pilot = sim::make_pilot(exercise);  // the grab's
   RealTimeLoop loop(simulation);
   loop.set_pilot([&](const sim::Simulation& s) { return pilot->next(s); });
-  const sim::BulkView* start = loop.latest_bulk();
+  const sim::BulkView* start = loop.latest_bulk(kImageGeneratorReader);
   ASSERT_NE(start, nullptr);
   ASSERT_EQ(start->grids.size(), 2u);  // the hold and the hopper
   const std::vector<float> hold_at_start = start->grids[0].heights;
@@ -93,7 +93,7 @@ TEST(RealTimeLoop, TheBulkMaterialIsHandedToTheImageGeneratorAsItChanges) {
     while (loop.records().pop(record)) {         // the record keeper's side
     }
   }
-  const sim::BulkView* now = loop.latest_bulk();
+  const sim::BulkView* now = loop.latest_bulk(kImageGeneratorReader);
   ASSERT_NE(now, nullptr);
   std::size_t changed = 0, differing = 0;
   for (std::size_t g = 0; g < now->grids.size(); ++g) {
@@ -111,7 +111,7 @@ TEST(RealTimeLoop, TheBulkMaterialIsHandedToTheImageGeneratorAsItChanges) {
 
   const sim::ExerciseSettings boxes = scenes::sts_discharge_exercise(HARBOUR_DATA_DIR);
   sim::Simulation containers(boxes.scenario);
-  EXPECT_EQ(RealTimeLoop(containers).latest_bulk(), nullptr);
+  EXPECT_EQ(RealTimeLoop(containers).latest_bulk(kConsoleReader), nullptr);
 }
 
 TEST(TripleBuffer, TheReaderAlwaysGetsTheNewestWholeValue) {

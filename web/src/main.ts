@@ -1,7 +1,7 @@
 // The instructor console in the browser: log in, watch every station, command one, plot its telemetry,
 // follow its events, manage trainees and open results. Talks to `harboursim console` only (same origin).
 import uPlot from "uplot";
-import { View3D, type Looks, type SceneMessage, type ViewState } from "./view3d";
+import { View3D, type BulkMessage, type Looks, type SceneMessage, type ViewState } from "./view3d";
 import { DesignerForms } from "./designer";
 
 interface Me { name: string; role: string; trainee: string; csrf: string; }
@@ -157,6 +157,9 @@ function connect() {
     if (m.type === "stations") showStations(m.stations);
     else if (m.type === "state") { showState(m); if (m.station === selected && viewOn()) view?.update(m); }
     else if (m.type === "scene") { if (m.station === selected) view?.setScene(m as SceneMessage); }
+    else if (m.type === "bulk") {
+      if (m.station === selected && viewOn() && view) { view.setBulk(m as BulkMessage); $("view3d").dataset.bulk = String(view.bulkQuadsDrawn()); }
+    }
     else if (m.type === "event") showEvent(m);
   };
   socket.onopen = () => { if (selected) subscribe(); };
@@ -439,6 +442,8 @@ async function designerAction(action: "check" | "save") {
   if (!designView && looks) designView = new View3D($("design-view"), $("design-plan"), $("design-plan-labels"), looks);
   designView?.setScene(r.data.scene as SceneMessage);
   designView?.update(r.data.state);
+  if (r.data.bulk) designView?.setBulk(r.data.bulk as BulkMessage);
+  $("design-view").dataset.bulk = String(designView?.bulkQuadsDrawn() ?? 0);
   $("design-view").dataset.entities = String(designView?.visibleEntities() ?? 0);
 }
 

@@ -15,6 +15,11 @@ export interface SceneMessage {
   station: string; attempt: number; machine: string;
   entities: { name: string; visual: string; half_m: number[] }[];
 }
+/** A station's bulk material: each grid's samples (nx by ny, step_m apart), its pose (corner, quaternion) and
+ * the heights above its floor, row by row. */
+export interface BulkMessage {
+  attempt: number; grids: { nx: number; ny: number; step_m: number; pose: number[]; heights: number[] }[];
+}
 export interface ViewState { attempt: number; water_level_m?: number; poses?: number[]; ropes?: { counts: number[]; points: number[] }; }
 
 const kMostRopePoints = 1024;  // the published state's limit (3072 coordinates)
@@ -31,6 +36,8 @@ export class View3D {
   private readonly materials = new Map<string, THREE.MeshLambertMaterial>();
   private readonly entityGroup = new THREE.Group();
   private readonly ropeGroup = new THREE.Group();
+  private readonly bulkGroup = new THREE.Group();
+  private bulkQuads = 0;
   private readonly water = new THREE.Mesh(new THREE.PlaneGeometry(3000, 3000),
     new THREE.MeshLambertMaterial({ color: new THREE.Color().setRGB(0.05, 0.16, 0.22, THREE.LinearSRGBColorSpace) }));
   private entities: THREE.Object3D[] = [];
@@ -61,18 +68,59 @@ export class View3D {
     this.controls.addEventListener("change", () => this.invalidate());
     // the quay as the image generator lays it: its top at z = 0, up to its edge at x = 18 m
     const quay = this.block([318, 800, 30], [-141, 0, -15], [0.42, 0.42, 0.40]);
-    this.scene.add(quay, this.scenery(), this.water, this.entityGroup, this.ropeGroup);
+    this.scene.add(quay, this.scenery(), this.water, this.entityGroup, this.ropeGroup, this.bulkGroup);
   }
 
   /** The station's entities for an attempt (a new attempt replaces them). */
   setScene(m: SceneMessage) {
     this.entityGroup.clear();
+    this.bulkGroup.clear();
+    this.bulkQuads = 0;
     this.entities = m.entities.map((e, index) => this.entity(e.visual, e.half_m, index));
     for (const e of this.entities) this.entityGroup.add(e);
     this.names = m.entities.map((e) => e.name);
     this.attempt = m.attempt;
     this.station = m.station;
     this.framed = false;
+    this.invalidate();
+  }
+
+  /** The bulk material's surfaces (a sample of another attempt than the scene's is not drawn): a mesh per grid,
+   * its quads where there is material. */
+  setBulk(m: BulkMessage) {
+    if (m.attempt !== this.attempt) return;
+    const look = this.looks.visuals["bulk"]?.parts[0]?.color ?? [0.2, 0.2, 0.2];
+    while (this.bulkGroup.children.length > m.grids.length) this.bulkGroup.remove(this.bulkGroup.children[m.grids.length]);
+    this.bulkQuads = 0;
+    m.grids.forEach((g, k) => {
+      let mesh = this.bulkGroup.children[k] as THREE.Mesh | undefined;
+      if (!mesh) {
+        mesh = new THREE.Mesh(new THREE.BufferGeometry(), new THREE.MeshLambertMaterial({
+          color: new THREE.Color().setRGB(look[0], look[1], look[2], THREE.LinearSRGBColorSpace), side: THREE.DoubleSide }));
+        this.bulkGroup.add(mesh);
+      }
+      const positions = new Float32Array(3 * g.nx * g.ny);
+      for (let j = 0; j < g.ny; ++j)
+        for (let i = 0; i < g.nx; ++i) {
+          const v = j * g.nx + i;
+          positions.set([(i + 0.5) * g.step_m, (j + 0.5) * g.step_m, g.heights[v] ?? 0], 3 * v);
+        }
+      const index: number[] = [];
+      for (let j = 0; j + 1 < g.ny; ++j)
+        for (let i = 0; i + 1 < g.nx; ++i) {
+          const a = j * g.nx + i, b = a + 1, c = a + g.nx, d = c + 1;
+          if (Math.max(g.heights[a], g.heights[b], g.heights[c], g.heights[d]) < 0.02) continue;  // bare floor
+          index.push(a, b, d, a, d, c);
+          ++this.bulkQuads;
+        }
+      const geometry = mesh.geometry as THREE.BufferGeometry;
+      geometry.setAttribute("position", new THREE.BufferAttribute(positions, 3));
+      geometry.setIndex(index);
+      geometry.computeVertexNormals();
+      geometry.computeBoundingSphere();
+      mesh.position.set(g.pose[0], g.pose[1], g.pose[2]);
+      mesh.quaternion.set(g.pose[3], g.pose[4], g.pose[5], g.pose[6]);
+    });
     this.invalidate();
   }
 
@@ -95,6 +143,7 @@ export class View3D {
 
   // what the browser tests read
   visibleEntities(): number { return this.entities.filter((e) => e.visible).length; }
+  bulkQuadsDrawn(): number { return this.bulkQuads; }
   drawnStation(): string { return this.station; }
   cameraPosition(): number[] { return this.camera.position.toArray(); }
 

@@ -164,6 +164,9 @@ try {
   await until("a second heap is written", async () => ((await yaml()).match(/\{grid: stockpile, x_m/g) ?? []).length === 2);
   await until("and checked", async () => (await page.textContent("#design-result")).includes("mhc_pile_trim: valid"));
   await page.locator("#design-bulk").screenshot({ path: path.join(out, "console_designer_bulk.png") });
+  // the preview draws the material: both heaps on the stockpile (coarsened as a station sends it)
+  await until("the preview draws the piles", async () => Number(await page.getAttribute("#design-view", "data-bulk")) > 100);
+  await page.locator("#design-preview").screenshot({ path: path.join(out, "console_designer_bulk_preview.png") });
 
   // what the designer may not overwrite, and who may not design
   writeFileSync(path.join(exercises, "handmade.yaml"), shipped.replace("name: sts_discharge", "name: handmade"));

@@ -59,16 +59,16 @@ constexpr int kEventDepth = 256, kCommandDepth = 64, kAckDepth = 256;
 
 }  // namespace
 
-/// One DDS participant with the six topics.
+/// One DDS participant with the seven topics.
 struct Participant {
   dds::DomainParticipant* participant = nullptr;
   dds::Publisher* publisher = nullptr;
   dds::Subscriber* subscriber = nullptr;
   std::map<std::string, dds::Topic*> topics;
-  dds::DataWriter *status = nullptr, *scene = nullptr, *state = nullptr, *event = nullptr, *command = nullptr,
-                  *ack = nullptr;
-  dds::DataReader *status_in = nullptr, *scene_in = nullptr, *state_in = nullptr, *event_in = nullptr,
-                  *command_in = nullptr, *ack_in = nullptr;
+  dds::DataWriter *status = nullptr, *scene = nullptr, *state = nullptr, *bulk = nullptr, *event = nullptr,
+                  *command = nullptr, *ack = nullptr;
+  dds::DataReader *status_in = nullptr, *scene_in = nullptr, *state_in = nullptr, *bulk_in = nullptr,
+                  *event_in = nullptr, *command_in = nullptr, *ack_in = nullptr;
   std::mutex write_mutex;
 
   Participant(int domain, const std::string& name) {
@@ -82,6 +82,7 @@ struct Participant {
     register_type<StationStatusPubSubType>(kStatusTopic);
     register_type<StationScenePubSubType>(kSceneTopic);
     register_type<StationStatePubSubType>(kStateTopic);
+    register_type<StationBulkPubSubType>(kBulkTopic);
     register_type<StationEventPubSubType>(kEventTopic);
     register_type<StationCommandPubSubType>(kCommandTopic);
     register_type<CommandAckPubSubType>(kAckTopic);
@@ -139,6 +140,7 @@ StationLink::StationLink(const std::string& station, int domain) : station_(stat
   dds_->status = dds_->writer(kStatusTopic, Delivery::kLatestKept, 1);
   dds_->scene = dds_->writer(kSceneTopic, Delivery::kLatestKept, 1);
   dds_->state = dds_->writer(kStateTopic, Delivery::kBestEffort, 1);
+  dds_->bulk = dds_->writer(kBulkTopic, Delivery::kBestEffort, 1);
   dds_->event = dds_->writer(kEventTopic, Delivery::kStream, kEventDepth);
   dds_->ack = dds_->writer(kAckTopic, Delivery::kStream, kAckDepth);
   // every station reads every command and keeps its own (a content filter would need the types' TypeObject)
@@ -166,6 +168,10 @@ void StationLink::publish(StationScene scene) {
 void StationLink::publish(StationState state) {
   state.station(station_);
   dds_->write(dds_->state, state);
+}
+void StationLink::publish(StationBulk bulk) {
+  bulk.station(station_);
+  dds_->write(dds_->bulk, bulk);
 }
 void StationLink::publish(StationEvent event) {
   event.station(station_);
@@ -199,6 +205,7 @@ ConsoleLink::ConsoleLink(const std::string& console, int domain) : console_(cons
   dds_->status_in = dds_->reader(kStatusTopic, Delivery::kLatestKept, 1);
   dds_->scene_in = dds_->reader(kSceneTopic, Delivery::kLatestKept, 1);
   dds_->state_in = dds_->reader(kStateTopic, Delivery::kBestEffort, 1);
+  dds_->bulk_in = dds_->reader(kBulkTopic, Delivery::kBestEffort, 1);
   dds_->event_in = dds_->reader(kEventTopic, Delivery::kStream, kEventDepth);
   dds_->ack_in = dds_->reader(kAckTopic, Delivery::kStream, kAckDepth);
 }
@@ -238,6 +245,12 @@ std::vector<std::string> ConsoleLink::poll(Clock::time_point now) {
     Station& station = stations_[s.station().to_string()];
     station.state = s;
     ++station.state_count;
+  });
+  dds_->take<StationBulk>(dds_->bulk_in, [&](const StationBulk& b, const dds::SampleInfo& info) {
+    if (!info.valid_data) return;
+    Station& station = stations_[b.station().to_string()];
+    station.bulk = b;
+    ++station.bulk_count;
   });
   dds_->take<StationEvent>(dds_->event_in, [&](const StationEvent& e, const dds::SampleInfo& info) {
     if (info.valid_data) events_.push_back(e);

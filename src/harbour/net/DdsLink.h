@@ -18,6 +18,7 @@ namespace harbour::net {
 inline constexpr const char* kStatusTopic = "harbour/station_status";
 inline constexpr const char* kSceneTopic = "harbour/station_scene";
 inline constexpr const char* kStateTopic = "harbour/station_state";
+inline constexpr const char* kBulkTopic = "harbour/station_bulk";
 inline constexpr const char* kEventTopic = "harbour/station_event";
 inline constexpr const char* kCommandTopic = "harbour/station_command";
 inline constexpr const char* kAckTopic = "harbour/command_ack";
@@ -32,7 +33,7 @@ std::string why_bad_node_name(const std::string& name);
 
 struct Participant;
 
-/// A station's side of the centre's network: it publishes its status, scene, state and events and takes
+/// A station's side of the centre's network: it publishes its status, scene, state, bulk and events and takes
 /// the commands addressed to it, answering each. Thread-safe.
 class StationLink {
  public:
@@ -48,6 +49,7 @@ class StationLink {
   void publish(StationStatus status);
   void publish(StationScene scene);
   void publish(StationState state);
+  void publish(StationBulk bulk);
   void publish(StationEvent event);
   /// The commands for this station that arrived since the last call, in order.
   std::vector<StationCommand> take_commands();
@@ -71,7 +73,9 @@ class ConsoleLink {
     bool gone = false;        ///< it left the network in order
     std::optional<StationScene> scene;
     std::optional<StationState> state;
-    std::uint64_t state_count = 0;                        ///< states received (the console's rate figures)
+    std::uint64_t state_count = 0;    ///< states received (the console's rate figures)
+    std::optional<StationBulk> bulk;  ///< its bulk material's surfaces (bulk exercises)
+    std::uint64_t bulk_count = 0;
     eprosima::fastrtps::rtps::InstanceHandle_t instance;  ///< its status instance (to see it disposed)
   };
 

@@ -203,8 +203,10 @@ void RealTimeLoop::hand_off(const StepRecord& record) {
 void RealTimeLoop::publish_bulk() {
   const bulk::BulkWorld* material = simulation_.bulk();
   if (!material) return;
-  bulk::publish(*material, bulk_.back());
-  bulk_.publish();
+  for (TripleBuffer<sim::BulkView>& reader : bulk_) {
+    bulk::publish(*material, reader.back());
+    reader.publish();
+  }
 }
 
 void RealTimeLoop::publish(int reader) {

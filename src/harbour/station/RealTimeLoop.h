@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cstdint>
@@ -118,8 +119,11 @@ class RealTimeLoop {
   const sim::Snapshot* latest_snapshot(int reader) {
     return snapshots_[static_cast<std::size_t>(reader)]->latest();
   }
-  /// The image generator's newest view of the bulk material (nullptr in an exercise without any).
-  const sim::BulkView* latest_bulk() { return simulation_.bulk() ? bulk_.latest() : nullptr; }
+  /// Reader `n`'s newest view of the bulk material (the image generator's or the console's; nullptr in an
+  /// exercise without any).
+  const sim::BulkView* latest_bulk(int reader) {
+    return simulation_.bulk() ? bulk_[static_cast<std::size_t>(reader)].latest() : nullptr;
+  }
   /// The recorder's side of the step hand-off (one consumer thread).
   SpscRing<StepRecord>& records() { return records_; }
   LoopStats stats() const;
@@ -146,7 +150,8 @@ class RealTimeLoop {
 
   sim::Controls latched_;
   std::vector<std::unique_ptr<TripleBuffer<sim::Snapshot>>> snapshots_;
-  TripleBuffer<sim::BulkView> bulk_;  // each of its three keeps its own tile versions: copies what changed
+  // the image generator's and the console's; each buffer keeps its own tile versions: copies what changed
+  std::array<TripleBuffer<sim::BulkView>, kConsoleReader + 1> bulk_;
   SpscRing<StepRecord> records_;
 
   std::mutex commands_mutex_;
