@@ -168,6 +168,14 @@ try {
   await until("the preview draws the piles", async () => Number(await page.getAttribute("#design-view", "data-bulk")) > 100);
   await page.locator("#design-preview").screenshot({ path: path.join(out, "console_designer_bulk_preview.png") });
 
+  // every shipped exercise loads into the forms and checks valid, the page throwing nothing
+  const pageErrors = [];
+  page.on("pageerror", (e) => pageErrors.push(e.message));
+  const shippedNames = readdirSync(path.join(data, "exercises")).filter((f) => f.endsWith(".yaml")).map((f) => f.slice(0, -5));
+  for (const name of shippedNames) await load(name);
+  check(pageErrors.length === 0 && (await page.locator("#design-forms fieldset").count()) >= 3,
+    `all ${shippedNames.length} shipped exercises load into the forms (page errors: ${pageErrors.join("; ") || "none"})`);
+
   // what the designer may not overwrite, and who may not design
   writeFileSync(path.join(exercises, "handmade.yaml"), shipped.replace("name: sts_discharge", "name: handmade"));
   const conflict = await page.evaluate(async (text) => {
