@@ -1370,6 +1370,7 @@ std::optional<Console::Response> Console::control_replay(const http::request<htt
       return error(request, http::status::conflict, std::string("cannot seek: ") + e.what());
     }
     r.position_steps = static_cast<double>(r.player->simulation().steps());
+    r.bulk = {};  // the material as it was then: copied whole again (tile versions restart with the state)
   } else if (*action == "take-over") {
     // the attempt continues live at a station from the moment shown, as a new attempt of a trainee
     const std::optional<std::string> station = text_field(*body, "station", 64, why);

@@ -203,7 +203,10 @@ void RealTimeLoop::hand_off(const StepRecord& record) {
 void RealTimeLoop::publish_bulk() {
   const bulk::BulkWorld* material = simulation_.bulk();
   if (!material) return;
+  // each buffer allocates its grids and room for the material in flight when first filled, then no more
+  constexpr std::size_t kParcelsInFlight = 4096;
   for (TripleBuffer<sim::BulkView>& reader : bulk_) {
+    if (reader.back().parcels.capacity() < kParcelsInFlight) reader.back().parcels.reserve(kParcelsInFlight);
     bulk::publish(*material, reader.back());
     reader.publish();
   }
