@@ -12,7 +12,10 @@
 #include <thread>
 #include <vector>
 
+#include "harbour/bulk/BulkPublish.h"
+#include "harbour/io/ExerciseFiles.h"
 #include "harbour/sim/Autopilot.h"
+#include "harbour/sim/Pilot.h"
 #include "harbour/station/DeviceInput.h"
 #include "harbour/station/DeviceMappingFile.h"
 #include "harbour/station/RealTimeLoop.h"
@@ -101,6 +104,30 @@ void BM_LoopTick(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_LoopTick)->Unit(benchmark::kMicrosecond)->MinTime(3.0);
+
+// The bulk material's hand-off to a reader (every 50th tick in a bulk exercise, to the image generator and
+// the console): mhc_coal_discharge after 20 s of the grab's work. Unchanged: the tile versions compared,
+// nothing copied (most hand-offs); whole: every tile copied (a buffer's first fill).
+void BM_BulkHandOff(benchmark::State& state) {
+  const sim::ExerciseSettings exercise =
+      io::load_exercise(std::string(HARBOUR_DATA_DIR) + "/exercises/mhc_coal_discharge.yaml");
+  sim::Simulation simulation(exercise.scenario);
+  const std::unique_ptr<sim::Pilot> pilot = sim::make_pilot(exercise);
+  while (simulation.time_s() < 20.0)
+    simulation.step(pilot->next(simulation));
+  const bool whole = state.range(0) == 1;
+  sim::BulkView view;
+  bulk::publish(*simulation.bulk(), view);
+  for (auto _ : state) {
+    if (whole) view.grids.clear();
+    benchmark::DoNotOptimize(bulk::publish(*simulation.bulk(), view));
+  }
+  std::size_t cells = 0;
+  for (const sim::BulkView::Grid& g : view.grids)
+    cells += static_cast<std::size_t>(g.cells_x * g.cells_y);
+  state.counters["cells"] = static_cast<double>(cells);
+}
+BENCHMARK(BM_BulkHandOff)->Arg(0)->Arg(1)->ArgNames({"whole"})->Unit(benchmark::kMicrosecond)->MinTime(2.0);
 
 // The pieces on their own.
 void BM_SampleTwoSticks(benchmark::State& state) {
