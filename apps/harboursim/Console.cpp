@@ -1718,7 +1718,7 @@ Console::Response Console::designer(const http::request<http::string_body>& requ
                      {"version", design.version},
                      {"containers", x.scenario.containers.size()},
                      {"moves", x.moves.size()},
-                     {"events", x.scenario.events.size()},
+                     {"events", x.scenario.events.size() + x.scenario.lift_events.size()},
                      {"time_limit_s", x.rules.time_limit_s},
                      {"pass_score", x.rules.pass_score},
                      {"wind_mps", x.scenario.weather.wind_mean_mps},

@@ -124,6 +124,8 @@ int render_video(const RenderOptions& options) {
                 note(before.twistlock_misuse, now.twistlock_misuse, "twistlock misuse", bad);
                 note(before.overloads, now.overloads, "rope overload", bad);
                 note(before.emergency_stops, now.emergency_stops, "emergency stop", warning);
+                note(before.load_drops, now.load_drops, "LOAD DROPPED", bad);
+                note(before.lifts_under_fault, now.lifts_under_fault, "lift with the brake failed", bad);
               });
   std::vector<ig::ImageGenerator::TimelineMark> marks;
   for (const Event& e : events)

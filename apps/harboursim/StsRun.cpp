@@ -155,6 +155,11 @@ void print_evaluation(const sim::Metrics& m, const sim::Score& s, bool container
   for (const sim::Metrics::Smoothness& axis : m.smoothness)
     std::printf("  %-20s %8d harsh moves (RMS jerk %.2f m/s^3)\n", axis.axis.c_str(), axis.harsh_moves,
                 axis.rms_jerk_mps3);
+  if (m.load_drops > 0) std::printf("  loads dropped        %8d\n", m.load_drops);
+  if (m.hoist_fault)
+    std::printf("  hoist brake fault: load set down after %.1f s, %d lifts under the fault, crane %s\n",
+                m.fault_set_down_s, m.lifts_under_fault,
+                m.stopped_after_fault ? "stopped (goals left excused)" : "not stopped");
   std::printf("score %.0f / 100: %s\n", s.total, s.passed ? "PASSED" : "NOT PASSED");
   for (const auto& d : s.deductions)
     std::printf("  -%.0f  %s x%d (%s)\n", d.points, d.reason.c_str(), d.count, sim::skill_name(d.skill));

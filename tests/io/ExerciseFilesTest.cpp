@@ -247,6 +247,24 @@ TEST(ExerciseFiles, WeatherAndEventsLoad) {
   EXPECT_EQ(e.scenario.events[0].gust.amplitude_mps, 8.0);
 }
 
+// An event timed from the first lift goes to its own list; an event with both clocks, or lift events out of
+// order, is refused naming the field.
+TEST(ExerciseFiles, EventsTimedFromTheFirstLiftLoadApart) {
+  const sim::ExerciseSettings e = load_exercise(HARBOUR_DATA_DIR "/exercises/sts_hoist_brake_fault.yaml");
+  EXPECT_TRUE(e.scenario.events.empty());
+  ASSERT_EQ(e.scenario.lift_events.size(), 1u);
+  EXPECT_EQ(e.scenario.lift_events[0].kind, sim::ScriptedEvent::Kind::kHoistBrakeFault);
+  EXPECT_EQ(e.scenario.lift_events[0].at_s, 8.0);
+  const std::string with_events = "  moves:";
+  expect_error(with_events, "  events:\n    - {at_s: 3, after_lift_s: 8, kind: hoist_brake_fault}\n  moves:",
+               "exercise.events[0].after_lift_s", "not both", 1);
+  expect_error(
+      with_events,
+      "  events:\n    - {after_lift_s: 8, kind: hoist_brake_fault}\n"
+      "    - {at_s: 1, kind: limiter_fault}\n    - {after_lift_s: 2, kind: hoist_brake_fault}\n  moves:",
+      "exercise.events[2].after_lift_s", "events after the first lift must be in time order", 3);
+}
+
 TEST(ExerciseFiles, EveryShippedExerciseLoadsAndItsMovesAreFeasible) {
   int files = 0;
   for (const auto& entry : std::filesystem::directory_iterator(HARBOUR_DATA_DIR "/exercises")) {

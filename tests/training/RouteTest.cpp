@@ -23,12 +23,14 @@ TEST(Routes, EveryShippedRouteLoads) {
       EXPECT_TRUE(std::filesystem::is_regular_file(s.exercise_file)) << s.id;
   }
   const Route sts = io::load_route(HARBOUR_DATA_DIR "/routes/sts_basic.yaml", kExercises);
-  ASSERT_EQ(sts.stages.size(), 4u);
+  ASSERT_EQ(sts.stages.size(), 5u);
   EXPECT_EQ(sts.stages[0].repetitions, 2);
   EXPECT_TRUE(sts.stages[0].requires_stages.empty());
   EXPECT_EQ(sts.stages[1].requires_stages, std::vector<std::string>{"single_lift"});  // the stage before
   EXPECT_EQ(sts.stages[3].requires_stages, std::vector<std::string>{"single_lift"});  // as it says
   EXPECT_EQ(sts.stages[1].goal, "Discharging a ship");
+  EXPECT_EQ(sts.stages[4].exercise, "sts_hoist_brake_fault");  // bounds on the figures a fault stores
+  EXPECT_EQ(sts.stages[4].bounds.size(), 3u);
 }
 
 std::string route_error(const std::string& text) {

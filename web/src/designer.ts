@@ -388,8 +388,11 @@ export class DesignerForms {
   // at that second; a click on a marker shows its details.
   private events(x: Plain) {
     const events: Plain[] = Array.isArray(x.events) ? x.events : [];
+    // an event comes at an exercise time or so long after the first lift (drawn below the line, hollow)
+    const fromLift = (e: Plain) => e.after_lift_s !== undefined;
+    const when = (e: Plain) => Number(fromLift(e) ? e.after_lift_s : e.at_s);
     const limit = Number(x.rules?.time_limit_s ?? this.form?.rules.thresholds.find((f) => f.key === "time_limit_s")?.value ?? 600);
-    const span = Math.max(limit, ...events.map((e) => Number(e.at_s) + 10));
+    const span = Math.max(limit, ...events.map((e) => when(e) + 10));
     const W = 640, H = 64, left = 10, right = W - 10, y = 36;
     const tx = (t: number) => left + ((right - left) * t) / span;
     const kinds = this.form?.event_kinds ?? ["gust", "hoist_brake_fault", "limiter_fault"];
@@ -415,45 +418,54 @@ export class DesignerForms {
       const item: Plain = { at_s: t, kind: kind.value };
       if (kind.value === "gust") Object.assign(item, { amplitude_mps: 6, duration_s: 3 });
       if (kind.value === "landed_sensor_fault") item.corner = 0;
-      const at = events.filter((ev) => Number(ev.at_s) <= t).length;  // the loader wants them in time order
+      const at = events.filter((ev) => when(ev) <= t).length;  // the loader wants them in time order
       this.add(["events"], item, at);
       this.event = at;
       this.commit();
     });
     events.forEach((ev, k) => {
       const fault = ev.kind !== "gust";
-      const marker = svgEl("circle", { cx: tx(Number(ev.at_s)), cy: y, r: k === this.event ? 8 : 6,
-        fill: fault ? "#d62828" : "#1d70b8", stroke: "#123", "data-event": k, class: "event-marker" });
+      const colour = fault ? "#d62828" : "#1d70b8";
+      const marker = svgEl("circle", { cx: tx(when(ev)), cy: fromLift(ev) ? y + 12 : y, r: k === this.event ? 8 : 6,
+        fill: fromLift(ev) ? "#fff" : colour, stroke: fromLift(ev) ? colour : "#123", "stroke-width": fromLift(ev) ? 3 : 1,
+        "data-event": k, class: "event-marker" });
       const title = svgEl("title", {});
-      title.textContent = `${ev.at_s} s: ${EVENT_LABEL[ev.kind] ?? ev.kind}`;
+      title.textContent = `${when(ev)} s${fromLift(ev) ? " after the first lift" : ""}: ${EVENT_LABEL[ev.kind] ?? ev.kind}`;
       marker.append(title);
       marker.addEventListener("click", (e) => { e.stopPropagation(); this.event = k; this.render(); });
-      const label = svgEl("text", { x: tx(Number(ev.at_s)), y: 16, "font-size": 10, "text-anchor": "middle", fill: "#123" });
+      const label = svgEl("text", { x: tx(when(ev)), y: 16, "font-size": 10, "text-anchor": "middle", fill: "#123" });
       label.textContent = fault ? (EVENT_LABEL[ev.kind] ?? ev.kind).replace(" fault", "") : `+${ev.amplitude_mps ?? "?"} m/s`;
       svg.append(marker, label);
     });
     const parts: (Node | string)[] = [el("div", { className: "row" }, el("label", {}, "click the line to add ", kind),
-      el("span", { className: "hint" }, `${events.length} scripted; the dashed line is the time limit`)), svg];
+      el("span", { className: "hint" }, `${events.length} scripted; the dashed line is the time limit; hollow: timed from the first lift`)), svg];
     if (this.event >= events.length) this.event = -1;
     if (this.event >= 0) {
       const k = this.event, ev = events[k];
       const path = ["events", k];
-      const at = el("input", { id: "design-event-at", type: "number", min: "0", step: "1", value: String(ev.at_s) });
-      at.addEventListener("change", () => {
-        // moved in time: the list is kept in time order
+      const at = el("input", { id: "design-event-at", type: "number", min: "0", step: "1", value: String(when(ev)) });
+      const lifted = el("input", { id: "design-event-from-lift", type: "checkbox" });
+      lifted.checked = fromLift(ev);
+      const move = () => {
+        // moved in time (or to the other clock): the list is kept in time order, which keeps each clock's too
         const seq = this.seq(["events"]);
         const [node] = seq.items.splice(k, 1) as YAMLMap[];
-        node.set("at_s", Number(at.value));
+        const key = lifted.checked ? "after_lift_s" : "at_s", fresh = !node.has(key);
+        node.delete(lifted.checked ? "at_s" : "after_lift_s");
+        node.set(key, Number(at.value));
+        if (fresh) node.items.unshift(node.items.pop()!);  // the time first, as written by hand
         const rest: Plain[] = (seq.toJSON() as Plain[]);
-        const to = rest.filter((e) => Number(e.at_s) <= Number(at.value)).length;
+        const to = rest.filter((e) => when(e) <= Number(at.value)).length;
         seq.items.splice(to, 0, node);
         this.event = to;
         this.commit();
-      });
+      };
+      at.addEventListener("change", move);
+      lifted.addEventListener("change", move);
       const remove = el("button", { type: "button", id: "design-event-remove" }, "remove");
       remove.addEventListener("click", () => { this.event = -1; this.set(path, undefined); });
       const row = el("div", { className: "row", id: "design-event" }, el("strong", {}, EVENT_LABEL[ev.kind] ?? ev.kind),
-        el("label", {}, "at s ", at));
+        el("label", {}, "at s ", at), el("label", {}, lifted, " after the first lift"));
       if (ev.kind === "gust") row.append(this.number("+ m/s", [...path, "amplitude_mps"], { min: 0, step: 0.5 }),
         this.number("for s", [...path, "duration_s"], { min: 0, step: 0.5 }));
       if (ev.kind === "landed_sensor_fault") row.append(this.number("corner", [...path, "corner"], { min: 0, max: 3, step: 1 }));

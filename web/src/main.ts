@@ -112,6 +112,11 @@ function showState(m: StateMessage) {
   live.dataset.wind = wind.toFixed(2);
   text(live, `t ${m.time_s.toFixed(1)} s${m.held ? " (held)" : ""}   wind ${wind.toFixed(1)} m/s   ` +
     Object.entries(m.indicators).slice(0, 8).map(([k, v]) => `${k} ${v.toFixed(2)}`).join("   "));
+  // the faults in force, as the cab's fault lamps show them
+  const faults = Object.entries(m.indicators).filter(([k, v]) => /^lamp_.*fault$/.test(k) && v !== 0)
+    .map(([k]) => k.slice(5).replace(/_/g, " ").toUpperCase());
+  text($("live-faults"), faults.length ? `in force: ${faults.join(", ")}` : "");
+  $("live-faults").hidden = faults.length === 0;
   // the machine's continuous figures (lamps, buttons and flippers are on/off)
   const names = Object.keys(m.indicators).filter((n) => !/^(lamp_|flipper|horn|button|size)/.test(n)).slice(0, 5);
   if (!plot || names.join() !== plotted.join()) {

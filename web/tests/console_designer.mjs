@@ -175,6 +175,15 @@ try {
   for (const name of shippedNames) await load(name);
   check(pageErrors.length === 0 && (await page.locator("#design-forms fieldset").count()) >= 3,
     `all ${shippedNames.length} shipped exercises load into the forms (page errors: ${pageErrors.join("; ") || "none"})`);
+  // a fault timed from the first lift: a hollow marker below the line; ticking it back to the exercise clock
+  // rewrites the key
+  await load("sts_hoist_brake_fault");
+  await until("the lift-timed fault is drawn hollow", async () =>
+    (await page.locator('#design-timeline circle[fill="#fff"]').count()) === 1);
+  await page.locator("#design-timeline .event-marker").first().click();
+  await page.uncheck("#design-event-from-lift");
+  await until("it is written at_s", async () => /\{at_s: 8, kind: hoist_brake_fault/.test(await yaml()));
+  await until("and checked", async () => (await page.textContent("#design-result")).includes("sts_hoist_brake_fault: valid"));
 
   // what the designer may not overwrite, and who may not design
   writeFileSync(path.join(exercises, "handmade.yaml"), shipped.replace("name: sts_discharge", "name: handmade"));

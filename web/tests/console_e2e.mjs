@@ -1,7 +1,7 @@
 // End to end in a real browser (Debian chromium driven by playwright-core): an instructor logs in, starts an
-// exercise on a station process, changes the wind and sees it in the telemetry, injects a hoist brake
-// fault and sees the event, holds and resumes; a trainee is refused instructor actions and sees only their
-// own results. Usage: node console_e2e.mjs HARBOURSIM OUT_DIR DOMAIN
+// exercise on a station process, changes the wind and sees it in the telemetry, injects a hoist brake fault
+// and sees its lamp and the event, repairs it, holds and resumes; a trainee is refused instructor actions and
+// sees only their own results. Usage: node console_e2e.mjs HARBOURSIM OUT_DIR DOMAIN
 import { chromium } from "playwright-core";
 import { Harness, sleep } from "./harness.mjs";
 import { mkdtempSync, mkdirSync } from "node:fs";
@@ -87,6 +87,11 @@ try {
   check(calm < 12, `the wind before: ${calm} m/s`);
   await page.click("button[data-kind=hoist-brake-fault]");
   await until("the fault's event is logged", async () => (await page.textContent("#events")).includes("hoist-brake-fault by ines"));
+  await until("the cab's fault lamp shows in the live line", async () =>
+    (await page.textContent("#live-faults")).includes("BRAKE FAULT"));
+  await page.click("button[data-kind=clear-faults]");  // repaired before the autopilot takes the crane out of service
+  await until("the repair is logged and the lamp goes out", async () =>
+    (await page.textContent("#events")).includes("clear-faults by ines") && await page.isHidden("#live-faults"));
   await page.click("button[data-kind=emergency-stop]");
   await until("the emergency stop is logged", async () => (await page.textContent("#events")).includes("emergency-stop by ines"));
   await page.click("button[data-kind=release-emergency-stop]");

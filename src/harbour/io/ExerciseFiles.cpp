@@ -559,7 +559,12 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
       const YAML::Node ev = events[n];
       const std::string at = item("exercise.events", n);
       sim::ScriptedEvent event;
-      event.at_s = f.number(ev, "at_s", at, 0.0, 86400.0);
+      // at an exercise time, or timed from the machine's first lift
+      const bool after_lift = f.optional(ev, "after_lift_s", at).has_value();
+      if (after_lift && f.optional(ev, "at_s", at))
+        f.fail(ev["after_lift_s"], at + ".after_lift_s", "an event comes at_s or after_lift_s, not both");
+      const char* time_key = after_lift ? "after_lift_s" : "at_s";
+      event.at_s = f.number(ev, time_key, at, 0.0, 86400.0);
       const std::string kind = f.text(ev, "kind", at);
       if (kind == "gust") {
         event.kind = sim::ScriptedEvent::Kind::kGust;
@@ -578,9 +583,12 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
         f.fail(ev["kind"], at + ".kind",
                "'" + kind + "' is not gust, hoist_brake_fault, landed_sensor_fault or limiter_fault");
       }
-      if (!s.events.empty() && event.at_s < s.events.back().at_s)
-        f.fail(ev["at_s"], at + ".at_s", "events must be in time order");
-      s.events.push_back(event);
+      std::vector<sim::ScriptedEvent>& queue = after_lift ? s.lift_events : s.events;
+      if (!queue.empty() && event.at_s < queue.back().at_s)
+        f.fail(ev[time_key], at + "." + time_key,
+               after_lift ? "events after the first lift must be in time order"
+                          : "events must be in time order");
+      queue.push_back(event);
     }
   }
 
@@ -697,6 +705,7 @@ const std::vector<RuleField>& rule_thresholds() {
       {"collision_speed_mps", &R::collision_speed_mps, 0.0, 10.0, true},
       {"body_contact_impulse_ns", &R::body_contact_impulse_ns, 0.0, 1e7, true},
       {"horn_warning_s", &R::horn_warning_s, 0.0, 600.0, true},
+      {"load_drop_mps", &R::load_drop_mps, 0.0, 100.0, true},
       {"overtime_s", &R::overtime_s, 0.0, 3600.0, false},
       {"poor_bite_fill", &R::poor_bite_fill, 0.0, 1.0, false},
       {"harsh_jerk_mps3", &R::harsh_jerk_mps3, 0.0, 1000.0, true}};
@@ -725,7 +734,9 @@ const std::vector<RuleField>& rule_deductions() {
       {"jackknife", &R::points_jackknife, 0.0, 100.0, false},
       {"tip_over", &R::points_tip_over, 0.0, 100.0, false},
       {"speeding", &R::points_overspeed, 0.0, 100.0, false},
-      {"decimetre_above_trim", &R::points_per_trim_dm, 0.0, 100.0, false}};
+      {"decimetre_above_trim", &R::points_per_trim_dm, 0.0, 100.0, false},
+      {"load_drop", &R::points_load_drop, 0.0, 100.0, false},
+      {"lift_under_fault", &R::points_lift_under_fault, 0.0, 100.0, false}};
   return fields;
 }
 

@@ -27,6 +27,15 @@ std::vector<std::string> stored_metric_names(const sim::ExerciseSettings& exerci
   if (std::any_of(exercise.moves.begin(), exercise.moves.end(),
                   [](const sim::MoveGoal& m) { return m.heading_rad.has_value(); }))
     names.emplace_back("worst_placement_skew_deg");
+  // figures stored once a scripted hoist brake fault has come
+  const auto brake_fault = [](const sim::ScriptedEvent& e) {
+    return e.kind == sim::ScriptedEvent::Kind::kHoistBrakeFault;
+  };
+  const sim::ScenarioSettings& scenario = exercise.scenario;
+  if (std::any_of(scenario.events.begin(), scenario.events.end(), brake_fault) ||
+      std::any_of(scenario.lift_events.begin(), scenario.lift_events.end(), brake_fault))
+    for (const char* name : {"lifts_under_fault", "stopped_after_fault", "fault_set_down_s"})
+      names.emplace_back(name);
   for (const char* skill : {"skill_safety", "skill_precision", "skill_productivity"})
     names.emplace_back(skill);
   return names;

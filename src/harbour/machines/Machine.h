@@ -140,6 +140,8 @@ class Machine {
   virtual bool has_fault(MachineFault fault) const = 0;
   virtual void inject_fault(MachineFault fault, int detail) = 0;
   virtual void clear_faults() = 0;
+  /// Whether `fault` is in force now (its lamp in the cab is lit: the machines monitor their brakes).
+  virtual bool fault_active(MachineFault fault) const = 0;
 
   /// Its dynamic state beyond the physics world's bodies (drives, ropes, latches, faults).
   virtual void hash_into(core::StateHash& hash) const = 0;

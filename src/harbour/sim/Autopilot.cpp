@@ -293,6 +293,15 @@ StsControls Autopilot::decide(const Simulation& simulation) {
   const SpreaderHoist& hoist = crane.spreader_hoist();
   const core::Vec3 spreader = simulation.world().pose(hoist.spreader_body()).position;
   const double highest_travel = std::min(kTravelHeight_m, hoist.upper_limit_m() - kBelowUpperLimit_m);
+  if (simulation.machine().fault_active(MachineFault::kHoistBrake) &&
+      (!carrying_ || defects_.stop_at_fault)) {
+    // the brake fault lamp: with the load down (the move in hand finished under power), set the empty
+    // spreader down and stop the crane; a panicking operator stops at once and the load falls
+    const bool resting = hoist.hoisted_load_n() < 0.5 * hoist.spreader_mass_kg() * 9.80665;
+    in.emergency_stop = defects_.stop_at_fault || resting;
+    in.hoist = in.emergency_stop ? 0.0 : -kSlowLever;
+    return in;
+  }
   if (done()) {  // clear the truck: raise the empty spreader to travel height
     in.hoist = spreader.z < highest_travel ? 1.0 : 0.0;
     return in;

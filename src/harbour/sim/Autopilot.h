@@ -15,6 +15,7 @@ struct OperatorDefects {
   bool forget_lock_once = false;  ///< hoist away from the first pick-up without locking, then come back
   bool never_steer = false;       ///< a gantry on tyres: leave the steering alone, whatever its bias
   bool skip_horn = false;         ///< travel the gantry without sounding the horn first
+  bool stop_at_fault = false;     ///< press the emergency stop as the hoist brake fault lamp lights
 };
 
 /// A scripted operator that performs an exercise's moves: sway-aware travel (levers ramped up and down over

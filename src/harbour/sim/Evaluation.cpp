@@ -97,6 +97,8 @@ void Evaluator::count_collision(const physics::ImpactEvent& e) {
 
 void Evaluator::observe(const Simulation& simulation, const Controls& controls) {
   metrics_.time_s = simulation.time_s();
+  const int stop = simulation.control_table().find("emergency_stop");
+  observe_hoist_fault(simulation, stop >= 0 && controls.value[static_cast<std::size_t>(stop)] != 0.0);
   if (const auto* sts = dynamic_cast<const StsCrane*>(&simulation.machine()))
     observe_containers(simulation, controls, *sts);
   else
@@ -108,6 +110,37 @@ void Evaluator::observe(const Simulation& simulation, const Controls& controls) 
   metrics_.vehicle = tally.vehicle;
   metrics_.jackknifes = static_cast<int>(tally.jackknifes);
   metrics_.tip_overs = static_cast<int>(tally.tip_overs);
+}
+
+void Evaluator::observe_hoist_fault(const Simulation& simulation, bool emergency_stop) {
+  const Machine& machine = simulation.machine();
+  // falling: the attachment sinking faster than any hoist lowers, over 0.1 s (contact jitter is not a fall)
+  if (simulation.time_s() + 1e-9 >= next_drop_sample_s_) {
+    const double z = machine.attachment_bottom_z_m();
+    if (drop_primed_) {
+      const bool falling = (drop_sample_z_m_ - z) / kAxisSample_s > exercise_.rules.load_drop_mps;
+      if (falling && !dropping_) ++metrics_.load_drops;
+      dropping_ = falling;
+    }
+    drop_sample_z_m_ = z;
+    drop_primed_ = true;
+    next_drop_sample_s_ = simulation.time_s() + kAxisSample_s;
+  }
+  // the hoist brake fault's procedure: the load landed under power, nothing lifted again, the machine stopped
+  bool suspended = machine.held_item().has_value();
+  if (simulation.bulk() && simulation.bulk_grab() >= 0)
+    suspended = suspended || simulation.bulk()->grab(simulation.bulk_grab()).load_m3 > 0.0;
+  const bool fault = machine.fault_active(MachineFault::kHoistBrake);
+  if (fault) {
+    if (!metrics_.hoist_fault && suspended) fault_since_s_ = metrics_.time_s;
+    metrics_.hoist_fault = true;
+    if (suspended && !suspended_) ++metrics_.lifts_under_fault;
+    if (!suspended && suspended_ && fault_since_s_ >= 0.0 && metrics_.fault_set_down_s < 0.0)
+      metrics_.fault_set_down_s = metrics_.time_s - fault_since_s_;
+  }
+  stopping_safely_ = fault && !suspended;
+  if (stopping_safely_ && emergency_stop) metrics_.stopped_after_fault = true;
+  suspended_ = suspended;
 }
 
 void Evaluator::observe_speed_zones(const Simulation& simulation) {
@@ -164,7 +197,8 @@ bool Evaluator::goals_met() const {
 }
 
 bool Evaluator::finished() const {
-  return (!exercise_.moves.empty() || exercise_.deliver || exercise_.trim) && goals_met();
+  return metrics_.stopped_after_fault ||
+         ((!exercise_.moves.empty() || exercise_.deliver || exercise_.trim) && goals_met());
 }
 
 double pile_top_m(const bulk::BulkWorld& bulk, int grid) {
@@ -245,7 +279,7 @@ void Evaluator::observe_any_machine(const Simulation& simulation, const Controls
     if (e.kind == cable::CableEventKind::kOverload) ++metrics_.overloads;
   const int stop = simulation.control_table().find("emergency_stop");
   const bool estop = stop >= 0 && controls.value[static_cast<std::size_t>(stop)] != 0.0;
-  if (estop && !was_estop_) ++metrics_.emergency_stops;
+  if (estop && !was_estop_ && !stopping_safely_) ++metrics_.emergency_stops;
   was_estop_ = estop;
   if (const auto* crane = dynamic_cast<const GantryCrane*>(&simulation.machine())) {
     const int horn = simulation.control_table().find("horn");
@@ -325,7 +359,7 @@ void Evaluator::observe_containers(const Simulation& simulation, const Controls&
       crane.gantry_drive().limit_hits() + crane.trolley_drive().limit_hits() + crane.hoist_limit_hits();
   metrics_.limit_hits += static_cast<int>(hits - limit_hits_seen_);
   limit_hits_seen_ = hits;
-  if (cab.emergency_stop && !was_estop_) ++metrics_.emergency_stops;
+  if (cab.emergency_stop && !was_estop_ && !stopping_safely_) ++metrics_.emergency_stops;
   was_estop_ = cab.emergency_stop;
   observe_gantry_warning(cab.horn, crane.gantry_drive().reference_mps() != 0.0, crane.gantry_position_m());
   const double drum_power = -crane.hoist().drum_rope_torque(0) * crane.hoist().drum_rope_speed(0) /
@@ -368,8 +402,14 @@ Score Evaluator::score() const {
   deduct("emergency stop", Skill::kSafety, metrics_.emergency_stops, r.points_emergency_stop);
   deduct("gantry travel without the horn", Skill::kSafety, metrics_.unwarned_gantry_travel,
          r.points_unwarned_travel);
+  deduct("load dropped", Skill::kSafety, metrics_.load_drops, r.points_load_drop);
+  deduct("lift with the hoist brake failed", Skill::kSafety, metrics_.lifts_under_fault,
+         r.points_lift_under_fault);
+  // a machine taken out of service after a fault, as the procedure says, is excused the goals left
+  const bool excused = metrics_.stopped_after_fault;
   deduct("move not completed", Skill::kProductivity,
-         static_cast<int>(exercise_.moves.size()) - metrics_.moves_completed, r.points_per_move_missing);
+         excused ? 0 : static_cast<int>(exercise_.moves.size()) - metrics_.moves_completed,
+         r.points_per_move_missing);
   deduct("discharge while swinging", Skill::kPrecision, metrics_.swinging_releases, r.points_sway);
   deduct("tonne spilled", Skill::kPrecision, static_cast<int>(std::ceil(metrics_.spilled_t - 1e-9)),
          r.points_per_spilled_t);
@@ -383,12 +423,12 @@ Score Evaluator::score() const {
   for (const Metrics::Smoothness& axis : metrics_.smoothness)
     harsh += axis.harsh_moves;
   deduct("harsh move", Skill::kPrecision, harsh, r.points_harsh_move);
-  if (exercise_.deliver)
+  if (exercise_.deliver && !excused)
     deduct(
         "tonne short of the delivery", Skill::kProductivity,
         static_cast<int>(std::ceil(std::max(0.0, exercise_.deliver->tonnes - metrics_.delivered_t) - 1e-9)),
         r.points_per_missing_t);
-  if (exercise_.trim)
+  if (exercise_.trim && !excused)
     deduct(
         "decimetre above the trim height", Skill::kProductivity,
         static_cast<int>(std::ceil(std::max(0.0, metrics_.pile_top_m - exercise_.trim->top_m) * 10.0 - 1e-9)),
@@ -399,7 +439,7 @@ Score Evaluator::score() const {
   s.total = std::max(0.0, s.total);
   for (double& skill : s.skills)
     skill = std::max(0.0, skill);
-  s.passed = s.total >= r.pass_score && goals_met();
+  s.passed = s.total >= r.pass_score && (goals_met() || excused);
   return s;
 }
 
@@ -426,6 +466,7 @@ std::vector<std::pair<std::string, double>> Metrics::rows() const {
                                                    {"limit_hits", limit_hits},
                                                    {"emergency_stops", emergency_stops},
                                                    {"unwarned_gantry_travel", unwarned_gantry_travel},
+                                                   {"load_drops", load_drops},
                                                    {"hoist_energy_j", hoist_energy_j},
                                                    {"travel_energy_j", travel_energy_j}};
   for (const Smoothness& axis : smoothness) {
@@ -438,6 +479,11 @@ std::vector<std::pair<std::string, double>> Metrics::rows() const {
   if (!placement_skew_deg.empty())
     r.emplace_back("worst_placement_skew_deg",
                    *std::max_element(placement_skew_deg.begin(), placement_skew_deg.end()));
+  if (hoist_fault) {
+    r.emplace_back("lifts_under_fault", lifts_under_fault);
+    r.emplace_back("stopped_after_fault", stopped_after_fault ? 1.0 : 0.0);
+    if (fault_set_down_s >= 0.0) r.emplace_back("fault_set_down_s", fault_set_down_s);
+  }
   if (vehicle) {
     r.emplace_back("jackknifes", jackknifes);
     r.emplace_back("tip_overs", tip_overs);
@@ -484,7 +530,9 @@ std::vector<CountedEvent> counted_events(const Metrics& before, const Metrics& n
       {"swinging_release", before.swinging_releases, now.swinging_releases, 0.0},
       {"jackknife", before.jackknifes, now.jackknifes, 0.0},
       {"tip_over", before.tip_overs, now.tip_overs, 0.0},
-      {"speeding", before.overspeeds, now.overspeeds, now.worst_overspeed_kmh}};
+      {"speeding", before.overspeeds, now.overspeeds, now.worst_overspeed_kmh},
+      {"load_drop", before.load_drops, now.load_drops, 0.0},
+      {"lift_under_fault", before.lifts_under_fault, now.lifts_under_fault, 0.0}};
   std::vector<CountedEvent> events;
   for (const auto& [kind, was, is, value] : counters)
     for (int n = was; n < is; ++n)

@@ -34,6 +34,9 @@ struct EvaluationRules {
   double sway_limit_m = 0.25;  ///< [m] spreader offset from its rest position at a landing counted as swaying
   double horn_warning_s = 5.0;   ///< [s] gantry travel must start within this long after the horn sounded
   double gantry_travel_m = 1.0;  ///< [m] a gantry motion longer than this is a travel (needs the horn)
+  /// [m/s] the load-handling attachment sinking faster than this over 0.1 s is falling (no hoist lowers
+  /// this fast: an emergency stop with the hoist brake failed lets the rope run free)
+  double load_drop_mps = 4.0;
   double points_collision = 10.0;
   double points_hard_landing = 5.0;
   double points_sway = 2.0;
@@ -42,6 +45,8 @@ struct EvaluationRules {
   double points_limit_hit = 2.0;
   double points_emergency_stop = 5.0;
   double points_unwarned_travel = 2.0;
+  double points_load_drop = 30.0;
+  double points_lift_under_fault = 20.0;  ///< lifting again with the hoist brake failed
   double points_per_move_missing = 20.0;
   double points_per_minute_over = 5.0;
   // bulk handling
@@ -120,8 +125,16 @@ struct Metrics {
   int limit_hits = 0;
   int emergency_stops = 0;
   int unwarned_gantry_travel = 0;  ///< gantry travel started without the horn first
-  double hoist_energy_j = 0.0;     ///< [J] mechanical work at the hoist drum (positive part)
-  double travel_energy_j = 0.0;    ///< [J] mechanical work of the gantry and trolley drives (positive parts)
+  int load_drops = 0;              ///< onsets of the load (or the empty attachment) falling
+  /// A hoist brake fault: in force during the attempt; lifts (a box taken, a bite closed on) while it was;
+  /// the seconds from its onset to the load set down (-1: no load hung then); the machine stopped with its
+  /// emergency stop once the load was down (the procedure: the attempt ends, the moves left are excused)
+  bool hoist_fault = false;
+  int lifts_under_fault = 0;
+  double fault_set_down_s = -1.0;
+  bool stopped_after_fault = false;
+  double hoist_energy_j = 0.0;   ///< [J] mechanical work at the hoist drum (positive part)
+  double travel_energy_j = 0.0;  ///< [J] mechanical work of the gantry and trolley drives (positive parts)
   // bulk handling (exercises with bulk material)
   bool bulk = false;
   double delivered_t = 0.0;       ///< [t] dropped into the goal's hopper
@@ -212,6 +225,9 @@ class Evaluator {
   void observe_moves(const Simulation& simulation, std::optional<physics::BodyId> held);
   void observe_smoothness(const Simulation& simulation);
   void observe_speed_zones(const Simulation& simulation);
+  /// A falling load, and the hoist brake fault procedure: land the load under power, lift nothing more,
+  /// then stop the machine (docs/evaluation.md).
+  void observe_hoist_fault(const Simulation& simulation, bool emergency_stop);
   bool goals_met() const;
   int goal_of(physics::BodyId body, const Simulation& simulation) const;
   double sway_m(const Simulation& simulation, std::optional<physics::BodyId> hanging_box) const;
@@ -241,6 +257,11 @@ class Evaluator {
   double next_pile_measure_s_ = 0.0;
   bool trimmed_ = false;  // the trim goal's pile measured down to its goal with the material placed
   bool speeding_ = false;
+  double next_drop_sample_s_ = 0.0, drop_sample_z_m_ = 0.0;
+  bool drop_primed_ = false, dropping_ = false;
+  bool suspended_ = false;        // a load hung on the machine at the last step
+  double fault_since_s_ = -1.0;   // when the hoist brake fault came with a load hanging
+  bool stopping_safely_ = false;  // the brake failed with the load down: an emergency stop is the procedure
 };
 
 }  // namespace harbour::sim

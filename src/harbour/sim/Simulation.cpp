@@ -12,7 +12,8 @@ namespace harbour::sim {
 namespace {
 constexpr const char* kEmergencyStopControl = "emergency_stop";  // every machine's (its control table)
 constexpr std::uint32_t kSimulationSectionV2 = 0x53494D32;       // "SIM2": with solver-message warnings
-constexpr std::uint32_t kSimulationSection = 0x53494D33;         // "SIM3": and the instructor's stop
+constexpr std::uint32_t kSimulationSectionV3 = 0x53494D33;       // "SIM3": and the instructor's stop
+constexpr std::uint32_t kSimulationSection = 0x53494D34;         // "SIM4": and the events from the first lift
 }  // namespace
 
 const char* machine_kind(const MachineSetup& setup) {
@@ -126,26 +127,39 @@ Simulation::Simulation(const ScenarioSettings& scenario)
 void Simulation::apply_due_events() {
   while (next_event_ < scenario_.events.size() && scenario_.events[next_event_].at_s <= clock_.time_s()) {
     const ScriptedEvent& e = scenario_.events[next_event_++];
-    switch (e.kind) {
-      case ScriptedEvent::Kind::kGust: {
-        Gust g = e.gust;
-        g.start_s = e.at_s;
-        weather_.add_gust(g);
-        break;
-      }
-      case ScriptedEvent::Kind::kHoistBrakeFault:
-        if (machine_->has_fault(MachineFault::kHoistBrake))
-          machine_->inject_fault(MachineFault::kHoistBrake, 0);
-        break;
-      case ScriptedEvent::Kind::kLandedSensorFault:
-        if (machine_->has_fault(MachineFault::kLandedSensor))
-          machine_->inject_fault(MachineFault::kLandedSensor, e.corner);
-        break;
-      case ScriptedEvent::Kind::kLimiterFault:
-        if (machine_->has_fault(MachineFault::kLoadMomentLimiter))
-          machine_->inject_fault(MachineFault::kLoadMomentLimiter, 0);
-        break;
+    apply_event(e, e.at_s);
+  }
+  if (scenario_.lift_events.empty()) return;
+  if (first_lift_step_ < 0 && machine_->held_item()) first_lift_step_ = clock_.steps();
+  if (first_lift_step_ < 0) return;
+  const double lifted_s = static_cast<double>(clock_.steps() - first_lift_step_) * kStep_s;
+  while (next_lift_event_ < scenario_.lift_events.size() &&
+         scenario_.lift_events[next_lift_event_].at_s <= lifted_s) {
+    const ScriptedEvent& e = scenario_.lift_events[next_lift_event_++];
+    apply_event(e, static_cast<double>(first_lift_step_) * kStep_s + e.at_s);
+  }
+}
+
+void Simulation::apply_event(const ScriptedEvent& e, double at_s) {
+  switch (e.kind) {
+    case ScriptedEvent::Kind::kGust: {
+      Gust g = e.gust;
+      g.start_s = at_s;
+      weather_.add_gust(g);
+      break;
     }
+    case ScriptedEvent::Kind::kHoistBrakeFault:
+      if (machine_->has_fault(MachineFault::kHoistBrake))
+        machine_->inject_fault(MachineFault::kHoistBrake, 0);
+      break;
+    case ScriptedEvent::Kind::kLandedSensorFault:
+      if (machine_->has_fault(MachineFault::kLandedSensor))
+        machine_->inject_fault(MachineFault::kLandedSensor, e.corner);
+      break;
+    case ScriptedEvent::Kind::kLimiterFault:
+      if (machine_->has_fault(MachineFault::kLoadMomentLimiter))
+        machine_->inject_fault(MachineFault::kLoadMomentLimiter, 0);
+      break;
   }
 }
 
@@ -520,6 +534,10 @@ std::uint64_t Simulation::state_hash() const {
   if (bulk_) hash.add(bulk_->state_hash());
   hash.add(weather_.turbulence_mps());
   hash.add(next_event_);
+  if (!scenario_.lift_events.empty()) {  // (scenarios without them hash as they did)
+    hash.add(first_lift_step_);
+    hash.add(next_lift_event_);
+  }
   if (instructor_stop_) hash.add(std::uint8_t{1});  // (states before the stop existed hash as they did)
   return hash.value();
 }
@@ -532,6 +550,8 @@ std::vector<std::uint8_t> Simulation::save_state() const {
   out.put(next_event_);
   out.put(warnings_);
   out.put(instructor_stop_);
+  out.put(first_lift_step_);
+  out.put(next_lift_event_);
   out.put(std::vector<std::uint8_t>(secured_.begin(), secured_.end()));
   world_->save_state(out);
   machine_->save_state(out);
@@ -545,7 +565,7 @@ std::vector<std::uint8_t> Simulation::save_state() const {
 void Simulation::restore_state(const std::vector<std::uint8_t>& state) {
   core::StateReader in(state);
   const auto section = in.get<std::uint32_t>();
-  if (section != kSimulationSection && section != kSimulationSectionV2)
+  if (section != kSimulationSection && section != kSimulationSectionV3 && section != kSimulationSectionV2)
     throw core::StateError("saved state does not match this simulation at its simulation section");
   clock_.reset(in.get<std::int64_t>());
   if (ramp_) ramp_->move_to(clock_.time_s());
@@ -554,7 +574,15 @@ void Simulation::restore_state(const std::vector<std::uint8_t>& state) {
   if (next_event_ > scenario_.events.size())
     throw core::StateError("saved state is past this scenario's events");
   in.get(warnings_);
-  instructor_stop_ = section == kSimulationSection ? in.get<bool>() : false;
+  instructor_stop_ = section != kSimulationSectionV2 ? in.get<bool>() : false;
+  first_lift_step_ = -1;
+  next_lift_event_ = 0;
+  if (section == kSimulationSection) {
+    in.get(first_lift_step_);
+    in.get(next_lift_event_);
+    if (next_lift_event_ > scenario_.lift_events.size() || first_lift_step_ > clock_.steps())
+      throw core::StateError("saved state is past this scenario's events from the first lift");
+  }
   std::vector<std::uint8_t> secured;
   in.get(secured, static_cast<std::int64_t>(secured_.size()));
   secured_.assign(secured.begin(), secured.end());

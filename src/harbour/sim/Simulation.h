@@ -62,7 +62,7 @@ struct GroundMarking {
 struct ScriptedEvent {
   enum class Kind { kGust, kHoistBrakeFault, kLandedSensorFault, kLimiterFault };
   Kind kind = Kind::kGust;
-  double at_s = 0.0;  ///< [s] exercise time
+  double at_s = 0.0;  ///< [s] exercise time (for ScenarioSettings::lift_events: since the first lift)
   Gust gust;          ///< kGust (it starts at at_s)
   int corner = 0;     ///< kLandedSensorFault: which twistlock corner (0-3)
 };
@@ -149,7 +149,10 @@ struct ScenarioSettings {
   std::optional<YardBlock> yard_block;  ///< a container block's ground slots (bay, row, tier)
   std::vector<ContainerPlacement> containers;
   WeatherSettings weather;
-  std::vector<ScriptedEvent> events;    ///< in time order
+  std::vector<ScriptedEvent> events;  ///< in time order
+  /// Events timed from the machine's first lift (the step it first holds an item), in time order: a fault
+  /// that is to come with a load hanging, however long the trainee took to pick it up.
+  std::vector<ScriptedEvent> lift_events;
   std::optional<bulk::BulkScene> bulk;  ///< bulk material: piles, hoppers, holds
   double drag_coefficient =
       1.0;                 ///< [-] boxes and spreader (published 0.6-1.2 by face and stacking; assumed)
@@ -233,6 +236,7 @@ class Simulation {
   void update_cab_cues();
   void move_secured_cargo();
   void apply_due_events();
+  void apply_event(const ScriptedEvent& event, double at_s);
   void apply_wind();
   void step_bulk();
   bulk::CarrierMotion vessel_motion() const;
@@ -255,6 +259,8 @@ class Simulation {
   std::unique_ptr<bulk::BulkWorld> bulk_;
   int bulk_grab_ = -1;  // the machine's tool in the bulk world
   std::size_t next_event_ = 0;
+  std::int64_t first_lift_step_ = -1;  // the step the machine first held an item (with lift events only)
+  std::size_t next_lift_event_ = 0;
   bool held_ = false;
   bool instructor_stop_ = false;  // the instructor holds the machine's emergency stop pressed
   core::Warnings warnings_;

@@ -137,6 +137,9 @@ class MobileHarbourCrane final : public Machine {
   bool has_fault(MachineFault fault) const override { return fault == MachineFault::kHoistBrake; }
   void inject_fault(MachineFault fault, int detail) override;
   void clear_faults() override { hoist_brake_fault_ = false; }
+  bool fault_active(MachineFault fault) const override {
+    return fault == MachineFault::kHoistBrake && hoist_brake_fault_;
+  }
   void hash_into(core::StateHash& hash) const override;
   void save_state(core::StateWriter& out) const override;
   void restore_state(core::StateReader& in) override;

@@ -69,6 +69,8 @@ class SpreaderHoist {
   bool at_limit() const { return limits_.at_limit(); }
 
   void inject_brake_fault() { brake_fault_ = true; }
+  bool brake_fault() const { return brake_fault_; }
+  bool landed_sensor_fault() const { return landed_sensor_fault_ >= 0; }
   void inject_landed_sensor_fault(int corner) { landed_sensor_fault_ = corner; }
   void clear_faults();
 

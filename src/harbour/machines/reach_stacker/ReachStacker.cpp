@@ -258,6 +258,12 @@ void ReachStacker::inject_fault(MachineFault fault, int detail) {
   if (fault == MachineFault::kLandedSensor) landed_sensor_fault_ = detail;
 }
 
+bool ReachStacker::fault_active(MachineFault fault) const {
+  return fault == MachineFault::kLoadMomentLimiter ? limiter_fault_
+         : fault == MachineFault::kLandedSensor    ? landed_sensor_fault_ >= 0
+                                                   : false;
+}
+
 void ReachStacker::clear_faults() {
   limiter_fault_ = false;
   landed_sensor_fault_ = -1;

@@ -60,6 +60,7 @@ class ReachStacker final : public Machine {
   bool has_fault(MachineFault fault) const override;
   void inject_fault(MachineFault fault, int detail) override;
   void clear_faults() override;
+  bool fault_active(MachineFault fault) const override;
   void hash_into(core::StateHash& hash) const override;
   void save_state(core::StateWriter& out) const override;
   void restore_state(core::StateReader& in) override;

@@ -259,8 +259,8 @@ Controls RubberTyredGantry::crane_controls(const StsControls& in) const {
 namespace {
 // the indicators an RTG publishes, in snapshot order
 constexpr const char* kRtgIndicators[] = {
-    "gantry_mps",  "trolley_x_m", "wheel_turn_deg", "lane_offset_m", "spreader_size_ft",
-    "lamp_landed", "lamp_locked", "lamp_unlocked",  "horn",          "load_t"};
+    "gantry_mps",  "trolley_x_m",   "wheel_turn_deg", "lane_offset_m", "spreader_size_ft", "lamp_landed",
+    "lamp_locked", "lamp_unlocked", "horn",           "load_t",        "lamp_brake_fault"};
 }  // namespace
 
 void RubberTyredGantry::describe(SceneDescription& d) const {
@@ -282,11 +282,17 @@ int RubberTyredGantry::publish(Snapshot& s, int first) const {
   publish_ropes(rig_->hoist(), s);
   const SpreaderState spreader = rig_->spreader_state();
   const TwistlockLamps lamps = rig_->locks().twistlocks().lamps();
-  const double values[] = {travel_speed_mps(),       trolley_position_m(),
-                           90.0 * wheel_turn_,       lane_offset_m(),
-                           size_ft(spreader.size),   lamps.landed ? 1.0 : 0.0,
-                           lamps.locked ? 1.0 : 0.0, lamps.unlocked ? 1.0 : 0.0,
-                           horn_ ? 1.0 : 0.0,        rig_->hoisted_load_n() / kG / 1000.0};
+  const double values[] = {travel_speed_mps(),
+                           trolley_position_m(),
+                           90.0 * wheel_turn_,
+                           lane_offset_m(),
+                           size_ft(spreader.size),
+                           lamps.landed ? 1.0 : 0.0,
+                           lamps.locked ? 1.0 : 0.0,
+                           lamps.unlocked ? 1.0 : 0.0,
+                           horn_ ? 1.0 : 0.0,
+                           rig_->hoisted_load_n() / kG / 1000.0,
+                           rig_->brake_fault() ? 1.0 : 0.0};
   static_assert(std::size(values) == std::size(kRtgIndicators));
   s.indicator_count = static_cast<int>(std::size(values));
   std::copy(std::begin(values), std::end(values), s.indicators.begin());

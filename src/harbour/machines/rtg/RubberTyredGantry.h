@@ -92,6 +92,11 @@ class RubberTyredGantry final : public Machine, public GantryCrane {
   bool has_fault(MachineFault fault) const override { return fault != MachineFault::kLoadMomentLimiter; }
   void inject_fault(MachineFault fault, int detail) override;
   void clear_faults() override { rig_->clear_faults(); }
+  bool fault_active(MachineFault fault) const override {
+    return fault == MachineFault::kHoistBrake     ? rig_->brake_fault()
+           : fault == MachineFault::kLandedSensor ? rig_->landed_sensor_fault()
+                                                  : false;
+  }
   void hash_into(core::StateHash& hash) const override;
   void save_state(core::StateWriter& out) const override;
   void restore_state(core::StateReader& in) override;

@@ -175,9 +175,9 @@ void StsCrane::step(const StsControls& c, std::span<const ContainerRef> containe
 namespace {
 // the indicators an STS publishes, in snapshot order
 constexpr const char* kStsIndicators[] = {
-    "gantry_y_m", "trolley_x_m", "boom_angle_rad", "spreader_length_m", "spreader_size_ft", "flipper_1",
-    "flipper_2",  "flipper_3",   "flipper_4",      "lamp_landed",       "lamp_locked",      "lamp_unlocked",
-    "horn",       "load_t"};
+    "gantry_y_m", "trolley_x_m", "boom_angle_rad",  "spreader_length_m", "spreader_size_ft", "flipper_1",
+    "flipper_2",  "flipper_3",   "flipper_4",       "lamp_landed",       "lamp_locked",      "lamp_unlocked",
+    "horn",       "load_t",      "lamp_brake_fault"};
 }  // namespace
 
 void StsCrane::describe(SceneDescription& d) const {
@@ -213,7 +213,8 @@ int StsCrane::publish(Snapshot& s, int first) const {
                            lamps.locked ? 1.0 : 0.0,
                            lamps.unlocked ? 1.0 : 0.0,
                            horn_ ? 1.0 : 0.0,
-                           hoisted_load_n() / 9.80665 / 1000.0};
+                           hoisted_load_n() / 9.80665 / 1000.0,
+                           rig_->brake_fault() ? 1.0 : 0.0};
   static_assert(std::size(values) == std::size(kStsIndicators));
   s.indicator_count = static_cast<int>(std::size(values));
   std::copy(std::begin(values), std::end(values), s.indicators.begin());
@@ -240,6 +241,12 @@ void StsCrane::inject_fault(MachineFault fault, int detail) {
 
 void StsCrane::clear_faults() {
   rig_->clear_faults();
+}
+
+bool StsCrane::fault_active(MachineFault fault) const {
+  return fault == MachineFault::kHoistBrake     ? rig_->brake_fault()
+         : fault == MachineFault::kLandedSensor ? rig_->landed_sensor_fault()
+                                                : false;
 }
 
 void StsCrane::hash_into(core::StateHash& hash) const {

@@ -112,6 +112,7 @@ class StsCrane final : public Machine, public GantryCrane {
   bool has_fault(MachineFault fault) const override { return fault != MachineFault::kLoadMomentLimiter; }
   void inject_fault(MachineFault fault, int detail) override;
   void clear_faults() override;
+  bool fault_active(MachineFault fault) const override;
   void hash_into(core::StateHash& hash) const override;
   // GantryCrane (the gantry's slider starts at x = 0)
   double gantry_y_m() const override { return gantry_position_m(); }

@@ -103,6 +103,7 @@ class TerminalTractor final : public Machine {
   bool has_fault(MachineFault) const override { return false; }
   void inject_fault(MachineFault, int) override {}
   void clear_faults() override {}
+  bool fault_active(MachineFault) const override { return false; }
   void hash_into(core::StateHash& hash) const override;
   void save_state(core::StateWriter& out) const override;
   void restore_state(core::StateReader& in) override;
