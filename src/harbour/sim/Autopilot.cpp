@@ -293,11 +293,12 @@ StsControls Autopilot::decide(const Simulation& simulation) {
   const SpreaderHoist& hoist = crane.spreader_hoist();
   const core::Vec3 spreader = simulation.world().pose(hoist.spreader_body()).position;
   const double highest_travel = std::min(kTravelHeight_m, hoist.upper_limit_m() - kBelowUpperLimit_m);
+  const double spreader_weight_n = hoist.spreader_mass_kg() * 9.80665;
   if (simulation.machine().fault_active(MachineFault::kHoistBrake) &&
       (!carrying_ || defects_.stop_at_fault)) {
     // the brake fault lamp: with the load down (the move in hand finished under power), set the empty
     // spreader down and stop the crane; a panicking operator stops at once and the load falls
-    const bool resting = hoist.hoisted_load_n() < 0.5 * hoist.spreader_mass_kg() * 9.80665;
+    const bool resting = hoist.hoisted_load_n() < 0.5 * spreader_weight_n;
     in.emergency_stop = defects_.stop_at_fault || resting;
     in.hoist = in.emergency_stop ? 0.0 : -kSlowLever;
     return in;
@@ -311,7 +312,6 @@ StsControls Autopilot::decide(const Simulation& simulation) {
   const double travel_height = simulation.vessel()
                                    ? highest_travel
                                    : std::min(highest_travel, height_over_stacks(simulation, destination));
-  const double spreader_weight_n = hoist.spreader_mass_kg() * 9.80665;
   const double hoist_scale = std::max(1.0, kTunedHoistSpeed_mps / hoist.full_hoist_speed_mps());
   const auto hoist_lever = [&](double lever) { return std::clamp(lever * hoist_scale, -1.0, 1.0); };
   const double period =

@@ -98,11 +98,12 @@ void Evaluator::count_collision(const physics::ImpactEvent& e) {
 void Evaluator::observe(const Simulation& simulation, const Controls& controls) {
   metrics_.time_s = simulation.time_s();
   const int stop = simulation.control_table().find("emergency_stop");
-  observe_hoist_fault(simulation, stop >= 0 && controls.value[static_cast<std::size_t>(stop)] != 0.0);
+  const bool estop = stop >= 0 && controls.value[static_cast<std::size_t>(stop)] != 0.0;
+  observe_hoist_fault(simulation, estop);
   if (const auto* sts = dynamic_cast<const StsCrane*>(&simulation.machine()))
     observe_containers(simulation, controls, *sts);
   else
-    observe_any_machine(simulation, controls);
+    observe_any_machine(simulation, controls, estop);
   if (simulation.bulk()) observe_bulk(simulation);
   observe_smoothness(simulation);
   observe_speed_zones(simulation);
@@ -247,7 +248,7 @@ void Evaluator::observe_bulk(const Simulation& simulation) {
   if (!discharging_) bite_peak_m3_ = std::max(bite_peak_m3_, load);
 }
 
-void Evaluator::observe_any_machine(const Simulation& simulation, const Controls& controls) {
+void Evaluator::observe_any_machine(const Simulation& simulation, const Controls& controls, bool estop) {
   // what every machine shows: its impacts (the load it carries set down near its target, or its empty
   // gripper set down on the item it is to pick up, is a landing), its moves, rope overloads, emergency stops
   // and, on a gantry crane, gantry travel without the horn
@@ -277,8 +278,6 @@ void Evaluator::observe_any_machine(const Simulation& simulation, const Controls
   metrics_.twistlock_misuse += static_cast<int>(simulation.events().twistlocks.size());
   for (const cable::CableEvent& e : simulation.events().ropes)
     if (e.kind == cable::CableEventKind::kOverload) ++metrics_.overloads;
-  const int stop = simulation.control_table().find("emergency_stop");
-  const bool estop = stop >= 0 && controls.value[static_cast<std::size_t>(stop)] != 0.0;
   if (estop && !was_estop_ && !stopping_safely_) ++metrics_.emergency_stops;
   was_estop_ = estop;
   if (const auto* crane = dynamic_cast<const GantryCrane*>(&simulation.machine())) {

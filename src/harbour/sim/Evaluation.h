@@ -216,7 +216,7 @@ class Evaluator {
 
  private:
   void observe_containers(const Simulation& simulation, const Controls& controls, const StsCrane& crane);
-  void observe_any_machine(const Simulation& simulation, const Controls& controls);
+  void observe_any_machine(const Simulation& simulation, const Controls& controls, bool emergency_stop);
   /// Gantry travel (people walk under the portal) starts only after a warning on the horn: one motion from
   /// standstill covering more than the rules' gantry_travel_m (positioning creeps are not travels).
   void observe_gantry_warning(bool horn, bool gantry_moving, double gantry_position_m);
