@@ -425,13 +425,16 @@ let designView: View3D | null = null;
 let looks: Looks | null = null;
 let designForms: DesignerForms | null = null;
 let designTimer = 0;
+let designRequest = 0;  // the latest check or save: an earlier one's late answer is dropped
 // a check (and preview) shortly after the design last changed
 const checkSoon = (ms: number) => { clearTimeout(designTimer); designTimer = window.setTimeout(() => designerAction("check"), ms); };
 async function designerAction(action: "check" | "save") {
   const result = $("design-result");
   result.className = "";
   text(result, action === "check" ? "checking…" : "saving…");
+  const request = ++designRequest;
   const r = await api(`/api/designer/${action}`, "POST", { text: $<HTMLTextAreaElement>("design-text").value });
+  if (request !== designRequest) return;
   const ok = r.status === 200 || r.status === 201;
   result.className = ok ? "" : "refused";
   if (!ok) { text(result, `${action} refused (${r.status}): ${r.data?.error}`); return; }
@@ -549,9 +552,10 @@ function wire() {
       : r.data?.error ?? `error ${r.status}`);
   });
   designForms = new DesignerForms($("design-forms"), $<HTMLTextAreaElement>("design-text"), () => checkSoon(400));
+  // the forms follow the text at once (a form edit right after typing edits what was typed); the check waits
   $("design-text").addEventListener("input", () => {
-    clearTimeout(designTimer);
-    designTimer = window.setTimeout(() => { designForms?.readSource(); designerAction("check"); }, 800);
+    designForms?.readSource();
+    checkSoon(800);
   });
   $("design-check").addEventListener("click", () => designerAction("check"));
   $("design-save").addEventListener("click", () => designerAction("save"));

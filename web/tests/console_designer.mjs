@@ -71,8 +71,11 @@ try {
   await until("a box is stowed in the clicked slot", async () => (await yaml()).includes("slot: [12, 5, 82]"));
   check((await yaml()).startsWith("# First STS exercise"), "the file's comments are kept");
   await until("the preview shows it", async () => (await entities()) === before + 1);
-  // a box with nothing under it: the loader's refusal names its slot field
+  // typed, and at once a box with nothing under it clicked: the click edits the typed text, and the loader's
+  // refusal names the box's slot field
+  await page.fill("#design-text", (await yaml()).replace("pass_score: 70", "pass_score: 75"));
   await page.click('#design-stowage td[data-slot="12,7,84"]');
+  check((await yaml()).includes("pass_score: 75") && (await yaml()).includes("[12, 7, 84]"), "a form edit right after typing keeps what was typed");
   await until("a box on nothing is refused", async () => (await page.textContent("#design-result")).includes("nothing stowed under it"));
   check((await page.textContent("#design-result")).includes("exercise.containers[4].slot"), "the refusal names the box's slot");
   await page.click("#design-box-remove");
