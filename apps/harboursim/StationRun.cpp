@@ -81,6 +81,15 @@ std::unique_ptr<station::DeviceInput> open_devices(const station::Profile& profi
                            "exercise, run with --autopilot)");
 }
 
+// The exercise version a taken-over attempt ran ("" when it is not taken over or its record names none): the
+// branch goes on in the world the attempt was made in, even when the exercise was redesigned since.
+std::string taken_over_version(const std::string& database, const StationOptions& options) {
+  if (options.take_over_recording.empty()) return "";
+  for (const io::AttemptRow& a : io::RecordsStore(database).attempts())
+    if (a.recording == options.take_over_recording) return a.exercise_version;
+  return "";
+}
+
 // One attempt at the station, start to end; with a link, seen and commanded from the centre's consoles
 // (`reset`: a console asked for the attempt again).
 int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset) {
@@ -103,10 +112,10 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
     std::printf("route %s, stage %s (%s)\n", next.route.id.c_str(), next.stage.id.c_str(),
                 next.stage.goal.c_str());
   } else {
-    exercise_file = resolve_exercise(options.exercise, options.exercises);
+    exercise_file = resolve_exercise(options.exercise, options.exercises, taken_over_version(database, options));
   }
   session_options.exercise_version = io::exercise_version(exercise_file);
-  const sim::ExerciseSettings exercise = io::load_exercise(exercise_file);
+  const sim::ExerciseSettings exercise = load_resolved_exercise(exercise_file);
   if (options.autopilot)
     if (const std::string why = sim::why_no_pilot(exercise); !why.empty())
       throw std::runtime_error(exercise.name + ": " + why + " (drive it yourself: no --autopilot)");

@@ -142,6 +142,27 @@ try {
   }, evolution.attempts[0].id);
   check(replay.status === 201 && replay.body.exercise_version === version,
     `the replay of eva's attempt opens on version ${replay.body.exercise_version ?? replay.body.error} (${version} ran)`);
+  // and taken over at a station of the centre, it goes on in that version too
+  const api = (url, body) => page.evaluate(async ([url, body]) => {
+    const me = await (await fetch("/api/me")).json();
+    const r = await fetch(url, body === undefined ? {} : { method: "POST", headers: { "Content-Type": "application/json",
+      "X-CSRF-Token": me.csrf }, body: JSON.stringify(body) });
+    return { status: r.status, body: await r.json() };
+  }, [url, body]);
+  h.start(["station", "--serve", "--name", "designer-1", "--domain", "205", "--db", db, "--window", "off", "--exercises", exercises,
+    "--record", path.join(dir, "branch.hsrec")]);
+  await until("the centre's station is idle", async () =>
+    (await api("/api/stations")).body.some((s) => s.station === "designer-1" && s.state === "idle"), 40);
+  const takeOver = await api(`/api/replays/${replay.body.replay}`, { action: "take-over", station: "designer-1", trainee: "eva",
+    autopilot: true });
+  check(takeOver.status === 200, `the take-over is accepted: ${takeOver.status} ${takeOver.body.message ?? takeOver.body.error}`);
+  let branch;
+  await until("the branch is an attempt of eva's", async () => {
+    branch = (await api("/api/attempts?trainee=eva")).body.find((a) => a.parent === evolution.attempts[0].id);
+    return branch !== undefined;
+  }, 40);
+  check(branch?.exercise_version === version, `the take-over runs version ${branch?.exercise_version} (${version} ran, the file is newer)`);
+  await api("/api/stations/designer-1/command", { kind: "stop", exercise: "", trainee: "", route: "" });
 
   // a yard block: a box's goal set by clicking the slot it is to go to
   const load = async (name) => {
