@@ -135,6 +135,16 @@ nlohmann::json design_form(const std::string& folder, const DesignCheck& design)
   if (s.yard_block)
     form["yard_block"] = {
         {"bays", 2 * s.yard_block->bays - 1}, {"rows", s.yard_block->rows}, {"tiers", s.yard_block->tiers}};
+  const io::StartPoseForm pose = io::start_pose_form(s.machine);
+  json pose_fields = json::array();
+  for (const io::StartPoseField& p : pose.fields)
+    pose_fields.push_back({{"key", p.key},
+                           {"component", p.component},
+                           {"min", p.min},
+                           {"max", p.max},
+                           {"optional", p.optional},
+                           {"fallback", p.fallback}});
+  form["start_pose"] = {{"section", pose.section}, {"fields", pose_fields}};
   const auto figures = [&](const std::vector<io::RuleField>& fields) {
     json list = json::array();
     for (const io::RuleField& f : fields)

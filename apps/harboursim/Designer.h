@@ -31,7 +31,8 @@ DesignCheck check_design(const std::string& folder, const std::string& yaml);
 /// Returns the file saved.
 std::string save_design(const std::string& folder, const DesignCheck& design);
 
-/// What the designer's forms need of a checked design beyond its YAML: the vessel's bays, rows (port to
+/// What the designer's forms need of a checked design beyond its YAML: the machine's start pose (its keys and
+/// ranges, io::start_pose_form), the vessel's bays, rows (port to
 /// starboard) and tiers and the yard block's slots to click, the rubric's figures as in force (defaults where
 /// the design sets none) with their ranges, the scripted events this machine takes, and the vessel files and
 /// bulk materials beside the centre's exercise folder to choose from.

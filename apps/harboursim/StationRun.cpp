@@ -112,7 +112,8 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
     std::printf("route %s, stage %s (%s)\n", next.route.id.c_str(), next.stage.id.c_str(),
                 next.stage.goal.c_str());
   } else {
-    exercise_file = resolve_exercise(options.exercise, options.exercises, taken_over_version(database, options));
+    exercise_file =
+        resolve_exercise(options.exercise, options.exercises, taken_over_version(database, options));
   }
   session_options.exercise_version = io::exercise_version(exercise_file);
   const sim::ExerciseSettings exercise = load_resolved_exercise(exercise_file);

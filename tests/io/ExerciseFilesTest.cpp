@@ -11,6 +11,9 @@
 #include <fstream>
 #include <sstream>
 
+#include <yaml-cpp/yaml.h>
+
+#include "harbour/io/DataError.h"
 #include "scenes/DataErrors.h"
 
 namespace harbour::io {
@@ -356,6 +359,43 @@ TEST(ExerciseFiles, EachRubricKeySetsTheFigureItNames) {
   EXPECT_EQ(r.points_sway, 3.0);
   EXPECT_EQ(r.points_hard_landing, 5.0);
   EXPECT_EQ(r.points_tip_over, sim::EvaluationRules{}.points_tip_over);  // not set: the default
+}
+
+// The designer's start pose is the loader's: each number of it, for every machine, is read from the key it
+// names, within its range, and refused past it with its field named.
+TEST(ExerciseFiles, TheStartPoseFormIsWhatTheLoaderReads) {
+  for (const char* name : {"sts_discharge", "rtg_rehandle", "mhc_coal_discharge", "mhc_hook_lift",
+                           "reach_stacker_stack", "tractor_mafi_park"}) {
+    SCOPED_TRACE(name);
+    const std::string file = std::string(HARBOUR_DATA_DIR) + "/exercises/" + name + ".yaml";
+    const StartPoseForm form = start_pose_form(load_exercise(file).scenario.machine);
+    EXPECT_FALSE(form.fields.empty());
+    const YAML::Node shipped = YAML::LoadFile(file);
+    for (const StartPoseField& field : form.fields) {
+      if (field.component >= 0) continue;
+      const std::string where = "exercise." + form.section + "." + field.key;
+      SCOPED_TRACE(where);
+      EXPECT_TRUE(field.optional || shipped["exercise"][form.section][field.key])
+          << "a key the loader requires";
+      const auto load_with = [&](double value) {
+        YAML::Node edited = YAML::Clone(shipped);
+        edited["exercise"][form.section][field.key] = value;
+        YAML::Emitter out;
+        out << edited;
+        return load_exercise(YamlFile::parse(out.c_str(), "pose.yaml"), HARBOUR_DATA_DIR "/exercises");
+      };
+      const double middle = (field.min + field.max) / 2;
+      const sim::ExerciseSettings moved = load_with(middle);
+      const StartPoseForm again = start_pose_form(moved.scenario.machine);
+      EXPECT_EQ(again.fields.size(), form.fields.size());
+      try {
+        load_with(field.max + 1.0 + std::abs(field.max) * 1e-3);
+        ADD_FAILURE() << "a start past the range loads";
+      } catch (const DataError& e) {
+        EXPECT_EQ(e.field(), where);
+      }
+    }
+  }
 }
 
 // ISO 668 boxes by their cargo: the type's typical tare (reference.md) unless the file gives one.

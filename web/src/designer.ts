@@ -6,10 +6,12 @@
 import { isMap, isSeq, parseDocument, type Document, type YAMLMap, type YAMLSeq } from "yaml";
 
 interface RuleFigure { key: string; value: number; min: number; max: number; }
+interface PoseField { key: string; component: number; min: number; max: number; optional: boolean; fallback: number; }
 export interface DesignForm {
   machine: string;
   vessel?: { name: string; kind: string; bays: number[]; rows: number[]; hold_tiers: number[]; deck_tiers: number[]; holds: number[] };
   yard_block?: { bays: number; rows: number; tiers: number };
+  start_pose: { section: string; fields: PoseField[] };
   rules: { thresholds: RuleFigure[]; deductions: RuleFigure[] };
   weather: Record<string, number>;
   event_kinds: string[];
@@ -152,7 +154,31 @@ export class DesignerForms {
       vessel.addEventListener("change", () => this.set(["vessel", "file"], vessel.value));
       row.append(el("label", {}, "vessel ", vessel));
     }
-    return this.fieldset("Exercise", "design-basics", row);
+    return this.fieldset("Exercise", "design-basics", row, ...(this.form ? [this.startPose(this.form.start_pose)] : []));
+  }
+
+  // where the machine stands at the start, in the ranges its machine file allows
+  private startPose(pose: DesignForm["start_pose"]) {
+    const row = el("div", { className: "row", id: "design-start-pose" }, el("span", {}, "starts at:"));
+    for (const f of pose.fields) {
+      const label = f.component >= 0 ? `${"xyz"[f.component]} m` : f.key.replace(/_deg$/, " °").replace(/_m$/, " m").replace(/_/g, " ");
+      const id = `design-pose-${f.key}${f.component >= 0 ? `-${f.component}` : ""}`;
+      if (f.component < 0) {
+        row.append(this.number(label, [pose.section, f.key], { min: f.min, max: f.max, id, inForce: f.optional ? f.fallback : undefined }));
+        continue;
+      }
+      // a component of a vector: written in place (an empty field changes nothing)
+      const vector = this.get([pose.section, f.key]);
+      const input = el("input", { type: "number", step: "any", id, min: String(f.min), max: String(f.max),
+        value: isSeq(vector) ? String(vector.get(f.component) ?? "") : "" });
+      input.addEventListener("change", () => {
+        if (input.value === "" || !isSeq(vector)) return;
+        vector.set(f.component, this.doc!.createNode(Number(input.value)));
+        this.commit();
+      });
+      row.append(el("label", {}, label + " ", input));
+    }
+    return row;
   }
 
   // The stowage grid of one bay: a vessel's (rows port to starboard, deck tiers over the hatch covers over

@@ -427,7 +427,13 @@ let designForms: DesignerForms | null = null;
 let designTimer = 0;
 let designRequest = 0;  // the latest check or save: an earlier one's late answer is dropped
 // a check (and preview) shortly after the design last changed
-const checkSoon = (ms: number) => { clearTimeout(designTimer); designTimer = window.setTimeout(() => designerAction("check"), ms); };
+// (the verdict shown is of the text before: it says so at once)
+const checkSoon = (ms: number) => {
+  clearTimeout(designTimer);
+  designTimer = window.setTimeout(() => designerAction("check"), ms);
+  $("design-result").className = "";
+  text($("design-result"), "changed: checking…");
+};
 async function designerAction(action: "check" | "save") {
   const result = $("design-result");
   result.className = "";

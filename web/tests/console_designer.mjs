@@ -90,6 +90,17 @@ try {
   await page.press("#design-rule-collision", "Enter");
   await page.fill("#design-wind", "6");
   await page.press("#design-wind", "Enter");
+  // where the crane starts, in the ranges its machine file gives: the trolley moved, a gantry off its rails refused
+  check(await page.getAttribute("#design-pose-trolley_x_m", "max") === "62", "the trolley's start offers the machine's range (to 62 m)");
+  await page.fill("#design-pose-gantry_y_m", "500");
+  await page.press("#design-pose-gantry_y_m", "Enter");
+  await until("a gantry off its rails is refused", async () => (await page.textContent("#design-result")).includes("exercise.crane.gantry_y_m"));
+  await page.fill("#design-pose-gantry_y_m", "0");
+  await page.press("#design-pose-gantry_y_m", "Enter");
+  await page.fill("#design-pose-trolley_x_m", "40");
+  await page.press("#design-pose-trolley_x_m", "Enter");
+  await until("the trolley's start is written and valid", async () => /trolley_x_m: 40/.test(await yaml()) &&
+    (await page.textContent("#design-result")).includes(": valid"));
   // two gusts put on the timeline, the second moved before the first: kept in time order
   for (const [x, at] of [[400, 60], [500, 20]]) {
     await page.click("#design-timeline", { position: { x, y: 30 } });
@@ -182,6 +193,11 @@ try {
   await until("and the design stays valid", async () => (await page.textContent("#design-result")).includes("rtg_rehandle: valid") &&
     (await page.textContent("#design-summary")).includes("4 moves"));
   await page.locator("#design-block-set").screenshot({ path: path.join(out, "console_designer_block.png") });
+  // a component of where the RTG stands
+  await page.fill("#design-pose-position_m-1", "3.5");
+  await page.press("#design-pose-position_m-1", "Enter");
+  await until("the RTG's start position is written and valid", async () => /position_m: \[-55(\.0)?, 3\.5, 0(\.0)?\]/.test(await yaml()) &&
+    (await page.textContent("#design-result")).includes("rtg_rehandle: valid"));
   // bulk: a heap added on the stockpile
   await load("mhc_pile_trim");
   await page.click("#design-add-heap");

@@ -11,6 +11,7 @@
 #include <numbers>
 #include <optional>
 #include <tuple>
+#include <variant>
 
 #include "harbour/core/Units.h"
 #include "harbour/io/BulkFiles.h"
@@ -127,6 +128,82 @@ core::Vec3 block_slot_centre(const YamlFile& f, const YAML::Node& slot, const st
   return *centre;
 }
 
+// The start pose of each machine (start_pose_form): what the loader reads and the designer offers.
+StartPoseField pose_number_field(const char* key, double min, double max) {
+  return {key, -1, min, max};
+}
+StartPoseField pose_optional_field(const char* key, double fallback, double min, double max) {
+  return {key, -1, min, max, false, true, fallback};
+}
+StartPoseForm pose_on_the_quay(const char* section) {
+  StartPoseForm form{section, {}};
+  for (int c = 0; c < 3; ++c)
+    form.fields.push_back({"position_m", c, -kSite_m, kSite_m});
+  return form;
+}
+
+StartPoseForm pose_fields(const sim::StsSetup& sts) {
+  const sim::StsCraneSettings& c = sts.crane;
+  StartPoseForm form{"crane", {}};
+  form.fields.push_back(
+      pose_number_field("gantry_y_m", c.gantry_drive.min_position_m, c.gantry_drive.max_position_m));
+  form.fields.push_back(
+      pose_number_field("trolley_x_m", c.trolley_drive.min_position_m, c.trolley_drive.max_position_m));
+  form.fields.push_back(pose_number_field("spreader_z_m", 0.0, c.trolley_rail_height_m - 2.0));
+  form.fields.back().exclusive_min = true;
+  return form;
+}
+
+StartPoseForm pose_fields(const sim::RtgSetup& rtg) {
+  const sim::RtgSettings& c = rtg.crane;
+  StartPoseForm form = pose_on_the_quay("crane");
+  form.fields.push_back(pose_optional_field("heading_deg", 0.0, -360.0, 360.0));
+  form.fields.push_back(
+      pose_number_field("trolley_x_m", c.trolley_drive.min_position_m, c.trolley_drive.max_position_m));
+  form.fields.push_back(pose_number_field("spreader_z_m", 1.0, c.trolley_rail_height_m - 2.0));
+  form.fields.push_back(pose_optional_field("steer_bias_deg", 0.0, -2.0, 2.0));
+  return form;
+}
+
+StartPoseForm pose_fields(const sim::MhcSetup& mhc) {
+  const sim::MhcSettings& c = mhc.crane;
+  StartPoseForm form = pose_on_the_quay("crane");
+  form.fields.push_back(pose_number_field("slew_deg", -360.0, 360.0));
+  form.fields.push_back(pose_number_field("boom_deg", core::rad_to_deg(c.boom_min_angle_rad),
+                                          core::rad_to_deg(c.boom_max_angle_rad)));
+  form.fields.push_back(pose_number_field(mhc.start.on_hook ? "hook_z_m" : "grab_z_m", c.hoist_lower_limit_m,
+                                          c.hoist_upper_limit_m));
+  return form;
+}
+
+StartPoseForm pose_fields(const sim::ReachStackerSetup& stacker) {
+  const sim::ReachStackerSettings& v = stacker.vehicle;
+  StartPoseForm form = pose_on_the_quay("vehicle");
+  form.fields.push_back(pose_number_field("heading_deg", -360.0, 360.0));
+  form.fields.push_back(pose_number_field("boom_deg", core::rad_to_deg(v.luff.min_position_m),
+                                          core::rad_to_deg(v.luff.max_position_m)));
+  form.fields.push_back(pose_optional_field("extension_m", 0.0, 0.0, v.telescope.max_position_m));
+  return form;
+}
+
+StartPoseForm pose_fields(const sim::TractorSetup&) {
+  StartPoseForm form = pose_on_the_quay("vehicle");
+  form.fields.push_back(pose_number_field("heading_deg", -360.0, 360.0));
+  return form;
+}
+
+// a number of the machine's start pose, in the range its form gives it
+template <class Setup>
+double pose_number(const YamlFile& f, const YAML::Node& map, const std::string& at, const Setup& setup,
+                   const std::string& key) {
+  const StartPoseForm pose = pose_fields(setup);
+  for (const StartPoseField& p : pose.fields)
+    if (p.key == key)
+      return p.optional ? f.number_or(map, key, at, p.fallback, p.min, p.max, p.exclusive_min)
+                        : f.number(map, key, at, p.min, p.max, p.exclusive_min);
+  throw std::logic_error("the start pose of the machine has no " + key);
+}
+
 sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder) {
   sim::ExerciseSettings e;
   const YAML::Node x = f.required(f.root(), "exercise", "");
@@ -140,70 +217,63 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
   const std::string machine_kind = machine_file_kind(machine_path);
   const bool vehicle = machine_kind == "tractor" || machine_kind == "reach_stacker";
   const YAML::Node crane = f.required_map(x, vehicle ? "vehicle" : "crane", "exercise");
+  const std::string pose_at = std::string("exercise.") + (vehicle ? "vehicle" : "crane");
+  const auto position = [&] {
+    return f.vector3(f.required(crane, "position_m", pose_at), pose_at + ".position_m", kSite_m);
+  };
+  const auto pose = [&](const auto& setup, const std::string& key) {
+    return pose_number(f, crane, pose_at, setup, key);
+  };
   if (machine_kind == "reach_stacker") {
     // it stands on the quay, its boom set
     sim::ReachStackerSetup stacker;
     stacker.vehicle = load_reach_stacker(machine_path);
-    const sim::ReachStackerSettings& v = stacker.vehicle;
-    const std::string at = "exercise.vehicle";
-    stacker.start.position_m = f.vector3(f.required(crane, "position_m", at), at + ".position_m", kSite_m);
-    stacker.start.heading_rad = core::deg_to_rad(f.number(crane, "heading_deg", at, -360.0, 360.0));
-    stacker.start.boom_rad =
-        core::deg_to_rad(f.number(crane, "boom_deg", at, core::rad_to_deg(v.luff.min_position_m),
-                                  core::rad_to_deg(v.luff.max_position_m)));
-    stacker.start.extension_m = f.number_or(crane, "extension_m", at, 0.0, 0.0, v.telescope.max_position_m);
+    stacker.start.position_m = position();
+    stacker.start.heading_rad = core::deg_to_rad(pose(stacker, "heading_deg"));
+    stacker.start.boom_rad = core::deg_to_rad(pose(stacker, "boom_deg"));
+    stacker.start.extension_m = pose(stacker, "extension_m");
     s.machine = std::move(stacker);
   } else if (vehicle) {
     // the vehicle stands on the quay
     sim::TractorSetup tractor;
     tractor.vehicle = load_tractor(machine_path);
-    const std::string at = "exercise.vehicle";
-    tractor.start.position_m = f.vector3(f.required(crane, "position_m", at), at + ".position_m", kSite_m);
-    tractor.start.heading_rad = core::deg_to_rad(f.number(crane, "heading_deg", at, -360.0, 360.0));
-    if (const auto t = f.optional_map(crane, "trailer", at))
-      tractor.start.trailer = read_coupled_trailer(f, *t, at + ".trailer", folder, tractor.vehicle);
+    tractor.start.position_m = position();
+    tractor.start.heading_rad = core::deg_to_rad(pose(tractor, "heading_deg"));
+    if (const auto t = f.optional_map(crane, "trailer", pose_at))
+      tractor.start.trailer = read_coupled_trailer(f, *t, pose_at + ".trailer", folder, tractor.vehicle);
     s.machine = std::move(tractor);
   } else if (machine_kind == "rtg") {
     // the RTG stands over its block, its wheels along it
     sim::RtgSetup rtg;
     rtg.crane = load_rtg(machine_path);
-    const std::string at = "exercise.crane";
-    rtg.start.position_m = f.vector3(f.required(crane, "position_m", at), at + ".position_m", kSite_m);
-    rtg.start.heading_rad = core::deg_to_rad(f.number_or(crane, "heading_deg", at, 0.0, -360.0, 360.0));
-    rtg.start.trolley_x_m = f.number(crane, "trolley_x_m", at, rtg.crane.trolley_drive.min_position_m,
-                                     rtg.crane.trolley_drive.max_position_m);
-    rtg.start.spreader_z_m = f.number(crane, "spreader_z_m", at, 1.0, rtg.crane.trolley_rail_height_m - 2.0);
-    rtg.start.steer_bias_rad = core::deg_to_rad(f.number_or(crane, "steer_bias_deg", at, 0.0, -2.0, 2.0));
+    rtg.start.position_m = position();
+    rtg.start.heading_rad = core::deg_to_rad(pose(rtg, "heading_deg"));
+    rtg.start.trolley_x_m = pose(rtg, "trolley_x_m");
+    rtg.start.spreader_z_m = pose(rtg, "spreader_z_m");
+    rtg.start.steer_bias_rad = core::deg_to_rad(pose(rtg, "steer_bias_deg"));
     s.machine = std::move(rtg);
   } else if (machine_kind == "sts") {
     // the crane starts on its rails
     sim::StsSetup sts;
     sts.crane = load_sts_crane(machine_path);
-    sts.gantry_y_m = f.number(crane, "gantry_y_m", "exercise.crane", sts.crane.gantry_drive.min_position_m,
-                              sts.crane.gantry_drive.max_position_m);
-    sts.trolley_x_m = f.number(crane, "trolley_x_m", "exercise.crane", sts.crane.trolley_drive.min_position_m,
-                               sts.crane.trolley_drive.max_position_m);
-    sts.spreader_z_m =
-        f.number(crane, "spreader_z_m", "exercise.crane", 0.0, sts.crane.trolley_rail_height_m - 2.0, true);
+    sts.gantry_y_m = pose(sts, "gantry_y_m");
+    sts.trolley_x_m = pose(sts, "trolley_x_m");
+    sts.spreader_z_m = pose(sts, "spreader_z_m");
     s.machine = std::move(sts);
   } else {
     // the MHC stands on its outriggers on the quay
     sim::MhcSetup mhc;
     mhc.crane = load_mhc(machine_path);
-    const std::string at = "exercise.crane";
-    mhc.start.position_m = f.vector3(f.required(crane, "position_m", at), at + ".position_m", kSite_m);
-    mhc.start.slew_rad = core::deg_to_rad(f.number(crane, "slew_deg", at, -360.0, 360.0));
-    mhc.start.boom_rad =
-        core::deg_to_rad(f.number(crane, "boom_deg", at, core::rad_to_deg(mhc.crane.boom_min_angle_rad),
-                                  core::rad_to_deg(mhc.crane.boom_max_angle_rad)));
+    mhc.start.position_m = position();
+    mhc.start.slew_rad = core::deg_to_rad(pose(mhc, "slew_deg"));
+    mhc.start.boom_rad = core::deg_to_rad(pose(mhc, "boom_deg"));
     // on its grab (bulk) or its hook block (general cargo)
-    const std::string tool = f.optional(crane, "tool", at) ? f.text(crane, "tool", at) : "grab";
-    if (tool != "grab" && tool != "hook") f.fail(crane["tool"], at + ".tool", "is grab or hook");
+    const std::string tool = f.optional(crane, "tool", pose_at) ? f.text(crane, "tool", pose_at) : "grab";
+    if (tool != "grab" && tool != "hook") f.fail(crane["tool"], pose_at + ".tool", "is grab or hook");
     mhc.start.on_hook = tool == "hook";
     if (mhc.start.on_hook && !mhc.crane.hook)
-      f.fail(crane["tool"], at + ".tool", "the machine file has no hook (machine.hook)");
-    mhc.start.hanging_z_m = f.number(crane, mhc.start.on_hook ? "hook_z_m" : "grab_z_m", at,
-                                     mhc.crane.hoist_lower_limit_m, mhc.crane.hoist_upper_limit_m);
+      f.fail(crane["tool"], pose_at + ".tool", "the machine file has no hook (machine.hook)");
+    mhc.start.hanging_z_m = pose(mhc, mhc.start.on_hook ? "hook_z_m" : "grab_z_m");
     s.machine = std::move(mhc);
   }
   // container exercises (the STS), general cargo on a hook, bulk on a grab
@@ -694,6 +764,10 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
 }
 
 }  // namespace
+
+StartPoseForm start_pose_form(const sim::MachineSetup& machine) {
+  return std::visit([](const auto& setup) { return pose_fields(setup); }, machine);
+}
 
 const std::vector<RuleField>& rule_thresholds() {
   using R = sim::EvaluationRules;

@@ -25,6 +25,24 @@ struct RuleField {
 const std::vector<RuleField>& rule_thresholds();
 const std::vector<RuleField>& rule_deductions();
 
+/// A figure of the machine's start pose an exercise gives under exercise.crane (a crane) or exercise.vehicle,
+/// with the range its machine file allows; an optional one means `fallback` when left out.
+struct StartPoseField {
+  std::string key;
+  int component = -1;  ///< position_m is three fields, components 0-2; -1: a number
+  double min = 0.0, max = 0.0;
+  bool exclusive_min = false;
+  bool optional = false;
+  double fallback = 0.0;
+};
+struct StartPoseForm {
+  std::string section;  ///< "crane" or "vehicle"
+  std::vector<StartPoseField> fields;
+};
+/// The start pose the loader reads for this machine (its settings loaded; the MHC on its grab or its hook as
+/// set): one table for the loader and the designer's forms.
+StartPoseForm start_pose_form(const sim::MachineSetup& machine);
+
 /// The names of the exercises in `folder` (the stems of its *.yaml files), sorted; none for a missing folder.
 std::vector<std::string> exercise_names(const std::string& folder);
 
