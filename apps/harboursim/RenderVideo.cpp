@@ -86,7 +86,7 @@ int render_video(const RenderOptions& options) {
   if (const std::string why = io::why_not_writable(options.out); !why.empty())
     throw std::runtime_error("--out " + options.out + ": " + why);
   const sim::Recording recording = io::read_recording(options.recording);
-  const sim::ExerciseSettings exercise = io::load_exercise(resolve_exercise(options.exercise));
+  const sim::ExerciseSettings exercise = load_resolved_exercise(resolve_exercise(options.exercise));
   if (recording.scenario != exercise.name)
     throw std::runtime_error(options.recording + " was recorded on exercise '" + recording.scenario +
                              "', not '" + exercise.name + "'");

@@ -233,7 +233,7 @@ int run_exercise(const RunOptions& options) {
     exercise_file = resolve_exercise(options.exercise);
   }
   run.exercise_version = io::exercise_version(exercise_file);
-  const sim::ExerciseSettings exercise = io::load_exercise(exercise_file);
+  const sim::ExerciseSettings exercise = load_resolved_exercise(exercise_file);
   if (const std::string why = sim::why_no_pilot(exercise); !why.empty())
     throw std::runtime_error(exercise.name + ": " + why);
   sim::Simulation simulation(exercise.scenario);
@@ -388,7 +388,7 @@ sim::ExerciseSettings load_resolved_exercise(const std::string& file) {
 
 int replay_recording(const std::string& recording_path, const std::string& exercise_path) {
   const sim::Recording recording = io::read_recording(recording_path);
-  const sim::ExerciseSettings exercise = io::load_exercise(resolve_exercise(exercise_path));
+  const sim::ExerciseSettings exercise = load_resolved_exercise(resolve_exercise(exercise_path));
   if (recording.scenario != exercise.name) {
     std::fprintf(stderr, "harboursim: %s was recorded on exercise '%s', not '%s'\n", recording_path.c_str(),
                  recording.scenario.c_str(), exercise.name.c_str());
@@ -415,7 +415,7 @@ int replay_recording(const std::string& recording_path, const std::string& exerc
 
 int take_over_recording(const std::string& recording_path, const RunOptions& options, double at_s) {
   const sim::Recording recording = io::read_recording(recording_path);
-  const sim::ExerciseSettings exercise = io::load_exercise(resolve_exercise(options.exercise));
+  const sim::ExerciseSettings exercise = load_resolved_exercise(resolve_exercise(options.exercise));
   if (recording.scenario != exercise.name) {
     std::fprintf(stderr, "harboursim: %s was recorded on exercise '%s', not '%s'\n", recording_path.c_str(),
                  recording.scenario.c_str(), exercise.name.c_str());

@@ -9,8 +9,10 @@
 
 #include <ode/ode.h>
 
+#include "harbour/bulk/BulkWorld.h"
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/sim/Autopilot.h"
+#include "harbour/sim/Pilot.h"
 #include "harbour/sim/Simulation.h"
 #include "harbour/station/RealTimeLoop.h"
 
@@ -132,6 +134,38 @@ TEST(Allocation, TheStationsTickAndItsSnapshotsAllocateNothing) {
   const Snapshot* s = loop.latest_snapshot(station::kImageGeneratorReader);
   ASSERT_NE(s, nullptr);
   EXPECT_EQ(s->step, simulation.steps());
+}
+
+// A bulk station: the grab digs, carries and drops coal (cells flow, the active list grows and shrinks), and
+// each tick hands the changed tiles to the image generator's and the console's buffers.
+TEST(Allocation, ABulkStationsTickAllocatesNothingOnceWarm) {
+  const ExerciseSettings exercise =
+      io::load_exercise(std::string(HARBOUR_DATA_DIR) + "/exercises/mhc_coal_discharge.yaml");
+  Simulation simulation(exercise.scenario);
+  const std::unique_ptr<Pilot> pilot = make_pilot(exercise);  // the grab's
+  station::RealTimeLoop loop(simulation);
+  loop.set_pilot([&](const Simulation& s) { return pilot->next(s); });
+  station::StepRecord record;
+  const auto drain = [&] {
+    while (loop.records().pop(record)) {
+    }
+  };
+  loop.run_ticks(5000);
+  drain();
+  long allocating = 0, ticks = 0;
+  for (int batch = 0; batch < 90; ++batch) {
+    for (int k = 0; k < 1000; ++k) {
+      const long before = g_allocations.load();
+      loop.run_ticks(1);
+      if (g_allocations.load() != before) ++allocating;
+      ++ticks;
+    }
+    drain();
+    const BulkView* seen = loop.latest_bulk(station::kImageGeneratorReader);
+    ASSERT_NE(seen, nullptr);
+  }
+  EXPECT_GT(simulation.bulk()->unloaded_m3(), 5.0) << "the grab dropped no coal: nothing flowed";
+  EXPECT_EQ(allocating, 0) << allocating << " of " << ticks << " ticks allocated";
 }
 
 }  // namespace

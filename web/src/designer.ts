@@ -362,14 +362,40 @@ export class DesignerForms {
       field("rain mm/h", "rain_mm_per_h", { min: 0, max: 500, step: 0.5 }),
       field("time of day h", "time_of_day_h", { min: 0, max: 24, step: 0.25 }));
     const parts: HTMLElement[] = [row];
+    // the vessel's motion: a sum of harmonics per motion (the first one offered empty when there is none)
     if (x.vessel) {
-      const sea = el("div", { className: "row" }, el("span", {}, "sea state (first harmonic):"));
-      for (const [motion, unit] of [["heave", "m"], ["roll", "deg"], ["pitch", "deg"]] as const) {
-        const path = ["vessel", "sea_state", motion, 0];
-        sea.append(this.number(`${motion} ${unit}`, [...path, `amplitude_${unit}`], { min: 0, step: 0.01 }),
-          this.number("period s", [...path, "period_s"], { min: 1, step: 0.5 }));
+      parts.push(el("div", { className: "hint" }, "sea state: the vessel's heave, roll and pitch, each a sum of harmonics"));
+      for (const [motion, unit, most] of [["heave", "m", 5], ["roll", "deg", 10], ["pitch", "deg", 10]] as const) {
+        const list: Plain[] = Array.isArray(x.vessel.sea_state?.[motion]) ? x.vessel.sea_state[motion] : [];
+        const row = el("div", { className: "row", id: `design-sea-${motion}` }, el("span", {}, `${motion}:`));
+        for (let k = 0; k < Math.max(list.length, 1); ++k) {
+          const path = ["vessel", "sea_state", motion, k];
+          const harmonic = el("span", { className: "harmonic" },
+            this.number(unit === "m" ? "amplitude m" : "amplitude °", [...path, `amplitude_${unit}`], { min: 0, max: most, step: 0.01 }),
+            this.number("period s", [...path, "period_s"], { min: 0.5, max: 120, step: 0.5 }),
+            this.number("phase °", [...path, "phase_deg"], { min: -360, max: 360, step: 5, inForce: 0 }));
+          if (k < list.length) {
+            const remove = el("button", { type: "button", title: `remove this ${motion} harmonic` }, "×");
+            remove.addEventListener("click", () => {
+              this.doc!.deleteIn([X, ...path]);
+              if (list.length === 1) this.doc!.deleteIn([X, "vessel", "sea_state", motion]);
+              this.commit();
+            });
+            harmonic.append(remove);
+          }
+          row.append(harmonic);
+        }
+        if (list.length) {
+          const add = el("button", { type: "button", id: `design-sea-${motion}-add` }, `+ ${motion} harmonic`);
+          const last = list[list.length - 1];
+          add.addEventListener("click", () => {
+            this.add(["vessel", "sea_state", motion], { [`amplitude_${unit}`]: last[`amplitude_${unit}`] ?? 0, period_s: last.period_s ?? 10 });
+            this.commit();
+          });
+          row.append(add);
+        }
+        parts.push(row);
       }
-      parts.push(sea);
     }
     return this.fieldset("Weather and sea", "design-weather", ...parts);
   }

@@ -153,6 +153,12 @@ try {
   }, evolution.attempts[0].id);
   check(replay.status === 201 && replay.body.exercise_version === version,
     `the replay of eva's attempt opens on version ${replay.body.exercise_version ?? replay.body.error} (${version} ran)`);
+  // the command line replays it bit for bit on the kept version's file (it stands in versions/, beside the
+  // centre's folder)
+  const kept = path.join(exercises, "versions", `sts_long_discharge-${version}.yaml`);
+  let replayed = "";
+  try { replayed = run(["replay", path.join(dir, "eva.hsrec"), "--exercise", kept]); } catch (e) { replayed = `${e.stdout}${e.stderr}`; }
+  check(/bit for bit|identical|matches/i.test(replayed) && !/diverge/i.test(replayed), `harboursim replay on the kept version: ${replayed.split("\n")[0]}`);
   // and taken over at a station of the centre, it goes on in that version too
   const api = (url, body) => page.evaluate(async ([url, body]) => {
     const me = await (await fetch("/api/me")).json();
@@ -224,6 +230,16 @@ try {
   await page.uncheck("#design-event-from-lift");
   await until("it is written at_s", async () => /\{at_s: 8, kind: hoist_brake_fault/.test(await yaml()));
   await until("and checked", async () => (await page.textContent("#design-result")).includes("sts_hoist_brake_fault: valid"));
+
+  // the sea as a sum of harmonics: a second roll harmonic added and given its own period
+  await load("sts_discharge_gusty");
+  await page.click("#design-sea-roll-add");
+  await until("a second roll harmonic is written", async () => /roll: \[\{amplitude_deg: 0\.15[^\]]*\}, \{amplitude_deg: 0\.15, period_s: 12\.5\}\]/.test(await yaml()));
+  await page.fill('input[data-path="vessel.sea_state.roll.1.period_s"]', "4.5");
+  await page.press('input[data-path="vessel.sea_state.roll.1.period_s"]', "Enter");
+  await until("its period is set and the design checked", async () => /period_s: 4\.5\}\]/.test(await yaml()) &&
+    (await page.textContent("#design-result")).includes("sts_discharge_gusty: valid"));
+  await page.locator("#design-weather").screenshot({ path: path.join(out, "console_designer_sea.png") });
 
   // what the designer may not overwrite, and who may not design
   writeFileSync(path.join(exercises, "handmade.yaml"), shipped.replace("name: sts_discharge", "name: handmade"));

@@ -20,13 +20,20 @@ bool pressed_before(const auto& a, const auto& b) {
 }  // namespace
 
 BulkWorld::BulkWorld(const Material& material, const BulkWorldSettings& settings)
-    : material_(material), settings_(settings) {}
+    : material_(material), settings_(settings) {
+  parcels_.reserve(kParcelsReserved);
+}
 
 int BulkWorld::add_grid(const GridSettings& grid, const core::Pose& pose) {
   grids_.emplace_back(grid, material_, settings_.relaxation);
   grids_.back().set_pose(pose);
   outflow_m3_per_s_.push_back(0.0);
   landed_m3_.push_back(0.0);
+  // a footprint covers at most a whole grid, the pressed cells at most every grid's: no growth while stepping
+  const std::size_t cells = static_cast<std::size_t>(grid.cells_x) * static_cast<std::size_t>(grid.cells_y);
+  footprint_.reserve(std::max(footprint_.capacity(), cells));
+  pressed_.reserve(pressed_.capacity() + cells);
+  pressing_.reserve(pressing_.capacity() + cells);
   return static_cast<int>(grids_.size()) - 1;
 }
 

@@ -44,6 +44,10 @@ struct Parcel {
 /// One material's bulk simulation: its grids (active regions), grabs and falling material.
 class BulkWorld {
  public:
+  /// Room kept for falling parcels, here and in every reader's copy (a grab spills one a step while it
+  /// opens; more than this in the air at once grows the list, allocating).
+  static constexpr std::size_t kParcelsReserved = 4096;
+
   BulkWorld(const Material& material, const BulkWorldSettings& settings);
 
   const Material& material() const { return material_; }

@@ -40,6 +40,13 @@ HeightGrid::HeightGrid(const GridSettings& settings, const Material& material,
   comp_.assign(padded, kWall);
   active_stamp_.assign(padded, 0);
   examine_bits_.assign((padded + 63) / 64, 0);
+  // the examined list and its scratch hold each cell at most once: no growth while stepping
+  const std::size_t cells = static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_);
+  examine_.reserve(cells);
+  active_.reserve(cells);
+  new_vel_.reserve(cells * kPipes);
+  deltas_.reserve(cells);
+  residual_.reserve(cells);
   for (int j = 0; j < ny_; ++j)
     for (int i = 0; i < nx_; ++i) {
       comp_[index(i, j)] = 0.0;

@@ -23,6 +23,13 @@ RealTimeLoop::RealTimeLoop(sim::Simulation& simulation, const LoopSettings& sett
   settings_.bulk_every_steps = std::max(settings_.bulk_every_steps, 1);
   for (int n = 0; n < kSnapshotReaders; ++n)
     publish(n);  // readers see the start
+  // every bulk buffer gets its grids and room for the material in flight now, then allocates no more
+  if (const bulk::BulkWorld* material = simulation_.bulk())
+    for (TripleBuffer<sim::BulkView>& reader : bulk_)
+      reader.prepare_each([material](sim::BulkView& view) {
+        view.parcels.reserve(bulk::BulkWorld::kParcelsReserved);
+        bulk::publish(*material, view);
+      });
   publish_bulk();
 }
 
@@ -203,10 +210,7 @@ void RealTimeLoop::hand_off(const StepRecord& record) {
 void RealTimeLoop::publish_bulk() {
   const bulk::BulkWorld* material = simulation_.bulk();
   if (!material) return;
-  // each buffer allocates its grids and room for the material in flight when first filled, then no more
-  constexpr std::size_t kParcelsInFlight = 4096;
   for (TripleBuffer<sim::BulkView>& reader : bulk_) {
-    if (reader.back().parcels.capacity() < kParcelsInFlight) reader.back().parcels.reserve(kParcelsInFlight);
     bulk::publish(*material, reader.back());
     reader.publish();
   }

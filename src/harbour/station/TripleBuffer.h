@@ -15,6 +15,13 @@ class TripleBuffer {
 
   /// Writer: the buffer to fill next.
   T& back() { return (*buffers_)[back_]; }
+  /// Before the reader starts: `prepare` runs on each of the three buffers (room reserved in each, so that
+  /// neither side allocates later).
+  template <class Prepare>
+  void prepare_each(Prepare&& prepare) {
+    for (T& buffer : *buffers_)
+      prepare(buffer);
+  }
   /// Writer: back() becomes the newest value.
   void publish() { back_ = state_.exchange(back_ | kFresh, std::memory_order_acq_rel) & kIndex; }
 
