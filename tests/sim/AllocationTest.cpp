@@ -99,73 +99,69 @@ TEST(Allocation, AHoldDischargeStepsWithoutAllocatingOnceWarm) {
   EXPECT_EQ(count.allocating, 0) << count.allocating << " of " << count.steps << " steps allocated";
 }
 
-TEST(Allocation, TheStationsTickAndItsSnapshotsAllocateNothing) {
-  const ExerciseSettings exercise =
-      io::load_exercise(std::string(HARBOUR_DATA_DIR) + "/exercises/sts_bay12_hold.yaml");
-  Simulation simulation(exercise.scenario);
-  Autopilot pilot(exercise);
-  station::RealTimeLoop loop(simulation);
-  loop.set_pilot([&](const Simulation& s) { return pilot.next(s); });
-  station::StepRecord record;
-  const auto drain = [&] {  // the record keeper's side (another thread in a station)
-    while (loop.records().pop(record)) {
-    }
-  };
-  loop.run_ticks(5000);
-  drain();
-  long allocating = 0, ticks = 0;
-  for (int batch = 0; batch < 60; ++batch) {
-    for (int k = 0; k < 1000; ++k) {
-      const int attachments = simulation.world().attachments_made();
-      const long before = g_allocations.load();
-      loop.run_ticks(1);  // commands, controls, the step, the hand-off, snapshots to every reader
-      if (g_allocations.load() != before && simulation.world().attachments_made() == attachments)
-        ++allocating;
-      ++ticks;
-    }
+// A station's loop under the exercise's pilot: warmed up 5 s, then `seconds` of ticks one at a time, counted
+// when they allocate (other than by fixing a load on: ODE allocates the joint). The readers look after every
+// second, as the image generator and the console would.
+struct StationTicks {
+  explicit StationTicks(const std::string& exercise_name)
+      : exercise(io::load_exercise(std::string(HARBOUR_DATA_DIR) + "/exercises/" + exercise_name + ".yaml")),
+        simulation(exercise.scenario),
+        pilot(make_pilot(exercise)),
+        loop(simulation) {
+    loop.set_pilot([this](const Simulation& s) { return pilot->next(s); });
+    loop.run_ticks(5000);
     drain();
   }
-  EXPECT_EQ(allocating, 0) << allocating << " of " << ticks << " ticks allocated";
+  void drain() {  // the record keeper's side (another thread in a station)
+    while (loop.records().pop(record)) {
+    }
+  }
+  long allocating_ticks(int seconds) {
+    long allocating = 0;
+    for (int second = 0; second < seconds; ++second) {
+      for (int k = 0; k < 1000; ++k) {
+        const int attachments = simulation.world().attachments_made();
+        const long before = g_allocations.load();
+        loop.run_ticks(1);  // commands, controls, the step, the hand-off, snapshots to every reader
+        if (g_allocations.load() != before && simulation.world().attachments_made() == attachments)
+          ++allocating;
+      }
+      drain();
+      loop.latest_snapshot(station::kImageGeneratorReader);
+      loop.latest_bulk(station::kImageGeneratorReader);
+      loop.latest_bulk(station::kConsoleReader);
+    }
+    return allocating;
+  }
+  ExerciseSettings exercise;
+  Simulation simulation;
+  std::unique_ptr<Pilot> pilot;
+  station::RealTimeLoop loop;
+  station::StepRecord record;
+};
+
+TEST(Allocation, TheStationsTickAndItsSnapshotsAllocateNothing) {
+  StationTicks sts("sts_bay12_hold");
+  const long allocating = sts.allocating_ticks(60);
+  EXPECT_EQ(allocating, 0) << allocating << " of 60000 ticks allocated";
   // a snapshot is written into a reader's buffer without allocating, and the readers get the newest
   auto mine = std::make_unique<Snapshot>();
   const long before = g_allocations.load();
-  simulation.write_snapshot(*mine);
+  sts.simulation.write_snapshot(*mine);
   EXPECT_EQ(g_allocations.load(), before);
-  const Snapshot* s = loop.latest_snapshot(station::kImageGeneratorReader);
+  const Snapshot* s = sts.loop.latest_snapshot(station::kImageGeneratorReader);
   ASSERT_NE(s, nullptr);
-  EXPECT_EQ(s->step, simulation.steps());
+  EXPECT_EQ(s->step, sts.simulation.steps());
 }
 
 // A bulk station: the grab digs, carries and drops coal (cells flow, the active list grows and shrinks), and
 // each tick hands the changed tiles to the image generator's and the console's buffers.
 TEST(Allocation, ABulkStationsTickAllocatesNothingOnceWarm) {
-  const ExerciseSettings exercise =
-      io::load_exercise(std::string(HARBOUR_DATA_DIR) + "/exercises/mhc_coal_discharge.yaml");
-  Simulation simulation(exercise.scenario);
-  const std::unique_ptr<Pilot> pilot = make_pilot(exercise);  // the grab's
-  station::RealTimeLoop loop(simulation);
-  loop.set_pilot([&](const Simulation& s) { return pilot->next(s); });
-  station::StepRecord record;
-  const auto drain = [&] {
-    while (loop.records().pop(record)) {
-    }
-  };
-  loop.run_ticks(5000);
-  drain();
-  long allocating = 0, ticks = 0;
-  for (int batch = 0; batch < 90; ++batch) {
-    for (int k = 0; k < 1000; ++k) {
-      const long before = g_allocations.load();
-      loop.run_ticks(1);
-      if (g_allocations.load() != before) ++allocating;
-      ++ticks;
-    }
-    drain();
-    const BulkView* seen = loop.latest_bulk(station::kImageGeneratorReader);
-    ASSERT_NE(seen, nullptr);
-  }
-  EXPECT_GT(simulation.bulk()->unloaded_m3(), 5.0) << "the grab dropped no coal: nothing flowed";
-  EXPECT_EQ(allocating, 0) << allocating << " of " << ticks << " ticks allocated";
+  StationTicks mhc("mhc_coal_discharge");
+  const long allocating = mhc.allocating_ticks(90);
+  EXPECT_GT(mhc.simulation.bulk()->unloaded_m3(), 5.0) << "the grab dropped no coal: nothing flowed";
+  EXPECT_NE(mhc.loop.latest_bulk(station::kConsoleReader), nullptr);
+  EXPECT_EQ(allocating, 0) << allocating << " of 90000 ticks allocated";
 }
 
 }  // namespace
