@@ -16,6 +16,7 @@
 #include <thread>
 
 #include "harbour/io/DataError.h"
+#include "harbour/io/RecordsStore.h"
 #include "harbour/sim/Autopilot.h"
 #include "harbour/station/HeadTracker.h"
 #include "harbour/station/MotionLink.h"
@@ -60,6 +61,25 @@ struct LiveSession {
     session->loop().set_pilot([this](const sim::Simulation& s) { return pilot->next(s); });
   }
 };
+
+// A take-over (a console's command names the recording) continues only an attempt the records hold: any
+// other file is refused before it is read, and no attempt is begun.
+TEST(TakeOver, AStationContinuesOnlyAStoredAttempt) {
+  const sim::ExerciseSettings exercise = scenes::sts_discharge_exercise(HARBOUR_DATA_DIR);
+  SessionOptions options;
+  options.trainee = "t1";
+  options.database = scenes::fresh_database("harbour_take_over.db");
+  options.take_over = TakeOverFrom{"/etc/passwd", 0};
+  try {
+    Session refused(exercise, options);
+    ADD_FAILURE() << "a take-over of a file no attempt recorded was accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("no stored attempt was recorded at '/etc/passwd'"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_TRUE(io::RecordsStore(options.database).attempts().empty());
+}
 
 TEST(HeadTracking, OpenTrackDatagramsConvertToTheCabFrameWithinLimits) {
   core::Vec3 offset, angles;

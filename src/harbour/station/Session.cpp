@@ -3,6 +3,7 @@
 #include <chrono>
 #include <stdexcept>
 
+#include "harbour/core/Text.h"
 #include "harbour/io/RecordingFile.h"
 
 namespace harbour::station {
@@ -20,6 +21,12 @@ Session::Session(const sim::ExerciseSettings& exercise, const SessionOptions& op
   std::optional<std::int64_t> parent;
   std::int64_t branch_step = 0;
   if (options.take_over) {
+    // only an attempt the centre's records know is continued: a command names no other file to read
+    for (const io::AttemptRow& a : db_->attempts())
+      if (a.recording == options.take_over->recording) parent = a.id;
+    if (!parent)
+      throw std::runtime_error("take-over refused: no stored attempt was recorded at '" +
+                               core::printable(options.take_over->recording) + "'");
     const sim::Recording original = io::read_recording(options.take_over->recording);
     if (original.scenario != exercise.name)
       throw std::runtime_error(options.take_over->recording + " was recorded on exercise '" +
@@ -35,8 +42,6 @@ Session::Session(const sim::ExerciseSettings& exercise, const SessionOptions& op
     shadow_->restore_state(simulation_->save_state());
     recorder_ = std::move(branch.recorder);
     branch_step = simulation_->steps();
-    for (const io::AttemptRow& a : db_->attempts())
-      if (a.recording == options.take_over->recording) parent = a.id;
     moves_before_start_ = evaluator_.metrics().moves_completed;
     metrics_ = evaluator_.metrics();
   }
