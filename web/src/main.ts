@@ -425,7 +425,7 @@ let designView: View3D | null = null;
 let looks: Looks | null = null;
 let designForms: DesignerForms | null = null;
 let designTimer = 0;
-let designRequest = 0;  // the latest check or save: an earlier one's late answer is dropped
+let designRequest = 0;  // the latest check or save: an earlier check's late answer is dropped
 // a check (and preview) shortly after the design last changed
 // (the verdict shown is of the text before: it says so at once)
 const checkSoon = (ms: number) => {
@@ -438,9 +438,10 @@ async function designerAction(action: "check" | "save") {
   const result = $("design-result");
   result.className = "";
   text(result, action === "check" ? "checking…" : "saving…");
+  clearTimeout(designTimer);  // this text is what is checked (or saved) now
   const request = ++designRequest;
   const r = await api(`/api/designer/${action}`, "POST", { text: $<HTMLTextAreaElement>("design-text").value });
-  if (request !== designRequest) return;
+  if (action === "check" && request !== designRequest) return;  // a save's answer is always told
   const ok = r.status === 200 || r.status === 201;
   result.className = ok ? "" : "refused";
   if (!ok) { text(result, `${action} refused (${r.status}): ${r.data?.error}`); return; }
