@@ -1312,7 +1312,9 @@ Console::Response Console::open_replay(const http::request<http::string_body>& r
                                                                                 "time-of-day",
                                                                                 "limiter-fault",
                                                                                 "emergency-stop",
-                                                                                "release-emergency-stop"};
+                                                                                "release-emergency-stop",
+                                                                                "power-failure",
+                                                                                "power-restored"};
   for (const sim::Recording::Command& c : r.recording.commands)
     events.push_back({{"at_s", static_cast<double>(c.step) * sim::Simulation::kStep_s},
                       {"kind", std::string("instructor ") + kCommandNames[static_cast<int>(c.command.kind)]},

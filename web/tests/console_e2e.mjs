@@ -96,6 +96,11 @@ try {
   await until("the emergency stop is logged", async () => (await page.textContent("#events")).includes("emergency-stop by ines"));
   await page.click("button[data-kind=release-emergency-stop]");
   await until("its release is logged", async () => (await page.textContent("#events")).includes("release-emergency-stop by ines"));
+  // a power failure and the supply back: both logged (the autopilot's hands come off the levers meanwhile)
+  await page.click("button[data-kind=power-failure]");
+  await until("the power failure is logged", async () => (await page.textContent("#events")).includes("power-failure by ines"));
+  await page.click("button[data-kind=power-restored]");
+  await until("the supply back is logged", async () => (await page.textContent("#events")).includes("power-restored by ines"));
   await page.click("button[data-kind=hold]");
   await until("the station is held", async () =>
     (await page.locator("#stations tr[data-station=e2e-1] td:nth-child(2)").textContent()) === "held");

@@ -737,6 +737,8 @@ void ImageGenerator::update(const sim::Snapshot& s) {
   }
   std::string alarm;
   if (s.held) alarm += "FROZEN BY THE INSTRUCTOR   ";
+  if (s.power_off) alarm += "POWER FAILURE: DRIVES OFF, BRAKES SET   ";
+  if (s.awaiting_zero) alarm += "POWER BACK: ALL LEVERS TO ZERO   ";
   if (s.devices_missing > 0) alarm += "INPUT DEVICE MISSING: ITS CONTROLS ARE NEUTRAL   ";
   if (s.diverged) alarm += "SIMULATION STOPPED   ";
   update_timeline(s.time_s);

@@ -70,6 +70,10 @@ TimedCommand parse_instructor_command(const std::string& text) {
     c.kind = Kind::kEmergencyStop;
   } else if (kind == "release-emergency-stop") {
     c.kind = Kind::kReleaseEmergencyStop;
+  } else if (kind == "power-failure") {
+    c.kind = Kind::kPowerFailure;
+  } else if (kind == "power-restored") {
+    c.kind = Kind::kPowerRestored;
   } else if (kind == "wind") {
     c.kind = Kind::kSetWind;
     c.wind_mean_mps = number(2, "mean speed [m/s]");
@@ -89,8 +93,7 @@ TimedCommand parse_instructor_command(const std::string& text) {
   } else {
     fail("unknown kind '" + core::printable(kind, 40) +
          "' (gust, hoist-brake-fault, landed-sensor-fault, limiter-fault, clear-faults, emergency-stop, "
-         "release-emergency-stop, wind, visibility, "
-         "rain, time-of-day)");
+         "release-emergency-stop, power-failure, power-restored, wind, visibility, rain, time-of-day)");
   }
   if (parts.size() > 2 + values) fail("too many values for '" + kind + "'");
   if (const std::string why = sim::why_invalid(c); !why.empty()) fail(why);

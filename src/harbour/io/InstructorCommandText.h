@@ -9,7 +9,8 @@ namespace harbour::io {
 /// An instructor command written as text, for the command line and scripts:
 /// `AT:KIND[:VALUES]` with AT in seconds of exercise time and KIND one of
 ///   gust:AMPLITUDE_MPS:DURATION_S, hoist-brake-fault, landed-sensor-fault:CORNER, limiter-fault,
-///   clear-faults, emergency-stop, release-emergency-stop, wind:MEAN_MPS:FROM_DEG:TURBULENCE,
+///   clear-faults, emergency-stop, release-emergency-stop, power-failure, power-restored,
+///   wind:MEAN_MPS:FROM_DEG:TURBULENCE,
 ///   visibility:METRES, rain:MM_PER_H, time-of-day:HOURS.
 /// Longest command text read, and the latest time a command may be set for (a day) [s].
 inline constexpr std::size_t kMaxCommandBytes = 200;

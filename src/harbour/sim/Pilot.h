@@ -33,7 +33,8 @@ struct DriverDefects {
 /// Why no scripted operator can drive `exercise` ("" when one can): the STS's container moves and the MHC's
 /// grab deliveries have one.
 std::string why_no_pilot(const ExerciseSettings& exercise);
-/// The scripted operator for `exercise`; throws std::invalid_argument with why_no_pilot() when there is none.
+/// The scripted operator for `exercise`, its hands off the levers while the power is off and until the drives
+/// are back; throws std::invalid_argument with why_no_pilot() when there is none.
 std::unique_ptr<Pilot> make_pilot(const ExerciseSettings& exercise);
 
 }  // namespace harbour::sim

@@ -13,7 +13,8 @@ namespace {
 constexpr const char* kEmergencyStopControl = "emergency_stop";  // every machine's (its control table)
 constexpr std::uint32_t kSimulationSectionV2 = 0x53494D32;       // "SIM2": with solver-message warnings
 constexpr std::uint32_t kSimulationSectionV3 = 0x53494D33;       // "SIM3": and the instructor's stop
-constexpr std::uint32_t kSimulationSection = 0x53494D34;         // "SIM4": and the events from the first lift
+constexpr std::uint32_t kSimulationSectionV4 = 0x53494D34;       // "SIM4": and the events from the first lift
+constexpr std::uint32_t kSimulationSection = 0x53494D35;         // "SIM5": and the supply (power failure)
 }  // namespace
 
 const char* machine_kind(const MachineSetup& setup) {
@@ -195,6 +196,8 @@ std::string why_invalid(const InstructorCommand& c) {
     case Kind::kClearFaults:
     case Kind::kEmergencyStop:
     case Kind::kReleaseEmergencyStop:
+    case Kind::kPowerFailure:
+    case Kind::kPowerRestored:
       break;
     default:
       return "unknown command kind " + std::to_string(static_cast<int>(c.kind));
@@ -216,10 +219,11 @@ std::string Simulation::why_refused(const InstructorCommand& c) const {
   if (std::string why = why_invalid(c); !why.empty()) return why;
   if (const auto fault = fault_of(c); fault && !machine_->has_fault(*fault))
     return std::string("the ") + machine_->kind() + " has no such part to fail";
-  if ((c.kind == InstructorCommand::Kind::kEmergencyStop ||
-       c.kind == InstructorCommand::Kind::kReleaseEmergencyStop) &&
-      control_table().find(kEmergencyStopControl) < 0)
-    return std::string("the ") + machine_->kind() + " has no emergency stop";
+  using Kind = InstructorCommand::Kind;
+  const bool stops = c.kind == Kind::kEmergencyStop || c.kind == Kind::kReleaseEmergencyStop ||
+                     c.kind == Kind::kPowerFailure || c.kind == Kind::kPowerRestored;
+  if (stops && control_table().find(kEmergencyStopControl) < 0)
+    return std::string("the ") + machine_->kind() + " has no emergency stop (nothing to cut its drives)";
   return "";
 }
 
@@ -264,7 +268,26 @@ void Simulation::command(const InstructorCommand& c) {
     case Kind::kReleaseEmergencyStop:
       instructor_stop_ = false;
       break;
+    case Kind::kPowerFailure:
+      power_off_ = true;
+      awaiting_zero_ = false;
+      break;
+    case Kind::kPowerRestored:
+      if (power_off_) awaiting_zero_ = true;  // zero-voltage protection: no drive restarts under a held lever
+      power_off_ = false;
+      break;
   }
+}
+
+bool Simulation::levers_at_zero(const Controls& controls) const {
+  const Controls read = control_table().in_range(controls);
+  for (int slot = 0; slot < control_table().size(); ++slot) {
+    const ControlSpec& c = control_table()[slot];
+    if (c.kind == ControlKind::kAxis && std::abs(read.value[static_cast<std::size_t>(slot)] - c.neutral) >
+                                            kLeverZeroBand * (c.max - c.min) / 2)
+      return false;
+  }
+  return true;
 }
 
 const ContainerRef* Simulation::liftable(physics::BodyId body) const {
@@ -346,8 +369,10 @@ void Simulation::advance(const Controls& controls) {
   if (vessel_) vessel_->move_to(clock_.time_s());
   if (ramp_) ramp_->move_to(clock_.time_s());
   move_secured_cargo();
-  if (instructor_stop_) {
-    // the trainee's controls are recorded and evaluated as they were; the machine reads its stop pressed
+  if (awaiting_zero_ && levers_at_zero(controls)) awaiting_zero_ = false;
+  if (instructor_stop_ || power_off_ || awaiting_zero_) {
+    // the trainee's controls are recorded and evaluated as they were; the machine reads its stop pressed (a
+    // dead supply acts as the stop does: drives off, brakes set)
     Controls stopped = controls;
     stopped.value[static_cast<std::size_t>(control_table().find(kEmergencyStopControl))] = 1.0;
     machine_->step(stopped, containers_, kStep_s);
@@ -459,6 +484,8 @@ void Simulation::write_snapshot(Snapshot& s) const {
   s.step = clock_.steps();
   s.time_s = clock_.time_s();
   s.held = held_;
+  s.power_off = power_off_;
+  s.awaiting_zero = awaiting_zero_;
   s.diverged = world_->diverged();
   s.warnings = warnings_.total();
   s.wind_mps = weather_.wind();
@@ -539,6 +566,8 @@ std::uint64_t Simulation::state_hash() const {
     hash.add(next_lift_event_);
   }
   if (instructor_stop_) hash.add(std::uint8_t{1});  // (states before the stop existed hash as they did)
+  if (power_off_) hash.add(std::uint8_t{2});        // (and before the power failure)
+  if (awaiting_zero_) hash.add(std::uint8_t{3});
   return hash.value();
 }
 
@@ -552,6 +581,8 @@ std::vector<std::uint8_t> Simulation::save_state() const {
   out.put(instructor_stop_);
   out.put(first_lift_step_);
   out.put(next_lift_event_);
+  out.put(power_off_);
+  out.put(awaiting_zero_);
   out.put(std::vector<std::uint8_t>(secured_.begin(), secured_.end()));
   world_->save_state(out);
   machine_->save_state(out);
@@ -565,7 +596,8 @@ std::vector<std::uint8_t> Simulation::save_state() const {
 void Simulation::restore_state(const std::vector<std::uint8_t>& state) {
   core::StateReader in(state);
   const auto section = in.get<std::uint32_t>();
-  if (section != kSimulationSection && section != kSimulationSectionV3 && section != kSimulationSectionV2)
+  if (section != kSimulationSection && section != kSimulationSectionV4 && section != kSimulationSectionV3 &&
+      section != kSimulationSectionV2)
     throw core::StateError("saved state does not match this simulation at its simulation section");
   clock_.reset(in.get<std::int64_t>());
   if (ramp_) ramp_->move_to(clock_.time_s());
@@ -577,12 +609,14 @@ void Simulation::restore_state(const std::vector<std::uint8_t>& state) {
   instructor_stop_ = section != kSimulationSectionV2 ? in.get<bool>() : false;
   first_lift_step_ = -1;
   next_lift_event_ = 0;
-  if (section == kSimulationSection) {
+  if (section == kSimulationSection || section == kSimulationSectionV4) {
     in.get(first_lift_step_);
     in.get(next_lift_event_);
     if (next_lift_event_ > scenario_.lift_events.size() || first_lift_step_ > clock_.steps())
       throw core::StateError("saved state is past this scenario's events from the first lift");
   }
+  power_off_ = section == kSimulationSection ? in.get<bool>() : false;
+  awaiting_zero_ = section == kSimulationSection ? in.get<bool>() : false;
   std::vector<std::uint8_t> secured;
   in.get(secured, static_cast<std::int64_t>(secured_.size()));
   secured_.assign(secured.begin(), secured.end());

@@ -82,8 +82,10 @@ struct InstructorCommand {
     kLimiterFault,       ///< the load-moment limiter stops nothing (it still warns)
     kEmergencyStop,      ///< the instructor stops the machine: its emergency stop held pressed until released
     kReleaseEmergencyStop,
+    kPowerFailure,  ///< the machine's supply fails: every drive dead, every brake set (as its emergency stop)
+    kPowerRestored,  ///< the supply is back: the drives start once every lever has been back at zero
   };
-  static constexpr std::uint8_t kKinds = 11;
+  static constexpr std::uint8_t kKinds = 13;
   Kind kind = Kind::kGust;
   Gust gust;  ///< kGust: duration and amplitude (its start is now)
   int corner = 0;
@@ -182,6 +184,13 @@ class Simulation {
   /// why_refused says why (a corner other than 0-3, a negative visibility, a part the machine lacks),
   /// changing nothing.
   void command(const InstructorCommand& command);
+  /// The machine's supply has failed (kPowerFailure): its drives read the emergency stop pressed.
+  bool power_off() const { return power_off_; }
+  /// The supply is back but a lever has not been at zero since: the drives stay off until every axis control
+  /// reads within kLeverZeroBand of its neutral (zero-voltage protection).
+  bool awaiting_zero() const { return awaiting_zero_; }
+  /// How near its neutral an axis counts as at zero, as a share of its half range.
+  static constexpr double kLeverZeroBand = 0.05;
 
   std::int64_t steps() const { return clock_.steps(); }
   double time_s() const { return clock_.time_s(); }
@@ -263,6 +272,9 @@ class Simulation {
   std::size_t next_lift_event_ = 0;
   bool held_ = false;
   bool instructor_stop_ = false;  // the instructor holds the machine's emergency stop pressed
+  bool power_off_ = false;        // the supply has failed
+  bool awaiting_zero_ = false;    // restored, but no lever has been at zero since
+  bool levers_at_zero(const Controls& controls) const;
   core::Warnings warnings_;
   StepEvents events_;
   core::Vec3 cab_velocity_, cab_specific_force_{0.0, 0.0, 9.80665};  // world

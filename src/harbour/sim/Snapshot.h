@@ -10,7 +10,7 @@
 
 namespace harbour::sim {
 
-inline constexpr std::uint32_t kSnapshotVersion = 2;
+inline constexpr std::uint32_t kSnapshotVersion = 3;
 inline constexpr int kMaxSwells = 4;
 inline constexpr int kMaxEntities = 2200;  ///< 2000 containers, the machine's bodies, vessel, trucks
 inline constexpr int kMaxRopes = 8;
@@ -43,6 +43,8 @@ struct Snapshot {
   bool held = false;        ///< frozen by the instructor
   bool diverged = false;    ///< the physics stopped
   int devices_missing = 0;  ///< input devices of the station's mapping not present (their controls read safe)
+  bool power_off = false;   ///< the machine's supply has failed (an instructor's emergency)
+  bool awaiting_zero = false;  ///< the supply is back; the drives wait for every lever at zero
 
   // environment
   core::Vec3 wind_mps;  ///< [m/s] world
