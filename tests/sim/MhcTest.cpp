@@ -334,6 +334,9 @@ TEST(Mhc, AFreePracticeIsEvaluatedOnWhatEveryMachineShows) {
   observed(mhc_controls(sim, {{"hoist", -1.0}}), 20000, [&] { return evaluator.metrics().collisions > 0; });
   EXPECT_EQ(evaluator.metrics().collisions, 1);
   EXPECT_LT(mhc(sim).attachment_bottom_z_m(), 0.3);  // on the quay
+  // a faulty device's reading (not a number) is a released button, to the machine and to the evaluation
+  observed(mhc_controls(sim, {{"emergency_stop", std::nan("")}}), 100, [] { return false; });
+  EXPECT_EQ(evaluator.metrics().emergency_stops, 0);
   observed(mhc_controls(sim, {{"emergency_stop", 1.0}}), 100, [] { return false; });
   EXPECT_EQ(evaluator.metrics().emergency_stops, 1);
   EXPECT_FALSE(evaluator.finished());

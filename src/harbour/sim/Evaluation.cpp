@@ -98,10 +98,12 @@ void Evaluator::count_collision(const physics::ImpactEvent& e) {
 void Evaluator::observe(const Simulation& simulation, const Controls& controls) {
   metrics_.time_s = simulation.time_s();
   const int stop = simulation.control_table().find("emergency_stop");
-  const bool estop = stop >= 0 && controls.value[static_cast<std::size_t>(stop)] != 0.0;
+  // read as the machine reads it (a non-finite value, a device fault, reads released)
+  const bool estop =
+      stop >= 0 && simulation.control_table().in_range(controls).value[static_cast<std::size_t>(stop)] != 0.0;
   observe_hoist_fault(simulation, estop);
   if (const auto* sts = dynamic_cast<const StsCrane*>(&simulation.machine()))
-    observe_containers(simulation, controls, *sts);
+    observe_containers(simulation, controls, *sts, estop);
   else
     observe_any_machine(simulation, controls, estop);
   if (simulation.bulk()) observe_bulk(simulation);
@@ -319,7 +321,7 @@ void Evaluator::observe_moves(const Simulation& simulation, std::optional<physic
 }
 
 void Evaluator::observe_containers(const Simulation& simulation, const Controls& controls,
-                                   const StsCrane& crane) {
+                                   const StsCrane& crane, bool estop) {
   const StsControls cab = crane.read(controls);
   const EvaluationRules& rules = exercise_.rules;
   const physics::BodyId spreader = crane.spreader_body();
@@ -358,8 +360,8 @@ void Evaluator::observe_containers(const Simulation& simulation, const Controls&
       crane.gantry_drive().limit_hits() + crane.trolley_drive().limit_hits() + crane.hoist_limit_hits();
   metrics_.limit_hits += static_cast<int>(hits - limit_hits_seen_);
   limit_hits_seen_ = hits;
-  if (cab.emergency_stop && !was_estop_ && !stopping_safely_) ++metrics_.emergency_stops;
-  was_estop_ = cab.emergency_stop;
+  if (estop && !was_estop_ && !stopping_safely_) ++metrics_.emergency_stops;
+  was_estop_ = estop;
   observe_gantry_warning(cab.horn, crane.gantry_drive().reference_mps() != 0.0, crane.gantry_position_m());
   const double drum_power = -crane.hoist().drum_rope_torque(0) * crane.hoist().drum_rope_speed(0) /
                             simulation.scenario().sts().crane.hoist.elements[0].radius_m;

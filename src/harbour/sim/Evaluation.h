@@ -215,7 +215,8 @@ class Evaluator {
   Score score() const;
 
  private:
-  void observe_containers(const Simulation& simulation, const Controls& controls, const StsCrane& crane);
+  void observe_containers(const Simulation& simulation, const Controls& controls, const StsCrane& crane,
+                          bool estop);
   void observe_any_machine(const Simulation& simulation, const Controls& controls, bool emergency_stop);
   /// Gantry travel (people walk under the portal) starts only after a warning on the horn: one motion from
   /// standstill covering more than the rules' gantry_travel_m (positioning creeps are not travels).
