@@ -13,6 +13,7 @@
 #include "harbour/core/Units.h"
 #include "harbour/io/BulkFiles.h"
 #include "harbour/io/ExerciseFiles.h"
+#include "harbour/io/VesselFiles.h"
 #include "harbour/sim/Simulation.h"
 #include "harbour/sim/Vessel.h"
 
@@ -145,6 +146,11 @@ nlohmann::json design_form(const std::string& folder, const DesignCheck& design)
                            {"optional", p.optional},
                            {"fallback", p.fallback}});
   form["start_pose"] = {{"section", pose.section}, {"fields", pose_fields}};
+  const io::HarmonicRange& sea = io::kHarmonicRange;
+  form["sea_harmonic"] = {{"max_amplitude_m", sea.max_heave_m},
+                          {"max_amplitude_deg", sea.max_angle_deg},
+                          {"min_period_s", sea.min_period_s},
+                          {"max_period_s", sea.max_period_s}};
   const auto figures = [&](const std::vector<io::RuleField>& fields) {
     json list = json::array();
     for (const io::RuleField& f : fields)

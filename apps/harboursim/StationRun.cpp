@@ -85,9 +85,9 @@ std::unique_ptr<station::DeviceInput> open_devices(const station::Profile& profi
 // branch goes on in the world the attempt was made in, even when the exercise was redesigned since.
 std::string taken_over_version(const std::string& database, const StationOptions& options) {
   if (options.take_over_recording.empty()) return "";
-  for (const io::AttemptRow& a : io::RecordsStore(database).attempts())
-    if (a.recording == options.take_over_recording) return a.exercise_version;
-  return "";
+  const std::optional<io::AttemptRow> taken =
+      io::RecordsStore(database).attempt_recorded_at(options.take_over_recording);
+  return taken ? taken->exercise_version : "";
 }
 
 // One attempt at the station, start to end; with a link, seen and commanded from the centre's consoles

@@ -436,8 +436,8 @@ int take_over_recording(const std::string& recording_path, const RunOptions& opt
                      [&](const sim::Simulation& s, const sim::Controls& in) { evaluator.observe(s, in); });
   io::RecordsStore db(options.database.empty() ? default_database() : options.database);
   std::optional<std::int64_t> parent;
-  for (const io::AttemptRow& a : db.attempts())
-    if (a.recording == recording_path) parent = a.id;
+  if (const std::optional<io::AttemptRow> original = db.attempt_recorded_at(recording_path))
+    parent = original->id;
   std::printf("harboursim: took over %s at t=%.3f s (%s)%s; the autopilot drives on\n",
               recording_path.c_str(), branch.simulation->time_s(),
               progress_text(exercise, evaluator.metrics()).c_str(),

@@ -77,6 +77,11 @@ TEST_P(RecordsStoreOn, StoresTraineesAttemptsMovesAndScores) {
   EXPECT_TRUE(rows[1].passed);
   EXPECT_EQ(rows[1].moves, 1);
   EXPECT_EQ(db.trainees().size(), 1u);
+  // the attempt a recording file holds: the branch written over the same file is the newest there
+  EXPECT_EQ(db.attempt_recorded_at("out/a.hsrc")->id, first);
+  db.finish_attempt(branch, m, s, "out/a.hsrc");
+  EXPECT_EQ(db.attempt_recorded_at("out/a.hsrc")->id, branch);
+  EXPECT_FALSE(db.attempt_recorded_at("out/none.hsrc").has_value());
 }
 
 // The schemas earlier builds made, as they made them: version 1 (the first records) and version 2 (the

@@ -12,6 +12,7 @@ export interface DesignForm {
   vessel?: { name: string; kind: string; bays: number[]; rows: number[]; hold_tiers: number[]; deck_tiers: number[]; holds: number[] };
   yard_block?: { bays: number; rows: number; tiers: number };
   start_pose: { section: string; fields: PoseField[] };
+  sea_harmonic: { max_amplitude_m: number; max_amplitude_deg: number; min_period_s: number; max_period_s: number };
   rules: { thresholds: RuleFigure[]; deductions: RuleFigure[] };
   weather: Record<string, number>;
   event_kinds: string[];
@@ -365,14 +366,15 @@ export class DesignerForms {
     // the vessel's motion: a sum of harmonics per motion (the first one offered empty when there is none)
     if (x.vessel) {
       parts.push(el("div", { className: "hint" }, "sea state: the vessel's heave, roll and pitch, each a sum of harmonics"));
-      for (const [motion, unit, most] of [["heave", "m", 5], ["roll", "deg", 10], ["pitch", "deg", 10]] as const) {
+      const range = this.form?.sea_harmonic;
+      for (const [motion, unit] of [["heave", "m"], ["roll", "deg"], ["pitch", "deg"]] as const) {
         const list: Plain[] = Array.isArray(x.vessel.sea_state?.[motion]) ? x.vessel.sea_state[motion] : [];
         const row = el("div", { className: "row", id: `design-sea-${motion}` }, el("span", {}, `${motion}:`));
         for (let k = 0; k < Math.max(list.length, 1); ++k) {
           const path = ["vessel", "sea_state", motion, k];
           const harmonic = el("span", { className: "harmonic" },
-            this.number(unit === "m" ? "amplitude m" : "amplitude °", [...path, `amplitude_${unit}`], { min: 0, max: most, step: 0.01 }),
-            this.number("period s", [...path, "period_s"], { min: 0.5, max: 120, step: 0.5 }),
+            this.number(unit === "m" ? "amplitude m" : "amplitude °", [...path, `amplitude_${unit}`], { min: 0, max: range?.[`max_amplitude_${unit}`], step: 0.01 }),
+            this.number("period s", [...path, "period_s"], { min: range?.min_period_s, max: range?.max_period_s, step: 0.5 }),
             this.number("phase °", [...path, "phase_deg"], { min: -360, max: 360, step: 5, inForce: 0 }));
           if (k < list.length) {
             const remove = el("button", { type: "button", title: `remove this ${motion} harmonic` }, "×");

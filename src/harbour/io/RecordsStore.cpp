@@ -619,6 +619,12 @@ void RecordsStore::finish_attempt(std::int64_t attempt, const sim::Metrics& m, c
   });
 }
 
+std::optional<AttemptRow> RecordsStore::attempt_recorded_at(const std::string& path) {
+  for (AttemptRow& a : attempts())  // newest first
+    if (a.recording == path) return std::move(a);
+  return std::nullopt;
+}
+
 std::vector<AttemptRow> RecordsStore::attempts(const std::optional<std::string>& trainee) {
   std::vector<AttemptRow> out;
   const std::string who = trainee.value_or("");

@@ -127,6 +127,9 @@ class RecordsStore {
   int mark_interrupted_attempts();
   /// Attempts, newest first, optionally of one trainee.
   std::vector<AttemptRow> attempts(const std::optional<std::string>& trainee = std::nullopt);
+  /// The attempt whose recording is the file `path`: the newest of them when a path was used again (the file
+  /// holds the last run written to it); none when no attempt was recorded there (a take-over's check).
+  std::optional<AttemptRow> attempt_recorded_at(const std::string& path);
   /// An attempt's events in time order, and its final metrics by name.
   std::vector<EventRow> events(std::int64_t attempt);
   std::vector<std::pair<std::string, double>> metrics(std::int64_t attempt);

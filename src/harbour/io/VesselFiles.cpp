@@ -15,9 +15,10 @@ std::vector<sim::Harmonic> read_harmonics(const YamlFile& f, const YAML::Node& s
   for (std::size_t n = 0; n < list.size(); ++n) {
     const std::string p = at + "." + key + "[" + std::to_string(n) + "]";
     sim::Harmonic h;
-    h.amplitude = angle ? core::deg_to_rad(f.number(list[n], "amplitude_deg", p, 0.0, 10.0))
-                        : f.number(list[n], "amplitude_m", p, 0.0, 5.0);
-    h.period_s = f.number(list[n], "period_s", p, 0.5, 120.0);
+    const HarmonicRange& range = kHarmonicRange;
+    h.amplitude = angle ? core::deg_to_rad(f.number(list[n], "amplitude_deg", p, 0.0, range.max_angle_deg))
+                        : f.number(list[n], "amplitude_m", p, 0.0, range.max_heave_m);
+    h.period_s = f.number(list[n], "period_s", p, range.min_period_s, range.max_period_s);
     h.phase_rad = core::deg_to_rad(f.number_or(list[n], "phase_deg", p, 0.0, -360.0, 360.0));
     out.push_back(h);
   }

@@ -22,11 +22,11 @@ Session::Session(const sim::ExerciseSettings& exercise, const SessionOptions& op
   std::int64_t branch_step = 0;
   if (options.take_over) {
     // only an attempt the centre's records know is continued: a command names no other file to read
-    for (const io::AttemptRow& a : db_->attempts())
-      if (a.recording == options.take_over->recording) parent = a.id;
-    if (!parent)
+    const std::optional<io::AttemptRow> taken = db_->attempt_recorded_at(options.take_over->recording);
+    if (!taken)
       throw std::runtime_error("take-over refused: no stored attempt was recorded at '" +
                                core::printable(options.take_over->recording) + "'");
+    parent = taken->id;
     const sim::Recording original = io::read_recording(options.take_over->recording);
     if (original.scenario != exercise.name)
       throw std::runtime_error(options.take_over->recording + " was recorded on exercise '" +
