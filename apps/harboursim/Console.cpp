@@ -39,6 +39,7 @@
 
 #include "Designer.h"
 #include "Reports.h"
+#include "RoutesTool.h"
 #include "StationNet.h"
 #include "StsRun.h"
 #include "XapiSender.h"
@@ -552,8 +553,14 @@ class Console {
   /// loader's verdict, a summary and the scene to preview), POST /api/designer/save {text}.
   Response designer(const http::request<http::string_body>& request, const Account& account,
                     const std::string& target, const std::string& query);
+  /// The route editor: GET /api/routes/source?route=NAME, POST /api/routes/check {id, text} (the route
+  /// loader's verdict and the route), POST /api/routes/save {id, text} (into the centre's route folder; the
+  /// console's routes reloaded).
+  Response route_editor(const http::request<http::string_body>& request, const Account& account,
+                        const std::string& target, const std::string& query);
   std::string exercise_folder() const {
-    return options_.exercises.empty() ? std::string(HARBOUR_DATA_DIR) + "/exercises" : options_.exercises;
+    return options_.centre.exercises.empty() ? std::string(HARBOUR_DATA_DIR) + "/exercises"
+                                             : options_.centre.exercises;
   }
   static constexpr int kMostPrintsAtOnce = 2;
   int printing_ = 0;  ///< PDFs being printed (changed on the console's thread only)
@@ -599,9 +606,11 @@ class Console {
                   const std::function<json(bool)>& state_of);
   std::string looks_ =
       dump(looks_json(ig::load_looks(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml")));
-  /// the training routes (data/routes), checked at start: a bad one stops the console naming it
-  std::vector<training::Route> routes_ = io::load_routes(std::string(HARBOUR_DATA_DIR) + "/routes",
-                                                         std::string(HARBOUR_DATA_DIR) + "/exercises");
+  /// the training routes (the centre's and data/routes), checked at start: a bad one stops the console
+  /// naming it
+  std::vector<training::Route> routes_ = load_centre_routes(centre());
+  /// the centre's folders, the designer's folder being the centre's exercise folder
+  CentreFolders centre() const { return {exercise_folder(), options_.centre.routes}; }
 };
 
 // ---------------------------------------------------------------------------------------------------
@@ -1025,6 +1034,10 @@ Console::Response Console::api(const http::request<http::string_body>& request, 
   if (target.rfind("/api/designer/", 0) == 0) {
     if (!account.instructs()) return forbidden();
     return designer(request, account, target, query);
+  }
+  if (target.rfind("/api/routes/", 0) == 0) {
+    if (!account.instructs()) return forbidden();
+    return route_editor(request, account, target, query);
   }
   if (target == "/api/trainees" && get) {
     if (!account.instructs()) return forbidden();
@@ -1728,6 +1741,68 @@ Console::Response Console::designer(const http::request<http::string_body>& requ
                      {"scene", scene},
                      {"state", state},
                      {"bulk", bulk}});
+}
+
+Console::Response Console::route_editor(const http::request<http::string_body>& request,
+                                        const Account& account, const std::string& target,
+                                        const std::string& query) {
+  if (target == "/api/routes/source" && request.method() == http::verb::get) {
+    const std::string id = query_param(query, "route");
+    try {
+      const std::string text = route_source(centre(), id);
+      return json_reply(request, http::status::ok,
+                        {{"route", id}, {"text", text}, {"designed", designed(text)}});
+    } catch (const std::out_of_range& e) {
+      return error(request, http::status::not_found, e.what());
+    }
+  }
+  const bool check = target == "/api/routes/check", save = target == "/api/routes/save";
+  if ((!check && !save) || request.method() != http::verb::post)
+    return error(request, http::status::not_found, "no such API: " + core::printable(target));
+  std::string why;
+  const std::optional<json> body = parse_object(request.body(), why);
+  if (!body) return error(request, http::status::bad_request, why);
+  const auto id = body->find("id"), text = body->find("text");
+  if (id == body->end() || !id->is_string())
+    return error(request, http::status::bad_request, "field 'id': the route's file name");
+  if (text == body->end() || !text->is_string())
+    return error(request, http::status::bad_request, "field 'text': the route's YAML");
+  RouteCheck route;
+  try {
+    route = check_route_text(centre(), id->get<std::string>(), text->get<std::string>());
+  } catch (const std::invalid_argument& e) {
+    return error(request, http::status::unprocessable_entity, e.what());
+  }
+  json stages = route_json(route.route);
+  for (std::size_t n = 0; n < route.route.stages.size(); ++n)
+    stages["stages"][n]["exercise_version"] = io::exercise_version(route.route.stages[n].exercise_file);
+  if (!save) return json_reply(request, http::status::ok, stages);
+  const std::string file_name = route.route.id + ".yaml";
+  std::string file, before;
+  try {
+    before = route_source(centre(), route.route.id);
+  } catch (const std::out_of_range&) {
+  }
+  try {
+    file = save_route(centre(), route);
+  } catch (const std::logic_error& e) {
+    return error(request, http::status::conflict, e.what());
+  }
+  // the console's routes with it; should another file of the folder spoil them, the save is undone
+  try {
+    routes_ = load_centre_routes(centre());
+  } catch (const std::exception& e) {
+    std::error_code ec;
+    if (before.empty())
+      std::filesystem::remove(file, ec);
+    else
+      std::ofstream(file, std::ios::binary) << before;
+    return error(request, http::status::unprocessable_entity,
+                 std::string("saved, the centre's routes no longer load, so it was undone: ") + e.what());
+  }
+  db_.audit(account.name, "save_route", route.route.id, file_name);
+  stages["file"] = file;
+  return json_reply(request, http::status::created, stages);
 }
 
 std::optional<Console::Response> Console::cohort_views(const http::request<http::string_body>& request,

@@ -2,6 +2,8 @@
 
 #include <string>
 
+#include "Centre.h"
+
 namespace harbour::apps {
 
 /// `harboursim console`: the instructor console, a web application and its API served over HTTP and
@@ -14,7 +16,9 @@ struct ConsoleOptions {
   std::string name;                ///< the console's name on the network ("" : console-<pid>)
   std::string web_root;            ///< the built front end (web/dist)
   std::string lrs, lrs_auth_file;  ///< a Learning Record Store to send the xAPI statements to ("" : none)
-  std::string exercises;  ///< the centre's exercise folder the designer saves in ("" : data/exercises)
+  /// the centre's exercise folder the designer saves in and its route folder the route editor saves in
+  /// ("" : data/exercises, data/routes)
+  CentreFolders centre;
   double seconds = 0.0;   ///< stop after this long (tests; 0: until Ctrl-C)
   /// TLS (required off loopback): the certificate chain and its private key, PEM files
   std::string tls_certificate, tls_key;

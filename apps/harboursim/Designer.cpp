@@ -13,6 +13,7 @@
 #include "harbour/core/Units.h"
 #include "harbour/io/BulkFiles.h"
 #include "harbour/io/ExerciseFiles.h"
+#include "harbour/io/RouteFiles.h"
 #include "harbour/io/VesselFiles.h"
 #include "harbour/sim/Simulation.h"
 #include "harbour/sim/Vessel.h"
@@ -28,6 +29,13 @@ void write_file(const fs::path& path, const std::string& text) {
   out << text;
   out.close();
   if (!out) throw std::runtime_error("cannot write " + path.string());
+}
+
+// written beside and renamed over: a reader never sees half a file
+void replace_file(const fs::path& path, const std::string& text) {
+  const fs::path partial = path.string() + ".partial";
+  write_file(partial, text);
+  fs::rename(partial, path);
 }
 
 std::string read_file(const fs::path& path) {
@@ -53,14 +61,21 @@ bool designed(const std::string& text) {
          text.rfind(std::string(kDesignedMarker) + "\n", 0) == 0;
 }
 
+namespace {
+
+// the marker last, so that the loader's line numbers are the designer's
+std::string with_marker(const std::string& yaml) {
+  return designed(yaml) ? yaml
+                        : yaml + (yaml.empty() || yaml.back() == '\n' ? "" : "\n") + kDesignedMarker + "\n";
+}
+
+}  // namespace
+
 DesignCheck check_design(const std::string& folder, const std::string& yaml) {
   if (!fs::is_directory(folder))
     throw std::runtime_error("the exercise folder " + folder + " does not exist");
   DesignCheck check;
-  // the marker last, so that the loader's line numbers are the designer's
-  check.text = designed(yaml)
-                   ? yaml
-                   : yaml + (yaml.empty() || yaml.back() == '\n' ? "" : "\n") + kDesignedMarker + "\n";
+  check.text = with_marker(yaml);
   // a file of its own in the folder (so relative paths resolve as they will), named in the errors as the
   // design
   const fs::path probe =
@@ -98,9 +113,7 @@ std::string save_design(const std::string& folder, const DesignCheck& design) {
   const fs::path versions = fs::path(folder) / "versions";
   fs::create_directories(versions);
   write_file(versions / (design.exercise.name + "-" + design.version + ".yaml"), design.text);
-  const fs::path partial = file.string() + ".partial";
-  write_file(partial, design.text);
-  fs::rename(partial, file);
+  replace_file(file, design.text);
   return file.string();
 }
 
@@ -199,6 +212,48 @@ std::string design_source(const std::string& folder, const std::string& name) {
   const fs::path file = fs::path(folder) / (name + ".yaml");
   if (!fs::is_regular_file(file)) throw std::out_of_range("no exercise '" + name + "'");
   return read_file(file);
+}
+
+RouteCheck check_route_text(const CentreFolders& centre, const std::string& id, const std::string& yaml) {
+  if (const std::string why = why_bad_design_name(id); !why.empty())
+    throw std::invalid_argument("the route's file name '" + core::printable(id, 64) + "': " + why);
+  RouteCheck check;
+  check.text = with_marker(yaml);
+  const std::string folder = centre.route_folders().front();
+  try {
+    // read as the file it will be, so its relative paths and its name are what the stations will see
+    check.route =
+        io::load_route(io::YamlFile::parse(check.text, id + ".yaml"), folder, centre.exercise_folders());
+  } catch (const std::exception& e) {
+    throw std::invalid_argument(e.what());
+  }
+  return check;
+}
+
+std::string save_route(const CentreFolders& centre, const RouteCheck& route) {
+  const std::vector<std::string> folders = centre.route_folders();
+  const fs::path file = fs::path(folders.front()) / (route.route.id + ".yaml");
+  std::error_code ec;
+  for (std::size_t n = 1; n < folders.size(); ++n)
+    if (!fs::equivalent(folders[n], folders.front(), ec) &&
+        fs::is_regular_file(fs::path(folders[n]) / (route.route.id + ".yaml")))
+      throw std::logic_error("route '" + route.route.id +
+                             "' is a shipped route: save yours under another name");
+  if (fs::exists(file) && !designed(read_file(file)))
+    throw std::logic_error(
+        "route '" + route.route.id +
+        "' was not written in the route editor (a shipped one?): save yours under another name");
+  fs::create_directories(folders.front());
+  replace_file(file, route.text);
+  return file.string();
+}
+
+std::string route_source(const CentreFolders& centre, const std::string& id) {
+  if (!why_bad_design_name(id).empty()) throw std::out_of_range("no route '" + core::printable(id) + "'");
+  for (const std::string& folder : centre.route_folders())
+    if (const fs::path file = fs::path(folder) / (id + ".yaml"); fs::is_regular_file(file))
+      return read_file(file);
+  throw std::out_of_range("no route '" + id + "'");
 }
 
 }  // namespace harbour::apps

@@ -4,12 +4,14 @@
 
 #include <nlohmann/json.hpp>
 
+#include "Centre.h"
 #include "harbour/sim/Evaluation.h"
+#include "harbour/training/Route.h"
 
 namespace harbour::apps {
 
-/// A line of an exercise the console's designer saved (its last): the designer may overwrite only these (a
-/// shipped exercise stays as it is).
+/// A line of an exercise the console's designer saved, or of a route its route editor saved (their last): the
+/// console may overwrite only these (a shipped exercise or route stays as it is).
 inline constexpr const char* kDesignedMarker = "# designed in the harboursim console";
 bool designed(const std::string& text);
 
@@ -40,5 +42,22 @@ nlohmann::json design_form(const std::string& folder, const DesignCheck& design)
 
 /// The text of an exercise in `folder` by name, to start a design from; std::out_of_range when none.
 std::string design_source(const std::string& folder, const std::string& name);
+
+/// A route written in the console's route editor, checked by the simulator's own route loader as the file
+/// ID.yaml in the centre's route folder (errors name it so): its stages name the centre's exercises or the
+/// shipped ones.
+struct RouteCheck {
+  training::Route route;
+  std::string text;  ///< as it would be saved (the marker last)
+};
+/// Checks a route; throws std::invalid_argument with the loader's error, or when ID is no file name.
+RouteCheck check_route_text(const CentreFolders& centre, const std::string& id, const std::string& yaml);
+/// Saves a checked route in the centre's route folder (the first of centre.route_folders()), written beside
+/// and renamed over. Throws std::logic_error when its name is a shipped route's or a route the editor did not
+/// write. Returns the file saved.
+std::string save_route(const CentreFolders& centre, const RouteCheck& route);
+/// The text of a route by name (the centre's, then the shipped ones), to start from; std::out_of_range when
+/// none.
+std::string route_source(const CentreFolders& centre, const std::string& id);
 
 }  // namespace harbour::apps

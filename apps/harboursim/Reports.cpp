@@ -15,6 +15,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "RoutesTool.h"
 #include "StsRun.h"
 #include "harbour/core/Text.h"
 #include "harbour/io/RouteFiles.h"
@@ -151,10 +152,10 @@ void print_pdf(const std::string& html, const std::filesystem::path& pdf) {
   }
 }
 
-int write_report(const std::string& database, const std::string& trainee, const std::string& out) {
+int write_report(const std::string& database, const CentreFolders& centre, const std::string& trainee,
+                 const std::string& out) {
   io::RecordsStore db(database.empty() ? default_database() : database);
-  const std::vector<training::Route> routes = io::load_routes(std::string(HARBOUR_DATA_DIR) + "/routes",
-                                                              std::string(HARBOUR_DATA_DIR) + "/exercises");
+  const std::vector<training::Route> routes = load_centre_routes(centre);
   std::string html;
   try {
     html = trainee.empty() ? training::class_report_html(class_report_data(db, routes))

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "Centre.h"
 #include "harbour/io/RecordsStore.h"
 #include "harbour/training/Report.h"
 
@@ -32,6 +33,7 @@ void print_pdf(const std::string& html, const std::filesystem::path& pdf);
 
 /// `harboursim report trainee ID` / `harboursim report class`: writes the report to `out` (a .pdf, or the
 /// page itself for a .html).
-int write_report(const std::string& database, const std::string& trainee, const std::string& out);
+int write_report(const std::string& database, const CentreFolders& centre, const std::string& trainee,
+                 const std::string& out);
 
 }  // namespace harbour::apps

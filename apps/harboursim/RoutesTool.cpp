@@ -11,9 +11,6 @@
 namespace harbour::apps {
 namespace {
 
-const std::string kRoutes = std::string(HARBOUR_DATA_DIR) + "/routes";
-const std::string kExercises = std::string(HARBOUR_DATA_DIR) + "/exercises";
-
 std::string criteria(const training::Stage& s) {
   char text[64];
   std::string out = s.min_score ? (std::snprintf(text, sizeof text, "score >= %g", *s.min_score), text)
@@ -27,22 +24,27 @@ std::string criteria(const training::Stage& s) {
 
 }  // namespace
 
-training::Route load_shipped_route(const std::string& id) {
+std::vector<training::Route> load_centre_routes(const CentreFolders& centre) {
+  return io::load_routes(centre.route_folders(), centre.exercise_folders());
+}
+
+training::Route load_named_route(const CentreFolders& centre, const std::string& id) {
   if (const std::string why = core::why_bad_name(id, 64); !why.empty() || id.find('/') != std::string::npos)
     throw std::runtime_error("route '" + core::printable(id, 64) +
                              "': a route's name, as harboursim routes list shows");
-  const std::string file = kRoutes + "/" + id + ".yaml";
-  if (!std::filesystem::is_regular_file(file)) {
-    std::string known;
-    for (const training::Route& r : io::load_routes(kRoutes, kExercises))
-      known += (known.empty() ? "" : ", ") + r.id;
-    throw std::runtime_error("no route '" + id + "' (the shipped ones: " + known + ")");
+  for (const std::string& folder : centre.route_folders()) {
+    const std::string file = folder + "/" + id + ".yaml";
+    if (std::filesystem::is_regular_file(file)) return io::load_route(file, centre.exercise_folders());
   }
-  return io::load_route(file, kExercises);
+  std::string known;
+  for (const training::Route& r : load_centre_routes(centre))
+    known += (known.empty() ? "" : ", ") + r.id;
+  throw std::runtime_error("no route '" + id + "' (there are: " + known + ")");
 }
 
-RouteStage next_route_stage(io::RecordsStore& db, const std::string& trainee, const std::string& route_id) {
-  const training::Route route = load_shipped_route(route_id);
+RouteStage next_route_stage(io::RecordsStore& db, const CentreFolders& centre, const std::string& trainee,
+                            const std::string& route_id) {
+  const training::Route route = load_named_route(centre, route_id);
   const auto enrolled = db.enrolments(trainee);
   if (std::none_of(enrolled.begin(), enrolled.end(),
                    [&](const io::EnrolmentRow& e) { return e.route == route.id; }))
@@ -63,8 +65,8 @@ RouteStage next_route_stage(io::RecordsStore& db, const std::string& trainee, co
   return {route, *route.stage(*p.next)};
 }
 
-int list_routes() {
-  for (const training::Route& r : io::load_routes(kRoutes, kExercises)) {
+int list_routes(const CentreFolders& centre) {
+  for (const training::Route& r : load_centre_routes(centre)) {
     std::printf("%-16s %s (%s): ", r.id.c_str(), r.name.c_str(), r.machine.c_str());
     std::string last_goal;
     for (const training::Stage& s : r.stages) {
@@ -80,8 +82,9 @@ int list_routes() {
   return 0;
 }
 
-int show_route(const std::string& database, const std::string& route_id, const std::string& trainee) {
-  const training::Route route = load_shipped_route(route_id);
+int show_route(const std::string& database, const CentreFolders& centre, const std::string& route_id,
+               const std::string& trainee) {
+  const training::Route route = load_named_route(centre, route_id);
   std::optional<training::RouteProgress> p;
   if (!trainee.empty()) {
     io::RecordsStore db(database.empty() ? default_database() : database);
@@ -116,8 +119,9 @@ int show_route(const std::string& database, const std::string& route_id, const s
   return 0;
 }
 
-int enrol_trainee(const std::string& database, const std::string& trainee, const std::string& route_id) {
-  const training::Route route = load_shipped_route(route_id);
+int enrol_trainee(const std::string& database, const CentreFolders& centre, const std::string& trainee,
+                  const std::string& route_id) {
+  const training::Route route = load_named_route(centre, route_id);
   io::RecordsStore db(database.empty() ? default_database() : database);
   const bool added = db.enrol(trainee, route.id, "(command line)");
   if (added) db.audit("(command line)", "enrol", trainee, route.id);
@@ -126,9 +130,10 @@ int enrol_trainee(const std::string& database, const std::string& trainee, const
   return 0;
 }
 
-int decide_stage(const std::string& database, const std::string& trainee, const std::string& route_id,
-                 const std::string& stage, const std::string& action, const std::string& reason) {
-  const training::Route route = load_shipped_route(route_id);
+int decide_stage(const std::string& database, const CentreFolders& centre, const std::string& trainee,
+                 const std::string& route_id, const std::string& stage, const std::string& action,
+                 const std::string& reason) {
+  const training::Route route = load_named_route(centre, route_id);
   if (!route.stage(stage))
     throw std::runtime_error("route '" + route.id + "' has no stage '" + core::printable(stage) + "'");
   io::RecordsStore db(database.empty() ? default_database() : database);

@@ -105,7 +105,7 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
   std::string exercise_file;
   if (!options.route.empty()) {
     io::RecordsStore db(database);
-    const RouteStage next = next_route_stage(db, options.trainee, options.route);
+    const RouteStage next = next_route_stage(db, options.centre, options.trainee, options.route);
     exercise_file = next.stage.exercise_file;
     session_options.route = next.route.id;
     session_options.stage = next.stage.id;
@@ -113,7 +113,7 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
                 next.stage.goal.c_str());
   } else {
     exercise_file =
-        resolve_exercise(options.exercise, options.exercises, taken_over_version(database, options));
+        resolve_exercise(options.exercise, options.centre.exercises, taken_over_version(database, options));
   }
   session_options.exercise_version = io::exercise_version(exercise_file);
   const sim::ExerciseSettings exercise = load_resolved_exercise(exercise_file);

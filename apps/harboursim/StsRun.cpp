@@ -224,13 +224,13 @@ int run_exercise(const RunOptions& options) {
   RunOptions run = options;
   std::string exercise_file;
   if (!options.route.empty()) {
-    const RouteStage next = next_route_stage(db, options.trainee, options.route);
+    const RouteStage next = next_route_stage(db, options.centre, options.trainee, options.route);
     run.stage = next.stage.id;
     exercise_file = next.stage.exercise_file;
     std::printf("harboursim: route %s, stage %s (%s)\n", next.route.id.c_str(), next.stage.id.c_str(),
                 next.stage.goal.c_str());
   } else {
-    exercise_file = resolve_exercise(options.exercise);
+    exercise_file = resolve_exercise(options.exercise, options.centre.exercises);
   }
   run.exercise_version = io::exercise_version(exercise_file);
   const sim::ExerciseSettings exercise = load_resolved_exercise(exercise_file);

@@ -3,13 +3,15 @@
 #include <string>
 #include <vector>
 
+#include "Centre.h"
 #include "harbour/sim/Evaluation.h"
 
 namespace harbour::apps {
 
 /// `harboursim run`: an exercise headless with the autopilot, progress lines and the evaluation.
 struct RunOptions {
-  std::string exercise;  ///< exercise file, or the name of a shipped one (resolve_exercise)
+  std::string exercise;  ///< exercise file, or an exercise's name (resolve_exercise)
+  CentreFolders centre;  ///< the centre's exercises and routes (none: only the shipped ones)
   bool autopilot = false;
   std::string record;                 ///< recording file to write ("" for none)
   std::string trainee = "autopilot";  ///< trainee id the attempt is stored under

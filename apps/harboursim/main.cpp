@@ -15,6 +15,19 @@
 #include "StsRun.h"
 #include "XapiSender.h"
 
+namespace {
+
+// --exercises and --routes: the centre's own folders, searched before the shipped ones
+void add_centre_options(CLI::App* command, harbour::apps::CentreFolders& centre, const char* exercises_help) {
+  command->add_option("--exercises", centre.exercises, exercises_help);
+  command->add_option("--routes", centre.routes,
+                      "the centre's route folder, beside the shipped routes (its stages name exercises of "
+                      "--exercises or shipped ones)");
+}
+const char* kCentreExercises = "the centre's exercise folder, searched by name before the shipped exercises";
+
+}  // namespace
+
 int main(int argc, char** argv) {
   CLI::App app{"harboursim: harbour crane training simulator"};
   app.require_subcommand(1);
@@ -35,6 +48,7 @@ int main(int argc, char** argv) {
                       "0:visibility:300, 0:rain:8, 0:time-of-day:21.5");
   run_cmd->add_option("--db", run.database,
                       "records connection (default: SQLite file in the user's data directory)");
+  add_centre_options(run_cmd, run.centre, kCentreExercises);
 
   std::string database, trainee_id, trainee_name, results_trainee;
   CLI::App* trainees_cmd = app.add_subcommand("trainees", "manage trainees");
@@ -88,8 +102,7 @@ int main(int argc, char** argv) {
                           "the station's name on the centre's network: consoles see and command it");
   station_cmd->add_option("--domain", live.domain, "the centre's DDS domain (0-232)")
       ->check(CLI::Range(0, 232));
-  station_cmd->add_option("--exercises", live.exercises,
-                          "the centre's exercise folder, searched by name before the shipped exercises");
+  add_centre_options(station_cmd, live.centre, kCentreExercises);
   station_cmd->add_flag("--serve", live.serve,
                         "wait for a console to start exercises, one after another (needs --name)");
 
@@ -158,8 +171,8 @@ int main(int argc, char** argv) {
                           "send the attempts' xAPI statements to this LRS (http://HOST:PORT/xAPI/)");
   console_cmd->add_option("--lrs-auth-file", console.lrs_auth_file,
                           "the LRS's credentials: one line user:password");
-  console_cmd->add_option("--exercises", console.exercises,
-                          "the centre's exercise folder the designer saves in (default: data/exercises)");
+  add_centre_options(console_cmd, console.centre,
+                     "the centre's exercise folder the designer saves in (default: data/exercises)");
   console_cmd->add_option("--seconds", console.seconds, "stop after this long (default: Ctrl-C)")
       ->check(CLI::NonNegativeNumber);
 
@@ -178,9 +191,12 @@ int main(int argc, char** argv) {
   std::string route_id, route_trainee, route_stage, route_reason, route_db;
   CLI::App* routes_cmd = app.add_subcommand("routes", "training routes: stages, enrolment, progress");
   routes_cmd->require_subcommand(1);
+  harbour::apps::CentreFolders route_centre;
   routes_cmd->add_option("--db", route_db, "records connection");
+  add_centre_options(routes_cmd, route_centre, kCentreExercises);
   routes_cmd->fallthrough();
-  CLI::App* routes_list_cmd = routes_cmd->add_subcommand("list", "the shipped routes and their stages");
+  CLI::App* routes_list_cmd =
+      routes_cmd->add_subcommand("list", "the routes (the centre's and the shipped ones) and their stages");
   CLI::App* routes_show_cmd =
       routes_cmd->add_subcommand("show", "a route's stages, with a trainee's progress");
   routes_show_cmd->add_option("route", route_id, "route name")->required();
@@ -202,7 +218,9 @@ int main(int argc, char** argv) {
   std::string report_db, report_trainee, report_out;
   CLI::App* report_cmd = app.add_subcommand("report", "a trainee's or the class's report, as PDF or HTML");
   report_cmd->require_subcommand(1);
+  harbour::apps::CentreFolders report_centre;
   report_cmd->add_option("--db", report_db, "records connection");
+  add_centre_options(report_cmd, report_centre, kCentreExercises);
   report_cmd->add_option("--out", report_out, "the file to write: .pdf (printed by chromium) or .html")
       ->required();
   report_cmd->fallthrough();
@@ -256,12 +274,13 @@ int main(int argc, char** argv) {
       }
       return harbour::apps::run_exercise(run);
     }
-    if (*routes_list_cmd) return harbour::apps::list_routes();
-    if (*routes_show_cmd) return harbour::apps::show_route(route_db, route_id, route_trainee);
-    if (*routes_enrol_cmd) return harbour::apps::enrol_trainee(route_db, route_trainee, route_id);
+    if (*routes_list_cmd) return harbour::apps::list_routes(route_centre);
+    if (*routes_show_cmd) return harbour::apps::show_route(route_db, route_centre, route_id, route_trainee);
+    if (*routes_enrol_cmd)
+      return harbour::apps::enrol_trainee(route_db, route_centre, route_trainee, route_id);
     for (int n = 0; n < 2; ++n)
       if (*decision_cmds[n])
-        return harbour::apps::decide_stage(route_db, route_trainee, route_id, route_stage,
+        return harbour::apps::decide_stage(route_db, route_centre, route_trainee, route_id, route_stage,
                                            n == 0 ? "sign_off" : "retry", route_reason);
     if (*xapi_status_cmd) return harbour::apps::xapi_status(xapi_db);
     if (*xapi_send_cmd) return harbour::apps::xapi_send(xapi_db, xapi_lrs, xapi_auth_file, xapi_watch);
@@ -269,8 +288,9 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "harboursim: report trainee needs a trainee id\n");
       return 2;
     }
-    if (*report_trainee_cmd) return harbour::apps::write_report(report_db, report_trainee, report_out);
-    if (*report_class_cmd) return harbour::apps::write_report(report_db, "", report_out);
+    if (*report_trainee_cmd)
+      return harbour::apps::write_report(report_db, report_centre, report_trainee, report_out);
+    if (*report_class_cmd) return harbour::apps::write_report(report_db, report_centre, "", report_out);
     if (*console_cmd) return harbour::apps::run_console(console);
     if (*account_list_cmd) return harbour::apps::list_accounts(account_db);
     if (*account_add_cmd)

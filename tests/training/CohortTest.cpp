@@ -56,7 +56,7 @@ goals:
         exercise: sts_discharge_gusty
         pass: {score: 70, metrics: {sway_landings: {max: 1}}}
 )";
-  const Route route = io::load_route((folder / "sts_cohort.yaml").string(), HARBOUR_DATA_DIR "/exercises");
+  const Route route = io::load_route((folder / "sts_cohort.yaml").string(), {HARBOUR_DATA_DIR "/exercises"});
   const std::string connection = "sqlite3://db=" + (folder / "records.db").string();
   io::RecordsStore db(connection);
 

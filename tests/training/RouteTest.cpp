@@ -4,6 +4,9 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+
+#include <unistd.h>
 
 #include "harbour/io/DataError.h"
 #include "harbour/io/RouteFiles.h"
@@ -11,11 +14,11 @@
 namespace harbour::training {
 namespace {
 
-const std::string kExercises = HARBOUR_DATA_DIR "/exercises";
+const std::vector<std::string> kExercises = {HARBOUR_DATA_DIR "/exercises"};
 
 // Every shipped route loads: its exercises by the exercise loader, its bounds on figures they store.
 TEST(Routes, EveryShippedRouteLoads) {
-  const auto routes = io::load_routes(HARBOUR_DATA_DIR "/routes", kExercises);
+  const auto routes = io::load_routes({HARBOUR_DATA_DIR "/routes"}, kExercises);
   ASSERT_EQ(routes.size(), 5u);  // one per machine
   for (const Route& r : routes) {
     EXPECT_GE(r.stages.size(), 2u) << r.id;
@@ -88,6 +91,52 @@ TEST(Routes, ABadRouteNamesTheFileLineAndField) {
           std::string(kHead) +
           "      - {id: a, exercise: mhc_coal_discharge, pass: {metrics: {spilled_percent: {max: 5}}}}\n"),
       "(loaded)");
+}
+
+// A centre's own routes stand beside the shipped ones and name the centre's exercises (found before the
+// shipped ones) by name; a route name the shipped routes use is refused, naming the centre's file.
+TEST(Routes, ACentresRoutesNameItsOwnExercises) {
+  namespace fs = std::filesystem;
+  const fs::path centre = fs::temp_directory_path() / ("harbour_centre_" + std::to_string(::getpid()));
+  fs::remove_all(centre);
+  fs::create_directories(centre / "exercises");
+  fs::create_directories(centre / "routes");
+  // the centre's own exercise: the shipped single lift, renamed, its machine and vessel where they lie
+  std::ifstream shipped(HARBOUR_DATA_DIR "/exercises/sts_discharge.yaml");
+  std::string text((std::istreambuf_iterator<char>(shipped)), std::istreambuf_iterator<char>());
+  text.replace(text.find("name: sts_discharge"), 19, "name: our_lift");
+  for (std::size_t at = 0; (at = text.find("../", at)) != std::string::npos; at += 3)
+    text.replace(at, 3, HARBOUR_DATA_DIR "/");
+  std::ofstream(centre / "exercises" / "our_lift.yaml") << text;
+  std::ofstream(centre / "routes" / "our_basics.yaml")
+      << "name: Our basics\nmachine: STS\ngoals:\n  - goal: Lifts\n    stages:\n"
+         "      - {id: ours, exercise: our_lift}\n      - {id: theirs, exercise: sts_discharge}\n";
+  const std::vector<std::string> exercises = {(centre / "exercises").string(), HARBOUR_DATA_DIR "/exercises"};
+  const auto routes = io::load_routes({(centre / "routes").string(), HARBOUR_DATA_DIR "/routes"}, exercises);
+  ASSERT_EQ(routes.size(), 6u);
+  EXPECT_EQ(routes[0].id, "our_basics");
+  EXPECT_EQ(routes[0].stages[0].exercise_file, (centre / "exercises" / "our_lift.yaml").string());
+  EXPECT_EQ(routes[0].stages[1].exercise_file, HARBOUR_DATA_DIR "/exercises/sts_discharge.yaml");
+  // without the centre's exercise folder the stage names nothing there is
+  try {
+    io::load_routes({(centre / "routes").string()}, kExercises);
+    ADD_FAILURE() << "loaded without the centre's exercises";
+  } catch (const io::DataError& e) {
+    EXPECT_NE(
+        std::string(e.what()).find("our_basics.yaml:6: goals[0].stages[0].exercise: no exercise 'our_lift'"),
+        std::string::npos)
+        << e.what();
+  }
+  // a centre's route called as a shipped one
+  fs::copy_file(centre / "routes" / "our_basics.yaml", centre / "routes" / "sts_basic.yaml");
+  try {
+    io::load_routes({(centre / "routes").string(), HARBOUR_DATA_DIR "/routes"}, exercises);
+    ADD_FAILURE() << "two routes sts_basic";
+  } catch (const io::DataError& e) {
+    EXPECT_EQ(e.file(), (centre / "routes" / "sts_basic.yaml").string());
+    EXPECT_NE(std::string(e.what()).find("route 'sts_basic' is also"), std::string::npos) << e.what();
+  }
+  fs::remove_all(centre);
 }
 
 Stage stage(const std::string& id, std::vector<std::string> requires_stages = {}, int repetitions = 1,

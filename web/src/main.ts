@@ -3,6 +3,7 @@
 import uPlot from "uplot";
 import { View3D, type BulkMessage, type Looks, type SceneMessage, type ViewState } from "./view3d";
 import { DesignerForms } from "./designer";
+import { RouteEditor } from "./routeEditor";
 
 interface Me { name: string; role: string; trainee: string; csrf: string; }
 interface Station {
@@ -419,6 +420,20 @@ async function loadClass() {
   }
 }
 
+// The routes (the centre's and the shipped ones) wherever they are chosen.
+let routeEditor: RouteEditor | null = null;
+async function loadRoutes() {
+  routes = (await api("/api/routes")).data ?? [];
+  for (const id of ["route", "start-route"]) {
+    const select = $<HTMLSelectElement>(id), kept = select.value;
+    select.replaceChildren();
+    if (id === "start-route") select.add(new Option("none: the exercise chosen", ""));
+    for (const r of routes) select.add(new Option(id === "route" ? `${r.name} (${r.id})` : `${r.name}: next stage`, r.id));
+    if ([...select.options].some((o) => o.value === kept)) select.value = kept;
+  }
+  if (me?.role !== "trainee") await routeEditor?.refresh(routes);
+}
+
 // The exercise designer: load an exercise's YAML, check it with the simulator's loader and preview its world,
 // save it (a new version).
 let designView: View3D | null = null;
@@ -448,6 +463,7 @@ async function designerAction(action: "check" | "save") {
   if (action === "save") {
     text(result, `saved ${r.data.exercise}, version ${r.data.version}`);
     await loadRecords();  // the exercise lists
+    await routeEditor?.refresh(routes);
     return;
   }
   text(result, `${r.data.exercise}: valid (version ${r.data.version} when saved)`);
@@ -471,11 +487,7 @@ async function enter(who: Me) {
   for (const e of document.querySelectorAll<HTMLElement>(".instructor-only"))
     e.hidden = who.role === "trainee" || e.id === "control-panel" || e.id === "attempt-actions";
   await loadRecords();
-  routes = (await api("/api/routes")).data ?? [];
-  const routeSelect = $<HTMLSelectElement>("route");
-  routeSelect.replaceChildren();
-  for (const r of routes) routeSelect.add(new Option(`${r.name} (${r.id})`, r.id));
-  for (const r of routes) $<HTMLSelectElement>("start-route").add(new Option(`${r.name}: next stage`, r.id));
+  await loadRoutes();
   await loadProgress();
   if (who.role === "trainee") return;
   const looksReply = await api("/api/looks");
@@ -564,6 +576,7 @@ function wire() {
     designForms?.readSource();
     checkSoon(800);
   });
+  routeEditor = new RouteEditor(api, loadRoutes);
   $("design-check").addEventListener("click", () => designerAction("check"));
   $("design-save").addEventListener("click", () => designerAction("save"));
   for (const id of ["evolution-figure", "compare-with"])

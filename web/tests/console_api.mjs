@@ -193,6 +193,16 @@ try {
     b("api/designer/nothing", "POST", { text: "" })]);
   check(designErrors.map((r) => r.status).join() === "400,400,422,404,404",
     `the designer's bad requests: ${designErrors.map((r) => `${r.status} ${r.data?.error}`).join("; ")}`);
+  // the route editor: a trainee is refused; bad requests say why and write nothing
+  const routeRefused = await Promise.all([d("api/routes/source?route=sts_basic"),
+    d("api/routes/check", "POST", { id: "x", text: "name: x" })]);
+  const routeErrors = await Promise.all([b("api/routes/check", "POST", { text: "name: x" }),
+    b("api/routes/check", "POST", { id: "x", text: 5 }), b("api/routes/check", "POST", { id: "../escape", text: "name: x" }),
+    b("api/routes/save", "POST", { id: "broken", text: "goals: [" }), b("api/routes/source?route=../../etc/passwd"),
+    b("api/routes/check", "POST", "{ nope"), b("api/routes/nothing", "POST", { id: "x", text: "" })]);
+  check(routeRefused.every((r) => r.status === 403) && routeErrors.map((r) => r.status).join() === "400,400,422,422,404,400,404" &&
+    routeErrors[2].data.error.includes("file name") && (await b("api/routes")).data.length === 5,
+    `the route editor's bad requests: ${routeErrors.map((r) => `${r.status} ${r.data?.error}`).join("; ")}`);
 
   // the live socket: refused without a login; random, truncated and oversized messages answered or the
   // socket closed, the console unharmed

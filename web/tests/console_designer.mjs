@@ -1,6 +1,7 @@
 // The exercise designer's round trip in a real browser: an instructor starts from a shipped exercise, breaks it
 // (refused, the line and field named), fixes it, sees the preview, saves it in the centre's folder; the saved
-// exercise runs under the autopilot and its attempt, with the saved version, shows in the trainee's evolution.
+// exercise runs under the autopilot and its attempt, with the saved version, shows in the trainee's evolution;
+// a route of the centre's own, written in the route editor, makes it a stage a station runs for an enrolled trainee.
 // Usage: node console_designer.mjs HARBOURSIM OUT_DIR DATA_DIR
 import { chromium } from "playwright-core";
 import { Harness } from "./harness.mjs";
@@ -14,17 +15,20 @@ const dir = mkdtempSync(path.join(tmpdir(), "harbour-designer-"));
 const db = `sqlite3://db=${dir}/records.db`;
 const h = new Harness(app);
 const check = h.check.bind(h), run = h.run.bind(h), until = h.until.bind(h);
-// the centre's folders: its own exercises beside the shipped machines, vessels, ... (linked)
+// the centre's folders: its own exercises and routes beside the shipped machines, vessels, ... (linked)
 const centre = path.join(dir, "centre");
-const exercises = path.join(centre, "exercises");
+const exercises = path.join(centre, "exercises"), routes = path.join(centre, "routes");
 mkdirSync(exercises, { recursive: true });
-for (const entry of readdirSync(data)) if (entry !== "exercises") symlinkSync(path.join(data, entry), path.join(centre, entry));
+mkdirSync(routes, { recursive: true });
+for (const entry of readdirSync(data))
+  if (entry !== "exercises" && entry !== "routes") symlinkSync(path.join(data, entry), path.join(centre, entry));
 
 let browser;
 try {
   run(["trainees", "add", "eva", "Eva Lind", "--db", db]);
   run(["accounts", "add", "ines", "--role", "instructor", "--db", db], "ines-password\n");
-  const c = h.start(["console", "--db", db, "--domain", "205", "--port", "0", "--exercises", exercises]);
+  const c = h.start(["console", "--db", db, "--domain", "205", "--port", "0", "--exercises", exercises,
+    "--routes", routes]);
   await until("the console listens", () => /http:\/\/127\.0\.0\.1:\d+\//.test(c.output));
   const url = c.output.match(/http:\/\/127\.0\.0\.1:\d+\//)[0];
   browser = await chromium.launch({ executablePath: "/usr/bin/chromium", args: ["--headless", "--no-sandbox",
@@ -167,7 +171,7 @@ try {
     return { status: r.status, body: await r.json() };
   }, [url, body]);
   h.start(["station", "--serve", "--name", "designer-1", "--domain", "205", "--db", db, "--window", "off", "--exercises", exercises,
-    "--record", path.join(dir, "branch.hsrec")]);
+    "--routes", routes, "--record", path.join(dir, "branch.hsrec")]);
   await until("the centre's station is idle", async () =>
     (await api("/api/stations")).body.some((s) => s.station === "designer-1" && s.state === "idle"), 40);
   const takeOver = await api(`/api/replays/${replay.body.replay}`, { action: "take-over", station: "designer-1", trainee: "eva",
@@ -180,6 +184,62 @@ try {
   }, 40);
   check(branch?.exercise_version === version, `the take-over runs version ${branch?.exercise_version} (${version} ran, the file is newer)`);
   await api("/api/stations/designer-1/command", { kind: "stop", exercise: "", trainee: "", route: "" });
+  const idle = () => until("the centre's station is idle again", async () =>
+    (await api("/api/stations")).body.some((s) => s.station === "designer-1" && s.state === "idle"), 40);
+  await idle();
+
+  // the route editor: a route of the centre's own naming the designed exercise; a stage naming no exercise is
+  // refused with its line and field, the stage added by the form is valid and saved in the centre's route folder
+  const routeResult = () => page.textContent("#route-result");
+  await page.selectOption("#route-base", "sts_basic");
+  await page.click("#route-load");
+  await until("the shipped route is loaded and checked", async () => (await routeResult()).includes("sts_basic_centre: valid, 5 stages"));
+  check((await page.locator("#route-stages tr[data-stage=hoist_brake_fault]").count()) === 1, "the loader's stages are listed");
+  await page.fill("#route-id", "centre_long");
+  await page.fill("#route-text", "# the centre's own\nname: Long discharges\nmachine: STS\ngoals:\n  - goal: Endurance\n    stages:\n" +
+    "      - {id: warm_up, exercise: sts_nowhere}\n");
+  await page.click("#route-check");
+  await until("a stage naming no exercise is refused", async () => (await routeResult()).includes("refused"));
+  check(/centre_long\.yaml:7: goals\[0\]\.stages\[0\]\.exercise: no exercise 'sts_nowhere'/.test(await routeResult()) &&
+    (await routeResult()).includes("sts_long_discharge"), `refused with the line and field, listing the centre's exercises: ${await routeResult()}`);
+  await page.fill("#route-text", (await page.inputValue("#route-text")).replace("sts_nowhere", "sts_discharge"));
+  await page.selectOption("#route-add-exercise", "sts_long_discharge");
+  await page.fill("#route-add-id", "long");
+  await page.fill("#route-add-goal", "Endurance");
+  await page.fill("#route-add-score", "60");
+  await page.click("#route-add-stage");
+  await until("the stage is written and the route valid", async () =>
+    (await page.inputValue("#route-text")).includes("{id: long, exercise: sts_long_discharge, pass: {score: 60}}") &&
+    (await routeResult()).includes("centre_long: valid, 2 stages"));
+  check((await page.inputValue("#route-text")).startsWith("# the centre's own"), "the route's comment is kept");
+  await page.locator("#route-editor-panel").screenshot({ path: path.join(out, "console_route_editor.png") });
+  await page.click("#route-save");
+  await until("the route is saved", async () => (await routeResult()).startsWith("saved centre_long"));
+  check(readFileSync(path.join(routes, "centre_long.yaml"), "utf8").includes("exercise: sts_long_discharge"),
+    "saved in the centre's route folder");
+  const shippedRoute = readFileSync(path.join(data, "routes", "sts_basic.yaml"), "utf8");
+  check((await api("/api/routes/save", { id: "sts_basic", text: shippedRoute })).status === 409 &&
+    readFileSync(path.join(data, "routes", "sts_basic.yaml"), "utf8") === shippedRoute, "a shipped route's name is refused (409)");
+  // eva enrolled; the station runs the route's next stage (warm-up passed by the autopilot, then the long one)
+  await until("the enrol form offers it", async () => (await page.locator("#route option[value=centre_long]").count()) === 1);
+  await page.selectOption("#progress-trainee", "eva");
+  await page.selectOption("#route", "centre_long");
+  await page.click("#enrol-form button[type=submit]");
+  await until("eva is enrolled", async () => (await page.textContent("#enrol-result")) === "enrolled");
+  const started = await api("/api/stations/designer-1/command", { kind: "start", exercise: "", trainee: "eva", route: "centre_long",
+    autopilot: true });
+  check(started.status === 200 && /sts_discharge/.test(started.body.message), `the route's first stage starts: ${started.status} ${started.body.message ?? started.body.error}`);
+  let staged;
+  await until("its attempt is stored for the centre's route", async () => {
+    staged = (await api("/api/attempts?trainee=eva")).body.find((a) => a.route === "centre_long");
+    return staged !== undefined;
+  }, 40);
+  check(staged.stage === "warm_up" && staged.exercise === "sts_discharge", `for its stage (${staged.stage}, ${staged.exercise})`);
+  await api("/api/stations/designer-1/command", { kind: "stop", exercise: "", trainee: "", route: "" });
+  await idle();
+  const progress = (await api("/api/progress?trainee=eva")).body.routes.find((r) => r.route === "centre_long");
+  check(progress?.stages[0].attempts === 1 && progress?.stages[1].state === "locked",
+    `eva's progress on it: warm_up ${progress?.stages[0].attempts} attempt, long ${progress?.stages[1].state}`);
 
   // a yard block: a box's goal set by clicking the slot it is to go to
   const load = async (name) => {

@@ -43,7 +43,8 @@ struct StartPoseForm {
 /// set): one table for the loader and the designer's forms.
 StartPoseForm start_pose_form(const sim::MachineSetup& machine);
 
-/// The names of the exercises in `folder` (the stems of its *.yaml files), sorted; none for a missing folder.
+/// The names of the exercises in `folder` (the stems of its *.yaml files, hidden ones not), sorted; none for a
+/// missing folder.
 std::vector<std::string> exercise_names(const std::string& folder);
 
 /// The exercise file's version: the first 16 hex digits of the SHA-256 of its bytes. Attempts store it, so

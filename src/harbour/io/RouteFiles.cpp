@@ -7,6 +7,7 @@
 #include <set>
 
 #include "harbour/core/Text.h"
+#include "harbour/io/DataError.h"
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/sim/Simulation.h"
 
@@ -42,20 +43,29 @@ std::vector<std::string> stored_metric_names(const sim::ExerciseSettings& exerci
 }
 
 std::string stage_exercise_file(const std::string& exercise, const std::string& route_folder,
-                                const std::string& exercises_folder) {
+                                const std::vector<std::string>& exercise_folders) {
   const bool path = exercise.find('/') != std::string::npos ||
                     (exercise.size() > 5 && exercise.substr(exercise.size() - 5) == ".yaml");
-  const fs::path file =
-      path ? fs::path(route_folder) / exercise : fs::path(exercises_folder) / (exercise + ".yaml");
   std::error_code ec;
-  return fs::is_regular_file(file, ec) ? file.string() : "";
+  if (path) {
+    const fs::path file = fs::path(route_folder) / exercise;
+    return fs::is_regular_file(file, ec) ? file.string() : "";
+  }
+  for (const std::string& folder : exercise_folders)
+    if (const fs::path file = fs::path(folder) / (exercise + ".yaml"); fs::is_regular_file(file, ec))
+      return file.string();
+  return "";
 }
 
 namespace {
 
-std::string known_exercises(const std::string& folder) {
+std::string known_exercises(const std::vector<std::string>& folders) {
+  std::set<std::string> names;
+  for (const std::string& folder : folders)
+    for (const std::string& n : exercise_names(folder))
+      names.insert(n);
   std::string list;
-  for (const std::string& n : exercise_names(folder))
+  for (const std::string& n : names)
     list += (list.empty() ? "" : ", ") + n;
   return list;
 }
@@ -63,7 +73,7 @@ std::string known_exercises(const std::string& folder) {
 }  // namespace
 
 training::Route load_route(const YamlFile& f, const std::string& folder,
-                           const std::string& exercises_folder) {
+                           const std::vector<std::string>& exercise_folders) {
   training::Route route;
   route.id = fs::path(f.name()).stem().string();
   const YAML::Node& root = f.root();
@@ -93,11 +103,11 @@ training::Route load_route(const YamlFile& f, const std::string& folder,
       if (route.stage(stage.id))
         f.fail(f.required(node, "id", sat), sat + ".id", "a second stage '" + stage.id + "'");
       stage.exercise = f.text(node, "exercise", sat);
-      stage.exercise_file = stage_exercise_file(stage.exercise, folder, exercises_folder);
+      stage.exercise_file = stage_exercise_file(stage.exercise, folder, exercise_folders);
       if (stage.exercise_file.empty())
         f.fail(f.required(node, "exercise", sat), sat + ".exercise",
-               "no exercise '" + stage.exercise + "' (the shipped ones: " +
-                   known_exercises(exercises_folder) + "; a path is relative to the route's folder)");
+               "no exercise '" + stage.exercise + "' (there are: " + known_exercises(exercise_folders) +
+                   "; a path is relative to the route's folder)");
       sim::ExerciseSettings exercise;
       try {
         exercise = load_exercise(stage.exercise_file);
@@ -189,20 +199,33 @@ training::Route load_route(const YamlFile& f, const std::string& folder,
   return route;
 }
 
-training::Route load_route(const std::string& path, const std::string& exercises_folder) {
-  return load_route(YamlFile::load(path), fs::path(path).parent_path().string(), exercises_folder);
+training::Route load_route(const std::string& path, const std::vector<std::string>& exercise_folders) {
+  return load_route(YamlFile::load(path), fs::path(path).parent_path().string(), exercise_folders);
 }
 
-std::vector<training::Route> load_routes(const std::string& routes_folder,
-                                         const std::string& exercises_folder) {
-  std::vector<std::string> files;
-  std::error_code ec;
-  for (const auto& entry : fs::directory_iterator(routes_folder, ec))
-    if (entry.path().extension() == ".yaml") files.push_back(entry.path().string());
-  std::sort(files.begin(), files.end());
+std::vector<training::Route> load_routes(const std::vector<std::string>& routes_folders,
+                                         const std::vector<std::string>& exercise_folders) {
   std::vector<training::Route> routes;
-  for (const std::string& file : files)
-    routes.push_back(load_route(file, exercises_folder));
+  std::map<std::string, std::string> file_of;  // route name -> its file
+  std::set<std::string> seen_folders;
+  for (const std::string& folder : routes_folders) {
+    std::error_code ec;
+    if (!seen_folders.insert(fs::weakly_canonical(folder, ec).string()).second) continue;
+    std::vector<std::string> files;
+    for (const auto& entry : fs::directory_iterator(folder, ec))
+      if (entry.path().extension() == ".yaml" && entry.path().filename().string()[0] != '.')
+        files.push_back(entry.path().string());
+    std::sort(files.begin(), files.end());
+    for (const std::string& file : files) {
+      const std::string name = fs::path(file).stem().string();
+      if (const auto other = file_of.find(name); other != file_of.end())
+        throw DataError(other->second, 1, "(file name)",  // the centre's, found first
+                        "route '" + name + "' is also " + file +
+                            " (the records know a route by its name: give this file another)");
+      file_of[name] = file;
+      routes.push_back(load_route(file, exercise_folders));
+    }
+  }
   return routes;
 }
 
