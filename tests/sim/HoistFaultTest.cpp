@@ -1,6 +1,7 @@
 // The hoist brake fault and its procedure (data/exercises/sts_hoist_brake_fault.yaml): the brake fails while
 // the first box travels; a good operator lands it under power, sets the spreader down and stops the crane;
-// one who presses the emergency stop at once lets the rope run and the box falls.
+// one who presses the emergency stop at once lets the rope run and the box falls. The same on the RTG, and on
+// the MHC on its hook and its grab.
 
 #include <gtest/gtest.h>
 
@@ -10,6 +11,7 @@
 
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/sim/Autopilot.h"
+#include "harbour/sim/Pilot.h"
 
 namespace harbour::sim {
 namespace {
@@ -170,6 +172,114 @@ TEST(HoistBrakeFault, LoweringAtFullSpeedIsNotAFall) {
   EXPECT_EQ(evaluator.metrics().load_drops, 0);
   EXPECT_EQ(evaluator.metrics().collisions, 0);
 }
+
+// The same fault on the RTG's spreader, the MHC's hook and its grab (data/exercises/*_brake_fault.yaml),
+// timed from the first lift (the first box locked, piece slung, bite taken).
+struct CraneFaultRun {
+  Metrics metrics;
+  Score score;
+  bool finished = false;
+  double first_lift_s = -1.0, fault_lamp_at_s = -1.0, stop_at_s = -1.0;
+  double stopped_bottom_m = 0.0, lowest_after_stop_m = 1e9;   // the attachment as the stop is pressed, after
+  double fastest_lowering_mps = 0.0, fastest_fall_mps = 0.0;  // its sinking over 0.1 s, before and after it
+  double load_drop_mps = 0.0;                                 // the exercise's rule for a fall
+};
+
+// The machine's scripted operator drives; `panic`: the emergency stop pressed as the lamp lights, with
+// nothing else touched.
+CraneFaultRun run_crane(const std::string& name, bool panic) {
+  const ExerciseSettings exercise = io::load_exercise(HARBOUR_DATA_DIR "/exercises/" + name + ".yaml");
+  Simulation sim(exercise.scenario);
+  const std::unique_ptr<Pilot> pilot = make_pilot(exercise);
+  Evaluator evaluator(exercise);
+  const int lamp = [&] {
+    const SceneDescription scene = sim.scene();
+    for (std::size_t n = 0; n < scene.indicators.size(); ++n)
+      if (scene.indicators[n] == "lamp_brake_fault") return static_cast<int>(n);
+    return -1;
+  }();
+  EXPECT_GE(lamp, 0) << name << " has a brake fault lamp";
+  const int stop = sim.control_table().find("emergency_stop");
+  auto snapshot = std::make_unique<Snapshot>();
+  CraneFaultRun r;
+  r.load_drop_mps = exercise.rules.load_drop_mps;
+  double sampled_z_m = sim.machine().attachment_bottom_z_m();
+  for (int k = 0; k < 600000; ++k) {
+    if (r.stop_at_s >= 0.0 && sim.time_s() > r.stop_at_s + 4.0) break;  // 4 s on after the stop
+    Controls in = pilot->next(sim);
+    if (panic && r.fault_lamp_at_s >= 0.0) {
+      in = sim.control_table().neutral();
+      in.value[static_cast<std::size_t>(stop)] = 1.0;
+    }
+    if (in.value[static_cast<std::size_t>(stop)] != 0.0 && r.stop_at_s < 0.0) {
+      r.stop_at_s = sim.time_s();
+      r.stopped_bottom_m = sim.machine().attachment_bottom_z_m();
+    }
+    sim.step(in);
+    evaluator.observe(sim, in);
+    if (r.first_lift_s < 0.0 && sim.carrying()) r.first_lift_s = sim.time_s();
+    if (r.stop_at_s >= 0.0)
+      r.lowest_after_stop_m = std::min(r.lowest_after_stop_m, sim.machine().attachment_bottom_z_m());
+    if (k % 100 == 99) {
+      const double z = sim.machine().attachment_bottom_z_m(), sinking = (sampled_z_m - z) / 0.1;
+      double& fastest = r.stop_at_s >= 0.0 ? r.fastest_fall_mps : r.fastest_lowering_mps;
+      fastest = std::max(fastest, sinking);
+      sampled_z_m = z;
+    }
+    if (r.fault_lamp_at_s < 0.0 && k % 20 == 0) {
+      sim.write_snapshot(*snapshot);
+      if (lamp >= 0 && snapshot->indicators[static_cast<std::size_t>(lamp)] != 0.0)
+        r.fault_lamp_at_s = sim.time_s();
+    }
+    if (evaluator.finished() && r.stop_at_s < 0.0) break;
+  }
+  EXPECT_EQ(sim.warnings().total(), 0u) << name;
+  r.metrics = evaluator.metrics();
+  r.score = evaluator.score();
+  r.finished = evaluator.finished();
+  return r;
+}
+
+class CraneHoistBrakeFault : public testing::TestWithParam<const char*> {};
+
+// The procedure: the load set down under power, nothing lifted again, the empty attachment set down and the
+// crane stopped; resting, it stays where it is with the brake failed (it does not fall once the stop is
+// pressed); the goals left are excused.
+TEST_P(CraneHoistBrakeFault, TheScriptedOperatorFollowsTheProcedure) {
+  const CraneFaultRun r = run_crane(GetParam(), false);
+  ASSERT_TRUE(r.finished) << "after " << r.metrics.time_s << " s";
+  EXPECT_NEAR(r.fault_lamp_at_s, r.first_lift_s + 8.0, 0.03);  // the lamp looked at every 0.02 s
+  EXPECT_TRUE(r.metrics.hoist_fault);
+  EXPECT_GT(r.metrics.fault_set_down_s, 0.0);  // it came with a load hanging, which was set down
+  EXPECT_EQ(r.metrics.load_drops, 0);
+  EXPECT_EQ(r.metrics.lifts_under_fault, 0);
+  EXPECT_TRUE(r.metrics.stopped_after_fault);
+  EXPECT_EQ(r.metrics.emergency_stops, 0);  // the stop that takes the crane out of service is the procedure
+  EXPECT_EQ(r.metrics.collisions, 0);
+  EXPECT_GT(r.stop_at_s, r.fault_lamp_at_s + r.metrics.fault_set_down_s - 0.1);
+  EXPECT_GT(r.lowest_after_stop_m, r.stopped_bottom_m - 0.05) << "the attachment sank after the stop";
+  // lowered by its hoist, however fast, it never sank at a fall's speed
+  EXPECT_LT(r.fastest_lowering_mps, r.load_drop_mps);
+  EXPECT_TRUE(r.score.passed);
+  EXPECT_EQ(r.score.total, 100.0) << r.score.deductions.front().reason;
+}
+
+// Pressed at once, the stop takes the hoist's drive away and no brake sets: the load falls.
+TEST_P(CraneHoistBrakeFault, AnEmergencyStopAtTheLampDropsTheLoad) {
+  const CraneFaultRun r = run_crane(GetParam(), true);
+  RecordProperty("fall_mps", std::to_string(r.fastest_fall_mps));
+  ASSERT_GT(r.stop_at_s, 0.0);
+  EXPECT_NEAR(r.stop_at_s, r.fault_lamp_at_s, 0.03);
+  EXPECT_LT(r.lowest_after_stop_m, r.stopped_bottom_m - 1.0) << "it did not fall";
+  EXPECT_GT(r.fastest_fall_mps, r.load_drop_mps);
+  EXPECT_GE(r.metrics.load_drops, 1);
+  EXPECT_GE(r.metrics.emergency_stops, 1);  // pressed with a load hanging: not the procedure
+  EXPECT_FALSE(r.score.passed);
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryCrane, CraneHoistBrakeFault,
+                         testing::Values("rtg_hoist_brake_fault", "mhc_hook_brake_fault",
+                                         "mhc_grab_brake_fault"));
 
 }  // namespace
 }  // namespace harbour::sim

@@ -16,6 +16,9 @@ constexpr double kSwingFilter_s = 1.0;      // time constant of the swing and he
 constexpr double kHeightBand_m = 0.3;       // height error the hoist leaves alone
 constexpr double kHeightGain_per_m = 0.25;  // hoist lever per metre beyond it
 constexpr double kLeverTravel_s = 1.0;      // a lever from neutral to full
+// setting an empty attachment down after a fault: the hoist lever at most, as it touches, and per metre over
+// what it rests on in between
+constexpr double kRestLowering = 0.5, kRestTouch = 0.04, kRestEase_per_m = 0.15;
 
 double wrap(double a) {
   return std::remainder(a, 2.0 * std::numbers::pi);
@@ -59,6 +62,21 @@ double BoomSteering::hold_height(double z_m) const {
   const double error = z_m - held_bottom_m_;
   return std::clamp(kHeightGain_per_m * std::copysign(std::max(0.0, std::abs(error) - kHeightBand_m), error),
                     -1.0, 1.0);
+}
+
+Controls stop_after_hoist_fault(const ControlTable& table, const MobileHarbourCrane& crane,
+                                const Controls& last, double decision_s, double empty_kg, double rest_on_z_m,
+                                double slew, double luff) {
+  const bool resting = crane.limiter_load_n() < 0.5 * empty_kg * 9.80665;
+  const double lowering =
+      std::clamp(kRestTouch + kRestEase_per_m * (crane.attachment_bottom_z_m() - rest_on_z_m), kRestTouch,
+                 kRestLowering);
+  Controls out =
+      resting ? hand_levers(table, last, decision_s, {{"hoist", 0.0}})
+              : hand_levers(table, last, decision_s, {{"slew", slew}, {"luff", luff}, {"hoist", -lowering}});
+  if (const int stop = table.find("emergency_stop"); stop >= 0 && resting)
+    out.value[static_cast<std::size_t>(stop)] = 1.0;
+  return out;
 }
 
 Controls hand_levers(const ControlTable& table, const Controls& last, double decision_s,

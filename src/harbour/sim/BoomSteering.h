@@ -40,6 +40,15 @@ class BoomSteering {
   double held_bottom_m_ = 0.0;
 };
 
+/// The hoist brake fault's procedure, its last step, once the load is down under power: the empty attachment
+/// (`empty_kg`) is lowered onto what lies below it (its top at about `rest_on_z_m`), slower the nearer it is,
+/// until it rests (its ropes carrying less than half its weight), the boom moved by `slew` and `luff` (those
+/// that keep it calm over its spot); then the emergency stop is pressed so that nothing runs the unbraked
+/// hoist again.
+Controls stop_after_hoist_fault(const ControlTable& table, const MobileHarbourCrane& crane,
+                                const Controls& last, double decision_s, double empty_kg, double rest_on_z_m,
+                                double slew = 0.0, double luff = 0.0);
+
 /// Levers moved as a hand moves them: each labelled lever goes towards its wanted value by at most
 /// `decision_s / lever_travel_s` of full travel from where it was (`last`); the others stay neutral.
 Controls hand_levers(const ControlTable& table, const Controls& last, double decision_s,

@@ -130,9 +130,7 @@ void Evaluator::observe_hoist_fault(const Simulation& simulation, bool emergency
     next_drop_sample_s_ = simulation.time_s() + kAxisSample_s;
   }
   // the hoist brake fault's procedure: the load landed under power, nothing lifted again, the machine stopped
-  bool suspended = machine.held_item().has_value();
-  if (simulation.bulk() && simulation.bulk_grab() >= 0)
-    suspended = suspended || simulation.bulk()->grab(simulation.bulk_grab()).load_m3 > 0.0;
+  const bool suspended = simulation.carrying();
   const bool fault = machine.fault_active(MachineFault::kHoistBrake);
   if (fault) {
     if (!metrics_.hoist_fault && suspended) fault_since_s_ = metrics_.time_s;
@@ -252,7 +250,7 @@ void Evaluator::observe_bulk(const Simulation& simulation) {
 
 void Evaluator::observe_any_machine(const Simulation& simulation, const Controls& controls, bool estop) {
   // what every machine shows: its impacts (the load it carries set down near its target, or its empty
-  // gripper set down on the item it is to pick up, is a landing), its moves, rope overloads, emergency stops
+  // gripper set down on the item it is to pick up or, after a hoist brake fault, to stay, is a landing), its moves, rope overloads, emergency stops
   // and, on a gantry crane, gantry travel without the horn
   const std::optional<physics::BodyId> gripper = simulation.machine().gripper_body();
   for (const physics::ImpactEvent& e : simulation.events().impacts) {
@@ -260,7 +258,8 @@ void Evaluator::observe_any_machine(const Simulation& simulation, const Controls
     const bool gripper_hit = gripper && (e.body == *gripper || e.other == *gripper);
     const bool body_hit = e.surface == kSurfaceVehicle || e.other_surface == kSurfaceVehicle;
     const physics::BodyId other = e.body == gripper ? e.other : e.body;
-    if (gripper_hit && !carried_ && goal_of(other, simulation) >= 0) {  // set down on the box to lift
+    // set down on the item to lift, or (the hoist brake failed, the load down) set down to stay
+    if (gripper_hit && !carried_ && (goal_of(other, simulation) >= 0 || stopping_safely_)) {
       metrics_.worst_landing_mps = std::max(metrics_.worst_landing_mps, e.normal_speed_mps);
       if (e.normal_speed_mps > exercise_.rules.hard_landing_mps) ++metrics_.hard_landings;
       continue;

@@ -20,6 +20,8 @@ constexpr double kSpotMargin_m = 1.0;        // dig spots inside the coamings by
 constexpr double kSpotTie_m = 0.05;          // dig spots whose material stands within this count as level
 constexpr double kLattice_m = 0.5;           // trimming: the spots it looks at over the pile
 constexpr double kDumpApart_m = 10.0;        // trimming: the drop spot at least this far from the dig spot
+constexpr double kBesideHopper_m = 8.0;      // after a hoist brake fault: the grab set down this far out of
+                                             // the hopper's centre
 
 // the material's surface height over `point` (the point's own height where no grid lies under it)
 double surface_z(const bulk::BulkWorld& bulk, const core::Vec3& point) {
@@ -89,6 +91,10 @@ const char* GrabAutopilot::activity() const {
       return "to drop";
     case Phase::kDischarge:
       return "discharge";
+    case Phase::kOpenAfterFault:
+      return "open after fault";
+    case Phase::kFaultStop:
+      return "fault stop";
     case Phase::kDone:
       return "done";
   }
@@ -106,9 +112,7 @@ Controls GrabAutopilot::next(const Simulation& simulation) {
 }
 
 void GrabAutopilot::resume(const Simulation& simulation, int /*moves_done*/) {
-  const bool loaded = simulation.bulk() && simulation.bulk_grab() >= 0 &&
-                      simulation.bulk()->grab(simulation.bulk_grab()).load_m3 > 0.0;
-  phase_ = loaded ? Phase::kHoist : Phase::kToDig;
+  phase_ = simulation.carrying() ? Phase::kHoist : Phase::kToDig;
   phase_start_s_ = simulation.time_s();
   decided_ = false;  // its filters start again from what it sees
 }
@@ -202,6 +206,14 @@ Controls GrabAutopilot::decide(const Simulation& simulation, const MobileHarbour
                 exercise_.deliver->tonnes;
   }
   const double empty_kg = crane.settings().grab_head_mass_kg + crane.settings().grab_lower_mass_kg;
+  // the hoist brake has failed: no bite more; one being taken is let go where it lies
+  const bool fault = crane.fault_active(MachineFault::kHoistBrake);
+  if (phase_ != Phase::kFaultStop) {  // the grab set down where it is, unless told otherwise below
+    rest_spot_m_ = crane.load_position_m();
+    rest_spot_m_.z = 0.0;  // the quay, outside every grid
+  }
+  if (fault && (phase_ == Phase::kToDig || phase_ == Phase::kLower)) enter(Phase::kFaultStop);
+  if (fault && phase_ == Phase::kShut) enter(Phase::kOpenAfterFault);
   const auto hold_height = [&](double z) { return steering_.hold_height(z); };
   const auto steer = [&](const BoomSteering::Target& target, double tolerance_m, double& slew_lever,
                          double& luff_lever) {
@@ -255,8 +267,30 @@ Controls GrabAutopilot::decide(const Simulation& simulation, const MobileHarbour
       grab = -1.0;
       hoist = hold_height(drop.z + kDischargeHeight_m);
       steer(target_of(drop), 0.5, slew, luff);
-      if (load_m3 <= 0.0 && crane.grab_opening() > 0.95) enter(delivered ? Phase::kDone : Phase::kToDig);
+      if (load_m3 <= 0.0 && crane.grab_opening() > 0.95) {
+        enter(fault ? Phase::kFaultStop : delivered ? Phase::kDone : Phase::kToDig);
+        // not in the hopper, which drains under it: beside it on the quay, away from the crane
+        if (fault && exercise_.deliver) {
+          const core::Vec3 out = drop - crane.position_m();
+          rest_spot_m_ = drop + out * (kBesideHopper_m / std::max(std::hypot(out.x, out.y), 1.0));
+          rest_spot_m_.z = 0.0;
+        }
+      }
       break;
+    case Phase::kOpenAfterFault:
+      grab = -1.0;
+      if (load_m3 <= 0.0 && crane.grab_opening() > 0.95) enter(Phase::kFaultStop);
+      break;
+    case Phase::kFaultStop: {
+      // the empty grab carried to its spot (beside the hopper, or where it is) and set down there, calm
+      const bool over = steer(target_of(rest_spot_m_), 0.5, slew, luff);
+      reached_rest_spot_ = reached_rest_spot_ || over;
+      if (!reached_rest_spot_)
+        return hand_levers(simulation.control_table(), last_, decision_s,
+                           {{"slew", slew}, {"luff", luff}, {"hoist", hold_height(travel_z)}});
+      return stop_after_hoist_fault(simulation.control_table(), crane, last_, decision_s, empty_kg,
+                                    surface_z(bulk, rest_spot_m_), slew, luff);
+    }
     case Phase::kDone:
       hoist = hold_height(travel_z);
       break;

@@ -27,7 +27,10 @@ struct GrabOperatorDefects {
 /// under it damps the pendulum) while it creeps onto its target. Dig spots: a 3 x 3 pattern over the open
 /// hold's hatch, inside the coamings by the grab's half size and a margin; it digs where the material stands
 /// highest. Trimming a pile on the quay it digs where the pile stands highest and drops the bite where it
-/// lies lowest, away from there, until the pile's top is down to the goal.
+/// lies lowest, away from there, until the pile's top is down to the goal. When the hoist brake fault lamp
+/// lights it follows the procedure: a loaded grab is discharged under power where it was going (a grab still
+/// on the material opens there), no bite is taken again, the empty grab is set down (beside the hopper, which
+/// drains, or on the material under it) and the crane is stopped with the emergency stop.
 class GrabAutopilot final : public Pilot {
  public:
   /// Why it cannot drive `exercise` ("" when it can): a delivery goal on the MHC with a bulk carrier's open
@@ -39,14 +42,14 @@ class GrabAutopilot final : public Pilot {
   /// The controls for the next step (decided 50 times a second, held in between).
   Controls next(const Simulation& simulation) override;
   /// What it is doing now: to dig, lower, shut, hoist, to drop (the hopper, the pile's low spot), discharge,
-  /// done.
+  /// fault stop, done.
   const char* activity() const override;
   /// Takes over a running exercise: hoists a loaded grab out to the hopper, or goes to dig with an empty one.
   void resume(const Simulation& simulation, int moves_done) override;
   int bites() const { return bites_; }
 
  private:
-  enum class Phase { kToDig, kLower, kShut, kHoist, kToDrop, kDischarge, kDone };
+  enum class Phase { kToDig, kLower, kShut, kHoist, kToDrop, kDischarge, kOpenAfterFault, kFaultStop, kDone };
   Controls decide(const Simulation& simulation, const MobileHarbourCrane& crane);
   core::Vec3 dig_spot(const Simulation& simulation) const;
   void choose_dig_spot(const Simulation& simulation);
@@ -64,6 +67,8 @@ class GrabAutopilot final : public Pilot {
   BoomSteering steering_;
   core::Vec3 pile_dig_m_, dump_m_;  // trimming: where it digs and drops (world)
   double travel_z_m_ = 0.0;         // trimming: the grab's bottom height while it travels
+  core::Vec3 rest_spot_m_;          // after a hoist brake fault: where the empty grab is set down
+  bool reached_rest_spot_ = false;  // ... over it
   Controls last_{};
   bool decided_ = false;
 };

@@ -21,6 +21,7 @@ constexpr double kTakeUp_s = 4.0;         // hoisting gently while the slings ta
 constexpr double kRestingShare = 0.5;     // the ropes carrying less of the piece than this: it rests
 constexpr double kEaseRate_per_s = 0.25;  // hoist lever travel per second
 constexpr double kSettle_s = 1.0;         // the piece resting this long before the slinger takes it off
+constexpr double kSettleAfterUnsling_s = 5.0;  // the empty hook let calm before it is set down after a fault
 
 }  // namespace
 
@@ -51,6 +52,8 @@ const char* HookAutopilot::activity() const {
       return "set down";
     case Phase::kUnsling:
       return "unsling";
+    case Phase::kFaultStop:
+      return "fault stop";
     case Phase::kDone:
       return "done";
   }
@@ -96,6 +99,13 @@ Controls HookAutopilot::decide(const Simulation& simulation, const MobileHarbour
   if (phase_ == Phase::kDone) {
     return hand_levers(simulation.control_table(), last_, decision_s, {});
   }
+  if (phase_ == Phase::kFaultStop) {
+    // the hook rid of its piece bounces on its ropes: it is let calm before it goes down
+    if (now - phase_start_s_ < kSettleAfterUnsling_s)
+      return hand_levers(simulation.control_table(), last_, decision_s, {{"hoist", 0.0}});
+    return stop_after_hoist_fault(simulation.control_table(), crane, last_, decision_s,
+                                  crane.settings().hook->block_mass_kg, rest_on_z_m_);
+  }
   const std::size_t piece = piece_index(simulation);
   const ContainerPlacement& placed = simulation.scenario().containers[piece];
   const core::Pose pose = simulation.world().pose(simulation.container_body(piece));
@@ -110,6 +120,18 @@ Controls HookAutopilot::decide(const Simulation& simulation, const MobileHarbour
   const bool resting =
       crane.limiter_load_n() < (crane.settings().hook->block_mass_kg + kRestingShare * slung_kg) * kG;
   const bool held = crane.held_item().has_value();
+  // the hoist brake has failed: nothing more is lifted (a slung piece goes on down to its target); the empty
+  // hook comes to rest on the piece under it, or on the quay on its way to one
+  const bool fault = crane.fault_active(MachineFault::kHoistBrake);
+  const core::Vec3 hook = crane.load_position_m();
+  const bool over_piece = std::hypot(hook.x - pose.position.x, hook.y - pose.position.y) <
+                          std::max(placed.half_extents_m.x, placed.half_extents_m.y);
+  rest_on_z_m_ = over_piece || phase_ != Phase::kToPiece ? top : 0.0;
+  if (fault && !held && (phase_ == Phase::kToPiece || phase_ == Phase::kLower || phase_ == Phase::kSling)) {
+    enter(Phase::kFaultStop);
+    return stop_after_hoist_fault(simulation.control_table(), crane, last_, decision_s,
+                                  crane.settings().hook->block_mass_kg, rest_on_z_m_);
+  }
   const int hoist_slot = simulation.control_table().find("hoist");
   const double last_hoist = decided_ ? last_.value[static_cast<std::size_t>(hoist_slot)] : 0.0;
 
@@ -159,11 +181,12 @@ Controls HookAutopilot::decide(const Simulation& simulation, const MobileHarbour
       call_slinger = held && now - phase_start_s_ < decision_s;
       if (!held) {
         ++move_;
-        enter(move_ < exercise_.moves.size() ? Phase::kToPiece : Phase::kDone);
+        enter(fault ? Phase::kFaultStop : move_ < exercise_.moves.size() ? Phase::kToPiece : Phase::kDone);
       } else if (now - phase_start_s_ > 1.0) {
         enter(Phase::kSetDown);  // refused: not resting yet
       }
       break;
+    case Phase::kFaultStop:
     case Phase::kDone:
       break;
   }

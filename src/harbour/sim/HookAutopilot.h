@@ -14,7 +14,9 @@ class MobileHarbourCrane;
 /// height, brings it over the piece's centre (the head damping the hook's swing), lowers it to just above the
 /// piece's top and calls the slinger, lifts the piece gently until its slings take it and then clear of the
 /// quay, slews and luffs it over its target, lowers it (slowly for the last metre and a half), calls the
-/// slinger to unsling it once it rests, and goes on to the next move.
+/// slinger to unsling it once it rests, and goes on to the next move. When the hoist brake fault lamp lights
+/// it follows the procedure: a slung piece is set down on its target under power and unslung, nothing is
+/// lifted again, the empty hook is lowered until it rests and the crane is stopped with the emergency stop.
 class HookAutopilot final : public Pilot {
  public:
   /// Why it cannot drive `exercise` ("" when it can): moves for the MHC on its hook.
@@ -24,13 +26,13 @@ class HookAutopilot final : public Pilot {
 
   /// The controls for the next step (decided 50 times a second, held in between).
   Controls next(const Simulation& simulation) override;
-  /// What it is doing now: to piece, lower, sling, lift, to target, set down, unsling, done.
+  /// What it is doing now: to piece, lower, sling, lift, to target, set down, unsling, fault stop, done.
   const char* activity() const override;
   /// Takes over a running exercise: carries a slung piece to its target, or goes to the next piece.
   void resume(const Simulation& simulation, int moves_done) override;
 
  private:
-  enum class Phase { kToPiece, kLower, kSling, kLift, kToTarget, kSetDown, kUnsling, kDone };
+  enum class Phase { kToPiece, kLower, kSling, kLift, kToTarget, kSetDown, kUnsling, kFaultStop, kDone };
   Controls decide(const Simulation& simulation, const MobileHarbourCrane& crane);
   /// The scenario's index of the move's piece.
   std::size_t piece_index(const Simulation& simulation) const;
@@ -40,6 +42,7 @@ class HookAutopilot final : public Pilot {
   std::size_t move_ = 0;  // the move it is making
   double phase_start_s_ = 0.0;
   double resting_since_s_ = 0.0;  // setting down: since when the piece rests
+  double rest_on_z_m_ = 0.0;      // after a hoist brake fault: the top of what the empty hook is set down on
   BoomSteering steering_;
   Controls last_{};
   bool decided_ = false;

@@ -131,7 +131,7 @@ void Simulation::apply_due_events() {
     apply_event(e, e.at_s);
   }
   if (scenario_.lift_events.empty()) return;
-  if (first_lift_step_ < 0 && machine_->held_item()) first_lift_step_ = clock_.steps();
+  if (first_lift_step_ < 0 && carrying()) first_lift_step_ = clock_.steps();
   if (first_lift_step_ < 0) return;
   const double lifted_s = static_cast<double>(clock_.steps() - first_lift_step_) * kStep_s;
   while (next_lift_event_ < scenario_.lift_events.size() &&
@@ -139,6 +139,11 @@ void Simulation::apply_due_events() {
     const ScriptedEvent& e = scenario_.lift_events[next_lift_event_++];
     apply_event(e, static_cast<double>(first_lift_step_) * kStep_s + e.at_s);
   }
+}
+
+bool Simulation::carrying() const {
+  return machine_->held_item().has_value() ||
+         (bulk_ && bulk_grab_ >= 0 && bulk_->grab(bulk_grab_).load_m3 > 0.0);
 }
 
 void Simulation::apply_event(const ScriptedEvent& e, double at_s) {

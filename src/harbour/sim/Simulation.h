@@ -222,6 +222,9 @@ class Simulation {
   /// The scene's bulk material, if it has any, and the machine's tool in it (-1: none).
   const bulk::BulkWorld* bulk() const { return bulk_.get(); }
   int bulk_grab() const { return bulk_grab_; }
+  /// The machine carries a load: it holds an item (a locked box, a slung piece), or its grab holds material.
+  /// The first lift (events timed `after_lift_s`) is when it first does.
+  bool carrying() const;
   /// Where the machine's load would hang at rest in a steady `wind` [m/s], from plumb under its sheaves [m]
   /// (horizontal): the pendulum's equilibrium L F / (m g), F the wind's drag on its wind areas and on `box`
   /// if it hangs from them.

@@ -187,6 +187,8 @@ class MobileHarbourCrane final : public Machine {
   physics::BodyId boom_body() const { return boom_; }
   /// The body hanging on the ropes under the boom head: the grab's head or the hook block.
   physics::BodyId block_body() const { return block_; }
+  /// What is set down first: the hook block, or the grab's lower block (its shells' hinge).
+  std::optional<physics::BodyId> gripper_body() const override { return on_hook() ? block_ : grab_lower_; }
   /// The grab's lower block (kWorld on the hook).
   physics::BodyId grab_lower_body() const { return grab_lower_; }
   int slew_hinge() const { return slew_hinge_; }
