@@ -60,8 +60,11 @@ constexpr double kMaxDistance_m = 1e5;
 constexpr double kMaxForce_n = 1e9;
 constexpr double kMaxTorque_n_m = 1e10;
 
+double norm_squared(const dReal* v) {
+  return v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+}
 double norm(const dReal* v) {
-  return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  return std::sqrt(norm_squared(v));
 }
 
 void init_ode_once() {
@@ -662,6 +665,14 @@ std::string PhysicsWorld::find_divergence(bool forces) const {
   for (std::size_t n = 0; n < ode_->bodies.size(); ++n) {
     const dBodyID b = ode_->bodies[n].id;
     const dReal* q = dBodyGetQuaternion(b);
+    // the bounds on squares first, without a root (false for NaN too); the message only when one fails
+    const bool within =
+        norm_squared(dBodyGetPosition(b)) <= kMaxDistance_m * kMaxDistance_m &&
+        norm_squared(dBodyGetLinearVel(b)) <= kMaxSpeed_mps * kMaxSpeed_mps &&
+        norm_squared(dBodyGetAngularVel(b)) <= kMaxAngularSpeed_rad_s * kMaxAngularSpeed_rad_s &&
+        (!forces || (norm_squared(dBodyGetForce(b)) <= kMaxForce_n * kMaxForce_n &&
+                     norm_squared(dBodyGetTorque(b)) <= kMaxTorque_n_m * kMaxTorque_n_m));
+    if (within && std::abs(q[0]) + norm(q + 1) <= 2.0) continue;
     const double checks[][2] = {{norm(dBodyGetPosition(b)), kMaxDistance_m},
                                 {norm(dBodyGetLinearVel(b)), kMaxSpeed_mps},
                                 {norm(dBodyGetAngularVel(b)), kMaxAngularSpeed_rad_s},

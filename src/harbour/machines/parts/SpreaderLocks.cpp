@@ -1,8 +1,13 @@
 #include "harbour/machines/parts/SpreaderLocks.h"
 
+#include <algorithm>
+#include <cmath>
 #include <numbers>
 
 namespace harbour::sim {
+namespace {
+constexpr double kReachMargin_m = 0.01;  // rounding and more: the pre-check only skips boxes far out of reach
+}  // namespace
 
 void SpreaderLocks::step(physics::PhysicsWorld& world, physics::BodyId spreader, const Spreader& frame,
                          std::span<const ContainerRef> containers, const TwistlockSettings& settings,
@@ -16,8 +21,18 @@ void SpreaderLocks::step(physics::PhysicsWorld& world, physics::BodyId spreader,
   std::optional<physics::BodyId> landed_on;
   // a box's castings are the same either way round: the spreader seats on it turned half a turn too
   const core::Mat3 half_turn = core::Mat3::rotation({0, 0, 1}, std::numbers::pi);
+  // a pin lands within the tolerances of a casting: no pin of the spreader reaches a box whose centre lies
+  // farther from the underside's centre than this (the pins' diagonal, the castings' and the box's half
+  // height, with room for rounding); such a box is not looked at corner by corner
+  const double pins_m = std::hypot(frame.pin_half_length_m(), frame.pin_half_width_m());
   for (const ContainerRef& box : containers) {
     core::Pose top = world.pose(box.body);
+    const double castings_m =
+        std::hypot(std::max(box.pocket_half_length_m, box.end_pocket_half_length_m), box.pocket_half_width_m);
+    const double reach_m = pins_m + castings_m + settings.lateral_tolerance_m + settings.landed_gap_m +
+                           box.half_extents_m.z + kReachMargin_m;
+    const core::Vec3 apart = top.position - underside.position;
+    if (core::dot(apart, apart) > reach_m * reach_m) continue;
     top.position = top.to_parent({0, 0, box.half_extents_m.z});
     const core::Pose turned{top.rotation * half_turn, top.position};
     for (const double apertures : {box.pocket_half_length_m, box.end_pocket_half_length_m}) {
