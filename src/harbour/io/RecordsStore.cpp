@@ -125,20 +125,6 @@ std::vector<std::string> migration(int version) {
   }
 }
 
-// now, UTC, ISO 8601 with microseconds
-std::string utc_now() {
-  const auto now = std::chrono::system_clock::now();
-  const std::time_t seconds = std::chrono::system_clock::to_time_t(now);
-  const auto micros =
-      std::chrono::duration_cast<std::chrono::microseconds>(now.time_since_epoch()).count() % 1000000;
-  std::tm utc{};
-  gmtime_r(&seconds, &utc);
-  char at[40];
-  const std::size_t n = std::strftime(at, sizeof at, "%Y-%m-%dT%H:%M:%S", &utc);
-  std::snprintf(at + n, sizeof at - n, ".%06lldZ", static_cast<long long>(micros));
-  return at;
-}
-
 // a random (version 4) UUID, as xAPI statement ids are
 std::string random_uuid() {
   if (sodium_init() < 0) throw std::runtime_error("libsodium could not start (no random numbers)");
@@ -208,6 +194,20 @@ bool ended_here(const std::string& process) {
 }
 
 }  // namespace
+
+// now, UTC, ISO 8601 with microseconds
+std::string utc_now() {
+  const auto now = std::chrono::system_clock::now();
+  const std::time_t seconds = std::chrono::system_clock::to_time_t(now);
+  const auto micros =
+      std::chrono::duration_cast<std::chrono::microseconds>(now.time_since_epoch()).count() % 1000000;
+  std::tm utc{};
+  gmtime_r(&seconds, &utc);
+  char at[40];
+  const std::size_t n = std::strftime(at, sizeof at, "%Y-%m-%dT%H:%M:%S", &utc);
+  std::snprintf(at + n, sizeof at - n, ".%06lldZ", static_cast<long long>(micros));
+  return at;
+}
 
 std::string records_connection(const std::string& connection) {
   if (connection.rfind("postgresql://", 0) == 0) return connection;
@@ -733,10 +733,14 @@ int RecordsStore::account_count() {
 
 void RecordsStore::audit(const std::string& account, const std::string& action, const std::string& target,
                          const std::string& detail) {
-  const std::string when = utc_now();  // soci::use binds a reference: no temporaries
+  audit(AuditRow{utc_now(), account, action, target, detail});
+}
+
+void RecordsStore::audit(const AuditRow& row) {
   impl_->guarded("writing the audit log", [&] {
     impl_->sql << "INSERT INTO audit (at, account, action, target, detail) VALUES (:a, :u, :c, :t, :d)",
-        soci::use(when), soci::use(account), soci::use(action), soci::use(target), soci::use(detail);
+        soci::use(row.at), soci::use(row.account), soci::use(row.action), soci::use(row.target),
+        soci::use(row.detail);
   });
 }
 
@@ -987,10 +991,16 @@ std::vector<training::StageAttempt> RecordsStore::stage_attempts(const std::stri
   return out;
 }
 
-void record_progress(RecordsStore& db, std::int64_t attempt, const sim::Metrics& before,
-                     const sim::Metrics& now) {
-  for (int n = before.moves_completed; n < now.moves_completed; ++n)
-    db.record_move(attempt, n + 1, now.time_s, now.cycle_times_s[static_cast<std::size_t>(n)]);
+void record_progress(RecordsStore& db, std::int64_t attempt, const sim::Progress& before,
+                     const sim::Progress& now) {
+  for (int n = before.moves_completed; n < now.moves_completed; ++n) {
+    // the newest moves' cycle times (a look after every step sees at most one new move)
+    const int back = now.moves_completed - 1 - n;
+    const double cycle_s = back < static_cast<int>(sim::Progress::kRecentMoves)
+                               ? now.recent_cycle_times_s[sim::Progress::kRecentMoves - 1 - back]
+                               : 0.0;
+    db.record_move(attempt, n + 1, now.time_s, cycle_s);
+  }
   for (const sim::CountedEvent& e : sim::counted_events(before, now))
     db.record_event(attempt, now.time_s, e.kind, e.value);
 }

@@ -63,6 +63,9 @@ struct AuditRow {
   std::string at, account, action, target, detail;
 };
 
+/// Now, UTC, ISO 8601 with microseconds: how the records stamp what they store.
+std::string utc_now();
+
 /// An event of an attempt as stored (a collision, a hard landing, an instructor's command, ...).
 struct EventRow {
   double at_s = 0.0;
@@ -145,6 +148,8 @@ class RecordsStore {
   int account_count();
   /// Every account by name (the password hashes included: for the console's own use).
   std::vector<AccountRow> accounts();
+  /// Appends an entry stamped earlier (its `at`) to the audit log.
+  void audit(const AuditRow& row);
   /// Appends to the audit log (every instructor action, who and when).
   void audit(const std::string& account, const std::string& action, const std::string& target,
              const std::string& detail);
@@ -185,7 +190,7 @@ class RecordsStore {
 
 /// Stores what the evaluator counted since `before` (moves done, collisions, hard landings, ...) as moves
 /// and events of `attempt`, stamped with the moment they happened.
-void record_progress(RecordsStore& db, std::int64_t attempt, const sim::Metrics& before,
-                     const sim::Metrics& now);
+void record_progress(RecordsStore& db, std::int64_t attempt, const sim::Progress& before,
+                     const sim::Progress& now);
 
 }  // namespace harbour::io

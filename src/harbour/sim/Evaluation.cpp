@@ -31,8 +31,18 @@ const char* skill_name(Skill skill) {
   return "?";
 }
 
+void reserve_lists(Metrics& metrics) {
+  constexpr std::size_t kRoom = 256;  // moves, landings, bites: a long attempt's worth
+  for (std::vector<double>* list :
+       {&metrics.cycle_times_s, &metrics.landing_sway_m, &metrics.bite_fill, &metrics.release_swing_m,
+        &metrics.placement_offset_m, &metrics.placement_skew_deg})
+    list->reserve(std::max(kRoom, list->size()));
+}
+
 Evaluator::Evaluator(const ExerciseSettings& exercise)
-    : exercise_(exercise), done_(exercise.moves.size(), false) {}
+    : exercise_(exercise), done_(exercise.moves.size(), false) {
+  reserve_lists(metrics_);  // a station evaluates on its step thread, which must not allocate
+}
 
 int Evaluator::goal_of(physics::BodyId body, const Simulation& simulation) const {
   for (std::size_t g = 0; g < exercise_.moves.size(); ++g) {
@@ -250,8 +260,8 @@ void Evaluator::observe_bulk(const Simulation& simulation) {
 
 void Evaluator::observe_any_machine(const Simulation& simulation, const Controls& controls, bool estop) {
   // what every machine shows: its impacts (the load it carries set down near its target, or its empty
-  // gripper set down on the item it is to pick up or, after a hoist brake fault, to stay, is a landing), its moves, rope overloads, emergency stops
-  // and, on a gantry crane, gantry travel without the horn
+  // gripper set down on the item it is to pick up or, after a hoist brake fault, to stay, is a landing), its
+  // moves, rope overloads, emergency stops and, on a gantry crane, gantry travel without the horn
   const std::optional<physics::BodyId> gripper = simulation.machine().gripper_body();
   for (const physics::ImpactEvent& e : simulation.events().impacts) {
     const bool carried_hit = carried_ && (e.body == *carried_ || e.other == *carried_);
@@ -384,8 +394,8 @@ void Evaluator::observe_gantry_warning(bool horn, bool gantry_moving, double gan
   gantry_was_moving_ = gantry_moving;
 }
 
-Score Evaluator::score() const {
-  const EvaluationRules& r = exercise_.rules;
+Score score_of(const ExerciseSettings& exercise, const Metrics& metrics, bool goals_met) {
+  const EvaluationRules& r = exercise.rules;
   Score s;
   auto deduct = [&](const char* reason, Skill skill, int count, double points) {
     if (count <= 0 || points <= 0.0) return;
@@ -393,54 +403,56 @@ Score Evaluator::score() const {
     s.total -= count * points;
     s.skills[static_cast<std::size_t>(skill)] -= count * points;
   };
-  deduct("collision", Skill::kSafety, metrics_.collisions, r.points_collision);
-  deduct("hard landing", Skill::kPrecision, metrics_.hard_landings, r.points_hard_landing);
-  deduct("landing while swaying", Skill::kPrecision, metrics_.sway_landings, r.points_sway);
-  deduct("twistlock misuse", Skill::kSafety, metrics_.twistlock_misuse, r.points_twistlock_misuse);
-  deduct("rope overload", Skill::kSafety, metrics_.overloads, r.points_overload);
-  deduct("limit switch hit", Skill::kPrecision, metrics_.limit_hits, r.points_limit_hit);
-  deduct("emergency stop", Skill::kSafety, metrics_.emergency_stops, r.points_emergency_stop);
-  deduct("gantry travel without the horn", Skill::kSafety, metrics_.unwarned_gantry_travel,
+  deduct("collision", Skill::kSafety, metrics.collisions, r.points_collision);
+  deduct("hard landing", Skill::kPrecision, metrics.hard_landings, r.points_hard_landing);
+  deduct("landing while swaying", Skill::kPrecision, metrics.sway_landings, r.points_sway);
+  deduct("twistlock misuse", Skill::kSafety, metrics.twistlock_misuse, r.points_twistlock_misuse);
+  deduct("rope overload", Skill::kSafety, metrics.overloads, r.points_overload);
+  deduct("limit switch hit", Skill::kPrecision, metrics.limit_hits, r.points_limit_hit);
+  deduct("emergency stop", Skill::kSafety, metrics.emergency_stops, r.points_emergency_stop);
+  deduct("gantry travel without the horn", Skill::kSafety, metrics.unwarned_gantry_travel,
          r.points_unwarned_travel);
-  deduct("load dropped", Skill::kSafety, metrics_.load_drops, r.points_load_drop);
-  deduct("lift with the hoist brake failed", Skill::kSafety, metrics_.lifts_under_fault,
+  deduct("load dropped", Skill::kSafety, metrics.load_drops, r.points_load_drop);
+  deduct("lift with the hoist brake failed", Skill::kSafety, metrics.lifts_under_fault,
          r.points_lift_under_fault);
   // a machine taken out of service after a fault, as the procedure says, is excused the goals left
-  const bool excused = metrics_.stopped_after_fault;
+  const bool excused = metrics.stopped_after_fault;
   deduct("move not completed", Skill::kProductivity,
-         excused ? 0 : static_cast<int>(exercise_.moves.size()) - metrics_.moves_completed,
+         excused ? 0 : static_cast<int>(exercise.moves.size()) - metrics.moves_completed,
          r.points_per_move_missing);
-  deduct("discharge while swinging", Skill::kPrecision, metrics_.swinging_releases, r.points_sway);
-  deduct("tonne spilled", Skill::kPrecision, static_cast<int>(std::ceil(metrics_.spilled_t - 1e-9)),
+  deduct("discharge while swinging", Skill::kPrecision, metrics.swinging_releases, r.points_sway);
+  deduct("tonne spilled", Skill::kPrecision, static_cast<int>(std::ceil(metrics.spilled_t - 1e-9)),
          r.points_per_spilled_t);
-  deduct("poor bite", Skill::kProductivity, metrics_.poor_bites, r.points_poor_bite);
-  deduct("load-moment limiter trip", Skill::kSafety, metrics_.limiter_trips, r.points_limiter_trip);
-  deduct("outrigger pad lift-off", Skill::kSafety, metrics_.pad_lift_offs, r.points_pad_lift_off);
-  deduct("jack-knife", Skill::kSafety, metrics_.jackknifes, r.points_jackknife);
-  deduct("tip-over", Skill::kSafety, metrics_.tip_overs, r.points_tip_over);
-  deduct("speeding", Skill::kSafety, metrics_.overspeeds, r.points_overspeed);
+  deduct("poor bite", Skill::kProductivity, metrics.poor_bites, r.points_poor_bite);
+  deduct("load-moment limiter trip", Skill::kSafety, metrics.limiter_trips, r.points_limiter_trip);
+  deduct("outrigger pad lift-off", Skill::kSafety, metrics.pad_lift_offs, r.points_pad_lift_off);
+  deduct("jack-knife", Skill::kSafety, metrics.jackknifes, r.points_jackknife);
+  deduct("tip-over", Skill::kSafety, metrics.tip_overs, r.points_tip_over);
+  deduct("speeding", Skill::kSafety, metrics.overspeeds, r.points_overspeed);
   int harsh = 0;
-  for (const Metrics::Smoothness& axis : metrics_.smoothness)
+  for (const Metrics::Smoothness& axis : metrics.smoothness)
     harsh += axis.harsh_moves;
   deduct("harsh move", Skill::kPrecision, harsh, r.points_harsh_move);
-  if (exercise_.deliver && !excused)
-    deduct(
-        "tonne short of the delivery", Skill::kProductivity,
-        static_cast<int>(std::ceil(std::max(0.0, exercise_.deliver->tonnes - metrics_.delivered_t) - 1e-9)),
-        r.points_per_missing_t);
-  if (exercise_.trim && !excused)
+  if (exercise.deliver && !excused)
+    deduct("tonne short of the delivery", Skill::kProductivity,
+           static_cast<int>(std::ceil(std::max(0.0, exercise.deliver->tonnes - metrics.delivered_t) - 1e-9)),
+           r.points_per_missing_t);
+  if (exercise.trim && !excused)
     deduct(
         "decimetre above the trim height", Skill::kProductivity,
-        static_cast<int>(std::ceil(std::max(0.0, metrics_.pile_top_m - exercise_.trim->top_m) * 10.0 - 1e-9)),
+        static_cast<int>(std::ceil(std::max(0.0, metrics.pile_top_m - exercise.trim->top_m) * 10.0 - 1e-9)),
         r.points_per_trim_dm);
-  const int minutes_over =
-      static_cast<int>(std::ceil(std::max(0.0, metrics_.time_s - r.time_limit_s) / 60.0));
+  const int minutes_over = static_cast<int>(std::ceil(std::max(0.0, metrics.time_s - r.time_limit_s) / 60.0));
   deduct("minute over the time limit", Skill::kProductivity, minutes_over, r.points_per_minute_over);
   s.total = std::max(0.0, s.total);
   for (double& skill : s.skills)
     skill = std::max(0.0, skill);
-  s.passed = s.total >= r.pass_score && (goals_met() || excused);
+  s.passed = s.total >= r.pass_score && (goals_met || excused);
   return s;
+}
+
+Score Evaluator::score() const {
+  return score_of(exercise_, metrics_, goals_met());
 }
 
 }  // namespace harbour::sim
@@ -514,30 +526,62 @@ std::vector<std::pair<std::string, double>> Metrics::rows() const {
   return r;
 }
 
-std::vector<CountedEvent> counted_events(const Metrics& before, const Metrics& now) {
-  const std::tuple<const char*, int, int, double> counters[] = {
-      {"collision", before.collisions, now.collisions, now.worst_collision_mps},
-      {"hard_landing", before.hard_landings, now.hard_landings, now.worst_landing_mps},
-      {"sway_landing", before.sway_landings, now.sway_landings, 0.0},
-      {"twistlock_misuse", before.twistlock_misuse, now.twistlock_misuse, 0.0},
-      {"rope_overload", before.overloads, now.overloads, 0.0},
-      {"limit_switch_hit", before.limit_hits, now.limit_hits, 0.0},
-      {"emergency_stop", before.emergency_stops, now.emergency_stops, 0.0},
-      {"gantry_travel_without_horn", before.unwarned_gantry_travel, now.unwarned_gantry_travel, 0.0},
-      {"limiter_trip", before.limiter_trips, now.limiter_trips, 0.0},
-      {"pad_lift_off", before.pad_lift_offs, now.pad_lift_offs, 0.0},
-      {"poor_bite", before.poor_bites, now.poor_bites, 0.0},
-      {"swinging_release", before.swinging_releases, now.swinging_releases, 0.0},
-      {"jackknife", before.jackknifes, now.jackknifes, 0.0},
-      {"tip_over", before.tip_overs, now.tip_overs, 0.0},
-      {"speeding", before.overspeeds, now.overspeeds, now.worst_overspeed_kmh},
-      {"load_drop", before.load_drops, now.load_drops, 0.0},
-      {"lift_under_fault", before.lifts_under_fault, now.lifts_under_fault, 0.0}};
+namespace {
+// every counted event: its name, its count and the figure stored with it
+struct CountedKind {
+  const char* name;
+  int Metrics::*count;
+  double Metrics::*value;  // nullptr: none
+};
+constexpr std::array<CountedKind, kCountedEventKinds> kCountedKinds{{
+    {"collision", &Metrics::collisions, &Metrics::worst_collision_mps},
+    {"hard_landing", &Metrics::hard_landings, &Metrics::worst_landing_mps},
+    {"sway_landing", &Metrics::sway_landings, nullptr},
+    {"twistlock_misuse", &Metrics::twistlock_misuse, nullptr},
+    {"rope_overload", &Metrics::overloads, nullptr},
+    {"limit_switch_hit", &Metrics::limit_hits, nullptr},
+    {"emergency_stop", &Metrics::emergency_stops, nullptr},
+    {"gantry_travel_without_horn", &Metrics::unwarned_gantry_travel, nullptr},
+    {"limiter_trip", &Metrics::limiter_trips, nullptr},
+    {"pad_lift_off", &Metrics::pad_lift_offs, nullptr},
+    {"poor_bite", &Metrics::poor_bites, nullptr},
+    {"swinging_release", &Metrics::swinging_releases, nullptr},
+    {"jackknife", &Metrics::jackknifes, nullptr},
+    {"tip_over", &Metrics::tip_overs, nullptr},
+    {"speeding", &Metrics::overspeeds, &Metrics::worst_overspeed_kmh},
+    {"load_drop", &Metrics::load_drops, nullptr},
+    {"lift_under_fault", &Metrics::lifts_under_fault, nullptr},
+}};
+}  // namespace
+
+const char* counted_event_kind(std::size_t n) {
+  return kCountedKinds[n].name;
+}
+
+Progress progress(const Metrics& metrics) {
+  Progress p;
+  p.time_s = metrics.time_s;
+  p.moves_completed = metrics.moves_completed;
+  const std::size_t done = metrics.cycle_times_s.size();
+  for (std::size_t k = 0; k < Progress::kRecentMoves && k < done; ++k)
+    p.recent_cycle_times_s[Progress::kRecentMoves - 1 - k] = metrics.cycle_times_s[done - 1 - k];
+  for (std::size_t n = 0; n < kCountedEventKinds; ++n) {
+    p.counts[n] = metrics.*kCountedKinds[n].count;
+    p.values[n] = kCountedKinds[n].value ? metrics.*kCountedKinds[n].value : 0.0;
+  }
+  return p;
+}
+
+std::vector<CountedEvent> counted_events(const Progress& before, const Progress& now) {
   std::vector<CountedEvent> events;
-  for (const auto& [kind, was, is, value] : counters)
-    for (int n = was; n < is; ++n)
-      events.push_back({kind, value});
+  for (std::size_t n = 0; n < kCountedEventKinds; ++n)
+    for (int k = before.counts[n]; k < now.counts[n]; ++k)
+      events.push_back({kCountedKinds[n].name, now.values[n]});
   return events;
+}
+
+std::vector<CountedEvent> counted_events(const Metrics& before, const Metrics& now) {
+  return counted_events(progress(before), progress(now));
 }
 
 }  // namespace harbour::sim

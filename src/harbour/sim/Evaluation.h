@@ -195,8 +195,34 @@ struct CountedEvent {
   const char* kind = "";
   double value = 0.0;
 };
+/// The kinds of counted events, in the order Progress keeps them.
+inline constexpr std::size_t kCountedEventKinds = 17;
+/// What the records store the moment it grows, at the time it happened: the completed moves (with the
+/// newest cycle times) and every counted event with its figure. Plain and fixed-size: a station's step
+/// thread hands it to the record keeper without allocating.
+struct Progress {
+  static constexpr std::size_t kRecentMoves = 4;
+  double time_s = 0.0;
+  int moves_completed = 0;
+  std::array<double, kRecentMoves> recent_cycle_times_s{};  ///< of the newest moves, the newest last
+  std::array<int, kCountedEventKinds> counts{};             ///< per kind (counted_event_kind)
+  std::array<double, kCountedEventKinds> values{};          ///< the figure stored with each kind's event
+  /// Something to store since `earlier`: a move done or an event counted.
+  bool grew_since(const Progress& earlier) const {
+    return moves_completed != earlier.moves_completed || counts != earlier.counts;
+  }
+};
+/// The name the records and the console use for counted event kind `n`.
+const char* counted_event_kind(std::size_t n);
+Progress progress(const Metrics& metrics);
+/// The score of `metrics` by `exercise`'s rules (what Evaluator::score gives); `goals_met` as it says.
+Score score_of(const ExerciseSettings& exercise, const Metrics& metrics, bool goals_met);
+/// Room in every per-move, per-landing and per-bite list of `metrics` for a long attempt (256 of each), so
+/// that filling them, or copying a metrics into one with this room, allocates nothing.
+void reserve_lists(Metrics& metrics);
 /// Every event counted between `before` and `now`, one per count (moves are not events: see
 /// Metrics::moves_completed).
+std::vector<CountedEvent> counted_events(const Progress& before, const Progress& now);
 std::vector<CountedEvent> counted_events(const Metrics& before, const Metrics& now);
 
 /// The highest point of bulk grid `grid`'s surface, in the world [m].
@@ -213,6 +239,8 @@ class Evaluator {
   bool finished() const;
   const Metrics& metrics() const { return metrics_; }
   Score score() const;
+  /// Every goal met (the moves, the tonnes delivered, the pile trimmed).
+  bool goals_met() const;
 
  private:
   void observe_containers(const Simulation& simulation, const Controls& controls, const StsCrane& crane,
@@ -229,7 +257,6 @@ class Evaluator {
   /// A falling load, and the hoist brake fault procedure: land the load under power, lift nothing more,
   /// then stop the machine (docs/evaluation.md).
   void observe_hoist_fault(const Simulation& simulation, bool emergency_stop);
-  bool goals_met() const;
   int goal_of(physics::BodyId body, const Simulation& simulation) const;
   double sway_m(const Simulation& simulation, std::optional<physics::BodyId> hanging_box) const;
   bool near_target(physics::BodyId box, const Simulation& simulation) const;

@@ -20,27 +20,37 @@ std::vector<std::string> legacy_sts_control_labels() {
 }
 
 void Recorder::after_step(const Simulation& simulation, const Controls& given) {
-  // store the controls as the machine read them, only when they change; the step they were applied at is one
-  // before the current
-  const Controls controls = simulation.control_table().in_range(given);
-  const std::int64_t applied_at = simulation.steps() - 1;
-  if (recording_.inputs.empty() || !(recording_.inputs.back().controls == controls)) {
-    recording_.inputs.push_back({applied_at, controls});
-    if (sink_) sink_->on_input(recording_.inputs.back());
-  }
-  if (simulation.steps() % kCheckpointEvery == 0) {
-    recording_.checkpoints.push_back({simulation.steps(), simulation.state_hash()});
-    if (sink_) sink_->on_checkpoint(recording_.checkpoints.back());
-  }
-  if (simulation.steps() % kKeyframeEvery == 0) {
-    recording_.keyframes.push_back({simulation.steps(), simulation.save_state()});
-    if (sink_) sink_->on_keyframe(recording_.keyframes.back());
-  }
-  recording_.total_steps = simulation.steps();
+  const std::int64_t step = simulation.steps();
+  after_step(step, simulation.control_table().in_range(given));
+  if (step % kCheckpointEvery == 0) checkpoint(step, simulation.state_hash());
+  if (step % kKeyframeEvery == 0) keyframe(step, simulation.save_state());
 }
 
 void Recorder::on_command(const Simulation& simulation, const InstructorCommand& command) {
-  recording_.commands.push_back({simulation.steps(), command});
+  on_command(simulation.steps(), command);
+}
+
+void Recorder::after_step(std::int64_t step, const Controls& controls) {
+  // the controls only when they change; the step they were applied at is one before the current
+  if (recording_.inputs.empty() || !(recording_.inputs.back().controls == controls)) {
+    recording_.inputs.push_back({step - 1, controls});
+    if (sink_) sink_->on_input(recording_.inputs.back());
+  }
+  recording_.total_steps = step;
+}
+
+void Recorder::checkpoint(std::int64_t step, std::uint64_t state_hash) {
+  recording_.checkpoints.push_back({step, state_hash});
+  if (sink_) sink_->on_checkpoint(recording_.checkpoints.back());
+}
+
+void Recorder::keyframe(std::int64_t step, std::vector<std::uint8_t> state) {
+  recording_.keyframes.push_back({step, std::move(state)});
+  if (sink_) sink_->on_keyframe(recording_.keyframes.back());
+}
+
+void Recorder::on_command(std::int64_t step, const InstructorCommand& command) {
+  recording_.commands.push_back({step, command});
   if (sink_) sink_->on_command(recording_.commands.back());
 }
 

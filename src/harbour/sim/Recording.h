@@ -70,6 +70,16 @@ class Recorder {
   void after_step(const Simulation& simulation, const Controls& controls);
   /// The instructor's command, just applied to `simulation` (before its next step).
   void on_command(const Simulation& simulation, const InstructorCommand& command);
+
+  // The same, from what a simulation stepped elsewhere handed on (a station's step thread to its record
+  // keeper): after_step(simulation, ...) is after_step(step, ...), then a checkpoint every kCheckpointEvery
+  // steps and a keyframe every kKeyframeEvery.
+  /// `controls`, as the machine read them (ControlTable::in_range), drove the step that ended at `step`.
+  void after_step(std::int64_t step, const Controls& controls);
+  void checkpoint(std::int64_t step, std::uint64_t state_hash);
+  void keyframe(std::int64_t step, std::vector<std::uint8_t> state);
+  /// A command applied before step `step` + 1.
+  void on_command(std::int64_t step, const InstructorCommand& command);
   const Recording& recording() const { return recording_; }
   /// Streams everything recorded from now on to `sink` as well (nullptr: none).
   void set_sink(RecordingSink* sink) { sink_ = sink; }

@@ -2,9 +2,8 @@
 
 #include <algorithm>
 
-#include <sys/prctl.h>
-
 #include "harbour/bulk/BulkPublish.h"
+#include "harbour/station/ThreadRole.h"
 
 namespace harbour::station {
 
@@ -18,9 +17,10 @@ RealTimeLoop::RealTimeLoop(sim::Simulation& simulation, const LoopSettings& sett
   for (int n = 0; n < kSnapshotReaders; ++n) {
     snapshots_.push_back(std::make_unique<TripleBuffer<sim::Snapshot>>());
     settings_.snapshot_every_steps[static_cast<std::size_t>(n)] =
-        std::max(settings_.snapshot_every_steps[static_cast<std::size_t>(n)], 1);
+        std::max(settings_.snapshot_every_steps[static_cast<std::size_t>(n)], 0);
   }
   settings_.bulk_every_steps = std::max(settings_.bulk_every_steps, 1);
+  settings_.ticks_per_wake = std::max(settings_.ticks_per_wake, 1);
   for (int n = 0; n < kSnapshotReaders; ++n)
     publish(n);  // readers see the start
   // every bulk buffer gets its grids and room for the material in flight now, then allocates no more
@@ -81,7 +81,7 @@ LoopStats RealTimeLoop::stats() const {
 }
 
 void RealTimeLoop::run() {
-  prctl(PR_SET_TIMERSLACK, 1000UL);  // wake within ~1 us of the tick, not the default 50 us
+  take_role(ThreadRole::kStep);
   // one tick per simulation step (1 ms), scaled for a fast-forward
   const auto period = std::chrono::duration_cast<Clock::duration>(
       std::chrono::duration<double>(sim::Simulation::kStep_s / settings_.time_scale));
@@ -90,7 +90,7 @@ void RealTimeLoop::run() {
   while (!stop_requested_.load(std::memory_order_relaxed)) {
     const Clock::time_point due_at = start + ticks * period;
     Clock::time_point now = Clock::now();
-    if (now < due_at) {
+    if (now < due_at && ticks % settings_.ticks_per_wake == 0) {
       std::this_thread::sleep_until(due_at);
       now = Clock::now();
     }
@@ -133,10 +133,10 @@ void RealTimeLoop::run() {
 void RealTimeLoop::tick() {
   apply_commands();
   if (!simulation_.held()) step_once();
-  for (int n = 0; n < kSnapshotReaders; ++n)
-    if (simulation_.steps() % settings_.snapshot_every_steps[static_cast<std::size_t>(n)] == 0 ||
-        simulation_.held())
-      publish(n);
+  for (int n = 0; n < kSnapshotReaders; ++n) {
+    const int every = settings_.snapshot_every_steps[static_cast<std::size_t>(n)];
+    if (every > 0 && (simulation_.steps() % every == 0 || simulation_.held())) publish(n);
+  }
   if (simulation_.steps() % settings_.bulk_every_steps == 0 && !simulation_.held()) publish_bulk();
 }
 
@@ -158,7 +158,8 @@ void RealTimeLoop::apply_commands() {
         simulation_.resume();
         break;
       case LoopCommand::Kind::kSingleStep:
-        if (simulation_.held()) step_once();
+        // not past the end: a step that ended the exercise is its last, even with more queued
+        if (simulation_.held() && !(stop_when_ && stop_when_(simulation_))) step_once();
         break;
       case LoopCommand::Kind::kInstructor: {
         simulation_.command(c.instructor);  // valid: post() checked it
@@ -182,29 +183,58 @@ void RealTimeLoop::step_once() {
   else if (sampler_)
     latched_ = sampler_();
   simulation_.single_step(latched_);
+  if (observer_) observer_(simulation_, latched_);
   StepRecord r;
   r.kind = StepRecord::Kind::kStep;
   r.step = simulation_.steps();
   r.controls = latched_;
   hand_off(r);
-  if (simulation_.steps() % 1000 == 0) {
+  if (settings_.checkpoint_every_steps > 0 && simulation_.steps() % settings_.checkpoint_every_steps == 0) {
     StepRecord c;
     c.kind = StepRecord::Kind::kCheckpoint;
     c.step = simulation_.steps();
     c.state_hash = simulation_.state_hash();
     hand_off(c);
   }
+  if (settings_.keyframe_every_steps > 0 && simulation_.steps() % settings_.keyframe_every_steps == 0)
+    hand_off_keyframe();
 }
 
-void RealTimeLoop::hand_off(const StepRecord& record) {
-  // the recording must be whole: with the recorder's queue full (it fell 32 s behind) the loop waits
-  if (records_.push(record)) return;
+template <typename Ready>
+void RealTimeLoop::wait_for_recorder(Ready ready) {
+  if (ready()) return;
   {
     const std::lock_guard lock(stats_mutex_);
     ++stats_.record_waits;
   }
-  while (!records_.push(record))
-    std::this_thread::sleep_for(std::chrono::microseconds(100));
+  // a millisecond at a time: the recorder is far behind, a tick's wait changes nothing; asked to stop (the
+  // recorder may have failed), the loop waits no more
+  while (!ready() && !stop_requested_.load())
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+}
+
+void RealTimeLoop::hand_off(const StepRecord& record) {
+  // the recording must be whole: with the recorder's queue full (it fell 32 s behind) the loop waits
+  wait_for_recorder([&] { return records_.push(record); });
+}
+
+void RealTimeLoop::hand_off_keyframe() {
+  // a slot the recorder has released (it keeps a keyframe within ten simulated seconds, or waits)
+  int slot = -1;
+  wait_for_recorder([&] {
+    for (std::size_t k = 0; k < keyframes_.size() && slot < 0; ++k)
+      if (!keyframes_[k].full.load(std::memory_order_acquire)) slot = static_cast<int>(k);
+    return slot >= 0;
+  });
+  if (slot < 0) return;  // stopping
+  KeyframeSlot& keyframe = keyframes_[static_cast<std::size_t>(slot)];
+  keyframe.state = simulation_.save_state();
+  keyframe.full.store(true, std::memory_order_release);
+  StepRecord k;
+  k.kind = StepRecord::Kind::kKeyframe;
+  k.step = simulation_.steps();
+  k.keyframe_slot = slot;
+  hand_off(k);
 }
 
 void RealTimeLoop::publish_bulk() {

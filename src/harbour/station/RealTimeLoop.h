@@ -16,19 +16,22 @@
 
 namespace harbour::station {
 
-/// What the step thread hands to whoever records and evaluates (off the step thread): every step it took,
-/// with the controls it stepped with and the instructor commands applied before it, in order.
+/// What the step thread hands to whoever records (off the step thread): every step it took, with the
+/// controls it stepped with and the instructor commands applied before it, the state hash every second and,
+/// when asked for, the whole state now and then, in order.
 struct StepRecord {
   enum class Kind : std::uint8_t {
     kStep,        ///< one step with `controls` (the simulation is now at `step`)
     kCommand,     ///< `command` applied before step `step` + 1
-    kCheckpoint,  ///< the live state hash at `step` (the recorder's shadow checks it)
+    kCheckpoint,  ///< the state hash at `step`
+    kKeyframe,    ///< the whole state at `step` lies in keyframe slot `keyframe_slot` (release it when kept)
   };
   Kind kind = Kind::kStep;
   std::int64_t step = 0;
   sim::Controls controls;
   sim::InstructorCommand command;
   std::uint64_t state_hash = 0;
+  int keyframe_slot = -1;
 };
 
 /// A request to the running loop from another thread, applied between steps.
@@ -64,12 +67,20 @@ enum SnapshotReader : int {
 struct LoopSettings {
   double max_catch_up_s = 0.05;  ///< behind by more than this, the loop gives the time up instead of racing
   double time_scale = 1.0;       ///< simulated seconds per wall second (an instructor's fast-forward; tests)
+  /// Ticks run back to back per wake-up: 1 (a person in the loop: a device's change reaches the next step);
+  /// more where nobody feels a millisecond (the autopilot with no window or platform), saving a wake-up a
+  /// tick.
+  int ticks_per_wake = 1;
   /// Each reader's publish period in steps (SnapshotReader order): the image generator at 250 Hz (it
-  /// interpolates by step and time), the console at 50 Hz, the motion platform at 200 Hz (washout at 100 Hz).
+  /// interpolates by step and time), the console at 50 Hz, the motion platform at 200 Hz (washout at 100 Hz);
+  /// 0: a reader that is not there (no window, no platform), given only the first snapshot.
   std::array<int, kSnapshotReaders> snapshot_every_steps{4, 20, 5};
   /// The bulk material's heights for the image generator (tiles changed since copied): 20 Hz, as it flows.
   int bulk_every_steps = 50;
-  std::size_t record_capacity = 1 << 15;  ///< steps of hand-off to the recorder (32 s)
+  std::size_t record_capacity = 1 << 15;       ///< steps of hand-off to the recorder (32 s)
+  std::int64_t checkpoint_every_steps = 1000;  ///< the state hash handed on (sim::Recorder::kCheckpointEvery)
+  /// The whole state handed on every so many steps (sim::Recorder::kKeyframeEvery for a recording); 0: never.
+  std::int64_t keyframe_every_steps = 0;
 };
 
 /// The station's real-time loop: the simulation at its fixed 1 kHz step on its own thread, paced to the wall
@@ -82,6 +93,8 @@ class RealTimeLoop {
   using Pilot = std::function<sim::Controls(const sim::Simulation&)>;
   /// Asked after every tick on the step thread: true stops the loop (the exercise is over).
   using StopWhen = std::function<bool(const sim::Simulation&)>;
+  /// Called on the step thread right after every step with the controls that drove it (the evaluation).
+  using StepObserver = std::function<void(const sim::Simulation&, const sim::Controls&)>;
 
   RealTimeLoop(sim::Simulation& simulation, const LoopSettings& settings = {});
   ~RealTimeLoop();
@@ -95,6 +108,7 @@ class RealTimeLoop {
   /// How many input devices are missing now (any thread): published in every snapshot for the displays.
   void set_devices_missing(int count) { devices_missing_ = count; }
   void set_stop_when(StopWhen stop_when) { stop_when_ = std::move(stop_when); }
+  void set_observer(StepObserver observer) { observer_ = std::move(observer); }
   /// The eye point's offset from head tracking, written into every published snapshot (any thread).
   void set_head_offset(const core::Vec3& position_m, const core::Vec3& yaw_pitch_roll_rad);
 
@@ -126,6 +140,14 @@ class RealTimeLoop {
   }
   /// The recorder's side of the step hand-off (one consumer thread).
   SpscRing<StepRecord>& records() { return records_; }
+  /// A kKeyframe record's state (the recorder's thread, until it releases the slot).
+  const std::vector<std::uint8_t>& keyframe(int slot) const {
+    return keyframes_[static_cast<std::size_t>(slot)].state;
+  }
+  /// The recorder has kept the slot's state: the step thread may fill it again.
+  void release_keyframe(int slot) {
+    keyframes_[static_cast<std::size_t>(slot)].full.store(false, std::memory_order_release);
+  }
   LoopStats stats() const;
   /// The controls the last step used (step thread's copy; read when stopped).
   const sim::Controls& last_controls() const { return latched_; }
@@ -136,6 +158,10 @@ class RealTimeLoop {
   void apply_commands();
   void step_once();
   void hand_off(const StepRecord& record);
+  void hand_off_keyframe();
+  /// Waits, counted in record_waits, while the recorder is behind.
+  template <typename Ready>
+  void wait_for_recorder(Ready ready);
   void publish(int reader);
   void publish_bulk();
 
@@ -145,6 +171,7 @@ class RealTimeLoop {
   std::function<sim::Controls()> sampler_;
   std::atomic<int> devices_missing_{0};
   StopWhen stop_when_;
+  StepObserver observer_;
   std::thread thread_;
   std::atomic<bool> running_{false}, stop_requested_{false};
 
@@ -153,6 +180,12 @@ class RealTimeLoop {
   // the image generator's and the console's; each buffer keeps its own tile versions: copies what changed
   std::array<TripleBuffer<sim::BulkView>, kConsoleReader + 1> bulk_;
   SpscRing<StepRecord> records_;
+  // two keyframe buffers: the step thread fills one while the recorder may still be writing the other
+  struct KeyframeSlot {
+    std::vector<std::uint8_t> state;
+    std::atomic<bool> full{false};
+  };
+  std::array<KeyframeSlot, 2> keyframes_;
 
   std::mutex commands_mutex_;
   std::array<LoopCommand, 256> commands_{};

@@ -5,14 +5,17 @@
 
 #include "harbour/core/Text.h"
 #include "harbour/io/RecordingFile.h"
+#include "harbour/station/ThreadRole.h"
 
 namespace harbour::station {
+namespace {
+constexpr std::int64_t kPublishEverySteps = 50;  // the figures for displays: 20 times a simulated second
+}  // namespace
 
 Session::Session(const sim::ExerciseSettings& exercise, const SessionOptions& options)
     : exercise_(exercise),
       options_(options),
       simulation_(std::make_unique<sim::Simulation>(exercise.scenario)),
-      shadow_(std::make_unique<sim::Simulation>(exercise.scenario)),
       evaluator_(exercise),
       recorder_(exercise.name, simulation_->control_table()) {
   db_ = std::make_unique<io::RecordsStore>(options.database);
@@ -34,25 +37,33 @@ Session::Session(const sim::ExerciseSettings& exercise, const SessionOptions& op
     if (options.take_over->step < 0 || options.take_over->step > original.total_steps)
       throw std::runtime_error("take-over at step " + std::to_string(options.take_over->step) +
                                ": outside the recording (0 to " + std::to_string(original.total_steps) + ")");
-    // the evaluation sees the original attempt up to the take-over; the shadow starts from the same state
+    // the evaluation sees the original attempt up to the take-over
     sim::TakeOver branch = sim::take_over(
         exercise.scenario, original, options.take_over->recording, options.take_over->step,
         [this](const sim::Simulation& s, const sim::Controls& in) { evaluator_.observe(s, in); });
     simulation_ = std::move(branch.simulation);
-    shadow_->restore_state(simulation_->save_state());
     recorder_ = std::move(branch.recorder);
     branch_step = simulation_->steps();
     moves_before_start_ = evaluator_.metrics().moves_completed;
-    metrics_ = evaluator_.metrics();
   }
+  sim::reserve_lists(metrics_);  // copied into on the step thread, without allocating
+  metrics_ = evaluator_.metrics();
+  goals_met_ = evaluator_.goals_met();
+  handed_ = stored_ = sim::progress(metrics_);  // a take-over's history is the parent attempt's
+  kept_steps_ = simulation_->steps();
   if (!options.record.empty()) {
     writer_.emplace(options.record, recorder_.recording());
     recorder_.set_sink(&*writer_);
   }
   attempt_ = db_->begin_attempt({options.trainee, exercise.name, parent, branch_step, options.record,
                                  options.route, options.stage, options.exercise_version});
-  loop_ = std::make_unique<RealTimeLoop>(*simulation_, options.loop);
-  // the exercise bounds the run: its moves done (the keeper says so), or its time and overtime past
+  LoopSettings loop = options.loop;
+  loop.checkpoint_every_steps = sim::Recorder::kCheckpointEvery;
+  loop.keyframe_every_steps = writer_ ? sim::Recorder::kKeyframeEvery : 0;
+  loop_ = std::make_unique<RealTimeLoop>(*simulation_, loop);
+  loop_->set_observer([this](const sim::Simulation& s, const sim::Controls& in) { evaluate(s, in); });
+  // the exercise bounds the run: its goals met (the evaluation says so on the step it happens), or its time
+  // and overtime past
   const double stop_at_s = exercise.rules.time_limit_s + exercise.rules.overtime_s;
   loop_->set_stop_when(
       [this, stop_at_s](const sim::Simulation& s) { return over_.load() || s.time_s() >= stop_at_s; });
@@ -68,7 +79,10 @@ Session::~Session() {
 }
 
 void Session::start() {
-  keeper_ = std::thread([this] { keep(); });
+  keeper_ = std::thread([this] {
+    take_role(ThreadRole::kRecordKeeper);
+    keep();
+  });
   loop_->start();
 }
 
@@ -79,7 +93,7 @@ sim::Metrics Session::metrics() const {
 
 sim::Score Session::score() const {
   const std::lock_guard lock(metrics_mutex_);
-  return score_;
+  return sim::score_of(exercise_, metrics_, goals_met_);  // here: a score's reasons allocate
 }
 
 void Session::note_event(const std::string& kind, double value) {
@@ -94,24 +108,42 @@ void Session::store_notes() {
     notes.swap(notes_);
   }
   for (const auto& [kind, value] : notes)
-    db_->record_event(attempt_, shadow_->time_s(), kind, value);
+    db_->record_event(attempt_, static_cast<double>(kept_steps_.load()) * sim::Simulation::kStep_s, kind,
+                      value);
+}
+
+void Session::evaluate(const sim::Simulation& simulation, const sim::Controls& controls) {
+  // the step thread: the evaluation sees every step as it is taken; a move done or an event counted goes to
+  // the keeper at once, stamped with this step's time
+  evaluator_.observe(simulation, controls);
+  const sim::Progress now = sim::progress(evaluator_.metrics());
+  const bool grew = now.grew_since(handed_);
+  if (grew) {
+    handed_ = now;
+    // 4096 looks behind, the keeper has stalled: the step waits for it (unless it failed, which ends the run)
+    while (!progress_.push(now) && keeper_error_.empty())
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  if (grew || simulation.steps() % kPublishEverySteps == 0) publish_metrics();
+  if (evaluator_.finished() || simulation.diverged()) over_ = true;
+}
+
+void Session::publish_metrics() {
+  const std::lock_guard lock(metrics_mutex_);  // held by a reader only while it copies
+  metrics_ = evaluator_.metrics();
+  goals_met_ = evaluator_.goals_met();
 }
 
 void Session::keep() {
   try {
-    StepRecord record;
     for (;;) {
       store_notes();
-      if (loop_->records().pop(record)) {
-        keep(record);
-        continue;
-      }
+      if (keep_what_is_handed()) continue;
       if (loop_done_.load()) {
-        if (!loop_->records().pop(record)) break;
-        keep(record);
+        if (!keep_what_is_handed()) break;  // the loop has stopped: everything it handed on is kept
         continue;
       }
-      // the ring holds 32 s: waking 100 times a second, not 1000, costs a served station 2 % of a core less
+      // waking 100 times a second, not 1000: the rings hold 32 s of steps and 4096 looks of progress
       std::this_thread::sleep_for(std::chrono::milliseconds(10));
     }
   } catch (const std::exception& e) {
@@ -120,32 +152,36 @@ void Session::keep() {
   }
 }
 
+bool Session::keep_what_is_handed() {
+  bool kept = false;
+  StepRecord record;
+  for (int n = 0; n < 1000 && loop_->records().pop(record); ++n, kept = true)
+    keep(record);
+  sim::Progress now;
+  while (progress_.pop(now)) {
+    io::record_progress(*db_, attempt_, stored_, now);
+    stored_ = now;
+    kept = true;
+  }
+  return kept;
+}
+
 void Session::keep(const StepRecord& record) {
-  // the attempt ends on the step its goals were met: the steps the live loop ran on before it stopped are
-  // neither evaluated (a bulk delivery would go on growing) nor recorded
-  if (over_.load()) return;
   switch (record.kind) {
     case StepRecord::Kind::kCommand:
-      shadow_->command(record.command);
-      recorder_.on_command(*shadow_, record.command);
+      if (writer_) recorder_.on_command(record.step, record.command);
+      break;
+    case StepRecord::Kind::kStep:
+      if (writer_) recorder_.after_step(record.step, simulation_->control_table().in_range(record.controls));
+      kept_steps_ = record.step;
       break;
     case StepRecord::Kind::kCheckpoint:
-      if (shadow_->steps() != record.step || shadow_->state_hash() != record.state_hash) ++hash_mismatches_;
+      if (writer_) recorder_.checkpoint(record.step, record.state_hash);
       break;
-    case StepRecord::Kind::kStep: {
-      shadow_->single_step(record.controls);
-      const sim::Metrics before = evaluator_.metrics();
-      evaluator_.observe(*shadow_, record.controls);
-      io::record_progress(*db_, attempt_, before, evaluator_.metrics());
-      if (writer_) recorder_.after_step(*shadow_, record.controls);
-      if (shadow_->steps() % 50 == 0 || evaluator_.metrics().moves_completed != before.moves_completed) {
-        const std::lock_guard lock(metrics_mutex_);  // for displays: 20 times a simulated second is plenty
-        metrics_ = evaluator_.metrics();
-        score_ = evaluator_.score();
-      }
-      if (evaluator_.finished() || shadow_->diverged()) over_ = true;
+    case StepRecord::Kind::kKeyframe:
+      if (writer_) recorder_.keyframe(record.step, loop_->keyframe(record.keyframe_slot));
+      loop_->release_keyframe(record.keyframe_slot);
       break;
-    }
   }
 }
 
@@ -158,8 +194,7 @@ SessionResult Session::finish(bool interrupted) {
   SessionResult result;
   result.attempt = attempt_;
   result.loop = loop_->stats();
-  result.hash_mismatches = hash_mismatches_.load();
-  result.metrics = evaluator_.metrics();
+  result.metrics = evaluator_.metrics();  // the loop has stopped: the step thread's evaluator is ours
   result.score = evaluator_.score();
   result.status = simulation_->diverged()                 ? "diverged"
                   : interrupted || !keeper_error_.empty() ? "interrupted"

@@ -13,6 +13,7 @@
 #include "harbour/sim/Evaluation.h"
 #include "harbour/sim/Recording.h"
 #include "harbour/station/RealTimeLoop.h"
+#include "harbour/station/SpscRing.h"
 
 namespace harbour::station {
 
@@ -40,13 +41,12 @@ struct SessionResult {
   sim::Metrics metrics;
   sim::Score score;
   LoopStats loop;
-  std::int64_t hash_mismatches = 0;  ///< live checkpoints the recorder's shadow did not reproduce (0)
 };
 
-/// One trainee's live attempt at an exercise: the simulation on the real-time loop, and on a thread of its
-/// own the record keeper, which re-steps a shadow of the simulation with every step's controls and commands
-/// (determinism makes it the same state) to evaluate, record (checkpoints, keyframes, the streamed file) and
-/// store the attempt's progress in the database, all off the step thread.
+/// One trainee's live attempt at an exercise: the simulation on the real-time loop, evaluated on the step
+/// thread right after each step, and on a thread of its own the record keeper, which records what the step
+/// thread hands on (controls, commands, checkpoints, keyframes: the streamed file) and stores the attempt's
+/// progress in the database as it grows, both off the step thread.
 class Session {
  public:
   /// Opens the database and the recording and begins the attempt; throws naming what failed. With a
@@ -64,36 +64,44 @@ class Session {
   void start();
   /// Whether the exercise is over (its moves done, past its time and overtime, or diverged).
   bool over() const { return over_.load(); }
-  /// The evaluation so far (the keeper's copy, refreshed every 50 steps and at each move).
+  /// The evaluation so far (a copy, refreshed every 50 steps and whenever a move or an event is counted).
   sim::Metrics metrics() const;
   /// The score on the figures so far (refreshed with them).
   sim::Score score() const;
   /// Something the station saw (an input device lost or back): stored with the attempt's events at the
-  /// simulated time the keeper has reached (any thread).
+  /// simulated time the record keeper has reached (any thread).
   void note_event(const std::string& kind, double value = 0.0);
   /// Stops the loop (if still running), lets the keeper catch up, closes the recording and stores the
   /// attempt: `interrupted` when the trainee or a signal stopped it before the end.
   SessionResult finish(bool interrupted);
 
  private:
+  /// The step thread's part: evaluates the step just taken, hands what grew to the keeper.
+  void evaluate(const sim::Simulation& simulation, const sim::Controls& controls);
+  void publish_metrics();
   void keep();
+  /// One pass over what the step thread handed on; false when there was nothing.
+  bool keep_what_is_handed();
   void keep(const StepRecord& record);
 
   sim::ExerciseSettings exercise_;
   SessionOptions options_;
-  std::unique_ptr<sim::Simulation> simulation_, shadow_;
+  std::unique_ptr<sim::Simulation> simulation_;
   std::unique_ptr<RealTimeLoop> loop_;
-  sim::Evaluator evaluator_;
+  sim::Evaluator evaluator_;  // the step thread's, once the loop has started
+  sim::Progress handed_;      // the step thread's: the progress last handed to the keeper
+  SpscRing<sim::Progress> progress_{1 << 12};
+  sim::Progress stored_;                     // the keeper's: what the records hold
+  std::atomic<std::int64_t> kept_steps_{0};  // the keeper's: the steps it has recorded
   sim::Recorder recorder_;
   std::optional<io::RecordingWriter> writer_;
   std::unique_ptr<io::RecordsStore> db_;
   std::int64_t attempt_ = 0;
   std::thread keeper_;
   std::atomic<bool> over_{false}, loop_done_{false};
-  std::atomic<std::int64_t> hash_mismatches_{0};
   mutable std::mutex metrics_mutex_;
-  sim::Metrics metrics_;
-  sim::Score score_;
+  sim::Metrics metrics_;  // published by the step thread
+  bool goals_met_ = false;
   std::string keeper_error_;
   std::mutex notes_mutex_;
   std::vector<std::pair<std::string, double>> notes_;

@@ -4,6 +4,7 @@
 
 #include "harbour/station/HeadTracker.h"
 #include "harbour/station/MotionLink.h"
+#include "harbour/station/ThreadRole.h"
 
 namespace harbour::station {
 
@@ -32,7 +33,10 @@ void Station::use_motion(std::unique_ptr<MotionLink> motion) {
 void Station::start() {
   if (running_.exchange(true)) return;
   if (motion_) motion_->engage();
-  thread_ = std::thread([this] { monitor(); });
+  thread_ = std::thread([this] {
+    take_role(ThreadRole::kMonitor);
+    monitor();
+  });
 }
 
 void Station::stop() {
