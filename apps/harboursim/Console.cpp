@@ -37,6 +37,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "AuditWriter.h"
 #include "Designer.h"
 #include "Reports.h"
 #include "RoutesTool.h"
@@ -502,6 +503,7 @@ class Console {
         io_(io),
         link_(options.name, options.domain),
         db_(options.database),
+        audit_(options.database),
         poll_timer_(io) {
     if (!options.lrs.empty())
       xapi_ = std::make_unique<XapiWorker>(
@@ -577,6 +579,7 @@ class Console {
   asio::io_context& io_;
   net::ConsoleLink link_;
   io::RecordsStore db_;
+  AuditWriter audit_;  // after db_: the database is made before the writer opens it
   asio::steady_timer poll_timer_;
   std::map<std::string, LoginSession> sessions_;
   std::map<std::string, std::deque<Clock::time_point>> login_failures_;
@@ -893,13 +896,13 @@ Console::Response Console::login(const http::request<http::string_body>& request
   if (!row || crypto_pwhash_str_verify(row->password_hash.c_str(), password->data(), password->size()) != 0) {
     login_failures_["address " + peer].push_back(now);
     login_failures_["account " + *name].push_back(now);
-    db_.audit(*name, "login_failed", "", "from " + peer);
+    audit_.add(*name, "login_failed", "", "from " + peer);
     return error(request, http::status::unauthorized, "wrong name or password");
   }
   const std::string token = random_token();
   LoginSession session{{row->name, row->role, row->trainee}, random_token(), now + kSessionLifetime};
   sessions_[token] = session;
-  db_.audit(row->name, "login", "", "from " + peer);
+  audit_.add(row->name, "login", "", "from " + peer);
   Response r = json_reply(
       request, http::status::ok,
       {{"name", row->name}, {"role", row->role}, {"trainee", row->trainee}, {"csrf", session.csrf}});
@@ -998,7 +1001,7 @@ Console::Response Console::api(const http::request<http::string_body>& request, 
                        {"csrf", sessions_.at(token).csrf}});
   if (target == "/api/logout" && request.method() == http::verb::post) {
     sessions_.erase(token);
-    db_.audit(account.name, "logout", "", "");
+    audit_.add(account.name, "logout", "", "");
     Response r = json_reply(request, http::status::ok, {{"ok", true}});
     r.set(http::field::set_cookie,
           "hs_session=; Path=/; HttpOnly; SameSite=Strict; Max-Age=0" + secure_cookie());
@@ -1064,7 +1067,7 @@ Console::Response Console::api(const http::request<http::string_body>& request, 
     } catch (const std::exception& e) {
       return error(request, http::status::bad_request, e.what());
     }
-    db_.audit(account.name, adds ? "add_trainee" : "rename_trainee", *id, *name);
+    audit_.add(account.name, adds ? "add_trainee" : "rename_trainee", *id, *name);
     return json_reply(request, adds ? http::status::created : http::status::ok,
                       {{"id", *id}, {"name", *name}});
   }
@@ -1211,7 +1214,7 @@ Console::Response Console::api(const http::request<http::string_body>& request, 
                    "field 'trainee': no trainee '" + core::printable(*trainee) + "'");
     if (target == "/api/enrolments") {
       const bool added = db_.enrol(*trainee, route->id, account.name);
-      if (added) db_.audit(account.name, "enrol", *trainee, route->id);
+      if (added) audit_.add(account.name, "enrol", *trainee, route->id);
       return json_reply(request, added ? http::status::created : http::status::ok,
                         {{"trainee", *trainee}, {"route", route->id}, {"enrolled", true}});
     }
@@ -1231,13 +1234,14 @@ Console::Response Console::api(const http::request<http::string_body>& request, 
     } catch (const std::invalid_argument& e) {
       return error(request, http::status::bad_request, e.what());
     }
-    db_.audit(account.name, *action, *trainee + " " + route->id + "/" + *stage, *reason);
+    audit_.add(account.name, *action, *trainee + " " + route->id + "/" + *stage, *reason);
     return json_reply(request, http::status::created,
                       {{"trainee", *trainee}, {"route", route->id}, {"stage", *stage}, {"action", *action}});
   }
   if (target == "/api/audit" && get) {
     if (!account.instructs()) return forbidden();
     json list = json::array();
+    audit_.flush();  // the log as it stands, the entries just queued in it
     for (const io::AuditRow& a : db_.audit_log(200))
       list.push_back({{"at", a.at},
                       {"account", a.account},
@@ -1263,7 +1267,7 @@ Console::Response Console::api(const http::request<http::string_body>& request, 
     } catch (const std::invalid_argument& e) {
       return error(request, http::status::bad_request, e.what());
     }
-    db_.audit(account.name, "add_account", *name, *role);
+    audit_.add(account.name, "add_account", *name, *role);
     return json_reply(request, http::status::created, {{"name", *name}, {"role", *role}});
   }
   return error(request, http::status::not_found, "no such API: " + core::printable(target));
@@ -1334,7 +1338,7 @@ Console::Response Console::open_replay(const http::request<http::string_body>& r
                       {"value", 0.0}});
   std::sort(events.begin(), events.end(),
             [](const json& a, const json& b) { return a["at_s"].get<double>() < b["at_s"].get<double>(); });
-  db_.audit(account.name, "open_replay", "attempt " + std::to_string(id), r.recording_file);
+  audit_.add(account.name, "open_replay", "attempt " + std::to_string(id), r.recording_file);
   return json_reply(request, http::status::created,
                     {{"replay", r.id},
                      {"station", "replay-" + std::to_string(r.id)},
@@ -1419,7 +1423,7 @@ std::optional<Console::Response> Console::control_replay(const http::request<htt
                                 Clock::now() + kAckTimeout};
     return std::nullopt;
   } else if (*action == "close") {
-    db_.audit(account.name, "close_replay", "attempt " + std::to_string(r.attempt), "");
+    audit_.add(account.name, "close_replay", "attempt " + std::to_string(r.attempt), "");
     replays_.erase(found);
     return json_reply(request, http::status::ok, {{"closed", id}});
   } else {
@@ -1598,7 +1602,7 @@ void Console::poll() {
     const std::string outcome = !ack        ? "no answer"
                                 : ack->ok() ? "done"
                                             : "refused: " + ack->message().to_string();
-    db_.audit(p.account.name, "command " + p.kind, p.station, outcome);
+    audit_.add(p.account.name, "command " + p.kind, p.station, outcome);
     if (!ack)
       p.session->reply(error(p.request, http::status::gateway_timeout,
                              "station " + p.station + " did not answer within 3 s"));
@@ -1703,7 +1707,7 @@ Console::Response Console::designer(const http::request<http::string_body>& requ
     } catch (const std::logic_error& e) {
       return error(request, http::status::conflict, e.what());
     }
-    db_.audit(account.name, "save_exercise", design.exercise.name, design.version);
+    audit_.add(account.name, "save_exercise", design.exercise.name, design.version);
     return json_reply(request, http::status::created,
                       {{"exercise", design.exercise.name}, {"version", design.version}, {"file", file}});
   }
@@ -1800,7 +1804,7 @@ Console::Response Console::route_editor(const http::request<http::string_body>& 
     return error(request, http::status::unprocessable_entity,
                  std::string("saved, the centre's routes no longer load, so it was undone: ") + e.what());
   }
-  db_.audit(account.name, "save_route", route.route.id, file_name);
+  audit_.add(account.name, "save_route", route.route.id, file_name);
   stages["file"] = file;
   return json_reply(request, http::status::created, stages);
 }
@@ -1900,7 +1904,7 @@ std::optional<Console::Response> Console::cohort_views(const http::request<http:
   if (printing_ >= kMostPrintsAtOnce)
     return error(request, http::status::service_unavailable, "reports are being printed; try again shortly");
   ++printing_;
-  db_.audit(account.name, "report", name, "pdf");
+  audit_.add(account.name, "report", name, "pdf");
   // chromium prints on a thread of its own; the answer comes back on the console's thread
   std::thread printer([this, request, session, html = std::move(html), name] {
     Response r = json_reply(request, http::status::ok, json::object());
