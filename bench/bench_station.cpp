@@ -15,6 +15,7 @@
 #include "harbour/bulk/BulkPublish.h"
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/sim/Autopilot.h"
+#include "harbour/sim/Evaluation.h"
 #include "harbour/sim/Pilot.h"
 #include "harbour/station/DeviceInput.h"
 #include "harbour/station/DeviceMappingFile.h"
@@ -70,19 +71,34 @@ BENCHMARK(BM_SimulationStep)->Unit(benchmark::kMicrosecond)->MinTime(3.0);
 
 // The same steps through the loop's tick: plus command queue, hand-off, snapshots to three readers every
 // fourth step, and the controls sampled from two SDL sticks (the autopilot still decides; the sample is
-// taken and discarded so the station's input cost is in the tick).
+// taken and discarded so the station's input cost is in the tick). evaluated:1 adds what a session adds on
+// the step thread: the evaluation of each step, its progress looked at, its figures copied every 50 steps.
 void BM_LoopTick(benchmark::State& state) {
+  const bool evaluated = state.range(0) != 0;
   const Sticks sticks;
   const sim::ExerciseSettings exercise = scenes::sts_discharge_exercise(HARBOUR_DATA_DIR);
   auto sim = std::make_unique<sim::Simulation>(exercise.scenario);
   auto pilot = std::make_unique<sim::Autopilot>(exercise);
   auto input = desk_input(sim->control_table());
   auto loop = std::make_unique<station::RealTimeLoop>(*sim);
+  auto evaluator = std::make_unique<sim::Evaluator>(exercise);
+  sim::Progress handed;
+  sim::Metrics published;
+  sim::reserve_lists(published);
   const auto wire = [&] {
     loop->set_pilot([&](const sim::Simulation& s) {
       benchmark::DoNotOptimize(input->sample());
       return pilot->next(s);
     });
+    if (evaluated)
+      loop->set_observer([&](const sim::Simulation& s, const sim::Controls& in) {
+        evaluator->observe(s, in);
+        const sim::Progress now = sim::progress(evaluator->metrics());
+        if (now.grew_since(handed) || s.steps() % 50 == 0) {
+          handed = now;
+          published = evaluator->metrics();
+        }
+      });
   };
   wire();
   station::StepRecord drained;
@@ -96,6 +112,7 @@ void BM_LoopTick(benchmark::State& state) {
         sim = std::make_unique<sim::Simulation>(exercise.scenario);
         pilot = std::make_unique<sim::Autopilot>(exercise);
         loop = std::make_unique<station::RealTimeLoop>(*sim);
+        evaluator = std::make_unique<sim::Evaluator>(exercise);
         wire();
       }
       state.ResumeTiming();
@@ -103,7 +120,7 @@ void BM_LoopTick(benchmark::State& state) {
     loop->run_ticks(1);
   }
 }
-BENCHMARK(BM_LoopTick)->Unit(benchmark::kMicrosecond)->MinTime(3.0);
+BENCHMARK(BM_LoopTick)->Arg(0)->Arg(1)->ArgNames({"evaluated"})->Unit(benchmark::kMicrosecond)->MinTime(3.0);
 
 // The bulk material's hand-off to a reader (every 50th tick in a bulk exercise, to the image generator and
 // the console): mhc_coal_discharge after 20 s of the grab's work. Unchanged: the tile versions compared,

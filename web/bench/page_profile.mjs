@@ -39,6 +39,13 @@ try {
       return sum + (Number(f[11]) + Number(f[12])) / 100;
     } catch { return sum; }
   }, 0);
+  await page.evaluate(() => {  // count the 3D view's frames
+    const view = window.harbourView;
+    if (!view) return;
+    window.framesDrawn = 0;
+    const render = view.renderer.render.bind(view.renderer);
+    view.renderer.render = (...args) => { ++window.framesDrawn; return render(...args); };
+  });
   const c0 = chromium_s();
   const a = await metrics();
   let bytes = 0, messages = 0;
@@ -48,6 +55,14 @@ try {
   console.log(`chromium, every process: ${(100 * (chromium_s() - c0) / 10).toFixed(1)} % of a core`);
   for (const k of ["TaskDuration", "ScriptDuration", "LayoutDuration", "RecalcStyleDuration", "LayoutCount", "RecalcStyleCount", "JSHeapUsedSize", "Nodes"])
     console.log(`${k}: ${k.endsWith("Duration") ? `${(100 * (b[k] - a[k]) / 10).toFixed(1)} % of a core` : k.endsWith("Count") ? `${((b[k] - a[k]) / 10).toFixed(1)} per s` : b[k]}`);
+  const drawn = await page.evaluate(() => {  // the 3D view's last frame, as three.js counted it
+    const view = window.harbourView;
+    return view ? view.renderer.info.render : null;
+  });
+  const frames = await page.evaluate(() => window.framesDrawn ?? 0);
+  const canvas = await page.evaluate(() => { const c = document.getElementById("view3d"); return c ? `${c.width}x${c.height}` : "none"; });
+  if (drawn) console.log(`3D view: ${(frames / 10).toFixed(1)} frames a second on a ${canvas} canvas`);
+  if (drawn) console.log(`3D view: ${drawn.calls} draw calls, ${drawn.triangles} triangles, ${drawn.lines} line segments a frame`);
   await page.screenshot({ path: `${dir}/page.png` });
   console.log(`screenshot ${dir}/page.png`);
 } catch (e) {

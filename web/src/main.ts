@@ -106,8 +106,50 @@ function select(station: string) {
   subscribe();
 }
 
-function showState(m: StateMessage) {
+// The page's frames: every state's figures are kept as they come (10 a second), and what they change on the
+// page — the live line, the plot, the 3D view — is drawn together in one frame, at most 10 a second, or 5 where
+// the view is light (a page drawn in software pays for each frame it composites). The plot, a minute of data
+// drawn anew each time, at most 4 times a second.
+const kFrame_ms = 100, kLightFrame_ms = 200, kPlotDraw_ms = 250;
+let latestState: StateMessage | null = null;
+let nextPlotDraw = 0, lastFrame = 0, frameQueued = false;
+
+function queueFrame() {
+  if (frameQueued) return;
+  frameQueued = true;
+  const wait = lastFrame + ($<HTMLInputElement>("view-light").checked ? kLightFrame_ms : kFrame_ms) - performance.now();
+  const draw = () => requestAnimationFrame(() => { frameQueued = false; lastFrame = performance.now(); drawFrame(); });
+  if (wait > 0) setTimeout(draw, wait); else draw();
+}
+
+function keepState(m: StateMessage) {
   if (m.station !== selected) return;
+  const wind = Math.hypot(m.wind_mps[0], m.wind_mps[1]);
+  // the machine's continuous figures (lamps, buttons and flippers are on/off)
+  const names = Object.keys(m.indicators).filter((n) => !/^(lamp_|flipper|horn|button|size)/.test(n)).slice(0, 5);
+  if (names.join() !== plotted.join()) {
+    plotted = names;
+    series.length = 0;
+    series.push([], []);
+    for (let n = 0; n < names.length; ++n) series.push([]);
+    plot?.destroy();
+    plot = null;
+  }
+  if (replay && m.station === replay.station) {
+    const last = series[0].length ? series[0][series[0].length - 1] : m.time_s;
+    if (m.time_s < last || m.time_s - last > 1) for (const s of series) s.length = 0;  // a seek
+  }
+  series[0].push(m.time_s);
+  series[1].push(wind);
+  names.forEach((n, k) => series[2 + k].push(m.indicators[n]));
+  if (series[0].length > 600) for (const s of series) s.shift();
+  latestState = m;
+  queueFrame();
+}
+
+function drawFrame() {
+  const m = latestState;
+  if (!m || m.station !== selected) return;
   const wind = Math.hypot(m.wind_mps[0], m.wind_mps[1]);
   const live = $("live");
   live.dataset.wind = wind.toFixed(2);
@@ -118,33 +160,25 @@ function showState(m: StateMessage) {
     .map(([k]) => k.slice(5).replace(/_/g, " ").toUpperCase());
   text($("live-faults"), faults.length ? `in force: ${faults.join(", ")}` : "");
   $("live-faults").hidden = faults.length === 0;
-  // the machine's continuous figures (lamps, buttons and flippers are on/off)
-  const names = Object.keys(m.indicators).filter((n) => !/^(lamp_|flipper|horn|button|size)/.test(n)).slice(0, 5);
-  if (!plot || names.join() !== plotted.join()) {
-    plotted = names;
-    series.length = 0;
-    series.push([], []);
-    for (let n = 0; n < names.length; ++n) series.push([]);
-    plot?.destroy();
-    plot = new uPlot({
-      width: Math.min(1100, window.innerWidth - 80), height: 260, title: `${selected}: telemetry`,
-      series: [{ label: "time [s]" }, { label: "wind [m/s]", stroke: "#457b9d" },
-        ...names.map((n, k) => ({ label: n, stroke: ["#e63946", "#2a9d8f", "#f4a261", "#6a4c93", "#264653"][k] }))],
-      axes: [{}, {}], scales: { x: { time: false } },
-    }, series as uPlot.AlignedData, $("plot"));
-  }
   if (replay && m.station === replay.station) {
     const scrub = $<HTMLInputElement>("replay-scrub");
     if (document.activeElement !== scrub) scrub.value = String(m.time_s);
     text($("replay-time"), `${m.time_s.toFixed(1)} / ${replay.duration_s.toFixed(1)} s`);
-    const last = series[0].length ? series[0][series[0].length - 1] : m.time_s;
-    if (m.time_s < last || m.time_s - last > 1) for (const s of series) s.length = 0;  // a seek
   }
-  series[0].push(m.time_s);
-  series[1].push(wind);
-  names.forEach((n, k) => series[2 + k].push(m.indicators[n]));
-  if (series[0].length > 600) for (const s of series) s.shift();
-  plot.setData(series as uPlot.AlignedData);
+  if (!plot) {
+    plot = new uPlot({
+      width: Math.min(1100, window.innerWidth - 80), height: 260, title: `${selected}: telemetry`,
+      series: [{ label: "time [s]" }, { label: "wind [m/s]", stroke: "#457b9d" },
+        ...plotted.map((n, k) => ({ label: n, stroke: ["#e63946", "#2a9d8f", "#f4a261", "#6a4c93", "#264653"][k] }))],
+      axes: [{}, {}], scales: { x: { time: false } },
+    }, series as uPlot.AlignedData, $("plot"));
+  }
+  const now = performance.now();
+  if (now >= nextPlotDraw || m.held) {
+    nextPlotDraw = now + kPlotDraw_ms;
+    plot.setData(series as uPlot.AlignedData);
+  }
+  if (viewOn()) view?.update(m);  // drawn in this same frame
 }
 
 function showEvent(e: EventMessage) {
@@ -161,7 +195,7 @@ function connect() {
   socket.onmessage = (message) => {
     const m = JSON.parse(message.data);
     if (m.type === "stations") showStations(m.stations);
-    else if (m.type === "state") { showState(m); if (m.station === selected && viewOn()) view?.update(m); }
+    else if (m.type === "state") keepState(m);
     else if (m.type === "scene") { if (m.station === selected) view?.setScene(m as SceneMessage); }
     else if (m.type === "bulk") {
       if (m.station === selected && viewOn() && view) { view.setBulk(m as BulkMessage); $("view3d").dataset.bulk = String(view.bulkQuadsDrawn()); }
@@ -494,6 +528,7 @@ async function enter(who: Me) {
   if (looksReply.status === 200) {
     looks = looksReply.data as Looks;
     view = new View3D($("view3d"), $("plan"), $("plan-labels"), looks);
+    $<HTMLInputElement>("view-light").checked = view.isLight();  // light where drawn in software
   }
   (window as unknown as { harbourView: View3D | null }).harbourView = view;  // for the browser tests
   connect();
@@ -521,6 +556,7 @@ function wire() {
   $("set-rain").addEventListener("click", () => command(`rain:${value("rain")}`));
   $("set-time").addEventListener("click", () => command(`time-of-day:${value("time-of-day")}`));
   $("view-on").addEventListener("change", () => { $("views").hidden = !viewOn(); if (selected) subscribe(); });
+  $("view-light").addEventListener("change", () => view?.setLight($<HTMLInputElement>("view-light").checked));
   $("open-replay").addEventListener("click", () => openReplay(Number($("open-replay").dataset.attempt)));
   const speed = () => Number($<HTMLSelectElement>("replay-speed").value);
   $("replay-play").addEventListener("click", () => replayAction({ action: "play", speed: speed() }));

@@ -23,6 +23,54 @@ export interface BulkMessage {
 export interface ViewState { attempt: number; water_level_m?: number; poses?: number[]; ropes?: { counts: number[]; points: number[] }; }
 
 const kMostRopePoints = 1024;  // the published state's limit (3072 coordinates)
+// drawn in software (no GPU: SwiftShader, llvmpipe), the view is light: a quarter of the pixels and the plan
+// once a second (the page draws the station's motion at 5 frames a second then; the orbit stays smooth)
+const kLightPixelRatio = 0.5;
+const kPlanFrame_ms = 500, kLightPlanFrame_ms = 1000;
+
+/** Whether a WebGL renderer draws without a GPU (the renderer string a browser gives for its software one). */
+export function drawsInSoftware(renderer: THREE.WebGLRenderer): boolean {
+  const gl = renderer.getContext();
+  const info = gl.getExtension("WEBGL_debug_renderer_info");
+  const name = String(gl.getParameter(info ? info.UNMASKED_RENDERER_WEBGL : gl.RENDERER));
+  return /swiftshader|llvmpipe|softpipe|software/i.test(name);
+}
+
+/** Boxes (or cylinders) drawn as one instanced mesh: a draw call for all of them, whatever their number (a
+ * renderer without a GPU pays per draw call). Each box: a unit shape posed and scaled by its matrix, in its own
+ * colour. */
+class Instances {
+  readonly mesh: THREE.InstancedMesh;
+  private used = 0;
+  constructor(geometry: THREE.BufferGeometry, capacity: number) {
+    this.mesh = new THREE.InstancedMesh(geometry, new THREE.MeshLambertMaterial(), Math.max(capacity, 1));
+    this.mesh.count = 0;
+    this.mesh.frustumCulled = false;  // its bounds change with every pose
+  }
+  /** A new instance's index. */
+  add(matrix: THREE.Matrix4, rgb: number[]): number {
+    const n = this.used++;
+    this.mesh.setMatrixAt(n, matrix);
+    this.mesh.setColorAt(n, new THREE.Color().setRGB(rgb[0], rgb[1], rgb[2], THREE.LinearSRGBColorSpace));
+    this.mesh.count = this.used;
+    return n;
+  }
+  set(n: number, matrix: THREE.Matrix4) { this.mesh.setMatrixAt(n, matrix); }
+  changed() { this.mesh.instanceMatrix.needsUpdate = true; }
+}
+
+/** A part of an entity's look: its instance and where it sits in the entity (a unit box scaled and placed). */
+interface PlacedPart { instance: number; local: THREE.Matrix4; }
+/** An entity as drawn: its pose from the last state, whether it is there, and its parts. */
+interface DrawnEntity { position: THREE.Vector3; quaternion: THREE.Quaternion; visible: boolean; parts: PlacedPart[]; }
+
+const kHidden = new THREE.Matrix4().makeScale(0, 0, 0);
+
+/** A unit box scaled to `size` and centred at `at` (sizes kept above 1 cm: a flat part still has faces). */
+function boxMatrix(size: number[], at: number[]): THREE.Matrix4 {
+  return new THREE.Matrix4().compose(new THREE.Vector3(at[0], at[1], at[2]), new THREE.Quaternion(),
+    new THREE.Vector3(Math.max(size[0], 0.01), Math.max(size[1], 0.01), Math.max(size[2], 0.01)));
+}
 
 export class View3D {
   private readonly renderer: THREE.WebGLRenderer;
@@ -33,28 +81,34 @@ export class View3D {
   private readonly controls: OrbitControls;
   private readonly box = new THREE.BoxGeometry(1, 1, 1);
   private readonly cylinder = new THREE.CylinderGeometry(0.5, 0.5, 1, 16).rotateX(Math.PI / 2);  // upright in z
-  private readonly materials = new Map<string, THREE.MeshLambertMaterial>();
-  private readonly entityGroup = new THREE.Group();
+  private readonly entityGroup = new THREE.Group();  // the entities' instanced boxes
   private readonly ropeGroup = new THREE.Group();
   private readonly bulkGroup = new THREE.Group();
   private bulkQuads = 0;
   private readonly water = new THREE.Mesh(new THREE.PlaneGeometry(3000, 3000),
     new THREE.MeshLambertMaterial({ color: new THREE.Color().setRGB(0.05, 0.16, 0.22, THREE.LinearSRGBColorSpace) }));
-  private entities: THREE.Object3D[] = [];
+  private entities: DrawnEntity[] = [];
+  private parts: Instances | null = null;
   private names: string[] = [];
   private attempt = -1;
   private station = "";
   private framed = false;
   private dirty = false;
   private nextPlan = 0;
+  private light = false;
+  private readonly viewSize: [number, number];  // the canvases' sizes on the page [px]
+  private readonly planSize: [number, number];
   private readonly labels: CanvasRenderingContext2D;
 
   constructor(canvas: HTMLCanvasElement, private readonly planCanvas: HTMLCanvasElement,
     private readonly planLabels: HTMLCanvasElement, private readonly looks: Looks) {
+    this.viewSize = [canvas.width, canvas.height];
+    this.planSize = [planCanvas.width, planCanvas.height];
     // no multisampling: an instructor's PC may draw it in software (4x the cost)
     this.renderer = new THREE.WebGLRenderer({ canvas, preserveDrawingBuffer: true });
     this.planRenderer = new THREE.WebGLRenderer({ canvas: planCanvas, preserveDrawingBuffer: true });
     this.labels = planLabels.getContext("2d")!;
+    this.setLight(drawsInSoftware(this.renderer));
     this.scene.background = new THREE.Color(0.62, 0.75, 0.88);
     this.scene.add(new THREE.HemisphereLight(0xdde8ff, 0x4a4a40, 1.6));
     const sun = new THREE.DirectionalLight(0xffffff, 1.8);
@@ -65,19 +119,25 @@ export class View3D {
     this.camera.position.set(-60, -90, 60);
     this.planCamera.up.set(0, 1, 0);
     this.controls = new OrbitControls(this.camera, canvas);
-    this.controls.addEventListener("change", () => this.invalidate());
-    // the quay as the image generator lays it: its top at z = 0, up to its edge at x = 18 m
-    const quay = this.block([318, 800, 30], [-141, 0, -15], [0.42, 0.42, 0.40]);
-    this.scene.add(quay, this.scenery(), this.water, this.entityGroup, this.ropeGroup, this.bulkGroup);
+    this.controls.addEventListener("change", () => this.invalidate());  // the instructor's orbit: at once
+    this.scene.add(this.scenery(), this.water, this.entityGroup, this.ropeGroup, this.bulkGroup);
   }
 
   /** The station's entities for an attempt (a new attempt replaces them). */
   setScene(m: SceneMessage) {
     this.entityGroup.clear();
+    this.parts?.mesh.dispose();
     this.bulkGroup.clear();
     this.bulkQuads = 0;
-    this.entities = m.entities.map((e, index) => this.entity(e.visual, e.half_m, index));
-    for (const e of this.entities) this.entityGroup.add(e);
+    // every part of every entity's look: one instanced mesh
+    const looks = m.entities.map((e, index) => this.partsOf(e.visual, e.half_m, index));
+    this.parts = new Instances(this.box, looks.reduce((sum, l) => sum + l.length, 0));
+    this.entities = looks.map((l) => ({
+      position: new THREE.Vector3(), quaternion: new THREE.Quaternion(), visible: false,
+      parts: l.map(({ local, rgb }) => ({ instance: this.parts!.add(kHidden, rgb), local })),
+    }));
+    this.parts.changed();
+    this.entityGroup.add(this.parts.mesh);
     this.names = m.entities.map((e) => e.name);
     this.attempt = m.attempt;
     this.station = m.station;
@@ -124,22 +184,43 @@ export class View3D {
     this.invalidate();
   }
 
-  /** Poses and ropes of a state; a state of another attempt than the scene's is not drawn. */
+  /** Poses and ropes of a state, drawn at once (the page calls it in its frame); a state of another attempt
+   * than the scene's is not drawn. */
   update(state: ViewState) {
     if (state.attempt !== this.attempt || !state.poses) return;
     const p = state.poses;
+    const pose = new THREE.Matrix4(), placed = new THREE.Matrix4(), one = new THREE.Vector3(1, 1, 1);
     this.entities.forEach((e, n) => {
       const q = p.slice(7 * n, 7 * n + 7);
       e.visible = q.length === 7 && (q[3] !== 0 || q[4] !== 0 || q[5] !== 0 || q[6] !== 0);
-      if (!e.visible) return;
-      e.position.set(q[0], q[1], q[2]);
-      e.quaternion.set(q[3], q[4], q[5], q[6]);
+      if (e.visible) {
+        e.position.set(q[0], q[1], q[2]);
+        e.quaternion.set(q[3], q[4], q[5], q[6]);
+        pose.compose(e.position, e.quaternion, one);
+      }
+      for (const part of e.parts) this.parts!.set(part.instance, e.visible ? placed.multiplyMatrices(pose, part.local) : kHidden);
     });
+    this.parts?.changed();
     this.drawRopes(state.ropes);
     if (state.water_level_m !== undefined) this.water.position.z = state.water_level_m;
     if (!this.framed) this.frame();
+    this.render();
+  }
+
+  /** Light (a quarter of the pixels, the plan once a second) or full; light by default where the browser draws
+   * in software. */
+  setLight(light: boolean) {
+    this.light = light;
+    const ratio = light ? kLightPixelRatio : 1;
+    for (const [renderer, [width, height]] of [[this.renderer, this.viewSize], [this.planRenderer, this.planSize]] as const) {
+      // the drawing buffer scaled, the canvas shown at the page's size
+      renderer.setPixelRatio(ratio);
+      renderer.setSize(width, height, true);
+    }
+    this.nextPlan = 0;
     this.invalidate();
   }
+  isLight(): boolean { return this.light; }
 
   // what the browser tests read
   visibleEntities(): number { return this.entities.filter((e) => e.visible).length; }
@@ -147,17 +228,27 @@ export class View3D {
   drawnStation(): string { return this.station; }
   cameraPosition(): number[] { return this.camera.position.toArray(); }
 
+  // where an entity's parts lie now (empty: not there)
+  private bounds(e: DrawnEntity, into = new THREE.Box3()): THREE.Box3 {
+    if (!e.visible) return into;
+    const pose = new THREE.Matrix4().compose(e.position, e.quaternion, new THREE.Vector3(1, 1, 1));
+    const unit = new THREE.Box3(new THREE.Vector3(-0.5, -0.5, -0.5), new THREE.Vector3(0.5, 0.5, 0.5));
+    for (const part of e.parts) into.union(unit.clone().applyMatrix4(new THREE.Matrix4().multiplyMatrices(pose, part.local)));
+    return into;
+  }
+
   private frame() {
     // the 3D view: the machine (the scene's first entity) whole, from the landside and above; the plan:
     // everything posed
     if (!this.entities.length || !this.entities[0].visible) return;
-    const machine = new THREE.Box3().setFromObject(this.entities[0]);
+    const machine = this.bounds(this.entities[0]);
     const centre = machine.getCenter(new THREE.Vector3());
     const reach = Math.max(30, machine.getSize(new THREE.Vector3()).length());
     this.controls.target.copy(centre);
     this.camera.position.set(centre.x - 0.75 * reach, centre.y - 1.0 * reach, centre.z + 0.45 * reach);
     this.controls.update();
-    const bounds = new THREE.Box3().setFromObject(this.entityGroup);
+    const bounds = new THREE.Box3();
+    for (const e of this.entities) this.bounds(e, bounds);
     const size = bounds.getSize(new THREE.Vector3());
     bounds.getCenter(centre);
     const aspect = this.planCanvas.width / this.planCanvas.height;
@@ -178,11 +269,11 @@ export class View3D {
 
   private render() {
     this.dirty = false;
-    this.renderer.render(this.scene, this.camera);
-    // the plan at 2 Hz: seen from above, the terminal changes slowly
     const now = performance.now();
+    this.renderer.render(this.scene, this.camera);
+    // the plan at 2 Hz (light: 1 Hz): seen from above, the terminal changes slowly
     if (now < this.nextPlan) return;
-    this.nextPlan = now + 500;
+    this.nextPlan = now + (this.light ? kLightPlanFrame_ms : kPlanFrame_ms);
     this.planRenderer.render(this.scene, this.planCamera);
     // the plan's names: the machine's parts and vehicles, not every container
     const c = this.labels;
@@ -202,37 +293,18 @@ export class View3D {
     });
   }
 
-  private material(rgb: number[]): THREE.MeshLambertMaterial {
-    const key = rgb.map((v) => v.toFixed(3)).join();
-    let m = this.materials.get(key);
-    if (!m) {
-      m = new THREE.MeshLambertMaterial({ color: new THREE.Color().setRGB(rgb[0], rgb[1], rgb[2], THREE.LinearSRGBColorSpace) });
-      this.materials.set(key, m);
-    }
-    return m;
-  }
-
-  private block(size: number[], at: number[], rgb: number[], geometry: THREE.BufferGeometry = this.box): THREE.Mesh {
-    const mesh = new THREE.Mesh(geometry, this.material(rgb));
-    mesh.scale.set(Math.max(size[0], 0.01), Math.max(size[1], 0.01), Math.max(size[2], 0.01));
-    mesh.position.set(at[0], at[1], at[2]);
-    return mesh;
-  }
-
-  // an entity drawn with its look: boxes, lattice girders as their four chords, a mesh as the box it fills;
-  // an entity without a look is a grey box of its own size
-  private entity(visual: string, half: number[], index: number): THREE.Object3D {
-    const group = new THREE.Group();
+  // an entity's look as unit boxes placed in it: boxes, lattice girders as their four chords, a mesh as the box
+  // it fills; an entity without a look is a grey box of its own size
+  private partsOf(visual: string, half: number[], index: number): { local: THREE.Matrix4; rgb: number[] }[] {
     const look = this.looks.visuals[visual];
     const own = half.map((h) => 2 * h);
-    if (!look) {
-      group.add(this.block(own, [0, 0, 0], [0.5, 0.5, 0.5]));
-      return group;
-    }
+    const placed = (size: number[], at: number[], rgb: number[]) => ({ local: boxMatrix(size, at), rgb });
+    if (!look) return [placed(own, [0, 0, 0], [0.5, 0.5, 0.5])];
+    const parts: { local: THREE.Matrix4; rgb: number[] }[] = [];
     for (const part of look.parts) {
       const size = part.size_m ?? own;
       const rgb = part.livery && look.liveries.length ? look.liveries[index % look.liveries.length] : part.color;
-      if (part.shape !== "lattice") { group.add(this.block(size, part.at_m, rgb)); continue; }
+      if (part.shape !== "lattice") { parts.push(placed(size, part.at_m, rgb)); continue; }
       const along = size.indexOf(Math.max(...size));
       for (const a of [-1, 1]) for (const b of [-1, 1]) {
         const chord = size.map((s, k) => (k === along ? s : part.member_m));
@@ -240,20 +312,28 @@ export class View3D {
         const across = [0, 1, 2].filter((k) => k !== along);
         at[across[0]] += a * (size[across[0]] - part.member_m) / 2;
         at[across[1]] += b * (size[across[1]] - part.member_m) / 2;
-        group.add(this.block(chord, at, rgb));
+        parts.push(placed(chord, at, rgb));
       }
     }
-    return group;
+    return parts;
   }
 
+  // the quay and the look file's scenery, standing still: an instanced mesh of boxes, one of cylinders
   private scenery(): THREE.Group {
     const group = new THREE.Group();
-    for (const s of this.looks.scenery)
-      for (let n = 0; n < s.repeat; ++n) {
-        const at = s.at_m.map((v, k) => v + n * s.step_m[k]);
-        const size = s.shape === "cylinder" ? [s.size_m[0], s.size_m[0], s.size_m[2]] : s.size_m;
-        group.add(this.block(size, at, s.color, s.shape === "cylinder" ? this.cylinder : this.box));
-      }
+    const all = this.looks.scenery.flatMap((s) => Array.from({ length: s.repeat }, (_, n) => ({
+      shape: s.shape, at: s.at_m.map((v, k) => v + n * s.step_m[k]),
+      size: s.shape === "cylinder" ? [s.size_m[0], s.size_m[0], s.size_m[2]] : s.size_m, color: s.color })));
+    // the quay as the image generator lays it: its top at z = 0, up to its edge at x = 18 m
+    all.push({ shape: "box", at: [-141, 0, -15], size: [318, 800, 30], color: [0.42, 0.42, 0.40] });
+    for (const [shape, geometry] of [["box", this.box], ["cylinder", this.cylinder]] as const) {
+      const these = all.filter((s) => s.shape === shape);
+      if (!these.length) continue;
+      const instances = new Instances(geometry, these.length);
+      for (const s of these) instances.add(boxMatrix(s.size, s.at), s.color);
+      instances.changed();
+      group.add(instances.mesh);
+    }
     return group;
   }
 

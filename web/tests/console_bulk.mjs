@@ -56,7 +56,8 @@ try {
   }, 90);
   const sums = await page.evaluate(() => window.bulkSums);
   check(sums.length > 2, `${sums.length} bulk messages, the hold's heights summed ${sums[0]?.toFixed(1)} -> ${sums[sums.length - 1]?.toFixed(1)}`);
-  // looking down into the hold the grab digs (the view's camera moved as a drag would)
+  // looking down into the hold the grab digs (the view's camera moved as a drag would), every pixel drawn
+  await page.uncheck("#view-light");
   await page.evaluate(() => {
     const v = window.harbourView;
     v.camera.position.set(22, -16, 30);

@@ -78,6 +78,18 @@ try {
   await page.mouse.up();
   const moved = Math.hypot(...(await view("cameraPosition")).map((v, k) => v - eye[k]));
   check(moved > 10, `a drag orbits the 3D view (the eye moved ${moved.toFixed(1)} m)`);
+  // chromium draws WebGL here in software: the view starts light (a quarter of the pixels, shown at full size);
+  // unticked, it draws every pixel (as on a PC with a GPU: the docs' picture)
+  const buffer = () => page.$eval("#view3d", (c) => [c.width, c.height, c.clientWidth, c.clientHeight]);
+  const light = await buffer();
+  check(await page.isChecked("#view-light") && light[0] * 2 === light[2] && light[1] * 2 === light[3],
+    `drawn in software the view is light (${light[0]}x${light[1]} shown at ${light[2]}x${light[3]})`);
+  await page.uncheck("#view-light");
+  const full = await buffer();
+  check(full[0] === full[2] && full[1] === full[3], `unticked, every pixel is drawn (${full[0]}x${full[1]})`);
+  await page.waitForTimeout(500);
+  const sharp = await pixels("#view3d");
+  check(sharp.colours > 40 && sharp.orange > 0.005, `the full view shows the crane (${sharp.colours} colours)`);
   await page.locator("#watch").screenshot({ path: path.join(out, "console_3d_view.png"), timeout: 60000 });
   const calm = Number(await page.getAttribute("#live", "data-wind"));
   await page.fill("#wind-speed", "18");

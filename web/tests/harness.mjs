@@ -6,8 +6,10 @@ export class Harness {
   constructor(app) { this.app = app; this.children = []; this.failures = 0; }
   check(ok, what) { console.log(`${ok ? "ok  " : "FAIL"} ${what}`); if (!ok) this.failures++; }
   run(args, input) { return execFileSync(this.app, args, { input, encoding: "utf8" }); }
-  start(args) {
-    const child = spawn(this.app, args, { stdio: ["ignore", "pipe", "pipe"] });
+  // `service`: in a session of its own, as a service manager starts a station or a console (the kernel then
+  // schedules it as a group of its own, not with whatever else this script started)
+  start(args, { service = false } = {}) {
+    const child = spawn(this.app, args, { stdio: ["ignore", "pipe", "pipe"], detached: service });
     this.children.push(child);
     child.output = "";
     child.stdout.on("data", (d) => { child.output += d; });
@@ -20,16 +22,21 @@ export class Harness {
     return false;
   }
   // a console on a free port of this machine: its base URL and port
-  async console(db, domain, name) {
-    const c = this.start(["console", "--db", db, "--domain", domain, "--port", "0", ...(name ? ["--name", name] : [])]);
+  async console(db, domain, name, options = {}) {
+    const c = this.start(["console", "--db", db, "--domain", domain, "--port", "0", ...(name ? ["--name", name] : [])], options);
     await this.until(`console ${name ?? ""} listens`, () => /http:\/\/127\.0\.0\.1:\d+\//.test(c.output));
     return c.output.match(/http:\/\/127\.0\.0\.1:(\d+)\//);
   }
   async finish() {
     for (const c of this.children) c.kill("SIGTERM");
-    // let them end (their last words are in their output)
-    await Promise.all(this.children.map((c) => c.exitCode !== null ? null
-      : new Promise((r) => { c.on("exit", r); setTimeout(r, 3000); })));
+    // let them end (their last words are in their output); one that has not in 10 s is killed, and said
+    await Promise.all(this.children.map((c) => c.exitCode !== null || c.signalCode !== null ? null
+      : new Promise((r) => { c.on("exit", r); setTimeout(r, 10000); })));
+    for (const c of this.children)
+      if (c.exitCode === null && c.signalCode === null) {
+        this.check(false, `${c.spawnargs.slice(1, 3).join(" ")} (pid ${c.pid}) ended within 10 s of SIGTERM`);
+        c.kill("SIGKILL");
+      }
     if (this.failures)
       for (const c of this.children) console.log(`--- ${c.spawnargs.slice(1, 3).join(" ")}\n${c.output.slice(-2000)}`);
     process.exit(this.failures ? 1 : 0);
