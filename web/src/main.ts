@@ -29,6 +29,15 @@ let view: View3D | null = null;
 const viewOn = () => $<HTMLInputElement>("view-on").checked;
 const subscribe = () => socket?.send(JSON.stringify({ type: "subscribe", station: selected, view: viewOn() }));
 
+// Loaders an event and a click may both start: only the latest call of each draws (an earlier answer arriving
+// late would otherwise add its rows beside the newer ones).
+const calls = new Map<string, number>();
+function latestCall(loader: string): () => boolean {
+  const call = (calls.get(loader) ?? 0) + 1;
+  calls.set(loader, call);
+  return () => calls.get(loader) === call;
+}
+
 async function api(path: string, method = "GET", body?: unknown): Promise<{ status: number; data: any }> {
   const headers: Record<string, string> = {};
   if (method !== "GET") {
@@ -250,7 +259,9 @@ async function openReplay(attempt: number) {
 }
 
 async function loadRecords() {
+  const latest = latestCall("records");
   const attempts = await api("/api/attempts");
+  if (!latest()) return;
   const body = $("attempts").querySelector("tbody")!;
   body.replaceChildren();
   for (const a of attempts.data ?? []) {
@@ -268,6 +279,7 @@ async function loadRecords() {
   }
   if (!me || me.role === "trainee") return;
   const trainees = await api("/api/trainees");
+  if (!latest()) return;
   for (const id of ["trainee", "takeover-trainee", "rename-trainee", "progress-trainee", "compare-with"]) {
     const select = $<HTMLSelectElement>(id);
     const kept = select.value;
@@ -277,6 +289,7 @@ async function loadRecords() {
     if ([...select.options].some((o) => o.value === kept)) select.value = kept;
   }
   const exercises = await api("/api/exercises");
+  if (!latest()) return;
   for (const id of ["exercise", "design-base"]) {
     const select = $<HTMLSelectElement>(id);
     const kept = select.value;
@@ -297,9 +310,11 @@ let routes: RouteInfo[] = [];
 async function loadProgress() {
   const trainee = me?.role === "trainee" ? me.trainee : $<HTMLSelectElement>("progress-trainee").value;
   const box = $("progress");
-  box.replaceChildren();
-  if (!trainee) return;
+  const latest = latestCall("progress");
+  if (!trainee) { box.replaceChildren(); return; }
   const r = await api(`/api/progress?trainee=${encodeURIComponent(trainee)}`);
+  if (!latest()) return;
+  box.replaceChildren();
   if (r.status !== 200) { text(box, r.data?.error ?? `error ${r.status}`); return; }
   const stageSelect = $<HTMLSelectElement>("decision-stage");
   stageSelect.replaceChildren();
@@ -350,6 +365,7 @@ function row(values: (string | number)[]): HTMLTableRowElement {
 // (with another trainee's for comparison); where their best on it stands in the cohort; a comparison table.
 let evolutionPlot: uPlot | null = null;
 async function loadEvolution(trainee: string) {
+  const latest = latestCall("evolution");
   const query = `trainee=${encodeURIComponent(trainee)}`;
   $<HTMLAnchorElement>("csv").href = `/api/attempts.csv?${query}`;
   $<HTMLAnchorElement>("report-html").href = `/api/reports/trainee?${query}`;
@@ -358,6 +374,7 @@ async function loadEvolution(trainee: string) {
   const other = me?.role === "trainee" ? "" : $<HTMLSelectElement>("compare-with").value;
   const [r, o] = await Promise.all([api(`/api/evolution?${query}`),
     other ? api(`/api/evolution?trainee=${encodeURIComponent(other)}`) : Promise.resolve(null)]);
+  if (!latest()) return;
   evolutionPlot?.destroy();
   evolutionPlot = null;
   const body = $("cohort").querySelector("tbody")!;
@@ -412,11 +429,13 @@ async function loadComparison(a: string, b: string, figure: string) {
   const table = $("comparison");
   table.hidden = !b;
   const body = table.querySelector("tbody")!;
+  const latest = latestCall("comparison");
+  if (!b) { body.replaceChildren(); return; }
+  const r = await api(`/api/compare?a=${encodeURIComponent(a)}&b=${encodeURIComponent(b)}`);
+  if (!latest()) return;
   body.replaceChildren();
-  if (!b) return;
   text($("compare-a"), a);
   text($("compare-b"), b);
-  const r = await api(`/api/compare?a=${encodeURIComponent(a)}&b=${encodeURIComponent(b)}`);
   if (r.status !== 200) { body.appendChild(row([r.data?.error ?? `error ${r.status}`])); return; }
   for (const c of r.data.figures as { exercise: string; exercise_version: string; figure: string; higher_better: boolean;
     a: number | null; b: number | null }[]) {
@@ -431,13 +450,14 @@ async function loadComparison(a: string, b: string, figure: string) {
 // Every trainee's line: attempts, passes, best and recent score, trend, skills, routes.
 async function loadClass() {
   const body = $("class").querySelector("tbody")!;
-  body.replaceChildren();
+  const latest = latestCall("class");
   const x = await api("/api/xapi");
   if (x.status === 200)
     text($("xapi-status"), `xAPI statements: ${x.data.queued} queued, ${x.data.sent} sent, ${x.data.rejected} rejected` +
       (x.data.lrs ? ` (to ${x.data.lrs}${x.data.last ? `; last: ${x.data.last}` : ""})` : " (no LRS configured: harboursim console --lrs URL)"));
   const r = await api("/api/class");
-  if (r.status !== 200) return;
+  if (!latest() || r.status !== 200) return;
+  body.replaceChildren();
   for (const t of r.data) {
     const routesText = t.routes.map((x: { route: string; passed: number; stages: number; complete: boolean; next: string | null }) =>
       `${x.route} ${x.passed}/${x.stages}${x.complete ? " done" : x.next ? ` → ${x.next}` : " blocked"}`).join("; ");
