@@ -4,6 +4,7 @@ import uPlot from "uplot";
 import { View3D, type BulkMessage, type Looks, type SceneMessage, type ViewState } from "./view3d";
 import { DesignerForms } from "./designer";
 import { RouteEditor } from "./routeEditor";
+import { TelemetryPlots } from "./telemetry";
 
 interface Me { name: string; role: string; trainee: string; csrf: string; }
 interface Station {
@@ -22,9 +23,7 @@ const $ = <T extends HTMLElement>(id: string) => document.getElementById(id) as 
 let me: Me | null = null;
 let selected = "";
 let socket: WebSocket | null = null;
-let plot: uPlot | null = null;
-let plotted: string[] = [];
-const series: number[][] = [];
+let plots: TelemetryPlots | null = null;
 let view: View3D | null = null;
 const viewOn = () => $<HTMLInputElement>("view-on").checked;
 const subscribe = () => socket?.send(JSON.stringify({ type: "subscribe", station: selected, view: viewOn() }));
@@ -106,10 +105,7 @@ function select(station: string) {
   $("watch").hidden = false;
   for (const row of $("stations").querySelectorAll("tbody tr"))
     row.classList.toggle("selected", (row as HTMLElement).dataset.station === station);
-  plotted = [];
-  series.length = 0;
-  plot?.destroy();
-  plot = null;
+  plots?.clear();
   $("events").replaceChildren();
   text($("live"), "");
   subscribe();
@@ -117,7 +113,7 @@ function select(station: string) {
 
 // The page's frames: every state's figures are kept as they come (10 a second), and what they change on the
 // page — the live line, the plot, the 3D view — is drawn together in one frame, at most 10 a second, or 5 where
-// the view is light (a page drawn in software pays for each frame it composites). The plot, a minute of data
+// the view is light (a page drawn in software pays for each frame it composites). The plots, a minute of data
 // drawn anew each time, at most 4 times a second.
 const kFrame_ms = 100, kLightFrame_ms = 200, kPlotDraw_ms = 250;
 let latestState: StateMessage | null = null;
@@ -133,25 +129,7 @@ function queueFrame() {
 
 function keepState(m: StateMessage) {
   if (m.station !== selected) return;
-  const wind = Math.hypot(m.wind_mps[0], m.wind_mps[1]);
-  // the machine's continuous figures (lamps, buttons and flippers are on/off)
-  const names = Object.keys(m.indicators).filter((n) => !/^(lamp_|flipper|horn|button|size)/.test(n)).slice(0, 5);
-  if (names.join() !== plotted.join()) {
-    plotted = names;
-    series.length = 0;
-    series.push([], []);
-    for (let n = 0; n < names.length; ++n) series.push([]);
-    plot?.destroy();
-    plot = null;
-  }
-  if (replay && m.station === replay.station) {
-    const last = series[0].length ? series[0][series[0].length - 1] : m.time_s;
-    if (m.time_s < last || m.time_s - last > 1) for (const s of series) s.length = 0;  // a seek
-  }
-  series[0].push(m.time_s);
-  series[1].push(wind);
-  names.forEach((n, k) => series[2 + k].push(m.indicators[n]));
-  if (series[0].length > 600) for (const s of series) s.shift();
+  plots?.keep(m.time_s, Math.hypot(m.wind_mps[0], m.wind_mps[1]), m.indicators);
   latestState = m;
   queueFrame();
 }
@@ -174,18 +152,10 @@ function drawFrame() {
     if (document.activeElement !== scrub) scrub.value = String(m.time_s);
     text($("replay-time"), `${m.time_s.toFixed(1)} / ${replay.duration_s.toFixed(1)} s`);
   }
-  if (!plot) {
-    plot = new uPlot({
-      width: Math.min(1100, window.innerWidth - 80), height: 260, title: `${selected}: telemetry`,
-      series: [{ label: "time [s]" }, { label: "wind [m/s]", stroke: "#457b9d" },
-        ...plotted.map((n, k) => ({ label: n, stroke: ["#e63946", "#2a9d8f", "#f4a261", "#6a4c93", "#264653"][k] }))],
-      axes: [{}, {}], scales: { x: { time: false } },
-    }, series as uPlot.AlignedData, $("plot"));
-  }
   const now = performance.now();
   if (now >= nextPlotDraw || m.held) {
     nextPlotDraw = now + kPlotDraw_ms;
-    plot.setData(series as uPlot.AlignedData);
+    plots?.draw(selected);
   }
   if (viewOn()) view?.update(m);  // drawn in this same frame
 }
@@ -544,6 +514,7 @@ async function enter(who: Me) {
   await loadRoutes();
   await loadProgress();
   if (who.role === "trainee") return;
+  plots = new TelemetryPlots($("plot"));
   const looksReply = await api("/api/looks");
   if (looksReply.status === 200) {
     looks = looksReply.data as Looks;

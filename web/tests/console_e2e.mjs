@@ -97,6 +97,13 @@ try {
   await until("the wind command is done", async () => (await page.textContent("#command-result")).includes("done"));
   await until("the wind shows in the telemetry", async () => Number(await page.getAttribute("#live", "data-wind")) > 12);
   check(calm < 12, `the wind before: ${calm} m/s`);
+  // the telemetry plots, chosen by the figures' names: the STS's load and rope tension, its spreader's swing
+  // with the wind, its three motions' speeds
+  const plotted = await page.$$eval("#plot .telemetry-plot", (boxes) => boxes.map((b) => `${b.dataset.plot}: ${b.dataset.series}`));
+  check(plotted.join("; ") === "load: load_t,rope_tension_kn; sway: swing_m,wind; speeds: gantry_speed_mps,hoist_speed_mps,trolley_speed_mps",
+    `the telemetry plots load, ropes, swing, wind and speeds (${plotted.join("; ")})`);
+  await page.waitForTimeout(600);  // a draw of the plots after the gust
+  await page.locator("#plot").screenshot({ path: path.join(out, "console_telemetry.png") });
   await page.click("button[data-kind=hoist-brake-fault]");
   await until("the fault's event is logged", async () => (await page.textContent("#events")).includes("hoist-brake-fault by ines"));
   await until("the cab's fault lamp shows in the live line", async () =>

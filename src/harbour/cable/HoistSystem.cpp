@@ -466,4 +466,12 @@ void HoistSystem::hash_into(core::StateHash& hash) const {
     hash.add(r.stored_m);
 }
 
+double HoistSystem::highest_tension_n() const {
+  double highest = 0.0;
+  for (int r = 0; r < rope_count(); ++r)
+    for (int k = 0; k < segment_count(r); ++k)
+      highest = std::max(highest, tension(r, k));
+  return highest;
+}
+
 }  // namespace harbour::cable

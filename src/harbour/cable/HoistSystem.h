@@ -50,6 +50,8 @@ class HoistSystem {
   int segment_count(int rope) const { return static_cast<int>(ropes_[rope].segments.size()); }
   /// Tension of a segment [N] (axial, uniform along it).
   double tension(int rope, int segment) const { return segment_at(rope, segment).tension; }
+  /// The highest tension in any segment of any rope now [N] (what a load cell on the ropes reads).
+  double highest_tension_n() const;
   /// True while the segment integrates its transverse oscillation (false: massless spring).
   bool oscillating(int rope, int segment) const { return segment_at(rope, segment).oscillating; }
   /// Unstretched rope in a segment [m].

@@ -42,4 +42,9 @@ void publish_ropes(const cable::HoistSystem& hoist, Snapshot& s) {
   }
 }
 
+Telemetry Machine::telemetry() const {
+  const MachineTally t = tally();
+  return {t.swing_m, 0.0, t.axes};
+}
+
 }  // namespace harbour::sim

@@ -74,6 +74,14 @@ struct MachineTally {
   std::uint32_t tip_overs = 0;      ///< the machine tipped over on its wheels
 };
 
+/// What the instructor's telemetry plots of any machine, whichever it is: how its load hangs, what its
+/// ropes carry and how fast its motions go (what a machine lacks stays zero).
+struct Telemetry {
+  double swing_m = 0.0;             ///< [m] the hanging load's (or tool's) horizontal offset from plumb
+  double rope_tension_n = 0.0;      ///< [N] the highest tension in its hoist's ropes
+  std::array<AxisSpeed, 3> axes{};  ///< its motions' speeds, named
+};
+
 /// A fault the instructor injects into a machine.
 enum class MachineFault : std::uint8_t {
   kHoistBrake,         ///< the hoist's holding brake does not set
@@ -133,6 +141,8 @@ class Machine {
   virtual void carry_bulk(double /*mass_kg*/) {}
   /// What its safety systems counted since the start and how its load swings now (for the evaluation).
   virtual MachineTally tally() const { return {}; }
+  /// Its telemetry now; by default what its tally says (the swing, the motions) and no ropes.
+  virtual Telemetry telemetry() const;
   /// Moves this step's events (twistlocks, ropes) into `events`.
   virtual void drain_events(StepEvents& events) = 0;
 

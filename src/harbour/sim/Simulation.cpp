@@ -123,6 +123,9 @@ Simulation::Simulation(const ScenarioSettings& scenario)
   events_.twistlocks.reserve(64);
   events_.ropes.reserve(256);
   cab_velocity_ = world_->point_velocity(machine_->cab_body(), machine_->eye_on_cab_body_m());
+  SceneDescription described;
+  machine_->describe(described);
+  roped_ = described.rope_count > 0;
 }
 
 void Simulation::apply_due_events() {
@@ -455,9 +458,20 @@ void Simulation::single_step(const Controls& controls) {
   advance(controls);
 }
 
+namespace {
+// the telemetry every machine publishes after its own indicators (a machine with ropes: how its load hangs
+// and what its ropes carry; every machine: its motions' speeds), named for the console's plots
+void describe_telemetry(const Telemetry& t, bool roped, std::vector<std::string>& names) {
+  if (roped) names.insert(names.end(), {"swing_m", "rope_tension_kn"});
+  for (const AxisSpeed& axis : t.axes)
+    if (axis.name) names.push_back(std::string(axis.name) + "_speed_mps");
+}
+}  // namespace
+
 SceneDescription Simulation::scene() const {
   SceneDescription d;
   machine_->describe(d);
+  describe_telemetry(machine_->telemetry(), roped_, d.indicators);
   if (vessel_) d.entities.push_back({"vessel", "vessel." + vessel_->geometry().placement().vessel.name, {}});
   if (ramp_) {
     d.entities.push_back({"stern ramp", "roro.ramp", ramp_->ramp_half_extents_m()});
@@ -522,6 +536,17 @@ void Simulation::write_snapshot(Snapshot& s) const {
   s.rope_count = 0;
   s.indicator_count = 0;
   int n = machine_->publish(s, 0);
+  // the telemetry, in the order scene() names it
+  const Telemetry telemetry = machine_->telemetry();
+  const auto indicator = [&](double value) {
+    if (s.indicator_count < kMaxIndicators) s.indicators[static_cast<std::size_t>(s.indicator_count++)] = value;
+  };
+  if (roped_) {
+    indicator(telemetry.swing_m);
+    indicator(telemetry.rope_tension_n / 1000.0);
+  }
+  for (const AxisSpeed& axis : telemetry.axes)
+    if (axis.name) indicator(axis.speed_mps);
   const auto entity = [&](core::Pose pose, std::uint32_t flags) {
     if (n >= kMaxEntities) return;
     s.entities[static_cast<std::size_t>(n)] = {static_cast<std::uint32_t>(n), flags, pose};

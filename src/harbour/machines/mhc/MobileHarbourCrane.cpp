@@ -388,6 +388,11 @@ MachineTally MobileHarbourCrane::tally() const {
           {AxisSpeed{"slew", slew_drive_.reference_mps() * radius_m()}, AxisSpeed{"luff", luff_speed_mps_}}};
 }
 
+Telemetry MobileHarbourCrane::telemetry() const {
+  const MachineTally t = tally();
+  return {t.swing_m, hoist_->highest_tension_n(), t.axes};
+}
+
 double MobileHarbourCrane::luffing_tension_n() const {
   return luffing_->tension(0, 1);
 }

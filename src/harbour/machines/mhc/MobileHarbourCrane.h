@@ -175,6 +175,7 @@ class MobileHarbourCrane final : public Machine {
   PadForces pad_forces_n() const;
   std::uint32_t pad_lift_offs() const { return pad_lift_offs_; }
   MachineTally tally() const override;
+  Telemetry telemetry() const override;
   /// Luffing rope reeled in per radian of boom raising [m/rad], and the boom head's radius rate at full
   /// luffing speed [m/s], from the falls' geometry now.
   double luffing_rope_per_rad() const;

@@ -65,6 +65,10 @@ class SpreaderHoist {
   double attachment_bottom_z_m() const;
   /// The spreader's speed at full lever [m/s] (the drum's rope speed over the falls per rope).
   double full_hoist_speed_mps() const;
+  /// The speed the drum hoists the spreader at now [m/s], positive up (its rope speed over the falls per rope).
+  double hoisting_speed_mps() const { return -hoist_->drum_rope_speed(0) / falls_per_rope_; }
+  /// The falls the headblock hangs on.
+  int fall_count() const { return static_cast<int>(falls_.size()); }
   std::uint32_t limit_hits() const { return limits_.hits(); }
   bool at_limit() const { return limits_.at_limit(); }
 

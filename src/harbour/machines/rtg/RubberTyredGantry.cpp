@@ -309,6 +309,12 @@ MachineTally RubberTyredGantry::tally() const {
   return t;
 }
 
+Telemetry RubberTyredGantry::telemetry() const {
+  const MachineTally t = tally();
+  return {t.swing_m, rig_->hoist().highest_tension_n(),
+          {t.axes[0], t.axes[1], AxisSpeed{"hoist", rig_->hoisting_speed_mps()}}};
+}
+
 void RubberTyredGantry::drain_events(StepEvents& events) {
   rig_->locks().twistlocks().drain_events(events.twistlocks);
   rig_->hoist().drain_events(events.ropes);

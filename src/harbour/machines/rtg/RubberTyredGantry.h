@@ -88,6 +88,7 @@ class RubberTyredGantry final : public Machine, public GantryCrane {
   void describe(SceneDescription& scene) const override;
   int publish(Snapshot& snapshot, int entities) const override;
   MachineTally tally() const override;
+  Telemetry telemetry() const override;
   void drain_events(StepEvents& events) override;
   bool has_fault(MachineFault fault) const override { return fault != MachineFault::kLoadMomentLimiter; }
   void inject_fault(MachineFault fault, int detail) override;

@@ -180,6 +180,16 @@ constexpr const char* kStsIndicators[] = {
     "horn",       "load_t",      "lamp_brake_fault"};
 }  // namespace
 
+Telemetry StsCrane::telemetry() const {
+  const core::Vec3 s = spreader_pose().position;
+  Telemetry t;
+  t.swing_m = std::hypot(s.x - trolley_position_m(), s.y - gantry_position_m());
+  t.rope_tension_n = rig_->hoist().highest_tension_n();
+  t.axes = {AxisSpeed{"gantry", gantry_.reference_mps()}, AxisSpeed{"trolley", trolley_.reference_mps()},
+            AxisSpeed{"hoist", rig_->hoisting_speed_mps()}};
+  return t;
+}
+
 void StsCrane::describe(SceneDescription& d) const {
   d.machine = kind();
   d.entities.push_back({"gantry", "sts.gantry", {}});

@@ -108,6 +108,9 @@ class StsCrane final : public Machine, public GantryCrane {
   core::Vec3 eye_on_cab_body_m() const override { return settings_.cab_position_m + settings_.eye_m; }
   void describe(SceneDescription& scene) const override;
   int publish(Snapshot& snapshot, int entities) const override;
+  /// Its spreader's swing from plumb under the trolley, its hoist ropes' tension, its gantry's, trolley's and
+  /// hoist's speeds (its tally stays empty: the STS's evaluation measures its sway and smoothness apart).
+  Telemetry telemetry() const override;
   void drain_events(StepEvents& events) override;
   bool has_fault(MachineFault fault) const override { return fault != MachineFault::kLoadMomentLimiter; }
   void inject_fault(MachineFault fault, int detail) override;
