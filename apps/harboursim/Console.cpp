@@ -1112,15 +1112,16 @@ Console::Response Console::api(const http::request<http::string_body>& request, 
         events.push_back({{"at_s", e.at_s}, {"kind", e.kind}, {"value", e.value}});
       for (const auto& [name, value] : db_.metrics(id))
         metrics[name] = value;
-      return json_reply(request, http::status::ok,
-                        {{"id", a.id},
-                         {"trainee", a.trainee},
-                         {"exercise", a.exercise},
-                         {"status", a.status},
-                         {"score", a.score ? json(*a.score) : json(nullptr)},
-                         {"passed", a.passed},
-                         {"events", events},
-                         {"metrics", metrics}});
+      json detail = {{"id", a.id},
+                     {"trainee", a.trainee},
+                     {"exercise", a.exercise},
+                     {"status", a.status},
+                     {"score", a.score ? json(*a.score) : json(nullptr)},
+                     {"passed", a.passed},
+                     {"events", events},
+                     {"metrics", metrics}};
+      if (account.instructs()) detail["recording"] = a.recording;  // where its station wrote it
+      return json_reply(request, http::status::ok, detail);
     }
     return error(request, http::status::not_found, "no attempt " + std::to_string(id) + " for you");
   }
@@ -1297,7 +1298,9 @@ Console::Response Console::open_replay(const http::request<http::string_body>& r
     const std::string file = resolve_exercise(row->exercise, exercise_folder(), row->exercise_version);
     replay.exercise = load_resolved_exercise(file);
     version = io::exercise_version(file);
-    replay.recording = io::read_recording(row->recording);
+    // the records' copy (the station may be another PC), else the file where the station wrote it
+    std::optional<std::string> kept = db_.recording(id);
+    replay.recording = kept ? io::parse_recording(row->recording, std::move(*kept)) : io::read_recording(row->recording);
   } catch (const std::exception& e) {
     return error(request, http::status::conflict, std::string("cannot replay: ") + e.what());
   }

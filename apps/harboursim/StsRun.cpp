@@ -345,8 +345,12 @@ int drive(const sim::ExerciseSettings& exercise, sim::Simulation& simulation, si
                 exercise.rules.overtime_s);
   }
   print_evaluation(evaluator.metrics(), evaluator.score());
-  if (writer) writer->finish(recorder.recording().total_steps);
-  db.finish_attempt(attempt, evaluator.metrics(), evaluator.score(), options.record, status);
+  std::string kept;
+  if (writer) {
+    writer->finish(recorder.recording().total_steps);
+    kept = io::recording_copy(options.record, io::kMaxStoredRecordingBytes);
+  }
+  db.finish_attempt(attempt, evaluator.metrics(), evaluator.score(), options.record, status, kept);
   std::printf("stored as attempt %lld of trainee %s (%s)\n", static_cast<long long>(attempt),
               options.trainee.c_str(), status);
   if (!options.record.empty()) {

@@ -133,7 +133,7 @@ TEST_P(RecordsStoreOn, DatabasesOfEarlierBuildsAreUpgradedInPlace) {
         fresh_connection(GetParam(), "records_upgrade_v" + std::to_string(version));
     make_old_database(connection, version);
     RecordsStore db(connection);
-    EXPECT_EQ(db.schema_version(), 4) << "from version " << version;
+    EXPECT_EQ(db.schema_version(), 5) << "from version " << version;
     const auto rows = db.attempts();
     ASSERT_EQ(rows.size(), 1u);
     EXPECT_EQ(rows[0].status, "finished");
@@ -171,13 +171,62 @@ TEST_P(RecordsStoreOn, DatabasesOfEarlierBuildsAreUpgradedInPlace) {
     made.add_trainee("t001", "Ana");
     made.begin_attempt("t001", "sts_discharge");
     soci::session sql(records_connection(v3));
+    sql << "DROP TABLE recordings";
     sql << "DROP TABLE xapi_outbox";
     sql << "UPDATE schema_version SET version = 3";
   }
   RecordsStore upgraded(v3);
-  EXPECT_EQ(upgraded.schema_version(), 4);
+  EXPECT_EQ(upgraded.schema_version(), 5);
   EXPECT_TRUE(upgraded.xapi_outbox().empty());
   EXPECT_EQ(upgraded.attempts().size(), 1u);
+
+  // a version-4 database (no recordings kept) gets the table; its attempts have no copy
+  const std::string v4 = fresh_connection(GetParam(), "records_upgrade_v4");
+  {
+    RecordsStore made(v4);
+    made.add_trainee("t001", "Ana");
+    made.finish_attempt(made.begin_attempt("t001", "sts_discharge"), {}, {}, "/recordings/a.hsrc");
+    soci::session sql(records_connection(v4));
+    sql << "DROP TABLE recordings";
+    sql << "UPDATE schema_version SET version = 4";
+  }
+  RecordsStore upgraded_v4(v4);
+  EXPECT_EQ(upgraded_v4.schema_version(), 5);
+  EXPECT_FALSE(upgraded_v4.recording(1).has_value());
+  EXPECT_EQ(upgraded_v4.attempts()[0].recording, "/recordings/a.hsrc");
+}
+
+// A finished attempt keeps its recording's bytes with it, whatever they are, so that a console or station
+// elsewhere replays it; a damaged copy is an error naming the attempt; one past the limit stays a file only.
+TEST_P(RecordsStoreOn, AFinishedAttemptKeepsItsRecording) {
+  const std::string connection = fresh_connection(GetParam(), "records_recordings");
+  RecordsStore db(connection);
+  db.add_trainee("t001", "Ana");
+  std::string bytes = "HSRC";
+  for (int k = 0; k < 300000; ++k)
+    bytes.push_back(static_cast<char>(static_cast<unsigned>(k) * 7919u % 256u));  // every byte value, zeros among them
+  const std::int64_t kept = db.begin_attempt("t001", "sts_discharge");
+  db.finish_attempt(kept, {}, {}, "/elsewhere/kept.hsrc", "finished", bytes);
+  const std::int64_t none = db.begin_attempt("t001", "sts_discharge");
+  db.finish_attempt(none, {}, {}, "/elsewhere/none.hsrc", "interrupted");
+  const std::int64_t huge = db.begin_attempt("t001", "sts_discharge");
+  db.finish_attempt(huge, {}, {}, "/elsewhere/huge.hsrc", "finished", std::string(kMaxStoredRecordingBytes + 1, 'x'));
+  EXPECT_EQ(db.recording(kept), bytes);
+  EXPECT_FALSE(db.recording(none).has_value());
+  EXPECT_FALSE(db.recording(huge).has_value()) << "past the limit: its file only";
+  EXPECT_EQ(db.attempts().size(), 3u);
+
+  // a copy changed behind the store's back
+  soci::session(records_connection(connection)) << "UPDATE recordings SET data = 'not base64!' WHERE attempt = "
+                                                << kept;
+  std::string error;
+  try {
+    db.recording(kept);
+  } catch (const std::runtime_error& e) {
+    error = e.what();
+  }
+  EXPECT_NE(error.find("recording of attempt " + std::to_string(kept) + " is damaged"), std::string::npos)
+      << error;
 }
 
 // Each attempt queues its xAPI statements in the transaction that begins or ends it; the outbox hands out
@@ -268,7 +317,7 @@ TEST_P(RecordsStoreOn, AFailedUpgradeLeavesTheDatabaseAsItWas) {
   // with the stray table gone the upgrade goes through
   sql << "DROP TABLE route_overrides";
   RecordsStore db(connection);
-  EXPECT_EQ(db.schema_version(), 4);
+  EXPECT_EQ(db.schema_version(), 5);
 }
 
 // A database a newer build has upgraded is refused, not read wrongly or downgraded.

@@ -4,7 +4,7 @@
 // sees only their own results. Usage: node console_e2e.mjs HARBOURSIM OUT_DIR DOMAIN
 import { chromium } from "playwright-core";
 import { Harness, sleep } from "./harness.mjs";
-import { mkdtempSync, mkdirSync } from "node:fs";
+import fs, { mkdtempSync, mkdirSync } from "node:fs";
 import { tmpdir } from "node:os";
 import path from "node:path";
 
@@ -139,6 +139,12 @@ try {
     original = r.find((a) => a.trainee === "ben" && a.status === "interrupted");
     return original !== undefined;
   });
+
+  // the records keep its recording: moved away from where the station wrote it (as if the station were
+  // another PC), it still replays and is taken over
+  const detail = await page.evaluate(async (id) => (await fetch(`/api/attempts/${id}`)).json(), original.id);
+  check(typeof detail.recording === "string" && fs.existsSync(detail.recording), `the attempt names its recording (${detail.recording})`);
+  fs.renameSync(detail.recording, `${detail.recording}.elsewhere`);
 
   // replay it: scrub to 11 s (from the keyframe), play at 8x, then take over there on the station
   await page.click(`#attempts tbody tr:has(td:text-is("${original.id}"))`);

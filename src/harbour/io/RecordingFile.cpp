@@ -402,8 +402,20 @@ sim::Recording read_recording(const std::string& path) {
   std::string why;
   std::optional<std::string> bytes = read_bounded_file(path, kMaxRecordingBytes, why);
   if (!bytes) throw RecordingFileError(path, 0, why);
-  Reader r(path, std::vector<unsigned char>(bytes->begin(), bytes->end()));
-  bytes.reset();
+  return parse_recording(path, std::move(*bytes));
+}
+
+std::string recording_copy(const std::string& path, std::size_t most) {
+  std::string why;
+  return read_bounded_file(path, most, why).value_or(std::string{});
+}
+
+sim::Recording parse_recording(const std::string& path, std::string bytes) {
+  if (bytes.size() > kMaxRecordingBytes)
+    throw RecordingFileError(path, 0, "larger than " + std::to_string(kMaxRecordingBytes) + " bytes");
+  Reader r(path, std::vector<unsigned char>(bytes.begin(), bytes.end()));
+  bytes.clear();
+  bytes.shrink_to_fit();
   char magic[4];
   for (char& m : magic)
     m = static_cast<char>(r.get<std::uint8_t>("magic"));

@@ -63,5 +63,11 @@ void write_recording(const std::string& path, const sim::Recording& recording);
 /// incomplete v6 recording), records out of order, values out of range, checkpoints that do not cover every
 /// second of it, a branch step beyond it, or a damaged keyframe.
 sim::Recording read_recording(const std::string& path);
+/// The same from a recording file's bytes held elsewhere (the records database's copy); `name` names them in
+/// errors.
+sim::Recording parse_recording(const std::string& name, std::string bytes);
+/// A finished recording file's bytes, to keep with its attempt in the records ("" where it is larger than
+/// `most` bytes or cannot be read: the file stays the only copy).
+std::string recording_copy(const std::string& path, std::size_t most);
 
 }  // namespace harbour::io

@@ -33,8 +33,9 @@ namespace {
 // The schema's versions. 1: the first records (trainees, attempts, moves, events, metrics); 2: attempts
 // remember their process, console accounts and the audit log; 3: routes (enrolments, instructors'
 // overrides), attempts name their route stage and the exercise version they ran. Databases before version 3
-// have no schema_version table: 2 when attempts has the process column, else 1. 4: the xAPI outbox.
-constexpr int kSchemaVersion = 4;
+// have no schema_version table: 2 when attempts has the process column, else 1. 4: the xAPI outbox. 5: the
+// attempts' recordings, so that a console or a station on another PC replays and continues them.
+constexpr int kSchemaVersion = 5;
 
 // every table of a schema version with the columns this build reads (and, for the latest, writes)
 struct TableColumns {
@@ -59,6 +60,7 @@ constexpr TableColumns kTables[] = {
     {"xapi_outbox",
      "id, statement_id, attempt, verb, statement, queued_at, state, tries, next_try_at, last_error, sent_at",
      4, 4},
+    {"recordings", "attempt, bytes, data", 5, 5},
 };
 
 // the columns `table` had at `version` ("" : not there yet)
@@ -120,9 +122,37 @@ std::vector<std::string> migration(int version) {
           " attempt BIGINT NOT NULL REFERENCES attempts(id), verb TEXT NOT NULL, statement TEXT NOT NULL,"
           " queued_at TEXT NOT NULL, state TEXT NOT NULL, tries INTEGER NOT NULL, next_try_at TEXT NOT NULL,"
           " last_error TEXT NOT NULL, sent_at TEXT NOT NULL)"};
+    case 5:
+      // a finished attempt's recording file, base64 (a TEXT both databases take whole)
+      return {
+          "CREATE TABLE recordings (attempt BIGINT PRIMARY KEY REFERENCES attempts(id), bytes BIGINT NOT NULL,"
+          " data TEXT NOT NULL)"};
     default:
       return {};
   }
+}
+
+std::string to_base64(std::string_view bytes) {
+  if (sodium_init() < 0) throw std::runtime_error("libsodium could not start");
+  std::string out(sodium_base64_encoded_len(bytes.size(), sodium_base64_VARIANT_ORIGINAL), '\0');
+  sodium_bin2base64(out.data(), out.size(), reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(),
+                    sodium_base64_VARIANT_ORIGINAL);
+  out.resize(out.size() - 1);  // its terminating zero
+  return out;
+}
+
+// nullopt where `text` is not base64 throughout
+std::optional<std::string> from_base64(const std::string& text) {
+  if (sodium_init() < 0) throw std::runtime_error("libsodium could not start");
+  std::string out(text.size() / 4 * 3 + 3, '\0');
+  std::size_t length = 0;
+  const char* end = nullptr;
+  if (sodium_base642bin(reinterpret_cast<unsigned char*>(out.data()), out.size(), text.data(), text.size(),
+                        nullptr, &length, &end, sodium_base64_VARIANT_ORIGINAL) != 0 ||
+      end != text.data() + text.size())
+    return std::nullopt;
+  out.resize(length);
+  return out;
 }
 
 // a random (version 4) UUID, as xAPI statement ids are
@@ -584,9 +614,12 @@ void RecordsStore::record_event(std::int64_t attempt, double at_s, const std::st
 }
 
 void RecordsStore::finish_attempt(std::int64_t attempt, const sim::Metrics& m, const sim::Score& s,
-                                  const std::string& recording, const std::string& status) {
+                                  const std::string& recording, const std::string& status,
+                                  std::string_view recording_bytes) {
   if (status != "finished" && status != "interrupted" && status != "diverged")
     throw std::invalid_argument("an attempt ends finished, interrupted or diverged, not '" + status + "'");
+  if (recording_bytes.size() > kMaxStoredRecordingBytes)
+    recording_bytes = {};  // too long to keep in the records: its file only
   impl_->guarded("finishing attempt " + std::to_string(attempt), [&] {
     // the final figures and the xAPI statements saying so in one transaction: an attempt is either still
     // running or completely finished
@@ -601,6 +634,12 @@ void RecordsStore::finish_attempt(std::int64_t attempt, const sim::Metrics& m, c
         const double v = value;
         impl_->sql << "INSERT INTO metrics (attempt, name, value) VALUES (:a, :n, :v)", soci::use(a),
             soci::use(n), soci::use(v);
+      }
+      if (!recording_bytes.empty()) {
+        const long long size = static_cast<long long>(recording_bytes.size());
+        const std::string data = to_base64(recording_bytes);
+        impl_->sql << "INSERT INTO recordings (attempt, bytes, data) VALUES (:a, :b, :d)", soci::use(a),
+            soci::use(size), soci::use(data);
       }
       const double score = s.total;
       const int passed = s.passed ? 1 : 0;
@@ -617,6 +656,25 @@ void RecordsStore::finish_attempt(std::int64_t attempt, const sim::Metrics& m, c
           a, training::xapi::at_end(facts, at, random_uuids(training::xapi::statements_at_end(facts))), at);
     });
   });
+}
+
+std::optional<std::string> RecordsStore::recording(std::int64_t attempt) {
+  std::optional<std::string> out;
+  impl_->guarded("reading the recording of attempt " + std::to_string(attempt), [&] {
+    const long long a = attempt;
+    long long size = 0;
+    std::string data;
+    soci::indicator found = soci::i_null;
+    impl_->sql << "SELECT bytes, data FROM recordings WHERE attempt = :a", soci::into(size, found),
+        soci::into(data), soci::use(a);
+    if (found != soci::i_ok) return;
+    std::optional<std::string> bytes = from_base64(data);
+    if (!bytes || static_cast<long long>(bytes->size()) != size)
+      throw std::runtime_error("the stored recording of attempt " + std::to_string(attempt) +
+                               " is damaged (not the base64 of its " + std::to_string(size) + " bytes)");
+    out = std::move(bytes);
+  });
+  return out;
 }
 
 std::optional<AttemptRow> RecordsStore::attempt_recorded_at(const std::string& path) {

@@ -5,6 +5,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -86,6 +87,10 @@ struct XapiRow {
 /// "postgresql://..." as it is. Throws std::invalid_argument saying what is wrong.
 std::string records_connection(const std::string& connection);
 
+/// Largest recording kept in the records database with its attempt [bytes] (a longer one is replayed from its
+/// file only).
+inline constexpr std::size_t kMaxStoredRecordingBytes = std::size_t{64} << 20;
+
 /// The trainee database: trainees, attempts, moves and events as they happen, final metrics and score. One
 /// interface over SOCI: "sqlite3://db=<file>" (the default: one file, WAL, waiting up to 10 s for another
 /// writer's lock) or "postgresql://dbname=... host=..." for a training centre; the SQL is the portable subset
@@ -123,8 +128,14 @@ class RecordsStore {
   void record_event(std::int64_t attempt, double at_s, const std::string& kind, double value);
   /// Stores the final metrics and score; `status` is finished, interrupted (stopped before its end, e.g.
   /// Ctrl-C) or diverged (the physics stopped it).
+  /// `recording_bytes`: the recording file's content, kept with the attempt in the same transaction (so that
+  /// a console or station on another PC replays it and continues it; not kept past kMaxStoredRecordingBytes).
   void finish_attempt(std::int64_t attempt, const sim::Metrics& metrics, const sim::Score& score,
-                      const std::string& recording, const std::string& status = "finished");
+                      const std::string& recording, const std::string& status = "finished",
+                      std::string_view recording_bytes = {});
+  /// The recording kept with an attempt (nullopt: none kept, e.g. it was interrupted); throws naming the
+  /// attempt when the copy is damaged.
+  std::optional<std::string> recording(std::int64_t attempt);
   /// Marks attempts still running whose process on this host has ended as interrupted; returns how many.
   /// (The constructor does this.)
   int mark_interrupted_attempts();

@@ -30,7 +30,10 @@ Session::Session(const sim::ExerciseSettings& exercise, const SessionOptions& op
       throw std::runtime_error("take-over refused: no stored attempt was recorded at '" +
                                core::printable(options.take_over->recording) + "'");
     parent = taken->id;
-    const sim::Recording original = io::read_recording(options.take_over->recording);
+    // the records' copy of it where they keep one (a recording made on another PC), else its file
+    std::optional<std::string> kept = db_->recording(taken->id);
+    const sim::Recording original = kept ? io::parse_recording(options.take_over->recording, std::move(*kept))
+                                         : io::read_recording(options.take_over->recording);
     if (original.scenario != exercise.name)
       throw std::runtime_error(options.take_over->recording + " was recorded on exercise '" +
                                original.scenario + "', not '" + exercise.name + "'");
@@ -199,8 +202,12 @@ SessionResult Session::finish(bool interrupted) {
   result.status = simulation_->diverged()                 ? "diverged"
                   : interrupted || !keeper_error_.empty() ? "interrupted"
                                                           : "finished";
-  if (writer_) writer_->finish(recorder_.recording().total_steps);
-  db_->finish_attempt(attempt_, result.metrics, result.score, options_.record, result.status);
+  std::string kept;
+  if (writer_) {
+    writer_->finish(recorder_.recording().total_steps);
+    kept = io::recording_copy(options_.record, io::kMaxStoredRecordingBytes);
+  }
+  db_->finish_attempt(attempt_, result.metrics, result.score, options_.record, result.status, kept);
   if (!keeper_error_.empty()) throw std::runtime_error("record keeper: " + keeper_error_);
   return result;
 }
