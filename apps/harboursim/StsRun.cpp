@@ -393,9 +393,42 @@ sim::ExerciseSettings load_resolved_exercise(const std::string& file) {
   return io::load_exercise(io::YamlFile::load(file), folder.parent_path().string());
 }
 
+namespace {
+int replay_checked(const std::string& recording_path, const sim::Recording& recording,
+                   const sim::ExerciseSettings& exercise);
+}  // namespace
+
 int replay_recording(const std::string& recording_path, const std::string& exercise_path) {
-  const sim::Recording recording = io::read_recording(recording_path);
-  const sim::ExerciseSettings exercise = load_resolved_exercise(resolve_exercise(exercise_path));
+  return replay_checked(recording_path, io::read_recording(recording_path),
+                        load_resolved_exercise(resolve_exercise(exercise_path)));
+}
+
+int replay_attempt(std::int64_t attempt, const std::string& database, const std::string& centre_exercises) {
+  io::RecordsStore db(database.empty() ? default_database() : database);
+  std::optional<io::AttemptRow> row;
+  for (io::AttemptRow& a : db.attempts())
+    if (a.id == attempt) row = std::move(a);
+  if (!row) {
+    std::fprintf(stderr, "harboursim: no attempt %lld in the records\n", static_cast<long long>(attempt));
+    return 2;
+  }
+  if (row->recording.empty()) {
+    std::fprintf(stderr, "harboursim: attempt %lld was not recorded\n", static_cast<long long>(attempt));
+    return 2;
+  }
+  std::optional<std::string> kept = db.recording(attempt);
+  std::printf("attempt %lld of trainee %s: %s (%s)\n", static_cast<long long>(attempt), row->trainee.c_str(),
+              row->recording.c_str(), kept ? "the records' copy" : "its file");
+  const sim::Recording recording =
+      kept ? io::parse_recording(row->recording, std::move(*kept)) : io::read_recording(row->recording);
+  return replay_checked(
+      row->recording, recording,
+      load_resolved_exercise(resolve_exercise(row->exercise, centre_exercises, row->exercise_version)));
+}
+
+namespace {
+int replay_checked(const std::string& recording_path, const sim::Recording& recording,
+                   const sim::ExerciseSettings& exercise) {
   if (recording.scenario != exercise.name) {
     std::fprintf(stderr, "harboursim: %s was recorded on exercise '%s', not '%s'\n", recording_path.c_str(),
                  recording.scenario.c_str(), exercise.name.c_str());
@@ -419,6 +452,7 @@ int replay_recording(const std::string& recording_path, const std::string& exerc
   print_evaluation(evaluator.metrics(), evaluator.score());
   return 0;
 }
+}  // namespace
 
 int take_over_recording(const std::string& recording_path, const RunOptions& options, double at_s) {
   const sim::Recording recording = io::read_recording(recording_path);

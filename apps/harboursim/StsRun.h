@@ -53,6 +53,9 @@ int list_results(const std::string& database, const std::string& trainee);
 
 /// `harboursim replay`: re-simulates a recording, checks every recorded second's hash, prints the evaluation.
 int replay_recording(const std::string& recording, const std::string& exercise);
+/// `harboursim replay --attempt N`: the same for a stored attempt, from the records alone where they keep its
+/// recording (else its file), on the exercise version it ran (the centre's folder `centre_exercises` first).
+int replay_attempt(std::int64_t attempt, const std::string& database, const std::string& centre_exercises);
 
 /// `harboursim replay --take-over <s>`: an instructor takes over the recording at that moment; the run goes
 /// on live from exactly the recorded state (the autopilot drives: no input devices yet), stored as a new

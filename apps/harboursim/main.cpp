@@ -65,9 +65,16 @@ int main(int argc, char** argv) {
 
   std::string recording, replay_exercise;
   CLI::App* replay_cmd = app.add_subcommand("replay", "re-simulate a recording and check it bit for bit");
-  replay_cmd->add_option("recording", recording, "recording file")->required()->check(CLI::ExistingFile);
-  replay_cmd->add_option("--exercise", replay_exercise, "the exercise it was recorded on (file or name)")
-      ->required();
+  std::int64_t replay_attempt = 0;
+  std::string replay_centre;
+  replay_cmd->add_option("recording", recording, "recording file (or --attempt)")->check(CLI::ExistingFile);
+  replay_cmd->add_option("--exercise", replay_exercise, "the exercise it was recorded on (file or name)");
+  replay_cmd
+      ->add_option("--attempt", replay_attempt,
+                   "a stored attempt instead of a file: its recording as the records keep it (else its file), "
+                   "on the exercise version it ran (with --db)")
+      ->check(CLI::PositiveNumber);
+  replay_cmd->add_option("--exercises", replay_centre, "with --attempt: " + std::string(kCentreExercises));
   double take_over_s = -1.0;
   harbour::apps::RunOptions branch;
   replay_cmd
@@ -77,7 +84,7 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   replay_cmd->add_option("--record", branch.record, "with --take-over: write the branch's recording here");
   replay_cmd->add_option("--trainee", branch.trainee, "with --take-over: trainee the branch is stored under");
-  replay_cmd->add_option("--db", branch.database, "with --take-over: records connection");
+  replay_cmd->add_option("--db", branch.database, "with --take-over or --attempt: records connection");
 
   harbour::apps::StationOptions live;
   CLI::App* station_cmd = app.add_subcommand("station", "a trainee runs an exercise live at the station");
@@ -260,8 +267,21 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "harboursim: --take-over needs a time in seconds, 0 or more\n");
         return 2;
       }
+      const bool by_attempt = replay_cmd->count("--attempt") > 0;
+      if (by_attempt == !recording.empty() || by_attempt == (replay_cmd->count("--exercise") > 0)) {
+        std::fprintf(stderr, "harboursim: replay needs a recording file and --exercise, or --attempt alone\n");
+        return 2;
+      }
+      if (by_attempt && taking_over) {
+        std::fprintf(stderr, "harboursim: a stored attempt is taken over at a station (the console's replay)\n");
+        return 2;
+      }
+      if (!by_attempt && replay_cmd->count("--exercises") > 0) {
+        std::fprintf(stderr, "harboursim: replay --exercises is only for --attempt\n");
+        return 2;
+      }
       for (const char* option : {"--record", "--trainee", "--db"})
-        if (!taking_over && replay_cmd->count(option) > 0) {
+        if (!taking_over && !(by_attempt && std::string(option) == "--db") && replay_cmd->count(option) > 0) {
           std::fprintf(stderr, "harboursim: replay %s is only for a take-over (add --take-over SECONDS)\n",
                        option);
           return 2;
@@ -336,6 +356,8 @@ int main(int argc, char** argv) {
       branch.autopilot = true;
       return harbour::apps::take_over_recording(recording, branch, take_over_s);
     }
+    if (*replay_cmd && replay_cmd->count("--attempt") > 0)
+      return harbour::apps::replay_attempt(replay_attempt, branch.database, replay_centre);
     if (*replay_cmd) return harbour::apps::replay_recording(recording, replay_exercise);
     if (*add_cmd) return harbour::apps::add_trainee(database, trainee_id, trainee_name);
     if (*list_cmd) return harbour::apps::list_trainees(database);

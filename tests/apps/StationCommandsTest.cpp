@@ -168,6 +168,20 @@ TEST(StationCommand, CtrlCStoresTheAttemptAndClosesTheRecording) {
   const sim::ReplayResult replay = sim::replay(
       io::load_exercise(std::string(HARBOUR_DATA_DIR) + "/exercises/sts_discharge.yaml").scenario, r);
   EXPECT_FALSE(replay.first_mismatch.has_value());
+
+  // the records keep it: with its file gone (another PC), the command line replays the attempt from them
+  std::filesystem::remove(record);
+  const std::string app = HARBOUR_APP;
+  const std::string replayed = run(app + " replay --attempt " + std::to_string(attempts[0].id) + " --db '" + db +
+                                   "' 2>&1; echo exit $?");
+  EXPECT_NE(replayed.find("the records' copy"), std::string::npos) << replayed;
+  EXPECT_NE(replayed.find("reproduced bit for bit"), std::string::npos) << replayed;
+  EXPECT_NE(replayed.find("exit 0"), std::string::npos) << replayed;
+  const std::string unknown = run(app + " replay --attempt 99 --db '" + db + "' 2>&1; echo exit $?");
+  EXPECT_NE(unknown.find("no attempt 99 in the records"), std::string::npos) << unknown;
+  EXPECT_NE(unknown.find("exit 2"), std::string::npos) << unknown;
+  const std::string both = run(app + " replay --attempt 1 --exercise sts_discharge --db '" + db + "' 2>&1; echo exit $?");
+  EXPECT_NE(both.find("or --attempt alone"), std::string::npos) << both;
 }
 
 // The trainee's window on an X server (Xvfb): the image generator's frames reach it while the loop keeps
