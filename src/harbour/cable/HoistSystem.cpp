@@ -55,6 +55,19 @@ HoistSystem::HoistSystem(const ReevingSettings& settings, const CableBodies& bod
   }
 }
 
+void HoistSystem::pretension(double tension_n) {
+  for (Rope& rope : ropes_)
+    for (const int index : rope.segments) {
+      Segment& s = segments_[static_cast<std::size_t>(index)];
+      const double ea = settings_.ropes[static_cast<std::size_t>(s.rope)].axial_stiffness_n;
+      const double rest = s.chord_length / (1.0 + tension_n / ea);  // T = EA (L - L0) / L0
+      rope.stored_m += s.rest_length - rest;
+      s.rest_length = rest;
+      s.tension = tension_n;
+      s.stiffness = ea / rest * s.chord_length / rest;
+    }
+}
+
 double HoistSystem::rope_speed_into(const Segment& s, bool at_a) const {
   // speed at which rope material crosses an end of the segment, positive from the drum towards the dead end
   const int e = at_a ? s.a : s.b;

@@ -20,6 +20,7 @@ namespace harbour::io {
 namespace {
 
 constexpr char kMagic[4] = {'H', 'S', 'R', 'C'};
+constexpr std::uint16_t kFlagRopesSettled = 1;  // the run's hoist ropes started stretched under their load
 
 class Writer {
  public:
@@ -152,7 +153,7 @@ RecordingWriter::RecordingWriter(const std::string& path, const sim::Recording& 
   Writer w;
   w.out.insert(w.out.end(), std::begin(kMagic), std::end(kMagic));
   w.put(kRecordingVersion);
-  w.put(std::uint16_t{0});
+  w.put(static_cast<std::uint16_t>(prefix.ropes_settled ? kFlagRopesSettled : 0));
   w.put(prefix.scenario);
   w.put(prefix.parent);
   w.put(prefix.branch_step);
@@ -427,8 +428,10 @@ sim::Recording parse_recording(const std::string& path, std::string bytes) {
                              "recording version " + std::to_string(version) +
                                  " is not supported (this build reads " + std::to_string(kRecordingVersion) +
                                  ")");
-  r.get<std::uint16_t>("reserved");
+  const auto flags = r.get<std::uint16_t>("flags");  // reserved (0) before version 8
   sim::Recording rec;
+  rec.ropes_settled = version >= 8 && (flags & kFlagRopesSettled) != 0;
+  if (version >= 8 && (flags & ~kFlagRopesSettled) != 0) r.fail("unknown header flags " + std::to_string(flags));
   rec.scenario = r.text("scenario name");
   if (const std::string bad = core::why_bad_name(rec.scenario); !bad.empty())
     r.fail("the scenario name " + bad);

@@ -141,6 +141,8 @@ class Machine {
   virtual void carry_bulk(double /*mass_kg*/) {}
   /// What its safety systems counted since the start and how its load swings now (for the evaluation).
   virtual MachineTally tally() const { return {}; }
+  /// Before the first step: its hoist ropes stretched under what hangs on them, at rest (built unstretched).
+  virtual void settle_ropes() {}
   /// Its telemetry now; by default what its tally says (the swing, the motions) and no ropes.
   virtual Telemetry telemetry() const;
   /// Moves this step's events (twistlocks, ropes) into `events`.

@@ -84,8 +84,17 @@ class BySlot {
   std::vector<int> slot_of_;
 };
 
+namespace {
+ScenarioSettings as_recorded(ScenarioSettings scenario, const Recording& recording) {
+  scenario.ropes_start_unstretched = !recording.ropes_settled;
+  return scenario;
+}
+}  // namespace
+
 ReplayPlayer::ReplayPlayer(const ScenarioSettings& scenario, const Recording& recording)
-    : scenario_(scenario), recording_(recording), simulation_(std::make_unique<Simulation>(scenario)) {
+    : scenario_(as_recorded(scenario, recording)),
+      recording_(recording),
+      simulation_(std::make_unique<Simulation>(scenario_)) {
   by_slot_ = std::make_unique<BySlot>(recording.control_labels, simulation_->control_table());
   current_ = simulation_->control_table().neutral();
 }
@@ -169,6 +178,7 @@ TakeOver take_over(const ScenarioSettings& scenario, const Recording& recording,
   prefix.parent = recording_id;
   prefix.branch_step = r.simulation->steps();
   prefix.total_steps = r.simulation->steps();
+  prefix.ropes_settled = recording.ropes_settled;  // a replay of the branch starts as the original did
   // the branch records by this machine's labels: the prefix's controls are carried over to them
   const ControlTable& table = r.simulation->control_table();
   for (const ControlSpec& c : table.controls())

@@ -27,6 +27,9 @@ struct Recording {
   std::string parent;            ///< recording this one branched from (take-over), empty if none
   std::int64_t branch_step = 0;  ///< step of the parent where the branch starts
   std::int64_t total_steps = 0;
+  /// The run started with its hoist ropes stretched under their load (false: unstretched, as runs recorded
+  /// before version 8 started; ScenarioSettings::ropes_start_unstretched). A replay starts as the run did.
+  bool ropes_settled = true;
   /// The labels of the controls the values are stored by (a replay reads them by label, whatever slots the
   /// machine's table gives them now).
   std::vector<std::string> control_labels;
@@ -107,7 +110,7 @@ class BySlot;
 
 /// Plays a recording back step by step (the console's replay): seek to any step (from the keyframe at or
 /// before it, or on from where it is when that is nearer), then advance as fast as wanted; every checkpoint
-/// passed is compared. Keeps references to `scenario` and `recording`: they must outlive it.
+/// passed is compared. Keeps a reference to `recording` (it must outlive it) and a copy of `scenario`.
 class ReplayPlayer {
  public:
   ReplayPlayer(const ScenarioSettings& scenario, const Recording& recording);
@@ -123,7 +126,7 @@ class ReplayPlayer {
   std::unique_ptr<Simulation> release_simulation() { return std::move(simulation_); }
 
  private:
-  const ScenarioSettings& scenario_;
+  ScenarioSettings scenario_;  // started as the recording's run was
   const Recording& recording_;
   std::unique_ptr<Simulation> simulation_;
   std::unique_ptr<BySlot> by_slot_;

@@ -109,6 +109,7 @@ Simulation::Simulation(const ScenarioSettings& scenario)
   }
   if (scenario.trucks.trucks > 0) trucks_ = std::make_unique<TruckLane>(*world_, scenario.trucks);
   machine_ = make_machine(*world_, scenario.machine);
+  if (!scenario.ropes_start_unstretched) machine_->settle_ropes();
   if (scenario.ramp) {
     ramp_ = std::make_unique<RoRoRamp>(*scenario.ramp);
     ramp_->move_to(0.0);

@@ -159,6 +159,9 @@ struct ScenarioSettings {
   double drag_coefficient =
       1.0;                 ///< [-] boxes and spreader (published 0.6-1.2 by face and stacking; assumed)
   std::uint64_t seed = 1;  ///< seeds the turbulence
+  /// The hoist ropes start unstretched, the load dropping onto them (as every run before recording version
+  /// 8 started: their replays start so); otherwise stretched under it, at rest.
+  bool ropes_start_unstretched = false;
 };
 
 /// The executive: a pure function of its inputs at a fixed 1 kHz step (no clocks, files or threads). The

@@ -67,6 +67,10 @@ class SpreaderHoist {
   double full_hoist_speed_mps() const;
   /// The speed the drum hoists the spreader at now [m/s], positive up (its rope speed over the falls per rope).
   double hoisting_speed_mps() const { return -hoist_->drum_rope_speed(0) / falls_per_rope_; }
+  /// Stretches the ropes under the hanging spreader's weight, shared by the falls (before the first step).
+  void settle_ropes() {
+    hoist_->pretension(settings_.spreader.mass_kg * 9.80665 / static_cast<double>(falls_.size()));
+  }
   /// The falls the headblock hangs on.
   int fall_count() const { return static_cast<int>(falls_.size()); }
   std::uint32_t limit_hits() const { return limits_.hits(); }

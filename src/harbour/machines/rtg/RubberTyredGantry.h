@@ -89,6 +89,7 @@ class RubberTyredGantry final : public Machine, public GantryCrane {
   int publish(Snapshot& snapshot, int entities) const override;
   MachineTally tally() const override;
   Telemetry telemetry() const override;
+  void settle_ropes() override { rig_->settle_ropes(); }
   void drain_events(StepEvents& events) override;
   bool has_fault(MachineFault fault) const override { return fault != MachineFault::kLoadMomentLimiter; }
   void inject_fault(MachineFault fault, int detail) override;

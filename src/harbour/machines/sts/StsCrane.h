@@ -111,6 +111,7 @@ class StsCrane final : public Machine, public GantryCrane {
   /// Its spreader's swing from plumb under the trolley, its hoist ropes' tension, its gantry's, trolley's and
   /// hoist's speeds (its tally stays empty: the STS's evaluation measures its sway and smoothness apart).
   Telemetry telemetry() const override;
+  void settle_ropes() override { rig_->settle_ropes(); }
   void drain_events(StepEvents& events) override;
   bool has_fault(MachineFault fault) const override { return fault != MachineFault::kLoadMomentLimiter; }
   void inject_fault(MachineFault fault, int detail) override;
