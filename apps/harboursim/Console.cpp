@@ -1283,9 +1283,7 @@ Console::Response Console::open_replay(const http::request<http::string_body>& r
   if (attempt == body->end() || !attempt->is_number_integer() || attempt->get<std::int64_t>() <= 0)
     return error(request, http::status::bad_request, "field 'attempt': an attempt id");
   const std::int64_t id = attempt->get<std::int64_t>();
-  std::optional<io::AttemptRow> row;
-  for (const io::AttemptRow& a : db_.attempts())
-    if (a.id == id) row = a;
+  const std::optional<io::AttemptRow> row = db_.attempt(id);
   if (!row) return error(request, http::status::not_found, "no attempt " + std::to_string(id));
   if (row->recording.empty())
     return error(request, http::status::conflict, "attempt " + std::to_string(id) + " was not recorded");
@@ -1298,9 +1296,7 @@ Console::Response Console::open_replay(const http::request<http::string_body>& r
     const std::string file = resolve_exercise(row->exercise, exercise_folder(), row->exercise_version);
     replay.exercise = load_resolved_exercise(file);
     version = io::exercise_version(file);
-    // the records' copy (the station may be another PC), else the file where the station wrote it
-    std::optional<std::string> kept = db_.recording(id);
-    replay.recording = kept ? io::parse_recording(row->recording, std::move(*kept)) : io::read_recording(row->recording);
+    replay.recording = db_.read_recording_of(*row);  // the station may be another PC
   } catch (const std::exception& e) {
     return error(request, http::status::conflict, std::string("cannot replay: ") + e.what());
   }

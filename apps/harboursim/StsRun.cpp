@@ -405,9 +405,7 @@ int replay_recording(const std::string& recording_path, const std::string& exerc
 
 int replay_attempt(std::int64_t attempt, const std::string& database, const std::string& centre_exercises) {
   io::RecordsStore db(database.empty() ? default_database() : database);
-  std::optional<io::AttemptRow> row;
-  for (io::AttemptRow& a : db.attempts())
-    if (a.id == attempt) row = std::move(a);
+  const std::optional<io::AttemptRow> row = db.attempt(attempt);
   if (!row) {
     std::fprintf(stderr, "harboursim: no attempt %lld in the records\n", static_cast<long long>(attempt));
     return 2;
@@ -416,11 +414,9 @@ int replay_attempt(std::int64_t attempt, const std::string& database, const std:
     std::fprintf(stderr, "harboursim: attempt %lld was not recorded\n", static_cast<long long>(attempt));
     return 2;
   }
-  std::optional<std::string> kept = db.recording(attempt);
   std::printf("attempt %lld of trainee %s: %s (%s)\n", static_cast<long long>(attempt), row->trainee.c_str(),
-              row->recording.c_str(), kept ? "the records' copy" : "its file");
-  const sim::Recording recording =
-      kept ? io::parse_recording(row->recording, std::move(*kept)) : io::read_recording(row->recording);
+              row->recording.c_str(), db.recording(attempt) ? "the records' copy" : "its file");
+  const sim::Recording recording = db.read_recording_of(*row);
   return replay_checked(
       row->recording, recording,
       load_resolved_exercise(resolve_exercise(row->exercise, centre_exercises, row->exercise_version)));

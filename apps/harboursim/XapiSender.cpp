@@ -1,7 +1,5 @@
 #include "XapiSender.h"
 
-#include <sodium.h>
-
 #include <utility>  // before Boost.Asio 1.74, which uses std::exchange without it
 
 #include <boost/asio.hpp>
@@ -62,27 +60,10 @@ Endpoint parse_endpoint(const std::string& url) {
 
 // UTC ISO 8601 with milliseconds, `seconds` from now: the outbox's times compare as text
 std::string utc_after(double seconds) {
-  const auto at =
-      std::chrono::system_clock::now() +
-      std::chrono::duration_cast<std::chrono::system_clock::duration>(std::chrono::duration<double>(seconds));
-  const std::time_t whole = std::chrono::system_clock::to_time_t(at);
-  const auto millis =
-      std::chrono::duration_cast<std::chrono::milliseconds>(at.time_since_epoch()).count() % 1000;
-  std::tm utc{};
-  gmtime_r(&whole, &utc);
-  char text[40];
-  const std::size_t n = std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%S", &utc);
-  std::snprintf(text + n, sizeof text - n, ".%03lldZ", static_cast<long long>(millis));
-  return text;
-}
-
-std::string base64(const std::string& text) {
-  if (sodium_init() < 0) throw std::runtime_error("libsodium could not start");
-  std::string out(sodium_base64_encoded_len(text.size(), sodium_base64_VARIANT_ORIGINAL), '\0');
-  sodium_bin2base64(out.data(), out.size(), reinterpret_cast<const unsigned char*>(text.data()), text.size(),
-                    sodium_base64_VARIANT_ORIGINAL);
-  out.resize(out.find('\0'));
-  return out;
+  return io::utc_time(
+      std::chrono::system_clock::now() + std::chrono::duration_cast<std::chrono::system_clock::duration>(
+                                             std::chrono::duration<double>(seconds)),
+      3);
 }
 
 // one PUT; the HTTP status, or throws (no answer) saying why
@@ -104,7 +85,8 @@ http::response<http::string_body> put_statement(const Endpoint& e, const LrsOpti
   request.set(http::field::host, e.host);
   request.set(http::field::content_type, "application/json");
   request.set("X-Experience-API-Version", "1.0.3");
-  if (!lrs.credentials.empty()) request.set(http::field::authorization, "Basic " + base64(lrs.credentials));
+  if (!lrs.credentials.empty())
+    request.set(http::field::authorization, "Basic " + io::to_base64(lrs.credentials));
   request.body() = row.statement;
   request.prepare_payload();
   asio::io_context io;

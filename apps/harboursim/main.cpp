@@ -70,9 +70,10 @@ int main(int argc, char** argv) {
   replay_cmd->add_option("recording", recording, "recording file (or --attempt)")->check(CLI::ExistingFile);
   replay_cmd->add_option("--exercise", replay_exercise, "the exercise it was recorded on (file or name)");
   replay_cmd
-      ->add_option("--attempt", replay_attempt,
-                   "a stored attempt instead of a file: its recording as the records keep it (else its file), "
-                   "on the exercise version it ran (with --db)")
+      ->add_option(
+          "--attempt", replay_attempt,
+          "a stored attempt instead of a file: its recording as the records keep it (else its file), "
+          "on the exercise version it ran (with --db)")
       ->check(CLI::PositiveNumber);
   replay_cmd->add_option("--exercises", replay_centre, "with --attempt: " + std::string(kCentreExercises));
   double take_over_s = -1.0;
@@ -269,11 +270,13 @@ int main(int argc, char** argv) {
       }
       const bool by_attempt = replay_cmd->count("--attempt") > 0;
       if (by_attempt == !recording.empty() || by_attempt == (replay_cmd->count("--exercise") > 0)) {
-        std::fprintf(stderr, "harboursim: replay needs a recording file and --exercise, or --attempt alone\n");
+        std::fprintf(stderr,
+                     "harboursim: replay needs a recording file and --exercise, or --attempt alone\n");
         return 2;
       }
       if (by_attempt && taking_over) {
-        std::fprintf(stderr, "harboursim: a stored attempt is taken over at a station (the console's replay)\n");
+        std::fprintf(stderr,
+                     "harboursim: a stored attempt is taken over at a station (the console's replay)\n");
         return 2;
       }
       if (!by_attempt && replay_cmd->count("--exercises") > 0) {

@@ -172,15 +172,16 @@ TEST(StationCommand, CtrlCStoresTheAttemptAndClosesTheRecording) {
   // the records keep it: with its file gone (another PC), the command line replays the attempt from them
   std::filesystem::remove(record);
   const std::string app = HARBOUR_APP;
-  const std::string replayed = run(app + " replay --attempt " + std::to_string(attempts[0].id) + " --db '" + db +
-                                   "' 2>&1; echo exit $?");
+  const std::string replayed = run(app + " replay --attempt " + std::to_string(attempts[0].id) + " --db '" +
+                                   db + "' 2>&1; echo exit $?");
   EXPECT_NE(replayed.find("the records' copy"), std::string::npos) << replayed;
   EXPECT_NE(replayed.find("reproduced bit for bit"), std::string::npos) << replayed;
   EXPECT_NE(replayed.find("exit 0"), std::string::npos) << replayed;
   const std::string unknown = run(app + " replay --attempt 99 --db '" + db + "' 2>&1; echo exit $?");
   EXPECT_NE(unknown.find("no attempt 99 in the records"), std::string::npos) << unknown;
   EXPECT_NE(unknown.find("exit 2"), std::string::npos) << unknown;
-  const std::string both = run(app + " replay --attempt 1 --exercise sts_discharge --db '" + db + "' 2>&1; echo exit $?");
+  const std::string both =
+      run(app + " replay --attempt 1 --exercise sts_discharge --db '" + db + "' 2>&1; echo exit $?");
   EXPECT_NE(both.find("or --attempt alone"), std::string::npos) << both;
 }
 

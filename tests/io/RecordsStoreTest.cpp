@@ -204,21 +204,23 @@ TEST_P(RecordsStoreOn, AFinishedAttemptKeepsItsRecording) {
   db.add_trainee("t001", "Ana");
   std::string bytes = "HSRC";
   for (int k = 0; k < 300000; ++k)
-    bytes.push_back(static_cast<char>(static_cast<unsigned>(k) * 7919u % 256u));  // every byte value, zeros among them
+    bytes.push_back(
+        static_cast<char>(static_cast<unsigned>(k) * 7919u % 256u));  // every byte value, zeros among them
   const std::int64_t kept = db.begin_attempt("t001", "sts_discharge");
   db.finish_attempt(kept, {}, {}, "/elsewhere/kept.hsrc", "finished", bytes);
   const std::int64_t none = db.begin_attempt("t001", "sts_discharge");
   db.finish_attempt(none, {}, {}, "/elsewhere/none.hsrc", "interrupted");
   const std::int64_t huge = db.begin_attempt("t001", "sts_discharge");
-  db.finish_attempt(huge, {}, {}, "/elsewhere/huge.hsrc", "finished", std::string(kMaxStoredRecordingBytes + 1, 'x'));
+  db.finish_attempt(huge, {}, {}, "/elsewhere/huge.hsrc", "finished",
+                    std::string(kMaxStoredRecordingBytes + 1, 'x'));
   EXPECT_EQ(db.recording(kept), bytes);
   EXPECT_FALSE(db.recording(none).has_value());
   EXPECT_FALSE(db.recording(huge).has_value()) << "past the limit: its file only";
   EXPECT_EQ(db.attempts().size(), 3u);
 
   // a copy changed behind the store's back
-  soci::session(records_connection(connection)) << "UPDATE recordings SET data = 'not base64!' WHERE attempt = "
-                                                << kept;
+  soci::session(records_connection(connection))
+      << "UPDATE recordings SET data = 'not base64!' WHERE attempt = " << kept;
   std::string error;
   try {
     db.recording(kept);

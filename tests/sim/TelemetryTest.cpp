@@ -44,9 +44,9 @@ TEST(Telemetry, EveryExerciseNamesEachValueItPublishes) {
     EXPECT_EQ(std::set<std::string>(scene.indicators.begin(), scene.indicators.end()).size(),
               scene.indicators.size())
         << "each name once";
-    EXPECT_TRUE(std::any_of(scene.indicators.begin(), scene.indicators.end(),
-                            [](const std::string& n) { return n.ends_with("_speed_mps"); }))
-        << "every machine moves";
+    EXPECT_TRUE(std::any_of(scene.indicators.begin(), scene.indicators.end(), [](const std::string& n) {
+      return n.ends_with("_speed_mps");
+    })) << "every machine moves";
     const bool roped = scene.rope_count > 0;
     EXPECT_EQ(slot(scene, "swing_m") >= 0, roped);
     EXPECT_EQ(slot(scene, "rope_tension_kn") >= 0, roped);
@@ -63,7 +63,8 @@ TEST(Telemetry, EveryExerciseNamesEachValueItPublishes) {
 // what the sheaves' friction and the settling swing leave.
 void expect_falls_share_the_spreader(const std::string& exercise_file) {
   SCOPED_TRACE(exercise_file);
-  const ExerciseSettings exercise = io::load_exercise(std::string(HARBOUR_DATA_DIR "/exercises/") + exercise_file);
+  const ExerciseSettings exercise =
+      io::load_exercise(std::string(HARBOUR_DATA_DIR "/exercises/") + exercise_file);
   Simulation sim(exercise.scenario);
   for (int k = 0; k < 8000; ++k)
     sim.step(Controls{});
@@ -86,7 +87,8 @@ void expect_falls_share_the_spreader(const std::string& exercise_file) {
 // spreader onto them, the cell reading nothing at first (the STS still 37 % off in the third second).
 void expect_spreader_starts_at_rest(const std::string& exercise_file) {
   SCOPED_TRACE(exercise_file);
-  const ExerciseSettings exercise = io::load_exercise(std::string(HARBOUR_DATA_DIR "/exercises/") + exercise_file);
+  const ExerciseSettings exercise =
+      io::load_exercise(std::string(HARBOUR_DATA_DIR "/exercises/") + exercise_file);
   for (const bool unstretched : {false, true}) {
     ScenarioSettings scenario = exercise.scenario;
     scenario.ropes_start_unstretched = unstretched;
@@ -98,7 +100,8 @@ void expect_spreader_starts_at_rest(const std::string& exercise_file) {
     for (int k = 1; k <= 3000; ++k) {
       sim.step(Controls{});
       lowest_n = std::min(lowest_n, hoist.hoisted_load_n());
-      if (k > 2000) worst_third_second = std::max(worst_third_second, std::abs(hoist.hoisted_load_n() / weight_n - 1.0));
+      if (k > 2000)
+        worst_third_second = std::max(worst_third_second, std::abs(hoist.hoisted_load_n() / weight_n - 1.0));
     }
     if (!unstretched) {
       EXPECT_NEAR(first_n, weight_n, 0.01 * weight_n);
@@ -129,7 +132,8 @@ struct AxisCheck {
 };
 
 std::vector<AxisCheck> speeds_against_travel(const std::string& exercise_file) {
-  const ExerciseSettings exercise = io::load_exercise(std::string(HARBOUR_DATA_DIR "/exercises/") + exercise_file);
+  const ExerciseSettings exercise =
+      io::load_exercise(std::string(HARBOUR_DATA_DIR "/exercises/") + exercise_file);
   Simulation sim(exercise.scenario);
   const std::unique_ptr<Pilot> pilot = make_pilot(exercise);
   const auto& crane = dynamic_cast<const GantryCrane&>(sim.machine());
@@ -142,7 +146,8 @@ std::vector<AxisCheck> speeds_against_travel(const std::string& exercise_file) {
   for (const int s : slots)
     EXPECT_GE(s, 0);
   const auto positions = [&] {
-    return std::vector<double>{crane.gantry_y_m(), crane.trolley_x_m(), sim.snapshot()->entities[2].pose.position.z};
+    return std::vector<double>{crane.gantry_y_m(), crane.trolley_x_m(),
+                               sim.snapshot()->entities[2].pose.position.z};
   };
   Snapshot before = *sim.snapshot();
   std::vector<double> was = positions();

@@ -43,8 +43,8 @@ class HoistSystem {
   HoistSystem(const ReevingSettings& settings, const CableBodies& bodies, const core::Vec3& gravity);
 
   /// Before the first step: stretches every segment to carry `tension_n` where the bodies are now, the
-  /// stretch taken from the rope on the drums (a block-and-tackle at rest carries one tension along each rope;
-  /// without it a load starts on unstretched ropes, drops and bounces on them).
+  /// stretch taken from the rope on the drums (a block-and-tackle at rest carries one tension along each
+  /// rope; without it a load starts on unstretched ropes, drops and bounces on them).
   void pretension(double tension_n);
 
   /// Advances by `dt_s` (one command per drum, in element order of the drums) and adds the rope forces

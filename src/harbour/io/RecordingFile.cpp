@@ -431,7 +431,8 @@ sim::Recording parse_recording(const std::string& path, std::string bytes) {
   const auto flags = r.get<std::uint16_t>("flags");  // reserved (0) before version 8
   sim::Recording rec;
   rec.ropes_settled = version >= 8 && (flags & kFlagRopesSettled) != 0;
-  if (version >= 8 && (flags & ~kFlagRopesSettled) != 0) r.fail("unknown header flags " + std::to_string(flags));
+  if (version >= 8 && (flags & ~kFlagRopesSettled) != 0)
+    r.fail("unknown header flags " + std::to_string(flags));
   rec.scenario = r.text("scenario name");
   if (const std::string bad = core::why_bad_name(rec.scenario); !bad.empty())
     r.fail("the scenario name " + bad);

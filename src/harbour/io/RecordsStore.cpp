@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "harbour/core/Text.h"
+#include "harbour/io/RecordingFile.h"
 #include "harbour/training/Xapi.h"
 
 namespace harbour::io {
@@ -125,34 +126,12 @@ std::vector<std::string> migration(int version) {
     case 5:
       // a finished attempt's recording file, base64 (a TEXT both databases take whole)
       return {
-          "CREATE TABLE recordings (attempt BIGINT PRIMARY KEY REFERENCES attempts(id), bytes BIGINT NOT NULL,"
+          "CREATE TABLE recordings (attempt BIGINT PRIMARY KEY REFERENCES attempts(id), bytes BIGINT NOT "
+          "NULL,"
           " data TEXT NOT NULL)"};
     default:
       return {};
   }
-}
-
-std::string to_base64(std::string_view bytes) {
-  if (sodium_init() < 0) throw std::runtime_error("libsodium could not start");
-  std::string out(sodium_base64_encoded_len(bytes.size(), sodium_base64_VARIANT_ORIGINAL), '\0');
-  sodium_bin2base64(out.data(), out.size(), reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(),
-                    sodium_base64_VARIANT_ORIGINAL);
-  out.resize(out.size() - 1);  // its terminating zero
-  return out;
-}
-
-// nullopt where `text` is not base64 throughout
-std::optional<std::string> from_base64(const std::string& text) {
-  if (sodium_init() < 0) throw std::runtime_error("libsodium could not start");
-  std::string out(text.size() / 4 * 3 + 3, '\0');
-  std::size_t length = 0;
-  const char* end = nullptr;
-  if (sodium_base642bin(reinterpret_cast<unsigned char*>(out.data()), out.size(), text.data(), text.size(),
-                        nullptr, &length, &end, sodium_base64_VARIANT_ORIGINAL) != 0 ||
-      end != text.data() + text.size())
-    return std::nullopt;
-  out.resize(length);
-  return out;
 }
 
 // a random (version 4) UUID, as xAPI statement ids are
@@ -178,8 +157,7 @@ std::vector<std::string> random_uuids(int n) {
 
 // now, UTC, ISO 8601 with milliseconds: an xAPI timestamp
 std::string xapi_time_now() {
-  const std::string micro = utc_now();  // ...SS.ffffffZ
-  return micro.substr(0, micro.size() - 4) + "Z";
+  return utc_time(std::chrono::system_clock::now(), 3);
 }
 
 constexpr const char* kStatuses[] = {"running", "finished", "interrupted", "diverged"};
@@ -225,18 +203,45 @@ bool ended_here(const std::string& process) {
 
 }  // namespace
 
-// now, UTC, ISO 8601 with microseconds
-std::string utc_now() {
-  const auto now = std::chrono::system_clock::now();
-  const std::time_t seconds = std::chrono::system_clock::to_time_t(now);
-  const auto micros =
-      std::chrono::duration_cast<std::chrono::microseconds>(now.time_since_epoch()).count() % 1000000;
+std::string utc_time(std::chrono::system_clock::time_point at, int decimals) {
+  const std::time_t seconds = std::chrono::system_clock::to_time_t(at);
+  const long long micros =
+      std::chrono::duration_cast<std::chrono::microseconds>(at.time_since_epoch()).count() % 1000000;
   std::tm utc{};
   gmtime_r(&seconds, &utc);
-  char at[40];
-  const std::size_t n = std::strftime(at, sizeof at, "%Y-%m-%dT%H:%M:%S", &utc);
-  std::snprintf(at + n, sizeof at - n, ".%06lldZ", static_cast<long long>(micros));
-  return at;
+  char text[40];
+  const std::size_t n = std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%S", &utc);
+  if (decimals == 3)
+    std::snprintf(text + n, sizeof text - n, ".%03lldZ", micros / 1000);
+  else
+    std::snprintf(text + n, sizeof text - n, ".%06lldZ", micros);
+  return text;
+}
+
+std::string utc_now() {
+  return utc_time(std::chrono::system_clock::now(), 6);
+}
+
+std::string to_base64(std::string_view bytes) {
+  if (sodium_init() < 0) throw std::runtime_error("libsodium could not start");
+  std::string out(sodium_base64_encoded_len(bytes.size(), sodium_base64_VARIANT_ORIGINAL), '\0');
+  sodium_bin2base64(out.data(), out.size(), reinterpret_cast<const unsigned char*>(bytes.data()),
+                    bytes.size(), sodium_base64_VARIANT_ORIGINAL);
+  out.resize(out.size() - 1);  // its terminating zero
+  return out;
+}
+
+std::optional<std::string> from_base64(std::string_view text) {
+  if (sodium_init() < 0) throw std::runtime_error("libsodium could not start");
+  std::string out(text.size() / 4 * 3 + 3, '\0');
+  std::size_t length = 0;
+  const char* end = nullptr;
+  if (sodium_base642bin(reinterpret_cast<unsigned char*>(out.data()), out.size(), text.data(), text.size(),
+                        nullptr, &length, &end, sodium_base64_VARIANT_ORIGINAL) != 0 ||
+      end != text.data() + text.size())
+    return std::nullopt;
+  out.resize(length);
+  return out;
 }
 
 std::string records_connection(const std::string& connection) {
@@ -675,6 +680,17 @@ std::optional<std::string> RecordsStore::recording(std::int64_t attempt) {
     out = std::move(bytes);
   });
   return out;
+}
+
+std::optional<AttemptRow> RecordsStore::attempt(std::int64_t id) {
+  for (AttemptRow& a : attempts())
+    if (a.id == id) return std::move(a);
+  return std::nullopt;
+}
+
+sim::Recording RecordsStore::read_recording_of(const AttemptRow& attempt) {
+  std::optional<std::string> kept = recording(attempt.id);
+  return kept ? parse_recording(attempt.recording, std::move(*kept)) : io::read_recording(attempt.recording);
 }
 
 std::optional<AttemptRow> RecordsStore::attempt_recorded_at(const std::string& path) {

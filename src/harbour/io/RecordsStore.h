@@ -1,5 +1,6 @@
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -10,6 +11,7 @@
 #include <vector>
 
 #include "harbour/sim/Evaluation.h"
+#include "harbour/sim/Recording.h"
 #include "harbour/training/Cohort.h"
 #include "harbour/training/Route.h"
 
@@ -64,8 +66,13 @@ struct AuditRow {
   std::string at, account, action, target, detail;
 };
 
+/// `at`, UTC, ISO 8601 with `decimals` (3 or 6) digits of the second: such times compare as text.
+std::string utc_time(std::chrono::system_clock::time_point at, int decimals);
 /// Now, UTC, ISO 8601 with microseconds: how the records stamp what they store.
 std::string utc_now();
+/// Bytes as base64 (the original alphabet, padded), and back: nullopt where `text` is not base64 throughout.
+std::string to_base64(std::string_view bytes);
+std::optional<std::string> from_base64(std::string_view text);
 
 /// An event of an attempt as stored (a collision, a hard landing, an instructor's command, ...).
 struct EventRow {
@@ -136,6 +143,9 @@ class RecordsStore {
   /// The recording kept with an attempt (nullopt: none kept, e.g. it was interrupted); throws naming the
   /// attempt when the copy is damaged.
   std::optional<std::string> recording(std::int64_t attempt);
+  /// An attempt's recording read: the copy kept here, else its file where its station wrote it (throws
+  /// io::RecordingFileError naming the file, or naming the attempt for a damaged copy).
+  sim::Recording read_recording_of(const AttemptRow& attempt);
   /// Marks attempts still running whose process on this host has ended as interrupted; returns how many.
   /// (The constructor does this.)
   int mark_interrupted_attempts();
@@ -144,6 +154,8 @@ class RecordsStore {
   /// The attempt whose recording is the file `path`: the newest of them when a path was used again (the file
   /// holds the last run written to it); none when no attempt was recorded there (a take-over's check).
   std::optional<AttemptRow> attempt_recorded_at(const std::string& path);
+  /// One attempt (none: no such attempt).
+  std::optional<AttemptRow> attempt(std::int64_t id);
   /// An attempt's events in time order, and its final metrics by name.
   std::vector<EventRow> events(std::int64_t attempt);
   std::vector<std::pair<std::string, double>> metrics(std::int64_t attempt);

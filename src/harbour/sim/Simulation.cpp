@@ -540,7 +540,8 @@ void Simulation::write_snapshot(Snapshot& s) const {
   // the telemetry, in the order scene() names it
   const Telemetry telemetry = machine_->telemetry();
   const auto indicator = [&](double value) {
-    if (s.indicator_count < kMaxIndicators) s.indicators[static_cast<std::size_t>(s.indicator_count++)] = value;
+    if (s.indicator_count < kMaxIndicators)
+      s.indicators[static_cast<std::size_t>(s.indicator_count++)] = value;
   };
   if (roped_) {
     indicator(telemetry.swing_m);

@@ -279,7 +279,7 @@ class Simulation {
   bool held_ = false;
   bool instructor_stop_ = false;  // the instructor holds the machine's emergency stop pressed
   bool power_off_ = false;        // the supply has failed
-  bool roped_ = false;  // the machine hangs its load on ropes (it publishes their telemetry)
+  bool roped_ = false;            // the machine hangs its load on ropes (it publishes their telemetry)
   bool awaiting_zero_ = false;    // restored, but no lever has been at zero since
   bool levers_at_zero(const Controls& controls) const;
   core::Warnings warnings_;

@@ -30,10 +30,7 @@ Session::Session(const sim::ExerciseSettings& exercise, const SessionOptions& op
       throw std::runtime_error("take-over refused: no stored attempt was recorded at '" +
                                core::printable(options.take_over->recording) + "'");
     parent = taken->id;
-    // the records' copy of it where they keep one (a recording made on another PC), else its file
-    std::optional<std::string> kept = db_->recording(taken->id);
-    const sim::Recording original = kept ? io::parse_recording(options.take_over->recording, std::move(*kept))
-                                         : io::read_recording(options.take_over->recording);
+    const sim::Recording original = db_->read_recording_of(*taken);  // (made on another PC, maybe)
     if (original.scenario != exercise.name)
       throw std::runtime_error(options.take_over->recording + " was recorded on exercise '" +
                                original.scenario + "', not '" + exercise.name + "'");

@@ -65,7 +65,8 @@ class SpreaderHoist {
   double attachment_bottom_z_m() const;
   /// The spreader's speed at full lever [m/s] (the drum's rope speed over the falls per rope).
   double full_hoist_speed_mps() const;
-  /// The speed the drum hoists the spreader at now [m/s], positive up (its rope speed over the falls per rope).
+  /// The speed the drum hoists the spreader at now [m/s], positive up (its rope speed over the falls per
+  /// rope).
   double hoisting_speed_mps() const { return -hoist_->drum_rope_speed(0) / falls_per_rope_; }
   /// Stretches the ropes under the hanging spreader's weight, shared by the falls (before the first step).
   void settle_ropes() {

@@ -311,7 +311,8 @@ MachineTally RubberTyredGantry::tally() const {
 
 Telemetry RubberTyredGantry::telemetry() const {
   const MachineTally t = tally();
-  return {t.swing_m, rig_->hoist().highest_tension_n(),
+  return {t.swing_m,
+          rig_->hoist().highest_tension_n(),
           {t.axes[0], t.axes[1], AxisSpeed{"hoist", rig_->hoisting_speed_mps()}}};
 }
 
