@@ -5,6 +5,7 @@
 // Usage: node xapi_outage.mjs HARBOURSIM PORT
 import { spawn, execFileSync } from "node:child_process";
 import { mkdtempSync } from "node:fs";
+import http from "node:http";
 import { tmpdir } from "node:os";
 import path from "node:path";
 import { fileURLToPath } from "node:url";
@@ -34,11 +35,19 @@ async function until(what, test, seconds = 30) {
   check(false, `${what} (waited ${seconds} s)`);
   return false;
 }
-const lrsStatements = async () => {
-  const r = await fetch(`${endpoint}statements?limit=500`, { headers: { "X-Experience-API-Version": "1.0.3",
-    Authorization: "Basic " + Buffer.from("centre:secret").toString("base64") } });
-  return (await r.json()).statements;
-};
+// A fresh connection per request (agent: false): the test blocks its event loop in execFileSync, so a pooled
+// keep-alive socket the LRS closed meanwhile would be reused before its close is seen ("fetch failed").
+const lrsStatements = () => new Promise((resolve, reject) => {
+  const request = http.get(`${endpoint}statements?limit=500`, { agent: false, headers: {
+    "X-Experience-API-Version": "1.0.3", Authorization: "Basic " + Buffer.from("centre:secret").toString("base64") } },
+  (response) => {
+    let body = "";
+    response.setEncoding("utf8");
+    response.on("data", (d) => { body += d; });
+    response.on("end", () => { try { resolve(JSON.parse(body).statements); } catch (e) { reject(e); } });
+  });
+  request.on("error", reject);
+});
 const lrsUp = async () => { try { await lrsStatements(); return true; } catch { return false; } };
 
 try {
@@ -118,7 +127,7 @@ try {
     check(error.length > 0 && !/Assertion|terminate/.test(error), `${what} is refused: ${error.trim()}`);
   }
 } catch (e) {
-  check(false, `error: ${e.stack ?? e}`);
+  check(false, `error: ${e.stack ?? e}${e.cause ? `\ncause: ${e.cause.stack ?? e.cause}` : ""}`);
 } finally {
   for (const c of children) if (c.exitCode === null) c.kill("SIGTERM");
   if (failures) for (const c of children) console.log(`--- ${c.spawnargs.slice(0, 3).join(" ")}\n${c.output.slice(-2000)}`);
