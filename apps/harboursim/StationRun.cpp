@@ -319,11 +319,14 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
   return interrupted ? 130 : 0;
 }
 
-// where a served station keeps its attempts' recordings (beside the default records)
-std::string recording_for(const std::string& station, const std::string& exercise) {
-  const std::string database = default_database();
+// Where a served station keeps its attempts' recordings: beside its SQLite records file, else (a records
+// server) beside the default records.
+std::string recording_for(const std::string& station, const std::string& exercise,
+                          const std::string& database) {
+  const std::string sqlite_prefix = "sqlite3://db=";
+  const std::string records = database.rfind(sqlite_prefix, 0) == 0 ? database : default_database();
   const std::filesystem::path folder =
-      std::filesystem::path(database.substr(database.find('=') + 1)).parent_path() / "recordings";
+      std::filesystem::path(records.substr(sqlite_prefix.size())).parent_path() / "recordings";
   std::filesystem::create_directories(folder);
   char stamp[32];
   const std::time_t now = std::time(nullptr);
@@ -390,7 +393,8 @@ int run_station(const StationOptions& options) {
       if (const std::string why = why_bad_exercise_name(attempt.exercise); !why.empty())
         throw std::runtime_error("exercise '" + core::printable(attempt.exercise) + "': " + why);
       do {
-        attempt.record = recording_for(options.name, attempt.exercise);  // each attempt its own
+        attempt.record =
+            recording_for(options.name, attempt.exercise, options.database);  // each attempt its own
         run_attempt(attempt, link.get(), reset);
         attempt.take_over_recording.clear();  // a reset starts the exercise anew
       } while (reset && !g_stop);

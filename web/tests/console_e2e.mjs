@@ -143,7 +143,9 @@ try {
   // the records keep its recording: moved away from where the station wrote it (as if the station were
   // another PC), it still replays and is taken over
   const detail = await page.evaluate(async (id) => (await fetch(`/api/attempts/${id}`)).json(), original.id);
-  check(typeof detail.recording === "string" && fs.existsSync(detail.recording), `the attempt names its recording (${detail.recording})`);
+  check(typeof detail.recording === "string" && fs.existsSync(detail.recording) &&
+    path.dirname(detail.recording) === path.join(dir, "recordings"),
+    `the attempt names its recording, beside the station's records (${detail.recording})`);
   fs.renameSync(detail.recording, `${detail.recording}.elsewhere`);
 
   // replay it: scrub to 11 s (from the keyframe), play at 8x, then take over there on the station
