@@ -12,6 +12,7 @@
 #include "harbour/ig/ImageGenerator.h"
 #include "harbour/io/BoundedFile.h"
 #include "harbour/io/ExerciseFiles.h"
+#include "harbour/io/InstructorCommandText.h"
 #include "harbour/sim/Pilot.h"
 
 namespace harbour::apps {
@@ -42,8 +43,18 @@ int take_screenshot(const ScreenshotOptions& options) {
     c.value = *options.rain_mm_per_h;
     simulation.command(c);
   }
-  while (simulation.time_s() < options.at_s && !simulation.diverged())
+  std::vector<io::TimedCommand> commands;
+  for (const std::string& text : options.commands)
+    commands.push_back(io::parse_instructor_command(text));  // a bad one stops it before it starts
+  std::stable_sort(commands.begin(), commands.end(),
+                   [](const io::TimedCommand& a, const io::TimedCommand& b) { return a.at_s < b.at_s; });
+  std::size_t next_command = 0;
+  while (simulation.time_s() < options.at_s && !simulation.diverged()) {
+    for (; next_command < commands.size() && commands[next_command].at_s <= simulation.time_s();
+         ++next_command)
+      simulation.command(commands[next_command].command);
     simulation.step(pilot ? pilot->next(simulation) : simulation.control_table().neutral());
+  }
   ig::Looks looks = ig::load_looks(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml");
   ig::ImageGenerator generator(simulation.scene(), std::move(looks.visuals), options.width, options.height);
   generator.use(looks);

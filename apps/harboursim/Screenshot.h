@@ -17,6 +17,7 @@ struct ScreenshotOptions {
   std::optional<double> time_of_day_h, visibility_m, rain_mm_per_h;  ///< instructor settings at the start
   /// the free view's camera: x, y, z [m], yaw and pitch [deg] (yaw from +x towards +y)
   std::vector<double> camera;
+  std::vector<std::string> commands;  ///< instructor commands on the way there, AT:KIND[:VALUES] (as `run`)
 };
 int take_screenshot(const ScreenshotOptions& options);
 

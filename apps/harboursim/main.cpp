@@ -141,6 +141,9 @@ int main(int argc, char** argv) {
   shot_cmd->add_option("--time-of-day", shot_time_of_day, "hours, 0-24")->check(CLI::Range(0.0, 23.999));
   shot_cmd->add_option("--visibility", shot_visibility, "metres")->check(CLI::Range(1.0, 1e5));
   shot_cmd->add_option("--rain", shot_rain, "mm/h")->check(CLI::Range(0.0, 500.0));
+  shot_cmd->add_option("--command", shot.commands,
+                       "instructor command on the way there, AT:KIND[:VALUES], repeatable (as for run): "
+                       "30:power-failure");
   shot_cmd->add_option("--camera", shot.camera, "free view: X,Y,Z metres, YAW,PITCH degrees")
       ->delimiter(',')
       ->expected(5)

@@ -3,6 +3,7 @@
 // tool moved over loopback UDP (this machine has no /dev/uinput for a real device); the station ended by
 // Ctrl-C.
 #include <gtest/gtest.h>
+#include <png.h>
 
 #include <arpa/inet.h>
 #include <netinet/in.h>
@@ -252,6 +253,40 @@ TEST(StationCommand, TheWindowShowsTheCabViewWhileTheExerciseRuns) {
 }
 
 // A debrief video of a recording: re-simulated, drawn with the HUD, encoded by ffmpeg.
+// mean luminance (0-1) of a PNG's rows below its top fifth (the HUD's lines), -1 where it cannot be read
+double lower_luminance(const std::string& file) {
+  png_image image{};
+  image.version = PNG_IMAGE_VERSION;
+  if (!png_image_begin_read_from_file(&image, file.c_str())) return -1.0;
+  image.format = PNG_FORMAT_RGB;
+  std::vector<png_byte> pixels(PNG_IMAGE_SIZE(image));
+  if (!png_image_finish_read(&image, nullptr, pixels.data(), 0, nullptr)) return -1.0;
+  double sum = 0.0;
+  const std::size_t first = 3 * static_cast<std::size_t>(image.width) * (image.height / 5);
+  for (std::size_t i = first; i + 2 < pixels.size(); i += 3)
+    sum += 0.2126 * pixels[i] + 0.7152 * pixels[i + 1] + 0.0722 * pixels[i + 2];
+  return sum / 255.0 / static_cast<double>((pixels.size() - first) / 3);
+}
+
+TEST(ScreenshotCommand, APowerFailurePutsOutTheCranesLampsAtNight) {
+  // the drives stop alike under the emergency stop and in the power failure; only the supply differs
+  const std::string folder = std::filesystem::temp_directory_path().string();
+  const auto shot = [&](const std::string& command, const std::string& out) {
+    return run(std::string(HARBOUR_APP) + " screenshot --exercise sts_discharge --at 20 --view chase " +
+               "--time-of-day 22 --size 320x180 --command " + command + " --out " + out + " 2>&1");
+  };
+  const std::string stopped = folder + "/harbour_stopped_at_night.png";
+  const std::string unpowered = folder + "/harbour_power_failure_at_night.png";
+  EXPECT_NE(shot("5:emergency-stop", stopped).find("at t=20.0 s"), std::string::npos);
+  EXPECT_NE(shot("5:power-failure", unpowered).find("at t=20.0 s"), std::string::npos);
+  const double lamps_on = lower_luminance(stopped), lamps_off = lower_luminance(unpowered);
+  std::printf("chase view at night below the HUD: stopped %.4f, power failure %.4f\n", lamps_on, lamps_off);
+  EXPECT_GT(lamps_off, 0.0);
+  EXPECT_LT(lamps_off, 0.95 * lamps_on);
+  // a command that is none stops it before anything is drawn, quoting it
+  EXPECT_NE(shot("5:power-cut", unpowered).find("'5:power-cut': unknown kind"), std::string::npos);
+}
+
 TEST(RenderCommand, ARecordingBecomesADebriefVideo) {
   if (run("command -v ffmpeg").empty())
     GTEST_SKIP() << "ffmpeg is not installed (./harbour setup installs it)";

@@ -402,6 +402,38 @@ TEST(ImageGenerator, FloodlightsLightTheQuayAtNightOnly) {
   EXPECT_NEAR(noon_with, noon_without, 1e-6);  // off by day
 }
 
+TEST(ImageGenerator, AMachinesLampRidesItAndGoesOutInAPowerFailure) {
+  ImageGenerator ig(scene(), looks(), kWidth, kHeight);
+  ig.set_view(down());
+  sim::Snapshot night = over_the_quay(23.0, 0.0);
+  ig.update(night);
+  const double dark = centre_luminance(ig.render());
+  // seven lamps on a machine this scene lacks (they take none of the seven lights), then one on the near box,
+  // 16 m above the quay under the view; the box itself far away
+  std::vector<Floodlight> lamps(7, Floodlight{{0.0, 0.0, 0.0}, {1.0, 1.0, 1.0}, 60.0, "other.machine"});
+  const core::Vec3 box_at = night.entities[1].pose.position;
+  lamps.push_back({core::Vec3{-10.0, 0.0, 16.0} - box_at, {1.0, 0.9, 0.75}, 60.0, "test.box"});
+  ig.set_floodlights(lamps);
+  ig.update(night);
+  const double lit = centre_luminance(ig.render());
+  night.entities[1].pose.position = box_at + core::Vec3{0.0, 200.0, 0.0};  // the lamp rides its box away
+  ig.update(night);
+  const double moved = centre_luminance(ig.render());
+  night.entities[1].pose.position = box_at;
+  night.power_off = true;
+  ig.update(night);
+  const double power_off = centre_luminance(ig.render());
+  night.power_off = false;
+  ig.update(night);
+  const double power_back = centre_luminance(ig.render());
+  std::printf("quay at night %.3f; the box's lamp over it %.3f, moved away %.3f; power off %.3f, back %.3f\n",
+              dark, lit, moved, power_off, power_back);
+  EXPECT_GT(lit, 2.0 * dark);
+  EXPECT_LT(moved, 1.2 * dark);
+  EXPECT_NEAR(power_off, dark, 0.2 * dark);
+  EXPECT_NEAR(power_back, lit, 1e-6);
+}
+
 TEST(ImageGenerator, RainWetsAndDarkensTheQuay) {
   ImageGenerator ig(scene(), looks(), kWidth, kHeight);
   ig.set_view(down());

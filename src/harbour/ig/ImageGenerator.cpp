@@ -696,20 +696,28 @@ void ImageGenerator::update(const sim::Snapshot& s) {
   const float dry = 1.0f - 0.35f * static_cast<float>(std::clamp(s.rain_mm_per_h / 2.0, 0.0, 1.0));
   (*quay_color_)[0] = osg::Vec4(0.42f * dry, 0.42f * dry, 0.40f * dry, 1.0f);
   quay_color_->dirty();
-  // floodlights from dusk to dawn
+  // floodlights from dusk to dawn: the quay's, and the lamps riding entities in the scene while the machine's
+  // supply is on; OpenGL's seven lights go to them in the look file's order
   const bool dark = sun_elevation_ < 0.02;
+  std::size_t lit_lamps = 0;
+  for (const Floodlight& lamp : floodlight_settings_) {
+    if (!dark || lit_lamps == floodlights_.size()) break;
+    core::Vec3 at = lamp.position_m;
+    if (!lamp.entity.empty()) {
+      const auto it = std::find(entity_visuals_.begin(), entity_visuals_.end(), lamp.entity);
+      if (it == entity_visuals_.end() || s.power_off) continue;
+      at = entity_poses_[static_cast<std::size_t>(it - entity_visuals_.begin())].to_parent(lamp.position_m);
+    }
+    osg::Light* slot = floodlights_[lit_lamps++]->getLight();
+    slot->setPosition(osg::Vec4(to_osg(at), 1.0f));
+    slot->setDiffuse(rgba(lamp.color));
+    // a tenth of the light at its range: 1 / (1 + q r^2) = 0.1
+    slot->setQuadraticAttenuation(static_cast<float>(9.0 / (lamp.range_m * lamp.range_m)));
+  }
   for (std::size_t n = 0; n < floodlights_.size(); ++n)
     root_->getOrCreateStateSet()->setMode(GL_LIGHT1 + static_cast<GLenum>(n),
-                                          dark ? osg::StateAttribute::ON : osg::StateAttribute::OFF);
-  floodlights_on_->set(dark ? static_cast<int>(floodlights_.size()) : 0);
-  for (std::size_t n = 0; n < floodlights_.size(); ++n) {  // the machine's own lamps ride it
-    const Floodlight& lamp = floodlight_settings_[n];
-    if (lamp.entity.empty()) continue;
-    const auto it = std::find(entity_visuals_.begin(), entity_visuals_.end(), lamp.entity);
-    if (it == entity_visuals_.end()) continue;
-    const core::Pose& pose = entity_poses_[static_cast<std::size_t>(it - entity_visuals_.begin())];
-    floodlights_[n]->getLight()->setPosition(osg::Vec4(to_osg(pose.to_parent(lamp.position_m)), 1.0f));
-  }
+                                          n < lit_lamps ? osg::StateAttribute::ON : osg::StateAttribute::OFF);
+  floodlights_on_->set(static_cast<int>(lit_lamps));
   cab_ = s.cab;
   sea_ = s.sea;
   time_s_ = s.time_s;
@@ -884,17 +892,13 @@ void ImageGenerator::set_floodlights(const std::vector<Floodlight>& lights) {
     root_->removeChild(light);
   floodlights_.clear();
   floodlight_settings_ = lights;
-  for (std::size_t n = 0; n < lights.size() && n < 7; ++n) {
+  for (std::size_t n = 0; n < lights.size() && n < kFloodlightSlots; ++n) {  // placed and lit in update()
     osg::ref_ptr<osg::LightSource> source = new osg::LightSource;
     osg::Light* light = source->getLight();
     light->setLightNum(static_cast<int>(n) + 1);
-    light->setPosition(osg::Vec4(to_osg(lights[n].position_m), 1.0f));
-    light->setDiffuse(rgba(lights[n].color));
     light->setAmbient(osg::Vec4(0, 0, 0, 1));
     light->setSpecular(osg::Vec4(0, 0, 0, 1));
-    // a tenth of the light at its range: 1 / (1 + q r^2) = 0.1
     light->setConstantAttenuation(1.0f);
-    light->setQuadraticAttenuation(static_cast<float>(9.0 / (lights[n].range_m * lights[n].range_m)));
     root_->addChild(source);
     floodlights_.push_back(source);
   }

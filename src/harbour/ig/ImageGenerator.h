@@ -98,8 +98,10 @@ class ImageGenerator {
                  int height);
   ~ImageGenerator();
 
-  /// Floodlights lit while the sun is below the horizon.
+  /// Floodlights lit while the sun is below the horizon: the quay's, and the lamps on entities in the scene
+  /// while the machine's supply is on (not in a power failure); the first kFloodlightSlots of those, in order.
   void set_floodlights(const std::vector<Floodlight>& lights);
+  static constexpr std::size_t kFloodlightSlots = 7;  ///< OpenGL's eight lights, one of them the sun
   /// Everything a look file gives beyond the looks: the HUD and the floodlights.
   void use(const Looks& looks) {
     set_hud(looks.hud);
@@ -186,7 +188,7 @@ class ImageGenerator {
   sim::Snapshot::Sea sea_{};
   core::Vec3 wind_mps_, to_sun_{0.0, 0.0, 1.0};
   double time_s_ = 0.0, daylight_ = 1.0;
-  std::vector<osg::ref_ptr<osg::LightSource>> floodlights_;
+  std::vector<osg::ref_ptr<osg::LightSource>> floodlights_;  // the slots, lit in update()
   std::vector<Floodlight> floodlight_settings_;
   osg::ref_ptr<osg::Group> scenery_;
   osg::ref_ptr<osg::LightSource> sun_;

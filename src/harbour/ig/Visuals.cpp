@@ -103,7 +103,8 @@ Looks load_looks(const std::string& path) {
     }
   }
   if (f.optional(f.root(), "floodlights", "")) {
-    const YAML::Node lights = f.sequence(f.root(), "floodlights", "", 7);  // OpenGL's 8 lights, one the sun
+    // any number: the image generator lights the first seven that are in the scene (OpenGL's eight lights)
+    const YAML::Node lights = f.sequence(f.root(), "floodlights", "", 64);
     for (std::size_t n = 0; n < lights.size(); ++n) {
       const std::string at = "floodlights[" + std::to_string(n) + "]";
       Floodlight light;

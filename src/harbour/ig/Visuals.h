@@ -44,7 +44,8 @@ struct HudItem {
 };
 
 /// A floodlight lit from dusk to dawn: on the quay (world frame) or on a machine (riding the first entity
-/// with the look `entity`, in its frame: the crane's own lamps).
+/// with the look `entity`, in its frame: the machine's own lamps, dark while its supply has failed, and
+/// only where the scene has that entity).
 struct Floodlight {
   core::Vec3 position_m;
   core::Vec3 color{1.0, 0.9, 0.75};
