@@ -1,8 +1,8 @@
 // The exercise designer's forms: they edit the design's YAML (comments kept) — stowage by clicking a bay's
-// slots, trucks, weather and sea state, bulk piles, scripted events and faults on a timeline, the rubric — and
-// the YAML stays the design: what the simulator's loader checks, previews and saves. The forms know nothing
-// of the physics; what a machine offers (its vessel's slots, its event kinds, the rubric in force) comes from
-// the console's check of the design.
+// slots, trucks, weather and sea state, bulk piles, general cargo, scripted events and faults on a timeline,
+// the rubric — and the YAML stays the design: what the simulator's loader checks, previews and saves. The
+// forms know nothing of the physics; what a machine offers (its vessel's slots, its event kinds, the rubric
+// in force) comes from the console's check of the design.
 import { isMap, isSeq, parseDocument, type Document, type YAMLMap, type YAMLSeq } from "yaml";
 
 interface RuleFigure { key: string; value: number; min: number; max: number; }
@@ -122,6 +122,18 @@ export class DesignerForms {
     return el("label", {}, label + " ", input);
   }
 
+  // a vector's three components in a row (an empty field changes nothing)
+  private triple(label: string, path: Path) {
+    const inputs = [0, 1, 2].map((k) => {
+      const input = el("input", { type: "number", step: "any", value: String(this.get([...path, k]) ?? ""),
+        title: `${label.split(" ")[0]} ${"xyz"[k]}` });
+      input.dataset.path = [...path, k].join(".");
+      input.addEventListener("change", () => { if (input.value !== "") this.set([...path, k], Number(input.value)); });
+      return input;
+    });
+    return el("label", { className: "triple" }, `${label} `, ...inputs);
+  }
+
   render() {
     this.pending = false;
     const parts: HTMLElement[] = [];
@@ -133,6 +145,7 @@ export class DesignerForms {
       if (x.trucks || (this.form && ["sts", "rtg", "reach_stacker"].includes(this.form.machine))) parts.push(this.trucks(x));
       parts.push(this.weather(x));
       if (x.bulk) parts.push(this.bulk(x));
+      if (x.cargo) parts.push(this.cargo(x));
       parts.push(this.events(x));
       if (this.form) parts.push(this.rubric());
     }
@@ -436,6 +449,52 @@ export class DesignerForms {
     if (x.trim) goal.append(this.number(`trim ${x.trim.grid} down to m`, ["trim", "top_m"], { step: 0.1 }));
     parts.push(goal);
     return this.fieldset("Bulk", "design-bulk", ...parts);
+  }
+
+  // General cargo on the MHC's hook: each piece (its size, mass, where it stands) and where it is to go.
+  private cargo(x: Plain) {
+    const pieces: Plain[] = Array.isArray(x.cargo) ? x.cargo : [];
+    const moves: Plain[] = Array.isArray(x.moves) ? x.moves : [];
+    const parts: HTMLElement[] = pieces.map((piece, i) => {
+      const id = el("input", { value: String(piece.id ?? ""), size: 10, id: `design-cargo-id-${i}` });
+      const m = moves.findIndex((move) => String(move.cargo) === String(piece.id));
+      id.addEventListener("change", () => {
+        this.doc!.setIn([X, "cargo", i, "id"], id.value);
+        if (m >= 0) this.doc!.setIn([X, "moves", m, "cargo"], id.value);
+        this.commit();
+      });
+      const remove = el("button", { type: "button" }, "remove");
+      remove.addEventListener("click", () => {
+        if (m >= 0) this.doc!.deleteIn([X, "moves", m]);
+        this.doc!.deleteIn([X, "cargo", i]);
+        this.commit();
+      });
+      const piece_ = el("div", { className: "piece", "data-cargo": String(i) },
+        el("div", { className: "row" }, el("label", {}, "id ", id),
+          this.number("kg", ["cargo", i, "mass_kg"], { min: 1, step: 100, id: `design-cargo-mass-${i}` }),
+          this.number("yaw °", ["cargo", i, "yaw_deg"], { step: 1 }), remove),
+        el("div", { className: "row" }, this.triple("size x y z m", ["cargo", i, "size_m"]),
+          this.triple("stands at x y z m", ["cargo", i, "position_m"])));
+      if (m >= 0) piece_.append(el("div", { className: "row" }, this.triple("goes to x y z m", ["moves", m, "target_m"]),
+        this.number("within m", ["moves", m, "tolerance_m"], { min: 0, max: 5, step: 0.05 })));
+      return piece_;
+    });
+    // a new piece beside the last one, going beside the last one's target (the check says where that is wrong)
+    const add = el("button", { type: "button", id: "design-add-cargo" }, "add a piece");
+    add.addEventListener("click", () => {
+      const last = pieces[pieces.length - 1] ?? { size_m: [3, 2, 2], position_m: [0, 0, 1] };
+      const lastMove = moves.find((move) => String(move.cargo) === String(last.id));
+      const size: number[] = Array.isArray(last.size_m) ? last.size_m : [3, 2, 2];
+      const step = Math.max(...size) + 2;
+      const beside = (at: unknown) => Array.isArray(at) ? [Number(at[0]), Number(at[1]) + step, Number(at[2])] : [0, step, size[2] / 2];
+      let n = pieces.length + 1;
+      while (pieces.some((piece) => String(piece.id) === `PIECE-${n}`)) n++;
+      this.add(["cargo"], { id: `PIECE-${n}`, size_m: size, mass_kg: 10000, position_m: beside(last.position_m), yaw_deg: 0 });
+      this.add(["moves"], { cargo: `PIECE-${n}`, target_m: beside(lastMove?.target_m ?? last.position_m), tolerance_m: 0.5 });
+      this.commit();
+    });
+    parts.push(el("div", { className: "row" }, add));
+    return this.fieldset("General cargo", "design-cargo", ...parts);
   }
 
   // Scripted events and faults on a timeline over the time limit: a click on the line adds the chosen kind

@@ -273,6 +273,18 @@ try {
   // the preview draws the material: both heaps on the stockpile (coarsened as a station sends it)
   await until("the preview draws the piles", async () => Number(await page.getAttribute("#design-view", "data-bulk")) > 100);
   await page.locator("#design-preview").screenshot({ path: path.join(out, "console_designer_bulk_preview.png") });
+  // general cargo on the MHC's hook: a second piece beside the first, going beside its target, given a mass
+  await load("mhc_hook_lift");
+  await page.click("#design-add-cargo");
+  await until("a second piece and its move are written", async () =>
+    /\{id: PIECE-2, size_m: \[5, 3, 3\.5\], mass_kg: 10000, position_m: \[-1, -10, 1\.75\]/.test(await yaml()) &&
+    /\{cargo: PIECE-2, target_m: \[-9, 13, 1\.75\], tolerance_m: 0\.5\}/.test(await yaml()));
+  await page.fill("#design-cargo-mass-1", "12000");
+  await page.press("#design-cargo-mass-1", "Enter");
+  await until("its mass is written and the design checked", async () => /mass_kg: 12000/.test(await yaml()) &&
+    (await page.textContent("#design-result")).includes("mhc_hook_lift: valid") &&
+    (await page.textContent("#design-summary")).includes("2 moves"));
+  await page.locator("#design-cargo").screenshot({ path: path.join(out, "console_designer_cargo.png") });
 
   // every shipped exercise loads into the forms and checks valid, the page throwing nothing
   const pageErrors = [];
