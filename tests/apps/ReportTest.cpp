@@ -1,7 +1,6 @@
 // harboursim report as an instructor runs it: records written by the records store, the PDF printed by
 // chromium, read back with pdftotext and rendered with pdftoppm (poppler), as a person would check it.
 #include <gtest/gtest.h>
-#include <png.h>
 
 #include <array>
 #include <cstdio>
@@ -14,6 +13,7 @@
 #include <vector>
 
 #include "harbour/io/RecordsStore.h"
+#include "support/PngPixels.h"
 
 namespace harbour::apps {
 namespace {
@@ -33,12 +33,9 @@ std::string output_of(const std::string& command) {
 
 // pixels of a PNG within `tolerance` of an RGB colour on every channel
 int pixels_like(const fs::path& png, int r, int g, int b, int tolerance = 40) {
-  png_image image{};
-  image.version = PNG_IMAGE_VERSION;
-  if (!png_image_begin_read_from_file(&image, png.c_str())) return -1;
-  image.format = PNG_FORMAT_RGB;
-  std::vector<png_byte> pixels(PNG_IMAGE_SIZE(image));
-  if (!png_image_finish_read(&image, nullptr, pixels.data(), 0, nullptr)) return -1;
+  const std::optional<test::RgbPixels> image = test::read_png_rgb(png.string());
+  if (!image) return -1;
+  const std::vector<png_byte>& pixels = image->rgb;
   int count = 0;
   for (std::size_t i = 0; i + 2 < pixels.size(); i += 3)
     count += std::abs(pixels[i] - r) < tolerance && std::abs(pixels[i + 1] - g) < tolerance &&

@@ -3,7 +3,6 @@
 // tool moved over loopback UDP (this machine has no /dev/uinput for a real device); the station ended by
 // Ctrl-C.
 #include <gtest/gtest.h>
-#include <png.h>
 
 #include <arpa/inet.h>
 #include <netinet/in.h>
@@ -26,6 +25,7 @@
 #include "harbour/io/RecordsStore.h"
 #include "harbour/machines/sts/StsCrane.h"
 #include "harbour/station/DeviceMappingFile.h"
+#include "support/PngPixels.h"
 
 namespace harbour::apps {
 namespace {
@@ -255,14 +255,12 @@ TEST(StationCommand, TheWindowShowsTheCabViewWhileTheExerciseRuns) {
 // A debrief video of a recording: re-simulated, drawn with the HUD, encoded by ffmpeg.
 // mean luminance (0-1) of a PNG's rows below its top fifth (the HUD's lines), -1 where it cannot be read
 double lower_luminance(const std::string& file) {
-  png_image image{};
-  image.version = PNG_IMAGE_VERSION;
-  if (!png_image_begin_read_from_file(&image, file.c_str())) return -1.0;
-  image.format = PNG_FORMAT_RGB;
-  std::vector<png_byte> pixels(PNG_IMAGE_SIZE(image));
-  if (!png_image_finish_read(&image, nullptr, pixels.data(), 0, nullptr)) return -1.0;
+  const std::optional<test::RgbPixels> image = test::read_png_rgb(file);
+  if (!image) return -1.0;
+  const std::vector<png_byte>& pixels = image->rgb;
   double sum = 0.0;
-  const std::size_t first = 3 * static_cast<std::size_t>(image.width) * (image.height / 5);
+  const std::size_t first =
+      3 * static_cast<std::size_t>(image->width) * static_cast<std::size_t>(image->height / 5);
   for (std::size_t i = first; i + 2 < pixels.size(); i += 3)
     sum += 0.2126 * pixels[i] + 0.7152 * pixels[i + 1] + 0.0722 * pixels[i + 2];
   return sum / 255.0 / static_cast<double>((pixels.size() - first) / 3);

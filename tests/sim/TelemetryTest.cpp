@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "harbour/core/Units.h"
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/machines/GantryCrane.h"
 #include "harbour/machines/parts/SpreaderHoist.h"
@@ -21,7 +22,7 @@
 namespace harbour::sim {
 namespace {
 
-constexpr double kG = 9.80665;
+constexpr double kG = core::kStandardGravity;
 
 // the slot of a named indicator, -1 where the scene has none
 int slot(const SceneDescription& scene, const std::string& name) {

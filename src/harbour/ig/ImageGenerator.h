@@ -99,7 +99,8 @@ class ImageGenerator {
   ~ImageGenerator();
 
   /// Floodlights lit while the sun is below the horizon: the quay's, and the lamps on entities in the scene
-  /// while the machine's supply is on (not in a power failure); the first kFloodlightSlots of those, in order.
+  /// while the machine's supply is on (not in a power failure); the first kFloodlightSlots of those, in
+  /// order.
   void set_floodlights(const std::vector<Floodlight>& lights);
   static constexpr std::size_t kFloodlightSlots = 7;  ///< OpenGL's eight lights, one of them the sun
   /// Everything a look file gives beyond the looks: the HUD and the floodlights.

@@ -683,9 +683,10 @@ std::optional<std::string> RecordsStore::recording(std::int64_t attempt) {
 }
 
 std::optional<AttemptRow> RecordsStore::attempt(std::int64_t id) {
-  for (AttemptRow& a : attempts())
-    if (a.id == id) return std::move(a);
-  return std::nullopt;
+  if (id <= 0) return std::nullopt;
+  std::vector<AttemptRow> rows = attempt_rows("", id);
+  if (rows.empty()) return std::nullopt;
+  return std::move(rows.front());
 }
 
 sim::Recording RecordsStore::read_recording_of(const AttemptRow& attempt) {
@@ -700,15 +701,19 @@ std::optional<AttemptRow> RecordsStore::attempt_recorded_at(const std::string& p
 }
 
 std::vector<AttemptRow> RecordsStore::attempts(const std::optional<std::string>& trainee) {
+  return attempt_rows(trainee.value_or(""), 0);
+}
+
+std::vector<AttemptRow> RecordsStore::attempt_rows(const std::string& who, std::int64_t only_id) {
   std::vector<AttemptRow> out;
-  const std::string who = trainee.value_or("");
+  const long long id_wanted = only_id;
   impl_->guarded("reading the attempts", [&] {
     soci::rowset<soci::row> rows =
         (impl_->sql.prepare
              << "SELECT a.id, a.trainee, a.exercise, a.status, a.score, a.passed, a.parent, a.branch_step,"
-                " a.recording, a.route, a.stage, a.exercise_version FROM attempts a WHERE :who = '' OR "
-                "a.trainee = :who2 ORDER BY a.id DESC",
-         soci::use(who), soci::use(who));
+                " a.recording, a.route, a.stage, a.exercise_version FROM attempts a WHERE (:who = '' OR "
+                "a.trainee = :who2) AND (:id = 0 OR a.id = :id2) ORDER BY a.id DESC",
+         soci::use(who), soci::use(who), soci::use(id_wanted), soci::use(id_wanted));
     for (const soci::row& r : rows) {
       AttemptRow a;
       a.id = r.get<long long>(0);

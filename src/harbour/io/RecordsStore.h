@@ -207,6 +207,8 @@ class RecordsStore {
   std::vector<training::StageAttempt> stage_attempts(const std::string& trainee, const std::string& route);
 
  private:
+  // the attempts of `who` ("": everyone's), or only attempt `only_id` (0: all), newest first
+  std::vector<AttemptRow> attempt_rows(const std::string& who, std::int64_t only_id);
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

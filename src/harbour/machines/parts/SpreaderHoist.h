@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "harbour/cable/HoistSystem.h"
+#include "harbour/core/Units.h"
 #include "harbour/machines/Machine.h"
 #include "harbour/machines/parts/LimitSwitches.h"
 #include "harbour/machines/parts/OdeCableBodies.h"
@@ -70,7 +71,8 @@ class SpreaderHoist {
   double hoisting_speed_mps() const { return -hoist_->drum_rope_speed(0) / falls_per_rope_; }
   /// Stretches the ropes under the hanging spreader's weight, shared by the falls (before the first step).
   void settle_ropes() {
-    hoist_->pretension(settings_.spreader.mass_kg * 9.80665 / static_cast<double>(falls_.size()));
+    hoist_->pretension(settings_.spreader.mass_kg * core::kStandardGravity /
+                       static_cast<double>(falls_.size()));
   }
   /// The falls the headblock hangs on.
   int fall_count() const { return static_cast<int>(falls_.size()); }
