@@ -4,6 +4,7 @@
 #include "Console.h"
 
 #include <sodium.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <utility>  // before Boost.Asio 1.74, which uses std::exchange without it
@@ -27,6 +28,7 @@
 #include <fstream>
 #include <functional>
 #include <iostream>
+#include <list>
 #include <map>
 #include <memory>
 #include <optional>
@@ -47,6 +49,7 @@
 #include "harbour/bulk/BulkPublish.h"
 #include "harbour/core/Text.h"
 #include "harbour/ig/Visuals.h"
+#include "harbour/io/BoundedFile.h"
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/io/RecordingFile.h"
 #include "harbour/io/RecordsStore.h"
@@ -67,6 +70,10 @@ using Clock = std::chrono::steady_clock;
 
 constexpr std::size_t kMaxBodyBytes = 64 * 1024;     // the API's requests are small
 constexpr std::size_t kMaxSocketMessage = 4 * 1024;  // a browser's WebSocket messages are smaller still
+// a connection's request (or the TLS handshake) must arrive within this: an idle keep-alive connection closes
+constexpr auto kRequestTimeout = std::chrono::seconds(30);
+// file descriptors kept free of HTTP connections (the records database, the DDS link, live sockets, threads)
+constexpr std::size_t kReservedFiles = 1024;
 constexpr int kMaxJsonDepth = 8;
 constexpr auto kSessionLifetime = std::chrono::hours(12);
 constexpr auto kAckTimeout = std::chrono::seconds(3);
@@ -146,23 +153,42 @@ std::string query_param(const std::string& query, const std::string& key) {
   return "";
 }
 
-// a JSON object from a request or message body, or why not
+// a JSON object from a request or message body, or why not: too deep, not JSON, not an object, or an object
+// that gives a key twice (parsers disagree on which one counts: the last here, the first elsewhere)
 std::optional<json> parse_object(const std::string& text, std::string& why) {
   if (json_depth(text) > kMaxJsonDepth) {
     why = "JSON nested too deep";
     return std::nullopt;
   }
-  json value = json::parse(text, nullptr, false);
+  std::vector<std::set<std::string>> keys;  // of each object open at this point
+  std::string duplicate;
+  const json::parser_callback_t watch = [&](int, json::parse_event_t event, json& parsed) {
+    if (event == json::parse_event_t::object_start) {
+      keys.emplace_back();
+    } else if (event == json::parse_event_t::object_end) {
+      if (!keys.empty()) keys.pop_back();
+    } else if (event == json::parse_event_t::key && !keys.empty() && parsed.is_string() &&
+               !keys.back().insert(parsed.get<std::string>()).second && duplicate.empty()) {
+      duplicate = parsed.get<std::string>();
+    }
+    return true;
+  };
+  json value = json::parse(text, watch, false);
   if (value.is_discarded() || !value.is_object()) {
     why = "the body is not a JSON object";
+    return std::nullopt;
+  }
+  if (!duplicate.empty()) {
+    why = "key '" + core::printable(duplicate, 64) + "' is given twice";
     return std::nullopt;
   }
   return value;
 }
 
-// a string field of at most `longest` bytes, printable; "" and a reason when missing or bad
+// a string field of at most `longest` bytes with no control or bidirectional formatting characters (a
+// password: no control characters); "" and a reason when missing or bad
 std::optional<std::string> text_field(const json& body, const char* field, std::size_t longest,
-                                      std::string& why, bool required = true) {
+                                      std::string& why, bool required = true, bool password = false) {
   const auto found = body.find(field);
   if (found == body.end() || found->is_null()) {
     if (required) why = std::string("field '") + field + "' is missing";
@@ -177,11 +203,16 @@ std::optional<std::string> text_field(const json& body, const char* field, std::
     why = std::string("field '") + field + "' is longer than " + std::to_string(longest) + " bytes";
     return std::nullopt;
   }
-  for (const unsigned char c : value)
-    if (c < 0x20 || c == 0x7f) {
-      why = std::string("field '") + field + "' holds control characters";
-      return std::nullopt;
-    }
+  if (password) {
+    for (const unsigned char c : value)
+      if (c < 0x20 || c == 0x7f) {
+        why = std::string("field '") + field + "' holds control characters";
+        return std::nullopt;
+      }
+  } else if (const std::string bad = core::why_bad_name(value, longest); !value.empty() && !bad.empty()) {
+    why = std::string("field '") + field + "' " + bad;
+    return std::nullopt;
+  }
   return value;
 }
 
@@ -391,6 +422,36 @@ json route_json(const training::Route& r) {
   return {{"id", r.id}, {"name", r.name}, {"machine", r.machine}, {"stages", stages}};
 }
 
+// What the designer shows of a checked design: its summary, its forms, and its world at the first instant
+// drawn by the same 3D view as a station's. Builds the world (throws what building it throws).
+json design_preview(const std::string& folder, const DesignCheck& design) {
+  const sim::Simulation simulation(design.exercise.scenario);
+  auto snapshot = std::make_unique<sim::Snapshot>();
+  simulation.write_snapshot(*snapshot);
+  const net::StationScene published = scene_message(simulation.scene(), 0);
+  json bulk;
+  if (const bulk::BulkWorld* material = simulation.bulk()) {
+    sim::BulkView view;
+    bulk::publish(*material, view);
+    bulk = bulk_json("designer", bulk_message(view, 0, 0.0));
+  }
+  const sim::ExerciseSettings& x = design.exercise;
+  return {{"exercise", x.name},
+          {"machine", sim::machine_kind(x.scenario.machine)},
+          {"version", design.version},
+          {"containers", x.scenario.containers.size()},
+          {"moves", x.moves.size()},
+          {"events", x.scenario.events.size() + x.scenario.lift_events.size()},
+          {"time_limit_s", x.rules.time_limit_s},
+          {"pass_score", x.rules.pass_score},
+          {"wind_mps", x.scenario.weather.wind_mean_mps},
+          {"form", design_form(folder, design)},
+          {"scene", scene_json("designer", published)},
+          {"state", state_json("designer", state_message(*snapshot, simulation.scene().entities.size(), 0),
+                               &published, true)},
+          {"bulk", bulk}};
+}
+
 // A stored attempt played back in the console: re-simulated from its recording, seeking through keyframes,
 // at 0.25-8x; browsers subscribe to it as to a station ("replay-ID").
 struct Replay {
@@ -471,29 +532,80 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
  public:
   virtual ~HttpSession() = default;
   virtual void reply(http::response<http::string_body> response) = 0;
+  /// Closes it while it waits on its peer (room for another connection).
+  virtual void evict() = 0;
 };
+
+struct Connections;
 
 template <class Stream>
 class HttpConnection final : public HttpSession {
  public:
-  HttpConnection(Stream stream, Console& console) : stream_(std::move(stream)), console_(console) {}
+  HttpConnection(Stream stream, Console& console);
+  ~HttpConnection() override;
   /// Reads the first request (after the TLS handshake on a TLS connection).
   void start();
   void reply(http::response<http::string_body> response) override;
+  void evict() override;
 
  private:
   void read();
   void on_request();
   void shut();
+  /// It waits on its peer (listed as idle, the oldest evicted first), or no longer.
+  void waiting(bool on_peer);
   std::shared_ptr<HttpConnection> self() {
     return std::static_pointer_cast<HttpConnection>(shared_from_this());
   }
 
   Stream stream_;
   Console& console_;
+  std::shared_ptr<Connections> connections_;
+  std::optional<std::list<std::weak_ptr<HttpSession>>::iterator> waiting_;
   beast::flat_buffer buffer_;
   std::optional<http::request_parser<http::string_body>> parser_;
   bool keep_alive_ = false;
+};
+
+// Who may call an API route or open the live socket (Console::kRoutes). Staff are instructors and
+// administrators.
+enum class Who : std::uint8_t {
+  kAnyone,          ///< no login needed (logging in)
+  kAnyAccount,      ///< any account logged in
+  kOwnRecords,      ///< staff: anyone's records; a trainee: only their own (?trainee= another is refused)
+  kStaff,           ///< instructors and administrators
+  kAdministrators,  ///< administrators only
+};
+
+/// Static files: the built front end read once at start, served by exact name (an allow-list: no path from a
+/// request is ever joined onto a folder, so no request names a file outside it).
+class StaticFiles {
+ public:
+  static constexpr std::size_t kMostFiles = 256;
+  static constexpr std::size_t kMostBytes = std::size_t{64} << 20;
+  /// Reads every regular file under `root` (not following links out of it); throws naming what is wrong.
+  explicit StaticFiles(const std::string& root);
+  struct File {
+    std::string content_type, bytes;
+  };
+  /// The file a request path names ("/" is /index.html), nullptr when it is not one of them.
+  const File* find(const std::string& path) const;
+  std::size_t size() const { return files_.size(); }
+
+ private:
+  std::map<std::string, File> files_;  // by "/relative/path"
+};
+
+/// The open HTTP connections, those waiting on their peer the longest first: when the console holds as many
+/// as it may, the one idle the longest is closed to make room, so a fresh request is always answered.
+struct Connections {
+  std::size_t open = 0;
+  std::list<std::weak_ptr<HttpSession>> waiting;  ///< on their peer (its next request), longest first
+  std::size_t most = 0;                           ///< set at start from the process's file limit
+  /// Closes idle connections until there is room for one more.
+  void make_room();
+  /// Closes the connection idle the longest (the process is out of file descriptors); false: none idle.
+  bool evict_oldest();
 };
 
 class Console {
@@ -504,15 +616,19 @@ class Console {
         link_(options.name, options.domain),
         db_(options.database),
         audit_(options.database),
+        static_files_(options.web_root),
         poll_timer_(io) {
     if (!options.lrs.empty())
       xapi_ = std::make_unique<XapiWorker>(
           options.database, LrsOptions{options.lrs, read_lrs_credentials(options.lrs_auth_file)});
+    // a password check for names that have no account, as slow as a real one: the time of a refusal does not
+    // tell which names exist
+    unknown_account_hash_ = hash_password(random_token());
   }
 
   ~Console() {
-    for (auto& [id, printer] : printers_)
-      printer.join();  // its answer then waits in io_, which outlives the console
+    for (auto& [id, worker] : workers_)
+      worker.join();  // its answer then waits in io_, which outlives the console
   }
   Console(const Console&) = delete;
   Console& operator=(const Console&) = delete;
@@ -520,6 +636,12 @@ class Console {
   int accounts() { return db_.account_count(); }
   void handle(const http::request<http::string_body>& request, const std::string& peer,
               std::shared_ptr<HttpSession> session);
+  /// Why a WebSocket upgrade is refused ("" : it is not), with the status to answer; the socket's login
+  /// token in `token`.
+  std::string refuse_live(const http::request<http::string_body>& request, http::status& status,
+                          std::string& token);
+  /// Why the live socket of login `token` may not watch `station` ("" : it may).
+  std::string refuse_subscription(const std::string& token, const std::string& station);
   std::optional<Account> account_of(const std::string& token);
   std::string token_of(const http::request<http::string_body>& request) const;
   void attach(std::shared_ptr<LiveSocket> socket) {
@@ -527,9 +649,47 @@ class Console {
     socket->send(stations_message());
   }
   std::string stations_message() const;
+  const std::shared_ptr<Connections>& connections() const { return connections_; }
+  static constexpr std::size_t kMostLiveSockets = 512;
+  std::size_t live_sockets() const { return sockets_.size(); }
 
  private:
   using Response = http::response<http::string_body>;
+  /// One API request on its way: what the route table's checks found (its account, whose records it may
+  /// see, the id or name in its path).
+  struct Call {
+    const http::request<http::string_body>& request;
+    std::string target, query, peer;
+    std::shared_ptr<HttpSession> session;
+    std::string token;
+    std::optional<Account> account;
+    std::string segment;         ///< the path's '*' or '#' segment
+    std::int64_t segment_id = 0;  ///< a '#' segment: a positive number
+    std::string trainee;         ///< kOwnRecords: whose ("" : everyone's, staff only)
+  };
+  /// A handler answers now, or later (nullopt: a station's acknowledgement, a thread's work).
+  using Handler = std::optional<Response> (Console::*)(Call&);
+  struct Route {
+    http::verb method;
+    std::string_view path;  ///< '*' stands for a path segment (a name), '#' for a positive number
+    Who who;
+    Handler handler;
+  };
+  static const Route kRoutes[];
+  /// The live socket's upgrade, and each subscription on it: staff only.
+  static constexpr Who kLiveSocket = Who::kStaff;
+  /// The route `call` names, its segment filled in (nullptr: none for this method and path).
+  static const Route* route_of(Call& call, http::verb method);
+  /// Why `who` may not use a route (""; else the reason): role, and for kOwnRecords the trainee asked.
+  static std::string refusal(Who who, Call& call);
+  /// A trainee account owns only its trainee's records; staff own every record.
+  static bool owns(const Account& account, const std::string& trainee) {
+    return account.instructs() || account.trainee == trainee;
+  }
+  /// A browser's request from another origin than the console's own (another site, another port of this
+  /// host): "" when it is not one.
+  std::string foreign_origin(const http::request<http::string_body>& request) const;
+
   Response json_reply(const http::request<http::string_body>& request, http::status status,
                       const json& body) const;
   Response error(const http::request<http::string_body>& request, http::status status,
@@ -537,37 +697,66 @@ class Console {
     return json_reply(request, status, {{"error", why}});
   }
   Response file(const http::request<http::string_body>& request) const;
-  Response login(const http::request<http::string_body>& request, const std::string& peer);
-  void command(const http::request<http::string_body>& request, const Account& account,
-               const std::string& station, std::shared_ptr<HttpSession> session);
-  Response api(const http::request<http::string_body>& request, const Account& account,
-               const std::string& token, const std::string& target);
   bool login_blocked(const std::string& key, Clock::time_point now);
-  /// A trainee's finished attempts oldest first with score and skills, and where their best score on each
-  /// exercise version stands among every trainee's best on it (percentile rank).
-  json evolution(const std::string& trainee);
-  /// The class overview, a comparison of two trainees, and the reports (HTML, or PDF printed by chromium:
-  /// nullopt, answered when it is done).
-  std::optional<Response> cohort_views(const http::request<http::string_body>& request,
-                                       const Account& account, const std::string& target,
-                                       const std::string& query, std::shared_ptr<HttpSession> session);
+
+  // the resources, one handler each (kRoutes)
+  std::optional<Response> login(Call& c);
+  std::optional<Response> me(Call& c);
+  std::optional<Response> logout(Call& c);
+  std::optional<Response> stations(Call& c);
+  std::optional<Response> command(Call& c);
+  std::optional<Response> looks(Call& c);
+  std::optional<Response> exercises(Call& c);
+  std::optional<Response> xapi_status(Call& c);
+  std::optional<Response> trainees(Call& c);
+  std::optional<Response> change_trainee(Call& c);
+  std::optional<Response> attempts(Call& c);
+  std::optional<Response> attempt(Call& c);
+  std::optional<Response> attempts_csv_file(Call& c);
+  std::optional<Response> trainee_evolution(Call& c);
+  std::optional<Response> routes(Call& c);
+  std::optional<Response> progress(Call& c);
+  std::optional<Response> enrol_or_decide(Call& c);
+  std::optional<Response> audit_log(Call& c);
+  std::optional<Response> add_account(Call& c);
+  std::optional<Response> open_replay(Call& c);
+  /// nullopt: a take-over sent to a station, answered when it acknowledges
+  std::optional<Response> control_replay(Call& c);
+  std::optional<Response> class_overview(Call& c);
+  std::optional<Response> compare(Call& c);
+  /// The reports (HTML, or PDF printed by chromium beside the console's thread).
+  std::optional<Response> report(Call& c);
   /// The exercise designer: GET /api/designer/source?exercise=NAME, POST /api/designer/check {text} (the
   /// loader's verdict, a summary and the scene to preview), POST /api/designer/save {text}.
-  Response designer(const http::request<http::string_body>& request, const Account& account,
-                    const std::string& target, const std::string& query);
+  std::optional<Response> design_source(Call& c);
+  std::optional<Response> check_or_save_design(Call& c);
   /// The route editor: GET /api/routes/source?route=NAME, POST /api/routes/check {id, text} (the route
   /// loader's verdict and the route), POST /api/routes/save {id, text} (into the centre's route folder; the
   /// console's routes reloaded).
-  Response route_editor(const http::request<http::string_body>& request, const Account& account,
-                        const std::string& target, const std::string& query);
+  std::optional<Response> route_text(Call& c);
+  std::optional<Response> check_or_save_route(Call& c);
+  Response save_route_now(const http::request<http::string_body>& request, const std::string& account,
+                          const RouteCheck& route, json stages);
+
+  /// A trainee's finished attempts oldest first with score and skills, and where their best score on each
+  /// exercise version stands among every trainee's best on it (percentile rank).
+  json evolution(const std::string& trainee);
   std::string exercise_folder() const {
     return options_.centre.exercises.empty() ? std::string(HARBOUR_DATA_DIR) + "/exercises"
                                              : options_.centre.exercises;
   }
-  static constexpr int kMostPrintsAtOnce = 2;
-  int printing_ = 0;  ///< PDFs being printed (changed on the console's thread only)
-  std::map<std::thread::id, std::thread> printers_;  ///< joined when done, or when the console ends
-  std::unique_ptr<XapiWorker> xapi_;                 ///< the xAPI sender, with --lrs
+
+  /// What a thread beside the console's gives back: the answer, made on the console's thread.
+  using Finish = std::function<Response()>;
+  /// Runs `work` on a thread of its own (at most `most` of a kind at once, counted in `running`: a 503
+  /// beyond); its Finish answers on the console's thread. Not done within `budget`, the request is answered
+  /// 503 at once and the late result dropped.
+  void beside(Call& c, int& running, int most, std::chrono::seconds budget, std::function<Finish()> work);
+  static constexpr int kMostChecksAtOnce = 2, kMostPrintsAtOnce = 2;
+  static constexpr std::chrono::seconds kCheckBudget{10}, kPrintBudget{60};
+  int checks_ = 0, printing_ = 0;  ///< running beside (changed on the console's thread only)
+  std::map<std::thread::id, std::thread> workers_;  ///< joined when done, or when the console ends
+  std::unique_ptr<XapiWorker> xapi_;                ///< the xAPI sender, with --lrs
   /// Attempts (of one trainee or all) as CSV: one row each with the skills; text cells quoted, and
   /// those a spreadsheet would run as a formula prefixed with an apostrophe.
   std::string attempts_csv(const std::optional<std::string>& trainee);
@@ -580,7 +769,10 @@ class Console {
   net::ConsoleLink link_;
   io::RecordsStore db_;
   AuditWriter audit_;  // after db_: the database is made before the writer opens it
+  StaticFiles static_files_;
+  std::shared_ptr<Connections> connections_ = std::make_shared<Connections>();
   asio::steady_timer poll_timer_;
+  std::string unknown_account_hash_;
   std::map<std::string, LoginSession> sessions_;
   std::map<std::string, std::deque<Clock::time_point>> login_failures_;
   struct Pending {
@@ -596,11 +788,6 @@ class Console {
   bool stations_changed_ = false;
   std::map<std::int64_t, Replay> replays_;
   std::int64_t next_replay_ = 1;
-  Response open_replay(const http::request<http::string_body>& request, const Account& account);
-  /// nullopt: a take-over sent to a station, answered when it acknowledges
-  std::optional<Response> control_replay(const http::request<http::string_body>& request,
-                                         const Account& account, std::int64_t id,
-                                         std::shared_ptr<HttpSession> session);
   void play_replays(Clock::time_point now);
   json replay_state(Replay& replay, bool view = false);
   /// Sends a socket its subscription's scene (when it draws the 3D view and has not got this attempt's)
@@ -616,14 +803,81 @@ class Console {
   CentreFolders centre() const { return {exercise_folder(), options_.centre.routes}; }
 };
 
+// Every API route and who may call it: read this table to know what each role can see and do.
+const Console::Route Console::kRoutes[] = {
+    {http::verb::post, "/api/login", Who::kAnyone, &Console::login},
+    {http::verb::get, "/api/me", Who::kAnyAccount, &Console::me},
+    {http::verb::post, "/api/logout", Who::kAnyAccount, &Console::logout},
+    {http::verb::get, "/api/looks", Who::kAnyAccount, &Console::looks},
+    {http::verb::get, "/api/exercises", Who::kAnyAccount, &Console::exercises},
+    {http::verb::get, "/api/routes", Who::kAnyAccount, &Console::routes},
+    {http::verb::get, "/api/attempts", Who::kOwnRecords, &Console::attempts},
+    {http::verb::get, "/api/attempts/#", Who::kOwnRecords, &Console::attempt},
+    {http::verb::get, "/api/attempts.csv", Who::kOwnRecords, &Console::attempts_csv_file},
+    {http::verb::get, "/api/evolution", Who::kOwnRecords, &Console::trainee_evolution},
+    {http::verb::get, "/api/progress", Who::kOwnRecords, &Console::progress},
+    {http::verb::get, "/api/reports/trainee", Who::kOwnRecords, &Console::report},
+    {http::verb::get, "/api/reports/trainee.pdf", Who::kOwnRecords, &Console::report},
+    {http::verb::get, "/api/stations", Who::kStaff, &Console::stations},
+    {http::verb::post, "/api/stations/*/command", Who::kStaff, &Console::command},
+    {http::verb::get, "/api/xapi", Who::kStaff, &Console::xapi_status},
+    {http::verb::get, "/api/trainees", Who::kStaff, &Console::trainees},
+    {http::verb::post, "/api/trainees", Who::kStaff, &Console::change_trainee},
+    {http::verb::patch, "/api/trainees", Who::kStaff, &Console::change_trainee},
+    {http::verb::post, "/api/enrolments", Who::kStaff, &Console::enrol_or_decide},
+    {http::verb::post, "/api/decisions", Who::kStaff, &Console::enrol_or_decide},
+    {http::verb::get, "/api/audit", Who::kStaff, &Console::audit_log},
+    {http::verb::post, "/api/replays", Who::kStaff, &Console::open_replay},
+    {http::verb::post, "/api/replays/#", Who::kStaff, &Console::control_replay},
+    {http::verb::get, "/api/class", Who::kStaff, &Console::class_overview},
+    {http::verb::get, "/api/compare", Who::kStaff, &Console::compare},
+    {http::verb::get, "/api/reports/class", Who::kStaff, &Console::report},
+    {http::verb::get, "/api/reports/class.pdf", Who::kStaff, &Console::report},
+    {http::verb::get, "/api/designer/source", Who::kStaff, &Console::design_source},
+    {http::verb::post, "/api/designer/check", Who::kStaff, &Console::check_or_save_design},
+    {http::verb::post, "/api/designer/save", Who::kStaff, &Console::check_or_save_design},
+    {http::verb::get, "/api/routes/source", Who::kStaff, &Console::route_text},
+    {http::verb::post, "/api/routes/check", Who::kStaff, &Console::check_or_save_route},
+    {http::verb::post, "/api/routes/save", Who::kStaff, &Console::check_or_save_route},
+    {http::verb::post, "/api/accounts", Who::kAdministrators, &Console::add_account},
+};
+
 // ---------------------------------------------------------------------------------------------------
 // HTTP
 
 template <class Stream>
+HttpConnection<Stream>::HttpConnection(Stream stream, Console& console)
+    : stream_(std::move(stream)), console_(console), connections_(console.connections()) {
+  ++connections_->open;
+}
+
+template <class Stream>
+HttpConnection<Stream>::~HttpConnection() {
+  waiting(false);
+  --connections_->open;
+}
+
+template <class Stream>
+void HttpConnection<Stream>::waiting(bool on_peer) {
+  if (waiting_) connections_->waiting.erase(*waiting_);
+  waiting_.reset();
+  if (on_peer) waiting_ = connections_->waiting.insert(connections_->waiting.end(), weak_from_this());
+}
+
+template <class Stream>
+void HttpConnection<Stream>::evict() {
+  waiting_.reset();  // the list has let go of it
+  beast::error_code ignored;
+  beast::get_lowest_layer(stream_).socket().close(ignored);  // its wait ends (operation aborted)
+}
+
+template <class Stream>
 void HttpConnection<Stream>::start() {
   if constexpr (kTls<Stream>) {
-    beast::get_lowest_layer(stream_).expires_after(std::chrono::seconds(30));
+    waiting(true);
+    beast::get_lowest_layer(stream_).expires_after(kRequestTimeout);
     stream_.async_handshake(asio::ssl::stream_base::server, [self = self()](beast::error_code ec) {
+      self->waiting(false);
       if (ec) return self->shut();  // not TLS, or a certificate the browser refused: nothing to answer
       self->read();
     });
@@ -634,6 +888,7 @@ void HttpConnection<Stream>::start() {
 
 template <class Stream>
 void HttpConnection<Stream>::shut() {
+  waiting(false);
   beast::error_code ignored;
   beast::get_lowest_layer(stream_).socket().shutdown(tcp::socket::shutdown_both, ignored);
 }
@@ -643,10 +898,13 @@ void HttpConnection<Stream>::read() {
   parser_.emplace();
   parser_->body_limit(kMaxBodyBytes);
   parser_->header_limit(16 * 1024);
-  beast::get_lowest_layer(stream_).expires_after(std::chrono::seconds(60));
+  beast::get_lowest_layer(stream_).expires_after(kRequestTimeout);
+  waiting(true);
   http::async_read(stream_, buffer_, *parser_, [self = self()](beast::error_code ec, std::size_t) {
+    self->waiting(false);
     if (ec == http::error::end_of_stream || ec == beast::error::timeout || ec == asio::error::eof ||
-        ec == asio::ssl::error::stream_truncated) {
+        ec == asio::ssl::error::stream_truncated || ec == asio::error::operation_aborted ||
+        ec == asio::error::bad_descriptor) {
       self->shut();
       return;
     }
@@ -676,11 +934,12 @@ void HttpConnection<Stream>::on_request() {
   const tcp::endpoint peer = beast::get_lowest_layer(stream_).socket().remote_endpoint(ec);
   const std::string address = ec ? "?" : peer.address().to_string();
   if (websocket::is_upgrade(request)) {
-    const std::string token = console_.token_of(request);
-    if (request.target() != "/api/live" || !console_.account_of(token)) {
-      http::response<http::string_body> r{http::status::unauthorized, request.version()};
+    std::string token;
+    http::status status = http::status::ok;
+    if (const std::string why = console_.refuse_live(request, status, token); !why.empty()) {
+      http::response<http::string_body> r{status, request.version()};
       r.set(http::field::content_type, "application/json");
-      r.body() = dump(json{{"error", "log in first (the live socket is /api/live)"}});
+      r.body() = dump(json{{"error", why}});
       r.keep_alive(false);
       r.prepare_payload();
       keep_alive_ = false;
@@ -768,6 +1027,10 @@ void LiveSocket::on_message(const std::string& text) {
       send(dump(json{{"type", "error"}, {"error", "field 'view': true or false"}}));
       return;
     }
+    if (const std::string refused = console_.refuse_subscription(token_, *station); !refused.empty()) {
+      send(dump(json{{"type", "error"}, {"error", "subscription refused: " + refused}}));
+      return;
+    }
     station_ = *station;
     view_ = view != message->end() && view->get<bool>();
     scene_sent_.clear();
@@ -852,27 +1115,61 @@ Console::Response Console::json_reply(const http::request<http::string_body>& re
 }
 
 Console::Response Console::file(const http::request<http::string_body>& request) const {
-  std::string target(request.target());
-  target = target.substr(0, target.find('?'));
-  if (target == "/") target = "/index.html";
-  namespace fs = std::filesystem;
-  if (target.find("..") != std::string::npos || target.find('\\') != std::string::npos)
-    return error(request, http::status::bad_request, "bad path");
-  const fs::path path = fs::path(options_.web_root) / target.substr(1);
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) return error(request, http::status::not_found, "no such page");
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
+  const std::string target(request.target().substr(0, request.target().find('?')));
+  const StaticFiles::File* found = static_files_.find(target);
+  if (!found) return error(request, http::status::not_found, "no such page");
   Response r{http::status::ok, request.version()};
-  r.set(http::field::content_type, content_type(path));
+  r.set(http::field::content_type, found->content_type);
   r.set("X-Content-Type-Options", "nosniff");
   r.set("Content-Security-Policy",
         "default-src 'self'; connect-src 'self'; img-src 'self' data:; style-src 'self' 'unsafe-inline'");
-  r.body() = bytes.str();
+  r.body() = found->bytes;
   r.keep_alive(request.keep_alive());
   r.prepare_payload();
+  if (request.method() == http::verb::head) r.body().clear();
   return r;
+}
+
+StaticFiles::StaticFiles(const std::string& root) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path base = fs::canonical(root, ec);
+  if (ec) throw std::runtime_error("the console's pages: " + root + ": " + ec.message());
+  std::size_t bytes = 0;
+  for (fs::recursive_directory_iterator it(base, fs::directory_options::none, ec), end; !ec && it != end;
+       it.increment(ec)) {
+    if (!it->is_regular_file(ec) || it->is_symlink(ec)) continue;
+    const std::string name = "/" + fs::relative(it->path(), base, ec).generic_string();
+    if (files_.size() >= kMostFiles)
+      throw std::runtime_error("the console's pages: more than " + std::to_string(kMostFiles) + " files in " + root);
+    std::string why;
+    std::optional<std::string> content = io::read_bounded_file(it->path().string(), kMostBytes - bytes, why);
+    if (!content) throw std::runtime_error("the console's pages: " + it->path().string() + ": " + why);
+    bytes += content->size();
+    files_[name] = {content_type(it->path()), std::move(*content)};
+  }
+  if (ec) throw std::runtime_error("the console's pages: " + root + ": " + ec.message());
+}
+
+const StaticFiles::File* StaticFiles::find(const std::string& path) const {
+  const auto found = files_.find(path == "/" ? "/index.html" : path);
+  return found == files_.end() ? nullptr : &found->second;
+}
+
+void Connections::make_room() {
+  while (open >= most && evict_oldest()) {
+  }
+}
+
+bool Connections::evict_oldest() {
+  while (!waiting.empty()) {
+    const std::shared_ptr<HttpSession> oldest = waiting.front().lock();
+    waiting.pop_front();
+    if (!oldest) continue;
+    oldest->evict();
+    return true;
+  }
+  return false;
 }
 
 bool Console::login_blocked(const std::string& key, Clock::time_point now) {
@@ -882,18 +1179,24 @@ bool Console::login_blocked(const std::string& key, Clock::time_point now) {
   return static_cast<int>(failures.size()) >= kLoginFailuresAllowed;
 }
 
-Console::Response Console::login(const http::request<http::string_body>& request, const std::string& peer) {
+std::optional<Console::Response> Console::login(Call& c) {
+  const auto& request = c.request;
+  const std::string& peer = c.peer;
   std::string why;
   const std::optional<json> body = parse_object(request.body(), why);
   if (!body) return error(request, http::status::bad_request, why);
   const std::optional<std::string> name = text_field(*body, "name", 64, why);
-  const std::optional<std::string> password = name ? text_field(*body, "password", 256, why) : std::nullopt;
+  const std::optional<std::string> password =
+      name ? text_field(*body, "password", 256, why, true, true) : std::nullopt;
   if (!name || !password) return error(request, http::status::bad_request, why);
   const Clock::time_point now = Clock::now();
   if (login_blocked("address " + peer, now) || login_blocked("account " + *name, now))
     return error(request, http::status::too_many_requests, "too many failed logins: wait a minute");
   const std::optional<io::AccountRow> row = db_.account(*name);
-  if (!row || crypto_pwhash_str_verify(row->password_hash.c_str(), password->data(), password->size()) != 0) {
+  // an unknown name costs a password check as a known one does
+  const std::string& hash = row ? row->password_hash : unknown_account_hash_;
+  const bool verified = crypto_pwhash_str_verify(hash.c_str(), password->data(), password->size()) == 0;
+  if (!row || !verified) {
     login_failures_["address " + peer].push_back(now);
     login_failures_["account " + *name].push_back(now);
     audit_.add(*name, "login_failed", "", "from " + peer);
@@ -918,11 +1221,13 @@ std::string Console::stations_message() const {
   return dump(json{{"type", "stations"}, {"stations", list}});
 }
 
-void Console::command(const http::request<http::string_body>& request, const Account& account,
-                      const std::string& station, std::shared_ptr<HttpSession> session) {
+std::optional<Console::Response> Console::command(Call& c) {
+  const auto& request = c.request;
+  const Account& account = *c.account;
+  const std::string& station = c.segment;
   std::string why;
   const std::optional<json> body = parse_object(request.body(), why);
-  if (!body) return session->reply(error(request, http::status::bad_request, why));
+  if (!body) return error(request, http::status::bad_request, why);
   const std::optional<std::string> kind = text_field(*body, "kind", 48, why);
   const std::optional<std::string> exercise =
       kind ? text_field(*body, "exercise", 128, why, false) : std::nullopt;
@@ -931,351 +1236,457 @@ void Console::command(const http::request<http::string_body>& request, const Acc
   const std::optional<std::string> route_id =
       trainee ? text_field(*body, "route", 64, why, false) : std::nullopt;
   if (!kind || !exercise || !trainee || !route_id)
-    return session->reply(error(request, http::status::bad_request, why));
+    return error(request, http::status::bad_request, why);
   const auto autopilot = body->find("autopilot");
   if (autopilot != body->end() && !autopilot->is_boolean())
-    return session->reply(
-        error(request, http::status::bad_request, "field 'autopilot' is not true or false"));
+    return error(request, http::status::bad_request, "field 'autopilot' is not true or false");
   const auto found = link_.stations().find(station);
   if (found == link_.stations().end())
-    return session->reply(
-        error(request, http::status::not_found, "no station '" + core::printable(station) + "'"));
+    return error(request, http::status::not_found, "no station '" + core::printable(station) + "'");
   if (found->second.lost || found->second.gone)
-    return session->reply(
-        error(request, http::status::conflict, "station " + station + " is not on the network"));
+    return error(request, http::status::conflict, "station " + station + " is not on the network");
   std::string to_run = *exercise;
   if (*kind == "start" && !route_id->empty()) {
     // the trainee's next stage of the route, as the station will find it in the records
     const auto route =
         std::find_if(routes_.begin(), routes_.end(), [&](const auto& r) { return r.id == *route_id; });
     if (route == routes_.end())
-      return session->reply(error(request, http::status::not_found,
-                                  "field 'route': no route '" + core::printable(*route_id) + "'"));
+      return error(request, http::status::not_found,
+                                  "field 'route': no route '" + core::printable(*route_id) + "'");
     if (trainee->empty() || !db_.has_trainee(*trainee))
-      return session->reply(error(request, http::status::bad_request,
-                                  "field 'trainee': a route's stage is run by a trainee in the records"));
+      return error(request, http::status::bad_request,
+                                  "field 'trainee': a route's stage is run by a trainee in the records");
     const auto enrolled = db_.enrolments(*trainee);
     if (std::none_of(enrolled.begin(), enrolled.end(), [&](const auto& e) { return e.route == route->id; }))
-      return session->reply(
-          error(request, http::status::conflict, *trainee + " is not enrolled in route '" + route->id + "'"));
+      return error(request, http::status::conflict, *trainee + " is not enrolled in route '" + route->id + "'");
     const training::RouteProgress p = training::progress(*route, db_.stage_attempts(*trainee, route->id),
                                                          db_.overrides(*trainee, route->id));
     if (!p.next)
-      return session->reply(error(request, http::status::conflict,
+      return error(request, http::status::conflict,
                                   p.complete ? *trainee + " has passed every stage of " + route->id
                                              : "no stage of " + route->id + " is open for " + *trainee +
-                                                   ": an instructor decides (sign off or retry)"));
+                                                   ": an instructor decides (sign off or retry)");
     to_run = route->stage(*p.next)->exercise;
   }
   if (*kind == "start") {
     if (to_run.empty())
-      return session->reply(error(request, http::status::bad_request, "start needs an exercise or a route"));
+      return error(request, http::status::bad_request, "start needs an exercise or a route");
     if (!trainee->empty() && !db_.has_trainee(*trainee))
-      return session->reply(
-          error(request, http::status::bad_request, "no trainee '" + core::printable(*trainee) + "'"));
+      return error(request, http::status::bad_request, "no trainee '" + core::printable(*trainee) + "'");
   }
-  net::StationCommand c;
-  c.station(station);
-  c.user(account.name);
-  c.kind(*kind);
-  c.exercise(to_run);
-  c.trainee(*trainee);
-  c.route(*kind == "start" ? *route_id : "");
-  c.autopilot(autopilot != body->end() && autopilot->get<bool>());
-  const std::uint64_t id = link_.send(c);
-  pending_[id] = Pending{request, session, account, station, *kind, Clock::now() + kAckTimeout};
+  net::StationCommand sent;
+  sent.station(station);
+  sent.user(account.name);
+  sent.kind(*kind);
+  sent.exercise(to_run);
+  sent.trainee(*trainee);
+  sent.route(*kind == "start" ? *route_id : "");
+  sent.autopilot(autopilot != body->end() && autopilot->get<bool>());
+  const std::uint64_t id = link_.send(sent);
+  pending_[id] = Pending{request, c.session, account, station, *kind, Clock::now() + kAckTimeout};
+  return std::nullopt;  // answered when the station acknowledges
 }
 
-Console::Response Console::api(const http::request<http::string_body>& request, const Account& account,
-                               const std::string& token, const std::string& target) {
-  const bool get = request.method() == http::verb::get;
-  const auto forbidden = [&] { return error(request, http::status::forbidden, "not for a " + account.role); };
-  const auto question = request.target().find('?');
-  const std::string query =
-      question == std::string::npos ? "" : std::string(request.target().substr(question + 1));
-  if (target == "/api/me" && get)
-    return json_reply(request, http::status::ok,
-                      {{"name", account.name},
-                       {"role", account.role},
-                       {"trainee", account.trainee},
-                       {"csrf", sessions_.at(token).csrf}});
-  if (target == "/api/logout" && request.method() == http::verb::post) {
-    sessions_.erase(token);
-    audit_.add(account.name, "logout", "", "");
-    Response r = json_reply(request, http::status::ok, {{"ok", true}});
-    r.set(http::field::set_cookie,
-          "hs_session=; Path=/; HttpOnly; SameSite=Strict; Max-Age=0" + secure_cookie());
-    return r;
-  }
-  if (target == "/api/stations" && get) {
-    if (!account.instructs()) return forbidden();
-    return json_reply(request, http::status::ok, json::parse(stations_message())["stations"]);
-  }
-  if (target == "/api/looks" && get) {
-    Response r = json_reply(request, http::status::ok, json::object());
-    r.body() = looks_;
-    r.prepare_payload();
-    return r;
-  }
-  if (target == "/api/exercises" && get) {
-    std::set<std::string> names;
-    for (const std::string& folder : {std::string(HARBOUR_DATA_DIR) + "/exercises", exercise_folder()})
-      for (const std::string& n : io::exercise_names(folder))
-        names.insert(n);
-    return json_reply(request, http::status::ok, names);
-  }
-  if (target == "/api/xapi" && get) {
-    if (!account.instructs()) return forbidden();
-    std::map<std::string, int> by_state = db_.xapi_counts();
-    return json_reply(request, http::status::ok,
-                      {{"lrs", options_.lrs},
-                       {"queued", by_state["queued"]},
-                       {"sent", by_state["sent"]},
-                       {"rejected", by_state["rejected"]},
-                       {"last", xapi_ ? xapi_->last_report() : ""}});
-  }
-  if (target.rfind("/api/designer/", 0) == 0) {
-    if (!account.instructs()) return forbidden();
-    return designer(request, account, target, query);
-  }
-  if (target.rfind("/api/routes/", 0) == 0) {
-    if (!account.instructs()) return forbidden();
-    return route_editor(request, account, target, query);
-  }
-  if (target == "/api/trainees" && get) {
-    if (!account.instructs()) return forbidden();
-    json list = json::array();
-    for (const io::TraineeRow& t : db_.trainees())
-      list.push_back({{"id", t.id}, {"name", t.name}});
-    return json_reply(request, http::status::ok, list);
-  }
+// ---------------------------------------------------------------------------------------------------
+// The API's resources (Console::kRoutes says who may call each)
+
+std::optional<Console::Response> Console::me(Call& c) {
+  return json_reply(c.request, http::status::ok,
+                    {{"name", c.account->name},
+                     {"role", c.account->role},
+                     {"trainee", c.account->trainee},
+                     {"csrf", sessions_.at(c.token).csrf}});
+}
+
+std::optional<Console::Response> Console::logout(Call& c) {
+  sessions_.erase(c.token);
+  audit_.add(c.account->name, "logout", "", "");
+  Response r = json_reply(c.request, http::status::ok, {{"ok", true}});
+  r.set(http::field::set_cookie, "hs_session=; Path=/; HttpOnly; SameSite=Strict; Max-Age=0" + secure_cookie());
+  return r;
+}
+
+std::optional<Console::Response> Console::stations(Call& c) {
+  return json_reply(c.request, http::status::ok, json::parse(stations_message())["stations"]);
+}
+
+std::optional<Console::Response> Console::looks(Call& c) {
+  Response r = json_reply(c.request, http::status::ok, json::object());
+  r.body() = looks_;
+  r.prepare_payload();
+  return r;
+}
+
+std::optional<Console::Response> Console::exercises(Call& c) {
+  std::set<std::string> names;
+  for (const std::string& folder : centre().exercise_folders())
+    for (const std::string& n : io::exercise_names(folder))
+      names.insert(n);
+  return json_reply(c.request, http::status::ok, names);
+}
+
+std::optional<Console::Response> Console::xapi_status(Call& c) {
+  std::map<std::string, int> by_state = db_.xapi_counts();
+  return json_reply(c.request, http::status::ok,
+                    {{"lrs", options_.lrs},
+                     {"queued", by_state["queued"]},
+                     {"sent", by_state["sent"]},
+                     {"rejected", by_state["rejected"]},
+                     {"last", xapi_ ? xapi_->last_report() : ""}});
+}
+
+std::optional<Console::Response> Console::trainees(Call& c) {
+  json list = json::array();
+  for (const io::TraineeRow& t : db_.trainees())
+    list.push_back({{"id", t.id}, {"name", t.name}});
+  return json_reply(c.request, http::status::ok, list);
+}
+
+std::optional<Console::Response> Console::change_trainee(Call& c) {
+  const auto& request = c.request;
   const bool adds = request.method() == http::verb::post;  // a new trainee; PATCH renames one
-  if (target == "/api/trainees" && (adds || request.method() == http::verb::patch)) {
-    if (!account.instructs()) return forbidden();
-    std::string why;
-    const std::optional<json> body = parse_object(request.body(), why);
-    const std::optional<std::string> id = body ? text_field(*body, "id", 64, why) : std::nullopt;
-    const std::optional<std::string> name = id ? text_field(*body, "name", 128, why) : std::nullopt;
-    if (!name) return error(request, http::status::bad_request, why);
-    try {
-      if (adds)
-        db_.add_trainee(*id, *name);
-      else
-        db_.rename_trainee(*id, *name);
-    } catch (const std::out_of_range& e) {
-      return error(request, http::status::not_found, e.what());
-    } catch (const std::exception& e) {
-      return error(request, http::status::bad_request, e.what());
-    }
-    audit_.add(account.name, adds ? "add_trainee" : "rename_trainee", *id, *name);
-    return json_reply(request, adds ? http::status::created : http::status::ok,
-                      {{"id", *id}, {"name", *name}});
+  std::string why;
+  const std::optional<json> body = parse_object(request.body(), why);
+  const std::optional<std::string> id = body ? text_field(*body, "id", 64, why) : std::nullopt;
+  const std::optional<std::string> name = id ? text_field(*body, "name", 128, why) : std::nullopt;
+  if (!name) return error(request, http::status::bad_request, why);
+  try {
+    if (adds)
+      db_.add_trainee(*id, *name);
+    else
+      db_.rename_trainee(*id, *name);
+  } catch (const std::out_of_range& e) {
+    return error(request, http::status::not_found, e.what());
+  } catch (const std::exception& e) {
+    return error(request, http::status::bad_request, e.what());
   }
-  if (target.rfind("/api/attempts", 0) == 0 && target.rfind("/api/attempts.csv", 0) != 0 && get) {
-    const std::string rest = target.substr(13);
-    if (rest.empty() || rest[0] == '?') {
-      std::optional<std::string> trainee;
-      if (const std::string asked = query_param(query, "trainee"); !asked.empty()) trainee = asked;
-      if (!account.instructs()) {
-        if (trainee && *trainee != account.trainee) return forbidden();
-        trainee = account.trainee;  // a trainee sees only their own
-      }
-      json list = json::array();
-      for (const io::AttemptRow& a : db_.attempts(trainee))
-        list.push_back({{"id", a.id},
-                        {"trainee", a.trainee},
-                        {"exercise", a.exercise},
-                        {"status", a.status},
-                        {"score", a.score ? json(*a.score) : json(nullptr)},
-                        {"passed", a.passed},
-                        {"moves", a.moves},
-                        {"parent", a.parent ? json(*a.parent) : json(nullptr)},
-                        {"route", a.route},
-                        {"stage", a.stage},
-                        {"exercise_version", a.exercise_version}});
-      return json_reply(request, http::status::ok, list);
-    }
-    if (rest[0] != '/') return error(request, http::status::not_found, "no such API");
-    std::int64_t id = 0;
-    try {
-      std::size_t used = 0;
-      id = std::stoll(rest.substr(1), &used);
-      if (used != rest.size() - 1 || id <= 0) throw std::invalid_argument("not a positive number");
-    } catch (const std::exception&) {
-      return error(request, http::status::bad_request, "attempt id: a positive number");
-    }
-    for (const io::AttemptRow& a :
-         db_.attempts(account.instructs() ? std::nullopt : std::optional(account.trainee))) {
-      if (a.id != id) continue;
-      json events = json::array(), metrics = json::object();
-      for (const io::EventRow& e : db_.events(id))
-        events.push_back({{"at_s", e.at_s}, {"kind", e.kind}, {"value", e.value}});
-      for (const auto& [name, value] : db_.metrics(id))
-        metrics[name] = value;
-      json detail = {{"id", a.id},
-                     {"trainee", a.trainee},
-                     {"exercise", a.exercise},
-                     {"status", a.status},
-                     {"score", a.score ? json(*a.score) : json(nullptr)},
-                     {"passed", a.passed},
-                     {"events", events},
-                     {"metrics", metrics}};
-      if (account.instructs()) detail["recording"] = a.recording;  // where its station wrote it
-      return json_reply(request, http::status::ok, detail);
-    }
-    return error(request, http::status::not_found, "no attempt " + std::to_string(id) + " for you");
-  }
-  if (target == "/api/replays" && request.method() == http::verb::post) {
-    if (!account.instructs()) return forbidden();
-    return open_replay(request, account);
-  }
-  if ((target.rfind("/api/evolution", 0) == 0 || target.rfind("/api/attempts.csv", 0) == 0) && get) {
-    std::string trainee = query_param(query, "trainee");
-    if (!account.instructs()) {
-      if (!trainee.empty() && trainee != account.trainee) return forbidden();
-      trainee = account.trainee;  // a trainee sees only their own
-    }
-    if (trainee.empty() && target.rfind("/api/evolution", 0) == 0)
-      return error(request, http::status::bad_request, "evolution of whom: ?trainee=ID");
-    if (!trainee.empty() && !db_.has_trainee(trainee))
-      return error(request, http::status::not_found, "no trainee '" + core::printable(trainee) + "'");
-    if (target.rfind("/api/attempts.csv", 0) == 0) {
-      Response r = json_reply(request, http::status::ok, json::object());
-      r.set(http::field::content_type, "text/csv; charset=utf-8");
-      r.set(http::field::content_disposition, "attachment; filename=\"attempts.csv\"");
-      r.body() = attempts_csv(trainee.empty() ? std::nullopt : std::optional(trainee));
-      r.prepare_payload();
-      return r;
-    }
-    return json_reply(request, http::status::ok, evolution(trainee));
-  }
-  if (target == "/api/routes" && get) {
-    json list = json::array();
-    for (const training::Route& r : routes_)
-      list.push_back(route_json(r));
-    return json_reply(request, http::status::ok, list);
-  }
-  if (target.rfind("/api/progress", 0) == 0 && get) {
-    std::string trainee = query_param(query, "trainee");
-    if (!account.instructs()) {
-      if (!trainee.empty() && trainee != account.trainee) return forbidden();
-      trainee = account.trainee;  // a trainee sees only their own
-    }
-    if (trainee.empty()) return error(request, http::status::bad_request, "progress of whom: ?trainee=ID");
-    if (!db_.has_trainee(trainee))
-      return error(request, http::status::not_found, "no trainee '" + core::printable(trainee) + "'");
-    json list = json::array();
-    for (const io::EnrolmentRow& e : db_.enrolments(trainee)) {
-      const auto route =
-          std::find_if(routes_.begin(), routes_.end(), [&](const auto& r) { return r.id == e.route; });
-      if (route == routes_.end()) continue;  // a route of another centre's folder
-      const std::vector<training::Override> decided = db_.overrides(trainee, route->id);
-      const training::RouteProgress p =
-          training::progress(*route, db_.stage_attempts(trainee, route->id), decided);
-      json stages = json::array();
-      for (const training::StageProgress& sp : p.stages)
-        stages.push_back({{"stage", sp.stage},
-                          {"state", training::state_name(sp.state)},
-                          {"attempts", sp.attempts},
-                          {"attempts_allowed", sp.attempts_allowed},
-                          {"passes", sp.passes},
-                          {"best_score", sp.best_score ? json(*sp.best_score) : json(nullptr)},
-                          {"signed_off", sp.signed_off},
-                          {"missing", sp.missing}});
-      json decisions = json::array();
-      for (const training::Override& o : decided)
-        decisions.push_back({{"stage", o.stage},
-                             {"action", o.action},
-                             {"reason", o.reason},
-                             {"account", o.account},
-                             {"at", o.at}});
-      list.push_back({{"route", e.route},
-                      {"enrolled_at", e.at},
-                      {"next", p.next ? json(*p.next) : json(nullptr)},
-                      {"complete", p.complete},
-                      {"stages", stages},
-                      {"decisions", decisions}});
-    }
-    return json_reply(request, http::status::ok, {{"trainee", trainee}, {"routes", list}});
-  }
-  if ((target == "/api/enrolments" || target == "/api/decisions") && request.method() == http::verb::post) {
-    if (!account.instructs()) return forbidden();
-    std::string why;
-    const std::optional<json> body = parse_object(request.body(), why);
-    const std::optional<std::string> trainee = body ? text_field(*body, "trainee", 64, why) : std::nullopt;
-    const std::optional<std::string> route_id = trainee ? text_field(*body, "route", 64, why) : std::nullopt;
-    if (!route_id) return error(request, http::status::bad_request, why);
-    const auto route =
-        std::find_if(routes_.begin(), routes_.end(), [&](const auto& r) { return r.id == *route_id; });
-    if (route == routes_.end())
-      return error(request, http::status::not_found,
-                   "field 'route': no route '" + core::printable(*route_id) + "'");
-    if (!db_.has_trainee(*trainee))
-      return error(request, http::status::not_found,
-                   "field 'trainee': no trainee '" + core::printable(*trainee) + "'");
-    if (target == "/api/enrolments") {
-      const bool added = db_.enrol(*trainee, route->id, account.name);
-      if (added) audit_.add(account.name, "enrol", *trainee, route->id);
-      return json_reply(request, added ? http::status::created : http::status::ok,
-                        {{"trainee", *trainee}, {"route", route->id}, {"enrolled", true}});
-    }
-    const std::optional<std::string> stage = text_field(*body, "stage", 64, why);
-    const std::optional<std::string> action = stage ? text_field(*body, "action", 16, why) : std::nullopt;
-    const std::optional<std::string> reason = action ? text_field(*body, "reason", 500, why) : std::nullopt;
-    if (!reason) return error(request, http::status::bad_request, why);
-    if (!route->stage(*stage))
-      return error(request, http::status::bad_request,
-                   "field 'stage': route '" + route->id + "' has no stage '" + core::printable(*stage) + "'");
-    if (*action != "sign_off" && *action != "retry")
-      return error(request, http::status::bad_request, "field 'action': sign_off or retry");
-    try {
-      db_.add_override(*trainee, route->id, {*stage, *action, *reason, account.name, ""});
-    } catch (const std::out_of_range& e) {
-      return error(request, http::status::conflict, e.what());
-    } catch (const std::invalid_argument& e) {
-      return error(request, http::status::bad_request, e.what());
-    }
-    audit_.add(account.name, *action, *trainee + " " + route->id + "/" + *stage, *reason);
-    return json_reply(request, http::status::created,
-                      {{"trainee", *trainee}, {"route", route->id}, {"stage", *stage}, {"action", *action}});
-  }
-  if (target == "/api/audit" && get) {
-    if (!account.instructs()) return forbidden();
-    json list = json::array();
-    audit_.flush();  // the log as it stands, the entries just queued in it
-    for (const io::AuditRow& a : db_.audit_log(200))
-      list.push_back({{"at", a.at},
-                      {"account", a.account},
-                      {"action", a.action},
-                      {"target", a.target},
-                      {"detail", a.detail}});
-    return json_reply(request, http::status::ok, list);
-  }
-  if (target == "/api/accounts" && request.method() == http::verb::post) {
-    if (account.role != "administrator") return forbidden();
-    std::string why;
-    const std::optional<json> body = parse_object(request.body(), why);
-    const std::optional<std::string> name = body ? text_field(*body, "name", 64, why) : std::nullopt;
-    const std::optional<std::string> password = name ? text_field(*body, "password", 256, why) : std::nullopt;
-    const std::optional<std::string> role = password ? text_field(*body, "role", 16, why) : std::nullopt;
-    const std::optional<std::string> trainee =
-        role ? text_field(*body, "trainee", 64, why, false) : std::nullopt;
-    if (!trainee) return error(request, http::status::bad_request, why);
-    if (password->size() < 8)
-      return error(request, http::status::bad_request, "a password of 8 characters or more");
-    try {
-      db_.add_account({*name, *role, hash_password(*password), *trainee});
-    } catch (const std::invalid_argument& e) {
-      return error(request, http::status::bad_request, e.what());
-    }
-    audit_.add(account.name, "add_account", *name, *role);
-    return json_reply(request, http::status::created, {{"name", *name}, {"role", *role}});
-  }
-  return error(request, http::status::not_found, "no such API: " + core::printable(target));
+  audit_.add(c.account->name, adds ? "add_trainee" : "rename_trainee", *id, *name);
+  return json_reply(request, adds ? http::status::created : http::status::ok, {{"id", *id}, {"name", *name}});
 }
 
-Console::Response Console::open_replay(const http::request<http::string_body>& request,
-                                       const Account& account) {
+std::optional<Console::Response> Console::attempts(Call& c) {
+  std::optional<std::string> trainee;
+  if (!c.trainee.empty()) trainee = c.trainee;
+  json list = json::array();
+  for (const io::AttemptRow& a : db_.attempts(trainee))
+    list.push_back({{"id", a.id},
+                    {"trainee", a.trainee},
+                    {"exercise", a.exercise},
+                    {"status", a.status},
+                    {"outcome", io::attempt_outcome(a)},
+                    {"score", a.score ? json(*a.score) : json(nullptr)},
+                    {"passed", a.passed},
+                    {"moves", a.moves},
+                    {"parent", a.parent ? json(*a.parent) : json(nullptr)},
+                    {"route", a.route},
+                    {"stage", a.stage},
+                    {"exercise_version", a.exercise_version}});
+  return json_reply(c.request, http::status::ok, list);
+}
+
+std::optional<Console::Response> Console::attempt(Call& c) {
+  const auto& request = c.request;
+  const std::int64_t id = c.segment_id;
+  const std::optional<io::AttemptRow> a = db_.attempt(id);
+  if (!a || !owns(*c.account, a->trainee))
+    return error(request, http::status::not_found, "no attempt " + std::to_string(id) + " for you");
+  json events = json::array(), metrics = json::object();
+  for (const io::EventRow& e : db_.events(id))
+    events.push_back({{"at_s", e.at_s}, {"kind", e.kind}, {"value", e.value}});
+  for (const auto& [name, value] : db_.metrics(id))
+    metrics[name] = value;
+  json detail = {{"id", a->id},
+                 {"trainee", a->trainee},
+                 {"exercise", a->exercise},
+                 {"status", a->status},
+                 {"outcome", io::attempt_outcome(*a)},
+                 {"score", a->score ? json(*a->score) : json(nullptr)},
+                 {"passed", a->passed},
+                 {"events", events},
+                 {"metrics", metrics}};
+  if (c.account->instructs()) detail["recording"] = a->recording;  // where its station wrote it
+  return json_reply(request, http::status::ok, detail);
+}
+
+std::optional<Console::Response> Console::attempts_csv_file(Call& c) {
+  if (!c.trainee.empty() && !db_.has_trainee(c.trainee))
+    return error(c.request, http::status::not_found, "no trainee '" + core::printable(c.trainee) + "'");
+  Response r = json_reply(c.request, http::status::ok, json::object());
+  r.set(http::field::content_type, "text/csv; charset=utf-8");
+  r.set(http::field::content_disposition, "attachment; filename=\"attempts.csv\"");
+  r.body() = attempts_csv(c.trainee.empty() ? std::nullopt : std::optional(c.trainee));
+  r.prepare_payload();
+  return r;
+}
+
+std::optional<Console::Response> Console::trainee_evolution(Call& c) {
+  if (c.trainee.empty()) return error(c.request, http::status::bad_request, "evolution of whom: ?trainee=ID");
+  if (!db_.has_trainee(c.trainee))
+    return error(c.request, http::status::not_found, "no trainee '" + core::printable(c.trainee) + "'");
+  return json_reply(c.request, http::status::ok, evolution(c.trainee));
+}
+
+std::optional<Console::Response> Console::routes(Call& c) {
+  json list = json::array();
+  for (const training::Route& r : routes_)
+    list.push_back(route_json(r));
+  return json_reply(c.request, http::status::ok, list);
+}
+
+std::optional<Console::Response> Console::progress(Call& c) {
+  const auto& request = c.request;
+  const std::string& trainee = c.trainee;
+  if (trainee.empty()) return error(request, http::status::bad_request, "progress of whom: ?trainee=ID");
+  if (!db_.has_trainee(trainee))
+    return error(request, http::status::not_found, "no trainee '" + core::printable(trainee) + "'");
+  json list = json::array();
+  for (const io::EnrolmentRow& e : db_.enrolments(trainee)) {
+    const auto route =
+        std::find_if(routes_.begin(), routes_.end(), [&](const auto& r) { return r.id == e.route; });
+    if (route == routes_.end()) continue;  // a route of another centre's folder
+    const std::vector<training::Override> decided = db_.overrides(trainee, route->id);
+    const training::RouteProgress p =
+        training::progress(*route, db_.stage_attempts(trainee, route->id), decided);
+    json stages = json::array();
+    for (const training::StageProgress& sp : p.stages)
+      stages.push_back({{"stage", sp.stage},
+                        {"state", training::state_name(sp.state)},
+                        {"attempts", sp.attempts},
+                        {"attempts_allowed", sp.attempts_allowed},
+                        {"passes", sp.passes},
+                        {"best_score", sp.best_score ? json(*sp.best_score) : json(nullptr)},
+                        {"signed_off", sp.signed_off},
+                        {"missing", sp.missing}});
+    json decisions = json::array();
+    for (const training::Override& o : decided)
+      decisions.push_back({{"stage", o.stage},
+                           {"action", o.action},
+                           {"reason", o.reason},
+                           {"account", o.account},
+                           {"at", o.at}});
+    list.push_back({{"route", e.route},
+                    {"enrolled_at", e.at},
+                    {"next", p.next ? json(*p.next) : json(nullptr)},
+                    {"complete", p.complete},
+                    {"stages", stages},
+                    {"decisions", decisions}});
+  }
+  return json_reply(request, http::status::ok, {{"trainee", trainee}, {"routes", list}});
+}
+
+std::optional<Console::Response> Console::enrol_or_decide(Call& c) {
+  const auto& request = c.request;
+  const Account& account = *c.account;
+  std::string why;
+  const std::optional<json> body = parse_object(request.body(), why);
+  const std::optional<std::string> trainee = body ? text_field(*body, "trainee", 64, why) : std::nullopt;
+  const std::optional<std::string> route_id = trainee ? text_field(*body, "route", 64, why) : std::nullopt;
+  if (!route_id) return error(request, http::status::bad_request, why);
+  const auto route =
+      std::find_if(routes_.begin(), routes_.end(), [&](const auto& r) { return r.id == *route_id; });
+  if (route == routes_.end())
+    return error(request, http::status::not_found,
+                 "field 'route': no route '" + core::printable(*route_id) + "'");
+  if (!db_.has_trainee(*trainee))
+    return error(request, http::status::not_found,
+                 "field 'trainee': no trainee '" + core::printable(*trainee) + "'");
+  if (c.target == "/api/enrolments") {
+    const bool added = db_.enrol(*trainee, route->id, account.name);
+    if (added) audit_.add(account.name, "enrol", *trainee, route->id);
+    return json_reply(request, added ? http::status::created : http::status::ok,
+                      {{"trainee", *trainee}, {"route", route->id}, {"enrolled", true}});
+  }
+  const std::optional<std::string> stage = text_field(*body, "stage", 64, why);
+  const std::optional<std::string> action = stage ? text_field(*body, "action", 16, why) : std::nullopt;
+  const std::optional<std::string> reason = action ? text_field(*body, "reason", 500, why) : std::nullopt;
+  if (!reason) return error(request, http::status::bad_request, why);
+  if (!route->stage(*stage))
+    return error(request, http::status::bad_request,
+                 "field 'stage': route '" + route->id + "' has no stage '" + core::printable(*stage) + "'");
+  if (*action != "sign_off" && *action != "retry")
+    return error(request, http::status::bad_request, "field 'action': sign_off or retry");
+  try {
+    db_.add_override(*trainee, route->id, {*stage, *action, *reason, account.name, ""});
+  } catch (const std::out_of_range& e) {
+    return error(request, http::status::conflict, e.what());
+  } catch (const std::invalid_argument& e) {
+    return error(request, http::status::bad_request, e.what());
+  }
+  audit_.add(account.name, *action, *trainee + " " + route->id + "/" + *stage, *reason);
+  return json_reply(request, http::status::created,
+                    {{"trainee", *trainee}, {"route", route->id}, {"stage", *stage}, {"action", *action}});
+}
+
+std::optional<Console::Response> Console::audit_log(Call& c) {
+  json list = json::array();
+  audit_.flush();  // the log as it stands, the entries just queued in it
+  for (const io::AuditRow& a : db_.audit_log(200))
+    list.push_back(
+        {{"at", a.at}, {"account", a.account}, {"action", a.action}, {"target", a.target}, {"detail", a.detail}});
+  return json_reply(c.request, http::status::ok, list);
+}
+
+std::optional<Console::Response> Console::add_account(Call& c) {
+  const auto& request = c.request;
+  std::string why;
+  const std::optional<json> body = parse_object(request.body(), why);
+  const std::optional<std::string> name = body ? text_field(*body, "name", 64, why) : std::nullopt;
+  const std::optional<std::string> password =
+      name ? text_field(*body, "password", 256, why, true, true) : std::nullopt;
+  const std::optional<std::string> role = password ? text_field(*body, "role", 16, why) : std::nullopt;
+  const std::optional<std::string> trainee = role ? text_field(*body, "trainee", 64, why, false) : std::nullopt;
+  if (!trainee) return error(request, http::status::bad_request, why);
+  if (password->size() < 8)
+    return error(request, http::status::bad_request, "a password of 8 characters or more");
+  try {
+    db_.add_account({*name, *role, hash_password(*password), *trainee});
+  } catch (const std::invalid_argument& e) {
+    return error(request, http::status::bad_request, e.what());
+  }
+  audit_.add(c.account->name, "add_account", *name, *role);
+  return json_reply(request, http::status::created, {{"name", *name}, {"role", *role}});
+}
+
+std::optional<Console::Response> Console::design_source(Call& c) {
+  const std::string name = query_param(c.query, "exercise");
+  for (const std::string& folder : centre().exercise_folders()) {
+    try {
+      const std::string text = apps::design_source(folder, name);
+      return json_reply(c.request, http::status::ok,
+                        {{"exercise", name}, {"text", text}, {"designed", designed(text)}});
+    } catch (const std::out_of_range&) {
+    }
+  }
+  return error(c.request, http::status::not_found, "no exercise '" + core::printable(name) + "'");
+}
+
+std::optional<Console::Response> Console::check_or_save_design(Call& c) {
+  std::string why;
+  const std::optional<json> body = parse_object(c.request.body(), why);
+  const auto text = body ? body->find("text") : json::const_iterator{};
+  if (!body || text == body->end() || !text->is_string())
+    return error(c.request, http::status::bad_request, body ? "field 'text': the exercise's YAML" : why);
+  const bool save = c.target == "/api/designer/save";
+  // the loader and the preview's world run beside the console's thread: a slow or hostile design holds up
+  // nobody else
+  beside(c, checks_, kMostChecksAtOnce, kCheckBudget,
+         [this, save, folder = exercise_folder(), yaml = text->get<std::string>(), request = c.request,
+          account = c.account->name]() -> Finish {
+           DesignCheck design;
+           try {
+             design = check_design(folder, yaml);
+           } catch (const std::invalid_argument& e) {
+             return [this, request, why = std::string(e.what())] {
+               return error(request, http::status::unprocessable_entity, why);
+             };
+           }
+           if (save)
+             return [this, request, account, design] {
+               std::string file;
+               try {
+                 file = save_design(exercise_folder(), design);
+               } catch (const std::logic_error& e) {
+                 return error(request, http::status::conflict, e.what());
+               }
+               audit_.add(account, "save_exercise", design.exercise.name, design.version);
+               return json_reply(request, http::status::created,
+                                 {{"exercise", design.exercise.name}, {"version", design.version}, {"file", file}});
+             };
+           json preview;
+           try {
+             preview = design_preview(folder, design);
+           } catch (const std::exception& e) {
+             return [this, request, why = std::string(e.what())] {
+               return error(request, http::status::unprocessable_entity,
+                            "the design loads but its world cannot be built: " + why);
+             };
+           }
+           return [this, request, preview = std::move(preview)] {
+             return json_reply(request, http::status::ok, preview);
+           };
+         });
+  return std::nullopt;
+}
+
+std::optional<Console::Response> Console::route_text(Call& c) {
+  const std::string id = query_param(c.query, "route");
+  try {
+    const std::string text = route_source(centre(), id);
+    return json_reply(c.request, http::status::ok, {{"route", id}, {"text", text}, {"designed", designed(text)}});
+  } catch (const std::out_of_range& e) {
+    return error(c.request, http::status::not_found, e.what());
+  }
+}
+
+std::optional<Console::Response> Console::check_or_save_route(Call& c) {
+  const auto& request = c.request;
+  std::string why;
+  const std::optional<json> body = parse_object(request.body(), why);
+  if (!body) return error(request, http::status::bad_request, why);
+  const auto id = body->find("id"), text = body->find("text");
+  if (id == body->end() || !id->is_string())
+    return error(request, http::status::bad_request, "field 'id': the route's file name");
+  if (text == body->end() || !text->is_string())
+    return error(request, http::status::bad_request, "field 'text': the route's YAML");
+  const bool save = c.target == "/api/routes/save";
+  beside(c, checks_, kMostChecksAtOnce, kCheckBudget,
+         [this, save, folders = centre(), id = id->get<std::string>(), yaml = text->get<std::string>(), request,
+          account = c.account->name]() -> Finish {
+           RouteCheck route;
+           try {
+             route = check_route_text(folders, id, yaml);
+           } catch (const std::invalid_argument& e) {
+             return [this, request, why = std::string(e.what())] {
+               return error(request, http::status::unprocessable_entity, why);
+             };
+           }
+           json stages = route_json(route.route);
+           for (std::size_t n = 0; n < route.route.stages.size(); ++n)
+             stages["stages"][n]["exercise_version"] = io::exercise_version(route.route.stages[n].exercise_file);
+           if (!save)
+             return [this, request, stages = std::move(stages)] {
+               return json_reply(request, http::status::ok, stages);
+             };
+           return [this, request, account, route, stages = std::move(stages)]() mutable {
+             return save_route_now(request, account, route, std::move(stages));
+           };
+         });
+  return std::nullopt;
+}
+
+Console::Response Console::save_route_now(const http::request<http::string_body>& request,
+                                          const std::string& account, const RouteCheck& route, json stages) {
+  const std::string file_name = route.route.id + ".yaml";
+  std::string file, before;
+  try {
+    before = route_source(centre(), route.route.id);
+  } catch (const std::out_of_range&) {
+  }
+  try {
+    file = save_route(centre(), route);
+  } catch (const std::logic_error& e) {
+    return error(request, http::status::conflict, e.what());
+  }
+  // the console's routes with it; should another file of the folder spoil them, the save is undone
+  try {
+    routes_ = load_centre_routes(centre());
+  } catch (const std::exception& e) {
+    std::error_code ec;
+    if (before.empty())
+      std::filesystem::remove(file, ec);
+    else
+      std::ofstream(file, std::ios::binary) << before;
+    return error(request, http::status::unprocessable_entity,
+                 std::string("saved, the centre's routes no longer load, so it was undone: ") + e.what());
+  }
+  audit_.add(account, "save_route", route.route.id, file_name);
+  stages["file"] = file;
+  return json_reply(request, http::status::created, stages);
+}
+
+std::optional<Console::Response> Console::open_replay(Call& c) {
+  const auto& request = c.request;
+  const Account& account = *c.account;
   std::string why;
   const std::optional<json> body = parse_object(request.body(), why);
   if (!body) return error(request, http::status::bad_request, why);
@@ -1331,9 +1742,9 @@ Console::Response Console::open_replay(const http::request<http::string_body>& r
                                                                                 "release-emergency-stop",
                                                                                 "power-failure",
                                                                                 "power-restored"};
-  for (const sim::Recording::Command& c : r.recording.commands)
-    events.push_back({{"at_s", static_cast<double>(c.step) * sim::Simulation::kStep_s},
-                      {"kind", std::string("instructor ") + kCommandNames[static_cast<int>(c.command.kind)]},
+  for (const sim::Recording::Command& given : r.recording.commands)
+    events.push_back({{"at_s", static_cast<double>(given.step) * sim::Simulation::kStep_s},
+                      {"kind", std::string("instructor ") + kCommandNames[static_cast<int>(given.command.kind)]},
                       {"value", 0.0}});
   std::sort(events.begin(), events.end(),
             [](const json& a, const json& b) { return a["at_s"].get<double>() < b["at_s"].get<double>(); });
@@ -1350,9 +1761,11 @@ Console::Response Console::open_replay(const http::request<http::string_body>& r
                      {"events", events}});
 }
 
-std::optional<Console::Response> Console::control_replay(const http::request<http::string_body>& request,
-                                                         const Account& account, std::int64_t id,
-                                                         std::shared_ptr<HttpSession> session) {
+std::optional<Console::Response> Console::control_replay(Call& c) {
+  const auto& request = c.request;
+  const Account& account = *c.account;
+  const std::int64_t id = c.segment_id;
+  const std::shared_ptr<HttpSession>& session = c.session;
   const auto found = replays_.find(id);
   if (found == replays_.end())
     return error(request, http::status::not_found, "no replay " + std::to_string(id));
@@ -1403,16 +1816,16 @@ std::optional<Console::Response> Console::control_replay(const http::request<htt
       return error(request, http::status::bad_request, "no trainee '" + core::printable(*trainee) + "'");
     const auto autopilot = body->find("autopilot");
     r.playing = false;
-    net::StationCommand c;
-    c.station(*station);
-    c.user(account.name);
-    c.kind("take-over");
-    c.exercise(r.exercise.name);
-    c.trainee(trainee->empty() ? r.trainee : *trainee);
-    c.autopilot(autopilot != body->end() && autopilot->is_boolean() && autopilot->get<bool>());
-    c.recording(r.recording_file);
-    c.step(r.player->simulation().steps());
-    const std::uint64_t command = link_.send(c);
+    net::StationCommand sent;
+    sent.station(*station);
+    sent.user(account.name);
+    sent.kind("take-over");
+    sent.exercise(r.exercise.name);
+    sent.trainee(trainee->empty() ? r.trainee : *trainee);
+    sent.autopilot(autopilot != body->end() && autopilot->is_boolean() && autopilot->get<bool>());
+    sent.recording(r.recording_file);
+    sent.step(r.player->simulation().steps());
+    const std::uint64_t command = link_.send(sent);
     pending_[command] = Pending{request,
                                 session,
                                 account,
@@ -1474,6 +1887,105 @@ void Console::play_replays(Clock::time_point now) {
   }
 }
 
+const Console::Route* Console::route_of(Call& call, http::verb method) {
+  for (const Route& route : kRoutes) {
+    if (route.method != method) continue;
+    // the path, '*' and '#' each standing for one non-empty segment
+    const std::string_view pattern = route.path, target = call.target;
+    std::size_t p = 0, t = 0;
+    std::string segment;
+    bool match = true;
+    while (match && p < pattern.size() && t <= target.size()) {
+      if (pattern[p] == '*' || pattern[p] == '#') {
+        const std::size_t end = std::min(target.find('/', t), target.size());
+        segment = std::string(target.substr(t, end - t));
+        match = !segment.empty();
+        t = end;
+        ++p;
+      } else {
+        match = t < target.size() && pattern[p] == target[t];
+        ++p;
+        ++t;
+      }
+    }
+    if (!match || p != pattern.size() || t != target.size()) continue;
+    call.segment = segment;
+    return &route;
+  }
+  return nullptr;
+}
+
+std::string Console::refusal(Who who, Call& call) {
+  const Account& account = *call.account;
+  switch (who) {
+    case Who::kAnyone:
+    case Who::kAnyAccount:
+      return "";
+    case Who::kOwnRecords: {
+      const std::string asked = query_param(call.query, "trainee");
+      if (account.instructs()) {
+        call.trainee = asked;
+        return "";
+      }
+      if (!asked.empty() && asked != account.trainee) return "a trainee sees only their own records";
+      call.trainee = account.trainee;
+      return "";
+    }
+    case Who::kStaff:
+      return account.instructs() ? "" : "not for a " + account.role;
+    case Who::kAdministrators:
+      return account.role == "administrator" ? "" : "not for a " + account.role;
+  }
+  return "not allowed";
+}
+
+std::string Console::foreign_origin(const http::request<http::string_body>& request) const {
+  const auto origin = request.find(http::field::origin);
+  if (origin == request.end()) return "";  // not a browser's request from a page (a browser always says)
+  const auto lower = [](beast::string_view text) {
+    std::string out(text);
+    for (char& ch : out)
+      ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+    return out;
+  };
+  const std::string from = lower(origin->value());
+  const auto host = request.find(http::field::host);
+  if (host != request.end() &&
+      from == (options_.tls_certificate.empty() ? "http://" : "https://") + lower(host->value()))
+    return "";
+  for (const std::string& allowed : options_.allowed_origins)
+    if (from == lower(allowed)) return "";
+  return "a request from the page of another origin (" + core::printable(std::string(origin->value()), 100) +
+         "): refused";
+}
+
+std::string Console::refuse_live(const http::request<http::string_body>& request, http::status& status,
+                                 std::string& token) {
+  status = http::status::not_found;
+  if (request.target() != "/api/live") return "the live socket is /api/live";
+  status = http::status::forbidden;
+  if (std::string why = foreign_origin(request); !why.empty()) return why;
+  token = token_of(request);
+  status = http::status::unauthorized;
+  Call call{request, "/api/live", "", "", nullptr, token, account_of(token)};
+  if (!call.account) return "log in first (the live socket is /api/live)";
+  status = http::status::forbidden;
+  if (std::string why = refusal(kLiveSocket, call); !why.empty()) return why + ": the live socket is for staff";
+  status = http::status::service_unavailable;
+  if (sockets_.size() >= kMostLiveSockets)
+    return "already " + std::to_string(kMostLiveSockets) + " live sockets open";
+  return "";
+}
+
+std::string Console::refuse_subscription(const std::string& token, const std::string& station) {
+  const http::request<http::string_body> none;
+  Call call{none, "/api/live", "", "", nullptr, token, account_of(token)};
+  if (!call.account) return "logged out";
+  if (std::string why = refusal(kLiveSocket, call); !why.empty()) return why;
+  (void)station;  // staff watch every station and every replay
+  return "";
+}
+
 void Console::handle(const http::request<http::string_body>& request, const std::string& peer,
                      std::shared_ptr<HttpSession> session) {
   const std::string target(request.target().substr(0, request.target().find('?')));
@@ -1489,43 +2001,40 @@ void Console::handle(const http::request<http::string_body>& request, const std:
       const auto type = request.find(http::field::content_type);
       if (type == request.end() || std::string(type->value()).rfind("application/json", 0) != 0)
         return session->reply(error(request, http::status::unsupported_media_type, "send application/json"));
+      if (const std::string why = foreign_origin(request); !why.empty())
+        return session->reply(error(request, http::status::forbidden, why));
     }
-    if (target == "/api/login" && request.method() == http::verb::post)
-      return session->reply(login(request, peer));
-    const std::string token = token_of(request);
-    const std::optional<Account> account = account_of(token);
-    if (!account) return session->reply(error(request, http::status::unauthorized, "log in first"));
-    if (changes) {
-      const auto csrf = request.find("X-CSRF-Token");
-      if (csrf == request.end() || std::string(csrf->value()) != sessions_.at(token).csrf)
-        return session->reply(error(request, http::status::forbidden, "missing or wrong X-CSRF-Token"));
+    const auto question = request.target().find('?');
+    Call call{request, target,
+              question == std::string::npos ? "" : std::string(request.target().substr(question + 1)), peer,
+              session};
+    const Route* route = route_of(call, request.method());
+    if (!route || route->who != Who::kAnyone) {
+      call.token = token_of(request);
+      call.account = account_of(call.token);
+      if (!call.account) return session->reply(error(request, http::status::unauthorized, "log in first"));
     }
-    const std::string prefix = "/api/stations/";
-    if (target.rfind(prefix, 0) == 0 && target.size() > prefix.size() + 8 &&
-        target.compare(target.size() - 8, 8, "/command") == 0 && request.method() == http::verb::post) {
-      if (!account->instructs())
-        return session->reply(error(request, http::status::forbidden, "not for a " + account->role));
-      return command(request, *account, target.substr(prefix.size(), target.size() - prefix.size() - 8),
-                     session);
+    if (!route) return session->reply(error(request, http::status::not_found, "no such API: " + core::printable(target)));
+    if (route->who != Who::kAnyone) {
+      if (changes) {
+        const auto csrf = request.find("X-CSRF-Token");
+        if (csrf == request.end() || std::string(csrf->value()) != sessions_.at(call.token).csrf)
+          return session->reply(error(request, http::status::forbidden, "missing or wrong X-CSRF-Token"));
+      }
+      if (const std::string why = refusal(route->who, call); !why.empty())
+        return session->reply(error(request, http::status::forbidden, why));
     }
-    if (target.rfind("/api/replays/", 0) == 0 && request.method() == http::verb::post) {
-      if (!account->instructs())
-        return session->reply(error(request, http::status::forbidden, "not for a " + account->role));
-      const std::string number = target.substr(13);
-      if (number.empty() || number.size() > 12 || number.find_first_not_of("0123456789") != std::string::npos)
-        return session->reply(error(request, http::status::bad_request, "replay id: a positive number"));
-      if (std::optional<Response> r = control_replay(request, *account, std::stoll(number), session))
-        session->reply(std::move(*r));
-      return;  // a take-over answers when the station does
+    if (route->path.find('#') != std::string_view::npos) {
+      std::size_t used = 0;
+      try {
+        call.segment_id = std::stoll(call.segment, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used != call.segment.size() || call.segment_id <= 0 || call.segment.size() > 15)
+        return session->reply(error(request, http::status::bad_request, "id: a positive number"));
     }
-    if ((target == "/api/class" || target == "/api/compare" || target.rfind("/api/reports/", 0) == 0) &&
-        request.method() == http::verb::get) {
-      const std::string query(request.target().substr(std::min(request.target().size(), target.size() + 1)));
-      if (std::optional<Response> r = cohort_views(request, *account, target, query, session))
-        session->reply(std::move(*r));
-      return;  // a PDF answers when chromium is done
-    }
-    session->reply(api(request, *account, token, target));
+    if (std::optional<Response> r = (this->*route->handler)(call)) session->reply(std::move(*r));
   } catch (const std::exception& e) {
     session->reply(error(request, http::status::internal_server_error, e.what()));
   }
@@ -1671,228 +2180,80 @@ json Console::evolution(const std::string& trainee) {
           {"routes", routes}};
 }
 
-Console::Response Console::designer(const http::request<http::string_body>& request, const Account& account,
-                                    const std::string& target, const std::string& query) {
-  if (target == "/api/designer/source" && request.method() == http::verb::get) {
-    const std::string name = query_param(query, "exercise");
-    for (const std::string& folder : {exercise_folder(), std::string(HARBOUR_DATA_DIR) + "/exercises"}) {
-      try {
-        const std::string text = design_source(folder, name);
-        return json_reply(request, http::status::ok,
-                          {{"exercise", name}, {"text", text}, {"designed", designed(text)}});
-      } catch (const std::out_of_range&) {
-      }
-    }
-    return error(request, http::status::not_found, "no exercise '" + core::printable(name) + "'");
-  }
-  const bool check = target == "/api/designer/check", save = target == "/api/designer/save";
-  if ((!check && !save) || request.method() != http::verb::post)
-    return error(request, http::status::not_found, "no such API: " + core::printable(target));
-  std::string why;
-  const std::optional<json> body = parse_object(request.body(), why);
-  const auto text = body ? body->find("text") : json::const_iterator{};
-  if (!body || text == body->end() || !text->is_string())
-    return error(request, http::status::bad_request, body ? "field 'text': the exercise's YAML" : why);
-  DesignCheck design;
-  try {
-    design = check_design(exercise_folder(), text->get<std::string>());
-  } catch (const std::invalid_argument& e) {
-    return error(request, http::status::unprocessable_entity, e.what());
-  }
-  if (save) {
-    std::string file;
-    try {
-      file = save_design(exercise_folder(), design);
-    } catch (const std::logic_error& e) {
-      return error(request, http::status::conflict, e.what());
-    }
-    audit_.add(account.name, "save_exercise", design.exercise.name, design.version);
-    return json_reply(request, http::status::created,
-                      {{"exercise", design.exercise.name}, {"version", design.version}, {"file", file}});
-  }
-  // the preview: the exercise's world at its first instant, drawn by the same 3D view as a station's
-  json scene, state, bulk;
-  try {
-    const sim::Simulation simulation(design.exercise.scenario);
-    auto snapshot = std::make_unique<sim::Snapshot>();
-    simulation.write_snapshot(*snapshot);
-    const net::StationScene published = scene_message(simulation.scene(), 0);
-    scene = scene_json("designer", published);
-    state = state_json("designer", state_message(*snapshot, simulation.scene().entities.size(), 0),
-                       &published, true);
-    if (const bulk::BulkWorld* material = simulation.bulk()) {
-      sim::BulkView view;
-      bulk::publish(*material, view);
-      bulk = bulk_json("designer", bulk_message(view, 0, 0.0));
-    }
-  } catch (const std::exception& e) {
-    return error(request, http::status::unprocessable_entity,
-                 std::string("the design loads but its world cannot be built: ") + e.what());
-  }
-  const sim::ExerciseSettings& x = design.exercise;
-  return json_reply(request, http::status::ok,
-                    {{"exercise", x.name},
-                     {"machine", sim::machine_kind(x.scenario.machine)},
-                     {"version", design.version},
-                     {"containers", x.scenario.containers.size()},
-                     {"moves", x.moves.size()},
-                     {"events", x.scenario.events.size() + x.scenario.lift_events.size()},
-                     {"time_limit_s", x.rules.time_limit_s},
-                     {"pass_score", x.rules.pass_score},
-                     {"wind_mps", x.scenario.weather.wind_mean_mps},
-                     {"form", design_form(exercise_folder(), design)},
-                     {"scene", scene},
-                     {"state", state},
-                     {"bulk", bulk}});
-}
-
-Console::Response Console::route_editor(const http::request<http::string_body>& request,
-                                        const Account& account, const std::string& target,
-                                        const std::string& query) {
-  if (target == "/api/routes/source" && request.method() == http::verb::get) {
-    const std::string id = query_param(query, "route");
-    try {
-      const std::string text = route_source(centre(), id);
-      return json_reply(request, http::status::ok,
-                        {{"route", id}, {"text", text}, {"designed", designed(text)}});
-    } catch (const std::out_of_range& e) {
-      return error(request, http::status::not_found, e.what());
-    }
-  }
-  const bool check = target == "/api/routes/check", save = target == "/api/routes/save";
-  if ((!check && !save) || request.method() != http::verb::post)
-    return error(request, http::status::not_found, "no such API: " + core::printable(target));
-  std::string why;
-  const std::optional<json> body = parse_object(request.body(), why);
-  if (!body) return error(request, http::status::bad_request, why);
-  const auto id = body->find("id"), text = body->find("text");
-  if (id == body->end() || !id->is_string())
-    return error(request, http::status::bad_request, "field 'id': the route's file name");
-  if (text == body->end() || !text->is_string())
-    return error(request, http::status::bad_request, "field 'text': the route's YAML");
-  RouteCheck route;
-  try {
-    route = check_route_text(centre(), id->get<std::string>(), text->get<std::string>());
-  } catch (const std::invalid_argument& e) {
-    return error(request, http::status::unprocessable_entity, e.what());
-  }
-  json stages = route_json(route.route);
-  for (std::size_t n = 0; n < route.route.stages.size(); ++n)
-    stages["stages"][n]["exercise_version"] = io::exercise_version(route.route.stages[n].exercise_file);
-  if (!save) return json_reply(request, http::status::ok, stages);
-  const std::string file_name = route.route.id + ".yaml";
-  std::string file, before;
-  try {
-    before = route_source(centre(), route.route.id);
-  } catch (const std::out_of_range&) {
-  }
-  try {
-    file = save_route(centre(), route);
-  } catch (const std::logic_error& e) {
-    return error(request, http::status::conflict, e.what());
-  }
-  // the console's routes with it; should another file of the folder spoil them, the save is undone
-  try {
-    routes_ = load_centre_routes(centre());
-  } catch (const std::exception& e) {
-    std::error_code ec;
-    if (before.empty())
-      std::filesystem::remove(file, ec);
-    else
-      std::ofstream(file, std::ios::binary) << before;
-    return error(request, http::status::unprocessable_entity,
-                 std::string("saved, the centre's routes no longer load, so it was undone: ") + e.what());
-  }
-  audit_.add(account.name, "save_route", route.route.id, file_name);
-  stages["file"] = file;
-  return json_reply(request, http::status::created, stages);
-}
-
-std::optional<Console::Response> Console::cohort_views(const http::request<http::string_body>& request,
-                                                       const Account& account, const std::string& target,
-                                                       const std::string& query,
-                                                       std::shared_ptr<HttpSession> session) {
-  const auto forbidden = [&] { return error(request, http::status::forbidden, "not for a " + account.role); };
-  const auto unknown = [&](const std::string& id) {
-    return error(request, http::status::not_found, "no trainee '" + core::printable(id) + "'");
-  };
+std::optional<Console::Response> Console::class_overview(Call& c) {
   const auto optional_number = [](const std::optional<double>& v) { return v ? json(*v) : json(nullptr); };
-  if (target == "/api/class") {
-    if (!account.instructs()) return forbidden();
-    const training::ClassReportData d = class_report_data(db_, routes_);
-    json lines = json::array();
-    for (std::size_t i = 0; i < d.lines.size(); ++i) {
-      const training::TraineeSummary& t = d.lines[i];
-      json routes = json::array();
-      for (const training::RouteStanding& r : d.routes[i]) {
-        int passed = 0;
-        for (const training::StageProgress& p : r.progress.stages)
-          passed += p.state == training::StageState::kPassed ? 1 : 0;
-        routes.push_back({{"route", r.route.id},
-                          {"stages", r.progress.stages.size()},
-                          {"passed", passed},
-                          {"next", r.progress.next ? json(*r.progress.next) : json(nullptr)},
-                          {"complete", r.progress.complete}});
-      }
-      lines.push_back({{"trainee", t.trainee},
-                       {"name", d.names[i]},
-                       {"attempts", t.attempts},
-                       {"finished", t.finished},
-                       {"passed", t.passed},
-                       {"first_score", optional_number(t.first_score)},
-                       {"last_score", optional_number(t.last_score)},
-                       {"best_score", optional_number(t.best_score)},
-                       {"recent_score", optional_number(t.recent_score)},
-                       {"recent_skills",
-                        {{"safety", optional_number(t.recent_skills[0])},
-                         {"precision", optional_number(t.recent_skills[1])},
-                         {"productivity", optional_number(t.recent_skills[2])}}},
-                       {"trend", optional_number(t.trend)},
-                       {"routes", routes}});
+  const training::ClassReportData d = class_report_data(db_, routes_);
+  json lines = json::array();
+  for (std::size_t i = 0; i < d.lines.size(); ++i) {
+    const training::TraineeSummary& t = d.lines[i];
+    json routes = json::array();
+    for (const training::RouteStanding& r : d.routes[i]) {
+      int passed = 0;
+      for (const training::StageProgress& p : r.progress.stages)
+        passed += p.state == training::StageState::kPassed ? 1 : 0;
+      routes.push_back({{"route", r.route.id},
+                        {"stages", r.progress.stages.size()},
+                        {"passed", passed},
+                        {"next", r.progress.next ? json(*r.progress.next) : json(nullptr)},
+                        {"complete", r.progress.complete}});
     }
-    return json_reply(request, http::status::ok, lines);
+    lines.push_back({{"trainee", t.trainee},
+                     {"name", d.names[i]},
+                     {"attempts", t.attempts},
+                     {"finished", t.finished},
+                     {"passed", t.passed},
+                     {"first_score", optional_number(t.first_score)},
+                     {"last_score", optional_number(t.last_score)},
+                     {"best_score", optional_number(t.best_score)},
+                     {"recent_score", optional_number(t.recent_score)},
+                     {"recent_skills",
+                      {{"safety", optional_number(t.recent_skills[0])},
+                       {"precision", optional_number(t.recent_skills[1])},
+                       {"productivity", optional_number(t.recent_skills[2])}}},
+                     {"trend", optional_number(t.trend)},
+                     {"routes", routes}});
   }
-  if (target == "/api/compare") {
-    if (!account.instructs()) return forbidden();
-    const std::string first = query_param(query, "a"), second = query_param(query, "b");
-    if (first.empty() || second.empty())
-      return error(request, http::status::bad_request, "compare whom: ?a=ID&b=ID");
-    for (const std::string& id : {first, second})
-      if (!db_.has_trainee(id)) return unknown(id);
-    json figures = json::array();
-    for (const training::Compared& c : training::compare(db_.attempt_figures(), first, second))
-      figures.push_back({{"exercise", c.exercise},
-                         {"exercise_version", c.exercise_version},
-                         {"figure", c.figure},
-                         {"higher_better", c.higher_better},
-                         {"a", optional_number(c.first)},
-                         {"b", optional_number(c.second)}});
-    return json_reply(request, http::status::ok, {{"a", first}, {"b", second}, {"figures", figures}});
-  }
-  // reports: /api/reports/trainee?trainee=ID, /api/reports/class, each also as .pdf
-  const bool pdf = target.size() > 4 && target.compare(target.size() - 4, 4, ".pdf") == 0;
-  const std::string page = pdf ? target.substr(0, target.size() - 4) : target;
+  return json_reply(c.request, http::status::ok, lines);
+}
+
+std::optional<Console::Response> Console::compare(Call& c) {
+  const auto optional_number = [](const std::optional<double>& v) { return v ? json(*v) : json(nullptr); };
+  const std::string first = query_param(c.query, "a"), second = query_param(c.query, "b");
+  if (first.empty() || second.empty())
+    return error(c.request, http::status::bad_request, "compare whom: ?a=ID&b=ID");
+  for (const std::string& id : {first, second})
+    if (!db_.has_trainee(id))
+      return error(c.request, http::status::not_found, "no trainee '" + core::printable(id) + "'");
+  json figures = json::array();
+  for (const training::Compared& x : training::compare(db_.attempt_figures(), first, second))
+    figures.push_back({{"exercise", x.exercise},
+                       {"exercise_version", x.exercise_version},
+                       {"figure", x.figure},
+                       {"higher_better", x.higher_better},
+                       {"a", optional_number(x.first)},
+                       {"b", optional_number(x.second)}});
+  return json_reply(c.request, http::status::ok, {{"a", first}, {"b", second}, {"figures", figures}});
+}
+
+// reports: /api/reports/trainee?trainee=ID, /api/reports/class, each also as .pdf
+std::optional<Console::Response> Console::report(Call& c) {
+  const auto& request = c.request;
+  const bool pdf = c.target.size() > 4 && c.target.compare(c.target.size() - 4, 4, ".pdf") == 0;
+  const std::string page = pdf ? c.target.substr(0, c.target.size() - 4) : c.target;
   std::string html, name;
   if (page == "/api/reports/trainee") {
-    std::string trainee = query_param(query, "trainee");
-    if (!account.instructs()) {
-      if (!trainee.empty() && trainee != account.trainee) return forbidden();
-      trainee = account.trainee;  // a trainee has only their own
-    }
-    if (trainee.empty()) return error(request, http::status::bad_request, "a report on whom: ?trainee=ID");
-    if (!db_.has_trainee(trainee)) return unknown(trainee);
-    html = training::trainee_report_html(trainee_report_data(db_, routes_, trainee));
-    name = "trainee-" + trainee;
-  } else if (page == "/api/reports/class") {
-    if (!account.instructs()) return forbidden();
+    if (c.trainee.empty()) return error(request, http::status::bad_request, "a report on whom: ?trainee=ID");
+    if (!db_.has_trainee(c.trainee))
+      return error(request, http::status::not_found, "no trainee '" + core::printable(c.trainee) + "'");
+    html = training::trainee_report_html(trainee_report_data(db_, routes_, c.trainee));
+    name = "trainee-" + c.trainee;
+  } else {
     html = training::class_report_html(class_report_data(db_, routes_));
     name = "class";
-  } else {
-    return error(request, http::status::not_found, "no such API: " + core::printable(target));
   }
   // a file name a browser may save under: letters, digits, - and _ only
-  for (char& c : name)
-    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_') c = '_';
+  for (char& ch : name)
+    if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '-' && ch != '_') ch = '_';
   if (!pdf) {
     Response r = json_reply(request, http::status::ok, json::object());
     r.set(http::field::content_type, "text/html; charset=utf-8");
@@ -1900,40 +2261,82 @@ std::optional<Console::Response> Console::cohort_views(const http::request<http:
     r.prepare_payload();
     return r;
   }
-  if (printing_ >= kMostPrintsAtOnce)
-    return error(request, http::status::service_unavailable, "reports are being printed; try again shortly");
-  ++printing_;
-  audit_.add(account.name, "report", name, "pdf");
-  // chromium prints on a thread of its own; the answer comes back on the console's thread
-  std::thread printer([this, request, session, html = std::move(html), name] {
-    Response r = json_reply(request, http::status::ok, json::object());
+  audit_.add(c.account->name, "report", name, "pdf");
+  // chromium prints beside the console's thread
+  beside(c, printing_, kMostPrintsAtOnce, kPrintBudget,
+         [this, request, html = std::move(html), name]() -> Finish {
+           char folder[] = "/tmp/harboursim-pdf-XXXXXX";
+           if (!mkdtemp(folder))
+             return [this, request] {
+               return error(request, http::status::internal_server_error, "cannot make a temporary folder");
+             };
+           const std::filesystem::path file = std::filesystem::path(folder) / "report.pdf";
+           std::string bytes, why;
+           try {
+             print_pdf(html, file);
+             std::ifstream in(file, std::ios::binary);
+             bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+           } catch (const std::exception& e) {
+             why = e.what();
+           }
+           std::error_code ignored;
+           std::filesystem::remove_all(folder, ignored);
+           return [this, request, bytes = std::move(bytes), why, name] {
+             if (!why.empty()) return error(request, http::status::internal_server_error, why);
+             Response r = json_reply(request, http::status::ok, json::object());
+             r.set(http::field::content_type, "application/pdf");
+             r.set(http::field::content_disposition, "attachment; filename=\"" + name + ".pdf\"");
+             r.body() = bytes;
+             r.prepare_payload();
+             return r;
+           };
+         });
+  return std::nullopt;
+}
+
+void Console::beside(Call& c, int& running, int most, std::chrono::seconds budget,
+                     std::function<Finish()> work) {
+  if (running >= most) {
+    c.session->reply(error(c.request, http::status::service_unavailable,
+                           "the console is busy with " + std::to_string(running) +
+                               " such requests; try again shortly"));
+    return;
+  }
+  ++running;
+  struct Waiting {
+    bool answered = false;
+    asio::steady_timer timer;
+    explicit Waiting(asio::io_context& io) : timer(io) {}
+  };
+  auto waiting = std::make_shared<Waiting>(io_);
+  // past its budget the request is answered now; the work's late answer is dropped
+  waiting->timer.expires_after(budget);
+  waiting->timer.async_wait([this, waiting, session = c.session, request = c.request, budget](beast::error_code ec) {
+    if (ec || waiting->answered) return;
+    waiting->answered = true;
+    session->reply(error(request, http::status::service_unavailable,
+                         "not done within " + std::to_string(budget.count()) + " s: refused"));
+  });
+  std::thread worker([this, waiting, &running, session = c.session, request = c.request, work = std::move(work)] {
+    Finish finish;
     try {
-      char folder[] = "/tmp/harboursim-pdf-XXXXXX";
-      if (!mkdtemp(folder)) throw std::runtime_error("cannot make a temporary folder");
-      const std::filesystem::path file = std::filesystem::path(folder) / "report.pdf";
-      try {
-        print_pdf(html, file);
-        std::ifstream in(file, std::ios::binary);
-        r.body().assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-      } catch (...) {
-        std::filesystem::remove_all(folder);
-        throw;
-      }
-      std::filesystem::remove_all(folder);
-      r.set(http::field::content_type, "application/pdf");
-      r.set(http::field::content_disposition, "attachment; filename=\"" + name + ".pdf\"");
-      r.prepare_payload();
+      finish = work();
     } catch (const std::exception& e) {
-      r = error(request, http::status::internal_server_error, e.what());
+      finish = [this, request, why = std::string(e.what())] {
+        return error(request, http::status::internal_server_error, why);
+      };
     }
-    asio::post(io_, [this, session, r = std::move(r), id = std::this_thread::get_id()]() mutable {
-      --printing_;
-      if (auto done = printers_.extract(id)) done.mapped().join();  // it has nothing left to do
-      session->reply(std::move(r));
+    asio::post(io_, [this, waiting, &running, session, finish = std::move(finish),
+                     id = std::this_thread::get_id()] {
+      --running;
+      if (auto done = workers_.extract(id)) done.mapped().join();  // it has nothing left to do
+      waiting->timer.cancel();
+      if (waiting->answered) return;
+      waiting->answered = true;
+      session->reply(finish());
     });
   });
-  printers_.emplace(printer.get_id(), std::move(printer));
-  return std::nullopt;
+  workers_.emplace(worker.get_id(), std::move(worker));
 }
 
 std::string Console::attempts_csv(const std::optional<std::string>& trainee) {
@@ -1973,15 +2376,38 @@ std::string Console::attempts_csv(const std::optional<std::string>& trainee) {
   return csv;
 }
 
-void accept(tcp::acceptor& acceptor, Console& console, asio::ssl::context* tls) {
-  acceptor.async_accept([&acceptor, &console, tls](beast::error_code ec, tcp::socket socket) {
+void accept(tcp::acceptor& acceptor, Console& console, asio::ssl::context* tls, asio::steady_timer& retry) {
+  acceptor.async_accept([&acceptor, &console, tls, &retry](beast::error_code ec, tcp::socket socket) {
+    if (ec == asio::error::no_descriptors || ec.value() == ENFILE || ec == asio::error::no_buffer_space) {
+      // out of file descriptors: close the connection idle the longest and try again shortly (not at once:
+      // that would spin)
+      console.connections()->evict_oldest();
+      retry.expires_after(std::chrono::milliseconds(20));
+      retry.async_wait([&acceptor, &console, tls, &retry](beast::error_code) { accept(acceptor, console, tls, retry); });
+      return;
+    }
+    if (!ec) console.connections()->make_room();
     if (!ec && tls)
       std::make_shared<HttpConnection<TlsStream>>(TlsStream(std::move(socket), *tls), console)->start();
     else if (!ec)
       std::make_shared<HttpConnection<beast::tcp_stream>>(beast::tcp_stream(std::move(socket)), console)
           ->start();
-    accept(acceptor, console, tls);
+    if (ec == asio::error::operation_aborted) return;  // the console is ending
+    accept(acceptor, console, tls, retry);
   });
+}
+
+// As many open files as the system lets this process have (the soft limit raised to the hard one); returns
+// the limit.
+std::size_t raise_file_limit() {
+  rlimit limit{};
+  if (getrlimit(RLIMIT_NOFILE, &limit) != 0) return 1024;
+  if (limit.rlim_cur < limit.rlim_max) {
+    limit.rlim_cur = limit.rlim_max;
+    setrlimit(RLIMIT_NOFILE, &limit);
+    getrlimit(RLIMIT_NOFILE, &limit);
+  }
+  return limit.rlim_cur == RLIM_INFINITY ? std::size_t{1} << 20 : static_cast<std::size_t>(limit.rlim_cur);
 }
 
 // The server's TLS context from PEM files (TLS 1.2 and later); an error names the file.
@@ -2031,6 +2457,8 @@ int run_console(const ConsoleOptions& given) {
                              "/index.html is missing (./harbour build builds them)");
   asio::io_context io;
   Console console(options, io);
+  const std::size_t files = raise_file_limit();
+  console.connections()->most = files > 2 * kReservedFiles ? files - kReservedFiles : files / 2;
   tcp::acceptor acceptor(io);
   const tcp::endpoint endpoint(address, static_cast<unsigned short>(options.port));
   acceptor.open(endpoint.protocol());
@@ -2054,7 +2482,8 @@ int run_console(const ConsoleOptions& given) {
               static_cast<unsigned>(acceptor.local_endpoint().port()), options.domain,
               options.database.c_str());
   std::fflush(stdout);
-  accept(acceptor, console, tls.get());
+  asio::steady_timer retry(io);
+  accept(acceptor, console, tls.get(), retry);
   console.start_polling();
   if (options.seconds > 0.0)
     io.run_for(std::chrono::milliseconds(static_cast<std::int64_t>(options.seconds * 1e3)));

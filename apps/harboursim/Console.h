@@ -1,6 +1,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "Centre.h"
 
@@ -22,6 +23,9 @@ struct ConsoleOptions {
   double seconds = 0.0;   ///< stop after this long (tests; 0: until Ctrl-C)
   /// TLS (required off loopback): the certificate chain and its private key, PEM files
   std::string tls_certificate, tls_key;
+  /// Origins besides the console's own whose pages may send it changes and open its live socket (a reverse
+  /// proxy's public address, e.g. https://console.centre.example)
+  std::vector<std::string> allowed_origins;
 };
 int run_console(const ConsoleOptions& options);
 

@@ -250,8 +250,8 @@ bool AttemptPresence::apply(const net::StationCommand& command, std::string& ans
   }
   if (kind == "stop" || kind == "reset") {
     next = kind == "stop" ? Next::kStop : Next::kReset;
-    answer = kind == "stop" ? "stopping: the attempt is stored as interrupted"
-                            : "resetting: the attempt is stored as interrupted and starts again";
+    answer = kind == "stop" ? "stopping: with goals left the attempt is stored as ended by the instructor"
+                            : "resetting: the attempt is stored as ended by the instructor and starts again";
     return true;
   }
   station::LoopCommand loop;

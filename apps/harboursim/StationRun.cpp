@@ -303,7 +303,11 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
     render->stop();
   }
   station.stop();
-  const station::SessionResult result = session.finish(interrupted);
+  const station::SessionResult result =
+      session.finish(g_stop || !window_open || (next == AttemptPresence::Next::kRun && interrupted)
+                         ? station::SessionEnd::kInterrupted
+                     : interrupted ? station::SessionEnd::kStoppedByInstructor
+                                   : station::SessionEnd::kRan);
   if (presence) presence->publish_end(result);
   const station::LoopStats& l = result.loop;
   std::printf(

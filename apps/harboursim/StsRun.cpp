@@ -31,6 +31,12 @@ namespace {
 
 constexpr double kProgressEvery_s = 10.0;
 
+std::string fixed(double value, int decimals) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.*f", decimals, value);
+  return text;
+}
+
 // Ctrl-C or a termination request: the run stops between steps and stores the attempt as interrupted
 volatile std::sig_atomic_t g_stop_requested = 0;
 extern "C" void request_stop(int) {
@@ -156,11 +162,15 @@ void print_evaluation(const sim::Metrics& m, const sim::Score& s, bool container
     std::printf("  %-20s %8d harsh moves (RMS jerk %.2f m/s^3)\n", axis.axis.c_str(), axis.harsh_moves,
                 axis.rms_jerk_mps3);
   if (m.load_drops > 0) std::printf("  loads dropped        %8d\n", m.load_drops);
-  if (m.hoist_fault)
-    std::printf("  hoist brake fault: load set down after %.1f s, %d lifts under the fault, crane %s\n",
-                m.fault_set_down_s, m.lifts_under_fault,
-                m.stopped_after_fault ? "stopped (goals left excused)" : "not stopped");
-  std::printf("score %.0f / 100: %s\n", s.total, s.passed ? "PASSED" : "NOT PASSED");
+  if (m.hoist_fault) {
+    const std::string set_down = m.fault_set_down_s >= 0.0
+                                     ? "load set down " + fixed(m.fault_set_down_s, 1) + " s after it came"
+                                     : std::string("no load hung when it came");
+    std::printf("  hoist brake fault: %s, %d lifts under the fault, crane %s\n", set_down.c_str(),
+                m.lifts_under_fault, m.stopped_after_fault ? "stopped" : "not stopped");
+  }
+  static constexpr const char* kVerdicts[] = {"PASSED", "NOT PASSED", "ENDED BY THE INSTRUCTOR (neither passed nor failed)"};
+  std::printf("score %.0f / 100: %s\n", s.total, kVerdicts[static_cast<int>(s.outcome)]);
   for (const auto& d : s.deductions)
     std::printf("  -%.0f  %s x%d (%s)\n", d.points, d.reason.c_str(), d.count, sim::skill_name(d.skill));
   std::printf("skills: safety %.0f, precision %.0f, productivity %.0f\n", s.skills[0], s.skills[1],
@@ -331,34 +341,41 @@ int drive(const sim::ExerciseSettings& exercise, sim::Simulation& simulation, si
   std::printf("\nsimulated %.1f s in %.2f s (%.0fx real time), %u physics warnings\n",
               simulation.time_s() - start_s, wall, (simulation.time_s() - start_s) / wall,
               simulation.warnings().total());
-  const char* status = "finished";
+  const sim::Score score = evaluator.score();
+  const std::string status = io::attempt_status(simulation.diverged(), g_stop_requested != 0, score);
+  const bool out_of_time = !simulation.diverged() && !g_stop_requested && !evaluator.finished();
   if (simulation.diverged()) {
-    status = "diverged";
     std::printf("STOPPED: the physics diverged at t=%.3f s (%s); the attempt is stored as diverged\n",
                 simulation.time_s(), simulation.divergence().c_str());
   } else if (g_stop_requested) {
-    status = "interrupted";
     std::printf("STOPPED by a signal at t=%.3f s; the attempt is stored as interrupted\n",
                 simulation.time_s());
-  } else if (!evaluator.finished()) {
-    std::printf("STOPPED: %.0f s past the time limit (the exercise's overtime), moves not done count\n",
-                exercise.rules.overtime_s);
+  } else if (out_of_time) {
+    std::printf("STOPPED: %.0f s past the time limit of %.0f s (the exercise's overtime) with goals left: %s\n",
+                exercise.rules.overtime_s, exercise.rules.time_limit_s,
+                progress_text(exercise, evaluator.metrics()).c_str());
   }
-  print_evaluation(evaluator.metrics(), evaluator.score());
+  if (score.outcome == sim::Outcome::kEndedByInstructor)
+    std::printf("ENDED BY THE INSTRUCTOR: %d instructor disruption%s (a fault, stop or power failure the exercise "
+                "does not script) and goals left: neither passed nor failed\n",
+                evaluator.metrics().instructor_disruptions,
+                evaluator.metrics().instructor_disruptions == 1 ? "" : "s");
+  print_evaluation(evaluator.metrics(), score);
   std::string kept;
   if (writer) {
     writer->finish(recorder.recording().total_steps);
     kept = io::recording_copy(options.record, io::kMaxStoredRecordingBytes);
   }
-  db.finish_attempt(attempt, evaluator.metrics(), evaluator.score(), options.record, status, kept);
+  db.finish_attempt(attempt, evaluator.metrics(), score, options.record, status, kept);
   std::printf("stored as attempt %lld of trainee %s (%s)\n", static_cast<long long>(attempt),
-              options.trainee.c_str(), status);
+              options.trainee.c_str(), status.c_str());
   if (!options.record.empty()) {
     std::printf("recording %s (%zu input changes, %zu checkpoints)\n", options.record.c_str(),
                 recorder.recording().inputs.size(), recorder.recording().checkpoints.size());
   }
   if (simulation.diverged()) return 3;
   if (g_stop_requested) return 130;
+  if (out_of_time && score.outcome != sim::Outcome::kEndedByInstructor) return kExitOutOfTime;
   return simulation.warnings().total() == 0 ? 0 : 1;
 }
 

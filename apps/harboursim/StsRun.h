@@ -23,7 +23,11 @@ struct RunOptions {
   std::string stage;             ///< set by the run: the route's stage it runs
   std::string exercise_version;  ///< set by the run: io::exercise_version of the exercise file
 };
+/// Returns 0 when the exercise ended (passed, failed, or ended by the instructor), kExitOutOfTime when its
+/// time limit and overtime ran out with goals left, 3 when the physics diverged, 130 on a signal, 1 with
+/// physics warnings.
 int run_exercise(const RunOptions& options);
+inline constexpr int kExitOutOfTime = 4;
 
 /// Everything a run writes, checked before it starts (a bad output never costs a whole exercise).
 void check_outputs(const RunOptions& options);

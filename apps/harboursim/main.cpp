@@ -178,6 +178,9 @@ int main(int argc, char** argv) {
                           "serve HTTPS with this PEM certificate chain (required with a network --bind)");
   console_cmd->add_option("--tls-key", console.tls_key, "the certificate's PEM private key");
   console_cmd->add_option("--web", console.web_root, "the built pages (default: web/dist)");
+  console_cmd->add_option("--allow-origin", console.allowed_origins,
+                          "another origin whose pages may use the console (a reverse proxy's "
+                          "https://HOST[:PORT]); repeatable");
   console_cmd->add_option("--lrs", console.lrs,
                           "send the attempts' xAPI statements to this LRS (http://HOST:PORT/xAPI/)");
   console_cmd->add_option("--lrs-auth-file", console.lrs_auth_file,

@@ -164,7 +164,7 @@ TEST(Devices, APersonOnTwoJoysticksDischargesABoxOntoTheTruck) {
   while (!desk.session->over() && std::chrono::steady_clock::now() < deadline)
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   desk.station->stop();
-  const SessionResult result = desk.session->finish(false);
+  const SessionResult result = desk.session->finish(SessionEnd::kRan);
   EXPECT_EQ(result.metrics.moves_completed, 1);  // the box is on the truck
   EXPECT_EQ(result.metrics.collisions, 0);
   EXPECT_EQ(result.status, "finished");
@@ -229,7 +229,7 @@ TEST(Devices, UnpluggingTheHoistStickStopsTheLoadSmoothlyAndPluggingItBackResume
     display_showed_it = display_showed_it || (s && s->devices_missing == 1);
   }
   desk.station->stop();
-  const SessionResult result = desk.session->finish(false);
+  const SessionResult result = desk.session->finish(SessionEnd::kRan);
   ASSERT_GE(unplugged_at, 0);
   EXPECT_EQ(hoist_after_unplug, 0.0);  // the very next step reads the lever neutral
   ASSERT_GE(stopped_at, 0);
@@ -302,7 +302,7 @@ TEST(Devices, APersonOnTwoLeversSlewsTheMobileHarbourCraneAndShutsItsGrab) {
   while (session.simulation().time_s() < 12.0 && std::chrono::steady_clock::now() < deadline)
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   station.stop();
-  const SessionResult result = session.finish(true);
+  const SessionResult result = session.finish(SessionEnd::kInterrupted);
   EXPECT_GT(crane.slew_rad(), 0.3);  // about 8 s at up to 0.126 rad/s after its ramp
   EXPECT_LT(crane.grab_opening(), 0.05);
   const sim::Recording recording = io::read_recording(options.record);

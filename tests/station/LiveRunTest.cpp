@@ -31,7 +31,7 @@ TEST(RealTimeLoop, ASixtySecondLiveRunKeepsOneKilohertz) {
   const auto start = std::chrono::steady_clock::now();
   session.start();
   std::this_thread::sleep_for(std::chrono::seconds(60));
-  const SessionResult result = session.finish(true);
+  const SessionResult result = session.finish(SessionEnd::kInterrupted);
   const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const LoopStats& s = result.loop;
   std::printf(
@@ -79,7 +79,7 @@ TEST(RealTimeLoop, TheImageGeneratorDrawingAlongsideDoesNotHoldTheStepBack) {
   const double fps = render.fps();
   const long frames = render.frames();
   render.stop();
-  const SessionResult result = session.finish(true);
+  const SessionResult result = session.finish(SessionEnd::kInterrupted);
   const LoopStats& s = result.loop;
   std::printf(
       "20 s live with the cab view drawn at 1280x720: %.1f fps (%ld frames); %lld ticks, %lld late, %lld "

@@ -60,7 +60,7 @@ TEST(RealTimeLoop, CommandsFromOtherThreadsLandBetweenStepsAndAreRecorded) {
   EXPECT_TRUE(session.loop().post({LoopCommand::Kind::kResume, {}}));
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
   EXPECT_GT(session.loop().stats().steps, frozen_at + 100);
-  const SessionResult result = session.finish(true);
+  const SessionResult result = session.finish(SessionEnd::kInterrupted);
 
   const sim::Recording recording = io::read_recording(options.record);
   ASSERT_EQ(recording.commands.size(), 1u);

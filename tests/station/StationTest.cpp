@@ -119,7 +119,7 @@ TEST(HeadTracking, PacketsOverLoopbackMoveThePublishedEyePoint) {
             std::abs(s->cab.head_yaw_pitch_roll_rad.x + 20.0 * std::numbers::pi / 180.0) < 1e-12;
   }
   station.stop();
-  live.session->finish(true);
+  live.session->finish(SessionEnd::kInterrupted);
   EXPECT_TRUE(moved);
   EXPECT_EQ(station.head_tracker()->refused(), 1);
   EXPECT_EQ(station.head_tracker()->received(), 1);
@@ -159,7 +159,7 @@ TEST(MotionPlatform, TheCabsCuesDriveThePlatformOverUdp) {
   for (const double d : pose.dof)
     finite = finite && std::isfinite(d);
   station.stop();  // parks the platform
-  live.session->finish(true);
+  live.session->finish(SessionEnd::kInterrupted);
   ::close(listener);
   std::printf("motion: %d packets in 2 s, %ld frames, state %d\n", packets, frames, static_cast<int>(state));
   EXPECT_GT(packets, 100);  // the washout's 100 Hz (a loaded machine drops some: no burst to catch up)

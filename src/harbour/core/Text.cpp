@@ -42,6 +42,17 @@ bool is_control(std::string_view s, std::size_t at, std::size_t n) {
   return n == 2 && b == 0xC2 && static_cast<unsigned char>(s[at + 1]) < 0xA0;
 }
 
+// a bidirectional formatting character (the Unicode "Trojan Source" set): U+061C, U+200E, U+200F,
+// U+202A-U+202E, U+2066-U+2069. They reorder what follows them on screen: "anna\u202Egnp.exe" shows as
+// another name.
+bool is_bidi_control(std::string_view s, std::size_t at, std::size_t n) {
+  const auto byte = [&](std::size_t k) { return static_cast<unsigned int>(static_cast<unsigned char>(s[at + k])); };
+  if (n == 2) return byte(0) == 0xD8 && byte(1) == 0x9C;  // U+061C
+  if (n != 3 || byte(0) != 0xE2) return false;
+  const unsigned int cp = 0x2000u | ((byte(1) & 0x3Fu) << 6) | (byte(2) & 0x3Fu);
+  return cp == 0x200E || cp == 0x200F || (cp >= 0x202A && cp <= 0x202E) || (cp >= 0x2066 && cp <= 0x2069);
+}
+
 }  // namespace
 
 std::string why_bad_name(std::string_view text, std::size_t max_bytes) {
@@ -52,6 +63,8 @@ std::string why_bad_name(std::string_view text, std::size_t max_bytes) {
     const std::size_t n = utf8_length(text, at);
     if (n == 0) return "is not valid UTF-8 (byte " + std::to_string(at) + ")";
     if (is_control(text, at, n)) return "holds a control character (byte " + std::to_string(at) + ")";
+    if (is_bidi_control(text, at, n))
+      return "holds a bidirectional control character (byte " + std::to_string(at) + ")";
     at += n;
   }
   return {};
@@ -66,6 +79,12 @@ std::string printable(std::string_view text, std::size_t max_bytes) {
       std::snprintf(hex, sizeof hex, "\\x%02X", static_cast<unsigned char>(text[at]));
       out += hex;
       ++at;
+    } else if (is_bidi_control(text, at, n)) {
+      for (std::size_t k = 0; k < n; ++k, ++at) {
+        char hex[8];
+        std::snprintf(hex, sizeof hex, "\\x%02X", static_cast<unsigned char>(text[at]));
+        out += hex;
+      }
     } else {
       out.append(text.substr(at, n));
       at += n;

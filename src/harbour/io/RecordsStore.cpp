@@ -160,7 +160,7 @@ std::string xapi_time_now() {
   return utc_time(std::chrono::system_clock::now(), 3);
 }
 
-constexpr const char* kStatuses[] = {"running", "finished", "interrupted", "diverged"};
+constexpr const char* kStatuses[] = {"running", "finished", "interrupted", "diverged", "ended_by_instructor"};
 
 // this process as "host:pid:start", the start in clock ticks after boot (a reused pid has another)
 std::string start_ticks(long pid) {
@@ -202,6 +202,18 @@ bool ended_here(const std::string& process) {
 }
 
 }  // namespace
+
+std::string attempt_status(bool diverged, bool interrupted, const sim::Score& score) {
+  if (diverged) return "diverged";
+  if (interrupted) return "interrupted";
+  return score.outcome == sim::Outcome::kEndedByInstructor ? "ended_by_instructor" : "finished";
+}
+
+std::string attempt_outcome(const AttemptRow& attempt) {
+  if (attempt.status == "finished") return attempt.passed ? "passed" : "failed";
+  if (attempt.status == "ended_by_instructor") return "ended by the instructor";
+  return attempt.status;
+}
 
 std::string utc_time(std::chrono::system_clock::time_point at, int decimals) {
   const std::time_t seconds = std::chrono::system_clock::to_time_t(at);
@@ -621,8 +633,9 @@ void RecordsStore::record_event(std::int64_t attempt, double at_s, const std::st
 void RecordsStore::finish_attempt(std::int64_t attempt, const sim::Metrics& m, const sim::Score& s,
                                   const std::string& recording, const std::string& status,
                                   std::string_view recording_bytes) {
-  if (status != "finished" && status != "interrupted" && status != "diverged")
-    throw std::invalid_argument("an attempt ends finished, interrupted or diverged, not '" + status + "'");
+  if (status != "finished" && status != "interrupted" && status != "diverged" && status != "ended_by_instructor")
+    throw std::invalid_argument("an attempt ends finished, interrupted, diverged or ended_by_instructor, not '" +
+                                status + "'");
   if (recording_bytes.size() > kMaxStoredRecordingBytes)
     recording_bytes = {};  // too long to keep in the records: its file only
   impl_->guarded("finishing attempt " + std::to_string(attempt), [&] {
@@ -732,7 +745,7 @@ std::vector<AttemptRow> RecordsStore::attempt_rows(const std::string& who, std::
         const int passed = r.get<int>(5);
         if (std::find(std::begin(kStatuses), std::end(kStatuses), a.status) == std::end(kStatuses))
           throw soci::soci_error("status '" + core::printable(a.status) +
-                                 "' is not running, finished, interrupted or diverged");
+                                 "' is not running, finished, interrupted, diverged or ended_by_instructor");
         if (passed != 0 && passed != 1)
           throw soci::soci_error("passed is " + std::to_string(passed) + ", not 0 or 1");
         if (a.score && !(*a.score >= 0.0 && *a.score <= 100.0))

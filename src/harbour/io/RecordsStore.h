@@ -28,7 +28,8 @@ struct AttemptRow {
   std::int64_t id = 0;
   std::string trainee;
   std::string exercise;
-  std::string status;  ///< running, finished, interrupted (its process ended first), diverged (physics)
+  /// running, finished, interrupted (its process ended first), diverged (physics), ended_by_instructor
+  std::string status;
   std::optional<double> score;
   bool passed = false;
   std::optional<std::int64_t> parent;  ///< the attempt an instructor took over from
@@ -38,6 +39,12 @@ struct AttemptRow {
   std::string route, stage;  ///< the training route stage it was run for ("" : none)
   std::string exercise_version;  ///< the exercise file's content hash (io::exercise_version; "" : before)
 };
+
+/// How an attempt is stored as ended: diverged (the physics stopped it), interrupted (its process ended
+/// first), ended_by_instructor (sim::Outcome::kEndedByInstructor: neither passed nor failed), else finished.
+std::string attempt_status(bool diverged, bool interrupted, const sim::Score& score);
+/// An attempt's result in words: passed, failed, ended by the instructor, interrupted, diverged, running.
+std::string attempt_outcome(const AttemptRow& attempt);
 
 /// What an attempt starts with.
 struct AttemptStart {

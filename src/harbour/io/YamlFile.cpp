@@ -28,12 +28,54 @@ int line_of(const YAML::Node& node) {
   return node.Mark().line + 1;
 }
 
-// duplicate keys (yaml-cpp keeps both and reads the first), keys that are not plain names, too deep nesting
-void check_structure(const YAML::Node& node, const std::string& file, const std::string& path, int depth) {
+// How many nodes a file may hold for its size: every node takes at least one byte of text, twice over for
+// flow mappings' implicit values ("{a, b}"). More means aliases (*name) repeat anchored nodes: a few lines of
+// nested aliases (a "billion laughs") expand to billions, and every reader would walk them all.
+std::size_t node_budget(std::size_t text_bytes) {
+  return 2 * text_bytes + 1024;
+}
+
+struct AliasBudgetSpent {};
+
+// 1-based line of the first alias (*name) in `text`, 0 if none (a '*' opening a plain token outside quotes and
+// comments)
+int first_alias_line(const std::string& text) {
+  int line = 1;
+  char quote = 0;
+  bool comment = false;
+  for (std::size_t at = 0; at < text.size(); ++at) {
+    const char c = text[at];
+    if (c == '\n') {
+      ++line;
+      comment = false;
+      if (quote == '\'') quote = 0;  // a stray quote does not hide the rest of the file
+      continue;
+    }
+    if (comment) continue;
+    if (quote) {
+      if (c == quote) quote = 0;
+      continue;
+    }
+    const char before = at == 0 ? ' ' : text[at - 1];
+    const bool token_start = before == ' ' || before == '\t' || before == '[' || before == '{' || before == ',' ||
+                             before == '\n' || before == '-' || before == ':';
+    if (c == '#' && (before == ' ' || before == '\t' || before == '\n')) comment = true;
+    if ((c == '"' || c == '\'') && token_start) quote = c;
+    if (c == '*' && token_start && at + 1 < text.size() && text[at + 1] != ' ') return line;
+  }
+  return 0;
+}
+
+// duplicate keys (yaml-cpp keeps both and reads the first), keys that are not plain names, too deep nesting,
+// aliases expanding past the file's node budget (`budget`: nodes still allowed, counted down)
+void check_structure(const YAML::Node& node, const std::string& file, const std::string& path, int depth,
+                     std::size_t& budget) {
   if (depth > kMaxDepth) throw DataError(file, line_of(node), path, "nested too deeply");
+  if (budget == 0) throw AliasBudgetSpent{};
+  --budget;
   if (node.IsSequence()) {
     for (std::size_t n = 0; n < node.size(); ++n)
-      check_structure(node[n], file, path + "[" + std::to_string(n) + "]", depth + 1);
+      check_structure(node[n], file, path + "[" + std::to_string(n) + "]", depth + 1, budget);
   } else if (node.IsMap()) {
     std::map<std::string, int> seen;
     for (const auto& entry : node) {
@@ -45,7 +87,7 @@ void check_structure(const YAML::Node& node, const std::string& file, const std:
       if (!inserted)
         throw DataError(file, line_of(entry.first), join(path, key),
                         "duplicate key (first given at line " + std::to_string(first->second) + ")");
-      check_structure(entry.second, file, join(path, key), depth + 1);
+      check_structure(entry.second, file, join(path, key), depth + 1, budget);
     }
   }
 }
@@ -90,7 +132,16 @@ YamlFile YamlFile::parse(const std::string& text, const std::string& name) {
   }
   if (!root.IsDefined() || root.IsNull()) throw DataError(name, 1, "(document)", "the file is empty");
   if (!root.IsMap()) throw DataError(name, 1, "(document)", "expected a mapping at the top level");
-  check_structure(root, name, "", 0);
+  std::size_t budget = node_budget(text.size());
+  try {
+    check_structure(root, name, "", 0, budget);
+  } catch (const AliasBudgetSpent&) {
+    const int line = first_alias_line(text);
+    throw DataError(name, line > 0 ? line : 1, "(aliases)",
+                    "aliases (*name) repeat anchored nodes past " + std::to_string(node_budget(text.size())) +
+                        " nodes, more than a file of " + std::to_string(text.size()) +
+                        " bytes holds: refused (nested aliases grow exponentially)");
+  }
   return YamlFile(root, name);
 }
 

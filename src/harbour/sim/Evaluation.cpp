@@ -39,6 +39,38 @@ void reserve_lists(Metrics& metrics) {
     list->reserve(std::max(kRoom, list->size()));
 }
 
+const char* outcome_name(Outcome outcome) {
+  switch (outcome) {
+    case Outcome::kPassed:
+      return "passed";
+    case Outcome::kFailed:
+      return "failed";
+    case Outcome::kEndedByInstructor:
+      return "ended by the instructor";
+  }
+  return "?";
+}
+
+bool scripts_fault(const ExerciseSettings& exercise, MachineFault fault) {
+  const auto kind_of = [](ScriptedEvent::Kind kind) -> std::optional<MachineFault> {
+    switch (kind) {
+      case ScriptedEvent::Kind::kHoistBrakeFault:
+        return MachineFault::kHoistBrake;
+      case ScriptedEvent::Kind::kLandedSensorFault:
+        return MachineFault::kLandedSensor;
+      case ScriptedEvent::Kind::kLimiterFault:
+        return MachineFault::kLoadMomentLimiter;
+      case ScriptedEvent::Kind::kGust:
+        return std::nullopt;
+    }
+    return std::nullopt;
+  };
+  for (const auto* events : {&exercise.scenario.events, &exercise.scenario.lift_events})
+    for (const ScriptedEvent& e : *events)
+      if (kind_of(e.kind) == fault) return true;
+  return false;
+}
+
 Evaluator::Evaluator(const ExerciseSettings& exercise)
     : exercise_(exercise), done_(exercise.moves.size(), false) {
   reserve_lists(metrics_);  // a station evaluates on its step thread, which must not allocate
@@ -112,6 +144,7 @@ void Evaluator::observe(const Simulation& simulation, const Controls& controls) 
   const bool estop =
       stop >= 0 && simulation.control_table().in_range(controls).value[static_cast<std::size_t>(stop)] != 0.0;
   observe_hoist_fault(simulation, estop);
+  observe_instructor(simulation);
   if (const auto* sts = dynamic_cast<const StsCrane*>(&simulation.machine()))
     observe_containers(simulation, controls, *sts, estop);
   else
@@ -123,6 +156,16 @@ void Evaluator::observe(const Simulation& simulation, const Controls& controls) 
   metrics_.vehicle = tally.vehicle;
   metrics_.jackknifes = static_cast<int>(tally.jackknifes);
   metrics_.tip_overs = static_cast<int>(tally.tip_overs);
+}
+
+void Evaluator::observe_instructor(const Simulation& simulation) {
+  // what the instructor did to the machine that the exercise does not script: a fault, a stop, the supply cut
+  bool disrupted = simulation.instructor_stopped() || simulation.power_off();
+  for (const MachineFault fault :
+       {MachineFault::kHoistBrake, MachineFault::kLandedSensor, MachineFault::kLoadMomentLimiter})
+    disrupted = disrupted || (simulation.machine().fault_active(fault) && !scripts_fault(exercise_, fault));
+  if (disrupted && !disrupted_) ++metrics_.instructor_disruptions;
+  disrupted_ = disrupted;
 }
 
 void Evaluator::observe_hoist_fault(const Simulation& simulation, bool emergency_stop) {
@@ -394,7 +437,8 @@ void Evaluator::observe_gantry_warning(bool horn, bool gantry_moving, double gan
   gantry_was_moving_ = gantry_moving;
 }
 
-Score score_of(const ExerciseSettings& exercise, const Metrics& metrics, bool goals_met) {
+Score score_of(const ExerciseSettings& exercise, const Metrics& metrics, bool goals_met,
+               bool stopped_by_instructor) {
   const EvaluationRules& r = exercise.rules;
   Score s;
   auto deduct = [&](const char* reason, Skill skill, int count, double points) {
@@ -447,12 +491,20 @@ Score score_of(const ExerciseSettings& exercise, const Metrics& metrics, bool go
   s.total = std::max(0.0, s.total);
   for (double& skill : s.skills)
     skill = std::max(0.0, skill);
-  s.passed = s.total >= r.pass_score && (goals_met || excused);
+  // a fault exercise's procedure followed stands for its goals; a fault the instructor injected does not
+  const bool procedure_passes = excused && scripts_fault(exercise, MachineFault::kHoistBrake);
+  if (s.total >= r.pass_score && (goals_met || procedure_passes))
+    s.outcome = Outcome::kPassed;
+  else if (!goals_met && !procedure_passes && (stopped_by_instructor || metrics.instructor_disruptions > 0))
+    s.outcome = Outcome::kEndedByInstructor;
+  else
+    s.outcome = Outcome::kFailed;
+  s.passed = s.outcome == Outcome::kPassed;
   return s;
 }
 
-Score Evaluator::score() const {
-  return score_of(exercise_, metrics_, goals_met());
+Score Evaluator::score(bool stopped_by_instructor) const {
+  return score_of(exercise_, metrics_, goals_met(), stopped_by_instructor);
 }
 
 }  // namespace harbour::sim
@@ -496,6 +548,7 @@ std::vector<std::pair<std::string, double>> Metrics::rows() const {
     r.emplace_back("stopped_after_fault", stopped_after_fault ? 1.0 : 0.0);
     if (fault_set_down_s >= 0.0) r.emplace_back("fault_set_down_s", fault_set_down_s);
   }
+  if (instructor_disruptions > 0) r.emplace_back("instructor_disruptions", instructor_disruptions);
   if (vehicle) {
     r.emplace_back("jackknifes", jackknifes);
     r.emplace_back("tip_overs", tip_overs);

@@ -133,6 +133,10 @@ struct Metrics {
   int lifts_under_fault = 0;
   double fault_set_down_s = -1.0;
   bool stopped_after_fault = false;
+  /// Onsets of what the instructor did to the machine that the exercise does not script: a fault injected,
+  /// the instructor's emergency stop, a power failure. An attempt they end with goals left is the
+  /// instructor's doing, not the trainee's (Outcome::kEndedByInstructor).
+  int instructor_disruptions = 0;
   double hoist_energy_j = 0.0;   ///< [J] mechanical work at the hoist drum (positive part)
   double travel_energy_j = 0.0;  ///< [J] mechanical work of the gantry and trolley drives (positive parts)
   // bulk handling (exercises with bulk material)
@@ -174,11 +178,22 @@ struct Metrics {
 enum class Skill : std::uint8_t { kSafety, kPrecision, kProductivity };
 const char* skill_name(Skill skill);
 
+/// What an attempt's result says of the trainee.
+enum class Outcome : std::uint8_t {
+  kPassed,  ///< its goals met at the pass score (or a fault exercise's procedure followed at it)
+  kFailed,
+  /// The instructor ended it, or disrupted it (a fault, an emergency stop, a power failure the exercise
+  /// does not script) and it ended with goals left: neither passed nor failed, and not counted as either.
+  kEndedByInstructor,
+};
+const char* outcome_name(Outcome outcome);
+
 /// The score: 100 minus deductions, with the reasons, and a sub-score per skill (100 minus that skill's
 /// deductions, floor 0).
 struct Score {
   double total = 100.0;
-  bool passed = false;
+  bool passed = false;  ///< outcome == kPassed
+  Outcome outcome = Outcome::kFailed;
   struct Deduction {
     std::string reason;
     int count = 0;
@@ -215,8 +230,12 @@ struct Progress {
 /// The name the records and the console use for counted event kind `n`.
 const char* counted_event_kind(std::size_t n);
 Progress progress(const Metrics& metrics);
-/// The score of `metrics` by `exercise`'s rules (what Evaluator::score gives); `goals_met` as it says.
-Score score_of(const ExerciseSettings& exercise, const Metrics& metrics, bool goals_met);
+/// The score of `metrics` by `exercise`'s rules (what Evaluator::score gives); `goals_met` as it says;
+/// `stopped_by_instructor`: the instructor ended the attempt before the exercise did.
+Score score_of(const ExerciseSettings& exercise, const Metrics& metrics, bool goals_met,
+               bool stopped_by_instructor = false);
+/// The exercise scripts this fault itself (a fault exercise): its procedure is what is trained.
+bool scripts_fault(const ExerciseSettings& exercise, MachineFault fault);
 /// Room in every per-move, per-landing and per-bite list of `metrics` for a long attempt (256 of each), so
 /// that filling them, or copying a metrics into one with this room, allocates nothing.
 void reserve_lists(Metrics& metrics);
@@ -238,7 +257,8 @@ class Evaluator {
   /// All goals done (an exercise without goals, a free practice, runs to its time limit and overtime).
   bool finished() const;
   const Metrics& metrics() const { return metrics_; }
-  Score score() const;
+  /// `stopped_by_instructor`: the instructor ended the attempt before the exercise did.
+  Score score(bool stopped_by_instructor = false) const;
   /// Every goal met (the moves, the tonnes delivered, the pile trimmed).
   bool goals_met() const;
 
@@ -257,6 +277,8 @@ class Evaluator {
   /// A falling load, and the hoist brake fault procedure: land the load under power, lift nothing more,
   /// then stop the machine (docs/evaluation.md).
   void observe_hoist_fault(const Simulation& simulation, bool emergency_stop);
+  /// Onsets of an instructor's disruption the exercise does not script (Metrics::instructor_disruptions).
+  void observe_instructor(const Simulation& simulation);
   int goal_of(physics::BodyId body, const Simulation& simulation) const;
   double sway_m(const Simulation& simulation, std::optional<physics::BodyId> hanging_box) const;
   bool near_target(physics::BodyId box, const Simulation& simulation) const;
@@ -290,6 +312,7 @@ class Evaluator {
   bool suspended_ = false;        // a load hung on the machine at the last step
   double fault_since_s_ = -1.0;   // when the hoist brake fault came with a load hanging
   bool stopping_safely_ = false;  // the brake failed with the load down: an emergency stop is the procedure
+  bool disrupted_ = false;        // an instructor's disruption was in force at the last step
 };
 
 }  // namespace harbour::sim

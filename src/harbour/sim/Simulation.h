@@ -189,6 +189,8 @@ class Simulation {
   void command(const InstructorCommand& command);
   /// The machine's supply has failed (kPowerFailure): its drives read the emergency stop pressed.
   bool power_off() const { return power_off_; }
+  /// The instructor holds the machine's emergency stop pressed (kEmergencyStop).
+  bool instructor_stopped() const { return instructor_stop_; }
   /// The supply is back but a lever has not been at zero since: the drives stay off until every axis control
   /// reads within kLeverZeroBand of its neutral (zero-voltage protection).
   bool awaiting_zero() const { return awaiting_zero_; }

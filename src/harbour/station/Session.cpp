@@ -72,7 +72,7 @@ Session::Session(const sim::ExerciseSettings& exercise, const SessionOptions& op
 Session::~Session() {
   if (!finished_) {
     try {
-      finish(true);
+      finish(SessionEnd::kInterrupted);
     } catch (...) {  // the database itself failed: its next opening marks the attempt interrupted
     }
   }
@@ -185,7 +185,7 @@ void Session::keep(const StepRecord& record) {
   }
 }
 
-SessionResult Session::finish(bool interrupted) {
+SessionResult Session::finish(SessionEnd end) {
   finished_ = true;
   loop_->stop();
   loop_done_ = true;
@@ -195,10 +195,9 @@ SessionResult Session::finish(bool interrupted) {
   result.attempt = attempt_;
   result.loop = loop_->stats();
   result.metrics = evaluator_.metrics();  // the loop has stopped: the step thread's evaluator is ours
-  result.score = evaluator_.score();
-  result.status = simulation_->diverged()                 ? "diverged"
-                  : interrupted || !keeper_error_.empty() ? "interrupted"
-                                                          : "finished";
+  result.score = evaluator_.score(end == SessionEnd::kStoppedByInstructor);
+  result.status = io::attempt_status(simulation_->diverged(), end == SessionEnd::kInterrupted || !keeper_error_.empty(),
+                                     result.score);
   std::string kept;
   if (writer_) {
     writer_->finish(recorder_.recording().total_steps);

@@ -35,8 +35,15 @@ struct SessionOptions {
 };
 
 /// How a session ended.
+/// How a live attempt came to its end.
+enum class SessionEnd : std::uint8_t {
+  kRan,                  ///< the exercise ended it (its goals met, its time and overtime past)
+  kInterrupted,          ///< the station stopped first (a signal, its window closed, its run's time up)
+  kStoppedByInstructor,  ///< the instructor stopped or reset it
+};
+
 struct SessionResult {
-  std::string status;  ///< finished, interrupted, diverged (as stored)
+  std::string status;  ///< as stored (io::attempt_status)
   std::int64_t attempt = 0;
   sim::Metrics metrics;
   sim::Score score;
@@ -73,7 +80,7 @@ class Session {
   void note_event(const std::string& kind, double value = 0.0);
   /// Stops the loop (if still running), lets the keeper catch up, closes the recording and stores the
   /// attempt: `interrupted` when the trainee or a signal stopped it before the end.
-  SessionResult finish(bool interrupted);
+  SessionResult finish(SessionEnd end);
 
  private:
   /// The step thread's part: evaluates the step just taken, hands what grew to the keeper.
