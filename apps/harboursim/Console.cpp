@@ -1702,11 +1702,11 @@ std::optional<Console::Response> Console::open_replay(Call& c) {
     return error(request, http::status::too_many_requests,
                  "already " + std::to_string(Replay::kMostOpen) + " replays open: close one");
   Replay replay;
-  std::string version;  // of the exercise file replayed: the attempt's where the designer kept it
+  std::string version, inexact;  // of the exercise replayed: the version the attempt ran, kept in the records
   try {
-    const std::string file = resolve_exercise(row->exercise, exercise_folder(), row->exercise_version);
-    replay.exercise = load_resolved_exercise(file);
-    version = io::exercise_version(file);
+    const io::ExerciseSource source = attempt_exercise(db_, *row, exercise_folder(), inexact);
+    replay.exercise = io::load_exercise_source(source);
+    version = source.version;
     replay.recording = db_.read_recording_of(*row);  // the station may be another PC
   } catch (const std::exception& e) {
     return error(request, http::status::conflict, std::string("cannot replay: ") + e.what());
@@ -1758,6 +1758,8 @@ std::optional<Console::Response> Console::open_replay(Call& c) {
                      {"trainee", r.trainee},
                      {"duration_s", static_cast<double>(r.recording.total_steps) * sim::Simulation::kStep_s},
                      {"complete", r.recording.complete},
+                     {"exact", inexact.empty()},
+                     {"note", inexact},
                      {"events", events}});
 }
 

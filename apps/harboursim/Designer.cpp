@@ -106,6 +106,12 @@ DesignCheck check_design(const std::string& folder, const std::string& yaml) {
 
 std::string save_design(const std::string& folder, const DesignCheck& design) {
   const fs::path file = fs::path(folder) / (design.exercise.name + ".yaml");
+  // a centre's exercise named as a shipped one would stand in for it at every station and route
+  const fs::path shipped = fs::path(HARBOUR_DATA_DIR) / "exercises" / (design.exercise.name + ".yaml");
+  std::error_code ec;
+  if (fs::is_regular_file(shipped) && !fs::equivalent(file, shipped, ec))
+    throw std::logic_error("exercise '" + design.exercise.name +
+                           "' is a shipped exercise: save the design under a name of its own (exercise.name)");
   if (fs::exists(file) && !designed(read_file(file)))
     throw std::logic_error("exercise '" + design.exercise.name +
                            "' was not made by the designer (a shipped one?): save the design under another "

@@ -29,7 +29,8 @@ DesignCheck check_design(const std::string& folder, const std::string& yaml);
 
 /// Saves a checked design as FOLDER/NAME.yaml (NAME: its exercise name), written beside and renamed over, and
 /// keeps the version as FOLDER/versions/NAME-VERSION.yaml, so a replay of an attempt of an earlier version
-/// still finds what it ran. Throws std::logic_error when NAME is an exercise the designer did not make.
+/// still finds what it ran. Throws std::logic_error when NAME is an exercise the designer did not make, or a
+/// shipped exercise's name.
 /// Returns the file saved.
 std::string save_design(const std::string& folder, const DesignCheck& design);
 

@@ -81,13 +81,17 @@ std::unique_ptr<station::DeviceInput> open_devices(const station::Profile& profi
                            "exercise, run with --autopilot)");
 }
 
-// The exercise version a taken-over attempt ran ("" when it is not taken over or its record names none): the
-// branch goes on in the world the attempt was made in, even when the exercise was redesigned since.
-std::string taken_over_version(const std::string& database, const StationOptions& options) {
-  if (options.take_over_recording.empty()) return "";
-  const std::optional<io::AttemptRow> taken =
-      io::RecordsStore(database).attempt_recorded_at(options.take_over_recording);
-  return taken ? taken->exercise_version : "";
+// The exercise a taken-over attempt ran (none when it is not taken over or the records hold no such
+// attempt): the branch goes on in the world the attempt was made in, even when the exercise changed since.
+std::optional<io::ExerciseSource> taken_over_exercise(const std::string& database, const StationOptions& options) {
+  if (options.take_over_recording.empty()) return std::nullopt;
+  io::RecordsStore db(database);
+  const std::optional<io::AttemptRow> taken = db.attempt_recorded_at(options.take_over_recording);
+  if (!taken) return std::nullopt;
+  std::string inexact;
+  io::ExerciseSource source = attempt_exercise(db, *taken, options.centre.exercises, inexact);
+  if (!inexact.empty()) std::printf("NOTE: %s\n", inexact.c_str());
+  return source;
 }
 
 // One attempt at the station, start to end; with a link, seen and commanded from the centre's consoles
@@ -106,21 +110,20 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
   check_outputs(outputs);
   const std::string database = options.database.empty() ? default_database() : options.database;
   station::SessionOptions session_options;
-  std::string exercise_file;
   if (!options.route.empty()) {
     io::RecordsStore db(database);
     const RouteStage next = next_route_stage(db, options.centre, options.trainee, options.route);
-    exercise_file = next.stage.exercise_file;
+    session_options.source = io::read_exercise_source(next.stage.exercise_file);
     session_options.route = next.route.id;
     session_options.stage = next.stage.id;
     std::printf("route %s, stage %s (%s)\n", next.route.id.c_str(), next.stage.id.c_str(),
                 next.stage.goal.c_str());
+  } else if (std::optional<io::ExerciseSource> taken = taken_over_exercise(database, options)) {
+    session_options.source = std::move(*taken);
   } else {
-    exercise_file =
-        resolve_exercise(options.exercise, options.centre.exercises, taken_over_version(database, options));
+    session_options.source = io::read_exercise_source(resolve_exercise(options.exercise, options.centre.exercises));
   }
-  session_options.exercise_version = io::exercise_version(exercise_file);
-  const sim::ExerciseSettings exercise = load_resolved_exercise(exercise_file);
+  const sim::ExerciseSettings exercise = io::load_exercise_source(session_options.source);
   if (options.autopilot)
     if (const std::string why = sim::why_no_pilot(exercise); !why.empty())
       throw std::runtime_error(exercise.name + ": " + why + " (drive it yourself: no --autopilot)");

@@ -242,8 +242,8 @@ int run_exercise(const RunOptions& options) {
   } else {
     exercise_file = resolve_exercise(options.exercise, options.centre.exercises);
   }
-  run.exercise_version = io::exercise_version(exercise_file);
-  const sim::ExerciseSettings exercise = load_resolved_exercise(exercise_file);
+  run.source = io::read_exercise_source(exercise_file);
+  const sim::ExerciseSettings exercise = io::load_exercise_source(run.source);
   if (const std::string why = sim::why_no_pilot(exercise); !why.empty())
     throw std::runtime_error(exercise.name + ": " + why);
   sim::Simulation simulation(exercise.scenario);
@@ -276,7 +276,7 @@ int drive_attempt(const sim::ExerciseSettings& exercise, sim::Simulation& simula
   }
   const std::int64_t attempt =
       db.begin_attempt({options.trainee, exercise.name, parent, branch_step, options.record, options.route,
-                        options.stage, options.exercise_version});
+                        options.stage, options.source.version, options.source});
   std::printf("attempt %lld of trainee %s%s\n", static_cast<long long>(attempt), options.trainee.c_str(),
               options.record.empty() ? "" : (", recording " + options.record).c_str());
   for (int n = 0; n < evaluator.metrics().moves_completed; ++n)  // a take-over's moves before the branch
@@ -387,6 +387,13 @@ std::string resolve_exercise(const std::string& name_or_path, const std::string&
   std::vector<fs::path> folders;
   if (!centre.empty()) folders.push_back(centre);
   folders.push_back(shipped_folder);
+  if (!centre.empty() && fs::is_regular_file(fs::path(centre) / (name_or_path + ".yaml")) &&
+      fs::is_regular_file(shipped_folder / (name_or_path + ".yaml")) &&
+      !fs::equivalent(fs::path(centre), shipped_folder))
+    throw std::runtime_error("exercise '" + name_or_path + "' is both the centre's (" +
+                             (fs::path(centre) / (name_or_path + ".yaml")).string() +
+                             ") and a shipped one: a centre's exercise takes a name of its own (rename the file "
+                             "and its exercise.name)");
   for (const fs::path& folder : folders) {
     const fs::path file = folder / (name_or_path + ".yaml");
     if (!fs::is_regular_file(file)) continue;
@@ -405,9 +412,33 @@ std::string resolve_exercise(const std::string& name_or_path, const std::string&
 }
 
 sim::ExerciseSettings load_resolved_exercise(const std::string& file) {
-  const std::filesystem::path folder = std::filesystem::path(file).parent_path();
-  if (folder.filename() != "versions") return io::load_exercise(file);
-  return io::load_exercise(io::YamlFile::load(file), folder.parent_path().string());
+  return io::load_exercise_source(io::read_exercise_source(file));
+}
+
+io::ExerciseSource attempt_exercise(io::RecordsStore& db, const io::AttemptRow& attempt,
+                                    const std::string& centre_exercises, std::string& inexact) {
+  namespace fs = std::filesystem;
+  inexact.clear();
+  if (!attempt.exercise_version.empty())
+    if (std::optional<io::ExerciseSource> kept = db.kept_exercise(attempt.exercise_version)) {
+      // its paths resolve where they did; on another PC, from where an exercise of its name stands here
+      if (!fs::is_directory(kept->folder)) {
+        try {
+          kept->folder = io::read_exercise_source(resolve_exercise(attempt.exercise, centre_exercises)).folder;
+        } catch (const std::exception&) {
+          kept->folder = std::string(HARBOUR_DATA_DIR) + "/exercises";
+        }
+      }
+      return *kept;
+    }
+  io::ExerciseSource source =
+      io::read_exercise_source(resolve_exercise(attempt.exercise, centre_exercises, attempt.exercise_version));
+  if (!attempt.exercise_version.empty() && source.version != attempt.exercise_version)
+    inexact = "exercise " + attempt.exercise + " has changed since attempt " + std::to_string(attempt.id) +
+              " (version " + attempt.exercise_version + ", now " + source.version +
+              ") and neither the records nor the designer keep the version it ran: this replay runs on the "
+              "current file and may not show what the trainee had";
+  return source;
 }
 
 namespace {
@@ -434,9 +465,11 @@ int replay_attempt(std::int64_t attempt, const std::string& database, const std:
   std::printf("attempt %lld of trainee %s: %s (%s)\n", static_cast<long long>(attempt), row->trainee.c_str(),
               row->recording.c_str(), db.recording(attempt) ? "the records' copy" : "its file");
   const sim::Recording recording = db.read_recording_of(*row);
-  return replay_checked(
-      row->recording, recording,
-      load_resolved_exercise(resolve_exercise(row->exercise, centre_exercises, row->exercise_version)));
+  std::string inexact;
+  const io::ExerciseSource source = attempt_exercise(db, *row, centre_exercises, inexact);
+  std::printf("exercise %s version %s (%s)\n", row->exercise.c_str(), source.version.c_str(), source.file.c_str());
+  if (!inexact.empty()) std::printf("NOTE: %s\n", inexact.c_str());
+  return replay_checked(row->recording, recording, io::load_exercise_source(source));
 }
 
 namespace {
@@ -467,9 +500,11 @@ int replay_checked(const std::string& recording_path, const sim::Recording& reco
 }
 }  // namespace
 
-int take_over_recording(const std::string& recording_path, const RunOptions& options, double at_s) {
+int take_over_recording(const std::string& recording_path, const RunOptions& given, double at_s) {
   const sim::Recording recording = io::read_recording(recording_path);
-  const sim::ExerciseSettings exercise = load_resolved_exercise(resolve_exercise(options.exercise));
+  RunOptions options = given;
+  options.source = io::read_exercise_source(resolve_exercise(options.exercise, options.centre.exercises));
+  const sim::ExerciseSettings exercise = io::load_exercise_source(options.source);
   if (recording.scenario != exercise.name) {
     std::fprintf(stderr, "harboursim: %s was recorded on exercise '%s', not '%s'\n", recording_path.c_str(),
                  recording.scenario.c_str(), exercise.name.c_str());

@@ -4,6 +4,8 @@
 #include <vector>
 
 #include "Centre.h"
+#include "harbour/io/ExerciseFiles.h"
+#include "harbour/io/RecordsStore.h"
 #include "harbour/sim/Evaluation.h"
 
 namespace harbour::apps {
@@ -20,8 +22,8 @@ struct RunOptions {
       commands;  ///< instructor commands, AT:KIND[:VALUES] (io::parse_instructor_command)
   /// a training route (data/routes): the trainee, enrolled in it, runs its next stage's exercise
   std::string route;
-  std::string stage;             ///< set by the run: the route's stage it runs
-  std::string exercise_version;  ///< set by the run: io::exercise_version of the exercise file
+  std::string stage;          ///< set by the run: the route's stage it runs
+  io::ExerciseSource source;  ///< set by the run: the exercise as it runs (kept in the records by its version)
 };
 /// Returns 0 when the exercise ended (passed, failed, or ended by the instructor), kExitOutOfTime when its
 /// time limit and overtime ran out with goals left, 3 when the physics diverged, 130 on a signal, 1 with
@@ -45,6 +47,12 @@ std::string resolve_exercise(const std::string& name_or_path, const std::string&
 /// Loads what resolve_exercise found: a version the designer kept (in the folder's `versions/`) as if it
 /// stood in the folder itself, where its relative paths (../machines/...) were written for.
 sim::ExerciseSettings load_resolved_exercise(const std::string& file);
+
+/// The exercise a stored attempt ran, to replay or continue it: the records' copy of its version, else the
+/// file of that version (the current one, or one the designer kept). Where neither is left, the current file
+/// with `inexact` saying in words that the replay may not be what the trainee had (else `inexact` is "").
+io::ExerciseSource attempt_exercise(io::RecordsStore& db, const io::AttemptRow& attempt,
+                                    const std::string& centre_exercises, std::string& inexact);
 
 /// The default records database: $XDG_DATA_HOME/harboursim/records.db (or ~/.local/share/...), as a SOCI
 /// connection string.

@@ -34,16 +34,17 @@ std::string read_text(const fs::path& file) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-// starts `harboursim run` on the shipped discharge exercise, its output to a log in `folder`
-pid_t start_run(const fs::path& folder, const std::string& db, const std::string& record, int n) {
+// starts `harboursim run` on the shipped discharge exercise (or `exercise`), its output to a log in `folder`
+pid_t start_run(const fs::path& folder, const std::string& db, const std::string& record, int n,
+                const std::vector<std::string>& more = {}, const std::string& exercise = "sts_discharge") {
   const pid_t child = fork();
   if (child == 0) {
     const std::string log = (folder / ("run" + std::to_string(n) + ".log")).string();
     freopen(log.c_str(), "w", stdout);
     freopen(log.c_str(), "a", stderr);
-    std::vector<std::string> args = {HARBOUR_APP, "run", "--exercise", "sts_discharge", "--autopilot",
-                                     "--db",      db};
+    std::vector<std::string> args = {HARBOUR_APP, "run", "--exercise", exercise, "--autopilot", "--db", db};
     if (!record.empty()) args.insert(args.end(), {"--record", record});
+    args.insert(args.end(), more.begin(), more.end());
     std::vector<char*> argv;
     for (std::string& a : args)
       argv.push_back(a.data());
@@ -130,6 +131,94 @@ TEST(Run, ABadRecordingPathIsRefusedBeforeTheRunAndNothingIsStored) {
   }
   EXPECT_FALSE(fs::exists(folder / "records.db"));  // refused before the database was even opened
   EXPECT_FALSE(fs::exists(folder / "missing"));
+}
+
+// a centre's folder: an exercises folder of its own beside the shipped machines, vessels, ... (linked)
+void link_data_beside(const fs::path& folder) {
+  fs::create_directories(folder / "exercises");
+  for (const auto& entry : fs::directory_iterator(HARBOUR_DATA_DIR))
+    if (entry.path().filename() != "exercises") fs::create_symlink(entry.path(), folder / entry.path().filename());
+}
+
+int exit_code(pid_t child) {
+  int status = 0;
+  waitpid(child, &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -WTERMSIG(status);
+}
+
+// The instructor's hoist brake fault in an exercise that does not script it: the autopilot follows the
+// procedure and the crane stops with the move left. It used to say "score 100 / 100: PASSED" and count as a
+// pass; it is ended by the instructor, neither passed nor failed, and says so in words.
+TEST(Run, AFaultTheInstructorInjectedEndsTheAttemptByTheInstructorNotAsAPass) {
+  const fs::path folder = fresh_folder("harbour_false_pass");
+  const std::string db = "sqlite3://db=" + (folder / "records.db").string();
+  EXPECT_EQ(exit_code(start_run(folder, db, "", 0, {"--command", "22:hoist-brake-fault"})), 0);
+  const std::string log = read_text(folder / "run0.log");
+  EXPECT_NE(log.find("ENDED BY THE INSTRUCTOR (neither passed nor failed)"), std::string::npos) << log;
+  EXPECT_EQ(log.find("PASSED"), std::string::npos) << log;
+  EXPECT_EQ(log.find("after -"), std::string::npos) << "a negative duration: " << log;
+  io::RecordsStore store(db);
+  const auto attempts = store.attempts();
+  ASSERT_EQ(attempts.size(), 1u);
+  EXPECT_EQ(attempts[0].status, "ended_by_instructor");
+  EXPECT_FALSE(attempts[0].passed);
+  EXPECT_EQ(io::attempt_outcome(attempts[0]), "ended by the instructor");
+  EXPECT_EQ(attempts[0].moves, 0);
+}
+
+// An exercise that cannot be finished in its time (here: 5 s for a discharge, no overtime) stops there and
+// the run exits non-zero, saying which goals are left.
+TEST(Run, ARunOutOfTimeWithGoalsLeftExitsNonZeroAndSaysSo) {
+  const fs::path folder = fresh_folder("harbour_out_of_time");
+  const std::string db = "sqlite3://db=" + (folder / "records.db").string();
+  std::string text = read_text(HARBOUR_DATA_DIR "/exercises/sts_discharge.yaml");
+  const std::size_t rules = text.find("  rules:\n");
+  ASSERT_NE(rules, std::string::npos);
+  text.insert(rules + std::string("  rules:\n").size(), "    overtime_s: 0\n");
+  const std::size_t limit = text.find("time_limit_s: ");
+  ASSERT_NE(limit, std::string::npos);
+  text.replace(limit, text.find('\n', limit) - limit, "time_limit_s: 5");
+  link_data_beside(folder);
+  std::ofstream(folder / "exercises" / "sts_discharge.yaml") << text;
+  EXPECT_EQ(exit_code(start_run(folder, db, "", 0, {}, (folder / "exercises" / "sts_discharge.yaml").string())),
+            4);
+  const std::string log = read_text(folder / "run0.log");
+  EXPECT_NE(log.find("with goals left: moves 0/1"), std::string::npos) << log;
+  io::RecordsStore store(db);
+  ASSERT_EQ(store.attempts().size(), 1u);
+  EXPECT_EQ(store.attempts()[0].status, "finished");
+  EXPECT_FALSE(store.attempts()[0].passed);
+}
+
+// A stored attempt replays bit for bit after its exercise file was edited: the records keep the version it
+// ran, and replay re-simulates that, not the file as it is now.
+TEST(Run, AnOldAttemptReplaysBitForBitAfterItsExerciseFileWasEdited) {
+  const fs::path folder = fresh_folder("harbour_edited");
+  const std::string db = "sqlite3://db=" + (folder / "records.db").string();
+  link_data_beside(folder);
+  const fs::path file = folder / "exercises" / "sts_discharge.yaml";
+  std::string text = read_text(HARBOUR_DATA_DIR "/exercises/sts_discharge.yaml");
+  std::ofstream(file) << text;
+  const std::string record = (folder / "run.hsrc").string();
+  ASSERT_EQ(exit_code(start_run(folder, db, record, 0, {}, file.string())), 0) << read_text(folder / "run0.log");
+  // the crane starting elsewhere: the same recording would diverge at once
+  const std::size_t start = text.find("trolley_x_m: 32.27");
+  ASSERT_NE(start, std::string::npos);
+  text.replace(start, 18, "trolley_x_m: 30.00");
+  std::ofstream(file, std::ios::trunc) << text;
+  fs::remove(record);  // and the recording's file gone: the records keep both
+  const pid_t replay = fork();
+  if (replay == 0) {
+    const std::string log = (folder / "replay.log").string();
+    freopen(log.c_str(), "w", stdout);
+    freopen(log.c_str(), "a", stderr);
+    execl(HARBOUR_APP, HARBOUR_APP, "replay", "--attempt", "1", "--db", db.c_str(), nullptr);
+    _exit(127);
+  }
+  EXPECT_EQ(exit_code(replay), 0) << read_text(folder / "replay.log");
+  const std::string log = read_text(folder / "replay.log");
+  EXPECT_NE(log.find("kept in the records"), std::string::npos) << log;
+  EXPECT_NE(log.find("reproduced bit for bit"), std::string::npos) << log;
 }
 
 }  // namespace

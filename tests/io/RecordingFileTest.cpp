@@ -9,6 +9,7 @@
 #include <fstream>
 #include <iterator>
 #include <limits>
+#include <optional>
 
 #include "harbour/core/Rng.h"
 #include "harbour/core/StateArchive.h"
@@ -326,6 +327,75 @@ TEST(RecordingFile, DamageAnywhereIsRefusedOrReportedNeverACrash) {
       "replayed unchanged\n",
       refused_reading, refused_seek, mismatched, unchanged);
   std::filesystem::remove(path);
+}
+
+// A station's recording cut anywhere (a full disk, a killed process): every prefix of its last 64 KiB
+// reads, as the incomplete recording of what it holds up to its last whole second; a cut inside a keyframe
+// (most of the file's bytes) drops that keyframe. Replayed from the start and from its last keyframe, a
+// prefix cut in the last keyframe reproduces every recorded second.
+TEST(RecordingFile, ACutAtEveryByteOfItsLast64KiBReadsAsItsPrefix) {
+  const sim::ScenarioSettings scenario = scenes::sts_discharge(HARBOUR_DATA_DIR);
+  constexpr std::int64_t kSteps = 41000;  // keyframes at 10, 20, 30 and 40 s
+  sim::Recorder recorder("sts_discharge", sim::sts_control_table());
+  {
+    sim::Simulation s(scenario);
+    for (std::int64_t k = 0; k < kSteps; ++k) {
+      const sim::StsControls in = scenes::scripted_operator(k);
+      s.step(scenes::cab(in));
+      recorder.after_step(s, scenes::cab(in));
+    }
+  }
+  const sim::Recording& whole = recorder.recording();
+  ASSERT_EQ(whole.keyframes.size(), 4u);
+  const std::string path = temp("harbour_cut.hsrc");
+  write_recording(path, whole);
+  const std::vector<char> bytes = file_bytes(path);
+  std::filesystem::remove(path);
+  const std::vector<std::uint8_t>& last_state = whole.keyframes.back().state;
+  const auto last_keyframe_at = static_cast<std::size_t>(
+      std::search(bytes.begin(), bytes.end(), last_state.begin(), last_state.end(),
+                  [](char a, std::uint8_t b) { return static_cast<std::uint8_t>(a) == b; }) -
+      bytes.begin());
+  ASSERT_LT(last_keyframe_at, bytes.size());
+  ASSERT_GT(bytes.size(), std::size_t{65536}) << "the recording is shorter than the span cut";
+
+  std::size_t refused = 0, wrong = 0, first_wrong = 0;
+  std::string first_why;
+  std::optional<sim::Recording> inside_last_keyframe;
+  for (std::size_t cut = bytes.size() - 65536; cut < bytes.size(); ++cut) {
+    sim::Recording prefix;
+    try {
+      prefix = parse_recording(path, std::string(bytes.data(), cut));
+    } catch (const RecordingFileError& e) {
+      if (refused++ == 0) first_why = "cut at " + std::to_string(cut) + ": " + e.what();
+      continue;
+    }
+    // what it holds is what the whole recording holds up to its last whole second
+    const auto n_keyframes = prefix.keyframes.size();
+    const bool ok =
+        !prefix.complete && !prefix.checkpoints.empty() &&
+        prefix.total_steps == prefix.checkpoints.back().step && prefix.checkpoints.size() <= whole.checkpoints.size() &&
+        prefix.checkpoints.back().state_hash == whole.checkpoints[prefix.checkpoints.size() - 1].state_hash &&
+        n_keyframes <= whole.keyframes.size() &&
+        (n_keyframes == 0 || prefix.keyframes.back().state == whole.keyframes[n_keyframes - 1].state) &&
+        prefix.inputs.size() <= whole.inputs.size() &&
+        (prefix.inputs.empty() || prefix.inputs.back().step < prefix.total_steps);
+    if (!ok && wrong++ == 0) first_wrong = cut;
+    if (!inside_last_keyframe && cut > last_keyframe_at + 16 && cut < last_keyframe_at + last_state.size())
+      inside_last_keyframe = prefix;
+  }
+  EXPECT_EQ(refused, 0u) << first_why;
+  EXPECT_EQ(wrong, 0u) << "first at byte " << first_wrong;
+  ASSERT_TRUE(inside_last_keyframe);
+  EXPECT_EQ(inside_last_keyframe->keyframes.size(), 3u);  // the torn one is dropped
+  const sim::ReplayResult from_start = sim::replay(scenario, *inside_last_keyframe);
+  EXPECT_FALSE(from_start.first_mismatch);
+  EXPECT_EQ(from_start.checkpoints_checked, static_cast<int>(inside_last_keyframe->checkpoints.size()));
+  const sim::ReplayResult from_keyframe =
+      sim::replay(scenario, *inside_last_keyframe, inside_last_keyframe->total_steps);
+  EXPECT_EQ(from_keyframe.keyframes_used, 1);
+  EXPECT_FALSE(from_keyframe.first_mismatch);
+  EXPECT_EQ(from_keyframe.simulation->state_hash(), from_start.simulation->state_hash());
 }
 
 // A recording written by the v6 build (2026-11-23, `harboursim run --exercise sts_discharge --autopilot

@@ -76,5 +76,37 @@ TEST(YamlFile, OneDocumentNoDuplicatesNoUnknownKeys) {
   }
 }
 
+// A "billion laughs": each level an alias list of nine of the level below. Refused by counting the nodes the
+// aliases expand to against what the file's bytes can hold (before any reader walks them: each level used to
+// take ten times longer, 8 levels 25 s), naming the file and the first alias's line. A few aliases that stay
+// within the file's size still read.
+std::string alias_bomb(int levels) {
+  std::string text = "name: bomb\na0: &a0 [lol, lol, lol, lol, lol, lol, lol, lol, lol]\n";
+  for (int n = 1; n <= levels; ++n) {
+    const std::string below = "*a" + std::to_string(n - 1);
+    text += "a" + std::to_string(n) + ": &a" + std::to_string(n) + " [";
+    for (int k = 0; k < 9; ++k)
+      text += (k ? ", " : "") + below;
+    text += "]\n";
+  }
+  return text;
+}
+
+TEST(YamlFile, NestedAliasesAreRefusedAtOnceNamingTheFirstAlias) {
+  for (const int levels : {4, 8, 9, 30}) {
+    SCOPED_TRACE(std::to_string(levels) + " levels");
+    try {
+      YamlFile::parse(alias_bomb(levels), "bomb.yaml");
+      FAIL() << "accepted";
+    } catch (const DataError& e) {
+      EXPECT_EQ(e.file(), "bomb.yaml");
+      EXPECT_EQ(e.line(), 3) << e.what();  // a1, the first line with an alias
+      EXPECT_NE(std::string(e.what()).find("aliases"), std::string::npos) << e.what();
+    }
+  }
+  const YamlFile fine = YamlFile::parse(alias_bomb(1) + "b: *a1\n", "fine.yaml");
+  EXPECT_EQ(fine.root()["b"].size(), 9u);
+}
+
 }  // namespace
 }  // namespace harbour::io

@@ -16,6 +16,7 @@ interface Station {
 interface StateMessage extends ViewState {
   type: "state"; station: string; time_s: number; held: boolean; wind_mps: number[];
   indicators: Record<string, number>;
+  checkpoint_mismatch?: boolean;  // a replay's: it no longer reproduces its recording
 }
 interface EventMessage { type: "event"; station: string; time_s: number; kind: string; value: number; text: string; }
 
@@ -93,7 +94,7 @@ function showStations(stations: Station[]) {
 }
 
 interface ReplayInfo { replay: number; station: string; attempt: number; exercise: string; trainee: string;
-  duration_s: number; events: { at_s: number; kind: string; value: number }[]; }
+  duration_s: number; exact: boolean; note: string; events: { at_s: number; kind: string; value: number }[]; }
 let replay: ReplayInfo | null = null;
 
 function select(station: string) {
@@ -151,6 +152,10 @@ function drawFrame() {
     const scrub = $<HTMLInputElement>("replay-scrub");
     if (document.activeElement !== scrub) scrub.value = String(m.time_s);
     text($("replay-time"), `${m.time_s.toFixed(1)} / ${replay.duration_s.toFixed(1)} s`);
+    // a replay that no longer re-simulates what was recorded says so, in words
+    if (m.checkpoint_mismatch) showReplayExactness(
+      "This replay has left the recording: from here it no longer shows what the trainee had " +
+      "(recorded with another build or other machine data).");
   }
   const now = performance.now();
   if (now >= nextPlotDraw || m.held) {
@@ -158,6 +163,11 @@ function drawFrame() {
     plots?.draw(selected);
   }
   if (viewOn()) view?.update(m);  // drawn in this same frame
+}
+
+function showReplayExactness(note: string) {
+  text($("replay-exactness"), note);
+  $("replay-exactness").hidden = note === "";
 }
 
 function showEvent(e: EventMessage) {
@@ -212,6 +222,7 @@ async function openReplay(attempt: number) {
   if (r.status !== 201) { text($("replay-result"), r.data?.error ?? `error ${r.status}`); return; }
   replay = r.data as ReplayInfo;
   text($("replay-title"), `attempt ${replay.attempt}: ${replay.exercise}, ${replay.trainee}`);
+  showReplayExactness(replay.exact ? "" : replay.note);
   const scrub = $<HTMLInputElement>("replay-scrub");
   scrub.max = String(replay.duration_s);
   scrub.value = "0";
@@ -236,7 +247,7 @@ async function loadRecords() {
   body.replaceChildren();
   for (const a of attempts.data ?? []) {
     const row = document.createElement("tr");
-    for (const v of [a.id, a.trainee, a.exercise, a.status, a.score === null ? "" : a.score.toFixed(1), a.passed ? "yes" : "no", a.moves]) {
+    for (const v of [a.id, a.trainee, a.exercise, a.outcome, a.score === null ? "" : a.score.toFixed(1), a.moves]) {
       const td = document.createElement("td"); text(td, v); row.appendChild(td);
     }
     row.addEventListener("click", async () => {

@@ -238,8 +238,10 @@ try {
   await api("/api/stations/designer-1/command", { kind: "stop", exercise: "", trainee: "", route: "" });
   await idle();
   const progress = (await api("/api/progress?trainee=eva")).body.routes.find((r) => r.route === "centre_long");
-  check(progress?.stages[0].attempts === 1 && progress?.stages[1].state === "locked",
-    `eva's progress on it: warm_up ${progress?.stages[0].attempts} attempt, long ${progress?.stages[1].state}`);
+  const stopped = (await api("/api/attempts?trainee=eva")).body.find((a) => a.id === staged.id);
+  // stopped by the instructor with its move left: the instructor's end, not one of eva's attempts at the stage
+  check(stopped?.status === "ended_by_instructor" && progress?.stages[0].attempts === 0 && progress?.stages[1].state === "locked",
+    `eva's progress on it: ${stopped?.outcome}, warm_up ${progress?.stages[0].attempts} attempts counted, long ${progress?.stages[1].state}`);
 
   // a yard block: a box's goal set by clicking the slot it is to go to
   const load = async (name) => {

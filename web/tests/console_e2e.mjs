@@ -136,9 +136,13 @@ try {
   let original;
   await until("the stopped attempt is stored", async () => {
     const r = await page.evaluate(async () => (await fetch("/api/attempts")).json());
-    original = r.find((a) => a.trainee === "ben" && a.status === "interrupted");
+    original = r.find((a) => a.trainee === "ben" && a.status === "ended_by_instructor");
     return original !== undefined;
   });
+  check(original?.outcome === "ended by the instructor" && !original.passed,
+    `stopped with its move left, it is ended by the instructor, not passed (${original?.outcome})`);
+  await until("the records table says so in words", async () =>
+    (await page.textContent(`#attempts tbody tr:has(td:text-is("${original.id}"))`).catch(() => "")).includes("ended by the instructor"));
 
   // the records keep its recording: moved away from where the station wrote it (as if the station were
   // another PC), it still replays and is taken over

@@ -7,6 +7,7 @@ import { Harness } from "./harness.mjs";
 import { execFileSync, spawnSync } from "node:child_process";
 import { mkdtempSync, writeFileSync } from "node:fs";
 import http from "node:http";
+import tls from "node:tls";
 import { tmpdir } from "node:os";
 import path from "node:path";
 
@@ -56,6 +57,19 @@ try {
     request.setTimeout(5000, () => { request.destroy(); resolve("timeout"); });
   });
   check(!plain.startsWith("status"), `plain HTTP gets no HTTP answer (${plain})`);
+
+  // over TLS too, no path reaches a file outside the pages
+  for (const p of ["//etc/passwd", "/%2e%2e/%2e%2e/etc/passwd", "/../../etc/passwd", `//${dir}/records.db`]) {
+    const answer = await new Promise((resolve) => {
+      const s = tls.connect({ port: Number(port), host: "127.0.0.1", rejectUnauthorized: false },
+        () => s.write(`GET ${p} HTTP/1.1\r\nHost: localhost\r\nConnection: close\r\n\r\n`));
+      let got = "";
+      s.on("data", (d) => { got += d; });
+      s.on("close", () => resolve(got));
+      s.on("error", () => resolve(got));
+    });
+    check(/^HTTP\/1\.1 404/.test(answer) && !answer.includes("root:"), `over TLS GET ${p}: ${answer.split("\r\n")[0]}`);
+  }
 
   browser = await chromium.launch({ executablePath: "/usr/bin/chromium", args: ["--headless", "--no-sandbox",
     "--disable-gpu", "--enable-unsafe-swiftshader", "--disable-quic", "--no-first-run", "--disable-background-networking",

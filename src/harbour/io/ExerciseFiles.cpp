@@ -14,6 +14,7 @@
 #include <variant>
 
 #include "harbour/core/Units.h"
+#include "harbour/io/BoundedFile.h"
 #include "harbour/io/BulkFiles.h"
 #include "harbour/io/MachineFiles.h"
 #include "harbour/io/VesselFiles.h"
@@ -824,18 +825,10 @@ std::vector<std::string> exercise_names(const std::string& folder) {
   return names;
 }
 
-std::string exercise_version(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw DataError(path, 0, "(file)", "cannot be read");
-  std::string bytes;
-  bytes.resize(YamlFile::kMaxFileBytes + 1);
-  in.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-  bytes.resize(static_cast<std::size_t>(in.gcount()));
-  if (bytes.size() > YamlFile::kMaxFileBytes)
-    throw DataError(path, 0, "(file)", "larger than a data file may be");
+std::string exercise_text_version(const std::string& text) {
   if (sodium_init() < 0) throw std::runtime_error("libsodium could not start");
   unsigned char digest[crypto_hash_sha256_BYTES];
-  crypto_hash_sha256(digest, reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size());
+  crypto_hash_sha256(digest, reinterpret_cast<const unsigned char*>(text.data()), text.size());
   static constexpr char kHex[] = "0123456789abcdef";
   std::string version;
   for (int n = 0; n < 8; ++n) {
@@ -843,6 +836,28 @@ std::string exercise_version(const std::string& path) {
     version += kHex[digest[n] & 15];
   }
   return version;
+}
+
+ExerciseSource read_exercise_source(const std::string& file) {
+  std::string why;
+  std::optional<std::string> text = read_bounded_file(file, YamlFile::kMaxFileBytes, why);
+  if (!text) throw DataError(file, 0, "(file)", why);
+  ExerciseSource source;
+  source.file = file;
+  std::filesystem::path folder = std::filesystem::path(file).parent_path();
+  if (folder.filename() == "versions") folder = folder.parent_path();
+  source.folder = folder.string();
+  source.version = exercise_text_version(*text);
+  source.text = std::move(*text);
+  return source;
+}
+
+sim::ExerciseSettings load_exercise_source(const ExerciseSource& source) {
+  return load_exercise(YamlFile::parse(source.text, source.file), source.folder);
+}
+
+std::string exercise_version(const std::string& path) {
+  return read_exercise_source(path).version;
 }
 
 sim::ExerciseSettings load_exercise(const std::string& path) {

@@ -51,5 +51,22 @@ std::vector<std::string> exercise_names(const std::string& folder);
 /// results stay comparable when an exercise is edited (the machine and vessel files it names are not
 /// hashed). Throws DataError when the file cannot be read.
 std::string exercise_version(const std::string& path);
+/// The version of an exercise file's text (as exercise_version hashes its bytes).
+std::string exercise_text_version(const std::string& text);
+
+/// An exercise as an attempt runs it: its file's text and the folder its relative paths (../machines/...)
+/// resolve from. The records keep it by its version, so a replay re-simulates exactly what the trainee had
+/// however the file changes later.
+struct ExerciseSource {
+  std::string file;     ///< where it was read (named in errors)
+  std::string folder;   ///< where its relative paths resolve from
+  std::string text;
+  std::string version;  ///< exercise_text_version(text)
+};
+/// Reads an exercise file; a version the designer kept (in a folder's versions/) resolves its paths from the
+/// folder above, where it was written for. Throws DataError when it cannot be read.
+ExerciseSource read_exercise_source(const std::string& file);
+/// Loads an exercise from its source (errors name source.file).
+sim::ExerciseSettings load_exercise_source(const ExerciseSource& source);
 
 }  // namespace harbour::io

@@ -72,8 +72,10 @@ class Reader {
   /// A count of records of `record_size` bytes each, checked against what is left.
   std::uint32_t count(std::size_t record_size, const char* what) {
     const auto n = get<std::uint32_t>(what);
+    // more than the file holds: cut short there (a torn last record of a stream reads as such)
     if (static_cast<std::size_t>(n) * record_size > in_.size() - at_)
-      fail(std::string(what) + ": " + std::to_string(n) + " records do not fit in the file (truncated?)");
+      throw Truncated(RecordingFileError(
+          file_, at_, std::string(what) + ": " + std::to_string(n) + " records do not fit in the file (truncated?)"));
     return n;
   }
   /// A control lever's position: finite, within [-1, 1].

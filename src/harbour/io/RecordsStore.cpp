@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "harbour/core/Text.h"
+#include "harbour/io/ExerciseFiles.h"
 #include "harbour/io/RecordingFile.h"
 #include "harbour/training/Xapi.h"
 
@@ -35,8 +36,10 @@ namespace {
 // remember their process, console accounts and the audit log; 3: routes (enrolments, instructors'
 // overrides), attempts name their route stage and the exercise version they ran. Databases before version 3
 // have no schema_version table: 2 when attempts has the process column, else 1. 4: the xAPI outbox. 5: the
-// attempts' recordings, so that a console or a station on another PC replays and continues them.
-constexpr int kSchemaVersion = 5;
+// attempts' recordings, so that a console or a station on another PC replays and continues them. 6: every
+// exercise version an attempt ran, by its content hash (a replay re-simulates what the trainee had, whatever
+// its file says now), and attempts ended by the instructor.
+constexpr int kSchemaVersion = 6;
 
 // every table of a schema version with the columns this build reads (and, for the latest, writes)
 struct TableColumns {
@@ -62,6 +65,7 @@ constexpr TableColumns kTables[] = {
      "id, statement_id, attempt, verb, statement, queued_at, state, tries, next_try_at, last_error, sent_at",
      4, 4},
     {"recordings", "attempt, bytes, data", 5, 5},
+    {"exercise_versions", "version, exercise, folder, text", 6, 6},
 };
 
 // the columns `table` had at `version` ("" : not there yet)
@@ -129,6 +133,11 @@ std::vector<std::string> migration(int version) {
           "CREATE TABLE recordings (attempt BIGINT PRIMARY KEY REFERENCES attempts(id), bytes BIGINT NOT "
           "NULL,"
           " data TEXT NOT NULL)"};
+    case 6:
+      // an exercise file's text by its version, as the attempts that name the version ran it
+      return {
+          "CREATE TABLE exercise_versions (version TEXT PRIMARY KEY, exercise TEXT NOT NULL, folder TEXT NOT "
+          "NULL, text TEXT NOT NULL)"};
     default:
       return {};
   }
@@ -578,7 +587,7 @@ std::vector<TraineeRow> RecordsStore::trainees() {
 std::int64_t RecordsStore::begin_attempt(const std::string& trainee, const std::string& exercise,
                                          std::optional<std::int64_t> parent, std::int64_t branch_step,
                                          const std::string& recording) {
-  return begin_attempt(AttemptStart{trainee, exercise, parent, branch_step, recording, "", "", ""});
+  return begin_attempt(AttemptStart{trainee, exercise, parent, branch_step, recording, "", "", "", {}});
 }
 
 std::int64_t RecordsStore::begin_attempt(const AttemptStart& start) {
@@ -604,6 +613,16 @@ std::int64_t RecordsStore::begin_attempt(const AttemptStart& start) {
           soci::use(id), soci::use(trainee), soci::use(start.exercise), soci::use(parent_id, parent_ind),
           soci::use(branch), soci::use(start.recording), soci::use(process), soci::use(start.route),
           soci::use(start.stage), soci::use(start.exercise_version);
+      // the exercise as it ran, once per version
+      if (!start.source.text.empty() && start.source.version == start.exercise_version) {
+        int kept = 0;
+        impl_->sql << "SELECT COUNT(*) FROM exercise_versions WHERE version = :v", soci::use(start.source.version),
+            soci::into(kept);
+        if (kept == 0)
+          impl_->sql << "INSERT INTO exercise_versions (version, exercise, folder, text) VALUES (:v, :e, :f, :t)",
+              soci::use(start.source.version), soci::use(start.exercise), soci::use(start.source.folder),
+              soci::use(start.source.text);
+      }
       const std::string at = xapi_time_now();
       impl_->queue(id,
                    training::xapi::at_start(impl_->facts_of(id), at,
@@ -611,6 +630,22 @@ std::int64_t RecordsStore::begin_attempt(const AttemptStart& start) {
                    at);
       return static_cast<std::int64_t>(id);
     });
+  });
+}
+
+std::optional<ExerciseSource> RecordsStore::kept_exercise(const std::string& version) {
+  return impl_->guarded("reading exercise version " + core::printable(version), [&]() -> std::optional<ExerciseSource> {
+    ExerciseSource source;
+    std::string exercise;
+    impl_->sql << "SELECT exercise, folder, text FROM exercise_versions WHERE version = :v", soci::use(version),
+        soci::into(exercise), soci::into(source.folder), soci::into(source.text);
+    if (!impl_->sql.got_data()) return std::nullopt;
+    source.version = exercise_text_version(source.text);
+    if (source.version != version)
+      throw std::runtime_error("the kept text of exercise " + core::printable(exercise) + " version " +
+                               core::printable(version) + " is damaged (its hash is " + source.version + ")");
+    source.file = exercise + " (version " + version + " kept in the records)";
+    return source;
   });
 }
 

@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "harbour/io/ExerciseFiles.h"
 #include "harbour/sim/Evaluation.h"
 #include "harbour/sim/Recording.h"
 #include "harbour/training/Cohort.h"
@@ -53,6 +54,7 @@ struct AttemptStart {
   std::int64_t branch_step = 0;
   std::string recording;
   std::string route, stage, exercise_version;
+  ExerciseSource source;  ///< the exercise as it runs, kept by its version (none: its text is not kept)
 };
 
 /// A trainee enrolled in a route: when and by whom (UTC, ISO 8601).
@@ -158,6 +160,9 @@ class RecordsStore {
   int mark_interrupted_attempts();
   /// Attempts, newest first, optionally of one trainee.
   std::vector<AttemptRow> attempts(const std::optional<std::string>& trainee = std::nullopt);
+  /// The exercise text an attempt of version `version` ran (none: not kept, an attempt before the records
+  /// kept them); throws naming it when the kept text does not hash to its version.
+  std::optional<ExerciseSource> kept_exercise(const std::string& version);
   /// The attempt whose recording is the file `path`: the newest of them when a path was used again (the file
   /// holds the last run written to it); none when no attempt was recorded there (a take-over's check).
   std::optional<AttemptRow> attempt_recorded_at(const std::string& path);

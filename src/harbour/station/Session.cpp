@@ -56,7 +56,7 @@ Session::Session(const sim::ExerciseSettings& exercise, const SessionOptions& op
     recorder_.set_sink(&*writer_);
   }
   attempt_ = db_->begin_attempt({options.trainee, exercise.name, parent, branch_step, options.record,
-                                 options.route, options.stage, options.exercise_version});
+                                 options.route, options.stage, options.source.version, options.source});
   LoopSettings loop = options.loop;
   loop.checkpoint_every_steps = sim::Recorder::kCheckpointEvery;
   loop.keyframe_every_steps = writer_ ? sim::Recorder::kKeyframeEvery : 0;

@@ -30,11 +30,10 @@ struct SessionOptions {
   std::string database;  ///< records connection
   LoopSettings loop;
   std::optional<TakeOverFrom> take_over;
-  std::string route, stage;      ///< the training route stage it runs ("" : none)
-  std::string exercise_version;  ///< io::exercise_version of its file
+  std::string route, stage;   ///< the training route stage it runs ("" : none)
+  io::ExerciseSource source;  ///< the exercise as it runs (kept in the records by its version)
 };
 
-/// How a session ended.
 /// How a live attempt came to its end.
 enum class SessionEnd : std::uint8_t {
   kRan,                  ///< the exercise ended it (its goals met, its time and overtime past)
