@@ -67,7 +67,14 @@ TEST(ReevingFiles, StructureTheWaveModelCannotCarryIsRefused) {
                "rope 'hoist' meets 'drum' twice");
   // a rope stiffer than a steel bar of its diameter, a sheave far beyond its body
   expect_error("axial_stiffness_n: 3.1e7", "axial_stiffness_n: 1e12", 6,
-               "reeving.rope_types[0].axial_stiffness_n", "is outside (0, ");
+               "reeving.rope_types[0].axial_stiffness_n", "more than a steel bar of 28 mm gives");
+  // ... and ropes no rope could be: softer, lighter or weaker than any fibre rope of its diameter (a rope of
+  // EA 1 N never lifted; 1e-9 kg/m passed an exercise; 1e-300 diverged)
+  for (const char* soft : {"axial_stiffness_n: 1", "axial_stiffness_n: 1e-300"})
+    expect_error("axial_stiffness_n: 3.1e7", soft, 6, "reeving.rope_types[0].axial_stiffness_n",
+                 "no 28 mm rope is softer than that");
+  expect_error("mass_per_m_kg: 2.7", "mass_per_m_kg: 1e-9", 6, "reeving.rope_types[0].mass_per_m_kg",
+               "no 28 mm rope is lighter than that");
   expect_error("at_m: [0, 0, 0]", "at_m: [1e300, 0, 0]", 11, "reeving.elements[1].at_m[0]",
                "is outside [-500, 500]");
   expect_error("  max_substeps: 8", "  max_substeps: 8\n  max_substep: 9", 4, "reeving.max_substep",

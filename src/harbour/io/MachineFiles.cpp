@@ -1,5 +1,6 @@
 #include "harbour/io/MachineFiles.h"
 
+#include <cstdio>
 #include <filesystem>
 #include <numbers>
 #include <stdexcept>
@@ -36,6 +37,23 @@ sim::DriveSettings read_drive(const YamlFile& f, const YAML::Node& parent, const
   if (s.max_position_m <= s.min_position_m)
     f.fail(d["max_position_m"], p + ".max_position_m", "must exceed min_position_m");
   return s;
+}
+
+// A drive moves what it carries: its force must give that mass [kg] the drive's acceleration, or the machine
+// would never get going (a force of 1e-300 N reads as a drive, and nothing moves).
+void check_drive_moves(const YamlFile& f, const YAML::Node& parent, const std::string& at,
+                       const sim::DriveSettings& drive, double moved_kg, const char* what) {
+  const double needed_n = moved_kg * drive.acceleration_mps2;
+  const auto figure = [](double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.4g", v);
+    return std::string(text);
+  };
+  if (drive.max_force_n < needed_n)
+    f.fail(f.required(parent, "drive", at)["max_force_n"], at + ".drive.max_force_n",
+           figure(drive.max_force_n) + " N cannot give " + what + " (" + figure(moved_kg) +
+               " kg) its acceleration of " + figure(drive.acceleration_mps2) + " m/s^2: it needs at least " +
+               figure(needed_n) + " N");
 }
 
 sim::SpreaderSettings read_spreader(const YamlFile& f, const YAML::Node& m) {
@@ -175,10 +193,12 @@ sim::StsCraneSettings read_sts_crane(const YamlFile& f, const std::string& folde
   // a quay crane's structure: 600-2000 t; its trolley (with cab and machinery) 20-150 t
   s.gantry_mass_kg = f.number(gantry, "mass_kg", "machine.gantry", 1e5, 1e7);
   s.gantry_drive = read_drive(f, gantry, "machine.gantry");
+  check_drive_moves(f, gantry, "machine.gantry", s.gantry_drive, s.gantry_mass_kg, "the crane");
   const YAML::Node trolley = f.required_map(m, "trolley", "machine");
   s.trolley_mass_kg = f.number(trolley, "mass_kg", "machine.trolley", 5000.0, 5e5);
   s.trolley_rail_height_m = f.number(trolley, "rail_height_m", "machine.trolley", 10.0, 100.0);
   s.trolley_drive = read_drive(f, trolley, "machine.trolley");
+  check_drive_moves(f, trolley, "machine.trolley", s.trolley_drive, s.trolley_mass_kg, "the trolley");
   const sim::SpreaderHoistSettings rig =
       read_spreader_hoist(f, m, folder, {"gantry", "trolley", "headblock"}, s.trolley_rail_height_m);
   s.hoist_upper_limit_m = rig.upper_limit_m;
@@ -730,6 +750,8 @@ sim::RtgSettings load_rtg(const YamlFile& f, const std::string& folder) {
   s.trolley_mass_kg = f.number(t, "mass_kg", tat, 1000.0, 2e5);
   s.trolley_rail_height_m = f.number(t, "rail_height_m", tat, s.sill_height_m + 5.0, 60.0);
   s.trolley_drive = read_drive(f, t, tat);
+  check_drive_moves(f, t, tat, s.trolley_drive, s.trolley_mass_kg, "the trolley");
+  check_drive_moves(f, g, gat, s.gantry_drive, s.frame_mass_kg + s.trolley_mass_kg, "the crane");
   if (s.trolley_drive.min_position_m < -0.5 * s.span_m || s.trolley_drive.max_position_m > 0.5 * s.span_m)
     f.fail(t["drive"], tat + ".drive", "the trolley runs between the legs (within half the span)");
   s.rig = read_spreader_hoist(f, m, folder, {"trolley", "headblock"}, s.trolley_rail_height_m);

@@ -1,6 +1,7 @@
 #include "harbour/io/ReevingFiles.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <map>
 #include <numbers>
 
@@ -11,8 +12,19 @@ namespace {
 constexpr double kSteelModulus_pa = 2.1e11;  ///< [Pa] a rope is no stiffer than a steel bar of its diameter
 constexpr double kSteelDensity_kg_m3 = 7850.0;  ///< [kg/m^3] ... nor heavier
 constexpr double kMaxRopeStress_pa = 2.5e9;     ///< [Pa] ... nor stronger than 2500 MPa wire on all of it
+// and no rope is softer, lighter or weaker than the softest, lightest, weakest fibre rope of its diameter
+// (polyester and HMPE: E 2-100 GPa, 970-1380 kg/m^3, 0.5-3 GPa on their fibre, which fills about half of it)
+constexpr double kMinRopeModulus_pa = 1e9;        ///< [Pa] on the rope's whole section
+constexpr double kMinRopeDensity_kg_m3 = 300.0;   ///< [kg/m^3] on the rope's whole section
+constexpr double kMinRopeStress_pa = 1e8;         ///< [Pa] its breaking force on the rope's whole section
 constexpr double kMount_m = 500.0;              ///< [m] a sheave or anchor lies within this of its body
 constexpr double kMaxTorque_n_m = 1e7;          ///< [N m] drum motors, brakes and bearing friction
+
+std::string figure(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g", v);
+  return text;
+}
 
 double bar_area_m2(double diameter_m) {
   return std::numbers::pi / 4.0 * diameter_m * diameter_m;
@@ -58,9 +70,23 @@ ReevingFile load_reeving(const YamlFile& f) {
     rope.name = f.text(t, "name", at);
     rope.diameter_m = f.number(t, "diameter_m", at, 0.003, 0.2);
     const double area = bar_area_m2(rope.diameter_m);
-    rope.mass_per_m_kg = f.number(t, "mass_per_m_kg", at, 0.0, kSteelDensity_kg_m3 * area, true);
-    rope.axial_stiffness_n = f.number(t, "axial_stiffness_n", at, 0.0, kSteelModulus_pa * area, true);
-    rope.min_breaking_force_n = f.number(t, "min_breaking_force_n", at, 0.0, kMaxRopeStress_pa * area, true);
+    // between the lightest, softest, weakest fibre rope and a steel bar of its diameter: outside, no rope
+    const auto physical = [&](const char* key, double per_area, double steel_per_area, const char* quality) {
+      const double value = f.number(t, key, at, 0.0, 1e300, true);
+      const std::string diameter = figure(rope.diameter_m * 1e3) + " mm";
+      if (value < per_area * area)
+        f.fail(t[key], at + "." + key,
+               figure(value) + " is below " + figure(per_area * area) + ": no " + diameter + " rope is " +
+                   quality + " than that (the lightest, softest, weakest fibre rope)");
+      if (value > steel_per_area * area)
+        f.fail(t[key], at + "." + key,
+               figure(value) + " is above " + figure(steel_per_area * area) + ", more than a steel bar of " +
+                   diameter + " gives");
+      return value;
+    };
+    rope.mass_per_m_kg = physical("mass_per_m_kg", kMinRopeDensity_kg_m3, kSteelDensity_kg_m3, "lighter");
+    rope.axial_stiffness_n = physical("axial_stiffness_n", kMinRopeModulus_pa, kSteelModulus_pa, "softer");
+    rope.min_breaking_force_n = physical("min_breaking_force_n", kMinRopeStress_pa, kMaxRopeStress_pa, "weaker");
     rope.safety_factor = f.number_or(t, "safety_factor", at, rope.safety_factor, 1.0, 100.0);
     rope.axial_damping_s = f.number_or(t, "axial_damping_s", at, rope.axial_damping_s, 0.0, 1.0);
     rope.transverse_damping_per_s =
