@@ -221,5 +221,48 @@ TEST(Run, AnOldAttemptReplaysBitForBitAfterItsExerciseFileWasEdited) {
   EXPECT_NE(log.find("reproduced bit for bit"), std::string::npos) << log;
 }
 
+// SIGTERM ends every long-running command within a second, whatever it is doing: a run, a console, a served
+// station waiting and one running an exercise. (A loader walking nested aliases used to hold it for minutes.)
+TEST(Run, ASignalEndsEveryLongRunningCommandWithinASecond) {
+  const fs::path folder = fresh_folder("harbour_sigterm");
+  const std::string db = "sqlite3://db=" + (folder / "records.db").string();
+  const std::vector<std::vector<std::string>> commands = {
+      {"run", "--exercise", "sts_discharge", "--autopilot", "--db", db},
+      {"console", "--port", "0", "--domain", "211", "--db", db},
+      {"station", "--serve", "--name", "sigterm-1", "--domain", "211", "--window", "off", "--db", db},
+      {"station", "--exercise", "sts_discharge", "--autopilot", "--window", "off", "--db", db}};
+  for (std::size_t n = 0; n < commands.size(); ++n) {
+    std::vector<std::string> args = {HARBOUR_APP};
+    args.insert(args.end(), commands[n].begin(), commands[n].end());
+    const pid_t child = fork();
+    if (child == 0) {
+      const std::string log = (folder / ("cmd" + std::to_string(n) + ".log")).string();
+      freopen(log.c_str(), "w", stdout);
+      freopen(log.c_str(), "a", stderr);
+      std::vector<char*> argv;
+      for (std::string& a : args)
+        argv.push_back(a.data());
+      argv.push_back(nullptr);
+      execv(HARBOUR_APP, argv.data());
+      _exit(127);
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(2500));  // well under way
+    const auto asked = std::chrono::steady_clock::now();
+    kill(child, SIGTERM);
+    int status = 0;
+    pid_t ended = 0;
+    while ((ended = waitpid(child, &status, WNOHANG)) == 0 &&
+           std::chrono::steady_clock::now() - asked < std::chrono::seconds(10))
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    const double took_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - asked).count();
+    if (ended == 0) {
+      kill(child, SIGKILL);
+      waitpid(child, &status, 0);
+    }
+    EXPECT_LT(took_s, 1.0) << commands[n][0] << " " << commands[n][1] << ", its log:\n"
+                           << read_text(folder / ("cmd" + std::to_string(n) + ".log"));
+  }
+}
+
 }  // namespace
 }  // namespace harbour::apps

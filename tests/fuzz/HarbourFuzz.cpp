@@ -1,12 +1,19 @@
 // A mutation fuzzer over every input edge a user or another machine reaches: the exercise, machine and
-// reeving loaders, the recording reader and the instructor command parser. Each target takes bytes and must
-// answer with a result or its own clear error, never a crash, a hang or another exception.
+// reeving loaders, the recording reader, the instructor command parser, device mappings, and the console's
+// HTTP requests and WebSocket frames. Each target takes bytes and must answer with a result or its own clear
+// error, never a crash, a hang or another exception. The YAML corpora hold the alias-bomb class (nested
+// aliases), and a mutation nests aliases into any of them.
 //
 //   harbour_fuzz TARGET CORPUS_DIR [--seconds S] [--seed N]
 //
 // It runs every corpus file once (the regression corpus of the crash and hang classes), then mutates them for
 // S seconds (0: only the corpus). On a crash it writes the input that caused it to fuzz-crash-TARGET.input.
+#include <arpa/inet.h>
 #include <fcntl.h>
+#include <netinet/in.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -95,6 +102,142 @@ void step_a_while(const harbour::sim::MhcSettings& crane) {
     simulation.step(in);
 }
 
+// ---------------------------------------------------------------------------------------------------
+// The console: a `harboursim console` of its own (a fresh records file, a centre's folders so that a design
+// or route saved goes there), an instructor logged in. An input is the bytes of one connection: HTTP
+// requests, or an upgrade to the live socket and WebSocket frames; "@COOKIE@" and "@CSRF@" in it stand for
+// the instructor's. After each, the console must still answer a request within 5 s.
+
+// the bytes `request` sent on a fresh connection to 127.0.0.1:`port`, and what came back until the console
+// closed it or `wait_ms` of quiet
+std::string exchange(int port, const std::string& request, int wait_ms) {
+  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  if (fd < 0) throw std::runtime_error("no socket");
+  sockaddr_in to{};
+  to.sin_family = AF_INET;
+  to.sin_port = htons(static_cast<std::uint16_t>(port));
+  to.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  std::string got;
+  if (::connect(fd, reinterpret_cast<sockaddr*>(&to), sizeof to) == 0) {
+    for (std::size_t sent = 0; sent < request.size();) {
+      const ssize_t n = ::send(fd, request.data() + sent, request.size() - sent, MSG_NOSIGNAL);
+      if (n <= 0) break;
+      sent += static_cast<std::size_t>(n);
+    }
+    char buffer[8192];
+    for (pollfd p{fd, POLLIN, 0}; ::poll(&p, 1, wait_ms) > 0;) {
+      const ssize_t n = ::recv(fd, buffer, sizeof buffer, 0);
+      if (n <= 0) break;
+      got.append(buffer, static_cast<std::size_t>(n));
+    }
+  }
+  ::close(fd);
+  return got;
+}
+
+struct ConsoleUnderTest {
+  pid_t pid = -1;
+  int port = 0;
+  std::string cookie, csrf;
+  fs::path dir;
+  ~ConsoleUnderTest() {
+    if (pid > 0) {
+      ::kill(pid, SIGKILL);
+      ::waitpid(pid, nullptr, 0);
+    }
+    std::error_code ignored;
+    if (!dir.empty()) fs::remove_all(dir, ignored);
+  }
+  // a command's exit status, its standard input `input`
+  static int run(const std::vector<std::string>& args, const std::string& input) {
+    int in[2];
+    if (::pipe(in) != 0) return -1;
+    const pid_t child = ::fork();
+    if (child == 0) {
+      ::dup2(in[0], 0);
+      ::close(in[1]);
+      const int null = ::open("/dev/null", O_WRONLY);
+      ::dup2(null, 1);
+      std::vector<char*> argv;
+      for (const std::string& a : args)
+        argv.push_back(const_cast<char*>(a.c_str()));
+      argv.push_back(nullptr);
+      ::execv(HARBOUR_APP, argv.data());
+      ::_exit(127);
+    }
+    ::close(in[0]);
+    [[maybe_unused]] const auto n = ::write(in[1], input.data(), input.size());
+    ::close(in[1]);
+    int status = 0;
+    ::waitpid(child, &status, 0);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  }
+  void start() {
+    dir = fs::temp_directory_path() / ("harbour_fuzz_console_" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir / "centre" / "exercises");
+    fs::create_directories(dir / "centre" / "routes");
+    for (const auto& entry : fs::directory_iterator(kData))
+      if (entry.path().filename() != "exercises" && entry.path().filename() != "routes")
+        fs::create_symlink(entry.path(), dir / "centre" / entry.path().filename());
+    const std::string db = "sqlite3://db=" + (dir / "records.db").string();
+    if (run({HARBOUR_APP, "accounts", "add", "fuzz", "--role", "administrator", "--db", db}, "fuzz-password\n") != 0)
+      throw std::logic_error("cannot add the console's account");
+    const std::string out = (dir / "console.log").string();
+    pid = ::fork();
+    if (pid == 0) {
+      const int log = ::open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+      ::dup2(log, 1);
+      ::dup2(log, 2);
+      const std::string exercises = (dir / "centre" / "exercises").string(), routes = (dir / "centre" / "routes").string();
+      ::execl(HARBOUR_APP, HARBOUR_APP, "console", "--port", "0", "--domain", "212", "--db", db.c_str(), "--exercises",
+              exercises.c_str(), "--routes", routes.c_str(), nullptr);
+      ::_exit(127);
+    }
+    for (int tries = 0; tries < 200 && port == 0; ++tries) {
+      ::usleep(50000);
+      std::ifstream in(out);
+      const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+      const std::size_t at = text.find("http://127.0.0.1:");
+      if (at != std::string::npos) port = std::atoi(text.c_str() + at + 17);
+    }
+    if (port == 0) throw std::logic_error("the console did not start");
+    log_in();
+  }
+  void log_in() {
+    const std::string body = R"({"name":"fuzz","password":"fuzz-password"})";
+    const std::string answer =
+        exchange(port, "POST /api/login HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: application/json\r\n"
+                       "Content-Length: " + std::to_string(body.size()) + "\r\nConnection: close\r\n\r\n" + body, 2000);
+    const std::size_t c = answer.find("hs_session="), t = answer.find("\"csrf\":\"");
+    if (c == std::string::npos || t == std::string::npos) return;  // blocked by the fuzz's own failed logins
+    cookie = answer.substr(c, answer.find(';', c) - c);
+    csrf = answer.substr(t + 8, answer.find('"', t + 8) - t - 8);
+  }
+  // the console is alive when it answers a request with an HTTP status line
+  bool alive() {
+    int status = 0;
+    if (::waitpid(pid, &status, WNOHANG) != 0) return false;
+    const std::string answer =
+        exchange(port, "GET /api/me HTTP/1.1\r\nHost: 127.0.0.1\r\nCookie: " + cookie + "\r\nConnection: close\r\n\r\n", 5000);
+    if (answer.rfind("HTTP/1.1 401", 0) == 0) log_in();  // the fuzz logged it out
+    return answer.rfind("HTTP/1.1 ", 0) == 0;
+  }
+};
+
+void fuzz_console(const std::string& input) {
+  static ConsoleUnderTest console;
+  if (console.port == 0) console.start();
+  std::string request = input;
+  for (const auto& [mark, value] : {std::pair<std::string, std::string>{"@COOKIE@", console.cookie},
+                                    std::pair<std::string, std::string>{"@CSRF@", console.csrf}})
+    for (std::size_t at; (at = request.find(mark)) != std::string::npos;)
+      request.replace(at, mark.size(), value);
+  exchange(console.port, request, 40);
+  if (!console.alive())
+    throw std::logic_error("the console stopped answering (or ended) after this input");
+}
+
 const std::map<std::string, std::function<void(const std::string&)>>& targets() {
   static const std::map<std::string, std::function<void(const std::string&)>> all = {
       {"exercise",
@@ -135,6 +278,7 @@ const std::map<std::string, std::function<void(const std::string&)>>& targets() 
          for (std::size_t d = 0; d < m.devices.size(); ++d)
            harbour::station::why_unfit(m, static_cast<int>(d), 2, 1, 1);
        }},
+      {"console", fuzz_console},
   };
   return all;
 }
@@ -191,7 +335,7 @@ std::string mutate(const std::string& in, const std::vector<std::string>& corpus
   const int edits = 1 + static_cast<int>(pick(4));
   for (int e = 0; e < edits; ++e) {
     const std::size_t at = pick(s.size() + 1);
-    switch (pick(7)) {
+    switch (pick(8)) {
       case 0:  // flip a byte
         if (!s.empty()) s[std::min(at, s.size() - 1)] ^= static_cast<char>(1 + pick(255));
         break;
@@ -221,9 +365,21 @@ std::string mutate(const std::string& in, const std::vector<std::string>& corpus
         s.insert(at, other.substr(from, pick(64)));
         break;
       }
-      default:  // truncate
+      case 6:  // truncate
         s.resize(at);
         break;
+      default: {  // nest aliases: a line of an anchored list, then levels of lists of aliases to the one below
+        const int levels = 1 + static_cast<int>(pick(12));
+        std::string bomb = "\nb0: &b0 [x, x, x, x, x, x, x, x]\n";
+        for (int n = 1; n <= levels; ++n) {
+          bomb += "b" + std::to_string(n) + ": &b" + std::to_string(n) + " [";
+          for (int k = 0; k < 8; ++k)
+            bomb += (k ? ", *b" : "*b") + std::to_string(n - 1);
+          bomb += "]\n";
+        }
+        s.insert(s.find('\n', at) == std::string::npos ? s.size() : s.find('\n', at), bomb);
+        break;
+      }
     }
   }
   if (s.size() > (1u << 20)) s.resize(1u << 20);
@@ -235,7 +391,7 @@ std::string mutate(const std::string& in, const std::vector<std::string>& corpus
 int main(int argc, char** argv) {
   if (argc < 3 || !targets().count(argv[1])) {
     std::fprintf(stderr,
-                 "usage: harbour_fuzz exercise|machine|reeving|recording|command|mapping CORPUS_DIR "
+                 "usage: harbour_fuzz exercise|machine|reeving|recording|command|mapping|console CORPUS_DIR "
                  "[--seconds S] [--seed N]\n");
     return 2;
   }
