@@ -133,7 +133,7 @@ TEST_P(RecordsStoreOn, DatabasesOfEarlierBuildsAreUpgradedInPlace) {
         fresh_connection(GetParam(), "records_upgrade_v" + std::to_string(version));
     make_old_database(connection, version);
     RecordsStore db(connection);
-    EXPECT_EQ(db.schema_version(), 5) << "from version " << version;
+    EXPECT_EQ(db.schema_version(), 6) << "from version " << version;
     const auto rows = db.attempts();
     ASSERT_EQ(rows.size(), 1u);
     EXPECT_EQ(rows[0].status, "finished");
@@ -144,7 +144,7 @@ TEST_P(RecordsStoreOn, DatabasesOfEarlierBuildsAreUpgradedInPlace) {
     EXPECT_EQ(db.events(1).size(), 1u);
     EXPECT_EQ(db.metrics(1).size(), 1u);
     EXPECT_EQ(
-        db.begin_attempt({"t001", "sts_discharge", std::nullopt, 0, "", "sts_basic", "single_lift", "abc"}),
+        db.begin_attempt({"t001", "sts_discharge", std::nullopt, 0, "", "sts_basic", "single_lift", "abc", {}}),
         2);
     EXPECT_TRUE(db.enrol("t001", "sts_basic", "ines"));
     EXPECT_EQ(db.attempts()[0].stage, "single_lift");
@@ -171,12 +171,13 @@ TEST_P(RecordsStoreOn, DatabasesOfEarlierBuildsAreUpgradedInPlace) {
     made.add_trainee("t001", "Ana");
     made.begin_attempt("t001", "sts_discharge");
     soci::session sql(records_connection(v3));
+    sql << "DROP TABLE exercise_versions";
     sql << "DROP TABLE recordings";
     sql << "DROP TABLE xapi_outbox";
     sql << "UPDATE schema_version SET version = 3";
   }
   RecordsStore upgraded(v3);
-  EXPECT_EQ(upgraded.schema_version(), 5);
+  EXPECT_EQ(upgraded.schema_version(), 6);
   EXPECT_TRUE(upgraded.xapi_outbox().empty());
   EXPECT_EQ(upgraded.attempts().size(), 1u);
 
@@ -187,13 +188,57 @@ TEST_P(RecordsStoreOn, DatabasesOfEarlierBuildsAreUpgradedInPlace) {
     made.add_trainee("t001", "Ana");
     made.finish_attempt(made.begin_attempt("t001", "sts_discharge"), {}, {}, "/recordings/a.hsrc");
     soci::session sql(records_connection(v4));
+    sql << "DROP TABLE exercise_versions";
     sql << "DROP TABLE recordings";
     sql << "UPDATE schema_version SET version = 4";
   }
   RecordsStore upgraded_v4(v4);
-  EXPECT_EQ(upgraded_v4.schema_version(), 5);
+  EXPECT_EQ(upgraded_v4.schema_version(), 6);
   EXPECT_FALSE(upgraded_v4.recording(1).has_value());
   EXPECT_EQ(upgraded_v4.attempts()[0].recording, "/recordings/a.hsrc");
+
+  // a version-5 database (no exercise versions kept) gets the table; its attempts' versions have no copy
+  const std::string v5 = fresh_connection(GetParam(), "records_upgrade_v5");
+  {
+    RecordsStore made(v5);
+    made.add_trainee("t001", "Ana");
+    made.begin_attempt({"t001", "sts_discharge", std::nullopt, 0, "", "", "", "0123456789abcdef", {}});
+    soci::session sql(records_connection(v5));
+    sql << "DROP TABLE exercise_versions";
+    sql << "UPDATE schema_version SET version = 5";
+  }
+  RecordsStore upgraded_v5(v5);
+  EXPECT_EQ(upgraded_v5.schema_version(), 6);
+  EXPECT_FALSE(upgraded_v5.kept_exercise("0123456789abcdef").has_value());
+}
+
+// Every exercise version an attempt ran is kept once, by its content hash, with the folder its paths resolve
+// from; a kept text that no longer hashes to its version is an error naming it.
+TEST_P(RecordsStoreOn, TheExerciseVersionAnAttemptRanIsKept) {
+  const std::string connection = fresh_connection(GetParam(), "records_exercise_versions");
+  RecordsStore db(connection);
+  db.add_trainee("t001", "Ana");
+  ExerciseSource source;
+  source.file = "/centre/exercises/drill.yaml";
+  source.folder = "/centre/exercises";
+  source.text = "exercise:\n  name: drill  # \u00e9t\u00e9, every byte kept\n";
+  source.version = exercise_text_version(source.text);
+  for (int n = 0; n < 2; ++n)  // two attempts of one version: kept once
+    db.begin_attempt({"t001", "drill", std::nullopt, 0, "", "", "", source.version, source});
+  const std::optional<ExerciseSource> kept = db.kept_exercise(source.version);
+  ASSERT_TRUE(kept);
+  EXPECT_EQ(kept->text, source.text);
+  EXPECT_EQ(kept->folder, source.folder);
+  EXPECT_EQ(kept->version, source.version);
+  EXPECT_FALSE(db.kept_exercise("ffffffffffffffff"));
+  soci::session(records_connection(connection)) << "UPDATE exercise_versions SET text = 'exercise: {}'";
+  try {
+    db.kept_exercise(source.version);
+    FAIL() << "a damaged copy was read";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("drill version " + source.version + " is damaged"), std::string::npos)
+        << e.what();
+  }
 }
 
 // A finished attempt keeps its recording's bytes with it, whatever they are, so that a console or station
@@ -319,7 +364,7 @@ TEST_P(RecordsStoreOn, AFailedUpgradeLeavesTheDatabaseAsItWas) {
   // with the stray table gone the upgrade goes through
   sql << "DROP TABLE route_overrides";
   RecordsStore db(connection);
-  EXPECT_EQ(db.schema_version(), 5);
+  EXPECT_EQ(db.schema_version(), 6);
 }
 
 // A database a newer build has upgraded is refused, not read wrongly or downgraded.
