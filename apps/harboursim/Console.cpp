@@ -663,9 +663,9 @@ class Console {
     std::shared_ptr<HttpSession> session;
     std::string token;
     std::optional<Account> account;
-    std::string segment;         ///< the path's '*' or '#' segment
+    std::string segment;          ///< the path's '*' or '#' segment
     std::int64_t segment_id = 0;  ///< a '#' segment: a positive number
-    std::string trainee;         ///< kOwnRecords: whose ("" : everyone's, staff only)
+    std::string trainee;          ///< kOwnRecords: whose ("" : everyone's, staff only)
   };
   /// A handler answers now, or later (nullopt: a station's acknowledgement, a thread's work).
   using Handler = std::optional<Response> (Console::*)(Call&);
@@ -754,7 +754,7 @@ class Console {
   void beside(Call& c, int& running, int most, std::chrono::seconds budget, std::function<Finish()> work);
   static constexpr int kMostChecksAtOnce = 2, kMostPrintsAtOnce = 2;
   static constexpr std::chrono::seconds kCheckBudget{10}, kPrintBudget{60};
-  int checks_ = 0, printing_ = 0;  ///< running beside (changed on the console's thread only)
+  int checks_ = 0, printing_ = 0;                   ///< running beside (changed on the console's thread only)
   std::map<std::thread::id, std::thread> workers_;  ///< joined when done, or when the console ends
   std::unique_ptr<XapiWorker> xapi_;                ///< the xAPI sender, with --lrs
   /// Attempts (of one trainee or all) as CSV: one row each with the skills; text cells quoted, and
@@ -1141,7 +1141,8 @@ StaticFiles::StaticFiles(const std::string& root) {
     if (!it->is_regular_file(ec) || it->is_symlink(ec)) continue;
     const std::string name = "/" + fs::relative(it->path(), base, ec).generic_string();
     if (files_.size() >= kMostFiles)
-      throw std::runtime_error("the console's pages: more than " + std::to_string(kMostFiles) + " files in " + root);
+      throw std::runtime_error("the console's pages: more than " + std::to_string(kMostFiles) + " files in " +
+                               root);
     std::string why;
     std::optional<std::string> content = io::read_bounded_file(it->path().string(), kMostBytes - bytes, why);
     if (!content) throw std::runtime_error("the console's pages: " + it->path().string() + ": " + why);
@@ -1235,8 +1236,7 @@ std::optional<Console::Response> Console::command(Call& c) {
       exercise ? text_field(*body, "trainee", 64, why, false) : std::nullopt;
   const std::optional<std::string> route_id =
       trainee ? text_field(*body, "route", 64, why, false) : std::nullopt;
-  if (!kind || !exercise || !trainee || !route_id)
-    return error(request, http::status::bad_request, why);
+  if (!kind || !exercise || !trainee || !route_id) return error(request, http::status::bad_request, why);
   const auto autopilot = body->find("autopilot");
   if (autopilot != body->end() && !autopilot->is_boolean())
     return error(request, http::status::bad_request, "field 'autopilot' is not true or false");
@@ -1252,20 +1252,21 @@ std::optional<Console::Response> Console::command(Call& c) {
         std::find_if(routes_.begin(), routes_.end(), [&](const auto& r) { return r.id == *route_id; });
     if (route == routes_.end())
       return error(request, http::status::not_found,
-                                  "field 'route': no route '" + core::printable(*route_id) + "'");
+                   "field 'route': no route '" + core::printable(*route_id) + "'");
     if (trainee->empty() || !db_.has_trainee(*trainee))
       return error(request, http::status::bad_request,
-                                  "field 'trainee': a route's stage is run by a trainee in the records");
+                   "field 'trainee': a route's stage is run by a trainee in the records");
     const auto enrolled = db_.enrolments(*trainee);
     if (std::none_of(enrolled.begin(), enrolled.end(), [&](const auto& e) { return e.route == route->id; }))
-      return error(request, http::status::conflict, *trainee + " is not enrolled in route '" + route->id + "'");
+      return error(request, http::status::conflict,
+                   *trainee + " is not enrolled in route '" + route->id + "'");
     const training::RouteProgress p = training::progress(*route, db_.stage_attempts(*trainee, route->id),
                                                          db_.overrides(*trainee, route->id));
     if (!p.next)
       return error(request, http::status::conflict,
-                                  p.complete ? *trainee + " has passed every stage of " + route->id
-                                             : "no stage of " + route->id + " is open for " + *trainee +
-                                                   ": an instructor decides (sign off or retry)");
+                   p.complete ? *trainee + " has passed every stage of " + route->id
+                              : "no stage of " + route->id + " is open for " + *trainee +
+                                    ": an instructor decides (sign off or retry)");
     to_run = route->stage(*p.next)->exercise;
   }
   if (*kind == "start") {
@@ -1302,7 +1303,8 @@ std::optional<Console::Response> Console::logout(Call& c) {
   sessions_.erase(c.token);
   audit_.add(c.account->name, "logout", "", "");
   Response r = json_reply(c.request, http::status::ok, {{"ok", true}});
-  r.set(http::field::set_cookie, "hs_session=; Path=/; HttpOnly; SameSite=Strict; Max-Age=0" + secure_cookie());
+  r.set(http::field::set_cookie,
+        "hs_session=; Path=/; HttpOnly; SameSite=Strict; Max-Age=0" + secure_cookie());
   return r;
 }
 
@@ -1521,8 +1523,11 @@ std::optional<Console::Response> Console::audit_log(Call& c) {
   json list = json::array();
   audit_.flush();  // the log as it stands, the entries just queued in it
   for (const io::AuditRow& a : db_.audit_log(200))
-    list.push_back(
-        {{"at", a.at}, {"account", a.account}, {"action", a.action}, {"target", a.target}, {"detail", a.detail}});
+    list.push_back({{"at", a.at},
+                    {"account", a.account},
+                    {"action", a.action},
+                    {"target", a.target},
+                    {"detail", a.detail}});
   return json_reply(c.request, http::status::ok, list);
 }
 
@@ -1534,7 +1539,8 @@ std::optional<Console::Response> Console::add_account(Call& c) {
   const std::optional<std::string> password =
       name ? text_field(*body, "password", 256, why, true, true) : std::nullopt;
   const std::optional<std::string> role = password ? text_field(*body, "role", 16, why) : std::nullopt;
-  const std::optional<std::string> trainee = role ? text_field(*body, "trainee", 64, why, false) : std::nullopt;
+  const std::optional<std::string> trainee =
+      role ? text_field(*body, "trainee", 64, why, false) : std::nullopt;
   if (!trainee) return error(request, http::status::bad_request, why);
   if (password->size() < 8)
     return error(request, http::status::bad_request, "a password of 8 characters or more");
@@ -1589,8 +1595,9 @@ std::optional<Console::Response> Console::check_or_save_design(Call& c) {
                  return error(request, http::status::conflict, e.what());
                }
                audit_.add(account, "save_exercise", design.exercise.name, design.version);
-               return json_reply(request, http::status::created,
-                                 {{"exercise", design.exercise.name}, {"version", design.version}, {"file", file}});
+               return json_reply(
+                   request, http::status::created,
+                   {{"exercise", design.exercise.name}, {"version", design.version}, {"file", file}});
              };
            json preview;
            try {
@@ -1612,7 +1619,8 @@ std::optional<Console::Response> Console::route_text(Call& c) {
   const std::string id = query_param(c.query, "route");
   try {
     const std::string text = route_source(centre(), id);
-    return json_reply(c.request, http::status::ok, {{"route", id}, {"text", text}, {"designed", designed(text)}});
+    return json_reply(c.request, http::status::ok,
+                      {{"route", id}, {"text", text}, {"designed", designed(text)}});
   } catch (const std::out_of_range& e) {
     return error(c.request, http::status::not_found, e.what());
   }
@@ -1630,8 +1638,8 @@ std::optional<Console::Response> Console::check_or_save_route(Call& c) {
     return error(request, http::status::bad_request, "field 'text': the route's YAML");
   const bool save = c.target == "/api/routes/save";
   beside(c, checks_, kMostChecksAtOnce, kCheckBudget,
-         [this, save, folders = centre(), id = id->get<std::string>(), yaml = text->get<std::string>(), request,
-          account = c.account->name]() -> Finish {
+         [this, save, folders = centre(), id = id->get<std::string>(), yaml = text->get<std::string>(),
+          request, account = c.account->name]() -> Finish {
            RouteCheck route;
            try {
              route = check_route_text(folders, id, yaml);
@@ -1642,7 +1650,8 @@ std::optional<Console::Response> Console::check_or_save_route(Call& c) {
            }
            json stages = route_json(route.route);
            for (std::size_t n = 0; n < route.route.stages.size(); ++n)
-             stages["stages"][n]["exercise_version"] = io::exercise_version(route.route.stages[n].exercise_file);
+             stages["stages"][n]["exercise_version"] =
+                 io::exercise_version(route.route.stages[n].exercise_file);
            if (!save)
              return [this, request, stages = std::move(stages)] {
                return json_reply(request, http::status::ok, stages);
@@ -1743,9 +1752,10 @@ std::optional<Console::Response> Console::open_replay(Call& c) {
                                                                                 "power-failure",
                                                                                 "power-restored"};
   for (const sim::Recording::Command& given : r.recording.commands)
-    events.push_back({{"at_s", static_cast<double>(given.step) * sim::Simulation::kStep_s},
-                      {"kind", std::string("instructor ") + kCommandNames[static_cast<int>(given.command.kind)]},
-                      {"value", 0.0}});
+    events.push_back(
+        {{"at_s", static_cast<double>(given.step) * sim::Simulation::kStep_s},
+         {"kind", std::string("instructor ") + kCommandNames[static_cast<int>(given.command.kind)]},
+         {"value", 0.0}});
   std::sort(events.begin(), events.end(),
             [](const json& a, const json& b) { return a["at_s"].get<double>() < b["at_s"].get<double>(); });
   audit_.add(account.name, "open_replay", "attempt " + std::to_string(id), r.recording_file);
@@ -1972,7 +1982,8 @@ std::string Console::refuse_live(const http::request<http::string_body>& request
   Call call{request, "/api/live", "", "", nullptr, token, account_of(token)};
   if (!call.account) return "log in first (the live socket is /api/live)";
   status = http::status::forbidden;
-  if (std::string why = refusal(kLiveSocket, call); !why.empty()) return why + ": the live socket is for staff";
+  if (std::string why = refusal(kLiveSocket, call); !why.empty())
+    return why + ": the live socket is for staff";
   status = http::status::service_unavailable;
   if (sockets_.size() >= kMostLiveSockets)
     return "already " + std::to_string(kMostLiveSockets) + " live sockets open";
@@ -2016,7 +2027,9 @@ void Console::handle(const http::request<http::string_body>& request, const std:
       call.account = account_of(call.token);
       if (!call.account) return session->reply(error(request, http::status::unauthorized, "log in first"));
     }
-    if (!route) return session->reply(error(request, http::status::not_found, "no such API: " + core::printable(target)));
+    if (!route)
+      return session->reply(
+          error(request, http::status::not_found, "no such API: " + core::printable(target)));
     if (route->who != Who::kAnyone) {
       if (changes) {
         const auto csrf = request.find("X-CSRF-Token");
@@ -2299,9 +2312,9 @@ std::optional<Console::Response> Console::report(Call& c) {
 void Console::beside(Call& c, int& running, int most, std::chrono::seconds budget,
                      std::function<Finish()> work) {
   if (running >= most) {
-    c.session->reply(error(c.request, http::status::service_unavailable,
-                           "the console is busy with " + std::to_string(running) +
-                               " such requests; try again shortly"));
+    c.session->reply(
+        error(c.request, http::status::service_unavailable,
+              "the console is busy with " + std::to_string(running) + " such requests; try again shortly"));
     return;
   }
   ++running;
@@ -2313,13 +2326,15 @@ void Console::beside(Call& c, int& running, int most, std::chrono::seconds budge
   auto waiting = std::make_shared<Waiting>(io_);
   // past its budget the request is answered now; the work's late answer is dropped
   waiting->timer.expires_after(budget);
-  waiting->timer.async_wait([this, waiting, session = c.session, request = c.request, budget](beast::error_code ec) {
-    if (ec || waiting->answered) return;
-    waiting->answered = true;
-    session->reply(error(request, http::status::service_unavailable,
-                         "not done within " + std::to_string(budget.count()) + " s: refused"));
-  });
-  std::thread worker([this, waiting, &running, session = c.session, request = c.request, work = std::move(work)] {
+  waiting->timer.async_wait(
+      [this, waiting, session = c.session, request = c.request, budget](beast::error_code ec) {
+        if (ec || waiting->answered) return;
+        waiting->answered = true;
+        session->reply(error(request, http::status::service_unavailable,
+                             "not done within " + std::to_string(budget.count()) + " s: refused"));
+      });
+  std::thread worker([this, waiting, &running, session = c.session, request = c.request,
+                      work = std::move(work)] {
     Finish finish;
     try {
       finish = work();
@@ -2328,15 +2343,15 @@ void Console::beside(Call& c, int& running, int most, std::chrono::seconds budge
         return error(request, http::status::internal_server_error, why);
       };
     }
-    asio::post(io_, [this, waiting, &running, session, finish = std::move(finish),
-                     id = std::this_thread::get_id()] {
-      --running;
-      if (auto done = workers_.extract(id)) done.mapped().join();  // it has nothing left to do
-      waiting->timer.cancel();
-      if (waiting->answered) return;
-      waiting->answered = true;
-      session->reply(finish());
-    });
+    asio::post(
+        io_, [this, waiting, &running, session, finish = std::move(finish), id = std::this_thread::get_id()] {
+          --running;
+          if (auto done = workers_.extract(id)) done.mapped().join();  // it has nothing left to do
+          waiting->timer.cancel();
+          if (waiting->answered) return;
+          waiting->answered = true;
+          session->reply(finish());
+        });
   });
   workers_.emplace(worker.get_id(), std::move(worker));
 }
@@ -2385,7 +2400,8 @@ void accept(tcp::acceptor& acceptor, Console& console, asio::ssl::context* tls, 
       // that would spin)
       console.connections()->evict_oldest();
       retry.expires_after(std::chrono::milliseconds(20));
-      retry.async_wait([&acceptor, &console, tls, &retry](beast::error_code) { accept(acceptor, console, tls, retry); });
+      retry.async_wait(
+          [&acceptor, &console, tls, &retry](beast::error_code) { accept(acceptor, console, tls, retry); });
       return;
     }
     if (!ec) console.connections()->make_room();

@@ -20,7 +20,7 @@ struct ConsoleOptions {
   /// the centre's exercise folder the designer saves in and its route folder the route editor saves in
   /// ("" : data/exercises, data/routes)
   CentreFolders centre;
-  double seconds = 0.0;   ///< stop after this long (tests; 0: until Ctrl-C)
+  double seconds = 0.0;  ///< stop after this long (tests; 0: until Ctrl-C)
   /// TLS (required off loopback): the certificate chain and its private key, PEM files
   std::string tls_certificate, tls_key;
   /// Origins besides the console's own whose pages may send it changes and open its live socket (a reverse

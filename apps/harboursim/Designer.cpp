@@ -110,8 +110,9 @@ std::string save_design(const std::string& folder, const DesignCheck& design) {
   const fs::path shipped = fs::path(HARBOUR_DATA_DIR) / "exercises" / (design.exercise.name + ".yaml");
   std::error_code ec;
   if (fs::is_regular_file(shipped) && !fs::equivalent(file, shipped, ec))
-    throw std::logic_error("exercise '" + design.exercise.name +
-                           "' is a shipped exercise: save the design under a name of its own (exercise.name)");
+    throw std::logic_error(
+        "exercise '" + design.exercise.name +
+        "' is a shipped exercise: save the design under a name of its own (exercise.name)");
   if (fs::exists(file) && !designed(read_file(file)))
     throw std::logic_error("exercise '" + design.exercise.name +
                            "' was not made by the designer (a shipped one?): save the design under another "

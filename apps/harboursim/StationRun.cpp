@@ -83,7 +83,8 @@ std::unique_ptr<station::DeviceInput> open_devices(const station::Profile& profi
 
 // The exercise a taken-over attempt ran (none when it is not taken over or the records hold no such
 // attempt): the branch goes on in the world the attempt was made in, even when the exercise changed since.
-std::optional<io::ExerciseSource> taken_over_exercise(const std::string& database, const StationOptions& options) {
+std::optional<io::ExerciseSource> taken_over_exercise(const std::string& database,
+                                                      const StationOptions& options) {
   if (options.take_over_recording.empty()) return std::nullopt;
   io::RecordsStore db(database);
   const std::optional<io::AttemptRow> taken = db.attempt_recorded_at(options.take_over_recording);
@@ -121,7 +122,8 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
   } else if (std::optional<io::ExerciseSource> taken = taken_over_exercise(database, options)) {
     session_options.source = std::move(*taken);
   } else {
-    session_options.source = io::read_exercise_source(resolve_exercise(options.exercise, options.centre.exercises));
+    session_options.source =
+        io::read_exercise_source(resolve_exercise(options.exercise, options.centre.exercises));
   }
   const sim::ExerciseSettings exercise = io::load_exercise_source(session_options.source);
   if (options.autopilot)

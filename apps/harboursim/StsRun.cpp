@@ -169,7 +169,8 @@ void print_evaluation(const sim::Metrics& m, const sim::Score& s, bool container
     std::printf("  hoist brake fault: %s, %d lifts under the fault, crane %s\n", set_down.c_str(),
                 m.lifts_under_fault, m.stopped_after_fault ? "stopped" : "not stopped");
   }
-  static constexpr const char* kVerdicts[] = {"PASSED", "NOT PASSED", "ENDED BY THE INSTRUCTOR (neither passed nor failed)"};
+  static constexpr const char* kVerdicts[] = {"PASSED", "NOT PASSED",
+                                              "ENDED BY THE INSTRUCTOR (neither passed nor failed)"};
   std::printf("score %.0f / 100: %s\n", s.total, kVerdicts[static_cast<int>(s.outcome)]);
   for (const auto& d : s.deductions)
     std::printf("  -%.0f  %s x%d (%s)\n", d.points, d.reason.c_str(), d.count, sim::skill_name(d.skill));
@@ -351,15 +352,17 @@ int drive(const sim::ExerciseSettings& exercise, sim::Simulation& simulation, si
     std::printf("STOPPED by a signal at t=%.3f s; the attempt is stored as interrupted\n",
                 simulation.time_s());
   } else if (out_of_time) {
-    std::printf("STOPPED: %.0f s past the time limit of %.0f s (the exercise's overtime) with goals left: %s\n",
-                exercise.rules.overtime_s, exercise.rules.time_limit_s,
-                progress_text(exercise, evaluator.metrics()).c_str());
+    std::printf(
+        "STOPPED: %.0f s past the time limit of %.0f s (the exercise's overtime) with goals left: %s\n",
+        exercise.rules.overtime_s, exercise.rules.time_limit_s,
+        progress_text(exercise, evaluator.metrics()).c_str());
   }
   if (score.outcome == sim::Outcome::kEndedByInstructor)
-    std::printf("ENDED BY THE INSTRUCTOR: %d instructor disruption%s (a fault, stop or power failure the exercise "
-                "does not script) and goals left: neither passed nor failed\n",
-                evaluator.metrics().instructor_disruptions,
-                evaluator.metrics().instructor_disruptions == 1 ? "" : "s");
+    std::printf(
+        "ENDED BY THE INSTRUCTOR: %d instructor disruption%s (a fault, stop or power failure the exercise "
+        "does not script) and goals left: neither passed nor failed\n",
+        evaluator.metrics().instructor_disruptions,
+        evaluator.metrics().instructor_disruptions == 1 ? "" : "s");
   print_evaluation(evaluator.metrics(), score);
   std::string kept;
   if (writer) {
@@ -390,10 +393,11 @@ std::string resolve_exercise(const std::string& name_or_path, const std::string&
   if (!centre.empty() && fs::is_regular_file(fs::path(centre) / (name_or_path + ".yaml")) &&
       fs::is_regular_file(shipped_folder / (name_or_path + ".yaml")) &&
       !fs::equivalent(fs::path(centre), shipped_folder))
-    throw std::runtime_error("exercise '" + name_or_path + "' is both the centre's (" +
-                             (fs::path(centre) / (name_or_path + ".yaml")).string() +
-                             ") and a shipped one: a centre's exercise takes a name of its own (rename the file "
-                             "and its exercise.name)");
+    throw std::runtime_error(
+        "exercise '" + name_or_path + "' is both the centre's (" +
+        (fs::path(centre) / (name_or_path + ".yaml")).string() +
+        ") and a shipped one: a centre's exercise takes a name of its own (rename the file "
+        "and its exercise.name)");
   for (const fs::path& folder : folders) {
     const fs::path file = folder / (name_or_path + ".yaml");
     if (!fs::is_regular_file(file)) continue;
@@ -424,15 +428,16 @@ io::ExerciseSource attempt_exercise(io::RecordsStore& db, const io::AttemptRow& 
       // its paths resolve where they did; on another PC, from where an exercise of its name stands here
       if (!fs::is_directory(kept->folder)) {
         try {
-          kept->folder = io::read_exercise_source(resolve_exercise(attempt.exercise, centre_exercises)).folder;
+          kept->folder =
+              io::read_exercise_source(resolve_exercise(attempt.exercise, centre_exercises)).folder;
         } catch (const std::exception&) {
           kept->folder = std::string(HARBOUR_DATA_DIR) + "/exercises";
         }
       }
       return *kept;
     }
-  io::ExerciseSource source =
-      io::read_exercise_source(resolve_exercise(attempt.exercise, centre_exercises, attempt.exercise_version));
+  io::ExerciseSource source = io::read_exercise_source(
+      resolve_exercise(attempt.exercise, centre_exercises, attempt.exercise_version));
   if (!attempt.exercise_version.empty() && source.version != attempt.exercise_version)
     inexact = "exercise " + attempt.exercise + " has changed since attempt " + std::to_string(attempt.id) +
               " (version " + attempt.exercise_version + ", now " + source.version +
@@ -467,7 +472,8 @@ int replay_attempt(std::int64_t attempt, const std::string& database, const std:
   const sim::Recording recording = db.read_recording_of(*row);
   std::string inexact;
   const io::ExerciseSource source = attempt_exercise(db, *row, centre_exercises, inexact);
-  std::printf("exercise %s version %s (%s)\n", row->exercise.c_str(), source.version.c_str(), source.file.c_str());
+  std::printf("exercise %s version %s (%s)\n", row->exercise.c_str(), source.version.c_str(),
+              source.file.c_str());
   if (!inexact.empty()) std::printf("NOTE: %s\n", inexact.c_str());
   return replay_checked(row->recording, recording, io::load_exercise_source(source));
 }

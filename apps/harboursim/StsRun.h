@@ -22,8 +22,9 @@ struct RunOptions {
       commands;  ///< instructor commands, AT:KIND[:VALUES] (io::parse_instructor_command)
   /// a training route (data/routes): the trainee, enrolled in it, runs its next stage's exercise
   std::string route;
-  std::string stage;          ///< set by the run: the route's stage it runs
-  io::ExerciseSource source;  ///< set by the run: the exercise as it runs (kept in the records by its version)
+  std::string stage;  ///< set by the run: the route's stage it runs
+  io::ExerciseSource
+      source;  ///< set by the run: the exercise as it runs (kept in the records by its version)
 };
 /// Returns 0 when the exercise ended (passed, failed, or ended by the instructor), kExitOutOfTime when its
 /// time limit and overtime ran out with goals left, 3 when the physics diverged, 130 on a signal, 1 with

@@ -137,7 +137,8 @@ TEST(Run, ABadRecordingPathIsRefusedBeforeTheRunAndNothingIsStored) {
 void link_data_beside(const fs::path& folder) {
   fs::create_directories(folder / "exercises");
   for (const auto& entry : fs::directory_iterator(HARBOUR_DATA_DIR))
-    if (entry.path().filename() != "exercises") fs::create_symlink(entry.path(), folder / entry.path().filename());
+    if (entry.path().filename() != "exercises")
+      fs::create_symlink(entry.path(), folder / entry.path().filename());
 }
 
 int exit_code(pid_t child) {
@@ -180,8 +181,8 @@ TEST(Run, ARunOutOfTimeWithGoalsLeftExitsNonZeroAndSaysSo) {
   text.replace(limit, text.find('\n', limit) - limit, "time_limit_s: 5");
   link_data_beside(folder);
   std::ofstream(folder / "exercises" / "sts_discharge.yaml") << text;
-  EXPECT_EQ(exit_code(start_run(folder, db, "", 0, {}, (folder / "exercises" / "sts_discharge.yaml").string())),
-            4);
+  EXPECT_EQ(
+      exit_code(start_run(folder, db, "", 0, {}, (folder / "exercises" / "sts_discharge.yaml").string())), 4);
   const std::string log = read_text(folder / "run0.log");
   EXPECT_NE(log.find("with goals left: moves 0/1"), std::string::npos) << log;
   io::RecordsStore store(db);
@@ -200,7 +201,8 @@ TEST(Run, AnOldAttemptReplaysBitForBitAfterItsExerciseFileWasEdited) {
   std::string text = read_text(HARBOUR_DATA_DIR "/exercises/sts_discharge.yaml");
   std::ofstream(file) << text;
   const std::string record = (folder / "run.hsrc").string();
-  ASSERT_EQ(exit_code(start_run(folder, db, record, 0, {}, file.string())), 0) << read_text(folder / "run0.log");
+  ASSERT_EQ(exit_code(start_run(folder, db, record, 0, {}, file.string())), 0)
+      << read_text(folder / "run0.log");
   // the crane starting elsewhere: the same recording would diverge at once
   const std::size_t start = text.find("trolley_x_m: 32.27");
   ASSERT_NE(start, std::string::npos);

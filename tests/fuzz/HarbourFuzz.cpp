@@ -181,7 +181,8 @@ struct ConsoleUnderTest {
       if (entry.path().filename() != "exercises" && entry.path().filename() != "routes")
         fs::create_symlink(entry.path(), dir / "centre" / entry.path().filename());
     const std::string db = "sqlite3://db=" + (dir / "records.db").string();
-    if (run({HARBOUR_APP, "accounts", "add", "fuzz", "--role", "administrator", "--db", db}, "fuzz-password\n") != 0)
+    if (run({HARBOUR_APP, "accounts", "add", "fuzz", "--role", "administrator", "--db", db},
+            "fuzz-password\n") != 0)
       throw std::logic_error("cannot add the console's account");
     const std::string out = (dir / "console.log").string();
     pid = ::fork();
@@ -189,9 +190,10 @@ struct ConsoleUnderTest {
       const int log = ::open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
       ::dup2(log, 1);
       ::dup2(log, 2);
-      const std::string exercises = (dir / "centre" / "exercises").string(), routes = (dir / "centre" / "routes").string();
-      ::execl(HARBOUR_APP, HARBOUR_APP, "console", "--port", "0", "--domain", "212", "--db", db.c_str(), "--exercises",
-              exercises.c_str(), "--routes", routes.c_str(), nullptr);
+      const std::string exercises = (dir / "centre" / "exercises").string(),
+                        routes = (dir / "centre" / "routes").string();
+      ::execl(HARBOUR_APP, HARBOUR_APP, "console", "--port", "0", "--domain", "212", "--db", db.c_str(),
+              "--exercises", exercises.c_str(), "--routes", routes.c_str(), nullptr);
       ::_exit(127);
     }
     for (int tries = 0; tries < 200 && port == 0; ++tries) {
@@ -207,8 +209,11 @@ struct ConsoleUnderTest {
   void log_in() {
     const std::string body = R"({"name":"fuzz","password":"fuzz-password"})";
     const std::string answer =
-        exchange(port, "POST /api/login HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: application/json\r\n"
-                       "Content-Length: " + std::to_string(body.size()) + "\r\nConnection: close\r\n\r\n" + body, 2000);
+        exchange(port,
+                 "POST /api/login HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: application/json\r\n"
+                 "Content-Length: " +
+                     std::to_string(body.size()) + "\r\nConnection: close\r\n\r\n" + body,
+                 2000);
     const std::size_t c = answer.find("hs_session="), t = answer.find("\"csrf\":\"");
     if (c == std::string::npos || t == std::string::npos) return;  // blocked by the fuzz's own failed logins
     cookie = answer.substr(c, answer.find(';', c) - c);
@@ -218,8 +223,10 @@ struct ConsoleUnderTest {
   bool alive() {
     int status = 0;
     if (::waitpid(pid, &status, WNOHANG) != 0) return false;
-    const std::string answer =
-        exchange(port, "GET /api/me HTTP/1.1\r\nHost: 127.0.0.1\r\nCookie: " + cookie + "\r\nConnection: close\r\n\r\n", 5000);
+    const std::string answer = exchange(
+        port,
+        "GET /api/me HTTP/1.1\r\nHost: 127.0.0.1\r\nCookie: " + cookie + "\r\nConnection: close\r\n\r\n",
+        5000);
     if (answer.rfind("HTTP/1.1 401", 0) == 0) log_in();  // the fuzz logged it out
     return answer.rfind("HTTP/1.1 ", 0) == 0;
   }
@@ -234,8 +241,7 @@ void fuzz_console(const std::string& input) {
     for (std::size_t at; (at = request.find(mark)) != std::string::npos;)
       request.replace(at, mark.size(), value);
   exchange(console.port, request, 40);
-  if (!console.alive())
-    throw std::logic_error("the console stopped answering (or ended) after this input");
+  if (!console.alive()) throw std::logic_error("the console stopped answering (or ended) after this input");
 }
 
 const std::map<std::string, std::function<void(const std::string&)>>& targets() {
@@ -368,7 +374,8 @@ std::string mutate(const std::string& in, const std::vector<std::string>& corpus
       case 6:  // truncate
         s.resize(at);
         break;
-      default: {  // nest aliases: a line of an anchored list, then levels of lists of aliases to the one below
+      default: {  // nest aliases: a line of an anchored list, then levels of lists of aliases to the one
+                  // below
         const int levels = 1 + static_cast<int>(pick(12));
         std::string bomb = "\nb0: &b0 [x, x, x, x, x, x, x, x]\n";
         for (int n = 1; n <= levels; ++n) {

@@ -63,9 +63,10 @@ TEST(MachineFiles, UnphysicalValuesAndTyposAreRefused) {
   expect_error("    mass_kg: 30000", "    mass_kg: 1e-300", "machine.trolley.mass_kg",
                "is outside [5000, 500000]");
   // a drive too weak to give what it moves its acceleration: the crane would never get going
-  expect_error("max_force_n: 1.2e5, brake_force_n: 2.4e5", "max_force_n: 1e-300, brake_force_n: 2.4e5",
-               "machine.trolley.drive.max_force_n",
-               "cannot give the trolley (3e+04 kg) its acceleration of 0.6 m/s^2: it needs at least 1.8e+04 N");
+  expect_error(
+      "max_force_n: 1.2e5, brake_force_n: 2.4e5", "max_force_n: 1e-300, brake_force_n: 2.4e5",
+      "machine.trolley.drive.max_force_n",
+      "cannot give the trolley (3e+04 kg) its acceleration of 0.6 m/s^2: it needs at least 1.8e+04 N");
   expect_error("max_force_n: 4.0e5, brake_force_n: 8.0e5", "max_force_n: 1.0e5, brake_force_n: 8.0e5",
                "machine.gantry.drive.max_force_n", "it needs at least 1.8e+05 N");
   expect_error("    rail_height_m: 49.0", "    rail_height_m: 49.0\n    rail_hieght_m: 49.0",

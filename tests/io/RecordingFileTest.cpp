@@ -374,7 +374,8 @@ TEST(RecordingFile, ACutAtEveryByteOfItsLast64KiBReadsAsItsPrefix) {
     const auto n_keyframes = prefix.keyframes.size();
     const bool ok =
         !prefix.complete && !prefix.checkpoints.empty() &&
-        prefix.total_steps == prefix.checkpoints.back().step && prefix.checkpoints.size() <= whole.checkpoints.size() &&
+        prefix.total_steps == prefix.checkpoints.back().step &&
+        prefix.checkpoints.size() <= whole.checkpoints.size() &&
         prefix.checkpoints.back().state_hash == whole.checkpoints[prefix.checkpoints.size() - 1].state_hash &&
         n_keyframes <= whole.keyframes.size() &&
         (n_keyframes == 0 || prefix.keyframes.back().state == whole.keyframes[n_keyframes - 1].state) &&

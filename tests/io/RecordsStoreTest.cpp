@@ -143,9 +143,9 @@ TEST_P(RecordsStoreOn, DatabasesOfEarlierBuildsAreUpgradedInPlace) {
     EXPECT_EQ(rows[0].exercise_version, "");
     EXPECT_EQ(db.events(1).size(), 1u);
     EXPECT_EQ(db.metrics(1).size(), 1u);
-    EXPECT_EQ(
-        db.begin_attempt({"t001", "sts_discharge", std::nullopt, 0, "", "sts_basic", "single_lift", "abc", {}}),
-        2);
+    EXPECT_EQ(db.begin_attempt(
+                  {"t001", "sts_discharge", std::nullopt, 0, "", "sts_basic", "single_lift", "abc", {}}),
+              2);
     EXPECT_TRUE(db.enrol("t001", "sts_basic", "ines"));
     EXPECT_EQ(db.attempts()[0].stage, "single_lift");
     RecordsStore again(connection);  // opening an upgraded database changes nothing
@@ -236,7 +236,8 @@ TEST_P(RecordsStoreOn, TheExerciseVersionAnAttemptRanIsKept) {
     db.kept_exercise(source.version);
     FAIL() << "a damaged copy was read";
   } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find("drill version " + source.version + " is damaged"), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("drill version " + source.version + " is damaged"),
+              std::string::npos)
         << e.what();
   }
 }

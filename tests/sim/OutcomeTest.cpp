@@ -23,12 +23,13 @@ struct Timed {
 
 struct Attempt {
   Metrics metrics;
-  Score score;                   // as the exercise ends it (or as it stands at `until_s`)
-  Score score_stopped;           // the instructor stopping it there
-  bool finished = false;         // the exercise ended itself
+  Score score;            // as the exercise ends it (or as it stands at `until_s`)
+  Score score_stopped;    // the instructor stopping it there
+  bool finished = false;  // the exercise ended itself
 };
 
-// The scripted operator runs `exercise` with the instructor's commands, until the exercise ends it or `until_s`.
+// The scripted operator runs `exercise` with the instructor's commands, until the exercise ends it or
+// `until_s`.
 Attempt attempt(const char* exercise_name, const std::vector<Timed>& commands, double until_s) {
   const ExerciseSettings exercise =
       io::load_exercise(std::string(HARBOUR_DATA_DIR) + "/exercises/" + exercise_name + ".yaml");

@@ -46,7 +46,9 @@ bool is_control(std::string_view s, std::size_t at, std::size_t n) {
 // U+202A-U+202E, U+2066-U+2069. They reorder what follows them on screen: "anna\u202Egnp.exe" shows as
 // another name.
 bool is_bidi_control(std::string_view s, std::size_t at, std::size_t n) {
-  const auto byte = [&](std::size_t k) { return static_cast<unsigned int>(static_cast<unsigned char>(s[at + k])); };
+  const auto byte = [&](std::size_t k) {
+    return static_cast<unsigned int>(static_cast<unsigned char>(s[at + k]));
+  };
   if (n == 2) return byte(0) == 0xD8 && byte(1) == 0x9C;  // U+061C
   if (n != 3 || byte(0) != 0xE2) return false;
   const unsigned int cp = 0x2000u | ((byte(1) & 0x3Fu) << 6) | (byte(2) & 0x3Fu);

@@ -43,8 +43,8 @@ struct StartPoseForm {
 /// set): one table for the loader and the designer's forms.
 StartPoseForm start_pose_form(const sim::MachineSetup& machine);
 
-/// The names of the exercises in `folder` (the stems of its *.yaml files, hidden ones not), sorted; none for a
-/// missing folder.
+/// The names of the exercises in `folder` (the stems of its *.yaml files, hidden ones not), sorted; none for
+/// a missing folder.
 std::vector<std::string> exercise_names(const std::string& folder);
 
 /// The exercise file's version: the first 16 hex digits of the SHA-256 of its bytes. Attempts store it, so
@@ -58,8 +58,8 @@ std::string exercise_text_version(const std::string& text);
 /// resolve from. The records keep it by its version, so a replay re-simulates exactly what the trainee had
 /// however the file changes later.
 struct ExerciseSource {
-  std::string file;     ///< where it was read (named in errors)
-  std::string folder;   ///< where its relative paths resolve from
+  std::string file;    ///< where it was read (named in errors)
+  std::string folder;  ///< where its relative paths resolve from
   std::string text;
   std::string version;  ///< exercise_text_version(text)
 };

@@ -75,7 +75,8 @@ class Reader {
     // more than the file holds: cut short there (a torn last record of a stream reads as such)
     if (static_cast<std::size_t>(n) * record_size > in_.size() - at_)
       throw Truncated(RecordingFileError(
-          file_, at_, std::string(what) + ": " + std::to_string(n) + " records do not fit in the file (truncated?)"));
+          file_, at_,
+          std::string(what) + ": " + std::to_string(n) + " records do not fit in the file (truncated?)"));
     return n;
   }
   /// A control lever's position: finite, within [-1, 1].

@@ -616,10 +616,11 @@ std::int64_t RecordsStore::begin_attempt(const AttemptStart& start) {
       // the exercise as it ran, once per version
       if (!start.source.text.empty() && start.source.version == start.exercise_version) {
         int kept = 0;
-        impl_->sql << "SELECT COUNT(*) FROM exercise_versions WHERE version = :v", soci::use(start.source.version),
-            soci::into(kept);
+        impl_->sql << "SELECT COUNT(*) FROM exercise_versions WHERE version = :v",
+            soci::use(start.source.version), soci::into(kept);
         if (kept == 0)
-          impl_->sql << "INSERT INTO exercise_versions (version, exercise, folder, text) VALUES (:v, :e, :f, :t)",
+          impl_->sql
+              << "INSERT INTO exercise_versions (version, exercise, folder, text) VALUES (:v, :e, :f, :t)",
               soci::use(start.source.version), soci::use(start.exercise), soci::use(start.source.folder),
               soci::use(start.source.text);
       }
@@ -634,19 +635,21 @@ std::int64_t RecordsStore::begin_attempt(const AttemptStart& start) {
 }
 
 std::optional<ExerciseSource> RecordsStore::kept_exercise(const std::string& version) {
-  return impl_->guarded("reading exercise version " + core::printable(version), [&]() -> std::optional<ExerciseSource> {
-    ExerciseSource source;
-    std::string exercise;
-    impl_->sql << "SELECT exercise, folder, text FROM exercise_versions WHERE version = :v", soci::use(version),
-        soci::into(exercise), soci::into(source.folder), soci::into(source.text);
-    if (!impl_->sql.got_data()) return std::nullopt;
-    source.version = exercise_text_version(source.text);
-    if (source.version != version)
-      throw std::runtime_error("the kept text of exercise " + core::printable(exercise) + " version " +
-                               core::printable(version) + " is damaged (its hash is " + source.version + ")");
-    source.file = exercise + " (version " + version + " kept in the records)";
-    return source;
-  });
+  return impl_->guarded(
+      "reading exercise version " + core::printable(version), [&]() -> std::optional<ExerciseSource> {
+        ExerciseSource source;
+        std::string exercise;
+        impl_->sql << "SELECT exercise, folder, text FROM exercise_versions WHERE version = :v",
+            soci::use(version), soci::into(exercise), soci::into(source.folder), soci::into(source.text);
+        if (!impl_->sql.got_data()) return std::nullopt;
+        source.version = exercise_text_version(source.text);
+        if (source.version != version)
+          throw std::runtime_error("the kept text of exercise " + core::printable(exercise) + " version " +
+                                   core::printable(version) + " is damaged (its hash is " + source.version +
+                                   ")");
+        source.file = exercise + " (version " + version + " kept in the records)";
+        return source;
+      });
 }
 
 void RecordsStore::record_move(std::int64_t attempt, int index, double completed_at_s, double cycle_time_s) {
@@ -668,9 +671,10 @@ void RecordsStore::record_event(std::int64_t attempt, double at_s, const std::st
 void RecordsStore::finish_attempt(std::int64_t attempt, const sim::Metrics& m, const sim::Score& s,
                                   const std::string& recording, const std::string& status,
                                   std::string_view recording_bytes) {
-  if (status != "finished" && status != "interrupted" && status != "diverged" && status != "ended_by_instructor")
-    throw std::invalid_argument("an attempt ends finished, interrupted, diverged or ended_by_instructor, not '" +
-                                status + "'");
+  if (status != "finished" && status != "interrupted" && status != "diverged" &&
+      status != "ended_by_instructor")
+    throw std::invalid_argument(
+        "an attempt ends finished, interrupted, diverged or ended_by_instructor, not '" + status + "'");
   if (recording_bytes.size() > kMaxStoredRecordingBytes)
     recording_bytes = {};  // too long to keep in the records: its file only
   impl_->guarded("finishing attempt " + std::to_string(attempt), [&] {

@@ -14,11 +14,11 @@ constexpr double kSteelDensity_kg_m3 = 7850.0;  ///< [kg/m^3] ... nor heavier
 constexpr double kMaxRopeStress_pa = 2.5e9;     ///< [Pa] ... nor stronger than 2500 MPa wire on all of it
 // and no rope is softer, lighter or weaker than the softest, lightest, weakest fibre rope of its diameter
 // (polyester and HMPE: E 2-100 GPa, 970-1380 kg/m^3, 0.5-3 GPa on their fibre, which fills about half of it)
-constexpr double kMinRopeModulus_pa = 1e9;        ///< [Pa] on the rope's whole section
-constexpr double kMinRopeDensity_kg_m3 = 300.0;   ///< [kg/m^3] on the rope's whole section
-constexpr double kMinRopeStress_pa = 1e8;         ///< [Pa] its breaking force on the rope's whole section
-constexpr double kMount_m = 500.0;              ///< [m] a sheave or anchor lies within this of its body
-constexpr double kMaxTorque_n_m = 1e7;          ///< [N m] drum motors, brakes and bearing friction
+constexpr double kMinRopeModulus_pa = 1e9;       ///< [Pa] on the rope's whole section
+constexpr double kMinRopeDensity_kg_m3 = 300.0;  ///< [kg/m^3] on the rope's whole section
+constexpr double kMinRopeStress_pa = 1e8;        ///< [Pa] its breaking force on the rope's whole section
+constexpr double kMount_m = 500.0;               ///< [m] a sheave or anchor lies within this of its body
+constexpr double kMaxTorque_n_m = 1e7;           ///< [N m] drum motors, brakes and bearing friction
 
 std::string figure(double v) {
   char text[32];
@@ -86,7 +86,8 @@ ReevingFile load_reeving(const YamlFile& f) {
     };
     rope.mass_per_m_kg = physical("mass_per_m_kg", kMinRopeDensity_kg_m3, kSteelDensity_kg_m3, "lighter");
     rope.axial_stiffness_n = physical("axial_stiffness_n", kMinRopeModulus_pa, kSteelModulus_pa, "softer");
-    rope.min_breaking_force_n = physical("min_breaking_force_n", kMinRopeStress_pa, kMaxRopeStress_pa, "weaker");
+    rope.min_breaking_force_n =
+        physical("min_breaking_force_n", kMinRopeStress_pa, kMaxRopeStress_pa, "weaker");
     rope.safety_factor = f.number_or(t, "safety_factor", at, rope.safety_factor, 1.0, 100.0);
     rope.axial_damping_s = f.number_or(t, "axial_damping_s", at, rope.axial_damping_s, 0.0, 1.0);
     rope.transverse_damping_per_s =

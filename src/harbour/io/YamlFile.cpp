@@ -37,8 +37,8 @@ std::size_t node_budget(std::size_t text_bytes) {
 
 struct AliasBudgetSpent {};
 
-// 1-based line of the first alias (*name) in `text`, 0 if none (a '*' opening a plain token outside quotes and
-// comments)
+// 1-based line of the first alias (*name) in `text`, 0 if none (a '*' opening a plain token outside quotes
+// and comments)
 int first_alias_line(const std::string& text) {
   int line = 1;
   char quote = 0;
@@ -57,8 +57,8 @@ int first_alias_line(const std::string& text) {
       continue;
     }
     const char before = at == 0 ? ' ' : text[at - 1];
-    const bool token_start = before == ' ' || before == '\t' || before == '[' || before == '{' || before == ',' ||
-                             before == '\n' || before == '-' || before == ':';
+    const bool token_start = before == ' ' || before == '\t' || before == '[' || before == '{' ||
+                             before == ',' || before == '\n' || before == '-' || before == ':';
     if (c == '#' && (before == ' ' || before == '\t' || before == '\n')) comment = true;
     if ((c == '"' || c == '\'') && token_start) quote = c;
     if (c == '*' && token_start && at + 1 < text.size() && text[at + 1] != ' ') return line;

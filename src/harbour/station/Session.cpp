@@ -196,8 +196,8 @@ SessionResult Session::finish(SessionEnd end) {
   result.loop = loop_->stats();
   result.metrics = evaluator_.metrics();  // the loop has stopped: the step thread's evaluator is ours
   result.score = evaluator_.score(end == SessionEnd::kStoppedByInstructor);
-  result.status = io::attempt_status(simulation_->diverged(), end == SessionEnd::kInterrupted || !keeper_error_.empty(),
-                                     result.score);
+  result.status = io::attempt_status(simulation_->diverged(),
+                                     end == SessionEnd::kInterrupted || !keeper_error_.empty(), result.score);
   std::string kept;
   if (writer_) {
     writer_->finish(recorder_.recording().total_steps);
