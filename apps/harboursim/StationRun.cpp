@@ -208,7 +208,8 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
       ig::View view;
       view.yaw_rad = c.yaw_rad;
       view.pitch_rad = c.pitch_rad;
-      view.from_sight = c.pitch_from_sight;
+      view.from_sight = c.from_sight;
+      view.fov_from_sight = c.fov_from_sight;
       view.roll_rad = c.roll_rad;
       view.fov_vertical_rad = c.fov_vertical_rad;
       view.frustum_rad = c.frustum_rad;

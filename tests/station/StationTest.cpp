@@ -177,8 +177,9 @@ TEST(Profiles, TheThreeShippedConfigurationsLoad) {
   // the STS's three, the slewing machines' levers and keyboard, the tractor's, the reach stacker's and the
   // RTG's keyboards
   EXPECT_EQ(desktop.mappings.size(), 8u);
-  EXPECT_TRUE(desktop.displays[0].pitch_from_sight);  // a monitor looks along the machine's line of sight
-  EXPECT_FALSE(load_profile(resolve_profile("immersive", HARBOUR_DATA_DIR)).displays[0].pitch_from_sight);
+  // a monitor shows the machine's design view: its line of sight and field of view
+  EXPECT_TRUE(desktop.displays[0].from_sight && desktop.displays[0].fov_from_sight);
+  EXPECT_FALSE(load_profile(resolve_profile("immersive", HARBOUR_DATA_DIR)).displays[0].from_sight);
   const Profile medium = load_profile(resolve_profile("medium", HARBOUR_DATA_DIR));
   EXPECT_EQ(medium.displays[0].width, 3840);
   const Profile immersive = load_profile(resolve_profile("immersive", HARBOUR_DATA_DIR));

@@ -13,6 +13,7 @@
 #include <osg/Point>
 #include <osg/Program>
 #include <osg/ShapeDrawable>
+#include <osg/Texture2D>
 #include <osg/Uniform>
 #include <osgDB/ReadFile>
 #include <osgDB/WriteFile>
@@ -34,6 +35,8 @@
 namespace harbour::ig {
 
 namespace {
+
+constexpr double kCabNear_m = 0.25;  // a cab view's near plane: depth steps of 0.24 m at 1 km (24 bits)
 constexpr double kPi = std::numbers::pi;
 constexpr double kFetch_m = 2000.0;  // the harbour basin's open water upwind, for the wind sea (assumed)
 constexpr int kWaterColumns = 96,
@@ -336,7 +339,7 @@ ImageGenerator::ImageGenerator(const sim::SceneDescription& scene, std::map<std:
   viewer_->setThreadingModel(osgViewer::Viewer::SingleThreaded);
   viewer_->setLightingMode(osg::View::NO_LIGHT);
   build(scene);
-  viewer_->setSceneData(root_);
+  viewer_->setSceneData(frame_);
   image_ = new osg::Image;
   image_->allocateImage(width, height, 1, GL_RGB, GL_UNSIGNED_BYTE);
   viewer_->getCamera()->attach(osg::Camera::COLOR_BUFFER, image_.get());
@@ -358,6 +361,9 @@ void ImageGenerator::build(const sim::SceneDescription& scene) {
   state->setMode(GL_LIGHTING, osg::StateAttribute::ON);
   state->setMode(GL_LIGHT0, osg::StateAttribute::ON);
   state->setMode(GL_NORMALIZE, osg::StateAttribute::ON);
+  // solids show their outsides only: from the seat, the cab's own walls are not drawn and the world shows
+  // through them (its windows), while the bonnet and the mirror arms ahead of them are
+  state->setMode(GL_CULL_FACE, osg::StateAttribute::ON);
   osg::ref_ptr<osg::Material> material = new osg::Material();
   material->setColorMode(osg::Material::AMBIENT_AND_DIFFUSE);  // the geometry's colours, lit
   state->setAttribute(material);
@@ -640,8 +646,15 @@ void ImageGenerator::build(const sim::SceneDescription& scene) {
   timeline_->setColorArray(new osg::Vec4Array, osg::Array::BIND_PER_VERTEX);
   timeline_->addPrimitiveSet(new osg::DrawArrays(GL_QUADS, 0, 0));
   lines->addDrawable(timeline_);
+  inset_quads_ = new osg::Geode;
+  inset_quads_->getOrCreateStateSet()->setMode(GL_LIGHTING, osg::StateAttribute::OFF);
+  // before the lines, each frame before its picture
+  inset_quads_->getOrCreateStateSet()->setRenderBinDetails(999, "TraversalOrderBin");
+  hud->addChild(inset_quads_);
   hud->addChild(lines);
-  root_->addChild(hud);
+  frame_ = new osg::Group;
+  frame_->addChild(root_);
+  frame_->addChild(hud);
   hud_camera_ = hud;
 }
 
@@ -1026,13 +1039,23 @@ void ImageGenerator::place_camera() {
   hud_camera_->setNodeMask(view_.hud ? ~0u : 0u);
   osg::Camera* camera = viewer_->getCamera();
   const double aspect = static_cast<double>(width_) * view_.pixel_aspect / height_;
-  camera->setProjectionMatrixAsPerspective(view_.fov_vertical_rad * 180.0 / kPi, aspect, 0.5, 6000.0);
+  const bool cab_view = view_.kind == View::Kind::kCab;
+  const double fov_vertical =
+      cab_view && view_.fov_from_sight ? cab_.sight.fov_vertical_rad : view_.fov_vertical_rad;
+  // a cab view's near plane just in front of the eye (the bonnet, the mirror arms and the floor window's edge
+  // are a metre away: a near plane computed from the whole harbour's bounds, some 3 m, cut them off); the
+  // other views let it follow the scene's bounds
+  camera->setComputeNearFarMode(cab_view ? osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR
+                                         : osg::CullSettings::COMPUTE_NEAR_FAR_USING_BOUNDING_VOLUMES);
+  camera->setProjectionMatrixAsPerspective(fov_vertical * 180.0 / kPi, aspect, kCabNear_m, 6000.0);
   camera->setViewport(0, 0, width_, height_);
   const core::Pose& cab = cab_.pose;
-  if (view_.kind == View::Kind::kCab && view_.off_axis) {
+  // a cab view's direction in the cab: its offsets, from the design line of sight where it says so
+  const double view_yaw = view_.yaw_rad + (view_.from_sight ? cab_.sight.yaw_rad : 0.0),
+               view_pitch = view_.pitch_rad + (view_.from_sight ? cab_.sight.pitch_rad : 0.0);
+  if (cab_view && view_.off_axis) {
     // the screen is a window in front of the design eye, square to the view; the head moves the eye behind it
-    const double yaw = view_.yaw_rad,
-                 pitch = view_.pitch_rad + (view_.from_sight ? cab_.sight_pitch_rad : 0.0);
+    const double yaw = view_yaw, pitch = view_pitch;
     const core::Vec3 forward_local{std::cos(pitch) * std::cos(yaw), std::cos(pitch) * std::sin(yaw),
                                    std::sin(pitch)};
     const core::Vec3 right_local{std::sin(yaw), -std::cos(yaw), 0.0};
@@ -1041,26 +1064,25 @@ void ImageGenerator::place_camera() {
     const core::Vec3& head = cab_.head_offset_m;
     const double ahead = dot(head, forward_local), right = dot(head, right_local), up = dot(head, up_local);
     const double d = std::max(view_.screen_distance_m - ahead, 0.05);  // eye to the screen's plane
-    const double half_height = view_.screen_distance_m * std::tan(view_.fov_vertical_rad / 2.0);
-    const double half_width = half_height * aspect, near = 0.5, scale = near / d;
+    const double half_height = view_.screen_distance_m * std::tan(fov_vertical / 2.0);
+    const double half_width = half_height * aspect, near = kCabNear_m, scale = near / d;
     camera->setProjectionMatrixAsFrustum((-half_width - right) * scale, (half_width - right) * scale,
                                          (-half_height - up) * scale, (half_height - up) * scale, near,
                                          6000.0);
     const core::Vec3 eye = cab.to_parent(cab_.eye_m + head);
     camera->setViewMatrixAsLookAt(to_osg(eye), to_osg(eye + cab.direction_to_parent(forward_local)),
                                   to_osg(cab.direction_to_parent(up_local)));
-  } else if (view_.kind == View::Kind::kCab) {
+  } else if (cab_view) {
     if (view_.frustum_rad) {
       const auto& [left, right, bottom, top] = *view_.frustum_rad;
-      const double near = 0.5;
+      const double near = kCabNear_m;
       camera->setProjectionMatrixAsFrustum(near * std::tan(left), near * std::tan(right),
                                            near * std::tan(bottom), near * std::tan(top), near, 6000.0);
     }
     // the eye in the cab (plus the head's offset), looking along the cab's x turned by the view's offsets
     const core::Vec3 eye = cab.to_parent(cab_.eye_m + cab_.head_offset_m);
-    const double yaw = view_.yaw_rad + cab_.head_yaw_pitch_roll_rad.x,
-                 pitch = view_.pitch_rad + (view_.from_sight ? cab_.sight_pitch_rad : 0.0) +
-                         cab_.head_yaw_pitch_roll_rad.y;
+    const double yaw = view_yaw + cab_.head_yaw_pitch_roll_rad.x,
+                 pitch = view_pitch + cab_.head_yaw_pitch_roll_rad.y;
     const core::Vec3 local{std::cos(pitch) * std::cos(yaw), std::cos(pitch) * std::sin(yaw), std::sin(pitch)};
     // up square to the view, then turned about it by the view's and the head's roll (positive: the right
     // side down, the picture turning anticlockwise)
@@ -1075,16 +1097,11 @@ void ImageGenerator::place_camera() {
   } else if (view_.kind == View::Kind::kEntity) {
     const auto camera_it = std::find_if(cameras_.begin(), cameras_.end(),
                                         [&](const EntityCamera& c) { return c.name == view_.camera; });
-    const auto entity_it = camera_it == cameras_.end()
-                               ? entity_visuals_.end()
-                               : std::find(entity_visuals_.begin(), entity_visuals_.end(), camera_it->entity);
-    if (entity_it == entity_visuals_.end())
-      throw std::invalid_argument("no camera '" + view_.camera + "' on an entity of this scene");
-    const core::Pose& pose = entity_poses_[static_cast<std::size_t>(entity_it - entity_visuals_.begin())];
-    const core::Vec3 eye = pose.to_parent(camera_it->at_m);
+    const std::optional<CameraPose> pose =
+        camera_it == cameras_.end() ? std::nullopt : camera_pose(*camera_it);
+    if (!pose) throw std::invalid_argument("no camera '" + view_.camera + "' on an entity of this scene");
     camera->setProjectionMatrixAsPerspective(camera_it->fov_vertical_rad * 180.0 / kPi, aspect, 0.3, 6000.0);
-    camera->setViewMatrixAsLookAt(to_osg(eye), to_osg(eye + pose.direction_to_parent(camera_it->look)),
-                                  to_osg(pose.direction_to_parent(camera_it->up)));
+    camera->setViewMatrixAsLookAt(to_osg(pose->eye), to_osg(pose->eye + pose->look), to_osg(pose->up));
   } else if (view_.kind == View::Kind::kFree) {
     const core::Vec3 forward{std::cos(view_.pitch_rad) * std::cos(view_.yaw_rad),
                              std::cos(view_.pitch_rad) * std::sin(view_.yaw_rad), std::sin(view_.pitch_rad)};
@@ -1111,7 +1128,7 @@ void ImageGenerator::place_camera() {
 View view_named(const std::string& name) {
   View v;
   if (name == "cab") {
-    v.from_sight = true;  // along the machine's design line of sight
+    v.from_sight = v.fov_from_sight = true;  // the machine's design view
     v.pitch_rad = 0.0;
     return v;
   }
@@ -1208,8 +1225,100 @@ void ImageGenerator::update_water(const osg::Vec3d& eye) {
   water_->dirtyBound();
 }
 
+std::optional<ImageGenerator::CameraPose> ImageGenerator::camera_pose(const EntityCamera& camera) const {
+  const auto entity = std::find(entity_visuals_.begin(), entity_visuals_.end(), camera.entity);
+  if (entity == entity_visuals_.end()) return std::nullopt;
+  const core::Pose& pose = entity_poses_[static_cast<std::size_t>(entity - entity_visuals_.begin())];
+  return CameraPose{pose.to_parent(camera.at_m), pose.direction_to_parent(camera.look),
+                    pose.direction_to_parent(camera.up)};
+}
+
+void ImageGenerator::set_insets(const std::vector<Inset>& insets) {
+  for (InsetView& v : insets_)
+    frame_->removeChild(v.render);
+  inset_quads_->removeDrawables(0, inset_quads_->getNumDrawables());
+  insets_.clear();
+  for (const Inset& inset : insets) {
+    const auto camera = std::find_if(cameras_.begin(), cameras_.end(),
+                                     [&](const EntityCamera& c) { return c.name == inset.camera; });
+    if (camera == cameras_.end() ||
+        std::find(entity_visuals_.begin(), entity_visuals_.end(), camera->entity) == entity_visuals_.end())
+      continue;  // a camera of another machine
+    InsetView v{inset, *camera, std::max(16, static_cast<int>(std::lround(inset.width * width_))),
+                std::max(16, static_cast<int>(std::lround(inset.height * height_))), new osg::Camera};
+    // the world drawn into a texture of its own before the frame, then shown as a quad under the HUD's lines
+    osg::ref_ptr<osg::Texture2D> texture = new osg::Texture2D;
+    texture->setTextureSize(v.width, v.height);
+    texture->setInternalFormat(GL_RGB);
+    texture->setFilter(osg::Texture::MIN_FILTER, osg::Texture::LINEAR);
+    texture->setFilter(osg::Texture::MAG_FILTER, osg::Texture::LINEAR);
+    v.render->setRenderOrder(osg::Camera::PRE_RENDER);
+    v.render->setRenderTargetImplementation(osg::Camera::FRAME_BUFFER_OBJECT);
+    v.render->setReferenceFrame(osg::Transform::ABSOLUTE_RF);
+    v.render->setViewport(0, 0, v.width, v.height);
+    v.render->setClearMask(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    v.render->setClearColor(osg::Vec4(0.5f, 0.6f, 0.7f, 1.0f));
+    v.render->attach(osg::Camera::COLOR_BUFFER, texture.get());
+    v.render->addChild(root_);
+    frame_->insertChild(0, v.render);
+    const float x0 = static_cast<float>(inset.left * width_), y0 = static_cast<float>(inset.bottom * height_);
+    const float w = static_cast<float>(v.width), h = static_cast<float>(v.height);
+    // a mirror shows what is behind reversed left to right: its texture read from right to left
+    osg::ref_ptr<osg::Geometry> quad = osg::createTexturedQuadGeometry(
+        osg::Vec3(x0, y0, 0.0f), osg::Vec3(w, 0.0f, 0.0f), osg::Vec3(0.0f, h, 0.0f),
+        inset.mirror ? 1.0f : 0.0f, 0.0f, inset.mirror ? 0.0f : 1.0f, 1.0f);
+    quad->getOrCreateStateSet()->setTextureAttributeAndModes(0, texture.get(), osg::StateAttribute::ON);
+    // a dark frame round it
+    osg::ref_ptr<osg::Geometry> frame =
+        osg::createTexturedQuadGeometry(osg::Vec3(x0 - 2.0f, y0 - 2.0f, 0.0f),
+                                        osg::Vec3(w + 4.0f, 0.0f, 0.0f), osg::Vec3(0.0f, h + 4.0f, 0.0f));
+    osg::ref_ptr<osg::Vec4Array> black = new osg::Vec4Array;
+    black->push_back(osg::Vec4(0.05f, 0.05f, 0.05f, 1.0f));
+    frame->setColorArray(black, osg::Array::BIND_OVERALL);
+    inset_quads_->addDrawable(frame);
+    inset_quads_->addDrawable(quad);
+    insets_.push_back(std::move(v));
+  }
+}
+
+std::vector<Inset> ImageGenerator::insets() const {
+  std::vector<Inset> out;
+  for (const InsetView& v : insets_)
+    out.push_back(v.inset);
+  return out;
+}
+
+void ImageGenerator::place_insets() {
+  // a cab's monitors and mirrors, seen from the cab only
+  const bool shown = view_.kind == View::Kind::kCab && view_.insets;
+  inset_quads_->setNodeMask(shown ? ~0u : 0u);
+  for (InsetView& v : insets_) {
+    const std::optional<CameraPose> pose = camera_pose(v.camera);
+    v.render->setNodeMask(shown && pose ? ~0u : 0u);
+    if (!pose) continue;
+    v.render->setProjectionMatrixAsPerspective(v.camera.fov_vertical_rad * 180.0 / kPi,
+                                               static_cast<double>(v.width) / v.height, 0.3, 6000.0);
+    v.render->setViewMatrixAsLookAt(to_osg(pose->eye), to_osg(pose->eye + pose->look), to_osg(pose->up));
+  }
+}
+
+std::optional<std::pair<double, double>> ImageGenerator::project_inset(std::size_t n,
+                                                                       const core::Vec3& world) const {
+  const InsetView& v = insets_.at(n);
+  const osg::Vec4d clip = osg::Vec4d(world.x, world.y, world.z, 1.0) * v.render->getViewMatrix() *
+                          v.render->getProjectionMatrix();
+  if (clip.w() <= 0.0) return std::nullopt;
+  double x = clip.x() / clip.w();
+  const double y = clip.y() / clip.w();
+  if (std::abs(x) > 1.0 || std::abs(y) > 1.0) return std::nullopt;
+  if (v.inset.mirror) x = -x;
+  return std::pair{v.inset.left * width_ + (x + 1.0) / 2.0 * v.width,
+                   height_ - (v.inset.bottom * height_ + (y + 1.0) / 2.0 * v.height)};
+}
+
 const osg::Image& ImageGenerator::render() {
   place_camera();
+  place_insets();
   osg::Vec3d eye, centre, up;
   viewer_->getCamera()->getViewMatrixAsLookAt(eye, centre, up);
   sky_->setMatrix(osg::Matrixd::translate(eye));

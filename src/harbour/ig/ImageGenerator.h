@@ -54,11 +54,13 @@ struct View {
   Kind kind = Kind::kCab;
   double yaw_rad = 0.0, pitch_rad = -1.3,
          roll_rad = 0.0;  ///< cab: offset from the cab's forward axis (down 75 deg), roll about it
-  /// cab: pitch_rad is from the machine's design line of sight (Snapshot::Cab::sight_pitch_rad), not from the
-  /// cab's x axis
+  /// cab: yaw_rad and pitch_rad are from the machine's design line of sight (Snapshot::Cab::sight), not from
+  /// the cab's x axis
   bool from_sight = false;
   double fov_vertical_rad = 0.75;  ///< the aspect ratio comes from the image
+  bool fov_from_sight = false;     ///< cab: the machine's design field of view instead
   bool hud = true;                 ///< the heads-up display on this view (one channel of several carries it)
+  bool insets = true;              ///< cab: the insets (set_insets) on this view
   /// cab: the picture is a window fixed in front of the design eye (a desktop monitor `screen_distance_m`
   /// away): the tracked head moves the eye and skews the frustum through that window (off-axis projection)
   /// instead of turning the view.
@@ -109,7 +111,16 @@ class ImageGenerator {
     set_floodlights(looks.floodlights);
     set_scenery(looks.scenery);
     cameras_ = looks.cameras;
+    set_insets(looks.insets);
   }
+  /// Cameras' pictures set into the view (a cab's monitors and mirrors): those whose camera rides an entity
+  /// of this scene, each drawn every frame into its rectangle (replaces those set before; none: no insets).
+  void set_insets(const std::vector<Inset>& insets);
+  /// The insets drawn (those of set_insets() that this scene has).
+  std::vector<Inset> insets() const;
+  /// Where a world point shows in inset `n` (pixels of the whole picture from its top-left, mirrored as the
+  /// inset is), if it is in front of that camera and within the inset.
+  std::optional<std::pair<double, double>> project_inset(std::size_t n, const core::Vec3& world) const;
   /// The harbour's fixed parts (replaces those set before).
   void set_scenery(const std::vector<SceneryPart>& parts);
   /// The names of the views it can take: cab, chase, free and the look file's cameras.
@@ -142,6 +153,12 @@ class ImageGenerator {
   const osg::Image& render_result() const { return *image_; }
   /// Writes the last frame as a PNG; false if it could not be written.
   bool write_png(const std::string& path) const;
+  /// Places the camera for the view and the published state as the next frame will (project() then answers
+  /// for that frame without drawing it).
+  void aim() {
+    place_camera();
+    place_insets();
+  }
   /// Where a world point lands in the image (pixels from the top-left), if in front of the camera.
   std::optional<std::pair<double, double>> project(const core::Vec3& world) const;
   std::string renderer() const;
@@ -149,6 +166,13 @@ class ImageGenerator {
  private:
   void build(const sim::SceneDescription& scene);
   void place_camera();
+  /// The pose of camera `camera` (of cameras_) on its entity: its eye, look and up, world frame; nullopt when
+  /// the scene has no such entity.
+  struct CameraPose {
+    core::Vec3 eye, look, up;
+  };
+  std::optional<CameraPose> camera_pose(const EntityCamera& camera) const;
+  void place_insets();
   // the water round the eye: swell plus the wind sea, shaded by its Fresnel reflection of the sky
   void update_water(const osg::Vec3d& eye);
   void update_night_sky(const sim::Snapshot& s, const core::Vec3& horizon);
@@ -196,6 +220,15 @@ class ImageGenerator {
   osg::ref_ptr<osg::Image> image_;
   osg::ref_ptr<osgText::Text> hud_, alarm_;
   osg::ref_ptr<osg::Camera> hud_camera_;
+  osg::ref_ptr<osg::Group> frame_;  // what is drawn: the world (root_), the insets' cameras, the HUD
+  struct InsetView {
+    Inset inset;
+    EntityCamera camera;
+    int width = 0, height = 0;         // its picture [pixels]
+    osg::ref_ptr<osg::Camera> render;  // draws the world into its texture before the frame
+  };
+  std::vector<InsetView> insets_;
+  osg::ref_ptr<osg::Geode> inset_quads_;  // the insets' pictures, under the HUD's lines
   std::vector<HudItem> hud_items_;
   std::vector<std::string> indicators_;
   std::vector<std::string> entity_visuals_;  // visual key by entity index

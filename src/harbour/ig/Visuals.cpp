@@ -2,6 +2,7 @@
 
 #include <osgDB/ReadFile>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -130,6 +131,29 @@ Looks load_looks(const std::string& path) {
       if (std::abs(c.look.x) + std::abs(c.look.y) + std::abs(c.look.z) < 1e-6)
         f.fail(cameras[n]["look"], at + ".look", "a direction, not zero");
       looks.cameras.push_back(c);
+    }
+  }
+  if (f.optional(f.root(), "insets", "")) {
+    const YAML::Node insets = f.sequence(f.root(), "insets", "", 32);
+    for (std::size_t n = 0; n < insets.size(); ++n) {
+      const std::string at = "insets[" + std::to_string(n) + "]";
+      Inset inset;
+      inset.camera = f.text(insets[n], "camera", at);
+      if (std::none_of(looks.cameras.begin(), looks.cameras.end(),
+                       [&](const EntityCamera& c) { return c.name == inset.camera; }))
+        f.fail(insets[n]["camera"], at + ".camera", "no camera '" + inset.camera + "' in cameras");
+      const YAML::Node rect = f.required(insets[n], "rect", at);
+      if (!rect.IsSequence() || rect.size() != 4)
+        f.fail(rect, at + ".rect", "expected [left, bottom, width, height] as shares of the picture");
+      inset.left = f.number_at(rect[0], at + ".rect[0]");
+      inset.bottom = f.number_at(rect[1], at + ".rect[1]");
+      inset.width = f.number_at(rect[2], at + ".rect[2]");
+      inset.height = f.number_at(rect[3], at + ".rect[3]");
+      if (!(inset.left >= 0.0 && inset.bottom >= 0.0 && inset.width >= 0.05 && inset.height >= 0.05 &&
+            inset.left + inset.width <= 1.0 && inset.bottom + inset.height <= 1.0))
+        f.fail(rect, at + ".rect", "an inset lies within the picture and spans at least 0.05 of it each way");
+      inset.mirror = f.flag(insets[n], "mirror", at, false);
+      looks.insets.push_back(inset);
     }
   }
   if (f.optional(f.root(), "scenery", "")) {

@@ -63,6 +63,14 @@ struct EntityCamera {
   double fov_vertical_rad = 1.0;
 };
 
+/// A camera's picture set into a view (a monitor in the cab, a mirror): where it sits in the picture, as
+/// shares of its width and height from the bottom-left corner.
+struct Inset {
+  std::string camera;  ///< an EntityCamera's name
+  double left = 0.0, bottom = 0.0, width = 0.25, height = 0.25;
+  bool mirror = false;  ///< drawn left-right reversed, as a mirror shows what is behind
+};
+
 /// A fixed piece of the harbour (world frame): the quay wall, crane rails, bollards, markings. A box, or an
 /// upright cylinder (diameter size.x, height size.z); `repeat` copies `step_m` apart.
 struct SceneryPart {
@@ -80,6 +88,7 @@ struct Looks {
   std::vector<HudItem> hud;
   std::vector<Floodlight> floodlights;
   std::vector<EntityCamera> cameras;
+  std::vector<Inset> insets;  ///< of the cameras whose entity is in the scene
   std::vector<SceneryPart> scenery;
 };
 

@@ -162,13 +162,21 @@ sim::SpreaderHoistSettings read_spreader_hoist(const YamlFile& f, const YAML::No
 // design line of sight
 struct CabFields {
   core::Vec3 position_m, eye_m;
-  double sight_pitch_rad = 0.0;
+  sim::CabSight sight;
 };
+// the cab: where it rides, the design eye in it, and the design view (the line of sight from the cab's x
+// axis, and the vertical field of view a desktop picture shows: a human's binocular field spans about 120
+// degrees vertically, a floor window or a windscreen less)
 CabFields read_cab(const YamlFile& f, const YAML::Node& machine, double reach_m) {
   const YAML::Node cab = f.required_map(machine, "cab", "machine");
-  return {f.vector3(f.required(cab, "position_m", "machine.cab"), "machine.cab.position_m", reach_m),
-          f.vector3(f.required(cab, "eye_m", "machine.cab"), "machine.cab.eye_m", 5.0),
-          core::deg_to_rad(f.number(cab, "sight_pitch_deg", "machine.cab", -90.0, 30.0))};
+  CabFields c;
+  c.position_m = f.vector3(f.required(cab, "position_m", "machine.cab"), "machine.cab.position_m", reach_m);
+  c.eye_m = f.vector3(f.required(cab, "eye_m", "machine.cab"), "machine.cab.eye_m", 5.0);
+  c.sight.yaw_rad = core::deg_to_rad(f.number_or(cab, "sight_yaw_deg", "machine.cab", 0.0, -180.0, 180.0));
+  c.sight.pitch_rad = core::deg_to_rad(f.number(cab, "sight_pitch_deg", "machine.cab", -90.0, 30.0));
+  c.sight.fov_vertical_rad =
+      core::deg_to_rad(f.number_or(cab, "fov_vertical_deg", "machine.cab", 43.0, 20.0, 110.0));
+  return c;
 }
 
 // every control the machine reads is in its table, of its kind; a missing or mistyped one names the list
@@ -219,7 +227,7 @@ sim::StsCraneSettings read_sts_crane(const YamlFile& f, const std::string& folde
   const CabFields cab = read_cab(f, m, 100.0);
   s.cab_position_m = cab.position_m;
   s.eye_m = cab.eye_m;
-  s.sight_pitch_rad = cab.sight_pitch_rad;
+  s.sight = cab.sight;
   return s;
 }
 
@@ -378,7 +386,7 @@ sim::MhcSettings read_mhc(const YamlFile& f, const std::string& folder) {
   const CabFields cab = read_cab(f, m, 100.0);
   s.cab_position_m = cab.position_m;
   s.eye_m = cab.eye_m;
-  s.sight_pitch_rad = cab.sight_pitch_rad;
+  s.sight = cab.sight;
   s.controls = read_control_table(f, m, "machine");
   require_controls(f, m, s.controls,
                    {{"slew", sim::ControlKind::kAxis},
@@ -523,7 +531,7 @@ sim::TractorSettings read_tractor(const YamlFile& f) {
   const CabFields cab = read_cab(f, m, 20.0);
   s.cab_position_m = cab.position_m;
   s.eye_m = cab.eye_m;
-  s.sight_pitch_rad = cab.sight_pitch_rad;
+  s.sight = cab.sight;
   s.controls = read_control_table(f, m, "machine");
   require_driving_controls(f, m, s.controls);
   require_controls(f, m, s.controls, {{"couple", sim::ControlKind::kButton}});
@@ -701,7 +709,7 @@ sim::ReachStackerSettings load_reach_stacker(const YamlFile& f) {
   const CabFields cab = read_cab(f, m, 20.0);
   s.cab_position_m = cab.position_m;
   s.eye_m = cab.eye_m;
-  s.sight_pitch_rad = cab.sight_pitch_rad;
+  s.sight = cab.sight;
   s.controls = read_control_table(f, m, "machine");
   using K = sim::ControlKind;
   require_driving_controls(f, m, s.controls);
@@ -758,7 +766,7 @@ sim::RtgSettings load_rtg(const YamlFile& f, const std::string& folder) {
   const CabFields cab = read_cab(f, m, 10.0);
   s.cab_position_m = cab.position_m;
   s.eye_m = cab.eye_m;
-  s.sight_pitch_rad = cab.sight_pitch_rad;
+  s.sight = cab.sight;
   s.controls = read_control_table(f, m, "machine");
   try {
     const sim::RtgControlSlots slots(s.controls);  // every control the RTG reads, of its kind

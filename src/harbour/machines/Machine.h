@@ -127,8 +127,8 @@ class Machine {
   virtual core::Vec3 eye_on_cab_body_m() const = 0;
   virtual core::Pose cab_pose() const = 0;
   virtual core::Vec3 eye_m() const = 0;
-  /// The operator's design line of sight above the cab's x axis [rad] (negative: looking down).
-  virtual double sight_pitch_rad() const = 0;
+  /// The operator's design view from the cab (line of sight and field of view).
+  virtual CabSight cab_sight() const = 0;
 
   /// Appends its entities (first in the scene), names its indicators and counts its ropes.
   virtual void describe(SceneDescription& scene) const = 0;

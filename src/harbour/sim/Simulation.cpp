@@ -530,7 +530,7 @@ void Simulation::write_snapshot(Snapshot& s) const {
   const core::Pose cab = machine_->cab_pose();
   s.cab.pose = cab;
   s.cab.eye_m = machine_->eye_m();
-  s.cab.sight_pitch_rad = machine_->sight_pitch_rad();
+  s.cab.sight = machine_->cab_sight();
   s.cab.specific_force_mps2 = cab.direction_to_local(cab_specific_force_);
   s.cab.angular_velocity_radps = cab.direction_to_local(world_->angular_velocity(machine_->cab_body()));
 

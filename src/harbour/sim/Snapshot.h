@@ -10,12 +10,20 @@
 
 namespace harbour::sim {
 
-inline constexpr std::uint32_t kSnapshotVersion = 3;
+inline constexpr std::uint32_t kSnapshotVersion = 4;
 inline constexpr int kMaxSwells = 4;
 inline constexpr int kMaxEntities = 2200;  ///< 2000 containers, the machine's bodies, vessel, trucks
 inline constexpr int kMaxRopes = 8;
 inline constexpr int kMaxRopePoints = 1024;
 inline constexpr int kMaxIndicators = 32;
+
+/// The operator's design view from the cab, as the machine's file gives it: where a desktop picture looks
+/// and how much of the world it shows. Yaw from the cab's x axis towards its y, pitch above its xy plane.
+struct CabSight {
+  double yaw_rad = 0.0;
+  double pitch_rad = 0.0;          ///< negative: looking down
+  double fov_vertical_rad = 0.75;  ///< of a picture on one screen (its width from the screen's shape)
+};
 
 /// What a scene holds, fixed for a session: entities (what they look like and how big) and the names of the
 /// indicators. Consumers read it once; each Snapshot then carries only numbers by index (as CIGI does).
@@ -74,7 +82,7 @@ struct Snapshot {
   struct Cab {
     core::Pose pose;                 ///< cab frame in the world
     core::Vec3 eye_m;                ///< [m] design eye point, cab frame
-    double sight_pitch_rad = 0.0;    ///< the design line of sight above the cab's x axis (negative: down)
+    CabSight sight;                  ///< the design line of sight and field of view
     core::Vec3 specific_force_mps2;  ///< [m/s^2] acceleration minus gravity at the head (1 g up at rest)
     core::Vec3 angular_velocity_radps;
     /// Head tracking (the station fills these): the eye's offset from the design eye point [m, cab frame]

@@ -56,10 +56,17 @@ Profile load_profile(const std::string& path) {
     const YAML::Node view = f.required_map(d, "view", at);
     c.yaw_rad = f.number(view, "yaw_deg", at + ".view", -180.0, 180.0) * kDeg;
     // without a pitch the channel looks along the machine's design line of sight (a desktop monitor)
-    c.pitch_from_sight = !f.optional(view, "pitch_deg", at + ".view").has_value();
-    c.pitch_rad = c.pitch_from_sight ? 0.0 : f.number(view, "pitch_deg", at + ".view", -90.0, 90.0) * kDeg;
+    c.from_sight = !f.optional(view, "pitch_deg", at + ".view").has_value();
+    c.pitch_rad = c.from_sight ? 0.0 : f.number(view, "pitch_deg", at + ".view", -90.0, 90.0) * kDeg;
     c.roll_rad = f.number(view, "roll_deg", at + ".view", -180.0, 180.0) * kDeg;
-    const YAML::Node fov = f.required_map(d, "fov", at);
+    // without a field of view, the machine's design one (a desktop monitor shows what the cab shows)
+    const std::optional<YAML::Node> given_fov = f.optional_map(d, "fov", at);
+    c.fov_from_sight = !given_fov;
+    if (c.fov_from_sight) {
+      p.displays.push_back(c);
+      continue;
+    }
+    const YAML::Node fov = *given_fov;
     if (f.optional(fov, "left_deg", at + ".fov")) {
       // an asymmetric frustum: each edge's angle from the view axis
       const std::string fat = at + ".fov";

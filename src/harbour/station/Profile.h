@@ -17,7 +17,11 @@ struct DisplayChannel {
   int width = 1920, height = 1080;
   bool fullscreen = false;
   double yaw_rad = 0.0, pitch_rad = 0.0, roll_rad = 0.0;  ///< view offset from the cab's forward axis
-  bool pitch_from_sight = false;  ///< no pitch given: pitch_rad is from the machine's design line of sight
+  /// No pitch given: yaw_rad and pitch_rad are offsets from the machine's design line of sight (a desktop
+  /// monitor looks where the operator looks)
+  bool from_sight = false;
+  /// No field of view given: the machine's design one (the width from the picture's shape)
+  bool fov_from_sight = false;
   double fov_horizontal_rad = 1.2, fov_vertical_rad = 0.75;  ///< symmetric frustum
   /// An asymmetric frustum (a projection screen not centred on the eye): angles of its left, right, bottom
   /// and top edges from the view axis [rad], left and bottom negative; empty: the symmetric one above.

@@ -84,7 +84,7 @@ struct MhcSettings {
   // the cab on the tower
   core::Vec3 cab_position_m{1.5, -2.5, 24.0};  ///< [m] house frame
   core::Vec3 eye_m{0.3, 0.0, 0.6};             ///< [m] cab frame (x along the house's x)
-  double sight_pitch_rad = -0.35;              ///< out along the boom and down to the grab
+  CabSight sight{0.0, -0.35, 0.9};             ///< out along the boom and down to the grab
   ControlTable controls = mhc_control_table();
 };
 
@@ -127,7 +127,7 @@ class MobileHarbourCrane final : public Machine {
   core::Vec3 eye_on_cab_body_m() const override;
   core::Pose cab_pose() const override;
   core::Vec3 eye_m() const override { return settings_.eye_m; }
-  double sight_pitch_rad() const override { return settings_.sight_pitch_rad; }
+  CabSight cab_sight() const override { return settings_.sight; }
   void describe(SceneDescription& scene) const override;
   int publish(Snapshot& snapshot, int entities) const override;
   void drain_events(StepEvents& events) override;

@@ -52,7 +52,7 @@ class ReachStacker final : public Machine {
   core::Vec3 eye_on_cab_body_m() const override { return settings_.cab_position_m + settings_.eye_m; }
   core::Pose cab_pose() const override;
   core::Vec3 eye_m() const override { return settings_.eye_m; }
-  double sight_pitch_rad() const override { return settings_.sight_pitch_rad; }
+  CabSight cab_sight() const override { return settings_.sight; }
   void describe(SceneDescription& scene) const override;
   int publish(Snapshot& snapshot, int entities) const override;
   MachineTally tally() const override;

@@ -7,6 +7,7 @@
 #include "harbour/machines/parts/Twistlocks.h"
 #include "harbour/machines/parts/WheeledChassis.h"
 #include "harbour/sim/Controls.h"
+#include "harbour/sim/Snapshot.h"
 
 namespace harbour::sim {
 
@@ -47,7 +48,7 @@ struct ReachStackerSettings {
   double tip_over_rad = 0.087;  ///< a tilt of the chassis from level counted as a tip-over (5 deg)
   core::Vec3 cab_position_m{1.5, 0.0, 1.0};  ///< the cab's floor (chassis frame)
   core::Vec3 eye_m{0.0, 0.0, 1.2};
-  double sight_pitch_rad = 0.0;
+  CabSight sight;
   ControlTable controls = reach_stacker_control_table();
 };
 

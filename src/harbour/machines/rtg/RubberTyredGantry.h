@@ -40,7 +40,7 @@ struct RtgSettings {
   core::Vec3 cab_position_m{0.0, -3.0, -2.5};  ///< [m] the cab's centre in the trolley's frame; the operator
                                                ///< faces along the trolley's +y, towards the spreader
   core::Vec3 eye_m{0.3, 0.0, 0.6};             ///< [m] the eye in the cab's frame (x the way it faces)
-  double sight_pitch_rad = -1.0;
+  CabSight sight{0.0, -1.0, 0.75};
 };
 
 /// Where the RTG stands at the start.
@@ -84,7 +84,7 @@ class RubberTyredGantry final : public Machine, public GantryCrane {
   core::Vec3 eye_on_cab_body_m() const override;
   core::Pose cab_pose() const override;
   core::Vec3 eye_m() const override { return settings_.eye_m; }
-  double sight_pitch_rad() const override { return settings_.sight_pitch_rad; }
+  CabSight cab_sight() const override { return settings_.sight; }
   void describe(SceneDescription& scene) const override;
   int publish(Snapshot& snapshot, int entities) const override;
   MachineTally tally() const override;

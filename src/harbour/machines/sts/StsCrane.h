@@ -50,7 +50,7 @@ struct StsCraneSettings {
   /// point in the cab's frame (x waterside, the way the operator faces; z up) [m].
   core::Vec3 cab_position_m{3.0, 0.0, -3.5};
   core::Vec3 eye_m{0.3, 0.0, 0.6};
-  double sight_pitch_rad = -1.3;  ///< the operator looks down through the cab's floor onto the spreader
+  CabSight sight{0.0, -1.3, 0.75};  ///< the operator looks down through the cab's floor onto the spreader
   /// The spreader on its hoist, as the shared part takes it.
   SpreaderHoistSettings spreader_hoist() const {
     return {spreader, twistlocks, hoist, hoist_upper_limit_m, hoist_lower_limit_m};
@@ -154,7 +154,7 @@ class StsCrane final : public Machine, public GantryCrane {
   /// The cab's frame in the world (it rides on the trolley) and its design eye point in that frame.
   core::Pose cab_pose() const override;
   core::Vec3 eye_m() const override { return settings_.eye_m; }
-  double sight_pitch_rad() const override { return settings_.sight_pitch_rad; }
+  CabSight cab_sight() const override { return settings_.sight; }
   /// The container locked to the spreader, if any.
   std::optional<physics::BodyId> locked_container() const { return rig_->locked_container(); }
   TwistlockLamps lamps() const { return rig_->locks().twistlocks().lamps(); }

@@ -56,7 +56,7 @@ struct TractorSettings {
   double steer_rate_per_s = 1.0;  ///< steering command travel per second (lock to lock in 2 s at 1)
   core::Vec3 cab_position_m{1.4, 0.4, 1.3};
   core::Vec3 eye_m{0.0, 0.0, 0.5};
-  double sight_pitch_rad = -0.1;
+  CabSight sight{0.0, -0.1, 0.75};
   core::Vec3 hitch_m{-1.45, 0.0, 0.7};  ///< [m] the coupling's plate, up (chassis frame)
   FifthWheelSettings fifth_wheel;
   double jackknife_angle_rad = 1.4;  ///< the hitch angle counted as a jack-knife
@@ -95,7 +95,7 @@ class TerminalTractor final : public Machine {
   core::Vec3 eye_on_cab_body_m() const override { return settings_.cab_position_m + settings_.eye_m; }
   core::Pose cab_pose() const override;
   core::Vec3 eye_m() const override { return settings_.eye_m; }
-  double sight_pitch_rad() const override { return settings_.sight_pitch_rad; }
+  CabSight cab_sight() const override { return settings_.sight; }
   void describe(SceneDescription& scene) const override;
   int publish(Snapshot& snapshot, int entities) const override;
   MachineTally tally() const override;
