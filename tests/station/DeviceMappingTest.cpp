@@ -100,28 +100,58 @@ TEST(DeviceMapping, ControlsFollowAxesButtonsDetentsAndToggles) {
   EXPECT_NEAR(c.value[1], 0.5, 1e-4);  // the wheel still steers
 }
 
-TEST(DeviceMapping, KeysAndTheMouseDriveLeversAndButtons) {
+// The shipped keyboard: keys drive levers and buttons; the mouse moves no control (it drove the trolley at
+// full speed from the window's edge); the emergency stop counts only once Space is held half a second.
+TEST(DeviceMapping, KeysDriveLeversTheMouseNothingAndTheStopWantsAHeldPress) {
   const sim::ControlTable table = sim::sts_control_table();
   const DeviceMapping m =
       load_device_mapping(std::string(HARBOUR_DATA_DIR) + "/devices/keyboard.yaml", table);
+  for (const DeviceMatch& d : m.devices)
+    EXPECT_FALSE(d.mouse) << "the shipped keyboard binds the mouse (" << d.id << ")";
   ControlMapper mapper(table, m);
   const auto at = [&](const char* label) { return static_cast<std::size_t>(table.find(label)); };
   std::vector<bool> keys(SDL_NUM_SCANCODES, false);
   keys[SDL_SCANCODE_S] = true;      // hoist down
   keys[SDL_SCANCODE_RIGHT] = true;  // gantry +
   keys[SDL_SCANCODE_L] = true;
-  // the mouse a quarter of the window right of centre and at the top (no window: no mouse, nothing lost)
-  std::vector<DeviceState> states(2);
-  sim::Controls c = mapper.map(states, keys);
+  const std::vector<DeviceState> states(m.devices.size());
+  sim::Controls c = mapper.map(states, keys, 10.0);
   EXPECT_EQ(c.value[at("hoist")], -1.0);
   EXPECT_EQ(c.value[at("gantry")], 1.0);
   EXPECT_EQ(c.value[at("lock")], 1.0);
   EXPECT_EQ(c.value[at("trolley")], 0.0);
-  states[1] = {true, {0.25 * 32767.0, -32768.0}, {false, false, true}, {}};
-  keys[SDL_SCANCODE_S] = false;
-  c = mapper.map(states, keys);
-  // x: (0.25 - 0.15) / 0.85 = 2/17, then 0.5 x + 0.5 x^3
-  const double x = 0.1 / 0.85;
+  // a tap of Space is no stop; held, it stops from half a second on, until let go
+  keys[SDL_SCANCODE_SPACE] = true;
+  EXPECT_EQ(mapper.map(states, keys, 20.0).value[at("emergency_stop")], 0.0);
+  EXPECT_EQ(mapper.map(states, keys, 20.2).value[at("emergency_stop")], 0.0);
+  keys[SDL_SCANCODE_SPACE] = false;
+  EXPECT_EQ(mapper.map(states, keys, 20.3).value[at("emergency_stop")], 0.0);
+  keys[SDL_SCANCODE_SPACE] = true;
+  EXPECT_EQ(mapper.map(states, keys, 21.0).value[at("emergency_stop")], 0.0);
+  EXPECT_EQ(mapper.map(states, keys, 21.49).value[at("emergency_stop")], 0.0);
+  EXPECT_EQ(mapper.map(states, keys, 21.5).value[at("emergency_stop")], 1.0);
+  EXPECT_EQ(mapper.map(states, keys, 25.0).value[at("emergency_stop")], 1.0);
+  keys[SDL_SCANCODE_SPACE] = false;
+  EXPECT_EQ(mapper.map(states, keys, 25.1).value[at("emergency_stop")], 0.0);
+}
+
+// A mapping that binds the mouse reads it as a lever from the window's centre (a touch joystick).
+TEST(DeviceMapping, AMouseBoundAsALeverReadsFromTheWindowsCentre) {
+  const sim::ControlTable table = sim::sts_control_table();
+  const DeviceMapping m = load_device_mapping(
+      io::YamlFile::parse("mapping:\n  name: m\n  devices:\n    - {id: mouse, mouse: true}\n  bindings:\n"
+                          "    - {control: trolley, device: mouse, axis: 0, dead_zone: 0.15, expo: 0.5}\n"
+                          "    - {control: hoist, device: mouse, axis: 1, invert: true}\n"
+                          "    - {control: unlock, device: mouse, button: 2}\n",
+                          "mouse.yaml"),
+      table);
+  ControlMapper mapper(table, m);
+  const auto at = [&](const char* label) { return static_cast<std::size_t>(table.find(label)); };
+  std::vector<DeviceState> states(1);  // no window: no mouse, nothing lost
+  EXPECT_EQ(mapper.map(states).value[at("trolley")], 0.0);
+  states[0] = {true, {0.25 * 32767.0, -32768.0}, {false, false, true}, {}};
+  const sim::Controls c = mapper.map(states);
+  const double x = 0.1 / 0.85;  // (0.25 - 0.15) / 0.85, then 0.5 x + 0.5 x^3
   EXPECT_NEAR(c.value[at("trolley")], 0.5 * x + 0.5 * x * x * x, 1e-12);
   EXPECT_EQ(c.value[at("hoist")], 1.0);   // the top of the window raises
   EXPECT_EQ(c.value[at("unlock")], 1.0);  // right button

@@ -37,6 +37,21 @@ namespace harbour::ig {
 namespace {
 
 constexpr double kCabNear_m = 0.25;  // a cab view's near plane: depth steps of 0.24 m at 1 km (24 bits)
+
+// `v` turned by `angle` about the unit `axis` (Rodrigues)
+core::Vec3 turned(const core::Vec3& v, const core::Vec3& axis, double angle) {
+  return v * std::cos(angle) + cross(axis, v) * std::sin(angle) + axis * (dot(axis, v) * (1.0 - std::cos(angle)));
+}
+
+// a view's axes turned as a head looks round: left by `yaw` about the picture's up, then up by `pitch` about
+// its right
+void look_round(core::Vec3& forward, core::Vec3& up, core::Vec3& right, double yaw, double pitch) {
+  if (yaw == 0.0 && pitch == 0.0) return;
+  forward = turned(forward, up, yaw);
+  right = turned(right, up, yaw);
+  forward = turned(forward, right, pitch);
+  up = turned(up, right, pitch);
+}
 constexpr double kPi = std::numbers::pi;
 constexpr double kFetch_m = 2000.0;  // the harbour basin's open water upwind, for the wind sea (assumed)
 constexpr int kWaterColumns = 96,
@@ -605,6 +620,7 @@ void ImageGenerator::build(const sim::SceneDescription& scene) {
 
   // the heads-up display: an orthographic camera drawn last, in pixels
   indicators_ = scene.indicators;
+  machine_ = scene.machine;
   osg::ref_ptr<osg::Camera> hud = new osg::Camera;
   hud->setReferenceFrame(osg::Transform::ABSOLUTE_RF);
   hud->setProjectionMatrixAsOrtho2D(0, width_, 0, height_);
@@ -635,9 +651,14 @@ void ImageGenerator::build(const sim::SceneDescription& scene) {
               osg::Vec3(size * 0.6f, static_cast<float>(height_) - size * 1.4f, 0.0f));
   alarm_ = text(osg::Vec4(1.0f, 0.25f, 0.2f, 1.0f),
                 osg::Vec3(size * 0.6f, static_cast<float>(height_) - size * 2.8f, 0.0f));
+  overlay_ = text(osg::Vec4(1.0f, 1.0f, 0.95f, 1.0f),
+                  osg::Vec3(static_cast<float>(width_) / 2.0f, static_cast<float>(height_) * 0.85f, 0.0f));
+  overlay_->setAlignment(osgText::Text::CENTER_TOP);
+  overlay_->setBoundingBoxColor(osg::Vec4(0.0f, 0.0f, 0.0f, 0.75f));
   osg::ref_ptr<osg::Geode> lines = new osg::Geode;
   lines->addDrawable(hud_);
   lines->addDrawable(alarm_);
+  lines->addDrawable(overlay_);
   timeline_ = new osg::Geometry;
   timeline_->setUseDisplayList(false);
   timeline_->setUseVertexBufferObjects(true);
@@ -743,20 +764,37 @@ void ImageGenerator::update(const sim::Snapshot& s) {
   std::snprintf(buffer, sizeof buffer, "t %.1f s   wind %.1f m/s", s.time_s,
                 std::hypot(s.wind_mps.x, s.wind_mps.y));
   std::string line = buffer;
-  for (const HudItem& item : hud_items_) {
-    const auto at = std::find(indicators_.begin(), indicators_.end(), item.indicator);
+  const auto indicator = [&](const std::string& name) -> std::optional<double> {
+    const auto at = std::find(indicators_.begin(), indicators_.end(), name);
     const auto index = static_cast<int>(at - indicators_.begin());
-    if (at == indicators_.end() || index >= s.indicator_count) continue;
-    const double v = s.indicators[static_cast<std::size_t>(index)];
+    if (at == indicators_.end() || index >= s.indicator_count) return std::nullopt;
+    return s.indicators[static_cast<std::size_t>(index)];
+  };
+  for (const HudItem& item : hud_items_) {
+    const std::optional<double> value = indicator(item.indicator);
+    if (!value) continue;
+    if (!item.shown_while.empty() && !(indicator(item.shown_while).value_or(0.0) > 0.5)) continue;
+    if (!item.machines.empty() && std::find(item.machines.begin(), item.machines.end(), machine_) == item.machines.end())
+      continue;
+    const double v = *value * item.scale;
     if (item.lamp) {
       if (v > 0.5) line += "   " + item.label;
       continue;
     }
-    std::snprintf(buffer, sizeof buffer, "   %s %.*f %s", item.label.c_str(), item.decimals, v,
+    if (!item.words.empty()) {
+      const long k = std::lround(v) - item.words_from;
+      if (k >= 0 && k < static_cast<long>(item.words.size()))
+        line += "   " + item.label + " " + item.words[static_cast<std::size_t>(k)];
+      continue;
+    }
+    // a value that rounds to zero shows as 0, not -0.0
+    const double shown = std::abs(v) < 0.5 * std::pow(10.0, -item.decimals) ? 0.0 : v;
+    std::snprintf(buffer, sizeof buffer, "   %s %.*f %s", item.label.c_str(), item.decimals, shown,
                   item.unit.c_str());
     line += buffer;
   }
   std::string alarm;
+  if (s.emergency_stop && !s.power_off) alarm += "EMERGENCY STOP: DRIVES OFF, BRAKES SET   ";
   if (s.held) alarm += "FROZEN BY THE INSTRUCTOR   ";
   if (s.power_off) alarm += "POWER FAILURE: DRIVES OFF, BRAKES SET   ";
   if (s.awaiting_zero) alarm += "POWER BACK: ALL LEVERS TO ZERO   ";
@@ -766,6 +804,10 @@ void ImageGenerator::update(const sim::Snapshot& s) {
   hud_line_ = line + (alarm.empty() ? "" : "\n" + alarm);
   // each line at its size, smaller where it would run off a narrow picture
   const float size = std::max(14.0f, static_cast<float>(height_) / 32.0f);
+  // an alarm in force is a red band across the picture (white on red), not a line to be missed
+  const bool alarming = !alarm.empty();
+  alarm_->setColor(alarming ? osg::Vec4(1.0f, 1.0f, 1.0f, 1.0f) : osg::Vec4(1.0f, 0.25f, 0.2f, 1.0f));
+  alarm_->setBoundingBoxColor(alarming ? osg::Vec4(0.80f, 0.05f, 0.05f, 0.85f) : osg::Vec4(0.0f, 0.0f, 0.0f, 0.45f));
   for (const auto& [text, content] :
        {std::pair{hud_.get(), line},
         std::pair{alarm_.get(), alarm.empty() ? caption_ : alarm + "\n" + caption_}}) {
@@ -774,6 +816,20 @@ void ImageGenerator::update(const sim::Snapshot& s) {
     const osg::BoundingBox& box = text->getBoundingBox();
     const float room = static_cast<float>(width_) - 1.2f * size, wide = box.xMax() - box.xMin();
     if (box.valid() && wide > room) text->setCharacterSize(size * room / wide);
+  }
+}
+
+void ImageGenerator::set_overlay(const std::string& text) {
+  overlay_->setText(text);
+  // as large as fits the picture's width and 80 % of its height
+  const float size = std::max(12.0f, static_cast<float>(height_) / 36.0f);
+  overlay_->setCharacterSize(size);
+  const osg::BoundingBox& box = overlay_->getBoundingBox();
+  if (box.valid()) {
+    const float wide = box.xMax() - box.xMin(), tall = box.yMax() - box.yMin();
+    const float fit = std::min(0.95f * static_cast<float>(width_) / std::max(wide, 1.0f),
+                               0.8f * static_cast<float>(height_) / std::max(tall, 1.0f));
+    if (fit < 1.0f) overlay_->setCharacterSize(size * fit);
   }
 }
 
@@ -1054,13 +1110,15 @@ void ImageGenerator::place_camera() {
   const double view_yaw = view_.yaw_rad + (view_.from_sight ? cab_.sight.yaw_rad : 0.0),
                view_pitch = view_.pitch_rad + (view_.from_sight ? cab_.sight.pitch_rad : 0.0);
   if (cab_view && view_.off_axis) {
-    // the screen is a window in front of the design eye, square to the view; the head moves the eye behind it
+    // the screen is a window in front of the design eye, square to the view; the head moves the eye behind it,
+    // and turning it (times the gain) or looking round turns the window with it
     const double yaw = view_yaw, pitch = view_pitch;
-    const core::Vec3 forward_local{std::cos(pitch) * std::cos(yaw), std::cos(pitch) * std::sin(yaw),
-                                   std::sin(pitch)};
-    const core::Vec3 right_local{std::sin(yaw), -std::cos(yaw), 0.0};
-    const core::Vec3 up_local{-std::sin(pitch) * std::cos(yaw), -std::sin(pitch) * std::sin(yaw),
-                              std::cos(pitch)};
+    core::Vec3 forward_local{std::cos(pitch) * std::cos(yaw), std::cos(pitch) * std::sin(yaw), std::sin(pitch)};
+    core::Vec3 right_local{std::sin(yaw), -std::cos(yaw), 0.0};
+    core::Vec3 up_local{-std::sin(pitch) * std::cos(yaw), -std::sin(pitch) * std::sin(yaw), std::cos(pitch)};
+    look_round(forward_local, up_local, right_local,
+               cab_.look_yaw_rad + view_.head_turn_gain * cab_.head_yaw_pitch_roll_rad.x,
+               cab_.look_pitch_rad + view_.head_turn_gain * cab_.head_yaw_pitch_roll_rad.y);
     const core::Vec3& head = cab_.head_offset_m;
     const double ahead = dot(head, forward_local), right = dot(head, right_local), up = dot(head, up_local);
     const double d = std::max(view_.screen_distance_m - ahead, 0.05);  // eye to the screen's plane
@@ -1088,10 +1146,13 @@ void ImageGenerator::place_camera() {
     // side down, the picture turning anticlockwise)
     const core::Vec3 level_up{-std::sin(pitch) * std::cos(yaw), -std::sin(pitch) * std::sin(yaw),
                               std::cos(pitch)};
-    const core::Vec3 right = cross(local, level_up);
+    core::Vec3 right = cross(local, level_up);
     const double roll = view_.roll_rad + cab_.head_yaw_pitch_roll_rad.z;
-    const core::Vec3 up_local = level_up * std::cos(roll) + right * std::sin(roll);
-    const core::Vec3 forward = cab.direction_to_parent(local);
+    core::Vec3 up_local = level_up * std::cos(roll) + right * std::sin(roll);
+    right = cross(local, up_local);
+    core::Vec3 forward_local = local;
+    look_round(forward_local, up_local, right, cab_.look_yaw_rad, cab_.look_pitch_rad);
+    const core::Vec3 forward = cab.direction_to_parent(forward_local);
     camera->setViewMatrixAsLookAt(to_osg(eye), to_osg(eye + forward),
                                   to_osg(cab.direction_to_parent(up_local)));
   } else if (view_.kind == View::Kind::kEntity) {

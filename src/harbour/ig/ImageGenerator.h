@@ -66,6 +66,9 @@ struct View {
   /// instead of turning the view.
   bool off_axis = false;
   double screen_distance_m = 0.6;
+  /// off_axis: the tracked head's yaw and pitch turn the view by this many times as much (a head turned 20
+  /// degrees looks 50 to the side, the monitor staying in front of it)
+  double head_turn_gain = 2.5;
   /// cab: an asymmetric frustum, the angles of its left, right, bottom, top edges from the view axis [rad]
   /// (a cabin's projection screen off the eye's axis); empty: symmetric from fov_vertical_rad and the image.
   std::optional<std::array<double, 4>> frustum_rad;
@@ -127,6 +130,8 @@ class ImageGenerator {
   std::vector<std::string> view_names() const;
   /// The heads-up display's lines (none by default).
   void set_hud(std::vector<HudItem> items) { hud_items_ = std::move(items); }
+  /// Text over the middle of the picture on a dark panel (the station's key list); "" for none.
+  void set_overlay(const std::string& text);
   /// A caption under the HUD, set by the application (a debrief's latest events); "" for none.
   void set_caption(const std::string& caption) { caption_ = caption; }
   /// A moment on the timeline bar, in its colour.
@@ -218,7 +223,7 @@ class ImageGenerator {
   osg::ref_ptr<osg::Group> scenery_;
   osg::ref_ptr<osg::LightSource> sun_;
   osg::ref_ptr<osg::Image> image_;
-  osg::ref_ptr<osgText::Text> hud_, alarm_;
+  osg::ref_ptr<osgText::Text> hud_, alarm_, overlay_;
   osg::ref_ptr<osg::Camera> hud_camera_;
   osg::ref_ptr<osg::Group> frame_;  // what is drawn: the world (root_), the insets' cameras, the HUD
   struct InsetView {
@@ -231,6 +236,7 @@ class ImageGenerator {
   osg::ref_ptr<osg::Geode> inset_quads_;  // the insets' pictures, under the HUD's lines
   std::vector<HudItem> hud_items_;
   std::vector<std::string> indicators_;
+  std::string machine_;  // the scene's machine (its kind)
   std::vector<std::string> entity_visuals_;  // visual key by entity index
   std::vector<core::Pose> entity_poses_;     // as last published
   std::vector<EntityCamera> cameras_;

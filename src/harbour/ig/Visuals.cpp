@@ -100,6 +100,23 @@ Looks load_looks(const std::string& path) {
       if (f.optional(hud[n], "unit", at)) item.unit = f.text(hud[n], "unit", at);
       item.decimals = f.optional(hud[n], "decimals", at) ? f.integer(hud[n], "decimals", at, 0, 6) : 1;
       item.lamp = f.flag(hud[n], "lamp", at, false);
+      item.scale = f.number_or(hud[n], "scale", at, 1.0, -1e6, 1e6);
+      if (f.optional(hud[n], "words", at)) {
+        const YAML::Node words = f.sequence(hud[n], "words", at, 16);
+        for (std::size_t k = 0; k < words.size(); ++k) {
+          if (!words[k].IsScalar()) f.fail(words[k], at + ".words", "expected a word");
+          item.words.push_back(words[k].Scalar());
+        }
+        item.words_from = f.optional(hud[n], "words_from", at) ? f.integer(hud[n], "words_from", at, -100, 100) : 0;
+      }
+      if (f.optional(hud[n], "shown_while", at)) item.shown_while = f.text(hud[n], "shown_while", at);
+      if (f.optional(hud[n], "machines", at)) {
+        const YAML::Node machines = f.sequence(hud[n], "machines", at, 16);
+        for (std::size_t k = 0; k < machines.size(); ++k) {
+          if (!machines[k].IsScalar()) f.fail(machines[k], at + ".machines", "expected a machine's kind");
+          item.machines.push_back(machines[k].Scalar());
+        }
+      }
       looks.hud.push_back(item);
     }
   }

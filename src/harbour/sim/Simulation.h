@@ -283,6 +283,7 @@ class Simulation {
   bool power_off_ = false;        // the supply has failed
   bool roped_ = false;            // the machine hangs its load on ropes (it publishes their telemetry)
   bool awaiting_zero_ = false;    // restored, but no lever has been at zero since
+  bool emergency_stop_ = false;   // the machine's stop was in force at the last step (published, not state)
   bool levers_at_zero(const Controls& controls) const;
   core::Warnings warnings_;
   StepEvents events_;

@@ -53,6 +53,7 @@ struct Snapshot {
   int devices_missing = 0;  ///< input devices of the station's mapping not present (their controls read safe)
   bool power_off = false;   ///< the machine's supply has failed (an instructor's emergency)
   bool awaiting_zero = false;  ///< the supply is back; the drives wait for every lever at zero
+  bool emergency_stop = false;  ///< the machine's emergency stop is in force (the trainee's or the instructor's)
 
   // environment
   core::Vec3 wind_mps;  ///< [m/s] world
@@ -88,6 +89,9 @@ struct Snapshot {
     /// Head tracking (the station fills these): the eye's offset from the design eye point [m, cab frame]
     /// and the head's yaw, pitch, roll [rad].
     core::Vec3 head_offset_m, head_yaw_pitch_roll_rad;
+    /// Looking round without a tracker (keys, a mouse drag; the station fills them): the view turned left and
+    /// up from where it looks [rad], about the picture's own up and right axes.
+    double look_yaw_rad = 0.0, look_pitch_rad = 0.0;
   } cab;
 
   struct Entity {

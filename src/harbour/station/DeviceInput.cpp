@@ -3,6 +3,7 @@
 #include <SDL.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdlib>
 #include <stdexcept>
 
@@ -144,7 +145,8 @@ sim::Controls DeviceInput::sample() {
     for (int k = 0; k < keys; ++k)
       keyboard_[static_cast<std::size_t>(k)] = pressed[k] != 0;
   }
-  last_ = mapper_.map(states_, keyboard_);
+  last_ = mapper_.map(states_, keyboard_,
+                      std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count());
   return last_;
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace harbour::station {
@@ -42,6 +43,7 @@ std::string why_unfit(const DeviceMapping& mapping, int device, int axes, int bu
 ControlMapper::ControlMapper(const sim::ControlTable& table, DeviceMapping mapping)
     : table_(table), mapping_(std::move(mapping)) {
   was_pressed_.assign(mapping_.bindings.size(), false);
+  held_since_s_.assign(mapping_.bindings.size(), std::numeric_limits<double>::quiet_NaN());
   toggled_.assign(static_cast<std::size_t>(sim::kMaxControls), 0.0);
   for (int slot = 0; slot < table_.size(); ++slot)
     toggled_[static_cast<std::size_t>(slot)] = table_[slot].neutral;
@@ -55,7 +57,8 @@ std::vector<std::string> ControlMapper::controls_of(int device) const {
   return labels;
 }
 
-sim::Controls ControlMapper::map(const std::vector<DeviceState>& devices, const std::vector<bool>& keyboard) {
+sim::Controls ControlMapper::map(const std::vector<DeviceState>& devices, const std::vector<bool>& keyboard,
+                                 double now_s) {
   sim::Controls c = table_.neutral();
   std::array<bool, sim::kMaxControls> lost{};
   std::array<double, sim::kMaxControls> deflection{};  // the strongest contribution to each axis so far
@@ -102,6 +105,13 @@ sim::Controls ControlMapper::map(const std::vector<DeviceState>& devices, const 
         pressed = axis > 0.5;
         break;
     }
+    // a deliberate press: held hold_s before it counts
+    if (!pressed)
+      held_since_s_[i] = std::numeric_limits<double>::quiet_NaN();
+    else if (std::isnan(held_since_s_[i]))
+      held_since_s_[i] = now_s;
+    if (b.hold_s > 0.0 && b.source != Binding::Source::kAxis && !(now_s - held_since_s_[i] >= b.hold_s))
+      pressed = false;
     switch (spec.kind) {
       case sim::ControlKind::kAxis: {
         double v = spec.neutral;

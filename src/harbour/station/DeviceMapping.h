@@ -46,6 +46,9 @@ struct Binding {
   std::vector<double> detents;  ///< an axis driving a switch: the normalised positions of its detents
   bool toggle = false;          ///< a button driving a switch: each press moves it to the next position
   double value = 1.0;           ///< a button, hat or key on an axis control: the value while held
+  /// [s] a button, hat or key counts only once held this long (a deliberate press: a tap of the space bar is
+  /// no emergency stop)
+  double hold_s = 0.0;
   int line = 0;                 ///< where it is in its file (errors name it)
 };
 
@@ -82,7 +85,9 @@ class ControlMapper {
 
   /// The controls for these device states (one per mapping device, in its order). `keyboard` holds the
   /// pressed scancodes' flags (SDL_NUM_SCANCODES entries, or empty when there is no keyboard).
-  sim::Controls map(const std::vector<DeviceState>& devices, const std::vector<bool>& keyboard = {});
+  /// `now_s`: a steady clock's reading [s] (a binding's hold_s is timed by it).
+  sim::Controls map(const std::vector<DeviceState>& devices, const std::vector<bool>& keyboard = {},
+                    double now_s = 0.0);
   const DeviceMapping& mapping() const { return mapping_; }
   const sim::ControlTable& table() const { return table_; }
   /// Labels of the controls bound to mapping device `device`.
@@ -92,6 +97,7 @@ class ControlMapper {
   sim::ControlTable table_;
   DeviceMapping mapping_;
   std::vector<bool> was_pressed_;  // per binding: a toggle's previous button state
+  std::vector<double> held_since_s_;  // per binding: since when it has been held (NaN: it is not)
   std::vector<double> toggled_;    // per slot: a toggled switch's position
 };
 

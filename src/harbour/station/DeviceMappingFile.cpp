@@ -132,6 +132,9 @@ DeviceMapping load_device_mapping(const io::YamlFile& f, const sim::ControlTable
     b.invert = f.flag(e, "invert", at, false);
     b.toggle = f.flag(e, "toggle", at, false);
     b.value = f.number_or(e, "value", at, 1.0, -1e6, 1e6);
+    b.hold_s = f.number_or(e, "hold_s", at, 0.0, 0.0, 5.0);
+    if (b.hold_s > 0.0 && axis)
+      f.fail(e["hold_s"], at + ".hold_s", "a button, hat or key is held for hold_s; an axis reads at once");
     if (f.optional(e, "detents", at)) {
       const YAML::Node list = f.sequence(e, "detents", at, 16);
       if (spec.kind != sim::ControlKind::kSwitch || !axis)
@@ -217,6 +220,7 @@ std::string device_mapping_text(const DeviceMapping& m) {
     if (b.invert) out << ", invert: true";
     if (b.toggle) out << ", toggle: true";
     if (b.value != 1.0) out << ", value: " << num(b.value);
+    if (b.hold_s != 0.0) out << ", hold_s: " << num(b.hold_s);
     if (!b.detents.empty()) {
       out << ", detents: [";
       for (std::size_t k = 0; k < b.detents.size(); ++k)

@@ -43,6 +43,7 @@ ChassisCommand DrivingCab::step(const Controls& c, double dt_s) {
   const double most = steer_rate_per_s_ * dt_s;
   steering_ += std::clamp(at(steer_slot_) - steering_, -most, most);
   const int direction = static_cast<int>(std::lround(at(direction_slot_)));
+  direction_ = direction - kNeutral;
   ChassisCommand command;
   command.steer = steering_;
   command.throttle = stop_ || direction == kNeutral ? 0.0 : at(throttle_slot_);

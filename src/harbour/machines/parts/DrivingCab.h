@@ -27,6 +27,8 @@ class DrivingCab {
   double steering() const { return steering_; }
   bool horn() const { return horn_; }
   bool emergency_stop() const { return stop_; }
+  /// The direction selector as last read: -1 reverse, 0 neutral, 1 forward (for the cab's display).
+  int direction() const { return direction_; }
   void save_state(core::StateWriter& out) const {
     out.put(steering_);
     out.put(horn_);
@@ -41,6 +43,7 @@ class DrivingCab {
   double steer_rate_per_s_;
   double steering_ = 0.0;
   bool horn_ = false, stop_ = false;
+  int direction_ = 0;
 };
 
 }  // namespace harbour::sim

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <algorithm>
+
 #include <array>
 #include <cstdint>
 #include <memory>
@@ -50,6 +52,11 @@ class SpreaderHoist {
 
   physics::BodyId spreader_body() const { return spreader_; }
   double spreader_mass_kg() const { return settings_.spreader.mass_kg; }
+  /// The payload a cab's load display shows [t]: the rope pull less the spreader's own weight (tared), not
+  /// below zero.
+  double net_load_t() const {
+    return std::max(0.0, hoisted_load_n() / core::kStandardGravity / 1000.0 - spreader_mass_kg() / 1000.0);
+  }
   double upper_limit_m() const { return settings_.upper_limit_m; }
   const Spreader& spreader() const { return *frame_; }
   SpreaderState spreader_state() const { return frame_->state(); }

@@ -177,7 +177,7 @@ namespace {
 constexpr const char* kStsIndicators[] = {
     "gantry_y_m", "trolley_x_m", "boom_angle_rad",  "spreader_length_m", "spreader_size_ft", "flipper_1",
     "flipper_2",  "flipper_3",   "flipper_4",       "lamp_landed",       "lamp_locked",      "lamp_unlocked",
-    "horn",       "load_t",      "lamp_brake_fault"};
+    "horn",       "load_t",      "lamp_brake_fault", "net_load_t"};
 }  // namespace
 
 Telemetry StsCrane::telemetry() const {
@@ -224,7 +224,8 @@ int StsCrane::publish(Snapshot& s, int first) const {
                            lamps.unlocked ? 1.0 : 0.0,
                            horn_ ? 1.0 : 0.0,
                            hoisted_load_n() / 9.80665 / 1000.0,
-                           rig_->brake_fault() ? 1.0 : 0.0};
+                           rig_->brake_fault() ? 1.0 : 0.0,
+                           rig_->net_load_t()};
   static_assert(std::size(values) == std::size(kStsIndicators));
   s.indicator_count = static_cast<int>(std::size(values));
   std::copy(std::begin(values), std::end(values), s.indicators.begin());

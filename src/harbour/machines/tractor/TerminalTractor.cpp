@@ -9,7 +9,8 @@
 namespace harbour::sim {
 namespace {
 
-constexpr const char* kTractorIndicators[] = {"speed_kmh", "gear", "steering", "horn"};
+constexpr const char* kTractorIndicators[] = {"speed_kmh", "gear",    "steering",        "horn",
+                                              "direction", "coupled", "hitch_angle_deg", "reversing"};
 
 physics::BodyId add_body(physics::PhysicsWorld& world, double mass_kg, const core::Vec3& half_extents_m,
                          const core::Pose& pose, const core::Vec3& center_of_mass_m = {}) {
@@ -227,7 +228,12 @@ int TerminalTractor::publish(Snapshot& s, int first) const {
       static_cast<double>(drivetrain_wheel_torque_nm(settings_.chassis.drivetrain,
                                                      settings_.chassis.tyre.radius_m, 1.0, speed)
                               .second),
-      cab_.steering(), cab_.horn() ? 1.0 : 0.0};
+      cab_.steering(),
+      cab_.horn() ? 1.0 : 0.0,
+      static_cast<double>(cab_.direction()),
+      coupled_ ? 1.0 : 0.0,
+      coupled_ ? hitch_angle_rad() * 180.0 / std::numbers::pi : 0.0,
+      cab_.direction() < 0 ? 1.0 : 0.0};
   static_assert(std::size(values) == std::size(kTractorIndicators));
   s.indicator_count = static_cast<int>(std::size(values));
   std::copy(std::begin(values), std::end(values), s.indicators.begin());
