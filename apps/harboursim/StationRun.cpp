@@ -29,6 +29,7 @@
 #include "harbour/station/DeviceMappingFile.h"
 #include "harbour/station/DisplayLayout.h"
 #include "harbour/station/HeadTracker.h"
+#include "harbour/station/LookAround.h"
 #include "harbour/station/MotionLink.h"
 #include "harbour/station/Profile.h"
 #include "harbour/station/Station.h"
@@ -262,13 +263,34 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
   AttemptPresence::Next next = AttemptPresence::Next::kRun;
   int next_line = 0;
   bool window_open = true;
+  // looking round at the window (keys, a mouse drag) within the cab's limits; F1 the machine's keys
+  const sim::CabSight sight = session.simulation().machine().cab_sight();
+  station::LookAround look({sight.look_yaw_rad, sight.look_pitch_rad});
+  const std::string keys =
+      station.devices()
+          ? station::key_list(station.devices()->mapping(), session.simulation().control_table())
+          : "the scripted operator drives: no keys\nF1 this list   F11 full screen";
+  bool help = false;
+  auto last_pump = std::chrono::steady_clock::now();
   while (!session.over() && !g_stop && session.loop().running() && window_open &&
          next == AttemptPresence::Next::kRun) {
     // a console's command waits at most this long (its round trip's share)
     std::this_thread::sleep_for(std::chrono::milliseconds(presence ? 5 : windows.empty() ? 100 : 15));
     if (presence) next = presence->service();
-    for (const auto& w : windows)
-      window_open = w->pump() && window_open;
+    const auto now = std::chrono::steady_clock::now();
+    const double dt_s = std::chrono::duration<double>(now - last_pump).count();
+    last_pump = now;
+    for (const auto& w : windows) {
+      const WindowInput in = w->pump();
+      window_open = in.open && window_open;
+      if (in.recentre) look.recentre();
+      look.update(dt_s, in.look_yaw_keys, in.look_pitch_keys, in.drag_right_px, in.drag_down_px, in.dragging);
+      if (in.help_toggled && render) {
+        help = !help;
+        render->set_overlay(help ? keys : "");
+      }
+    }
+    if (!windows.empty()) session.loop().set_look(look.yaw_rad(), look.pitch_rad());
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (options.seconds > 0.0 && wall >= options.seconds) break;
     for (const std::string& m : station.take_messages()) {

@@ -11,13 +11,27 @@ struct SDL_Texture;
 
 namespace harbour::apps {
 
-/// The trainee's window: shows the image generator's newest frame (handed over from its render thread) and
-/// gives SDL the keyboard and mouse focus the keyboard-and-mouse mapping reads. Events are pumped on the
-/// thread that made it.
+/// What the trainee did at the window since the last pump, beyond the machine's controls: the station's own
+/// keys (F1 the key list, the keypad looking round, keypad 5 back to the line of sight) and a mouse drag with
+/// its left button held (looking round).
+struct WindowInput {
+  bool open = true;
+  bool help_toggled = false;
+  int look_yaw_keys = 0, look_pitch_keys = 0;  ///< keypad 4/6 (+1 left), 8/2 (+1 up) held
+  bool recentre = false;                       ///< keypad 5
+  bool dragging = false;                       ///< the left button held
+  double drag_right_px = 0.0, drag_down_px = 0.0;
+};
+
+/// The trainee's window: shows the image generator's newest frame (handed over from its render thread),
+/// scaled to the window as it is resized (F11 full screen and back), and gives SDL the keyboard focus the
+/// keyboard mappings read. It opens no larger than the display it is on, keeping the picture's shape. Events
+/// are pumped on the thread that made it.
 class StationWindow {
  public:
   /// Opens the window (throws naming SDL's error when there is no display), full screen on the display
-  /// system's output `output` when asked and that output exists (else a window on the first).
+  /// system's output `output` when asked and that output exists (else a window on the first). The picture
+  /// stays `width` x `height`; the window fits the display.
   StationWindow(int width, int height, const std::string& title, bool fullscreen = false, int output = 0);
   ~StationWindow();
   StationWindow(const StationWindow&) = delete;
@@ -29,8 +43,14 @@ class StationWindow {
   /// the other eye of the previous).
   void hand_over(const unsigned char* pixels, int width, int height, int pixel_bytes, std::size_t row_bytes,
                  int x0 = 0, std::uint8_t colours = 0b111, bool last = true);
-  /// Window thread: events, then the newest frame if there is one; false once the window is closed.
-  bool pump();
+  /// Window thread: events, then the newest frame if there is one; `open` false once the window is closed.
+  WindowInput pump();
+  /// The window's size now [pixels] (it may be resized).
+  void size(int& width, int& height) const;
+  /// Resizes it as a window manager would (tests).
+  void resize(int width, int height);
+  /// Puts the mouse pointer at a point of the window (tests).
+  void move_mouse(int x, int y);
   /// What the window shows now (RGB, top row first): for tests.
   std::vector<std::uint8_t> shown(int& width, int& height);
   long frames_shown() const { return frames_shown_; }
@@ -39,7 +59,7 @@ class StationWindow {
   SDL_Window* window_ = nullptr;
   SDL_Renderer* renderer_ = nullptr;
   SDL_Texture* texture_ = nullptr;
-  int width_, height_;
+  int width_, height_;  // the picture's
   std::mutex mutex_;
   std::vector<std::uint8_t> frame_;  // top row first
   bool fresh_ = false;

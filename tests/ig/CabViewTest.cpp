@@ -198,5 +198,81 @@ INSTANTIATE_TEST_SUITE_P(MainExercises, CabView,
                            return std::string(task.param.exercise);
                          });
 
+// Reversing a semi-trailer into its bay: the trailer is always in one of the cab's mirrors or on its
+// reversing camera's monitor (the insets of the cab view, mirrored as mirrors are).
+TEST(CabView, TheTrailerIsInAMirrorOrOnTheReversingCameraWhileReversing) {
+  const sim::ExerciseSettings exercise =
+      io::load_exercise(std::string(HARBOUR_DATA_DIR) + "/exercises/tractor_semi_reverse.yaml");
+  sim::Simulation simulation(exercise.scenario);
+  const std::unique_ptr<sim::Pilot> pilot = sim::make_pilot(exercise);
+  sim::Evaluator evaluator(exercise);
+  const sim::SceneDescription scene = simulation.scene();
+  const int trailer = entity_named(scene, "trailer");
+  ASSERT_GE(trailer, 0);
+  Looks looks = load_looks(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml");
+  ImageGenerator generator(scene, std::move(looks.visuals), kWidth, kHeight);
+  generator.use(looks);
+  generator.set_view(view_named("cab"));
+  ASSERT_EQ(generator.insets().size(), 3u);  // two mirrors, the reversing camera
+  auto snapshot = std::make_unique<sim::Snapshot>();
+  int samples = 0, seen = 0;
+  double next_sample_s = 0.0;
+  while (!evaluator.finished() && simulation.time_s() < 300.0) {
+    const sim::Controls in = pilot->next(simulation);
+    simulation.step(in);
+    evaluator.observe(simulation, in);
+    if (simulation.time_s() + 1e-9 < next_sample_s) continue;
+    next_sample_s += kSample_s;
+    simulation.write_snapshot(*snapshot);
+    generator.update(*snapshot);
+    generator.aim();
+    const auto& entity = snapshot->entities[static_cast<std::size_t>(trailer)];
+    const core::Vec3 half = scene.entities[static_cast<std::size_t>(trailer)].half_extents_m;
+    bool in_one = false;
+    for (std::size_t n = 0; n < generator.insets().size() && !in_one; ++n)
+      for (int corner = -1; corner < 8 && !in_one; ++corner)
+        in_one = generator
+                     .project_inset(n, corner < 0 ? entity.pose.position
+                                                  : entity.pose.to_parent({corner & 1 ? half.x : -half.x,
+                                                                           corner & 2 ? half.y : -half.y,
+                                                                           corner & 4 ? half.z : -half.z}))
+                     .has_value();
+    ++samples;
+    seen += in_one ? 1 : 0;
+  }
+  EXPECT_TRUE(evaluator.finished());
+  std::printf(
+      "tractor_semi_reverse: the trailer in a mirror or on the reversing camera in %d of %d samples\n", seen,
+      samples);
+  EXPECT_GE(seen, 0.95 * samples);
+}
+
+// The HUD shows what each machine's own display shows, by the names it publishes.
+TEST(CabView, TheHudShowsWhatEachMachinesDisplayShows) {
+  const std::pair<const char*, std::vector<std::string>> machines[] = {
+      {"sts_discharge", {"load ", "spreader 40 ft"}},
+      {"rtg_rehandle", {"load ", "spreader "}},
+      {"mhc_hook_lift", {"load ", "radius ", "SWL ", "LMI "}},
+      {"reach_stacker_stack", {"load ", "reach ", "SWL ", "LMI ", "speed "}},
+      {"tractor_semi_reverse", {"speed ", "selector ", "gear "}}};
+  for (const auto& [name, fields] : machines) {
+    const sim::ExerciseSettings exercise =
+        io::load_exercise(std::string(HARBOUR_DATA_DIR) + "/exercises/" + name + ".yaml");
+    sim::Simulation simulation(exercise.scenario);
+    for (int k = 0; k < 200; ++k)
+      simulation.step(simulation.control_table().neutral());
+    Looks looks = load_looks(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml");
+    ImageGenerator generator(simulation.scene(), std::move(looks.visuals), 320, 180);
+    generator.use(looks);
+    generator.update(*simulation.snapshot());
+    for (const std::string& field : fields)
+      EXPECT_NE(generator.hud_text().find(field), std::string::npos) << name << ": " << generator.hud_text();
+    // one load each: the quay cranes' tared payload, not the rope pull with the spreader
+    const std::string& hud = generator.hud_text();
+    EXPECT_EQ(hud.find("load "), hud.rfind("load ")) << name << ": " << hud;
+    EXPECT_EQ(hud.find("-0.0"), std::string::npos) << name << ": " << hud;
+  }
+}
+
 }  // namespace
 }  // namespace harbour::ig

@@ -901,3 +901,103 @@ TEST(ImageGenerator, StarsShowAtNightAndTheMoonWhereItsOrbitSays) {
 
 }  // namespace
 }  // namespace harbour::ig
+
+namespace harbour::ig {
+namespace {
+
+// Looking round: the view turns left and up about the picture's own axes, from a level view and from one
+// straight down through a floor (where a turn about the cab's vertical would only spin the picture).
+TEST(ImageGenerator, LookingRoundTurnsTheViewAboutThePicturesOwnAxes) {
+  ImageGenerator ig(scene(), looks(), kWidth, kHeight);
+  ig.set_view(level());
+  sim::Snapshot s = state(5000.0, 5000.0, 20000.0, 12.0);
+  s.cab.look_yaw_rad = 0.5;    // left
+  s.cab.look_pitch_rad = 0.3;  // then up
+  ig.update(s);
+  ig.aim();
+  // a point 0.5 rad to the left, then 0.3 up along the turned view: in the picture's centre
+  const core::Vec3 eye{0.0, 0.0, 10.0};
+  const core::Vec3 left{std::cos(0.5), std::sin(0.5), 0.0};
+  const core::Vec3 ahead = left * std::cos(0.3) + core::Vec3{0.0, 0.0, std::sin(0.3)};
+  const auto centre = ig.project(eye + ahead * 50.0);
+  ASSERT_TRUE(centre);
+  EXPECT_NEAR(centre->first, kWidth / 2.0, 0.5);
+  EXPECT_NEAR(centre->second, kHeight / 2.0, 0.5);
+  // straight down, the top of the picture ahead (+x): looking left brings a point 0.4 rad to the left of the
+  // nadir to the centre
+  View down = level();
+  down.pitch_rad = -std::numbers::pi / 2.0;
+  ig.set_view(down);
+  s.cab.look_yaw_rad = 0.4;
+  s.cab.look_pitch_rad = 0.0;
+  ig.update(s);
+  ig.aim();
+  const auto nadir_left = ig.project(eye + core::Vec3{0.0, std::sin(0.4), -std::cos(0.4)} * 20.0);
+  ASSERT_TRUE(nadir_left);
+  EXPECT_NEAR(nadir_left->first, kWidth / 2.0, 0.5);
+  EXPECT_NEAR(nadir_left->second, kHeight / 2.0, 0.5);
+}
+
+// A camera's picture set into the view: a mirror's is reversed left to right, a monitor's is not; cab views
+// only.
+TEST(ImageGenerator, AMirrorShowsWhatIsBehindReversedAndAMonitorAsItIs) {
+  ImageGenerator ig(scene(), looks(), kWidth, kHeight);
+  Looks extra;
+  extra.cameras.push_back({"rear", "none", {0.0, 0.0, 0.0}, {-1.0, 0.0, 0.0}, {0.0, 0.0, 1.0}, 0.6});
+  extra.insets.push_back({"rear", 0.0, 0.6, 0.4, 0.4, true});   // a mirror, top left
+  extra.insets.push_back({"rear", 0.6, 0.0, 0.4, 0.4, false});  // a monitor, bottom right
+  ig.use(extra);
+  ASSERT_EQ(ig.insets().size(), 2u);
+  ig.set_view(level());
+  sim::Snapshot s = state(5000.0, 5000.0, 20000.0, 12.0);
+  s.entities[0].pose.position = {0.0, 0.0, 14.0};
+  // behind the mast: the near box 4 m to the left (+y), the far one 4 m to the right
+  s.entities[1].pose.position = {-40.0, 4.0, 14.0};
+  s.entities[2].pose.position = {-40.0, -4.0, 14.0};
+  ig.update(s);
+  const osg::Image& image = ig.render();
+  const auto mirror_left = ig.project_inset(0, s.entities[1].pose.position),
+             mirror_right = ig.project_inset(0, s.entities[2].pose.position),
+             monitor_left = ig.project_inset(1, s.entities[1].pose.position),
+             monitor_right = ig.project_inset(1, s.entities[2].pose.position);
+  ASSERT_TRUE(mirror_left && mirror_right && monitor_left && monitor_right);
+  EXPECT_LT(mirror_left->first, mirror_right->first);    // in the mirror what is on the left shows left
+  EXPECT_GT(monitor_left->first, monitor_right->first);  // a camera looking back sees it on its right
+  EXPECT_LT(mirror_left->second, kHeight * 0.4);         // in the top-left inset
+  EXPECT_GT(monitor_left->first, kWidth * 0.6);          // in the bottom-right one
+  // and drawn there: the red box's pixels where the projection says
+  const osg::Vec3 red = pixel(image, mirror_left->first, mirror_left->second);
+  EXPECT_GT(red.x(), 2.0f * std::max(red.y(), red.z())) << red.x() << " " << red.y() << " " << red.z();
+  // a chase view shows no cab mirrors
+  View chase;
+  chase.kind = View::Kind::kChase;
+  ig.set_view(chase);
+  ig.render();
+  const osg::Vec3 there = pixel(ig.render_result(), mirror_left->first, mirror_left->second);
+  EXPECT_FALSE(there.x() > 2.0f * std::max(there.y(), there.z()));
+}
+
+// The station's key list over the picture (F1): a dark panel with the text, over the middle of the picture.
+TEST(ImageGenerator, TheOverlayPutsItsTextOnADarkPanelOverThePicture) {
+  ImageGenerator ig(scene(), looks(), kWidth, kHeight);
+  ig.set_view(level());
+  ig.update(state(5000.0, 5000.0, 20000.0, 12.0));
+  const double plain = luminance(pixel(ig.render(), kWidth / 2.0, kHeight * 0.2));
+  ig.set_overlay("hoist (hoist, + raises): W / S\ntrolley (trolley travel): Up / Down\nF1 this list");
+  ig.render();
+  double bright = 0.0, dark = 1.0;
+  for (int x = kWidth / 4; x < 3 * kWidth / 4; ++x)
+    for (int y = static_cast<int>(kHeight * 0.16); y < static_cast<int>(kHeight * 0.3); ++y) {
+      const double l = luminance(pixel(ig.render_result(), x, y));
+      bright = std::max(bright, l);
+      dark = std::min(dark, l);
+    }
+  EXPECT_LT(dark, 0.5 * plain);  // the panel
+  EXPECT_GT(bright, 0.8);        // the letters
+  ig.set_overlay("");
+  EXPECT_NEAR(luminance(pixel(ig.render(), kWidth / 2.0, kHeight * 0.2)), plain, 0.02)
+      << dark << " " << bright;
+}
+
+}  // namespace
+}  // namespace harbour::ig

@@ -40,7 +40,8 @@ constexpr double kCabNear_m = 0.25;  // a cab view's near plane: depth steps of 
 
 // `v` turned by `angle` about the unit `axis` (Rodrigues)
 core::Vec3 turned(const core::Vec3& v, const core::Vec3& axis, double angle) {
-  return v * std::cos(angle) + cross(axis, v) * std::sin(angle) + axis * (dot(axis, v) * (1.0 - std::cos(angle)));
+  return v * std::cos(angle) + cross(axis, v) * std::sin(angle) +
+         axis * (dot(axis, v) * (1.0 - std::cos(angle)));
 }
 
 // a view's axes turned as a head looks round: left by `yaw` about the picture's up, then up by `pitch` about
@@ -654,6 +655,7 @@ void ImageGenerator::build(const sim::SceneDescription& scene) {
   overlay_ = text(osg::Vec4(1.0f, 1.0f, 0.95f, 1.0f),
                   osg::Vec3(static_cast<float>(width_) / 2.0f, static_cast<float>(height_) * 0.85f, 0.0f));
   overlay_->setAlignment(osgText::Text::CENTER_TOP);
+  overlay_->setNodeMask(0u);  // none until set
   overlay_->setBoundingBoxColor(osg::Vec4(0.0f, 0.0f, 0.0f, 0.75f));
   osg::ref_ptr<osg::Geode> lines = new osg::Geode;
   lines->addDrawable(hud_);
@@ -774,7 +776,8 @@ void ImageGenerator::update(const sim::Snapshot& s) {
     const std::optional<double> value = indicator(item.indicator);
     if (!value) continue;
     if (!item.shown_while.empty() && !(indicator(item.shown_while).value_or(0.0) > 0.5)) continue;
-    if (!item.machines.empty() && std::find(item.machines.begin(), item.machines.end(), machine_) == item.machines.end())
+    if (!item.machines.empty() &&
+        std::find(item.machines.begin(), item.machines.end(), machine_) == item.machines.end())
       continue;
     const double v = *value * item.scale;
     if (item.lamp) {
@@ -807,7 +810,8 @@ void ImageGenerator::update(const sim::Snapshot& s) {
   // an alarm in force is a red band across the picture (white on red), not a line to be missed
   const bool alarming = !alarm.empty();
   alarm_->setColor(alarming ? osg::Vec4(1.0f, 1.0f, 1.0f, 1.0f) : osg::Vec4(1.0f, 0.25f, 0.2f, 1.0f));
-  alarm_->setBoundingBoxColor(alarming ? osg::Vec4(0.80f, 0.05f, 0.05f, 0.85f) : osg::Vec4(0.0f, 0.0f, 0.0f, 0.45f));
+  alarm_->setBoundingBoxColor(alarming ? osg::Vec4(0.80f, 0.05f, 0.05f, 0.85f)
+                                       : osg::Vec4(0.0f, 0.0f, 0.0f, 0.45f));
   for (const auto& [text, content] :
        {std::pair{hud_.get(), line},
         std::pair{alarm_.get(), alarm.empty() ? caption_ : alarm + "\n" + caption_}}) {
@@ -821,6 +825,7 @@ void ImageGenerator::update(const sim::Snapshot& s) {
 
 void ImageGenerator::set_overlay(const std::string& text) {
   overlay_->setText(text);
+  overlay_->setNodeMask(text.empty() ? 0u : ~0u);  // its panel too
   // as large as fits the picture's width and 80 % of its height
   const float size = std::max(12.0f, static_cast<float>(height_) / 36.0f);
   overlay_->setCharacterSize(size);
@@ -1110,10 +1115,11 @@ void ImageGenerator::place_camera() {
   const double view_yaw = view_.yaw_rad + (view_.from_sight ? cab_.sight.yaw_rad : 0.0),
                view_pitch = view_.pitch_rad + (view_.from_sight ? cab_.sight.pitch_rad : 0.0);
   if (cab_view && view_.off_axis) {
-    // the screen is a window in front of the design eye, square to the view; the head moves the eye behind it,
-    // and turning it (times the gain) or looking round turns the window with it
+    // the screen is a window in front of the design eye, square to the view; the head moves the eye behind
+    // it, and turning it (times the gain) or looking round turns the window with it
     const double yaw = view_yaw, pitch = view_pitch;
-    core::Vec3 forward_local{std::cos(pitch) * std::cos(yaw), std::cos(pitch) * std::sin(yaw), std::sin(pitch)};
+    core::Vec3 forward_local{std::cos(pitch) * std::cos(yaw), std::cos(pitch) * std::sin(yaw),
+                             std::sin(pitch)};
     core::Vec3 right_local{std::sin(yaw), -std::cos(yaw), 0.0};
     core::Vec3 up_local{-std::sin(pitch) * std::cos(yaw), -std::sin(pitch) * std::sin(yaw), std::cos(pitch)};
     look_round(forward_local, up_local, right_local,

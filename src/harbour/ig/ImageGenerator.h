@@ -236,7 +236,7 @@ class ImageGenerator {
   osg::ref_ptr<osg::Geode> inset_quads_;  // the insets' pictures, under the HUD's lines
   std::vector<HudItem> hud_items_;
   std::vector<std::string> indicators_;
-  std::string machine_;  // the scene's machine (its kind)
+  std::string machine_;                      // the scene's machine (its kind)
   std::vector<std::string> entity_visuals_;  // visual key by entity index
   std::vector<core::Pose> entity_poses_;     // as last published
   std::vector<EntityCamera> cameras_;

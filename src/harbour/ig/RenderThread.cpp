@@ -33,6 +33,12 @@ double RenderThread::fps() const {
   return s > 0.0 ? static_cast<double>(frames_.load()) / s : 0.0;
 }
 
+void RenderThread::set_overlay(std::string text) {
+  const std::lock_guard lock(overlay_mutex_);
+  overlay_ = std::move(text);
+  overlay_changed_ = true;
+}
+
 std::string RenderThread::error() const {
   const std::lock_guard lock(error_mutex_);
   return error_;
@@ -64,6 +70,11 @@ void RenderThread::run(sim::SceneDescription scene, Looks looks, int width, int 
         continue;
       }
       last_step = s->step;
+      {
+        const std::lock_guard lock(overlay_mutex_);
+        if (overlay_changed_) generator.set_overlay(overlay_);
+        overlay_changed_ = false;
+      }
       generator.update(*s);
       if (const sim::BulkView* material = bulk_ ? bulk_() : nullptr)
         generator.update_bulk(*material);               // meshes again only the tiles that changed

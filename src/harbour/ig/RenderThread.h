@@ -35,6 +35,8 @@ class RenderThread {
   double fps() const;
   /// Why the thread stopped early ("" while it runs or after stop()).
   std::string error() const;
+  /// Text over the picture from the next frame on (ImageGenerator::set_overlay); any thread.
+  void set_overlay(std::string text);
 
  private:
   void run(sim::SceneDescription scene, Looks looks, int width, int height, std::vector<View> views);
@@ -49,6 +51,9 @@ class RenderThread {
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
   mutable std::mutex error_mutex_;
   std::string error_;
+  std::mutex overlay_mutex_;
+  std::string overlay_;
+  bool overlay_changed_ = false;
 };
 
 }  // namespace harbour::ig

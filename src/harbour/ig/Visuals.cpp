@@ -107,7 +107,8 @@ Looks load_looks(const std::string& path) {
           if (!words[k].IsScalar()) f.fail(words[k], at + ".words", "expected a word");
           item.words.push_back(words[k].Scalar());
         }
-        item.words_from = f.optional(hud[n], "words_from", at) ? f.integer(hud[n], "words_from", at, -100, 100) : 0;
+        item.words_from =
+            f.optional(hud[n], "words_from", at) ? f.integer(hud[n], "words_from", at, -100, 100) : 0;
       }
       if (f.optional(hud[n], "shown_while", at)) item.shown_while = f.text(hud[n], "shown_while", at);
       if (f.optional(hud[n], "machines", at)) {

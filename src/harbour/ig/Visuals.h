@@ -40,13 +40,14 @@ struct HudItem {
   std::string label;
   std::string unit;
   int decimals = 1;
-  bool lamp = false;  ///< shown as its label while the indicator is on (> 0.5), hidden while off
+  bool lamp = false;   ///< shown as its label while the indicator is on (> 0.5), hidden while off
   double scale = 1.0;  ///< the value shown is the indicator's times this (a share as per cent: 100)
   /// Shown as a word: the value rounded, from `words_from` on, names it (a direction selector's R, N, D)
   std::vector<std::string> words;
   int words_from = 0;
   std::string shown_while;  ///< only while this indicator is on (> 0.5): a hitch angle while reversing
-  std::vector<std::string> machines;  ///< only on these machines (SceneDescription::machine); none: on every one
+  std::vector<std::string>
+      machines;  ///< only on these machines (SceneDescription::machine); none: on every one
 };
 
 /// A floodlight lit from dusk to dawn: on the quay (world frame) or on a machine (riding the first entity

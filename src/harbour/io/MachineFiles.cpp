@@ -176,6 +176,17 @@ CabFields read_cab(const YamlFile& f, const YAML::Node& machine, double reach_m)
   c.sight.pitch_rad = core::deg_to_rad(f.number(cab, "sight_pitch_deg", "machine.cab", -90.0, 30.0));
   c.sight.fov_vertical_rad =
       core::deg_to_rad(f.number_or(cab, "fov_vertical_deg", "machine.cab", 43.0, 20.0, 110.0));
+  if (f.optional(cab, "look_limits_deg", "machine.cab")) {
+    const YAML::Node limits = f.required(cab, "look_limits_deg", "machine.cab");
+    if (!limits.IsSequence() || limits.size() != 2)
+      f.fail(limits, "machine.cab.look_limits_deg", "expected [left-right, up-down] in degrees");
+    for (std::size_t k = 0; k < 2; ++k) {
+      const std::string at = "machine.cab.look_limits_deg[" + std::to_string(k) + "]";
+      const double deg = f.number_at(limits[k], at);
+      if (!(deg >= 0.0 && deg <= 180.0)) f.fail(limits[k], at, "0-180 degrees");
+      (k == 0 ? c.sight.look_yaw_rad : c.sight.look_pitch_rad) = core::deg_to_rad(deg);
+    }
+  }
   return c;
 }
 

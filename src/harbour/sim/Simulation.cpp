@@ -380,8 +380,9 @@ void Simulation::advance(const Controls& controls) {
   move_secured_cargo();
   if (awaiting_zero_ && levers_at_zero(controls)) awaiting_zero_ = false;
   const int stop = control_table().find(kEmergencyStopControl);
-  emergency_stop_ = instructor_stop_ ||
-                    (stop >= 0 && control_table().in_range(controls).value[static_cast<std::size_t>(stop)] != 0.0);
+  emergency_stop_ =
+      instructor_stop_ ||
+      (stop >= 0 && control_table().in_range(controls).value[static_cast<std::size_t>(stop)] != 0.0);
   if (instructor_stop_ || power_off_ || awaiting_zero_) {
     // the trainee's controls are recorded and evaluated as they were; the machine reads its stop pressed (a
     // dead supply acts as the stop does: drives off, brakes set)

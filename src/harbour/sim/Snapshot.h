@@ -23,6 +23,8 @@ struct CabSight {
   double yaw_rad = 0.0;
   double pitch_rad = 0.0;          ///< negative: looking down
   double fov_vertical_rad = 0.75;  ///< of a picture on one screen (its width from the screen's shape)
+  /// How far the operator can look round from it, left or right and up or down (the cab's windows)
+  double look_yaw_rad = 1.92, look_pitch_rad = 1.05;
 };
 
 /// What a scene holds, fixed for a session: entities (what they look like and how big) and the names of the

@@ -145,8 +145,9 @@ sim::Controls DeviceInput::sample() {
     for (int k = 0; k < keys; ++k)
       keyboard_[static_cast<std::size_t>(k)] = pressed[k] != 0;
   }
-  last_ = mapper_.map(states_, keyboard_,
-                      std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count());
+  last_ =
+      mapper_.map(states_, keyboard_,
+                  std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count());
   return last_;
 }
 

@@ -63,6 +63,8 @@ class DeviceInput {
   int missing_devices() const;
   /// What SDL sees (for `harboursim devices`).
   static std::vector<DeviceInfo> list();
+  /// The mapping it reads the devices by.
+  const DeviceMapping& mapping() const { return mapper_.mapping(); }
   /// Whether every joystick `mapping` names is present now (the keyboard counts as present only where
   /// there is a window: `keyboard`). SDL's joystick subsystem must be initialised.
   static bool all_present(const DeviceMapping& mapping, bool keyboard);

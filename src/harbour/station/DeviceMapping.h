@@ -49,7 +49,7 @@ struct Binding {
   /// [s] a button, hat or key counts only once held this long (a deliberate press: a tap of the space bar is
   /// no emergency stop)
   double hold_s = 0.0;
-  int line = 0;                 ///< where it is in its file (errors name it)
+  int line = 0;  ///< where it is in its file (errors name it)
 };
 
 /// A mapping file (data/devices/*.yaml): devices and their bindings to a machine's control labels.
@@ -96,9 +96,9 @@ class ControlMapper {
  private:
   sim::ControlTable table_;
   DeviceMapping mapping_;
-  std::vector<bool> was_pressed_;  // per binding: a toggle's previous button state
+  std::vector<bool> was_pressed_;     // per binding: a toggle's previous button state
   std::vector<double> held_since_s_;  // per binding: since when it has been held (NaN: it is not)
-  std::vector<double> toggled_;    // per slot: a toggled switch's position
+  std::vector<double> toggled_;       // per slot: a toggled switch's position
 };
 
 }  // namespace harbour::station

@@ -164,6 +164,46 @@ DeviceMapping load_device_mapping(const std::string& path, const sim::ControlTab
   return load_device_mapping(io::YamlFile::load(path), table);
 }
 
+std::string key_list(const DeviceMapping& m, const sim::ControlTable& table) {
+  std::string out = m.name + "\n";
+  for (const sim::ControlSpec& spec : table.controls()) {
+    std::string how;
+    for (const Binding& b : m.bindings) {
+      if (b.control != spec.label) continue;
+      const std::string& device = m.devices[static_cast<std::size_t>(b.device)].id;
+      std::string one;
+      switch (b.source) {
+        case Binding::Source::kAxis:
+          one = device + " axis " + std::to_string(b.index);
+          break;
+        case Binding::Source::kButton:
+          one = m.devices[static_cast<std::size_t>(b.device)].keyboard
+                    ? std::string(SDL_GetScancodeName(static_cast<SDL_Scancode>(b.index)))
+                    : device + " button " + std::to_string(b.index);
+          break;
+        case Binding::Source::kHat:
+          one = device + " hat " + std::to_string(b.index);
+          break;
+        case Binding::Source::kKeys:
+          one = std::string(SDL_GetScancodeName(static_cast<SDL_Scancode>(b.keys[0]))) + " / " +
+                SDL_GetScancodeName(static_cast<SDL_Scancode>(b.keys[1]));
+          break;
+      }
+      if (b.hold_s > 0.0) {
+        char held[32];
+        std::snprintf(held, sizeof held, " held %.1f s", b.hold_s);
+        one += held;
+      }
+      if (b.toggle) one += " (each press steps it)";
+      how += (how.empty() ? "" : ", ") + one;
+    }
+    if (!how.empty()) out += spec.label + " (" + spec.meaning + "): " + how + "\n";
+  }
+  return out +
+         "look round: keypad 4 6 8 2, or drag with the left mouse button; keypad 5 looks ahead again\n"
+         "F1 this list   F11 full screen";
+}
+
 std::string device_mapping_text(const DeviceMapping& m) {
   std::ostringstream out;
   const auto num = [](double v) {  // the shortest text that reads back to the same double

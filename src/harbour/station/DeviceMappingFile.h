@@ -17,5 +17,8 @@ std::string why_mapping_does_not_fit(const std::string& path, const sim::Control
 
 /// The mapping as a file load_device_mapping reads back (what `harboursim devices` writes).
 std::string device_mapping_text(const DeviceMapping& mapping);
+/// What each control of the machine is worked by in `mapping`, a line each, for the trainee (the F1 list):
+/// "hoist (hoist, + raises): W / S", "emergency_stop (...): Space held 0.5 s"; the station's own keys last.
+std::string key_list(const DeviceMapping& mapping, const sim::ControlTable& table);
 
 }  // namespace harbour::station

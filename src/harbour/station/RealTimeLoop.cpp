@@ -43,6 +43,12 @@ void RealTimeLoop::set_head_offset(const core::Vec3& position_m, const core::Vec
   head_angles_rad_ = yaw_pitch_roll_rad;
 }
 
+void RealTimeLoop::set_look(double yaw_rad, double pitch_rad) {
+  const std::lock_guard lock(head_mutex_);
+  look_yaw_rad_ = yaw_rad;
+  look_pitch_rad_ = pitch_rad;
+}
+
 void RealTimeLoop::start() {
   if (running_.exchange(true)) return;
   stop_requested_ = false;
@@ -248,16 +254,21 @@ void RealTimeLoop::publish_bulk() {
 
 void RealTimeLoop::publish(int reader) {
   core::Vec3 head_position, head_angles;
+  double look_yaw = 0.0, look_pitch = 0.0;
   {
     const std::lock_guard lock(head_mutex_);  // uncontended: the station writes it at 500 Hz
     head_position = head_position_m_;
     head_angles = head_angles_rad_;
+    look_yaw = look_yaw_rad_;
+    look_pitch = look_pitch_rad_;
   }
   TripleBuffer<sim::Snapshot>& buffer = *snapshots_[static_cast<std::size_t>(reader)];
   sim::Snapshot& s = buffer.back();
   simulation_.write_snapshot(s);
   s.cab.head_offset_m = head_position;
   s.cab.head_yaw_pitch_roll_rad = head_angles;
+  s.cab.look_yaw_rad = look_yaw;
+  s.cab.look_pitch_rad = look_pitch;
   s.devices_missing = devices_missing_.load(std::memory_order_relaxed);
   buffer.publish();
 }

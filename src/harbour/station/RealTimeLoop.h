@@ -111,6 +111,8 @@ class RealTimeLoop {
   void set_observer(StepObserver observer) { observer_ = std::move(observer); }
   /// The eye point's offset from head tracking, written into every published snapshot (any thread).
   void set_head_offset(const core::Vec3& position_m, const core::Vec3& yaw_pitch_roll_rad);
+  /// The trainee looking round (keys, a mouse drag): written into every published snapshot (any thread).
+  void set_look(double yaw_rad, double pitch_rad);
 
   /// Starts the step thread.
   void start();
@@ -194,6 +196,7 @@ class RealTimeLoop {
 
   std::mutex head_mutex_;
   core::Vec3 head_position_m_, head_angles_rad_;
+  double look_yaw_rad_ = 0.0, look_pitch_rad_ = 0.0;
 
   mutable std::mutex stats_mutex_;
   LoopStats stats_;

@@ -175,8 +175,8 @@ void StsCrane::step(const StsControls& c, std::span<const ContainerRef> containe
 namespace {
 // the indicators an STS publishes, in snapshot order
 constexpr const char* kStsIndicators[] = {
-    "gantry_y_m", "trolley_x_m", "boom_angle_rad",  "spreader_length_m", "spreader_size_ft", "flipper_1",
-    "flipper_2",  "flipper_3",   "flipper_4",       "lamp_landed",       "lamp_locked",      "lamp_unlocked",
+    "gantry_y_m", "trolley_x_m", "boom_angle_rad",   "spreader_length_m", "spreader_size_ft", "flipper_1",
+    "flipper_2",  "flipper_3",   "flipper_4",        "lamp_landed",       "lamp_locked",      "lamp_unlocked",
     "horn",       "load_t",      "lamp_brake_fault", "net_load_t"};
 }  // namespace
 
