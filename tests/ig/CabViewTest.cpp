@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include <osg/Image>
+
 #include "harbour/bulk/BulkWorld.h"
 #include "harbour/ig/ImageGenerator.h"
 #include "harbour/io/ExerciseFiles.h"
@@ -271,6 +273,74 @@ TEST(CabView, TheHudShowsWhatEachMachinesDisplayShows) {
     const std::string& hud = generator.hud_text();
     EXPECT_EQ(hud.find("load "), hud.rfind("load ")) << name << ": " << hud;
     EXPECT_EQ(hud.find("-0.0"), std::string::npos) << name << ": " << hud;
+  }
+}
+
+// The chase view frames the machine whole at any size — its parts in the picture, spanning a good share of
+// it — and in thick fog it fades but never draws a blank frame.
+TEST(CabView, TheChaseViewFramesEveryMachineAndFogFadesItWithoutBlankingIt) {
+  for (const char* name : {"sts_discharge", "rtg_rehandle", "mhc_coal_discharge", "reach_stacker_stack",
+                           "tractor_semi_reverse"}) {
+    const sim::ExerciseSettings exercise =
+        io::load_exercise(std::string(HARBOUR_DATA_DIR) + "/exercises/" + name + ".yaml");
+    sim::Simulation simulation(exercise.scenario);
+    for (int k = 0; k < 100; ++k)
+      simulation.step(simulation.control_table().neutral());
+    const sim::SceneDescription scene = simulation.scene();
+    ASSERT_GT(scene.machine_entities, 0) << name;
+    Looks looks = load_looks(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml");
+    ImageGenerator generator(scene, std::move(looks.visuals), kWidth, kHeight);
+    generator.use(looks);
+    generator.set_view(view_named("chase"));
+    for (const double visibility_m : {20000.0, 80.0}) {
+      SCOPED_TRACE(std::string(name) + ", visibility " + std::to_string(visibility_m) + " m");
+      auto snapshot = simulation.snapshot();
+      snapshot->visibility_m = visibility_m;
+      generator.update(*snapshot);
+      const osg::Image& image = generator.render();
+      double top = kHeight, bottom = 0.0, left = kWidth, right = 0.0;
+      for (int n = 0; n < scene.machine_entities; ++n) {
+        const core::Pose& pose = snapshot->entities[static_cast<std::size_t>(n)].pose;
+        const core::Vec3 half = scene.entities[static_cast<std::size_t>(n)].half_extents_m;
+        const auto at = generator.project(pose.position);
+        ASSERT_TRUE(at) << scene.entities[static_cast<std::size_t>(n)].name << " behind the camera";
+        if (visibility_m > 1000.0) {
+          EXPECT_GE(at->first, 0.0);
+          EXPECT_LE(at->first, kWidth);
+          EXPECT_GE(at->second, 0.0);
+          EXPECT_LE(at->second, kHeight);
+        }
+        for (int corner = -1; corner < 8; ++corner) {  // its centre and its box's corners
+          const auto p = generator.project(
+              corner < 0 ? pose.position
+                         : pose.to_parent({corner & 1 ? half.x : -half.x, corner & 2 ? half.y : -half.y,
+                                           corner & 4 ? half.z : -half.z}));
+          if (!p) continue;
+          top = std::min(top, p->second);
+          bottom = std::max(bottom, p->second);
+          left = std::min(left, p->first);
+          right = std::max(right, p->first);
+        }
+      }
+      if (visibility_m > 1000.0) {
+        EXPECT_GT(std::max(bottom - top, right - left), 0.12 * kWidth) << "the machine is a speck";
+      }
+      // below the HUD's line, the picture is not one colour: some pixels differ from the mean by a tenth
+      double sum = 0.0, far = 0.0;
+      int count = 0;
+      for (int y = 0; y < image.t() * 4 / 5; ++y)
+        for (int x = 0; x < image.s(); x += 2, ++count) {
+          const unsigned char* p = image.data(x, y);
+          sum += (p[0] + p[1] + p[2]) / 765.0;
+        }
+      const double mean = sum / count;
+      for (int y = 0; y < image.t() * 4 / 5; ++y)
+        for (int x = 0; x < image.s(); x += 2) {
+          const unsigned char* p = image.data(x, y);
+          far = std::max(far, std::abs((p[0] + p[1] + p[2]) / 765.0 - mean));
+        }
+      EXPECT_GT(far, 0.1) << "a blank frame";
+    }
   }
 }
 

@@ -546,6 +546,21 @@ void ImageGenerator::build(const sim::SceneDescription& scene) {
   for (const sim::SceneDescription::Entity& e : scene.entities)
     entity_visuals_.push_back(e.visual);
   entity_poses_.assign(scene.entities.size(), core::Pose{});
+  // the machine's own entities' boxes, from their looks' parts (an entity drawn from parts alone has no
+  // size of its own)
+  for (int n = 0; n < scene.machine_entities && n < static_cast<int>(scene.entities.size()); ++n) {
+    const sim::SceneDescription::Entity& e = scene.entities[static_cast<std::size_t>(n)];
+    core::Vec3 low = e.half_extents_m * -1.0, high = e.half_extents_m;
+    if (const auto look = visuals_.find(e.visual); look != visuals_.end())
+      for (const VisualPart& part : look->second.parts) {
+        const core::Vec3 half = part.size_m ? *part.size_m * 0.5 : e.half_extents_m;
+        low = {std::min(low.x, part.centre_m.x - half.x), std::min(low.y, part.centre_m.y - half.y),
+               std::min(low.z, part.centre_m.z - half.z)};
+        high = {std::max(high.x, part.centre_m.x + half.x), std::max(high.y, part.centre_m.y + half.y),
+                std::max(high.z, part.centre_m.z + half.z)};
+      }
+    machine_boxes_.emplace_back((low + high) * 0.5, (high - low) * 0.5);
+  }
   for (const sim::SceneDescription::Entity& e : scene.entities) {
     osg::ref_ptr<osg::MatrixTransform> transform = new osg::MatrixTransform();
     const auto look = visuals_.find(e.visual);
@@ -721,6 +736,7 @@ void ImageGenerator::update(const sim::Snapshot& s) {
   update_night_sky(s, sky);
   fog_->setColor(rgba(sky));
   fog_->setDensity(static_cast<float>(3.912 / std::max(s.visibility_m, 1.0)));
+  visibility_m_ = s.visibility_m;
   // rain: particles falling with the wind, and the quay darkens as it wets (assumed: -35 % when wet through)
   const double intensity = std::clamp(s.rain_mm_per_h / 50.0, 0.0, 1.0);
   rain_->setNodeMask(intensity > 0.0 ? ~0u : 0u);
@@ -1175,11 +1191,36 @@ void ImageGenerator::place_camera() {
     camera->setViewMatrixAsLookAt(to_osg(view_.position_m), to_osg(view_.position_m + forward),
                                   osg::Vec3(0, 0, 1));
   } else {
-    const core::Vec3 target = cab.position;
-    const core::Vec3 back = cab.direction_to_parent({-1.0, -0.8, 0.0});
+    // the machine framed whole: its entities' boxes as they stand, seen from behind its cab and above,
+    // as far away as fits them in the picture; in fog no further than a third of the visibility (it fades,
+    // it does not vanish into a blank frame)
+    core::Vec3 low{1e9, 1e9, 1e9}, high{-1e9, -1e9, -1e9};
+    for (std::size_t n = 0; n < machine_boxes_.size() && n < entity_poses_.size(); ++n) {
+      const auto& [centre, half] = machine_boxes_[n];
+      for (int corner = 0; corner < 8; ++corner) {
+        const core::Vec3 p = entity_poses_[n].to_parent(centre + core::Vec3{corner & 1 ? half.x : -half.x,
+                                                                            corner & 2 ? half.y : -half.y,
+                                                                            corner & 4 ? half.z : -half.z});
+        low = {std::min(low.x, p.x), std::min(low.y, p.y), std::min(low.z, p.z)};
+        high = {std::max(high.x, p.x), std::max(high.y, p.y), std::max(high.z, p.z)};
+      }
+    }
+    const bool boxed = low.x <= high.x;
+    const core::Vec3 target = boxed ? (low + high) * 0.5 : cab.position;
+    const double radius = boxed ? std::max(2.0, 0.5 * std::sqrt(dot(high - low, high - low))) : 20.0;
+    const double fits = 1.15 * radius / std::sin(0.5 * std::min(fov_vertical, fov_vertical * aspect));
+    const double distance = view_.chase_distance_m > 0.0
+                                ? view_.chase_distance_m
+                                : std::min(fits, std::max(12.0, visibility_m_ / 3.0));
+    // behind the cab (its -x) and to its left, 25 degrees up
+    const core::Vec3 back_left = cab.direction_to_parent({-1.0, 0.5, 0.0});
+    const core::Vec3 level{back_left.x, back_left.y, 0.0};
+    const double length = std::sqrt(dot(level, level));
+    const core::Vec3 away = length > 1e-6 ? level * (1.0 / length) : core::Vec3{-1.0, 0.0, 0.0};
+    const double up = 0.42;  // sin 25 degrees
     const core::Vec3 eye =
-        target + back * (view_.chase_distance_m / 1.28) + core::Vec3{0.0, 0.0, view_.chase_distance_m * 0.25};
-    camera->setViewMatrixAsLookAt(to_osg(eye), to_osg(target + core::Vec3{0, 0, -20.0}), osg::Vec3(0, 0, 1));
+        target + away * (distance * std::sqrt(1.0 - up * up)) + core::Vec3{0.0, 0.0, distance * up};
+    camera->setViewMatrixAsLookAt(to_osg(eye), to_osg(target), osg::Vec3(0, 0, 1));
   }
   if (view_.eye_offset_m != 0.0) {
     // one eye of a stereo pair: moved along the view's right axis, its frustum shifted the other way so that

@@ -79,7 +79,9 @@ struct View {
   /// axes parallel, the frustum skewed so that the picture has no parallax at `convergence_m` (the screen).
   double eye_offset_m = 0.0;
   double convergence_m = 3.0;
-  double chase_distance_m = 90.0;             ///< chase: from behind and above the cab, at it
+  /// chase: from behind and above the machine; 0: as far as frames the machine whole (in fog no further than
+  /// it shows through), else this far
+  double chase_distance_m = 0.0;
   std::string camera;                         ///< kEntity: the camera's name in the look file
   core::Vec3 position_m{-40.0, -60.0, 40.0};  ///< kFree
 };
@@ -239,6 +241,9 @@ class ImageGenerator {
   std::string machine_;                      // the scene's machine (its kind)
   std::vector<std::string> entity_visuals_;  // visual key by entity index
   std::vector<core::Pose> entity_poses_;     // as last published
+  // the machine's entities' boxes in their frames (from their looks' parts), a chase view frames them
+  std::vector<std::pair<core::Vec3, core::Vec3>> machine_boxes_;  // centre, half size
+  double visibility_m_ = 20000.0;
   std::vector<EntityCamera> cameras_;
   std::string hud_line_;
   std::string caption_;

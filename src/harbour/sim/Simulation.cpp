@@ -476,6 +476,7 @@ void describe_telemetry(const Telemetry& t, bool roped, std::vector<std::string>
 SceneDescription Simulation::scene() const {
   SceneDescription d;
   machine_->describe(d);
+  d.machine_entities = static_cast<int>(d.entities.size());
   describe_telemetry(machine_->telemetry(), roped_, d.indicators);
   if (vessel_) d.entities.push_back({"vessel", "vessel." + vessel_->geometry().placement().vessel.name, {}});
   if (ramp_) {

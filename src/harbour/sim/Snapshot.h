@@ -37,6 +37,7 @@ struct SceneDescription {
   };
   std::string machine;  ///< machine kind: "sts", ...
   std::vector<Entity> entities;
+  int machine_entities = 0;  ///< the first this many are the machine's own (a chase view frames them)
   std::vector<std::string> indicators;  ///< "trolley_x_m", "load_t", "lamp_locked", ...
   int rope_count = 0;
 };
@@ -55,7 +56,8 @@ struct Snapshot {
   int devices_missing = 0;  ///< input devices of the station's mapping not present (their controls read safe)
   bool power_off = false;   ///< the machine's supply has failed (an instructor's emergency)
   bool awaiting_zero = false;  ///< the supply is back; the drives wait for every lever at zero
-  bool emergency_stop = false;  ///< the machine's emergency stop is in force (the trainee's or the instructor's)
+  bool emergency_stop =
+      false;  ///< the machine's emergency stop is in force (the trainee's or the instructor's)
 
   // environment
   core::Vec3 wind_mps;  ///< [m/s] world
