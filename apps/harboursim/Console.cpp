@@ -488,6 +488,8 @@ class LiveSocket : public std::enable_shared_from_this<LiveSocket> {
   std::string& scene_sent() { return scene_sent_; }
   /// The bulk surfaces it has ("station count").
   std::string& bulk_sent() { return bulk_sent_; }
+  /// The trainee's picture it has ("station count").
+  std::string& picture_sent() { return picture_sent_; }
   const std::string& token() const { return token_; }
   bool open() const { return open_; }
   /// Closes it (its login ended).
@@ -498,7 +500,7 @@ class LiveSocket : public std::enable_shared_from_this<LiveSocket> {
   virtual void write_next() = 0;
 
   Console& console_;
-  std::string token_, station_, scene_sent_, bulk_sent_;
+  std::string token_, station_, scene_sent_, bulk_sent_, picture_sent_;
   bool view_ = false;
   std::deque<std::string> queue_;
   bool writing_ = false, open_ = true;
@@ -783,6 +785,8 @@ class Console {
     Clock::time_point deadline;
   };
   std::map<std::uint64_t, Pending> pending_;
+  std::vector<std::pair<std::uint64_t, Clock::time_point>> watches_;  // watch commands awaiting their ack
+  Clock::time_point next_watch_{};
   std::vector<std::shared_ptr<LiveSocket>> sockets_;
   Clock::time_point next_state_push_{}, next_stations_push_{};
   bool stations_changed_ = false;
@@ -2113,8 +2117,45 @@ void Console::poll() {
           s->bulk_sent() = key;
         }
       }
+      // what the trainee sees, as the station draws it (a JPEG picture a few times a second)
+      if (found->second.picture) {
+        const std::string key = s->subscribed() + " " + std::to_string(found->second.picture_count);
+        if (s->picture_sent() != key) {
+          const net::StationPicture& p = *found->second.picture;
+          const std::vector<std::uint8_t>& jpeg = p.jpeg();
+          s->send(dump(json{{"type", "picture"},
+                            {"station", s->subscribed()},
+                            {"attempt", p.attempt()},
+                            {"time_s", p.time_s()},
+                            {"width", p.width()},
+                            {"height", p.height()},
+                            {"jpeg", io::to_base64(std::string_view(
+                                         reinterpret_cast<const char*>(jpeg.data()), jpeg.size()))}}));
+          s->picture_sent() = key;
+        }
+      }
     }
   }
+  // each station a browser shows is told so every 2 s (it draws its trainee's pictures only then); the
+  // acknowledgements of these are dropped
+  if (now >= next_watch_) {
+    next_watch_ = now + std::chrono::seconds(2);
+    std::set<std::string> shown;
+    for (const auto& s : sockets_)
+      if (!s->subscribed().empty() && s->subscribed().rfind("replay-", 0) != 0) shown.insert(s->subscribed());
+    for (const std::string& station : shown) {
+      const auto found = link_.stations().find(station);
+      if (found == link_.stations().end() || found->second.lost || found->second.gone) continue;
+      net::StationCommand watch;
+      watch.station(station);
+      watch.user(options_.name);
+      watch.kind("watch");
+      watches_.push_back({link_.send(watch), now + kAckTimeout});
+    }
+  }
+  std::erase_if(watches_, [&](const std::pair<std::uint64_t, Clock::time_point>& w) {
+    return link_.take_ack(w.first).has_value() || now > w.second;
+  });
   for (auto it = pending_.begin(); it != pending_.end();) {
     Pending& p = it->second;
     const std::optional<net::CommandAck> ack = link_.take_ack(it->first);

@@ -275,10 +275,35 @@ bool AttemptPresence::apply(const net::StationCommand& command, std::string& ans
   return true;
 }
 
+void AttemptPresence::offer_picture(std::vector<std::uint8_t> jpeg, int width, int height, double time_s) {
+  if (jpeg.size() > kMostPictureBytes) return;  // a picture past the topic's bound is not sent
+  net::StationPicture p;
+  p.attempt(session_.attempt());
+  p.time_s(time_s);
+  p.width(static_cast<std::uint16_t>(width));
+  p.height(static_cast<std::uint16_t>(height));
+  p.jpeg(std::move(jpeg));
+  const std::lock_guard lock(picture_mutex_);
+  picture_ = std::move(p);
+}
+
 AttemptPresence::Next AttemptPresence::service() {
   Next next = Next::kRun;
   bool changed = false;
+  {
+    std::optional<net::StationPicture> picture;
+    {
+      const std::lock_guard lock(picture_mutex_);
+      picture.swap(picture_);
+    }
+    if (picture) link_.publish(std::move(*picture));
+  }
   for (const net::StationCommand& c : link_.take_commands()) {
+    if (c.kind().to_string() == "watch") {  // a console shows this station: its pictures are wanted a while
+      watched_until_ns_.store((std::chrono::steady_clock::now() + kWatchedFor).time_since_epoch().count());
+      link_.acknowledge(c, true, "watched");
+      continue;
+    }
     std::string answer;
     const bool ok = apply(c, answer, next);
     link_.acknowledge(c, ok, answer);

@@ -1,7 +1,9 @@
 #pragma once
 
+#include <atomic>
 #include <chrono>
 #include <cstdint>
+#include <mutex>
 #include <optional>
 #include <string>
 
@@ -23,6 +25,10 @@ net::StationState state_message(const sim::Snapshot& snapshot, std::size_t entit
 /// most 64 on a side.
 inline constexpr std::size_t kMostBulkGrids = 8, kMostBulkSamples = 16384;
 inline constexpr int kMostBulkSamplesPerSide = 64;
+/// The instructor's picture of the trainee's cab view: its size, rate and largest JPEG (the topic's bound).
+inline constexpr int kPictureWidth = 640, kPictureHeight = 360;
+inline constexpr double kPicturesPerSecond = 5.0;
+inline constexpr std::size_t kMostPictureBytes = 262144;
 net::StationBulk bulk_message(const sim::BulkView& view, std::int64_t attempt, double time_s);
 
 /// What a console asked a station to do next (run an exercise, or nothing new).
@@ -62,6 +68,15 @@ class AttemptPresence {
   /// A line for the consoles' event logs (a device lost, the image generator stopped). Call from the
   /// thread that calls service() (it reads the console's snapshots).
   void note(const std::string& kind, const std::string& text);
+  /// The trainee's cab view as the instructor sees it, a JPEG picture drawn at simulated time `time_s`: sent
+  /// with the next service() (any thread; a newer one replaces one not yet sent).
+  void offer_picture(std::vector<std::uint8_t> jpeg, int width, int height, double time_s);
+  /// A console shows this station now (its last `watch` command less than kWatchedFor ago): the pictures are
+  /// drawn only then (any thread).
+  bool watched() const {
+    return std::chrono::steady_clock::now().time_since_epoch().count() < watched_until_ns_.load();
+  }
+  static constexpr std::chrono::seconds kWatchedFor{5};
 
  private:
   net::StationStatus status(const std::string& state, const sim::Snapshot* snapshot) const;
@@ -78,6 +93,9 @@ class AttemptPresence {
   sim::Metrics seen_;
   bool was_held_ = false;
   std::chrono::steady_clock::time_point next_status_{}, next_state_{}, next_bulk_{};
+  std::atomic<std::chrono::steady_clock::rep> watched_until_ns_{0};
+  std::mutex picture_mutex_;
+  std::optional<net::StationPicture> picture_;  // offered, not yet sent
 };
 
 }  // namespace harbour::apps

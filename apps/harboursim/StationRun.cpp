@@ -22,6 +22,7 @@
 #include "StationWindow.h"
 #include "StsRun.h"
 #include "harbour/core/Text.h"
+#include "harbour/ig/Jpeg.h"
 #include "harbour/ig/RenderThread.h"
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/io/MotionFiles.h"
@@ -159,6 +160,7 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
     }
   // snapshots only for the readers there are (writing one for nobody costs the step thread)
   if (windows.empty()) session_options.loop.snapshot_every_steps[station::kImageGeneratorReader] = 0;
+  if (!link) session_options.loop.snapshot_every_steps[station::kPictureReader] = 0;  // nobody watches
   if (!profile.motion) session_options.loop.snapshot_every_steps[station::kMotionReader] = 0;
   // nobody in the loop to feel a millisecond: the scripted operator, no window, no platform
   if (options.autopilot && windows.empty() && !profile.motion)
@@ -257,6 +259,31 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
   }
   std::optional<AttemptPresence> presence;
   if (link) presence.emplace(*link, session, exercise, options.trainee);
+  // the instructor sees what the trainee sees: the cab view drawn small a few times a second, as JPEG
+  std::unique_ptr<ig::RenderThread> pictures;
+  if (presence) {
+    ig::View view = ig::view_named("cab");
+    if (!profile.displays.empty()) {
+      const station::DisplayChannel& c = profile.displays.front();
+      view.yaw_rad = c.yaw_rad;
+      view.pitch_rad = c.pitch_rad;
+      view.from_sight = c.from_sight;
+      view.fov_from_sight = c.fov_from_sight;
+      view.fov_vertical_rad = c.fov_vertical_rad;
+    }
+    pictures = std::make_unique<ig::RenderThread>(
+        scene, ig::load_looks(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml"), kPictureWidth,
+        kPictureHeight, std::vector<ig::View>{view},
+        // drawn only while a console shows this station
+        [&session, &presence]() -> const sim::Snapshot* {
+          return presence->watched() ? session.loop().latest_snapshot(station::kPictureReader) : nullptr;
+        },
+        [&presence](ig::ImageGenerator& generator, const sim::Snapshot& s, int) {
+          presence->offer_picture(ig::encode_jpeg(generator.render_result()), kPictureWidth, kPictureHeight,
+                                  s.time_s);
+        },
+        kPicturesPerSecond, [&session] { return session.loop().latest_bulk(station::kPictureReader); });
+  }
   const auto start = std::chrono::steady_clock::now();
   session.start();
   station.start();
@@ -329,6 +356,12 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
                 windows.size() > 1 ? " in every window" : "");
     if (!render->error().empty()) std::printf("image generator stopped: %s\n", render->error().c_str());
     render->stop();
+  }
+  if (pictures) {
+    std::printf("instructor's picture: %ld frames (%.1f fps, %dx%d)%s\n", pictures->frames(), pictures->fps(),
+                kPictureWidth, kPictureHeight,
+                pictures->error().empty() ? "" : (": stopped: " + pictures->error()).c_str());
+    pictures->stop();
   }
   station.stop();
   const station::SessionResult result =

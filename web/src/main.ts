@@ -107,6 +107,7 @@ function select(station: string) {
   for (const row of $("stations").querySelectorAll("tbody tr"))
     row.classList.toggle("selected", (row as HTMLElement).dataset.station === station);
   plots?.clear();
+  $("cab-figure").hidden = true;  // until this station's first picture
   $("events").replaceChildren();
   text($("live"), "");
   subscribe();
@@ -165,6 +166,17 @@ function drawFrame() {
   if (viewOn()) view?.update(m);  // drawn in this same frame
 }
 
+// the trainee's cab view as the station draws it, a few times a second
+function showPicture(m: { station: string; time_s: number; width: number; height: number; jpeg: string }) {
+  if (m.station !== selected) return;
+  const img = $<HTMLImageElement>("cab-picture");
+  img.src = `data:image/jpeg;base64,${m.jpeg}`;
+  img.dataset.frames = String(Number(img.dataset.frames ?? "0") + 1);
+  img.dataset.time = String(m.time_s);
+  text($("cab-caption"), `${m.width}×${m.height}, t ${m.time_s.toFixed(1)} s`);
+  $("cab-figure").hidden = false;
+}
+
 function showReplayExactness(note: string) {
   text($("replay-exactness"), note);
   $("replay-exactness").hidden = note === "";
@@ -190,6 +202,7 @@ function connect() {
       if (m.station === selected && viewOn() && view) { view.setBulk(m as BulkMessage); $("view3d").dataset.bulk = String(view.bulkQuadsDrawn()); }
     }
     else if (m.type === "event") showEvent(m);
+    else if (m.type === "picture") showPicture(m);
   };
   socket.onopen = () => { if (selected) subscribe(); };
   socket.onclose = () => { if (me) setTimeout(connect, 1000); };

@@ -48,6 +48,18 @@ try {
   await until("the exercise runs", async () =>
     (await page.locator("#stations tr[data-station=e2e-1] td:nth-child(2)").textContent()) === "running", 40);
   await until("telemetry arrives", async () => ((await page.getAttribute("#live", "data-wind")) ?? "") !== "");
+  // the instructor sees what the trainee sees: the station's cab view as pictures, 640x360, new ones coming
+  const picture = () => page.$eval("#cab-picture", (img) =>
+    ({ frames: Number(img.dataset.frames ?? 0), time: Number(img.dataset.time ?? 0), width: img.naturalWidth, height: img.naturalHeight }));
+  await until("the trainee's cab view arrives", async () => (await picture()).frames >= 2, 40);
+  const first = await picture();
+  await page.waitForTimeout(3000);
+  const later = await picture();
+  const rate = (later.frames - first.frames) / 3;
+  check(first.width === 640 && first.height === 360 && later.frames > first.frames && later.time > first.time,
+    `the trainee's cab view in the console: ${first.width}x${first.height}, ${rate.toFixed(1)} pictures a second, ` +
+    `t ${first.time.toFixed(1)} -> ${later.time.toFixed(1)} s`);
+  await page.locator("#cab-figure").screenshot({ path: path.join(out, "console_cab_view.png") });
   // the 3D view and the plan draw the station's entities with their looks; a drag orbits the view
   const view = (what) => page.evaluate((w) => window.harbourView?.[w]() ?? null, what);
   await until("the 3D view draws the station's entities", async () => (await view("visibleEntities")) > 10);

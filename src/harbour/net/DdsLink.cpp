@@ -65,10 +65,10 @@ struct Participant {
   dds::Publisher* publisher = nullptr;
   dds::Subscriber* subscriber = nullptr;
   std::map<std::string, dds::Topic*> topics;
-  dds::DataWriter *status = nullptr, *scene = nullptr, *state = nullptr, *bulk = nullptr, *event = nullptr,
-                  *command = nullptr, *ack = nullptr;
+  dds::DataWriter *status = nullptr, *scene = nullptr, *state = nullptr, *bulk = nullptr, *picture = nullptr,
+                  *event = nullptr, *command = nullptr, *ack = nullptr;
   dds::DataReader *status_in = nullptr, *scene_in = nullptr, *state_in = nullptr, *bulk_in = nullptr,
-                  *event_in = nullptr, *command_in = nullptr, *ack_in = nullptr;
+                  *picture_in = nullptr, *event_in = nullptr, *command_in = nullptr, *ack_in = nullptr;
   std::mutex write_mutex;
 
   Participant(int domain, const std::string& name) {
@@ -83,6 +83,7 @@ struct Participant {
     register_type<StationScenePubSubType>(kSceneTopic);
     register_type<StationStatePubSubType>(kStateTopic);
     register_type<StationBulkPubSubType>(kBulkTopic);
+    register_type<StationPicturePubSubType>(kPictureTopic);
     register_type<StationEventPubSubType>(kEventTopic);
     register_type<StationCommandPubSubType>(kCommandTopic);
     register_type<CommandAckPubSubType>(kAckTopic);
@@ -141,6 +142,7 @@ StationLink::StationLink(const std::string& station, int domain) : station_(stat
   dds_->scene = dds_->writer(kSceneTopic, Delivery::kLatestKept, 1);
   dds_->state = dds_->writer(kStateTopic, Delivery::kBestEffort, 1);
   dds_->bulk = dds_->writer(kBulkTopic, Delivery::kBestEffort, 1);
+  dds_->picture = dds_->writer(kPictureTopic, Delivery::kBestEffort, 1);
   dds_->event = dds_->writer(kEventTopic, Delivery::kStream, kEventDepth);
   dds_->ack = dds_->writer(kAckTopic, Delivery::kStream, kAckDepth);
   // every station reads every command and keeps its own (a content filter would need the types' TypeObject)
@@ -172,6 +174,11 @@ void StationLink::publish(StationState state) {
 void StationLink::publish(StationBulk bulk) {
   bulk.station(station_);
   dds_->write(dds_->bulk, bulk);
+}
+
+void StationLink::publish(StationPicture picture) {
+  picture.station(station_);
+  dds_->write(dds_->picture, picture);
 }
 void StationLink::publish(StationEvent event) {
   event.station(station_);
@@ -206,6 +213,7 @@ ConsoleLink::ConsoleLink(const std::string& console, int domain) : console_(cons
   dds_->scene_in = dds_->reader(kSceneTopic, Delivery::kLatestKept, 1);
   dds_->state_in = dds_->reader(kStateTopic, Delivery::kBestEffort, 1);
   dds_->bulk_in = dds_->reader(kBulkTopic, Delivery::kBestEffort, 1);
+  dds_->picture_in = dds_->reader(kPictureTopic, Delivery::kBestEffort, 1);
   dds_->event_in = dds_->reader(kEventTopic, Delivery::kStream, kEventDepth);
   dds_->ack_in = dds_->reader(kAckTopic, Delivery::kStream, kAckDepth);
 }
@@ -251,6 +259,12 @@ std::vector<std::string> ConsoleLink::poll(Clock::time_point now) {
     Station& station = stations_[b.station().to_string()];
     station.bulk = b;
     ++station.bulk_count;
+  });
+  dds_->take<StationPicture>(dds_->picture_in, [&](const StationPicture& p, const dds::SampleInfo& info) {
+    if (!info.valid_data) return;
+    Station& station = stations_[p.station().to_string()];
+    station.picture = p;
+    ++station.picture_count;
   });
   dds_->take<StationEvent>(dds_->event_in, [&](const StationEvent& e, const dds::SampleInfo& info) {
     if (info.valid_data) events_.push_back(e);

@@ -19,6 +19,7 @@ inline constexpr const char* kStatusTopic = "harbour/station_status";
 inline constexpr const char* kSceneTopic = "harbour/station_scene";
 inline constexpr const char* kStateTopic = "harbour/station_state";
 inline constexpr const char* kBulkTopic = "harbour/station_bulk";
+inline constexpr const char* kPictureTopic = "harbour/station_picture";
 inline constexpr const char* kEventTopic = "harbour/station_event";
 inline constexpr const char* kCommandTopic = "harbour/station_command";
 inline constexpr const char* kAckTopic = "harbour/command_ack";
@@ -50,6 +51,7 @@ class StationLink {
   void publish(StationScene scene);
   void publish(StationState state);
   void publish(StationBulk bulk);
+  void publish(StationPicture picture);
   void publish(StationEvent event);
   /// The commands for this station that arrived since the last call, in order.
   std::vector<StationCommand> take_commands();
@@ -76,6 +78,8 @@ class ConsoleLink {
     std::uint64_t state_count = 0;    ///< states received (the console's rate figures)
     std::optional<StationBulk> bulk;  ///< its bulk material's surfaces (bulk exercises)
     std::uint64_t bulk_count = 0;
+    std::optional<StationPicture> picture;  ///< its trainee's cab view, newest
+    std::uint64_t picture_count = 0;
     eprosima::fastrtps::rtps::InstanceHandle_t instance;  ///< its status instance (to see it disposed)
   };
 

@@ -246,7 +246,10 @@ void RealTimeLoop::hand_off_keyframe() {
 void RealTimeLoop::publish_bulk() {
   const bulk::BulkWorld* material = simulation_.bulk();
   if (!material) return;
-  for (TripleBuffer<sim::BulkView>& reader : bulk_) {
+  // the readers there are that draw it (the motion platform does not)
+  for (int n = 0; n < kSnapshotReaders; ++n) {
+    if (n == kMotionReader || settings_.snapshot_every_steps[static_cast<std::size_t>(n)] == 0) continue;
+    TripleBuffer<sim::BulkView>& reader = bulk_[static_cast<std::size_t>(n)];
     bulk::publish(*material, reader.back());
     reader.publish();
   }

@@ -61,7 +61,8 @@ enum SnapshotReader : int {
   kImageGeneratorReader = 0,
   kConsoleReader = 1,
   kMotionReader = 2,
-  kSnapshotReaders = 3
+  kPictureReader = 3,  ///< the small cab view a served station sends the instructor
+  kSnapshotReaders = 4
 };
 
 struct LoopSettings {
@@ -72,9 +73,10 @@ struct LoopSettings {
   /// tick.
   int ticks_per_wake = 1;
   /// Each reader's publish period in steps (SnapshotReader order): the image generator at 250 Hz (it
-  /// interpolates by step and time), the console at 50 Hz, the motion platform at 200 Hz (washout at 100 Hz);
-  /// 0: a reader that is not there (no window, no platform), given only the first snapshot.
-  std::array<int, kSnapshotReaders> snapshot_every_steps{4, 20, 5};
+  /// interpolates by step and time), the console at 50 Hz, the motion platform at 200 Hz (washout at 100 Hz),
+  /// the instructor's picture at 20 Hz; 0: a reader that is not there (no window, no platform), given only
+  /// the first snapshot.
+  std::array<int, kSnapshotReaders> snapshot_every_steps{4, 20, 5, 50};
   /// The bulk material's heights for the image generator (tiles changed since copied): 20 Hz, as it flows.
   int bulk_every_steps = 50;
   std::size_t record_capacity = 1 << 15;       ///< steps of hand-off to the recorder (32 s)
@@ -179,8 +181,8 @@ class RealTimeLoop {
 
   sim::Controls latched_;
   std::vector<std::unique_ptr<TripleBuffer<sim::Snapshot>>> snapshots_;
-  // the image generator's and the console's; each buffer keeps its own tile versions: copies what changed
-  std::array<TripleBuffer<sim::BulkView>, kConsoleReader + 1> bulk_;
+  // by reader (the motion platform's unused); each buffer keeps its own tile versions: copies what changed
+  std::array<TripleBuffer<sim::BulkView>, kSnapshotReaders> bulk_;
   SpscRing<StepRecord> records_;
   // two keyframe buffers: the step thread fills one while the recorder may still be writing the other
   struct KeyframeSlot {
