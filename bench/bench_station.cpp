@@ -41,7 +41,7 @@ struct Sticks {
       SDL_JoystickClose(j);
     while (SDL_NumJoysticks() > 0)
       SDL_JoystickDetachVirtual(0);
-    SDL_QuitSubSystem(SDL_INIT_JOYSTICK);
+    station::quit_sdl_joysticks();
   }
 };
 

@@ -174,9 +174,15 @@ void print_list() {
   const std::vector<station::DeviceInfo> list = station::DeviceInput::list();
   if (list.empty())
     std::printf("no joysticks or game controllers (the keyboard needs the station's window)\n");
-  for (std::size_t n = 0; n < list.size(); ++n)
+  for (std::size_t n = 0; n < list.size(); ++n) {
     std::printf("%zu: %s\n   guid %s, %d axes, %d buttons, %d hats\n", n + 1, list[n].name.c_str(),
                 list[n].guid.c_str(), list[n].axes, list[n].buttons, list[n].hats);
+    if (list[n].controller.empty())
+      std::printf("   not a game controller SDL knows: bind it raw, or give SDL a mapping line for it\n");
+    else
+      std::printf("   game controller \"%s\" (game_controller: true mappings read it)\n   SDL mapping: %s\n",
+                  list[n].controller.c_str(), list[n].mapping.c_str());
+  }
   std::fflush(stdout);
 }
 

@@ -64,7 +64,7 @@ std::unique_ptr<station::DeviceInput> open_devices(const station::Profile& profi
     station::DeviceMapping mapping = station::load_device_mapping(file, table);
     if (station::DeviceInput::all_present(mapping, window)) {
       std::printf("input: %s (%s)\n", mapping.name.c_str(), file.c_str());
-      SDL_QuitSubSystem(SDL_INIT_JOYSTICK);
+      station::quit_sdl_joysticks();
       return std::make_unique<station::DeviceInput>(table, std::move(mapping));
     }
     tried += "\n  " + mapping.name + " (" + file + "): ";
@@ -73,7 +73,7 @@ std::unique_ptr<station::DeviceInput> open_devices(const station::Profile& profi
                                                : "the mouse (needs the station's window) ")
                                  : "'" + d.name + "' ";
   }
-  SDL_QuitSubSystem(SDL_INIT_JOYSTICK);
+  station::quit_sdl_joysticks();
   std::string present;
   for (const station::DeviceInfo& d : station::DeviceInput::list())
     present += "\n  " + d.name + " (" + d.guid + ")";

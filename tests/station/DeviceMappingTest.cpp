@@ -5,6 +5,7 @@
 #include <SDL.h>
 
 #include <filesystem>
+#include <fstream>
 
 #include "harbour/io/DataError.h"
 #include "harbour/io/MachineFiles.h"
@@ -235,6 +236,150 @@ TEST(DeviceMapping, BadMappingsNameFileLineAndField) {
   EXPECT_EQ(why_unfit(m, 0, 6, 12, 1), "");
 }
 
+TEST(DeviceMapping, ButtonsSelectingASwitchsPositionsLeaveItWherePut) {
+  // a pad's direction selector: d-pad up forward, d-pad down reverse, a stick press neutral
+  const sim::ControlTable table = gear_table();
+  DeviceMapping m;
+  m.devices = {{"pad", "", "pad", 0, false}};
+  const int gear = table.find("gear");
+  for (const auto& [button, position] : std::vector<std::pair<int, double>>{{0, 2.0}, {1, 0.0}, {2, 1.0}}) {
+    Binding b;
+    b.control = "gear";
+    b.slot = gear;
+    b.source = Binding::Source::kButton;
+    b.index = button;
+    b.value = position;
+    m.bindings.push_back(b);
+  }
+  ControlMapper mapper(table, m);
+  std::vector<DeviceState> s{{true, {}, {false, false, false}, {}}};
+  const auto at = static_cast<std::size_t>(gear);
+  EXPECT_EQ(mapper.map(s).value[at], 1.0);  // neutral until a button says otherwise
+  s[0].buttons[0] = true;
+  EXPECT_EQ(mapper.map(s).value[at], 2.0);  // forward
+  s[0].buttons[0] = false;
+  EXPECT_EQ(mapper.map(s).value[at], 2.0);  // let go: still forward
+  s[0].buttons[1] = true;
+  EXPECT_EQ(mapper.map(s).value[at], 0.0);  // reverse
+  s[0].buttons[1] = false;
+  EXPECT_EQ(mapper.map(s).value[at], 0.0);
+  s[0].buttons[2] = true;
+  EXPECT_EQ(mapper.map(s).value[at], 1.0);  // neutral
+}
+
+TEST(DeviceMapping, AGameControllersInputsAreSdlsNames) {
+  const std::string head =
+      "mapping:\n  name: x\n  devices:\n    - {id: pad, game_controller: true}\n  bindings:\n";
+  const auto load = [&](const std::string& bindings) {
+    return load_device_mapping(io::YamlFile::parse(head + bindings, "pad.yaml"), sim::sts_control_table());
+  };
+  const DeviceMapping m = load(
+      "    - {control: hoist, device: pad, axis: righty, invert: true}\n"
+      "    - {control: trolley, device: pad, axis: righttrigger}\n"
+      "    - {control: lock, device: pad, button: a}\n"
+      "    - {control: boom, device: pad, button: dpup, value: 1}\n");
+  ASSERT_EQ(m.bindings.size(), 4u);
+  EXPECT_TRUE(m.devices[0].game_controller);
+  EXPECT_EQ(m.bindings[0].index, SDL_CONTROLLER_AXIS_RIGHTY);
+  EXPECT_TRUE(m.bindings[0].calibration.centered);
+  EXPECT_EQ(m.bindings[1].index, SDL_CONTROLLER_AXIS_TRIGGERRIGHT);
+  EXPECT_FALSE(m.bindings[1].calibration.centered);  // SDL reads a trigger 0..32767: one-sided
+  EXPECT_EQ(m.bindings[1].calibration.min, 0.0);
+  EXPECT_EQ(m.bindings[2].index, SDL_CONTROLLER_BUTTON_A);
+  EXPECT_EQ(m.bindings[3].index, SDL_CONTROLLER_BUTTON_DPAD_UP);
+  // the F1 list says it in a trainee's words
+  const std::string keys = key_list(m, sim::sts_control_table());
+  EXPECT_NE(keys.find("pad right stick up/down"), std::string::npos) << keys;
+  EXPECT_NE(keys.find("pad A"), std::string::npos) << keys;
+  EXPECT_NE(keys.find("pad d-pad up"), std::string::npos) << keys;
+
+  const auto error = [&](const std::string& bindings) {
+    try {
+      load(bindings);
+    } catch (const io::DataError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(
+      error("    - {control: hoist, device: pad, axis: 4}\n")
+          .find("pad.yaml:6: mapping.bindings[0].axis: a game controller's axis is named as SDL names it: "
+                "leftx, lefty, rightx, righty, lefttrigger, righttrigger"),
+      std::string::npos);
+  EXPECT_NE(
+      error("    - {control: lock, device: pad, button: triangle}\n")
+          .find("mapping.bindings[0].button: a game controller's button is named as SDL names it: a, b"),
+      std::string::npos);
+  EXPECT_NE(error("    - {control: lock, device: pad, hat: 0, direction: up}\n")
+                .find("a game controller's d-pad is buttons: dpup"),
+            std::string::npos);
+}
+
+TEST(DeviceMapping, ControllerMappingLinesAreCheckedAsSdlReadsThem) {
+  const std::string guid = "03000000aaaa0000bbbb000000010000";
+  EXPECT_EQ(why_bad_controller_mapping(
+                guid + ",Acme pad,a:b0,b:b1,leftx:a0,lefty:a1~,dpup:h0.1,+rightx:a3,platform:Linux,"),
+            "");
+  EXPECT_EQ(why_bad_controller_mapping("xinput,XInput Controller,a:b0,"), "");
+  EXPECT_NE(why_bad_controller_mapping("03000000aaaa,Acme pad,a:b0").find("is not an SDL GUID"),
+            std::string::npos);
+  EXPECT_NE(why_bad_controller_mapping(guid + ",,a:b0").find("no name"), std::string::npos);
+  EXPECT_NE(why_bad_controller_mapping(guid + ",Acme pad,cross:b0").find("'cross' is not an input SDL knows"),
+            std::string::npos);
+  EXPECT_NE(why_bad_controller_mapping(guid + ",Acme pad,a:x0").find("'a:x0': an input is b<button>"),
+            std::string::npos);
+  EXPECT_NE(why_bad_controller_mapping(guid + ",Acme pad,dpup:h0").find("'dpup:h0'"), std::string::npos);
+  EXPECT_NE(why_bad_controller_mapping(guid + ",Acme pad,platform:Linux").find("maps no input"),
+            std::string::npos);
+  EXPECT_NE(why_bad_controller_mapping(guid).find("'GUID,name,a:b0"), std::string::npos);
+  EXPECT_TRUE(for_this_platform(guid + ",Acme pad,a:b0,platform:Linux,"));
+  EXPECT_FALSE(for_this_platform(guid + ",Acme pad,a:b0,platform:Windows,"));
+  EXPECT_TRUE(for_this_platform(guid + ",Acme pad,a:b0"));
+
+  // in a mapping file: inline lines, and a gamecontrollerdb.txt beside it; errors name file and line
+  const std::filesystem::path folder = std::filesystem::temp_directory_path() / "harbour_controller_db";
+  std::filesystem::create_directories(folder);
+  const auto write = [&](const std::string& name, const std::string& text) {
+    std::ofstream(folder / name) << text;
+    return (folder / name).string();
+  };
+  write("pads.txt", "# pads\n\n" + guid + ",Acme pad,a:b0,leftx:a0,platform:Linux,\r\n" + guid +
+                        ",Acme pad,a:b0,platform:Mac OS X,\n");
+  const std::string head =
+      "mapping:\n  name: x\n  devices:\n    - {id: pad, game_controller: true}\n  bindings:\n"
+      "    - {control: lock, device: pad, button: a}\n";
+  const DeviceMapping m =
+      load_device_mapping(write("good.yaml", head + "  controller_mappings:\n    - \"" + guid +
+                                                 ",Other pad,a:b3\"\n  controller_db: pads.txt\n"),
+                          sim::sts_control_table());
+  ASSERT_EQ(m.controller_mappings.size(), 2u);  // the Mac line is for another platform
+  EXPECT_EQ(m.controller_mappings[0].where, (folder / "good.yaml").string() + ":8");
+  EXPECT_EQ(m.controller_mappings[1].text, guid + ",Acme pad,a:b0,leftx:a0,platform:Linux,");
+  EXPECT_EQ(m.controller_mappings[1].where, (folder / "pads.txt").string() + ":3");
+  // written back by `harboursim devices`, they read the same
+  EXPECT_EQ(load_device_mapping(io::YamlFile::parse(device_mapping_text(m), "written.yaml"),
+                                sim::sts_control_table())
+                .controller_mappings.size(),
+            2u);
+  const auto error = [&](const std::string& name, const std::string& text) {
+    try {
+      load_device_mapping(write(name, text), sim::sts_control_table());
+    } catch (const io::DataError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(error("bad1.yaml", head + "  controller_mappings:\n    - \"" + guid + ",Other pad,a:q3\"\n")
+                .find("bad1.yaml:8: mapping.controller_mappings[0]: 'a:q3'"),
+            std::string::npos);
+  write("broken.txt", "# pads\n" + guid + ",Acme pad,a:b0\nnonsense\n");
+  EXPECT_NE(error("bad2.yaml", head + "  controller_db: broken.txt\n").find("broken.txt:3"),
+            std::string::npos);
+  EXPECT_NE(error("bad3.yaml", head + "  controller_db: missing.txt\n").find("mapping.controller_db"),
+            std::string::npos);
+  std::filesystem::remove_all(folder);
+}
+
 TEST(DeviceMapping, EveryShippedMappingLoadsAndWritesBackTheSame) {
   // the five families' controls: the STS's, the slewing machines' (the shipped MHC's), the tractor's, the
   // reach stacker's and the RTG's
@@ -270,7 +415,7 @@ TEST(DeviceMapping, EveryShippedMappingLoadsAndWritesBackTheSame) {
     }
     ++files;
   }
-  EXPECT_EQ(files, 9);  // keyboard.yaml and keyboard_rtg.yaml include the mouse
+  EXPECT_EQ(files, 13);
 }
 
 }  // namespace

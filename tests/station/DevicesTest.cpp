@@ -6,13 +6,18 @@
 
 #include <SDL.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <thread>
 
+#include <yaml-cpp/yaml.h>
+
 #include "harbour/io/RecordingFile.h"
+#include "harbour/machines/sts/StsCrane.h"
 #include "harbour/sim/Autopilot.h"
 #include "harbour/station/DeviceMappingFile.h"
 #include "harbour/station/Station.h"
@@ -27,6 +32,52 @@ int attach_stick() {
   const int index = scenes::attach_flight_stick();
   EXPECT_GE(index, 0) << SDL_GetError();
   return SDL_JoystickGetDeviceInstanceID(index);
+}
+
+// A pad as Linux's xpad driver presents an Xbox 360 controller (axes: left x, y, left trigger, right x, y,
+// right trigger; 11 buttons; the d-pad a hat) under a name SDL's database does not know; its instance id.
+int attach_raw_pad() {
+  SDL_VirtualJoystickDesc desc{};
+  desc.version = SDL_VIRTUAL_JOYSTICK_DESC_VERSION;
+  desc.type = SDL_JOYSTICK_TYPE_UNKNOWN;
+  desc.naxes = 6;
+  desc.nbuttons = 11;
+  desc.nhats = 1;
+  desc.vendor_id = 0x1209;  // pid.codes' test vendor and product: in no pad database
+  desc.product_id = 0x0001;
+  desc.name = "Harbour test pad";
+  const int index = SDL_JoystickAttachVirtualEx(&desc);
+  EXPECT_GE(index, 0) << SDL_GetError();
+  return SDL_JoystickGetDeviceInstanceID(index);
+}
+
+// SDL's own mapping of the Xbox 360 pad on Linux, for the test pad's GUID: what a person puts in
+// SDL_GAMECONTROLLERCONFIG for a pad SDL does not know (its GUID read from `harboursim devices`).
+std::string xbox_mapping_for_the_raw_pad() {
+  init_sdl_joysticks();
+  const int index = SDL_JoystickAttachVirtualEx([] {
+    static SDL_VirtualJoystickDesc desc{};
+    desc.version = SDL_VIRTUAL_JOYSTICK_DESC_VERSION;
+    desc.naxes = 6;
+    desc.nbuttons = 11;
+    desc.nhats = 1;
+    desc.vendor_id = 0x1209;
+    desc.product_id = 0x0001;
+    desc.name = "Harbour test pad";
+    return &desc;
+  }());
+  char guid[33];
+  SDL_JoystickGetGUIDString(SDL_JoystickGetDeviceGUID(index), guid, sizeof guid);
+  EXPECT_FALSE(SDL_IsGameController(index));  // SDL does not know it
+  SDL_JoystickDetachVirtual(index);
+  char* xbox =
+      SDL_GameControllerMappingForGUID(SDL_JoystickGetGUIDFromString("030000005e0400008e02000010010000"));
+  EXPECT_NE(xbox, nullptr);
+  std::string line = xbox ? xbox : "";
+  SDL_free(xbox);
+  quit_sdl_joysticks();
+  const std::size_t name_end = line.find(',', line.find(',') + 1);
+  return std::string(guid) + ",Harbour test pad" + line.substr(name_end);
 }
 
 int index_of(SDL_JoystickID instance) {
@@ -52,22 +103,31 @@ Sint16 raw_for(const Binding& b, double value) {
 // A person at the desk: decides like the autopilot, acts only through the sticks' axes, buttons and hats.
 class StickPerson {
  public:
-  StickPerson(const sim::ExerciseSettings& exercise, const DeviceMapping& mapping)
-      : pilot_(exercise), mapping_(mapping) {
+  StickPerson(const sim::ExerciseSettings& exercise, const DeviceMapping& mapping, sim::ControlTable table)
+      : pilot_(exercise), mapping_(mapping), table_(std::move(table)) {
     for (const DeviceMatch& d : mapping.devices)
       plug(d.id);
   }
   ~StickPerson() {
-    for (auto& [id, stick] : sticks_)
+    for (auto& [id, stick] : sticks_) {
+      if (stick.controller) SDL_GameControllerClose(stick.controller);
       SDL_JoystickClose(stick.joystick);
+    }
   }
   void plug(const std::string& id) {
     Stick& s = sticks_[id];
-    s.instance = attach_stick();
+    const bool pad = std::any_of(mapping_.devices.begin(), mapping_.devices.end(),
+                                 [&](const DeviceMatch& d) { return d.id == id && d.game_controller; });
+    s.instance = pad ? attach_raw_pad() : attach_stick();
     s.joystick = SDL_JoystickOpen(index_of(s.instance));
+    if (pad) {
+      s.controller = SDL_GameControllerOpen(index_of(s.instance));
+      EXPECT_NE(s.controller, nullptr) << "SDL has no mapping for the pad: " << SDL_GetError();
+    }
   }
   void unplug(const std::string& id) {
     Stick& s = sticks_[id];
+    if (s.controller) SDL_GameControllerClose(s.controller);
     SDL_JoystickClose(s.joystick);
     SDL_JoystickDetachVirtual(index_of(s.instance));
     s = {};
@@ -79,18 +139,48 @@ class StickPerson {
     for (std::size_t n = 0; n < mapping_.bindings.size(); ++n) {
       const Binding& b = mapping_.bindings[n];
       const std::string& id = mapping_.devices[static_cast<std::size_t>(b.device)].id;
-      SDL_Joystick* j = sticks_[id].joystick;
+      const Stick& stick = sticks_[id];
+      SDL_Joystick* j = stick.joystick;
       if (!j) continue;
       const double v = want.value[static_cast<std::size_t>(b.slot)];
-      switch (b.source) {
-        case Binding::Source::kAxis:
-          SDL_JoystickSetVirtualAxis(j, b.index, raw_for(b, v));
+      // the physical input: the binding's own, or on a game controller what SDL's mapping reads it from
+      Binding::Source source = b.source;
+      int index = b.index, hat_direction = b.hat_direction;
+      bool trigger = false;
+      if (stick.controller) {
+        const SDL_GameControllerButtonBind bind =
+            b.source == Binding::Source::kAxis
+                ? SDL_GameControllerGetBindForAxis(stick.controller,
+                                                   static_cast<SDL_GameControllerAxis>(b.index))
+                : SDL_GameControllerGetBindForButton(stick.controller,
+                                                     static_cast<SDL_GameControllerButton>(b.index));
+        trigger = b.index >= SDL_CONTROLLER_AXIS_TRIGGERLEFT && b.source == Binding::Source::kAxis;
+        if (bind.bindType == SDL_CONTROLLER_BINDTYPE_AXIS) {
+          index = bind.value.axis;
+        } else if (bind.bindType == SDL_CONTROLLER_BINDTYPE_BUTTON) {
+          source = Binding::Source::kButton;
+          index = bind.value.button;
+        } else if (bind.bindType == SDL_CONTROLLER_BINDTYPE_HAT) {
+          source = Binding::Source::kHat;
+          index = bind.value.hat.hat;
+          hat_direction = bind.value.hat.hat_mask;
+        }
+      }
+      // a button selecting a switch's position is held while the switch should be there; one on an axis
+      // while the lever should be on its side
+      const bool selects = table_[b.slot].kind == sim::ControlKind::kSwitch && !b.toggle;
+      const bool held = selects ? std::abs(v - b.value) < 0.5 : v * b.value > 0.5;
+      switch (source) {
+        case Binding::Source::kAxis: {
+          const Sint16 raw = raw_for(b, v);  // a trigger reads the raw axis's whole travel as 0..32767
+          SDL_JoystickSetVirtualAxis(j, index, trigger ? static_cast<Sint16>(2 * raw - 32768) : raw);
           break;
+        }
         case Binding::Source::kHat:
-          if (v * b.value > 0.5)
-            hats[{id, b.index}] |= static_cast<Uint8>(b.hat_direction);
+          if (held)
+            hats[{id, index}] |= static_cast<Uint8>(hat_direction);
           else
-            hats[{id, b.index}] |= 0;
+            hats[{id, index}] |= 0;
           break;
         case Binding::Source::kButton:
           if (b.toggle) {
@@ -100,9 +190,9 @@ class StickPerson {
             const bool press = !pressed && position != v;
             if (press) position = v;
             pressed = press;
-            SDL_JoystickSetVirtualButton(j, b.index, press);
+            SDL_JoystickSetVirtualButton(j, index, press);
           } else {
-            SDL_JoystickSetVirtualButton(j, b.index, v != 0.0);
+            SDL_JoystickSetVirtualButton(j, index, held);
           }
           break;
         case Binding::Source::kKeys:
@@ -117,9 +207,12 @@ class StickPerson {
   struct Stick {
     SDL_JoystickID instance = -1;
     SDL_Joystick* joystick = nullptr;
+    SDL_GameController* controller = nullptr;  // a pad SDL maps
   };
+
   sim::Autopilot pilot_;
   DeviceMapping mapping_;
+  sim::ControlTable table_;
   std::map<std::string, Stick> sticks_;
   std::map<std::size_t, bool> toggle_pressed_;
   std::map<int, double> toggle_position_;
@@ -133,20 +226,20 @@ struct Desk {
   std::unique_ptr<StickPerson> person;
   DeviceMapping mapping;
 
-  explicit Desk(const std::string& name) {
+  explicit Desk(const std::string& name, const std::string& mapping_file = "sts_dual_joystick.yaml") {
     init_sdl_joysticks();
     options.trainee = "t1";
     options.database = scenes::fresh_database(name + ".db");
     options.record = scenes::temp_path(name + ".hsrc");
     options.loop.time_scale = 10.0;
     session = std::make_unique<Session>(exercise, options);
-    mapping = load_device_mapping(std::string(HARBOUR_DATA_DIR) + "/devices/sts_dual_joystick.yaml",
+    mapping = load_device_mapping(std::string(HARBOUR_DATA_DIR) + "/devices/" + mapping_file,
                                   session->simulation().control_table());
-    person = std::make_unique<StickPerson>(exercise, mapping);
+    person = std::make_unique<StickPerson>(exercise, mapping, session->simulation().control_table());
     station = std::make_unique<Station>(*session);
     station->use_devices(std::make_unique<DeviceInput>(session->simulation().control_table(), mapping));
   }
-  ~Desk() { SDL_QuitSubSystem(SDL_INIT_JOYSTICK); }
+  ~Desk() { quit_sdl_joysticks(); }
 };
 
 TEST(Devices, APersonOnTwoJoysticksDischargesABoxOntoTheTruck) {
@@ -180,6 +273,139 @@ TEST(Devices, APersonOnTwoJoysticksDischargesABoxOntoTheTruck) {
   EXPECT_EQ(replayed.metrics().cycle_times_s, result.metrics.cycle_times_s);
   EXPECT_EQ(replayed.metrics().landing_sway_m, result.metrics.landing_sway_m);
   EXPECT_EQ(replayed.score().total, result.score.total);
+}
+
+TEST(Devices, APersonOnAGamePadDischargesABoxOntoTheTruck) {
+  // a pad SDL does not know, made a game controller by a mapping line in SDL_GAMECONTROLLERCONFIG: the
+  // shipped gamepad.yaml reads it by SDL's names (left stick the trolley and gantry, right stick the hoist)
+  const std::string line = xbox_mapping_for_the_raw_pad();
+  ASSERT_EQ(why_bad_controller_mapping(line), "");
+  setenv("SDL_GAMECONTROLLERCONFIG", line.c_str(), 1);
+  {
+    Desk desk("harbour_desk_pad", "gamepad.yaml");
+    ASSERT_EQ(desk.station->devices()->bound_devices(), 1);
+    bool connected = false;
+    for (const DeviceEvent& e : desk.station->devices()->take_events())
+      connected = connected || (e.kind == DeviceEvent::Kind::kConnected && e.name == "Harbour test pad");
+    EXPECT_TRUE(connected);
+    DeviceInput* input = desk.station->devices();
+    StickPerson* person = desk.person.get();
+    desk.session->loop().set_sampler([&] {
+      person->act(desk.session->simulation());
+      return input->sample();
+    });
+    desk.station->start();
+    desk.session->start();
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    while (!desk.session->over() && std::chrono::steady_clock::now() < deadline)
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    desk.station->stop();
+    const SessionResult result = desk.session->finish(SessionEnd::kRan);
+    EXPECT_EQ(result.metrics.moves_completed, 1);  // the box is on the truck
+    EXPECT_EQ(result.metrics.collisions, 0);
+    EXPECT_EQ(result.status, "finished");
+    const sim::ReplayResult replay =
+        sim::replay(desk.exercise.scenario, io::read_recording(desk.options.record));
+    EXPECT_FALSE(replay.first_mismatch.has_value());
+  }
+  unsetenv("SDL_GAMECONTROLLERCONFIG");
+}
+
+TEST(Devices, APadIsReadThroughTheMappingFilesOwnLineAndOneLackingAnInputIsUnfit) {
+  init_sdl_joysticks();
+  const int instance = attach_raw_pad();
+  char guid[33];
+  SDL_JoystickGetGUIDString(SDL_JoystickGetDeviceGUID(index_of(instance)), guid, sizeof guid);
+  SDL_Joystick* pad = SDL_JoystickOpen(index_of(instance));
+  ASSERT_NE(pad, nullptr);
+  // an odd wiring, as an interface box might have: the mapping line says where each input is
+  const std::string file = scenes::temp_path("harbour_odd_pad.yaml");
+  std::ofstream(file) << "mapping:\n  name: odd pad\n  devices:\n    - {id: pad, game_controller: true}\n"
+                         "  bindings:\n"
+                         "    - {control: trolley, device: pad, axis: lefty, invert: true}\n"
+                         "    - {control: lock, device: pad, button: a}\n"
+                         "    - {control: boom, device: pad, button: dpup, value: 1.0}\n"
+                         "    - {control: emergency_stop, device: pad, button: back, hold_s: 0.5}\n"
+                         "  controller_mappings:\n"
+                         "    - \""
+                      << guid << ",Odd pad,a:b7,back:b4,lefty:a2,leftx:a3,dpup:h0.1,platform:Linux,\"\n";
+  const sim::ControlTable table = sim::sts_control_table();
+  const auto at = [&](const char* label) { return static_cast<std::size_t>(table.find(label)); };
+  {
+    DeviceInput input(table, load_device_mapping(file, table));
+    input.maintain();
+    ASSERT_EQ(input.bound_devices(), 1);
+    const std::vector<DeviceEvent> events = input.take_events();
+    ASSERT_EQ(events.size(), 1u);
+    EXPECT_EQ(events[0].name, "Odd pad");        // its name as a game controller
+    SDL_JoystickSetVirtualAxis(pad, 2, -32768);  // raw axis 2 is its left stick's y: pushed up
+    SDL_JoystickSetVirtualButton(pad, 0, 1);     // raw button 0 is nothing here
+    sim::Controls c = input.sample();
+    EXPECT_EQ(c.value[at("trolley")], 1.0);
+    EXPECT_EQ(c.value[at("lock")], 0.0);
+    SDL_JoystickSetVirtualButton(pad, 7, 1);  // its A
+    SDL_JoystickSetVirtualHat(pad, 0, SDL_HAT_UP);
+    SDL_JoystickSetVirtualButton(pad, 4, 1);  // its Back, the emergency stop: held
+    c = input.sample();
+    EXPECT_EQ(c.value[at("lock")], 1.0);
+    EXPECT_EQ(c.value[at("boom")], 1.0);
+    EXPECT_EQ(c.value[at("emergency_stop")], 0.0);  // not yet held half a second
+    std::this_thread::sleep_for(std::chrono::milliseconds(600));
+    EXPECT_EQ(input.sample().value[at("emergency_stop")], 1.0);
+  }
+  {
+    // the shipped pad mapping binds inputs this wiring lacks: the pad is unfit, and the event says which
+    DeviceInput input(table,
+                      load_device_mapping(std::string(HARBOUR_DATA_DIR) + "/devices/gamepad.yaml", table));
+    input.maintain();
+    EXPECT_EQ(input.bound_devices(), 0);
+    const std::vector<DeviceEvent> events = input.take_events();
+    ASSERT_EQ(events.size(), 1u);
+    EXPECT_EQ(events[0].kind, DeviceEvent::Kind::kUnfit);
+    EXPECT_NE(events[0].detail.find("gamepad.yaml:13: bindings.hoist: 'righty'"), std::string::npos)
+        << events[0].detail;
+  }
+  SDL_JoystickClose(pad);
+  quit_sdl_joysticks();
+  // without the line SDL maps nothing: a game_controller device does not take a raw joystick
+  init_sdl_joysticks();
+  attach_raw_pad();
+  const DeviceMapping plain =
+      load_device_mapping(std::string(HARBOUR_DATA_DIR) + "/devices/gamepad.yaml", table);
+  {
+    DeviceInput input(table, plain);
+    input.maintain();
+    EXPECT_EQ(input.bound_devices(), 0);
+    EXPECT_TRUE(input.take_events().empty());
+  }
+  quit_sdl_joysticks();
+}
+
+TEST(Devices, SdlKnowsTheCommonPadsAndTheyHaveEveryInputTheShippedPadMappingsBind) {
+  init_sdl_joysticks();
+  // as Linux reports them: Xbox 360, Xbox One, DualShock 4 (two models, and over Bluetooth), Switch Pro
+  const std::vector<std::string> pads{"030000005e0400008e02000010010000", "030000005e040000ea02000001030000",
+                                      "030000004c050000cc09000011810000", "030000004c050000c405000011810000",
+                                      "050000004c050000cc09000000810000", "030000007e0500000920000011810000"};
+  int checked = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(std::string(HARBOUR_DATA_DIR) + "/devices")) {
+    const YAML::Node root = YAML::LoadFile(entry.path().string())["mapping"];
+    if (!root["devices"][0]["game_controller"]) continue;
+    for (const std::string& pad : pads) {
+      char* raw = SDL_GameControllerMappingForGUID(SDL_JoystickGetGUIDFromString(pad.c_str()));
+      ASSERT_NE(raw, nullptr) << pad;
+      const std::string mapping = std::string(",") + raw;
+      SDL_free(raw);
+      for (const YAML::Node& b : root["bindings"]) {
+        const std::string input = b["axis"] ? b["axis"].Scalar() : b["button"].Scalar();
+        EXPECT_NE(mapping.find("," + input + ":"), std::string::npos)
+            << entry.path().filename() << " binds " << input << ", which " << mapping << " lacks";
+      }
+    }
+    ++checked;
+  }
+  EXPECT_EQ(checked, 5);
+  quit_sdl_joysticks();
 }
 
 TEST(Devices, UnpluggingTheHoistStickStopsTheLoadSmoothlyAndPluggingItBackResumes) {
@@ -310,7 +536,7 @@ TEST(Devices, APersonOnTwoLeversSlewsTheMobileHarbourCraneAndShutsItsGrab) {
   EXPECT_FALSE(replay.first_mismatch.has_value());
   SDL_JoystickClose(left);
   SDL_JoystickClose(right);
-  SDL_QuitSubSystem(SDL_INIT_JOYSTICK);
+  quit_sdl_joysticks();
 }
 
 }  // namespace

@@ -174,9 +174,15 @@ TEST(Profiles, TheThreeShippedConfigurationsLoad) {
   EXPECT_EQ(desktop.displays.size(), 1u);
   EXPECT_EQ(desktop.opentrack_port, 4242);
   EXPECT_FALSE(desktop.motion.has_value());
-  // the STS's three, the slewing machines' levers and keyboard, the tractor's, the reach stacker's and the
-  // RTG's keyboards
-  EXPECT_EQ(desktop.mappings.size(), 8u);
+  // the STS's sticks, a game pad and a keyboard for each of the five machines, the slewing machines' levers
+  EXPECT_EQ(desktop.mappings.size(), 12u);
+  // the game pads come before the keyboards: a pad plugged in is used
+  const auto first_of = [&](const std::string& part) {
+    for (std::size_t n = 0; n < desktop.mappings.size(); ++n)
+      if (desktop.mappings[n].find(part) != std::string::npos) return n;
+    return desktop.mappings.size();
+  };
+  EXPECT_LT(first_of("gamepad_reach_stacker"), first_of("keyboard"));
   // a monitor shows the machine's design view: its line of sight and field of view
   EXPECT_TRUE(desktop.displays[0].from_sight && desktop.displays[0].fov_from_sight);
   EXPECT_FALSE(load_profile(resolve_profile("immersive", HARBOUR_DATA_DIR)).displays[0].from_sight);

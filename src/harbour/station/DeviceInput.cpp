@@ -7,6 +7,8 @@
 #include <cstdlib>
 #include <stdexcept>
 
+#include "harbour/station/DeviceMappingFile.h"
+
 namespace harbour::station {
 
 namespace {
@@ -16,11 +18,35 @@ std::string guid_of(SDL_JoystickGUID guid) {
   return text;
 }
 
-bool matches(const DeviceMatch& m, const std::string& name, const std::string& guid) {
+/// Whether SDL's device `index` is what `m` means: a game controller by its name as one, a joystick by its.
+bool matches(const DeviceMatch& m, int index) {
   if (m.window_device()) return false;
-  if (!m.guid.empty() && SDL_strcasecmp(m.guid.c_str(), guid.c_str()) != 0) return false;
+  if (m.game_controller && !SDL_IsGameController(index)) return false;
+  const char* raw =
+      m.game_controller ? SDL_GameControllerNameForIndex(index) : SDL_JoystickNameForIndex(index);
+  const std::string name = raw ? raw : "";
+  if (!m.guid.empty() &&
+      SDL_strcasecmp(m.guid.c_str(), guid_of(SDL_JoystickGetDeviceGUID(index)).c_str()) != 0)
+    return false;
   if (!m.name.empty() && name.find(m.name) == std::string::npos) return false;
   return true;
+}
+
+/// Why a game controller lacks an axis or button mapping device `device` binds ("" when it has them all).
+std::string why_controller_unfit(const DeviceMapping& mapping, int device, SDL_GameController* c) {
+  for (const Binding& b : mapping.bindings) {
+    if (b.device != device) continue;
+    const bool has = b.source == Binding::Source::kAxis
+                         ? SDL_GameControllerHasAxis(c, static_cast<SDL_GameControllerAxis>(b.index))
+                         : SDL_GameControllerHasButton(c, static_cast<SDL_GameControllerButton>(b.index));
+    if (!has)
+      return mapping.file + ":" + std::to_string(b.line) + ": bindings." + b.control + ": '" +
+             (b.source == Binding::Source::kAxis
+                  ? SDL_GameControllerGetStringForAxis(static_cast<SDL_GameControllerAxis>(b.index))
+                  : SDL_GameControllerGetStringForButton(static_cast<SDL_GameControllerButton>(b.index))) +
+             "' is not in SDL's mapping of this controller";
+  }
+  return {};
 }
 
 std::string joined(const std::vector<std::string>& labels) {
@@ -34,13 +60,23 @@ std::string joined(const std::vector<std::string>& labels) {
 void init_sdl_joysticks() {
   SDL_SetHint(SDL_HINT_JOYSTICK_ALLOW_BACKGROUND_EVENTS, "1");
   setenv("SDL_JOYSTICK_DISABLE_UDEV", "1", 0);
-  if (SDL_InitSubSystem(SDL_INIT_JOYSTICK) != 0)
+  if (SDL_InitSubSystem(SDL_INIT_GAMECONTROLLER) != 0)
     throw std::runtime_error(std::string("SDL joystick subsystem: ") + SDL_GetError());
+}
+
+void quit_sdl_joysticks() {
+  SDL_QuitSubSystem(SDL_INIT_GAMECONTROLLER);  // and its joysticks
 }
 
 DeviceInput::DeviceInput(const sim::ControlTable& table, DeviceMapping mapping)
     : mapper_(table, std::move(mapping)) {
   init_sdl_joysticks();
+  for (const ControllerMapping& m : mapper_.mapping().controller_mappings)
+    if (for_this_platform(m.text) && SDL_GameControllerAddMapping(m.text.c_str()) < 0) {
+      const std::string why = SDL_GetError();
+      quit_sdl_joysticks();
+      throw std::runtime_error(m.where + ": controller_mappings: SDL refuses it: " + why);
+    }
   const std::size_t devices = mapper_.mapping().devices.size();
   bound_.resize(devices);
   states_.resize(devices);
@@ -63,9 +99,9 @@ DeviceInput::~DeviceInput() {
   {
     const std::lock_guard lock(mutex_);
     for (std::size_t d = 0; d < bound_.size(); ++d)
-      if (bound_[d].joystick) SDL_JoystickClose(bound_[d].joystick);
+      close(bound_[d]);
   }
-  SDL_QuitSubSystem(SDL_INIT_JOYSTICK);
+  quit_sdl_joysticks();
 }
 
 std::vector<DeviceInfo> DeviceInput::list() {
@@ -83,6 +119,14 @@ std::vector<DeviceInfo> DeviceInput::list() {
       info.hats = SDL_JoystickNumHats(j);
       SDL_JoystickClose(j);
     }
+    if (SDL_IsGameController(i)) {
+      const char* controller = SDL_GameControllerNameForIndex(i);
+      info.controller = controller ? controller : "";
+      if (char* mapping = SDL_GameControllerMappingForDeviceIndex(i)) {
+        info.mapping = mapping;
+        SDL_free(mapping);
+      }
+    }
     out.push_back(info);
   }
   return out;
@@ -96,10 +140,8 @@ bool DeviceInput::all_present(const DeviceMapping& mapping, bool keyboard) {
       continue;
     }
     int rank = 0;
-    for (int i = 0; i < SDL_NumJoysticks(); ++i) {
-      const char* name = SDL_JoystickNameForIndex(i);
-      rank += matches(d, name ? name : "", guid_of(SDL_JoystickGetDeviceGUID(i)));
-    }
+    for (int i = 0; i < SDL_NumJoysticks(); ++i)
+      rank += matches(d, i);
     if (rank <= d.nth) return false;
   }
   return true;
@@ -117,6 +159,15 @@ sim::Controls DeviceInput::sample() {
     if (!state.connected) continue;
     // only what the mapping binds (maintain() checked the device has them)
     const Used& u = used_[d];
+    if (SDL_GameController* c = bound_[d].controller) {
+      for (const int a : u.axes)
+        state.axes[static_cast<std::size_t>(a)] =
+            SDL_GameControllerGetAxis(c, static_cast<SDL_GameControllerAxis>(a));
+      for (const int b : u.buttons)
+        state.buttons[static_cast<std::size_t>(b)] =
+            SDL_GameControllerGetButton(c, static_cast<SDL_GameControllerButton>(b)) != 0;
+      continue;
+    }
     for (const int a : u.axes)
       state.axes[static_cast<std::size_t>(a)] = SDL_JoystickGetAxis(j, a);
     for (const int b : u.buttons)
@@ -156,8 +207,15 @@ void DeviceInput::event(DeviceEvent e) {
   events_.push_back(std::move(e));
 }
 
+void DeviceInput::close(const Bound& b) {
+  if (b.controller)
+    SDL_GameControllerClose(b.controller);  // and its joystick
+  else if (b.joystick)
+    SDL_JoystickClose(b.joystick);
+}
+
 void DeviceInput::drop(std::size_t d, bool lost) {
-  if (bound_[d].joystick) SDL_JoystickClose(bound_[d].joystick);
+  close(bound_[d]);
   if (lost)
     event({DeviceEvent::Kind::kLost, mapper_.mapping().devices[d].id, bound_[d].name,
            "safe: " + joined(mapper_.controls_of(static_cast<int>(d)))});
@@ -177,34 +235,45 @@ void DeviceInput::maintain() {
     if (bound_[d].joystick || mapping.devices[d].window_device()) continue;
     // the nth joystick that matches this mapping device (in SDL's device order)
     int rank = 0, index = -1;
-    std::string name;
-    for (int i = 0; i < count && index < 0; ++i) {
-      const char* raw_name = SDL_JoystickNameForIndex(i);
-      const std::string n = raw_name ? raw_name : "";
-      if (!matches(mapping.devices[d], n, guid_of(SDL_JoystickGetDeviceGUID(i)))) continue;
-      if (rank++ == mapping.devices[d].nth) {
-        index = i;
-        name = n;
-      }
-    }
+    for (int i = 0; i < count && index < 0; ++i)
+      if (matches(mapping.devices[d], i) && rank++ == mapping.devices[d].nth) index = i;
     if (index < 0) continue;
     const SDL_JoystickID instance = SDL_JoystickGetDeviceInstanceID(index);
     bool taken = false;
     for (const Bound& b : bound_)
       taken = taken || b.instance == instance;
     if (taken) continue;
-    SDL_Joystick* j = SDL_JoystickOpen(index);
-    if (!j) continue;
-    const int axes = SDL_JoystickNumAxes(j), buttons = SDL_JoystickNumButtons(j),
-              hats = SDL_JoystickNumHats(j);
-    if (const std::string why = why_unfit(mapping, static_cast<int>(d), axes, buttons, hats); !why.empty()) {
-      SDL_JoystickClose(j);
-      if (unfit_[d] != why) event({DeviceEvent::Kind::kUnfit, mapping.devices[d].id, name, why});
+    Bound bound{nullptr, nullptr, instance, ""};
+    int axes = 0, buttons = 0, hats = 0;
+    std::string why;
+    if (mapping.devices[d].game_controller) {
+      bound.controller = SDL_GameControllerOpen(index);
+      if (!bound.controller) continue;
+      bound.joystick = SDL_GameControllerGetJoystick(bound.controller);
+      const char* n = SDL_GameControllerName(bound.controller);
+      bound.name = n ? n : "";
+      axes = SDL_CONTROLLER_AXIS_MAX;
+      buttons = SDL_CONTROLLER_BUTTON_MAX;
+      why = why_controller_unfit(mapping, static_cast<int>(d), bound.controller);
+    } else {
+      bound.joystick = SDL_JoystickOpen(index);
+      if (!bound.joystick) continue;
+      const char* n = SDL_JoystickName(bound.joystick);
+      bound.name = n ? n : "";
+      axes = SDL_JoystickNumAxes(bound.joystick);
+      buttons = SDL_JoystickNumButtons(bound.joystick);
+      hats = SDL_JoystickNumHats(bound.joystick);
+      why = why_unfit(mapping, static_cast<int>(d), axes, buttons, hats);
+    }
+    if (!why.empty()) {
+      close(bound);
+      if (unfit_[d] != why) event({DeviceEvent::Kind::kUnfit, mapping.devices[d].id, bound.name, why});
       unfit_[d] = why;
       continue;
     }
     unfit_[d].clear();
-    bound_[d] = {j, instance, name};
+    const std::string name = bound.name;
+    bound_[d] = std::move(bound);
     states_[d].axes.assign(static_cast<std::size_t>(axes), 0.0);
     states_[d].buttons.assign(static_cast<std::size_t>(buttons), false);
     states_[d].hats.assign(static_cast<std::size_t>(hats), 0);

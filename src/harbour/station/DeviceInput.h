@@ -8,6 +8,7 @@
 #include "harbour/station/DeviceMapping.h"
 
 struct _SDL_Joystick;
+struct _SDL_GameController;
 
 namespace harbour::station {
 
@@ -24,17 +25,22 @@ struct DeviceEvent {
   std::string detail;  ///< the controls affected, or why it does not fit
 };
 
-/// Starts SDL's joystick subsystem the station's way (reference counted: pair with SDL_QuitSubSystem
-/// (SDL_INIT_JOYSTICK)); throws naming SDL's error. Hot-plug is watched through inotify on /dev/input rather
-/// than a udev poll() in every SDL_JoystickUpdate: the step thread's sample costs 2.2 us instead of 4.7
-/// (bench_station). SDL_JOYSTICK_DISABLE_UDEV=0 in the environment keeps udev.
+/// Starts SDL's joystick and game controller subsystems the station's way (reference counted: pair with
+/// quit_sdl_joysticks()); throws naming SDL's error. SDL reads its game controller database then, with
+/// SDL_GAMECONTROLLERCONFIG and SDL_GAMECONTROLLERCONFIG_FILE from the environment. Hot-plug is watched
+/// through inotify on /dev/input rather than a udev poll() in every SDL_JoystickUpdate: the step thread's
+/// sample costs 2.2 us instead of 4.7 (bench_station). SDL_JOYSTICK_DISABLE_UDEV=0 in the environment keeps
+/// udev.
 void init_sdl_joysticks();
+void quit_sdl_joysticks();
 
 /// A joystick SDL sees now.
 struct DeviceInfo {
   int instance = -1;
   std::string name, guid;
   int axes = 0, buttons = 0, hats = 0;
+  std::string controller;  ///< its name as a game controller ("" where SDL has no mapping for it)
+  std::string mapping;     ///< SDL's mapping of it ("" where it has none)
 };
 
 /// The station's input sensorisation over SDL2: any number of joysticks and game controllers, hot-plugged.
@@ -45,7 +51,8 @@ struct DeviceInfo {
 /// comes back is bound again.
 class DeviceInput {
  public:
-  /// Initialises SDL's joystick subsystem (throws naming SDL's error).
+  /// Initialises SDL's joystick subsystem and gives it the mapping's controller mappings (throws naming SDL's
+  /// error and the mapping's line).
   DeviceInput(const sim::ControlTable& table, DeviceMapping mapping);
   ~DeviceInput();
   DeviceInput(const DeviceInput&) = delete;
@@ -71,10 +78,12 @@ class DeviceInput {
 
  private:
   struct Bound {
-    _SDL_Joystick* joystick = nullptr;
+    _SDL_Joystick* joystick = nullptr;          // the device (a game controller's own joystick)
+    _SDL_GameController* controller = nullptr;  // where the mapping reads it as a game controller
     int instance = -1;
     std::string name;
   };
+  static void close(const Bound& bound);
   void drop(std::size_t device, bool lost);
   void event(DeviceEvent e);
 

@@ -142,8 +142,9 @@ sim::Controls ControlMapper::map(const std::vector<DeviceState>& devices, const 
           if (pressed && !was_pressed_[i])
             toggled_[slot] = toggled_[slot] >= last ? 0.0 : toggled_[slot] + 1.0;
           c.value[slot] = toggled_[slot];
-        } else if (pressed) {
-          c.value[slot] = std::clamp(std::round(b.value), 0.0, last);
+        } else {  // a button, hat or key selecting a position: the selector stays where it was put
+          if (pressed) toggled_[slot] = std::clamp(std::round(b.value), 0.0, last);
+          c.value[slot] = toggled_[slot];
         }
         break;
       }

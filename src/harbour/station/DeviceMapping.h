@@ -20,6 +20,10 @@ struct DeviceMatch {
   bool keyboard = false;  ///< the keyboard: present where the station has a window
   bool mouse = false;     ///< the mouse in the station's window: axes 0 (x) and 1 (y) across the window from
                           ///< its centre, buttons 0 left, 1 middle, 2 right
+  /// read through SDL's GameController API: any pad SDL has a mapping for (its own database, the
+  /// mapping's controller_mappings, SDL_GAMECONTROLLERCONFIG), axes and buttons by SDL's names
+  /// (Binding::index is an SDL_GameControllerAxis or SDL_GameControllerButton)
+  bool game_controller = false;
   bool window_device() const { return keyboard || mouse; }
 };
 
@@ -45,11 +49,19 @@ struct Binding {
   bool invert = false;
   std::vector<double> detents;  ///< an axis driving a switch: the normalised positions of its detents
   bool toggle = false;          ///< a button driving a switch: each press moves it to the next position
-  double value = 1.0;           ///< a button, hat or key on an axis control: the value while held
+  /// a button, hat or key on an axis control: the value while held; on a switch: the position it selects
+  /// (the switch stays there when it is let go, as a selector does)
+  double value = 1.0;
   /// [s] a button, hat or key counts only once held this long (a deliberate press: a tap of the space bar is
   /// no emergency stop)
   double hold_s = 0.0;
   int line = 0;  ///< where it is in its file (errors name it)
+};
+
+/// One line of SDL's game controller mapping format (gamecontrollerdb.txt): "GUID,name,a:b0,leftx:a0,...".
+struct ControllerMapping {
+  std::string text;
+  std::string where;  ///< file and line it came from (errors name it)
 };
 
 /// A mapping file (data/devices/*.yaml): devices and their bindings to a machine's control labels.
@@ -58,6 +70,8 @@ struct DeviceMapping {
   std::string file;  ///< where it was read from
   std::vector<DeviceMatch> devices;
   std::vector<Binding> bindings;
+  /// game controller mappings SDL is given before the devices are looked for: pads its own database lacks
+  std::vector<ControllerMapping> controller_mappings;
 };
 
 /// One device's raw state as SDL reports it (or a test sets it).
@@ -98,7 +112,7 @@ class ControlMapper {
   DeviceMapping mapping_;
   std::vector<bool> was_pressed_;     // per binding: a toggle's previous button state
   std::vector<double> held_since_s_;  // per binding: since when it has been held (NaN: it is not)
-  std::vector<double> toggled_;       // per slot: a toggled switch's position
+  std::vector<double> toggled_;       // per slot: a switch's position as buttons last put it
 };
 
 }  // namespace harbour::station

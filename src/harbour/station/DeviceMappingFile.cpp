@@ -3,9 +3,13 @@
 #include <SDL.h>
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cstdio>
+#include <filesystem>
 #include <sstream>
+
+#include "harbour/io/BoundedFile.h"
 
 namespace harbour::station {
 
@@ -27,6 +31,41 @@ int hat_direction(const io::YamlFile& f, const YAML::Node& entry, const std::str
   f.fail(entry["direction"], at + ".direction", "'" + d + "' is not up, right, down or left");
 }
 
+/// SDL's name of a game controller axis or button ("leftx", "a", "dpup"), or -1.
+int controller_axis(const std::string& name) {
+  for (int a = 0; a < SDL_CONTROLLER_AXIS_MAX; ++a)
+    if (name == SDL_GameControllerGetStringForAxis(static_cast<SDL_GameControllerAxis>(a))) return a;
+  return -1;
+}
+int controller_button(const std::string& name) {
+  for (int b = 0; b < SDL_CONTROLLER_BUTTON_MAX; ++b)
+    if (name == SDL_GameControllerGetStringForButton(static_cast<SDL_GameControllerButton>(b))) return b;
+  return -1;
+}
+std::string controller_names(bool axes) {
+  std::string names;
+  const int count =
+      axes ? static_cast<int>(SDL_CONTROLLER_AXIS_MAX) : static_cast<int>(SDL_CONTROLLER_BUTTON_MAX);
+  for (int k = 0; k < count; ++k)
+    names += std::string(names.empty() ? "" : ", ") +
+             (axes ? SDL_GameControllerGetStringForAxis(static_cast<SDL_GameControllerAxis>(k))
+                   : SDL_GameControllerGetStringForButton(static_cast<SDL_GameControllerButton>(k)));
+  return names;
+}
+
+/// A game controller's axis or button by SDL's name (a raw index means nothing on a pad SDL maps).
+int controller_input(const io::YamlFile& f, const YAML::Node& entry, const std::string& key,
+                     const std::string& at) {
+  const YAML::Node node = entry[key];
+  const int index = node.IsScalar()
+                        ? (key == "axis" ? controller_axis(node.Scalar()) : controller_button(node.Scalar()))
+                        : -1;
+  if (index < 0)
+    f.fail(node, at + "." + key,
+           "a game controller's " + key + " is named as SDL names it: " + controller_names(key == "axis"));
+  return index;
+}
+
 Calibration read_calibration(const io::YamlFile& f, const YAML::Node& entry, const std::string& at) {
   Calibration c;
   const auto node = f.optional_map(entry, "calibration", at);
@@ -42,6 +81,60 @@ Calibration read_calibration(const io::YamlFile& f, const YAML::Node& entry, con
     f.fail(*node, cat + ".min", "min must be below max");
   }
   return c;
+}
+
+/// A pad's input in a trainee's words: "left stick up/down", "A", "d-pad up", "right trigger".
+std::string pad_input_words(const Binding& b) {
+  if (b.source == Binding::Source::kAxis) {
+    switch (b.index) {
+      case SDL_CONTROLLER_AXIS_LEFTX:
+        return "left stick left/right";
+      case SDL_CONTROLLER_AXIS_LEFTY:
+        return "left stick up/down";
+      case SDL_CONTROLLER_AXIS_RIGHTX:
+        return "right stick left/right";
+      case SDL_CONTROLLER_AXIS_RIGHTY:
+        return "right stick up/down";
+      case SDL_CONTROLLER_AXIS_TRIGGERLEFT:
+        return "left trigger";
+      default:
+        return "right trigger";
+    }
+  }
+  switch (b.index) {
+    case SDL_CONTROLLER_BUTTON_A:
+      return "A";
+    case SDL_CONTROLLER_BUTTON_B:
+      return "B";
+    case SDL_CONTROLLER_BUTTON_X:
+      return "X";
+    case SDL_CONTROLLER_BUTTON_Y:
+      return "Y";
+    case SDL_CONTROLLER_BUTTON_BACK:
+      return "Back";
+    case SDL_CONTROLLER_BUTTON_GUIDE:
+      return "Guide";
+    case SDL_CONTROLLER_BUTTON_START:
+      return "Start";
+    case SDL_CONTROLLER_BUTTON_LEFTSTICK:
+      return "left stick press";
+    case SDL_CONTROLLER_BUTTON_RIGHTSTICK:
+      return "right stick press";
+    case SDL_CONTROLLER_BUTTON_LEFTSHOULDER:
+      return "left bumper";
+    case SDL_CONTROLLER_BUTTON_RIGHTSHOULDER:
+      return "right bumper";
+    case SDL_CONTROLLER_BUTTON_DPAD_UP:
+      return "d-pad up";
+    case SDL_CONTROLLER_BUTTON_DPAD_DOWN:
+      return "d-pad down";
+    case SDL_CONTROLLER_BUTTON_DPAD_LEFT:
+      return "d-pad left";
+    case SDL_CONTROLLER_BUTTON_DPAD_RIGHT:
+      return "d-pad right";
+    default:
+      return SDL_GameControllerGetStringForButton(static_cast<SDL_GameControllerButton>(b.index));
+  }
 }
 
 }  // namespace
@@ -68,10 +161,15 @@ DeviceMapping load_device_mapping(const io::YamlFile& f, const sim::ControlTable
           match.guid.find_first_not_of("0123456789abcdefABCDEF") != std::string::npos)
         f.fail(d["guid"], at + ".guid", "an SDL GUID is 32 hexadecimal digits");
     }
+    match.game_controller = f.flag(d, "game_controller", at, false);
+    if (match.game_controller && match.window_device())
+      f.fail(d, at, "a game controller is neither the keyboard nor the mouse");
     if (f.optional(d, "name", at)) match.name = f.text(d, "name", at);
     match.nth = f.optional(d, "nth", at) ? f.integer(d, "nth", at, 0, 15) : 0;
-    if (!match.window_device() && match.guid.empty() && match.name.empty())
-      f.fail(d, at, "a device is matched by guid, name or both (or is keyboard: true or mouse: true)");
+    if (!match.window_device() && !match.game_controller && match.guid.empty() && match.name.empty())
+      f.fail(d, at,
+             "a device is matched by guid, name or both (or is keyboard: true, mouse: true or "
+             "game_controller: true)");
     m.devices.push_back(match);
   }
   const YAML::Node bindings = f.sequence(root, "bindings", "mapping", 128);
@@ -107,13 +205,20 @@ DeviceMapping load_device_mapping(const io::YamlFile& f, const sim::ControlTable
     if (d->mouse && (hat || (axis && f.integer(e, "axis", at, 0, 255) > 1) ||
                      (button && f.integer(e, "button", at, 0, 255) > 2)))
       f.fail(e, at, "the mouse has axes 0 (x) and 1 (y) and buttons 0 (left), 1 (middle), 2 (right)");
+    if (d->game_controller && hat)
+      f.fail(e["hat"], at + ".hat", "a game controller's d-pad is buttons: dpup, dpright, dpdown, dpleft");
     if (axis) {
       b.source = Binding::Source::kAxis;
-      b.index = static_cast<int>(f.integer(e, "axis", at, 0, 255));
+      b.index = d->game_controller ? controller_input(f, e, "axis", at)
+                                   : static_cast<int>(f.integer(e, "axis", at, 0, 255));
       b.calibration = read_calibration(f, e, at);
+      if (d->game_controller && !f.optional(e, "calibration", at) &&
+          (b.index == SDL_CONTROLLER_AXIS_TRIGGERLEFT || b.index == SDL_CONTROLLER_AXIS_TRIGGERRIGHT))
+        b.calibration = {0.0, 0.0, 32767.0, false};  // SDL reads a trigger 0 (released) to 32767
     } else if (button) {
       b.source = Binding::Source::kButton;
-      b.index = f.integer(e, "button", at, 0, 255);
+      b.index =
+          d->game_controller ? controller_input(f, e, "button", at) : f.integer(e, "button", at, 0, 255);
     } else if (hat) {
       b.source = Binding::Source::kHat;
       b.index = f.integer(e, "hat", at, 0, 15);
@@ -156,8 +261,92 @@ DeviceMapping load_device_mapping(const io::YamlFile& f, const sim::ControlTable
       f.fail(e, at, "an axis on switch '" + b.control + "' needs detents (one per position)");
     m.bindings.push_back(b);
   }
+  if (f.optional(root, "controller_mappings", "mapping")) {
+    const YAML::Node list = f.sequence(root, "controller_mappings", "mapping", 64);
+    for (std::size_t n = 0; n < list.size(); ++n) {
+      const std::string at = "mapping.controller_mappings[" + std::to_string(n) + "]";
+      if (!list[n].IsScalar()) f.fail(list[n], at, "expected one line of SDL's mapping format");
+      if (const std::string why = why_bad_controller_mapping(list[n].Scalar()); !why.empty())
+        f.fail(list[n], at, why);
+      m.controller_mappings.push_back(
+          {list[n].Scalar(), f.name() + ":" + std::to_string(list[n].Mark().line + 1)});
+    }
+  }
+  if (f.optional(root, "controller_db", "mapping")) {
+    // a gamecontrollerdb.txt, relative to the mapping file
+    std::filesystem::path path = f.text(root, "controller_db", "mapping");
+    if (path.is_relative()) path = std::filesystem::path(f.name()).parent_path() / path;
+    std::string why;
+    const auto text = io::read_bounded_file(path.string(), 4u << 20, why);
+    if (!text) f.fail(root["controller_db"], "mapping.controller_db", path.string() + ": " + why);
+    std::istringstream lines(*text);
+    std::string line;
+    for (int number = 1; std::getline(lines, line); ++number) {
+      if (!line.empty() && line.back() == '\r') line.pop_back();
+      if (line.empty() || line[0] == '#') continue;
+      if (!for_this_platform(line)) continue;
+      if (const std::string bad = why_bad_controller_mapping(line); !bad.empty())
+        throw io::DataError(path.string(), number, "controller mapping", bad);
+      m.controller_mappings.push_back({line, path.string() + ":" + std::to_string(number)});
+    }
+  }
   f.check_unknown_keys();
   return m;
+}
+
+bool for_this_platform(const std::string& line) {
+  const std::size_t at = line.find(",platform:");
+  if (at == std::string::npos) return true;
+  const std::size_t start = at + 10;
+  return line.compare(start, line.find(',', start) - start, SDL_GetPlatform()) == 0;
+}
+
+std::string why_bad_controller_mapping(const std::string& line) {
+  // GUID,name,field:value,... (SDL's gamecontrollerdb.txt): the GUID, a name, then inputs SDL knows
+  const std::size_t first = line.find(','),
+                    second = first == std::string::npos ? first : line.find(',', first + 1);
+  if (second == std::string::npos) return "an SDL mapping is 'GUID,name,a:b0,leftx:a0,...'";
+  const std::string guid = line.substr(0, first);
+  if (guid != "xinput" &&
+      (guid.size() != 32 || guid.find_first_not_of("0123456789abcdefABCDEF") != std::string::npos))
+    return "'" + guid + "' is not an SDL GUID (32 hexadecimal digits)";
+  if (second == first + 1) return "the mapping has no name";
+  std::istringstream fields(line.substr(second + 1));
+  std::string field;
+  int inputs = 0;
+  while (std::getline(fields, field, ',')) {
+    if (field.empty()) continue;
+    const std::size_t colon = field.find(':');
+    if (colon == std::string::npos) return "field '" + field + "' is not name:value";
+    std::string key = field.substr(0, colon);
+    const std::string value = field.substr(colon + 1);
+    if (key == "platform" || key == "crc" || key == "hint" || key == "sdk>=" || key == "sdk<=") continue;
+    if (!key.empty() && (key[0] == '+' || key[0] == '-')) key.erase(0, 1);  // half an axis
+    if (controller_axis(key) < 0 && controller_button(key) < 0)
+      return "'" + key + "' is not an input SDL knows (axes: " + controller_names(true) +
+             "; buttons: " + controller_names(false) + ")";
+    // b3, h0.4, a2, +a2, -a2, a2~ (inverted)
+    std::size_t k = 0;
+    if (k < value.size() && (value[k] == '+' || value[k] == '-')) ++k;
+    const char kind = k < value.size() ? value[k] : 0;
+    std::size_t digits = ++k;
+    while (k < value.size() && std::isdigit(static_cast<unsigned char>(value[k])))
+      ++k;
+    bool fits = (kind == 'a' || kind == 'b' || kind == 'h') && k > digits;
+    if (fits && kind == 'h') {
+      fits = k < value.size() && value[k] == '.';
+      digits = ++k;
+      while (k < value.size() && std::isdigit(static_cast<unsigned char>(value[k])))
+        ++k;
+      fits = fits && k > digits;
+    }
+    if (fits && kind == 'a' && k < value.size() && value[k] == '~') ++k;
+    if (!fits || k != value.size())
+      return "'" + field + "': an input is b<button>, h<hat>.<mask> or a<axis> (+/- half, ~ inverted)";
+    ++inputs;
+  }
+  if (inputs == 0) return "the mapping maps no input";
+  return {};
 }
 
 DeviceMapping load_device_mapping(const std::string& path, const sim::ControlTable& table) {
@@ -170,16 +359,18 @@ std::string key_list(const DeviceMapping& m, const sim::ControlTable& table) {
     std::string how;
     for (const Binding& b : m.bindings) {
       if (b.control != spec.label) continue;
-      const std::string& device = m.devices[static_cast<std::size_t>(b.device)].id;
+      const DeviceMatch& match = m.devices[static_cast<std::size_t>(b.device)];
+      const std::string& device = match.id;
       std::string one;
       switch (b.source) {
         case Binding::Source::kAxis:
-          one = device + " axis " + std::to_string(b.index);
+          one = match.game_controller ? device + " " + pad_input_words(b)
+                                      : device + " axis " + std::to_string(b.index);
           break;
         case Binding::Source::kButton:
-          one = m.devices[static_cast<std::size_t>(b.device)].keyboard
-                    ? std::string(SDL_GetScancodeName(static_cast<SDL_Scancode>(b.index)))
-                    : device + " button " + std::to_string(b.index);
+          one = match.keyboard          ? std::string(SDL_GetScancodeName(static_cast<SDL_Scancode>(b.index)))
+                : match.game_controller ? device + " " + pad_input_words(b)
+                                        : device + " button " + std::to_string(b.index);
           break;
         case Binding::Source::kHat:
           one = device + " hat " + std::to_string(b.index);
@@ -223,6 +414,7 @@ std::string device_mapping_text(const DeviceMapping& m) {
     if (d.keyboard) out << ", keyboard: true";
     if (d.mouse) out << ", mouse: true";
     if (!d.guid.empty()) out << ", guid: \"" << d.guid << "\"";
+    if (d.game_controller) out << ", game_controller: true";
     if (!d.name.empty()) out << ", name: " << quoted(d.name);
     if (d.nth) out << ", nth: " << d.nth;
     out << "}\n";
@@ -233,13 +425,21 @@ std::string device_mapping_text(const DeviceMapping& m) {
         << ", device: " << m.devices[static_cast<std::size_t>(b.device)].id;
     switch (b.source) {
       case Binding::Source::kAxis:
-        out << ", axis: " << b.index << ", calibration: {min: " << num(b.calibration.min);
+        if (m.devices[static_cast<std::size_t>(b.device)].game_controller)
+          out << ", axis: "
+              << SDL_GameControllerGetStringForAxis(static_cast<SDL_GameControllerAxis>(b.index));
+        else
+          out << ", axis: " << b.index;
+        out << ", calibration: {min: " << num(b.calibration.min);
         if (b.calibration.centered) out << ", center: " << num(b.calibration.center);
         out << ", max: " << num(b.calibration.max) << "}";
         break;
       case Binding::Source::kButton:
         if (m.devices[static_cast<std::size_t>(b.device)].keyboard)
           out << ", key: " << quoted(SDL_GetScancodeName(static_cast<SDL_Scancode>(b.index)));
+        else if (m.devices[static_cast<std::size_t>(b.device)].game_controller)
+          out << ", button: "
+              << SDL_GameControllerGetStringForButton(static_cast<SDL_GameControllerButton>(b.index));
         else
           out << ", button: " << b.index;
         break;
@@ -268,6 +468,11 @@ std::string device_mapping_text(const DeviceMapping& m) {
       out << "]";
     }
     out << "}\n";
+  }
+  if (!m.controller_mappings.empty()) {
+    out << "  controller_mappings:\n";
+    for (const ControllerMapping& c : m.controller_mappings)
+      out << "    - " << quoted(c.text) << "\n";
   }
   return out.str();
 }

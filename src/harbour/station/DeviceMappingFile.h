@@ -15,6 +15,12 @@ DeviceMapping load_device_mapping(const std::string& path, const sim::ControlTab
 /// it binds only the machine's controls, or when the file is broken: load_device_mapping says how).
 std::string why_mapping_does_not_fit(const std::string& path, const sim::ControlTable& table);
 
+/// Why `line` is not one line of SDL's game controller mapping format ("GUID,name,a:b0,leftx:a0,...", as
+/// in gamecontrollerdb.txt), naming the field; "" when it is.
+std::string why_bad_controller_mapping(const std::string& line);
+/// Whether a mapping line is for this platform (no "platform:" field, or SDL's own).
+bool for_this_platform(const std::string& line);
+
 /// The mapping as a file load_device_mapping reads back (what `harboursim devices` writes).
 std::string device_mapping_text(const DeviceMapping& mapping);
 /// What each control of the machine is worked by in `mapping`, a line each, for the trainee (the F1 list):
