@@ -58,8 +58,11 @@ constexpr double kFetch_m = 2000.0;  // the harbour basin's open water upwind, f
 constexpr int kWaterColumns = 96,
               kWaterRows = 64;          // the water's grid, laid over the screen (projected grid)
 constexpr double kWaterFar_m = 3000.0;  // where it ends; a flat sea beyond
-// node masks: what draws into the sun's shadow map (the ground and flat markings only receive)
-constexpr unsigned kCastsShadow = 0x2u, kReceivesOnly = ~kCastsShadow;
+// render bins after the solid scene's (0): the water, then the far sea under it
+constexpr int kWaterBin = 5, kFarWaterBin = 6;
+// node masks: what draws into the sun's shadow map (the ground and flat markings only receive); what the main
+// view draws and what the insets' cameras do (the lit scene with or without the sun's shadows)
+constexpr unsigned kCastsShadow = 0x2u, kReceivesOnly = ~kCastsShadow, kMainView = 0x4u, kInsetViews = 0x8u;
 
 osg::Vec3 to_osg(const core::Vec3& v) {
   return {static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z)};
@@ -269,13 +272,14 @@ void main() {
 )";
 constexpr char kLitFragmentShader[] = R"(#version 120
 uniform sampler2DShadow shadowTexture0;
+uniform bool sun_shadows;  // off in the insets' small pictures (no shadow map of their own)
 varying vec4 unshadowed;
 varying vec4 sunlit;
 varying float fog_depth;
 void main() {
   vec4 at = gl_TexCoord[1];
   at.z -= 0.0006 * at.w;  // a little towards the sun: no self-shadowing speckle on lit faces
-  float lit = shadow2DProj(shadowTexture0, at).r;
+  float lit = sun_shadows ? shadow2DProj(shadowTexture0, at).r : 1.0;
   vec4 colour = min(unshadowed + sunlit * lit, vec4(1.0));
   float fog = clamp(exp(-gl_Fog.density * fog_depth), 0.0, 1.0);
   gl_FragColor = vec4(mix(gl_Fog.color.rgb, colour.rgb, fog), 1.0);
@@ -354,6 +358,7 @@ ImageGenerator::ImageGenerator(const sim::SceneDescription& scene, std::map<std:
   viewer_->setUpViewerAsEmbeddedInWindow(0, 0, width, height);
   viewer_->setThreadingModel(osgViewer::Viewer::SingleThreaded);
   viewer_->setLightingMode(osg::View::NO_LIGHT);
+  viewer_->getCamera()->setCullMask(~kInsetViews);
   build(scene);
   viewer_->setSceneData(frame_);
   image_ = new osg::Image;
@@ -402,6 +407,16 @@ void ImageGenerator::build(const sim::SceneDescription& scene) {
     lit->setAttribute(program);
     floodlights_on_ = new osg::Uniform("floodlights", 0);
     lit->addUniform(floodlights_on_);
+    lit->addUniform(new osg::Uniform("sun_shadows", true));
+    // the same nodes lit the same way but without a shadow pass, for the insets: a camera drawing the
+    // shadowed scene draws a 1024^2 shadow map of its own, which cost an inset more than its picture
+    shadowed_->setNodeMask(kMainView | kCastsShadow);  // the shadow pass bounds its casters from here
+    unshadowed_ = new osg::Group;
+    unshadowed_->setNodeMask(kInsetViews);
+    osg::StateSet* inset_lit = unshadowed_->getOrCreateStateSet();
+    inset_lit->setAttribute(program);
+    inset_lit->addUniform(floodlights_on_);
+    inset_lit->addUniform(new osg::Uniform("sun_shadows", false));
   }
   fog_ = new osg::Fog;
   fog_->setMode(osg::Fog::EXP);
@@ -492,14 +507,14 @@ void ImageGenerator::build(const sim::SceneDescription& scene) {
   osg::ref_ptr<osg::Geode> apron = tessellated_plane(-60.0, 18.0, -80.0, 80.0, 0.0, 3.0, {0.42, 0.42, 0.40});
   quay_color_ = static_cast<osg::Vec4Array*>(apron->getDrawable(0)->asGeometry()->getColorArray());
   apron->setNodeMask(kReceivesOnly);
-  shadowed_->addChild(apron);
+  add_lit(apron);
   for (const auto& [x0, x1, y0, y1] :
        {std::array{-300.0, -60.0, -400.0, 400.0}, std::array{-60.0, 18.0, -400.0, -80.0},
         std::array{-60.0, 18.0, 80.0, 400.0}}) {
     osg::ref_ptr<osg::Geode> part = tessellated_plane(x0, x1, y0, y1, 0.0, 20.0, {0.42, 0.42, 0.40});
     part->getDrawable(0)->asGeometry()->setColorArray(quay_color_, osg::Array::BIND_OVERALL);  // wet together
     part->setNodeMask(kReceivesOnly);
-    shadowed_->addChild(part);
+    add_lit(part);
   }
   rain_ = new osgParticle::PrecipitationEffect;
   rain_->setNodeMask(0);  // dry until the weather says otherwise
@@ -507,6 +522,9 @@ void ImageGenerator::build(const sim::SceneDescription& scene) {
   // the water: a grid round the eye moved every frame, over a flat sea to the horizon (below its troughs)
   far_water_ = new osg::MatrixTransform;
   far_water_->addChild(tessellated_plane(-4000.0, 4000.0, -4000.0, 4000.0, -4.0, 400.0, {0.04, 0.12, 0.17}));
+  // the water after everything solid, the far sea after the near: a pixel something hides is never shaded
+  // (the depth test runs before the shader; a software rasteriser spends most of a frame shading)
+  far_water_->getOrCreateStateSet()->setRenderBinDetails(kFarWaterBin, "RenderBin");
   root_->addChild(far_water_);
   {
     water_ = new osg::Geometry;
@@ -529,6 +547,7 @@ void ImageGenerator::build(const sim::SceneDescription& scene) {
     osg::ref_ptr<osg::Geode> geode = new osg::Geode;
     geode->addDrawable(water_);
     osg::StateSet* shading = geode->getOrCreateStateSet();
+    shading->setRenderBinDetails(kWaterBin, "RenderBin");
     shading->setMode(GL_LIGHTING, osg::StateAttribute::OFF);
     shading->setMode(GL_CULL_FACE, osg::StateAttribute::OFF);
     osg::ref_ptr<osg::Program> program = new osg::Program;
@@ -611,11 +630,12 @@ void ImageGenerator::build(const sim::SceneDescription& scene) {
       }
     }
     transform->addChild(geode);
-    shadowed_->addChild(transform);
+    add_lit(transform);
     entities_.push_back(transform);
     ++index;
   }
   root_->addChild(shadowed_);
+  root_->addChild(unshadowed_);
   osg::ref_ptr<osg::Geode> ropes = new osg::Geode();
   ropes->getOrCreateStateSet()->setAttributeAndModes(new osg::LineWidth(2.0f));
   ropes->getOrCreateStateSet()->setMode(GL_LIGHTING, osg::StateAttribute::OFF);
@@ -831,7 +851,8 @@ void ImageGenerator::update(const sim::Snapshot& s) {
   for (const auto& [text, content] :
        {std::pair{hud_.get(), line},
         std::pair{alarm_.get(), alarm.empty() ? caption_ : alarm + "\n" + caption_}}) {
-    text->setCharacterSize(size);
+    if (text->getText().createUTF8EncodedString() == content) continue;  // laid out already
+    if (text->getCharacterHeight() != size) text->setCharacterSize(size);
     text->setText(content);
     const osg::BoundingBox& box = text->getBoundingBox();
     const float room = static_cast<float>(width_) - 1.2f * size, wide = box.xMax() - box.xMin();
@@ -953,8 +974,18 @@ void ImageGenerator::update_night_sky(const sim::Snapshot& s, const core::Vec3& 
   moon_->dirtyBound();
 }
 
+void ImageGenerator::add_lit(osg::Node* node) {
+  shadowed_->addChild(node);
+  unshadowed_->addChild(node);
+}
+
+void ImageGenerator::remove_lit(osg::Node* node) {
+  shadowed_->removeChild(node);
+  unshadowed_->removeChild(node);
+}
+
 void ImageGenerator::set_scenery(const std::vector<SceneryPart>& parts) {
-  if (scenery_) shadowed_->removeChild(scenery_);
+  if (scenery_) remove_lit(scenery_);
   scenery_ = new osg::Group;
   osg::ref_ptr<osg::Geode> standing = new osg::Geode, flat = new osg::Geode;  // flat: markings, no shadow
   flat->setNodeMask(kReceivesOnly);
@@ -974,7 +1005,7 @@ void ImageGenerator::set_scenery(const std::vector<SceneryPart>& parts) {
     }
   scenery_->addChild(standing);
   scenery_->addChild(flat);
-  shadowed_->addChild(scenery_);
+  add_lit(scenery_);
 }
 
 void ImageGenerator::set_floodlights(const std::vector<Floodlight>& lights) {
@@ -1062,7 +1093,7 @@ void ImageGenerator::update_bulk(const sim::BulkView& view) {
     }
     node.versions.assign(node.tiles.size(), 0);
     node.frame->addChild(geode);
-    shadowed_->addChild(node.frame);
+    add_lit(node.frame);
     bulk_grids_.push_back(node);
     for (int t = 0; t < grid.tiles_x * grid.tiles_y; ++t) {  // everything once
       mesh_bulk_tile(grid, t % grid.tiles_x, t / grid.tiles_x, *node.tiles[static_cast<std::size_t>(t)]);
@@ -1361,6 +1392,8 @@ void ImageGenerator::set_insets(const std::vector<Inset>& insets) {
     texture->setFilter(osg::Texture::MIN_FILTER, osg::Texture::LINEAR);
     texture->setFilter(osg::Texture::MAG_FILTER, osg::Texture::LINEAR);
     v.render->setRenderOrder(osg::Camera::PRE_RENDER);
+    v.render->setCullMask(~(kMainView | kCastsShadow));  // the lit scene without a shadow pass of its own
+    v.render->setInheritanceMask(v.render->getInheritanceMask() & ~osg::CullSettings::CULL_MASK);
     v.render->setRenderTargetImplementation(osg::Camera::FRAME_BUFFER_OBJECT);
     v.render->setReferenceFrame(osg::Transform::ABSOLUTE_RF);
     v.render->setViewport(0, 0, v.width, v.height);

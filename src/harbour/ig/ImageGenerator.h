@@ -191,6 +191,9 @@ class ImageGenerator {
   std::unique_ptr<osgViewer::Viewer> viewer_;
   osg::ref_ptr<osg::Group> root_;
   osg::ref_ptr<osgShadow::ShadowedScene> shadowed_;  // the quay and the entities, in the sun's shadows
+  osg::ref_ptr<osg::Group> unshadowed_;              // the same nodes without them: the insets draw these
+  void add_lit(osg::Node* node);                     // to both
+  void remove_lit(osg::Node* node);
   struct BulkGridNode {
     osg::ref_ptr<osg::MatrixTransform> frame;
     std::vector<osg::ref_ptr<osg::Geometry>> tiles;
