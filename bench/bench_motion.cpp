@@ -14,7 +14,7 @@ namespace {
 motion::MotionSettings settings() {
   const auto platform = io::load_platform(HARBOUR_DATA_DIR "/motion/platform.yaml");
   motion::MotionSettings s;
-  s.washout = io::load_washout(HARBOUR_DATA_DIR "/motion/washout.yaml", "terminal_tractor");
+  s.washout = io::load_washout(HARBOUR_DATA_DIR "/motion/washout.yaml", "tractor");
   s.geometry = platform.geometry;
   s.limits = platform.limits;
   return s;

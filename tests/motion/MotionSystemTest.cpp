@@ -22,7 +22,7 @@ MotionSettings settings(const std::string& machine) {
 
 // ten minutes of violent random driving: specific force and rates as a random walk, impacts, rough ground
 TEST(MotionSystem, ActuatorsStayInTheirStrokeAndAxesWithinLimitsUnderLongRandomMotion) {
-  const MotionSettings s = settings("terminal_tractor");
+  const MotionSettings s = settings("tractor");
   MotionSystem system(s, 5);
   core::Rng rng(99);
   MotionCue cue;
@@ -66,7 +66,7 @@ TEST(MotionSystem, ActuatorsStayInTheirStrokeAndAxesWithinLimitsUnderLongRandomM
 
 TEST(MotionSystem, VehiclesAreCuedHarderThanGantryCranes) {
   // the same braking gives a much larger surge onset on a terminal tractor than on an STS crane
-  const MotionSettings sts = settings("sts"), tractor = settings("terminal_tractor");
+  const MotionSettings sts = settings("sts"), tractor = settings("tractor");
   ClassicalWashout a(sts.washout), b(tractor.washout);
   MotionCue brake;
   brake.specific_force_mps2 = {-2.0, 0, core::kStandardGravity};
