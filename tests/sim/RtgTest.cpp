@@ -86,7 +86,72 @@ TEST(Rtg, TravelsAtItsPublishedSpeedAndStopsOnItsRamp) {
   const double ramp = speed * speed / (2.0 * c.settings().gantry_drive.deceleration_mps2);
   std::printf("stopping distance %.2f m, v^2/2a %.2f m\n", stop, ramp);
   EXPECT_NEAR(stop, ramp, 0.05 * ramp);
-  EXPECT_LT(std::abs(c.travel_speed_mps()), 0.01);
+  // and the brakes hold it there: the frame only rocks on its tyres with the spreader's swing (±5 mm)
+  const double stopped_at = c.gantry_y_m();
+  run(simulation, simulation.control_table().neutral(), 10.0);
+  EXPECT_LT(std::abs(c.gantry_y_m() - stopped_at), 0.01);
+}
+
+RtgSettings rtg_settings() {
+  return std::get<RtgSetup>(empty_yard().machine).crane;
+}
+
+// The empty yard in a steady wind blowing along the block (from the north: towards -y), with the gantry's
+// holding brakes at `brake_force_n`: how far the frame moves at the ground (between its wheels: the frame
+// itself leans a few cm on its tyres' springs) in `seconds` after a second's settling, and the wind's force
+// on the crane along the block then [N].
+struct WindHold {
+  double moved_m = 0.0, wind_force_n = 0.0, mass_kg = 0.0, weight_n = 0.0;
+};
+WindHold braked_in_wind(double wind_mps, double brake_force_n, double seconds) {
+  ScenarioSettings scenario = empty_yard();
+  scenario.weather.wind_mean_mps = wind_mps;
+  scenario.weather.wind_from_rad = 0.0;
+  scenario.weather.turbulence_intensity = 0.0;
+  std::get<RtgSetup>(scenario.machine).crane.gantry_drive.brake_force_n = brake_force_n;
+  Simulation simulation(scenario);
+  const RubberTyredGantry& c = rtg(simulation);
+  const auto at_ground_y = [&] {
+    return simulation.world()
+        .point_position(c.frame_body(), {0.0, 0.0, -c.settings().frame_centre_height_m})
+        .y;
+  };
+  run(simulation, simulation.control_table().neutral(), 1.0);
+  const double from = at_ground_y();
+  run(simulation, simulation.control_table().neutral(), seconds);
+  EXPECT_FALSE(simulation.diverged()) << simulation.divergence();
+  WindHold out;
+  out.moved_m = at_ground_y() - from;
+  for (const WindArea& area : c.wind_areas())
+    out.wind_force_n +=
+        box_drag(simulation.weather().wind(), {}, simulation.world().pose(area.body), area.half_extents_m,
+                 scenario.drag_coefficient, scenario.weather.air_density_kg_m3)
+            .y;
+  const RtgSettings& s = c.settings();
+  out.mass_kg = s.frame_mass_kg + s.trolley_mass_kg + s.rig.spreader.mass_kg;
+  out.weight_n = out.mass_kg * kG;
+  return out;
+}
+
+TEST(Rtg, ItsBrakesHoldItInA25MpsWindAlongTheBlockAndItRollsAwayWhenTheWindExceedsThem) {
+  const double brakes_n = rtg_settings().gantry_drive.brake_force_n;
+  const WindHold held = braked_in_wind(25.0, brakes_n, 60.0);
+  std::printf("25 m/s along the block (%.0f kN on the crane), brakes %.0f kN: moved %.5f m in 60 s\n",
+              -held.wind_force_n / 1000.0, brakes_n / 1000.0, held.moved_m);
+  EXPECT_LT(held.wind_force_n, -20000.0);  // the wind pushes it hard towards -y
+  EXPECT_LT(std::abs(held.moved_m), 0.01);
+  // brakes worn to half what the wind and the rolling resistance take: it rolls away at
+  // a = (F - B - crr W) / M
+  const double crr = rtg_settings().tyre.rolling_resistance;
+  const double worn_n = 0.5 * (-held.wind_force_n - crr * held.weight_n);
+  ASSERT_GT(worn_n, 0.0);
+  const double seconds = 10.0;
+  const WindHold slid = braked_in_wind(25.0, worn_n, seconds);
+  const double expected_mps2 = (-slid.wind_force_n - worn_n - crr * slid.weight_n) / slid.mass_kg;
+  const double measured_mps2 = -2.0 * slid.moved_m / (seconds * seconds);
+  std::printf("brakes %.1f kN: rolled %.2f m in %.0f s, %.4f m/s^2 against %.4f\n", worn_n / 1000.0,
+              slid.moved_m, seconds, measured_mps2, expected_mps2);
+  EXPECT_NEAR(measured_mps2, expected_mps2, 0.15 * expected_mps2);
 }
 
 TEST(Rtg, ASteeringBiasCurvesItsPathAsTheSteeringGeometrySaysAndTheOperatorCorrectsIt) {

@@ -482,6 +482,80 @@ TEST(TractorRamp, TheClimbFailsWhenTheLoadExceedsWhatTheDriveAxlesGripCanPull) {
       limit_kg / 1000.0, 0.8 * limit_kg / 1000.0, 1.2 * limit_kg / 1000.0, heavy.climbed_m);
 }
 
+// Up a dry 1:10 ramp at walking pace until the whole combination stands on it, stopped with the brake pedal
+// (or the emergency stop) in neutral, then the pedal at `pedal` for `seconds`: how far the tractor's centre
+// travels then [m].
+double travel_when_braked_on_the_ramp(double payload_kg, double pedal, double seconds, bool emergency_stop) {
+  ScenarioSettings scenario = before_a_wet_ramp(payload_kg);
+  scenario.ramp->grip = 0.8;  // dry steel plates
+  Simulation sim(scenario);
+  const TerminalTractor& t = tractor(sim);
+  // the mafi's axle 3 m up the ramp (full throttle below walking pace): the whole combination on it, the
+  // mafi's rear end (1.6 m behind its axle) clear of the quay
+  for (int k = 0; k < 120000 && sim.world().pose(t.trailer_body()).to_parent({-4.5, 0.0, 0.0}).y < 3.0; ++k) {
+    Controls c = driving(sim, 1.0, 0.0);
+    if (t.forward_mps() < 1.0) c.value[static_cast<std::size_t>(sim.control_table().find("throttle"))] = 1.0;
+    sim.step(c);
+  }
+  EXPECT_GT(sim.world().pose(t.trailer_body()).to_parent({-4.5, 0.0, 0.0}).y, 3.0)
+      << "the climb stalled at " << sim.time_s() << " s, tractor y " << sim.world().pose(t.body()).position.y
+      << " z " << sim.world().pose(t.body()).position.z << " speed " << t.forward_mps();
+  const auto braked = [&](double amount) {
+    Controls c = sim.control_table().neutral();  // neutral: no drive
+    c.value[static_cast<std::size_t>(sim.control_table().find(emergency_stop ? "emergency_stop" : "brake"))] =
+        emergency_stop ? 1.0 : amount;
+    return c;
+  };
+  for (int k = 0; k < 2000; ++k)  // to a stop
+    sim.step(braked(1.0));
+  const core::Vec3 from = sim.world().pose(t.body()).position;
+  for (int k = 0; k < static_cast<int>(std::lround(seconds / Simulation::kStep_s)); ++k)
+    sim.step(braked(pedal));
+  EXPECT_FALSE(sim.diverged()) << sim.divergence();
+  const core::Vec3 to = sim.world().pose(t.body()).position;
+  return std::hypot(to.x - from.x, to.y - from.y);
+}
+
+TEST(TractorBrakes, TheBrakesHoldA30TonneMafiOnA1In10RampForAMinute) {
+  // static friction: braked wheels at rest stand, up to what the brakes and the grip can hold
+  const double pedal = travel_when_braked_on_the_ramp(30000.0, 1.0, 60.0, false);
+  const double stop = travel_when_braked_on_the_ramp(30000.0, 1.0, 60.0, true);
+  std::printf("30 t mafi braked on 1:10 for 60 s: moved %.5f m (pedal), %.5f m (emergency stop)\n", pedal,
+              stop);
+  EXPECT_LT(pedal, 0.01);
+  EXPECT_LT(stop, 0.01);
+}
+
+TEST(TractorBrakes, BrakedBelowThePullDownTheSlopeItRollsAwayAtTheDifference) {
+  // the pedal eased until the brakes give half the weight's pull down the slope: the combination rolls
+  // down from rest at a = g sin a - B / M - crr g cos a (B the brakes' force on every wheel together, crr by
+  // weight)
+  const double payload_kg = 30000.0, slope = std::atan2(3.6, 36.0);
+  const ScenarioSettings scenario = before_a_wet_ramp(payload_kg);
+  const TractorSetup& setup = std::get<TractorSetup>(scenario.machine);
+  const auto full_brakes_n = [](const WheeledChassisSettings& c) {
+    double n = 0.0;
+    for (const AxleSettings& a : c.axles)
+      n += 2.0 * a.tyres_per_side * c.brake_torque_per_wheel_nm / c.tyre.radius_m;
+    return n;
+  };
+  const double mass_kg = setup.vehicle.mass_kg + setup.start.trailer->mass_kg;
+  const double full_n = full_brakes_n(setup.vehicle.chassis) + full_brakes_n(setup.start.trailer->wheels);
+  const double pedal = 0.5 * mass_kg * kG * std::sin(slope) / full_n;
+  ASSERT_LT(pedal, 0.5);
+  // rolling resistance by each vehicle's weight (the mafi's payload sits over its axle)
+  const double crr = (setup.vehicle.chassis.tyre.rolling_resistance * setup.vehicle.mass_kg +
+                      setup.start.trailer->wheels.tyre.rolling_resistance * setup.start.trailer->mass_kg) /
+                     mass_kg;
+  const double expected_mps2 = kG * std::sin(slope) - pedal * full_n / mass_kg - crr * kG * std::cos(slope);
+  const double seconds = 3.0;  // ~1.6 m: its wheels all still on the ramp
+  const double moved = travel_when_braked_on_the_ramp(payload_kg, pedal, seconds, false);
+  const double measured_mps2 = 2.0 * moved / (seconds * seconds);
+  std::printf("brake pedal at %.3f on 1:10: rolled %.2f m in %.0f s, %.3f m/s^2 against %.3f\n", pedal, moved,
+              seconds, measured_mps2, expected_mps2);
+  EXPECT_NEAR(measured_mps2, expected_mps2, 0.1 * expected_mps2);
+}
+
 TEST(TractorRamp, TheDeckRisesAndFallsWithTheTideAndSwellAndTheRampWithIt) {
   RampSettings s;
   s.toe_m = {0.0, 0.0, 0.0};

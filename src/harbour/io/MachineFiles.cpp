@@ -757,6 +757,8 @@ sim::RtgSettings load_rtg(const YamlFile& f, const std::string& folder) {
   s.bogie_tyre_spacing_m = f.number(g, "bogie_tyre_spacing_m", gat, 0.5, s.wheelbase_m - 0.5);
   s.sill_height_m = f.number(g, "sill_height_m", gat, 0.3, 5.0);
   s.leg_width_m = f.number(g, "leg_width_m", gat, 0.3, 4.0);
+  s.wind_area_across_m2 = f.number(g, "wind_area_across_m2", gat, 1.0, 2000.0);
+  s.wind_area_along_m2 = f.number(g, "wind_area_along_m2", gat, 1.0, 2000.0);
   s.gantry_drive = read_drive(f, g, gat);
   s.gantry_loaded_speed_mps = f.number(g, "loaded_speed_mps", gat, 0.0, s.gantry_drive.max_speed_mps, true);
   s.max_steer_rad = core::deg_to_rad(f.number(g, "max_steer_deg", gat, 0.0, 20.0, true));

@@ -41,6 +41,7 @@ struct StepEvents {
 struct WindArea {
   physics::BodyId body = physics::kWorld;
   core::Vec3 half_extents_m;
+  bool swings = false;  ///< hangs from the ropes or the boom head: the wind leans it out (a load's rest)
 };
 
 /// A tool that works bulk material (a grab), as the machine leaves it after its step: the body its contact

@@ -160,6 +160,7 @@ struct PhysicsWorld::Ode {
   dThreadingImplementationID threading = nullptr;
   std::vector<dContact> contact_buffer;
   std::vector<PendingContact> pending;
+  std::vector<std::pair<dBodyID, dContact>> holds;  // hold_point()'s, for the next step
   std::vector<dJointFeedback> feedback;
   PhysicsWorld* owner = nullptr;
 
@@ -206,6 +207,7 @@ PhysicsWorld::PhysicsWorld(const WorldSettings& settings)
   ode_->owner = this;
   // buffers a step reuses, sized for a busy scene: stepping allocates only if one is outgrown
   ode_->pending.reserve(1024);
+  ode_->holds.reserve(64);
   ode_->feedback.reserve(1024);
   last_touch_.reserve(1024);
   ode_->contact_buffer.resize(static_cast<std::size_t>(std::max(settings.max_contacts_per_pair, 1)));
@@ -512,6 +514,24 @@ void PhysicsWorld::add_torque(BodyId body, const Vec3& t) {
   dBodyAddTorque(ode_->bodies[body].id, t.x, t.y, t.z);
 }
 
+void PhysicsWorld::hold_point(BodyId body, const Vec3& world_point, const Vec3& normal, const Vec3& along,
+                              double along_limit_n, double across_limit_n) {
+  if (body == kWorld) return;
+  dContact c{};
+  // a contact joint whose two friction rows are the hold (constant force limits: no dContactApprox1) and
+  // whose normal row, soft and at zero depth, passes next to nothing (a damper of 1/cfm = 100 N s/m)
+  c.surface.mode = dContactMu2 | dContactFDir1 | dContactSoftCFM | dContactSoftERP;
+  c.surface.mu = std::max(0.0, along_limit_n);
+  c.surface.mu2 = std::max(0.0, across_limit_n);
+  c.surface.soft_cfm = 1e-2;
+  c.surface.soft_erp = 0.0;
+  c.geom.pos[0] = world_point.x, c.geom.pos[1] = world_point.y, c.geom.pos[2] = world_point.z;
+  c.geom.normal[0] = normal.x, c.geom.normal[1] = normal.y, c.geom.normal[2] = normal.z;
+  c.geom.depth = 0.0;
+  c.fdir1[0] = along.x, c.fdir1[1] = along.y, c.fdir1[2] = along.z;
+  ode_->holds.emplace_back(ode_->bodies[body].id, c);
+}
+
 void PhysicsWorld::set_position(BodyId body, const Vec3& p) {
   const Vec3 com = p - ode_->world_offset(body);
   dBodySetPosition(ode_->bodies[body].id, com.x, com.y, com.z);
@@ -690,6 +710,11 @@ std::string PhysicsWorld::find_divergence(bool forces) const {
 }
 
 void PhysicsWorld::step(double dt_s) {
+  // the holds are for this step only, whether it runs or not
+  struct HoldsCleared {
+    Ode& ode;
+    ~HoldsCleared() { ode.holds.clear(); }
+  } holds_cleared{*ode_};
   if (diverged()) return;
   step_s_ = dt_s;
   // what ODE would be handed: a diverged state stops the world before it reaches ODE's asserts
@@ -705,6 +730,8 @@ void PhysicsWorld::step(double dt_s) {
   }
   try {
     collide();
+    for (auto& [body, hold] : ode_->holds)
+      dJointAttach(dJointCreateContact(ode_->world, ode_->contacts, &hold), body, nullptr);
     dWorldStep(ode_->world, dt_s);
   } catch (const OdeFatal& e) {
     divergence_ = e.what();

@@ -145,6 +145,12 @@ class PhysicsWorld {
   void add_force_at(BodyId body, const core::Vec3& world_point, const core::Vec3& force);
   /// A world torque for the next step (cleared by the step).
   void add_torque(BodyId body, const core::Vec3& torque);
+  /// Static friction at a world point of `body` against the ground for the next step (cleared by the step):
+  /// the point's velocity along `along` and across it in the plane normal to `normal` is held at zero by a
+  /// constraint, as long as that takes no more than `along_limit_n` and `across_limit_n`; at the limit it
+  /// slides against that force (Coulomb). It neither pushes nor pulls along the normal.
+  void hold_point(BodyId body, const core::Vec3& world_point, const core::Vec3& normal,
+                  const core::Vec3& along, double along_limit_n, double across_limit_n);
   void set_position(BodyId body, const core::Vec3& position);
   void set_linear_velocity(BodyId body, const core::Vec3& velocity);
   /// Stops a body: no linear or angular velocity.

@@ -329,7 +329,7 @@ core::Vec3 Simulation::wind_rest_offset_m(const core::Vec3& wind, std::optional<
     mass_kg += world_->mass_kg(body);
   };
   for (const WindArea& area : machine_->wind_areas())
-    add(area.body, area.half_extents_m);
+    if (area.swings) add(area.body, area.half_extents_m);
   if (box)
     if (const ContainerRef* item = liftable(*box)) add(item->body, item->half_extents_m);
   const double lean = machine_->pendulum_length_m() / (mass_kg * 9.80665);

@@ -231,8 +231,8 @@ class Simulation {
   /// The first lift (events timed `after_lift_s`) is when it first does.
   bool carrying() const;
   /// Where the machine's load would hang at rest in a steady `wind` [m/s], from plumb under its sheaves [m]
-  /// (horizontal): the pendulum's equilibrium L F / (m g), F the wind's drag on its wind areas and on `box`
-  /// if it hangs from them.
+  /// (horizontal): the pendulum's equilibrium L F / (m g), F the wind's drag on the areas that swing and on
+  /// `box` if it hangs from them.
   core::Vec3 wind_rest_offset_m(const core::Vec3& wind, std::optional<physics::BodyId> box) const;
   const Vessel* vessel() const { return vessel_.get(); }
   const TruckLane* trucks() const { return trucks_.get(); }

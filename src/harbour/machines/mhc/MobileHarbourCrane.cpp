@@ -178,8 +178,8 @@ MobileHarbourCrane::MobileHarbourCrane(physics::PhysicsWorld& world, const MhcSe
   hoist_bodies_ = std::make_unique<OdeCableBodies>(world, hoisted, origins);
   hoist_ = std::make_unique<cable::HoistSystem>(hoisting, *hoist_bodies_, core::Vec3{0, 0, -kG});
   wind_areas_.clear();
-  wind_areas_.push_back({block_, block_half_extents_m()});
-  if (!on_hook()) wind_areas_.push_back({grab_lower_, settings.grab_lower_half_extents_m});
+  wind_areas_.push_back({block_, block_half_extents_m(), true});
+  if (!on_hook()) wind_areas_.push_back({grab_lower_, settings.grab_lower_half_extents_m, true});
   wind_areas_.push_back({house_, settings.house_half_extents_m});
   last_hinge_angle_ = world.hinge_angle(slew_hinge_);
   if (!on_hook()) {

@@ -12,12 +12,21 @@ TyreForces tyre_forces(const TyreSettings& tyre, const TyreCommand& command, dou
   f.normal_n =
       std::max(0.0, tyre.vertical_stiffness_n_per_m * sag_m + tyre.vertical_damping_ns_per_m * sag_rate_mps);
   const double limit = tyre.friction * f.normal_n;
+  const double brake = std::max(0.0, command.brake_torque_nm) / tyre.radius_m;
+  if (brake > 0.0 && std::abs(forward_mps) < tyre.creep_speed_mps &&
+      std::abs(sideways_mps) < tyre.creep_speed_mps) {
+    // braked and standing: static friction, the brake holding the wheel and the grip holding it across
+    f.held = true;
+    f.hold_along_n = std::min(brake + tyre.rolling_resistance * f.normal_n, limit);  // rolling away: both
+    f.hold_across_n = limit;
+    f.longitudinal_n = command.drive_torque_nm / tyre.radius_m;  // a drive against the brake, held too
+    return f;
+  }
   const double creep = std::max(std::abs(forward_mps), tyre.creep_speed_mps);
   // along: the drive at the contact, rolling resistance and the brake against the rolling (both fading in
   // over the creep speed, so a wheel at rest is held, not flicked to and fro)
   const double rolling = std::clamp(forward_mps / tyre.creep_speed_mps, -1.0, 1.0);
   double along = command.drive_torque_nm / tyre.radius_m - tyre.rolling_resistance * f.normal_n * rolling;
-  const double brake = std::max(0.0, command.brake_torque_nm) / tyre.radius_m;
   along -= std::min(brake, limit) * rolling;
   if (brake > limit && std::abs(forward_mps) > tyre.creep_speed_mps) f.sliding = true;  // locked
   // across: the slip angle's force
@@ -61,6 +70,7 @@ TyreForces apply_tyre(physics::PhysicsWorld& world, physics::BodyId body, const 
   const TyreForces f =
       tyre_forces(gripping, command, sag, g.rise_mps * n.z - dot(v, n), dot(v, heading), dot(v, left));
   world.add_force_at(body, contact, n * f.normal_n + heading * f.longitudinal_n + left * f.lateral_n);
+  if (f.held) world.hold_point(body, contact, n, heading, f.hold_along_n, f.hold_across_n);
   return f;
 }
 

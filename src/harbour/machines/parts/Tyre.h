@@ -32,19 +32,25 @@ struct TyreForces {
   double longitudinal_n = 0.0;  ///< [N] along its heading (+ forward)
   double lateral_n = 0.0;       ///< [N] across it (+ to its left)
   bool sliding = false;         ///< the friction circle limits it (a locked or spinning wheel, a skid)
+  /// Braked and standing (slower than the creep speed both ways): static friction holds the contact, a
+  /// constraint of at most these forces (the brake's along, the grip's across) instead of the two above
+  bool held = false;
+  double hold_along_n = 0.0, hold_across_n = 0.0;
 };
 
 /// A tyre's forces from its contact's state (a pure function): the vertical spring-damper on the compression
 /// `sag_m` (and its rate); the drive or the brake along the heading, a locked brake sliding at µ·Fz; rolling
 /// resistance against the rolling; a lateral force −Cα·α with the slip angle α from the contact's velocity
 /// across and along the heading (measured against at least the creep speed); both together limited to µ·Fz
-/// (the friction circle).
+/// (the friction circle). A braked tyre slower than the creep speed is held instead (TyreForces::held): it
+/// stays put up to its brake along and its grip across, and slides at those forces beyond them.
 TyreForces tyre_forces(const TyreSettings& tyre, const TyreCommand& command, double sag_m,
                        double sag_rate_mps, double forward_mps, double sideways_mps);
 
 /// Pushes on `body` what a tyre on `ground` passes it this step: the wheel's centre at `hub_m` (body frame),
 /// the body's z up. The ground is the plane under the hub: the tyre presses along its normal, its heading
-/// runs along it, its sag rate counts the ground's rise. Returns its forces.
+/// runs along it, its sag rate counts the ground's rise; a held tyre's contact is held by
+/// PhysicsWorld::hold_point. Returns its forces.
 TyreForces apply_tyre(physics::PhysicsWorld& world, physics::BodyId body, const core::Vec3& hub_m,
                       const TyreSettings& tyre, const TyreCommand& command, const Ground& ground);
 

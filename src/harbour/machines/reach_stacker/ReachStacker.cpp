@@ -149,7 +149,7 @@ ReachStacker::ReachStacker(physics::PhysicsWorld& world, const ReachStackerSetti
   world.exclude_contacts(outer_, spreader_);
   frame_ = std::make_unique<Spreader>(world, spreader_, kSurfaceSpreader, kSurfaceFlipper, s.spreader);
   wind_areas_ = {WindArea{body_, s.half_extents_m}, WindArea{outer_, outer_half_extents(s)},
-                 WindArea{spreader_, frame_->half_extents_m()}};
+                 WindArea{spreader_, frame_->half_extents_m(), true}};
 }
 
 core::Vec3 ReachStacker::head_m() const {

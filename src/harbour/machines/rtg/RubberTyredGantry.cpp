@@ -15,6 +15,7 @@ constexpr double kHalfPi = 0.5 * std::numbers::pi;
 constexpr double kSpeedFollow_s = 0.25;   // the travel controller's proportional time constant
 constexpr double kSpeedIntegral_s = 1.0;  // ... and its integral's
 constexpr double kStandstill_mps = 0.02;  // slower than this the crane stands (the turn may start)
+constexpr double kBrakesSet_mps = 0.005;  // the holding brakes set once the wheels roll slower than this
 
 // the eight tyres: two to each corner bogie, (x, y) on the frame
 std::array<std::pair<double, double>, 8> tyre_positions(const RtgSettings& s) {
@@ -95,7 +96,12 @@ RubberTyredGantry::RubberTyredGantry(physics::PhysicsWorld& world, const RtgSett
   rig_ = std::make_unique<SpreaderHoist>(
       world, s.rig, std::vector<physics::BodyId>{trolley_},
       core::Pose{heading, {spreader_at.x, spreader_at.y, start.position_m.z + start.spreader_z_m}});
-  wind_areas_[0] = {rig_->spreader_body(), rig_->spreader().half_extents_m()};
+  wind_areas_[0] = {rig_->spreader_body(), rig_->spreader().half_extents_m(), true};
+  // the structure as a box of its height whose faces have its areas
+  const double half_height = 0.5 * s.trolley_rail_height_m;
+  wind_areas_[1] = {
+      frame_,
+      {0.25 * s.wind_area_along_m2 / half_height, 0.25 * s.wind_area_across_m2 / half_height, half_height}};
 }
 
 double RubberTyredGantry::steer_angle_rad(double steer) const {
@@ -193,12 +199,10 @@ void RubberTyredGantry::step(const Controls& raw, std::span<const ContainerRef> 
   const double mass = settings_.frame_mass_kg + settings_.trolley_mass_kg + settings_.rig.spreader.mass_kg;
   const double gain = 0.5 * mass / kSpeedFollow_s, force_limit = 0.5 * settings_.gantry_drive.max_force_n;
   std::array<double, 2> force{};
-  bool standing_still = g.velocity_mps == 0.0;
   for (std::size_t side = 0; side < 2; ++side) {
     const double offset = side == 0 ? -half_width : half_width;
     const core::Vec3 centre = across ? core::Vec3{0.0, offset, 0.0} : core::Vec3{offset, 0.0, 0.0};
     const double side_speed = dot(world_.point_velocity(frame_, centre), way);
-    standing_still &= std::abs(side_speed) < kStandstill_mps;
     // + yaw (to the left) drives the +x side faster going along +y
     const double error = g.velocity_mps + yaw_rate * (across ? -offset : offset) - side_speed;
     force[side] = gain * (error + travel_integral_[side] / kSpeedIntegral_s);
@@ -206,7 +210,12 @@ void RubberTyredGantry::step(const Controls& raw, std::span<const ContainerRef> 
       travel_integral_[side] += error * dt_s;  // no wind-up at the limit
     force[side] = std::clamp(force[side], -force_limit, force_limit);
   }
-  const bool hold = standing_still || !square || stop;
+  // the holding brakes set once the drive's reference is at rest and the crane has stopped, and stay set
+  // until the lever moves it again (a gust beyond them makes them slip: the drive does not take over)
+  const double rolling_mps =
+      dot(world_.point_velocity(frame_, {0.0, 0.0, -settings_.frame_centre_height_m}), way);
+  gantry_braked_ = g.brake && (gantry_braked_ || std::abs(rolling_mps) < kBrakesSet_mps);
+  const bool hold = gantry_braked_ || !square || stop;
   if (hold) travel_integral_ = {}, force = {};
   const double brake = hold ? settings_.gantry_drive.brake_force_n / 8.0 * settings_.tyre.radius_m : 0.0;
   for (const auto& [x, y] : tyre_positions(settings_)) {
@@ -332,16 +341,18 @@ void RubberTyredGantry::hash_into(core::StateHash& hash) const {
   hash.add(gantry_.reference_mps());
   hash.add(trolley_drive_.reference_mps());
   hash.add(travel_integral_);
+  hash.add(gantry_braked_);
   hash.add(wheel_turn_);
   hash.add(rig_->locks().twistlocks().lamps());
   hash.add(rig_->spreader_state().length_m);
 }
 
 void RubberTyredGantry::save_state(core::StateWriter& out) const {
-  out.section(0x52544731);  // "RTG1"
+  out.section(0x52544732);  // "RTG2": and the gantry's holding brakes
   gantry_.save_state(out);
   trolley_drive_.save_state(out);
   out.put(travel_integral_);
+  out.put(gantry_braked_);
   out.put(wheel_turn_);
   out.put(turn_refused_);
   out.put(turn_refusals_);
@@ -350,10 +361,11 @@ void RubberTyredGantry::save_state(core::StateWriter& out) const {
 }
 
 void RubberTyredGantry::restore_state(core::StateReader& in) {
-  in.section(0x52544731, "rtg");
+  in.section(0x52544732, "rtg");
   gantry_.restore_state(in);
   trolley_drive_.restore_state(in);
   in.get(travel_integral_);
+  in.get(gantry_braked_);
   in.get(wheel_turn_);
   in.get(turn_refused_);
   in.get(turn_refusals_);

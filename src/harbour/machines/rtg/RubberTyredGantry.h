@@ -25,6 +25,9 @@ struct RtgSettings {
   double bogie_tyre_spacing_m = 1.6;    ///< [m] a corner's two tyres apart along the block
   double sill_height_m = 1.8;           ///< [m] the sill beams' underside above the ground
   double leg_width_m = 1.2;             ///< [m] the legs' and sills' width across
+  /// [m²] the structure's area the wind meets (legs, sills, girders, trolley and machinery, a member behind
+  /// another counted in part): blowing across the block (along x) and along it (along y)
+  double wind_area_across_m2 = 100.0, wind_area_along_m2 = 160.0;
   TyreSettings tyre;
   /// Gantry travel: the drive's speed reference (its max speed empty), the tractive force limit in
   /// max_force_n; the speed controller shares it out over the eight tyres.
@@ -149,13 +152,14 @@ class RubberTyredGantry final : public Machine, public GantryCrane {
   int trolley_slider_;
   double trolley_start_x_;
   Drive gantry_, trolley_drive_;
+  bool gantry_braked_ = true;                // the holding brakes are set (it starts parked)
   std::array<double, 2> travel_integral_{};  // [m] each side's speed controller's integral of its error
   double wheel_turn_ = 0.0;                  // 0: along the block, 1: across
   bool turn_refused_ = false;                // the switch asks a turn that was refused (until it goes back)
   std::uint32_t turn_refusals_ = 0;
   bool horn_ = false;
   std::unique_ptr<SpreaderHoist> rig_;
-  std::array<WindArea, 1> wind_areas_;
+  std::array<WindArea, 2> wind_areas_;  // the spreader, the structure
 };
 
 }  // namespace harbour::sim

@@ -138,7 +138,7 @@ StsCrane::StsCrane(physics::PhysicsWorld& world, const StsCraneSettings& setting
   rig_ = std::make_unique<SpreaderHoist>(
       world, settings.spreader_hoist(), std::vector<physics::BodyId>{gantry_body_, trolley_body_},
       core::Pose{core::Mat3::identity(), {trolley_x_m, gantry_y_m, spreader_z_m}});
-  wind_areas_[0] = {rig_->spreader_body(), rig_->spreader().half_extents_m()};
+  wind_areas_[0] = {rig_->spreader_body(), rig_->spreader().half_extents_m(), true};
 }
 
 double StsCrane::attachment_bottom_z_m() const {
