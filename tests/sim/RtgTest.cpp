@@ -103,18 +103,19 @@ RtgSettings rtg_settings() {
 struct WindHold {
   double moved_m = 0.0, wind_force_n = 0.0, mass_kg = 0.0, weight_n = 0.0;
 };
-WindHold braked_in_wind(double wind_mps, double brake_force_n, double seconds) {
+WindHold braked_in_wind(double wind_mps, double brake_force_n, double seconds,
+                        bool across_the_block = false) {
   ScenarioSettings scenario = empty_yard();
   scenario.weather.wind_mean_mps = wind_mps;
-  scenario.weather.wind_from_rad = 0.0;
+  scenario.weather.wind_from_rad = across_the_block ? std::numbers::pi / 2.0 : 0.0;  // from the east: to -x
   scenario.weather.turbulence_intensity = 0.0;
   std::get<RtgSetup>(scenario.machine).crane.gantry_drive.brake_force_n = brake_force_n;
   Simulation simulation(scenario);
   const RubberTyredGantry& c = rtg(simulation);
   const auto at_ground_y = [&] {
-    return simulation.world()
-        .point_position(c.frame_body(), {0.0, 0.0, -c.settings().frame_centre_height_m})
-        .y;
+    const core::Vec3 p =
+        simulation.world().point_position(c.frame_body(), {0.0, 0.0, -c.settings().frame_centre_height_m});
+    return across_the_block ? p.x : p.y;
   };
   run(simulation, simulation.control_table().neutral(), 1.0);
   const double from = at_ground_y();
@@ -122,11 +123,12 @@ WindHold braked_in_wind(double wind_mps, double brake_force_n, double seconds) {
   EXPECT_FALSE(simulation.diverged()) << simulation.divergence();
   WindHold out;
   out.moved_m = at_ground_y() - from;
-  for (const WindArea& area : c.wind_areas())
-    out.wind_force_n +=
+  for (const WindArea& area : c.wind_areas()) {
+    const core::Vec3 drag =
         box_drag(simulation.weather().wind(), {}, simulation.world().pose(area.body), area.half_extents_m,
-                 scenario.drag_coefficient, scenario.weather.air_density_kg_m3)
-            .y;
+                 scenario.drag_coefficient, scenario.weather.air_density_kg_m3);
+    out.wind_force_n += across_the_block ? drag.x : drag.y;
+  }
   const RtgSettings& s = c.settings();
   out.mass_kg = s.frame_mass_kg + s.trolley_mass_kg + s.rig.spreader.mass_kg;
   out.weight_n = out.mass_kg * kG;
@@ -152,6 +154,15 @@ TEST(Rtg, ItsBrakesHoldItInA25MpsWindAlongTheBlockAndItRollsAwayWhenTheWindExcee
   std::printf("brakes %.1f kN: rolled %.2f m in %.0f s, %.4f m/s^2 against %.4f\n", worn_n / 1000.0,
               slid.moved_m, seconds, measured_mps2, expected_mps2);
   EXPECT_NEAR(measured_mps2, expected_mps2, 0.15 * expected_mps2);
+}
+
+TEST(Rtg, BrakedItStandsInA25MpsWindAcrossTheBlockOnItsTyresGrip) {
+  // across its wheels nothing rolls: the tyres' grip holds it (static friction up to µ F_z each)
+  const WindHold held = braked_in_wind(25.0, rtg_settings().gantry_drive.brake_force_n, 60.0, true);
+  std::printf("25 m/s across the block (%.0f kN on the crane): moved %.5f m in 60 s\n",
+              -held.wind_force_n / 1000.0, held.moved_m);
+  EXPECT_LT(held.wind_force_n, -20000.0);  // towards -x
+  EXPECT_LT(std::abs(held.moved_m), 0.01);
 }
 
 TEST(Rtg, ASteeringBiasCurvesItsPathAsTheSteeringGeometrySaysAndTheOperatorCorrectsIt) {
