@@ -35,8 +35,8 @@ int attach_stick() {
 }
 
 // A pad as Linux's xpad driver presents an Xbox 360 controller (axes: left x, y, left trigger, right x, y,
-// right trigger; 11 buttons; the d-pad a hat) under a name SDL's database does not know; its instance id.
-int attach_raw_pad() {
+// right trigger; 11 buttons; the d-pad a hat) under a name SDL's database does not know.
+SDL_VirtualJoystickDesc raw_pad() {
   SDL_VirtualJoystickDesc desc{};
   desc.version = SDL_VIRTUAL_JOYSTICK_DESC_VERSION;
   desc.type = SDL_JOYSTICK_TYPE_UNKNOWN;
@@ -46,6 +46,12 @@ int attach_raw_pad() {
   desc.vendor_id = 0x1209;  // pid.codes' test vendor and product: in no pad database
   desc.product_id = 0x0001;
   desc.name = "Harbour test pad";
+  return desc;
+}
+
+// Attaches the raw pad; its instance id.
+int attach_raw_pad() {
+  const SDL_VirtualJoystickDesc desc = raw_pad();
   const int index = SDL_JoystickAttachVirtualEx(&desc);
   EXPECT_GE(index, 0) << SDL_GetError();
   return SDL_JoystickGetDeviceInstanceID(index);
@@ -55,17 +61,8 @@ int attach_raw_pad() {
 // SDL_GAMECONTROLLERCONFIG for a pad SDL does not know (its GUID read from `harboursim devices`).
 std::string xbox_mapping_for_the_raw_pad() {
   init_sdl_joysticks();
-  const int index = SDL_JoystickAttachVirtualEx([] {
-    static SDL_VirtualJoystickDesc desc{};
-    desc.version = SDL_VIRTUAL_JOYSTICK_DESC_VERSION;
-    desc.naxes = 6;
-    desc.nbuttons = 11;
-    desc.nhats = 1;
-    desc.vendor_id = 0x1209;
-    desc.product_id = 0x0001;
-    desc.name = "Harbour test pad";
-    return &desc;
-  }());
+  const SDL_VirtualJoystickDesc desc = raw_pad();
+  const int index = SDL_JoystickAttachVirtualEx(&desc);
   char guid[33];
   SDL_JoystickGetGUIDString(SDL_JoystickGetDeviceGUID(index), guid, sizeof guid);
   EXPECT_FALSE(SDL_IsGameController(index));  // SDL does not know it
@@ -240,24 +237,28 @@ struct Desk {
     station->use_devices(std::make_unique<DeviceInput>(session->simulation().control_table(), mapping));
   }
   ~Desk() { quit_sdl_joysticks(); }
+
+  // The person at the devices until the exercise is over (a minute at most); the attempt as stored.
+  SessionResult play() {
+    DeviceInput* input = station->devices();
+    session->loop().set_sampler([this, input] {
+      person->act(session->simulation());
+      return input->sample();
+    });
+    station->start();
+    session->start();
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    while (!session->over() && std::chrono::steady_clock::now() < deadline)
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    station->stop();
+    return session->finish(SessionEnd::kRan);
+  }
 };
 
 TEST(Devices, APersonOnTwoJoysticksDischargesABoxOntoTheTruck) {
   Desk desk("harbour_desk_discharge");
   ASSERT_EQ(desk.station->devices()->bound_devices(), 2);
-  DeviceInput* input = desk.station->devices();
-  StickPerson* person = desk.person.get();
-  desk.session->loop().set_sampler([&] {
-    person->act(desk.session->simulation());
-    return input->sample();
-  });
-  desk.station->start();
-  desk.session->start();
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-  while (!desk.session->over() && std::chrono::steady_clock::now() < deadline)
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  desk.station->stop();
-  const SessionResult result = desk.session->finish(SessionEnd::kRan);
+  const SessionResult result = desk.play();
   EXPECT_EQ(result.metrics.moves_completed, 1);  // the box is on the truck
   EXPECT_EQ(result.metrics.collisions, 0);
   EXPECT_EQ(result.status, "finished");
@@ -288,19 +289,7 @@ TEST(Devices, APersonOnAGamePadDischargesABoxOntoTheTruck) {
     for (const DeviceEvent& e : desk.station->devices()->take_events())
       connected = connected || (e.kind == DeviceEvent::Kind::kConnected && e.name == "Harbour test pad");
     EXPECT_TRUE(connected);
-    DeviceInput* input = desk.station->devices();
-    StickPerson* person = desk.person.get();
-    desk.session->loop().set_sampler([&] {
-      person->act(desk.session->simulation());
-      return input->sample();
-    });
-    desk.station->start();
-    desk.session->start();
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-    while (!desk.session->over() && std::chrono::steady_clock::now() < deadline)
-      std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    desk.station->stop();
-    const SessionResult result = desk.session->finish(SessionEnd::kRan);
+    const SessionResult result = desk.play();
     EXPECT_EQ(result.metrics.moves_completed, 1);  // the box is on the truck
     EXPECT_EQ(result.metrics.collisions, 0);
     EXPECT_EQ(result.status, "finished");

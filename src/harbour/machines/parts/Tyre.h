@@ -33,7 +33,8 @@ struct TyreForces {
   double lateral_n = 0.0;       ///< [N] across it (+ to its left)
   bool sliding = false;         ///< the friction circle limits it (a locked or spinning wheel, a skid)
   /// Braked and standing (slower than the creep speed both ways): static friction holds the contact, a
-  /// constraint of at most these forces (the brake's along, the grip's across) instead of the two above
+  /// constraint of at most these forces (brake and rolling resistance along, the grip across) instead of the
+  /// two above
   bool held = false;
   double hold_along_n = 0.0, hold_across_n = 0.0;
 };
