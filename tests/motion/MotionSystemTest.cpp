@@ -64,6 +64,21 @@ TEST(MotionSystem, ActuatorsStayInTheirStrokeAndAxesWithinLimitsUnderLongRandomM
   EXPECT_LE(interventions, 6);  // and the safety net stayed rare (at most 1 in 10^4 steps)
 }
 
+// One axis a hair from its target (its braking speed once cancelled to zero and stopped every axis: the
+// platform froze in an STS exercise) must not hold the others back.
+TEST(MotionSystem, AnAxisAHairFromItsTargetDoesNotFreezeTheOthers) {
+  MotionLimiter limiter(settings("sts").limits);
+  PlatformPose target;
+  target[kHeave] = -1e-19;
+  limiter.reset(target);
+  target[kSurge] = 0.05;
+  target[kHeave] = -2e-19;
+  for (int k = 0; k < 100; ++k)
+    limiter.step(target, 0.01);
+  EXPECT_NEAR(limiter.pose()[kSurge], 0.05, 1e-6);
+  EXPECT_NEAR(limiter.pose()[kHeave], -2e-19, 1e-20);
+}
+
 TEST(MotionSystem, VehiclesAreCuedHarderThanGantryCranes) {
   // the same braking gives a much larger surge onset on a terminal tractor than on an STS crane
   const MotionSettings sts = settings("sts"), tractor = settings("tractor");
