@@ -310,6 +310,8 @@ void Evaluator::observe_any_machine(const Simulation& simulation, const Controls
     const bool carried_hit = carried_ && (e.body == *carried_ || e.other == *carried_);
     const bool gripper_hit = gripper && (e.body == *gripper || e.other == *gripper);
     const bool body_hit = e.surface == kSurfaceVehicle || e.other_surface == kSurfaceVehicle;
+    if (gripper_hit && carried_hit)
+      continue;  // a knock on the item it holds (a bounce as it locks): one body
     const physics::BodyId other = e.body == gripper ? e.other : e.body;
     // set down on the item to lift, or (the hoist brake failed, the load down) set down to stay
     if (gripper_hit && !carried_ && (goal_of(other, simulation) >= 0 || stopping_safely_)) {
@@ -382,7 +384,8 @@ void Evaluator::observe_containers(const Simulation& simulation, const Controls&
   for (const physics::ImpactEvent& e : simulation.events().impacts) {
     const bool spreader_hit = e.body == spreader || e.other == spreader;
     const bool carried_hit = carried_ && (e.body == *carried_ || e.other == *carried_);
-    if (!spreader_hit && !carried_hit) continue;
+    // a spreader knocking on the box it has locked (a bounce as the locks turn) is one body with it
+    if (spreader_hit == carried_hit) continue;
     const physics::BodyId other =
         spreader_hit ? (e.body == spreader ? e.other : e.body) : (e.body == *carried_ ? e.other : e.body);
     const bool touching_goal_box = spreader_hit && !carried_ && goal_of(other, simulation) >= 0;
