@@ -9,11 +9,13 @@
 namespace harbour::sim {
 namespace {
 
-constexpr double kCreepGain_per_s = 0.25;   // head speed towards the target per metre off it
-constexpr double kSwingGain_per_s = 0.6;    // head speed towards the load per metre of swing
-constexpr double kCalm_m = 0.35;            // swing at which the load counts as calm
-constexpr double kSwingFilter_s = 1.0;      // time constant of the swing and height the levers follow
-constexpr double kHeightBand_m = 0.3;       // height error the hoist leaves alone
+constexpr double kCreepGain_per_s = 0.25;  // head speed towards the target per metre off it
+constexpr double kSwingGain_per_s = 0.6;
+constexpr double kLevelOff_s = 0.3;     // the slewing speed held this long before it is eased back    // head
+                                        // speed towards the load per metre of swing
+constexpr double kCalm_m = 0.35;        // swing at which the load counts as calm
+constexpr double kSwingFilter_s = 1.0;  // time constant of the swing and height the levers follow
+constexpr double kHeightBand_m = 0.3;   // height error the hoist leaves alone
 constexpr double kHeightGain_per_m = 0.25;  // hoist lever per metre beyond it
 constexpr double kLeverTravel_s = 1.0;      // a lever from neutral to full
 // setting an empty attachment down after a fault: the hoist lever at most, as it touches, and per metre over
@@ -37,6 +39,11 @@ void BoomSteering::observe(const MobileHarbourCrane& crane, double decision_s, b
   const double smoothing = restart ? 1.0 : decision_s / (kSwingFilter_s + decision_s);
   swing_m_ += (swing - swing_m_) * smoothing;
   held_bottom_m_ += (crane.attachment_bottom_z_m() - held_bottom_m_) * smoothing;
+  const double reference = crane.slew_drive().reference_mps();
+  const bool rising =
+      !restart && std::abs(reference) > std::abs(slew_reference_) && reference * slew_reference_ > 0.0;
+  slew_rising_ago_s_ = rising ? 0.0 : slew_rising_ago_s_ + decision_s;
+  slew_reference_ = reference;
 }
 
 bool BoomSteering::steer(const MobileHarbourCrane& crane, const Target& target, double tolerance_m,
@@ -53,6 +60,11 @@ bool BoomSteering::steer(const MobileHarbourCrane& crane, const Target& target, 
   const double v_t = std::clamp(kCreepGain_per_s * e_t, -v_t_max, v_t_max) + kSwingGain_per_s * s_t;
   const double v_r = std::clamp(kCreepGain_per_s * e_r, -v_r_max, v_r_max) + kSwingGain_per_s * s_r;
   slew = std::clamp(v_t / v_t_max, -1.0, 1.0);
+  // while the drive speeds up, and a moment after, the lever is not brought back under its speed: the ramp
+  // would turn from full acceleration to deceleration at once (a harsh move); it levels off, then comes back
+  const double reached = slew_reference_ / s.slew_drive.max_speed_mps;
+  if (slew_rising_ago_s_ < kLevelOff_s && slew * reached >= 0.0 && std::abs(slew) < std::abs(reached))
+    slew = reached;
   luff = std::clamp(-v_r / v_r_max, -1.0, 1.0);  // + raises the boom: less radius
   const double off = std::hypot(e_t + s_t, e_r + s_r);
   return off < tolerance_m && std::hypot(s_t, s_r) < kCalm_m;

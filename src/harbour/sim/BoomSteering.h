@@ -36,7 +36,9 @@ class BoomSteering {
   double bottom_m() const { return held_bottom_m_; }
 
  private:
-  core::Vec3 swing_m_;  // the load's offset from plumb under the falls, low-passed
+  core::Vec3 swing_m_;              // the load's offset from plumb under the falls, low-passed
+  double slew_reference_ = 0.0;     // the slewing drive's ramped reference at the last decision [rad/s]
+  double slew_rising_ago_s_ = 1e9;  // since the slewing drive last sped up [s]
   double held_bottom_m_ = 0.0;
 };
 

@@ -146,6 +146,7 @@ class MobileHarbourCrane final : public Machine {
 
   /// Slew angle [rad], counted through full turns; boom angle above horizontal [rad].
   double slew_rad() const { return slew_; }
+  const Drive& slew_drive() const { return slew_drive_; }
   double boom_angle_rad() const;
   /// Horizontal distance from the slewing axis to the boom head's sheaves [m].
   double radius_m() const;
