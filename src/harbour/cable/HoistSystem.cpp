@@ -12,6 +12,8 @@ using core::Vec3;
 
 constexpr double kCourant = 0.5;              // sub-step: wave (plus transport) crosses half a node interval
 constexpr double kSpringDecay_s = 0.05;       // a suspended oscillation's shape fades over this time
+constexpr double kStretchStability = 1.0;     // sub-step times the stretch coupling's frequency (< 2)
+constexpr double kMaxWave_hz = 20.0;          // a segment whose fundamental would be faster becomes a spring
 constexpr double kBrakeSpeedFraction = 1e-3;  // brake engages below this share of full speed
 
 Vec3 perpendicular(const Vec3& v, const Vec3& e) {
@@ -56,11 +58,44 @@ HoistSystem::HoistSystem(const ReevingSettings& settings, const CableBodies& bod
 }
 
 void HoistSystem::pretension(double tension_n) {
+  if (settings_.stretch_along_chord) {
+    pretension_straight(tension_n);
+    return;
+  }
+  // each segment hangs in its static sag under that tension (the parabola of w_ss = -mu g_perp / T) and is
+  // stretched along that curve: the load starts where it will rest and the spans do not drop into their sag
+  for (Rope& rope : ropes_)
+    for (const int index : rope.segments) {
+      Segment& s = segments_[static_cast<std::size_t>(index)];
+      const RopeSettings& settings = settings_.ropes[static_cast<std::size_t>(s.rope)];
+      const Vec3 e = (s.end_b - s.end_a) * (1.0 / std::max(s.chord_length, 1e-9));
+      const Vec3 sag = perpendicular(gravity_, e) * (settings.mass_per_m_kg / (2.0 * tension_n));
+      const double h = s.chord_length / settings.nodes;
+      s.length = 0.0;
+      Vec3 previous{};
+      for (std::size_t k = 0; k <= s.w.size(); ++k) {
+        const double along = static_cast<double>(k + 1) * h;
+        const Vec3 w = k < s.w.size() ? sag * (along * (s.chord_length - along)) : Vec3{};
+        if (k < s.w.size()) s.w[k] = w;
+        s.length += std::sqrt(h * h + core::dot(w - previous, w - previous));
+        previous = w;
+      }
+      s.sag_share = 1.0;
+      const double ea = settings.axial_stiffness_n;
+      const double rest = s.length / (1.0 + tension_n / ea);  // T = EA (L - L0) / L0
+      rope.stored_m += s.rest_length - rest;
+      s.rest_length = rest;
+      s.tension = tension_n;
+      s.stiffness = ea / rest * s.length / rest;
+    }
+}
+
+void HoistSystem::pretension_straight(double tension_n) {
   for (Rope& rope : ropes_)
     for (const int index : rope.segments) {
       Segment& s = segments_[static_cast<std::size_t>(index)];
       const double ea = settings_.ropes[static_cast<std::size_t>(s.rope)].axial_stiffness_n;
-      const double rest = s.chord_length / (1.0 + tension_n / ea);  // T = EA (L - L0) / L0
+      const double rest = s.chord_length / (1.0 + tension_n / ea);
       rope.stored_m += s.rest_length - rest;
       s.rest_length = rest;
       s.tension = tension_n;
@@ -145,8 +180,25 @@ void HoistSystem::update_segment(Segment& s, const RopeSettings& rope, double dt
   // ends
   const double transport = 0.5 * (rope_speed_into(s, true) + rope_speed_into(s, false));
   const double wave_speed = std::sqrt(s.tension / mu);
-  const int substeps = static_cast<int>(std::ceil(dt * (wave_speed + std::abs(transport)) / (kCourant * h)));
-  if (s.oscillating && substeps > settings_.max_substeps) {
+  // the stretch of the curved rope couples its nodes through the tension (a rank-one stiffness EA/L0 g g^T,
+  // g the gradient of the curved length): its frequency bounds the sub-step too
+  double gradient_squared = 0.0;
+  if (s.tension > 0.0 && !settings_.stretch_along_chord)
+    for (std::size_t k = 0; k < s.w.size(); ++k) {
+      const Vec3 left = k > 0 ? s.w[k - 1] : Vec3{}, right = k + 1 < s.w.size() ? s.w[k + 1] : Vec3{};
+      const Vec3 in = s.w[k] - left, out = right - s.w[k];
+      const Vec3 g = in * (1.0 / std::sqrt(h * h + core::dot(in, in))) -
+                     out * (1.0 / std::sqrt(h * h + core::dot(out, out)));
+      gradient_squared += core::dot(g, g);
+    }
+  const double stretch_rate = std::sqrt(rope.axial_stiffness_n / s.rest_length * gradient_squared / (mu * h));
+  const int substeps = static_cast<int>(std::ceil(
+      dt * std::max((wave_speed + std::abs(transport)) / (kCourant * h), stretch_rate / kStretchStability)));
+  // a short, taut segment vibrates too fast to matter (its fundamental beyond kMaxWave_hz): a spring, whose
+  // curved length would otherwise tie its tension to millimetres of transverse motion
+  const bool too_fast =
+      !settings_.stretch_along_chord && wave_speed > kMaxWave_hz * 2.0 * std::max(chord_length, 1e-9);
+  if (s.oscillating && (substeps > settings_.max_substeps || too_fast)) {
     s.oscillating = false;
     s.switch_tension = s.tension;
   } else if (!s.oscillating && s.tension < settings_.resume_fraction * s.switch_tension) {
@@ -156,10 +208,10 @@ void HoistSystem::update_segment(Segment& s, const RopeSettings& rope, double dt
   // the share of the rope's cross-chord weight that travels through the sag: it builds as a wave segment sags
   // and fades with a spring's shape, so the end forces change smoothly across a switch
   const double fade = std::exp(-dt / kSpringDecay_s);
+  const Vec3 accel_a = (va - s.velocity_a) * (1.0 / dt), accel_b = (vb - s.velocity_b) * (1.0 / dt);
   if (s.oscillating && s.tension > 0.0) {
     s.sag_share = 1.0 - (1.0 - s.sag_share) * fade;
-    integrate_wave(s, rope, dt, substeps, e, h, transport, (va - s.velocity_a) * (1.0 / dt),
-                   (vb - s.velocity_b) * (1.0 / dt));
+    integrate_wave(s, rope, dt, substeps, e, h, transport, accel_a, accel_b);
   } else {
     s.sag_share *= fade;
     for (std::size_t k = 0; k < s.w.size(); ++k) {
@@ -168,15 +220,26 @@ void HoistSystem::update_segment(Segment& s, const RopeSettings& rope, double dt
     }
   }
 
-  // tension from the stretch of the chord (the linear string: transverse motion does not stretch the rope),
-  // with strain-rate damping; a rope never pushes
+  // the rope's mass across the chord, where no wave carries it (a spring, the share not yet in the sag): a
+  // taut straight rope moving with its ends, its inertia on them by the consistent mass of a linear element
+  // (m/3 at its own end, m/6 at the other), from their accelerations of the last step
+  const double spring_mass =
+      s.tension > 0.0 && !settings_.stretch_along_chord ? (1.0 - s.sag_share) * mu * s.rest_length : 0.0;
+  const Vec3 across_a = perpendicular(accel_a, e), across_b = perpendicular(accel_b, e);
+  s.inertia_a = (across_a * (1.0 / 3.0) + across_b * (1.0 / 6.0)) * -spring_mass;
+  s.inertia_b = (across_a * (1.0 / 6.0) + across_b * (1.0 / 3.0)) * -spring_mass;
+
+  // tension from the stretch of the curved rope (its sag takes up rope: what keeps the energy of the wave and
+  // of the end bodies one account), with strain-rate damping; a rope never pushes
   double length = 0.0;
   for (int k = 0; k < n; ++k) {
     const Vec3 left = k > 0 ? s.w[k - 1] : Vec3{}, right = k + 1 < n ? s.w[k] : Vec3{};
     length += std::sqrt(h * h + core::dot(right - left, right - left));
   }
-  const double stretch = chord_length - s.rest_length;
-  const double strain_rate = ((chord_length - s.chord_length) / dt) / s.rest_length;
+  const bool along_chord = settings_.stretch_along_chord;
+  const double stretch = (along_chord ? chord_length : length) - s.rest_length;
+  const double strain_rate =
+      ((along_chord ? chord_length - s.chord_length : length - s.length) / dt) / s.rest_length;
   s.length = length;
   s.chord_length = chord_length;
   if (stretch > 0.0) {
@@ -309,9 +372,10 @@ void HoistSystem::apply_forces(const Segment& s, const RopeSettings& rope, Cable
   const ElementSettings& ea = settings_.elements[s.a];
   const ElementSettings& eb = settings_.elements[s.b];
   if (ea.mount.body >= 0)
-    bodies.add_force(ea.mount.body, s.end_a, first * (s.tension / core::length(first)) + carried);
+    bodies.add_force(ea.mount.body, s.end_a,
+                     first * (s.tension / core::length(first)) + carried + s.inertia_a);
   if (eb.mount.body >= 0)
-    bodies.add_force(eb.mount.body, s.end_b, last * (s.tension / core::length(last)) + carried);
+    bodies.add_force(eb.mount.body, s.end_b, last * (s.tension / core::length(last)) + carried + s.inertia_b);
 }
 
 void HoistSystem::check_events(Segment& s, const RopeSettings& rope, int rope_index, int segment_index) {

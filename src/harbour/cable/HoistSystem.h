@@ -99,6 +99,7 @@ class HoistSystem {
     std::vector<core::Vec3> w, u;       // transverse displacement [m] and velocity [m/s] of interior nodes
     core::Vec3 end_a, end_b;            // [m] world positions of the ends this step
     core::Vec3 velocity_a, velocity_b;  // [m/s] previous end velocities, for end accelerations
+    core::Vec3 inertia_a, inertia_b;    // [N] the spring-carried rope's inertia on its ends (this step's)
   };
   struct Rope {
     std::vector<int> segments;
@@ -112,6 +113,7 @@ class HoistSystem {
 
   const Segment& segment_at(int rope, int s) const { return segments_[ropes_[rope].segments[s]]; }
   double rope_speed_into(const Segment& s, bool at_a) const;
+  void pretension_straight(double tension_n);
   void update_segment(Segment& s, const RopeSettings& rope, double dt, const CableBodies& bodies);
   void integrate_wave(Segment& s, const RopeSettings& rope, double dt, int substeps, const core::Vec3& e,
                       double h, double transport, const core::Vec3& accel_a, const core::Vec3& accel_b);

@@ -87,6 +87,7 @@ class BySlot {
 namespace {
 ScenarioSettings as_recorded(ScenarioSettings scenario, const Recording& recording) {
   scenario.ropes_start_unstretched = !recording.ropes_settled;
+  scenario.ropes_stretch_along_chord = !recording.ropes_curved;
   return scenario;
 }
 }  // namespace
@@ -179,6 +180,7 @@ TakeOver take_over(const ScenarioSettings& scenario, const Recording& recording,
   prefix.branch_step = r.simulation->steps();
   prefix.total_steps = r.simulation->steps();
   prefix.ropes_settled = recording.ropes_settled;  // a replay of the branch starts as the original did
+  prefix.ropes_curved = recording.ropes_curved;
   // the branch records by this machine's labels: the prefix's controls are carried over to them
   const ControlTable& table = r.simulation->control_table();
   for (const ControlSpec& c : table.controls())

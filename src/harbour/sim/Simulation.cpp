@@ -60,6 +60,23 @@ std::unique_ptr<Machine> make_machine(physics::PhysicsWorld& world, const Machin
       },
       setup);
 }
+
+// every reeving of the machine on the rope model of runs recorded before the curved length counted
+MachineSetup with_ropes_along_chords(MachineSetup setup) {
+  std::visit(
+      [](auto& m) {
+        using T = std::decay_t<decltype(m)>;
+        if constexpr (std::is_same_v<T, StsSetup>) m.crane.hoist.stretch_along_chord = true;
+        if constexpr (std::is_same_v<T, RtgSetup>) m.crane.rig.hoist.stretch_along_chord = true;
+        if constexpr (std::is_same_v<T, MhcSetup>) {
+          m.crane.luffing.stretch_along_chord = true;
+          m.crane.hoist.stretch_along_chord = true;
+          if (m.crane.hook) m.crane.hook->hoist.stretch_along_chord = true;
+        }
+      },
+      setup);
+  return setup;
+}
 }  // namespace
 
 StsCrane& Simulation::sts() {
@@ -108,7 +125,9 @@ Simulation::Simulation(const ScenarioSettings& scenario)
                           : c.pose);
   }
   if (scenario.trucks.trucks > 0) trucks_ = std::make_unique<TruckLane>(*world_, scenario.trucks);
-  machine_ = make_machine(*world_, scenario.machine);
+  machine_ =
+      make_machine(*world_, scenario.ropes_stretch_along_chord ? with_ropes_along_chords(scenario.machine)
+                                                               : scenario.machine);
   if (!scenario.ropes_start_unstretched) machine_->settle_ropes();
   if (scenario.ramp) {
     ramp_ = std::make_unique<RoRoRamp>(*scenario.ramp);

@@ -162,6 +162,9 @@ struct ScenarioSettings {
   /// The hoist ropes start unstretched, the load dropping onto them (as every run before recording version
   /// 8 started: their replays start so); otherwise stretched under it, at rest.
   bool ropes_start_unstretched = false;
+  /// The ropes stretch along their chords (cable::ReevingSettings::stretch_along_chord), as in every run
+  /// recorded before the curved length counted: their replays run so.
+  bool ropes_stretch_along_chord = false;
 };
 
 /// The executive: a pure function of its inputs at a fixed 1 kHz step (no clocks, files or threads). The
