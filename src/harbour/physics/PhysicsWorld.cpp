@@ -482,6 +482,25 @@ Vec3 PhysicsWorld::angular_velocity(BodyId body) const {
   return to_vec(dBodyGetAngularVel(ode_->bodies[body].id));
 }
 
+double PhysicsWorld::kinetic_energy_j() const {
+  double total = 0.0;
+  for (const Ode::Body& b : ode_->bodies) {
+    if (dBodyIsKinematic(b.id)) continue;
+    dMass m;
+    dBodyGetMass(b.id, &m);
+    const Vec3 v = to_vec(dBodyGetLinearVel(b.id));
+    dVector3 w;  // angular velocity in the body frame, where the inertia is
+    const dReal* world_w = dBodyGetAngularVel(b.id);
+    dBodyVectorFromWorld(b.id, world_w[0], world_w[1], world_w[2], w);
+    double rotation = 0.0;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        rotation += w[i] * m.I[i * 4 + j] * w[j];
+    total += 0.5 * m.mass * core::dot(v, v) + 0.5 * rotation;
+  }
+  return total;
+}
+
 double PhysicsWorld::mass_kg(BodyId body) const {
   dMass m;
   dBodyGetMass(ode_->bodies[body].id, &m);

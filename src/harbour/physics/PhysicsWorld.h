@@ -139,6 +139,8 @@ class PhysicsWorld {
   core::Vec3 linear_velocity(BodyId body) const;
   core::Vec3 angular_velocity(BodyId body) const;
   double mass_kg(BodyId body) const;
+  /// Kinetic energy of every body the solver moves (kinematic ones left out), translation and rotation [J].
+  double kinetic_energy_j() const;
   core::Vec3 point_position(BodyId body, const core::Vec3& local) const;
   core::Vec3 point_velocity(BodyId body, const core::Vec3& local) const;
   /// A world force at a world point for the next step (cleared by the step).
