@@ -183,7 +183,7 @@ void HoistSystem::update_segment(Segment& s, const RopeSettings& rope, double dt
   // the stretch of the curved rope couples its nodes through the tension (a rank-one stiffness EA/L0 g g^T,
   // g the gradient of the curved length): its frequency bounds the sub-step too
   double gradient_squared = 0.0;
-  if (s.tension > 0.0 && !settings_.stretch_along_chord)
+  if (s.oscillating && s.tension > 0.0 && !settings_.stretch_along_chord)
     for (std::size_t k = 0; k < s.w.size(); ++k) {
       const Vec3 left = k > 0 ? s.w[k - 1] : Vec3{}, right = k + 1 < s.w.size() ? s.w[k + 1] : Vec3{};
       const Vec3 in = s.w[k] - left, out = right - s.w[k];
