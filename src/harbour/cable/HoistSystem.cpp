@@ -103,6 +103,12 @@ void HoistSystem::pretension_straight(double tension_n) {
     }
 }
 
+void HoistSystem::stop_transverse_motion() {
+  if (settings_.stretch_along_chord) return;
+  for (Segment& s : segments_)
+    std::fill(s.u.begin(), s.u.end(), Vec3{});
+}
+
 double HoistSystem::rope_speed_into(const Segment& s, bool at_a) const {
   // speed at which rope material crosses an end of the segment, positive from the drum towards the dead end
   const int e = at_a ? s.a : s.b;

@@ -46,6 +46,10 @@ class HoistSystem {
   /// stretch taken from the rope on the drums (a block-and-tackle at rest carries one tension along each
   /// rope; without it a load starts on unstretched ropes, drops and bounces on them).
   void pretension(double tension_n);
+  /// Stops every segment's transverse motion where it is (its shape kept): with the end bodies stopped, the
+  /// kinetic damping that settles a machine at rest before it starts. Not on the chord's stretch
+  /// (ReevingSettings::stretch_along_chord): the runs recorded on it settled without.
+  void stop_transverse_motion();
 
   /// Advances by `dt_s` (one command per drum, in element order of the drums) and adds the rope forces
   /// to the bodies.

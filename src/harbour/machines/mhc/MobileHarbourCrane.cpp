@@ -245,6 +245,8 @@ void MobileHarbourCrane::settle() {
     if (energy < last_energy) {
       for (const physics::BodyId b : bodies)
         world_.stop_body(b);
+      luffing_->stop_transverse_motion();
+      hoist_->stop_transverse_motion();
       energy = 0.0;
     }
     last_energy = energy;
