@@ -17,7 +17,9 @@ constexpr double kCalm_m = 0.35;        // swing at which the load counts as cal
 constexpr double kSwingFilter_s = 1.0;  // time constant of the swing and height the levers follow
 constexpr double kHeightBand_m = 0.3;   // height error the hoist leaves alone
 constexpr double kHeightGain_per_m = 0.25;  // hoist lever per metre beyond it
-constexpr double kLeverTravel_s = 1.0;      // a lever from neutral to full
+constexpr double kLeverTravel_s = 1.0;
+constexpr double kLeverEase_s = 0.2;       // a lever eases into its position over about this time
+constexpr double kLeverResolution = 1e-3;  // ... and then steps the rest      // a lever from neutral to full
 // setting an empty attachment down after a fault: the hoist lever at most, as it touches, and per metre over
 // what it rests on in between
 constexpr double kRestLowering = 0.5, kRestTouch = 0.04, kRestEase_per_m = 0.15;
@@ -94,11 +96,15 @@ Controls stop_after_hoist_fault(const ControlTable& table, const MobileHarbourCr
 Controls hand_levers(const ControlTable& table, const Controls& last, double decision_s,
                      std::initializer_list<std::pair<const char*, double>> wanted) {
   Controls out = table.neutral();
+  // at most full travel in kLeverTravel_s, easing into the wanted position over its last kLeverEase_s (a
+  // lever stopped dead at full speed is a jerk the drive passes on: a harsh move)
   const double step = decision_s / kLeverTravel_s;
   for (const auto& [label, value] : wanted)
     if (const int slot = table.find(label); slot >= 0) {
       const double was = last.value[static_cast<std::size_t>(slot)];
-      out.value[static_cast<std::size_t>(slot)] = std::clamp(value, was - step, was + step);
+      const double eased = std::abs(value - was) * decision_s / kLeverEase_s;
+      const double move = std::min(step, std::max(eased, kLeverResolution));
+      out.value[static_cast<std::size_t>(slot)] = std::clamp(value, was - move, was + move);
     }
   return out;
 }
