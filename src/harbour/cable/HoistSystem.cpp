@@ -58,48 +58,36 @@ HoistSystem::HoistSystem(const ReevingSettings& settings, const CableBodies& bod
 }
 
 void HoistSystem::pretension(double tension_n) {
-  if (settings_.stretch_along_chord) {
-    pretension_straight(tension_n);
-    return;
-  }
   // each segment hangs in its static sag under that tension (the parabola of w_ss = -mu g_perp / T) and is
   // stretched along that curve: the load starts where it will rest and the spans do not drop into their sag
+  // (on the chord's stretch, straight)
   for (Rope& rope : ropes_)
     for (const int index : rope.segments) {
       Segment& s = segments_[static_cast<std::size_t>(index)];
       const RopeSettings& settings = settings_.ropes[static_cast<std::size_t>(s.rope)];
-      const Vec3 e = (s.end_b - s.end_a) * (1.0 / std::max(s.chord_length, 1e-9));
-      const Vec3 sag = perpendicular(gravity_, e) * (settings.mass_per_m_kg / (2.0 * tension_n));
-      const double h = s.chord_length / settings.nodes;
-      s.length = 0.0;
-      Vec3 previous{};
-      for (std::size_t k = 0; k <= s.w.size(); ++k) {
-        const double along = static_cast<double>(k + 1) * h;
-        const Vec3 w = k < s.w.size() ? sag * (along * (s.chord_length - along)) : Vec3{};
-        if (k < s.w.size()) s.w[k] = w;
-        s.length += std::sqrt(h * h + core::dot(w - previous, w - previous));
-        previous = w;
+      double length = s.chord_length;
+      if (!settings_.stretch_along_chord) {
+        const Vec3 e = (s.end_b - s.end_a) * (1.0 / std::max(s.chord_length, 1e-9));
+        const Vec3 sag = perpendicular(gravity_, e) * (settings.mass_per_m_kg / (2.0 * tension_n));
+        const double h = s.chord_length / settings.nodes;
+        length = 0.0;
+        Vec3 previous{};
+        for (std::size_t k = 0; k <= s.w.size(); ++k) {
+          const double along = static_cast<double>(k + 1) * h;
+          const Vec3 w = k < s.w.size() ? sag * (along * (s.chord_length - along)) : Vec3{};
+          if (k < s.w.size()) s.w[k] = w;
+          length += std::sqrt(h * h + core::dot(w - previous, w - previous));
+          previous = w;
+        }
+        s.length = length;
+        s.sag_share = 1.0;
       }
-      s.sag_share = 1.0;
       const double ea = settings.axial_stiffness_n;
-      const double rest = s.length / (1.0 + tension_n / ea);  // T = EA (L - L0) / L0
+      const double rest = length / (1.0 + tension_n / ea);  // T = EA (L - L0) / L0
       rope.stored_m += s.rest_length - rest;
       s.rest_length = rest;
       s.tension = tension_n;
-      s.stiffness = ea / rest * s.length / rest;
-    }
-}
-
-void HoistSystem::pretension_straight(double tension_n) {
-  for (Rope& rope : ropes_)
-    for (const int index : rope.segments) {
-      Segment& s = segments_[static_cast<std::size_t>(index)];
-      const double ea = settings_.ropes[static_cast<std::size_t>(s.rope)].axial_stiffness_n;
-      const double rest = s.chord_length / (1.0 + tension_n / ea);
-      rope.stored_m += s.rest_length - rest;
-      s.rest_length = rest;
-      s.tension = tension_n;
-      s.stiffness = ea / rest * s.chord_length / rest;
+      s.stiffness = ea / rest * length / rest;
     }
 }
 
@@ -202,8 +190,7 @@ void HoistSystem::update_segment(Segment& s, const RopeSettings& rope, double dt
       dt * std::max((wave_speed + std::abs(transport)) / (kCourant * h), stretch_rate / kStretchStability)));
   // a short, taut segment vibrates too fast to matter (its fundamental beyond kMaxWave_hz): a spring, whose
   // curved length would otherwise tie its tension to millimetres of transverse motion
-  const bool too_fast =
-      !settings_.stretch_along_chord && wave_speed > kMaxWave_hz * 2.0 * std::max(chord_length, 1e-9);
+  const bool too_fast = !settings_.stretch_along_chord && wave_speed > kMaxWave_hz * 2.0 * chord_length;
   if (s.oscillating && (substeps > settings_.max_substeps || too_fast)) {
     s.oscillating = false;
     s.switch_tension = s.tension;

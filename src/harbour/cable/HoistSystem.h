@@ -117,7 +117,6 @@ class HoistSystem {
 
   const Segment& segment_at(int rope, int s) const { return segments_[ropes_[rope].segments[s]]; }
   double rope_speed_into(const Segment& s, bool at_a) const;
-  void pretension_straight(double tension_n);
   void update_segment(Segment& s, const RopeSettings& rope, double dt, const CableBodies& bodies);
   void integrate_wave(Segment& s, const RopeSettings& rope, double dt, int substeps, const core::Vec3& e,
                       double h, double transport, const core::Vec3& accel_a, const core::Vec3& accel_b);

@@ -52,7 +52,8 @@ struct ReevingSettings {
   int max_substeps = 8;          ///< wave sub-steps per simulation step before a segment becomes a spring
   double resume_fraction = 0.8;  ///< a spring segment oscillates again below this share of the switch tension
   /// The rope stretched along its chord, a spring without the rope's inertia, pretension without sag: the
-  /// model every run recorded before recording flag 2 ran on (their replays run on it; never from a file).
+  /// model every run recorded without recording header flag bit 1 ran on (their replays run on it; never from
+  /// a file).
   bool stretch_along_chord = false;
 };
 

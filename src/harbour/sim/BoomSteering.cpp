@@ -9,17 +9,16 @@
 namespace harbour::sim {
 namespace {
 
-constexpr double kCreepGain_per_s = 0.25;  // head speed towards the target per metre off it
-constexpr double kSwingGain_per_s = 0.6;
-constexpr double kLevelOff_s = 0.3;     // the slewing speed held this long before it is eased back    // head
-                                        // speed towards the load per metre of swing
-constexpr double kCalm_m = 0.35;        // swing at which the load counts as calm
-constexpr double kSwingFilter_s = 1.0;  // time constant of the swing and height the levers follow
-constexpr double kHeightBand_m = 0.3;   // height error the hoist leaves alone
+constexpr double kCreepGain_per_s = 0.25;   // head speed towards the target per metre off it
+constexpr double kSwingGain_per_s = 0.6;    // head speed towards the load per metre of swing
+constexpr double kLevelOff_s = 0.3;         // the slewing speed held this long before it is eased back
+constexpr double kCalm_m = 0.35;            // swing at which the load counts as calm
+constexpr double kSwingFilter_s = 1.0;      // time constant of the swing and height the levers follow
+constexpr double kHeightBand_m = 0.3;       // height error the hoist leaves alone
 constexpr double kHeightGain_per_m = 0.25;  // hoist lever per metre beyond it
-constexpr double kLeverTravel_s = 1.0;
-constexpr double kLeverEase_s = 0.2;       // a lever eases into its position over about this time
-constexpr double kLeverResolution = 1e-3;  // ... and then steps the rest      // a lever from neutral to full
+constexpr double kLeverTravel_s = 1.0;      // a lever from neutral to full
+constexpr double kLeverEase_s = 0.2;        // a lever eases into its position over about this time
+constexpr double kLeverResolution = 1e-3;   // ... and then steps the rest
 // setting an empty attachment down after a fault: the hoist lever at most, as it touches, and per metre over
 // what it rests on in between
 constexpr double kRestLowering = 0.5, kRestTouch = 0.04, kRestEase_per_m = 0.15;

@@ -31,7 +31,7 @@ struct Recording {
   /// before version 8 started; ScenarioSettings::ropes_start_unstretched). A replay starts as the run did.
   bool ropes_settled = true;
   /// The run's ropes stretched along their curved length (false: along their chords, as every run recorded
-  /// before header flag 2; ScenarioSettings::ropes_stretch_along_chord).
+  /// without header flag bit 1; ScenarioSettings::ropes_stretch_along_chord).
   bool ropes_curved = true;
   /// The labels of the controls the values are stored by (a replay reads them by label, whatever slots the
   /// machine's table gives them now).
