@@ -88,6 +88,7 @@ namespace {
 ScenarioSettings as_recorded(ScenarioSettings scenario, const Recording& recording) {
   scenario.ropes_start_unstretched = !recording.ropes_settled;
   scenario.ropes_stretch_along_chord = !recording.ropes_curved;
+  scenario.end_stops_at_travel = !recording.end_stops_clear;
   return scenario;
 }
 }  // namespace
@@ -181,6 +182,7 @@ TakeOver take_over(const ScenarioSettings& scenario, const Recording& recording,
   prefix.total_steps = r.simulation->steps();
   prefix.ropes_settled = recording.ropes_settled;  // a replay of the branch starts as the original did
   prefix.ropes_curved = recording.ropes_curved;
+  prefix.end_stops_clear = recording.end_stops_clear;
   // the branch records by this machine's labels: the prefix's controls are carried over to them
   const ControlTable& table = r.simulation->control_table();
   for (const ControlSpec& c : table.controls())

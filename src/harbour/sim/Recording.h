@@ -33,6 +33,9 @@ struct Recording {
   /// The run's ropes stretched along their curved length (false: along their chords, as every run recorded
   /// without header flag bit 1; ScenarioSettings::ropes_stretch_along_chord).
   bool ropes_curved = true;
+  /// The reach stacker's telescope end stops lay beyond its drive's travel (false: at it, as in every run
+  /// recorded without header flag bit 2; ScenarioSettings::end_stops_at_travel).
+  bool end_stops_clear = true;
   /// The labels of the controls the values are stored by (a replay reads them by label, whatever slots the
   /// machine's table gives them now).
   std::vector<std::string> control_labels;

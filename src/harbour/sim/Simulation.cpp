@@ -77,6 +77,15 @@ MachineSetup with_ropes_along_chords(MachineSetup setup) {
       setup);
   return setup;
 }
+
+// the machine as the run was built: old runs on the models they were recorded with
+MachineSetup as_built(const ScenarioSettings& scenario) {
+  MachineSetup setup =
+      scenario.ropes_stretch_along_chord ? with_ropes_along_chords(scenario.machine) : scenario.machine;
+  if (auto* stacker = std::get_if<ReachStackerSetup>(&setup); stacker && scenario.end_stops_at_travel)
+    stacker->vehicle.telescope_end_stop_margin_m = 0.0;
+  return setup;
+}
 }  // namespace
 
 StsCrane& Simulation::sts() {
@@ -125,9 +134,7 @@ Simulation::Simulation(const ScenarioSettings& scenario)
                           : c.pose);
   }
   if (scenario.trucks.trucks > 0) trucks_ = std::make_unique<TruckLane>(*world_, scenario.trucks);
-  machine_ =
-      make_machine(*world_, scenario.ropes_stretch_along_chord ? with_ropes_along_chords(scenario.machine)
-                                                               : scenario.machine);
+  machine_ = make_machine(*world_, as_built(scenario));
   if (!scenario.ropes_start_unstretched) machine_->settle_ropes();
   if (scenario.ramp) {
     ramp_ = std::make_unique<RoRoRamp>(*scenario.ramp);

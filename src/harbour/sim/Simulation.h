@@ -165,6 +165,10 @@ struct ScenarioSettings {
   /// The ropes stretch along their chords (cable::ReevingSettings::stretch_along_chord), as in every run
   /// recorded before the curved length counted: their replays run so.
   bool ropes_stretch_along_chord = false;
+  /// The reach stacker's telescope end stops sit at its drive's travel limits
+  /// (ReachStackerSettings::telescope_end_stop_margin_m 0), as in every run recorded before they cleared it:
+  /// their replays run so.
+  bool end_stops_at_travel = false;
 };
 
 /// The executive: a pure function of its inputs at a fixed 1 kHz step (no clocks, files or threads). The

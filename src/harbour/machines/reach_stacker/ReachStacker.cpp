@@ -136,8 +136,9 @@ ReachStacker::ReachStacker(physics::PhysicsWorld& world, const ReachStackerSetti
   // the lift cylinders turn the boom about its pivot (+ raises: about the chassis's -y)
   luff_hinge_ = world.add_hinge(body_, outer_, p.pivot, p.chassis.rotation * core::Vec3{0, -1, 0});
   telescope_slider_ = world.add_slider(outer_, inner_, p.outer.rotation * core::Vec3{1, 0, 0});
-  world.set_slider_limits(telescope_slider_, -start.extension_m,
-                          s.telescope.max_position_m - start.extension_m);
+  world.set_slider_limits(telescope_slider_,
+                          s.telescope.min_position_m - s.telescope_end_stop_margin_m - start.extension_m,
+                          s.telescope.max_position_m + s.telescope_end_stop_margin_m - start.extension_m);
   // the rotator hangs free on the head pin (pitch, damped), turns about the vertical below it, and the
   // spreader shifts along its length on it
   tilt_hinge_ = world.add_hinge(inner_, rotator_, p.head, across * -1.0);

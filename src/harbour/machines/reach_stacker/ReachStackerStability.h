@@ -38,8 +38,12 @@ struct ReachStackerSettings {
   double boom_length_m = 9.0;     ///< [m] pivot to head pin, the telescope in
   DriveSettings luff;             ///< the lift cylinders: boom angle [rad] (speeds rad/s, torques N m)
   DriveSettings telescope;        ///< the extension cylinder: extension [m] from in
-  SpreaderSettings spreader;      ///< its frame (mass: the frame's; spreader_mass_kg adds the rotator)
-  double head_drop_m = 1.3;       ///< [m] head pin to the spreader frame's centre, hanging
+  /// [m] the telescope's end stops lie this far beyond its drive's travel (its limit switches), so the drive,
+  /// braked at a switch, never rests on a stop: ODE puts a motor's whole force on the bodies for a step when
+  /// a joint at its stop is driven away from it, and the braked drive's hold did so every 0.86 s
+  double telescope_end_stop_margin_m = 0.05;
+  SpreaderSettings spreader;  ///< its frame (mass: the frame's; spreader_mass_kg adds the rotator)
+  double head_drop_m = 1.3;   ///< [m] head pin to the spreader frame's centre, hanging
   double tilt_damping_nms_per_rad = 3e5;  ///< the spreader's pitch on the head pin (tilt dampers)
   DriveSettings rotate;                   ///< the rotator: rotation [rad] from square to the boom
   DriveSettings side_shift;               ///< [m] along the spreader's length
