@@ -23,6 +23,7 @@ constexpr char kMagic[4] = {'H', 'S', 'R', 'C'};
 constexpr std::uint16_t kFlagRopesSettled = 1;   // the run's hoist ropes started stretched under their load
 constexpr std::uint16_t kFlagRopesCurved = 2;    // its ropes stretched along their curved length
 constexpr std::uint16_t kFlagEndStopsClear = 4;  // its end stops lay beyond its drives' travel
+constexpr std::uint16_t kFlagStartSettled = 8;   // its machine was brought to rest before its first step
 
 class Writer {
  public:
@@ -158,9 +159,9 @@ RecordingWriter::RecordingWriter(const std::string& path, const sim::Recording& 
   Writer w;
   w.out.insert(w.out.end(), std::begin(kMagic), std::end(kMagic));
   w.put(kRecordingVersion);
-  w.put(static_cast<std::uint16_t>((prefix.ropes_settled ? kFlagRopesSettled : 0) |
-                                   (prefix.ropes_curved ? kFlagRopesCurved : 0) |
-                                   (prefix.end_stops_clear ? kFlagEndStopsClear : 0)));
+  w.put(static_cast<std::uint16_t>(
+      (prefix.ropes_settled ? kFlagRopesSettled : 0) | (prefix.ropes_curved ? kFlagRopesCurved : 0) |
+      (prefix.end_stops_clear ? kFlagEndStopsClear : 0) | (prefix.start_settled ? kFlagStartSettled : 0)));
   w.put(prefix.scenario);
   w.put(prefix.parent);
   w.put(prefix.branch_step);
@@ -440,8 +441,10 @@ sim::Recording parse_recording(const std::string& path, std::string bytes) {
   rec.ropes_settled = version >= 8 && (flags & kFlagRopesSettled) != 0;
   rec.ropes_curved = version >= 8 && (flags & kFlagRopesCurved) != 0;
   rec.end_stops_clear = version >= 8 && (flags & kFlagEndStopsClear) != 0;
-  if (version >= 8 && (flags & ~(kFlagRopesSettled | kFlagRopesCurved | kFlagEndStopsClear)) != 0)
-    r.fail("unknown header flags " + std::to_string(flags));
+  rec.start_settled = version >= 8 && (flags & kFlagStartSettled) != 0;
+  constexpr std::uint16_t kKnown =
+      kFlagRopesSettled | kFlagRopesCurved | kFlagEndStopsClear | kFlagStartSettled;
+  if (version >= 8 && (flags & ~kKnown) != 0) r.fail("unknown header flags " + std::to_string(flags));
   rec.scenario = r.text("scenario name");
   if (const std::string bad = core::why_bad_name(rec.scenario); !bad.empty())
     r.fail("the scenario name " + bad);

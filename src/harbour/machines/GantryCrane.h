@@ -1,5 +1,7 @@
 #pragma once
 
+#include <span>
+
 #include "harbour/machines/parts/SpreaderHoist.h"
 #include "harbour/sim/Controls.h"
 
@@ -32,5 +34,15 @@ class GantryCrane {
   /// Its controls with these levers and buttons (those it lacks ignored, the others neutral).
   virtual Controls crane_controls(const StsControls& levers) const = 0;
 };
+
+class Machine;
+
+/// Brings a gantry crane to rest before the exercise starts: its own steps with every lever neutral (drives
+/// and drum braked), its `bodies` (gantry, trolley, spreader) stopped at each peak of their kinetic energy
+/// and the ropes' waves with them. Built, its gantry and trolley hang on their joints' compliance undeflected
+/// and its spreader on ropes pretensioned straight down: the load cell then swung +-24 % through the first 2
+/// s.
+void settle_gantry_crane(Machine& crane, physics::PhysicsWorld& world,
+                         std::span<const physics::BodyId> bodies, SpreaderHoist& rig);
 
 }  // namespace harbour::sim

@@ -144,6 +144,9 @@ class Machine {
   virtual MachineTally tally() const { return {}; }
   /// Before the first step: its hoist ropes stretched under what hangs on them, at rest (built unstretched).
   virtual void settle_ropes() {}
+  /// Brings the machine to rest in its static equilibrium (ropes, joints, the load plumb) before the first
+  /// step, where it would otherwise start away from it (a gantry crane on its joints' compliance).
+  virtual void settle_at_rest() {}
   /// Its telemetry now; by default what its tally says (the swing, the motions) and no ropes.
   virtual Telemetry telemetry() const;
   /// Moves this step's events (twistlocks, ropes) into `events`.

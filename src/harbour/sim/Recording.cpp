@@ -89,6 +89,7 @@ ScenarioSettings as_recorded(ScenarioSettings scenario, const Recording& recordi
   scenario.ropes_start_unstretched = !recording.ropes_settled;
   scenario.ropes_stretch_along_chord = !recording.ropes_curved;
   scenario.end_stops_at_travel = !recording.end_stops_clear;
+  scenario.start_unsettled = !recording.start_settled;
   return scenario;
 }
 }  // namespace
@@ -183,6 +184,7 @@ TakeOver take_over(const ScenarioSettings& scenario, const Recording& recording,
   prefix.ropes_settled = recording.ropes_settled;  // a replay of the branch starts as the original did
   prefix.ropes_curved = recording.ropes_curved;
   prefix.end_stops_clear = recording.end_stops_clear;
+  prefix.start_settled = recording.start_settled;
   // the branch records by this machine's labels: the prefix's controls are carried over to them
   const ControlTable& table = r.simulation->control_table();
   for (const ControlSpec& c : table.controls())

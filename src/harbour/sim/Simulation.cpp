@@ -136,6 +136,7 @@ Simulation::Simulation(const ScenarioSettings& scenario)
   if (scenario.trucks.trucks > 0) trucks_ = std::make_unique<TruckLane>(*world_, scenario.trucks);
   machine_ = make_machine(*world_, as_built(scenario));
   if (!scenario.ropes_start_unstretched) machine_->settle_ropes();
+  if (!scenario.ropes_start_unstretched && !scenario.start_unsettled) machine_->settle_at_rest();
   if (scenario.ramp) {
     ramp_ = std::make_unique<RoRoRamp>(*scenario.ramp);
     ramp_->move_to(0.0);

@@ -169,6 +169,9 @@ struct ScenarioSettings {
   /// (ReachStackerSettings::telescope_end_stop_margin_m 0), as in every run recorded before they cleared it:
   /// their replays run so.
   bool end_stops_at_travel = false;
+  /// The machine starts as built, not brought to rest first (Machine::settle_at_rest), as in every run
+  /// recorded before it was: their replays start so.
+  bool start_unsettled = false;
 };
 
 /// The executive: a pure function of its inputs at a fixed 1 kHz step (no clocks, files or threads). The

@@ -6,6 +6,8 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "harbour/machines/parts/KineticDamping.h"
+
 namespace harbour::sim {
 namespace {
 
@@ -223,34 +225,25 @@ void MobileHarbourCrane::update_tool() {
 }
 
 void MobileHarbourCrane::settle() {
-  // dynamic relaxation with kinetic damping: step the machine at rest (drums braked), and each time its
-  // bodies' kinetic energy passes a peak stop them all; the ropes stretch to their static load in a few
-  // bounces instead of the grab and boom dropping on unstretched ropes when the exercise starts
+  // at rest, drums braked: the ropes stretch to their static load in a few bounces instead of the grab and
+  // boom dropping on unstretched ropes when the exercise starts
   std::vector<physics::BodyId> bodies{house_, boom_, block_};
   if (!on_hook()) bodies.push_back(grab_lower_);
   const std::array<cable::DrumCommand, 2> braked{};
   const cable::DrumCommand luff_braked{};
   constexpr double kDt = 0.001;
-  double last_energy = 0.0;
-  for (int k = 0; k < kSettleSteps; ++k) {
-    world_.set_hinge_motor(slew_hinge_, 0.0, settings_.slew_drive.brake_force_n);
-    luffing_->step(kDt, {&luff_braked, 1}, *luffing_bodies_);
-    hoist_->step(kDt, braked, *hoist_bodies_);
-    world_.step(kDt);
-    double energy = 0.0;
-    for (const physics::BodyId b : bodies) {
-      const core::Vec3 v = world_.linear_velocity(b), w = world_.angular_velocity(b);
-      energy += world_.mass_kg(b) * dot(v, v) + dot(w, w) * world_.mass_kg(b);  // a measure, not joules
-    }
-    if (energy < last_energy) {
-      for (const physics::BodyId b : bodies)
-        world_.stop_body(b);
-      luffing_->stop_transverse_motion();
-      hoist_->stop_transverse_motion();
-      energy = 0.0;
-    }
-    last_energy = energy;
-  }
+  settle_by_kinetic_damping(
+      world_, bodies, kSettleSteps,
+      [&] {
+        world_.set_hinge_motor(slew_hinge_, 0.0, settings_.slew_drive.brake_force_n);
+        luffing_->step(kDt, {&luff_braked, 1}, *luffing_bodies_);
+        hoist_->step(kDt, braked, *hoist_bodies_);
+        world_.step(kDt);
+      },
+      [&] {
+        luffing_->stop_transverse_motion();
+        hoist_->stop_transverse_motion();
+      });
   static_cast<void>(luffing_->take_events());  // the settling's rope events are not the exercise's
   static_cast<void>(hoist_->take_events());
   last_hinge_angle_ = world_.hinge_angle(slew_hinge_);

@@ -93,6 +93,10 @@ class RubberTyredGantry final : public Machine, public GantryCrane {
   MachineTally tally() const override;
   Telemetry telemetry() const override;
   void settle_ropes() override { rig_->settle_ropes(); }
+  void settle_at_rest() override {
+    const physics::BodyId bodies[] = {frame_, trolley_, rig_->spreader_body()};
+    settle_gantry_crane(*this, world_, bodies, *rig_);
+  }
   void drain_events(StepEvents& events) override;
   bool has_fault(MachineFault fault) const override { return fault != MachineFault::kLoadMomentLimiter; }
   void inject_fault(MachineFault fault, int detail) override;

@@ -112,6 +112,10 @@ class StsCrane final : public Machine, public GantryCrane {
   /// hoist's speeds (its tally stays empty: the STS's evaluation measures its sway and smoothness apart).
   Telemetry telemetry() const override;
   void settle_ropes() override { rig_->settle_ropes(); }
+  void settle_at_rest() override {
+    const physics::BodyId bodies[] = {gantry_body_, trolley_body_, rig_->spreader_body()};
+    settle_gantry_crane(*this, world_, bodies, *rig_);
+  }
   void drain_events(StepEvents& events) override;
   bool has_fault(MachineFault fault) const override { return fault != MachineFault::kLoadMomentLimiter; }
   void inject_fault(MachineFault fault, int detail) override;
