@@ -21,7 +21,7 @@ constexpr double kLeverEase_s = 0.2;        // a lever eases into its position o
 constexpr double kLeverResolution = 1e-3;   // ... and then steps the rest
 // setting an empty attachment down after a fault: the hoist lever at most, as it touches, and per metre over
 // what it rests on in between
-constexpr double kRestLowering = 0.5, kRestTouch = 0.04, kRestEase_per_m = 0.15;
+constexpr double kRestLowering = 0.5, kRestTouch = 0.02, kRestEase_per_m = 0.15;
 
 double wrap(double a) {
   return std::remainder(a, 2.0 * std::numbers::pi);

@@ -224,29 +224,59 @@ void MobileHarbourCrane::update_tool() {
       shell_points_[static_cast<std::size_t>(3 * a + b)].x = (a - 1) * half_span;
 }
 
+void MobileHarbourCrane::step_braked(double dt_s) {
+  const std::array<cable::DrumCommand, 2> braked{};
+  const cable::DrumCommand luff_braked{};
+  world_.set_hinge_motor(slew_hinge_, 0.0, settings_.slew_drive.brake_force_n);
+  luffing_->step(dt_s, {&luff_braked, 1}, *luffing_bodies_);
+  hoist_->step(dt_s, braked, *hoist_bodies_);
+  world_.step(dt_s);
+}
+
+std::vector<physics::BodyId> MobileHarbourCrane::settled_bodies() const {
+  std::vector<physics::BodyId> bodies{house_, boom_, block_};
+  if (!on_hook()) bodies.push_back(grab_lower_);
+  return bodies;
+}
+
+void MobileHarbourCrane::stop_rope_waves() {
+  luffing_->stop_transverse_motion();
+  hoist_->stop_transverse_motion();
+}
+
 void MobileHarbourCrane::settle() {
   // at rest, drums braked: the ropes stretch to their static load in a few bounces instead of the grab and
   // boom dropping on unstretched ropes when the exercise starts
-  std::vector<physics::BodyId> bodies{house_, boom_, block_};
-  if (!on_hook()) bodies.push_back(grab_lower_);
-  const std::array<cable::DrumCommand, 2> braked{};
-  const cable::DrumCommand luff_braked{};
+  const std::vector<physics::BodyId> bodies = settled_bodies();
   constexpr double kDt = 0.001;
   settle_by_kinetic_damping(
-      world_, bodies, kSettleSteps,
-      [&] {
-        world_.set_hinge_motor(slew_hinge_, 0.0, settings_.slew_drive.brake_force_n);
-        luffing_->step(kDt, {&luff_braked, 1}, *luffing_bodies_);
-        hoist_->step(kDt, braked, *hoist_bodies_);
-        world_.step(kDt);
-      },
-      [&] {
-        luffing_->stop_transverse_motion();
-        hoist_->stop_transverse_motion();
-      });
+      world_, bodies, kSettleSteps, [&] { step_braked(kDt); }, [&] { stop_rope_waves(); });
   static_cast<void>(luffing_->take_events());  // the settling's rope events are not the exercise's
   static_cast<void>(hoist_->take_events());
   last_hinge_angle_ = world_.hinge_angle(slew_hinge_);
+}
+
+void MobileHarbourCrane::settle_at_rest() {
+  // the load's pendulum swings down from where it was built; just past the peak of the swing's kinetic energy
+  // it passes plumb: everything is stopped there (a quarter of the pendulum's period, 2.8 s on the hook),
+  // twice (the second swing starts from what the first stop missed), and the bounce left is settled as before
+  const std::vector<physics::BodyId> bodies = settled_bodies();
+  const physics::BodyId hanging = on_hook() ? block_ : grab_lower_;
+  constexpr double kDt = 0.001;
+  for (int swing_down = 0; swing_down < 2; ++swing_down) {
+    double highest = 0.0;
+    for (int k = 0; k < kPlumbSteps; ++k) {
+      step_braked(kDt);
+      const core::Vec3 v = world_.linear_velocity(hanging);
+      const double swing = world_.mass_kg(hanging) * (v.x * v.x + v.y * v.y);
+      highest = std::max(highest, swing);
+      if (swing < kPastPeak * highest) break;
+    }
+    for (const physics::BodyId b : bodies)
+      world_.stop_body(b);
+    stop_rope_waves();
+  }
+  settle();
 }
 
 double MobileHarbourCrane::track_slew() {

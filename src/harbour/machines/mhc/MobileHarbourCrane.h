@@ -176,6 +176,9 @@ class MobileHarbourCrane final : public Machine {
   PadForces pad_forces_n() const;
   std::uint32_t pad_lift_offs() const { return pad_lift_offs_; }
   MachineTally tally() const override;
+  /// Lets the hanging load swing down to plumb and stops it there (the constructor's settling leaves it where
+  /// it was built, some 0.2 m off), then settles the ropes again.
+  void settle_at_rest() override;
   Telemetry telemetry() const override;
   /// Luffing rope reeled in per radian of boom raising [m/rad], and the boom head's radius rate at full
   /// luffing speed [m/s], from the falls' geometry now.
@@ -202,6 +205,12 @@ class MobileHarbourCrane final : public Machine {
   double track_slew();
   /// Brings the machine to rest on its ropes before the exercise starts (kSettleSteps of the world).
   void settle();
+  /// One step of the machine at rest: slewing ring, luffing and hoist drums braked.
+  void step_braked(double dt_s);
+  /// The bodies the settling moves and stops: house, boom, block and the grab's lower part on the grab.
+  std::vector<physics::BodyId> settled_bodies() const;
+  /// Stops the ropes' transverse motion (the settling stops the bodies with it).
+  void stop_rope_waves();
   void update_tool();
   /// The slinger slings a load within reach under the hook, or takes a resting one off.
   void sling(std::span<const ContainerRef> liftables);
@@ -218,6 +227,8 @@ class MobileHarbourCrane final : public Machine {
   };
   FallPulls fall_pulls() const;
   static constexpr int kSettleSteps = 4000;
+  static constexpr int kPlumbSteps = 8000;   // the longest the load may take to swing down to plumb
+  static constexpr double kPastPeak = 0.95;  // its swing's energy this far below its highest: past plumb
   physics::PhysicsWorld& world_;
   MhcSettings settings_;
   bool start_on_hook_;
