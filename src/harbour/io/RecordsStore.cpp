@@ -19,6 +19,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <type_traits>
 #include <typeinfo>
 #include <utility>
@@ -31,6 +32,11 @@
 
 namespace harbour::io {
 namespace {
+
+// setting WAL mode while another station opens the same file: tries, and the wait between them (10 s in all,
+// the busy timeout's)
+constexpr int kWalAttempts = 200;
+constexpr std::chrono::milliseconds kWalRetry{50};
 
 // The schema's versions. 1: the first records (trainees, attempts, moves, events, metrics); 2: attempts
 // remember their process, console accounts and the audit log; 3: routes (enrolments, instructors'
@@ -496,7 +502,21 @@ RecordsStore::RecordsStore(const std::string& connection) : impl_(std::make_uniq
       sql << "SET client_min_messages = WARNING";  // no NOTICE lines for tables that already exist
     }
   });
-  if (sqlite) impl_->guarded("setting WAL mode", [&] { sql << "PRAGMA journal_mode=WAL"; });
+  if (sqlite)
+    impl_->guarded("setting WAL mode", [&] {
+      // switching to WAL takes the file's exclusive lock, and SQLite answers "database is locked" at once,
+      // without the busy timeout, while another station opening the same file holds it (measured: one of
+      // eight stations started together failed so): try again for as long as the busy timeout
+      for (int attempt = 1;; ++attempt) {
+        try {
+          sql << "PRAGMA journal_mode=WAL";
+          return;
+        } catch (const soci::soci_error& e) {
+          if (attempt >= kWalAttempts || std::string(e.what()).find("locked") == std::string::npos) throw;
+          std::this_thread::sleep_for(kWalRetry);
+        }
+      }
+    });
   impl_->upgrade();
   mark_interrupted_attempts();
 }
