@@ -108,6 +108,7 @@ void expect_spreader_starts_at_rest(const std::string& exercise_file) {
     }
     if (!unstretched) {
       EXPECT_NEAR(first_n, static_n, 0.005 * static_n);
+      EXPECT_LT(hoist.net_load_t(), 0.05);  // the empty spreader's payload, tared
       EXPECT_LT(worst, 0.01);
     } else {
       EXPECT_EQ(first_n, 0.0);

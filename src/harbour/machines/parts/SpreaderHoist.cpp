@@ -91,6 +91,14 @@ double SpreaderHoist::hoisted_load_n() const {
   return total;
 }
 
+double SpreaderHoist::net_load_t() const {
+  // a fall's tension is its mean along it: at its lower end it carries half its own weight less
+  const double falls_weight_n =
+      fall_count() * pendulum_length_m() * settings_.hoist.ropes[0].mass_per_m_kg * core::kStandardGravity;
+  const double on_headblock_n = hoisted_load_n() - 0.5 * falls_weight_n;
+  return std::max(0.0, on_headblock_n / core::kStandardGravity / 1000.0 - spreader_mass_kg() / 1000.0);
+}
+
 double SpreaderHoist::full_hoist_speed_mps() const {
   const cable::ElementSettings& drum =
       settings_.hoist.elements[static_cast<std::size_t>(settings_.hoist.ropes[0].path[0])];

@@ -52,11 +52,10 @@ class SpreaderHoist {
 
   physics::BodyId spreader_body() const { return spreader_; }
   double spreader_mass_kg() const { return settings_.spreader.mass_kg; }
-  /// The payload a cab's load display shows [t]: the rope pull less the spreader's own weight (tared), not
+  /// The payload a cab's load display shows [t]: the falls' pull on the headblock (their tension less the
+  /// half of their own weight that the headblock does not carry) less the spreader's weight (tared), not
   /// below zero.
-  double net_load_t() const {
-    return std::max(0.0, hoisted_load_n() / core::kStandardGravity / 1000.0 - spreader_mass_kg() / 1000.0);
-  }
+  double net_load_t() const;
   double upper_limit_m() const { return settings_.upper_limit_m; }
   const Spreader& spreader() const { return *frame_; }
   SpreaderState spreader_state() const { return frame_->state(); }
