@@ -222,7 +222,8 @@ TEST(Flow, AGrabDumpOnAHeapSpreadsWithinSeconds) {
   std::printf("the dump at rest %.2f s after it began\n", seconds);
   EXPECT_LT(seconds, 10.0);
   EXPECT_NEAR(grid.total_volume_m3(), before + 12.0, 1e-9);
-  const double cone_top = std::cbrt(3.0 * (before + 12.0) / (std::numbers::pi * t)) * t;  // V = pi r^3 tan / 3
+  const double cone_top =
+      std::cbrt(3.0 * (before + 12.0) / (std::numbers::pi * t)) * t;  // V = pi r^3 tan / 3
   EXPECT_LT(grid.max_height_m(), 1.02 * cone_top);
   std::printf("top %.2f m, the cone of the whole volume at the repose angle %.2f m\n", grid.max_height_m(),
               cone_top);
