@@ -13,21 +13,28 @@
 namespace harbour::sim {
 namespace {
 
-// A machine, left alone in still air on a calm sea, comes to rest: the kinetic energy of everything the
-// solver moves decays and never grows again (no model pumps energy in: the ropes' waves, the tyres' holds,
-// the bulk contacts, the joints). Peaks over 20 s windows, 120 s in all.
-class LeftAlone : public testing::TestWithParam<const char*> {};
+ScenarioSettings shipped(const std::string& name) {
+  return io::load_exercise(std::string(HARBOUR_DATA_DIR "/exercises/") + name + ".yaml").scenario;
+}
 
-TEST_P(LeftAlone, ComesToRestAndStaysThere) {
-  ScenarioSettings scenario =
-      io::load_exercise(std::string(HARBOUR_DATA_DIR "/exercises/") + GetParam() + ".yaml").scenario;
+// still air, a calm sea, nothing scripted and no trucks passing
+ScenarioSettings left_alone(ScenarioSettings scenario) {
   scenario.weather.wind_mean_mps = 0.0;
   scenario.weather.turbulence_intensity = 0.0;
   scenario.events.clear();
   scenario.lift_events.clear();
   if (scenario.vessel) scenario.vessel->sea = {};
   scenario.trucks.trucks = 0;
-  Simulation sim(scenario);
+  return scenario;
+}
+
+// A machine, left alone in still air on a calm sea, comes to rest: the kinetic energy of everything the
+// solver moves decays and never grows again (no model pumps energy in: the ropes' waves, the tyres' holds,
+// the bulk contacts, the joints). Peaks over 20 s windows, 120 s in all.
+class LeftAlone : public testing::TestWithParam<const char*> {};
+
+TEST_P(LeftAlone, ComesToRestAndStaysThere) {
+  Simulation sim(left_alone(shipped(GetParam())));
   const Controls neutral = sim.control_table().neutral();
   std::vector<double> peaks;
   for (int window = 0; window < 6; ++window) {
@@ -49,8 +56,9 @@ TEST_P(LeftAlone, ComesToRestAndStaysThere) {
 }
 
 // Not the MHC on its hook: brought to rest it starts plumb within about 1 cm (0.14 J), but in still air its
-// swing then grows some 1.5 % every 20 s (0.130 to 0.138 J over 100 s in mhc_hook_lift; ten times the ropes'
-// transverse damping made it grow faster, so the wave's frame, turning with the swinging chord, feeds it).
+// swing then grows some 1.5 % every 20 s (0.130 to 0.138 J over 100 s in mhc_hook_lift). The hoist ropes'
+// waves feed it: with them as springs it stays at rest, and ten times their transverse damping doubles it in
+// 100 s.
 INSTANTIATE_TEST_SUITE_P(EveryMachine, LeftAlone,
                          testing::Values("sts_discharge", "rtg_rehandle", "tractor_free_practice",
                                          "reach_stacker_stack", "mhc_coal_discharge"));
@@ -61,11 +69,7 @@ INSTANTIATE_TEST_SUITE_P(EveryMachine, LeftAlone,
 // 0.856 s. With the stops beyond the travel it stands still; runs recorded before keep their stops.
 TEST(ReachStackerEndStops, TheTelescopeNoLongerJoltsOffItsStopWhileStanding) {
   for (const bool at_travel : {false, true}) {
-    ScenarioSettings scenario =
-        io::load_exercise(std::string(HARBOUR_DATA_DIR "/exercises/reach_stacker_stack.yaml")).scenario;
-    scenario.weather.wind_mean_mps = 0.0;
-    scenario.weather.turbulence_intensity = 0.0;
-    scenario.events.clear();
+    ScenarioSettings scenario = left_alone(shipped("reach_stacker_stack"));
     scenario.end_stops_at_travel = at_travel;
     Simulation sim(scenario);
     const Controls neutral = sim.control_table().neutral();
@@ -116,8 +120,7 @@ TEST(StartAtRest, EveryShippedExerciseReadsItsStaticRopeTensionFromTheFirstStep)
 class MhcStart : public testing::TestWithParam<const char*> {};
 
 TEST_P(MhcStart, TheLoadCellReadsTheHangingLoadFromTheFirstStep) {
-  Simulation sim(
-      io::load_exercise(std::string(HARBOUR_DATA_DIR "/exercises/") + GetParam() + ".yaml").scenario);
+  Simulation sim(shipped(GetParam()));
   const auto& mhc = dynamic_cast<const MobileHarbourCrane&>(sim.machine());
   const Controls neutral = sim.control_table().neutral();
   double low = 1e12, high = 0.0;
@@ -143,8 +146,7 @@ TEST_P(MhcStart, TheLoadCellReadsTheHangingLoadFromTheFirstStep) {
 // swing down to plumb: MobileHarbourCrane::settle_at_rest); as built it hung some 0.2 m off and swung.
 TEST_P(MhcStart, ItsLoadStartsPlumb) {
   for (const bool as_built : {true, false}) {
-    ScenarioSettings scenario =
-        io::load_exercise(std::string(HARBOUR_DATA_DIR "/exercises/") + GetParam() + ".yaml").scenario;
+    ScenarioSettings scenario = shipped(GetParam());
     scenario.start_unsettled = as_built;
     Simulation sim(scenario);
     const Controls neutral = sim.control_table().neutral();

@@ -96,9 +96,7 @@ void expect_spreader_starts_at_rest(const std::string& exercise_file) {
     Simulation sim(scenario);
     const auto& hoist = dynamic_cast<const GantryCrane&>(sim.machine()).spreader_hoist();
     const double weight_n = hoist.spreader_mass_kg() * kG;
-    const double falls_n =
-        hoist.fall_count() * hoist.pendulum_length_m() * hoist.hoist().settings().ropes[0].mass_per_m_kg * kG;
-    const double static_n = weight_n + 0.5 * falls_n;
+    const double static_n = weight_n + 0.5 * hoist.falls_weight_n();
     const double first_n = hoist.hoisted_load_n();
     double lowest_n = 1e12, worst = 0.0;
     for (int k = 1; k <= 3000; ++k) {

@@ -41,7 +41,6 @@ class HoistSystem {
  public:
   /// Builds the reeving with every segment unstretched at the bodies' current positions.
   HoistSystem(const ReevingSettings& settings, const CableBodies& bodies, const core::Vec3& gravity);
-  const ReevingSettings& settings() const { return settings_; }
 
   /// Before the first step: stretches every segment to carry `tension_n` where the bodies are now, the
   /// stretch taken from the rope on the drums (a block-and-tackle at rest carries one tension along each

@@ -40,8 +40,8 @@ class Machine;
 /// Brings a gantry crane to rest before the exercise starts: its own steps with every lever neutral (drives
 /// and drum braked), its `bodies` (gantry, trolley, spreader) stopped at each peak of their kinetic energy
 /// and the ropes' waves with them. Built, its gantry and trolley hang on their joints' compliance undeflected
-/// and its spreader on ropes pretensioned straight down: the load cell then swung +-24 % through the first 2
-/// s.
+/// and its spreader on ropes pretensioned straight down: the STS's load cell then swung +-24 % through the
+/// first 2 s.
 void settle_gantry_crane(Machine& crane, physics::PhysicsWorld& world,
                          std::span<const physics::BodyId> bodies, SpreaderHoist& rig);
 

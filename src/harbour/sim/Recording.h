@@ -36,7 +36,7 @@ struct Recording {
   /// The reach stacker's telescope end stops lay beyond its drive's travel (false: at it, as in every run
   /// recorded without header flag bit 2; ScenarioSettings::end_stops_at_travel).
   bool end_stops_clear = true;
-  /// The run's gantry crane was brought to rest before its first step (false: it started as built, as in
+  /// The run's machine was brought to rest before its first step (false: it started as built, as in
   /// every run recorded without header flag bit 3; ScenarioSettings::start_unsettled).
   bool start_settled = true;
   /// The labels of the controls the values are stored by (a replay reads them by label, whatever slots the

@@ -91,11 +91,13 @@ double SpreaderHoist::hoisted_load_n() const {
   return total;
 }
 
+double SpreaderHoist::falls_weight_n() const {
+  return fall_count() * pendulum_length_m() * settings_.hoist.ropes[0].mass_per_m_kg * core::kStandardGravity;
+}
+
 double SpreaderHoist::net_load_t() const {
   // a fall's tension is its mean along it: at its lower end it carries half its own weight less
-  const double falls_weight_n =
-      fall_count() * pendulum_length_m() * settings_.hoist.ropes[0].mass_per_m_kg * core::kStandardGravity;
-  const double on_headblock_n = hoisted_load_n() - 0.5 * falls_weight_n;
+  const double on_headblock_n = hoisted_load_n() - 0.5 * falls_weight_n();
   return std::max(0.0, on_headblock_n / core::kStandardGravity / 1000.0 - spreader_mass_kg() / 1000.0);
 }
 

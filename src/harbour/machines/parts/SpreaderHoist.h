@@ -82,6 +82,8 @@ class SpreaderHoist {
   }
   /// The falls the headblock hangs on.
   int fall_count() const { return static_cast<int>(falls_.size()); }
+  /// The falls' own weight [N] (their length times the rope's mass per metre).
+  double falls_weight_n() const;
   std::uint32_t limit_hits() const { return limits_.hits(); }
   bool at_limit() const { return limits_.at_limit(); }
 
