@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <utility>
 #include <vector>
 
 #include "harbour/core/Units.h"
@@ -146,6 +147,44 @@ TEST(HoistSystem, AHookOnALongRopeSwingsWithTheRopesMassAsWaveAndAsSpring) {
     const double period_s = mean_period(x) * kDt;
     std::printf("%s: %.3f s against %.3f s\n", max_substeps > 0 ? "wave" : "spring", period_s, expected_s);
     EXPECT_NEAR(period_s, expected_s, 0.01 * expected_s);
+  }
+}
+
+// The rope's transverse damping is internal: it acts on the rope's motion across its chord, and its
+// reaction goes to the ends. Acting against the ground instead, it pumped a swinging hook: as the chord
+// swings, the sag follows the turning gravity across it with a lag, the damping then pushes the rope along
+// with the chord's own motion, and nothing takes that work back. The same light hook, 1 degree off plumb:
+// its swing may only decay (each cycle's amplitude no larger than the last), where the old damping grows it.
+TEST(HoistSystem, AHookSwingingOnAWaveRopeNeverGainsEnergyFromTheRopesDamping) {
+  for (const bool against_ground : {false, true}) {
+    Rig rig;
+    const int load = rig.bodies.add({0.5, 0, 5}, 300.0);
+    ReevingSettings r;
+    r.damping_against_ground = against_ground;
+    r.elements = {scenes::drum({-1, {0, 0, 35}}), scenes::anchor({load, {0, 0, 0}})};
+    r.ropes = {scenes::rope_28mm({0, 1})};
+    rig.build(r);
+    rig.step(2000);
+    std::vector<double> amplitudes;  // per swing cycle (~10.8 s)
+    double amplitude = 0.0;
+    for (int k = 1; k <= 120000; ++k) {
+      rig.step();
+      amplitude = std::max(amplitude, std::abs(rig.bodies.bodies[load].position.x));
+      if (k % 10770 == 0) amplitudes.push_back(std::exchange(amplitude, 0.0));
+    }
+    ASSERT_TRUE(rig.hoist->oscillating(0, 0));
+    std::printf("damping %s: amplitude per cycle", against_ground ? "against the ground" : "internal");
+    for (const double a : amplitudes)
+      std::printf(" %.4f", a);
+    std::printf(" m\n");
+    const double per_cycle =
+        std::log(amplitudes.back() / amplitudes[1]) / static_cast<double>(amplitudes.size() - 2);
+    if (against_ground) {
+      EXPECT_GT(per_cycle, 0.0);
+    } else {
+      for (std::size_t n = 2; n < amplitudes.size(); ++n)
+        EXPECT_LE(amplitudes[n], amplitudes[n - 1] * (1.0 + 1e-4)) << "cycle " << n;
+    }
   }
 }
 

@@ -132,6 +132,11 @@ void HoistSystem::integrate_wave(Segment& s, const RopeSettings& rope, double dt
     thomas_upper_[k] = skew / thomas_pivot_[k];
   }
   thomas_rhs_.resize(m);
+  // the damping is internal to the rope (the relative motion of its nodes across the chord): its reaction
+  // goes to the ends, each node's to the two ends by its place along the chord, so it only dissipates
+  s.damping_a = Vec3{};
+  s.damping_b = Vec3{};
+  const double node_damping = rope.transverse_damping_per_s * mu * s.rest_length / n / count;
   for (int sub = 0; sub < count; ++sub) {
     for (std::size_t k = 0; k < m; ++k) {
       const Vec3 w_left = k > 0 ? w[k - 1] : Vec3{}, w_right = k + 1 < m ? w[k + 1] : Vec3{};
@@ -142,8 +147,12 @@ void HoistSystem::integrate_wave(Segment& s, const RopeSettings& rope, double dt
       const Vec3 rhs = u[k] + force * ds - (u_right - u_left) * skew;
       thomas_rhs_[k] = (rhs + (k > 0 ? thomas_rhs_[k - 1] * skew : Vec3{})) * (1.0 / thomas_pivot_[k]);
     }
-    for (std::size_t k = m; k-- > 0;)
+    for (std::size_t k = m; k-- > 0;) {
       u[k] = thomas_rhs_[k] - (k + 1 < m ? u[k + 1] * thomas_upper_[k] : Vec3{});
+      const double along = static_cast<double>(k + 1) / n;
+      s.damping_a += u[k] * (node_damping * (1.0 - along));
+      s.damping_b += u[k] * (node_damping * along);
+    }
     for (std::size_t k = 0; k < m; ++k)
       w[k] += u[k] * ds;
   }
@@ -206,6 +215,7 @@ void HoistSystem::update_segment(Segment& s, const RopeSettings& rope, double dt
     s.sag_share = 1.0 - (1.0 - s.sag_share) * fade;
     integrate_wave(s, rope, dt, substeps, e, h, transport, accel_a, accel_b);
   } else {
+    s.damping_a = s.damping_b = Vec3{};
     s.sag_share *= fade;
     for (std::size_t k = 0; k < s.w.size(); ++k) {
       s.w[k] *= fade;
@@ -362,13 +372,17 @@ void HoistSystem::apply_forces(const Segment& s, const RopeSettings& rope, Cable
   const Vec3 weight = gravity_ * (0.5 * rope.mass_per_m_kg * s.rest_length);
   const Vec3 along = e * core::dot(weight, e);
   const Vec3 carried = along + (weight - along) * (1.0 - s.sag_share);
+  const bool internal_damping = !settings_.damping_against_ground;
   const ElementSettings& ea = settings_.elements[s.a];
   const ElementSettings& eb = settings_.elements[s.b];
   if (ea.mount.body >= 0)
     bodies.add_force(ea.mount.body, s.end_a,
-                     first * (s.tension / core::length(first)) + carried + s.inertia_a);
+                     first * (s.tension / core::length(first)) + carried + s.inertia_a +
+                         (internal_damping ? s.damping_a : Vec3{}));
   if (eb.mount.body >= 0)
-    bodies.add_force(eb.mount.body, s.end_b, last * (s.tension / core::length(last)) + carried + s.inertia_b);
+    bodies.add_force(eb.mount.body, s.end_b,
+                     last * (s.tension / core::length(last)) + carried + s.inertia_b +
+                         (internal_damping ? s.damping_b : Vec3{}));
 }
 
 void HoistSystem::check_events(Segment& s, const RopeSettings& rope, int rope_index, int segment_index) {

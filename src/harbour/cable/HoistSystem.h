@@ -104,6 +104,8 @@ class HoistSystem {
     core::Vec3 end_a, end_b;            // [m] world positions of the ends this step
     core::Vec3 velocity_a, velocity_b;  // [m/s] previous end velocities, for end accelerations
     core::Vec3 inertia_a, inertia_b;    // [N] the spring-carried rope's inertia on its ends (this step's)
+    core::Vec3 damping_a,
+        damping_b;  // [N] reaction of the wave's transverse damping on its ends (this step's)
   };
   struct Rope {
     std::vector<int> segments;

@@ -55,6 +55,10 @@ struct ReevingSettings {
   /// model every run recorded without recording header flag bit 1 ran on (their replays run on it; never from
   /// a file).
   bool stretch_along_chord = false;
+  /// The wave's transverse damping acts against the ground instead of between the rope and its ends: the
+  /// model every run recorded without recording header flag bit 4 ran on (their replays run on it; never from
+  /// a file).
+  bool damping_against_ground = false;
 };
 
 }  // namespace harbour::cable

@@ -24,6 +24,7 @@ constexpr std::uint16_t kFlagRopesSettled = 1;   // the run's hoist ropes starte
 constexpr std::uint16_t kFlagRopesCurved = 2;    // its ropes stretched along their curved length
 constexpr std::uint16_t kFlagEndStopsClear = 4;  // its end stops lay beyond its drives' travel
 constexpr std::uint16_t kFlagStartSettled = 8;   // its machine was brought to rest before its first step
+constexpr std::uint16_t kFlagRopeDampingInternal = 16;  // its ropes' transverse damping acted on their ends
 
 class Writer {
  public:
@@ -161,7 +162,8 @@ RecordingWriter::RecordingWriter(const std::string& path, const sim::Recording& 
   w.put(kRecordingVersion);
   w.put(static_cast<std::uint16_t>(
       (prefix.ropes_settled ? kFlagRopesSettled : 0) | (prefix.ropes_curved ? kFlagRopesCurved : 0) |
-      (prefix.end_stops_clear ? kFlagEndStopsClear : 0) | (prefix.start_settled ? kFlagStartSettled : 0)));
+      (prefix.end_stops_clear ? kFlagEndStopsClear : 0) | (prefix.start_settled ? kFlagStartSettled : 0) |
+      (prefix.rope_damping_internal ? kFlagRopeDampingInternal : 0)));
   w.put(prefix.scenario);
   w.put(prefix.parent);
   w.put(prefix.branch_step);
@@ -442,8 +444,9 @@ sim::Recording parse_recording(const std::string& path, std::string bytes) {
   rec.ropes_curved = version >= 8 && (flags & kFlagRopesCurved) != 0;
   rec.end_stops_clear = version >= 8 && (flags & kFlagEndStopsClear) != 0;
   rec.start_settled = version >= 8 && (flags & kFlagStartSettled) != 0;
-  constexpr std::uint16_t kKnown =
-      kFlagRopesSettled | kFlagRopesCurved | kFlagEndStopsClear | kFlagStartSettled;
+  rec.rope_damping_internal = version >= 8 && (flags & kFlagRopeDampingInternal) != 0;
+  constexpr std::uint16_t kKnown = kFlagRopesSettled | kFlagRopesCurved | kFlagEndStopsClear |
+                                   kFlagStartSettled | kFlagRopeDampingInternal;
   if (version >= 8 && (flags & ~kKnown) != 0) r.fail("unknown header flags " + std::to_string(flags));
   rec.scenario = r.text("scenario name");
   if (const std::string bad = core::why_bad_name(rec.scenario); !bad.empty())

@@ -90,6 +90,7 @@ ScenarioSettings as_recorded(ScenarioSettings scenario, const Recording& recordi
   scenario.ropes_stretch_along_chord = !recording.ropes_curved;
   scenario.end_stops_at_travel = !recording.end_stops_clear;
   scenario.start_unsettled = !recording.start_settled;
+  scenario.rope_damping_against_ground = !recording.rope_damping_internal;
   return scenario;
 }
 }  // namespace
@@ -185,6 +186,7 @@ TakeOver take_over(const ScenarioSettings& scenario, const Recording& recording,
   prefix.ropes_curved = recording.ropes_curved;
   prefix.end_stops_clear = recording.end_stops_clear;
   prefix.start_settled = recording.start_settled;
+  prefix.rope_damping_internal = recording.rope_damping_internal;
   // the branch records by this machine's labels: the prefix's controls are carried over to them
   const ControlTable& table = r.simulation->control_table();
   for (const ControlSpec& c : table.controls())

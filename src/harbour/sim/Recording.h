@@ -39,6 +39,9 @@ struct Recording {
   /// The run's machine was brought to rest before its first step (false: it started as built, as in
   /// every run recorded without header flag bit 3; ScenarioSettings::start_unsettled).
   bool start_settled = true;
+  /// The ropes' transverse damping acted between each rope and its ends (false: against the ground, as in
+  /// every run recorded without header flag bit 4; ScenarioSettings::rope_damping_against_ground).
+  bool rope_damping_internal = true;
   /// The labels of the controls the values are stored by (a replay reads them by label, whatever slots the
   /// machine's table gives them now).
   std::vector<std::string> control_labels;

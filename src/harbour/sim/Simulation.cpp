@@ -61,27 +61,30 @@ std::unique_ptr<Machine> make_machine(physics::PhysicsWorld& world, const Machin
       setup);
 }
 
-// every reeving of the machine on the rope model of runs recorded before the curved length counted
-MachineSetup with_ropes_along_chords(MachineSetup setup) {
+// every reeving of the machine
+template <typename Change>
+void for_each_reeving(MachineSetup& setup, const Change& change) {
   std::visit(
-      [](auto& m) {
+      [&](auto& m) {
         using T = std::decay_t<decltype(m)>;
-        if constexpr (std::is_same_v<T, StsSetup>) m.crane.hoist.stretch_along_chord = true;
-        if constexpr (std::is_same_v<T, RtgSetup>) m.crane.rig.hoist.stretch_along_chord = true;
+        if constexpr (std::is_same_v<T, StsSetup>) change(m.crane.hoist);
+        if constexpr (std::is_same_v<T, RtgSetup>) change(m.crane.rig.hoist);
         if constexpr (std::is_same_v<T, MhcSetup>) {
-          m.crane.luffing.stretch_along_chord = true;
-          m.crane.hoist.stretch_along_chord = true;
-          if (m.crane.hook) m.crane.hook->hoist.stretch_along_chord = true;
+          change(m.crane.luffing);
+          change(m.crane.hoist);
+          if (m.crane.hook) change(m.crane.hook->hoist);
         }
       },
       setup);
-  return setup;
 }
 
 // the machine as the run was built: old runs on the models they were recorded with
 MachineSetup as_built(const ScenarioSettings& scenario) {
-  MachineSetup setup =
-      scenario.ropes_stretch_along_chord ? with_ropes_along_chords(scenario.machine) : scenario.machine;
+  MachineSetup setup = scenario.machine;
+  for_each_reeving(setup, [&](cable::ReevingSettings& reeving) {
+    reeving.stretch_along_chord = scenario.ropes_stretch_along_chord;
+    reeving.damping_against_ground = scenario.rope_damping_against_ground;
+  });
   if (auto* stacker = std::get_if<ReachStackerSetup>(&setup); stacker && scenario.end_stops_at_travel)
     stacker->vehicle.telescope_end_stop_margin_m = 0.0;
   return setup;

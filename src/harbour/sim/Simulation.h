@@ -172,6 +172,9 @@ struct ScenarioSettings {
   /// The machine starts as built, not brought to rest first (Machine::settle_at_rest), as in every run
   /// recorded before it was: their replays start so.
   bool start_unsettled = false;
+  /// The ropes' transverse damping acts against the ground (cable::ReevingSettings::damping_against_ground),
+  /// as in every run recorded before it acted between the rope and its ends: their replays run so.
+  bool rope_damping_against_ground = false;
 };
 
 /// The executive: a pure function of its inputs at a fixed 1 kHz step (no clocks, files or threads). The
