@@ -9,10 +9,12 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <filesystem>
 #include <thread>
 #include <vector>
 
 #include "harbour/bulk/BulkPublish.h"
+#include "harbour/ig/RenderThread.h"
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/sim/Autopilot.h"
 #include "harbour/sim/Evaluation.h"
@@ -20,6 +22,7 @@
 #include "harbour/station/DeviceInput.h"
 #include "harbour/station/DeviceMappingFile.h"
 #include "harbour/station/RealTimeLoop.h"
+#include "harbour/station/Session.h"
 #include "scenes/StationScenes.h"
 #include "scenes/StsScenes.h"
 
@@ -217,6 +220,53 @@ void BM_DeviceToStepLatency(benchmark::State& state) {
   state.counters["max_ms"] = latencies.back() * 1e3;
 }
 BENCHMARK(BM_DeviceToStepLatency)->UseManualTime()->Unit(benchmark::kMicrosecond)->Iterations(1000);
+
+// A live session keeping real time on this machine: the autopilot drives sts_discharge at 1 kHz paced to
+// the wall clock, the keeper records and evaluates off the step thread; with `drawing` the image generator
+// draws the cab view at 1280x720 as fast as it can beside it. One iteration is the whole run (60 s alone,
+// 20 s drawing); the counters are the loop's own figures.
+void BM_LiveRun(benchmark::State& state) {
+  const bool drawing = state.range(0) != 0;
+  const sim::ExerciseSettings exercise = scenes::sts_discharge_exercise(HARBOUR_DATA_DIR);
+  station::SessionOptions options;
+  options.trainee = "t1";
+  options.database = scenes::fresh_database("harbour_bench_live.db");
+  options.record = scenes::temp_path("harbour_bench_live.hsrc");
+  for (auto _ : state) {
+    station::Session session(exercise, options);
+    sim::Autopilot pilot(exercise);
+    session.loop().set_pilot([&](const sim::Simulation& s) { return pilot.next(s); });
+    std::unique_ptr<ig::RenderThread> render;
+    if (drawing)
+      render = std::make_unique<ig::RenderThread>(
+          session.simulation().scene(),
+          ig::load_looks(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml"), 1280, 720,
+          std::vector<ig::View>{ig::View{}},
+          [&] { return session.loop().latest_snapshot(station::kImageGeneratorReader); });
+    session.start();
+    std::this_thread::sleep_for(std::chrono::seconds(drawing ? 20 : 60));
+    if (render) {
+      state.counters["fps"] = render->fps();
+      render->stop();
+    }
+    const station::SessionResult result = session.finish(station::SessionEnd::kInterrupted);
+    const station::LoopStats& s = result.loop;
+    state.counters["ticks"] = static_cast<double>(s.ticks);
+    state.counters["late_ticks"] = static_cast<double>(s.late_ticks);
+    state.counters["given_up"] = static_cast<double>(s.skipped_ticks);
+    state.counters["longest_tick_us"] = s.longest_tick_s * 1e6;
+    state.counters["mean_tick_us"] = s.mean_tick_s * 1e6;
+    state.counters["real_time_factor"] = s.real_time_factor;
+  }
+  std::filesystem::remove(options.record);
+}
+BENCHMARK(BM_LiveRun)
+    ->Arg(0)
+    ->Arg(1)
+    ->ArgNames({"drawing"})
+    ->Iterations(1)
+    ->UseRealTime()
+    ->Unit(benchmark::kSecond);
 
 }  // namespace
 }  // namespace harbour

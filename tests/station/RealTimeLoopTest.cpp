@@ -19,6 +19,17 @@
 namespace harbour::station {
 namespace {
 
+// True once `condition` holds, polled every millisecond for up to 20 s.
+template <typename Condition>
+bool eventually(Condition condition) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  while (!condition()) {
+    if (std::chrono::steady_clock::now() > deadline) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  return true;
+}
+
 TEST(RealTimeLoop, CommandsFromOtherThreadsLandBetweenStepsAndAreRecorded) {
   const sim::ExerciseSettings exercise = scenes::sts_discharge_exercise(HARBOUR_DATA_DIR);
   SessionOptions options;
@@ -46,11 +57,13 @@ TEST(RealTimeLoop, CommandsFromOtherThreadsLandBetweenStepsAndAreRecorded) {
     EXPECT_TRUE(session.loop().post({LoopCommand::Kind::kHold, {}}));
   });
   console.join();
-  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  // (waits by condition, not by the host's speed: a busy machine only takes longer)
+  ASSERT_TRUE(eventually([&] { return session.loop().latest_snapshot(kConsoleReader)->held; }));
   const std::int64_t frozen_at = session.loop().stats().steps;
   std::this_thread::sleep_for(std::chrono::milliseconds(200));
   EXPECT_EQ(session.loop().stats().steps, frozen_at);  // held: no steps
   EXPECT_TRUE(session.loop().post({LoopCommand::Kind::kSingleStep, {}}));
+  EXPECT_TRUE(eventually([&] { return session.loop().stats().steps == frozen_at + 1; }));
   std::this_thread::sleep_for(std::chrono::milliseconds(50));
   EXPECT_EQ(session.loop().stats().steps, frozen_at + 1);
   const sim::Snapshot* snapshot = session.loop().latest_snapshot(0);
@@ -58,8 +71,7 @@ TEST(RealTimeLoop, CommandsFromOtherThreadsLandBetweenStepsAndAreRecorded) {
   EXPECT_TRUE(snapshot->held);
   EXPECT_EQ(snapshot->step, frozen_at + 1);
   EXPECT_TRUE(session.loop().post({LoopCommand::Kind::kResume, {}}));
-  std::this_thread::sleep_for(std::chrono::milliseconds(300));
-  EXPECT_GT(session.loop().stats().steps, frozen_at + 100);
+  EXPECT_TRUE(eventually([&] { return session.loop().stats().steps > frozen_at + 100; }));
   const SessionResult result = session.finish(SessionEnd::kInterrupted);
 
   const sim::Recording recording = io::read_recording(options.record);

@@ -9,6 +9,17 @@ namespace harbour::station {
 
 namespace {
 using Clock = std::chrono::steady_clock;
+
+class SteadyClock final : public LoopClock {
+ public:
+  time_point now() override { return Clock::now(); }
+  void sleep_until(time_point at) override { std::this_thread::sleep_until(at); }
+};
+
+LoopClock& steady_clock() {
+  static SteadyClock clock;
+  return clock;
+}
 }  // namespace
 
 RealTimeLoop::RealTimeLoop(sim::Simulation& simulation, const LoopSettings& settings)
@@ -88,17 +99,18 @@ LoopStats RealTimeLoop::stats() const {
 
 void RealTimeLoop::run() {
   take_role(ThreadRole::kStep);
+  LoopClock& clock = settings_.clock ? *settings_.clock : steady_clock();
   // one tick per simulation step (1 ms), scaled for a fast-forward
   const auto period = std::chrono::duration_cast<Clock::duration>(
       std::chrono::duration<double>(sim::Simulation::kStep_s / settings_.time_scale));
-  const Clock::time_point start = Clock::now();
+  const Clock::time_point start = clock.now();
   std::int64_t ticks = 0;  // ticks started (or given up)
   while (!stop_requested_.load(std::memory_order_relaxed)) {
     const Clock::time_point due_at = start + ticks * period;
-    Clock::time_point now = Clock::now();
+    Clock::time_point now = clock.now();
     if (now < due_at && ticks % settings_.ticks_per_wake == 0) {
-      std::this_thread::sleep_until(due_at);
-      now = Clock::now();
+      clock.sleep_until(due_at);
+      now = clock.now();
     }
     const auto behind = now - due_at;
     const auto bound =
@@ -114,7 +126,7 @@ void RealTimeLoop::run() {
       continue;
     }
     tick();
-    const double work_s = std::chrono::duration<double>(Clock::now() - now).count();
+    const double work_s = std::chrono::duration<double>(clock.now() - now).count();
     ++ticks;
     {
       const std::lock_guard lock(stats_mutex_);
@@ -126,7 +138,7 @@ void RealTimeLoop::run() {
       stats_.longest_tick_s = std::max(stats_.longest_tick_s, work_s);
       busy_s_ += work_s;
       stats_.mean_tick_s = busy_s_ / static_cast<double>(ticks - stats_.skipped_ticks);
-      const double wall_s = std::chrono::duration<double>(Clock::now() - start).count();
+      const double wall_s = std::chrono::duration<double>(clock.now() - start).count();
       stats_.real_time_factor =
           wall_s > 0.0 ? static_cast<double>(ticks - stats_.skipped_ticks) * sim::Simulation::kStep_s / wall_s
                        : 0.0;

@@ -65,6 +65,16 @@ enum SnapshotReader : int {
   kSnapshotReaders = 4
 };
 
+/// The time the loop paces itself by: the steady clock, or a test's manual clock (real time tested by its
+/// mechanism, not by the host's speed).
+class LoopClock {
+ public:
+  using time_point = std::chrono::steady_clock::time_point;
+  virtual ~LoopClock() = default;
+  virtual time_point now() = 0;
+  virtual void sleep_until(time_point at) = 0;
+};
+
 struct LoopSettings {
   double max_catch_up_s = 0.05;  ///< behind by more than this, the loop gives the time up instead of racing
   double time_scale = 1.0;       ///< simulated seconds per wall second (an instructor's fast-forward; tests)
@@ -83,6 +93,8 @@ struct LoopSettings {
   std::int64_t checkpoint_every_steps = 1000;  ///< the state hash handed on (sim::Recorder::kCheckpointEvery)
   /// The whole state handed on every so many steps (sim::Recorder::kKeyframeEvery for a recording); 0: never.
   std::int64_t keyframe_every_steps = 0;
+  /// The clock the loop paces itself by (not owned; it outlives the loop); nullptr: the steady clock.
+  LoopClock* clock = nullptr;
 };
 
 /// The station's real-time loop: the simulation at its fixed 1 kHz step on its own thread, paced to the wall
