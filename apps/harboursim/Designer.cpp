@@ -187,9 +187,9 @@ nlohmann::json design_form(const std::string& folder, const DesignCheck& design)
                      {"visibility_m", w.visibility_m},
                      {"rain_mm_per_h", w.rain_mm_per_h},
                      {"time_of_day_h", w.time_of_day_h}};
-  const bool twistlocks = machine == "sts" || machine == "rtg" || machine == "reach_stacker";
-  form["event_kinds"] = twistlocks ? json{"gust", "hoist_brake_fault", "landed_sensor_fault", "limiter_fault"}
-                                   : json{"gust", "hoist_brake_fault", "limiter_fault"};
+  const sim::MachineType& type = *sim::find_machine_type(machine);
+  form["event_kinds"] = io::event_kinds(type);
+  form["serves_trucks"] = type.serves_trucks;
   json vessels = json::array(), materials = json::array();
   const fs::path vessel_folder = fs::path(folder) / ".." / "vessels";
   std::error_code ec;

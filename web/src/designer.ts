@@ -16,6 +16,7 @@ export interface DesignForm {
   rules: { thresholds: RuleFigure[]; deductions: RuleFigure[] };
   weather: Record<string, number>;
   event_kinds: string[];
+  serves_trucks: boolean;
   catalogue: { vessels: string[]; materials: string[] };
 }
 type Path = (string | number)[];
@@ -142,7 +143,7 @@ export class DesignerForms {
       parts.push(this.basics(x));
       if (this.form?.vessel?.kind === "container") parts.push(this.stowage(x, "slot"));
       if (this.form?.yard_block) parts.push(this.stowage(x, "block_slot"));
-      if (x.trucks || (this.form && ["sts", "rtg", "reach_stacker"].includes(this.form.machine))) parts.push(this.trucks(x));
+      if (x.trucks || this.form?.serves_trucks) parts.push(this.trucks(x));
       parts.push(this.weather(x));
       if (x.bulk) parts.push(this.bulk(x));
       if (x.cargo) parts.push(this.cargo(x));

@@ -193,6 +193,20 @@ try {
     b("api/designer/nothing", "POST", { text: "" })]);
   check(designErrors.map((r) => r.status).join() === "400,400,422,404,404",
     `the designer's bad requests: ${designErrors.map((r) => `${r.status} ${r.data?.error}`).join("; ")}`);
+  // the designer's forms come from the machine's type: the faults it has the parts for, a truck lane where
+  // trucks come to it
+  const forms = {};
+  for (const name of ["sts_discharge", "mhc_hook_lift", "tractor_free_practice", "reach_stacker_stack"]) {
+    const source = await b(`api/designer/source?exercise=${name}`);
+    forms[name] = (await b("api/designer/check", "POST", { text: source.data.text })).data?.form;
+  }
+  const offered = (name) => forms[name]?.event_kinds?.join(",");
+  check(offered("sts_discharge") === "gust,hoist_brake_fault,landed_sensor_fault" &&
+    offered("mhc_hook_lift") === "gust,hoist_brake_fault" && offered("tractor_free_practice") === "gust" &&
+    offered("reach_stacker_stack") === "gust,landed_sensor_fault,limiter_fault",
+    `the designer offers each machine the faults it has: ${Object.keys(forms).map((n) => `${n} ${offered(n)}`).join("; ")}`);
+  check(forms.sts_discharge?.serves_trucks === true && forms.mhc_hook_lift?.serves_trucks === false &&
+    forms.reach_stacker_stack?.serves_trucks === true, "truck lanes are offered where trucks come");
   // the route editor: a trainee is refused; bad requests say why and write nothing
   const routeRefused = await Promise.all([d("api/routes/source?route=sts_basic"),
     d("api/routes/check", "POST", { id: "x", text: "name: x" })]);

@@ -7,6 +7,7 @@
 #include "harbour/bulk/Grab.h"
 #include "harbour/bulk/HeightGrid.h"
 #include "harbour/bulk/Material.h"
+#include "harbour/core/Units.h"
 #include "harbour/core/Warnings.h"
 
 namespace harbour::bulk {
@@ -15,8 +16,8 @@ namespace harbour::bulk {
 struct BulkWorldSettings {
   RelaxationSettings relaxation;
   ContactSettings contact;
-  double spill_level_m = 0.0;     ///< [m] world z below which falling material outside every grid is spilled
-  double gravity_mps2 = 9.80665;  ///< [m/s^2]
+  double spill_level_m = 0.0;  ///< [m] world z below which falling material outside every grid is spilled
+  double gravity_mps2 = core::kStandardGravity;  ///< [m/s^2]
 };
 
 /// Where every cubic metre is: the balance is exact up to rounding.

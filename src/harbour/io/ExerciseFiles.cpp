@@ -23,6 +23,35 @@
 namespace harbour::io {
 namespace {
 
+// the scripted faults, by their names in exercise files
+struct FaultEvent {
+  const char* name;
+  sim::MachineFault fault;
+  sim::ScriptedEvent::Kind event;
+  const char* part;  // what the fault breaks
+};
+constexpr FaultEvent kFaultEvents[] = {
+    {"hoist_brake_fault", sim::MachineFault::kHoistBrake, sim::ScriptedEvent::Kind::kHoistBrakeFault,
+     "hoist brake"},
+    {"landed_sensor_fault", sim::MachineFault::kLandedSensor, sim::ScriptedEvent::Kind::kLandedSensorFault,
+     "twistlocks"},
+    {"limiter_fault", sim::MachineFault::kLoadMomentLimiter, sim::ScriptedEvent::Kind::kLimiterFault,
+     "load-moment limiter"},
+};
+
+std::string comma_separated(const std::vector<std::string>& items) {
+  std::string text;
+  for (const std::string& item : items)
+    text += (text.empty() ? "" : ", ") + item;
+  return text;
+}
+
+const FaultEvent* find_fault_event(const std::string& name) {
+  for (const FaultEvent& e : kFaultEvents)
+    if (name == e.name) return &e;
+  return nullptr;
+}
+
 // the harbour an exercise takes place in: positions within 2 km of the crane's origin [m]
 constexpr double kSite_m = 2000.0;
 // counts an exercise may hold (docs/reliability.md): far above any real exercise, bounded so that a
@@ -278,8 +307,9 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
     s.machine = std::move(mhc);
   }
   // container exercises (the STS), general cargo on a hook, bulk on a grab
-  const bool handles_containers =
-      machine_kind == "sts" || machine_kind == "reach_stacker" || machine_kind == "rtg";
+  const sim::MachineType& machine_type =
+      *sim::find_machine_type(machine_kind);  // machine_file_kind() checked it
+  const bool handles_containers = machine_type.handles == sim::Handles::kContainers;
   const auto* mhc = std::get_if<sim::MhcSetup>(&s.machine);
   const bool on_hook = mhc && mhc->start.on_hook;
   const auto* tractor = std::get_if<sim::TractorSetup>(&s.machine);
@@ -641,15 +671,14 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
         event.kind = sim::ScriptedEvent::Kind::kGust;
         event.gust.amplitude_mps = f.number(ev, "amplitude_mps", at, 0.0, sim::kMaxGust_mps, true);
         event.gust.duration_s = f.number_or(ev, "duration_s", at, 3.0, 0.0, 600.0, true);
-      } else if (kind == "hoist_brake_fault") {
-        event.kind = sim::ScriptedEvent::Kind::kHoistBrakeFault;
-      } else if (kind == "landed_sensor_fault") {
-        if (!handles_containers)
-          f.fail(ev["kind"], at + ".kind", "the " + machine_kind + " has no twistlocks to fail");
-        event.kind = sim::ScriptedEvent::Kind::kLandedSensorFault;
-        event.corner = f.integer(ev, "corner", at, 0, 3);
-      } else if (kind == "limiter_fault") {
-        event.kind = sim::ScriptedEvent::Kind::kLimiterFault;
+      } else if (const FaultEvent* fault = find_fault_event(kind)) {
+        if (!machine_type.has_fault(fault->fault))
+          f.fail(ev["kind"], at + ".kind",
+                 "the " + machine_kind + " has no " + fault->part +
+                     " to fail (its events: " + comma_separated(event_kinds(machine_type)) + ")");
+        event.kind = fault->event;
+        if (fault->fault == sim::MachineFault::kLandedSensor)
+          event.corner = f.integer(ev, "corner", at, 0, 3);
       } else {
         f.fail(ev["kind"], at + ".kind",
                "'" + kind + "' is not gust, hoist_brake_fault, landed_sensor_fault or limiter_fault");
@@ -868,6 +897,13 @@ sim::ExerciseSettings load_exercise(const YamlFile& f, const std::string& folder
   sim::ExerciseSettings e = read_exercise(f, folder);
   f.check_unknown_keys();
   return e;
+}
+
+std::vector<std::string> event_kinds(const sim::MachineType& type) {
+  std::vector<std::string> kinds{"gust"};
+  for (const FaultEvent& e : kFaultEvents)
+    if (type.has_fault(e.fault)) kinds.push_back(e.name);
+  return kinds;
 }
 
 }  // namespace harbour::io

@@ -13,6 +13,10 @@ namespace harbour::io {
 sim::ExerciseSettings load_exercise(const YamlFile& file, const std::string& folder);
 sim::ExerciseSettings load_exercise(const std::string& path);
 
+/// The kinds of scripted event an exercise for a machine of this type may hold, as its file names them: a
+/// gust, and a failure of each part the machine has (its type's faults).
+std::vector<std::string> event_kinds(const sim::MachineType& type);
+
 /// A figure of an exercise's rubric by its key under exercise.rules (a threshold) or
 /// exercise.rules.deductions (points per occurrence), with the range the loader accepts (open at min when
 /// `above_min`).

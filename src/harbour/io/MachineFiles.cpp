@@ -798,9 +798,12 @@ std::string machine_file_kind(const std::string& path) {
   const YamlFile f = YamlFile::load(path);
   const YAML::Node m = f.required_map(f.root(), "machine", "");
   const std::string kind = f.text(m, "kind", "machine");
-  if (kind != "sts" && kind != "mhc" && kind != "tractor" && kind != "reach_stacker" && kind != "rtg")
-    f.fail(m["kind"], "machine.kind",
-           "a machine is one of: sts, rtg, mhc, tractor, reach_stacker (not '" + kind + "')");
+  if (!sim::find_machine_type(kind)) {
+    std::string kinds;
+    for (const sim::MachineType* type : sim::machine_types())
+      kinds += std::string(kinds.empty() ? "" : ", ") + type->kind;
+    f.fail(m["kind"], "machine.kind", "a machine is one of: " + kinds + " (not '" + kind + "')");
+  }
   return kind;
 }
 

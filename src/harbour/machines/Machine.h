@@ -12,6 +12,7 @@
 #include "harbour/cable/HoistSystem.h"
 #include "harbour/core/StateArchive.h"
 #include "harbour/core/StateHash.h"
+#include "harbour/machines/MachineType.h"
 #include "harbour/machines/parts/Ground.h"
 #include "harbour/machines/parts/Twistlocks.h"
 #include "harbour/physics/PhysicsWorld.h"
@@ -97,8 +98,10 @@ class Machine {
  public:
   virtual ~Machine() = default;
 
+  /// What kind of machine it is: its kind as files name it, what it handles, the faults it has.
+  virtual const MachineType& type() const = 0;
   /// Its kind as exercise and machine files name it ("sts", "mhc").
-  virtual const char* kind() const = 0;
+  const char* kind() const { return type().kind; }
   /// Its controls, by label (Controls carry one value per slot of this table).
   virtual const ControlTable& control_table() const = 0;
   /// Drives, ropes and tools for one step with these controls (any values: the machine reads them in range);
@@ -152,8 +155,8 @@ class Machine {
   /// Moves this step's events (twistlocks, ropes) into `events`.
   virtual void drain_events(StepEvents& events) = 0;
 
-  /// Whether it has the part this fault breaks; inject_fault() is called only for those.
-  virtual bool has_fault(MachineFault fault) const = 0;
+  /// Whether it has the part this fault breaks (its type's faults); inject_fault() is called only for those.
+  bool has_fault(MachineFault fault) const { return type().has_fault(fault); }
   virtual void inject_fault(MachineFault fault, int detail) = 0;
   virtual void clear_faults() = 0;
   /// Whether `fault` is in force now (its lamp in the cab is lit: the machines monitor their brakes).

@@ -2,6 +2,7 @@
 
 #include <array>
 
+#include "harbour/core/Units.h"
 #include "harbour/core/Vec3.h"
 #include "harbour/motion/PlatformPose.h"
 #include "harbour/motion/TransferFunction.h"
@@ -52,8 +53,8 @@ struct WashoutSettings {
 
 /// What the occupant feels at the head point, in the cab frame (x forward, y left, z up).
 struct MotionCue {
-  core::Vec3 specific_force_mps2{0, 0, 9.80665};  ///< [m/s^2] a - g: (0, 0, g) at rest
-  core::Vec3 angular_velocity_rad_s;              ///< [rad/s]
+  core::Vec3 specific_force_mps2{0, 0, core::kStandardGravity};  ///< [m/s^2] a - g: (0, 0, g) at rest
+  core::Vec3 angular_velocity_rad_s;                             ///< [rad/s]
 };
 
 /// Classical washout (Reid & Nahon 1985): specific force and angular velocity to a platform pose, each filter

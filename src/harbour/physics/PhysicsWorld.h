@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "harbour/core/StateArchive.h"
+#include "harbour/core/Units.h"
 #include "harbour/core/Vec3.h"
 
 namespace harbour::physics {
@@ -19,12 +20,12 @@ inline constexpr BodyId kWorld = -1;
 
 /// Settings of the multibody world (ODE).
 struct WorldSettings {
-  core::Vec3 gravity{0, 0, -9.80665};  ///< [m/s^2]
-  double erp = 0.2;                    ///< [-] joint error reduction per step
-  double cfm = 1e-9;                   ///< [-] constraint force mixing (softness)
-  double contact_friction = 0.6;       ///< [-] Coulomb friction coefficient (steel on steel, dry: assumed)
-  double contact_erp = 0.2;            ///< [-]
-  double contact_cfm = 1e-7;           ///< [-]
+  core::Vec3 gravity{0, 0, -core::kStandardGravity};  ///< [m/s^2]
+  double erp = 0.2;                                   ///< [-] joint error reduction per step
+  double cfm = 1e-9;                                  ///< [-] constraint force mixing (softness)
+  double contact_friction = 0.6;  ///< [-] Coulomb friction coefficient (steel on steel, dry: assumed)
+  double contact_erp = 0.2;       ///< [-]
+  double contact_cfm = 1e-7;      ///< [-]
   double contact_max_correcting_mps = 0.1;  ///< [m/s] penetration is resolved no faster (no popping bounces)
   double contact_surface_layer_m = 0.001;   ///< [m] allowed resting penetration (stable stacking)
   int max_contacts_per_pair = 8;

@@ -5,6 +5,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "harbour/core/Units.h"
 #include "harbour/sim/Vessel.h"
 
 namespace harbour::sim {
@@ -293,7 +294,7 @@ StsControls Autopilot::decide(const Simulation& simulation) {
   const SpreaderHoist& hoist = crane.spreader_hoist();
   const core::Vec3 spreader = simulation.world().pose(hoist.spreader_body()).position;
   const double highest_travel = std::min(kTravelHeight_m, hoist.upper_limit_m() - kBelowUpperLimit_m);
-  const double spreader_weight_n = hoist.spreader_mass_kg() * 9.80665;
+  const double spreader_weight_n = hoist.spreader_mass_kg() * core::kStandardGravity;
   if (simulation.machine().fault_active(MachineFault::kHoistBrake) &&
       (!carrying_ || defects_.stop_at_fault)) {
     // the brake fault lamp: with the load down (the move in hand finished under power), set the empty
@@ -315,7 +316,7 @@ StsControls Autopilot::decide(const Simulation& simulation) {
   const double hoist_scale = std::max(1.0, kTunedHoistSpeed_mps / hoist.full_hoist_speed_mps());
   const auto hoist_lever = [&](double lever) { return std::clamp(lever * hoist_scale, -1.0, 1.0); };
   const double period =
-      2.0 * std::numbers::pi * std::sqrt(std::max(hoist.pendulum_length_m(), 1.0) / 9.80665);
+      2.0 * std::numbers::pi * std::sqrt(std::max(hoist.pendulum_length_m(), 1.0) / core::kStandardGravity);
   in.flipper_down = flippers(simulation);
   auto enter = [&](Phase p) {
     phase_ = p;

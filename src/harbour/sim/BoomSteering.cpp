@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "harbour/core/Units.h"
 #include "harbour/machines/mhc/MobileHarbourCrane.h"
 
 namespace harbour::sim {
@@ -80,7 +81,7 @@ double BoomSteering::hold_height(double z_m) const {
 Controls stop_after_hoist_fault(const ControlTable& table, const MobileHarbourCrane& crane,
                                 const Controls& last, double decision_s, double empty_kg, double rest_on_z_m,
                                 double slew, double luff) {
-  const bool resting = crane.limiter_load_n() < 0.5 * empty_kg * 9.80665;
+  const bool resting = crane.limiter_load_n() < 0.5 * empty_kg * core::kStandardGravity;
   const double lowering =
       std::clamp(kRestTouch + kRestEase_per_m * (crane.attachment_bottom_z_m() - rest_on_z_m), kRestTouch,
                  kRestLowering);

@@ -6,13 +6,14 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "harbour/core/Units.h"
 #include "harbour/machines/mhc/MobileHarbourCrane.h"
 
 namespace harbour::sim {
 namespace {
 
 constexpr std::int64_t kDecisionSteps = 20;  // 50 Hz
-constexpr double kG = 9.80665;
+constexpr double kG = core::kStandardGravity;
 constexpr double kCoamingClearance_m = 2.5;  // grab bottom over the coaming top while it slews
 constexpr double kDischargeHeight_m = 4.0;   // grab bottom over the floor it drops onto when it opens (at 3 m
                                              // the shells sat in the heap they built under them)

@@ -4,13 +4,14 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "harbour/core/Units.h"
 #include "harbour/machines/mhc/MobileHarbourCrane.h"
 
 namespace harbour::sim {
 namespace {
 
 constexpr std::int64_t kDecisionSteps = 20;  // 50 Hz
-constexpr double kG = 9.80665;
+constexpr double kG = core::kStandardGravity;
 constexpr double kClearance_m = 3.0;      // the hook over the piece's top, the piece's bottom over the quay
 constexpr double kSlingingGap_m = 1.0;    // the hook's bottom over the piece's top while it is slung
 constexpr double kPlacing_m = 0.15;       // the piece this near plumb over its target before it goes down

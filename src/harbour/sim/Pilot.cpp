@@ -2,11 +2,9 @@
 
 #include <stdexcept>
 
-#include "harbour/sim/Autopilot.h"
-#include "harbour/sim/GrabAutopilot.h"
-#include "harbour/sim/HookAutopilot.h"
-#include "harbour/sim/ReachStackerAutopilot.h"
-#include "harbour/sim/TractorAutopilot.h"
+#include "harbour/machines/MachineType.h"
+#include "harbour/sim/Evaluation.h"
+#include "harbour/sim/Simulation.h"
 
 namespace harbour::sim {
 
@@ -31,32 +29,27 @@ class HandsOffWhenThePowerFails final : public Pilot {
   std::unique_ptr<Pilot> pilot_;
 };
 
+// the machine type's scripted operators (machines/<kind>/Type.cpp)
+std::span<const PilotType> pilots_for(const ExerciseSettings& exercise) {
+  return find_machine_type(machine_kind(exercise.scenario.machine))->pilots;
+}
+
 std::unique_ptr<Pilot> scripted_operator(const ExerciseSettings& exercise) {
-  if (Autopilot::why_cannot_drive(exercise).empty()) return std::make_unique<Autopilot>(exercise);
-  if (GrabAutopilot::why_cannot_drive(exercise).empty()) return std::make_unique<GrabAutopilot>(exercise);
-  if (HookAutopilot::why_cannot_drive(exercise).empty()) return std::make_unique<HookAutopilot>(exercise);
-  if (TractorAutopilot::why_cannot_drive(exercise).empty())
-    return std::make_unique<TractorAutopilot>(exercise);
-  if (ReachStackerAutopilot::why_cannot_drive(exercise).empty())
-    return std::make_unique<ReachStackerAutopilot>(exercise);
+  for (const PilotType& pilot : pilots_for(exercise))
+    if (pilot.why_cannot_drive(exercise).empty()) return pilot.make(exercise);
   throw std::invalid_argument(why_no_pilot(exercise));
 }
 
 }  // namespace
 
 std::string why_no_pilot(const ExerciseSettings& exercise) {
-  const std::string container = Autopilot::why_cannot_drive(exercise);
-  if (container.empty()) return "";
-  const std::string grab = GrabAutopilot::why_cannot_drive(exercise);
-  if (grab.empty()) return "";
-  const std::string hook = HookAutopilot::why_cannot_drive(exercise);
-  if (hook.empty()) return "";
-  const std::string tractor = TractorAutopilot::why_cannot_drive(exercise);
-  if (tractor.empty()) return "";
-  const std::string stacker = ReachStackerAutopilot::why_cannot_drive(exercise);
-  if (stacker.empty()) return "";
-  return "no scripted operator drives it (" + container + "; " + grab + "; " + hook + "; " + tractor + "; " +
-         stacker + ")";
+  std::string reasons;
+  for (const PilotType& pilot : pilots_for(exercise)) {
+    const std::string why = pilot.why_cannot_drive(exercise);
+    if (why.empty()) return "";
+    reasons += (reasons.empty() ? "" : "; ") + why;
+  }
+  return "no scripted operator drives it (" + (reasons.empty() ? "the machine has none" : reasons) + ")";
 }
 
 std::unique_ptr<Pilot> make_pilot(const ExerciseSettings& exercise) {

@@ -30,8 +30,8 @@ struct DriverDefects {
   bool reverse_steering_wrong = false;  ///< reversing a trailer, steer the way its rear is to go
 };
 
-/// Why no scripted operator can drive `exercise` ("" when one can): the STS's container moves and the MHC's
-/// grab deliveries have one.
+/// Why no scripted operator can drive `exercise` ("" when one can): its machine type's operators
+/// (MachineType::pilots) are asked in turn.
 std::string why_no_pilot(const ExerciseSettings& exercise);
 /// The scripted operator for `exercise`, its hands off the levers while the power is off and until the drives
 /// are back; throws std::invalid_argument with why_no_pilot() when there is none.

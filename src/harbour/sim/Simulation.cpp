@@ -7,6 +7,7 @@
 #include <string>
 
 #include "harbour/core/StateHash.h"
+#include "harbour/core/Units.h"
 
 namespace harbour::sim {
 namespace {
@@ -362,7 +363,7 @@ core::Vec3 Simulation::wind_rest_offset_m(const core::Vec3& wind, std::optional<
     if (area.swings) add(area.body, area.half_extents_m);
   if (box)
     if (const ContainerRef* item = liftable(*box)) add(item->body, item->half_extents_m);
-  const double lean = machine_->pendulum_length_m() / (mass_kg * 9.80665);
+  const double lean = machine_->pendulum_length_m() / (mass_kg * core::kStandardGravity);
   return {force.x * lean, force.y * lean, 0.0};
 }
 
@@ -481,7 +482,7 @@ void Simulation::step_bulk() {
 void Simulation::update_cab_cues() {
   // the specific force at the operator's head: its acceleration (by difference over the step) minus gravity
   const core::Vec3 v = world_->point_velocity(machine_->cab_body(), machine_->eye_on_cab_body_m());
-  cab_specific_force_ = (v - cab_velocity_) * (1.0 / kStep_s) + core::Vec3{0.0, 0.0, 9.80665};
+  cab_specific_force_ = (v - cab_velocity_) * (1.0 / kStep_s) + core::Vec3{0.0, 0.0, core::kStandardGravity};
   cab_velocity_ = v;
 }
 

@@ -10,6 +10,7 @@
 
 #include "harbour/bulk/BulkScene.h"
 #include "harbour/core/FixedStepClock.h"
+#include "harbour/core/Units.h"
 #include "harbour/core/Warnings.h"
 #include "harbour/machines/mhc/MobileHarbourCrane.h"
 #include "harbour/machines/reach_stacker/ReachStacker.h"
@@ -300,7 +301,7 @@ class Simulation {
   bool levers_at_zero(const Controls& controls) const;
   core::Warnings warnings_;
   StepEvents events_;
-  core::Vec3 cab_velocity_, cab_specific_force_{0.0, 0.0, 9.80665};  // world
+  core::Vec3 cab_velocity_, cab_specific_force_{0.0, 0.0, core::kStandardGravity};  // world
 };
 
 }  // namespace harbour::sim

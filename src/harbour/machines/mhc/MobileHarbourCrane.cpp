@@ -6,12 +6,13 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "harbour/core/Units.h"
 #include "harbour/machines/parts/KineticDamping.h"
 
 namespace harbour::sim {
 namespace {
 
-constexpr double kG = 9.80665;
+constexpr double kG = core::kStandardGravity;
 constexpr double kRestingShare = 0.5;  // ropes carrying less of the grab than this: it rests on something
 constexpr double kShutOpening = 0.05;  // shells this little open count as shut (their play on the ropes)
 constexpr double kShareGain = 0.5;     // holding winch speed (share of full) per unit of excess load share

@@ -17,6 +17,8 @@
 
 namespace harbour::sim {
 
+const MachineType& mhc_machine_type();  ///< machines/mhc/Type.cpp
+
 /// The MHC cab's controls as shipped (data/machines/mhc.yaml declares the same): slew, luff, hoist and grab
 /// levers, the slinger's call (hook operation), emergency stop and horn.
 ControlTable mhc_control_table();
@@ -116,7 +118,7 @@ class MobileHarbourCrane final : public Machine {
   MobileHarbourCrane(physics::PhysicsWorld& world, const MhcSettings& settings, const MhcStart& start);
 
   // Machine
-  const char* kind() const override { return "mhc"; }
+  const MachineType& type() const override { return mhc_machine_type(); }
   const ControlTable& control_table() const override { return settings_.controls; }
   void step(const Controls& controls, std::span<const ContainerRef> liftables, double dt_s) override;
   std::optional<physics::BodyId> held_item() const override;
@@ -134,7 +136,6 @@ class MobileHarbourCrane final : public Machine {
   const BulkTool* bulk_tool() const override { return on_hook() ? nullptr : &tool_; }
   void carry_bulk(double mass_kg) override { carried_kg_ = mass_kg; }
   double carried_bulk_kg() const { return carried_kg_; }
-  bool has_fault(MachineFault fault) const override { return fault == MachineFault::kHoistBrake; }
   void inject_fault(MachineFault fault, int detail) override;
   void clear_faults() override { hoist_brake_fault_ = false; }
   bool fault_active(MachineFault fault) const override {

@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "harbour/core/Units.h"
 #include "harbour/sim/Vessel.h"
 
 namespace harbour::sim {
@@ -68,7 +69,8 @@ SpreaderHoist::SpreaderHoist(physics::PhysicsWorld& world, const SpreaderHoistSe
 
   bodies.push_back(spreader_);
   cable_bodies_ = std::make_unique<OdeCableBodies>(world, std::move(bodies));
-  hoist_ = std::make_unique<cable::HoistSystem>(settings.hoist, *cable_bodies_, core::Vec3{0, 0, -9.80665});
+  hoist_ = std::make_unique<cable::HoistSystem>(settings.hoist, *cable_bodies_,
+                                                core::Vec3{0, 0, -core::kStandardGravity});
 }
 
 double SpreaderHoist::attachment_bottom_z_m() const {
@@ -123,7 +125,7 @@ void SpreaderHoist::step(const SpreaderHoistCommand& c, std::span<const Containe
   // twistlocks against the container under the spreader, if any; the load hangs when the ropes carry
   // clearly more than the empty spreader (landing pins stay pressed while a locked container hangs, so
   // "landed" alone cannot tell)
-  const bool load_suspended = hoisted_load_n() > 1.3 * settings_.spreader.mass_kg * 9.80665;
+  const bool load_suspended = hoisted_load_n() > 1.3 * settings_.spreader.mass_kg * core::kStandardGravity;
   locks_.step(world_, spreader_, *frame_, containers, settings_.twistlocks, c.lock, c.unlock, load_suspended,
               landed_sensor_fault_, dt_s);
   // the telescope (interlocked while landed or locked) and flippers

@@ -4,12 +4,13 @@
 #include <cmath>
 #include <numbers>
 
+#include "harbour/core/Units.h"
 #include "harbour/sim/Vessel.h"
 
 namespace harbour::sim {
 namespace {
 
-constexpr double kG = 9.80665;
+constexpr double kG = core::kStandardGravity;
 constexpr const char* kIndicators[] = {
     "speed_kmh",  "boom_angle_deg", "extension_m",  "reach_m",      "rotation_deg", "side_shift_m", "load_t",
     "capacity_t", "utilisation",    "limiter_warn", "limiter_stop", "lamp_landed",  "lamp_locked",  "horn"};
@@ -248,10 +249,6 @@ MachineTally ReachStacker::tally() const {
   t.vehicle = true;
   t.tip_overs = tip_overs_;
   return t;
-}
-
-bool ReachStacker::has_fault(MachineFault fault) const {
-  return fault == MachineFault::kLoadMomentLimiter || fault == MachineFault::kLandedSensor;
 }
 
 void ReachStacker::inject_fault(MachineFault fault, int detail) {

@@ -16,6 +16,8 @@
 
 namespace harbour::sim {
 
+const MachineType& reach_stacker_machine_type();  ///< machines/reach_stacker/Type.cpp
+
 /// Where the reach stacker stands and how its boom is set at the start.
 struct ReachStackerStart {
   core::Vec3 position_m;     ///< [m] the point under its centre of mass on the ground
@@ -39,7 +41,7 @@ class ReachStacker final : public Machine {
                const ReachStackerStart& start);
 
   // Machine
-  const char* kind() const override { return "reach_stacker"; }
+  const MachineType& type() const override { return reach_stacker_machine_type(); }
   const ControlTable& control_table() const override { return settings_.controls; }
   void step(const Controls& controls, std::span<const ContainerRef> liftables, double dt_s) override;
   std::optional<physics::BodyId> held_item() const override { return locks_.locked_container(); }
@@ -57,7 +59,6 @@ class ReachStacker final : public Machine {
   int publish(Snapshot& snapshot, int entities) const override;
   MachineTally tally() const override;
   void drain_events(StepEvents& events) override { locks_.twistlocks().drain_events(events.twistlocks); }
-  bool has_fault(MachineFault fault) const override;
   void inject_fault(MachineFault fault, int detail) override;
   void clear_faults() override;
   bool fault_active(MachineFault fault) const override;

@@ -4,13 +4,14 @@
 #include <cmath>
 #include <numbers>
 
+#include "harbour/core/Units.h"
 #include "harbour/machines/sts/StsCrane.h"
 #include "harbour/sim/Vessel.h"
 
 namespace harbour::sim {
 namespace {
 
-constexpr double kG = 9.80665;
+constexpr double kG = core::kStandardGravity;
 constexpr double kHalfPi = 0.5 * std::numbers::pi;
 constexpr double kSpeedFollow_s = 0.25;   // the travel controller's proportional time constant
 constexpr double kSpeedIntegral_s = 1.0;  // ... and its integral's

@@ -14,6 +14,8 @@
 
 namespace harbour::sim {
 
+const MachineType& rtg_machine_type();  ///< machines/rtg/Type.cpp
+
 /// A rubber-tyred gantry crane (settings, from data/machines/rtg.yaml). Its frame: x across the yard block
 /// (the trolley's travel), y along it (the gantry's travel), z up, the origin at the structure's centre of
 /// mass above the middle of its wheels.
@@ -74,7 +76,7 @@ class RubberTyredGantry final : public Machine, public GantryCrane {
   RubberTyredGantry(physics::PhysicsWorld& world, const RtgSettings& settings, const RtgStart& start);
 
   // Machine
-  const char* kind() const override { return "rtg"; }
+  const MachineType& type() const override { return rtg_machine_type(); }
   const ControlTable& control_table() const override { return settings_.controls; }
   void step(const Controls& controls, std::span<const ContainerRef> liftables, double dt_s) override;
   std::optional<physics::BodyId> held_item() const override { return rig_->locked_container(); }
@@ -98,7 +100,6 @@ class RubberTyredGantry final : public Machine, public GantryCrane {
     settle_gantry_crane(*this, world_, bodies, *rig_);
   }
   void drain_events(StepEvents& events) override;
-  bool has_fault(MachineFault fault) const override { return fault != MachineFault::kLoadMomentLimiter; }
   void inject_fault(MachineFault fault, int detail) override;
   void clear_faults() override { rig_->clear_faults(); }
   bool fault_active(MachineFault fault) const override {

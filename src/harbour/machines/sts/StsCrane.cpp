@@ -5,6 +5,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "harbour/core/Units.h"
 #include "harbour/sim/Vessel.h"
 
 #include "harbour/core/Braking.h"
@@ -223,7 +224,7 @@ int StsCrane::publish(Snapshot& s, int first) const {
                            lamps.locked ? 1.0 : 0.0,
                            lamps.unlocked ? 1.0 : 0.0,
                            horn_ ? 1.0 : 0.0,
-                           hoisted_load_n() / 9.80665 / 1000.0,
+                           hoisted_load_n() / core::kStandardGravity / 1000.0,
                            rig_->brake_fault() ? 1.0 : 0.0,
                            rig_->net_load_t()};
   static_assert(std::size(values) == std::size(kStsIndicators));

@@ -17,6 +17,8 @@
 
 namespace harbour::sim {
 
+const MachineType& sts_machine_type();  ///< machines/sts/Type.cpp
+
 /// The STS boom's luffing (settings): raised out of the vessel's way at berthing, lowered and latched to
 /// work. Its angle is driven kinematically by a Drive in radians.
 struct BoomSettings {
@@ -96,7 +98,7 @@ class StsCrane final : public Machine, public GantryCrane {
   void step(const StsControls& controls, std::span<const ContainerRef> containers, double dt_s);
 
   // Machine
-  const char* kind() const override { return "sts"; }
+  const MachineType& type() const override { return sts_machine_type(); }
   const ControlTable& control_table() const override { return settings_.controls; }
   void step(const Controls& controls, std::span<const ContainerRef> liftables, double dt_s) override {
     step(read(controls), liftables, dt_s);
@@ -117,7 +119,6 @@ class StsCrane final : public Machine, public GantryCrane {
     settle_gantry_crane(*this, world_, bodies, *rig_);
   }
   void drain_events(StepEvents& events) override;
-  bool has_fault(MachineFault fault) const override { return fault != MachineFault::kLoadMomentLimiter; }
   void inject_fault(MachineFault fault, int detail) override;
   void clear_faults() override;
   bool fault_active(MachineFault fault) const override;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "harbour/core/Units.h"
 #include "harbour/sim/Vessel.h"
 
 namespace harbour::sim {
@@ -35,7 +36,7 @@ ControlTable tractor_control_table() {
 // plate (the small-angle statics of both bodies on their springs, solved in turn until they agree).
 TerminalTractor::StartPoses TerminalTractor::start_poses(const TractorSettings& s,
                                                          const TractorStart& start) {
-  constexpr double kG = 9.80665;
+  constexpr double kG = core::kStandardGravity;
   const auto level_springs = [](const WheeledChassisSettings& c) {
     // each tyre's gap to the ground with the body level and the first axle's tyres just touching
     std::vector<SupportSpring> springs = tyre_springs(c);

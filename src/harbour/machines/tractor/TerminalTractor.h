@@ -15,6 +15,8 @@
 
 namespace harbour::sim {
 
+const MachineType& tractor_machine_type();  ///< machines/tractor/Type.cpp
+
 /// The terminal tractor's controls as shipped (data/machines/tractor.yaml declares the same): steering wheel,
 /// accelerator and brake pedals, the direction selector, horn and emergency stop.
 ControlTable tractor_control_table();
@@ -80,7 +82,7 @@ class TerminalTractor final : public Machine {
   TerminalTractor(physics::PhysicsWorld& world, const TractorSettings& settings, const TractorStart& start);
 
   // Machine
-  const char* kind() const override { return "tractor"; }
+  const MachineType& type() const override { return tractor_machine_type(); }
   const ControlTable& control_table() const override { return settings_.controls; }
   void step(const Controls& controls, std::span<const ContainerRef> liftables, double dt_s) override;
   std::optional<physics::BodyId> held_item() const override;
@@ -100,7 +102,6 @@ class TerminalTractor final : public Machine {
   int publish(Snapshot& snapshot, int entities) const override;
   MachineTally tally() const override;
   void drain_events(StepEvents&) override {}
-  bool has_fault(MachineFault) const override { return false; }
   void inject_fault(MachineFault, int) override {}
   void clear_faults() override {}
   bool fault_active(MachineFault) const override { return false; }

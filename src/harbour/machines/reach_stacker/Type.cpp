@@ -1,0 +1,17 @@
+#include "harbour/machines/Machine.h"
+#include "harbour/machines/MachineType.h"
+#include "harbour/sim/ReachStackerAutopilot.h"
+
+namespace harbour::sim {
+namespace {
+constexpr MachineFault kFaults[] = {MachineFault::kLoadMomentLimiter, MachineFault::kLandedSensor};
+constexpr PilotType kPilots[] = {pilot_type<ReachStackerAutopilot>()};
+}  // namespace
+
+const MachineType& reach_stacker_machine_type() {
+  static constexpr MachineType type{"reach_stacker", "reach stacker", Handles::kContainers, kFaults, true,
+                                    kPilots};
+  return type;
+}
+
+}  // namespace harbour::sim

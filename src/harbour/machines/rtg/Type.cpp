@@ -1,0 +1,17 @@
+#include "harbour/machines/Machine.h"
+#include "harbour/machines/MachineType.h"
+#include "harbour/sim/Autopilot.h"
+
+namespace harbour::sim {
+namespace {
+constexpr MachineFault kFaults[] = {MachineFault::kHoistBrake, MachineFault::kLandedSensor};
+constexpr PilotType kPilots[] = {pilot_type<Autopilot>()};
+}  // namespace
+
+const MachineType& rtg_machine_type() {
+  static constexpr MachineType type{"rtg",  "rubber-tyred gantry crane", Handles::kContainers, kFaults, true,
+                                    kPilots};
+  return type;
+}
+
+}  // namespace harbour::sim
