@@ -67,7 +67,8 @@ function showStations(stations: Station[]) {
   const chosen = takeover.value;
   takeover.replaceChildren();
   for (const s of stations.filter((s) => s.state === "idle")) takeover.add(new Option(s.station, s.station));
-  takeover.value = chosen;
+  // the instructor's choice while its station is still free, else the first free one (never none)
+  if ([...takeover.options].some((o) => o.value === chosen)) takeover.value = chosen;
   // rows are kept and updated in place (a click on one is never lost to a redraw)
   const body = $("stations").querySelector("tbody")!;
   const seen = new Set<string>();

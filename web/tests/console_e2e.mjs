@@ -182,7 +182,9 @@ try {
   await page.screenshot({ path: path.join(out, "console_replay.png"), fullPage: true });
   await until("the stopped station is idle again", async () =>
     (await page.locator("#stations tr[data-station=e2e-1] td:nth-child(2)").textContent()) === "idle");
-  await page.selectOption("#takeover-station", "e2e-1");
+  // the only free station is already chosen: pressing Take over needs no pick first
+  await until("the take-over offers the free station without a pick", async () =>
+    (await page.inputValue("#takeover-station")) === "e2e-1");
   await page.selectOption("#takeover-trainee", "anna");
   await page.check("#takeover-autopilot");
   await page.click("#take-over");
