@@ -127,7 +127,7 @@ std::string save_design(const std::string& folder, const DesignCheck& design) {
 nlohmann::json design_form(const std::string& folder, const DesignCheck& design) {
   using json = nlohmann::json;
   const sim::ScenarioSettings& s = design.exercise.scenario;
-  const std::string machine = sim::machine_kind(s.machine);
+  const std::string machine = s.machine.kind();
   json form = {{"machine", machine}};
   if (s.vessel) {
     const sim::VesselSettings& v = s.vessel->vessel;
@@ -187,7 +187,7 @@ nlohmann::json design_form(const std::string& folder, const DesignCheck& design)
                      {"visibility_m", w.visibility_m},
                      {"rain_mm_per_h", w.rain_mm_per_h},
                      {"time_of_day_h", w.time_of_day_h}};
-  const sim::MachineType& type = *sim::find_machine_type(machine);
+  const sim::MachineType& type = s.machine.type();
   form["event_kinds"] = io::event_kinds(type);
   form["serves_trucks"] = type.serves_trucks;
   json vessels = json::array(), materials = json::array();

@@ -33,11 +33,11 @@ void expect_error(const std::string& from, const std::string& to, const std::str
 
 TEST(ExerciseFiles, AnMhcExerciseStartsTheCraneWhereItSays) {
   const sim::ExerciseSettings e = load_exercise(HARBOUR_DATA_DIR "/exercises/mhc_free_practice.yaml");
-  const auto& mhc = std::get<sim::MhcSetup>(e.scenario.machine);
+  const auto& mhc = e.scenario.machine.as<sim::MhcSetup>();
   EXPECT_NEAR(mhc.start.boom_rad, 46.0 * std::numbers::pi / 180.0, 1e-12);
   EXPECT_EQ(mhc.start.hanging_z_m, 20.0);
   EXPECT_TRUE(e.moves.empty());
-  EXPECT_STREQ(sim::machine_kind(e.scenario.machine), "mhc");
+  EXPECT_STREQ(e.scenario.machine.kind(), "mhc");
 }
 
 TEST(ExerciseFiles, AnExerciseTheMachineCannotDoNamesTheField) {
@@ -77,7 +77,7 @@ TEST(ExerciseFiles, AHookExerciseNamesTheFieldItCannotPlace) {
 
 TEST(ExerciseFiles, ATrailerExerciseCouplesItLevelAndNamesTheFieldItCannotPlace) {
   const sim::ExerciseSettings e = load_exercise(HARBOUR_DATA_DIR "/exercises/tractor_mafi_park.yaml");
-  const auto& tractor = std::get<sim::TractorSetup>(e.scenario.machine);
+  const auto& tractor = e.scenario.machine.as<sim::TractorSetup>();
   ASSERT_TRUE(tractor.start.trailer);
   EXPECT_EQ(tractor.start.trailer->id, "mafi_1");
   EXPECT_EQ(tractor.start.trailer->mass_kg, 8500.0 + 30000.0);  // tare and payload

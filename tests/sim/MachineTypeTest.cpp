@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <map>
 #include <set>
+#include <stdexcept>
 #include <string>
 
 #include "harbour/io/ExerciseFiles.h"
@@ -41,12 +42,14 @@ TEST(MachineTypes, WhatATypeSaysIsWhatItsMachineDoes) {
   std::set<std::string> checked, driven;
   for (const auto& entry : std::filesystem::directory_iterator(HARBOUR_DATA_DIR "/exercises")) {
     const ExerciseSettings exercise = io::load_exercise(entry.path().string());
-    const std::string kind = machine_kind(exercise.scenario.machine);
+    const std::string kind = exercise.scenario.machine.kind();
     if (why_no_pilot(exercise).empty()) driven.insert(kind);
     if (!checked.insert(kind).second) continue;
     Simulation sim(exercise.scenario);
     const MachineType& type = sim.machine().type();
     ASSERT_EQ(&type, find_machine_type(kind)) << entry.path();
+    ASSERT_EQ(&exercise.scenario.machine.type(), &type);
+    EXPECT_FALSE(io::start_pose_form(exercise.scenario.machine).fields.empty()) << kind;
     for (const auto& [command_kind, fault] : faults) {
       InstructorCommand command;
       command.kind = command_kind;
@@ -74,6 +77,26 @@ TEST(MachineTypes, EachTypeOffersTheEventsOfItsParts) {
   EXPECT_EQ(io::event_kinds(*find_machine_type("tractor")), (std::vector<std::string>{"gust"}));
   EXPECT_EQ(io::event_kinds(*find_machine_type("reach_stacker")),
             (std::vector<std::string>{"gust", "landed_sensor_fault", "limiter_fault"}));
+}
+
+// A scenario's machine is a value: a copy changed leaves the original as it was; asked for another
+// machine's setup it says which it is.
+TEST(MachineSetup, IsAValueOfOneKind) {
+  const ExerciseSettings exercise = io::load_exercise(HARBOUR_DATA_DIR "/exercises/mhc_hook_lift.yaml");
+  ScenarioSettings copy = exercise.scenario;
+  const double boom_rad = exercise.scenario.machine.as<MhcSetup>().start.boom_rad;
+  copy.machine.as<MhcSetup>().start.boom_rad = boom_rad + 0.1;
+  EXPECT_EQ(exercise.scenario.machine.as<MhcSetup>().start.boom_rad, boom_rad);
+  EXPECT_EQ(copy.machine.as<MhcSetup>().start.boom_rad, boom_rad + 0.1);
+  EXPECT_EQ(copy.machine.get_if<StsSetup>(), nullptr);
+  try {
+    (void)copy.machine.as<StsSetup>();
+    ADD_FAILURE() << "an MHC read as an STS";
+  } catch (const std::logic_error& e) {
+    EXPECT_STREQ(e.what(), "the machine is an mhc, not an sts");
+  }
+  EXPECT_EQ(copy.machine.reevings().size(), 3u);  // luffing, grab, hook
+  EXPECT_STREQ(ScenarioSettings{}.machine.kind(), "sts");
 }
 
 }  // namespace

@@ -264,7 +264,7 @@ TEST(MhcHook, TheBoomBounceDecaysAtEveryBoomAngle) {
     scenario.weather.turbulence_intensity = 0.0;
     scenario.events.clear();
     scenario.lift_events.clear();
-    std::get<MhcSetup>(scenario.machine).start.boom_rad = boom_deg * std::numbers::pi / 180.0;
+    scenario.machine.as<MhcSetup>().start.boom_rad = boom_deg * std::numbers::pi / 180.0;
     scenario.start_unsettled = true;
     Simulation sim(scenario);
     const Controls neutral = sim.control_table().neutral();

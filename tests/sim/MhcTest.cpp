@@ -28,7 +28,7 @@ const MobileHarbourCrane& mhc(const Simulation& sim) {
 // The statics tests damp the ropes' stretching more (it changes no static force) so the start's bounce (the
 // ropes are built unstretched) dies out in seconds.
 ScenarioSettings damped(ScenarioSettings s) {
-  auto& crane = std::get<MhcSetup>(s.machine).crane;
+  auto& crane = s.machine.as<MhcSetup>().crane;
   for (cable::ReevingSettings* reeving : {&crane.luffing, &crane.hoist})
     for (cable::RopeSettings& rope : reeving->ropes)
       rope.axial_damping_s = 0.05;
@@ -163,7 +163,7 @@ TEST(Mhc, PadForcesShareALoadAndMomentByTheRigidPlane) {
 
 TEST(Mhc, SlewTorqueAcceleratesTheHouseAndBoomByTheirInertia) {
   ScenarioSettings s = damped(scenes::mhc_on_quay(HARBOUR_DATA_DIR));
-  MhcSettings& settings = std::get<MhcSetup>(s.machine).crane;
+  MhcSettings& settings = s.machine.as<MhcSetup>().crane;
   settings.slew_drive.max_force_n = 1.0e6;  // [N m]: the motor saturates under the steep reference ramp
   settings.slew_drive.acceleration_mps2 = 1.0;
   // light ropes: the check is of the house and boom's inertia (the ropes' mass turns with them too)
@@ -259,8 +259,8 @@ TEST(Mhc, TheLoadMomentLimiterStopsLuffingOutBeforeTheChartIsExceeded) {
   // 40 t shells (about 44 t under the head) at 35 m: the chart allows 57 t there and 44.5 t at 44.6 m
   // (the grab hangs high: luffing out lowers the head by some 13 m)
   ScenarioSettings s = damped(scenes::mhc_on_quay(HARBOUR_DATA_DIR));
-  std::get<MhcSetup>(s.machine).crane.grab_lower_mass_kg = 40000.0;
-  std::get<MhcSetup>(s.machine).start.hanging_z_m = 38.0;
+  s.machine.as<MhcSetup>().crane.grab_lower_mass_kg = 40000.0;
+  s.machine.as<MhcSetup>().start.hanging_z_m = 38.0;
   Simulation sim(s);
   run(sim, 10.0, sim.control_table().neutral());
   const MobileHarbourCrane& m = mhc(sim);

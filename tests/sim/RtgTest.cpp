@@ -93,7 +93,7 @@ TEST(Rtg, TravelsAtItsPublishedSpeedAndStopsOnItsRamp) {
 }
 
 RtgSettings rtg_settings() {
-  return std::get<RtgSetup>(empty_yard().machine).crane;
+  return empty_yard().machine.as<RtgSetup>().crane;
 }
 
 // The empty yard in a steady wind blowing along the block (from the north: towards -y), with the gantry's
@@ -109,7 +109,7 @@ WindHold braked_in_wind(double wind_mps, double brake_force_n, double seconds,
   scenario.weather.wind_mean_mps = wind_mps;
   scenario.weather.wind_from_rad = across_the_block ? std::numbers::pi / 2.0 : 0.0;  // from the east: to -x
   scenario.weather.turbulence_intensity = 0.0;
-  std::get<RtgSetup>(scenario.machine).crane.gantry_drive.brake_force_n = brake_force_n;
+  scenario.machine.as<RtgSetup>().crane.gantry_drive.brake_force_n = brake_force_n;
   Simulation simulation(scenario);
   const RubberTyredGantry& c = rtg(simulation);
   const auto at_ground_y = [&] {
@@ -170,7 +170,7 @@ TEST(Rtg, ASteeringBiasCurvesItsPathAsTheSteeringGeometrySaysAndTheOperatorCorre
   // distance s along the block it is s² / 2R off its line
   ScenarioSettings scenario = empty_yard();
   const double bias = 0.5 * std::numbers::pi / 180.0;
-  std::get<RtgSetup>(scenario.machine).start.steer_bias_rad = bias;
+  scenario.machine.as<RtgSetup>().start.steer_bias_rad = bias;
   Simulation drifting(scenario);
   run(drifting, with(drifting, {{"gantry", 1.0}}), 22.0);
   const RubberTyredGantry& c = rtg(drifting);

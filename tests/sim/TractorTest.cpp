@@ -139,7 +139,7 @@ TEST(Tractor, ItsDrivingIsEvaluatedForHarshBraking) {
 // trailer's single axle 10.1 m behind the kingpin, its tyres carrying it level.
 ScenarioSettings with_a_mafi() {
   ScenarioSettings s = free_practice().scenario;
-  TractorSetup& setup = std::get<TractorSetup>(s.machine);
+  TractorSetup& setup = s.machine.as<TractorSetup>();
   TrailerSettings mafi;
   mafi.mass_kg = 18000.0;
   mafi.kingpin_m = {5.6, 0.0, 0.3};
@@ -370,7 +370,7 @@ namespace {
 // on the kingpin, so little on the drive axle).
 ScenarioSettings before_a_wet_ramp(double payload_kg) {
   ScenarioSettings s = free_practice().scenario;
-  TractorSetup& setup = std::get<TractorSetup>(s.machine);
+  TractorSetup& setup = s.machine.as<TractorSetup>();
   setup.start.position_m = {0.0, -40.0, 0.0};
   setup.start.heading_rad = std::numbers::pi / 2;
   TrailerSettings mafi = io::load_trailer(HARBOUR_DATA_DIR "/trailers/mafi_40ft.yaml");
@@ -393,7 +393,7 @@ ScenarioSettings before_a_wet_ramp(double payload_kg) {
 // hitch's height and the weights' components along the slope at their centres' heights; the drive tyres push
 // µ·N_rear along the ramp at most.
 double traction_margin_n(const ScenarioSettings& s) {
-  const TractorSetup& setup = std::get<TractorSetup>(s.machine);
+  const TractorSetup& setup = s.machine.as<TractorSetup>();
   const TractorSettings& v = setup.vehicle;
   const WheeledChassisSettings& c = v.chassis;
   const TrailerSettings& t = *setup.start.trailer;
@@ -463,7 +463,7 @@ TEST(TractorRamp, TheClimbFailsWhenTheLoadExceedsWhatTheDriveAxlesGripCanPull) {
   ASSERT_GT(limit_kg, 5000.0);
   ASSERT_LT(limit_kg, 40000.0);
   // the engine (its converter at stall) could pull more: the grip decides
-  const TractorSettings vehicle = std::get<TractorSetup>(free_practice().scenario.machine).vehicle;
+  const TractorSettings vehicle = free_practice().scenario.machine.as<TractorSetup>().vehicle;
   const double stall_pull_n =
       drivetrain_wheel_torque_nm(vehicle.chassis.drivetrain, vehicle.chassis.tyre.radius_m, 1.0, 0.0).first /
       vehicle.chassis.tyre.radius_m;
@@ -532,7 +532,7 @@ TEST(TractorBrakes, BrakedBelowThePullDownTheSlopeItRollsAwayAtTheDifference) {
   // weight)
   const double payload_kg = 30000.0, slope = std::atan2(3.6, 36.0);
   const ScenarioSettings scenario = before_a_wet_ramp(payload_kg);
-  const TractorSetup& setup = std::get<TractorSetup>(scenario.machine);
+  const TractorSetup& setup = scenario.machine.as<TractorSetup>();
   const auto full_brakes_n = [](const WheeledChassisSettings& c) {
     double n = 0.0;
     for (const AxleSettings& a : c.axles)

@@ -11,7 +11,6 @@
 #include <numbers>
 #include <optional>
 #include <tuple>
-#include <variant>
 
 #include "harbour/core/Units.h"
 #include "harbour/io/BoundedFile.h"
@@ -310,9 +309,9 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
   const sim::MachineType& machine_type =
       *sim::find_machine_type(machine_kind);  // machine_file_kind() checked it
   const bool handles_containers = machine_type.handles == sim::Handles::kContainers;
-  const auto* mhc = std::get_if<sim::MhcSetup>(&s.machine);
+  const auto* mhc = s.machine.get_if<sim::MhcSetup>();
   const bool on_hook = mhc && mhc->start.on_hook;
-  const auto* tractor = std::get_if<sim::TractorSetup>(&s.machine);
+  const auto* tractor = s.machine.get_if<sim::TractorSetup>();
   const bool tows = tractor && tractor->start.trailer;
   const std::string handles = handles_containers ? "containers with its spreader"
                               : on_hook          ? "general cargo on its hook (exercise.cargo)"
@@ -796,7 +795,13 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
 }  // namespace
 
 StartPoseForm start_pose_form(const sim::MachineSetup& machine) {
-  return std::visit([](const auto& setup) { return pose_fields(setup); }, machine);
+  // each machine's start block, as its exercises' loader reads it (above)
+  if (const auto* sts = machine.get_if<sim::StsSetup>()) return pose_fields(*sts);
+  if (const auto* rtg = machine.get_if<sim::RtgSetup>()) return pose_fields(*rtg);
+  if (const auto* mhc = machine.get_if<sim::MhcSetup>()) return pose_fields(*mhc);
+  if (const auto* stacker = machine.get_if<sim::ReachStackerSetup>()) return pose_fields(*stacker);
+  if (const auto* tractor = machine.get_if<sim::TractorSetup>()) return pose_fields(*tractor);
+  throw std::logic_error(std::string("the exercise loader reads no start block for the ") + machine.kind());
 }
 
 const std::vector<RuleField>& rule_thresholds() {

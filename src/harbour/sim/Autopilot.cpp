@@ -54,8 +54,8 @@ constexpr double kSteerFromSpeed_mps = 0.1;
 }  // namespace
 
 std::string Autopilot::why_cannot_drive(const ExerciseSettings& exercise) {
-  const char* machine = machine_kind(exercise.scenario.machine);
-  const auto* rtg = std::get_if<RtgSetup>(&exercise.scenario.machine);
+  const char* machine = exercise.scenario.machine.kind();
+  const auto* rtg = exercise.scenario.machine.get_if<RtgSetup>();
   if (std::string(machine) != "sts" && !rtg)
     return std::string("the autopilot drives the STS's and the RTG's container moves; not the ") + machine +
            "'s";

@@ -49,9 +49,9 @@ const VesselSettings::Hold* open_hold(const VesselSettings& vessel) {
 }  // namespace
 
 std::string GrabAutopilot::why_cannot_drive(const ExerciseSettings& exercise) {
-  if (!std::holds_alternative<MhcSetup>(exercise.scenario.machine))
+  if (!exercise.scenario.machine.get_if<MhcSetup>())
     return "the grab autopilot drives the mobile harbour crane";
-  if (std::get<MhcSetup>(exercise.scenario.machine).start.on_hook) return "the crane works on its hook";
+  if (exercise.scenario.machine.as<MhcSetup>().start.on_hook) return "the crane works on its hook";
   if (exercise.trim) return "";
   if (!exercise.deliver) return "the exercise has no delivery or trim goal (exercise.deliver, exercise.trim)";
   const auto& vessel = exercise.scenario.vessel;
@@ -68,7 +68,7 @@ GrabAutopilot::GrabAutopilot(const ExerciseSettings& exercise, GrabOperatorDefec
   // a 3 x 3 pattern over the open hatch, centre first, then its sides, then its corners
   const VesselGeometry& geometry = *vessel_;
   const VesselSettings::Hold& hold = *open_hold(exercise.scenario.vessel->vessel);
-  const MhcSettings& crane = std::get<MhcSetup>(exercise.scenario.machine).crane;
+  const MhcSettings& crane = exercise.scenario.machine.as<MhcSetup>().crane;
   const double reach_x =
       geometry.placement().vessel.hatch_breadth_m / 2 - crane.grab_lower_half_extents_m.x - kSpotMargin_m;
   const double reach_y = hold.opening_length_m / 2 - crane.grab_lower_half_extents_m.x - kSpotMargin_m;

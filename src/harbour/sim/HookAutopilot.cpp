@@ -27,7 +27,7 @@ constexpr double kSettleAfterUnsling_s = 5.0;  // the empty hook let calm before
 }  // namespace
 
 std::string HookAutopilot::why_cannot_drive(const ExerciseSettings& exercise) {
-  const auto* mhc = std::get_if<MhcSetup>(&exercise.scenario.machine);
+  const auto* mhc = exercise.scenario.machine.get_if<MhcSetup>();
   if (!mhc || !mhc->start.on_hook) return "the hook autopilot drives the mobile harbour crane on its hook";
   if (exercise.moves.empty()) return "the exercise has no moves (exercise.moves)";
   return "";

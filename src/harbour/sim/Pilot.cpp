@@ -31,7 +31,7 @@ class HandsOffWhenThePowerFails final : public Pilot {
 
 // the machine type's scripted operators (machines/<kind>/Type.cpp)
 std::span<const PilotType> pilots_for(const ExerciseSettings& exercise) {
-  return find_machine_type(machine_kind(exercise.scenario.machine))->pilots;
+  return exercise.scenario.machine.type().pilots;
 }
 
 std::unique_ptr<Pilot> scripted_operator(const ExerciseSettings& exercise) {

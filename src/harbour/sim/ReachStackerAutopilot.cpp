@@ -76,7 +76,7 @@ double head_z_over(const ReachStacker& m, double top_z, double above_m) {
 }  // namespace
 
 std::string ReachStackerAutopilot::why_cannot_drive(const ExerciseSettings& exercise) {
-  const auto* setup = std::get_if<ReachStackerSetup>(&exercise.scenario.machine);
+  const auto* setup = exercise.scenario.machine.get_if<ReachStackerSetup>();
   if (!setup) return "the reach stacker autopilot drives a reach stacker";
   if (exercise.moves.size() != 1) return "the reach stacker autopilot makes one move (exercise.moves)";
   const core::Vec3 along{std::cos(setup->start.heading_rad), std::sin(setup->start.heading_rad), 0.0};
@@ -101,7 +101,7 @@ ReachStackerAutopilot::ReachStackerAutopilot(const ExerciseSettings& exercise, D
     : exercise_(exercise), defects_(defects) {
   if (defects_.ignore_route) exercise_.route_m.clear();
   if (const std::string why = why_cannot_drive(exercise_); !why.empty()) throw std::invalid_argument(why);
-  const auto& setup = std::get<ReachStackerSetup>(exercise.scenario.machine);
+  const auto& setup = exercise.scenario.machine.as<ReachStackerSetup>();
   lane_start_m_ = flat(setup.start.position_m);
   lane_along_ = {std::cos(setup.start.heading_rad), std::sin(setup.start.heading_rad), 0.0};
   while (exercise.scenario.containers[box_index_].id != exercise.moves[0].container_id)

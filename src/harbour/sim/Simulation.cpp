@@ -18,23 +18,8 @@ constexpr std::uint32_t kSimulationSectionV4 = 0x53494D34;       // "SIM4": and 
 constexpr std::uint32_t kSimulationSection = 0x53494D35;         // "SIM5": and the supply (power failure)
 }  // namespace
 
-const char* machine_kind(const MachineSetup& setup) {
-  return std::visit(
-      [](const auto& m) -> const char* {
-        using T = std::decay_t<decltype(m)>;
-        if constexpr (std::is_same_v<T, StsSetup>) return "sts";
-        if constexpr (std::is_same_v<T, MhcSetup>) return "mhc";
-        if constexpr (std::is_same_v<T, TractorSetup>) return "tractor";
-        if constexpr (std::is_same_v<T, ReachStackerSetup>) return "reach_stacker";
-        if constexpr (std::is_same_v<T, RtgSetup>) return "rtg";
-      },
-      setup);
-}
-
 const StsSetup& ScenarioSettings::sts() const {
-  if (const auto* sts = std::get_if<StsSetup>(&machine)) return *sts;
-  throw std::logic_error(std::string("the scenario's machine is an ") + machine_kind(machine) +
-                         ", not an sts");
+  return machine.as<StsSetup>();
 }
 
 StsSetup& ScenarioSettings::sts() {
@@ -44,49 +29,15 @@ StsSetup& ScenarioSettings::sts() {
 namespace {
 
 constexpr double kMarkingHalfThickness_m = 0.005;  // a painted bay, drawn as a thin plate on the ground
-std::unique_ptr<Machine> make_machine(physics::PhysicsWorld& world, const MachineSetup& setup) {
-  return std::visit(
-      [&](const auto& m) -> std::unique_ptr<Machine> {
-        using T = std::decay_t<decltype(m)>;
-        if constexpr (std::is_same_v<T, StsSetup>)
-          return std::make_unique<StsCrane>(world, m.crane, m.gantry_y_m, m.trolley_x_m, m.spreader_z_m);
-        if constexpr (std::is_same_v<T, MhcSetup>)
-          return std::make_unique<MobileHarbourCrane>(world, m.crane, m.start);
-        if constexpr (std::is_same_v<T, TractorSetup>)
-          return std::make_unique<TerminalTractor>(world, m.vehicle, m.start);
-        if constexpr (std::is_same_v<T, ReachStackerSetup>)
-          return std::make_unique<ReachStacker>(world, m.vehicle, m.start);
-        if constexpr (std::is_same_v<T, RtgSetup>)
-          return std::make_unique<RubberTyredGantry>(world, m.crane, m.start);
-      },
-      setup);
-}
-
-// every reeving of the machine
-template <typename Change>
-void for_each_reeving(MachineSetup& setup, const Change& change) {
-  std::visit(
-      [&](auto& m) {
-        using T = std::decay_t<decltype(m)>;
-        if constexpr (std::is_same_v<T, StsSetup>) change(m.crane.hoist);
-        if constexpr (std::is_same_v<T, RtgSetup>) change(m.crane.rig.hoist);
-        if constexpr (std::is_same_v<T, MhcSetup>) {
-          change(m.crane.luffing);
-          change(m.crane.hoist);
-          if (m.crane.hook) change(m.crane.hook->hoist);
-        }
-      },
-      setup);
-}
 
 // the machine as the run was built: old runs on the models they were recorded with
 MachineSetup as_built(const ScenarioSettings& scenario) {
   MachineSetup setup = scenario.machine;
-  for_each_reeving(setup, [&](cable::ReevingSettings& reeving) {
-    reeving.stretch_along_chord = scenario.ropes_stretch_along_chord;
-    reeving.damping_against_ground = scenario.rope_damping_against_ground;
-  });
-  if (auto* stacker = std::get_if<ReachStackerSetup>(&setup); stacker && scenario.end_stops_at_travel)
+  for (cable::ReevingSettings* reeving : setup.reevings()) {
+    reeving->stretch_along_chord |= scenario.ropes_stretch_along_chord;
+    reeving->damping_against_ground |= scenario.rope_damping_against_ground;
+  }
+  if (auto* stacker = setup.get_if<ReachStackerSetup>(); stacker && scenario.end_stops_at_travel)
     stacker->vehicle.telescope_end_stop_margin_m = 0.0;
   return setup;
 }
@@ -138,7 +89,7 @@ Simulation::Simulation(const ScenarioSettings& scenario)
                           : c.pose);
   }
   if (scenario.trucks.trucks > 0) trucks_ = std::make_unique<TruckLane>(*world_, scenario.trucks);
-  machine_ = make_machine(*world_, as_built(scenario));
+  machine_ = as_built(scenario).build(*world_);
   if (!scenario.ropes_start_unstretched) machine_->settle_ropes();
   if (!scenario.ropes_start_unstretched && !scenario.start_unsettled) machine_->settle_at_rest();
   if (scenario.ramp) {

@@ -5,13 +5,13 @@
 #include <optional>
 #include <span>
 #include <string>
-#include <variant>
 #include <vector>
 
 #include "harbour/bulk/BulkScene.h"
 #include "harbour/core/FixedStepClock.h"
 #include "harbour/core/Units.h"
 #include "harbour/core/Warnings.h"
+#include "harbour/machines/MachineSetup.h"
 #include "harbour/machines/mhc/MobileHarbourCrane.h"
 #include "harbour/machines/reach_stacker/ReachStacker.h"
 #include "harbour/machines/rtg/RubberTyredGantry.h"
@@ -98,46 +98,10 @@ struct InstructorCommand {
 /// Why a command's values are out of range ("" when they are not).
 std::string why_invalid(const InstructorCommand& command);
 
-/// An STS and where it starts (settings).
-struct StsSetup {
-  StsCraneSettings crane;
-  double gantry_y_m = 0.0, trolley_x_m = 20.0, spreader_z_m = 20.0;  ///< [m] crane pose at the start
-};
-
-/// A mobile harbour crane and where it stands (settings).
-struct MhcSetup {
-  MhcSettings crane;
-  MhcStart start;
-};
-
-/// A terminal tractor and where it stands (settings).
-struct TractorSetup {
-  TractorSettings vehicle;
-  TractorStart start;
-};
-
-/// A reach stacker and where it stands (settings).
-struct ReachStackerSetup {
-  ReachStackerSettings vehicle;
-  ReachStackerStart start;
-};
-
-/// A rubber-tyred gantry and where it stands (settings).
-struct RtgSetup {
-  RtgSettings crane;
-  RtgStart start;
-};
-
-/// The machine an exercise runs, with its start.
-using MachineSetup = std::variant<StsSetup, MhcSetup, TractorSetup, ReachStackerSetup, RtgSetup>;
-
-/// The kind of machine a setup builds ("sts", ...), as files name it.
-const char* machine_kind(const MachineSetup& setup);
-
 /// The initial state of an exercise world (settings).
 struct ScenarioSettings {
   std::string name;
-  MachineSetup machine;
+  MachineSetup machine = StsSetup{};
   /// The STS setup; throws std::logic_error when the machine is another.
   const StsSetup& sts() const;
   StsSetup& sts();

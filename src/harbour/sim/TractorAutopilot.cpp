@@ -39,7 +39,7 @@ core::Vec3 flat(core::Vec3 v) {
 }  // namespace
 
 std::string TractorAutopilot::why_cannot_drive(const ExerciseSettings& exercise) {
-  const auto* tractor = std::get_if<TractorSetup>(&exercise.scenario.machine);
+  const auto* tractor = exercise.scenario.machine.get_if<TractorSetup>();
   if (!tractor || !tractor->start.trailer) return "the tractor autopilot drives a tractor with a trailer";
   if (exercise.moves.size() != 1 || !exercise.moves[0].heading_rad)
     return "the exercise has no parking move with a heading for its trailer (exercise.moves)";
@@ -83,7 +83,7 @@ void TractorAutopilot::resume(const Simulation& simulation, int moves_done) {
 }
 
 double TractorAutopilot::trailer_axles_x_m() const {
-  const TrailerSettings& trailer = *std::get<TractorSetup>(exercise_.scenario.machine).start.trailer;
+  const TrailerSettings& trailer = *exercise_.scenario.machine.as<TractorSetup>().start.trailer;
   double sum = 0.0;
   for (const AxleSettings& axle : trailer.wheels.axles)
     sum += axle.x_m;
@@ -114,7 +114,7 @@ void TractorAutopilot::plan(const Simulation& simulation, const TerminalTractor&
   const core::Vec3 heading =
       flat(pose.rotation.column(0)) * (1.0 / core::length(flat(pose.rotation.column(0))));
   const core::Vec3 along{std::cos(*goal.heading_rad), std::sin(*goal.heading_rad), 0.0};
-  const TrailerSettings& trailer = *std::get<TractorSetup>(exercise_.scenario.machine).start.trailer;
+  const TrailerSettings& trailer = *exercise_.scenario.machine.as<TractorSetup>().start.trailer;
   const double trailer_to_rear_axle = trailer.kingpin_m.x + (rear_x - s.hitch_m.x);
   const core::Vec3 end = flat(goal.target_m) + along * trailer_to_rear_axle;
   path_ = {start};
@@ -142,7 +142,7 @@ double TractorAutopilot::reversing_steer(const Simulation& simulation, const Ter
   // (u / L2) sin ψ + (u / L1) tan δ. The trailer's path curves (left +) by κ = sin ψ / L2; pure pursuit of a
   // point behind its axles asks κ = 2 sin α / d, hence the hitch angle's aim, and the steering
   // tan δ = -(L1 / L2) sin ψ - (L1 / kHitchClose_m) (ψ - aim) closes on it
-  const TrailerSettings& settings = *std::get<TractorSetup>(exercise_.scenario.machine).start.trailer;
+  const TrailerSettings& settings = *exercise_.scenario.machine.as<TractorSetup>().start.trailer;
   const core::Pose trailer = simulation.world().pose(tractor.trailer_body());
   const core::Pose pose = simulation.world().pose(tractor.body());
   const double axles_x = trailer_axles_x_m();

@@ -10,6 +10,7 @@
 #include "harbour/bulk/Grab.h"
 #include "harbour/cable/HoistSystem.h"
 #include "harbour/machines/Machine.h"
+#include "harbour/machines/MachineSetup.h"
 #include "harbour/machines/parts/Drive.h"
 #include "harbour/machines/parts/LimitSwitches.h"
 #include "harbour/machines/parts/OdeCableBodies.h"
@@ -269,6 +270,16 @@ class MobileHarbourCrane final : public Machine {
   core::Vec3 slung_half_extents_m_;   // the slung load's shape (its slings are drawn to its corners)
   bool sling_pressed_ = false;
   std::uint32_t slings_refused_ = 0;
+};
+
+/// A mobile harbour crane and where it stands (settings).
+struct MhcSetup {
+  MhcSettings crane;
+  MhcStart start;
+
+  static const MachineType& type() { return mhc_machine_type(); }
+  std::unique_ptr<Machine> build(physics::PhysicsWorld& world) const;
+  std::vector<cable::ReevingSettings*> reevings();
 };
 
 }  // namespace harbour::sim

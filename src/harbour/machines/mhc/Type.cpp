@@ -1,5 +1,8 @@
-#include "harbour/machines/Machine.h"
+#include <memory>
+#include <vector>
+
 #include "harbour/machines/MachineType.h"
+#include "harbour/machines/mhc/MobileHarbourCrane.h"
 #include "harbour/sim/GrabAutopilot.h"
 #include "harbour/sim/HookAutopilot.h"
 
@@ -13,6 +16,16 @@ const MachineType& mhc_machine_type() {
   static constexpr MachineType type{"mhc",  "mobile harbour crane", Handles::kBulkOrCargo, kFaults, false,
                                     kPilots};
   return type;
+}
+
+std::unique_ptr<Machine> MhcSetup::build(physics::PhysicsWorld& world) const {
+  return std::make_unique<MobileHarbourCrane>(world, crane, start);
+}
+
+std::vector<cable::ReevingSettings*> MhcSetup::reevings() {
+  std::vector<cable::ReevingSettings*> all{&crane.luffing, &crane.hoist};
+  if (crane.hook) all.push_back(&crane.hook->hoist);
+  return all;
 }
 
 }  // namespace harbour::sim

@@ -7,6 +7,7 @@
 #include <span>
 
 #include "harbour/machines/Machine.h"
+#include "harbour/machines/MachineSetup.h"
 #include "harbour/machines/parts/Drive.h"
 #include "harbour/machines/parts/DrivingCab.h"
 #include "harbour/machines/parts/Spreader.h"
@@ -126,6 +127,16 @@ class ReachStacker final : public Machine {
   int landed_sensor_fault_ = -1;
   std::uint32_t limiter_trips_ = 0, tip_overs_ = 0;
   std::optional<double> restored_pin_n_;  // a keyframe's pin force, read by the first step after it
+};
+
+/// A reach stacker and where it stands (settings).
+struct ReachStackerSetup {
+  ReachStackerSettings vehicle;
+  ReachStackerStart start;
+
+  static const MachineType& type() { return reach_stacker_machine_type(); }
+  std::unique_ptr<Machine> build(physics::PhysicsWorld& world) const;
+  std::vector<cable::ReevingSettings*> reevings() { return {}; }
 };
 
 }  // namespace harbour::sim

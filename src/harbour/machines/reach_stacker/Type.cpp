@@ -1,5 +1,8 @@
-#include "harbour/machines/Machine.h"
+#include <memory>
+#include <vector>
+
 #include "harbour/machines/MachineType.h"
+#include "harbour/machines/reach_stacker/ReachStacker.h"
 #include "harbour/sim/ReachStackerAutopilot.h"
 
 namespace harbour::sim {
@@ -12,6 +15,10 @@ const MachineType& reach_stacker_machine_type() {
   static constexpr MachineType type{"reach_stacker", "reach stacker", Handles::kContainers, kFaults, true,
                                     kPilots};
   return type;
+}
+
+std::unique_ptr<Machine> ReachStackerSetup::build(physics::PhysicsWorld& world) const {
+  return std::make_unique<ReachStacker>(world, vehicle, start);
 }
 
 }  // namespace harbour::sim

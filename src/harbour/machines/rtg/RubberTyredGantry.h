@@ -8,6 +8,7 @@
 
 #include "harbour/machines/GantryCrane.h"
 #include "harbour/machines/Machine.h"
+#include "harbour/machines/MachineSetup.h"
 #include "harbour/machines/parts/Drive.h"
 #include "harbour/machines/parts/SpreaderHoist.h"
 #include "harbour/machines/parts/Tyre.h"
@@ -165,6 +166,16 @@ class RubberTyredGantry final : public Machine, public GantryCrane {
   bool horn_ = false;
   std::unique_ptr<SpreaderHoist> rig_;
   std::array<WindArea, 2> wind_areas_;  // the spreader, the structure
+};
+
+/// A rubber-tyred gantry and where it stands (settings).
+struct RtgSetup {
+  RtgSettings crane;
+  RtgStart start;
+
+  static const MachineType& type() { return rtg_machine_type(); }
+  std::unique_ptr<Machine> build(physics::PhysicsWorld& world) const;
+  std::vector<cable::ReevingSettings*> reevings() { return {&crane.rig.hoist}; }
 };
 
 }  // namespace harbour::sim

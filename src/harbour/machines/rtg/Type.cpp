@@ -1,5 +1,8 @@
-#include "harbour/machines/Machine.h"
+#include <memory>
+#include <vector>
+
 #include "harbour/machines/MachineType.h"
+#include "harbour/machines/rtg/RubberTyredGantry.h"
 #include "harbour/sim/Autopilot.h"
 
 namespace harbour::sim {
@@ -12,6 +15,10 @@ const MachineType& rtg_machine_type() {
   static constexpr MachineType type{"rtg",  "rubber-tyred gantry crane", Handles::kContainers, kFaults, true,
                                     kPilots};
   return type;
+}
+
+std::unique_ptr<Machine> RtgSetup::build(physics::PhysicsWorld& world) const {
+  return std::make_unique<RubberTyredGantry>(world, crane, start);
 }
 
 }  // namespace harbour::sim

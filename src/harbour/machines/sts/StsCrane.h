@@ -10,6 +10,7 @@
 #include "harbour/cable/HoistSystem.h"
 #include "harbour/machines/GantryCrane.h"
 #include "harbour/machines/Machine.h"
+#include "harbour/machines/MachineSetup.h"
 #include "harbour/machines/parts/Drive.h"
 #include "harbour/machines/parts/SpreaderHoist.h"
 #include "harbour/physics/PhysicsWorld.h"
@@ -191,6 +192,16 @@ class StsCrane final : public Machine, public GantryCrane {
   bool horn_ = false;
   std::unique_ptr<SpreaderHoist> rig_;  // the spreader on its hoist ropes
   std::array<WindArea, 1> wind_areas_;
+};
+
+/// An STS and where it starts (settings).
+struct StsSetup {
+  StsCraneSettings crane;
+  double gantry_y_m = 0.0, trolley_x_m = 20.0, spreader_z_m = 20.0;  ///< [m] crane pose at the start
+
+  static const MachineType& type() { return sts_machine_type(); }
+  std::unique_ptr<Machine> build(physics::PhysicsWorld& world) const;
+  std::vector<cable::ReevingSettings*> reevings() { return {&crane.hoist}; }
 };
 
 }  // namespace harbour::sim

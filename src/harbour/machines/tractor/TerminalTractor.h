@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "harbour/machines/Machine.h"
+#include "harbour/machines/MachineSetup.h"
 #include "harbour/machines/parts/DrivingCab.h"
 #include "harbour/machines/parts/WheeledChassis.h"
 #include "harbour/physics/PhysicsWorld.h"
@@ -159,6 +160,16 @@ class TerminalTractor final : public Machine {
   double lift_ = 0.0, lift_target_ = 0.0;
   core::Vec3 capture_offset_m_;  ///< the captured kingpin's offset from the jaw, drawn home (world, across)
   std::uint32_t jackknifes_ = 0;
+};
+
+/// A terminal tractor and where it stands (settings).
+struct TractorSetup {
+  TractorSettings vehicle;
+  TractorStart start;
+
+  static const MachineType& type() { return tractor_machine_type(); }
+  std::unique_ptr<Machine> build(physics::PhysicsWorld& world) const;
+  std::vector<cable::ReevingSettings*> reevings() { return {}; }
 };
 
 }  // namespace harbour::sim

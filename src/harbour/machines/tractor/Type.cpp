@@ -1,5 +1,8 @@
-#include "harbour/machines/Machine.h"
+#include <memory>
+#include <vector>
+
 #include "harbour/machines/MachineType.h"
+#include "harbour/machines/tractor/TerminalTractor.h"
 #include "harbour/sim/TractorAutopilot.h"
 
 namespace harbour::sim {
@@ -11,6 +14,10 @@ const MachineType& tractor_machine_type() {
   static constexpr MachineType type{"tractor", "ro-ro terminal tractor", Handles::kTrailer, {}, false,
                                     kPilots};
   return type;
+}
+
+std::unique_ptr<Machine> TractorSetup::build(physics::PhysicsWorld& world) const {
+  return std::make_unique<TerminalTractor>(world, vehicle, start);
 }
 
 }  // namespace harbour::sim

@@ -1,0 +1,98 @@
+#pragma once
+
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "harbour/machines/MachineType.h"
+
+namespace harbour::physics {
+class PhysicsWorld;
+}  // namespace harbour::physics
+namespace harbour::cable {
+struct ReevingSettings;
+}  // namespace harbour::cable
+
+namespace harbour::sim {
+
+class Machine;
+
+/// The machine an exercise runs, with where it starts, of whichever kind: a value holding one machine
+/// folder's setup (`StsSetup`, `MhcSetup`, ...). A setup type has `static const MachineType& type()`,
+/// `std::unique_ptr<Machine> build(physics::PhysicsWorld&) const` and `std::vector<cable::ReevingSettings*>
+/// reevings()` (its ropes' settings, where a recorded run's rope model is put back). Nothing here names a
+/// machine: a new one is a new setup type in its own folder.
+class MachineSetup {
+ public:
+  MachineSetup() = default;  ///< none yet (ScenarioSettings starts with an STS)
+  template <typename Setup, typename = std::enable_if_t<!std::is_same_v<std::decay_t<Setup>, MachineSetup>>>
+  MachineSetup(Setup setup)  // NOLINT: a setup is a machine setup
+      : held_(std::make_unique<Held<std::decay_t<Setup>>>(std::move(setup))) {}
+  MachineSetup(const MachineSetup& other) : held_(other.held_ ? other.held_->clone() : nullptr) {}
+  MachineSetup(MachineSetup&&) noexcept = default;
+  MachineSetup& operator=(const MachineSetup& other) {
+    if (this != &other) held_ = other.held_ ? other.held_->clone() : nullptr;
+    return *this;
+  }
+  MachineSetup& operator=(MachineSetup&&) noexcept = default;
+
+  const MachineType& type() const { return held().type(); }
+  /// Its kind as files name it ("sts").
+  const char* kind() const { return type().kind; }
+  /// The machine itself, in `world` at its start.
+  std::unique_ptr<Machine> build(physics::PhysicsWorld& world) const { return held().build(world); }
+  /// Its reevings' settings (none for a machine without ropes).
+  std::vector<cable::ReevingSettings*> reevings() { return held().reevings(); }
+
+  /// The setup when it is a `Setup`, else nullptr.
+  template <typename Setup>
+  const Setup* get_if() const {
+    const auto* held = dynamic_cast<const Held<Setup>*>(held_.get());
+    return held ? &held->setup : nullptr;
+  }
+  template <typename Setup>
+  Setup* get_if() {
+    auto* held = dynamic_cast<Held<Setup>*>(held_.get());
+    return held ? &held->setup : nullptr;
+  }
+  /// The setup as a `Setup`; throws std::logic_error naming both kinds when it is another machine's.
+  template <typename Setup>
+  const Setup& as() const {
+    if (const Setup* setup = get_if<Setup>()) return *setup;
+    throw std::logic_error(std::string("the machine is an ") + kind() + ", not an " + Setup::type().kind);
+  }
+  template <typename Setup>
+  Setup& as() {
+    return const_cast<Setup&>(std::as_const(*this).template as<Setup>());
+  }
+
+ private:
+  struct Base {
+    virtual ~Base() = default;
+    virtual std::unique_ptr<Base> clone() const = 0;
+    virtual const MachineType& type() const = 0;
+    virtual std::unique_ptr<Machine> build(physics::PhysicsWorld& world) const = 0;
+    virtual std::vector<cable::ReevingSettings*> reevings() = 0;
+  };
+  template <typename Setup>
+  struct Held final : Base {
+    explicit Held(Setup s) : setup(std::move(s)) {}
+    std::unique_ptr<Base> clone() const override { return std::make_unique<Held>(setup); }
+    const MachineType& type() const override { return Setup::type(); }
+    std::unique_ptr<Machine> build(physics::PhysicsWorld& world) const override { return setup.build(world); }
+    std::vector<cable::ReevingSettings*> reevings() override { return setup.reevings(); }
+    Setup setup;
+  };
+
+  Base& held() const {
+    if (!held_) throw std::logic_error("no machine set up");
+    return *held_;
+  }
+
+  std::unique_ptr<Base> held_;
+};
+
+}  // namespace harbour::sim
