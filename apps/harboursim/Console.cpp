@@ -437,7 +437,7 @@ json design_preview(const std::string& folder, const DesignCheck& design) {
   }
   const sim::ExerciseSettings& x = design.exercise;
   return {{"exercise", x.name},
-          {"machine", sim::machine_kind(x.scenario.machine)},
+          {"machine", x.scenario.machine.kind()},
           {"version", design.version},
           {"containers", x.scenario.containers.size()},
           {"moves", x.moves.size()},
@@ -2405,7 +2405,9 @@ std::string Console::attempts_csv(const std::optional<std::string>& trainee) {
       out += c == '"' ? std::string("\"\"") : std::string(1, c);
     return out + "\"";
   };
+  // a UTF-8 byte-order mark first: spreadsheet programs otherwise read the names in the local code page
   std::string csv =
+      "\xEF\xBB\xBF"
       "id,trainee,exercise,exercise_version,route,stage,status,score,passed,moves,skill_safety,skill_"
       "precision,"
       "skill_productivity\r\n";

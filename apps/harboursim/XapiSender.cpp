@@ -82,7 +82,10 @@ http::response<http::string_body> put_statement(const Endpoint& e, const LrsOpti
                                                 const io::XapiRow& row) {
   http::request<http::string_body> request{http::verb::put,
                                            e.path + "statements?statementId=" + row.statement_id, 11};
-  request.set(http::field::host, e.host);
+  // RFC 9112 (3.2): Host is the URI's host and its port, which may only be left out where it is the scheme's
+  // default (a virtual host behind the port would otherwise not be found)
+  const bool default_port = e.port == (e.tls ? "443" : "80");
+  request.set(http::field::host, default_port ? e.host : e.host + ":" + e.port);
   request.set(http::field::content_type, "application/json");
   request.set("X-Experience-API-Version", "1.0.3");
   if (!lrs.credentials.empty())

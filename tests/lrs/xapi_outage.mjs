@@ -118,6 +118,22 @@ try {
   consoleSender.kill("SIGTERM");
   await until("the console stops with its sender", () => consoleSender.exitCode !== null, 10);
 
+  // the Host header carries the LRS's port (RFC 9112: uri-host [":" port]), as a virtual host behind it needs
+  const hosts = [];
+  const other = Number(port) + 1;
+  const fake = http.createServer((req, res) => {
+    hosts.push(req.headers.host);
+    req.resume();
+    req.on("end", () => { res.writeHead(204); res.end(); });
+  });
+  await new Promise((resolve) => fake.listen(other, "127.0.0.1", resolve));
+  run(["run", "--exercise", "sts_discharge", "--autopilot", "--trainee", "ana", "--db", db]);
+  const once = start(app, ["xapi", "send", "--db", db, "--lrs", `http://127.0.0.1:${other}/xAPI/`, "--lrs-auth-file", auth]);
+  await until("the one-shot sender ends", () => once.exitCode !== null);
+  fake.close();
+  check(hosts.length > 0 && hosts.every((h) => h === `127.0.0.1:${other}`),
+    `the Host header names the LRS's port: ${[...new Set(hosts)].join(", ")} (${hosts.length} requests)`);
+
   // refusals
   for (const [args, what] of [[["xapi", "send", "--db", db, "--lrs", "ftp://x/"], "an ftp URL"],
     [["xapi", "send", "--db", db, "--lrs", endpoint, "--lrs-auth-file", path.join(dir, "none")], "a missing credentials file"],

@@ -116,7 +116,9 @@ try {
   check((await b("api/evolution")).status === 400 && (await b("api/evolution?trainee=zed")).status === 404,
     "evolution of nobody 400, of an unknown trainee 404");
   const csv = await fetch(baseB + "api/attempts.csv", { headers: { Cookie: whoB.cookie } });
-  const lines = (await csv.text()).trim().split("\r\n");
+  const csvBytes = Buffer.from(await csv.arrayBuffer());
+  check(csvBytes.subarray(0, 3).equals(Buffer.from([0xef, 0xbb, 0xbf])), "the CSV starts with a UTF-8 byte-order mark");
+  const lines = csvBytes.subarray(3).toString("utf8").trim().split("\r\n");
   check(csv.status === 200 && csv.headers.get("content-type").startsWith("text/csv") && lines.length === 3 &&
     lines[0].startsWith("id,trainee,exercise,exercise_version"), `the attempts as CSV: a header and two rows (${lines.length} lines)`);
   check(lines.some((l) => l.includes(`"'=dora"`)) && !lines.some((l) => l.includes(`,"=dora"`)),
