@@ -504,15 +504,20 @@ export class DesignerForms {
     const events: Plain[] = Array.isArray(x.events) ? x.events : [];
     // an event comes at an exercise time or so long after the first lift (drawn below the line, hollow)
     const fromLift = (e: Plain) => e.after_lift_s !== undefined;
-    const when = (e: Plain) => Number(fromLift(e) ? e.after_lift_s : e.at_s);
-    const limit = Number(x.rules?.time_limit_s ?? this.form?.rules.thresholds.find((f) => f.key === "time_limit_s")?.value ?? 600);
+    // a figure the text holds that is not a number yet (the instructor is typing): drawn at the default, so the
+    // timeline never draws at NaN; the check names the field
+    const finite = (value: unknown, fallback: number) => Number.isFinite(Number(value)) ? Number(value) : fallback;
+    const when = (e: Plain) => finite(fromLift(e) ? e.after_lift_s : e.at_s, 0);
+    const fallbackLimit = finite(this.form?.rules.thresholds.find((f) => f.key === "time_limit_s")?.value, 600);
+    const limit = finite(x.rules?.time_limit_s ?? fallbackLimit, fallbackLimit);
     const span = Math.max(limit, ...events.map((e) => when(e) + 10));
     const W = 640, H = 64, left = 10, right = W - 10, y = 36;
     const tx = (t: number) => left + ((right - left) * t) / span;
     const kinds = this.form?.event_kinds ?? ["gust", "hoist_brake_fault", "limiter_fault"];
     const kind = el("select", { id: "design-event-kind" });
     for (const k of kinds) kind.add(new Option(EVENT_LABEL[k] ?? k, k));
-    kind.value = sessionStorage.getItem("design-event-kind") ?? "gust";
+    const remembered = sessionStorage.getItem("design-event-kind");
+    kind.value = remembered && kinds.includes(remembered) ? remembered : "gust";  // another machine's fault: not here
     kind.addEventListener("change", () => sessionStorage.setItem("design-event-kind", kind.value));
     const svg = svgEl("svg", { id: "design-timeline", width: W, height: H, viewBox: `0 0 ${W} ${H}`, "data-span": span });
     svg.append(svgEl("rect", { x: 0, y: 0, width: W, height: H, fill: "#f7f9fc" }),

@@ -48,9 +48,12 @@ try {
   // broken: a time limit that is no number is refused with its line and field
   const broken = shipped.replace("name: sts_discharge", "name: sts_long_discharge").replace("time_limit_s: 180", "time_limit_s: soon");
   const brokenLine = broken.split("\n").findIndex((l) => l.includes("time_limit_s: soon")) + 1;
+  const drawnAtNaN = [];  // the timeline once drew ~90 SVG attributes at NaN for such a limit
+  page.on("console", (m) => { if (m.type() === "error" && /NaN/.test(m.text())) drawnAtNaN.push(m.text()); });
   await page.fill("#design-text", broken);
   await page.click("#design-check");
   await until("the broken design is refused", async () => (await page.textContent("#design-result")).includes("refused"));
+  check(drawnAtNaN.length === 0, `the forms draw nothing at NaN while the limit is no number (${drawnAtNaN.length}: ${drawnAtNaN[0] ?? ""})`);
   const refusal = await page.textContent("#design-result");
   check(/422/.test(refusal) && refusal.includes("time_limit_s") && refusal.includes(`:${brokenLine}`) && refusal.includes("the design"),
     `refused with the line (${brokenLine}) and field named: ${refusal}`);
