@@ -1656,11 +1656,15 @@ std::optional<Console::Response> Console::check_or_save_route(Call& c) {
            for (std::size_t n = 0; n < route.route.stages.size(); ++n)
              stages["stages"][n]["exercise_version"] =
                  io::exercise_version(route.route.stages[n].exercise_file);
-           if (!save)
-             return [this, request, stages = std::move(stages)] {
-               return json_reply(request, http::status::ok, stages);
-             };
-           return [this, request, account, route, stages = std::move(stages)]() mutable {
+           return [this, save, request, account, route, stages = std::move(stages)]() mutable {
+             // people pick a route by its title: another route's is refused (the console's routes: its
+             // thread)
+             for (const training::Route& other : routes_)
+               if (other.id != route.route.id && other.name == route.route.name)
+                 return error(request, http::status::unprocessable_entity,
+                              "route.name: '" + route.route.name + "' is also the name of route '" +
+                                  other.id + "': give this route a name of its own");
+             if (!save) return json_reply(request, http::status::ok, stages);
              return save_route_now(request, account, route, std::move(stages));
            };
          });

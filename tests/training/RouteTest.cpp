@@ -94,7 +94,8 @@ TEST(Routes, ABadRouteNamesTheFileLineAndField) {
 }
 
 // A centre's own routes stand beside the shipped ones and name the centre's exercises (found before the
-// shipped ones) by name; a route name the shipped routes use is refused, naming the centre's file.
+// shipped ones) by name; a route file name or a route title the shipped routes use is refused, naming the
+// file.
 TEST(Routes, ACentresRoutesNameItsOwnExercises) {
   namespace fs = std::filesystem;
   const fs::path centre = fs::temp_directory_path() / ("harbour_centre_" + std::to_string(::getpid()));
@@ -127,8 +128,27 @@ TEST(Routes, ACentresRoutesNameItsOwnExercises) {
         std::string::npos)
         << e.what();
   }
+  // a centre's route with a shipped one's title: people pick routes by title, so it is refused
+  std::ofstream(centre / "routes" / "our_twin.yaml")
+      << "name: STS basic\nmachine: STS\ngoals:\n  - goal: Lifts\n    stages:\n"
+         "      - {id: ours, exercise: our_lift}\n";
+  try {
+    io::load_routes({(centre / "routes").string(), HARBOUR_DATA_DIR "/routes"}, exercises);
+    ADD_FAILURE() << "two routes called STS basic";
+  } catch (const io::DataError& e) {
+    EXPECT_EQ(e.file(), HARBOUR_DATA_DIR "/routes/sts_basic.yaml");
+    EXPECT_NE(std::string(e.what()).find("route.name: 'STS basic' is also the name of route 'our_twin'"),
+              std::string::npos)
+        << e.what();
+  }
+  fs::remove(centre / "routes" / "our_twin.yaml");
   // a centre's route called as a shipped one
-  fs::copy_file(centre / "routes" / "our_basics.yaml", centre / "routes" / "sts_basic.yaml");
+  {
+    std::ifstream ours(centre / "routes" / "our_basics.yaml");
+    std::string copy((std::istreambuf_iterator<char>(ours)), std::istreambuf_iterator<char>());
+    copy.replace(copy.find("Our basics"), 10, "Our copy");
+    std::ofstream(centre / "routes" / "sts_basic.yaml") << copy;
+  }
   try {
     io::load_routes({(centre / "routes").string(), HARBOUR_DATA_DIR "/routes"}, exercises);
     ADD_FAILURE() << "two routes sts_basic";

@@ -43,8 +43,17 @@ export class RouteEditor {
     const id = $<HTMLSelectElement>("route-base").value;
     const r = await this.api(`/api/routes/source?route=${encodeURIComponent(id)}`);
     if (r.status !== 200) { this.verdict(false, r.data?.error ?? `error ${r.status}`); return; }
-    $<HTMLTextAreaElement>("route-text").value = r.data.text;
-    // a shipped route is an example: saved under a name of the centre's own
+    // a shipped route is an example: saved under a file name and a title of the centre's own (people pick
+    // routes by title, so two alike are refused)
+    let text: string = r.data.text;
+    if (!r.data.designed) {
+      const doc = parseDocument(text);
+      if (!doc.errors.length && isMap(doc.contents) && doc.has("name")) {
+        doc.set("name", `${String(doc.get("name"))} (centre copy)`);
+        text = doc.toString();
+      }
+    }
+    $<HTMLTextAreaElement>("route-text").value = text;
     $<HTMLInputElement>("route-id").value = r.data.designed ? id : `${id}_centre`;
     this.checkSoon(0);
   }

@@ -197,6 +197,8 @@ try {
   await page.selectOption("#route-base", "sts_basic");
   await page.click("#route-load");
   await until("the shipped route is loaded and checked", async () => (await routeResult()).includes("sts_basic_centre: valid, 5 stages"));
+  check((await page.inputValue("#route-text")).includes("name: STS basic (centre copy)"),
+    "the copy of a shipped route gets a title of its own");
   check((await page.locator("#route-stages tr[data-stage=hoist_brake_fault]").count()) === 1, "the loader's stages are listed");
   await page.fill("#route-id", "centre_long");
   await page.fill("#route-text", "# the centre's own\nname: Long discharges\nmachine: STS\ngoals:\n  - goal: Endurance\n    stages:\n" +
@@ -223,6 +225,9 @@ try {
   const shippedRoute = readFileSync(path.join(data, "routes", "sts_basic.yaml"), "utf8");
   check((await api("/api/routes/save", { id: "sts_basic", text: shippedRoute })).status === 409 &&
     readFileSync(path.join(data, "routes", "sts_basic.yaml"), "utf8") === shippedRoute, "a shipped route's name is refused (409)");
+  const twin = await api("/api/routes/check", { id: "centre_twin", text: shippedRoute });
+  check(twin.status === 422 && /route\.name: 'STS basic' is also the name of route 'sts_basic'/.test(twin.body.error ?? ""),
+    `a shipped route's title is refused under another file name: ${twin.status} ${twin.body.error}`);
   // eva enrolled; the station runs the route's next stage (warm-up passed by the autopilot, then the long one)
   await until("the enrol form offers it", async () => (await page.locator("#route option[value=centre_long]").count()) === 1);
   await page.selectOption("#progress-trainee", "eva");

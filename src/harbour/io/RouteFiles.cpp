@@ -224,6 +224,13 @@ std::vector<training::Route> load_routes(const std::vector<std::string>& routes_
                             " (the records know a route by its name: give this file another)");
       file_of[name] = file;
       routes.push_back(load_route(file, exercise_folders));
+      // people pick a route by its title (progress headings, the start list, the class report): two alike
+      // could not be told apart
+      for (std::size_t n = 0; n + 1 < routes.size(); ++n)
+        if (routes[n].name == routes.back().name)
+          throw DataError(file, 1, "route.name",
+                          "'" + routes.back().name + "' is also the name of route '" + routes[n].id + "' (" +
+                              file_of[routes[n].id] + "): give this route a name of its own");
     }
   }
   return routes;
