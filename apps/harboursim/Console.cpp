@@ -1386,7 +1386,10 @@ std::optional<Console::Response> Console::attempts(Call& c) {
                     {"parent", a.parent ? json(*a.parent) : json(nullptr)},
                     {"route", a.route},
                     {"stage", a.stage},
-                    {"exercise_version", a.exercise_version}});
+                    {"exercise_version", a.exercise_version},
+                    {"started_at", a.started_at},
+                    {"ended_at", a.ended_at},
+                    {"autopilot", a.autopilot}});
   return json_reply(c.request, http::status::ok, list);
 }
 

@@ -113,6 +113,7 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
   check_outputs(outputs);
   const std::string database = options.database.empty() ? default_database() : options.database;
   station::SessionOptions session_options;
+  session_options.autopilot = options.autopilot;
   if (!options.route.empty()) {
     io::RecordsStore db(database);
     const RouteStage next = next_route_stage(db, options.centre, options.trainee, options.route);

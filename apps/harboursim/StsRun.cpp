@@ -205,15 +205,18 @@ int list_trainees(const std::string& database) {
 int list_results(const std::string& database, const std::string& trainee) {
   io::RecordsStore db(database.empty() ? default_database() : database);
   const auto attempts = db.attempts(trainee.empty() ? std::nullopt : std::optional(trainee));
-  std::printf("%-8s %-12s %-20s %-11s %6s %6s  %s\n", "attempt", "trainee", "exercise", "status", "moves",
-              "score", "from");
+  std::printf("%-8s %-16s %-9s %-12s %-20s %-11s %6s %6s  %s\n", "attempt", "started (UTC)", "by", "trainee",
+              "exercise", "status", "moves", "score", "from");
   for (const io::AttemptRow& a : attempts) {
     const std::string score =
         a.score ? std::to_string(static_cast<int>(*a.score)) + (a.passed ? " P" : " F") : "-";
     const std::string from =
         a.parent ? "take-over of " + std::to_string(*a.parent) + " at step " + std::to_string(a.branch_step)
                  : "";
-    std::printf("%-8lld %-12s %-20s %-11s %6d %6s  %s\n", static_cast<long long>(a.id),
+    std::string started = a.started_at.empty() ? "-" : a.started_at.substr(0, 16);  // to the minute
+    if (started.size() > 10 && started[10] == 'T') started[10] = ' ';
+    std::printf("%-8lld %-16s %-9s %-12s %-20s %-11s %6d %6s  %s\n", static_cast<long long>(a.id),
+                core::printable(started).c_str(), a.autopilot ? "autopilot" : "trainee",
                 core::printable(a.trainee).c_str(), core::printable(a.exercise).c_str(),
                 core::printable(a.status).c_str(), a.moves, score.c_str(), from.c_str());
   }
@@ -277,7 +280,7 @@ int drive_attempt(const sim::ExerciseSettings& exercise, sim::Simulation& simula
   }
   const std::int64_t attempt =
       db.begin_attempt({options.trainee, exercise.name, parent, branch_step, options.record, options.route,
-                        options.stage, options.source.version, options.source});
+                        options.stage, options.source.version, options.source, options.autopilot});
   std::printf("attempt %lld of trainee %s%s\n", static_cast<long long>(attempt), options.trainee.c_str(),
               options.record.empty() ? "" : (", recording " + options.record).c_str());
   for (int n = 0; n < evaluator.metrics().moves_completed; ++n)  // a take-over's moves before the branch

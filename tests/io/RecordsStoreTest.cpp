@@ -76,6 +76,16 @@ TEST_P(RecordsStoreOn, StoresTraineesAttemptsMovesAndScores) {
   EXPECT_EQ(rows[1].score, 95.0);
   EXPECT_TRUE(rows[1].passed);
   EXPECT_EQ(rows[1].moves, 1);
+  // when each started and ended (UTC, ISO 8601, ordered as text), and who drove (none was the autopilot)
+  EXPECT_EQ(rows[1].started_at.size(), 24u) << rows[1].started_at;
+  EXPECT_EQ(rows[1].started_at.back(), 'Z');
+  EXPECT_LE(rows[1].started_at, rows[1].ended_at);
+  EXPECT_LE(rows[1].ended_at, rows[0].started_at);
+  EXPECT_EQ(rows[0].ended_at, "");  // still running
+  EXPECT_FALSE(rows[0].autopilot || rows[1].autopilot);
+  const auto driven = db.begin_attempt({"t001", "sts_discharge", std::nullopt, 0, "", "", "", "", {}, true});
+  EXPECT_TRUE(db.attempts(std::string("t001"))[0].autopilot);
+  EXPECT_EQ(db.attempts(std::string("t001"))[0].id, driven);
   EXPECT_EQ(db.trainees().size(), 1u);
   // the attempt a recording file holds: the branch written over the same file is the newest there
   EXPECT_EQ(db.attempt_recorded_at("out/a.hsrc")->id, first);
@@ -126,6 +136,12 @@ void make_old_database(const std::string& connection, int version) {
   sql << "INSERT INTO metrics (attempt, name, value) VALUES (1, 'collisions', 0)";
 }
 
+// a database made by this build, taken back to before schema version 7: no attempt times, no autopilot flag
+void drop_attempt_times(soci::session& sql) {
+  for (const char* column : {"started_at", "ended_at", "autopilot"})
+    sql << "ALTER TABLE attempts DROP COLUMN " << column;
+}
+
 // Databases of earlier builds are upgraded in place, their rows kept; the new columns read as empty.
 TEST_P(RecordsStoreOn, DatabasesOfEarlierBuildsAreUpgradedInPlace) {
   for (int version : {1, 2}) {
@@ -133,7 +149,7 @@ TEST_P(RecordsStoreOn, DatabasesOfEarlierBuildsAreUpgradedInPlace) {
         fresh_connection(GetParam(), "records_upgrade_v" + std::to_string(version));
     make_old_database(connection, version);
     RecordsStore db(connection);
-    EXPECT_EQ(db.schema_version(), 6) << "from version " << version;
+    EXPECT_EQ(db.schema_version(), 7) << "from version " << version;
     const auto rows = db.attempts();
     ASSERT_EQ(rows.size(), 1u);
     EXPECT_EQ(rows[0].status, "finished");
@@ -174,10 +190,11 @@ TEST_P(RecordsStoreOn, DatabasesOfEarlierBuildsAreUpgradedInPlace) {
     sql << "DROP TABLE exercise_versions";
     sql << "DROP TABLE recordings";
     sql << "DROP TABLE xapi_outbox";
+    drop_attempt_times(sql);
     sql << "UPDATE schema_version SET version = 3";
   }
   RecordsStore upgraded(v3);
-  EXPECT_EQ(upgraded.schema_version(), 6);
+  EXPECT_EQ(upgraded.schema_version(), 7);
   EXPECT_TRUE(upgraded.xapi_outbox().empty());
   EXPECT_EQ(upgraded.attempts().size(), 1u);
 
@@ -190,10 +207,11 @@ TEST_P(RecordsStoreOn, DatabasesOfEarlierBuildsAreUpgradedInPlace) {
     soci::session sql(records_connection(v4));
     sql << "DROP TABLE exercise_versions";
     sql << "DROP TABLE recordings";
+    drop_attempt_times(sql);
     sql << "UPDATE schema_version SET version = 4";
   }
   RecordsStore upgraded_v4(v4);
-  EXPECT_EQ(upgraded_v4.schema_version(), 6);
+  EXPECT_EQ(upgraded_v4.schema_version(), 7);
   EXPECT_FALSE(upgraded_v4.recording(1).has_value());
   EXPECT_EQ(upgraded_v4.attempts()[0].recording, "/recordings/a.hsrc");
 
@@ -205,11 +223,28 @@ TEST_P(RecordsStoreOn, DatabasesOfEarlierBuildsAreUpgradedInPlace) {
     made.begin_attempt({"t001", "sts_discharge", std::nullopt, 0, "", "", "", "0123456789abcdef", {}});
     soci::session sql(records_connection(v5));
     sql << "DROP TABLE exercise_versions";
+    drop_attempt_times(sql);
     sql << "UPDATE schema_version SET version = 5";
   }
   RecordsStore upgraded_v5(v5);
-  EXPECT_EQ(upgraded_v5.schema_version(), 6);
+  EXPECT_EQ(upgraded_v5.schema_version(), 7);
   EXPECT_FALSE(upgraded_v5.kept_exercise("0123456789abcdef").has_value());
+
+  // a version-6 database (no attempt times) gets the columns: its attempts read no times and no autopilot
+  const std::string v6 = fresh_connection(GetParam(), "records_upgrade_v6");
+  {
+    RecordsStore made(v6);
+    made.add_trainee("t001", "Ana");
+    made.begin_attempt({"t001", "sts_discharge", std::nullopt, 0, "", "", "", "", {}, true});
+    soci::session sql(records_connection(v6));
+    drop_attempt_times(sql);
+    sql << "UPDATE schema_version SET version = 6";
+  }
+  RecordsStore upgraded_v6(v6);
+  EXPECT_EQ(upgraded_v6.schema_version(), 7);
+  ASSERT_EQ(upgraded_v6.attempts().size(), 1u);
+  EXPECT_EQ(upgraded_v6.attempts()[0].started_at, "");
+  EXPECT_FALSE(upgraded_v6.attempts()[0].autopilot);
 }
 
 // Every exercise version an attempt ran is kept once, by its content hash, with the folder its paths resolve
@@ -365,7 +400,7 @@ TEST_P(RecordsStoreOn, AFailedUpgradeLeavesTheDatabaseAsItWas) {
   // with the stray table gone the upgrade goes through
   sql << "DROP TABLE route_overrides";
   RecordsStore db(connection);
-  EXPECT_EQ(db.schema_version(), 6);
+  EXPECT_EQ(db.schema_version(), 7);
 }
 
 // A database a newer build has upgraded is refused, not read wrongly or downgraded.

@@ -83,6 +83,17 @@ function showStations(stations: Station[]) {
       body.appendChild(row);
     }
     row.classList.toggle("selected", s.station === selected);
+    // the selected station gone idle sends no more states: its last one no longer applies (a fault lamp, the
+    // figures), so the live line says what the station is now
+    if (s.station === selected && s.state === "idle" && $("live").dataset.state !== "idle") {
+      latestState = null;
+      $("live").dataset.state = "idle";
+      text($("live"), s.message ? `idle: ${s.message}` : "idle");
+      text($("live-faults"), "");
+      $("live-faults").hidden = true;
+    } else if (s.station === selected && s.state !== "idle") {
+      $("live").dataset.state = s.state;
+    }
     const values = [s.station, s.state, s.machine, s.exercise, s.trainee,
       s.state === "idle" ? "" : `${s.time_s.toFixed(1)} / ${s.time_limit_s.toFixed(0)} s`,
       s.state === "idle" ? "" : s.score.toFixed(0), s.moves_total ? `${s.moves_done}/${s.moves_total}` : "",
@@ -144,7 +155,10 @@ function drawFrame() {
   const live = $("live");
   live.dataset.wind = wind.toFixed(2);
   text(live, `t ${m.time_s.toFixed(1)} s${m.held ? " (held)" : ""}   wind ${wind.toFixed(1)} m/s   ` +
-    Object.entries(m.indicators).slice(0, 8).map(([k, v]) => `${k} ${v.toFixed(2)}`).join("   "));
+    Object.entries(m.indicators).slice(0, 8).map(([k, v]) => {
+      const f = figureWords(k, v);
+      return `${f.label} ${f.value}`;
+    }).join("   "));
   // the faults in force, as the cab's fault lamps show them
   const faults = Object.entries(m.indicators).filter(([k, v]) => /^lamp_.*fault$/.test(k) && v !== 0)
     .map(([k]) => k.slice(5).replace(/_/g, " ").toUpperCase());
@@ -253,6 +267,71 @@ async function openReplay(attempt: number) {
   await replayAction({ action: "seek", at_s: 0 });
 }
 
+// A stored figure's name says its unit (name_unit, SI as the simulator keeps it): its words and its value with
+// the unit, to sensible digits (energies in kJ or MJ).
+const kUnits: [string, string][] = [["_mps3", "m/s³"], ["_mps2", "m/s²"], ["_mps", "m/s"], ["_kmh", "km/h"],
+  ["_ns", "N·s"], ["_kn", "kN"], ["_n", "N"], ["_j", "J"], ["_kg", "kg"], ["_deg", "°"], ["_rad", "rad"], ["_dm", "dm"],
+  ["_m3", "m³"], ["_s", "s"], ["_m", "m"], ["_t", "t"]];
+function figureWords(name: string, value: number): { label: string; value: string } {
+  const unit = kUnits.find(([suffix]) => name.endsWith(suffix));
+  let label = (unit ? name.slice(0, -unit[0].length) : name).replace(/_/g, " ");
+  if (label.startsWith("skill ")) label = `${label.slice(6)} (skill, of 100)`;
+  let v = value, u = unit ? unit[1] : "";
+  if (u === "J" && Math.abs(v) >= 1e6) { v /= 1e6; u = "MJ"; } else if (u === "J" && Math.abs(v) >= 1e3) { v /= 1e3; u = "kJ"; }
+  if (u === "rad") { v *= 180 / Math.PI; u = "°"; }  // people read angles in degrees
+  // three significant digits, and nothing below a thousandth (a drift of 7e-5 m/s reads 0)
+  const digits = Number.isInteger(v) ? String(v) : String(Number(Number(v.toPrecision(3)).toFixed(3)) + 0);
+  return { label, value: u ? `${digits} ${u}` : digits };
+}
+
+// One attempt as a debrief: what it was, how it ended, what happened when, and its figures in words.
+function showDebrief(d: { id: number; trainee: string; exercise: string; outcome: string; score: number | null;
+  events: { at_s: number; kind: string; value: number }[]; metrics: Record<string, number>; recording?: string } | null) {
+  const box = $("attempt-detail");
+  box.replaceChildren();
+  if (!d) return;
+  const head = document.createElement("h3");
+  text(head, `Attempt ${d.id}: ${d.trainee} on ${d.exercise}, ${d.outcome}${d.score === null ? "" : `, score ${d.score.toFixed(1)}`}`);
+  box.append(head);
+  const happened = document.createElement("ul");
+  for (const e of d.events) {
+    const li = document.createElement("li");
+    text(li, `${e.at_s.toFixed(1)} s: ${e.kind.replace(/_/g, " ")}${e.value ? ` (${Number(e.value.toPrecision(3))})` : ""}`);
+    happened.append(li);
+  }
+  if (d.events.length) box.append(happened);
+  const figures = document.createElement("table");
+  figures.className = "figures";
+  for (const [name, value] of Object.entries(d.metrics)) {
+    const { label, value: shown } = figureWords(name, value);
+    const tr = document.createElement("tr");
+    const th = document.createElement("th"), td = document.createElement("td");
+    text(th, label);
+    text(td, shown);
+    tr.dataset.figure = name;
+    tr.append(th, td);
+    figures.append(tr);
+  }
+  box.append(figures);
+  if (d.recording) {
+    const p = document.createElement("p");
+    p.className = "hint";
+    text(p, `recording: ${d.recording}`);
+    box.append(p);
+  }
+}
+
+// when an attempt started, in the browser's own date and time format; how long it took (a running one: "")
+function startedText(at: string): string {
+  const when = new Date(at);
+  return Number.isNaN(when.getTime()) ? at : when.toLocaleString(undefined, { dateStyle: "medium", timeStyle: "short" });
+}
+function durationText(started: string, ended: string): string {
+  const s = (Date.parse(ended) - Date.parse(started)) / 1000;
+  if (!started || !ended || !Number.isFinite(s) || s < 0) return "";
+  return s < 60 ? `${s.toFixed(0)} s` : `${Math.floor(s / 60)} min ${Math.round(s % 60)} s`;
+}
+
 async function loadRecords() {
   const latest = latestCall("records");
   const attempts = await api("/api/attempts");
@@ -261,12 +340,15 @@ async function loadRecords() {
   body.replaceChildren();
   for (const a of attempts.data ?? []) {
     const row = document.createElement("tr");
-    for (const v of [a.id, a.trainee, a.exercise, a.outcome, a.score === null ? "" : a.score.toFixed(1), a.moves]) {
+    for (const v of [a.id, a.trainee, a.exercise, a.outcome, a.score === null ? "" : a.score.toFixed(1), a.moves,
+      a.started_at ? startedText(a.started_at) : "", durationText(a.started_at, a.ended_at),
+      a.autopilot ? "autopilot" : "trainee", a.parent === null ? "" : `attempt ${a.parent}`,
+      a.exercise_version ? a.exercise_version.slice(0, 8) : ""]) {
       const td = document.createElement("td"); text(td, v); row.appendChild(td);
     }
     row.addEventListener("click", async () => {
       const detail = await api(`/api/attempts/${a.id}`);
-      text($("attempt-detail"), JSON.stringify(detail.data, null, 1));
+      showDebrief(detail.data);
       $("attempt-actions").hidden = me?.role === "trainee";
       $("open-replay").dataset.attempt = String(a.id);
     });

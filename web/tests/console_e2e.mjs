@@ -144,7 +144,12 @@ try {
   const stationTime = async () => parseFloat(await page.textContent("#stations tr[data-station=e2e-1] td:nth-child(6)"));
   await until("12 s of the exercise have run (a keyframe at 10 s)", async () => (await stationTime()) >= 12.5, 40);
   await page.screenshot({ path: path.join(out, "console_instructor.png"), fullPage: true });
+  // stopped with a fault in force: once the station is idle the live line no longer shows the fault
+  await page.click("button[data-kind=hoist-brake-fault]");
+  await until("the fault is in force again", async () => (await page.textContent("#live-faults")).includes("BRAKE FAULT"));
   await page.click("button[data-kind=stop]");
+  await until("the idle station's live line says so and shows no fault", async () =>
+    (await page.textContent("#live")).startsWith("idle") && await page.isHidden("#live-faults"));
   let original;
   await until("the stopped attempt is stored", async () => {
     const r = await page.evaluate(async () => (await fetch("/api/attempts")).json());
@@ -166,6 +171,12 @@ try {
 
   // replay it: scrub to 11 s (from the keyframe), play at 8x, then take over there on the station
   await page.click(`#attempts tbody tr:has(td:text-is("${original.id}"))`);
+  await until("the attempt's debrief says what it was, in words", async () =>
+    (await page.textContent("#attempt-detail")).includes(`Attempt ${original.id}: ben on sts_discharge, ended by the instructor`));
+  const debrief = await page.textContent("#attempt-detail");
+  check(!/[{}"]/.test(debrief) && !debrief.includes("hoist_energy_j") && /hoist energy\s*[\d.]+ (kJ|MJ)/.test(debrief) &&
+    /safety \(skill, of 100\)\d/.test(debrief),
+    `the debrief shows figures with words and units, no raw keys (${debrief.slice(0, 160)}...)`);
   await page.click("#open-replay");
   await until("the replay opens at 0 s", async () => (await page.textContent("#replay-time")).startsWith("0.0 /"));
   await page.$eval("#replay-scrub", (e) => { e.value = "11"; e.dispatchEvent(new Event("change")); });
@@ -196,6 +207,15 @@ try {
   const branch = (await page.evaluate(async () => (await fetch("/api/attempts")).json())).find((a) => a.parent === original.id);
   check(branch?.trainee === "anna", `the branch is a new attempt of anna's with attempt ${original.id} as its parent`);
   await page.click("button[data-kind=stop]");
+  // the results table says when each attempt ran, for how long, who drove and where a take-over came from
+  const rowText = async (id) => (await page.locator(`#attempts tbody tr:has(td:nth-child(1):text-is("${id}"))`)
+    .allTextContents().catch(() => []))[0] ?? "";
+  await until("the branch's row names its parent and its driver", async () =>
+    (await rowText(branch?.id)).includes(`attempt ${original.id}`) && (await rowText(branch?.id)).includes("autopilot"));
+  const originalRow = await page.locator(`#attempts tbody tr:has(td:nth-child(1):text-is("${original.id}")) td`).allTextContents();
+  check(originalRow[6] !== "" && /^\d+ (s|min \d+ s)$/.test(originalRow[7]) && originalRow[8] !== "" &&
+    originalRow[10] === original.exercise_version.slice(0, 8),
+    `the stopped attempt's row: started ${originalRow[6]}, took ${originalRow[7]}, driven by ${originalRow[8]}, version ${originalRow[10]}`);
 
   // training routes: anna enrolled in the STS route from the panel; her progress shows the first stage open
   await page.selectOption("#progress-trainee", "anna");

@@ -44,8 +44,9 @@ constexpr std::chrono::milliseconds kWalRetry{50};
 // have no schema_version table: 2 when attempts has the process column, else 1. 4: the xAPI outbox. 5: the
 // attempts' recordings, so that a console or a station on another PC replays and continues them. 6: every
 // exercise version an attempt ran, by its content hash (a replay re-simulates what the trainee had, whatever
-// its file says now), and attempts ended by the instructor.
-constexpr int kSchemaVersion = 6;
+// its file says now), and attempts ended by the instructor. 7: when an attempt started and ended (UTC, ISO
+// 8601), and whether the autopilot drove it.
+constexpr int kSchemaVersion = 7;
 
 // every table of a schema version with the columns this build reads (and, for the latest, writes)
 struct TableColumns {
@@ -57,8 +58,8 @@ constexpr TableColumns kTables[] = {
     {"trainees", "id, name", 1, 1},
     {"attempts",
      "id, trainee, exercise, status, score, passed, parent, branch_step, recording, process, route, stage, "
-     "exercise_version",
-     1, 3},
+     "exercise_version, started_at, ended_at, autopilot",
+     1, 7},
     {"moves", "attempt, idx, completed_at_s, cycle_time_s", 1, 1},
     {"events", "attempt, at_s, kind, value", 1, 1},
     {"metrics", "attempt, name, value", 1, 1},
@@ -78,7 +79,11 @@ constexpr TableColumns kTables[] = {
 std::string columns_at(const TableColumns& t, int version) {
   if (version < t.since) return "";
   if (version >= t.changed) return t.columns;
-  // attempts before version 3; before version 2 without process
+  // attempts before version 7; before version 3 without route, stage and version; before 2 without process
+  if (version >= 3)
+    return "id, trainee, exercise, status, score, passed, parent, branch_step, recording, process, route, "
+           "stage, "
+           "exercise_version";
   return version >= 2
              ? "id, trainee, exercise, status, score, passed, parent, branch_step, recording, process"
              : "id, trainee, exercise, status, score, passed, parent, branch_step, recording";
@@ -144,6 +149,11 @@ std::vector<std::string> migration(int version) {
       return {
           "CREATE TABLE exercise_versions (version TEXT PRIMARY KEY, exercise TEXT NOT NULL, folder TEXT NOT "
           "NULL, text TEXT NOT NULL)"};
+    case 7:
+      // when an attempt started and ended ('' : before), and whether the autopilot drove it
+      return {"ALTER TABLE attempts ADD COLUMN started_at TEXT NOT NULL DEFAULT ''",
+              "ALTER TABLE attempts ADD COLUMN ended_at TEXT NOT NULL DEFAULT ''",
+              "ALTER TABLE attempts ADD COLUMN autopilot INTEGER NOT NULL DEFAULT 0"};
     default:
       return {};
   }
@@ -625,14 +635,17 @@ std::int64_t RecordsStore::begin_attempt(const AttemptStart& start) {
       long long parent_id = start.parent.value_or(0);
       soci::indicator parent_ind = start.parent ? soci::i_ok : soci::i_null;
       const long long branch = start.branch_step;
+      const std::string started_at = xapi_time_now();
+      const int autopilot = start.autopilot ? 1 : 0;
       impl_->sql
           << "INSERT INTO attempts (id, trainee, exercise, status, score, passed, parent, branch_step, "
-             "recording, process, route, stage, exercise_version)"
+             "recording, process, route, stage, exercise_version, started_at, ended_at, autopilot)"
              " VALUES (:id, :trainee, :exercise, 'running', NULL, 0, :parent, :branch, :recording, :process,"
-             " :route, :stage, :version)",
+             " :route, :stage, :version, :started, '', :autopilot)",
           soci::use(id), soci::use(trainee), soci::use(start.exercise), soci::use(parent_id, parent_ind),
           soci::use(branch), soci::use(start.recording), soci::use(process), soci::use(start.route),
-          soci::use(start.stage), soci::use(start.exercise_version);
+          soci::use(start.stage), soci::use(start.exercise_version), soci::use(started_at),
+          soci::use(autopilot);
       // the exercise as it ran, once per version
       if (!start.source.text.empty() && start.source.version == start.exercise_version) {
         int kept = 0;
@@ -720,8 +733,11 @@ void RecordsStore::finish_attempt(std::int64_t attempt, const sim::Metrics& m, c
       }
       const double score = s.total;
       const int passed = s.passed ? 1 : 0;
-      impl_->sql << "UPDATE attempts SET status = :st, score = :s, passed = :p, recording = :r WHERE id = :a",
-          soci::use(status), soci::use(score), soci::use(passed), soci::use(recording), soci::use(a);
+      const std::string ended_at = xapi_time_now();
+      impl_->sql << "UPDATE attempts SET status = :st, score = :s, passed = :p, recording = :r, ended_at = :e"
+                    " WHERE id = :a",
+          soci::use(status), soci::use(score), soci::use(passed), soci::use(recording), soci::use(ended_at),
+          soci::use(a);
       training::xapi::AttemptFacts facts = impl_->facts_of(a);
       facts.status = status;
       facts.score = s.total;
@@ -783,7 +799,8 @@ std::vector<AttemptRow> RecordsStore::attempt_rows(const std::string& who, std::
     soci::rowset<soci::row> rows =
         (impl_->sql.prepare
              << "SELECT a.id, a.trainee, a.exercise, a.status, a.score, a.passed, a.parent, a.branch_step,"
-                " a.recording, a.route, a.stage, a.exercise_version FROM attempts a WHERE (:who = '' OR "
+                " a.recording, a.route, a.stage, a.exercise_version, a.started_at, a.ended_at, a.autopilot"
+                " FROM attempts a WHERE (:who = '' OR "
                 "a.trainee = :who2) AND (:id = 0 OR a.id = :id2) ORDER BY a.id DESC",
          soci::use(who), soci::use(who), soci::use(id_wanted), soci::use(id_wanted));
     for (const soci::row& r : rows) {
@@ -801,6 +818,12 @@ std::vector<AttemptRow> RecordsStore::attempt_rows(const std::string& who, std::
         a.route = r.get<std::string>(9);
         a.stage = r.get<std::string>(10);
         a.exercise_version = r.get<std::string>(11);
+        a.started_at = r.get<std::string>(12);
+        a.ended_at = r.get<std::string>(13);
+        const int autopilot = r.get<int>(14);
+        if (autopilot != 0 && autopilot != 1)
+          throw soci::soci_error("autopilot is " + std::to_string(autopilot) + ", not 0 or 1");
+        a.autopilot = autopilot == 1;
         const int passed = r.get<int>(5);
         if (std::find(std::begin(kStatuses), std::end(kStatuses), a.status) == std::end(kStatuses))
           throw soci::soci_error("status '" + core::printable(a.status) +

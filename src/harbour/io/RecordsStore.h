@@ -38,7 +38,9 @@ struct AttemptRow {
   std::string recording;     ///< recording file (given at the start: an interrupted one's replayable prefix)
   int moves = 0;             ///< moves stored so far
   std::string route, stage;  ///< the training route stage it was run for ("" : none)
-  std::string exercise_version;  ///< the exercise file's content hash (io::exercise_version; "" : before)
+  std::string exercise_version;      ///< the exercise file's content hash (io::exercise_version; "" : before)
+  std::string started_at, ended_at;  ///< UTC, ISO 8601 ("" : before schema version 7; ended: still running)
+  bool autopilot = false;            ///< the scripted operator drove it, not a trainee
 };
 
 /// How an attempt is stored as ended: diverged (the physics stopped it), interrupted (its process ended
@@ -54,7 +56,8 @@ struct AttemptStart {
   std::int64_t branch_step = 0;
   std::string recording;
   std::string route, stage, exercise_version;
-  ExerciseSource source;  ///< the exercise as it runs, kept by its version (none: its text is not kept)
+  ExerciseSource source;   ///< the exercise as it runs, kept by its version (none: its text is not kept)
+  bool autopilot = false;  ///< the scripted operator drives it
 };
 
 /// A trainee enrolled in a route: when and by whom (UTC, ISO 8601).

@@ -55,8 +55,9 @@ Session::Session(const sim::ExerciseSettings& exercise, const SessionOptions& op
     writer_.emplace(options.record, recorder_.recording());
     recorder_.set_sink(&*writer_);
   }
-  attempt_ = db_->begin_attempt({options.trainee, exercise.name, parent, branch_step, options.record,
-                                 options.route, options.stage, options.source.version, options.source});
+  attempt_ =
+      db_->begin_attempt({options.trainee, exercise.name, parent, branch_step, options.record, options.route,
+                          options.stage, options.source.version, options.source, options.autopilot});
   LoopSettings loop = options.loop;
   loop.checkpoint_every_steps = sim::Recorder::kCheckpointEvery;
   loop.keyframe_every_steps = writer_ ? sim::Recorder::kKeyframeEvery : 0;

@@ -32,6 +32,7 @@ struct SessionOptions {
   std::optional<TakeOverFrom> take_over;
   std::string route, stage;   ///< the training route stage it runs ("" : none)
   io::ExerciseSource source;  ///< the exercise as it runs (kept in the records by its version)
+  bool autopilot = false;     ///< the scripted operator drives (stored with the attempt)
 };
 
 /// How a live attempt came to its end.
