@@ -386,7 +386,20 @@ json looks_json(const ig::Looks& looks) {
                        {"color", vec3_json(part.color)},
                        {"repeat", part.repeat},
                        {"step_m", vec3_json(part.step_m)}});
-  return {{"visuals", std::move(visuals)}, {"scenery", std::move(scenery)}};
+  // the trainee's HUD lines: the console's live line shows the station's indicators as the cab shows them
+  json hud = json::array();
+  for (const ig::HudItem& h : looks.hud)
+    hud.push_back({{"indicator", h.indicator},
+                   {"label", h.label},
+                   {"unit", h.unit},
+                   {"decimals", h.decimals},
+                   {"lamp", h.lamp},
+                   {"scale", h.scale},
+                   {"words", h.words},
+                   {"words_from", h.words_from},
+                   {"shown_while", h.shown_while},
+                   {"machines", h.machines}});
+  return {{"visuals", std::move(visuals)}, {"scenery", std::move(scenery)}, {"hud", std::move(hud)}};
 }
 
 struct Account {

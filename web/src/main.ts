@@ -155,10 +155,7 @@ function drawFrame() {
   const live = $("live");
   live.dataset.wind = wind.toFixed(2);
   text(live, `t ${m.time_s.toFixed(1)} s${m.held ? " (held)" : ""}   wind ${wind.toFixed(1)} m/s   ` +
-    Object.entries(m.indicators).slice(0, 8).map(([k, v]) => {
-      const f = figureWords(k, v);
-      return `${f.label} ${f.value}`;
-    }).join("   "));
+    hudText(m.indicators, machineOf.get(m.station) ?? ""));
   // the faults in force, as the cab's fault lamps show them
   const faults = Object.entries(m.indicators).filter(([k, v]) => /^lamp_.*fault$/.test(k) && v !== 0)
     .map(([k]) => k.slice(5).replace(/_/g, " ").toUpperCase());
@@ -212,7 +209,10 @@ function connect() {
     const m = JSON.parse(message.data);
     if (m.type === "stations") showStations(m.stations);
     else if (m.type === "state") keepState(m);
-    else if (m.type === "scene") { if (m.station === selected) view?.setScene(m as SceneMessage); }
+    else if (m.type === "scene") {
+      machineOf.set(m.station, (m as SceneMessage).machine ?? "");
+      if (m.station === selected) view?.setScene(m as SceneMessage);
+    }
     else if (m.type === "bulk") {
       if (m.station === selected && viewOn() && view) { view.setBulk(m as BulkMessage); $("view3d").dataset.bulk = String(view.bulkQuadsDrawn()); }
     }
@@ -265,6 +265,29 @@ async function openReplay(attempt: number) {
   if (!socket) connect();
   select(replay.station);
   await replayAction({ action: "seek", at_s: 0 });
+}
+
+// The station's indicators as the trainee's HUD shows them (the looks' hud lines: label, unit, decimals,
+// lamps lit, words), for its machine; a station whose looks name none of its indicators: each in words.
+interface HudItem { indicator: string; label: string; unit: string; decimals: number; lamp: boolean; scale: number;
+  words: string[]; words_from: number; shown_while: string; machines: string[]; }
+const machineOf = new Map<string, string>();  // station -> machine kind, from its scene
+function hudText(indicators: Record<string, number>, machine: string): string {
+  const parts: string[] = [];
+  const items = ((looks as unknown as { hud?: HudItem[] })?.hud ?? [])
+    .filter((h) => indicators[h.indicator] !== undefined && (!h.machines.length || h.machines.includes(machine)));
+  for (const h of items) {
+    const v = indicators[h.indicator];
+    if (h.shown_while && !((indicators[h.shown_while] ?? 0) > 0.5)) continue;
+    if (h.lamp) { if (v > 0.5) parts.push(h.label); continue; }
+    if (h.words.length) { parts.push(`${h.label} ${h.words[Math.round(v) - h.words_from] ?? "?"}`); continue; }
+    parts.push(`${h.label} ${(v * h.scale).toFixed(h.decimals)}${h.unit ? ` ${h.unit}` : ""}`);
+  }
+  if (items.length) return parts.join("   ");
+  return Object.entries(indicators).slice(0, 8).map(([k, v]) => {
+    const f = figureWords(k, v);
+    return `${f.label} ${f.value}`;
+  }).join("   ");
 }
 
 // A stored figure's name says its unit (name_unit, SI as the simulator keeps it): its words and its value with

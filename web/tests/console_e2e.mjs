@@ -48,6 +48,11 @@ try {
   await until("the exercise runs", async () =>
     (await page.locator("#stations tr[data-station=e2e-1] td:nth-child(2)").textContent()) === "running", 40);
   await until("telemetry arrives", async () => ((await page.getAttribute("#live", "data-wind")) ?? "") !== "");
+  // the live line reads as the trainee's HUD does (the looks' hud lines for this machine), not raw keys
+  await until("the live line shows the STS's HUD: its payload and spreader", async () => {
+    const live = await page.textContent("#live");
+    return /load -?\d+\.\d t/.test(live) && /spreader (20|40|45) ft/.test(live) && !/flipper|_/.test(live);
+  });
   // the instructor sees what the trainee sees: the station's cab view as pictures, 640x360, new ones coming
   const picture = () => page.$eval("#cab-picture", (img) =>
     ({ frames: Number(img.dataset.frames ?? 0), time: Number(img.dataset.time ?? 0), width: img.naturalWidth, height: img.naturalHeight }));
