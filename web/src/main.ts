@@ -269,12 +269,10 @@ async function openReplay(attempt: number) {
 
 // The station's indicators as the trainee's HUD shows them (the looks' hud lines: label, unit, decimals,
 // lamps lit, words), for its machine; a station whose looks name none of its indicators: each in words.
-interface HudItem { indicator: string; label: string; unit: string; decimals: number; lamp: boolean; scale: number;
-  words: string[]; words_from: number; shown_while: string; machines: string[]; }
 const machineOf = new Map<string, string>();  // station -> machine kind, from its scene
 function hudText(indicators: Record<string, number>, machine: string): string {
   const parts: string[] = [];
-  const items = ((looks as unknown as { hud?: HudItem[] })?.hud ?? [])
+  const items = (looks?.hud ?? [])
     .filter((h) => indicators[h.indicator] !== undefined && (!h.machines.length || h.machines.includes(machine)));
   for (const h of items) {
     const v = indicators[h.indicator];

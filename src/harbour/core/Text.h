@@ -3,6 +3,7 @@
 #include <cstddef>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace harbour::core {
 
@@ -17,5 +18,8 @@ std::string why_bad_name(std::string_view text, std::size_t max_bytes = kMaxName
 /// `text` safe to print: control characters and bytes that are not UTF-8 become \xHH escapes, and at most
 /// `max_bytes` of it are shown (then "...").
 std::string printable(std::string_view text, std::size_t max_bytes = kMaxNameBytes);
+
+/// The items in one line, separated by ", " (a list in a message: "gust, hoist_brake_fault").
+std::string comma_separated(const std::vector<std::string>& items);
 
 }  // namespace harbour::core

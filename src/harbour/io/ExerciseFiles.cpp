@@ -12,6 +12,7 @@
 #include <optional>
 #include <tuple>
 
+#include "harbour/core/Text.h"
 #include "harbour/core/Units.h"
 #include "harbour/io/BoundedFile.h"
 #include "harbour/io/BulkFiles.h"
@@ -37,13 +38,6 @@ constexpr FaultEvent kFaultEvents[] = {
     {"limiter_fault", sim::MachineFault::kLoadMomentLimiter, sim::ScriptedEvent::Kind::kLimiterFault,
      "load-moment limiter"},
 };
-
-std::string comma_separated(const std::vector<std::string>& items) {
-  std::string text;
-  for (const std::string& item : items)
-    text += (text.empty() ? "" : ", ") + item;
-  return text;
-}
 
 const FaultEvent* find_fault_event(const std::string& name) {
   for (const FaultEvent& e : kFaultEvents)
@@ -674,7 +668,7 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
         if (!machine_type.has_fault(fault->fault))
           f.fail(ev["kind"], at + ".kind",
                  "the " + machine_kind + " has no " + fault->part +
-                     " to fail (its events: " + comma_separated(event_kinds(machine_type)) + ")");
+                     " to fail (its events: " + core::comma_separated(event_kinds(machine_type)) + ")");
         event.kind = fault->event;
         if (fault->fault == sim::MachineFault::kLandedSensor)
           event.corner = f.integer(ev, "corner", at, 0, 3);

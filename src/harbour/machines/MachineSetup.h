@@ -87,10 +87,11 @@ class MachineSetup {
     Setup setup;
   };
 
-  Base& held() const {
+  const Base& held() const {
     if (!held_) throw std::logic_error("no machine set up");
     return *held_;
   }
+  Base& held() { return const_cast<Base&>(std::as_const(*this).held()); }
 
   std::unique_ptr<Base> held_;
 };

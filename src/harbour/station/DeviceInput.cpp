@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <stdexcept>
 
+#include "harbour/core/Text.h"
 #include "harbour/station/DeviceMappingFile.h"
 
 namespace harbour::station {
@@ -49,12 +50,6 @@ std::string why_controller_unfit(const DeviceMapping& mapping, int device, SDL_G
   return {};
 }
 
-std::string joined(const std::vector<std::string>& labels) {
-  std::string s;
-  for (const std::string& l : labels)
-    s += (s.empty() ? "" : ", ") + l;
-  return s;
-}
 }  // namespace
 
 void init_sdl_joysticks() {
@@ -218,7 +213,7 @@ void DeviceInput::drop(std::size_t d, bool lost) {
   close(bound_[d]);
   if (lost)
     event({DeviceEvent::Kind::kLost, mapper_.mapping().devices[d].id, bound_[d].name,
-           "safe: " + joined(mapper_.controls_of(static_cast<int>(d)))});
+           "safe: " + core::comma_separated(mapper_.controls_of(static_cast<int>(d)))});
   bound_[d] = {};
   states_[d].connected = false;
 }
@@ -278,7 +273,7 @@ void DeviceInput::maintain() {
     states_[d].buttons.assign(static_cast<std::size_t>(buttons), false);
     states_[d].hats.assign(static_cast<std::size_t>(hats), 0);
     event({DeviceEvent::Kind::kConnected, mapping.devices[d].id, name,
-           joined(mapper_.controls_of(static_cast<int>(d)))});
+           core::comma_separated(mapper_.controls_of(static_cast<int>(d)))});
   }
 }
 
