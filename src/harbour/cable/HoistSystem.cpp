@@ -442,6 +442,10 @@ double HoistSystem::drum_rope_torque(int drum) const {
   return elements_[drums_[drum]].rope_torque;
 }
 
+const ElementSettings& HoistSystem::drum_settings(int drum) const {
+  return settings_.elements[static_cast<std::size_t>(drums_[static_cast<std::size_t>(drum)])];
+}
+
 double HoistSystem::energy() const {
   double total = 0.0;
   for (const Segment& s : segments_) {

@@ -72,6 +72,9 @@ class HoistSystem {
   /// Rope speed at a drum [m/s] (positive pays out) and the torque the rope puts on it [N m].
   double drum_rope_speed(int drum) const;
   double drum_rope_torque(int drum) const;
+  /// A drum's settings (its rated rope speed and motor torque).
+  const ElementSettings& drum_settings(int drum) const;
+  int drum_count() const { return static_cast<int>(drums_.size()); }
   /// Elastic energy of the ropes plus kinetic energy of transverse motion, sheaves and drums [J].
   double energy() const;
   /// Events since the last call.

@@ -390,6 +390,9 @@ void Simulation::advance(const Controls& controls) {
   events_.ropes.clear();
   world_->drain_impacts(events_.impacts);
   machine_->drain_events(events_);
+  for (const physics::ImpactEvent& impact : events_.impacts)
+    knocks_[static_cast<std::size_t>(knocks_total_++ % kMaxKnocks)] = {clock_.steps(), impact.impulse_ns,
+                                                                       impact.point};
   update_cab_cues();
   if (!std::isfinite(machine_->attachment_bottom_z_m())) warnings_.raise(core::Warning::kNonFinite);
   for (int n = world_->take_solver_messages(); n > 0; --n)
@@ -522,8 +525,12 @@ void Simulation::write_snapshot(Snapshot& s) const {
   s.cab.specific_force_mps2 = cab.direction_to_local(cab_specific_force_);
   s.cab.angular_velocity_radps = cab.direction_to_local(world_->angular_velocity(machine_->cab_body()));
 
+  s.knocks_total = knocks_total_;
+  s.knocks = knocks_;
+
   s.rope_count = 0;
   s.indicator_count = 0;
+  s.drive_count = 0;
   int n = machine_->publish(s, 0);
   // the telemetry, in the order scene() names it
   const Telemetry telemetry = machine_->telemetry();

@@ -265,6 +265,9 @@ class Simulation {
   bool levers_at_zero(const Controls& controls) const;
   core::Warnings warnings_;
   StepEvents events_;
+  // the latest impacts as the snapshot publishes them (output, not state)
+  std::array<Snapshot::Knock, kMaxKnocks> knocks_{};
+  std::int64_t knocks_total_ = 0;
   core::Vec3 cab_velocity_, cab_specific_force_{0.0, 0.0, core::kStandardGravity};  // world
 };
 

@@ -10,12 +10,14 @@
 
 namespace harbour::sim {
 
-inline constexpr std::uint32_t kSnapshotVersion = 4;
+inline constexpr std::uint32_t kSnapshotVersion = 5;
 inline constexpr int kMaxSwells = 4;
 inline constexpr int kMaxEntities = 2200;  ///< 2000 containers, the machine's bodies, vessel, trucks
 inline constexpr int kMaxRopes = 8;
 inline constexpr int kMaxRopePoints = 1024;
 inline constexpr int kMaxIndicators = 32;
+inline constexpr int kMaxDrives = 8;
+inline constexpr int kMaxKnocks = 16;
 
 /// The operator's design view from the cab, as the machine's file gives it: where a desktop picture looks
 /// and how much of the world it shows. Yaw from the cab's x axis towards its y, pitch above its xy plane.
@@ -39,6 +41,7 @@ struct SceneDescription {
   std::vector<Entity> entities;
   int machine_entities = 0;  ///< the first this many are the machine's own (a chase view frames them)
   std::vector<std::string> indicators;  ///< "trolley_x_m", "load_t", "lamp_locked", ...
+  std::vector<std::string> drives;      ///< the machine's drives and engines: "hoist", "engine", ...
   int rope_count = 0;
 };
 
@@ -115,6 +118,26 @@ struct Snapshot {
   /// Indicator values, named by SceneDescription::indicators.
   int indicator_count = 0;
   std::array<double, kMaxIndicators> indicators{};
+
+  /// What a drive or an engine is doing (what its sound and the platform's engine cues come from): its speed
+  /// as a fraction of its rated speed (signed: + raises, drives out, forward; an engine's speed from idle,
+  /// 0, to its governed speed, 1) and the force it gives as a fraction of its rated force or torque.
+  struct Drive {
+    double speed = 0.0;
+    double load = 0.0;
+  };
+  int drive_count = 0;  ///< named by SceneDescription::drives
+  std::array<Drive, kMaxDrives> drives{};
+
+  /// Contact impacts of the recent steps (a landing, a collision, the grab on the material), newest last,
+  /// each with the step it closed on, so a reader at a slower rate misses none of the last kMaxKnocks.
+  struct Knock {
+    std::int64_t step = 0;
+    double impulse_ns = 0.0;  ///< [N s] normal contact impulse
+    core::Vec3 point_m;       ///< [m] world
+  };
+  std::int64_t knocks_total = 0;  ///< knocks since the start: knock k sits at knocks[k % kMaxKnocks]
+  std::array<Knock, kMaxKnocks> knocks{};
 };
 static_assert(std::is_trivially_copyable_v<Snapshot>);
 

@@ -1,5 +1,7 @@
 #include "harbour/machines/mhc/MobileHarbourCrane.h"
 
+#include "harbour/machines/parts/DriveReadings.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -600,6 +602,7 @@ void MobileHarbourCrane::describe(SceneDescription& d) const {
     d.entities.push_back({"grab", "mhc.grab", settings_.grab_lower_half_extents_m});
   }
   d.indicators.assign(std::begin(kMhcIndicators), std::end(kMhcIndicators));
+  d.drives = {"slew", "luff", "hoist", "closing", "engine"};
   d.rope_count =
       std::min(luffing_->rope_count() + hoist_->rope_count() + (on_hook() ? kSlingLegs : 0), kMaxRopes);
 }
@@ -649,6 +652,17 @@ int MobileHarbourCrane::publish(Snapshot& s, int first) const {
   static_assert(std::size(values) == std::size(kMhcIndicators));
   s.indicator_count = static_cast<int>(std::size(values));
   std::copy(std::begin(values), std::end(values), s.indicators.begin());
+  // its drives (the grab's closing drum, where it has one) and the diesel generator set that powers them
+  const bool closing = hoist_->drum_count() > 1;
+  const Snapshot::Drive motors[] = {drive_reading(slew_drive_, world_.hinge_torque(slew_hinge_)),
+                                    drum_reading(*luffing_, 0), drum_reading(*hoist_, 0),
+                                    closing ? drum_reading(*hoist_, 1) : Snapshot::Drive{}};
+  const double rated[] = {rated_power_w(settings_.slew_drive), rated_power_w(luffing_->drum_settings(0)),
+                          rated_power_w(hoist_->drum_settings(0)),
+                          closing ? rated_power_w(hoist_->drum_settings(1)) : 0.0};
+  const Snapshot::Drive drives[] = {motors[0], motors[1], motors[2], motors[3],
+                                    generator_reading(motors, rated)};
+  publish_drives(drives, s);
   return n - first;
 }
 

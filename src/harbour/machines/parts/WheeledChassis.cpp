@@ -39,6 +39,16 @@ std::pair<double, int> drivetrain_wheel_torque_nm(const DrivetrainSettings& d, d
   return {std::clamp(throttle, 0.0, 1.0) * best, gear};
 }
 
+Snapshot::Drive engine_reading(const DrivetrainSettings& d, double tyre_radius_m, double throttle,
+                               double wheel_speed_mps, int gear) {
+  const double idle_rpm = d.torque_curve.front().first, top_rpm = d.torque_curve.back().first;
+  const double ratio = gear > 0 ? d.gear_ratios[static_cast<std::size_t>(gear - 1)] * d.final_drive
+                                : d.gear_ratios.front() * d.final_drive;
+  const double rpm =
+      std::max(idle_rpm, std::abs(wheel_speed_mps) / tyre_radius_m * 60.0 / (2.0 * std::numbers::pi) * ratio);
+  return {std::clamp((rpm - idle_rpm) / (top_rpm - idle_rpm), 0.0, 1.0), std::clamp(throttle, 0.0, 1.0)};
+}
+
 std::vector<SupportSpring> tyre_springs(const WheeledChassisSettings& chassis) {
   std::vector<SupportSpring> springs;
   for (const AxleSettings& a : chassis.axles)
@@ -96,10 +106,10 @@ double WheeledChassis::wheel_angle_rad(double x_m, double y_m, double steer) con
 void WheeledChassis::step(physics::PhysicsWorld& world, const ChassisCommand& command, const Ground& ground) {
   const core::Pose pose = world.pose(body_);
   const double forward = dot(world.linear_velocity(body_), pose.rotation.column(0));
-  const double axle_torque =
-      drivetrain_wheel_torque_nm(settings_.drivetrain, settings_.tyre.radius_m, command.throttle, forward)
-          .first *
-      (command.reverse ? -1.0 : 1.0);
+  const auto [wheel_torque, gear] =
+      drivetrain_wheel_torque_nm(settings_.drivetrain, settings_.tyre.radius_m, command.throttle, forward);
+  const double axle_torque = wheel_torque * (command.reverse ? -1.0 : 1.0);
+  engine_ = engine_reading(settings_.drivetrain, settings_.tyre.radius_m, command.throttle, forward, gear);
   const double brake = std::clamp(command.brake, 0.0, 1.0) * settings_.brake_torque_per_wheel_nm;
   for (const AxleSettings& a : settings_.axles) {
     TyreSettings tyre = settings_.tyre;  // twin tyres: one element of twice the stiffnesses

@@ -5,6 +5,7 @@
 
 #include "harbour/machines/parts/Tyre.h"
 #include "harbour/physics/PhysicsWorld.h"
+#include "harbour/sim/Snapshot.h"
 
 namespace harbour::sim {
 
@@ -55,6 +56,12 @@ struct ChassisCommand {
 std::pair<double, int> drivetrain_wheel_torque_nm(const DrivetrainSettings& drivetrain, double tyre_radius_m,
                                                   double throttle, double wheel_speed_mps);
 
+/// The engine as its sound hears it (Snapshot::Drive): its speed from idle (0) to the torque curve's last
+/// point (1), at the road speed in `gear` (1-based; 0: none fits, first gear's ratio) or idling below it, and
+/// its load, the throttle (the share of the torque it can give that it gives).
+Snapshot::Drive engine_reading(const DrivetrainSettings& drivetrain, double tyre_radius_m, double throttle,
+                               double wheel_speed_mps, int gear);
+
 /// A rigid body's static settling on vertical springs (its tyres and any supports): how far its centre of
 /// mass sags and how far it pitches (+ nose down), the sag at x along it being sag + pitch·x.
 struct Settling {
@@ -100,12 +107,15 @@ class WheeledChassis {
   /// The steering base: the steered axle's distance from the reference point (a bicycle's wheelbase).
   double steer_base_m() const { return steer_base_m_; }
   const WheeledChassisSettings& settings() const { return settings_; }
+  /// The engine in the last step (for its sound).
+  Snapshot::Drive engine() const { return engine_; }
 
  private:
   WheeledChassisSettings settings_;
   physics::BodyId body_;
   double reference_x_ = 0.0, steer_base_m_ = 1.0;
   int driven_wheels_ = 0;
+  Snapshot::Drive engine_;  // published: not state
 };
 
 }  // namespace harbour::sim

@@ -1,5 +1,7 @@
 #include "harbour/machines/reach_stacker/ReachStacker.h"
 
+#include "harbour/machines/parts/DriveReadings.h"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -276,6 +278,7 @@ void ReachStacker::describe(SceneDescription& d) const {
   d.entities.push_back({"rotator_frame", "reach_stacker.rotator", kSlewHalf_m});
   d.entities.push_back({"spreader", "reach_stacker.spreader", frame_->half_extents_m()});
   d.indicators.assign(std::begin(kIndicators), std::end(kIndicators));
+  d.drives = {"engine", "boom", "telescope"};
   d.rope_count = 0;
 }
 
@@ -307,6 +310,10 @@ int ReachStacker::publish(Snapshot& s, int first) const {
   static_assert(std::size(values) == std::size(kIndicators));
   s.indicator_count = static_cast<int>(std::size(values));
   std::copy(std::begin(values), std::end(values), s.indicators.begin());
+  const Snapshot::Drive drives[] = {
+      chassis_.engine(), drive_reading(luff_.drive(), world_.hinge_torque(luff_hinge_)),
+      drive_reading(telescope_.drive(), world_.slider_force(telescope_slider_))};
+  publish_drives(drives, s);
   return n - first;
 }
 

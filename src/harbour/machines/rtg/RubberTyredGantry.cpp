@@ -1,5 +1,7 @@
 #include "harbour/machines/rtg/RubberTyredGantry.h"
 
+#include "harbour/machines/parts/DriveReadings.h"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -218,6 +220,7 @@ void RubberTyredGantry::step(const Controls& raw, std::span<const ContainerRef> 
   gantry_braked_ = g.brake && (gantry_braked_ || std::abs(rolling_mps) < kBrakesSet_mps);
   const bool hold = gantry_braked_ || !square || stop;
   if (hold) travel_integral_ = {}, force = {};
+  gantry_force_n_ = force[0] + force[1];
   const double brake = hold ? settings_.gantry_drive.brake_force_n / 8.0 * settings_.tyre.radius_m : 0.0;
   for (const auto& [x, y] : tyre_positions(settings_)) {
     TyreCommand tyre;
@@ -279,6 +282,7 @@ void RubberTyredGantry::describe(SceneDescription& d) const {
   d.entities.push_back({"trolley", "rtg.trolley", {}});
   d.entities.push_back({"spreader", "rtg.spreader", rig_->spreader().half_extents_m()});
   d.indicators.assign(std::begin(kRtgIndicators), std::end(kRtgIndicators));
+  d.drives = {"gantry", "trolley", "hoist", "engine"};
   d.rope_count = std::min(rig_->hoist().rope_count(), kMaxRopes);
 }
 
@@ -307,6 +311,14 @@ int RubberTyredGantry::publish(Snapshot& s, int first) const {
   static_assert(std::size(values) == std::size(kRtgIndicators));
   s.indicator_count = static_cast<int>(std::size(values));
   std::copy(std::begin(values), std::end(values), s.indicators.begin());
+  // its drives and the diesel generator set that powers them
+  const Snapshot::Drive motors[] = {drive_reading(gantry_, gantry_force_n_),
+                                    drive_reading(trolley_drive_, world_.slider_force(trolley_slider_)),
+                                    drum_reading(rig_->hoist(), 0)};
+  const double rated[] = {rated_power_w(settings_.gantry_drive), rated_power_w(settings_.trolley_drive),
+                          rated_power_w(rig_->hoist().drum_settings(0))};
+  const Snapshot::Drive drives[] = {motors[0], motors[1], motors[2], generator_reading(motors, rated)};
+  publish_drives(drives, s);
   return n - first;
 }
 

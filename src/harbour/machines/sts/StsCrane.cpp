@@ -1,5 +1,7 @@
 #include "harbour/machines/sts/StsCrane.h"
 
+#include "harbour/machines/parts/DriveReadings.h"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -197,6 +199,7 @@ void StsCrane::describe(SceneDescription& d) const {
   d.entities.push_back({"trolley", "sts.trolley", {}});
   d.entities.push_back({"spreader", "sts.spreader", rig_->spreader().half_extents_m()});
   d.indicators.assign(std::begin(kStsIndicators), std::end(kStsIndicators));
+  d.drives = {"gantry", "trolley", "hoist", "boom"};
   d.rope_count = std::min(rig_->hoist().rope_count(), kMaxRopes);
 }
 
@@ -230,6 +233,12 @@ int StsCrane::publish(Snapshot& s, int first) const {
   static_assert(std::size(values) == std::size(kStsIndicators));
   s.indicator_count = static_cast<int>(std::size(values));
   std::copy(std::begin(values), std::end(values), s.indicators.begin());
+  // the boom is moved kinematically: its winch heard at half its rating while it moves
+  const Snapshot::Drive drives[] = {drive_reading(gantry_, world_.slider_force(gantry_slider_)),
+                                    drive_reading(trolley_, world_.slider_force(trolley_slider_)),
+                                    drum_reading(rig_->hoist(), 0),
+                                    drive_reading(boom_, 0.5 * boom_.settings().max_force_n)};
+  publish_drives(drives, s);
   return n - first;
 }
 

@@ -1,5 +1,7 @@
 #include "harbour/machines/tractor/TerminalTractor.h"
 
+#include "harbour/machines/parts/DriveReadings.h"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -213,6 +215,7 @@ void TerminalTractor::describe(SceneDescription& d) const {
   d.entities.push_back({"tractor", "tractor.chassis", settings_.half_extents_m});
   if (trailer_body_ != physics::kWorld) d.entities.push_back({"trailer", "trailer", trailer_half_extents_m_});
   d.indicators.assign(std::begin(kTractorIndicators), std::end(kTractorIndicators));
+  d.drives = {"engine"};
   d.rope_count = 0;
 }
 
@@ -238,6 +241,8 @@ int TerminalTractor::publish(Snapshot& s, int first) const {
   static_assert(std::size(values) == std::size(kTractorIndicators));
   s.indicator_count = static_cast<int>(std::size(values));
   std::copy(std::begin(values), std::end(values), s.indicators.begin());
+  const Snapshot::Drive engine[] = {chassis_.engine()};
+  publish_drives(engine, s);
   return n - first;
 }
 
