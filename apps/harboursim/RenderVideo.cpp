@@ -7,12 +7,15 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "StsRun.h"
+#include "harbour/audio/AudioOut.h"
+#include "harbour/audio/SoundFile.h"
 #include "harbour/bulk/BulkPublish.h"
 #include "harbour/ig/ImageGenerator.h"
 #include "harbour/io/BoundedFile.h"
@@ -80,11 +83,32 @@ class Encoder {
   std::vector<unsigned char> row_;
 };
 
+/// Runs ffmpeg with `arguments` (no shell) and waits; true when it succeeded.
+bool run_ffmpeg(std::vector<std::string> arguments) {
+  arguments.insert(arguments.begin(), {"ffmpeg", "-y", "-loglevel", "error"});
+  std::vector<char*> argv;
+  for (std::string& a : arguments)
+    argv.push_back(a.data());
+  argv.push_back(nullptr);
+  const pid_t pid = fork();
+  if (pid == 0) {
+    execvp("ffmpeg", argv.data());
+    _exit(127);
+  }
+  if (pid < 0) return false;
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return WIFEXITED(status) && WEXITSTATUS(status) == 0;
+}
+
 }  // namespace
 
 int render_video(const RenderOptions& options) {
-  if (const std::string why = io::why_not_writable(options.out); !why.empty())
-    throw std::runtime_error("--out " + options.out + ": " + why);
+  for (const auto& [flag, path] : {std::pair{"--out", options.out}, std::pair{"--audio", options.audio}})
+    if (!path.empty())
+      if (const std::string why = io::why_not_writable(path); !why.empty())
+        throw std::runtime_error(std::string(flag) + " " + path + ": " + why);
+  const bool drawing = !options.out.empty(), hearing = !options.audio.empty() || (drawing && options.sound);
   const sim::Recording recording = io::read_recording(options.recording);
   const sim::ExerciseSettings exercise = load_resolved_exercise(resolve_exercise(options.exercise));
   if (recording.scenario != exercise.name)
@@ -131,14 +155,35 @@ int render_video(const RenderOptions& options) {
   for (const Event& e : events)
     if (e.time_s >= options.from_s && e.time_s <= end_s) marks.push_back({e.time_s, e.color});
 
-  Encoder encoder(options.out, options.width, options.height, options.fps);
+  // the video without its sound first (ffmpeg then muxes the two)
+  const std::string silent_video = options.out + ".silent.mp4";
+  std::unique_ptr<Encoder> encoder;
+  if (drawing)
+    encoder = std::make_unique<Encoder>(hearing ? silent_video : options.out, options.width, options.height,
+                                        options.fps);
   auto snapshot = std::make_unique<sim::Snapshot>();
   double next_frame_s = options.from_s;
   long frames = 0;
   sim::BulkView bulk_view;  // the material's heights, copied tile by tile as they change
+  // the sound: a 10 ms block ending at every tenth step from the start of the span
+  std::unique_ptr<audio::OfflineMix> sound;
+  const audio::SoundSettings sounds =
+      hearing ? audio::load_sounds(std::string(HARBOUR_DATA_DIR) + "/sounds/harbour.yaml")
+              : audio::SoundSettings{};
+  audio::AudioSettings listening;
+  listening.speakers = options.headphones ? audio::Speakers::kHeadphones : audio::Speakers::kStereo;
+  const auto from_step =
+      static_cast<std::int64_t>(std::ceil(options.from_s / sim::Simulation::kStep_s - 1e-9));
+  auto heard = std::make_unique<sim::Snapshot>();
   const sim::ReplayResult result = sim::replay(
       exercise.scenario, recording, stop_step, [&](const sim::Simulation& s, const sim::Controls&) {
-        if (s.time_s() + 1e-9 < next_frame_s) return;
+        const std::int64_t step = s.steps();
+        if (hearing && step >= from_step && (step - from_step) % 10 == 0) {
+          if (!sound) sound = std::make_unique<audio::OfflineMix>(s.scene(), sounds, listening);
+          s.write_snapshot(*heard);
+          sound->add_block(*heard);
+        }
+        if (!drawing || s.time_s() + 1e-9 < next_frame_s) return;
         next_frame_s += 1.0 / options.fps;
         if (!generator) {
           generator =
@@ -160,14 +205,33 @@ int render_video(const RenderOptions& options) {
           bulk::publish(*material, bulk_view);
           generator->update_bulk(bulk_view);
         }
-        encoder.frame(generator->render());
+        encoder->frame(generator->render());
         ++frames;
       });
-  const bool written = encoder.finish();
-  if (!written) throw std::runtime_error(options.out + ": ffmpeg could not write the video");
-  std::printf("%s: %ld frames (%.1f-%.1f s at %.0f fps, %s view, %dx%d)%s\n", options.out.c_str(), frames,
-              options.from_s, end_s, options.fps, options.view.c_str(), options.width, options.height,
-              result.first_mismatch ? " -- the replay diverged from the recording (another build?)" : "");
+  if (encoder && !encoder->finish())
+    throw std::runtime_error(options.out + ": ffmpeg could not write the video");
+  const char* diverged =
+      result.first_mismatch ? " -- the replay diverged from the recording (another build?)" : "";
+  if (sound) {
+    const std::string wav = options.audio.empty() ? options.out + ".sound.wav" : options.audio;
+    audio::write_wav(wav, sound->samples(), sound->channels(), audio::AudioOut::kSampleRate_hz);
+    if (!options.audio.empty())
+      std::printf(
+          "%s: %.1f s of sound (%s)%s\n", wav.c_str(),
+          static_cast<double>(sound->samples().size()) / sound->channels() / audio::AudioOut::kSampleRate_hz,
+          options.headphones ? "headphones" : "speakers", diverged);
+    if (drawing) {
+      const bool muxed = run_ffmpeg({"-i", silent_video, "-i", wav, "-c:v", "copy", "-c:a", "aac", "-b:a",
+                                     "192k", "-shortest", options.out});
+      std::remove(silent_video.c_str());
+      if (options.audio.empty()) std::remove(wav.c_str());
+      if (!muxed) throw std::runtime_error(options.out + ": ffmpeg could not add the sound to the video");
+    }
+  }
+  if (drawing)
+    std::printf("%s: %ld frames (%.1f-%.1f s at %.0f fps, %s view, %dx%d%s)%s\n", options.out.c_str(), frames,
+                options.from_s, end_s, options.fps, options.view.c_str(), options.width, options.height,
+                hearing ? ", with sound" : "", diverged);
   print_evaluation(evaluator.metrics(), evaluator.score(), !exercise.moves.empty());
   return result.first_mismatch ? 1 : 0;
 }

@@ -157,7 +157,10 @@ int main(int argc, char** argv) {
       ->required()
       ->check(CLI::ExistingFile);
   render_cmd->add_option("--exercise", video.exercise, "the exercise it was recorded on")->required();
-  render_cmd->add_option("--out", video.out, "MP4 file")->required();
+  render_cmd->add_option("--out", video.out, "MP4 file (the video, with its sound)");
+  render_cmd->add_option("--audio", video.audio, "WAV file (the sound alone)");
+  render_cmd->add_flag("!--no-sound", video.sound, "a silent video");
+  render_cmd->add_flag("--headphones", video.headphones, "the sound through the HRTF, for headphones");
   render_cmd->add_option("--view", video.view, "cab, chase, free, spreader, boom_tip");
   render_cmd->add_option("--size", video_size, "WIDTHxHEIGHT (even numbers)");
   render_cmd->add_option("--fps", video.fps, "frames per second")->check(CLI::Range(1.0, 60.0));
@@ -340,6 +343,10 @@ int main(int argc, char** argv) {
     }
     if (*devices_cmd) return harbour::apps::run_devices(devices);
     if (*render_cmd) {
+      if (video.out.empty() && video.audio.empty()) {
+        std::fprintf(stderr, "harboursim render: --out (a video) or --audio (its sound), or both\n");
+        return 2;
+      }
       if (std::sscanf(video_size.c_str(), "%dx%d", &video.width, &video.height) != 2 || video.width < 16 ||
           video.height < 16 || video.width > 3840 || video.height > 2160 || video.width % 2 ||
           video.height % 2) {

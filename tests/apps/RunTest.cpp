@@ -5,6 +5,8 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdint>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -221,6 +223,67 @@ TEST(Run, AnOldAttemptReplaysBitForBitAfterItsExerciseFileWasEdited) {
   const std::string log = read_text(folder / "replay.log");
   EXPECT_NE(log.find("kept in the records"), std::string::npos) << log;
   EXPECT_NE(log.find("reproduced bit for bit"), std::string::npos) << log;
+}
+
+// starts harboursim with `args`, its output to `log`; returns its exit code
+int run_app(const std::vector<std::string>& arguments, const fs::path& log) {
+  const pid_t child = fork();
+  if (child == 0) {
+    freopen(log.c_str(), "w", stdout);
+    freopen(log.c_str(), "a", stderr);
+    std::vector<std::string> args = arguments;
+    args.insert(args.begin(), HARBOUR_APP);
+    std::vector<char*> argv;
+    for (std::string& a : args)
+      argv.push_back(a.data());
+    argv.push_back(nullptr);
+    execv(HARBOUR_APP, argv.data());
+    _exit(127);
+  }
+  return exit_code(child);
+}
+
+// A recording's sound track: the same bit for bit each time it is rendered, not silent, and in the debrief
+// video as its audio stream.
+TEST(Run, ARecordingsSoundTrackIsTheSameEveryTimeAndTheVideoCarriesIt) {
+  const fs::path folder = fresh_folder("harbour_sound");
+  const std::string db = "sqlite3://db=" + (folder / "records.db").string();
+  const std::string record = (folder / "run.hsrc").string();
+  ASSERT_EQ(exit_code(start_run(folder, db, record, 0)), 0) << read_text(folder / "run0.log");
+  std::string tracks[2];
+  for (int n = 0; n < 2; ++n) {
+    const fs::path wav = folder / ("sound" + std::to_string(n) + ".wav");
+    ASSERT_EQ(
+        run_app({"render", record, "--exercise", "sts_discharge", "--audio", wav.string(), "--to", "12"},
+                folder / "render.log"),
+        0)
+        << read_text(folder / "render.log");
+    tracks[n] = read_text(wav);
+  }
+  EXPECT_EQ(tracks[0].size(), 44u + 12u * 48000u * 2u * 2u);  // 12 s of 16-bit stereo at 48 kHz
+  EXPECT_TRUE(tracks[0] == tracks[1]);
+  long loud = 0;  // samples above -40 dB of full scale: the hoist at work
+  for (std::size_t n = 44; n + 1 < tracks[0].size(); n += 2) {
+    const auto sample = static_cast<std::int16_t>(static_cast<unsigned char>(tracks[0][n]) |
+                                                  static_cast<unsigned char>(tracks[0][n + 1]) << 8);
+    loud += std::abs(sample) > 328;
+  }
+  EXPECT_GT(loud, 48000);
+
+  const fs::path video = folder / "clip.mp4";
+  ASSERT_EQ(run_app({"render", record, "--exercise", "sts_discharge", "--out", video.string(), "--from", "3",
+                     "--to", "5", "--size", "160x90"},
+                    folder / "video.log"),
+            0)
+      << read_text(folder / "video.log");
+  const fs::path streams = folder / "streams.txt";
+  ASSERT_EQ(std::system(("ffprobe -v error -show_entries stream=codec_type -of csv=p=0 " + video.string() +
+                         " > " + streams.string())
+                            .c_str()),
+            0);
+  EXPECT_EQ(read_text(streams), "video\naudio\n");
+  EXPECT_FALSE(fs::exists(folder / "clip.mp4.silent.mp4"));
+  EXPECT_FALSE(fs::exists(folder / "clip.mp4.sound.wav"));
 }
 
 // SIGTERM ends every long-running command within a second, whatever it is doing: a run, a console, a served

@@ -48,6 +48,7 @@ double Oscillator::sine(double turns) {
 ElectricDriveVoice::ElectricDriveVoice(const ElectricDriveSettings& settings, std::uint32_t seed)
     : settings_(settings), noise_(seed) {
   rumble_.set_cutoff(180.0);
+  rumble_again_.set_cutoff(180.0);
 }
 
 void ElectricDriveVoice::render(std::span<float> out, Ramp speed, Ramp load) {
@@ -62,7 +63,7 @@ void ElectricDriveVoice::render(std::span<float> out, Ramp speed, Ramp load) {
     for (std::size_t k = 1; k < kHarmonic.size(); ++k)
       tone += kShare[k] * Oscillator::sine(kHarmonic[k] * tone_.phase());
     const double carrier = carrier_.next(settings_.carrier_hz);
-    const double rumble = rumble_.process(noise_.next());
+    const double rumble = 2.0 * rumble_again_.process(rumble_.process(noise_.next()));
     out[n] += f(settings_.level * turning *
                 ((0.35 + 0.65 * l) * (0.4 + 0.6 * s) * tone + 0.2 * l * carrier + 1.5 * s * rumble));
   }

@@ -94,7 +94,7 @@ class ElectricDriveVoice {
   ElectricDriveSettings settings_;
   Oscillator tone_, carrier_;
   Noise noise_;
-  OnePole rumble_;
+  OnePole rumble_, rumble_again_;  // two poles: a rumble, not a hiss
 };
 
 /// A diesel engine: a firing pulse every 2/cylinders of a turn (four-stroke), each exciting the exhaust's
