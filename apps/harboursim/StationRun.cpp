@@ -21,6 +21,8 @@
 #include "StationNet.h"
 #include "StationWindow.h"
 #include "StsRun.h"
+#include "harbour/audio/SoundFile.h"
+#include "harbour/audio/SoundThread.h"
 #include "harbour/core/Text.h"
 #include "harbour/ig/Jpeg.h"
 #include "harbour/ig/RenderThread.h"
@@ -161,6 +163,9 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
     }
   // snapshots only for the readers there are (writing one for nobody costs the step thread)
   if (windows.empty()) session_options.loop.snapshot_every_steps[station::kImageGeneratorReader] = 0;
+  // the cab's sound for the trainee at the station (none for a headless run)
+  const bool hearing = profile.sound && !windows.empty();
+  if (!hearing) session_options.loop.snapshot_every_steps[station::kSoundReader] = 0;
   if (!link) session_options.loop.snapshot_every_steps[station::kPictureReader] = 0;  // nobody watches
   if (!profile.motion) session_options.loop.snapshot_every_steps[station::kMotionReader] = 0;
   // nobody in the loop to feel a millisecond: the scripted operator, no window, no platform
@@ -258,6 +263,23 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
     else
       std::printf("windows: %zu of %dx%d, one per display, the cab view (%s%s)\n", windows.size(),
                   layout.windows[0].width, layout.windows[0].height, profile.name.c_str(), stereo.c_str());
+  }
+  std::unique_ptr<audio::SoundThread> sound;
+  if (hearing) {
+    audio::AudioSettings settings;
+    settings.speakers =
+        profile.sound->output == station::Profile::Sound::Output::kHeadphones   ? audio::Speakers::kHeadphones
+        : profile.sound->output == station::Profile::Sound::Output::kSurround51 ? audio::Speakers::kSurround51
+                                                                                : audio::Speakers::kStereo;
+    settings.volume = profile.sound->volume;
+    try {
+      sound = std::make_unique<audio::SoundThread>(
+          scene, audio::load_sounds(std::string(HARBOUR_DATA_DIR) + "/sounds/harbour.yaml"), settings,
+          [&session] { return session.loop().latest_snapshot(station::kSoundReader); });
+      std::printf("sound: %s\n", sound->describe().c_str());
+    } catch (const audio::AudioError& e) {
+      std::printf("no sound: %s\n", e.what());
+    }
   }
   std::optional<AttemptPresence> presence;
   if (link) presence.emplace(*link, session, exercise, options.trainee);

@@ -121,6 +121,22 @@ Profile load_profile(const std::string& path) {
   if (const auto head = switched(f, root, "head_tracking", "profile"))
     p.opentrack_port =
         static_cast<std::uint16_t>(f.integer(*head, "opentrack_port", "profile.head_tracking", 1, 65535));
+  // sound: on two speakers where the profile does not say
+  p.sound = Profile::Sound{};
+  if (f.optional(root, "sound", "profile")) {
+    if (const auto sound = switched(f, root, "sound", "profile")) {
+      const std::string output = f.text(*sound, "output", "profile.sound");
+      if (output != "speakers" && output != "headphones" && output != "surround_5_1")
+        f.fail((*sound)["output"], "profile.sound.output",
+               "'" + output + "' is not speakers, headphones or surround_5_1");
+      p.sound->output = output == "headphones"     ? Profile::Sound::Output::kHeadphones
+                        : output == "surround_5_1" ? Profile::Sound::Output::kSurround51
+                                                   : Profile::Sound::Output::kSpeakers;
+      p.sound->volume = f.number_or(*sound, "volume", "profile.sound", 1.0, 0.0, 2.0);
+    } else {
+      p.sound.reset();
+    }
+  }
   f.check_unknown_keys();
   return p;
 }

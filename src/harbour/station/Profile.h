@@ -52,6 +52,14 @@ struct Profile {
   };
   std::optional<Motion> motion;
   std::optional<std::uint16_t> opentrack_port;
+  /// The machine's and the harbour's sound: on two speakers, headphones (through an HRTF: sound from all
+  /// round) or 5.1 speakers round a cabin, at a master volume.
+  struct Sound {
+    enum class Output { kSpeakers, kHeadphones, kSurround51 };
+    Output output = Output::kSpeakers;
+    double volume = 1.0;  ///< [0, 2]
+  };
+  std::optional<Sound> sound;
 };
 
 /// Reads and checks a profile (every file it names exists; displays 1-8, sizes, angles); errors name file,

@@ -62,7 +62,8 @@ enum SnapshotReader : int {
   kConsoleReader = 1,
   kMotionReader = 2,
   kPictureReader = 3,  ///< the small cab view a served station sends the instructor
-  kSnapshotReaders = 4
+  kSoundReader = 4,    ///< the cab's sound
+  kSnapshotReaders = 5
 };
 
 /// The time the loop paces itself by: the steady clock, or a test's manual clock (real time tested by its
@@ -84,9 +85,9 @@ struct LoopSettings {
   int ticks_per_wake = 1;
   /// Each reader's publish period in steps (SnapshotReader order): the image generator at 250 Hz (it
   /// interpolates by step and time), the console at 50 Hz, the motion platform at 200 Hz (washout at 100 Hz),
-  /// the instructor's picture at 20 Hz; 0: a reader that is not there (no window, no platform), given only
-  /// the first snapshot.
-  std::array<int, kSnapshotReaders> snapshot_every_steps{4, 20, 5, 50};
+  /// the instructor's picture at 20 Hz, the sound at 100 Hz (a 10 ms block each); 0: a reader that is not
+  /// there (no window, no platform), given only the first snapshot.
+  std::array<int, kSnapshotReaders> snapshot_every_steps{4, 20, 5, 50, 10};
   /// The bulk material's heights for the image generator (tiles changed since copied): 20 Hz, as it flows.
   int bulk_every_steps = 50;
   std::size_t record_capacity = 1 << 15;       ///< steps of hand-off to the recorder (32 s)
