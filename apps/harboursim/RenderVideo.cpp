@@ -179,7 +179,14 @@ int render_video(const RenderOptions& options) {
       exercise.scenario, recording, stop_step, [&](const sim::Simulation& s, const sim::Controls&) {
         const std::int64_t step = s.steps();
         if (hearing && step >= from_step && (step - from_step) % 10 == 0) {
-          if (!sound) sound = std::make_unique<audio::OfflineMix>(s.scene(), sounds, listening);
+          if (!sound) {
+            sound = std::make_unique<audio::OfflineMix>(s.scene(), sounds, listening);
+            try {
+              sound->scape().set_radio_script(exercise.radio);
+            } catch (const audio::AudioError& e) {
+              std::printf("no radio: %s\n", e.what());
+            }
+          }
           s.write_snapshot(*heard);
           sound->add_block(*heard);
         }

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <stdexcept>
 
 #include "harbour/io/InstructorCommandText.h"
@@ -254,6 +255,8 @@ bool AttemptPresence::apply(const net::StationCommand& command, std::string& ans
                             : "resetting: the attempt is stored as ended by the instructor and starts again";
     return true;
   }
+  if (kind == "mute" || kind == "unmute" || kind.starts_with("volume:") || kind.starts_with("radio:"))
+    return apply_sound(kind, answer);
   station::LoopCommand loop;
   if (const auto k = loop_kind(kind)) {
     loop.kind = *k;
@@ -272,6 +275,44 @@ bool AttemptPresence::apply(const net::StationCommand& command, std::string& ans
   }
   if (!session_.loop().post(loop, &answer)) return false;
   answer = "done: " + kind;
+  return true;
+}
+
+bool AttemptPresence::apply_sound(const std::string& kind, std::string& answer) {
+  if (!sound_) {
+    answer = "this station plays no sound (no window, no sound device, or its profile says off)";
+    return false;
+  }
+  if (kind.starts_with("radio:")) {
+    const std::string text = kind.substr(std::string("radio:").size());
+    if (text.find_first_not_of(' ') == std::string::npos) {
+      answer = "radio:WORDS";
+      return false;
+    }
+    try {
+      sound_->say(text);
+    } catch (const audio::AudioError& e) {
+      answer = e.what();
+      return false;
+    }
+    answer = "done: on the radio, \"" + text + "\"";
+    return true;
+  }
+  if (kind == "mute" || kind == "unmute") {
+    sound_->set_muted(kind == "mute");
+    answer = kind == "mute" ? "done: sound muted" : "done: sound on";
+    return true;
+  }
+  const std::string percent = kind.substr(std::string("volume:").size());
+  char* end = nullptr;
+  const double value = std::strtod(percent.c_str(), &end);
+  if (percent.empty() || *end != '\0' || !(value >= 0.0 && value <= 200.0)) {
+    answer = "volume:PERCENT, 0 to 200";
+    return false;
+  }
+  sound_->set_volume(value / 100.0);
+  answer = "done: volume " + std::to_string(static_cast<int>(std::lround(value))) + " %" +
+           (sound_->muted() ? " (muted)" : "");
   return true;
 }
 

@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 
+#include "harbour/audio/SoundThread.h"
 #include "harbour/net/DdsLink.h"
 #include "harbour/sim/BulkView.h"
 #include "harbour/sim/Evaluation.h"
@@ -77,6 +78,9 @@ class AttemptPresence {
     return std::chrono::steady_clock::now().time_since_epoch().count() < watched_until_ns_.load();
   }
   static constexpr std::chrono::seconds kWatchedFor{5};
+  /// The station's sound, which the console may mute or turn up and down (`mute`, `unmute`,
+  /// `volume:PERCENT`); none: those commands are refused.
+  void use_sound(audio::SoundThread* sound) { sound_ = sound; }
 
  private:
   net::StationStatus status(const std::string& state, const sim::Snapshot* snapshot) const;
@@ -84,6 +88,7 @@ class AttemptPresence {
   void publish_state(const sim::Snapshot& snapshot);
   double published_time_s();  // the simulated time of the newest snapshot (not the stepping simulation's)
   bool apply(const net::StationCommand& command, std::string& answer, Next& next);
+  bool apply_sound(const std::string& kind, std::string& answer);
 
   net::StationLink& link_;
   station::Session& session_;
@@ -96,6 +101,7 @@ class AttemptPresence {
   std::atomic<std::chrono::steady_clock::rep> watched_until_ns_{0};
   std::mutex picture_mutex_;
   std::optional<net::StationPicture> picture_;  // offered, not yet sent
+  audio::SoundThread* sound_ = nullptr;
 };
 
 }  // namespace harbour::apps

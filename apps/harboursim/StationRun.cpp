@@ -163,8 +163,11 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
     }
   // snapshots only for the readers there are (writing one for nobody costs the step thread)
   if (windows.empty()) session_options.loop.snapshot_every_steps[station::kImageGeneratorReader] = 0;
-  // the cab's sound for the trainee at the station (none for a headless run)
-  const bool hearing = profile.sound && !windows.empty();
+  // the cab's sound for the trainee at the station (by default none for a headless run)
+  if (options.sound != "on" && options.sound != "off" && options.sound != "auto")
+    throw std::runtime_error("--sound " + options.sound + ": on, off or auto");
+  const bool hearing =
+      profile.sound && (options.sound == "on" || (options.sound == "auto" && !windows.empty()));
   if (!hearing) session_options.loop.snapshot_every_steps[station::kSoundReader] = 0;
   if (!link) session_options.loop.snapshot_every_steps[station::kPictureReader] = 0;  // nobody watches
   if (!profile.motion) session_options.loop.snapshot_every_steps[station::kMotionReader] = 0;
@@ -195,7 +198,7 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
     station.use_motion(std::make_unique<station::MotionLink>(
         io::load_platform(profile.motion->platform),
         io::load_washout(profile.motion->washout, session.simulation().machine().kind()),
-        profile.motion->driver));
+        profile.motion->driver, session.simulation().scene()));
     std::printf("motion platform: %s:%u\n", profile.motion->driver.host.c_str(),
                 static_cast<unsigned>(profile.motion->driver.port));
   }
@@ -275,14 +278,16 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
     try {
       sound = std::make_unique<audio::SoundThread>(
           scene, audio::load_sounds(std::string(HARBOUR_DATA_DIR) + "/sounds/harbour.yaml"), settings,
-          [&session] { return session.loop().latest_snapshot(station::kSoundReader); });
+          exercise.radio, [&session] { return session.loop().latest_snapshot(station::kSoundReader); });
       std::printf("sound: %s\n", sound->describe().c_str());
-    } catch (const audio::AudioError& e) {
+      if (!sound->radio_problem().empty()) std::printf("no radio: %s\n", sound->radio_problem().c_str());
+    } catch (const std::exception& e) {  // no device, or a sound file in error: the station runs on
       std::printf("no sound: %s\n", e.what());
     }
   }
   std::optional<AttemptPresence> presence;
   if (link) presence.emplace(*link, session, exercise, options.trainee);
+  if (presence) presence->use_sound(sound.get());
   // the instructor sees what the trainee sees: the cab view drawn small a few times a second, as JPEG
   std::unique_ptr<ig::RenderThread> pictures;
   if (presence) {

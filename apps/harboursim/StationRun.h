@@ -20,6 +20,7 @@ struct StationOptions {
   double time_scale = 1.0;          ///< an instructor's fast-forward
   double seconds = 0.0;             ///< stop after this much wall time (0: at the exercise's end)
   std::string window = "auto";      ///< the trainee's window: on, off, auto (where there is a display)
+  std::string sound = "auto";       ///< the cab's sound: on, off, auto (with the window)
   std::string name;                 ///< the station's name on the centre's network ("": not on it)
   int domain = 0;                   ///< the centre's DDS domain
   bool serve = false;               ///< wait for consoles to start exercises, one after another

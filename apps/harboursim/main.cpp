@@ -106,6 +106,8 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   station_cmd->add_option("--window", live.window,
                           "the trainee's window: on, off, auto (where there is a display)");
+  station_cmd->add_option("--sound", live.sound,
+                          "the cab's sound on the profile's output: on, off, auto (with the window)");
   station_cmd->add_option("--name", live.name,
                           "the station's name on the centre's network: consoles see and command it");
   station_cmd->add_option("--domain", live.domain, "the centre's DDS domain (0-232)")

@@ -295,7 +295,8 @@ TEST(RenderCommand, ARecordingBecomesADebriefVideo) {
           "/../tests/data/recordings/sts_discharge_v6.hsrc --exercise sts_discharge --from 40 "
           "--to 42 --size 320x180 --fps 25 --out " +
           out + " 2>&1");
-  EXPECT_NE(output.find("51 frames (40.0-42.0 s at 25 fps, chase view, 320x180)"), std::string::npos)
+  EXPECT_NE(output.find("51 frames (40.0-42.0 s at 25 fps, chase view, 320x180, with sound)"),
+            std::string::npos)
       << output;
   const std::string probe =
       run("ffprobe -v error -select_streams v:0 -count_frames -show_entries "

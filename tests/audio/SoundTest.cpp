@@ -55,8 +55,11 @@ Scene scene_of(const std::string& exercise) {
 /// The machine's sounds alone (no ambience) over `seconds`, each 10 ms block's snapshot set by `at(t)`.
 std::vector<float> render(const Scene& scene, double seconds,
                           const std::function<void(sim::Snapshot&, double)>& at,
-                          const AudioSettings& audio = {}, bool ambience = false) {
-  OfflineMix mix(scene.description, shipped_sounds(), audio, ambience);
+                          const AudioSettings& audio = {}, bool ambience = false,
+                          const SoundSettings& sounds = shipped_sounds(),
+                          const sim::RadioScript& radio = {}) {
+  OfflineMix mix(scene.description, sounds, audio, ambience);
+  mix.scape().set_radio_script(radio);
   auto s = std::make_unique<sim::Snapshot>(*scene.first);
   const auto blocks = static_cast<int>(std::lround(seconds * 100.0));
   for (int k = 1; k <= blocks; ++k) {
@@ -141,7 +144,7 @@ TEST(Sound, ALandingsKnockFollowsItsImpulse) {
   const std::vector<float> out = render(sts, 1.6, [&](sim::Snapshot& s, double t) {
     const int due = static_cast<int>(std::floor((t - 0.095) / 0.5)) + 1;  // at 0.1, 0.6 and 1.1 s
     while (s.knocks_total < std::min(due, 3)) {
-      s.knocks[static_cast<std::size_t>(s.knocks_total)] = {s.step - 5, impulses[s.knocks_total], spot};
+      s.knocks[static_cast<std::size_t>(s.knocks_total)] = {s.step - 5, impulses[s.knocks_total], 0.3, spot};
       ++s.knocks_total;
     }
   });
@@ -222,7 +225,8 @@ TEST(Sound, ASoundOnTheLeftIsLouderInTheLeftEar) {
       const std::vector<float> out = render(
           sts, 0.5,
           [&](sim::Snapshot& s, double t) {
-            if (t > 0.095 && s.knocks_total == 0) s.knocks[0] = {s.step, 5000.0, beside}, s.knocks_total = 1;
+            if (t > 0.095 && s.knocks_total == 0)
+              s.knocks[0] = {s.step, 5000.0, 0.3, beside}, s.knocks_total = 1;
           },
           audio);
       left_over_right[side > 0 ? 0 : 1] =
@@ -233,6 +237,50 @@ TEST(Sound, ASoundOnTheLeftIsLouderInTheLeftEar) {
     // both ears, its ringing by the nearer: 3.4 dB)
     EXPECT_GT(left_over_right[0], 1.3) << how;
     EXPECT_LT(left_over_right[1], 1.0 / 1.3) << how;
+  }
+}
+
+TEST(Sound, TheSignallersCallIsHeardAtItsMomentInTheSpeechBand) {
+  // the exercise's script: "hoist up slowly" at 1 s, on the cab's radio alone
+  SoundSettings radio_only;
+  for (const SoundSource& s : shipped_sounds().ambience)
+    if (s.kind == SourceKind::kRadio) radio_only.ambience.push_back(s);
+  ASSERT_EQ(radio_only.ambience.size(), 1u);
+  const Scene sts = scene_of("sts_discharge");
+  sim::RadioScript script;
+  script.calls = {{1.0, "hoist up slowly"}};
+  const std::vector<float> out = render(
+      sts, 3.5, [](sim::Snapshot&, double) {}, {}, true, radio_only, script);
+  const std::vector<double> left = channel(out, 2, 0);
+  EXPECT_LT(rms(left, 0.0, 1.0), 1e-7);  // nothing before its moment
+  EXPECT_GT(rms(left, 1.2, 2.0), 0.02);  // the words
+  // a radio's voice: its energy in the speech band, little below 200 Hz or above 4 kHz
+  double band = 0.0, outside = 0.0;
+  for (double f = 50.0; f <= 8000.0; f += 25.0) {
+    const double a = test::tone_amplitude(left, 1.1, 2.5, f);
+    (f >= 300.0 && f <= 3000.0 ? band : outside) += a * a;
+  }
+  EXPECT_GT(band, 5.0 * outside);
+  // the instructor's call in another language, heard from the next block
+  OfflineMix mix(sts.description, radio_only, {}, true);
+  sim::RadioScript german;
+  german.language = "de";
+  mix.scape().set_radio_script(german);
+  auto s = std::make_unique<sim::Snapshot>(*sts.first);
+  mix.add_block(*s);
+  EXPECT_TRUE(mix.scape().say("langsam heben"));
+  for (int k = 0; k < 100; ++k)
+    mix.add_block(*s);
+  EXPECT_GT(rms(channel(mix.samples(), 2, 0), 0.2, 1.0), 0.02);
+  // a language espeak-ng has no voice for is refused by name
+  sim::RadioScript unknown;
+  unknown.language = "xx";
+  unknown.calls = {{1.0, "stop"}};
+  try {
+    mix.scape().set_radio_script(unknown);
+    FAIL() << "accepted";
+  } catch (const AudioError& e) {
+    EXPECT_NE(std::string(e.what()).find("'xx'"), std::string::npos) << e.what();
   }
 }
 

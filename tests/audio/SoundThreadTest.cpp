@@ -40,7 +40,7 @@ TEST(SoundThread, PlaysTheNewestSnapshotOnTheOutputDeviceAndMutes) {
   AudioSettings settings;
   settings.speakers = Speakers::kHeadphones;
   {
-    SoundThread sound(simulation.scene(), load_sounds(HARBOUR_DATA_DIR "/sounds/harbour.yaml"), settings,
+    SoundThread sound(simulation.scene(), load_sounds(HARBOUR_DATA_DIR "/sounds/harbour.yaml"), settings, {},
                       [&] { return snapshot.get(); });
     EXPECT_NE(sound.describe().find("HRTF"), std::string::npos) << sound.describe();
     // it keeps rendering as the device plays (the wave writer plays in real time)

@@ -347,6 +347,39 @@ TEST(ExerciseFiles, BadExercisesNameTheField) {
 }
 
 // Each rubric key sets the figure it names (the designer's forms and the loader share the table).
+TEST(ExerciseFiles, TheSignallersRadioCallsLoadInOrderAndABadOneIsNamed) {
+  const sim::ExerciseSettings rtg = load_exercise(HARBOUR_DATA_DIR "/exercises/rtg_truck_to_block.yaml");
+  EXPECT_EQ(rtg.radio.language, "en");
+  ASSERT_EQ(rtg.radio.calls.size(), 2u);
+  EXPECT_EQ(rtg.radio.calls[1].at_s, 45.0);
+  EXPECT_EQ(rtg.radio.calls[1].text, "Row four, tier three. Mind the stack on row five.");
+  EXPECT_TRUE(load_exercise(HARBOUR_DATA_DIR "/exercises/sts_discharge.yaml").radio.calls.empty());
+  const std::string radio =
+      "  radio:\n    language: de\n    calls:\n      - {at_s: 5, say: langsam heben}\n"
+      "      - {at_s: 9, say: halt}\n  moves:";
+  const std::string text = shipped();
+  const auto with_radio = [&](const std::string& from, const std::string& to) {
+    std::string t = text;
+    t.replace(t.find("  moves:"), 8, radio);
+    const std::size_t at = t.find(from);
+    if (at != std::string::npos) t.replace(at, from.size(), to);
+    try {
+      load_exercise(YamlFile::parse(t, "exercise.yaml"), HARBOUR_DATA_DIR "/exercises");
+    } catch (const DataError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(with_radio("", ""), "");
+  EXPECT_NE(
+      with_radio("language: de", "language: German").find("exercise.radio.language: an espeak-ng voice"),
+      std::string::npos);
+  EXPECT_NE(
+      with_radio("at_s: 9", "at_s: 4").find("exercise.radio.calls[1].at_s: comes before the call before it"),
+      std::string::npos);
+  EXPECT_NE(with_radio("say: halt", "said: halt").find("exercise.radio.calls[1]"), std::string::npos);
+}
+
 TEST(ExerciseFiles, EachRubricKeySetsTheFigureItNames) {
   std::string text = shipped();
   const std::string from = "deductions: {collision: 10,";

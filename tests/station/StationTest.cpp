@@ -144,7 +144,8 @@ TEST(MotionPlatform, TheCabsCuesDriveThePlatformOverUdp) {
   LiveSession live("harbour_motion");
   Station station(*live.session);
   station.use_motion(std::make_unique<MotionLink>(io::load_platform(profile.motion->platform),
-                                                  io::load_washout(profile.motion->washout, "sts"), driver));
+                                                  io::load_washout(profile.motion->washout, "sts"), driver,
+                                                  live.session->simulation().scene()));
   station.start();
   live.session->start();
   int packets = 0;
@@ -167,6 +168,34 @@ TEST(MotionPlatform, TheCabsCuesDriveThePlatformOverUdp) {
   EXPECT_NE(state, motion::PlatformState::kParked);  // engaging or engaged while the exercise runs
   EXPECT_TRUE(finite);
   EXPECT_EQ(station.motion()->state(), motion::PlatformState::kParked);
+}
+
+TEST(ShortCues, ThePlatformFeelsTheEngineAndTheImpactsTheSoundIsMadeOf) {
+  sim::SceneDescription scene;
+  scene.drives = {"boom", "engine"};
+  ShortCueSource source(scene);
+  auto s = std::make_unique<sim::Snapshot>();
+  s->drive_count = 2;
+  s->drives[1] = {0.6, 0.8};
+  s->knocks_total = 3;  // before the platform's first frame: not felt
+  motion::ShortCueInputs in = source.next(*s);
+  EXPECT_EQ(in.engine_speed, 0.6);
+  EXPECT_EQ(in.engine_load, 0.8);
+  EXPECT_EQ(in.impact_speed_mps, 0.0);
+  s->knocks[3 % sim::kMaxKnocks].speed_mps = 0.4;
+  s->knocks[4 % sim::kMaxKnocks].speed_mps = 0.25;
+  s->knocks_total = 5;
+  EXPECT_EQ(source.next(*s).impact_speed_mps, 0.4);  // the hardest since the last frame
+  EXPECT_EQ(source.next(*s).impact_speed_mps, 0.0);  // felt once
+  s->power_off = true;                               // the engine stops with the supply
+  in = source.next(*s);
+  EXPECT_EQ(in.engine_speed, 0.0);
+  EXPECT_EQ(in.engine_load, 0.0);
+  // a machine without an engine (the STS on shore power) gives no engine cue
+  sim::SceneDescription sts;
+  sts.drives = {"gantry", "trolley", "hoist", "boom"};
+  s->power_off = false;
+  EXPECT_EQ(ShortCueSource(sts).next(*s).engine_load, 0.0);
 }
 
 TEST(Profiles, TheThreeShippedConfigurationsLoad) {
@@ -197,6 +226,11 @@ TEST(Profiles, TheThreeShippedConfigurationsLoad) {
   EXPECT_FALSE(immersive.displays[0].frustum_rad.has_value());
   EXPECT_EQ(immersive.windows, Profile::Windows::kPerDisplay);  // a window on each projector
   EXPECT_EQ(desktop.windows, Profile::Windows::kShared);
+  // the sound: a headset at the desktop, two speakers by the big screen, 5.1 round the cabin
+  ASSERT_TRUE(desktop.sound && medium.sound && immersive.sound);
+  EXPECT_EQ(desktop.sound->output, Profile::Sound::Output::kHeadphones);
+  EXPECT_EQ(medium.sound->output, Profile::Sound::Output::kSpeakers);
+  EXPECT_EQ(immersive.sound->output, Profile::Sound::Output::kSurround51);
   EXPECT_FALSE(desktop.stereo.has_value());
   EXPECT_THROW(resolve_profile("cockpit", HARBOUR_DATA_DIR), std::runtime_error);
 }
@@ -260,6 +294,17 @@ TEST(Profiles, BadProfilesNameFileLineAndField) {
       profile_error(stereo + "{mode: quad_buffer, eye_separation_mm: 64, convergence_m: 3}\n")
           .find("harbour_profile.yaml:9: profile.stereo.mode: quad_buffer needs an OpenGL stereo visual"),
       std::string::npos);
+  // sound: two speakers where it does not say; off; a volume; an output that is not one
+  EXPECT_EQ(profile_error(ok), "");
+  EXPECT_TRUE(load_profile(scenes::temp_path("harbour_profile.yaml")).sound.has_value());
+  EXPECT_EQ(profile_error(ok + "  sound: off\n"), "");
+  EXPECT_FALSE(load_profile(scenes::temp_path("harbour_profile.yaml")).sound.has_value());
+  EXPECT_EQ(profile_error(ok + "  sound: {output: headphones, volume: 0.5}\n"), "");
+  EXPECT_EQ(load_profile(scenes::temp_path("harbour_profile.yaml")).sound->volume, 0.5);
+  EXPECT_NE(profile_error(ok + "  sound: {output: mono}\n")
+                .find("harbour_profile.yaml:8: profile.sound.output: 'mono' is not speakers, headphones or "
+                      "surround_5_1"),
+            std::string::npos);
   EXPECT_NE(profile_error(stereo + "{mode: sbs, eye_separation_mm: 64, convergence_m: 3}\n")
                 .find("'sbs' is not side_by_side or anaglyph"),
             std::string::npos);

@@ -674,6 +674,8 @@ function wire() {
   $("set-visibility").addEventListener("click", () => command(`visibility:${value("visibility")}`));
   $("set-rain").addEventListener("click", () => command(`rain:${value("rain")}`));
   $("set-time").addEventListener("click", () => command(`time-of-day:${value("time-of-day")}`));
+  $("set-volume").addEventListener("click", () => command(`volume:${value("volume")}`));
+  $("say-radio").addEventListener("click", () => command(`radio:${$<HTMLInputElement>("radio-call").value}`));
   $("view-on").addEventListener("change", () => { $("views").hidden = !viewOn(); if (selected) subscribe(); });
   $("view-light").addEventListener("change", () => view?.setLight($<HTMLInputElement>("view-light").checked));
   $("open-replay").addEventListener("click", () => openReplay(Number($("open-replay").dataset.attempt)));

@@ -22,6 +22,7 @@ constexpr std::pair<const char*, SourceKind> kKinds[] = {
     {"sea", SourceKind::kSea},
     {"harbour", SourceKind::kHarbour},
     {"pour", SourceKind::kPour},
+    {"radio", SourceKind::kRadio},
 };
 
 SourceKind kind_named(const io::YamlFile& f, const YAML::Node& item, const std::string& at) {
@@ -111,6 +112,9 @@ SoundSource read_source(const io::YamlFile& f, const YAML::Node& item, const std
       if (s.tone.chord && s.tone.second_hz <= 0.0)
         f.fail(item, at + ".second_hz", "a chord needs its second note");
       s.tone.level = level;
+      break;
+    case SourceKind::kRadio:
+      s.radio_level = level;
       break;
     case SourceKind::kPour:
       indicator();

@@ -5,12 +5,14 @@
 #include <stdexcept>
 #include <variant>
 
+#include "harbour/audio/Radio.h"
 #include "harbour/core/Text.h"
 
 namespace harbour::audio {
 
 struct SoundScape::Voice {
-  std::variant<ElectricDriveVoice, DieselVoice, HydraulicVoice, KnockVoice, ToneVoice, NoiseVoice> v;
+  std::variant<ElectricDriveVoice, DieselVoice, HydraulicVoice, KnockVoice, ToneVoice, NoiseVoice, ClipVoice>
+      v;
 };
 
 namespace {
@@ -89,6 +91,10 @@ SoundScape::SoundScape(const sim::SceneDescription& scene, const SoundSettings& 
       case SourceKind::kPour:
         b.voice.reset(new Voice{NoiseVoice(s.noise, seed)});
         break;
+      case SourceKind::kRadio:
+        b.voice.reset(new Voice{ClipVoice()});
+        radio_ = static_cast<int>(sources_.size());
+        break;
     }
     b.block.assign(kBlockFrames, 0.0f);
     sources_.push_back(std::move(b));
@@ -96,6 +102,26 @@ SoundScape::SoundScape(const sim::SceneDescription& scene, const SoundSettings& 
 }
 
 SoundScape::~SoundScape() = default;
+
+void SoundScape::set_radio_script(const sim::RadioScript& script) {
+  if (radio_ < 0) return;
+  language_ = script.language;
+  script_.clear();
+  const double level = radio_level();
+  for (const sim::RadioCall& call : script.calls)
+    script_.emplace_back(
+        call.at_s, std::make_shared<const std::vector<float>>(speak_on_radio(call.text, language_, level)));
+}
+
+bool SoundScape::say(const std::string& text) {
+  if (radio_ < 0) return false;
+  hear(std::make_shared<const std::vector<float>>(speak_on_radio(text, language_, radio_level())));
+  return true;
+}
+
+void SoundScape::hear(std::shared_ptr<const std::vector<float>> call) {
+  if (radio_ >= 0) said_.push_back(std::move(call));
+}
 
 void SoundScape::update(const sim::Snapshot& s) {
   // the listener: the operator's eye, looking where the head (tracked, or turned by keys) looks
@@ -167,6 +193,18 @@ void SoundScape::render(Bound& b, const sim::Snapshot& s, bool powered) {
             if (!first && moving != b.moving) voice.strike(moving ? 0.5 : 1.0, 0);
             b.moving = moving;
           }
+          voice.render(out);
+        } else if constexpr (std::is_same_v<V, ClipVoice>) {
+          // the script's calls due in this block, at their moment in it; the instructor's at its start
+          const double from_s = first ? s.time_s - 0.01 : last_time_s_;
+          for (const auto& [at_s, clip] : script_)
+            if (at_s > from_s && at_s <= s.time_s) {
+              const double share = dt_s > 0.0 ? (at_s - from_s) / (s.time_s - from_s) : 0.0;
+              voice.start(clip, std::min(static_cast<std::size_t>(share * kBlockFrames), kBlockFrames - 1));
+            }
+          for (const auto& clip : said_)
+            voice.start(clip, 0);
+          said_.clear();
           voice.render(out);
         } else if constexpr (std::is_same_v<V, ToneVoice>) {
           const bool on = b.drive >= 0 ? std::abs(drive().speed) > 0.005 : value > b.settings.above;

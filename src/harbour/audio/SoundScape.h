@@ -9,6 +9,7 @@
 
 #include "harbour/audio/Synth.h"
 #include "harbour/core/Vec3.h"
+#include "harbour/sim/RadioScript.h"
 #include "harbour/sim/Snapshot.h"
 
 namespace harbour::audio {
@@ -27,6 +28,7 @@ enum class SourceKind : std::uint8_t {
   kSea,            ///< the sea's state from the wind [m/s]
   kHarbour,        ///< the harbour's distant hum (always)
   kPour,           ///< material leaving the tool: an indicator's rate of fall [t/s]
+  kRadio,          ///< the cab's radio: the exercise's scripted calls and the instructor's, spoken
 };
 
 /// One sound of a machine or of the harbour, as data (data/sounds/harbour.yaml).
@@ -41,7 +43,8 @@ struct SoundSource {
   core::Vec3 offset_m;                   ///< [m] on that entity, its frame
   double reference_distance_m = 10.0;    ///< [m] where its level is as set (halved at twice it)
   double reference_impulse_ns = 2000.0;  ///< [N s] impact: the impulse whose knock has the set level
-  bool optional = false;  ///< skipped where the scene lacks what it names (a grab's sound on a hook)
+  bool optional = false;     ///< skipped where the scene lacks what it names (a grab's sound on a hook)
+  double radio_level = 0.3;  ///< radio: a call's peak amplitude
   ElectricDriveSettings electric;
   DieselSettings diesel;
   HydraulicSettings hydraulic;
@@ -78,6 +81,19 @@ class SoundScape {
   /// Renders the next block: from the last snapshot's state to `snapshot`'s (the block's end), each
   /// source's mono samples, its place and where the listener is.
   void update(const sim::Snapshot& snapshot);
+  /// The exercise's radio script, spoken now (each call heard when the snapshots' time passes it); throws
+  /// AudioError when espeak-ng cannot speak its language. Ignored without a radio among the sounds.
+  void set_radio_script(const sim::RadioScript& script);
+  /// A call spoken on the radio from the next block (the instructor's, in the script's language); throws
+  /// AudioError when espeak-ng cannot speak it. Returns false without a radio among the sounds.
+  bool say(const std::string& text);
+  /// A call already spoken (speak_on_radio) heard from the next block; ignored without a radio.
+  void hear(std::shared_ptr<const std::vector<float>> call);
+  bool has_radio() const { return radio_ >= 0; }
+  const std::string& radio_language() const { return language_; }
+  double radio_level() const {
+    return radio_ >= 0 ? sources_[static_cast<std::size_t>(radio_)].settings.radio_level : 0.0;
+  }
 
   std::size_t source_count() const { return sources_.size(); }
   const SoundSource& source(std::size_t k) const { return sources_[k].settings; }
@@ -103,6 +119,11 @@ class SoundScape {
   void render(Bound& b, const sim::Snapshot& s, bool powered);
 
   std::vector<Bound> sources_;
+  using Clip = std::shared_ptr<const std::vector<float>>;
+  std::vector<std::pair<double, Clip>> script_;  // [s] exercise time, the call as heard
+  std::string language_ = "en";
+  std::vector<Clip> said_;  // the instructor's, from the next block
+  int radio_ = -1;          // the radio's source
   Listener listener_;
   std::int64_t last_step_ = -1;
   double last_time_s_ = 0.0;

@@ -2,16 +2,32 @@
 
 #include <chrono>
 
+#include "harbour/audio/Radio.h"
+
 namespace harbour::audio {
 
 SoundThread::SoundThread(const sim::SceneDescription& scene, const SoundSettings& sounds,
-                         const AudioSettings& settings, std::function<const sim::Snapshot*()> latest)
+                         const AudioSettings& settings, const sim::RadioScript& radio,
+                         std::function<const sim::Snapshot*()> latest)
     : scape_(scene, sounds),
       out_(AudioOut::device(settings)),
       latest_(std::move(latest)),
       described_(out_->describe()),
       volume_(settings.volume) {
+  try {
+    scape_.set_radio_script(radio);
+  } catch (const AudioError& e) {
+    radio_problem_ = e.what();
+  }
   thread_ = std::thread([this] { run(); });
+}
+
+void SoundThread::say(const std::string& text) {
+  if (!scape_.has_radio()) throw AudioError("this station's sounds have no radio");
+  auto call = std::make_shared<const std::vector<float>>(
+      speak_on_radio(text, scape_.radio_language(), scape_.radio_level()));
+  const std::lock_guard lock(said_mutex_);
+  said_.push_back(std::move(call));
 }
 
 SoundThread::~SoundThread() {
@@ -28,6 +44,12 @@ void SoundThread::run() {
     if (!snapshot || out_->blocks_waiting() >= kBlocksAhead) {
       std::this_thread::sleep_for(std::chrono::milliseconds(2));
       continue;
+    }
+    {
+      const std::lock_guard lock(said_mutex_);
+      for (auto& call : said_)
+        scape_.hear(std::move(call));
+      said_.clear();
     }
     scape_.update(*snapshot);
     out_->play(scape_);

@@ -3,8 +3,10 @@
 #include <atomic>
 #include <functional>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "harbour/audio/AudioOut.h"
 
@@ -15,9 +17,10 @@ namespace harbour::audio {
 class SoundThread {
  public:
   /// Opens the device (AudioError where there is none) and starts; `latest` gives the newest snapshot or
-  /// nullptr before the first.
+  /// nullptr before the first. The exercise's radio calls are spoken first (a language espeak-ng lacks:
+  /// no radio, and radio_problem() says why).
   SoundThread(const sim::SceneDescription& scene, const SoundSettings& sounds, const AudioSettings& settings,
-              std::function<const sim::Snapshot*()> latest);
+              const sim::RadioScript& radio, std::function<const sim::Snapshot*()> latest);
   ~SoundThread();
   SoundThread(const SoundThread&) = delete;
   SoundThread& operator=(const SoundThread&) = delete;
@@ -31,6 +34,10 @@ class SoundThread {
   bool muted() const { return muted_.load(); }
   /// Blocks rendered so far.
   long blocks() const { return blocks_.load(); }
+  /// A radio call heard as soon as it is spoken (the instructor's; spoken on the calling thread); throws
+  /// AudioError when it cannot be spoken or there is no radio.
+  void say(const std::string& text);
+  const std::string& radio_problem() const { return radio_problem_; }
 
  private:
   static constexpr int kBlocksAhead =
@@ -40,7 +47,9 @@ class SoundThread {
   SoundScape scape_;
   std::unique_ptr<AudioOut> out_;
   std::function<const sim::Snapshot*()> latest_;
-  std::string described_;
+  std::string described_, radio_problem_;
+  std::mutex said_mutex_;
+  std::vector<std::shared_ptr<const std::vector<float>>> said_;
   std::atomic<double> volume_;
   std::atomic<bool> muted_{false}, stop_{false};
   std::atomic<long> blocks_{0};

@@ -52,16 +52,15 @@ ElectricDriveVoice::ElectricDriveVoice(const ElectricDriveSettings& settings, st
 }
 
 void ElectricDriveVoice::render(std::span<float> out, Ramp speed, Ramp load) {
-  constexpr std::array<double, 4> kHarmonic{1.0, 2.0, 3.0, 6.0}, kShare{1.0, 0.45, 0.25, 0.15};
   for (std::size_t n = 0; n < out.size(); ++n) {
     const double s = std::min(std::abs(speed.at(n, out.size())), 1.0);
     const double l = std::clamp(load.at(n, out.size()), 0.0, 1.0);
     const double turning = std::min(1.0, s / 0.03);  // a drive at rest is silent
-    double tone = 0.0;
-    const float fundamental = tone_.next(settings_.rated_hz * s);
-    tone += kShare[0] * fundamental;
-    for (std::size_t k = 1; k < kHarmonic.size(); ++k)
-      tone += kShare[k] * Oscillator::sine(kHarmonic[k] * tone_.phase());
+    // the magnetic tone and its slot harmonics 2, 3 and 6 (multiple-angle identities: two sines a sample)
+    tone_.next(settings_.rated_hz * s);
+    const double s1 = Oscillator::sine(tone_.phase()), c1 = Oscillator::sine(tone_.phase() + 0.25);
+    const double s2 = 2.0 * s1 * c1, s3 = s1 * (3.0 - 4.0 * s1 * s1), c3 = c1 * (4.0 * c1 * c1 - 3.0);
+    const double tone = s1 + 0.45 * s2 + 0.25 * s3 + 0.15 * (2.0 * s3 * c3);
     const double carrier = carrier_.next(settings_.carrier_hz);
     const double rumble = 2.0 * rumble_again_.process(rumble_.process(noise_.next()));
     out[n] += f(settings_.level * turning *
@@ -241,6 +240,19 @@ void NoiseVoice::render(std::span<float> out, Ramp amount) {
     }
     out[n] += f(settings_.level * sample);
   }
+}
+
+void ClipVoice::start(std::shared_ptr<const std::vector<float>> clip, std::size_t at) {
+  playing_.push_back({std::move(clip), 0, at});
+}
+
+void ClipVoice::render(std::span<float> out) {
+  for (Playing& p : playing_) {
+    for (std::size_t n = p.delay; n < out.size() && p.next < p.clip->size(); ++n)
+      out[n] += (*p.clip)[p.next++];
+    p.delay = 0;
+  }
+  std::erase_if(playing_, [](const Playing& p) { return p.next >= p.clip->size(); });
 }
 
 }  // namespace harbour::audio

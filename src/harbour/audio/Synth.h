@@ -2,7 +2,9 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <span>
+#include <vector>
 
 namespace harbour::audio {
 
@@ -209,6 +211,23 @@ class NoiseVoice {
   Resonator band_, whistle_;
   OnePole low_;
   Oscillator swell_;
+};
+
+/// Prepared sounds played as they are (a radio call): each started at a sample of a block, mixed while it
+/// lasts.
+class ClipVoice {
+ public:
+  void start(std::shared_ptr<const std::vector<float>> clip, std::size_t at);
+  void render(std::span<float> out);
+  bool playing() const { return !playing_.empty(); }
+
+ private:
+  struct Playing {
+    std::shared_ptr<const std::vector<float>> clip;
+    std::size_t next = 0;   // its next sample
+    std::size_t delay = 0;  // samples of this block before it starts
+  };
+  std::vector<Playing> playing_;
 };
 
 }  // namespace harbour::audio

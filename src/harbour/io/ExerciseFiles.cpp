@@ -741,6 +741,25 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
              "only a vehicle's speed is limited (the " + machine_kind + " is a crane)");
   }
 
+  if (const auto radio = f.optional_map(x, "radio", "exercise")) {
+    // the signaller's calls on the cab's radio: {language, calls: [{at_s, say}]}
+    e.radio.language = f.text(*radio, "language", "exercise.radio");
+    if (e.radio.language.size() > 16 ||
+        e.radio.language.find_first_not_of("abcdefghijklmnopqrstuvwxyz-") != std::string::npos)
+      f.fail((*radio)["language"], "exercise.radio.language", "an espeak-ng voice: en, de, es, fr, nl, ...");
+    const YAML::Node calls = f.sequence(*radio, "calls", "exercise.radio", 200);
+    for (std::size_t n = 0; n < calls.size(); ++n) {
+      const std::string at = item("exercise.radio.calls", n);
+      sim::RadioCall call;
+      call.at_s = f.number(calls[n], "at_s", at, 0.0, 86400.0);
+      call.text = f.text(calls[n], "say", at);
+      if (call.text.size() > 200) f.fail(calls[n]["say"], at + ".say", "is longer than 200 bytes");
+      if (!e.radio.calls.empty() && call.at_s < e.radio.calls.back().at_s)
+        f.fail(calls[n]["at_s"], at + ".at_s", "comes before the call before it");
+      e.radio.calls.push_back(call);
+    }
+  }
+
   if (f.optional(x, "route_m", "exercise")) {
     // the way a vehicle takes with its load: [[x, y], ...]
     const YAML::Node route = f.sequence(x, "route_m", "exercise", 64);

@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "harbour/sim/RadioScript.h"
 #include "harbour/sim/Simulation.h"
 
 namespace harbour::sim {
@@ -99,6 +100,7 @@ struct ExerciseSettings {
   std::optional<BulkGoal> deliver;
   std::optional<TrimGoal> trim;
   EvaluationRules rules;
+  RadioScript radio;  ///< the signaller's calls on the cab's radio
 };
 
 /// Everything measured during an attempt (docs/evaluation.md defines each).

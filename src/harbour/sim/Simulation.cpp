@@ -392,7 +392,7 @@ void Simulation::advance(const Controls& controls) {
   machine_->drain_events(events_);
   for (const physics::ImpactEvent& impact : events_.impacts)
     knocks_[static_cast<std::size_t>(knocks_total_++ % kMaxKnocks)] = {clock_.steps(), impact.impulse_ns,
-                                                                       impact.point};
+                                                                       impact.normal_speed_mps, impact.point};
   update_cab_cues();
   if (!std::isfinite(machine_->attachment_bottom_z_m())) warnings_.raise(core::Warning::kNonFinite);
   for (int n = world_->take_solver_messages(); n > 0; --n)

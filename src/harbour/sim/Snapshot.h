@@ -134,6 +134,7 @@ struct Snapshot {
   struct Knock {
     std::int64_t step = 0;
     double impulse_ns = 0.0;  ///< [N s] normal contact impulse
+    double speed_mps = 0.0;   ///< [m/s] closing speed along the contact normal
     core::Vec3 point_m;       ///< [m] world
   };
   std::int64_t knocks_total = 0;  ///< knocks since the start: knock k sits at knocks[k % kMaxKnocks]

@@ -1,5 +1,6 @@
 #include "harbour/station/MotionLink.h"
 
+#include <algorithm>
 #include <thread>
 
 namespace harbour::station {
@@ -14,9 +15,30 @@ motion::MotionSettings settings_of(const io::PlatformFile& platform, const motio
 }
 }  // namespace
 
+ShortCueSource::ShortCueSource(const sim::SceneDescription& scene) {
+  for (std::size_t k = 0; k < scene.drives.size(); ++k)
+    if (scene.drives[k] == "engine") engine_ = static_cast<int>(k);
+}
+
+motion::ShortCueInputs ShortCueSource::next(const sim::Snapshot& s) {
+  motion::ShortCueInputs in;
+  if (engine_ >= 0 && engine_ < s.drive_count && !s.power_off) {
+    in.engine_speed = s.drives[static_cast<std::size_t>(engine_)].speed;
+    in.engine_load = s.drives[static_cast<std::size_t>(engine_)].load;
+  }
+  // the impacts closed since the last frame (the first frame takes none: they were before it)
+  if (knocks_seen_ < 0) knocks_seen_ = s.knocks_total;
+  for (std::int64_t k = std::max(knocks_seen_, s.knocks_total - sim::kMaxKnocks); k < s.knocks_total; ++k)
+    in.impact_speed_mps =
+        std::max(in.impact_speed_mps, s.knocks[static_cast<std::size_t>(k % sim::kMaxKnocks)].speed_mps);
+  knocks_seen_ = s.knocks_total;
+  return in;
+}
+
 MotionLink::MotionLink(const io::PlatformFile& platform, const motion::WashoutSettings& washout,
-                       const io::DriverSettings& driver)
+                       const io::DriverSettings& driver, const sim::SceneDescription& scene)
     : motion_(settings_of(platform, washout)),
+      short_cues_(scene),
       driver_(platform, driver),
       period_s_(1.0 / washout.rate_hz),
       park_time_s_(platform.sequencer.park_time_s) {}
@@ -31,7 +53,7 @@ void MotionLink::update(RealTimeLoop& loop) {
   if (s && s->step != last_step_) {
     // a frozen simulation sends nothing new: the driver's watchdog fades the platform to neutral
     last_step_ = s->step;
-    last_ = motion_.step({s->cab.specific_force_mps2, s->cab.angular_velocity_radps});
+    last_ = motion_.step({s->cab.specific_force_mps2, s->cab.angular_velocity_radps}, short_cues_.next(*s));
     driver_.submit(last_.pose, now);
   }
   driver_.tick(now);

@@ -11,13 +11,26 @@
 
 namespace harbour::station {
 
+/// The platform's short cues from the same published figures the cab's sound is made of: the engine's speed
+/// and load (the machine's drive named "engine"; a machine without one gives no engine cue) and the closing
+/// speed of the impacts since the last frame.
+class ShortCueSource {
+ public:
+  explicit ShortCueSource(const sim::SceneDescription& scene);
+  motion::ShortCueInputs next(const sim::Snapshot& snapshot);
+
+ private:
+  int engine_ = -1;
+  std::int64_t knocks_seen_ = -1;
+};
+
 /// The motion platform wired to the running machine: at the washout's rate it reads the cab's specific force
 /// and angular velocity from the newest snapshot, runs washout, limits and Stewart inverse kinematics, and
 /// the driver sends the pose to the platform over UDP (engaged by the station, parked when it stops).
 class MotionLink {
  public:
   MotionLink(const io::PlatformFile& platform, const motion::WashoutSettings& washout,
-             const io::DriverSettings& driver);
+             const io::DriverSettings& driver, const sim::SceneDescription& scene);
 
   void engage() {
     const std::lock_guard lock(mutex_);
@@ -47,6 +60,7 @@ class MotionLink {
 
   mutable std::mutex mutex_;  // the station's monitor updates; the console and tests look
   motion::MotionSystem motion_;
+  ShortCueSource short_cues_;
   io::PlatformDriver driver_;
   double period_s_;
   double park_time_s_;
