@@ -25,7 +25,11 @@ try {
   run(["accounts", "add", "ines", "--role", "instructor", "--db", db], "ines-password\n");
   run(["accounts", "add", "anna", "--role", "trainee", "--trainee", "anna", "--db", db], "anna-password\n");
   const [url] = await h.console(db, domain);
-  start(["station", "--serve", "--name", "e2e-1", "--domain", domain, "--db", db, "--window", "off"]);
+  // its sound on: OpenAL Soft's wave-writer backend plays it into a file (no sound card needed)
+  const played = path.join(dir, "station-sound.wav");
+  fs.writeFileSync(path.join(dir, "alsoft.conf"), `[general]\ndrivers=wave\n[wave]\nfile=${played}\n`);
+  const station = start(["station", "--serve", "--name", "e2e-1", "--domain", domain, "--db", db, "--window", "off",
+    "--sound", "on"], { env: { ALSOFT_CONF: path.join(dir, "alsoft.conf") } });
 
   browser = await chromium.launch({ executablePath: "/usr/bin/chromium", args: ["--headless", "--no-sandbox",
     "--disable-gpu", "--enable-unsafe-swiftshader", "--disable-quic", "--no-first-run", "--disable-background-networking",
@@ -137,6 +141,23 @@ try {
   await until("the power failure is logged", async () => (await page.textContent("#events")).includes("power-failure by ines"));
   await page.click("button[data-kind=power-restored]");
   await until("the supply back is logged", async () => (await page.textContent("#events")).includes("power-restored by ines"));
+  // the station's sound: the instructor's radio call, the volume, mute and back
+  const said = async (what) => (await page.textContent("#command-result")).includes(what);
+  await page.fill("#radio-call", "hoist up slowly");
+  await page.click("#say-radio");
+  await until("the radio call is made", () => said('done: on the radio, "hoist up slowly"'));
+  await page.fill("#volume", "50");
+  await page.click("#set-volume");
+  await until("the volume is set", () => said("done: volume 50 %"));
+  await page.click("button[data-kind=mute]");
+  await until("the station is muted", () => said("done: sound muted"));
+  await page.click("button[data-kind=unmute]");
+  await until("and heard again", () => said("done: sound on"));
+  await page.fill("#volume", "500");
+  await page.click("#set-volume");
+  await until("a volume past 200 % is refused", () => said("refused") && said("0 to 200"));
+  check(station.output.includes("sound: OpenAL Soft, 2 channels, HRTF"), "the station plays its sound on the desktop's headphones");
+  check(fs.existsSync(played) && fs.statSync(played).size > 48000 * 8, "the station's sound was played (the wave writer's file)");
   await page.click("button[data-kind=hold]");
   await until("the station is held", async () =>
     (await page.locator("#stations tr[data-station=e2e-1] td:nth-child(2)").textContent()) === "held");

@@ -8,8 +8,9 @@ export class Harness {
   run(args, input) { return execFileSync(this.app, args, { input, encoding: "utf8" }); }
   // `service`: in a session of its own, as a service manager starts a station or a console (the kernel then
   // schedules it as a group of its own, not with whatever else this script started)
-  start(args, { service = false } = {}) {
-    const child = spawn(this.app, args, { stdio: ["ignore", "pipe", "pipe"], detached: service });
+  start(args, { service = false, env } = {}) {
+    const child = spawn(this.app, args, { stdio: ["ignore", "pipe", "pipe"], detached: service,
+      env: env ? { ...process.env, ...env } : process.env });
     this.children.push(child);
     child.output = "";
     child.stdout.on("data", (d) => { child.output += d; });
