@@ -19,7 +19,7 @@ namespace {
 struct BusyScene {
   sim::SceneDescription scene;
   std::unique_ptr<sim::Snapshot> snapshot = std::make_unique<sim::Snapshot>();
-  int load_t = -1;
+  int material_t = -1;
   BusyScene() {
     const sim::ExerciseSettings e = io::load_exercise(HARBOUR_DATA_DIR "/exercises/mhc_coal_discharge.yaml");
     sim::Simulation simulation(e.scenario);
@@ -28,7 +28,7 @@ struct BusyScene {
     for (std::size_t k = 0; k < scene.indicators.size(); ++k) {
       if (scene.indicators[k] == "limiter_stop" || scene.indicators[k] == "horn")
         snapshot->indicators[k] = 1.0;
-      if (scene.indicators[k] == "load_t") load_t = static_cast<int>(k);
+      if (scene.indicators[k] == "grab_material_t") material_t = static_cast<int>(k);
     }
     snapshot->wind_mps = {15.0, 3.0, 0.0};
     snapshot->rain_mm_per_h = 20.0;
@@ -40,7 +40,7 @@ struct BusyScene {
     s.time_s += 0.01;
     for (int d = 0; d < s.drive_count; ++d)
       s.drives[static_cast<std::size_t>(d)] = {0.7 + 0.2 * std::sin(0.05 * k + d), 0.6};
-    s.indicators[static_cast<std::size_t>(load_t)] = 20.0 - 0.02 * (k % 1000);
+    s.indicators[static_cast<std::size_t>(material_t)] = 20.0 - 0.02 * (k % 1000);
     if (k % 10 == 0) {
       s.knocks[static_cast<std::size_t>(s.knocks_total % sim::kMaxKnocks)] = {s.step - 3, 3000.0, 0.3,
                                                                               s.cab.pose.position};

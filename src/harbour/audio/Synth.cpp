@@ -83,13 +83,17 @@ void DieselVoice::render(std::span<float> out, Ramp speed, Ramp load) {
     const double rpm = settings_.idle_rpm + s * (settings_.rated_rpm - settings_.idle_rpm);
     cycle_ += rpm / 60.0 * firings_per_turn / kSampleRate_hz;
     double pulse = 0.0;
-    if (cycle_ >= 1.0) {
-      // one firing: harder with the load, each a little different from the last
-      cycle_ -= 1.0;
+    if (cycle_ >= next_firing_) {
+      // one firing: harder with the load, each a little different from the last in strength and timing
+      // (combustion varies cycle to cycle: the upper harmonics smear into the engine's roughness)
+      cycle_ -= next_firing_;
+      next_firing_ = 1.0 + 0.03 * noise_.next();
       pulse = (0.3 + 0.7 * l) * (1.0 + 0.2 * noise_.next());
     }
     const double boost = s * (0.4 + 0.6 * l);
-    const double firing = 12.0 * exhaust_.process(f(pulse)) + 5.0 * block_.process(f(pulse));
+    // each firing rings the exhaust and the block at about the pulse's amplitude
+    const double firing = 0.7 * exhaust_.process(f(pulse / exhaust_.impulse_response())) +
+                          0.3 * block_.process(f(pulse / block_.impulse_response()));
     const double whine = 0.05 * boost * turbo_.next(settings_.turbo_hz * (0.35 + 0.65 * boost));
     const double roar = 0.8 * l * (0.5 + 0.5 * s) * roar_.process(noise_.next());
     out[n] += f(settings_.level * (firing + whine + roar));

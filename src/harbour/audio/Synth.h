@@ -46,6 +46,8 @@ class Resonator {
  public:
   void set(double centre_hz, double q);
   float process(float x);
+  /// Its first output sample for a unit impulse: an impulse of 1 / this rings at about unit amplitude.
+  double impulse_response() const { return b0_; }
 
  private:
   double b0_ = 0, b2_ = 0, a1_ = 0, a2_ = 0;
@@ -117,7 +119,8 @@ class DieselVoice {
 
  private:
   DieselSettings settings_;
-  double cycle_ = 0.0;  // firing phase [firings]
+  double cycle_ = 0.0;         // firing phase [firings]
+  double next_firing_ = 1.0;   // when the next cylinder fires [firings]
   Resonator exhaust_, block_;
   Oscillator turbo_;
   Noise noise_;

@@ -60,7 +60,7 @@ const cable::ElementSettings& first_drum(const cable::ReevingSettings& reeving) 
 constexpr const char* kMhcIndicators[] = {"slew_deg",   "boom_angle_deg", "radius_m",        "load_t",
                                           "capacity_t", "utilisation",    "limiter_stop",    "grab_opening",
                                           "pad_1_kn",   "pad_2_kn",       "pad_3_kn",        "pad_4_kn",
-                                          "horn",       "slung",          "lamp_brake_fault"};
+                                          "horn",       "slung",          "lamp_brake_fault", "grab_material_t"};
 
 }  // namespace
 
@@ -648,7 +648,8 @@ int MobileHarbourCrane::publish(Snapshot& s, int first) const {
                            pads[3] / 1000.0,
                            horn_ ? 1.0 : 0.0,
                            slung_ != physics::kWorld ? 1.0 : 0.0,
-                           hoist_brake_fault_ ? 1.0 : 0.0};
+                           hoist_brake_fault_ ? 1.0 : 0.0,
+                           carried_kg_ / 1000.0};
   static_assert(std::size(values) == std::size(kMhcIndicators));
   s.indicator_count = static_cast<int>(std::size(values));
   std::copy(std::begin(values), std::end(values), s.indicators.begin());
