@@ -177,6 +177,19 @@ TEST(Sound, AnAlarmSoundsExactlyWhileItsConditionHolds) {
   EXPECT_GT(alarm(1.02, 1.07), 0.5 * sounding);  // on from its first block (a block's latency, 5 ms attack)
 }
 
+TEST(Sound, TheAnemometersAlarmSoundsWhileTheWindIsPastTheCranesLimit) {
+  // the STS's wind warning (2.4 kHz beeps) past its in-service limit of 20 m/s: 15 m/s, then 22 from 1 s
+  const Scene sts = scene_of("sts_discharge");
+  const std::vector<float> out = render(sts, 2.5, [](sim::Snapshot& s, double t) {
+    s.wind_mps = {t > 1.0 + 1e-9 ? 22.0 : 15.0, 0.0, 0.0};
+  });
+  const std::vector<double> left = channel(out, 2, 0);
+  const double calm = test::tone_amplitude(left, 0.2, 1.0, 2400.0),
+               warning = test::tone_amplitude(left, 1.2, 2.5, 2400.0);
+  EXPECT_GT(warning, 1e-3);
+  EXPECT_LT(calm, 1e-2 * warning);
+}
+
 TEST(Sound, APowerFailureSilencesTheMachine) {
   // every drive of the RTG at full speed and load, its horn sounding; the supply fails at 1 s
   const Scene rtg = scene_of("rtg_gantry_move");

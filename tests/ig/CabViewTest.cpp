@@ -325,7 +325,8 @@ TEST(CabView, TheChaseViewFramesEveryMachineAndFogFadesItWithoutBlankingIt) {
       if (visibility_m > 1000.0) {
         EXPECT_GT(std::max(bottom - top, right - left), 0.12 * kWidth) << "the machine is a speck";
       }
-      // below the HUD's line, the picture is not one colour: some pixels differ from the mean by a tenth
+      // below the HUD's line, the picture is not one colour: some pixels differ from the mean by 6 % (grey
+      // fog takes a machine at a third of the visibility to a quarter of its contrast)
       double sum = 0.0, far = 0.0;
       int count = 0;
       for (int y = 0; y < image.t() * 4 / 5; ++y)
@@ -339,7 +340,7 @@ TEST(CabView, TheChaseViewFramesEveryMachineAndFogFadesItWithoutBlankingIt) {
           const unsigned char* p = image.data(x, y);
           far = std::max(far, std::abs((p[0] + p[1] + p[2]) / 765.0 - mean));
         }
-      EXPECT_GT(far, 0.1) << "a blank frame";
+      EXPECT_GT(far, 0.06) << "a blank frame";
     }
   }
 }

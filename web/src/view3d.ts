@@ -24,7 +24,25 @@ export interface SceneMessage {
 export interface BulkMessage {
   attempt: number; grids: { nx: number; ny: number; step_m: number; pose: number[]; heights: number[] }[];
 }
-export interface ViewState { attempt: number; water_level_m?: number; poses?: number[]; ropes?: { counts: number[]; points: number[] }; }
+export interface ViewState {
+  attempt: number; water_level_m?: number; poses?: number[]; ropes?: { counts: number[]; points: number[] };
+  time_of_day_h?: number; visibility_m?: number; rain_mm_per_h?: number;
+}
+
+/** The weather as the view shows it: the sky's colour by the time of day (day, dusk, night), greyed by rain
+ * cloud and fog as the image generator greys it; the light by day and cloud; fog by the visibility. */
+export function weatherLook(hour: number, visibility_m: number, rain_mm_per_h: number) {
+  // the sun's height over a day at the equinox, as a share of noon's: dusk from 17 h to 19 h, dawn 5 h to 7 h
+  const day = Math.min(Math.max(Math.sin(((hour - 6) / 12) * Math.PI) * 4 + 0.5, 0), 1);
+  const sky = [0.62, 0.75, 0.88].map((c, i) => c * day + [0.03, 0.04, 0.08][i] * (1 - day));
+  const overcast = Math.min(Math.max(rain_mm_per_h / 8, 0), 1);
+  const extinction = 3.912 / Math.max(visibility_m, 1) + 0.29e-3 * Math.pow(Math.max(rain_mm_per_h, 0), 0.67);
+  const visibility = 3.912 / extinction;
+  const grey = Math.max(overcast, Math.min(Math.max((5000 - visibility) / 4500, 0), 1));
+  const luminance = (0.30 * sky[0] + 0.59 * sky[1] + 0.11 * sky[2]) * (1 - 0.35 * overcast);
+  const colour = sky.map((c, i) => c + (luminance * (i === 2 ? 1.03 : 1) - c) * grey);
+  return { colour, visibility_m: visibility, sun: 1.8 * day * (1 - 0.85 * grey), sky: 0.25 + 1.35 * day };
+}
 
 const kMostRopePoints = 1024;  // the published state's limit (3072 coordinates)
 // drawn in software (no GPU: SwiftShader, llvmpipe), the view is light: a quarter of the pixels and the plan
@@ -103,6 +121,10 @@ export class View3D {
   private readonly viewSize: [number, number];  // the canvases' sizes on the page [px]
   private readonly planSize: [number, number];
   private readonly labels: CanvasRenderingContext2D;
+  private readonly skyColour = new THREE.Color(0.62, 0.75, 0.88);
+  private readonly skyLight = new THREE.HemisphereLight(0xdde8ff, 0x4a4a40, 1.6);
+  private readonly sun = new THREE.DirectionalLight(0xffffff, 1.8);
+  private weather = "";
 
   constructor(canvas: HTMLCanvasElement, private readonly planCanvas: HTMLCanvasElement,
     private readonly planLabels: HTMLCanvasElement, private readonly looks: Looks) {
@@ -113,11 +135,11 @@ export class View3D {
     this.planRenderer = new THREE.WebGLRenderer({ canvas: planCanvas, preserveDrawingBuffer: true });
     this.labels = planLabels.getContext("2d")!;
     this.setLight(drawsInSoftware(this.renderer));
-    this.scene.background = new THREE.Color(0.62, 0.75, 0.88);
-    this.scene.add(new THREE.HemisphereLight(0xdde8ff, 0x4a4a40, 1.6));
-    const sun = new THREE.DirectionalLight(0xffffff, 1.8);
-    sun.position.set(-60, -40, 120);
-    this.scene.add(sun);
+    this.scene.background = this.skyColour;
+    this.scene.fog = new THREE.FogExp2(this.skyColour, 0);
+    this.scene.add(this.skyLight);
+    this.sun.position.set(-60, -40, 120);
+    this.scene.add(this.sun);
     this.camera = new THREE.PerspectiveCamera(45, canvas.width / canvas.height, 0.5, 3000);
     this.camera.up.set(0, 0, 1);
     this.camera.position.set(-60, -90, 60);
@@ -190,8 +212,25 @@ export class View3D {
 
   /** Poses and ropes of a state, drawn at once (the page calls it in its frame); a state of another attempt
    * than the scene's is not drawn. */
+  /** The sky, the light and the fog for the station's weather (changed only when it changes). */
+  setWeather(hour: number, visibility_m: number, rain_mm_per_h: number) {
+    const key = `${hour.toFixed(2)} ${visibility_m.toFixed(0)} ${rain_mm_per_h.toFixed(1)}`;
+    if (key === this.weather) return;
+    this.weather = key;
+    const look = weatherLook(hour, visibility_m, rain_mm_per_h);
+    this.skyColour.setRGB(look.colour[0], look.colour[1], look.colour[2]);
+    const fog = this.scene.fog as THREE.FogExp2;
+    fog.color.copy(this.skyColour);
+    fog.density = Math.sqrt(3.912) / look.visibility_m;  // exp(-(d x)^2) at 2 % contrast at the visibility
+    this.sun.intensity = look.sun;
+    this.skyLight.intensity = look.sky;
+    this.renderer.domElement.dataset.sky = look.colour.map((c) => c.toFixed(3)).join(" ");
+    this.invalidate();
+  }
+
   update(state: ViewState) {
     if (state.attempt !== this.attempt || !state.poses) return;
+    this.setWeather(state.time_of_day_h ?? 12, state.visibility_m ?? 20000, state.rain_mm_per_h ?? 0);
     const p = state.poses;
     const pose = new THREE.Matrix4(), placed = new THREE.Matrix4(), one = new THREE.Vector3(1, 1, 1);
     this.entities.forEach((e, n) => {
@@ -278,7 +317,10 @@ export class View3D {
     // the plan at 2 Hz (light: 1 Hz): seen from above, the terminal changes slowly
     if (now < this.nextPlan) return;
     this.nextPlan = now + (this.light ? kLightPlanFrame_ms : kPlanFrame_ms);
+    const fog = this.scene.fog;  // the plan is a map: drawn clear whatever the weather
+    this.scene.fog = null;
     this.planRenderer.render(this.scene, this.planCamera);
+    this.scene.fog = fog;
     // the plan's names: the machine's parts and vehicles, not every container
     const c = this.labels;
     c.clearRect(0, 0, this.planLabels.width, this.planLabels.height);

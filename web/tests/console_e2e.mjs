@@ -112,6 +112,21 @@ try {
   const sharp = await pixels("#view3d");
   check(sharp.colours > 40 && sharp.orange > 0.005, `the full view shows the crane (${sharp.colours} colours)`);
   await page.locator("#watch").screenshot({ path: path.join(out, "console_3d_view.png"), timeout: 60000 });
+  // the view shows the station's weather: 300 m of fog greys its sky and hides the far quay; clear again after
+  const sky = async () => ((await page.getAttribute("#view3d", "data-sky")) ?? "").split(" ").map(Number);
+  const clear = await sky();
+  await page.fill("#visibility", "300");
+  await page.click("#set-visibility");
+  await until("the fog greys the view's sky", async () => {
+    const [r, g, b] = await sky();
+    return Math.abs(r - g) < 0.02 && Math.abs(b - g) < 0.04;
+  });
+  check(clear[2] > clear[0] + 0.1, `the clear sky was blue (${clear.join(", ")})`);
+  await page.waitForTimeout(500);
+  await page.locator("#watch").screenshot({ path: path.join(out, "console_3d_fog.png"), timeout: 60000 });
+  await page.fill("#visibility", "20000");
+  await page.click("#set-visibility");
+  await until("the sky clears", async () => (await sky())[2] > (await sky())[0] + 0.1);
   const calm = Number(await page.getAttribute("#live", "data-wind"));
   await page.fill("#wind-speed", "18");
   await page.click("#set-wind");

@@ -99,8 +99,11 @@ SoundSource read_source(const io::YamlFile& f, const YAML::Node& item, const std
       s.knock.level = level;
       break;
     case SourceKind::kAlarm:
-      // while an indicator is above a threshold, or while a drive moves (a travel alarm)
-      if (f.optional(item, "drive", at))
+      // while an indicator is above a threshold, while a drive moves (a travel alarm) or while the wind blows
+      // harder than a limit (the anemometer's)
+      if (f.optional(item, "wind_above_mps", at))
+        s.wind_above_mps = f.number(item, "wind_above_mps", at, 0.0, 100.0);
+      else if (f.optional(item, "drive", at))
         drive();
       else
         indicator(), s.above = f.number_or(item, "above", at, 0.5, -1e6, 1e6);

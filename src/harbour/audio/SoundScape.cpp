@@ -207,7 +207,10 @@ void SoundScape::render(Bound& b, const sim::Snapshot& s, bool powered) {
           said_.clear();
           voice.render(out);
         } else if constexpr (std::is_same_v<V, ToneVoice>) {
-          const bool on = b.drive >= 0 ? std::abs(drive().speed) > 0.005 : value > b.settings.above;
+          const bool on = b.settings.wind_above_mps >= 0.0
+                              ? core::length(s.wind_mps) > b.settings.wind_above_mps
+                          : b.drive >= 0 ? std::abs(drive().speed) > 0.005
+                                         : value > b.settings.above;
           voice.render(out, powered && on);
         } else {
           double amount = 0.0;

@@ -119,8 +119,8 @@ class DieselVoice {
 
  private:
   DieselSettings settings_;
-  double cycle_ = 0.0;         // firing phase [firings]
-  double next_firing_ = 1.0;   // when the next cylinder fires [firings]
+  double cycle_ = 0.0;        // firing phase [firings]
+  double next_firing_ = 1.0;  // when the next cylinder fires [firings]
   Resonator exhaust_, block_;
   Oscillator turbo_;
   Noise noise_;

@@ -26,6 +26,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 
@@ -230,6 +231,19 @@ struct SkyShade {
     zenith = {horizon.x * (0.35 + 0.15 * (1 - daylight)), horizon.y * 0.62, horizon.z * 0.92};
     sun_visible = sun_elevation > -0.1 ? std::clamp((sun_elevation + 0.1) / 0.2, 0.0, 1.0) : 0.0;
   }
+  /// The weather's veil: rain clouds (`overcast`, 0-1) hide the sun; they and fog (`grey`, the larger of the
+  /// two) turn the sky towards a grey of its own brightness, darker under rain clouds.
+  SkyShade& weathered(double grey, double overcast) {
+    const auto veil = [&](const core::Vec3& c) {
+      const double luminance = (0.30 * c.x + 0.59 * c.y + 0.11 * c.z) * (1.0 - 0.35 * overcast);
+      const core::Vec3 g{luminance, luminance, luminance * 1.03};
+      return c + (g - c) * grey;
+    };
+    horizon = veil(horizon);
+    zenith = veil(zenith);
+    sun_visible *= 1.0 - std::max(grey, overcast);
+    return *this;
+  }
   osg::Vec4 towards(const core::Vec3& d) const {
     const double up = std::sqrt(std::clamp(d.z, 0.0, 1.0));  // most of the change near the horizon
     core::Vec3 c = horizon + (zenith - horizon) * up;
@@ -289,13 +303,33 @@ void main() {
 // from the grid's vertices, the wind sea faded where the grid is too coarse to carry it), the sky it mirrors
 // by Fresnel's reflectance (Schlick's approximation, R0 = 0.02 for water) over the deep water's colour, the
 // sun's glint, then the fog. World coordinates throughout (the grid is laid in them).
+// The ropes' shading: their colour lit by the sky's ambient light and fogged per pixel like the lit scene
+// (fixed-function fog on thin lines read crisp against a fading spreader).
+constexpr char kRopeVertexShader[] = R"(#version 120
+varying float fog_depth;
+void main() {
+  vec4 eye = gl_ModelViewMatrix * gl_Vertex;
+  fog_depth = length(eye.xyz);
+  gl_FrontColor = gl_Color;
+  gl_Position = gl_ProjectionMatrix * eye;
+}
+)";
+constexpr char kRopeFragmentShader[] = R"(#version 120
+varying float fog_depth;
+void main() {
+  float fog = clamp(exp(-gl_Fog.density * fog_depth), 0.0, 1.0);
+  gl_FragColor = vec4(mix(gl_Fog.color.rgb, gl_Color.rgb, fog), 1.0);
+}
+)";
 constexpr char kWaterVertexShader[] = R"(#version 120
 varying vec3 world;
 varying vec2 slope;
 varying float fog;
+varying float foam;
 void main() {
   world = gl_Vertex.xyz;
   slope = gl_MultiTexCoord0.xy;
+  foam = gl_MultiTexCoord1.x;
   vec4 eye = gl_ModelViewMatrix * gl_Vertex;
   fog = clamp(exp(-gl_Fog.density * length(eye.xyz)), 0.0, 1.0);
   gl_Position = gl_ProjectionMatrix * eye;
@@ -309,8 +343,14 @@ uniform vec3 zenith;
 uniform vec3 deep;
 uniform float daylight;
 varying vec3 world;
+uniform float sky_light;  // the light on the foam: daylight, and the floodlights' share at night
+uniform float breaking;   // the share of the sea's surface breaking (whitecaps)
+uniform float time_s;
+uniform vec2 wind_dir;    // where the wind blows towards (whitecaps streak along it)
+float hash(vec2 p) { return fract(sin(dot(p, vec2(127.1, 311.7))) * 43758.5453); }
 varying vec2 slope;
 varying float fog;
+varying float foam;
 void main() {
   vec3 n = normalize(vec3(-slope, 1.0));
   vec3 v = normalize(eye_world - world);
@@ -323,6 +363,13 @@ void main() {
   vec3 sky = mix(horizon, zenith, sqrt(r.z));
   float glint = daylight * pow(max(dot(r, to_sun), 0.0), 400.0);
   vec3 colour = min((1.0 - f) * deep + f * sky + glint * vec3(1.0, 1.0, 0.9), vec3(1.0));
+  // whitecaps: on the crests the grid carries, and where it is too coarse for them scattered streaks 6 m
+  // along the wind and 2.5 m across, a `breaking` share of such cells white at a time, each for a few seconds
+  vec2 along = vec2(dot(world.xy, wind_dir), dot(world.xy, vec2(-wind_dir.y, wind_dir.x))) / vec2(6.0, 2.5);
+  vec2 cell = floor(along);
+  float born = floor(time_s / 3.0 + 7.0 * hash(cell));
+  float patch = hash(cell + 17.0 * born) < breaking ? smoothstep(0.45, 0.15, length(fract(along) - 0.5)) : 0.0;
+  colour = mix(colour, vec3(0.86, 0.89, 0.91) * sky_light, clamp(max(foam, patch), 0.0, 1.0));
   gl_FragColor = vec4(mix(gl_Fog.color.rgb, colour, fog), 1.0);
 }
 )";
@@ -534,7 +581,8 @@ void ImageGenerator::build(const sim::SceneDescription& scene) {
     const int row = kWaterColumns + 1;
     const auto points = static_cast<unsigned>(row * (kWaterRows + 1));
     water_->setVertexArray(new osg::Vec3Array(points));
-    water_->setTexCoordArray(0, new osg::Vec2Array(points), osg::Array::BIND_PER_VERTEX);  // the slope
+    water_->setTexCoordArray(0, new osg::Vec2Array(points), osg::Array::BIND_PER_VERTEX);   // the slope
+    water_->setTexCoordArray(1, new osg::FloatArray(points), osg::Array::BIND_PER_VERTEX);  // whitecaps
     for (int j = 0; j < kWaterRows; ++j) {
       osg::ref_ptr<osg::DrawElementsUShort> strip = new osg::DrawElementsUShort(GL_TRIANGLE_STRIP);
       for (int i = 0; i <= kWaterColumns; ++i) {
@@ -555,6 +603,10 @@ void ImageGenerator::build(const sim::SceneDescription& scene) {
     program->addShader(new osg::Shader(osg::Shader::FRAGMENT, kWaterFragmentShader));
     shading->setAttribute(program);
     shading->addUniform(new osg::Uniform("daylight", 0.0f));
+    shading->addUniform(new osg::Uniform("sky_light", 0.0f));
+    shading->addUniform(new osg::Uniform("breaking", 0.0f));
+    shading->addUniform(new osg::Uniform("time_s", 0.0f));
+    shading->addUniform(new osg::Uniform("wind_dir", osg::Vec2(1.0f, 0.0f)));
     for (const char* name : {"eye_world", "to_sun", "horizon", "zenith", "deep"})
       shading->addUniform(new osg::Uniform(name, osg::Vec3(0.0f, 0.0f, 1.0f)));
     water_shading_ = shading;
@@ -639,6 +691,12 @@ void ImageGenerator::build(const sim::SceneDescription& scene) {
   osg::ref_ptr<osg::Geode> ropes = new osg::Geode();
   ropes->getOrCreateStateSet()->setAttributeAndModes(new osg::LineWidth(2.0f));
   ropes->getOrCreateStateSet()->setMode(GL_LIGHTING, osg::StateAttribute::OFF);
+  {
+    osg::ref_ptr<osg::Program> program = new osg::Program;
+    program->addShader(new osg::Shader(osg::Shader::VERTEX, kRopeVertexShader));
+    program->addShader(new osg::Shader(osg::Shader::FRAGMENT, kRopeFragmentShader));
+    ropes->getOrCreateStateSet()->setAttribute(program);
+  }
   for (int r = 0; r < scene.rope_count; ++r) {
     osg::ref_ptr<osg::Geometry> geometry = new osg::Geometry();
     geometry->setUseDisplayList(false);
@@ -739,15 +797,24 @@ void ImageGenerator::update(const sim::Snapshot& s) {
   const core::Vec3 to_sun = sun_direction(s.time_of_day_h, s.day_of_year, s.latitude_deg, sun_elevation_);
   to_sun_ = to_sun;
   const double daylight = std::clamp(std::sin(sun_elevation_) * 2.5, 0.0, 1.0);
-  const core::Vec3 sky = sky_color(sun_elevation_);
+  // the weather as the eye meets it: rain falls from cloud that hides the sun (overcast from 8 mm/h on) and
+  // scatters light (extinction 0.29 R^0.67 per km, R in mm/h: about 1 km of visibility in 40 mm/h); fog and
+  // rain grey the sky from 5 km of visibility down to 500 m
+  overcast_ = std::clamp(s.rain_mm_per_h / 8.0, 0.0, 1.0);
+  const double extinction_per_m =
+      3.912 / std::max(s.visibility_m, 1.0) + 0.29e-3 * std::pow(std::max(s.rain_mm_per_h, 0.0), 0.67);
+  const double visibility_m = 3.912 / extinction_per_m;
+  grey_ = std::max(overcast_, std::clamp((5000.0 - visibility_m) / 4500.0, 0.0, 1.0));
+  const SkyShade shade = SkyShade(to_sun, sun_elevation_).weathered(grey_, overcast_);
+  const core::Vec3 sky = shade.horizon;
   osg::Light* light = sun_->getLight();
   light->setPosition(osg::Vec4(to_osg(to_sun), 0.0f));
-  const float diffuse = static_cast<float>(0.85 * daylight);
-  const float ambient = static_cast<float>(0.08 + 0.30 * daylight);
+  // under cloud or in fog the sun's direct light gives way to the sky's diffuse light: soft, shadowless
+  const float diffuse = static_cast<float>(0.85 * daylight * (1.0 - 0.85 * grey_));
+  const float ambient = static_cast<float>((0.08 + 0.30 * daylight) * (1.0 + 0.5 * grey_));
   light->setDiffuse(osg::Vec4(diffuse, diffuse * 0.97f, diffuse * 0.92f, 1.0f));
   light->setAmbient(osg::Vec4(ambient, ambient, ambient * 1.1f, 1.0f));
   viewer_->getCamera()->setClearColor(rgba(sky));
-  const SkyShade shade(to_sun, sun_elevation_);
   for (std::size_t n = 0; n < sky_directions_->size(); ++n) {
     const osg::Vec3& d = (*sky_directions_)[n];
     (*sky_colors_)[n] = shade.towards({d.x(), d.y(), d.z()});
@@ -755,13 +822,16 @@ void ImageGenerator::update(const sim::Snapshot& s) {
   sky_colors_->dirty();
   update_night_sky(s, sky);
   fog_->setColor(rgba(sky));
-  fog_->setDensity(static_cast<float>(3.912 / std::max(s.visibility_m, 1.0)));
-  visibility_m_ = s.visibility_m;
+  fog_->setDensity(static_cast<float>(extinction_per_m));
+  visibility_m_ = visibility_m;
   // rain: particles falling with the wind, and the quay darkens as it wets (assumed: -35 % when wet through)
   const double intensity = std::clamp(s.rain_mm_per_h / 50.0, 0.0, 1.0);
   rain_->setNodeMask(intensity > 0.0 ? ~0u : 0u);
   if (intensity > 0.0) {
     rain_->rain(static_cast<float>(intensity));
+    // streaks a person sees: osgParticle's drops are a hair's width, grey on grey (0.01-0.03 m)
+    rain_->setParticleSize(static_cast<float>(0.03 + 0.04 * intensity));
+    rain_->setParticleColor(osg::Vec4(0.62f, 0.65f, 0.70f, 0.55f));
     rain_->setWind(to_osg(s.wind_mps));
     rain_->getFog()->setDensity(fog_->getDensity());
   }
@@ -928,7 +998,8 @@ void ImageGenerator::update_night_sky(const sim::Snapshot& s, const core::Vec3& 
     const core::Vec3 d = sky_direction(sidereal - right_ascension, declination, lat);
     star_vertices[n] = to_osg(d * kDomeRadius_m);
     const float b = static_cast<float>(brightness * dark * std::clamp(d.z * 8.0, 0.0, 1.0));  // haze low down
-    const osg::Vec4 behind = SkyShade(to_sun_, sun_elevation_).towards(d);  // the dome's colour there
+    const osg::Vec4 behind =
+        SkyShade(to_sun_, sun_elevation_).weathered(grey_, overcast_).towards(d);  // the dome's colour there
     star_colours[n].set(behind.r() + b, behind.g() + b, behind.b() + b, 1.0f);
   }
   star_vertices.dirty();
@@ -1296,10 +1367,35 @@ void ImageGenerator::update_water(const osg::Vec3d& eye) {
     wind_sea_speed_mps_ = wind;
   }
   wind_sea_->evaluate(time_s_);
+  // whitecaps: the share of the sea breaking is Monahan & O'Muircheartaigh's (1980) W = 3.84e-6 U^3.41
+  // (1 % at 10 m/s, 11 % at 20 m/s); the wind sea breaks where it is steepest, so the foam covers its
+  // steepest share W: the slope above which that share of the patch lies now
+  const double breaking = std::min(3.84e-6 * std::pow(wind, 3.41), 0.5);
+  foam_slope_ = std::numeric_limits<double>::infinity();
+  if (breaking > 1e-4) {
+    foam_samples_.clear();
+    const int n = wind_sea_->size();
+    const double cell = wind_sea_->length_m() / n;
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+        foam_samples_.push_back(
+            std::hypot(wind_sea_->slope_x_at(i * cell, j * cell), wind_sea_->slope_y_at(i * cell, j * cell)));
+    const auto at =
+        foam_samples_.begin() +
+        static_cast<std::ptrdiff_t>((1.0 - breaking) * static_cast<double>(foam_samples_.size() - 1));
+    std::nth_element(foam_samples_.begin(), at, foam_samples_.end());
+    foam_slope_ = *at;
+  }
   // the shading's uniforms: the eye, the sky it mirrors, the deep water's colour
-  const SkyShade sky(to_sun_, sun_elevation_);
+  const SkyShade sky = SkyShade(to_sun_, sun_elevation_).weathered(grey_, overcast_);
   const auto set = [&](const char* name, const auto& value) { water_shading_->getUniform(name)->set(value); };
-  set("daylight", static_cast<float>(daylight_));
+  set("daylight", static_cast<float>(daylight_ * (1.0 - grey_)));  // no glint under cloud or in fog
+  set("sky_light", static_cast<float>(0.12 + 0.88 * daylight_ * (1.0 - 0.4 * grey_)));
+  set("breaking", static_cast<float>(breaking));
+  set("time_s", static_cast<float>(time_s_));
+  set("wind_dir",
+      wind > 1e-6 ? osg::Vec2(static_cast<float>(wind_mps_.x / wind), static_cast<float>(wind_mps_.y / wind))
+                  : osg::Vec2(1.0f, 0.0f));
   set("eye_world", osg::Vec3(eye));
   set("to_sun", to_osg(to_sun_));
   set("horizon", to_osg(sky.horizon));
@@ -1310,6 +1406,7 @@ void ImageGenerator::update_water(const osg::Vec3d& eye) {
   const double level = sea_.water_level_m;
   auto& vertices = static_cast<osg::Vec3Array&>(*water_->getVertexArray());
   auto& slopes = static_cast<osg::Vec2Array&>(*water_->getTexCoordArray(0));
+  auto& foam = static_cast<osg::FloatArray&>(*water_->getTexCoordArray(1));
   // a projected grid (Johanson 2004): rays through a grid over the screen (a little wider) meet the still
   // water; rays that miss it end at the far distance, so every cell covers about the same part of the image
   const osg::Camera& camera = *viewer_->getCamera();
@@ -1356,11 +1453,16 @@ void ImageGenerator::update_water(const osg::Vec3d& eye) {
       vertices[k].set(static_cast<float>(x + fade * wind_sea_->displacement_x_at(x, y)),
                       static_cast<float>(y + fade * wind_sea_->displacement_y_at(x, y)),
                       static_cast<float>(level + swell + fade * wind_sea_->height_at(x, y)));
+      const double wind_slope = std::hypot(wind_sea_->slope_x_at(x, y), wind_sea_->slope_y_at(x, y));
       slopes[k].set(static_cast<float>(swell_sx + fade * wind_sea_->slope_x_at(x, y)),
                     static_cast<float>(swell_sy + fade * wind_sea_->slope_y_at(x, y)));
+      // foam on the crests past the breaking slope, fading in over a fifth of it
+      foam[k] =
+          static_cast<float>(fade * std::clamp((wind_slope - foam_slope_) / (0.2 * foam_slope_), 0.0, 1.0));
     }
   vertices.dirty();
   slopes.dirty();
+  foam.dirty();
   water_->dirtyBound();
 }
 

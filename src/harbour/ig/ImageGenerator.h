@@ -257,6 +257,9 @@ class ImageGenerator {
   View view_;
   sim::Snapshot::Cab cab_{};
   double sun_elevation_ = 1.0;
+  double overcast_ = 0.0, grey_ = 0.0;  // rain cloud over the sun; the sky's greying by cloud and fog
+  double foam_slope_ = 0.0;             // the wind sea's slope past which it breaks (whitecaps)
+  std::vector<double> foam_samples_;    // the patch's slopes, to find it
 };
 
 }  // namespace harbour::ig
