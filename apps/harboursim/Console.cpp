@@ -2233,7 +2233,10 @@ json Console::evolution(const std::string& trainee) {
                  {"higher_better", s.higher_better},
                  {"best", s.best},
                  {"trainees", s.trainees},
-                 {"percentile", s.percentile}};
+                 {"percentile", s.percentile},
+                 {"place", s.place},
+                 {"tied", s.tied},
+                 {"place_words", training::place_words(s.place, s.trainees, s.tied)}};
     if (s.figure == "score") cohort.push_back(line);
     standings.push_back(std::move(line));
   }

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <stdexcept>
 
@@ -407,15 +408,23 @@ void AttemptPresence::note(const std::string& kind, const std::string& text) {
   link_.publish(e);
 }
 
+std::string attempt_outcome(const station::SessionResult& r) {
+  const bool scored = r.status == "finished" || r.status == "ended_by_instructor";
+  const std::string how = r.status == "finished"              ? (r.score.passed ? "passed" : "not passed")
+                          : r.status == "ended_by_instructor" ? "ended by the instructor"
+                                                              : r.status;
+  char score[32];
+  std::snprintf(score, sizeof score, ", score %.1f", r.score.total);
+  return "attempt " + std::to_string(r.attempt) + " " + how + (scored ? score : "");
+}
+
 void AttemptPresence::publish_end(const station::SessionResult& result) {
   net::StationStatus s = status("finished", nullptr);
   s.score(result.score.total);
   s.moves_done(result.metrics.moves_completed);
   s.collisions(result.metrics.collisions);
   s.time_s(result.metrics.time_s);
-  s.message(("attempt " + std::to_string(result.attempt) + " " + result.status +
-             (result.status == "finished" ? (result.score.passed ? ", passed" : ", not passed") : ""))
-                .substr(0, 255));
+  s.message(attempt_outcome(result).substr(0, 255));
   link_.publish(s);
   net::StationEvent e;
   e.attempt(result.attempt);

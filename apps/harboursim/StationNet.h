@@ -32,6 +32,10 @@ inline constexpr double kPicturesPerSecond = 5.0;
 inline constexpr std::size_t kMostPictureBytes = 262144;
 net::StationBulk bulk_message(const sim::BulkView& view, std::int64_t attempt, double time_s);
 
+/// How an attempt ended, in the words the console shows: "attempt 5 passed, score 87.0", "attempt 6 ended by
+/// the instructor, score 40.2", "attempt 7 interrupted".
+std::string attempt_outcome(const station::SessionResult& result);
+
 /// What a console asked a station to do next (run an exercise, or nothing new).
 struct StartRequest {
   std::string exercise, trainee, user;

@@ -105,7 +105,9 @@ std::optional<io::ExerciseSource> taken_over_exercise(const std::string& databas
 // an instructor's command then waits at most that much more
 constexpr int kHeadlessTicksPerWake = 5;
 
-int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset) {
+// `outcome`, when given: how the attempt ended, in the console's words
+int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset,
+                std::string* outcome = nullptr) {
   reset = false;
   StationOptions options = given;
   if (options.trainee.empty()) options.trainee = options.autopilot ? "autopilot" : "guest";
@@ -399,6 +401,7 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
                      : interrupted ? station::SessionEnd::kStoppedByInstructor
                                    : station::SessionEnd::kRan);
   if (presence) presence->publish_end(result);
+  if (outcome) *outcome = attempt_outcome(result);
   const station::LoopStats& l = result.loop;
   std::printf(
       "\nloop: %lld ticks, %lld late, %lld given up, longest %.2f ms, mean %.1f us, %.3fx real time%s\n",
@@ -464,7 +467,7 @@ int run_station(const StationOptions& options) {
   if (!link) throw std::runtime_error("--serve needs --name: the station's name on the network");
   std::printf("station %s waits for a console to start an exercise (Ctrl-C ends it)\n", options.name.c_str());
   std::fflush(stdout);
-  std::string message = "ready";
+  std::string message = "ready", outcome;
   while (!g_stop) {
     IdlePresence idle(*link, message);
     std::optional<StartRequest> start;
@@ -489,10 +492,10 @@ int run_station(const StationOptions& options) {
       do {
         attempt.record =
             recording_for(options.name, attempt.exercise, options.database);  // each attempt its own
-        run_attempt(attempt, link.get(), reset);
+        run_attempt(attempt, link.get(), reset, &outcome);
         attempt.take_over_recording.clear();  // a reset starts the exercise anew
       } while (reset && !g_stop);
-      message = "ready; last: " + attempt.exercise;
+      message = "ready; last: " + outcome + " (" + attempt.exercise + ")";
     } catch (const std::exception& e) {
       message = std::string("could not run ") + attempt.exercise + ": " + e.what();
       std::printf("%s\n", core::printable(message).c_str());

@@ -143,6 +143,16 @@ goals:
   EXPECT_DOUBLE_EQ(standing("level2", "hard_landings").best, 1.0);
   EXPECT_NEAR(standing("level2", "hard_landings").percentile, 100.0 * 0.5 / 3.0, 1e-9);
   EXPECT_NEAR(standing("level0", "hard_landings").percentile, 100.0 * (1.0 + 0.5 * 2.0) / 3.0, 1e-9);
+  // places: a tie shares the better place and says so (a tie at the top is first, not "percentile 50")
+  EXPECT_EQ(standing("level0", "score").place, 1);
+  EXPECT_EQ(standing("level0", "score").tied, 0);
+  EXPECT_EQ(standing("level2", "score").place, 3);
+  EXPECT_EQ(standing("level0", "hard_landings").place, 1);
+  EXPECT_EQ(standing("level0", "hard_landings").tied, 1);
+  EXPECT_EQ(place_words(1, 3, 1), "1st of 3 (tied)");
+  EXPECT_EQ(place_words(2, 12, 0), "2nd of 12");
+  EXPECT_EQ(place_words(13, 20, 0), "13th of 20");
+  EXPECT_EQ(place_words(23, 30, 0), "23rd of 30");
   EXPECT_EQ(standing("level0", "score").trainees, 3);
   // the evolution plotted for level0 is its three stored scores in order, and the class sees the same
   const std::vector<TraineeSummary> lines = class_overview(stored, {"level0", "level1", "level2"});

@@ -62,6 +62,18 @@ function health(s: Station): string {
   return issues.length ? issues.join(", ") : (s.state === "running" ? `${s.real_time_factor.toFixed(2)}× real time` : "");
 }
 
+// the selected station's last attempt as it ended (its idle message: "ready; last: attempt 5 passed, score
+// 87.0 (sts_discharge)"), shown at the panel's top until the next attempt starts
+function showOutcome(s: Station) {
+  const panel = $("attempt-outcome");
+  const last = s.state === "idle" ? /^ready; last: (attempt \d+ .*)$/.exec(s.message) : null;
+  panel.hidden = !last;
+  if (!last) return;
+  const words = `Last: ${last[1]}`;
+  if (panel.textContent !== words) text(panel, words);
+  panel.className = / passed,/.test(last[1]) ? "outcome-passed" : "outcome-other";
+}
+
 function showStations(stations: Station[]) {
   const takeover = $<HTMLSelectElement>("takeover-station");
   const chosen = takeover.value;
@@ -85,6 +97,7 @@ function showStations(stations: Station[]) {
     row.classList.toggle("selected", s.station === selected);
     // the selected station gone idle sends no more states: its last one no longer applies (a fault lamp, the
     // figures), so the live line says what the station is now
+    if (s.station === selected) showOutcome(s);
     if (s.station === selected && s.state === "idle" && $("live").dataset.state !== "idle") {
       latestState = null;
       $("live").dataset.state = "idle";
@@ -450,7 +463,7 @@ async function loadProgress() {
 
 interface EvolutionAttempt { score: number; skills: Record<string, number>; metrics: Record<string, number>; }
 interface Standing { exercise: string; exercise_version: string; figure: string; higher_better: boolean; best: number;
-  trainees: number; percentile: number; }
+  trainees: number; percentile: number; place: number; tied: number; place_words: string; }
 const number = (v: number | null | undefined, digits = 1) => v === null || v === undefined ? "" : v.toFixed(digits);
 const figureText = (v: number) => Math.abs(v) >= 1000 ? v.toExponential(3) : String(Number(v.toPrecision(4)));
 function row(values: (string | number)[]): HTMLTableRowElement {
@@ -515,7 +528,7 @@ async function loadEvolution(trainee: string) {
   for (const c of r.data.standings as Standing[]) {
     if (c.figure !== shown) continue;
     const tr = row([c.exercise, c.exercise_version.slice(0, 8), c.figure, figureText(c.best),
-      c.higher_better ? "higher" : "lower", c.trainees, c.percentile.toFixed(0)]);
+      c.higher_better ? "higher" : "lower", c.trainees, c.place_words]);
     tr.dataset.exercise = c.exercise;
     body.appendChild(tr);
   }

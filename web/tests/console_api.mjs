@@ -106,13 +106,15 @@ try {
     `an instructor renames a trainee: ${renamed.status}`);
   check((await b("api/audit")).data.some((a) => a.action === "rename_trainee" && a.target === "carl"), "the rename is audited");
 
-  // evolution: carl's finished attempt with its skills; tied with dora's best, so the 50th percentile
+  // evolution: carl's finished attempt with its skills; tied with dora's best: first of two, tied (the 50th
+  // percentile by mid-rank, which read as middling to an instructor)
   const evolution = (await b("api/evolution?trainee=carl")).data;
   check(evolution.attempts.length === 1 && evolution.attempts[0].score === 100 && evolution.attempts[0].skills.safety === 100
     && /^[0-9a-f]{16}$/.test(evolution.attempts[0].exercise_version),
     `carl's evolution: one finished attempt with score, skills and exercise version (${JSON.stringify(evolution.attempts)})`);
-  check(evolution.cohort.length === 1 && evolution.cohort[0].trainees === 2 && evolution.cohort[0].percentile === 50,
-    `carl against the cohort on sts_discharge: 2 trainees, a tie, percentile 50 (${JSON.stringify(evolution.cohort)})`);
+  check(evolution.cohort.length === 1 && evolution.cohort[0].trainees === 2 && evolution.cohort[0].percentile === 50 &&
+    evolution.cohort[0].place === 1 && evolution.cohort[0].tied === 1 && evolution.cohort[0].place_words === "1st of 2 (tied)",
+    `carl against the cohort on sts_discharge: 2 trainees, tied first (${JSON.stringify(evolution.cohort)})`);
   check((await b("api/evolution")).status === 400 && (await b("api/evolution?trainee=zed")).status === 404,
     "evolution of nobody 400, of an unknown trainee 404");
   const csv = await fetch(baseB + "api/attempts.csv", { headers: { Cookie: whoB.cookie } });

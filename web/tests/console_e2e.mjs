@@ -191,6 +191,10 @@ try {
   await page.click("button[data-kind=stop]");
   await until("the idle station's live line says so and shows no fault", async () =>
     (await page.textContent("#live")).startsWith("idle") && await page.isHidden("#live-faults"));
+  await until("the panel says how the attempt ended", async () =>
+    /^Last: attempt \d+ ended by the instructor, score \d+\.\d \(sts_discharge\)$/.test(await page.textContent("#attempt-outcome")) &&
+    await page.isVisible("#attempt-outcome"));
+  await page.locator("#control-panel").screenshot({ path: path.join(out, "console_outcome.png") });
   let original;
   await until("the stopped attempt is stored", async () => {
     const r = await page.evaluate(async () => (await fetch("/api/attempts")).json());
@@ -282,6 +286,8 @@ try {
     (await page.locator("#comparison tbody tr td:nth-child(3)").first().textContent()) === "time_s");
   check((await page.locator("#cohort tbody tr td:nth-child(3)").first().textContent()) === "time_s",
     "anna's standing is shown on time_s");
+  const place = await page.locator("#cohort tbody tr td:nth-child(7)").first().textContent();
+  check(/^\d+(st|nd|rd|th) of \d+( \(tied\))?$/.test(place), `her place among the trainees in words (${place})`);
   await page.locator("#routes-panel").screenshot({ path: path.join(out, "console_compare.png") });
   await until("the class overview lists anna and ben", async () =>
     (await page.locator("#class tbody tr").count()) === 2 &&

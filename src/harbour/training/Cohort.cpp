@@ -68,6 +68,16 @@ std::vector<std::pair<std::string, double>> figures_of(const AttemptFigures& att
   return figures;
 }
 
+std::string place_words(int place, int of, int tied) {
+  const int last_two = place % 100, last = place % 10;
+  const char* suffix = last_two >= 11 && last_two <= 13 ? "th"
+                       : last == 1                      ? "st"
+                       : last == 2                      ? "nd"
+                       : last == 3                      ? "rd"
+                                                        : "th";
+  return std::to_string(place) + suffix + " of " + std::to_string(of) + (tied > 0 ? " (tied)" : "");
+}
+
 std::vector<Standing> standings(const std::vector<AttemptFigures>& attempts, const std::string& trainee) {
   std::vector<Standing> out;
   for (const auto& [version, by_figure] : bests_of(attempts)) {
@@ -78,9 +88,20 @@ std::vector<Standing> standings(const std::vector<AttemptFigures>& attempts, con
       std::vector<double> ranked;  // better is larger
       for (const auto& [who, best] : by_trainee)
         ranked.push_back(higher ? best : -best);
-      out.push_back({version.first, version.second, figure, higher, own->second,
-                     static_cast<int>(by_trainee.size()),
-                     percentile_rank(ranked, higher ? own->second : -own->second)});
+      const double mine = higher ? own->second : -own->second;
+      Standing standing{version.first,
+                        version.second,
+                        figure,
+                        higher,
+                        own->second,
+                        static_cast<int>(by_trainee.size()),
+                        percentile_rank(ranked, mine)};
+      for (const double other : ranked) {
+        standing.place += other > mine ? 1 : 0;
+        standing.tied += other == mine ? 1 : 0;
+      }
+      standing.tied -= 1;  // the trainee's own
+      out.push_back(standing);
     }
   }
   return out;

@@ -37,7 +37,12 @@ struct Standing {
   double best = 0.0;
   int trainees = 0;  ///< with a finished attempt at this version
   double percentile = 0.0;
+  int place = 1;  ///< 1 + the trainees whose best is better
+  int tied = 0;   ///< the other trainees whose best is the same
 };
+
+/// A place in words: "1st of 3", "2nd of 4 (tied)".
+std::string place_words(int place, int of, int tied);
 
 /// The trainee's standings on every figure of every exercise version they finished (finished attempts with
 /// a score only), by exercise and version, then the score, the skills and the other figures by name.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string_view>
 
 namespace harbour::training {
 
@@ -38,13 +39,15 @@ std::string head(const std::string& title) {
          "</title><style>" + kStyle + "</style></head><body>\n";
 }
 
+// a table's row; a header row (`th`) is the table's head, which a printed table repeats on every page
 std::string row(const std::vector<std::string>& cells, const std::vector<bool>& numeric,
                 const char* tag = "td") {
-  std::string out = "<tr>";
+  const bool head = std::string_view(tag) == "th";
+  std::string out = head ? "<thead><tr>" : "<tr>";
   for (std::size_t i = 0; i < cells.size(); ++i)
     out += std::string("<") + tag + (i < numeric.size() && numeric[i] ? " class=\"n\">" : ">") + cells[i] +
            "</" + tag + ">";
-  return out + "</tr>\n";
+  return out + (head ? "</tr></thead>\n" : "</tr>\n");
 }
 
 std::string routes_section(const std::vector<RouteStanding>& routes) {
@@ -214,15 +217,14 @@ std::string trainee_report_html(const TraineeReportData& d) {
 
   out +=
       "<h2>Standing in the cohort</h2>\n<p class=\"sub\">The trainee's best on each figure of each exercise "
-      "version, and the percentile rank of that best among every trainee's best there (100: ahead of "
-      "all).</p>\n<table>\n";
+      "version, and its place among every trainee's best there.</p>\n<table>\n";
   const std::vector<bool> standing_numeric = {false, false, false, true, true, true};
-  out += row({"Exercise", "Figure", "Better", "Best", "Percentile", "Trainees"}, standing_numeric, "th");
+  out += row({"Exercise", "Figure", "Better", "Best", "Place", "Trainees"}, standing_numeric, "th");
   for (const Standing& s : d.standings)
     out += row({escape_html(s.exercise) + " <span class=\"sub\">" +
                     escape_html(s.exercise_version.substr(0, 8)) + "</span>",
                 escape_html(s.figure), s.higher_better ? "higher" : "lower", number(s.best, "%.4g"),
-                number(s.percentile, "%.0f"), std::to_string(s.trainees)},
+                place_words(s.place, s.trainees, s.tied), std::to_string(s.trainees)},
                standing_numeric);
   out += "</table>\n</body></html>\n";
   return out;
