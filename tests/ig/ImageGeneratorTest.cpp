@@ -446,6 +446,46 @@ TEST(ImageGenerator, RainWetsAndDarkensTheQuay) {
   EXPECT_GT(wet, 0.4 * dry);
 }
 
+TEST(ImageGenerator, RainStreaksPastTheEyeFallTheWayTheDropsFall) {
+  ImageGenerator ig(scene(), looks(), kWidth, kHeight);
+  ig.set_view(down());
+  ig.update(over_the_quay(12.0, 0.0));
+  ig.render();
+  EXPECT_TRUE(ig.rain_streaks().empty());  // dry
+  // 40 mm/h, looking straight down: the drops fall away from the eye towards the picture's centre
+  ig.update(over_the_quay(12.0, 40.0));
+  ig.render();
+  const auto down_streaks = ig.rain_streaks();
+  const double expected = 400.0 * 0.8 * kWidth * kHeight / (1280.0 * 720.0);
+  EXPECT_NEAR(static_cast<double>(down_streaks.size()), expected, 1.0);
+  int towards_centre = 0;
+  for (const auto& [from, to] : down_streaks) {
+    osg::Vec3 way = to - from, centre = osg::Vec3(kWidth / 2.0f, kHeight / 2.0f, 0.0f) - from;
+    way.normalize();
+    centre.normalize();
+    towards_centre += way * centre > 0.99f ? 1 : 0;
+  }
+  EXPECT_GE(towards_centre, static_cast<int>(0.95 * static_cast<double>(down_streaks.size())));
+  // looking ahead in still air they fall straight down the picture; in 10 m/s of wind from the left (blowing
+  // to the right of the view) they slant to the right
+  ig.set_view(level());
+  sim::Snapshot s = over_the_quay(12.0, 40.0);
+  ig.update(s);
+  ig.render();
+  for (const auto& [from, to] : ig.rain_streaks()) {
+    osg::Vec3 way = to - from;
+    way.normalize();
+    EXPECT_LT(way.y(), -0.9f);
+  }
+  s.wind_mps = {0.0, -10.0, 0.0};  // the cab looks along +x with y to its left: this blows to its right
+  ig.update(s);
+  ig.render();
+  double across = 0.0;
+  for (const auto& [from, to] : ig.rain_streaks())
+    across += (to - from).x() / (to - from).length();
+  EXPECT_GT(across / static_cast<double>(ig.rain_streaks().size()), 0.3);
+}
+
 }  // namespace
 }  // namespace harbour::ig
 

@@ -768,8 +768,35 @@ void ImageGenerator::build(const sim::SceneDescription& scene) {
   inset_quads_->getOrCreateStateSet()->setRenderBinDetails(999, "TraversalOrderBin");
   hud->addChild(inset_quads_);
   hud->addChild(lines);
+  // the rain close past the eye: thin translucent streaks over the picture, before the HUD
+  near_rain_ = new osg::Camera;
+  near_rain_->setReferenceFrame(osg::Transform::ABSOLUTE_RF);
+  near_rain_->setProjectionMatrixAsOrtho2D(0, width_, 0, height_);
+  near_rain_->setViewMatrix(osg::Matrix::identity());
+  near_rain_->setClearMask(0);
+  near_rain_->setRenderOrder(osg::Camera::NESTED_RENDER);
+  near_rain_->setAllowEventFocus(false);
+  osg::StateSet* streak_state = near_rain_->getOrCreateStateSet();
+  streak_state->setRenderBinDetails(998, "RenderBin");
+  streak_state->setMode(GL_DEPTH_TEST, osg::StateAttribute::OFF);
+  streak_state->setMode(GL_LIGHTING, osg::StateAttribute::OFF);
+  streak_state->setMode(GL_FOG, osg::StateAttribute::OFF);
+  streak_state->setMode(GL_BLEND, osg::StateAttribute::ON);
+  streak_state->setAttributeAndModes(new osg::LineWidth(1.5f));
+  streaks_ = new osg::Geometry;
+  streaks_->setUseDisplayList(false);
+  streaks_->setUseVertexBufferObjects(true);
+  streaks_->setDataVariance(osg::Object::DYNAMIC);
+  streaks_->setVertexArray(new osg::Vec3Array);
+  streaks_->setColorArray(new osg::Vec4Array, osg::Array::BIND_PER_VERTEX);
+  streaks_->addPrimitiveSet(new osg::DrawArrays(GL_LINES, 0, 0));
+  osg::ref_ptr<osg::Geode> streak_geode = new osg::Geode;
+  streak_geode->addDrawable(streaks_);
+  near_rain_->addChild(streak_geode);
+  near_rain_->setNodeMask(0u);  // dry until the weather says otherwise
   frame_ = new osg::Group;
   frame_->addChild(root_);
+  frame_->addChild(near_rain_);
   frame_->addChild(hud);
   hud_camera_ = hud;
 }
@@ -824,6 +851,7 @@ void ImageGenerator::update(const sim::Snapshot& s) {
   fog_->setColor(rgba(sky));
   fog_->setDensity(static_cast<float>(extinction_per_m));
   visibility_m_ = visibility_m;
+  rain_mm_per_h_ = s.rain_mm_per_h;
   // rain: particles falling with the wind, and the quay darkens as it wets (assumed: -35 % when wet through)
   const double intensity = std::clamp(s.rain_mm_per_h / 50.0, 0.0, 1.0);
   rain_->setNodeMask(intensity > 0.0 ? ~0u : 0u);
@@ -1466,6 +1494,75 @@ void ImageGenerator::update_water(const osg::Vec3d& eye) {
   water_->dirtyBound();
 }
 
+void ImageGenerator::update_near_rain(const osg::Vec3d& eye) {
+  // the drops within a few metres of the eye cross the picture in a frame: streaks the way such a drop moves
+  // on the picture as it falls (at 7 m/s, drifting with the wind: straight down the picture looking ahead,
+  // towards the nadir looking down); as many as the rain is heavy (400 in a 1280x720 picture at 50 mm/h),
+  // placed afresh every 0.1 s
+  const double intensity = std::clamp(rain_mm_per_h_ / 50.0, 0.0, 1.0);
+  near_rain_->setNodeMask(intensity > 0.0 ? ~0u : 0u);
+  if (intensity <= 0.0) return;
+  auto& vertices = static_cast<osg::Vec3Array&>(*streaks_->getVertexArray());
+  auto& colours = static_cast<osg::Vec4Array&>(*streaks_->getColorArray());
+  vertices.clear();
+  colours.clear();
+  const osg::Camera& camera = *viewer_->getCamera();
+  const osg::Matrixd to_clip = camera.getViewMatrix() * camera.getProjectionMatrix();
+  const osg::Matrixd from_clip = osg::Matrixd::inverse(to_clip);
+  const osg::Vec3d fall =
+      osg::Vec3d(wind_mps_.x, wind_mps_.y, -7.0) / std::hypot(std::hypot(wind_mps_.x, wind_mps_.y), 7.0);
+  const double w = width_, h = height_;
+  const auto on_picture = [&](const osg::Vec3d& p, osg::Vec2d& at) {
+    const osg::Vec4d clip = osg::Vec4d(p, 1.0) * to_clip;
+    if (clip.w() <= 1e-9) return false;
+    at = {(clip.x() / clip.w() + 1.0) / 2.0 * w, (clip.y() / clip.w() + 1.0) / 2.0 * h};
+    return true;
+  };
+  const auto count = static_cast<int>(400.0 * intensity * (w * h) / (1280.0 * 720.0));
+  const auto epoch = static_cast<std::uint64_t>(std::max(time_s_, 0.0) * 10.0);
+  std::uint64_t seed = 0x9e3779b97f4a7c15ULL ^ (epoch * 0xbf58476d1ce4e5b9ULL);
+  const auto uniform = [&seed] {
+    seed ^= seed << 13;
+    seed ^= seed >> 7;
+    seed ^= seed << 17;
+    return static_cast<double>(seed >> 11) / 9007199254740992.0;
+  };
+  for (int k = 0; k < count; ++k) {
+    // a drop 2-4 m out along this pixel's ray, and where it is a moment later: the streak's way on the
+    // picture
+    const double x = uniform() * w, y = uniform() * h;
+    const osg::Vec3d through = osg::Vec3d(2.0 * x / w - 1.0, 2.0 * y / h - 1.0, 1.0) * from_clip;
+    osg::Vec3d ray = through - eye;
+    ray.normalize();
+    const osg::Vec3d drop = eye + ray * (2.0 + 2.0 * uniform());
+    osg::Vec2d from, to;
+    if (!on_picture(drop, from) || !on_picture(drop + fall * 0.2, to)) continue;
+    osg::Vec2d way = to - from;
+    const double d = way.length();
+    if (d < 1e-9) continue;
+    way *= (0.03 + 0.05 * uniform()) * h / d;
+    const float alpha = static_cast<float>(0.18 + 0.22 * uniform());
+    vertices.push_back(osg::Vec3(static_cast<float>(from.x()), static_cast<float>(from.y()), 0.0f));
+    vertices.push_back(
+        osg::Vec3(static_cast<float>(from.x() + way.x()), static_cast<float>(from.y() + way.y()), 0.0f));
+    colours.push_back(osg::Vec4(0.80f, 0.83f, 0.87f, 0.0f));  // a streak fades in along its length
+    colours.push_back(osg::Vec4(0.80f, 0.83f, 0.87f, alpha));
+  }
+  vertices.dirty();
+  colours.dirty();
+  static_cast<osg::DrawArrays*>(streaks_->getPrimitiveSet(0))->setCount(static_cast<int>(vertices.size()));
+  streaks_->dirtyBound();
+}
+
+std::vector<std::pair<osg::Vec3, osg::Vec3>> ImageGenerator::rain_streaks() const {
+  std::vector<std::pair<osg::Vec3, osg::Vec3>> out;
+  if (near_rain_->getNodeMask() == 0u) return out;
+  const auto& vertices = static_cast<const osg::Vec3Array&>(*streaks_->getVertexArray());
+  for (std::size_t k = 0; k + 1 < vertices.size(); k += 2)
+    out.emplace_back(vertices[k], vertices[k + 1]);
+  return out;
+}
+
 std::optional<ImageGenerator::CameraPose> ImageGenerator::camera_pose(const EntityCamera& camera) const {
   const auto entity = std::find(entity_visuals_.begin(), entity_visuals_.end(), camera.entity);
   if (entity == entity_visuals_.end()) return std::nullopt;
@@ -1566,6 +1663,7 @@ const osg::Image& ImageGenerator::render() {
   viewer_->getCamera()->getViewMatrixAsLookAt(eye, centre, up);
   sky_->setMatrix(osg::Matrixd::translate(eye));
   update_water(eye);
+  update_near_rain(eye);
   viewer_->frame();
   return *image_;
 }

@@ -155,6 +155,9 @@ class ImageGenerator {
   long bulk_tiles_meshed() const { return bulk_tiles_meshed_; }
   void set_view(const View& view);
   /// Draws one frame and returns it (RGB, bottom row first as OpenGL reads it).
+  /// The rain streaks over the last picture (pixels, y up from the bottom): from where each fades in to where
+  /// it is brightest, pointing the way the drops fall across the picture.
+  std::vector<std::pair<osg::Vec3, osg::Vec3>> rain_streaks() const;
   const osg::Image& render();
   /// The last frame drawn.
   const osg::Image& render_result() const { return *image_; }
@@ -213,6 +216,11 @@ class ImageGenerator {
   std::vector<std::array<double, 3>> star_positions_;  // right ascension, declination, brightness
   osg::ref_ptr<osg::Geometry> stars_, moon_;
   osg::ref_ptr<osgParticle::PrecipitationEffect> rain_;
+  // the rain falling close past the eye, drawn over the picture as streaks towards where the drops fall
+  osg::ref_ptr<osg::Camera> near_rain_;
+  osg::ref_ptr<osg::Geometry> streaks_;
+  double rain_mm_per_h_ = 0.0;
+  void update_near_rain(const osg::Vec3d& eye);
   osg::ref_ptr<osg::Vec4Array> quay_color_;
   osg::ref_ptr<osg::Geometry> water_;
   osg::ref_ptr<osg::StateSet> water_shading_;  // its shader's uniforms
