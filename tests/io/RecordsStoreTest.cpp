@@ -55,6 +55,16 @@ TEST_P(RecordsStoreOn, StoresTraineesAttemptsMovesAndScores) {
   EXPECT_THROW(db.rename_trainee("t999", "Nobody"), std::out_of_range);
   EXPECT_THROW(db.rename_trainee("t001", "bad\x1b[31m"), std::invalid_argument);
   EXPECT_EQ(db.trainees().at(0).name, "Ana Pérez Gil");
+  // instructors pick trainees by name: a second trainee of the same name (any case) is refused, saying whose
+  try {
+    db.add_trainee("t002", "ana pérez gil");
+    ADD_FAILURE() << "a second Ana Pérez Gil was added";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("is trainee 't001''s"), std::string::npos) << e.what();
+  }
+  db.add_trainee("t002", "Ana Pérez Ruiz");
+  EXPECT_THROW(db.rename_trainee("t002", "ANA Pérez GIL"), std::runtime_error);
+  db.rename_trainee("t001", "Ana Pérez Gil");  // its own name again
   EXPECT_THROW(db.begin_attempt("t999", "sts_discharge"), std::runtime_error);
   const auto first = db.begin_attempt("t001", "sts_discharge");
   db.record_move(first, 1, 93.5, 93.5);
@@ -86,7 +96,7 @@ TEST_P(RecordsStoreOn, StoresTraineesAttemptsMovesAndScores) {
   const auto driven = db.begin_attempt({"t001", "sts_discharge", std::nullopt, 0, "", "", "", "", {}, true});
   EXPECT_TRUE(db.attempts(std::string("t001"))[0].autopilot);
   EXPECT_EQ(db.attempts(std::string("t001"))[0].id, driven);
-  EXPECT_EQ(db.trainees().size(), 1u);
+  EXPECT_EQ(db.trainees().size(), 2u);  // t001 and t002: attempts add none
   // the attempt a recording file holds: the branch written over the same file is the newest there
   EXPECT_EQ(db.attempt_recorded_at("out/a.hsrc")->id, first);
   db.finish_attempt(branch, m, s, "out/a.hsrc");

@@ -105,6 +105,11 @@ try {
   check(renamed.status === 200 && (await b("api/trainees")).data.find((t) => t.id === "carl").name === "Carl Nyberg Berg",
     `an instructor renames a trainee: ${renamed.status}`);
   check((await b("api/audit")).data.some((a) => a.action === "rename_trainee" && a.target === "carl"), "the rename is audited");
+  // trainees are picked by name: a second trainee of carl's name (any case) is refused, saying whose it is
+  const twin = await b("api/trainees", "POST", { id: "carl2", name: "carl nyberg berg" });
+  check(twin.status === 400 && /is trainee 'carl''s/.test(twin.data?.error ?? "") &&
+    !(await b("api/trainees")).data.some((t) => t.id === "carl2"),
+    `a second trainee of the same name is refused (${twin.status}: ${twin.data?.error})`);
 
   // evolution: carl's finished attempt with its skills; tied with dora's best: first of two, tied (the 50th
   // percentile by mid-rank, which read as middling to an instructor)

@@ -580,9 +580,24 @@ void RecordsStore::ensure_trainee(const std::string& id, const std::string& name
   });
 }
 
+// refuses a name another trainee has (whatever its letters' case): instructors pick trainees by name
+void RecordsStore::refuse_name_taken(const std::string& id, const std::string& name) {
+  const std::optional<std::string> holder = impl_->guarded("looking up the name '" + name + "'", [&] {
+    std::string other;
+    soci::indicator found = soci::i_null;
+    impl_->sql << "SELECT id FROM trainees WHERE LOWER(name) = LOWER(:name) AND id <> :id", soci::use(name),
+        soci::use(id), soci::into(other, found);
+    return impl_->sql.got_data() && found == soci::i_ok ? std::optional<std::string>(other) : std::nullopt;
+  });
+  if (holder)
+    throw std::runtime_error("the name '" + name + "' is trainee '" + *holder + "''s: give trainee '" + id +
+                             "' a name of its own (a second name, an initial)");
+}
+
 void RecordsStore::add_trainee(const std::string& id, const std::string& name) {
   check_trainee(id, name);
   if (has_trainee(id)) throw std::runtime_error("trainee '" + id + "' already exists");
+  refuse_name_taken(id, name);
   impl_->guarded("adding trainee '" + id + "'", [&] {
     impl_->sql << "INSERT INTO trainees (id, name) VALUES (:id, :name)", soci::use(id), soci::use(name);
   });
@@ -591,6 +606,7 @@ void RecordsStore::add_trainee(const std::string& id, const std::string& name) {
 void RecordsStore::rename_trainee(const std::string& id, const std::string& name) {
   check_trainee(id, name);
   if (!has_trainee(id)) throw std::out_of_range("no trainee '" + id + "'");
+  refuse_name_taken(id, name);
   impl_->guarded("renaming trainee '" + id + "'", [&] {
     impl_->sql << "UPDATE trainees SET name = :name WHERE id = :id", soci::use(name), soci::use(id);
   });

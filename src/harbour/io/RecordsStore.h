@@ -128,12 +128,13 @@ class RecordsStore {
   RecordsStore(const RecordsStore&) = delete;
   RecordsStore& operator=(const RecordsStore&) = delete;
 
-  /// Adds a trainee; the id and name are names (core::why_bad_name), the id at most 64 bytes.
+  /// Adds a trainee; the id and name are names (core::why_bad_name), the id at most 64 bytes, the name no
+  /// other trainee's (whatever the case of its ASCII letters: std::runtime_error).
   void add_trainee(const std::string& id, const std::string& name);
   /// Adds the trainee unless one with this id exists (two stations may do so at once).
   void ensure_trainee(const std::string& id, const std::string& name);
   /// Changes a trainee's name (the id stays: attempts refer to it). Throws std::invalid_argument for a bad
-  /// name, std::out_of_range for an unknown trainee.
+  /// name, std::out_of_range for an unknown trainee, std::runtime_error for a name another trainee has.
   void rename_trainee(const std::string& id, const std::string& name);
   std::vector<TraineeRow> trainees();
   bool has_trainee(const std::string& id);
@@ -222,6 +223,7 @@ class RecordsStore {
   std::vector<training::StageAttempt> stage_attempts(const std::string& trainee, const std::string& route);
 
  private:
+  void refuse_name_taken(const std::string& id, const std::string& name);
   // the attempts of `who` ("": everyone's), or only attempt `only_id` (0: all), newest first
   std::vector<AttemptRow> attempt_rows(const std::string& who, std::int64_t only_id);
   struct Impl;
