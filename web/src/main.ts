@@ -97,6 +97,8 @@ function showStations(stations: Station[]) {
     row.classList.toggle("selected", s.station === selected);
     // the selected station gone idle sends no more states: its last one no longer applies (a fault lamp, the
     // figures), so the live line says what the station is now
+    if (s.state === "idle") endedAttempt.set(s.station, runningAttempt.get(s.station) ?? 0);
+    else if (s.attempt) runningAttempt.set(s.station, s.attempt);
     if (s.station === selected) showOutcome(s);
     if (s.station === selected && s.state === "idle" && $("live").dataset.state !== "idle") {
       latestState = null;
@@ -154,8 +156,13 @@ function queueFrame() {
   if (wait > 0) setTimeout(draw, wait); else draw();
 }
 
+// per station, the attempt it last ran, and the attempt it has since ended (gone idle): a state of an ended
+// attempt that arrives after the station's idle status (the two topics are not ordered) is stale
+const runningAttempt = new Map<string, number>(), endedAttempt = new Map<string, number>();
+
 function keepState(m: StateMessage) {
   if (m.station !== selected) return;
+  if (m.attempt <= (endedAttempt.get(m.station) ?? 0)) return;
   plots?.keep(m.time_s, Math.hypot(m.wind_mps[0], m.wind_mps[1]), m.indicators);
   latestState = m;
   queueFrame();

@@ -41,7 +41,8 @@ void SoundThread::run() {
     const double volume = muted_.load() ? 0.0 : volume_.load();
     if (volume != volume_set) out_->set_volume(volume), volume_set = volume;
     const sim::Snapshot* snapshot = latest_();
-    if (!snapshot || out_->blocks_waiting() >= kBlocksAhead) {
+    // (a scene with no sounds at all has nothing to play and no source to pace it by: it only waits)
+    if (!snapshot || scape_.source_count() == 0 || out_->blocks_waiting() >= kBlocksAhead) {
       std::this_thread::sleep_for(std::chrono::milliseconds(2));
       continue;
     }
