@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstring>
@@ -188,6 +189,19 @@ TEST(Sound, TheAnemometersAlarmSoundsWhileTheWindIsPastTheCranesLimit) {
                warning = test::tone_amplitude(left, 1.2, 2.5, 2400.0);
   EXPECT_GT(warning, 1e-3);
   EXPECT_LT(calm, 1e-2 * warning);
+}
+
+TEST(Sound, AFlipperClunksOnceWhenItReachesItsStop) {
+  // the STS's flipper 1 folds down from 0.5 s to 1.5 s: no clunk on its way, one as it lands on its stop
+  const Scene sts = scene_of("sts_discharge");
+  const int flipper = sts.indicator("flipper_1");
+  const std::vector<float> out = render(sts, 2.5, [&](sim::Snapshot& s, double t) {
+    s.indicators[static_cast<std::size_t>(flipper)] = std::clamp(t - 0.5, 0.0, 1.0);
+  });
+  const std::vector<double> left = channel(out, 2, 0);
+  // its ring (1150 Hz) is not among the other sounds of the idle STS
+  EXPECT_LT(test::tone_amplitude(left, 0.2, 1.49, 1150.0), 1e-5);
+  EXPECT_GT(test::tone_amplitude(left, 1.5, 1.7, 1150.0), 1e-4);
 }
 
 TEST(Sound, APowerFailureSilencesTheMachine) {

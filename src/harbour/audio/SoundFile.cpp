@@ -90,6 +90,7 @@ SoundSource read_source(const io::YamlFile& f, const YAML::Node& item, const std
       break;
     case SourceKind::kClunk:
       indicator();
+      s.at_ends = f.flag(item, "at_ends", at, false);
       read_knock(f, item, at, s.knock);
       s.knock.level = level;
       break;

@@ -187,7 +187,8 @@ void SoundScape::render(Bound& b, const sim::Snapshot& s, bool powered) {
               b.position_m = knock.point_m;
             }
           } else if (b.settings.kind == SourceKind::kClunk) {
-            if (!first && powered && value != b.value) voice.strike(1.0, 0);
+            const bool arrived = !b.settings.at_ends || value == 0.0 || value == 1.0;
+            if (!first && powered && value != b.value && arrived) voice.strike(1.0, 0);
           } else if (b.settings.kind == SourceKind::kBrake) {
             const bool moving = std::abs(drive().speed) > 0.005;
             if (!first && moving != b.moving) voice.strike(moving ? 0.5 : 1.0, 0);

@@ -39,6 +39,7 @@ struct SoundSource {
   std::string indicator;  ///< the indicator it follows (clunk: changes; alarm: above `above`; pour: falls)
   double above = 0.5;     ///< alarm: sounds while the indicator is above this (or the drive moves)
   double wind_above_mps = -1.0;  ///< alarm: sounds while the wind is stronger than this (an anemometer's)
+  bool at_ends = false;          ///< clunk: only when the indicator arrives at 0 or 1 (a flipper on its stop)
   std::string at;  ///< the entity it sits on ("trolley"); empty: round the listener (ambience); an impact
                    ///< sounds where the contact was
   core::Vec3 offset_m;                   ///< [m] on that entity, its frame
