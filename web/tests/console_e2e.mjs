@@ -187,7 +187,9 @@ try {
   await page.screenshot({ path: path.join(out, "console_instructor.png"), fullPage: true });
   // stopped with a fault in force: once the station is idle the live line no longer shows the fault
   await page.click("button[data-kind=hoist-brake-fault]");
-  await until("the fault is in force again", async () => (await page.textContent("#live-faults")).includes("BRAKE FAULT"));
+  if (!await until("the fault is in force again", async () => (await page.textContent("#live-faults")).includes("BRAKE FAULT"), 40))
+    console.log(`  the page then: live "${await page.textContent("#live")}" (${await page.getAttribute("#live", "data-state")}),` +
+      ` command "${await page.textContent("#command-result")}", station "${await page.textContent("#stations tr[data-station=e2e-1]")}"`);
   await page.click("button[data-kind=stop]");
   await until("the idle station's live line says so and shows no fault", async () =>
     (await page.textContent("#live")).startsWith("idle") && await page.isHidden("#live-faults"));
