@@ -36,17 +36,14 @@ std::string read_text(const fs::path& file) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-// starts `harboursim run` on the shipped discharge exercise (or `exercise`), its output to a log in `folder`
-pid_t start_run(const fs::path& folder, const std::string& db, const std::string& record, int n,
-                const std::vector<std::string>& more = {}, const std::string& exercise = "sts_discharge") {
+// starts harboursim with `arguments`, its output to `log`
+pid_t start_app(const std::vector<std::string>& arguments, const fs::path& log) {
   const pid_t child = fork();
   if (child == 0) {
-    const std::string log = (folder / ("run" + std::to_string(n) + ".log")).string();
     freopen(log.c_str(), "w", stdout);
     freopen(log.c_str(), "a", stderr);
-    std::vector<std::string> args = {HARBOUR_APP, "run", "--exercise", exercise, "--autopilot", "--db", db};
-    if (!record.empty()) args.insert(args.end(), {"--record", record});
-    args.insert(args.end(), more.begin(), more.end());
+    std::vector<std::string> args = arguments;
+    args.insert(args.begin(), HARBOUR_APP);
     std::vector<char*> argv;
     for (std::string& a : args)
       argv.push_back(a.data());
@@ -55,6 +52,15 @@ pid_t start_run(const fs::path& folder, const std::string& db, const std::string
     _exit(127);
   }
   return child;
+}
+
+// starts `harboursim run` on the shipped discharge exercise (or `exercise`), its output to a log in `folder`
+pid_t start_run(const fs::path& folder, const std::string& db, const std::string& record, int n,
+                const std::vector<std::string>& more = {}, const std::string& exercise = "sts_discharge") {
+  std::vector<std::string> args = {"run", "--exercise", exercise, "--autopilot", "--db", db};
+  if (!record.empty()) args.insert(args.end(), {"--record", record});
+  args.insert(args.end(), more.begin(), more.end());
+  return start_app(args, folder / ("run" + std::to_string(n) + ".log"));
 }
 
 TEST(Run, KilledMidExerciseItsAttemptIsInterruptedAndItsRecordingPrefixReplays) {
@@ -225,22 +231,9 @@ TEST(Run, AnOldAttemptReplaysBitForBitAfterItsExerciseFileWasEdited) {
   EXPECT_NE(log.find("reproduced bit for bit"), std::string::npos) << log;
 }
 
-// starts harboursim with `args`, its output to `log`; returns its exit code
+// runs harboursim with `arguments`, its output to `log`; returns its exit code
 int run_app(const std::vector<std::string>& arguments, const fs::path& log) {
-  const pid_t child = fork();
-  if (child == 0) {
-    freopen(log.c_str(), "w", stdout);
-    freopen(log.c_str(), "a", stderr);
-    std::vector<std::string> args = arguments;
-    args.insert(args.begin(), HARBOUR_APP);
-    std::vector<char*> argv;
-    for (std::string& a : args)
-      argv.push_back(a.data());
-    argv.push_back(nullptr);
-    execv(HARBOUR_APP, argv.data());
-    _exit(127);
-  }
-  return exit_code(child);
+  return exit_code(start_app(arguments, log));
 }
 
 // A recording's sound track: the same bit for bit each time it is rendered, not silent, and in the debrief

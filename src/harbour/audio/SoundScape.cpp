@@ -178,9 +178,8 @@ void SoundScape::render(Bound& b, const sim::Snapshot& s, bool powered) {
           b.load = d.load;
         } else if constexpr (std::is_same_v<V, KnockVoice>) {
           if (b.settings.kind == SourceKind::kImpact && !s.held) {
-            const std::int64_t from = std::max(knocks_heard_, s.knocks_total - sim::kMaxKnocks);
-            for (std::int64_t k = from; k < s.knocks_total; ++k) {
-              const sim::Snapshot::Knock& knock = s.knocks[static_cast<std::size_t>(k % sim::kMaxKnocks)];
+            for (std::int64_t k = s.first_knock_after(knocks_heard_); k < s.knocks_total; ++k) {
+              const sim::Snapshot::Knock& knock = s.knock(k);
               const double strength = knock.impulse_ns / b.settings.reference_impulse_ns;
               if (strength < 0.01) continue;
               voice.strike(std::min(strength, 4.0), sample_at(knock.step));

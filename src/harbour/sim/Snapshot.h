@@ -139,6 +139,11 @@ struct Snapshot {
   };
   std::int64_t knocks_total = 0;  ///< knocks since the start: knock k sits at knocks[k % kMaxKnocks]
   std::array<Knock, kMaxKnocks> knocks{};
+  /// The first knock after the `seen` a reader has had that the snapshot still holds, and knock k.
+  std::int64_t first_knock_after(std::int64_t seen) const {
+    return seen > knocks_total - kMaxKnocks ? seen : knocks_total - kMaxKnocks;
+  }
+  const Knock& knock(std::int64_t k) const { return knocks[static_cast<std::size_t>(k % kMaxKnocks)]; }
 };
 static_assert(std::is_trivially_copyable_v<Snapshot>);
 

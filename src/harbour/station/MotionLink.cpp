@@ -28,9 +28,8 @@ motion::ShortCueInputs ShortCueSource::next(const sim::Snapshot& s) {
   }
   // the impacts closed since the last frame (the first frame takes none: they were before it)
   if (knocks_seen_ < 0) knocks_seen_ = s.knocks_total;
-  for (std::int64_t k = std::max(knocks_seen_, s.knocks_total - sim::kMaxKnocks); k < s.knocks_total; ++k)
-    in.impact_speed_mps =
-        std::max(in.impact_speed_mps, s.knocks[static_cast<std::size_t>(k % sim::kMaxKnocks)].speed_mps);
+  for (std::int64_t k = s.first_knock_after(knocks_seen_); k < s.knocks_total; ++k)
+    in.impact_speed_mps = std::max(in.impact_speed_mps, s.knock(k).speed_mps);
   knocks_seen_ = s.knocks_total;
   return in;
 }

@@ -57,10 +57,10 @@ const cable::ElementSettings& first_drum(const cable::ReevingSettings& reeving) 
   throw std::invalid_argument("reeving '" + reeving.name + "' has no drum");
 }
 
-constexpr const char* kMhcIndicators[] = {"slew_deg",   "boom_angle_deg", "radius_m",        "load_t",
-                                          "capacity_t", "utilisation",    "limiter_stop",    "grab_opening",
-                                          "pad_1_kn",   "pad_2_kn",       "pad_3_kn",        "pad_4_kn",
-                                          "horn",       "slung",          "lamp_brake_fault", "grab_material_t"};
+constexpr const char* kMhcIndicators[] = {
+    "slew_deg",     "boom_angle_deg", "radius_m",         "load_t",         "capacity_t", "utilisation",
+    "limiter_stop", "grab_opening",   "pad_1_kn",         "pad_2_kn",       "pad_3_kn",   "pad_4_kn",
+    "horn",         "slung",          "lamp_brake_fault", "grab_material_t"};
 
 }  // namespace
 
