@@ -20,6 +20,15 @@ namespace harbour::net {
 namespace dds = eprosima::fastdds::dds;
 using eprosima::fastrtps::types::ReturnCode_t;
 
+std::uint64_t station_key(const std::string& station) {
+  std::uint64_t hash = 14695981039346656037ull;
+  for (const char c : station) {
+    hash ^= static_cast<unsigned char>(c);
+    hash *= 1099511628211ull;
+  }
+  return hash;
+}
+
 std::string why_bad_node_name(const std::string& name) {
   if (name.empty() || name.size() > 64) return "1 to 64 characters";
   for (const char c : name)
@@ -151,7 +160,7 @@ StationLink::StationLink(const std::string& station, int domain) : station_(stat
 
 StationLink::~StationLink() {
   StationStatus key;
-  key.station(station_);
+  key.station_key(station_key(station_));
   std::lock_guard lock(dds_->write_mutex);
   dds_->status->dispose(&key, dds_->status->lookup_instance(&key));
   // reliable: let the consoles have it before the participant goes
@@ -159,6 +168,7 @@ StationLink::~StationLink() {
 }
 
 void StationLink::publish(StationStatus status) {
+  status.station_key(station_key(station_));
   status.station(station_);
   status.sequence_number(++status_sequence_);
   dds_->write(dds_->status, status);

@@ -28,6 +28,11 @@ inline constexpr const char* kAckTopic = "harbour/command_ack";
 inline constexpr double kStatusPeriod_s = 0.5;
 inline constexpr double kLostAfter_s = 3.0;
 
+/// The key of a station's status instance: the 64-bit FNV-1a hash of its name. Eight bytes, so the RTPS key
+/// hash is the key itself and any DDS implementation can take it back from a dispose (a string key over 16
+/// bytes travels as an MD5 digest that no reader can reverse).
+std::uint64_t station_key(const std::string& station);
+
 /// Why `name` cannot name a station or a console on the network ("" when it can): 1 to 64 characters of
 /// letters, digits, '-', '_' and '.'.
 std::string why_bad_node_name(const std::string& name);
