@@ -33,26 +33,6 @@ net::StationStatus base_status(const std::string& state) {
   return s;
 }
 
-// a rotation matrix as a unit quaternion x, y, z, w (Shepperd: from the largest diagonal term)
-std::array<double, 4> quaternion(const core::Mat3& r) {
-  const auto& m = r.m;
-  const double trace = m[0][0] + m[1][1] + m[2][2];
-  if (trace > 0.0) {
-    const double s = 2.0 * std::sqrt(1.0 + trace);
-    return {(m[2][1] - m[1][2]) / s, (m[0][2] - m[2][0]) / s, (m[1][0] - m[0][1]) / s, 0.25 * s};
-  }
-  if (m[0][0] > m[1][1] && m[0][0] > m[2][2]) {
-    const double s = 2.0 * std::sqrt(1.0 + m[0][0] - m[1][1] - m[2][2]);
-    return {0.25 * s, (m[0][1] + m[1][0]) / s, (m[0][2] + m[2][0]) / s, (m[2][1] - m[1][2]) / s};
-  }
-  if (m[1][1] > m[2][2]) {
-    const double s = 2.0 * std::sqrt(1.0 + m[1][1] - m[0][0] - m[2][2]);
-    return {(m[0][1] + m[1][0]) / s, 0.25 * s, (m[1][2] + m[2][1]) / s, (m[0][2] - m[2][0]) / s};
-  }
-  const double s = 2.0 * std::sqrt(1.0 + m[2][2] - m[0][0] - m[1][1]);
-  return {(m[0][2] + m[2][0]) / s, (m[1][2] + m[2][1]) / s, 0.25 * s, (m[1][0] - m[0][1]) / s};
-}
-
 // the commands a running loop takes as they are
 std::optional<station::LoopCommand::Kind> loop_kind(const std::string& kind) {
   using K = station::LoopCommand::Kind;
@@ -105,9 +85,9 @@ net::StationBulk bulk_message(const sim::BulkView& view, std::int64_t attempt, d
     bulk.samples_x().push_back(static_cast<std::uint16_t>(nx));
     bulk.samples_y().push_back(static_cast<std::uint16_t>(ny));
     bulk.sample_m().push_back(static_cast<float>(grid.cell_m * block));
-    const std::array<double, 4> q = quaternion(grid.pose.rotation);
+    const core::Quat q = core::Quat::from(grid.pose.rotation);
     for (const double v :
-         {grid.pose.position.x, grid.pose.position.y, grid.pose.position.z, q[0], q[1], q[2], q[3]})
+         {grid.pose.position.x, grid.pose.position.y, grid.pose.position.z, q.x, q.y, q.z, q.w})
       bulk.grid_poses().push_back(static_cast<float>(v));
     for (int sj = 0; sj < ny; ++sj)
       for (int si = 0; si < nx; ++si) {
@@ -142,13 +122,10 @@ net::StationState state_message(const sim::Snapshot& snapshot, std::size_t entit
   for (int n = 0; n < snapshot.entity_count; ++n) {
     const sim::Snapshot::Entity& e = snapshot.entities[static_cast<std::size_t>(n)];
     if (e.index * 7 + 7 > poses.size()) continue;
-    const std::array<double, 4> q = quaternion(e.pose.rotation);
+    const core::Quat q = core::Quat::from(e.pose.rotation);
     float* p = &poses[e.index * 7];
-    p[0] = static_cast<float>(e.pose.position.x);
-    p[1] = static_cast<float>(e.pose.position.y);
-    p[2] = static_cast<float>(e.pose.position.z);
-    for (int k = 0; k < 4; ++k)
-      p[3 + k] = static_cast<float>(q[static_cast<std::size_t>(k)]);
+    for (const double v : {e.pose.position.x, e.pose.position.y, e.pose.position.z, q.x, q.y, q.z, q.w})
+      *p++ = static_cast<float>(v);
   }
   for (int r = 0; r < snapshot.rope_count; ++r) {
     const std::size_t first = snapshot.rope_first[static_cast<std::size_t>(r)];

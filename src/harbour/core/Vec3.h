@@ -119,4 +119,68 @@ struct Pose {
   constexpr Vec3 direction_to_local(const Vec3& d) const { return rotation.transposed() * d; }
 };
 
+/// Unit quaternion x, y, z, w: a rotation where it must be interpolated or sent (a Mat3 everywhere else).
+struct Quat {
+  double x = 0.0, y = 0.0, z = 0.0, w = 1.0;
+
+  /// From a rotation matrix (Shepperd: from its largest diagonal term).
+  static Quat from(const Mat3& r) {
+    const auto& m = r.m;
+    const double trace = m[0][0] + m[1][1] + m[2][2];
+    if (trace > 0.0) {
+      const double s = 2.0 * std::sqrt(1.0 + trace);
+      return {(m[2][1] - m[1][2]) / s, (m[0][2] - m[2][0]) / s, (m[1][0] - m[0][1]) / s, 0.25 * s};
+    }
+    if (m[0][0] > m[1][1] && m[0][0] > m[2][2]) {
+      const double s = 2.0 * std::sqrt(1.0 + m[0][0] - m[1][1] - m[2][2]);
+      return {0.25 * s, (m[0][1] + m[1][0]) / s, (m[0][2] + m[2][0]) / s, (m[2][1] - m[1][2]) / s};
+    }
+    if (m[1][1] > m[2][2]) {
+      const double s = 2.0 * std::sqrt(1.0 + m[1][1] - m[0][0] - m[2][2]);
+      return {(m[0][1] + m[1][0]) / s, 0.25 * s, (m[1][2] + m[2][1]) / s, (m[0][2] - m[2][0]) / s};
+    }
+    const double s = 2.0 * std::sqrt(1.0 + m[2][2] - m[0][0] - m[1][1]);
+    return {(m[0][2] + m[2][0]) / s, (m[1][2] + m[2][1]) / s, 0.25 * s, (m[1][0] - m[0][1]) / s};
+  }
+  /// Its rotation matrix (normalised first: a quaternion that travelled as floats).
+  Mat3 matrix() const {
+    const double n = std::sqrt(x * x + y * y + z * z + w * w);
+    const double a = x / n, b = y / n, c = z / n, d = w / n;
+    Mat3 r;
+    r.m[0][0] = 1 - 2 * (b * b + c * c);
+    r.m[0][1] = 2 * (a * b - c * d);
+    r.m[0][2] = 2 * (a * c + b * d);
+    r.m[1][0] = 2 * (a * b + c * d);
+    r.m[1][1] = 1 - 2 * (a * a + c * c);
+    r.m[1][2] = 2 * (b * c - a * d);
+    r.m[2][0] = 2 * (a * c - b * d);
+    r.m[2][1] = 2 * (b * c + a * d);
+    r.m[2][2] = 1 - 2 * (a * a + b * b);
+    return r;
+  }
+};
+
+/// The angular velocity [rad/s, parent frame] that turns `from` into `to` in `dt_s` (the shorter way).
+inline Vec3 angular_velocity(const Mat3& from, const Mat3& to, double dt_s) {
+  const Quat q = Quat::from(to * from.transposed());
+  const double sign = q.w < 0.0 ? -1.0 : 1.0;
+  const Vec3 v{sign * q.x, sign * q.y, sign * q.z};
+  const double s = length(v);
+  if (s < 1e-12) return {};
+  const double angle = 2.0 * std::atan2(s, sign * q.w);
+  return (angle / (s * dt_s)) * v;
+}
+
+/// The rotation `r` turned on at angular velocity `omega` [rad/s, parent frame] for `t_s`.
+inline Mat3 turned(const Mat3& r, const Vec3& omega, double t_s) {
+  const double rate = length(omega);
+  if (rate * t_s == 0.0) return r;
+  return Mat3::rotation((1.0 / rate) * omega, rate * t_s) * r;
+}
+
+/// The rotation a fraction `f` (0-1) of the way from `a` to `b` (about one fixed axis).
+inline Mat3 between(const Mat3& a, const Mat3& b, double f) {
+  return turned(a, angular_velocity(a, b, 1.0), f);
+}
+
 }  // namespace harbour::core

@@ -75,9 +75,10 @@ struct Participant {
   dds::Subscriber* subscriber = nullptr;
   std::map<std::string, dds::Topic*> topics;
   dds::DataWriter *status = nullptr, *scene = nullptr, *state = nullptr, *bulk = nullptr, *picture = nullptr,
-                  *event = nullptr, *command = nullptr, *ack = nullptr;
+                  *event = nullptr, *command = nullptr, *ack = nullptr, *team = nullptr;
   dds::DataReader *status_in = nullptr, *scene_in = nullptr, *state_in = nullptr, *bulk_in = nullptr,
-                  *picture_in = nullptr, *event_in = nullptr, *command_in = nullptr, *ack_in = nullptr;
+                  *picture_in = nullptr, *event_in = nullptr, *command_in = nullptr, *ack_in = nullptr,
+                  *team_in = nullptr;
   std::mutex write_mutex;
 
   Participant(int domain, const std::string& name) {
@@ -96,6 +97,7 @@ struct Participant {
     register_type<StationEventPubSubType>(kEventTopic);
     register_type<StationCommandPubSubType>(kCommandTopic);
     register_type<CommandAckPubSubType>(kAckTopic);
+    register_type<TeamStatePubSubType>(kTeamTopic);
     publisher = participant->create_publisher(dds::PUBLISHER_QOS_DEFAULT);
     subscriber = participant->create_subscriber(dds::SUBSCRIBER_QOS_DEFAULT);
     if (!publisher || !subscriber) fail("a publisher or subscriber");
@@ -212,6 +214,45 @@ void StationLink::acknowledge(const StationCommand& command, bool ok, const std:
   ack.ok(ok);
   ack.message(message.substr(0, 255));
   dds_->write(dds_->ack, ack);
+}
+
+TeamLink::TeamLink(const std::string& station, const std::string& session, const std::string& role,
+                   int domain)
+    : station_(station), session_(session), role_(role) {
+  if (const std::string why = why_bad_node_name(station); !why.empty())
+    throw std::runtime_error("station name '" + station + "': " + why);
+  if (session.empty() || session.size() > 64)
+    throw std::runtime_error("team session '" + session + "': 1 to 64 characters");
+  if (role.empty() || role.size() > 32)
+    throw std::runtime_error("team role '" + role + "': 1 to 32 characters");
+  dds_ = std::make_unique<Participant>(domain, "harbour team member " + station);
+  dds_->team = dds_->writer(kTeamTopic, Delivery::kBestEffort, 1);
+  dds_->team_in = dds_->reader(kTeamTopic, Delivery::kBestEffort, 1);
+}
+
+TeamLink::~TeamLink() = default;
+
+std::int64_t TeamLink::monotonic_ns() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+void TeamLink::publish(TeamState state) {
+  state.station(station_);
+  state.session(session_);
+  state.role(role_);
+  state.sent_ns(monotonic_ns());
+  dds_->write(dds_->team, state);
+}
+
+std::vector<TeamState> TeamLink::take() {
+  std::vector<TeamState> states;
+  dds_->take<TeamState>(dds_->team_in, [&](const TeamState& t, const dds::SampleInfo& info) {
+    if (info.valid_data && t.session().to_string() == session_ && t.station().to_string() != station_)
+      states.push_back(t);
+  });
+  return states;
 }
 
 ConsoleLink::ConsoleLink(const std::string& console, int domain) : console_(console) {

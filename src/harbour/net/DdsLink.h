@@ -23,6 +23,7 @@ inline constexpr const char* kPictureTopic = "harbour/station_picture";
 inline constexpr const char* kEventTopic = "harbour/station_event";
 inline constexpr const char* kCommandTopic = "harbour/station_command";
 inline constexpr const char* kAckTopic = "harbour/command_ack";
+inline constexpr const char* kTeamTopic = "harbour/team_state";
 
 /// How often a station says it is there, and how long a console waits before it shows it as lost.
 inline constexpr double kStatusPeriod_s = 0.5;
@@ -66,6 +67,29 @@ class StationLink {
   std::string station_;
   std::unique_ptr<Participant> dds_;
   std::uint64_t status_sequence_ = 0, event_sequence_ = 0;
+};
+
+/// A team member's side of a team session: it publishes the state of the machine its station simulates and
+/// takes the other members' (of the same session; its own and other sessions' are left out). Thread-safe.
+class TeamLink {
+ public:
+  /// Joins DDS domain `domain` as station `station`, member `role` of team session `session`; throws
+  /// std::runtime_error saying what failed.
+  TeamLink(const std::string& station, const std::string& session, const std::string& role, int domain);
+  ~TeamLink();
+  TeamLink(const TeamLink&) = delete;
+  TeamLink& operator=(const TeamLink&) = delete;
+
+  /// Fills in the station, session, role and the time it is sent, and writes it.
+  void publish(TeamState state);
+  /// The other members' samples that arrived since the last call, in arrival order.
+  std::vector<TeamState> take();
+  /// The monotonic clock TeamState::sent_ns is read from (one for every process on a host).
+  static std::int64_t monotonic_ns();
+
+ private:
+  std::string station_, session_, role_;
+  std::unique_ptr<Participant> dds_;
 };
 
 /// A console's side: every station on the domain, its newest status, scene and state, the events, and

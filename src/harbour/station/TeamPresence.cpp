@@ -1,0 +1,125 @@
+#include "harbour/station/TeamPresence.h"
+
+#include <algorithm>
+
+namespace harbour::station {
+
+namespace {
+constexpr std::size_t kMostAges = 1 << 20;  // an hour and more at 50 Hz per member
+}
+
+void DeadReckoning::place(const RemoteMotion& motion, double at_s) {
+  old_ = new_ = motion;
+  old_at_s_ = new_at_s_ = at_s;
+  blending_ = false;
+}
+
+void DeadReckoning::update(const RemoteMotion& motion, double at_s) {
+  // blend from where the body is drawn now: the old track, or the blend in progress frozen into a sample
+  const core::Pose drawn = at(at_s);
+  old_ = {drawn, new_.velocity_mps, new_.angular_velocity_radps};
+  if (blending_) {
+    const double f = std::clamp((at_s - new_at_s_) / blend_s_, 0.0, 1.0);
+    old_.velocity_mps = (1.0 - f) * old_.velocity_mps + f * new_.velocity_mps;
+  }
+  old_at_s_ = at_s;
+  new_ = motion;
+  new_at_s_ = at_s;
+  blending_ = true;
+}
+
+core::Pose DeadReckoning::carried(const RemoteMotion& m, double from_s, double t_s) const {
+  const double dt = std::clamp(t_s - from_s, 0.0, horizon_s_);
+  return {core::turned(m.pose.rotation, m.angular_velocity_radps, dt), m.pose.position + dt * m.velocity_mps};
+}
+
+core::Pose DeadReckoning::at(double t_s) const {
+  const core::Pose ahead = carried(new_, new_at_s_, t_s);
+  if (!blending_) return ahead;
+  const double f = std::clamp((t_s - new_at_s_) / blend_s_, 0.0, 1.0);
+  if (f >= 1.0) return ahead;
+  const core::Pose before = carried(old_, old_at_s_, t_s);
+  return {core::between(before.rotation, ahead.rotation, f),
+          (1.0 - f) * before.position + f * ahead.position};
+}
+
+TeamPresence::TeamPresence(const sim::SceneDescription& own_scene, std::vector<TeamMember> members)
+    : scene_(own_scene) {
+  for (TeamMember& known : members) {
+    Member m;
+    m.first_entity = static_cast<int>(scene_.entities.size());
+    for (std::size_t b = 0; b < known.bodies.size(); ++b) {
+      sim::SceneDescription::Entity e = known.bodies[b];
+      e.name = known.role + ": " + e.name;
+      scene_.entities.push_back(e);
+      DeadReckoning body(kBlend_s, kHorizon_s);
+      body.place({b < known.start_poses.size() ? known.start_poses[b] : core::Pose{}, {}, {}}, 0.0);
+      m.bodies.push_back(body);
+    }
+    m.state.role = known.role;
+    m.known = std::move(known);
+    members_.push_back(std::move(m));
+  }
+}
+
+std::string TeamPresence::offer(const TeamSample& sample) {
+  const std::lock_guard lock(mutex_);
+  const auto member = std::find_if(members_.begin(), members_.end(),
+                                   [&](const Member& m) { return m.known.role == sample.role; });
+  if (member == members_.end()) return "no member of this team has the role '" + sample.role + "'";
+  if (sample.body.size() != sample.motion.size()) return "a sample of '" + sample.role + "' is torn";
+  for (const std::uint16_t b : sample.body)
+    if (b >= member->bodies.size())
+      return "'" + sample.role + "' has " + std::to_string(member->bodies.size()) + " bodies, not body " +
+             std::to_string(b);
+  for (std::size_t k = 0; k < sample.body.size(); ++k) {
+    DeadReckoning& body = member->bodies[sample.body[k]];
+    if (member->state.heard)
+      body.update(sample.motion[k], sample.received_s);
+    else
+      body.place(sample.motion[k], sample.received_s);
+  }
+  member->state.heard = true;
+  ++member->state.samples;
+  if (sample.age_s >= 0.0 && member->ages_s.size() < kMostAges) member->ages_s.push_back(sample.age_s);
+  member->last_heard_s = sample.received_s;
+  return "";
+}
+
+void TeamPresence::write(sim::Snapshot& snapshot, double now_s) const {
+  const std::lock_guard lock(mutex_);
+  for (const Member& m : members_)
+    for (std::size_t b = 0; b < m.bodies.size(); ++b) {
+      if (snapshot.entity_count >= sim::kMaxEntities) return;
+      const int index = m.first_entity + static_cast<int>(b);
+      snapshot.entities[static_cast<std::size_t>(snapshot.entity_count++)] = {
+          static_cast<std::uint32_t>(index), 0, m.bodies[b].at(now_s)};
+    }
+}
+
+std::vector<TeamPresence::MemberState> TeamPresence::members(double now_s,
+                                                             std::vector<std::string>* changed) {
+  const std::lock_guard lock(mutex_);
+  std::vector<MemberState> states;
+  for (Member& m : members_) {
+    const bool lost = m.state.heard && now_s - m.last_heard_s > kLostAfter_s;
+    if (lost != m.state.lost && changed) changed->push_back(m.known.role);
+    m.state.lost = lost;
+    m.state.measured = static_cast<std::int64_t>(m.ages_s.size());
+    if (!m.ages_s.empty()) {
+      std::vector<double> ages = m.ages_s;
+      const auto quantile = [&](double q) {
+        const auto at = ages.begin() + static_cast<std::ptrdiff_t>(q * static_cast<double>(ages.size() - 1));
+        std::nth_element(ages.begin(), at, ages.end());
+        return *at;
+      };
+      m.state.age_p50_s = quantile(0.5);
+      m.state.age_p99_s = quantile(0.99);
+      m.state.age_max_s = *std::max_element(ages.begin(), ages.end());
+    }
+    states.push_back(m.state);
+  }
+  return states;
+}
+
+}  // namespace harbour::station

@@ -1,0 +1,108 @@
+#pragma once
+
+#include <cstdint>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "harbour/core/Vec3.h"
+#include "harbour/sim/Snapshot.h"
+
+namespace harbour::station {
+
+/// A body of a remote machine as its own station last published it (harbour frame).
+struct RemoteMotion {
+  core::Pose pose;
+  core::Vec3 velocity_mps;
+  core::Vec3 angular_velocity_radps;
+};
+
+/// Dead reckoning of one remote body between its samples: the newest sample carried on at its velocity and
+/// angular velocity (for at most `horizon_s`: a body that falls silent stops where it would have been), and
+/// each new sample blended in over `blend_s` from where the old one had carried it, so nothing jumps.
+class DeadReckoning {
+ public:
+  DeadReckoning(double blend_s, double horizon_s) : blend_s_(blend_s), horizon_s_(horizon_s) {}
+  /// Puts it at `motion` as of time `at_s`, with no blending (the first sample; a start pose).
+  void place(const RemoteMotion& motion, double at_s);
+  /// A new sample, valid at `at_s` (the receiver's clock).
+  void update(const RemoteMotion& motion, double at_s);
+  /// Where it is at `t_s` (the receiver's clock, at or after the last sample's time).
+  core::Pose at(double t_s) const;
+  /// The newest sample and its time.
+  const RemoteMotion& newest() const { return new_; }
+  double newest_at_s() const { return new_at_s_; }
+
+ private:
+  core::Pose carried(const RemoteMotion& m, double from_s, double t_s) const;
+  double blend_s_, horizon_s_;
+  RemoteMotion old_, new_;
+  double old_at_s_ = 0.0, new_at_s_ = 0.0;
+  bool blending_ = false;
+};
+
+/// One other member of a team session as this station knows it before hearing from it: its role and its
+/// machine's bodies (names, looks, sizes: the SceneDescription of its exercise) where its exercise starts
+/// them.
+struct TeamMember {
+  std::string role;
+  std::vector<sim::SceneDescription::Entity> bodies;
+  std::vector<core::Pose> start_poses;  ///< one per body
+};
+
+/// What arrived from a member: its machine's bodies (by index into TeamMember::bodies) at one moment.
+struct TeamSample {
+  std::string role;
+  double received_s = 0.0;  ///< the receiver's clock
+  double age_s = -1.0;      ///< how old it was on arrival (measured where both share a clock; -1: unknown)
+  std::vector<std::uint16_t> body;
+  std::vector<RemoteMotion> motion;  ///< one per body index
+};
+
+/// The other members' machines at this station: added to its scene (after its own entities, each named
+/// "ROLE: BODY"), dead-reckoned between their samples and written into every snapshot it publishes, so the
+/// cab view, the console's 3D view and the chase view show them where their own stations have them. A member
+/// not heard from for `lost_after_s` is lost: its machine stays where it was last carried to. Thread-safe:
+/// samples are offered from the network side, snapshots written on the step thread.
+class TeamPresence {
+ public:
+  static constexpr double kBlend_s = 0.1;      ///< a new sample is blended in over this
+  static constexpr double kHorizon_s = 0.5;    ///< dead reckoning carries a silent body on for at most this
+  static constexpr double kLostAfter_s = 2.0;  ///< a member silent this long is lost
+
+  TeamPresence(const sim::SceneDescription& own_scene, std::vector<TeamMember> members);
+
+  /// The station's scene with the members' bodies after its own entities.
+  const sim::SceneDescription& scene() const { return scene_; }
+  /// Takes a member's sample; one of a role not in the team, or with a body index it lacks, is refused with
+  /// the reason ("" when taken).
+  std::string offer(const TeamSample& sample);
+  /// Appends the members' bodies, where they are at `now_s` (the receiver's clock), to `snapshot`.
+  void write(sim::Snapshot& snapshot, double now_s) const;
+
+  struct MemberState {
+    std::string role;
+    bool heard = false;  ///< a sample has arrived
+    bool lost = false;   ///< heard, then silent for kLostAfter_s
+    std::int64_t samples = 0;
+    std::int64_t measured = 0;  ///< samples whose age on arrival was measured
+    double age_p50_s = 0.0, age_p99_s = 0.0, age_max_s = 0.0;
+  };
+  /// Each member as of `now_s`; `changed` gets the roles that were lost or came back since the last call.
+  std::vector<MemberState> members(double now_s, std::vector<std::string>* changed = nullptr);
+
+ private:
+  struct Member {
+    TeamMember known;
+    std::vector<DeadReckoning> bodies;
+    int first_entity = 0;  // its first body's index in scene_
+    MemberState state;
+    std::vector<double> ages_s;  // each measured sample's age on arrival
+    double last_heard_s = 0.0;
+  };
+  sim::SceneDescription scene_;
+  std::vector<Member> members_;
+  mutable std::mutex mutex_;
+};
+
+}  // namespace harbour::station
