@@ -173,12 +173,9 @@ std::optional<StartRequest> IdlePresence::service() {
 }
 
 AttemptPresence::AttemptPresence(net::StationLink& link, station::Session& session,
-                                 const sim::ExerciseSettings& exercise, const std::string& trainee)
-    : link_(link),
-      session_(session),
-      exercise_(exercise),
-      trainee_(trainee),
-      scene_(session.simulation().scene()) {
+                                 const sim::ExerciseSettings& exercise, const std::string& trainee,
+                                 const sim::SceneDescription& scene)
+    : link_(link), session_(session), exercise_(exercise), trainee_(trainee), scene_(scene) {
   link_.publish(scene_message(scene_, session.attempt()));
 }
 

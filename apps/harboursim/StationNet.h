@@ -64,8 +64,9 @@ class IdlePresence {
 class AttemptPresence {
  public:
   enum class Next { kRun, kStop, kReset };
+  /// `scene`: what the station draws (its simulation's scene, and a team's other machines after it).
   AttemptPresence(net::StationLink& link, station::Session& session, const sim::ExerciseSettings& exercise,
-                  const std::string& trainee);
+                  const std::string& trainee, const sim::SceneDescription& scene);
   /// Publishes what is due and applies the commands that came; says whether the attempt goes on.
   Next service();
   /// Tells the consoles how the attempt ended.

@@ -19,6 +19,7 @@
 #include <thread>
 
 #include "StationNet.h"
+#include "StationTeam.h"
 #include "StationWindow.h"
 #include "StsRun.h"
 #include "harbour/audio/SoundFile.h"
@@ -118,6 +119,17 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
   const std::string database = options.database.empty() ? default_database() : options.database;
   station::SessionOptions session_options;
   session_options.autopilot = options.autopilot;
+  // a member of a team session runs its role's exercise
+  std::optional<io::Team> team;
+  if (!options.team.empty()) {
+    std::vector<std::string> exercise_folders{std::string(HARBOUR_DATA_DIR) + "/exercises"};
+    if (!options.centre.exercises.empty())
+      exercise_folders.insert(exercise_folders.begin(), options.centre.exercises);
+    team = io::load_team(resolve_team(options.team, options.centre.exercises), exercise_folders);
+    if (!team->find(options.role))
+      throw std::runtime_error("team " + team->name + " has no role '" + options.role +
+                               "' (its roles: " + team->role_list() + ")");
+  }
   if (!options.route.empty()) {
     io::RecordsStore db(database);
     const RouteStage next = next_route_stage(db, options.centre, options.trainee, options.route);
@@ -128,6 +140,8 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
                 next.stage.goal.c_str());
   } else if (std::optional<io::ExerciseSource> taken = taken_over_exercise(database, options)) {
     session_options.source = std::move(*taken);
+  } else if (team) {
+    session_options.source = io::read_exercise_source(team->find(options.role)->exercise_file);
   } else {
     session_options.source =
         io::read_exercise_source(resolve_exercise(options.exercise, options.centre.exercises));
@@ -173,11 +187,22 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
   if (!hearing) session_options.loop.snapshot_every_steps[station::kSoundReader] = 0;
   if (!link) session_options.loop.snapshot_every_steps[station::kPictureReader] = 0;  // nobody watches
   if (!profile.motion) session_options.loop.snapshot_every_steps[station::kMotionReader] = 0;
+  if (!team) session_options.loop.snapshot_every_steps[station::kTeamReader] = 0;
   // nobody in the loop to feel a millisecond: the scripted operator, no window, no platform
   if (options.autopilot && windows.empty() && !profile.motion)
     session_options.loop.ticks_per_wake = kHeadlessTicksPerWake;
   station::Session session(exercise, session_options);
   station::Station station(session);
+  // the other members' machines, in this station's scene and in every snapshot it publishes
+  std::shared_ptr<TeamMembership> membership;  // the loop's addition holds it as long as the loop may run
+  if (team) {
+    membership = std::make_shared<TeamMembership>(*team, options.role,
+                                                  options.name.empty() ? options.role : options.name,
+                                                  options.domain, session.simulation().scene());
+    session.loop().set_addition([membership](sim::Snapshot& s) { membership->add_to(s); });
+    std::printf("team %s: %s (%s), with %s\n", team->name.c_str(), options.role.c_str(),
+                exercise.name.c_str(), team->role_list().c_str());
+  }
   std::unique_ptr<sim::Pilot> pilot;
   if (options.autopilot) {
     pilot = sim::make_pilot(exercise);
@@ -212,7 +237,7 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
   std::printf("Ctrl-C ends the attempt (stored as interrupted)\n");
   std::fflush(stdout);
 
-  const sim::SceneDescription scene = session.simulation().scene();
+  const sim::SceneDescription scene = membership ? membership->scene() : session.simulation().scene();
   std::unique_ptr<ig::RenderThread> render;
   if (!windows.empty()) {
     std::vector<ig::View> views;
@@ -288,7 +313,7 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
     }
   }
   std::optional<AttemptPresence> presence;
-  if (link) presence.emplace(*link, session, exercise, options.trainee);
+  if (link) presence.emplace(*link, session, exercise, options.trainee, scene);
   if (presence) presence->use_sound(sound.get());
   // the instructor sees what the trainee sees: the cab view drawn small a few times a second, as JPEG
   std::unique_ptr<ig::RenderThread> pictures;
@@ -318,6 +343,15 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
   const auto start = std::chrono::steady_clock::now();
   session.start();
   station.start();
+  // what the team thread says, printed and told to the consoles from this thread
+  std::mutex team_said_mutex;
+  std::vector<std::string> team_said;
+  if (membership)
+    membership->start([&session] { return session.loop().latest_snapshot(station::kTeamReader); },
+                      [&](const std::string& said) {
+                        const std::lock_guard lock(team_said_mutex);
+                        team_said.push_back(said);
+                      });
   AttemptPresence::Next next = AttemptPresence::Next::kRun;
   int next_line = 0;
   bool window_open = true;
@@ -354,6 +388,17 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
     for (const std::string& m : station.take_messages()) {
       std::printf("  %s\n", core::printable(m).c_str());
       if (presence) presence->note("station", m);
+    }
+    if (membership) {
+      std::vector<std::string> said;
+      {
+        const std::lock_guard lock(team_said_mutex);
+        said.swap(team_said);
+      }
+      for (const std::string& m : said) {
+        std::printf("  team: %s\n", core::printable(m).c_str());
+        if (presence) presence->note("team", m);
+      }
     }
     if (wall < next_line * 2.0) continue;
     ++next_line;
@@ -393,6 +438,11 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
                 kPictureWidth, kPictureHeight,
                 pictures->error().empty() ? "" : (": stopped: " + pictures->error()).c_str());
     pictures->stop();
+  }
+  if (membership) {
+    membership->stop();
+    for (const std::string& line : membership->report())
+      std::printf("%s\n", line.c_str());
   }
   station.stop();
   const station::SessionResult result =

@@ -24,6 +24,8 @@ struct StationOptions {
   std::string name;                 ///< the station's name on the centre's network ("": not on it)
   int domain = 0;                   ///< the centre's DDS domain
   bool serve = false;               ///< wait for consoles to start exercises, one after another
+  std::string team;                 ///< a team file or a shipped team's name: this station is one member
+  std::string role;                 ///< its role in the team (its exercise is the role's)
   std::string take_over_recording;  ///< continue this recording's attempt live (a console's take-over)
   std::int64_t take_over_step = 0;
 };

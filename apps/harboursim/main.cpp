@@ -113,6 +113,11 @@ int main(int argc, char** argv) {
   station_cmd->add_option("--domain", live.domain, "the centre's DDS domain (0-232)")
       ->check(CLI::Range(0, 232));
   add_centre_options(station_cmd, live.centre, kCentreExercises);
+  station_cmd->add_option("--team", live.team,
+                          "a team exercise (a file, or a shipped team's name): this station is one member, "
+                          "the others' machines drawn where their stations have them");
+  station_cmd->add_option("--role", live.role,
+                          "this station's role in the --team (it runs the role's exercise)");
   station_cmd->add_flag("--serve", live.serve,
                         "wait for a console to start exercises, one after another (needs --name)");
 
@@ -330,10 +335,15 @@ int main(int argc, char** argv) {
     if (*account_add_cmd)
       return harbour::apps::add_account(account_db, account_name, account_role, account_trainee);
     if (*station_cmd) {
-      if (live.serve == (!live.exercise.empty() || !live.route.empty()) ||
-          (!live.exercise.empty() && !live.route.empty())) {
+      const int chosen = !live.exercise.empty() + !live.route.empty() + !live.team.empty();
+      if (live.serve ? chosen != 0 : chosen != 1) {
         std::fprintf(stderr,
-                     "harboursim: station needs --exercise or --route, or --serve (a console chooses it)\n");
+                     "harboursim: station needs one of --exercise, --route or --team --role, or "
+                     "--serve (a console chooses it)\n");
+        return 2;
+      }
+      if (live.team.empty() != live.role.empty()) {
+        std::fprintf(stderr, "harboursim: station --team needs --role, and --role a --team\n");
         return 2;
       }
       if (live.serve && live.name.empty()) {

@@ -18,41 +18,12 @@
 #include "harbour/io/RecordingFile.h"
 #include "harbour/io/RecordsStore.h"
 #include "harbour/sim/Recording.h"
+#include "support/AppProcess.h"
 
 namespace harbour::apps {
 namespace {
 
 namespace fs = std::filesystem;
-
-fs::path fresh_folder(const std::string& name) {
-  const fs::path folder = fs::temp_directory_path() / name;
-  fs::remove_all(folder);
-  fs::create_directories(folder);
-  return folder;
-}
-
-std::string read_text(const fs::path& file) {
-  std::ifstream in(file);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-// starts harboursim with `arguments`, its output to `log`
-pid_t start_app(const std::vector<std::string>& arguments, const fs::path& log) {
-  const pid_t child = fork();
-  if (child == 0) {
-    freopen(log.c_str(), "w", stdout);
-    freopen(log.c_str(), "a", stderr);
-    std::vector<std::string> args = arguments;
-    args.insert(args.begin(), HARBOUR_APP);
-    std::vector<char*> argv;
-    for (std::string& a : args)
-      argv.push_back(a.data());
-    argv.push_back(nullptr);
-    execv(HARBOUR_APP, argv.data());
-    _exit(127);
-  }
-  return child;
-}
 
 // starts `harboursim run` on the shipped discharge exercise (or `exercise`), its output to a log in `folder`
 pid_t start_run(const fs::path& folder, const std::string& db, const std::string& record, int n,
@@ -147,12 +118,6 @@ void link_data_beside(const fs::path& folder) {
   for (const auto& entry : fs::directory_iterator(HARBOUR_DATA_DIR))
     if (entry.path().filename() != "exercises")
       fs::create_symlink(entry.path(), folder / entry.path().filename());
-}
-
-int exit_code(pid_t child) {
-  int status = 0;
-  waitpid(child, &status, 0);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -WTERMSIG(status);
 }
 
 // The instructor's hoist brake fault in an exercise that does not script it: the autopilot follows the

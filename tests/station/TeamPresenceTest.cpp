@@ -162,7 +162,7 @@ TEST(TeamPresence, AMemberThatFallsSilentStopsWithinTheHorizonAndIsLostAfterTwoS
   EXPECT_NEAR(drawn_y(13.0), -36 + 4 * TeamPresence::kHorizon_s, 1e-9);  // and no further
   EXPECT_EQ(drawn_y(20.0), drawn_y(13.0));
   std::vector<std::string> changed;
-  std::vector<TeamPresence::MemberState> states = team.members(12.9, &changed);
+  std::vector<TeamPresence::MemberState> states = team.members(12.9, &changed, true);
   EXPECT_TRUE(states[0].heard);
   EXPECT_FALSE(states[0].lost);
   EXPECT_TRUE(changed.empty());

@@ -1,5 +1,6 @@
 #include "harbour/net/DdsLink.h"
 
+#include <algorithm>
 #include <fastdds/dds/domain/DomainParticipant.hpp>
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 #include <fastdds/dds/publisher/DataWriter.hpp>
@@ -244,6 +245,12 @@ void TeamLink::publish(TeamState state) {
   state.role(role_);
   state.sent_ns(monotonic_ns());
   dds_->write(dds_->team, state);
+}
+
+bool TeamLink::wait(std::chrono::nanoseconds timeout) {
+  const std::int64_t ns = std::max<std::int64_t>(timeout.count(), 0);
+  return dds_->team_in->wait_for_unread_message(eprosima::fastrtps::Duration_t(
+      static_cast<std::int32_t>(ns / 1000000000), static_cast<std::uint32_t>(ns % 1000000000)));
 }
 
 std::vector<TeamState> TeamLink::take() {

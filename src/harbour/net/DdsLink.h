@@ -84,6 +84,8 @@ class TeamLink {
   void publish(TeamState state);
   /// The other members' samples that arrived since the last call, in arrival order.
   std::vector<TeamState> take();
+  /// Waits up to `timeout` for a sample to take (any member's, this session's or not); true when one came.
+  bool wait(std::chrono::nanoseconds timeout);
   /// The monotonic clock TeamState::sent_ns is read from (one for every process on a host).
   static std::int64_t monotonic_ns();
 

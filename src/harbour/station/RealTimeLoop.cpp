@@ -60,6 +60,12 @@ void RealTimeLoop::set_look(double yaw_rad, double pitch_rad) {
   look_pitch_rad_ = pitch_rad;
 }
 
+void RealTimeLoop::set_addition(std::function<void(sim::Snapshot&)> addition) {
+  addition_ = std::move(addition);
+  for (int n = 0; n < kSnapshotReaders; ++n)
+    publish(n);
+}
+
 void RealTimeLoop::start() {
   if (running_.exchange(true)) return;
   stop_requested_ = false;
@@ -285,6 +291,7 @@ void RealTimeLoop::publish(int reader) {
   s.cab.look_yaw_rad = look_yaw;
   s.cab.look_pitch_rad = look_pitch;
   s.devices_missing = devices_missing_.load(std::memory_order_relaxed);
+  if (addition_) addition_(s);
   buffer.publish();
 }
 

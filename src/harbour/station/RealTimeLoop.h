@@ -63,7 +63,8 @@ enum SnapshotReader : int {
   kMotionReader = 2,
   kPictureReader = 3,  ///< the small cab view a served station sends the instructor
   kSoundReader = 4,    ///< the cab's sound
-  kSnapshotReaders = 5
+  kTeamReader = 5,     ///< a team session's other members (this machine's bodies, with their velocities)
+  kSnapshotReaders = 6
 };
 
 /// The time the loop paces itself by: the steady clock, or a test's manual clock (real time tested by its
@@ -85,9 +86,9 @@ struct LoopSettings {
   int ticks_per_wake = 1;
   /// Each reader's publish period in steps (SnapshotReader order): the image generator at 250 Hz (it
   /// interpolates by step and time), the console at 50 Hz, the motion platform at 200 Hz (washout at 100 Hz),
-  /// the instructor's picture at 20 Hz, the sound at 100 Hz (a 10 ms block each); 0: a reader that is not
-  /// there (no window, no platform), given only the first snapshot.
-  std::array<int, kSnapshotReaders> snapshot_every_steps{4, 20, 5, 50, 10};
+  /// the instructor's picture at 20 Hz, the sound at 100 Hz (a 10 ms block each), a team at 50 Hz; 0: a
+  /// reader that is not there (no window, no platform, no team), given only the first snapshot.
+  std::array<int, kSnapshotReaders> snapshot_every_steps{4, 20, 5, 50, 10, 20};
   /// The bulk material's heights for the image generator (tiles changed since copied): 20 Hz, as it flows.
   int bulk_every_steps = 50;
   std::size_t record_capacity = 1 << 15;       ///< steps of hand-off to the recorder (32 s)
@@ -128,6 +129,9 @@ class RealTimeLoop {
   void set_head_offset(const core::Vec3& position_m, const core::Vec3& yaw_pitch_roll_rad);
   /// The trainee looking round (keys, a mouse drag): written into every published snapshot (any thread).
   void set_look(double yaw_rad, double pitch_rad);
+  /// Adds to every snapshot after the simulation has written it (a team's other machines), on the step
+  /// thread; set before start() (every reader is given the start again, with the addition).
+  void set_addition(std::function<void(sim::Snapshot&)> addition);
 
   /// Starts the step thread.
   void start();
@@ -189,6 +193,7 @@ class RealTimeLoop {
   std::atomic<int> devices_missing_{0};
   StopWhen stop_when_;
   StepObserver observer_;
+  std::function<void(sim::Snapshot&)> addition_;
   std::thread thread_;
   std::atomic<bool> running_{false}, stop_requested_{false};
 

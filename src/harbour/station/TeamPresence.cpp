@@ -97,8 +97,8 @@ void TeamPresence::write(sim::Snapshot& snapshot, double now_s) const {
     }
 }
 
-std::vector<TeamPresence::MemberState> TeamPresence::members(double now_s,
-                                                             std::vector<std::string>* changed) {
+std::vector<TeamPresence::MemberState> TeamPresence::members(double now_s, std::vector<std::string>* changed,
+                                                             bool with_ages) {
   const std::lock_guard lock(mutex_);
   std::vector<MemberState> states;
   for (Member& m : members_) {
@@ -106,7 +106,7 @@ std::vector<TeamPresence::MemberState> TeamPresence::members(double now_s,
     if (lost != m.state.lost && changed) changed->push_back(m.known.role);
     m.state.lost = lost;
     m.state.measured = static_cast<std::int64_t>(m.ages_s.size());
-    if (!m.ages_s.empty()) {
+    if (with_ages && !m.ages_s.empty()) {
       std::vector<double> ages = m.ages_s;
       const auto quantile = [&](double q) {
         const auto at = ages.begin() + static_cast<std::ptrdiff_t>(q * static_cast<double>(ages.size() - 1));

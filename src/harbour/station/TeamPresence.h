@@ -89,7 +89,9 @@ class TeamPresence {
     double age_p50_s = 0.0, age_p99_s = 0.0, age_max_s = 0.0;
   };
   /// Each member as of `now_s`; `changed` gets the roles that were lost or came back since the last call.
-  std::vector<MemberState> members(double now_s, std::vector<std::string>* changed = nullptr);
+  /// The ages' quantiles only `with_ages` (they sort every age so far).
+  std::vector<MemberState> members(double now_s, std::vector<std::string>* changed = nullptr,
+                                   bool with_ages = false);
 
  private:
   struct Member {

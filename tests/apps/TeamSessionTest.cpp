@@ -1,0 +1,177 @@
+// A team session as a centre runs one: two `harboursim station` processes on loopback DDS, the crane (STS)
+// and the tractor of data/teams/sts_and_tractor.yaml, each under its autopilot, watched by a console's link.
+#include <gtest/gtest.h>
+#include <signal.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "harbour/core/Vec3.h"
+#include "harbour/net/DdsLink.h"
+#include "support/AppProcess.h"
+
+namespace harbour::apps {
+namespace {
+
+constexpr int kDomain = 187;
+
+using Clock = std::chrono::steady_clock;
+
+// where entity `name` of a station's scene is in its newest state ("" and nullopt when it has none)
+std::optional<core::Vec3> entity_position(const net::ConsoleLink::Station& s, const std::string& name) {
+  if (!s.scene || !s.state) return std::nullopt;
+  const auto& names = s.scene->entity_names();
+  for (std::size_t k = 0; k < names.size(); ++k)
+    if (names[k].to_string() == name && (k + 1) * 7 <= s.state->entity_poses().size()) {
+      const float* p = &s.state->entity_poses()[k * 7];
+      return core::Vec3{p[0], p[1], p[2]};
+    }
+  return std::nullopt;
+}
+
+bool scene_has(const net::ConsoleLink::Station& s, const std::string& name) {
+  if (!s.scene) return false;
+  for (const auto& n : s.scene->entity_names())
+    if (n.to_string() == name) return true;
+  return false;
+}
+
+struct Track {
+  std::vector<double> t;
+  std::vector<core::Vec3> at;
+  // linear between the samples around `time` (nullopt outside them)
+  std::optional<core::Vec3> interpolated(double time) const {
+    for (std::size_t k = 1; k < t.size(); ++k)
+      if (t[k - 1] <= time && time <= t[k]) {
+        const double f = t[k] > t[k - 1] ? (time - t[k - 1]) / (t[k] - t[k - 1]) : 0.0;
+        return (1.0 - f) * at[k - 1] + f * at[k];
+      }
+    return std::nullopt;
+  }
+};
+
+TEST(TeamSession, TwoStationsDrawEachOthersMachinesWhereTheirOwnStationsHaveThemAndNoticeALostMember) {
+  const fs::path folder = fresh_folder("harbour_team_session");
+  net::ConsoleLink console("team-watch", kDomain);
+  const auto member = [&](const std::string& role) {
+    return start_app({"station", "--team", "sts_and_tractor", "--role", role, "--autopilot", "--name",
+                      role + "-cab", "--domain", std::to_string(kDomain), "--seconds", "300", "--window",
+                      "off", "--sound", "off", "--db", "sqlite3://db=" + (folder / (role + ".db")).string()},
+                     folder / (role + ".log"));
+  };
+  const pid_t crane = member("crane");
+  const pid_t tractor = member("tractor");
+  const auto logs = [&] {
+    return read_text(folder / "crane.log") + "\n---\n" + read_text(folder / "tractor.log");
+  };
+
+  // both stations' scenes hold the other's machine: the tractor draws the STS, the crane the tractor and
+  // trailer; each says when it first hears the other
+  const auto deadline = Clock::now() + std::chrono::seconds(150);
+  bool both = false;
+  std::vector<std::string> said;
+  const auto heard = [&](const std::string& station, const std::string& text) {
+    return std::find(said.begin(), said.end(), station + " " + text) != said.end();
+  };
+  while (!(both && heard("crane-cab", "tractor: joined (tractor-cab)") &&
+           heard("tractor-cab", "crane: joined (crane-cab)")) &&
+         Clock::now() < deadline) {
+    console.poll();
+    for (const net::StationEvent& e : console.take_events())
+      if (e.kind().to_string() == "team")
+        said.push_back(e.station().to_string() + " " + e.text().to_string());
+    const auto& st = console.stations();
+    both = st.count("crane-cab") && st.count("tractor-cab") && st.at("crane-cab").state &&
+           st.at("tractor-cab").state && scene_has(st.at("crane-cab"), "tractor: trailer") &&
+           scene_has(st.at("tractor-cab"), "crane: gantry");
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  ASSERT_TRUE(both) << logs();
+  ASSERT_TRUE(heard("crane-cab", "tractor: joined (tractor-cab)")) << logs();
+  ASSERT_TRUE(heard("tractor-cab", "crane: joined (crane-cab)")) << logs();
+  EXPECT_TRUE(scene_has(console.stations().at("tractor-cab"), "crane: spreader"));
+  EXPECT_FALSE(scene_has(console.stations().at("tractor-cab"), "tractor: tractor"));  // not itself twice
+
+  // for 15 s: the tractor where its own station has it, and where the crane's station draws it
+  Track own, seen_by_crane;
+  std::uint64_t own_count = 0, seen_count = 0;
+  const Clock::time_point start = Clock::now();
+  while (Clock::now() - start < std::chrono::seconds(15)) {
+    console.poll();
+    const double t = std::chrono::duration<double>(Clock::now() - start).count();
+    const net::ConsoleLink::Station& tr = console.stations().at("tractor-cab");
+    const net::ConsoleLink::Station& cr = console.stations().at("crane-cab");
+    if (tr.state_count != own_count) {
+      own_count = tr.state_count;
+      if (const auto p = entity_position(tr, "tractor")) {
+        own.t.push_back(t);
+        own.at.push_back(*p);
+      }
+    }
+    if (cr.state_count != seen_count) {
+      seen_count = cr.state_count;
+      if (const auto p = entity_position(cr, "tractor: tractor")) {
+        seen_by_crane.t.push_back(t);
+        seen_by_crane.at.push_back(*p);
+      }
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  ASSERT_GT(own.at.size(), 50u) << logs();
+  ASSERT_GT(seen_by_crane.at.size(), 50u) << logs();
+  EXPECT_GT(core::length(own.at.back() - own.at.front()), 10.0) << "the tractor drove";
+  std::vector<double> gaps;
+  for (std::size_t k = 0; k < seen_by_crane.t.size(); ++k)
+    if (const auto truth = own.interpolated(seen_by_crane.t[k]))
+      gaps.push_back(core::length(seen_by_crane.at[k] - *truth));
+  ASSERT_GT(gaps.size(), 40u);
+  std::sort(gaps.begin(), gaps.end());
+  std::printf(
+      "the tractor drawn at the crane's station vs its own: median %.3f m, 90th percentile %.3f m, largest "
+      "%.3f m (%zu states)\n",
+      gaps[gaps.size() / 2], gaps[gaps.size() * 9 / 10], gaps.back(), gaps.size());
+  // at ~3 m/s, each state 0-100 ms old on arrival at the console (10 Hz): a few tens of centimetres apart
+  EXPECT_LT(gaps[gaps.size() / 2], 0.5) << "median";
+  EXPECT_LT(gaps[gaps.size() * 9 / 10], 1.0) << "90th percentile";
+
+  // the tractor's station dies: the crane's tells the consoles the tractor is lost
+  kill(tractor, SIGKILL);
+  EXPECT_EQ(exit_code(tractor), -SIGKILL);
+  const Clock::time_point killed = Clock::now();
+  bool lost = false;
+  while (!lost && Clock::now() - killed < std::chrono::seconds(20)) {
+    console.poll();
+    for (const net::StationEvent& e : console.take_events())
+      lost = lost || (e.station().to_string() == "crane-cab" && e.kind().to_string() == "team" &&
+                      e.text().to_string() == "tractor: lost");
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  EXPECT_TRUE(lost) << logs();
+  kill(crane, SIGINT);
+  EXPECT_EQ(exit_code(crane), 130);
+  const std::string crane_log = read_text(folder / "crane.log");
+  EXPECT_NE(crane_log.find("team sts_and_tractor: crane"), std::string::npos) << crane_log;
+  EXPECT_NE(crane_log.find("  tractor: "), std::string::npos) << crane_log;
+  EXPECT_NE(crane_log.find(", LOST"), std::string::npos) << crane_log;
+}
+
+TEST(TeamSession, ARoleTheTeamLacksIsRefusedNamingItsRoles) {
+  const fs::path folder = fresh_folder("harbour_team_role");
+  const pid_t child =
+      start_app({"station", "--team", "sts_and_tractor", "--role", "signaller", "--autopilot", "--window",
+                 "off", "--sound", "off", "--db", "sqlite3://db=" + (folder / "r.db").string()},
+                folder / "station.log");
+  EXPECT_NE(exit_code(child), 0);
+  const std::string log = read_text(folder / "station.log");
+  EXPECT_NE(log.find("team sts_and_tractor has no role 'signaller' (its roles: crane, tractor)"),
+            std::string::npos)
+      << log;
+}
+
+}  // namespace
+}  // namespace harbour::apps
