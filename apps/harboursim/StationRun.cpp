@@ -199,7 +199,10 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
     membership = std::make_shared<TeamMembership>(*team, options.role,
                                                   options.name.empty() ? options.role : options.name,
                                                   options.domain, session.simulation().scene());
-    session.loop().set_addition([membership](sim::Snapshot& s) { membership->add_to(s); });
+    // for the readers that draw: the windows, the console's 3D view, the instructor's picture
+    session.loop().set_addition(
+        [membership](sim::Snapshot& s) { membership->add_to(s); },
+        1u << station::kImageGeneratorReader | 1u << station::kConsoleReader | 1u << station::kPictureReader);
     std::printf("team %s: %s (%s), with %s\n", team->name.c_str(), options.role.c_str(),
                 exercise.name.c_str(), team->role_list().c_str());
   }

@@ -60,8 +60,9 @@ void RealTimeLoop::set_look(double yaw_rad, double pitch_rad) {
   look_pitch_rad_ = pitch_rad;
 }
 
-void RealTimeLoop::set_addition(std::function<void(sim::Snapshot&)> addition) {
+void RealTimeLoop::set_addition(std::function<void(sim::Snapshot&)> addition, unsigned readers) {
   addition_ = std::move(addition);
+  addition_readers_ = readers;
   for (int n = 0; n < kSnapshotReaders; ++n)
     publish(n);
 }
@@ -291,7 +292,7 @@ void RealTimeLoop::publish(int reader) {
   s.cab.look_yaw_rad = look_yaw;
   s.cab.look_pitch_rad = look_pitch;
   s.devices_missing = devices_missing_.load(std::memory_order_relaxed);
-  if (addition_) addition_(s);
+  if (addition_ && (addition_readers_ >> reader & 1u)) addition_(s);
   buffer.publish();
 }
 

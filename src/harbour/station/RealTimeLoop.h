@@ -129,9 +129,10 @@ class RealTimeLoop {
   void set_head_offset(const core::Vec3& position_m, const core::Vec3& yaw_pitch_roll_rad);
   /// The trainee looking round (keys, a mouse drag): written into every published snapshot (any thread).
   void set_look(double yaw_rad, double pitch_rad);
-  /// Adds to every snapshot after the simulation has written it (a team's other machines), on the step
-  /// thread; set before start() (every reader is given the start again, with the addition).
-  void set_addition(std::function<void(sim::Snapshot&)> addition);
+  /// Adds to the snapshots of `readers` (a bit per SnapshotReader) after the simulation has written them (a
+  /// team's other machines, for the readers that draw), on the step thread; set before start() (every reader
+  /// is given the start again).
+  void set_addition(std::function<void(sim::Snapshot&)> addition, unsigned readers);
 
   /// Starts the step thread.
   void start();
@@ -194,6 +195,7 @@ class RealTimeLoop {
   StopWhen stop_when_;
   StepObserver observer_;
   std::function<void(sim::Snapshot&)> addition_;
+  unsigned addition_readers_ = 0;
   std::thread thread_;
   std::atomic<bool> running_{false}, stop_requested_{false};
 
