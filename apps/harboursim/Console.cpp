@@ -54,6 +54,7 @@
 #include "harbour/io/RecordingFile.h"
 #include "harbour/io/RecordsStore.h"
 #include "harbour/io/RouteFiles.h"
+#include "harbour/io/TeamFiles.h"
 #include "harbour/net/DdsLink.h"
 #include "harbour/sim/Recording.h"
 
@@ -232,6 +233,28 @@ std::string content_type(const std::filesystem::path& file) {
   return "application/octet-stream";
 }
 
+// The shipped team sessions (data/teams) and their roles; a team file in error is listed with its error.
+json team_list(const std::vector<std::string>& exercise_folders) {
+  json list = json::array();
+  std::set<std::filesystem::path> files;
+  std::error_code ec;
+  for (const auto& f : std::filesystem::directory_iterator(std::string(HARBOUR_DATA_DIR) + "/teams", ec))
+    if (f.path().extension() == ".yaml") files.insert(f.path());
+  for (const std::filesystem::path& file : files) {
+    try {
+      const io::Team team = io::load_team(file.string(), exercise_folders);
+      json roles = json::array();
+      for (const io::TeamRole& r : team.roles)
+        roles.push_back(
+            {{"role", r.role}, {"exercise", std::filesystem::path(r.exercise_file).stem().string()}});
+      list.push_back({{"name", team.name}, {"roles", roles}});
+    } catch (const std::exception& e) {
+      list.push_back({{"name", file.stem().string()}, {"error", e.what()}});
+    }
+  }
+  return list;
+}
+
 json status_json(const std::string& name, const net::ConsoleLink::Station& s) {
   const net::StationStatus& st = s.status;
   return {{"station", name},
@@ -257,6 +280,8 @@ json status_json(const std::string& name, const net::ConsoleLink::Station& s) {
           {"moves_total", st.moves_total()},
           {"collisions", st.collisions()},
           {"message", st.message().to_string()},
+          {"team", st.team().to_string()},
+          {"role", st.role().to_string()},
           {"states_received", s.state_count}};
 }
 
@@ -722,6 +747,7 @@ class Console {
   std::optional<Response> command(Call& c);
   std::optional<Response> looks(Call& c);
   std::optional<Response> exercises(Call& c);
+  std::optional<Response> teams(Call& c);
   std::optional<Response> xapi_status(Call& c);
   std::optional<Response> trainees(Call& c);
   std::optional<Response> change_trainee(Call& c);
@@ -827,6 +853,7 @@ const Console::Route Console::kRoutes[] = {
     {http::verb::post, "/api/logout", Who::kAnyAccount, &Console::logout},
     {http::verb::get, "/api/looks", Who::kAnyAccount, &Console::looks},
     {http::verb::get, "/api/exercises", Who::kAnyAccount, &Console::exercises},
+    {http::verb::get, "/api/teams", Who::kStaff, &Console::teams},
     {http::verb::get, "/api/routes", Who::kAnyAccount, &Console::routes},
     {http::verb::get, "/api/attempts", Who::kOwnRecords, &Console::attempts},
     {http::verb::get, "/api/attempts/#", Who::kOwnRecords, &Console::attempt},
@@ -1253,7 +1280,10 @@ std::optional<Console::Response> Console::command(Call& c) {
       exercise ? text_field(*body, "trainee", 64, why, false) : std::nullopt;
   const std::optional<std::string> route_id =
       trainee ? text_field(*body, "route", 64, why, false) : std::nullopt;
-  if (!kind || !exercise || !trainee || !route_id) return error(request, http::status::bad_request, why);
+  const std::optional<std::string> team = route_id ? text_field(*body, "team", 64, why, false) : std::nullopt;
+  const std::optional<std::string> role = team ? text_field(*body, "role", 32, why, false) : std::nullopt;
+  if (!kind || !exercise || !trainee || !route_id || !team || !role)
+    return error(request, http::status::bad_request, why);
   const auto autopilot = body->find("autopilot");
   if (autopilot != body->end() && !autopilot->is_boolean())
     return error(request, http::status::bad_request, "field 'autopilot' is not true or false");
@@ -1286,6 +1316,27 @@ std::optional<Console::Response> Console::command(Call& c) {
                                     ": an instructor decides (sign off or retry)");
     to_run = route->stage(*p.next)->exercise;
   }
+  if (*kind == "start" && !team->empty()) {
+    // a member of a team session: the role's exercise, as the station will find it in the team file
+    if (!exercise->empty() || !route_id->empty())
+      return error(request, http::status::bad_request,
+                   "a team's member runs its role's exercise: no exercise or route");
+    const json teams = team_list(centre().exercise_folders());
+    const auto found_team =
+        std::find_if(teams.begin(), teams.end(), [&](const json& t) { return t["name"] == *team; });
+    if (found_team == teams.end() || found_team->contains("error"))
+      return error(request, http::status::not_found,
+                   "field 'team': no team '" + core::printable(*team) + "'");
+    std::string roles;
+    for (const json& r : (*found_team)["roles"]) {
+      roles += (roles.empty() ? "" : ", ") + r["role"].get<std::string>();
+      if (r["role"] == *role) to_run = r["exercise"].get<std::string>();
+    }
+    if (to_run.empty())
+      return error(request, http::status::bad_request,
+                   "field 'role': team " + *team + " has no role '" + core::printable(*role) +
+                       "' (its roles: " + roles + ")");
+  }
   if (*kind == "start") {
     if (to_run.empty())
       return error(request, http::status::bad_request, "start needs an exercise or a route");
@@ -1299,6 +1350,11 @@ std::optional<Console::Response> Console::command(Call& c) {
   sent.exercise(to_run);
   sent.trainee(*trainee);
   sent.route(*kind == "start" ? *route_id : "");
+  if (*kind == "start" && !team->empty()) {
+    sent.exercise("");  // the station takes its role's exercise from the team file
+    sent.team(*team);
+    sent.role(*role);
+  }
   sent.autopilot(autopilot != body->end() && autopilot->get<bool>());
   const std::uint64_t id = link_.send(sent);
   pending_[id] = Pending{request, c.session, account, station, *kind, Clock::now() + kAckTimeout};
@@ -1342,6 +1398,10 @@ std::optional<Console::Response> Console::exercises(Call& c) {
     for (const std::string& n : io::exercise_names(folder))
       names.insert(n);
   return json_reply(c.request, http::status::ok, names);
+}
+
+std::optional<Console::Response> Console::teams(Call& c) {
+  return json_reply(c.request, http::status::ok, team_list(centre().exercise_folders()));
 }
 
 std::optional<Console::Response> Console::xapi_status(Call& c) {

@@ -148,10 +148,14 @@ std::optional<StartRequest> IdlePresence::service() {
     const std::string kind = c.kind().to_string();
     const bool starts = kind == "start" || kind == "take-over";
     if (starts && !start) {
-      start = StartRequest{c.exercise().to_string(), c.trainee().to_string(), c.user().to_string(),
-                           c.route().to_string(),    c.autopilot(),           std::nullopt};
+      start = StartRequest{
+          c.exercise().to_string(), c.trainee().to_string(), c.user().to_string(), c.route().to_string(),
+          c.team().to_string(),     c.role().to_string(),    c.autopilot(),        std::nullopt};
       if (kind == "take-over") start->take_over = station::TakeOverFrom{c.recording().to_string(), c.step()};
-      link_.acknowledge(c, true, (kind == "start" ? "starting " : "taking over ") + start->exercise);
+      link_.acknowledge(
+          c, true,
+          (kind == "start" ? "starting " : "taking over ") +
+              (start->team.empty() ? start->exercise : start->role + " of team " + start->team));
     } else {
       link_.acknowledge(
           c, false,
@@ -164,6 +168,8 @@ std::optional<StartRequest> IdlePresence::service() {
     if (start) {
       s.exercise(start->exercise);
       s.trainee(start->trainee);
+      s.team(start->team);
+      s.role(start->role);
     }
     s.message(message_.substr(0, 255));
     link_.publish(s);
@@ -184,6 +190,8 @@ net::StationStatus AttemptPresence::status(const std::string& state, const sim::
   s.machine(scene_.machine);
   s.exercise(exercise_.name);
   s.trainee(trainee_);
+  s.team(team_);
+  s.role(role_);
   s.attempt(session_.attempt());
   s.time_limit_s(exercise_.rules.time_limit_s);
   const station::LoopStats loop = session_.loop().stats();

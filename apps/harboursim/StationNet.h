@@ -40,6 +40,8 @@ std::string attempt_outcome(const station::SessionResult& result);
 struct StartRequest {
   std::string exercise, trainee, user;
   std::string route;  ///< a training route: the trainee's next stage of it (the exercise then names it)
+  std::string team,
+      role;  ///< a member of a team session (a shipped team's name), running its role's exercise
   bool autopilot = false;
   std::optional<station::TakeOverFrom> take_over;  ///< continue a stored attempt from a moment
 };
@@ -87,6 +89,12 @@ class AttemptPresence {
   /// `volume:PERCENT`); none: those commands are refused.
   void use_sound(audio::SoundThread* sound) { sound_ = sound; }
 
+  /// The attempt is a team session's member: said in every status.
+  void member_of(const std::string& team, const std::string& role) {
+    team_ = team;
+    role_ = role;
+  }
+
  private:
   net::StationStatus status(const std::string& state, const sim::Snapshot* snapshot) const;
   const sim::Snapshot* snapshot();  // the console reader's newest (one reader: this thread)
@@ -99,6 +107,7 @@ class AttemptPresence {
   station::Session& session_;
   const sim::ExerciseSettings& exercise_;
   std::string trainee_;
+  std::string team_, role_;
   sim::SceneDescription scene_;
   sim::Metrics seen_;
   bool was_held_ = false;

@@ -318,6 +318,7 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
   std::optional<AttemptPresence> presence;
   if (link) presence.emplace(*link, session, exercise, options.trainee, scene);
   if (presence) presence->use_sound(sound.get());
+  if (presence && team) presence->member_of(team->name, options.role);
   // the instructor sees what the trainee sees: the cab view drawn small a few times a second, as JPEG
   std::unique_ptr<ig::RenderThread> pictures;
   if (presence) {
@@ -530,27 +531,35 @@ int run_station(const StationOptions& options) {
     StationOptions attempt = options;
     attempt.exercise = start->exercise;
     attempt.route = start->route;  // run_attempt takes the trainee's next stage of it from the records
+    attempt.team = start->team;    // a team's member runs its role's exercise
+    attempt.role = start->role;
     attempt.trainee = start->trainee;
     attempt.autopilot = options.autopilot || start->autopilot;
     attempt.seconds = 0.0;
     attempt.take_over_recording = start->take_over ? start->take_over->recording : "";
     attempt.take_over_step = start->take_over ? start->take_over->step : 0;
-    std::printf("%s starts %s for trainee %s%s\n", start->user.c_str(), start->exercise.c_str(),
+    const std::string what = start->team.empty() ? start->exercise : start->role + " of team " + start->team;
+    std::printf("%s starts %s for trainee %s%s\n", start->user.c_str(), what.c_str(),
                 start->trainee.empty() ? "(none)" : start->trainee.c_str(),
                 attempt.autopilot ? " (autopilot)" : "");
     std::fflush(stdout);
     try {
-      if (const std::string why = why_bad_exercise_name(attempt.exercise); !why.empty())
+      if (!attempt.team.empty()) {
+        if (const std::string why = why_bad_exercise_name(attempt.team); !why.empty())
+          throw std::runtime_error("team '" + core::printable(attempt.team) + "': " + why);
+      } else if (const std::string why = why_bad_exercise_name(attempt.exercise); !why.empty()) {
         throw std::runtime_error("exercise '" + core::printable(attempt.exercise) + "': " + why);
+      }
       do {
-        attempt.record =
-            recording_for(options.name, attempt.exercise, options.database);  // each attempt its own
+        attempt.record = recording_for(
+            options.name, attempt.team.empty() ? attempt.exercise : attempt.team + "-" + attempt.role,
+            options.database);  // each attempt its own
         run_attempt(attempt, link.get(), reset, &outcome);
         attempt.take_over_recording.clear();  // a reset starts the exercise anew
       } while (reset && !g_stop);
-      message = "ready; last: " + outcome + " (" + attempt.exercise + ")";
+      message = "ready; last: " + outcome + " (" + (attempt.team.empty() ? attempt.exercise : what) + ")";
     } catch (const std::exception& e) {
-      message = std::string("could not run ") + attempt.exercise + ": " + e.what();
+      message = std::string("could not run ") + what + ": " + e.what();
       std::printf("%s\n", core::printable(message).c_str());
       std::fflush(stdout);
       net::StationEvent event;

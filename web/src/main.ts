@@ -12,6 +12,7 @@ interface Station {
   time_s: number; time_limit_s: number; real_time_factor: number; late_ticks: number; skipped_ticks: number;
   keeping_real_time: boolean; devices_missing: number; physics_warnings: number; diverged: boolean;
   score: number; moves_done: number; moves_total: number; collisions: number; message: string;
+  team: string; role: string;  // a team session's member ("" when alone)
 }
 interface StateMessage extends ViewState {
   type: "state"; station: string; time_s: number; held: boolean; wind_mps: number[];
@@ -109,7 +110,7 @@ function showStations(stations: Station[]) {
     } else if (s.station === selected && s.state !== "idle") {
       $("live").dataset.state = s.state;
     }
-    const values = [s.station, s.state, s.machine, s.exercise, s.trainee,
+    const values = [s.station, s.state, s.machine, s.team ? `${s.exercise} (${s.role} of team ${s.team})` : s.exercise, s.trainee,
       s.state === "idle" ? "" : `${s.time_s.toFixed(1)} / ${s.time_limit_s.toFixed(0)} s`,
       s.state === "idle" ? "" : s.score.toFixed(0), s.moves_total ? `${s.moves_done}/${s.moves_total}` : "",
       s.collisions, health(s) || s.message];
@@ -251,6 +252,8 @@ async function command(kind: string) {
     body.autopilot = $<HTMLInputElement>("autopilot").checked;
     const route = $<HTMLSelectElement>("start-route").value;
     if (route) { body.route = route; body.exercise = ""; }  // the trainee's next stage of it
+    const team = $<HTMLSelectElement>("start-team").value;
+    if (team) { body.team = team; body.role = $<HTMLSelectElement>("start-role").value; body.exercise = ""; }
   }
   const result = $("command-result");
   text(result, `${kind}…`);
@@ -592,6 +595,24 @@ async function loadClass() {
   }
 }
 
+// The team sessions a station can join as one of their roles (its exercise then the role's).
+interface Team { name: string; roles?: { role: string; exercise: string }[]; error?: string }
+let teams: Team[] = [];
+async function loadTeams() {
+  teams = (await api("/api/teams")).data ?? [];
+  const select = $<HTMLSelectElement>("start-team");
+  select.replaceChildren(new Option("none: alone", ""));
+  for (const t of teams) if (t.roles) select.add(new Option(t.name, t.name));
+  showTeamRoles();
+}
+function showTeamRoles() {
+  const team = teams.find((t) => t.name === $<HTMLSelectElement>("start-team").value);
+  const select = $<HTMLSelectElement>("start-role");
+  select.replaceChildren();
+  for (const r of team?.roles ?? []) select.add(new Option(`${r.role} (${r.exercise})`, r.role));
+  select.disabled = !team;
+}
+
 // The routes (the centre's and the shipped ones) wherever they are chosen.
 let routeEditor: RouteEditor | null = null;
 async function loadRoutes() {
@@ -662,6 +683,7 @@ async function enter(who: Me) {
   await loadRoutes();
   await loadProgress();
   if (who.role === "trainee") return;
+  await loadTeams();
   plots = new TelemetryPlots($("plot"));
   const looksReply = await api("/api/looks");
   if (looksReply.status === 200) {
@@ -698,6 +720,7 @@ function wire() {
   $("say-radio").addEventListener("click", () => command(`radio:${$<HTMLInputElement>("radio-call").value}`));
   $("view-on").addEventListener("change", () => { $("views").hidden = !viewOn(); if (selected) subscribe(); });
   $("view-light").addEventListener("change", () => view?.setLight($<HTMLInputElement>("view-light").checked));
+  $("start-team").addEventListener("change", showTeamRoles);
   $("open-replay").addEventListener("click", () => openReplay(Number($("open-replay").dataset.attempt)));
   const speed = () => Number($<HTMLSelectElement>("replay-speed").value);
   $("replay-play").addEventListener("click", () => replayAction({ action: "play", speed: speed() }));

@@ -1,0 +1,88 @@
+// A team session run from the console in a real browser: two served stations, each started as a role of
+// sts_and_tractor (the crane, the tractor) by the instructor; the table says who is which member, each station
+// announces the other, the crane's 3D view holds the tractor; both stopped.
+// Usage: node console_team.mjs HARBOURSIM OUT_DIR DOMAIN
+import { chromium } from "playwright-core";
+import { Harness } from "./harness.mjs";
+import { mkdtempSync, mkdirSync } from "node:fs";
+import { tmpdir } from "node:os";
+import path from "node:path";
+
+const [app, out, domain] = process.argv.slice(2);
+mkdirSync(out, { recursive: true });
+const dir = mkdtempSync(path.join(tmpdir(), "harbour-team-"));
+const db = `sqlite3://db=${dir}/records.db`;
+const h = new Harness(app);
+const check = h.check.bind(h), run = h.run.bind(h), start = h.start.bind(h), until = h.until.bind(h);
+
+let browser;
+try {
+  run(["accounts", "add", "ines", "--role", "instructor", "--db", db], "ines-password\n");
+  const [url] = await h.console(db, domain);
+  for (const name of ["crane-cab", "tractor-cab"])
+    start(["station", "--serve", "--name", name, "--domain", domain, "--db", db, "--window", "off"]);
+  browser = await chromium.launch({ executablePath: "/usr/bin/chromium", args: ["--headless", "--no-sandbox",
+    "--disable-gpu", "--enable-unsafe-swiftshader", "--disable-quic", "--no-first-run", "--disable-background-networking",
+    "--disable-component-update", "--disable-sync"] });
+  const page = await browser.newPage({ viewport: { width: 1280, height: 1100 } });
+  await page.goto(url);
+  await page.fill("#login-name", "ines");
+  await page.fill("#login-password", "ines-password");
+  await page.click("#login-form button");
+  const cell = (station, n) => page.locator(`#stations tr[data-station=${station}] td:nth-child(${n})`).textContent().catch(() => "");
+  for (const name of ["crane-cab", "tractor-cab"])
+    await until(`${name} shows, idle`, async () => (await cell(name, 2)) === "idle", 40);
+
+  // each station started as its role: the team's roles offered once a team is chosen
+  for (const [station, role] of [["crane-cab", "crane"], ["tractor-cab", "tractor"]]) {
+    await page.click(`#stations tr[data-station=${station}]`);
+    await page.selectOption("#start-team", "sts_and_tractor");
+    const roles = await page.locator("#start-role option").allTextContents();
+    check(roles.join(", ") === "crane (sts_discharge), tractor (tractor_mafi_park)", `the team's roles offered: ${roles.join(", ")}`);
+    await page.selectOption("#start-role", role);
+    await page.check("#autopilot");
+    await page.click("button[data-kind=start]");
+    await until(`${station} acknowledges`, async () =>
+      (await page.textContent("#command-result")) === `start: starting ${role} of team sts_and_tractor`, 20);
+  }
+  await until("both run, each named as its role of the team", async () =>
+    (await cell("crane-cab", 2)) === "running" && (await cell("tractor-cab", 2)) === "running" &&
+    (await cell("crane-cab", 4)) === "sts_discharge (crane of team sts_and_tractor)" &&
+    (await cell("tractor-cab", 4)) === "tractor_mafi_park (tractor of team sts_and_tractor)", 90);
+
+  // the tractor's station (selected, started last) announces the crane; the crane's 3D view holds the tractor
+  await until("the tractor's station says the crane joined", async () =>
+    (await page.locator("#events li").allTextContents()).some((t) => t.includes("team  crane: joined (crane-cab)")), 30);
+  await page.click("#stations tr[data-station=crane-cab]");
+  await until("the crane's 3D view holds the tractor and its trailer", async () => page.evaluate(() => {
+    const names = window.harbourView?.names ?? [];
+    return names.includes("tractor: tractor") && names.includes("tractor: trailer");
+  }), 30);
+  await page.uncheck("#view-light");
+  const tractorAt = await page.evaluate(() => {  // looking at the tractor from behind it, the crane beyond
+    const v = window.harbourView;
+    const at = v.entities[v.names.indexOf("tractor: tractor")].position;
+    v.camera.position.set(at.x - 22, at.y - 30, at.z + 18);
+    v.controls.target.set(at.x + 4, at.y + 12, at.z);
+    v.controls.update();
+    return [at.x, at.y, at.z];
+  });
+  check(tractorAt[1] > -45 && tractorAt[1] < 40 && Math.abs(tractorAt[0]) < 10,
+    `the crane's view draws the tractor on the quay at (${tractorAt.map((c) => c.toFixed(1)).join(", ")}) m`);
+  await page.waitForTimeout(4000);
+  await page.locator("#view3d").screenshot({ path: path.join(out, "console_team.png") });
+
+  // the instructor ends the session: each member stopped, idle again with its last attempt said
+  for (const station of ["crane-cab", "tractor-cab"]) {
+    await page.click(`#stations tr[data-station=${station}]`);
+    await page.click("button[data-kind=stop]");
+  }
+  await until("both idle again", async () => (await cell("crane-cab", 2)) === "idle" && (await cell("tractor-cab", 2)) === "idle", 40);
+  const last = await cell("tractor-cab", 10);
+  check(/tractor of team sts_and_tractor/.test(last), `the tractor's last attempt said: ${last}`);
+} catch (e) {
+  check(false, `error: ${e.stack ?? e}`);
+} finally {
+  await browser?.close();
+  await h.finish();
+}
