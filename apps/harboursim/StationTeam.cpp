@@ -128,6 +128,8 @@ void TeamMembership::run() {
       before_step = s->step;
       link_.publish(state);
       ++published_;
+      for (const std::string& said : near_misses_.update(presence_.closest(*s, now_s())))
+        if (said_) said_(said);
     }
     take();
   }
@@ -183,7 +185,15 @@ std::vector<std::string> TeamMembership::report() {
                   "  %s: %lld states, age on arrival p50 %.2f ms, p99 %.2f ms, max %.2f ms%s", m.role.c_str(),
                   static_cast<long long>(m.samples), m.age_p50_s * 1e3, m.age_p99_s * 1e3, m.age_max_s * 1e3,
                   m.lost ? ", LOST" : "");
-    lines.emplace_back(line);
+    std::string text = line;
+    for (const station::NearMissWatch::Tally& t : near_misses_.tallies())
+      if (t.role == m.role) {
+        std::snprintf(line, sizeof line, "; closest %.2f m, %d near miss%s, %d contact%s",
+                      std::max(t.closest_m, 0.0), t.near_misses, t.near_misses == 1 ? "" : "es", t.contacts,
+                      t.contacts == 1 ? "" : "s");
+        text += line;
+      }
+    lines.push_back(text);
   }
   return lines;
 }

@@ -57,6 +57,7 @@ class TeamMembership {
   std::int64_t published_ = 0;
   std::set<std::string> refused_;  // the refusals said so far
   std::set<std::string> joined_;   // the roles heard so far
+  station::NearMissWatch near_misses_;
 };
 
 }  // namespace harbour::apps

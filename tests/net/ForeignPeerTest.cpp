@@ -11,6 +11,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <thread>
 
@@ -255,9 +256,11 @@ TEST(ForeignPeer, ACycloneDdsVehicleJoinsATeamSessionAndTheCraneStationDrawsItAn
   sample.entity_index = {1, 1, body, false};
   sample.motion = {13, 13, motion, false};
   bool publishing = true;
+  std::optional<core::Vec3> hover;  // instead of the run: standing there
   const auto publish = [&] {
     const double t = seconds();
-    const core::Vec3 p = truth(t);
+    const core::Vec3 p = hover ? *hover : truth(t);
+    const float v = hover ? 0.0f : 2.0f;
     const float m[13] = {static_cast<float>(p.x),
                          static_cast<float>(p.y),
                          static_cast<float>(p.z),
@@ -266,7 +269,7 @@ TEST(ForeignPeer, ACycloneDdsVehicleJoinsATeamSessionAndTheCraneStationDrawsItAn
                          0.70710678f,
                          0.70710678f,
                          0,
-                         2.0f,
+                         v,
                          0,
                          0,
                          0,
@@ -279,6 +282,7 @@ TEST(ForeignPeer, ACycloneDdsVehicleJoinsATeamSessionAndTheCraneStationDrawsItAn
   double next_publish = 0.0;
   std::vector<std::string> said;
   std::size_t crane_bodies = 0;
+  std::optional<core::Vec3> spreader;  // the crane's body 2, as the crane's station publishes it
   const auto pump = [&] {
     if (publishing && seconds() >= next_publish) {
       publish();
@@ -288,8 +292,14 @@ TEST(ForeignPeer, ACycloneDdsVehicleJoinsATeamSessionAndTheCraneStationDrawsItAn
     for (const StationEvent& e : console.take_events())
       if (e.kind().to_string() == "team") said.push_back(e.text().to_string());
     take_all<harbour_net_TeamState>(team_in, [&](const harbour_net_TeamState& t, const dds_sample_info_t& i) {
-      if (i.valid_data && std::string(t.role) == "crane" && t.motion._length == 13 * t.entity_index._length)
-        crane_bodies = t.entity_index._length;
+      if (!i.valid_data || std::string(t.role) != "crane" || t.motion._length != 13 * t.entity_index._length)
+        return;
+      crane_bodies = t.entity_index._length;
+      for (std::uint32_t k = 0; k < t.entity_index._length; ++k)
+        if (t.entity_index._buffer[k] == 2) {
+          const float* f = &t.motion._buffer[13 * k];
+          spreader = core::Vec3{f[0], f[1], f[2]};
+        }
     });
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
   };
@@ -332,6 +342,38 @@ TEST(ForeignPeer, ACycloneDdsVehicleJoinsATeamSessionAndTheCraneStationDrawsItAn
   EXPECT_GT(compared, 30) << log();
   EXPECT_LT(worst, 0.1) << log();
   EXPECT_EQ(crane_bodies, 3u) << "the crane's gantry, trolley and spreader, observed by Cyclone DDS";
+
+  // the scripted tractor stands right under the spreader, then touches it: the crane's station says a near
+  // miss, then a contact, once each
+  ASSERT_TRUE(spreader.has_value());
+  // the two boxes' half heights, as the crane's station's scene has them
+  const auto half_height = [&](const std::string& name) {
+    const StationScene& scene = *console.stations().at("crane-cab").scene;
+    for (std::size_t k = 0; k < scene.entity_names().size(); ++k)
+      if (scene.entity_names()[k].to_string() == name)
+        return double(scene.entity_half_extents_m()[3 * k + 2]);
+    return -1.0;
+  };
+  const double spreader_half = half_height("spreader"), tractor_half = half_height("tractor: tractor");
+  ASSERT_GT(spreader_half, 0.0);
+  ASSERT_GT(tractor_half, 0.0);
+  const auto hover_under_spreader = [&](double gap_m, const std::string& expect) {
+    const double from = seconds();
+    const auto heard = [&] {
+      return std::any_of(said.begin(), said.end(),
+                         [&](const std::string& t) { return t.rfind(expect, 0) == 0; });
+    };
+    while (!heard() && seconds() - from < 20) {
+      hover = *spreader - core::Vec3{0.0, 0.0, spreader_half + tractor_half + gap_m};
+      pump();
+    }
+  };
+  hover_under_spreader(0.5, "near miss: spreader ");
+  EXPECT_TRUE(std::any_of(said.begin(), said.end(), [](const std::string& t) {
+    return t.rfind("near miss: spreader ", 0) == 0 && t.find(" m from tractor: tractor") != std::string::npos;
+  })) << log();
+  hover_under_spreader(-0.3, "contact: spreader with tractor: tractor");
+  EXPECT_TRUE(said_it("contact: spreader with tractor: tractor")) << log();
 
   // the scripted tractor falls silent: lost
   publishing = false;

@@ -197,5 +197,62 @@ TEST(TeamPresence, SamplesOfAnotherRoleOrABodyItLacksAreRefused) {
   EXPECT_FALSE(team.members(0.0)[0].heard);
 }
 
+TEST(BoxClearance, SideBySideTurnedAndOverlappingBoxesAgainstTheirGeometry) {
+  const core::Vec3 unit{1, 1, 1};
+  const core::Pose at_origin{core::Mat3::identity(), {}};
+  EXPECT_NEAR(box_clearance(at_origin, unit, {core::Mat3::identity(), {3, 0, 0}}, unit), 1.0, 1e-12);
+  EXPECT_NEAR(box_clearance(at_origin, unit, {core::Mat3::identity(), {1.5, 0.2, 0}}, unit), -0.5, 1e-12);
+  // turned 45 degrees about z: its corner reaches sqrt(2) towards the other
+  const core::Pose turned{core::Mat3::rotation({0, 0, 1}, std::numbers::pi / 4), {4, 0, 0}};
+  EXPECT_NEAR(box_clearance(at_origin, unit, turned, unit), 3.0 - std::sqrt(2.0), 1e-12);
+  // a long thin box (a trailer, 6.1 x 1.2 x 0.8 half) passing 0.3 m under a spreader's (6.1 x 1.25 x 0.3)
+  const core::Pose spreader{core::Mat3::rotation({0, 0, 1}, 0.2), {0.5, -1.0, 1.8 + 0.3 + 0.3}};
+  EXPECT_NEAR(
+      box_clearance({core::Mat3::identity(), {0, 0, 1.0}}, {6.1, 1.2, 0.8}, spreader, {6.1, 1.25, 0.3}), 0.3,
+      1e-12);
+  // apart along a diagonal (the nearest features are edges): a lower bound on the true distance (here 1.0)
+  const core::Pose diagonal{core::Mat3::identity(),
+                            {2.0 + 1.0 / std::sqrt(2.0), 2.0 + 1.0 / std::sqrt(2.0), 0}};
+  const double bound = box_clearance(at_origin, unit, diagonal, unit);
+  EXPECT_GT(bound, 0.0);
+  EXPECT_LE(bound, 1.0 + 1e-12);
+}
+
+TEST(NearMissWatch, OneEpisodePerApproachAContactSaidOnceAndTheClosestKept) {
+  NearMissWatch watch;
+  const auto at = [&](double gap) { return watch.update({{"tractor", "spreader", "trailer", gap}}); };
+  EXPECT_TRUE(at(3.0).empty());
+  EXPECT_EQ(at(0.8), std::vector<std::string>{"near miss: spreader 0.80 m from tractor: trailer"});
+  EXPECT_TRUE(at(0.5).empty());
+  EXPECT_TRUE(at(1.2).empty());  // still the same approach
+  EXPECT_TRUE(at(0.9).empty());
+  EXPECT_TRUE(at(2.0).empty());  // clear: the episode ends
+  EXPECT_EQ(at(0.7).size(), 1u);
+  EXPECT_EQ(at(-0.1), std::vector<std::string>{"contact: spreader with tractor: trailer"});
+  EXPECT_TRUE(at(-0.2).empty());
+  ASSERT_EQ(watch.tallies().size(), 1u);
+  EXPECT_EQ(watch.tallies()[0].near_misses, 2);
+  EXPECT_EQ(watch.tallies()[0].contacts, 1);
+  EXPECT_DOUBLE_EQ(watch.tallies()[0].closest_m, -0.2);
+}
+
+TEST(TeamPresence, TheClosestApproachIsBetweenSizedBodiesOfBothMachines) {
+  sim::SceneDescription own;
+  own.entities = {{"gantry", "sts.gantry", {}}, {"spreader", "sts.spreader", {6.1, 1.25, 0.3}}};
+  own.machine_entities = 2;
+  TeamPresence team(own, {tractor()});  // the tractor at y = -40, its trailer behind it
+  auto snapshot = std::make_unique<sim::Snapshot>();
+  snapshot->entity_count = 2;
+  snapshot->entities[0] = {0, 0, {core::Mat3::identity(), {0, -40, 30}}};
+  // 0.5 m over the trailer (its top at 1.8 m), 2.9 m behind the tractor's cab (its back at x = -3)
+  snapshot->entities[1] = {1, 0, {core::Mat3::identity(), {-12, -40, 1.0 + 0.8 + 0.5 + 0.3}}};
+  const std::vector<TeamPresence::Closest> c = team.closest(*snapshot, 0.0);
+  ASSERT_EQ(c.size(), 1u);
+  EXPECT_EQ(c[0].role, "tractor-1");
+  EXPECT_EQ(c[0].own_body, "spreader");  // the gantry has no size: left out
+  EXPECT_EQ(c[0].member_body, "trailer");
+  EXPECT_NEAR(c[0].clearance_m, 0.5, 1e-12);
+}
+
 }  // namespace
 }  // namespace harbour::station

@@ -1,6 +1,8 @@
 #include "harbour/station/TeamPresence.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 
 namespace harbour::station {
 
@@ -41,6 +43,33 @@ core::Pose DeadReckoning::at(double t_s) const {
   const core::Pose before = carried(old_, old_at_s_, t_s);
   return {core::between(before.rotation, ahead.rotation, f),
           (1.0 - f) * before.position + f * ahead.position};
+}
+
+double box_clearance(const core::Pose& a, const core::Vec3& half_a, const core::Pose& b,
+                     const core::Vec3& half_b) {
+  const core::Vec3 ea[3] = {a.rotation.column(0), a.rotation.column(1), a.rotation.column(2)};
+  const core::Vec3 eb[3] = {b.rotation.column(0), b.rotation.column(1), b.rotation.column(2)};
+  const double ha[3] = {half_a.x, half_a.y, half_a.z}, hb[3] = {half_b.x, half_b.y, half_b.z};
+  const core::Vec3 d = b.position - a.position;
+  double best = -1e300;
+  const auto along = [&](core::Vec3 axis) {
+    const double n = core::length(axis);
+    if (n < 1e-9) return;  // parallel edges: their cross product is no axis
+    axis = (1.0 / n) * axis;
+    double ra = 0.0, rb = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      ra += ha[k] * std::abs(core::dot(ea[k], axis));
+      rb += hb[k] * std::abs(core::dot(eb[k], axis));
+    }
+    best = std::max(best, std::abs(core::dot(d, axis)) - ra - rb);
+  };
+  for (int i = 0; i < 3; ++i) {
+    along(ea[i]);
+    along(eb[i]);
+    for (int j = 0; j < 3; ++j)
+      along(core::cross(ea[i], eb[j]));
+  }
+  return best;
 }
 
 TeamPresence::TeamPresence(const sim::SceneDescription& own_scene, std::vector<TeamMember> members)
@@ -97,6 +126,30 @@ void TeamPresence::write(sim::Snapshot& snapshot, double now_s) const {
     }
 }
 
+std::vector<TeamPresence::Closest> TeamPresence::closest(const sim::Snapshot& own, double now_s) const {
+  const auto sized = [](const core::Vec3& h) { return h.x > 0.0 && h.y > 0.0 && h.z > 0.0; };
+  const std::lock_guard lock(mutex_);
+  std::vector<Closest> result;
+  for (const Member& m : members_) {
+    Closest c{m.known.role, "", "", 1e300};
+    for (std::size_t b = 0; b < m.bodies.size(); ++b) {
+      const core::Vec3& half_b = m.known.bodies[b].half_extents_m;
+      if (!sized(half_b)) continue;
+      const core::Pose pose_b = m.bodies[b].at(now_s);
+      for (int n = 0; n < own.entity_count; ++n) {
+        const sim::Snapshot::Entity& e = own.entities[static_cast<std::size_t>(n)];
+        if (static_cast<int>(e.index) >= scene_.machine_entities) continue;
+        const sim::SceneDescription::Entity& body = scene_.entities[e.index];
+        if (!sized(body.half_extents_m)) continue;
+        const double gap = box_clearance(e.pose, body.half_extents_m, pose_b, half_b);
+        if (gap < c.clearance_m) c = {m.known.role, body.name, m.known.bodies[b].name, gap};
+      }
+    }
+    if (!c.own_body.empty()) result.push_back(c);
+  }
+  return result;
+}
+
 std::vector<TeamPresence::MemberState> TeamPresence::members(double now_s, std::vector<std::string>* changed,
                                                              bool with_ages) {
   const std::lock_guard lock(mutex_);
@@ -120,6 +173,36 @@ std::vector<TeamPresence::MemberState> TeamPresence::members(double now_s, std::
     states.push_back(m.state);
   }
   return states;
+}
+
+std::vector<std::string> NearMissWatch::update(const std::vector<TeamPresence::Closest>& closest) {
+  std::vector<std::string> said;
+  for (const TeamPresence::Closest& c : closest) {
+    auto tally =
+        std::find_if(tallies_.begin(), tallies_.end(), [&](const Tally& t) { return t.role == c.role; });
+    if (tally == tallies_.end()) {
+      tallies_.push_back({c.role});
+      episodes_.push_back({});
+      tally = tallies_.end() - 1;
+    }
+    Episode& episode = episodes_[static_cast<std::size_t>(tally - tallies_.begin())];
+    tally->closest_m = std::min(tally->closest_m, c.clearance_m);
+    char line[160];
+    if (!episode.near && c.clearance_m < kNearMiss_m) {
+      episode.near = true;
+      ++tally->near_misses;
+      std::snprintf(line, sizeof line, "near miss: %s %.2f m from %s: %s", c.own_body.c_str(),
+                    std::max(c.clearance_m, 0.0), c.role.c_str(), c.member_body.c_str());
+      said.emplace_back(line);
+    }
+    if (episode.near && !episode.touched && c.clearance_m <= 0.0) {
+      episode.touched = true;
+      ++tally->contacts;
+      said.push_back("contact: " + c.own_body + " with " + c.role + ": " + c.member_body);
+    }
+    if (episode.near && c.clearance_m > kClear_m) episode = {};
+  }
+  return said;
 }
 
 }  // namespace harbour::station

@@ -41,6 +41,12 @@ class DeadReckoning {
   bool blending_ = false;
 };
 
+/// The gap between two boxes (centre pose, half extents): the largest separation along the 15 axes of the
+/// separating-axis test. Negative (the deepest overlap along the best axis) when they overlap; when apart a
+/// lower bound on their distance, exact where the nearest features are faces (two boxes side by side).
+double box_clearance(const core::Pose& a, const core::Vec3& half_a, const core::Pose& b,
+                     const core::Vec3& half_b);
+
 /// One other member of a team session as this station knows it before hearing from it: its role and its
 /// machine's bodies (names, looks, sizes: the SceneDescription of its exercise) where its exercise starts
 /// them.
@@ -80,6 +86,16 @@ class TeamPresence {
   /// Appends the members' bodies, where they are at `now_s` (the receiver's clock), to `snapshot`.
   void write(sim::Snapshot& snapshot, double now_s) const;
 
+  /// The closest approach of a member's machine to this station's, at `now_s`: which bodies, how far.
+  struct Closest {
+    std::string role;
+    std::string own_body, member_body;
+    double clearance_m = 0.0;  ///< box_clearance (negative: they overlap)
+  };
+  /// For each member, its bodies against this station's machine bodies as `own` has them (bodies with no size
+  /// in the scene are left out: a gantry drawn from its looks alone).
+  std::vector<Closest> closest(const sim::Snapshot& own, double now_s) const;
+
   struct MemberState {
     std::string role;
     bool heard = false;  ///< a sample has arrived
@@ -105,6 +121,31 @@ class TeamPresence {
   sim::SceneDescription scene_;
   std::vector<Member> members_;
   mutable std::mutex mutex_;
+};
+
+/// Near misses between this station's machine and the other members': an episode starts when a member's
+/// clearance falls below kNearMiss_m and ends when it is back above kClear_m (a machine hovering about the
+/// threshold is one near miss, not many); boxes that touch are a contact, said once per episode.
+class NearMissWatch {
+ public:
+  static constexpr double kNearMiss_m = 1.0;
+  static constexpr double kClear_m = 1.5;
+  /// The closest approaches now; returns what to tell ("near miss: spreader 0.42 m from tractor: trailer",
+  /// "contact: spreader with tractor: trailer").
+  std::vector<std::string> update(const std::vector<TeamPresence::Closest>& closest);
+  struct Tally {
+    std::string role;
+    int near_misses = 0, contacts = 0;
+    double closest_m = 1e300;  ///< the smallest clearance seen
+  };
+  const std::vector<Tally>& tallies() const { return tallies_; }
+
+ private:
+  struct Episode {
+    bool near = false, touched = false;
+  };
+  std::vector<Tally> tallies_;
+  std::vector<Episode> episodes_;  // by tally
 };
 
 }  // namespace harbour::station
