@@ -68,6 +68,9 @@ try {
     ["an unknown station", "api/stations/nowhere/command", "POST", { kind: "hold" }, 404],
     ["a command without kind", "api/stations/api-1/command", "POST", {}, 400],
     ["start for an unknown trainee", "api/stations/api-1/command", "POST", { kind: "start", exercise: "sts_discharge", trainee: "zed" }, 400],
+    ["start as a member of an unknown team", "api/stations/api-1/command", "POST", { kind: "start", team: "nope", role: "crane" }, 404],
+    ["start as a role the team lacks", "api/stations/api-1/command", "POST", { kind: "start", team: "sts_and_tractor", role: "signaller" }, 400],
+    ["start as a team's member with an exercise too", "api/stations/api-1/command", "POST", { kind: "start", team: "sts_and_tractor", role: "crane", exercise: "sts_discharge" }, 400],
     ["an unknown API", "api/nothing", "GET", undefined, 404],
     ["an attempt id that is no number", "api/attempts/x1", "GET", undefined, 400],
     ["a missing attempt", "api/attempts/999", "GET", undefined, 404],
@@ -89,6 +92,10 @@ try {
     const r = await b(p, method, body);
     check(r.status === want && typeof r.data?.error === "string", `${what}: ${r.status} (${r.data?.error})`);
   }
+  const teams = await b("api/teams");
+  check(teams.status === 200 && teams.data.some((t) => t.name === "sts_and_tractor" &&
+    t.roles.map((r) => `${r.role}:${r.exercise}`).join(" ") === "crane:sts_discharge tractor:tractor_mafi_park"),
+    `the teams and their roles: ${JSON.stringify(teams.data)}`);
   check((await b("api/trainees", "POST", { id: "x", name: "y" }, { "X-CSRF-Token": "forged" })).status === 403, "a forged CSRF token: 403");
   check((await b("api/trainees", "POST", "id=x", { "Content-Type": "application/x-www-form-urlencoded" })).status === 415, "a form post: 415");
   check((await fetch(baseB + "api/stations")).status === 401, "no session: 401");
