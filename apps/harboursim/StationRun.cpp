@@ -447,6 +447,8 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
     membership->stop();
     for (const std::string& line : membership->report())
       std::printf("%s\n", line.c_str());
+    const TeamMembership::Figures f = membership->figures();
+    session.set_team_figures(f.near_misses, f.contacts, f.closest_m);
   }
   station.stop();
   const station::SessionResult result =

@@ -1,5 +1,6 @@
 #include "StationTeam.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -168,6 +169,17 @@ void TeamMembership::take() {
       for (const std::string& role : changed)
         if (role == m.role && said_) said_(role + (m.lost ? ": lost" : ": back"));
   }
+}
+
+TeamMembership::Figures TeamMembership::figures() const {
+  Figures f;
+  for (const station::NearMissWatch::Tally& t : near_misses_.tallies()) {
+    f.near_misses += t.near_misses;
+    f.contacts += t.contacts;
+    const double closest = std::max(t.closest_m, 0.0);
+    f.closest_m = f.closest_m < 0.0 ? closest : std::min(f.closest_m, closest);
+  }
+  return f;
 }
 
 std::vector<std::string> TeamMembership::report() {

@@ -40,6 +40,13 @@ class TeamMembership {
   void stop();
   /// One line per member: samples heard, their age on arrival, lost or not.
   std::vector<std::string> report();
+  /// Every member together, after stop(): the near misses, the contacts, the closest approach (-1: none
+  /// measured).
+  struct Figures {
+    int near_misses = 0, contacts = 0;
+    double closest_m = -1.0;
+  };
+  Figures figures() const;
 
  private:
   void run();

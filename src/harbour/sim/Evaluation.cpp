@@ -540,6 +540,11 @@ std::vector<std::pair<std::string, double>> Metrics::rows() const {
     r.emplace_back(axis.axis + "_rms_jerk_mps3", axis.rms_jerk_mps3);
     r.emplace_back(axis.axis + "_harsh_moves", axis.harsh_moves);
   }
+  if (team) {
+    r.emplace_back("team_near_misses", team_near_misses);
+    r.emplace_back("team_contacts", team_contacts);
+    if (team_closest_m >= 0.0) r.emplace_back("team_closest_m", team_closest_m);
+  }
   if (!placement_offset_m.empty())
     r.emplace_back("worst_placement_offset_m",
                    *std::max_element(placement_offset_m.begin(), placement_offset_m.end()));

@@ -171,6 +171,11 @@ struct Metrics {
     int harsh_moves = 0;         ///< onsets of a jerk above rules.harsh_jerk_mps3
   };
   std::vector<Smoothness> smoothness;
+  /// A team session's member: its machine's near misses and contacts with the other members' machines, and
+  /// the closest any came [m] (measured by the station: station::NearMissWatch).
+  bool team = false;
+  int team_near_misses = 0, team_contacts = 0;
+  double team_closest_m = -1.0;  ///< -1: no member's machine was measured
   /// Every figure by name (the records store them as rows): the container figures, and the bulk ones for a
   /// bulk exercise.
   std::vector<std::pair<std::string, double>> rows() const;

@@ -196,6 +196,12 @@ SessionResult Session::finish(SessionEnd end) {
   result.attempt = attempt_;
   result.loop = loop_->stats();
   result.metrics = evaluator_.metrics();  // the loop has stopped: the step thread's evaluator is ours
+  if (team_) {
+    result.metrics.team = true;
+    result.metrics.team_near_misses = team_->near_misses;
+    result.metrics.team_contacts = team_->contacts;
+    result.metrics.team_closest_m = team_->closest_m;
+  }
   result.score = evaluator_.score(end == SessionEnd::kStoppedByInstructor);
   result.status = io::attempt_status(simulation_->diverged(),
                                      end == SessionEnd::kInterrupted || !keeper_error_.empty(), result.score);

@@ -81,6 +81,11 @@ class Session {
   /// Stops the loop (if still running), lets the keeper catch up, closes the recording and stores the
   /// attempt: `interrupted` when the trainee or a signal stopped it before the end.
   SessionResult finish(SessionEnd end);
+  /// A team session's member: its near misses and contacts with the other members' machines, stored with the
+  /// attempt's figures (closest_m < 0: none measured). Before finish().
+  void set_team_figures(int near_misses, int contacts, double closest_m) {
+    team_ = {near_misses, contacts, closest_m};
+  }
 
  private:
   /// The step thread's part: evaluates the step just taken, hands what grew to the keeper.
@@ -114,6 +119,11 @@ class Session {
   std::vector<std::pair<std::string, double>> notes_;
   void store_notes();
   bool finished_ = false;
+  struct TeamFigures {
+    int near_misses = 0, contacts = 0;
+    double closest_m = -1.0;
+  };
+  std::optional<TeamFigures> team_;
   int moves_before_start_ = 0;
 };
 
