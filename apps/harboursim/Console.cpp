@@ -1462,7 +1462,10 @@ std::optional<Console::Response> Console::attempts(Call& c) {
                     {"exercise_version", a.exercise_version},
                     {"started_at", a.started_at},
                     {"ended_at", a.ended_at},
-                    {"autopilot", a.autopilot}});
+                    {"autopilot", a.autopilot},
+                    {"team", a.team},
+                    {"team_role", a.team_role},
+                    {"team_session", a.team_session}});
   return json_reply(c.request, http::status::ok, list);
 }
 

@@ -449,6 +449,8 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
       std::printf("%s\n", line.c_str());
     const TeamMembership::Figures f = membership->figures();
     session.set_team_figures(f.near_misses, f.contacts, f.closest_m);
+    session.set_team(team->name, options.role, membership->session());
+    std::printf("team session %s\n", membership->session().c_str());
   }
   station.stop();
   const station::SessionResult result =

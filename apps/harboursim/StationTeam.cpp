@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <ctime>
 #include <filesystem>
 #include <stdexcept>
 
@@ -67,7 +68,20 @@ TeamMembership::TeamMembership(const io::Team& team, const std::string& role, co
       role_(role),
       own_bodies_(own_scene.machine_entities),
       link_(station, team.name, role, domain),
-      presence_(own_scene, other_members(team, role)) {}
+      presence_(own_scene, other_members(team, role)),
+      started_unix_ms_(std::chrono::duration_cast<std::chrono::milliseconds>(
+                           std::chrono::system_clock::now().time_since_epoch())
+                           .count()),
+      earliest_unix_ms_(started_unix_ms_) {}
+
+std::string TeamMembership::session() const {
+  const std::time_t at = static_cast<std::time_t>(earliest_unix_ms_.load() / 1000);
+  std::tm utc{};
+  gmtime_r(&at, &utc);
+  char stamp[32];
+  std::strftime(stamp, sizeof stamp, "%Y-%m-%dT%H:%M:%SZ", &utc);
+  return team_.name + "@" + stamp;
+}
 
 TeamMembership::~TeamMembership() {
   stop();
@@ -111,6 +125,7 @@ void TeamMembership::run() {
       state.step(s->step);
       state.time_s(s->time_s);
       state.held(s->held);
+      state.started_unix_ms(started_unix_ms_);
       const double dt = before_step < 0 ? 0.0 : static_cast<double>(s->step - before_step) * 1e-3;
       for (int n = 0; n < s->entity_count && n < own_bodies_; ++n) {
         const sim::Snapshot::Entity& e = s->entities[static_cast<std::size_t>(n)];
@@ -157,6 +172,8 @@ void TeamMembership::take() {
         sample.motion.push_back(r);
       }
       const std::string why = presence_.offer(sample);
+      if (why.empty() && t.started_unix_ms() > 0 && t.started_unix_ms() < earliest_unix_ms_)
+        earliest_unix_ms_ = t.started_unix_ms();
       if (!why.empty() && said_ && refused_.insert(t.station().to_string() + why).second)
         said_(t.station().to_string() + ": " + why);  // once each
       if (why.empty() && joined_.insert(sample.role).second && said_)

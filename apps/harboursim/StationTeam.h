@@ -40,6 +40,9 @@ class TeamMembership {
   void stop();
   /// One line per member: samples heard, their age on arrival, lost or not.
   std::vector<std::string> report();
+  /// The team session this member was part of: "TEAM@START", START the earliest start (UTC, ISO 8601) of this
+  /// member and every member it heard — what each member that heard the others stores with its attempt.
+  std::string session() const;
   /// Every member together, after stop(): the near misses, the contacts, the closest approach (-1: none
   /// measured).
   struct Figures {
@@ -62,8 +65,10 @@ class TeamMembership {
   std::thread thread_;
   std::atomic<bool> stop_{false};
   std::int64_t published_ = 0;
-  std::set<std::string> refused_;  // the refusals said so far
-  std::set<std::string> joined_;   // the roles heard so far
+  std::int64_t started_unix_ms_;                // this member's start
+  std::atomic<std::int64_t> earliest_unix_ms_;  // of this member's and every start heard
+  std::set<std::string> refused_;               // the refusals said so far
+  std::set<std::string> joined_;                // the roles heard so far
   station::NearMissWatch near_misses_;
 };
 

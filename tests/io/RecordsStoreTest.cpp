@@ -147,7 +147,13 @@ void make_old_database(const std::string& connection, int version) {
 }
 
 // a database made by this build, taken back to before schema version 7: no attempt times, no autopilot flag
+void drop_attempt_team(soci::session& sql) {
+  for (const char* column : {"team", "team_role", "team_session"})
+    sql << "ALTER TABLE attempts DROP COLUMN " << column;
+}
+// the columns of versions 7 and 8
 void drop_attempt_times(soci::session& sql) {
+  drop_attempt_team(sql);
   for (const char* column : {"started_at", "ended_at", "autopilot"})
     sql << "ALTER TABLE attempts DROP COLUMN " << column;
 }
@@ -159,7 +165,7 @@ TEST_P(RecordsStoreOn, DatabasesOfEarlierBuildsAreUpgradedInPlace) {
         fresh_connection(GetParam(), "records_upgrade_v" + std::to_string(version));
     make_old_database(connection, version);
     RecordsStore db(connection);
-    EXPECT_EQ(db.schema_version(), 7) << "from version " << version;
+    EXPECT_EQ(db.schema_version(), 8) << "from version " << version;
     const auto rows = db.attempts();
     ASSERT_EQ(rows.size(), 1u);
     EXPECT_EQ(rows[0].status, "finished");
@@ -204,7 +210,7 @@ TEST_P(RecordsStoreOn, DatabasesOfEarlierBuildsAreUpgradedInPlace) {
     sql << "UPDATE schema_version SET version = 3";
   }
   RecordsStore upgraded(v3);
-  EXPECT_EQ(upgraded.schema_version(), 7);
+  EXPECT_EQ(upgraded.schema_version(), 8);
   EXPECT_TRUE(upgraded.xapi_outbox().empty());
   EXPECT_EQ(upgraded.attempts().size(), 1u);
 
@@ -221,7 +227,7 @@ TEST_P(RecordsStoreOn, DatabasesOfEarlierBuildsAreUpgradedInPlace) {
     sql << "UPDATE schema_version SET version = 4";
   }
   RecordsStore upgraded_v4(v4);
-  EXPECT_EQ(upgraded_v4.schema_version(), 7);
+  EXPECT_EQ(upgraded_v4.schema_version(), 8);
   EXPECT_FALSE(upgraded_v4.recording(1).has_value());
   EXPECT_EQ(upgraded_v4.attempts()[0].recording, "/recordings/a.hsrc");
 
@@ -237,7 +243,7 @@ TEST_P(RecordsStoreOn, DatabasesOfEarlierBuildsAreUpgradedInPlace) {
     sql << "UPDATE schema_version SET version = 5";
   }
   RecordsStore upgraded_v5(v5);
-  EXPECT_EQ(upgraded_v5.schema_version(), 7);
+  EXPECT_EQ(upgraded_v5.schema_version(), 8);
   EXPECT_FALSE(upgraded_v5.kept_exercise("0123456789abcdef").has_value());
 
   // a version-6 database (no attempt times) gets the columns: its attempts read no times and no autopilot
@@ -251,10 +257,30 @@ TEST_P(RecordsStoreOn, DatabasesOfEarlierBuildsAreUpgradedInPlace) {
     sql << "UPDATE schema_version SET version = 6";
   }
   RecordsStore upgraded_v6(v6);
-  EXPECT_EQ(upgraded_v6.schema_version(), 7);
+  EXPECT_EQ(upgraded_v6.schema_version(), 8);
   ASSERT_EQ(upgraded_v6.attempts().size(), 1u);
   EXPECT_EQ(upgraded_v6.attempts()[0].started_at, "");
   EXPECT_FALSE(upgraded_v6.attempts()[0].autopilot);
+
+  // a version-7 database (no teams) gets the columns: its attempts were no team's
+  const std::string v7 = fresh_connection(GetParam(), "records_upgrade_v7");
+  {
+    RecordsStore made(v7);
+    made.add_trainee("t001", "Ana");
+    made.begin_attempt({"t001", "sts_discharge", std::nullopt, 0, "", "", "", "", {}, true});
+    soci::session sql(records_connection(v7));
+    drop_attempt_team(sql);
+    sql << "UPDATE schema_version SET version = 7";
+  }
+  RecordsStore upgraded_v7(v7);
+  EXPECT_EQ(upgraded_v7.schema_version(), 8);
+  ASSERT_EQ(upgraded_v7.attempts().size(), 1u);
+  EXPECT_EQ(upgraded_v7.attempts()[0].team, "");
+  EXPECT_TRUE(upgraded_v7.attempts()[0].autopilot);
+  upgraded_v7.note_team(1, "sts_and_tractor", "crane", "sts_and_tractor@2026-11-27T20:31:52Z");
+  EXPECT_EQ(upgraded_v7.attempts()[0].team, "sts_and_tractor");
+  EXPECT_EQ(upgraded_v7.attempts()[0].team_role, "crane");
+  EXPECT_EQ(upgraded_v7.attempts()[0].team_session, "sts_and_tractor@2026-11-27T20:31:52Z");
 }
 
 // Every exercise version an attempt ran is kept once, by its content hash, with the folder its paths resolve
@@ -410,7 +436,7 @@ TEST_P(RecordsStoreOn, AFailedUpgradeLeavesTheDatabaseAsItWas) {
   // with the stray table gone the upgrade goes through
   sql << "DROP TABLE route_overrides";
   RecordsStore db(connection);
-  EXPECT_EQ(db.schema_version(), 7);
+  EXPECT_EQ(db.schema_version(), 8);
 }
 
 // A database a newer build has upgraded is refused, not read wrongly or downgraded.

@@ -58,6 +58,14 @@ try {
     const names = window.harbourView?.names ?? [];
     return names.includes("tractor: tractor") && names.includes("tractor: trailer");
   }), 30);
+  const drawnAt = () => page.evaluate(() => {
+    const v = window.harbourView, at = v.entities[v.names.indexOf("tractor: tractor")].position;
+    return [at.x, at.y, at.z];
+  });
+  await until("the crane's view draws the tractor on the quay, on its wheels", async () => {
+    const [x, y, z] = await drawnAt();
+    return Math.abs(x) < 10 && y > -45 && y < 40 && z > 0.5 && z < 3;
+  }, 20);
   await page.uncheck("#view-light");
   const tractorAt = await page.evaluate(() => {  // looking at the tractor from behind it, the crane beyond
     const v = window.harbourView;
@@ -67,8 +75,7 @@ try {
     v.controls.update();
     return [at.x, at.y, at.z];
   });
-  check(tractorAt[1] > -45 && tractorAt[1] < 40 && Math.abs(tractorAt[0]) < 10,
-    `the crane's view draws the tractor on the quay at (${tractorAt.map((c) => c.toFixed(1)).join(", ")}) m`);
+  check(tractorAt[2] > 0.5, `the crane's view draws the tractor at (${tractorAt.map((c) => c.toFixed(1)).join(", ")}) m`);
   await page.waitForTimeout(4000);
   await page.locator("#view3d").screenshot({ path: path.join(out, "console_team.png") });
 
@@ -80,6 +87,16 @@ try {
   await until("both idle again", async () => (await cell("crane-cab", 2)) === "idle" && (await cell("tractor-cab", 2)) === "idle", 40);
   const last = await cell("tractor-cab", 10);
   check(/tractor of team sts_and_tractor/.test(last), `the tractor's last attempt said: ${last}`);
+  // both attempts stored as the team's members, linked by one session
+  const attempts = await page.evaluate(async () => (await fetch("/api/attempts")).json());
+  const members = attempts.filter((a) => a.team === "sts_and_tractor");
+  const sessions = new Set(members.map((a) => a.team_session));
+  check(members.length === 2 && members.map((a) => a.team_role).sort().join(",") === "crane,tractor" &&
+    sessions.size === 1 && /^sts_and_tractor@\d{4}-\d\d-\d\dT\d\d:\d\d:\d\dZ$/.test([...sessions][0]),
+    `the members' attempts: ${JSON.stringify(members.map((a) => [a.id, a.team_role, a.team_session]))}`);
+  const figures = await page.evaluate(async (id) => (await fetch(`/api/attempts/${id}`)).json(), members[0]?.id);
+  check(figures.metrics?.team_near_misses === 0 && figures.metrics?.team_closest_m > 1,
+    `a member's team figures: near misses ${figures.metrics?.team_near_misses}, closest ${figures.metrics?.team_closest_m?.toFixed(1)} m`);
 } catch (e) {
   check(false, `error: ${e.stack ?? e}`);
 } finally {

@@ -45,8 +45,9 @@ constexpr std::chrono::milliseconds kWalRetry{50};
 // attempts' recordings, so that a console or a station on another PC replays and continues them. 6: every
 // exercise version an attempt ran, by its content hash (a replay re-simulates what the trainee had, whatever
 // its file says now), and attempts ended by the instructor. 7: when an attempt started and ended (UTC, ISO
-// 8601), and whether the autopilot drove it.
-constexpr int kSchemaVersion = 7;
+// 8601), and whether the autopilot drove it. 8: a team session's member: its team, its role and the session
+// it was part of (the members' attempts linked by it).
+constexpr int kSchemaVersion = 8;
 
 // every table of a schema version with the columns this build reads (and, for the latest, writes)
 struct TableColumns {
@@ -58,8 +59,8 @@ constexpr TableColumns kTables[] = {
     {"trainees", "id, name", 1, 1},
     {"attempts",
      "id, trainee, exercise, status, score, passed, parent, branch_step, recording, process, route, stage, "
-     "exercise_version, started_at, ended_at, autopilot",
-     1, 7},
+     "exercise_version, started_at, ended_at, autopilot, team, team_role, team_session",
+     1, 8},
     {"moves", "attempt, idx, completed_at_s, cycle_time_s", 1, 1},
     {"events", "attempt, at_s, kind, value", 1, 1},
     {"metrics", "attempt, name, value", 1, 1},
@@ -79,7 +80,11 @@ constexpr TableColumns kTables[] = {
 std::string columns_at(const TableColumns& t, int version) {
   if (version < t.since) return "";
   if (version >= t.changed) return t.columns;
-  // attempts before version 7; before version 3 without route, stage and version; before 2 without process
+  // attempts before version 8; before 7 without their times and driver; before 3 without route, stage and
+  // version; before 2 without process
+  if (version >= 7)
+    return "id, trainee, exercise, status, score, passed, parent, branch_step, recording, process, route, "
+           "stage, exercise_version, started_at, ended_at, autopilot";
   if (version >= 3)
     return "id, trainee, exercise, status, score, passed, parent, branch_step, recording, process, route, "
            "stage, "
@@ -154,6 +159,11 @@ std::vector<std::string> migration(int version) {
       return {"ALTER TABLE attempts ADD COLUMN started_at TEXT NOT NULL DEFAULT ''",
               "ALTER TABLE attempts ADD COLUMN ended_at TEXT NOT NULL DEFAULT ''",
               "ALTER TABLE attempts ADD COLUMN autopilot INTEGER NOT NULL DEFAULT 0"};
+    case 8:
+      // a team session's member ('' : alone, or before)
+      return {"ALTER TABLE attempts ADD COLUMN team TEXT NOT NULL DEFAULT ''",
+              "ALTER TABLE attempts ADD COLUMN team_role TEXT NOT NULL DEFAULT ''",
+              "ALTER TABLE attempts ADD COLUMN team_session TEXT NOT NULL DEFAULT ''"};
     default:
       return {};
   }
@@ -804,6 +814,15 @@ std::optional<AttemptRow> RecordsStore::attempt_recorded_at(const std::string& p
   return std::nullopt;
 }
 
+void RecordsStore::note_team(std::int64_t attempt, const std::string& team, const std::string& role,
+                             const std::string& session) {
+  const long long id = attempt;
+  impl_->guarded("storing attempt " + std::to_string(attempt) + "'s team", [&] {
+    impl_->sql << "UPDATE attempts SET team = :t, team_role = :r, team_session = :s WHERE id = :a",
+        soci::use(team), soci::use(role), soci::use(session), soci::use(id);
+  });
+}
+
 std::vector<AttemptRow> RecordsStore::attempts(const std::optional<std::string>& trainee) {
   return attempt_rows(trainee.value_or(""), 0);
 }
@@ -815,8 +834,8 @@ std::vector<AttemptRow> RecordsStore::attempt_rows(const std::string& who, std::
     soci::rowset<soci::row> rows =
         (impl_->sql.prepare
              << "SELECT a.id, a.trainee, a.exercise, a.status, a.score, a.passed, a.parent, a.branch_step,"
-                " a.recording, a.route, a.stage, a.exercise_version, a.started_at, a.ended_at, a.autopilot"
-                " FROM attempts a WHERE (:who = '' OR "
+                " a.recording, a.route, a.stage, a.exercise_version, a.started_at, a.ended_at, a.autopilot,"
+                " a.team, a.team_role, a.team_session FROM attempts a WHERE (:who = '' OR "
                 "a.trainee = :who2) AND (:id = 0 OR a.id = :id2) ORDER BY a.id DESC",
          soci::use(who), soci::use(who), soci::use(id_wanted), soci::use(id_wanted));
     for (const soci::row& r : rows) {
@@ -840,6 +859,9 @@ std::vector<AttemptRow> RecordsStore::attempt_rows(const std::string& who, std::
         if (autopilot != 0 && autopilot != 1)
           throw soci::soci_error("autopilot is " + std::to_string(autopilot) + ", not 0 or 1");
         a.autopilot = autopilot == 1;
+        a.team = r.get<std::string>(15);
+        a.team_role = r.get<std::string>(16);
+        a.team_session = r.get<std::string>(17);
         const int passed = r.get<int>(5);
         if (std::find(std::begin(kStatuses), std::end(kStatuses), a.status) == std::end(kStatuses))
           throw soci::soci_error("status '" + core::printable(a.status) +

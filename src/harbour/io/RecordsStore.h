@@ -41,6 +41,9 @@ struct AttemptRow {
   std::string exercise_version;      ///< the exercise file's content hash (io::exercise_version; "" : before)
   std::string started_at, ended_at;  ///< UTC, ISO 8601 ("" : before schema version 7; ended: still running)
   bool autopilot = false;            ///< the scripted operator drove it, not a trainee
+  /// A team session's member: its team, its role, and the session ("TEAM@START": every member that heard the
+  /// others stores the same); "" : alone, or before schema version 8.
+  std::string team, team_role, team_session;
 };
 
 /// How an attempt is stored as ended: diverged (the physics stopped it), interrupted (its process ended
@@ -150,6 +153,9 @@ class RecordsStore {
   /// Ctrl-C) or diverged (the physics stopped it).
   /// `recording_bytes`: the recording file's content, kept with the attempt in the same transaction (so that
   /// a console or station on another PC replays it and continues it; not kept past kMaxStoredRecordingBytes).
+  /// The attempt was a team session's member (AttemptRow::team, team_role, team_session).
+  void note_team(std::int64_t attempt, const std::string& team, const std::string& role,
+                 const std::string& session);
   void finish_attempt(std::int64_t attempt, const sim::Metrics& metrics, const sim::Score& score,
                       const std::string& recording, const std::string& status = "finished",
                       std::string_view recording_bytes = {});

@@ -210,6 +210,7 @@ SessionResult Session::finish(SessionEnd end) {
     writer_->finish(recorder_.recording().total_steps);
     kept = io::recording_copy(options_.record, io::kMaxStoredRecordingBytes);
   }
+  if (!team_member_[0].empty()) db_->note_team(attempt_, team_member_[0], team_member_[1], team_member_[2]);
   db_->finish_attempt(attempt_, result.metrics, result.score, options_.record, result.status, kept);
   if (!keeper_error_.empty()) throw std::runtime_error("record keeper: " + keeper_error_);
   return result;

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <atomic>
 #include <cstdint>
 #include <memory>
@@ -86,6 +87,10 @@ class Session {
   void set_team_figures(int near_misses, int contacts, double closest_m) {
     team_ = {near_misses, contacts, closest_m};
   }
+  /// The attempt was a team session's member: stored with it (io::AttemptRow::team, team_role, team_session).
+  void set_team(const std::string& team, const std::string& role, const std::string& session) {
+    team_member_ = {team, role, session};
+  }
 
  private:
   /// The step thread's part: evaluates the step just taken, hands what grew to the keeper.
@@ -124,6 +129,7 @@ class Session {
     double closest_m = -1.0;
   };
   std::optional<TeamFigures> team_;
+  std::array<std::string, 3> team_member_;  // team, role, session ("": alone)
   int moves_before_start_ = 0;
 };
 
