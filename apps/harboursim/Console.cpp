@@ -745,6 +745,7 @@ class Console {
   std::optional<Response> logout(Call& c);
   std::optional<Response> stations(Call& c);
   std::optional<Response> command(Call& c);
+  std::optional<Response> team_command(Call& c);
   std::optional<Response> looks(Call& c);
   std::optional<Response> exercises(Call& c);
   std::optional<Response> teams(Call& c);
@@ -824,6 +825,17 @@ class Console {
     Clock::time_point deadline;
   };
   std::map<std::uint64_t, Pending> pending_;
+  // a command to every running member of a team session: answered when every member has (or 3 s have passed)
+  struct TeamPending {
+    http::request<http::string_body> request;
+    std::shared_ptr<HttpSession> session;
+    Account account;
+    std::string team, kind;
+    std::vector<std::pair<std::uint64_t, std::string>> sent;  // command id, station
+    std::map<std::string, net::CommandAck> answers;           // by station
+    Clock::time_point deadline;
+  };
+  std::vector<TeamPending> team_pending_;
   std::vector<std::pair<std::uint64_t, Clock::time_point>> watches_;  // watch commands awaiting their ack
   Clock::time_point next_watch_{};
   std::vector<std::shared_ptr<LiveSocket>> sockets_;
@@ -854,6 +866,7 @@ const Console::Route Console::kRoutes[] = {
     {http::verb::get, "/api/looks", Who::kAnyAccount, &Console::looks},
     {http::verb::get, "/api/exercises", Who::kAnyAccount, &Console::exercises},
     {http::verb::get, "/api/teams", Who::kStaff, &Console::teams},
+    {http::verb::post, "/api/teams/*/command", Who::kStaff, &Console::team_command},
     {http::verb::get, "/api/routes", Who::kAnyAccount, &Console::routes},
     {http::verb::get, "/api/attempts", Who::kOwnRecords, &Console::attempts},
     {http::verb::get, "/api/attempts/#", Who::kOwnRecords, &Console::attempt},
@@ -1359,6 +1372,34 @@ std::optional<Console::Response> Console::command(Call& c) {
   const std::uint64_t id = link_.send(sent);
   pending_[id] = Pending{request, c.session, account, station, *kind, Clock::now() + kAckTimeout};
   return std::nullopt;  // answered when the station acknowledges
+}
+
+// hold, resume or stop every running member of a team session at once
+std::optional<Console::Response> Console::team_command(Call& c) {
+  std::string why;
+  const std::optional<json> body = parse_object(c.request.body(), why);
+  if (!body) return error(c.request, http::status::bad_request, why);
+  const std::optional<std::string> kind = text_field(*body, "kind", 48, why);
+  if (!kind) return error(c.request, http::status::bad_request, why);
+  if (*kind != "hold" && *kind != "resume" && *kind != "stop")
+    return error(c.request, http::status::bad_request, "a team session takes hold, resume and stop");
+  TeamPending p{c.request, c.session, *c.account, c.segment, *kind, {}, {}, Clock::now() + kAckTimeout};
+  for (const auto& [name, station] : link_.stations()) {
+    const std::string state = station.status.state().to_string();
+    if (station.lost || station.gone || station.status.team().to_string() != c.segment ||
+        (state != "running" && state != "held"))
+      continue;
+    net::StationCommand sent;
+    sent.station(name);
+    sent.user(c.account->name);
+    sent.kind(*kind);
+    p.sent.emplace_back(link_.send(sent), name);
+  }
+  if (p.sent.empty())
+    return error(c.request, http::status::not_found,
+                 "no station runs team '" + core::printable(c.segment) + "'");
+  team_pending_.push_back(std::move(p));
+  return std::nullopt;  // answered when every member has acknowledged
 }
 
 // ---------------------------------------------------------------------------------------------------
@@ -2257,6 +2298,31 @@ void Console::poll() {
       p.session->reply(json_reply(p.request, ack->ok() ? http::status::ok : http::status::conflict,
                                   {{"ok", ack->ok()}, {"message", ack->message().to_string()}}));
     it = pending_.erase(it);
+  }
+  for (auto it = team_pending_.begin(); it != team_pending_.end();) {
+    TeamPending& p = *it;
+    for (const auto& [id, station] : p.sent)
+      if (!p.answers.count(station))
+        if (const std::optional<net::CommandAck> ack = link_.take_ack(id)) p.answers[station] = *ack;
+    if (p.answers.size() < p.sent.size() && now < p.deadline) {
+      ++it;
+      continue;
+    }
+    json stations = json::array();
+    bool all_ok = true;
+    for (const auto& [id, station] : p.sent) {
+      const auto answer = p.answers.find(station);
+      const bool ok = answer != p.answers.end() && answer->second.ok();
+      const std::string message =
+          answer == p.answers.end() ? "no answer within 3 s" : answer->second.message().to_string();
+      all_ok = all_ok && ok;
+      stations.push_back({{"station", station}, {"ok", ok}, {"message", message}});
+      audit_.add(p.account.name, "command " + p.kind, station,
+                 "team " + p.team + ": " + (ok ? "done" : message));
+    }
+    p.session->reply(json_reply(p.request, all_ok ? http::status::ok : http::status::conflict,
+                                {{"ok", all_ok}, {"team", p.team}, {"stations", stations}}));
+    it = team_pending_.erase(it);
   }
   if (g_stop) {
     io_.stop();

@@ -100,7 +100,12 @@ function showStations(stations: Station[]) {
     // figures), so the live line says what the station is now
     if (s.state === "idle") endedAttempt.set(s.station, runningAttempt.get(s.station) ?? 0);
     else if (s.attempt) runningAttempt.set(s.station, s.attempt);
-    if (s.station === selected) showOutcome(s);
+    if (s.station === selected) {
+      showOutcome(s);
+      selectedTeam = s.state === "idle" ? "" : s.team;
+      $("team-actions").hidden = selectedTeam === "";
+      text($("team-name"), selectedTeam);
+    }
     if (s.station === selected && s.state === "idle" && $("live").dataset.state !== "idle") {
       latestState = null;
       $("live").dataset.state = "idle";
@@ -260,6 +265,19 @@ async function command(kind: string) {
   const r = await api(`/api/stations/${encodeURIComponent(selected)}/command`, "POST", body);
   result.className = r.status === 200 ? "" : "refused";
   text(result, r.status === 200 ? `${kind}: ${r.data.message}` : `${kind} refused (${r.status}): ${r.data?.error ?? r.data?.message}`);
+}
+
+// hold, resume or stop every running member of the selected station's team session
+let selectedTeam = "";
+async function teamCommand(kind: string) {
+  const result = $("command-result");
+  text(result, `team ${kind}…`);
+  const r = await api(`/api/teams/${encodeURIComponent(selectedTeam)}/command`, "POST", { kind });
+  result.className = r.status === 200 ? "" : "refused";
+  const each = (r.data?.stations ?? []).map((x: { station: string; ok: boolean; message: string }) =>
+    `${x.station} ${x.ok ? "done" : x.message}`).join(", ");
+  text(result, r.status === 200 ? `team ${selectedTeam} ${kind}: ${each}` :
+    `team ${kind} refused (${r.status}): ${r.data?.error ?? each}`);
 }
 
 async function replayAction(body: Record<string, unknown>) {
@@ -611,6 +629,9 @@ function showTeamRoles() {
   select.replaceChildren();
   for (const r of team?.roles ?? []) select.add(new Option(`${r.role} (${r.exercise})`, r.role));
   select.disabled = !team;
+  // a member runs its role's exercise: the exercise and the route are not chosen then
+  $<HTMLSelectElement>("exercise").disabled = !!team;
+  $<HTMLSelectElement>("start-route").disabled = !!team;
 }
 
 // The routes (the centre's and the shipped ones) wherever they are chosen.
@@ -711,6 +732,8 @@ function wire() {
   });
   for (const b of document.querySelectorAll<HTMLButtonElement>("button[data-kind]"))
     b.addEventListener("click", () => command(b.dataset.kind!));
+  for (const b of document.querySelectorAll<HTMLButtonElement>("button[data-team-kind]"))
+    b.addEventListener("click", () => teamCommand(b.dataset.teamKind!));
   const value = (id: string) => $<HTMLInputElement>(id).value;
   $("set-wind").addEventListener("click", () => command(`wind:${value("wind-speed")}:${value("wind-from")}:0.15`));
   $("set-visibility").addEventListener("click", () => command(`visibility:${value("visibility")}`));

@@ -79,11 +79,20 @@ try {
   await page.waitForTimeout(4000);
   await page.locator("#view3d").screenshot({ path: path.join(out, "console_team.png") });
 
-  // the instructor ends the session: each member stopped, idle again with its last attempt said
-  for (const station of ["crane-cab", "tractor-cab"]) {
-    await page.click(`#stations tr[data-station=${station}]`);
-    await page.click("button[data-kind=stop]");
-  }
+  // the instructor holds the whole team, resumes it and ends it, from one member's panel
+  const teamCommand = async (kind, state) => {
+    await page.click(`button[data-team-kind=${kind}]`);
+    await until(`team ${kind} answered`, async () =>
+      /^team sts_and_tractor \w+: (crane-cab|tractor-cab) done, (crane-cab|tractor-cab) done$/.test(await page.textContent("#command-result")), 20);
+    check(true, `team ${kind}: ${await page.textContent("#command-result")}`);
+    if (state) await until(`both ${state}`, async () => (await cell("crane-cab", 2)) === state && (await cell("tractor-cab", 2)) === state, 20);
+  };
+  check(await page.isVisible("#team-actions"), "the team's buttons show for a member");
+  await page.locator("#stations").screenshot({ path: path.join(out, "console_team_stations.png") });
+  await page.locator("#control-panel").screenshot({ path: path.join(out, "console_team_panel.png") });
+  await teamCommand("hold", "held");
+  await teamCommand("resume", "running");
+  await teamCommand("stop", null);
   await until("both idle again", async () => (await cell("crane-cab", 2)) === "idle" && (await cell("tractor-cab", 2)) === "idle", 40);
   const last = await cell("tractor-cab", 10);
   check(/tractor of team sts_and_tractor/.test(last), `the tractor's last attempt said: ${last}`);
