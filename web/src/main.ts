@@ -221,12 +221,12 @@ function showReplayExactness(note: string) {
 }
 
 function showEvent(e: EventMessage) {
+  if (e.kind === "attempt_end") loadRecords();  // the records table holds every station's attempts
   if (selected && e.station !== selected) return;
   const li = document.createElement("li");
   text(li, `${e.time_s.toFixed(1)} s  ${e.station}  ${e.kind}${e.value ? " " + e.value.toFixed(2) : ""}${e.text ? "  " + e.text : ""}`);
   li.className = `event-${e.kind}`;
   $("events").prepend(li);
-  if (e.kind === "attempt_end") loadRecords();
 }
 
 function connect() {
@@ -402,7 +402,9 @@ async function loadRecords() {
   body.replaceChildren();
   for (const a of attempts.data ?? []) {
     const row = document.createElement("tr");
-    for (const v of [a.id, a.trainee, a.exercise, a.outcome, a.score === null ? "" : a.score.toFixed(1), a.moves,
+    // a team session's member: its role and session beside its exercise
+    const exercise = a.team ? `${a.exercise} (${a.team_role} of ${a.team_session})` : a.exercise;
+    for (const v of [a.id, a.trainee, exercise, a.outcome, a.score === null ? "" : a.score.toFixed(1), a.moves,
       a.started_at ? startedText(a.started_at) : "", durationText(a.started_at, a.ended_at),
       a.autopilot ? "autopilot" : "trainee", a.parent === null ? "" : `attempt ${a.parent}`,
       a.exercise_version ? a.exercise_version.slice(0, 8) : ""]) {

@@ -103,6 +103,12 @@ try {
   check(members.length === 2 && members.map((a) => a.team_role).sort().join(",") === "crane,tractor" &&
     sessions.size === 1 && /^sts_and_tractor@\d{4}-\d\d-\d\dT\d\d:\d\d:\d\dZ$/.test([...sessions][0]),
     `the members' attempts: ${JSON.stringify(members.map((a) => [a.id, a.team_role, a.team_session]))}`);
+  const session = [...sessions][0];
+  await until("the records table names both members and their session", async () => {
+    const rows = await page.locator("#attempts tbody tr td:nth-child(3)").allTextContents();
+    return rows.includes(`sts_discharge (crane of ${session})`) && rows.includes(`tractor_mafi_park (tractor of ${session})`);
+  }, 20);
+  await page.locator("#attempts").screenshot({ path: path.join(out, "console_team_records.png") });
   const figures = await page.evaluate(async (id) => (await fetch(`/api/attempts/${id}`)).json(), members[0]?.id);
   check(figures.metrics?.team_near_misses === 0 && figures.metrics?.team_closest_m > 1,
     `a member's team figures: near misses ${figures.metrics?.team_near_misses}, closest ${figures.metrics?.team_closest_m?.toFixed(1)} m`);
