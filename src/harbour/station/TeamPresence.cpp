@@ -17,13 +17,15 @@ void DeadReckoning::place(const RemoteMotion& motion, double at_s) {
 }
 
 void DeadReckoning::update(const RemoteMotion& motion, double at_s) {
-  // blend from where the body is drawn now: the old track, or the blend in progress frozen into a sample
-  const core::Pose drawn = at(at_s);
-  old_ = {drawn, new_.velocity_mps, new_.angular_velocity_radps};
+  // blend from where the body is drawn now, moving as it is drawn moving: the newest sample's velocities, or
+  // a blend in progress frozen into a sample
+  core::Vec3 velocity = new_.velocity_mps, spin = new_.angular_velocity_radps;
   if (blending_) {
     const double f = std::clamp((at_s - new_at_s_) / blend_s_, 0.0, 1.0);
-    old_.velocity_mps = (1.0 - f) * old_.velocity_mps + f * new_.velocity_mps;
+    velocity = (1.0 - f) * old_.velocity_mps + f * new_.velocity_mps;
+    spin = (1.0 - f) * old_.angular_velocity_radps + f * new_.angular_velocity_radps;
   }
+  old_ = {at(at_s), velocity, spin};
   old_at_s_ = at_s;
   new_ = motion;
   new_at_s_ = at_s;
