@@ -203,8 +203,11 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
     session.loop().set_addition(
         [membership](sim::Snapshot& s) { membership->add_to(s); },
         1u << station::kImageGeneratorReader | 1u << station::kConsoleReader | 1u << station::kPictureReader);
+    std::string others;
+    for (const io::TeamRole& r : team->roles)
+      if (r.role != options.role) others += (others.empty() ? "" : ", ") + r.role;
     std::printf("team %s: %s (%s), with %s\n", team->name.c_str(), options.role.c_str(),
-                exercise.name.c_str(), team->role_list().c_str());
+                exercise.name.c_str(), others.c_str());
   }
   std::unique_ptr<sim::Pilot> pilot;
   if (options.autopilot) {
