@@ -255,20 +255,7 @@ TEST(Run, ASignalEndsEveryLongRunningCommandWithinASecond) {
       {"station", "--serve", "--name", "sigterm-1", "--domain", "211", "--window", "off", "--db", db},
       {"station", "--exercise", "sts_discharge", "--autopilot", "--window", "off", "--db", db}};
   for (std::size_t n = 0; n < commands.size(); ++n) {
-    std::vector<std::string> args = {HARBOUR_APP};
-    args.insert(args.end(), commands[n].begin(), commands[n].end());
-    const pid_t child = fork();
-    if (child == 0) {
-      const std::string log = (folder / ("cmd" + std::to_string(n) + ".log")).string();
-      freopen(log.c_str(), "w", stdout);
-      freopen(log.c_str(), "a", stderr);
-      std::vector<char*> argv;
-      for (std::string& a : args)
-        argv.push_back(a.data());
-      argv.push_back(nullptr);
-      execv(HARBOUR_APP, argv.data());
-      _exit(127);
-    }
+    const pid_t child = start_app(commands[n], folder / ("cmd" + std::to_string(n) + ".log"));
     std::this_thread::sleep_for(std::chrono::milliseconds(2500));  // well under way
     const auto asked = std::chrono::steady_clock::now();
     kill(child, SIGTERM);

@@ -1,8 +1,7 @@
 // A bulk exercise watched live in a real browser: an MHC station digs coal under the autopilot, its bulk
 // surfaces reach the console over DDS (harbour/station_bulk) and the 3D view meshes them; as the grab bites, the
 // hold's surface the browser has changes. Usage: node console_bulk.mjs HARBOURSIM OUT_DIR DOMAIN
-import { chromium } from "playwright-core";
-import { Harness } from "./harness.mjs";
+import { Harness, launchChromium } from "./harness.mjs";
 import { mkdtempSync, mkdirSync } from "node:fs";
 import { tmpdir } from "node:os";
 import path from "node:path";
@@ -19,9 +18,7 @@ try {
   run(["accounts", "add", "ines", "--role", "instructor", "--db", db], "ines-password\n");
   const [url] = await h.console(db, domain);
   start(["station", "--serve", "--name", "mhc-1", "--domain", domain, "--db", db, "--window", "off"]);
-  browser = await chromium.launch({ executablePath: "/usr/bin/chromium", args: ["--headless", "--no-sandbox",
-    "--disable-gpu", "--enable-unsafe-swiftshader", "--disable-quic", "--no-first-run", "--disable-background-networking",
-    "--disable-component-update", "--disable-sync"] });
+  browser = await launchChromium();
   const page = await browser.newPage({ viewport: { width: 1280, height: 1000 } });
   // every bulk message the page gets: the hold's (the first grid's) heights summed
   await page.addInitScript(() => {

@@ -2,8 +2,7 @@
 // exercise on a station process, changes the wind and sees it in the telemetry, injects a hoist brake fault
 // and sees its lamp and the event, repairs it, holds and resumes; a trainee is refused instructor actions and
 // sees only their own results. Usage: node console_e2e.mjs HARBOURSIM OUT_DIR DOMAIN
-import { chromium } from "playwright-core";
-import { Harness, sleep } from "./harness.mjs";
+import { Harness, sleep, launchChromium } from "./harness.mjs";
 import fs, { mkdtempSync, mkdirSync } from "node:fs";
 import { tmpdir } from "node:os";
 import path from "node:path";
@@ -31,9 +30,7 @@ try {
   const station = start(["station", "--serve", "--name", "e2e-1", "--domain", domain, "--db", db, "--window", "off",
     "--sound", "on"], { env: { ALSOFT_CONF: path.join(dir, "alsoft.conf") } });
 
-  browser = await chromium.launch({ executablePath: "/usr/bin/chromium", args: ["--headless", "--no-sandbox",
-    "--disable-gpu", "--enable-unsafe-swiftshader", "--disable-quic", "--no-first-run", "--disable-background-networking",
-    "--disable-component-update", "--disable-sync"] });
+  browser = await launchChromium();
   const page = await browser.newPage({ viewport: { width: 1280, height: 1000 } });
   await page.goto(url);
   await page.fill("#login-name", "ines");

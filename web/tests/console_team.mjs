@@ -2,8 +2,7 @@
 // sts_and_tractor (the crane, the tractor) by the instructor; the table says who is which member, each station
 // announces the other, the crane's 3D view holds the tractor; both stopped.
 // Usage: node console_team.mjs HARBOURSIM OUT_DIR DOMAIN
-import { chromium } from "playwright-core";
-import { Harness } from "./harness.mjs";
+import { Harness, launchChromium } from "./harness.mjs";
 import { mkdtempSync, mkdirSync } from "node:fs";
 import { tmpdir } from "node:os";
 import path from "node:path";
@@ -21,9 +20,7 @@ try {
   const [url] = await h.console(db, domain);
   for (const name of ["crane-cab", "tractor-cab"])
     start(["station", "--serve", "--name", name, "--domain", domain, "--db", db, "--window", "off"]);
-  browser = await chromium.launch({ executablePath: "/usr/bin/chromium", args: ["--headless", "--no-sandbox",
-    "--disable-gpu", "--enable-unsafe-swiftshader", "--disable-quic", "--no-first-run", "--disable-background-networking",
-    "--disable-component-update", "--disable-sync"] });
+  browser = await launchChromium();
   const page = await browser.newPage({ viewport: { width: 1280, height: 1100 } });
   await page.goto(url);
   await page.fill("#login-name", "ines");

@@ -2,8 +2,7 @@
 // bad certificate files are named, and with one a real browser logs in over HTTPS, gets a Secure session
 // cookie and the live WebSocket over TLS (wss) shows a station; plain HTTP on the TLS port gets no answer.
 // Usage: node console_tls.mjs HARBOURSIM DOMAIN
-import { chromium } from "playwright-core";
-import { Harness } from "./harness.mjs";
+import { Harness, launchChromium } from "./harness.mjs";
 import { execFileSync, spawnSync } from "node:child_process";
 import { mkdtempSync, writeFileSync } from "node:fs";
 import http from "node:http";
@@ -71,9 +70,7 @@ try {
     check(/^HTTP\/1\.1 404/.test(answer) && !answer.includes("root:"), `over TLS GET ${p}: ${answer.split("\r\n")[0]}`);
   }
 
-  browser = await chromium.launch({ executablePath: "/usr/bin/chromium", args: ["--headless", "--no-sandbox",
-    "--disable-gpu", "--enable-unsafe-swiftshader", "--disable-quic", "--no-first-run", "--disable-background-networking",
-    "--disable-component-update", "--disable-sync"] });
+  browser = await launchChromium();
   const context = await browser.newContext({ ignoreHTTPSErrors: true, viewport: { width: 1280, height: 900 } });
   const page = await context.newPage();
   await page.goto(url);

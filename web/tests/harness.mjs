@@ -1,6 +1,7 @@
 // What the console's browser and API tests share: checks that count failures, the harboursim processes they
 // start (killed at the end, their output shown when something failed) and waiting for a condition.
 import { spawn, execFileSync } from "node:child_process";
+import { chromium } from "playwright-core";
 
 export class Harness {
   constructor(app) { this.app = app; this.children = []; this.failures = 0; }
@@ -94,4 +95,11 @@ export function webSocket(port, cookie) {
     socket.on("close", () => { ws.closed = true; resolve(ws); });
     socket.on("error", () => { ws.closed = true; resolve(ws); });
   });
+}
+
+// Debian's chromium, headless, as root, on a closed network (no background connections, no QUIC)
+export function launchChromium() {
+  return chromium.launch({ executablePath: "/usr/bin/chromium", args: ["--headless", "--no-sandbox",
+    "--disable-gpu", "--enable-unsafe-swiftshader", "--disable-quic", "--no-first-run", "--disable-background-networking",
+    "--disable-component-update", "--disable-sync"] });
 }

@@ -178,8 +178,8 @@ inline Mat3 turned(const Mat3& r, const Vec3& omega, double t_s) {
   return Mat3::rotation((1.0 / rate) * omega, rate * t_s) * r;
 }
 
-/// The rotation a fraction `f` (0-1) of the way from `a` to `b`: their quaternions interpolated and normalised
-/// (nlerp; within 0.3 % of the angle of slerp's path for the few degrees a blend spans).
+/// The rotation a fraction `f` (0-1) of the way from `a` to `b`: their quaternions interpolated and
+/// normalised (nlerp; within 0.3 % of the angle of slerp's path for the few degrees a blend spans).
 inline Mat3 between(const Mat3& a, const Mat3& b, double f) {
   const Quat p = Quat::from(a), q = Quat::from(b);
   const double sign = p.x * q.x + p.y * q.y + p.z * q.z + p.w * q.w < 0.0 ? -1.0 : 1.0;
