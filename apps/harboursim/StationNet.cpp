@@ -116,12 +116,12 @@ net::StationState state_message(const sim::Snapshot& snapshot, std::size_t entit
   state.water_level_m(snapshot.sea.water_level_m);
   state.indicators().assign(snapshot.indicators.begin(),
                             snapshot.indicators.begin() + snapshot.indicator_count);
-  // every entity in scene order (an entity not in this snapshot keeps a zero pose: not drawn)
+  // every entity in scene order (one not in this snapshot, or hidden in it, keeps a zero pose: not drawn)
   std::vector<float>& poses = state.entity_poses();
   poses.assign(std::min<std::size_t>(entity_count, sim::kMaxEntities) * 7, 0.0f);
   for (int n = 0; n < snapshot.entity_count; ++n) {
     const sim::Snapshot::Entity& e = snapshot.entities[static_cast<std::size_t>(n)];
-    if (e.index * 7 + 7 > poses.size()) continue;
+    if (e.index * 7 + 7 > poses.size() || (e.flags & sim::Snapshot::kHidden) != 0) continue;
     const core::Quat q = core::Quat::from(e.pose.rotation);
     float* p = &poses[e.index * 7];
     for (const double v : {e.pose.position.x, e.pose.position.y, e.pose.position.z, q.x, q.y, q.z, q.w})

@@ -198,7 +198,7 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
   if (team) {
     membership = std::make_shared<TeamMembership>(*team, options.role,
                                                   options.name.empty() ? options.role : options.name,
-                                                  options.domain, session.simulation().scene());
+                                                  options.domain, exercise, session.simulation().scene());
     // for the readers that draw: the windows, the console's 3D view, the instructor's picture
     session.loop().set_addition(
         [membership](sim::Snapshot& s) { membership->add_to(s); },
@@ -358,6 +358,12 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
                       [&](const std::string& said) {
                         const std::lock_guard lock(team_said_mutex);
                         team_said.push_back(said);
+                      },
+                      [&session](const sim::TeamInput& input) {
+                        station::LoopCommand c;
+                        c.kind = station::LoopCommand::Kind::kTeam;
+                        c.team = input;
+                        return session.loop().post(c);
                       });
   AttemptPresence::Next next = AttemptPresence::Next::kRun;
   int next_line = 0;
@@ -450,8 +456,7 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
     membership->stop();
     for (const std::string& line : membership->report())
       std::printf("%s\n", line.c_str());
-    const TeamMembership::Figures f = membership->figures();
-    session.set_team_figures(f.near_misses, f.contacts, f.closest_m);
+    session.set_team_figures(membership->figures());
     session.set_team(team->name, options.role, membership->session());
     std::printf("team session %s\n", membership->session().c_str());
   }

@@ -18,6 +18,22 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr auto kPeriod = std::chrono::milliseconds(20);  // 50 Hz, the team reader's rate
+constexpr double kOfferEvery_s = 0.1;                     // a box offered again until it is acquired
+constexpr double kStanding_mps = 0.05;                    // a trailer this slow stands
+constexpr double kAtLoadStop_m = 1.5;                     // its centre this near its load stop
+
+const sim::Snapshot::Entity* entity_in(const sim::Snapshot& s, int index) {
+  for (int n = 0; n < s.entity_count; ++n)
+    if (s.entities[static_cast<std::size_t>(n)].index == static_cast<std::uint32_t>(index))
+      return &s.entities[static_cast<std::size_t>(n)];
+  return nullptr;
+}
+
+int entity_named(const sim::SceneDescription& scene, const std::string& name) {
+  for (std::size_t n = 0; n < scene.entities.size(); ++n)
+    if (scene.entities[n].name == name) return static_cast<int>(n);
+  return -1;
+}
 
 // the other roles' machines as this station knows them before it hears from them: their exercises built
 // here (not stepped) for their bodies and where those start
@@ -33,7 +49,9 @@ std::vector<station::TeamMember> other_members(const io::Team& team, const std::
     m.role = r.role;
     for (int b = 0; b < scene.machine_entities; ++b) {
       m.bodies.push_back(scene.entities[static_cast<std::size_t>(b)]);
-      m.start_poses.push_back(at_start->entities[static_cast<std::size_t>(b)].pose);
+      const sim::Snapshot::Entity& e = at_start->entities[static_cast<std::size_t>(b)];
+      m.start_poses.push_back(e.pose);
+      m.start_hidden.push_back((e.flags & sim::Snapshot::kHidden) != 0);
     }
     members.push_back(std::move(m));
   }
@@ -63,7 +81,8 @@ std::string resolve_team(const std::string& name_or_path, const std::string& cen
 }
 
 TeamMembership::TeamMembership(const io::Team& team, const std::string& role, const std::string& station,
-                               int domain, const sim::SceneDescription& own_scene)
+                               int domain, const sim::ExerciseSettings& own_exercise,
+                               const sim::SceneDescription& own_scene)
     : team_(team),
       role_(role),
       own_bodies_(own_scene.machine_entities),
@@ -72,7 +91,37 @@ TeamMembership::TeamMembership(const io::Team& team, const std::string& role, co
       started_unix_ms_(std::chrono::duration_cast<std::chrono::milliseconds>(
                            std::chrono::system_clock::now().time_since_epoch())
                            .count()),
-      earliest_unix_ms_(started_unix_ms_) {}
+      earliest_unix_ms_(started_unix_ms_) {
+  // a crane's team trucks: each a truck role's trailer, its deck where the crane's lane has a truck
+  const io::TeamRole& own = *team.find(role);
+  const int lane = own_exercise.scenario.trucks.team ? own_exercise.scenario.trucks.trucks : 0;
+  if (static_cast<int>(own.trucks.size()) != lane)
+    throw std::runtime_error("team " + team.name + ": " + role + " has " + std::to_string(own.trucks.size()) +
+                             " trucks in the team file, its exercise " + own_exercise.name + " a lane of " +
+                             std::to_string(lane) + " team trucks");
+  const sim::SceneDescription& scene = presence_.scene();
+  for (std::size_t k = 0; k < own.trucks.size(); ++k) {
+    Truck t;
+    t.role = own.trucks[k];
+    t.entity = entity_named(scene, "truck " + std::to_string(k + 1));
+    t.trailer_body = entity_named(scene, t.role + ": trailer");
+    const int load = entity_named(scene, t.role + ": load");
+    if (t.trailer_body < 0 || load < 0)
+      throw std::runtime_error("team " + team.name + ": " + t.role + " is a truck of " + role +
+                               ", but its exercise's trailer takes no box (trailer.receives)");
+    t.deck_half_z_m = scene.entities[static_cast<std::size_t>(t.trailer_body)].half_extents_m.z;
+    // its index among the member's bodies (they follow one another in this station's scene)
+    int first = t.trailer_body;
+    while (first > 0 && scene.entities[static_cast<std::size_t>(first - 1)].name.rfind(t.role + ": ", 0) == 0)
+      --first;
+    t.trailer_body -= first;
+    trucks_.push_back(t);
+  }
+  for (const sim::ContainerPlacement& c : own_exercise.scenario.containers) box_mass_kg_[c.id] = c.gross_mass_kg;
+  load_stop_ = own_exercise.load_stop;
+  trailer_entity_ = entity_named(own_scene, "trailer");
+  load_entity_ = entity_named(own_scene, "load");
+}
 
 std::string TeamMembership::session() const {
   const std::time_t at = static_cast<std::time_t>(earliest_unix_ms_.load() / 1000);
@@ -96,9 +145,11 @@ void TeamMembership::add_to(sim::Snapshot& snapshot) const {
 }
 
 void TeamMembership::start(std::function<const sim::Snapshot*()> latest,
-                           std::function<void(const std::string&)> said) {
+                           std::function<void(const std::string&)> said,
+                           std::function<bool(const sim::TeamInput&)> input) {
   latest_ = std::move(latest);
   said_ = std::move(said);
+  input_ = std::move(input);
   thread_ = std::thread([this] { run(); });
 }
 
@@ -129,7 +180,9 @@ void TeamMembership::run() {
       const double dt = before_step < 0 ? 0.0 : static_cast<double>(s->step - before_step) * 1e-3;
       for (int n = 0; n < s->entity_count && n < own_bodies_; ++n) {
         const sim::Snapshot::Entity& e = s->entities[static_cast<std::size_t>(n)];
-        if (e.index >= static_cast<std::uint32_t>(own_bodies_)) continue;
+        // (a body it does not draw, as a load still to come, is not sent: the others hide it)
+        if (e.index >= static_cast<std::uint32_t>(own_bodies_) || (e.flags & sim::Snapshot::kHidden) != 0)
+          continue;
         const core::Pose& was = before[e.index];
         const core::Vec3 v = dt > 0.0 ? (1.0 / dt) * (e.pose.position - was.position) : core::Vec3{};
         const core::Vec3 w =
@@ -146,12 +199,142 @@ void TeamMembership::run() {
       ++published_;
       for (const std::string& said : near_misses_.update(presence_.closest(*s, now_s())))
         if (said_) said_(said);
+      offer_seated(*s);
+      watch_load_stop(*s);
     }
+    feed_trucks();
     take();
   }
 }
 
+void TeamMembership::feed_trucks() {
+  if (!input_) return;
+  const double now = now_s();
+  for (std::size_t k = 0; k < trucks_.size(); ++k) {
+    const std::optional<station::RemoteMotion> m = presence_.motion_of(trucks_[k].role, trucks_[k].trailer_body, now);
+    if (!m) continue;
+    // its deck's top centre, moving with the trailer
+    const core::Vec3 up = m->pose.rotation * core::Vec3{0, 0, trucks_[k].deck_half_z_m};
+    sim::TeamInput in;
+    in.kind = sim::TeamInput::Kind::kTruckAt;
+    in.slot = static_cast<int>(k);
+    in.pose = {m->pose.rotation, m->pose.position + up};
+    in.velocity_mps = m->velocity_mps + core::cross(m->angular_velocity_radps, up);
+    in.angular_velocity_radps = m->angular_velocity_radps;
+    input_(in);
+  }
+}
+
+void TeamMembership::offer_seated(const sim::Snapshot& s) {
+  if (trucks_.empty()) return;
+  const double now = now_s();
+  const sim::SceneDescription& scene = presence_.scene();
+  for (int n = 0; n < s.entity_count; ++n) {
+    const sim::Snapshot::Entity& e = s.entities[static_cast<std::size_t>(n)];
+    if ((e.flags & sim::Snapshot::kOnTeamTruck) == 0) continue;
+    const std::string& id = scene.entities[e.index].name;
+    Offer& offer = offers_[id];
+    if (offer.settled || now - offer.last_s < kOfferEvery_s) continue;
+    if (offer.truck < 0) {
+      // the truck whose deck it sits on (the nearest across the deck), and where it sits on that trailer
+      double nearest = 1e300;
+      core::Pose on_trailer;
+      for (std::size_t k = 0; k < trucks_.size(); ++k) {
+        const sim::Snapshot::Entity* truck = entity_in(s, trucks_[k].entity);
+        if (!truck) continue;
+        const core::Vec3 on = truck->pose.to_local(e.pose.position);
+        if (std::hypot(on.x, on.y) >= nearest) continue;
+        nearest = std::hypot(on.x, on.y);
+        offer.truck = static_cast<int>(k);
+        on_trailer = {truck->pose.rotation.transposed() * e.pose.rotation,
+                      on + core::Vec3{0, 0, trucks_[k].deck_half_z_m}};
+      }
+      const core::Quat q = core::Quat::from(on_trailer.rotation);
+      std::array<float, 7> at{};
+      std::size_t n_at = 0;
+      for (const double v : {on_trailer.position.x, on_trailer.position.y, on_trailer.position.z, q.x, q.y, q.z, q.w})
+        at[n_at++] = static_cast<float>(v);
+      offer.message.on_trailer(at);
+      if (offer.truck < 0) continue;
+      offer.first_s = now;
+      offer.message.kind(0);
+      offer.message.to_role(trucks_[static_cast<std::size_t>(offer.truck)].role);
+      offer.message.item(id);
+      offer.message.mass_kg(static_cast<float>(box_mass_kg_[id]));
+      if (said_) said_(id + ": offered to " + trucks_[static_cast<std::size_t>(offer.truck)].role);
+    }
+    offer.last_s = now;
+    link_.hand_off(offer.message);
+  }
+}
+
+void TeamMembership::watch_load_stop(const sim::Snapshot& s) {
+  if (!load_stop_ || trailer_entity_ < 0 || load_entity_ < 0 || waited_s_ >= 0.0) return;
+  for (int n = 0; n < s.entity_count; ++n) {
+    const sim::Snapshot::Entity& e = s.entities[static_cast<std::size_t>(n)];
+    if (e.index == static_cast<std::uint32_t>(load_entity_) && (e.flags & sim::Snapshot::kHidden) == 0) {
+      waited_s_ = standing_since_s_ >= 0.0 ? s.time_s - standing_since_s_ : 0.0;  // its box is on
+      return;
+    }
+    if (e.index != static_cast<std::uint32_t>(trailer_entity_)) continue;
+    const core::Vec3 p = e.pose.position;
+    const double speed = trailer_was_s_ >= 0.0 && s.time_s > trailer_was_s_
+                             ? core::length(p - trailer_was_) / (s.time_s - trailer_was_s_)
+                             : 0.0;
+    const bool there = std::hypot(p.x - load_stop_->trailer_at_m.x, p.y - load_stop_->trailer_at_m.y) < kAtLoadStop_m;
+    if (there && speed < kStanding_mps && standing_since_s_ < 0.0) standing_since_s_ = s.time_s;
+    if (!there) standing_since_s_ = -1.0;
+    trailer_was_ = p;
+    trailer_was_s_ = s.time_s;
+  }
+}
+
+void TeamMembership::take_hand_offs() {
+  const double now = now_s();
+  for (const net::TeamHandOff& m : link_.take_hand_offs()) {
+    const std::string item = m.item().to_string();
+    if (m.kind() == 0 && m.to_role().to_string() == role_) {
+      // offered to this tractor: onto its trailer (once), and say so to every offer
+      if (!acquired_.count(item)) {
+        const std::array<float, 7>& p = m.on_trailer();
+        sim::TeamInput in;
+        in.kind = sim::TeamInput::Kind::kLoadOn;
+        in.pose = {core::Quat{p[3], p[4], p[5], p[6]}.matrix(), {p[0], p[1], p[2]}};
+        in.mass_kg = m.mass_kg();
+        if (!input_ || !input_(in)) continue;  // not taken: the next offer tries again
+        acquired_.insert(item);
+        ++hand_offs_;
+        const double took_s = static_cast<double>(net::TeamLink::monotonic_ns() - m.sent_ns()) * 1e-9;
+        worst_hand_off_s_ = std::max(worst_hand_off_s_, took_s);
+        if (said_) said_(item + ": acquired from " + m.from_role().to_string());
+      }
+      net::TeamHandOff answer;
+      answer.kind(1);
+      answer.from_role(m.from_role());
+      answer.item(m.item());
+      link_.hand_off(answer);
+    } else if (m.kind() == 1 && m.from_role().to_string() == role_) {
+      // the tractor has it: this crane lets it go
+      const auto offer = offers_.find(item);
+      if (offer == offers_.end() || offer->second.settled) continue;
+      sim::TeamInput in;
+      in.kind = sim::TeamInput::Kind::kTakenOver;
+      in.slot = offer->second.truck;
+      if (!input_ || !input_(in)) continue;
+      offer->second.settled = true;
+      ++hand_offs_;
+      const double took_s = now - offer->second.first_s;
+      worst_hand_off_s_ = std::max(worst_hand_off_s_, took_s);
+      char line[160];
+      std::snprintf(line, sizeof line, "%s: handed over to %s (%.0f ms)", item.c_str(),
+                    m.to_role().to_string().c_str(), took_s * 1e3);
+      if (said_) said_(line);
+    }
+  }
+}
+
 void TeamMembership::take() {
+  take_hand_offs();
   {
     const std::int64_t arrived_ns = net::TeamLink::monotonic_ns();
     for (const net::TeamState& t : link_.take()) {
@@ -188,14 +371,17 @@ void TeamMembership::take() {
   }
 }
 
-TeamMembership::Figures TeamMembership::figures() const {
-  Figures f;
+sim::TeamFigures TeamMembership::figures() const {
+  sim::TeamFigures f;
   for (const station::NearMissWatch::Tally& t : near_misses_.tallies()) {
     f.near_misses += t.near_misses;
     f.contacts += t.contacts;
     const double closest = std::max(t.closest_m, 0.0);
     f.closest_m = f.closest_m < 0.0 ? closest : std::min(f.closest_m, closest);
   }
+  f.hand_offs = hand_offs_;
+  f.worst_hand_off_ms = worst_hand_off_s_ < 0.0 ? -1.0 : worst_hand_off_s_ * 1e3;
+  f.waited_s = waited_s_;
   return f;
 }
 

@@ -2,6 +2,8 @@
 
 #include <atomic>
 #include <functional>
+#include <map>
+#include <optional>
 #include <memory>
 #include <set>
 #include <string>
@@ -10,6 +12,7 @@
 
 #include "harbour/io/TeamFiles.h"
 #include "harbour/net/DdsLink.h"
+#include "harbour/sim/Evaluation.h"
 #include "harbour/station/TeamPresence.h"
 
 namespace harbour::apps {
@@ -19,13 +22,17 @@ std::string resolve_team(const std::string& name_or_path, const std::string& cen
 
 /// A station's place in a team session: it publishes its machine's bodies at 50 Hz (velocities from
 /// consecutive snapshots), takes the other members' and draws their machines in its scene (station::
-/// TeamPresence), and says when a member is lost or back.
+/// TeamPresence), and says when a member is lost or back. A crane with team trucks feeds its simulation where
+/// their tractors' trailers are (sim::TeamInput::kTruckAt, 50 Hz) and hands each box seated on one to that
+/// tractor's station: it offers the box every 100 ms until the tractor says it has acquired it, then lets it
+/// go (kTakenOver). A tractor takes a box offered to it onto its trailer (kLoadOn) and answers every offer.
 class TeamMembership {
  public:
   /// Builds the other roles' exercises here (without stepping them) for their machines' bodies and start
-  /// poses; joins the session's DDS domain as `station`.
+  /// poses; joins the session's DDS domain as `station`. Throws std::runtime_error when the team's trucks do
+  /// not fit the exercises (a crane's lane of another size, a truck role whose trailer takes no box).
   TeamMembership(const io::Team& team, const std::string& role, const std::string& station, int domain,
-                 const sim::SceneDescription& own_scene);
+                 const sim::ExerciseSettings& own_exercise, const sim::SceneDescription& own_scene);
   ~TeamMembership();
   TeamMembership(const TeamMembership&) = delete;
   TeamMembership& operator=(const TeamMembership&) = delete;
@@ -36,24 +43,26 @@ class TeamMembership {
   void add_to(sim::Snapshot& snapshot) const;
   /// Starts publishing this machine from `latest` (the loop's team snapshots) and taking the others'; `said`
   /// hears "tractor: lost" and "tractor: back" (from this thread, as it happens).
-  void start(std::function<const sim::Snapshot*()> latest, std::function<void(const std::string&)> said);
+  /// `input` posts a team input to the station's loop (false: refused, to be tried again).
+  void start(std::function<const sim::Snapshot*()> latest, std::function<void(const std::string&)> said,
+             std::function<bool(const sim::TeamInput&)> input);
   void stop();
   /// One line per member: samples heard, their age on arrival, lost or not.
   std::vector<std::string> report();
   /// The team session this member was part of: "TEAM@START", START the earliest start (UTC, ISO 8601) of this
   /// member and every member it heard — what each member that heard the others stores with its attempt.
   std::string session() const;
-  /// Every member together, after stop(): the near misses, the contacts, the closest approach (-1: none
-  /// measured).
-  struct Figures {
-    int near_misses = 0, contacts = 0;
-    double closest_m = -1.0;
-  };
-  Figures figures() const;
+  /// What this member measured of the team, after stop(): the near misses, the contacts and the closest
+  /// approach of every member; the boxes handed over, to or from it; a tractor's wait at its load stop.
+  sim::TeamFigures figures() const;
 
  private:
   void run();
   void take();  // the others' states that came, and who was lost or came back
+  void take_hand_offs();
+  void feed_trucks();                          // a crane: where its team trucks are, into its simulation
+  void offer_seated(const sim::Snapshot& s);  // a crane: the boxes on its trucks, offered to their tractors
+  void watch_load_stop(const sim::Snapshot& s);  // a tractor: how long it stood waiting for its box
   static double now_s();
   io::Team team_;
   std::string role_;
@@ -70,6 +79,31 @@ class TeamMembership {
   std::set<std::string> refused_;               // the refusals said so far
   std::set<std::string> joined_;                // the roles heard so far
   station::NearMissWatch near_misses_;
+  std::function<bool(const sim::TeamInput&)> input_;
+  // a crane's team trucks: the tractors' roles, their trailers' bodies and decks; the crane's own boxes
+  struct Truck {
+    std::string role;
+    int trailer_body = -1;      // in the member's bodies
+    double deck_half_z_m = 0.0;  // its deck's top above its centre
+    int entity = -1;            // the crane's team truck in its own scene
+  };
+  std::vector<Truck> trucks_;
+  std::map<std::string, double> box_mass_kg_;  // by id
+  struct Offer {
+    int truck = -1;
+    double first_s = 0.0, last_s = -1.0;  // when first and last offered (wall clock)
+    net::TeamHandOff message;
+    bool settled = false;
+  };
+  std::map<std::string, Offer> offers_;  // by box id
+  std::set<std::string> acquired_;       // a tractor's boxes taken on
+  int hand_offs_ = 0;
+  double worst_hand_off_s_ = -1.0;
+  // a tractor's load stop: where its trailer stands to be loaded, and its own trailer and load entities
+  std::optional<sim::LoadStop> load_stop_;
+  int trailer_entity_ = -1, load_entity_ = -1;
+  core::Vec3 trailer_was_;
+  double trailer_was_s_ = -1.0, standing_since_s_ = -1.0, waited_s_ = -1.0;
 };
 
 }  // namespace harbour::apps

@@ -44,6 +44,16 @@ sim::Recording sample() {
   fog.kind = sim::InstructorCommand::Kind::kSetVisibility;
   fog.value = 300.0;
   r.commands = {{1500, gust}, {2600, fog}};
+  sim::TeamInput truck;  // version 9: what a team's other stations made happen
+  truck.slot = 1;
+  truck.pose = {core::Mat3::rotation({0, 0, 1}, 1.5), {8.0, -3.25, 2.45}};
+  truck.velocity_mps = {0.0, 1.25, 0.0};
+  truck.angular_velocity_radps = {0.0, 0.0, 0.03125};
+  sim::TeamInput load;
+  load.kind = sim::TeamInput::Kind::kLoadOn;
+  load.pose.position = {0.125, 0.0, 1.595};
+  load.mass_kg = 22000.0;
+  r.team = {{1500, truck}, {2700, load}};
   return r;
 }
 
@@ -68,6 +78,20 @@ TEST(RecordingFile, RoundTripsBitForBit) {
   EXPECT_EQ(back.commands[1].step, 2600);
   EXPECT_TRUE(back.commands[0].command == sample().commands[0].command);
   EXPECT_TRUE(back.commands[1].command == sample().commands[1].command);
+  ASSERT_EQ(back.team.size(), 2u);
+  const sim::Recording expected = sample();
+  for (std::size_t n = 0; n < 2; ++n) {
+    const sim::TeamInput &got = back.team[n].input, &sent = expected.team[n].input;
+    EXPECT_EQ(back.team[n].step, expected.team[n].step);
+    EXPECT_EQ(got.kind, sent.kind);
+    EXPECT_EQ(got.slot, sent.slot);
+    EXPECT_TRUE(got.pose.position == sent.pose.position);
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) EXPECT_EQ(got.pose.rotation.m[r][c], sent.pose.rotation.m[r][c]);
+    EXPECT_TRUE(got.velocity_mps == sent.velocity_mps);
+    EXPECT_TRUE(got.angular_velocity_radps == sent.angular_velocity_radps);
+    EXPECT_EQ(got.mass_kg, sent.mass_kg);
+  }
   EXPECT_FALSE(std::filesystem::exists(path + ".partial"));
   EXPECT_TRUE(back.ropes_settled);
   EXPECT_TRUE(back.ropes_curved);
@@ -141,13 +165,13 @@ TEST(RecordingFile, BadFilesNameTheFileAndTheByte) {
   {
     std::fstream f(path, std::ios::binary | std::ios::in | std::ios::out);
     f.seekp(4);
-    f.put(9);  // version 9
+    f.put(10);  // version 10
   }
   try {
     read_recording(path);
     FAIL() << "accepted a future version";
   } catch (const RecordingFileError& e) {
-    EXPECT_NE(std::string(e.what()).find("version 9 is not supported"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("version 10 is not supported"), std::string::npos) << e.what();
   }
   // the last instructor command's kind byte: its record is tag 'M', the step (2600, little-endian), the kind
   write_recording(path, sample());

@@ -805,6 +805,7 @@ void ImageGenerator::update(const sim::Snapshot& s) {
   for (int n = 0; n < s.entity_count; ++n) {
     const sim::Snapshot::Entity& e = s.entities[static_cast<std::size_t>(n)];
     if (e.index < entities_.size()) {
+      entities_[e.index]->setNodeMask((e.flags & sim::Snapshot::kHidden) != 0 ? 0u : ~0u);
       entities_[e.index]->setMatrix(to_osg(e.pose));
       entity_poses_[e.index] = e.pose;
     }

@@ -84,11 +84,23 @@ sim::TrailerSettings read_coupled_trailer(const YamlFile& f, const YAML::Node& t
   sim::TrailerSettings trailer = load_trailer(path);
   trailer.id = f.text(t, "id", at);
   // the payload's centre along the deck (a load over the axle leaves little on the kingpin)
-  const double payload_kg = f.number(t, "payload_kg", at, 0.0, trailer.max_payload_kg, true);
+  // (one that receives a box handed over starts empty)
+  const bool receives = f.optional(t, "receives", at).has_value();
+  const double payload_kg = receives ? 0.0 : f.number(t, "payload_kg", at, 0.0, trailer.max_payload_kg, true);
   const double payload_x_m =
       f.number_or(t, "payload_centre_m", at, 0.0, -trailer.half_extents_m.x, trailer.half_extents_m.x);
   trailer.center_of_mass_x_m = payload_kg * payload_x_m / (trailer.mass_kg + payload_kg);
   trailer.mass_kg += payload_kg;
+  // a box a team's crane will hand over onto it (its ISO type)
+  if (receives) {
+    const std::string type = f.text(t, "receives", at);
+    const auto iso = iso_types().find(type);
+    if (iso == iso_types().end())
+      f.fail(t["receives"], at + ".receives", "unknown container type '" + type + "' (20ft, 40ft, 40ftHC, 45ftHC)");
+    if (f.optional(t, "payload_kg", at))
+      f.fail(t["payload_kg"], at + ".payload_kg", "a trailer that receives a box starts empty (no payload_kg)");
+    trailer.receives_half_extents_m = iso->second.size_m * 0.5;
+  }
   // level when coupled: its kingpin as high as the plate, up; its legs clear then and down with the plate
   const sim::AxleSettings& front = tractor.chassis.axles.front();
   const double plate_m = tractor.chassis.tyre.radius_m - front.hub_z_m + tractor.hitch_m.z;
@@ -363,6 +375,9 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
     lane.stop_y_m = f.number(t, "stop_y_m", at, -kSite_m, kSite_m);
     lane.chassis_top_m = f.number_or(t, "chassis_top_m", at, lane.chassis_top_m, 0.5, 3.0);
     lane.delivering = f.flag(t, "delivering", at, false);
+    lane.team = f.flag(t, "team", at, false);
+    if (lane.team && lane.delivering)
+      f.fail(t["team"], at + ".team", "a team's tractors take boxes away (delivering is not for a team lane)");
   }
 
   if (const auto y_node = f.optional_map(x, "yard_block", "exercise")) {
@@ -566,6 +581,7 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
       if (s.trucks.trucks == 0) f.fail(moves[n]["to"], at + ".to", "the exercise has no trucks");
       const double height = 2.0 * s.containers[known->second].half_extents_m.z;
       g.target_m = {s.trucks.lane_x_m, s.trucks.stop_y_m, s.trucks.chassis_top_m + height / 2};
+      g.to_truck = true;
     } else if (const auto slot = f.optional(moves[n], "block_slot", at)) {
       g.target_m = block_slot_centre(f, *slot, at + ".block_slot", s.yard_block);
     } else {
@@ -712,6 +728,22 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
     if (steepest / ramp.length_m > 0.25)
       f.fail(x["ramp"], at, "is steeper than 1:4 at the tide's and swell's extremes");
     s.ramp = ramp;
+  }
+
+  if (const auto stop = f.optional_map(x, "load_stop", "exercise")) {
+    // a team's tractor collects a box under the crane first: {trailer_at_m: [x, y], heading_deg}
+    const std::string at = "exercise.load_stop";
+    const auto* towing = s.machine.get_if<sim::TractorSetup>();
+    if (!towing || !towing->start.trailer || !towing->start.trailer->receives_half_extents_m)
+      f.fail(x["load_stop"], at, "only a tractor whose trailer receives a box (vehicle.trailer.receives) stops for one");
+    const YAML::Node c = f.required(*stop, "trailer_at_m", at);
+    if (!c.IsSequence() || c.size() != 2) f.fail(c, at + ".trailer_at_m", "is [x, y] in metres");
+    sim::LoadStop load_stop;
+    load_stop.trailer_at_m = {f.number_at(c[0], at + ".trailer_at_m[0]"), f.number_at(c[1], at + ".trailer_at_m[1]"), 0.0};
+    if (!(std::abs(load_stop.trailer_at_m.x) <= kSite_m && std::abs(load_stop.trailer_at_m.y) <= kSite_m))
+      f.fail(c, at + ".trailer_at_m", "lies off the site");
+    load_stop.heading_rad = core::deg_to_rad(f.number(*stop, "heading_deg", at, -360.0, 360.0));
+    e.load_stop = load_stop;
   }
 
   if (f.optional(x, "speed_zones", "exercise")) {

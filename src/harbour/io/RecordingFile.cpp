@@ -124,6 +124,7 @@ constexpr std::size_t kCommandRecord = 8 + 1 + 2 * 8 + 4 + 4 * 8;
 // v6 record tags
 constexpr std::uint8_t kTagInput = 'I', kTagCheckpoint = 'C', kTagKeyframe = 'K', kTagCommand = 'M',
                        kTagEnd = 'E';
+constexpr std::uint8_t kTagTeam = 'T';  // v9
 
 // v7: the step, then the values that changed since the previous input record (slot, value)
 void put_input(Writer& w, const sim::Recording::InputChange& c, const sim::Controls& previous,
@@ -152,6 +153,24 @@ void put_command(Writer& w, const sim::Recording::Command& c) {
   w.put(c.command.turbulence);
 }
 
+// step, kind, slot, position, rotation (its matrix by rows: exactly what was applied), velocity, angular
+// velocity, mass
+constexpr std::size_t kTeamValues = 3 + 9 + 3 + 3 + 1;
+void put_team(Writer& w, const sim::Recording::TeamEvent& e) {
+  const sim::TeamInput& t = e.input;
+  w.put(e.step);
+  w.put(static_cast<std::uint8_t>(t.kind));
+  w.put(static_cast<std::int32_t>(t.slot));
+  for (const double v : {t.pose.position.x, t.pose.position.y, t.pose.position.z})
+    w.put(v);
+  for (const auto& row : t.pose.rotation.m)
+    for (const double v : row)
+      w.put(v);
+  for (const double v : {t.velocity_mps.x, t.velocity_mps.y, t.velocity_mps.z, t.angular_velocity_radps.x,
+                         t.angular_velocity_radps.y, t.angular_velocity_radps.z, t.mass_kg})
+    w.put(v);
+}
+
 }  // namespace
 
 RecordingWriter::RecordingWriter(const std::string& path, const sim::Recording& prefix) : path_(path) {
@@ -176,31 +195,36 @@ RecordingWriter::RecordingWriter(const std::string& path, const sim::Recording& 
   write(w.out, true);
   // the prefix merged in the order a run streams it: before step s the commands of s, after it the input
   // change applied at s and the checkpoint and keyframe of s + 1 (each list is written in its own order)
-  const std::size_t sizes[] = {prefix.commands.size(), prefix.inputs.size(), prefix.checkpoints.size(),
-                               prefix.keyframes.size()};
-  std::size_t next[] = {0, 0, 0, 0};
+  // (the team inputs of s after its commands)
+  const std::size_t sizes[] = {prefix.commands.size(),    prefix.team.size(),     prefix.inputs.size(),
+                               prefix.checkpoints.size(), prefix.keyframes.size()};
+  constexpr std::size_t kKinds = std::size(sizes);
+  std::size_t next[kKinds] = {};
   const auto streamed_at = [&](std::size_t kind) -> std::pair<std::int64_t, std::size_t> {
     switch (kind) {
       case 0:
         return {prefix.commands[next[0]].step, 0};
       case 1:
-        return {prefix.inputs[next[1]].step, 1};
+        return {prefix.team[next[1]].step, 1};
       case 2:
-        return {prefix.checkpoints[next[2]].step - 1, 2};
+        return {prefix.inputs[next[2]].step, 2};
+      case 3:
+        return {prefix.checkpoints[next[3]].step - 1, 3};
       default:
-        return {prefix.keyframes[next[3]].step - 1, 3};
+        return {prefix.keyframes[next[4]].step - 1, 4};
     }
   };
   for (;;) {
-    std::size_t first = 4;
-    for (std::size_t kind = 0; kind < 4; ++kind)
-      if (next[kind] < sizes[kind] && (first == 4 || streamed_at(kind) < streamed_at(first))) first = kind;
-    if (first == 4) break;
+    std::size_t first = kKinds;
+    for (std::size_t kind = 0; kind < kKinds; ++kind)
+      if (next[kind] < sizes[kind] && (first == kKinds || streamed_at(kind) < streamed_at(first))) first = kind;
+    if (first == kKinds) break;
     const std::size_t n = next[first]++;
     if (first == 0) on_command(prefix.commands[n]);
-    if (first == 1) on_input(prefix.inputs[n]);
-    if (first == 2) on_checkpoint(prefix.checkpoints[n]);
-    if (first == 3) on_keyframe(prefix.keyframes[n]);
+    if (first == 1) on_team(prefix.team[n]);
+    if (first == 2) on_input(prefix.inputs[n]);
+    if (first == 3) on_checkpoint(prefix.checkpoints[n]);
+    if (first == 4) on_keyframe(prefix.keyframes[n]);
   }
 }
 
@@ -245,6 +269,13 @@ void RecordingWriter::on_command(const sim::Recording::Command& command) {
   Writer w;
   w.put(kTagCommand);
   put_command(w, command);
+  write(w.out, true);
+}
+
+void RecordingWriter::on_team(const sim::Recording::TeamEvent& event) {
+  Writer w;
+  w.put(kTagTeam);
+  put_team(w, event);
   write(w.out, true);
 }
 
@@ -334,6 +365,37 @@ sim::Recording::Command read_command(Reader& r, std::size_t n) {
   return c;
 }
 
+sim::Recording::TeamEvent read_team(Reader& r, std::size_t n) {
+  sim::Recording::TeamEvent e;
+  e.step = r.get<std::int64_t>("team input step");
+  const auto kind = r.get<std::uint8_t>("team input kind");
+  if (kind >= sim::TeamInput::kKinds) r.fail("team input kind " + std::to_string(kind) + " unknown");
+  sim::TeamInput& t = e.input;
+  t.kind = static_cast<sim::TeamInput::Kind>(kind);
+  t.slot = r.get<std::int32_t>("team input slot");
+  double v[kTeamValues];
+  for (double& x : v)
+    x = r.get<double>("team input value");
+  t.pose.position = {v[0], v[1], v[2]};
+  for (int row = 0; row < 3; ++row)
+    for (int col = 0; col < 3; ++col)
+      t.pose.rotation.m[row][col] = v[3 + 3 * row + col];
+  // a rotation: its rows unit and square to one another (what a replay applies must be one)
+  const core::Mat3& m = t.pose.rotation;
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) {
+      const double dot = m.m[a][0] * m.m[b][0] + m.m[a][1] * m.m[b][1] + m.m[a][2] * m.m[b][2];
+      if (!(std::abs(dot - (a == b ? 1.0 : 0.0)) < 1e-6))
+        r.fail("team input " + std::to_string(n) + ": a rotation that is not one");
+    }
+  t.velocity_mps = {v[12], v[13], v[14]};
+  t.angular_velocity_radps = {v[15], v[16], v[17]};
+  t.mass_kg = v[18];
+  if (const std::string why = sim::why_invalid(t); !why.empty())
+    r.fail("team input " + std::to_string(n) + ": " + why);
+  return e;
+}
+
 // records in order, every checkpoint second covered, everything within the recording
 void check_recording(const sim::Recording& rec, Reader& r) {
   if (rec.total_steps < 0 || rec.total_steps > kMaxRecordingSteps)
@@ -361,6 +423,11 @@ void check_recording(const sim::Recording& rec, Reader& r) {
     if (step < 0 || step > rec.total_steps) r.fail("instructor command step outside the recording");
     if (n > 0 && step < rec.commands[n - 1].step) r.fail("instructor commands out of order");
   }
+  for (std::size_t n = 0; n < rec.team.size(); ++n) {
+    const std::int64_t step = rec.team[n].step;
+    if (step < 0 || step > rec.total_steps) r.fail("team input step outside the recording");
+    if (n > 0 && step < rec.team[n - 1].step) r.fail("team inputs out of order");
+  }
 }
 
 // v6: tagged records until the end record; a file without one is what a killed run left
@@ -381,6 +448,8 @@ void read_records(Reader& r, sim::Recording& rec, std::uint16_t version) {
         rec.keyframes.push_back(read_keyframe(r, kRecordingVersion, rec.keyframes.size()));
       } else if (tag == kTagCommand) {
         rec.commands.push_back(read_command(r, rec.commands.size()));
+      } else if (tag == kTagTeam && version >= 9) {
+        rec.team.push_back(read_team(r, rec.team.size()));
       } else if (tag == kTagEnd) {
         rec.total_steps = r.get<std::int64_t>("total steps");
         ended = true;
@@ -404,6 +473,7 @@ void read_records(Reader& r, sim::Recording& rec, std::uint16_t version) {
   std::erase_if(rec.inputs, [&](const auto& c) { return c.step >= rec.total_steps; });
   std::erase_if(rec.keyframes, [&](const auto& k) { return k.step > rec.total_steps; });
   std::erase_if(rec.commands, [&](const auto& c) { return c.step >= rec.total_steps; });
+  std::erase_if(rec.team, [&](const auto& e) { return e.step >= rec.total_steps; });
   std::erase_if(rec.checkpoints, [&](const auto& c) { return c.step > rec.total_steps; });
 }
 

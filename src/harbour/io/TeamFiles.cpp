@@ -1,5 +1,7 @@
 #include "harbour/io/TeamFiles.h"
 
+#include <algorithm>
+
 #include <filesystem>
 
 #include "harbour/io/RouteFiles.h"
@@ -53,8 +55,31 @@ Team load_team(const YamlFile& f, const std::string& folder,
     r.exercise_file = stage_exercise_file(exercise, folder, exercise_folders);
     if (r.exercise_file.empty())
       f.fail(roles[k]["exercise"], path + ".exercise", "no exercise '" + exercise + "'");
+    if (f.optional(roles[k], "trucks", path)) {
+      const YAML::Node trucks = f.sequence(roles[k], "trucks", path, 8);
+      for (std::size_t n = 0; n < trucks.size(); ++n) {
+        const std::string at = path + ".trucks[" + std::to_string(n) + "]";
+        if (!trucks[n].IsScalar()) f.fail(trucks[n], at, "is a role's name");
+        r.trucks.push_back(trucks[n].as<std::string>());
+        if (const std::string why = why_bad_name(r.trucks.back(), 32, false); !why.empty())
+          f.fail(trucks[n], at, "'" + r.trucks.back() + "': " + why);
+      }
+    }
     t.roles.push_back(r);
   }
+  // each truck another role, serving one crane once
+  std::vector<std::string> serving;
+  for (std::size_t k = 0; k < roles.size(); ++k)
+    for (std::size_t n = 0; n < t.roles[k].trucks.size(); ++n) {
+      const std::string& truck = t.roles[k].trucks[n];
+      const YAML::Node at = roles[k]["trucks"][n];
+      const std::string path = "team.roles[" + std::to_string(k) + "].trucks[" + std::to_string(n) + "]";
+      if (!t.find(truck) || truck == t.roles[k].role)
+        f.fail(at, path, "'" + truck + "' is not another role of this team (" + t.role_list() + ")");
+      if (std::find(serving.begin(), serving.end(), truck) != serving.end())
+        f.fail(at, path, "'" + truck + "' already serves as a truck");
+      serving.push_back(truck);
+    }
   f.check_unknown_keys();
   return t;
 }

@@ -13,6 +13,9 @@ namespace harbour::io {
 struct TeamRole {
   std::string role;           ///< "crane", "tractor-1": letters, digits, '-', '_' (1-32)
   std::string exercise_file;  ///< the member's exercise
+  /// A crane's team trucks (its exercise's `trucks: {team: true}` lane), in order: the roles whose trailers
+  /// they are.
+  std::vector<std::string> trucks;
 };
 struct Team {
   std::string name;  ///< the team session's name on the network (1-64 letters, digits, '-', '_', '.')

@@ -143,6 +143,13 @@ class Machine {
   virtual const BulkTool* bulk_tool() const { return nullptr; }
   /// The material its tool holds [kg] (its weight hangs on the tool until the next call).
   virtual void carry_bulk(double /*mass_kg*/) {}
+  /// Why it cannot take a box handed over by a team's crane ("" when it can): a trailer that receives one.
+  virtual std::string why_no_load() const { return std::string("the ") + kind() + " takes no load handed over"; }
+  /// A box of `mass_kg` handed over onto it (a team's crane set it down): `on_trailer` its centre in its
+  /// trailer's frame. Only where why_no_load() is "".
+  virtual void take_load(const core::Pose& /*on_trailer*/, double /*mass_kg*/) {}
+  /// The box handed over onto it, if one has been (its body).
+  virtual std::optional<physics::BodyId> load() const { return std::nullopt; }
   /// What its safety systems counted since the start and how its load swings now (for the evaluation).
   virtual MachineTally tally() const { return {}; }
   /// Before the first step: its hoist ropes stretched under what hangs on them, at rest (built unstretched).

@@ -44,6 +44,7 @@ namespace {
 enum class Delivery { kLatestKept, kStream, kBestEffort };
 
 constexpr int kMostNodes = 256;  // stations and consoles on one domain
+constexpr int kHandOffDepth = 64;  // hand-off messages kept for a late reader (re-offered every 100 ms anyway)
 
 // a writer's or a reader's QoS for one of the three kinds of delivery
 template <class Qos>
@@ -76,10 +77,10 @@ struct Participant {
   dds::Subscriber* subscriber = nullptr;
   std::map<std::string, dds::Topic*> topics;
   dds::DataWriter *status = nullptr, *scene = nullptr, *state = nullptr, *bulk = nullptr, *picture = nullptr,
-                  *event = nullptr, *command = nullptr, *ack = nullptr, *team = nullptr;
+                  *event = nullptr, *command = nullptr, *ack = nullptr, *team = nullptr, *hand_off = nullptr;
   dds::DataReader *status_in = nullptr, *scene_in = nullptr, *state_in = nullptr, *bulk_in = nullptr,
                   *picture_in = nullptr, *event_in = nullptr, *command_in = nullptr, *ack_in = nullptr,
-                  *team_in = nullptr;
+                  *team_in = nullptr, *hand_off_in = nullptr;
   std::mutex write_mutex;
 
   Participant(int domain, const std::string& name) {
@@ -99,6 +100,7 @@ struct Participant {
     register_type<StationCommandPubSubType>(kCommandTopic);
     register_type<CommandAckPubSubType>(kAckTopic);
     register_type<TeamStatePubSubType>(kTeamTopic);
+    register_type<TeamHandOffPubSubType>(kHandOffTopic);
     publisher = participant->create_publisher(dds::PUBLISHER_QOS_DEFAULT);
     subscriber = participant->create_subscriber(dds::SUBSCRIBER_QOS_DEFAULT);
     if (!publisher || !subscriber) fail("a publisher or subscriber");
@@ -229,6 +231,23 @@ TeamLink::TeamLink(const std::string& station, const std::string& session, const
   dds_ = std::make_unique<Participant>(domain, "harbour team member " + station);
   dds_->team = dds_->writer(kTeamTopic, Delivery::kBestEffort, 1);
   dds_->team_in = dds_->reader(kTeamTopic, Delivery::kBestEffort, 1);
+  dds_->hand_off = dds_->writer(kHandOffTopic, Delivery::kStream, kHandOffDepth);
+  dds_->hand_off_in = dds_->reader(kHandOffTopic, Delivery::kStream, kHandOffDepth);
+}
+
+void TeamLink::hand_off(TeamHandOff message) {
+  message.session(session_);
+  (message.kind() == 0 ? message.from_role() : message.to_role()) = role_;
+  message.sent_ns(monotonic_ns());
+  dds_->write(dds_->hand_off, message);
+}
+
+std::vector<TeamHandOff> TeamLink::take_hand_offs() {
+  std::vector<TeamHandOff> messages;
+  dds_->take<TeamHandOff>(dds_->hand_off_in, [&](const TeamHandOff& m, const dds::SampleInfo& info) {
+    if (info.valid_data && m.session().to_string() == session_) messages.push_back(m);
+  });
+  return messages;
 }
 
 TeamLink::~TeamLink() = default;

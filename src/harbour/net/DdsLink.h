@@ -24,6 +24,7 @@ inline constexpr const char* kEventTopic = "harbour/station_event";
 inline constexpr const char* kCommandTopic = "harbour/station_command";
 inline constexpr const char* kAckTopic = "harbour/command_ack";
 inline constexpr const char* kTeamTopic = "harbour/team_state";
+inline constexpr const char* kHandOffTopic = "harbour/team_hand_off";
 
 /// How often a station says it is there, and how long a console waits before it shows it as lost.
 inline constexpr double kStatusPeriod_s = 0.5;
@@ -84,6 +85,11 @@ class TeamLink {
   void publish(TeamState state);
   /// The other members' samples that arrived since the last call, in arrival order.
   std::vector<TeamState> take();
+  /// Fills in the session, the sender's role as from_role (an offer) or to_role (acquired) and the time, and
+  /// writes it.
+  void hand_off(TeamHandOff message);
+  /// The hand-off messages of this session that arrived since the last call, in arrival order.
+  std::vector<TeamHandOff> take_hand_offs();
   /// Waits up to `timeout` for a sample to take (any member's, this session's or not); true when one came.
   bool wait(std::chrono::nanoseconds timeout);
   /// The monotonic clock TeamState::sent_ns is read from (one for every process on a host).

@@ -336,6 +336,16 @@ void PhysicsWorld::set_kinematic(BodyId body, bool kinematic) {
   }
 }
 
+void PhysicsWorld::set_box_mass(BodyId body, double mass_kg, const Vec3& half_extents_m) {
+  dBodyID b = ode_->bodies[body].id;
+  const bool kinematic = dBodyIsKinematic(b) != 0;
+  dMass mass;
+  const Vec3 size = half_extents_m * 2.0;
+  dMassSetBoxTotal(&mass, mass_kg, size.x, size.y, size.z);
+  dBodySetMass(b, &mass);  // (a kinematic body's mass is kept for when it turns dynamic)
+  if (kinematic) dBodySetKinematic(b);
+}
+
 bool PhysicsWorld::is_kinematic(BodyId body) const {
   return dBodyIsKinematic(ode_->bodies[body].id) != 0;
 }

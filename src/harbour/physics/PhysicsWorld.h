@@ -87,6 +87,8 @@ class PhysicsWorld {
   /// Switches a body between kinematic (moved by the caller, pushes others, costs no solver rows) and
   /// dynamic (keeps its velocity and its mass).
   void set_kinematic(BodyId body, bool kinematic);
+  /// Gives a box body `mass_kg` spread evenly through its box of `half_extents_m` (kinematic or not).
+  void set_box_mass(BodyId body, double mass_kg, const core::Vec3& half_extents_m);
   bool is_kinematic(BodyId body) const;
   /// Places a kinematic body and sets the velocities it moves with through the next step.
   void set_kinematic_motion(BodyId body, const core::Pose& pose, const core::Vec3& velocity,

@@ -309,7 +309,9 @@ StsControls Autopilot::decide(const Simulation& simulation) {
     return in;
   }
   const double now = simulation.time_s();
-  const core::Vec3 destination = carrying_ ? exercise_.moves[goal_].target_m : source(simulation);
+  // a team's truck not yet under the crane: over its stop, waiting for it
+  const std::optional<core::Vec3> target = carrying_ ? move_target(exercise_.moves[goal_], simulation) : std::nullopt;
+  const core::Vec3 destination = !carrying_ ? source(simulation) : target ? *target : exercise_.moves[goal_].target_m;
   const double travel_height = simulation.vessel()
                                    ? highest_travel
                                    : std::min(highest_travel, height_over_stacks(simulation, destination));
@@ -349,8 +351,11 @@ StsControls Autopilot::decide(const Simulation& simulation) {
     case Phase::kSettle:
       // catch the swing and creep onto the target before lowering (four periods at most)
       position_finely(simulation, destination, period, in);
-      if ((on_target(kSettled_m) && now - phase_start_ > 0.5) || now - phase_start_ > 4 * period)
+      if (carrying_ && !target) {
+        phase_start_ = now;  // settling over the stop until the truck is there
+      } else if ((on_target(kSettled_m) && now - phase_start_ > 0.5) || now - phase_start_ > 4 * period) {
         enter(Phase::kLower);
+      }
       break;
     case Phase::kLower: {
       position_finely(simulation, destination, period, in);

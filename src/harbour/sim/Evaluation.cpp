@@ -88,12 +88,18 @@ int Evaluator::goal_of(physics::BodyId body, const Simulation& simulation) const
   return -1;
 }
 
+std::optional<core::Vec3> move_target(const MoveGoal& goal, const Simulation& simulation) {
+  if (!goal.to_truck || !simulation.trucks() || !simulation.trucks()->team()) return goal.target_m;
+  const double height_m = 2.0 * (goal.target_m.z - simulation.scenario().trucks.chassis_top_m);
+  return simulation.trucks()->load_centre(height_m);
+}
+
 bool Evaluator::near_target(physics::BodyId box, const Simulation& simulation) const {
   const int g = goal_of(box, simulation);
   if (g < 0) return false;
   const core::Vec3 p = simulation.world().pose(box).position;
-  const core::Vec3 t = exercise_.moves[g].target_m;
-  return std::hypot(p.x - t.x, p.y - t.y) <= 2.0 * exercise_.moves[g].tolerance_m;
+  const std::optional<core::Vec3> t = move_target(exercise_.moves[g], simulation);
+  return t && std::hypot(p.x - t->x, p.y - t->y) <= 2.0 * exercise_.moves[g].tolerance_m;
 }
 
 void Evaluator::record_landing(const Simulation& simulation, std::optional<physics::BodyId> hanging_box) {
@@ -350,7 +356,8 @@ void Evaluator::observe_moves(const Simulation& simulation, std::optional<physic
     if (g >= 0 && !done_[g]) {
       const MoveGoal& goal = exercise_.moves[g];
       const core::Pose pose = simulation.world().pose(*carried_);
-      const core::Vec3 p = pose.position, t = goal.target_m;
+      // (a team truck that has just left with it: its box is where it was set down)
+      const core::Vec3 p = pose.position, t = move_target(goal, simulation).value_or(p);
       const double offset = std::hypot(p.x - t.x, p.y - t.y);
       // skew: its heading from the goal's, a box's either way round
       double skew = 0.0;
@@ -541,9 +548,14 @@ std::vector<std::pair<std::string, double>> Metrics::rows() const {
     r.emplace_back(axis.axis + "_harsh_moves", axis.harsh_moves);
   }
   if (team) {
-    r.emplace_back("team_near_misses", team_near_misses);
-    r.emplace_back("team_contacts", team_contacts);
-    if (team_closest_m >= 0.0) r.emplace_back("team_closest_m", team_closest_m);
+    r.emplace_back("team_near_misses", team->near_misses);
+    r.emplace_back("team_contacts", team->contacts);
+    if (team->closest_m >= 0.0) r.emplace_back("team_closest_m", team->closest_m);
+    if (team->hand_offs > 0) {
+      r.emplace_back("team_hand_offs", team->hand_offs);
+      r.emplace_back("team_worst_hand_off_ms", team->worst_hand_off_ms);
+    }
+    if (team->waited_s >= 0.0) r.emplace_back("team_waited_s", team->waited_s);
   }
   if (!placement_offset_m.empty())
     r.emplace_back("worst_placement_offset_m",

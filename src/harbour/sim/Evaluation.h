@@ -20,7 +20,14 @@ struct MoveGoal {
   bool on_wheels = false;             ///< a trailer: its height is its wheels' business, not checked
   std::optional<double> heading_rad;  ///< the heading it is set down at (a box either way round), if checked
   double heading_tolerance_rad = 0.05;  ///< its skew still counted as done
+  /// Onto the truck waiting under the crane: target_m is where the lane's stop puts it, and a team lane's
+  /// truck stands where its tractor stopped (move_target).
+  bool to_truck = false;
 };
+
+/// Where `goal`'s item is to be set down now: its target, or, for a move to the truck, the chassis of the truck
+/// waiting under the crane (nullopt while none waits: a team's tractor still on its way).
+std::optional<core::Vec3> move_target(const MoveGoal& goal, const Simulation& simulation);
 
 /// Trigger values and per-occurrence deductions (points of 100); defined in docs/evaluation.md.
 struct EvaluationRules {
@@ -89,9 +96,17 @@ struct SpeedZone {
 };
 
 /// An exercise: a scenario, the moves to make and the rules that score them (settings).
+/// Where a tractor waits under a team's crane for a box before its moves: its trailer's centre (ground) and
+/// heading there.
+struct LoadStop {
+  core::Vec3 trailer_at_m;
+  double heading_rad = 0.0;
+};
+
 struct ExerciseSettings {
   std::string name;
   ScenarioSettings scenario;
+  std::optional<LoadStop> load_stop;  ///< a team's tractor collects its box here first
   std::vector<MoveGoal> moves;
   std::vector<SpeedZone> speed_zones;
   /// [m] ground points a vehicle is to pass in order with its load, from where it picks it up to its
@@ -101,6 +116,15 @@ struct ExerciseSettings {
   std::optional<TrimGoal> trim;
   EvaluationRules rules;
   RadioScript radio;  ///< the signaller's calls on the cab's radio
+};
+
+/// What a team session's member measured of the team (its station: station::NearMissWatch and the hand-offs).
+struct TeamFigures {
+  int near_misses = 0, contacts = 0;  ///< with the other members' machines
+  double closest_m = -1.0;            ///< the closest any came [m] (-1: none measured)
+  int hand_offs = 0;                  ///< boxes that changed owner, to or from this member, settled
+  double worst_hand_off_ms = -1.0;    ///< [ms] the longest from offer to both sides agreeing (-1: none)
+  double waited_s = -1.0;  ///< [s] a tractor standing at its load stop until its box was on (-1: it never did)
 };
 
 /// Everything measured during an attempt (docs/evaluation.md defines each).
@@ -171,11 +195,8 @@ struct Metrics {
     int harsh_moves = 0;         ///< onsets of a jerk above rules.harsh_jerk_mps3
   };
   std::vector<Smoothness> smoothness;
-  /// A team session's member: its machine's near misses and contacts with the other members' machines, and
-  /// the closest any came [m] (measured by the station: station::NearMissWatch).
-  bool team = false;
-  int team_near_misses = 0, team_contacts = 0;
-  double team_closest_m = -1.0;  ///< -1: no member's machine was measured
+  /// A team session's member: its team figures (measured by its station).
+  std::optional<TeamFigures> team;
   /// Every figure by name (the records store them as rows): the container figures, and the bulk ones for a
   /// bulk exercise.
   std::vector<std::pair<std::string, double>> rows() const;

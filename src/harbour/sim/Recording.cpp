@@ -54,6 +54,11 @@ void Recorder::on_command(std::int64_t step, const InstructorCommand& command) {
   if (sink_) sink_->on_command(recording_.commands.back());
 }
 
+void Recorder::on_team(std::int64_t step, const TeamInput& input) {
+  recording_.team.push_back({step, input});
+  if (sink_) sink_->on_team(recording_.team.back());
+}
+
 // recorded values (by the recording's labels) at this machine's slots
 class BySlot {
  public:
@@ -116,7 +121,7 @@ void ReplayPlayer::seek(std::int64_t step) {
     simulation_ = std::make_unique<Simulation>(scenario_);
     by_slot_ =
         std::make_unique<BySlot>(recording_.control_labels, simulation_->control_table());  // its table
-    next_input_ = next_checkpoint_ = next_command_ = 0;
+    next_input_ = next_checkpoint_ = next_command_ = next_team_ = 0;
     current_ = simulation_->control_table().neutral();
     if (start) {
       simulation_->restore_state(start->state);
@@ -130,6 +135,8 @@ void ReplayPlayer::seek(std::int64_t step) {
       while (next_command_ < recording_.commands.size() &&
              recording_.commands[next_command_].step < simulation_->steps())
         ++next_command_;
+      while (next_team_ < recording_.team.size() && recording_.team[next_team_].step < simulation_->steps())
+        ++next_team_;
     }
   }
   advance_to(end);
@@ -142,6 +149,8 @@ void ReplayPlayer::advance_to(std::int64_t step, const ReplayObserver& observer)
     while (next_command_ < recording_.commands.size() &&
            recording_.commands[next_command_].step == sim.steps())
       sim.command(recording_.commands[next_command_++].command);
+    while (next_team_ < recording_.team.size() && recording_.team[next_team_].step == sim.steps())
+      sim.team_input(recording_.team[next_team_++].input);
     while (next_input_ < recording_.inputs.size() && recording_.inputs[next_input_].step <= sim.steps())
       current_ = (*by_slot_)(recording_.inputs[next_input_++].controls);
     sim.single_step(current_);  // replay ignores the freeze: held periods were not recorded as steps
@@ -198,6 +207,8 @@ TakeOver take_over(const ScenarioSettings& scenario, const Recording& recording,
     if (checkpoint.step <= prefix.branch_step) prefix.checkpoints.push_back(checkpoint);
   for (const auto& command : recording.commands)
     if (command.step < prefix.branch_step) prefix.commands.push_back(command);
+  for (const auto& event : recording.team)
+    if (event.step < prefix.branch_step) prefix.team.push_back(event);
   for (const auto& keyframe : recording.keyframes)
     if (keyframe.step <= prefix.branch_step) prefix.keyframes.push_back(keyframe);
   return {std::move(r.simulation), Recorder(std::move(prefix))};

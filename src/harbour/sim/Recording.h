@@ -52,6 +52,11 @@ struct Recording {
     InstructorCommand command;
   };
   std::vector<Command> commands;  ///< in step order
+  struct TeamEvent {
+    std::int64_t step = 0;  ///< applied before this step (after its instructor's commands)
+    TeamInput input;
+  };
+  std::vector<TeamEvent> team;  ///< in step order: what the team session's other stations made happen
   struct Keyframe {
     std::int64_t step = 0;
     std::vector<std::uint8_t> state;  ///< Simulation::save_state()
@@ -69,6 +74,7 @@ class RecordingSink {
   virtual void on_checkpoint(const Recording::Checkpoint& checkpoint) = 0;
   virtual void on_keyframe(const Recording::Keyframe& keyframe) = 0;
   virtual void on_command(const Recording::Command& command) = 0;
+  virtual void on_team(const Recording::TeamEvent& event) = 0;
 };
 
 /// Records while a simulation runs: call after each step.
@@ -95,6 +101,8 @@ class Recorder {
   void keyframe(std::int64_t step, std::vector<std::uint8_t> state);
   /// A command applied before step `step` + 1.
   void on_command(std::int64_t step, const InstructorCommand& command);
+  /// A team input applied before step `step` + 1.
+  void on_team(std::int64_t step, const TeamInput& input);
   const Recording& recording() const { return recording_; }
   /// Streams everything recorded from now on to `sink` as well (nullptr: none).
   void set_sink(RecordingSink* sink) { sink_ = sink; }
@@ -143,7 +151,7 @@ class ReplayPlayer {
   std::unique_ptr<Simulation> simulation_;
   std::unique_ptr<BySlot> by_slot_;
   Controls current_;
-  std::size_t next_input_ = 0, next_checkpoint_ = 0, next_command_ = 0;
+  std::size_t next_input_ = 0, next_checkpoint_ = 0, next_command_ = 0, next_team_ = 0;
   int checkpoints_checked_ = 0, keyframes_used_ = 0;
   std::optional<std::int64_t> first_mismatch_;
 };

@@ -218,6 +218,49 @@ std::string Simulation::why_refused(const InstructorCommand& c) const {
   return "";
 }
 
+std::string why_invalid(const TeamInput& t) {
+  const core::Vec3 p = t.pose.position, v = t.velocity_mps, w = t.angular_velocity_radps;
+  for (const double x : {p.x, p.y, p.z, v.x, v.y, v.z, w.x, w.y, w.z, t.mass_kg})
+    if (!std::isfinite(x)) return "a number that is not finite";
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c)
+      if (!std::isfinite(t.pose.rotation.m[r][c])) return "a number that is not finite";
+  if (static_cast<std::uint8_t>(t.kind) >= TeamInput::kKinds) return "an unknown kind";
+  if (t.slot < 0) return "a negative slot";
+  if (std::abs(p.x) > 1e5 || std::abs(p.y) > 1e5 || std::abs(p.z) > 1e5) return "a place beyond 100 km";
+  if (core::length(v) > 100.0 || core::length(w) > 10.0) return "a speed beyond 100 m/s or 10 rad/s";
+  if (t.kind == TeamInput::Kind::kLoadOn && (t.mass_kg < 100.0 || t.mass_kg > 80000.0))
+    return "a load's mass outside 100 kg - 80 t";
+  return "";
+}
+
+std::string Simulation::why_refused(const TeamInput& t) const {
+  if (std::string why = why_invalid(t); !why.empty()) return why;
+  using Kind = TeamInput::Kind;
+  if (t.kind == Kind::kLoadOn) return machine_->why_no_load();
+  if (!trucks_ || !trucks_->team()) return "this exercise has no team trucks";
+  if (t.slot >= trucks_->trucks()) return "no team truck " + std::to_string(t.slot + 1);
+  if (t.kind == Kind::kTruckAt) return "";
+  // kTakenOver: the box its cones hold
+  if (trucks_->seated_box(t.slot) < 0) return "team truck " + std::to_string(t.slot + 1) + " holds no box";
+  return trucks_->is_taken_over(t.slot) ? "its box was taken over already" : "";
+}
+
+void Simulation::team_input(const TeamInput& t) {
+  if (const std::string why = why_refused(t); !why.empty()) throw std::invalid_argument("team input: " + why);
+  switch (t.kind) {
+    case TeamInput::Kind::kTruckAt:
+      trucks_->set_truck(t.slot, t.pose, t.velocity_mps, t.angular_velocity_radps);
+      break;
+    case TeamInput::Kind::kTakenOver:
+      trucks_->taken_over(t.slot);
+      break;
+    case TeamInput::Kind::kLoadOn:
+      machine_->take_load(t.pose, t.mass_kg);
+      break;
+  }
+}
+
 void Simulation::command(const InstructorCommand& c) {
   using Kind = InstructorCommand::Kind;
   if (const std::string why = why_refused(c); !why.empty())
@@ -476,16 +519,12 @@ SceneDescription Simulation::scene() const {
   if (trucks_)
     for (int k = 0; k < scenario_.trucks.trucks; ++k)
       d.entities.push_back({"truck " + std::to_string(k + 1), "truck", {}});
-  for (const ContainerPlacement& c : scenario_.containers) {
-    const double feet = 2.0 * c.half_extents_m.x / 0.3048;
+  for (const ContainerPlacement& c : scenario_.containers)
     d.entities.push_back({c.id,
                           c.kind == ContainerPlacement::Kind::kHatchCover     ? "hatch_cover"
                           : c.kind == ContainerPlacement::Kind::kGeneralCargo ? "cargo"
-                          : feet < 30                                         ? "container.20ft"
-                          : feet < 42                                         ? "container.40ft"
-                                                                              : "container.45ft",
+                                                                              : container_look(2.0 * c.half_extents_m.x),
                           c.half_extents_m});
-  }
   return d;
 }
 
@@ -563,14 +602,27 @@ void Simulation::write_snapshot(Snapshot& s) const {
   }
   for (const StaticBlock& b : scenario_.blocks)
     entity({core::Mat3::identity(), b.position_m}, 0);
-  if (trucks_)
+  if (trucks_ && trucks_->team()) {
+    for (int k = 0; k < scenario_.trucks.trucks; ++k)  // drawn by their own stations
+      entity(trucks_->truck_pose(k), Snapshot::kHidden);
+  } else if (trucks_) {
     for (int k = 0; k < scenario_.trucks.trucks; ++k)
       entity({core::Mat3::identity(),
               {scenario_.trucks.lane_x_m, trucks_->truck_y(k), scenario_.trucks.chassis_top_m}},
              0);
+  }
   const auto held = machine_->held_item();
-  for (const ContainerRef& c : containers_)
-    entity(world_->pose(c.body), held == c.body ? Snapshot::kLocked : 0);
+  // a box on a team truck: to hand over, then the truck's station's to draw
+  const auto on_team_truck = [&](std::size_t box) -> std::uint32_t {
+    if (!trucks_ || !trucks_->team()) return 0;
+    for (int k = 0; k < trucks_->trucks(); ++k)
+      if (trucks_->seated_box(k) == static_cast<int>(box))
+        return trucks_->is_taken_over(k) ? Snapshot::kHidden : Snapshot::kOnTeamTruck;
+    return 0;
+  };
+  for (std::size_t c = 0; c < containers_.size(); ++c)
+    entity(world_->pose(containers_[c].body),
+           held == containers_[c].body ? Snapshot::kLocked : on_team_truck(c));
   s.entity_count = n;
 }
 
@@ -587,6 +639,11 @@ std::uint64_t Simulation::state_hash() const {
   machine_->hash_into(hash);
   if (bulk_) hash.add(bulk_->state_hash());
   hash.add(weather_.turbulence_mps());
+  if (trucks_ && trucks_->team())
+    for (int k = 0; k < trucks_->trucks(); ++k) {
+      hash.add(trucks_->seated_box(k));
+      hash.add(trucks_->is_taken_over(k));
+    }
   hash.add(next_event_);
   if (!scenario_.lift_events.empty()) {  // (scenarios without them hash as they did)
     hash.add(first_lift_step_);

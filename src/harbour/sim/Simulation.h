@@ -21,6 +21,7 @@
 #include "harbour/sim/Controls.h"
 #include "harbour/sim/RoRoRamp.h"
 #include "harbour/sim/Snapshot.h"
+#include "harbour/sim/TeamInput.h"
 #include "harbour/sim/Trucks.h"
 #include "harbour/sim/Vessel.h"
 #include "harbour/sim/Weather.h"
@@ -165,6 +166,13 @@ class Simulation {
   /// why_refused says why (a corner other than 0-3, a negative visibility, a part the machine lacks),
   /// changing nothing.
   void command(const InstructorCommand& command);
+  /// Why `input` from a team session's other stations would be refused ("" when it would not): values out of
+  /// range, a truck this scene has no team lane for, a box that is not on that truck, a load this machine
+  /// cannot take. Reads only what the scene has and the state of its team trucks and load.
+  std::string why_refused(const TeamInput& input) const;
+  /// Applies a team input now (before the next step); throws std::invalid_argument when why_refused says why,
+  /// changing nothing.
+  void team_input(const TeamInput& input);
   /// The machine's supply has failed (kPowerFailure): its drives read the emergency stop pressed.
   bool power_off() const { return power_off_; }
   /// The instructor holds the machine's emergency stop pressed (kEmergencyStop).

@@ -29,6 +29,12 @@ struct CabSight {
   double look_yaw_rad = 1.92, look_pitch_rad = 1.05;
 };
 
+/// The look key of an ISO container `length_m` long: "container.20ft", "container.40ft" or "container.45ft".
+inline const char* container_look(double length_m) {
+  const double feet = length_m / 0.3048;
+  return feet < 30 ? "container.20ft" : feet < 42 ? "container.40ft" : "container.45ft";
+}
+
 /// What a scene holds, fixed for a session: entities (what they look like and how big) and the names of the
 /// indicators. Consumers read it once; each Snapshot then carries only numbers by index (as CIGI does).
 struct SceneDescription {
@@ -107,6 +113,11 @@ struct Snapshot {
     core::Pose pose;          ///< centre, world
   };
   static constexpr std::uint32_t kLocked = 1;  ///< held by the machine (on the spreader)
+  /// Not drawn: not there yet (a load still to be handed over), or another station's to draw (a team truck,
+  /// a box handed over to it)
+  static constexpr std::uint32_t kHidden = 2;
+  /// A box set down on a team truck, its cones holding it: to be handed over to the truck's station
+  static constexpr std::uint32_t kOnTeamTruck = 4;
   int entity_count = 0;
   std::array<Entity, kMaxEntities> entities;
 

@@ -47,8 +47,13 @@ std::string TractorAutopilot::why_cannot_drive(const ExerciseSettings& exercise)
 }
 
 TractorAutopilot::TractorAutopilot(const ExerciseSettings& exercise, DriverDefects defects)
-    : exercise_(exercise), defects_(defects) {
+    : exercise_(exercise), defects_(defects), to_load_stop_(exercise.load_stop.has_value()) {
   if (const std::string why = why_cannot_drive(exercise); !why.empty()) throw std::invalid_argument(why);
+}
+
+TractorAutopilot::Leg TractorAutopilot::leg() const {
+  if (to_load_stop_) return {exercise_.load_stop->trailer_at_m, exercise_.load_stop->heading_rad};
+  return {exercise_.moves[0].target_m, *exercise_.moves[0].heading_rad};
 }
 
 const char* TractorAutopilot::activity() const {
@@ -57,6 +62,8 @@ const char* TractorAutopilot::activity() const {
       return "drive";
     case Phase::kStop:
       return "stop";
+    case Phase::kWaitForLoad:
+      return "wait for the load";
     case Phase::kDrop:
       return "drop";
     case Phase::kDone:
@@ -77,6 +84,7 @@ Controls TractorAutopilot::next(const Simulation& simulation) {
 
 void TractorAutopilot::resume(const Simulation& simulation, int moves_done) {
   phase_ = moves_done >= 1 ? Phase::kDone : Phase::kDrive;
+  to_load_stop_ = exercise_.load_stop && !simulation.machine().load();
   phase_start_s_ = simulation.time_s();
   planned_ = false;
   decided_ = false;
@@ -91,13 +99,13 @@ double TractorAutopilot::trailer_axles_x_m() const {
 }
 
 void TractorAutopilot::plan(const Simulation& simulation, const TerminalTractor& tractor) {
-  const MoveGoal& goal = exercise_.moves[0];
+  const Leg goal = leg();
   const core::Pose trailer_pose = simulation.world().pose(tractor.trailer_body());
   reversing_ = dot(flat(goal.target_m - trailer_pose.position), flat(trailer_pose.rotation.column(0))) < 0.0;
   if (reversing_) {
     // the trailer's axles: from where they stand onto the bay's line kBayEntry_m out, along it to where they
     // stand with the trailer's centre on the target, and on
-    const core::Vec3 bay{std::cos(*goal.heading_rad), std::sin(*goal.heading_rad), 0.0};
+    const core::Vec3 bay{std::cos(goal.heading_rad), std::sin(goal.heading_rad), 0.0};
     const double axles_x = trailer_axles_x_m();
     const core::Vec3 end = flat(goal.target_m) + bay * axles_x;
     path_ = {flat(trailer_pose.to_parent({axles_x, 0, 0})), end + bay * kBayEntry_m, end,
@@ -113,7 +121,7 @@ void TractorAutopilot::plan(const Simulation& simulation, const TerminalTractor&
   const core::Vec3 start = flat(pose.to_parent({rear_x, 0, 0}));
   const core::Vec3 heading =
       flat(pose.rotation.column(0)) * (1.0 / core::length(flat(pose.rotation.column(0))));
-  const core::Vec3 along{std::cos(*goal.heading_rad), std::sin(*goal.heading_rad), 0.0};
+  const core::Vec3 along{std::cos(goal.heading_rad), std::sin(goal.heading_rad), 0.0};
   const TrailerSettings& trailer = *exercise_.scenario.machine.as<TractorSetup>().start.trailer;
   const double trailer_to_rear_axle = trailer.kingpin_m.x + (rear_x - s.hitch_m.x);
   const core::Vec3 end = flat(goal.target_m) + along * trailer_to_rear_axle;
@@ -131,8 +139,8 @@ void TractorAutopilot::plan(const Simulation& simulation, const TerminalTractor&
 }
 
 double TractorAutopilot::remaining_m(const Simulation& simulation, const TerminalTractor& tractor) const {
-  const MoveGoal& goal = exercise_.moves[0];
-  const core::Vec3 along{std::cos(*goal.heading_rad), std::sin(*goal.heading_rad), 0.0};
+  const Leg goal = leg();
+  const core::Vec3 along{std::cos(goal.heading_rad), std::sin(goal.heading_rad), 0.0};
   return dot(flat(goal.target_m - simulation.world().pose(tractor.trailer_body()).position), along);
 }
 
@@ -219,7 +227,16 @@ Controls TractorAutopilot::decide(const Simulation& simulation, const TerminalTr
     if (remaining <= 0.0) enter(Phase::kStop);
   } else if (phase_ == Phase::kStop) {
     press("brake", 0.6);
-    if (std::abs(speed) < kStanding_mps && now - phase_start_s_ > 1.0) enter(Phase::kDrop);
+    if (std::abs(speed) < kStanding_mps && now - phase_start_s_ > 1.0)
+      enter(to_load_stop_ ? Phase::kWaitForLoad : Phase::kDrop);
+  } else if (phase_ == Phase::kWaitForLoad) {
+    // standing under the crane until the box is on, then on to the move's target
+    press("brake", 0.6);
+    if (tractor.load()) {
+      to_load_stop_ = false;
+      planned_ = false;
+      enter(Phase::kDrive);
+    }
   } else if (phase_ == Phase::kDrop) {
     // a press, then the plate lowers and the jaw opens
     press("brake", 0.6);

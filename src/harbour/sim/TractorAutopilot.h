@@ -16,7 +16,9 @@ class TerminalTractor;
 /// eases to a stop with the trailer's centre on its target, and drops it. A target behind the trailer it
 /// reverses into: the trailer's axles follow a path onto the bay's line (pure pursuit of a point behind
 /// them gives the trailer's curvature, hence the hitch angle that turns it so), and the tractor's steering
-/// holds that hitch angle (reversing, the hitch angle runs away by itself; the steering leads it back).
+/// holds that hitch angle (reversing, the hitch angle runs away by itself; the steering leads it back). With
+/// a load stop it first drives so onto the stop, waits there until a team's crane has set its box on the
+/// trailer, then drives on to its move's target.
 class TractorAutopilot final : public Pilot {
  public:
   /// Why it cannot drive `exercise` ("" when it can): a move of the tractor's trailer.
@@ -32,7 +34,14 @@ class TractorAutopilot final : public Pilot {
   void resume(const Simulation& simulation, int moves_done) override;
 
  private:
-  enum class Phase { kDrive, kStop, kDrop, kDone };
+  enum class Phase { kDrive, kStop, kWaitForLoad, kDrop, kDone };
+  /// Where it is driving to now: the load stop (an exercise's team pick-up, until the box is on) or its move's
+  /// target.
+  struct Leg {
+    core::Vec3 target_m;
+    double heading_rad = 0.0;
+  };
+  Leg leg() const;
   Controls decide(const Simulation& simulation, const TerminalTractor& tractor);
   void plan(const Simulation& simulation, const TerminalTractor& tractor);
   /// How far the trailer's centre still is from its target along the goal's heading [m].
@@ -46,6 +55,7 @@ class TractorAutopilot final : public Pilot {
   ExerciseSettings exercise_;
   DriverDefects defects_;
   bool reversing_ = false;  // the target lies behind the trailer
+  bool to_load_stop_ = false;  // on the way to the load stop, or waiting there
   Phase phase_ = Phase::kDrive;
   std::vector<core::Vec3> path_;  // the polyline its rear axle follows (ground plane)
   bool planned_ = false;

@@ -15,6 +15,20 @@ constexpr double kCabLength_m = 3.0, kCabHeight_m = 3.2;
 
 TruckLane::TruckLane(physics::PhysicsWorld& world, const TruckLaneSettings& settings)
     : world_(world), settings_(settings) {
+  if (settings.team) {
+    // each a trailer's deck, x along it, parked out of the way until its station says where it is
+    for (int k = 0; k < settings.trucks; ++k) {
+      Truck t;
+      core::Pose pose;
+      pose.position = {settings.lane_x_m, settings.stop_y_m - 1000.0 - 30.0 * k, settings.chassis_top_m};
+      t.body = world.add_kinematic_body(pose);
+      world.add_box_shape(t.body, {kChassisHalfLength_m, kChassisHalfWidth_m, kChassisDepth_m / 2},
+                          {core::Mat3::identity(), {0, 0, -kChassisDepth_m / 2}}, kSurfaceTruck);
+      trucks_.push_back(t);
+    }
+    team_.resize(trucks_.size());
+    return;
+  }
   for (int k = 0; k < settings.trucks; ++k) {
     Truck t;
     t.state = k == 0 ? State::kWaiting : State::kQueued;
@@ -35,8 +49,51 @@ TruckLane::TruckLane(physics::PhysicsWorld& world, const TruckLaneSettings& sett
   }
 }
 
-core::Vec3 TruckLane::load_centre(double height_m) const {
-  return {settings_.lane_x_m, settings_.stop_y_m, settings_.chassis_top_m + height_m / 2};
+std::optional<core::Vec3> TruckLane::load_centre(double height_m) const {
+  if (!settings_.team) return core::Vec3{settings_.lane_x_m, settings_.stop_y_m, settings_.chassis_top_m + height_m / 2};
+  std::optional<core::Vec3> nearest;
+  double nearest_m = kTeamStopReach_m;
+  for (std::size_t k = 0; k < trucks_.size(); ++k) {
+    if (team_[k].seated >= 0) continue;
+    const core::Pose deck = world_.pose(trucks_[k].body);
+    const double off = std::hypot(deck.position.x - settings_.lane_x_m, deck.position.y - settings_.stop_y_m);
+    if (off < nearest_m && core::length(world_.linear_velocity(trucks_[k].body)) < kTeamStanding_mps) {
+      nearest_m = off;
+      nearest = deck.to_parent({0, 0, height_m / 2});
+    }
+  }
+  return nearest;
+}
+
+void TruckLane::set_truck(int truck, const core::Pose& deck, const core::Vec3& velocity_mps,
+                          const core::Vec3& angular_velocity_radps) {
+  world_.set_kinematic_motion(trucks_[static_cast<std::size_t>(truck)].body, deck, velocity_mps,
+                              angular_velocity_radps);
+}
+
+core::Pose TruckLane::truck_pose(int truck) const {
+  return world_.pose(trucks_[static_cast<std::size_t>(truck)].body);
+}
+
+void TruckLane::step_team(std::span<const ContainerRef> boxes, std::optional<physics::BodyId> held,
+                          double attachment_bottom_z_m) {
+  // a box set down square on a deck, the locks open and the spreader risen clear: the cones hold it
+  if (held) return;
+  for (std::size_t k = 0; k < trucks_.size(); ++k) {
+    if (team_[k].seated >= 0) continue;
+    const core::Pose deck = world_.pose(trucks_[k].body);
+    for (std::size_t b = 0; b < boxes.size(); ++b) {
+      const core::Pose box = world_.pose(boxes[b].body);
+      const core::Vec3 on = deck.to_local(box.position);
+      if (std::abs(on.x) >= kChassisHalfLength_m || std::abs(on.y) >= kChassisHalfWidth_m ||
+          std::abs(on.z - boxes[b].half_extents_m.z) >= 0.05)
+        continue;
+      if (attachment_bottom_z_m <= box.position.z + boxes[b].half_extents_m.z + settings_.clearance_m) continue;
+      trucks_[k].load_attachment = world_.attach(boxes[b].body, trucks_[k].body);
+      team_[k].seated = static_cast<int>(b);
+      break;
+    }
+  }
 }
 
 int TruckLane::departed() const {
@@ -75,6 +132,10 @@ void TruckLane::place(const Truck& truck) {
 
 void TruckLane::step(double dt_s, std::span<const ContainerRef> boxes, std::optional<physics::BodyId> held,
                      double attachment_bottom_z_m) {
+  if (settings_.team) {
+    step_team(boxes, held, attachment_bottom_z_m);
+    return;
+  }
   const double a = settings_.acceleration_mps2;
   for (std::size_t k = 0; k < trucks_.size(); ++k) {
     Truck& t = trucks_[k];
@@ -131,11 +192,17 @@ void TruckLane::step(double dt_s, std::span<const ContainerRef> boxes, std::opti
 void TruckLane::save_state(core::StateWriter& out) const {
   out.section(0x54524B32);  // "TRK2": trucks with their load attachments
   out.put(trucks_);
+  if (!settings_.team) return;
+  out.section(0x54524B54);  // "TRKT": a team lane's seated and taken-over boxes
+  out.put(team_);
 }
 
 void TruckLane::restore_state(core::StateReader& in) {
   in.section(0x54524B32, "trucks");
   in.get(trucks_, static_cast<std::int64_t>(trucks_.size()));
+  if (!settings_.team) return;
+  in.section(0x54524B54, "team trucks");
+  in.get(team_, static_cast<std::int64_t>(team_.size()));
 }
 
 }  // namespace harbour::sim

@@ -26,6 +26,10 @@ struct TruckLaneSettings {
   double queue_gap_m = 25.0;    ///< [m] truck to truck in the queue and where loaded trucks park
   double clearance_m = 1.0;     ///< [m] spreader underside above the box before the truck leaves
   bool delivering = false;      ///< the trucks bring boxes to the crane rather than take them away
+  /// The trucks are a team session's trailers, each towed by a tractor that another station simulates: they
+  /// move only as their stations report (set_truck), are drawn from those stations' states rather than here,
+  /// and a box seated on one (locks open, spreader clear) is handed over to that station.
+  bool team = false;
 };
 
 /// The trucks as kinematic bodies (chassis and cab).
@@ -36,8 +40,26 @@ class TruckLane {
   /// Moves the trucks through the step that starts now.
   void step(double dt_s, std::span<const ContainerRef> boxes, std::optional<physics::BodyId> held,
             double attachment_bottom_z_m);
-  /// The centre of a container of height `height_m` seated on the truck waiting under the crane.
-  core::Vec3 load_centre(double height_m) const;
+  /// The centre of a container of height `height_m` seated on the truck waiting under the crane (a team lane:
+  /// the empty team truck nearest the stop, where it stands; nullopt while none stands within
+  /// kTeamStopReach_m of the stop, still).
+  std::optional<core::Vec3> load_centre(double height_m) const;
+  static constexpr double kTeamStopReach_m = 5.0;
+  static constexpr double kTeamStanding_mps = 0.05;
+
+  // A team lane
+  /// Team truck `truck`'s deck (its top centre, x along its length) where its station has it, moving so.
+  void set_truck(int truck, const core::Pose& deck, const core::Vec3& velocity_mps,
+                 const core::Vec3& angular_velocity_radps);
+  core::Pose truck_pose(int truck) const;
+  /// The box (index into the boxes stepped with) seated on team truck `truck` and held by its cones (-1:
+  /// none): offered to the truck's station from then on.
+  int seated_box(int truck) const { return team_[static_cast<std::size_t>(truck)].seated; }
+  /// That box was taken over by the truck's station (TeamInput::kTakenOver): not drawn here.
+  void taken_over(int truck) { team_[static_cast<std::size_t>(truck)].taken_over = true; }
+  bool is_taken_over(int truck) const { return team_[static_cast<std::size_t>(truck)].taken_over; }
+  int trucks() const { return static_cast<int>(trucks_.size()); }
+  bool team() const { return settings_.team; }
   /// Trucks that left loaded.
   int departed() const;
   double truck_y(int truck) const { return trucks_[static_cast<std::size_t>(truck)].y; }
@@ -59,6 +81,13 @@ class TruckLane {
                                       std::optional<physics::BodyId> held,
                                       double attachment_bottom_z_m) const;
   void place(const Truck& truck);
+  void step_team(std::span<const ContainerRef> boxes, std::optional<physics::BodyId> held,
+                 double attachment_bottom_z_m);
+  struct TeamTruck {
+    int seated = -1;  // the box its cones hold
+    bool taken_over = false;
+  };
+  std::vector<TeamTruck> team_;  // a team lane's trucks (kept beside trucks_, whose saved layout is fixed)
 
   physics::PhysicsWorld& world_;
   TruckLaneSettings settings_;

@@ -90,6 +90,12 @@ bool RealTimeLoop::post(const LoopCommand& command, std::string* why) {
       return false;
     }
   }
+  if (command.kind == LoopCommand::Kind::kTeam) {
+    if (const std::string problem = sim::why_invalid(command.team); !problem.empty()) {
+      if (why) *why = problem;
+      return false;
+    }
+  }
   const std::lock_guard lock(commands_mutex_);
   if (command_count_ == commands_.size()) {
     if (why) *why = "the loop's command queue is full";
@@ -192,6 +198,17 @@ void RealTimeLoop::apply_commands() {
         r.kind = StepRecord::Kind::kCommand;
         r.step = simulation_.steps();
         r.command = c.instructor;
+        hand_off(r);
+        break;
+      }
+      case LoopCommand::Kind::kTeam: {
+        // what this state refuses (a box taken over twice, a second load) is dropped, not recorded
+        if (!simulation_.why_refused(c.team).empty()) break;
+        simulation_.team_input(c.team);
+        StepRecord r;
+        r.kind = StepRecord::Kind::kTeam;
+        r.step = simulation_.steps();
+        r.team = c.team;
         hand_off(r);
         break;
       }

@@ -23,6 +23,7 @@ struct StepRecord {
   enum class Kind : std::uint8_t {
     kStep,        ///< one step with `controls` (the simulation is now at `step`)
     kCommand,     ///< `command` applied before step `step` + 1
+    kTeam,        ///< `team` (another station's doing) applied before step `step` + 1
     kCheckpoint,  ///< the state hash at `step`
     kKeyframe,    ///< the whole state at `step` lies in keyframe slot `keyframe_slot` (release it when kept)
   };
@@ -30,15 +31,17 @@ struct StepRecord {
   std::int64_t step = 0;
   sim::Controls controls;
   sim::InstructorCommand command;
+  sim::TeamInput team;
   std::uint64_t state_hash = 0;
   int keyframe_slot = -1;
 };
 
 /// A request to the running loop from another thread, applied between steps.
 struct LoopCommand {
-  enum class Kind : std::uint8_t { kHold, kResume, kSingleStep, kInstructor, kStop };
+  enum class Kind : std::uint8_t { kHold, kResume, kSingleStep, kInstructor, kTeam, kStop };
   Kind kind = Kind::kHold;
   sim::InstructorCommand instructor;
+  sim::TeamInput team;  ///< kTeam: checked again when applied (one the state no longer allows is dropped)
 };
 
 /// How the loop keeps (or fails to keep) real time.

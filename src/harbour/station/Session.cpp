@@ -172,6 +172,9 @@ void Session::keep(const StepRecord& record) {
     case StepRecord::Kind::kCommand:
       if (writer_) recorder_.on_command(record.step, record.command);
       break;
+    case StepRecord::Kind::kTeam:
+      if (writer_) recorder_.on_team(record.step, record.team);
+      break;
     case StepRecord::Kind::kStep:
       if (writer_) recorder_.after_step(record.step, simulation_->control_table().in_range(record.controls));
       kept_steps_ = record.step;
@@ -196,12 +199,7 @@ SessionResult Session::finish(SessionEnd end) {
   result.attempt = attempt_;
   result.loop = loop_->stats();
   result.metrics = evaluator_.metrics();  // the loop has stopped: the step thread's evaluator is ours
-  if (team_) {
-    result.metrics.team = true;
-    result.metrics.team_near_misses = team_->near_misses;
-    result.metrics.team_contacts = team_->contacts;
-    result.metrics.team_closest_m = team_->closest_m;
-  }
+  result.metrics.team = team_;
   result.score = evaluator_.score(end == SessionEnd::kStoppedByInstructor);
   result.status = io::attempt_status(simulation_->diverged(),
                                      end == SessionEnd::kInterrupted || !keeper_error_.empty(), result.score);

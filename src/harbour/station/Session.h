@@ -82,11 +82,9 @@ class Session {
   /// Stops the loop (if still running), lets the keeper catch up, closes the recording and stores the
   /// attempt: `interrupted` when the trainee or a signal stopped it before the end.
   SessionResult finish(SessionEnd end);
-  /// A team session's member: its near misses and contacts with the other members' machines, stored with the
-  /// attempt's figures (closest_m < 0: none measured). Before finish().
-  void set_team_figures(int near_misses, int contacts, double closest_m) {
-    team_ = {near_misses, contacts, closest_m};
-  }
+  /// A team session's member: what its station measured of the team, stored with the attempt's figures.
+  /// Before finish().
+  void set_team_figures(const sim::TeamFigures& figures) { team_ = figures; }
   /// The attempt was a team session's member: stored with it (io::AttemptRow::team, team_role, team_session).
   void set_team(const std::string& team, const std::string& role, const std::string& session) {
     team_member_ = {team, role, session};
@@ -124,11 +122,7 @@ class Session {
   std::vector<std::pair<std::string, double>> notes_;
   void store_notes();
   bool finished_ = false;
-  struct TeamFigures {
-    int near_misses = 0, contacts = 0;
-    double closest_m = -1.0;
-  };
-  std::optional<TeamFigures> team_;
+  std::optional<sim::TeamFigures> team_;
   std::array<std::string, 3> team_member_;  // team, role, session ("": alone)
   int moves_before_start_ = 0;
 };

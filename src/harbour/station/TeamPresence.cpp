@@ -86,6 +86,7 @@ TeamPresence::TeamPresence(const sim::SceneDescription& own_scene, std::vector<T
       DeadReckoning body(kBlend_s, kHorizon_s);
       body.place({b < known.start_poses.size() ? known.start_poses[b] : core::Pose{}, {}, {}}, 0.0);
       m.bodies.push_back(body);
+      m.present.push_back(!(b < known.start_hidden.size() && known.start_hidden[b]));
     }
     m.state.role = known.role;
     m.known = std::move(known);
@@ -103,7 +104,9 @@ std::string TeamPresence::offer(const TeamSample& sample) {
     if (b >= member->bodies.size())
       return "'" + sample.role + "' has " + std::to_string(member->bodies.size()) + " bodies, not body " +
              std::to_string(b);
+  std::fill(member->present.begin(), member->present.end(), false);
   for (std::size_t k = 0; k < sample.body.size(); ++k) {
+    member->present[sample.body[k]] = true;
     DeadReckoning& body = member->bodies[sample.body[k]];
     if (member->state.heard)
       body.update(sample.motion[k], sample.received_s);
@@ -124,8 +127,22 @@ void TeamPresence::write(sim::Snapshot& snapshot, double now_s) const {
       if (snapshot.entity_count >= sim::kMaxEntities) return;
       const int index = m.first_entity + static_cast<int>(b);
       snapshot.entities[static_cast<std::size_t>(snapshot.entity_count++)] = {
-          static_cast<std::uint32_t>(index), 0, m.bodies[b].at(now_s)};
+          static_cast<std::uint32_t>(index), m.present[b] ? 0u : sim::Snapshot::kHidden, m.bodies[b].at(now_s)};
     }
+}
+
+std::optional<RemoteMotion> TeamPresence::motion_of(const std::string& role, int body, double now_s) const {
+  const std::lock_guard lock(mutex_);
+  for (const Member& m : members_) {
+    if (m.known.role != role) continue;
+    if (body < 0 || body >= static_cast<int>(m.bodies.size())) return std::nullopt;
+    const DeadReckoning& d = m.bodies[static_cast<std::size_t>(body)];
+    RemoteMotion r = d.newest();
+    r.pose = d.at(now_s);
+    if (!m.state.heard || m.state.lost) r.velocity_mps = r.angular_velocity_radps = {};  // where it stands
+    return r;
+  }
+  return std::nullopt;
 }
 
 std::vector<TeamPresence::Closest> TeamPresence::closest(const sim::Snapshot& own, double now_s) const {
@@ -136,11 +153,12 @@ std::vector<TeamPresence::Closest> TeamPresence::closest(const sim::Snapshot& ow
     Closest c{m.known.role, "", "", 1e300};
     for (std::size_t b = 0; b < m.bodies.size(); ++b) {
       const core::Vec3& half_b = m.known.bodies[b].half_extents_m;
-      if (!sized(half_b)) continue;
+      if (!sized(half_b) || !m.present[b]) continue;
       const core::Pose pose_b = m.bodies[b].at(now_s);
       for (int n = 0; n < own.entity_count; ++n) {
         const sim::Snapshot::Entity& e = own.entities[static_cast<std::size_t>(n)];
-        if (static_cast<int>(e.index) >= scene_.machine_entities) continue;
+        if (static_cast<int>(e.index) >= scene_.machine_entities || (e.flags & sim::Snapshot::kHidden) != 0)
+          continue;
         const sim::SceneDescription::Entity& body = scene_.entities[e.index];
         if (!sized(body.half_extents_m)) continue;
         const double gap = box_clearance(e.pose, body.half_extents_m, pose_b, half_b);

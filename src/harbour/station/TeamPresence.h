@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -54,6 +55,7 @@ struct TeamMember {
   std::string role;
   std::vector<sim::SceneDescription::Entity> bodies;
   std::vector<core::Pose> start_poses;  ///< one per body
+  std::vector<bool> start_hidden;       ///< one per body: not there at the start (a load still to come)
 };
 
 /// What arrived from a member: its machine's bodies (by index into TeamMember::bodies) at one moment.
@@ -67,9 +69,11 @@ struct TeamSample {
 
 /// The other members' machines at this station: added to its scene (after its own entities, each named
 /// "ROLE: BODY"), dead-reckoned between their samples and written into every snapshot it publishes, so the
-/// cab view, the console's 3D view and the chase view show them where their own stations have them. A member
-/// not heard from for `lost_after_s` is lost: its machine stays where it was last carried to. Thread-safe:
-/// samples are offered from the network side, snapshots written on the step thread.
+/// cab view, the console's 3D view and the chase view show them where their own stations have them. A body
+/// missing from a member's newest sample is hidden (a member sends every body it draws: one it leaves out is
+/// not there, as a load not yet handed over). A member not heard from for `lost_after_s` is lost: its machine
+/// stays where it was last carried to. Thread-safe: samples are offered from the network side, snapshots
+/// written on the step thread.
 class TeamPresence {
  public:
   static constexpr double kBlend_s = 0.1;      ///< a new sample is blended in over this
@@ -85,6 +89,9 @@ class TeamPresence {
   std::string offer(const TeamSample& sample);
   /// Appends the members' bodies, where they are at `now_s` (the receiver's clock), to `snapshot`.
   void write(sim::Snapshot& snapshot, double now_s) const;
+  /// Body `body` of member `role` at `now_s`: where it is carried to, at its newest sample's velocities (at
+  /// rest where it starts until heard); nullopt for a role or body the team lacks.
+  std::optional<RemoteMotion> motion_of(const std::string& role, int body, double now_s) const;
 
   /// The closest approach of a member's machine to this station's, at `now_s`: which bodies, how far.
   struct Closest {
@@ -113,7 +120,8 @@ class TeamPresence {
   struct Member {
     TeamMember known;
     std::vector<DeadReckoning> bodies;
-    int first_entity = 0;  // its first body's index in scene_
+    std::vector<bool> present;  // in its newest sample (before any: as it starts)
+    int first_entity = 0;       // its first body's index in scene_
     MemberState state;
     std::vector<double> ages_s;  // each measured sample's age on arrival
     double last_heard_s = 0.0;

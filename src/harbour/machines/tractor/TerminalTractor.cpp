@@ -98,6 +98,18 @@ TerminalTractor::TerminalTractor(physics::PhysicsWorld& world, const TractorSett
   trailer_kingpin_m_ = t.kingpin_m;
   trailer_half_extents_m_ = t.half_extents_m;
   wind_areas_[1] = {trailer_body_, t.half_extents_m};
+  if (t.receives_half_extents_m) {
+    // parked still under the quay until a crane hands it over
+    physics::BoxSettings box;
+    box.mass_kg = 1000.0;  // its gross mass comes with it
+    box.half_extents_m = *t.receives_half_extents_m;
+    box.pose = {poses.trailer.rotation, poses.trailer.position - core::Vec3{0, 0, 100.0}};
+    box.kinematic = true;
+    box.surface = kSurfaceContainer;
+    load_body_ = world.add_box(box);
+    load_half_extents_m_ = *t.receives_half_extents_m;
+    world.exclude_contacts(load_body_, trailer_body_);  // the cones hold it
+  }
   coupled_ = true;
   lift_ = lift_target_ = 1.0;
 }
@@ -210,10 +222,35 @@ MachineTally TerminalTractor::tally() const {
   return t;
 }
 
+std::string TerminalTractor::why_no_load() const {
+  if (load_body_ == physics::kWorld) return "its trailer takes no load handed over (trailer.receives)";
+  if (loaded_) return "its trailer already carries the load handed over";
+  return "";
+}
+
+void TerminalTractor::take_load(const core::Pose& on_trailer, double mass_kg) {
+  const core::Pose trailer = world_.pose(trailer_body_);
+  const core::Pose at{trailer.rotation * on_trailer.rotation, trailer.to_parent(on_trailer.position)};
+  world_.set_kinematic_motion(load_body_, at, world_.point_velocity(trailer_body_, on_trailer.position),
+                              world_.angular_velocity(trailer_body_));
+  world_.set_box_mass(load_body_, mass_kg, load_half_extents_m_);
+  world_.set_kinematic(load_body_, false);
+  world_.attach(load_body_, trailer_body_);
+  loaded_ = true;
+  load_mass_kg_ = mass_kg;
+}
+
+std::optional<physics::BodyId> TerminalTractor::load() const {
+  if (loaded_) return load_body_;
+  return std::nullopt;
+}
+
 void TerminalTractor::describe(SceneDescription& d) const {
   d.machine = kind();
   d.entities.push_back({"tractor", "tractor.chassis", settings_.half_extents_m});
   if (trailer_body_ != physics::kWorld) d.entities.push_back({"trailer", "trailer", trailer_half_extents_m_});
+  if (load_body_ != physics::kWorld)
+    d.entities.push_back({"load", container_look(2.0 * load_half_extents_m_.x), load_half_extents_m_});
   d.indicators.assign(std::begin(kTractorIndicators), std::end(kTractorIndicators));
   d.drives = {"engine"};
   d.rope_count = 0;
@@ -221,9 +258,10 @@ void TerminalTractor::describe(SceneDescription& d) const {
 
 int TerminalTractor::publish(Snapshot& s, int first) const {
   int n = first;
-  for (const physics::BodyId b : {body_, trailer_body_})
+  for (const physics::BodyId b : {body_, trailer_body_, load_body_})
     if (b != physics::kWorld && n < kMaxEntities) {
-      s.entities[static_cast<std::size_t>(n)] = {static_cast<std::uint32_t>(n), 0, world_.pose(b)};
+      const std::uint32_t flags = b == load_body_ && !loaded_ ? Snapshot::kHidden : 0;
+      s.entities[static_cast<std::size_t>(n)] = {static_cast<std::uint32_t>(n), flags, world_.pose(b)};
       ++n;
     }
   const double speed = forward_mps();
@@ -255,6 +293,9 @@ void TerminalTractor::hash_into(core::StateHash& hash) const {
   hash.add(lift_target_);
   hash.add(capture_offset_m_.x);
   hash.add(capture_offset_m_.y);
+  if (load_body_ == physics::kWorld) return;  // (tractors without one hash as they did)
+  hash.add(loaded_);
+  hash.add(load_mass_kg_);
 }
 
 void TerminalTractor::save_state(core::StateWriter& out) const {
@@ -267,6 +308,10 @@ void TerminalTractor::save_state(core::StateWriter& out) const {
   out.put(lift_);
   out.put(lift_target_);
   out.put(capture_offset_m_);
+  if (load_body_ == physics::kWorld) return;
+  out.section(0x5452434C);  // "TRCL": the load handed over
+  out.put(loaded_);
+  out.put(load_mass_kg_);
 }
 
 void TerminalTractor::restore_state(core::StateReader& in) {
@@ -279,6 +324,11 @@ void TerminalTractor::restore_state(core::StateReader& in) {
   in.get(lift_);
   in.get(lift_target_);
   in.get(capture_offset_m_);
+  if (load_body_ == physics::kWorld) return;
+  in.section(0x5452434C, "tractor's load");
+  in.get(loaded_);
+  in.get(load_mass_kg_);
+  if (loaded_) world_.set_box_mass(load_body_, load_mass_kg_, load_half_extents_m_);
 }
 
 }  // namespace harbour::sim

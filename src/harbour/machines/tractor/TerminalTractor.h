@@ -36,6 +36,8 @@ struct TrailerSettings {
   /// Its front supports (skids or landing legs) as one axle of feet that do not roll (none: it never stands
   /// uncoupled); the feet's tyre is their contact with the ground.
   std::optional<WheeledChassisSettings> legs;
+  /// It takes a box handed over by a team's crane, of these half extents (none: it takes none).
+  std::optional<core::Vec3> receives_half_extents_m;
 };
 
 /// The coupling (settings): a hydraulic gooseneck or lifting fifth wheel whose jaw locks the trailer's
@@ -102,6 +104,9 @@ class TerminalTractor final : public Machine {
   void describe(SceneDescription& scene) const override;
   int publish(Snapshot& snapshot, int entities) const override;
   MachineTally tally() const override;
+  std::string why_no_load() const override;
+  void take_load(const core::Pose& on_trailer, double mass_kg) override;
+  std::optional<physics::BodyId> load() const override;
   void drain_events(StepEvents&) override {}
   void inject_fault(MachineFault, int) override {}
   void clear_faults() override {}
@@ -155,6 +160,11 @@ class TerminalTractor final : public Machine {
   std::optional<WheeledChassis> trailer_wheels_, trailer_legs_;
   std::string trailer_id_;
   core::Vec3 trailer_half_extents_m_, trailer_kingpin_m_;
+  // a box handed over onto the trailer: built parked and still, it joins the trailer when handed over
+  physics::BodyId load_body_ = physics::kWorld;
+  core::Vec3 load_half_extents_m_;
+  bool loaded_ = false;
+  double load_mass_kg_ = 0.0;
   bool jackknifed_ = false;
   bool coupled_ = false, couple_was_pressed_ = false;
   double lift_ = 0.0, lift_target_ = 0.0;

@@ -1,0 +1,37 @@
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "harbour/core/Vec3.h"
+
+namespace harbour::sim {
+
+/// What the other stations of a team session make happen in this one: its inputs from the network, applied
+/// before a step like an instructor's command and recorded with that step, so that a replay of this station's
+/// machine runs bit for bit as the session ran, the others' states read back as they arrived.
+struct TeamInput {
+  enum class Kind : std::uint8_t {
+    /// A team truck of the crane's lane (truck `slot`: another station's trailer) stands at `pose` (its deck's
+    /// top centre, x along its length), moving at `velocity_mps` and turning at `angular_velocity_radps`.
+    kTruckAt,
+    /// The box seated on team truck `slot` has been taken over by the truck's station: it is that station's
+    /// now (simulated and drawn there); here it stays, fixed to the truck, as something to collide with, and
+    /// is no longer drawn.
+    kTakenOver,
+    /// A box handed over to this station's trailer: `mass_kg` set down at `pose` (its centre in the trailer's
+    /// frame); the trailer's locating cones hold it from now on.
+    kLoadOn,
+  };
+  static constexpr std::uint8_t kKinds = 3;
+  Kind kind = Kind::kTruckAt;
+  int slot = 0;
+  core::Pose pose;
+  core::Vec3 velocity_mps, angular_velocity_radps;
+  double mass_kg = 0.0;
+};
+
+/// Why `input` is out of range ("" when it is not): non-finite numbers, a mass outside 0-80 t, a slot < 0.
+std::string why_invalid(const TeamInput& input);
+
+}  // namespace harbour::sim
