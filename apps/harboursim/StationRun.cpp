@@ -196,9 +196,9 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
   // the other members' machines, in this station's scene and in every snapshot it publishes
   std::shared_ptr<TeamMembership> membership;  // the loop's addition holds it as long as the loop may run
   if (team) {
-    membership = std::make_shared<TeamMembership>(*team, options.role,
-                                                  options.name.empty() ? options.role : options.name,
-                                                  options.domain, exercise, session.simulation().scene());
+    membership = std::make_shared<TeamMembership>(
+        *team, options.role, options.name.empty() ? options.role : options.name, options.domain, exercise,
+        session.simulation().scene(), options.time_scale);
     // for the readers that draw: the windows, the console's 3D view, the instructor's picture
     session.loop().set_addition(
         [membership](sim::Snapshot& s) { membership->add_to(s); },

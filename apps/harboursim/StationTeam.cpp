@@ -18,9 +18,9 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr auto kPeriod = std::chrono::milliseconds(20);  // 50 Hz, the team reader's rate
-constexpr double kOfferEvery_s = 0.1;                     // a box offered again until it is acquired
-constexpr double kStanding_mps = 0.05;                    // a trailer this slow stands
-constexpr double kAtLoadStop_m = 1.5;                     // its centre this near its load stop
+constexpr double kOfferEvery_s = 0.1;                    // a box offered again until it is acquired
+constexpr double kStanding_mps = 0.05;                   // a trailer this slow stands
+constexpr double kAtLoadStop_m = 1.5;                    // its centre this near its load stop
 
 const sim::Snapshot::Entity* entity_in(const sim::Snapshot& s, int index) {
   for (int n = 0; n < s.entity_count; ++n)
@@ -82,9 +82,10 @@ std::string resolve_team(const std::string& name_or_path, const std::string& cen
 
 TeamMembership::TeamMembership(const io::Team& team, const std::string& role, const std::string& station,
                                int domain, const sim::ExerciseSettings& own_exercise,
-                               const sim::SceneDescription& own_scene)
+                               const sim::SceneDescription& own_scene, double time_scale)
     : team_(team),
       role_(role),
+      time_scale_(time_scale),
       own_bodies_(own_scene.machine_entities),
       link_(station, team.name, role, domain),
       presence_(own_scene, other_members(team, role)),
@@ -117,7 +118,8 @@ TeamMembership::TeamMembership(const io::Team& team, const std::string& role, co
     t.trailer_body -= first;
     trucks_.push_back(t);
   }
-  for (const sim::ContainerPlacement& c : own_exercise.scenario.containers) box_mass_kg_[c.id] = c.gross_mass_kg;
+  for (const sim::ContainerPlacement& c : own_exercise.scenario.containers)
+    box_mass_kg_[c.id] = c.gross_mass_kg;
   load_stop_ = own_exercise.load_stop;
   trailer_entity_ = entity_named(own_scene, "trailer");
   load_entity_ = entity_named(own_scene, "load");
@@ -136,8 +138,12 @@ TeamMembership::~TeamMembership() {
   stop();
 }
 
-double TeamMembership::now_s() {
+double TeamMembership::wall_s() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+double TeamMembership::now_s() const {
+  return wall_s() * time_scale_;
 }
 
 void TeamMembership::add_to(sim::Snapshot& snapshot) const {
@@ -161,6 +167,7 @@ void TeamMembership::stop() {
 void TeamMembership::run() {
   // the previous snapshot's bodies, for their velocities by difference
   std::vector<core::Pose> before(static_cast<std::size_t>(own_bodies_));
+  std::vector<std::int64_t> before_at(static_cast<std::size_t>(own_bodies_), -1);  // its step (-1: not sent)
   std::int64_t before_step = -1;
   auto next = std::chrono::steady_clock::now();
   while (!stop_) {
@@ -177,13 +184,16 @@ void TeamMembership::run() {
       state.time_s(s->time_s);
       state.held(s->held);
       state.started_unix_ms(started_unix_ms_);
-      const double dt = before_step < 0 ? 0.0 : static_cast<double>(s->step - before_step) * 1e-3;
       for (int n = 0; n < s->entity_count && n < own_bodies_; ++n) {
         const sim::Snapshot::Entity& e = s->entities[static_cast<std::size_t>(n)];
         // (a body it does not draw, as a load still to come, is not sent: the others hide it)
         if (e.index >= static_cast<std::uint32_t>(own_bodies_) || (e.flags & sim::Snapshot::kHidden) != 0)
           continue;
+        // (a body that has just appeared, as a load handed over, has no velocity yet)
         const core::Pose& was = before[e.index];
+        const double dt = before_at[e.index] == before_step && before_step >= 0
+                              ? static_cast<double>(s->step - before_step) * 1e-3
+                              : 0.0;
         const core::Vec3 v = dt > 0.0 ? (1.0 / dt) * (e.pose.position - was.position) : core::Vec3{};
         const core::Vec3 w =
             dt > 0.0 ? core::angular_velocity(was.rotation, e.pose.rotation, dt) : core::Vec3{};
@@ -193,6 +203,7 @@ void TeamMembership::run() {
                                v.x, v.y, v.z, w.x, w.y, w.z})
           state.motion().push_back(static_cast<float>(x));
         before[e.index] = e.pose;
+        before_at[e.index] = s->step;
       }
       before_step = s->step;
       link_.publish(state);
@@ -211,7 +222,8 @@ void TeamMembership::feed_trucks() {
   if (!input_) return;
   const double now = now_s();
   for (std::size_t k = 0; k < trucks_.size(); ++k) {
-    const std::optional<station::RemoteMotion> m = presence_.motion_of(trucks_[k].role, trucks_[k].trailer_body, now);
+    const std::optional<station::RemoteMotion> m =
+        presence_.motion_of(trucks_[k].role, trucks_[k].trailer_body, now);
     if (!m) continue;
     // its deck's top centre, moving with the trailer
     const core::Vec3 up = m->pose.rotation * core::Vec3{0, 0, trucks_[k].deck_half_z_m};
@@ -227,7 +239,7 @@ void TeamMembership::feed_trucks() {
 
 void TeamMembership::offer_seated(const sim::Snapshot& s) {
   if (trucks_.empty()) return;
-  const double now = now_s();
+  const double now = wall_s();
   const sim::SceneDescription& scene = presence_.scene();
   for (int n = 0; n < s.entity_count; ++n) {
     const sim::Snapshot::Entity& e = s.entities[static_cast<std::size_t>(n)];
@@ -252,7 +264,8 @@ void TeamMembership::offer_seated(const sim::Snapshot& s) {
       const core::Quat q = core::Quat::from(on_trailer.rotation);
       std::array<float, 7> at{};
       std::size_t n_at = 0;
-      for (const double v : {on_trailer.position.x, on_trailer.position.y, on_trailer.position.z, q.x, q.y, q.z, q.w})
+      for (const double v :
+           {on_trailer.position.x, on_trailer.position.y, on_trailer.position.z, q.x, q.y, q.z, q.w})
         at[n_at++] = static_cast<float>(v);
       offer.message.on_trailer(at);
       if (offer.truck < 0) continue;
@@ -281,7 +294,8 @@ void TeamMembership::watch_load_stop(const sim::Snapshot& s) {
     const double speed = trailer_was_s_ >= 0.0 && s.time_s > trailer_was_s_
                              ? core::length(p - trailer_was_) / (s.time_s - trailer_was_s_)
                              : 0.0;
-    const bool there = std::hypot(p.x - load_stop_->trailer_at_m.x, p.y - load_stop_->trailer_at_m.y) < kAtLoadStop_m;
+    const bool there =
+        std::hypot(p.x - load_stop_->trailer_at_m.x, p.y - load_stop_->trailer_at_m.y) < kAtLoadStop_m;
     if (there && speed < kStanding_mps && standing_since_s_ < 0.0) standing_since_s_ = s.time_s;
     if (!there) standing_since_s_ = -1.0;
     trailer_was_ = p;
@@ -290,7 +304,7 @@ void TeamMembership::watch_load_stop(const sim::Snapshot& s) {
 }
 
 void TeamMembership::take_hand_offs() {
-  const double now = now_s();
+  const double now = wall_s();
   for (const net::TeamHandOff& m : link_.take_hand_offs()) {
     const std::string item = m.item().to_string();
     if (m.kind() == 0 && m.to_role().to_string() == role_) {

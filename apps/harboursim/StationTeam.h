@@ -3,8 +3,8 @@
 #include <atomic>
 #include <functional>
 #include <map>
-#include <optional>
 #include <memory>
+#include <optional>
 #include <set>
 #include <string>
 #include <thread>
@@ -31,8 +31,10 @@ class TeamMembership {
   /// Builds the other roles' exercises here (without stepping them) for their machines' bodies and start
   /// poses; joins the session's DDS domain as `station`. Throws std::runtime_error when the team's trucks do
   /// not fit the exercises (a crane's lane of another size, a truck role whose trailer takes no box).
+  /// `time_scale`: the session's clock runs so much faster than the wall's (every member runs at it).
   TeamMembership(const io::Team& team, const std::string& role, const std::string& station, int domain,
-                 const sim::ExerciseSettings& own_exercise, const sim::SceneDescription& own_scene);
+                 const sim::ExerciseSettings& own_exercise, const sim::SceneDescription& own_scene,
+                 double time_scale = 1.0);
   ~TeamMembership();
   TeamMembership(const TeamMembership&) = delete;
   TeamMembership& operator=(const TeamMembership&) = delete;
@@ -60,12 +62,14 @@ class TeamMembership {
   void run();
   void take();  // the others' states that came, and who was lost or came back
   void take_hand_offs();
-  void feed_trucks();                          // a crane: where its team trucks are, into its simulation
+  void feed_trucks();                         // a crane: where its team trucks are, into its simulation
   void offer_seated(const sim::Snapshot& s);  // a crane: the boxes on its trucks, offered to their tractors
   void watch_load_stop(const sim::Snapshot& s);  // a tractor: how long it stood waiting for its box
-  static double now_s();
+  static double wall_s();
+  double now_s() const;  // the session's clock: the wall's at the time scale
   io::Team team_;
   std::string role_;
+  double time_scale_;
   int own_bodies_;
   net::TeamLink link_;
   station::TeamPresence presence_;
@@ -83,9 +87,9 @@ class TeamMembership {
   // a crane's team trucks: the tractors' roles, their trailers' bodies and decks; the crane's own boxes
   struct Truck {
     std::string role;
-    int trailer_body = -1;      // in the member's bodies
+    int trailer_body = -1;       // in the member's bodies
     double deck_half_z_m = 0.0;  // its deck's top above its centre
-    int entity = -1;            // the crane's team truck in its own scene
+    int entity = -1;             // the crane's team truck in its own scene
   };
   std::vector<Truck> trucks_;
   std::map<std::string, double> box_mass_kg_;  // by id

@@ -87,7 +87,8 @@ TEST(RecordingFile, RoundTripsBitForBit) {
     EXPECT_EQ(got.slot, sent.slot);
     EXPECT_TRUE(got.pose.position == sent.pose.position);
     for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) EXPECT_EQ(got.pose.rotation.m[r][c], sent.pose.rotation.m[r][c]);
+      for (int c = 0; c < 3; ++c)
+        EXPECT_EQ(got.pose.rotation.m[r][c], sent.pose.rotation.m[r][c]);
     EXPECT_TRUE(got.velocity_mps == sent.velocity_mps);
     EXPECT_TRUE(got.angular_velocity_radps == sent.angular_velocity_radps);
     EXPECT_EQ(got.mass_kg, sent.mass_kg);

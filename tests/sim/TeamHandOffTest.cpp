@@ -59,19 +59,22 @@ TEST(TeamHandOff, TheCraneSetsABoxOnEachTractorsChassisAndEachTractorTakesItsBox
   Member crane("sts_discharge_team");
   crane.pilot = std::make_unique<Autopilot>(crane.exercise);
   Member tractor[2] = {Member("tractor_sts_collect_1"), Member("tractor_sts_collect_2")};
-  for (Member& t : tractor) t.pilot = std::make_unique<TractorAutopilot>(t.exercise);
+  for (Member& t : tractor)
+    t.pilot = std::make_unique<TractorAutopilot>(t.exercise);
   const double half_z = tractor[0].sim.scene().entities[1].half_extents_m.z;
 
   int handed[2] = {-1, -1};
   double handed_at_s[2] = {-1, -1}, loaded_wait_s[2] = {-1, -1};
   double standing_since_s[2] = {-1, -1};
   const double limit_s = crane.exercise.rules.time_limit_s;
-  while (crane.sim.time_s() < limit_s &&
-         !(tractor[0].evaluator.finished() && tractor[1].evaluator.finished() && crane.evaluator.finished())) {
+  while (crane.sim.time_s() < limit_s && !(tractor[0].evaluator.finished() &&
+                                           tractor[1].evaluator.finished() && crane.evaluator.finished())) {
     if (crane.sim.steps() % 20 == 0)
-      for (int k = 0; k < 2; ++k) crane.input(truck_at(tractor[k].sim, k));
+      for (int k = 0; k < 2; ++k)
+        crane.input(truck_at(tractor[k].sim, k));
     crane.step();
-    for (Member& t : tractor) t.step();
+    for (Member& t : tractor)
+      t.step();
     for (int k = 0; k < 2; ++k) {
       const auto& tt = dynamic_cast<const TerminalTractor&>(tractor[k].sim.machine());
       if (standing_since_s[k] < 0 && std::abs(tt.forward_mps()) < 0.05 && tractor[k].sim.time_s() > 5.0 &&
@@ -84,7 +87,8 @@ TEST(TeamHandOff, TheCraneSetsABoxOnEachTractorsChassisAndEachTractorTakesItsBox
       const core::Pose on = crane.sim.world().pose(crane.sim.container_body(static_cast<std::size_t>(box)));
       TeamInput load;
       load.kind = TeamInput::Kind::kLoadOn;
-      load.pose = {deck.rotation.transposed() * on.rotation, deck.to_local(on.position) + core::Vec3{0, 0, half_z}};
+      load.pose = {deck.rotation.transposed() * on.rotation,
+                   deck.to_local(on.position) + core::Vec3{0, 0, half_z}};
       load.mass_kg = crane.sim.world().mass_kg(crane.sim.container_body(static_cast<std::size_t>(box)));
       tractor[k].input(load);
       TeamInput gone;
@@ -97,20 +101,23 @@ TEST(TeamHandOff, TheCraneSetsABoxOnEachTractorsChassisAndEachTractorTakesItsBox
     }
   }
   ASSERT_FALSE(crane.sim.diverged()) << crane.sim.divergence();
-  for (const Member& t : tractor) ASSERT_FALSE(t.sim.diverged()) << t.sim.divergence();
+  for (const Member& t : tractor)
+    ASSERT_FALSE(t.sim.diverged()) << t.sim.divergence();
   const auto parked_s = [&](int k) {
     const std::vector<double>& t = tractor[k].evaluator.metrics().cycle_times_s;
     return t.empty() ? -1.0 : t[0];
   };
-  std::printf("handed over at %.1f s and %.1f s (tractors waited %.1f s and %.1f s); crane %d moves, "
-              "tractors parked at %.1f s and %.1f s\n",
-              handed_at_s[0], handed_at_s[1], loaded_wait_s[0], loaded_wait_s[1],
-              crane.evaluator.metrics().moves_completed, parked_s(0), parked_s(1));
+  std::printf(
+      "handed over at %.1f s and %.1f s (tractors waited %.1f s and %.1f s); crane %d moves, "
+      "tractors parked at %.1f s and %.1f s\n",
+      handed_at_s[0], handed_at_s[1], loaded_wait_s[0], loaded_wait_s[1],
+      crane.evaluator.metrics().moves_completed, parked_s(0), parked_s(1));
   // each tractor got one box, a different one, the first the first move's
   EXPECT_GE(handed[0], 0);
   EXPECT_GE(handed[1], 0);
   EXPECT_NE(handed[0], handed[1]);
   EXPECT_EQ(crane.evaluator.metrics().moves_completed, 2);
+  EXPECT_TRUE(crane.evaluator.finished());  // both boxes taken over: the crane's part is done
   EXPECT_EQ(crane.evaluator.metrics().collisions, 0);
   for (int k = 0; k < 2; ++k) {
     const Metrics& m = tractor[k].evaluator.metrics();
@@ -144,7 +151,8 @@ TEST(TeamHandOff, TheCraneSetsABoxOnEachTractorsChassisAndEachTractorTakesItsBox
   for (Member* m : {&crane, &tractor[0]}) {
     EXPECT_FALSE(m->recorder.recording().team.empty());
     const ReplayResult r = replay(m->exercise.scenario, m->recorder.recording());
-    EXPECT_FALSE(r.first_mismatch.has_value()) << m->exercise.name << " at step " << r.first_mismatch.value_or(-1);
+    EXPECT_FALSE(r.first_mismatch.has_value())
+        << m->exercise.name << " at step " << r.first_mismatch.value_or(-1);
     EXPECT_EQ(r.simulation->state_hash(), m->sim.state_hash()) << m->exercise.name;
   }
 }

@@ -96,9 +96,11 @@ sim::TrailerSettings read_coupled_trailer(const YamlFile& f, const YAML::Node& t
     const std::string type = f.text(t, "receives", at);
     const auto iso = iso_types().find(type);
     if (iso == iso_types().end())
-      f.fail(t["receives"], at + ".receives", "unknown container type '" + type + "' (20ft, 40ft, 40ftHC, 45ftHC)");
+      f.fail(t["receives"], at + ".receives",
+             "unknown container type '" + type + "' (20ft, 40ft, 40ftHC, 45ftHC)");
     if (f.optional(t, "payload_kg", at))
-      f.fail(t["payload_kg"], at + ".payload_kg", "a trailer that receives a box starts empty (no payload_kg)");
+      f.fail(t["payload_kg"], at + ".payload_kg",
+             "a trailer that receives a box starts empty (no payload_kg)");
     trailer.receives_half_extents_m = iso->second.size_m * 0.5;
   }
   // level when coupled: its kingpin as high as the plate, up; its legs clear then and down with the plate
@@ -376,8 +378,10 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
     lane.chassis_top_m = f.number_or(t, "chassis_top_m", at, lane.chassis_top_m, 0.5, 3.0);
     lane.delivering = f.flag(t, "delivering", at, false);
     lane.team = f.flag(t, "team", at, false);
+    lane.clearance_m = f.number_or(t, "clearance_m", at, lane.clearance_m, 0.2, 10.0);
     if (lane.team && lane.delivering)
-      f.fail(t["team"], at + ".team", "a team's tractors take boxes away (delivering is not for a team lane)");
+      f.fail(t["team"], at + ".team",
+             "a team's tractors take boxes away (delivering is not for a team lane)");
   }
 
   if (const auto y_node = f.optional_map(x, "yard_block", "exercise")) {
@@ -735,11 +739,13 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
     const std::string at = "exercise.load_stop";
     const auto* towing = s.machine.get_if<sim::TractorSetup>();
     if (!towing || !towing->start.trailer || !towing->start.trailer->receives_half_extents_m)
-      f.fail(x["load_stop"], at, "only a tractor whose trailer receives a box (vehicle.trailer.receives) stops for one");
+      f.fail(x["load_stop"], at,
+             "only a tractor whose trailer receives a box (vehicle.trailer.receives) stops for one");
     const YAML::Node c = f.required(*stop, "trailer_at_m", at);
     if (!c.IsSequence() || c.size() != 2) f.fail(c, at + ".trailer_at_m", "is [x, y] in metres");
     sim::LoadStop load_stop;
-    load_stop.trailer_at_m = {f.number_at(c[0], at + ".trailer_at_m[0]"), f.number_at(c[1], at + ".trailer_at_m[1]"), 0.0};
+    load_stop.trailer_at_m = {f.number_at(c[0], at + ".trailer_at_m[0]"),
+                              f.number_at(c[1], at + ".trailer_at_m[1]"), 0.0};
     if (!(std::abs(load_stop.trailer_at_m.x) <= kSite_m && std::abs(load_stop.trailer_at_m.y) <= kSite_m))
       f.fail(c, at + ".trailer_at_m", "lies off the site");
     load_stop.heading_rad = core::deg_to_rad(f.number(*stop, "heading_deg", at, -360.0, 360.0));

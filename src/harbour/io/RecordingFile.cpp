@@ -196,7 +196,7 @@ RecordingWriter::RecordingWriter(const std::string& path, const sim::Recording& 
   // the prefix merged in the order a run streams it: before step s the commands of s, after it the input
   // change applied at s and the checkpoint and keyframe of s + 1 (each list is written in its own order)
   // (the team inputs of s after its commands)
-  const std::size_t sizes[] = {prefix.commands.size(),    prefix.team.size(),     prefix.inputs.size(),
+  const std::size_t sizes[] = {prefix.commands.size(), prefix.team.size(), prefix.inputs.size(),
                                prefix.checkpoints.size(), prefix.keyframes.size()};
   constexpr std::size_t kKinds = std::size(sizes);
   std::size_t next[kKinds] = {};
@@ -217,7 +217,8 @@ RecordingWriter::RecordingWriter(const std::string& path, const sim::Recording& 
   for (;;) {
     std::size_t first = kKinds;
     for (std::size_t kind = 0; kind < kKinds; ++kind)
-      if (next[kind] < sizes[kind] && (first == kKinds || streamed_at(kind) < streamed_at(first))) first = kind;
+      if (next[kind] < sizes[kind] && (first == kKinds || streamed_at(kind) < streamed_at(first)))
+        first = kind;
     if (first == kKinds) break;
     const std::size_t n = next[first]++;
     if (first == 0) on_command(prefix.commands[n]);

@@ -144,7 +144,9 @@ class Machine {
   /// The material its tool holds [kg] (its weight hangs on the tool until the next call).
   virtual void carry_bulk(double /*mass_kg*/) {}
   /// Why it cannot take a box handed over by a team's crane ("" when it can): a trailer that receives one.
-  virtual std::string why_no_load() const { return std::string("the ") + kind() + " takes no load handed over"; }
+  virtual std::string why_no_load() const {
+    return std::string("the ") + kind() + " takes no load handed over";
+  }
   /// A box of `mass_kg` handed over onto it (a team's crane set it down): `on_trailer` its centre in its
   /// trailer's frame. Only where why_no_load() is "".
   virtual void take_load(const core::Pose& /*on_trailer*/, double /*mass_kg*/) {}

@@ -44,7 +44,8 @@ namespace {
 enum class Delivery { kLatestKept, kStream, kBestEffort };
 
 constexpr int kMostNodes = 256;  // stations and consoles on one domain
-constexpr int kHandOffDepth = 64;  // hand-off messages kept for a late reader (re-offered every 100 ms anyway)
+constexpr int kHandOffDepth =
+    64;  // hand-off messages kept for a late reader (re-offered every 100 ms anyway)
 
 // a writer's or a reader's QoS for one of the three kinds of delivery
 template <class Qos>

@@ -310,8 +310,11 @@ StsControls Autopilot::decide(const Simulation& simulation) {
   }
   const double now = simulation.time_s();
   // a team's truck not yet under the crane: over its stop, waiting for it
-  const std::optional<core::Vec3> target = carrying_ ? move_target(exercise_.moves[goal_], simulation) : std::nullopt;
-  const core::Vec3 destination = !carrying_ ? source(simulation) : target ? *target : exercise_.moves[goal_].target_m;
+  const std::optional<core::Vec3> target =
+      carrying_ ? move_target(exercise_.moves[goal_], simulation) : std::nullopt;
+  const core::Vec3 destination = !carrying_ ? source(simulation)
+                                 : target   ? *target
+                                            : exercise_.moves[goal_].target_m;
   const double travel_height = simulation.vessel()
                                    ? highest_travel
                                    : std::min(highest_travel, height_over_stacks(simulation, destination));

@@ -162,6 +162,14 @@ void Evaluator::observe(const Simulation& simulation, const Controls& controls) 
   metrics_.vehicle = tally.vehicle;
   metrics_.jackknifes = static_cast<int>(tally.jackknifes);
   metrics_.tip_overs = static_cast<int>(tally.tip_overs);
+  if (const TruckLane* trucks = simulation.trucks(); trucks && trucks->team()) {
+    int taken_over = 0, set_on_trucks = 0;
+    for (int k = 0; k < trucks->trucks(); ++k)
+      taken_over += trucks->is_taken_over(k) ? 1 : 0;
+    for (std::size_t g = 0; g < exercise_.moves.size(); ++g)
+      set_on_trucks += done_[g] && exercise_.moves[g].to_truck ? 1 : 0;
+    hand_offs_pending_ = std::max(0, set_on_trucks - taken_over);
+  }
 }
 
 void Evaluator::observe_instructor(const Simulation& simulation) {
@@ -257,8 +265,9 @@ bool Evaluator::goals_met() const {
 }
 
 bool Evaluator::finished() const {
-  return metrics_.stopped_after_fault ||
-         ((!exercise_.moves.empty() || exercise_.deliver || exercise_.trim) && goals_met());
+  // (a box set on a team's truck ends the crane's part only once that truck's station has taken it over)
+  return metrics_.stopped_after_fault || ((!exercise_.moves.empty() || exercise_.deliver || exercise_.trim) &&
+                                          goals_met() && hand_offs_pending_ == 0);
 }
 
 double pile_top_m(const bulk::BulkWorld& bulk, int grid) {

@@ -25,8 +25,8 @@ struct MoveGoal {
   bool to_truck = false;
 };
 
-/// Where `goal`'s item is to be set down now: its target, or, for a move to the truck, the chassis of the truck
-/// waiting under the crane (nullopt while none waits: a team's tractor still on its way).
+/// Where `goal`'s item is to be set down now: its target, or, for a move to the truck, the chassis of the
+/// truck waiting under the crane (nullopt while none waits: a team's tractor still on its way).
 std::optional<core::Vec3> move_target(const MoveGoal& goal, const Simulation& simulation);
 
 /// Trigger values and per-occurrence deductions (points of 100); defined in docs/evaluation.md.
@@ -124,7 +124,8 @@ struct TeamFigures {
   double closest_m = -1.0;            ///< the closest any came [m] (-1: none measured)
   int hand_offs = 0;                  ///< boxes that changed owner, to or from this member, settled
   double worst_hand_off_ms = -1.0;    ///< [ms] the longest from offer to both sides agreeing (-1: none)
-  double waited_s = -1.0;  ///< [s] a tractor standing at its load stop until its box was on (-1: it never did)
+  double waited_s =
+      -1.0;  ///< [s] a tractor standing at its load stop until its box was on (-1: it never did)
 };
 
 /// Everything measured during an attempt (docs/evaluation.md defines each).
@@ -291,6 +292,7 @@ class Evaluator {
   bool goals_met() const;
 
  private:
+  int hand_offs_pending_ = 0;  // boxes set on a team's trucks not yet taken over by their stations
   void observe_containers(const Simulation& simulation, const Controls& controls, const StsCrane& crane,
                           bool estop);
   void observe_any_machine(const Simulation& simulation, const Controls& controls, bool emergency_stop);

@@ -521,9 +521,10 @@ SceneDescription Simulation::scene() const {
       d.entities.push_back({"truck " + std::to_string(k + 1), "truck", {}});
   for (const ContainerPlacement& c : scenario_.containers)
     d.entities.push_back({c.id,
-                          c.kind == ContainerPlacement::Kind::kHatchCover     ? "hatch_cover"
-                          : c.kind == ContainerPlacement::Kind::kGeneralCargo ? "cargo"
-                                                                              : container_look(2.0 * c.half_extents_m.x),
+                          c.kind == ContainerPlacement::Kind::kHatchCover ? "hatch_cover"
+                          : c.kind == ContainerPlacement::Kind::kGeneralCargo
+                              ? "cargo"
+                              : container_look(2.0 * c.half_extents_m.x),
                           c.half_extents_m});
   return d;
 }

@@ -12,7 +12,8 @@ namespace harbour::sim {
 /// machine runs bit for bit as the session ran, the others' states read back as they arrived.
 struct TeamInput {
   enum class Kind : std::uint8_t {
-    /// A team truck of the crane's lane (truck `slot`: another station's trailer) stands at `pose` (its deck's
+    /// A team truck of the crane's lane (truck `slot`: another station's trailer) stands at `pose` (its
+    /// deck's
     /// top centre, x along its length), moving at `velocity_mps` and turning at `angular_velocity_radps`.
     kTruckAt,
     /// The box seated on team truck `slot` has been taken over by the truck's station: it is that station's

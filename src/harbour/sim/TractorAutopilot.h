@@ -35,8 +35,8 @@ class TractorAutopilot final : public Pilot {
 
  private:
   enum class Phase { kDrive, kStop, kWaitForLoad, kDrop, kDone };
-  /// Where it is driving to now: the load stop (an exercise's team pick-up, until the box is on) or its move's
-  /// target.
+  /// Where it is driving to now: the load stop (an exercise's team pick-up, until the box is on) or its
+  /// move's target.
   struct Leg {
     core::Vec3 target_m;
     double heading_rad = 0.0;
@@ -54,7 +54,7 @@ class TractorAutopilot final : public Pilot {
 
   ExerciseSettings exercise_;
   DriverDefects defects_;
-  bool reversing_ = false;  // the target lies behind the trailer
+  bool reversing_ = false;     // the target lies behind the trailer
   bool to_load_stop_ = false;  // on the way to the load stop, or waiting there
   Phase phase_ = Phase::kDrive;
   std::vector<core::Vec3> path_;  // the polyline its rear axle follows (ground plane)

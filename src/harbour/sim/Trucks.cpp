@@ -50,7 +50,8 @@ TruckLane::TruckLane(physics::PhysicsWorld& world, const TruckLaneSettings& sett
 }
 
 std::optional<core::Vec3> TruckLane::load_centre(double height_m) const {
-  if (!settings_.team) return core::Vec3{settings_.lane_x_m, settings_.stop_y_m, settings_.chassis_top_m + height_m / 2};
+  if (!settings_.team)
+    return core::Vec3{settings_.lane_x_m, settings_.stop_y_m, settings_.chassis_top_m + height_m / 2};
   std::optional<core::Vec3> nearest;
   double nearest_m = kTeamStopReach_m;
   for (std::size_t k = 0; k < trucks_.size(); ++k) {
@@ -88,7 +89,8 @@ void TruckLane::step_team(std::span<const ContainerRef> boxes, std::optional<phy
       if (std::abs(on.x) >= kChassisHalfLength_m || std::abs(on.y) >= kChassisHalfWidth_m ||
           std::abs(on.z - boxes[b].half_extents_m.z) >= 0.05)
         continue;
-      if (attachment_bottom_z_m <= box.position.z + boxes[b].half_extents_m.z + settings_.clearance_m) continue;
+      if (attachment_bottom_z_m <= box.position.z + boxes[b].half_extents_m.z + settings_.clearance_m)
+        continue;
       trucks_[k].load_attachment = world_.attach(boxes[b].body, trucks_[k].body);
       team_[k].seated = static_cast<int>(b);
       break;

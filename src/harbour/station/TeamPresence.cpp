@@ -104,11 +104,13 @@ std::string TeamPresence::offer(const TeamSample& sample) {
     if (b >= member->bodies.size())
       return "'" + sample.role + "' has " + std::to_string(member->bodies.size()) + " bodies, not body " +
              std::to_string(b);
+  const std::vector<bool> was_present = member->present;
   std::fill(member->present.begin(), member->present.end(), false);
   for (std::size_t k = 0; k < sample.body.size(); ++k) {
     member->present[sample.body[k]] = true;
     DeadReckoning& body = member->bodies[sample.body[k]];
-    if (member->state.heard)
+    // (one that has just appeared, as a load handed over, is put there, not blended in from where it was)
+    if (member->state.heard && was_present[sample.body[k]])
       body.update(sample.motion[k], sample.received_s);
     else
       body.place(sample.motion[k], sample.received_s);
@@ -127,7 +129,8 @@ void TeamPresence::write(sim::Snapshot& snapshot, double now_s) const {
       if (snapshot.entity_count >= sim::kMaxEntities) return;
       const int index = m.first_entity + static_cast<int>(b);
       snapshot.entities[static_cast<std::size_t>(snapshot.entity_count++)] = {
-          static_cast<std::uint32_t>(index), m.present[b] ? 0u : sim::Snapshot::kHidden, m.bodies[b].at(now_s)};
+          static_cast<std::uint32_t>(index), m.present[b] ? 0u : sim::Snapshot::kHidden,
+          m.bodies[b].at(now_s)};
     }
 }
 
