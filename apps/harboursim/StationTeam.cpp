@@ -45,13 +45,26 @@ std::vector<station::TeamMember> other_members(const io::Team& team, const std::
     const sim::Simulation simulation(exercise.scenario);
     const sim::SceneDescription scene = simulation.scene();
     const std::unique_ptr<sim::Snapshot> at_start = simulation.snapshot();
+    // its machine's bodies, and its scene on to its last liftable item (what it sends while it holds one or
+    // hands one over; hidden until then)
+    std::size_t bodies = static_cast<std::size_t>(scene.machine_entities);
+    for (const sim::ContainerPlacement& c : exercise.scenario.containers)
+      for (std::size_t n = bodies; n < scene.entities.size(); ++n)
+        if (scene.entities[n].name == c.id) bodies = n + 1;
     station::TeamMember m;
     m.role = r.role;
-    for (int b = 0; b < scene.machine_entities; ++b) {
-      m.bodies.push_back(scene.entities[static_cast<std::size_t>(b)]);
-      const sim::Snapshot::Entity& e = at_start->entities[static_cast<std::size_t>(b)];
-      m.start_poses.push_back(e.pose);
-      m.start_hidden.push_back((e.flags & sim::Snapshot::kHidden) != 0);
+    m.machine_bodies = scene.machine_entities;
+    std::vector<core::Pose> start(scene.entities.size());
+    std::vector<std::uint32_t> start_flags(scene.entities.size(), sim::Snapshot::kHidden);
+    for (int n = 0; n < at_start->entity_count; ++n) {
+      const sim::Snapshot::Entity& e = at_start->entities[static_cast<std::size_t>(n)];
+      if (e.index < start.size()) start[e.index] = e.pose, start_flags[e.index] = e.flags;
+    }
+    for (std::size_t b = 0; b < bodies; ++b) {
+      m.bodies.push_back(scene.entities[b]);
+      m.start_poses.push_back(start[b]);
+      m.start_hidden.push_back(static_cast<int>(b) >= scene.machine_entities ||
+                               (start_flags[b] & sim::Snapshot::kHidden) != 0);
     }
     members.push_back(std::move(m));
   }
@@ -87,6 +100,7 @@ TeamMembership::TeamMembership(const io::Team& team, const std::string& role, co
       role_(role),
       time_scale_(time_scale),
       own_bodies_(own_scene.machine_entities),
+      own_entities_(static_cast<int>(own_scene.entities.size())),
       link_(station, team.name, role, domain),
       presence_(own_scene, other_members(team, role)),
       started_unix_ms_(std::chrono::duration_cast<std::chrono::milliseconds>(
@@ -166,8 +180,9 @@ void TeamMembership::stop() {
 
 void TeamMembership::run() {
   // the previous snapshot's bodies, for their velocities by difference
-  std::vector<core::Pose> before(static_cast<std::size_t>(own_bodies_));
-  std::vector<std::int64_t> before_at(static_cast<std::size_t>(own_bodies_), -1);  // its step (-1: not sent)
+  std::vector<core::Pose> before(static_cast<std::size_t>(own_entities_));
+  std::vector<std::int64_t> before_at(static_cast<std::size_t>(own_entities_),
+                                      -1);  // its step (-1: not sent)
   std::int64_t before_step = -1;
   auto next = std::chrono::steady_clock::now();
   while (!stop_) {
@@ -184,10 +199,14 @@ void TeamMembership::run() {
       state.time_s(s->time_s);
       state.held(s->held);
       state.started_unix_ms(started_unix_ms_);
-      for (int n = 0; n < s->entity_count && n < own_bodies_; ++n) {
+      for (int n = 0; n < s->entity_count; ++n) {
         const sim::Snapshot::Entity& e = s->entities[static_cast<std::size_t>(n)];
-        // (a body it does not draw, as a load still to come, is not sent: the others hide it)
-        if (e.index >= static_cast<std::uint32_t>(own_bodies_) || (e.flags & sim::Snapshot::kHidden) != 0)
+        // its machine's bodies and the items it holds or hands over (one it does not draw, as a load still to
+        // come, is not sent: the others hide it)
+        const bool item = (e.flags & (sim::Snapshot::kLocked | sim::Snapshot::kOnTeamTruck)) != 0;
+        if (e.index >= static_cast<std::uint32_t>(own_entities_) || (e.flags & sim::Snapshot::kHidden) != 0 ||
+            (e.index >= static_cast<std::uint32_t>(own_bodies_) && !item) ||
+            state.entity_index().size() >= 256)
           continue;
         // (a body that has just appeared, as a load handed over, has no velocity yet)
         const core::Pose& was = before[e.index];

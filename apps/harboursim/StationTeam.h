@@ -70,7 +70,8 @@ class TeamMembership {
   io::Team team_;
   std::string role_;
   double time_scale_;
-  int own_bodies_;
+  int own_bodies_;    // its machine's: sent every period
+  int own_entities_;  // its scene's (the items it holds are sent while it holds them)
   net::TeamLink link_;
   station::TeamPresence presence_;
   std::function<const sim::Snapshot*()> latest_;

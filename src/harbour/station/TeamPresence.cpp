@@ -156,7 +156,7 @@ std::vector<TeamPresence::Closest> TeamPresence::closest(const sim::Snapshot& ow
     Closest c{m.known.role, "", "", 1e300};
     for (std::size_t b = 0; b < m.bodies.size(); ++b) {
       const core::Vec3& half_b = m.known.bodies[b].half_extents_m;
-      if (!sized(half_b) || !m.present[b]) continue;
+      if (!sized(half_b) || !m.present[b] || static_cast<int>(b) >= m.known.machine_bodies) continue;
       const core::Pose pose_b = m.bodies[b].at(now_s);
       for (int n = 0; n < own.entity_count; ++n) {
         const sim::Snapshot::Entity& e = own.entities[static_cast<std::size_t>(n)];

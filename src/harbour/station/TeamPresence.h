@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -56,6 +57,8 @@ struct TeamMember {
   std::vector<sim::SceneDescription::Entity> bodies;
   std::vector<core::Pose> start_poses;  ///< one per body
   std::vector<bool> start_hidden;       ///< one per body: not there at the start (a load still to come)
+  /// The first this many bodies are its machine's (the rest items it may hold: not counted as near misses)
+  int machine_bodies = std::numeric_limits<int>::max();
 };
 
 /// What arrived from a member: its machine's bodies (by index into TeamMember::bodies) at one moment.
