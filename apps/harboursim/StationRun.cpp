@@ -454,6 +454,7 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
   }
   if (membership) {
     membership->stop();
+    membership->leave();
     for (const std::string& line : membership->report())
       std::printf("%s\n", line.c_str());
     session.set_team_figures(membership->figures());

@@ -178,6 +178,17 @@ void TeamMembership::stop() {
   if (thread_.joinable()) thread_.join();
 }
 
+void TeamMembership::leave() {
+  // best effort: said three times, 20 ms apart (one lost still leaves the others told)
+  net::TeamState state;
+  state.leaving(true);
+  state.started_unix_ms(started_unix_ms_);
+  for (int n = 0; n < 3; ++n) {
+    link_.publish(state);
+    std::this_thread::sleep_for(kPeriod);
+  }
+}
+
 void TeamMembership::run() {
   // the previous snapshot's bodies, for their velocities by difference
   std::vector<core::Pose> before(static_cast<std::size_t>(own_entities_));
@@ -193,7 +204,8 @@ void TeamMembership::run() {
       continue;
     }
     next += kPeriod;
-    if (const sim::Snapshot* s = latest_ ? latest_() : nullptr; s && s->step != before_step) {
+    // every period, held or not (a frozen member is not a lost one)
+    if (const sim::Snapshot* s = latest_ ? latest_() : nullptr) {
       net::TeamState state;
       state.step(s->step);
       state.time_s(s->time_s);
@@ -210,7 +222,7 @@ void TeamMembership::run() {
           continue;
         // (a body that has just appeared, as a load handed over, has no velocity yet)
         const core::Pose& was = before[e.index];
-        const double dt = before_at[e.index] == before_step && before_step >= 0
+        const double dt = before_at[e.index] == before_step && before_step >= 0 && s->step > before_step
                               ? static_cast<double>(s->step - before_step) * 1e-3
                               : 0.0;
         const core::Vec3 v = dt > 0.0 ? (1.0 / dt) * (e.pose.position - was.position) : core::Vec3{};
@@ -371,8 +383,16 @@ void TeamMembership::take() {
   {
     const std::int64_t arrived_ns = net::TeamLink::monotonic_ns();
     for (const net::TeamState& t : link_.take()) {
+      const std::string role = t.role().to_string();
+      if (t.leaving()) {  // its machine stays where it was last drawn
+        if (role != role_ && team_.find(role) && left_.insert(role).second) {
+          presence_.left(role);
+          if (said_) said_(role + ": left (" + t.station().to_string() + ", its attempt ended)");
+        }
+        continue;
+      }
       station::TeamSample sample;
-      sample.role = t.role().to_string();
+      sample.role = role;
       sample.received_s = now_s();
       sample.age_s = static_cast<double>(arrived_ns - t.sent_ns()) * 1e-9;  // one host: one monotonic clock
       const std::vector<float>& m = t.motion();
@@ -432,7 +452,9 @@ std::vector<std::string> TeamMembership::report() {
     std::snprintf(line, sizeof line,
                   "  %s: %lld states, age on arrival p50 %.2f ms, p99 %.2f ms, max %.2f ms%s", m.role.c_str(),
                   static_cast<long long>(m.samples), m.age_p50_s * 1e3, m.age_p99_s * 1e3, m.age_max_s * 1e3,
-                  m.lost ? ", LOST" : "");
+                  m.lost   ? ", LOST"
+                  : m.left ? ", left"
+                           : "");
     std::string text = line;
     for (const station::NearMissWatch::Tally& t : near_misses_.tallies())
       if (t.role == m.role) {

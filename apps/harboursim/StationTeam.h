@@ -49,6 +49,9 @@ class TeamMembership {
   void start(std::function<const sim::Snapshot*()> latest, std::function<void(const std::string&)> said,
              std::function<bool(const sim::TeamInput&)> input);
   void stop();
+  /// After stop(), as the attempt ends: tells the others this member leaves in order (they say "left", not
+  /// "lost").
+  void leave();
   /// One line per member: samples heard, their age on arrival, lost or not.
   std::vector<std::string> report();
   /// The team session this member was part of: "TEAM@START", START the earliest start (UTC, ISO 8601) of this
@@ -83,6 +86,7 @@ class TeamMembership {
   std::atomic<std::int64_t> earliest_unix_ms_;  // of this member's and every start heard
   std::set<std::string> refused_;               // the refusals said so far
   std::set<std::string> joined_;                // the roles heard so far
+  std::set<std::string> left_;                  // the roles that said they left
   station::NearMissWatch near_misses_;
   std::function<bool(const sim::TeamInput&)> input_;
   // a crane's team trucks: the tractors' roles, their trailers' bodies and decks; the crane's own boxes

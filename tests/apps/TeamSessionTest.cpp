@@ -241,6 +241,9 @@ TEST(TeamSession, ThreeStationsHandEachBoxOverOnceAndStoreOneSessionThatReplaysB
   EXPECT_EQ(count_said("crane-cab TGHU1000010"), 0) << logs();  // not one of the moves
   EXPECT_EQ(count_said("tractor_1-cab TGHU1000012: acquired from crane"), 1) << logs();
   EXPECT_EQ(count_said("tractor_2-cab TGHU1000014: acquired from crane"), 1) << logs();
+  // a tractor that has parked its box leaves the session in order: the others say so, not that it is lost
+  EXPECT_EQ(count_said("crane-cab tractor_1: left (tractor_1-cab, its attempt ended)"), 1) << logs();
+  EXPECT_EQ(count_said("crane-cab tractor_1: lost"), 0) << logs();
 
   // three attempts, finished and passed, of one team session; each with its team figures; each recording
   // replays its own machine bit for bit with the others' doings read back from it

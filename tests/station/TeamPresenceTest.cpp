@@ -183,6 +183,47 @@ TEST(TeamPresence, AMemberThatFallsSilentStopsWithinTheHorizonAndIsLostAfterTwoS
   EXPECT_EQ(changed, std::vector<std::string>{"tractor-1"});
 }
 
+TEST(TeamPresence, ABodyLeftOutIsHiddenAndOneThatAppearsIsPutThereAndAMemberThatLeftIsNotLost) {
+  TeamMember m = tractor();
+  m.start_hidden = {false, true};  // its trailer (say, a load still to come) not there at the start
+  TeamPresence team(own_scene(), {m});
+  auto snapshot = std::make_unique<sim::Snapshot>();
+  const auto drawn = [&](double t, int entity) {
+    snapshot->entity_count = 2;
+    team.write(*snapshot, t);
+    return snapshot->entities[static_cast<std::size_t>(entity)];
+  };
+  EXPECT_EQ(drawn(0.0, 2).flags, 0u);
+  EXPECT_EQ(drawn(0.0, 3).flags, sim::Snapshot::kHidden);
+  TeamSample sample;
+  sample.role = "tractor-1";
+  sample.received_s = 1.0;
+  sample.body = {0};
+  sample.motion = {{{core::Mat3::identity(), {0, -40, 1.5}}, {}, {}}};
+  ASSERT_EQ(team.offer(sample), "");
+  EXPECT_EQ(drawn(1.0, 3).flags, sim::Snapshot::kHidden);
+  // it appears 100 m from where it started: drawn there at once, not blended in from its start
+  sample.received_s = 1.02;
+  sample.body = {0, 1};
+  sample.motion.push_back({{core::Mat3::identity(), {-9, 60, 1.0}}, {}, {}});
+  ASSERT_EQ(team.offer(sample), "");
+  EXPECT_EQ(drawn(1.03, 3).flags, 0u);
+  EXPECT_NEAR(drawn(1.03, 3).pose.position.y, 60.0, 1e-9);
+  // left out again: hidden again
+  sample.received_s = 1.04;
+  sample.body = {0};
+  sample.motion.resize(1);
+  ASSERT_EQ(team.offer(sample), "");
+  EXPECT_EQ(drawn(1.05, 3).flags, sim::Snapshot::kHidden);
+  // it said it left: silent from then on, never lost
+  team.left("tractor-1");
+  std::vector<std::string> changed;
+  const TeamPresence::MemberState state = team.members(10.0, &changed).front();
+  EXPECT_TRUE(state.left);
+  EXPECT_FALSE(state.lost);
+  EXPECT_TRUE(changed.empty());
+}
+
 TEST(TeamPresence, SamplesOfAnotherRoleOrABodyItLacksAreRefused) {
   TeamPresence team(own_scene(), {tractor()});
   TeamSample sample;

@@ -178,7 +178,7 @@ std::vector<TeamPresence::MemberState> TeamPresence::members(double now_s, std::
   const std::lock_guard lock(mutex_);
   std::vector<MemberState> states;
   for (Member& m : members_) {
-    const bool lost = m.state.heard && now_s - m.last_heard_s > kLostAfter_s;
+    const bool lost = m.state.heard && !m.state.left && now_s - m.last_heard_s > kLostAfter_s;
     if (lost != m.state.lost && changed) changed->push_back(m.known.role);
     m.state.lost = lost;
     m.state.measured = static_cast<std::int64_t>(m.ages_s.size());
@@ -196,6 +196,12 @@ std::vector<TeamPresence::MemberState> TeamPresence::members(double now_s, std::
     states.push_back(m.state);
   }
   return states;
+}
+
+void TeamPresence::left(const std::string& role) {
+  const std::lock_guard lock(mutex_);
+  for (Member& m : members_)
+    if (m.known.role == role) m.state.left = true;
 }
 
 std::vector<std::string> NearMissWatch::update(const std::vector<TeamPresence::Closest>& closest) {

@@ -110,6 +110,7 @@ class TeamPresence {
     std::string role;
     bool heard = false;  ///< a sample has arrived
     bool lost = false;   ///< heard, then silent for kLostAfter_s
+    bool left = false;   ///< it said it left (its attempt ended): not lost
     std::int64_t samples = 0;
     std::int64_t measured = 0;  ///< samples whose age on arrival was measured
     double age_p50_s = 0.0, age_p99_s = 0.0, age_max_s = 0.0;
@@ -118,6 +119,8 @@ class TeamPresence {
   /// The ages' quantiles only `with_ages` (they sort every age so far).
   std::vector<MemberState> members(double now_s, std::vector<std::string>* changed = nullptr,
                                    bool with_ages = false);
+  /// Member `role` left in order (its attempt ended): it stays where it was, and is not reported lost.
+  void left(const std::string& role);
 
  private:
   struct Member {
