@@ -292,6 +292,7 @@ void TeamMembership::offer_seated(const sim::Snapshot& s) {
         on_trailer = {truck->pose.rotation.transposed() * e.pose.rotation,
                       on + core::Vec3{0, 0, trucks_[k].deck_half_z_m}};
       }
+      if (offer.truck < 0) continue;
       const core::Quat q = core::Quat::from(on_trailer.rotation);
       std::array<float, 7> at{};
       std::size_t n_at = 0;
@@ -299,7 +300,6 @@ void TeamMembership::offer_seated(const sim::Snapshot& s) {
            {on_trailer.position.x, on_trailer.position.y, on_trailer.position.z, q.x, q.y, q.z, q.w})
         at[n_at++] = static_cast<float>(v);
       offer.message.on_trailer(at);
-      if (offer.truck < 0) continue;
       offer.first_s = now;
       offer.message.kind(0);
       offer.message.to_role(trucks_[static_cast<std::size_t>(offer.truck)].role);
