@@ -21,6 +21,9 @@ constexpr auto kPeriod = std::chrono::milliseconds(20);  // 50 Hz, the team read
 constexpr double kOfferEvery_s = 0.1;                    // a box offered again until it is acquired
 constexpr double kStanding_mps = 0.05;                   // a trailer this slow stands
 constexpr double kAtLoadStop_m = 1.5;                    // its centre this near its load stop
+// a team truck's input is given again once it departs this far from where the last one carries it
+constexpr double kFeedTolerance_m = 0.002, kFeedTolerance_mps = 0.002, kFeedTolerance_rad = 0.0005,
+                 kFeedTolerance_radps = 0.0005;
 
 const sim::Snapshot::Entity* entity_in(const sim::Snapshot& s, int index) {
   for (int n = 0; n < s.entity_count; ++n)
@@ -253,18 +256,36 @@ void TeamMembership::feed_trucks() {
   if (!input_) return;
   const double now = now_s();
   for (std::size_t k = 0; k < trucks_.size(); ++k) {
-    const std::optional<station::RemoteMotion> m =
-        presence_.motion_of(trucks_[k].role, trucks_[k].trailer_body, now);
+    Truck& truck = trucks_[k];
+    const std::optional<station::RemoteMotion> m = presence_.motion_of(truck.role, truck.trailer_body, now);
     if (!m) continue;
     // its deck's top centre, moving with the trailer
-    const core::Vec3 up = m->pose.rotation * core::Vec3{0, 0, trucks_[k].deck_half_z_m};
     sim::TeamInput in;
     in.kind = sim::TeamInput::Kind::kTruckAt;
     in.slot = static_cast<int>(k);
-    in.pose = {m->pose.rotation, m->pose.position + up};
-    in.velocity_mps = m->velocity_mps + core::cross(m->angular_velocity_radps, up);
+    in.pose = sim::deck_of_trailer(m->pose, truck.deck_half_z_m);
+    in.velocity_mps =
+        m->velocity_mps + core::cross(m->angular_velocity_radps, in.pose.position - m->pose.position);
     in.angular_velocity_radps = m->angular_velocity_radps;
-    input_(in);
+    // only where it departs from where the simulation carries the last one on (each input is recorded: a
+    // tractor standing under the crane for minutes costs nothing)
+    if (truck.fed) {
+      const sim::TeamInput& was = *truck.fed;
+      const core::Vec3 carried = was.pose.position + (now - truck.fed_s) * was.velocity_mps;
+      double turned = 0.0;
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c)
+          turned = std::max(turned, std::abs(in.pose.rotation.m[r][c] - was.pose.rotation.m[r][c]));
+      if (core::length(in.pose.position - carried) < kFeedTolerance_m &&
+          core::length(in.velocity_mps - was.velocity_mps) < kFeedTolerance_mps &&
+          turned < kFeedTolerance_rad &&
+          core::length(in.angular_velocity_radps - was.angular_velocity_radps) < kFeedTolerance_radps)
+        continue;
+    }
+    if (input_(in)) {
+      truck.fed = in;
+      truck.fed_s = now;
+    }
   }
 }
 
@@ -289,8 +310,7 @@ void TeamMembership::offer_seated(const sim::Snapshot& s) {
         if (std::hypot(on.x, on.y) >= nearest) continue;
         nearest = std::hypot(on.x, on.y);
         offer.truck = static_cast<int>(k);
-        on_trailer = {truck->pose.rotation.transposed() * e.pose.rotation,
-                      on + core::Vec3{0, 0, trucks_[k].deck_half_z_m}};
+        on_trailer = sim::on_trailer(truck->pose, e.pose, trucks_[k].deck_half_z_m);
       }
       if (offer.truck < 0) continue;
       const core::Quat q = core::Quat::from(on_trailer.rotation);

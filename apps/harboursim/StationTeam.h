@@ -92,9 +92,11 @@ class TeamMembership {
   // a crane's team trucks: the tractors' roles, their trailers' bodies and decks; the crane's own boxes
   struct Truck {
     std::string role;
-    int trailer_body = -1;       // in the member's bodies
-    double deck_half_z_m = 0.0;  // its deck's top above its centre
-    int entity = -1;             // the crane's team truck in its own scene
+    int trailer_body = -1;              // in the member's bodies
+    double deck_half_z_m = 0.0;         // its deck's top above its centre
+    std::optional<sim::TeamInput> fed;  // the last input given for it, and when (the session's clock)
+    double fed_s = 0.0;
+    int entity = -1;  // the crane's team truck in its own scene
   };
   std::vector<Truck> trucks_;
   std::map<std::string, double> box_mass_kg_;  // by id

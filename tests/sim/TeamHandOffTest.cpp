@@ -49,7 +49,7 @@ TeamInput truck_at(const Simulation& tractor, int slot) {
   TeamInput in;
   in.kind = TeamInput::Kind::kTruckAt;
   in.slot = slot;
-  in.pose = {body.rotation, body.to_parent({0, 0, half_z})};
+  in.pose = deck_of_trailer(body, half_z);
   in.velocity_mps = tractor.world().point_velocity(t.trailer_body(), {0, 0, half_z});
   in.angular_velocity_radps = tractor.world().angular_velocity(t.trailer_body());
   return in;
@@ -87,8 +87,7 @@ TEST(TeamHandOff, TheCraneSetsABoxOnEachTractorsChassisAndEachTractorTakesItsBox
       const core::Pose on = crane.sim.world().pose(crane.sim.container_body(static_cast<std::size_t>(box)));
       TeamInput load;
       load.kind = TeamInput::Kind::kLoadOn;
-      load.pose = {deck.rotation.transposed() * on.rotation,
-                   deck.to_local(on.position) + core::Vec3{0, 0, half_z}};
+      load.pose = on_trailer(deck, on, half_z);
       load.mass_kg = crane.sim.world().mass_kg(crane.sim.container_body(static_cast<std::size_t>(box)));
       tractor[k].input(load);
       TeamInput gone;

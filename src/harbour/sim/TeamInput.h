@@ -32,6 +32,19 @@ struct TeamInput {
   double mass_kg = 0.0;
 };
 
+/// A trailer's deck (its top centre, in the trailer's orientation) from the trailer body's pose and half
+/// height: where a crane's team truck stands for it.
+inline core::Pose deck_of_trailer(const core::Pose& trailer, double half_height_m) {
+  return {trailer.rotation, trailer.to_parent({0, 0, half_height_m})};
+}
+
+/// A box's pose in its trailer's frame (what kLoadOn carries), from the deck's pose and the box's (world) and
+/// the trailer's half height.
+inline core::Pose on_trailer(const core::Pose& deck, const core::Pose& box, double half_height_m) {
+  return {deck.rotation.transposed() * box.rotation,
+          deck.to_local(box.position) + core::Vec3{0, 0, half_height_m}};
+}
+
 /// Why `input` is out of range ("" when it is not): non-finite numbers, a mass outside 0-80 t, a slot < 0.
 std::string why_invalid(const TeamInput& input);
 
