@@ -55,8 +55,10 @@
 #include "harbour/io/RecordsStore.h"
 #include "harbour/io/RouteFiles.h"
 #include "harbour/io/TeamFiles.h"
+#include "harbour/machines/MachineType.h"
 #include "harbour/net/DdsLink.h"
 #include "harbour/sim/Recording.h"
+#include "harbour/training/Figures.h"
 
 namespace harbour::apps {
 namespace {
@@ -67,6 +69,18 @@ namespace http = beast::http;
 namespace websocket = beast::websocket;
 using tcp = asio::ip::tcp;
 using json = nlohmann::json;
+
+// a stored figure's words, for a page to label it and show it in its unit (shown = stored × scale)
+json figure_words_json(const std::string& name) {
+  const training::FigureWords w = training::figure_words(name);
+  return {{"label", w.label}, {"unit", w.unit}, {"scale", w.scale}, {"about", w.about}};
+}
+
+// an attempt's event: when, what (the stored kind and value) and in words
+json attempt_event_json(double at_s, const std::string& kind, double value) {
+  return {{"at_s", at_s}, {"kind", kind}, {"value", value}, {"text", training::event_text(kind, value)}};
+}
+
 using Clock = std::chrono::steady_clock;
 
 constexpr std::size_t kMaxBodyBytes = 64 * 1024;     // the API's requests are small
@@ -292,7 +306,8 @@ json event_json(const net::StationEvent& e) {
           {"time_s", e.time_s()},
           {"kind", e.kind().to_string()},
           {"value", e.value()},
-          {"text", e.text().to_string()}};
+          {"text", e.text().to_string()},
+          {"words", training::event_text(e.kind().to_string(), e.value(), e.text().to_string())}};
 }
 
 // a figure for the 3D view, to `unit` (a millimetre, a quaternion's 1e-5): the JSON stays short
@@ -660,7 +675,8 @@ class Console {
         poll_timer_(io) {
     if (!options.lrs.empty())
       xapi_ = std::make_unique<XapiWorker>(
-          options.database, LrsOptions{options.lrs, read_lrs_credentials(options.lrs_auth_file)});
+          options.database, LrsOptions{options.lrs, read_lrs_credentials(options.lrs_auth_file),
+                                       xapi_centre(options.centre_iri, options.centre)});
     // a password check for names that have no account, as slow as a real one: the time of a refusal does not
     // tell which names exist
     unknown_account_hash_ = hash_password(random_token());
@@ -1434,11 +1450,20 @@ std::optional<Console::Response> Console::looks(Call& c) {
 }
 
 std::optional<Console::Response> Console::exercises(Call& c) {
-  std::set<std::string> names;
-  for (const std::string& folder : centre().exercise_folders())
-    for (const std::string& n : io::exercise_names(folder))
-      names.insert(n);
-  return json_reply(c.request, http::status::ok, names);
+  json list = json::array();
+  for (const io::ExerciseCard& card : io::exercise_cards(centre().exercise_folders())) {
+    const sim::MachineType* type = sim::find_machine_type(card.machine);
+    json item = {
+        {"name", card.name}, {"machine", card.machine}, {"machine_title", type ? type->title : card.machine}};
+    if (card.about)
+      item.update({{"title", card.about->title},
+                   {"objective", card.about->objective},
+                   {"difficulty", card.about->difficulty},
+                   {"expected_min", card.about->expected_min}});
+    if (!card.error.empty() && c.account->instructs()) item["error"] = card.error;
+    list.push_back(std::move(item));
+  }
+  return json_reply(c.request, http::status::ok, list);
 }
 
 std::optional<Console::Response> Console::teams(Call& c) {
@@ -1516,11 +1541,28 @@ std::optional<Console::Response> Console::attempt(Call& c) {
   const std::optional<io::AttemptRow> a = db_.attempt(id);
   if (!a || !owns(*c.account, a->trainee))
     return error(request, http::status::not_found, "no attempt " + std::to_string(id) + " for you");
-  json events = json::array(), metrics = json::object();
+  json events = json::array(), metrics = json::object(), figures = json::array(), deductions = json::array();
+  for (const io::DeductionRow& d : db_.deductions(id))
+    deductions.push_back(
+        {{"reason", d.reason}, {"skill", d.skill}, {"count", d.count}, {"points", d.points}});
   for (const io::EventRow& e : db_.events(id))
-    events.push_back({{"at_s", e.at_s}, {"kind", e.kind}, {"value", e.value}});
-  for (const auto& [name, value] : db_.metrics(id))
+    events.push_back(attempt_event_json(e.at_s, e.kind, e.value));
+  std::vector<std::pair<std::string, double>> stored;
+  for (const auto& [name, value] : db_.metrics(id)) {
     metrics[name] = value;
+    stored.emplace_back(name, value);
+  }
+  // the figures in words, in the figure table's order
+  std::stable_sort(stored.begin(), stored.end(), [](const auto& x, const auto& y) {
+    return training::figure_order(x.first) < training::figure_order(y.first);
+  });
+  for (const auto& [name, value] : stored) {
+    const training::FigureWords words = training::figure_words(name);
+    figures.push_back({{"name", name},
+                       {"label", words.label},
+                       {"text", training::figure_text(words, value)},
+                       {"about", words.about}});
+  }
   json detail = {{"id", a->id},
                  {"trainee", a->trainee},
                  {"exercise", a->exercise},
@@ -1529,7 +1571,9 @@ std::optional<Console::Response> Console::attempt(Call& c) {
                  {"score", a->score ? json(*a->score) : json(nullptr)},
                  {"passed", a->passed},
                  {"events", events},
-                 {"metrics", metrics}};
+                 {"metrics", metrics},
+                 {"figures", figures},
+                 {"deductions", deductions}};
   if (c.account->instructs()) detail["recording"] = a->recording;  // where its station wrote it
   return json_reply(request, http::status::ok, detail);
 }
@@ -1864,7 +1908,7 @@ std::optional<Console::Response> Console::open_replay(Call& c) {
   r.scene = scene_message(r.player->simulation().scene(), r.attempt);
   json events = json::array();
   for (const io::EventRow& e : db_.events(id))
-    events.push_back({{"at_s", e.at_s}, {"kind", e.kind}, {"value", e.value}});
+    events.push_back(attempt_event_json(e.at_s, e.kind, e.value));
   // by InstructorCommand::Kind, as the command line writes them
   static constexpr const char* kCommandNames[sim::InstructorCommand::kKinds] = {"gust",
                                                                                 "hoist-brake-fault",
@@ -1880,10 +1924,9 @@ std::optional<Console::Response> Console::open_replay(Call& c) {
                                                                                 "power-failure",
                                                                                 "power-restored"};
   for (const sim::Recording::Command& given : r.recording.commands)
-    events.push_back(
-        {{"at_s", static_cast<double>(given.step) * sim::Simulation::kStep_s},
-         {"kind", std::string("instructor ") + kCommandNames[static_cast<int>(given.command.kind)]},
-         {"value", 0.0}});
+    events.push_back(attempt_event_json(
+        static_cast<double>(given.step) * sim::Simulation::kStep_s,
+        std::string("instructor ") + kCommandNames[static_cast<int>(given.command.kind)], 0.0));
   std::sort(events.begin(), events.end(),
             [](const json& a, const json& b) { return a["at_s"].get<double>() < b["at_s"].get<double>(); });
   audit_.add(account.name, "open_replay", "attempt " + std::to_string(id), r.recording_file);
@@ -2337,12 +2380,14 @@ void Console::poll() {
 json Console::evolution(const std::string& trainee) {
   const std::vector<training::AttemptFigures> all = db_.attempt_figures();
   json attempts = json::array();
+  json words = {{"score", figure_words_json("score")}};  // each figure's label and unit, for the plots
   for (const training::AttemptFigures& a : all) {
     if (a.trainee != trainee || a.status != "finished" || !a.score) continue;
     json skills = json::object(), metrics = json::object();
     for (const auto& [name, value] : a.metrics) {
       metrics[name] = value;
       if (name.rfind("skill_", 0) == 0) skills[name.substr(6)] = value;
+      if (!words.contains(name)) words[name] = figure_words_json(name);
     }
     attempts.push_back({{"id", a.id},
                         {"exercise", a.exercise},
@@ -2359,8 +2404,10 @@ json Console::evolution(const std::string& trainee) {
     json line = {{"exercise", s.exercise},
                  {"exercise_version", s.exercise_version},
                  {"figure", s.figure},
+                 {"label", training::figure_words(s.figure).label},
                  {"higher_better", s.higher_better},
                  {"best", s.best},
+                 {"best_text", training::figure_text(s.figure, s.best)},
                  {"trainees", s.trainees},
                  {"percentile", s.percentile},
                  {"place", s.place},
@@ -2381,11 +2428,8 @@ json Console::evolution(const std::string& trainee) {
                       {"next", r.progress.next ? json(*r.progress.next) : json(nullptr)},
                       {"complete", r.progress.complete}});
   }
-  return {{"trainee", trainee},
-          {"attempts", attempts},
-          {"cohort", cohort},
-          {"standings", standings},
-          {"routes", routes}};
+  return {{"trainee", trainee}, {"figures", words},       {"attempts", attempts},
+          {"cohort", cohort},   {"standings", standings}, {"routes", routes}};
 }
 
 std::optional<Console::Response> Console::class_overview(Call& c) {
@@ -2437,9 +2481,12 @@ std::optional<Console::Response> Console::compare(Call& c) {
     figures.push_back({{"exercise", x.exercise},
                        {"exercise_version", x.exercise_version},
                        {"figure", x.figure},
+                       {"label", training::figure_words(x.figure).label},
                        {"higher_better", x.higher_better},
                        {"a", optional_number(x.first)},
-                       {"b", optional_number(x.second)}});
+                       {"b", optional_number(x.second)},
+                       {"a_text", x.first ? training::figure_text(x.figure, *x.first) : ""},
+                       {"b_text", x.second ? training::figure_text(x.figure, *x.second) : ""}});
   return json_reply(c.request, http::status::ok, {{"a", first}, {"b", second}, {"figures", figures}});
 }
 

@@ -17,6 +17,7 @@ struct ConsoleOptions {
   std::string name;                ///< the console's name on the network ("" : console-<pid>)
   std::string web_root;            ///< the built front end (web/dist)
   std::string lrs, lrs_auth_file;  ///< a Learning Record Store to send the xAPI statements to ("" : none)
+  std::string centre_iri;          ///< the centre's xAPI IRI ("" : http://HOSTNAME/harboursim)
   /// the centre's exercise folder the designer saves in and its route folder the route editor saves in
   /// ("" : data/exercises, data/routes)
   CentreFolders centre;

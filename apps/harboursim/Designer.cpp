@@ -15,6 +15,7 @@
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/io/RouteFiles.h"
 #include "harbour/io/VesselFiles.h"
+#include "harbour/machines/MachineType.h"
 #include "harbour/sim/Simulation.h"
 #include "harbour/sim/Vessel.h"
 
@@ -100,6 +101,12 @@ DesignCheck check_design(const std::string& folder, const std::string& yaml) {
   if (const std::string why = why_bad_design_name(check.exercise.name); !why.empty())
     throw std::invalid_argument("the design: field 'exercise.name' '" + core::printable(check.exercise.name) +
                                 "': the file's name, " + why);
+  if (check.exercise.about) {
+    // people pick exercises by title: the centre's and the shipped ones each have their own
+    const std::string why = io::why_title_taken({folder, std::string(HARBOUR_DATA_DIR) + "/exercises"},
+                                                check.exercise.about->title, check.exercise.name);
+    if (!why.empty()) throw std::invalid_argument("the design: field 'exercise.about.title' " + why);
+  }
   check.version = io::exercise_version(probe.string());
   return check;
 }
@@ -171,15 +178,18 @@ nlohmann::json design_form(const std::string& folder, const DesignCheck& design)
                           {"max_amplitude_deg", sea.max_angle_deg},
                           {"min_period_s", sea.min_period_s},
                           {"max_period_s", sea.max_period_s}};
-  const auto figures = [&](const std::vector<io::RuleField>& fields) {
+  const sim::MachineType& type = s.machine.type();
+  // the deductions only where the machine can incur them (a jack-knife is no STS's)
+  const auto figures = [&](const std::vector<io::RuleField>& fields, bool deductions) {
     json list = json::array();
     for (const io::RuleField& f : fields)
-      list.push_back(
-          {{"key", f.key}, {"value", design.exercise.rules.*f.value}, {"min", f.min}, {"max", f.max}});
+      if (!deductions || type.can_incur(f.key))
+        list.push_back(
+            {{"key", f.key}, {"value", design.exercise.rules.*f.value}, {"min", f.min}, {"max", f.max}});
     return list;
   };
-  form["rules"] = {{"thresholds", figures(io::rule_thresholds())},
-                   {"deductions", figures(io::rule_deductions())}};
+  form["rules"] = {{"thresholds", figures(io::rule_thresholds(), false)},
+                   {"deductions", figures(io::rule_deductions(), true)}};
   const sim::WeatherSettings& w = s.weather;
   form["weather"] = {{"wind_mean_mps", w.wind_mean_mps},
                      {"wind_from_deg", core::rad_to_deg(w.wind_from_rad)},
@@ -187,7 +197,6 @@ nlohmann::json design_form(const std::string& folder, const DesignCheck& design)
                      {"visibility_m", w.visibility_m},
                      {"rain_mm_per_h", w.rain_mm_per_h},
                      {"time_of_day_h", w.time_of_day_h}};
-  const sim::MachineType& type = s.machine.type();
   form["event_kinds"] = io::event_kinds(type);
   form["serves_trucks"] = type.serves_trucks;
   json vessels = json::array(), materials = json::array();

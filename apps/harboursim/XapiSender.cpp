@@ -16,8 +16,11 @@
 #include <stdexcept>
 #include <thread>
 
+#include <unistd.h>
+
 #include "StsRun.h"
 #include "harbour/core/Text.h"
+#include "harbour/io/ExerciseFiles.h"
 
 namespace harbour::apps {
 
@@ -90,7 +93,7 @@ http::response<http::string_body> put_statement(const Endpoint& e, const LrsOpti
   request.set("X-Experience-API-Version", "1.0.3");
   if (!lrs.credentials.empty())
     request.set(http::field::authorization, "Basic " + io::to_base64(lrs.credentials));
-  request.body() = row.statement;
+  request.body() = training::xapi::addressed(row.statement, lrs.centre);
   request.prepare_payload();
   asio::io_context io;
   tcp::resolver resolver(io);
@@ -223,10 +226,25 @@ int xapi_status(const std::string& database) {
   return 0;
 }
 
+training::xapi::Centre xapi_centre(const std::string& iri, const CentreFolders& folders) {
+  training::xapi::Centre centre;
+  centre.iri = iri;
+  if (centre.iri.empty()) {
+    char host[256] = {};
+    ::gethostname(host, sizeof host - 1);
+    centre.iri = std::string("http://") + (host[0] ? host : "localhost") + "/harboursim";
+  }
+  while (!centre.iri.empty() && centre.iri.back() == '/')
+    centre.iri.pop_back();
+  for (const io::ExerciseCard& card : io::exercise_cards(folders.exercise_folders()))
+    if (card.about) centre.exercises[card.name] = {card.about->title, card.about->objective};
+  return centre;
+}
+
 int xapi_send(const std::string& database, const std::string& endpoint, const std::string& credentials_file,
-              bool watch) {
+              bool watch, const training::xapi::Centre& centre) {
   io::RecordsStore db(database.empty() ? default_database() : database);
-  const LrsOptions lrs{endpoint, read_lrs_credentials(credentials_file)};
+  const LrsOptions lrs{endpoint, read_lrs_credentials(credentials_file), centre};
   parse_endpoint(endpoint);  // a bad URL stops it before anything is tried
   g_stop = 0;
   if (watch) {

@@ -6,7 +6,9 @@
 #include <string>
 #include <thread>
 
+#include "Centre.h"
 #include "harbour/io/RecordsStore.h"
+#include "harbour/training/Xapi.h"
 
 namespace harbour::apps {
 
@@ -15,8 +17,13 @@ namespace harbour::apps {
 struct LrsOptions {
   std::string endpoint;
   std::string credentials;
+  training::xapi::Centre centre;  ///< whose statements they are, as they leave (training::xapi::addressed)
   double timeout_s = 10.0;
 };
+
+/// The centre the statements leave from: its IRI ("" : http://HOSTNAME/harboursim, this machine's name) and
+/// its exercises' titles and objectives from its folders.
+training::xapi::Centre xapi_centre(const std::string& iri, const CentreFolders& folders);
 
 /// What one pass over the outbox did.
 struct SendReport {
@@ -63,6 +70,6 @@ int xapi_status(const std::string& database);
 /// `harboursim xapi send`: one pass (exit 0: nothing due is left unsent, 3: some wait for a retry), or with
 /// `watch` a pass every second until SIGINT/SIGTERM. The credentials are read from `credentials_file`.
 int xapi_send(const std::string& database, const std::string& endpoint, const std::string& credentials_file,
-              bool watch);
+              bool watch, const training::xapi::Centre& centre);
 
 }  // namespace harbour::apps

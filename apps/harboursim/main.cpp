@@ -25,6 +25,9 @@ void add_centre_options(CLI::App* command, harbour::apps::CentreFolders& centre,
                       "--exercises or shipped ones)");
 }
 const char* kCentreExercises = "the centre's exercise folder, searched by name before the shipped exercises";
+const char* kCentreIri =
+    "the centre's IRI in its xAPI statements: its trainees' home page IRI/trainees, its exercises "
+    "IRI/exercises/NAME (default: http://HOSTNAME/harboursim)";
 
 }  // namespace
 
@@ -195,6 +198,7 @@ int main(int argc, char** argv) {
                           "send the attempts' xAPI statements to this LRS (http://HOST:PORT/xAPI/)");
   console_cmd->add_option("--lrs-auth-file", console.lrs_auth_file,
                           "the LRS's credentials: one line user:password");
+  console_cmd->add_option("--centre-iri", console.centre_iri, kCentreIri);
   add_centre_options(console_cmd, console.centre,
                      "the centre's exercise folder the designer saves in (default: data/exercises)");
   console_cmd->add_option("--seconds", console.seconds, "stop after this long (default: Ctrl-C)")
@@ -267,6 +271,10 @@ int main(int argc, char** argv) {
       ->required();
   xapi_send_cmd->add_option("--lrs-auth-file", xapi_auth_file, "a file holding one line user:password");
   xapi_send_cmd->add_flag("--watch", xapi_watch, "keep sending as statements come, until Ctrl-C");
+  std::string xapi_centre_iri;
+  harbour::apps::CentreFolders xapi_folders;
+  xapi_send_cmd->add_option("--centre-iri", xapi_centre_iri, kCentreIri);
+  xapi_send_cmd->add_option("--exercises", xapi_folders.exercises, kCentreExercises);
 
   harbour::apps::BulkDemoOptions demo;
   CLI::App* demo_cmd =
@@ -322,7 +330,9 @@ int main(int argc, char** argv) {
         return harbour::apps::decide_stage(route_db, route_centre, route_trainee, route_id, route_stage,
                                            n == 0 ? "sign_off" : "retry", route_reason);
     if (*xapi_status_cmd) return harbour::apps::xapi_status(xapi_db);
-    if (*xapi_send_cmd) return harbour::apps::xapi_send(xapi_db, xapi_lrs, xapi_auth_file, xapi_watch);
+    if (*xapi_send_cmd)
+      return harbour::apps::xapi_send(xapi_db, xapi_lrs, xapi_auth_file, xapi_watch,
+                                      harbour::apps::xapi_centre(xapi_centre_iri, xapi_folders));
     if (*report_trainee_cmd && report_trainee.empty()) {
       std::fprintf(stderr, "harboursim: report trainee needs a trainee id\n");
       return 2;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <numbers>
+#include <set>
 #include <variant>
 
 #include <chrono>
@@ -31,6 +32,39 @@ void expect_error(const std::string& from, const std::string& to, const std::str
       scenes::line_of(text, from) + lines_below, field, says);
 }
 
+TEST(ExerciseFiles, EveryShippedExerciseSaysWhatItIsUnderATitleOfItsOwn) {
+  std::set<std::string> titles;
+  const std::vector<ExerciseCard> cards = exercise_cards({HARBOUR_DATA_DIR "/exercises"});
+  ASSERT_EQ(cards.size(), exercise_names(HARBOUR_DATA_DIR "/exercises").size());
+  for (const ExerciseCard& card : cards) {
+    EXPECT_EQ(card.error, "") << card.name;
+    ASSERT_TRUE(card.about) << card.name << " has no exercise.about";
+    EXPECT_TRUE(titles.insert(card.about->title).second)
+        << card.name << ": '" << card.about->title << "' twice";
+    EXPECT_GE(card.about->objective.size(), 20u) << card.name;
+    EXPECT_GT(card.about->expected_min, 0.0) << card.name;
+    EXPECT_FALSE(card.machine.empty()) << card.name;
+    EXPECT_EQ(load_exercise(std::string(HARBOUR_DATA_DIR "/exercises/") + card.name + ".yaml").about->title,
+              card.about->title);
+  }
+  const ExerciseCard sts = read_exercise_card(HARBOUR_DATA_DIR "/exercises/sts_discharge.yaml");
+  EXPECT_EQ(sts.machine, "sts");
+  EXPECT_EQ(sts.about->difficulty, "beginner");
+  // a title is taken whatever the case of its letters, except by the file itself
+  EXPECT_NE(why_title_taken({HARBOUR_DATA_DIR "/exercises"}, "first DISCHARGE onto a truck", ""), "");
+  EXPECT_EQ(why_title_taken({HARBOUR_DATA_DIR "/exercises"}, "First discharge onto a truck", "sts_discharge"),
+            "");
+  EXPECT_EQ(why_title_taken({HARBOUR_DATA_DIR "/exercises"}, "Something new", ""), "");
+}
+
+TEST(ExerciseFiles, ABadDescriptionNamesItsField) {
+  expect_error("difficulty: beginner", "difficulty: easy", "exercise.about.difficulty",
+               "beginner, intermediate or advanced");
+  expect_error("expected_min: 3", "expected_min: 0", "exercise.about.expected_min", "outside");
+  expect_error("    title: First discharge onto a truck\n", "    title: ''\n", "exercise.about.title",
+               "empty");
+}
+
 TEST(ExerciseFiles, AnMhcExerciseStartsTheCraneWhereItSays) {
   const sim::ExerciseSettings e = load_exercise(HARBOUR_DATA_DIR "/exercises/mhc_free_practice.yaml");
   const auto& mhc = e.scenario.machine.as<sim::MhcSetup>();
@@ -51,7 +85,9 @@ TEST(ExerciseFiles, AnExerciseTheMachineCannotDoNamesTheField) {
   expect("  quay_edge_x_m: 18.0", "  quay_edge_x_m: 18.0\n  moves:\n    - {container: X, to: truck}",
          "exercise.moves", "crane.tool: hook", 2);
   expect("grab_z_m: 20.0}", "grab_z_m: 20.0, tool: crane}", "exercise.crane.tool", "grab or hook", 0);
-  expect("grab_z_m: 20.0}", "hook_z_m: 20.0, tool: hook}", "exercise.cargo", "missing", -2);
+  // a missing key is named at the exercise map's first line
+  expect("grab_z_m: 20.0}", "hook_z_m: 20.0, tool: hook}", "exercise.cargo", "missing",
+         scenes::line_of(text, "  name: mhc_free_practice") - scenes::line_of(text, "grab_z_m: 20.0}"));
   expect("slew_deg: 0,", "gantry_y_m: 0,", "exercise.crane.slew_deg", "missing", 0);
   expect("boom_deg: 46", "boom_deg: 5", "exercise.crane.boom_deg", "outside", 0);
   expect("  quay_edge_x_m: 18.0",

@@ -146,8 +146,12 @@ void make_old_database(const std::string& connection, int version) {
   sql << "INSERT INTO metrics (attempt, name, value) VALUES (1, 'collisions', 0)";
 }
 
-// a database made by this build, taken back to before schema version 7: no attempt times, no autopilot flag
+// a database made by this build, taken back to schema version 8 (no deductions kept) and 7 (no teams)
+void drop_deductions(soci::session& sql) {
+  sql << "DROP TABLE deductions";
+}
 void drop_attempt_team(soci::session& sql) {
+  drop_deductions(sql);
   for (const char* column : {"team", "team_role", "team_session"})
     sql << "ALTER TABLE attempts DROP COLUMN " << column;
 }
@@ -165,7 +169,7 @@ TEST_P(RecordsStoreOn, DatabasesOfEarlierBuildsAreUpgradedInPlace) {
         fresh_connection(GetParam(), "records_upgrade_v" + std::to_string(version));
     make_old_database(connection, version);
     RecordsStore db(connection);
-    EXPECT_EQ(db.schema_version(), 8) << "from version " << version;
+    EXPECT_EQ(db.schema_version(), 9) << "from version " << version;
     const auto rows = db.attempts();
     ASSERT_EQ(rows.size(), 1u);
     EXPECT_EQ(rows[0].status, "finished");
@@ -210,7 +214,7 @@ TEST_P(RecordsStoreOn, DatabasesOfEarlierBuildsAreUpgradedInPlace) {
     sql << "UPDATE schema_version SET version = 3";
   }
   RecordsStore upgraded(v3);
-  EXPECT_EQ(upgraded.schema_version(), 8);
+  EXPECT_EQ(upgraded.schema_version(), 9);
   EXPECT_TRUE(upgraded.xapi_outbox().empty());
   EXPECT_EQ(upgraded.attempts().size(), 1u);
 
@@ -227,7 +231,7 @@ TEST_P(RecordsStoreOn, DatabasesOfEarlierBuildsAreUpgradedInPlace) {
     sql << "UPDATE schema_version SET version = 4";
   }
   RecordsStore upgraded_v4(v4);
-  EXPECT_EQ(upgraded_v4.schema_version(), 8);
+  EXPECT_EQ(upgraded_v4.schema_version(), 9);
   EXPECT_FALSE(upgraded_v4.recording(1).has_value());
   EXPECT_EQ(upgraded_v4.attempts()[0].recording, "/recordings/a.hsrc");
 
@@ -243,7 +247,7 @@ TEST_P(RecordsStoreOn, DatabasesOfEarlierBuildsAreUpgradedInPlace) {
     sql << "UPDATE schema_version SET version = 5";
   }
   RecordsStore upgraded_v5(v5);
-  EXPECT_EQ(upgraded_v5.schema_version(), 8);
+  EXPECT_EQ(upgraded_v5.schema_version(), 9);
   EXPECT_FALSE(upgraded_v5.kept_exercise("0123456789abcdef").has_value());
 
   // a version-6 database (no attempt times) gets the columns: its attempts read no times and no autopilot
@@ -257,7 +261,7 @@ TEST_P(RecordsStoreOn, DatabasesOfEarlierBuildsAreUpgradedInPlace) {
     sql << "UPDATE schema_version SET version = 6";
   }
   RecordsStore upgraded_v6(v6);
-  EXPECT_EQ(upgraded_v6.schema_version(), 8);
+  EXPECT_EQ(upgraded_v6.schema_version(), 9);
   ASSERT_EQ(upgraded_v6.attempts().size(), 1u);
   EXPECT_EQ(upgraded_v6.attempts()[0].started_at, "");
   EXPECT_FALSE(upgraded_v6.attempts()[0].autopilot);
@@ -273,7 +277,7 @@ TEST_P(RecordsStoreOn, DatabasesOfEarlierBuildsAreUpgradedInPlace) {
     sql << "UPDATE schema_version SET version = 7";
   }
   RecordsStore upgraded_v7(v7);
-  EXPECT_EQ(upgraded_v7.schema_version(), 8);
+  EXPECT_EQ(upgraded_v7.schema_version(), 9);
   ASSERT_EQ(upgraded_v7.attempts().size(), 1u);
   EXPECT_EQ(upgraded_v7.attempts()[0].team, "");
   EXPECT_TRUE(upgraded_v7.attempts()[0].autopilot);
@@ -281,6 +285,33 @@ TEST_P(RecordsStoreOn, DatabasesOfEarlierBuildsAreUpgradedInPlace) {
   EXPECT_EQ(upgraded_v7.attempts()[0].team, "sts_and_tractor");
   EXPECT_EQ(upgraded_v7.attempts()[0].team_role, "crane");
   EXPECT_EQ(upgraded_v7.attempts()[0].team_session, "sts_and_tractor@2026-11-27T20:31:52Z");
+
+  // a version-8 database gets the deductions table; its attempts have none kept, a new one keeps its own
+  const std::string v8 = fresh_connection(GetParam(), "records_upgrade_v8");
+  {
+    RecordsStore made(v8);
+    made.add_trainee("t001", "Ana");
+    made.begin_attempt({"t001", "sts_discharge", std::nullopt, 0, "", "", "", "", {}, false});
+    soci::session sql(records_connection(v8));
+    drop_deductions(sql);
+    sql << "UPDATE schema_version SET version = 8";
+  }
+  RecordsStore upgraded_v8(v8);
+  EXPECT_EQ(upgraded_v8.schema_version(), 9);
+  EXPECT_TRUE(upgraded_v8.deductions(1).empty());
+  sim::Score score;
+  score.total = 65.0;
+  score.deductions = {{"collision", 2, 20.0, sim::Skill::kSafety},
+                      {"hard landing", 3, 15.0, sim::Skill::kPrecision}};
+  upgraded_v8.finish_attempt(1, sim::Metrics{}, score, "", "finished");
+  const std::vector<DeductionRow> kept = upgraded_v8.deductions(1);
+  ASSERT_EQ(kept.size(), 2u);
+  EXPECT_EQ(kept[0].reason, "collision");
+  EXPECT_EQ(kept[0].skill, "safety");
+  EXPECT_EQ(kept[0].count, 2);
+  EXPECT_EQ(kept[0].points, 20.0);
+  EXPECT_EQ(kept[1].reason, "hard landing");
+  EXPECT_EQ(kept[1].skill, "precision");
 }
 
 // Every exercise version an attempt ran is kept once, by its content hash, with the folder its paths resolve
@@ -436,7 +467,7 @@ TEST_P(RecordsStoreOn, AFailedUpgradeLeavesTheDatabaseAsItWas) {
   // with the stray table gone the upgrade goes through
   sql << "DROP TABLE route_overrides";
   RecordsStore db(connection);
-  EXPECT_EQ(db.schema_version(), 8);
+  EXPECT_EQ(db.schema_version(), 9);
 }
 
 // A database a newer build has upgraded is refused, not read wrongly or downgraded.

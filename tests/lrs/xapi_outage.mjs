@@ -59,7 +59,9 @@ try {
   // the LRS is down: the sender retries, the statements wait in the records, a second attempt adds its own
   const auth = path.join(dir, "lrs.auth");
   execFileSync("sh", ["-c", `printf 'centre:secret\\n' > '${auth}'`]);
-  const sender = start(app, ["xapi", "send", "--watch", "--db", db, "--lrs", endpoint, "--lrs-auth-file", auth]);
+  const centre = "https://port-academy.example/harboursim";
+  const sender = start(app, ["xapi", "send", "--watch", "--db", db, "--lrs", endpoint, "--lrs-auth-file", auth,
+    "--centre-iri", centre]);
   await until("the sender meets the outage", () => /Connection refused/.test(run(["xapi", "status", "--db", db])));
   run(["run", "--exercise", "sts_discharge", "--autopilot", "--trainee", "ana", "--db", db]);
   check(/8 queued, 0 sent/.test(run(["xapi", "status", "--db", db])), "during the outage 8 statements wait, none lost");
@@ -83,8 +85,21 @@ try {
     passed.result.score.scaled >= 0 && passed.result.score.scaled <= 1 && passed.result.success === true &&
     /^PT\d+(\.\d+)?S$/.test(passed.result.duration) &&
     extensions.includes("https://harboursim.org/xapi/metrics/collisions") &&
-    passed.object.id === "https://harboursim.org/xapi/exercises/sts_discharge",
-    `a passed statement: actor, score, success, duration, ${extensions.length} metric extensions, the exercise`);
+    passed.object.id === `${centre}/exercises/sts_discharge` && passed.actor.account.homePage === `${centre}/trainees` &&
+    passed.object.definition.name["en-US"] === "First discharge onto a truck" &&
+    /truck under the crane/.test(passed.object.definition.description?.["en-US"] ?? ""),
+    `a passed statement: actor, score, success, duration, ${extensions.length} metric extensions, the exercise ` +
+    `by the centre's IRI with its title (${passed?.object?.id}, '${passed?.object?.definition?.name?.["en-US"]}')`);
+  // one registration per attempt (cmi5, LMSs): every statement of an attempt carries its attempt's
+  const byAttempt = new Map();
+  for (const s of stored) {
+    const attempt = s.context?.extensions?.["https://harboursim.org/xapi/extensions/attempt"];
+    byAttempt.set(attempt, [...(byAttempt.get(attempt) ?? []), s.context?.registration]);
+  }
+  const registrations = [...byAttempt.values()].map((r) => [...new Set(r)]);
+  check(byAttempt.size === 2 && registrations.every((r) => r.length === 1 && /^[0-9a-f-]{36}$/.test(r[0])) &&
+    registrations[0][0] !== registrations[1][0],
+    `each attempt's statements share one registration, the attempts' differ (${registrations.map((r) => r.join("/")).join(", ")})`);
   const queuedAt = new Map(sql("SELECT statement_id || ' ' || queued_at FROM xapi_outbox").split("\n").map((l) => l.split(" ")));
   check(stored.every((s) => Date.parse(s.timestamp) === Date.parse(queuedAt.get(s.id))),
     "each statement's timestamp is when the attempt did it (not when the LRS got it)");

@@ -81,6 +81,28 @@ TEST(MachineTypes, EachTypeOffersTheEventsOfItsParts) {
 
 // A scenario's machine is a value: a copy changed leaves the original as it was; asked for another
 // machine's setup it says which it is.
+// The deductions a type lists are the rubric's, each of the rubric's is some machine's, and a machine is
+// not offered what it has no part for (the designer's rubric shows a type's list only).
+TEST(MachineTypes, EachTypeListsTheDeductionsItsOperatorCanIncur) {
+  std::set<std::string> rubric, incurred;
+  for (const io::RuleField& f : io::rule_deductions())
+    rubric.insert(f.key);
+  for (const MachineType* type : machine_types()) {
+    for (const std::string_view d : type->deductions) {
+      EXPECT_TRUE(rubric.count(std::string(d))) << type->kind << " lists '" << d << "', not a rubric key";
+      incurred.insert(std::string(d));
+    }
+    EXPECT_TRUE(type->can_incur("collision")) << type->kind;
+  }
+  EXPECT_EQ(incurred, rubric);
+  const MachineType& sts = *find_machine_type("sts");
+  EXPECT_FALSE(sts.can_incur("jackknife"));
+  EXPECT_FALSE(sts.can_incur("pad_lift_off"));
+  EXPECT_TRUE(sts.can_incur("gantry_travel_without_horn"));
+  EXPECT_FALSE(find_machine_type("tractor")->can_incur("twistlock_misuse"));
+  EXPECT_TRUE(find_machine_type("mhc")->can_incur("pad_lift_off"));
+}
+
 TEST(MachineSetup, IsAValueOfOneKind) {
   const ExerciseSettings exercise = io::load_exercise(HARBOUR_DATA_DIR "/exercises/mhc_hook_lift.yaml");
   ScenarioSettings copy = exercise.scenario;

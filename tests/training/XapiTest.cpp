@@ -3,6 +3,8 @@
 
 #include "harbour/training/Xapi.h"
 
+#include <nlohmann/json.hpp>
+
 namespace harbour::training::xapi {
 namespace {
 
@@ -39,6 +41,45 @@ TEST(Xapi, AFailedAttemptSaysFailedWithItsScoreAndAnInterruptedOneTerminates) {
   EXPECT_EQ(cut[0].verb, "terminated");
   EXPECT_EQ(cut[0].json.find("\"score\""), std::string::npos);
   EXPECT_THROW(at_end(f, "2026-11-25T10:00:00.000Z", {}), std::invalid_argument);
+}
+
+// Two centres sharing an LRS: the same attempt's statement leaves each under the centre's IRIs, with the
+// exercise's title and a registration of its own, the vocabulary (verbs, extensions) unchanged.
+TEST(Xapi, AStatementLeavesUnderItsCentresIrisWithItsAttemptsRegistration) {
+  AttemptFacts f;
+  f.attempt = 12;
+  f.trainee = "ana";
+  f.exercise = "sts_discharge";
+  f.route = "sts_basic";
+  f.stage = "single_lift";
+  const std::vector<Statement> start = at_start(f, "2026-11-28T10:00:00.000Z", {"a", "b"});
+  Centre north{"https://north.example/sim",
+               {{"sts_discharge", {"First discharge onto a truck", "Take one box."}}}};
+  Centre south{"https://south.example/sim", {}};
+  const nlohmann::json n = nlohmann::json::parse(addressed(start[0].json, north));
+  const nlohmann::json n2 = nlohmann::json::parse(addressed(start[1].json, north));
+  const nlohmann::json s = nlohmann::json::parse(addressed(start[0].json, south));
+  EXPECT_EQ(n["actor"]["account"]["homePage"], "https://north.example/sim/trainees");
+  EXPECT_EQ(s["actor"]["account"]["homePage"], "https://south.example/sim/trainees");
+  EXPECT_EQ(n["object"]["id"], "https://north.example/sim/exercises/sts_discharge");
+  EXPECT_EQ(n["object"]["definition"]["name"]["en-US"], "First discharge onto a truck");
+  EXPECT_EQ(n["object"]["definition"]["description"]["en-US"], "Take one box.");
+  EXPECT_EQ(s["object"]["definition"]["name"]["en-US"], "sts_discharge");  // no words known: its name
+  EXPECT_EQ(n["context"]["contextActivities"]["parent"][0]["id"],
+            "https://north.example/sim/routes/sts_basic/single_lift");
+  EXPECT_EQ(n["verb"]["id"], "http://adlnet.gov/expapi/verbs/launched");
+  EXPECT_TRUE(n["context"]["extensions"].contains("https://harboursim.org/xapi/extensions/attempt"));
+  // one registration per attempt and centre, a UUID (variant bits 10, version 8)
+  const std::string r = n["context"]["registration"];
+  EXPECT_EQ(r, n2["context"]["registration"]);
+  EXPECT_NE(r, s["context"]["registration"]);
+  EXPECT_NE(r, registration("https://north.example/sim", 13));
+  ASSERT_EQ(r.size(), 36u);
+  EXPECT_EQ(r[14], '8');
+  EXPECT_NE(std::string("89ab").find(r[19]), std::string::npos) << r;
+  EXPECT_EQ(r, registration("https://north.example/sim", 12));
+  // a text that is no statement of ours goes as it is
+  EXPECT_EQ(addressed("{not json", north), "{not json");
 }
 
 }  // namespace

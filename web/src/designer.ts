@@ -43,6 +43,13 @@ const svgEl = (tag: string, attrs: Plain) => {
   return e;
 };
 const two = (n: number) => String(n).padStart(2, "0");
+// a rule's key in words with its unit: time_limit_s -> "time limit [s]"
+const RULE_UNITS: [string, string][] = [["_mps3", "m/s³"], ["_mps", "m/s"], ["_ns", "N·s"], ["_s", "s"], ["_m", "m"]];
+function ruleLabel(key: string) {
+  const unit = RULE_UNITS.find(([suffix]) => key.endsWith(suffix));
+  const words = (unit ? key.slice(0, -unit[0].length) : key).replace(/_/g, " ");
+  return unit ? `${words} [${unit[1]}]` : words;
+}
 
 export class DesignerForms {
   private doc: Document | null = null;
@@ -119,8 +126,20 @@ export class DesignerForms {
     if (opts.inForce !== undefined) input.placeholder = String(opts.inForce);
     input.dataset.path = path.join(".");
     if (opts.id) input.id = opts.id;
-    input.addEventListener("change", () => this.set(path, input.value === "" ? undefined : Number(input.value)));
-    return el("label", {}, label + " ", input);
+    // checked as typed: a value the field cannot take is said at once and written nowhere
+    const why = el("span", { className: "invalid", role: "alert" });
+    const valid = () => {
+      const bad = input.validity.badInput ? "not a number" : input.validity.rangeUnderflow ? `at least ${input.min}` :
+        input.validity.rangeOverflow ? `at most ${input.max}` : "";
+      why.textContent = bad ? `${label}: ${bad}` : "";
+      input.setAttribute("aria-invalid", String(!!bad));
+      return !bad;
+    };
+    input.addEventListener("input", valid);
+    input.addEventListener("change", () => {
+      if (valid()) this.set(path, input.value === "" ? undefined : Number(input.value));
+    });
+    return el("label", {}, label + " ", input, why);
   }
 
   // a vector's three components in a row (an empty field changes nothing)
@@ -169,7 +188,27 @@ export class DesignerForms {
       vessel.addEventListener("change", () => this.set(["vessel", "file"], vessel.value));
       row.append(el("label", {}, "vessel ", vessel));
     }
-    return this.fieldset("Exercise", "design-basics", row, ...(this.form ? [this.startPose(this.form.start_pose)] : []));
+    return this.fieldset("Exercise", "design-basics", row, this.about(x),
+      ...(this.form ? [this.startPose(this.form.start_pose)] : []));
+  }
+
+  // what the console's lists say of the exercise: its title (unique among the centre's), objective,
+  // difficulty and expected duration
+  private about(x: Plain) {
+    const about: Plain = x.about ?? {};
+    const textField = (key: string, size: number) => {
+      const input = el("input", { id: `design-about-${key}`, value: String(about[key] ?? ""), size, spellcheck: true });
+      input.addEventListener("change", () => this.set(["about", key], input.value === "" ? undefined : input.value));
+      return input;
+    };
+    const difficulty = el("select", { id: "design-about-difficulty" });
+    for (const d of ["", "beginner", "intermediate", "advanced"]) difficulty.add(new Option(d || "(not said)", d));
+    difficulty.value = String(about.difficulty ?? "");
+    difficulty.addEventListener("change", () => this.set(["about", "difficulty"], difficulty.value || undefined));
+    return el("div", { className: "row", id: "design-about" },
+      el("label", {}, "title ", textField("title", 36)), el("label", {}, "objective ", textField("objective", 60)),
+      el("label", {}, "difficulty ", difficulty),
+      this.number("expected min", ["about", "expected_min"], { min: 1, max: 600, id: "design-about-expected_min" }));
   }
 
   // where the machine stands at the start, in the ranges its machine file allows
@@ -209,7 +248,7 @@ export class DesignerForms {
       const used = boxes.find((b) => Array.isArray(b[key]) && bays.includes(b[key][0]));
       this.bay = used ? used[key][0] : bays[0];
     }
-    const baySelect = el("select", { id: onVessel ? "design-bay" : "design-block-bay" });
+    const baySelect = el("select", { id: onVessel ? "design-bay" : "design-block-bay", ariaLabel: "the bay shown" });
     for (const b of bays) baySelect.add(new Option(`bay ${two(b)}`, String(b)));
     baySelect.value = String(this.bay);
     baySelect.addEventListener("change", () => { this.bay = Number(baySelect.value); this.render(); });
@@ -227,6 +266,12 @@ export class DesignerForms {
     else for (let t = block!.tiers; t >= 1; --t) tiers.push(t);
     const at = (b: Plain) => Array.isArray(b[key]) && b[key][0] === this.bay ? `${b[key][1]},${b[key][2]}` : "";
     const occupant = new Map<string, Plain>(boxes.map((b): [string, Plain] => [at(b), b]).filter(([k]) => k));
+    // a box stands on the bottom tier (the hold's floor, the hatch covers, the ground) or on another box:
+    // only such slots are offered
+    const below = (tier: number) => onVessel ? tier - 2 : tier - 1;
+    const bottom = (tier: number) => !onVessel ? tier === 1 :
+      tier === (tier >= 80 ? Math.min(...v!.deck_tiers) : Math.min(...v!.hold_tiers));
+    const standable = (row: number, tier: number) => bottom(tier) || occupant.has(`${row},${below(tier)}`);
     const targets = new Map<string, string>(moves.filter((m) => Array.isArray(m.block_slot) && m.block_slot[0] === this.bay)
       .map((m): [string, string] => [`${m.block_slot[1]},${m.block_slot[2]}`, String(m.container)]));
     const moved = new Map(moves.map((m) => [String(m.container), m] as const));
@@ -251,6 +296,11 @@ export class DesignerForms {
         } else if (target) {
           cell.className = "target";
           cell.textContent = `← ${target.slice(-4)}`;
+        } else if (!standable(row, tier)) {
+          cell.className = "floating";
+          cell.title = "nothing below to stand on";
+          tr.append(cell);
+          continue;
         }
         cell.addEventListener("click", () => this.clickSlot(key, [this.bay, row, tier], box, newType.value, Number(newMass.value)));
         tr.append(cell);
@@ -599,7 +649,7 @@ export class DesignerForms {
   private rubric() {
     const f = this.form!;
     const grid = (title: string, figures: RuleFigure[], base: Path) => el("div", { className: "rubric" },
-      el("strong", {}, title), ...figures.map((r) => this.number(r.key.replace(/_/g, " "), [...base, r.key],
+      el("strong", {}, title), ...figures.map((r) => this.number(ruleLabel(r.key), [...base, r.key],
         { min: r.min, max: r.max, inForce: r.value, id: `design-rule-${r.key}` })));
     return this.fieldset("Rubric", "design-rubric",
       grid("thresholds", f.rules.thresholds, ["rules"]),

@@ -1,6 +1,7 @@
 // The instructor console in the browser: log in, watch every station, command one, plot its telemetry,
 // follow its events, manage trainees and open results. Talks to `harboursim console` only (same origin).
 import uPlot from "uplot";
+import { parseDocument } from "yaml";
 import { View3D, type BulkMessage, type Looks, type SceneMessage, type ViewState } from "./view3d";
 import { DesignerForms } from "./designer";
 import { RouteEditor } from "./routeEditor";
@@ -19,7 +20,7 @@ interface StateMessage extends ViewState {
   indicators: Record<string, number>;
   checkpoint_mismatch?: boolean;  // a replay's: it no longer reproduces its recording
 }
-interface EventMessage { type: "event"; station: string; time_s: number; kind: string; value: number; text: string; }
+interface EventMessage { type: "event"; station: string; time_s: number; kind: string; value: number; text: string; words: string; }
 
 const $ = <T extends HTMLElement>(id: string) => document.getElementById(id) as T;
 let me: Me | null = null;
@@ -63,6 +64,14 @@ function health(s: Station): string {
   return issues.length ? issues.join(", ") : (s.state === "running" ? `${s.real_time_factor.toFixed(2)}× real time` : "");
 }
 
+// a station's answer naming exercises ("starting sts_discharge"): each by its title
+const exercisesByTitle = (message: string) => message.replace(/\b[a-z][a-z0-9]*(_[a-z0-9]+)+\b/g,
+  (name) => exerciseCards.some((e) => e.name === name) ? exerciseTitle(name) : name);
+
+// a station's message names its exercise at its end, "(sts_discharge)": by its title
+const withExerciseTitle = (message: string) =>
+  message.replace(/\(([\w-]+)\)$/, (_, name: string) => `(${exerciseTitle(name)})`);
+
 // the selected station's last attempt as it ended (its idle message: "ready; last: attempt 5 passed, score
 // 87.0 (sts_discharge)"), shown at the panel's top until the next attempt starts
 function showOutcome(s: Station) {
@@ -70,7 +79,7 @@ function showOutcome(s: Station) {
   const last = s.state === "idle" ? /^ready; last: (attempt \d+ .*)$/.exec(s.message) : null;
   panel.hidden = !last;
   if (!last) return;
-  const words = `Last: ${last[1]}`;
+  const words = `Last: ${withExerciseTitle(last[1])}`;
   if (panel.textContent !== words) text(panel, words);
   panel.className = / passed,/.test(last[1]) ? "outcome-passed" : "outcome-other";
 }
@@ -93,6 +102,9 @@ function showStations(stations: Station[]) {
       row.dataset.station = s.station;
       for (let n = 0; n < 10; ++n) row.appendChild(document.createElement("td"));
       row.addEventListener("click", () => select(s.station));
+      // by keyboard too: the row takes the focus, Enter selects its station
+      row.tabIndex = 0;
+      row.addEventListener("keydown", (e) => { if (e.key === "Enter") select(s.station); });
       body.appendChild(row);
     }
     row.classList.toggle("selected", s.station === selected);
@@ -104,21 +116,22 @@ function showStations(stations: Station[]) {
       showOutcome(s);
       selectedTeam = s.state === "idle" ? "" : s.team;
       $("team-actions").hidden = selectedTeam === "";
-      text($("team-name"), selectedTeam);
+      text($("team-name"), teamWords(selectedTeam));
     }
     if (s.station === selected && s.state === "idle" && $("live").dataset.state !== "idle") {
       latestState = null;
       $("live").dataset.state = "idle";
-      text($("live"), s.message ? `idle: ${s.message}` : "idle");
+      text($("live"), s.message ? `idle: ${withExerciseTitle(s.message)}` : "idle");
       text($("live-faults"), "");
       $("live-faults").hidden = true;
     } else if (s.station === selected && s.state !== "idle") {
       $("live").dataset.state = s.state;
     }
-    const values = [s.station, s.state, s.machine, s.team ? `${s.exercise} (${s.role} of team ${s.team})` : s.exercise, s.trainee,
+    const values = [s.station, s.state, machineTitle(s.machine),
+      s.team ? `${exerciseTitle(s.exercise)} (${teamWords(s.role)} of team ${teamWords(s.team)})` : exerciseTitle(s.exercise), s.trainee,
       s.state === "idle" ? "" : `${s.time_s.toFixed(1)} / ${s.time_limit_s.toFixed(0)} s`,
       s.state === "idle" ? "" : s.score.toFixed(0), s.moves_total ? `${s.moves_done}/${s.moves_total}` : "",
-      s.collisions, health(s) || s.message];
+      s.collisions, health(s) || withExerciseTitle(s.message)];
     values.forEach((v, n) => { if (row!.children[n].textContent !== String(v)) text(row!.children[n] as HTMLElement, v); });
     (row.children[1] as HTMLElement).className = `state-${s.state}`;
   }
@@ -127,7 +140,7 @@ function showStations(stations: Station[]) {
 }
 
 interface ReplayInfo { replay: number; station: string; attempt: number; exercise: string; trainee: string;
-  duration_s: number; exact: boolean; note: string; events: { at_s: number; kind: string; value: number }[]; }
+  duration_s: number; exact: boolean; note: string; events: AttemptEvent[]; }
 let replay: ReplayInfo | null = null;
 
 function select(station: string) {
@@ -224,7 +237,7 @@ function showEvent(e: EventMessage) {
   if (e.kind === "attempt_end") loadRecords();  // the records table holds every station's attempts
   if (selected && e.station !== selected) return;
   const li = document.createElement("li");
-  text(li, `${e.time_s.toFixed(1)} s  ${e.station}  ${e.kind}${e.value ? " " + e.value.toFixed(2) : ""}${e.text ? "  " + e.text : ""}`);
+  text(li, `${e.time_s.toFixed(1)} s  ${e.station}  ${e.words}`);
   li.className = `event-${e.kind}`;
   $("events").prepend(li);
 }
@@ -264,7 +277,8 @@ async function command(kind: string) {
   text(result, `${kind}…`);
   const r = await api(`/api/stations/${encodeURIComponent(selected)}/command`, "POST", body);
   result.className = r.status === 200 ? "" : "refused";
-  text(result, r.status === 200 ? `${kind}: ${r.data.message}` : `${kind} refused (${r.status}): ${r.data?.error ?? r.data?.message}`);
+  const said = exercisesByTitle(r.status === 200 ? r.data.message : r.data?.error ?? r.data?.message ?? "");
+  text(result, r.status === 200 ? `${kind.replace(/-/g, " ")}: ${said}` : `${kind.replace(/-/g, " ")} refused (${r.status}): ${said}`);
 }
 
 // hold, resume or stop every running member of the selected station's team session
@@ -276,7 +290,7 @@ async function teamCommand(kind: string) {
   result.className = r.status === 200 ? "" : "refused";
   const each = (r.data?.stations ?? []).map((x: { station: string; ok: boolean; message: string }) =>
     `${x.station} ${x.ok ? "done" : x.message}`).join(", ");
-  text(result, r.status === 200 ? `team ${selectedTeam} ${kind}: ${each}` :
+  text(result, r.status === 200 ? `team ${teamWords(selectedTeam)} ${kind}: ${each}` :
     `team ${kind} refused (${r.status}): ${r.data?.error ?? each}`);
 }
 
@@ -286,11 +300,11 @@ async function replayAction(body: Record<string, unknown>) {
   if (r.status !== 200) text($("replay-time"), `${body.action}: ${r.data?.error ?? r.status}`);
 }
 
-async function openReplay(attempt: number) {
+async function openReplay(attempt: number, at_s = 0) {
   const r = await api("/api/replays", "POST", { attempt });
   if (r.status !== 201) { text($("replay-result"), r.data?.error ?? `error ${r.status}`); return; }
   replay = r.data as ReplayInfo;
-  text($("replay-title"), `attempt ${replay.attempt}: ${replay.exercise}, ${replay.trainee}`);
+  text($("replay-title"), `attempt ${replay.attempt}: ${exerciseTitle(replay.exercise)}, ${replay.trainee}`);
   showReplayExactness(replay.exact ? "" : replay.note);
   const scrub = $<HTMLInputElement>("replay-scrub");
   scrub.max = String(replay.duration_s);
@@ -299,17 +313,18 @@ async function openReplay(attempt: number) {
   list.replaceChildren();
   for (const e of replay.events) {
     const li = document.createElement("li");
-    text(li, `${e.at_s.toFixed(1)} s  ${e.kind}${e.value ? " " + e.value.toFixed(2) : ""}`);
+    text(li, `${e.at_s.toFixed(1)} s  ${e.text}`);
     li.addEventListener("click", () => replayAction({ action: "seek", at_s: Math.max(0, e.at_s - 3) }));
     list.appendChild(li);
   }
   if (!socket) connect();
   select(replay.station);
-  await replayAction({ action: "seek", at_s: 0 });
+  await replayAction({ action: "seek", at_s });
+  if (at_s > 0) $("replay-panel").scrollIntoView();
 }
 
 // The station's indicators as the trainee's HUD shows them (the looks' hud lines: label, unit, decimals,
-// lamps lit, words), for its machine; a station whose looks name none of its indicators: each in words.
+// lamps lit, words), for its machine.
 const machineOf = new Map<string, string>();  // station -> machine kind, from its scene
 function hudText(indicators: Record<string, number>, machine: string): string {
   const parts: string[] = [];
@@ -322,55 +337,59 @@ function hudText(indicators: Record<string, number>, machine: string): string {
     if (h.words.length) { parts.push(`${h.label} ${h.words[Math.round(v) - h.words_from] ?? "?"}`); continue; }
     parts.push(`${h.label} ${(v * h.scale).toFixed(h.decimals)}${h.unit ? ` ${h.unit}` : ""}`);
   }
-  if (items.length) return parts.join("   ");
-  return Object.entries(indicators).slice(0, 8).map(([k, v]) => {
-    const f = figureWords(k, v);
-    return `${f.label} ${f.value}`;
-  }).join("   ");
-}
-
-// A stored figure's name says its unit (name_unit, SI as the simulator keeps it): its words and its value with
-// the unit, to sensible digits (energies in kJ or MJ).
-const kUnits: [string, string][] = [["_mps3", "m/s³"], ["_mps2", "m/s²"], ["_mps", "m/s"], ["_kmh", "km/h"],
-  ["_ns", "N·s"], ["_kn", "kN"], ["_n", "N"], ["_j", "J"], ["_kg", "kg"], ["_deg", "°"], ["_rad", "rad"], ["_dm", "dm"],
-  ["_m3", "m³"], ["_s", "s"], ["_m", "m"], ["_t", "t"]];
-function figureWords(name: string, value: number): { label: string; value: string } {
-  const unit = kUnits.find(([suffix]) => name.endsWith(suffix));
-  let label = (unit ? name.slice(0, -unit[0].length) : name).replace(/_/g, " ");
-  if (label.startsWith("skill ")) label = `${label.slice(6)} (skill, of 100)`;
-  let v = value, u = unit ? unit[1] : "";
-  if (u === "J" && Math.abs(v) >= 1e6) { v /= 1e6; u = "MJ"; } else if (u === "J" && Math.abs(v) >= 1e3) { v /= 1e3; u = "kJ"; }
-  if (u === "rad") { v *= 180 / Math.PI; u = "°"; }  // people read angles in degrees
-  // three significant digits, and nothing below a thousandth (a drift of 7e-5 m/s reads 0)
-  const digits = Number.isInteger(v) ? String(v) : String(Number(Number(v.toPrecision(3)).toFixed(3)) + 0);
-  return { label, value: u ? `${digits} ${u}` : digits };
+  return parts.join("   ");
 }
 
 // One attempt as a debrief: what it was, how it ended, what happened when, and its figures in words.
+interface AttemptEvent { at_s: number; kind: string; value: number; text: string }
 function showDebrief(d: { id: number; trainee: string; exercise: string; outcome: string; score: number | null;
-  events: { at_s: number; kind: string; value: number }[]; metrics: Record<string, number>; recording?: string } | null) {
+  events: AttemptEvent[]; figures: { name: string; label: string; text: string; about: string }[];
+  deductions: { reason: string; skill: string; count: number; points: number }[]; recording?: string } | null) {
   const box = $("attempt-detail");
   box.replaceChildren();
   if (!d) return;
   const head = document.createElement("h3");
-  text(head, `Attempt ${d.id}: ${d.trainee} on ${d.exercise}, ${d.outcome}${d.score === null ? "" : `, score ${d.score.toFixed(1)}`}`);
+  text(head, `Attempt ${d.id}: ${d.trainee} on ${exerciseTitle(d.exercise)}, ${d.outcome}${d.score === null ? "" : `, score ${d.score.toFixed(1)}`}`);
   box.append(head);
+  // what the score took off and why
+  if (d.deductions.length) {
+    const off = document.createElement("p");
+    off.className = "deductions";
+    text(off, "Taken off: " + d.deductions.map((x) =>
+      `${x.reason}${x.count > 1 ? ` ×${x.count}` : ""} −${Number(x.points.toPrecision(3))} (${x.skill})`).join("; "));
+    box.append(off);
+  } else if (d.score !== null) {
+    const none = document.createElement("p");
+    text(none, d.score >= 100 ? "Nothing taken off." : "");
+    if (none.textContent) box.append(none);
+  }
+  // what happened when, each a link to that moment in the replay (instructors; 3 s before it)
   const happened = document.createElement("ul");
   for (const e of d.events) {
     const li = document.createElement("li");
-    text(li, `${e.at_s.toFixed(1)} s: ${e.kind.replace(/_/g, " ")}${e.value ? ` (${Number(e.value.toPrecision(3))})` : ""}`);
+    if (d.recording !== undefined) {
+      const go = document.createElement("button");
+      go.type = "button";
+      go.className = "link";
+      text(go, `${e.at_s.toFixed(1)} s`);
+      go.title = "replay from 3 s before";
+      go.addEventListener("click", () => openReplay(d.id, Math.max(0, e.at_s - 3)));
+      li.append(go, `: ${e.text}`);
+    } else {
+      text(li, `${e.at_s.toFixed(1)} s: ${e.text}`);
+    }
     happened.append(li);
   }
   if (d.events.length) box.append(happened);
   const figures = document.createElement("table");
   figures.className = "figures";
-  for (const [name, value] of Object.entries(d.metrics)) {
-    const { label, value: shown } = figureWords(name, value);
+  for (const f of d.figures) {
     const tr = document.createElement("tr");
     const th = document.createElement("th"), td = document.createElement("td");
-    text(th, label);
-    text(td, shown);
-    tr.dataset.figure = name;
+    text(th, f.label);
+    text(td, f.text);
+    th.title = f.about;
+    tr.dataset.figure = f.name;
     tr.append(th, td);
     figures.append(tr);
   }
@@ -394,30 +413,83 @@ function durationText(started: string, ended: string): string {
   return s < 60 ? `${s.toFixed(0)} s` : `${Math.floor(s / 60)} min ${Math.round(s % 60)} s`;
 }
 
-async function loadRecords() {
-  const latest = latestCall("records");
-  const attempts = await api("/api/attempts");
-  if (!latest()) return;
+// The results table: every attempt the account may see, filtered and sorted as the instructor asks (a
+// header's button sorts by it, again reverses), a row opening the attempt's debrief.
+interface AttemptItem { id: number; trainee: string; exercise: string; outcome: string; score: number | null; moves: number;
+  started_at: string; ended_at: string; autopilot: boolean; parent: number | null; exercise_version: string;
+  team?: string; team_role?: string; team_session?: string; }
+let attemptItems: AttemptItem[] = [];
+const attemptSort = { column: 0, descending: true };
+function attemptCells(a: AttemptItem): (string | number)[] {
+  // a team session's member: its role and session beside its exercise
+  const exercise = a.team ? `${exerciseTitle(a.exercise)} (${a.team_role} of ${a.team_session})` : exerciseTitle(a.exercise);
+  return [a.id, a.trainee, exercise, a.outcome, a.score === null ? "" : a.score.toFixed(1), a.moves,
+    a.started_at ? startedText(a.started_at) : "", durationText(a.started_at, a.ended_at),
+    a.autopilot ? "autopilot" : "trainee", a.parent === null ? "" : `attempt ${a.parent}`,
+    a.exercise_version ? a.exercise_version.slice(0, 8) : ""];
+}
+// what each column sorts by: numbers as numbers, times as times
+function attemptKey(a: AttemptItem, column: number): string | number {
+  switch (column) {
+    case 0: return a.id;
+    case 4: return a.score ?? -1;
+    case 5: return a.moves;
+    case 6: return a.started_at;
+    case 7: return (Date.parse(a.ended_at) - Date.parse(a.started_at)) || 0;
+    case 9: return a.parent ?? 0;
+    default: return String(attemptCells(a)[column]);
+  }
+}
+function fillFilter(id: string, values: [string, string][]) {
+  const select = $<HTMLSelectElement>(id), kept = select.value;
+  select.replaceChildren(new Option("all", ""), ...values.map(([value, label]) => new Option(label, value)));
+  if (values.some(([value]) => value === kept)) select.value = kept;
+}
+function showAttempts() {
+  const trainee = $<HTMLSelectElement>("filter-trainee").value, exercise = $<HTMLSelectElement>("filter-exercise").value;
+  const outcome = $<HTMLSelectElement>("filter-outcome").value, driver = $<HTMLSelectElement>("filter-driver").value;
+  const from = $<HTMLInputElement>("filter-from").value;  // yyyy-mm-dd, the browser's day
+  const shown = attemptItems.filter((a) => (!trainee || a.trainee === trainee) && (!exercise || a.exercise === exercise) &&
+    (!outcome || a.outcome === outcome) && (!driver || (driver === "autopilot") === a.autopilot) &&
+    (!from || (a.started_at !== "" && new Date(a.started_at) >= new Date(`${from}T00:00`))));
+  const { column, descending } = attemptSort;
+  shown.sort((x, y) => {
+    const a = attemptKey(x, column), b = attemptKey(y, column);
+    const order = typeof a === "number" && typeof b === "number" ? a - b : String(a).localeCompare(String(b));
+    return (descending ? -order : order) || y.id - x.id;
+  });
   const body = $("attempts").querySelector("tbody")!;
   body.replaceChildren();
-  for (const a of attempts.data ?? []) {
+  for (const a of shown) {
     const row = document.createElement("tr");
-    // a team session's member: its role and session beside its exercise
-    const exercise = a.team ? `${a.exercise} (${a.team_role} of ${a.team_session})` : a.exercise;
-    for (const v of [a.id, a.trainee, exercise, a.outcome, a.score === null ? "" : a.score.toFixed(1), a.moves,
-      a.started_at ? startedText(a.started_at) : "", durationText(a.started_at, a.ended_at),
-      a.autopilot ? "autopilot" : "trainee", a.parent === null ? "" : `attempt ${a.parent}`,
-      a.exercise_version ? a.exercise_version.slice(0, 8) : ""]) {
-      const td = document.createElement("td"); text(td, v); row.appendChild(td);
-    }
-    row.addEventListener("click", async () => {
+    for (const v of attemptCells(a)) { const td = document.createElement("td"); text(td, v); row.appendChild(td); }
+    row.tabIndex = 0;
+    const open = async () => {
       const detail = await api(`/api/attempts/${a.id}`);
       showDebrief(detail.data);
       $("attempt-actions").hidden = me?.role === "trainee";
       $("open-replay").dataset.attempt = String(a.id);
-    });
+    };
+    row.addEventListener("click", open);
+    row.addEventListener("keydown", (e) => { if (e.key === "Enter") open(); });
     body.appendChild(row);
   }
+  $("attempts").querySelectorAll("thead th").forEach((th, k) =>
+    th.setAttribute("aria-sort", k !== column ? "none" : descending ? "descending" : "ascending"));
+  text($("attempts-shown"), `${shown.length} of ${attemptItems.length} attempts`);
+}
+
+async function loadRecords() {
+  const latest = latestCall("records");
+  const [attempts, exercises] = await Promise.all([api("/api/attempts"), api("/api/exercises")]);
+  if (!latest()) return;
+  exerciseCards = exercises.data ?? [];
+  attemptItems = attempts.data ?? [];
+  fillFilter("filter-trainee", [...new Set(attemptItems.map((a) => a.trainee))].sort().map((t) => [t, t]));
+  fillFilter("filter-exercise", [...new Set(attemptItems.map((a) => a.exercise))]
+    .map((e): [string, string] => [e, exerciseTitle(e)]).sort((x, y) => x[1].localeCompare(y[1])));
+  fillFilter("filter-outcome", [...new Set(attemptItems.map((a) => a.outcome))].sort().map((o) => [o, o]));
+  showAttempts();
   if (!me || me.role === "trainee") return;
   const trainees = await api("/api/trainees");
   if (!latest()) return;
@@ -429,16 +501,37 @@ async function loadRecords() {
     for (const t of trainees.data ?? []) select.add(new Option(`${t.id} (${t.name})`, t.id));
     if ([...select.options].some((o) => o.value === kept)) select.value = kept;
   }
-  const exercises = await api("/api/exercises");
-  if (!latest()) return;
-  for (const id of ["exercise", "design-base"]) {
-    const select = $<HTMLSelectElement>(id);
-    const kept = select.value;
-    select.replaceChildren();
-    for (const e of exercises.data ?? []) select.add(new Option(e, e));
-    if ((exercises.data ?? []).includes(kept)) select.value = kept;
-  }
+  for (const id of ["exercise", "design-base"]) fillExerciseSelect($<HTMLSelectElement>(id));
+  showExerciseAbout();
   await loadClass();
+}
+
+// The exercises as people pick them: by title, grouped by machine, with what each asks of the trainee.
+interface ExerciseCard { name: string; machine: string; machine_title: string; title?: string; objective?: string;
+  difficulty?: string; expected_min?: number; error?: string }
+let exerciseCards: ExerciseCard[] = [];
+// a route stage's, a team's or a team role's id in words ("single_lift": "single lift")
+const stageWords = (id: string) => id.replace(/_/g, " ");
+const teamWords = stageWords;
+const exerciseTitle = (name: string) => exerciseCards.find((e) => e.name === name)?.title ?? name;
+const machineTitle = (kind: string) => exerciseCards.find((e) => e.machine === kind)?.machine_title ?? kind;
+function fillExerciseSelect(select: HTMLSelectElement) {
+  const kept = select.value;
+  select.replaceChildren();
+  const machines = [...new Set(exerciseCards.map((e) => e.machine))];
+  for (const machine of machines) {
+    const group = document.createElement("optgroup");
+    group.label = machineTitle(machine);
+    for (const e of exerciseCards.filter((x) => x.machine === machine))
+      group.append(new Option(e.title ?? e.name, e.name));
+    select.append(group);
+  }
+  if (exerciseCards.some((e) => e.name === kept)) select.value = kept;
+}
+function showExerciseAbout() {
+  const e = exerciseCards.find((x) => x.name === $<HTMLSelectElement>("exercise").value);
+  text($("exercise-about"), !e ? "" : e.error ? `cannot be started: ${e.error}` : !e.title ? "" :
+    `${e.objective} ${e.difficulty ? e.difficulty[0].toUpperCase() + e.difficulty.slice(1) : ""}, about ${e.expected_min} min.`);
 }
 
 interface StageProgress { stage: string; state: string; attempts: number; attempts_allowed: number; passes: number;
@@ -462,7 +555,7 @@ async function loadProgress() {
   for (const enrolled of r.data.routes) {
     const route = routes.find((x) => x.id === enrolled.route);
     const title = document.createElement("h3");
-    text(title, `${route?.name ?? enrolled.route}: ${enrolled.complete ? "complete" : enrolled.next ? `next ${enrolled.next}` :
+    text(title, `${route?.name ?? enrolled.route}: ${enrolled.complete ? "complete" : enrolled.next ? `next ${stageWords(enrolled.next)}` :
       "no stage open: an instructor decides"}`);
     const table = document.createElement("table");
     table.className = "progress";
@@ -477,13 +570,14 @@ async function loadProgress() {
       const row = document.createElement("tr");
       row.dataset.stage = sp.stage;
       row.className = `state-${sp.state}`;
-      for (const v of [stage?.goal ?? "", sp.stage, stage?.exercise ?? "", sp.state + (sp.signed_off ? " (signed off)" : ""),
+      for (const v of [stage?.goal ?? "", stageWords(sp.stage), exerciseTitle(stage?.exercise ?? ""),
+        sp.state + (sp.signed_off ? " (signed off)" : ""),
         `${sp.passes}/${stage?.repetitions ?? "?"}`, `${sp.attempts}/${sp.attempts_allowed}`,
         sp.best_score === null ? "" : sp.best_score.toFixed(1)]) {
         const td = document.createElement("td"); text(td, v); row.appendChild(td);
       }
       table.appendChild(row);
-      stageSelect.add(new Option(`${enrolled.route} / ${sp.stage}`, `${enrolled.route}/${sp.stage}`));
+      stageSelect.add(new Option(`${route?.name ?? enrolled.route}: ${stageWords(sp.stage)}`, `${enrolled.route}/${sp.stage}`));
     }
     box.append(title, table);
   }
@@ -492,10 +586,10 @@ async function loadProgress() {
 }
 
 interface EvolutionAttempt { score: number; skills: Record<string, number>; metrics: Record<string, number>; }
-interface Standing { exercise: string; exercise_version: string; figure: string; higher_better: boolean; best: number;
-  trainees: number; percentile: number; place: number; tied: number; place_words: string; }
+interface Standing { exercise: string; exercise_version: string; figure: string; label: string; higher_better: boolean;
+  best: number; best_text: string; trainees: number; percentile: number; place: number; tied: number; place_words: string; }
+interface FigureWords { label: string; unit: string; scale: number; about: string }
 const number = (v: number | null | undefined, digits = 1) => v === null || v === undefined ? "" : v.toFixed(digits);
-const figureText = (v: number) => Math.abs(v) >= 1000 ? v.toExponential(3) : String(Number(v.toPrecision(4)));
 function row(values: (string | number)[]): HTMLTableRowElement {
   const tr = document.createElement("tr");
   for (const v of values) { const td = document.createElement("td"); text(td, v); tr.appendChild(td); }
@@ -525,14 +619,21 @@ async function loadEvolution(trainee: string) {
   const theirs = (o?.status === 200 ? o.data.attempts : []) as EvolutionAttempt[];
   // the figures this trainee has: the selector keeps the one chosen
   const chosen = figure.value;
-  const names = [...new Set(attempts.flatMap((a) => Object.keys(a.metrics)))].sort();
+  const words = r.data.figures as Record<string, FigureWords>;
+  const wordsOf = (name: string): FigureWords => words[name] ?? { label: name, unit: "", scale: 1, about: "" };
+  const labelOf = (name: string) => { const w = wordsOf(name); return w.unit ? `${w.label} [${w.unit}]` : w.label; };
+  const names = [...new Set(attempts.flatMap((a) => Object.keys(a.metrics)))]
+    .sort((x, y) => labelOf(x).localeCompare(labelOf(y)));
   figure.replaceChildren(new Option("score and skills", ""), new Option("score", "score"),
-    ...names.map((n) => new Option(n, n)));
+    ...names.map((n) => new Option(labelOf(n), n)));
   figure.value = names.includes(chosen) || chosen === "score" ? chosen : "";
   const n = Math.max(attempts.length, theirs.length);
   const index = Array.from({ length: n }, (_, k) => k + 1);
-  const valueOf = (a: EvolutionAttempt | undefined, f: string) =>
-    a === undefined ? null : f === "score" ? a.score : a.metrics[f] ?? null;
+  // each figure in the unit people read it in
+  const valueOf = (a: EvolutionAttempt | undefined, f: string) => {
+    const stored = a === undefined ? undefined : f === "score" ? a.score : a.metrics[f];
+    return stored === undefined ? null : stored * wordsOf(f).scale;
+  };
   let series: uPlot.Series[], data: (number | null)[][];
   if (figure.value === "") {
     series = [{ label: "score", stroke: "#1a237e", width: 2 }, { label: "safety", stroke: "#c62828" },
@@ -540,7 +641,7 @@ async function loadEvolution(trainee: string) {
     data = [index.map((k) => attempts[k - 1]?.score ?? null),
       ...["safety", "precision", "productivity"].map((s) => index.map((k) => attempts[k - 1]?.skills[s] ?? null))];
   } else {
-    series = [{ label: trainee, stroke: "#1a237e", width: 2 }];
+    series = [{ label: `${trainee}: ${labelOf(figure.value)}`, stroke: "#1a237e", width: 2 }];
     data = [index.map((k) => valueOf(attempts[k - 1], figure.value))];
     if (other) {
       series.push({ label: other, stroke: "#ef6c00", width: 2, dash: [6, 4] });
@@ -557,7 +658,7 @@ async function loadEvolution(trainee: string) {
   const shown = figure.value === "" ? "score" : figure.value;
   for (const c of r.data.standings as Standing[]) {
     if (c.figure !== shown) continue;
-    const tr = row([c.exercise, c.exercise_version.slice(0, 8), c.figure, figureText(c.best),
+    const tr = row([exerciseTitle(c.exercise), c.exercise_version.slice(0, 8), c.label, c.best_text,
       c.higher_better ? "higher" : "lower", c.trainees, c.place_words]);
     tr.dataset.exercise = c.exercise;
     body.appendChild(tr);
@@ -578,13 +679,12 @@ async function loadComparison(a: string, b: string, figure: string) {
   text($("compare-a"), a);
   text($("compare-b"), b);
   if (r.status !== 200) { body.appendChild(row([r.data?.error ?? `error ${r.status}`])); return; }
-  for (const c of r.data.figures as { exercise: string; exercise_version: string; figure: string; higher_better: boolean;
-    a: number | null; b: number | null }[]) {
+  for (const c of r.data.figures as { exercise: string; exercise_version: string; figure: string; label: string;
+    higher_better: boolean; a: number | null; b: number | null; a_text: string; b_text: string }[]) {
     if (figure !== "score" ? c.figure !== figure : !(c.figure === "score" || c.figure.startsWith("skill_"))) continue;
     const ahead = c.a === null || c.b === null ? "" : c.a === c.b ? "tie" :
       (c.a > c.b) === c.higher_better ? a : b;
-    body.appendChild(row([c.exercise, c.exercise_version.slice(0, 8), c.figure, c.a === null ? "" : figureText(c.a),
-      c.b === null ? "" : figureText(c.b), ahead]));
+    body.appendChild(row([exerciseTitle(c.exercise), c.exercise_version.slice(0, 8), c.label, c.a_text, c.b_text, ahead]));
   }
 }
 
@@ -601,7 +701,8 @@ async function loadClass() {
   body.replaceChildren();
   for (const t of r.data) {
     const routesText = t.routes.map((x: { route: string; passed: number; stages: number; complete: boolean; next: string | null }) =>
-      `${x.route} ${x.passed}/${x.stages}${x.complete ? " done" : x.next ? ` → ${x.next}` : " blocked"}`).join("; ");
+      `${routes.find((r) => r.id === x.route)?.name ?? x.route} ${x.passed}/${x.stages}` +
+      `${x.complete ? " done" : x.next ? ` → ${stageWords(x.next)}` : " blocked"}`).join("; ");
     const tr = row([t.trainee, t.name, t.attempts, `${t.passed}/${t.finished}`, number(t.best_score),
       number(t.recent_score), t.trend === null ? "" : (t.trend >= 0 ? "+" : "") + t.trend.toFixed(1),
       number(t.recent_skills.safety), number(t.recent_skills.precision), number(t.recent_skills.productivity), routesText]);
@@ -622,14 +723,14 @@ async function loadTeams() {
   teams = (await api("/api/teams")).data ?? [];
   const select = $<HTMLSelectElement>("start-team");
   select.replaceChildren(new Option("none: alone", ""));
-  for (const t of teams) if (t.roles) select.add(new Option(t.name, t.name));
+  for (const t of teams) if (t.roles) select.add(new Option(teamWords(t.name), t.name));
   showTeamRoles();
 }
 function showTeamRoles() {
   const team = teams.find((t) => t.name === $<HTMLSelectElement>("start-team").value);
   const select = $<HTMLSelectElement>("start-role");
   select.replaceChildren();
-  for (const r of team?.roles ?? []) select.add(new Option(`${r.role} (${r.exercise})`, r.role));
+  for (const r of team?.roles ?? []) select.add(new Option(`${teamWords(r.role)}: ${exerciseTitle(r.exercise)}`, r.role));
   select.disabled = !team;
   // a member runs its role's exercise: the exercise and the route are not chosen then
   $<HTMLSelectElement>("exercise").disabled = !!team;
@@ -644,7 +745,7 @@ async function loadRoutes() {
     const select = $<HTMLSelectElement>(id), kept = select.value;
     select.replaceChildren();
     if (id === "start-route") select.add(new Option("none: the exercise chosen", ""));
-    for (const r of routes) select.add(new Option(id === "route" ? `${r.name} (${r.id})` : `${r.name}: next stage`, r.id));
+    for (const r of routes) select.add(new Option(id === "route" ? r.name : `${r.name}: next stage`, r.id));
     if ([...select.options].some((o) => o.value === kept)) select.value = kept;
   }
   if (me?.role !== "trainee") await routeEditor?.refresh(routes);
@@ -746,6 +847,34 @@ function wire() {
   $("view-on").addEventListener("change", () => { $("views").hidden = !viewOn(); if (selected) subscribe(); });
   $("view-light").addEventListener("change", () => view?.setLight($<HTMLInputElement>("view-light").checked));
   $("start-team").addEventListener("change", showTeamRoles);
+  $("exercise").addEventListener("change", showExerciseAbout);
+  // the theme: the one picked here last, else the system's
+  const dark = () => document.documentElement.dataset.theme === "dark" ||
+    (!document.documentElement.dataset.theme && matchMedia("(prefers-color-scheme: dark)").matches);
+  const showTheme = () => text($("theme"), dark() ? "light theme" : "dark theme");
+  const picked = localStorage.getItem("theme");
+  if (picked === "dark" || picked === "light") document.documentElement.dataset.theme = picked;
+  showTheme();
+  $("theme").addEventListener("click", () => {
+    const next = dark() ? "light" : "dark";
+    document.documentElement.dataset.theme = next;
+    localStorage.setItem("theme", next);
+    showTheme();
+  });
+  for (const id of ["filter-trainee", "filter-exercise", "filter-outcome", "filter-driver", "filter-from"])
+    $(id).addEventListener("change", showAttempts);
+  $("attempts").querySelectorAll("thead th").forEach((th, k) => {
+    const button = document.createElement("button");
+    button.type = "button";
+    button.className = "sort";
+    button.append(...th.childNodes);
+    th.append(button);
+    button.addEventListener("click", () => {
+      attemptSort.descending = attemptSort.column === k ? !attemptSort.descending : k === 0 || k === 4 || k === 6;
+      attemptSort.column = k;
+      showAttempts();
+    });
+  });
   $("open-replay").addEventListener("click", () => openReplay(Number($("open-replay").dataset.attempt)));
   const speed = () => Number($<HTMLSelectElement>("replay-speed").value);
   $("replay-play").addEventListener("click", () => replayAction({ action: "play", speed: speed() }));
@@ -788,7 +917,17 @@ function wire() {
     const name = $<HTMLSelectElement>("design-base").value;
     const r = await api(`/api/designer/source?exercise=${encodeURIComponent(name)}`);
     if (r.status === 200) {
-      $<HTMLTextAreaElement>("design-text").value = r.data.text;
+      // a shipped exercise is an example: the centre's copy gets a title of its own (people pick by title,
+      // so two alike are refused)
+      let source: string = r.data.text;
+      const title = parseDocument(source).getIn(["exercise", "about", "title"]);
+      if (!r.data.designed && typeof title === "string") {  // the line rewritten, the rest kept as it is
+        const taken = new Set(exerciseCards.map((e) => e.title?.toLowerCase()));
+        let copy = `${title} (centre copy)`;
+        for (let n = 2; taken.has(copy.toLowerCase()); ++n) copy = `${title} (centre copy ${n})`;
+        source = source.replace(/^(\s+title:).*$/m, `$1 ${JSON.stringify(copy)}`);
+      }
+      $<HTMLTextAreaElement>("design-text").value = source;
       designForms?.readSource();
       checkSoon(0);
     }

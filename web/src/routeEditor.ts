@@ -32,11 +32,11 @@ export class RouteEditor {
     base.replaceChildren();
     for (const r of routes) base.add(new Option(`${r.name} (${r.id})`, r.id));
     if (routes.some((r) => r.id === kept)) base.value = kept;
-    const exercises: string[] = (await this.api("/api/exercises")).data ?? [];
+    const exercises: { name: string; title?: string }[] = (await this.api("/api/exercises")).data ?? [];
     const select = $<HTMLSelectElement>("route-add-exercise"), chosen = select.value;
     select.replaceChildren();
-    for (const e of exercises) select.add(new Option(e, e));
-    if (exercises.includes(chosen)) select.value = chosen;
+    for (const e of exercises) select.add(new Option(e.title ? `${e.title} (${e.name})` : e.name, e.name));
+    if (exercises.some((e) => e.name === chosen)) select.value = chosen;
   }
 
   private async load() {

@@ -78,18 +78,33 @@ try {
   await until("a box is stowed in the clicked slot", async () => (await yaml()).includes("slot: [12, 5, 82]"));
   check((await yaml()).startsWith("# First STS exercise"), "the file's comments are kept");
   await until("the preview shows it", async () => (await entities()) === before + 1);
-  // typed, and at once a box with nothing under it clicked: the click edits the typed text, and the loader's
-  // refusal names the box's slot field
-  await page.fill("#design-text", (await yaml()).replace("pass_score: 70", "pass_score: 75"));
+  // a slot with nothing under it to stand on is not offered: clicking it stows nothing
+  check((await page.getAttribute('#design-stowage td[data-slot="12,7,84"]', "class")) === "floating" &&
+    (await page.getAttribute('#design-stowage td[data-slot="12,5,84"]', "class")) === null,
+    "the grid offers a slot above a box and not one above nothing");
   await page.click('#design-stowage td[data-slot="12,7,84"]');
-  check((await yaml()).includes("pass_score: 75") && (await yaml()).includes("[12, 7, 84]"), "a form edit right after typing keeps what was typed");
-  await until("a box on nothing is refused", async () => (await page.textContent("#design-result")).includes("nothing stowed under it"));
-  check((await page.textContent("#design-result")).includes("exercise.containers[4].slot"), "the refusal names the box's slot");
+  check(!(await yaml()).includes("[12, 7, 84]"), "a click on a floating slot stows nothing");
+  // typed, and at once a box clicked: the click edits the typed text
+  await page.fill("#design-text", (await yaml()).replace("pass_score: 70", "pass_score: 75"));
+  await page.click('#design-stowage td[data-slot="12,6,82"]');
+  check((await yaml()).includes("pass_score: 75") && (await yaml()).includes("[12, 6, 82]"), "a form edit right after typing keeps what was typed");
   await page.click("#design-box-remove");
+  // a box on nothing typed into the text: the loader's refusal names the box's slot field
+  await page.fill("#design-text", (await yaml()).replace("  containers:\n",
+    "  containers:\n    - {id: HSIM0000009, type: 40ft, gross_mass_kg: 20000, slot: [12, 7, 84]}\n"));
+  await until("a box on nothing is refused", async () => (await page.textContent("#design-result")).includes("nothing stowed under it"));
+  check((await page.textContent("#design-result")).includes("exercise.containers[0].slot"), "the refusal names the box's slot");
+  await page.fill("#design-text", (await yaml()).replace(/    - \{id: HSIM0000009.*\n/, ""));
   await until("removed, the design is valid again", async () => (await page.textContent("#design-result")).includes("valid") &&
     !(await yaml()).includes("[12, 7, 84]"));
   await page.fill("#design-name", "sts_long_discharge");
   await page.press("#design-name", "Enter");
+  // a number the field cannot take is said as typed and written nowhere
+  await page.fill("#design-rule-time_limit_s", "-5");
+  await page.press("#design-rule-time_limit_s", "Enter");
+  await until("a negative time limit is said at once", async () =>
+    /time limit \[s\]: at least 0/.test(await page.textContent("#design-rubric")));
+  check(!(await yaml()).includes("time_limit_s: -5"), "and not written");
   await page.fill("#design-rule-time_limit_s", "250");
   await page.press("#design-rule-time_limit_s", "Enter");
   check(await page.getAttribute("#design-rule-hard_landing_mps", "placeholder") === "0.3", "a threshold the design leaves shows its default");
@@ -101,7 +116,9 @@ try {
   check(await page.getAttribute("#design-pose-trolley_x_m", "max") === "62", "the trolley's start offers the machine's range (to 62 m)");
   await page.fill("#design-pose-gantry_y_m", "500");
   await page.press("#design-pose-gantry_y_m", "Enter");
-  await until("a gantry off its rails is refused", async () => (await page.textContent("#design-result")).includes("exercise.crane.gantry_y_m"));
+  await until("a gantry off its rails is said as typed", async () =>
+    /gantry y m: at most \d+/.test(await page.textContent("#design-start-pose")));
+  check(!/gantry_y_m: 500/.test(await yaml()), "and not written");
   await page.fill("#design-pose-gantry_y_m", "0");
   await page.press("#design-pose-gantry_y_m", "Enter");
   await page.fill("#design-pose-trolley_x_m", "40");
@@ -124,6 +141,8 @@ try {
   await page.click('#design-stowage td[data-slot="12,5,82"]');
   await until("the new box is selected", async () => (await page.locator("#design-box").count()) === 1);
   await page.locator("#designer-panel").screenshot({ path: path.join(out, "console_designer.png") });
+  check((await yaml()).includes('title: "First discharge onto a truck (centre copy)"'),
+    "the copy of a shipped exercise has a title of its own");
   await page.click("#design-save");
   await until("it is saved", async () => (await page.textContent("#design-result")).startsWith("saved"));
   const version = (await page.textContent("#design-result")).match(/version ([0-9a-f]{16})/)?.[1];
@@ -324,13 +343,15 @@ try {
   await page.locator("#design-weather").screenshot({ path: path.join(out, "console_designer_sea.png") });
 
   // what the designer may not overwrite, and who may not design
-  writeFileSync(path.join(exercises, "handmade.yaml"), shipped.replace("name: sts_discharge", "name: handmade"));
+  const handmade = shipped.replace("name: sts_discharge", "name: handmade").replace(/^(\s+title:).*$/m,
+    "$1 Handmade discharge");
+  writeFileSync(path.join(exercises, "handmade.yaml"), handmade);
   const conflict = await page.evaluate(async (text) => {
     const me = await (await fetch("/api/me")).json();
     const r = await fetch("/api/designer/save", { method: "POST", headers: { "Content-Type": "application/json",
       "X-CSRF-Token": me.csrf }, body: JSON.stringify({ text }) });
     return { status: r.status, error: (await r.json()).error };
-  }, shipped.replace("name: sts_discharge", "name: handmade"));
+  }, handmade);
   check(conflict.status === 409 && !readFileSync(path.join(exercises, "handmade.yaml"), "utf8").includes("designed in"),
     `an exercise not made by the designer is not overwritten: ${conflict.status} ${conflict.error}`);
 } catch (e) {

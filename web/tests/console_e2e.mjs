@@ -138,21 +138,21 @@ try {
   await page.waitForTimeout(600);  // a draw of the plots after the gust
   await page.locator("#plot").screenshot({ path: path.join(out, "console_telemetry.png") });
   await page.click("button[data-kind=hoist-brake-fault]");
-  await until("the fault's event is logged", async () => (await page.textContent("#events")).includes("hoist-brake-fault by ines"));
+  await until("the fault's event is logged", async () => (await page.textContent("#events")).includes("instructor: hoist brake fault by ines"));
   await until("the cab's fault lamp shows in the live line", async () =>
     (await page.textContent("#live-faults")).includes("BRAKE FAULT"));
   await page.click("button[data-kind=clear-faults]");  // repaired before the autopilot takes the crane out of service
   await until("the repair is logged and the lamp goes out", async () =>
-    (await page.textContent("#events")).includes("clear-faults by ines") && await page.isHidden("#live-faults"));
+    (await page.textContent("#events")).includes("instructor: clear faults by ines") && await page.isHidden("#live-faults"));
   await page.click("button[data-kind=emergency-stop]");
-  await until("the emergency stop is logged", async () => (await page.textContent("#events")).includes("emergency-stop by ines"));
+  await until("the emergency stop is logged", async () => (await page.textContent("#events")).includes("instructor: emergency stop by ines"));
   await page.click("button[data-kind=release-emergency-stop]");
-  await until("its release is logged", async () => (await page.textContent("#events")).includes("release-emergency-stop by ines"));
+  await until("its release is logged", async () => (await page.textContent("#events")).includes("instructor: release emergency stop by ines"));
   // a power failure and the supply back: both logged (the autopilot's hands come off the levers meanwhile)
   await page.click("button[data-kind=power-failure]");
-  await until("the power failure is logged", async () => (await page.textContent("#events")).includes("power-failure by ines"));
+  await until("the power failure is logged", async () => (await page.textContent("#events")).includes("instructor: power failure by ines"));
   await page.click("button[data-kind=power-restored]");
-  await until("the supply back is logged", async () => (await page.textContent("#events")).includes("power-restored by ines"));
+  await until("the supply back is logged", async () => (await page.textContent("#events")).includes("instructor: power restored by ines"));
   // the station's sound: the instructor's radio call, the volume, mute and back
   const said = async (what) => (await page.textContent("#command-result")).includes(what);
   await page.fill("#radio-call", "hoist up slowly");
@@ -191,7 +191,7 @@ try {
   await until("the idle station's live line says so and shows no fault", async () =>
     (await page.textContent("#live")).startsWith("idle") && await page.isHidden("#live-faults"));
   await until("the panel says how the attempt ended", async () =>
-    /^Last: attempt \d+ ended by the instructor, score \d+\.\d \(sts_discharge\)$/.test(await page.textContent("#attempt-outcome")) &&
+    /^Last: attempt \d+ ended by the instructor, score \d+\.\d \(First discharge onto a truck\)$/.test(await page.textContent("#attempt-outcome")) &&
     await page.isVisible("#attempt-outcome"));
   await page.locator("#control-panel").screenshot({ path: path.join(out, "console_outcome.png") });
   let original;
@@ -216,10 +216,11 @@ try {
   // replay it: scrub to 11 s (from the keyframe), play at 8x, then take over there on the station
   await page.click(`#attempts tbody tr:has(td:text-is("${original.id}"))`);
   await until("the attempt's debrief says what it was, in words", async () =>
-    (await page.textContent("#attempt-detail")).includes(`Attempt ${original.id}: ben on sts_discharge, ended by the instructor`));
+    (await page.textContent("#attempt-detail")).includes(`Attempt ${original.id}: ben on First discharge onto a truck, ended by the instructor`));
   const debrief = await page.textContent("#attempt-detail");
-  check(!/[{}"]/.test(debrief) && !debrief.includes("hoist_energy_j") && /hoist energy\s*[\d.]+ (kJ|MJ)/.test(debrief) &&
-    /safety \(skill, of 100\)\d/.test(debrief),
+  const words = debrief.split("recording:")[0];  // the recording's path is a file name
+  check(!/[{}"_]/.test(words) && /hoist energy\s*[\d.]+ MJ/.test(words) && /safety\s*\d/.test(words) &&
+    /time\s*[\d.]+ s/.test(words),
     `the debrief shows figures with words and units, no raw keys (${debrief.slice(0, 160)}...)`);
   await page.click("#open-replay");
   await until("the replay opens at 0 s", async () => (await page.textContent("#replay-time")).startsWith("0.0 /"));
@@ -282,9 +283,10 @@ try {
     (await page.locator("#evolution .u-legend .u-series").count()) === 3);
   await until("the comparison table shows time_s", async () => (await page.isVisible("#comparison")) &&
     (await page.locator("#comparison tbody tr").count()) >= 1 &&
-    (await page.locator("#comparison tbody tr td:nth-child(3)").first().textContent()) === "time_s");
-  check((await page.locator("#cohort tbody tr td:nth-child(3)").first().textContent()) === "time_s",
-    "anna's standing is shown on time_s");
+    (await page.locator("#comparison tbody tr td:nth-child(3)").first().textContent()) === "time");
+  check((await page.locator("#cohort tbody tr td:nth-child(3)").first().textContent()) === "time" &&
+    /^[\d.]+ s$/.test(await page.locator("#cohort tbody tr td:nth-child(4)").first().textContent()),
+    "anna's standing is shown on the time, in seconds");
   const place = await page.locator("#cohort tbody tr td:nth-child(7)").first().textContent();
   check(/^\d+(st|nd|rd|th) of \d+( \(tied\))?$/.test(place), `her place among the trainees in words (${place})`);
   await page.locator("#routes-panel").screenshot({ path: path.join(out, "console_compare.png") });

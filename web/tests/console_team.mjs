@@ -35,7 +35,7 @@ try {
     await page.click(`#stations tr[data-station=${station}]`);
     await page.selectOption("#start-team", "sts_and_tractor");
     const roles = await page.locator("#start-role option").allTextContents();
-    check(roles.join(", ") === "crane (sts_discharge), tractor (tractor_mafi_park)", `the team's roles offered: ${roles.join(", ")}`);
+    check(roles.join(", ") === "crane: First discharge onto a truck, tractor: Park a mafi in its lane", `the team's roles offered: ${roles.join(", ")}`);
     await page.selectOption("#start-role", role);
     await page.check("#autopilot");
     await page.click("button[data-kind=start]");
@@ -44,12 +44,12 @@ try {
   }
   await until("both run, each named as its role of the team", async () =>
     (await cell("crane-cab", 2)) === "running" && (await cell("tractor-cab", 2)) === "running" &&
-    (await cell("crane-cab", 4)) === "sts_discharge (crane of team sts_and_tractor)" &&
-    (await cell("tractor-cab", 4)) === "tractor_mafi_park (tractor of team sts_and_tractor)", 90);
+    (await cell("crane-cab", 4)) === "First discharge onto a truck (crane of team sts and tractor)" &&
+    (await cell("tractor-cab", 4)) === "Park a mafi in its lane (tractor of team sts and tractor)", 90);
 
   // the tractor's station (selected, started last) announces the crane; the crane's 3D view holds the tractor
   await until("the tractor's station says the crane joined", async () =>
-    (await page.locator("#events li").allTextContents()).some((t) => t.includes("team  crane: joined (crane-cab)")), 30);
+    (await page.locator("#events li").allTextContents()).some((t) => t.includes("team: crane: joined (crane-cab)")), 30);
   await page.click("#stations tr[data-station=crane-cab]");
   await until("the crane's 3D view holds the tractor and its trailer", async () => page.evaluate(() => {
     const names = window.harbourView?.names ?? [];
@@ -80,7 +80,7 @@ try {
   const teamCommand = async (kind, state) => {
     await page.click(`button[data-team-kind=${kind}]`);
     await until(`team ${kind} answered`, async () =>
-      /^team sts_and_tractor \w+: (crane-cab|tractor-cab) done, (crane-cab|tractor-cab) done$/.test(await page.textContent("#command-result")), 20);
+      /^team sts and tractor \w+: (crane-cab|tractor-cab) done, (crane-cab|tractor-cab) done$/.test(await page.textContent("#command-result")), 20);
     check(true, `team ${kind}: ${await page.textContent("#command-result")}`);
     if (state) await until(`both ${state}`, async () => (await cell("crane-cab", 2)) === state && (await cell("tractor-cab", 2)) === state, 20);
   };
@@ -103,7 +103,8 @@ try {
   const session = [...sessions][0];
   await until("the records table names both members and their session", async () => {
     const rows = await page.locator("#attempts tbody tr td:nth-child(3)").allTextContents();
-    return rows.includes(`sts_discharge (crane of ${session})`) && rows.includes(`tractor_mafi_park (tractor of ${session})`);
+    return rows.includes(`First discharge onto a truck (crane of ${session})`) &&
+      rows.includes(`Park a mafi in its lane (tractor of ${session})`);
   }, 20);
   await page.locator("#attempts").screenshot({ path: path.join(out, "console_team_records.png") });
   const figures = await page.evaluate(async (id) => (await fetch(`/api/attempts/${id}`)).json(), members[0]?.id);

@@ -241,10 +241,32 @@ double pose_number(const YamlFile& f, const YAML::Node& map, const std::string& 
   throw std::logic_error("the start pose of the machine has no " + key);
 }
 
+std::optional<sim::ExerciseAbout> read_about(const YamlFile& f, const YAML::Node& exercise) {
+  const std::optional<YAML::Node> node = f.optional_map(exercise, "about", "exercise");
+  if (!node) return std::nullopt;
+  const std::string at = "exercise.about";
+  const auto words = [&](const char* key, std::size_t most) {
+    std::string text = f.text(*node, key, at);
+    if (text.empty() || text.size() > most)
+      f.fail((*node)[key], at + "." + key, "1 to " + std::to_string(most) + " characters");
+    return text;
+  };
+  sim::ExerciseAbout about;
+  about.title = words("title", 80);
+  about.objective = words("objective", 400);
+  about.difficulty = f.text(*node, "difficulty", at);
+  if (about.difficulty != "beginner" && about.difficulty != "intermediate" && about.difficulty != "advanced")
+    f.fail((*node)["difficulty"], at + ".difficulty",
+           "'" + core::printable(about.difficulty, 40) + "': beginner, intermediate or advanced");
+  about.expected_min = f.number(*node, "expected_min", at, 0.0, 600.0, true);
+  return about;
+}
+
 sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder) {
   sim::ExerciseSettings e;
   const YAML::Node x = f.required(f.root(), "exercise", "");
   e.name = f.text(x, "name", "exercise");
+  e.about = read_about(f, x);
   sim::ScenarioSettings& s = e.scenario;
   s.name = e.name;
   const std::string machine = f.text(x, "machine", "exercise");
@@ -908,6 +930,55 @@ std::vector<std::string> exercise_names(const std::string& folder) {
       names.push_back(entry.path().stem().string());  // not hidden ones (the designer's checks)
   std::sort(names.begin(), names.end());
   return names;
+}
+
+ExerciseCard read_exercise_card(const std::string& file) {
+  ExerciseCard card;
+  card.name = std::filesystem::path(file).stem().string();
+  try {
+    const YamlFile f = YamlFile::load(file);
+    const YAML::Node x = f.required(f.root(), "exercise", "");
+    card.name = f.text(x, "name", "exercise");
+    card.about = read_about(f, x);
+    const std::string machine = f.text(x, "machine", "exercise");
+    card.machine =
+        machine_file_kind((std::filesystem::path(file).parent_path() / machine).lexically_normal().string());
+  } catch (const std::exception& e) {
+    card.error = e.what();
+  }
+  return card;
+}
+
+std::vector<ExerciseCard> exercise_cards(const std::vector<std::string>& folders) {
+  std::map<std::string, ExerciseCard> by_name;
+  for (const std::string& folder : folders)
+    for (const std::string& name : exercise_names(folder))
+      if (!by_name.count(name))
+        by_name.emplace(name,
+                        read_exercise_card((std::filesystem::path(folder) / (name + ".yaml")).string()));
+  std::vector<ExerciseCard> cards;
+  for (auto& [name, card] : by_name)
+    cards.push_back(std::move(card));
+  return cards;
+}
+
+std::string why_title_taken(const std::vector<std::string>& folders, const std::string& title,
+                            const std::string& except) {
+  const auto folded = [](std::string s) {
+    for (char& c : s)
+      if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+    return s;
+  };
+  for (const std::string& folder : folders)
+    for (const std::string& name : exercise_names(folder)) {
+      const std::filesystem::path file = std::filesystem::path(folder) / (name + ".yaml");
+      const ExerciseCard card = read_exercise_card(file.string());
+      if (card.name == except) continue;
+      if (card.about && folded(card.about->title) == folded(title))
+        return "'" + title + "' is the title of exercise '" + card.name +
+               "': give this one a title of its own";
+    }
+  return "";
 }
 
 std::string exercise_text_version(const std::string& text) {

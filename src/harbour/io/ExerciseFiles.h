@@ -51,6 +51,21 @@ StartPoseForm start_pose_form(const sim::MachineSetup& machine);
 /// a missing folder.
 std::vector<std::string> exercise_names(const std::string& folder);
 
+/// What the console's lists show of an exercise file without loading its machine and scene: its name, its
+/// machine's kind and what it says of itself (exercise.about).
+struct ExerciseCard {
+  std::string name, machine;
+  std::optional<sim::ExerciseAbout> about;
+  std::string error;  ///< set when the file cannot be read so far (the rest is then what could be read)
+};
+ExerciseCard read_exercise_card(const std::string& file);
+/// The cards of the exercises in these folders (a name in two: the first folder's), by name.
+std::vector<ExerciseCard> exercise_cards(const std::vector<std::string>& folders);
+/// Why an exercise may not take this title: another exercise in these folders (one not named `except`, the
+/// exercise itself) has it, whatever the case of its ASCII letters; "" when it may.
+std::string why_title_taken(const std::vector<std::string>& folders, const std::string& title,
+                            const std::string& except);
+
 /// The exercise file's version: the first 16 hex digits of the SHA-256 of its bytes. Attempts store it, so
 /// results stay comparable when an exercise is edited (the machine and vessel files it names are not
 /// hashed). Throws DataError when the file cannot be read.

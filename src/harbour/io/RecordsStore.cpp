@@ -47,7 +47,7 @@ constexpr std::chrono::milliseconds kWalRetry{50};
 // its file says now), and attempts ended by the instructor. 7: when an attempt started and ended (UTC, ISO
 // 8601), and whether the autopilot drove it. 8: a team session's member: its team, its role and the session
 // it was part of (the members' attempts linked by it).
-constexpr int kSchemaVersion = 8;
+constexpr int kSchemaVersion = 9;
 
 // every table of a schema version with the columns this build reads (and, for the latest, writes)
 struct TableColumns {
@@ -74,6 +74,7 @@ constexpr TableColumns kTables[] = {
      4, 4},
     {"recordings", "attempt, bytes, data", 5, 5},
     {"exercise_versions", "version, exercise, folder, text", 6, 6},
+    {"deductions", "attempt, idx, reason, skill, count, points", 9, 9},
 };
 
 // the columns `table` had at `version` ("" : not there yet)
@@ -164,6 +165,12 @@ std::vector<std::string> migration(int version) {
       return {"ALTER TABLE attempts ADD COLUMN team TEXT NOT NULL DEFAULT ''",
               "ALTER TABLE attempts ADD COLUMN team_role TEXT NOT NULL DEFAULT ''",
               "ALTER TABLE attempts ADD COLUMN team_session TEXT NOT NULL DEFAULT ''"};
+    case 9:
+      // what a finished attempt's score took off and why, in the score's order (none kept before)
+      return {
+          "CREATE TABLE deductions (attempt BIGINT NOT NULL REFERENCES attempts(id), idx INTEGER NOT NULL,"
+          " reason TEXT NOT NULL, skill TEXT NOT NULL, count INTEGER NOT NULL,"
+          " points DOUBLE PRECISION NOT NULL, PRIMARY KEY (attempt, idx))"};
     default:
       return {};
   }
@@ -751,6 +758,18 @@ void RecordsStore::finish_attempt(std::int64_t attempt, const sim::Metrics& m, c
         impl_->sql << "INSERT INTO metrics (attempt, name, value) VALUES (:a, :n, :v)", soci::use(a),
             soci::use(n), soci::use(v);
       }
+      int idx = 0;
+      for (const sim::Score::Deduction& d : s.deductions) {
+        const std::string reason = d.reason, skill = sim::skill_name(d.skill);
+        const int count = d.count;
+        const double points = d.points;
+        impl_->sql
+            << "INSERT INTO deductions (attempt, idx, reason, skill, count, points) VALUES (:a, :i, :r, "
+               ":s, :c, :p)",
+            soci::use(a), soci::use(idx), soci::use(reason), soci::use(skill), soci::use(count),
+            soci::use(points);
+        ++idx;
+      }
       if (!recording_bytes.empty()) {
         const long long size = static_cast<long long>(recording_bytes.size());
         const std::string data = to_base64(recording_bytes);
@@ -979,6 +998,20 @@ std::vector<EventRow> RecordsStore::events(std::int64_t attempt) {
     for (const soci::row& r : rows)
       events.push_back({r.get<double>(0), r.get<std::string>(1), r.get<double>(2)});
     return events;
+  });
+}
+
+std::vector<DeductionRow> RecordsStore::deductions(std::int64_t attempt) {
+  return impl_->guarded("reading attempt " + std::to_string(attempt) + "'s deductions", [&] {
+    std::vector<DeductionRow> deductions;
+    const long long id = attempt;
+    soci::rowset<soci::row> rows =
+        (impl_->sql.prepare
+             << "SELECT reason, skill, count, points FROM deductions WHERE attempt = :a ORDER BY idx",
+         soci::use(id));
+    for (const soci::row& r : rows)
+      deductions.push_back({r.get<std::string>(0), r.get<std::string>(1), r.get<int>(2), r.get<double>(3)});
+    return deductions;
   });
 }
 

@@ -96,6 +96,13 @@ struct EventRow {
   double value = 0.0;
 };
 
+/// What a finished attempt's score took off: why, against which skill, how often, how many points in all.
+struct DeductionRow {
+  std::string reason, skill;
+  int count = 0;
+  double points = 0.0;
+};
+
 /// An xAPI statement in the outbox: queued (to be sent when next_try_at has come), sent, or rejected (the
 /// LRS refused it: sending it again would not help).
 struct XapiRow {
@@ -178,8 +185,10 @@ class RecordsStore {
   std::optional<AttemptRow> attempt_recorded_at(const std::string& path);
   /// One attempt (none: no such attempt).
   std::optional<AttemptRow> attempt(std::int64_t id);
-  /// An attempt's events in time order, and its final metrics by name.
+  /// An attempt's events in time order, its final metrics by name, and what its score took off (none for an
+  /// attempt not finished, or finished before the records kept them).
   std::vector<EventRow> events(std::int64_t attempt);
+  std::vector<DeductionRow> deductions(std::int64_t attempt);
   std::vector<std::pair<std::string, double>> metrics(std::int64_t attempt);
   /// Attempts, oldest first, optionally of one trainee, each with its stored metrics (one read of each
   /// table): what the cohort views and the reports are made of.

@@ -49,10 +49,17 @@ struct MachineType {
   std::span<const MachineFault> faults;  ///< the faults it has the parts for
   bool serves_trucks = false;            ///< road trucks come to it in its exercises
   std::span<const PilotType> pilots;     ///< its scripted operators, the first that can drive an exercise
+  /// the rubric's deductions (rules.deductions keys) its operator can incur: what the designer offers
+  std::span<const std::string_view> deductions;
 
   bool has_fault(MachineFault fault) const {
     for (const MachineFault f : faults)
       if (f == fault) return true;
+    return false;
+  }
+  bool can_incur(std::string_view deduction) const {
+    for (const std::string_view d : deductions)
+      if (d == deduction) return true;
     return false;
   }
 };

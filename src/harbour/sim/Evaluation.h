@@ -103,8 +103,17 @@ struct LoadStop {
   double heading_rad = 0.0;
 };
 
+/// What people read of an exercise in the console's lists and the designer (the simulation does not use it).
+struct ExerciseAbout {
+  std::string title;          ///< unique among a centre's exercises, as people pick it
+  std::string objective;      ///< one sentence: what the trainee is to do
+  std::string difficulty;     ///< beginner, intermediate or advanced
+  double expected_min = 0.0;  ///< [min] how long a trained operator takes
+};
+
 struct ExerciseSettings {
   std::string name;
+  std::optional<ExerciseAbout> about;  ///< unset: the file says nothing of itself
   ScenarioSettings scenario;
   std::optional<LoadStop> load_stop;  ///< a team's tractor collects its box here first
   std::vector<MoveGoal> moves;

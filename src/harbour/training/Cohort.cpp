@@ -5,6 +5,7 @@
 #include <string_view>
 #include <tuple>
 
+#include "harbour/training/Figures.h"
 #include "harbour/training/Route.h"
 
 namespace harbour::training {
@@ -17,13 +18,11 @@ bool counts(const AttemptFigures& a) {
 
 using VersionKey = std::pair<std::string, std::string>;  // exercise, version
 
-// The order figures are shown in: the score, the skills, then the rest by name.
+// The order figures are shown in: the figure table's (the score, the skills, the task, ...), then by name.
 struct FigureOrder {
-  static int rank(const std::string& figure) {
-    return figure == "score" ? 0 : figure.rfind("skill_", 0) == 0 ? 1 : 2;
-  }
   bool operator()(const std::string& a, const std::string& b) const {
-    return std::make_pair(rank(a), std::string_view(a)) < std::make_pair(rank(b), std::string_view(b));
+    return std::make_pair(figure_order(a), std::string_view(a)) <
+           std::make_pair(figure_order(b), std::string_view(b));
   }
 };
 
@@ -55,10 +54,7 @@ std::optional<double> mean(const std::vector<double>& values) {
 }  // namespace
 
 bool higher_is_better(const std::string& figure) {
-  static const std::set<std::string> higher = {
-      "score",          "skill_safety", "skill_precision", "skill_productivity", "moves_completed",
-      "moves_per_hour", "delivered_t",  "handled_t",       "tonnes_per_hour",    "mean_bite_fill"};
-  return higher.count(figure) > 0;
+  return figure_words(figure).higher_better;
 }
 
 std::vector<std::pair<std::string, double>> figures_of(const AttemptFigures& attempt) {

@@ -20,9 +20,8 @@ struct AttemptFigures {
   std::map<std::string, double> metrics;  ///< by stored name (sim::Metrics::rows() and the skills)
 };
 
-/// Whether a larger value of a figure is the better one: the score, the skills, moves and tonnes done and
-/// throughput, the grab's mean fill. Every other figure counts something to avoid (collisions, sway,
-/// time, energy, spill, bites for the tonnes moved), so the smaller is better.
+/// Whether a larger value of a figure is the better one, as the figure table says (training/Figures.h):
+/// the score, the skills, work done and throughput; every other figure counts something to avoid.
 bool higher_is_better(const std::string& figure);
 
 /// The figures a view shows of an attempt: "score" and then its metrics by name.

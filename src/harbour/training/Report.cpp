@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <string_view>
 
+#include "harbour/training/Figures.h"
+
 namespace harbour::training {
 
 namespace {
@@ -223,8 +225,9 @@ std::string trainee_report_html(const TraineeReportData& d) {
   for (const Standing& s : d.standings)
     out += row({escape_html(s.exercise) + " <span class=\"sub\">" +
                     escape_html(s.exercise_version.substr(0, 8)) + "</span>",
-                escape_html(s.figure), s.higher_better ? "higher" : "lower", number(s.best, "%.4g"),
-                place_words(s.place, s.trainees, s.tied), std::to_string(s.trainees)},
+                escape_html(figure_words(s.figure).label), s.higher_better ? "higher" : "lower",
+                escape_html(figure_text(s.figure, s.best)), place_words(s.place, s.trainees, s.tied),
+                std::to_string(s.trainees)},
                standing_numeric);
   out += "</table>\n</body></html>\n";
   return out;

@@ -118,4 +118,67 @@ std::vector<Statement> at_end(const AttemptFacts& f, const std::string& timestam
   return {make(judged, word), make(completed, "completed")};
 }
 
+std::string registration(const std::string& centre_iri, std::int64_t attempt) {
+  // FNV-1a over the name, twice with different offsets: 128 bits, stable across builds and machines
+  const std::string name = centre_iri + "#attempt-" + std::to_string(attempt);
+  const auto fnv = [&](std::uint64_t hash) {
+    for (unsigned char c : name) {
+      hash ^= c;
+      hash *= 1099511628211ull;
+    }
+    return hash;
+  };
+  const std::uint64_t halves[2] = {fnv(14695981039346656037ull), fnv(0x9e3779b97f4a7c15ull)};
+  unsigned char b[16];
+  for (int i = 0; i < 16; ++i)
+    b[i] = static_cast<unsigned char>(halves[i / 8] >> (8 * (i % 8)));
+  b[6] = static_cast<unsigned char>((b[6] & 0x0f) | 0x80);  // version 8: custom
+  b[8] = static_cast<unsigned char>((b[8] & 0x3f) | 0x80);  // RFC 9562 variant
+  char text[37];
+  std::snprintf(text, sizeof text, "%02x%02x%02x%02x-%02x%02x-%02x%02x-%02x%02x-%02x%02x%02x%02x%02x%02x",
+                b[0], b[1], b[2], b[3], b[4], b[5], b[6], b[7], b[8], b[9], b[10], b[11], b[12], b[13], b[14],
+                b[15]);
+  return text;
+}
+
+std::string addressed(const std::string& statement, const Centre& centre) {
+  json s = json::parse(statement, nullptr, false);
+  if (s.is_discarded() || !s.is_object()) return statement;
+  const std::string ours = kIri, iri = centre.iri.empty() ? ours : centre.iri;
+  const auto rebase = [&](json& id, const std::string& under) {
+    const std::string from = ours + under;
+    if (id.is_string() && id.get<std::string>().rfind(from, 0) == 0)
+      id = iri + under + id.get<std::string>().substr(from.size());
+  };
+  if (s.contains("actor") && s["actor"].contains("account"))
+    rebase(s["actor"]["account"]["homePage"], "/trainees");
+  if (s.contains("object") && s["object"].is_object()) {
+    json& object = s["object"];
+    const std::string exercises = ours + "/exercises/";
+    if (object.contains("id") && object["id"].is_string() &&
+        object["id"].get<std::string>().rfind(exercises, 0) == 0) {
+      const std::string segment = object["id"].get<std::string>().substr(exercises.size());
+      for (const auto& [name, words] : centre.exercises)
+        if (iri_segment(name) == segment) {
+          object["definition"]["name"] = {{"en-US", words.title}};
+          if (!words.objective.empty()) object["definition"]["description"] = {{"en-US", words.objective}};
+        }
+      rebase(object["id"], "/exercises/");
+    }
+  }
+  if (s.contains("context") && s["context"].is_object()) {
+    json& context = s["context"];
+    if (context.contains("contextActivities") && context["contextActivities"].contains("parent"))
+      for (json& parent : context["contextActivities"]["parent"])
+        if (parent.is_object() && parent.contains("id")) rebase(parent["id"], "/routes/");
+    if (context.contains("extensions") && context["extensions"].is_object()) {
+      const json& extensions = context["extensions"];
+      const auto attempt = extensions.find(ours + "/extensions/attempt");
+      if (attempt != extensions.end() && attempt->is_number_integer())
+        context["registration"] = registration(iri, attempt->get<std::int64_t>());
+    }
+  }
+  return s.dump();
+}
+
 }  // namespace harbour::training::xapi

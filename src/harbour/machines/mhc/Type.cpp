@@ -10,11 +10,17 @@ namespace harbour::sim {
 namespace {
 constexpr MachineFault kFaults[] = {MachineFault::kHoistBrake};
 constexpr PilotType kPilots[] = {pilot_type<GrabAutopilot>(), pilot_type<HookAutopilot>()};
+constexpr std::string_view kDeductions[] = {
+    "collision",           "emergency_stop", "move_not_completed",    "minute_over_time_limit",
+    "harsh_move",          "hard_landing",   "landing_while_swaying", "rope_overload",
+    "limit_switch_hit",    "load_drop",      "lift_under_fault",      "tonne_spilled",
+    "tonne_short",         "poor_bite",      "limiter_trip",          "pad_lift_off",
+    "decimetre_above_trim"};
 }  // namespace
 
 const MachineType& mhc_machine_type() {
-  static constexpr MachineType type{"mhc",  "mobile harbour crane", Handles::kBulkOrCargo, kFaults, false,
-                                    kPilots};
+  static constexpr MachineType type{
+      "mhc", "mobile harbour crane", Handles::kBulkOrCargo, kFaults, false, kPilots, kDeductions};
   return type;
 }
 

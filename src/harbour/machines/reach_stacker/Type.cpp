@@ -9,11 +9,23 @@ namespace harbour::sim {
 namespace {
 constexpr MachineFault kFaults[] = {MachineFault::kLoadMomentLimiter, MachineFault::kLandedSensor};
 constexpr PilotType kPilots[] = {pilot_type<ReachStackerAutopilot>()};
+constexpr std::string_view kDeductions[] = {"collision",
+                                            "emergency_stop",
+                                            "move_not_completed",
+                                            "minute_over_time_limit",
+                                            "harsh_move",
+                                            "hard_landing",
+                                            "landing_while_swaying",
+                                            "twistlock_misuse",
+                                            "limiter_trip",
+                                            "tip_over",
+                                            "speeding",
+                                            "load_drop"};
 }  // namespace
 
 const MachineType& reach_stacker_machine_type() {
   static constexpr MachineType type{"reach_stacker", "reach stacker", Handles::kContainers, kFaults, true,
-                                    kPilots};
+                                    kPilots,         kDeductions};
   return type;
 }
 

@@ -9,11 +9,16 @@ namespace harbour::sim {
 namespace {
 constexpr MachineFault kFaults[] = {MachineFault::kHoistBrake, MachineFault::kLandedSensor};
 constexpr PilotType kPilots[] = {pilot_type<Autopilot>()};
+constexpr std::string_view kDeductions[] = {
+    "collision",       "emergency_stop",   "move_not_completed",         "minute_over_time_limit",
+    "harsh_move",      "hard_landing",     "landing_while_swaying",      "twistlock_misuse",
+    "rope_overload",   "limit_switch_hit", "gantry_travel_without_horn", "load_drop",
+    "lift_under_fault"};
 }  // namespace
 
 const MachineType& rtg_machine_type() {
-  static constexpr MachineType type{"rtg",  "rubber-tyred gantry crane", Handles::kContainers, kFaults, true,
-                                    kPilots};
+  static constexpr MachineType type{
+      "rtg", "rubber-tyred gantry crane", Handles::kContainers, kFaults, true, kPilots, kDeductions};
   return type;
 }
 

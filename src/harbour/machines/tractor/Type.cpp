@@ -8,11 +8,14 @@
 namespace harbour::sim {
 namespace {
 constexpr PilotType kPilots[] = {pilot_type<TractorAutopilot>()};
+constexpr std::string_view kDeductions[] = {
+    "collision", "emergency_stop", "move_not_completed", "minute_over_time_limit", "harsh_move",
+    "jackknife", "speeding"};
 }  // namespace
 
 const MachineType& tractor_machine_type() {
-  static constexpr MachineType type{"tractor", "ro-ro terminal tractor", Handles::kTrailer, {}, false,
-                                    kPilots};
+  static constexpr MachineType type{
+      "tractor", "ro-ro terminal tractor", Handles::kTrailer, {}, false, kPilots, kDeductions};
   return type;
 }
 
