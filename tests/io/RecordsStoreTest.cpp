@@ -474,9 +474,9 @@ TEST_P(RecordsStoreOn, AFailedUpgradeLeavesTheDatabaseAsItWas) {
 TEST(RecordsStore, ADatabaseOfANewerBuildIsRefused) {
   const std::string connection = fresh_db("harbour_newer.db");
   { RecordsStore db(connection); }
-  soci::session(records_connection(connection)) << "UPDATE schema_version SET version = 9";
+  soci::session(records_connection(connection)) << "UPDATE schema_version SET version = 10";
   const std::string error = error_opening(connection);
-  EXPECT_NE(error.find("schema version 9 was made by a newer harboursim"), std::string::npos) << error;
+  EXPECT_NE(error.find("schema version 10 was made by a newer harboursim"), std::string::npos) << error;
 }
 
 // Enrolments, an instructor's decisions and the attempts at a route's stages with their metrics.

@@ -155,8 +155,11 @@ TEST(ForeignPeer, CycloneDdsSeesEveryStationsStatusSceneAndStateAndAStationThatL
     cabin_1.publish(state);
     cabin_2->publish(state);
     poll();
+    // each topic of each station has come (their writers are matched in no order: a state may come before
+    // its station's status)
     return seen["cabin-1"].states > 0 && seen["cabin-2"].states > 0 && seen["cabin-2"].scene_entities > 0 &&
-           seen["cabin-1"].scene_entities > 0;
+           seen["cabin-1"].scene_entities > 0 && !seen["cabin-1"].state.empty() &&
+           !seen["cabin-2"].state.empty();
   }));
   for (const char* name : {"cabin-1", "cabin-2"}) {
     SCOPED_TRACE(name);
