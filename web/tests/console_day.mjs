@@ -106,10 +106,10 @@ try {
   // ended by the instructor: the panel says how, in words
   await page.waitForTimeout(2000);
   await page.click("button[data-kind=stop]");
-  await until("day-1 is idle again", async () => (await stateOf("day-1")) === "idle");
+  await until("day-1 is idle again", async () => (await stateOf("day-1")) === "idle", 40);
   await until("the panel says how ben's attempt ended", async () =>
     /^Last: attempt \d+ ended by the instructor, score [\d.]+ \(First discharge onto a truck\)$/.test(
-      (await page.textContent("#attempt-outcome")) ?? ""));
+      (await page.textContent("#attempt-outcome")) ?? ""), 40);
   await page.screenshot({ path: path.join(out, "day_ended_1280.png") });
 
   // the results: filtered to ben, newest first; sorted by score; the stopped attempt's debrief in words
@@ -149,7 +149,7 @@ try {
   await page.$eval("#replay-scrub", (e) => { e.value = "2"; e.dispatchEvent(new Event("change")); });
   await until("the replay shows 2 s", async () => Math.abs(parseFloat(await page.textContent("#replay-time")) - 2) < 0.05);
   await page.click("#replay-pause");
-  await until("day-1 is offered for the take-over", async () => (await page.inputValue("#takeover-station")) === "day-1");
+  await until("day-1 is offered for the take-over", async () => (await page.inputValue("#takeover-station")) === "day-1", 40);
   await page.selectOption("#takeover-trainee", "anna");
   await page.check("#takeover-autopilot");
   await page.click("#take-over");
@@ -162,7 +162,7 @@ try {
   await page.click("#stations tr[data-station=day-2]");
   await page.click("button[data-kind=stop]");
   await until("both stations idle at the end of the session", async () =>
-    (await stateOf("day-1")) === "idle" && (await stateOf("day-2")) === "idle");
+    (await stateOf("day-1")) === "idle" && (await stateOf("day-2")) === "idle", 40);
 
   // the designer: a centre copy of the first discharge with a longer time limit, saved under its own title
   await page.selectOption("#design-base", "sts_discharge");

@@ -182,7 +182,12 @@ try {
   const stationTime = async () => parseFloat(await page.textContent("#stations tr[data-station=e2e-1] td:nth-child(6)"));
   await until("12 s of the exercise have run (a keyframe at 10 s)", async () => (await stationTime()) >= 12.5, 40);
   await page.screenshot({ path: path.join(out, "console_instructor.png"), fullPage: true });
-  // stopped with a fault in force: once the station is idle the live line no longer shows the fault
+  // stopped with a fault in force: once the station is idle the live line no longer shows the fault. Held
+  // first: running, the autopilot answers the fault by setting the spreader down and taking the crane out of
+  // service, which can end the attempt before the lamp's state reaches the page
+  await page.click("button[data-kind=hold]");
+  await until("it is held again", async () =>
+    (await page.locator("#stations tr[data-station=e2e-1] td:nth-child(2)").textContent()) === "held");
   await page.click("button[data-kind=hoist-brake-fault]");
   if (!await until("the fault is in force again", async () => (await page.textContent("#live-faults")).includes("BRAKE FAULT"), 40))
     console.log(`  the page then: live "${await page.textContent("#live")}" (${await page.getAttribute("#live", "data-state")}),` +
