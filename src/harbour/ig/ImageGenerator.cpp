@@ -290,10 +290,21 @@ uniform bool sun_shadows;  // off in the insets' small pictures (no shadow map o
 varying vec4 unshadowed;
 varying vec4 sunlit;
 varying float fog_depth;
+// percentage-closer filtering: the share of a 3x3 patch of the shadow map (a texel apart, each tap
+// compared and filtered by the hardware) that sees the sun, so a shadow's edge is a soft ramp a few texels
+// wide instead of the map's staircase
+float sun_visible(vec4 at) {
+  const float step = 1.0 / 1024.0;  // the shadow map's texel: ShadowSettings' 1024x1024
+  float sum = 0.0;
+  for (int i = -1; i <= 1; ++i)
+    for (int j = -1; j <= 1; ++j)
+      sum += shadow2DProj(shadowTexture0, at + vec4(float(i) * step * at.w, float(j) * step * at.w, 0.0, 0.0)).r;
+  return sum / 9.0;
+}
 void main() {
   vec4 at = gl_TexCoord[1];
-  at.z -= 0.0006 * at.w;  // a little towards the sun: no self-shadowing speckle on lit faces
-  float lit = sun_shadows ? shadow2DProj(shadowTexture0, at).r : 1.0;
+  at.z -= 0.0015 * at.w;  // towards the sun: no self-shadowing on lit faces, the filter's taps included
+  float lit = sun_shadows ? sun_visible(at) : 1.0;
   vec4 colour = min(unshadowed + sunlit * lit, vec4(1.0));
   float fog = clamp(exp(-gl_Fog.density * fog_depth), 0.0, 1.0);
   gl_FragColor = vec4(mix(gl_Fog.color.rgb, colour.rgb, fog), 1.0);
