@@ -57,6 +57,7 @@ int take_screenshot(const ScreenshotOptions& options) {
   }
   ig::Looks looks = ig::load_looks(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml");
   ig::ImageGenerator generator(simulation.scene(), std::move(looks.visuals), options.width, options.height);
+  if (options.soft_shadows) generator.set_soft_shadows(*options.soft_shadows);
   generator.use(looks);
   generator.update(*simulation.snapshot());
   if (const bulk::BulkWorld* material = simulation.bulk()) {

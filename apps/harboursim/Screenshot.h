@@ -18,6 +18,7 @@ struct ScreenshotOptions {
   /// the free view's camera: x, y, z [m], yaw and pitch [deg] (yaw from +x towards +y)
   std::vector<double> camera;
   std::vector<std::string> commands;  ///< instructor commands on the way there, AT:KIND[:VALUES] (as `run`)
+  std::optional<bool> soft_shadows;   ///< filtered shadow edges (unset: the renderer's default)
 };
 int take_screenshot(const ScreenshotOptions& options);
 

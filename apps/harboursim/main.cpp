@@ -154,6 +154,8 @@ int main(int argc, char** argv) {
   shot_cmd->add_option("--command", shot.commands,
                        "instructor command on the way there, AT:KIND[:VALUES], repeatable (as for run): "
                        "30:power-failure");
+  shot_cmd->add_option("--soft-shadows", shot.soft_shadows,
+                       "filtered shadow edges, true or false (default: on, off on a software renderer)");
   shot_cmd->add_option("--camera", shot.camera, "free view: X,Y,Z metres, YAW,PITCH degrees")
       ->delimiter(',')
       ->expected(5)

@@ -86,3 +86,66 @@ TEST(Golden, TheDischargeInFiveConditionsLooksAsRecorded) {
 
 }  // namespace
 }  // namespace harbour::ig
+
+namespace harbour::ig {
+namespace {
+
+// Filtered shadow edges (ImageGenerator::set_soft_shadows): the discharge 40 s in from the chase view at 16
+// h, drawn with one shadow-map lookup and with the 3x3 filter, differs only along the shadows' edges, where
+// the filtered one ramps between shade and sun: every changed pixel has, within 6 pixels (a few of the shadow
+// map's texels), a pixel of another brightness in the hard picture (0.004: the boom's faint shadow on the
+// water counts).
+TEST(Golden, SoftShadowsChangeOnlyTheShadowsEdges) {
+  const sim::ExerciseSettings exercise =
+      io::load_exercise(std::string(HARBOUR_DATA_DIR) + "/exercises/sts_discharge.yaml");
+  sim::Simulation simulation(exercise.scenario);
+  sim::Autopilot pilot(exercise);
+  while (simulation.time_s() < 40.0)
+    simulation.step(pilot.next(simulation));
+  Looks looks = load_looks(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml");
+  constexpr int kW = 640, kH = 360;
+  ImageGenerator ig(simulation.scene(), std::move(looks.visuals), kW, kH);
+  ig.use(looks);
+  View chase;
+  chase.kind = View::Kind::kChase;
+  chase.hud = false;
+  ig.set_view(chase);
+  auto snapshot = simulation.snapshot();
+  snapshot->time_of_day_h = 16.0;
+  ig.update(*snapshot);
+  const auto draw = [&](bool soft) {
+    ig.set_soft_shadows(soft);
+    const osg::Image& image = ig.render();
+    std::vector<double> l(static_cast<std::size_t>(kW * kH));
+    for (int y = 0; y < kH; ++y)
+      for (int x = 0; x < kW; ++x) {
+        const osg::Vec4 c = image.getColor(x, y);
+        l[static_cast<std::size_t>(y * kW + x)] = 0.2126 * c.r() + 0.7152 * c.g() + 0.0722 * c.b();
+      }
+    return l;
+  };
+  const std::vector<double> hard = draw(false), soft = draw(true);
+  int changed = 0, away_from_edges = 0;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      const std::size_t k = static_cast<std::size_t>(y * kW + x);
+      if (std::abs(hard[k] - soft[k]) < 0.01) continue;
+      ++changed;
+      bool edge = false;
+      for (int dy = -6; dy <= 6 && !edge; ++dy)
+        for (int dx = -6; dx <= 6 && !edge; ++dx) {
+          const int xx = x + dx, yy = y + dy;
+          if (xx >= 0 && yy >= 0 && xx < kW && yy < kH)
+            edge = std::abs(hard[static_cast<std::size_t>(yy * kW + xx)] - hard[k]) > 0.004;
+        }
+      if (!edge) ++away_from_edges;
+    }
+  std::printf("soft shadows change %d of %d pixels, %d away from an edge\n", changed, kW * kH,
+              away_from_edges);
+  EXPECT_GT(changed, 200) << "the filtered edges are ramps";
+  EXPECT_LT(changed, kW * kH / 10) << "only edges change";
+  EXPECT_EQ(away_from_edges, 0);
+}
+
+}  // namespace
+}  // namespace harbour::ig

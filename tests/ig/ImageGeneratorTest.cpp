@@ -767,6 +767,17 @@ namespace {
 // The sun casts shadows (osgShadow's view-dependent shadow map): a box held 6 m over the quay darkens the
 // quay where the sun's ray through it lands (computed from the sun's position for the time of day), not the
 // spot as far the other way; the shadow moves with the sun.
+// A software renderer draws the sun's shadows hard unless told (the filter's taps cost it ~40 % of a frame).
+TEST(ImageGenerator, SoftShadowsAreOnUnlessTheRendererIsSoftware) {
+  ImageGenerator ig(scene(), looks(), kWidth, kHeight);
+  EXPECT_EQ(ig.soft_shadows(), !software_renderer(ig.renderer())) << ig.renderer();
+  EXPECT_TRUE(software_renderer("llvmpipe (LLVM 15.0.6, 256 bits)"));
+  EXPECT_TRUE(software_renderer("softpipe"));
+  EXPECT_FALSE(software_renderer("NVIDIA H100 80GB HBM3/PCIe/SSE2"));
+  ig.set_soft_shadows(true);
+  EXPECT_TRUE(ig.soft_shadows());
+}
+
 TEST(ImageGenerator, TheSunCastsAShadowWhereItsRaysSay) {
   ImageGenerator ig(scene(), looks(), kWidth, kHeight);
   View v = free_camera({-20.0, 0.0, 60.0}, 0.0, -std::numbers::pi / 2.0 + 1e-3);

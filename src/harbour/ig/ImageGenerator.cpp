@@ -290,6 +290,7 @@ uniform bool sun_shadows;  // off in the insets' small pictures (no shadow map o
 varying vec4 unshadowed;
 varying vec4 sunlit;
 varying float fog_depth;
+uniform bool soft_shadows;  // filtered edges (ImageGenerator::set_soft_shadows)
 // percentage-closer filtering: the share of a 3x3 patch of the shadow map (a texel apart, each tap
 // compared and filtered by the hardware) that sees the sun, so a shadow's edge is a soft ramp a few texels
 // wide instead of the map's staircase
@@ -304,7 +305,7 @@ float sun_visible(vec4 at) {
 void main() {
   vec4 at = gl_TexCoord[1];
   at.z -= 0.0015 * at.w;  // towards the sun: no self-shadowing on lit faces, the filter's taps included
-  float lit = sun_shadows ? sun_visible(at) : 1.0;
+  float lit = !sun_shadows ? 1.0 : soft_shadows ? sun_visible(at) : shadow2DProj(shadowTexture0, at).r;
   vec4 colour = min(unshadowed + sunlit * lit, vec4(1.0));
   float fog = clamp(exp(-gl_Fog.density * fog_depth), 0.0, 1.0);
   gl_FragColor = vec4(mix(gl_Fog.color.rgb, colour.rgb, fog), 1.0);
@@ -423,12 +424,29 @@ ImageGenerator::ImageGenerator(const sim::SceneDescription& scene, std::map<std:
   image_->allocateImage(width, height, 1, GL_RGB, GL_UNSIGNED_BYTE);
   viewer_->getCamera()->attach(osg::Camera::COLOR_BUFFER, image_.get());
   viewer_->realize();
+  set_soft_shadows(!software_renderer(renderer()));
 }
 
 ImageGenerator::~ImageGenerator() = default;
 
 std::string ImageGenerator::renderer() const {
   return context_->renderer();
+}
+
+void ImageGenerator::set_soft_shadows(bool on) {
+  soft_shadows_->set(on);
+}
+
+bool ImageGenerator::soft_shadows() const {
+  bool on = false;
+  soft_shadows_->get(on);
+  return on;
+}
+
+bool software_renderer(const std::string& renderer) {
+  for (const char* software : {"llvmpipe", "softpipe", "swrast", "Software Rasterizer"})
+    if (renderer.find(software) != std::string::npos) return true;
+  return false;
 }
 
 void ImageGenerator::build(const sim::SceneDescription& scene) {
@@ -466,6 +484,8 @@ void ImageGenerator::build(const sim::SceneDescription& scene) {
     floodlights_on_ = new osg::Uniform("floodlights", 0);
     lit->addUniform(floodlights_on_);
     lit->addUniform(new osg::Uniform("sun_shadows", true));
+    soft_shadows_ = new osg::Uniform("soft_shadows", false);
+    lit->addUniform(soft_shadows_);
     // the same nodes lit the same way but without a shadow pass, for the insets: a camera drawing the
     // shadowed scene draws a 1024^2 shadow map of its own, which cost an inset more than its picture
     shadowed_->setNodeMask(kMainView | kCastsShadow);  // the shadow pass bounds its casters from here
