@@ -150,13 +150,13 @@ try {
   await until("the replay shows 2 s", async () => Math.abs(parseFloat(await page.textContent("#replay-time")) - 2) < 0.05);
   await page.click("#replay-pause");
   await until("day-1 is offered for the take-over", async () => (await page.inputValue("#takeover-station")) === "day-1", 40);
+  await page.locator("#replay-panel").screenshot({ path: path.join(out, "day_replay_1280.png") });
   await page.selectOption("#takeover-trainee", "anna");
   await page.check("#takeover-autopilot");
   await page.click("#take-over");
   await until("the take-over runs on day-1", async () => (await stateOf("day-1")) === "running", 40);
   const branch = (await page.evaluate(async () => (await fetch("/api/attempts")).json())).find((a) => a.parent === stopped);
   check(branch?.trainee === "anna", `the branch is anna's, its parent attempt ${stopped}`);
-  await page.screenshot({ path: path.join(out, "day_replay_1280.png") });
   await page.click("#stations tr[data-station=day-1]");
   await page.click("button[data-kind=stop]");
   await page.click("#stations tr[data-station=day-2]");
@@ -209,6 +209,8 @@ try {
   const classReport = await page.evaluate(async () => (await fetch("/api/reports/class")).text());
   check(/Class report/.test(classReport) && /Ben Olsen/.test(classReport) && /Carl Dahl/.test(classReport),
     "the class report lists the trainees by name");
+
+  await page.locator("#class-panel").screenshot({ path: path.join(out, "day_class_1280.png") });
 
   // the whole page again at a tablet's width, and in the dark theme
   await page.setViewportSize({ width: 820, height: 1180 });
