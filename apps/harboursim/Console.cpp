@@ -51,6 +51,7 @@
 #include "harbour/ig/Visuals.h"
 #include "harbour/io/BoundedFile.h"
 #include "harbour/io/ExerciseFiles.h"
+#include "harbour/io/InstructorCommandText.h"
 #include "harbour/io/RecordingFile.h"
 #include "harbour/io/RecordsStore.h"
 #include "harbour/io/RouteFiles.h"
@@ -1909,24 +1910,10 @@ std::optional<Console::Response> Console::open_replay(Call& c) {
   json events = json::array();
   for (const io::EventRow& e : db_.events(id))
     events.push_back(attempt_event_json(e.at_s, e.kind, e.value));
-  // by InstructorCommand::Kind, as the command line writes them
-  static constexpr const char* kCommandNames[sim::InstructorCommand::kKinds] = {"gust",
-                                                                                "hoist-brake-fault",
-                                                                                "landed-sensor-fault",
-                                                                                "clear-faults",
-                                                                                "wind",
-                                                                                "visibility",
-                                                                                "rain",
-                                                                                "time-of-day",
-                                                                                "limiter-fault",
-                                                                                "emergency-stop",
-                                                                                "release-emergency-stop",
-                                                                                "power-failure",
-                                                                                "power-restored"};
   for (const sim::Recording::Command& given : r.recording.commands)
-    events.push_back(attempt_event_json(
-        static_cast<double>(given.step) * sim::Simulation::kStep_s,
-        std::string("instructor ") + kCommandNames[static_cast<int>(given.command.kind)], 0.0));
+    events.push_back(attempt_event_json(static_cast<double>(given.step) * sim::Simulation::kStep_s,
+                                        std::string("instructor ") + io::command_name(given.command.kind),
+                                        0.0));
   std::sort(events.begin(), events.end(),
             [](const json& a, const json& b) { return a["at_s"].get<double>() < b["at_s"].get<double>(); });
   audit_.add(account.name, "open_replay", "attempt " + std::to_string(id), r.recording_file);

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <set>
 #include <stdexcept>
 
 namespace harbour::io {
@@ -27,6 +28,25 @@ TEST(InstructorCommandText, ParsesEveryKind) {
   EXPECT_EQ(parse_instructor_command("0:visibility:300").command.value, 300.0);
   EXPECT_EQ(parse_instructor_command("0:rain:8").command.kind, Kind::kSetRain);
   EXPECT_EQ(parse_instructor_command("0:time-of-day:21.5").command.value, 21.5);
+}
+
+// The table of names is the parser's: every kind has one name, and written with its values it reads back
+// as that kind.
+TEST(InstructorCommandText, EveryKindHasOneNameThatReadsBackAsIt) {
+  std::set<std::string> names;
+  for (std::uint8_t n = 0; n < sim::InstructorCommand::kKinds; ++n) {
+    const Kind kind = static_cast<Kind>(n);
+    const std::string name = command_name(kind);
+    EXPECT_TRUE(names.insert(name).second) << name << " twice";
+    std::string text = "1:" + name;
+    for (const CommandKindText& k : command_kinds())
+      if (k.kind == kind)
+        for (const char* value : k.values)
+          if (value) text += ":1";
+    EXPECT_EQ(parse_instructor_command(text).command.kind, kind) << text;
+  }
+  EXPECT_EQ(command_kinds().size(), sim::InstructorCommand::kKinds);
+  EXPECT_STREQ(command_name(Kind::kHoistBrakeFault), "hoist-brake-fault");
 }
 
 void expect_rejected(const std::string& text, const std::string& says) {

@@ -22,7 +22,35 @@ std::vector<std::string> split(const std::string& text) {
   return parts;
 }
 
+using Kind = sim::InstructorCommand::Kind;
+constexpr CommandKindText kCommandKinds[] = {
+    {Kind::kGust, "gust", {"amplitude [m/s]", "duration [s]", nullptr}},
+    {Kind::kHoistBrakeFault, "hoist-brake-fault", {}},
+    {Kind::kLandedSensorFault, "landed-sensor-fault", {"corner (0-3)", nullptr, nullptr}},
+    {Kind::kClearFaults, "clear-faults", {}},
+    {Kind::kSetWind, "wind", {"mean speed [m/s]", "direction it blows from [deg]", "turbulence intensity"}},
+    {Kind::kSetVisibility, "visibility", {"visibility [m]", nullptr, nullptr}},
+    {Kind::kSetRain, "rain", {"rain [mm/h]", nullptr, nullptr}},
+    {Kind::kSetTimeOfDay, "time-of-day", {"time [h]", nullptr, nullptr}},
+    {Kind::kLimiterFault, "limiter-fault", {}},
+    {Kind::kEmergencyStop, "emergency-stop", {}},
+    {Kind::kReleaseEmergencyStop, "release-emergency-stop", {}},
+    {Kind::kPowerFailure, "power-failure", {}},
+    {Kind::kPowerRestored, "power-restored", {}},
+};
+static_assert(std::size(kCommandKinds) == sim::InstructorCommand::kKinds, "a name for every kind");
+
 }  // namespace
+
+std::span<const CommandKindText> command_kinds() {
+  return kCommandKinds;
+}
+
+const char* command_name(Kind kind) {
+  for (const CommandKindText& k : kCommandKinds)
+    if (k.kind == kind) return k.name;
+  return "?";
+}
 
 TimedCommand parse_instructor_command(const std::string& text) {
   auto fail = [&](const std::string& why) -> void {
@@ -41,59 +69,48 @@ TimedCommand parse_instructor_command(const std::string& text) {
     if (!decimal || *end != '\0' || !std::isfinite(v)) fail(std::string(what) + " is not a decimal number");
     return v;
   };
-  using Kind = sim::InstructorCommand::Kind;
   TimedCommand t;
   t.at_s = number(0, "time [s]");
   if (!(t.at_s >= 0.0 && t.at_s <= kMaxCommandTime_s)) fail("the time is outside 0-86400 s (a day)");
   if (parts.size() < 2) fail("missing the kind");
   const std::string& kind = parts[1];
+  const CommandKindText* known = nullptr;
+  for (const CommandKindText& k : kCommandKinds)
+    if (kind == k.name) known = &k;
+  if (!known) {
+    std::string names;
+    for (const CommandKindText& k : kCommandKinds)
+      names += std::string(names.empty() ? "" : ", ") + k.name;
+    fail("unknown kind '" + core::printable(kind, 40) + "' (" + names + ")");
+  }
   std::size_t values = 0;
+  double v[3] = {0.0, 0.0, 0.0};
+  for (; values < known->values.size() && known->values[values]; ++values)
+    v[values] = number(2 + values, known->values[values]);
   sim::InstructorCommand& c = t.command;
-  if (kind == "gust") {
-    c.kind = Kind::kGust;
-    c.gust.amplitude_mps = number(2, "amplitude [m/s]");
-    c.gust.duration_s = number(3, "duration [s]");
-    values = 2;
-  } else if (kind == "hoist-brake-fault") {
-    c.kind = Kind::kHoistBrakeFault;
-  } else if (kind == "landed-sensor-fault") {
-    c.kind = Kind::kLandedSensorFault;
-    const double corner = number(2, "corner (0-3)");
-    if (corner != std::floor(corner)) fail("the corner is a whole number 0-3");
-    c.corner = static_cast<int>(corner);
-    values = 1;
-  } else if (kind == "limiter-fault") {
-    c.kind = Kind::kLimiterFault;
-  } else if (kind == "clear-faults") {
-    c.kind = Kind::kClearFaults;
-  } else if (kind == "emergency-stop") {
-    c.kind = Kind::kEmergencyStop;
-  } else if (kind == "release-emergency-stop") {
-    c.kind = Kind::kReleaseEmergencyStop;
-  } else if (kind == "power-failure") {
-    c.kind = Kind::kPowerFailure;
-  } else if (kind == "power-restored") {
-    c.kind = Kind::kPowerRestored;
-  } else if (kind == "wind") {
-    c.kind = Kind::kSetWind;
-    c.wind_mean_mps = number(2, "mean speed [m/s]");
-    const double from_deg = number(3, "direction it blows from [deg]");
-    if (!(from_deg >= 0.0 && from_deg <= 360.0)) fail("the direction is outside 0-360 deg");
-    c.wind_from_rad = core::deg_to_rad(from_deg);
-    c.turbulence = number(4, "turbulence intensity");
-    values = 3;
-  } else if (kind == "visibility" || kind == "rain" || kind == "time-of-day") {
-    c.kind = kind == "visibility" ? Kind::kSetVisibility
-             : kind == "rain"     ? Kind::kSetRain
-                                  : Kind::kSetTimeOfDay;
-    c.value = number(2, kind == "visibility" ? "visibility [m]"
-                        : kind == "rain"     ? "rain [mm/h]"
-                                             : "time [h]");
-    values = 1;
-  } else {
-    fail("unknown kind '" + core::printable(kind, 40) +
-         "' (gust, hoist-brake-fault, landed-sensor-fault, limiter-fault, clear-faults, emergency-stop, "
-         "release-emergency-stop, power-failure, power-restored, wind, visibility, rain, time-of-day)");
+  c.kind = known->kind;
+  switch (c.kind) {
+    case Kind::kGust:
+      c.gust.amplitude_mps = v[0];
+      c.gust.duration_s = v[1];
+      break;
+    case Kind::kLandedSensorFault:
+      if (v[0] != std::floor(v[0])) fail("the corner is a whole number 0-3");
+      c.corner = static_cast<int>(v[0]);
+      break;
+    case Kind::kSetWind:
+      if (!(v[1] >= 0.0 && v[1] <= 360.0)) fail("the direction is outside 0-360 deg");
+      c.wind_mean_mps = v[0];
+      c.wind_from_rad = core::deg_to_rad(v[1]);
+      c.turbulence = v[2];
+      break;
+    case Kind::kSetVisibility:
+    case Kind::kSetRain:
+    case Kind::kSetTimeOfDay:
+      c.value = v[0];
+      break;
+    default:
+      break;
   }
   if (parts.size() > 2 + values) fail("too many values for '" + kind + "'");
   if (const std::string why = sim::why_invalid(c); !why.empty()) fail(why);

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <array>
+#include <span>
 #include <string>
 
 #include "harbour/sim/Simulation.h"
@@ -20,6 +22,17 @@ struct TimedCommand {
   double at_s = 0.0;
   sim::InstructorCommand command;
 };
+
+/// Each kind of instructor command as the command line, the console, the stations and the records name it,
+/// with the values it takes in order: the one table every reader and writer of the names uses.
+struct CommandKindText {
+  sim::InstructorCommand::Kind kind;
+  const char* name;                   ///< "hoist-brake-fault"
+  std::array<const char*, 3> values;  ///< what each value is ("mean speed [m/s]"), nullptr past the last
+};
+std::span<const CommandKindText> command_kinds();
+/// The name of a kind of command ("landed-sensor-fault").
+const char* command_name(sim::InstructorCommand::Kind kind);
 
 /// Parses one (plain decimal numbers, the ranges of sim::why_invalid); throws std::invalid_argument quoting
 /// the text (control characters escaped) and saying what is wrong.
