@@ -1,0 +1,82 @@
+// The look files' reader on its own: what a look is made of, and a bad look named by file, line and field.
+#include "harbour/ig/Visuals.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "harbour/io/DataError.h"
+
+namespace harbour::ig {
+namespace {
+
+std::string written(const std::string& name, const std::string& text) {
+  const std::filesystem::path folder = std::filesystem::temp_directory_path() / "harbour_visuals_test";
+  std::filesystem::create_directories(folder);
+  const std::string path = (folder / name).string();
+  std::ofstream(path) << text;
+  return path;
+}
+
+TEST(Visuals, ALookIsItsPartsAndLiveries) {
+  const std::map<std::string, Visual> looks = load_visuals(written("good.yaml", R"(visuals:
+  - key: box
+    liveries: [[0.8, 0.1, 0.1], [0.1, 0.1, 0.8]]
+    parts:
+      - {size: entity, at: [0, 0, 0], color: livery}
+      - {shape: lattice, size: [2, 2, 30], at: [1, 2, 3], bay_m: 2.5, member_m: 0.3, color: [0.8, 0.25, 0.1]}
+)"));
+  ASSERT_EQ(looks.count("box"), 1u);
+  const Visual& box = looks.at("box");
+  ASSERT_EQ(box.parts.size(), 2u);
+  EXPECT_FALSE(box.parts[0].size_m) << "the entity's own size";
+  EXPECT_TRUE(box.parts[0].livery);
+  EXPECT_EQ(box.liveries.size(), 2u);
+  EXPECT_EQ(box.parts[1].shape, VisualPart::Shape::kLattice);
+  EXPECT_EQ(box.parts[1].bay_m, 2.5);
+  EXPECT_EQ(box.parts[1].member_m, 0.3);
+  EXPECT_EQ(box.parts[1].centre_m.z, 3.0);
+  EXPECT_EQ(box.parts[1].size_m->z, 30.0);
+}
+
+void expect_refused(const std::string& text, int line, const std::string& field, const std::string& says) {
+  const std::string path = written("bad.yaml", text);
+  try {
+    load_visuals(path);
+    FAIL() << "accepted";
+  } catch (const io::DataError& e) {
+    EXPECT_EQ(e.file(), path);
+    EXPECT_EQ(e.line(), line) << e.what();
+    EXPECT_EQ(e.field(), field) << e.what();
+    EXPECT_NE(std::string(e.what()).find(says), std::string::npos) << e.what();
+  }
+}
+
+TEST(Visuals, ABadLookIsNamedByFileLineAndField) {
+  expect_refused("visuals:\n  - key: a\n    parts: [{size: entity, at: [0, 0, 0], color: livery}]\n", 3,
+                 "visuals[0].parts[0].color", "a livery colour needs the look's liveries");
+  expect_refused("visuals:\n  - key: a\n    parts: []\n  - key: a\n    parts: []\n", 4, "visuals[1].key",
+                 "'a' is declared twice");
+  expect_refused(
+      "visuals:\n  - key: a\n    parts:\n      - {shape: sphere, size: [1, 1, 1], at: [0, 0, 0]}\n", 4,
+      "visuals[0].parts[0].shape", "not a shape");
+  expect_refused("visuals:\n  - key: a\n    parts:\n      - {size: [1, 0, 1], at: [0, 0, 0]}\n", 4,
+                 "visuals[0].parts[0].size", "every side must be positive");
+  expect_refused(
+      "visuals:\n  - key: a\n    parts:\n      - {size: [1, 1, 1], at: [0, 0, 0], color: [-0.5, 0, 0]}\n", 4,
+      "visuals[0].parts[0].color", "colour components are 0-1");
+  expect_refused("visuals:\n  - key: a\n    parts:\n      - {shape: mesh, file: none.obj, at: [0, 0, 0]}\n",
+                 4, "visuals[0].parts[0].file", "no such file");
+}
+
+TEST(Visuals, TheShippedLooksLoad) {
+  const Looks looks = load_looks(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml");
+  EXPECT_GT(looks.visuals.size(), 20u);
+  EXPECT_FALSE(looks.hud.empty());
+  EXPECT_FALSE(looks.scenery.empty());
+}
+
+}  // namespace
+}  // namespace harbour::ig
