@@ -67,6 +67,9 @@ TEST(Visuals, ABadLookIsNamedByFileLineAndField) {
   expect_refused(
       "visuals:\n  - key: a\n    parts:\n      - {size: [1, 1, 1], at: [0, 0, 0], color: [-0.5, 0, 0]}\n", 4,
       "visuals[0].parts[0].color", "colour components are 0-1");
+  expect_refused(
+      "visuals:\n  - key: a\n    parts:\n      - {size: [1, 1, 1], at: [0, 0, 0], color: [2, 0, 0]}\n", 4,
+      "visuals[0].parts[0].color", "colour components are 0-1");
   expect_refused("visuals:\n  - key: a\n    parts:\n      - {shape: mesh, file: none.obj, at: [0, 0, 0]}\n",
                  4, "visuals[0].parts[0].file", "no such file");
 }

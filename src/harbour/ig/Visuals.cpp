@@ -12,8 +12,9 @@ namespace harbour::ig {
 
 namespace {
 core::Vec3 color_of(const io::YamlFile& f, const YAML::Node& node, const std::string& field) {
-  const core::Vec3 c = f.vector3(node, field, 1.0);
-  if (c.x < 0 || c.y < 0 || c.z < 0) f.fail(node, field, "colour components are 0-1");
+  const core::Vec3 c = f.vector3(node, field, 1e3);  // read wide, then said as a colour
+  for (const double v : {c.x, c.y, c.z})
+    if (!(v >= 0.0 && v <= 1.0)) f.fail(node, field, "colour components are 0-1 (linear RGB)");
   return c;
 }
 }  // namespace
