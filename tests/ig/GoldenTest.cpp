@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <memory>
 #include <string>
 
 #include "harbour/ig/ImageGenerator.h"
@@ -42,7 +43,13 @@ double psnr(const osg::Image& a, const osg::Image& b) {
   return mse == 0.0 ? 99.0 : 10.0 * std::log10(255.0 * 255.0 / mse);
 }
 
-TEST(Golden, TheDischargeInFiveConditionsLooksAsRecorded) {
+// The discharge exercise 40 s in under the autopilot (the box on its way), drawn from the chase view without
+// the HUD (text rasterises differently across font builds): the image generator and the state it shows.
+struct DischargeInChase {
+  std::unique_ptr<ImageGenerator> ig;
+  std::unique_ptr<sim::Snapshot> at_40_s;
+};
+DischargeInChase discharge_in_chase(int width, int height) {
   const sim::ExerciseSettings exercise =
       io::load_exercise(std::string(HARBOUR_DATA_DIR) + "/exercises/sts_discharge.yaml");
   sim::Simulation simulation(exercise.scenario);
@@ -50,23 +57,31 @@ TEST(Golden, TheDischargeInFiveConditionsLooksAsRecorded) {
   while (simulation.time_s() < 40.0)
     simulation.step(pilot.next(simulation));
   Looks looks = load_looks(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml");
-  ImageGenerator ig(simulation.scene(), std::move(looks.visuals), kWidth, kHeight);
-  ig.use(looks);
+  DischargeInChase d{
+      std::make_unique<ImageGenerator>(simulation.scene(), std::move(looks.visuals), width, height),
+      simulation.snapshot()};
+  d.ig->use(looks);
   View chase;
   chase.kind = View::Kind::kChase;
-  chase.hud = false;  // text rasterises differently across font builds
-  ig.set_view(chase);
+  chase.hud = false;
+  d.ig->set_view(chase);
+  return d;
+}
+
+TEST(Golden, TheDischargeInFiveConditionsLooksAsRecorded) {
+  const DischargeInChase discharge = discharge_in_chase(kWidth, kHeight);
+  ImageGenerator& ig = *discharge.ig;
   const bool update = std::getenv("HARBOUR_UPDATE_GOLDENS") != nullptr;
   const std::string folder = std::string(HARBOUR_DATA_DIR) + "/../tests/data/golden/";
   for (const Condition& c :
        {Condition{"noon", 12.0, 20000.0, 0.0, 35.0}, Condition{"dusk", 18.2, 20000.0, 0.0, 35.0},
         Condition{"night", 22.0, 20000.0, 0.0, 35.0}, Condition{"fog_200m", 12.0, 200.0, 0.0, 35.0},
         Condition{"rain", 12.0, 3000.0, 20.0, 22.0}}) {
-    auto snapshot = simulation.snapshot();
-    snapshot->time_of_day_h = c.time_of_day_h;
-    snapshot->visibility_m = c.visibility_m;
-    snapshot->rain_mm_per_h = c.rain_mm_per_h;
-    ig.update(*snapshot);
+    sim::Snapshot snapshot = *discharge.at_40_s;
+    snapshot.time_of_day_h = c.time_of_day_h;
+    snapshot.visibility_m = c.visibility_m;
+    snapshot.rain_mm_per_h = c.rain_mm_per_h;
+    ig.update(snapshot);
     ig.render();
     const std::string path = folder + c.name + ".png";
     if (update) {
@@ -96,23 +111,12 @@ namespace {
 // map's texels), a pixel of another brightness in the hard picture (0.004: the boom's faint shadow on the
 // water counts).
 TEST(Golden, SoftShadowsChangeOnlyTheShadowsEdges) {
-  const sim::ExerciseSettings exercise =
-      io::load_exercise(std::string(HARBOUR_DATA_DIR) + "/exercises/sts_discharge.yaml");
-  sim::Simulation simulation(exercise.scenario);
-  sim::Autopilot pilot(exercise);
-  while (simulation.time_s() < 40.0)
-    simulation.step(pilot.next(simulation));
-  Looks looks = load_looks(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml");
   constexpr int kW = 640, kH = 360;
-  ImageGenerator ig(simulation.scene(), std::move(looks.visuals), kW, kH);
-  ig.use(looks);
-  View chase;
-  chase.kind = View::Kind::kChase;
-  chase.hud = false;
-  ig.set_view(chase);
-  auto snapshot = simulation.snapshot();
-  snapshot->time_of_day_h = 16.0;
-  ig.update(*snapshot);
+  const DischargeInChase discharge = discharge_in_chase(kW, kH);
+  ImageGenerator& ig = *discharge.ig;
+  sim::Snapshot snapshot = *discharge.at_40_s;
+  snapshot.time_of_day_h = 16.0;
+  ig.update(snapshot);
   const auto draw = [&](bool soft) {
     ig.set_soft_shadows(soft);
     const osg::Image& image = ig.render();

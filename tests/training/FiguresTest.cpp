@@ -71,6 +71,9 @@ TEST(Figures, AnEventReadsInWords) {
   EXPECT_EQ(event_text("instructor hoist-brake-fault", 0.0), "instructor: hoist brake fault");
   EXPECT_EQ(event_text("device_lost", 0.0), "control device lost");
   EXPECT_EQ(event_text("something_new", 0.0), "something new");
+  EXPECT_EQ(event_text("move_done", 2.0), "move 2 done");
+  EXPECT_EQ(event_text("attempt_end", 80.0, "ended_by_instructor"),
+            "attempt ended by the instructor, score 80");
 }
 
 TEST(Figures, TheTraineeReportNamesEachStandingsFigureInWords) {

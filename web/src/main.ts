@@ -358,10 +358,10 @@ function showDebrief(d: { id: number; trainee: string; exercise: string; outcome
     text(off, "Taken off: " + d.deductions.map((x) =>
       `${x.reason}${x.count > 1 ? ` ×${x.count}` : ""} −${Number(x.points.toPrecision(3))} (${x.skill})`).join("; "));
     box.append(off);
-  } else if (d.score !== null) {
+  } else if (d.score !== null && d.score >= 100) {
     const none = document.createElement("p");
-    text(none, d.score >= 100 ? "Nothing taken off." : "");
-    if (none.textContent) box.append(none);
+    text(none, "Nothing taken off.");
+    box.append(none);
   }
   // what happened when, each a link to that moment in the replay (instructors; 3 s before it)
   const happened = document.createElement("ul");

@@ -124,20 +124,27 @@ std::string with_axis(std::string text, const std::string& axis) {
 
 }  // namespace
 
+std::size_t figure_order(const std::string& name) {
+  const std::vector<FigureWords>& table = figure_table();
+  for (std::size_t n = 0; n < table.size(); ++n) {
+    const std::string& row = table[n].name;
+    if (row == name || (row.front() == '*' && name.size() > row.size() - 1 && ends_with(name, row.substr(1))))
+      return n;
+  }
+  return table.size();
+}
+
 FigureWords figure_words(const std::string& name) {
-  for (const FigureWords& row : figure_table()) {
+  const std::vector<FigureWords>& table = figure_table();
+  if (const std::size_t n = figure_order(name); n < table.size()) {
+    FigureWords row = table[n];
     if (row.name == name) return row;
-    if (row.name.front() == '*') {
-      const std::string tail = row.name.substr(1);
-      if (name.size() > tail.size() && ends_with(name, tail)) {
-        const std::string axis = spaced(name.substr(0, name.size() - tail.size()));
-        FigureWords filled = row;
-        filled.name = name;
-        filled.label = with_axis(row.label, axis);
-        filled.about = with_axis(row.about, axis);
-        return filled;
-      }
-    }
+    // a per-axis row ("*_harsh_moves"): the axis is the name before the row's tail
+    const std::string axis = spaced(name.substr(0, name.size() - (row.name.size() - 1)));
+    row.name = name;
+    row.label = with_axis(row.label, axis);
+    row.about = with_axis(row.about, axis);
+    return row;
   }
   FigureWords made{name, spaced(name), "", 1.0, 3, false, ""};
   for (const SuffixUnit& u : kSuffixUnits)
@@ -169,16 +176,6 @@ std::string figure_text(const FigureWords& words, double stored) {
   }
   if (out == "-0") out = "0";
   return words.unit.empty() ? out : out + (words.unit == "°" || words.unit == "%" ? "" : " ") + words.unit;
-}
-
-std::size_t figure_order(const std::string& name) {
-  const std::vector<FigureWords>& table = figure_table();
-  for (std::size_t n = 0; n < table.size(); ++n) {
-    const std::string& row = table[n].name;
-    if (row == name || (row.front() == '*' && name.size() > row.size() - 1 && ends_with(name, row.substr(1))))
-      return n;
-  }
-  return table.size();
 }
 
 namespace {
@@ -221,8 +218,7 @@ std::string event_text(const std::string& kind, double value, const std::string&
   if (kind.rfind(kInstructor, 0) == 0)  // a command the instructor gave, by its command-line name
     return "instructor: " + words(kind.substr(kInstructor.size()));
   if (kind == "instructor") return "instructor: " + words(text);  // a station's: "hoist-brake-fault by ines"
-  if (kind == "move_done")
-    return "move " + figure_text(FigureWords{kind, "", "", 1.0, 3, true, ""}, value) + " done";
+  if (kind == "move_done") return "move " + figure_text("moves_completed", value) + " done";
   if (kind == "attempt_end") {  // its text the attempt's status, its value the score
     const std::string how = text == "finished"              ? "finished"
                             : text == "ended_by_instructor" ? "ended by the instructor"
