@@ -99,6 +99,7 @@ TEST(RecordingFile, RoundTripsBitForBit) {
   EXPECT_TRUE(back.end_stops_clear);
   EXPECT_TRUE(back.start_settled);
   EXPECT_TRUE(back.rope_damping_internal);
+  EXPECT_TRUE(back.sheave_bending_loss);
   // a branch of a run that started on unstretched ropes, stretched along their chords, says so, and an
   // unknown flag is refused
   sim::Recording old_start = sample();
@@ -107,18 +108,20 @@ TEST(RecordingFile, RoundTripsBitForBit) {
   old_start.end_stops_clear = false;
   old_start.start_settled = false;
   old_start.rope_damping_internal = false;
+  old_start.sheave_bending_loss = false;
   write_recording(path, old_start);
   EXPECT_FALSE(read_recording(path).ropes_settled);
   EXPECT_FALSE(read_recording(path).ropes_curved);
   EXPECT_FALSE(read_recording(path).end_stops_clear);
   EXPECT_FALSE(read_recording(path).start_settled);
   EXPECT_FALSE(read_recording(path).rope_damping_internal);
+  EXPECT_FALSE(read_recording(path).sheave_bending_loss);
   std::vector<char> bytes;
   {
     std::ifstream in(path, std::ios::binary);
     bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
   }
-  bytes[6] = 32;  // an unknown flag in the header's flags (u16 after the magic and the version)
+  bytes[6] = 64;  // an unknown flag in the header's flags (u16 after the magic and the version)
   std::ofstream(path, std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
   EXPECT_THROW(read_recording(path), RecordingFileError);
   std::filesystem::remove(path);

@@ -13,6 +13,11 @@ class CableBodies {
   virtual core::Vec3 point_position(int body, const core::Vec3& local) const = 0;
   /// World velocity of that point.
   virtual core::Vec3 point_velocity(int body, const core::Vec3& local) const = 0;
+  /// Angular velocity of body `body` in the world frame (zero for the world and for bodies that do not turn).
+  virtual core::Vec3 angular_velocity(int body) const {
+    (void)body;
+    return {};
+  }
   /// Adds a world force at a world point for the next physics step.
   virtual void add_force(int body, const core::Vec3& world_point, const core::Vec3& force) = 0;
 };

@@ -10,6 +10,7 @@ namespace {
 
 using core::Vec3;
 
+constexpr double kBendingCreep_rad_s = 0.01;  // below this turning rate the bending loss falls linearly
 constexpr double kCourant = 0.5;              // sub-step: wave (plus transport) crosses half a node interval
 constexpr double kSpringDecay_s = 0.05;       // a suspended oscillation's shape fades over this time
 constexpr double kStretchStability = 1.0;     // sub-step times the stretch coupling's frequency (< 2)
@@ -254,6 +255,13 @@ void HoistSystem::update_segment(Segment& s, const RopeSettings& rope, double dt
     s.tension = 0.0;
     s.stiffness = 0.0;
   }
+  // a rope turning on a sheave or drum (the far end moving across the chord against the element's body) rolls
+  // on or off it: a length r dphi bends or straightens and its hysteresis takes bending_loss T r dphi, a
+  // moment between the rope and the element's body against the turn
+  const bool bending = !settings_.sheaves_without_bending_loss && s.tension > 0.0;
+  const double loss_moment = bending ? rope.bending_loss * s.tension : 0.0;
+  s.bending_at_a = bending_force(ea, bodies, a, b, va, vb, loss_moment * ea.radius_m);
+  s.bending_at_b = bending_force(eb, bodies, b, a, vb, va, loss_moment * eb.radius_m);
   s.end_a = a;
   s.end_b = b;
   s.velocity_a = va;
@@ -360,6 +368,21 @@ void HoistSystem::step_sheaves(const Rope& rope, double dt) {
   }
 }
 
+Vec3 HoistSystem::bending_force(const ElementSettings& element, const CableBodies& bodies, const Vec3& here,
+                                const Vec3& there, const Vec3& velocity_here, const Vec3& velocity_there,
+                                double loss_moment_n_m) const {
+  if (loss_moment_n_m <= 0.0) return {};
+  const Vec3 chord = there - here;
+  const double chord_length = std::max(core::length(chord), 1e-9);
+  const Vec3 e = chord * (1.0 / chord_length);
+  // the far end's motion across the chord seen from the element's body (its point there)
+  const Vec3 carried = velocity_here + core::cross(bodies.angular_velocity(element.mount.body), chord);
+  const Vec3 across = perpendicular(velocity_there - carried, e);
+  // Coulomb in the turning rate, linear below kBendingCreep (micro-slip between the wires)
+  const double speed = std::max(core::length(across), kBendingCreep_rad_s * chord_length);
+  return across * (-loss_moment_n_m / (chord_length * speed));
+}
+
 void HoistSystem::apply_forces(const Segment& s, const RopeSettings& rope, CableBodies& bodies) const {
   // the rope pulls each end towards its first interior point; its weight goes half to each end (the part
   // across the chord travels through the sag while it oscillates)
@@ -378,11 +401,16 @@ void HoistSystem::apply_forces(const Segment& s, const RopeSettings& rope, Cable
   if (ea.mount.body >= 0)
     bodies.add_force(ea.mount.body, s.end_a,
                      first * (s.tension / core::length(first)) + carried + s.inertia_a +
-                         (internal_damping ? s.damping_a : Vec3{}));
+                         (internal_damping ? s.damping_a : Vec3{}) + s.bending_at_b);
   if (eb.mount.body >= 0)
     bodies.add_force(eb.mount.body, s.end_b,
                      last * (s.tension / core::length(last)) + carried + s.inertia_b +
-                         (internal_damping ? s.damping_b : Vec3{}));
+                         (internal_damping ? s.damping_b : Vec3{}) + s.bending_at_a);
+  // each bending force's reaction on the turning element's body, on the same line of action (no couple)
+  if (ea.mount.body >= 0 && s.bending_at_a != Vec3{})
+    bodies.add_force(ea.mount.body, s.end_b, -s.bending_at_a);
+  if (eb.mount.body >= 0 && s.bending_at_b != Vec3{})
+    bodies.add_force(eb.mount.body, s.end_a, -s.bending_at_b);
 }
 
 void HoistSystem::check_events(Segment& s, const RopeSettings& rope, int rope_index, int segment_index) {

@@ -109,6 +109,9 @@ class HoistSystem {
     core::Vec3 inertia_a, inertia_b;    // [N] the spring-carried rope's inertia on its ends (this step's)
     core::Vec3 damping_a,
         damping_b;  // [N] reaction of the wave's transverse damping on its ends (this step's)
+    // [N] the bending hysteresis where the rope turns on the element at end A (B), pushing on end B (A)
+    // across the chord; its reaction acts on end A's (B's) body at the same point (this step's)
+    core::Vec3 bending_at_a, bending_at_b;
   };
   struct Rope {
     std::vector<int> segments;
@@ -125,6 +128,9 @@ class HoistSystem {
   void update_segment(Segment& s, const RopeSettings& rope, double dt, const CableBodies& bodies);
   void integrate_wave(Segment& s, const RopeSettings& rope, double dt, int substeps, const core::Vec3& e,
                       double h, double transport, const core::Vec3& accel_a, const core::Vec3& accel_b);
+  core::Vec3 bending_force(const ElementSettings& element, const CableBodies& bodies, const core::Vec3& here,
+                           const core::Vec3& there, const core::Vec3& velocity_here,
+                           const core::Vec3& velocity_there, double loss_moment_n_m) const;
   void step_drums(double dt, std::span<const DrumCommand> commands);
   void step_sheaves(const Rope& rope, double dt);
   void apply_forces(const Segment& s, const RopeSettings& rope, CableBodies& bodies) const;

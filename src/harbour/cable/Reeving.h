@@ -23,7 +23,11 @@ struct RopeSettings {
   double safety_factor = 5.0;             ///< [-] working load limit = MBF / safety factor (EN 12385-4)
   double axial_damping_s = 0.002;         ///< [s] strain-rate damping: tension += EA * this * strain rate
   double transverse_damping_per_s = 0.3;  ///< [1/s] damping of the transverse oscillation
-  int nodes = 12;                         ///< intervals per segment for the wave equation
+  /// [-] share of the tension lost by the rope's bending hysteresis where a length of it bends onto or
+  /// straightens off a sheave or drum: half of the 2 % per sheave passage of steel wire rope (verope
+  /// Tech-Info 09.4; the bearings' part is ~0.1 %, Feyrer, Wire Ropes, 2nd ed. 2015, eq. 3.100)
+  double bending_loss = 0.01;
+  int nodes = 12;         ///< intervals per segment for the wave equation
   std::vector<int> path;  ///< element indices: a drum first, then sheaves, then an anchor or drum
 };
 
@@ -59,6 +63,9 @@ struct ReevingSettings {
   /// model every run recorded without recording header flag bit 4 ran on (their replays run on it; never from
   /// a file).
   bool damping_against_ground = false;
+  /// No bending hysteresis where the ropes turn on their sheaves and drums: the model every run recorded
+  /// without recording header flag bit 5 ran on (their replays run on it; never from a file).
+  bool sheaves_without_bending_loss = false;
 };
 
 }  // namespace harbour::cable

@@ -25,6 +25,8 @@ constexpr std::uint16_t kFlagRopesCurved = 2;    // its ropes stretched along th
 constexpr std::uint16_t kFlagEndStopsClear = 4;  // its end stops lay beyond its drives' travel
 constexpr std::uint16_t kFlagStartSettled = 8;   // its machine was brought to rest before its first step
 constexpr std::uint16_t kFlagRopeDampingInternal = 16;  // its ropes' transverse damping acted on their ends
+constexpr std::uint16_t kFlagSheaveBendingLoss =
+    32;  // its ropes lost to bending where they turned on sheaves
 
 class Writer {
  public:
@@ -182,7 +184,8 @@ RecordingWriter::RecordingWriter(const std::string& path, const sim::Recording& 
   w.put(static_cast<std::uint16_t>(
       (prefix.ropes_settled ? kFlagRopesSettled : 0) | (prefix.ropes_curved ? kFlagRopesCurved : 0) |
       (prefix.end_stops_clear ? kFlagEndStopsClear : 0) | (prefix.start_settled ? kFlagStartSettled : 0) |
-      (prefix.rope_damping_internal ? kFlagRopeDampingInternal : 0)));
+      (prefix.rope_damping_internal ? kFlagRopeDampingInternal : 0) |
+      (prefix.sheave_bending_loss ? kFlagSheaveBendingLoss : 0)));
   w.put(prefix.scenario);
   w.put(prefix.parent);
   w.put(prefix.branch_step);
@@ -516,8 +519,9 @@ sim::Recording parse_recording(const std::string& path, std::string bytes) {
   rec.end_stops_clear = version >= 8 && (flags & kFlagEndStopsClear) != 0;
   rec.start_settled = version >= 8 && (flags & kFlagStartSettled) != 0;
   rec.rope_damping_internal = version >= 8 && (flags & kFlagRopeDampingInternal) != 0;
+  rec.sheave_bending_loss = version >= 8 && (flags & kFlagSheaveBendingLoss) != 0;
   constexpr std::uint16_t kKnown = kFlagRopesSettled | kFlagRopesCurved | kFlagEndStopsClear |
-                                   kFlagStartSettled | kFlagRopeDampingInternal;
+                                   kFlagStartSettled | kFlagRopeDampingInternal | kFlagSheaveBendingLoss;
   if (version >= 8 && (flags & ~kKnown) != 0) r.fail("unknown header flags " + std::to_string(flags));
   rec.scenario = r.text("scenario name");
   if (const std::string bad = core::why_bad_name(rec.scenario); !bad.empty())

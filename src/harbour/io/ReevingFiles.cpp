@@ -92,6 +92,7 @@ ReevingFile load_reeving(const YamlFile& f) {
     rope.axial_damping_s = f.number_or(t, "axial_damping_s", at, rope.axial_damping_s, 0.0, 1.0);
     rope.transverse_damping_per_s =
         f.number_or(t, "transverse_damping_per_s", at, rope.transverse_damping_per_s, 0.0, 1000.0);
+    rope.bending_loss = f.number_or(t, "bending_loss", at, rope.bending_loss, 0.0, 0.2);
     rope.nodes = static_cast<int>(f.number_or(t, "nodes", at, rope.nodes, 2, 200));
     if (types.count(rope.name)) f.fail(t["name"], at + ".name", "duplicate rope type '" + rope.name + "'");
     types[rope.name] = rope;

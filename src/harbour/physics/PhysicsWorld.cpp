@@ -489,6 +489,7 @@ Vec3 PhysicsWorld::linear_velocity(BodyId body) const {
   return to_vec(dBodyGetLinearVel(b)) + cross(to_vec(dBodyGetAngularVel(b)), ode_->world_offset(body));
 }
 Vec3 PhysicsWorld::angular_velocity(BodyId body) const {
+  if (body == kWorld) return {};
   return to_vec(dBodyGetAngularVel(ode_->bodies[body].id));
 }
 

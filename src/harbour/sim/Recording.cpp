@@ -96,6 +96,7 @@ ScenarioSettings as_recorded(ScenarioSettings scenario, const Recording& recordi
   scenario.end_stops_at_travel = !recording.end_stops_clear;
   scenario.start_unsettled = !recording.start_settled;
   scenario.rope_damping_against_ground = !recording.rope_damping_internal;
+  scenario.sheaves_without_bending_loss = !recording.sheave_bending_loss;
   return scenario;
 }
 }  // namespace
@@ -196,6 +197,7 @@ TakeOver take_over(const ScenarioSettings& scenario, const Recording& recording,
   prefix.end_stops_clear = recording.end_stops_clear;
   prefix.start_settled = recording.start_settled;
   prefix.rope_damping_internal = recording.rope_damping_internal;
+  prefix.sheave_bending_loss = recording.sheave_bending_loss;
   // the branch records by this machine's labels: the prefix's controls are carried over to them
   const ControlTable& table = r.simulation->control_table();
   for (const ControlSpec& c : table.controls())

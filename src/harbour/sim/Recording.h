@@ -42,6 +42,9 @@ struct Recording {
   /// The ropes' transverse damping acted between each rope and its ends (false: against the ground, as in
   /// every run recorded without header flag bit 4; ScenarioSettings::rope_damping_against_ground).
   bool rope_damping_internal = true;
+  /// The ropes lost to bending hysteresis where they turned on their sheaves and drums (false: none, as in
+  /// every run recorded without header flag bit 5; ScenarioSettings::sheaves_without_bending_loss).
+  bool sheave_bending_loss = true;
   /// The labels of the controls the values are stored by (a replay reads them by label, whatever slots the
   /// machine's table gives them now).
   std::vector<std::string> control_labels;

@@ -141,6 +141,10 @@ struct ScenarioSettings {
   /// The ropes' transverse damping acts against the ground (cable::ReevingSettings::damping_against_ground),
   /// as in every run recorded before it acted between the rope and its ends: their replays run so.
   bool rope_damping_against_ground = false;
+  /// No bending hysteresis where the ropes turn on sheaves and drums
+  /// (cable::ReevingSettings::sheaves_without_bending_loss), as in every run recorded before it was
+  /// modelled: their replays run so.
+  bool sheaves_without_bending_loss = false;
 };
 
 /// The executive: a pure function of its inputs at a fixed 1 kHz step (no clocks, files or threads). The

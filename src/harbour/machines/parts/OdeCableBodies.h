@@ -24,6 +24,7 @@ class OdeCableBodies : public cable::CableBodies {
   core::Vec3 point_velocity(int body, const core::Vec3& local) const override {
     return world_.point_velocity(map(body), at(body, local));
   }
+  core::Vec3 angular_velocity(int body) const override { return world_.angular_velocity(map(body)); }
   void add_force(int body, const core::Vec3& world_point, const core::Vec3& force) override {
     world_.add_force_at(map(body), world_point, force);
   }
