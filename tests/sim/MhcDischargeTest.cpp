@@ -108,8 +108,11 @@ TEST(MhcDischarge, TheAutopilotClearsTheExerciseAndMassIsExactOverTheRun) {
               a.metrics.tonnes_per_hour);
   for (const double fill : a.metrics.bite_fill)
     std::printf(" %.0f %%", 100.0 * fill);
-  std::printf(", %.2f t back in the hold, worst release swing %.2f m, score %.0f\n", a.back_in_hold_t, swing,
+  std::printf(", %.2f t back in the hold, worst release swing %.2f m, score %.0f", a.back_in_hold_t, swing,
               a.score.total);
+  for (const Score::Deduction& d : a.score.deductions)
+    std::printf("; %s -%.0f", d.reason.c_str(), d.points);
+  std::printf("\n");
 }
 
 TEST(MhcDischarge, OpeningOverTheQuayEdgeSpillsAndCosts) {

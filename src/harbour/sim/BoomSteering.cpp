@@ -19,6 +19,7 @@ constexpr double kHeightBand_m = 0.3;       // height error the hoist leaves alo
 constexpr double kHeightGain_per_m = 0.25;  // hoist lever per metre beyond it
 constexpr double kLeverTravel_s = 1.0;      // a lever from neutral to full
 constexpr double kLeverEase_s = 0.2;        // a lever eases into its position over about this time
+constexpr double kLeverSpeedUp_s = 0.2;     // a lever's speed builds up (or reverses) over about this time
 constexpr double kLeverResolution = 1e-3;   // ... and then steps the rest
 // setting an empty attachment down after a fault: the hoist lever at most, as it touches, and per metre over
 // what it rests on in between
@@ -42,9 +43,15 @@ void BoomSteering::observe(const MobileHarbourCrane& crane, double decision_s, b
   swing_m_ += (swing - swing_m_) * smoothing;
   held_bottom_m_ += (crane.attachment_bottom_z_m() - held_bottom_m_) * smoothing;
   const double reference = crane.slew_drive().reference_mps();
-  const bool rising =
-      !restart && std::abs(reference) > std::abs(slew_reference_) && reference * slew_reference_ > 0.0;
-  slew_rising_ago_s_ = rising ? 0.0 : slew_rising_ago_s_ + decision_s;
+  // the drive speeding up or slowing down (one way: a reversal is neither)
+  const bool same_way = !restart && reference * slew_reference_ > 0.0;
+  const double faster = std::abs(reference) - std::abs(slew_reference_);
+  if (same_way && faster != 0.0) {
+    slew_speeding_ = faster > 0.0 ? 1 : -1;
+    slew_speeding_ago_s_ = 0.0;
+  } else {
+    slew_speeding_ago_s_ += decision_s;
+  }
   slew_reference_ = reference;
 }
 
@@ -62,10 +69,12 @@ bool BoomSteering::steer(const MobileHarbourCrane& crane, const Target& target, 
   const double v_t = std::clamp(kCreepGain_per_s * e_t, -v_t_max, v_t_max) + kSwingGain_per_s * s_t;
   const double v_r = std::clamp(kCreepGain_per_s * e_r, -v_r_max, v_r_max) + kSwingGain_per_s * s_r;
   slew = std::clamp(v_t / v_t_max, -1.0, 1.0);
-  // while the drive speeds up, and a moment after, the lever is not brought back under its speed: the ramp
-  // would turn from full acceleration to deceleration at once (a harsh move); it levels off, then comes back
+  // while the drive speeds up, and a moment after, the lever is not brought back under its speed, and while
+  // it slows down not pushed past it: the ramp would turn from full acceleration to full deceleration (or
+  // back) at once (a harsh move); it levels off at the speed reached, then goes the other way
   const double reached = slew_reference_ / s.slew_drive.max_speed_mps;
-  if (slew_rising_ago_s_ < kLevelOff_s && slew * reached >= 0.0 && std::abs(slew) < std::abs(reached))
+  if (slew_speeding_ago_s_ < kLevelOff_s && slew * reached >= 0.0 &&
+      (slew_speeding_ > 0 ? std::abs(slew) < std::abs(reached) : std::abs(slew) > std::abs(reached)))
     slew = reached;
   luff = std::clamp(-v_r / v_r_max, -1.0, 1.0);  // + raises the boom: less radius
   const double off = std::hypot(e_t + s_t, e_r + s_r);
@@ -79,32 +88,37 @@ double BoomSteering::hold_height(double z_m) const {
 }
 
 Controls stop_after_hoist_fault(const ControlTable& table, const MobileHarbourCrane& crane,
-                                const Controls& last, double decision_s, double empty_kg, double rest_on_z_m,
-                                double slew, double luff) {
+                                const Controls& last, const Controls& before_last, double decision_s,
+                                double empty_kg, double rest_on_z_m, double slew, double luff) {
   const bool resting = crane.limiter_load_n() < 0.5 * empty_kg * core::kStandardGravity;
   const double lowering =
       std::clamp(kRestTouch + kRestEase_per_m * (crane.attachment_bottom_z_m() - rest_on_z_m), kRestTouch,
                  kRestLowering);
-  Controls out =
-      resting ? hand_levers(table, last, decision_s, {{"hoist", 0.0}})
-              : hand_levers(table, last, decision_s, {{"slew", slew}, {"luff", luff}, {"hoist", -lowering}});
+  Controls out = resting ? hand_levers(table, last, before_last, decision_s, {{"hoist", 0.0}})
+                         : hand_levers(table, last, before_last, decision_s,
+                                       {{"slew", slew}, {"luff", luff}, {"hoist", -lowering}});
   if (const int stop = table.find("emergency_stop"); stop >= 0 && resting)
     out.value[static_cast<std::size_t>(stop)] = 1.0;
   return out;
 }
 
-Controls hand_levers(const ControlTable& table, const Controls& last, double decision_s,
-                     std::initializer_list<std::pair<const char*, double>> wanted) {
+Controls hand_levers(const ControlTable& table, const Controls& last, const Controls& before_last,
+                     double decision_s, std::initializer_list<std::pair<const char*, double>> wanted) {
   Controls out = table.neutral();
-  // at most full travel in kLeverTravel_s, easing into the wanted position over its last kLeverEase_s (a
-  // lever stopped dead at full speed is a jerk the drive passes on: a harsh move)
+  // at most full travel in kLeverTravel_s, easing into the wanted position over its last kLeverEase_s, and
+  // its speed changing over kLeverSpeedUp_s (a lever stopped dead, started or turned back at full speed is a
+  // jerk the drive passes on: a harsh move)
   const double step = decision_s / kLeverTravel_s;
+  const double speed_change = step * decision_s / kLeverSpeedUp_s;
   for (const auto& [label, value] : wanted)
     if (const int slot = table.find(label); slot >= 0) {
-      const double was = last.value[static_cast<std::size_t>(slot)];
+      const auto at = static_cast<std::size_t>(slot);
+      const double was = last.value[at], moved = was - before_last.value[at];
       const double eased = std::abs(value - was) * decision_s / kLeverEase_s;
-      const double move = std::min(step, std::max(eased, kLeverResolution));
-      out.value[static_cast<std::size_t>(slot)] = std::clamp(value, was - move, was + move);
+      const double most = std::min(step, std::max(eased, kLeverResolution));
+      const double move =
+          std::clamp(std::clamp(value - was, -most, most), moved - speed_change, moved + speed_change);
+      out.value[at] = std::clamp(was + move, -1.0, 1.0);
     }
   return out;
 }

@@ -36,9 +36,10 @@ class BoomSteering {
   double bottom_m() const { return held_bottom_m_; }
 
  private:
-  core::Vec3 swing_m_;              // the load's offset from plumb under the falls, low-passed
-  double slew_reference_ = 0.0;     // the slewing drive's ramped reference at the last decision [rad/s]
-  double slew_rising_ago_s_ = 1e9;  // since the slewing drive last sped up [s]
+  core::Vec3 swing_m_;                // the load's offset from plumb under the falls, low-passed
+  double slew_reference_ = 0.0;       // the slewing drive's ramped reference at the last decision [rad/s]
+  int slew_speeding_ = 0;             // the way its magnitude last changed (+1 up, -1 down)
+  double slew_speeding_ago_s_ = 1e9;  // since it last changed [s]
   double held_bottom_m_ = 0.0;
 };
 
@@ -48,12 +49,13 @@ class BoomSteering {
 /// that keep it calm over its spot); then the emergency stop is pressed so that nothing runs the unbraked
 /// hoist again.
 Controls stop_after_hoist_fault(const ControlTable& table, const MobileHarbourCrane& crane,
-                                const Controls& last, double decision_s, double empty_kg, double rest_on_z_m,
-                                double slew = 0.0, double luff = 0.0);
+                                const Controls& last, const Controls& before_last, double decision_s,
+                                double empty_kg, double rest_on_z_m, double slew = 0.0, double luff = 0.0);
 
 /// Levers moved as a hand moves them: each labelled lever goes towards its wanted value by at most
-/// `decision_s / lever_travel_s` of full travel from where it was (`last`); the others stay neutral.
-Controls hand_levers(const ControlTable& table, const Controls& last, double decision_s,
-                     std::initializer_list<std::pair<const char*, double>> wanted);
+/// `decision_s / lever_travel_s` of full travel from where it was (`last`), and its speed changes gradually
+/// from how it moved in the decision before (`last` against `before_last`); the others stay neutral.
+Controls hand_levers(const ControlTable& table, const Controls& last, const Controls& before_last,
+                     double decision_s, std::initializer_list<std::pair<const char*, double>> wanted);
 
 }  // namespace harbour::sim

@@ -5,6 +5,7 @@
 #include <limits>
 #include <numbers>
 #include <stdexcept>
+#include <utility>
 
 #include "harbour/core/Units.h"
 #include "harbour/machines/mhc/MobileHarbourCrane.h"
@@ -107,7 +108,8 @@ Controls GrabAutopilot::next(const Simulation& simulation) {
   const auto* crane = dynamic_cast<const MobileHarbourCrane*>(&simulation.machine());
   if (!crane || !simulation.bulk() || simulation.bulk_grab() < 0)
     throw std::logic_error("the grab autopilot's exercise runs on another machine");
-  last_ = decide(simulation, *crane);
+  const Controls decided = decide(simulation, *crane);
+  before_last_ = std::exchange(last_, decided);
   decided_ = true;
   return last_;
 }
@@ -287,16 +289,16 @@ Controls GrabAutopilot::decide(const Simulation& simulation, const MobileHarbour
       const bool over = steer(target_of(rest_spot_m_), 0.5, slew, luff);
       reached_rest_spot_ = reached_rest_spot_ || over;
       if (!reached_rest_spot_)
-        return hand_levers(simulation.control_table(), last_, decision_s,
+        return hand_levers(simulation.control_table(), last_, before_last_, decision_s,
                            {{"slew", slew}, {"luff", luff}, {"hoist", hold_height(travel_z)}});
-      return stop_after_hoist_fault(simulation.control_table(), crane, last_, decision_s, empty_kg,
-                                    surface_z(bulk, rest_spot_m_), slew, luff);
+      return stop_after_hoist_fault(simulation.control_table(), crane, last_, before_last_, decision_s,
+                                    empty_kg, surface_z(bulk, rest_spot_m_), slew, luff);
     }
     case Phase::kDone:
       hoist = hold_height(travel_z);
       break;
   }
-  return hand_levers(simulation.control_table(), last_, decision_s,
+  return hand_levers(simulation.control_table(), last_, before_last_, decision_s,
                      {{"slew", slew}, {"luff", luff}, {"hoist", hoist}, {"grab", grab}});
 }
 

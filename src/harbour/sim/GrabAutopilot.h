@@ -70,6 +70,7 @@ class GrabAutopilot final : public Pilot {
   core::Vec3 rest_spot_m_;          // after a hoist brake fault: where the empty grab is set down
   bool reached_rest_spot_ = false;  // ... over it
   Controls last_{};
+  Controls before_last_{};  // the decision before last_: how fast each lever was moving
   bool decided_ = false;
 };
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
 #include "harbour/core/Units.h"
 #include "harbour/machines/mhc/MobileHarbourCrane.h"
@@ -66,7 +67,8 @@ Controls HookAutopilot::next(const Simulation& simulation) {
   const auto* crane = dynamic_cast<const MobileHarbourCrane*>(&simulation.machine());
   if (!crane || !crane->on_hook())
     throw std::logic_error("the hook autopilot's exercise runs on another machine");
-  last_ = decide(simulation, *crane);
+  const Controls decided = decide(simulation, *crane);
+  before_last_ = std::exchange(last_, decided);
   decided_ = true;
   return last_;
 }
@@ -98,13 +100,13 @@ Controls HookAutopilot::decide(const Simulation& simulation, const MobileHarbour
     phase_start_s_ = now;
   };
   if (phase_ == Phase::kDone) {
-    return hand_levers(simulation.control_table(), last_, decision_s, {});
+    return hand_levers(simulation.control_table(), last_, before_last_, decision_s, {});
   }
   if (phase_ == Phase::kFaultStop) {
     // the hook rid of its piece bounces on its ropes: it is let calm before it goes down
     if (now - phase_start_s_ < kSettleAfterUnsling_s)
-      return hand_levers(simulation.control_table(), last_, decision_s, {{"hoist", 0.0}});
-    return stop_after_hoist_fault(simulation.control_table(), crane, last_, decision_s,
+      return hand_levers(simulation.control_table(), last_, before_last_, decision_s, {{"hoist", 0.0}});
+    return stop_after_hoist_fault(simulation.control_table(), crane, last_, before_last_, decision_s,
                                   crane.settings().hook->block_mass_kg, rest_on_z_m_);
   }
   const std::size_t piece = piece_index(simulation);
@@ -130,7 +132,7 @@ Controls HookAutopilot::decide(const Simulation& simulation, const MobileHarbour
   rest_on_z_m_ = over_piece || phase_ != Phase::kToPiece ? top : 0.0;
   if (fault && !held && (phase_ == Phase::kToPiece || phase_ == Phase::kLower || phase_ == Phase::kSling)) {
     enter(Phase::kFaultStop);
-    return stop_after_hoist_fault(simulation.control_table(), crane, last_, decision_s,
+    return stop_after_hoist_fault(simulation.control_table(), crane, last_, before_last_, decision_s,
                                   crane.settings().hook->block_mass_kg, rest_on_z_m_);
   }
   const int hoist_slot = simulation.control_table().find("hoist");
@@ -195,7 +197,7 @@ Controls HookAutopilot::decide(const Simulation& simulation, const MobileHarbour
   // moved within a period of that sets it bouncing
   hoist =
       std::clamp(hoist, last_hoist - kEaseRate_per_s * decision_s, last_hoist + kEaseRate_per_s * decision_s);
-  Controls out = hand_levers(simulation.control_table(), last_, decision_s,
+  Controls out = hand_levers(simulation.control_table(), last_, before_last_, decision_s,
                              {{"slew", slew}, {"luff", luff}, {"hoist", hoist}});
   if (const int sling = simulation.control_table().find("sling"); sling >= 0)
     out.value[static_cast<std::size_t>(sling)] = call_slinger ? 1.0 : 0.0;

@@ -45,6 +45,7 @@ class HookAutopilot final : public Pilot {
   double rest_on_z_m_ = 0.0;      // after a hoist brake fault: the top of what the empty hook is set down on
   BoomSteering steering_;
   Controls last_{};
+  Controls before_last_{};  // the decision before last_: how fast each lever was moving
   bool decided_ = false;
 };
 
