@@ -212,7 +212,8 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
   std::unique_ptr<sim::Pilot> pilot;
   if (options.autopilot) {
     pilot = sim::make_pilot(exercise);
-    if (session_options.take_over) pilot->resume(session.simulation(), session.moves_before_start());
+    if (session_options.take_over)
+      pilot->resume(session.simulation(), session.moves_before_start(), session.levers_before_start());
     session.loop().set_pilot([&](const sim::Simulation& s) { return pilot->next(s); });
   } else {
     station.use_devices(open_devices(profile, session.simulation().control_table(), !windows.empty()));

@@ -541,7 +541,7 @@ int take_over_recording(const std::string& recording_path, const RunOptions& giv
               progress_text(exercise, evaluator.metrics()).c_str(),
               parent ? (", branch of attempt " + std::to_string(*parent)).c_str() : "");
   const std::unique_ptr<sim::Pilot> pilot = sim::make_pilot(exercise);
-  pilot->resume(*branch.simulation, evaluator.metrics().moves_completed);
+  pilot->resume(*branch.simulation, evaluator.metrics().moves_completed, branch.levers);
   return drive_attempt(exercise, *branch.simulation, *pilot, evaluator, branch.recorder, db, parent, step,
                        options);
 }

@@ -262,7 +262,7 @@ TEST_P(TakeOverAt, AnInstructorTakeOverContinuesTheAttemptFromTheRecordedState) 
   EXPECT_EQ(branch.recorder.recording().parent, "original");
   EXPECT_EQ(branch.recorder.recording().branch_step, at);
   Autopilot pilot(exercise);
-  pilot.resume(*branch.simulation, evaluator.metrics().moves_completed);
+  pilot.resume(*branch.simulation, evaluator.metrics().moves_completed, branch.levers);
   for (int k = 0; k < 200000 && !evaluator.finished(); ++k) {
     const Controls in = pilot.next(*branch.simulation);
     branch.simulation->step(in);

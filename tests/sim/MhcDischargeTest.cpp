@@ -163,7 +163,7 @@ TEST(MhcDischarge, AnInstructorTakeOverWithTheGrabLoadedFinishesTheDelivery) {
   const double delivered_before = evaluator.metrics().delivered_t;
   EXPECT_GT(delivered_before, 0.0);
   const std::unique_ptr<Pilot> pilot = make_pilot(exercise);
-  pilot->resume(at, evaluator.metrics().moves_completed);
+  pilot->resume(at, evaluator.metrics().moves_completed, branch.levers);
   while (!evaluator.finished() && branch.simulation->time_s() < limit_of(exercise)) {
     const Controls in = pilot->next(*branch.simulation);
     branch.simulation->step(in);

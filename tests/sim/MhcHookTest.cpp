@@ -193,9 +193,10 @@ TEST(MhcHook, ATakeOverWithThePieceSlungCarriesItToItsPlace) {
   Evaluator evaluator(exercise);
   HookAutopilot trainee(exercise);
   drive_until(sim, trainee, "to target", &evaluator);
-  run(sim, 3.0, levers(sim, {{"slew", 0.5}}));  // the trainee slews on, then the instructor takes over
+  const Controls slewing = levers(sim, {{"slew", 0.5}});
+  run(sim, 3.0, slewing);  // the trainee slews on, then the instructor takes over
   HookAutopilot instructor(exercise);
-  instructor.resume(sim, evaluator.metrics().moves_completed);
+  instructor.resume(sim, evaluator.metrics().moves_completed, slewing);
   EXPECT_EQ(std::string(instructor.activity()), "lift");
   for (int k = 0; k < 200000 && !evaluator.finished(); ++k) {
     const Controls c = instructor.next(sim);

@@ -253,7 +253,7 @@ const char* Autopilot::activity() const {
   return "";
 }
 
-void Autopilot::resume(const Simulation& simulation, int moves_done) {
+void Autopilot::resume(const Simulation& simulation, int moves_done, const Controls& /*levers*/) {
   goal_ = static_cast<std::size_t>(std::max(0, moves_done));
   phase_ = Phase::kRaise;
   phase_start_ = simulation.time_s();

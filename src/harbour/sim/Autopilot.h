@@ -43,7 +43,7 @@ class Autopilot final : public Pilot {
   /// Takes over a running exercise (an instructor's take-over): the first `moves_done` moves are made; if the
   /// spreader holds the next move's box it carries it on, else it goes to fetch it (raising first, then
   /// catching whatever swing the load has before it lowers).
-  void resume(const Simulation& simulation, int moves_done) override;
+  void resume(const Simulation& simulation, int moves_done, const Controls& levers) override;
 
  private:
   enum class Phase { kRaise, kTravel, kSettle, kLower, kLiftOff, kLock, kSlacken, kUnlock };

@@ -114,10 +114,11 @@ Controls GrabAutopilot::next(const Simulation& simulation) {
   return last_;
 }
 
-void GrabAutopilot::resume(const Simulation& simulation, int /*moves_done*/) {
+void GrabAutopilot::resume(const Simulation& simulation, int /*moves_done*/, const Controls& levers) {
   phase_ = simulation.carrying() ? Phase::kHoist : Phase::kToDig;
   phase_start_s_ = simulation.time_s();
   decided_ = false;  // its filters start again from what it sees
+  last_ = before_last_ = levers;
 }
 
 core::Vec3 GrabAutopilot::dig_spot(const Simulation& simulation) const {

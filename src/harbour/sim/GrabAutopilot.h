@@ -45,7 +45,7 @@ class GrabAutopilot final : public Pilot {
   /// fault stop, done.
   const char* activity() const override;
   /// Takes over a running exercise: hoists a loaded grab out to the hopper, or goes to dig with an empty one.
-  void resume(const Simulation& simulation, int moves_done) override;
+  void resume(const Simulation& simulation, int moves_done, const Controls& levers) override;
   int bites() const { return bites_; }
 
  private:

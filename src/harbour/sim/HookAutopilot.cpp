@@ -73,13 +73,14 @@ Controls HookAutopilot::next(const Simulation& simulation) {
   return last_;
 }
 
-void HookAutopilot::resume(const Simulation& simulation, int moves_done) {
+void HookAutopilot::resume(const Simulation& simulation, int moves_done, const Controls& levers) {
   move_ = static_cast<std::size_t>(std::max(moves_done, 0));
   phase_ = move_ >= exercise_.moves.size()    ? Phase::kDone
            : simulation.machine().held_item() ? Phase::kLift
                                               : Phase::kToPiece;
   phase_start_s_ = simulation.time_s();
   decided_ = false;  // its filters start again from what it sees
+  last_ = before_last_ = levers;
 }
 
 std::size_t HookAutopilot::piece_index(const Simulation& simulation) const {
@@ -136,7 +137,7 @@ Controls HookAutopilot::decide(const Simulation& simulation, const MobileHarbour
                                   crane.settings().hook->block_mass_kg, rest_on_z_m_);
   }
   const int hoist_slot = simulation.control_table().find("hoist");
-  const double last_hoist = decided_ ? last_.value[static_cast<std::size_t>(hoist_slot)] : 0.0;
+  const double last_hoist = last_.value[static_cast<std::size_t>(hoist_slot)];
 
   switch (phase_) {
     case Phase::kToPiece: {

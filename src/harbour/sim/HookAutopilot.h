@@ -29,7 +29,7 @@ class HookAutopilot final : public Pilot {
   /// What it is doing now: to piece, lower, sling, lift, to target, set down, unsling, fault stop, done.
   const char* activity() const override;
   /// Takes over a running exercise: carries a slung piece to its target, or goes to the next piece.
-  void resume(const Simulation& simulation, int moves_done) override;
+  void resume(const Simulation& simulation, int moves_done, const Controls& levers) override;
 
  private:
   enum class Phase { kToPiece, kLower, kSling, kLift, kToTarget, kSetDown, kUnsling, kFaultStop, kDone };

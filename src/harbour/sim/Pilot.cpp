@@ -21,8 +21,8 @@ class HandsOffWhenThePowerFails final : public Pilot {
                                                                 : planned;
   }
   const char* activity() const override { return pilot_->activity(); }
-  void resume(const Simulation& simulation, int moves_done) override {
-    pilot_->resume(simulation, moves_done);
+  void resume(const Simulation& simulation, int moves_done, const Controls& levers) override {
+    pilot_->resume(simulation, moves_done, levers);
   }
 
  private:

@@ -20,8 +20,8 @@ class Pilot {
   /// What it is doing now, for progress displays.
   virtual const char* activity() const = 0;
   /// Takes over a running exercise (an instructor's take-over) of which `moves_done` container moves are
-  /// made.
-  virtual void resume(const Simulation& simulation, int moves_done) = 0;
+  /// made, with the levers where they stand (`levers`): its hands start from there, not from neutral.
+  virtual void resume(const Simulation& simulation, int moves_done, const Controls& levers) = 0;
 };
 
 /// Deliberate faults for a scripted bad driver of a vehicle (tests of the evaluation).

@@ -123,11 +123,12 @@ Controls ReachStackerAutopilot::next(const Simulation& simulation) {
   return last_;
 }
 
-void ReachStackerAutopilot::resume(const Simulation& simulation, int moves_done) {
+void ReachStackerAutopilot::resume(const Simulation& simulation, int moves_done, const Controls& levers) {
   const auto* machine = dynamic_cast<const ReachStacker*>(&simulation.machine());
   phase_ = moves_done >= 1 ? Phase::kDone : machine && machine->held_item() ? Phase::kLift : Phase::kApproach;
   phase_start_s_ = simulation.time_s();
   decided_ = false;
+  last_ = levers;
 }
 
 bool ReachStackerAutopilot::way_clear(const Simulation& simulation) const {
@@ -148,7 +149,7 @@ Controls ReachStackerAutopilot::decide(const Simulation& simulation, const Reach
   // the pedals move as a foot moves them, from where they were
   const auto press = [&](const char* label, double value) {
     const auto slot = static_cast<std::size_t>(table.find(label));
-    const double was = decided_ ? last_.value[slot] : 0.0;
+    const double was = last_.value[slot];
     const double most = kPedalRate_per_s * static_cast<double>(kDecisionSteps) * Simulation::kStep_s;
     c.value[slot] = was + std::clamp(value - was, -most, most);
   };

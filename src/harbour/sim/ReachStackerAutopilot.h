@@ -29,7 +29,7 @@ class ReachStackerAutopilot final : public Pilot {
   /// What it is doing now: approach, pick, lock, lift, carry, raise, creep, reach, set, unlock, clear, done.
   const char* activity() const override;
   /// Takes over a running exercise from where the machine stands and what it holds.
-  void resume(const Simulation& simulation, int moves_done) override;
+  void resume(const Simulation& simulation, int moves_done, const Controls& levers) override;
 
  private:
   enum class Phase {

@@ -213,7 +213,8 @@ TakeOver take_over(const ScenarioSettings& scenario, const Recording& recording,
     if (event.step < prefix.branch_step) prefix.team.push_back(event);
   for (const auto& keyframe : recording.keyframes)
     if (keyframe.step <= prefix.branch_step) prefix.keyframes.push_back(keyframe);
-  return {std::move(r.simulation), Recorder(std::move(prefix))};
+  const Controls levers = prefix.inputs.empty() ? table.neutral() : prefix.inputs.back().controls;
+  return {std::move(r.simulation), Recorder(std::move(prefix)), levers};
 }
 
 }  // namespace harbour::sim

@@ -171,6 +171,7 @@ ReplayResult replay(const ScenarioSettings& scenario, const Recording& recording
 struct TakeOver {
   std::unique_ptr<Simulation> simulation;
   Recorder recorder;
+  Controls levers;  ///< the controls standing at the take-over (neutral where none were recorded)
 };
 TakeOver take_over(const ScenarioSettings& scenario, const Recording& recording,
                    const std::string& recording_id, std::int64_t step, const ReplayObserver& observer = {});

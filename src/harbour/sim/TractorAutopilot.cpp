@@ -82,12 +82,13 @@ Controls TractorAutopilot::next(const Simulation& simulation) {
   return last_;
 }
 
-void TractorAutopilot::resume(const Simulation& simulation, int moves_done) {
+void TractorAutopilot::resume(const Simulation& simulation, int moves_done, const Controls& levers) {
   phase_ = moves_done >= 1 ? Phase::kDone : Phase::kDrive;
   to_load_stop_ = exercise_.load_stop && !simulation.machine().load();
   phase_start_s_ = simulation.time_s();
   planned_ = false;
   decided_ = false;
+  last_ = levers;
 }
 
 double TractorAutopilot::trailer_axles_x_m() const {
@@ -181,7 +182,7 @@ Controls TractorAutopilot::decide(const Simulation& simulation, const TerminalTr
   const double decision_s = static_cast<double>(kDecisionSteps) * Simulation::kStep_s;
   const auto press = [&](const char* label, double value) {
     const auto slot = static_cast<std::size_t>(table.find(label));
-    const double was = decided_ ? last_.value[slot] : 0.0, most = kPedalRate_per_s * decision_s;
+    const double was = last_.value[slot], most = kPedalRate_per_s * decision_s;
     c.value[slot] = was + std::clamp(value - was, -most, most);
   };
   const double now = simulation.time_s();

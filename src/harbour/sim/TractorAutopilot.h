@@ -31,7 +31,7 @@ class TractorAutopilot final : public Pilot {
   /// What it is doing now: drive, stop, drop, done.
   const char* activity() const override;
   /// Takes over a running exercise: plans its path again from where the tractor stands.
-  void resume(const Simulation& simulation, int moves_done) override;
+  void resume(const Simulation& simulation, int moves_done, const Controls& levers) override;
 
  private:
   enum class Phase { kDrive, kStop, kWaitForLoad, kDrop, kDone };

@@ -43,6 +43,7 @@ Session::Session(const sim::ExerciseSettings& exercise, const SessionOptions& op
         [this](const sim::Simulation& s, const sim::Controls& in) { evaluator_.observe(s, in); });
     simulation_ = std::move(branch.simulation);
     recorder_ = std::move(branch.recorder);
+    levers_before_start_ = branch.levers;
     branch_step = simulation_->steps();
     moves_before_start_ = evaluator_.metrics().moves_completed;
   }

@@ -68,6 +68,8 @@ class Session {
   std::int64_t attempt() const { return attempt_; }
   /// The moves the evaluation counted before the loop started (a take-over's: the pilot resumes after them).
   int moves_before_start() const { return moves_before_start_; }
+  /// The controls standing where a take-over began.
+  const sim::Controls& levers_before_start() const { return levers_before_start_; }
   /// Starts the loop and the record keeper.
   void start();
   /// Whether the exercise is over (its moves done, past its time and overtime, or diverged).
@@ -125,6 +127,7 @@ class Session {
   std::optional<sim::TeamFigures> team_;
   std::array<std::string, 3> team_member_;  // team, role, session ("": alone)
   int moves_before_start_ = 0;
+  sim::Controls levers_before_start_;
 };
 
 }  // namespace harbour::station
