@@ -246,11 +246,10 @@ TEST(Visuals, BadLooksNameFileLineAndField) {
   const std::string part = "visuals:\n  - key: a\n    parts:\n      - ";
   EXPECT_EQ(error(part + "{shape: lattice, size: [10, 1, 1], at: [0, 0, 0], bay_m: 2, color: [1, 0, 0]}\n"),
             "");
-  EXPECT_NE(
-      error(part + "{shape: cone, size: [1, 1, 1], at: [0, 0, 0], color: [1, 0, 0]}\n")
-          .find(
-              "harbour_looks.yaml:4: visuals[0].parts[0].shape: 'cone' is not a shape: box, lattice or mesh"),
-      std::string::npos);
+  EXPECT_NE(error(part + "{shape: cone, size: [1, 1, 1], at: [0, 0, 0], color: [1, 0, 0]}\n")
+                .find("harbour_looks.yaml:4: visuals[0].parts[0].shape: 'cone' is not a shape: box, lattice, "
+                      "container, tyre, shell or mesh"),
+            std::string::npos);
   EXPECT_NE(error(part + "{shape: lattice, size: [10, 1, 1], at: [0, 0, 0], member_m: 9, color: [1, 0, 0]}\n")
                 .find("visuals[0].parts[0].member_m"),
             std::string::npos);
@@ -1048,6 +1047,69 @@ TEST(ImageGenerator, TheOverlayPutsItsTextOnADarkPanelOverThePicture) {
   ig.set_overlay("");
   EXPECT_NEAR(luminance(pixel(ig.render(), kWidth / 2.0, kHeight * 0.2)), plain, 0.02)
       << dark << " " << bright;
+}
+
+}  // namespace
+}  // namespace harbour::ig
+
+namespace harbour::ig {
+namespace {
+
+// The shipped grab's shells turn with the published opening: shut, the jaw tips meet 0.8 m under the lower
+// block's centre (where the bulk model cuts); fully open they part across 4.6 m and rise 2.3 m, as the bite's
+// arc in data/machines/mhc.yaml says (2.2 m) to a cell; half open, the tips span half of it (arcsine law).
+TEST(ImageGenerator, TheGrabsShellsOpenWithThePublishedOpening) {
+  sim::SceneDescription d;
+  d.machine = "test";
+  d.entities.push_back({"mast", "none", {}});
+  d.entities.push_back({"grab", "mhc.grab", {1.6, 1.4, 0.8}});
+  d.indicators = {"grab_opening"};
+  const Looks shipped = load_looks(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml");
+  ImageGenerator ig(d, shipped.visuals, kWidth, kHeight);
+  View v = level();
+  v.hud = false;
+  ig.set_view(v);
+  // 14 m ahead, turned so its shells open across the picture (its x along the world's y)
+  const core::Vec3 at{14.0, 0.0, 10.0};
+  const auto yellow_extent = [&](double opening) {
+    sim::Snapshot s = state(5000.0, 5000.0, 20000.0, 12.0);
+    s.entity_count = 2;
+    s.entities[1] = {1, 0, {core::Mat3::rotation({0.0, 0.0, 1.0}, std::numbers::pi / 2.0), at}};
+    s.indicator_count = 1;
+    s.indicators[0] = opening;
+    ig.update(s);
+    const osg::Image& image = ig.render();
+    int left = kWidth, right = -1, lowest = -1;
+    for (int y = 0; y < kHeight; ++y)
+      for (int x = 0; x < kWidth; ++x) {
+        const osg::Vec3 p = pixel(image, x, y);
+        if (p.x() > 0.25 && p.y() > 0.6 * p.x() && p.z() < 0.45 * p.x()) {  // the shells' yellow
+          left = std::min(left, x);
+          right = std::max(right, x);
+          lowest = std::max(lowest, y);
+        }
+      }
+    return std::tuple{left, right, lowest};
+  };
+  const auto [l0, r0, low0] = yellow_extent(0.0);
+  const double metre = ig.project(at + core::Vec3{0, -1, 0})->first - ig.project(at)->first;  // pixels
+  const auto [lh, rh, lowh] = yellow_extent(0.5);
+  const auto [l1, r1, low1] = yellow_extent(1.0);
+  std::printf("shells across: shut %.2f m, half open %.2f m, open %.2f m; lowest point %.2f, %.2f, %.2f m\n",
+              (r0 - l0) / metre, (rh - lh) / metre, (r1 - l1) / metre,
+              at.z - (low0 - ig.project(at)->second) / metre, at.z - (lowh - ig.project(at)->second) / metre,
+              at.z - (low1 - ig.project(at)->second) / metre);
+  // where the near side plates' corners must be drawn (the grab 2.8 m wide along the view: its near side is
+  // the larger in the picture)
+  const auto near = [&](double across, double up) { return *ig.project(at + core::Vec3{-1.4, -across, up}); };
+  EXPECT_NEAR(low0, near(0.0, -0.8).second,
+              3.0);  // shut: the tips meet 0.8 m down, where the bulk model cuts
+  EXPECT_NEAR(r0 - l0, near(1.5, 0.0).first - near(-1.5, 0.0).first, 4.0);  // two shells 1.5 m deep
+  // open: the tips 4.6 m apart, up on their arc at the pivot's height
+  EXPECT_NEAR(r1 - l1, near(2.3, 1.5).first - near(-2.3, 1.5).first, 4.0);
+  EXPECT_NEAR(low1, near(2.3, 1.5).second, 4.0);
+  EXPECT_GT(rh - lh, r0 - l0);
+  EXPECT_LT(rh - lh, r1 - l1);
 }
 
 }  // namespace

@@ -27,10 +27,14 @@ TEST(Visuals, ALookIsItsPartsAndLiveries) {
     parts:
       - {size: entity, at: [0, 0, 0], color: livery}
       - {shape: lattice, size: [2, 2, 30], at: [1, 2, 3], bay_m: 2.5, member_m: 0.3, color: [0.8, 0.25, 0.1]}
+      - {shape: container, size: entity, at: [0, 0, 0], color: livery}
+      - {shape: tyre, size: [1.6, 0.6, 1.6], at: [0, 1.3, -0.6], color: [0.08, 0.08, 0.08], rim_color: [0.9, 0.8, 0.1]}
+      - {shape: shell, size: [1.5, 2.8, 1.6], hinge_m: 2.3, at: [0, 0, 1.5], yaw_deg: 180, color: [0.9, 0.7, 0.05],
+         turns: {with: grab_opening, axis: [0, -0.5, 0], degrees: 90, law: arcsine}}
 )"));
   ASSERT_EQ(looks.count("box"), 1u);
   const Visual& box = looks.at("box");
-  ASSERT_EQ(box.parts.size(), 2u);
+  ASSERT_EQ(box.parts.size(), 5u);
   EXPECT_FALSE(box.parts[0].size_m) << "the entity's own size";
   EXPECT_TRUE(box.parts[0].livery);
   EXPECT_EQ(box.liveries.size(), 2u);
@@ -39,6 +43,19 @@ TEST(Visuals, ALookIsItsPartsAndLiveries) {
   EXPECT_EQ(box.parts[1].member_m, 0.3);
   EXPECT_EQ(box.parts[1].centre_m.z, 3.0);
   EXPECT_EQ(box.parts[1].size_m->z, 30.0);
+  EXPECT_EQ(box.parts[2].shape, VisualPart::Shape::kContainer);
+  EXPECT_TRUE(box.parts[2].livery);
+  EXPECT_EQ(box.parts[3].shape, VisualPart::Shape::kTyre);
+  EXPECT_EQ(box.parts[3].rim_color.y, 0.8);
+  const VisualPart& shell = box.parts[4];
+  EXPECT_EQ(shell.shape, VisualPart::Shape::kShell);
+  EXPECT_EQ(shell.hinge_m, 2.3);
+  EXPECT_NEAR(shell.yaw_rad, 3.14159265, 1e-6);
+  ASSERT_TRUE(shell.turn);
+  EXPECT_EQ(shell.turn->indicator, "grab_opening");
+  EXPECT_EQ(shell.turn->axis.y, -1.0) << "a unit axis";
+  EXPECT_NEAR(shell.turn->max_rad, 1.57079633, 1e-6);
+  EXPECT_TRUE(shell.turn->arcsine);
 }
 
 void expect_refused(const std::string& text, int line, const std::string& field, const std::string& says) {
@@ -72,6 +89,31 @@ TEST(Visuals, ABadLookIsNamedByFileLineAndField) {
       "visuals[0].parts[0].color", "colour components are 0-1");
   expect_refused("visuals:\n  - key: a\n    parts:\n      - {shape: mesh, file: none.obj, at: [0, 0, 0]}\n",
                  4, "visuals[0].parts[0].file", "no such file");
+  expect_refused(
+      "visuals:\n  - key: a\n    parts:\n      - {shape: tyre, size: [1.6, 0.6, 1.5], at: [0, 0, 0], "
+      "color: [0, 0, 0]}\n",
+      4, "visuals[0].parts[0].size", "two equal sides");
+  expect_refused(
+      "visuals:\n  - key: a\n    parts:\n      - {shape: tyre, size: entity, at: [0, 0, 0], color: [0, 0, "
+      "0]}\n",
+      4, "visuals[0].parts[0].size", "written out");
+  expect_refused(
+      "visuals:\n  - key: a\n    parts:\n      - {shape: tyre, size: [1, 0.4, 1], at: [0, 0, 0], color: [0, "
+      "0, 0], "
+      "rim_color: [1, 2, 0]}\n",
+      4, "visuals[0].parts[0].rim_color", "colour components are 0-1");
+  expect_refused(
+      "visuals:\n  - key: a\n    parts:\n      - {shape: shell, size: [1.5, 2.8, 1.6], at: [0, 0, 0], "
+      "color: [1, 1, 0],\n         turns: {with: grab_opening, axis: [0, 0, 0], degrees: 90}}\n",
+      5, "visuals[0].parts[0].turns.axis", "a direction, not zero");
+  expect_refused(
+      "visuals:\n  - key: a\n    parts:\n      - {shape: shell, size: [1.5, 2.8, 1.6], at: [0, 0, 0], "
+      "color: [1, 1, 0],\n         turns: {with: grab_opening, axis: [0, 1, 0], degrees: 90, law: cubic}}\n",
+      5, "visuals[0].parts[0].turns.law", "not a law");
+  expect_refused(
+      "visuals:\n  - key: a\n    parts:\n      - {shape: shell, size: [1.5, 2.8, 1.6], hinge_m: 1.0, at: [0, 0, 0], "
+      "color: [1, 1, 0]}\n",
+      4, "visuals[0].parts[0].hinge_m", "");
 }
 
 TEST(Visuals, TheShippedLooksLoad) {

@@ -701,3 +701,47 @@ TEST(TractorReverse, TheAutopilotBacksTheSemiTrailerIntoItsBayAndAWrongWayDriver
 
 }  // namespace
 }  // namespace harbour::sim
+
+namespace harbour::sim {
+namespace {
+
+// A trailer laden from the start shows its payload: an ISO box of its deck's length on the deck, painted
+// with an ISO 6346 code, riding the trailer wherever it goes; an empty trailer shows none. The trailer's
+// look is its kind's.
+TEST(TractorTrailer, ALadenTrailerCarriesItsBoxOnTheDeckAndAnEmptyOneNone) {
+  const ExerciseSettings laden = io::load_exercise(HARBOUR_DATA_DIR "/exercises/tractor_semi_reverse.yaml");
+  Simulation sim(laden.scenario);
+  const SceneDescription scene = sim.scene();
+  const auto named = [&](const std::string& visual) {
+    for (std::size_t n = 0; n < scene.entities.size(); ++n)
+      if (scene.entities[n].visual == visual) return static_cast<int>(n);
+    return -1;
+  };
+  const int trailer = named("trailer.semi"), box = named("container.40ft");
+  ASSERT_GE(trailer, 0);
+  ASSERT_GE(box, 0);
+  const std::string& code = scene.entities[static_cast<std::size_t>(box)].name;
+  ASSERT_EQ(code.size(), 11u);
+  EXPECT_EQ(code, io::iso6346_code(code.substr(0, 4), std::stoi(code.substr(4, 6))));  // its check digit
+  drive(sim, 20.0, 2.0, 0.4);                                                          // away on a curve
+  const std::unique_ptr<Snapshot> s = sim.snapshot();
+  const core::Pose deck = s->entities[static_cast<std::size_t>(trailer)].pose;
+  const core::Pose on = s->entities[static_cast<std::size_t>(box)].pose;
+  const core::Vec3 local = deck.to_local(on.position);
+  std::printf("the box on the deck: %.4f %.4f %.4f m in the trailer's frame\n", local.x, local.y, local.z);
+  EXPECT_NEAR(local.x, 0.0, 1e-9);
+  EXPECT_NEAR(local.y, 0.0, 1e-9);
+  EXPECT_NEAR(local.z, 0.3 + 2.591 / 2.0, 1e-9);  // the deck's top plus the box's half height
+  EXPECT_GT(core::length(deck.position - laden.scenario.machine.as<TractorSetup>().start.position_m), 10.0)
+      << "it went somewhere";
+
+  ExerciseSettings empty = laden;
+  empty.scenario.machine.as<TractorSetup>().start.trailer->payload_half_extents_m.reset();
+  const SceneDescription bare = Simulation(empty.scenario).scene();
+  EXPECT_TRUE(std::none_of(bare.entities.begin(), bare.entities.end(), [](const SceneDescription::Entity& e) {
+    return e.visual.starts_with("container");
+  }));
+}
+
+}  // namespace
+}  // namespace harbour::sim

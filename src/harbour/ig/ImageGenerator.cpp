@@ -5,6 +5,7 @@
 #include <osg/Geode>
 #include <osg/Geometry>
 #include <osg/Image>
+#include <osg/LOD>
 #include <osg/LightModel>
 #include <osg/LightSource>
 #include <osg/LineWidth>
@@ -32,6 +33,7 @@
 
 #include "harbour/core/Rng.h"
 #include "harbour/ig/HeadlessContext.h"
+#include "harbour/ig/Models.h"
 
 namespace harbour::ig {
 
@@ -186,6 +188,42 @@ void add_lattice(osg::Geode& geode, const core::Vec3& centre, const core::Vec3& 
     }
   }
 }
+
+// The procedural models (ig/Models.h) of a scene, each built once per size and colour and shared by every
+// entity drawing it, within a level of detail: beyond its range a container is a plain box, a tyre smooth.
+class ModelCache {
+ public:
+  osg::ref_ptr<osg::Node> detailed(const VisualPart& part, const core::Vec3& size, const core::Vec3& color) {
+    const bool container = part.shape == VisualPart::Shape::kContainer;
+    const std::array<double, 10> key{
+        container ? 1.0 : 0.0, size.x,           size.y,          size.z, color.x, color.y, color.z,
+        part.rim_color.x,      part.rim_color.y, part.rim_color.z};
+    osg::ref_ptr<osg::Node>& node = nodes_[key];
+    if (node) return node;
+    osg::ref_ptr<osg::Geode> near = new osg::Geode, far = new osg::Geode;
+    osg::ref_ptr<osg::LOD> lod = new osg::LOD;
+    if (container) {
+      near->addDrawable(iso_container(size, rgba(color)));
+      osg::ref_ptr<osg::ShapeDrawable> box = new osg::ShapeDrawable(new osg::Box(
+          osg::Vec3(), static_cast<float>(size.x), static_cast<float>(size.y), static_cast<float>(size.z)));
+      box->setColor(rgba(color));
+      far->addDrawable(box);
+      lod->addChild(near, 0.0f, kContainerDetail_m);
+      lod->addChild(far, kContainerDetail_m, std::numeric_limits<float>::max());
+    } else {
+      near->addDrawable(tyre(size, rgba(color), rgba(part.rim_color), 36));
+      far->addDrawable(tyre(size, rgba(color), rgba(part.rim_color), 12));
+      lod->addChild(near, 0.0f, kTyreDetail_m);
+      lod->addChild(far, kTyreDetail_m, std::numeric_limits<float>::max());
+    }
+    node = lod;
+    return node;
+  }
+
+ private:
+  static constexpr float kContainerDetail_m = 150.0f, kTyreDetail_m = 80.0f;
+  std::map<std::array<double, 10>, osg::ref_ptr<osg::Node>> nodes_;
+};
 
 // a body of declination `declination` seen at hour angle `hour_angle` from `latitude`: the direction
 // towards it (x east, y north, z up)
@@ -663,6 +701,7 @@ void ImageGenerator::build(const sim::SceneDescription& scene) {
       }
     machine_boxes_.emplace_back((low + high) * 0.5, (high - low) * 0.5);
   }
+  ModelCache models;
   for (const sim::SceneDescription::Entity& e : scene.entities) {
     osg::ref_ptr<osg::MatrixTransform> transform = new osg::MatrixTransform();
     const auto look = visuals_.find(e.visual);
@@ -672,26 +711,64 @@ void ImageGenerator::build(const sim::SceneDescription& scene) {
         const core::Vec3 size = part.size_m ? *part.size_m : e.half_extents_m * 2.0;
         const core::Vec3 color =
             part.livery ? look->second.liveries[index % look->second.liveries.size()] : part.color;
+        // a part turned or turning has a transform of its own, and is drawn about its origin in it
+        const bool own_frame = part.yaw_rad != 0.0 || part.turn.has_value();
+        osg::ref_ptr<osg::MatrixTransform> frame = transform;
+        osg::ref_ptr<osg::Geode> drawables = geode;
+        core::Vec3 centre = part.centre_m;
+        if (own_frame) {
+          const osg::Matrixd placed = osg::Matrixd::rotate(part.yaw_rad, osg::Vec3d(0.0, 0.0, 1.0)) *
+                                      osg::Matrixd::translate(to_osg(part.centre_m));
+          frame = new osg::MatrixTransform(placed);
+          drawables = new osg::Geode;
+          frame->addChild(drawables);
+          transform->addChild(frame);
+          centre = {};
+          if (part.turn) {
+            const auto at = std::find(scene.indicators.begin(), scene.indicators.end(), part.turn->indicator);
+            if (at != scene.indicators.end())
+              turning_parts_.push_back(
+                  {frame, placed, *part.turn, static_cast<int>(at - scene.indicators.begin())});
+          }
+        }
         if (part.shape == VisualPart::Shape::kMesh) {
           osg::ref_ptr<osg::Node> mesh = read_mesh(part.mesh);
           if (!mesh) throw std::runtime_error("osgDB could not read the mesh " + part.mesh);
           paint_uncoloured(*mesh, rgba(color));
           osg::ref_ptr<osg::MatrixTransform> placed =
               new osg::MatrixTransform(osg::Matrixd::scale(part.scale, part.scale, part.scale) *
-                                       osg::Matrixd::translate(to_osg(part.centre_m)));
+                                       osg::Matrixd::translate(to_osg(centre)));
           placed->addChild(mesh);
-          transform->addChild(placed);
+          frame->addChild(placed);
           continue;
         }
         if (part.shape == VisualPart::Shape::kLattice) {
-          add_lattice(*geode, part.centre_m, size, part.bay_m, part.member_m, rgba(color));
+          add_lattice(*drawables, centre, size, part.bay_m, part.member_m, rgba(color));
+          continue;
+        }
+        if (part.shape == VisualPart::Shape::kShell) {
+          osg::ref_ptr<osg::Geometry> shell = clamshell(size, part.hinge_m, rgba(color));
+          shell->setUseDisplayList(false);
+          osg::ref_ptr<osg::MatrixTransform> placed =
+              new osg::MatrixTransform(osg::Matrixd::translate(to_osg(centre)));
+          osg::ref_ptr<osg::Geode> holder = new osg::Geode;
+          holder->addDrawable(shell);
+          placed->addChild(holder);
+          frame->addChild(placed);
+          continue;
+        }
+        if (part.shape == VisualPart::Shape::kContainer || part.shape == VisualPart::Shape::kTyre) {
+          osg::ref_ptr<osg::MatrixTransform> placed =
+              new osg::MatrixTransform(osg::Matrixd::translate(to_osg(centre)));
+          placed->addChild(models.detailed(part, size, color));
+          frame->addChild(placed);
           continue;
         }
         osg::ref_ptr<osg::ShapeDrawable> box =
-            new osg::ShapeDrawable(new osg::Box(to_osg(part.centre_m), static_cast<float>(size.x),
+            new osg::ShapeDrawable(new osg::Box(to_osg(centre), static_cast<float>(size.x),
                                                 static_cast<float>(size.y), static_cast<float>(size.z)));
         box->setColor(rgba(color));
-        geode->addDrawable(box);
+        drawables->addDrawable(box);
       }
     }
     if (look != visuals_.end() && look->second.name_on_sides) {
@@ -840,6 +917,14 @@ void ImageGenerator::update(const sim::Snapshot& s) {
       entities_[e.index]->setMatrix(to_osg(e.pose));
       entity_poses_[e.index] = e.pose;
     }
+  }
+  for (const TurningPart& part : turning_parts_) {  // a grab's shells opening, by their indicator
+    const double value = part.indicator < s.indicator_count
+                             ? std::clamp(s.indicators[static_cast<std::size_t>(part.indicator)], 0.0, 1.0)
+                             : 0.0;
+    const double angle =
+        part.turn.arcsine ? std::asin(value * std::sin(part.turn.max_rad)) : value * part.turn.max_rad;
+    part.transform->setMatrix(osg::Matrixd::rotate(angle, to_osg(part.turn.axis)) * part.placed);
   }
   for (std::size_t r = 0; r < ropes_.size(); ++r) {
     auto* vertices = static_cast<osg::Vec3Array*>(ropes_[r]->getVertexArray());

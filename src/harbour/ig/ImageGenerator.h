@@ -8,6 +8,7 @@
 #include <vector>
 
 #include <osg/Array>
+#include <osg/Matrixd>
 #include <osg/ref_ptr>
 
 #include "harbour/ig/Ocean.h"
@@ -257,6 +258,13 @@ class ImageGenerator {
   osg::ref_ptr<osg::Geode> inset_quads_;  // the insets' pictures, under the HUD's lines
   std::vector<HudItem> hud_items_;
   std::vector<std::string> indicators_;
+  struct TurningPart {  // a look's part turning with an indicator (VisualPart::turn)
+    osg::ref_ptr<osg::MatrixTransform> transform;
+    osg::Matrixd placed;  // where it stands unturned, in its entity's frame
+    PartTurn turn;
+    int indicator = 0;  // its index among the scene's indicators
+  };
+  std::vector<TurningPart> turning_parts_;
   std::string machine_;                      // the scene's machine (its kind)
   std::vector<std::string> entity_visuals_;  // visual key by entity index
   std::vector<core::Pose> entity_poses_;     // as last published

@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <numbers>
 
+#include "harbour/ig/Models.h"
 #include "harbour/io/YamlFile.h"
 
 namespace harbour::ig {
@@ -54,10 +56,17 @@ Looks load_looks(const std::string& path) {
         const std::string shape = f.text(p, "shape", pat);
         if (shape == "lattice")
           part.shape = VisualPart::Shape::kLattice;
+        else if (shape == "container")
+          part.shape = VisualPart::Shape::kContainer;
+        else if (shape == "tyre")
+          part.shape = VisualPart::Shape::kTyre;
+        else if (shape == "shell")
+          part.shape = VisualPart::Shape::kShell;
         else if (shape == "mesh")
           part.shape = VisualPart::Shape::kMesh;
         else if (shape != "box")
-          f.fail(p["shape"], pat + ".shape", "'" + shape + "' is not a shape: box, lattice or mesh");
+          f.fail(p["shape"], pat + ".shape",
+                 "'" + shape + "' is not a shape: box, lattice, container, tyre, shell or mesh");
       }
       if (part.shape == VisualPart::Shape::kMesh) {
         const std::string file = f.text(p, "file", pat);
@@ -73,6 +82,36 @@ Looks load_looks(const std::string& path) {
           part.size_m = f.vector3(size, pat + ".size", 1000.0);
         if (part.size_m && (part.size_m->x <= 0 || part.size_m->y <= 0 || part.size_m->z <= 0))
           f.fail(size, pat + ".size", "every side must be positive");
+      }
+      if (part.shape == VisualPart::Shape::kTyre) {
+        if (!part.size_m)
+          f.fail(p["size"], pat + ".size", "a tyre's size is written out: its diameter twice and its width");
+        if (tyre_axis(*part.size_m) < 0)
+          f.fail(p["size"], pat + ".size", "a tyre has two equal sides (its diameter) and its width");
+        if (f.optional(p, "rim_color", pat)) part.rim_color = color_of(f, p["rim_color"], pat + ".rim_color");
+      }
+      if (part.shape == VisualPart::Shape::kShell) {
+        if (!part.size_m)
+          f.fail(p["size"], pat + ".size", "a shell's size is written out: its reach, width and height");
+        part.hinge_m = f.number_or(p, "hinge_m", pat, part.size_m->z, part.size_m->z, 100.0);
+      }
+      part.yaw_rad = f.number_or(p, "yaw_deg", pat, 0.0, -360.0, 360.0) * std::numbers::pi / 180.0;
+      if (const auto turns = f.optional_map(p, "turns", pat)) {
+        const std::string tat = pat + ".turns";
+        PartTurn turn;
+        turn.indicator = f.text(*turns, "with", tat);
+        turn.axis = f.vector3(f.required(*turns, "axis", tat), tat + ".axis", 1.0);
+        const double axis_length = core::length(turn.axis);
+        if (!(axis_length > 1e-6)) f.fail((*turns)["axis"], tat + ".axis", "a direction, not zero");
+        turn.axis = turn.axis * (1.0 / axis_length);
+        turn.max_rad = f.number(*turns, "degrees", tat, -180.0, 180.0) * std::numbers::pi / 180.0;
+        if (f.optional(*turns, "law", tat)) {
+          const std::string law = f.text(*turns, "law", tat);
+          if (law != "linear" && law != "arcsine")
+            f.fail((*turns)["law"], tat + ".law", "'" + law + "' is not a law: linear or arcsine");
+          turn.arcsine = law == "arcsine";
+        }
+        part.turn = turn;
       }
       if (part.shape == VisualPart::Shape::kLattice) {
         part.bay_m = f.number_or(p, "bay_m", pat, 3.0, 0.2, 50.0);

@@ -21,6 +21,23 @@
 #include "harbour/sim/Trucks.h"
 
 namespace harbour::io {
+
+std::string iso6346_code(const std::string& owner_and_category, int serial) {
+  char digits[8];
+  std::snprintf(digits, sizeof digits, "%06d", serial % 1000000);
+  const std::string code = owner_and_category + digits;
+  // each character's value (letters 10-38 skipping the multiples of 11) times 2 to its place, mod 11
+  long sum = 0;
+  for (std::size_t n = 0; n < code.size(); ++n) {
+    const char c = code[n];
+    static constexpr int kLetter[26] = {10, 12, 13, 14, 15, 16, 17, 18, 19, 20, 21, 23, 24,
+                                        25, 26, 27, 28, 29, 30, 31, 32, 34, 35, 36, 37, 38};
+    const long value = c >= 'A' && c <= 'Z' ? kLetter[c - 'A'] : c - '0';
+    sum += value << n;
+  }
+  return code + std::to_string(sum % 11 % 10);
+}
+
 namespace {
 
 // the scripted faults, by their names in exercise files
@@ -91,6 +108,18 @@ sim::TrailerSettings read_coupled_trailer(const YamlFile& f, const YAML::Node& t
       f.number_or(t, "payload_centre_m", at, 0.0, -trailer.half_extents_m.x, trailer.half_extents_m.x);
   trailer.center_of_mass_x_m = payload_kg * payload_x_m / (trailer.mass_kg + payload_kg);
   trailer.mass_kg += payload_kg;
+  if (payload_kg > 0.0)  // drawn as the longest ISO box its deck holds (its mass is the payload's)
+    for (const char* type : {"40ft", "20ft"})
+      if (const core::Vec3 size = iso_types().at(type).size_m;
+          size.x <= 2.0 * trailer.half_extents_m.x + 0.05) {
+        trailer.payload_half_extents_m = size * 0.5;
+        // its ISO code painted on its sides, a serial of the trailer's name (the same every run)
+        std::uint32_t hash = 2166136261u;  // FNV-1a
+        for (const char c : trailer.id)
+          hash = (hash ^ static_cast<unsigned char>(c)) * 16777619u;
+        trailer.payload_id = iso6346_code("HBSU", static_cast<int>(hash % 1000000u));
+        break;
+      }
   // a box a team's crane will hand over onto it (its ISO type)
   if (receives) {
     const std::string type = f.text(t, "receives", at);

@@ -13,6 +13,10 @@ namespace harbour::io {
 sim::ExerciseSettings load_exercise(const YamlFile& file, const std::string& folder);
 sim::ExerciseSettings load_exercise(const std::string& path);
 
+/// An ISO 6346 container code: the owner code and equipment category (four letters, "CSQU"), the six-digit
+/// serial and the check digit computed from them ("CSQU3054383").
+std::string iso6346_code(const std::string& owner_and_category, int serial);
+
 /// The kinds of scripted event an exercise for a machine of this type may hold, as its file names them: a
 /// gust, and a failure of each part the machine has (its type's faults).
 std::vector<std::string> event_kinds(const sim::MachineType& type);

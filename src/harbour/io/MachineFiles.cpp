@@ -585,6 +585,7 @@ sim::TrailerSettings load_trailer(const YamlFile& f) {
   const std::string kind = f.text(t, "kind", "trailer");
   if (kind != "mafi" && kind != "semi")
     f.fail(t["kind"], "trailer.kind", "a trailer is a mafi (roll trailer) or a semi (not '" + kind + "')");
+  s.look = "trailer." + kind;
   f.text(t, "name", "trailer");
   s.mass_kg = f.number(t, "tare_kg", "trailer", 500.0, 1e5);
   s.max_payload_kg = f.number(t, "max_payload_kg", "trailer", 0.0, 2e5, true);

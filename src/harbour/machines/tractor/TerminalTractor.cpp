@@ -97,6 +97,9 @@ TerminalTractor::TerminalTractor(physics::PhysicsWorld& world, const TractorSett
   trailer_id_ = t.id;
   trailer_kingpin_m_ = t.kingpin_m;
   trailer_half_extents_m_ = t.half_extents_m;
+  trailer_look_ = t.look;
+  payload_half_extents_m_ = t.payload_half_extents_m;
+  payload_id_ = t.payload_id;
   wind_areas_[1] = {trailer_body_, t.half_extents_m};
   if (t.receives_half_extents_m) {
     // parked still under the quay until a crane hands it over
@@ -248,9 +251,13 @@ std::optional<physics::BodyId> TerminalTractor::load() const {
 void TerminalTractor::describe(SceneDescription& d) const {
   d.machine = kind();
   d.entities.push_back({"tractor", "tractor.chassis", settings_.half_extents_m});
-  if (trailer_body_ != physics::kWorld) d.entities.push_back({"trailer", "trailer", trailer_half_extents_m_});
+  if (trailer_body_ != physics::kWorld)
+    d.entities.push_back({"trailer", trailer_look_, trailer_half_extents_m_});
   if (load_body_ != physics::kWorld)
     d.entities.push_back({"load", container_look(2.0 * load_half_extents_m_.x), load_half_extents_m_});
+  if (payload_half_extents_m_)
+    d.entities.push_back(
+        {payload_id_, container_look(2.0 * payload_half_extents_m_->x), *payload_half_extents_m_});
   d.indicators.assign(std::begin(kTractorIndicators), std::end(kTractorIndicators));
   d.drives = {"engine"};
   d.rope_count = 0;
@@ -264,6 +271,13 @@ int TerminalTractor::publish(Snapshot& s, int first) const {
       s.entities[static_cast<std::size_t>(n)] = {static_cast<std::uint32_t>(n), flags, world_.pose(b)};
       ++n;
     }
+  if (payload_half_extents_m_ && n < kMaxEntities) {  // standing on the deck's top, riding it
+    const core::Pose deck = world_.pose(trailer_body_);
+    const core::Vec3 on_deck{0.0, 0.0, trailer_half_extents_m_.z + payload_half_extents_m_->z};
+    s.entities[static_cast<std::size_t>(n)] = {
+        static_cast<std::uint32_t>(n), 0, {deck.rotation, deck.to_parent(on_deck)}};
+    ++n;
+  }
   const double speed = forward_mps();
   const double values[] = {
       speed * 3.6,

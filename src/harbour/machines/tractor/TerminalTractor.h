@@ -38,6 +38,10 @@ struct TrailerSettings {
   std::optional<WheeledChassisSettings> legs;
   /// It takes a box handed over by a team's crane, of these half extents (none: it takes none).
   std::optional<core::Vec3> receives_half_extents_m;
+  /// The box it carries from the start (its payload), of these half extents, on its deck (none: empty).
+  std::optional<core::Vec3> payload_half_extents_m;
+  std::string payload_id = "payload";  ///< the box's ISO code, painted on it
+  std::string look = "trailer.mafi";   ///< its look (data/visuals): "trailer." and its kind
 };
 
 /// The coupling (settings): a hydraulic gooseneck or lifting fifth wheel whose jaw locks the trailer's
@@ -160,6 +164,9 @@ class TerminalTractor final : public Machine {
   std::optional<WheeledChassis> trailer_wheels_, trailer_legs_;
   std::string trailer_id_;
   core::Vec3 trailer_half_extents_m_, trailer_kingpin_m_;
+  std::string trailer_look_;
+  std::optional<core::Vec3> payload_half_extents_m_;  // drawn on the deck (its mass is the trailer's)
+  std::string payload_id_;
   // a box handed over onto the trailer: built parked and still, it joins the trailer when handed over
   physics::BodyId load_body_ = physics::kWorld;
   core::Vec3 load_half_extents_m_;

@@ -1,0 +1,144 @@
+// The procedural models on their own: their geometry measured against the standards and sizes they are
+// drawn from.
+#include "harbour/ig/Models.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+namespace harbour::ig {
+namespace {
+
+struct Extent {
+  osg::Vec3 low{1e9f, 1e9f, 1e9f}, high{-1e9f, -1e9f, -1e9f};
+};
+
+Extent extent_of(const osg::Geometry& g) {
+  Extent e;
+  const auto& v = *static_cast<const osg::Vec3Array*>(g.getVertexArray());
+  for (const osg::Vec3& p : v)
+    for (int k = 0; k < 3; ++k) {
+      e.low[k] = std::min(e.low[k], p[k]);
+      e.high[k] = std::max(e.high[k], p[k]);
+    }
+  return e;
+}
+
+// the triangles' corners whose facet faces `normal` (within a few degrees), with their colours
+template <typename Keep>
+std::vector<std::pair<osg::Vec3, osg::Vec4>> facing(const osg::Geometry& g, const osg::Vec3& normal,
+                                                    Keep keep) {
+  const auto& v = *static_cast<const osg::Vec3Array*>(g.getVertexArray());
+  const auto& n = *static_cast<const osg::Vec3Array*>(g.getNormalArray());
+  const auto& c = *static_cast<const osg::Vec4Array*>(g.getColorArray());
+  std::vector<std::pair<osg::Vec3, osg::Vec4>> out;
+  for (std::size_t k = 0; k < v.size(); ++k)
+    if (n[k] * normal > 0.995f && keep(v[k])) out.emplace_back(v[k], c[k]);
+  return out;
+}
+
+TEST(Models, AFortyFootContainerFillsItsIsoBoxWithItsCastingsAtTheCorners) {
+  const core::Vec3 size{12.192, 2.438, 2.591};  // ISO 668 1AA
+  const osg::ref_ptr<osg::Geometry> box = iso_container(size, {0.7f, 0.1f, 0.1f, 1.0f});
+  const Extent e = extent_of(*box);
+  for (int k = 0; k < 3; ++k) {  // the castings reach the box's faces, nothing sticks out
+    const double half = (k == 0 ? size.x : k == 1 ? size.y : size.z) / 2.0;
+    EXPECT_NEAR(e.high[k], half, 0.002) << "axis " << k;
+    EXPECT_NEAR(e.low[k], -half, 0.002) << "axis " << k;
+    EXPECT_LE(e.high[k], half);
+    EXPECT_GE(e.low[k], -half);
+  }
+  // every top face at the box's top is a casting's (the roof and rails lie lower): four castings, each
+  // 178 mm along and 162 mm across (ISO 1161)
+  const float top = static_cast<float>(size.z / 2.0);
+  const auto tops = facing(*box, {0, 0, 1}, [&](const osg::Vec3& p) { return p.z() > top - 0.002f; });
+  std::set<std::pair<int, int>> corners;
+  for (const auto& [p, colour] : tops) {
+    EXPECT_GT(std::abs(p.x()), size.x / 2 - 0.178 - 1e-3) << "a top face away from the corners";
+    EXPECT_GT(std::abs(p.y()), size.y / 2 - 0.162 - 1e-3) << "a top face away from the corners";
+    corners.insert({p.x() > 0 ? 1 : -1, p.y() > 0 ? 1 : -1});
+  }
+  EXPECT_EQ(corners.size(), 4u);
+  std::printf("40 ft container: %u triangles\n", box->getVertexArray()->getNumElements() / 3);
+  EXPECT_LT(box->getVertexArray()->getNumElements() / 3, 4000u);  // cheap enough to repeat in a stack
+}
+
+TEST(Models, AContainersSideWallIsCorrugatedOnItsPitch) {
+  const core::Vec3 size{6.058, 2.438, 2.591};  // ISO 668 1CC
+  const osg::ref_ptr<osg::Geometry> box = iso_container(size, {0.1f, 0.25f, 0.6f, 1.0f});
+  const float side = static_cast<float>(size.y / 2.0);
+  // the +y wall's facets facing straight out: crests 12 mm inside the frame's face, valleys 36 mm deeper
+  std::set<int> crest_starts, valleys;
+  for (const auto& [p, colour] :
+       facing(*box, {0, 1, 0}, [&](const osg::Vec3& p) { return std::abs(p.x()) < size.x / 2 - 0.2; })) {
+    const float depth = side - p.y();
+    if (std::abs(depth - 0.012f) < 1e-4f) crest_starts.insert(static_cast<int>(std::lround(p.x() * 1000)));
+    if (std::abs(depth - 0.048f) < 1e-4f) valleys.insert(static_cast<int>(std::lround(p.x() * 1000)));
+  }
+  // between the posts (178 mm castings at each end) whole 278 mm pitches: their valleys' edges
+  const int pitches = static_cast<int>((size.x - 2 * 0.178) / 0.278);
+  EXPECT_EQ(valleys.size(), 2u * pitches);
+  std::vector<int> sorted(valleys.begin(), valleys.end());
+  for (std::size_t k = 2; k < sorted.size(); k += 2)
+    EXPECT_NEAR(sorted[k] - sorted[k - 2], 278, 1) << "the pitch";
+  for (std::size_t k = 1; k < sorted.size(); k += 2)
+    EXPECT_NEAR(sorted[k] - sorted[k - 1], 70, 1) << "a valley's width";
+}
+
+TEST(Models, AContainersDoorsCarryFourLockingBarsInTheirHardwareColour) {
+  const core::Vec3 size{12.192, 2.438, 2.896};  // 1AAA, a high cube
+  const osg::Vec4 paint{0.15f, 0.45f, 0.2f, 1.0f};
+  const osg::ref_ptr<osg::Geometry> box = iso_container(size, paint);
+  // facing out of the door end (-x), 17 mm inside the castings' end faces (53 mm proud of the leaves), in
+  // grey: the bars' faces, 36 mm wide, at four places across, running most of the door's height
+  std::set<int> edges_mm;
+  float low = 1e9f, high = -1e9f;
+  for (const auto& [p, colour] : facing(*box, {-1, 0, 0}, [&](const osg::Vec3& p) {
+         return std::abs(p.x() - (-size.x / 2 + 0.017)) < 1e-3;
+       })) {
+    EXPECT_NEAR(colour.r(), colour.g(), 0.05f) << "grey, not the paint";
+    edges_mm.insert(static_cast<int>(std::lround(p.y() * 1000)));
+    low = std::min(low, p.z());
+    high = std::max(high, p.z());
+  }
+  ASSERT_EQ(edges_mm.size(), 8u);
+  const std::vector<int> edges(edges_mm.begin(), edges_mm.end());
+  for (std::size_t k = 0; k < 8; k += 2)
+    EXPECT_EQ(edges[k + 1] - edges[k], 36);
+  EXPECT_GT(high - low, 0.85 * size.z);
+}
+
+TEST(Models, ATyreTurnsAboutItsWidthAndReachesItsDiameterOnlyAtTheLugs) {
+  EXPECT_EQ(tyre_axis({0.6, 1.6, 1.6}), 0);
+  EXPECT_EQ(tyre_axis({1.1, 0.4, 1.1}), 1);
+  EXPECT_EQ(tyre_axis({1.6, 0.6, 1.5}), -1);
+  const osg::Vec4 rubber{0.08f, 0.08f, 0.08f, 1.0f}, rim{0.9f, 0.8f, 0.1f, 1.0f};
+  const osg::ref_ptr<osg::Geometry> lugged = tyre({0.6, 1.6, 1.6}, rubber, rim, 36);
+  const osg::ref_ptr<osg::Geometry> smooth = tyre({0.6, 1.6, 1.6}, rubber, rim, 12);
+  const Extent e = extent_of(*lugged);
+  EXPECT_NEAR(e.high.x() - e.low.x(), 0.6, 1e-4);
+  EXPECT_NEAR(e.high.y(), 0.8, 1e-3);
+  EXPECT_NEAR(e.high.z(), 0.8, 1e-3);
+  // the tread's lugs stand 6 % of the radius proud of its base; the far level has none
+  const auto& v = *static_cast<const osg::Vec3Array*>(lugged->getVertexArray());
+  int at_full = 0, at_base = 0;
+  for (const osg::Vec3& p : v) {
+    const float r = std::hypot(p.y(), p.z());
+    at_full += std::abs(r - 0.8f) < 1e-4f;
+    at_base += std::abs(r - 0.8f * 0.94f) < 1e-4f;
+  }
+  EXPECT_GT(at_full, 36 * 4);
+  EXPECT_GT(at_base, 36 * 4);
+  EXPECT_LT(extent_of(*smooth).high.y(), 0.8f * 0.95f);
+  EXPECT_LT(smooth->getVertexArray()->getNumElements(), lugged->getVertexArray()->getNumElements() / 3);
+  // the rim's dish faces out on both sides in its own colour
+  for (const float side : {-1.0f, 1.0f}) {
+    const auto dish = facing(*lugged, {side, 0, 0}, [](const osg::Vec3&) { return true; });
+    EXPECT_TRUE(std::any_of(dish.begin(), dish.end(), [&](const auto& pc) { return pc.second == rim; }));
+  }
+}
+
+}  // namespace
+}  // namespace harbour::ig
