@@ -55,7 +55,8 @@ int take_screenshot(const ScreenshotOptions& options) {
       simulation.command(commands[next_command].command);
     simulation.step(pilot ? pilot->next(simulation) : simulation.control_table().neutral());
   }
-  ig::Looks looks = ig::load_looks(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml");
+  ig::Looks looks = ig::load_looks(
+      options.looks.empty() ? std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml" : options.looks);
   ig::ImageGenerator generator(simulation.scene(), std::move(looks.visuals), options.width, options.height);
   if (options.soft_shadows) generator.set_soft_shadows(*options.soft_shadows);
   generator.use(looks);

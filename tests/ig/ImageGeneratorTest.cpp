@@ -248,7 +248,7 @@ TEST(Visuals, BadLooksNameFileLineAndField) {
             "");
   EXPECT_NE(error(part + "{shape: cone, size: [1, 1, 1], at: [0, 0, 0], color: [1, 0, 0]}\n")
                 .find("harbour_looks.yaml:4: visuals[0].parts[0].shape: 'cone' is not a shape: box, lattice, "
-                      "container, tyre, shell or mesh"),
+                      "container, tyre, shell, hull or mesh"),
             std::string::npos);
   EXPECT_NE(error(part + "{shape: lattice, size: [10, 1, 1], at: [0, 0, 0], member_m: 9, color: [1, 0, 0]}\n")
                 .find("visuals[0].parts[0].member_m"),

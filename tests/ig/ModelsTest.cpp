@@ -142,3 +142,56 @@ TEST(Models, ATyreTurnsAboutItsWidthAndReachesItsDiameterOnlyAtTheLugs) {
 
 }  // namespace
 }  // namespace harbour::ig
+
+namespace harbour::ig {
+namespace {
+
+// A feeder's hull (150 x 23 m, 11.5 m deep): its full beam amidships, a stem at the bow, a transom 0.6 of
+// the beam at the stern's deck, antifouling under the waterline and the topsides' paint above it.
+TEST(Models, AHullHasItsBeamAmidshipsAStemAtTheBowAndATransomAtTheStern) {
+  const core::Vec3 size{23.0, 150.0, 11.5};
+  const osg::Vec4 topsides{0.15f, 0.22f, 0.35f, 1.0f}, bottom{0.55f, 0.12f, 0.10f, 1.0f},
+      deck{0.4f, 0.2f, 0.15f, 1.0f};
+  const osg::ref_ptr<osg::Geometry> g = hull(size, topsides, bottom, 7.0, deck);
+  const Extent e = extent_of(*g);
+  EXPECT_NEAR(e.high.x(), 11.5, 1e-4);
+  EXPECT_NEAR(e.low.x(), -11.5, 1e-4);
+  EXPECT_NEAR(e.high.y(), 75.0, 1e-4);
+  EXPECT_NEAR(e.low.y(), -75.0, 1e-4);
+  EXPECT_NEAR(e.low.z(), -5.75, 1e-4);
+  EXPECT_NEAR(e.high.z(), 5.75, 1e-4);
+  // the widest point at each end, at deck height
+  const auto& v = *static_cast<const osg::Vec3Array*>(g->getVertexArray());
+  const auto& c = *static_cast<const osg::Vec4Array*>(g->getColorArray());
+  float bow = 0.0f, stern = 0.0f;
+  for (std::size_t k = 0; k < v.size(); ++k) {
+    if (std::abs(v[k].y() - 75.0f) < 1e-3f) bow = std::max(bow, std::abs(v[k].x()));
+    if (std::abs(v[k].y() + 75.0f) < 1e-3f && v[k].z() > 5.7f) stern = std::max(stern, std::abs(v[k].x()));
+    // painted by height: under the waterline (7 m up from the keel) the bottom's colour, above it the
+    // topsides' (or the deck's, at the top)
+    const float waterline = -5.75f + 7.0f;
+    if (v[k].z() < waterline - 1e-3f) {
+      EXPECT_EQ(c[k], bottom);
+    } else if (v[k].z() > waterline + 1e-3f) {
+      EXPECT_TRUE(c[k] == topsides || c[k] == deck);
+    }
+  }
+  EXPECT_LT(bow, 0.01f) << "the stem";
+  EXPECT_NEAR(stern, 0.6f * 11.5f, 0.01f) << "the transom";
+  // open (no deck colour): nothing faces up at the deck's height
+  const osg::ref_ptr<osg::Geometry> open = hull(size, topsides, bottom, 7.0, {0, 0, 0, 0});
+  EXPECT_TRUE(facing(*open, {0, 0, 1}, [](const osg::Vec3& p) { return p.z() > 5.7f; }).empty());
+  EXPECT_FALSE(facing(*g, {0, 0, 1}, [](const osg::Vec3& p) { return p.z() > 5.7f; }).empty());
+  // a bulk carrier's: its deck open over the holds from -36 to +36 m, decked fore and aft of them
+  const osg::ref_ptr<osg::Geometry> holds = hull(size, topsides, bottom, 7.0, deck, -36.0, 36.0);
+  const auto deck_at = [&](float from, float to) {
+    return facing(*holds, {0, 0, 1},
+                  [&](const osg::Vec3& p) { return p.z() > 5.7f && p.y() > from && p.y() < to; });
+  };
+  EXPECT_TRUE(deck_at(-35.9f, 35.9f).empty());
+  EXPECT_FALSE(deck_at(36.1f, 75.0f).empty());
+  EXPECT_FALSE(deck_at(-75.0f, -36.1f).empty());
+}
+
+}  // namespace
+}  // namespace harbour::ig

@@ -6,7 +6,7 @@ import * as THREE from "three";
 import { OrbitControls } from "three/examples/jsm/controls/OrbitControls.js";
 
 interface Part {
-  shape: "box" | "lattice" | "container" | "tyre" | "shell" | "mesh"; size_m: number[] | null; at_m: number[]; color: number[];
+  shape: "box" | "lattice" | "container" | "tyre" | "shell" | "hull" | "mesh"; size_m: number[] | null; at_m: number[]; color: number[];
   livery: boolean; bay_m: number; member_m: number;
 }
 interface Scenery { shape: "box" | "cylinder"; at_m: number[]; size_m: number[]; color: number[]; repeat: number; step_m: number[]; }
@@ -339,8 +339,8 @@ export class View3D {
     });
   }
 
-  // an entity's look as unit boxes placed in it: boxes, lattice girders as their four chords, a container,
-  // tyre or mesh as the box it fills; an entity without a look is a grey box of its own size
+  // an entity's look as unit boxes placed in it: boxes, lattice girders as their four chords, any other shape
+  // as the box it fills; an entity without a look is a grey box of its own size
   private partsOf(visual: string, half: number[], index: number): { local: THREE.Matrix4; rgb: number[] }[] {
     const look = this.looks.visuals[visual];
     const own = half.map((h) => 2 * h);

@@ -746,9 +746,13 @@ void ImageGenerator::build(const sim::SceneDescription& scene) {
           add_lattice(*drawables, centre, size, part.bay_m, part.member_m, rgba(color));
           continue;
         }
-        if (part.shape == VisualPart::Shape::kShell) {
-          osg::ref_ptr<osg::Geometry> shell = clamshell(size, part.hinge_m, rgba(color));
-          shell->setUseDisplayList(false);
+        if (part.shape == VisualPart::Shape::kShell || part.shape == VisualPart::Shape::kHull) {
+          osg::ref_ptr<osg::Geometry> shell =
+              part.shape == VisualPart::Shape::kShell
+                  ? clamshell(size, part.hinge_m, rgba(color))
+                  : hull(size, rgba(color), rgba(part.bottom_color), part.waterline_m,
+                         part.deck_color ? rgba(*part.deck_color) : osg::Vec4(0, 0, 0, 0),
+                         part.deck_open_from_m, part.deck_open_to_m);
           osg::ref_ptr<osg::MatrixTransform> placed =
               new osg::MatrixTransform(osg::Matrixd::translate(to_osg(centre)));
           osg::ref_ptr<osg::Geode> holder = new osg::Geode;

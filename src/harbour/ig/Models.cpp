@@ -244,6 +244,88 @@ osg::ref_ptr<osg::Geometry> clamshell(const core::Vec3& size_m, double hinge_m, 
   return mesh.build();
 }
 
+osg::ref_ptr<osg::Geometry> hull(const core::Vec3& size_m, const osg::Vec4& topsides, const osg::Vec4& bottom,
+                                 double waterline_m, const osg::Vec4& deck, double open_from_m,
+                                 double open_to_m) {
+  MeshBuilder mesh;
+  const float half_beam = static_cast<float>(size_m.x / 2.0),
+              half_length = static_cast<float>(size_m.y / 2.0), depth = static_cast<float>(size_m.z),
+              keel = -depth / 2.0f;
+  const float bow_run = std::min(0.22f * 2.0f * half_length, 2.5f * half_beam);  // the entrance
+  const float stern_run = std::min(0.15f * 2.0f * half_length, 1.8f * half_beam);
+  const float bilge = 0.1f * 2.0f * half_beam, waterline = keel + static_cast<float>(waterline_m);
+  // the half breadth at station y and height z above the keel: 1 amidships, closing in at the ends (fuller
+  // at the deck than at the keel)
+  const auto breadth = [&](float y, float z) {
+    const float up = std::clamp((z - keel) / depth, 0.0f, 1.0f);
+    if (y > half_length - bow_run) {
+      const float t = (y - (half_length - bow_run)) / bow_run;
+      return half_beam * (1.0f - std::pow(t, 1.2f + 1.3f * up));
+    }
+    if (y < -half_length + stern_run) {
+      const float t = (-half_length + stern_run - y) / stern_run;
+      const float transom = 0.6f * up * up;  // the transom's share of the beam, nothing at the keel
+      return half_beam * (1.0f - (1.0f - transom) * std::pow(t, 1.5f + 1.5f * up));
+    }
+    return half_beam;
+  };
+  // the section's points from the keel's centre line round the bilge up to the deck edge: (out, z)
+  std::vector<std::pair<float, float>> section{{0.0f, keel}};
+  for (int k = 0; k <= 4; ++k) {
+    const float a = 0.5f * std::numbers::pi_v<float> * static_cast<float>(k) / 4.0f;
+    section.emplace_back(1.0f - bilge / half_beam * (1.0f - std::sin(a)),
+                         keel + bilge * (1.0f - std::cos(a)));
+  }
+  for (const float z : {waterline, keel + depth})
+    if (z > section.back().second) section.emplace_back(1.0f, z);
+  // stations along the length, closer where the ends curve
+  std::vector<float> stations;
+  const int end_steps = 12;
+  for (int k = 0; k <= end_steps; ++k)
+    stations.push_back(-half_length + stern_run * static_cast<float>(k) / end_steps);
+  for (int k = 1; k < 4; ++k)
+    stations.push_back(-half_length + stern_run +
+                       (2.0f * half_length - stern_run - bow_run) * static_cast<float>(k) / 4);
+  for (int k = 0; k <= end_steps; ++k)
+    stations.push_back(half_length - bow_run + bow_run * static_cast<float>(k) / end_steps);
+  const float open_from = static_cast<float>(open_from_m), open_to = static_cast<float>(open_to_m);
+  for (const float y : {open_from, open_to})  // the deck's opening ends on a station
+    if (open_to > open_from && y > -half_length && y < half_length) stations.push_back(y);
+  std::sort(stations.begin(), stations.end());
+  const auto point = [&](float y, std::size_t n, float side) {
+    const auto [out, z] = section[n];
+    return osg::Vec3(side * out * breadth(y, z), y, z);
+  };
+  for (const float side : {-1.0f, 1.0f})
+    for (std::size_t s = 0; s + 1 < stations.size(); ++s)
+      for (std::size_t n = 0; n + 1 < section.size(); ++n) {
+        const float y0 = stations[s], y1 = stations[s + 1];
+        const osg::Vec3 a = point(y0, n, side), b = point(y1, n, side), c = point(y1, n + 1, side),
+                        d = point(y0, n + 1, side);
+        const float mid_z = 0.5f * (section[n].second + section[n + 1].second);
+        const osg::Vec3 outward = osg::Vec3(side, 0.0f, 0.0f) * (section[n + 1].first > 0.99f ? 1.0f : 0.5f) +
+                                  osg::Vec3(0.0f, 0.0f, -1.0f) * (mid_z < keel + bilge ? 0.5f : 0.0f);
+        mesh.quad(a, b, c, d, outward, mid_z < waterline ? bottom : topsides);
+      }
+  // the transom, flat across the stern from the keel to the deck
+  for (std::size_t n = 0; n + 1 < section.size(); ++n) {
+    const float y = stations.front();
+    const osg::Vec4 paint =
+        0.5f * (section[n].second + section[n + 1].second) < waterline ? bottom : topsides;
+    mesh.quad(point(y, n, -1.0f), point(y, n, 1.0f), point(y, n + 1, 1.0f), point(y, n + 1, -1.0f),
+              {0, -1, 0}, paint);
+  }
+  if (deck.a() > 0.0f)  // the deck between the deck edges
+    for (std::size_t s = 0; s + 1 < stations.size(); ++s) {
+      const std::size_t top = section.size() - 1;
+      const float y0 = stations[s], y1 = stations[s + 1];
+      if (y0 >= open_from && y1 <= open_to) continue;  // over the holds
+      mesh.quad(point(y0, top, -1.0f), point(y1, top, -1.0f), point(y1, top, 1.0f), point(y0, top, 1.0f),
+                {0, 0, 1}, deck);
+    }
+  return mesh.build();
+}
+
 int tyre_axis(const core::Vec3& size_m) {
   const std::array<double, 3> s{size_m.x, size_m.y, size_m.z};
   for (int a = 0; a < 3; ++a)

@@ -49,6 +49,16 @@ osg::ref_ptr<osg::Geometry> tyre(const core::Vec3& size_m, const osg::Vec4& rubb
 /// shows its inside).
 osg::ref_ptr<osg::Geometry> clamshell(const core::Vec3& size_m, double hinge_m, const osg::Vec4& paint);
 
+/// A ship's hull filling a box of `size_m` round the origin (x across: the beam, y along: the length, the bow
+/// at +y, z up from the keel at -size_m.z / 2): vertical sides turning into a flat bottom through a bilge of
+/// a tenth of the beam's radius, parallel amidships; towards the bow the waterlines close in to a raked stem
+/// (finer at the keel than at the deck), towards the stern to a transom 0.6 of the beam wide at the deck.
+/// Painted `topsides` above `waterline_m` (from the keel) and `bottom` under it; a flat deck of `deck` (alpha
+/// 0: none) left open from `open_from_m` to `open_to_m` along y (the holds, open to the sky inside it).
+osg::ref_ptr<osg::Geometry> hull(const core::Vec3& size_m, const osg::Vec4& topsides, const osg::Vec4& bottom,
+                                 double waterline_m, const osg::Vec4& deck, double open_from_m = 0.0,
+                                 double open_to_m = 0.0);
+
 /// The axle's axis (0 x, 1 y, 2 z) of a tyre filling `size_m`, or -1 where no two sides are equal.
 int tyre_axis(const core::Vec3& size_m);
 

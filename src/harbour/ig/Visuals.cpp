@@ -62,11 +62,13 @@ Looks load_looks(const std::string& path) {
           part.shape = VisualPart::Shape::kTyre;
         else if (shape == "shell")
           part.shape = VisualPart::Shape::kShell;
+        else if (shape == "hull")
+          part.shape = VisualPart::Shape::kHull;
         else if (shape == "mesh")
           part.shape = VisualPart::Shape::kMesh;
         else if (shape != "box")
           f.fail(p["shape"], pat + ".shape",
-                 "'" + shape + "' is not a shape: box, lattice, container, tyre, shell or mesh");
+                 "'" + shape + "' is not a shape: box, lattice, container, tyre, shell, hull or mesh");
       }
       if (part.shape == VisualPart::Shape::kMesh) {
         const std::string file = f.text(p, "file", pat);
@@ -94,6 +96,23 @@ Looks load_looks(const std::string& path) {
         if (!part.size_m)
           f.fail(p["size"], pat + ".size", "a shell's size is written out: its reach, width and height");
         part.hinge_m = f.number_or(p, "hinge_m", pat, part.size_m->z, part.size_m->z, 100.0);
+      }
+      if (part.shape == VisualPart::Shape::kHull) {
+        if (!part.size_m)
+          f.fail(p["size"], pat + ".size", "a hull's size is written out: its beam, length and depth");
+        part.waterline_m = f.number(p, "waterline_m", pat, 0.0, part.size_m->z);
+        part.bottom_color = color_of(f, f.required(p, "bottom_color", pat), pat + ".bottom_color");
+        if (f.optional(p, "deck_color", pat))
+          part.deck_color = color_of(f, p["deck_color"], pat + ".deck_color");
+        if (f.optional(p, "deck_open_m", pat)) {
+          const YAML::Node open = p["deck_open_m"];
+          if (!open.IsSequence() || open.size() != 2)
+            f.fail(open, pat + ".deck_open_m", "expected [from, to] along the hull's length");
+          part.deck_open_from_m = f.number_at(open[0], pat + ".deck_open_m[0]");
+          part.deck_open_to_m = f.number_at(open[1], pat + ".deck_open_m[1]");
+          if (!(part.deck_open_from_m < part.deck_open_to_m))
+            f.fail(open, pat + ".deck_open_m", "from lies before to");
+        }
       }
       part.yaw_rad = f.number_or(p, "yaw_deg", pat, 0.0, -360.0, 360.0) * std::numbers::pi / 180.0;
       if (const auto turns = f.optional_map(p, "turns", pat)) {

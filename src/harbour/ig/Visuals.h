@@ -16,12 +16,13 @@ namespace harbour::ig {
 /// longest side, verticals and Warren diagonals in its faces, a bay `bay_m` long, members `member_m` thick);
 /// an ISO container filling the box (corrugated walls, castings, doors: ig/Models.h); a tyre on its rim
 /// filling the box (its axle along the side that differs from the two equal ones, the rim `rim_color`); or
-/// a clamshell grab's shell hanging from its pivot at the centre (ig/Models.h); or a mesh read through osgDB
-/// (OBJ, STL, PLY, .osgt, ...), placed at the centre, scaled by `scale`. Any part may be turned about z by
-/// `yaw_rad` and turn with an indicator.
-/// A part that turns with one of the machine's indicators (its published 0-1 value): about `axis` (the part's
-/// frame, right hand) through its centre, by `max_rad` times the value, or with `arcsine` by the angle whose
-/// sine is the value times sin(max_rad) (the part's tip then moves across in proportion: a jaw's span).
+/// a clamshell grab's shell hanging from its pivot at the centre (ig/Models.h); a ship's hull filling the box
+/// (bow at +y, `bottom_color` under `waterline_m`, a deck of `deck_color` or none); or a mesh read through
+/// osgDB (OBJ, STL, PLY, .osgt, ...), placed at the centre, scaled by `scale`. Any part may be turned about z
+/// by `yaw_rad` and turn with an indicator. A part that turns with one of the machine's indicators (its
+/// published 0-1 value): about `axis` (the part's frame, right hand) through its centre, by `max_rad` times
+/// the value, or with `arcsine` by the angle whose sine is the value times sin(max_rad) (the part's tip then
+/// moves across in proportion: a jaw's span).
 struct PartTurn {
   std::string indicator;
   core::Vec3 axis{0.0, 1.0, 0.0};
@@ -30,19 +31,23 @@ struct PartTurn {
 };
 
 struct VisualPart {
-  enum class Shape { kBox, kLattice, kContainer, kTyre, kShell, kMesh };
+  enum class Shape { kBox, kLattice, kContainer, kTyre, kShell, kHull, kMesh };
   Shape shape = Shape::kBox;
   std::optional<core::Vec3> size_m;  ///< full size; empty: the entity's own size
   core::Vec3 centre_m;
-  core::Vec3 color{0.5, 0.5, 0.5};         ///< linear RGB
-  bool livery = false;                     ///< coloured by the entity's livery instead
-  double bay_m = 3.0, member_m = 0.25;     ///< lattice
-  core::Vec3 rim_color{0.72, 0.72, 0.70};  ///< tyre: its rim's paint
-  double hinge_m = 0.0;                    ///< shell: from its pivot down to its lip, shut
-  double yaw_rad = 0.0;                    ///< turned about the entity's z at its centre
-  std::optional<PartTurn> turn;            ///< turning with an indicator
-  std::string mesh;                        ///< mesh: its file (resolved against the look file's folder)
-  double scale = 1.0;                      ///< mesh
+  core::Vec3 color{0.5, 0.5, 0.5};                      ///< linear RGB
+  bool livery = false;                                  ///< coloured by the entity's livery instead
+  double bay_m = 3.0, member_m = 0.25;                  ///< lattice
+  core::Vec3 rim_color{0.72, 0.72, 0.70};               ///< tyre: its rim's paint
+  double hinge_m = 0.0;                                 ///< shell: from its pivot down to its lip, shut
+  core::Vec3 bottom_color{0.55, 0.12, 0.10};            ///< hull: under its waterline
+  double waterline_m = 0.0;                             ///< hull: from the keel
+  std::optional<core::Vec3> deck_color;                 ///< hull: its deck (none: open to the sky)
+  double deck_open_from_m = 0.0, deck_open_to_m = 0.0;  ///< hull: its deck left open along y (the holds)
+  double yaw_rad = 0.0;                                 ///< turned about the entity's z at its centre
+  std::optional<PartTurn> turn;                         ///< turning with an indicator
+  std::string mesh;    ///< mesh: its file (resolved against the look file's folder)
+  double scale = 1.0;  ///< mesh
 };
 
 /// What a visual key looks like (data/visuals/*.yaml).
