@@ -746,25 +746,22 @@ void ImageGenerator::build(const sim::SceneDescription& scene) {
           add_lattice(*drawables, centre, size, part.bay_m, part.member_m, rgba(color));
           continue;
         }
-        if (part.shape == VisualPart::Shape::kShell || part.shape == VisualPart::Shape::kHull) {
-          osg::ref_ptr<osg::Geometry> shell =
-              part.shape == VisualPart::Shape::kShell
-                  ? clamshell(size, part.hinge_m, rgba(color))
-                  : hull(size, rgba(color), rgba(part.bottom_color), part.waterline_m,
-                         part.deck_color ? rgba(*part.deck_color) : osg::Vec4(0, 0, 0, 0),
-                         part.deck_open_from_m, part.deck_open_to_m);
+        if (part.shape != VisualPart::Shape::kBox) {  // a procedural model, built about its origin
+          osg::ref_ptr<osg::Node> model;
+          if (part.shape == VisualPart::Shape::kContainer || part.shape == VisualPart::Shape::kTyre) {
+            model = models.detailed(part, size, color);
+          } else {
+            osg::ref_ptr<osg::Geode> holder = new osg::Geode;
+            holder->addDrawable(part.shape == VisualPart::Shape::kShell
+                                    ? clamshell(size, part.hinge_m, rgba(color))
+                                    : hull(size, rgba(color), rgba(part.bottom_color), part.waterline_m,
+                                           part.deck_color ? rgba(*part.deck_color) : osg::Vec4(0, 0, 0, 0),
+                                           part.deck_open_from_m, part.deck_open_to_m));
+            model = holder;
+          }
           osg::ref_ptr<osg::MatrixTransform> placed =
               new osg::MatrixTransform(osg::Matrixd::translate(to_osg(centre)));
-          osg::ref_ptr<osg::Geode> holder = new osg::Geode;
-          holder->addDrawable(shell);
-          placed->addChild(holder);
-          frame->addChild(placed);
-          continue;
-        }
-        if (part.shape == VisualPart::Shape::kContainer || part.shape == VisualPart::Shape::kTyre) {
-          osg::ref_ptr<osg::MatrixTransform> placed =
-              new osg::MatrixTransform(osg::Matrixd::translate(to_osg(centre)));
-          placed->addChild(models.detailed(part, size, color));
+          placed->addChild(model);
           frame->addChild(placed);
           continue;
         }

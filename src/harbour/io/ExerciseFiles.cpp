@@ -12,6 +12,7 @@
 #include <optional>
 #include <tuple>
 
+#include "harbour/core/StateHash.h"
 #include "harbour/core/Text.h"
 #include "harbour/core/Units.h"
 #include "harbour/io/BoundedFile.h"
@@ -114,10 +115,9 @@ sim::TrailerSettings read_coupled_trailer(const YamlFile& f, const YAML::Node& t
           size.x <= 2.0 * trailer.half_extents_m.x + 0.05) {
         trailer.payload_half_extents_m = size * 0.5;
         // its ISO code painted on its sides, a serial of the trailer's name (the same every run)
-        std::uint32_t hash = 2166136261u;  // FNV-1a
-        for (const char c : trailer.id)
-          hash = (hash ^ static_cast<unsigned char>(c)) * 16777619u;
-        trailer.payload_id = iso6346_code("HBSU", static_cast<int>(hash % 1000000u));
+        core::StateHash name;
+        name.add_bytes(trailer.id.data(), trailer.id.size());
+        trailer.payload_id = iso6346_code("HBSU", static_cast<int>(name.value() % 1000000u));
         break;
       }
   // a box a team's crane will hand over onto it (its ISO type)
