@@ -234,8 +234,10 @@ namespace {
 class TakeOverAt : public ::testing::TestWithParam<std::int64_t> {};
 
 // The original attempt is recorded up to the take-over (30 s: the spreader on its way down to the box; 62 s:
-// the box travelling to the truck, swinging); the instructor takes over there: the branch's evaluator sees
-// the history, the autopilot drives on (catching the swing) and finishes.
+// the box travelling to the truck, swinging, the trolley lever at -0.6); the instructor takes over there: the
+// branch's evaluator sees the history, the autopilot drives on (catching the swing) and finishes. Its hands
+// start from the levers as they stood: over the first second no lever jumps further than a hand moves one in
+// a decision (full travel in a second: 0.02 in 20 ms).
 INSTANTIATE_TEST_SUITE_P(Moments, TakeOverAt, ::testing::Values(30000, 62000));
 
 TEST_P(TakeOverAt, AnInstructorTakeOverContinuesTheAttemptFromTheRecordedState) {
@@ -263,11 +265,29 @@ TEST_P(TakeOverAt, AnInstructorTakeOverContinuesTheAttemptFromTheRecordedState) 
   EXPECT_EQ(branch.recorder.recording().branch_step, at);
   Autopilot pilot(exercise);
   pilot.resume(*branch.simulation, evaluator.metrics().moves_completed, branch.levers);
+  const ControlTable& table = branch.simulation->control_table();
+  Controls before = branch.levers;
+  double most_moved = 0.0, most_off_neutral = 0.0;  // axis levers only: buttons and switches snap
+  for (int slot = 0; slot < table.size(); ++slot)
+    if (table[slot].kind == ControlKind::kAxis)
+      most_off_neutral = std::max(most_off_neutral, std::abs(before.value[static_cast<std::size_t>(slot)]));
   for (int k = 0; k < 200000 && !evaluator.finished(); ++k) {
     const Controls in = pilot.next(*branch.simulation);
+    for (int slot = 0; slot < table.size(); ++slot) {
+      const auto n = static_cast<std::size_t>(slot);
+      if (table[slot].kind == ControlKind::kAxis && k < 1000)  // the first second
+        most_moved = std::max(most_moved, std::abs(in.value[n] - before.value[n]));
+    }
+    before = in;
     branch.simulation->step(in);
     evaluator.observe(*branch.simulation, in);
   }
+  if (at == 62000) {
+    EXPECT_GT(most_off_neutral, 0.5);  // the take-over finds a lever pushed
+  }
+  EXPECT_LE(most_moved, 0.02 + 1e-4);  // one hand step, at the lever's 16-bit resolution
+  std::printf("taken over at %.0f s, a lever at %.2f: the largest lever step %.4f\n",
+              static_cast<double>(at) * 1e-3, most_off_neutral, most_moved);
   EXPECT_TRUE(evaluator.finished());
   EXPECT_TRUE(evaluator.score().passed);
   EXPECT_EQ(evaluator.metrics().collisions, 0);

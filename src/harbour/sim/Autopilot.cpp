@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "harbour/core/Units.h"
+#include "harbour/sim/BoomSteering.h"
 #include "harbour/sim/Vessel.h"
 
 namespace harbour::sim {
@@ -30,6 +31,8 @@ constexpr double kLookAhead_s = 0.5;
 constexpr std::int64_t kDecisionSteps = 20;
 constexpr double kDecision_s = kDecisionSteps * Simulation::kStep_s;
 constexpr double kLeverCounts = 32767.0;
+
+constexpr double kCaughtUp = 1e-3;  // a taken-over lever this near the operator's own has caught up
 
 double device_lever(double lever) {
   return std::round(std::clamp(lever, -1.0, 1.0) * kLeverCounts) / kLeverCounts;
@@ -253,7 +256,9 @@ const char* Autopilot::activity() const {
   return "";
 }
 
-void Autopilot::resume(const Simulation& simulation, int moves_done, const Controls& /*levers*/) {
+void Autopilot::resume(const Simulation& simulation, int moves_done, const Controls& levers) {
+  hand_ = hand_before_ = levers;
+  catching_up_ = true;
   goal_ = static_cast<std::size_t>(std::max(0, moves_done));
   phase_ = Phase::kRaise;
   phase_start_ = simulation.time_s();
@@ -271,8 +276,26 @@ Controls Autopilot::next(const Simulation& simulation) {
   for (double* lever : {&last_.gantry, &last_.trolley, &last_.hoist, &last_.boom, &last_.steer})
     *lever = device_lever(*lever);
   last_controls_ = crane(simulation).crane_controls(last_);
+  if (catching_up_) last_controls_ = catch_up(simulation.control_table(), last_controls_);
   decided_ = true;
   return last_controls_;
+}
+
+Controls Autopilot::catch_up(const ControlTable& table, const Controls& wanted) {
+  // after a take-over the levers move from where they stood to where this operator wants them as a hand moves
+  // them; once every one is there (to the hand's resolution) they follow the decisions directly
+  Controls out = wanted;
+  bool caught_up = true;
+  for (int slot = 0; slot < table.size(); ++slot) {
+    if (table[slot].kind != ControlKind::kAxis) continue;
+    const auto at = static_cast<std::size_t>(slot);
+    out.value[at] =
+        device_lever(hand_lever(hand_.value[at], hand_before_.value[at], wanted.value[at], kDecision_s));
+    caught_up = caught_up && std::abs(out.value[at] - wanted.value[at]) <= kCaughtUp;
+  }
+  hand_before_ = std::exchange(hand_, out);
+  catching_up_ = !caught_up;
+  return out;
 }
 
 double Autopilot::steer(const Simulation& simulation) {

@@ -42,7 +42,8 @@ class Autopilot final : public Pilot {
   const char* activity() const override;
   /// Takes over a running exercise (an instructor's take-over): the first `moves_done` moves are made; if the
   /// spreader holds the next move's box it carries it on, else it goes to fetch it (raising first, then
-  /// catching whatever swing the load has before it lowers).
+  /// catching whatever swing the load has before it lowers). Its hands start from `levers`, the levers as
+  /// they stood, and move them as a hand does until they reach its own.
   void resume(const Simulation& simulation, int moves_done, const Controls& levers) override;
 
  private:
@@ -77,6 +78,8 @@ class Autopilot final : public Pilot {
   void position_finely(const Simulation& simulation, const core::Vec3& destination, double period,
                        StsControls& in);
   bool on_target(double tolerance) const;  // rest position on target and swing small
+  /// The levers a hand sets on the way from the taken-over ones to `wanted` (hand_lever()).
+  Controls catch_up(const ControlTable& table, const Controls& wanted);
   bool will_land_within(double tolerance) const;
   /// In a yard: the spreader height at which the load clears the stacks on its way to `destination`.
   double height_over_stacks(const Simulation& simulation, const core::Vec3& destination) const;
@@ -103,6 +106,8 @@ class Autopilot final : public Pilot {
   StsControls last_;
   Controls last_controls_;
   bool decided_ = false;
+  bool catching_up_ = false;     // after a take-over: the hands still move to this operator's levers
+  Controls hand_, hand_before_;  // the levers the hands set at the last two decisions
 };
 
 }  // namespace harbour::sim

@@ -108,19 +108,23 @@ Controls hand_levers(const ControlTable& table, const Controls& last, const Cont
   // at most full travel in kLeverTravel_s, easing into the wanted position over its last kLeverEase_s, and
   // its speed changing over kLeverSpeedUp_s (a lever stopped dead, started or turned back at full speed is a
   // jerk the drive passes on: a harsh move)
-  const double step = decision_s / kLeverTravel_s;
-  const double speed_change = step * decision_s / kLeverSpeedUp_s;
   for (const auto& [label, value] : wanted)
     if (const int slot = table.find(label); slot >= 0) {
       const auto at = static_cast<std::size_t>(slot);
-      const double was = last.value[at], moved = was - before_last.value[at];
-      const double eased = std::abs(value - was) * decision_s / kLeverEase_s;
-      const double most = std::min(step, std::max(eased, kLeverResolution));
-      const double move =
-          std::clamp(std::clamp(value - was, -most, most), moved - speed_change, moved + speed_change);
-      out.value[at] = std::clamp(was + move, -1.0, 1.0);
+      out.value[at] = hand_lever(last.value[at], before_last.value[at], value, decision_s);
     }
   return out;
+}
+
+double hand_lever(double last, double before_last, double wanted, double decision_s) {
+  const double step = decision_s / kLeverTravel_s;
+  const double speed_change = step * decision_s / kLeverSpeedUp_s;
+  const double moved = last - before_last;
+  const double eased = std::abs(wanted - last) * decision_s / kLeverEase_s;
+  const double most = std::min(step, std::max(eased, kLeverResolution));
+  const double move =
+      std::clamp(std::clamp(wanted - last, -most, most), moved - speed_change, moved + speed_change);
+  return std::clamp(last + move, -1.0, 1.0);
 }
 
 }  // namespace harbour::sim

@@ -57,5 +57,7 @@ Controls stop_after_hoist_fault(const ControlTable& table, const MobileHarbourCr
 /// from how it moved in the decision before (`last` against `before_last`); the others stay neutral.
 Controls hand_levers(const ControlTable& table, const Controls& last, const Controls& before_last,
                      double decision_s, std::initializer_list<std::pair<const char*, double>> wanted);
+/// One lever of hand_levers(): where it stands after a decision that wants it at `wanted`.
+double hand_lever(double last, double before_last, double wanted, double decision_s);
 
 }  // namespace harbour::sim
