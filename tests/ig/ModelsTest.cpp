@@ -140,12 +140,6 @@ TEST(Models, ATyreTurnsAboutItsWidthAndReachesItsDiameterOnlyAtTheLugs) {
   }
 }
 
-}  // namespace
-}  // namespace harbour::ig
-
-namespace harbour::ig {
-namespace {
-
 // A feeder's hull (150 x 23 m, 11.5 m deep): its full beam amidships, a stem at the bow, a transom 0.6 of
 // the beam at the stern's deck, antifouling under the waterline and the topsides' paint above it.
 TEST(Models, AHullHasItsBeamAmidshipsAStemAtTheBowAndATransomAtTheStern) {

@@ -111,9 +111,8 @@ TEST(Visuals, ABadLookIsNamedByFileLineAndField) {
       "color: [1, 1, 0],\n         turns: {with: grab_opening, axis: [0, 1, 0], degrees: 90, law: cubic}}\n",
       5, "visuals[0].parts[0].turns.law", "not a law");
   expect_refused(
-      "visuals:\n  - key: a\n    parts:\n      - {shape: shell, size: [1.5, 2.8, 1.6], hinge_m: 1.0, at: [0, "
-      "0, 0], "
-      "color: [1, 1, 0]}\n",
+      "visuals:\n  - key: a\n    parts:\n"
+      "      - {shape: shell, size: [1.5, 2.8, 1.6], hinge_m: 1.0, at: [0, 0, 0], color: [1, 1, 0]}\n",
       4, "visuals[0].parts[0].hinge_m", "");
 }
 
