@@ -23,7 +23,7 @@
 #include <thread>
 
 #include "StationRun.h"
-#include "harbour/io/MachineFiles.h"
+#include "harbour/machines/sts/Files.h"
 #include "harbour/station/DeviceInput.h"
 #include "harbour/station/DeviceMappingFile.h"
 

@@ -1,4 +1,7 @@
 #include "harbour/io/MachineFiles.h"
+#include "harbour/machines/mhc/Files.h"
+#include "harbour/machines/sts/Files.h"
+#include "harbour/machines/tractor/Files.h"
 
 #include <gtest/gtest.h>
 

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "harbour/io/MachineFiles.h"
+#include "harbour/machines/mhc/Files.h"
 #include "harbour/sim/Simulation.h"
 
 namespace harbour::scenes {

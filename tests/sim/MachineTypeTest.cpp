@@ -31,6 +31,26 @@ TEST(MachineTypes, EveryMachineFolderWithATypeIsRegisteredByItsName) {
   EXPECT_EQ(find_machine_type("crane"), nullptr);
 }
 
+// Each machine folder brings the reader of its machine file and its exercises' start block, registered by
+// the same name as its type; every kind a machine file can declare has one.
+TEST(MachineTypes, EveryTypeHasTheReaderOfItsFilesFromItsFolder) {
+  std::set<std::string> folders, readers, types;
+  for (const auto& entry : std::filesystem::directory_iterator(HARBOUR_DATA_DIR "/../src/harbour/machines"))
+    if (std::filesystem::exists(entry.path() / "Files.cpp")) folders.insert(entry.path().filename().string());
+  for (const io::MachineFileType* files : io::machine_file_types()) {
+    readers.insert(files->kind);
+    EXPECT_EQ(io::find_machine_file_type(files->kind), files);
+    EXPECT_TRUE(files->read && files->start_pose_form) << files->kind;
+    const std::string section = files->start_section;
+    EXPECT_TRUE(section == "crane" || section == "vehicle") << files->kind << ": " << section;
+  }
+  for (const MachineType* type : machine_types())
+    types.insert(type->kind);
+  EXPECT_EQ(folders, readers);
+  EXPECT_EQ(readers, types);
+  EXPECT_EQ(io::find_machine_file_type("crane"), nullptr);
+}
+
 // Built from each shipped exercise, a machine is of its type: the faults the type lists are the ones the
 // machine takes (its fault lamp lights), the others are refused before anything changes; and one of the
 // type's scripted operators drives at least one of its exercises.

@@ -5,7 +5,7 @@
 #include <numbers>
 
 #include "harbour/io/ExerciseFiles.h"
-#include "harbour/io/MachineFiles.h"
+#include "harbour/machines/sts/Files.h"
 #include "harbour/io/MotionFiles.h"
 #include "harbour/machines/tractor/TerminalTractor.h"
 #include "harbour/motion/MotionSystem.h"

@@ -8,7 +8,7 @@
 #include <memory>
 
 #include "harbour/io/ExerciseFiles.h"
-#include "harbour/io/MachineFiles.h"
+#include "harbour/machines/reach_stacker/Files.h"
 #include "harbour/machines/reach_stacker/ReachStackerStability.h"
 #include "harbour/sim/Evaluation.h"
 #include "harbour/sim/Pilot.h"

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "harbour/io/ExerciseFiles.h"
-#include "harbour/io/MachineFiles.h"
+#include "harbour/machines/rtg/Files.h"
 #include "harbour/sim/Autopilot.h"
 #include "harbour/sim/Evaluation.h"
 #include "harbour/sim/Pilot.h"

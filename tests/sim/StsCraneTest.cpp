@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "harbour/io/MachineFiles.h"
+#include "harbour/machines/sts/Files.h"
 
 namespace harbour::sim {
 namespace {

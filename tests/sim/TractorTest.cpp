@@ -4,7 +4,7 @@
 #include <numbers>
 
 #include "harbour/io/ExerciseFiles.h"
-#include "harbour/io/MachineFiles.h"
+#include "harbour/machines/tractor/Files.h"
 #include "harbour/sim/Evaluation.h"
 #include "harbour/sim/Pilot.h"
 #include "harbour/sim/TractorAutopilot.h"

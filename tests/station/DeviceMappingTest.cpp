@@ -8,7 +8,10 @@
 #include <fstream>
 
 #include "harbour/io/DataError.h"
-#include "harbour/io/MachineFiles.h"
+#include "harbour/machines/mhc/Files.h"
+#include "harbour/machines/reach_stacker/Files.h"
+#include "harbour/machines/rtg/Files.h"
+#include "harbour/machines/tractor/Files.h"
 #include "harbour/machines/sts/StsCrane.h"
 #include "harbour/station/DeviceMappingFile.h"
 

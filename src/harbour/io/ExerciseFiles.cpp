@@ -39,6 +39,15 @@ std::string iso6346_code(const std::string& owner_and_category, int serial) {
   return code + std::to_string(sum % 11 % 10);
 }
 
+const std::map<std::string, IsoType>& iso_types() {
+  // ISO 668 external dimensions [m] and typical tare [kg] (../shared/data/reference.md)
+  static const std::map<std::string, IsoType> types = {{"20ft", {{6.058, 2.438, 2.591}, 2300}},
+                                                       {"40ft", {{12.192, 2.438, 2.591}, 3750}},
+                                                       {"40ftHC", {{12.192, 2.438, 2.896}, 3940}},
+                                                       {"45ftHC", {{13.716, 2.438, 2.896}, 4820}}};
+  return types;
+}
+
 namespace {
 
 // the scripted faults, by their names in exercise files
@@ -63,25 +72,9 @@ const FaultEvent* find_fault_event(const std::string& name) {
   return nullptr;
 }
 
-// the harbour an exercise takes place in: positions within 2 km of the crane's origin [m]
-constexpr double kSite_m = 2000.0;
 // counts an exercise may hold (docs/reliability.md): far above any real exercise, bounded so that a
 // generated or damaged file cannot make loading or stepping unbounded
 constexpr std::size_t kMaxContainers = 2000, kMaxMoves = 500, kMaxEvents = 500, kMaxBlocks = 200;
-
-// ISO 668 external dimensions [m] (length, width, height)
-// ISO 668 external dimensions [m] and typical tare [kg] (../shared/data/reference.md)
-struct IsoType {
-  core::Vec3 size_m;
-  double tare_kg;
-};
-const std::map<std::string, IsoType>& iso_types() {
-  static const std::map<std::string, IsoType> types = {{"20ft", {{6.058, 2.438, 2.591}, 2300}},
-                                                       {"40ft", {{12.192, 2.438, 2.591}, 3750}},
-                                                       {"40ftHC", {{12.192, 2.438, 2.896}, 3940}},
-                                                       {"45ftHC", {{13.716, 2.438, 2.896}, 4820}}};
-  return types;
-}
 
 // ISO 668 corner casting centres [m] (length, width): 20 ft, and 40 ft (also on 45 ft boxes and hatch covers)
 constexpr double kCastings20_m[2] = {5.853, 2.259};
@@ -90,75 +83,6 @@ constexpr double kCastings45_m = 13.509;  // a 45 ft box's end castings, lengthw
 
 std::string item(const std::string& list, std::size_t n) {
   return list + "[" + std::to_string(n) + "]";
-}
-
-// The trailer a tractor starts coupled to (`at`: {id, file, payload_kg}), checked to stand level on its
-// plate.
-sim::TrailerSettings read_coupled_trailer(const YamlFile& f, const YAML::Node& t, const std::string& at,
-                                          const std::string& folder, const sim::TractorSettings& tractor) {
-  const std::string file = f.text(t, "file", at);
-  const std::string path = (std::filesystem::path(folder) / file).lexically_normal().string();
-  if (!std::filesystem::is_regular_file(path)) f.fail(t["file"], at + ".file", "no such file: " + path);
-  sim::TrailerSettings trailer = load_trailer(path);
-  trailer.id = f.text(t, "id", at);
-  // the payload's centre along the deck (a load over the axle leaves little on the kingpin)
-  // (one that receives a box handed over starts empty)
-  const bool receives = f.optional(t, "receives", at).has_value();
-  const double payload_kg = receives ? 0.0 : f.number(t, "payload_kg", at, 0.0, trailer.max_payload_kg, true);
-  const double payload_x_m =
-      f.number_or(t, "payload_centre_m", at, 0.0, -trailer.half_extents_m.x, trailer.half_extents_m.x);
-  trailer.center_of_mass_x_m = payload_kg * payload_x_m / (trailer.mass_kg + payload_kg);
-  trailer.mass_kg += payload_kg;
-  if (payload_kg > 0.0)  // drawn as the longest ISO box its deck holds (its mass is the payload's)
-    for (const char* type : {"40ft", "20ft"})
-      if (const core::Vec3 size = iso_types().at(type).size_m;
-          size.x <= 2.0 * trailer.half_extents_m.x + 0.05) {
-        trailer.payload_half_extents_m = size * 0.5;
-        // its ISO code painted on its sides, a serial of the trailer's name (the same every run)
-        core::StateHash name;
-        name.add_bytes(trailer.id.data(), trailer.id.size());
-        trailer.payload_id = iso6346_code("HBSU", static_cast<int>(name.value() % 1000000u));
-        break;
-      }
-  // a box a team's crane will hand over onto it (its ISO type)
-  if (receives) {
-    const std::string type = f.text(t, "receives", at);
-    const auto iso = iso_types().find(type);
-    if (iso == iso_types().end())
-      f.fail(t["receives"], at + ".receives",
-             "unknown container type '" + type + "' (20ft, 40ft, 40ftHC, 45ftHC)");
-    if (f.optional(t, "payload_kg", at))
-      f.fail(t["payload_kg"], at + ".payload_kg",
-             "a trailer that receives a box starts empty (no payload_kg)");
-    trailer.receives_half_extents_m = iso->second.size_m * 0.5;
-  }
-  // level when coupled: its kingpin as high as the plate, up; its legs clear then and down with the plate
-  const sim::AxleSettings& front = tractor.chassis.axles.front();
-  const double plate_m = tractor.chassis.tyre.radius_m - front.hub_z_m + tractor.hitch_m.z;
-  const sim::AxleSettings& axle = trailer.wheels.axles.front();
-  const double centre_m = trailer.wheels.tyre.radius_m - axle.hub_z_m;
-  const double kingpin_m = centre_m + trailer.kingpin_m.z;
-  const auto metres = [](double v) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.2f", v);
-    return std::string(text);
-  };
-  if (std::abs(kingpin_m - plate_m) > 0.15)
-    f.fail(t["file"], at + ".file",
-           "its kingpin stands " + metres(kingpin_m) + " m high on its wheels, the tractor's plate " +
-               metres(plate_m) + " m: it would not ride level");
-  if (trailer.legs) {
-    const sim::AxleSettings& legs = trailer.legs->axles.front();
-    const double foot_m = centre_m + legs.hub_z_m - trailer.legs->tyre.radius_m;
-    const double drop_m =
-        tractor.fifth_wheel.lift_m * (legs.x_m - axle.x_m) / (trailer.kingpin_m.x - axle.x_m);
-    if (foot_m < 0.02 || foot_m > drop_m - 0.03)
-      f.fail(t["file"], at + ".file",
-             "its legs stand " + metres(foot_m) +
-                 " m clear when coupled: they must clear the ground and reach it as the plate lowers (" +
-                 metres(drop_m) + " m there)");
-  }
-  return trailer;
 }
 
 }  // namespace
@@ -194,82 +118,6 @@ core::Vec3 block_slot_centre(const YamlFile& f, const YAML::Node& slot, const st
   return *centre;
 }
 
-// The start pose of each machine (start_pose_form): what the loader reads and the designer offers.
-StartPoseField pose_number_field(const char* key, double min, double max) {
-  return {key, -1, min, max};
-}
-StartPoseField pose_optional_field(const char* key, double fallback, double min, double max) {
-  return {key, -1, min, max, false, true, fallback};
-}
-StartPoseForm pose_on_the_quay(const char* section) {
-  StartPoseForm form{section, {}};
-  for (int c = 0; c < 3; ++c)
-    form.fields.push_back({"position_m", c, -kSite_m, kSite_m});
-  return form;
-}
-
-StartPoseForm pose_fields(const sim::StsSetup& sts) {
-  const sim::StsCraneSettings& c = sts.crane;
-  StartPoseForm form{"crane", {}};
-  form.fields.push_back(
-      pose_number_field("gantry_y_m", c.gantry_drive.min_position_m, c.gantry_drive.max_position_m));
-  form.fields.push_back(
-      pose_number_field("trolley_x_m", c.trolley_drive.min_position_m, c.trolley_drive.max_position_m));
-  form.fields.push_back(pose_number_field("spreader_z_m", 0.0, c.trolley_rail_height_m - 2.0));
-  form.fields.back().exclusive_min = true;
-  return form;
-}
-
-StartPoseForm pose_fields(const sim::RtgSetup& rtg) {
-  const sim::RtgSettings& c = rtg.crane;
-  StartPoseForm form = pose_on_the_quay("crane");
-  form.fields.push_back(pose_optional_field("heading_deg", 0.0, -360.0, 360.0));
-  form.fields.push_back(
-      pose_number_field("trolley_x_m", c.trolley_drive.min_position_m, c.trolley_drive.max_position_m));
-  form.fields.push_back(pose_number_field("spreader_z_m", 1.0, c.trolley_rail_height_m - 2.0));
-  form.fields.push_back(pose_optional_field("steer_bias_deg", 0.0, -2.0, 2.0));
-  return form;
-}
-
-StartPoseForm pose_fields(const sim::MhcSetup& mhc) {
-  const sim::MhcSettings& c = mhc.crane;
-  StartPoseForm form = pose_on_the_quay("crane");
-  form.fields.push_back(pose_number_field("slew_deg", -360.0, 360.0));
-  form.fields.push_back(pose_number_field("boom_deg", core::rad_to_deg(c.boom_min_angle_rad),
-                                          core::rad_to_deg(c.boom_max_angle_rad)));
-  form.fields.push_back(pose_number_field(mhc.start.on_hook ? "hook_z_m" : "grab_z_m", c.hoist_lower_limit_m,
-                                          c.hoist_upper_limit_m));
-  return form;
-}
-
-StartPoseForm pose_fields(const sim::ReachStackerSetup& stacker) {
-  const sim::ReachStackerSettings& v = stacker.vehicle;
-  StartPoseForm form = pose_on_the_quay("vehicle");
-  form.fields.push_back(pose_number_field("heading_deg", -360.0, 360.0));
-  form.fields.push_back(pose_number_field("boom_deg", core::rad_to_deg(v.luff.min_position_m),
-                                          core::rad_to_deg(v.luff.max_position_m)));
-  form.fields.push_back(pose_optional_field("extension_m", 0.0, 0.0, v.telescope.max_position_m));
-  return form;
-}
-
-StartPoseForm pose_fields(const sim::TractorSetup&) {
-  StartPoseForm form = pose_on_the_quay("vehicle");
-  form.fields.push_back(pose_number_field("heading_deg", -360.0, 360.0));
-  return form;
-}
-
-// a number of the machine's start pose, in the range its form gives it
-template <class Setup>
-double pose_number(const YamlFile& f, const YAML::Node& map, const std::string& at, const Setup& setup,
-                   const std::string& key) {
-  const StartPoseForm pose = pose_fields(setup);
-  for (const StartPoseField& p : pose.fields)
-    if (p.key == key)
-      return p.optional ? f.number_or(map, key, at, p.fallback, p.min, p.max, p.exclusive_min)
-                        : f.number(map, key, at, p.min, p.max, p.exclusive_min);
-  throw std::logic_error("the start pose of the machine has no " + key);
-}
-
 std::optional<sim::ExerciseAbout> read_about(const YamlFile& f, const YAML::Node& exercise) {
   const std::optional<YAML::Node> node = f.optional_map(exercise, "about", "exercise");
   if (!node) return std::nullopt;
@@ -303,67 +151,11 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
   if (!std::filesystem::is_regular_file(machine_path))
     f.fail(x["machine"], "exercise.machine", "no such file: " + machine_path);
   const std::string machine_kind = machine_file_kind(machine_path);
-  const bool vehicle = machine_kind == "tractor" || machine_kind == "reach_stacker";
-  const YAML::Node crane = f.required_map(x, vehicle ? "vehicle" : "crane", "exercise");
-  const std::string pose_at = std::string("exercise.") + (vehicle ? "vehicle" : "crane");
-  const auto position = [&] {
-    return f.vector3(f.required(crane, "position_m", pose_at), pose_at + ".position_m", kSite_m);
-  };
-  const auto pose = [&](const auto& setup, const std::string& key) {
-    return pose_number(f, crane, pose_at, setup, key);
-  };
-  if (machine_kind == "reach_stacker") {
-    // it stands on the quay, its boom set
-    sim::ReachStackerSetup stacker;
-    stacker.vehicle = load_reach_stacker(machine_path);
-    stacker.start.position_m = position();
-    stacker.start.heading_rad = core::deg_to_rad(pose(stacker, "heading_deg"));
-    stacker.start.boom_rad = core::deg_to_rad(pose(stacker, "boom_deg"));
-    stacker.start.extension_m = pose(stacker, "extension_m");
-    s.machine = std::move(stacker);
-  } else if (vehicle) {
-    // the vehicle stands on the quay
-    sim::TractorSetup tractor;
-    tractor.vehicle = load_tractor(machine_path);
-    tractor.start.position_m = position();
-    tractor.start.heading_rad = core::deg_to_rad(pose(tractor, "heading_deg"));
-    if (const auto t = f.optional_map(crane, "trailer", pose_at))
-      tractor.start.trailer = read_coupled_trailer(f, *t, pose_at + ".trailer", folder, tractor.vehicle);
-    s.machine = std::move(tractor);
-  } else if (machine_kind == "rtg") {
-    // the RTG stands over its block, its wheels along it
-    sim::RtgSetup rtg;
-    rtg.crane = load_rtg(machine_path);
-    rtg.start.position_m = position();
-    rtg.start.heading_rad = core::deg_to_rad(pose(rtg, "heading_deg"));
-    rtg.start.trolley_x_m = pose(rtg, "trolley_x_m");
-    rtg.start.spreader_z_m = pose(rtg, "spreader_z_m");
-    rtg.start.steer_bias_rad = core::deg_to_rad(pose(rtg, "steer_bias_deg"));
-    s.machine = std::move(rtg);
-  } else if (machine_kind == "sts") {
-    // the crane starts on its rails
-    sim::StsSetup sts;
-    sts.crane = load_sts_crane(machine_path);
-    sts.gantry_y_m = pose(sts, "gantry_y_m");
-    sts.trolley_x_m = pose(sts, "trolley_x_m");
-    sts.spreader_z_m = pose(sts, "spreader_z_m");
-    s.machine = std::move(sts);
-  } else {
-    // the MHC stands on its outriggers on the quay
-    sim::MhcSetup mhc;
-    mhc.crane = load_mhc(machine_path);
-    mhc.start.position_m = position();
-    mhc.start.slew_rad = core::deg_to_rad(pose(mhc, "slew_deg"));
-    mhc.start.boom_rad = core::deg_to_rad(pose(mhc, "boom_deg"));
-    // on its grab (bulk) or its hook block (general cargo)
-    const std::string tool = f.optional(crane, "tool", pose_at) ? f.text(crane, "tool", pose_at) : "grab";
-    if (tool != "grab" && tool != "hook") f.fail(crane["tool"], pose_at + ".tool", "is grab or hook");
-    mhc.start.on_hook = tool == "hook";
-    if (mhc.start.on_hook && !mhc.crane.hook)
-      f.fail(crane["tool"], pose_at + ".tool", "the machine file has no hook (machine.hook)");
-    mhc.start.hanging_z_m = pose(mhc, mhc.start.on_hook ? "hook_z_m" : "grab_z_m");
-    s.machine = std::move(mhc);
-  }
+  const MachineFileType& files = *find_machine_file_type(machine_kind);  // machine_file_kind() checked it
+  const std::string pose_at = std::string("exercise.") + files.start_section;
+  const StartBlock start{f, f.required_map(x, files.start_section, "exercise"), pose_at, folder};
+  s.machine = files.read(machine_path, start);
+  const bool vehicle = std::string_view(files.start_section) == "vehicle";  // it drives (ramps, routes)
   // container exercises (the STS), general cargo on a hook, bulk on a grab
   const sim::MachineType& machine_type =
       *sim::find_machine_type(machine_kind);  // machine_file_kind() checked it
@@ -897,13 +689,9 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
 }  // namespace
 
 StartPoseForm start_pose_form(const sim::MachineSetup& machine) {
-  // each machine's start block, as its exercises' loader reads it (above)
-  if (const auto* sts = machine.get_if<sim::StsSetup>()) return pose_fields(*sts);
-  if (const auto* rtg = machine.get_if<sim::RtgSetup>()) return pose_fields(*rtg);
-  if (const auto* mhc = machine.get_if<sim::MhcSetup>()) return pose_fields(*mhc);
-  if (const auto* stacker = machine.get_if<sim::ReachStackerSetup>()) return pose_fields(*stacker);
-  if (const auto* tractor = machine.get_if<sim::TractorSetup>()) return pose_fields(*tractor);
-  throw std::logic_error(std::string("the exercise loader reads no start block for the ") + machine.kind());
+  const MachineFileType* files = find_machine_file_type(machine.kind());
+  if (!files) throw std::logic_error(std::string("no reader of machine files for the ") + machine.kind());
+  return files->start_pose_form(machine);
 }
 
 const std::vector<RuleField>& rule_thresholds() {

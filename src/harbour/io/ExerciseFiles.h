@@ -1,8 +1,10 @@
 #pragma once
 
+#include <map>
 #include <string>
 #include <vector>
 
+#include "harbour/io/MachineFileType.h"
 #include "harbour/io/YamlFile.h"
 #include "harbour/sim/Evaluation.h"
 
@@ -16,6 +18,14 @@ sim::ExerciseSettings load_exercise(const std::string& path);
 /// An ISO 6346 container code: the owner code and equipment category (four letters, "CSQU"), the six-digit
 /// serial and the check digit computed from them ("CSQU3054383").
 std::string iso6346_code(const std::string& owner_and_category, int serial);
+
+/// An ISO 668 container type exercises name (20ft, 40ft, 40ftHC, 45ftHC): its external dimensions [m] and
+/// typical tare [kg].
+struct IsoType {
+  core::Vec3 size_m;
+  double tare_kg;
+};
+const std::map<std::string, IsoType>& iso_types();
 
 /// The kinds of scripted event an exercise for a machine of this type may hold, as its file names them: a
 /// gust, and a failure of each part the machine has (its type's faults).
@@ -33,20 +43,6 @@ struct RuleField {
 const std::vector<RuleField>& rule_thresholds();
 const std::vector<RuleField>& rule_deductions();
 
-/// A figure of the machine's start pose an exercise gives under exercise.crane (a crane) or exercise.vehicle,
-/// with the range its machine file allows; an optional one means `fallback` when left out.
-struct StartPoseField {
-  std::string key;
-  int component = -1;  ///< position_m is three fields, components 0-2; -1: a number
-  double min = 0.0, max = 0.0;
-  bool exclusive_min = false;
-  bool optional = false;
-  double fallback = 0.0;
-};
-struct StartPoseForm {
-  std::string section;  ///< "crane" or "vehicle"
-  std::vector<StartPoseField> fields;
-};
 /// The start pose the loader reads for this machine (its settings loaded; the MHC on its grab or its hook as
 /// set): one table for the loader and the designer's forms.
 StartPoseForm start_pose_form(const sim::MachineSetup& machine);

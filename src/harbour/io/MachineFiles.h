@@ -1,38 +1,71 @@
 #pragma once
 
+#include <initializer_list>
 #include <string>
+#include <utility>
+#include <vector>
 
+#include "harbour/cable/Reeving.h"
 #include "harbour/io/YamlFile.h"
-#include "harbour/machines/mhc/MobileHarbourCrane.h"
-#include "harbour/machines/reach_stacker/ReachStackerStability.h"
-#include "harbour/machines/rtg/RubberTyredGantry.h"
-#include "harbour/machines/sts/StsCrane.h"
-#include "harbour/machines/tractor/TerminalTractor.h"
+#include "harbour/machines/parts/Drive.h"
+#include "harbour/machines/parts/SpreaderHoist.h"
+#include "harbour/machines/parts/WheeledChassis.h"
+#include "harbour/sim/Controls.h"
+#include "harbour/sim/Snapshot.h"
 
+/// The readers of the parts machine files share (data/machines/*.yaml): each machine's own reader (its
+/// folder's Files.cpp) reads its file with them. Every failure is a DataError naming file, line and field.
 namespace harbour::io {
 
-/// Reads an STS crane file (data/machines/sts.yaml) and the hoist reeving it names (a path relative to the
-/// machine file's folder).
-sim::StsCraneSettings load_sts_crane(const YamlFile& file, const std::string& folder);
-sim::StsCraneSettings load_sts_crane(const std::string& path);
-/// Reads a mobile harbour crane file (data/machines/mhc.yaml) and the luffing and hoist reevings it names.
-sim::MhcSettings load_mhc(const YamlFile& file, const std::string& folder);
-sim::MhcSettings load_mhc(const std::string& path);
-/// Reads a terminal tractor file (data/machines/tractor.yaml).
-sim::TractorSettings load_tractor(const YamlFile& file);
-sim::TractorSettings load_tractor(const std::string& path);
-/// A trailer file (data/trailers): its tare mass (an exercise adds the payload), deck, kingpin, axles, tyres,
-/// brakes and legs.
-sim::TrailerSettings load_trailer(const YamlFile& file);
-sim::TrailerSettings load_trailer(const std::string& path);
-/// A reach stacker file (data/machines/reach_stacker.yaml): masses, axles, tyres, boom, rotator, load chart.
-sim::ReachStackerSettings load_reach_stacker(const YamlFile& file);
-sim::ReachStackerSettings load_reach_stacker(const std::string& path);
-/// An RTG file (data/machines/rtg.yaml); its hoist reeving is read relative to `folder`.
-sim::RtgSettings load_rtg(const YamlFile& file, const std::string& folder);
-sim::RtgSettings load_rtg(const std::string& path);
-/// The kind a machine file declares (`machine.kind`: sts, rtg, mhc, tractor, reach_stacker); throws
-/// DataError naming the field.
+// physical ranges (docs/reliability.md): wide enough for any real quay crane, narrow enough that the
+// multibody solver sees well-conditioned masses and forces
+inline constexpr double kMaxForce_n = 1e8;  ///< [N] 10 000 t: above any crane drive or brake
+inline constexpr double kRails_m = 2000.0;  ///< [m] a quay's rails and a trolley's girder lie within this
+
+/// A motor drive (`at`.drive); `turns`: a rotary axis without end switches (slewing), no positions read.
+sim::DriveSettings read_drive(const YamlFile& f, const YAML::Node& parent, const std::string& at,
+                              bool turns = false);
+/// Fails unless the drive's force gives what it moves (`moved_kg`) the drive's acceleration.
+void check_drive_moves(const YamlFile& f, const YAML::Node& parent, const std::string& at,
+                       const sim::DriveSettings& drive, double moved_kg, const char* what);
+/// A container spreader (machine.spreader).
+sim::SpreaderSettings read_spreader(const YamlFile& f, const YAML::Node& m);
+/// A container spreader on its hoist ropes under a trolley whose centre runs `rail_height_m` up: the limit
+/// switches (machine.hoist), the spreader, its twistlocks and the reeving (over `bodies`, the headblock
+/// last).
+sim::SpreaderHoistSettings read_spreader_hoist(const YamlFile& f, const YAML::Node& m,
+                                               const std::string& folder,
+                                               const std::vector<std::string>& bodies, double rail_height_m);
+/// The operator's cab (machine.cab): where it sits (within `reach_m` of the frame it is given in), the eye
+/// in it and the design line of sight.
+struct CabFields {
+  core::Vec3 position_m, eye_m;
+  sim::CabSight sight;
+};
+CabFields read_cab(const YamlFile& f, const YAML::Node& machine, double reach_m);
+/// Every control the machine reads is in its table, of its kind; a missing or mistyped one names the list.
+void require_controls(const YamlFile& f, const YAML::Node& machine, const sim::ControlTable& table,
+                      std::initializer_list<std::pair<const char*, sim::ControlKind>> needed);
+/// A reeving file named by `map`.`key` (relative to `folder`) over exactly `bodies`, with `drums` drums.
+cable::ReevingSettings read_reeving_file(const YamlFile& f, const YAML::Node& map, const std::string& key,
+                                         const std::string& at, const std::string& folder,
+                                         const std::vector<std::string>& bodies, int drums);
+/// A wheeled machine's chassis body (machine.chassis): its mass and its box about its centre of mass.
+std::pair<double, core::Vec3> read_chassis_box(const YamlFile& f, const YAML::Node& m, double min_kg,
+                                               double max_kg);
+/// A wheeled machine's or trailer's axles (`path`.axles).
+std::vector<sim::AxleSettings> read_axles(const YamlFile& f, const YAML::Node& m, const std::string& path);
+/// A tyre (`path`.tyre).
+sim::TyreSettings read_tyre(const YamlFile& f, const YAML::Node& m, const std::string& path);
+/// A driven and steered machine's wheels (machine.axles, tyre, drivetrain, brake_torque_per_wheel_nm,
+/// max_steer_deg).
+sim::WheeledChassisSettings read_wheels(const YamlFile& f, const YAML::Node& m);
+/// A vehicle's driving controls: steering wheel, pedals, the direction selector (reverse, neutral,
+/// forward), emergency stop and horn.
+void require_driving_controls(const YamlFile& f, const YAML::Node& m, const sim::ControlTable& controls);
+
+/// The kind a machine file declares (`machine.kind`, one of the registered machine types); throws DataError
+/// naming the field.
 std::string machine_file_kind(const std::string& path);
 
 }  // namespace harbour::io
