@@ -26,5 +26,15 @@ TEST(PurePursuit, ThePointAheadIsTheLookaheadAlongThePathFromTheNearestPoint) {
   expect_point(point_ahead(path, {19, 7, 0}, 1.0), 20, 8);
 }
 
+TEST(PurePursuit, TheDistanceAlongThePathIsTheNearestPointsArcLength) {
+  // the same L: 20 m east, then 10 m north (30 m in all)
+  const std::vector<core::Vec3> path = {{0, 0, 0}, {20, 0, 0}, {20, 10, 0}};
+  EXPECT_NEAR(distance_along(path, {5, 3, 7.0}), 5.0, 1e-12);   // on the first leg; height ignored
+  EXPECT_NEAR(distance_along(path, {21, 4, 0}), 24.0, 1e-12);   // on the second: 20 m and 4 m more
+  EXPECT_NEAR(distance_along(path, {-4, 1, 0}), 0.0, 1e-12);    // before the start
+  EXPECT_NEAR(distance_along(path, {20, 15, 0}), 30.0, 1e-12);  // past the end
+  EXPECT_NEAR(distance_along(path, {19, 7, 0}), 27.0, 1e-12);   // the nearer leg decides
+}
+
 }  // namespace
 }  // namespace harbour::sim

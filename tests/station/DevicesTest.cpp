@@ -393,7 +393,7 @@ TEST(Devices, SdlKnowsTheCommonPadsAndTheyHaveEveryInputTheShippedPadMappingsBin
     }
     ++checked;
   }
-  EXPECT_EQ(checked, 5);
+  EXPECT_GE(checked, static_cast<int>(sim::machine_types().size()));  // a pad for every machine at least
   quit_sdl_joysticks();
 }
 

@@ -7,6 +7,7 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstring>
 #include <filesystem>
@@ -18,9 +19,11 @@
 #include "harbour/io/DataError.h"
 #include "harbour/io/RecordsStore.h"
 #include "harbour/sim/Autopilot.h"
+#include "harbour/station/DeviceMappingFile.h"
 #include "harbour/station/HeadTracker.h"
 #include "harbour/station/MotionLink.h"
 #include "harbour/station/Profile.h"
+#include "scenes/MachineControls.h"
 #include "scenes/StationScenes.h"
 #include "scenes/StsScenes.h"
 
@@ -203,8 +206,15 @@ TEST(Profiles, TheThreeShippedConfigurationsLoad) {
   EXPECT_EQ(desktop.displays.size(), 1u);
   EXPECT_EQ(desktop.opentrack_port, 4242);
   EXPECT_FALSE(desktop.motion.has_value());
-  // the STS's sticks, a game pad and a keyboard for each of the five machines, the slewing machines' levers
-  EXPECT_EQ(desktop.mappings.size(), 12u);
+  // a game pad and a keyboard for every machine
+  for (const auto& [kind, table] : test::shipped_machine_controls())
+    for (const char* device : {"gamepad", "keyboard"})
+      EXPECT_TRUE(std::any_of(desktop.mappings.begin(), desktop.mappings.end(),
+                              [&](const std::string& file) {
+                                return file.find(device) != std::string::npos &&
+                                       why_mapping_does_not_fit(file, table).empty();
+                              }))
+          << "no " << device << " for the " << kind;
   // the game pads come before the keyboards: a pad plugged in is used
   const auto first_of = [&](const std::string& part) {
     for (std::size_t n = 0; n < desktop.mappings.size(); ++n)

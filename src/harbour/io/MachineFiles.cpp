@@ -225,7 +225,7 @@ std::vector<sim::AxleSettings> read_axles(const YamlFile& f, const YAML::Node& m
     sim::AxleSettings a;
     a.x_m = f.number(axles[n], "x_m", at, -20.0, 20.0);
     a.half_track_m = f.number(axles[n], "half_track_m", at, 0.3, 5.0);
-    a.hub_z_m = f.number(axles[n], "hub_z_m", at, -5.0, 5.0);
+    a.hub_z_m = f.number(axles[n], "hub_z_m", at, -10.0, 5.0);  // a portal's centre of mass high above them
     a.steered = f.flag(axles[n], "steered", at, false);
     a.driven = f.flag(axles[n], "driven", at, false);
     a.tyres_per_side = f.integer(axles[n], "tyres_per_side", at, 1, 4);

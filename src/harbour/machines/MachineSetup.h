@@ -18,13 +18,14 @@ struct ReevingSettings;
 
 namespace harbour::sim {
 
+class ControlTable;
 class Machine;
 
 /// The machine an exercise runs, with where it starts, of whichever kind: a value holding one machine
 /// folder's setup (`StsSetup`, `MhcSetup`, ...). A setup type has `static const MachineType& type()`,
-/// `std::unique_ptr<Machine> build(physics::PhysicsWorld&) const` and `std::vector<cable::ReevingSettings*>
-/// reevings()` (its ropes' settings, where a recorded run's rope model is put back). Nothing here names a
-/// machine: a new one is a new setup type in its own folder.
+/// `std::unique_ptr<Machine> build(physics::PhysicsWorld&) const`, `const ControlTable& controls() const` and
+/// `std::vector<cable::ReevingSettings*> reevings()` (its ropes' settings, where a recorded run's rope model
+/// is put back). Nothing here names a machine: a new one is a new setup type in its own folder.
 class MachineSetup {
  public:
   MachineSetup() = default;  ///< none yet (ScenarioSettings starts with an STS)
@@ -44,6 +45,8 @@ class MachineSetup {
   const char* kind() const { return type().kind; }
   /// The machine itself, in `world` at its start.
   std::unique_ptr<Machine> build(physics::PhysicsWorld& world) const { return held().build(world); }
+  /// Its controls as its machine file declares them (what device mappings bind).
+  const ControlTable& controls() const { return held().controls(); }
   /// Its reevings' settings (none for a machine without ropes).
   std::vector<cable::ReevingSettings*> reevings() { return held().reevings(); }
 
@@ -74,6 +77,7 @@ class MachineSetup {
     virtual ~Base() = default;
     virtual std::unique_ptr<Base> clone() const = 0;
     virtual const MachineType& type() const = 0;
+    virtual const ControlTable& controls() const = 0;
     virtual std::unique_ptr<Machine> build(physics::PhysicsWorld& world) const = 0;
     virtual std::vector<cable::ReevingSettings*> reevings() = 0;
   };
@@ -82,6 +86,7 @@ class MachineSetup {
     explicit Held(Setup s) : setup(std::move(s)) {}
     std::unique_ptr<Base> clone() const override { return std::make_unique<Held>(setup); }
     const MachineType& type() const override { return Setup::type(); }
+    const ControlTable& controls() const override { return setup.controls(); }
     std::unique_ptr<Machine> build(physics::PhysicsWorld& world) const override { return setup.build(world); }
     std::vector<cable::ReevingSettings*> reevings() override { return setup.reevings(); }
     Setup setup;

@@ -34,6 +34,20 @@ core::Vec3 point_ahead(std::span<const core::Vec3> path, const core::Vec3& from_
   return path.back();
 }
 
+double distance_along(std::span<const core::Vec3> path, const core::Vec3& point) {
+  const core::Vec3 from = flat(point);
+  double nearest = 1e18, along = 0.0, start = 0.0;
+  for (std::size_t k = 0; k + 1 < path.size(); ++k) {
+    const core::Vec3 a = flat(path[k]), b = flat(path[k + 1]);
+    const double length = core::length(b - a);
+    const double t = std::clamp(dot(from - a, b - a) / (length * length), 0.0, 1.0);
+    const double d = core::length(from - (a + (b - a) * t));
+    if (d < nearest) nearest = d, along = start + t * length;
+    start += length;
+  }
+  return along;
+}
+
 double pursuit_steer(const core::Pose& pose, const WheeledChassis& chassis, const core::Vec3& target) {
   const core::Vec3 reference = flat(pose.to_parent({chassis.reference_x_m(), 0, 0}));
   const core::Vec3 x = flat(pose.rotation.column(0));

@@ -278,6 +278,7 @@ struct MhcSetup {
   MhcStart start;
 
   static const MachineType& type() { return mhc_machine_type(); }
+  const ControlTable& controls() const { return crane.controls; }
   std::unique_ptr<Machine> build(physics::PhysicsWorld& world) const;
   std::vector<cable::ReevingSettings*> reevings();
 };

@@ -135,6 +135,7 @@ struct ReachStackerSetup {
   ReachStackerStart start;
 
   static const MachineType& type() { return reach_stacker_machine_type(); }
+  const ControlTable& controls() const { return vehicle.controls; }
   std::unique_ptr<Machine> build(physics::PhysicsWorld& world) const;
   std::vector<cable::ReevingSettings*> reevings() { return {}; }
 };

@@ -175,6 +175,7 @@ struct RtgSetup {
   RtgStart start;
 
   static const MachineType& type() { return rtg_machine_type(); }
+  const ControlTable& controls() const { return crane.controls; }
   std::unique_ptr<Machine> build(physics::PhysicsWorld& world) const;
   std::vector<cable::ReevingSettings*> reevings() { return {&crane.rig.hoist}; }
 };

@@ -200,6 +200,7 @@ struct StsSetup {
   double gantry_y_m = 0.0, trolley_x_m = 20.0, spreader_z_m = 20.0;  ///< [m] crane pose at the start
 
   static const MachineType& type() { return sts_machine_type(); }
+  const ControlTable& controls() const { return crane.controls; }
   std::unique_ptr<Machine> build(physics::PhysicsWorld& world) const;
   std::vector<cable::ReevingSettings*> reevings() { return {&crane.hoist}; }
 };

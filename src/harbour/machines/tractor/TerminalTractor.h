@@ -185,6 +185,7 @@ struct TractorSetup {
   TractorStart start;
 
   static const MachineType& type() { return tractor_machine_type(); }
+  const ControlTable& controls() const { return vehicle.controls; }
   std::unique_ptr<Machine> build(physics::PhysicsWorld& world) const;
   std::vector<cable::ReevingSettings*> reevings() { return {}; }
 };
