@@ -22,3 +22,4 @@ shoot mhc_coal_discharge 20 40 60     # the grab in the hold, hoisting out, slew
 shoot mhc_hook_lift 10 40 70          # the hook over the crate, lifting, setting it down
 shoot reach_stacker_stack 10 30 60    # the box's corner: picking, carrying, landing on the stack
 shoot tractor_semi_reverse 5 30 50    # over the bonnet, the mirrors and the reversing camera
+shoot straddle_carrier_stack 12 40 86  # down the row to the box, lifting it, setting it on the stack

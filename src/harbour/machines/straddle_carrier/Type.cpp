@@ -1,0 +1,37 @@
+#include <memory>
+#include <vector>
+
+#include "harbour/machines/MachineType.h"
+#include "harbour/machines/straddle_carrier/StraddleCarrier.h"
+#include "harbour/machines/straddle_carrier/StraddleCarrierAutopilot.h"
+
+namespace harbour::sim {
+namespace {
+constexpr MachineFault kFaults[] = {MachineFault::kHoistBrake, MachineFault::kLandedSensor};
+constexpr PilotType kPilots[] = {pilot_type<StraddleCarrierAutopilot>()};
+constexpr std::string_view kDeductions[] = {"collision",
+                                            "emergency_stop",
+                                            "move_not_completed",
+                                            "minute_over_time_limit",
+                                            "harsh_move",
+                                            "hard_landing",
+                                            "landing_while_swaying",
+                                            "twistlock_misuse",
+                                            "rope_overload",
+                                            "limit_switch_hit",
+                                            "speeding",
+                                            "load_drop",
+                                            "lift_under_fault"};
+}  // namespace
+
+const MachineType& straddle_carrier_machine_type() {
+  static constexpr MachineType type{
+      "straddle_carrier", "straddle carrier", Handles::kContainers, kFaults, false, kPilots, kDeductions};
+  return type;
+}
+
+std::unique_ptr<Machine> StraddleCarrierSetup::build(physics::PhysicsWorld& world) const {
+  return std::make_unique<StraddleCarrier>(world, vehicle, start);
+}
+
+}  // namespace harbour::sim
