@@ -12,21 +12,21 @@ namespace {
 
 constexpr std::int64_t kDecisionSteps = 20;  // 50 Hz
 constexpr double kCruise_mps = 3.0;          // along a row, laden or not
-constexpr double kCorner_mps = 1.2;  // with the wheel turned kCornerSteer or more
+constexpr double kCorner_mps = 1.2;          // with the wheel turned kCornerSteer or more
 constexpr double kCornerSteer = 0.3;
-constexpr double kCreep_mps = 0.25;          // the last metre to a stop
-constexpr double kInch_mps = 0.04;           // the slowest it moves to correct a stop
-constexpr double kStopping_mps2 = 0.4;       // the deceleration it plans its stops with
-constexpr double kStopped_m = 0.02;          // a stop this near is where it means to be
-constexpr double kSpeedGain = 0.6;           // pedal per m/s of speed error
-constexpr double kPedalRate_per_s = 0.6;     // how fast a foot moves a pedal
+constexpr double kCreep_mps = 0.25;       // the last metre to a stop
+constexpr double kInch_mps = 0.04;        // the slowest it moves to correct a stop
+constexpr double kStopping_mps2 = 0.4;    // the deceleration it plans its stops with
+constexpr double kStopped_m = 0.02;       // a stop this near is where it means to be
+constexpr double kSpeedGain = 0.6;        // pedal per m/s of speed error
+constexpr double kPedalRate_per_s = 0.6;  // how fast a foot moves a pedal
 constexpr double kLookahead_m = 8.0;
-constexpr double kOnTheRow_m = 1.0;       // stacks this near the row's line stand under its way
+constexpr double kOnTheRow_m = 1.0;       // stacks this near its way stand under it
 constexpr double kClearance_m = 0.5;      // the spreader's (or the box's) underside over the stacks it passes
 constexpr double kHover_m = 0.3;          // above where it lands, before it comes down slowly
 constexpr double kLandingLever = 0.25;    // the hoist lever for the last 0.3 m down
 constexpr double kHoistGain_per_m = 2.0;  // the hoist lever per metre from its height
-constexpr double kSteady_m = 0.02;        // the spreader's swing it waits out before it lands
+constexpr double kSteady_m = 0.02;  // the spreader's swing and the portal's error it catches before it lands
 constexpr double kTwentyFootHalfLength_m = 4.0;
 
 core::Vec3 flat(core::Vec3 v) {
