@@ -449,6 +449,13 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
       const core::Vec3& half = tractor->start.trailer->half_extents_m;
       s.markings.push_back({"bay " + g.container_id, g.target_m, *g.heading_rad, half.x + g.tolerance_m,
                             half.y + g.tolerance_m});
+    } else if (g.heading_rad && !g.to_truck && known->second < s.containers.size()) {
+      // a box set down on the ground (not on a stack or a truck): its place painted, as a terminal marks its
+      // transfer and buffer slots, the box's footprint and the tolerance around it
+      const core::Vec3& half = s.containers[known->second].half_extents_m;
+      if (std::abs(g.target_m.z - half.z) < 0.05)
+        s.markings.push_back({"slot " + g.container_id, g.target_m, *g.heading_rad, half.x + g.tolerance_m,
+                              half.y + g.tolerance_m});
     }
     e.moves.push_back(g);
   }
