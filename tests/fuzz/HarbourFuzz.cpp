@@ -35,10 +35,10 @@
 #include "harbour/io/DataError.h"
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/io/InstructorCommandText.h"
-#include "harbour/machines/mhc/Files.h"
-#include "harbour/machines/sts/Files.h"
 #include "harbour/io/RecordingFile.h"
 #include "harbour/io/ReevingFiles.h"
+#include "harbour/machines/mhc/Files.h"
+#include "harbour/machines/sts/Files.h"
 #include "harbour/sim/Simulation.h"
 #include "harbour/station/DeviceMappingFile.h"
 

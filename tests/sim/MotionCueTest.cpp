@@ -5,8 +5,8 @@
 #include <numbers>
 
 #include "harbour/io/ExerciseFiles.h"
-#include "harbour/machines/sts/Files.h"
 #include "harbour/io/MotionFiles.h"
+#include "harbour/machines/sts/Files.h"
 #include "harbour/machines/tractor/TerminalTractor.h"
 #include "harbour/motion/MotionSystem.h"
 #include "harbour/sim/Simulation.h"

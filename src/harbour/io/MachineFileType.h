@@ -59,6 +59,12 @@ struct MachineFileType {
   StartPoseForm (*start_pose_form)(const sim::MachineSetup& setup) = nullptr;
 };
 
+/// A MachineFileType's start_pose_form for a folder whose form is `Form(const Setup&)`.
+template <typename Setup, StartPoseForm (*Form)(const Setup&)>
+StartPoseForm start_pose_form_of(const sim::MachineSetup& setup) {
+  return Form(setup.template as<Setup>());
+}
+
 /// Every machine kind's file reader (generated from the machine folders).
 std::span<const MachineFileType* const> machine_file_types();
 /// The reader of that kind, nullptr where there is none.

@@ -204,14 +204,11 @@ sim::MachineSetup read_setup(const std::string& path, const StartBlock& start) {
   return mhc;
 }
 
-StartPoseForm read_form(const sim::MachineSetup& setup) {
-  return start_form(setup.as<sim::MhcSetup>());
-}
-
 }  // namespace
 
 const MachineFileType& mhc_machine_files() {
-  static constexpr MachineFileType type{"mhc", "crane", &read_setup, &read_form};
+  static constexpr MachineFileType type{"mhc", "crane", &read_setup,
+                                        &start_pose_form_of<sim::MhcSetup, &start_form>};
   return type;
 }
 

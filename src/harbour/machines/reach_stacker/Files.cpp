@@ -143,14 +143,11 @@ sim::MachineSetup read_setup(const std::string& path, const StartBlock& start) {
   return stacker;
 }
 
-StartPoseForm read_form(const sim::MachineSetup& setup) {
-  return start_form(setup.as<sim::ReachStackerSetup>());
-}
-
 }  // namespace
 
 const MachineFileType& reach_stacker_machine_files() {
-  static constexpr MachineFileType type{"reach_stacker", "vehicle", &read_setup, &read_form};
+  static constexpr MachineFileType type{"reach_stacker", "vehicle", &read_setup,
+                                        &start_pose_form_of<sim::ReachStackerSetup, &start_form>};
   return type;
 }
 

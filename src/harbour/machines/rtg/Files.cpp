@@ -86,14 +86,11 @@ sim::MachineSetup read_setup(const std::string& path, const StartBlock& start) {
   return rtg;
 }
 
-StartPoseForm read_form(const sim::MachineSetup& setup) {
-  return start_form(setup.as<sim::RtgSetup>());
-}
-
 }  // namespace
 
 const MachineFileType& rtg_machine_files() {
-  static constexpr MachineFileType type{"rtg", "crane", &read_setup, &read_form};
+  static constexpr MachineFileType type{"rtg", "crane", &read_setup,
+                                        &start_pose_form_of<sim::RtgSetup, &start_form>};
   return type;
 }
 

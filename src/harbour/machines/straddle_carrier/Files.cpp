@@ -77,14 +77,11 @@ sim::MachineSetup read_setup(const std::string& path, const StartBlock& start) {
   return carrier;
 }
 
-StartPoseForm read_form(const sim::MachineSetup& setup) {
-  return start_form(setup.as<sim::StraddleCarrierSetup>());
-}
-
 }  // namespace
 
 const MachineFileType& straddle_carrier_machine_files() {
-  static constexpr MachineFileType type{"straddle_carrier", "vehicle", &read_setup, &read_form};
+  static constexpr MachineFileType type{"straddle_carrier", "vehicle", &read_setup,
+                                        &start_pose_form_of<sim::StraddleCarrierSetup, &start_form>};
   return type;
 }
 

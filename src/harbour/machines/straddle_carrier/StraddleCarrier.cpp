@@ -42,7 +42,7 @@ StraddleCarrier::StraddleCarrier(physics::PhysicsWorld& world, const StraddleCar
       cab_(s.controls, s.steer_rate_per_s),
       body_([&] {
         // the portal settled on its tyres under its own and the spreader's weight (it starts at rest)
-        std::vector<SupportSpring> springs = tyre_springs(s.chassis);
+        const std::vector<SupportSpring> springs = tyre_springs(s.chassis);
         const Settling settled = settle(springs, (s.mass_kg + s.rig.spreader.mass_kg) * kG, {});
         physics::BoxSettings portal;
         portal.mass_kg = s.mass_kg;

@@ -98,14 +98,11 @@ sim::MachineSetup read_setup(const std::string& path, const StartBlock& start) {
   return sts;
 }
 
-StartPoseForm read_form(const sim::MachineSetup& setup) {
-  return start_form(setup.as<sim::StsSetup>());
-}
-
 }  // namespace
 
 const MachineFileType& sts_machine_files() {
-  static constexpr MachineFileType type{"sts", "crane", &read_setup, &read_form};
+  static constexpr MachineFileType type{"sts", "crane", &read_setup,
+                                        &start_pose_form_of<sim::StsSetup, &start_form>};
   return type;
 }
 

@@ -183,14 +183,11 @@ sim::MachineSetup read_setup(const std::string& path, const StartBlock& start) {
   return tractor;
 }
 
-StartPoseForm read_form(const sim::MachineSetup& setup) {
-  return start_form(setup.as<sim::TractorSetup>());
-}
-
 }  // namespace
 
 const MachineFileType& tractor_machine_files() {
-  static constexpr MachineFileType type{"tractor", "vehicle", &read_setup, &read_form};
+  static constexpr MachineFileType type{"tractor", "vehicle", &read_setup,
+                                        &start_pose_form_of<sim::TractorSetup, &start_form>};
   return type;
 }
 
