@@ -482,10 +482,13 @@ TEST(TractorRamp, TheClimbFailsWhenTheLoadExceedsWhatTheDriveAxlesGripCanPull) {
       limit_kg / 1000.0, 0.8 * limit_kg / 1000.0, 1.2 * limit_kg / 1000.0, heavy.climbed_m);
 }
 
+// What holds the tractor on the ramp: its brake pedal, the emergency stop, or the parking brake alone.
+enum class Holding { kPedal, kEmergencyStop, kParkingBrake };
+
 // Up a dry 1:10 ramp at walking pace until the whole combination stands on it, stopped with the brake pedal
-// (or the emergency stop) in neutral, then the pedal at `pedal` for `seconds`: how far the tractor's centre
+// in neutral, then held by `holding` (the pedal at `pedal`) for `seconds`: how far the tractor's centre
 // travels then [m].
-double travel_when_braked_on_the_ramp(double payload_kg, double pedal, double seconds, bool emergency_stop) {
+double travel_when_braked_on_the_ramp(double payload_kg, double pedal, double seconds, Holding holding) {
   ScenarioSettings scenario = before_a_wet_ramp(payload_kg);
   scenario.ramp->grip = 0.8;  // dry steel plates
   Simulation sim(scenario);
@@ -500,17 +503,21 @@ double travel_when_braked_on_the_ramp(double payload_kg, double pedal, double se
   EXPECT_GT(sim.world().pose(t.trailer_body()).to_parent({-4.5, 0.0, 0.0}).y, 3.0)
       << "the climb stalled at " << sim.time_s() << " s, tractor y " << sim.world().pose(t.body()).position.y
       << " z " << sim.world().pose(t.body()).position.z << " speed " << t.forward_mps();
-  const auto braked = [&](double amount) {
+  const auto held = [&](Holding by, double amount) {
     Controls c = sim.control_table().neutral();  // neutral: no drive
-    c.value[static_cast<std::size_t>(sim.control_table().find(emergency_stop ? "emergency_stop" : "brake"))] =
-        emergency_stop ? 1.0 : amount;
+    const auto set = [&](const char* label, double value) {
+      c.value[static_cast<std::size_t>(sim.control_table().find(label))] = value;
+    };
+    if (by == Holding::kPedal) set("brake", amount);
+    if (by == Holding::kEmergencyStop) set("emergency_stop", 1.0);
+    if (by == Holding::kParkingBrake) set("parking_brake", 1.0);
     return c;
   };
   for (int k = 0; k < 2000; ++k)  // to a stop
-    sim.step(braked(1.0));
+    sim.step(held(Holding::kPedal, 1.0));
   const core::Vec3 from = sim.world().pose(t.body()).position;
   for (int k = 0; k < static_cast<int>(std::lround(seconds / Simulation::kStep_s)); ++k)
-    sim.step(braked(pedal));
+    sim.step(held(holding, pedal));
   EXPECT_FALSE(sim.diverged()) << sim.divergence();
   const core::Vec3 to = sim.world().pose(t.body()).position;
   return std::hypot(to.x - from.x, to.y - from.y);
@@ -518,12 +525,23 @@ double travel_when_braked_on_the_ramp(double payload_kg, double pedal, double se
 
 TEST(TractorBrakes, TheBrakesHoldA30TonneMafiOnA1In10RampForAMinute) {
   // static friction: braked wheels at rest stand, up to what the brakes and the grip can hold
-  const double pedal = travel_when_braked_on_the_ramp(30000.0, 1.0, 60.0, false);
-  const double stop = travel_when_braked_on_the_ramp(30000.0, 1.0, 60.0, true);
+  const double pedal = travel_when_braked_on_the_ramp(30000.0, 1.0, 60.0, Holding::kPedal);
+  const double stop = travel_when_braked_on_the_ramp(30000.0, 1.0, 60.0, Holding::kEmergencyStop);
   std::printf("30 t mafi braked on 1:10 for 60 s: moved %.5f m (pedal), %.5f m (emergency stop)\n", pedal,
               stop);
   EXPECT_LT(pedal, 0.01);
   EXPECT_LT(stop, 0.01);
+}
+
+TEST(TractorBrakes, TheParkingBrakeAloneHoldsA30TonneMafiOnA1In10RampAndNothingDoesNot) {
+  // the pedal released in neutral: the spring brakes on the drive axle and the mafi's brakes (applied through
+  // its control line) hold it; with nothing set it rolls back down
+  const double parked = travel_when_braked_on_the_ramp(30000.0, 0.0, 60.0, Holding::kParkingBrake);
+  const double released = travel_when_braked_on_the_ramp(30000.0, 0.0, 3.0, Holding::kPedal);
+  std::printf("30 t mafi on 1:10: moved %.5f m in 60 s on the parking brake, %.2f m in 3 s on nothing\n",
+              parked, released);
+  EXPECT_LT(parked, 0.01);
+  EXPECT_GT(released, 1.0);
 }
 
 TEST(TractorBrakes, BrakedBelowThePullDownTheSlopeItRollsAwayAtTheDifference) {
@@ -549,7 +567,7 @@ TEST(TractorBrakes, BrakedBelowThePullDownTheSlopeItRollsAwayAtTheDifference) {
                      mass_kg;
   const double expected_mps2 = kG * std::sin(slope) - pedal * full_n / mass_kg - crr * kG * std::cos(slope);
   const double seconds = 3.0;  // ~1.6 m: its wheels all still on the ramp
-  const double moved = travel_when_braked_on_the_ramp(payload_kg, pedal, seconds, false);
+  const double moved = travel_when_braked_on_the_ramp(payload_kg, pedal, seconds, Holding::kPedal);
   const double measured_mps2 = 2.0 * moved / (seconds * seconds);
   std::printf("brake pedal at %.3f on 1:10: rolled %.2f m in %.0f s, %.3f m/s^2 against %.3f\n", pedal, moved,
               seconds, measured_mps2, expected_mps2);

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <utility>
 
 #include "harbour/machines/parts/WheeledChassis.h"
 
@@ -36,9 +37,9 @@ struct Tractor {
   void drive(double seconds, double speed_mps, double steer) {
     for (int k = 0; k < static_cast<int>(std::lround(seconds / kDt)); ++k) {
       const double error = speed_mps - forward_mps();
-      chassis->step(world,
-                    {std::clamp(0.5 * error, 0.0, 1.0), false, std::clamp(-0.5 * error, 0.0, 1.0), steer},
-                    FlatGround());
+      chassis->step(
+          world, {std::clamp(0.5 * error, 0.0, 1.0), false, std::clamp(-0.5 * error, 0.0, 1.0), steer, false},
+          FlatGround());
       world.step(kDt);
     }
   }
@@ -87,6 +88,62 @@ TEST(WheeledChassis, FasterItUndersteersByTheBicycleModelsGradient) {
   std::printf(
       "steady turn at %.2f m/s: radius %.2f m against the bicycle model's %.2f m (kinematic %.2f m)\n", speed,
       t.path_radius_m(), expected, kinematic);
+}
+
+// The tractor's chassis with spring brakes on its rear axle of `capacity` times what holds it on an 18 %
+// slope (ECE R13's gradient), the slope made by tilting gravity over its flat ground (uphill ahead): how far
+// it travels down the slope [m] and how fast it goes [m/s] in `seconds` with only the parking brake set
+// (`parking`) or nothing, after standing on its service brakes.
+struct SlopeRun {
+  double travelled_m = 0.0, speed_mps = 0.0;
+};
+SlopeRun parked_on_a_slope(double capacity, bool parking, double seconds, double slope_rad) {
+  Tractor t;
+  const double pull_n = Tractor::kMass_kg * core::kStandardGravity * std::sin(slope_rad);
+  t.settings.axles[1].parking_braked = true;
+  // four tyres on the rear axle (twins), each giving torque / radius
+  t.settings.parking_brake_torque_per_wheel_nm = capacity * pull_n * t.settings.tyre.radius_m / 4.0;
+  t.world_settings.gravity = {-core::kStandardGravity * std::sin(slope_rad), 0.0,
+                              -core::kStandardGravity * std::cos(slope_rad)};
+  physics::PhysicsWorld world(t.world_settings);
+  physics::BoxSettings box;
+  box.mass_kg = Tractor::kMass_kg;
+  box.half_extents_m = {2.5, 1.25, 0.6};
+  box.collides = false;
+  box.pose.position = {0, 0, 0.6 + t.settings.tyre.radius_m - 0.01};
+  const physics::BodyId body = world.add_box(box);
+  WheeledChassis chassis(t.settings, body);
+  for (int k = 0; k < 3000; ++k) {  // standing on the service brakes
+    chassis.step(world, {0.0, false, 1.0, 0.0, false}, FlatGround());
+    world.step(kDt);
+  }
+  const double from = world.pose(body).position.x;
+  for (int k = 0; k < static_cast<int>(std::lround(seconds / kDt)); ++k) {
+    chassis.step(world, {0.0, false, 0.0, 0.0, parking}, FlatGround());
+    world.step(kDt);
+  }
+  return {from - world.pose(body).position.x, -world.linear_velocity(body).x};
+}
+
+TEST(WheeledChassis, TheParkingBrakeHoldsOnASlopeUpToItsCapacityAndRollsAwayBeyondIt) {
+  // static friction while the spring brakes hold more than the pull down the slope; beyond, the chassis
+  // rolls away from rest at a = g sin a - P / m - crr g cos a (P the spring brakes' force, crr by weight)
+  const double slope = std::atan(0.18), seconds = 3.0;
+  const SlopeRun held = parked_on_a_slope(1.25, true, 10.0, slope);
+  EXPECT_LT(std::abs(held.travelled_m), 1e-3);
+  const TyreSettings tyre;
+  const double g = core::kStandardGravity;
+  for (const auto& [capacity, parking] : {std::pair{0.5, true}, std::pair{0.5, false}}) {
+    const SlopeRun run = parked_on_a_slope(capacity, parking, seconds, slope);
+    const double braking = parking ? capacity * g * std::sin(slope) : 0.0;
+    const double expected = g * std::sin(slope) - braking - tyre.rolling_resistance * g * std::cos(slope);
+    const double measured = 2.0 * run.travelled_m / (seconds * seconds);
+    EXPECT_NEAR(measured, expected, 0.05 * expected) << (parking ? "half the pull" : "released");
+    EXPECT_NEAR(run.speed_mps, expected * seconds, 0.05 * expected * seconds);
+    std::printf("18 %% slope, parking brake %s: %.3f m/s^2 from rest against %.3f\n",
+                parking ? "at half the pull" : "released", measured, expected);
+  }
+  std::printf("18 %% slope, parking brake at 1.25 times the pull: moved %.5f m in 10 s\n", held.travelled_m);
 }
 
 TEST(WheeledChassis, TheGearboxPicksTheGearWithTheMostTorqueWithinTheEngineSpeed) {

@@ -534,6 +534,30 @@ TEST(Devices, APersonOnTwoLeversSlewsTheMobileHarbourCraneAndShutsItsGrab) {
 namespace harbour::station {
 namespace {
 
+TEST(Devices, AKeyTappedBetweenTwoSamplesStillStepsItsSwitch) {
+  // the window pumps SDL's events at its frame rate (a few a second on a slow display); a tap pressed and
+  // released within one pump never shows in SDL's keyboard state, so the window passes each key that went
+  // down and the next sample reads it pressed: P sets the tractor's parking brake, P again releases it
+  SDL_SetHint(SDL_HINT_VIDEODRIVER, "dummy");
+  ASSERT_EQ(SDL_InitSubSystem(SDL_INIT_VIDEO), 0) << SDL_GetError();
+  const sim::Simulation tractor(
+      io::load_exercise(HARBOUR_DATA_DIR "/exercises/tractor_free_practice.yaml").scenario);
+  const sim::ControlTable& table = tractor.control_table();
+  const auto parking = static_cast<std::size_t>(table.find("parking_brake"));
+  {
+    DeviceInput input(table, load_device_mapping(HARBOUR_DATA_DIR "/devices/keyboard_driving.yaml", table));
+    EXPECT_EQ(input.sample().value[parking], 0.0);  // released
+    input.key_went_down(SDL_SCANCODE_P);            // pressed and up again before this sample
+    EXPECT_EQ(input.sample().value[parking], 1.0);
+    EXPECT_EQ(input.sample().value[parking], 1.0);  // a switch stays where it was put
+    input.key_went_down(SDL_SCANCODE_P);
+    EXPECT_EQ(input.sample().value[parking], 0.0);
+    // without the window's word the tap is lost: SDL's state never had the key down
+    EXPECT_EQ(input.sample().value[parking], 0.0);
+  }
+  SDL_QuitSubSystem(SDL_INIT_VIDEO);
+}
+
 TEST(Devices, TheDrivingKeyboardFitsTheTractorAndTheCranesKeyboardsDoNot) {
   // a profile's keyboards are tried in order: each machine finds the one made for it
   const sim::Simulation tractor(

@@ -228,6 +228,7 @@ std::vector<sim::AxleSettings> read_axles(const YamlFile& f, const YAML::Node& m
     a.hub_z_m = f.number(axles[n], "hub_z_m", at, -10.0, 5.0);  // a portal's centre of mass high above them
     a.steered = f.flag(axles[n], "steered", at, false);
     a.driven = f.flag(axles[n], "driven", at, false);
+    a.parking_braked = f.flag(axles[n], "parking_brake", at, false);
     a.tyres_per_side = f.integer(axles[n], "tyres_per_side", at, 1, 4);
     out.push_back(a);
   }
@@ -288,7 +289,7 @@ sim::DrivetrainSettings read_drivetrain(const YamlFile& f, const YAML::Node& m) 
 }  // namespace
 
 // A driven and steered machine's wheels (machine.axles, tyre, drivetrain, brake_torque_per_wheel_nm,
-// max_steer_deg).
+// parking_brake_torque_per_wheel_nm, max_steer_deg).
 sim::WheeledChassisSettings read_wheels(const YamlFile& f, const YAML::Node& m) {
   sim::WheeledChassisSettings w;
   w.axles = read_axles(f, m, "machine");
@@ -299,12 +300,15 @@ sim::WheeledChassisSettings read_wheels(const YamlFile& f, const YAML::Node& m) 
   w.tyre = read_tyre(f, m, "machine");
   w.drivetrain = read_drivetrain(f, m);
   w.brake_torque_per_wheel_nm = f.number(m, "brake_torque_per_wheel_nm", "machine", 0.0, 1e6);
+  w.parking_brake_torque_per_wheel_nm = f.number(m, "parking_brake_torque_per_wheel_nm", "machine", 1.0, 1e6);
+  if (std::none_of(w.axles.begin(), w.axles.end(), [](const auto& a) { return a.parking_braked; }))
+    f.fail(m["axles"], "machine.axles", "needs an axle with the parking brake (parking_brake: true)");
   w.max_steer_rad = core::deg_to_rad(f.number(m, "max_steer_deg", "machine", 1.0, 80.0));
   return w;
 }
 
 // A vehicle's driving controls: steering wheel, pedals, the direction selector (reverse, neutral, forward),
-// emergency stop and horn.
+// the parking brake (released, set), emergency stop and horn.
 void require_driving_controls(const YamlFile& f, const YAML::Node& m, const sim::ControlTable& controls) {
   using K = sim::ControlKind;
   require_controls(f, m, controls,
@@ -312,12 +316,15 @@ void require_driving_controls(const YamlFile& f, const YAML::Node& m, const sim:
                     {"throttle", K::kAxis},
                     {"brake", K::kAxis},
                     {"direction", K::kSwitch},
+                    {"parking_brake", K::kSwitch},
                     {"emergency_stop", K::kButton},
                     {"horn", K::kButton}});
   if (controls[controls.find("direction")].positions !=
       std::vector<std::string>{"reverse", "neutral", "forward"})
     f.fail(m["controls"], "machine.controls",
            "'direction' must have the positions [reverse, neutral, forward]");
+  if (controls[controls.find("parking_brake")].positions != std::vector<std::string>{"released", "set"})
+    f.fail(m["controls"], "machine.controls", "'parking_brake' must have the positions [released, set]");
 }
 
 std::string machine_file_kind(const std::string& path) {

@@ -58,10 +58,10 @@ std::vector<sim::AxleSettings> read_axles(const YamlFile& f, const YAML::Node& m
 /// A tyre (`path`.tyre).
 sim::TyreSettings read_tyre(const YamlFile& f, const YAML::Node& m, const std::string& path);
 /// A driven and steered machine's wheels (machine.axles, tyre, drivetrain, brake_torque_per_wheel_nm,
-/// max_steer_deg).
+/// parking_brake_torque_per_wheel_nm on the axles marked parking_brake, max_steer_deg).
 sim::WheeledChassisSettings read_wheels(const YamlFile& f, const YAML::Node& m);
 /// A vehicle's driving controls: steering wheel, pedals, the direction selector (reverse, neutral,
-/// forward), emergency stop and horn.
+/// forward), the parking brake (released, set), emergency stop and horn.
 void require_driving_controls(const YamlFile& f, const YAML::Node& m, const sim::ControlTable& controls);
 
 /// The kind a machine file declares (`machine.kind`, one of the registered machine types); throws DataError

@@ -90,6 +90,68 @@ TEST(StraddleCarrier, AtFullLockEveryWheelSteeredItTurnsOnTheAckermannCircleAbou
   std::printf("straddle carrier at full lock: %.3f m against L / tan(delta) = %.3f m\n", radius, expected);
 }
 
+// Driven along the row at full throttle for 5 s, stopped hard on its brakes (the spreader swinging under the
+// portal), then the pedal released in neutral for 20 s with the parking brake set or not: how far its
+// footprint (the ground under its middle) goes then, its fastest speed over the ground, how far the spreader
+// swings from under the portal's centre of mass and how far that rocks on the tyres.
+struct AfterAStop {
+  double travelled_m = 0.0, fastest_mps = 0.0, swing_m = 0.0, rocking_m = 0.0;
+};
+AfterAStop after_a_hard_stop(bool parking_brake) {
+  Simulation sim(io::load_exercise(kStack).scenario);
+  const auto& m = dynamic_cast<const StraddleCarrier&>(sim.machine());
+  const ControlTable& table = sim.control_table();
+  Controls c = table.neutral();
+  control(c, table, "direction") = 2.0;
+  control(c, table, "throttle") = 1.0;
+  for (int k = 0; k < 5000; ++k)
+    sim.step(c);
+  control(c, table, "throttle") = 0.0;
+  control(c, table, "brake") = 1.0;
+  for (int k = 0; k < 4000; ++k)
+    sim.step(c);
+  control(c, table, "brake") = 0.0;
+  control(c, table, "direction") = 1.0;
+  control(c, table, "parking_brake") = parking_brake ? 1.0 : 0.0;
+  AfterAStop out;
+  const double ground_z = m.settings().chassis.axles.front().hub_z_m - m.settings().chassis.tyre.radius_m;
+  const auto footprint = [&] { return sim.world().pose(m.body()).to_parent({0.0, 0.0, ground_z}); };
+  const core::Vec3 from = footprint(), top_from = sim.world().pose(m.body()).position;
+  for (int k = 0; k < 20000; ++k) {
+    sim.step(c);
+    out.fastest_mps = std::max(out.fastest_mps, std::abs(m.forward_mps()));
+    const core::Vec3 portal = sim.world().pose(m.body()).position, spreader = m.spreader_pose().position;
+    out.swing_m = std::max(out.swing_m, std::hypot(spreader.x - portal.x, spreader.y - portal.y));
+    out.rocking_m = std::max(out.rocking_m, std::hypot(portal.x - top_from.x, portal.y - top_from.y));
+  }
+  const core::Vec3 to = footprint();
+  out.travelled_m = std::hypot(to.x - from.x, to.y - from.y);
+  const std::vector<std::string> names = sim.scene().indicators;
+  const auto lamp = std::find(names.begin(), names.end(), "lamp_parking_brake");
+  EXPECT_NE(lamp, names.end());
+  if (lamp != names.end()) {
+    EXPECT_EQ(sim.snapshot()->indicators[static_cast<std::size_t>(lamp - names.begin())],
+              parking_brake ? 1.0 : 0.0);
+  }
+  return out;
+}
+
+TEST(StraddleCarrier, TheParkingBrakeHoldsItStillWhileTheSpreaderSwingsUnderIt) {
+  // released, the portal rolls to and fro against its swinging spreader (only rolling resistance between its
+  // wheels and the ground); on its spring brakes its wheels stand while the tall portal still rocks on its
+  // tyres, and its speedometer (the wheels' speed) reads nothing
+  const AfterAStop parked = after_a_hard_stop(true), free = after_a_hard_stop(false);
+  std::printf(
+      "after a hard stop, spreader swinging %.2f m: parked: wheels moved %.4f m, fastest %.4f m/s, the "
+      "portal's top rocking %.3f m; released: wheels moved %.3f m, fastest %.3f m/s\n",
+      parked.swing_m, parked.travelled_m, parked.fastest_mps, parked.rocking_m, free.travelled_m,
+      free.fastest_mps);
+  EXPECT_GT(parked.swing_m, 0.3);
+  EXPECT_LT(parked.travelled_m, 0.005);
+  EXPECT_LT(parked.fastest_mps, 0.005);
+  EXPECT_GT(free.fastest_mps, 0.05);
+}
+
 TEST(StraddleCarrier, TheAutopilotStacksTheBoxOverThreeHighAndAKeyframeContinuesExactly) {
   const ExerciseSettings e = io::load_exercise(kStack);
   Simulation sim(e.scenario);

@@ -23,6 +23,14 @@ std::vector<ControlSpec> driving_controls() {
                       1.0,
                       1.0,
                       "direction selector"},
+          ControlSpec{"parking_brake",
+                      K::kSwitch,
+                      0.0,
+                      1.0,
+                      {"released", "set"},
+                      0.0,
+                      1.0,
+                      "parking brake: spring brakes that hold the standing vehicle"},
           ControlSpec{"emergency_stop", K::kButton, 0.0, 1.0, {}, 0.0, 0.0, "full brakes, no drive"},
           ControlSpec{"horn", K::kButton, 0.0, 1.0, {}, 0.0, 0.0, "horn"}};
 }
@@ -32,6 +40,7 @@ DrivingCab::DrivingCab(const ControlTable& table, double steer_rate_per_s)
       throttle_slot_(table.slot("throttle", ControlKind::kAxis)),
       brake_slot_(table.slot("brake", ControlKind::kAxis)),
       direction_slot_(table.slot("direction", ControlKind::kSwitch)),
+      parking_slot_(table.slot("parking_brake", ControlKind::kSwitch)),
       stop_slot_(table.slot("emergency_stop", ControlKind::kButton)),
       horn_slot_(table.slot("horn", ControlKind::kButton)),
       steer_rate_per_s_(steer_rate_per_s) {}
@@ -49,6 +58,8 @@ ChassisCommand DrivingCab::step(const Controls& c, double dt_s) {
   command.throttle = stop_ || direction == kNeutral ? 0.0 : at(throttle_slot_);
   command.reverse = direction == kReverse;
   command.brake = stop_ ? 1.0 : at(brake_slot_);
+  parking_ = std::lround(at(parking_slot_)) == 1;
+  command.parking_brake = parking_;
   return command;
 }
 

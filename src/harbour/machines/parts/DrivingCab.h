@@ -9,13 +9,13 @@
 namespace harbour::sim {
 
 /// The controls every driven vehicle's cab has, for its ControlTable: the steering wheel (+ turns left), the
-/// accelerator and brake pedals, the direction selector (reverse, neutral, forward), the emergency stop and
-/// the horn.
+/// accelerator and brake pedals, the direction selector (reverse, neutral, forward), the parking brake
+/// (released, set), the emergency stop and the horn.
 std::vector<ControlSpec> driving_controls();
 
 /// A vehicle's driving controls at work: hydraulic steering that follows the wheel at its rate, the drive cut
-/// in neutral, the emergency stop cutting the drive and braking fully. Shared by the tractor and the reach
-/// stacker.
+/// in neutral, the parking brake's switch passed on to the chassis, the emergency stop cutting the drive and
+/// braking fully. Shared by the driven machines.
 class DrivingCab {
  public:
   /// `table` has driving_controls() among its own (throws std::invalid_argument naming one it lacks).
@@ -29,6 +29,8 @@ class DrivingCab {
   bool emergency_stop() const { return stop_; }
   /// The direction selector as last read: -1 reverse, 0 neutral, 1 forward (for the cab's display).
   int direction() const { return direction_; }
+  /// The parking brake's switch as last read (set: true).
+  bool parking_brake() const { return parking_; }
   void save_state(core::StateWriter& out) const {
     out.put(steering_);
     out.put(horn_);
@@ -39,10 +41,10 @@ class DrivingCab {
   }
 
  private:
-  int steer_slot_, throttle_slot_, brake_slot_, direction_slot_, stop_slot_, horn_slot_;
+  int steer_slot_, throttle_slot_, brake_slot_, direction_slot_, parking_slot_, stop_slot_, horn_slot_;
   double steer_rate_per_s_;
   double steering_ = 0.0;
-  bool horn_ = false, stop_ = false;
+  bool horn_ = false, stop_ = false, parking_ = false;
   int direction_ = 0;
 };
 

@@ -103,6 +103,12 @@ double WheeledChassis::wheel_angle_rad(double x_m, double y_m, double steer) con
   return std::atan((x_m - reference_x_) / (r - y_m));
 }
 
+double WheeledChassis::road_speed_mps(const physics::PhysicsWorld& world) const {
+  const double contact_z = settings_.axles.front().hub_z_m - settings_.tyre.radius_m;
+  const core::Vec3 v = world.point_velocity(body_, {reference_x_, 0.0, contact_z});
+  return dot(v, world.pose(body_).rotation.column(0));
+}
+
 void WheeledChassis::step(physics::PhysicsWorld& world, const ChassisCommand& command, const Ground& ground) {
   const core::Pose pose = world.pose(body_);
   const double forward = dot(world.linear_velocity(body_), pose.rotation.column(0));
@@ -121,7 +127,9 @@ void WheeledChassis::step(physics::PhysicsWorld& world, const ChassisCommand& co
       TyreCommand c;
       c.steer_rad = a.steered ? wheel_angle_rad(a.x_m, y, command.steer) : 0.0;
       c.drive_torque_nm = a.driven && driven_wheels_ > 0 ? axle_torque / driven_wheels_ : 0.0;
-      c.brake_torque_nm = brake * a.tyres_per_side;
+      const double parking =
+          command.parking_brake && a.parking_braked ? settings_.parking_brake_torque_per_wheel_nm : 0.0;
+      c.brake_torque_nm = std::max(brake, parking) * a.tyres_per_side;
       apply_tyre(world, body_, {a.x_m, y, a.hub_z_m}, tyre, c, ground);
     }
   }

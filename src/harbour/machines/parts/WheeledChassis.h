@@ -17,7 +17,8 @@ struct AxleSettings {
   double hub_z_m = -0.5;      ///< [m] wheel centres' height on the chassis body
   bool steered = false;
   bool driven = false;
-  int tyres_per_side = 1;  ///< twin tyres count twice (one force element of twice the stiffnesses)
+  int tyres_per_side = 1;       ///< twin tyres count twice (one force element of twice the stiffnesses)
+  bool parking_braked = false;  ///< the parking brake's spring brakes act on this axle's wheels
 };
 
 /// An engine and an automatic gearbox (settings): the wheel torque at a throttle and road speed.
@@ -38,7 +39,9 @@ struct WheeledChassisSettings {
   TyreSettings tyre;
   DrivetrainSettings drivetrain;
   double brake_torque_per_wheel_nm = 20000.0;  ///< [N m] at full pedal
-  double max_steer_rad = 0.6;                  ///< the bicycle angle at full steering (at the steered axle)
+  /// [N m] the parking brake's spring brakes at each wheel of the axles that have them (parking_braked)
+  double parking_brake_torque_per_wheel_nm = 0.0;
+  double max_steer_rad = 0.6;  ///< the bicycle angle at full steering (at the steered axle)
 };
 
 /// The driver's commands.
@@ -47,6 +50,8 @@ struct ChassisCommand {
   bool reverse = false;   ///< the gear selector in reverse (first gear's ratio backwards)
   double brake = 0.0;     ///< [0, 1]
   double steer = 0.0;     ///< [-1, 1], + turns left
+  bool parking_brake =
+      false;  ///< the parking brake set: its spring brakes hold as well as the service brakes
 };
 
 /// The wheel torque an engine and an ideal automatic gearbox give at `wheel_speed_mps` (the gear with the
@@ -107,6 +112,9 @@ class WheeledChassis {
   /// The steering base: the steered axle's distance from the reference point (a bicycle's wheelbase).
   double steer_base_m() const { return steer_base_m_; }
   const WheeledChassisSettings& settings() const { return settings_; }
+  /// The speed over the ground along the heading where the wheels touch it, under the reference point
+  /// [m/s] (a speedometer's: a tall body rocking on its tyres moves its top, not its wheels).
+  double road_speed_mps(const physics::PhysicsWorld& world) const;
   /// The engine in the last step (for its sound).
   Snapshot::Drive engine() const { return engine_; }
 

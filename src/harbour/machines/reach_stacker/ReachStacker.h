@@ -71,7 +71,7 @@ class ReachStacker final : public Machine {
   physics::BodyId spreader_body() const { return spreader_; }
   const WheeledChassis& chassis() const { return chassis_; }
   const ReachStackerSettings& settings() const { return settings_; }
-  /// Speed along its heading [m/s] (+ forward).
+  /// Speed along its heading where its wheels touch the ground [m/s] (+ forward; its speedometer's).
   double forward_mps() const;
   double steering() const { return cab_.steering(); }
   /// The boom's angle above the chassis's x [rad] and the telescope's extension [m].

@@ -15,8 +15,8 @@ namespace {
 constexpr double kG = core::kStandardGravity;
 // the indicators a straddle carrier publishes, in snapshot order
 constexpr const char* kIndicators[] = {
-    "speed_kmh", "spreader_size_ft", "lamp_landed", "lamp_locked",      "lamp_unlocked",
-    "horn",      "load_t",           "net_load_t",  "lamp_brake_fault", "reversing"};
+    "speed_kmh", "spreader_size_ft", "lamp_landed",      "lamp_locked", "lamp_unlocked",     "horn",
+    "load_t",    "net_load_t",       "lamp_brake_fault", "reversing",   "lamp_parking_brake"};
 
 // the spreader's frame in the portal's: its length (its y) along the portal's x
 core::Mat3 spreader_on_portal() {
@@ -81,7 +81,7 @@ StraddleCarrier::StraddleCarrier(physics::PhysicsWorld& world, const StraddleCar
 }
 
 double StraddleCarrier::forward_mps() const {
-  return dot(world_.linear_velocity(body_), world_.pose(body_).rotation.column(0));
+  return chassis_.road_speed_mps(world_);
 }
 
 core::Vec3 StraddleCarrier::plumb_m() const {
@@ -143,7 +143,8 @@ int StraddleCarrier::publish(Snapshot& s, int first) const {
                            rig_->hoisted_load_n() / kG / 1000.0,
                            rig_->net_load_t(),
                            rig_->brake_fault() ? 1.0 : 0.0,
-                           cab_.direction() < 0 ? 1.0 : 0.0};
+                           cab_.direction() < 0 ? 1.0 : 0.0,
+                           cab_.parking_brake() ? 1.0 : 0.0};
   static_assert(std::size(values) == std::size(kIndicators));
   s.indicator_count = static_cast<int>(std::size(values));
   std::copy(std::begin(values), std::end(values), s.indicators.begin());

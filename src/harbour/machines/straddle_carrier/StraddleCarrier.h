@@ -98,7 +98,7 @@ class StraddleCarrier final : public Machine {
   physics::BodyId body() const { return body_; }
   const WheeledChassis& chassis() const { return chassis_; }
   const SpreaderHoist& spreader_hoist() const { return *rig_; }
-  /// Speed along its heading [m/s] (+ forward).
+  /// Speed along its heading where its wheels touch the ground [m/s] (+ forward; its speedometer's).
   double forward_mps() const;
   /// The steering as it stands [-1, 1] (+ left).
   double steering() const { return cab_.steering(); }

@@ -12,8 +12,9 @@
 namespace harbour::sim {
 namespace {
 
-constexpr const char* kTractorIndicators[] = {"speed_kmh", "gear",    "steering",        "horn",
-                                              "direction", "coupled", "hitch_angle_deg", "reversing"};
+constexpr const char* kTractorIndicators[] = {"speed_kmh",         "gear",    "steering",        "horn",
+                                              "direction",         "coupled", "hitch_angle_deg", "reversing",
+                                              "lamp_parking_brake"};
 
 physics::BodyId add_body(physics::PhysicsWorld& world, double mass_kg, const core::Vec3& half_extents_m,
                          const core::Pose& pose, const core::Vec3& center_of_mass_m = {}) {
@@ -199,8 +200,10 @@ void TerminalTractor::step(const Controls& raw, std::span<const ContainerRef>, d
   if (!trailer_wheels_) return;
   step_coupling(at(couple_slot_) != 0.0, dt_s);
   push_coupling();
-  // the trailer's brakes work with the tractor's while coupled (air brakes); dropped, its spring brakes hold
-  trailer_wheels_->step(world_, {0.0, false, coupled_ ? command.brake : 1.0, 0.0}, *ground_);
+  // the trailer's brakes work with the tractor's while coupled (air brakes; the parking brake's valve applies
+  // them fully, as a tractor's hand control valve does); dropped, its spring brakes hold
+  const double trailer_brake = !coupled_ || command.parking_brake ? 1.0 : command.brake;
+  trailer_wheels_->step(world_, {0.0, false, trailer_brake, 0.0}, *ground_);
   if (trailer_legs_) trailer_legs_->step(world_, {0.0, false, 1.0, 0.0}, *ground_);
   const bool folded = coupled_ && std::abs(hitch_angle_rad()) > settings_.jackknife_angle_rad;
   if (folded && !jackknifed_) ++jackknifes_;
@@ -289,7 +292,8 @@ int TerminalTractor::publish(Snapshot& s, int first) const {
       static_cast<double>(cab_.direction()),
       coupled_ ? 1.0 : 0.0,
       coupled_ ? hitch_angle_rad() * 180.0 / std::numbers::pi : 0.0,
-      cab_.direction() < 0 ? 1.0 : 0.0};
+      cab_.direction() < 0 ? 1.0 : 0.0,
+      cab_.parking_brake() ? 1.0 : 0.0};
   static_assert(std::size(values) == std::size(kTractorIndicators));
   s.indicator_count = static_cast<int>(std::size(values));
   std::copy(std::begin(values), std::end(values), s.indicators.begin());
