@@ -389,6 +389,9 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
     for (const auto& w : windows) {
       const WindowInput in = w->pump();
       window_open = in.open && window_open;
+      if (station.devices())
+        for (const int key : in.keys_went_down)
+          station.devices()->key_went_down(key);
       if (in.recentre) look.recentre();
       look.update(dt_s, in.look_yaw_keys, in.look_pitch_keys, in.drag_right_px, in.drag_down_px, in.dragging);
       if (in.help_toggled && render) {

@@ -66,6 +66,7 @@ WindowInput StationWindow::pump() {
         (e.window.event == SDL_WINDOWEVENT_SIZE_CHANGED || e.window.event == SDL_WINDOWEVENT_EXPOSED))
       redraw = true;
     if (e.type == SDL_KEYDOWN && !e.key.repeat) {
+      in.keys_went_down.push_back(e.key.keysym.scancode);
       if (e.key.keysym.scancode == SDL_SCANCODE_F1) in.help_toggled = true;
       if (e.key.keysym.scancode == SDL_SCANCODE_KP_5) in.recentre = true;
       if (e.key.keysym.scancode == SDL_SCANCODE_F11) {

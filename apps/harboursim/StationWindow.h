@@ -21,6 +21,7 @@ struct WindowInput {
   bool recentre = false;                       ///< keypad 5
   bool dragging = false;                       ///< the left button held
   double drag_right_px = 0.0, drag_down_px = 0.0;
+  std::vector<int> keys_went_down;  ///< SDL scancodes pressed since the last pump (not repeats)
 };
 
 /// The trainee's window: shows the image generator's newest frame (handed over from its render thread),

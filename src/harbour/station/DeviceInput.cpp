@@ -190,11 +190,23 @@ sim::Controls DeviceInput::sample() {
     keyboard_.resize(static_cast<std::size_t>(keys));
     for (int k = 0; k < keys; ++k)
       keyboard_[static_cast<std::size_t>(k)] = pressed[k] != 0;
+    const std::lock_guard keys_lock(keys_mutex_);
+    for (std::size_t k = 0; k < keys_went_down_.size() && k < keyboard_.size(); ++k) {
+      if (keys_went_down_[k]) keyboard_[k] = true;
+      keys_went_down_[k] = false;
+    }
   }
   last_ =
       mapper_.map(states_, keyboard_,
                   std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count());
   return last_;
+}
+
+void DeviceInput::key_went_down(int scancode) {
+  if (scancode <= 0 || scancode >= SDL_NUM_SCANCODES) return;
+  const std::lock_guard lock(keys_mutex_);
+  keys_went_down_.resize(SDL_NUM_SCANCODES, false);
+  keys_went_down_[static_cast<std::size_t>(scancode)] = true;
 }
 
 void DeviceInput::event(DeviceEvent e) {

@@ -60,6 +60,10 @@ class DeviceInput {
 
   /// Reads the bound devices and maps them (any thread; one at a time).
   sim::Controls sample();
+  /// A key went down (SDL's scancode, from the window's events): the next sample reads it pressed even if it
+  /// is up again by then. SDL's keyboard state changes only as the window's thread pumps its events, so a tap
+  /// whose press and release come in one pump would otherwise never be seen (a toggle's press lost).
+  void key_went_down(int scancode);
   /// Finds new devices, binds them, drops lost ones (the station calls it 50 times a second).
   void maintain();
 
@@ -97,6 +101,8 @@ class DeviceInput {
   };
   std::vector<Used> used_;  // per mapping device
   std::vector<bool> keyboard_;
+  std::mutex keys_mutex_;             // key_went_down() from the window's thread
+  std::vector<bool> keys_went_down_;  // by scancode, since the last sample
   sim::Controls last_;
   std::mutex events_mutex_;
   std::vector<DeviceEvent> events_;
