@@ -28,6 +28,14 @@ double& control(Controls& c, const ControlTable& table, const char* label) {
   return c.value[static_cast<std::size_t>(table.find(label))];
 }
 
+// The selector in forward, the accelerator floored, everything else at rest.
+Controls full_throttle_forward(const ControlTable& table) {
+  Controls c = table.neutral();
+  control(c, table, "direction") = 2.0;
+  control(c, table, "throttle") = 1.0;
+  return c;
+}
+
 TEST(StraddleCarrier, AtRestEachOfItsEightFallsCarriesAnEighthOfTheSpreader) {
   Simulation sim(io::load_exercise(kStack).scenario);
   const auto& m = dynamic_cast<const StraddleCarrier&>(sim.machine());
@@ -53,9 +61,7 @@ TEST(StraddleCarrier, FullThrottleOnTheFlatReachesItsTopGearsEngineLimit) {
   Simulation sim(io::load_exercise(kStack).scenario);
   const auto& m = dynamic_cast<const StraddleCarrier&>(sim.machine());
   const ControlTable& table = sim.control_table();
-  Controls c = table.neutral();
-  control(c, table, "direction") = 2.0;
-  control(c, table, "throttle") = 1.0;
+  Controls c = full_throttle_forward(table);
   double top = 0.0;
   for (int k = 0; k < static_cast<int>(25.0 / Simulation::kStep_s); ++k) {
     sim.step(c);
@@ -101,9 +107,7 @@ AfterAStop after_a_hard_stop(bool parking_brake) {
   Simulation sim(io::load_exercise(kStack).scenario);
   const auto& m = dynamic_cast<const StraddleCarrier&>(sim.machine());
   const ControlTable& table = sim.control_table();
-  Controls c = table.neutral();
-  control(c, table, "direction") = 2.0;
-  control(c, table, "throttle") = 1.0;
+  Controls c = full_throttle_forward(table);
   for (int k = 0; k < 5000; ++k)
     sim.step(c);
   control(c, table, "throttle") = 0.0;

@@ -50,8 +50,8 @@ struct ChassisCommand {
   bool reverse = false;   ///< the gear selector in reverse (first gear's ratio backwards)
   double brake = 0.0;     ///< [0, 1]
   double steer = 0.0;     ///< [-1, 1], + turns left
-  bool parking_brake =
-      false;  ///< the parking brake set: its spring brakes hold as well as the service brakes
+  /// the parking brake set: its spring brakes hold as well as the service brakes
+  bool parking_brake = false;
 };
 
 /// The wheel torque an engine and an ideal automatic gearbox give at `wheel_speed_mps` (the gear with the
