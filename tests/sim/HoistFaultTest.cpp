@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "harbour/io/ExerciseFiles.h"
@@ -280,6 +281,46 @@ TEST_P(CraneHoistBrakeFault, AnEmergencyStopAtTheLampDropsTheLoad) {
 INSTANTIATE_TEST_SUITE_P(EveryCrane, CraneHoistBrakeFault,
                          testing::Values("rtg_hoist_brake_fault", "mhc_hook_brake_fault",
                                          "mhc_grab_brake_fault"));
+
+// What the evaluator reads to tell a fall from a swing: each machine's own word for how fast its hoist lowers
+// the attachment (drum over falls, or the boom against the chassis) against how fast the attachment sinks,
+// raised 4 s and then lowered at full lever, measured over the last 3 s of 6 s of lowering.
+struct Lowering {
+  const char* exercise;
+  const char* lever;
+};
+
+class MachineLowering : public testing::TestWithParam<Lowering> {};
+
+TEST_P(MachineLowering, ItsHoistsLoweringSpeedIsHowFastTheAttachmentSinks) {
+  const ExerciseSettings exercise =
+      io::load_exercise(HARBOUR_DATA_DIR "/exercises/" + std::string(GetParam().exercise) + ".yaml");
+  Simulation sim(exercise.scenario);
+  const int lever = sim.control_table().find(GetParam().lever);
+  ASSERT_GE(lever, 0);
+  Controls c = sim.control_table().neutral();
+  const int steps_per_s = static_cast<int>(std::lround(1.0 / Simulation::kStep_s));
+  double said_m = 0.0, from_z_m = 0.0;
+  for (int k = 0; k < 10 * steps_per_s; ++k) {
+    c.value[static_cast<std::size_t>(lever)] = k < 4 * steps_per_s ? 1.0 : -1.0;
+    if (k == 7 * steps_per_s) from_z_m = sim.machine().attachment_bottom_z_m();
+    sim.step(c);
+    if (k >= 7 * steps_per_s) said_m += sim.machine().lowering_speed_mps() * Simulation::kStep_s;
+  }
+  const double sank_mps = (from_z_m - sim.machine().attachment_bottom_z_m()) / 3.0, said_mps = said_m / 3.0;
+  std::printf("%s: sank at %.4f m/s, its hoist said %.4f m/s\n", GetParam().exercise, sank_mps, said_mps);
+  EXPECT_GT(sank_mps, 0.1);
+  EXPECT_NEAR(said_mps, sank_mps, 0.03 * sank_mps);
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryHoist, MachineLowering,
+                         testing::Values(Lowering{"sts_discharge", "hoist"},
+                                         Lowering{"rtg_rehandle", "hoist"},
+                                         Lowering{"mhc_hook_lift", "hoist"},
+                                         Lowering{"mhc_free_practice", "hoist"},
+                                         Lowering{"straddle_carrier_stack", "hoist"},
+                                         Lowering{"reach_stacker_free_practice", "boom"}),
+                         [](const testing::TestParamInfo<Lowering>& run) { return run.param.exercise; });
 
 }  // namespace
 }  // namespace harbour::sim

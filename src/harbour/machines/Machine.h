@@ -122,6 +122,10 @@ class Machine {
   virtual double attachment_bottom_z_m() const = 0;
   /// Length of the pendulum its load hangs on [m] (0 when nothing hangs).
   virtual double pendulum_length_m() const = 0;
+  /// How fast its hoist lowers its load-handling attachment now [m/s], positive down: on ropes, the rope its
+  /// holding drum pays out over the falls (a swing or a bounce on the ropes does not turn the drum; a drum
+  /// running free does); on a rigid boom, the attachment's sinking against the chassis. 0 with none.
+  virtual double lowering_speed_mps() const = 0;
   /// Its bodies the wind pushes on (a carried item is the executive's to add).
   virtual std::span<const WindArea> wind_areas() const = 0;
 

@@ -184,11 +184,14 @@ void Evaluator::observe_instructor(const Simulation& simulation) {
 
 void Evaluator::observe_hoist_fault(const Simulation& simulation, bool emergency_stop) {
   const Machine& machine = simulation.machine();
-  // falling: the attachment sinking faster than any hoist lowers, over 0.1 s (contact jitter is not a fall)
+  // falling: the attachment sinking faster than any hoist lowers, over 0.1 s (contact jitter is not a fall),
+  // with its hoist paying rope out that fast (a drum running free): sinking back along a swing's arc or onto
+  // ropes gone slack turns no drum, and a free drum spooling rope onto a set-down attachment sinks nothing
   if (simulation.time_s() + 1e-9 >= next_drop_sample_s_) {
-    const double z = machine.attachment_bottom_z_m();
+    const double z = machine.attachment_bottom_z_m(), fall = exercise_.rules.load_drop_mps;
     if (drop_primed_) {
-      const bool falling = (drop_sample_z_m_ - z) / kAxisSample_s > exercise_.rules.load_drop_mps;
+      const bool falling =
+          (drop_sample_z_m_ - z) / kAxisSample_s > fall && machine.lowering_speed_mps() > fall;
       if (falling && !dropping_) ++metrics_.load_drops;
       dropping_ = falling;
     }

@@ -42,8 +42,9 @@ struct EvaluationRules {
   double sway_limit_m = 0.25;  ///< [m] spreader offset from its rest position at a landing counted as swaying
   double horn_warning_s = 5.0;   ///< [s] gantry travel must start within this long after the horn sounded
   double gantry_travel_m = 1.0;  ///< [m] a gantry motion longer than this is a travel (needs the horn)
-  /// [m/s] the load-handling attachment sinking faster than this over 0.1 s is falling (no hoist lowers
-  /// this fast: an emergency stop with the hoist brake failed lets the rope run free)
+  /// [m/s] the load-handling attachment sinking faster than this over 0.1 s, its hoist lowering it that
+  /// fast, is falling (no hoist drives it this fast: an emergency stop with the hoist brake failed lets the
+  /// drum run free)
   double load_drop_mps = 4.0;
   double points_collision = 10.0;
   double points_hard_landing = 5.0;

@@ -156,6 +156,39 @@ TEST(StraddleCarrier, TheParkingBrakeHoldsItStillWhileTheSpreaderSwingsUnderIt) 
   EXPECT_GT(free.fastest_mps, 0.05);
 }
 
+TEST(StraddleCarrier, AHardStopThatSwingsTheEmptySpreaderHighIsNoLoadDrop) {
+  // from 5 m/s to a stop on full brake: the spreader swings up and sinks back along its arc faster than a
+  // fall's speed (1.0 m/s here), but its drum stands, and a fall is the drum running free
+  const ExerciseSettings e = io::load_exercise(kStack);
+  Simulation sim(e.scenario);
+  Evaluator evaluator(e);
+  const auto& m = dynamic_cast<const StraddleCarrier&>(sim.machine());
+  const ControlTable& table = sim.control_table();
+  Controls c = full_throttle_forward(table);
+  double sampled_z_m = m.attachment_bottom_z_m(), fastest_sinking_mps = 0.0, fastest_lowering_mps = 0.0;
+  for (int k = 0; k < 15000; ++k) {
+    if (k == 5000) {
+      control(c, table, "throttle") = 0.0;
+      control(c, table, "brake") = 1.0;
+    }
+    sim.step(c);
+    evaluator.observe(sim, c);
+    fastest_lowering_mps = std::max(fastest_lowering_mps, m.lowering_speed_mps());
+    if (k % 100 == 99) {  // over 0.1 s
+      const double z = m.attachment_bottom_z_m();
+      fastest_sinking_mps = std::max(fastest_sinking_mps, (sampled_z_m - z) / 0.1);
+      sampled_z_m = z;
+    }
+  }
+  std::printf(
+      "a hard stop: the spreader sank at up to %.2f m/s along its swing, its drum lowered at %.4f m/s; "
+      "%d loads dropped\n",
+      fastest_sinking_mps, fastest_lowering_mps, evaluator.metrics().load_drops);
+  EXPECT_GT(fastest_sinking_mps, e.rules.load_drop_mps);
+  EXPECT_LT(fastest_lowering_mps, 0.01);
+  EXPECT_EQ(evaluator.metrics().load_drops, 0);
+}
+
 TEST(StraddleCarrier, TheAutopilotStacksTheBoxOverThreeHighAndAKeyframeContinuesExactly) {
   const ExerciseSettings e = io::load_exercise(kStack);
   Simulation sim(e.scenario);

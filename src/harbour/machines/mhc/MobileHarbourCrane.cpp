@@ -133,6 +133,12 @@ MobileHarbourCrane::MobileHarbourCrane(physics::PhysicsWorld& world, const MhcSe
                                         [&](const auto& f) { return f.first == static_cast<int>(r); }));
   const int closing_ropes = static_cast<int>(std::count(closing_rope_.begin(), closing_rope_.end(), true));
   tackle_falls_ = closing_ropes > 0 ? static_cast<int>(tackle.size()) / closing_ropes : 1;
+  const auto holding_falls = std::count_if(grab_falls_.begin(), grab_falls_.end(), [&](const auto& f) {
+    return !closing_rope_[static_cast<std::size_t>(f.first)];
+  });
+  const int holding_ropes = static_cast<int>(hoisting.ropes.size()) - closing_ropes;
+  if (holding_falls > 0 && holding_ropes > 0)
+    holding_falls_per_rope_ = static_cast<double>(holding_falls) / holding_ropes;
   const core::Mat3 house_rotation = yaw(start.slew_rad);
   physics::BoxSettings house;
   house.mass_kg = settings.house_mass_kg;
@@ -432,6 +438,11 @@ double MobileHarbourCrane::attachment_bottom_z_m() const {
 
 double MobileHarbourCrane::pendulum_length_m() const {
   return suspension_point_m().z - world_.pose(block_).position.z;
+}
+
+double MobileHarbourCrane::lowering_speed_mps() const {
+  // the holding drum (the first) pays out over its ropes' falls to the hook block or the grab
+  return hoist_->drum_rope_speed(0) / holding_falls_per_rope_;
 }
 
 core::Vec3 MobileHarbourCrane::eye_on_cab_body_m() const {

@@ -125,6 +125,7 @@ class MobileHarbourCrane final : public Machine {
   std::optional<physics::BodyId> held_item() const override;
   double attachment_bottom_z_m() const override;
   double pendulum_length_m() const override;
+  double lowering_speed_mps() const override;
   std::span<const WindArea> wind_areas() const override { return wind_areas_; }
   physics::BodyId cab_body() const override { return house_; }
   core::Vec3 eye_on_cab_body_m() const override;
@@ -253,6 +254,7 @@ class MobileHarbourCrane final : public Machine {
   core::Vec3 house_origin_in_body_m_, boom_head_in_body_m_;
   double slew_ = 0.0, last_hinge_angle_ = 0.0;
   int tackle_falls_ = 1;  // closing-rope falls between the grab's head and its lower block, per rope
+  double holding_falls_per_rope_ = 1.0;  // falls below the boom head per rope not through the shells' tackle
   double limiter_load_n_ = 0.0;
   bool horn_ = false, hoist_brake_fault_ = false, limiter_stopping_ = false, limiter_armed_ = true;
   bool pad_lifted_ = false;

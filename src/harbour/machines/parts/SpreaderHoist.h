@@ -75,6 +75,7 @@ class SpreaderHoist {
   /// The speed the drum hoists the spreader at now [m/s], positive up (its rope speed over the falls per
   /// rope).
   double hoisting_speed_mps() const { return -hoist_->drum_rope_speed(0) / falls_per_rope_; }
+  double lowering_speed_mps() const { return -hoisting_speed_mps(); }
   /// Stretches the ropes under the hanging spreader's weight, shared by the falls (before the first step).
   void settle_ropes() {
     hoist_->pretension(settings_.spreader.mass_kg * core::kStandardGravity /

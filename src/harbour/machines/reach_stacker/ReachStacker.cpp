@@ -238,6 +238,15 @@ double ReachStacker::attachment_bottom_z_m() const {
   return world_.pose(spreader_).position.z - frame_->half_extents_m().z;
 }
 
+double ReachStacker::lowering_speed_mps() const {
+  // the spreader's velocity less the chassis's at the same point, along the chassis's up
+  const core::Pose chassis = world_.pose(body_);
+  const core::Vec3 at = world_.pose(spreader_).position;
+  const core::Vec3 relative =
+      world_.linear_velocity(spreader_) - world_.point_velocity(body_, chassis.to_local(at));
+  return -dot(relative, chassis.direction_to_parent({0.0, 0.0, 1.0}));
+}
+
 core::Pose ReachStacker::cab_pose() const {
   const core::Pose chassis = world_.pose(body_);
   return {chassis.rotation, chassis.to_parent(settings_.cab_position_m)};

@@ -85,6 +85,7 @@ class RubberTyredGantry final : public Machine, public GantryCrane {
   void stand_on(const Ground& ground) override { ground_ = &ground; }
   double attachment_bottom_z_m() const override { return rig_->attachment_bottom_z_m(); }
   double pendulum_length_m() const override { return rig_->pendulum_length_m(); }
+  double lowering_speed_mps() const override { return rig_->lowering_speed_mps(); }
   std::span<const WindArea> wind_areas() const override { return wind_areas_; }
   physics::BodyId cab_body() const override { return trolley_; }
   core::Vec3 eye_on_cab_body_m() const override;

@@ -176,6 +176,7 @@ class StsCrane final : public Machine, public GantryCrane {
   /// Length of the pendulum the load hangs on [m]: from the trolley's sheaves down to the headblock's (the
   /// mean heights of the reeving's sheaves on each).
   double pendulum_length_m() const override { return rig_->pendulum_length_m(); }
+  double lowering_speed_mps() const override { return rig_->lowering_speed_mps(); }
   /// Drives, ropes, twistlocks, faults and the locked box for a keyframe (the physics world saves itself).
   void save_state(core::StateWriter& out) const override;
   void restore_state(core::StateReader& in) override;

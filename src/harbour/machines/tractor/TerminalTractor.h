@@ -97,6 +97,7 @@ class TerminalTractor final : public Machine {
   void stand_on(const Ground& ground) override { ground_ = &ground; }
   double attachment_bottom_z_m() const override;
   double pendulum_length_m() const override { return 0.0; }
+  double lowering_speed_mps() const override { return 0.0; }  // it lifts nothing
   std::span<const WindArea> wind_areas() const override {
     return {wind_areas_.data(), trailer_body_ == physics::kWorld ? 1u : 2u};
   }
