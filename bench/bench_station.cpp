@@ -152,7 +152,7 @@ BENCHMARK(BM_BulkHandOff)->Arg(0)->Arg(1)->ArgNames({"whole"})->Unit(benchmark::
 // The pieces on their own.
 void BM_SampleTwoSticks(benchmark::State& state) {
   const Sticks sticks;
-  const sim::ControlTable table = sim::sts_control_table();
+  const sim::ControlTable table = scenes::sts_controls();
   auto input = desk_input(table);
   for (auto _ : state)
     benchmark::DoNotOptimize(input->sample());

@@ -17,6 +17,7 @@
 #include "harbour/machines/sts/StsCrane.h"
 #include "harbour/station/DeviceInput.h"
 #include "harbour/station/DeviceMappingFile.h"
+#include "scenes/StsScenes.h"
 
 namespace harbour::apps {
 namespace {
@@ -89,7 +90,7 @@ TEST(StationWindow, FitsTheScreenKeepsTheWholePictureResizedAndTheMouseMovesNoCo
     EXPECT_GT(corner[2], 150);  // the picture's far corner is in the window too
   }
   // the keyboard mapping binds no mouse: the pointer at the window's edge drives nothing
-  const sim::ControlTable table = sim::sts_control_table();
+  const sim::ControlTable table = scenes::sts_controls();
   station::DeviceInput input(
       table, station::load_device_mapping(std::string(HARBOUR_DATA_DIR) + "/devices/keyboard.yaml", table));
   for (const auto& [x, y] : {std::pair{0, 0}, std::pair{1599, 450}, std::pair{800, 899}}) {

@@ -274,7 +274,8 @@ const std::map<std::string, std::function<void(const std::string&)>>& targets() 
       {"mapping",
        [](const std::string& text) {
          // a mapping read against the STS's controls, then mapped from devices of every size it may meet
-         const harbour::sim::ControlTable table = harbour::sim::sts_control_table();
+         static const harbour::sim::ControlTable table =
+             harbour::io::load_sts_crane(HARBOUR_DATA_DIR "/machines/sts.yaml").controls;
          const harbour::station::DeviceMapping m =
              harbour::station::load_device_mapping(YamlFile::parse(text, "fuzz.yaml"), table);
          harbour::station::ControlMapper mapper(table, m);

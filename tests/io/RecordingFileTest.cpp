@@ -312,7 +312,7 @@ TEST(RecordingFile, ADamagedKeyframeIsRefusedByItsChecksum) {
 TEST(RecordingFile, DamageAnywhereIsRefusedOrReportedNeverACrash) {
   const sim::ScenarioSettings scenario = scenes::sts_discharge(HARBOUR_DATA_DIR);
   constexpr std::int64_t kSteps = 11000;  // a keyframe at 10 s, a checkpoint at 11 s
-  sim::Recorder recorder("sts_discharge", sim::sts_control_table());
+  sim::Recorder recorder("sts_discharge", scenes::sts_controls());
   {
     sim::Simulation s(scenario);
     for (std::int64_t k = 0; k < kSteps; ++k) {
@@ -377,7 +377,7 @@ TEST(RecordingFile, DamageAnywhereIsRefusedOrReportedNeverACrash) {
 TEST(RecordingFile, ACutAtEveryByteOfItsLast64KiBReadsAsItsPrefix) {
   const sim::ScenarioSettings scenario = scenes::sts_discharge(HARBOUR_DATA_DIR);
   constexpr std::int64_t kSteps = 41000;  // keyframes at 10, 20, 30 and 40 s
-  sim::Recorder recorder("sts_discharge", sim::sts_control_table());
+  sim::Recorder recorder("sts_discharge", scenes::sts_controls());
   {
     sim::Simulation s(scenario);
     for (std::int64_t k = 0; k < kSteps; ++k) {

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "harbour/io/ExerciseFiles.h"
+#include "harbour/machines/sts/Files.h"
 #include "harbour/sim/Evaluation.h"
 #include "harbour/sim/Simulation.h"
 
@@ -22,9 +23,15 @@ inline sim::ScenarioSettings sts_discharge(const std::string& data_dir) {
   return sts_discharge_exercise(data_dir).scenario;
 }
 
+/// The shipped STS's controls (its machine file, data/machines/sts.yaml).
+inline const sim::ControlTable& sts_controls() {
+  static const sim::ControlTable table = io::load_sts_crane(HARBOUR_DATA_DIR "/machines/sts.yaml").controls;
+  return table;
+}
+
 /// The STS cab's controls as the executive takes them (the shipped STS control table, which scenes use).
 inline sim::Controls cab(const sim::StsControls& sts) {
-  static const sim::ControlTable table = sim::sts_control_table();
+  const sim::ControlTable& table = sts_controls();
   static const sim::StsControlSlots slots(table);
   sim::Controls c = table.neutral();
   slots.write(sts, c);

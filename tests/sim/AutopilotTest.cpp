@@ -243,7 +243,7 @@ INSTANTIATE_TEST_SUITE_P(Moments, TakeOverAt, ::testing::Values(30000, 62000));
 TEST_P(TakeOverAt, AnInstructorTakeOverContinuesTheAttemptFromTheRecordedState) {
   const std::int64_t at = GetParam();
   const ExerciseSettings exercise = scenes::sts_discharge_exercise(HARBOUR_DATA_DIR);
-  Recorder recorder(exercise.name, sts_control_table());
+  Recorder recorder(exercise.name, scenes::sts_controls());
   {
     Simulation sim(exercise.scenario);
     Autopilot pilot(exercise);

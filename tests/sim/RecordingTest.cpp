@@ -19,7 +19,7 @@ struct RecordedRun {
   std::map<std::int64_t, std::uint64_t> hash_at;
   RecordedRun() {
     Simulation s(scenes::sts_discharge(HARBOUR_DATA_DIR));
-    Recorder recorder("sts_discharge_test", sts_control_table());
+    Recorder recorder("sts_discharge_test", scenes::sts_controls());
     for (std::int64_t k = 0; k < kRunSteps; ++k) {
       const StsControls in = scenes::scripted_operator(k);
       s.step(scenes::cab(in));
@@ -45,7 +45,7 @@ TEST(Recording, ReplayReproducesTheHashAtEveryRecordedSecond) {
 
 TEST(Recording, InputsAreRecordedAsTheMachineReadThem) {
   Simulation s(scenes::sts_discharge(HARBOUR_DATA_DIR));
-  Recorder recorder("levers", sts_control_table());
+  Recorder recorder("levers", scenes::sts_controls());
   StsControls in;
   in.trolley = std::numeric_limits<double>::quiet_NaN();
   in.hoist = 3.0;
@@ -63,7 +63,7 @@ TEST(Recording, InputsAreRecordedAsTheMachineReadThem) {
 
 TEST(Recording, ATamperedRecordingIsDetected) {
   Recording tampered = run().recording;
-  tampered.inputs[2].controls.value[static_cast<std::size_t>(sts_control_table().find("hoist"))] += 0.01;
+  tampered.inputs[2].controls.value[static_cast<std::size_t>(scenes::sts_controls().find("hoist"))] += 0.01;
   const ReplayResult r = replay(scenes::sts_discharge(HARBOUR_DATA_DIR), tampered);
   ASSERT_TRUE(r.first_mismatch.has_value());
 }
@@ -101,7 +101,7 @@ TEST(Recording, APlayerScrubsBackAndForthAndPlaysOnToTheRecordedStates) {
 TEST(Recording, InstructorCommandsAreRecordedAndReplayed) {
   const ScenarioSettings scenario = scenes::sts_discharge(HARBOUR_DATA_DIR);
   Simulation s(scenario);
-  Recorder recorder("commands", sts_control_table());
+  Recorder recorder("commands", scenes::sts_controls());
   InstructorCommand wind;
   wind.kind = InstructorCommand::Kind::kSetWind;
   wind.wind_mean_mps = 14.0;

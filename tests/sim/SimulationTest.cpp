@@ -55,7 +55,7 @@ TEST(Simulation, LeversOutOfRangeReadAsTheMachineWouldReadThem) {
 
   // the table reads a control as the machine will: levers clamped, a non-finite value neutral, a button 0/1,
   // a switch at a whole position
-  const ControlTable table = sts_control_table();
+  const ControlTable table = scenes::sts_controls();
   Controls odd = table.neutral();
   odd.value[static_cast<std::size_t>(table.find("gantry"))] = nan;
   odd.value[static_cast<std::size_t>(table.find("boom"))] = -2.0;

@@ -11,6 +11,7 @@
 #include "harbour/machines/sts/StsCrane.h"
 #include "harbour/station/DeviceMappingFile.h"
 #include "scenes/MachineControls.h"
+#include "scenes/StsScenes.h"
 
 namespace harbour::station {
 namespace {
@@ -104,7 +105,7 @@ TEST(DeviceMapping, ControlsFollowAxesButtonsDetentsAndToggles) {
 // The shipped keyboard: keys drive levers and buttons; the mouse moves no control (it drove the trolley at
 // full speed from the window's edge); the emergency stop counts only once Space is held half a second.
 TEST(DeviceMapping, KeysDriveLeversTheMouseNothingAndTheStopWantsAHeldPress) {
-  const sim::ControlTable table = sim::sts_control_table();
+  const sim::ControlTable table = scenes::sts_controls();
   const DeviceMapping m =
       load_device_mapping(std::string(HARBOUR_DATA_DIR) + "/devices/keyboard.yaml", table);
   for (const DeviceMatch& d : m.devices)
@@ -138,7 +139,7 @@ TEST(DeviceMapping, KeysDriveLeversTheMouseNothingAndTheStopWantsAHeldPress) {
 
 // A mapping that binds the mouse reads it as a lever from the window's centre (a touch joystick).
 TEST(DeviceMapping, AMouseBoundAsALeverReadsFromTheWindowsCentre) {
-  const sim::ControlTable table = sim::sts_control_table();
+  const sim::ControlTable table = scenes::sts_controls();
   const DeviceMapping m = load_device_mapping(
       io::YamlFile::parse("mapping:\n  name: m\n  devices:\n    - {id: mouse, mouse: true}\n  bindings:\n"
                           "    - {control: trolley, device: mouse, axis: 0, dead_zone: 0.15, expo: 0.5}\n"
@@ -159,7 +160,7 @@ TEST(DeviceMapping, AMouseBoundAsALeverReadsFromTheWindowsCentre) {
 }
 
 TEST(DeviceMapping, AToggleButtonStepsASwitchOnEachPress) {
-  const sim::ControlTable table = sim::sts_control_table();
+  const sim::ControlTable table = scenes::sts_controls();
   DeviceMapping m;
   m.devices = {{"pad", "", "pad", 0, false}};
   Binding b;
@@ -183,7 +184,7 @@ TEST(DeviceMapping, AToggleButtonStepsASwitchOnEachPress) {
 
 std::string error_of(const std::string& text) {
   try {
-    load_device_mapping(io::YamlFile::parse(text, "bad.yaml"), sim::sts_control_table());
+    load_device_mapping(io::YamlFile::parse(text, "bad.yaml"), scenes::sts_controls());
   } catch (const io::DataError& e) {
     return e.what();
   }
@@ -230,7 +231,7 @@ TEST(DeviceMapping, BadMappingsNameFileLineAndField) {
   // an axis index beyond the device is found when the device is: named by file, line and field
   const DeviceMapping m = load_device_mapping(
       io::YamlFile::parse(head + "    - {control: hoist, device: s, axis: 5}\n", "bad.yaml"),
-      sim::sts_control_table());
+      scenes::sts_controls());
   EXPECT_EQ(why_unfit(m, 0, 4, 12, 1),
             "bad.yaml:6: bindings.hoist: axis 5 is beyond device 's', which has 4");
   EXPECT_EQ(why_unfit(m, 0, 6, 12, 1), "");
@@ -271,7 +272,7 @@ TEST(DeviceMapping, AGameControllersInputsAreSdlsNames) {
   const std::string head =
       "mapping:\n  name: x\n  devices:\n    - {id: pad, game_controller: true}\n  bindings:\n";
   const auto load = [&](const std::string& bindings) {
-    return load_device_mapping(io::YamlFile::parse(head + bindings, "pad.yaml"), sim::sts_control_table());
+    return load_device_mapping(io::YamlFile::parse(head + bindings, "pad.yaml"), scenes::sts_controls());
   };
   const DeviceMapping m = load(
       "    - {control: hoist, device: pad, axis: righty, invert: true}\n"
@@ -288,7 +289,7 @@ TEST(DeviceMapping, AGameControllersInputsAreSdlsNames) {
   EXPECT_EQ(m.bindings[2].index, SDL_CONTROLLER_BUTTON_A);
   EXPECT_EQ(m.bindings[3].index, SDL_CONTROLLER_BUTTON_DPAD_UP);
   // the F1 list says it in a trainee's words
-  const std::string keys = key_list(m, sim::sts_control_table());
+  const std::string keys = key_list(m, scenes::sts_controls());
   EXPECT_NE(keys.find("pad right stick up/down"), std::string::npos) << keys;
   EXPECT_NE(keys.find("pad A"), std::string::npos) << keys;
   EXPECT_NE(keys.find("pad d-pad up"), std::string::npos) << keys;
@@ -351,19 +352,19 @@ TEST(DeviceMapping, ControllerMappingLinesAreCheckedAsSdlReadsThem) {
   const DeviceMapping m =
       load_device_mapping(write("good.yaml", head + "  controller_mappings:\n    - \"" + guid +
                                                  ",Other pad,a:b3\"\n  controller_db: pads.txt\n"),
-                          sim::sts_control_table());
+                          scenes::sts_controls());
   ASSERT_EQ(m.controller_mappings.size(), 2u);  // the Mac line is for another platform
   EXPECT_EQ(m.controller_mappings[0].where, (folder / "good.yaml").string() + ":8");
   EXPECT_EQ(m.controller_mappings[1].text, guid + ",Acme pad,a:b0,leftx:a0,platform:Linux,");
   EXPECT_EQ(m.controller_mappings[1].where, (folder / "pads.txt").string() + ":3");
   // written back by `harboursim devices`, they read the same
-  EXPECT_EQ(load_device_mapping(io::YamlFile::parse(device_mapping_text(m), "written.yaml"),
-                                sim::sts_control_table())
-                .controller_mappings.size(),
-            2u);
+  EXPECT_EQ(
+      load_device_mapping(io::YamlFile::parse(device_mapping_text(m), "written.yaml"), scenes::sts_controls())
+          .controller_mappings.size(),
+      2u);
   const auto error = [&](const std::string& name, const std::string& text) {
     try {
-      load_device_mapping(write(name, text), sim::sts_control_table());
+      load_device_mapping(write(name, text), scenes::sts_controls());
     } catch (const io::DataError& e) {
       return std::string(e.what());
     }

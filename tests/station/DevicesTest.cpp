@@ -318,7 +318,7 @@ TEST(Devices, APadIsReadThroughTheMappingFilesOwnLineAndOneLackingAnInputIsUnfit
                          "  controller_mappings:\n"
                          "    - \""
                       << guid << ",Odd pad,a:b7,back:b4,lefty:a2,leftx:a3,dpup:h0.1,platform:Linux,\"\n";
-  const sim::ControlTable table = sim::sts_control_table();
+  const sim::ControlTable table = scenes::sts_controls();
   const auto at = [&](const char* label) { return static_cast<std::size_t>(table.find(label)); };
   {
     DeviceInput input(table, load_device_mapping(file, table));

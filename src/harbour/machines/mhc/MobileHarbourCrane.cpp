@@ -64,23 +64,6 @@ constexpr const char* kMhcIndicators[] = {
 
 }  // namespace
 
-ControlTable mhc_control_table() {
-  using K = ControlKind;
-  const auto axis = [](const char* label, const char* meaning) {
-    return ControlSpec{label, K::kAxis, -1.0, 1.0, {}, 0.0, 0.0, meaning};
-  };
-  const auto button = [](const char* label, const char* meaning) {
-    return ControlSpec{label, K::kButton, 0.0, 1.0, {}, 0.0, 0.0, meaning};
-  };
-  return ControlTable(
-      {axis("slew", "slewing, + turns anticlockwise seen from above"),
-       axis("luff", "boom luffing, + raises the boom (less radius)"),
-       axis("hoist", "hoist, both winches, + raises"),
-       axis("grab", "grab, the closing winch against the holding winch, + closes"),
-       button("sling", "the slinger slings the load under the hook on, or off (hook operation)"),
-       button("emergency_stop", "every drive stops, the brakes set"), button("horn", "warning horn")});
-}
-
 PadForces pad_forces(double down_n, const core::Vec3& moment_nm, double a_m, double b_m, double yaw_rad) {
   // pads push up F_i at p_i: sum F_i = down, sum F_i y_i = -M_x, sum F_i x_i = M_y; the plane share
   // F_i = down/4 + x_i M_y / (4 a^2) - y_i M_x / (4 b^2) in the pads' frame

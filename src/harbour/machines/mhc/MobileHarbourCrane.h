@@ -20,10 +20,6 @@ namespace harbour::sim {
 
 const MachineType& mhc_machine_type();  ///< machines/mhc/Type.cpp
 
-/// The MHC cab's controls as shipped (data/machines/mhc.yaml declares the same): slew, luff, hoist and grab
-/// levers, the slinger's call (hook operation), emergency stop and horn.
-ControlTable mhc_control_table();
-
 /// One point of the load-moment limiter's capacity chart: what may hang at a radius.
 struct CapacityPoint {
   double radius_m = 0.0;
@@ -88,7 +84,7 @@ struct MhcSettings {
   core::Vec3 cab_position_m{1.5, -2.5, 24.0};  ///< [m] house frame
   core::Vec3 eye_m{0.3, 0.0, 0.6};             ///< [m] cab frame (x along the house's x)
   CabSight sight{0.0, -0.35, 0.9};             ///< out along the boom and down to the grab
-  ControlTable controls = mhc_control_table();
+  ControlTable controls;                       ///< the cab's controls, by label (its machine file's)
 };
 
 /// Where the MHC stands and how it starts.

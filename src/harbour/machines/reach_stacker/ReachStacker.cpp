@@ -51,27 +51,6 @@ void drive_slider(physics::PhysicsWorld& world, int slider, const DriveOutput& o
 
 }  // namespace
 
-ControlTable reach_stacker_control_table() {
-  using K = ControlKind;
-  const auto axis = [](const char* label, const char* meaning) {
-    return ControlSpec{label, K::kAxis, -1.0, 1.0, {}, 0.0, 0.0, meaning};
-  };
-  const auto button = [](const char* label, const char* meaning) {
-    return ControlSpec{label, K::kButton, 0.0, 1.0, {}, 0.0, 0.0, meaning};
-  };
-  std::vector<ControlSpec> controls = driving_controls();
-  for (ControlSpec& c : controls)
-    if (c.label == "emergency_stop") c.meaning = "full brakes, no drive, every hydraulic motion stops";
-  for (ControlSpec c :
-       {axis("boom", "boom lift, + raises"), axis("telescope", "boom extension, + out"),
-        axis("rotate", "spreader rotation, + anticlockwise seen from above"),
-        axis("side_shift", "spreader side-shift, + to the left"), button("lock", "twistlocks lock"),
-        button("unlock", "twistlocks unlock"), button("spreader_20", "spreader to 20 ft"),
-        button("spreader_40", "spreader to 40 ft")})
-    controls.push_back(std::move(c));
-  return ControlTable(std::move(controls));
-}
-
 // Where the bodies stand at the start: the chassis settled on its tyres under the boom's and spreader's
 // weights (the small-angle statics), the boom at its angle on it, the rotator and spreader hanging plumb
 // under the head pin, square to the boom.

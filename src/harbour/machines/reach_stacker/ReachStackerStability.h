@@ -11,11 +11,6 @@
 
 namespace harbour::sim {
 
-/// The reach stacker's controls as shipped (data/machines/reach_stacker.yaml declares the same): the driving
-/// controls of a tractor, the boom's luffing and telescope levers, the spreader's rotation and side-shift,
-/// the twistlocks and the spreader's 20/40 ft settings.
-ControlTable reach_stacker_control_table();
-
 /// A reach stacker (settings, from data/machines/reach_stacker.yaml): its masses and geometry for its
 /// stability, its boom, spreader and drives. Frame: the chassis body's centre of mass (chassis and
 /// counterweight, without boom and spreader), x forward, z up; the drive axle at the front, the steered axle
@@ -53,7 +48,7 @@ struct ReachStackerSettings {
   core::Vec3 cab_position_m{1.5, 0.0, 1.0};  ///< the cab's floor (chassis frame)
   core::Vec3 eye_m{0.0, 0.0, 1.2};
   CabSight sight;
-  ControlTable controls = reach_stacker_control_table();
+  ControlTable controls;  ///< the cab's controls, by label (its machine file's)
 };
 
 /// The front (drive) axle's x on the chassis: the line the machine tips forward over.

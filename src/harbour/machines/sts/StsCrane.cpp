@@ -14,29 +14,6 @@
 
 namespace harbour::sim {
 
-ControlTable sts_control_table() {
-  using K = ControlKind;
-  const auto axis = [](const char* label, const char* meaning) {
-    return ControlSpec{label, K::kAxis, -1.0, 1.0, {}, 0.0, 0.0, meaning};
-  };
-  const auto button = [](const char* label, const char* meaning) {
-    return ControlSpec{label, K::kButton, 0.0, 1.0, {}, 0.0, 0.0, meaning};
-  };
-  const auto flipper = [](const char* label, const char* meaning) {
-    return ControlSpec{label, K::kSwitch, 0.0, 1.0, {"up", "down"}, 0.0, 0.0, meaning};
-  };
-  return ControlTable(
-      {axis("gantry", "gantry travel along the quay, + towards +y"),
-       axis("trolley", "trolley travel, + waterside"), axis("hoist", "hoist, + raises"),
-       axis("boom", "boom luffing, + raises"), button("lock", "twistlocks lock"),
-       button("unlock", "twistlocks unlock"),
-       button("emergency_stop", "every drive stops on its emergency ramp"), button("horn", "warning horn"),
-       button("spreader_20", "spreader to 20 ft"), button("spreader_40", "spreader to 40 ft"),
-       button("spreader_45", "spreader to 45 ft"), flipper("flipper_1", "flipper of corner 1"),
-       flipper("flipper_2", "flipper of corner 2"), flipper("flipper_3", "flipper of corner 3"),
-       flipper("flipper_4", "flipper of corner 4")});
-}
-
 StsControlSlots::StsControlSlots(const ControlTable& t)
     : gantry(t.slot("gantry", ControlKind::kAxis)),
       trolley(t.slot("trolley", ControlKind::kAxis)),

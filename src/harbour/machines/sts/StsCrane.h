@@ -28,10 +28,6 @@ struct BoomSettings {
                                    ///< and cannot pass it while the boom is not down
 };
 
-/// The STS cab's controls as shipped (data/machines/sts.yaml declares the same): gantry, trolley, hoist and
-/// boom levers, lock/unlock, emergency stop, horn, the spreader size buttons and four flipper switches.
-ControlTable sts_control_table();
-
 /// A ship-to-shore crane (settings, from data/machines/sts.yaml). Frames: the gantry travels along world y on
 /// the quay rails; the trolley along the gantry's x (waterside +x); the hoist reeving's bodies are
 /// [gantry, trolley, headblock].
@@ -48,7 +44,7 @@ struct StsCraneSettings {
   BoomSettings boom;
   TwistlockSettings twistlocks;
   cable::ReevingSettings hoist;
-  ControlTable controls = sts_control_table();  ///< the cab's controls, by label
+  ControlTable controls;  ///< the cab's controls, by label (its machine file's)
   /// The operator's cab hangs under the trolley: its centre in the trolley's frame [m], and the design eye
   /// point in the cab's frame (x waterside, the way the operator faces; z up) [m].
   core::Vec3 cab_position_m{3.0, 0.0, -3.5};

@@ -29,12 +29,6 @@ physics::BodyId add_body(physics::PhysicsWorld& world, double mass_kg, const cor
 
 }  // namespace
 
-ControlTable tractor_control_table() {
-  std::vector<ControlSpec> controls = driving_controls();
-  controls.push_back({"couple", ControlKind::kButton, 0.0, 1.0, {}, 0.0, 0.0, "couple or drop the trailer"});
-  return ControlTable(std::move(controls));
-}
-
 // Where the tractor and its trailer stand at the start: settled on their tyres, the trailer's front on the
 // plate (the small-angle statics of both bodies on their springs, solved in turn until they agree).
 TerminalTractor::StartPoses TerminalTractor::start_poses(const TractorSettings& s,

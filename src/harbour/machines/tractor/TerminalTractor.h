@@ -18,10 +18,6 @@ namespace harbour::sim {
 
 const MachineType& tractor_machine_type();  ///< machines/tractor/Type.cpp
 
-/// The terminal tractor's controls as shipped (data/machines/tractor.yaml declares the same): steering wheel,
-/// accelerator and brake pedals, the direction selector, horn and emergency stop.
-ControlTable tractor_control_table();
-
 /// A trailer the tractor tows (settings, from a data/trailers file): a roll trailer (mafi) on the gooseneck
 /// or a semi-trailer on the fifth wheel. Its front rests on the coupling's plate, or on its legs when
 /// dropped; its rear on its own axles. Frame: its deck's centre, x forward.
@@ -69,7 +65,7 @@ struct TractorSettings {
   core::Vec3 hitch_m{-1.45, 0.0, 0.7};  ///< [m] the coupling's plate, up (chassis frame)
   FifthWheelSettings fifth_wheel;
   double jackknife_angle_rad = 1.4;  ///< the hitch angle counted as a jack-knife
-  ControlTable controls = tractor_control_table();
+  ControlTable controls;             ///< the cab's controls, by label (its machine file's)
 };
 
 /// Where the tractor stands.
