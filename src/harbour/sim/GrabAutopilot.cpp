@@ -13,7 +13,6 @@
 namespace harbour::sim {
 namespace {
 
-constexpr std::int64_t kDecisionSteps = 20;  // 50 Hz
 constexpr double kG = core::kStandardGravity;
 constexpr double kCoamingClearance_m = 2.5;  // grab bottom over the coaming top while it slews
 constexpr double kDischargeHeight_m = 4.0;   // grab bottom over the floor it drops onto when it opens (at 3 m
@@ -103,22 +102,10 @@ const char* GrabAutopilot::activity() const {
   return "";
 }
 
-Controls GrabAutopilot::next(const Simulation& simulation) {
-  if (simulation.steps() % kDecisionSteps != 0 && decided_) return last_;
-  const auto* crane = dynamic_cast<const MobileHarbourCrane*>(&simulation.machine());
-  if (!crane || !simulation.bulk() || simulation.bulk_grab() < 0)
-    throw std::logic_error("the grab autopilot's exercise runs on another machine");
-  const Controls decided = decide(simulation, *crane);
-  before_last_ = std::exchange(last_, decided);
-  decided_ = true;
-  return last_;
-}
-
 void GrabAutopilot::resume(const Simulation& simulation, int /*moves_done*/, const Controls& levers) {
   phase_ = simulation.carrying() ? Phase::kHoist : Phase::kToDig;
   phase_start_s_ = simulation.time_s();
-  decided_ = false;  // its filters start again from what it sees
-  last_ = before_last_ = levers;
+  take_levers(levers);  // its filters start again from what it sees
 }
 
 core::Vec3 GrabAutopilot::dig_spot(const Simulation& simulation) const {
@@ -179,9 +166,9 @@ Controls GrabAutopilot::decide(const Simulation& simulation, const MobileHarbour
     phase_start_s_ = now;
     if (p == Phase::kToDig) choose();
   };
-  if (!decided_) choose();
+  if (first_decision()) choose();
   const double decision_s = kDecisionSteps * Simulation::kStep_s;
-  steering_.observe(crane, decision_s, !decided_);
+  steering_.observe(crane, decision_s, first_decision());
   const bulk::BulkWorld& bulk = *simulation.bulk();
   const double load_m3 = bulk.grab(simulation.bulk_grab()).load_m3;
   const double bottom = crane.attachment_bottom_z_m();
@@ -290,16 +277,17 @@ Controls GrabAutopilot::decide(const Simulation& simulation, const MobileHarbour
       const bool over = steer(target_of(rest_spot_m_), 0.5, slew, luff);
       reached_rest_spot_ = reached_rest_spot_ || over;
       if (!reached_rest_spot_)
-        return hand_levers(simulation.control_table(), last_, before_last_, decision_s,
+        return hand_levers(simulation.control_table(), last_decision(), decision_before_last(), decision_s,
                            {{"slew", slew}, {"luff", luff}, {"hoist", hold_height(travel_z)}});
-      return stop_after_hoist_fault(simulation.control_table(), crane, last_, before_last_, decision_s,
-                                    empty_kg, surface_z(bulk, rest_spot_m_), slew, luff);
+      return stop_after_hoist_fault(simulation.control_table(), crane, last_decision(),
+                                    decision_before_last(), decision_s, empty_kg,
+                                    surface_z(bulk, rest_spot_m_), slew, luff);
     }
     case Phase::kDone:
       hoist = hold_height(travel_z);
       break;
   }
-  return hand_levers(simulation.control_table(), last_, before_last_, decision_s,
+  return hand_levers(simulation.control_table(), last_decision(), decision_before_last(), decision_s,
                      {{"slew", slew}, {"luff", luff}, {"hoist", hoist}, {"grab", grab}});
 }
 

@@ -6,12 +6,10 @@
 
 #include "harbour/core/Vec3.h"
 #include "harbour/sim/BoomSteering.h"
+#include "harbour/sim/DecidingPilot.h"
 #include "harbour/sim/Evaluation.h"
-#include "harbour/sim/Pilot.h"
 
 namespace harbour::sim {
-
-class MobileHarbourCrane;
 
 /// Deliberate faults for a scripted bad grab operator (tests of the evaluation).
 struct GrabOperatorDefects {
@@ -31,7 +29,7 @@ struct GrabOperatorDefects {
 /// lights it follows the procedure: a loaded grab is discharged under power where it was going (a grab still
 /// on the material opens there), no bite is taken again, the empty grab is set down (beside the hopper, which
 /// drains, or on the material under it) and the crane is stopped with the emergency stop.
-class GrabAutopilot final : public Pilot {
+class GrabAutopilot final : public DecidingPilot<MobileHarbourCrane> {
  public:
   /// Why it cannot drive `exercise` ("" when it can): a delivery goal on the MHC with a bulk carrier's open
   /// hold, or a trim goal.
@@ -39,8 +37,6 @@ class GrabAutopilot final : public Pilot {
   /// Throws std::invalid_argument with why_cannot_drive() when it cannot.
   explicit GrabAutopilot(const ExerciseSettings& exercise, GrabOperatorDefects defects = {});
 
-  /// The controls for the next step (decided 50 times a second, held in between).
-  Controls next(const Simulation& simulation) override;
   /// What it is doing now: to dig, lower, shut, hoist, to drop (the hopper, the pile's low spot), discharge,
   /// fault stop, done.
   const char* activity() const override;
@@ -50,7 +46,10 @@ class GrabAutopilot final : public Pilot {
 
  private:
   enum class Phase { kToDig, kLower, kShut, kHoist, kToDrop, kDischarge, kOpenAfterFault, kFaultStop, kDone };
-  Controls decide(const Simulation& simulation, const MobileHarbourCrane& crane);
+  Controls decide(const Simulation& simulation, const MobileHarbourCrane& crane) override;
+  bool drives(const Simulation& simulation, const MobileHarbourCrane&) const override {
+    return simulation.bulk() && simulation.bulk_grab() >= 0;
+  }
   core::Vec3 dig_spot(const Simulation& simulation) const;
   void choose_dig_spot(const Simulation& simulation);
   /// Trimming a pile: the dig and drop spots and the travel height from the pile as it stands now.
@@ -69,9 +68,6 @@ class GrabAutopilot final : public Pilot {
   double travel_z_m_ = 0.0;         // trimming: the grab's bottom height while it travels
   core::Vec3 rest_spot_m_;          // after a hoist brake fault: where the empty grab is set down
   bool reached_rest_spot_ = false;  // ... over it
-  Controls last_{};
-  Controls before_last_{};  // the decision before last_: how fast each lever was moving
-  bool decided_ = false;
 };
 
 }  // namespace harbour::sim

@@ -11,7 +11,6 @@
 namespace harbour::sim {
 namespace {
 
-constexpr std::int64_t kDecisionSteps = 20;  // 50 Hz
 constexpr double kG = core::kStandardGravity;
 constexpr double kClearance_m = 3.0;      // the hook over the piece's top, the piece's bottom over the quay
 constexpr double kSlingingGap_m = 1.0;    // the hook's bottom over the piece's top while it is slung
@@ -62,25 +61,13 @@ const char* HookAutopilot::activity() const {
   return "";
 }
 
-Controls HookAutopilot::next(const Simulation& simulation) {
-  if (simulation.steps() % kDecisionSteps != 0 && decided_) return last_;
-  const auto* crane = dynamic_cast<const MobileHarbourCrane*>(&simulation.machine());
-  if (!crane || !crane->on_hook())
-    throw std::logic_error("the hook autopilot's exercise runs on another machine");
-  const Controls decided = decide(simulation, *crane);
-  before_last_ = std::exchange(last_, decided);
-  decided_ = true;
-  return last_;
-}
-
 void HookAutopilot::resume(const Simulation& simulation, int moves_done, const Controls& levers) {
   move_ = static_cast<std::size_t>(std::max(moves_done, 0));
   phase_ = move_ >= exercise_.moves.size()    ? Phase::kDone
            : simulation.machine().held_item() ? Phase::kLift
                                               : Phase::kToPiece;
   phase_start_s_ = simulation.time_s();
-  decided_ = false;  // its filters start again from what it sees
-  last_ = before_last_ = levers;
+  take_levers(levers);  // its filters start again from what it sees
 }
 
 std::size_t HookAutopilot::piece_index(const Simulation& simulation) const {
@@ -93,7 +80,7 @@ std::size_t HookAutopilot::piece_index(const Simulation& simulation) const {
 Controls HookAutopilot::decide(const Simulation& simulation, const MobileHarbourCrane& crane) {
   const double now = simulation.time_s();
   const double decision_s = kDecisionSteps * Simulation::kStep_s;
-  steering_.observe(crane, decision_s, !decided_);
+  steering_.observe(crane, decision_s, first_decision());
   double slew = 0.0, luff = 0.0, hoist = 0.0;
   bool call_slinger = false;
   const auto enter = [&](Phase p) {
@@ -101,14 +88,15 @@ Controls HookAutopilot::decide(const Simulation& simulation, const MobileHarbour
     phase_start_s_ = now;
   };
   if (phase_ == Phase::kDone) {
-    return hand_levers(simulation.control_table(), last_, before_last_, decision_s, {});
+    return hand_levers(simulation.control_table(), last_decision(), decision_before_last(), decision_s, {});
   }
   if (phase_ == Phase::kFaultStop) {
     // the hook rid of its piece bounces on its ropes: it is let calm before it goes down
     if (now - phase_start_s_ < kSettleAfterUnsling_s)
-      return hand_levers(simulation.control_table(), last_, before_last_, decision_s, {{"hoist", 0.0}});
-    return stop_after_hoist_fault(simulation.control_table(), crane, last_, before_last_, decision_s,
-                                  crane.settings().hook->block_mass_kg, rest_on_z_m_);
+      return hand_levers(simulation.control_table(), last_decision(), decision_before_last(), decision_s,
+                         {{"hoist", 0.0}});
+    return stop_after_hoist_fault(simulation.control_table(), crane, last_decision(), decision_before_last(),
+                                  decision_s, crane.settings().hook->block_mass_kg, rest_on_z_m_);
   }
   const std::size_t piece = piece_index(simulation);
   const ContainerPlacement& placed = simulation.scenario().containers[piece];
@@ -133,11 +121,11 @@ Controls HookAutopilot::decide(const Simulation& simulation, const MobileHarbour
   rest_on_z_m_ = over_piece || phase_ != Phase::kToPiece ? top : 0.0;
   if (fault && !held && (phase_ == Phase::kToPiece || phase_ == Phase::kLower || phase_ == Phase::kSling)) {
     enter(Phase::kFaultStop);
-    return stop_after_hoist_fault(simulation.control_table(), crane, last_, before_last_, decision_s,
-                                  crane.settings().hook->block_mass_kg, rest_on_z_m_);
+    return stop_after_hoist_fault(simulation.control_table(), crane, last_decision(), decision_before_last(),
+                                  decision_s, crane.settings().hook->block_mass_kg, rest_on_z_m_);
   }
   const int hoist_slot = simulation.control_table().find("hoist");
-  const double last_hoist = last_.value[static_cast<std::size_t>(hoist_slot)];
+  const double last_hoist = last_decision().value[static_cast<std::size_t>(hoist_slot)];
 
   switch (phase_) {
     case Phase::kToPiece: {
@@ -198,7 +186,7 @@ Controls HookAutopilot::decide(const Simulation& simulation, const MobileHarbour
   // moved within a period of that sets it bouncing
   hoist =
       std::clamp(hoist, last_hoist - kEaseRate_per_s * decision_s, last_hoist + kEaseRate_per_s * decision_s);
-  Controls out = hand_levers(simulation.control_table(), last_, before_last_, decision_s,
+  Controls out = hand_levers(simulation.control_table(), last_decision(), decision_before_last(), decision_s,
                              {{"slew", slew}, {"luff", luff}, {"hoist", hoist}});
   if (const int sling = simulation.control_table().find("sling"); sling >= 0)
     out.value[static_cast<std::size_t>(sling)] = call_slinger ? 1.0 : 0.0;

@@ -3,12 +3,10 @@
 #include <string>
 
 #include "harbour/sim/BoomSteering.h"
+#include "harbour/sim/DecidingPilot.h"
 #include "harbour/sim/Evaluation.h"
-#include "harbour/sim/Pilot.h"
 
 namespace harbour::sim {
-
-class MobileHarbourCrane;
 
 /// A scripted hook operator for general-cargo moves on a slewing, luffing crane: hoists the hook to travel
 /// height, brings it over the piece's centre (the head damping the hook's swing), lowers it to just above the
@@ -17,15 +15,13 @@ class MobileHarbourCrane;
 /// slinger to unsling it once it rests, and goes on to the next move. When the hoist brake fault lamp lights
 /// it follows the procedure: a slung piece is set down on its target under power and unslung, nothing is
 /// lifted again, the empty hook is lowered until it rests and the crane is stopped with the emergency stop.
-class HookAutopilot final : public Pilot {
+class HookAutopilot final : public DecidingPilot<MobileHarbourCrane> {
  public:
   /// Why it cannot drive `exercise` ("" when it can): moves for the MHC on its hook.
   static std::string why_cannot_drive(const ExerciseSettings& exercise);
   /// Throws std::invalid_argument with why_cannot_drive() when it cannot.
   explicit HookAutopilot(const ExerciseSettings& exercise);
 
-  /// The controls for the next step (decided 50 times a second, held in between).
-  Controls next(const Simulation& simulation) override;
   /// What it is doing now: to piece, lower, sling, lift, to target, set down, unsling, fault stop, done.
   const char* activity() const override;
   /// Takes over a running exercise: carries a slung piece to its target, or goes to the next piece.
@@ -33,7 +29,8 @@ class HookAutopilot final : public Pilot {
 
  private:
   enum class Phase { kToPiece, kLower, kSling, kLift, kToTarget, kSetDown, kUnsling, kFaultStop, kDone };
-  Controls decide(const Simulation& simulation, const MobileHarbourCrane& crane);
+  Controls decide(const Simulation& simulation, const MobileHarbourCrane& crane) override;
+  bool drives(const Simulation&, const MobileHarbourCrane& crane) const override { return crane.on_hook(); }
   /// The scenario's index of the move's piece.
   std::size_t piece_index(const Simulation& simulation) const;
 
@@ -44,9 +41,6 @@ class HookAutopilot final : public Pilot {
   double resting_since_s_ = 0.0;  // setting down: since when the piece rests
   double rest_on_z_m_ = 0.0;      // after a hoist brake fault: the top of what the empty hook is set down on
   BoomSteering steering_;
-  Controls last_{};
-  Controls before_last_{};  // the decision before last_: how fast each lever was moving
-  bool decided_ = false;
 };
 
 }  // namespace harbour::sim

@@ -11,9 +11,8 @@
 namespace harbour::sim {
 namespace {
 
-constexpr std::int64_t kDecisionSteps = 20;  // 50 Hz
-constexpr double kCruise_mps = 2.0;          // laden or not, in a stacking lane
-constexpr double kCorner_mps = 1.0;          // with the wheel turned kCornerSteer or more
+constexpr double kCruise_mps = 2.0;  // laden or not, in a stacking lane
+constexpr double kCorner_mps = 1.0;  // with the wheel turned kCornerSteer or more
 constexpr double kCornerSteer = 0.3;
 constexpr double kLiftOff_m = 0.3;     // the box lifted this far off what it stood on before it is carried
 constexpr double kTruckGone_m = 20.0;  // a truck this far from its stop has left the way clear
@@ -114,21 +113,11 @@ const char* ReachStackerAutopilot::activity() const {
   return kNames[static_cast<int>(phase_)];
 }
 
-Controls ReachStackerAutopilot::next(const Simulation& simulation) {
-  if (simulation.steps() % kDecisionSteps != 0 && decided_) return last_;
-  const auto* machine = dynamic_cast<const ReachStacker*>(&simulation.machine());
-  if (!machine) throw std::logic_error("the reach stacker autopilot's exercise runs on another machine");
-  last_ = decide(simulation, *machine);
-  decided_ = true;
-  return last_;
-}
-
 void ReachStackerAutopilot::resume(const Simulation& simulation, int moves_done, const Controls& levers) {
   const auto* machine = dynamic_cast<const ReachStacker*>(&simulation.machine());
   phase_ = moves_done >= 1 ? Phase::kDone : machine && machine->held_item() ? Phase::kLift : Phase::kApproach;
   phase_start_s_ = simulation.time_s();
-  decided_ = false;
-  last_ = levers;
+  take_levers(levers);
 }
 
 bool ReachStackerAutopilot::way_clear(const Simulation& simulation) const {
@@ -149,7 +138,7 @@ Controls ReachStackerAutopilot::decide(const Simulation& simulation, const Reach
   // the pedals move as a foot moves them, from where they were
   const auto press = [&](const char* label, double value) {
     const auto slot = static_cast<std::size_t>(table.find(label));
-    const double was = last_.value[slot];
+    const double was = last_decision().value[slot];
     const double most = kPedalRate_per_s * static_cast<double>(kDecisionSteps) * Simulation::kStep_s;
     c.value[slot] = was + std::clamp(value - was, -most, most);
   };

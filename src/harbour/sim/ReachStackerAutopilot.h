@@ -3,12 +3,10 @@
 #include <string>
 #include <vector>
 
+#include "harbour/sim/DecidingPilot.h"
 #include "harbour/sim/Evaluation.h"
-#include "harbour/sim/Pilot.h"
 
 namespace harbour::sim {
-
-class ReachStacker;
 
 /// A scripted reach stacker driver for one box's move along its lane: drives up to the box ahead, brings
 /// the spreader over it, lands, locks and lifts it, carries it low towards its target further along the
@@ -16,7 +14,7 @@ class ReachStacker;
 /// target lies within reach, reaches out over it, sets it down, unlocks, and lifts the spreader clear. The
 /// boom's head is steered along straight lines (the lift and extension levers from the head's wanted velocity
 /// through the boom's geometry); the side-shift and rotation square the spreader on the box.
-class ReachStackerAutopilot final : public Pilot {
+class ReachStackerAutopilot final : public DecidingPilot<ReachStacker> {
  public:
   /// Why it cannot drive `exercise` ("" when it can): a reach stacker with one move whose box lies ahead of
   /// it on its line and whose target lies further along that line.
@@ -24,8 +22,6 @@ class ReachStackerAutopilot final : public Pilot {
   /// Throws std::invalid_argument with why_cannot_drive() when it cannot.
   explicit ReachStackerAutopilot(const ExerciseSettings& exercise, DriverDefects defects = {});
 
-  /// The controls for the next step (decided 50 times a second, held in between).
-  Controls next(const Simulation& simulation) override;
   /// What it is doing now: approach, pick, lock, lift, carry, raise, creep, reach, set, unlock, clear, done.
   const char* activity() const override;
   /// Takes over a running exercise from where the machine stands and what it holds.
@@ -46,7 +42,7 @@ class ReachStackerAutopilot final : public Pilot {
     kClear,
     kDone
   };
-  Controls decide(const Simulation& simulation, const ReachStacker& machine);
+  Controls decide(const Simulation& simulation, const ReachStacker& machine) override;
   /// No truck stands in or near its lane's stop (the one it took the box from has driven off).
   bool way_clear(const Simulation& simulation) const;
 
@@ -58,8 +54,6 @@ class ReachStackerAutopilot final : public Pilot {
                                           // route, from its last point to the target once it carries
   std::vector<core::Vec3> carry_path_;    // the route from where it picked the box (empty: none)
   std::size_t box_index_ = 0;             // the moved box among the scenario's containers
-  Controls last_{};
-  bool decided_ = false;
 };
 
 }  // namespace harbour::sim

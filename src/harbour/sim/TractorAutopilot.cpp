@@ -10,9 +10,8 @@
 namespace harbour::sim {
 namespace {
 
-constexpr std::int64_t kDecisionSteps = 20;  // 50 Hz
-constexpr double kCruise_mps = 3.0;          // 10.8 km/h
-constexpr double kCorner_mps = 2.0;          // with the wheel turned more than kCornerSteer
+constexpr double kCruise_mps = 3.0;  // 10.8 km/h
+constexpr double kCorner_mps = 2.0;  // with the wheel turned more than kCornerSteer
 constexpr double kCornerSteer = 0.3;
 constexpr double kStopping_mps2 = 0.3;        // the deceleration it plans its stop with
 constexpr double kLookahead_m = 5.0;          // at least; 1.5 s of travel at speed
@@ -72,23 +71,12 @@ const char* TractorAutopilot::activity() const {
   return "";
 }
 
-Controls TractorAutopilot::next(const Simulation& simulation) {
-  if (simulation.steps() % kDecisionSteps != 0 && decided_) return last_;
-  const auto* tractor = dynamic_cast<const TerminalTractor*>(&simulation.machine());
-  if (!tractor) throw std::logic_error("the tractor autopilot's exercise runs on another machine");
-  if (!planned_) plan(simulation, *tractor), speed_integral_ = 0.0;
-  last_ = decide(simulation, *tractor);
-  decided_ = true;
-  return last_;
-}
-
 void TractorAutopilot::resume(const Simulation& simulation, int moves_done, const Controls& levers) {
   phase_ = moves_done >= 1 ? Phase::kDone : Phase::kDrive;
   to_load_stop_ = exercise_.load_stop && !simulation.machine().load();
   phase_start_s_ = simulation.time_s();
   planned_ = false;
-  decided_ = false;
-  last_ = levers;
+  take_levers(levers);
 }
 
 double TractorAutopilot::trailer_axles_x_m() const {
@@ -173,6 +161,7 @@ double TractorAutopilot::reversing_steer(const Simulation& simulation, const Ter
 }
 
 Controls TractorAutopilot::decide(const Simulation& simulation, const TerminalTractor& tractor) {
+  if (!planned_) plan(simulation, tractor), speed_integral_ = 0.0;
   const ControlTable& table = simulation.control_table();
   Controls c = table.neutral();
   const auto set = [&](const char* label, double value) {
@@ -182,7 +171,7 @@ Controls TractorAutopilot::decide(const Simulation& simulation, const TerminalTr
   const double decision_s = static_cast<double>(kDecisionSteps) * Simulation::kStep_s;
   const auto press = [&](const char* label, double value) {
     const auto slot = static_cast<std::size_t>(table.find(label));
-    const double was = last_.value[slot], most = kPedalRate_per_s * decision_s;
+    const double was = last_decision().value[slot], most = kPedalRate_per_s * decision_s;
     c.value[slot] = was + std::clamp(value - was, -most, most);
   };
   const double now = simulation.time_s();

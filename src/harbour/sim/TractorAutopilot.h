@@ -3,12 +3,10 @@
 #include <string>
 #include <vector>
 
+#include "harbour/sim/DecidingPilot.h"
 #include "harbour/sim/Evaluation.h"
-#include "harbour/sim/Pilot.h"
 
 namespace harbour::sim {
-
-class TerminalTractor;
 
 /// A scripted tractor driver for a trailer's parking move: drives on from where it stands to the line the
 /// trailer is to stand on (through the corner where its heading's line meets that line), steering by pure
@@ -19,15 +17,13 @@ class TerminalTractor;
 /// holds that hitch angle (reversing, the hitch angle runs away by itself; the steering leads it back). With
 /// a load stop it first drives so onto the stop, waits there until a team's crane has set its box on the
 /// trailer, then drives on to its move's target.
-class TractorAutopilot final : public Pilot {
+class TractorAutopilot final : public DecidingPilot<TerminalTractor> {
  public:
   /// Why it cannot drive `exercise` ("" when it can): a move of the tractor's trailer.
   static std::string why_cannot_drive(const ExerciseSettings& exercise);
   /// Throws std::invalid_argument with why_cannot_drive() when it cannot.
   explicit TractorAutopilot(const ExerciseSettings& exercise, DriverDefects defects = {});
 
-  /// The controls for the next step (decided 50 times a second, held in between).
-  Controls next(const Simulation& simulation) override;
   /// What it is doing now: drive, stop, drop, done.
   const char* activity() const override;
   /// Takes over a running exercise: plans its path again from where the tractor stands.
@@ -42,7 +38,7 @@ class TractorAutopilot final : public Pilot {
     double heading_rad = 0.0;
   };
   Leg leg() const;
-  Controls decide(const Simulation& simulation, const TerminalTractor& tractor);
+  Controls decide(const Simulation& simulation, const TerminalTractor& tractor) override;
   void plan(const Simulation& simulation, const TerminalTractor& tractor);
   /// How far the trailer's centre still is from its target along the goal's heading [m].
   double remaining_m(const Simulation& simulation, const TerminalTractor& tractor) const;
@@ -61,8 +57,6 @@ class TractorAutopilot final : public Pilot {
   bool planned_ = false;
   double phase_start_s_ = 0.0;
   double speed_integral_ = 0.0;  // its throttle's integral part
-  Controls last_{};
-  bool decided_ = false;
 };
 
 }  // namespace harbour::sim

@@ -10,9 +10,8 @@
 namespace harbour::sim {
 namespace {
 
-constexpr std::int64_t kDecisionSteps = 20;  // 50 Hz
-constexpr double kCruise_mps = 3.0;          // along a row, laden or not
-constexpr double kCorner_mps = 1.2;          // with the wheel turned kCornerSteer or more
+constexpr double kCruise_mps = 3.0;  // along a row, laden or not
+constexpr double kCorner_mps = 1.2;  // with the wheel turned kCornerSteer or more
 constexpr double kCornerSteer = 0.3;
 constexpr double kCreep_mps = 0.25;       // the last metre to a stop
 constexpr double kInch_mps = 0.04;        // the slowest it moves to correct a stop
@@ -82,21 +81,11 @@ const char* StraddleCarrierAutopilot::activity() const {
   return kNames[static_cast<int>(phase_)];
 }
 
-Controls StraddleCarrierAutopilot::next(const Simulation& simulation) {
-  if (simulation.steps() % kDecisionSteps != 0 && decided_) return last_;
-  const auto* machine = dynamic_cast<const StraddleCarrier*>(&simulation.machine());
-  if (!machine) throw std::logic_error("the straddle carrier autopilot's exercise runs on another machine");
-  last_ = decide(simulation, *machine);
-  decided_ = true;
-  return last_;
-}
-
 void StraddleCarrierAutopilot::resume(const Simulation& simulation, int moves_done, const Controls& levers) {
   const auto* machine = dynamic_cast<const StraddleCarrier*>(&simulation.machine());
   phase_ = moves_done >= 1 ? Phase::kDone : machine && machine->held_item() ? Phase::kLift : Phase::kApproach;
   phase_start_s_ = simulation.time_s();
-  decided_ = false;
-  last_ = levers;
+  take_levers(levers);
 }
 
 Controls StraddleCarrierAutopilot::decide(const Simulation& simulation, const StraddleCarrier& m) {
@@ -107,7 +96,7 @@ Controls StraddleCarrierAutopilot::decide(const Simulation& simulation, const St
   };
   const auto press = [&](const char* label, double value) {  // a pedal moves as a foot moves it
     const auto slot = static_cast<std::size_t>(table.find(label));
-    const double was = last_.value[slot];
+    const double was = last_decision().value[slot];
     const double most = kPedalRate_per_s * static_cast<double>(kDecisionSteps) * Simulation::kStep_s;
     c.value[slot] = was + std::clamp(value - was, -most, most);
   };

@@ -3,19 +3,18 @@
 #include <string>
 #include <vector>
 
+#include "harbour/machines/straddle_carrier/StraddleCarrier.h"
+#include "harbour/sim/DecidingPilot.h"
 #include "harbour/sim/Evaluation.h"
-#include "harbour/sim/Pilot.h"
 
 namespace harbour::sim {
-
-class StraddleCarrier;
 
 /// A scripted straddle carrier driver for one box's move: drives along the row it straddles with the
 /// spreader over every stack on the way, stops with the spreader over the box, lowers it onto the box, locks,
 /// lifts the box clear of the stacks, drives on (along the row, or the exercise's route) to the target, sets
 /// the box down, unlocks and lifts the spreader clear. It steers by pure pursuit on its way and stops by the
 /// distance left along it (creeping the last metre, the swing caught by inching before it lands).
-class StraddleCarrierAutopilot final : public Pilot {
+class StraddleCarrierAutopilot final : public DecidingPilot<StraddleCarrier> {
  public:
   /// Why it cannot drive `exercise` ("" when it can): a straddle carrier with one move whose box lies on its
   /// line ahead of it, and whose target lies further along that line or at the end of the exercise's route.
@@ -23,8 +22,6 @@ class StraddleCarrierAutopilot final : public Pilot {
   /// Throws std::invalid_argument with why_cannot_drive() when it cannot.
   explicit StraddleCarrierAutopilot(const ExerciseSettings& exercise);
 
-  /// The controls for the next step (decided 50 times a second, held in between).
-  Controls next(const Simulation& simulation) override;
   /// What it is doing now: approach, land, lock, lift, carry, set, unlock, clear, done.
   const char* activity() const override;
   /// Takes over a running exercise from where the machine stands and what it holds.
@@ -32,15 +29,13 @@ class StraddleCarrierAutopilot final : public Pilot {
 
  private:
   enum class Phase { kApproach, kLand, kLock, kLift, kCarry, kSet, kUnlock, kClear, kDone };
-  Controls decide(const Simulation& simulation, const StraddleCarrier& machine);
+  Controls decide(const Simulation& simulation, const StraddleCarrier& machine) override;
 
   ExerciseSettings exercise_;
   Phase phase_ = Phase::kApproach;
   double phase_start_s_ = 0.0;
   std::vector<core::Vec3> path_;  // its way: along the row from where it started, the route, to the target
   std::size_t box_index_ = 0;     // the moved box among the scenario's containers
-  Controls last_{};
-  bool decided_ = false;
 };
 
 }  // namespace harbour::sim
