@@ -8,6 +8,8 @@
 #include <type_traits>
 #include <vector>
 
+#include "harbour/core/StateHash.h"
+
 namespace harbour::core {
 
 /// Raised when a saved state does not fit the simulation it is restored into (truncated, or from another
@@ -18,21 +20,21 @@ class StateError : public std::runtime_error {
 };
 
 /// Writes the exact bytes of state values (a keyframe). Values are written in the order the component's
-/// save_state lists them; restore_state reads them back in the same order.
+/// save_state lists them; restore_state reads them back in the same order. A writer made on a StateHash
+/// keeps nothing: it hashes the bytes (the state hash of exactly what save_state saves, allocating nothing).
 class StateWriter {
  public:
+  StateWriter() = default;
+  explicit StateWriter(StateHash& hash) : hash_(&hash) {}
+
   template <typename T>
   requires std::is_trivially_copyable_v<T>
-  void put(const T& v) {
-    const auto* p = reinterpret_cast<const std::uint8_t*>(&v);
-    bytes_.insert(bytes_.end(), p, p + sizeof v);
-  }
+  void put(const T& v) { append(&v, sizeof v); }
   template <typename T>
   requires std::is_trivially_copyable_v<T>
   void put(const std::vector<T>& values) {
     put(static_cast<std::uint64_t>(values.size()));
-    const auto* p = reinterpret_cast<const std::uint8_t*>(values.data());
-    bytes_.insert(bytes_.end(), p, p + values.size() * sizeof(T));
+    append(values.data(), values.size() * sizeof(T));
   }
   /// A tag that restore checks, so a state from another layout is refused instead of misread.
   void section(std::uint32_t tag) { put(tag); }
@@ -40,7 +42,18 @@ class StateWriter {
   std::vector<std::uint8_t> take() { return std::move(bytes_); }
 
  private:
+  void append(const void* data, std::size_t size) {
+    if (size == 0) return;  // an empty vector's data() may be null
+    if (hash_) {
+      hash_->add_bytes(data, size);
+      return;
+    }
+    const auto* p = static_cast<const std::uint8_t*>(data);
+    bytes_.insert(bytes_.end(), p, p + size);
+  }
+
   std::vector<std::uint8_t> bytes_;
+  StateHash* hash_ = nullptr;
 };
 
 /// Reads what a StateWriter wrote; throws StateError on truncation, a wrong section tag or a wrong count.

@@ -45,6 +45,9 @@ struct Recording {
   /// The ropes lost to bending hysteresis where they turned on their sheaves and drums (false: none, as in
   /// every run recorded without header flag bit 5; ScenarioSettings::sheaves_without_bending_loss).
   bool sheave_bending_loss = true;
+  /// Its checkpoints hash everything the machine saves (false: the machine's hand-picked figures, as in
+  /// every run recorded without header flag bit 6; ScenarioSettings::machine_hashed_by_hand).
+  bool machine_state_hashed = true;
   /// The labels of the controls the values are stored by (a replay reads them by label, whatever slots the
   /// machine's table gives them now).
   std::vector<std::string> control_labels;

@@ -638,7 +638,12 @@ std::uint64_t Simulation::state_hash() const {
   core::StateHash hash;
   hash.add(clock_.steps());
   hash.add(world_->state_hash());
-  machine_->hash_into(hash);
+  if (scenario_.machine_hashed_by_hand) {
+    machine_->hash_into(hash);
+  } else {
+    core::StateWriter hashing(hash);  // everything the machine saves, so nothing saved goes unchecked
+    machine_->save_state(hashing);
+  }
   if (bulk_) hash.add(bulk_->state_hash());
   hash.add(weather_.turbulence_mps());
   if (trucks_ && trucks_->team())

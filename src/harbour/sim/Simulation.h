@@ -145,6 +145,9 @@ struct ScenarioSettings {
   /// (cable::ReevingSettings::sheaves_without_bending_loss), as in every run recorded before it was
   /// modelled: their replays run so.
   bool sheaves_without_bending_loss = false;
+  /// The state hash takes the machine's hand-picked figures (Machine::hash_into), as in every run recorded
+  /// before it took everything the machine saves: their replays check their hashes so.
+  bool machine_hashed_by_hand = false;
 };
 
 /// The executive: a pure function of its inputs at a fixed 1 kHz step (no clocks, files or threads). The
