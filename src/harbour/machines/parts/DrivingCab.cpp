@@ -10,31 +10,6 @@ constexpr int kReverse = 0, kNeutral = 1;  // the direction selector's positions
 
 }  // namespace
 
-std::vector<ControlSpec> driving_controls() {
-  using K = ControlKind;
-  return {ControlSpec{"steer", K::kAxis, -1.0, 1.0, {}, 0.0, 0.0, "steering wheel, + turns left"},
-          ControlSpec{"throttle", K::kAxis, 0.0, 1.0, {}, 0.0, 0.0, "accelerator pedal"},
-          ControlSpec{"brake", K::kAxis, 0.0, 1.0, {}, 0.0, 1.0, "brake pedal"},
-          ControlSpec{"direction",
-                      K::kSwitch,
-                      0.0,
-                      2.0,
-                      {"reverse", "neutral", "forward"},
-                      1.0,
-                      1.0,
-                      "direction selector"},
-          ControlSpec{"parking_brake",
-                      K::kSwitch,
-                      0.0,
-                      1.0,
-                      {"released", "set"},
-                      0.0,
-                      1.0,
-                      "parking brake: spring brakes that hold the standing vehicle"},
-          ControlSpec{"emergency_stop", K::kButton, 0.0, 1.0, {}, 0.0, 0.0, "full brakes, no drive"},
-          ControlSpec{"horn", K::kButton, 0.0, 1.0, {}, 0.0, 0.0, "horn"}};
-}
-
 DrivingCab::DrivingCab(const ControlTable& table, double steer_rate_per_s)
     : steer_slot_(table.slot("steer", ControlKind::kAxis)),
       throttle_slot_(table.slot("throttle", ControlKind::kAxis)),

@@ -8,17 +8,14 @@
 
 namespace harbour::sim {
 
-/// The controls every driven vehicle's cab has, for its ControlTable: the steering wheel (+ turns left), the
-/// accelerator and brake pedals, the direction selector (reverse, neutral, forward), the parking brake
-/// (released, set), the emergency stop and the horn.
-std::vector<ControlSpec> driving_controls();
-
 /// A vehicle's driving controls at work: hydraulic steering that follows the wheel at its rate, the drive cut
 /// in neutral, the parking brake's switch passed on to the chassis, the emergency stop cutting the drive and
 /// braking fully. Shared by the driven machines.
 class DrivingCab {
  public:
-  /// `table` has driving_controls() among its own (throws std::invalid_argument naming one it lacks).
+  /// `table` has the driving controls every driven vehicle's cab has (its machine file declares them, checked
+  /// by io::require_driving_controls): steer, throttle, brake, direction, parking_brake, emergency_stop and
+  /// horn (throws std::invalid_argument naming one it lacks).
   DrivingCab(const ControlTable& table, double steer_rate_per_s);
 
   /// The chassis's command for one step of `dt_s` from controls already in range.
