@@ -84,7 +84,7 @@ void step_a_while(const harbour::sim::StsCraneSettings& crane) {
   in.hoist = -1.0;
   in.trolley = 1.0;
   for (int k = 0; k < 300; ++k)
-    simulation.step(simulation.sts().controls(in));
+    simulation.step(simulation.machine_as<harbour::sim::StsCrane>().controls(in));
 }
 
 // ... and an MHC file: 300 steps on the quay with every lever out

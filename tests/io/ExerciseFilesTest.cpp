@@ -15,6 +15,8 @@
 #include <yaml-cpp/yaml.h>
 
 #include "harbour/io/DataError.h"
+#include "harbour/machines/mhc/MobileHarbourCrane.h"
+#include "harbour/machines/tractor/TerminalTractor.h"
 #include "scenes/DataErrors.h"
 
 namespace harbour::io {

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <vector>
 
 #include "harbour/core/Units.h"
@@ -51,6 +52,17 @@ TEST(Autopilot, CompletesTheDischargeWithAPassingScore) {
   EXPECT_GT(a.metrics.hoist_energy_j, 0.0);
   // the trolley (30 t) at least was brought up to speed and back: more than its kinetic energy at 1 m/s
   EXPECT_GT(a.metrics.travel_energy_j, 0.5 * 30000.0 * 1.0 * 1.0);
+  // driven as smoothly as every other crane is measured: its gantry, trolley and hoist, the trolley and hoist
+  // moved (the gantry stood)
+  ASSERT_EQ(a.metrics.smoothness.size(), 3u);
+  EXPECT_EQ(a.metrics.smoothness[0].axis, "gantry");
+  EXPECT_EQ(a.metrics.smoothness[1].axis, "trolley");
+  EXPECT_EQ(a.metrics.smoothness[2].axis, "hoist");
+  EXPECT_GT(a.metrics.smoothness[1].rms_jerk_mps3, 0.0);
+  EXPECT_GT(a.metrics.smoothness[2].rms_jerk_mps3, 0.0);
+  std::printf("sts smoothness: trolley %.3f m/s^3 (%d harsh), hoist %.3f m/s^3 (%d harsh)\n",
+              a.metrics.smoothness[1].rms_jerk_mps3, a.metrics.smoothness[1].harsh_moves,
+              a.metrics.smoothness[2].rms_jerk_mps3, a.metrics.smoothness[2].harsh_moves);
   RecordProperty("cycle_time_s", std::to_string(a.metrics.cycle_times_s.front()));
 }
 
@@ -80,7 +92,9 @@ TEST(Autopilot, LandsInAStrongCrossQuayWindWithoutCountingTheLeanAsSway) {
     constexpr int kSteps = 40000;  // four periods
     for (int k = 0; k < kSteps; ++k) {
       still.step({});
-      mean_offset += (still.sts().spreader_pose().position.x - still.sts().trolley_position_m()) / kSteps;
+      mean_offset += (still.machine_as<StsCrane>().spreader_pose().position.x -
+                      still.machine_as<StsCrane>().trolley_position_m()) /
+                     kSteps;
     }
     const core::Vec3 lean = still.wind_rest_offset_m(still.weather().mean_wind(), std::nullopt);
     EXPECT_GT(lean.x, 0.15);
@@ -137,7 +151,7 @@ TEST(Evaluation, HittingABoxThatIsNotTheTaskIsACollision) {
   // the impact is reported when its impulse window closes: compare with the speed just before it began
   std::vector<double> speeds;
   for (int k = 0; k < 20000 && evaluator.metrics().collisions == 0; ++k) {
-    speeds.push_back(-sim.world().linear_velocity(sim.sts().spreader_body()).z);
+    speeds.push_back(-sim.world().linear_velocity(sim.machine_as<StsCrane>().spreader_body()).z);
     sim.step(scenes::cab(drop));
     evaluator.observe(sim, scenes::cab(drop));
   }
@@ -150,7 +164,7 @@ TEST(Evaluation, HittingABoxThatIsNotTheTaskIsACollision) {
   EXPECT_LT(evaluator.metrics().collision_impulse_ns, 1.2 * 15000 * speed + 15000 * 9.81 * 0.005);
   EXPECT_NEAR(evaluator.metrics().worst_collision_mps, speed, 0.1);
   EXPECT_GT(speed, 0.5);
-  const core::Vec3 at = sim.sts().spreader_pose().position;  // on TGHU1000012's top
+  const core::Vec3 at = sim.machine_as<StsCrane>().spreader_pose().position;  // on TGHU1000012's top
   EXPECT_NEAR(at.y, 0.0, 0.1);
   EXPECT_NEAR(at.z, 3.3 + 2.591 + 0.5, 0.1);
   EXPECT_EQ(evaluator.score().total,
@@ -222,7 +236,7 @@ TEST(Evaluation, ASpreaderLoweredOffTheCellCountsACellGuideCollision) {
   // it stopped on the guides' tops, above the hold
   const Vessel& vessel = *sim.vessel();
   const double coaming = vessel.frame().to_parent({0, 0, vessel.geometry().coaming_top_m()}).z;
-  EXPECT_GT(sim.sts().spreader_pose().position.z, coaming - 0.5);
+  EXPECT_GT(sim.machine_as<StsCrane>().spreader_pose().position.z, coaming - 0.5);
 }
 
 }  // namespace

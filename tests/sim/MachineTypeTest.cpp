@@ -11,6 +11,7 @@
 #include <string>
 
 #include "harbour/io/ExerciseFiles.h"
+#include "harbour/machines/mhc/MobileHarbourCrane.h"
 #include "harbour/sim/Pilot.h"
 #include "harbour/sim/Simulation.h"
 

@@ -315,7 +315,7 @@ TEST(Mhc, AnInstructorFaultTheMachineLacksIsRefusedWithoutChange) {
   c.kind = InstructorCommand::Kind::kLandedSensorFault;
   EXPECT_THROW(sim.command(c), std::invalid_argument);
   EXPECT_EQ(sim.state_hash(), before);
-  EXPECT_THROW(static_cast<void>(sim.sts()), std::logic_error);
+  EXPECT_THROW(static_cast<void>(sim.machine_as<StsCrane>()), std::logic_error);
   EXPECT_EQ(sim.scene().machine, "mhc");
 }
 

@@ -32,9 +32,9 @@ struct Carrying {
     double lifted_from_z = 0.0;
     for (int k = 0; k < 300000; ++k) {
       sim.step(pilot.next(sim));
-      if (!sim.sts().locked_container()) continue;
-      if (lifted_from_z == 0.0) lifted_from_z = sim.sts().spreader_pose().position.z;
-      if (sim.sts().spreader_pose().position.z > lifted_from_z + 3.0) break;
+      if (!sim.machine_as<StsCrane>().locked_container()) continue;
+      if (lifted_from_z == 0.0) lifted_from_z = sim.machine_as<StsCrane>().spreader_pose().position.z;
+      if (sim.machine_as<StsCrane>().spreader_pose().position.z > lifted_from_z + 3.0) break;
     }
     hoist_up = sim.control_table().neutral();
     hoist_up.value[static_cast<std::size_t>(sim.control_table().find("hoist"))] = 0.5;
@@ -49,11 +49,11 @@ struct Carrying {
     const int steps = static_cast<int>(std::lround(seconds / Simulation::kStep_s));
     for (int k = 0; k < steps; ++k) {
       sim.step(in);
-      const double z = sim.sts().spreader_pose().position.z;
+      const double z = sim.machine_as<StsCrane>().spreader_pose().position.z;
       r.mean_z += z / steps;
       r.lowest_z = std::min(r.lowest_z, z);
     }
-    r.trolley_x = sim.sts().trolley_x_m();
+    r.trolley_x = sim.machine_as<StsCrane>().trolley_x_m();
     return r;
   }
 };
@@ -63,19 +63,19 @@ constexpr double kTwoBounces_s = 4.4;
 
 TEST(PowerFailure, TheDrivesStopAndHoldAndNothingRestartsUnderAHeldLever) {
   Carrying crane;
-  ASSERT_TRUE(crane.sim.sts().locked_container()) << "the autopilot lifted no box";
+  ASSERT_TRUE(crane.sim.machine_as<StsCrane>().locked_container()) << "the autopilot lifted no box";
   Simulation& sim = crane.sim;
   sim.command(command(InstructorCommand::Kind::kPowerFailure));
   EXPECT_TRUE(sim.power_off());
   // the trainee pulls the hoist lever: dead drives; the box bounces on the ropes about a fixed height
-  const double cut_z = sim.sts().spreader_pose().position.z;
+  const double cut_z = sim.machine_as<StsCrane>().spreader_pose().position.z;
   const auto first = crane.run(crane.hoist_up, 1.0);
   const auto a = crane.run(crane.hoist_up, kTwoBounces_s);
   const auto b = crane.run(crane.hoist_up, kTwoBounces_s);
   EXPECT_LT(std::abs(b.mean_z - a.mean_z), 0.03) << "the box crept " << b.mean_z - a.mean_z << " m";
   EXPECT_GT(std::min(a.lowest_z, b.lowest_z), cut_z - 0.3) << "the box fell";
   EXPECT_LT(std::abs(b.trolley_x - first.trolley_x), 0.01) << "the trolley moved with the power off";
-  EXPECT_TRUE(sim.sts().locked_container());
+  EXPECT_TRUE(sim.machine_as<StsCrane>().locked_container());
   auto snapshot = std::make_unique<Snapshot>();
   sim.write_snapshot(*snapshot);
   EXPECT_TRUE(snapshot->power_off);
@@ -99,7 +99,7 @@ TEST(PowerFailure, TheDrivesStopAndHoldAndNothingRestartsUnderAHeldLever) {
   EXPECT_FALSE(sim.awaiting_zero());
   const auto d = crane.run(crane.hoist_up, kTwoBounces_s);
   EXPECT_GT(d.mean_z - c.mean_z, 0.5) << "the hoist did not answer after the levers were centred";
-  EXPECT_TRUE(sim.sts().locked_container());
+  EXPECT_TRUE(sim.machine_as<StsCrane>().locked_container());
 }
 
 // A keyframe taken while the drives wait for zero restores the wait: both go on bit for bit, and a state

@@ -167,10 +167,10 @@ TEST(Recording, TheInstructorBreaksAndRepairsTheHoistBrake) {
   StsControls stop;
   stop.emergency_stop = true;
   auto drop_under_estop = [&] {
-    const double z0 = s.sts().spreader_pose().position.z;
+    const double z0 = s.machine_as<StsCrane>().spreader_pose().position.z;
     for (int k = 0; k < 2000; ++k)
       s.step(scenes::cab(stop));
-    return s.sts().spreader_pose().position.z - z0;
+    return s.machine_as<StsCrane>().spreader_pose().position.z - z0;
   };
   InstructorCommand fault;
   fault.kind = InstructorCommand::Kind::kHoistBrakeFault;
@@ -193,7 +193,7 @@ TEST(Recording, ARestoredStateContinuesBitForBitWhileCarryingABox) {
   Autopilot pilot_at_save(e);
   while (original.time_s() < 60.0) {
     if (original.steps() == 50000) {
-      ASSERT_TRUE(original.sts().locked_container().has_value());
+      ASSERT_TRUE(original.machine_as<StsCrane>().locked_container().has_value());
       saved = original.save_state();
       pilot_at_save = pilot;
     }
@@ -201,7 +201,7 @@ TEST(Recording, ARestoredStateContinuesBitForBitWhileCarryingABox) {
   }
   Simulation restored(e.scenario);
   restored.restore_state(saved);
-  EXPECT_TRUE(restored.sts().locked_container().has_value());
+  EXPECT_TRUE(restored.machine_as<StsCrane>().locked_container().has_value());
   EXPECT_FALSE(restored.secured(1));  // the lifted box stays released
   while (restored.time_s() < 60.0)
     restored.step(pilot_at_save.next(restored));

@@ -198,7 +198,7 @@ TEST(Simulation, SnapshotShowsTheMachineAndTheContainers) {
   EXPECT_NEAR(snap.entities[6].pose.position.z, 3.3 + 2.591 / 2, 0.01);
   EXPECT_EQ(scene.entities[8].name, "HATCH8P");
   EXPECT_EQ(scene.entities[8].visual, "hatch_cover");
-  EXPECT_NEAR(snap.entities[2].pose.position.z, s.sts().spreader_pose().position.z, 0.0);
+  EXPECT_NEAR(snap.entities[2].pose.position.z, s.machine_as<StsCrane>().spreader_pose().position.z, 0.0);
   // the four hoist ropes, each a polyline from the drum over the trolley down to the headblock and back
   EXPECT_EQ(snap.rope_count, 4);
   for (int r = 0; r < snap.rope_count; ++r)

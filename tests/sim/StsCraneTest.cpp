@@ -185,7 +185,8 @@ TEST(StsCrane, HoistStopsOnItsUpperLimitSwitch) {
   const double z = q.crane->spreader_pose().position.z;
   EXPECT_LE(z, q.settings.hoist_upper_limit_m + 0.05);
   EXPECT_GE(z, q.settings.hoist_upper_limit_m - 0.1);
-  EXPECT_EQ(q.crane->hoist_limit_hits(), 1u);
+  EXPECT_EQ(q.crane->spreader_hoist().limit_hits(), 1u);
+  EXPECT_EQ(q.crane->tally().limit_hits, 1u) << "the gantry and trolley stood";
 }
 
 }  // namespace

@@ -66,15 +66,17 @@ TEST(Weather, SteadyWindDeflectsTheHangingSpreaderBySwingTheory) {
   const int n = 40000;  // four swing periods
   for (int k = 0; k < n; ++k) {
     sim.step({});
-    y += sim.sts().spreader_pose().position.y / n;
-    fall += (s.sts().crane.trolley_rail_height_m - 1.0 - (sim.sts().spreader_pose().position.z + 0.5)) / n;
+    y += sim.machine_as<StsCrane>().spreader_pose().position.y / n;
+    fall += (s.sts().crane.trolley_rail_height_m - 1.0 -
+             (sim.machine_as<StsCrane>().spreader_pose().position.z + 0.5)) /
+            n;
   }
   const double force =
       0.5 * 1.225 * 1.0 * s.sts().crane.spreader.width_m * s.sts().crane.spreader.height_m * 400.0;
   const double expected = fall * force / (s.sts().crane.spreader.mass_kg * 9.80665);
   EXPECT_NEAR(y, expected, 0.05 * expected);
   // the rest position the evaluation measures sway from is that equilibrium
-  EXPECT_NEAR(sim.sts().pendulum_length_m(), fall, 0.01);
+  EXPECT_NEAR(sim.machine_as<StsCrane>().pendulum_length_m(), fall, 0.01);
   const core::Vec3 rest = sim.wind_rest_offset_m(sim.weather().mean_wind(), std::nullopt);
   EXPECT_NEAR(rest.y, expected, 0.01 * expected);
   EXPECT_NEAR(rest.x, 0.0, 1e-9);
@@ -88,12 +90,12 @@ TEST(Weather, AnEmergencyStopHoldsTheLoadUnlessTheBrakeIsFaulty) {
     Simulation sim(s);
     for (int k = 0; k < 3000; ++k)
       sim.step({});
-    const double z0 = sim.sts().spreader_pose().position.z;
+    const double z0 = sim.machine_as<StsCrane>().spreader_pose().position.z;
     StsControls stop;
     stop.emergency_stop = true;
     for (int k = 0; k < 2000; ++k)
       sim.step(scenes::cab(stop));
-    const double dz = sim.sts().spreader_pose().position.z - z0;
+    const double dz = sim.machine_as<StsCrane>().spreader_pose().position.z - z0;
     if (faulty) {
       EXPECT_LT(dz, -1.0) << "a faulty brake lets the load run down";
     } else {
@@ -108,16 +110,16 @@ TEST(Weather, AFailedLandedSensorPreventsLocking) {
   Simulation sim(s);
   StsControls lower;
   lower.hoist = -0.1;
-  for (int k = 0; k < 60000 && sim.sts().spreader_pose().position.z > 3.3 + 2.591 + 0.5; ++k)
+  for (int k = 0; k < 60000 && sim.machine_as<StsCrane>().spreader_pose().position.z > 3.3 + 2.591 + 0.5; ++k)
     sim.step(scenes::cab(lower));
   for (int k = 0; k < 1000; ++k)
     sim.step(scenes::cab(lower));  // sitting on the box
-  EXPECT_FALSE(sim.sts().lamps().landed);
+  EXPECT_FALSE(sim.machine_as<StsCrane>().lamps().landed);
   StsControls lock;
   lock.lock = true;
   for (int k = 0; k < 10; ++k)
     sim.step(scenes::cab(lock));
-  EXPECT_FALSE(sim.sts().locked_container().has_value());
+  EXPECT_FALSE(sim.machine_as<StsCrane>().locked_container().has_value());
 }
 
 }  // namespace

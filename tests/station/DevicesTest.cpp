@@ -17,6 +17,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "harbour/io/RecordingFile.h"
+#include "harbour/machines/mhc/MobileHarbourCrane.h"
 #include "harbour/machines/sts/StsCrane.h"
 #include "harbour/sim/Autopilot.h"
 #include "harbour/station/DeviceMappingFile.h"
@@ -408,8 +409,8 @@ TEST(Devices, UnpluggingTheHoistStickStopsTheLoadSmoothlyAndPluggingItBackResume
   std::int64_t stopped_at = -1;
   loop.set_sampler([&] {
     const sim::Simulation& sim = desk.session->simulation();
-    const double vz = sim.world().linear_velocity(sim.sts().spreader_body()).z;
-    if (unplugged_at < 0 && sim.sts().locked_container() && vz > 0.5) {
+    const double vz = sim.world().linear_velocity(sim.machine_as<sim::StsCrane>().spreader_body()).z;
+    if (unplugged_at < 0 && sim.machine_as<sim::StsCrane>().locked_container() && vz > 0.5) {
       person->unplug("right");  // hoisting a locked box at speed: the hoist stick's cable comes out
       unplugged_at = sim.steps();
       speed_at_unplug = vz;

@@ -470,6 +470,10 @@ double HoistSystem::drum_rope_torque(int drum) const {
   return elements_[drums_[drum]].rope_torque;
 }
 
+double HoistSystem::drum_power_w(int drum) const {
+  return -drum_rope_torque(drum) * drum_rope_speed(drum) / drum_settings(drum).radius_m;
+}
+
 const ElementSettings& HoistSystem::drum_settings(int drum) const {
   return settings_.elements[static_cast<std::size_t>(drums_[static_cast<std::size_t>(drum)])];
 }

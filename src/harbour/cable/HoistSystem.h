@@ -72,6 +72,8 @@ class HoistSystem {
   /// Rope speed at a drum [m/s] (positive pays out) and the torque the rope puts on it [N m].
   double drum_rope_speed(int drum) const;
   double drum_rope_torque(int drum) const;
+  /// Power a drum's motor delivers [W] (negative: it brakes a lowering load).
+  double drum_power_w(int drum) const;
   /// A drum's settings (its rated rope speed and motor torque).
   const ElementSettings& drum_settings(int drum) const;
   int drum_count() const { return static_cast<int>(drums_.size()); }

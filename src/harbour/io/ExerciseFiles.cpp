@@ -19,6 +19,8 @@
 #include "harbour/io/BulkFiles.h"
 #include "harbour/io/MachineFiles.h"
 #include "harbour/io/VesselFiles.h"
+#include "harbour/machines/mhc/MobileHarbourCrane.h"
+#include "harbour/machines/tractor/TerminalTractor.h"
 #include "harbour/sim/Trucks.h"
 
 namespace harbour::io {

@@ -69,11 +69,19 @@ struct AxisSpeed {
 struct MachineTally {
   std::uint32_t limiter_trips = 0;  ///< load-moment limiter stops
   std::uint32_t pad_lift_offs = 0;  ///< outrigger pads lifting off
-  double swing_m = 0.0;             ///< [m] the hanging tool's horizontal offset from plumb under its sheaves
+  std::uint32_t limit_hits = 0;     ///< motions driven into their end limit switches
+  core::Vec3 swing_m;               ///< [m] the hanging tool's horizontal offset from plumb under its sheaves
   std::array<AxisSpeed, 3> axes{};  ///< the motions an operator drives smoothly or not
-  bool vehicle = false;             ///< driven about the site (its jack-knives and speeding are measured)
-  std::uint32_t jackknifes = 0;     ///< a towed trailer folded past its hitch angle limit
-  std::uint32_t tip_overs = 0;      ///< the machine tipped over on its wheels
+  double hoist_power_w = 0.0;       ///< [W] what its hoist drums' motors deliver now (lowering ones: 0)
+  double travel_power_w = 0.0;      ///< [W] what its gantry's and trolley's drives deliver now (braking: 0)
+  /// A gantry crane sounds its horn before it travels: whether its gantry is driven now and where it is
+  /// along its track [m].
+  bool warns_before_travel = false;
+  bool travelling = false;
+  double travel_position_m = 0.0;
+  bool vehicle = false;          ///< driven about the site (its jack-knives and speeding are measured)
+  std::uint32_t jackknifes = 0;  ///< a towed trailer folded past its hitch angle limit
+  std::uint32_t tip_overs = 0;   ///< the machine tipped over on its wheels
 };
 
 /// What the instructor's telemetry plots of any machine, whichever it is: how its load hangs, what its

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "harbour/core/Units.h"
+#include "harbour/machines/rtg/RubberTyredGantry.h"
 #include "harbour/sim/BoomSteering.h"
 #include "harbour/sim/Vessel.h"
 

@@ -6,7 +6,6 @@
 #include <tuple>
 
 #include "harbour/bulk/PileMeasure.h"
-#include "harbour/machines/GantryCrane.h"
 
 namespace harbour::sim {
 namespace {
@@ -109,15 +108,11 @@ void Evaluator::record_landing(const Simulation& simulation, std::optional<physi
 }
 
 double Evaluator::sway_m(const Simulation& simulation, std::optional<physics::BodyId> hanging_box) const {
-  // horizontal offset of the spreader from where it hangs at rest: plumb under the trolley, moved downwind
-  // by the mean wind (a steady lean is not a swing; the turbulence's and gusts' pushes are); another
-  // machine's load from plumb under its sheaves
-  const auto* sts = dynamic_cast<const StsCrane*>(&simulation.machine());
-  if (!sts) return simulation.machine().tally().swing_m;
-  const StsCrane& crane = *sts;
-  const core::Vec3 s = crane.spreader_pose().position;
+  // the hanging tool's horizontal offset from where it hangs at rest: plumb under its sheaves, moved
+  // downwind by the mean wind (a steady lean is not a swing; the turbulence's and gusts' pushes are)
+  const core::Vec3 swing = simulation.machine().tally().swing_m;
   const core::Vec3 rest = simulation.wind_rest_offset_m(simulation.weather().mean_wind(), hanging_box);
-  return std::hypot(s.x - crane.trolley_position_m() - rest.x, s.y - crane.gantry_position_m() - rest.y);
+  return std::hypot(swing.x - rest.x, swing.y - rest.y);
 }
 
 void Evaluator::count_collision(const physics::ImpactEvent& e) {
@@ -151,10 +146,7 @@ void Evaluator::observe(const Simulation& simulation, const Controls& controls) 
       stop >= 0 && simulation.control_table().in_range(controls).value[static_cast<std::size_t>(stop)] != 0.0;
   observe_hoist_fault(simulation, estop);
   observe_instructor(simulation);
-  if (const auto* sts = dynamic_cast<const StsCrane*>(&simulation.machine()))
-    observe_containers(simulation, controls, *sts, estop);
-  else
-    observe_any_machine(simulation, controls, estop);
+  observe_machine(simulation, controls, estop);
   if (simulation.bulk()) observe_bulk(simulation);
   observe_smoothness(simulation);
   observe_speed_zones(simulation);
@@ -311,18 +303,18 @@ void Evaluator::observe_bulk(const Simulation& simulation) {
     const double fill = bite_peak_m3_ / capacity;
     metrics_.bite_fill.push_back(fill);
     if (fill < exercise_.rules.poor_bite_fill) ++metrics_.poor_bites;
-    metrics_.release_swing_m.push_back(tally.swing_m);
-    if (tally.swing_m > exercise_.rules.sway_limit_m) ++metrics_.swinging_releases;
+    const double swing_m = std::hypot(tally.swing_m.x, tally.swing_m.y);
+    metrics_.release_swing_m.push_back(swing_m);
+    if (swing_m > exercise_.rules.sway_limit_m) ++metrics_.swinging_releases;
     discharging_ = true;
   }
   if (load <= 0.0) discharging_ = false, bite_peak_m3_ = 0.0;
   if (!discharging_) bite_peak_m3_ = std::max(bite_peak_m3_, load);
 }
 
-void Evaluator::observe_any_machine(const Simulation& simulation, const Controls& controls, bool estop) {
-  // what every machine shows: its impacts (the load it carries set down near its target, or its empty
-  // gripper set down on the item it is to pick up or, after a hoist brake fault, to stay, is a landing), its
-  // moves, rope overloads, emergency stops and, on a gantry crane, gantry travel without the horn
+void Evaluator::observe_machine(const Simulation& simulation, const Controls& controls, bool estop) {
+  // impacts: the load it carries set down near its target, or its empty gripper set down on the item it is
+  // to pick up or, after a hoist brake fault, to stay, is a landing; a harder one elsewhere a collision
   const std::optional<physics::BodyId> gripper = simulation.machine().gripper_body();
   for (const physics::ImpactEvent& e : simulation.events().impacts) {
     const bool carried_hit = carried_ && (e.body == *carried_ || e.other == *carried_);
@@ -330,6 +322,8 @@ void Evaluator::observe_any_machine(const Simulation& simulation, const Controls
     const bool body_hit = e.surface == kSurfaceVehicle || e.other_surface == kSurfaceVehicle;
     if (gripper_hit && carried_hit)
       continue;  // a knock on the item it holds (a bounce as it locks): one body
+    if (!gripper_hit && !carried_hit && !body_hit)
+      continue;  // two other things meeting (a truck driving off with its box): not the machine's doing
     const physics::BodyId other = e.body == gripper ? e.other : e.body;
     // set down on the item to lift, or (the hoist brake failed, the load down) set down to stay
     if (gripper_hit && !carried_ && (goal_of(other, simulation) >= 0 || stopping_safely_)) {
@@ -348,16 +342,22 @@ void Evaluator::observe_any_machine(const Simulation& simulation, const Controls
   }
   const std::optional<physics::BodyId> held = simulation.machine().held_item();
   observe_moves(simulation, held);
+  if (!carried_ && held) record_landing(simulation, std::nullopt);  // picked up: landed and locked on
   carried_ = held;
   metrics_.twistlock_misuse += static_cast<int>(simulation.events().twistlocks.size());
   for (const cable::CableEvent& e : simulation.events().ropes)
     if (e.kind == cable::CableEventKind::kOverload) ++metrics_.overloads;
   if (estop && !was_estop_ && !stopping_safely_) ++metrics_.emergency_stops;
   was_estop_ = estop;
-  if (const auto* crane = dynamic_cast<const GantryCrane*>(&simulation.machine())) {
+  const MachineTally tally = simulation.machine().tally();
+  metrics_.limit_hits += static_cast<int>(tally.limit_hits - limit_hits_seen_);
+  limit_hits_seen_ = tally.limit_hits;
+  metrics_.hoist_energy_j += tally.hoist_power_w * Simulation::kStep_s;
+  metrics_.travel_energy_j += tally.travel_power_w * Simulation::kStep_s;
+  if (tally.warns_before_travel) {
     const int horn = simulation.control_table().find("horn");
     observe_gantry_warning(horn >= 0 && controls.value[static_cast<std::size_t>(horn)] != 0.0,
-                           crane->gantry_reference_mps() != 0.0, crane->gantry_y_m());
+                           tally.travelling, tally.travel_position_m);
   }
 }
 
@@ -391,57 +391,6 @@ void Evaluator::observe_moves(const Simulation& simulation, std::optional<physic
     }
   }
   if (metrics_.time_s > 0.0) metrics_.moves_per_hour = metrics_.moves_completed * 3600.0 / metrics_.time_s;
-}
-
-void Evaluator::observe_containers(const Simulation& simulation, const Controls& controls,
-                                   const StsCrane& crane, bool estop) {
-  const StsControls cab = crane.read(controls);
-  const EvaluationRules& rules = exercise_.rules;
-  const physics::BodyId spreader = crane.spreader_body();
-
-  // impacts: landings (spreader onto a container, a carried container onto anything) or collisions
-  for (const physics::ImpactEvent& e : simulation.events().impacts) {
-    const bool spreader_hit = e.body == spreader || e.other == spreader;
-    const bool carried_hit = carried_ && (e.body == *carried_ || e.other == *carried_);
-    // a spreader knocking on the box it has locked (a bounce as the locks turn) is one body with it
-    if (spreader_hit == carried_hit) continue;
-    const physics::BodyId other =
-        spreader_hit ? (e.body == spreader ? e.other : e.body) : (e.body == *carried_ ? e.other : e.body);
-    const bool touching_goal_box = spreader_hit && !carried_ && goal_of(other, simulation) >= 0;
-    const bool setting_down = carried_hit && !spreader_hit && near_target(*carried_, simulation);
-    if (setting_down) {
-      record_landing(simulation, carried_);
-      metrics_.worst_landing_mps = std::max(metrics_.worst_landing_mps, e.normal_speed_mps);
-      if (e.normal_speed_mps > rules.hard_landing_mps) ++metrics_.hard_landings;
-    } else if (!touching_goal_box && e.normal_speed_mps >= rules.collision_speed_mps) {
-      count_collision(e);
-    }
-  }
-
-  const std::optional<physics::BodyId> locked = crane.locked_container();
-  observe_moves(simulation, locked);
-  if (!carried_ && locked)
-    record_landing(simulation, std::nullopt);  // pick-up: the spreader landed and locked
-  carried_ = locked;
-
-  for (const TwistlockEvent e : simulation.events().twistlocks) {
-    (void)e;
-    ++metrics_.twistlock_misuse;
-  }
-  for (const cable::CableEvent& e : simulation.events().ropes)
-    if (e.kind == cable::CableEventKind::kOverload) ++metrics_.overloads;
-  const std::uint32_t hits =
-      crane.gantry_drive().limit_hits() + crane.trolley_drive().limit_hits() + crane.hoist_limit_hits();
-  metrics_.limit_hits += static_cast<int>(hits - limit_hits_seen_);
-  limit_hits_seen_ = hits;
-  if (estop && !was_estop_ && !stopping_safely_) ++metrics_.emergency_stops;
-  was_estop_ = estop;
-  observe_gantry_warning(cab.horn, crane.gantry_drive().reference_mps() != 0.0, crane.gantry_position_m());
-  const double drum_power = -crane.hoist().drum_rope_torque(0) * crane.hoist().drum_rope_speed(0) /
-                            simulation.scenario().sts().crane.hoist.elements[0].radius_m;
-  metrics_.hoist_energy_j += std::max(0.0, drum_power) * Simulation::kStep_s;
-  metrics_.travel_energy_j +=
-      (std::max(0.0, crane.gantry_power_w()) + std::max(0.0, crane.trolley_power_w())) * Simulation::kStep_s;
 }
 
 void Evaluator::observe_gantry_warning(bool horn, bool gantry_moving, double gantry_position_m) {

@@ -303,9 +303,10 @@ class Evaluator {
 
  private:
   int hand_offs_pending_ = 0;  // boxes set on a team's trucks not yet taken over by their stations
-  void observe_containers(const Simulation& simulation, const Controls& controls, const StsCrane& crane,
-                          bool estop);
-  void observe_any_machine(const Simulation& simulation, const Controls& controls, bool emergency_stop);
+  /// Impacts (landings, set-downs, collisions), moves, twistlock misuse, rope overloads, limit hits,
+  /// emergency stops, the energy the drives delivered and gantry travel without the horn: the machine's
+  /// tally says what it has of each.
+  void observe_machine(const Simulation& simulation, const Controls& controls, bool emergency_stop);
   /// Gantry travel (people walk under the portal) starts only after a warning on the horn: one motion from
   /// standstill covering more than the rules' gantry_travel_m (positioning creeps are not travels).
   void observe_gantry_warning(bool horn, bool gantry_moving, double gantry_position_m);

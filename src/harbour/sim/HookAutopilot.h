@@ -2,6 +2,7 @@
 
 #include <string>
 
+#include "harbour/machines/mhc/MobileHarbourCrane.h"
 #include "harbour/sim/BoomSteering.h"
 #include "harbour/sim/DecidingPilot.h"
 #include "harbour/sim/Evaluation.h"

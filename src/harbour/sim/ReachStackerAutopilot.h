@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include "harbour/machines/reach_stacker/ReachStacker.h"
 #include "harbour/sim/DecidingPilot.h"
 #include "harbour/sim/Evaluation.h"
 

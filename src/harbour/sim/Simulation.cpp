@@ -8,6 +8,7 @@
 
 #include "harbour/core/StateHash.h"
 #include "harbour/core/Units.h"
+#include "harbour/machines/reach_stacker/ReachStacker.h"
 
 namespace harbour::sim {
 namespace {
@@ -43,15 +44,6 @@ MachineSetup as_built(const ScenarioSettings& scenario) {
   return setup;
 }
 }  // namespace
-
-StsCrane& Simulation::sts() {
-  return const_cast<StsCrane&>(std::as_const(*this).sts());
-}
-
-const StsCrane& Simulation::sts() const {
-  if (const auto* sts = dynamic_cast<const StsCrane*>(machine_.get())) return *sts;
-  throw std::logic_error(std::string("the simulation's machine is an ") + machine_->kind() + ", not an sts");
-}
 
 Simulation::Simulation(const ScenarioSettings& scenario)
     : scenario_(scenario), weather_(scenario.weather, scenario.seed) {
@@ -358,6 +350,7 @@ core::Vec3 Simulation::wind_rest_offset_m(const core::Vec3& wind, std::optional<
     if (area.swings) add(area.body, area.half_extents_m);
   if (box)
     if (const ContainerRef* item = liftable(*box)) add(item->body, item->half_extents_m);
+  if (mass_kg <= 0.0) return {};  // nothing hangs
   const double lean = machine_->pendulum_length_m() / (mass_kg * core::kStandardGravity);
   return {force.x * lean, force.y * lean, 0.0};
 }

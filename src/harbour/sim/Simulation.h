@@ -4,7 +4,9 @@
 #include <memory>
 #include <optional>
 #include <span>
+#include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "harbour/bulk/BulkScene.h"
@@ -12,11 +14,7 @@
 #include "harbour/core/Units.h"
 #include "harbour/core/Warnings.h"
 #include "harbour/machines/MachineSetup.h"
-#include "harbour/machines/mhc/MobileHarbourCrane.h"
-#include "harbour/machines/reach_stacker/ReachStacker.h"
-#include "harbour/machines/rtg/RubberTyredGantry.h"
-#include "harbour/machines/sts/StsCrane.h"
-#include "harbour/machines/tractor/TerminalTractor.h"
+#include "harbour/machines/sts/StsCrane.h"  // the scenario's default machine
 #include "harbour/physics/PhysicsWorld.h"
 #include "harbour/sim/Controls.h"
 #include "harbour/sim/RoRoRamp.h"
@@ -236,9 +234,18 @@ class Simulation {
   std::span<const ContainerRef> liftables() const { return containers_; }
   Machine& machine() { return *machine_; }
   const Machine& machine() const { return *machine_; }
-  /// The machine as an STS; throws std::logic_error when it is another.
-  StsCrane& sts();
-  const StsCrane& sts() const;
+  /// The machine as a `MachineT` (tests and tools that know which it is); throws std::logic_error naming
+  /// its kind when it is another.
+  template <typename MachineT>
+  const MachineT& machine_as() const {
+    if (const auto* machine = dynamic_cast<const MachineT*>(machine_.get())) return *machine;
+    throw std::logic_error(std::string("the simulation's machine is an ") + machine_->kind() +
+                           ", not the machine asked for");
+  }
+  template <typename MachineT>
+  MachineT& machine_as() {
+    return const_cast<MachineT&>(std::as_const(*this).template machine_as<MachineT>());
+  }
   const ScenarioSettings& scenario() const { return scenario_; }
 
  private:

@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include "harbour/machines/tractor/TerminalTractor.h"
 #include "harbour/sim/DecidingPilot.h"
 #include "harbour/sim/Evaluation.h"
 

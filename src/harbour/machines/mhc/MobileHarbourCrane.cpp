@@ -399,15 +399,19 @@ MachineTally MobileHarbourCrane::tally() const {
   const core::Vec3 head = suspension_point_m(), grab = load_position_m();
   // the speeds the operator drives the boom head at: the slewing drive's reference round the axis, the
   // luffing winch's along the radius (the boom's bounce on its ropes is the machine's, not the operator's)
-  return {limiter_trips_,
-          pad_lift_offs_,
-          std::hypot(grab.x - head.x, grab.y - head.y),
-          {AxisSpeed{"slew", slew_drive_.reference_mps() * radius_m()}, AxisSpeed{"luff", luff_speed_mps_}}};
+  MachineTally t;
+  t.limiter_trips = limiter_trips_;
+  t.pad_lift_offs = pad_lift_offs_;
+  t.swing_m = {grab.x - head.x, grab.y - head.y, 0.0};
+  t.axes = {AxisSpeed{"slew", slew_drive_.reference_mps() * radius_m()}, AxisSpeed{"luff", luff_speed_mps_}};
+  for (int drum = 0; drum < hoist_->drum_count(); ++drum)
+    t.hoist_power_w += std::max(0.0, hoist_->drum_power_w(drum));
+  return t;
 }
 
 Telemetry MobileHarbourCrane::telemetry() const {
   const MachineTally t = tally();
-  return {t.swing_m, hoist_->highest_tension_n(), t.axes};
+  return {std::hypot(t.swing_m.x, t.swing_m.y), hoist_->highest_tension_n(), t.axes};
 }
 
 double MobileHarbourCrane::luffing_tension_n() const {

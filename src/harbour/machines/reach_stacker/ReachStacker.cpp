@@ -234,6 +234,8 @@ core::Pose ReachStacker::cab_pose() const {
 MachineTally ReachStacker::tally() const {
   MachineTally t;
   t.limiter_trips = limiter_trips_;
+  const core::Vec3 spreader = world_.pose(spreader_).position, head = head_m();
+  t.swing_m = {spreader.x - head.x, spreader.y - head.y, 0.0};
   t.axes[0] = {"drive", forward_mps()};
   t.axes[1] = {"boom", luff_.reference_mps() * (settings_.boom_length_m + extension_m())};
   t.axes[2] = {"telescope", telescope_.reference_mps()};

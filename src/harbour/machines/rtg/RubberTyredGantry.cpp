@@ -325,16 +325,21 @@ int RubberTyredGantry::publish(Snapshot& s, int first) const {
 MachineTally RubberTyredGantry::tally() const {
   MachineTally t;
   const core::Vec3 s = spreader_pose().position, plumb = plumb_m();
-  t.swing_m = std::hypot(s.x - plumb.x, s.y - plumb.y);
+  t.swing_m = {s.x - plumb.x, s.y - plumb.y, 0.0};
   t.axes[0] = {"gantry", gantry_.reference_mps()};
   t.axes[1] = {"trolley", trolley_drive_.reference_mps()};
   t.axes[2] = {"hoist", rig_->hoist().drum_rope_speed(0)};
+  t.limit_hits = trolley_drive_.limit_hits() + rig_->limit_hits();
+  t.hoist_power_w = std::max(0.0, rig_->hoist().drum_power_w(0));
+  t.warns_before_travel = true;
+  t.travelling = gantry_.reference_mps() != 0.0;
+  t.travel_position_m = gantry_y_m();
   return t;
 }
 
 Telemetry RubberTyredGantry::telemetry() const {
   const MachineTally t = tally();
-  return {t.swing_m,
+  return {std::hypot(t.swing_m.x, t.swing_m.y),
           rig_->hoist().highest_tension_n(),
           {t.axes[0], t.axes[1], AxisSpeed{"hoist", rig_->hoisting_speed_mps()}}};
 }

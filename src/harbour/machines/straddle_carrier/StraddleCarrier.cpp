@@ -156,16 +156,18 @@ int StraddleCarrier::publish(Snapshot& s, int first) const {
 MachineTally StraddleCarrier::tally() const {
   MachineTally t;
   const core::Vec3 spreader = spreader_pose().position, plumb = plumb_m();
-  t.swing_m = std::hypot(spreader.x - plumb.x, spreader.y - plumb.y);
+  t.swing_m = {spreader.x - plumb.x, spreader.y - plumb.y, 0.0};
   t.axes[0] = {"drive", forward_mps()};
   t.axes[1] = {"hoist", rig_->hoist().drum_rope_speed(0)};
+  t.limit_hits = rig_->limit_hits();
+  t.hoist_power_w = std::max(0.0, rig_->hoist().drum_power_w(0));
   t.vehicle = true;
   return t;
 }
 
 Telemetry StraddleCarrier::telemetry() const {
   const MachineTally t = tally();
-  return {t.swing_m,
+  return {std::hypot(t.swing_m.x, t.swing_m.y),
           rig_->hoist().highest_tension_n(),
           {t.axes[0], AxisSpeed{"hoist", rig_->hoisting_speed_mps()}}};
 }

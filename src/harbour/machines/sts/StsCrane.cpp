@@ -160,14 +160,24 @@ constexpr const char* kStsIndicators[] = {
     "horn",       "load_t",      "lamp_brake_fault", "net_load_t"};
 }  // namespace
 
-Telemetry StsCrane::telemetry() const {
+MachineTally StsCrane::tally() const {
+  MachineTally t;
   const core::Vec3 s = spreader_pose().position;
-  Telemetry t;
-  t.swing_m = std::hypot(s.x - trolley_position_m(), s.y - gantry_position_m());
-  t.rope_tension_n = rig_->hoist().highest_tension_n();
+  t.swing_m = {s.x - trolley_position_m(), s.y - gantry_position_m(), 0.0};
   t.axes = {AxisSpeed{"gantry", gantry_.reference_mps()}, AxisSpeed{"trolley", trolley_.reference_mps()},
             AxisSpeed{"hoist", rig_->hoisting_speed_mps()}};
+  t.limit_hits = gantry_.limit_hits() + trolley_.limit_hits() + rig_->limit_hits();
+  t.hoist_power_w = std::max(0.0, rig_->hoist().drum_power_w(0));
+  t.travel_power_w = std::max(0.0, gantry_power_w()) + std::max(0.0, trolley_power_w());
+  t.warns_before_travel = true;
+  t.travelling = gantry_.reference_mps() != 0.0;
+  t.travel_position_m = gantry_position_m();
   return t;
+}
+
+Telemetry StsCrane::telemetry() const {
+  const MachineTally t = tally();
+  return {std::hypot(t.swing_m.x, t.swing_m.y), rig_->hoist().highest_tension_n(), t.axes};
 }
 
 void StsCrane::describe(SceneDescription& d) const {

@@ -101,14 +101,17 @@ class StsCrane final : public Machine, public GantryCrane {
     step(read(controls), liftables, dt_s);
   }
   std::optional<physics::BodyId> held_item() const override { return rig_->locked_container(); }
+  std::optional<physics::BodyId> gripper_body() const override { return rig_->spreader_body(); }
   double attachment_bottom_z_m() const override;
   std::span<const WindArea> wind_areas() const override { return wind_areas_; }
   physics::BodyId cab_body() const override { return trolley_body_; }
   core::Vec3 eye_on_cab_body_m() const override { return settings_.cab_position_m + settings_.eye_m; }
   void describe(SceneDescription& scene) const override;
   int publish(Snapshot& snapshot, int entities) const override;
-  /// Its spreader's swing from plumb under the trolley, its hoist ropes' tension, its gantry's, trolley's and
-  /// hoist's speeds (its tally stays empty: the STS's evaluation measures its sway and smoothness apart).
+  /// Its spreader's swing from plumb under the trolley, its gantry's, trolley's and hoist's speeds, the end
+  /// limits they were driven into, what their motors deliver; its gantry warns before it travels.
+  MachineTally tally() const override;
+  /// The tally's swing and speeds (the hoist's as the spreader's) and its hoist ropes' tension.
   Telemetry telemetry() const override;
   void settle_ropes() override { rig_->settle_ropes(); }
   void settle_at_rest() override {
@@ -162,8 +165,6 @@ class StsCrane final : public Machine, public GantryCrane {
   TwistlockLamps lamps() const { return rig_->locks().twistlocks().lamps(); }
   std::vector<TwistlockEvent> take_twistlock_events() { return rig_->locks().twistlocks().take_events(); }
   const Drive& gantry_drive() const { return gantry_; }
-  /// Times the operator drove the hoist into a limit switch.
-  std::uint32_t hoist_limit_hits() const { return rig_->limit_hits(); }
   const Drive& trolley_drive() const { return trolley_; }
   const cable::HoistSystem& hoist() const { return rig_->hoist(); }
   cable::HoistSystem& hoist() { return rig_->hoist(); }
