@@ -1,7 +1,6 @@
 #include "harbour/machines/Machine.h"
 
 #include <array>
-#include <cmath>
 
 namespace harbour::sim {
 
@@ -45,7 +44,7 @@ void publish_ropes(const cable::HoistSystem& hoist, Snapshot& s) {
 
 Telemetry Machine::telemetry() const {
   const MachineTally t = tally();
-  return {std::hypot(t.swing_m.x, t.swing_m.y), 0.0, t.axes};
+  return {core::length(t.swing_m), 0.0, t.axes};
 }
 
 }  // namespace harbour::sim

@@ -110,9 +110,8 @@ void Evaluator::record_landing(const Simulation& simulation, std::optional<physi
 double Evaluator::sway_m(const Simulation& simulation, std::optional<physics::BodyId> hanging_box) const {
   // the hanging tool's horizontal offset from where it hangs at rest: plumb under its sheaves, moved
   // downwind by the mean wind (a steady lean is not a swing; the turbulence's and gusts' pushes are)
-  const core::Vec3 swing = simulation.machine().tally().swing_m;
-  const core::Vec3 rest = simulation.wind_rest_offset_m(simulation.weather().mean_wind(), hanging_box);
-  return std::hypot(swing.x - rest.x, swing.y - rest.y);
+  const core::Vec3 swing = simulation.machine().tally().swing_m;  // horizontal (z 0), as the rest
+  return core::length(swing - simulation.wind_rest_offset_m(simulation.weather().mean_wind(), hanging_box));
 }
 
 void Evaluator::count_collision(const physics::ImpactEvent& e) {
@@ -144,13 +143,13 @@ void Evaluator::observe(const Simulation& simulation, const Controls& controls) 
   // read as the machine reads it (a non-finite value, a device fault, reads released)
   const bool estop =
       stop >= 0 && simulation.control_table().in_range(controls).value[static_cast<std::size_t>(stop)] != 0.0;
+  const MachineTally tally = simulation.machine().tally();
   observe_hoist_fault(simulation, estop);
   observe_instructor(simulation);
-  observe_machine(simulation, controls, estop);
-  if (simulation.bulk()) observe_bulk(simulation);
-  observe_smoothness(simulation);
+  observe_machine(simulation, controls, tally, estop);
+  if (simulation.bulk()) observe_bulk(simulation, tally);
+  observe_smoothness(simulation, tally);
   observe_speed_zones(simulation);
-  const MachineTally tally = simulation.machine().tally();
   metrics_.vehicle = tally.vehicle;
   metrics_.jackknifes = static_cast<int>(tally.jackknifes);
   metrics_.tip_overs = static_cast<int>(tally.tip_overs);
@@ -222,12 +221,11 @@ void Evaluator::observe_speed_zones(const Simulation& simulation) {
   speeding_ = over > 0.0 && (speeding || speeding_);  // until back within the limit
 }
 
-void Evaluator::observe_smoothness(const Simulation& simulation) {
+void Evaluator::observe_smoothness(const Simulation& simulation, const MachineTally& tally) {
   // every 0.1 s: each named motion's acceleration and jerk by differences of its speed; the jerk's RMS while
   // it moves, and each onset of a jerk above the rules' limit (a lever slammed, a move stopped short)
   if (simulation.time_s() + 1e-9 < next_axis_sample_s_) return;
   next_axis_sample_s_ = simulation.time_s() + kAxisSample_s;
-  const MachineTally tally = simulation.machine().tally();
   for (std::size_t n = 0; n < tally.axes.size() && tally.axes[n].name; ++n) {
     if (n >= axes_.size()) {
       axes_.push_back({});
@@ -272,7 +270,7 @@ double pile_top_m(const bulk::BulkWorld& bulk, int grid) {
   return g.pose().to_parent({centre.x, centre.y, g.height(top.i, top.j)}).z;
 }
 
-void Evaluator::observe_bulk(const Simulation& simulation) {
+void Evaluator::observe_bulk(const Simulation& simulation, const MachineTally& tally) {
   // tonnes delivered, handled and spilled; each bite's fill as the grab starts to discharge it, and the
   // grab's swing then
   const bulk::BulkWorld& bulk = *simulation.bulk();
@@ -292,7 +290,6 @@ void Evaluator::observe_bulk(const Simulation& simulation) {
     trimmed_ = placed && metrics_.pile_top_m <= exercise_.trim->top_m;
     next_pile_measure_s_ = simulation.time_s() + kPileMeasure_s;
   }
-  const MachineTally tally = simulation.machine().tally();
   metrics_.limiter_trips = static_cast<int>(tally.limiter_trips);
   metrics_.pad_lift_offs = static_cast<int>(tally.pad_lift_offs);
   if (simulation.bulk_grab() < 0) return;
@@ -303,7 +300,7 @@ void Evaluator::observe_bulk(const Simulation& simulation) {
     const double fill = bite_peak_m3_ / capacity;
     metrics_.bite_fill.push_back(fill);
     if (fill < exercise_.rules.poor_bite_fill) ++metrics_.poor_bites;
-    const double swing_m = std::hypot(tally.swing_m.x, tally.swing_m.y);
+    const double swing_m = core::length(tally.swing_m);
     metrics_.release_swing_m.push_back(swing_m);
     if (swing_m > exercise_.rules.sway_limit_m) ++metrics_.swinging_releases;
     discharging_ = true;
@@ -312,7 +309,8 @@ void Evaluator::observe_bulk(const Simulation& simulation) {
   if (!discharging_) bite_peak_m3_ = std::max(bite_peak_m3_, load);
 }
 
-void Evaluator::observe_machine(const Simulation& simulation, const Controls& controls, bool estop) {
+void Evaluator::observe_machine(const Simulation& simulation, const Controls& controls,
+                                const MachineTally& tally, bool estop) {
   // impacts: the load it carries set down near its target, or its empty gripper set down on the item it is
   // to pick up or, after a hoist brake fault, to stay, is a landing; a harder one elsewhere a collision
   const std::optional<physics::BodyId> gripper = simulation.machine().gripper_body();
@@ -349,7 +347,6 @@ void Evaluator::observe_machine(const Simulation& simulation, const Controls& co
     if (e.kind == cable::CableEventKind::kOverload) ++metrics_.overloads;
   if (estop && !was_estop_ && !stopping_safely_) ++metrics_.emergency_stops;
   was_estop_ = estop;
-  const MachineTally tally = simulation.machine().tally();
   metrics_.limit_hits += static_cast<int>(tally.limit_hits - limit_hits_seen_);
   limit_hits_seen_ = tally.limit_hits;
   metrics_.hoist_energy_j += tally.hoist_power_w * Simulation::kStep_s;

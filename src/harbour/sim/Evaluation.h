@@ -306,14 +306,15 @@ class Evaluator {
   /// Impacts (landings, set-downs, collisions), moves, twistlock misuse, rope overloads, limit hits,
   /// emergency stops, the energy the drives delivered and gantry travel without the horn: the machine's
   /// tally says what it has of each.
-  void observe_machine(const Simulation& simulation, const Controls& controls, bool emergency_stop);
+  void observe_machine(const Simulation& simulation, const Controls& controls, const MachineTally& tally,
+                       bool emergency_stop);
   /// Gantry travel (people walk under the portal) starts only after a warning on the horn: one motion from
   /// standstill covering more than the rules' gantry_travel_m (positioning creeps are not travels).
   void observe_gantry_warning(bool horn, bool gantry_moving, double gantry_position_m);
-  void observe_bulk(const Simulation& simulation);
+  void observe_bulk(const Simulation& simulation, const MachineTally& tally);
   /// Counts a goal item let go of at its target as a completed move (`held`: what the machine holds now).
   void observe_moves(const Simulation& simulation, std::optional<physics::BodyId> held);
-  void observe_smoothness(const Simulation& simulation);
+  void observe_smoothness(const Simulation& simulation, const MachineTally& tally);
   void observe_speed_zones(const Simulation& simulation);
   /// A falling load, and the hoist brake fault procedure: land the load under power, lift nothing more,
   /// then stop the machine (docs/evaluation.md).

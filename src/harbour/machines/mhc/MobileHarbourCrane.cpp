@@ -411,7 +411,7 @@ MachineTally MobileHarbourCrane::tally() const {
 
 Telemetry MobileHarbourCrane::telemetry() const {
   const MachineTally t = tally();
-  return {std::hypot(t.swing_m.x, t.swing_m.y), hoist_->highest_tension_n(), t.axes};
+  return {core::length(t.swing_m), hoist_->highest_tension_n(), t.axes};
 }
 
 double MobileHarbourCrane::luffing_tension_n() const {

@@ -339,7 +339,7 @@ MachineTally RubberTyredGantry::tally() const {
 
 Telemetry RubberTyredGantry::telemetry() const {
   const MachineTally t = tally();
-  return {std::hypot(t.swing_m.x, t.swing_m.y),
+  return {core::length(t.swing_m),
           rig_->hoist().highest_tension_n(),
           {t.axes[0], t.axes[1], AxisSpeed{"hoist", rig_->hoisting_speed_mps()}}};
 }

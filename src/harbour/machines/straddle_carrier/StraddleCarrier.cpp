@@ -167,7 +167,7 @@ MachineTally StraddleCarrier::tally() const {
 
 Telemetry StraddleCarrier::telemetry() const {
   const MachineTally t = tally();
-  return {std::hypot(t.swing_m.x, t.swing_m.y),
+  return {core::length(t.swing_m),
           rig_->hoist().highest_tension_n(),
           {t.axes[0], AxisSpeed{"hoist", rig_->hoisting_speed_mps()}}};
 }

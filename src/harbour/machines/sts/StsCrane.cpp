@@ -177,7 +177,7 @@ MachineTally StsCrane::tally() const {
 
 Telemetry StsCrane::telemetry() const {
   const MachineTally t = tally();
-  return {std::hypot(t.swing_m.x, t.swing_m.y), rig_->hoist().highest_tension_n(), t.axes};
+  return {core::length(t.swing_m), rig_->hoist().highest_tension_n(), t.axes};
 }
 
 void StsCrane::describe(SceneDescription& d) const {
