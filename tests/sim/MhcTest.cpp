@@ -283,6 +283,22 @@ TEST(Mhc, TheLoadMomentLimiterStopsLuffingOutBeforeTheChartIsExceeded) {
   EXPECT_GT(m.boom_angle_rad(), angle + 0.01);
 }
 
+// Luffed in and hoisted up with the levers held: the boom stops on its upper angle switch and the grab on its
+// upper hoist switch, each counted once in the machine's tally (what the evaluator scores as limit hits).
+TEST(Mhc, TheBoomAndTheGrabStopOnTheirLimitSwitchesAndCountEachHitOnce) {
+  Simulation sim(damped(scenes::mhc_on_quay(HARBOUR_DATA_DIR)));
+  run(sim, 2.0, sim.control_table().neutral());
+  const MobileHarbourCrane& m = mhc(sim);
+  EXPECT_EQ(m.tally().limit_hits, 0u);
+  run(sim, 90.0, mhc_controls(sim, {{"luff", 1.0}}));
+  EXPECT_NEAR(m.boom_angle_rad(), m.settings().boom_max_angle_rad, 0.01);
+  EXPECT_EQ(m.tally().limit_hits, 1u);
+  run(sim, 90.0, mhc_controls(sim, {{"hoist", 1.0}}));
+  EXPECT_NEAR(sim.world().pose(m.block_body()).position.z, m.settings().hoist_upper_limit_m,
+              0.15);  // on its ropes
+  EXPECT_EQ(m.tally().limit_hits, 2u);
+}
+
 TEST(Mhc, StepsAreAPureFunctionOfTheInputsAndKeyframesContinueBitForBit) {
   const ScenarioSettings s = scenes::mhc_on_quay(HARBOUR_DATA_DIR);
   const auto script = [](const Simulation& sim, std::int64_t step) {

@@ -402,6 +402,7 @@ MachineTally MobileHarbourCrane::tally() const {
   MachineTally t;
   t.limiter_trips = limiter_trips_;
   t.pad_lift_offs = pad_lift_offs_;
+  t.limit_hits = luff_limits_.hits() + hoist_limits_.hits();
   t.swing_m = {grab.x - head.x, grab.y - head.y, 0.0};
   t.axes = {AxisSpeed{"slew", slew_drive_.reference_mps() * radius_m()}, AxisSpeed{"luff", luff_speed_mps_}};
   for (int drum = 0; drum < hoist_->drum_count(); ++drum)
