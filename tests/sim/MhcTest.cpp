@@ -294,8 +294,8 @@ TEST(Mhc, TheBoomAndTheGrabStopOnTheirLimitSwitchesAndCountEachHitOnce) {
   EXPECT_NEAR(m.boom_angle_rad(), m.settings().boom_max_angle_rad, 0.01);
   EXPECT_EQ(m.tally().limit_hits, 1u);
   run(sim, 90.0, mhc_controls(sim, {{"hoist", 1.0}}));
-  EXPECT_NEAR(sim.world().pose(m.block_body()).position.z, m.settings().hoist_upper_limit_m,
-              0.15);  // on its ropes
+  // the stop overshoots on the ropes' stretch (0.105 m measured)
+  EXPECT_NEAR(sim.world().pose(m.block_body()).position.z, m.settings().hoist_upper_limit_m, 0.15);
   EXPECT_EQ(m.tally().limit_hits, 2u);
 }
 
