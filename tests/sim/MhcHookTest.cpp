@@ -211,8 +211,9 @@ TEST(MhcHook, ATakeOverWithThePieceSlungCarriesItToItsPlace) {
 // Left alone, the boom comes to rest on its luffing ropes: the rope's stretch counts its sag (the curved
 // length), so the energy the ends put into the ropes' transverse waves is the energy the waves take out of
 // the ends; with the chord's stretch, the boom bounced at 1.6 Hz for ever (5.0e-3 rad/s after 120 s). As
-// built (the bounce the constructor's settling leaves: 1.9e-4 rad/s) it decays a hundredfold; brought to
-// rest before the first step, as an exercise starts now, it starts still and stays so.
+// built (the bounce the constructor's settling leaves: 5.3e-5 rad/s in the first 20 s) it comes to
+// 6.2e-7 rad/s after 100 s; brought to rest before the first step, as an exercise starts now, it starts
+// still and stays so.
 TEST(MhcHook, TheBoomLeftAloneComesToRestOnItsRopes) {
   for (const bool as_built : {true, false}) {
     SCOPED_TRACE(as_built ? "as built" : "brought to rest");
@@ -243,7 +244,8 @@ TEST(MhcHook, TheBoomLeftAloneComesToRestOnItsRopes) {
     const Window& first = windows.front();
     const Window& last = windows.back();
     if (as_built) {
-      EXPECT_LT(last.boom_radps, 0.01 * first.boom_radps);
+      EXPECT_LT(first.boom_radps, 1e-3);  // it starts near its static equilibrium
+      EXPECT_LT(last.boom_radps, 1e-6);   // the 40 m boom's head moving under 0.04 mm/s
     } else {
       for (const Window& w : windows)
         EXPECT_LT(w.boom_radps, 3e-5);

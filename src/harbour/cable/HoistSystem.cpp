@@ -11,6 +11,9 @@ namespace {
 using core::Vec3;
 
 constexpr double kBendingCreep_rad_s = 0.01;  // below this turning rate the bending loss falls linearly
+// a working load exceeded this long is an overload: a load limiter's filtering (a slack rope snapping taut
+// inside a grab reads hundreds of kN for a millisecond or two)
+constexpr double kOverloadFilter_s = 0.01;
 constexpr double kCourant = 0.5;              // sub-step: wave (plus transport) crosses half a node interval
 constexpr double kSpringDecay_s = 0.05;       // a suspended oscillation's shape fades over this time
 constexpr double kStretchStability = 1.0;     // sub-step times the stretch coupling's frequency (< 2)
@@ -242,8 +245,12 @@ void HoistSystem::update_segment(Segment& s, const RopeSettings& rope, double dt
   }
   const bool along_chord = settings_.stretch_along_chord;
   const double stretch = (along_chord ? chord_length : length) - s.rest_length;
+  // the rope transferred over its ends since the last step takes part in its strain rate (runs recorded
+  // before: the geometric length's rate alone)
+  const double transferred =
+      settings_.simple_sheaves ? 0.0 : rope_speed_into(s, true) - rope_speed_into(s, false);
   const double strain_rate =
-      ((along_chord ? chord_length - s.chord_length : length - s.length) / dt) / s.rest_length;
+      ((along_chord ? chord_length - s.chord_length : length - s.length) / dt - transferred) / s.rest_length;
   s.length = length;
   s.chord_length = chord_length;
   if (stretch > 0.0) {
@@ -314,8 +321,8 @@ void HoistSystem::step_drums(double dt, std::span<const DrumCommand> commands) {
 }
 
 void HoistSystem::step_sheaves(const Rope& rope, double dt) {
-  // linearly implicit in the sheave speeds: each sheave's tension difference after this step's rope transfer,
-  // T' = T - k dL0, gives a tridiagonal system along the rope (sheaves are light against stiff rope)
+  // linearly implicit in the sheave speeds: each sheave's speed depends on the rope it transfers to its
+  // neighbours, a tridiagonal system along the rope (sheaves are light against stiff rope)
   const std::size_t m = rope.segments.size() + 1;  // path elements
   if (m < 3) return;
   std::vector<double>& lower = sheave_lower_;  // scratch reused every step
@@ -329,21 +336,45 @@ void HoistSystem::step_sheaves(const Rope& rope, double dt) {
   auto element = [&](std::size_t j) {
     return j == 0 ? segments_[rope.segments[0]].a : segments_[rope.segments[j - 1]].b;
   };
+  const bool by_increment = !settings_.simple_sheaves;
+  // a segment's tension change per metre per second of rope transferred over the step, implicitly: its
+  // stiffness over the step and its strain-rate damping
+  auto coupling = [&](const Segment& s) {
+    const RopeSettings& rs = settings_.ropes[s.rope];
+    return s.stiffness > 0.0 ? dt * s.stiffness + rs.axial_stiffness_n * rs.axial_damping_s / s.rest_length
+                             : 0.0;
+  };
+  auto speed = [&](std::size_t j) { return elements_[element(j)].omega; };
   for (std::size_t j = 1; j + 1 < m; ++j) {
     const int e = element(j);
     const ElementSettings& el = settings_.elements[e];
     const Segment& before = segments_[rope.segments[j - 1]];
     const Segment& after = segments_[rope.segments[j]];
     const double r = el.radius_m;
+    // neighbours: sheaves are unknowns; the ends (drum or anchor) have known rope speeds
+    const bool left_sheave = j - 1 >= 1, right_sheave = j + 1 <= m - 2;
+    if (by_increment) {
+      // the transfer acts on the speeds' change over the step, A (w' - w) = r (T_next - T_prev): in steady
+      // running the tensions balance across the sheave, and the stiffness part is a symplectic Euler step of
+      // the sheaves with their inertia raised by dt^2 r^2 k (stable for any sheave; the ends' change is left
+      // to the next step)
+      const double c_before = coupling(before), c_after = coupling(after);
+      diag[j] = el.inertia_kg_m2 / dt + r * r * (c_before + c_after);
+      lower[j] = left_sheave ? -r * c_before * settings_.elements[element(j - 1)].radius_m : 0.0;
+      upper[j] = right_sheave ? -r * c_after * settings_.elements[element(j + 1)].radius_m : 0.0;
+      rhs[j] = diag[j] * speed(j) + (left_sheave ? lower[j] * speed(j - 1) : 0.0) +
+               (right_sheave ? upper[j] * speed(j + 1) : 0.0) + r * (after.tension - before.tension);
+      continue;
+    }
+    // runs recorded before: the tensions balanced after the step's transfer, T' = T - k dL0
     diag[j] = el.inertia_kg_m2 / dt + dt * r * r * (before.stiffness + after.stiffness);
     rhs[j] = el.inertia_kg_m2 * elements_[e].omega / dt + r * (after.tension - before.tension);
-    // neighbours: sheaves are unknowns; the ends (drum or anchor) have known rope speeds
     const double left_speed = rope_speed_into(before, true), right_speed = rope_speed_into(after, false);
-    if (j - 1 >= 1)
+    if (left_sheave)
       lower[j] = -dt * r * before.stiffness * settings_.elements[element(j - 1)].radius_m;
     else
       rhs[j] += dt * r * before.stiffness * left_speed;
-    if (j + 1 <= m - 2)
+    if (right_sheave)
       upper[j] = -dt * r * after.stiffness * settings_.elements[element(j + 1)].radius_m;
     else
       rhs[j] += dt * r * after.stiffness * right_speed;
@@ -357,10 +388,22 @@ void HoistSystem::step_sheaves(const Rope& rope, double dt) {
   for (std::size_t j = m - 2; j >= 1; --j) {
     const double next = j + 1 <= m - 2 ? elements_[element(j + 1)].omega : 0.0;
     double omega = (rhs[j] - upper[j] * next) / diag[j];
-    // bearing friction opposes the motion and cannot reverse it
+    // bearing friction and the rope's bending on and off the sheave as it runs over it (bending_loss c at
+    // each tangent: c r (T_prev + T_next)) oppose the motion and cannot reverse it; they act on the sheave
+    // with the rope it moves (the coupling the solve gave it), as in the solve; runs recorded before: bearing
+    // friction alone, on the sheave alone
     const ElementSettings& el = settings_.elements[element(j)];
-    if (el.friction_torque_n_m > 0.0) {
-      const double loss = el.friction_torque_n_m * dt / el.inertia_kg_m2;
+    const Segment& before = segments_[rope.segments[j - 1]];
+    const Segment& after = segments_[rope.segments[j]];
+    const double r = el.radius_m;
+    const bool running_loss = by_increment && !settings_.sheaves_without_bending_loss;
+    const double friction =
+        el.friction_torque_n_m +
+        (running_loss ? settings_.ropes[before.rope].bending_loss * r * (before.tension + after.tension)
+                      : 0.0);
+    if (friction > 0.0) {
+      const double rope_inertia = dt * r * r * (coupling(before) + coupling(after));
+      const double loss = friction * dt / (el.inertia_kg_m2 + (by_increment ? rope_inertia : 0.0));
       omega = std::abs(omega) <= loss ? 0.0 : omega - std::copysign(loss, omega);
     }
     elements_[element(j)].omega = omega;
@@ -413,9 +456,12 @@ void HoistSystem::apply_forces(const Segment& s, const RopeSettings& rope, Cable
     bodies.add_force(eb.mount.body, s.end_a, -s.bending_at_b);
 }
 
-void HoistSystem::check_events(Segment& s, const RopeSettings& rope, int rope_index, int segment_index) {
+void HoistSystem::check_events(Segment& s, const RopeSettings& rope, int rope_index, int segment_index,
+                               double dt) {
   const bool slack = s.tension <= 0.0;
-  const bool overloaded = s.tension > rope.min_breaking_force_n / rope.safety_factor;
+  const bool over = s.tension > rope.min_breaking_force_n / rope.safety_factor;
+  s.over_s = over ? s.over_s + dt : 0.0;
+  const bool overloaded = settings_.simple_sheaves ? over : s.over_s >= kOverloadFilter_s - 0.5 * dt;
   const bool breaking = s.tension > rope.min_breaking_force_n;
   if (slack && !s.slack) events_.push_back({CableEventKind::kSlack, rope_index, segment_index, s.tension});
   if (overloaded && !s.overloaded)
@@ -442,7 +488,7 @@ void HoistSystem::step(double dt_s, std::span<const DrumCommand> drum_commands, 
       s.rest_length += (rope_speed_into(s, true) - rope_speed_into(s, false)) * dt_s;
       s.rest_length = std::max(s.rest_length, 1e-3);
       apply_forces(s, settings, bodies);
-      check_events(s, settings, static_cast<int>(r), static_cast<int>(n));
+      check_events(s, settings, static_cast<int>(r), static_cast<int>(n), dt_s);
     }
     rope.stored_m -= rope_speed_into(segments_[rope.segments.front()], true) * dt_s;
     if (settings_.elements[segments_[rope.segments.back()].b].kind == ElementKind::kDrum)
@@ -520,7 +566,7 @@ int HoistSystem::polyline(int rope, int segment, std::span<core::Vec3> out) cons
 }
 
 void HoistSystem::save_state(core::StateWriter& out) const {
-  out.section(0x484F4953);  // "HOIS"
+  out.section(state_section());
   for (const Segment& s : segments_) {
     out.put(s.rest_length);
     out.put(s.length);
@@ -539,6 +585,7 @@ void HoistSystem::save_state(core::StateWriter& out) const {
     out.put(s.end_b);
     out.put(s.velocity_a);
     out.put(s.velocity_b);
+    if (!settings_.simple_sheaves) out.put(s.over_s);
   }
   for (const Rope& r : ropes_)
     out.put(r.stored_m);
@@ -546,7 +593,7 @@ void HoistSystem::save_state(core::StateWriter& out) const {
 }
 
 void HoistSystem::restore_state(core::StateReader& in) {
-  in.section(0x484F4953, "hoist");
+  in.section(state_section(), "hoist");
   for (Segment& s : segments_) {
     in.get(s.rest_length);
     in.get(s.length);
@@ -565,6 +612,7 @@ void HoistSystem::restore_state(core::StateReader& in) {
     in.get(s.end_b);
     in.get(s.velocity_a);
     in.get(s.velocity_b);
+    if (!settings_.simple_sheaves) in.get(s.over_s);
   }
   for (Rope& r : ropes_)
     in.get(r.stored_m);
@@ -579,11 +627,17 @@ void HoistSystem::hash_into(core::StateHash& hash) const {
     hash.add(s.oscillating);
     hash.add(std::span<const Vec3>(s.w));
     hash.add(std::span<const Vec3>(s.u));
+    if (!settings_.simple_sheaves) hash.add(s.over_s);
   }
   for (const ElementState& e : elements_)
     hash.add(e);
   for (const Rope& r : ropes_)
     hash.add(r.stored_m);
+}
+
+std::uint32_t HoistSystem::state_section() const {
+  return settings_.simple_sheaves ? 0x484F4953 /* "HOIS" */
+                                  : 0x484F4932 /* "HOI2": with the overload timers */;
 }
 
 double HoistSystem::highest_tension_n() const {

@@ -13,7 +13,7 @@ namespace harbour::cable {
 
 /// What the cable model reports (edge-triggered: once when a condition starts).
 enum class CableEventKind : std::uint8_t {
-  kOverload,       ///< a segment's tension exceeded the rope's working load limit (MBF / safety factor)
+  kOverload,       ///< a segment's tension stood 10 ms above the working load limit (MBF / safety factor)
   kBreakingForce,  ///< a segment's tension exceeded the minimum breaking force
   kSlack,          ///< a segment of a rope went slack (zero tension)
 };
@@ -105,6 +105,7 @@ class HoistSystem {
     bool oscillating = true;
     double sag_share = 0.0;  // [-] share of the cross-chord weight carried through the sag
     bool slack = false, overloaded = false, breaking = false;
+    double over_s = 0.0;                // [s] how long its tension has stood above the working load limit
     std::vector<core::Vec3> w, u;       // transverse displacement [m] and velocity [m/s] of interior nodes
     core::Vec3 end_a, end_b;            // [m] world positions of the ends this step
     core::Vec3 velocity_a, velocity_b;  // [m/s] previous end velocities, for end accelerations
@@ -136,7 +137,8 @@ class HoistSystem {
   void step_drums(double dt, std::span<const DrumCommand> commands);
   void step_sheaves(const Rope& rope, double dt);
   void apply_forces(const Segment& s, const RopeSettings& rope, CableBodies& bodies) const;
-  void check_events(Segment& s, const RopeSettings& rope, int rope_index, int segment_index);
+  void check_events(Segment& s, const RopeSettings& rope, int rope_index, int segment_index, double dt);
+  std::uint32_t state_section() const;
 
   ReevingSettings settings_;
   core::Vec3 gravity_;

@@ -66,6 +66,12 @@ struct ReevingSettings {
   /// No bending hysteresis where the ropes turn on their sheaves and drums: the model every run recorded
   /// without recording header flag bit 5 ran on (their replays run on it; never from a file).
   bool sheaves_without_bending_loss = false;
+  /// The sheaves as every run recorded without recording header flag bit 7 ran (their replays run so; never
+  /// from a file): each sheave's speed balances the tensions after the step's rope transfer (which held the
+  /// span before a sheave above the one after while hoisting), the rope loses nothing running over it, a
+  /// segment's strain rate is its length's alone, and a rope is overloaded the moment it stands above its
+  /// working load.
+  bool simple_sheaves = false;
 };
 
 }  // namespace harbour::cable

@@ -42,9 +42,15 @@ constexpr double kCellEntryClearance_m = 0.3;  // aim the spreader this far abov
 constexpr double kCellEntryBand_m = 0.3;       // ... holding within this band below that height
 constexpr double kFineSpeed_mps = 0.2;         // fine positioning never drives faster
 constexpr double kResting_s = 1.0;             // the spreader sits beside the castings this long: lift off
-constexpr double kLiftOffLever = 0.15;         // ... at 0.22 m/s
+// lowering without coming kProgress_m lower for kStalled_s (waiting for an aim it never reaches, leaning on a
+// neighbouring stack): lift off and come down again
+constexpr double kStalled_s = 30.0;
+constexpr double kProgress_m = 0.01;
+constexpr double kLiftOffLever = 0.15;  // ... at 0.22 m/s
 constexpr double kLiftOff_s = 2.0;
 constexpr double kButton_s = 0.1;
+constexpr double kSeated_s = 0.2;     // the landed lamp lit this long before the locks are turned
+constexpr double kLockRetry_s = 1.0;  // not locked this long after the button: land again
 constexpr double kSlacken_s = 0.6;
 constexpr double kHorn_s = 1.0;  // the horn sounds this long before the gantry travels
 // holding a steered gantry's line: the offset closes over kLaneClose_s (its integral over kLaneIntegral_s
@@ -263,6 +269,7 @@ void Autopilot::resume(const Simulation& simulation, int moves_done, const Contr
   goal_ = static_cast<std::size_t>(std::max(0, moves_done));
   phase_ = Phase::kRaise;
   phase_start_ = simulation.time_s();
+  stalled_since_ = landed_since_ = -1.0;
   decided_ = false;
   trolley_swing_ = {};
   gantry_swing_ = {};
@@ -350,6 +357,7 @@ StsControls Autopilot::decide(const Simulation& simulation) {
   auto enter = [&](Phase p) {
     phase_ = p;
     phase_start_ = now;
+    stalled_since_ = landed_since_ = -1.0;
   };
 
   switch (phase_) {
@@ -400,7 +408,15 @@ StsControls Autopilot::decide(const Simulation& simulation) {
       const bool hold =
           (above < kHover_m || at_entry) && !will_land_within(aim) && !(carrying_ && defects_.land_fast);
       in.hoist = hold ? 0.0 : hoist_lever(slow ? -kSlowLever : -0.6);
-      if (!carrying_ && hoist.locks().twistlocks().lamps().landed) enter(Phase::kLock);
+      if (stalled_since_ < 0.0 || spreader.z < stalled_z_ - kProgress_m) {
+        stalled_since_ = now;
+        stalled_z_ = spreader.z;
+      }
+      if (now - stalled_since_ > kStalled_s) enter(Phase::kLiftOff);
+      // the landed lamp lit steadily (not a touch it bounces off) before the locks are turned
+      const bool landed = hoist.locks().twistlocks().lamps().landed;
+      if (!landed || landed_since_ < 0.0) landed_since_ = landed ? now : -1.0;
+      if (!carrying_ && landed && now - landed_since_ >= kSeated_s) enter(Phase::kLock);
       if (carrying_ && simulation.world().pose(*hoist.locked_container()).position.z <= destination.z + 0.01)
         enter(Phase::kSlacken);
       // sitting on the box beside its castings: lift off and aim again
@@ -431,6 +447,8 @@ StsControls Autopilot::decide(const Simulation& simulation) {
       if (now - phase_start_ > 2 * kButton_s && hoist.locked_container()) {
         carrying_ = true;
         enter(Phase::kRaise);
+      } else if (now - phase_start_ > kLockRetry_s) {
+        enter(Phase::kLower);  // the locks did not turn: settle onto the castings again
       }
       break;
     case Phase::kSlacken:

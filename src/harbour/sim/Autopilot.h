@@ -101,6 +101,9 @@ class Autopilot final : public Pilot {
   AxisMove trolley_, gantry_;
   SwingAxis trolley_swing_, gantry_swing_;
   double resting_since_ = -1.0;  // the spreader sits on something without landing in its castings
+  double stalled_since_ = -1.0;  // lowering: when the spreader last came kProgress_m lower, and where
+  double stalled_z_ = 0.0;
+  double landed_since_ = -1.0;  // lowering: when the landed lamp lit
   bool lock_skipped_ = false;
   double lane_integral_ = 0.0;  // [m s] the gantry's offset from its line, integrated while it travels
   StsControls last_;

@@ -13,7 +13,8 @@ class MobileHarbourCrane;
 /// How a scripted operator drives a slewing, luffing crane's boom head: over a point while it damps the
 /// load's swing (the head follows the load's offset from plumb under the falls), and the load at a height
 /// held gently. It sees the swing and the height through a low-pass: the boom's bounce on its ropes (about 1
-/// Hz) moves the head to and fro under the load, and levers that followed it would pump the bounce.
+/// Hz) moves the head to and fro under the load, and levers that followed it would pump the bounce; a
+/// slower one lags the load's pendulum enough to pump its swing.
 class BoomSteering {
  public:
   /// Where a point lies from the slewing axis.

@@ -45,6 +45,11 @@ struct Recording {
   /// The ropes lost to bending hysteresis where they turned on their sheaves and drums (false: none, as in
   /// every run recorded without header flag bit 5; ScenarioSettings::sheaves_without_bending_loss).
   bool sheave_bending_loss = true;
+  /// Its sheaves turned by the change of their rope's transfer, the rope lost to bending running over them,
+  /// its strain rate counted the rope transferred and a rope was overloaded after 10 ms above its working
+  /// load (false: none of these, as in every run recorded without header flag bit 7;
+  /// ScenarioSettings::simple_sheaves).
+  bool running_sheaves = true;
   /// Its checkpoints hash everything the machine saves (false: the machine's hand-picked figures, as in
   /// every run recorded without header flag bit 6; ScenarioSettings::machine_hashed_by_hand).
   bool machine_state_hashed = true;

@@ -38,6 +38,7 @@ MachineSetup as_built(const ScenarioSettings& scenario) {
     reeving->stretch_along_chord |= scenario.ropes_stretch_along_chord;
     reeving->damping_against_ground |= scenario.rope_damping_against_ground;
     reeving->sheaves_without_bending_loss |= scenario.sheaves_without_bending_loss;
+    reeving->simple_sheaves |= scenario.simple_sheaves;
   }
   if (auto* stacker = setup.get_if<ReachStackerSetup>(); stacker && scenario.end_stops_at_travel)
     stacker->vehicle.telescope_end_stop_margin_m = 0.0;

@@ -143,6 +143,9 @@ struct ScenarioSettings {
   /// (cable::ReevingSettings::sheaves_without_bending_loss), as in every run recorded before it was
   /// modelled: their replays run so.
   bool sheaves_without_bending_loss = false;
+  /// The sheaves, the ropes' strain rate and overloads as before recording header flag bit 7
+  /// (cable::ReevingSettings::simple_sheaves): the replays of runs recorded without it run so.
+  bool simple_sheaves = false;
   /// The state hash takes the machine's hand-picked figures (Machine::hash_into), as in every run recorded
   /// before it took everything the machine saves: their replays check their hashes so.
   bool machine_hashed_by_hand = false;
