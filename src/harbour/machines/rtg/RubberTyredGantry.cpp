@@ -331,6 +331,10 @@ MachineTally RubberTyredGantry::tally() const {
   t.axes[2] = {"hoist", rig_->hoist().drum_rope_speed(0)};
   t.limit_hits = trolley_drive_.limit_hits() + rig_->limit_hits();
   t.hoist_power_w = std::max(0.0, rig_->hoist().drum_power_w(0));
+  // the trolley's drive (its slider's motor force times the trolley's speed on the frame); the gantry's wheel
+  // motors are not measured
+  t.travel_power_w =
+      std::max(0.0, world_.slider_force(trolley_slider_) * world_.slider_rate(trolley_slider_));
   t.warns_before_travel = true;
   t.travelling = gantry_.reference_mps() != 0.0;
   t.travel_position_m = gantry_y_m();
