@@ -279,12 +279,13 @@ TEST(HoistSystem, ASheaveInSteadyMotionPassesTheTensionOn) {
   const SteadyHoist hoisting = hoist_over_a_sheave(false, false);
   const SteadyHoist biased = hoist_over_a_sheave(true, false);
   std::printf(
-      "span %.0f N, fall %.0f N, drum's work %.4f of the held load's (ignoring the chord's motion: %.0f, "
-      "%.0f N, %.4f)\n",
+      "span %.0f N, fall %.0f N, drum's work %.4f of the held load's (the solve of runs recorded before: "
+      "%.0f, %.0f N, %.4f)\n",
       hoisting.span_n, hoisting.fall_n, hoisting.work_ratio, biased.span_n, biased.fall_n, biased.work_ratio);
   EXPECT_NEAR(hoisting.span_n, hoisting.fall_n, 0.005 * hoisting.fall_n);
   EXPECT_NEAR(hoisting.work_ratio, 1.0, 0.01);
-  // the solve that ignored the ends' chord motion held the span k v dt above the fall
+  // the solve of runs recorded before (tensions balanced after the step's transfer) held the span k v dt
+  // above the fall
   EXPECT_GT(biased.span_n, 1.05 * biased.fall_n);
 }
 

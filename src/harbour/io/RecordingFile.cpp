@@ -28,7 +28,7 @@ constexpr std::uint16_t kFlagRopeDampingInternal = 16;  // its ropes' transverse
 constexpr std::uint16_t kFlagSheaveBendingLoss =
     32;  // its ropes lost to bending where they turned on sheaves
 constexpr std::uint16_t kFlagMachineStateHashed = 64;  // its checkpoints hash everything the machine saves
-constexpr std::uint16_t kFlagRunningSheaves = 128;  // its sheaves ran with loss, by the transfer's change
+constexpr std::uint16_t kFlagRunningSheaves = 128;     // its sheaves ran with loss, by the transfer's change
 
 class Writer {
  public:
