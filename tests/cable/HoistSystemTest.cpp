@@ -360,6 +360,49 @@ TEST(HoistSystem, SlackRopeNeverPushesAndIsReported) {
   EXPECT_EQ(rig.hoist->tension(0, 0), 0.0);
 }
 
+// A rope that goes slack keeps the sag it has (nothing lifts it): a mass shuttling between two horizontal
+// ropes, each going slack as the other stops it, with no damping anywhere, may only keep its energy. When a
+// slack segment's shape faded back to its chord, each slack spell lifted the rope's sag for nothing and the
+// next stop gave that work to the mass (runs recorded before).
+TEST(HoistSystem, AMassShuttlingBetweenTwoRopesThatGoSlackInTurnGainsNoEnergy) {
+  for (const bool straighten : {true, false}) {
+    Rig rig;
+    const int mass = rig.bodies.add({50, 0, 10}, 2000.0);
+    rig.bodies.bodies[mass].velocity = {0.5, 0, 0};
+    ReevingSettings r;
+    r.slack_ropes_straighten = straighten;
+    r.sheaves_without_bending_loss = true;
+    r.elements = {scenes::anchor({-1, {0, 0, 10}}), scenes::anchor({mass, {0, 0, 0}}),
+                  scenes::anchor({-1, {100, 0, 10}})};
+    r.ropes = {scenes::rope_28mm({0, 1}), scenes::rope_28mm({1, 2})};
+    for (RopeSettings& rope : r.ropes) {
+      rope.axial_damping_s = 0.0;
+      rope.transverse_damping_per_s = 0.0;
+    }
+    rig.hoist = std::make_unique<HoistSystem>(r, rig.bodies, kGravity);
+    std::vector<double> peak_speed;
+    double peak = 0.0;
+    for (int k = 1; k <= 120000; ++k) {
+      rig.hoist->step(kDt, {}, rig.bodies);
+      rig.bodies.step(kDt, Vec3{});  // the mass floats: only the ropes pull it
+      peak = std::max(peak, std::abs(rig.bodies.bodies[mass].velocity.x));
+      if (k % 10000 == 0) peak_speed.push_back(std::exchange(peak, 0.0));
+    }
+    std::printf("%s: peak speed per 10 s", straighten ? "straightening while slack" : "keeping its shape");
+    for (const double v : peak_speed)
+      std::printf(" %.4f", v);
+    std::printf(" m/s\n");
+    if (straighten) {
+      EXPECT_GT(peak_speed.back(), 2.0 * peak_speed.front());
+    } else {
+      // the first spell lets the straight ropes drop into their sag (their weight's work); after it the mass
+      // never moves faster, and what a slack rope's nodes had in motion is lost
+      for (std::size_t n = 1; n < peak_speed.size(); ++n)
+        EXPECT_LE(peak_speed[n], peak_speed.front()) << "after " << 10 * n << " s";
+    }
+  }
+}
+
 // A load limiter's filtering: the overload is reported once the working load has been exceeded 10 ms (runs
 // recorded before: at once)
 int overload_lag_steps(bool simple_sheaves) {

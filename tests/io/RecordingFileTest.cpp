@@ -102,6 +102,7 @@ TEST(RecordingFile, RoundTripsBitForBit) {
   EXPECT_TRUE(back.sheave_bending_loss);
   EXPECT_TRUE(back.machine_state_hashed);
   EXPECT_TRUE(back.running_sheaves);
+  EXPECT_TRUE(back.slack_ropes_keep_sag);
   // a branch of a run that started on unstretched ropes, stretched along their chords, says so, and an
   // unknown flag is refused
   sim::Recording old_start = sample();
@@ -113,6 +114,7 @@ TEST(RecordingFile, RoundTripsBitForBit) {
   old_start.sheave_bending_loss = false;
   old_start.machine_state_hashed = false;
   old_start.running_sheaves = false;
+  old_start.slack_ropes_keep_sag = false;
   write_recording(path, old_start);
   EXPECT_FALSE(read_recording(path).ropes_settled);
   EXPECT_FALSE(read_recording(path).ropes_curved);
@@ -122,13 +124,14 @@ TEST(RecordingFile, RoundTripsBitForBit) {
   EXPECT_FALSE(read_recording(path).sheave_bending_loss);
   EXPECT_FALSE(read_recording(path).machine_state_hashed);
   EXPECT_FALSE(read_recording(path).running_sheaves);
+  EXPECT_FALSE(read_recording(path).slack_ropes_keep_sag);
   std::vector<char> bytes;
   {
     std::ifstream in(path, std::ios::binary);
     bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
   }
-  // an unknown flag (bit 8) in the header's flags (u16, little-endian, after the magic and the version)
-  bytes[7] = static_cast<char>(1);
+  // an unknown flag (bit 9) in the header's flags (u16, little-endian, after the magic and the version)
+  bytes[7] = static_cast<char>(2);
   std::ofstream(path, std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
   EXPECT_THROW(read_recording(path), RecordingFileError);
   std::filesystem::remove(path);

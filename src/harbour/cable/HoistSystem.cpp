@@ -183,8 +183,8 @@ void HoistSystem::update_segment(Segment& s, const RopeSettings& rope, double dt
   }
 
   // oscillation, or the massless spring when the wave would need too many sub-steps (with hysteresis);
-  // a slack segment carries no wave either (nothing restores it): its shape fades and its weight rests on its
-  // ends
+  // a slack segment carries no wave either (nothing restores it): it keeps the shape it had (a slack rope
+  // does not lift its own sag) and its weight rests on its ends; a spring's shape fades
   const double transport = 0.5 * (rope_speed_into(s, true) + rope_speed_into(s, false));
   const double wave_speed = std::sqrt(s.tension / mu);
   // the stretch of the curved rope couples its nodes through the tension (a rank-one stiffness EA/L0 g g^T,
@@ -221,8 +221,9 @@ void HoistSystem::update_segment(Segment& s, const RopeSettings& rope, double dt
   } else {
     s.damping_a = s.damping_b = Vec3{};
     s.sag_share *= fade;
+    const bool fade_shape = !s.oscillating || settings_.slack_ropes_straighten;
     for (std::size_t k = 0; k < s.w.size(); ++k) {
-      s.w[k] *= fade;
+      if (fade_shape) s.w[k] *= fade;
       s.u[k] = Vec3{};
     }
   }

@@ -72,6 +72,10 @@ struct ReevingSettings {
   /// segment's strain rate is its length's alone, and a rope is overloaded the moment it stands above its
   /// working load.
   bool simple_sheaves = false;
+  /// A slack segment's shape fades to its chord over kSpringDecay_s, as in every run recorded without
+  /// recording header flag bit 8 (their replays run so; never from a file): each slack spell lifted the
+  /// rope's sag for nothing, and the next time it drew taut that work went to its ends.
+  bool slack_ropes_straighten = false;
 };
 
 }  // namespace harbour::cable

@@ -29,6 +29,7 @@ constexpr std::uint16_t kFlagSheaveBendingLoss =
     32;  // its ropes lost to bending where they turned on sheaves
 constexpr std::uint16_t kFlagMachineStateHashed = 64;  // its checkpoints hash everything the machine saves
 constexpr std::uint16_t kFlagRunningSheaves = 128;     // its sheaves ran with loss, by the transfer's change
+constexpr std::uint16_t kFlagSlackRopesKeepSag = 256;  // a slack rope kept the shape it had
 
 class Writer {
  public:
@@ -189,7 +190,8 @@ RecordingWriter::RecordingWriter(const std::string& path, const sim::Recording& 
       (prefix.rope_damping_internal ? kFlagRopeDampingInternal : 0) |
       (prefix.sheave_bending_loss ? kFlagSheaveBendingLoss : 0) |
       (prefix.machine_state_hashed ? kFlagMachineStateHashed : 0) |
-      (prefix.running_sheaves ? kFlagRunningSheaves : 0)));
+      (prefix.running_sheaves ? kFlagRunningSheaves : 0) |
+      (prefix.slack_ropes_keep_sag ? kFlagSlackRopesKeepSag : 0)));
   w.put(prefix.scenario);
   w.put(prefix.parent);
   w.put(prefix.branch_step);
@@ -526,9 +528,10 @@ sim::Recording parse_recording(const std::string& path, std::string bytes) {
   rec.sheave_bending_loss = version >= 8 && (flags & kFlagSheaveBendingLoss) != 0;
   rec.machine_state_hashed = version >= 8 && (flags & kFlagMachineStateHashed) != 0;
   rec.running_sheaves = version >= 8 && (flags & kFlagRunningSheaves) != 0;
+  rec.slack_ropes_keep_sag = version >= 8 && (flags & kFlagSlackRopesKeepSag) != 0;
   constexpr std::uint16_t kKnown = kFlagRopesSettled | kFlagRopesCurved | kFlagEndStopsClear |
                                    kFlagStartSettled | kFlagRopeDampingInternal | kFlagSheaveBendingLoss |
-                                   kFlagMachineStateHashed | kFlagRunningSheaves;
+                                   kFlagMachineStateHashed | kFlagRunningSheaves | kFlagSlackRopesKeepSag;
   if (version >= 8 && (flags & ~kKnown) != 0) r.fail("unknown header flags " + std::to_string(flags));
   rec.scenario = r.text("scenario name");
   if (const std::string bad = core::why_bad_name(rec.scenario); !bad.empty())

@@ -98,6 +98,7 @@ ScenarioSettings as_recorded(ScenarioSettings scenario, const Recording& recordi
   scenario.rope_damping_against_ground = !recording.rope_damping_internal;
   scenario.sheaves_without_bending_loss = !recording.sheave_bending_loss;
   scenario.simple_sheaves = !recording.running_sheaves;
+  scenario.slack_ropes_straighten = !recording.slack_ropes_keep_sag;
   scenario.machine_hashed_by_hand = !recording.machine_state_hashed;
   return scenario;
 }
@@ -201,6 +202,7 @@ TakeOver take_over(const ScenarioSettings& scenario, const Recording& recording,
   prefix.rope_damping_internal = recording.rope_damping_internal;
   prefix.sheave_bending_loss = recording.sheave_bending_loss;
   prefix.running_sheaves = recording.running_sheaves;
+  prefix.slack_ropes_keep_sag = recording.slack_ropes_keep_sag;
   prefix.machine_state_hashed = recording.machine_state_hashed;
   // the branch records by this machine's labels: the prefix's controls are carried over to them
   const ControlTable& table = r.simulation->control_table();

@@ -50,6 +50,9 @@ struct Recording {
   /// load (false: none of these, as in every run recorded without header flag bit 7;
   /// ScenarioSettings::simple_sheaves).
   bool running_sheaves = true;
+  /// A slack rope kept the shape it had (false: it straightened to its chord, as in every run recorded
+  /// without header flag bit 8; ScenarioSettings::slack_ropes_straighten).
+  bool slack_ropes_keep_sag = true;
   /// Its checkpoints hash everything the machine saves (false: the machine's hand-picked figures, as in
   /// every run recorded without header flag bit 6; ScenarioSettings::machine_hashed_by_hand).
   bool machine_state_hashed = true;

@@ -39,6 +39,7 @@ MachineSetup as_built(const ScenarioSettings& scenario) {
     reeving->damping_against_ground |= scenario.rope_damping_against_ground;
     reeving->sheaves_without_bending_loss |= scenario.sheaves_without_bending_loss;
     reeving->simple_sheaves |= scenario.simple_sheaves;
+    reeving->slack_ropes_straighten |= scenario.slack_ropes_straighten;
   }
   if (auto* stacker = setup.get_if<ReachStackerSetup>(); stacker && scenario.end_stops_at_travel)
     stacker->vehicle.telescope_end_stop_margin_m = 0.0;

@@ -146,6 +146,9 @@ struct ScenarioSettings {
   /// The sheaves, the ropes' strain rate and overloads as before recording header flag bit 7
   /// (cable::ReevingSettings::simple_sheaves): the replays of runs recorded without it run so.
   bool simple_sheaves = false;
+  /// A slack rope straightens to its chord (cable::ReevingSettings::slack_ropes_straighten), as in every run
+  /// recorded without recording header flag bit 8: their replays run so.
+  bool slack_ropes_straighten = false;
   /// The state hash takes the machine's hand-picked figures (Machine::hash_into), as in every run recorded
   /// before it took everything the machine saves: their replays check their hashes so.
   bool machine_hashed_by_hand = false;
