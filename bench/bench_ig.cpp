@@ -7,6 +7,8 @@
 
 #include <osg/Image>
 
+#include <optional>
+
 #include "harbour/bulk/BulkPublish.h"
 #include "harbour/core/Rng.h"
 #include "harbour/ig/ImageGenerator.h"
@@ -28,7 +30,10 @@ void BM_Frame(benchmark::State& state) {
   while (simulation.time_s() < 30.0)
     simulation.step(pilot.next(simulation));  // a box on the spreader
   const ig::Looks looks = ig::load_looks(HARBOUR_DATA_DIR "/visuals/harbour.yaml");
-  ig::ImageGenerator generator(simulation.scene(), looks.visuals, width, height);
+  // samples per pixel: -1 the renderer's default (none on a software renderer)
+  const std::optional<int> samples =
+      state.range(4) < 0 ? std::nullopt : std::optional<int>(static_cast<int>(state.range(4)));
+  ig::ImageGenerator generator(simulation.scene(), looks.visuals, width, height, samples);
   generator.use(looks);
   ig::View view;
   view.kind = state.range(2) == 0 ? ig::View::Kind::kCab : ig::View::Kind::kChase;
@@ -50,15 +55,18 @@ void BM_Frame(benchmark::State& state) {
   state.counters["fps"] = benchmark::Counter(1.0, benchmark::Counter::kIsIterationInvariantRate);
   state.counters["insets"] =
       static_cast<double>(view.kind == ig::View::Kind::kCab && view.insets ? generator.insets().size() : 0);
+  state.counters["samples"] = generator.multisamples();
   state.SetLabel(generator.renderer());
 }
 BENCHMARK(BM_Frame)
-    ->Args({1280, 720, 0, 1})
-    ->Args({1280, 720, 0, 0})
-    ->Args({1280, 720, 1, 0})
-    ->Args({1920, 1080, 0, 1})
-    ->Args({1920, 1080, 1, 0})
-    ->ArgNames({"w", "h", "chase", "insets"})
+    ->Args({1280, 720, 0, 1, -1})
+    ->Args({1280, 720, 0, 0, -1})
+    ->Args({1280, 720, 1, 0, -1})
+    ->Args({1920, 1080, 0, 1, -1})
+    ->Args({1920, 1080, 1, 0, -1})
+    ->Args({1280, 720, 0, 1, 4})
+    ->Args({1280, 720, 1, 0, 4})
+    ->ArgNames({"w", "h", "chase", "insets", "samples"})
     ->Unit(benchmark::kMillisecond)
     ->MinTime(3.0)
     ->UseRealTime();  // llvmpipe may draw on threads of its own

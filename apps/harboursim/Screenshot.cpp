@@ -57,7 +57,8 @@ int take_screenshot(const ScreenshotOptions& options) {
   }
   ig::Looks looks = ig::load_looks(
       options.looks.empty() ? std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml" : options.looks);
-  ig::ImageGenerator generator(simulation.scene(), std::move(looks.visuals), options.width, options.height);
+  ig::ImageGenerator generator(simulation.scene(), std::move(looks.visuals), options.width, options.height,
+                               options.multisamples);
   if (options.soft_shadows) generator.set_soft_shadows(*options.soft_shadows);
   generator.use(looks);
   generator.update(*simulation.snapshot());

@@ -19,6 +19,7 @@ struct ScreenshotOptions {
   std::vector<double> camera;
   std::vector<std::string> commands;  ///< instructor commands on the way there, AT:KIND[:VALUES] (as `run`)
   std::optional<bool> soft_shadows;   ///< filtered shadow edges (unset: the renderer's default)
+  std::optional<int> multisamples;    ///< anti-aliasing samples per pixel (unset: the renderer's default)
   std::string looks;  ///< a look file to draw with (empty: the shipped data/visuals/harbour.yaml)
 };
 int take_screenshot(const ScreenshotOptions& options);

@@ -156,6 +156,10 @@ int main(int argc, char** argv) {
                        "30:power-failure");
   shot_cmd->add_option("--soft-shadows", shot.soft_shadows,
                        "filtered shadow edges, true or false (default: on, off on a software renderer)");
+  shot_cmd
+      ->add_option("--multisamples", shot.multisamples,
+                   "anti-aliasing samples per pixel, 0-16 (default: 4, 0 on a software renderer)")
+      ->check(CLI::Range(0, 16));
   shot_cmd->add_option("--looks", shot.looks, "look file to draw with (default: the shipped one)")
       ->check(CLI::ExistingFile);
   shot_cmd->add_option("--camera", shot.camera, "free view: X,Y,Z metres, YAW,PITCH degrees")

@@ -627,6 +627,49 @@ TEST(ImageGenerator, TheTimelineBarFillsUpToNowAndMarksTheEvents) {
 }
 
 // The cab view's roll turns the picture about the view axis: rolled right, a point right of the axis rises.
+// Multisampling: a red panel against the sky, its edges slanted by the view's roll. Drawn with one sample a
+// pixel, each pixel is the panel's or the sky's; with four, a pixel the edge crosses takes the share of the
+// panel it covers. The panel's area (its redness summed over the picture) is the same either way.
+TEST(ImageGenerator, MultisamplingBlendsThePixelsAnEdgeCrosses) {
+  struct Drawn {
+    int samples = 0, blended = 0;
+    double area_px = 0.0;
+  };
+  auto draw = [](int samples) {
+    ImageGenerator ig(scene(), looks(), kWidth, kHeight, samples);
+    ig.update(state(30.0, 5000.0, 20000.0, 12.0));
+    View v = level();
+    v.roll_rad = 0.3;
+    ig.set_view(v);
+    const osg::Image& image = ig.render();
+    const auto centre = *ig.project({30.0, 0.0, 14.0});
+    auto redness = [&](double x, double y) {
+      const osg::Vec3 c = pixel(image, x, y);
+      return c.x() - 0.5 * (c.y() + c.z());
+    };
+    const double panel = redness(centre.first, centre.second),
+                 sky = redness(centre.first - 30.0, centre.second);
+    EXPECT_GT(panel - sky, 0.3);
+    Drawn d{ig.multisamples()};
+    // the panel (some 32 px square, turned 0.3 rad) and the sky round it
+    for (int y = static_cast<int>(centre.second) - 30; y <= static_cast<int>(centre.second) + 30; ++y)
+      for (int x = static_cast<int>(centre.first) - 30; x <= static_cast<int>(centre.first) + 30; ++x) {
+        const double share = (redness(x, y) - sky) / (panel - sky);
+        d.area_px += std::clamp(share, 0.0, 1.0);
+        d.blended += share > 0.15 && share < 0.85 ? 1 : 0;
+      }
+    return d;
+  };
+  const Drawn aliased = draw(0), smooth = draw(4);
+  std::printf("one sample: %d blended pixels, area %.1f px; %d samples: %d blended, area %.1f px\n",
+              aliased.blended, aliased.area_px, smooth.samples, smooth.blended, smooth.area_px);
+  EXPECT_EQ(aliased.samples, 0);
+  EXPECT_EQ(smooth.samples, 4);
+  EXPECT_GT(smooth.blended, 60);  // most of the ~130 pixels round the panel's edge
+  EXPECT_LT(aliased.blended, smooth.blended / 10);
+  EXPECT_NEAR(smooth.area_px, aliased.area_px, 0.03 * aliased.area_px);
+}
+
 TEST(ImageGenerator, TheViewsRollTurnsThePictureAboutItsAxis) {
   ImageGenerator ig(scene(), looks(), kWidth, kHeight);
   ig.update(state(5000.0, 5000.0, 20000.0, 12.0));

@@ -2,6 +2,7 @@
 
 #include <osg/Depth>
 #include <osg/Fog>
+#include <osg/FrameBufferObject>
 #include <osg/Geode>
 #include <osg/Geometry>
 #include <osg/Image>
@@ -448,9 +449,10 @@ core::Vec3 moon_direction(double t_h, double day_of_year, double latitude_deg, d
 }
 
 ImageGenerator::ImageGenerator(const sim::SceneDescription& scene, std::map<std::string, Visual> visuals,
-                               int width, int height)
+                               int width, int height, std::optional<int> multisamples)
     : visuals_(std::move(visuals)), width_(width), height_(height) {
   context_ = std::make_unique<HeadlessContext>(width, height);
+  const bool software = software_renderer(renderer());
   viewer_ = std::make_unique<osgViewer::Viewer>();
   viewer_->setUpViewerAsEmbeddedInWindow(0, 0, width, height);
   viewer_->setThreadingModel(osgViewer::Viewer::SingleThreaded);
@@ -462,7 +464,68 @@ ImageGenerator::ImageGenerator(const sim::SceneDescription& scene, std::map<std:
   image_->allocateImage(width, height, 1, GL_RGB, GL_UNSIGNED_BYTE);
   viewer_->getCamera()->attach(osg::Camera::COLOR_BUFFER, image_.get());
   viewer_->realize();
-  set_soft_shadows(!software_renderer(renderer()));
+  set_soft_shadows(!software);
+  if (const int samples = multisamples.value_or(software ? 0 : kDefaultMultisamples); samples > 1)
+    draw_multisampled(samples);
+}
+
+void ImageGenerator::draw_multisampled(int samples) {
+  // the picture is drawn into a framebuffer of our own with `samples` per pixel and resolved into a plain one
+  // that is read (OSG's own multisampled camera target is refused as incomplete by Mesa); the pbuffer's
+  // multisampled configurations draw one sample on Mesa's surfaceless platform
+  osg::GraphicsContext* gc = viewer_->getCamera()->getGraphicsContext();
+  const osg::GLExtensions* gl = osg::GLExtensions::Get(gc->getState()->getContextID(), true);
+  if (!gl->isFrameBufferObjectSupported || !gl->isRenderbufferMultisampleSupported()) return;
+  GLint most = 0;
+  glGetIntegerv(GL_MAX_SAMPLES_EXT, &most);
+  samples = std::min(samples, static_cast<int>(most));
+  if (samples < 2) return;
+  gl->glGenFramebuffers(2, framebuffers_.data());
+  gl->glGenRenderbuffers(3, renderbuffers_.data());
+  auto storage = [&](GLuint buffer, int count, GLenum format) {
+    gl->glBindRenderbuffer(GL_RENDERBUFFER_EXT, buffer);
+    gl->glRenderbufferStorageMultisample(GL_RENDERBUFFER_EXT, count, format, width_, height_);
+  };
+  storage(renderbuffers_[0], samples, GL_RGB8);
+  storage(renderbuffers_[1], samples, GL_DEPTH_COMPONENT24);
+  storage(renderbuffers_[2], 0, GL_RGB8);
+  gl->glBindFramebuffer(GL_FRAMEBUFFER_EXT, framebuffers_[1]);
+  gl->glFramebufferRenderbuffer(GL_FRAMEBUFFER_EXT, GL_COLOR_ATTACHMENT0_EXT, GL_RENDERBUFFER_EXT,
+                                renderbuffers_[2]);
+  const bool resolve_complete =
+      gl->glCheckFramebufferStatus(GL_FRAMEBUFFER_EXT) == GL_FRAMEBUFFER_COMPLETE_EXT;
+  gl->glBindFramebuffer(GL_FRAMEBUFFER_EXT, framebuffers_[0]);
+  gl->glFramebufferRenderbuffer(GL_FRAMEBUFFER_EXT, GL_COLOR_ATTACHMENT0_EXT, GL_RENDERBUFFER_EXT,
+                                renderbuffers_[0]);
+  gl->glFramebufferRenderbuffer(GL_FRAMEBUFFER_EXT, GL_DEPTH_ATTACHMENT_EXT, GL_RENDERBUFFER_EXT,
+                                renderbuffers_[1]);
+  if (!resolve_complete || gl->glCheckFramebufferStatus(GL_FRAMEBUFFER_EXT) != GL_FRAMEBUFFER_COMPLETE_EXT) {
+    gl->glBindFramebuffer(GL_FRAMEBUFFER_EXT, 0);
+    gl->glDeleteFramebuffers(2, framebuffers_.data());
+    gl->glDeleteRenderbuffers(3, renderbuffers_.data());
+    framebuffers_ = {};
+    return;
+  }
+  multisamples_ = samples;
+  // OSG draws into it wherever it would draw into the window (its render-to-texture passes rebind it after
+  // them), and no longer reads the picture itself: render() resolves and reads it
+  gc->setDefaultFboId(framebuffers_[0]);
+  osg::Camera* camera = viewer_->getCamera();
+  camera->detach(osg::Camera::COLOR_BUFFER);
+  camera->setDrawBuffer(GL_COLOR_ATTACHMENT0_EXT);
+  camera->setReadBuffer(GL_COLOR_ATTACHMENT0_EXT);
+}
+
+void ImageGenerator::read_multisampled() {
+  const osg::GLExtensions* gl =
+      osg::GLExtensions::Get(viewer_->getCamera()->getGraphicsContext()->getState()->getContextID(), true);
+  gl->glBindFramebuffer(GL_READ_FRAMEBUFFER_EXT, framebuffers_[0]);
+  gl->glBindFramebuffer(GL_DRAW_FRAMEBUFFER_EXT, framebuffers_[1]);
+  gl->glBlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  gl->glBindFramebuffer(GL_READ_FRAMEBUFFER_EXT, framebuffers_[1]);
+  glReadBuffer(GL_COLOR_ATTACHMENT0_EXT);
+  image_->readPixels(0, 0, width_, height_, GL_RGB, GL_UNSIGNED_BYTE);
+  gl->glBindFramebuffer(GL_FRAMEBUFFER_EXT, framebuffers_[0]);
 }
 
 ImageGenerator::~ImageGenerator() = default;
@@ -473,6 +536,10 @@ std::string ImageGenerator::renderer() const {
 
 void ImageGenerator::set_soft_shadows(bool on) {
   soft_shadows_->set(on);
+}
+
+int ImageGenerator::multisamples() const {
+  return multisamples_;
 }
 
 bool ImageGenerator::soft_shadows() const {
@@ -1783,6 +1850,7 @@ const osg::Image& ImageGenerator::render() {
   update_water(eye);
   update_near_rain(eye);
   viewer_->frame();
+  if (multisamples_ > 1) read_multisampled();
   return *image_;
 }
 

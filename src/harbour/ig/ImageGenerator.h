@@ -105,8 +105,12 @@ bool software_renderer(const std::string& renderer);
 
 class ImageGenerator {
  public:
+  /// `multisamples`: anti-aliasing samples per pixel of the picture (a multisampled pbuffer, resolved as it
+  /// is read; the platform's most up to it); unset, kDefaultMultisamples except on a software renderer,
+  /// which draws each sample on the CPU.
   ImageGenerator(const sim::SceneDescription& scene, std::map<std::string, Visual> visuals, int width,
-                 int height);
+                 int height, std::optional<int> multisamples = std::nullopt);
+  static constexpr int kDefaultMultisamples = 4;
   ~ImageGenerator();
 
   /// Floodlights lit while the sun is below the horizon: the quay's, and the lamps on entities in the scene
@@ -180,6 +184,8 @@ class ImageGenerator {
   /// software renderer (software_renderer()), where the nine taps cost a 1280x720 frame ~40 % more.
   void set_soft_shadows(bool on);
   bool soft_shadows() const;
+  /// Samples per pixel the picture is drawn with (0: one, aliased).
+  int multisamples() const;
 
  private:
   void build(const sim::SceneDescription& scene);
@@ -203,6 +209,13 @@ class ImageGenerator {
   osg::ref_ptr<osg::Group> root_;
   osg::ref_ptr<osgShadow::ShadowedScene> shadowed_;  // the quay and the entities, in the sun's shadows
   osg::ref_ptr<osg::Uniform> soft_shadows_;
+  // the multisampled framebuffer drawn into and the plain one it is resolved into, and their renderbuffers
+  // (colour and depth, colour): 0 when the picture is drawn straight into the pbuffer
+  int multisamples_ = 0;
+  std::array<unsigned, 2> framebuffers_{};
+  std::array<unsigned, 3> renderbuffers_{};
+  void draw_multisampled(int samples);
+  void read_multisampled();
   osg::ref_ptr<osg::Group> unshadowed_;  // the same nodes without them: the insets draw these
   void add_lit(osg::Node* node);         // to both
   void remove_lit(osg::Node* node);
