@@ -256,6 +256,17 @@ TEST(Visuals, BadLooksNameFileLineAndField) {
   EXPECT_NE(error(part + "{shape: mesh, file: nowhere.obj, at: [0, 0, 0], color: [1, 0, 0]}\n")
                 .find("visuals[0].parts[0].file: no such file"),
             std::string::npos);
+  // a rolling part is a tyre, rolling level across its axle
+  EXPECT_EQ(error(part + "{shape: tyre, size: [1, 0.4, 1], at: [0, 0, 0], color: [0, 0, 0], "
+                         "rolls: {with: speed_kmh, unit_mps: 0.277778}}\n"),
+            "");
+  EXPECT_NE(error(part + "{size: [1, 1, 1], at: [0, 0, 0], color: [0, 0, 0], rolls: {with: speed_kmh}}\n")
+                .find("harbour_looks.yaml:4: visuals[0].parts[0].rolls: only a tyre rolls"),
+            std::string::npos);
+  EXPECT_NE(error(part + "{shape: tyre, size: [0.4, 1, 1], at: [0, 0, 0], color: [0, 0, 0], "
+                         "rolls: {with: gantry_mps}}\n")
+                .find("visuals[0].parts[0].rolls.along: a level direction across the tyre's axle"),
+            std::string::npos);
   const std::string junk = (std::filesystem::temp_directory_path() / "harbour_junk.obj").string();
   { std::ofstream(junk) << "this is not a model\n"; }
   EXPECT_NE(error(part + "{shape: mesh, file: harbour_junk.obj, at: [0, 0, 0], color: [1, 0, 0]}\n")
@@ -1153,6 +1164,75 @@ TEST(ImageGenerator, TheGrabsShellsOpenWithThePublishedOpening) {
   EXPECT_NEAR(low1, near(2.3, 1.5).second, 4.0);
   EXPECT_GT(rh - lh, r0 - l0);
   EXPECT_LT(rh - lh, r1 - l1);
+}
+
+// A steered tyre turns about its upright with the steering indicator, left for a positive one and right for a
+// negative (seen from above, the tread's long axis is the wheel's heading), and rolls about its axle by the
+// distance its machine's speed covers over its radius; a jump in time (a seek) does not roll it.
+TEST(ImageGenerator, ASteeredWheelTurnsWithItsSteeringAndRollsWithTheSpeed) {
+  sim::SceneDescription d;
+  d.machine = "test";
+  d.entities.push_back({"mast", "none", {}});
+  d.entities.push_back({"car", "test.car", {1.0, 1.0, 1.0}});
+  d.indicators = {"speed_kmh", "steering"};
+  VisualPart wheel;
+  wheel.shape = VisualPart::Shape::kTyre;
+  wheel.size_m = core::Vec3{1.1, 0.4, 1.1};
+  wheel.color = {0.05, 0.05, 0.05};
+  wheel.rim_color = {0.05, 0.05, 0.05};
+  wheel.turn = PartTurn{"steering", {0.0, 0.0, 1.0}, 38.0 * std::numbers::pi / 180.0, false};
+  wheel.rolls_with = "speed_kmh";
+  wheel.rolls_unit_mps = 1.0 / 3.6;
+  Visual car;
+  car.parts.push_back(wheel);
+  ImageGenerator ig(d, {{"test.car", car}}, kWidth, kHeight);
+  const core::Vec3 at{0.0, 0.0, 14.0};
+  ig.set_view(free_camera(at + core::Vec3{0.0, 0.0, 6.0}, 0.0, -std::numbers::pi / 2.0 + 1e-3));
+  const auto snapshot = [&](double time_s, double speed_kmh, double steering) {
+    sim::Snapshot s = state(5000.0, 5000.0, 20000.0, 12.0);
+    s.time_s = time_s;
+    s.entity_count = 2;
+    s.entities[1] = {1, 0, {core::Mat3::identity(), at}};
+    s.indicator_count = 2;
+    s.indicators[0] = speed_kmh;
+    s.indicators[1] = steering;
+    return s;
+  };
+  // the heading of the tread's long axis seen from above (second moments of its dark pixels), in the world
+  const auto heading_deg = [&](double steering) {
+    ig.update(snapshot(0.0, 0.0, steering));
+    const osg::Image& image = ig.render();
+    const auto centre = *ig.project(at);
+    double n = 0, sxx = 0, syy = 0, sxy = 0;
+    for (int row = 0; row < kHeight; ++row)
+      for (int col = 0; col < kWidth; ++col)
+        if (luminance(pixel(image, col, row)) < 0.1) {
+          // looking down with +x up the picture: the world's x up, its y to the left
+          const double x = centre.second - row, y = centre.first - col;
+          n += 1, sxx += x * x, syy += y * y, sxy += x * y;
+        }
+    EXPECT_GT(n, 100.0);
+    return 0.5 * std::atan2(2.0 * sxy, sxx - syy) * 180.0 / std::numbers::pi;
+  };
+  const double straight = heading_deg(0.0), left = heading_deg(1.0), right = heading_deg(-0.5);
+  std::printf("wheel heading: %.1f deg straight, %.1f deg at full left, %.1f deg at half right\n", straight,
+              left, right);
+  EXPECT_NEAR(straight, 0.0, 2.0);
+  EXPECT_NEAR(left, 38.0, 2.0);
+  EXPECT_NEAR(right, -19.0, 2.0);
+
+  // rolling: 10 km/h for 0.5 s in 50 snapshots is 1.389 m, over a 0.55 m radius 2.525 rad
+  ig.update(snapshot(0.0, 0.0, 0.0));
+  ASSERT_EQ(ig.tyre_angles().size(), 1u);
+  const double start = ig.tyre_angles()[0];
+  for (int k = 1; k <= 50; ++k)
+    ig.update(snapshot(0.01 * k, 10.0, 0.0));
+  EXPECT_NEAR(ig.tyre_angles()[0] - start, 10.0 / 3.6 * 0.5 / 0.55, 1e-9);
+  const double before_jump = ig.tyre_angles()[0];
+  ig.update(snapshot(30.0, 10.0, 0.0));  // a seek half a minute on
+  EXPECT_EQ(ig.tyre_angles()[0], before_jump);
+  ig.update(snapshot(30.1, -10.0, 0.0));  // backing up turns it back
+  EXPECT_NEAR(ig.tyre_angles()[0], before_jump - 10.0 / 3.6 * 0.1 / 0.55, 1e-9);
 }
 
 }  // namespace

@@ -58,7 +58,8 @@ void look_round(core::Vec3& forward, core::Vec3& up, core::Vec3& right, double y
   up = turned(up, right, pitch);
 }
 constexpr double kPi = std::numbers::pi;
-constexpr double kFetch_m = 2000.0;  // the harbour basin's open water upwind, for the wind sea (assumed)
+constexpr double kLongestRoll_s = 1.0;  // snapshots further apart are a jump (a seek): the tyres do not roll
+constexpr double kFetch_m = 2000.0;     // the harbour basin's open water upwind, for the wind sea (assumed)
 constexpr int kWaterColumns = 96,
               kWaterRows = 64;          // the water's grid, laid over the screen (projected grid)
 constexpr double kWaterFar_m = 3000.0;  // where it ends; a flat sea beyond
@@ -538,6 +539,13 @@ void ImageGenerator::set_soft_shadows(bool on) {
   soft_shadows_->set(on);
 }
 
+std::vector<double> ImageGenerator::tyre_angles() const {
+  std::vector<double> angles;
+  for (const TurningPart& part : turning_parts_)
+    if (part.speed_indicator >= 0) angles.push_back(part.rolled_rad);
+  return angles;
+}
+
 int ImageGenerator::multisamples() const {
   return multisamples_;
 }
@@ -779,7 +787,7 @@ void ImageGenerator::build(const sim::SceneDescription& scene) {
         const core::Vec3 color =
             part.livery ? look->second.liveries[index % look->second.liveries.size()] : part.color;
         // a part turned or turning has a transform of its own, and is drawn about its origin in it
-        const bool own_frame = part.yaw_rad != 0.0 || part.turn.has_value();
+        const bool own_frame = part.yaw_rad != 0.0 || part.turn.has_value() || !part.rolls_with.empty();
         osg::ref_ptr<osg::MatrixTransform> frame = transform;
         osg::ref_ptr<osg::Geode> drawables = geode;
         core::Vec3 centre = part.centre_m;
@@ -791,12 +799,22 @@ void ImageGenerator::build(const sim::SceneDescription& scene) {
           frame->addChild(drawables);
           transform->addChild(frame);
           centre = {};
+          auto indicator = [&](const std::string& name) {
+            const auto at = std::find(scene.indicators.begin(), scene.indicators.end(), name);
+            return at == scene.indicators.end() ? -1 : static_cast<int>(at - scene.indicators.begin());
+          };
+          TurningPart moving{frame, placed};
           if (part.turn) {
-            const auto at = std::find(scene.indicators.begin(), scene.indicators.end(), part.turn->indicator);
-            if (at != scene.indicators.end())
-              turning_parts_.push_back(
-                  {frame, placed, *part.turn, static_cast<int>(at - scene.indicators.begin())});
+            moving.turn = *part.turn;
+            moving.indicator = indicator(part.turn->indicator);
           }
+          if (!part.rolls_with.empty()) {
+            moving.speed_indicator = indicator(part.rolls_with);
+            moving.rolls_unit_mps = part.rolls_unit_mps;
+            moving.roll_axis = to_osg(core::cross(core::Vec3{0.0, 0.0, 1.0}, part.rolls_along));
+            moving.radius_m = 0.5 * (tyre_axis(size) == 0 ? size.y : size.x);  // its diameter, twice
+          }
+          if (moving.indicator >= 0 || moving.speed_indicator >= 0) turning_parts_.push_back(moving);
         }
         if (part.shape == VisualPart::Shape::kMesh) {
           osg::ref_ptr<osg::Node> mesh = read_mesh(part.mesh);
@@ -986,13 +1004,30 @@ void ImageGenerator::update(const sim::Snapshot& s) {
       entity_poses_[e.index] = e.pose;
     }
   }
-  for (const TurningPart& part : turning_parts_) {  // a grab's shells opening, by their indicator
-    const double value = part.indicator < s.indicator_count
-                             ? std::clamp(s.indicators[static_cast<std::size_t>(part.indicator)], 0.0, 1.0)
-                             : 0.0;
-    const double angle =
-        part.turn.arcsine ? std::asin(value * std::sin(part.turn.max_rad)) : value * part.turn.max_rad;
-    part.transform->setMatrix(osg::Matrixd::rotate(angle, to_osg(part.turn.axis)) * part.placed);
+  // a grab's shells opening and a wheel steering by their indicators, tyres rolling by their machine's speed
+  // over the time since the last snapshot (none across a jump: a seek, a restart)
+  const double since_s = s.time_s - rolled_at_s_;
+  const bool rolling = rolled_at_s_ >= 0.0 && since_s > 0.0 && since_s <= kLongestRoll_s;
+  rolled_at_s_ = s.time_s;
+  auto indicator_at = [&](int index) {
+    return index >= 0 && index < s.indicator_count ? s.indicators[static_cast<std::size_t>(index)] : 0.0;
+  };
+  for (TurningPart& part : turning_parts_) {
+    osg::Matrixd turned = part.placed;
+    if (part.indicator >= 0) {
+      const double value = std::clamp(indicator_at(part.indicator), part.turn.arcsine ? 0.0 : -1.0, 1.0);
+      const double angle =
+          part.turn.arcsine ? std::asin(value * std::sin(part.turn.max_rad)) : value * part.turn.max_rad;
+      turned = osg::Matrixd::rotate(angle, to_osg(part.turn.axis)) * turned;
+    }
+    if (part.speed_indicator >= 0) {
+      if (rolling)
+        part.rolled_rad = std::fmod(part.rolled_rad + indicator_at(part.speed_indicator) *
+                                                          part.rolls_unit_mps * since_s / part.radius_m,
+                                    2.0 * kPi);
+      turned = osg::Matrixd::rotate(part.rolled_rad, part.roll_axis) * turned;
+    }
+    part.transform->setMatrix(turned);
   }
   for (std::size_t r = 0; r < ropes_.size(); ++r) {
     auto* vertices = static_cast<osg::Vec3Array*>(ropes_[r]->getVertexArray());

@@ -186,6 +186,9 @@ class ImageGenerator {
   bool soft_shadows() const;
   /// Samples per pixel the picture is drawn with (0: one, aliased).
   int multisamples() const;
+  /// How far each rolling tyre has turned about its axle [rad, within one turn], in the order of the scene's
+  /// entities and their looks' parts.
+  std::vector<double> tyre_angles() const;
 
  private:
   void build(const sim::SceneDescription& scene);
@@ -271,13 +274,19 @@ class ImageGenerator {
   osg::ref_ptr<osg::Geode> inset_quads_;  // the insets' pictures, under the HUD's lines
   std::vector<HudItem> hud_items_;
   std::vector<std::string> indicators_;
-  struct TurningPart {  // a look's part turning with an indicator (VisualPart::turn)
+  struct TurningPart {  // a look's part turning with an indicator (VisualPart::turn), or a tyre rolling
     osg::ref_ptr<osg::MatrixTransform> transform;
     osg::Matrixd placed;  // where it stands unturned, in its entity's frame
     PartTurn turn;
-    int indicator = 0;  // its index among the scene's indicators
+    int indicator = -1;        // its index among the scene's indicators (-1: it does not turn)
+    int speed_indicator = -1;  // rolling: the speed's index (-1: it does not roll)
+    double rolls_unit_mps = 1.0;
+    osg::Vec3d roll_axis;  // about which a positive speed rolls it (its frame)
+    double radius_m = 1.0;
+    double rolled_rad = 0.0;  // the wheel's angle so far, within a turn
   };
   std::vector<TurningPart> turning_parts_;
+  double rolled_at_s_ = -1.0;                // the snapshot time the tyres last rolled to
   std::string machine_;                      // the scene's machine (its kind)
   std::vector<std::string> entity_visuals_;  // visual key by entity index
   std::vector<core::Pose> entity_poses_;     // as last published

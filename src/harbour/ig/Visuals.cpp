@@ -132,6 +132,23 @@ Looks load_looks(const std::string& path) {
         }
         part.turn = turn;
       }
+      if (const auto rolls = f.optional_map(p, "rolls", pat)) {
+        if (part.shape != VisualPart::Shape::kTyre)
+          f.fail(p["rolls"], pat + ".rolls", "only a tyre rolls (about its axle, by its radius)");
+        part.rolls_with = f.text(*rolls, "with", pat + ".rolls");
+        part.rolls_unit_mps = f.number_or(*rolls, "unit_mps", pat + ".rolls", 1.0, 1e-6, 1e3);
+        if (f.optional(*rolls, "along", pat + ".rolls"))
+          part.rolls_along = f.vector3((*rolls)["along"], pat + ".rolls.along", 1.0);
+        const int axle = tyre_axis(*part.size_m);
+        const core::Vec3 axle_direction{axle == 0 ? 1.0 : 0.0, axle == 1 ? 1.0 : 0.0, axle == 2 ? 1.0 : 0.0};
+        const double along = core::length(part.rolls_along);
+        if (axle == 2 || !(along > 1e-6) ||
+            std::abs(core::dot(part.rolls_along, axle_direction)) > 1e-6 * along ||
+            std::abs(part.rolls_along.z) > 1e-6 * along)
+          f.fail(*rolls, pat + ".rolls.along",
+                 "a level direction across the tyre's axle (default [1, 0, 0])");
+        part.rolls_along = part.rolls_along * (1.0 / along);
+      }
       if (part.shape == VisualPart::Shape::kLattice) {
         part.bay_m = f.number_or(p, "bay_m", pat, 3.0, 0.2, 50.0);
         part.member_m = f.number_or(p, "member_m", pat, 0.25, 0.01, 2.0);

@@ -22,7 +22,10 @@ namespace harbour::ig {
 /// by `yaw_rad` and turn with an indicator. A part that turns with one of the machine's indicators (its
 /// published 0-1 value): about `axis` (the part's frame, right hand) through its centre, by `max_rad` times
 /// the value, or with `arcsine` by the angle whose sine is the value times sin(max_rad) (the part's tip then
-/// moves across in proportion: a jaw's span).
+/// moves across in proportion: a jaw's span). A linear turn follows the value's sign (a steered wheel, left
+/// and right). A tyre may also roll with an indicator of its machine's speed: about its axle, by the
+/// distance the indicator's speed (`rolls_unit_mps` metres per second per unit) covers between snapshots over
+/// its radius, forward along `rolls_along` (the part's own frame, level and across the axle).
 struct PartTurn {
   std::string indicator;
   core::Vec3 axis{0.0, 1.0, 0.0};
@@ -46,6 +49,9 @@ struct VisualPart {
   double deck_open_from_m = 0.0, deck_open_to_m = 0.0;  ///< hull: its deck left open along y (the holds)
   double yaw_rad = 0.0;                                 ///< turned about the entity's z at its centre
   std::optional<PartTurn> turn;                         ///< turning with an indicator
+  std::string rolls_with;                               ///< tyre: rolling with this speed indicator
+  double rolls_unit_mps = 1.0;                          ///< tyre: m/s per unit of that indicator
+  core::Vec3 rolls_along{1.0, 0.0, 0.0};                ///< tyre: the way it rolls at a positive speed
   std::string mesh;    ///< mesh: its file (resolved against the look file's folder)
   double scale = 1.0;  ///< mesh
 };
