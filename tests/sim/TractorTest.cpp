@@ -58,6 +58,48 @@ TEST(Tractor, AtFullLockItTurnsOnTheAckermannCircle) {
   std::printf("tractor at full lock: %.3f m against L / tan(delta) = %.3f m\n", radius, expected);
 }
 
+// Its travel energy is what its drive delivers at the tyres' contacts: brought up to 5 m/s on the level in
+// still air, the body's kinetic energy plus the work of rolling resistance, Crr m g over the distance, and of
+// the air's drag on its box, 1/2 rho Cd A v^3 over the time (A its frontal area); cruising on, the last two.
+TEST(Tractor, ItsDriveDeliversTheKineticEnergyAndTheWorkOfRollingResistanceAndDrag) {
+  const ExerciseSettings exercise = free_practice();
+  Simulation sim(exercise.scenario);
+  const TerminalTractor& t = tractor(sim);
+  const double mass = sim.world().mass_kg(t.body());
+  const double frontal_m2 = 4.0 * t.settings().half_extents_m.y * t.settings().half_extents_m.z;
+  const double drag_factor =
+      0.5 * exercise.scenario.weather.air_density_kg_m3 * exercise.scenario.drag_coefficient * frontal_m2;
+  struct Leg {
+    double delivered_j = 0.0, drag_j = 0.0, distance_m = 0.0, kinetic_gain_j = 0.0;
+  };
+  auto drive_on = [&](double seconds) {
+    Leg leg;
+    const core::Vec3 from = sim.world().pose(t.body()).position;
+    const core::Vec3 v0 = sim.world().linear_velocity(t.body());
+    for (int k = 0; k < static_cast<int>(std::lround(seconds / Simulation::kStep_s)); ++k) {
+      const double speed = core::length(sim.world().linear_velocity(t.body()));
+      sim.step(driving(sim, 5.0, 0.0));
+      leg.delivered_j += sim.machine().tally().travel_power_w * Simulation::kStep_s;
+      leg.drag_j += drag_factor * speed * speed * speed * Simulation::kStep_s;
+    }
+    const core::Vec3 to = sim.world().pose(t.body()).position;
+    const core::Vec3 v1 = sim.world().linear_velocity(t.body());
+    leg.distance_m = std::hypot(to.x - from.x, to.y - from.y);
+    leg.kinetic_gain_j = 0.5 * mass * (dot(v1, v1) - dot(v0, v0));
+    return leg;
+  };
+  const double crr = t.settings().chassis.tyre.rolling_resistance;
+  for (const double seconds : {15.0, 10.0}) {  // brought up to speed, then cruising
+    const Leg leg = drive_on(seconds);
+    const double rolling_j = crr * mass * kG * leg.distance_m;
+    const double expected = leg.kinetic_gain_j + rolling_j + leg.drag_j;
+    std::printf("%.0f s: drive delivered %.0f J against kinetic %.0f + rolling %.0f + drag %.0f = %.0f J\n",
+                seconds, leg.delivered_j, leg.kinetic_gain_j, rolling_j, leg.drag_j, expected);
+    EXPECT_NEAR(leg.delivered_j, expected, 0.01 * expected);
+  }
+  EXPECT_GT(core::length(sim.world().linear_velocity(t.body())), 4.5);
+}
+
 TEST(Tractor, FullBrakesStopItInTheDistanceItsGripAndBrakesAllow) {
   // braking moves load onto the front axle (m a h / L): the unloaded rear wheels lock and slide at µ·Fz, the
   // loaded front wheels' grip exceeds their brakes and they hold the brake torque / r; the deceleration

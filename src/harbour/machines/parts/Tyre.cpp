@@ -20,13 +20,15 @@ TyreForces tyre_forces(const TyreSettings& tyre, const TyreCommand& command, dou
     f.hold_along_n = std::min(brake + tyre.rolling_resistance * f.normal_n, limit);  // rolling away: both
     f.hold_across_n = limit;
     f.longitudinal_n = command.drive_torque_nm / tyre.radius_m;  // a drive against the brake, held too
+    f.drive_n = f.longitudinal_n;
     return f;
   }
   const double creep = std::max(std::abs(forward_mps), tyre.creep_speed_mps);
   // along: the drive at the contact, rolling resistance and the brake against the rolling (both fading in
   // over the creep speed, so a wheel at rest is held, not flicked to and fro)
   const double rolling = std::clamp(forward_mps / tyre.creep_speed_mps, -1.0, 1.0);
-  double along = command.drive_torque_nm / tyre.radius_m - tyre.rolling_resistance * f.normal_n * rolling;
+  double drive = command.drive_torque_nm / tyre.radius_m;
+  double along = drive - tyre.rolling_resistance * f.normal_n * rolling;
   along -= std::min(brake, limit) * rolling;
   if (brake > limit && std::abs(forward_mps) > tyre.creep_speed_mps) f.sliding = true;  // locked
   // across: the slip angle's force
@@ -35,12 +37,14 @@ TyreForces tyre_forces(const TyreSettings& tyre, const TyreCommand& command, dou
   if (total > limit) {
     const double scale = limit / total;
     along *= scale;
+    drive *= scale;
     f.sliding = true;
     f.lateral_n = across * scale;
   } else {
     f.lateral_n = across;
   }
   f.longitudinal_n = along;
+  f.drive_n = drive;
   return f;
 }
 
@@ -67,8 +71,9 @@ TyreForces apply_tyre(physics::PhysicsWorld& world, physics::BodyId body, const 
   const core::Vec3 v = world.point_velocity(body, pose.to_local(contact));
   TyreSettings gripping = tyre;
   gripping.friction *= g.grip;
-  const TyreForces f =
+  TyreForces f =
       tyre_forces(gripping, command, sag, g.rise_mps * n.z - dot(v, n), dot(v, heading), dot(v, left));
+  f.drive_power_w = f.drive_n * dot(v, heading);
   world.add_force_at(body, contact, n * f.normal_n + heading * f.longitudinal_n + left * f.lateral_n);
   if (f.held) world.hold_point(body, contact, n, heading, f.hold_along_n, f.hold_across_n);
   return f;

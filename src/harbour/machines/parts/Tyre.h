@@ -31,6 +31,8 @@ struct TyreForces {
   double normal_n = 0.0;        ///< [N] the ground's push on it (0: off the ground)
   double longitudinal_n = 0.0;  ///< [N] along its heading (+ forward)
   double lateral_n = 0.0;       ///< [N] across it (+ to its left)
+  double drive_n = 0.0;         ///< [N] the drive's part of longitudinal_n (what the friction circle left)
+  double drive_power_w = 0.0;   ///< [W] the drive's force times the contact's speed along the heading
   bool sliding = false;         ///< the friction circle limits it (a locked or spinning wheel, a skid)
   /// Braked and standing (slower than the creep speed both ways): static friction holds the contact, a
   /// constraint of at most these forces (brake and rolling resistance along, the grip across) instead of the

@@ -117,6 +117,7 @@ void WheeledChassis::step(physics::PhysicsWorld& world, const ChassisCommand& co
   const double axle_torque = wheel_torque * (command.reverse ? -1.0 : 1.0);
   engine_ = engine_reading(settings_.drivetrain, settings_.tyre.radius_m, command.throttle, forward, gear);
   const double brake = std::clamp(command.brake, 0.0, 1.0) * settings_.brake_torque_per_wheel_nm;
+  drive_power_w_ = 0.0;
   for (const AxleSettings& a : settings_.axles) {
     TyreSettings tyre = settings_.tyre;  // twin tyres: one element of twice the stiffnesses
     tyre.vertical_stiffness_n_per_m *= a.tyres_per_side;
@@ -130,7 +131,7 @@ void WheeledChassis::step(physics::PhysicsWorld& world, const ChassisCommand& co
       const double parking =
           command.parking_brake && a.parking_braked ? settings_.parking_brake_torque_per_wheel_nm : 0.0;
       c.brake_torque_nm = std::max(brake, parking) * a.tyres_per_side;
-      apply_tyre(world, body_, {a.x_m, y, a.hub_z_m}, tyre, c, ground);
+      drive_power_w_ += apply_tyre(world, body_, {a.x_m, y, a.hub_z_m}, tyre, c, ground).drive_power_w;
     }
   }
 }

@@ -117,13 +117,17 @@ class WheeledChassis {
   double road_speed_mps(const physics::PhysicsWorld& world) const;
   /// The engine in the last step (for its sound).
   Snapshot::Drive engine() const { return engine_; }
+  /// [W] what the drive delivered to the wheels' contacts over the last step (their drive forces times the
+  /// contacts' speeds along their headings, summed; braking and rolling resistance not counted)
+  double drive_power_w() const { return drive_power_w_; }
 
  private:
   WheeledChassisSettings settings_;
   physics::BodyId body_;
   double reference_x_ = 0.0, steer_base_m_ = 1.0;
   int driven_wheels_ = 0;
-  Snapshot::Drive engine_;  // published: not state
+  Snapshot::Drive engine_;      // published: not state
+  double drive_power_w_ = 0.0;  // measured: not state
 };
 
 }  // namespace harbour::sim

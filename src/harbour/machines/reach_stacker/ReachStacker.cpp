@@ -240,6 +240,7 @@ MachineTally ReachStacker::tally() const {
   t.axes[0] = {"drive", forward_mps()};
   t.axes[1] = {"boom", luff_.reference_mps() * (settings_.boom_length_m + extension_m())};
   t.axes[2] = {"telescope", telescope_.reference_mps()};
+  t.travel_power_w = std::max(0.0, chassis_.drive_power_w());
   t.vehicle = true;
   t.tip_overs = tip_overs_;
   return t;

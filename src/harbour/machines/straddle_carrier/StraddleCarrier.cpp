@@ -161,6 +161,7 @@ MachineTally StraddleCarrier::tally() const {
   t.axes[1] = {"hoist", rig_->hoist().drum_rope_speed(0)};
   t.limit_hits = rig_->limit_hits();
   t.hoist_power_w = std::max(0.0, rig_->hoist().drum_power_w(0));
+  t.travel_power_w = std::max(0.0, chassis_.drive_power_w());
   t.vehicle = true;
   return t;
 }

@@ -217,6 +217,7 @@ MachineTally TerminalTractor::tally() const {
   // how smoothly it is driven: its speed (harsh braking and starts)
   MachineTally t;
   t.axes[0] = {"drive", forward_mps()};
+  t.travel_power_w = std::max(0.0, chassis_.drive_power_w());
   t.vehicle = true;
   t.jackknifes = jackknifes_;
   return t;
