@@ -14,6 +14,7 @@
 #include "harbour/sim/Autopilot.h"
 #include "harbour/sim/Evaluation.h"
 #include "harbour/sim/Pilot.h"
+#include "harbour/sim/Weather.h"
 
 namespace harbour::sim {
 namespace {
@@ -90,6 +91,37 @@ TEST(Rtg, TravelsAtItsPublishedSpeedAndStopsOnItsRamp) {
   const double stopped_at = c.gantry_y_m();
   run(simulation, simulation.control_table().neutral(), 10.0);
   EXPECT_LT(std::abs(c.gantry_y_m() - stopped_at), 0.01);
+}
+
+// Its gantry's wheel motors are measured as the tractor's drive: cruising along the block at full speed in
+// still air, they deliver what rolling resistance takes, Crr W over the distance (W the crane's weight on its
+// tyres), and the air's drag on its wind areas.
+TEST(Rtg, ItsGantryDriveDeliversWhatRollingResistanceAndDragTake) {
+  ScenarioSettings scenario = empty_yard();
+  Simulation simulation(scenario);
+  const RubberTyredGantry& c = rtg(simulation);
+  const Controls travel = with(simulation, {{"gantry", 1.0}});
+  run(simulation, travel, 20.0);  // up to speed
+  const RtgSettings& s = c.settings();
+  const double weight_n = (s.frame_mass_kg + s.trolley_mass_kg + s.rig.spreader.mass_kg) * kG;
+  double delivered_j = 0.0, drag_j = 0.0;
+  const double y0 = c.gantry_y_m();
+  for (int k = 0; k < 10000; ++k) {
+    for (const WindArea& area : c.wind_areas()) {
+      if (area.body == physics::kWorld) continue;
+      const core::Vec3 v = simulation.world().linear_velocity(area.body);
+      drag_j -= dot(box_drag({}, v, simulation.world().pose(area.body), area.half_extents_m,
+                             scenario.drag_coefficient, scenario.weather.air_density_kg_m3),
+                    v) *
+                Simulation::kStep_s;
+    }
+    simulation.step(travel);
+    delivered_j += c.tally().travel_power_w * Simulation::kStep_s;
+  }
+  const double rolling_j = s.tyre.rolling_resistance * weight_n * std::abs(c.gantry_y_m() - y0);
+  std::printf("gantry cruising 10 s: drive %.0f J against rolling %.0f J + drag %.0f J = %.0f J\n",
+              delivered_j, rolling_j, drag_j, rolling_j + drag_j);
+  EXPECT_NEAR(delivered_j, rolling_j + drag_j, 0.01 * (rolling_j + drag_j));
 }
 
 RtgSettings rtg_settings() {

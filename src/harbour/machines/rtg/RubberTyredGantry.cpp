@@ -222,13 +222,16 @@ void RubberTyredGantry::step(const Controls& raw, std::span<const ContainerRef> 
   if (hold) travel_integral_ = {}, force = {};
   gantry_force_n_ = force[0] + force[1];
   const double brake = hold ? settings_.gantry_drive.brake_force_n / 8.0 * settings_.tyre.radius_m : 0.0;
+  gantry_power_w_ = 0.0;
   for (const auto& [x, y] : tyre_positions(settings_)) {
     TyreCommand tyre;
     tyre.steer_rad = tyre_heading_rad(y, steer);
     tyre.drive_torque_nm = force[(across ? y : x) > 0.0 ? 1 : 0] / 4.0 * settings_.tyre.radius_m;
     tyre.brake_torque_nm = brake;
-    apply_tyre(world_, frame_, {x, y, settings_.tyre.radius_m - settings_.frame_centre_height_m},
-               settings_.tyre, tyre, *ground_);
+    gantry_power_w_ +=
+        apply_tyre(world_, frame_, {x, y, settings_.tyre.radius_m - settings_.frame_centre_height_m},
+                   settings_.tyre, tyre, *ground_)
+            .drive_power_w;
   }
 
   // the trolley across the frame, and the spreader on its ropes
@@ -331,10 +334,11 @@ MachineTally RubberTyredGantry::tally() const {
   t.axes[2] = {"hoist", rig_->hoist().drum_rope_speed(0)};
   t.limit_hits = trolley_drive_.limit_hits() + rig_->limit_hits();
   t.hoist_power_w = std::max(0.0, rig_->hoist().drum_power_w(0));
-  // the trolley's drive (its slider's motor force times the trolley's speed on the frame); the gantry's wheel
-  // motors are not measured
+  // the trolley's drive (its slider's motor force times the trolley's speed on the frame) and the gantry's
+  // wheel motors (their drive forces at the tyres' contacts times the contacts' speeds)
   t.travel_power_w =
-      std::max(0.0, world_.slider_force(trolley_slider_) * world_.slider_rate(trolley_slider_));
+      std::max(0.0, world_.slider_force(trolley_slider_) * world_.slider_rate(trolley_slider_)) +
+      std::max(0.0, gantry_power_w_);
   t.warns_before_travel = true;
   t.travelling = gantry_.reference_mps() != 0.0;
   t.travel_position_m = gantry_y_m();

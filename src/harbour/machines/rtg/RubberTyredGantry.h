@@ -162,6 +162,7 @@ class RubberTyredGantry final : public Machine, public GantryCrane {
   bool gantry_braked_ = true;                // the holding brakes are set (it starts parked)
   std::array<double, 2> travel_integral_{};  // [m] each side's speed controller's integral of its error
   double gantry_force_n_ = 0.0;  // the travel drives' force in the last step (published: not state)
+  double gantry_power_w_ = 0.0;  // what they delivered at the tyres' contacts in it (measured: not state)
   double wheel_turn_ = 0.0;      // 0: along the block, 1: across
   bool turn_refused_ = false;    // the switch asks a turn that was refused (until it goes back)
   std::uint32_t turn_refusals_ = 0;
