@@ -304,6 +304,20 @@ TEST(ExerciseFiles, EventsTimedFromTheFirstLiftLoadApart) {
                "    - {at_s: 1, kind: gust, amplitude_mps: 5}\n    - {after_lift_s: 2, kind: "
                "hoist_brake_fault}\n  moves:",
                "exercise.events[2].after_lift_s", "events after the first lift must be in time order", 3);
+  // a fault is named as the instructor's command of the same name, spelt either way; an unknown one is
+  // refused with the events there are
+  std::string hyphens = shipped();
+  hyphens.replace(hyphens.find(with_events), with_events.size(),
+                  "  events:\n    - {at_s: 1, kind: landed-sensor-fault, corner: 2}\n  moves:");
+  const sim::ExerciseSettings spelt =
+      load_exercise(YamlFile::parse(hyphens, "hyphens.yaml"), HARBOUR_DATA_DIR "/exercises");
+  ASSERT_EQ(spelt.scenario.events.size(), 1u);
+  EXPECT_EQ(spelt.scenario.events[0].kind, sim::ScriptedEvent::Kind::kLandedSensorFault);
+  EXPECT_EQ(spelt.scenario.events[0].corner, 2);
+  expect_error(
+      with_events,
+      "  events:\n    - {at_s: 1, kind: hoist-brake-faults}\n  moves:", "exercise.events[0].kind",
+      "'hoist-brake-faults' is not an event: gust, hoist_brake_fault, landed_sensor_fault, limiter_fault", 1);
   // a fault of a part the machine lacks would do nothing: refused, with the events it has
   expect_error(with_events,
                "  events:\n    - {at_s: 1, kind: limiter_fault}\n  moves:", "exercise.events[0].kind",

@@ -47,6 +47,10 @@ TEST(InstructorCommandText, EveryKindHasOneNameThatReadsBackAsIt) {
   }
   EXPECT_EQ(command_kinds().size(), sim::InstructorCommand::kKinds);
   EXPECT_STREQ(command_name(Kind::kHoistBrakeFault), "hoist-brake-fault");
+  // the exercise files' spelling of the same names, read too
+  EXPECT_EQ(file_spelling(Kind::kLandedSensorFault), "landed_sensor_fault");
+  EXPECT_EQ(parse_instructor_command("60:hoist_brake_fault").command.kind, Kind::kHoistBrakeFault);
+  EXPECT_EQ(parse_instructor_command("60:landed_sensor_fault:3").command.corner, 3);
 }
 
 void expect_rejected(const std::string& text, const std::string& says) {

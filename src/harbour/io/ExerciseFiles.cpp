@@ -17,6 +17,7 @@
 #include "harbour/core/Units.h"
 #include "harbour/io/BoundedFile.h"
 #include "harbour/io/BulkFiles.h"
+#include "harbour/io/InstructorCommandText.h"
 #include "harbour/io/MachineFiles.h"
 #include "harbour/io/VesselFiles.h"
 #include "harbour/machines/mhc/MobileHarbourCrane.h"
@@ -52,25 +53,28 @@ const std::map<std::string, IsoType>& iso_types() {
 
 namespace {
 
-// the scripted faults, by their names in exercise files
+// the scripted faults: the instructor's commands of the same name (as exercise files spell it:
+// file_spelling)
 struct FaultEvent {
-  const char* name;
+  sim::InstructorCommand::Kind command;
   sim::MachineFault fault;
   sim::ScriptedEvent::Kind event;
   const char* part;  // what the fault breaks
 };
 constexpr FaultEvent kFaultEvents[] = {
-    {"hoist_brake_fault", sim::MachineFault::kHoistBrake, sim::ScriptedEvent::Kind::kHoistBrakeFault,
-     "hoist brake"},
-    {"landed_sensor_fault", sim::MachineFault::kLandedSensor, sim::ScriptedEvent::Kind::kLandedSensorFault,
-     "twistlocks"},
-    {"limiter_fault", sim::MachineFault::kLoadMomentLimiter, sim::ScriptedEvent::Kind::kLimiterFault,
-     "load-moment limiter"},
+    {sim::InstructorCommand::Kind::kHoistBrakeFault, sim::MachineFault::kHoistBrake,
+     sim::ScriptedEvent::Kind::kHoistBrakeFault, "hoist brake"},
+    {sim::InstructorCommand::Kind::kLandedSensorFault, sim::MachineFault::kLandedSensor,
+     sim::ScriptedEvent::Kind::kLandedSensorFault, "twistlocks"},
+    {sim::InstructorCommand::Kind::kLimiterFault, sim::MachineFault::kLoadMomentLimiter,
+     sim::ScriptedEvent::Kind::kLimiterFault, "load-moment limiter"},
 };
 
-const FaultEvent* find_fault_event(const std::string& name) {
+// by its name, spelt with underscores or (as the console and the command line do) hyphens
+const FaultEvent* find_fault_event(std::string name) {
+  std::replace(name.begin(), name.end(), '-', '_');
   for (const FaultEvent& e : kFaultEvents)
-    if (name == e.name) return &e;
+    if (name == file_spelling(e.command)) return &e;
   return nullptr;
 }
 
@@ -545,8 +549,10 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
         if (fault->fault == sim::MachineFault::kLandedSensor)
           event.corner = f.integer(ev, "corner", at, 0, 3);
       } else {
-        f.fail(ev["kind"], at + ".kind",
-               "'" + kind + "' is not gust, hoist_brake_fault, landed_sensor_fault or limiter_fault");
+        std::vector<std::string> kinds{"gust"};
+        for (const FaultEvent& scripted : kFaultEvents)
+          kinds.push_back(file_spelling(scripted.command));
+        f.fail(ev["kind"], at + ".kind", "'" + kind + "' is not an event: " + core::comma_separated(kinds));
       }
       std::vector<sim::ScriptedEvent>& queue = after_lift ? s.lift_events : s.events;
       if (!queue.empty() && event.at_s < queue.back().at_s)
@@ -855,7 +861,7 @@ sim::ExerciseSettings load_exercise(const YamlFile& f, const std::string& folder
 std::vector<std::string> event_kinds(const sim::MachineType& type) {
   std::vector<std::string> kinds{"gust"};
   for (const FaultEvent& e : kFaultEvents)
-    if (type.has_fault(e.fault)) kinds.push_back(e.name);
+    if (type.has_fault(e.fault)) kinds.push_back(file_spelling(e.command));
   return kinds;
 }
 

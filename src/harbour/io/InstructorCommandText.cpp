@@ -1,5 +1,6 @@
 #include "harbour/io/InstructorCommandText.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <stdexcept>
@@ -52,6 +53,12 @@ const char* command_name(Kind kind) {
   return "?";
 }
 
+std::string file_spelling(Kind kind) {
+  std::string name = command_name(kind);
+  std::replace(name.begin(), name.end(), '-', '_');
+  return name;
+}
+
 TimedCommand parse_instructor_command(const std::string& text) {
   auto fail = [&](const std::string& why) -> void {
     throw std::invalid_argument("instructor command '" + core::printable(text, 100) + "': " + why);
@@ -73,7 +80,8 @@ TimedCommand parse_instructor_command(const std::string& text) {
   t.at_s = number(0, "time [s]");
   if (!(t.at_s >= 0.0 && t.at_s <= kMaxCommandTime_s)) fail("the time is outside 0-86400 s (a day)");
   if (parts.size() < 2) fail("missing the kind");
-  const std::string& kind = parts[1];
+  std::string kind = parts[1];
+  std::replace(kind.begin(), kind.end(), '_', '-');  // as exercise files spell it
   const CommandKindText* known = nullptr;
   for (const CommandKindText& k : kCommandKinds)
     if (kind == k.name) known = &k;

@@ -14,6 +14,7 @@ namespace harbour::io {
 ///   clear-faults, emergency-stop, release-emergency-stop, power-failure, power-restored,
 ///   wind:MEAN_MPS:FROM_DEG:TURBULENCE,
 ///   visibility:METRES, rain:MM_PER_H, time-of-day:HOURS.
+/// A kind may be spelt with underscores as exercise files write it (`hoist_brake_fault`).
 /// Longest command text read, and the latest time a command may be set for (a day) [s].
 inline constexpr std::size_t kMaxCommandBytes = 200;
 inline constexpr double kMaxCommandTime_s = 86400.0;
@@ -33,6 +34,8 @@ struct CommandKindText {
 std::span<const CommandKindText> command_kinds();
 /// The name of a kind of command ("landed-sensor-fault").
 const char* command_name(sim::InstructorCommand::Kind kind);
+/// The same name as exercise files write it, its words joined by underscores ("landed_sensor_fault").
+std::string file_spelling(sim::InstructorCommand::Kind kind);
 
 /// Parses one (plain decimal numbers, the ranges of sim::why_invalid); throws std::invalid_argument quoting
 /// the text (control characters escaped) and saying what is wrong.
