@@ -1166,21 +1166,22 @@ TEST(ImageGenerator, TheGrabsShellsOpenWithThePublishedOpening) {
   EXPECT_LT(rh - lh, r1 - l1);
 }
 
-// A steered tyre turns about its upright with the steering indicator, left for a positive one and right for a
-// negative (seen from above, the tread's long axis is the wheel's heading), and rolls about its axle by the
-// distance its machine's speed covers over its radius; a jump in time (a seek) does not roll it.
+// A steered tyre turns about its upright with its indicator as published, left for a positive one and right
+// for a negative, a full 90 deg as an RTG's wheels turn (seen from above, the tread's long axis is the
+// wheel's heading), and rolls about its axle by the distance its machine's speed covers over its radius; a
+// jump in time (a seek) does not roll it.
 TEST(ImageGenerator, ASteeredWheelTurnsWithItsSteeringAndRollsWithTheSpeed) {
   sim::SceneDescription d;
   d.machine = "test";
   d.entities.push_back({"mast", "none", {}});
   d.entities.push_back({"car", "test.car", {1.0, 1.0, 1.0}});
-  d.indicators = {"speed_kmh", "steering"};
+  d.indicators = {"speed_kmh", "steer_deg"};
   VisualPart wheel;
   wheel.shape = VisualPart::Shape::kTyre;
   wheel.size_m = core::Vec3{1.1, 0.4, 1.1};
   wheel.color = {0.05, 0.05, 0.05};
   wheel.rim_color = {0.05, 0.05, 0.05};
-  wheel.turn = PartTurn{"steering", {0.0, 0.0, 1.0}, 38.0 * std::numbers::pi / 180.0, false};
+  wheel.turn = PartTurn{"steer_deg", {0.0, 0.0, 1.0}, std::numbers::pi / 180.0, false};  // a degree a degree
   wheel.rolls_with = "speed_kmh";
   wheel.rolls_unit_mps = 1.0 / 3.6;
   Visual car;
@@ -1214,12 +1215,14 @@ TEST(ImageGenerator, ASteeredWheelTurnsWithItsSteeringAndRollsWithTheSpeed) {
     EXPECT_GT(n, 100.0);
     return 0.5 * std::atan2(2.0 * sxy, sxx - syy) * 180.0 / std::numbers::pi;
   };
-  const double straight = heading_deg(0.0), left = heading_deg(1.0), right = heading_deg(-0.5);
-  std::printf("wheel heading: %.1f deg straight, %.1f deg at full left, %.1f deg at half right\n", straight,
-              left, right);
+  const double straight = heading_deg(0.0), left = heading_deg(38.0), right = heading_deg(-19.0),
+               across = heading_deg(90.0);
+  std::printf("wheel heading: %.1f deg straight, %.1f deg turned 38 left, %.1f deg 19 right, %.1f deg 90\n",
+              straight, left, right, across);
   EXPECT_NEAR(straight, 0.0, 2.0);
   EXPECT_NEAR(left, 38.0, 2.0);
   EXPECT_NEAR(right, -19.0, 2.0);
+  EXPECT_NEAR(std::abs(across), 90.0, 2.0);  // the long axis: 90 and -90 are one
 
   // rolling: 10 km/h for 0.5 s in 50 snapshots is 1.389 m, over a 0.55 m radius 2.525 rad
   ig.update(snapshot(0.0, 0.0, 0.0));

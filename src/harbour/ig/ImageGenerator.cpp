@@ -1015,7 +1015,8 @@ void ImageGenerator::update(const sim::Snapshot& s) {
   for (TurningPart& part : turning_parts_) {
     osg::Matrixd turned = part.placed;
     if (part.indicator >= 0) {
-      const double value = std::clamp(indicator_at(part.indicator), part.turn.arcsine ? 0.0 : -1.0, 1.0);
+      const double raw = indicator_at(part.indicator);
+      const double value = part.turn.arcsine ? std::clamp(raw, 0.0, 1.0) : raw;
       const double angle =
           part.turn.arcsine ? std::asin(value * std::sin(part.turn.max_rad)) : value * part.turn.max_rad;
       turned = osg::Matrixd::rotate(angle, to_osg(part.turn.axis)) * turned;

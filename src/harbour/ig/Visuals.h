@@ -20,12 +20,13 @@ namespace harbour::ig {
 /// (bow at +y, `bottom_color` under `waterline_m`, a deck of `deck_color` or none); or a mesh read through
 /// osgDB (OBJ, STL, PLY, .osgt, ...), placed at the centre, scaled by `scale`. Any part may be turned about z
 /// by `yaw_rad` and turn with an indicator. A part that turns with one of the machine's indicators (its
-/// published 0-1 value): about `axis` (the part's frame, right hand) through its centre, by `max_rad` times
-/// the value, or with `arcsine` by the angle whose sine is the value times sin(max_rad) (the part's tip then
-/// moves across in proportion: a jaw's span). A linear turn follows the value's sign (a steered wheel, left
-/// and right). A tyre may also roll with an indicator of its machine's speed: about its axle, by the
-/// distance the indicator's speed (`rolls_unit_mps` metres per second per unit) covers between snapshots over
-/// its radius, forward along `rolls_along` (the part's own frame, level and across the axle).
+/// published value, taken as 0-1 by `arcsine`): about `axis` (the part's frame, right hand) through its
+/// centre, by `max_rad` times the value, or with `arcsine` by the angle whose sine is the value times
+/// sin(max_rad) (the part's tip then moves across in proportion: a jaw's span). A linear turn takes the value
+/// as published, sign and all (a steered wheel, left and right; an RTG's wheels turned by `degrees: -1` per
+/// degree of its wheel turn). A tyre may also roll with an indicator of its machine's speed: about its axle,
+/// by the distance the indicator's speed (`rolls_unit_mps` metres per second per unit) covers between
+/// snapshots over its radius, forward along `rolls_along` (the part's own frame, level and across the axle).
 struct PartTurn {
   std::string indicator;
   core::Vec3 axis{0.0, 1.0, 0.0};
