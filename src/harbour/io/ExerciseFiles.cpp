@@ -78,6 +78,15 @@ const FaultEvent* find_fault_event(std::string name) {
   return nullptr;
 }
 
+// the events an exercise file may script: a gust, and each fault `has_fault` lets the machine suffer
+template <typename HasFault>
+std::vector<std::string> scriptable_events(HasFault has_fault) {
+  std::vector<std::string> kinds{"gust"};
+  for (const FaultEvent& e : kFaultEvents)
+    if (has_fault(e.fault)) kinds.push_back(file_spelling(e.command));
+  return kinds;
+}
+
 // counts an exercise may hold (docs/reliability.md): far above any real exercise, bounded so that a
 // generated or damaged file cannot make loading or stepping unbounded
 constexpr std::size_t kMaxContainers = 2000, kMaxMoves = 500, kMaxEvents = 500, kMaxBlocks = 200;
@@ -549,10 +558,9 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
         if (fault->fault == sim::MachineFault::kLandedSensor)
           event.corner = f.integer(ev, "corner", at, 0, 3);
       } else {
-        std::vector<std::string> kinds{"gust"};
-        for (const FaultEvent& scripted : kFaultEvents)
-          kinds.push_back(file_spelling(scripted.command));
-        f.fail(ev["kind"], at + ".kind", "'" + kind + "' is not an event: " + core::comma_separated(kinds));
+        const auto any_machine = [](sim::MachineFault) { return true; };
+        f.fail(ev["kind"], at + ".kind",
+               "'" + kind + "' is not an event: " + core::comma_separated(scriptable_events(any_machine)));
       }
       std::vector<sim::ScriptedEvent>& queue = after_lift ? s.lift_events : s.events;
       if (!queue.empty() && event.at_s < queue.back().at_s)
@@ -859,10 +867,7 @@ sim::ExerciseSettings load_exercise(const YamlFile& f, const std::string& folder
 }
 
 std::vector<std::string> event_kinds(const sim::MachineType& type) {
-  std::vector<std::string> kinds{"gust"};
-  for (const FaultEvent& e : kFaultEvents)
-    if (type.has_fault(e.fault)) kinds.push_back(file_spelling(e.command));
-  return kinds;
+  return scriptable_events([&](sim::MachineFault fault) { return type.has_fault(fault); });
 }
 
 }  // namespace harbour::io

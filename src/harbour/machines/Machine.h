@@ -73,8 +73,7 @@ struct MachineTally {
   core::Vec3 swing_m;               ///< [m] the hanging tool's horizontal offset from plumb under its sheaves
   std::array<AxisSpeed, 3> axes{};  ///< the motions an operator drives smoothly or not
   double hoist_power_w = 0.0;       ///< [W] what its hoist drums' motors deliver now (lowering ones: 0)
-  double travel_power_w =
-      0.0;  ///< [W] what its travel drives (gantry, trolley, wheels) deliver now (braking: 0)
+  double travel_power_w = 0.0;  ///< [W] what its travel drives (gantry, trolley, wheels) deliver (braking: 0)
   /// A gantry crane sounds its horn before it travels: whether its gantry is driven now and where it is
   /// along its track [m].
   bool warns_before_travel = false;
