@@ -17,8 +17,8 @@ namespace harbour {
 namespace {
 
 struct BusyScene {
-  sim::SceneDescription scene;
-  std::unique_ptr<sim::Snapshot> snapshot = std::make_unique<sim::Snapshot>();
+  scene::SceneDescription scene;
+  std::unique_ptr<scene::Snapshot> snapshot = std::make_unique<scene::Snapshot>();
   int material_t = -1;
   BusyScene() {
     const sim::ExerciseSettings e = io::load_exercise(HARBOUR_DATA_DIR "/exercises/mhc_coal_discharge.yaml");
@@ -35,15 +35,15 @@ struct BusyScene {
   }
   // block k: every drive moving under load, the grab pouring, a knock every 100 ms
   void advance(int k) {
-    sim::Snapshot& s = *snapshot;
+    scene::Snapshot& s = *snapshot;
     s.step += 10;
     s.time_s += 0.01;
     for (int d = 0; d < s.drive_count; ++d)
       s.drives[static_cast<std::size_t>(d)] = {0.7 + 0.2 * std::sin(0.05 * k + d), 0.6};
     s.indicators[static_cast<std::size_t>(material_t)] = 20.0 - 0.02 * (k % 1000);
     if (k % 10 == 0) {
-      s.knocks[static_cast<std::size_t>(s.knocks_total % sim::kMaxKnocks)] = {s.step - 3, 3000.0, 0.3,
-                                                                              s.cab.pose.position};
+      s.knocks[static_cast<std::size_t>(s.knocks_total % scene::kMaxKnocks)] = {s.step - 3, 3000.0, 0.3,
+                                                                                s.cab.pose.position};
       ++s.knocks_total;
     }
   }

@@ -41,7 +41,7 @@ void BM_Frame(benchmark::State& state) {
   view.yaw_rad = view.pitch_rad = 0.0;
   view.insets = state.range(3) != 0;  // the cab's: the spreader camera
   generator.set_view(view);
-  auto snapshot = std::make_unique<sim::Snapshot>();
+  auto snapshot = std::make_unique<scene::Snapshot>();
   for (auto _ : state) {
     state
         .PauseTiming();  // the scene moves between frames; the simulation's time is not the image generator's
@@ -82,9 +82,9 @@ void BM_BulkTileRemesh(benchmark::State& state) {
   bulk::BulkWorld world(coal, bulk::BulkWorldSettings{});
   world.add_grid({1024, 1024, 0.05}, {core::Mat3::identity(), {-25.6, -25.6, 0.0}});
   world.add_heap(0, 25.6, 25.6, 400.0);
-  sim::BulkView view;
+  scene::BulkView view;
   bulk::publish(world, view);
-  sim::SceneDescription scene;
+  scene::SceneDescription scene;
   ig::ImageGenerator generator(scene, {}, 64, 64);
   generator.update_bulk(view);
   core::Rng rng(3);

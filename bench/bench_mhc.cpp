@@ -17,9 +17,9 @@ namespace harbour {
 namespace {
 
 // slewing to and fro, luffing in and out, hoisting and working the grab, each on its own period
-sim::Controls scripted_operator(const sim::Simulation& sim) {
-  const sim::ControlTable& table = sim.control_table();
-  sim::Controls c = table.neutral();
+scene::Controls scripted_operator(const sim::Simulation& sim) {
+  const scene::ControlTable& table = sim.control_table();
+  scene::Controls c = table.neutral();
   const double t = sim.time_s();
   const auto set = [&](const char* label, double value) {
     c.value[static_cast<std::size_t>(table.find(label))] = value;
@@ -65,7 +65,7 @@ void BM_MhcDischarge1024(benchmark::State& state, const char* file) {
       evaluator = std::make_unique<sim::Evaluator>(exercise);
       state.ResumeTiming();
     }
-    const sim::Controls in = pilot->next(*sim);
+    const scene::Controls in = pilot->next(*sim);
     sim->step(in);
     evaluator->observe(*sim, in);
   }

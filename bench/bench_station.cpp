@@ -48,7 +48,7 @@ struct Sticks {
   }
 };
 
-std::unique_ptr<station::DeviceInput> desk_input(const sim::ControlTable& table) {
+std::unique_ptr<station::DeviceInput> desk_input(const scene::ControlTable& table) {
   auto input = std::make_unique<station::DeviceInput>(
       table, station::load_device_mapping(HARBOUR_DATA_DIR "/devices/sts_dual_joystick.yaml", table));
   input->maintain();
@@ -94,7 +94,7 @@ void BM_LoopTick(benchmark::State& state) {
       return pilot->next(s);
     });
     if (evaluated)
-      loop->set_observer([&](const sim::Simulation& s, const sim::Controls& in) {
+      loop->set_observer([&](const sim::Simulation& s, const scene::Controls& in) {
         evaluator->observe(s, in);
         const sim::Progress now = sim::progress(evaluator->metrics());
         if (now.grew_since(handed) || s.steps() % 50 == 0) {
@@ -136,14 +136,14 @@ void BM_BulkHandOff(benchmark::State& state) {
   while (simulation.time_s() < 20.0)
     simulation.step(pilot->next(simulation));
   const bool whole = state.range(0) == 1;
-  sim::BulkView view;
+  scene::BulkView view;
   bulk::publish(*simulation.bulk(), view);
   for (auto _ : state) {
     if (whole) view.grids.clear();
     benchmark::DoNotOptimize(bulk::publish(*simulation.bulk(), view));
   }
   std::size_t cells = 0;
-  for (const sim::BulkView::Grid& g : view.grids)
+  for (const scene::BulkView::Grid& g : view.grids)
     cells += static_cast<std::size_t>(g.cells_x * g.cells_y);
   state.counters["cells"] = static_cast<double>(cells);
 }
@@ -152,7 +152,7 @@ BENCHMARK(BM_BulkHandOff)->Arg(0)->Arg(1)->ArgNames({"whole"})->Unit(benchmark::
 // The pieces on their own.
 void BM_SampleTwoSticks(benchmark::State& state) {
   const Sticks sticks;
-  const sim::ControlTable table = scenes::sts_controls();
+  const scene::ControlTable table = scenes::sts_controls();
   auto input = desk_input(table);
   for (auto _ : state)
     benchmark::DoNotOptimize(input->sample());
@@ -162,7 +162,7 @@ BENCHMARK(BM_SampleTwoSticks)->Unit(benchmark::kMicrosecond);
 void BM_WriteSnapshot(benchmark::State& state) {
   const sim::ExerciseSettings exercise = scenes::sts_discharge_exercise(HARBOUR_DATA_DIR);
   const sim::Simulation sim(exercise.scenario);
-  auto snapshot = std::make_unique<sim::Snapshot>();
+  auto snapshot = std::make_unique<scene::Snapshot>();
   for (auto _ : state) {
     sim.write_snapshot(*snapshot);
     benchmark::DoNotOptimize(snapshot->entity_count);
@@ -183,7 +183,7 @@ void BM_DeviceToStepLatency(benchmark::State& state) {
   std::atomic<double> wanted{0.0};
   std::atomic<Clock::rep> seen_at{0};
   loop.set_sampler([&] {
-    const sim::Controls c = input->sample();
+    const scene::Controls c = input->sample();
     if (seen_at.load() == 0 && c.value[hoist] != 0.0 && (c.value[hoist] > 0.0) == (wanted.load() > 0.0))
       seen_at = Clock::now().time_since_epoch().count();
     return c;

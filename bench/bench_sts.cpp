@@ -21,7 +21,7 @@ void run_exercise(benchmark::State& state, const sim::ExerciseSettings& exercise
       evaluator = std::make_unique<sim::Evaluator>(exercise);
       state.ResumeTiming();
     }
-    const sim::Controls in = pilot->next(*sim);
+    const scene::Controls in = pilot->next(*sim);
     sim->step(in);
     evaluator->observe(*sim, in);
   }

@@ -21,7 +21,7 @@ namespace harbour {
 namespace {
 
 // three members with three bodies each (a tractor and its trailer and load, say), moving
-std::unique_ptr<station::TeamPresence> three_members(const sim::SceneDescription& own) {
+std::unique_ptr<station::TeamPresence> three_members(const scene::SceneDescription& own) {
   std::vector<station::TeamMember> members;
   for (int m = 0; m < 3; ++m) {
     station::TeamMember member;
@@ -61,7 +61,7 @@ void BM_LoopTickWithTeam(benchmark::State& state) {
   const auto wire = [&] {
     loop->set_pilot([&](const sim::Simulation& s) { return pilot->next(s); });
     if (team_on)
-      loop->set_addition([&](sim::Snapshot& s) { team->write(s, 1.05); },
+      loop->set_addition([&](scene::Snapshot& s) { team->write(s, 1.05); },
                          1u << station::kImageGeneratorReader | 1u << station::kConsoleReader |
                              1u << station::kPictureReader);
   };

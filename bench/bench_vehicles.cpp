@@ -27,7 +27,7 @@ void BM_VehicleExercise(benchmark::State& state, const char* name) {
       evaluator = std::make_unique<sim::Evaluator>(exercise);
       state.ResumeTiming();
     }
-    const sim::Controls in = pilot->next(*sim);
+    const scene::Controls in = pilot->next(*sim);
     sim->step(in);
     evaluator->observe(*sim, in);
   }

@@ -482,12 +482,12 @@ json route_json(const training::Route& r) {
 // drawn by the same 3D view as a station's. Builds the world (throws what building it throws).
 json design_preview(const std::string& folder, const DesignCheck& design) {
   const sim::Simulation simulation(design.exercise.scenario);
-  auto snapshot = std::make_unique<sim::Snapshot>();
+  auto snapshot = std::make_unique<scene::Snapshot>();
   simulation.write_snapshot(*snapshot);
   const net::StationScene published = scene_message(simulation.scene(), 0);
   json bulk;
   if (const bulk::BulkWorld* material = simulation.bulk()) {
-    sim::BulkView view;
+    scene::BulkView view;
     bulk::publish(*material, view);
     bulk = bulk_json("designer", bulk_message(view, 0, 0.0));
   }
@@ -518,9 +518,9 @@ struct Replay {
   sim::Recording recording;
   std::string recording_file, trainee;
   std::unique_ptr<sim::ReplayPlayer> player;
-  std::unique_ptr<sim::Snapshot> snapshot = std::make_unique<sim::Snapshot>();
+  std::unique_ptr<scene::Snapshot> snapshot = std::make_unique<scene::Snapshot>();
   net::StationScene scene;  // as a station publishes its own
-  sim::BulkView bulk;       // its material's heights (tiles copied as they change)
+  scene::BulkView bulk;     // its material's heights (tiles copied as they change)
   double speed = 1.0;
   bool playing = false;
   double position_steps = 0.0;  // where playing has got to (fractions carried between polls)

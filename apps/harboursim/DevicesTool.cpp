@@ -253,7 +253,7 @@ void pump(std::vector<Opened>& devices, VirtualStick* stick) {
 int bind(const DevicesOptions& options, std::vector<Opened>& devices, VirtualStick* stick) {
   const std::string machine =
       options.machine.empty() ? std::string(HARBOUR_DATA_DIR) + "/machines/sts.yaml" : options.machine;
-  const sim::ControlTable table = io::load_sts_crane(machine).controls;
+  const scene::ControlTable table = io::load_sts_crane(machine).controls;
   if (devices.empty()) {
     std::printf("no joysticks to bind: connect one and start again\n");
     return 2;
@@ -267,13 +267,13 @@ int bind(const DevicesOptions& options, std::vector<Opened>& devices, VirtualSti
       "Enter skips it, q stops here and writes what is bound.\n\n",
       machine.c_str());
   for (int slot = 0; slot < table.size() && !g_quit; ++slot) {
-    const sim::ControlSpec& c = table[slot];
+    const scene::ControlSpec& c = table[slot];
     pump(devices, stick);
     std::vector<station::DeviceState> rest;
     for (const Opened& d : devices)
       rest.push_back(d.state);
-    std::printf("Move the control you use for %s (%s: %s)\n", upper(c.label).c_str(), sim::to_string(c.kind),
-                c.meaning.c_str());
+    std::printf("Move the control you use for %s (%s: %s)\n", upper(c.label).c_str(),
+                scene::to_string(c.kind), c.meaning.c_str());
     std::fflush(stdout);
     std::optional<std::pair<std::size_t, station::Binding>> found;
     char key = 0;
@@ -302,9 +302,9 @@ int bind(const DevicesOptions& options, std::vector<Opened>& devices, VirtualSti
     }
     b.device = device_of[d];
     if (b.source == station::Binding::Source::kAxis) {
-      if (c.kind != sim::ControlKind::kAxis) {
+      if (c.kind != scene::ControlKind::kAxis) {
         std::printf("  an axis cannot work %s (a %s): press a button for it instead\n", c.label.c_str(),
-                    sim::to_string(c.kind));
+                    scene::to_string(c.kind));
         --slot;
         continue;
       }
@@ -333,7 +333,7 @@ int bind(const DevicesOptions& options, std::vector<Opened>& devices, VirtualSti
       std::printf("  calibrated: min %.0f, %s%.0f, max %.0f, dead zone 5 %%\n", low,
                   one_sided ? "rest at an end " : "centre ", one_sided ? rest_value : rest_value, high);
     } else {
-      if (c.kind == sim::ControlKind::kSwitch) b.toggle = true;  // each press steps the switch
+      if (c.kind == scene::ControlKind::kSwitch) b.toggle = true;  // each press steps the switch
       std::printf("  %s %d of %s\n", b.source == station::Binding::Source::kHat ? "hat" : "button", b.index,
                   devices[d].info.name.c_str());
       // wait for the release, so the press does not bind the next control too

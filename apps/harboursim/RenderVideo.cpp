@@ -130,7 +130,7 @@ int render_video(const RenderOptions& options) {
   std::vector<Event> events;
   sim::Evaluator evaluator(exercise);
   sim::replay(exercise.scenario, recording, stop_step,
-              [&](const sim::Simulation& s, const sim::Controls& controls) {
+              [&](const sim::Simulation& s, const scene::Controls& controls) {
                 const sim::Metrics before = evaluator.metrics();
                 evaluator.observe(s, controls);
                 const sim::Metrics& now = evaluator.metrics();
@@ -161,10 +161,10 @@ int render_video(const RenderOptions& options) {
   if (drawing)
     encoder = std::make_unique<Encoder>(hearing ? silent_video : options.out, options.width, options.height,
                                         options.fps);
-  auto snapshot = std::make_unique<sim::Snapshot>();
+  auto snapshot = std::make_unique<scene::Snapshot>();
   double next_frame_s = options.from_s;
   long frames = 0;
-  sim::BulkView bulk_view;  // the material's heights, copied tile by tile as they change
+  scene::BulkView bulk_view;  // the material's heights, copied tile by tile as they change
   // the sound: a 10 ms block ending at every tenth step from the start of the span
   std::unique_ptr<audio::OfflineMix> sound;
   const audio::SoundSettings sounds =
@@ -174,9 +174,9 @@ int render_video(const RenderOptions& options) {
   listening.speakers = options.headphones ? audio::Speakers::kHeadphones : audio::Speakers::kStereo;
   const auto from_step =
       static_cast<std::int64_t>(std::ceil(options.from_s / sim::Simulation::kStep_s - 1e-9));
-  auto heard = std::make_unique<sim::Snapshot>();
+  auto heard = std::make_unique<scene::Snapshot>();
   const sim::ReplayResult result = sim::replay(
-      exercise.scenario, recording, stop_step, [&](const sim::Simulation& s, const sim::Controls&) {
+      exercise.scenario, recording, stop_step, [&](const sim::Simulation& s, const scene::Controls&) {
         const std::int64_t step = s.steps();
         if (hearing && step >= from_step && (step - from_step) % 10 == 0) {
           if (!sound) {

@@ -63,7 +63,7 @@ int take_screenshot(const ScreenshotOptions& options) {
   generator.use(looks);
   generator.update(*simulation.snapshot());
   if (const bulk::BulkWorld* material = simulation.bulk()) {
-    sim::BulkView view;
+    scene::BulkView view;
     bulk::publish(*material, view);
     generator.update_bulk(view);
   }

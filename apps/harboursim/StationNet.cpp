@@ -44,11 +44,11 @@ std::optional<station::LoopCommand::Kind> loop_kind(const std::string& kind) {
 
 }  // namespace
 
-net::StationScene scene_message(const sim::SceneDescription& description, std::int64_t attempt) {
+net::StationScene scene_message(const scene::SceneDescription& description, std::int64_t attempt) {
   net::StationScene scene;
   scene.attempt(attempt);
   scene.machine(description.machine);
-  const std::size_t count = std::min<std::size_t>(description.entities.size(), sim::kMaxEntities);
+  const std::size_t count = std::min<std::size_t>(description.entities.size(), scene::kMaxEntities);
   std::vector<eprosima::fastrtps::fixed_string<48>> names, visuals;
   std::vector<float> extents;
   for (std::size_t n = 0; n < count; ++n) {
@@ -62,13 +62,13 @@ net::StationScene scene_message(const sim::SceneDescription& description, std::i
   scene.entity_visuals(visuals);
   scene.entity_half_extents_m(extents);
   std::vector<eprosima::fastrtps::fixed_string<48>> indicators;
-  for (std::size_t n = 0; n < description.indicators.size() && n < sim::kMaxIndicators; ++n)
+  for (std::size_t n = 0; n < description.indicators.size() && n < scene::kMaxIndicators; ++n)
     indicators.emplace_back(description.indicators[n].substr(0, 48));
   scene.indicator_names(indicators);
   return scene;
 }
 
-net::StationBulk bulk_message(const sim::BulkView& view, std::int64_t attempt, double time_s) {
+net::StationBulk bulk_message(const scene::BulkView& view, std::int64_t attempt, double time_s) {
   net::StationBulk bulk;
   bulk.attempt(attempt);
   bulk.time_s(time_s);
@@ -77,7 +77,7 @@ net::StationBulk bulk_message(const sim::BulkView& view, std::int64_t attempt, d
   const int budget = std::min(kMostBulkSamplesPerSide * kMostBulkSamplesPerSide,
                               static_cast<int>(kMostBulkSamples / std::max<std::size_t>(grids, 1)));
   for (std::size_t g = 0; g < grids; ++g) {
-    const sim::BulkView::Grid& grid = view.grids[g];
+    const scene::BulkView::Grid& grid = view.grids[g];
     int block = 1;  // cells per sample side
     while ((grid.cells_x + block - 1) / block * ((grid.cells_y + block - 1) / block) > budget)
       ++block;
@@ -101,7 +101,7 @@ net::StationBulk bulk_message(const sim::BulkView& view, std::int64_t attempt, d
   return bulk;
 }
 
-net::StationState state_message(const sim::Snapshot& snapshot, std::size_t entity_count,
+net::StationState state_message(const scene::Snapshot& snapshot, std::size_t entity_count,
                                 std::int64_t attempt) {
   net::StationState state;
   state.attempt(attempt);
@@ -118,10 +118,10 @@ net::StationState state_message(const sim::Snapshot& snapshot, std::size_t entit
                             snapshot.indicators.begin() + snapshot.indicator_count);
   // every entity in scene order (one not in this snapshot, or hidden in it, keeps a zero pose: not drawn)
   std::vector<float>& poses = state.entity_poses();
-  poses.assign(std::min<std::size_t>(entity_count, sim::kMaxEntities) * 7, 0.0f);
+  poses.assign(std::min<std::size_t>(entity_count, scene::kMaxEntities) * 7, 0.0f);
   for (int n = 0; n < snapshot.entity_count; ++n) {
-    const sim::Snapshot::Entity& e = snapshot.entities[static_cast<std::size_t>(n)];
-    if (e.index * 7 + 7 > poses.size() || (e.flags & sim::Snapshot::kHidden) != 0) continue;
+    const scene::Snapshot::Entity& e = snapshot.entities[static_cast<std::size_t>(n)];
+    if (e.index * 7 + 7 > poses.size() || (e.flags & scene::Snapshot::kHidden) != 0) continue;
     const core::Quat q = core::Quat::from(e.pose.rotation);
     float* p = &poses[e.index * 7];
     for (const double v : {e.pose.position.x, e.pose.position.y, e.pose.position.z, q.x, q.y, q.z, q.w})
@@ -180,12 +180,12 @@ std::optional<StartRequest> IdlePresence::service() {
 
 AttemptPresence::AttemptPresence(net::StationLink& link, station::Session& session,
                                  const sim::ExerciseSettings& exercise, const std::string& trainee,
-                                 const sim::SceneDescription& scene)
+                                 const scene::SceneDescription& scene)
     : link_(link), session_(session), exercise_(exercise), trainee_(trainee), scene_(scene) {
   link_.publish(scene_message(scene_, session.attempt()));
 }
 
-net::StationStatus AttemptPresence::status(const std::string& state, const sim::Snapshot* snapshot) const {
+net::StationStatus AttemptPresence::status(const std::string& state, const scene::Snapshot* snapshot) const {
   net::StationStatus s = base_status(state);
   s.machine(scene_.machine);
   s.exercise(exercise_.name);
@@ -213,16 +213,16 @@ net::StationStatus AttemptPresence::status(const std::string& state, const sim::
   return s;
 }
 
-void AttemptPresence::publish_state(const sim::Snapshot& snapshot) {
+void AttemptPresence::publish_state(const scene::Snapshot& snapshot) {
   link_.publish(state_message(snapshot, scene_.entities.size(), session_.attempt()));
 }
 
 double AttemptPresence::published_time_s() {
-  const sim::Snapshot* snapshot = session_.loop().latest_snapshot(station::kConsoleReader);
+  const scene::Snapshot* snapshot = session_.loop().latest_snapshot(station::kConsoleReader);
   return snapshot ? snapshot->time_s : 0.0;
 }
 
-const sim::Snapshot* AttemptPresence::snapshot() {
+const scene::Snapshot* AttemptPresence::snapshot() {
   return session_.loop().latest_snapshot(station::kConsoleReader);
 }
 
@@ -361,7 +361,7 @@ AttemptPresence::Next AttemptPresence::service() {
   }
   seen_ = now;
   const Clock::time_point t = Clock::now();
-  const sim::Snapshot* snapshot = this->snapshot();  // stable until the next read (none below)
+  const scene::Snapshot* snapshot = this->snapshot();  // stable until the next read (none below)
   const bool held = snapshot && snapshot->held;
   if (held != was_held_) changed = true;
   was_held_ = held;
@@ -374,7 +374,7 @@ AttemptPresence::Next AttemptPresence::service() {
     next_state_ = t + kStatePeriod;
   }
   if (t >= next_bulk_) {
-    if (const sim::BulkView* bulk = session_.loop().latest_bulk(station::kConsoleReader))
+    if (const scene::BulkView* bulk = session_.loop().latest_bulk(station::kConsoleReader))
       link_.publish(bulk_message(*bulk, session_.attempt(), published_time_s()));
     next_bulk_ = t + kBulkPeriod;
   }

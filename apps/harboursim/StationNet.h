@@ -9,7 +9,7 @@
 
 #include "harbour/audio/SoundThread.h"
 #include "harbour/net/DdsLink.h"
-#include "harbour/sim/BulkView.h"
+#include "harbour/scene/BulkView.h"
 #include "harbour/sim/Evaluation.h"
 #include "harbour/station/Session.h"
 
@@ -18,8 +18,8 @@ namespace harbour::apps {
 /// The network's form of a scene and of a published state (entities in scene order, poses as x, y, z and
 /// a quaternion x, y, z, w; an entity missing from the snapshot keeps a zero pose): what the stations
 /// publish and the console's replays send alike.
-net::StationScene scene_message(const sim::SceneDescription& scene, std::int64_t attempt);
-net::StationState state_message(const sim::Snapshot& snapshot, std::size_t entity_count,
+net::StationScene scene_message(const scene::SceneDescription& scene, std::int64_t attempt);
+net::StationState state_message(const scene::Snapshot& snapshot, std::size_t entity_count,
                                 std::int64_t attempt);
 /// The bulk material's surfaces as the console's 3D view draws them: at most kMostBulkGrids grids, each
 /// coarsened to blocks of cells (the block's highest cell) so that all fit in kMostBulkSamples samples, at
@@ -30,7 +30,7 @@ inline constexpr int kMostBulkSamplesPerSide = 64;
 inline constexpr int kPictureWidth = 640, kPictureHeight = 360;
 inline constexpr double kPicturesPerSecond = 5.0;
 inline constexpr std::size_t kMostPictureBytes = 262144;
-net::StationBulk bulk_message(const sim::BulkView& view, std::int64_t attempt, double time_s);
+net::StationBulk bulk_message(const scene::BulkView& view, std::int64_t attempt, double time_s);
 
 /// How an attempt ended, in the words the console shows: "attempt 5 passed, score 87.0", "attempt 6 ended by
 /// the instructor, score 40.2", "attempt 7 interrupted".
@@ -68,7 +68,7 @@ class AttemptPresence {
   enum class Next { kRun, kStop, kReset };
   /// `scene`: what the station draws (its simulation's scene, and a team's other machines after it).
   AttemptPresence(net::StationLink& link, station::Session& session, const sim::ExerciseSettings& exercise,
-                  const std::string& trainee, const sim::SceneDescription& scene);
+                  const std::string& trainee, const scene::SceneDescription& scene);
   /// Publishes what is due and applies the commands that came; says whether the attempt goes on.
   Next service();
   /// Tells the consoles how the attempt ended.
@@ -96,9 +96,9 @@ class AttemptPresence {
   }
 
  private:
-  net::StationStatus status(const std::string& state, const sim::Snapshot* snapshot) const;
-  const sim::Snapshot* snapshot();  // the console reader's newest (one reader: this thread)
-  void publish_state(const sim::Snapshot& snapshot);
+  net::StationStatus status(const std::string& state, const scene::Snapshot* snapshot) const;
+  const scene::Snapshot* snapshot();  // the console reader's newest (one reader: this thread)
+  void publish_state(const scene::Snapshot& snapshot);
   double published_time_s();  // the simulated time of the newest snapshot (not the stepping simulation's)
   bool apply(const net::StationCommand& command, std::string& answer, Next& next);
   bool apply_sound(const std::string& kind, std::string& answer);
@@ -108,7 +108,7 @@ class AttemptPresence {
   const sim::ExerciseSettings& exercise_;
   std::string trainee_;
   std::string team_, role_;
-  sim::SceneDescription scene_;
+  scene::SceneDescription scene_;
   sim::Metrics seen_;
   bool was_held_ = false;
   std::chrono::steady_clock::time_point next_status_{}, next_state_{}, next_bulk_{};

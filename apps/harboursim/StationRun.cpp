@@ -47,7 +47,7 @@ extern "C" void on_stop_signal(int) {
 }
 
 // the value of a named indicator in a snapshot (machine-blind: names come from the scene description)
-std::optional<double> indicator(const sim::SceneDescription& scene, const sim::Snapshot& s,
+std::optional<double> indicator(const scene::SceneDescription& scene, const scene::Snapshot& s,
                                 const char* name) {
   for (std::size_t n = 0; n < scene.indicators.size() && static_cast<int>(n) < s.indicator_count; ++n)
     if (scene.indicators[n] == name) return s.indicators[n];
@@ -56,7 +56,7 @@ std::optional<double> indicator(const sim::SceneDescription& scene, const sim::S
 
 // the first mapping of the profile that fits the machine's controls and whose devices are all here
 std::unique_ptr<station::DeviceInput> open_devices(const station::Profile& profile,
-                                                   const sim::ControlTable& table, bool window) {
+                                                   const scene::ControlTable& table, bool window) {
   station::init_sdl_joysticks();
   std::string tried;
   for (const std::string& file : profile.mappings) {
@@ -201,7 +201,7 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
         session.simulation().scene(), options.time_scale);
     // for the readers that draw: the windows, the console's 3D view, the instructor's picture
     session.loop().set_addition(
-        [membership](sim::Snapshot& s) { membership->add_to(s); },
+        [membership](scene::Snapshot& s) { membership->add_to(s); },
         1u << station::kImageGeneratorReader | 1u << station::kConsoleReader | 1u << station::kPictureReader);
     std::string others;
     for (const io::TeamRole& r : team->roles)
@@ -244,7 +244,7 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
   std::printf("Ctrl-C ends the attempt (stored as interrupted)\n");
   std::fflush(stdout);
 
-  const sim::SceneDescription scene = membership ? membership->scene() : session.simulation().scene();
+  const scene::SceneDescription scene = membership ? membership->scene() : session.simulation().scene();
   std::unique_ptr<ig::RenderThread> render;
   if (!windows.empty()) {
     std::vector<ig::View> views;
@@ -279,7 +279,7 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
         layout.render_height, views,
         [&session] { return session.loop().latest_snapshot(station::kImageGeneratorReader); },
         [shown, pictures = layout.pictures, last_of_window](ig::ImageGenerator& generator,
-                                                            const sim::Snapshot&, int k) {
+                                                            const scene::Snapshot&, int k) {
           const station::DisplayLayout::Picture& picture = pictures[static_cast<std::size_t>(k)];
           const osg::Image& image = generator.render_result();
           shown[static_cast<std::size_t>(picture.window)]->hand_over(
@@ -339,10 +339,10 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
         scene, ig::load_looks(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml"), kPictureWidth,
         kPictureHeight, std::vector<ig::View>{view},
         // drawn only while a console shows this station
-        [&session, &presence]() -> const sim::Snapshot* {
+        [&session, &presence]() -> const scene::Snapshot* {
           return presence->watched() ? session.loop().latest_snapshot(station::kPictureReader) : nullptr;
         },
-        [&presence](ig::ImageGenerator& generator, const sim::Snapshot& s, int) {
+        [&presence](ig::ImageGenerator& generator, const scene::Snapshot& s, int) {
           presence->offer_picture(ig::encode_jpeg(generator.render_result()), kPictureWidth, kPictureHeight,
                                   s.time_s);
         },
@@ -370,7 +370,7 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
   int next_line = 0;
   bool window_open = true;
   // looking round at the window (keys, a mouse drag) within the cab's limits; F1 the machine's keys
-  const sim::CabSight sight = session.simulation().machine().cab_sight();
+  const scene::CabSight sight = session.simulation().machine().cab_sight();
   station::LookAround look({sight.look_yaw_rad, sight.look_pitch_rad});
   const std::string keys =
       station.devices()
@@ -419,7 +419,7 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
     }
     if (wall < next_line * 2.0) continue;
     ++next_line;
-    const sim::Snapshot* s = session.loop().latest_snapshot(station::kConsoleReader);
+    const scene::Snapshot* s = session.loop().latest_snapshot(station::kConsoleReader);
     if (!s) continue;
     const station::LoopStats stats = session.loop().stats();
     const sim::Metrics m = session.metrics();

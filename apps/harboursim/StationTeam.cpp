@@ -25,14 +25,14 @@ constexpr double kAtLoadStop_m = 1.5;                    // its centre this near
 constexpr double kFeedTolerance_m = 0.002, kFeedTolerance_mps = 0.002, kFeedTolerance_rad = 0.0005,
                  kFeedTolerance_radps = 0.0005;
 
-const sim::Snapshot::Entity* entity_in(const sim::Snapshot& s, int index) {
+const scene::Snapshot::Entity* entity_in(const scene::Snapshot& s, int index) {
   for (int n = 0; n < s.entity_count; ++n)
     if (s.entities[static_cast<std::size_t>(n)].index == static_cast<std::uint32_t>(index))
       return &s.entities[static_cast<std::size_t>(n)];
   return nullptr;
 }
 
-int entity_named(const sim::SceneDescription& scene, const std::string& name) {
+int entity_named(const scene::SceneDescription& scene, const std::string& name) {
   for (std::size_t n = 0; n < scene.entities.size(); ++n)
     if (scene.entities[n].name == name) return static_cast<int>(n);
   return -1;
@@ -46,8 +46,8 @@ std::vector<station::TeamMember> other_members(const io::Team& team, const std::
     if (r.role == role) continue;
     const sim::ExerciseSettings exercise = load_resolved_exercise(r.exercise_file);
     const sim::Simulation simulation(exercise.scenario);
-    const sim::SceneDescription scene = simulation.scene();
-    const std::unique_ptr<sim::Snapshot> at_start = simulation.snapshot();
+    const scene::SceneDescription scene = simulation.scene();
+    const std::unique_ptr<scene::Snapshot> at_start = simulation.snapshot();
     // its machine's bodies, and its scene on to its last liftable item (what it sends while it holds one or
     // hands one over; hidden until then)
     std::size_t bodies = static_cast<std::size_t>(scene.machine_entities);
@@ -58,16 +58,16 @@ std::vector<station::TeamMember> other_members(const io::Team& team, const std::
     m.role = r.role;
     m.machine_bodies = scene.machine_entities;
     std::vector<core::Pose> start(scene.entities.size());
-    std::vector<std::uint32_t> start_flags(scene.entities.size(), sim::Snapshot::kHidden);
+    std::vector<std::uint32_t> start_flags(scene.entities.size(), scene::Snapshot::kHidden);
     for (int n = 0; n < at_start->entity_count; ++n) {
-      const sim::Snapshot::Entity& e = at_start->entities[static_cast<std::size_t>(n)];
+      const scene::Snapshot::Entity& e = at_start->entities[static_cast<std::size_t>(n)];
       if (e.index < start.size()) start[e.index] = e.pose, start_flags[e.index] = e.flags;
     }
     for (std::size_t b = 0; b < bodies; ++b) {
       m.bodies.push_back(scene.entities[b]);
       m.start_poses.push_back(start[b]);
       m.start_hidden.push_back(static_cast<int>(b) >= scene.machine_entities ||
-                               (start_flags[b] & sim::Snapshot::kHidden) != 0);
+                               (start_flags[b] & scene::Snapshot::kHidden) != 0);
     }
     members.push_back(std::move(m));
   }
@@ -98,7 +98,7 @@ std::string resolve_team(const std::string& name_or_path, const std::string& cen
 
 TeamMembership::TeamMembership(const io::Team& team, const std::string& role, const std::string& station,
                                int domain, const sim::ExerciseSettings& own_exercise,
-                               const sim::SceneDescription& own_scene, double time_scale)
+                               const scene::SceneDescription& own_scene, double time_scale)
     : team_(team),
       role_(role),
       time_scale_(time_scale),
@@ -117,7 +117,7 @@ TeamMembership::TeamMembership(const io::Team& team, const std::string& role, co
     throw std::runtime_error("team " + team.name + ": " + role + " has " + std::to_string(own.trucks.size()) +
                              " trucks in the team file, its exercise " + own_exercise.name + " a lane of " +
                              std::to_string(lane) + " team trucks");
-  const sim::SceneDescription& scene = presence_.scene();
+  const scene::SceneDescription& scene = presence_.scene();
   for (std::size_t k = 0; k < own.trucks.size(); ++k) {
     Truck t;
     t.role = own.trucks[k];
@@ -163,11 +163,11 @@ double TeamMembership::now_s() const {
   return wall_s() * time_scale_;
 }
 
-void TeamMembership::add_to(sim::Snapshot& snapshot) const {
+void TeamMembership::add_to(scene::Snapshot& snapshot) const {
   presence_.write(snapshot, now_s());
 }
 
-void TeamMembership::start(std::function<const sim::Snapshot*()> latest,
+void TeamMembership::start(std::function<const scene::Snapshot*()> latest,
                            std::function<void(const std::string&)> said,
                            std::function<bool(const sim::TeamInput&)> input) {
   latest_ = std::move(latest);
@@ -208,18 +208,19 @@ void TeamMembership::run() {
     }
     next += kPeriod;
     // every period, held or not (a frozen member is not a lost one)
-    if (const sim::Snapshot* s = latest_ ? latest_() : nullptr) {
+    if (const scene::Snapshot* s = latest_ ? latest_() : nullptr) {
       net::TeamState state;
       state.step(s->step);
       state.time_s(s->time_s);
       state.held(s->held);
       state.started_unix_ms(started_unix_ms_);
       for (int n = 0; n < s->entity_count; ++n) {
-        const sim::Snapshot::Entity& e = s->entities[static_cast<std::size_t>(n)];
+        const scene::Snapshot::Entity& e = s->entities[static_cast<std::size_t>(n)];
         // its machine's bodies and the items it holds or hands over (one it does not draw, as a load still to
         // come, is not sent: the others hide it)
-        const bool item = (e.flags & (sim::Snapshot::kLocked | sim::Snapshot::kOnTeamTruck)) != 0;
-        if (e.index >= static_cast<std::uint32_t>(own_entities_) || (e.flags & sim::Snapshot::kHidden) != 0 ||
+        const bool item = (e.flags & (scene::Snapshot::kLocked | scene::Snapshot::kOnTeamTruck)) != 0;
+        if (e.index >= static_cast<std::uint32_t>(own_entities_) ||
+            (e.flags & scene::Snapshot::kHidden) != 0 ||
             (e.index >= static_cast<std::uint32_t>(own_bodies_) && !item) ||
             state.entity_index().size() >= 256)
           continue;
@@ -289,13 +290,13 @@ void TeamMembership::feed_trucks() {
   }
 }
 
-void TeamMembership::offer_seated(const sim::Snapshot& s) {
+void TeamMembership::offer_seated(const scene::Snapshot& s) {
   if (trucks_.empty()) return;
   const double now = wall_s();
-  const sim::SceneDescription& scene = presence_.scene();
+  const scene::SceneDescription& scene = presence_.scene();
   for (int n = 0; n < s.entity_count; ++n) {
-    const sim::Snapshot::Entity& e = s.entities[static_cast<std::size_t>(n)];
-    if ((e.flags & sim::Snapshot::kOnTeamTruck) == 0) continue;
+    const scene::Snapshot::Entity& e = s.entities[static_cast<std::size_t>(n)];
+    if ((e.flags & scene::Snapshot::kOnTeamTruck) == 0) continue;
     const std::string& id = scene.entities[e.index].name;
     Offer& offer = offers_[id];
     if (offer.settled || now - offer.last_s < kOfferEvery_s) continue;
@@ -304,7 +305,7 @@ void TeamMembership::offer_seated(const sim::Snapshot& s) {
       double nearest = 1e300;
       core::Pose on_trailer;
       for (std::size_t k = 0; k < trucks_.size(); ++k) {
-        const sim::Snapshot::Entity* truck = entity_in(s, trucks_[k].entity);
+        const scene::Snapshot::Entity* truck = entity_in(s, trucks_[k].entity);
         if (!truck) continue;
         const core::Vec3 on = truck->pose.to_local(e.pose.position);
         if (std::hypot(on.x, on.y) >= nearest) continue;
@@ -332,11 +333,11 @@ void TeamMembership::offer_seated(const sim::Snapshot& s) {
   }
 }
 
-void TeamMembership::watch_load_stop(const sim::Snapshot& s) {
+void TeamMembership::watch_load_stop(const scene::Snapshot& s) {
   if (!load_stop_ || trailer_entity_ < 0 || load_entity_ < 0 || waited_s_ >= 0.0) return;
   for (int n = 0; n < s.entity_count; ++n) {
-    const sim::Snapshot::Entity& e = s.entities[static_cast<std::size_t>(n)];
-    if (e.index == static_cast<std::uint32_t>(load_entity_) && (e.flags & sim::Snapshot::kHidden) == 0) {
+    const scene::Snapshot::Entity& e = s.entities[static_cast<std::size_t>(n)];
+    if (e.index == static_cast<std::uint32_t>(load_entity_) && (e.flags & scene::Snapshot::kHidden) == 0) {
       waited_s_ = standing_since_s_ >= 0.0 ? s.time_s - standing_since_s_ : 0.0;  // its box is on
       return;
     }

@@ -33,20 +33,20 @@ class TeamMembership {
   /// not fit the exercises (a crane's lane of another size, a truck role whose trailer takes no box).
   /// `time_scale`: the session's clock runs so much faster than the wall's (every member runs at it).
   TeamMembership(const io::Team& team, const std::string& role, const std::string& station, int domain,
-                 const sim::ExerciseSettings& own_exercise, const sim::SceneDescription& own_scene,
+                 const sim::ExerciseSettings& own_exercise, const scene::SceneDescription& own_scene,
                  double time_scale = 1.0);
   ~TeamMembership();
   TeamMembership(const TeamMembership&) = delete;
   TeamMembership& operator=(const TeamMembership&) = delete;
 
   /// The station's scene with the other members' bodies after its own entities.
-  const sim::SceneDescription& scene() const { return presence_.scene(); }
+  const scene::SceneDescription& scene() const { return presence_.scene(); }
   /// Writes the members' bodies where they are now into `snapshot` (the loop's addition, on its step thread).
-  void add_to(sim::Snapshot& snapshot) const;
+  void add_to(scene::Snapshot& snapshot) const;
   /// Starts publishing this machine from `latest` (the loop's team snapshots) and taking the others'; `said`
   /// hears "tractor: lost" and "tractor: back" (from this thread, as it happens).
   /// `input` posts a team input to the station's loop (false: refused, to be tried again).
-  void start(std::function<const sim::Snapshot*()> latest, std::function<void(const std::string&)> said,
+  void start(std::function<const scene::Snapshot*()> latest, std::function<void(const std::string&)> said,
              std::function<bool(const sim::TeamInput&)> input);
   void stop();
   /// After stop(), as the attempt ends: tells the others this member leaves in order (they say "left", not
@@ -65,9 +65,9 @@ class TeamMembership {
   void run();
   void take();  // the others' states that came, and who was lost or came back
   void take_hand_offs();
-  void feed_trucks();                         // a crane: where its team trucks are, into its simulation
-  void offer_seated(const sim::Snapshot& s);  // a crane: the boxes on its trucks, offered to their tractors
-  void watch_load_stop(const sim::Snapshot& s);  // a tractor: how long it stood waiting for its box
+  void feed_trucks();                           // a crane: where its team trucks are, into its simulation
+  void offer_seated(const scene::Snapshot& s);  // a crane: the boxes on its trucks, offered to their tractors
+  void watch_load_stop(const scene::Snapshot& s);  // a tractor: how long it stood waiting for its box
   static double wall_s();
   double now_s() const;  // the session's clock: the wall's at the time scale
   io::Team team_;
@@ -77,7 +77,7 @@ class TeamMembership {
   int own_entities_;  // its scene's (the items it holds are sent while it holds them)
   net::TeamLink link_;
   station::TeamPresence presence_;
-  std::function<const sim::Snapshot*()> latest_;
+  std::function<const scene::Snapshot*()> latest_;
   std::function<void(const std::string&)> said_;
   std::thread thread_;
   std::atomic<bool> stop_{false};

@@ -317,7 +317,7 @@ int drive(const sim::ExerciseSettings& exercise, sim::Simulation& simulation, si
       recorder.on_command(simulation, commands[next_command].timed.command);
       std::printf("  t=%6.1f s  instructor: %s\n", simulation.time_s(), commands[next_command].text.c_str());
     }
-    const sim::Controls in = pilot.next(simulation);
+    const scene::Controls in = pilot.next(simulation);
     simulation.step(in);
     evaluator.observe(simulation, in);
     if (const sim::Progress now = sim::progress(evaluator.metrics()); now.grew_since(stored)) {
@@ -493,7 +493,7 @@ int replay_checked(const std::string& recording_path, const sim::Recording& reco
   sim::Evaluator evaluator(exercise);
   const sim::ReplayResult r =
       sim::replay(exercise.scenario, recording, -1,
-                  [&](const sim::Simulation& s, const sim::Controls& in) { evaluator.observe(s, in); });
+                  [&](const sim::Simulation& s, const scene::Controls& in) { evaluator.observe(s, in); });
   if (r.first_mismatch) {
     std::fprintf(stderr,
                  "harboursim: replay diverged at t=%.3f s (recorded with a different build or data?)\n",
@@ -531,7 +531,7 @@ int take_over_recording(const std::string& recording_path, const RunOptions& giv
   sim::Evaluator evaluator(exercise);
   sim::TakeOver branch =
       sim::take_over(exercise.scenario, recording, recording_path, step,
-                     [&](const sim::Simulation& s, const sim::Controls& in) { evaluator.observe(s, in); });
+                     [&](const sim::Simulation& s, const scene::Controls& in) { evaluator.observe(s, in); });
   io::RecordsStore db(options.database.empty() ? default_database() : options.database);
   std::optional<std::int64_t> parent;
   if (const std::optional<io::AttemptRow> original = db.attempt_recorded_at(recording_path))

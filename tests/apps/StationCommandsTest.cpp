@@ -112,7 +112,7 @@ TEST(DevicesTool, APersonBindsAndCalibratesAStickInATerminal) {
   ASSERT_TRUE(t.wait_for("wrote " + file + ": 3 binding(s) on 1 device(s)")) << t.screen();
   std::printf("%s\n", t.screen().c_str());
 
-  const sim::ControlTable table = scenes::sts_controls();
+  const scene::ControlTable table = scenes::sts_controls();
   const station::DeviceMapping m = station::load_device_mapping(file, table);
   ASSERT_EQ(m.devices.size(), 1u);
   EXPECT_EQ(m.devices[0].name, "Test Stick");

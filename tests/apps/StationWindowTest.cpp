@@ -90,13 +90,13 @@ TEST(StationWindow, FitsTheScreenKeepsTheWholePictureResizedAndTheMouseMovesNoCo
     EXPECT_GT(corner[2], 150);  // the picture's far corner is in the window too
   }
   // the keyboard mapping binds no mouse: the pointer at the window's edge drives nothing
-  const sim::ControlTable table = scenes::sts_controls();
+  const scene::ControlTable table = scenes::sts_controls();
   station::DeviceInput input(
       table, station::load_device_mapping(std::string(HARBOUR_DATA_DIR) + "/devices/keyboard.yaml", table));
   for (const auto& [x, y] : {std::pair{0, 0}, std::pair{1599, 450}, std::pair{800, 899}}) {
     window.move_mouse(x, y);
     window.pump();
-    const sim::Controls c = input.sample();
+    const scene::Controls c = input.sample();
     EXPECT_TRUE(c == table.neutral()) << "the pointer at " << x << "," << y << " moved a control";
   }
 }

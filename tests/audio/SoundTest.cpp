@@ -32,8 +32,8 @@ const SoundSettings& shipped_sounds() {
 
 /// A machine's scene and its first snapshot, from a shipped exercise.
 struct Scene {
-  sim::SceneDescription description;
-  std::unique_ptr<sim::Snapshot> first = std::make_unique<sim::Snapshot>();
+  scene::SceneDescription description;
+  std::unique_ptr<scene::Snapshot> first = std::make_unique<scene::Snapshot>();
   int drive(const std::string& name) const {
     return static_cast<int>(std::find(description.drives.begin(), description.drives.end(), name) -
                             description.drives.begin());
@@ -55,13 +55,13 @@ Scene scene_of(const std::string& exercise) {
 
 /// The machine's sounds alone (no ambience) over `seconds`, each 10 ms block's snapshot set by `at(t)`.
 std::vector<float> render(const Scene& scene, double seconds,
-                          const std::function<void(sim::Snapshot&, double)>& at,
+                          const std::function<void(scene::Snapshot&, double)>& at,
                           const AudioSettings& audio = {}, bool ambience = false,
                           const SoundSettings& sounds = shipped_sounds(),
                           const sim::RadioScript& radio = {}) {
   OfflineMix mix(scene.description, sounds, audio, ambience);
   mix.scape().set_radio_script(radio);
-  auto s = std::make_unique<sim::Snapshot>(*scene.first);
+  auto s = std::make_unique<scene::Snapshot>(*scene.first);
   const auto blocks = static_cast<int>(std::lround(seconds * 100.0));
   for (int k = 1; k <= blocks; ++k) {
     s->step = scene.first->step + 10 * k;
@@ -72,7 +72,7 @@ std::vector<float> render(const Scene& scene, double seconds,
   return mix.samples();
 }
 
-void set_drive(sim::Snapshot& s, int index, double speed, double load) {
+void set_drive(scene::Snapshot& s, int index, double speed, double load) {
   s.drives[static_cast<std::size_t>(index)] = {speed, load};
 }
 
@@ -82,7 +82,7 @@ TEST(Sound, TheHoistsFundamentalFollowsItsDrumSpeed) {
   const int hoist = sts.drive("hoist");
   for (const double speed : {0.3, 0.6, 1.0}) {
     const std::vector<float> out =
-        render(sts, 1.0, [&](sim::Snapshot& s, double) { set_drive(s, hoist, speed, 0.5); });
+        render(sts, 1.0, [&](scene::Snapshot& s, double) { set_drive(s, hoist, speed, 0.5); });
     const std::vector<double> left = channel(out, 2, 0);
     EXPECT_NEAR(test::strongest_tone_hz(left, 0.2, 1.0, 15.0, 400.0), 100.0 * speed, 1.5)
         << "speed " << speed;
@@ -94,13 +94,13 @@ TEST(Sound, TheHoistsFundamentalRisesAsTheSimulatedDrumSpeedsUp) {
   // the tone heard in the cab
   const sim::ExerciseSettings e = io::load_exercise(HARBOUR_DATA_DIR "/exercises/sts_discharge.yaml");
   sim::Simulation simulation(e.scenario);
-  sim::Controls controls = simulation.control_table().neutral();
+  scene::Controls controls = simulation.control_table().neutral();
   const auto lever = static_cast<std::size_t>(simulation.control_table().find("hoist"));
-  const sim::SceneDescription scene = simulation.scene();
+  const scene::SceneDescription scene = simulation.scene();
   OfflineMix mix(scene, shipped_sounds(), {}, false);
   const auto hoist = static_cast<std::size_t>(std::find(scene.drives.begin(), scene.drives.end(), "hoist") -
                                               scene.drives.begin());
-  auto snapshot = std::make_unique<sim::Snapshot>();
+  auto snapshot = std::make_unique<scene::Snapshot>();
   std::vector<double> published;
   for (int step = 1; step <= 8000; ++step) {
     controls.value[lever] = step < 4000 ? -0.5 : -1.0;  // lowering into the hold
@@ -125,7 +125,7 @@ TEST(Sound, ADieselIsLouderUnderLoad) {
   std::vector<double> level;
   for (const double load : {0.1, 0.5, 1.0}) {
     const std::vector<float> out =
-        render(tractor, 1.0, [&](sim::Snapshot& s, double) { set_drive(s, engine, 0.5, load); });
+        render(tractor, 1.0, [&](scene::Snapshot& s, double) { set_drive(s, engine, 0.5, load); });
     level.push_back(rms(channel(out, 2, 0), 0.2, 1.0));
   }
   // each step of load raises it by more than 2 dB
@@ -133,7 +133,7 @@ TEST(Sound, ADieselIsLouderUnderLoad) {
   EXPECT_GT(level[2], 1.26 * level[1]);
   // and the firing frequency follows the engine speed: 6 cylinders at 1475 rpm fire at 73.75 Hz
   const std::vector<float> out =
-      render(tractor, 1.0, [&](sim::Snapshot& s, double) { set_drive(s, engine, 0.5, 0.5); });
+      render(tractor, 1.0, [&](scene::Snapshot& s, double) { set_drive(s, engine, 0.5, 0.5); });
   EXPECT_NEAR(test::strongest_tone_hz(channel(out, 2, 0), 0.2, 1.0, 40.0, 100.0), 73.75, 1.0);
 }
 
@@ -142,7 +142,7 @@ TEST(Sound, ALandingsKnockFollowsItsImpulse) {
   const Scene sts = scene_of("sts_discharge");
   const core::Vec3 spot = sts.first->cab.pose.to_parent(sts.first->cab.eye_m) + core::Vec3{0.0, 0.0, -15.0};
   const double impulses[] = {2500.0, 5000.0, 10000.0};
-  const std::vector<float> out = render(sts, 1.6, [&](sim::Snapshot& s, double t) {
+  const std::vector<float> out = render(sts, 1.6, [&](scene::Snapshot& s, double t) {
     const int due = static_cast<int>(std::floor((t - 0.095) / 0.5)) + 1;  // at 0.1, 0.6 and 1.1 s
     while (s.knocks_total < std::min(due, 3)) {
       s.knocks[static_cast<std::size_t>(s.knocks_total)] = {s.step - 5, impulses[s.knocks_total], 0.3, spot};
@@ -163,7 +163,7 @@ TEST(Sound, AnAlarmSoundsExactlyWhileItsConditionHolds) {
   // from 1.0 s to 2.5 s
   const Scene mhc = scene_of("mhc_hook_lift");
   const int limiter = mhc.indicator("limiter_stop");
-  const std::vector<float> out = render(mhc, 3.5, [&](sim::Snapshot& s, double t) {
+  const std::vector<float> out = render(mhc, 3.5, [&](scene::Snapshot& s, double t) {
     s.indicators[static_cast<std::size_t>(limiter)] = t > 1.0 + 1e-9 && t <= 2.5 + 1e-9 ? 1.0 : 0.0;
   });
   const std::vector<double> left = channel(out, 2, 0);
@@ -181,7 +181,7 @@ TEST(Sound, AnAlarmSoundsExactlyWhileItsConditionHolds) {
 TEST(Sound, TheAnemometersAlarmSoundsWhileTheWindIsPastTheCranesLimit) {
   // the STS's wind warning (2.4 kHz beeps) past its in-service limit of 20 m/s: 15 m/s, then 22 from 1 s
   const Scene sts = scene_of("sts_discharge");
-  const std::vector<float> out = render(sts, 2.5, [](sim::Snapshot& s, double t) {
+  const std::vector<float> out = render(sts, 2.5, [](scene::Snapshot& s, double t) {
     s.wind_mps = {t > 1.0 + 1e-9 ? 22.0 : 15.0, 0.0, 0.0};
   });
   const std::vector<double> left = channel(out, 2, 0);
@@ -195,7 +195,7 @@ TEST(Sound, AFlipperClunksOnceWhenItReachesItsStop) {
   // the STS's flipper 1 folds down from 0.5 s to 1.5 s: no clunk on its way, one as it lands on its stop
   const Scene sts = scene_of("sts_discharge");
   const int flipper = sts.indicator("flipper_1");
-  const std::vector<float> out = render(sts, 2.5, [&](sim::Snapshot& s, double t) {
+  const std::vector<float> out = render(sts, 2.5, [&](scene::Snapshot& s, double t) {
     s.indicators[static_cast<std::size_t>(flipper)] = std::clamp(t - 0.5, 0.0, 1.0);
   });
   const std::vector<double> left = channel(out, 2, 0);
@@ -208,7 +208,7 @@ TEST(Sound, APowerFailureSilencesTheMachine) {
   // every drive of the RTG at full speed and load, its horn sounding; the supply fails at 1 s
   const Scene rtg = scene_of("rtg_gantry_move");
   const int horn = rtg.indicator("horn");
-  const std::vector<float> out = render(rtg, 2.0, [&](sim::Snapshot& s, double t) {
+  const std::vector<float> out = render(rtg, 2.0, [&](scene::Snapshot& s, double t) {
     for (int d = 0; d < s.drive_count; ++d)
       set_drive(s, d, 1.0, 1.0);
     s.indicators[static_cast<std::size_t>(horn)] = 1.0;
@@ -224,7 +224,7 @@ TEST(Sound, APowerFailureSilencesTheMachine) {
 TEST(Sound, TheSameSnapshotsGiveTheSameSamplesBitForBit) {
   // the reach stacker working in wind and rain, heard through the HRTF, twice
   const Scene stacker = scene_of("reach_stacker_stack");
-  const auto work = [&](sim::Snapshot& s, double t) {
+  const auto work = [&](scene::Snapshot& s, double t) {
     set_drive(s, 0, 0.5 + 0.5 * std::sin(t), 0.7);
     set_drive(s, 1, std::sin(3.0 * t), 0.6);
     s.wind_mps = {14.0 + 3.0 * std::sin(0.7 * t), 2.0, 0.0};
@@ -242,7 +242,7 @@ TEST(Sound, TheSameSnapshotsGiveTheSameSamplesBitForBit) {
 TEST(Sound, ASoundOnTheLeftIsLouderInTheLeftEar) {
   // a knock 10 m to the operator's left, then one 10 m to the right, on speakers and through the HRTF
   const Scene sts = scene_of("sts_discharge");
-  const sim::Snapshot& first = *sts.first;
+  const scene::Snapshot& first = *sts.first;
   for (const Speakers speakers : {Speakers::kStereo, Speakers::kHeadphones}) {
     AudioSettings audio;
     audio.speakers = speakers;
@@ -251,7 +251,7 @@ TEST(Sound, ASoundOnTheLeftIsLouderInTheLeftEar) {
       const core::Vec3 beside = first.cab.pose.to_parent(first.cab.eye_m + core::Vec3{0.0, 10.0 * side, 0.0});
       const std::vector<float> out = render(
           sts, 0.5,
-          [&](sim::Snapshot& s, double t) {
+          [&](scene::Snapshot& s, double t) {
             if (t > 0.095 && s.knocks_total == 0)
               s.knocks[0] = {s.step, 5000.0, 0.3, beside}, s.knocks_total = 1;
           },
@@ -277,7 +277,7 @@ TEST(Sound, TheSignallersCallIsHeardAtItsMomentInTheSpeechBand) {
   sim::RadioScript script;
   script.calls = {{1.0, "hoist up slowly"}};
   const std::vector<float> out = render(
-      sts, 3.5, [](sim::Snapshot&, double) {}, {}, true, radio_only, script);
+      sts, 3.5, [](scene::Snapshot&, double) {}, {}, true, radio_only, script);
   const std::vector<double> left = channel(out, 2, 0);
   EXPECT_LT(rms(left, 0.0, 1.0), 1e-7);  // nothing before its moment
   EXPECT_GT(rms(left, 1.2, 2.0), 0.02);  // the words
@@ -293,7 +293,7 @@ TEST(Sound, TheSignallersCallIsHeardAtItsMomentInTheSpeechBand) {
   sim::RadioScript german;
   german.language = "de";
   mix.scape().set_radio_script(german);
-  auto s = std::make_unique<sim::Snapshot>(*sts.first);
+  auto s = std::make_unique<scene::Snapshot>(*sts.first);
   mix.add_block(*s);
   EXPECT_TRUE(mix.scape().say("langsam heben"));
   for (int k = 0; k < 100; ++k)

@@ -34,7 +34,7 @@ TEST(SoundThread, PlaysTheNewestSnapshotOnTheOutputDeviceAndMutes) {
 
   const sim::ExerciseSettings e = io::load_exercise(HARBOUR_DATA_DIR "/exercises/rtg_gantry_move.yaml");
   sim::Simulation simulation(e.scenario);
-  auto snapshot = std::make_unique<sim::Snapshot>();
+  auto snapshot = std::make_unique<scene::Snapshot>();
   simulation.write_snapshot(*snapshot);
   snapshot->rain_mm_per_h = 30.0;  // and its generator set idling
   AudioSettings settings;

@@ -96,7 +96,7 @@ void step_a_while(const harbour::sim::MhcSettings& crane) {
   mhc.start.hanging_z_m = std::clamp(10.0, crane.hoist_lower_limit_m, crane.hoist_upper_limit_m);
   scenario.machine = mhc;
   harbour::sim::Simulation simulation(scenario);
-  harbour::sim::Controls in = simulation.control_table().neutral();
+  harbour::scene::Controls in = simulation.control_table().neutral();
   for (const char* lever : {"slew", "luff", "hoist", "grab"})
     in.value[static_cast<std::size_t>(simulation.control_table().find(lever))] = 1.0;
   for (int k = 0; k < 300; ++k)
@@ -274,7 +274,7 @@ const std::map<std::string, std::function<void(const std::string&)>>& targets() 
       {"mapping",
        [](const std::string& text) {
          // a mapping read against the STS's controls, then mapped from devices of every size it may meet
-         static const harbour::sim::ControlTable table =
+         static const harbour::scene::ControlTable table =
              harbour::io::load_sts_crane(HARBOUR_DATA_DIR "/machines/sts.yaml").controls;
          const harbour::station::DeviceMapping m =
              harbour::station::load_device_mapping(YamlFile::parse(text, "fuzz.yaml"), table);

@@ -41,7 +41,7 @@ struct MoveFraming {
 };
 constexpr double kApproach_m = 12.0;
 
-int entity_named(const sim::SceneDescription& scene, const std::string& name) {
+int entity_named(const scene::SceneDescription& scene, const std::string& name) {
   for (std::size_t n = 0; n < scene.entities.size(); ++n)
     if (scene.entities[n].name == name) return static_cast<int>(n);
   return -1;
@@ -80,13 +80,13 @@ std::vector<MoveFraming> framing(const std::string& exercise_name, const std::st
   sim::Simulation simulation(exercise.scenario);
   const std::unique_ptr<sim::Pilot> pilot = sim::make_pilot(exercise);
   sim::Evaluator evaluator(exercise);
-  const sim::SceneDescription scene = simulation.scene();
+  const scene::SceneDescription scene = simulation.scene();
   const int tool = entity_named(scene, tool_name);
   EXPECT_GE(tool, 0) << "no entity '" << tool_name << "'";
   Looks looks = load_looks(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml");
   ImageGenerator generator(scene, std::move(looks.visuals), kWidth, kHeight);
   generator.set_view(view_named("cab"));
-  auto snapshot = std::make_unique<sim::Snapshot>();
+  auto snapshot = std::make_unique<scene::Snapshot>();
   const auto in_picture = [&](const core::Vec3& p) {
     const auto at = generator.project(p);
     return at && at->first >= 0.0 && at->first <= kWidth && at->second >= 0.0 && at->second <= kHeight;
@@ -105,7 +105,7 @@ std::vector<MoveFraming> framing(const std::string& exercise_name, const std::st
   bool was_carrying = false;
   double next_sample_s = 0.0;
   while (!evaluator.finished() && simulation.time_s() < most_s && !simulation.diverged()) {
-    const sim::Controls in = pilot->next(simulation);
+    const scene::Controls in = pilot->next(simulation);
     simulation.step(in);
     evaluator.observe(simulation, in);
     const bool carrying = simulation.carrying();
@@ -208,7 +208,7 @@ TEST(CabView, TheTrailerIsInAMirrorOrOnTheReversingCameraWhileReversing) {
   sim::Simulation simulation(exercise.scenario);
   const std::unique_ptr<sim::Pilot> pilot = sim::make_pilot(exercise);
   sim::Evaluator evaluator(exercise);
-  const sim::SceneDescription scene = simulation.scene();
+  const scene::SceneDescription scene = simulation.scene();
   const int trailer = entity_named(scene, "trailer");
   ASSERT_GE(trailer, 0);
   Looks looks = load_looks(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml");
@@ -216,11 +216,11 @@ TEST(CabView, TheTrailerIsInAMirrorOrOnTheReversingCameraWhileReversing) {
   generator.use(looks);
   generator.set_view(view_named("cab"));
   ASSERT_EQ(generator.insets().size(), 3u);  // two mirrors, the reversing camera
-  auto snapshot = std::make_unique<sim::Snapshot>();
+  auto snapshot = std::make_unique<scene::Snapshot>();
   int samples = 0, seen = 0;
   double next_sample_s = 0.0;
   while (!evaluator.finished() && simulation.time_s() < 300.0) {
-    const sim::Controls in = pilot->next(simulation);
+    const scene::Controls in = pilot->next(simulation);
     simulation.step(in);
     evaluator.observe(simulation, in);
     if (simulation.time_s() + 1e-9 < next_sample_s) continue;
@@ -286,7 +286,7 @@ TEST(CabView, TheChaseViewFramesEveryMachineAndFogFadesItWithoutBlankingIt) {
     sim::Simulation simulation(exercise.scenario);
     for (int k = 0; k < 100; ++k)
       simulation.step(simulation.control_table().neutral());
-    const sim::SceneDescription scene = simulation.scene();
+    const scene::SceneDescription scene = simulation.scene();
     ASSERT_GT(scene.machine_entities, 0) << name;
     Looks looks = load_looks(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml");
     ImageGenerator generator(scene, std::move(looks.visuals), kWidth, kHeight);

@@ -47,7 +47,7 @@ double psnr(const osg::Image& a, const osg::Image& b) {
 // the HUD (text rasterises differently across font builds): the image generator and the state it shows.
 struct DischargeInChase {
   std::unique_ptr<ImageGenerator> ig;
-  std::unique_ptr<sim::Snapshot> at_40_s;
+  std::unique_ptr<scene::Snapshot> at_40_s;
 };
 DischargeInChase discharge_in_chase(int width, int height) {
   const sim::ExerciseSettings exercise =
@@ -77,7 +77,7 @@ TEST(Golden, TheDischargeInFiveConditionsLooksAsRecorded) {
        {Condition{"noon", 12.0, 20000.0, 0.0, 35.0}, Condition{"dusk", 18.2, 20000.0, 0.0, 35.0},
         Condition{"night", 22.0, 20000.0, 0.0, 35.0}, Condition{"fog_200m", 12.0, 200.0, 0.0, 35.0},
         Condition{"rain", 12.0, 3000.0, 20.0, 22.0}}) {
-    sim::Snapshot snapshot = *discharge.at_40_s;
+    scene::Snapshot snapshot = *discharge.at_40_s;
     snapshot.time_of_day_h = c.time_of_day_h;
     snapshot.visibility_m = c.visibility_m;
     snapshot.rain_mm_per_h = c.rain_mm_per_h;
@@ -114,7 +114,7 @@ TEST(Golden, SoftShadowsChangeOnlyTheShadowsEdges) {
   constexpr int kW = 640, kH = 360;
   const DischargeInChase discharge = discharge_in_chase(kW, kH);
   ImageGenerator& ig = *discharge.ig;
-  sim::Snapshot snapshot = *discharge.at_40_s;
+  scene::Snapshot snapshot = *discharge.at_40_s;
   snapshot.time_of_day_h = 16.0;
   ig.update(snapshot);
   const auto draw = [&](bool soft) {

@@ -22,8 +22,8 @@ namespace {
 constexpr int kWidth = 320, kHeight = 240;
 
 // a scene of its own: a "camera mast" whose cab the view rides, and two 40 ft boxes
-sim::SceneDescription scene() {
-  sim::SceneDescription d;
+scene::SceneDescription scene() {
+  scene::SceneDescription d;
   d.machine = "test";
   d.entities.push_back({"mast", "none", {}});
   d.entities.push_back({"near box", "test.box", {6.1, 1.22, 1.3}});
@@ -43,8 +43,8 @@ std::map<std::string, Visual> looks() {
 }
 
 // the cab at 10 m looking along +x, level; boxes ahead at `near_x` and `far_x`, lifted into the sky's view
-sim::Snapshot state(double near_x, double far_x, double visibility_m, double time_of_day_h) {
-  sim::Snapshot s;
+scene::Snapshot state(double near_x, double far_x, double visibility_m, double time_of_day_h) {
+  scene::Snapshot s;
   s.time_of_day_h = time_of_day_h;
   s.visibility_m = visibility_m;
   s.cab.pose.position = {0.0, 0.0, 10.0};
@@ -136,7 +136,7 @@ TEST(ImageGenerator, MovingAContainerInThePublishedStateMovesItsPixelsWhereProje
       }
     return std::tuple{sx / std::max(n, 1.0), sy / std::max(n, 1.0), n};
   };
-  sim::Snapshot s = state(40.0, 5000.0, 20000.0, 12.0);  // the far box out of sight
+  scene::Snapshot s = state(40.0, 5000.0, 20000.0, 12.0);  // the far box out of sight
   ig.update(s);
   const auto [x0, y0, n0] = red_centroid(ig.render());
   const auto p0 = ig.project({40.0, 0.0, 14.0});
@@ -157,7 +157,7 @@ TEST(ImageGenerator, MovingAContainerInThePublishedStateMovesItsPixelsWhereProje
 TEST(ImageGenerator, ARopesOscillationMovesItsPixels) {
   ImageGenerator ig(scene(), looks(), kWidth, kHeight);
   ig.set_view(level());
-  sim::Snapshot s = state(40.0, 5000.0, 20000.0, 12.0);
+  scene::Snapshot s = state(40.0, 5000.0, 20000.0, 12.0);
   s.entity_count = 1;  // the rope alone
   s.rope_count = 1;
   s.rope_first[0] = 0;
@@ -194,7 +194,7 @@ TEST(Visuals, EveryLookTheShippedExercisesPublishIsInTheData) {
   for (const char* name : {"sts_discharge", "sts_bay12_hold", "sts_bay12_deck"}) {
     const sim::ExerciseSettings e =
         io::load_exercise(std::string(HARBOUR_DATA_DIR) + "/exercises/" + name + ".yaml");
-    for (const sim::SceneDescription::Entity& entity : sim::Simulation(e.scenario).scene().entities)
+    for (const scene::SceneDescription::Entity& entity : sim::Simulation(e.scenario).scene().entities)
       EXPECT_TRUE(visuals.count(entity.visual)) << name << ": no look for '" << entity.visual << "'";
   }
 }
@@ -330,14 +330,14 @@ namespace harbour::ig {
 namespace {
 
 TEST(ImageGenerator, TheHudShowsTheMachinesIndicatorsByNameAndTheAlarms) {
-  sim::SceneDescription d = scene();
+  scene::SceneDescription d = scene();
   d.indicators = {"load_t", "lamp_locked", "gear"};
   ImageGenerator ig(d, looks(), kWidth, kHeight);
   ig.set_hud({{"load_t", "load", "t", 1, false},
               {"lamp_locked", "LOCKED", "", 0, true},
               {"absent", "x", "", 0, false}});
   ig.set_view(level());
-  sim::Snapshot s = state(40.0, 5000.0, 20000.0, 12.0);
+  scene::Snapshot s = state(40.0, 5000.0, 20000.0, 12.0);
   s.time_s = 12.345;
   s.wind_mps = {3.0, 4.0, 0.0};
   s.indicator_count = 3;
@@ -371,8 +371,8 @@ namespace harbour::ig {
 namespace {
 
 // the view from 40 m above the quay's apron, looking straight down at (0, 0, 0)
-sim::Snapshot over_the_quay(double time_of_day_h, double rain_mm_per_h) {
-  sim::Snapshot s = state(5000.0, 5000.0, 20000.0, time_of_day_h);
+scene::Snapshot over_the_quay(double time_of_day_h, double rain_mm_per_h) {
+  scene::Snapshot s = state(5000.0, 5000.0, 20000.0, time_of_day_h);
   s.cab.pose.position = {-10.0, 0.0, 40.0};
   s.rain_mm_per_h = rain_mm_per_h;
   return s;
@@ -415,7 +415,7 @@ TEST(ImageGenerator, FloodlightsLightTheQuayAtNightOnly) {
 TEST(ImageGenerator, AMachinesLampRidesItAndGoesOutInAPowerFailure) {
   ImageGenerator ig(scene(), looks(), kWidth, kHeight);
   ig.set_view(down());
-  sim::Snapshot night = over_the_quay(23.0, 0.0);
+  scene::Snapshot night = over_the_quay(23.0, 0.0);
   ig.update(night);
   const double dark = centre_luminance(ig.render());
   // seven lamps on a machine this scene lacks (they take none of the seven lights), then one on the near box,
@@ -479,7 +479,7 @@ TEST(ImageGenerator, RainStreaksPastTheEyeFallTheWayTheDropsFall) {
   // looking ahead in still air they fall straight down the picture; in 10 m/s of wind from the left (blowing
   // to the right of the view) they slant to the right
   ig.set_view(level());
-  sim::Snapshot s = over_the_quay(12.0, 40.0);
+  scene::Snapshot s = over_the_quay(12.0, 40.0);
   ig.update(s);
   ig.render();
   for (const auto& [from, to] : ig.rain_streaks()) {
@@ -509,7 +509,7 @@ TEST(ImageGenerator, ACameraRidingAnEntityMovesWithIt) {
   ig.use(extra);
   EXPECT_EQ(ig.view_names(), (std::vector<std::string>{"cab", "chase", "free", "mast"}));
   ig.set_view(view_named("mast"));
-  sim::Snapshot s = state(40.0, 5000.0, 20000.0, 12.0);
+  scene::Snapshot s = state(40.0, 5000.0, 20000.0, 12.0);
   s.entities[0].pose.position = {0.0, 0.0, 14.0};
   ig.update(s);
   ig.render();
@@ -538,7 +538,7 @@ TEST(ImageGenerator, OffAxisProjectionMakesTheScreenAWindow) {
   v.off_axis = true;
   v.screen_distance_m = 0.6;
   ig.set_view(v);
-  sim::Snapshot s = state(5000.0, 5000.0, 20000.0, 12.0);
+  scene::Snapshot s = state(5000.0, 5000.0, 20000.0, 12.0);
   const core::Vec3 on_screen{0.6, 0.05, 10.1}, far{100.0, 0.0, 10.0};
   ig.update(s);
   ig.render();
@@ -598,7 +598,7 @@ TEST(ImageGenerator, StereoEyesSeeParallaxThatVanishesAtTheConvergenceDistance) 
   constexpr double separation = 0.065, convergence = 12.0;
   const double tan_half = std::tan(level().fov_vertical_rad / 2.0) * kWidth / kHeight;
   for (const double distance : {6.0, 12.0, 40.0}) {
-    sim::Snapshot s = state(distance, 5000.0, 20000.0, 12.0);
+    scene::Snapshot s = state(distance, 5000.0, 20000.0, 12.0);
     s.entities[1].pose.position.z = 10.0;  // at the eye's height, straight ahead
     ig.update(s);
     double seen[2];
@@ -619,7 +619,7 @@ TEST(ImageGenerator, TheTimelineBarFillsUpToNowAndMarksTheEvents) {
   ImageGenerator ig(scene(), looks(), kWidth, kHeight);
   ig.set_view(level());
   ig.set_timeline(0.0, 100.0, {{50.0, {1.0, 0.0, 0.0}}});
-  sim::Snapshot s = state(5000.0, 5000.0, 20000.0, 0.5);  // a dark night sky behind the bar
+  scene::Snapshot s = state(5000.0, 5000.0, 20000.0, 0.5);  // a dark night sky behind the bar
   s.time_s = 25.0;
   ig.update(s);
   const osg::Image& image = ig.render();
@@ -703,7 +703,7 @@ namespace harbour::ig {
 namespace {
 
 TEST(ImageGenerator, AContainersIsoCodeIsPaintedOnItsSides) {
-  sim::SceneDescription d;
+  scene::SceneDescription d;
   d.entities.push_back({"mast", "none", {}});
   d.entities.push_back({"TGHU1234567", "test.container", {6.1, 1.22, 1.3}});
   const auto white_pixels = [&](bool labelled) {
@@ -716,7 +716,7 @@ TEST(ImageGenerator, AContainersIsoCodeIsPaintedOnItsSides) {
     View v = level();
     v.hud = false;
     ig.set_view(v);
-    sim::Snapshot s = state(5000.0, 5000.0, 20000.0, 12.0);
+    scene::Snapshot s = state(5000.0, 5000.0, 20000.0, 12.0);
     s.entity_count = 2;
     // 7 m ahead, its long side towards the eye (its length across the view)
     s.entities[1] = {1, 0, {core::Mat3::rotation({0.0, 0.0, 1.0}, std::numbers::pi / 2.0), {7.0, 0.0, 10.0}}};
@@ -756,7 +756,7 @@ TEST(ImageGenerator, WindRoughensTheWater) {
   ImageGenerator ig(scene(), looks(), kWidth, kHeight);
   ig.set_view(free_camera({200.0, 0.0, 6.0}, 0.0, -0.35));  // over open water, looking down the wind
   const auto spread = [&](double wind) {
-    sim::Snapshot s = state(-500.0, -600.0, 20000.0, 11.0);  // the boxes behind the camera
+    scene::Snapshot s = state(-500.0, -600.0, 20000.0, 11.0);  // the boxes behind the camera
     s.wind_mps = {wind, 0.0, 0.0};
     s.time_s = 30.0;
     ig.update(s);
@@ -784,7 +784,7 @@ TEST(ImageGenerator, TheWaterlineFollowsTheVesselsHeave) {
   ig.set_view(free_camera({post.x, post.y - 14.0, post.z + 1.2}, std::numbers::pi / 2.0, -0.08));
   std::vector<double> rows, projected;
   for (const double phase : {std::numbers::pi / 2.0, -std::numbers::pi / 2.0, 0.0}) {
-    sim::Snapshot s = state(-500.0, -600.0, 20000.0, 12.0);
+    scene::Snapshot s = state(-500.0, -600.0, 20000.0, 12.0);
     s.sea.water_level_m = post.z;
     s.sea.reference_m = post;
     s.sea.swell_count = 1;
@@ -837,7 +837,7 @@ TEST(ImageGenerator, TheSunCastsAShadowWhereItsRaysSay) {
   v.fov_vertical_rad = 0.9;
   ig.set_view(v);
   for (const double hour : {10.0, 14.0}) {
-    sim::Snapshot s = state(5000.0, 5000.0, 20000.0, hour);
+    scene::Snapshot s = state(5000.0, 5000.0, 20000.0, hour);
     const core::Vec3 box{-20.0, 0.0, 6.0};
     s.entities[1] = {1, 0, {core::Mat3::rotation({0, 0, 1}, std::numbers::pi / 2.0), box}};
     ig.update(s);
@@ -896,7 +896,7 @@ bulk::BulkWorld sand_yard() {
 TEST(ImageGenerator, ABulkUpdateReMeshesOnlyTheTilesThatChanged) {
   bulk::BulkWorld world = sand_yard();
   world.add_heap(0, 12.8, 12.8, 20.0);  // a cone in the middle of the grid
-  sim::BulkView view;
+  scene::BulkView view;
   EXPECT_EQ(bulk::publish(world, view), 64);
   std::map<std::string, Visual> visuals = looks();
   Visual bulk_look;
@@ -938,23 +938,23 @@ TEST(ImageGenerator, ABulkUpdateReMeshesOnlyTheTilesThatChanged) {
 TEST(RenderThread, DrawsTheBulkMaterialItIsHanded) {
   bulk::BulkWorld world = sand_yard();
   world.add_heap(0, 12.8, 12.8, 20.0);
-  sim::BulkView view;
+  scene::BulkView view;
   bulk::publish(world, view);
   Looks looks;
   looks.visuals = ig::looks();
   looks.visuals["bulk"].parts.push_back({});
   looks.visuals["bulk"].parts[0].color = {0.9, 0.8, 0.1};
-  const auto snapshot = std::make_unique<sim::Snapshot>(state(5000.0, 5000.0, 20000.0, 12.0));
+  const auto snapshot = std::make_unique<scene::Snapshot>(state(5000.0, 5000.0, 20000.0, 12.0));
   std::atomic<long> meshed{0};
   std::atomic<int> frames{0};
   RenderThread render(
       scene(), looks, 320, 180, {free_camera({0.0, -25.0, 20.0}, std::numbers::pi / 2.0, -0.6)},
-      [&]() -> const sim::Snapshot* { return snapshot.get(); },
-      [&](ImageGenerator& generator, const sim::Snapshot&, int) {
+      [&]() -> const scene::Snapshot* { return snapshot.get(); },
+      [&](ImageGenerator& generator, const scene::Snapshot&, int) {
         meshed = generator.bulk_tiles_meshed();
         ++frames;
       },
-      0.0, [&]() -> const sim::BulkView* { return &view; });
+      0.0, [&]() -> const scene::BulkView* { return &view; });
   for (int wait = 0; wait < 200 && frames.load() == 0; ++wait)
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   render.stop();
@@ -1014,7 +1014,7 @@ namespace {
 TEST(ImageGenerator, LookingRoundTurnsTheViewAboutThePicturesOwnAxes) {
   ImageGenerator ig(scene(), looks(), kWidth, kHeight);
   ig.set_view(level());
-  sim::Snapshot s = state(5000.0, 5000.0, 20000.0, 12.0);
+  scene::Snapshot s = state(5000.0, 5000.0, 20000.0, 12.0);
   s.cab.look_yaw_rad = 0.5;    // left
   s.cab.look_pitch_rad = 0.3;  // then up
   ig.update(s);
@@ -1053,7 +1053,7 @@ TEST(ImageGenerator, AMirrorShowsWhatIsBehindReversedAndAMonitorAsItIs) {
   ig.use(extra);
   ASSERT_EQ(ig.insets().size(), 2u);
   ig.set_view(level());
-  sim::Snapshot s = state(5000.0, 5000.0, 20000.0, 12.0);
+  scene::Snapshot s = state(5000.0, 5000.0, 20000.0, 12.0);
   s.entities[0].pose.position = {0.0, 0.0, 14.0};
   // behind the mast: the near box 4 m to the left (+y), the far one 4 m to the right
   s.entities[1].pose.position = {-40.0, 4.0, 14.0};
@@ -1113,7 +1113,7 @@ namespace {
 // block's centre (where the bulk model cuts); fully open they part across 4.6 m and rise 2.3 m, as the bite's
 // arc in data/machines/mhc.yaml says (2.2 m) to a cell; half open, the tips span half of it (arcsine law).
 TEST(ImageGenerator, TheGrabsShellsOpenWithThePublishedOpening) {
-  sim::SceneDescription d;
+  scene::SceneDescription d;
   d.machine = "test";
   d.entities.push_back({"mast", "none", {}});
   d.entities.push_back({"grab", "mhc.grab", {1.6, 1.4, 0.8}});
@@ -1126,7 +1126,7 @@ TEST(ImageGenerator, TheGrabsShellsOpenWithThePublishedOpening) {
   // 14 m ahead, turned so its shells open across the picture (its x along the world's y)
   const core::Vec3 at{14.0, 0.0, 10.0};
   const auto yellow_extent = [&](double opening) {
-    sim::Snapshot s = state(5000.0, 5000.0, 20000.0, 12.0);
+    scene::Snapshot s = state(5000.0, 5000.0, 20000.0, 12.0);
     s.entity_count = 2;
     s.entities[1] = {1, 0, {core::Mat3::rotation({0.0, 0.0, 1.0}, std::numbers::pi / 2.0), at}};
     s.indicator_count = 1;
@@ -1171,7 +1171,7 @@ TEST(ImageGenerator, TheGrabsShellsOpenWithThePublishedOpening) {
 // wheel's heading), and rolls about its axle by the distance its machine's speed covers over its radius; a
 // jump in time (a seek) does not roll it.
 TEST(ImageGenerator, ASteeredWheelTurnsWithItsSteeringAndRollsWithTheSpeed) {
-  sim::SceneDescription d;
+  scene::SceneDescription d;
   d.machine = "test";
   d.entities.push_back({"mast", "none", {}});
   d.entities.push_back({"car", "test.car", {1.0, 1.0, 1.0}});
@@ -1190,7 +1190,7 @@ TEST(ImageGenerator, ASteeredWheelTurnsWithItsSteeringAndRollsWithTheSpeed) {
   const core::Vec3 at{0.0, 0.0, 14.0};
   ig.set_view(free_camera(at + core::Vec3{0.0, 0.0, 6.0}, 0.0, -std::numbers::pi / 2.0 + 1e-3));
   const auto snapshot = [&](double time_s, double speed_kmh, double steering) {
-    sim::Snapshot s = state(5000.0, 5000.0, 20000.0, 12.0);
+    scene::Snapshot s = state(5000.0, 5000.0, 20000.0, 12.0);
     s.time_s = time_s;
     s.entity_count = 2;
     s.entities[1] = {1, 0, {core::Mat3::identity(), at}};

@@ -81,7 +81,7 @@ TEST(Ocean, WavesTravelDownwind) {
 // The swell through the reference point is the vessel's heave there, and a crest half a wavelength away is a
 // trough.
 TEST(Ocean, TheSwellRisesWithTheVesselsHeave) {
-  harbour::sim::Snapshot::Sea s;
+  harbour::scene::Snapshot::Sea s;
   s.reference_m = {31.0, 0.0, -3.5};
   s.swell_count = 1;
   s.swells[0] = {0.4, 8.0, 0.3, kPi};

@@ -632,7 +632,7 @@ TEST_P(RecordsStoreOn, KillingTheProcessMidExerciseKeepsTheMovesDoneSoFar) {
     sim::Autopilot pilot(exercise);
     sim::Evaluator evaluator(exercise);
     for (int k = 0; k < 600000; ++k) {
-      const sim::Controls in = pilot.next(simulation);
+      const scene::Controls in = pilot.next(simulation);
       simulation.step(in);
       const int before = evaluator.metrics().moves_completed;
       evaluator.observe(simulation, in);

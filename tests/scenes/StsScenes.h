@@ -24,16 +24,16 @@ inline sim::ScenarioSettings sts_discharge(const std::string& data_dir) {
 }
 
 /// The shipped STS's controls (its machine file, data/machines/sts.yaml).
-inline const sim::ControlTable& sts_controls() {
-  static const sim::ControlTable table = io::load_sts_crane(HARBOUR_DATA_DIR "/machines/sts.yaml").controls;
+inline const scene::ControlTable& sts_controls() {
+  static const scene::ControlTable table = io::load_sts_crane(HARBOUR_DATA_DIR "/machines/sts.yaml").controls;
   return table;
 }
 
 /// The STS cab's controls as the executive takes them (the shipped STS control table, which scenes use).
-inline sim::Controls cab(const sim::StsControls& sts) {
-  const sim::ControlTable& table = sts_controls();
+inline scene::Controls cab(const sim::StsControls& sts) {
+  const scene::ControlTable& table = sts_controls();
   static const sim::StsControlSlots slots(table);
-  sim::Controls c = table.neutral();
+  scene::Controls c = table.neutral();
   slots.write(sts, c);
   return c;
 }

@@ -78,7 +78,7 @@ Count count_allocations(const std::string& exercise_name, double warm_up_s, doub
   Autopilot pilot(exercise);
   Count count;
   while (simulation.time_s() < run_s) {
-    const Controls controls = pilot.next(simulation);  // the station's side: decided outside the step
+    const scene::Controls controls = pilot.next(simulation);  // the station's side: decided outside the step
     const int attachments = simulation.world().attachments_made();
     const long before = g_allocations.load();
     simulation.step(controls);
@@ -122,7 +122,7 @@ struct StationTicks {
         loop(simulation, recorded_loop()) {
     loop.set_pilot([this](const Simulation& s) { return pilot->next(s); });
     reserve_lists(published);
-    loop.set_observer([this](const Simulation& s, const Controls& in) {
+    loop.set_observer([this](const Simulation& s, const scene::Controls& in) {
       evaluator.observe(s, in);
       const Progress now = progress(evaluator.metrics());
       if (now.grew_since(handed) || s.steps() % 50 == 0) {
@@ -176,11 +176,11 @@ TEST(Allocation, TheStationsTickAndItsSnapshotsAllocateNothing) {
   EXPECT_EQ(sts.keyframes, 6);
   EXPECT_GT(sts.published.time_s, 60.0) << "nothing was evaluated";
   // a snapshot is written into a reader's buffer without allocating, and the readers get the newest
-  auto mine = std::make_unique<Snapshot>();
+  auto mine = std::make_unique<scene::Snapshot>();
   const long before = g_allocations.load();
   sts.simulation.write_snapshot(*mine);
   EXPECT_EQ(g_allocations.load(), before);
-  const Snapshot* s = sts.loop.latest_snapshot(station::kImageGeneratorReader);
+  const scene::Snapshot* s = sts.loop.latest_snapshot(station::kImageGeneratorReader);
   ASSERT_NE(s, nullptr);
   EXPECT_EQ(s->step, sts.simulation.steps());
 }

@@ -35,7 +35,7 @@ class LeftAlone : public testing::TestWithParam<const char*> {};
 
 TEST_P(LeftAlone, ComesToRestAndStaysThere) {
   Simulation sim(left_alone(shipped(GetParam())));
-  const Controls neutral = sim.control_table().neutral();
+  const scene::Controls neutral = sim.control_table().neutral();
   std::vector<double> peaks;
   for (int window = 0; window < 6; ++window) {
     double peak = 0.0;
@@ -70,7 +70,7 @@ TEST(ReachStackerEndStops, TheTelescopeNoLongerJoltsOffItsStopWhileStanding) {
     ScenarioSettings scenario = left_alone(shipped("reach_stacker_stack"));
     scenario.end_stops_at_travel = at_travel;
     Simulation sim(scenario);
-    const Controls neutral = sim.control_table().neutral();
+    const scene::Controls neutral = sim.control_table().neutral();
     double peak = 0.0;
     for (int k = 0; k < 3000; ++k) {
       sim.step(neutral);
@@ -93,7 +93,7 @@ TEST(StartAtRest, EveryShippedExerciseReadsItsStaticRopeTensionFromTheFirstStep)
   int roped = 0;
   for (const auto& entry : std::filesystem::directory_iterator(HARBOUR_DATA_DIR "/exercises")) {
     Simulation sim(io::load_exercise(entry.path().string()).scenario);
-    const Controls neutral = sim.control_table().neutral();
+    const scene::Controls neutral = sim.control_table().neutral();
     double low = 1e12, high = 0.0, settled = 0.0;
     for (int k = 0; k < 5000; ++k) {
       sim.step(neutral);
@@ -120,7 +120,7 @@ class MhcStart : public testing::TestWithParam<const char*> {};
 TEST_P(MhcStart, TheLoadCellReadsTheHangingLoadFromTheFirstStep) {
   Simulation sim(shipped(GetParam()));
   const auto& mhc = dynamic_cast<const MobileHarbourCrane&>(sim.machine());
-  const Controls neutral = sim.control_table().neutral();
+  const scene::Controls neutral = sim.control_table().neutral();
   double low = 1e12, high = 0.0;
   for (int k = 0; k < 2000; ++k) {
     sim.step(neutral);
@@ -147,7 +147,7 @@ TEST_P(MhcStart, ItsLoadStartsPlumb) {
     ScenarioSettings scenario = shipped(GetParam());
     scenario.start_unsettled = as_built;
     Simulation sim(scenario);
-    const Controls neutral = sim.control_table().neutral();
+    const scene::Controls neutral = sim.control_table().neutral();
     double widest = 0.0;
     for (int k = 0; k < 2000; ++k) {
       sim.step(neutral);

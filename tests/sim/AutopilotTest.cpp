@@ -27,7 +27,7 @@ Attempt run(const ExerciseSettings& exercise, OperatorDefects defects = {}, int 
   Autopilot pilot(exercise, defects);
   Evaluator evaluator(exercise);
   for (int k = 0; k < max_steps && !evaluator.finished(); ++k) {
-    const Controls in = pilot.next(sim);
+    const scene::Controls in = pilot.next(sim);
     sim.step(in);
     evaluator.observe(sim, in);
   }
@@ -262,7 +262,7 @@ TEST_P(TakeOverAt, AnInstructorTakeOverContinuesTheAttemptFromTheRecordedState) 
     Simulation sim(exercise.scenario);
     Autopilot pilot(exercise);
     for (std::int64_t k = 0; k < at; ++k) {
-      const Controls in = pilot.next(sim);
+      const scene::Controls in = pilot.next(sim);
       sim.step(in);
       recorder.after_step(sim, in);
     }
@@ -270,7 +270,7 @@ TEST_P(TakeOverAt, AnInstructorTakeOverContinuesTheAttemptFromTheRecordedState) 
   Evaluator evaluator(exercise);
   int observed = 0;
   TakeOver branch = take_over(exercise.scenario, recorder.recording(), "original", at,
-                              [&](const Simulation& s, const Controls& in) {
+                              [&](const Simulation& s, const scene::Controls& in) {
                                 evaluator.observe(s, in);
                                 ++observed;
                               });
@@ -279,17 +279,17 @@ TEST_P(TakeOverAt, AnInstructorTakeOverContinuesTheAttemptFromTheRecordedState) 
   EXPECT_EQ(branch.recorder.recording().branch_step, at);
   Autopilot pilot(exercise);
   pilot.resume(*branch.simulation, evaluator.metrics().moves_completed, branch.levers);
-  const ControlTable& table = branch.simulation->control_table();
-  Controls before = branch.levers;
+  const scene::ControlTable& table = branch.simulation->control_table();
+  scene::Controls before = branch.levers;
   double most_moved = 0.0, most_off_neutral = 0.0;  // axis levers only: buttons and switches snap
   for (int slot = 0; slot < table.size(); ++slot)
-    if (table[slot].kind == ControlKind::kAxis)
+    if (table[slot].kind == scene::ControlKind::kAxis)
       most_off_neutral = std::max(most_off_neutral, std::abs(before.value[static_cast<std::size_t>(slot)]));
   for (int k = 0; k < 200000 && !evaluator.finished(); ++k) {
-    const Controls in = pilot.next(*branch.simulation);
+    const scene::Controls in = pilot.next(*branch.simulation);
     for (int slot = 0; slot < table.size(); ++slot) {
       const auto n = static_cast<std::size_t>(slot);
-      if (table[slot].kind == ControlKind::kAxis && k < 1000)  // the first second
+      if (table[slot].kind == scene::ControlKind::kAxis && k < 1000)  // the first second
         most_moved = std::max(most_moved, std::abs(in.value[n] - before.value[n]));
     }
     before = in;

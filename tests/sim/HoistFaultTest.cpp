@@ -39,17 +39,17 @@ FaultRun run(OperatorDefects defects, double run_on_after_stop_s = 1e9, double i
   Evaluator evaluator(exercise);
   FaultRun r;
   const int lamp = [&] {
-    const SceneDescription scene = sim.scene();
+    const scene::SceneDescription scene = sim.scene();
     for (std::size_t n = 0; n < scene.indicators.size(); ++n)
       if (scene.indicators[n] == "lamp_brake_fault") return static_cast<int>(n);
     return -1;
   }();
   EXPECT_GE(lamp, 0) << "the STS has a brake fault lamp";
   const int stop = sim.control_table().find("emergency_stop");
-  auto snapshot = std::make_unique<Snapshot>();
+  auto snapshot = std::make_unique<scene::Snapshot>();
   for (int k = 0; k < 600000 && !evaluator.finished(); ++k) {
     if (r.stop_at_s >= 0.0 && sim.time_s() > r.stop_at_s + run_on_after_stop_s) break;
-    const Controls in = sim.time_s() < idle_s ? Controls{} : pilot.next(sim);
+    const scene::Controls in = sim.time_s() < idle_s ? scene::Controls{} : pilot.next(sim);
     const bool stopping = in.value[static_cast<std::size_t>(stop)] != 0.0;
     if (stopping && r.stop_at_s < 0.0) {
       r.stop_at_s = sim.time_s();
@@ -159,7 +159,7 @@ TEST(HoistBrakeFault, LoweringAtFullSpeedIsNotAFall) {
   Evaluator evaluator(exercise);
   StsControls levers;
   levers.hoist = -1.0;
-  const Controls in = sim.machine_as<StsCrane>().crane_controls(levers);
+  const scene::Controls in = sim.machine_as<StsCrane>().crane_controls(levers);
   double fastest_mps = 0.0, last_z = sim.machine_as<StsCrane>().spreader_pose().position.z;
   for (int k = 0; k < 7000; ++k) {  // 7 s: from 20 m down to some 10 m, above the boxes on the hatch
     sim.step(in);
@@ -194,20 +194,20 @@ CraneFaultRun run_crane(const std::string& name, bool panic) {
   const std::unique_ptr<Pilot> pilot = make_pilot(exercise);
   Evaluator evaluator(exercise);
   const int lamp = [&] {
-    const SceneDescription scene = sim.scene();
+    const scene::SceneDescription scene = sim.scene();
     for (std::size_t n = 0; n < scene.indicators.size(); ++n)
       if (scene.indicators[n] == "lamp_brake_fault") return static_cast<int>(n);
     return -1;
   }();
   EXPECT_GE(lamp, 0) << name << " has a brake fault lamp";
   const int stop = sim.control_table().find("emergency_stop");
-  auto snapshot = std::make_unique<Snapshot>();
+  auto snapshot = std::make_unique<scene::Snapshot>();
   CraneFaultRun r;
   r.load_drop_mps = exercise.rules.load_drop_mps;
   double sampled_z_m = sim.machine().attachment_bottom_z_m();
   for (int k = 0; k < 600000; ++k) {
     if (r.stop_at_s >= 0.0 && sim.time_s() > r.stop_at_s + 4.0) break;  // 4 s on after the stop
-    Controls in = pilot->next(sim);
+    scene::Controls in = pilot->next(sim);
     if (panic && r.fault_lamp_at_s >= 0.0) {
       in = sim.control_table().neutral();
       in.value[static_cast<std::size_t>(stop)] = 1.0;
@@ -298,7 +298,7 @@ TEST_P(MachineLowering, ItsHoistsLoweringSpeedIsHowFastTheAttachmentSinks) {
   Simulation sim(exercise.scenario);
   const int lever = sim.control_table().find(GetParam().lever);
   ASSERT_GE(lever, 0);
-  Controls c = sim.control_table().neutral();
+  scene::Controls c = sim.control_table().neutral();
   const int steps_per_s = static_cast<int>(std::lround(1.0 / Simulation::kStep_s));
   double said_m = 0.0, from_z_m = 0.0;
   for (int k = 0; k < 10 * steps_per_s; ++k) {
@@ -335,7 +335,7 @@ TEST_P(MachineHoistWork, ItsDrumsDeliverAtLeastWhatTheLiftGains) {
   Evaluator evaluator(exercise);
   const int lever = sim.control_table().find("hoist");
   ASSERT_GE(lever, 0);
-  Controls c = sim.control_table().neutral();
+  scene::Controls c = sim.control_table().neutral();
   const int steps_per_s = static_cast<int>(std::lround(1.0 / Simulation::kStep_s));
   const physics::BodyId gripper = *sim.machine().gripper_body();
   const double mass_kg = sim.world().mass_kg(gripper);

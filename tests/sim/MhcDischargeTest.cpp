@@ -34,7 +34,7 @@ Attempt drive(const ExerciseSettings& exercise, GrabOperatorDefects defects, dou
   Attempt a;
   const auto steps = static_cast<std::int64_t>(limit_s / Simulation::kStep_s);
   for (std::int64_t k = 0; k < steps && !evaluator.finished(); ++k) {
-    const Controls c = pilot.next(sim);
+    const scene::Controls c = pilot.next(sim);
     sim.step(c);
     evaluator.observe(sim, c);
     if (k % 1000 == 0) {
@@ -149,14 +149,15 @@ TEST(MhcDischarge, AnInstructorTakeOverWithTheGrabLoadedFinishesTheDelivery) {
     Simulation sim(exercise.scenario);
     const std::unique_ptr<Pilot> pilot = make_pilot(exercise);
     for (std::int64_t k = 0; k < kAt; ++k) {
-      const Controls in = pilot->next(sim);
+      const scene::Controls in = pilot->next(sim);
       sim.step(in);
       recorder.after_step(sim, in);
     }
   }
   Evaluator evaluator(exercise);
-  TakeOver branch = take_over(exercise.scenario, recorder.recording(), "original", kAt,
-                              [&](const Simulation& s, const Controls& in) { evaluator.observe(s, in); });
+  TakeOver branch =
+      take_over(exercise.scenario, recorder.recording(), "original", kAt,
+                [&](const Simulation& s, const scene::Controls& in) { evaluator.observe(s, in); });
   const Simulation& at = *branch.simulation;
   ASSERT_GT(at.bulk()->grab(at.bulk_grab()).load_m3,
             0.5 * at.bulk()->grab_settings(at.bulk_grab()).capacity_m3);
@@ -165,7 +166,7 @@ TEST(MhcDischarge, AnInstructorTakeOverWithTheGrabLoadedFinishesTheDelivery) {
   const std::unique_ptr<Pilot> pilot = make_pilot(exercise);
   pilot->resume(at, evaluator.metrics().moves_completed, branch.levers);
   while (!evaluator.finished() && branch.simulation->time_s() < limit_of(exercise)) {
-    const Controls in = pilot->next(*branch.simulation);
+    const scene::Controls in = pilot->next(*branch.simulation);
     branch.simulation->step(in);
     evaluator.observe(*branch.simulation, in);
   }
@@ -186,7 +187,7 @@ TEST(MhcDischarge, SlammingTheSlewLeverIsHarshAndSteadyDrivingIsNot) {
   const auto slew_smoothness = [&](bool slam) {
     Simulation sim(exercise.scenario);
     Evaluator evaluator(exercise);
-    Controls c = sim.control_table().neutral();
+    scene::Controls c = sim.control_table().neutral();
     const std::size_t slew = static_cast<std::size_t>(sim.control_table().find("slew"));
     for (int k = 0; k < 60000; ++k) {
       c.value[slew] = slam ? ((k / 4000) % 2 == 0 ? 1.0 : -1.0) : (k < 30000 ? 0.5 : 0.0);
@@ -207,7 +208,7 @@ TEST(MhcDischarge, TheHoldMovesWithTheVessel) {
   ExerciseSettings exercise = discharge();
   exercise.scenario.vessel->sea.heave_m.push_back({0.4, 8.0, 0.0});
   Simulation sim(exercise.scenario);
-  const Controls neutral = sim.control_table().neutral();
+  const scene::Controls neutral = sim.control_table().neutral();
   for (int k = 0; k < 2000; ++k)  // a quarter of the heave period: the vessel at its crest
     sim.step(neutral);
   const VesselGeometry geometry(*exercise.scenario.vessel);

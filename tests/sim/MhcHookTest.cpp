@@ -25,14 +25,14 @@ const MobileHarbourCrane& mhc(const Simulation& sim) {
   return dynamic_cast<const MobileHarbourCrane&>(sim.machine());
 }
 
-Controls levers(const Simulation& sim, std::initializer_list<std::pair<const char*, double>> values) {
-  Controls c = sim.control_table().neutral();
+scene::Controls levers(const Simulation& sim, std::initializer_list<std::pair<const char*, double>> values) {
+  scene::Controls c = sim.control_table().neutral();
   for (const auto& [label, value] : values)
     c.value[static_cast<std::size_t>(sim.control_table().find(label))] = value;
   return c;
 }
 
-void run(Simulation& sim, double seconds, const Controls& controls) {
+void run(Simulation& sim, double seconds, const scene::Controls& controls) {
   for (int k = 0; k < static_cast<int>(std::lround(seconds / Simulation::kStep_s)); ++k)
     sim.step(controls);
   ASSERT_FALSE(sim.diverged()) << sim.divergence();
@@ -42,7 +42,7 @@ void run(Simulation& sim, double seconds, const Controls& controls) {
 void drive_until(Simulation& sim, HookAutopilot& pilot, const std::string& activity,
                  Evaluator* evaluator = nullptr) {
   for (int k = 0; k < 300000 && std::string(pilot.activity()) != activity; ++k) {
-    const Controls c = pilot.next(sim);
+    const scene::Controls c = pilot.next(sim);
     sim.step(c);
     if (evaluator) evaluator->observe(sim, c);
   }
@@ -126,7 +126,7 @@ Attempt attempt(const ExerciseSettings& exercise, bool drop_it = false) {
   HookAutopilot pilot(exercise);
   const auto steps = static_cast<std::int64_t>(exercise.rules.time_limit_s / Simulation::kStep_s);
   for (std::int64_t k = 0; k < steps && !evaluator.finished(); ++k) {
-    Controls c = pilot.next(sim);
+    scene::Controls c = pilot.next(sim);
     // the bad operator lets the piece down at full speed onto its place
     if (drop_it && std::string(pilot.activity()) == "set down")
       c.value[static_cast<std::size_t>(sim.control_table().find("hoist"))] = -1.0;
@@ -179,7 +179,7 @@ TEST(MhcHook, AKeyframeWithAPieceOnTheHookContinuesBitForBit) {
   drive_until(sim, pilot, "to target");
   ASSERT_TRUE(sim.machine().held_item());
   const std::vector<std::uint8_t> keyframe = sim.save_state();
-  const Controls slewing = levers(sim, {{"slew", 0.6}, {"hoist", 0.3}});
+  const scene::Controls slewing = levers(sim, {{"slew", 0.6}, {"hoist", 0.3}});
   run(sim, 5.0, slewing);
   Simulation restored(exercise.scenario);
   restored.restore_state(keyframe);
@@ -194,13 +194,13 @@ TEST(MhcHook, ATakeOverWithThePieceSlungCarriesItToItsPlace) {
   Evaluator evaluator(exercise);
   HookAutopilot trainee(exercise);
   drive_until(sim, trainee, "to target", &evaluator);
-  const Controls slewing = levers(sim, {{"slew", 0.5}});
+  const scene::Controls slewing = levers(sim, {{"slew", 0.5}});
   run(sim, 3.0, slewing);  // the trainee slews on, then the instructor takes over
   HookAutopilot instructor(exercise);
   instructor.resume(sim, evaluator.metrics().moves_completed, slewing);
   EXPECT_EQ(std::string(instructor.activity()), "lift");
   for (int k = 0; k < 200000 && !evaluator.finished(); ++k) {
-    const Controls c = instructor.next(sim);
+    const scene::Controls c = instructor.next(sim);
     sim.step(c);
     evaluator.observe(sim, c);
   }
@@ -220,7 +220,7 @@ TEST(MhcHook, TheBoomLeftAloneComesToRestOnItsRopes) {
     ScenarioSettings scenario = hook_lift().scenario;
     scenario.start_unsettled = as_built;
     Simulation sim(scenario);
-    const Controls neutral = sim.control_table().neutral();
+    const scene::Controls neutral = sim.control_table().neutral();
     const MobileHarbourCrane& m = mhc(sim);
     struct Window {
       double boom_radps = 0.0, luff_min_n = 1e12, luff_max_n = 0.0, load_min_n = 1e12, load_max_n = 0.0;
@@ -278,7 +278,7 @@ TEST(MhcHook, TheBoomBounceDecaysAtEveryBoomAngle) {
     ScenarioSettings scenario = hook_lift_in_still_air(boom_deg);
     scenario.start_unsettled = true;
     Simulation sim(scenario);
-    const Controls neutral = sim.control_table().neutral();
+    const scene::Controls neutral = sim.control_table().neutral();
     const MobileHarbourCrane& m = mhc(sim);
     double luff_min_n = 1e12, luff_max_n = 0.0, previous_rate = 0.0;
     std::vector<double> peaks(4, 0.0);  // 5 s each

@@ -14,8 +14,9 @@ namespace {
 
 constexpr double kG = 9.80665;
 
-Controls mhc_controls(const Simulation& sim, std::initializer_list<std::pair<const char*, double>> values) {
-  Controls c = sim.control_table().neutral();
+scene::Controls mhc_controls(const Simulation& sim,
+                             std::initializer_list<std::pair<const char*, double>> values) {
+  scene::Controls c = sim.control_table().neutral();
   for (const auto& [label, value] : values)
     c.value[static_cast<std::size_t>(sim.control_table().find(label))] = value;
   return c;
@@ -37,7 +38,7 @@ ScenarioSettings damped(ScenarioSettings s) {
   return s;
 }
 
-void run(Simulation& sim, double seconds, const Controls& controls) {
+void run(Simulation& sim, double seconds, const scene::Controls& controls) {
   for (int k = 0; k < static_cast<int>(std::lround(seconds / Simulation::kStep_s)); ++k)
     sim.step(controls);
   ASSERT_FALSE(sim.diverged()) << sim.divergence();
@@ -54,7 +55,7 @@ TEST(Mhc, TheLuffingRopesCarryTheBoomsStaticMoment) {
   // about the boom's foot: the boom's weight, the hoist ropes' pulls at the head and the ropes' own weight
   // (half of each fall at its boom end) balance the luffing falls' pulls: predict their tension from that
   Simulation sim(damped(scenes::mhc_on_quay(HARBOUR_DATA_DIR)));
-  const Controls neutral = sim.control_table().neutral();
+  const scene::Controls neutral = sim.control_table().neutral();
   run(sim, 15.0, neutral);
   const MobileHarbourCrane& m = mhc(sim);
   const MhcSettings& settings = m.settings();
@@ -177,7 +178,7 @@ TEST(Mhc, SlewTorqueAcceleratesTheHouseAndBoomByTheirInertia) {
   const MobileHarbourCrane& m = mhc(sim);
   // the mean acceleration over 1 s (the rate carries a small 10 Hz ripple), and the mean torque the grab's
   // ropes put on the boom head about the axis as the grab lags behind
-  const Controls slew = mhc_controls(sim, {{"slew", 1.0}});
+  const scene::Controls slew = mhc_controls(sim, {{"slew", 1.0}});
   run(sim, 0.02, slew);
   const double rate_0 = sim.world().hinge_rate(m.slew_hinge());
   double rope_torque = 0;
@@ -218,7 +219,7 @@ TEST(Mhc, TheGrabSwingsAcrossTheBoomWithThePendulumsPeriod) {
   // across the boom the two holding ropes hang parallel: the open grab (its closing ropes slack) swings as
   // a point on a string as long as they are
   Simulation sim(damped(scenes::mhc_on_quay(HARBOUR_DATA_DIR)));
-  const Controls neutral = sim.control_table().neutral();
+  const scene::Controls neutral = sim.control_table().neutral();
   run(sim, 10.0, neutral);
   const MobileHarbourCrane& m = mhc(sim);
   auto& world = const_cast<physics::PhysicsWorld&>(sim.world());
@@ -267,7 +268,7 @@ TEST(Mhc, TheLoadMomentLimiterStopsLuffingOutBeforeTheChartIsExceeded) {
   run(sim, 10.0, sim.control_table().neutral());
   const MobileHarbourCrane& m = mhc(sim);
   EXPECT_LT(m.utilisation(), 0.85);
-  const Controls luff_out = mhc_controls(sim, {{"luff", -1.0}});
+  const scene::Controls luff_out = mhc_controls(sim, {{"luff", -1.0}});
   double worst = 0.0;
   for (int k = 0; k < 60000; ++k) {
     sim.step(luff_out);
@@ -343,7 +344,7 @@ TEST(Mhc, AFreePracticeIsEvaluatedOnWhatEveryMachineShows) {
   const ExerciseSettings exercise = io::load_exercise(HARBOUR_DATA_DIR "/exercises/mhc_free_practice.yaml");
   Simulation sim(exercise.scenario);
   Evaluator evaluator(exercise);
-  const auto observed = [&](const Controls& controls, int steps, auto until) {
+  const auto observed = [&](const scene::Controls& controls, int steps, auto until) {
     for (int k = 0; k < steps && !until(); ++k) {
       sim.step(controls);
       evaluator.observe(sim, controls);
@@ -370,7 +371,7 @@ TEST(Mhc, TheExercisesBulkMaterialIsInTheStateAndItsKeyframes) {
   ASSERT_NE(a.bulk(), nullptr);
   const bulk::VolumeBalance start = a.bulk()->balance();
   EXPECT_NEAR(start.in_grids_m3, 250.0, 0.05 * 250.0);  // a relaxed cone of about the volume asked for
-  const Controls slew = mhc_controls(a, {{"slew", 1.0}});
+  const scene::Controls slew = mhc_controls(a, {{"slew", 1.0}});
   for (int k = 0; k < 500; ++k)
     a.step(slew);
   const std::vector<std::uint8_t> keyframe = a.save_state();
@@ -416,7 +417,7 @@ TEST(Mhc, TheGrabBitesTheHeapAndItsLoadHangsOnTheRopes) {
   const double heap_m3 = sim.bulk()->balance().in_grids_m3;
   run(sim, 4.0, sim.control_table().neutral());  // the bite model's jaws open with the shells
   // down onto the heap: the ropes go slack as the shells rest on it
-  const Controls lower = mhc_controls(sim, {{"hoist", -0.5}});
+  const scene::Controls lower = mhc_controls(sim, {{"hoist", -0.5}});
   int k = 0;
   for (; k < 30000 && m.hoisted_load_n() > 0.5 * empty_kg * kG; ++k)
     sim.step(lower);
@@ -426,7 +427,7 @@ TEST(Mhc, TheGrabBitesTheHeapAndItsLoadHangsOnTheRopes) {
   run(sim, 0.5, lower);
   // shut: the holding winch follows, the jaws cut in; the bite is the paper's w W v dt summed over the
   // steps the jaws cut (w the opening as they cut, v the sinking speed)
-  const Controls shut = mhc_controls(sim, {{"grab", 1.0}});
+  const scene::Controls shut = mhc_controls(sim, {{"grab", 1.0}});
   const double cut_before_m3 = sim.bulk()->loaded_m3();
   const bulk::GrabSettings& g = sim.bulk()->grab_settings(sim.bulk_grab());
   double formula_m3 = 0.0;

@@ -45,13 +45,13 @@ struct PlatformRun {
   }
 };
 
-double& control(Controls& c, const Simulation& sim, const char* name) {
+double& control(scene::Controls& c, const Simulation& sim, const char* name) {
   return c.value[static_cast<std::size_t>(sim.control_table().find(name))];
 }
 
 // the tractor's controls in forward gear
-Controls forward(const Simulation& s) {
-  Controls c = s.control_table().neutral();
+scene::Controls forward(const Simulation& s) {
+  scene::Controls c = s.control_table().neutral();
   const std::vector<std::string>& positions =
       s.control_table()[s.control_table().find("direction")].positions;
   control(c, s, "direction") =
@@ -70,12 +70,12 @@ TEST(MotionCue, ATractorsBrakingAndAnStsTrolleyStopGiveDifferentPlatformCommands
   ASSERT_STREQ(tractor.machine().kind(), "tractor");
   PlatformRun tractor_platform(tractor);
   const auto drive = [](const Simulation& s) {
-    Controls c = forward(s);
+    scene::Controls c = forward(s);
     control(c, s, "throttle") = 1.0;
     return c;
   };
   const auto brake = [](const Simulation& s) {
-    Controls c = forward(s);
+    scene::Controls c = forward(s);
     control(c, s, "brake") = 1.0;
     return c;
   };
@@ -88,7 +88,7 @@ TEST(MotionCue, ATractorsBrakingAndAnStsTrolleyStopGiveDifferentPlatformCommands
   ASSERT_STREQ(sts.machine().kind(), "sts");
   PlatformRun sts_platform(sts);
   const auto travel = [](const Simulation& s) {
-    Controls c = s.control_table().neutral();
+    scene::Controls c = s.control_table().neutral();
     control(c, s, "trolley") = 1.0;
     return c;
   };

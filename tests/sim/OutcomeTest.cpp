@@ -43,7 +43,7 @@ Attempt attempt(const char* exercise_name, const std::vector<Timed>& commands, d
       c.kind = commands[next].kind;
       simulation.command(c);
     }
-    const Controls in = pilot->next(simulation);
+    const scene::Controls in = pilot->next(simulation);
     simulation.step(in);
     evaluator.observe(simulation, in);
   }

@@ -25,7 +25,7 @@ InstructorCommand command(InstructorCommand::Kind kind) {
 struct Carrying {
   ExerciseSettings exercise = io::load_exercise(HARBOUR_DATA_DIR "/exercises/sts_discharge.yaml");
   Simulation sim{exercise.scenario};
-  Controls hoist_up;  // a trainee holding the hoist lever up, nothing else
+  scene::Controls hoist_up;  // a trainee holding the hoist lever up, nothing else
   Carrying() {
     // the autopilot picks the box up and carries it 3 m above where it stood
     Autopilot pilot(exercise);
@@ -44,7 +44,7 @@ struct Carrying {
   struct Run {
     double mean_z = 0.0, lowest_z = 1e9, trolley_x = 0.0;
   };
-  Run run(const Controls& in, double seconds) {
+  Run run(const scene::Controls& in, double seconds) {
     Run r;
     const int steps = static_cast<int>(std::lround(seconds / Simulation::kStep_s));
     for (int k = 0; k < steps; ++k) {
@@ -76,7 +76,7 @@ TEST(PowerFailure, TheDrivesStopAndHoldAndNothingRestartsUnderAHeldLever) {
   EXPECT_GT(std::min(a.lowest_z, b.lowest_z), cut_z - 0.3) << "the box fell";
   EXPECT_LT(std::abs(b.trolley_x - first.trolley_x), 0.01) << "the trolley moved with the power off";
   EXPECT_TRUE(sim.machine_as<StsCrane>().locked_container());
-  auto snapshot = std::make_unique<Snapshot>();
+  auto snapshot = std::make_unique<scene::Snapshot>();
   sim.write_snapshot(*snapshot);
   EXPECT_TRUE(snapshot->power_off);
 
@@ -92,7 +92,7 @@ TEST(PowerFailure, TheDrivesStopAndHoldAndNothingRestartsUnderAHeldLever) {
   EXPECT_FALSE(snapshot->power_off);
 
   // a lever just inside the zero band counts as centred; then the hoist answers the lever again
-  Controls nearly = sim.control_table().neutral();
+  scene::Controls nearly = sim.control_table().neutral();
   nearly.value[static_cast<std::size_t>(sim.control_table().find("hoist"))] =
       0.9 * Simulation::kLeverZeroBand;
   crane.run(nearly, 0.01);
@@ -117,9 +117,9 @@ TEST(PowerFailure, AKeyframeKeepsTheOutageAndTheWaitForZero) {
   copy.restore_state(sim.save_state());
   EXPECT_TRUE(copy.awaiting_zero());
   EXPECT_EQ(copy.state_hash(), sim.state_hash());
-  const Controls neutral = sim.control_table().neutral();
+  const scene::Controls neutral = sim.control_table().neutral();
   for (int k = 0; k < 2000; ++k) {
-    const Controls& in = k < 1000 ? crane.hoist_up : (k < 1010 ? neutral : crane.hoist_up);
+    const scene::Controls& in = k < 1000 ? crane.hoist_up : (k < 1010 ? neutral : crane.hoist_up);
     sim.step(in);
     copy.step(in);
   }
@@ -137,7 +137,7 @@ TEST(PowerFailure, TheScriptedOperatorWaitsItOutAndFinishes) {
   for (int k = 0; k < 400000 && !evaluator.finished(); ++k) {
     if (k == 35000) sim.command(command(InstructorCommand::Kind::kPowerFailure));
     if (k == 45000) sim.command(command(InstructorCommand::Kind::kPowerRestored));
-    const Controls in = pilot->next(sim);
+    const scene::Controls in = pilot->next(sim);
     if (k == 45000) held_off_when_back = in == sim.control_table().neutral();
     sim.step(in);
     evaluator.observe(sim, in);

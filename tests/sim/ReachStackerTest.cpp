@@ -138,7 +138,7 @@ Carrying carry_box_of(double mass_kg) {
   c.evaluator = std::make_unique<Evaluator>(e);
   const std::unique_ptr<Pilot> pilot = make_pilot(e);
   while (std::string(pilot->activity()) != "carry" && c.sim->time_s() < 60.0) {
-    const Controls controls = pilot->next(*c.sim);
+    const scene::Controls controls = pilot->next(*c.sim);
     c.sim->step(controls);
     c.evaluator->observe(*c.sim, controls);
   }
@@ -150,8 +150,8 @@ Carrying carry_box_of(double mass_kg) {
 template <typename Stop>
 void work(Carrying& carrying, const char* lever, double value, double seconds, Stop stop) {
   Simulation& sim = *carrying.sim;
-  const ControlTable& table = sim.control_table();
-  Controls c = table.neutral();
+  const scene::ControlTable& table = sim.control_table();
+  scene::Controls c = table.neutral();
   c.value[static_cast<std::size_t>(table.find("brake"))] = 1.0;
   c.value[static_cast<std::size_t>(table.find(lever))] = value;
   for (const double end = sim.time_s() + seconds; sim.time_s() < end && !stop();) {
@@ -219,8 +219,8 @@ TEST(ReachStacker, AtFullLockItTurnsOnTheAckermannCircleAboutItsFrontAxle) {
   // rear-wheel steering: the turn's centre on the front (drive) axle's line, its centre at L / tan δ from it
   Simulation sim(io::load_exercise(HARBOUR_DATA_DIR "/exercises/reach_stacker_free_practice.yaml").scenario);
   const auto& m = dynamic_cast<const ReachStacker&>(sim.machine());
-  const ControlTable& table = sim.control_table();
-  Controls c = table.neutral();
+  const scene::ControlTable& table = sim.control_table();
+  scene::Controls c = table.neutral();
   c.value[static_cast<std::size_t>(table.find("direction"))] = 2.0;
   c.value[static_cast<std::size_t>(table.find("steer"))] = 1.0;
   for (int k = 0; k < static_cast<int>(20.0 / Simulation::kStep_s); ++k) {
@@ -243,10 +243,10 @@ TEST(ReachStacker, TheAutopilotStacksTheBoxThreeHighInTheSecondRowAndAKeyframeCo
   const std::unique_ptr<Pilot> pilot = make_pilot(e);
   Evaluator evaluator(e);
   std::vector<std::uint8_t> keyframe;  // taken while it reaches out over the stacks
-  std::vector<Controls> after;
+  std::vector<scene::Controls> after;
   std::uint64_t hash_after = 0;
   while (!evaluator.finished() && sim.time_s() < e.rules.time_limit_s) {
-    const Controls c = pilot->next(sim);
+    const scene::Controls c = pilot->next(sim);
     if (sim.time_s() >= 60.0 && keyframe.empty()) keyframe = sim.save_state();
     if (!keyframe.empty() && after.size() < 2000) after.push_back(c);
     sim.step(c);
@@ -265,7 +265,7 @@ TEST(ReachStacker, TheAutopilotStacksTheBoxThreeHighInTheSecondRowAndAKeyframeCo
   ASSERT_EQ(after.size(), 2000u);
   Simulation again(e.scenario);
   again.restore_state(keyframe);
-  for (const Controls& c : after)
+  for (const scene::Controls& c : after)
     again.step(c);
   EXPECT_EQ(again.state_hash(), hash_after);
 }
@@ -279,7 +279,7 @@ TEST(ReachStacker, TheAutopilotTakesTheTrucksBoxThroughTheSlalomAndABadDriverHit
     ReachStackerAutopilot pilot(e, defects);
     Evaluator evaluator(e);
     while (!evaluator.finished() && sim.time_s() < e.rules.time_limit_s && !sim.diverged()) {
-      const Controls c = pilot.next(sim);
+      const scene::Controls c = pilot.next(sim);
       sim.step(c);
       evaluator.observe(sim, c);
     }

@@ -52,7 +52,7 @@ TEST(Recording, InputsAreRecordedAsTheMachineReadThem) {
   s.step(scenes::cab(in));
   recorder.after_step(s, scenes::cab(in));
   ASSERT_EQ(recorder.recording().inputs.size(), 1u);
-  const ControlTable& table = s.control_table();
+  const scene::ControlTable& table = s.control_table();
   EXPECT_EQ(recorder.recording().inputs[0].controls, table.in_range(scenes::cab(in)));
   EXPECT_EQ(recorder.recording().inputs[0].controls.value[static_cast<std::size_t>(table.find("trolley"))],
             0.0);

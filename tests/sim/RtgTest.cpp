@@ -30,18 +30,20 @@ RubberTyredGantry& rtg(Simulation& simulation) {
 }
 
 // Neutral controls with some set by label.
-Controls with(const Simulation& simulation, std::initializer_list<std::pair<const char*, double>> values) {
-  const ControlTable& table = simulation.control_table();
-  Controls c = table.neutral();
+scene::Controls with(const Simulation& simulation,
+                     std::initializer_list<std::pair<const char*, double>> values) {
+  const scene::ControlTable& table = simulation.control_table();
+  scene::Controls c = table.neutral();
   for (const auto& [label, value] : values) {
-    const ControlKind kind = std::string(label) == "wheel_turn" ? ControlKind::kSwitch : ControlKind::kAxis;
+    const scene::ControlKind kind =
+        std::string(label) == "wheel_turn" ? scene::ControlKind::kSwitch : scene::ControlKind::kAxis;
     c.value[static_cast<std::size_t>(table.slot(label, kind))] = value;
   }
   return c;
 }
 
 // Steps `seconds` with these controls.
-void run(Simulation& simulation, const Controls& controls, double seconds) {
+void run(Simulation& simulation, const scene::Controls& controls, double seconds) {
   const auto steps = static_cast<int>(std::lround(seconds / Simulation::kStep_s));
   for (int k = 0; k < steps; ++k)
     simulation.step(controls);
@@ -100,7 +102,7 @@ TEST(Rtg, ItsGantryDriveDeliversWhatRollingResistanceAndDragTake) {
   ScenarioSettings scenario = empty_yard();
   Simulation simulation(scenario);
   const RubberTyredGantry& c = rtg(simulation);
-  const Controls travel = with(simulation, {{"gantry", 1.0}});
+  const scene::Controls travel = with(simulation, {{"gantry", 1.0}});
   run(simulation, travel, 20.0);  // up to speed
   const RtgSettings& s = c.settings();
   const double weight_n = (s.frame_mass_kg + s.trolley_mass_kg + s.rig.spreader.mass_kg) * kG;
@@ -276,7 +278,7 @@ TEST(Rtg, ItsTrolleyDriveDeliversTheWorkThatMovesTheTrolleyAndTheSpreader) {
   const physics::BodyId spreader = *c.gripper_body();
   const double start_z = world.pose(spreader).position.z;
   double work = 0.0;
-  const Controls out = with(simulation, {{"trolley", -1.0}});
+  const scene::Controls out = with(simulation, {{"trolley", -1.0}});
   for (int k = 0; k < 3500; ++k) {  // 0.4 m/s^2 to its 1.17 m/s in 2.9 s
     simulation.step(out);
     work += c.tally().travel_power_w * Simulation::kStep_s;
@@ -320,13 +322,13 @@ TEST(Rtg, TheAutopilotStacksTheTrucksBoxAndAKeyframeContinuesBitForBit) {
   std::unique_ptr<Pilot> pilot = make_pilot(exercise);
   Evaluator evaluator(exercise);
   std::vector<std::uint8_t> keyframe;
-  std::vector<Controls> after_keyframe;
+  std::vector<scene::Controls> after_keyframe;
   std::uint64_t hash = 0;
   constexpr std::int64_t kKeyframeStep = 60000, kCompareStep = 63000;
   while (!evaluator.finished() && simulation.time_s() < exercise.rules.time_limit_s &&
          !simulation.diverged()) {
     if (simulation.steps() == kKeyframeStep) keyframe = simulation.save_state();
-    const Controls c = pilot->next(simulation);
+    const scene::Controls c = pilot->next(simulation);
     if (simulation.steps() >= kKeyframeStep && simulation.steps() < kCompareStep) after_keyframe.push_back(c);
     simulation.step(c);
     evaluator.observe(simulation, c);
@@ -346,7 +348,7 @@ TEST(Rtg, TheAutopilotStacksTheTrucksBoxAndAKeyframeContinuesBitForBit) {
   // a keyframe taken a minute in continues to the same state on the same controls
   Simulation resumed(exercise.scenario);
   resumed.restore_state(keyframe);
-  for (const Controls& c : after_keyframe)
+  for (const scene::Controls& c : after_keyframe)
     resumed.step(c);
   EXPECT_EQ(resumed.state_hash(), hash);
 }
@@ -368,7 +370,7 @@ Drive drive_exercise(const char* name, OperatorDefects defects = {}) {
   Drive d;
   while (!evaluator.finished() && simulation.time_s() < exercise.rules.time_limit_s &&
          !simulation.diverged()) {
-    const Controls c = pilot.next(simulation);
+    const scene::Controls c = pilot.next(simulation);
     simulation.step(c);
     evaluator.observe(simulation, c);
     d.worst_lane_offset_m = std::max(d.worst_lane_offset_m, std::abs(rtg(simulation).lane_offset_m()));

@@ -42,8 +42,8 @@ TEST(Simulation, TheStateHashChecksEverythingTheMachineSaves) {
     ScenarioSettings scenario = io::load_exercise(HARBOUR_DATA_DIR "/exercises/rtg_rehandle.yaml").scenario;
     scenario.machine_hashed_by_hand = by_hand;
     Simulation quiet(scenario), horn(scenario);
-    const Controls neutral = quiet.control_table().neutral();
-    Controls sounding = neutral;
+    const scene::Controls neutral = quiet.control_table().neutral();
+    scene::Controls sounding = neutral;
     sounding.value[static_cast<std::size_t>(horn.control_table().find("horn"))] = 1.0;
     for (int k = 0; k < 100; ++k) {
       quiet.step(neutral);
@@ -79,14 +79,14 @@ TEST(Simulation, LeversOutOfRangeReadAsTheMachineWouldReadThem) {
 
   // the table reads a control as the machine will: levers clamped, a non-finite value neutral, a button 0/1,
   // a switch at a whole position
-  const ControlTable table = scenes::sts_controls();
-  Controls odd = table.neutral();
+  const scene::ControlTable table = scenes::sts_controls();
+  scene::Controls odd = table.neutral();
   odd.value[static_cast<std::size_t>(table.find("gantry"))] = nan;
   odd.value[static_cast<std::size_t>(table.find("boom"))] = -2.0;
   odd.value[static_cast<std::size_t>(table.find("horn"))] = 7.0;
   odd.value[static_cast<std::size_t>(table.find("flipper_2"))] = 0.7;
   odd.value[static_cast<std::size_t>(table.find("flipper_3"))] = 9.0;
-  const Controls read = table.in_range(odd);
+  const scene::Controls read = table.in_range(odd);
   EXPECT_EQ(read.value[static_cast<std::size_t>(table.find("gantry"))], 0.0);
   EXPECT_EQ(read.value[static_cast<std::size_t>(table.find("boom"))], -1.0);
   EXPECT_EQ(read.value[static_cast<std::size_t>(table.find("horn"))], 1.0);
@@ -95,7 +95,7 @@ TEST(Simulation, LeversOutOfRangeReadAsTheMachineWouldReadThem) {
   // two size buttons at once select no size
   StsControls both;
   both.spreader_size_ft = 20;
-  Controls two = scenes::cab(both);
+  scene::Controls two = scenes::cab(both);
   two.value[static_cast<std::size_t>(table.find("spreader_40"))] = 1.0;
   EXPECT_EQ(StsControlSlots(table).read(two).spreader_size_ft, 0);
   EXPECT_EQ(StsControlSlots(table).read(scenes::cab(both)).spreader_size_ft, 20);
@@ -175,9 +175,9 @@ TEST(Simulation, SnapshotShowsTheMachineAndTheContainers) {
   Simulation s(scenes::sts_discharge(HARBOUR_DATA_DIR));
   for (std::int64_t k = 0; k < 3000; ++k)
     s.step(scenes::cab(scenes::scripted_operator(k)));
-  const Snapshot snap = *s.snapshot();
-  const SceneDescription scene = s.scene();
-  EXPECT_EQ(snap.version, kSnapshotVersion);
+  const scene::Snapshot snap = *s.snapshot();
+  const scene::SceneDescription scene = s.scene();
+  EXPECT_EQ(snap.version, scene::kSnapshotVersion);
   EXPECT_EQ(snap.step, 3000);
   EXPECT_DOUBLE_EQ(snap.time_s, 3.0);
   const auto indicator = [&](const std::string& name) {

@@ -29,7 +29,7 @@ struct Member {
   std::unique_ptr<Pilot> pilot;
   void step() {
     if (sim.diverged()) return;
-    const Controls c = pilot->next(sim);
+    const scene::Controls c = pilot->next(sim);
     sim.step(c);
     evaluator.observe(sim, c);
     recorder.after_step(sim, c);
@@ -133,12 +133,12 @@ TEST(TeamHandOff, TheCraneSetsABoxOnEachTractorsChassisAndEachTractorTakesItsBox
     EXPECT_NEAR(on.z, half_z + 1.3, 0.05) << "tractor " << k + 1;    // on the deck (a 2.59 m box)
   }
   // the crane draws neither box any longer (their tractors' stations do), nor the trucks
-  const std::unique_ptr<Snapshot> s = crane.sim.snapshot();
-  const SceneDescription scene = crane.sim.scene();
+  const std::unique_ptr<scene::Snapshot> s = crane.sim.snapshot();
+  const scene::SceneDescription scene = crane.sim.scene();
   int hidden_boxes = 0, hidden_trucks = 0;
   for (int n = 0; n < s->entity_count; ++n) {
-    const Snapshot::Entity& e = s->entities[static_cast<std::size_t>(n)];
-    if ((e.flags & Snapshot::kHidden) == 0) continue;
+    const scene::Snapshot::Entity& e = s->entities[static_cast<std::size_t>(n)];
+    if ((e.flags & scene::Snapshot::kHidden) == 0) continue;
     const std::string& name = scene.entities[e.index].name;
     if (name.rfind("truck", 0) == 0) ++hidden_trucks;
     if (name.rfind("TGHU", 0) == 0) ++hidden_boxes;

@@ -25,7 +25,7 @@ namespace {
 constexpr double kG = core::kStandardGravity;
 
 // the slot of a named indicator, -1 where the scene has none
-int slot(const SceneDescription& scene, const std::string& name) {
+int slot(const scene::SceneDescription& scene, const std::string& name) {
   const auto at = std::find(scene.indicators.begin(), scene.indicators.end(), name);
   return at == scene.indicators.end() ? -1 : static_cast<int>(at - scene.indicators.begin());
 }
@@ -37,10 +37,10 @@ TEST(Telemetry, EveryExerciseNamesEachValueItPublishes) {
     const ExerciseSettings exercise = io::load_exercise(file.path().string());
     Simulation sim(exercise.scenario);
     for (int k = 0; k < 200; ++k)
-      sim.step(Controls{});
-    const SceneDescription scene = sim.scene();
-    const Snapshot snapshot = *sim.snapshot();
-    EXPECT_LE(scene.indicators.size(), static_cast<std::size_t>(kMaxIndicators));
+      sim.step(scene::Controls{});
+    const scene::SceneDescription scene = sim.scene();
+    const scene::Snapshot snapshot = *sim.snapshot();
+    EXPECT_LE(scene.indicators.size(), static_cast<std::size_t>(scene::kMaxIndicators));
     EXPECT_EQ(snapshot.indicator_count, static_cast<int>(scene.indicators.size()));
     EXPECT_EQ(std::set<std::string>(scene.indicators.begin(), scene.indicators.end()).size(),
               scene.indicators.size())
@@ -68,13 +68,13 @@ void expect_falls_share_the_spreader(const std::string& exercise_file) {
       io::load_exercise(std::string(HARBOUR_DATA_DIR "/exercises/") + exercise_file);
   Simulation sim(exercise.scenario);
   for (int k = 0; k < 8000; ++k)
-    sim.step(Controls{});
+    sim.step(scene::Controls{});
   const auto* crane = dynamic_cast<const GantryCrane*>(&sim.machine());
   ASSERT_NE(crane, nullptr);
   const SpreaderHoist& hoist = crane->spreader_hoist();
   ASSERT_FALSE(hoist.locked_container().has_value());
-  const SceneDescription scene = sim.scene();
-  const Snapshot snapshot = *sim.snapshot();
+  const scene::SceneDescription scene = sim.scene();
+  const scene::Snapshot snapshot = *sim.snapshot();
   const double share_kn = hoist.spreader_mass_kg() * kG / hoist.fall_count() / 1000.0;
   const double tension_kn = snapshot.indicators[static_cast<std::size_t>(slot(scene, "rope_tension_kn"))];
   EXPECT_GE(tension_kn, 0.99 * share_kn);
@@ -100,7 +100,7 @@ void expect_spreader_starts_at_rest(const std::string& exercise_file) {
     const double first_n = hoist.hoisted_load_n();
     double lowest_n = 1e12, worst = 0.0;
     for (int k = 1; k <= 3000; ++k) {
-      sim.step(Controls{});
+      sim.step(scene::Controls{});
       lowest_n = std::min(lowest_n, hoist.hoisted_load_n());
       worst = std::max(worst, std::abs(hoist.hoisted_load_n() / static_n - 1.0));
     }
@@ -138,7 +138,7 @@ std::vector<AxisCheck> speeds_against_travel(const std::string& exercise_file) {
   Simulation sim(exercise.scenario);
   const std::unique_ptr<Pilot> pilot = make_pilot(exercise);
   const auto& crane = dynamic_cast<const GantryCrane&>(sim.machine());
-  const SceneDescription scene = sim.scene();
+  const scene::SceneDescription scene = sim.scene();
   EXPECT_EQ(scene.entities[2].name, "spreader");
   std::vector<AxisCheck> axes = {{"gantry_speed_mps"}, {"trolley_speed_mps"}, {"hoist_speed_mps"}};
   std::vector<int> slots;
@@ -150,14 +150,16 @@ std::vector<AxisCheck> speeds_against_travel(const std::string& exercise_file) {
     return std::vector<double>{crane.gantry_y_m(), crane.trolley_x_m(),
                                sim.snapshot()->entities[2].pose.position.z};
   };
-  Snapshot before = *sim.snapshot();
+  scene::Snapshot before = *sim.snapshot();
   std::vector<double> was = positions();
   for (int k = 0; k < 60000; ++k) {
     sim.step(pilot->next(sim));
-    const Snapshot& now = *sim.snapshot();
+    const scene::Snapshot& now = *sim.snapshot();
     const std::vector<double> is = positions();
     for (std::size_t n = 0; n < axes.size(); ++n) {
-      const auto speed = [&](const Snapshot& s) { return s.indicators[static_cast<std::size_t>(slots[n])]; };
+      const auto speed = [&](const scene::Snapshot& s) {
+        return s.indicators[static_cast<std::size_t>(slots[n])];
+      };
       axes[n].integral_m += std::abs(0.5 * (speed(before) + speed(now))) * Simulation::kStep_s;
       axes[n].travelled_m += std::abs(is[n] - was[n]);
     }

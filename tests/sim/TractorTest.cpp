@@ -23,9 +23,10 @@ const TerminalTractor& tractor(const Simulation& sim) {
 }
 
 // the cab's controls: a throttle holding `speed_mps` (brake above it) in `direction`, the wheel at `steer`
-Controls driving(const Simulation& sim, double speed_mps, double steer, const char* direction = "forward") {
-  const ControlTable& table = sim.control_table();
-  Controls c = table.neutral();
+scene::Controls driving(const Simulation& sim, double speed_mps, double steer,
+                        const char* direction = "forward") {
+  const scene::ControlTable& table = sim.control_table();
+  scene::Controls c = table.neutral();
   const double error = speed_mps - std::abs(tractor(sim).forward_mps());
   c.value[static_cast<std::size_t>(table.find("throttle"))] = std::clamp(0.5 * error, 0.0, 1.0);
   c.value[static_cast<std::size_t>(table.find("brake"))] = std::clamp(-0.5 * error, 0.0, 1.0);
@@ -122,7 +123,7 @@ TEST(Tractor, FullBrakesStopItInTheDistanceItsGripAndBrakesAllow) {
         std::min(2 * c.axles[1].tyres_per_side * c.brake_torque_per_wheel_nm / c.tyre.radius_m, mu * on_rear);
     a = (braking_front + braking_rear) / m;
   }
-  Controls brake = sim.control_table().neutral();
+  scene::Controls brake = sim.control_table().neutral();
   brake.value[static_cast<std::size_t>(sim.control_table().find("brake"))] = 1.0;
   for (int k = 0; k < 10000 && t.forward_mps() > 0.01; ++k)
     sim.step(brake);
@@ -163,7 +164,7 @@ TEST(Tractor, ItsDrivingIsEvaluatedForHarshBraking) {
   Simulation sim(exercise.scenario);
   Evaluator evaluator(exercise);
   for (int k = 0; k < 20000; ++k) {
-    Controls c = driving(sim, 6.0, 0.0);
+    scene::Controls c = driving(sim, 6.0, 0.0);
     if (k >= 15000) {
       c = sim.control_table().neutral();
       c.value[static_cast<std::size_t>(sim.control_table().find("brake"))] = 1.0;
@@ -242,12 +243,12 @@ ExerciseSettings mafi_park() {
 }
 
 // `controls` with the couple button held (or not)
-Controls coupling(const Simulation& sim, Controls c, bool pressed) {
+scene::Controls coupling(const Simulation& sim, scene::Controls c, bool pressed) {
   c.value[static_cast<std::size_t>(sim.control_table().find("couple"))] = pressed ? 1.0 : 0.0;
   return c;
 }
 
-void hold(Simulation& sim, double seconds, const Controls& c) {
+void hold(Simulation& sim, double seconds, const scene::Controls& c) {
   for (int k = 0; k < static_cast<int>(std::lround(seconds / Simulation::kStep_s)); ++k)
     sim.step(c);
 }
@@ -323,7 +324,7 @@ ParkRun run_park(Adjust adjust) {
   const std::unique_ptr<Pilot> pilot = make_pilot(exercise);
   Evaluator evaluator(exercise);
   while (!evaluator.finished() && sim.time_s() < exercise.rules.time_limit_s) {
-    const Controls c = adjust(sim, pilot->next(sim));
+    const scene::Controls c = adjust(sim, pilot->next(sim));
     sim.step(c);
     evaluator.observe(sim, c);
   }
@@ -331,7 +332,7 @@ ParkRun run_park(Adjust adjust) {
 }
 
 TEST(TractorPark, TheAutopilotParksTheMafiSquareOnItsMark) {
-  const ParkRun run = run_park([](const Simulation&, const Controls& c) { return c; });
+  const ParkRun run = run_park([](const Simulation&, const scene::Controls& c) { return c; });
   EXPECT_EQ(run.metrics.moves_completed, 1);
   ASSERT_EQ(run.metrics.placement_offset_m.size(), 1u);
   EXPECT_LT(run.metrics.placement_offset_m[0], 0.3);
@@ -348,8 +349,8 @@ TEST(TractorPark, TheAutopilotParksTheMafiSquareOnItsMark) {
 
 TEST(TractorPark, SpeedingIntoTheLanesAndStoppingShortArePenalised) {
   // a driver who keeps his foot down into the marshalling lanes (10 km/h) and brakes late, short of the mark
-  const ParkRun run = run_park([](const Simulation& sim, Controls c) {
-    const ControlTable& table = sim.control_table();
+  const ParkRun run = run_park([](const Simulation& sim, scene::Controls c) {
+    const scene::ControlTable& table = sim.control_table();
     const core::Vec3 p = sim.world().pose(sim.machine().cab_body()).position;
     if (p.x < -20.0 && p.x > -40.0 && p.y > 10.0) {
       c.value[static_cast<std::size_t>(table.find("throttle"))] = 1.0;
@@ -388,7 +389,7 @@ TEST(TractorPark, KeyframesMidDropContinueBitForBit) {
   ASSERT_GT(tractor(sim).lift(), 0.0);
   ASSERT_LT(tractor(sim).lift(), 1.0);
   const std::vector<std::uint8_t> keyframe = sim.save_state();
-  std::vector<Controls> inputs;
+  std::vector<scene::Controls> inputs;
   for (int k = 0; k < 4000; ++k) {
     inputs.push_back(pilot->next(sim));
     sim.step(inputs.back());
@@ -396,7 +397,7 @@ TEST(TractorPark, KeyframesMidDropContinueBitForBit) {
   EXPECT_FALSE(tractor(sim).coupled());
   Simulation again(exercise.scenario);
   again.restore_state(keyframe);
-  for (const Controls& c : inputs)
+  for (const scene::Controls& c : inputs)
     again.step(c);
   EXPECT_EQ(again.state_hash(), sim.state_hash());
 }
@@ -488,7 +489,7 @@ Climb hill_start(double payload_kg) {
   drive(sim, 3.0, 0.0, 0.0);
   const double start_z = sim.world().pose(t.body()).position.z;
   Climb result;
-  Controls c = driving(sim, 0.0, 0.0);
+  scene::Controls c = driving(sim, 0.0, 0.0);
   c.value[static_cast<std::size_t>(sim.control_table().find("throttle"))] = 1.0;
   c.value[static_cast<std::size_t>(sim.control_table().find("brake"))] = 0.0;
   for (int k = 0; k < 60000 && !result.on_deck; ++k) {
@@ -538,7 +539,7 @@ double travel_when_braked_on_the_ramp(double payload_kg, double pedal, double se
   // the mafi's axle 3 m up the ramp (full throttle below walking pace): the whole combination on it, the
   // mafi's rear end (1.6 m behind its axle) clear of the quay
   for (int k = 0; k < 120000 && sim.world().pose(t.trailer_body()).to_parent({-4.5, 0.0, 0.0}).y < 3.0; ++k) {
-    Controls c = driving(sim, 1.0, 0.0);
+    scene::Controls c = driving(sim, 1.0, 0.0);
     if (t.forward_mps() < 1.0) c.value[static_cast<std::size_t>(sim.control_table().find("throttle"))] = 1.0;
     sim.step(c);
   }
@@ -546,7 +547,7 @@ double travel_when_braked_on_the_ramp(double payload_kg, double pedal, double se
       << "the climb stalled at " << sim.time_s() << " s, tractor y " << sim.world().pose(t.body()).position.y
       << " z " << sim.world().pose(t.body()).position.z << " speed " << t.forward_mps();
   const auto held = [&](Holding by, double amount) {
-    Controls c = sim.control_table().neutral();  // neutral: no drive
+    scene::Controls c = sim.control_table().neutral();  // neutral: no drive
     const auto set = [&](const char* label, double value) {
       c.value[static_cast<std::size_t>(sim.control_table().find(label))] = value;
     };
@@ -654,11 +655,11 @@ TEST(TractorRamp, TheAutopilotTowsTheMafiUpTheRampAndDropsItInItsDeckLane) {
   const std::unique_ptr<Pilot> pilot = make_pilot(exercise);
   Evaluator evaluator(exercise);
   std::vector<std::uint8_t> keyframe;
-  std::vector<Controls> after;
+  std::vector<scene::Controls> after;
   std::uint64_t hash_after = 0;
   double highest_trailer_z = 0.0;
   while (!evaluator.finished() && sim.time_s() < exercise.rules.time_limit_s) {
-    const Controls c = pilot->next(sim);
+    const scene::Controls c = pilot->next(sim);
     if (keyframe.empty() && sim.world().pose(tractor(sim).body()).position.x > 20.0)
       keyframe = sim.save_state();
     const bool recording = !keyframe.empty() && after.size() < 5000;
@@ -681,7 +682,7 @@ TEST(TractorRamp, TheAutopilotTowsTheMafiUpTheRampAndDropsItInItsDeckLane) {
               m.time_s, m.placement_offset_m[0], evaluator.score().total);
 
   // its bay is painted on the deck, as high as the deck stands now
-  const SceneDescription scene = sim.scene();
+  const scene::SceneDescription scene = sim.scene();
   const auto bay = std::find_if(scene.entities.begin(), scene.entities.end(),
                                 [](const auto& e) { return e.name == "bay mafi_1"; });
   ASSERT_NE(bay, scene.entities.end());
@@ -698,7 +699,7 @@ TEST(TractorRamp, TheAutopilotTowsTheMafiUpTheRampAndDropsItInItsDeckLane) {
   ASSERT_EQ(after.size(), 5000u);
   Simulation again(exercise.scenario);
   again.restore_state(keyframe);
-  for (const Controls& c : after)
+  for (const scene::Controls& c : after)
     again.step(c);
   EXPECT_EQ(again.state_hash(), hash_after);
 }
@@ -723,7 +724,7 @@ Reversal reverse_into_bay(DriverDefects defects) {
   Evaluator evaluator(exercise);
   Reversal r;
   while (!evaluator.finished() && sim.time_s() < exercise.rules.time_limit_s && !sim.diverged()) {
-    const Controls c = pilot.next(sim);
+    const scene::Controls c = pilot.next(sim);
     sim.step(c);
     evaluator.observe(sim, c);
     r.worst_hitch_rad = std::max(r.worst_hitch_rad, std::abs(tractor(sim).hitch_angle_rad()));
@@ -771,7 +772,7 @@ namespace {
 TEST(TractorTrailer, ALadenTrailerCarriesItsBoxOnTheDeckAndAnEmptyOneNone) {
   const ExerciseSettings laden = io::load_exercise(HARBOUR_DATA_DIR "/exercises/tractor_semi_reverse.yaml");
   Simulation sim(laden.scenario);
-  const SceneDescription scene = sim.scene();
+  const scene::SceneDescription scene = sim.scene();
   const auto named = [&](const std::string& visual) {
     for (std::size_t n = 0; n < scene.entities.size(); ++n)
       if (scene.entities[n].visual == visual) return static_cast<int>(n);
@@ -784,7 +785,7 @@ TEST(TractorTrailer, ALadenTrailerCarriesItsBoxOnTheDeckAndAnEmptyOneNone) {
   ASSERT_EQ(code.size(), 11u);
   EXPECT_EQ(code, io::iso6346_code(code.substr(0, 4), std::stoi(code.substr(4, 6))));  // its check digit
   drive(sim, 20.0, 2.0, 0.4);                                                          // away on a curve
-  const std::unique_ptr<Snapshot> s = sim.snapshot();
+  const std::unique_ptr<scene::Snapshot> s = sim.snapshot();
   const core::Pose deck = s->entities[static_cast<std::size_t>(trailer)].pose;
   const core::Pose on = s->entities[static_cast<std::size_t>(box)].pose;
   const core::Vec3 local = deck.to_local(on.position);
@@ -797,10 +798,10 @@ TEST(TractorTrailer, ALadenTrailerCarriesItsBoxOnTheDeckAndAnEmptyOneNone) {
 
   ExerciseSettings empty = laden;
   empty.scenario.machine.as<TractorSetup>().start.trailer->payload_half_extents_m.reset();
-  const SceneDescription bare = Simulation(empty.scenario).scene();
-  EXPECT_TRUE(std::none_of(bare.entities.begin(), bare.entities.end(), [](const SceneDescription::Entity& e) {
-    return e.visual.starts_with("container");
-  }));
+  const scene::SceneDescription bare = Simulation(empty.scenario).scene();
+  EXPECT_TRUE(std::none_of(
+      bare.entities.begin(), bare.entities.end(),
+      [](const scene::SceneDescription::Entity& e) { return e.visual.starts_with("container"); }));
 }
 
 }  // namespace

@@ -43,19 +43,19 @@ TEST(DeviceMapping, AxisShapingMatchesHandComputedValues) {
   EXPECT_DOUBLE_EQ(shape_axis(off, 3000), 0.5);
 }
 
-sim::ControlTable gear_table() {
-  using K = sim::ControlKind;
-  return sim::ControlTable({{"throttle", K::kAxis, 0.0, 1.0, {}, 0.0, 0.0, ""},
-                            {"steer", K::kAxis, -1.0, 1.0, {}, 0.0, 0.0, ""},
-                            {"brake", K::kAxis, 0.0, 1.0, {}, 0.0, 1.0, "safe: full brake"},
-                            {"gear", K::kSwitch, 0, 2, {"reverse", "neutral", "drive"}, 1.0, 1.0, ""},
-                            {"horn", K::kButton, 0, 1, {}, 0.0, 0.0, ""}});
+scene::ControlTable gear_table() {
+  using K = scene::ControlKind;
+  return scene::ControlTable({{"throttle", K::kAxis, 0.0, 1.0, {}, 0.0, 0.0, ""},
+                              {"steer", K::kAxis, -1.0, 1.0, {}, 0.0, 0.0, ""},
+                              {"brake", K::kAxis, 0.0, 1.0, {}, 0.0, 1.0, "safe: full brake"},
+                              {"gear", K::kSwitch, 0, 2, {"reverse", "neutral", "drive"}, 1.0, 1.0, ""},
+                              {"horn", K::kButton, 0, 1, {}, 0.0, 0.0, ""}});
 }
 
 TEST(DeviceMapping, ControlsFollowAxesButtonsDetentsAndToggles) {
   DeviceMapping m;
   m.devices = {{"wheel", "", "Wheel", 0, false}, {"pedals", "", "Pedals", 0, false}};
-  const sim::ControlTable table = gear_table();
+  const scene::ControlTable table = gear_table();
   Binding steer;
   steer.control = "steer";
   steer.slot = table.find("steer");
@@ -85,7 +85,7 @@ TEST(DeviceMapping, ControlsFollowAxesButtonsDetentsAndToggles) {
   std::vector<DeviceState> states(2);
   states[0] = {true, {16383.5, 30000.0}, {false, false, true}, {}};
   states[1] = {true, {250.0, 0.0}, {}, {}};
-  sim::Controls c = mapper.map(states);
+  scene::Controls c = mapper.map(states);
   EXPECT_NEAR(c.value[1], 0.5, 1e-4);  // steer: half right
   EXPECT_DOUBLE_EQ(c.value[0], 0.25);  // throttle: a quarter pressed
   EXPECT_DOUBLE_EQ(c.value[2], 0.0);   // brake released
@@ -105,7 +105,7 @@ TEST(DeviceMapping, ControlsFollowAxesButtonsDetentsAndToggles) {
 // The shipped keyboard: keys drive levers and buttons; the mouse moves no control (it drove the trolley at
 // full speed from the window's edge); the emergency stop counts only once Space is held half a second.
 TEST(DeviceMapping, KeysDriveLeversTheMouseNothingAndTheStopWantsAHeldPress) {
-  const sim::ControlTable table = scenes::sts_controls();
+  const scene::ControlTable table = scenes::sts_controls();
   const DeviceMapping m =
       load_device_mapping(std::string(HARBOUR_DATA_DIR) + "/devices/keyboard.yaml", table);
   for (const DeviceMatch& d : m.devices)
@@ -117,7 +117,7 @@ TEST(DeviceMapping, KeysDriveLeversTheMouseNothingAndTheStopWantsAHeldPress) {
   keys[SDL_SCANCODE_RIGHT] = true;  // gantry +
   keys[SDL_SCANCODE_L] = true;
   const std::vector<DeviceState> states(m.devices.size());
-  sim::Controls c = mapper.map(states, keys, 10.0);
+  scene::Controls c = mapper.map(states, keys, 10.0);
   EXPECT_EQ(c.value[at("hoist")], -1.0);
   EXPECT_EQ(c.value[at("gantry")], 1.0);
   EXPECT_EQ(c.value[at("lock")], 1.0);
@@ -139,7 +139,7 @@ TEST(DeviceMapping, KeysDriveLeversTheMouseNothingAndTheStopWantsAHeldPress) {
 
 // A mapping that binds the mouse reads it as a lever from the window's centre (a touch joystick).
 TEST(DeviceMapping, AMouseBoundAsALeverReadsFromTheWindowsCentre) {
-  const sim::ControlTable table = scenes::sts_controls();
+  const scene::ControlTable table = scenes::sts_controls();
   const DeviceMapping m = load_device_mapping(
       io::YamlFile::parse("mapping:\n  name: m\n  devices:\n    - {id: mouse, mouse: true}\n  bindings:\n"
                           "    - {control: trolley, device: mouse, axis: 0, dead_zone: 0.15, expo: 0.5}\n"
@@ -152,7 +152,7 @@ TEST(DeviceMapping, AMouseBoundAsALeverReadsFromTheWindowsCentre) {
   std::vector<DeviceState> states(1);  // no window: no mouse, nothing lost
   EXPECT_EQ(mapper.map(states).value[at("trolley")], 0.0);
   states[0] = {true, {0.25 * 32767.0, -32768.0}, {false, false, true}, {}};
-  const sim::Controls c = mapper.map(states);
+  const scene::Controls c = mapper.map(states);
   const double x = 0.1 / 0.85;  // (0.25 - 0.15) / 0.85, then 0.5 x + 0.5 x^3
   EXPECT_NEAR(c.value[at("trolley")], 0.5 * x + 0.5 * x * x * x, 1e-12);
   EXPECT_EQ(c.value[at("hoist")], 1.0);   // the top of the window raises
@@ -160,7 +160,7 @@ TEST(DeviceMapping, AMouseBoundAsALeverReadsFromTheWindowsCentre) {
 }
 
 TEST(DeviceMapping, AToggleButtonStepsASwitchOnEachPress) {
-  const sim::ControlTable table = scenes::sts_controls();
+  const scene::ControlTable table = scenes::sts_controls();
   DeviceMapping m;
   m.devices = {{"pad", "", "pad", 0, false}};
   Binding b;
@@ -239,7 +239,7 @@ TEST(DeviceMapping, BadMappingsNameFileLineAndField) {
 
 TEST(DeviceMapping, ButtonsSelectingASwitchsPositionsLeaveItWherePut) {
   // a pad's direction selector: d-pad up forward, d-pad down reverse, a stick press neutral
-  const sim::ControlTable table = gear_table();
+  const scene::ControlTable table = gear_table();
   DeviceMapping m;
   m.devices = {{"pad", "", "pad", 0, false}};
   const int gear = table.find("gear");
@@ -383,7 +383,7 @@ TEST(DeviceMapping, ControllerMappingLinesAreCheckedAsSdlReadsThem) {
 
 TEST(DeviceMapping, EveryShippedMappingLoadsAndWritesBackTheSame) {
   // every machine's controls (each kind's, from the registry's shipped machines)
-  std::vector<sim::ControlTable> machines;
+  std::vector<scene::ControlTable> machines;
   for (const auto& [kind, table] : test::shipped_machine_controls())
     machines.push_back(table);
   EXPECT_EQ(machines.size(), sim::machine_types().size());
@@ -391,8 +391,8 @@ TEST(DeviceMapping, EveryShippedMappingLoadsAndWritesBackTheSame) {
   for (const auto& entry : std::filesystem::directory_iterator(std::string(HARBOUR_DATA_DIR) + "/devices")) {
     const std::string path = entry.path().string();
     // each fits exactly one family: the profiles skip those for another
-    const sim::ControlTable* fits = nullptr;
-    for (const sim::ControlTable& table : machines)
+    const scene::ControlTable* fits = nullptr;
+    for (const scene::ControlTable& table : machines)
       if (why_mapping_does_not_fit(path, table).empty()) {
         EXPECT_EQ(fits, nullptr) << path << " fits two machines";
         fits = &table;

@@ -101,7 +101,7 @@ Sint16 raw_for(const Binding& b, double value) {
 // A person at the desk: decides like the autopilot, acts only through the sticks' axes, buttons and hats.
 class StickPerson {
  public:
-  StickPerson(const sim::ExerciseSettings& exercise, const DeviceMapping& mapping, sim::ControlTable table)
+  StickPerson(const sim::ExerciseSettings& exercise, const DeviceMapping& mapping, scene::ControlTable table)
       : pilot_(exercise), mapping_(mapping), table_(std::move(table)) {
     for (const DeviceMatch& d : mapping.devices)
       plug(d.id);
@@ -132,7 +132,7 @@ class StickPerson {
   }
   // on the step thread, before the station samples the devices
   void act(const sim::Simulation& sim) {
-    const sim::Controls want = pilot_.next(sim);
+    const scene::Controls want = pilot_.next(sim);
     std::map<std::pair<std::string, int>, Uint8> hats;
     for (std::size_t n = 0; n < mapping_.bindings.size(); ++n) {
       const Binding& b = mapping_.bindings[n];
@@ -166,7 +166,7 @@ class StickPerson {
       }
       // a button selecting a switch's position is held while the switch should be there; one on an axis
       // while the lever should be on its side
-      const bool selects = table_[b.slot].kind == sim::ControlKind::kSwitch && !b.toggle;
+      const bool selects = table_[b.slot].kind == scene::ControlKind::kSwitch && !b.toggle;
       const bool held = selects ? std::abs(v - b.value) < 0.5 : v * b.value > 0.5;
       switch (source) {
         case Binding::Source::kAxis: {
@@ -210,7 +210,7 @@ class StickPerson {
 
   sim::Autopilot pilot_;
   DeviceMapping mapping_;
-  sim::ControlTable table_;
+  scene::ControlTable table_;
   std::map<std::string, Stick> sticks_;
   std::map<std::size_t, bool> toggle_pressed_;
   std::map<int, double> toggle_position_;
@@ -268,7 +268,7 @@ TEST(Devices, APersonOnTwoJoysticksDischargesABoxOntoTheTruck) {
   sim::Evaluator replayed(desk.exercise);
   const sim::ReplayResult replay =
       sim::replay(desk.exercise.scenario, recording, -1,
-                  [&](const sim::Simulation& s, const sim::Controls& in) { replayed.observe(s, in); });
+                  [&](const sim::Simulation& s, const scene::Controls& in) { replayed.observe(s, in); });
   EXPECT_FALSE(replay.first_mismatch.has_value());
   EXPECT_EQ(replay.checkpoints_checked, static_cast<int>(recording.checkpoints.size()));
   EXPECT_EQ(replayed.metrics().moves_completed, result.metrics.moves_completed);
@@ -319,7 +319,7 @@ TEST(Devices, APadIsReadThroughTheMappingFilesOwnLineAndOneLackingAnInputIsUnfit
                          "  controller_mappings:\n"
                          "    - \""
                       << guid << ",Odd pad,a:b7,back:b4,lefty:a2,leftx:a3,dpup:h0.1,platform:Linux,\"\n";
-  const sim::ControlTable table = scenes::sts_controls();
+  const scene::ControlTable table = scenes::sts_controls();
   const auto at = [&](const char* label) { return static_cast<std::size_t>(table.find(label)); };
   {
     DeviceInput input(table, load_device_mapping(file, table));
@@ -330,7 +330,7 @@ TEST(Devices, APadIsReadThroughTheMappingFilesOwnLineAndOneLackingAnInputIsUnfit
     EXPECT_EQ(events[0].name, "Odd pad");        // its name as a game controller
     SDL_JoystickSetVirtualAxis(pad, 2, -32768);  // raw axis 2 is its left stick's y: pushed up
     SDL_JoystickSetVirtualButton(pad, 0, 1);     // raw button 0 is nothing here
-    sim::Controls c = input.sample();
+    scene::Controls c = input.sample();
     EXPECT_EQ(c.value[at("trolley")], 1.0);
     EXPECT_EQ(c.value[at("lock")], 0.0);
     SDL_JoystickSetVirtualButton(pad, 7, 1);  // its A
@@ -441,7 +441,7 @@ TEST(Devices, UnpluggingTheHoistStickStopsTheLoadSmoothlyAndPluggingItBackResume
       saw_back = saw_back || (saw_lost && m.find("input device right (Thrustmaster T.16000M) connected") !=
                                               std::string::npos);
     }
-    const sim::Snapshot* s = loop.latest_snapshot(kConsoleReader);
+    const scene::Snapshot* s = loop.latest_snapshot(kConsoleReader);
     display_showed_it = display_showed_it || (s && s->devices_missing == 1);
   }
   desk.station->stop();
@@ -492,7 +492,7 @@ TEST(Devices, APersonOnTwoLeversSlewsTheMobileHarbourCraneAndShutsItsGrab) {
   options.record = scenes::temp_path("harbour_desk_mhc.hsrc");
   options.loop.time_scale = 10.0;
   Session session(exercise, options);
-  const sim::ControlTable& table = session.simulation().control_table();
+  const scene::ControlTable& table = session.simulation().control_table();
   ASSERT_EQ(why_mapping_does_not_fit(HARBOUR_DATA_DIR "/devices/levers_iso.yaml", table), "");
   EXPECT_NE(why_mapping_does_not_fit(HARBOUR_DATA_DIR "/devices/sts_dual_joystick.yaml", table), "");
   DeviceMapping mapping =
@@ -543,7 +543,7 @@ TEST(Devices, AKeyTappedBetweenTwoSamplesStillStepsItsSwitch) {
   ASSERT_EQ(SDL_InitSubSystem(SDL_INIT_VIDEO), 0) << SDL_GetError();
   const sim::Simulation tractor(
       io::load_exercise(HARBOUR_DATA_DIR "/exercises/tractor_free_practice.yaml").scenario);
-  const sim::ControlTable& table = tractor.control_table();
+  const scene::ControlTable& table = tractor.control_table();
   const auto parking = static_cast<std::size_t>(table.find("parking_brake"));
   {
     DeviceInput input(table, load_device_mapping(HARBOUR_DATA_DIR "/devices/keyboard_driving.yaml", table));
@@ -563,7 +563,7 @@ TEST(Devices, TheDrivingKeyboardFitsTheTractorAndTheCranesKeyboardsDoNot) {
   // a profile's keyboards are tried in order: each machine finds the one made for it
   const sim::Simulation tractor(
       io::load_exercise(HARBOUR_DATA_DIR "/exercises/tractor_free_practice.yaml").scenario);
-  const sim::ControlTable& table = tractor.control_table();
+  const scene::ControlTable& table = tractor.control_table();
   EXPECT_EQ(why_mapping_does_not_fit(HARBOUR_DATA_DIR "/devices/keyboard_driving.yaml", table), "");
   EXPECT_NE(why_mapping_does_not_fit(HARBOUR_DATA_DIR "/devices/keyboard.yaml", table), "");
   EXPECT_NE(why_mapping_does_not_fit(HARBOUR_DATA_DIR "/devices/keyboard_slewing.yaml", table), "");

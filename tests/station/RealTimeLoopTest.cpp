@@ -66,7 +66,7 @@ TEST(RealTimeLoop, CommandsFromOtherThreadsLandBetweenStepsAndAreRecorded) {
   EXPECT_TRUE(eventually([&] { return session.loop().stats().steps == frozen_at + 1; }));
   std::this_thread::sleep_for(std::chrono::milliseconds(50));
   EXPECT_EQ(session.loop().stats().steps, frozen_at + 1);
-  const sim::Snapshot* snapshot = session.loop().latest_snapshot(0);
+  const scene::Snapshot* snapshot = session.loop().latest_snapshot(0);
   ASSERT_NE(snapshot, nullptr);
   EXPECT_TRUE(snapshot->held);
   EXPECT_EQ(snapshot->step, frozen_at + 1);
@@ -93,7 +93,7 @@ TEST(RealTimeLoop, TheBulkMaterialIsHandedToTheImageGeneratorAsItChanges) {
   const std::unique_ptr<sim::Pilot> pilot = sim::make_pilot(exercise);  // the grab's
   RealTimeLoop loop(simulation);
   loop.set_pilot([&](const sim::Simulation& s) { return pilot->next(s); });
-  const sim::BulkView* start = loop.latest_bulk(kImageGeneratorReader);
+  const scene::BulkView* start = loop.latest_bulk(kImageGeneratorReader);
   ASSERT_NE(start, nullptr);
   ASSERT_EQ(start->grids.size(), 2u);  // the hold and the hopper
   const std::vector<float> hold_at_start = start->grids[0].heights;
@@ -104,11 +104,11 @@ TEST(RealTimeLoop, TheBulkMaterialIsHandedToTheImageGeneratorAsItChanges) {
     while (loop.records().pop(record)) {         // the record keeper's side
     }
   }
-  const sim::BulkView* now = loop.latest_bulk(kImageGeneratorReader);
+  const scene::BulkView* now = loop.latest_bulk(kImageGeneratorReader);
   ASSERT_NE(now, nullptr);
   std::size_t changed = 0, differing = 0;
   for (std::size_t g = 0; g < now->grids.size(); ++g) {
-    const sim::BulkView::Grid& grid = now->grids[g];
+    const scene::BulkView::Grid& grid = now->grids[g];
     ASSERT_EQ(grid.cells_x, world.grid(static_cast<int>(g)).cells_x());
     for (int j = 0; j < grid.cells_y; ++j)
       for (int i = 0; i < grid.cells_x; ++i) {

@@ -115,7 +115,7 @@ TEST(HeadTracking, PacketsOverLoopbackMoveThePublishedEyePoint) {
   bool moved = false;
   for (int k = 0; k < 200 && !moved; ++k) {
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    const sim::Snapshot* s = live.session->loop().latest_snapshot(kImageGeneratorReader);
+    const scene::Snapshot* s = live.session->loop().latest_snapshot(kImageGeneratorReader);
     moved = s && std::abs(s->cab.head_offset_m.x - 0.12) < 1e-12 &&
             std::abs(s->cab.head_offset_m.y - 0.08) < 1e-12 &&
             std::abs(s->cab.head_offset_m.z - 0.04) < 1e-12 &&
@@ -174,10 +174,10 @@ TEST(MotionPlatform, TheCabsCuesDriveThePlatformOverUdp) {
 }
 
 TEST(ShortCues, ThePlatformFeelsTheEngineAndTheImpactsTheSoundIsMadeOf) {
-  sim::SceneDescription scene;
+  scene::SceneDescription scene;
   scene.drives = {"boom", "engine"};
   ShortCueSource source(scene);
-  auto s = std::make_unique<sim::Snapshot>();
+  auto s = std::make_unique<scene::Snapshot>();
   s->drive_count = 2;
   s->drives[1] = {0.6, 0.8};
   s->knocks_total = 3;  // before the platform's first frame: not felt
@@ -185,8 +185,8 @@ TEST(ShortCues, ThePlatformFeelsTheEngineAndTheImpactsTheSoundIsMadeOf) {
   EXPECT_EQ(in.engine_speed, 0.6);
   EXPECT_EQ(in.engine_load, 0.8);
   EXPECT_EQ(in.impact_speed_mps, 0.0);
-  s->knocks[3 % sim::kMaxKnocks].speed_mps = 0.4;
-  s->knocks[4 % sim::kMaxKnocks].speed_mps = 0.25;
+  s->knocks[3 % scene::kMaxKnocks].speed_mps = 0.4;
+  s->knocks[4 % scene::kMaxKnocks].speed_mps = 0.25;
   s->knocks_total = 5;
   EXPECT_EQ(source.next(*s).impact_speed_mps, 0.4);  // the hardest since the last frame
   EXPECT_EQ(source.next(*s).impact_speed_mps, 0.0);  // felt once
@@ -195,7 +195,7 @@ TEST(ShortCues, ThePlatformFeelsTheEngineAndTheImpactsTheSoundIsMadeOf) {
   EXPECT_EQ(in.engine_speed, 0.0);
   EXPECT_EQ(in.engine_load, 0.0);
   // a machine without an engine (the STS on shore power) gives no engine cue
-  sim::SceneDescription sts;
+  scene::SceneDescription sts;
   sts.drives = {"gantry", "trolley", "hoist", "boom"};
   s->power_off = false;
   EXPECT_EQ(ShortCueSource(sts).next(*s).engine_load, 0.0);

@@ -107,8 +107,8 @@ TEST(DeadReckoning, ACorrectionIsBlendedInWithoutAJump) {
   EXPECT_NEAR(heading(body.at(0.7).rotation), 0.3, 1e-12);
 }
 
-sim::SceneDescription own_scene() {
-  sim::SceneDescription d;
+scene::SceneDescription own_scene() {
+  scene::SceneDescription d;
   d.machine = "sts";
   d.entities = {{"gantry", "sts.gantry", {}}, {"trolley", "sts.trolley", {}}};
   d.machine_entities = 2;
@@ -130,7 +130,7 @@ TEST(TeamPresence, AMembersBodiesFollowTheOwnEntitiesAndStartWhereItsExerciseSta
   EXPECT_EQ(team.scene().entities[2].name, "tractor-1: tractor");
   EXPECT_EQ(team.scene().entities[3].visual, "trailer");
   EXPECT_EQ(team.scene().entities[3].half_extents_m.x, 6.1);
-  auto snapshot = std::make_unique<sim::Snapshot>();
+  auto snapshot = std::make_unique<scene::Snapshot>();
   snapshot->entity_count = 2;
   team.write(*snapshot, 5.0);
   ASSERT_EQ(snapshot->entity_count, 4);
@@ -152,7 +152,7 @@ TEST(TeamPresence, AMemberThatFallsSilentStopsWithinTheHorizonAndIsLostAfterTwoS
     sample.motion[0].pose.position.y = -40 + 4 * k * kPeriod_s;
     ASSERT_EQ(team.offer(sample), "");
   }
-  auto snapshot = std::make_unique<sim::Snapshot>();
+  auto snapshot = std::make_unique<scene::Snapshot>();
   const auto drawn_y = [&](double t) {
     snapshot->entity_count = 2;
     team.write(*snapshot, t);
@@ -187,21 +187,21 @@ TEST(TeamPresence, ABodyLeftOutIsHiddenAndOneThatAppearsIsPutThereAndAMemberThat
   TeamMember m = tractor();
   m.start_hidden = {false, true};  // its trailer (say, a load still to come) not there at the start
   TeamPresence team(own_scene(), {m});
-  auto snapshot = std::make_unique<sim::Snapshot>();
+  auto snapshot = std::make_unique<scene::Snapshot>();
   const auto drawn = [&](double t, int entity) {
     snapshot->entity_count = 2;
     team.write(*snapshot, t);
     return snapshot->entities[static_cast<std::size_t>(entity)];
   };
   EXPECT_EQ(drawn(0.0, 2).flags, 0u);
-  EXPECT_EQ(drawn(0.0, 3).flags, sim::Snapshot::kHidden);
+  EXPECT_EQ(drawn(0.0, 3).flags, scene::Snapshot::kHidden);
   TeamSample sample;
   sample.role = "tractor-1";
   sample.received_s = 1.0;
   sample.body = {0};
   sample.motion = {{{core::Mat3::identity(), {0, -40, 1.5}}, {}, {}}};
   ASSERT_EQ(team.offer(sample), "");
-  EXPECT_EQ(drawn(1.0, 3).flags, sim::Snapshot::kHidden);
+  EXPECT_EQ(drawn(1.0, 3).flags, scene::Snapshot::kHidden);
   // it appears 100 m from where it started: drawn there at once, not blended in from its start
   sample.received_s = 1.02;
   sample.body = {0, 1};
@@ -214,7 +214,7 @@ TEST(TeamPresence, ABodyLeftOutIsHiddenAndOneThatAppearsIsPutThereAndAMemberThat
   sample.body = {0};
   sample.motion.resize(1);
   ASSERT_EQ(team.offer(sample), "");
-  EXPECT_EQ(drawn(1.05, 3).flags, sim::Snapshot::kHidden);
+  EXPECT_EQ(drawn(1.05, 3).flags, scene::Snapshot::kHidden);
   // it said it left: silent from then on, never lost
   team.left("tractor-1");
   std::vector<std::string> changed;
@@ -278,11 +278,11 @@ TEST(NearMissWatch, OneEpisodePerApproachAContactSaidOnceAndTheClosestKept) {
 }
 
 TEST(TeamPresence, TheClosestApproachIsBetweenSizedBodiesOfBothMachines) {
-  sim::SceneDescription own;
+  scene::SceneDescription own;
   own.entities = {{"gantry", "sts.gantry", {}}, {"spreader", "sts.spreader", {6.1, 1.25, 0.3}}};
   own.machine_entities = 2;
   TeamPresence team(own, {tractor()});  // the tractor at y = -40, its trailer behind it
-  auto snapshot = std::make_unique<sim::Snapshot>();
+  auto snapshot = std::make_unique<scene::Snapshot>();
   snapshot->entity_count = 2;
   snapshot->entities[0] = {0, 0, {core::Mat3::identity(), {0, -40, 30}}};
   // 0.5 m over the trailer (its top at 1.8 m), 2.9 m behind the tractor's cab (its back at x = -3)

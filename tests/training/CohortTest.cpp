@@ -29,7 +29,7 @@ Result run(const std::string& exercise_file, sim::OperatorDefects defects) {
   sim::Evaluator evaluator(exercise);
   const double stop_s = exercise.rules.time_limit_s + exercise.rules.overtime_s;
   while (!evaluator.finished() && simulation.time_s() < stop_s) {
-    const sim::Controls in = pilot.next(simulation);
+    const scene::Controls in = pilot.next(simulation);
     simulation.step(in);
     evaluator.observe(simulation, in);
   }

@@ -237,11 +237,11 @@ void write_wav(const std::string& path, std::span<const float> samples, int chan
   if (!out.flush()) throw std::runtime_error(path + ": write failed");
 }
 
-OfflineMix::OfflineMix(const sim::SceneDescription& scene, const SoundSettings& sounds,
+OfflineMix::OfflineMix(const scene::SceneDescription& scene, const SoundSettings& sounds,
                        const AudioSettings& audio, bool ambience)
     : scape_(scene, sounds, ambience), out_(AudioOut::loopback(audio)) {}
 
-void OfflineMix::add_block(const sim::Snapshot& snapshot) {
+void OfflineMix::add_block(const scene::Snapshot& snapshot) {
   scape_.update(snapshot);
   out_->play(scape_);
   const std::size_t at = samples_.size();

@@ -78,10 +78,10 @@ void write_wav(const std::string& path, std::span<const float> samples, int chan
 /// loopback device, appended to the samples. Holds the two together for a recording's sound track.
 class OfflineMix {
  public:
-  OfflineMix(const sim::SceneDescription& scene, const SoundSettings& sounds, const AudioSettings& audio,
+  OfflineMix(const scene::SceneDescription& scene, const SoundSettings& sounds, const AudioSettings& audio,
              bool ambience = true);
   /// One block (10 ms) ending at `snapshot`.
-  void add_block(const sim::Snapshot& snapshot);
+  void add_block(const scene::Snapshot& snapshot);
   const std::vector<float>& samples() const { return samples_; }
   int channels() const { return out_->channels(); }
   SoundScape& scape() { return scape_; }

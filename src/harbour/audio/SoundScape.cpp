@@ -37,13 +37,13 @@ bool follows_drive(SourceKind kind) {
 
 }  // namespace
 
-SoundScape::SoundScape(const sim::SceneDescription& scene, const SoundSettings& settings, bool ambience) {
+SoundScape::SoundScape(const scene::SceneDescription& scene, const SoundSettings& settings, bool ambience) {
   std::vector<SoundSource> wanted;
   if (const auto it = settings.machines.find(scene.machine); it != settings.machines.end())
     wanted = it->second;
   if (ambience) wanted.insert(wanted.end(), settings.ambience.begin(), settings.ambience.end());
   std::vector<std::string> entities;
-  for (const sim::SceneDescription::Entity& e : scene.entities)
+  for (const scene::SceneDescription::Entity& e : scene.entities)
     entities.push_back(e.name);
   const auto lacks = [&](const SoundSource& s, const std::string& what, const std::vector<std::string>& has) {
     if (s.optional) return true;
@@ -123,7 +123,7 @@ void SoundScape::hear(std::shared_ptr<const std::vector<float>> call) {
   if (radio_ >= 0) said_.push_back(std::move(call));
 }
 
-void SoundScape::update(const sim::Snapshot& s) {
+void SoundScape::update(const scene::Snapshot& s) {
   // the listener: the operator's eye, looking where the head (tracked, or turned by keys) looks
   const double yaw = s.cab.look_yaw_rad + s.cab.head_yaw_pitch_roll_rad.x;
   const double pitch = s.cab.look_pitch_rad + s.cab.head_yaw_pitch_roll_rad.y;
@@ -147,11 +147,11 @@ void SoundScape::update(const sim::Snapshot& s) {
   last_time_s_ = s.time_s;
 }
 
-void SoundScape::render(Bound& b, const sim::Snapshot& s, bool powered) {
+void SoundScape::render(Bound& b, const scene::Snapshot& s, bool powered) {
   const std::span<float> out(b.block);
   const auto drive = [&]() {
     return b.drive >= 0 && b.drive < s.drive_count && powered ? s.drives[static_cast<std::size_t>(b.drive)]
-                                                              : sim::Snapshot::Drive{};
+                                                              : scene::Snapshot::Drive{};
   };
   const double value = b.indicator >= 0 && b.indicator < s.indicator_count
                            ? s.indicators[static_cast<std::size_t>(b.indicator)]
@@ -169,7 +169,7 @@ void SoundScape::render(Bound& b, const sim::Snapshot& s, bool powered) {
         using V = std::decay_t<decltype(voice)>;
         if constexpr (std::is_same_v<V, ElectricDriveVoice> || std::is_same_v<V, DieselVoice> ||
                       std::is_same_v<V, HydraulicVoice>) {
-          const sim::Snapshot::Drive d = drive();
+          const scene::Snapshot::Drive d = drive();
           // an engine runs while the machine has power: at rest it idles (speed 0 is its idle)
           voice.render(out, {first ? d.speed : b.speed, d.speed}, {first ? d.load : b.load, d.load});
           if constexpr (std::is_same_v<V, DieselVoice>)
@@ -179,7 +179,7 @@ void SoundScape::render(Bound& b, const sim::Snapshot& s, bool powered) {
         } else if constexpr (std::is_same_v<V, KnockVoice>) {
           if (b.settings.kind == SourceKind::kImpact && !s.held) {
             for (std::int64_t k = s.first_knock_after(knocks_heard_); k < s.knocks_total; ++k) {
-              const sim::Snapshot::Knock& knock = s.knock(k);
+              const scene::Snapshot::Knock& knock = s.knock(k);
               const double strength = knock.impulse_ns / b.settings.reference_impulse_ns;
               if (strength < 0.01) continue;
               voice.strike(std::min(strength, 4.0), sample_at(knock.step));

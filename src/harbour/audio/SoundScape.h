@@ -9,8 +9,8 @@
 
 #include "harbour/audio/Synth.h"
 #include "harbour/core/Vec3.h"
+#include "harbour/scene/Snapshot.h"
 #include "harbour/sim/RadioScript.h"
-#include "harbour/sim/Snapshot.h"
 
 namespace harbour::audio {
 
@@ -75,14 +75,14 @@ class SoundScape {
 
   /// Binds the machine's sounds (by `scene.machine`) and, with `ambience`, the harbour's; throws
   /// std::invalid_argument naming the source and what it names that the scene lacks.
-  SoundScape(const sim::SceneDescription& scene, const SoundSettings& settings, bool ambience = true);
+  SoundScape(const scene::SceneDescription& scene, const SoundSettings& settings, bool ambience = true);
   ~SoundScape();
   SoundScape(const SoundScape&) = delete;
   SoundScape& operator=(const SoundScape&) = delete;
 
   /// Renders the next block: from the last snapshot's state to `snapshot`'s (the block's end), each
   /// source's mono samples, its place and where the listener is.
-  void update(const sim::Snapshot& snapshot);
+  void update(const scene::Snapshot& snapshot);
   /// The exercise's radio script, spoken now (each call heard when the snapshots' time passes it); throws
   /// AudioError when espeak-ng cannot speak its language. Ignored without a radio among the sounds.
   void set_radio_script(const sim::RadioScript& script);
@@ -118,7 +118,7 @@ class SoundScape {
     double speed = 0.0, load = 0.0, amount = 0.0, value = 0.0;  // at the last block's end
     bool moving = false;
   };
-  void render(Bound& b, const sim::Snapshot& s, bool powered);
+  void render(Bound& b, const scene::Snapshot& s, bool powered);
 
   std::vector<Bound> sources_;
   using Clip = std::shared_ptr<const std::vector<float>>;

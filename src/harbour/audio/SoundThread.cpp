@@ -6,9 +6,9 @@
 
 namespace harbour::audio {
 
-SoundThread::SoundThread(const sim::SceneDescription& scene, const SoundSettings& sounds,
+SoundThread::SoundThread(const scene::SceneDescription& scene, const SoundSettings& sounds,
                          const AudioSettings& settings, const sim::RadioScript& radio,
-                         std::function<const sim::Snapshot*()> latest)
+                         std::function<const scene::Snapshot*()> latest)
     : scape_(scene, sounds),
       out_(AudioOut::device(settings)),
       latest_(std::move(latest)),
@@ -40,7 +40,7 @@ void SoundThread::run() {
   while (!stop_.load()) {
     const double volume = muted_.load() ? 0.0 : volume_.load();
     if (volume != volume_set) out_->set_volume(volume), volume_set = volume;
-    const sim::Snapshot* snapshot = latest_();
+    const scene::Snapshot* snapshot = latest_();
     // (a scene with no sounds at all has nothing to play and no source to pace it by: it only waits)
     if (!snapshot || scape_.source_count() == 0 || out_->blocks_waiting() >= kBlocksAhead) {
       std::this_thread::sleep_for(std::chrono::milliseconds(2));

@@ -19,8 +19,9 @@ class SoundThread {
   /// Opens the device (AudioError where there is none) and starts; `latest` gives the newest snapshot or
   /// nullptr before the first. The exercise's radio calls are spoken first (a language espeak-ng lacks:
   /// no radio, and radio_problem() says why).
-  SoundThread(const sim::SceneDescription& scene, const SoundSettings& sounds, const AudioSettings& settings,
-              const sim::RadioScript& radio, std::function<const sim::Snapshot*()> latest);
+  SoundThread(const scene::SceneDescription& scene, const SoundSettings& sounds,
+              const AudioSettings& settings, const sim::RadioScript& radio,
+              std::function<const scene::Snapshot*()> latest);
   ~SoundThread();
   SoundThread(const SoundThread&) = delete;
   SoundThread& operator=(const SoundThread&) = delete;
@@ -46,7 +47,7 @@ class SoundThread {
 
   SoundScape scape_;
   std::unique_ptr<AudioOut> out_;
-  std::function<const sim::Snapshot*()> latest_;
+  std::function<const scene::Snapshot*()> latest_;
   std::string described_, radio_problem_;
   std::mutex said_mutex_;
   std::vector<std::shared_ptr<const std::vector<float>>> said_;

@@ -4,12 +4,12 @@
 
 namespace harbour::bulk {
 
-int publish(const BulkWorld& world, sim::BulkView& view) {
+int publish(const BulkWorld& world, scene::BulkView& view) {
   int copied = 0;
   view.grids.resize(static_cast<std::size_t>(world.grid_count()));
   for (int g = 0; g < world.grid_count(); ++g) {
     const HeightGrid& grid = world.grid(g);
-    sim::BulkView::Grid& out = view.grids[static_cast<std::size_t>(g)];
+    scene::BulkView::Grid& out = view.grids[static_cast<std::size_t>(g)];
     const bool fresh = out.cells_x != grid.cells_x() || out.cells_y != grid.cells_y();
     if (fresh) {
       out.cells_x = grid.cells_x();

@@ -449,7 +449,7 @@ core::Vec3 moon_direction(double t_h, double day_of_year, double latitude_deg, d
                        latitude_deg * kPi / 180.0);
 }
 
-ImageGenerator::ImageGenerator(const sim::SceneDescription& scene, std::map<std::string, Visual> visuals,
+ImageGenerator::ImageGenerator(const scene::SceneDescription& scene, std::map<std::string, Visual> visuals,
                                int width, int height, std::optional<int> multisamples)
     : visuals_(std::move(visuals)), width_(width), height_(height) {
   context_ = std::make_unique<HeadlessContext>(width, height);
@@ -562,7 +562,7 @@ bool software_renderer(const std::string& renderer) {
   return false;
 }
 
-void ImageGenerator::build(const sim::SceneDescription& scene) {
+void ImageGenerator::build(const scene::SceneDescription& scene) {
   root_ = new osg::Group;
   osg::StateSet* state = root_->getOrCreateStateSet();
   sun_ = new osg::LightSource;
@@ -758,13 +758,13 @@ void ImageGenerator::build(const sim::SceneDescription& scene) {
   }
 
   std::size_t index = 0;
-  for (const sim::SceneDescription::Entity& e : scene.entities)
+  for (const scene::SceneDescription::Entity& e : scene.entities)
     entity_visuals_.push_back(e.visual);
   entity_poses_.assign(scene.entities.size(), core::Pose{});
   // the machine's own entities' boxes, from their looks' parts (an entity drawn from parts alone has no
   // size of its own)
   for (int n = 0; n < scene.machine_entities && n < static_cast<int>(scene.entities.size()); ++n) {
-    const sim::SceneDescription::Entity& e = scene.entities[static_cast<std::size_t>(n)];
+    const scene::SceneDescription::Entity& e = scene.entities[static_cast<std::size_t>(n)];
     core::Vec3 low = e.half_extents_m * -1.0, high = e.half_extents_m;
     if (const auto look = visuals_.find(e.visual); look != visuals_.end())
       for (const VisualPart& part : look->second.parts) {
@@ -777,7 +777,7 @@ void ImageGenerator::build(const sim::SceneDescription& scene) {
     machine_boxes_.emplace_back((low + high) * 0.5, (high - low) * 0.5);
   }
   ModelCache models;
-  for (const sim::SceneDescription::Entity& e : scene.entities) {
+  for (const scene::SceneDescription::Entity& e : scene.entities) {
     osg::ref_ptr<osg::MatrixTransform> transform = new osg::MatrixTransform();
     const auto look = visuals_.find(e.visual);
     osg::ref_ptr<osg::Geode> geode = new osg::Geode();
@@ -995,11 +995,11 @@ void ImageGenerator::build(const sim::SceneDescription& scene) {
   hud_camera_ = hud;
 }
 
-void ImageGenerator::update(const sim::Snapshot& s) {
+void ImageGenerator::update(const scene::Snapshot& s) {
   for (int n = 0; n < s.entity_count; ++n) {
-    const sim::Snapshot::Entity& e = s.entities[static_cast<std::size_t>(n)];
+    const scene::Snapshot::Entity& e = s.entities[static_cast<std::size_t>(n)];
     if (e.index < entities_.size()) {
-      entities_[e.index]->setNodeMask((e.flags & sim::Snapshot::kHidden) != 0 ? 0u : ~0u);
+      entities_[e.index]->setNodeMask((e.flags & scene::Snapshot::kHidden) != 0 ? 0u : ~0u);
       entities_[e.index]->setMatrix(to_osg(e.pose));
       entity_poses_[e.index] = e.pose;
     }
@@ -1235,7 +1235,7 @@ void ImageGenerator::update_timeline(double now_s) {
   timeline_->dirtyBound();
 }
 
-void ImageGenerator::update_night_sky(const sim::Snapshot& s, const core::Vec3& horizon) {
+void ImageGenerator::update_night_sky(const scene::Snapshot& s, const core::Vec3& horizon) {
   // stars show from nautical dusk on (sun 4-12 deg down), dimmed by haze and fog
   const double dark = std::clamp((-sun_elevation_ * 180.0 / kPi - 4.0) / 8.0, 0.0, 1.0) *
                       std::clamp(s.visibility_m / 8000.0, 0.0, 1.0);
@@ -1345,7 +1345,7 @@ void ImageGenerator::set_floodlights(const std::vector<Floodlight>& lights) {
   }
 }
 
-void ImageGenerator::mesh_bulk_tile(const sim::BulkView::Grid& grid, int ti, int tj, osg::Geometry& tile) {
+void ImageGenerator::mesh_bulk_tile(const scene::BulkView::Grid& grid, int ti, int tj, osg::Geometry& tile) {
   // vertices at the cell centres of the tile and one row and column beyond (tiles join), quads only where
   // there is material
   const int i0 = ti * grid.tile_cells, j0 = tj * grid.tile_cells;
@@ -1387,13 +1387,13 @@ void ImageGenerator::mesh_bulk_tile(const sim::BulkView::Grid& grid, int ti, int
   ++bulk_tiles_meshed_;
 }
 
-void ImageGenerator::update_bulk(const sim::BulkView& view) {
+void ImageGenerator::update_bulk(const scene::BulkView& view) {
   const auto look = visuals_.find("bulk");
   const core::Vec3 colour = look != visuals_.end() && !look->second.parts.empty()
                                 ? look->second.parts[0].color
                                 : core::Vec3{0.2, 0.2, 0.2};
   for (std::size_t g = bulk_grids_.size(); g < view.grids.size(); ++g) {
-    const sim::BulkView::Grid& grid = view.grids[g];
+    const scene::BulkView::Grid& grid = view.grids[g];
     BulkGridNode node;
     node.frame = new osg::MatrixTransform;
     osg::ref_ptr<osg::Geode> geode = new osg::Geode;
@@ -1422,7 +1422,7 @@ void ImageGenerator::update_bulk(const sim::BulkView& view) {
     }
   }
   for (std::size_t g = 0; g < view.grids.size(); ++g) {
-    const sim::BulkView::Grid& grid = view.grids[g];
+    const scene::BulkView::Grid& grid = view.grids[g];
     BulkGridNode& node = bulk_grids_[g];
     node.frame->setMatrix(to_osg(grid.pose));
     for (std::size_t t = 0; t < node.tiles.size() && t < grid.tile_version.size(); ++t)
@@ -1452,7 +1452,7 @@ void ImageGenerator::update_bulk(const sim::BulkView& view) {
   }
   auto& points = static_cast<osg::Vec3Array&>(*parcels_->getVertexArray());
   points.clear();
-  for (const sim::BulkView::Parcel& p : view.parcels)
+  for (const scene::BulkView::Parcel& p : view.parcels)
     points.push_back(to_osg(p.position_m));
   points.dirty();
   static_cast<osg::DrawArrays*>(parcels_->getPrimitiveSet(0))->setCount(static_cast<int>(points.size()));

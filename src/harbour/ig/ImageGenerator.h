@@ -13,8 +13,8 @@
 
 #include "harbour/ig/Ocean.h"
 #include "harbour/ig/Visuals.h"
-#include "harbour/sim/BulkView.h"
-#include "harbour/sim/Snapshot.h"
+#include "harbour/scene/BulkView.h"
+#include "harbour/scene/Snapshot.h"
 
 namespace osg {
 class Image;
@@ -108,7 +108,7 @@ class ImageGenerator {
   /// `multisamples`: anti-aliasing samples per pixel of the picture (a multisampled pbuffer, resolved as it
   /// is read; the platform's most up to it); unset, kDefaultMultisamples except on a software renderer,
   /// which draws each sample on the CPU.
-  ImageGenerator(const sim::SceneDescription& scene, std::map<std::string, Visual> visuals, int width,
+  ImageGenerator(const scene::SceneDescription& scene, std::map<std::string, Visual> visuals, int width,
                  int height, std::optional<int> multisamples = std::nullopt);
   static constexpr int kDefaultMultisamples = 4;
   ~ImageGenerator();
@@ -155,10 +155,10 @@ class ImageGenerator {
   /// The HUD's text as last drawn (tests).
   const std::string& hud_text() const { return hud_line_; }
   /// Entity poses, ropes and the environment (sun, sky, fog) from the published state.
-  void update(const sim::Snapshot& snapshot);
+  void update(const scene::Snapshot& snapshot);
   /// Bulk material from its published view: re-meshes only the tiles whose version moved on (the first
   /// call meshes them all) and draws the material in flight as points. The look key "bulk" colours it.
-  void update_bulk(const sim::BulkView& view);
+  void update_bulk(const scene::BulkView& view);
   /// Bulk tiles meshed so far (tests, the benchmark).
   long bulk_tiles_meshed() const { return bulk_tiles_meshed_; }
   void set_view(const View& view);
@@ -191,7 +191,7 @@ class ImageGenerator {
   std::vector<double> tyre_angles() const;
 
  private:
-  void build(const sim::SceneDescription& scene);
+  void build(const scene::SceneDescription& scene);
   void place_camera();
   /// The pose of camera `camera` (of cameras_) on its entity: its eye, look and up, world frame; nullopt when
   /// the scene has no such entity.
@@ -202,8 +202,8 @@ class ImageGenerator {
   void place_insets();
   // the water round the eye: swell plus the wind sea, shaded by its Fresnel reflection of the sky
   void update_water(const osg::Vec3d& eye);
-  void update_night_sky(const sim::Snapshot& s, const core::Vec3& horizon);
-  void mesh_bulk_tile(const sim::BulkView::Grid& grid, int ti, int tj, osg::Geometry& tile);
+  void update_night_sky(const scene::Snapshot& s, const core::Vec3& horizon);
+  void mesh_bulk_tile(const scene::BulkView::Grid& grid, int ti, int tj, osg::Geometry& tile);
 
   std::map<std::string, Visual> visuals_;
   int width_, height_;
@@ -253,7 +253,7 @@ class ImageGenerator {
   std::unique_ptr<OceanPatch> wind_sea_;
   double wind_sea_speed_mps_ = -1.0;                   // the wind the patch was synthesised for
   std::vector<std::pair<double, double>> water_base_;  // the water grid's points on the still level
-  sim::Snapshot::Sea sea_{};
+  scene::Snapshot::Sea sea_{};
   core::Vec3 wind_mps_, to_sun_{0.0, 0.0, 1.0};
   double time_s_ = 0.0, daylight_ = 1.0;
   std::vector<osg::ref_ptr<osg::LightSource>> floodlights_;  // the slots, lit in update()
@@ -301,7 +301,7 @@ class ImageGenerator {
   osg::ref_ptr<osg::Geometry> timeline_;
   void update_timeline(double now_s);
   View view_;
-  sim::Snapshot::Cab cab_{};
+  scene::Snapshot::Cab cab_{};
   double sun_elevation_ = 1.0;
   double overcast_ = 0.0, grey_ = 0.0;  // rain cloud over the sun; the sky's greying by cloud and fog
   double foam_slope_ = 0.0;             // the wind sea's slope past which it breaks (whitecaps)

@@ -137,10 +137,10 @@ double OceanPatch::sample(const std::vector<double>& field, double x, double y) 
          (1 - a) * b * field[index(i, j + 1)] + a * b * field[index(i + 1, j + 1)];
 }
 
-double swell_elevation_m(const sim::Snapshot::Sea& s, double t, double x, double y) {
+double swell_elevation_m(const scene::Snapshot::Sea& s, double t, double x, double y) {
   double eta = 0.0;
   for (int n = 0; n < s.swell_count; ++n) {
-    const sim::Snapshot::Swell& w = s.swells[static_cast<std::size_t>(n)];
+    const scene::Snapshot::Swell& w = s.swells[static_cast<std::size_t>(n)];
     const double omega = 2.0 * kPi / w.period_s, k = omega * omega / kG;  // deep water
     const double along =
         (x - s.reference_m.x) * std::cos(w.direction_rad) + (y - s.reference_m.y) * std::sin(w.direction_rad);

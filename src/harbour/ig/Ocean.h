@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "harbour/core/Vec3.h"
-#include "harbour/sim/Snapshot.h"
+#include "harbour/scene/Snapshot.h"
 
 namespace harbour::ig {
 
@@ -70,7 +70,7 @@ class OceanPatch {
 };
 
 /// The published swell's elevation above the still level at a world point at time t.
-double swell_elevation_m(const sim::Snapshot::Sea& sea, double t_s, double x, double y);
+double swell_elevation_m(const scene::Snapshot::Sea& sea, double t_s, double x, double y);
 
 /// Fresnel reflectance of water (n = 1.33) for unpolarised light at incidence cos_theta (from the normal).
 double water_fresnel(double cos_theta);

@@ -9,7 +9,7 @@
 
 namespace harbour::ig {
 
-RenderThread::RenderThread(sim::SceneDescription scene, Looks looks, int width, int height,
+RenderThread::RenderThread(scene::SceneDescription scene, Looks looks, int width, int height,
                            std::vector<View> views, Source source, FrameSink sink, double max_fps,
                            BulkSource bulk)
     : source_(std::move(source)), sink_(std::move(sink)), bulk_(std::move(bulk)), max_fps_(max_fps) {
@@ -44,7 +44,7 @@ std::string RenderThread::error() const {
   return error_;
 }
 
-void RenderThread::run(sim::SceneDescription scene, Looks looks, int width, int height,
+void RenderThread::run(scene::SceneDescription scene, Looks looks, int width, int height,
                        std::vector<View> views) {
   // below the simulation: this thread and the renderer's workers it starts run only when the step and the
   // record keeper leave a core free (SCHED_IDLE; nice +10 where that is refused)
@@ -64,7 +64,7 @@ void RenderThread::run(sim::SceneDescription scene, Looks looks, int width, int 
         std::this_thread::sleep_until(next_frame);
         next_frame = std::max(next_frame + period, std::chrono::steady_clock::now() - period);
       }
-      const sim::Snapshot* s = source_();
+      const scene::Snapshot* s = source_();
       if (!s || s->step == last_step) {
         std::this_thread::sleep_for(std::chrono::milliseconds(1));
         continue;
@@ -76,7 +76,7 @@ void RenderThread::run(sim::SceneDescription scene, Looks looks, int width, int 
         overlay_changed_ = false;
       }
       generator.update(*s);
-      if (const sim::BulkView* material = bulk_ ? bulk_() : nullptr)
+      if (const scene::BulkView* material = bulk_ ? bulk_() : nullptr)
         generator.update_bulk(*material);               // meshes again only the tiles that changed
       for (std::size_t c = 0; c < views.size(); ++c) {  // every display channel of the same moment
         generator.set_view(views[c]);

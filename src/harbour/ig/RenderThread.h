@@ -19,14 +19,14 @@ namespace harbour::ig {
 class RenderThread {
  public:
   /// The newest snapshot (nullptr while there is none); called on the render thread only.
-  using Source = std::function<const sim::Snapshot*()>;
+  using Source = std::function<const scene::Snapshot*()>;
   /// Called with each display channel's picture of a frame on the render thread (a window, a file, a video).
-  using FrameSink = std::function<void(ImageGenerator&, const sim::Snapshot&, int channel)>;
+  using FrameSink = std::function<void(ImageGenerator&, const scene::Snapshot&, int channel)>;
 
   /// The newest view of the bulk material (nullptr where there is none); called on the render thread only.
-  using BulkSource = std::function<const sim::BulkView*()>;
+  using BulkSource = std::function<const scene::BulkView*()>;
 
-  RenderThread(sim::SceneDescription scene, Looks looks, int width, int height, std::vector<View> views,
+  RenderThread(scene::SceneDescription scene, Looks looks, int width, int height, std::vector<View> views,
                Source source, FrameSink sink = {}, double max_fps = 60.0, BulkSource bulk = {});
   ~RenderThread();
   void stop();
@@ -39,7 +39,7 @@ class RenderThread {
   void set_overlay(std::string text);
 
  private:
-  void run(sim::SceneDescription scene, Looks looks, int width, int height, std::vector<View> views);
+  void run(scene::SceneDescription scene, Looks looks, int width, int height, std::vector<View> views);
 
   Source source_;
   FrameSink sink_;

@@ -14,7 +14,7 @@ std::string item_path(const std::string& path, std::size_t n) {
 
 // a switch position given by name: its index
 double position_of(const YamlFile& f, const YAML::Node& entry, const std::string& key, const std::string& at,
-                   const sim::ControlSpec& c) {
+                   const scene::ControlSpec& c) {
   if (!f.optional(entry, key, at)) return 0.0;
   const std::string name = f.text(entry, key, at);
   const auto p = std::find(c.positions.begin(), c.positions.end(), name);
@@ -24,14 +24,14 @@ double position_of(const YamlFile& f, const YAML::Node& entry, const std::string
 }
 }  // namespace
 
-sim::ControlTable read_control_table(const YamlFile& f, const YAML::Node& parent, const std::string& path) {
-  const YAML::Node list = f.sequence(parent, "controls", path, sim::kMaxControls);
-  std::vector<sim::ControlSpec> specs;
+scene::ControlTable read_control_table(const YamlFile& f, const YAML::Node& parent, const std::string& path) {
+  const YAML::Node list = f.sequence(parent, "controls", path, scene::kMaxControls);
+  std::vector<scene::ControlSpec> specs;
   for (std::size_t n = 0; n < list.size(); ++n) {
     const YAML::Node entry = list[n];
     const std::string at = item_path(path, n);
     if (!entry.IsMap()) f.fail(entry, at, "expected a mapping (label, kind, ...)");
-    sim::ControlSpec c;
+    scene::ControlSpec c;
     c.label = f.text(entry, "label", at);
     if (const std::string bad = core::why_bad_name(c.label, 64);
         !bad.empty() || c.label.find(' ') != std::string::npos)
@@ -42,7 +42,7 @@ sim::ControlTable read_control_table(const YamlFile& f, const YAML::Node& parent
     const std::string kind = f.text(entry, "kind", at);
     c.meaning = f.optional(entry, "meaning", at) ? f.text(entry, "meaning", at) : "";
     if (kind == "axis") {
-      c.kind = sim::ControlKind::kAxis;
+      c.kind = scene::ControlKind::kAxis;
       c.min = f.number_or(entry, "min", at, -1.0, -1e6, 1e6);
       c.max = f.number_or(entry, "max", at, 1.0, -1e6, 1e6);
       if (!(c.min < c.max)) f.fail(entry, at + ".max", "must be above min");
@@ -50,11 +50,11 @@ sim::ControlTable read_control_table(const YamlFile& f, const YAML::Node& parent
       c.neutral = f.number_or(entry, "neutral", at, rest, c.min, c.max);
       c.safe = f.number_or(entry, "safe", at, c.neutral, c.min, c.max);
     } else if (kind == "button") {
-      c.kind = sim::ControlKind::kButton;
+      c.kind = scene::ControlKind::kButton;
       c.min = 0.0;
       c.max = 1.0;
     } else if (kind == "switch") {
-      c.kind = sim::ControlKind::kSwitch;
+      c.kind = scene::ControlKind::kSwitch;
       const YAML::Node positions = f.sequence(entry, "positions", at, 16);
       if (positions.size() < 2) f.fail(positions, at + ".positions", "a switch has at least two positions");
       for (std::size_t k = 0; k < positions.size(); ++k) {
@@ -77,7 +77,7 @@ sim::ControlTable read_control_table(const YamlFile& f, const YAML::Node& parent
     specs.push_back(std::move(c));
   }
   try {
-    return sim::ControlTable(std::move(specs));
+    return scene::ControlTable(std::move(specs));
   } catch (const std::invalid_argument& e) {
     f.fail(list, path + ".controls", e.what());
   }

@@ -170,8 +170,8 @@ CabFields read_cab(const YamlFile& f, const YAML::Node& machine, double reach_m)
 }
 
 // every control the machine reads is in its table, of its kind; a missing or mistyped one names the list
-void require_controls(const YamlFile& f, const YAML::Node& machine, const sim::ControlTable& table,
-                      std::initializer_list<std::pair<const char*, sim::ControlKind>> needed) {
+void require_controls(const YamlFile& f, const YAML::Node& machine, const scene::ControlTable& table,
+                      std::initializer_list<std::pair<const char*, scene::ControlKind>> needed) {
   for (const auto& [label, kind] : needed) {
     try {
       table.slot(label, kind);
@@ -309,8 +309,8 @@ sim::WheeledChassisSettings read_wheels(const YamlFile& f, const YAML::Node& m) 
 
 // A vehicle's driving controls: steering wheel, pedals, the direction selector (reverse, neutral, forward),
 // the parking brake (released, set), emergency stop and horn.
-void require_driving_controls(const YamlFile& f, const YAML::Node& m, const sim::ControlTable& controls) {
-  using K = sim::ControlKind;
+void require_driving_controls(const YamlFile& f, const YAML::Node& m, const scene::ControlTable& controls) {
+  using K = scene::ControlKind;
   require_controls(f, m, controls,
                    {{"steer", K::kAxis},
                     {"throttle", K::kAxis},

@@ -10,8 +10,8 @@
 #include "harbour/machines/parts/Drive.h"
 #include "harbour/machines/parts/SpreaderHoist.h"
 #include "harbour/machines/parts/WheeledChassis.h"
-#include "harbour/sim/Controls.h"
-#include "harbour/sim/Snapshot.h"
+#include "harbour/scene/Controls.h"
+#include "harbour/scene/Snapshot.h"
 
 /// The readers of the parts machine files share (data/machines/*.yaml): each machine's own reader (its
 /// folder's Files.cpp) reads its file with them. Every failure is a DataError naming file, line and field.
@@ -40,12 +40,12 @@ sim::SpreaderHoistSettings read_spreader_hoist(const YamlFile& f, const YAML::No
 /// in it and the design line of sight.
 struct CabFields {
   core::Vec3 position_m, eye_m;
-  sim::CabSight sight;
+  scene::CabSight sight;
 };
 CabFields read_cab(const YamlFile& f, const YAML::Node& machine, double reach_m);
 /// Every control the machine reads is in its table, of its kind; a missing or mistyped one names the list.
-void require_controls(const YamlFile& f, const YAML::Node& machine, const sim::ControlTable& table,
-                      std::initializer_list<std::pair<const char*, sim::ControlKind>> needed);
+void require_controls(const YamlFile& f, const YAML::Node& machine, const scene::ControlTable& table,
+                      std::initializer_list<std::pair<const char*, scene::ControlKind>> needed);
 /// A reeving file named by `map`.`key` (relative to `folder`) over exactly `bodies`, with `drums` drums.
 cable::ReevingSettings read_reeving_file(const YamlFile& f, const YAML::Node& map, const std::string& key,
                                          const std::string& at, const std::string& folder,
@@ -62,7 +62,7 @@ sim::TyreSettings read_tyre(const YamlFile& f, const YAML::Node& m, const std::s
 sim::WheeledChassisSettings read_wheels(const YamlFile& f, const YAML::Node& m);
 /// A vehicle's driving controls: steering wheel, pedals, the direction selector (reverse, neutral,
 /// forward), the parking brake (released, set), emergency stop and horn.
-void require_driving_controls(const YamlFile& f, const YAML::Node& m, const sim::ControlTable& controls);
+void require_driving_controls(const YamlFile& f, const YAML::Node& m, const scene::ControlTable& controls);
 
 /// The kind a machine file declares (`machine.kind`, one of the registered machine types); throws DataError
 /// naming the field.

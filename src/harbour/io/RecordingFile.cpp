@@ -132,7 +132,7 @@ constexpr std::uint8_t kTagInput = 'I', kTagCheckpoint = 'C', kTagKeyframe = 'K'
 constexpr std::uint8_t kTagTeam = 'T';  // v9
 
 // v7: the step, then the values that changed since the previous input record (slot, value)
-void put_input(Writer& w, const sim::Recording::InputChange& c, const sim::Controls& previous,
+void put_input(Writer& w, const sim::Recording::InputChange& c, const scene::Controls& previous,
                std::size_t controls) {
   w.put(c.step);
   std::uint8_t changed = 0;
@@ -195,8 +195,8 @@ RecordingWriter::RecordingWriter(const std::string& path, const sim::Recording& 
   w.put(prefix.scenario);
   w.put(prefix.parent);
   w.put(prefix.branch_step);
-  if (prefix.control_labels.size() > static_cast<std::size_t>(sim::kMaxControls))
-    throw std::runtime_error(path + ": more than " + std::to_string(sim::kMaxControls) + " controls");
+  if (prefix.control_labels.size() > static_cast<std::size_t>(scene::kMaxControls))
+    throw std::runtime_error(path + ": more than " + std::to_string(scene::kMaxControls) + " controls");
   control_count_ = prefix.control_labels.size();
   w.put(static_cast<std::uint8_t>(control_count_));
   for (const std::string& label : prefix.control_labels)
@@ -332,7 +332,7 @@ sim::Recording::InputChange read_legacy_input(Reader& r, std::uint16_t version) 
 sim::Recording::InputChange read_input(Reader& r, const sim::Recording& rec) {
   sim::Recording::InputChange c;
   c.step = r.get<std::int64_t>("input step");
-  c.controls = rec.inputs.empty() ? sim::Controls{} : rec.inputs.back().controls;
+  c.controls = rec.inputs.empty() ? scene::Controls{} : rec.inputs.back().controls;
   const auto changed = r.get<std::uint8_t>("changed controls");
   for (std::uint8_t k = 0; k < changed; ++k) {
     const auto slot = r.get<std::uint8_t>("control");
@@ -542,7 +542,7 @@ sim::Recording parse_recording(const std::string& path, std::string bytes) {
   rec.branch_step = r.get<std::int64_t>("branch step");
   if (version >= 7) {
     const auto controls = r.get<std::uint8_t>("control count");
-    if (controls > sim::kMaxControls) r.fail(std::to_string(controls) + " controls (at most 32)");
+    if (controls > scene::kMaxControls) r.fail(std::to_string(controls) + " controls (at most 32)");
     for (std::uint8_t n = 0; n < controls; ++n) {
       std::string label = r.text("control label");
       if (const std::string bad = core::why_bad_name(label, 64); !bad.empty())

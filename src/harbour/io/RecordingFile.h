@@ -54,7 +54,7 @@ class RecordingWriter final : public sim::RecordingSink {
  private:
   void write(const std::vector<unsigned char>& bytes, bool flush);
   std::string path_;
-  sim::Controls last_input_;  // the last input change written (the next is stored as its difference)
+  scene::Controls last_input_;  // the last input change written (the next is stored as its difference)
   std::size_t control_count_ = 0;
   std::FILE* file_ = nullptr;
 };

@@ -17,7 +17,7 @@ namespace fs = std::filesystem;
 std::vector<std::string> stored_metric_names(const sim::ExerciseSettings& exercise) {
   sim::Simulation simulation(exercise.scenario);
   sim::Evaluator evaluator(exercise);
-  const sim::Controls neutral;
+  const scene::Controls neutral;
   simulation.step(neutral);
   evaluator.observe(simulation, neutral);
   std::vector<std::string> names;

@@ -9,7 +9,7 @@ void settle_gantry_crane(Machine& crane, physics::PhysicsWorld& world,
                          std::span<const physics::BodyId> bodies, SpreaderHoist& rig) {
   constexpr int kSteps = 3000;
   constexpr double kDt = 0.001;
-  const Controls neutral = crane.control_table().neutral();
+  const scene::Controls neutral = crane.control_table().neutral();
   settle_by_kinetic_damping(
       world, bodies, kSteps,
       [&] {

@@ -3,7 +3,7 @@
 #include <span>
 
 #include "harbour/machines/parts/SpreaderHoist.h"
-#include "harbour/sim/Controls.h"
+#include "harbour/scene/Controls.h"
 
 namespace harbour::sim {
 
@@ -32,7 +32,7 @@ class GantryCrane {
   virtual double yaw_rad() const { return 0.0; }
   virtual double steer_lever(double /*yaw_rate_radps*/) const { return 0.0; }
   /// Its controls with these levers and buttons (those it lacks ignored, the others neutral).
-  virtual Controls crane_controls(const StsControls& levers) const = 0;
+  virtual scene::Controls crane_controls(const StsControls& levers) const = 0;
 };
 
 class Machine;

@@ -7,7 +7,7 @@ namespace harbour::sim {
 namespace {
 
 // the rope points the snapshot's polylines use so far
-std::size_t points_used(const Snapshot& s) {
+std::size_t points_used(const scene::Snapshot& s) {
   return s.rope_count > 0 ? s.rope_first[static_cast<std::size_t>(s.rope_count - 1)] +
                                 s.rope_points[static_cast<std::size_t>(s.rope_count - 1)]
                           : 0;
@@ -15,19 +15,19 @@ std::size_t points_used(const Snapshot& s) {
 
 }  // namespace
 
-void publish_polyline(std::span<const core::Vec3> points, Snapshot& s) {
-  if (s.rope_count >= kMaxRopes) return;
+void publish_polyline(std::span<const core::Vec3> points, scene::Snapshot& s) {
+  if (s.rope_count >= scene::kMaxRopes) return;
   std::size_t used = points_used(s);
   const auto line = static_cast<std::size_t>(s.rope_count++);
   s.rope_first[line] = static_cast<std::uint16_t>(used);
-  for (std::size_t p = 0; p < points.size() && used < kMaxRopePoints; ++p)
+  for (std::size_t p = 0; p < points.size() && used < scene::kMaxRopePoints; ++p)
     s.points[used++] = points[p];
   s.rope_points[line] = static_cast<std::uint16_t>(used - s.rope_first[line]);
 }
 
-void publish_ropes(const cable::HoistSystem& hoist, Snapshot& s) {
+void publish_ropes(const cable::HoistSystem& hoist, scene::Snapshot& s) {
   std::size_t used = points_used(s);
-  for (int r = 0; r < hoist.rope_count() && s.rope_count < kMaxRopes; ++r) {
+  for (int r = 0; r < hoist.rope_count() && s.rope_count < scene::kMaxRopes; ++r) {
     const auto rope = static_cast<std::size_t>(s.rope_count++);
     s.rope_first[rope] = static_cast<std::uint16_t>(used);
     for (int g = 0; g < hoist.segment_count(r); ++g) {
@@ -35,7 +35,7 @@ void publish_ropes(const cable::HoistSystem& hoist, Snapshot& s) {
       const int skip = g > 0 ? 1 : 0;
       std::array<core::Vec3, 64> points;
       const int k = hoist.polyline(r, g, points);
-      for (int p = skip; p < k && used < kMaxRopePoints; ++p)
+      for (int p = skip; p < k && used < scene::kMaxRopePoints; ++p)
         s.points[used++] = points[static_cast<std::size_t>(p)];
     }
     s.rope_points[rope] = static_cast<std::uint16_t>(used - s.rope_first[rope]);

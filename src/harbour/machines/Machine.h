@@ -16,8 +16,8 @@
 #include "harbour/machines/parts/Ground.h"
 #include "harbour/machines/parts/Twistlocks.h"
 #include "harbour/physics/PhysicsWorld.h"
-#include "harbour/sim/Controls.h"
-#include "harbour/sim/Snapshot.h"
+#include "harbour/scene/Controls.h"
+#include "harbour/scene/Snapshot.h"
 
 namespace harbour::sim {
 
@@ -111,10 +111,11 @@ class Machine {
   /// Its kind as exercise and machine files name it ("sts", "mhc").
   const char* kind() const { return type().kind; }
   /// Its controls, by label (Controls carry one value per slot of this table).
-  virtual const ControlTable& control_table() const = 0;
+  virtual const scene::ControlTable& control_table() const = 0;
   /// Drives, ropes and tools for one step with these controls (any values: the machine reads them in range);
   /// `liftables` are the items it may pick up.
-  virtual void step(const Controls& controls, std::span<const ContainerRef> liftables, double dt_s) = 0;
+  virtual void step(const scene::Controls& controls, std::span<const ContainerRef> liftables,
+                    double dt_s) = 0;
 
   /// The item it holds (a container locked to its spreader), if any.
   virtual std::optional<physics::BodyId> held_item() const = 0;
@@ -144,13 +145,13 @@ class Machine {
   virtual core::Pose cab_pose() const = 0;
   virtual core::Vec3 eye_m() const = 0;
   /// The operator's design view from the cab (line of sight and field of view).
-  virtual CabSight cab_sight() const = 0;
+  virtual scene::CabSight cab_sight() const = 0;
 
   /// Appends its entities (first in the scene), names its indicators and counts its ropes.
-  virtual void describe(SceneDescription& scene) const = 0;
+  virtual void describe(scene::SceneDescription& scene) const = 0;
   /// Writes its entities' poses from `entities` on (in describe()'s order; returns how many), its ropes and
   /// its indicators. Allocates nothing.
-  virtual int publish(Snapshot& snapshot, int entities) const = 0;
+  virtual int publish(scene::Snapshot& snapshot, int entities) const = 0;
   /// Its tool for bulk material, if it has one (updated by step()).
   virtual const BulkTool* bulk_tool() const { return nullptr; }
   /// The material its tool holds [kg] (its weight hangs on the tool until the next call).
@@ -191,9 +192,9 @@ class Machine {
 
 /// Appends `hoist`'s ropes to the snapshot's rope polylines (after those already there; what does not fit in
 /// kMaxRopes ropes or kMaxRopePoints points is left out).
-void publish_ropes(const cable::HoistSystem& hoist, Snapshot& snapshot);
+void publish_ropes(const cable::HoistSystem& hoist, scene::Snapshot& snapshot);
 /// Appends one polyline (a sling) to the snapshot's ropes; with no points it draws nothing but keeps its
 /// place among them.
-void publish_polyline(std::span<const core::Vec3> points, Snapshot& snapshot);
+void publish_polyline(std::span<const core::Vec3> points, scene::Snapshot& snapshot);
 
 }  // namespace harbour::sim

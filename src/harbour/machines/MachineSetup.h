@@ -15,10 +15,12 @@ class PhysicsWorld;
 namespace harbour::cable {
 struct ReevingSettings;
 }  // namespace harbour::cable
+namespace harbour::scene {
+class ControlTable;
+}  // namespace harbour::scene
 
 namespace harbour::sim {
 
-class ControlTable;
 class Machine;
 
 /// The machine an exercise runs, with where it starts, of whichever kind: a value holding one machine
@@ -46,7 +48,7 @@ class MachineSetup {
   /// The machine itself, in `world` at its start.
   std::unique_ptr<Machine> build(physics::PhysicsWorld& world) const { return held().build(world); }
   /// Its controls as its machine file declares them (what device mappings bind).
-  const ControlTable& controls() const { return held().controls(); }
+  const scene::ControlTable& controls() const { return held().controls(); }
   /// Its reevings' settings (none for a machine without ropes).
   std::vector<cable::ReevingSettings*> reevings() { return held().reevings(); }
 
@@ -77,7 +79,7 @@ class MachineSetup {
     virtual ~Base() = default;
     virtual std::unique_ptr<Base> clone() const = 0;
     virtual const MachineType& type() const = 0;
-    virtual const ControlTable& controls() const = 0;
+    virtual const scene::ControlTable& controls() const = 0;
     virtual std::unique_ptr<Machine> build(physics::PhysicsWorld& world) const = 0;
     virtual std::vector<cable::ReevingSettings*> reevings() = 0;
   };
@@ -86,7 +88,7 @@ class MachineSetup {
     explicit Held(Setup s) : setup(std::move(s)) {}
     std::unique_ptr<Base> clone() const override { return std::make_unique<Held>(setup); }
     const MachineType& type() const override { return Setup::type(); }
-    const ControlTable& controls() const override { return setup.controls(); }
+    const scene::ControlTable& controls() const override { return setup.controls(); }
     std::unique_ptr<Machine> build(physics::PhysicsWorld& world) const override { return setup.build(world); }
     std::vector<cable::ReevingSettings*> reevings() override { return setup.reevings(); }
     Setup setup;

@@ -263,7 +263,7 @@ const char* Autopilot::activity() const {
   return "";
 }
 
-void Autopilot::resume(const Simulation& simulation, int moves_done, const Controls& levers) {
+void Autopilot::resume(const Simulation& simulation, int moves_done, const scene::Controls& levers) {
   hand_ = hand_before_ = levers;
   catching_up_ = true;
   goal_ = static_cast<std::size_t>(std::max(0, moves_done));
@@ -277,7 +277,7 @@ void Autopilot::resume(const Simulation& simulation, int moves_done, const Contr
                              std::optional(simulation.container_body(goal_index(simulation)));
 }
 
-Controls Autopilot::next(const Simulation& simulation) {
+scene::Controls Autopilot::next(const Simulation& simulation) {
   if (simulation.steps() % kDecisionSteps != 0 && decided_) return last_controls_;
   last_ = decide(simulation);
   last_.steer = steer(simulation);
@@ -289,13 +289,13 @@ Controls Autopilot::next(const Simulation& simulation) {
   return last_controls_;
 }
 
-Controls Autopilot::catch_up(const ControlTable& table, const Controls& wanted) {
+scene::Controls Autopilot::catch_up(const scene::ControlTable& table, const scene::Controls& wanted) {
   // after a take-over the levers move from where they stood to where this operator wants them as a hand moves
   // them; once every one is there (to the hand's resolution) they follow the decisions directly
-  Controls out = wanted;
+  scene::Controls out = wanted;
   bool caught_up = true;
   for (int slot = 0; slot < table.size(); ++slot) {
-    if (table[slot].kind != ControlKind::kAxis) continue;
+    if (table[slot].kind != scene::ControlKind::kAxis) continue;
     const auto at = static_cast<std::size_t>(slot);
     out.value[at] =
         device_lever(hand_lever(hand_.value[at], hand_before_.value[at], wanted.value[at], kDecision_s));

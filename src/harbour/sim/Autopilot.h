@@ -35,7 +35,7 @@ class Autopilot final : public Pilot {
 
   /// The controls for the next step, from what the simulation shows now (decided 50 times a second, held
   /// in between, levers at a joystick axis' 16-bit resolution).
-  Controls next(const Simulation& simulation) override;
+  scene::Controls next(const Simulation& simulation) override;
   bool done() const { return goal_ >= exercise_.moves.size(); }
   /// What it is doing now, for progress displays: raise, travel, settle, lower, lift off, lock, slacken,
   /// unlock.
@@ -44,7 +44,7 @@ class Autopilot final : public Pilot {
   /// spreader holds the next move's box it carries it on, else it goes to fetch it (raising first, then
   /// catching whatever swing the load has before it lowers). Its hands start from `levers`, the levers as
   /// they stood, and move them as a hand does until they reach its own.
-  void resume(const Simulation& simulation, int moves_done, const Controls& levers) override;
+  void resume(const Simulation& simulation, int moves_done, const scene::Controls& levers) override;
 
  private:
   enum class Phase { kRaise, kTravel, kSettle, kLower, kLiftOff, kLock, kSlacken, kUnlock };
@@ -79,7 +79,7 @@ class Autopilot final : public Pilot {
                        StsControls& in);
   bool on_target(double tolerance) const;  // rest position on target and swing small
   /// The levers a hand sets on the way from the taken-over ones to `wanted` (hand_lever()).
-  Controls catch_up(const ControlTable& table, const Controls& wanted);
+  scene::Controls catch_up(const scene::ControlTable& table, const scene::Controls& wanted);
   bool will_land_within(double tolerance) const;
   /// In a yard: the spreader height at which the load clears the stacks on its way to `destination`.
   double height_over_stacks(const Simulation& simulation, const core::Vec3& destination) const;
@@ -107,10 +107,10 @@ class Autopilot final : public Pilot {
   bool lock_skipped_ = false;
   double lane_integral_ = 0.0;  // [m s] the gantry's offset from its line, integrated while it travels
   StsControls last_;
-  Controls last_controls_;
+  scene::Controls last_controls_;
   bool decided_ = false;
-  bool catching_up_ = false;     // after a take-over: the hands still move to this operator's levers
-  Controls hand_, hand_before_;  // the levers the hands set at the last two decisions
+  bool catching_up_ = false;            // after a take-over: the hands still move to this operator's levers
+  scene::Controls hand_, hand_before_;  // the levers the hands set at the last two decisions
 };
 
 }  // namespace harbour::sim

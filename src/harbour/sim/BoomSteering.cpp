@@ -87,24 +87,26 @@ double BoomSteering::hold_height(double z_m) const {
                     -1.0, 1.0);
 }
 
-Controls stop_after_hoist_fault(const ControlTable& table, const MobileHarbourCrane& crane,
-                                const Controls& last, const Controls& before_last, double decision_s,
-                                double empty_kg, double rest_on_z_m, double slew, double luff) {
+scene::Controls stop_after_hoist_fault(const scene::ControlTable& table, const MobileHarbourCrane& crane,
+                                       const scene::Controls& last, const scene::Controls& before_last,
+                                       double decision_s, double empty_kg, double rest_on_z_m, double slew,
+                                       double luff) {
   const bool resting = crane.limiter_load_n() < 0.5 * empty_kg * core::kStandardGravity;
   const double lowering =
       std::clamp(kRestTouch + kRestEase_per_m * (crane.attachment_bottom_z_m() - rest_on_z_m), kRestTouch,
                  kRestLowering);
-  Controls out = resting ? hand_levers(table, last, before_last, decision_s, {{"hoist", 0.0}})
-                         : hand_levers(table, last, before_last, decision_s,
-                                       {{"slew", slew}, {"luff", luff}, {"hoist", -lowering}});
+  scene::Controls out = resting ? hand_levers(table, last, before_last, decision_s, {{"hoist", 0.0}})
+                                : hand_levers(table, last, before_last, decision_s,
+                                              {{"slew", slew}, {"luff", luff}, {"hoist", -lowering}});
   if (const int stop = table.find("emergency_stop"); stop >= 0 && resting)
     out.value[static_cast<std::size_t>(stop)] = 1.0;
   return out;
 }
 
-Controls hand_levers(const ControlTable& table, const Controls& last, const Controls& before_last,
-                     double decision_s, std::initializer_list<std::pair<const char*, double>> wanted) {
-  Controls out = table.neutral();
+scene::Controls hand_levers(const scene::ControlTable& table, const scene::Controls& last,
+                            const scene::Controls& before_last, double decision_s,
+                            std::initializer_list<std::pair<const char*, double>> wanted) {
+  scene::Controls out = table.neutral();
   // at most full travel in kLeverTravel_s, easing into the wanted position over its last kLeverEase_s, and
   // its speed changing over kLeverSpeedUp_s (a lever stopped dead, started or turned back at full speed is a
   // jerk the drive passes on: a harsh move)

@@ -4,7 +4,7 @@
 #include <utility>
 
 #include "harbour/core/Vec3.h"
-#include "harbour/sim/Controls.h"
+#include "harbour/scene/Controls.h"
 
 namespace harbour::sim {
 
@@ -49,15 +49,17 @@ class BoomSteering {
 /// until it rests (its ropes carrying less than half its weight), the boom moved by `slew` and `luff` (those
 /// that keep it calm over its spot); then the emergency stop is pressed so that nothing runs the unbraked
 /// hoist again.
-Controls stop_after_hoist_fault(const ControlTable& table, const MobileHarbourCrane& crane,
-                                const Controls& last, const Controls& before_last, double decision_s,
-                                double empty_kg, double rest_on_z_m, double slew = 0.0, double luff = 0.0);
+scene::Controls stop_after_hoist_fault(const scene::ControlTable& table, const MobileHarbourCrane& crane,
+                                       const scene::Controls& last, const scene::Controls& before_last,
+                                       double decision_s, double empty_kg, double rest_on_z_m,
+                                       double slew = 0.0, double luff = 0.0);
 
 /// Levers moved as a hand moves them: each labelled lever goes towards its wanted value by at most
 /// `decision_s / lever_travel_s` of full travel from where it was (`last`), and its speed changes gradually
 /// from how it moved in the decision before (`last` against `before_last`); the others stay neutral.
-Controls hand_levers(const ControlTable& table, const Controls& last, const Controls& before_last,
-                     double decision_s, std::initializer_list<std::pair<const char*, double>> wanted);
+scene::Controls hand_levers(const scene::ControlTable& table, const scene::Controls& last,
+                            const scene::Controls& before_last, double decision_s,
+                            std::initializer_list<std::pair<const char*, double>> wanted);
 /// One lever of hand_levers(): where it stands after a decision that wants it at `wanted`.
 double hand_lever(double last, double before_last, double wanted, double decision_s);
 

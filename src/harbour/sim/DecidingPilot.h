@@ -18,12 +18,12 @@ class DecidingPilot : public Pilot {
   static constexpr std::int64_t kDecisionSteps = 20;
 
   /// The controls for the next step (decided 50 times a second, held in between).
-  Controls next(const Simulation& simulation) final {
+  scene::Controls next(const Simulation& simulation) final {
     if (simulation.steps() % kDecisionSteps != 0 && decided_) return last_;
     const auto* machine = dynamic_cast<const MachineT*>(&simulation.machine());
     if (!machine || !drives(simulation, *machine))
       throw std::logic_error("a scripted operator's exercise runs on a machine it does not drive");
-    const Controls decided = decide(simulation, *machine);
+    const scene::Controls decided = decide(simulation, *machine);
     before_last_ = std::exchange(last_, decided);
     decided_ = true;
     return last_;
@@ -31,23 +31,23 @@ class DecidingPilot : public Pilot {
 
  protected:
   /// The levers for the coming 20 steps.
-  virtual Controls decide(const Simulation& simulation, const MachineT& machine) = 0;
+  virtual scene::Controls decide(const Simulation& simulation, const MachineT& machine) = 0;
   /// Whether the machine is one it drives beyond its type (a grab, not a hook).
   virtual bool drives(const Simulation&, const MachineT&) const { return true; }
   /// Taken over with the levers where they stand: the next step decides afresh, from them.
-  void take_levers(const Controls& levers) {
+  void take_levers(const scene::Controls& levers) {
     last_ = before_last_ = levers;
     decided_ = false;
   }
   /// Whether the coming decision is its first since it started or took over (its filters start afresh).
   bool first_decision() const { return !decided_; }
   /// Its last decision and the one before (how fast each lever was moving).
-  const Controls& last_decision() const { return last_; }
-  const Controls& decision_before_last() const { return before_last_; }
+  const scene::Controls& last_decision() const { return last_; }
+  const scene::Controls& decision_before_last() const { return before_last_; }
 
  private:
-  Controls last_{};
-  Controls before_last_{};
+  scene::Controls last_{};
+  scene::Controls before_last_{};
   bool decided_ = false;
 };
 

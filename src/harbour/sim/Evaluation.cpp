@@ -6,6 +6,7 @@
 #include <tuple>
 
 #include "harbour/bulk/PileMeasure.h"
+#include "harbour/scene/Surface.h"
 
 namespace harbour::sim {
 namespace {
@@ -121,23 +122,25 @@ void Evaluator::count_collision(const physics::ImpactEvent& e) {
   metrics_.worst_collision_impulse_ns = std::max(metrics_.worst_collision_impulse_ns, e.impulse_ns);
   auto either = [&](int surface) { return e.surface == surface || e.other_surface == surface; };
   auto box_or_spreader = [](int s) {
-    return s == kSurfaceContainer || s == kSurfaceHatchCover || s == kSurfaceSpreader || s == kSurfaceFlipper;
+    return s == scene::kSurfaceContainer || s == scene::kSurfaceHatchCover || s == scene::kSurfaceSpreader ||
+           s == scene::kSurfaceFlipper;
   };
-  if (either(kSurfaceCellGuide)) {
+  if (either(scene::kSurfaceCellGuide)) {
     ++metrics_.cell_guide_collisions;
-  } else if (either(kSurfaceHull)) {
+  } else if (either(scene::kSurfaceHull)) {
     ++metrics_.ship_collisions;
   } else if ((box_or_spreader(e.surface) && box_or_spreader(e.other_surface)) ||
-             (either(kSurfaceVehicle) && (either(kSurfaceContainer) || either(kSurfaceHatchCover)))) {
+             (either(scene::kSurfaceVehicle) &&
+              (either(scene::kSurfaceContainer) || either(scene::kSurfaceHatchCover)))) {
     ++metrics_.container_collisions;  // a stack hit by the spreader, a box or a vehicle
-  } else if (either(kSurfaceTruck) || either(kSurfaceVehicle)) {
+  } else if (either(scene::kSurfaceTruck) || either(scene::kSurfaceVehicle)) {
     ++metrics_.vehicle_collisions;
   } else {
     ++metrics_.other_collisions;
   }
 }
 
-void Evaluator::observe(const Simulation& simulation, const Controls& controls) {
+void Evaluator::observe(const Simulation& simulation, const scene::Controls& controls) {
   metrics_.time_s = simulation.time_s();
   const int stop = simulation.control_table().find("emergency_stop");
   // read as the machine reads it (a non-finite value, a device fault, reads released)
@@ -309,7 +312,7 @@ void Evaluator::observe_bulk(const Simulation& simulation, const MachineTally& t
   if (!discharging_) bite_peak_m3_ = std::max(bite_peak_m3_, load);
 }
 
-void Evaluator::observe_machine(const Simulation& simulation, const Controls& controls,
+void Evaluator::observe_machine(const Simulation& simulation, const scene::Controls& controls,
                                 const MachineTally& tally, bool estop) {
   // impacts: the load it carries set down near its target, or its empty gripper set down on the item it is
   // to pick up or, after a hoist brake fault, to stay, is a landing; a harder one elsewhere a collision
@@ -317,7 +320,7 @@ void Evaluator::observe_machine(const Simulation& simulation, const Controls& co
   for (const physics::ImpactEvent& e : simulation.events().impacts) {
     const bool carried_hit = carried_ && (e.body == *carried_ || e.other == *carried_);
     const bool gripper_hit = gripper && (e.body == *gripper || e.other == *gripper);
-    const bool body_hit = e.surface == kSurfaceVehicle || e.other_surface == kSurfaceVehicle;
+    const bool body_hit = e.surface == scene::kSurfaceVehicle || e.other_surface == scene::kSurfaceVehicle;
     if (gripper_hit && carried_hit)
       continue;  // a knock on the item it holds (a bounce as it locks): one body
     if (!gripper_hit && !carried_hit && !body_hit)

@@ -292,7 +292,7 @@ class Evaluator {
   explicit Evaluator(const ExerciseSettings& exercise);
 
   /// Call after every simulation step with the inputs that drove it.
-  void observe(const Simulation& simulation, const Controls& controls);
+  void observe(const Simulation& simulation, const scene::Controls& controls);
   /// All goals done (an exercise without goals, a free practice, runs to its time limit and overtime).
   bool finished() const;
   const Metrics& metrics() const { return metrics_; }
@@ -306,8 +306,8 @@ class Evaluator {
   /// Impacts (landings, set-downs, collisions), moves, twistlock misuse, rope overloads, limit hits,
   /// emergency stops, the energy the drives delivered and gantry travel without the horn: the machine's
   /// tally says what it has of each.
-  void observe_machine(const Simulation& simulation, const Controls& controls, const MachineTally& tally,
-                       bool emergency_stop);
+  void observe_machine(const Simulation& simulation, const scene::Controls& controls,
+                       const MachineTally& tally, bool emergency_stop);
   /// Gantry travel (people walk under the portal) starts only after a warning on the horn: one motion from
   /// standstill covering more than the rules' gantry_travel_m (positioning creeps are not travels).
   void observe_gantry_warning(bool horn, bool gantry_moving, double gantry_position_m);

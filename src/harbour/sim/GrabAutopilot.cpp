@@ -102,7 +102,7 @@ const char* GrabAutopilot::activity() const {
   return "";
 }
 
-void GrabAutopilot::resume(const Simulation& simulation, int /*moves_done*/, const Controls& levers) {
+void GrabAutopilot::resume(const Simulation& simulation, int /*moves_done*/, const scene::Controls& levers) {
   phase_ = simulation.carrying() ? Phase::kHoist : Phase::kToDig;
   phase_start_s_ = simulation.time_s();
   take_levers(levers);  // its filters start again from what it sees
@@ -152,7 +152,7 @@ void GrabAutopilot::choose_dig_spot(const Simulation& simulation) {
   }
 }
 
-Controls GrabAutopilot::decide(const Simulation& simulation, const MobileHarbourCrane& crane) {
+scene::Controls GrabAutopilot::decide(const Simulation& simulation, const MobileHarbourCrane& crane) {
   double slew = 0.0, luff = 0.0, hoist = 0.0, grab = 0.0;
   const double now = simulation.time_s();
   const auto choose = [&] {

@@ -42,12 +42,12 @@ class GrabAutopilot final : public DecidingPilot<MobileHarbourCrane> {
   /// fault stop, done.
   const char* activity() const override;
   /// Takes over a running exercise: hoists a loaded grab out to the hopper, or goes to dig with an empty one.
-  void resume(const Simulation& simulation, int moves_done, const Controls& levers) override;
+  void resume(const Simulation& simulation, int moves_done, const scene::Controls& levers) override;
   int bites() const { return bites_; }
 
  private:
   enum class Phase { kToDig, kLower, kShut, kHoist, kToDrop, kDischarge, kOpenAfterFault, kFaultStop, kDone };
-  Controls decide(const Simulation& simulation, const MobileHarbourCrane& crane) override;
+  scene::Controls decide(const Simulation& simulation, const MobileHarbourCrane& crane) override;
   bool drives(const Simulation& simulation, const MobileHarbourCrane&) const override {
     return simulation.bulk() && simulation.bulk_grab() >= 0;
   }

@@ -61,7 +61,7 @@ const char* HookAutopilot::activity() const {
   return "";
 }
 
-void HookAutopilot::resume(const Simulation& simulation, int moves_done, const Controls& levers) {
+void HookAutopilot::resume(const Simulation& simulation, int moves_done, const scene::Controls& levers) {
   move_ = static_cast<std::size_t>(std::max(moves_done, 0));
   phase_ = move_ >= exercise_.moves.size()    ? Phase::kDone
            : simulation.machine().held_item() ? Phase::kLift
@@ -77,7 +77,7 @@ std::size_t HookAutopilot::piece_index(const Simulation& simulation) const {
   throw std::logic_error("the move's piece is not in the scenario");
 }
 
-Controls HookAutopilot::decide(const Simulation& simulation, const MobileHarbourCrane& crane) {
+scene::Controls HookAutopilot::decide(const Simulation& simulation, const MobileHarbourCrane& crane) {
   const double now = simulation.time_s();
   const double decision_s = kDecisionSteps * Simulation::kStep_s;
   steering_.observe(crane, decision_s, first_decision());
@@ -186,8 +186,8 @@ Controls HookAutopilot::decide(const Simulation& simulation, const MobileHarbour
   // moved within a period of that sets it bouncing
   hoist =
       std::clamp(hoist, last_hoist - kEaseRate_per_s * decision_s, last_hoist + kEaseRate_per_s * decision_s);
-  Controls out = hand_levers(simulation.control_table(), last_decision(), decision_before_last(), decision_s,
-                             {{"slew", slew}, {"luff", luff}, {"hoist", hoist}});
+  scene::Controls out = hand_levers(simulation.control_table(), last_decision(), decision_before_last(),
+                                    decision_s, {{"slew", slew}, {"luff", luff}, {"hoist", hoist}});
   if (const int sling = simulation.control_table().find("sling"); sling >= 0)
     out.value[static_cast<std::size_t>(sling)] = call_slinger ? 1.0 : 0.0;
   return out;

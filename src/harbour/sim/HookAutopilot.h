@@ -26,11 +26,11 @@ class HookAutopilot final : public DecidingPilot<MobileHarbourCrane> {
   /// What it is doing now: to piece, lower, sling, lift, to target, set down, unsling, fault stop, done.
   const char* activity() const override;
   /// Takes over a running exercise: carries a slung piece to its target, or goes to the next piece.
-  void resume(const Simulation& simulation, int moves_done, const Controls& levers) override;
+  void resume(const Simulation& simulation, int moves_done, const scene::Controls& levers) override;
 
  private:
   enum class Phase { kToPiece, kLower, kSling, kLift, kToTarget, kSetDown, kUnsling, kFaultStop, kDone };
-  Controls decide(const Simulation& simulation, const MobileHarbourCrane& crane) override;
+  scene::Controls decide(const Simulation& simulation, const MobileHarbourCrane& crane) override;
   bool drives(const Simulation&, const MobileHarbourCrane& crane) const override { return crane.on_hook(); }
   /// The scenario's index of the move's piece.
   std::size_t piece_index(const Simulation& simulation) const;

@@ -15,13 +15,13 @@ namespace {
 class HandsOffWhenThePowerFails final : public Pilot {
  public:
   explicit HandsOffWhenThePowerFails(std::unique_ptr<Pilot> pilot) : pilot_(std::move(pilot)) {}
-  Controls next(const Simulation& simulation) override {
-    const Controls planned = pilot_->next(simulation);
+  scene::Controls next(const Simulation& simulation) override {
+    const scene::Controls planned = pilot_->next(simulation);
     return simulation.power_off() || simulation.awaiting_zero() ? simulation.control_table().neutral()
                                                                 : planned;
   }
   const char* activity() const override { return pilot_->activity(); }
-  void resume(const Simulation& simulation, int moves_done, const Controls& levers) override {
+  void resume(const Simulation& simulation, int moves_done, const scene::Controls& levers) override {
     pilot_->resume(simulation, moves_done, levers);
   }
 

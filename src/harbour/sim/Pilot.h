@@ -3,7 +3,7 @@
 #include <memory>
 #include <string>
 
-#include "harbour/sim/Controls.h"
+#include "harbour/scene/Controls.h"
 
 namespace harbour::sim {
 
@@ -16,12 +16,12 @@ class Pilot {
  public:
   virtual ~Pilot() = default;
   /// The controls for the next step, from what the simulation shows now.
-  virtual Controls next(const Simulation& simulation) = 0;
+  virtual scene::Controls next(const Simulation& simulation) = 0;
   /// What it is doing now, for progress displays.
   virtual const char* activity() const = 0;
   /// Takes over a running exercise (an instructor's take-over) of which `moves_done` container moves are
   /// made, with the levers where they stand (`levers`): its hands start from there, not from neutral.
-  virtual void resume(const Simulation& simulation, int moves_done, const Controls& levers) = 0;
+  virtual void resume(const Simulation& simulation, int moves_done, const scene::Controls& levers) = 0;
 };
 
 /// Deliberate faults for a scripted bad driver of a vehicle (tests of the evaluation).

@@ -113,7 +113,8 @@ const char* ReachStackerAutopilot::activity() const {
   return kNames[static_cast<int>(phase_)];
 }
 
-void ReachStackerAutopilot::resume(const Simulation& simulation, int moves_done, const Controls& levers) {
+void ReachStackerAutopilot::resume(const Simulation& simulation, int moves_done,
+                                   const scene::Controls& levers) {
   const auto* machine = dynamic_cast<const ReachStacker*>(&simulation.machine());
   phase_ = moves_done >= 1 ? Phase::kDone : machine && machine->held_item() ? Phase::kLift : Phase::kApproach;
   phase_start_s_ = simulation.time_s();
@@ -128,9 +129,9 @@ bool ReachStackerAutopilot::way_clear(const Simulation& simulation) const {
   return true;
 }
 
-Controls ReachStackerAutopilot::decide(const Simulation& simulation, const ReachStacker& m) {
-  const ControlTable& table = simulation.control_table();
-  Controls c = table.neutral();
+scene::Controls ReachStackerAutopilot::decide(const Simulation& simulation, const ReachStacker& m) {
+  const scene::ControlTable& table = simulation.control_table();
+  scene::Controls c = table.neutral();
   const auto set = [&](const char* label, double value) {
     c.value[static_cast<std::size_t>(table.find(label))] = value;
   };

@@ -26,7 +26,7 @@ class ReachStackerAutopilot final : public DecidingPilot<ReachStacker> {
   /// What it is doing now: approach, pick, lock, lift, carry, raise, creep, reach, set, unlock, clear, done.
   const char* activity() const override;
   /// Takes over a running exercise from where the machine stands and what it holds.
-  void resume(const Simulation& simulation, int moves_done, const Controls& levers) override;
+  void resume(const Simulation& simulation, int moves_done, const scene::Controls& levers) override;
 
  private:
   enum class Phase {
@@ -43,7 +43,7 @@ class ReachStackerAutopilot final : public DecidingPilot<ReachStacker> {
     kClear,
     kDone
   };
-  Controls decide(const Simulation& simulation, const ReachStacker& machine) override;
+  scene::Controls decide(const Simulation& simulation, const ReachStacker& machine) override;
   /// No truck stands in or near its lane's stop (the one it took the box from has driven off).
   bool way_clear(const Simulation& simulation) const;
 

@@ -7,9 +7,9 @@
 
 namespace harbour::sim {
 
-Recorder::Recorder(std::string scenario, const ControlTable& controls) {
+Recorder::Recorder(std::string scenario, const scene::ControlTable& controls) {
   recording_.scenario = std::move(scenario);
-  for (const ControlSpec& c : controls.controls())
+  for (const scene::ControlSpec& c : controls.controls())
     recording_.control_labels.push_back(c.label);
 }
 
@@ -19,7 +19,7 @@ std::vector<std::string> legacy_sts_control_labels() {
           "spreader_45", "flipper_1",      "flipper_2", "flipper_3",   "flipper_4"};
 }
 
-void Recorder::after_step(const Simulation& simulation, const Controls& given) {
+void Recorder::after_step(const Simulation& simulation, const scene::Controls& given) {
   const std::int64_t step = simulation.steps();
   after_step(step, simulation.control_table().in_range(given));
   if (step % kCheckpointEvery == 0) checkpoint(step, simulation.state_hash());
@@ -30,7 +30,7 @@ void Recorder::on_command(const Simulation& simulation, const InstructorCommand&
   on_command(simulation.steps(), command);
 }
 
-void Recorder::after_step(std::int64_t step, const Controls& controls) {
+void Recorder::after_step(std::int64_t step, const scene::Controls& controls) {
   // the controls only when they change; the step they were applied at is one before the current
   if (recording_.inputs.empty() || !(recording_.inputs.back().controls == controls)) {
     recording_.inputs.push_back({step - 1, controls});
@@ -62,7 +62,7 @@ void Recorder::on_team(std::int64_t step, const TeamInput& input) {
 // recorded values (by the recording's labels) at this machine's slots
 class BySlot {
  public:
-  BySlot(const std::vector<std::string>& labels, const ControlTable& table) : table_(table) {
+  BySlot(const std::vector<std::string>& labels, const scene::ControlTable& table) : table_(table) {
     for (const std::string& label : labels) {
       slot_of_.push_back(table.find(label));
       if (slot_of_.back() < 0)
@@ -70,11 +70,11 @@ class BySlot {
     }
   }
   /// Throws core::StateError at a value the control cannot take (the recorder stores them as read).
-  Controls operator()(const Controls& recorded) const {
-    Controls c = table_.neutral();
+  scene::Controls operator()(const scene::Controls& recorded) const {
+    scene::Controls c = table_.neutral();
     for (std::size_t n = 0; n < slot_of_.size(); ++n)
       c.value[static_cast<std::size_t>(slot_of_[n])] = recorded.value[n];
-    const Controls read = table_.in_range(c);
+    const scene::Controls read = table_.in_range(c);
     for (std::size_t n = 0; n < slot_of_.size(); ++n) {
       const auto slot = static_cast<std::size_t>(slot_of_[n]);
       if (!(read.value[slot] == c.value[slot]))
@@ -85,7 +85,7 @@ class BySlot {
   }
 
  private:
-  const ControlTable& table_;
+  const scene::ControlTable& table_;
   std::vector<int> slot_of_;
 };
 
@@ -205,8 +205,8 @@ TakeOver take_over(const ScenarioSettings& scenario, const Recording& recording,
   prefix.slack_ropes_keep_sag = recording.slack_ropes_keep_sag;
   prefix.machine_state_hashed = recording.machine_state_hashed;
   // the branch records by this machine's labels: the prefix's controls are carried over to them
-  const ControlTable& table = r.simulation->control_table();
-  for (const ControlSpec& c : table.controls())
+  const scene::ControlTable& table = r.simulation->control_table();
+  for (const scene::ControlSpec& c : table.controls())
     prefix.control_labels.push_back(c.label);
   const BySlot by_slot(recording.control_labels, table);
   for (const auto& change : recording.inputs)
@@ -219,7 +219,7 @@ TakeOver take_over(const ScenarioSettings& scenario, const Recording& recording,
     if (event.step < prefix.branch_step) prefix.team.push_back(event);
   for (const auto& keyframe : recording.keyframes)
     if (keyframe.step <= prefix.branch_step) prefix.keyframes.push_back(keyframe);
-  const Controls levers = prefix.inputs.empty() ? table.neutral() : prefix.inputs.back().controls;
+  const scene::Controls levers = prefix.inputs.empty() ? table.neutral() : prefix.inputs.back().controls;
   return {std::move(r.simulation), Recorder(std::move(prefix)), levers};
 }
 

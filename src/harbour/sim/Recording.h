@@ -16,8 +16,8 @@ namespace harbour::sim {
 /// keyframe before a moment.
 struct Recording {
   struct InputChange {
-    std::int64_t step = 0;  ///< the controls take effect from this step on
-    Controls controls;      ///< values by control_labels (slot n: control_labels[n])
+    std::int64_t step = 0;     ///< the controls take effect from this step on
+    scene::Controls controls;  ///< values by control_labels (slot n: control_labels[n])
   };
   struct Checkpoint {
     std::int64_t step = 0;
@@ -97,12 +97,12 @@ class Recorder {
   static constexpr std::int64_t kCheckpointEvery = 1000;  ///< one simulated second at 1 kHz
   static constexpr std::int64_t kKeyframeEvery = 10000;   ///< ten simulated seconds
 
-  Recorder(std::string scenario, const ControlTable& controls);
+  Recorder(std::string scenario, const scene::ControlTable& controls);
   /// Continues an existing recording's prefix (a take-over branch).
   explicit Recorder(Recording prefix) : recording_(std::move(prefix)) {}
 
   /// `controls` were used for the step that just ended (now at `simulation.steps()`).
-  void after_step(const Simulation& simulation, const Controls& controls);
+  void after_step(const Simulation& simulation, const scene::Controls& controls);
   /// The instructor's command, just applied to `simulation` (before its next step).
   void on_command(const Simulation& simulation, const InstructorCommand& command);
 
@@ -110,7 +110,7 @@ class Recorder {
   // keeper): after_step(simulation, ...) is after_step(step, ...), then a checkpoint every kCheckpointEvery
   // steps and a keyframe every kKeyframeEvery.
   /// `controls`, as the machine read them (ControlTable::in_range), drove the step that ended at `step`.
-  void after_step(std::int64_t step, const Controls& controls);
+  void after_step(std::int64_t step, const scene::Controls& controls);
   void checkpoint(std::int64_t step, std::uint64_t state_hash);
   void keyframe(std::int64_t step, std::vector<std::uint8_t> state);
   /// A command applied before step `step` + 1.
@@ -135,7 +135,7 @@ struct ReplayResult {
 };
 
 /// Called after every replayed step with the controls of that step (an evaluator watching the replay).
-using ReplayObserver = std::function<void(const Simulation&, const Controls&)>;
+using ReplayObserver = std::function<void(const Simulation&, const scene::Controls&)>;
 
 /// The STS labels recordings before version 7 stored their controls as (in this order).
 std::vector<std::string> legacy_sts_control_labels();
@@ -164,7 +164,7 @@ class ReplayPlayer {
   const Recording& recording_;
   std::unique_ptr<Simulation> simulation_;
   std::unique_ptr<BySlot> by_slot_;
-  Controls current_;
+  scene::Controls current_;
   std::size_t next_input_ = 0, next_checkpoint_ = 0, next_command_ = 0, next_team_ = 0;
   int checkpoints_checked_ = 0, keyframes_used_ = 0;
   std::optional<std::int64_t> first_mismatch_;
@@ -182,7 +182,7 @@ ReplayResult replay(const ScenarioSettings& scenario, const Recording& recording
 struct TakeOver {
   std::unique_ptr<Simulation> simulation;
   Recorder recorder;
-  Controls levers;  ///< the controls standing at the take-over (neutral where none were recorded)
+  scene::Controls levers;  ///< the controls standing at the take-over (neutral where none were recorded)
 };
 TakeOver take_over(const ScenarioSettings& scenario, const Recording& recording,
                    const std::string& recording_id, std::int64_t step, const ReplayObserver& observer = {});

@@ -56,16 +56,16 @@ Simulation::Simulation(const ScenarioSettings& scenario)
     world_->add_static_box(
         {kQuayLand_m / 2, kQuayLand_m, kQuayDepth_m / 2},
         {core::Mat3::identity(), {scenario.quay_edge_x_m - kQuayLand_m / 2, 0.0, -kQuayDepth_m / 2}},
-        kSurfaceQuay);
-    world_->add_ground(-kQuayDepth_m, kSurfaceGround);
+        scene::kSurfaceQuay);
+    world_->add_ground(-kQuayDepth_m, scene::kSurfaceGround);
     vessel_ = std::make_unique<Vessel>(*world_, *scenario.vessel);
   } else {
-    world_->add_ground(0.0, kSurfaceQuay);
+    world_->add_ground(0.0, scene::kSurfaceQuay);
   }
   for (const StaticBlock& b : scenario.blocks) {
     core::Pose p;
     p.position = b.position_m;
-    world_->add_static_box(b.half_extents_m, p, kSurfaceQuay);
+    world_->add_static_box(b.half_extents_m, p, scene::kSurfaceQuay);
   }
   for (const ContainerPlacement& c : scenario.containers) {
     physics::BoxSettings box;
@@ -73,7 +73,8 @@ Simulation::Simulation(const ScenarioSettings& scenario)
     box.mass_kg = c.gross_mass_kg;
     box.pose = c.pose;
     box.center_of_mass_m = c.center_of_mass_m;
-    box.surface = c.kind == ContainerPlacement::Kind::kHatchCover ? kSurfaceHatchCover : kSurfaceContainer;
+    box.surface = c.kind == ContainerPlacement::Kind::kHatchCover ? scene::kSurfaceHatchCover
+                                                                  : scene::kSurfaceContainer;
     box.kinematic = true;
     containers_.push_back({world_->add_box(box), c.half_extents_m, c.pocket_half_length_m,
                            c.pocket_half_width_m, c.end_pocket_half_length_m});
@@ -101,7 +102,7 @@ Simulation::Simulation(const ScenarioSettings& scenario)
   events_.twistlocks.reserve(64);
   events_.ropes.reserve(256);
   cab_velocity_ = world_->point_velocity(machine_->cab_body(), machine_->eye_on_cab_body_m());
-  SceneDescription described;
+  scene::SceneDescription described;
   machine_->describe(described);
   roped_ = described.rope_count > 0;
 }
@@ -308,12 +309,12 @@ void Simulation::command(const InstructorCommand& c) {
   }
 }
 
-bool Simulation::levers_at_zero(const Controls& controls) const {
-  const Controls read = control_table().in_range(controls);
+bool Simulation::levers_at_zero(const scene::Controls& controls) const {
+  const scene::Controls read = control_table().in_range(controls);
   for (int slot = 0; slot < control_table().size(); ++slot) {
-    const ControlSpec& c = control_table()[slot];
-    if (c.kind == ControlKind::kAxis && std::abs(read.value[static_cast<std::size_t>(slot)] - c.neutral) >
-                                            kLeverZeroBand * (c.max - c.min) / 2)
+    const scene::ControlSpec& c = control_table()[slot];
+    if (c.kind == scene::ControlKind::kAxis && std::abs(read.value[static_cast<std::size_t>(slot)] -
+                                                        c.neutral) > kLeverZeroBand * (c.max - c.min) / 2)
       return false;
   }
   return true;
@@ -389,7 +390,7 @@ void Simulation::release(std::size_t item) {
   }
 }
 
-void Simulation::advance(const Controls& controls) {
+void Simulation::advance(const scene::Controls& controls) {
   if (world_->diverged()) return;  // stopped where it diverged
   // scripted events, weather and wind, the machine (drives, ropes, twistlocks) pushing on the bodies, then
   // the multibody step
@@ -407,7 +408,7 @@ void Simulation::advance(const Controls& controls) {
   if (instructor_stop_ || power_off_ || awaiting_zero_) {
     // the trainee's controls are recorded and evaluated as they were; the machine reads its stop pressed (a
     // dead supply acts as the stop does: drives off, brakes set)
-    Controls stopped = controls;
+    scene::Controls stopped = controls;
     stopped.value[static_cast<std::size_t>(control_table().find(kEmergencyStopControl))] = 1.0;
     machine_->step(stopped, containers_, kStep_s);
   } else {
@@ -430,8 +431,8 @@ void Simulation::advance(const Controls& controls) {
   world_->drain_impacts(events_.impacts);
   machine_->drain_events(events_);
   for (const physics::ImpactEvent& impact : events_.impacts)
-    knocks_[static_cast<std::size_t>(knocks_total_++ % kMaxKnocks)] = {clock_.steps(), impact.impulse_ns,
-                                                                       impact.normal_speed_mps, impact.point};
+    knocks_[static_cast<std::size_t>(knocks_total_++ % scene::kMaxKnocks)] = {
+        clock_.steps(), impact.impulse_ns, impact.normal_speed_mps, impact.point};
   update_cab_cues();
   if (!std::isfinite(machine_->attachment_bottom_z_m())) warnings_.raise(core::Warning::kNonFinite);
   for (int n = world_->take_solver_messages(); n > 0; --n)
@@ -479,11 +480,11 @@ void Simulation::update_cab_cues() {
   cab_velocity_ = v;
 }
 
-void Simulation::step(const Controls& controls) {
+void Simulation::step(const scene::Controls& controls) {
   if (!held_) advance(controls);
 }
 
-void Simulation::single_step(const Controls& controls) {
+void Simulation::single_step(const scene::Controls& controls) {
   advance(controls);
 }
 
@@ -497,8 +498,8 @@ void describe_telemetry(const Telemetry& t, bool roped, std::vector<std::string>
 }
 }  // namespace
 
-SceneDescription Simulation::scene() const {
-  SceneDescription d;
+scene::SceneDescription Simulation::scene() const {
+  scene::SceneDescription d;
   machine_->describe(d);
   d.machine_entities = static_cast<int>(d.entities.size());
   describe_telemetry(machine_->telemetry(), roped_, d.indicators);
@@ -520,13 +521,13 @@ SceneDescription Simulation::scene() const {
                           c.kind == ContainerPlacement::Kind::kHatchCover ? "hatch_cover"
                           : c.kind == ContainerPlacement::Kind::kGeneralCargo
                               ? "cargo"
-                              : container_look(2.0 * c.half_extents_m.x),
+                              : scene::container_look(2.0 * c.half_extents_m.x),
                           c.half_extents_m});
   return d;
 }
 
-void Simulation::write_snapshot(Snapshot& s) const {
-  s.version = kSnapshotVersion;
+void Simulation::write_snapshot(scene::Snapshot& s) const {
+  s.version = scene::kSnapshotVersion;
   s.step = clock_.steps();
   s.time_s = clock_.time_s();
   s.held = held_;
@@ -548,7 +549,7 @@ void Simulation::write_snapshot(Snapshot& s) const {
     s.sea.water_level_m = placement.keel_midship_m.z + placement.vessel.draught_m;
     s.sea.reference_m = placement.keel_midship_m + core::Vec3{0.0, 0.0, placement.vessel.draught_m};
     for (const Harmonic& h : placement.sea.heave_m) {
-      if (s.sea.swell_count == kMaxSwells) break;
+      if (s.sea.swell_count == scene::kMaxSwells) break;
       s.sea.swells[static_cast<std::size_t>(s.sea.swell_count++)] = {h.amplitude, h.period_s, h.phase_rad,
                                                                      std::numbers::pi};
     }
@@ -571,7 +572,7 @@ void Simulation::write_snapshot(Snapshot& s) const {
   // the telemetry, in the order scene() names it
   const Telemetry telemetry = machine_->telemetry();
   const auto indicator = [&](double value) {
-    if (s.indicator_count < kMaxIndicators)
+    if (s.indicator_count < scene::kMaxIndicators)
       s.indicators[static_cast<std::size_t>(s.indicator_count++)] = value;
   };
   if (roped_) {
@@ -581,7 +582,7 @@ void Simulation::write_snapshot(Snapshot& s) const {
   for (const AxisSpeed& axis : telemetry.axes)
     if (axis.name) indicator(axis.speed_mps);
   const auto entity = [&](core::Pose pose, std::uint32_t flags) {
-    if (n >= kMaxEntities) return;
+    if (n >= scene::kMaxEntities) return;
     s.entities[static_cast<std::size_t>(n)] = {static_cast<std::uint32_t>(n), flags, pose};
     ++n;
   };
@@ -601,7 +602,7 @@ void Simulation::write_snapshot(Snapshot& s) const {
     entity({core::Mat3::identity(), b.position_m}, 0);
   if (trucks_ && trucks_->team()) {
     for (int k = 0; k < scenario_.trucks.trucks; ++k)  // drawn by their own stations
-      entity(trucks_->truck_pose(k), Snapshot::kHidden);
+      entity(trucks_->truck_pose(k), scene::Snapshot::kHidden);
   } else if (trucks_) {
     for (int k = 0; k < scenario_.trucks.trucks; ++k)
       entity({core::Mat3::identity(),
@@ -614,17 +615,17 @@ void Simulation::write_snapshot(Snapshot& s) const {
     if (!trucks_ || !trucks_->team()) return 0;
     for (int k = 0; k < trucks_->trucks(); ++k)
       if (trucks_->seated_box(k) == static_cast<int>(box))
-        return trucks_->is_taken_over(k) ? Snapshot::kHidden : Snapshot::kOnTeamTruck;
+        return trucks_->is_taken_over(k) ? scene::Snapshot::kHidden : scene::Snapshot::kOnTeamTruck;
     return 0;
   };
   for (std::size_t c = 0; c < containers_.size(); ++c)
     entity(world_->pose(containers_[c].body),
-           held == containers_[c].body ? Snapshot::kLocked : on_team_truck(c));
+           held == containers_[c].body ? scene::Snapshot::kLocked : on_team_truck(c));
   s.entity_count = n;
 }
 
-std::unique_ptr<Snapshot> Simulation::snapshot() const {
-  auto s = std::make_unique<Snapshot>();
+std::unique_ptr<scene::Snapshot> Simulation::snapshot() const {
+  auto s = std::make_unique<scene::Snapshot>();
   write_snapshot(*s);
   return s;
 }

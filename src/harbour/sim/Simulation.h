@@ -16,9 +16,9 @@
 #include "harbour/machines/MachineSetup.h"
 #include "harbour/machines/sts/StsCrane.h"  // the scenario's default machine
 #include "harbour/physics/PhysicsWorld.h"
-#include "harbour/sim/Controls.h"
+#include "harbour/scene/Controls.h"
+#include "harbour/scene/Snapshot.h"
 #include "harbour/sim/RoRoRamp.h"
-#include "harbour/sim/Snapshot.h"
 #include "harbour/sim/TeamInput.h"
 #include "harbour/sim/Trucks.h"
 #include "harbour/sim/Vessel.h"
@@ -164,12 +164,12 @@ class Simulation {
 
   /// One physics step with these controls (read through the machine's control table); does nothing while
   /// held. Never throws; allocates nothing once warmed up.
-  void step(const Controls& controls);
+  void step(const scene::Controls& controls);
   void hold() { held_ = true; }
   void resume() { held_ = false; }
   bool held() const { return held_; }
   /// One step even while held (the instructor steps a frozen exercise).
-  void single_step(const Controls& controls);
+  void single_step(const scene::Controls& controls);
   /// Why `command` would be refused ("" when it would not): values out of range, or a fault of a part this
   /// machine lacks. Reads only what a machine has, not its state (any thread).
   std::string why_refused(const InstructorCommand& command) const;
@@ -197,13 +197,13 @@ class Simulation {
   std::int64_t steps() const { return clock_.steps(); }
   double time_s() const { return clock_.time_s(); }
   /// The machine's controls, by label.
-  const ControlTable& control_table() const { return machine_->control_table(); }
+  const scene::ControlTable& control_table() const { return machine_->control_table(); }
   /// What is in the scene (fixed for this simulation): entities and indicator names, by snapshot index.
-  SceneDescription scene() const;
+  scene::SceneDescription scene() const;
   /// Writes the published state into `out` without allocating.
-  void write_snapshot(Snapshot& out) const;
+  void write_snapshot(scene::Snapshot& out) const;
   /// The published state (allocated: tests and tools; a station writes into its buffers).
-  std::unique_ptr<Snapshot> snapshot() const;
+  std::unique_ptr<scene::Snapshot> snapshot() const;
   /// Hash of the whole dynamic state: bodies, ropes, drives, twistlocks, clock.
   std::uint64_t state_hash() const;
   /// The whole dynamic state as bytes (a keyframe). Restoring it into a Simulation built from the same
@@ -255,7 +255,7 @@ class Simulation {
   const ScenarioSettings& scenario() const { return scenario_; }
 
  private:
-  void advance(const Controls& controls);
+  void advance(const scene::Controls& controls);
   void update_cab_cues();
   void move_secured_cargo();
   void apply_due_events();
@@ -290,11 +290,11 @@ class Simulation {
   bool roped_ = false;            // the machine hangs its load on ropes (it publishes their telemetry)
   bool awaiting_zero_ = false;    // restored, but no lever has been at zero since
   bool emergency_stop_ = false;   // the machine's stop was in force at the last step (published, not state)
-  bool levers_at_zero(const Controls& controls) const;
+  bool levers_at_zero(const scene::Controls& controls) const;
   core::Warnings warnings_;
   StepEvents events_;
   // the latest impacts as the snapshot publishes them (output, not state)
-  std::array<Snapshot::Knock, kMaxKnocks> knocks_{};
+  std::array<scene::Snapshot::Knock, scene::kMaxKnocks> knocks_{};
   std::int64_t knocks_total_ = 0;
   core::Vec3 cab_velocity_, cab_specific_force_{0.0, 0.0, core::kStandardGravity};  // world
 };

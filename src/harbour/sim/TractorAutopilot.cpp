@@ -71,7 +71,7 @@ const char* TractorAutopilot::activity() const {
   return "";
 }
 
-void TractorAutopilot::resume(const Simulation& simulation, int moves_done, const Controls& levers) {
+void TractorAutopilot::resume(const Simulation& simulation, int moves_done, const scene::Controls& levers) {
   phase_ = moves_done >= 1 ? Phase::kDone : Phase::kDrive;
   to_load_stop_ = exercise_.load_stop && !simulation.machine().load();
   phase_start_s_ = simulation.time_s();
@@ -160,10 +160,10 @@ double TractorAutopilot::reversing_steer(const Simulation& simulation, const Ter
   return defects_.reverse_steering_wrong ? -steer : steer;
 }
 
-Controls TractorAutopilot::decide(const Simulation& simulation, const TerminalTractor& tractor) {
+scene::Controls TractorAutopilot::decide(const Simulation& simulation, const TerminalTractor& tractor) {
   if (!planned_) plan(simulation, tractor), speed_integral_ = 0.0;
-  const ControlTable& table = simulation.control_table();
-  Controls c = table.neutral();
+  const scene::ControlTable& table = simulation.control_table();
+  scene::Controls c = table.neutral();
   const auto set = [&](const char* label, double value) {
     c.value[static_cast<std::size_t>(table.find(label))] = value;
   };

@@ -28,7 +28,7 @@ class TractorAutopilot final : public DecidingPilot<TerminalTractor> {
   /// What it is doing now: drive, stop, drop, done.
   const char* activity() const override;
   /// Takes over a running exercise: plans its path again from where the tractor stands.
-  void resume(const Simulation& simulation, int moves_done, const Controls& levers) override;
+  void resume(const Simulation& simulation, int moves_done, const scene::Controls& levers) override;
 
  private:
   enum class Phase { kDrive, kStop, kWaitForLoad, kDrop, kDone };
@@ -39,7 +39,7 @@ class TractorAutopilot final : public DecidingPilot<TerminalTractor> {
     double heading_rad = 0.0;
   };
   Leg leg() const;
-  Controls decide(const Simulation& simulation, const TerminalTractor& tractor) override;
+  scene::Controls decide(const Simulation& simulation, const TerminalTractor& tractor) override;
   void plan(const Simulation& simulation, const TerminalTractor& tractor);
   /// How far the trailer's centre still is from its target along the goal's heading [m].
   double remaining_m(const Simulation& simulation, const TerminalTractor& tractor) const;

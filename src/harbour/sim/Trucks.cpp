@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "harbour/sim/Vessel.h"
+#include "harbour/scene/Surface.h"
 
 namespace harbour::sim {
 namespace {
@@ -23,7 +23,7 @@ TruckLane::TruckLane(physics::PhysicsWorld& world, const TruckLaneSettings& sett
       pose.position = {settings.lane_x_m, settings.stop_y_m - 1000.0 - 30.0 * k, settings.chassis_top_m};
       t.body = world.add_kinematic_body(pose);
       world.add_box_shape(t.body, {kChassisHalfLength_m, kChassisHalfWidth_m, kChassisDepth_m / 2},
-                          {core::Mat3::identity(), {0, 0, -kChassisDepth_m / 2}}, kSurfaceTruck);
+                          {core::Mat3::identity(), {0, 0, -kChassisDepth_m / 2}}, scene::kSurfaceTruck);
       trucks_.push_back(t);
     }
     team_.resize(trucks_.size());
@@ -39,12 +39,12 @@ TruckLane::TruckLane(physics::PhysicsWorld& world, const TruckLaneSettings& sett
     t.body = world.add_kinematic_body(pose);
     // chassis below the container floor, the tractor's cab ahead of it
     world.add_box_shape(t.body, {kChassisHalfWidth_m, kChassisHalfLength_m, kChassisDepth_m / 2},
-                        {core::Mat3::identity(), {0, 0, -kChassisDepth_m / 2}}, kSurfaceTruck);
+                        {core::Mat3::identity(), {0, 0, -kChassisDepth_m / 2}}, scene::kSurfaceTruck);
     const double cab_floor = 0.5 - settings.chassis_top_m;
     world.add_box_shape(t.body, {kChassisHalfWidth_m, kCabLength_m / 2, kCabHeight_m / 2},
                         {core::Mat3::identity(),
                          {0, kChassisHalfLength_m + 0.5 + kCabLength_m / 2, cab_floor + kCabHeight_m / 2}},
-                        kSurfaceTruck);
+                        scene::kSurfaceTruck);
     trucks_.push_back(t);
   }
 }

@@ -32,33 +32,6 @@ core::Pose box_between(const core::Vec3& lo, const core::Vec3& hi, core::Vec3& h
 
 }  // namespace
 
-const char* surface_name(int surface) {
-  switch (surface) {
-    case kSurfaceGround:
-      return "ground";
-    case kSurfaceQuay:
-      return "quay";
-    case kSurfaceContainer:
-      return "container";
-    case kSurfaceSpreader:
-      return "spreader";
-    case kSurfaceHull:
-      return "ship";
-    case kSurfaceCellGuide:
-      return "cell guide";
-    case kSurfaceHatchCover:
-      return "hatch cover";
-    case kSurfaceTruck:
-      return "truck";
-    case kSurfaceFlipper:
-      return "flipper";
-    case kSurfaceVehicle:
-      return "vehicle";
-    default:
-      return "unknown";
-  }
-}
-
 core::Pose VesselGeometry::pose_at(double t) const {
   const double heave = sum(p_.sea.heave_m, t, nullptr);
   const double roll = sum(p_.sea.roll_rad, t, nullptr), pitch = sum(p_.sea.pitch_rad, t, nullptr);
@@ -196,7 +169,7 @@ Vessel::Vessel(physics::PhysicsWorld& world, const VesselPlacement& placement)
     core::Pose local = box_between(lo, hi, half);
     local.position = local.position - origin();
     world.add_box_shape(body_, half, local, surface);
-    if (surface == kSurfaceCellGuide) ++cell_guide_shapes_;
+    if (surface == scene::kSurfaceCellGuide) ++cell_guide_shapes_;
   };
   const double half_beam = v.beam_m / 2, half_length = v.length_m / 2;
   const std::vector<VesselGeometry::Opening> openings = geometry_.hatch_openings();
@@ -204,13 +177,13 @@ Vessel::Vessel(physics::PhysicsWorld& world, const VesselPlacement& placement)
   const double top = geometry_.coaming_top_m(), deck = v.depth_m;
 
   // double bottom, side shells and the deck outboard of the hatch coamings
-  add({-half_beam, -half_length, 0}, {half_beam, half_length, v.tank_top_m}, kSurfaceHull);
+  add({-half_beam, -half_length, 0}, {half_beam, half_length, v.tank_top_m}, scene::kSurfaceHull);
   for (double side : {-1.0, 1.0}) {
     add({side > 0 ? half_beam - kShellPlate_m : -half_beam, -half_length, v.tank_top_m},
-        {side > 0 ? half_beam : -half_beam + kShellPlate_m, half_length, deck}, kSurfaceHull);
+        {side > 0 ? half_beam : -half_beam + kShellPlate_m, half_length, deck}, scene::kSurfaceHull);
     const double inner = half_opening + kCoamingWall_m;
     add({side > 0 ? inner : -half_beam + kShellPlate_m, -half_length, deck - kDeckPlate_m},
-        {side > 0 ? half_beam - kShellPlate_m : -inner, half_length, deck}, kSurfaceHull);
+        {side > 0 ? half_beam - kShellPlate_m : -inner, half_length, deck}, scene::kSurfaceHull);
   }
   // cross decks fore and aft of every hatch, from the vessel's ends between the hatches
   double aft_end = -half_length;
@@ -218,12 +191,12 @@ Vessel::Vessel(physics::PhysicsWorld& world, const VesselPlacement& placement)
     const double aft = o.centre_m - o.half_length_m - kCoamingWall_m;
     if (aft > aft_end)
       add({-half_opening - kCoamingWall_m, aft_end, v.tank_top_m}, {half_opening + kCoamingWall_m, aft, deck},
-          kSurfaceHull);
+          scene::kSurfaceHull);
     aft_end = o.centre_m + o.half_length_m + kCoamingWall_m;
   }
   if (aft_end < half_length)
     add({-half_opening - kCoamingWall_m, aft_end, v.tank_top_m},
-        {half_opening + kCoamingWall_m, half_length, deck}, kSurfaceHull);
+        {half_opening + kCoamingWall_m, half_length, deck}, scene::kSurfaceHull);
 
   const double c = v.cell_clearance_m, t = v.cell_guide_thickness_m, leg = v.cell_guide_leg_m;
   for (const VesselGeometry::Opening& o : openings) {
@@ -233,20 +206,21 @@ Vessel::Vessel(physics::PhysicsWorld& world, const VesselPlacement& placement)
       add({s > 0 ? half_opening : -half_opening - kCoamingWall_m, y0 - hl - kCoamingWall_m,
            deck - kDeckPlate_m},
           {s > 0 ? half_opening + kCoamingWall_m : -half_opening, y0 + hl + kCoamingWall_m, top},
-          kSurfaceHull);
+          scene::kSurfaceHull);
       add({-half_opening, s > 0 ? y0 + hl : y0 - hl - kCoamingWall_m, deck - kDeckPlate_m},
-          {half_opening, s > 0 ? y0 + hl + kCoamingWall_m : y0 - hl, top}, kSurfaceHull);
+          {half_opening, s > 0 ? y0 + hl + kCoamingWall_m : y0 - hl, top}, scene::kSurfaceHull);
     }
     if (v.kind == VesselKind::kBulk) {
       const auto hold =
           std::find_if(v.holds.begin(), v.holds.end(), [&](const auto& h) { return h.centre_m == y0; });
       if (hold != v.holds.end() && !hold->open)
         add({-half_opening - kCoamingWall_m, y0 - hl - kCoamingWall_m, top},
-            {half_opening + kCoamingWall_m, y0 + hl + kCoamingWall_m, top + kHatchLid_m}, kSurfaceHatchCover);
+            {half_opening + kCoamingWall_m, y0 + hl + kCoamingWall_m, top + kHatchLid_m},
+            scene::kSurfaceHatchCover);
       continue;
     }
     if (v.hatch_panels == 2)
-      add({-kHatchGirder_m, y0 - hl, top - 0.5}, {kHatchGirder_m, y0 + hl, top}, kSurfaceHull);
+      add({-kHatchGirder_m, y0 - hl, top - 0.5}, {kHatchGirder_m, y0 + hl, top}, scene::kSurfaceHull);
     // cell guides: an angle bar at each corner of every cell, from the tank top to just under the hatch
     // covers (they do not carry them)
     const double guide_top = top - 0.05;
@@ -262,10 +236,10 @@ Vessel::Vessel(physics::PhysicsWorld& world, const VesselPlacement& placement)
           // leg across the container's end face stops it along the vessel; leg along its side stops it across
           const auto [ax0, ax1] = span(x0, sx, hw + c, hw + c + t);
           const auto [ay0, ay1] = span(y0, sy, kIsoHalfLength40_m + c + t - leg, kIsoHalfLength40_m + c + t);
-          add({ax0, ay0, v.tank_top_m}, {ax1, ay1, guide_top}, kSurfaceCellGuide);
+          add({ax0, ay0, v.tank_top_m}, {ax1, ay1, guide_top}, scene::kSurfaceCellGuide);
           const auto [bx0, bx1] = span(x0, sx, hw + c + t - leg, hw + c + t);
           const auto [by0, by1] = span(y0, sy, kIsoHalfLength40_m + c, kIsoHalfLength40_m + c + t);
-          add({bx0, by0, v.tank_top_m}, {bx1, by1, guide_top}, kSurfaceCellGuide);
+          add({bx0, by0, v.tank_top_m}, {bx1, by1, guide_top}, scene::kSurfaceCellGuide);
         }
       }
     }

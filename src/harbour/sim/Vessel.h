@@ -7,23 +7,9 @@
 
 #include "harbour/core/Vec3.h"
 #include "harbour/physics/PhysicsWorld.h"
+#include "harbour/scene/Surface.h"
 
 namespace harbour::sim {
-
-/// Surface tags of the world's shapes: impacts report them, evaluation sorts collisions by them.
-enum Surface : int {
-  kSurfaceGround = 0,
-  kSurfaceQuay,
-  kSurfaceContainer,
-  kSurfaceSpreader,
-  kSurfaceHull,
-  kSurfaceCellGuide,
-  kSurfaceHatchCover,
-  kSurfaceTruck,
-  kSurfaceFlipper,
-  kSurfaceVehicle,  ///< a wheeled machine's chassis or trailer
-};
-const char* surface_name(int surface);
 
 /// One harmonic of the moored vessel's response: amplitude * sin(2 pi t / period + phase).
 struct Harmonic {

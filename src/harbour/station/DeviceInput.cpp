@@ -63,7 +63,7 @@ void quit_sdl_joysticks() {
   SDL_QuitSubSystem(SDL_INIT_GAMECONTROLLER);  // and its joysticks
 }
 
-DeviceInput::DeviceInput(const sim::ControlTable& table, DeviceMapping mapping)
+DeviceInput::DeviceInput(const scene::ControlTable& table, DeviceMapping mapping)
     : mapper_(table, std::move(mapping)) {
   init_sdl_joysticks();
   for (const ControllerMapping& m : mapper_.mapping().controller_mappings)
@@ -142,7 +142,7 @@ bool DeviceInput::all_present(const DeviceMapping& mapping, bool keyboard) {
   return true;
 }
 
-sim::Controls DeviceInput::sample() {
+scene::Controls DeviceInput::sample() {
   const std::unique_lock lock(mutex_, std::try_to_lock);
   if (!lock.owns_lock()) return last_;  // maintain() is binding a device: the previous sample, one step old
   SDL_JoystickUpdate();

@@ -53,13 +53,13 @@ class DeviceInput {
  public:
   /// Initialises SDL's joystick subsystem and gives it the mapping's controller mappings (throws naming SDL's
   /// error and the mapping's line).
-  DeviceInput(const sim::ControlTable& table, DeviceMapping mapping);
+  DeviceInput(const scene::ControlTable& table, DeviceMapping mapping);
   ~DeviceInput();
   DeviceInput(const DeviceInput&) = delete;
   DeviceInput& operator=(const DeviceInput&) = delete;
 
   /// Reads the bound devices and maps them (any thread; one at a time).
-  sim::Controls sample();
+  scene::Controls sample();
   /// A key went down (SDL's scancode, from the window's events): the next sample reads it pressed even if it
   /// is up again by then. SDL's keyboard state changes only as the window's thread pumps its events, so a tap
   /// whose press and release come in one pump would otherwise never be seen (a toggle's press lost).
@@ -103,7 +103,7 @@ class DeviceInput {
   std::vector<bool> keyboard_;
   std::mutex keys_mutex_;             // key_went_down() from the window's thread
   std::vector<bool> keys_went_down_;  // by scancode, since the last sample
-  sim::Controls last_;
+  scene::Controls last_;
   std::mutex events_mutex_;
   std::vector<DeviceEvent> events_;
 };

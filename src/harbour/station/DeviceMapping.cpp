@@ -40,11 +40,11 @@ std::string why_unfit(const DeviceMapping& mapping, int device, int axes, int bu
   return {};
 }
 
-ControlMapper::ControlMapper(const sim::ControlTable& table, DeviceMapping mapping)
+ControlMapper::ControlMapper(const scene::ControlTable& table, DeviceMapping mapping)
     : table_(table), mapping_(std::move(mapping)) {
   was_pressed_.assign(mapping_.bindings.size(), false);
   held_since_s_.assign(mapping_.bindings.size(), std::numeric_limits<double>::quiet_NaN());
-  toggled_.assign(static_cast<std::size_t>(sim::kMaxControls), 0.0);
+  toggled_.assign(static_cast<std::size_t>(scene::kMaxControls), 0.0);
   for (int slot = 0; slot < table_.size(); ++slot)
     toggled_[static_cast<std::size_t>(slot)] = table_[slot].neutral;
 }
@@ -57,18 +57,18 @@ std::vector<std::string> ControlMapper::controls_of(int device) const {
   return labels;
 }
 
-sim::Controls ControlMapper::map(const std::vector<DeviceState>& devices, const std::vector<bool>& keyboard,
-                                 double now_s) {
-  sim::Controls c = table_.neutral();
-  std::array<bool, sim::kMaxControls> lost{};
-  std::array<double, sim::kMaxControls> deflection{};  // the strongest contribution to each axis so far
+scene::Controls ControlMapper::map(const std::vector<DeviceState>& devices, const std::vector<bool>& keyboard,
+                                   double now_s) {
+  scene::Controls c = table_.neutral();
+  std::array<bool, scene::kMaxControls> lost{};
+  std::array<double, scene::kMaxControls> deflection{};  // the strongest contribution to each axis so far
   const auto key = [&](int code) {
     return code >= 0 && static_cast<std::size_t>(code) < keyboard.size() && keyboard[code];
   };
   for (std::size_t i = 0; i < mapping_.bindings.size(); ++i) {
     const Binding& b = mapping_.bindings[i];
     const auto slot = static_cast<std::size_t>(b.slot);
-    const sim::ControlSpec& spec = table_[b.slot];
+    const scene::ControlSpec& spec = table_[b.slot];
     const DeviceMatch& match = mapping_.devices[static_cast<std::size_t>(b.device)];
     const DeviceState* state = nullptr;
     if (!match.keyboard) {  // a joystick, or the mouse (a state the input fills while there is a window)
@@ -113,7 +113,7 @@ sim::Controls ControlMapper::map(const std::vector<DeviceState>& devices, const 
     if (b.hold_s > 0.0 && b.source != Binding::Source::kAxis && !(now_s - held_since_s_[i] >= b.hold_s))
       pressed = false;
     switch (spec.kind) {
-      case sim::ControlKind::kAxis: {
+      case scene::ControlKind::kAxis: {
         double v = spec.neutral;
         if (b.source == Binding::Source::kAxis)
           v = b.calibration.centered ? spec.min + (axis + 1.0) / 2.0 * (spec.max - spec.min)
@@ -128,10 +128,10 @@ sim::Controls ControlMapper::map(const std::vector<DeviceState>& devices, const 
         }
         break;
       }
-      case sim::ControlKind::kButton:
+      case scene::ControlKind::kButton:
         if (pressed) c.value[slot] = 1.0;
         break;
-      case sim::ControlKind::kSwitch: {
+      case scene::ControlKind::kSwitch: {
         const double last = static_cast<double>(spec.positions.size()) - 1.0;
         if (b.source == Binding::Source::kAxis && !b.detents.empty()) {
           std::size_t nearest = 0;

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "harbour/sim/Controls.h"
+#include "harbour/scene/Controls.h"
 
 namespace harbour::station {
 
@@ -95,20 +95,20 @@ double shape_axis(const Binding& binding, double raw);
 /// that is not connected reads its safe value; the rest read neutral when untouched.
 class ControlMapper {
  public:
-  ControlMapper(const sim::ControlTable& table, DeviceMapping mapping);
+  ControlMapper(const scene::ControlTable& table, DeviceMapping mapping);
 
   /// The controls for these device states (one per mapping device, in its order). `keyboard` holds the
   /// pressed scancodes' flags (SDL_NUM_SCANCODES entries, or empty when there is no keyboard).
   /// `now_s`: a steady clock's reading [s] (a binding's hold_s is timed by it).
-  sim::Controls map(const std::vector<DeviceState>& devices, const std::vector<bool>& keyboard = {},
-                    double now_s = 0.0);
+  scene::Controls map(const std::vector<DeviceState>& devices, const std::vector<bool>& keyboard = {},
+                      double now_s = 0.0);
   const DeviceMapping& mapping() const { return mapping_; }
-  const sim::ControlTable& table() const { return table_; }
+  const scene::ControlTable& table() const { return table_; }
   /// Labels of the controls bound to mapping device `device`.
   std::vector<std::string> controls_of(int device) const;
 
  private:
-  sim::ControlTable table_;
+  scene::ControlTable table_;
   DeviceMapping mapping_;
   std::vector<bool> was_pressed_;     // per binding: a toggle's previous button state
   std::vector<double> held_since_s_;  // per binding: since when it has been held (NaN: it is not)

@@ -139,7 +139,7 @@ std::string pad_input_words(const Binding& b) {
 
 }  // namespace
 
-DeviceMapping load_device_mapping(const io::YamlFile& f, const sim::ControlTable& table) {
+DeviceMapping load_device_mapping(const io::YamlFile& f, const scene::ControlTable& table) {
   DeviceMapping m;
   m.file = f.name();
   const YAML::Node root = f.required_map(f.root(), "mapping", "");
@@ -183,12 +183,12 @@ DeviceMapping load_device_mapping(const io::YamlFile& f, const sim::ControlTable
     b.slot = table.find(b.control);
     if (b.slot < 0) {
       std::string known;
-      for (const sim::ControlSpec& c : table.controls())
+      for (const scene::ControlSpec& c : table.controls())
         known += (known.empty() ? "" : ", ") + c.label;
       f.fail(e["control"], at + ".control",
              "the machine has no control '" + b.control + "' (it has: " + known + ")");
     }
-    const sim::ControlSpec& spec = table[b.slot];
+    const scene::ControlSpec& spec = table[b.slot];
     const std::string device = f.text(e, "device", at);
     const auto d = std::find_if(m.devices.begin(), m.devices.end(),
                                 [&](const DeviceMatch& x) { return x.id == device; });
@@ -242,10 +242,10 @@ DeviceMapping load_device_mapping(const io::YamlFile& f, const sim::ControlTable
       f.fail(e["hold_s"], at + ".hold_s", "a button, hat or key is held for hold_s; an axis reads at once");
     if (f.optional(e, "detents", at)) {
       const YAML::Node list = f.sequence(e, "detents", at, 16);
-      if (spec.kind != sim::ControlKind::kSwitch || !axis)
+      if (spec.kind != scene::ControlKind::kSwitch || !axis)
         f.fail(list, at + ".detents",
                "detents turn an axis into a switch's positions; '" + b.control + "' is a " +
-                   sim::to_string(spec.kind));
+                   scene::to_string(spec.kind));
       if (list.size() != spec.positions.size())
         f.fail(
             list, at + ".detents",
@@ -255,9 +255,9 @@ DeviceMapping load_device_mapping(const io::YamlFile& f, const sim::ControlTable
         if (k > 0 && b.detents[k] <= b.detents[k - 1]) f.fail(list[k], at + ".detents", "detents must rise");
       }
     }
-    if (b.toggle && (spec.kind != sim::ControlKind::kSwitch || axis))
+    if (b.toggle && (spec.kind != scene::ControlKind::kSwitch || axis))
       f.fail(e["toggle"], at + ".toggle", "toggle makes a button step a switch's positions");
-    if (spec.kind == sim::ControlKind::kSwitch && axis && b.detents.empty())
+    if (spec.kind == scene::ControlKind::kSwitch && axis && b.detents.empty())
       f.fail(e, at, "an axis on switch '" + b.control + "' needs detents (one per position)");
     m.bindings.push_back(b);
   }
@@ -349,13 +349,13 @@ std::string why_bad_controller_mapping(const std::string& line) {
   return {};
 }
 
-DeviceMapping load_device_mapping(const std::string& path, const sim::ControlTable& table) {
+DeviceMapping load_device_mapping(const std::string& path, const scene::ControlTable& table) {
   return load_device_mapping(io::YamlFile::load(path), table);
 }
 
-std::string key_list(const DeviceMapping& m, const sim::ControlTable& table) {
+std::string key_list(const DeviceMapping& m, const scene::ControlTable& table) {
   std::string out = m.name + "\n";
-  for (const sim::ControlSpec& spec : table.controls()) {
+  for (const scene::ControlSpec& spec : table.controls()) {
     std::string how;
     for (const Binding& b : m.bindings) {
       if (b.control != spec.label) continue;
@@ -477,7 +477,7 @@ std::string device_mapping_text(const DeviceMapping& m) {
   return out.str();
 }
 
-std::string why_mapping_does_not_fit(const std::string& path, const sim::ControlTable& table) {
+std::string why_mapping_does_not_fit(const std::string& path, const scene::ControlTable& table) {
   try {
     const io::YamlFile f = io::YamlFile::load(path);
     const YAML::Node bindings = f.root()["mapping"]["bindings"];

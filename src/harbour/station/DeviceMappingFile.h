@@ -9,11 +9,11 @@ namespace harbour::station {
 
 /// Reads a device mapping file (data/devices/*.yaml) against a machine's control table: every binding's
 /// control must be one of its labels and fit its kind. Errors (io::DataError) name file, line and field.
-DeviceMapping load_device_mapping(const io::YamlFile& file, const sim::ControlTable& table);
-DeviceMapping load_device_mapping(const std::string& path, const sim::ControlTable& table);
+DeviceMapping load_device_mapping(const io::YamlFile& file, const scene::ControlTable& table);
+DeviceMapping load_device_mapping(const std::string& path, const scene::ControlTable& table);
 /// Why the mapping at `path` is for another machine: the first control it binds that `table` lacks ("" when
 /// it binds only the machine's controls, or when the file is broken: load_device_mapping says how).
-std::string why_mapping_does_not_fit(const std::string& path, const sim::ControlTable& table);
+std::string why_mapping_does_not_fit(const std::string& path, const scene::ControlTable& table);
 
 /// Why `line` is not one line of SDL's game controller mapping format ("GUID,name,a:b0,leftx:a0,...", as
 /// in gamecontrollerdb.txt), naming the field; "" when it is.
@@ -25,6 +25,6 @@ bool for_this_platform(const std::string& line);
 std::string device_mapping_text(const DeviceMapping& mapping);
 /// What each control of the machine is worked by in `mapping`, a line each, for the trainee (the F1 list):
 /// "hoist (hoist, + raises): W / S", "emergency_stop (...): Space held 0.5 s"; the station's own keys last.
-std::string key_list(const DeviceMapping& mapping, const sim::ControlTable& table);
+std::string key_list(const DeviceMapping& mapping, const scene::ControlTable& table);
 
 }  // namespace harbour::station

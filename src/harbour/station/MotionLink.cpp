@@ -15,12 +15,12 @@ motion::MotionSettings settings_of(const io::PlatformFile& platform, const motio
 }
 }  // namespace
 
-ShortCueSource::ShortCueSource(const sim::SceneDescription& scene) {
+ShortCueSource::ShortCueSource(const scene::SceneDescription& scene) {
   for (std::size_t k = 0; k < scene.drives.size(); ++k)
     if (scene.drives[k] == "engine") engine_ = static_cast<int>(k);
 }
 
-motion::ShortCueInputs ShortCueSource::next(const sim::Snapshot& s) {
+motion::ShortCueInputs ShortCueSource::next(const scene::Snapshot& s) {
   motion::ShortCueInputs in;
   if (engine_ >= 0 && engine_ < s.drive_count && !s.power_off) {
     in.engine_speed = s.drives[static_cast<std::size_t>(engine_)].speed;
@@ -35,7 +35,7 @@ motion::ShortCueInputs ShortCueSource::next(const sim::Snapshot& s) {
 }
 
 MotionLink::MotionLink(const io::PlatformFile& platform, const motion::WashoutSettings& washout,
-                       const io::DriverSettings& driver, const sim::SceneDescription& scene)
+                       const io::DriverSettings& driver, const scene::SceneDescription& scene)
     : motion_(settings_of(platform, washout)),
       short_cues_(scene),
       driver_(platform, driver),
@@ -48,7 +48,7 @@ void MotionLink::update(RealTimeLoop& loop) {
   if (now < next_s_) return;
   next_s_ += period_s_;
   if (next_s_ < now) next_s_ = now + period_s_;  // fell behind: no burst of frames
-  const sim::Snapshot* s = loop.latest_snapshot(kMotionReader);
+  const scene::Snapshot* s = loop.latest_snapshot(kMotionReader);
   if (s && s->step != last_step_) {
     // a frozen simulation sends nothing new: the driver's watchdog fades the platform to neutral
     last_step_ = s->step;

@@ -16,8 +16,8 @@ namespace harbour::station {
 /// speed of the impacts since the last frame.
 class ShortCueSource {
  public:
-  explicit ShortCueSource(const sim::SceneDescription& scene);
-  motion::ShortCueInputs next(const sim::Snapshot& snapshot);
+  explicit ShortCueSource(const scene::SceneDescription& scene);
+  motion::ShortCueInputs next(const scene::Snapshot& snapshot);
 
  private:
   int engine_ = -1;
@@ -30,7 +30,7 @@ class ShortCueSource {
 class MotionLink {
  public:
   MotionLink(const io::PlatformFile& platform, const motion::WashoutSettings& washout,
-             const io::DriverSettings& driver, const sim::SceneDescription& scene);
+             const io::DriverSettings& driver, const scene::SceneDescription& scene);
 
   void engage() {
     const std::lock_guard lock(mutex_);

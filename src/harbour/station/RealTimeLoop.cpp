@@ -26,7 +26,7 @@ RealTimeLoop::RealTimeLoop(sim::Simulation& simulation, const LoopSettings& sett
     : simulation_(simulation), settings_(settings), records_(settings.record_capacity) {
   latched_ = simulation.control_table().neutral();
   for (int n = 0; n < kSnapshotReaders; ++n) {
-    snapshots_.push_back(std::make_unique<TripleBuffer<sim::Snapshot>>());
+    snapshots_.push_back(std::make_unique<TripleBuffer<scene::Snapshot>>());
     settings_.snapshot_every_steps[static_cast<std::size_t>(n)] =
         std::max(settings_.snapshot_every_steps[static_cast<std::size_t>(n)], 0);
   }
@@ -36,8 +36,8 @@ RealTimeLoop::RealTimeLoop(sim::Simulation& simulation, const LoopSettings& sett
     publish(n);  // readers see the start
   // every bulk buffer gets its grids and room for the material in flight now, then allocates no more
   if (const bulk::BulkWorld* material = simulation_.bulk())
-    for (TripleBuffer<sim::BulkView>& reader : bulk_)
-      reader.prepare_each([material](sim::BulkView& view) {
+    for (TripleBuffer<scene::BulkView>& reader : bulk_)
+      reader.prepare_each([material](scene::BulkView& view) {
         view.parcels.reserve(bulk::BulkWorld::kParcelsReserved);
         bulk::publish(*material, view);
       });
@@ -60,7 +60,7 @@ void RealTimeLoop::set_look(double yaw_rad, double pitch_rad) {
   look_pitch_rad_ = pitch_rad;
 }
 
-void RealTimeLoop::set_addition(std::function<void(sim::Snapshot&)> addition, unsigned readers) {
+void RealTimeLoop::set_addition(std::function<void(scene::Snapshot&)> addition, unsigned readers) {
   addition_ = std::move(addition);
   addition_readers_ = readers;
   for (int n = 0; n < kSnapshotReaders; ++n)
@@ -285,7 +285,7 @@ void RealTimeLoop::publish_bulk() {
   // the readers there are that draw it (the motion platform does not)
   for (int n = 0; n < kSnapshotReaders; ++n) {
     if (n == kMotionReader || settings_.snapshot_every_steps[static_cast<std::size_t>(n)] == 0) continue;
-    TripleBuffer<sim::BulkView>& reader = bulk_[static_cast<std::size_t>(n)];
+    TripleBuffer<scene::BulkView>& reader = bulk_[static_cast<std::size_t>(n)];
     bulk::publish(*material, reader.back());
     reader.publish();
   }
@@ -301,8 +301,8 @@ void RealTimeLoop::publish(int reader) {
     look_yaw = look_yaw_rad_;
     look_pitch = look_pitch_rad_;
   }
-  TripleBuffer<sim::Snapshot>& buffer = *snapshots_[static_cast<std::size_t>(reader)];
-  sim::Snapshot& s = buffer.back();
+  TripleBuffer<scene::Snapshot>& buffer = *snapshots_[static_cast<std::size_t>(reader)];
+  scene::Snapshot& s = buffer.back();
   simulation_.write_snapshot(s);
   s.cab.head_offset_m = head_position;
   s.cab.head_yaw_pitch_roll_rad = head_angles;

@@ -9,7 +9,7 @@
 #include <thread>
 #include <vector>
 
-#include "harbour/sim/BulkView.h"
+#include "harbour/scene/BulkView.h"
 #include "harbour/sim/Simulation.h"
 #include "harbour/station/SpscRing.h"
 #include "harbour/station/TripleBuffer.h"
@@ -29,7 +29,7 @@ struct StepRecord {
   };
   Kind kind = Kind::kStep;
   std::int64_t step = 0;
-  sim::Controls controls;
+  scene::Controls controls;
   sim::InstructorCommand command;
   sim::TeamInput team;
   std::uint64_t state_hash = 0;
@@ -109,11 +109,11 @@ struct LoopSettings {
 class RealTimeLoop {
  public:
   /// Controls decided on the step thread from the simulation (an autopilot); empty: the input side's.
-  using Pilot = std::function<sim::Controls(const sim::Simulation&)>;
+  using Pilot = std::function<scene::Controls(const sim::Simulation&)>;
   /// Asked after every tick on the step thread: true stops the loop (the exercise is over).
   using StopWhen = std::function<bool(const sim::Simulation&)>;
   /// Called on the step thread right after every step with the controls that drove it (the evaluation).
-  using StepObserver = std::function<void(const sim::Simulation&, const sim::Controls&)>;
+  using StepObserver = std::function<void(const sim::Simulation&, const scene::Controls&)>;
 
   RealTimeLoop(sim::Simulation& simulation, const LoopSettings& settings = {});
   ~RealTimeLoop();
@@ -123,7 +123,7 @@ class RealTimeLoop {
   void set_pilot(Pilot pilot) { pilot_ = std::move(pilot); }
   /// Controls read on the step thread right before each step (the input devices' sample(): a device change
   /// reaches the very next step); with neither a pilot nor a sampler the controls stay neutral.
-  void set_sampler(std::function<sim::Controls()> sampler) { sampler_ = std::move(sampler); }
+  void set_sampler(std::function<scene::Controls()> sampler) { sampler_ = std::move(sampler); }
   /// How many input devices are missing now (any thread): published in every snapshot for the displays.
   void set_devices_missing(int count) { devices_missing_ = count; }
   void set_stop_when(StopWhen stop_when) { stop_when_ = std::move(stop_when); }
@@ -135,7 +135,7 @@ class RealTimeLoop {
   /// Adds to the snapshots of `readers` (a bit per SnapshotReader) after the simulation has written them (a
   /// team's other machines, for the readers that draw), on the step thread; set before start() (every reader
   /// is given the start again).
-  void set_addition(std::function<void(sim::Snapshot&)> addition, unsigned readers);
+  void set_addition(std::function<void(scene::Snapshot&)> addition, unsigned readers);
 
   /// Starts the step thread.
   void start();
@@ -155,12 +155,12 @@ class RealTimeLoop {
   bool post(const LoopCommand& command, std::string* why = nullptr);
 
   /// Reader `n`'s newest snapshot (nullptr before the first).
-  const sim::Snapshot* latest_snapshot(int reader) {
+  const scene::Snapshot* latest_snapshot(int reader) {
     return snapshots_[static_cast<std::size_t>(reader)]->latest();
   }
   /// Reader `n`'s newest view of the bulk material (the image generator's or the console's; nullptr in an
   /// exercise without any).
-  const sim::BulkView* latest_bulk(int reader) {
+  const scene::BulkView* latest_bulk(int reader) {
     return simulation_.bulk() ? bulk_[static_cast<std::size_t>(reader)].latest() : nullptr;
   }
   /// The recorder's side of the step hand-off (one consumer thread).
@@ -175,7 +175,7 @@ class RealTimeLoop {
   }
   LoopStats stats() const;
   /// The controls the last step used (step thread's copy; read when stopped).
-  const sim::Controls& last_controls() const { return latched_; }
+  const scene::Controls& last_controls() const { return latched_; }
 
  private:
   void run();
@@ -193,19 +193,19 @@ class RealTimeLoop {
   sim::Simulation& simulation_;
   LoopSettings settings_;
   Pilot pilot_;
-  std::function<sim::Controls()> sampler_;
+  std::function<scene::Controls()> sampler_;
   std::atomic<int> devices_missing_{0};
   StopWhen stop_when_;
   StepObserver observer_;
-  std::function<void(sim::Snapshot&)> addition_;
+  std::function<void(scene::Snapshot&)> addition_;
   unsigned addition_readers_ = 0;
   std::thread thread_;
   std::atomic<bool> running_{false}, stop_requested_{false};
 
-  sim::Controls latched_;
-  std::vector<std::unique_ptr<TripleBuffer<sim::Snapshot>>> snapshots_;
+  scene::Controls latched_;
+  std::vector<std::unique_ptr<TripleBuffer<scene::Snapshot>>> snapshots_;
   // by reader (the motion platform's unused); each buffer keeps its own tile versions: copies what changed
-  std::array<TripleBuffer<sim::BulkView>, kSnapshotReaders> bulk_;
+  std::array<TripleBuffer<scene::BulkView>, kSnapshotReaders> bulk_;
   SpscRing<StepRecord> records_;
   // two keyframe buffers: the step thread fills one while the recorder may still be writing the other
   struct KeyframeSlot {

@@ -40,7 +40,7 @@ Session::Session(const sim::ExerciseSettings& exercise, const SessionOptions& op
     // the evaluation sees the original attempt up to the take-over
     sim::TakeOver branch = sim::take_over(
         exercise.scenario, original, options.take_over->recording, options.take_over->step,
-        [this](const sim::Simulation& s, const sim::Controls& in) { evaluator_.observe(s, in); });
+        [this](const sim::Simulation& s, const scene::Controls& in) { evaluator_.observe(s, in); });
     simulation_ = std::move(branch.simulation);
     recorder_ = std::move(branch.recorder);
     levers_before_start_ = branch.levers;
@@ -63,7 +63,7 @@ Session::Session(const sim::ExerciseSettings& exercise, const SessionOptions& op
   loop.checkpoint_every_steps = sim::Recorder::kCheckpointEvery;
   loop.keyframe_every_steps = writer_ ? sim::Recorder::kKeyframeEvery : 0;
   loop_ = std::make_unique<RealTimeLoop>(*simulation_, loop);
-  loop_->set_observer([this](const sim::Simulation& s, const sim::Controls& in) { evaluate(s, in); });
+  loop_->set_observer([this](const sim::Simulation& s, const scene::Controls& in) { evaluate(s, in); });
   // the exercise bounds the run: its goals met (the evaluation says so on the step it happens), or its time
   // and overtime past
   const double stop_at_s = exercise.rules.time_limit_s + exercise.rules.overtime_s;
@@ -114,7 +114,7 @@ void Session::store_notes() {
                       value);
 }
 
-void Session::evaluate(const sim::Simulation& simulation, const sim::Controls& controls) {
+void Session::evaluate(const sim::Simulation& simulation, const scene::Controls& controls) {
   // the step thread: the evaluation sees every step as it is taken; a move done or an event counted goes to
   // the keeper at once, stamped with this step's time
   evaluator_.observe(simulation, controls);

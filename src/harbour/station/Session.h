@@ -69,7 +69,7 @@ class Session {
   /// The moves the evaluation counted before the loop started (a take-over's: the pilot resumes after them).
   int moves_before_start() const { return moves_before_start_; }
   /// The controls standing where a take-over began.
-  const sim::Controls& levers_before_start() const { return levers_before_start_; }
+  const scene::Controls& levers_before_start() const { return levers_before_start_; }
   /// Starts the loop and the record keeper.
   void start();
   /// Whether the exercise is over (its moves done, past its time and overtime, or diverged).
@@ -94,7 +94,7 @@ class Session {
 
  private:
   /// The step thread's part: evaluates the step just taken, hands what grew to the keeper.
-  void evaluate(const sim::Simulation& simulation, const sim::Controls& controls);
+  void evaluate(const sim::Simulation& simulation, const scene::Controls& controls);
   void publish_metrics();
   void keep();
   /// One pass over what the step thread handed on; false when there was nothing.
@@ -127,7 +127,7 @@ class Session {
   std::optional<sim::TeamFigures> team_;
   std::array<std::string, 3> team_member_;  // team, role, session ("": alone)
   int moves_before_start_ = 0;
-  sim::Controls levers_before_start_;
+  scene::Controls levers_before_start_;
 };
 
 }  // namespace harbour::station

@@ -74,13 +74,13 @@ double box_clearance(const core::Pose& a, const core::Vec3& half_a, const core::
   return best;
 }
 
-TeamPresence::TeamPresence(const sim::SceneDescription& own_scene, std::vector<TeamMember> members)
+TeamPresence::TeamPresence(const scene::SceneDescription& own_scene, std::vector<TeamMember> members)
     : scene_(own_scene) {
   for (TeamMember& known : members) {
     Member m;
     m.first_entity = static_cast<int>(scene_.entities.size());
     for (std::size_t b = 0; b < known.bodies.size(); ++b) {
-      sim::SceneDescription::Entity e = known.bodies[b];
+      scene::SceneDescription::Entity e = known.bodies[b];
       e.name = known.role + ": " + e.name;
       scene_.entities.push_back(e);
       DeadReckoning body(kBlend_s, kHorizon_s);
@@ -122,14 +122,14 @@ std::string TeamPresence::offer(const TeamSample& sample) {
   return "";
 }
 
-void TeamPresence::write(sim::Snapshot& snapshot, double now_s) const {
+void TeamPresence::write(scene::Snapshot& snapshot, double now_s) const {
   const std::lock_guard lock(mutex_);
   for (const Member& m : members_)
     for (std::size_t b = 0; b < m.bodies.size(); ++b) {
-      if (snapshot.entity_count >= sim::kMaxEntities) return;
+      if (snapshot.entity_count >= scene::kMaxEntities) return;
       const int index = m.first_entity + static_cast<int>(b);
       snapshot.entities[static_cast<std::size_t>(snapshot.entity_count++)] = {
-          static_cast<std::uint32_t>(index), m.present[b] ? 0u : sim::Snapshot::kHidden,
+          static_cast<std::uint32_t>(index), m.present[b] ? 0u : scene::Snapshot::kHidden,
           m.bodies[b].at(now_s)};
     }
 }
@@ -148,7 +148,7 @@ std::optional<RemoteMotion> TeamPresence::motion_of(const std::string& role, int
   return std::nullopt;
 }
 
-std::vector<TeamPresence::Closest> TeamPresence::closest(const sim::Snapshot& own, double now_s) const {
+std::vector<TeamPresence::Closest> TeamPresence::closest(const scene::Snapshot& own, double now_s) const {
   const auto sized = [](const core::Vec3& h) { return h.x > 0.0 && h.y > 0.0 && h.z > 0.0; };
   const std::lock_guard lock(mutex_);
   std::vector<Closest> result;
@@ -159,10 +159,10 @@ std::vector<TeamPresence::Closest> TeamPresence::closest(const sim::Snapshot& ow
       if (!sized(half_b) || !m.present[b] || static_cast<int>(b) >= m.known.machine_bodies) continue;
       const core::Pose pose_b = m.bodies[b].at(now_s);
       for (int n = 0; n < own.entity_count; ++n) {
-        const sim::Snapshot::Entity& e = own.entities[static_cast<std::size_t>(n)];
-        if (static_cast<int>(e.index) >= scene_.machine_entities || (e.flags & sim::Snapshot::kHidden) != 0)
+        const scene::Snapshot::Entity& e = own.entities[static_cast<std::size_t>(n)];
+        if (static_cast<int>(e.index) >= scene_.machine_entities || (e.flags & scene::Snapshot::kHidden) != 0)
           continue;
-        const sim::SceneDescription::Entity& body = scene_.entities[e.index];
+        const scene::SceneDescription::Entity& body = scene_.entities[e.index];
         if (!sized(body.half_extents_m)) continue;
         const double gap = box_clearance(e.pose, body.half_extents_m, pose_b, half_b);
         if (gap < c.clearance_m) c = {m.known.role, body.name, m.known.bodies[b].name, gap};

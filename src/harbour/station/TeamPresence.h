@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "harbour/core/Vec3.h"
-#include "harbour/sim/Snapshot.h"
+#include "harbour/scene/Snapshot.h"
 
 namespace harbour::station {
 
@@ -54,7 +54,7 @@ double box_clearance(const core::Pose& a, const core::Vec3& half_a, const core::
 /// them.
 struct TeamMember {
   std::string role;
-  std::vector<sim::SceneDescription::Entity> bodies;
+  std::vector<scene::SceneDescription::Entity> bodies;
   std::vector<core::Pose> start_poses;  ///< one per body
   std::vector<bool> start_hidden;       ///< one per body: not there at the start (a load still to come)
   /// The first this many bodies are its machine's (the rest items it may hold: not counted as near misses)
@@ -83,15 +83,15 @@ class TeamPresence {
   static constexpr double kHorizon_s = 0.5;    ///< dead reckoning carries a silent body on for at most this
   static constexpr double kLostAfter_s = 2.0;  ///< a member silent this long is lost
 
-  TeamPresence(const sim::SceneDescription& own_scene, std::vector<TeamMember> members);
+  TeamPresence(const scene::SceneDescription& own_scene, std::vector<TeamMember> members);
 
   /// The station's scene with the members' bodies after its own entities.
-  const sim::SceneDescription& scene() const { return scene_; }
+  const scene::SceneDescription& scene() const { return scene_; }
   /// Takes a member's sample; one of a role not in the team, or with a body index it lacks, is refused with
   /// the reason ("" when taken).
   std::string offer(const TeamSample& sample);
   /// Appends the members' bodies, where they are at `now_s` (the receiver's clock), to `snapshot`.
-  void write(sim::Snapshot& snapshot, double now_s) const;
+  void write(scene::Snapshot& snapshot, double now_s) const;
   /// Body `body` of member `role` at `now_s`: where it is carried to, at its newest sample's velocities (at
   /// rest where it starts until heard); nullopt for a role or body the team lacks.
   std::optional<RemoteMotion> motion_of(const std::string& role, int body, double now_s) const;
@@ -104,7 +104,7 @@ class TeamPresence {
   };
   /// For each member, its bodies against this station's machine bodies as `own` has them (bodies with no size
   /// in the scene are left out: a gantry drawn from its looks alone).
-  std::vector<Closest> closest(const sim::Snapshot& own, double now_s) const;
+  std::vector<Closest> closest(const scene::Snapshot& own, double now_s) const;
 
   struct MemberState {
     std::string role;
@@ -132,7 +132,7 @@ class TeamPresence {
     std::vector<double> ages_s;  // each measured sample's age on arrival
     double last_heard_s = 0.0;
   };
-  sim::SceneDescription scene_;
+  scene::SceneDescription scene_;
   std::vector<Member> members_;
   mutable std::mutex mutex_;
 };

@@ -24,13 +24,13 @@ namespace {
 constexpr double kG = 9.80665;
 const char* const kStack = HARBOUR_DATA_DIR "/exercises/straddle_carrier_stack.yaml";
 
-double& control(Controls& c, const ControlTable& table, const char* label) {
+double& control(scene::Controls& c, const scene::ControlTable& table, const char* label) {
   return c.value[static_cast<std::size_t>(table.find(label))];
 }
 
 // The selector in forward, the accelerator floored, everything else at rest.
-Controls full_throttle_forward(const ControlTable& table) {
-  Controls c = table.neutral();
+scene::Controls full_throttle_forward(const scene::ControlTable& table) {
+  scene::Controls c = table.neutral();
   control(c, table, "direction") = 2.0;
   control(c, table, "throttle") = 1.0;
   return c;
@@ -39,7 +39,7 @@ Controls full_throttle_forward(const ControlTable& table) {
 TEST(StraddleCarrier, AtRestEachOfItsEightFallsCarriesAnEighthOfTheSpreader) {
   Simulation sim(io::load_exercise(kStack).scenario);
   const auto& m = dynamic_cast<const StraddleCarrier&>(sim.machine());
-  const Controls neutral = sim.control_table().neutral();
+  const scene::Controls neutral = sim.control_table().neutral();
   for (int k = 0; k < 2000; ++k)
     sim.step(neutral);
   // the falls carry the spreader's weight and half their own: the load display (tared, in steps of 0.1 t)
@@ -60,8 +60,8 @@ TEST(StraddleCarrier, FullThrottleOnTheFlatReachesItsTopGearsEngineLimit) {
   // the drivetrain's top speed: the curve's last engine speed in top gear, v = omega r / (ratio final)
   Simulation sim(io::load_exercise(kStack).scenario);
   const auto& m = dynamic_cast<const StraddleCarrier&>(sim.machine());
-  const ControlTable& table = sim.control_table();
-  Controls c = full_throttle_forward(table);
+  const scene::ControlTable& table = sim.control_table();
+  scene::Controls c = full_throttle_forward(table);
   double top = 0.0;
   for (int k = 0; k < static_cast<int>(25.0 / Simulation::kStep_s); ++k) {
     sim.step(c);
@@ -80,8 +80,8 @@ TEST(StraddleCarrier, AtFullLockEveryWheelSteeredItTurnsOnTheAckermannCircleAbou
   // all-wheel steering: the turn's centre across from the portal's middle, L / tan(delta) from it
   Simulation sim(io::load_exercise(kStack).scenario);
   const auto& m = dynamic_cast<const StraddleCarrier&>(sim.machine());
-  const ControlTable& table = sim.control_table();
-  Controls c = table.neutral();
+  const scene::ControlTable& table = sim.control_table();
+  scene::Controls c = table.neutral();
   control(c, table, "direction") = 2.0;
   control(c, table, "steer") = 1.0;
   for (int k = 0; k < static_cast<int>(20.0 / Simulation::kStep_s); ++k) {
@@ -106,8 +106,8 @@ struct AfterAStop {
 AfterAStop after_a_hard_stop(bool parking_brake) {
   Simulation sim(io::load_exercise(kStack).scenario);
   const auto& m = dynamic_cast<const StraddleCarrier&>(sim.machine());
-  const ControlTable& table = sim.control_table();
-  Controls c = full_throttle_forward(table);
+  const scene::ControlTable& table = sim.control_table();
+  scene::Controls c = full_throttle_forward(table);
   for (int k = 0; k < 5000; ++k)
     sim.step(c);
   control(c, table, "throttle") = 0.0;
@@ -163,8 +163,8 @@ TEST(StraddleCarrier, AHardStopThatSwingsTheEmptySpreaderHighIsNoLoadDrop) {
   Simulation sim(e.scenario);
   Evaluator evaluator(e);
   const auto& m = dynamic_cast<const StraddleCarrier&>(sim.machine());
-  const ControlTable& table = sim.control_table();
-  Controls c = full_throttle_forward(table);
+  const scene::ControlTable& table = sim.control_table();
+  scene::Controls c = full_throttle_forward(table);
   double sampled_z_m = m.attachment_bottom_z_m(), fastest_sinking_mps = 0.0, fastest_lowering_mps = 0.0;
   for (int k = 0; k < 15000; ++k) {
     if (k == 5000) {
@@ -195,12 +195,12 @@ TEST(StraddleCarrier, TheAutopilotStacksTheBoxOverThreeHighAndAKeyframeContinues
   const std::unique_ptr<Pilot> pilot = make_pilot(e);
   Evaluator evaluator(e);
   std::vector<std::uint8_t> keyframe;  // taken as it carries the box over the stacks
-  std::vector<Controls> after;
+  std::vector<scene::Controls> after;
   std::uint64_t hash_after = 0;
   double lowest_box_over_stack_m = 1e9;
   const auto& machine = dynamic_cast<const StraddleCarrier&>(sim.machine());
   while (!evaluator.finished() && sim.time_s() < e.rules.time_limit_s) {
-    const Controls c = pilot->next(sim);
+    const scene::Controls c = pilot->next(sim);
     if (std::string(pilot->activity()) == "carry" && keyframe.empty()) keyframe = sim.save_state();
     if (!keyframe.empty() && after.size() < 2000) after.push_back(c);
     sim.step(c);
@@ -225,7 +225,7 @@ TEST(StraddleCarrier, TheAutopilotStacksTheBoxOverThreeHighAndAKeyframeContinues
   ASSERT_EQ(after.size(), 2000u);
   Simulation again(e.scenario);
   again.restore_state(keyframe);
-  for (const Controls& c : after)
+  for (const scene::Controls& c : after)
     again.step(c);
   EXPECT_EQ(again.state_hash(), hash_after);
 }
@@ -238,7 +238,7 @@ TEST(StraddleCarrier, TheAutopilotCarriesTheBoxOutOfTheRowAlongTheRouteToTheQuay
   const auto& machine = dynamic_cast<const StraddleCarrier&>(sim.machine());
   double farthest_off_route_m = 0.0, fastest_kmh = 0.0;
   while (!evaluator.finished() && sim.time_s() < e.rules.time_limit_s) {
-    const Controls c = pilot->next(sim);
+    const scene::Controls c = pilot->next(sim);
     sim.step(c);
     evaluator.observe(sim, c);
     fastest_kmh = std::max(fastest_kmh, std::abs(machine.forward_mps()) * 3.6);

@@ -145,17 +145,17 @@ sim::MhcSettings read_mhc(const YamlFile& f, const std::string& folder) {
   s.sight = cab.sight;
   s.controls = read_control_table(f, m, "machine");
   require_controls(f, m, s.controls,
-                   {{"slew", sim::ControlKind::kAxis},
-                    {"luff", sim::ControlKind::kAxis},
-                    {"hoist", sim::ControlKind::kAxis},
-                    {"grab", sim::ControlKind::kAxis},
-                    {"emergency_stop", sim::ControlKind::kButton},
-                    {"horn", sim::ControlKind::kButton}});
+                   {{"slew", scene::ControlKind::kAxis},
+                    {"luff", scene::ControlKind::kAxis},
+                    {"hoist", scene::ControlKind::kAxis},
+                    {"grab", scene::ControlKind::kAxis},
+                    {"emergency_stop", scene::ControlKind::kButton},
+                    {"horn", scene::ControlKind::kButton}});
   if (s.hook && s.controls.find("sling") < 0)
     f.fail(m["controls"], "machine.controls",
            "a machine with a hook needs a 'sling' button (the slinger's call)");
   if (const int sling = s.controls.find("sling");
-      sling >= 0 && s.controls[sling].kind != sim::ControlKind::kButton)
+      sling >= 0 && s.controls[sling].kind != scene::ControlKind::kButton)
     f.fail(m["controls"], "machine.controls", "'sling' must be a button");
   return s;
 }

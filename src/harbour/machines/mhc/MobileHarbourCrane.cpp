@@ -82,13 +82,13 @@ MobileHarbourCrane::MobileHarbourCrane(physics::PhysicsWorld& world, const MhcSe
     : world_(world),
       settings_(settings),
       start_on_hook_(start.on_hook),
-      slew_slot_(settings.controls.slot("slew", ControlKind::kAxis)),
-      luff_slot_(settings.controls.slot("luff", ControlKind::kAxis)),
-      hoist_slot_(settings.controls.slot("hoist", ControlKind::kAxis)),
-      grab_slot_(settings.controls.slot("grab", ControlKind::kAxis)),
+      slew_slot_(settings.controls.slot("slew", scene::ControlKind::kAxis)),
+      luff_slot_(settings.controls.slot("luff", scene::ControlKind::kAxis)),
+      hoist_slot_(settings.controls.slot("hoist", scene::ControlKind::kAxis)),
+      grab_slot_(settings.controls.slot("grab", scene::ControlKind::kAxis)),
       sling_slot_(settings.controls.find("sling")),
-      stop_slot_(settings.controls.slot("emergency_stop", ControlKind::kButton)),
-      horn_slot_(settings.controls.slot("horn", ControlKind::kButton)),
+      stop_slot_(settings.controls.slot("emergency_stop", scene::ControlKind::kButton)),
+      horn_slot_(settings.controls.slot("horn", scene::ControlKind::kButton)),
       position_(start.position_m),
       slew_drive_(settings.slew_drive),
       luff_limits_(settings.boom_min_angle_rad, settings.boom_max_angle_rad),
@@ -442,8 +442,9 @@ core::Pose MobileHarbourCrane::cab_pose() const {
   return {house.rotation, house.to_parent(house_origin_in_body_m_ + settings_.cab_position_m)};
 }
 
-void MobileHarbourCrane::step(const Controls& raw, std::span<const ContainerRef> liftables, double dt_s) {
-  const Controls c = settings_.controls.in_range(raw);
+void MobileHarbourCrane::step(const scene::Controls& raw, std::span<const ContainerRef> liftables,
+                              double dt_s) {
+  const scene::Controls c = settings_.controls.in_range(raw);
   const auto at = [&](int slot) { return c.value[static_cast<std::size_t>(slot)]; };
   const bool stop = at(stop_slot_) != 0.0;
   horn_ = at(horn_slot_) != 0.0;
@@ -584,7 +585,7 @@ void MobileHarbourCrane::sling(std::span<const ContainerRef> liftables) {
   ++slings_refused_;
 }
 
-void MobileHarbourCrane::describe(SceneDescription& d) const {
+void MobileHarbourCrane::describe(scene::SceneDescription& d) const {
   d.machine = kind();
   d.entities.push_back({"undercarriage",
                         "mhc.undercarriage",
@@ -602,18 +603,18 @@ void MobileHarbourCrane::describe(SceneDescription& d) const {
   }
   d.indicators.assign(std::begin(kMhcIndicators), std::end(kMhcIndicators));
   d.drives = {"slew", "luff", "hoist", "closing", "engine"};
-  d.rope_count =
-      std::min(luffing_->rope_count() + hoist_->rope_count() + (on_hook() ? kSlingLegs : 0), kMaxRopes);
+  d.rope_count = std::min(luffing_->rope_count() + hoist_->rope_count() + (on_hook() ? kSlingLegs : 0),
+                          scene::kMaxRopes);
 }
 
-int MobileHarbourCrane::publish(Snapshot& s, int first) const {
+int MobileHarbourCrane::publish(scene::Snapshot& s, int first) const {
   int n = first;
   const core::Pose undercarriage{core::Mat3::identity(), position_ + core::Vec3{0, 0, 2.0}};
   const int bodies = on_hook() ? 4 : 5;
   const core::Pose poses[] = {undercarriage, world_.pose(house_), world_.pose(boom_), world_.pose(block_),
                               on_hook() ? core::Pose{} : world_.pose(grab_lower_)};
   for (const core::Pose& pose : std::span(poses, static_cast<std::size_t>(bodies)))
-    if (n < kMaxEntities) {
+    if (n < scene::kMaxEntities) {
       s.entities[static_cast<std::size_t>(n)] = {static_cast<std::uint32_t>(n), 0, pose};
       ++n;
     }
@@ -654,14 +655,14 @@ int MobileHarbourCrane::publish(Snapshot& s, int first) const {
   std::copy(std::begin(values), std::end(values), s.indicators.begin());
   // its drives (the grab's closing drum, where it has one) and the diesel generator set that powers them
   const bool closing = hoist_->drum_count() > 1;
-  const Snapshot::Drive motors[] = {drive_reading(slew_drive_, world_.hinge_torque(slew_hinge_)),
-                                    drum_reading(*luffing_, 0), drum_reading(*hoist_, 0),
-                                    closing ? drum_reading(*hoist_, 1) : Snapshot::Drive{}};
+  const scene::Snapshot::Drive motors[] = {drive_reading(slew_drive_, world_.hinge_torque(slew_hinge_)),
+                                           drum_reading(*luffing_, 0), drum_reading(*hoist_, 0),
+                                           closing ? drum_reading(*hoist_, 1) : scene::Snapshot::Drive{}};
   const double rated[] = {rated_power_w(settings_.slew_drive), rated_power_w(luffing_->drum_settings(0)),
                           rated_power_w(hoist_->drum_settings(0)),
                           closing ? rated_power_w(hoist_->drum_settings(1)) : 0.0};
-  const Snapshot::Drive drives[] = {motors[0], motors[1], motors[2], motors[3],
-                                    generator_reading(motors, rated)};
+  const scene::Snapshot::Drive drives[] = {motors[0], motors[1], motors[2], motors[3],
+                                           generator_reading(motors, rated)};
   publish_drives(drives, s);
   return n - first;
 }

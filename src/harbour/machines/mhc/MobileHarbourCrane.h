@@ -83,8 +83,8 @@ struct MhcSettings {
   // the cab on the tower
   core::Vec3 cab_position_m{1.5, -2.5, 24.0};  ///< [m] house frame
   core::Vec3 eye_m{0.3, 0.0, 0.6};             ///< [m] cab frame (x along the house's x)
-  CabSight sight{0.0, -0.35, 0.9};             ///< out along the boom and down to the grab
-  ControlTable controls;                       ///< the cab's controls, by label (its machine file's)
+  scene::CabSight sight{0.0, -0.35, 0.9};      ///< out along the boom and down to the grab
+  scene::ControlTable controls;                ///< the cab's controls, by label (its machine file's)
 };
 
 /// Where the MHC stands and how it starts.
@@ -116,8 +116,8 @@ class MobileHarbourCrane final : public Machine {
 
   // Machine
   const MachineType& type() const override { return mhc_machine_type(); }
-  const ControlTable& control_table() const override { return settings_.controls; }
-  void step(const Controls& controls, std::span<const ContainerRef> liftables, double dt_s) override;
+  const scene::ControlTable& control_table() const override { return settings_.controls; }
+  void step(const scene::Controls& controls, std::span<const ContainerRef> liftables, double dt_s) override;
   std::optional<physics::BodyId> held_item() const override;
   double attachment_bottom_z_m() const override;
   double pendulum_length_m() const override;
@@ -127,9 +127,9 @@ class MobileHarbourCrane final : public Machine {
   core::Vec3 eye_on_cab_body_m() const override;
   core::Pose cab_pose() const override;
   core::Vec3 eye_m() const override { return settings_.eye_m; }
-  CabSight cab_sight() const override { return settings_.sight; }
-  void describe(SceneDescription& scene) const override;
-  int publish(Snapshot& snapshot, int entities) const override;
+  scene::CabSight cab_sight() const override { return settings_.sight; }
+  void describe(scene::SceneDescription& scene) const override;
+  int publish(scene::Snapshot& snapshot, int entities) const override;
   void drain_events(StepEvents& events) override;
   const BulkTool* bulk_tool() const override { return on_hook() ? nullptr : &tool_; }
   void carry_bulk(double mass_kg) override { carried_kg_ = mass_kg; }
@@ -276,7 +276,7 @@ struct MhcSetup {
   MhcStart start;
 
   static const MachineType& type() { return mhc_machine_type(); }
-  const ControlTable& controls() const { return crane.controls; }
+  const scene::ControlTable& controls() const { return crane.controls; }
   std::unique_ptr<Machine> build(physics::PhysicsWorld& world) const;
   std::vector<cable::ReevingSettings*> reevings();
 };

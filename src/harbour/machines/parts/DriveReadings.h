@@ -4,7 +4,7 @@
 
 #include "harbour/cable/HoistSystem.h"
 #include "harbour/machines/parts/Drive.h"
-#include "harbour/sim/Snapshot.h"
+#include "harbour/scene/Snapshot.h"
 
 namespace harbour::sim {
 
@@ -13,18 +13,18 @@ namespace harbour::sim {
 
 /// A speed-controlled drive: its speed reference over its rated speed, and the force (or torque) its joint
 /// gave in the last step over its motor's limit; a drive at rest on its brake gives no load.
-Snapshot::Drive drive_reading(const Drive& drive, double joint_force_n);
+scene::Snapshot::Drive drive_reading(const Drive& drive, double joint_force_n);
 /// A hoist drum: its rope speed over its rated rope speed (+ reeling in: hoisting), and the torque the ropes
 /// put on it over its motor's torque limit.
-Snapshot::Drive drum_reading(const cable::HoistSystem& hoist, int drum);
+scene::Snapshot::Drive drum_reading(const cable::HoistSystem& hoist, int drum);
 /// The diesel generator set that powers electric drives (a variable-speed set: its speed follows its load):
 /// the drives' power (speed times load, each at its rated power) over the largest drive's rated power.
-Snapshot::Drive generator_reading(std::span<const Snapshot::Drive> drives,
-                                  std::span<const double> rated_power_w);
+scene::Snapshot::Drive generator_reading(std::span<const scene::Snapshot::Drive> drives,
+                                         std::span<const double> rated_power_w);
 /// A drive's rated power [W]: its rated speed times its force limit.
 double rated_power_w(const DriveSettings& drive);
 double rated_power_w(const cable::ElementSettings& drum);
 /// Writes `readings` as the snapshot's drives (in describe()'s order; what does not fit is left out).
-void publish_drives(std::span<const Snapshot::Drive> readings, Snapshot& snapshot);
+void publish_drives(std::span<const scene::Snapshot::Drive> readings, scene::Snapshot& snapshot);
 
 }  // namespace harbour::sim

@@ -10,17 +10,17 @@ constexpr int kReverse = 0, kNeutral = 1;  // the direction selector's positions
 
 }  // namespace
 
-DrivingCab::DrivingCab(const ControlTable& table, double steer_rate_per_s)
-    : steer_slot_(table.slot("steer", ControlKind::kAxis)),
-      throttle_slot_(table.slot("throttle", ControlKind::kAxis)),
-      brake_slot_(table.slot("brake", ControlKind::kAxis)),
-      direction_slot_(table.slot("direction", ControlKind::kSwitch)),
-      parking_slot_(table.slot("parking_brake", ControlKind::kSwitch)),
-      stop_slot_(table.slot("emergency_stop", ControlKind::kButton)),
-      horn_slot_(table.slot("horn", ControlKind::kButton)),
+DrivingCab::DrivingCab(const scene::ControlTable& table, double steer_rate_per_s)
+    : steer_slot_(table.slot("steer", scene::ControlKind::kAxis)),
+      throttle_slot_(table.slot("throttle", scene::ControlKind::kAxis)),
+      brake_slot_(table.slot("brake", scene::ControlKind::kAxis)),
+      direction_slot_(table.slot("direction", scene::ControlKind::kSwitch)),
+      parking_slot_(table.slot("parking_brake", scene::ControlKind::kSwitch)),
+      stop_slot_(table.slot("emergency_stop", scene::ControlKind::kButton)),
+      horn_slot_(table.slot("horn", scene::ControlKind::kButton)),
       steer_rate_per_s_(steer_rate_per_s) {}
 
-ChassisCommand DrivingCab::step(const Controls& c, double dt_s) {
+ChassisCommand DrivingCab::step(const scene::Controls& c, double dt_s) {
   const auto at = [&](int slot) { return c.value[static_cast<std::size_t>(slot)]; };
   stop_ = at(stop_slot_) != 0.0;
   horn_ = at(horn_slot_) != 0.0;

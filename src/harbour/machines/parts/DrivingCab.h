@@ -4,7 +4,7 @@
 
 #include "harbour/core/StateArchive.h"
 #include "harbour/machines/parts/WheeledChassis.h"
-#include "harbour/sim/Controls.h"
+#include "harbour/scene/Controls.h"
 
 namespace harbour::sim {
 
@@ -16,10 +16,10 @@ class DrivingCab {
   /// `table` has the driving controls every driven vehicle's cab has (its machine file declares them, checked
   /// by io::require_driving_controls): steer, throttle, brake, direction, parking_brake, emergency_stop and
   /// horn (throws std::invalid_argument naming one it lacks).
-  DrivingCab(const ControlTable& table, double steer_rate_per_s);
+  DrivingCab(const scene::ControlTable& table, double steer_rate_per_s);
 
   /// The chassis's command for one step of `dt_s` from controls already in range.
-  ChassisCommand step(const Controls& controls, double dt_s);
+  ChassisCommand step(const scene::Controls& controls, double dt_s);
   /// The steering as it stands now [-1, 1].
   double steering() const { return steering_; }
   bool horn() const { return horn_; }

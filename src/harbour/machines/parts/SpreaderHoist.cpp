@@ -3,7 +3,7 @@
 #include <stdexcept>
 
 #include "harbour/core/Units.h"
-#include "harbour/sim/Vessel.h"
+#include "harbour/scene/Surface.h"
 
 namespace harbour::sim {
 namespace {
@@ -65,7 +65,8 @@ SpreaderHoist::SpreaderHoist(physics::PhysicsWorld& world, const SpreaderHoistSe
   spreader.pose = spreader_pose;
   spreader.collides = false;
   spreader_ = world.add_box(spreader);
-  frame_ = std::make_unique<Spreader>(world, spreader_, kSurfaceSpreader, kSurfaceFlipper, frame);
+  frame_ =
+      std::make_unique<Spreader>(world, spreader_, scene::kSurfaceSpreader, scene::kSurfaceFlipper, frame);
 
   bodies.push_back(spreader_);
   cable_bodies_ = std::make_unique<OdeCableBodies>(world, std::move(bodies));

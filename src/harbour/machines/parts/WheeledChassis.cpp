@@ -39,8 +39,8 @@ std::pair<double, int> drivetrain_wheel_torque_nm(const DrivetrainSettings& d, d
   return {std::clamp(throttle, 0.0, 1.0) * best, gear};
 }
 
-Snapshot::Drive engine_reading(const DrivetrainSettings& d, double tyre_radius_m, double throttle,
-                               double wheel_speed_mps, int gear) {
+scene::Snapshot::Drive engine_reading(const DrivetrainSettings& d, double tyre_radius_m, double throttle,
+                                      double wheel_speed_mps, int gear) {
   const double idle_rpm = d.torque_curve.front().first, top_rpm = d.torque_curve.back().first;
   const double ratio = gear > 0 ? d.gear_ratios[static_cast<std::size_t>(gear - 1)] * d.final_drive
                                 : d.gear_ratios.front() * d.final_drive;

@@ -5,7 +5,7 @@
 
 #include "harbour/machines/parts/Tyre.h"
 #include "harbour/physics/PhysicsWorld.h"
-#include "harbour/sim/Snapshot.h"
+#include "harbour/scene/Snapshot.h"
 
 namespace harbour::sim {
 
@@ -64,8 +64,8 @@ std::pair<double, int> drivetrain_wheel_torque_nm(const DrivetrainSettings& driv
 /// The engine as its sound hears it (Snapshot::Drive): its speed from idle (0) to the torque curve's last
 /// point (1), at the road speed in `gear` (1-based; 0: none fits, first gear's ratio) or idling below it, and
 /// its load, the throttle (the share of the torque it can give that it gives).
-Snapshot::Drive engine_reading(const DrivetrainSettings& drivetrain, double tyre_radius_m, double throttle,
-                               double wheel_speed_mps, int gear);
+scene::Snapshot::Drive engine_reading(const DrivetrainSettings& drivetrain, double tyre_radius_m,
+                                      double throttle, double wheel_speed_mps, int gear);
 
 /// A rigid body's static settling on vertical springs (its tyres and any supports): how far its centre of
 /// mass sags and how far it pitches (+ nose down), the sag at x along it being sag + pitch·x.
@@ -116,7 +116,7 @@ class WheeledChassis {
   /// [m/s] (a speedometer's: a tall body rocking on its tyres moves its top, not its wheels).
   double road_speed_mps(const physics::PhysicsWorld& world) const;
   /// The engine in the last step (for its sound).
-  Snapshot::Drive engine() const { return engine_; }
+  scene::Snapshot::Drive engine() const { return engine_; }
   /// [W] what the drive delivered to the wheels' contacts over the last step (their drive forces times the
   /// contacts' speeds along their headings, summed; braking and rolling resistance not counted)
   double drive_power_w() const { return drive_power_w_; }
@@ -126,8 +126,8 @@ class WheeledChassis {
   physics::BodyId body_;
   double reference_x_ = 0.0, steer_base_m_ = 1.0;
   int driven_wheels_ = 0;
-  Snapshot::Drive engine_;      // published: not state
-  double drive_power_w_ = 0.0;  // measured: not state
+  scene::Snapshot::Drive engine_;  // published: not state
+  double drive_power_w_ = 0.0;     // measured: not state
 };
 
 }  // namespace harbour::sim

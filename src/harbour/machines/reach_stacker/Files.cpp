@@ -100,7 +100,7 @@ sim::ReachStackerSettings load_reach_stacker(const YamlFile& f) {
   s.eye_m = cab.eye_m;
   s.sight = cab.sight;
   s.controls = read_control_table(f, m, "machine");
-  using K = sim::ControlKind;
+  using K = scene::ControlKind;
   require_driving_controls(f, m, s.controls);
   require_controls(f, m, s.controls,
                    {{"boom", K::kAxis},

@@ -7,7 +7,7 @@
 #include <numbers>
 
 #include "harbour/core/Units.h"
-#include "harbour/sim/Vessel.h"
+#include "harbour/scene/Surface.h"
 
 namespace harbour::sim {
 namespace {
@@ -92,22 +92,25 @@ ReachStacker::ReachStacker(physics::PhysicsWorld& world, const ReachStackerSetti
     : world_(world),
       settings_(s),
       cab_(s.controls, s.steer_rate_per_s),
-      boom_slot_(s.controls.slot("boom", ControlKind::kAxis)),
-      telescope_slot_(s.controls.slot("telescope", ControlKind::kAxis)),
-      rotate_slot_(s.controls.slot("rotate", ControlKind::kAxis)),
-      shift_slot_(s.controls.slot("side_shift", ControlKind::kAxis)),
-      lock_slot_(s.controls.slot("lock", ControlKind::kButton)),
-      unlock_slot_(s.controls.slot("unlock", ControlKind::kButton)),
-      size_20_slot_(s.controls.slot("spreader_20", ControlKind::kButton)),
-      size_40_slot_(s.controls.slot("spreader_40", ControlKind::kButton)),
-      body_(add_body(world, s.mass_kg, s.half_extents_m, p.chassis, true, kSurfaceVehicle)),
-      outer_(add_body(world, s.boom_mass_kg / 2, outer_half_extents(s), p.outer, true, kSurfaceSpreader)),
-      inner_(add_body(world, s.boom_mass_kg / 2, inner_half_extents(s), p.inner, false, kSurfaceSpreader)),
-      rotator_(add_body(world, rotator_mass_kg(s) / 2, kLinkHalf_m, p.rotator, false, kSurfaceSpreader)),
-      slew_(add_body(world, rotator_mass_kg(s) / 2, kSlewHalf_m, p.slew, false, kSurfaceSpreader)),
+      boom_slot_(s.controls.slot("boom", scene::ControlKind::kAxis)),
+      telescope_slot_(s.controls.slot("telescope", scene::ControlKind::kAxis)),
+      rotate_slot_(s.controls.slot("rotate", scene::ControlKind::kAxis)),
+      shift_slot_(s.controls.slot("side_shift", scene::ControlKind::kAxis)),
+      lock_slot_(s.controls.slot("lock", scene::ControlKind::kButton)),
+      unlock_slot_(s.controls.slot("unlock", scene::ControlKind::kButton)),
+      size_20_slot_(s.controls.slot("spreader_20", scene::ControlKind::kButton)),
+      size_40_slot_(s.controls.slot("spreader_40", scene::ControlKind::kButton)),
+      body_(add_body(world, s.mass_kg, s.half_extents_m, p.chassis, true, scene::kSurfaceVehicle)),
+      outer_(
+          add_body(world, s.boom_mass_kg / 2, outer_half_extents(s), p.outer, true, scene::kSurfaceSpreader)),
+      inner_(add_body(world, s.boom_mass_kg / 2, inner_half_extents(s), p.inner, false,
+                      scene::kSurfaceSpreader)),
+      rotator_(
+          add_body(world, rotator_mass_kg(s) / 2, kLinkHalf_m, p.rotator, false, scene::kSurfaceSpreader)),
+      slew_(add_body(world, rotator_mass_kg(s) / 2, kSlewHalf_m, p.slew, false, scene::kSurfaceSpreader)),
       spreader_(add_body(world, s.spreader.mass_kg,
                          {0.5 * s.spreader.width_m, 0.5 * s.spreader.length_m[1], 0.5 * s.spreader.height_m},
-                         p.spreader, false, kSurfaceSpreader)),
+                         p.spreader, false, scene::kSurfaceSpreader)),
       chassis_(s.chassis, body_),
       start_boom_rad_(start.boom_rad),
       start_extension_m_(start.extension_m),
@@ -132,7 +135,8 @@ ReachStacker::ReachStacker(physics::PhysicsWorld& world, const ReachStackerSetti
   // outer one touches what it is lowered onto, but not the chassis it lies on or the spreader
   world.exclude_contacts(body_, outer_);
   world.exclude_contacts(outer_, spreader_);
-  frame_ = std::make_unique<Spreader>(world, spreader_, kSurfaceSpreader, kSurfaceFlipper, s.spreader);
+  frame_ = std::make_unique<Spreader>(world, spreader_, scene::kSurfaceSpreader, scene::kSurfaceFlipper,
+                                      s.spreader);
   wind_areas_ = {WindArea{body_, s.half_extents_m}, WindArea{outer_, outer_half_extents(s)},
                  WindArea{spreader_, frame_->half_extents_m(), true}};
 }
@@ -175,8 +179,8 @@ void ReachStacker::step_limiter(double dt_s) {
   if (share < settings_.warn_from) limiter_armed_ = true;
 }
 
-void ReachStacker::step(const Controls& raw, std::span<const ContainerRef> containers, double dt_s) {
-  const Controls c = settings_.controls.in_range(raw);
+void ReachStacker::step(const scene::Controls& raw, std::span<const ContainerRef> containers, double dt_s) {
+  const scene::Controls c = settings_.controls.in_range(raw);
   const auto at = [&](int slot) { return c.value[static_cast<std::size_t>(slot)]; };
   // driving
   const ChassisCommand command = cab_.step(c, dt_s);
@@ -262,7 +266,7 @@ void ReachStacker::clear_faults() {
   landed_sensor_fault_ = -1;
 }
 
-void ReachStacker::describe(SceneDescription& d) const {
+void ReachStacker::describe(scene::SceneDescription& d) const {
   d.machine = kind();
   d.entities.push_back({"reach_stacker", "reach_stacker.chassis", settings_.half_extents_m});
   d.entities.push_back({"boom_outer", "reach_stacker.boom", outer_half_extents(settings_)});
@@ -275,10 +279,10 @@ void ReachStacker::describe(SceneDescription& d) const {
   d.rope_count = 0;
 }
 
-int ReachStacker::publish(Snapshot& s, int first) const {
+int ReachStacker::publish(scene::Snapshot& s, int first) const {
   int n = first;
   for (const physics::BodyId b : {body_, outer_, inner_, rotator_, slew_, spreader_})
-    if (n < kMaxEntities) {
+    if (n < scene::kMaxEntities) {
       s.entities[static_cast<std::size_t>(n)] = {static_cast<std::uint32_t>(n), 0, world_.pose(b)};
       ++n;
     }
@@ -306,7 +310,7 @@ int ReachStacker::publish(Snapshot& s, int first) const {
   static_assert(std::size(values) == std::size(kIndicators));
   s.indicator_count = static_cast<int>(std::size(values));
   std::copy(std::begin(values), std::end(values), s.indicators.begin());
-  const Snapshot::Drive drives[] = {
+  const scene::Snapshot::Drive drives[] = {
       chassis_.engine(), drive_reading(luff_.drive(), world_.hinge_torque(luff_hinge_)),
       drive_reading(telescope_.drive(), world_.slider_force(telescope_slider_))};
   publish_drives(drives, s);

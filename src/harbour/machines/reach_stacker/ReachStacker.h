@@ -43,8 +43,8 @@ class ReachStacker final : public Machine {
 
   // Machine
   const MachineType& type() const override { return reach_stacker_machine_type(); }
-  const ControlTable& control_table() const override { return settings_.controls; }
-  void step(const Controls& controls, std::span<const ContainerRef> liftables, double dt_s) override;
+  const scene::ControlTable& control_table() const override { return settings_.controls; }
+  void step(const scene::Controls& controls, std::span<const ContainerRef> liftables, double dt_s) override;
   std::optional<physics::BodyId> held_item() const override { return locks_.locked_container(); }
   std::optional<physics::BodyId> gripper_body() const override { return spreader_; }
   void stand_on(const Ground& ground) override { ground_ = &ground; }
@@ -56,9 +56,9 @@ class ReachStacker final : public Machine {
   core::Vec3 eye_on_cab_body_m() const override { return settings_.cab_position_m + settings_.eye_m; }
   core::Pose cab_pose() const override;
   core::Vec3 eye_m() const override { return settings_.eye_m; }
-  CabSight cab_sight() const override { return settings_.sight; }
-  void describe(SceneDescription& scene) const override;
-  int publish(Snapshot& snapshot, int entities) const override;
+  scene::CabSight cab_sight() const override { return settings_.sight; }
+  void describe(scene::SceneDescription& scene) const override;
+  int publish(scene::Snapshot& snapshot, int entities) const override;
   MachineTally tally() const override;
   void drain_events(StepEvents& events) override { locks_.twistlocks().drain_events(events.twistlocks); }
   void inject_fault(MachineFault fault, int detail) override;
@@ -136,7 +136,7 @@ struct ReachStackerSetup {
   ReachStackerStart start;
 
   static const MachineType& type() { return reach_stacker_machine_type(); }
-  const ControlTable& controls() const { return vehicle.controls; }
+  const scene::ControlTable& controls() const { return vehicle.controls; }
   std::unique_ptr<Machine> build(physics::PhysicsWorld& world) const;
   std::vector<cable::ReevingSettings*> reevings() { return {}; }
 };

@@ -6,8 +6,8 @@
 #include "harbour/machines/parts/Spreader.h"
 #include "harbour/machines/parts/Twistlocks.h"
 #include "harbour/machines/parts/WheeledChassis.h"
-#include "harbour/sim/Controls.h"
-#include "harbour/sim/Snapshot.h"
+#include "harbour/scene/Controls.h"
+#include "harbour/scene/Snapshot.h"
 
 namespace harbour::sim {
 
@@ -47,8 +47,8 @@ struct ReachStackerSettings {
   double tip_over_rad = 0.087;  ///< a tilt of the chassis from level counted as a tip-over (5 deg)
   core::Vec3 cab_position_m{1.5, 0.0, 1.0};  ///< the cab's floor (chassis frame)
   core::Vec3 eye_m{0.0, 0.0, 1.2};
-  CabSight sight;
-  ControlTable controls;  ///< the cab's controls, by label (its machine file's)
+  scene::CabSight sight;
+  scene::ControlTable controls;  ///< the cab's controls, by label (its machine file's)
 };
 
 /// The front (drive) axle's x on the chassis: the line the machine tips forward over.

@@ -8,7 +8,7 @@
 
 #include "harbour/core/Units.h"
 #include "harbour/machines/sts/StsCrane.h"
-#include "harbour/sim/Vessel.h"
+#include "harbour/scene/Surface.h"
 
 namespace harbour::sim {
 namespace {
@@ -33,19 +33,19 @@ std::array<std::pair<double, double>, 8> tyre_positions(const RtgSettings& s) {
 
 }  // namespace
 
-RtgControlSlots::RtgControlSlots(const ControlTable& t)
-    : gantry(t.slot("gantry", ControlKind::kAxis)),
-      trolley(t.slot("trolley", ControlKind::kAxis)),
-      hoist(t.slot("hoist", ControlKind::kAxis)),
-      steer(t.slot("steer", ControlKind::kAxis)),
-      wheel_turn(t.slot("wheel_turn", ControlKind::kSwitch)),
-      lock(t.slot("lock", ControlKind::kButton)),
-      unlock(t.slot("unlock", ControlKind::kButton)),
-      emergency_stop(t.slot("emergency_stop", ControlKind::kButton)),
-      horn(t.slot("horn", ControlKind::kButton)),
-      spreader_20(t.slot("spreader_20", ControlKind::kButton)),
-      spreader_40(t.slot("spreader_40", ControlKind::kButton)),
-      spreader_45(t.slot("spreader_45", ControlKind::kButton)) {}
+RtgControlSlots::RtgControlSlots(const scene::ControlTable& t)
+    : gantry(t.slot("gantry", scene::ControlKind::kAxis)),
+      trolley(t.slot("trolley", scene::ControlKind::kAxis)),
+      hoist(t.slot("hoist", scene::ControlKind::kAxis)),
+      steer(t.slot("steer", scene::ControlKind::kAxis)),
+      wheel_turn(t.slot("wheel_turn", scene::ControlKind::kSwitch)),
+      lock(t.slot("lock", scene::ControlKind::kButton)),
+      unlock(t.slot("unlock", scene::ControlKind::kButton)),
+      emergency_stop(t.slot("emergency_stop", scene::ControlKind::kButton)),
+      horn(t.slot("horn", scene::ControlKind::kButton)),
+      spreader_20(t.slot("spreader_20", scene::ControlKind::kButton)),
+      spreader_40(t.slot("spreader_40", scene::ControlKind::kButton)),
+      spreader_45(t.slot("spreader_45", scene::ControlKind::kButton)) {}
 
 RubberTyredGantry::RubberTyredGantry(physics::PhysicsWorld& world, const RtgSettings& s,
                                      const RtgStart& start)
@@ -77,13 +77,13 @@ RubberTyredGantry::RubberTyredGantry(physics::PhysicsWorld& world, const RtgSett
     world.add_box_shape(frame_,
                         {0.5 * s.leg_width_m, 0.5 * (s.wheelbase_m + s.bogie_tyre_spacing_m) + 0.8,
                          0.5 * (sill_top - s.sill_height_m)},
-                        {core::Mat3::identity(), {x, 0.0, sill_z}}, kSurfaceVehicle);
+                        {core::Mat3::identity(), {x, 0.0, sill_z}}, scene::kSurfaceVehicle);
     for (const double end : {-1.0, 1.0})
       world.add_box_shape(
           frame_, {0.5 * s.leg_width_m, 0.6, 0.5 * (leg_top - sill_top)},
           {core::Mat3::identity(),
            {x, 0.5 * end * s.wheelbase_m, 0.5 * (sill_top + leg_top) - s.frame_centre_height_m}},
-          kSurfaceVehicle);
+          scene::kSurfaceVehicle);
   }
 
   physics::BoxSettings trolley;
@@ -161,8 +161,9 @@ core::Vec3 RubberTyredGantry::eye_on_cab_body_m() const {
   return settings_.cab_position_m + core::Mat3::rotation({0, 0, 1}, kHalfPi) * settings_.eye_m;
 }
 
-void RubberTyredGantry::step(const Controls& raw, std::span<const ContainerRef> containers, double dt_s) {
-  const Controls c = settings_.controls.in_range(raw);
+void RubberTyredGantry::step(const scene::Controls& raw, std::span<const ContainerRef> containers,
+                             double dt_s) {
+  const scene::Controls c = settings_.controls.in_range(raw);
   const auto at = [&](int slot) { return c.value[static_cast<std::size_t>(slot)]; };
   const bool stop = at(slots_.emergency_stop) != 0.0;
   horn_ = at(slots_.horn) != 0.0;
@@ -255,8 +256,8 @@ double RubberTyredGantry::gantry_max_speed_mps() const {
                      : settings_.gantry_drive.max_speed_mps;
 }
 
-Controls RubberTyredGantry::crane_controls(const StsControls& in) const {
-  Controls c = settings_.controls.neutral();
+scene::Controls RubberTyredGantry::crane_controls(const StsControls& in) const {
+  scene::Controls c = settings_.controls.neutral();
   const auto set = [&](int slot, double v) { c.value[static_cast<std::size_t>(slot)] = v; };
   set(slots_.gantry, in.gantry);
   set(slots_.trolley, in.trolley);
@@ -279,20 +280,20 @@ constexpr const char* kRtgIndicators[] = {
     "lamp_locked", "lamp_unlocked", "horn",           "load_t",        "lamp_brake_fault", "net_load_t"};
 }  // namespace
 
-void RubberTyredGantry::describe(SceneDescription& d) const {
+void RubberTyredGantry::describe(scene::SceneDescription& d) const {
   d.machine = kind();
   d.entities.push_back({"frame", "rtg.frame", {}});
   d.entities.push_back({"trolley", "rtg.trolley", {}});
   d.entities.push_back({"spreader", "rtg.spreader", rig_->spreader().half_extents_m()});
   d.indicators.assign(std::begin(kRtgIndicators), std::end(kRtgIndicators));
   d.drives = {"gantry", "trolley", "hoist", "engine"};
-  d.rope_count = std::min(rig_->hoist().rope_count(), kMaxRopes);
+  d.rope_count = std::min(rig_->hoist().rope_count(), scene::kMaxRopes);
 }
 
-int RubberTyredGantry::publish(Snapshot& s, int first) const {
+int RubberTyredGantry::publish(scene::Snapshot& s, int first) const {
   int n = first;
   for (const core::Pose& pose : {world_.pose(frame_), world_.pose(trolley_), spreader_pose()})
-    if (n < kMaxEntities) {
+    if (n < scene::kMaxEntities) {
       s.entities[static_cast<std::size_t>(n)] = {static_cast<std::uint32_t>(n), 0, pose};
       ++n;
     }
@@ -315,12 +316,12 @@ int RubberTyredGantry::publish(Snapshot& s, int first) const {
   s.indicator_count = static_cast<int>(std::size(values));
   std::copy(std::begin(values), std::end(values), s.indicators.begin());
   // its drives and the diesel generator set that powers them
-  const Snapshot::Drive motors[] = {drive_reading(gantry_, gantry_force_n_),
-                                    drive_reading(trolley_drive_, world_.slider_force(trolley_slider_)),
-                                    drum_reading(rig_->hoist(), 0)};
+  const scene::Snapshot::Drive motors[] = {
+      drive_reading(gantry_, gantry_force_n_),
+      drive_reading(trolley_drive_, world_.slider_force(trolley_slider_)), drum_reading(rig_->hoist(), 0)};
   const double rated[] = {rated_power_w(settings_.gantry_drive), rated_power_w(settings_.trolley_drive),
                           rated_power_w(rig_->hoist().drum_settings(0))};
-  const Snapshot::Drive drives[] = {motors[0], motors[1], motors[2], generator_reading(motors, rated)};
+  const scene::Snapshot::Drive drives[] = {motors[0], motors[1], motors[2], generator_reading(motors, rated)};
   publish_drives(drives, s);
   return n - first;
 }

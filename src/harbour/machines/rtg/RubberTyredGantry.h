@@ -42,11 +42,11 @@ struct RtgSettings {
   double trolley_mass_kg = 20000.0;
   double trolley_rail_height_m = 22.0;  ///< [m] the trolley's centre above the ground
   SpreaderHoistSettings rig;            ///< its reeving's bodies: [trolley, headblock]
-  ControlTable controls;
+  scene::ControlTable controls;
   core::Vec3 cab_position_m{0.0, -3.0, -2.5};  ///< [m] the cab's centre in the trolley's frame; the operator
                                                ///< faces along the trolley's +y, towards the spreader
   core::Vec3 eye_m{0.3, 0.0, 0.6};             ///< [m] the eye in the cab's frame (x the way it faces)
-  CabSight sight{0.0, -1.0, 0.75};
+  scene::CabSight sight{0.0, -1.0, 0.75};
 };
 
 /// Where the RTG stands at the start.
@@ -63,7 +63,7 @@ struct RtgStart {
 struct RtgControlSlots {
   int gantry, trolley, hoist, steer, wheel_turn, lock, unlock, emergency_stop, horn, spreader_20, spreader_40,
       spreader_45;
-  explicit RtgControlSlots(const ControlTable& table);
+  explicit RtgControlSlots(const scene::ControlTable& table);
 };
 
 /// A rubber-tyred gantry crane on the physics world: its frame on eight tyres (the shared tyre model: the
@@ -78,8 +78,8 @@ class RubberTyredGantry final : public Machine, public GantryCrane {
 
   // Machine
   const MachineType& type() const override { return rtg_machine_type(); }
-  const ControlTable& control_table() const override { return settings_.controls; }
-  void step(const Controls& controls, std::span<const ContainerRef> liftables, double dt_s) override;
+  const scene::ControlTable& control_table() const override { return settings_.controls; }
+  void step(const scene::Controls& controls, std::span<const ContainerRef> liftables, double dt_s) override;
   std::optional<physics::BodyId> held_item() const override { return rig_->locked_container(); }
   std::optional<physics::BodyId> gripper_body() const override { return rig_->spreader_body(); }
   void stand_on(const Ground& ground) override { ground_ = &ground; }
@@ -91,9 +91,9 @@ class RubberTyredGantry final : public Machine, public GantryCrane {
   core::Vec3 eye_on_cab_body_m() const override;
   core::Pose cab_pose() const override;
   core::Vec3 eye_m() const override { return settings_.eye_m; }
-  CabSight cab_sight() const override { return settings_.sight; }
-  void describe(SceneDescription& scene) const override;
-  int publish(Snapshot& snapshot, int entities) const override;
+  scene::CabSight cab_sight() const override { return settings_.sight; }
+  void describe(scene::SceneDescription& scene) const override;
+  int publish(scene::Snapshot& snapshot, int entities) const override;
   MachineTally tally() const override;
   Telemetry telemetry() const override;
   void settle_ropes() override { rig_->settle_ropes(); }
@@ -121,7 +121,7 @@ class RubberTyredGantry final : public Machine, public GantryCrane {
   double gantry_max_speed_mps() const override;
   double trolley_max_speed_mps() const override { return settings_.trolley_drive.max_speed_mps; }
   const SpreaderHoist& spreader_hoist() const override { return *rig_; }
-  Controls crane_controls(const StsControls& levers) const override;
+  scene::Controls crane_controls(const StsControls& levers) const override;
   /// The frame's centre off the line it started on, across the block [m] (+ towards its +x).
   double lane_offset_m() const override;
   /// The frame's yaw from its start heading [rad].
@@ -177,7 +177,7 @@ struct RtgSetup {
   RtgStart start;
 
   static const MachineType& type() { return rtg_machine_type(); }
-  const ControlTable& controls() const { return crane.controls; }
+  const scene::ControlTable& controls() const { return crane.controls; }
   std::unique_ptr<Machine> build(physics::PhysicsWorld& world) const;
   std::vector<cable::ReevingSettings*> reevings() { return {&crane.rig.hoist}; }
 };

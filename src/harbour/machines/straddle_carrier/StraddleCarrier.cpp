@@ -7,7 +7,7 @@
 #include "harbour/core/Units.h"
 #include "harbour/machines/GantryCrane.h"
 #include "harbour/machines/parts/DriveReadings.h"
-#include "harbour/sim/Vessel.h"
+#include "harbour/scene/Surface.h"
 
 namespace harbour::sim {
 namespace {
@@ -25,13 +25,13 @@ core::Mat3 spreader_on_portal() {
 
 }  // namespace
 
-StraddleCarrierSlots::StraddleCarrierSlots(const ControlTable& t)
-    : hoist(t.slot("hoist", ControlKind::kAxis)),
-      lock(t.slot("lock", ControlKind::kButton)),
-      unlock(t.slot("unlock", ControlKind::kButton)),
-      spreader_20(t.slot("spreader_20", ControlKind::kButton)),
-      spreader_40(t.slot("spreader_40", ControlKind::kButton)),
-      spreader_45(t.slot("spreader_45", ControlKind::kButton)) {}
+StraddleCarrierSlots::StraddleCarrierSlots(const scene::ControlTable& t)
+    : hoist(t.slot("hoist", scene::ControlKind::kAxis)),
+      lock(t.slot("lock", scene::ControlKind::kButton)),
+      unlock(t.slot("unlock", scene::ControlKind::kButton)),
+      spreader_20(t.slot("spreader_20", scene::ControlKind::kButton)),
+      spreader_40(t.slot("spreader_40", scene::ControlKind::kButton)),
+      spreader_45(t.slot("spreader_45", scene::ControlKind::kButton)) {}
 
 StraddleCarrier::StraddleCarrier(physics::PhysicsWorld& world, const StraddleCarrierSettings& s,
                                  const StraddleCarrierStart& start)
@@ -56,7 +56,7 @@ StraddleCarrier::StraddleCarrier(physics::PhysicsWorld& world, const StraddleCar
   // it touches the world by its sills, its legs and its top frame; the row it straddles passes between
   const double ground = s.ground_z_m();
   const auto beam = [&](const core::Vec3& half, const core::Vec3& centre) {
-    world.add_box_shape(body_, half, {core::Mat3::identity(), centre}, kSurfaceVehicle);
+    world.add_box_shape(body_, half, {core::Mat3::identity(), centre}, scene::kSurfaceVehicle);
   };
   const double half_width = 0.5 * s.leg_width_m;
   for (const double side : {-1.0, 1.0}) {
@@ -94,8 +94,9 @@ core::Pose StraddleCarrier::cab_pose() const {
   return {portal.rotation, portal.to_parent(settings_.cab_position_m)};
 }
 
-void StraddleCarrier::step(const Controls& raw, std::span<const ContainerRef> containers, double dt_s) {
-  const Controls c = settings_.controls.in_range(raw);
+void StraddleCarrier::step(const scene::Controls& raw, std::span<const ContainerRef> containers,
+                           double dt_s) {
+  const scene::Controls c = settings_.controls.in_range(raw);
   const auto at = [&](int slot) { return c.value[static_cast<std::size_t>(slot)]; };
   chassis_.step(world_, cab_.step(c, dt_s), *ground_);
   SpreaderHoistCommand hoist;
@@ -116,19 +117,19 @@ void StraddleCarrier::settle_at_rest() {
   settle_gantry_crane(*this, world_, bodies, *rig_);
 }
 
-void StraddleCarrier::describe(SceneDescription& d) const {
+void StraddleCarrier::describe(scene::SceneDescription& d) const {
   d.machine = kind();
   d.entities.push_back({"portal", "straddle_carrier.portal", settings_.half_extents_m});
   d.entities.push_back({"spreader", "straddle_carrier.spreader", rig_->spreader().half_extents_m()});
   d.indicators.assign(std::begin(kIndicators), std::end(kIndicators));
   d.drives = {"hoist", "engine"};
-  d.rope_count = std::min(rig_->hoist().rope_count(), kMaxRopes);
+  d.rope_count = std::min(rig_->hoist().rope_count(), scene::kMaxRopes);
 }
 
-int StraddleCarrier::publish(Snapshot& s, int first) const {
+int StraddleCarrier::publish(scene::Snapshot& s, int first) const {
   int n = first;
   for (const core::Pose& pose : {world_.pose(body_), spreader_pose()})
-    if (n < kMaxEntities) {
+    if (n < scene::kMaxEntities) {
       s.entities[static_cast<std::size_t>(n)] = {static_cast<std::uint32_t>(n), 0, pose};
       ++n;
     }
@@ -148,7 +149,7 @@ int StraddleCarrier::publish(Snapshot& s, int first) const {
   static_assert(std::size(values) == std::size(kIndicators));
   s.indicator_count = static_cast<int>(std::size(values));
   std::copy(std::begin(values), std::end(values), s.indicators.begin());
-  const Snapshot::Drive drives[] = {drum_reading(rig_->hoist(), 0), chassis_.engine()};
+  const scene::Snapshot::Drive drives[] = {drum_reading(rig_->hoist(), 0), chassis_.engine()};
   publish_drives(drives, s);
   return n - first;
 }

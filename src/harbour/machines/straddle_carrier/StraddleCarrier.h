@@ -33,10 +33,10 @@ struct StraddleCarrierSettings {
   WheeledChassisSettings chassis;  ///< its eight wheels, four along each sill, every one steered
   double steer_rate_per_s = 0.5;   ///< steering command travel per second
   SpreaderHoistSettings rig;       ///< the hoist's reeving's bodies: [portal, headblock]
-  ControlTable controls;
+  scene::ControlTable controls;
   core::Vec3 cab_position_m{3.9, 1.6, 6.5};  ///< [m] the cab's centre on the portal
   core::Vec3 eye_m{0.3, 0.0, 0.5};           ///< [m] the eye in the cab (x the way the driver faces)
-  CabSight sight{0.0, -0.5, 0.9};
+  scene::CabSight sight{0.0, -0.5, 0.9};
 
   /// The ground's height in the portal's frame at rest on unloaded tyres [m] (below its centre of mass).
   double ground_z_m() const { return chassis.axles.front().hub_z_m - chassis.tyre.radius_m; }
@@ -52,7 +52,7 @@ struct StraddleCarrierStart {
 /// The straddle carrier's controls, read by label from its table.
 struct StraddleCarrierSlots {
   int hoist, lock, unlock, spreader_20, spreader_40, spreader_45;
-  explicit StraddleCarrierSlots(const ControlTable& table);
+  explicit StraddleCarrierSlots(const scene::ControlTable& table);
 };
 
 /// A straddle carrier on the physics world: its portal one body on the shared wheeled chassis (eight tyres,
@@ -67,8 +67,8 @@ class StraddleCarrier final : public Machine {
 
   // Machine
   const MachineType& type() const override { return straddle_carrier_machine_type(); }
-  const ControlTable& control_table() const override { return settings_.controls; }
-  void step(const Controls& controls, std::span<const ContainerRef> liftables, double dt_s) override;
+  const scene::ControlTable& control_table() const override { return settings_.controls; }
+  void step(const scene::Controls& controls, std::span<const ContainerRef> liftables, double dt_s) override;
   std::optional<physics::BodyId> held_item() const override { return rig_->locked_container(); }
   std::optional<physics::BodyId> gripper_body() const override { return rig_->spreader_body(); }
   void stand_on(const Ground& ground) override { ground_ = &ground; }
@@ -80,9 +80,9 @@ class StraddleCarrier final : public Machine {
   core::Vec3 eye_on_cab_body_m() const override { return settings_.cab_position_m + settings_.eye_m; }
   core::Pose cab_pose() const override;
   core::Vec3 eye_m() const override { return settings_.eye_m; }
-  CabSight cab_sight() const override { return settings_.sight; }
-  void describe(SceneDescription& scene) const override;
-  int publish(Snapshot& snapshot, int entities) const override;
+  scene::CabSight cab_sight() const override { return settings_.sight; }
+  void describe(scene::SceneDescription& scene) const override;
+  int publish(scene::Snapshot& snapshot, int entities) const override;
   MachineTally tally() const override;
   Telemetry telemetry() const override;
   void settle_ropes() override { rig_->settle_ropes(); }
@@ -126,7 +126,7 @@ struct StraddleCarrierSetup {
   StraddleCarrierStart start;
 
   static const MachineType& type() { return straddle_carrier_machine_type(); }
-  const ControlTable& controls() const { return vehicle.controls; }
+  const scene::ControlTable& controls() const { return vehicle.controls; }
   std::unique_ptr<Machine> build(physics::PhysicsWorld& world) const;
   std::vector<cable::ReevingSettings*> reevings() { return {&vehicle.rig.hoist}; }
 };

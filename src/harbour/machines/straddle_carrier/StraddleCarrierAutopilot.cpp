@@ -81,16 +81,17 @@ const char* StraddleCarrierAutopilot::activity() const {
   return kNames[static_cast<int>(phase_)];
 }
 
-void StraddleCarrierAutopilot::resume(const Simulation& simulation, int moves_done, const Controls& levers) {
+void StraddleCarrierAutopilot::resume(const Simulation& simulation, int moves_done,
+                                      const scene::Controls& levers) {
   const auto* machine = dynamic_cast<const StraddleCarrier*>(&simulation.machine());
   phase_ = moves_done >= 1 ? Phase::kDone : machine && machine->held_item() ? Phase::kLift : Phase::kApproach;
   phase_start_s_ = simulation.time_s();
   take_levers(levers);
 }
 
-Controls StraddleCarrierAutopilot::decide(const Simulation& simulation, const StraddleCarrier& m) {
-  const ControlTable& table = simulation.control_table();
-  Controls c = table.neutral();
+scene::Controls StraddleCarrierAutopilot::decide(const Simulation& simulation, const StraddleCarrier& m) {
+  const scene::ControlTable& table = simulation.control_table();
+  scene::Controls c = table.neutral();
   const auto set = [&](const char* label, double value) {
     c.value[static_cast<std::size_t>(table.find(label))] = value;
   };

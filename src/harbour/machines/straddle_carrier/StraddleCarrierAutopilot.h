@@ -25,11 +25,11 @@ class StraddleCarrierAutopilot final : public DecidingPilot<StraddleCarrier> {
   /// What it is doing now: approach, land, lock, lift, carry, set, unlock, clear, done.
   const char* activity() const override;
   /// Takes over a running exercise from where the machine stands and what it holds.
-  void resume(const Simulation& simulation, int moves_done, const Controls& levers) override;
+  void resume(const Simulation& simulation, int moves_done, const scene::Controls& levers) override;
 
  private:
   enum class Phase { kApproach, kLand, kLock, kLift, kCarry, kSet, kUnlock, kClear, kDone };
-  Controls decide(const Simulation& simulation, const StraddleCarrier& machine) override;
+  scene::Controls decide(const Simulation& simulation, const StraddleCarrier& machine) override;
 
   ExerciseSettings exercise_;
   Phase phase_ = Phase::kApproach;

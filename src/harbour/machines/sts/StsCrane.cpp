@@ -8,26 +8,27 @@
 #include <stdexcept>
 
 #include "harbour/core/Units.h"
-#include "harbour/sim/Vessel.h"
 
 #include "harbour/core/Braking.h"
 
 namespace harbour::sim {
 
-StsControlSlots::StsControlSlots(const ControlTable& t)
-    : gantry(t.slot("gantry", ControlKind::kAxis)),
-      trolley(t.slot("trolley", ControlKind::kAxis)),
-      hoist(t.slot("hoist", ControlKind::kAxis)),
-      boom(t.slot("boom", ControlKind::kAxis)),
-      lock(t.slot("lock", ControlKind::kButton)),
-      unlock(t.slot("unlock", ControlKind::kButton)),
-      emergency_stop(t.slot("emergency_stop", ControlKind::kButton)),
-      horn(t.slot("horn", ControlKind::kButton)),
-      spreader_20(t.slot("spreader_20", ControlKind::kButton)),
-      spreader_40(t.slot("spreader_40", ControlKind::kButton)),
-      spreader_45(t.slot("spreader_45", ControlKind::kButton)),
-      flipper{t.slot("flipper_1", ControlKind::kSwitch), t.slot("flipper_2", ControlKind::kSwitch),
-              t.slot("flipper_3", ControlKind::kSwitch), t.slot("flipper_4", ControlKind::kSwitch)} {
+StsControlSlots::StsControlSlots(const scene::ControlTable& t)
+    : gantry(t.slot("gantry", scene::ControlKind::kAxis)),
+      trolley(t.slot("trolley", scene::ControlKind::kAxis)),
+      hoist(t.slot("hoist", scene::ControlKind::kAxis)),
+      boom(t.slot("boom", scene::ControlKind::kAxis)),
+      lock(t.slot("lock", scene::ControlKind::kButton)),
+      unlock(t.slot("unlock", scene::ControlKind::kButton)),
+      emergency_stop(t.slot("emergency_stop", scene::ControlKind::kButton)),
+      horn(t.slot("horn", scene::ControlKind::kButton)),
+      spreader_20(t.slot("spreader_20", scene::ControlKind::kButton)),
+      spreader_40(t.slot("spreader_40", scene::ControlKind::kButton)),
+      spreader_45(t.slot("spreader_45", scene::ControlKind::kButton)),
+      flipper{t.slot("flipper_1", scene::ControlKind::kSwitch),
+              t.slot("flipper_2", scene::ControlKind::kSwitch),
+              t.slot("flipper_3", scene::ControlKind::kSwitch),
+              t.slot("flipper_4", scene::ControlKind::kSwitch)} {
   for (const int f : flipper)
     if (t[f].positions.size() != 2)
       throw std::invalid_argument("a flipper switch has two positions: up, down");
@@ -36,7 +37,7 @@ StsControlSlots::StsControlSlots(const ControlTable& t)
       throw std::invalid_argument("the STS levers read -1 to 1 ('" + t[lever].label + "')");
 }
 
-StsControls StsControlSlots::read(const Controls& c) const {
+StsControls StsControlSlots::read(const scene::Controls& c) const {
   const auto at = [&](int slot) { return c.value[static_cast<std::size_t>(slot)]; };
   const auto lever = [&](int slot) {
     return std::isfinite(at(slot)) ? std::clamp(at(slot), -1.0, 1.0) : 0.0;
@@ -59,7 +60,7 @@ StsControls StsControlSlots::read(const Controls& c) const {
   return s;
 }
 
-void StsControlSlots::write(const StsControls& s, Controls& c) const {
+void StsControlSlots::write(const StsControls& s, scene::Controls& c) const {
   const auto set = [&](int slot, double v) { c.value[static_cast<std::size_t>(slot)] = v; };
   set(gantry, s.gantry);
   set(trolley, s.trolley);
@@ -81,8 +82,8 @@ core::Pose StsCrane::cab_pose() const {
   return {trolley.rotation, trolley.to_parent(settings_.cab_position_m)};
 }
 
-Controls StsCrane::controls(const StsControls& sts) const {
-  Controls c = settings_.controls.neutral();
+scene::Controls StsCrane::controls(const StsControls& sts) const {
+  scene::Controls c = settings_.controls.neutral();
   slots_.write(sts, c);
   return c;
 }
@@ -180,20 +181,20 @@ Telemetry StsCrane::telemetry() const {
   return {core::length(t.swing_m), rig_->hoist().highest_tension_n(), t.axes};
 }
 
-void StsCrane::describe(SceneDescription& d) const {
+void StsCrane::describe(scene::SceneDescription& d) const {
   d.machine = kind();
   d.entities.push_back({"gantry", "sts.gantry", {}});
   d.entities.push_back({"trolley", "sts.trolley", {}});
   d.entities.push_back({"spreader", "sts.spreader", rig_->spreader().half_extents_m()});
   d.indicators.assign(std::begin(kStsIndicators), std::end(kStsIndicators));
   d.drives = {"gantry", "trolley", "hoist", "boom"};
-  d.rope_count = std::min(rig_->hoist().rope_count(), kMaxRopes);
+  d.rope_count = std::min(rig_->hoist().rope_count(), scene::kMaxRopes);
 }
 
-int StsCrane::publish(Snapshot& s, int first) const {
+int StsCrane::publish(scene::Snapshot& s, int first) const {
   int n = first;
   for (const core::Pose& pose : {world_.pose(gantry_body_), world_.pose(trolley_body_), spreader_pose()})
-    if (n < kMaxEntities) {
+    if (n < scene::kMaxEntities) {
       s.entities[static_cast<std::size_t>(n)] = {static_cast<std::uint32_t>(n), 0, pose};
       ++n;
     }
@@ -221,10 +222,10 @@ int StsCrane::publish(Snapshot& s, int first) const {
   s.indicator_count = static_cast<int>(std::size(values));
   std::copy(std::begin(values), std::end(values), s.indicators.begin());
   // the boom is moved kinematically: its winch heard at half its rating while it moves
-  const Snapshot::Drive drives[] = {drive_reading(gantry_, world_.slider_force(gantry_slider_)),
-                                    drive_reading(trolley_, world_.slider_force(trolley_slider_)),
-                                    drum_reading(rig_->hoist(), 0),
-                                    drive_reading(boom_, 0.5 * boom_.settings().max_force_n)};
+  const scene::Snapshot::Drive drives[] = {drive_reading(gantry_, world_.slider_force(gantry_slider_)),
+                                           drive_reading(trolley_, world_.slider_force(trolley_slider_)),
+                                           drum_reading(rig_->hoist(), 0),
+                                           drive_reading(boom_, 0.5 * boom_.settings().max_force_n)};
   publish_drives(drives, s);
   return n - first;
 }

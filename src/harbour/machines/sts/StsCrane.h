@@ -14,7 +14,7 @@
 #include "harbour/machines/parts/Drive.h"
 #include "harbour/machines/parts/SpreaderHoist.h"
 #include "harbour/physics/PhysicsWorld.h"
-#include "harbour/sim/Controls.h"
+#include "harbour/scene/Controls.h"
 
 namespace harbour::sim {
 
@@ -44,12 +44,13 @@ struct StsCraneSettings {
   BoomSettings boom;
   TwistlockSettings twistlocks;
   cable::ReevingSettings hoist;
-  ControlTable controls;  ///< the cab's controls, by label (its machine file's)
+  scene::ControlTable controls;  ///< the cab's controls, by label (its machine file's)
   /// The operator's cab hangs under the trolley: its centre in the trolley's frame [m], and the design eye
   /// point in the cab's frame (x waterside, the way the operator faces; z up) [m].
   core::Vec3 cab_position_m{3.0, 0.0, -3.5};
   core::Vec3 eye_m{0.3, 0.0, 0.6};
-  CabSight sight{0.0, -1.3, 0.75};  ///< the operator looks down through the cab's floor onto the spreader
+  scene::CabSight sight{0.0, -1.3,
+                        0.75};  ///< the operator looks down through the cab's floor onto the spreader
   /// The spreader on its hoist, as the shared part takes it.
   SpreaderHoistSettings spreader_hoist() const {
     return {spreader, twistlocks, hoist, hoist_upper_limit_m, hoist_lower_limit_m};
@@ -77,11 +78,11 @@ struct StsControlSlots {
   int gantry, trolley, hoist, boom, lock, unlock, emergency_stop, horn, spreader_20, spreader_40, spreader_45;
   std::array<int, 4> flipper;
   /// Throws std::invalid_argument naming a control the table lacks or has of another kind.
-  explicit StsControlSlots(const ControlTable& table);
+  explicit StsControlSlots(const scene::ControlTable& table);
   /// The cab's controls read from `controls` (in range).
-  StsControls read(const Controls& controls) const;
+  StsControls read(const scene::Controls& controls) const;
   /// `sts` written into `controls` (the other slots kept).
-  void write(const StsControls& sts, Controls& controls) const;
+  void write(const StsControls& sts, scene::Controls& controls) const;
 };
 
 /// The STS crane on the physics world: gantry and trolley on motorised sliders driven by Drives, the spreader
@@ -96,8 +97,8 @@ class StsCrane final : public Machine, public GantryCrane {
 
   // Machine
   const MachineType& type() const override { return sts_machine_type(); }
-  const ControlTable& control_table() const override { return settings_.controls; }
-  void step(const Controls& controls, std::span<const ContainerRef> liftables, double dt_s) override {
+  const scene::ControlTable& control_table() const override { return settings_.controls; }
+  void step(const scene::Controls& controls, std::span<const ContainerRef> liftables, double dt_s) override {
     step(read(controls), liftables, dt_s);
   }
   std::optional<physics::BodyId> held_item() const override { return rig_->locked_container(); }
@@ -106,8 +107,8 @@ class StsCrane final : public Machine, public GantryCrane {
   std::span<const WindArea> wind_areas() const override { return wind_areas_; }
   physics::BodyId cab_body() const override { return trolley_body_; }
   core::Vec3 eye_on_cab_body_m() const override { return settings_.cab_position_m + settings_.eye_m; }
-  void describe(SceneDescription& scene) const override;
-  int publish(Snapshot& snapshot, int entities) const override;
+  void describe(scene::SceneDescription& scene) const override;
+  int publish(scene::Snapshot& snapshot, int entities) const override;
   /// Its spreader's swing from plumb under the trolley, its gantry's, trolley's and hoist's speeds, the end
   /// limits they were driven into, what their motors deliver; its gantry warns before it travels.
   MachineTally tally() const override;
@@ -131,12 +132,12 @@ class StsCrane final : public Machine, public GantryCrane {
   double gantry_max_speed_mps() const override { return settings_.gantry_drive.max_speed_mps; }
   double trolley_max_speed_mps() const override { return settings_.trolley_drive.max_speed_mps; }
   const SpreaderHoist& spreader_hoist() const override { return *rig_; }
-  Controls crane_controls(const StsControls& levers) const override { return controls(levers); }
+  scene::Controls crane_controls(const StsControls& levers) const override { return controls(levers); }
 
   const StsControlSlots& control_slots() const { return slots_; }
   /// The cab's controls as labelled Controls (the other slots neutral), and back.
-  Controls controls(const StsControls& sts) const;
-  StsControls read(const Controls& controls) const { return slots_.read(controls); }
+  scene::Controls controls(const StsControls& sts) const;
+  StsControls read(const scene::Controls& controls) const { return slots_.read(controls); }
 
   double gantry_position_m() const { return gantry_start_y_ + world_.slider_position(gantry_slider_); }
   double trolley_position_m() const { return trolley_start_x_ + world_.slider_position(trolley_slider_); }
@@ -159,7 +160,7 @@ class StsCrane final : public Machine, public GantryCrane {
   /// The cab's frame in the world (it rides on the trolley) and its design eye point in that frame.
   core::Pose cab_pose() const override;
   core::Vec3 eye_m() const override { return settings_.eye_m; }
-  CabSight cab_sight() const override { return settings_.sight; }
+  scene::CabSight cab_sight() const override { return settings_.sight; }
   /// The container locked to the spreader, if any.
   std::optional<physics::BodyId> locked_container() const { return rig_->locked_container(); }
   TwistlockLamps lamps() const { return rig_->locks().twistlocks().lamps(); }
@@ -198,7 +199,7 @@ struct StsSetup {
   double gantry_y_m = 0.0, trolley_x_m = 20.0, spreader_z_m = 20.0;  ///< [m] crane pose at the start
 
   static const MachineType& type() { return sts_machine_type(); }
-  const ControlTable& controls() const { return crane.controls; }
+  const scene::ControlTable& controls() const { return crane.controls; }
   std::unique_ptr<Machine> build(physics::PhysicsWorld& world) const;
   std::vector<cable::ReevingSettings*> reevings() { return {&crane.hoist}; }
 };

@@ -26,7 +26,7 @@ sim::TractorSettings read_tractor(const YamlFile& f) {
   s.sight = cab.sight;
   s.controls = read_control_table(f, m, "machine");
   require_driving_controls(f, m, s.controls);
-  require_controls(f, m, s.controls, {{"couple", sim::ControlKind::kButton}});
+  require_controls(f, m, s.controls, {{"couple", scene::ControlKind::kButton}});
   return s;
 }
 

@@ -7,7 +7,7 @@
 #include <numbers>
 
 #include "harbour/core/Units.h"
-#include "harbour/sim/Vessel.h"
+#include "harbour/scene/Surface.h"
 
 namespace harbour::sim {
 namespace {
@@ -23,7 +23,7 @@ physics::BodyId add_body(physics::PhysicsWorld& world, double mass_kg, const cor
   box.half_extents_m = half_extents_m;
   box.pose = pose;
   box.center_of_mass_m = center_of_mass_m;
-  box.surface = kSurfaceVehicle;
+  box.surface = scene::kSurfaceVehicle;
   return world.add_box(box);
 }
 
@@ -77,7 +77,7 @@ TerminalTractor::TerminalTractor(physics::PhysicsWorld& world, const TractorSett
     : world_(world),
       settings_(settings),
       cab_(settings.controls, settings.steer_rate_per_s),
-      couple_slot_(settings.controls.slot("couple", ControlKind::kButton)),
+      couple_slot_(settings.controls.slot("couple", scene::ControlKind::kButton)),
       body_(add_body(world, settings.mass_kg, settings.half_extents_m, poses.tractor)),
       chassis_(settings.chassis, body_),
       wind_areas_{WindArea{body_, settings.half_extents_m}, WindArea{}} {
@@ -103,7 +103,7 @@ TerminalTractor::TerminalTractor(physics::PhysicsWorld& world, const TractorSett
     box.half_extents_m = *t.receives_half_extents_m;
     box.pose = {poses.trailer.rotation, poses.trailer.position - core::Vec3{0, 0, 100.0}};
     box.kinematic = true;
-    box.surface = kSurfaceContainer;
+    box.surface = scene::kSurfaceContainer;
     load_body_ = world.add_box(box);
     load_half_extents_m_ = *t.receives_half_extents_m;
     world.exclude_contacts(load_body_, trailer_body_);  // the cones hold it
@@ -186,8 +186,8 @@ double TerminalTractor::forward_mps() const {
   return dot(world_.linear_velocity(body_), world_.pose(body_).rotation.column(0));
 }
 
-void TerminalTractor::step(const Controls& raw, std::span<const ContainerRef>, double dt_s) {
-  const Controls c = settings_.controls.in_range(raw);
+void TerminalTractor::step(const scene::Controls& raw, std::span<const ContainerRef>, double dt_s) {
+  const scene::Controls c = settings_.controls.in_range(raw);
   const auto at = [&](int slot) { return c.value[static_cast<std::size_t>(slot)]; };
   const ChassisCommand command = cab_.step(c, dt_s);
   chassis_.step(world_, command, *ground_);
@@ -246,30 +246,30 @@ std::optional<physics::BodyId> TerminalTractor::load() const {
   return std::nullopt;
 }
 
-void TerminalTractor::describe(SceneDescription& d) const {
+void TerminalTractor::describe(scene::SceneDescription& d) const {
   d.machine = kind();
   d.entities.push_back({"tractor", "tractor.chassis", settings_.half_extents_m});
   if (trailer_body_ != physics::kWorld)
     d.entities.push_back({"trailer", trailer_look_, trailer_half_extents_m_});
   if (load_body_ != physics::kWorld)
-    d.entities.push_back({"load", container_look(2.0 * load_half_extents_m_.x), load_half_extents_m_});
+    d.entities.push_back({"load", scene::container_look(2.0 * load_half_extents_m_.x), load_half_extents_m_});
   if (payload_half_extents_m_)
     d.entities.push_back(
-        {payload_id_, container_look(2.0 * payload_half_extents_m_->x), *payload_half_extents_m_});
+        {payload_id_, scene::container_look(2.0 * payload_half_extents_m_->x), *payload_half_extents_m_});
   d.indicators.assign(std::begin(kTractorIndicators), std::end(kTractorIndicators));
   d.drives = {"engine"};
   d.rope_count = 0;
 }
 
-int TerminalTractor::publish(Snapshot& s, int first) const {
+int TerminalTractor::publish(scene::Snapshot& s, int first) const {
   int n = first;
   for (const physics::BodyId b : {body_, trailer_body_, load_body_})
-    if (b != physics::kWorld && n < kMaxEntities) {
-      const std::uint32_t flags = b == load_body_ && !loaded_ ? Snapshot::kHidden : 0;
+    if (b != physics::kWorld && n < scene::kMaxEntities) {
+      const std::uint32_t flags = b == load_body_ && !loaded_ ? scene::Snapshot::kHidden : 0;
       s.entities[static_cast<std::size_t>(n)] = {static_cast<std::uint32_t>(n), flags, world_.pose(b)};
       ++n;
     }
-  if (payload_half_extents_m_ && n < kMaxEntities) {  // standing on the deck's top, riding it
+  if (payload_half_extents_m_ && n < scene::kMaxEntities) {  // standing on the deck's top, riding it
     const core::Pose deck = world_.pose(trailer_body_);
     const core::Vec3 on_deck{0.0, 0.0, trailer_half_extents_m_.z + payload_half_extents_m_->z};
     s.entities[static_cast<std::size_t>(n)] = {
@@ -292,7 +292,7 @@ int TerminalTractor::publish(Snapshot& s, int first) const {
   static_assert(std::size(values) == std::size(kTractorIndicators));
   s.indicator_count = static_cast<int>(std::size(values));
   std::copy(std::begin(values), std::end(values), s.indicators.begin());
-  const Snapshot::Drive engine[] = {chassis_.engine()};
+  const scene::Snapshot::Drive engine[] = {chassis_.engine()};
   publish_drives(engine, s);
   return n - first;
 }

@@ -61,11 +61,11 @@ struct TractorSettings {
   double steer_rate_per_s = 1.0;  ///< steering command travel per second (lock to lock in 2 s at 1)
   core::Vec3 cab_position_m{1.4, 0.4, 1.3};
   core::Vec3 eye_m{0.0, 0.0, 0.5};
-  CabSight sight{0.0, -0.1, 0.75};
+  scene::CabSight sight{0.0, -0.1, 0.75};
   core::Vec3 hitch_m{-1.45, 0.0, 0.7};  ///< [m] the coupling's plate, up (chassis frame)
   FifthWheelSettings fifth_wheel;
   double jackknife_angle_rad = 1.4;  ///< the hitch angle counted as a jack-knife
-  ControlTable controls;             ///< the cab's controls, by label (its machine file's)
+  scene::ControlTable controls;      ///< the cab's controls, by label (its machine file's)
 };
 
 /// Where the tractor stands.
@@ -86,8 +86,8 @@ class TerminalTractor final : public Machine {
 
   // Machine
   const MachineType& type() const override { return tractor_machine_type(); }
-  const ControlTable& control_table() const override { return settings_.controls; }
-  void step(const Controls& controls, std::span<const ContainerRef> liftables, double dt_s) override;
+  const scene::ControlTable& control_table() const override { return settings_.controls; }
+  void step(const scene::Controls& controls, std::span<const ContainerRef> liftables, double dt_s) override;
   std::optional<physics::BodyId> held_item() const override;
   std::vector<std::pair<std::string, physics::BodyId>> own_items() const override;
   void stand_on(const Ground& ground) override { ground_ = &ground; }
@@ -101,9 +101,9 @@ class TerminalTractor final : public Machine {
   core::Vec3 eye_on_cab_body_m() const override { return settings_.cab_position_m + settings_.eye_m; }
   core::Pose cab_pose() const override;
   core::Vec3 eye_m() const override { return settings_.eye_m; }
-  CabSight cab_sight() const override { return settings_.sight; }
-  void describe(SceneDescription& scene) const override;
-  int publish(Snapshot& snapshot, int entities) const override;
+  scene::CabSight cab_sight() const override { return settings_.sight; }
+  void describe(scene::SceneDescription& scene) const override;
+  int publish(scene::Snapshot& snapshot, int entities) const override;
   MachineTally tally() const override;
   std::string why_no_load() const override;
   void take_load(const core::Pose& on_trailer, double mass_kg) override;
@@ -182,7 +182,7 @@ struct TractorSetup {
   TractorStart start;
 
   static const MachineType& type() { return tractor_machine_type(); }
-  const ControlTable& controls() const { return vehicle.controls; }
+  const scene::ControlTable& controls() const { return vehicle.controls; }
   std::unique_ptr<Machine> build(physics::PhysicsWorld& world) const;
   std::vector<cable::ReevingSettings*> reevings() { return {}; }
 };

@@ -5,7 +5,7 @@
 
 #include "harbour/core/Vec3.h"
 
-namespace harbour::sim {
+namespace harbour::scene {
 
 /// Bulk material as published for readers (the image generator): each grid's heights by tile, with a version
 /// per tile so that a reader copies and re-meshes only the tiles that changed; the material in flight as
@@ -29,4 +29,4 @@ struct BulkView {
   std::vector<Parcel> parcels;
 };
 
-}  // namespace harbour::sim
+}  // namespace harbour::scene

@@ -8,7 +8,7 @@
 #include <type_traits>
 #include <vector>
 
-namespace harbour::sim {
+namespace harbour::scene {
 
 /// Most controls one machine declares (an STS cab has 15).
 inline constexpr int kMaxControls = 32;
@@ -69,4 +69,4 @@ class ControlTable {
 
 const char* to_string(ControlKind kind);
 
-}  // namespace harbour::sim
+}  // namespace harbour::scene

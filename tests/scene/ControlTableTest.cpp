@@ -1,5 +1,5 @@
 // A machine's control table on its own: what it refuses, where its controls sit, and how it reads values.
-#include "harbour/sim/Controls.h"
+#include "harbour/scene/Controls.h"
 
 #include <gtest/gtest.h>
 
@@ -7,7 +7,7 @@
 #include <limits>
 #include <stdexcept>
 
-namespace harbour::sim {
+namespace harbour::scene {
 namespace {
 
 ControlSpec axis(const char* label, double min = -1.0, double max = 1.0) {
@@ -98,4 +98,4 @@ TEST(ControlTable, ReadsEveryValueIntoItsControlsRange) {
 }
 
 }  // namespace
-}  // namespace harbour::sim
+}  // namespace harbour::scene

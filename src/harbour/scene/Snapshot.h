@@ -8,7 +8,7 @@
 
 #include "harbour/core/Vec3.h"
 
-namespace harbour::sim {
+namespace harbour::scene {
 
 inline constexpr std::uint32_t kSnapshotVersion = 5;
 inline constexpr int kMaxSwells = 4;
@@ -158,4 +158,4 @@ struct Snapshot {
 };
 static_assert(std::is_trivially_copyable_v<Snapshot>);
 
-}  // namespace harbour::sim
+}  // namespace harbour::scene

@@ -1,10 +1,10 @@
-#include "harbour/sim/Controls.h"
+#include "harbour/scene/Controls.h"
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
-namespace harbour::sim {
+namespace harbour::scene {
 
 const char* to_string(ControlKind kind) {
   switch (kind) {
@@ -103,4 +103,4 @@ Controls ControlTable::in_range(const Controls& controls) const {
   return r;
 }
 
-}  // namespace harbour::sim
+}  // namespace harbour::scene
