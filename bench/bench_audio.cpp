@@ -11,6 +11,7 @@
 #include "harbour/audio/AudioOut.h"
 #include "harbour/audio/SoundFile.h"
 #include "harbour/io/ExerciseFiles.h"
+#include "harbour/machines/MachineType.h"
 #include "harbour/sim/Simulation.h"
 
 namespace harbour {
@@ -53,7 +54,8 @@ void sound_block(benchmark::State& state, audio::Speakers speakers) {
   BusyScene busy;
   audio::AudioSettings settings;
   settings.speakers = speakers;
-  const audio::SoundSettings sounds = audio::load_sounds(HARBOUR_DATA_DIR "/sounds/harbour.yaml");
+  const audio::SoundSettings sounds =
+      audio::load_sounds(HARBOUR_DATA_DIR "/sounds/harbour.yaml", sim::machine_kinds());
   audio::SoundScape scape(busy.scene, sounds);
   const std::unique_ptr<audio::AudioOut> out = audio::AudioOut::loopback(settings);
   std::vector<float> mixed(audio::SoundScape::kBlockFrames * static_cast<std::size_t>(out->channels()));

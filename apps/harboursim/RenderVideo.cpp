@@ -21,6 +21,7 @@
 #include "harbour/io/BoundedFile.h"
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/io/RecordingFile.h"
+#include "harbour/machines/MachineType.h"
 #include "harbour/sim/Recording.h"
 
 namespace harbour::apps {
@@ -168,8 +169,9 @@ int render_video(const RenderOptions& options) {
   // the sound: a 10 ms block ending at every tenth step from the start of the span
   std::unique_ptr<audio::OfflineMix> sound;
   const audio::SoundSettings sounds =
-      hearing ? audio::load_sounds(std::string(HARBOUR_DATA_DIR) + "/sounds/harbour.yaml")
-              : audio::SoundSettings{};
+      hearing
+          ? audio::load_sounds(std::string(HARBOUR_DATA_DIR) + "/sounds/harbour.yaml", sim::machine_kinds())
+          : audio::SoundSettings{};
   audio::AudioSettings listening;
   listening.speakers = options.headphones ? audio::Speakers::kHeadphones : audio::Speakers::kStereo;
   const auto from_step =

@@ -29,6 +29,7 @@
 #include "harbour/ig/RenderThread.h"
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/io/MotionFiles.h"
+#include "harbour/machines/MachineType.h"
 #include "harbour/sim/Pilot.h"
 #include "harbour/station/DeviceMappingFile.h"
 #include "harbour/station/DisplayLayout.h"
@@ -311,8 +312,10 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
     settings.volume = profile.sound->volume;
     try {
       sound = std::make_unique<audio::SoundThread>(
-          scene, audio::load_sounds(std::string(HARBOUR_DATA_DIR) + "/sounds/harbour.yaml"), settings,
-          exercise.radio, [&session] { return session.loop().latest_snapshot(station::kSoundReader); });
+          scene,
+          audio::load_sounds(std::string(HARBOUR_DATA_DIR) + "/sounds/harbour.yaml", sim::machine_kinds()),
+          settings, exercise.radio,
+          [&session] { return session.loop().latest_snapshot(station::kSoundReader); });
       std::printf("sound: %s\n", sound->describe().c_str());
       if (!sound->radio_problem().empty()) std::printf("no radio: %s\n", sound->radio_problem().c_str());
     } catch (const std::exception& e) {  // no device, or a sound file in error: the station runs on

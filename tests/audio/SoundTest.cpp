@@ -17,6 +17,7 @@
 #include "harbour/audio/SoundFile.h"
 #include "harbour/io/DataError.h"
 #include "harbour/io/ExerciseFiles.h"
+#include "harbour/machines/MachineType.h"
 #include "harbour/sim/Simulation.h"
 
 namespace harbour::audio {
@@ -26,7 +27,8 @@ using test::channel;
 using test::rms;
 
 const SoundSettings& shipped_sounds() {
-  static const SoundSettings sounds = load_sounds(HARBOUR_DATA_DIR "/sounds/harbour.yaml");
+  static const SoundSettings sounds =
+      load_sounds(HARBOUR_DATA_DIR "/sounds/harbour.yaml", sim::machine_kinds());
   return sounds;
 }
 
@@ -58,7 +60,7 @@ std::vector<float> render(const Scene& scene, double seconds,
                           const std::function<void(scene::Snapshot&, double)>& at,
                           const AudioSettings& audio = {}, bool ambience = false,
                           const SoundSettings& sounds = shipped_sounds(),
-                          const sim::RadioScript& radio = {}) {
+                          const scene::RadioScript& radio = {}) {
   OfflineMix mix(scene.description, sounds, audio, ambience);
   mix.scape().set_radio_script(radio);
   auto s = std::make_unique<scene::Snapshot>(*scene.first);
@@ -274,7 +276,7 @@ TEST(Sound, TheSignallersCallIsHeardAtItsMomentInTheSpeechBand) {
     if (s.kind == SourceKind::kRadio) radio_only.ambience.push_back(s);
   ASSERT_EQ(radio_only.ambience.size(), 1u);
   const Scene sts = scene_of("sts_discharge");
-  sim::RadioScript script;
+  scene::RadioScript script;
   script.calls = {{1.0, "hoist up slowly"}};
   const std::vector<float> out = render(
       sts, 3.5, [](scene::Snapshot&, double) {}, {}, true, radio_only, script);
@@ -290,7 +292,7 @@ TEST(Sound, TheSignallersCallIsHeardAtItsMomentInTheSpeechBand) {
   EXPECT_GT(band, 5.0 * outside);
   // the instructor's call in another language, heard from the next block
   OfflineMix mix(sts.description, radio_only, {}, true);
-  sim::RadioScript german;
+  scene::RadioScript german;
   german.language = "de";
   mix.scape().set_radio_script(german);
   auto s = std::make_unique<scene::Snapshot>(*sts.first);
@@ -300,7 +302,7 @@ TEST(Sound, TheSignallersCallIsHeardAtItsMomentInTheSpeechBand) {
     mix.add_block(*s);
   EXPECT_GT(rms(channel(mix.samples(), 2, 0), 0.2, 1.0), 0.02);
   // a language espeak-ng has no voice for is refused by name
-  sim::RadioScript unknown;
+  scene::RadioScript unknown;
   unknown.language = "xx";
   unknown.calls = {{1.0, "stop"}};
   try {
@@ -342,7 +344,7 @@ TEST(Sound, ASoundNamingWhatTheMachineLacksIsRefusedByName) {
 TEST(Sound, BadSoundDataNamesItsLineAndField) {
   const auto error_of = [](const std::string& text) {
     try {
-      parse_sounds(text, "sounds.yaml");
+      parse_sounds(text, "sounds.yaml", sim::machine_kinds());
     } catch (const io::DataError& e) {
       return std::string(e.what());
     }

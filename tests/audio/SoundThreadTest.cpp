@@ -16,6 +16,7 @@
 #include "harbour/audio/SoundFile.h"
 #include "harbour/audio/SoundThread.h"
 #include "harbour/io/ExerciseFiles.h"
+#include "harbour/machines/MachineType.h"
 #include "harbour/sim/Simulation.h"
 
 namespace harbour::audio {
@@ -40,8 +41,9 @@ TEST(SoundThread, PlaysTheNewestSnapshotOnTheOutputDeviceAndMutes) {
   AudioSettings settings;
   settings.speakers = Speakers::kHeadphones;
   {
-    SoundThread sound(simulation.scene(), load_sounds(HARBOUR_DATA_DIR "/sounds/harbour.yaml"), settings, {},
-                      [&] { return snapshot.get(); });
+    SoundThread sound(simulation.scene(),
+                      load_sounds(HARBOUR_DATA_DIR "/sounds/harbour.yaml", sim::machine_kinds()), settings,
+                      {}, [&] { return snapshot.get(); });
     EXPECT_NE(sound.describe().find("HRTF"), std::string::npos) << sound.describe();
     // it keeps rendering as the device plays (the wave writer plays in real time)
     for (int k = 0; k < 500 && sound.blocks() < 30; ++k)

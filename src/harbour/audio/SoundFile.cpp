@@ -1,9 +1,9 @@
 #include "harbour/audio/SoundFile.h"
 
+#include <algorithm>
 #include <utility>
 
 #include "harbour/io/YamlFile.h"
-#include "harbour/machines/MachineType.h"
 
 namespace harbour::audio {
 
@@ -153,17 +153,17 @@ std::vector<SoundSource> read_list(const io::YamlFile& f, const YAML::Node& map,
   return sources;
 }
 
-SoundSettings read_sounds(const io::YamlFile& f) {
+SoundSettings read_sounds(const io::YamlFile& f, std::span<const std::string_view> machine_kinds) {
   SoundSettings s;
   const YAML::Node sounds = f.required_map(f.root(), "sounds", "");
   s.ambience = read_list(f, sounds, "ambience", "sounds");
   const YAML::Node machines = f.required_map(sounds, "machines", "sounds");
   for (const auto& entry : machines) {
     const std::string kind = entry.first.as<std::string>();
-    if (!sim::find_machine_type(kind)) {
+    if (std::find(machine_kinds.begin(), machine_kinds.end(), kind) == machine_kinds.end()) {
       std::string known;
-      for (const sim::MachineType* type : sim::machine_types())
-        known += (known.empty() ? "" : ", ") + std::string(type->kind);
+      for (const std::string_view k : machine_kinds)
+        known += (known.empty() ? "" : ", ") + std::string(k);
       f.fail(entry.first, "sounds.machines." + kind, "no machine of kind '" + kind + "' (" + known + ")");
     }
     s.machines[kind] = read_list(f, machines, kind, "sounds.machines");
@@ -174,12 +174,13 @@ SoundSettings read_sounds(const io::YamlFile& f) {
 
 }  // namespace
 
-SoundSettings load_sounds(const std::string& path) {
-  return read_sounds(io::YamlFile::load(path));
+SoundSettings load_sounds(const std::string& path, std::span<const std::string_view> machine_kinds) {
+  return read_sounds(io::YamlFile::load(path), machine_kinds);
 }
 
-SoundSettings parse_sounds(const std::string& text, const std::string& name) {
-  return read_sounds(io::YamlFile::parse(text, name));
+SoundSettings parse_sounds(const std::string& text, const std::string& name,
+                           std::span<const std::string_view> machine_kinds) {
+  return read_sounds(io::YamlFile::parse(text, name), machine_kinds);
 }
 
 }  // namespace harbour::audio

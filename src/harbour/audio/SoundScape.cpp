@@ -103,12 +103,12 @@ SoundScape::SoundScape(const scene::SceneDescription& scene, const SoundSettings
 
 SoundScape::~SoundScape() = default;
 
-void SoundScape::set_radio_script(const sim::RadioScript& script) {
+void SoundScape::set_radio_script(const scene::RadioScript& script) {
   if (radio_ < 0) return;
   language_ = script.language;
   script_.clear();
   const double level = radio_level();
-  for (const sim::RadioCall& call : script.calls)
+  for (const scene::RadioCall& call : script.calls)
     script_.emplace_back(
         call.at_s, std::make_shared<const std::vector<float>>(speak_on_radio(call.text, language_, level)));
 }

@@ -9,8 +9,8 @@
 
 #include "harbour/audio/Synth.h"
 #include "harbour/core/Vec3.h"
+#include "harbour/scene/RadioScript.h"
 #include "harbour/scene/Snapshot.h"
-#include "harbour/sim/RadioScript.h"
 
 namespace harbour::audio {
 
@@ -85,7 +85,7 @@ class SoundScape {
   void update(const scene::Snapshot& snapshot);
   /// The exercise's radio script, spoken now (each call heard when the snapshots' time passes it); throws
   /// AudioError when espeak-ng cannot speak its language. Ignored without a radio among the sounds.
-  void set_radio_script(const sim::RadioScript& script);
+  void set_radio_script(const scene::RadioScript& script);
   /// A call spoken on the radio from the next block (the instructor's, in the script's language); throws
   /// AudioError when espeak-ng cannot speak it. Returns false without a radio among the sounds.
   bool say(const std::string& text);

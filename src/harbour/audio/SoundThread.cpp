@@ -7,7 +7,7 @@
 namespace harbour::audio {
 
 SoundThread::SoundThread(const scene::SceneDescription& scene, const SoundSettings& sounds,
-                         const AudioSettings& settings, const sim::RadioScript& radio,
+                         const AudioSettings& settings, const scene::RadioScript& radio,
                          std::function<const scene::Snapshot*()> latest)
     : scape_(scene, sounds),
       out_(AudioOut::device(settings)),

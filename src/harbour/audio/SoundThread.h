@@ -20,7 +20,7 @@ class SoundThread {
   /// nullptr before the first. The exercise's radio calls are spoken first (a language espeak-ng lacks:
   /// no radio, and radio_problem() says why).
   SoundThread(const scene::SceneDescription& scene, const SoundSettings& sounds,
-              const AudioSettings& settings, const sim::RadioScript& radio,
+              const AudioSettings& settings, const scene::RadioScript& radio,
               std::function<const scene::Snapshot*()> latest);
   ~SoundThread();
   SoundThread(const SoundThread&) = delete;

@@ -654,7 +654,7 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
     const YAML::Node calls = f.sequence(*radio, "calls", "exercise.radio", 200);
     for (std::size_t n = 0; n < calls.size(); ++n) {
       const std::string at = item("exercise.radio.calls", n);
-      sim::RadioCall call;
+      scene::RadioCall call;
       call.at_s = f.number(calls[n], "at_s", at, 0.0, 86400.0);
       call.text = f.text(calls[n], "say", at);
       if (call.text.size() > 200) f.fail(calls[n]["say"], at + ".say", "is longer than 200 bytes");

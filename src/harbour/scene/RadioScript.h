@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-namespace harbour::sim {
+namespace harbour::scene {
 
 /// A signaller's spoken instruction at a moment of an exercise, or an instructor's call.
 struct RadioCall {
@@ -18,4 +18,4 @@ struct RadioScript {
   std::vector<RadioCall> calls;
 };
 
-}  // namespace harbour::sim
+}  // namespace harbour::scene

@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-#include "harbour/sim/RadioScript.h"
+#include "harbour/scene/RadioScript.h"
 #include "harbour/sim/Simulation.h"
 
 namespace harbour::sim {
@@ -125,7 +125,7 @@ struct ExerciseSettings {
   std::optional<BulkGoal> deliver;
   std::optional<TrimGoal> trim;
   EvaluationRules rules;
-  RadioScript radio;  ///< the signaller's calls on the cab's radio
+  scene::RadioScript radio;  ///< the signaller's calls on the cab's radio
 };
 
 /// What a team session's member measured of the team (its station: station::NearMissWatch and the hand-offs).
