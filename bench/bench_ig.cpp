@@ -13,7 +13,7 @@
 #include "harbour/core/Rng.h"
 #include "harbour/ig/ImageGenerator.h"
 #include "harbour/io/ExerciseFiles.h"
-#include "harbour/sim/Autopilot.h"
+#include "harbour/machines/GantryAutopilot.h"
 
 namespace harbour {
 namespace {
@@ -22,7 +22,7 @@ void BM_Frame(benchmark::State& state) {
   const int width = static_cast<int>(state.range(0)), height = static_cast<int>(state.range(1));
   const sim::ExerciseSettings exercise = io::load_exercise(HARBOUR_DATA_DIR "/exercises/sts_bay12_deck.yaml");
   sim::Simulation simulation(exercise.scenario);
-  sim::Autopilot pilot(exercise);
+  sim::GantryAutopilot pilot(exercise);
   sim::InstructorCommand wind;
   wind.kind = sim::InstructorCommand::Kind::kSetWind;
   wind.wind_mean_mps = 8.0;

@@ -16,7 +16,7 @@
 #include "harbour/bulk/BulkPublish.h"
 #include "harbour/ig/RenderThread.h"
 #include "harbour/io/ExerciseFiles.h"
-#include "harbour/sim/Autopilot.h"
+#include "harbour/machines/GantryAutopilot.h"
 #include "harbour/sim/Evaluation.h"
 #include "harbour/sim/Pilot.h"
 #include "harbour/station/DeviceInput.h"
@@ -59,12 +59,12 @@ std::unique_ptr<station::DeviceInput> desk_input(const scene::ControlTable& tabl
 void BM_SimulationStep(benchmark::State& state) {
   const sim::ExerciseSettings exercise = scenes::sts_discharge_exercise(HARBOUR_DATA_DIR);
   auto sim = std::make_unique<sim::Simulation>(exercise.scenario);
-  auto pilot = std::make_unique<sim::Autopilot>(exercise);
+  auto pilot = std::make_unique<sim::GantryAutopilot>(exercise);
   for (auto _ : state) {
     if (sim->steps() >= 60000) {
       state.PauseTiming();
       sim = std::make_unique<sim::Simulation>(exercise.scenario);
-      pilot = std::make_unique<sim::Autopilot>(exercise);
+      pilot = std::make_unique<sim::GantryAutopilot>(exercise);
       state.ResumeTiming();
     }
     sim->single_step(pilot->next(*sim));
@@ -81,7 +81,7 @@ void BM_LoopTick(benchmark::State& state) {
   const Sticks sticks;
   const sim::ExerciseSettings exercise = scenes::sts_discharge_exercise(HARBOUR_DATA_DIR);
   auto sim = std::make_unique<sim::Simulation>(exercise.scenario);
-  auto pilot = std::make_unique<sim::Autopilot>(exercise);
+  auto pilot = std::make_unique<sim::GantryAutopilot>(exercise);
   auto input = desk_input(sim->control_table());
   auto loop = std::make_unique<station::RealTimeLoop>(*sim);
   auto evaluator = std::make_unique<sim::Evaluator>(exercise);
@@ -113,7 +113,7 @@ void BM_LoopTick(benchmark::State& state) {
       if (sim->steps() >= 60000) {
         loop.reset();
         sim = std::make_unique<sim::Simulation>(exercise.scenario);
-        pilot = std::make_unique<sim::Autopilot>(exercise);
+        pilot = std::make_unique<sim::GantryAutopilot>(exercise);
         loop = std::make_unique<station::RealTimeLoop>(*sim);
         evaluator = std::make_unique<sim::Evaluator>(exercise);
         wire();
@@ -234,7 +234,7 @@ void BM_LiveRun(benchmark::State& state) {
   options.record = scenes::temp_path("harbour_bench_live.hsrc");
   for (auto _ : state) {
     station::Session session(exercise, options);
-    sim::Autopilot pilot(exercise);
+    sim::GantryAutopilot pilot(exercise);
     session.loop().set_pilot([&](const sim::Simulation& s) { return pilot.next(s); });
     std::unique_ptr<ig::RenderThread> render;
     if (drawing)

@@ -3,7 +3,7 @@
 
 #include <benchmark/benchmark.h>
 
-#include "harbour/sim/Autopilot.h"
+#include "harbour/machines/GantryAutopilot.h"
 #include "scenes/StsScenes.h"
 
 namespace harbour {
@@ -11,13 +11,13 @@ namespace {
 
 void run_exercise(benchmark::State& state, const sim::ExerciseSettings& exercise) {
   auto sim = std::make_unique<sim::Simulation>(exercise.scenario);
-  auto pilot = std::make_unique<sim::Autopilot>(exercise);
+  auto pilot = std::make_unique<sim::GantryAutopilot>(exercise);
   auto evaluator = std::make_unique<sim::Evaluator>(exercise);
   for (auto _ : state) {
     if (pilot->done()) {  // start the exercise again
       state.PauseTiming();
       sim = std::make_unique<sim::Simulation>(exercise.scenario);
-      pilot = std::make_unique<sim::Autopilot>(exercise);
+      pilot = std::make_unique<sim::GantryAutopilot>(exercise);
       evaluator = std::make_unique<sim::Evaluator>(exercise);
       state.ResumeTiming();
     }

@@ -11,8 +11,8 @@
 #include <thread>
 #include <vector>
 
+#include "harbour/machines/GantryAutopilot.h"
 #include "harbour/net/DdsLink.h"
-#include "harbour/sim/Autopilot.h"
 #include "harbour/station/RealTimeLoop.h"
 #include "harbour/station/TeamPresence.h"
 #include "scenes/StsScenes.h"
@@ -55,7 +55,7 @@ void BM_LoopTickWithTeam(benchmark::State& state) {
   const bool team_on = state.range(0) != 0;
   const sim::ExerciseSettings exercise = scenes::sts_discharge_exercise(HARBOUR_DATA_DIR);
   auto sim = std::make_unique<sim::Simulation>(exercise.scenario);
-  auto pilot = std::make_unique<sim::Autopilot>(exercise);
+  auto pilot = std::make_unique<sim::GantryAutopilot>(exercise);
   auto loop = std::make_unique<station::RealTimeLoop>(*sim);
   const auto team = three_members(sim->scene());
   const auto wire = [&] {
@@ -75,7 +75,7 @@ void BM_LoopTickWithTeam(benchmark::State& state) {
       if (sim->steps() >= 60000) {
         loop.reset();
         sim = std::make_unique<sim::Simulation>(exercise.scenario);
-        pilot = std::make_unique<sim::Autopilot>(exercise);
+        pilot = std::make_unique<sim::GantryAutopilot>(exercise);
         loop = std::make_unique<station::RealTimeLoop>(*sim);
         wire();
       }

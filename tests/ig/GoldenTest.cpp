@@ -13,7 +13,7 @@
 
 #include "harbour/ig/ImageGenerator.h"
 #include "harbour/io/ExerciseFiles.h"
-#include "harbour/sim/Autopilot.h"
+#include "harbour/machines/GantryAutopilot.h"
 
 namespace harbour::ig {
 namespace {
@@ -53,7 +53,7 @@ DischargeInChase discharge_in_chase(int width, int height) {
   const sim::ExerciseSettings exercise =
       io::load_exercise(std::string(HARBOUR_DATA_DIR) + "/exercises/sts_discharge.yaml");
   sim::Simulation simulation(exercise.scenario);
-  sim::Autopilot pilot(exercise);
+  sim::GantryAutopilot pilot(exercise);
   while (simulation.time_s() < 40.0)
     simulation.step(pilot.next(simulation));
   Looks looks = load_looks(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml");

@@ -13,7 +13,7 @@
 #include <fstream>
 #include <thread>
 
-#include "harbour/sim/Autopilot.h"
+#include "harbour/machines/GantryAutopilot.h"
 #include "scenes/StsScenes.h"
 #include "support/PostgresServer.h"
 
@@ -629,7 +629,7 @@ TEST_P(RecordsStoreOn, KillingTheProcessMidExerciseKeepsTheMovesDoneSoFar) {
     RecordsStore db(connection);
     const auto attempt = db.begin_attempt("t001", exercise.name);
     sim::Simulation simulation(exercise.scenario);
-    sim::Autopilot pilot(exercise);
+    sim::GantryAutopilot pilot(exercise);
     sim::Evaluator evaluator(exercise);
     for (int k = 0; k < 600000; ++k) {
       const scene::Controls in = pilot.next(simulation);

@@ -11,7 +11,7 @@
 
 #include "harbour/bulk/BulkWorld.h"
 #include "harbour/io/ExerciseFiles.h"
-#include "harbour/sim/Autopilot.h"
+#include "harbour/machines/GantryAutopilot.h"
 #include "harbour/sim/Evaluation.h"
 #include "harbour/sim/Pilot.h"
 #include "harbour/sim/Recording.h"
@@ -75,7 +75,7 @@ Count count_allocations(const std::string& exercise_name, double warm_up_s, doub
   const ExerciseSettings exercise =
       io::load_exercise(std::string(HARBOUR_DATA_DIR) + "/exercises/" + exercise_name + ".yaml");
   Simulation simulation(exercise.scenario);
-  Autopilot pilot(exercise);
+  GantryAutopilot pilot(exercise);
   Count count;
   while (simulation.time_s() < run_s) {
     const scene::Controls controls = pilot.next(simulation);  // the station's side: decided outside the step

@@ -1,4 +1,4 @@
-#include "harbour/sim/Autopilot.h"
+#include "harbour/machines/GantryAutopilot.h"
 
 #include <gtest/gtest.h>
 
@@ -24,7 +24,7 @@ ExerciseSettings shipped(const std::string& exercise_file) {
 
 Attempt run(const ExerciseSettings& exercise, OperatorDefects defects = {}, int max_steps = 240000) {
   Simulation sim(exercise.scenario);
-  Autopilot pilot(exercise, defects);
+  GantryAutopilot pilot(exercise, defects);
   Evaluator evaluator(exercise);
   for (int k = 0; k < max_steps && !evaluator.finished(); ++k) {
     const scene::Controls in = pilot.next(sim);
@@ -39,7 +39,7 @@ Attempt run(OperatorDefects defects = {}, const std::string& exercise_file = "st
   return run(shipped(exercise_file), defects);
 }
 
-TEST(Autopilot, CompletesTheDischargeWithAPassingScore) {
+TEST(GantryAutopilot, CompletesTheDischargeWithAPassingScore) {
   const Attempt a = run();
   ASSERT_TRUE(a.done) << "moves " << a.metrics.moves_completed << " after " << a.metrics.time_s << " s";
   EXPECT_TRUE(a.score.passed);
@@ -69,7 +69,7 @@ TEST(Autopilot, CompletesTheDischargeWithAPassingScore) {
 // A fresh breeze along the quay (10 m/s, 15 % turbulence) with a 3 s gust of +8 m/s while the box travels,
 // and a swell rolling the feeder (the box to pick up moves some 2.5 cm across): the autopilot catches the
 // swing, follows the box and lands within the twistlocks' reach.
-TEST(Autopilot, LandsInAGustyCrosswindOnARollingShip) {
+TEST(GantryAutopilot, LandsInAGustyCrosswindOnARollingShip) {
   const Attempt a = run({}, "sts_discharge_gusty.yaml");
   ASSERT_TRUE(a.done) << "moves " << a.metrics.moves_completed << " after " << a.metrics.time_s << " s";
   EXPECT_TRUE(a.score.passed);
@@ -82,7 +82,7 @@ TEST(Autopilot, LandsInAGustyCrosswindOnARollingShip) {
 // A steady 12 m/s wind across the quay leans the hanging spreader some 0.2 m off plumb: landings there are
 // not swaying (sway is measured from the rest position in the mean wind), and the autopilot, leaning into
 // the wind, lands as calmly as in still air. With 15 % turbulence it still clears the move.
-TEST(Autopilot, LandsInAStrongCrossQuayWindWithoutCountingTheLeanAsSway) {
+TEST(GantryAutopilot, LandsInAStrongCrossQuayWindWithoutCountingTheLeanAsSway) {
   ExerciseSettings exercise = shipped("sts_discharge.yaml");
   exercise.scenario.weather.wind_mean_mps = 12.0;
   exercise.scenario.weather.wind_from_rad = core::deg_to_rad(270.0);  // from the land side, towards +x
@@ -118,7 +118,7 @@ TEST(Autopilot, LandsInAStrongCrossQuayWindWithoutCountingTheLeanAsSway) {
 
 // Opening a hold: two deck boxes to the trucks, the 20 t hatch cover to the quay, two boxes up through the
 // cell guides (25 mm clearance a side) to the trucks.
-TEST(Autopilot, OpensAHoldAndDischargesThroughTheCellGuides) {
+TEST(GantryAutopilot, OpensAHoldAndDischargesThroughTheCellGuides) {
   const Attempt a = run(shipped("sts_bay12_hold.yaml"), {}, 1080000);
   ASSERT_TRUE(a.done) << "moves " << a.metrics.moves_completed << " after " << a.metrics.time_s << " s";
   EXPECT_EQ(a.metrics.moves_completed, 5);
@@ -131,7 +131,7 @@ TEST(Autopilot, OpensAHoldAndDischargesThroughTheCellGuides) {
   RecordProperty("moves_per_hour", std::to_string(a.metrics.moves_per_hour));
 }
 
-TEST(Autopilot, ABadOperatorGetsTheDocumentedPenalties) {
+TEST(GantryAutopilot, ABadOperatorGetsTheDocumentedPenalties) {
   const Attempt a = run({.land_fast = true, .forget_lock_once = true});
   ASSERT_TRUE(a.done);
   EXPECT_EQ(a.metrics.hard_landings, 1);
@@ -260,7 +260,7 @@ TEST_P(TakeOverAt, AnInstructorTakeOverContinuesTheAttemptFromTheRecordedState) 
   Recorder recorder(exercise.name, scenes::sts_controls());
   {
     Simulation sim(exercise.scenario);
-    Autopilot pilot(exercise);
+    GantryAutopilot pilot(exercise);
     for (std::int64_t k = 0; k < at; ++k) {
       const scene::Controls in = pilot.next(sim);
       sim.step(in);
@@ -277,7 +277,7 @@ TEST_P(TakeOverAt, AnInstructorTakeOverContinuesTheAttemptFromTheRecordedState) 
   EXPECT_EQ(observed, at);  // every step of the history, not a keyframe jump
   EXPECT_EQ(branch.recorder.recording().parent, "original");
   EXPECT_EQ(branch.recorder.recording().branch_step, at);
-  Autopilot pilot(exercise);
+  GantryAutopilot pilot(exercise);
   pilot.resume(*branch.simulation, evaluator.metrics().moves_completed, branch.levers);
   const scene::ControlTable& table = branch.simulation->control_table();
   scene::Controls before = branch.levers;

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "harbour/io/ExerciseFiles.h"
-#include "harbour/sim/Autopilot.h"
+#include "harbour/machines/GantryAutopilot.h"
 #include "harbour/sim/Pilot.h"
 
 namespace harbour::sim {
@@ -35,7 +35,7 @@ FaultRun run(OperatorDefects defects, double run_on_after_stop_s = 1e9, double i
   const ExerciseSettings exercise =
       io::load_exercise(HARBOUR_DATA_DIR "/exercises/sts_hoist_brake_fault.yaml");
   Simulation sim(exercise.scenario);
-  Autopilot pilot(exercise, defects);
+  GantryAutopilot pilot(exercise, defects);
   Evaluator evaluator(exercise);
   FaultRun r;
   const int lamp = [&] {

@@ -3,9 +3,9 @@
 #include <cmath>
 
 #include "harbour/io/ExerciseFiles.h"
+#include "harbour/machines/mhc/GrabAutopilot.h"
 #include "harbour/machines/mhc/MobileHarbourCrane.h"
 #include "harbour/sim/Evaluation.h"
-#include "harbour/sim/GrabAutopilot.h"
 #include "harbour/sim/Pilot.h"
 #include "harbour/sim/Recording.h"
 

@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "harbour/io/ExerciseFiles.h"
+#include "harbour/machines/mhc/HookAutopilot.h"
 #include "harbour/machines/mhc/MobileHarbourCrane.h"
 #include "harbour/sim/Evaluation.h"
-#include "harbour/sim/HookAutopilot.h"
 
 namespace harbour::sim {
 namespace {

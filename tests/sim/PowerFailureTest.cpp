@@ -10,7 +10,7 @@
 
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/io/InstructorCommandText.h"
-#include "harbour/sim/Autopilot.h"
+#include "harbour/machines/GantryAutopilot.h"
 #include "harbour/sim/Pilot.h"
 
 namespace harbour::sim {
@@ -28,7 +28,7 @@ struct Carrying {
   scene::Controls hoist_up;  // a trainee holding the hoist lever up, nothing else
   Carrying() {
     // the autopilot picks the box up and carries it 3 m above where it stood
-    Autopilot pilot(exercise);
+    GantryAutopilot pilot(exercise);
     double lifted_from_z = 0.0;
     for (int k = 0; k < 300000; ++k) {
       sim.step(pilot.next(sim));

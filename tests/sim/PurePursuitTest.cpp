@@ -1,5 +1,5 @@
 // The path follower of the vehicles' scripted operators (sim/PurePursuit), against plane geometry.
-#include "harbour/sim/PurePursuit.h"
+#include "harbour/machines/parts/PurePursuit.h"
 
 #include <gtest/gtest.h>
 

@@ -9,10 +9,10 @@
 
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/machines/reach_stacker/Files.h"
+#include "harbour/machines/reach_stacker/ReachStackerAutopilot.h"
 #include "harbour/machines/reach_stacker/ReachStackerStability.h"
 #include "harbour/sim/Evaluation.h"
 #include "harbour/sim/Pilot.h"
-#include "harbour/sim/ReachStackerAutopilot.h"
 
 namespace harbour::sim {
 namespace {

@@ -5,7 +5,7 @@
 #include <limits>
 #include <map>
 
-#include "harbour/sim/Autopilot.h"
+#include "harbour/machines/GantryAutopilot.h"
 #include "scenes/StsScenes.h"
 
 namespace harbour::sim {
@@ -188,9 +188,9 @@ TEST(Recording, ARestoredStateContinuesBitForBitWhileCarryingABox) {
   // the autopilot's run, saved while the box hangs from the spreader and the truck waits
   const ExerciseSettings e = scenes::sts_discharge_exercise(HARBOUR_DATA_DIR);
   Simulation original(e.scenario);
-  Autopilot pilot(e);
+  GantryAutopilot pilot(e);
   std::vector<std::uint8_t> saved;
-  Autopilot pilot_at_save(e);
+  GantryAutopilot pilot_at_save(e);
   while (original.time_s() < 60.0) {
     if (original.steps() == 50000) {
       ASSERT_TRUE(original.machine_as<StsCrane>().locked_container().has_value());

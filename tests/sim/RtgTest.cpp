@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "harbour/io/ExerciseFiles.h"
+#include "harbour/machines/GantryAutopilot.h"
 #include "harbour/machines/rtg/Files.h"
-#include "harbour/sim/Autopilot.h"
 #include "harbour/sim/Evaluation.h"
 #include "harbour/sim/Pilot.h"
 #include "harbour/sim/Weather.h"
@@ -365,7 +365,7 @@ Drive drive_exercise(const char* name, OperatorDefects defects = {}) {
   const ExerciseSettings exercise =
       io::load_exercise(std::string(HARBOUR_DATA_DIR "/exercises/") + name + ".yaml");
   Simulation simulation(exercise.scenario);
-  Autopilot pilot(exercise, defects);
+  GantryAutopilot pilot(exercise, defects);
   Evaluator evaluator(exercise);
   Drive d;
   while (!evaluator.finished() && simulation.time_s() < exercise.rules.time_limit_s &&

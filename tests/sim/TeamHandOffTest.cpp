@@ -8,10 +8,10 @@
 #include <memory>
 
 #include "harbour/io/ExerciseFiles.h"
-#include "harbour/sim/Autopilot.h"
+#include "harbour/machines/GantryAutopilot.h"
+#include "harbour/machines/tractor/TractorAutopilot.h"
 #include "harbour/sim/Evaluation.h"
 #include "harbour/sim/Recording.h"
-#include "harbour/sim/TractorAutopilot.h"
 
 namespace harbour::sim {
 namespace {
@@ -57,7 +57,7 @@ TeamInput truck_at(const Simulation& tractor, int slot) {
 
 TEST(TeamHandOff, TheCraneSetsABoxOnEachTractorsChassisAndEachTractorTakesItsBoxAway) {
   Member crane("sts_discharge_team");
-  crane.pilot = std::make_unique<Autopilot>(crane.exercise);
+  crane.pilot = std::make_unique<GantryAutopilot>(crane.exercise);
   Member tractor[2] = {Member("tractor_sts_collect_1"), Member("tractor_sts_collect_2")};
   for (Member& t : tractor)
     t.pilot = std::make_unique<TractorAutopilot>(t.exercise);

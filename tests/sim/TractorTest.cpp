@@ -5,9 +5,9 @@
 
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/machines/tractor/Files.h"
+#include "harbour/machines/tractor/TractorAutopilot.h"
 #include "harbour/sim/Evaluation.h"
 #include "harbour/sim/Pilot.h"
-#include "harbour/sim/TractorAutopilot.h"
 
 namespace harbour::sim {
 namespace {

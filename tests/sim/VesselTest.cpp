@@ -7,7 +7,7 @@
 
 #include "harbour/core/Units.h"
 #include "harbour/io/VesselFiles.h"
-#include "harbour/sim/Autopilot.h"
+#include "harbour/machines/GantryAutopilot.h"
 #include "harbour/sim/Simulation.h"
 #include "scenes/StsScenes.h"
 
@@ -86,7 +86,7 @@ TEST(Trucks, ALoadedTruckLeavesAndTheNextDrivesIn) {
   ExerciseSettings e = scenes::sts_discharge_exercise(HARBOUR_DATA_DIR);
   e.scenario.trucks.trucks = 2;
   Simulation sim(e.scenario);
-  Autopilot pilot(e);
+  GantryAutopilot pilot(e);
   while (!pilot.done() && sim.time_s() < 300.0)
     sim.step(pilot.next(sim));
   ASSERT_TRUE(pilot.done());

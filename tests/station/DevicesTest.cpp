@@ -17,9 +17,9 @@
 #include <yaml-cpp/yaml.h>
 
 #include "harbour/io/RecordingFile.h"
+#include "harbour/machines/GantryAutopilot.h"
 #include "harbour/machines/mhc/MobileHarbourCrane.h"
 #include "harbour/machines/sts/StsCrane.h"
-#include "harbour/sim/Autopilot.h"
 #include "harbour/station/DeviceMappingFile.h"
 #include "harbour/station/Station.h"
 #include "scenes/StationScenes.h"
@@ -208,7 +208,7 @@ class StickPerson {
     SDL_GameController* controller = nullptr;  // a pad SDL maps
   };
 
-  sim::Autopilot pilot_;
+  sim::GantryAutopilot pilot_;
   DeviceMapping mapping_;
   scene::ControlTable table_;
   std::map<std::string, Stick> sticks_;

@@ -8,7 +8,7 @@
 #include <thread>
 
 #include "harbour/io/RecordingFile.h"
-#include "harbour/sim/Autopilot.h"
+#include "harbour/machines/GantryAutopilot.h"
 #include "harbour/station/RealTimeLoop.h"
 #include "harbour/station/Session.h"
 #include "scenes/StationScenes.h"
@@ -124,7 +124,7 @@ TEST(LoopPacing, ASessionOnItsClockRecordsARunThatReplaysBitForBit) {
   options.record = scenes::temp_path("harbour_station_paced.hsrc");
   options.loop.clock = &clock;
   Session session(exercise, options);
-  sim::Autopilot pilot(exercise);
+  sim::GantryAutopilot pilot(exercise);
   session.loop().set_pilot([&](const sim::Simulation& s) {
     clock.advance(microseconds(200));
     return pilot.next(s);

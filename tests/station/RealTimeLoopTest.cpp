@@ -10,7 +10,7 @@
 #include "harbour/bulk/BulkWorld.h"
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/io/RecordingFile.h"
-#include "harbour/sim/Autopilot.h"
+#include "harbour/machines/GantryAutopilot.h"
 #include "harbour/sim/Pilot.h"
 #include "harbour/station/Session.h"
 #include "scenes/StationScenes.h"
@@ -38,7 +38,7 @@ TEST(RealTimeLoop, CommandsFromOtherThreadsLandBetweenStepsAndAreRecorded) {
   options.record = scenes::temp_path("harbour_station_commands.hsrc");
   options.loop.time_scale = 10.0;
   Session session(exercise, options);
-  sim::Autopilot pilot(exercise);
+  sim::GantryAutopilot pilot(exercise);
   session.loop().set_pilot([&](const sim::Simulation& s) { return pilot.next(s); });
   session.start();
   // an instructor's console on another thread: a gust, fog, a freeze, a single step, resume

@@ -18,7 +18,7 @@
 
 #include "harbour/io/DataError.h"
 #include "harbour/io/RecordsStore.h"
-#include "harbour/sim/Autopilot.h"
+#include "harbour/machines/GantryAutopilot.h"
 #include "harbour/station/DeviceMappingFile.h"
 #include "harbour/station/HeadTracker.h"
 #include "harbour/station/MotionLink.h"
@@ -54,13 +54,13 @@ void send_to(std::uint16_t port, const std::vector<std::uint8_t>& bytes) {
 struct LiveSession {
   sim::ExerciseSettings exercise = scenes::sts_discharge_exercise(HARBOUR_DATA_DIR);
   std::unique_ptr<Session> session;
-  std::unique_ptr<sim::Autopilot> pilot;
+  std::unique_ptr<sim::GantryAutopilot> pilot;
   explicit LiveSession(const std::string& name) {
     SessionOptions options;
     options.trainee = "t1";
     options.database = scenes::fresh_database(name + ".db");
     session = std::make_unique<Session>(exercise, options);
-    pilot = std::make_unique<sim::Autopilot>(exercise);
+    pilot = std::make_unique<sim::GantryAutopilot>(exercise);
     session->loop().set_pilot([this](const sim::Simulation& s) { return pilot->next(s); });
   }
 };

@@ -10,7 +10,7 @@
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/io/RecordsStore.h"
 #include "harbour/io/RouteFiles.h"
-#include "harbour/sim/Autopilot.h"
+#include "harbour/machines/GantryAutopilot.h"
 #include "harbour/training/Cohort.h"
 #include "harbour/training/Route.h"
 
@@ -25,7 +25,7 @@ struct Result {
 Result run(const std::string& exercise_file, sim::OperatorDefects defects) {
   const sim::ExerciseSettings exercise = io::load_exercise(exercise_file);
   sim::Simulation simulation(exercise.scenario);
-  sim::Autopilot pilot(exercise, defects);
+  sim::GantryAutopilot pilot(exercise, defects);
   sim::Evaluator evaluator(exercise);
   const double stop_s = exercise.rules.time_limit_s + exercise.rules.overtime_s;
   while (!evaluator.finished() && simulation.time_s() < stop_s) {

@@ -12,11 +12,11 @@
 #include <vector>
 
 #include "harbour/io/ExerciseFiles.h"
+#include "harbour/machines/parts/PurePursuit.h"
 #include "harbour/machines/straddle_carrier/Files.h"
 #include "harbour/machines/straddle_carrier/StraddleCarrier.h"
 #include "harbour/sim/Evaluation.h"
 #include "harbour/sim/Pilot.h"
-#include "harbour/sim/PurePursuit.h"
 
 namespace harbour::sim {
 namespace {

@@ -2,9 +2,9 @@
 #include <vector>
 
 #include "harbour/machines/MachineType.h"
+#include "harbour/machines/mhc/GrabAutopilot.h"
+#include "harbour/machines/mhc/HookAutopilot.h"
 #include "harbour/machines/mhc/MobileHarbourCrane.h"
-#include "harbour/sim/GrabAutopilot.h"
-#include "harbour/sim/HookAutopilot.h"
 
 namespace harbour::sim {
 namespace {

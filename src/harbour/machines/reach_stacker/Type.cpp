@@ -3,7 +3,7 @@
 
 #include "harbour/machines/MachineType.h"
 #include "harbour/machines/reach_stacker/ReachStacker.h"
-#include "harbour/sim/ReachStackerAutopilot.h"
+#include "harbour/machines/reach_stacker/ReachStackerAutopilot.h"
 
 namespace harbour::sim {
 namespace {

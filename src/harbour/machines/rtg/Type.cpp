@@ -1,14 +1,14 @@
 #include <memory>
 #include <vector>
 
+#include "harbour/machines/GantryAutopilot.h"
 #include "harbour/machines/MachineType.h"
 #include "harbour/machines/rtg/RubberTyredGantry.h"
-#include "harbour/sim/Autopilot.h"
 
 namespace harbour::sim {
 namespace {
 constexpr MachineFault kFaults[] = {MachineFault::kHoistBrake, MachineFault::kLandedSensor};
-constexpr PilotType kPilots[] = {pilot_type<Autopilot>()};
+constexpr PilotType kPilots[] = {pilot_type<GantryAutopilot>()};
 constexpr std::string_view kDeductions[] = {
     "collision",       "emergency_stop",   "move_not_completed",         "minute_over_time_limit",
     "harsh_move",      "hard_landing",     "landing_while_swaying",      "twistlock_misuse",

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "harbour/machines/parts/PurePursuit.h"
 #include "harbour/machines/straddle_carrier/StraddleCarrier.h"
-#include "harbour/sim/PurePursuit.h"
 
 namespace harbour::sim {
 namespace {

@@ -3,7 +3,7 @@
 
 #include "harbour/machines/MachineType.h"
 #include "harbour/machines/tractor/TerminalTractor.h"
-#include "harbour/sim/TractorAutopilot.h"
+#include "harbour/machines/tractor/TractorAutopilot.h"
 
 namespace harbour::sim {
 namespace {

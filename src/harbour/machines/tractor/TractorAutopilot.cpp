@@ -1,11 +1,11 @@
-#include "harbour/sim/TractorAutopilot.h"
+#include "harbour/machines/tractor/TractorAutopilot.h"
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
+#include "harbour/machines/parts/PurePursuit.h"
 #include "harbour/machines/tractor/TerminalTractor.h"
-#include "harbour/sim/PurePursuit.h"
 
 namespace harbour::sim {
 namespace {

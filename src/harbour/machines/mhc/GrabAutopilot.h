@@ -5,8 +5,8 @@
 #include <vector>
 
 #include "harbour/core/Vec3.h"
+#include "harbour/machines/mhc/BoomSteering.h"
 #include "harbour/machines/mhc/MobileHarbourCrane.h"
-#include "harbour/sim/BoomSteering.h"
 #include "harbour/sim/DecidingPilot.h"
 #include "harbour/sim/Evaluation.h"
 

@@ -1,4 +1,4 @@
-#include "harbour/sim/GrabAutopilot.h"
+#include "harbour/machines/mhc/GrabAutopilot.h"
 
 #include <algorithm>
 #include <cmath>

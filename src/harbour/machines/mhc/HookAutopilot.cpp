@@ -1,4 +1,4 @@
-#include "harbour/sim/HookAutopilot.h"
+#include "harbour/machines/mhc/HookAutopilot.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "harbour/sim/Autopilot.h"
+#include "harbour/machines/GantryAutopilot.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,8 +6,8 @@
 #include <stdexcept>
 
 #include "harbour/core/Units.h"
+#include "harbour/machines/mhc/BoomSteering.h"
 #include "harbour/machines/rtg/RubberTyredGantry.h"
-#include "harbour/sim/BoomSteering.h"
 #include "harbour/sim/Vessel.h"
 
 namespace harbour::sim {
@@ -63,7 +63,7 @@ constexpr double kSteerFromSpeed_mps = 0.1;
 
 }  // namespace
 
-std::string Autopilot::why_cannot_drive(const ExerciseSettings& exercise) {
+std::string GantryAutopilot::why_cannot_drive(const ExerciseSettings& exercise) {
   const char* machine = exercise.scenario.machine.kind();
   const auto* rtg = exercise.scenario.machine.get_if<RtgSetup>();
   if (std::string(machine) != "sts" && !rtg)
@@ -75,28 +75,28 @@ std::string Autopilot::why_cannot_drive(const ExerciseSettings& exercise) {
   return {};
 }
 
-Autopilot::Autopilot(const ExerciseSettings& exercise, OperatorDefects defects)
+GantryAutopilot::GantryAutopilot(const ExerciseSettings& exercise, OperatorDefects defects)
     : exercise_(exercise), defects_(defects) {
   if (const std::string why = why_cannot_drive(exercise); !why.empty()) throw std::invalid_argument(why);
 }
 
-const GantryCrane& Autopilot::crane(const Simulation& simulation) {
+const GantryCrane& GantryAutopilot::crane(const Simulation& simulation) {
   if (const auto* crane = dynamic_cast<const GantryCrane*>(&simulation.machine())) return *crane;
   throw std::logic_error("the autopilot drives a gantry crane");  // why_cannot_drive() refused the others
 }
 
-std::size_t Autopilot::goal_index(const Simulation& simulation) const {
+std::size_t GantryAutopilot::goal_index(const Simulation& simulation) const {
   const auto& items = simulation.scenario().containers;
   for (std::size_t n = 0; n < items.size(); ++n)
     if (items[n].id == exercise_.moves[goal_].container_id) return n;
   throw std::logic_error("exercise move names no scenario item");  // the loader checks it
 }
 
-double Autopilot::goal_half_height(const Simulation& simulation) const {
+double GantryAutopilot::goal_half_height(const Simulation& simulation) const {
   return simulation.scenario().containers[goal_index(simulation)].half_extents_m.z;
 }
 
-std::optional<double> Autopilot::cell_entry_z(const Simulation& simulation) const {
+std::optional<double> GantryAutopilot::cell_entry_z(const Simulation& simulation) const {
   const ContainerPlacement& item = simulation.scenario().containers[goal_index(simulation)];
   if (!item.in_cell || carrying_ || !simulation.vessel()) return std::nullopt;
   const Vessel& vessel = *simulation.vessel();
@@ -104,11 +104,11 @@ std::optional<double> Autopilot::cell_entry_z(const Simulation& simulation) cons
   return coaming + kCellEntryClearance_m + crane(simulation).spreader_hoist().spreader().half_extents_m().z;
 }
 
-core::Vec3 Autopilot::source(const Simulation& simulation) const {
+core::Vec3 GantryAutopilot::source(const Simulation& simulation) const {
   return simulation.world().pose(simulation.container_body(goal_index(simulation))).position;
 }
 
-std::array<bool, 4> Autopilot::flippers(const Simulation& simulation) const {
+std::array<bool, 4> GantryAutopilot::flippers(const Simulation& simulation) const {
   // down for a box standing free (the flippers would land on a neighbour at the deck's row pitch), up in
   // the cell guides and for hatch covers (wider than the frame)
   const std::size_t goal = goal_index(simulation);
@@ -126,7 +126,8 @@ std::array<bool, 4> Autopilot::flippers(const Simulation& simulation) const {
   return {true, true, true, true};
 }
 
-double Autopilot::height_over_stacks(const Simulation& simulation, const core::Vec3& destination) const {
+double GantryAutopilot::height_over_stacks(const Simulation& simulation,
+                                           const core::Vec3& destination) const {
   // the spreader's centre height at which the load's underside clears every box under its way from here to
   // the destination (the footprints' bounding boxes at both ends and between) by kStackClearance_m
   const SpreaderHoist& hoist = crane(simulation).spreader_hoist();
@@ -157,15 +158,15 @@ double Autopilot::height_over_stacks(const Simulation& simulation, const core::V
   return top + kStackClearance_m + hanging + hoist.spreader().half_extents_m().z;
 }
 
-void Autopilot::start_travel(const core::Vec3& to, double gantry_y, double now) {
+void GantryAutopilot::start_travel(const core::Vec3& to, double gantry_y, double now) {
   trolley_ = {to.x, 0.0, now, false, 0.0, -1.0};
   // a gantry travel waits for the horn
   const bool gantry_travels = std::abs(to.y - gantry_y) > kPosition_tolerance_m && !defects_.skip_horn;
   gantry_ = {to.y, 0.0, gantry_travels ? now + kHorn_s : now, false, 0.0, -1.0};
 }
 
-double Autopilot::axis_lever(AxisMove& m, double position, double max_speed, double period,
-                             double now) const {
+double GantryAutopilot::axis_lever(AxisMove& m, double position, double max_speed, double period,
+                                   double now) const {
   // trapezoid in the lever: ramp up over exactly one period (so the swing it starts ends with the ramp),
   // brake over one period when the remaining distance equals what a linear ramp-down covers (v T / 2), then
   // creep onto the target. A move too short to reach cruise ramps to a lower top, still over one period.
@@ -189,9 +190,9 @@ double Autopilot::axis_lever(AxisMove& m, double position, double max_speed, dou
   return 0.0;  // braked: fine positioning takes over
 }
 
-double Autopilot::catch_swing(SwingAxis& axis, double target, double axis_position, double axis_speed,
-                              double load_position, double load_speed, double wind_lean, double period,
-                              double max_speed) {
+double GantryAutopilot::catch_swing(SwingAxis& axis, double target, double axis_position, double axis_speed,
+                                    double load_position, double load_speed, double wind_lean, double period,
+                                    double max_speed) {
   // load offset s from the axis; pendulum: s'' = -w^2 (s - s0) - a_axis. An axis speed k (s - s0) gives
   // s'' + k s' + w^2 (s - s0) = 0: damping ratio k / 2w. s0, where the load hangs at rest, is the wind's
   // lean (it changes with the rope length and the gusts) plus the rope geometry's offset, s less the lean
@@ -216,8 +217,8 @@ double Autopilot::catch_swing(SwingAxis& axis, double target, double axis_positi
   return std::clamp(speed, -kFineSpeed_mps, kFineSpeed_mps) / max_speed;
 }
 
-void Autopilot::position_finely(const Simulation& simulation, const core::Vec3& destination, double period,
-                                StsControls& in) {
+void GantryAutopilot::position_finely(const Simulation& simulation, const core::Vec3& destination,
+                                      double period, StsControls& in) {
   const GantryCrane& c = crane(simulation);
   const SpreaderHoist& hoist = c.spreader_hoist();
   const physics::BodyId load = carrying_ ? *hoist.locked_container() : hoist.spreader_body();
@@ -232,16 +233,16 @@ void Autopilot::position_finely(const Simulation& simulation, const core::Vec3& 
                           lean.y, period, c.gantry_max_speed_mps());
 }
 
-bool Autopilot::will_land_within(double tolerance) const {
+bool GantryAutopilot::will_land_within(double tolerance) const {
   return trolley_swing_.miss < tolerance && gantry_swing_.miss < tolerance;
 }
 
-bool Autopilot::on_target(double tolerance) const {
+bool GantryAutopilot::on_target(double tolerance) const {
   return trolley_swing_.swing < tolerance && gantry_swing_.swing < tolerance &&
          std::abs(trolley_swing_.error) < tolerance && std::abs(gantry_swing_.error) < tolerance;
 }
 
-const char* Autopilot::activity() const {
+const char* GantryAutopilot::activity() const {
   switch (phase_) {
     case Phase::kRaise:
       return "raise";
@@ -263,7 +264,7 @@ const char* Autopilot::activity() const {
   return "";
 }
 
-void Autopilot::resume(const Simulation& simulation, int moves_done, const scene::Controls& levers) {
+void GantryAutopilot::resume(const Simulation& simulation, int moves_done, const scene::Controls& levers) {
   hand_ = hand_before_ = levers;
   catching_up_ = true;
   goal_ = static_cast<std::size_t>(std::max(0, moves_done));
@@ -277,7 +278,7 @@ void Autopilot::resume(const Simulation& simulation, int moves_done, const scene
                              std::optional(simulation.container_body(goal_index(simulation)));
 }
 
-scene::Controls Autopilot::next(const Simulation& simulation) {
+scene::Controls GantryAutopilot::next(const Simulation& simulation) {
   if (simulation.steps() % kDecisionSteps != 0 && decided_) return last_controls_;
   last_ = decide(simulation);
   last_.steer = steer(simulation);
@@ -289,7 +290,7 @@ scene::Controls Autopilot::next(const Simulation& simulation) {
   return last_controls_;
 }
 
-scene::Controls Autopilot::catch_up(const scene::ControlTable& table, const scene::Controls& wanted) {
+scene::Controls GantryAutopilot::catch_up(const scene::ControlTable& table, const scene::Controls& wanted) {
   // after a take-over the levers move from where they stood to where this operator wants them as a hand moves
   // them; once every one is there (to the hand's resolution) they follow the decisions directly
   scene::Controls out = wanted;
@@ -306,7 +307,7 @@ scene::Controls Autopilot::catch_up(const scene::ControlTable& table, const scen
   return out;
 }
 
-double Autopilot::steer(const Simulation& simulation) {
+double GantryAutopilot::steer(const Simulation& simulation) {
   // as a driver holds a line: aim the heading back at it (the offset e closes as de/dt = -v ψ, so the aim
   // ψ = e / (v τ) closes it over τ) and turn at the rate that reaches that aim
   const GantryCrane& c = crane(simulation);
@@ -319,9 +320,9 @@ double Autopilot::steer(const Simulation& simulation) {
   return c.steer_lever((aim - c.yaw_rad()) / kHeadingClose_s);
 }
 
-StsControls Autopilot::decide(const Simulation& simulation) {
+StsControls GantryAutopilot::decide(const Simulation& simulation) {
   StsControls in;
-  const GantryCrane& crane = Autopilot::crane(simulation);
+  const GantryCrane& crane = GantryAutopilot::crane(simulation);
   const SpreaderHoist& hoist = crane.spreader_hoist();
   const core::Vec3 spreader = simulation.world().pose(hoist.spreader_body()).position;
   const double highest_travel = std::min(kTravelHeight_m, hoist.upper_limit_m() - kBelowUpperLimit_m);

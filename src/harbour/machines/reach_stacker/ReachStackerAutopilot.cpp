@@ -1,12 +1,12 @@
-#include "harbour/sim/ReachStackerAutopilot.h"
+#include "harbour/machines/reach_stacker/ReachStackerAutopilot.h"
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
 
+#include "harbour/machines/parts/PurePursuit.h"
 #include "harbour/machines/reach_stacker/ReachStacker.h"
-#include "harbour/sim/PurePursuit.h"
 
 namespace harbour::sim {
 namespace {

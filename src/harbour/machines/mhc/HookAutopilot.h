@@ -2,8 +2,8 @@
 
 #include <string>
 
+#include "harbour/machines/mhc/BoomSteering.h"
 #include "harbour/machines/mhc/MobileHarbourCrane.h"
-#include "harbour/sim/BoomSteering.h"
 #include "harbour/sim/DecidingPilot.h"
 #include "harbour/sim/Evaluation.h"
 

@@ -1,4 +1,4 @@
-#include "harbour/sim/BoomSteering.h"
+#include "harbour/machines/mhc/BoomSteering.h"
 
 #include <algorithm>
 #include <cmath>

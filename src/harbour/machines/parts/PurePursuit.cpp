@@ -1,4 +1,4 @@
-#include "harbour/sim/PurePursuit.h"
+#include "harbour/machines/parts/PurePursuit.h"
 
 #include <algorithm>
 #include <cmath>

@@ -25,13 +25,13 @@ struct OperatorDefects {
 /// load's rest position onto the target; fast-then-slow lowering that holds just above the landing until the
 /// load is on target and calm, lifting off to try again when the spreader sits beside the castings; locking,
 /// unlocking. For headless runs, demos, tests.
-class Autopilot final : public Pilot {
+class GantryAutopilot final : public Pilot {
  public:
   /// Why it cannot drive `exercise` ("" when it can): it drives the container moves of a gantry crane (the
   /// STS, an RTG square to the world).
   static std::string why_cannot_drive(const ExerciseSettings& exercise);
   /// Throws std::invalid_argument with why_cannot_drive() when it cannot.
-  explicit Autopilot(const ExerciseSettings& exercise, OperatorDefects defects = {});
+  explicit GantryAutopilot(const ExerciseSettings& exercise, OperatorDefects defects = {});
 
   /// The controls for the next step, from what the simulation shows now (decided 50 times a second, held
   /// in between, levers at a joystick axis' 16-bit resolution).
