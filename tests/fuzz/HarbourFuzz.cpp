@@ -72,7 +72,7 @@ void step_a_while(const harbour::sim::StsCraneSettings& crane) {
   static const harbour::sim::ExerciseSettings exercise =
       harbour::io::load_exercise(kData + "/exercises/sts_discharge.yaml");
   harbour::sim::ScenarioSettings scenario = exercise.scenario;
-  harbour::sim::StsSetup& sts = scenario.sts();
+  harbour::sim::StsSetup& sts = scenario.machine.as<harbour::sim::StsSetup>();
   sts.crane = crane;
   sts.trolley_x_m =
       std::clamp(sts.trolley_x_m, crane.trolley_drive.min_position_m, crane.trolley_drive.max_position_m);

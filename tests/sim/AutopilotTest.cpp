@@ -222,7 +222,7 @@ TEST(Evaluation, ASpreaderLoweredOffTheCellCountsACellGuideCollision) {
   // spreader comes down 15 cm off to waterside (the guides leave 25 mm a side) and lands on the guides.
   ExerciseSettings exercise = scenes::sts_discharge_exercise(HARBOUR_DATA_DIR);
   exercise.scenario.containers.clear();
-  exercise.scenario.sts().trolley_x_m = 32.27 + 0.15;
+  exercise.scenario.machine.as<StsSetup>().trolley_x_m = 32.27 + 0.15;
   Simulation sim(exercise.scenario);
   Evaluator evaluator(exercise);
   StsControls lower;

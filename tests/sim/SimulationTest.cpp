@@ -146,7 +146,7 @@ TEST(Simulation, TheInstructorsEmergencyStopBrakesTheMachineUntilReleased) {
   for (int k = 0; k < 8000; ++k)
     s.step(scenes::cab(in));  // the trainee still pushes the lever
   const double stopped_at = trolley_x();
-  const double ramp = scenario.sts().crane.trolley_drive.emergency_deceleration_mps2;
+  const double ramp = scenario.machine.as<StsSetup>().crane.trolley_drive.emergency_deceleration_mps2;
   const double expected = speed * speed / (2.0 * ramp);
   std::printf("trolley at %.2f m/s stops in %.3f m on its %.2f m/s^2 emergency ramp (v^2/2a = %.3f m)\n",
               std::abs(speed), std::abs(stopped_at - at_stop), ramp, expected);

@@ -67,13 +67,13 @@ TEST(Weather, SteadyWindDeflectsTheHangingSpreaderBySwingTheory) {
   for (int k = 0; k < n; ++k) {
     sim.step({});
     y += sim.machine_as<StsCrane>().spreader_pose().position.y / n;
-    fall += (s.sts().crane.trolley_rail_height_m - 1.0 -
+    fall += (s.machine.as<StsSetup>().crane.trolley_rail_height_m - 1.0 -
              (sim.machine_as<StsCrane>().spreader_pose().position.z + 0.5)) /
             n;
   }
-  const double force =
-      0.5 * 1.225 * 1.0 * s.sts().crane.spreader.width_m * s.sts().crane.spreader.height_m * 400.0;
-  const double expected = fall * force / (s.sts().crane.spreader.mass_kg * 9.80665);
+  const double force = 0.5 * 1.225 * 1.0 * s.machine.as<StsSetup>().crane.spreader.width_m *
+                       s.machine.as<StsSetup>().crane.spreader.height_m * 400.0;
+  const double expected = fall * force / (s.machine.as<StsSetup>().crane.spreader.mass_kg * 9.80665);
   EXPECT_NEAR(y, expected, 0.05 * expected);
   // the rest position the evaluation measures sway from is that equilibrium
   EXPECT_NEAR(sim.machine_as<StsCrane>().pendulum_length_m(), fall, 0.01);

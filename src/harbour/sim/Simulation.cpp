@@ -19,14 +19,6 @@ constexpr std::uint32_t kSimulationSectionV4 = 0x53494D34;       // "SIM4": and 
 constexpr std::uint32_t kSimulationSection = 0x53494D35;         // "SIM5": and the supply (power failure)
 }  // namespace
 
-const StsSetup& ScenarioSettings::sts() const {
-  return machine.as<StsSetup>();
-}
-
-StsSetup& ScenarioSettings::sts() {
-  return const_cast<StsSetup&>(std::as_const(*this).sts());
-}
-
 namespace {
 
 constexpr double kMarkingHalfThickness_m = 0.005;  // a painted bay, drawn as a thin plate on the ground

@@ -101,9 +101,6 @@ std::string why_invalid(const InstructorCommand& command);
 struct ScenarioSettings {
   std::string name;
   MachineSetup machine = StsSetup{};
-  /// The STS setup; throws std::logic_error when the machine is another.
-  const StsSetup& sts() const;
-  StsSetup& sts();
   std::vector<StaticBlock> blocks;
   /// The quay's waterside edge [m]: with a vessel the quay is a block up to it and the harbour bed lies
   /// below the water; without one the ground is a plane at the quay's level.
