@@ -159,7 +159,7 @@ TEST(HoistBrakeFault, LoweringAtFullSpeedIsNotAFall) {
   Evaluator evaluator(exercise);
   StsControls levers;
   levers.hoist = -1.0;
-  const scene::Controls in = sim.machine_as<StsCrane>().crane_controls(levers);
+  const scene::Controls in = sim.machine_as<StsCrane>().controls(levers);
   double fastest_mps = 0.0, last_z = sim.machine_as<StsCrane>().spreader_pose().position.z;
   for (int k = 0; k < 7000; ++k) {  // 7 s: from 20 m down to some 10 m, above the boxes on the hatch
     sim.step(in);

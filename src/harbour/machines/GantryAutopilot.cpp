@@ -218,7 +218,7 @@ double GantryAutopilot::catch_swing(SwingAxis& axis, double target, double axis_
 }
 
 void GantryAutopilot::position_finely(const Simulation& simulation, const core::Vec3& destination,
-                                      double period, StsControls& in) {
+                                      double period, GantryLevers& in) {
   const GantryCrane& c = crane(simulation);
   const SpreaderHoist& hoist = c.spreader_hoist();
   const physics::BodyId load = carrying_ ? *hoist.locked_container() : hoist.spreader_body();
@@ -282,7 +282,7 @@ scene::Controls GantryAutopilot::next(const Simulation& simulation) {
   if (simulation.steps() % kDecisionSteps != 0 && decided_) return last_controls_;
   last_ = decide(simulation);
   last_.steer = steer(simulation);
-  for (double* lever : {&last_.gantry, &last_.trolley, &last_.hoist, &last_.boom, &last_.steer})
+  for (double* lever : {&last_.gantry, &last_.trolley, &last_.hoist, &last_.steer})
     *lever = device_lever(*lever);
   last_controls_ = crane(simulation).crane_controls(last_);
   if (catching_up_) last_controls_ = catch_up(simulation.control_table(), last_controls_);
@@ -320,8 +320,8 @@ double GantryAutopilot::steer(const Simulation& simulation) {
   return c.steer_lever((aim - c.yaw_rad()) / kHeadingClose_s);
 }
 
-StsControls GantryAutopilot::decide(const Simulation& simulation) {
-  StsControls in;
+GantryLevers GantryAutopilot::decide(const Simulation& simulation) {
+  GantryLevers in;
   const GantryCrane& crane = GantryAutopilot::crane(simulation);
   const SpreaderHoist& hoist = crane.spreader_hoist();
   const core::Vec3 spreader = simulation.world().pose(hoist.spreader_body()).position;

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <optional>
 
+#include "harbour/machines/GantryCrane.h"
 #include "harbour/sim/Evaluation.h"
 #include "harbour/sim/Pilot.h"
 
@@ -67,7 +68,7 @@ class GantryAutopilot final : public Pilot {
     double last_target = 0.0;
   };
   static const GantryCrane& crane(const Simulation& simulation);
-  StsControls decide(const Simulation& simulation);
+  GantryLevers decide(const Simulation& simulation);
   /// The steering lever that holds a gantry on tyres on its line.
   double steer(const Simulation& simulation);
   double axis_lever(AxisMove& m, double position, double max_speed, double period, double now) const;
@@ -76,7 +77,7 @@ class GantryAutopilot final : public Pilot {
                             double max_speed);
   /// Levers of trolley and gantry that catch the swing and creep the load onto `destination`.
   void position_finely(const Simulation& simulation, const core::Vec3& destination, double period,
-                       StsControls& in);
+                       GantryLevers& in);
   bool on_target(double tolerance) const;  // rest position on target and swing small
   /// The levers a hand sets on the way from the taken-over ones to `wanted` (hand_lever()).
   scene::Controls catch_up(const scene::ControlTable& table, const scene::Controls& wanted);
@@ -106,7 +107,7 @@ class GantryAutopilot final : public Pilot {
   double landed_since_ = -1.0;  // lowering: when the landed lamp lit
   bool lock_skipped_ = false;
   double lane_integral_ = 0.0;  // [m s] the gantry's offset from its line, integrated while it travels
-  StsControls last_;
+  GantryLevers last_;
   scene::Controls last_controls_;
   bool decided_ = false;
   bool catching_up_ = false;            // after a take-over: the hands still move to this operator's levers

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <array>
+#include <cstdint>
 #include <span>
 
 #include "harbour/machines/parts/SpreaderHoist.h"
@@ -7,7 +9,21 @@
 
 namespace harbour::sim {
 
-struct StsControls;
+/// The levers and buttons a gantry crane's operator works, whichever crane it is: what a scripted operator
+/// decides, the crane writing them into its own controls (those it lacks ignored).
+struct GantryLevers {
+  double gantry = 0.0;   ///< [-1, 1] +: along +y
+  double trolley = 0.0;  ///< [-1, 1] +: waterside
+  double hoist = 0.0;    ///< [-1, 1] +: raise
+  double steer = 0.0;    ///< [-1, 1] +: turn left (a gantry on tyres)
+  bool lock = false;
+  bool unlock = false;
+  bool emergency_stop = false;
+  bool horn = false;
+  std::uint8_t spreader_size_ft = 0;   ///< a size button held: 20, 40 or 45 (0: none)
+  std::array<bool, 4> flipper_down{};  ///< flipper switches per twistlock corner (true: lowered)
+  friend bool operator==(const GantryLevers&, const GantryLevers&) = default;
+};
 
 /// A portal crane whose trolley carries a spreader hoist across its gantry: the gantry travels along world
 /// y, the trolley along world x (the STS; an RTG standing square to the world). What a scripted operator
@@ -32,7 +48,7 @@ class GantryCrane {
   virtual double yaw_rad() const { return 0.0; }
   virtual double steer_lever(double /*yaw_rate_radps*/) const { return 0.0; }
   /// Its controls with these levers and buttons (those it lacks ignored, the others neutral).
-  virtual scene::Controls crane_controls(const StsControls& levers) const = 0;
+  virtual scene::Controls crane_controls(const GantryLevers& levers) const = 0;
 };
 
 class Machine;

@@ -256,7 +256,7 @@ double RubberTyredGantry::gantry_max_speed_mps() const {
                      : settings_.gantry_drive.max_speed_mps;
 }
 
-scene::Controls RubberTyredGantry::crane_controls(const StsControls& in) const {
+scene::Controls RubberTyredGantry::crane_controls(const GantryLevers& in) const {
   scene::Controls c = settings_.controls.neutral();
   const auto set = [&](int slot, double v) { c.value[static_cast<std::size_t>(slot)] = v; };
   set(slots_.gantry, in.gantry);

@@ -121,7 +121,7 @@ class RubberTyredGantry final : public Machine, public GantryCrane {
   double gantry_max_speed_mps() const override;
   double trolley_max_speed_mps() const override { return settings_.trolley_drive.max_speed_mps; }
   const SpreaderHoist& spreader_hoist() const override { return *rig_; }
-  scene::Controls crane_controls(const StsControls& levers) const override;
+  scene::Controls crane_controls(const GantryLevers& levers) const override;
   /// The frame's centre off the line it started on, across the block [m] (+ towards its +x).
   double lane_offset_m() const override;
   /// The frame's yaw from its start heading [rad].

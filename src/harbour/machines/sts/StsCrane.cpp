@@ -88,6 +88,20 @@ scene::Controls StsCrane::controls(const StsControls& sts) const {
   return c;
 }
 
+scene::Controls StsCrane::crane_controls(const GantryLevers& levers) const {
+  StsControls sts;  // on rails: no steering; the boom left where it stands
+  sts.gantry = levers.gantry;
+  sts.trolley = levers.trolley;
+  sts.hoist = levers.hoist;
+  sts.lock = levers.lock;
+  sts.unlock = levers.unlock;
+  sts.emergency_stop = levers.emergency_stop;
+  sts.horn = levers.horn;
+  sts.spreader_size_ft = levers.spreader_size_ft;
+  sts.flipper_down = levers.flipper_down;
+  return controls(sts);
+}
+
 StsCrane::StsCrane(physics::PhysicsWorld& world, const StsCraneSettings& settings, double gantry_y_m,
                    double trolley_x_m, double spreader_z_m)
     : world_(world),

@@ -63,7 +63,6 @@ struct StsControls {
   double trolley = 0.0;  ///< [-1, 1] +: waterside
   double hoist = 0.0;    ///< [-1, 1] +: raise
   double boom = 0.0;     ///< [-1, 1] +: raise the boom
-  double steer = 0.0;    ///< [-1, 1] +: turn left; a gantry on tyres (an RTG's: the STS runs on rails)
   bool lock = false;
   bool unlock = false;
   bool emergency_stop = false;
@@ -132,7 +131,7 @@ class StsCrane final : public Machine, public GantryCrane {
   double gantry_max_speed_mps() const override { return settings_.gantry_drive.max_speed_mps; }
   double trolley_max_speed_mps() const override { return settings_.trolley_drive.max_speed_mps; }
   const SpreaderHoist& spreader_hoist() const override { return *rig_; }
-  scene::Controls crane_controls(const StsControls& levers) const override { return controls(levers); }
+  scene::Controls crane_controls(const GantryLevers& levers) const override;
 
   const StsControlSlots& control_slots() const { return slots_; }
   /// The cab's controls as labelled Controls (the other slots neutral), and back.
