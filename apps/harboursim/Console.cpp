@@ -41,10 +41,10 @@
 
 #include "AuditWriter.h"
 #include "Designer.h"
+#include "ExerciseRun.h"
 #include "Reports.h"
 #include "RoutesTool.h"
 #include "StationNet.h"
-#include "StsRun.h"
 #include "XapiSender.h"
 #include "harbour/bulk/BulkPublish.h"
 #include "harbour/core/Text.h"

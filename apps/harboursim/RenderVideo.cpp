@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "StsRun.h"
+#include "ExerciseRun.h"
 #include "harbour/audio/AudioOut.h"
 #include "harbour/audio/SoundFile.h"
 #include "harbour/bulk/BulkPublish.h"

@@ -15,8 +15,8 @@
 #include <stdexcept>
 #include <thread>
 
+#include "ExerciseRun.h"
 #include "RoutesTool.h"
-#include "StsRun.h"
 #include "harbour/core/Text.h"
 #include "harbour/io/RouteFiles.h"
 

@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include "StsRun.h"
+#include "ExerciseRun.h"
 #include "harbour/core/Text.h"
 #include "harbour/io/RouteFiles.h"
 

@@ -7,7 +7,7 @@
 #include <optional>
 #include <stdexcept>
 
-#include "StsRun.h"
+#include "ExerciseRun.h"
 #include "harbour/bulk/BulkPublish.h"
 #include "harbour/ig/ImageGenerator.h"
 #include "harbour/io/BoundedFile.h"

@@ -18,10 +18,10 @@
 #include <stdexcept>
 #include <thread>
 
+#include "ExerciseRun.h"
 #include "StationNet.h"
 #include "StationTeam.h"
 #include "StationWindow.h"
-#include "StsRun.h"
 #include "harbour/audio/SoundFile.h"
 #include "harbour/audio/SoundThread.h"
 #include "harbour/core/Text.h"

@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include "StsRun.h"
+#include "ExerciseRun.h"
 #include "harbour/sim/Simulation.h"
 #include "harbour/station/RealTimeLoop.h"
 

@@ -18,7 +18,7 @@
 
 #include <unistd.h>
 
-#include "StsRun.h"
+#include "ExerciseRun.h"
 #include "harbour/core/Text.h"
 #include "harbour/io/ExerciseFiles.h"
 

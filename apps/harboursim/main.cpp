@@ -7,12 +7,12 @@
 
 #include "BulkDemo.h"
 #include "Console.h"
+#include "ExerciseRun.h"
 #include "RenderVideo.h"
 #include "Reports.h"
 #include "RoutesTool.h"
 #include "Screenshot.h"
 #include "StationRun.h"
-#include "StsRun.h"
 #include "XapiSender.h"
 
 namespace {

@@ -1,4 +1,4 @@
-#include "StsRun.h"
+#include "ExerciseRun.h"
 
 #include "RoutesTool.h"
 
