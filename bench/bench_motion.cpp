@@ -14,7 +14,8 @@ namespace {
 motion::MotionSettings settings() {
   const auto platform = io::load_platform(HARBOUR_DATA_DIR "/motion/platform.yaml");
   motion::MotionSettings s;
-  s.washout = io::load_washout(HARBOUR_DATA_DIR "/motion/washout.yaml", "tractor");
+  s.washout =
+      io::load_washout(HARBOUR_DATA_DIR "/motion/washout.yaml", HARBOUR_DATA_DIR "/machines/tractor.yaml");
   s.geometry = platform.geometry;
   s.limits = platform.limits;
   return s;

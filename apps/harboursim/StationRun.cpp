@@ -232,8 +232,8 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
   if (profile.motion) {
     station.use_motion(std::make_unique<station::MotionLink>(
         io::load_platform(profile.motion->platform),
-        io::load_washout(profile.motion->washout, session.simulation().machine().kind()),
-        profile.motion->driver, session.simulation().scene()));
+        io::load_washout(profile.motion->washout, exercise.machine_file), profile.motion->driver,
+        session.simulation().scene()));
     std::printf("motion platform: %s:%u\n", profile.motion->driver.host.c_str(),
                 static_cast<unsigned>(profile.motion->driver.port));
   }

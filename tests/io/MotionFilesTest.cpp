@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "harbour/core/Units.h"
+#include "harbour/machines/sts/Files.h"
 #include "scenes/DataErrors.h"
 
 namespace harbour::io {
@@ -30,7 +31,8 @@ TEST(MotionFiles, ShippedPlatformAndWashoutLoad) {
   const PlatformFile p = load_platform(HARBOUR_DATA_DIR "/motion/platform.yaml");
   EXPECT_EQ(p.name, "generic_6dof");
   EXPECT_DOUBLE_EQ(p.limits.max_acceleration[motion::kRoll], core::deg_to_rad(300.0));
-  const auto sts = load_washout(HARBOUR_DATA_DIR "/motion/washout.yaml", "sts");
+  const auto sts =
+      load_washout(HARBOUR_DATA_DIR "/motion/washout.yaml", HARBOUR_DATA_DIR "/machines/sts.yaml");
   EXPECT_DOUBLE_EQ(sts.surge_sway.gain, 0.35);
   EXPECT_DOUBLE_EQ(sts.surge_sway.wn_rad_s, 1.25);  // from the defaults
 }
@@ -52,8 +54,34 @@ TEST(MotionFiles, NonNumbersAndWrongShapesNameTheField) {
                "max_length_m");
 }
 
-TEST(MotionFiles, UnknownMachineIsAnError) {
-  EXPECT_THROW(load_washout(HARBOUR_DATA_DIR "/motion/washout.yaml", "hovercraft"), DataError);
+TEST(MotionFiles, AMachinesBadMotionCuesAreNamedByFileLineAndField) {
+  const auto error = [](const std::string& cues) {
+    try {
+      check_motion_cues(YamlFile::parse("machine: {kind: sts}\nmotion_cues:\n" + cues, "crane.yaml"));
+    } catch (const DataError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(error("  tilt: {gain: 0.4}\n"), "accepted");
+  EXPECT_NE(error("  tilt: {gain: -0.4}\n").find("crane.yaml:3"), std::string::npos)
+      << error("  tilt: {gain: -0.4}\n");
+  EXPECT_NE(error("  tilt: {gain: -0.4}\n").find("motion_cues.tilt.gain"), std::string::npos);
+  // a misspelt key: the machine's loader reads its whole file, motion cues and all
+  std::ifstream in(HARBOUR_DATA_DIR "/machines/sts.yaml");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string misspelt = text.str();
+  misspelt.replace(misspelt.find("surge_sway: {gain: 0.35}"), 24, "surge_sway: {gian: 0.35}");
+  try {
+    load_sts_crane(YamlFile::parse(misspelt, "sts.yaml"), HARBOUR_DATA_DIR "/machines");
+    ADD_FAILURE() << "a misspelt motion cue was accepted";
+  } catch (const DataError& e) {
+    EXPECT_NE(std::string(e.what()).find("motion_cues.surge_sway"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(
+      load_washout(HARBOUR_DATA_DIR "/motion/washout.yaml", HARBOUR_DATA_DIR "/machines/hovercraft.yaml"),
+      DataError);
 }
 
 }  // namespace

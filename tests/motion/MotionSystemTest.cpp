@@ -14,7 +14,8 @@ namespace {
 MotionSettings settings(const std::string& machine) {
   const auto platform = io::load_platform(HARBOUR_DATA_DIR "/motion/platform.yaml");
   MotionSettings s;
-  s.washout = io::load_washout(HARBOUR_DATA_DIR "/motion/washout.yaml", machine);
+  s.washout = io::load_washout(HARBOUR_DATA_DIR "/motion/washout.yaml",
+                               std::string(HARBOUR_DATA_DIR "/machines/") + machine + ".yaml");
   s.geometry = platform.geometry;
   s.limits = platform.limits;
   return s;

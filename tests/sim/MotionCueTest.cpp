@@ -15,7 +15,7 @@ namespace harbour::sim {
 namespace {
 
 // The platform's commands from a run of the simulation, as the station makes them: the cab's cue from each
-// published state through the washout of the machine that runs (its kind names its section)
+// published state through the washout of the machine that runs (its data file's motion cues)
 struct PlatformRun {
   motion::MotionSystem system;
   double peak_surge_m = 0.0, peak_pitch_rad = 0.0;
@@ -23,7 +23,8 @@ struct PlatformRun {
   static motion::MotionSettings settings(const std::string& machine) {
     const auto platform = io::load_platform(HARBOUR_DATA_DIR "/motion/platform.yaml");
     motion::MotionSettings s;
-    s.washout = io::load_washout(HARBOUR_DATA_DIR "/motion/washout.yaml", machine);
+    s.washout = io::load_washout(HARBOUR_DATA_DIR "/motion/washout.yaml",
+                                 std::string(HARBOUR_DATA_DIR "/machines/") + machine + ".yaml");
     s.geometry = platform.geometry;
     s.limits = platform.limits;
     return s;
@@ -59,9 +60,19 @@ scene::Controls forward(const Simulation& s) {
   return c;
 }
 
-TEST(MotionCue, EveryMachineKindHasItsOwnWashout) {
-  for (const char* kind : {"sts", "rtg", "mhc", "reach_stacker", "tractor"})
-    EXPECT_NO_THROW(io::load_washout(HARBOUR_DATA_DIR "/motion/washout.yaml", kind)) << kind;
+// each machine's data file cues it its own way: some channel's gain is not the washout file's default
+TEST(MotionCue, EveryMachineFileCarriesItsOwnMotionCues) {
+  const motion::WashoutSettings defaults = io::load_washout(
+      io::YamlFile::load(HARBOUR_DATA_DIR "/motion/washout.yaml"), io::YamlFile::parse("{}", "none.yaml"));
+  for (const std::string_view kind : machine_kinds()) {
+    const motion::WashoutSettings w =
+        io::load_washout(HARBOUR_DATA_DIR "/motion/washout.yaml",
+                         std::string(HARBOUR_DATA_DIR "/machines/") + std::string(kind) + ".yaml");
+    EXPECT_TRUE(w.surge_sway.gain != defaults.surge_sway.gain || w.heave.gain != defaults.heave.gain ||
+                w.tilt.gain != defaults.tilt.gain || w.rotation.gain != defaults.rotation.gain)
+        << kind;
+    EXPECT_EQ(w.rate_hz, defaults.rate_hz) << kind;
+  }
 }
 
 TEST(MotionCue, ATractorsBrakingAndAnStsTrolleyStopGiveDifferentPlatformCommands) {

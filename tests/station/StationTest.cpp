@@ -146,9 +146,10 @@ TEST(MotionPlatform, TheCabsCuesDriveThePlatformOverUdp) {
   driver.port = ntohs(address.sin_port);
   LiveSession live("harbour_motion");
   Station station(*live.session);
-  station.use_motion(std::make_unique<MotionLink>(io::load_platform(profile.motion->platform),
-                                                  io::load_washout(profile.motion->washout, "sts"), driver,
-                                                  live.session->simulation().scene()));
+  station.use_motion(std::make_unique<MotionLink>(
+      io::load_platform(profile.motion->platform),
+      io::load_washout(profile.motion->washout, HARBOUR_DATA_DIR "/machines/sts.yaml"), driver,
+      live.session->simulation().scene()));
   station.start();
   live.session->start();
   int packets = 0;

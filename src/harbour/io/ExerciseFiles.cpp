@@ -170,6 +170,7 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
   const std::string pose_at = std::string("exercise.") + files.start_section;
   const StartBlock start{f, f.required_map(x, files.start_section, "exercise"), pose_at, folder};
   s.machine = files.read(machine_path, start);
+  e.machine_file = machine_path;
   const bool vehicle = std::string_view(files.start_section) == "vehicle";  // it drives (ramps, routes)
   // container exercises (the STS), general cargo on a hook, bulk on a grab
   const sim::MachineType& machine_type =

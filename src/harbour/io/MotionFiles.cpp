@@ -141,28 +141,31 @@ void read_channels(const YamlFile& f, const YAML::Node& n, const std::string& at
 
 }  // namespace
 
-motion::WashoutSettings load_washout(const YamlFile& f, const std::string& machine) {
+namespace {
+void read_motion_cues(const YamlFile& machine_file, motion::WashoutSettings& w) {
+  if (const auto cues = machine_file.optional_map(machine_file.root(), "motion_cues", ""))
+    read_channels(machine_file, *cues, "motion_cues", w);
+}
+}  // namespace
+
+motion::WashoutSettings load_washout(const YamlFile& washout_file, const YamlFile& machine_file) {
+  const YamlFile& f = washout_file;
   motion::WashoutSettings w;
   w.rate_hz = f.number(f.root(), "rate_hz", "", 1.0, 10000.0);
   if (const auto defaults = f.optional_map(f.root(), "defaults", ""))
     read_channels(f, *defaults, "defaults", w);
-  const YAML::Node machines = f.required_map(f.root(), "machines", "");
-  // every machine's section is checked (a typo in another machine's section is still a typo)
-  bool found = false;
-  for (const auto& entry : machines) {
-    const std::string name = entry.first.Scalar();
-    motion::WashoutSettings scratch = w;
-    const YAML::Node section = f.required_map(machines, name, "machines");
-    read_channels(f, section, "machines." + name, name == machine ? w : scratch);
-    found |= name == machine;
-  }
-  if (!found) f.fail(machines, "machines", "no washout settings for machine '" + machine + "'");
   f.check_unknown_keys();
+  read_motion_cues(machine_file, w);
   return w;
 }
 
-motion::WashoutSettings load_washout(const std::string& path, const std::string& machine) {
-  return load_washout(YamlFile::load(path), machine);
+motion::WashoutSettings load_washout(const std::string& washout_path, const std::string& machine_path) {
+  return load_washout(YamlFile::load(washout_path), YamlFile::load(machine_path));
+}
+
+void check_motion_cues(const YamlFile& machine_file) {
+  motion::WashoutSettings scratch;
+  read_motion_cues(machine_file, scratch);
 }
 
 }  // namespace harbour::io

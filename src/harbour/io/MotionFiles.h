@@ -20,9 +20,12 @@ struct PlatformFile {
 PlatformFile load_platform(const YamlFile& file);
 PlatformFile load_platform(const std::string& path);
 
-/// Reads the washout settings of `machine` from a washout file (data/motion/washout.yaml): the file's
-/// defaults overridden by the machine's section.
-motion::WashoutSettings load_washout(const YamlFile& file, const std::string& machine);
-motion::WashoutSettings load_washout(const std::string& path, const std::string& machine);
+/// The platform's washout for a machine: the washout file's (data/motion/washout.yaml) rate and defaults,
+/// overridden channel by channel by the machine file's `motion_cues` (a tractor is cued harder than an STS).
+motion::WashoutSettings load_washout(const YamlFile& washout_file, const YamlFile& machine_file);
+motion::WashoutSettings load_washout(const std::string& washout_path, const std::string& machine_path);
+/// Reads a machine file's `motion_cues` (absent: none) and fails naming a bad one: each machine's loader
+/// calls it, so that the file's every key is read where the machine is.
+void check_motion_cues(const YamlFile& machine_file);
 
 }  // namespace harbour::io

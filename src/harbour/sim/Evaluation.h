@@ -116,6 +116,8 @@ struct ExerciseSettings {
   std::string name;
   std::optional<ExerciseAbout> about;  ///< unset: the file says nothing of itself
   ScenarioSettings scenario;
+  std::string
+      machine_file;  ///< the machine's data file it names (what the station reads its motion cues from)
   std::optional<LoadStop> load_stop;  ///< a team's tractor collects its box here first
   std::vector<MoveGoal> moves;
   std::vector<SpeedZone> speed_zones;

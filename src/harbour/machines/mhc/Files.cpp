@@ -5,6 +5,7 @@
 #include "harbour/core/Units.h"
 #include "harbour/io/ControlFiles.h"
 #include "harbour/io/MachineFiles.h"
+#include "harbour/io/MotionFiles.h"
 
 namespace harbour::io {
 namespace {
@@ -164,6 +165,7 @@ sim::MhcSettings read_mhc(const YamlFile& f, const std::string& folder) {
 
 sim::MhcSettings load_mhc(const YamlFile& f, const std::string& folder) {
   sim::MhcSettings s = read_mhc(f, folder);
+  check_motion_cues(f);
   f.check_unknown_keys();
   return s;
 }

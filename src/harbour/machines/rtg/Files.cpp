@@ -5,6 +5,7 @@
 #include "harbour/core/Units.h"
 #include "harbour/io/ControlFiles.h"
 #include "harbour/io/MachineFiles.h"
+#include "harbour/io/MotionFiles.h"
 
 namespace harbour::io {
 sim::RtgSettings load_rtg(const YamlFile& f, const std::string& folder) {
@@ -52,6 +53,7 @@ sim::RtgSettings load_rtg(const YamlFile& f, const std::string& folder) {
   } catch (const std::invalid_argument& e) {
     f.fail(m["controls"], "machine.controls", e.what());
   }
+  check_motion_cues(f);
   f.check_unknown_keys();
   return s;
 }

@@ -6,6 +6,7 @@
 #include "harbour/core/Units.h"
 #include "harbour/io/ControlFiles.h"
 #include "harbour/io/MachineFiles.h"
+#include "harbour/io/MotionFiles.h"
 
 namespace harbour::io {
 
@@ -48,6 +49,7 @@ sim::StraddleCarrierSettings load_straddle_carrier(const YamlFile& f, const std:
   } catch (const std::invalid_argument& e) {
     f.fail(m["controls"], "machine.controls", e.what());
   }
+  check_motion_cues(f);
   f.check_unknown_keys();
   return s;
 }
