@@ -154,48 +154,11 @@ std::optional<sim::ExerciseAbout> read_about(const YamlFile& f, const YAML::Node
   return about;
 }
 
-sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder) {
-  sim::ExerciseSettings e;
-  const YAML::Node x = f.required(f.root(), "exercise", "");
-  e.name = f.text(x, "name", "exercise");
-  e.about = read_about(f, x);
-  sim::ScenarioSettings& s = e.scenario;
-  s.name = e.name;
-  const std::string machine = f.text(x, "machine", "exercise");
-  const std::string machine_path = (std::filesystem::path(folder) / machine).lexically_normal().string();
-  if (!std::filesystem::is_regular_file(machine_path))
-    f.fail(x["machine"], "exercise.machine", "no such file: " + machine_path);
-  const std::string machine_kind = machine_file_kind(machine_path);
-  const MachineFileType& files = *find_machine_file_type(machine_kind);  // machine_file_kind() checked it
-  const std::string pose_at = std::string("exercise.") + files.start_section;
-  const StartBlock start{f, f.required_map(x, files.start_section, "exercise"), pose_at, folder};
-  s.machine = files.read(machine_path, start);
-  e.machine_file = machine_path;
-  const bool vehicle = std::string_view(files.start_section) == "vehicle";  // it drives (ramps, routes)
-  // container exercises (the STS), general cargo on a hook, bulk on a grab
-  const sim::MachineType& machine_type =
-      *sim::find_machine_type(machine_kind);  // machine_file_kind() checked it
-  const bool handles_containers = machine_type.handles == sim::Handles::kContainers;
-  const auto* mhc = s.machine.get_if<sim::MhcSetup>();
-  const bool on_hook = mhc && mhc->start.on_hook;
-  const auto* tractor = s.machine.get_if<sim::TractorSetup>();
-  const bool tows = tractor && tractor->start.trailer;
-  const std::string handles = handles_containers ? "containers with its spreader"
-                              : on_hook          ? "general cargo on its hook (exercise.cargo)"
-                              : mhc              ? "bulk with its grab (crane.tool: hook for general cargo)"
-                              : tows             ? "its trailer (exercise.vehicle.trailer)"
-                                                 : "a trailer (exercise.vehicle.trailer)";
-  for (const char* key : {"containers", "trucks", "cargo", "moves"}) {
-    const bool fits = handles_containers ? std::string(key) != "cargo"
-                      : on_hook          ? std::string(key) == "cargo" || std::string(key) == "moves"
-                                         : tows && std::string(key) == "moves";
-    if (!fits && f.optional(x, key, "exercise"))
-      f.fail(x[key], std::string("exercise.") + key, "the " + machine_kind + " handles " + handles);
-  }
-
+// the vessel alongside and its hatch covers (listed after the containers)
+std::optional<sim::VesselGeometry> read_vessel(const YamlFile& f, const YAML::Node& x,
+                                               const std::string& folder, sim::ScenarioSettings& s,
+                                               std::vector<sim::ContainerPlacement>& hatch_covers) {
   std::optional<sim::VesselGeometry> vessel;
-  std::vector<sim::ContainerPlacement> hatch_covers;  // listed after the containers
-  s.quay_edge_x_m = f.number_or(x, "quay_edge_x_m", "exercise", s.quay_edge_x_m, -kSite_m, kSite_m);
   if (const auto v_node = f.optional_map(x, "vessel", "exercise")) {
     const YAML::Node& v = *v_node;
     const std::string file = f.text(v, "file", "exercise.vessel");
@@ -227,6 +190,11 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
       hatch_covers.push_back(c);
     }
   }
+  return vessel;
+}
+
+// the quay's truck lane, yard block and fixed blocks
+void read_site(const YamlFile& f, const YAML::Node& x, sim::ScenarioSettings& s) {
   if (const auto t_node = f.optional_map(x, "trucks", "exercise")) {
     const YAML::Node& t = *t_node;
     const std::string at = "exercise.trucks";
@@ -271,7 +239,15 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
           {half, f.vector3(f.required(blocks[n], "position_m", at), at + ".position_m", kSite_m)});
     }
   }
+}
 
+// the containers, by id: on the quay, on a chassis, in the yard block or stowed on the vessel; then the hatch
+// covers
+std::map<std::string, std::size_t> read_containers(const YamlFile& f, const YAML::Node& x,
+                                                   sim::ScenarioSettings& s,
+                                                   const std::optional<sim::VesselGeometry>& vessel,
+                                                   const std::vector<sim::ContainerPlacement>& hatch_covers,
+                                                   bool handles_containers) {
   const YAML::Node containers = handles_containers ? f.sequence(x, "containers", "exercise", kMaxContainers)
                                                    : YAML::Node(YAML::NodeType::Sequence);
   std::map<std::string, std::size_t> container_index;  // by id
@@ -399,8 +375,12 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
       f.fail(containers, "exercise.containers", "'" + cover.id + "' is a hatch cover's id");
     s.containers.push_back(cover);
   }
+  return container_index;
+}
 
-  // general cargo pieces for the hook: boxes of a given size and mass standing on the quay
+// general cargo pieces for the hook: boxes of a given size and mass standing on the quay; how many
+std::size_t read_cargo(const YamlFile& f, const YAML::Node& x, sim::ScenarioSettings& s,
+                       std::map<std::string, std::size_t>& container_index, bool on_hook) {
   const YAML::Node cargo =
       on_hook ? f.sequence(x, "cargo", "exercise", kMaxContainers) : YAML::Node(YAML::NodeType::Sequence);
   for (std::size_t n = 0; n < cargo.size(); ++n) {
@@ -420,7 +400,15 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
               f.vector3(f.required(c, "position_m", at), at + ".position_m", kSite_m)};
     s.containers.push_back(p);
   }
+  return cargo.size();
+}
 
+// the moves: what each takes (a container, a cargo piece, the trailer) and where to
+void read_moves(const YamlFile& f, const YAML::Node& x, sim::ExerciseSettings& e,
+                std::map<std::string, std::size_t>& container_index, bool handles_containers, bool on_hook,
+                const sim::TractorSetup* tractor, std::size_t cargo_count) {
+  sim::ScenarioSettings& s = e.scenario;
+  const bool tows = tractor && tractor->start.trailer;
   const YAML::Node moves = handles_containers || on_hook || tows
                                ? f.sequence(x, "moves", "exercise", kMaxMoves)
                                : YAML::Node(YAML::NodeType::Sequence);
@@ -475,9 +463,14 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
     }
     e.moves.push_back(g);
   }
-  if ((handles_containers || cargo.size() > 0) && e.moves.empty())
+  if ((handles_containers || cargo_count > 0) && e.moves.empty())
     f.fail(moves, "exercise.moves", "an exercise needs at least one move");
+}
 
+// bulk material and its goal: a delivery into a hopper or a pile trimmed
+void read_bulk(const YamlFile& f, const YAML::Node& x, const std::string& folder,
+               const std::optional<sim::VesselGeometry>& vessel, sim::ExerciseSettings& e) {
+  sim::ScenarioSettings& s = e.scenario;
   if (const auto b_node = f.optional_map(x, "bulk", "exercise")) {
     // bulk material: the materials file (relative to the exercise), the material, grids and heaps
     const std::string file = f.text(*b_node, "materials", "exercise.bulk");
@@ -518,7 +511,9 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
     goal.top_m = f.number(*t_node, "top_m", at, -100.0, 100.0);
     e.trim = goal;
   }
+}
 
+void read_weather(const YamlFile& f, const YAML::Node& x, sim::ScenarioSettings& s) {
   if (const auto w_node = f.optional_map(x, "weather", "exercise")) {
     const YAML::Node& w = *w_node;
     const std::string at = "exercise.weather";
@@ -532,7 +527,11 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
     ws.day_of_year = f.number_or(w, "day_of_year", at, ws.day_of_year, 1.0, 366.0);
     ws.latitude_deg = f.number_or(w, "latitude_deg", at, ws.latitude_deg, -80.0, 80.0);
   }
+}
 
+// scripted events: gusts and the machine's faults, at a time or after the first lift
+void read_events(const YamlFile& f, const YAML::Node& x, sim::ScenarioSettings& s,
+                 const std::string& machine_kind, const sim::MachineType& machine_type) {
   if (f.optional(x, "events", "exercise")) {
     const YAML::Node events = f.sequence(x, "events", "exercise", kMaxEvents);
     for (std::size_t n = 0; n < events.size(); ++n) {
@@ -571,7 +570,12 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
       queue.push_back(event);
     }
   }
+}
 
+// a vehicle's course: the ro-ro ramp, a team's load stop, speed zones and the route with its load
+void read_course(const YamlFile& f, const YAML::Node& x, sim::ExerciseSettings& e, bool vehicle,
+                 const std::string& machine_kind) {
+  sim::ScenarioSettings& s = e.scenario;
   if (const auto r = f.optional_map(x, "ramp", "exercise")) {
     // a ro-ro vessel's stern ramp and vehicle deck: the ground a vehicle drives on
     const std::string at = "exercise.ramp";
@@ -646,6 +650,25 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
              "only a vehicle's speed is limited (the " + machine_kind + " is a crane)");
   }
 
+  if (f.optional(x, "route_m", "exercise")) {
+    // the way a vehicle takes with its load: [[x, y], ...]
+    const YAML::Node route = f.sequence(x, "route_m", "exercise", 64);
+    for (std::size_t n = 0; n < route.size(); ++n) {
+      const std::string at = item("exercise.route_m", n);
+      if (!route[n].IsSequence() || route[n].size() != 2) f.fail(route[n], at, "is [x, y] in metres");
+      const core::Vec3 p{f.number_at(route[n][0], at + "[0]"), f.number_at(route[n][1], at + "[1]"), 0.0};
+      if (!(std::abs(p.x) <= kSite_m && std::abs(p.y) <= kSite_m)) f.fail(route[n], at, "lies off the site");
+      if (n > 0 && core::length(p - e.route_m.back()) < 1.0)
+        f.fail(route[n], at, "lies within a metre of the point before it");
+      e.route_m.push_back(p);
+    }
+    if (!vehicle && route.size() > 0)
+      f.fail(route, "exercise.route_m",
+             "only a vehicle drives a route (the " + machine_kind + " is a crane)");
+  }
+}
+
+void read_radio(const YamlFile& f, const YAML::Node& x, sim::ExerciseSettings& e) {
   if (const auto radio = f.optional_map(x, "radio", "exercise")) {
     // the signaller's calls on the cab's radio: {language, calls: [{at_s, say}]}
     e.radio.language = f.text(*radio, "language", "exercise.radio");
@@ -664,24 +687,9 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
       e.radio.calls.push_back(call);
     }
   }
+}
 
-  if (f.optional(x, "route_m", "exercise")) {
-    // the way a vehicle takes with its load: [[x, y], ...]
-    const YAML::Node route = f.sequence(x, "route_m", "exercise", 64);
-    for (std::size_t n = 0; n < route.size(); ++n) {
-      const std::string at = item("exercise.route_m", n);
-      if (!route[n].IsSequence() || route[n].size() != 2) f.fail(route[n], at, "is [x, y] in metres");
-      const core::Vec3 p{f.number_at(route[n][0], at + "[0]"), f.number_at(route[n][1], at + "[1]"), 0.0};
-      if (!(std::abs(p.x) <= kSite_m && std::abs(p.y) <= kSite_m)) f.fail(route[n], at, "lies off the site");
-      if (n > 0 && core::length(p - e.route_m.back()) < 1.0)
-        f.fail(route[n], at, "lies within a metre of the point before it");
-      e.route_m.push_back(p);
-    }
-    if (!vehicle && route.size() > 0)
-      f.fail(route, "exercise.route_m",
-             "only a vehicle drives a route (the " + machine_kind + " is a crane)");
-  }
-
+void read_rules(const YamlFile& f, const YAML::Node& x, sim::ExerciseSettings& e) {
   if (const auto r_node = f.optional_map(x, "rules", "exercise")) {
     const YAML::Node& r = *r_node;
     sim::EvaluationRules& rules = e.rules;
@@ -707,6 +715,61 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
       }
     }
   }
+}
+
+sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder) {
+  sim::ExerciseSettings e;
+  const YAML::Node x = f.required(f.root(), "exercise", "");
+  e.name = f.text(x, "name", "exercise");
+  e.about = read_about(f, x);
+  sim::ScenarioSettings& s = e.scenario;
+  s.name = e.name;
+  const std::string machine = f.text(x, "machine", "exercise");
+  const std::string machine_path = (std::filesystem::path(folder) / machine).lexically_normal().string();
+  if (!std::filesystem::is_regular_file(machine_path))
+    f.fail(x["machine"], "exercise.machine", "no such file: " + machine_path);
+  const std::string machine_kind = machine_file_kind(machine_path);
+  const MachineFileType& files = *find_machine_file_type(machine_kind);  // machine_file_kind() checked it
+  const std::string pose_at = std::string("exercise.") + files.start_section;
+  const StartBlock start{f, f.required_map(x, files.start_section, "exercise"), pose_at, folder};
+  s.machine = files.read(machine_path, start);
+  e.machine_file = machine_path;
+  const bool vehicle = std::string_view(files.start_section) == "vehicle";  // it drives (ramps, routes)
+  // container exercises (the STS), general cargo on a hook, bulk on a grab
+  const sim::MachineType& machine_type =
+      *sim::find_machine_type(machine_kind);  // machine_file_kind() checked it
+  const bool handles_containers = machine_type.handles == sim::Handles::kContainers;
+  const auto* mhc = s.machine.get_if<sim::MhcSetup>();
+  const bool on_hook = mhc && mhc->start.on_hook;
+  const auto* tractor = s.machine.get_if<sim::TractorSetup>();
+  const bool tows = tractor && tractor->start.trailer;
+  const std::string handles = handles_containers ? "containers with its spreader"
+                              : on_hook          ? "general cargo on its hook (exercise.cargo)"
+                              : mhc              ? "bulk with its grab (crane.tool: hook for general cargo)"
+                              : tows             ? "its trailer (exercise.vehicle.trailer)"
+                                                 : "a trailer (exercise.vehicle.trailer)";
+  for (const char* key : {"containers", "trucks", "cargo", "moves"}) {
+    const bool fits = handles_containers ? std::string(key) != "cargo"
+                      : on_hook          ? std::string(key) == "cargo" || std::string(key) == "moves"
+                                         : tows && std::string(key) == "moves";
+    if (!fits && f.optional(x, key, "exercise"))
+      f.fail(x[key], std::string("exercise.") + key, "the " + machine_kind + " handles " + handles);
+  }
+
+  std::vector<sim::ContainerPlacement> hatch_covers;
+  s.quay_edge_x_m = f.number_or(x, "quay_edge_x_m", "exercise", s.quay_edge_x_m, -kSite_m, kSite_m);
+  const std::optional<sim::VesselGeometry> vessel = read_vessel(f, x, folder, s, hatch_covers);
+  read_site(f, x, s);
+  std::map<std::string, std::size_t> container_index =
+      read_containers(f, x, s, vessel, hatch_covers, handles_containers);
+  const std::size_t cargo_count = read_cargo(f, x, s, container_index, on_hook);
+  read_moves(f, x, e, container_index, handles_containers, on_hook, tractor, cargo_count);
+  read_bulk(f, x, folder, vessel, e);
+  read_weather(f, x, s);
+  read_events(f, x, s, machine_kind, machine_type);
+  read_course(f, x, e, vehicle, machine_kind);
+  read_radio(f, x, e);
+  read_rules(f, x, e);
   return e;
 }
 
