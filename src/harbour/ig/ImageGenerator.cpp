@@ -562,8 +562,8 @@ bool software_renderer(const std::string& renderer) {
   return false;
 }
 
-void ImageGenerator::build(const scene::SceneDescription& scene) {
-  root_ = new osg::Group;
+// the sun and the lit scene's state: shadows from the sun for the main view, none for the insets; fog
+void ImageGenerator::build_lighting() {
   osg::StateSet* state = root_->getOrCreateStateSet();
   sun_ = new osg::LightSource;
   sun_->getLight()->setLightNum(0);
@@ -613,8 +613,10 @@ void ImageGenerator::build(const scene::SceneDescription& scene) {
   fog_->setMode(osg::Fog::EXP);
   fog_->setFogCoordinateSource(osg::Fog::FRAGMENT_DEPTH);
   state->setAttributeAndModes(fog_, osg::StateAttribute::ON);
+}
 
-  // the sky: a dome round the eye, drawn first, unlit, unfogged, behind everything
+// the sky: a dome round the eye, drawn first, unlit, unfogged, behind everything
+void ImageGenerator::build_sky() {
   {
     constexpr int kRings = 16, kSegments = 48;
     constexpr double kRadius = 4000.0;
@@ -692,9 +694,10 @@ void ImageGenerator::build(const scene::SceneDescription& scene) {
     night_state->setRenderBinDetails(-1, "RenderBin");
     sky_->addChild(night);
   }
+}
 
-  // the quay (its top at z = 0, up to its edge at x = 18 m) and the harbour's water beyond
-  // (finer near the crane, where floodlight pools fall: the lighting is per vertex)
+// the quay (its top at z = 0, up to its edge at x = 18 m), the rain, the harbour's water beyond
+void ImageGenerator::build_quay_and_water() {
   osg::ref_ptr<osg::Geode> apron = tessellated_plane(-60.0, 18.0, -80.0, 80.0, 0.0, 3.0, {0.42, 0.42, 0.40});
   quay_color_ = static_cast<osg::Vec4Array*>(apron->getDrawable(0)->asGeometry()->getColorArray());
   apron->setNodeMask(kReceivesOnly);
@@ -756,7 +759,10 @@ void ImageGenerator::build(const scene::SceneDescription& scene) {
     water_shading_ = shading;
     root_->addChild(geode);
   }
+}
 
+// every entity from its look, the machine's own boxes from its looks' parts
+void ImageGenerator::build_entities(const scene::SceneDescription& scene) {
   std::size_t index = 0;
   for (const scene::SceneDescription::Entity& e : scene.entities)
     entity_visuals_.push_back(e.visual);
@@ -882,6 +888,10 @@ void ImageGenerator::build(const scene::SceneDescription& scene) {
   }
   root_->addChild(shadowed_);
   root_->addChild(unshadowed_);
+}
+
+// the ropes: one line strip each, moved every frame
+void ImageGenerator::build_ropes(const scene::SceneDescription& scene) {
   osg::ref_ptr<osg::Geode> ropes = new osg::Geode();
   ropes->getOrCreateStateSet()->setAttributeAndModes(new osg::LineWidth(2.0f));
   ropes->getOrCreateStateSet()->setMode(GL_LIGHTING, osg::StateAttribute::OFF);
@@ -905,8 +915,10 @@ void ImageGenerator::build(const scene::SceneDescription& scene) {
     ropes_.push_back(geometry);
   }
   root_->addChild(ropes);
+}
 
-  // the heads-up display: an orthographic camera drawn last, in pixels
+// the heads-up display: an orthographic camera drawn last, in pixels
+void ImageGenerator::build_hud(const scene::SceneDescription& scene) {
   indicators_ = scene.indicators;
   machine_ = scene.machine;
   osg::ref_ptr<osg::Camera> hud = new osg::Camera;
@@ -962,7 +974,11 @@ void ImageGenerator::build(const scene::SceneDescription& scene) {
   inset_quads_->getOrCreateStateSet()->setRenderBinDetails(999, "TraversalOrderBin");
   hud->addChild(inset_quads_);
   hud->addChild(lines);
-  // the rain close past the eye: thin translucent streaks over the picture, before the HUD
+  hud_camera_ = hud;
+}
+
+// the rain close past the eye: thin translucent streaks over the picture, before the HUD
+void ImageGenerator::build_near_rain() {
   near_rain_ = new osg::Camera;
   near_rain_->setReferenceFrame(osg::Transform::ABSOLUTE_RF);
   near_rain_->setProjectionMatrixAsOrtho2D(0, width_, 0, height_);
@@ -988,11 +1004,21 @@ void ImageGenerator::build(const scene::SceneDescription& scene) {
   streak_geode->addDrawable(streaks_);
   near_rain_->addChild(streak_geode);
   near_rain_->setNodeMask(0u);  // dry until the weather says otherwise
+}
+
+void ImageGenerator::build(const scene::SceneDescription& scene) {
+  root_ = new osg::Group;
+  build_lighting();
+  build_sky();
+  build_quay_and_water();
+  build_entities(scene);
+  build_ropes(scene);
+  build_hud(scene);
+  build_near_rain();
   frame_ = new osg::Group;
   frame_->addChild(root_);
   frame_->addChild(near_rain_);
-  frame_->addChild(hud);
-  hud_camera_ = hud;
+  frame_->addChild(hud_camera_);
 }
 
 void ImageGenerator::update(const scene::Snapshot& s) {

@@ -192,6 +192,13 @@ class ImageGenerator {
 
  private:
   void build(const scene::SceneDescription& scene);
+  void build_lighting();
+  void build_sky();
+  void build_quay_and_water();
+  void build_entities(const scene::SceneDescription& scene);
+  void build_ropes(const scene::SceneDescription& scene);
+  void build_hud(const scene::SceneDescription& scene);
+  void build_near_rain();
   void place_camera();
   /// The pose of camera `camera` (of cameras_) on its entity: its eye, look and up, world frame; nullopt when
   /// the scene has no such entity.
