@@ -30,142 +30,123 @@ std::map<std::string, Visual> load_visuals(const std::string& path) {
   return load_looks(path).visuals;
 }
 
-Looks load_looks(const std::string& path) {
-  const io::YamlFile f = io::YamlFile::load(path);
-  Looks looks;
-  std::map<std::string, Visual>& out = looks.visuals;
-  const YAML::Node list = f.sequence(f.root(), "visuals", "", 1000);
-  for (std::size_t n = 0; n < list.size(); ++n) {
-    const std::string at = "visuals[" + std::to_string(n) + "]";
-    const YAML::Node v = list[n];
-    const std::string key = f.text(v, "key", at);
-    if (out.count(key)) f.fail(v["key"], at + ".key", "'" + key + "' is declared twice");
-    Visual visual;
-    if (f.optional(v, "liveries", at)) {
-      const YAML::Node liveries = f.sequence(v, "liveries", at, 64);
-      for (std::size_t k = 0; k < liveries.size(); ++k)
-        visual.liveries.push_back(color_of(f, liveries[k], at + ".liveries[" + std::to_string(k) + "]"));
-    }
-    visual.name_on_sides = f.flag(v, "name_on_sides", at, false);
-    const YAML::Node parts = f.sequence(v, "parts", at, 256);
-    for (std::size_t k = 0; k < parts.size(); ++k) {
-      const std::string pat = at + ".parts[" + std::to_string(k) + "]";
-      const YAML::Node p = parts[k];
-      VisualPart part;
-      if (f.optional(p, "shape", pat)) {
-        const std::string shape = f.text(p, "shape", pat);
-        if (shape == "lattice")
-          part.shape = VisualPart::Shape::kLattice;
-        else if (shape == "container")
-          part.shape = VisualPart::Shape::kContainer;
-        else if (shape == "tyre")
-          part.shape = VisualPart::Shape::kTyre;
-        else if (shape == "shell")
-          part.shape = VisualPart::Shape::kShell;
-        else if (shape == "hull")
-          part.shape = VisualPart::Shape::kHull;
-        else if (shape == "mesh")
-          part.shape = VisualPart::Shape::kMesh;
-        else if (shape != "box")
-          f.fail(p["shape"], pat + ".shape",
-                 "'" + shape + "' is not a shape: box, lattice, container, tyre, shell, hull or mesh");
-      }
-      if (part.shape == VisualPart::Shape::kMesh) {
-        const std::string file = f.text(p, "file", pat);
-        part.mesh = (std::filesystem::path(path).parent_path() / file).lexically_normal().string();
-        if (!std::filesystem::is_regular_file(part.mesh))
-          f.fail(p["file"], pat + ".file", "no such file: " + part.mesh);
-        if (!read_mesh(part.mesh))
-          f.fail(p["file"], pat + ".file", "osgDB could not read a model from " + part.mesh);
-        part.scale = f.number_or(p, "scale", pat, 1.0, 1e-3, 1e3);
-      } else {
-        const YAML::Node size = f.required(p, "size", pat);
-        if (!(size.IsScalar() && size.Scalar() == "entity"))
-          part.size_m = f.vector3(size, pat + ".size", 1000.0);
-        if (part.size_m && (part.size_m->x <= 0 || part.size_m->y <= 0 || part.size_m->z <= 0))
-          f.fail(size, pat + ".size", "every side must be positive");
-      }
-      if (part.shape == VisualPart::Shape::kTyre) {
-        if (!part.size_m)
-          f.fail(p["size"], pat + ".size", "a tyre's size is written out: its diameter twice and its width");
-        if (tyre_axis(*part.size_m) < 0)
-          f.fail(p["size"], pat + ".size", "a tyre has two equal sides (its diameter) and its width");
-        if (f.optional(p, "rim_color", pat)) part.rim_color = color_of(f, p["rim_color"], pat + ".rim_color");
-      }
-      if (part.shape == VisualPart::Shape::kShell) {
-        if (!part.size_m)
-          f.fail(p["size"], pat + ".size", "a shell's size is written out: its reach, width and height");
-        part.hinge_m = f.number_or(p, "hinge_m", pat, part.size_m->z, part.size_m->z, 100.0);
-      }
-      if (part.shape == VisualPart::Shape::kHull) {
-        if (!part.size_m)
-          f.fail(p["size"], pat + ".size", "a hull's size is written out: its beam, length and depth");
-        part.waterline_m = f.number(p, "waterline_m", pat, 0.0, part.size_m->z);
-        part.bottom_color = color_of(f, f.required(p, "bottom_color", pat), pat + ".bottom_color");
-        if (f.optional(p, "deck_color", pat))
-          part.deck_color = color_of(f, p["deck_color"], pat + ".deck_color");
-        if (f.optional(p, "deck_open_m", pat)) {
-          const YAML::Node open = p["deck_open_m"];
-          if (!open.IsSequence() || open.size() != 2)
-            f.fail(open, pat + ".deck_open_m", "expected [from, to] along the hull's length");
-          part.deck_open_from_m = f.number_at(open[0], pat + ".deck_open_m[0]");
-          part.deck_open_to_m = f.number_at(open[1], pat + ".deck_open_m[1]");
-          if (!(part.deck_open_from_m < part.deck_open_to_m))
-            f.fail(open, pat + ".deck_open_m", "from lies before to");
-        }
-      }
-      part.yaw_rad = f.number_or(p, "yaw_deg", pat, 0.0, -360.0, 360.0) * std::numbers::pi / 180.0;
-      if (const auto turns = f.optional_map(p, "turns", pat)) {
-        const std::string tat = pat + ".turns";
-        PartTurn turn;
-        turn.indicator = f.text(*turns, "with", tat);
-        turn.axis = f.vector3(f.required(*turns, "axis", tat), tat + ".axis", 1.0);
-        const double axis_length = core::length(turn.axis);
-        if (!(axis_length > 1e-6)) f.fail((*turns)["axis"], tat + ".axis", "a direction, not zero");
-        turn.axis = turn.axis * (1.0 / axis_length);
-        turn.max_rad = f.number(*turns, "degrees", tat, -180.0, 180.0) * std::numbers::pi / 180.0;
-        if (f.optional(*turns, "law", tat)) {
-          const std::string law = f.text(*turns, "law", tat);
-          if (law != "linear" && law != "arcsine")
-            f.fail((*turns)["law"], tat + ".law", "'" + law + "' is not a law: linear or arcsine");
-          turn.arcsine = law == "arcsine";
-        }
-        part.turn = turn;
-      }
-      if (const auto rolls = f.optional_map(p, "rolls", pat)) {
-        if (part.shape != VisualPart::Shape::kTyre)
-          f.fail(p["rolls"], pat + ".rolls", "only a tyre rolls (about its axle, by its radius)");
-        part.rolls_with = f.text(*rolls, "with", pat + ".rolls");
-        part.rolls_unit_mps = f.number_or(*rolls, "unit_mps", pat + ".rolls", 1.0, 1e-6, 1e3);
-        if (f.optional(*rolls, "along", pat + ".rolls"))
-          part.rolls_along = f.vector3((*rolls)["along"], pat + ".rolls.along", 1.0);
-        const int axle = tyre_axis(*part.size_m);
-        const core::Vec3 axle_direction{axle == 0 ? 1.0 : 0.0, axle == 1 ? 1.0 : 0.0, axle == 2 ? 1.0 : 0.0};
-        const double along = core::length(part.rolls_along);
-        if (axle == 2 || !(along > 1e-6) ||
-            std::abs(core::dot(part.rolls_along, axle_direction)) > 1e-6 * along ||
-            std::abs(part.rolls_along.z) > 1e-6 * along)
-          f.fail(*rolls, pat + ".rolls.along",
-                 "a level direction across the tyre's axle (default [1, 0, 0])");
-        part.rolls_along = part.rolls_along * (1.0 / along);
-      }
-      if (part.shape == VisualPart::Shape::kLattice) {
-        part.bay_m = f.number_or(p, "bay_m", pat, 3.0, 0.2, 50.0);
-        part.member_m = f.number_or(p, "member_m", pat, 0.25, 0.01, 2.0);
-      }
-      part.centre_m = f.vector3(f.required(p, "at", pat), pat + ".at", 1000.0);
-      const YAML::Node color = f.required(p, "color", pat);
-      if (color.IsScalar() && color.Scalar() == "livery") {
-        if (visual.liveries.empty())
-          f.fail(color, pat + ".color", "a livery colour needs the look's liveries");
-        part.livery = true;
-      } else {
-        part.color = color_of(f, color, pat + ".color");
-      }
-      visual.parts.push_back(part);
-    }
-    out[key] = visual;
+namespace {
+
+// one part of a look (`path`: the look file, where a mesh is found)
+VisualPart read_part(const io::YamlFile& f, const YAML::Node& p, const std::string& pat,
+                     const std::string& path, const Visual& visual) {
+  VisualPart part;
+  if (f.optional(p, "shape", pat)) {
+    const std::string shape = f.text(p, "shape", pat);
+    if (shape == "lattice")
+      part.shape = VisualPart::Shape::kLattice;
+    else if (shape == "container")
+      part.shape = VisualPart::Shape::kContainer;
+    else if (shape == "tyre")
+      part.shape = VisualPart::Shape::kTyre;
+    else if (shape == "shell")
+      part.shape = VisualPart::Shape::kShell;
+    else if (shape == "hull")
+      part.shape = VisualPart::Shape::kHull;
+    else if (shape == "mesh")
+      part.shape = VisualPart::Shape::kMesh;
+    else if (shape != "box")
+      f.fail(p["shape"], pat + ".shape",
+             "'" + shape + "' is not a shape: box, lattice, container, tyre, shell, hull or mesh");
   }
+  if (part.shape == VisualPart::Shape::kMesh) {
+    const std::string file = f.text(p, "file", pat);
+    part.mesh = (std::filesystem::path(path).parent_path() / file).lexically_normal().string();
+    if (!std::filesystem::is_regular_file(part.mesh))
+      f.fail(p["file"], pat + ".file", "no such file: " + part.mesh);
+    if (!read_mesh(part.mesh))
+      f.fail(p["file"], pat + ".file", "osgDB could not read a model from " + part.mesh);
+    part.scale = f.number_or(p, "scale", pat, 1.0, 1e-3, 1e3);
+  } else {
+    const YAML::Node size = f.required(p, "size", pat);
+    if (!(size.IsScalar() && size.Scalar() == "entity")) part.size_m = f.vector3(size, pat + ".size", 1000.0);
+    if (part.size_m && (part.size_m->x <= 0 || part.size_m->y <= 0 || part.size_m->z <= 0))
+      f.fail(size, pat + ".size", "every side must be positive");
+  }
+  if (part.shape == VisualPart::Shape::kTyre) {
+    if (!part.size_m)
+      f.fail(p["size"], pat + ".size", "a tyre's size is written out: its diameter twice and its width");
+    if (tyre_axis(*part.size_m) < 0)
+      f.fail(p["size"], pat + ".size", "a tyre has two equal sides (its diameter) and its width");
+    if (f.optional(p, "rim_color", pat)) part.rim_color = color_of(f, p["rim_color"], pat + ".rim_color");
+  }
+  if (part.shape == VisualPart::Shape::kShell) {
+    if (!part.size_m)
+      f.fail(p["size"], pat + ".size", "a shell's size is written out: its reach, width and height");
+    part.hinge_m = f.number_or(p, "hinge_m", pat, part.size_m->z, part.size_m->z, 100.0);
+  }
+  if (part.shape == VisualPart::Shape::kHull) {
+    if (!part.size_m)
+      f.fail(p["size"], pat + ".size", "a hull's size is written out: its beam, length and depth");
+    part.waterline_m = f.number(p, "waterline_m", pat, 0.0, part.size_m->z);
+    part.bottom_color = color_of(f, f.required(p, "bottom_color", pat), pat + ".bottom_color");
+    if (f.optional(p, "deck_color", pat)) part.deck_color = color_of(f, p["deck_color"], pat + ".deck_color");
+    if (f.optional(p, "deck_open_m", pat)) {
+      const YAML::Node open = p["deck_open_m"];
+      if (!open.IsSequence() || open.size() != 2)
+        f.fail(open, pat + ".deck_open_m", "expected [from, to] along the hull's length");
+      part.deck_open_from_m = f.number_at(open[0], pat + ".deck_open_m[0]");
+      part.deck_open_to_m = f.number_at(open[1], pat + ".deck_open_m[1]");
+      if (!(part.deck_open_from_m < part.deck_open_to_m))
+        f.fail(open, pat + ".deck_open_m", "from lies before to");
+    }
+  }
+  part.yaw_rad = f.number_or(p, "yaw_deg", pat, 0.0, -360.0, 360.0) * std::numbers::pi / 180.0;
+  if (const auto turns = f.optional_map(p, "turns", pat)) {
+    const std::string tat = pat + ".turns";
+    PartTurn turn;
+    turn.indicator = f.text(*turns, "with", tat);
+    turn.axis = f.vector3(f.required(*turns, "axis", tat), tat + ".axis", 1.0);
+    const double axis_length = core::length(turn.axis);
+    if (!(axis_length > 1e-6)) f.fail((*turns)["axis"], tat + ".axis", "a direction, not zero");
+    turn.axis = turn.axis * (1.0 / axis_length);
+    turn.max_rad = f.number(*turns, "degrees", tat, -180.0, 180.0) * std::numbers::pi / 180.0;
+    if (f.optional(*turns, "law", tat)) {
+      const std::string law = f.text(*turns, "law", tat);
+      if (law != "linear" && law != "arcsine")
+        f.fail((*turns)["law"], tat + ".law", "'" + law + "' is not a law: linear or arcsine");
+      turn.arcsine = law == "arcsine";
+    }
+    part.turn = turn;
+  }
+  if (const auto rolls = f.optional_map(p, "rolls", pat)) {
+    if (part.shape != VisualPart::Shape::kTyre)
+      f.fail(p["rolls"], pat + ".rolls", "only a tyre rolls (about its axle, by its radius)");
+    part.rolls_with = f.text(*rolls, "with", pat + ".rolls");
+    part.rolls_unit_mps = f.number_or(*rolls, "unit_mps", pat + ".rolls", 1.0, 1e-6, 1e3);
+    if (f.optional(*rolls, "along", pat + ".rolls"))
+      part.rolls_along = f.vector3((*rolls)["along"], pat + ".rolls.along", 1.0);
+    const int axle = tyre_axis(*part.size_m);
+    const core::Vec3 axle_direction{axle == 0 ? 1.0 : 0.0, axle == 1 ? 1.0 : 0.0, axle == 2 ? 1.0 : 0.0};
+    const double along = core::length(part.rolls_along);
+    if (axle == 2 || !(along > 1e-6) ||
+        std::abs(core::dot(part.rolls_along, axle_direction)) > 1e-6 * along ||
+        std::abs(part.rolls_along.z) > 1e-6 * along)
+      f.fail(*rolls, pat + ".rolls.along", "a level direction across the tyre's axle (default [1, 0, 0])");
+    part.rolls_along = part.rolls_along * (1.0 / along);
+  }
+  if (part.shape == VisualPart::Shape::kLattice) {
+    part.bay_m = f.number_or(p, "bay_m", pat, 3.0, 0.2, 50.0);
+    part.member_m = f.number_or(p, "member_m", pat, 0.25, 0.01, 2.0);
+  }
+  part.centre_m = f.vector3(f.required(p, "at", pat), pat + ".at", 1000.0);
+  const YAML::Node color = f.required(p, "color", pat);
+  if (color.IsScalar() && color.Scalar() == "livery") {
+    if (visual.liveries.empty()) f.fail(color, pat + ".color", "a livery colour needs the look's liveries");
+    part.livery = true;
+  } else {
+    part.color = color_of(f, color, pat + ".color");
+  }
+  return part;
+}
+
+// the heads-up display's lines
+void read_hud(const io::YamlFile& f, Looks& looks) {
   if (f.optional(f.root(), "hud", "")) {
     const YAML::Node hud = f.sequence(f.root(), "hud", "", 32);
     for (std::size_t n = 0; n < hud.size(); ++n) {
@@ -197,6 +178,10 @@ Looks load_looks(const std::string& path) {
       looks.hud.push_back(item);
     }
   }
+}
+
+// floodlights and the machines' lamps
+void read_floodlights(const io::YamlFile& f, Looks& looks) {
   if (f.optional(f.root(), "floodlights", "")) {
     // any number: the image generator lights the first seven that are in the scene (OpenGL's eight lights)
     const YAML::Node lights = f.sequence(f.root(), "floodlights", "", 64);
@@ -210,6 +195,10 @@ Looks load_looks(const std::string& path) {
       looks.floodlights.push_back(light);
     }
   }
+}
+
+// cameras riding entities
+void read_cameras(const io::YamlFile& f, Looks& looks) {
   if (f.optional(f.root(), "cameras", "")) {
     const YAML::Node cameras = f.sequence(f.root(), "cameras", "", 16);
     for (std::size_t n = 0; n < cameras.size(); ++n) {
@@ -227,6 +216,10 @@ Looks load_looks(const std::string& path) {
       looks.cameras.push_back(c);
     }
   }
+}
+
+// camera pictures set into the cab view (after the cameras)
+void read_insets(const io::YamlFile& f, Looks& looks) {
   if (f.optional(f.root(), "insets", "")) {
     const YAML::Node insets = f.sequence(f.root(), "insets", "", 32);
     for (std::size_t n = 0; n < insets.size(); ++n) {
@@ -250,6 +243,10 @@ Looks load_looks(const std::string& path) {
       looks.insets.push_back(inset);
     }
   }
+}
+
+// the harbour's fixed parts
+void read_scenery(const io::YamlFile& f, Looks& looks) {
   if (f.optional(f.root(), "scenery", "")) {
     const YAML::Node parts = f.sequence(f.root(), "scenery", "", 256);
     for (std::size_t n = 0; n < parts.size(); ++n) {
@@ -275,6 +272,39 @@ Looks load_looks(const std::string& path) {
       looks.scenery.push_back(part);
     }
   }
+}
+
+}  // namespace
+
+Looks load_looks(const std::string& path) {
+  const io::YamlFile f = io::YamlFile::load(path);
+  Looks looks;
+  std::map<std::string, Visual>& out = looks.visuals;
+  const YAML::Node list = f.sequence(f.root(), "visuals", "", 1000);
+  for (std::size_t n = 0; n < list.size(); ++n) {
+    const std::string at = "visuals[" + std::to_string(n) + "]";
+    const YAML::Node v = list[n];
+    const std::string key = f.text(v, "key", at);
+    if (out.count(key)) f.fail(v["key"], at + ".key", "'" + key + "' is declared twice");
+    Visual visual;
+    if (f.optional(v, "liveries", at)) {
+      const YAML::Node liveries = f.sequence(v, "liveries", at, 64);
+      for (std::size_t k = 0; k < liveries.size(); ++k)
+        visual.liveries.push_back(color_of(f, liveries[k], at + ".liveries[" + std::to_string(k) + "]"));
+    }
+    visual.name_on_sides = f.flag(v, "name_on_sides", at, false);
+    const YAML::Node parts = f.sequence(v, "parts", at, 256);
+    for (std::size_t k = 0; k < parts.size(); ++k) {
+      const std::string pat = at + ".parts[" + std::to_string(k) + "]";
+      visual.parts.push_back(read_part(f, parts[k], pat, path, visual));
+    }
+    out[key] = visual;
+  }
+  read_hud(f, looks);
+  read_floodlights(f, looks);
+  read_cameras(f, looks);
+  read_insets(f, looks);
+  read_scenery(f, looks);
   f.check_unknown_keys();
   return looks;
 }
