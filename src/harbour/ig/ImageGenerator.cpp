@@ -1021,7 +1021,8 @@ void ImageGenerator::build(const scene::SceneDescription& scene) {
   frame_->addChild(hud_camera_);
 }
 
-void ImageGenerator::update(const scene::Snapshot& s) {
+// entities where the snapshot has them; parts turning with their indicators, tyres rolling
+void ImageGenerator::update_entities(const scene::Snapshot& s) {
   for (int n = 0; n < s.entity_count; ++n) {
     const scene::Snapshot::Entity& e = s.entities[static_cast<std::size_t>(n)];
     if (e.index < entities_.size()) {
@@ -1056,6 +1057,10 @@ void ImageGenerator::update(const scene::Snapshot& s) {
     }
     part.transform->setMatrix(turned);
   }
+}
+
+// each rope's polyline
+void ImageGenerator::update_ropes(const scene::Snapshot& s) {
   for (std::size_t r = 0; r < ropes_.size(); ++r) {
     auto* vertices = static_cast<osg::Vec3Array*>(ropes_[r]->getVertexArray());
     vertices->clear();
@@ -1067,6 +1072,10 @@ void ImageGenerator::update(const scene::Snapshot& s) {
         ->setCount(static_cast<int>(vertices->size()));
     ropes_[r]->dirtyBound();
   }
+}
+
+// the sun, the sky, fog and rain from the time of day and the weather
+void ImageGenerator::update_sky_and_weather(const scene::Snapshot& s) {
   // the sun and the sky from the time of day; fog from the visibility (Koschmieder: 2 % contrast at V)
   const core::Vec3 to_sun = sun_direction(s.time_of_day_h, s.day_of_year, s.latitude_deg, sun_elevation_);
   to_sun_ = to_sun;
@@ -1113,6 +1122,11 @@ void ImageGenerator::update(const scene::Snapshot& s) {
   const float dry = 1.0f - 0.35f * static_cast<float>(std::clamp(s.rain_mm_per_h / 2.0, 0.0, 1.0));
   (*quay_color_)[0] = osg::Vec4(0.42f * dry, 0.42f * dry, 0.40f * dry, 1.0f);
   quay_color_->dirty();
+  daylight_ = daylight;
+}
+
+// the floodlights and the machines' lamps
+void ImageGenerator::update_floodlights(const scene::Snapshot& s) {
   // floodlights from dusk to dawn: the quay's, and the lamps riding entities in the scene while the machine's
   // supply is on; OpenGL's seven lights go to them in the look file's order
   const bool dark = sun_elevation_ < 0.02;
@@ -1135,13 +1149,10 @@ void ImageGenerator::update(const scene::Snapshot& s) {
     root_->getOrCreateStateSet()->setMode(GL_LIGHT1 + static_cast<GLenum>(n),
                                           n < lit_lamps ? osg::StateAttribute::ON : osg::StateAttribute::OFF);
   floodlights_on_->set(static_cast<int>(lit_lamps));
-  cab_ = s.cab;
-  sea_ = s.sea;
-  time_s_ = s.time_s;
-  wind_mps_ = s.wind_mps;
-  daylight_ = daylight;
-  far_water_->setMatrix(osg::Matrixd::translate(0.0, 0.0, s.sea.water_level_m));
+}
 
+// the HUD's lines
+void ImageGenerator::update_hud(const scene::Snapshot& s) {
   // the HUD: time, wind, then the machine's indicators the look file names; alarms on their own line
   char buffer[96];
   std::snprintf(buffer, sizeof buffer, "t %.1f s   wind %.1f m/s", s.time_s,
@@ -1203,6 +1214,19 @@ void ImageGenerator::update(const scene::Snapshot& s) {
     const float room = static_cast<float>(width_) - 1.2f * size, wide = box.xMax() - box.xMin();
     if (box.valid() && wide > room) text->setCharacterSize(size * room / wide);
   }
+}
+
+void ImageGenerator::update(const scene::Snapshot& s) {
+  update_entities(s);
+  update_ropes(s);
+  update_sky_and_weather(s);
+  update_floodlights(s);
+  cab_ = s.cab;
+  sea_ = s.sea;
+  time_s_ = s.time_s;
+  wind_mps_ = s.wind_mps;
+  far_water_->setMatrix(osg::Matrixd::translate(0.0, 0.0, s.sea.water_level_m));
+  update_hud(s);
 }
 
 void ImageGenerator::set_overlay(const std::string& text) {

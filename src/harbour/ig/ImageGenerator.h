@@ -199,6 +199,11 @@ class ImageGenerator {
   void build_ropes(const scene::SceneDescription& scene);
   void build_hud(const scene::SceneDescription& scene);
   void build_near_rain();
+  void update_entities(const scene::Snapshot& s);
+  void update_ropes(const scene::Snapshot& s);
+  void update_sky_and_weather(const scene::Snapshot& s);
+  void update_floodlights(const scene::Snapshot& s);
+  void update_hud(const scene::Snapshot& s);
   void place_camera();
   /// The pose of camera `camera` (of cameras_) on its entity: its eye, look and up, world frame; nullopt when
   /// the scene has no such entity.
