@@ -137,6 +137,94 @@ std::string pad_input_words(const Binding& b) {
   }
 }
 
+// one binding: a control of the machine's table to an input of one of the mapping's devices
+Binding read_binding(const io::YamlFile& f, const YAML::Node& e, const std::string& at,
+                     const scene::ControlTable& table, const DeviceMapping& m) {
+  if (!e.IsMap()) f.fail(e, at, "expected a mapping (control, device, axis/button/hat/keys, ...)");
+  Binding b;
+  b.line = e.Mark().line + 1;
+  b.control = f.text(e, "control", at);
+  b.slot = table.find(b.control);
+  if (b.slot < 0) {
+    std::string known;
+    for (const scene::ControlSpec& c : table.controls())
+      known += (known.empty() ? "" : ", ") + c.label;
+    f.fail(e["control"], at + ".control",
+           "the machine has no control '" + b.control + "' (it has: " + known + ")");
+  }
+  const scene::ControlSpec& spec = table[b.slot];
+  const std::string device = f.text(e, "device", at);
+  const auto d =
+      std::find_if(m.devices.begin(), m.devices.end(), [&](const DeviceMatch& x) { return x.id == device; });
+  if (d == m.devices.end())
+    f.fail(e["device"], at + ".device", "no device '" + device + "' in mapping.devices");
+  b.device = static_cast<int>(d - m.devices.begin());
+  const bool axis = f.optional(e, "axis", at).has_value(), button = f.optional(e, "button", at).has_value(),
+             hat = f.optional(e, "hat", at).has_value(), keys = f.optional(e, "keys", at).has_value(),
+             key = f.optional(e, "key", at).has_value();
+  if (axis + button + hat + keys + key != 1)
+    f.fail(e, at, "binds exactly one of axis, button, hat, key or keys");
+  if (d->keyboard != (keys || key))
+    f.fail(e, at, d->keyboard ? "the keyboard binds key or keys" : "key and keys bind only the keyboard");
+  if (d->mouse && (hat || (axis && f.integer(e, "axis", at, 0, 255) > 1) ||
+                   (button && f.integer(e, "button", at, 0, 255) > 2)))
+    f.fail(e, at, "the mouse has axes 0 (x) and 1 (y) and buttons 0 (left), 1 (middle), 2 (right)");
+  if (d->game_controller && hat)
+    f.fail(e["hat"], at + ".hat", "a game controller's d-pad is buttons: dpup, dpright, dpdown, dpleft");
+  if (axis) {
+    b.source = Binding::Source::kAxis;
+    b.index = d->game_controller ? controller_input(f, e, "axis", at)
+                                 : static_cast<int>(f.integer(e, "axis", at, 0, 255));
+    b.calibration = read_calibration(f, e, at);
+    if (d->game_controller && !f.optional(e, "calibration", at) &&
+        (b.index == SDL_CONTROLLER_AXIS_TRIGGERLEFT || b.index == SDL_CONTROLLER_AXIS_TRIGGERRIGHT))
+      b.calibration = {0.0, 0.0, 32767.0, false};  // SDL reads a trigger 0 (released) to 32767
+  } else if (button) {
+    b.source = Binding::Source::kButton;
+    b.index = d->game_controller ? controller_input(f, e, "button", at) : f.integer(e, "button", at, 0, 255);
+  } else if (hat) {
+    b.source = Binding::Source::kHat;
+    b.index = f.integer(e, "hat", at, 0, 15);
+    b.hat_direction = hat_direction(f, e, at);
+  } else if (key) {
+    b.source = Binding::Source::kButton;
+    b.index = scancode(f, e["key"], at + ".key");
+  } else {
+    b.source = Binding::Source::kKeys;
+    const YAML::Node pair = f.sequence(e, "keys", at, 2);
+    if (pair.size() != 2) f.fail(pair, at + ".keys", "a key pair: [increase, decrease]");
+    b.keys = {scancode(f, pair[0], at + ".keys[0]"), scancode(f, pair[1], at + ".keys[1]")};
+  }
+  b.dead_zone = f.number_or(e, "dead_zone", at, 0.0, 0.0, 0.9);
+  b.expo = f.number_or(e, "expo", at, 0.0, 0.0, 1.0);
+  b.invert = f.flag(e, "invert", at, false);
+  b.toggle = f.flag(e, "toggle", at, false);
+  b.value = f.number_or(e, "value", at, 1.0, -1e6, 1e6);
+  b.hold_s = f.number_or(e, "hold_s", at, 0.0, 0.0, 5.0);
+  if (b.hold_s > 0.0 && axis)
+    f.fail(e["hold_s"], at + ".hold_s", "a button, hat or key is held for hold_s; an axis reads at once");
+  if (f.optional(e, "detents", at)) {
+    const YAML::Node list = f.sequence(e, "detents", at, 16);
+    if (spec.kind != scene::ControlKind::kSwitch || !axis)
+      f.fail(list, at + ".detents",
+             "detents turn an axis into a switch's positions; '" + b.control + "' is a " +
+                 scene::to_string(spec.kind));
+    if (list.size() != spec.positions.size())
+      f.fail(
+          list, at + ".detents",
+          "one detent per position of '" + b.control + "' (" + std::to_string(spec.positions.size()) + ")");
+    for (std::size_t k = 0; k < list.size(); ++k) {
+      b.detents.push_back(f.number_at(list[k], at + ".detents[" + std::to_string(k) + "]"));
+      if (k > 0 && b.detents[k] <= b.detents[k - 1]) f.fail(list[k], at + ".detents", "detents must rise");
+    }
+  }
+  if (b.toggle && (spec.kind != scene::ControlKind::kSwitch || axis))
+    f.fail(e["toggle"], at + ".toggle", "toggle makes a button step a switch's positions");
+  if (spec.kind == scene::ControlKind::kSwitch && axis && b.detents.empty())
+    f.fail(e, at, "an axis on switch '" + b.control + "' needs detents (one per position)");
+  return b;
+}
+
 }  // namespace
 
 DeviceMapping load_device_mapping(const io::YamlFile& f, const scene::ControlTable& table) {
@@ -174,92 +262,8 @@ DeviceMapping load_device_mapping(const io::YamlFile& f, const scene::ControlTab
   }
   const YAML::Node bindings = f.sequence(root, "bindings", "mapping", 128);
   for (std::size_t n = 0; n < bindings.size(); ++n) {
-    const YAML::Node e = bindings[n];
     const std::string at = "mapping.bindings[" + std::to_string(n) + "]";
-    if (!e.IsMap()) f.fail(e, at, "expected a mapping (control, device, axis/button/hat/keys, ...)");
-    Binding b;
-    b.line = e.Mark().line + 1;
-    b.control = f.text(e, "control", at);
-    b.slot = table.find(b.control);
-    if (b.slot < 0) {
-      std::string known;
-      for (const scene::ControlSpec& c : table.controls())
-        known += (known.empty() ? "" : ", ") + c.label;
-      f.fail(e["control"], at + ".control",
-             "the machine has no control '" + b.control + "' (it has: " + known + ")");
-    }
-    const scene::ControlSpec& spec = table[b.slot];
-    const std::string device = f.text(e, "device", at);
-    const auto d = std::find_if(m.devices.begin(), m.devices.end(),
-                                [&](const DeviceMatch& x) { return x.id == device; });
-    if (d == m.devices.end())
-      f.fail(e["device"], at + ".device", "no device '" + device + "' in mapping.devices");
-    b.device = static_cast<int>(d - m.devices.begin());
-    const bool axis = f.optional(e, "axis", at).has_value(), button = f.optional(e, "button", at).has_value(),
-               hat = f.optional(e, "hat", at).has_value(), keys = f.optional(e, "keys", at).has_value(),
-               key = f.optional(e, "key", at).has_value();
-    if (axis + button + hat + keys + key != 1)
-      f.fail(e, at, "binds exactly one of axis, button, hat, key or keys");
-    if (d->keyboard != (keys || key))
-      f.fail(e, at, d->keyboard ? "the keyboard binds key or keys" : "key and keys bind only the keyboard");
-    if (d->mouse && (hat || (axis && f.integer(e, "axis", at, 0, 255) > 1) ||
-                     (button && f.integer(e, "button", at, 0, 255) > 2)))
-      f.fail(e, at, "the mouse has axes 0 (x) and 1 (y) and buttons 0 (left), 1 (middle), 2 (right)");
-    if (d->game_controller && hat)
-      f.fail(e["hat"], at + ".hat", "a game controller's d-pad is buttons: dpup, dpright, dpdown, dpleft");
-    if (axis) {
-      b.source = Binding::Source::kAxis;
-      b.index = d->game_controller ? controller_input(f, e, "axis", at)
-                                   : static_cast<int>(f.integer(e, "axis", at, 0, 255));
-      b.calibration = read_calibration(f, e, at);
-      if (d->game_controller && !f.optional(e, "calibration", at) &&
-          (b.index == SDL_CONTROLLER_AXIS_TRIGGERLEFT || b.index == SDL_CONTROLLER_AXIS_TRIGGERRIGHT))
-        b.calibration = {0.0, 0.0, 32767.0, false};  // SDL reads a trigger 0 (released) to 32767
-    } else if (button) {
-      b.source = Binding::Source::kButton;
-      b.index =
-          d->game_controller ? controller_input(f, e, "button", at) : f.integer(e, "button", at, 0, 255);
-    } else if (hat) {
-      b.source = Binding::Source::kHat;
-      b.index = f.integer(e, "hat", at, 0, 15);
-      b.hat_direction = hat_direction(f, e, at);
-    } else if (key) {
-      b.source = Binding::Source::kButton;
-      b.index = scancode(f, e["key"], at + ".key");
-    } else {
-      b.source = Binding::Source::kKeys;
-      const YAML::Node pair = f.sequence(e, "keys", at, 2);
-      if (pair.size() != 2) f.fail(pair, at + ".keys", "a key pair: [increase, decrease]");
-      b.keys = {scancode(f, pair[0], at + ".keys[0]"), scancode(f, pair[1], at + ".keys[1]")};
-    }
-    b.dead_zone = f.number_or(e, "dead_zone", at, 0.0, 0.0, 0.9);
-    b.expo = f.number_or(e, "expo", at, 0.0, 0.0, 1.0);
-    b.invert = f.flag(e, "invert", at, false);
-    b.toggle = f.flag(e, "toggle", at, false);
-    b.value = f.number_or(e, "value", at, 1.0, -1e6, 1e6);
-    b.hold_s = f.number_or(e, "hold_s", at, 0.0, 0.0, 5.0);
-    if (b.hold_s > 0.0 && axis)
-      f.fail(e["hold_s"], at + ".hold_s", "a button, hat or key is held for hold_s; an axis reads at once");
-    if (f.optional(e, "detents", at)) {
-      const YAML::Node list = f.sequence(e, "detents", at, 16);
-      if (spec.kind != scene::ControlKind::kSwitch || !axis)
-        f.fail(list, at + ".detents",
-               "detents turn an axis into a switch's positions; '" + b.control + "' is a " +
-                   scene::to_string(spec.kind));
-      if (list.size() != spec.positions.size())
-        f.fail(
-            list, at + ".detents",
-            "one detent per position of '" + b.control + "' (" + std::to_string(spec.positions.size()) + ")");
-      for (std::size_t k = 0; k < list.size(); ++k) {
-        b.detents.push_back(f.number_at(list[k], at + ".detents[" + std::to_string(k) + "]"));
-        if (k > 0 && b.detents[k] <= b.detents[k - 1]) f.fail(list[k], at + ".detents", "detents must rise");
-      }
-    }
-    if (b.toggle && (spec.kind != scene::ControlKind::kSwitch || axis))
-      f.fail(e["toggle"], at + ".toggle", "toggle makes a button step a switch's positions");
-    if (spec.kind == scene::ControlKind::kSwitch && axis && b.detents.empty())
-      f.fail(e, at, "an axis on switch '" + b.control + "' needs detents (one per position)");
-    m.bindings.push_back(b);
+    m.bindings.push_back(read_binding(f, bindings[n], at, table, m));
   }
   if (f.optional(root, "controller_mappings", "mapping")) {
     const YAML::Node list = f.sequence(root, "controller_mappings", "mapping", 64);
