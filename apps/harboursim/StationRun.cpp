@@ -101,27 +101,15 @@ std::optional<io::ExerciseSource> taken_over_exercise(const std::string& databas
   return source;
 }
 
-// One attempt at the station, start to end; with a link, seen and commanded from the centre's consoles
-// (`reset`: a console asked for the attempt again).
 // a headless station under the autopilot wakes every 5 ms, not every millisecond (a fifth of the wake-ups);
 // an instructor's command then waits at most that much more
 constexpr int kHeadlessTicksPerWake = 5;
 
-// `outcome`, when given: how the attempt ended, in the console's words
-int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset,
-                std::string* outcome = nullptr) {
-  reset = false;
-  StationOptions options = given;
-  if (options.trainee.empty()) options.trainee = options.autopilot ? "autopilot" : "guest";
-  RunOptions outputs;
-  outputs.record = options.record;
-  outputs.trainee = options.trainee;
-  check_outputs(outputs);
-  const std::string database = options.database.empty() ? default_database() : options.database;
-  station::SessionOptions session_options;
-  session_options.autopilot = options.autopilot;
+// The exercise an attempt runs, into `session`: a route's next stage, an attempt taken over, a team role's,
+// or the one named; `team`: the team session it is a member of (none when it is not)
+void choose_exercise(const StationOptions& options, const std::string& database,
+                     station::SessionOptions& session, std::optional<io::Team>& team) {
   // a member of a team session runs its role's exercise
-  std::optional<io::Team> team;
   if (!options.team.empty()) {
     std::vector<std::string> exercise_folders{std::string(HARBOUR_DATA_DIR) + "/exercises"};
     if (!options.centre.exercises.empty())
@@ -134,41 +122,170 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
   if (!options.route.empty()) {
     io::RecordsStore db(database);
     const RouteStage next = next_route_stage(db, options.centre, options.trainee, options.route);
-    session_options.source = io::read_exercise_source(next.stage.exercise_file);
-    session_options.route = next.route.id;
-    session_options.stage = next.stage.id;
+    session.source = io::read_exercise_source(next.stage.exercise_file);
+    session.route = next.route.id;
+    session.stage = next.stage.id;
     std::printf("route %s, stage %s (%s)\n", next.route.id.c_str(), next.stage.id.c_str(),
                 next.stage.goal.c_str());
   } else if (std::optional<io::ExerciseSource> taken = taken_over_exercise(database, options)) {
-    session_options.source = std::move(*taken);
+    session.source = std::move(*taken);
   } else if (team) {
-    session_options.source = io::read_exercise_source(team->find(options.role)->exercise_file);
+    session.source = io::read_exercise_source(team->find(options.role)->exercise_file);
   } else {
-    session_options.source =
-        io::read_exercise_source(resolve_exercise(options.exercise, options.centre.exercises));
+    session.source = io::read_exercise_source(resolve_exercise(options.exercise, options.centre.exercises));
   }
-  const sim::ExerciseSettings exercise = io::load_exercise_source(session_options.source);
-  if (options.autopilot)
-    if (const std::string why = sim::why_no_pilot(exercise); !why.empty())
-      throw std::runtime_error(exercise.name + ": " + why + " (drive it yourself: no --autopilot)");
-  const station::Profile profile =
-      station::load_profile(station::resolve_profile(options.profile, HARBOUR_DATA_DIR));
-  if (options.trainee == "autopilot")
-    io::RecordsStore(database).ensure_trainee("autopilot", "Scripted operator");
-  if (options.trainee == "guest") io::RecordsStore(database).ensure_trainee("guest", "Guest at the station");
+}
 
-  session_options.trainee = options.trainee;
-  session_options.record = options.record;
-  session_options.database = database;
-  session_options.loop.time_scale = options.time_scale;
-  if (!options.take_over_recording.empty())
-    session_options.take_over = station::TakeOverFrom{options.take_over_recording, options.take_over_step};
-  // the trainee's window (before the devices: the keyboard and mouse need it)
+// The trainee's windows' pictures: one image generator drawing every display channel's picture (each eye's in
+// stereo) from the newest snapshot and handing each to its window
+std::unique_ptr<ig::RenderThread> render_windows(const station::Profile& profile,
+                                                 const station::DisplayLayout& layout,
+                                                 const std::vector<std::unique_ptr<StationWindow>>& windows,
+                                                 const scene::SceneDescription& scene,
+                                                 station::Session& session) {
+  std::vector<ig::View> views;
+  std::vector<bool> last_of_window(layout.pictures.size(), false);  // the frame's last picture there
+  for (std::size_t k = 0; k < layout.pictures.size(); ++k) {
+    const station::DisplayLayout::Picture& picture = layout.pictures[k];
+    const station::DisplayChannel& c = profile.displays[static_cast<std::size_t>(picture.channel)];
+    ig::View view;
+    view.yaw_rad = c.yaw_rad;
+    view.pitch_rad = c.pitch_rad;
+    view.from_sight = c.from_sight;
+    view.fov_from_sight = c.fov_from_sight;
+    view.roll_rad = c.roll_rad;
+    view.fov_vertical_rad = c.fov_vertical_rad;
+    view.frustum_rad = c.frustum_rad;
+    view.hud = picture.channel == 0;  // on the first channel
+    view.eye_offset_m = picture.eye_offset_m;
+    view.pixel_aspect = picture.pixel_aspect;
+    if (profile.stereo) view.convergence_m = profile.stereo->convergence_m;
+    // a tracked head looks through the desktop's monitor as through a window
+    view.off_axis = profile.opentrack_port.has_value();
+    views.push_back(view);
+    for (std::size_t j = 0; j < k; ++j)
+      if (layout.pictures[j].window == picture.window) last_of_window[j] = false;
+    last_of_window[k] = true;
+  }
+  std::vector<StationWindow*> shown;
+  for (const auto& w : windows)
+    shown.push_back(w.get());
+  auto render = std::make_unique<ig::RenderThread>(
+      scene, ig::load_looks(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml"), layout.render_width,
+      layout.render_height, views,
+      [&session] { return session.loop().latest_snapshot(station::kImageGeneratorReader); },
+      [shown, pictures = layout.pictures, last_of_window](ig::ImageGenerator& generator,
+                                                          const scene::Snapshot&, int k) {
+        const station::DisplayLayout::Picture& picture = pictures[static_cast<std::size_t>(k)];
+        const osg::Image& image = generator.render_result();
+        shown[static_cast<std::size_t>(picture.window)]->hand_over(
+            image.data(), image.s(), image.t(), static_cast<int>(image.getPixelSizeInBits() / 8),
+            image.getRowStepInBytes(), picture.x0, picture.colours,
+            last_of_window[static_cast<std::size_t>(k)]);
+      },
+      60.0, [&session] { return session.loop().latest_bulk(station::kImageGeneratorReader); });
+  const int channels = static_cast<int>(profile.displays.size());
+  const std::string stereo = !profile.stereo ? ""
+                             : profile.stereo->mode == station::Profile::Stereo::Mode::kAnaglyph
+                                 ? ", stereo: anaglyph"
+                                 : ", stereo: side by side";
+  if (windows.size() == 1)
+    std::printf("window: %dx%d, the cab view (%s, %d channel%s%s)\n", layout.windows[0].width,
+                layout.windows[0].height, profile.name.c_str(), channels, channels == 1 ? "" : "s",
+                stereo.c_str());
+  else
+    std::printf("windows: %zu of %dx%d, one per display, the cab view (%s%s)\n", windows.size(),
+                layout.windows[0].width, layout.windows[0].height, profile.name.c_str(), stereo.c_str());
+
+  return render;
+}
+
+// The cab's sound on the profile's output, or none (no device, or a sound file in error: the station runs on)
+std::unique_ptr<audio::SoundThread> start_sound(const station::Profile& profile,
+                                                const scene::SceneDescription& scene,
+                                                const sim::ExerciseSettings& exercise,
+                                                station::Session& session) {
+  audio::AudioSettings settings;
+  settings.speakers =
+      profile.sound->output == station::Profile::Sound::Output::kHeadphones   ? audio::Speakers::kHeadphones
+      : profile.sound->output == station::Profile::Sound::Output::kSurround51 ? audio::Speakers::kSurround51
+                                                                              : audio::Speakers::kStereo;
+  settings.volume = profile.sound->volume;
+  try {
+    auto sound = std::make_unique<audio::SoundThread>(
+        scene,
+        audio::load_sounds(std::string(HARBOUR_DATA_DIR) + "/sounds/harbour.yaml", sim::machine_kinds()),
+        settings, exercise.radio,
+        [&session] { return session.loop().latest_snapshot(station::kSoundReader); });
+    std::printf("sound: %s\n", sound->describe().c_str());
+    if (!sound->radio_problem().empty()) std::printf("no radio: %s\n", sound->radio_problem().c_str());
+    return sound;
+  } catch (const std::exception& e) {  // no device, or a sound file in error: the station runs on
+    std::printf("no sound: %s\n", e.what());
+  }
+
+  return nullptr;
+}
+
+// What the instructor sees of the trainee's view: the cab view drawn small a few times a second, as JPEG,
+// only while a console shows this station
+std::unique_ptr<ig::RenderThread> draw_for_instructor(const station::Profile& profile,
+                                                      const scene::SceneDescription& scene,
+                                                      station::Session& session, AttemptPresence& presence) {
+  ig::View view = ig::view_named("cab");
+  if (!profile.displays.empty()) {
+    const station::DisplayChannel& c = profile.displays.front();
+    view.yaw_rad = c.yaw_rad;
+    view.pitch_rad = c.pitch_rad;
+    view.from_sight = c.from_sight;
+    view.fov_from_sight = c.fov_from_sight;
+    view.fov_vertical_rad = c.fov_vertical_rad;
+  }
+  return std::make_unique<ig::RenderThread>(
+      scene, ig::load_looks(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml"), kPictureWidth,
+      kPictureHeight, std::vector<ig::View>{view},
+      // drawn only while a console shows this station
+      [&session, &presence]() -> const scene::Snapshot* {
+        return presence.watched() ? session.loop().latest_snapshot(station::kPictureReader) : nullptr;
+      },
+      [&presence](ig::ImageGenerator& generator, const scene::Snapshot& s, int) {
+        presence.offer_picture(ig::encode_jpeg(generator.render_result()), kPictureWidth, kPictureHeight,
+                               s.time_s);
+      },
+      kPicturesPerSecond, [&session] { return session.loop().latest_bulk(station::kPictureReader); });
+}
+
+// The attempt's progress on the terminal: the machine's first indicators, its load, the moves done, the loop
+void print_progress(const scene::SceneDescription& scene, const scene::Snapshot& snapshot,
+                    const sim::ExerciseSettings& exercise, station::Session& session) {
+  const scene::Snapshot* s = &snapshot;
+  const station::LoopStats stats = session.loop().stats();
+  const sim::Metrics m = session.metrics();
+  // the machine's first indicators (whatever the machine: names as it publishes them), then the goals
+  std::string shown;
+  for (std::size_t n = 0; n < scene.indicators.size() && n < 3 && static_cast<int>(n) < s->indicator_count;
+       ++n)
+    shown += "  " + scene.indicators[n] + " " + std::to_string(s->indicators[n]).substr(0, 7);
+  if (const auto load = indicator(scene, *s, "load_t"))
+    shown += "  load_t " + std::to_string(*load).substr(0, 5);
+  if (!exercise.moves.empty())
+    shown += "  moves " + std::to_string(m.moves_completed) + "/" + std::to_string(exercise.moves.size());
+  std::printf("  t=%6.1f s%s  | %.3fx real time, %lld late, longest %.1f ms%s%s\n", s->time_s, shown.c_str(),
+              stats.real_time_factor, static_cast<long long>(stats.late_ticks), stats.longest_tick_s * 1e3,
+              s->held ? "  HELD" : "",
+              s->devices_missing ? "  INPUT DEVICE MISSING: its controls are neutral" : "");
+  std::fflush(stdout);
+}
+
+// The trainee's windows (before the devices: the keyboard and mouse need them): the profile's displays side
+// by side in one window or a window each, where there is a display or they are asked for
+std::vector<std::unique_ptr<StationWindow>> open_windows(const StationOptions& options,
+                                                         const station::Profile& profile,
+                                                         const station::DisplayLayout& layout,
+                                                         const sim::ExerciseSettings& exercise) {
   const bool display = std::getenv("DISPLAY") || std::getenv("WAYLAND_DISPLAY");
   if (options.window != "on" && options.window != "off" && options.window != "auto")
     throw std::runtime_error("--window " + options.window + ": on, off or auto");
-  // the profile's displays: side by side in one window or a window each, two eyes each in stereo
-  const station::DisplayLayout layout = station::layout_displays(profile);
   std::vector<std::unique_ptr<StationWindow>> windows;
   if (options.window == "on" || (options.window == "auto" && display))
     for (const station::DisplayLayout::Window& w : layout.windows) {
@@ -178,48 +295,13 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
       windows.push_back(std::make_unique<StationWindow>(
           w.width, w.height, title, layout.windows.size() > 1 && d.fullscreen, w.display));
     }
-  // snapshots only for the readers there are (writing one for nobody costs the step thread)
-  if (windows.empty()) session_options.loop.snapshot_every_steps[station::kImageGeneratorReader] = 0;
-  // the cab's sound for the trainee at the station (by default none for a headless run)
-  if (options.sound != "on" && options.sound != "off" && options.sound != "auto")
-    throw std::runtime_error("--sound " + options.sound + ": on, off or auto");
-  const bool hearing =
-      profile.sound && (options.sound == "on" || (options.sound == "auto" && !windows.empty()));
-  if (!hearing) session_options.loop.snapshot_every_steps[station::kSoundReader] = 0;
-  if (!link) session_options.loop.snapshot_every_steps[station::kPictureReader] = 0;  // nobody watches
-  if (!profile.motion) session_options.loop.snapshot_every_steps[station::kMotionReader] = 0;
-  if (!team) session_options.loop.snapshot_every_steps[station::kTeamReader] = 0;
-  // nobody in the loop to feel a millisecond: the scripted operator, no window, no platform
-  if (options.autopilot && windows.empty() && !profile.motion)
-    session_options.loop.ticks_per_wake = kHeadlessTicksPerWake;
-  station::Session session(exercise, session_options);
-  station::Station station(session);
-  // the other members' machines, in this station's scene and in every snapshot it publishes
-  std::shared_ptr<TeamMembership> membership;  // the loop's addition holds it as long as the loop may run
-  if (team) {
-    membership = std::make_shared<TeamMembership>(
-        *team, options.role, options.name.empty() ? options.role : options.name, options.domain, exercise,
-        session.simulation().scene(), options.time_scale);
-    // for the readers that draw: the windows, the console's 3D view, the instructor's picture
-    session.loop().set_addition(
-        [membership](scene::Snapshot& s) { membership->add_to(s); },
-        1u << station::kImageGeneratorReader | 1u << station::kConsoleReader | 1u << station::kPictureReader);
-    std::string others;
-    for (const io::TeamRole& r : team->roles)
-      if (r.role != options.role) others += (others.empty() ? "" : ", ") + r.role;
-    std::printf("team %s: %s (%s), with %s\n", team->name.c_str(), options.role.c_str(),
-                exercise.name.c_str(), others.c_str());
-  }
-  std::unique_ptr<sim::Pilot> pilot;
-  if (options.autopilot) {
-    pilot = sim::make_pilot(exercise);
-    if (session_options.take_over)
-      pilot->resume(session.simulation(), session.moves_before_start(), session.levers_before_start());
-    session.loop().set_pilot([&](const sim::Simulation& s) { return pilot->next(s); });
-  } else {
-    station.use_devices(open_devices(profile, session.simulation().control_table(), !windows.empty()));
-  }
-  if (profile.opentrack_port && !windows.empty()) {  // the tracked head moves only the drawn view
+  return windows;
+}
+
+// The profile's head tracker (it moves only a drawn view) and motion platform, where it has them
+void use_head_and_platform(station::Station& station, const station::Profile& profile, bool drawn,
+                           const sim::ExerciseSettings& exercise, station::Session& session) {
+  if (profile.opentrack_port && drawn) {
     // without its tracker (its port taken by another station on this PC) the view stays at the design eye
     try {
       station.use_head_tracking(std::make_unique<station::HeadTracker>(*profile.opentrack_port));
@@ -237,6 +319,120 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
     std::printf("motion platform: %s:%u\n", profile.motion->driver.host.c_str(),
                 static_cast<unsigned>(profile.motion->driver.port));
   }
+}
+
+// This station as a member of a team session: the other members' machines in its scene and in every snapshot
+// it publishes (the loop's addition holds the membership as long as the loop may run)
+std::shared_ptr<TeamMembership> join_team(const io::Team& team, const StationOptions& options,
+                                          const sim::ExerciseSettings& exercise, station::Session& session) {
+  auto membership = std::make_shared<TeamMembership>(
+      team, options.role, options.name.empty() ? options.role : options.name, options.domain, exercise,
+      session.simulation().scene(), options.time_scale);
+  // for the readers that draw: the windows, the console's 3D view, the instructor's picture
+  session.loop().set_addition(
+      [membership](scene::Snapshot& s) { membership->add_to(s); },
+      1u << station::kImageGeneratorReader | 1u << station::kConsoleReader | 1u << station::kPictureReader);
+  std::string others;
+  for (const io::TeamRole& r : team.roles)
+    if (r.role != options.role) others += (others.empty() ? "" : ", ") + r.role;
+  std::printf("team %s: %s (%s), with %s\n", team.name.c_str(), options.role.c_str(), exercise.name.c_str(),
+              others.c_str());
+
+  return membership;
+}
+
+// The image generators stopped, with what they drew
+void stop_drawing(ig::RenderThread* render, const std::vector<std::unique_ptr<StationWindow>>& windows,
+                  ig::RenderThread* pictures) {
+  if (render) {
+    long shown = windows.front()->frames_shown();
+    for (const auto& w : windows)
+      shown = std::min(shown, w->frames_shown());
+    std::printf("window: %ld frames drawn (%.1f fps), %ld shown%s\n", render->frames(), render->fps(), shown,
+                windows.size() > 1 ? " in every window" : "");
+    if (!render->error().empty()) std::printf("image generator stopped: %s\n", render->error().c_str());
+    render->stop();
+  }
+  if (pictures) {
+    std::printf("instructor's picture: %ld frames (%.1f fps, %dx%d)%s\n", pictures->frames(), pictures->fps(),
+                kPictureWidth, kPictureHeight,
+                pictures->error().empty() ? "" : (": stopped: " + pictures->error()).c_str());
+    pictures->stop();
+  }
+}
+
+// How the attempt went: its loop's timing, its evaluation, where it is stored
+void print_result(const station::SessionResult& result, const sim::ExerciseSettings& exercise,
+                  const StationOptions& options) {
+  const station::LoopStats& l = result.loop;
+  std::printf(
+      "\nloop: %lld ticks, %lld late, %lld given up, longest %.2f ms, mean %.1f us, %.3fx real time%s\n",
+      static_cast<long long>(l.ticks), static_cast<long long>(l.late_ticks),
+      static_cast<long long>(l.skipped_ticks), l.longest_tick_s * 1e3, l.mean_tick_s * 1e6,
+      l.real_time_factor, l.keeping_real_time ? "" : " (COULD NOT KEEP REAL TIME)");
+  print_evaluation(result.metrics, result.score, !exercise.moves.empty());
+  std::printf("stored as attempt %lld of trainee %s (%s)\n", static_cast<long long>(result.attempt),
+              options.trainee.c_str(), result.status.c_str());
+  if (!options.record.empty()) std::printf("recording %s\n", options.record.c_str());
+}
+
+// Whether the cab's sound plays (by default none for a headless run)
+bool wants_sound(const StationOptions& options, const station::Profile& profile, bool drawn) {
+  if (options.sound != "on" && options.sound != "off" && options.sound != "auto")
+    throw std::runtime_error("--sound " + options.sound + ": on, off or auto");
+  return profile.sound && (options.sound == "on" || (options.sound == "auto" && drawn));
+}
+
+// Snapshots only for the readers there are (writing one for nobody costs the step thread); nobody in the loop
+// to feel a millisecond (the scripted operator, no window, no platform): woken less often
+void skip_unread_snapshots(station::LoopSettings& loop, const StationOptions& options,
+                           const station::Profile& profile, bool drawn, bool hearing, bool watched,
+                           bool team) {
+  if (!drawn) loop.snapshot_every_steps[station::kImageGeneratorReader] = 0;
+  if (!hearing) loop.snapshot_every_steps[station::kSoundReader] = 0;
+  if (!watched) loop.snapshot_every_steps[station::kPictureReader] = 0;
+  if (!profile.motion) loop.snapshot_every_steps[station::kMotionReader] = 0;
+  if (!team) loop.snapshot_every_steps[station::kTeamReader] = 0;
+  if (options.autopilot && !drawn && !profile.motion) loop.ticks_per_wake = kHeadlessTicksPerWake;
+}
+
+// The windows' input since the last pump: keys to the devices, looking round, F1's list of keys; false when
+// one was closed
+bool pump_windows(const std::vector<std::unique_ptr<StationWindow>>& windows, station::Station& station,
+                  station::LookAround& look, ig::RenderThread* render, const std::string& keys, bool& help,
+                  double dt_s) {
+  bool open = true;
+  for (const auto& w : windows) {
+    const WindowInput in = w->pump();
+    open = in.open && open;
+    if (station.devices())
+      for (const int key : in.keys_went_down)
+        station.devices()->key_went_down(key);
+    if (in.recentre) look.recentre();
+    look.update(dt_s, in.look_yaw_keys, in.look_pitch_keys, in.drag_right_px, in.drag_down_px, in.dragging);
+    if (in.help_toggled && render) {
+      help = !help;
+      render->set_overlay(help ? keys : "");
+    }
+  }
+  return open;
+}
+
+// This station leaves its team session: the team's figures and the session's id go with the attempt
+void leave_team(TeamMembership& membership, station::Session& session, const std::string& team,
+                const std::string& role) {
+  membership.stop();
+  membership.leave();
+  for (const std::string& line : membership.report())
+    std::printf("%s\n", line.c_str());
+  session.set_team_figures(membership.figures());
+  session.set_team(team, role, membership.session());
+  std::printf("team session %s\n", membership.session().c_str());
+}
+
+// What the station runs, on the terminal
+void print_banner(const station::Profile& profile, const sim::ExerciseSettings& exercise,
+                  const StationOptions& options, const station::Session& session) {
   std::printf("station (%s): exercise %s, %zu move(s), %s, attempt %lld of trainee %s%s\n",
               profile.name.c_str(), exercise.name.c_str(), exercise.moves.size(),
               options.autopilot ? "autopilot" : "trainee at the controls",
@@ -244,113 +440,77 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
               options.record.empty() ? "" : (", recording " + options.record).c_str());
   std::printf("Ctrl-C ends the attempt (stored as interrupted)\n");
   std::fflush(stdout);
+}
+
+// One attempt at the station, start to end; with a link, seen and commanded from the centre's consoles
+// (`reset`: a console asked for the attempt again; `outcome`, when given: how the attempt ended, in the
+// console's words).
+int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset,
+                std::string* outcome = nullptr) {
+  reset = false;
+  StationOptions options = given;
+  if (options.trainee.empty()) options.trainee = options.autopilot ? "autopilot" : "guest";
+  RunOptions outputs;
+  outputs.record = options.record;
+  outputs.trainee = options.trainee;
+  check_outputs(outputs);
+  const std::string database = options.database.empty() ? default_database() : options.database;
+  station::SessionOptions session_options;
+  session_options.autopilot = options.autopilot;
+  std::optional<io::Team> team;
+  choose_exercise(options, database, session_options, team);
+  const sim::ExerciseSettings exercise = io::load_exercise_source(session_options.source);
+  if (options.autopilot)
+    if (const std::string why = sim::why_no_pilot(exercise); !why.empty())
+      throw std::runtime_error(exercise.name + ": " + why + " (drive it yourself: no --autopilot)");
+  const station::Profile profile =
+      station::load_profile(station::resolve_profile(options.profile, HARBOUR_DATA_DIR));
+  if (options.trainee == "autopilot")
+    io::RecordsStore(database).ensure_trainee("autopilot", "Scripted operator");
+  if (options.trainee == "guest") io::RecordsStore(database).ensure_trainee("guest", "Guest at the station");
+
+  session_options.trainee = options.trainee;
+  session_options.record = options.record;
+  session_options.database = database;
+  session_options.loop.time_scale = options.time_scale;
+  if (!options.take_over_recording.empty())
+    session_options.take_over = station::TakeOverFrom{options.take_over_recording, options.take_over_step};
+  // the profile's displays: side by side in one window or a window each, two eyes each in stereo
+  const station::DisplayLayout layout = station::layout_displays(profile);
+  const std::vector<std::unique_ptr<StationWindow>> windows =
+      open_windows(options, profile, layout, exercise);
+  const bool hearing = wants_sound(options, profile, !windows.empty());
+  skip_unread_snapshots(session_options.loop, options, profile, !windows.empty(), hearing, link != nullptr,
+                        team.has_value());
+  station::Session session(exercise, session_options);
+  station::Station station(session);
+  // the other members' machines, in this station's scene and in every snapshot it publishes
+  std::shared_ptr<TeamMembership> membership;
+  if (team) membership = join_team(*team, options, exercise, session);
+  std::unique_ptr<sim::Pilot> pilot;
+  if (options.autopilot) {
+    pilot = sim::make_pilot(exercise);
+    if (session_options.take_over)
+      pilot->resume(session.simulation(), session.moves_before_start(), session.levers_before_start());
+    session.loop().set_pilot([&](const sim::Simulation& s) { return pilot->next(s); });
+  } else {
+    station.use_devices(open_devices(profile, session.simulation().control_table(), !windows.empty()));
+  }
+  use_head_and_platform(station, profile, !windows.empty(), exercise, session);
+  print_banner(profile, exercise, options, session);
 
   const scene::SceneDescription scene = membership ? membership->scene() : session.simulation().scene();
   std::unique_ptr<ig::RenderThread> render;
-  if (!windows.empty()) {
-    std::vector<ig::View> views;
-    std::vector<bool> last_of_window(layout.pictures.size(), false);  // the frame's last picture there
-    for (std::size_t k = 0; k < layout.pictures.size(); ++k) {
-      const station::DisplayLayout::Picture& picture = layout.pictures[k];
-      const station::DisplayChannel& c = profile.displays[static_cast<std::size_t>(picture.channel)];
-      ig::View view;
-      view.yaw_rad = c.yaw_rad;
-      view.pitch_rad = c.pitch_rad;
-      view.from_sight = c.from_sight;
-      view.fov_from_sight = c.fov_from_sight;
-      view.roll_rad = c.roll_rad;
-      view.fov_vertical_rad = c.fov_vertical_rad;
-      view.frustum_rad = c.frustum_rad;
-      view.hud = picture.channel == 0;  // on the first channel
-      view.eye_offset_m = picture.eye_offset_m;
-      view.pixel_aspect = picture.pixel_aspect;
-      if (profile.stereo) view.convergence_m = profile.stereo->convergence_m;
-      // a tracked head looks through the desktop's monitor as through a window
-      view.off_axis = profile.opentrack_port.has_value();
-      views.push_back(view);
-      for (std::size_t j = 0; j < k; ++j)
-        if (layout.pictures[j].window == picture.window) last_of_window[j] = false;
-      last_of_window[k] = true;
-    }
-    std::vector<StationWindow*> shown;
-    for (const auto& w : windows)
-      shown.push_back(w.get());
-    render = std::make_unique<ig::RenderThread>(
-        scene, ig::load_looks(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml"), layout.render_width,
-        layout.render_height, views,
-        [&session] { return session.loop().latest_snapshot(station::kImageGeneratorReader); },
-        [shown, pictures = layout.pictures, last_of_window](ig::ImageGenerator& generator,
-                                                            const scene::Snapshot&, int k) {
-          const station::DisplayLayout::Picture& picture = pictures[static_cast<std::size_t>(k)];
-          const osg::Image& image = generator.render_result();
-          shown[static_cast<std::size_t>(picture.window)]->hand_over(
-              image.data(), image.s(), image.t(), static_cast<int>(image.getPixelSizeInBits() / 8),
-              image.getRowStepInBytes(), picture.x0, picture.colours,
-              last_of_window[static_cast<std::size_t>(k)]);
-        },
-        60.0, [&session] { return session.loop().latest_bulk(station::kImageGeneratorReader); });
-    const int channels = static_cast<int>(profile.displays.size());
-    const std::string stereo = !profile.stereo ? ""
-                               : profile.stereo->mode == station::Profile::Stereo::Mode::kAnaglyph
-                                   ? ", stereo: anaglyph"
-                                   : ", stereo: side by side";
-    if (windows.size() == 1)
-      std::printf("window: %dx%d, the cab view (%s, %d channel%s%s)\n", layout.windows[0].width,
-                  layout.windows[0].height, profile.name.c_str(), channels, channels == 1 ? "" : "s",
-                  stereo.c_str());
-    else
-      std::printf("windows: %zu of %dx%d, one per display, the cab view (%s%s)\n", windows.size(),
-                  layout.windows[0].width, layout.windows[0].height, profile.name.c_str(), stereo.c_str());
-  }
+  if (!windows.empty()) render = render_windows(profile, layout, windows, scene, session);
   std::unique_ptr<audio::SoundThread> sound;
-  if (hearing) {
-    audio::AudioSettings settings;
-    settings.speakers =
-        profile.sound->output == station::Profile::Sound::Output::kHeadphones   ? audio::Speakers::kHeadphones
-        : profile.sound->output == station::Profile::Sound::Output::kSurround51 ? audio::Speakers::kSurround51
-                                                                                : audio::Speakers::kStereo;
-    settings.volume = profile.sound->volume;
-    try {
-      sound = std::make_unique<audio::SoundThread>(
-          scene,
-          audio::load_sounds(std::string(HARBOUR_DATA_DIR) + "/sounds/harbour.yaml", sim::machine_kinds()),
-          settings, exercise.radio,
-          [&session] { return session.loop().latest_snapshot(station::kSoundReader); });
-      std::printf("sound: %s\n", sound->describe().c_str());
-      if (!sound->radio_problem().empty()) std::printf("no radio: %s\n", sound->radio_problem().c_str());
-    } catch (const std::exception& e) {  // no device, or a sound file in error: the station runs on
-      std::printf("no sound: %s\n", e.what());
-    }
-  }
+  if (hearing) sound = start_sound(profile, scene, exercise, session);
   std::optional<AttemptPresence> presence;
   if (link) presence.emplace(*link, session, exercise, options.trainee, scene);
   if (presence) presence->use_sound(sound.get());
   if (presence && team) presence->member_of(team->name, options.role);
   // the instructor sees what the trainee sees: the cab view drawn small a few times a second, as JPEG
   std::unique_ptr<ig::RenderThread> pictures;
-  if (presence) {
-    ig::View view = ig::view_named("cab");
-    if (!profile.displays.empty()) {
-      const station::DisplayChannel& c = profile.displays.front();
-      view.yaw_rad = c.yaw_rad;
-      view.pitch_rad = c.pitch_rad;
-      view.from_sight = c.from_sight;
-      view.fov_from_sight = c.fov_from_sight;
-      view.fov_vertical_rad = c.fov_vertical_rad;
-    }
-    pictures = std::make_unique<ig::RenderThread>(
-        scene, ig::load_looks(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml"), kPictureWidth,
-        kPictureHeight, std::vector<ig::View>{view},
-        // drawn only while a console shows this station
-        [&session, &presence]() -> const scene::Snapshot* {
-          return presence->watched() ? session.loop().latest_snapshot(station::kPictureReader) : nullptr;
-        },
-        [&presence](ig::ImageGenerator& generator, const scene::Snapshot& s, int) {
-          presence->offer_picture(ig::encode_jpeg(generator.render_result()), kPictureWidth, kPictureHeight,
-                                  s.time_s);
-        },
-        kPicturesPerSecond, [&session] { return session.loop().latest_bulk(station::kPictureReader); });
-  }
+  if (presence) pictures = draw_for_instructor(profile, scene, session, *presence);
   const auto start = std::chrono::steady_clock::now();
   session.start();
   station.start();
@@ -389,19 +549,7 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
     const auto now = std::chrono::steady_clock::now();
     const double dt_s = std::chrono::duration<double>(now - last_pump).count();
     last_pump = now;
-    for (const auto& w : windows) {
-      const WindowInput in = w->pump();
-      window_open = in.open && window_open;
-      if (station.devices())
-        for (const int key : in.keys_went_down)
-          station.devices()->key_went_down(key);
-      if (in.recentre) look.recentre();
-      look.update(dt_s, in.look_yaw_keys, in.look_pitch_keys, in.drag_right_px, in.drag_down_px, in.dragging);
-      if (in.help_toggled && render) {
-        help = !help;
-        render->set_overlay(help ? keys : "");
-      }
-    }
+    window_open = pump_windows(windows, station, look, render.get(), keys, help, dt_s) && window_open;
     if (!windows.empty()) session.loop().set_look(look.yaw_rad(), look.pitch_rad());
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (options.seconds > 0.0 && wall >= options.seconds) break;
@@ -424,50 +572,13 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
     ++next_line;
     const scene::Snapshot* s = session.loop().latest_snapshot(station::kConsoleReader);
     if (!s) continue;
-    const station::LoopStats stats = session.loop().stats();
-    const sim::Metrics m = session.metrics();
-    // the machine's first indicators (whatever the machine: names as it publishes them), then the goals
-    std::string shown;
-    for (std::size_t n = 0; n < scene.indicators.size() && n < 3 && static_cast<int>(n) < s->indicator_count;
-         ++n)
-      shown += "  " + scene.indicators[n] + " " + std::to_string(s->indicators[n]).substr(0, 7);
-    if (const auto load = indicator(scene, *s, "load_t"))
-      shown += "  load_t " + std::to_string(*load).substr(0, 5);
-    if (!exercise.moves.empty())
-      shown += "  moves " + std::to_string(m.moves_completed) + "/" + std::to_string(exercise.moves.size());
-    std::printf("  t=%6.1f s%s  | %.3fx real time, %lld late, longest %.1f ms%s%s\n", s->time_s,
-                shown.c_str(), stats.real_time_factor, static_cast<long long>(stats.late_ticks),
-                stats.longest_tick_s * 1e3, s->held ? "  HELD" : "",
-                s->devices_missing ? "  INPUT DEVICE MISSING: its controls are neutral" : "");
-    std::fflush(stdout);
+    print_progress(scene, *s, exercise, session);
   }
   const bool interrupted = g_stop || !window_open || next != AttemptPresence::Next::kRun ||
                            (!session.over() && options.seconds > 0.0);
   reset = next == AttemptPresence::Next::kReset;
-  if (render) {
-    long shown = windows.front()->frames_shown();
-    for (const auto& w : windows)
-      shown = std::min(shown, w->frames_shown());
-    std::printf("window: %ld frames drawn (%.1f fps), %ld shown%s\n", render->frames(), render->fps(), shown,
-                windows.size() > 1 ? " in every window" : "");
-    if (!render->error().empty()) std::printf("image generator stopped: %s\n", render->error().c_str());
-    render->stop();
-  }
-  if (pictures) {
-    std::printf("instructor's picture: %ld frames (%.1f fps, %dx%d)%s\n", pictures->frames(), pictures->fps(),
-                kPictureWidth, kPictureHeight,
-                pictures->error().empty() ? "" : (": stopped: " + pictures->error()).c_str());
-    pictures->stop();
-  }
-  if (membership) {
-    membership->stop();
-    membership->leave();
-    for (const std::string& line : membership->report())
-      std::printf("%s\n", line.c_str());
-    session.set_team_figures(membership->figures());
-    session.set_team(team->name, options.role, membership->session());
-    std::printf("team session %s\n", membership->session().c_str());
-  }
+  stop_drawing(render.get(), windows, pictures.get());
+  if (membership) leave_team(*membership, session, team->name, options.role);
   station.stop();
   const station::SessionResult result =
       session.finish(g_stop || !window_open || (next == AttemptPresence::Next::kRun && interrupted)
@@ -476,16 +587,7 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
                                    : station::SessionEnd::kRan);
   if (presence) presence->publish_end(result);
   if (outcome) *outcome = attempt_outcome(result);
-  const station::LoopStats& l = result.loop;
-  std::printf(
-      "\nloop: %lld ticks, %lld late, %lld given up, longest %.2f ms, mean %.1f us, %.3fx real time%s\n",
-      static_cast<long long>(l.ticks), static_cast<long long>(l.late_ticks),
-      static_cast<long long>(l.skipped_ticks), l.longest_tick_s * 1e3, l.mean_tick_s * 1e6,
-      l.real_time_factor, l.keeping_real_time ? "" : " (COULD NOT KEEP REAL TIME)");
-  print_evaluation(result.metrics, result.score, !exercise.moves.empty());
-  std::printf("stored as attempt %lld of trainee %s (%s)\n", static_cast<long long>(result.attempt),
-              options.trainee.c_str(), result.status.c_str());
-  if (!options.record.empty()) std::printf("recording %s\n", options.record.c_str());
+  print_result(result, exercise, options);
   if (result.status == "diverged") return 3;
   return interrupted ? 130 : 0;
 }
