@@ -33,6 +33,19 @@ core::Vec3 flat(core::Vec3 v) {
   return v;
 }
 
+// the highest stack top under a way (the box carried apart)
+double highest_stack_top(const Simulation& simulation, const std::vector<core::Vec3>& way,
+                         const ContainerRef& box) {
+  double highest = 0.0;
+  for (const ContainerRef& other : simulation.liftables()) {
+    if (other.body == box.body) continue;
+    const core::Vec3 p = simulation.world().pose(other.body).position;
+    if (core::length(flat(p) - point_ahead(way, p, 0.0)) < kOnTheRow_m)
+      highest = std::max(highest, p.z + other.half_extents_m.z);
+  }
+  return highest;
+}
+
 }  // namespace
 
 std::string StraddleCarrierAutopilot::why_cannot_drive(const ExerciseSettings& exercise) {
@@ -123,15 +136,8 @@ scene::Controls StraddleCarrierAutopilot::decide(const Simulation& simulation, c
       flat(point_ahead(path_, portal.position, 1.0) - point_ahead(path_, portal.position, 0.0));
   const core::Vec3 heading = way * (1.0 / std::max(1e-9, core::length(way)));
 
-  // the highest stack under its way (the box itself apart)
-  double highest_top = 0.0;
-  for (const ContainerRef& other : simulation.liftables()) {
-    if (other.body == box_ref.body) continue;
-    const core::Vec3 p = world.pose(other.body).position;
-    if (core::length(flat(p) - point_ahead(path_, p, 0.0)) < kOnTheRow_m)
-      highest_top = std::max(highest_top, p.z + other.half_extents_m.z);
-  }
-  highest_top = std::max(highest_top, placed.pose.position.z + placed.half_extents_m.z);
+  const double highest_top = std::max(highest_stack_top(simulation, path_, box_ref),
+                                      placed.pose.position.z + placed.half_extents_m.z);
   const double carry_z = highest_top + kClearance_m + box_height + spreader_half_height;
   const double spreader_z = m.spreader_pose().position.z;
 
