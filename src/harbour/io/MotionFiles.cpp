@@ -139,13 +139,12 @@ void read_channels(const YamlFile& f, const YAML::Node& n, const std::string& at
   }
 }
 
-}  // namespace
-
-namespace {
+// a machine file's motion cues over `w`
 void read_motion_cues(const YamlFile& machine_file, motion::WashoutSettings& w) {
   if (const auto cues = machine_file.optional_map(machine_file.root(), "motion_cues", ""))
     read_channels(machine_file, *cues, "motion_cues", w);
 }
+
 }  // namespace
 
 motion::WashoutSettings load_washout(const YamlFile& washout_file, const YamlFile& machine_file) {
