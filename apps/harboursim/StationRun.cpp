@@ -579,12 +579,13 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
   reset = next == AttemptPresence::Next::kReset;
   stop_drawing(render.get(), windows, pictures.get());
   if (membership) leave_team(*membership, session, team->name, options.role);
-  station.stop();
+  station.stop_monitoring();
   const station::SessionResult result =
       session.finish(g_stop || !window_open || (next == AttemptPresence::Next::kRun && interrupted)
                          ? station::SessionEnd::kInterrupted
                      : interrupted ? station::SessionEnd::kStoppedByInstructor
                                    : station::SessionEnd::kRan);
+  station.stop();  // the platform parks with the simulation stopped
   if (presence) presence->publish_end(result);
   if (outcome) *outcome = attempt_outcome(result);
   print_result(result, exercise, options);

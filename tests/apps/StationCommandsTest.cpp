@@ -187,6 +187,26 @@ TEST(StationCommand, CtrlCStoresTheAttemptAndClosesTheRecording) {
   EXPECT_NE(both.find("or --attempt alone"), std::string::npos) << both;
 }
 
+// With a motion platform the attempt ends when it is asked to: the platform parks (some 5 s) after the
+// simulation has stopped, not while it steps on and the evaluation counts the time.
+TEST(StationCommand, AnAttemptOnAPlatformEndsWhenAskedNotWhenThePlatformHasParked) {
+  const std::filesystem::path folder = std::filesystem::temp_directory_path() / "harbour_station_platform";
+  std::filesystem::remove_all(folder);
+  std::filesystem::create_directories(folder);
+  const std::string db = "sqlite3://db=" + (folder / "records.db").string();
+  const std::string output = run(std::string(HARBOUR_APP) +
+                                 " station --exercise tractor_mafi_park --profile immersive --autopilot " +
+                                 "--window off --sound off --seconds 2 --db '" + db + "' 2>&1; echo exit $?");
+  ASSERT_NE(output.find("motion platform: "), std::string::npos) << output;
+  const std::size_t at = output.find("\nloop: ");
+  ASSERT_NE(at, std::string::npos) << output;
+  const long ticks = std::stol(output.substr(at + 7));
+  // 2 s at 1 kHz (fewer on a busy machine); the platform's park time on top was some 5,000 more
+  EXPECT_GT(ticks, 500) << output;
+  EXPECT_LT(ticks, 3000) << output;
+  EXPECT_NE(output.find("exit 130"), std::string::npos) << output;  // stopped by --seconds: interrupted
+}
+
 // The trainee's window on an X server (Xvfb): the image generator's frames reach it while the loop keeps
 // time.
 TEST(StationCommand, TheWindowShowsTheCabViewWhileTheExerciseRuns) {

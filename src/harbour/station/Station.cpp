@@ -39,9 +39,13 @@ void Station::start() {
   });
 }
 
-void Station::stop() {
+void Station::stop_monitoring() {
   running_ = false;
   if (thread_.joinable()) thread_.join();
+}
+
+void Station::stop() {
+  stop_monitoring();
   if (motion_) motion_->park_and_wait();
 }
 

@@ -30,6 +30,10 @@ class Station {
   void use_motion(std::unique_ptr<MotionLink> motion);
   /// Starts the monitor thread (devices, head, motion); the session itself is started by its owner.
   void start();
+  /// Stops the monitor thread: devices, head and platform are no longer read or fed.
+  void stop_monitoring();
+  /// stop_monitoring(), then the platform parked (it takes its park time: finish the session first, so that
+  /// the simulation does not run on while the platform settles).
   void stop();
   /// Lines for the trainee's display since the last call ("right stick lost: hoist, lock ... safe").
   std::vector<std::string> take_messages();
