@@ -256,24 +256,23 @@ std::unique_ptr<ig::RenderThread> draw_for_instructor(const station::Profile& pr
 }
 
 // The attempt's progress on the terminal: the machine's first indicators, its load, the moves done, the loop
-void print_progress(const scene::SceneDescription& scene, const scene::Snapshot& snapshot,
+void print_progress(const scene::SceneDescription& scene, const scene::Snapshot& s,
                     const sim::ExerciseSettings& exercise, station::Session& session) {
-  const scene::Snapshot* s = &snapshot;
   const station::LoopStats stats = session.loop().stats();
   const sim::Metrics m = session.metrics();
   // the machine's first indicators (whatever the machine: names as it publishes them), then the goals
   std::string shown;
-  for (std::size_t n = 0; n < scene.indicators.size() && n < 3 && static_cast<int>(n) < s->indicator_count;
+  for (std::size_t n = 0; n < scene.indicators.size() && n < 3 && static_cast<int>(n) < s.indicator_count;
        ++n)
-    shown += "  " + scene.indicators[n] + " " + std::to_string(s->indicators[n]).substr(0, 7);
-  if (const auto load = indicator(scene, *s, "load_t"))
+    shown += "  " + scene.indicators[n] + " " + std::to_string(s.indicators[n]).substr(0, 7);
+  if (const auto load = indicator(scene, s, "load_t"))
     shown += "  load_t " + std::to_string(*load).substr(0, 5);
   if (!exercise.moves.empty())
     shown += "  moves " + std::to_string(m.moves_completed) + "/" + std::to_string(exercise.moves.size());
-  std::printf("  t=%6.1f s%s  | %.3fx real time, %lld late, longest %.1f ms%s%s\n", s->time_s, shown.c_str(),
+  std::printf("  t=%6.1f s%s  | %.3fx real time, %lld late, longest %.1f ms%s%s\n", s.time_s, shown.c_str(),
               stats.real_time_factor, static_cast<long long>(stats.late_ticks), stats.longest_tick_s * 1e3,
-              s->held ? "  HELD" : "",
-              s->devices_missing ? "  INPUT DEVICE MISSING: its controls are neutral" : "");
+              s.held ? "  HELD" : "",
+              s.devices_missing ? "  INPUT DEVICE MISSING: its controls are neutral" : "");
   std::fflush(stdout);
 }
 

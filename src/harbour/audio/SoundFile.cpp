@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <utility>
+#include <vector>
 
+#include "harbour/core/Text.h"
 #include "harbour/io/YamlFile.h"
 
 namespace harbour::audio {
@@ -161,10 +163,9 @@ SoundSettings read_sounds(const io::YamlFile& f, std::span<const std::string_vie
   for (const auto& entry : machines) {
     const std::string kind = entry.first.as<std::string>();
     if (std::find(machine_kinds.begin(), machine_kinds.end(), kind) == machine_kinds.end()) {
-      std::string known;
-      for (const std::string_view k : machine_kinds)
-        known += (known.empty() ? "" : ", ") + std::string(k);
-      f.fail(entry.first, "sounds.machines." + kind, "no machine of kind '" + kind + "' (" + known + ")");
+      const std::vector<std::string> known(machine_kinds.begin(), machine_kinds.end());
+      f.fail(entry.first, "sounds.machines." + kind,
+             "no machine of kind '" + kind + "' (" + core::comma_separated(known) + ")");
     }
     s.machines[kind] = read_list(f, machines, kind, "sounds.machines");
   }
