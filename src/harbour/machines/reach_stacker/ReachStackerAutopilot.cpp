@@ -72,6 +72,110 @@ double head_z_over(const ReachStacker& m, double top_z, double above_m) {
   return top_z + above_m + 0.5 * m.settings().spreader.height_m + m.settings().head_drop_m;
 }
 
+struct LaneLine {
+  core::Vec3 start_m, along;
+};
+
+// The stacks on the lane's line between where it carries the box from (`from_along`) and the target.
+StacksInTheWay stacks_in_the_way(const Simulation& simulation, const ContainerRef& box, const LaneLine& lane,
+                                 double from_along, double target_along) {
+  const core::Vec3 lane_left{-lane.along.y, lane.along.x, 0.0};
+  StacksInTheWay stacks{target_along - box.half_extents_m.y, 0.0};
+  for (const ContainerRef& other : simulation.liftables()) {
+    if (other.body == box.body) continue;
+    const core::Pose p = simulation.world().pose(other.body);
+    const double along = dot(flat(p.position) - lane.start_m, lane.along);
+    if (along >= target_along - 0.5 || along <= from_along ||
+        std::abs(dot(flat(p.position) - lane.start_m, lane_left)) > kOnTheLine_m)
+      continue;
+    stacks.nearest_face_along_m = std::min(stacks.nearest_face_along_m, along - other.half_extents_m.y);
+    stacks.highest_top_m = std::max(stacks.highest_top_m, p.position.z + other.half_extents_m.z);
+  }
+  return stacks;
+}
+
+// One decision's levers and the motions it is made of: the pedals, the wheel along a path, the boom's head
+// towards a goal, the spreader squared on a box.
+class Decision {
+ public:
+  Decision(const Simulation& simulation, const ReachStacker& m, const scene::Controls& last)
+      : simulation_(simulation),
+        m_(m),
+        table_(simulation.control_table()),
+        last_(last),
+        chassis_(simulation.world().pose(m.body())),
+        controls_(table_.neutral()) {}
+
+  const core::Pose& chassis() const { return chassis_; }
+  const scene::Controls& controls() const { return controls_; }
+
+  void set(const char* label, double value) {
+    controls_.value[static_cast<std::size_t>(table_.find(label))] = value;
+  }
+  // a pedal moves as a foot moves it, from where it was
+  void press(const char* label, double value) {
+    const auto slot = static_cast<std::size_t>(table_.find(label));
+    const double was = last_.value[slot];
+    const double most = kPedalRate_per_s * static_cast<double>(DecidingPilot<ReachStacker>::kDecisionSteps) *
+                        Simulation::kStep_s;
+    controls_.value[slot] = was + std::clamp(value - was, -most, most);
+  }
+  void hold() {
+    press("brake", 0.6);
+    press("throttle", 0.0);
+  }
+  // along `path` to a stop `remaining_m` ahead; true once stopped there
+  bool drive(const std::vector<core::Vec3>& path, double remaining_m, double cruise_mps) {
+    const core::Vec3 reference = flat(chassis_.to_parent({m_.chassis().reference_x_m(), 0, 0}));
+    const double steer = pursuit_steer(chassis_, m_.chassis(), point_ahead(path, reference, kLookahead_m));
+    set("steer", steer);
+    // slower the more the wheel is turned (laden, a reach stacker tips sideways in a fast tight turn)
+    const double cruise =
+        std::min(cruise_mps,
+                 kCruise_mps - (kCruise_mps - kCorner_mps) * std::min(1.0, std::abs(steer) / kCornerSteer));
+    const double wanted = std::min(cruise, std::sqrt(2.0 * kStopping_mps2 * std::max(0.0, remaining_m)));
+    const double error = wanted - m_.forward_mps();
+    press("throttle", std::clamp(kSpeedGain * error, 0.0, 1.0));
+    press("brake", remaining_m <= 0.0 ? 0.6 : std::clamp(-kSpeedGain * error, 0.0, 1.0));
+    return remaining_m <= 0.0 && std::abs(m_.forward_mps()) < 0.05;
+  }
+  // the boom's head towards a goal; true when it is there
+  bool head_to(const core::Vec3& head_goal, double speed_mps) {
+    const Levers l = head_levers(simulation_, m_, head_goal, speed_mps);
+    set("boom", l.boom);
+    set("telescope", l.telescope);
+    return std::abs(dot(flat(head_goal - m_.head_m()), forward())) < kAligned_m &&
+           std::abs(head_goal.z - m_.head_m().z) < 0.05;
+  }
+  // the spreader squared on a box below the head (side-shift and rotation); true when it is square
+  bool square_over(const core::Vec3& centre, const core::Vec3& length_axis) {
+    const ReachStackerSettings& s = m_.settings();
+    const core::Pose spreader = m_.spreader_pose();
+    const core::Vec3 left = unit(flat(chassis_.rotation.column(1)));
+    const double lateral = dot(flat(centre - spreader.position), left);
+    set("side_shift", std::clamp(lateral / (0.5 * s.side_shift.max_speed_mps), -1.0, 1.0));
+    const core::Vec3 a = flat(spreader.rotation.column(1)), b = flat(length_axis);
+    const double skew =
+        std::remainder(std::atan2(a.x * b.y - a.y * b.x, a.x * b.x + a.y * b.y), std::numbers::pi);
+    set("rotate", std::clamp(skew / (0.5 * s.rotate.max_speed_mps), -1.0, 1.0));
+    return std::abs(lateral) < kAligned_m && std::abs(skew) < kAlignedRad;
+  }
+  // the spreader hangs under the head
+  bool plumb() const {
+    return std::abs(dot(flat(m_.spreader_pose().position - m_.head_m()), forward())) < kAligned_m;
+  }
+
+ private:
+  core::Vec3 forward() const { return unit(flat(chassis_.rotation.column(0))); }
+
+  const Simulation& simulation_;
+  const ReachStacker& m_;
+  const scene::ControlTable& table_;
+  const scene::Controls& last_;
+  const core::Pose chassis_;
+  scene::Controls controls_;
+};
+
 }  // namespace
 
 std::string ReachStackerAutopilot::why_cannot_drive(const ExerciseSettings& exercise) {
@@ -129,20 +233,26 @@ bool ReachStackerAutopilot::way_clear(const Simulation& simulation) const {
   return true;
 }
 
+StacksInTheWay ReachStackerAutopilot::stacks_before_target(const Simulation& simulation) const {
+  const double target_along = dot(flat(exercise_.moves[0].target_m) - lane_start_m_, lane_along_);
+  const double picked_along =
+      dot(flat(exercise_.scenario.containers[box_index_].pose.position) - lane_start_m_, lane_along_);
+  const double from_along = carry_path_.empty() ? picked_along : 0.0;  // on a route: from its last point
+  return stacks_in_the_way(simulation, simulation.liftables()[box_index_], {lane_start_m_, lane_along_},
+                           from_along, target_along);
+}
+
+void ReachStackerAutopilot::take_route_from(const core::Vec3& where_m) {
+  // on along the route, then the line from its last point to the target
+  carry_path_ = {where_m};
+  carry_path_.insert(carry_path_.end(), exercise_.route_m.begin(), exercise_.route_m.end());
+  lane_start_m_ = exercise_.route_m.back();
+  lane_along_ = unit(flat(exercise_.moves[0].target_m) - lane_start_m_);
+}
+
 scene::Controls ReachStackerAutopilot::decide(const Simulation& simulation, const ReachStacker& m) {
-  const scene::ControlTable& table = simulation.control_table();
-  scene::Controls c = table.neutral();
-  const auto set = [&](const char* label, double value) {
-    c.value[static_cast<std::size_t>(table.find(label))] = value;
-  };
+  Decision d(simulation, m, last_decision());
   const double now = simulation.time_s();
-  // the pedals move as a foot moves them, from where they were
-  const auto press = [&](const char* label, double value) {
-    const auto slot = static_cast<std::size_t>(table.find(label));
-    const double was = last_decision().value[slot];
-    const double most = kPedalRate_per_s * static_cast<double>(kDecisionSteps) * Simulation::kStep_s;
-    c.value[slot] = was + std::clamp(value - was, -most, most);
-  };
   const auto enter = [&](Phase next) {
     phase_ = next;
     phase_start_s_ = now;
@@ -150,91 +260,31 @@ scene::Controls ReachStackerAutopilot::decide(const Simulation& simulation, cons
   const physics::PhysicsWorld& world = simulation.world();
   const ReachStackerSettings& s = m.settings();
   const MoveGoal& goal = exercise_.moves[0];
-  const ContainerRef* box_ref = &simulation.liftables()[box_index_];
-  const physics::BodyId box = box_ref->body;
-  const double box_height = 2.0 * box_ref->half_extents_m.z;
-  const core::Pose chassis = world.pose(m.body());
-  const core::Vec3 front_axle = flat(chassis.to_parent({tipping_axle_x_m(s), 0, 0}));
+  const ContainerRef& box_ref = simulation.liftables()[box_index_];
+  const double box_height = 2.0 * box_ref.half_extents_m.z;
+  const core::Vec3 front_axle = flat(d.chassis().to_parent({tipping_axle_x_m(s), 0, 0}));
   const double at_along = dot(front_axle - lane_start_m_, lane_along_);
-  const double tyre_front = s.chassis.tyre.radius_m;
 
-  // the stacks between the box and its target: the nearest face it stops short of and the highest top it
-  // raises the box over
-  const double target_along = dot(flat(goal.target_m) - lane_start_m_, lane_along_);
-  const double picked_along =
-      dot(flat(exercise_.scenario.containers[box_index_].pose.position) - lane_start_m_, lane_along_);
-  const double from_along = carry_path_.empty() ? picked_along : 0.0;  // on a route: from its last point
-  const core::Vec3 lane_left{-lane_along_.y, lane_along_.x, 0.0};
-  double nearest_face = target_along - box_ref->half_extents_m.y, highest_top = 0.0;
-  for (const ContainerRef& other : simulation.liftables()) {
-    if (other.body == box) continue;
-    const core::Pose p = world.pose(other.body);
-    const double along = dot(flat(p.position) - lane_start_m_, lane_along_);
-    if (along >= target_along - 0.5 || along <= from_along ||
-        std::abs(dot(flat(p.position) - lane_start_m_, lane_left)) > kOnTheLine_m)
-      continue;
-    nearest_face = std::min(nearest_face, along - other.half_extents_m.y);
-    highest_top = std::max(highest_top, p.position.z + other.half_extents_m.z);
-  }
-  const double final_stop = nearest_face - kTyreClearance_m - tyre_front;  // the front axle's, along the lane
+  const StacksInTheWay stacks = stacks_before_target(simulation);
+  // the front axle's stop, along the lane
+  const double final_stop = stacks.nearest_face_along_m - kTyreClearance_m - s.chassis.tyre.radius_m;
 
-  // driving: along the lane's line to a stop, the brake held while the boom works
-  set("direction", 2.0);
+  // driving: along the lane's line (or the route and then the target's line) to a stop, the brake held while
+  // the boom works
+  d.set("direction", 2.0);
   const auto drive_to = [&](double stop_along, double cruise_mps) {
-    // along the lane's line, or the route and then the target's line
     std::vector<core::Vec3> path = carry_path_;
     if (path.empty()) path.push_back(lane_start_m_);
     path.push_back(lane_start_m_ + lane_along_ * (stop_along + 50.0));
-    const core::Vec3 reference = flat(chassis.to_parent({m.chassis().reference_x_m(), 0, 0}));
-    const double steer = pursuit_steer(chassis, m.chassis(), point_ahead(path, reference, kLookahead_m));
-    set("steer", steer);
-    const double remaining = stop_along - at_along;
-    // slower the more the wheel is turned (laden, a reach stacker tips sideways in a fast tight turn)
-    const double cruise =
-        std::min(cruise_mps,
-                 kCruise_mps - (kCruise_mps - kCorner_mps) * std::min(1.0, std::abs(steer) / kCornerSteer));
-    const double wanted = std::min(cruise, std::sqrt(2.0 * kStopping_mps2 * std::max(0.0, remaining)));
-    const double error = wanted - m.forward_mps();
-    press("throttle", std::clamp(kSpeedGain * error, 0.0, 1.0));
-    press("brake", remaining <= 0.0 ? 0.6 : std::clamp(-kSpeedGain * error, 0.0, 1.0));
-    return remaining <= 0.0 && std::abs(m.forward_mps()) < 0.05;
-  };
-  const auto hold = [&] {
-    press("brake", 0.6);
-    press("throttle", 0.0);
-  };
-  // the boom's head towards a goal, and the spreader squared on a box below it (side-shift and rotation);
-  // true when it is there and square
-  const auto head_to = [&](const core::Vec3& head_goal, double speed_mps) {
-    const Levers l = head_levers(simulation, m, head_goal, speed_mps);
-    set("boom", l.boom);
-    set("telescope", l.telescope);
-    const core::Vec3 forward = unit(flat(chassis.rotation.column(0)));
-    return std::abs(dot(flat(head_goal - m.head_m()), forward)) < kAligned_m &&
-           std::abs(head_goal.z - m.head_m().z) < 0.05;
-  };
-  const auto square_over = [&](const core::Vec3& centre, const core::Vec3& length_axis) {
-    const core::Pose spreader = m.spreader_pose();
-    const core::Vec3 left = unit(flat(chassis.rotation.column(1)));
-    const double lateral = dot(flat(centre - spreader.position), left);
-    set("side_shift", std::clamp(lateral / (0.5 * s.side_shift.max_speed_mps), -1.0, 1.0));
-    const core::Vec3 a = flat(spreader.rotation.column(1)), b = flat(length_axis);
-    const double skew =
-        std::remainder(std::atan2(a.x * b.y - a.y * b.x, a.x * b.x + a.y * b.y), std::numbers::pi);
-    set("rotate", std::clamp(skew / (0.5 * s.rotate.max_speed_mps), -1.0, 1.0));
-    return std::abs(lateral) < kAligned_m && std::abs(skew) < kAlignedRad;
-  };
-  const auto plumb = [&] {
-    return std::abs(dot(flat(m.spreader_pose().position - m.head_m()),
-                        unit(flat(chassis.rotation.column(0))))) < kAligned_m;
+    return d.drive(path, stop_along - at_along, cruise_mps);
   };
 
-  const core::Pose box_pose = world.pose(box);
-  const double box_top = box_pose.position.z + box_ref->half_extents_m.z;
+  const core::Pose box_pose = world.pose(box_ref.body);
+  const double box_top = box_pose.position.z + box_ref.half_extents_m.z;
   // the spreader's length for the box: its button held until it is there
   if (phase_ == Phase::kApproach || phase_ == Phase::kPick) {
-    const bool twenty = box_ref->half_extents_m.x < kTwentyFootHalfLength_m;
-    set(twenty ? "spreader_20" : "spreader_40", 1.0);
+    const bool twenty = box_ref.half_extents_m.x < kTwentyFootHalfLength_m;
+    d.set(twenty ? "spreader_20" : "spreader_40", 1.0);
   }
   switch (phase_) {
     case Phase::kApproach: {
@@ -244,46 +294,41 @@ scene::Controls ReachStackerAutopilot::decide(const Simulation& simulation, cons
       const double hover_z = head_z_over(m, box_top, kHover_m);
       core::Vec3 goal_head = m.head_m().z > hover_z - kRaisedFirst_m ? box_pose.position : m.head_m();
       goal_head.z = hover_z;
-      head_to(goal_head, kHeadSpeed_mps);
+      d.head_to(goal_head, kHeadSpeed_mps);
       if (drive_to(stop, kCruise_mps)) enter(Phase::kPick);
       break;
     }
     case Phase::kPick: {
-      hold();
-      const bool square = square_over(box_pose.position, box_pose.rotation.column(0));
+      d.hold();
+      const bool square = d.square_over(box_pose.position, box_pose.rotation.column(0));
       core::Vec3 goal_head = box_pose.position;
       goal_head.z = head_z_over(m, box_top, kHover_m);
-      const bool over = head_to(goal_head, kHeadSpeed_mps);
-      if (over && square && plumb()) enter(Phase::kLock);
+      const bool over = d.head_to(goal_head, kHeadSpeed_mps);
+      if (over && square && d.plumb()) enter(Phase::kLock);
       break;
     }
     case Phase::kLock: {
       // down onto the castings slowly, then the locks
-      hold();
-      square_over(box_pose.position, box_pose.rotation.column(0));
+      d.hold();
+      d.square_over(box_pose.position, box_pose.rotation.column(0));
       core::Vec3 goal_head = box_pose.position;
       goal_head.z = head_z_over(m, box_top, -0.05);
-      if (!m.lamps().landed) head_to(goal_head, kLanding_mps);
-      set("lock", m.lamps().landed && std::fmod(now - phase_start_s_, 1.0) < 0.2 ? 1.0 : 0.0);
+      if (!m.lamps().landed) d.head_to(goal_head, kLanding_mps);
+      d.set("lock", m.lamps().landed && std::fmod(now - phase_start_s_, 1.0) < 0.2 ? 1.0 : 0.0);
       if (m.lamps().locked) enter(Phase::kLift);
       break;
     }
     case Phase::kLift: {
       // up off what it stood on (a truck's chassis: the truck leaves), kept at its reach; it waits for the
       // way to clear
-      hold();
+      d.hold();
       const ContainerPlacement& picked = exercise_.scenario.containers[box_index_];
       const double picked_bottom = picked.pose.position.z - picked.half_extents_m.z;
       core::Vec3 goal_head = m.head_m();
       goal_head.z = head_z_over(m, std::max(kCarryClearance_m, picked_bottom + kLiftOff_m) + box_height, 0.0);
-      if (head_to(goal_head, kHeadSpeed_mps) && way_clear(simulation)) {
-        if (!exercise_.route_m.empty()) {
-          // on along the route, then the line from its last point to the target
-          carry_path_ = {flat(chassis.to_parent({m.chassis().reference_x_m(), 0, 0}))};
-          carry_path_.insert(carry_path_.end(), exercise_.route_m.begin(), exercise_.route_m.end());
-          lane_start_m_ = exercise_.route_m.back();
-          lane_along_ = unit(flat(goal.target_m) - lane_start_m_);
-        }
+      if (d.head_to(goal_head, kHeadSpeed_mps) && way_clear(simulation)) {
+        if (!exercise_.route_m.empty())
+          take_route_from(flat(d.chassis().to_parent({m.chassis().reference_x_m(), 0, 0})));
         enter(Phase::kCarry);
       }
       break;
@@ -292,15 +337,15 @@ scene::Controls ReachStackerAutopilot::decide(const Simulation& simulation, cons
       // down to carrying height (off a truck) on the way
       core::Vec3 goal_head = m.head_m();
       goal_head.z = head_z_over(m, kCarryClearance_m + box_height, 0.0);
-      head_to(goal_head, kHeadSpeed_mps);
+      d.head_to(goal_head, kHeadSpeed_mps);
       if (drive_to(final_stop - kRaiseShort_m, kCruise_mps)) enter(Phase::kRaise);
       break;
     }
     case Phase::kRaise: {
-      hold();
+      d.hold();
       core::Vec3 goal_head = m.head_m();
-      goal_head.z = head_z_over(m, highest_top + kCarryClearance_m + box_height, 0.0);
-      if (head_to(goal_head, kHeadSpeed_mps)) enter(Phase::kCreep);
+      goal_head.z = head_z_over(m, stacks.highest_top_m + kCarryClearance_m + box_height, 0.0);
+      if (d.head_to(goal_head, kHeadSpeed_mps)) enter(Phase::kCreep);
       break;
     }
     case Phase::kCreep:
@@ -308,49 +353,49 @@ scene::Controls ReachStackerAutopilot::decide(const Simulation& simulation, cons
       break;
     case Phase::kReach: {
       // out over the target, square on it
-      hold();
+      d.hold();
       const core::Vec3 along_box = {std::cos(goal.heading_rad.value_or(0.0)),
                                     std::sin(goal.heading_rad.value_or(0.0)), 0.0};
       const bool square =
-          square_over(goal.target_m, goal.heading_rad ? along_box : box_pose.rotation.column(0));
+          d.square_over(goal.target_m, goal.heading_rad ? along_box : box_pose.rotation.column(0));
       core::Vec3 goal_head = goal.target_m;
       goal_head.z = head_z_over(m, goal.target_m.z - box_height / 2, kHover_m + box_height);
-      if (head_to(goal_head, kHeadSpeed_mps) && square && plumb()) enter(Phase::kSet);
+      if (d.head_to(goal_head, kHeadSpeed_mps) && square && d.plumb()) enter(Phase::kSet);
       break;
     }
     case Phase::kSet: {
       // down until the stack carries it
-      hold();
+      d.hold();
       core::Vec3 goal_head = goal.target_m;
       goal_head.z = head_z_over(m, goal.target_m.z - box_height / 2, box_height - 0.1);
-      head_to(goal_head, kLanding_mps);
-      if (m.measured_load_kg() < 0.1 * world.mass_kg(box)) enter(Phase::kUnlock);
+      d.head_to(goal_head, kLanding_mps);
+      if (m.measured_load_kg() < 0.1 * world.mass_kg(box_ref.body)) enter(Phase::kUnlock);
       break;
     }
     case Phase::kUnlock: {
       // the spreader let down on the box until the head carries only the spreader (the chassis rises as the
       // load leaves it), then the locks
-      hold();
+      d.hold();
       core::Vec3 goal_head = goal.target_m;
       goal_head.z = head_z_over(m, goal.target_m.z - box_height / 2, box_height - 0.2);
-      head_to(goal_head, kLanding_mps);
-      set("unlock", std::fmod(now - phase_start_s_, 1.0) < 0.2 ? 1.0 : 0.0);
+      d.head_to(goal_head, kLanding_mps);
+      d.set("unlock", std::fmod(now - phase_start_s_, 1.0) < 0.2 ? 1.0 : 0.0);
       if (!m.lamps().locked) enter(Phase::kClear);
       break;
     }
     case Phase::kClear: {
-      hold();
+      d.hold();
       core::Vec3 goal_head = m.head_m();
       goal_head.z = head_z_over(m, goal.target_m.z + box_height / 2, 0.8);
-      if (now - phase_start_s_ > 1.0 && head_to(goal_head, 0.3)) enter(Phase::kDone);
+      if (now - phase_start_s_ > 1.0 && d.head_to(goal_head, 0.3)) enter(Phase::kDone);
       break;
     }
     case Phase::kDone:
-      hold();
-      set("direction", 1.0);
+      d.hold();
+      d.set("direction", 1.0);
       break;
   }
-  return c;
+  return d.controls();
 }
 
 }  // namespace harbour::sim

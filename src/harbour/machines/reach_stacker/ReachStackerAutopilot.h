@@ -9,6 +9,12 @@
 
 namespace harbour::sim {
 
+/// The stacks on a reach stacker's line between where it carries a box from and its target.
+struct StacksInTheWay {
+  double nearest_face_along_m;  // the face of the nearest one it stops short of (the target's own if none)
+  double highest_top_m;         // the top it raises the box over (0: none)
+};
+
 /// A scripted reach stacker driver for one box's move along its lane: drives up to the box ahead, brings
 /// the spreader over it, lands, locks and lifts it, carries it low towards its target further along the
 /// lane, stops short of the stacks in front of the target to raise it over them, creeps on to where the
@@ -44,6 +50,9 @@ class ReachStackerAutopilot final : public DecidingPilot<ReachStacker> {
     kDone
   };
   scene::Controls decide(const Simulation& simulation, const ReachStacker& machine) override;
+  StacksInTheWay stacks_before_target(const Simulation& simulation) const;
+  /// Carries the box from `where_m` along the exercise's route, then along the line to the target.
+  void take_route_from(const core::Vec3& where_m);
   /// No truck stands in or near its lane's stop (the one it took the box from has driven off).
   bool way_clear(const Simulation& simulation) const;
 
