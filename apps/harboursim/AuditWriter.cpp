@@ -24,7 +24,7 @@ void AuditWriter::add(const std::string& account, const std::string& action, con
                       const std::string& detail) {
   {
     const std::lock_guard lock(mutex_);
-    queue_.push_back({io::utc_now(), account, action, target, detail});
+    queue_.push_back({records::utc_now(), account, action, target, detail});
     ++queued_;
   }
   wake_.notify_one();
@@ -42,16 +42,16 @@ std::string AuditWriter::last_error() const {
 }
 
 void AuditWriter::run() {
-  std::unique_ptr<io::RecordsStore> db;
+  std::unique_ptr<records::RecordsStore> db;
   std::unique_lock lock(mutex_);
   for (;;) {
     wake_.wait(lock, [this] { return stop_ || !queue_.empty(); });
     if (queue_.empty()) return;  // stopping with nothing left
-    const io::AuditRow row = queue_.front();
+    const records::AuditRow row = queue_.front();
     lock.unlock();
     std::string error;
     try {
-      if (!db) db = std::make_unique<io::RecordsStore>(database_);
+      if (!db) db = std::make_unique<records::RecordsStore>(database_);
       db->audit(row);
     } catch (const std::exception& e) {
       error = e.what();

@@ -7,7 +7,7 @@
 #include <string>
 #include <thread>
 
-#include "harbour/io/RecordsStore.h"
+#include "harbour/records/RecordsStore.h"
 
 namespace harbour::apps {
 
@@ -36,7 +36,7 @@ class AuditWriter {
   std::string database_;
   mutable std::mutex mutex_;
   std::condition_variable wake_, written_;
-  std::deque<io::AuditRow> queue_;
+  std::deque<records::AuditRow> queue_;
   std::uint64_t queued_ = 0, done_ = 0;  // entries ever queued and ever written
   bool stop_ = false;
   std::string last_error_;

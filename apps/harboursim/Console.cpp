@@ -53,11 +53,11 @@
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/io/InstructorCommandText.h"
 #include "harbour/io/RecordingFile.h"
-#include "harbour/io/RecordsStore.h"
 #include "harbour/io/RouteFiles.h"
 #include "harbour/io/TeamFiles.h"
 #include "harbour/machines/MachineType.h"
 #include "harbour/net/DdsLink.h"
+#include "harbour/records/RecordsStore.h"
 #include "harbour/sim/Recording.h"
 #include "harbour/training/Figures.h"
 
@@ -828,7 +828,7 @@ class Console {
   ConsoleOptions options_;
   asio::io_context& io_;
   net::ConsoleLink link_;
-  io::RecordsStore db_;
+  records::RecordsStore db_;
   AuditWriter audit_;  // after db_: the database is made before the writer opens it
   StaticFiles static_files_;
   std::shared_ptr<Connections> connections_ = std::make_shared<Connections>();
@@ -1269,7 +1269,7 @@ std::optional<Console::Response> Console::login(Call& c) {
   const Clock::time_point now = Clock::now();
   if (login_blocked("address " + peer, now) || login_blocked("account " + *name, now))
     return error(request, http::status::too_many_requests, "too many failed logins: wait a minute");
-  const std::optional<io::AccountRow> row = db_.account(*name);
+  const std::optional<records::AccountRow> row = db_.account(*name);
   // an unknown name costs a password check as a known one does
   const std::string& hash = row ? row->password_hash : unknown_account_hash_;
   const bool verified = crypto_pwhash_str_verify(hash.c_str(), password->data(), password->size()) == 0;
@@ -1485,7 +1485,7 @@ std::optional<Console::Response> Console::xapi_status(Call& c) {
 
 std::optional<Console::Response> Console::trainees(Call& c) {
   json list = json::array();
-  for (const io::TraineeRow& t : db_.trainees())
+  for (const records::TraineeRow& t : db_.trainees())
     list.push_back({{"id", t.id}, {"name", t.name}});
   return json_reply(c.request, http::status::ok, list);
 }
@@ -1516,12 +1516,12 @@ std::optional<Console::Response> Console::attempts(Call& c) {
   std::optional<std::string> trainee;
   if (!c.trainee.empty()) trainee = c.trainee;
   json list = json::array();
-  for (const io::AttemptRow& a : db_.attempts(trainee))
+  for (const records::AttemptRow& a : db_.attempts(trainee))
     list.push_back({{"id", a.id},
                     {"trainee", a.trainee},
                     {"exercise", a.exercise},
                     {"status", a.status},
-                    {"outcome", io::attempt_outcome(a)},
+                    {"outcome", records::attempt_outcome(a)},
                     {"score", a.score ? json(*a.score) : json(nullptr)},
                     {"passed", a.passed},
                     {"moves", a.moves},
@@ -1541,14 +1541,14 @@ std::optional<Console::Response> Console::attempts(Call& c) {
 std::optional<Console::Response> Console::attempt(Call& c) {
   const auto& request = c.request;
   const std::int64_t id = c.segment_id;
-  const std::optional<io::AttemptRow> a = db_.attempt(id);
+  const std::optional<records::AttemptRow> a = db_.attempt(id);
   if (!a || !owns(*c.account, a->trainee))
     return error(request, http::status::not_found, "no attempt " + std::to_string(id) + " for you");
   json events = json::array(), metrics = json::object(), figures = json::array(), deductions = json::array();
-  for (const io::DeductionRow& d : db_.deductions(id))
+  for (const records::DeductionRow& d : db_.deductions(id))
     deductions.push_back(
         {{"reason", d.reason}, {"skill", d.skill}, {"count", d.count}, {"points", d.points}});
-  for (const io::EventRow& e : db_.events(id))
+  for (const records::EventRow& e : db_.events(id))
     events.push_back(attempt_event_json(e.at_s, e.kind, e.value));
   std::vector<std::pair<std::string, double>> stored;
   for (const auto& [name, value] : db_.metrics(id)) {
@@ -1570,7 +1570,7 @@ std::optional<Console::Response> Console::attempt(Call& c) {
                  {"trainee", a->trainee},
                  {"exercise", a->exercise},
                  {"status", a->status},
-                 {"outcome", io::attempt_outcome(*a)},
+                 {"outcome", records::attempt_outcome(*a)},
                  {"score", a->score ? json(*a->score) : json(nullptr)},
                  {"passed", a->passed},
                  {"events", events},
@@ -1613,7 +1613,7 @@ std::optional<Console::Response> Console::progress(Call& c) {
   if (!db_.has_trainee(trainee))
     return error(request, http::status::not_found, "no trainee '" + core::printable(trainee) + "'");
   json list = json::array();
-  for (const io::EnrolmentRow& e : db_.enrolments(trainee)) {
+  for (const records::EnrolmentRow& e : db_.enrolments(trainee)) {
     const auto route =
         std::find_if(routes_.begin(), routes_.end(), [&](const auto& r) { return r.id == e.route; });
     if (route == routes_.end()) continue;  // a route of another centre's folder
@@ -1693,7 +1693,7 @@ std::optional<Console::Response> Console::enrol_or_decide(Call& c) {
 std::optional<Console::Response> Console::audit_log(Call& c) {
   json list = json::array();
   audit_.flush();  // the log as it stands, the entries just queued in it
-  for (const io::AuditRow& a : db_.audit_log(200))
+  for (const records::AuditRow& a : db_.audit_log(200))
     list.push_back({{"at", a.at},
                     {"account", a.account},
                     {"action", a.action},
@@ -1878,7 +1878,7 @@ std::optional<Console::Response> Console::open_replay(Call& c) {
   if (attempt == body->end() || !attempt->is_number_integer() || attempt->get<std::int64_t>() <= 0)
     return error(request, http::status::bad_request, "field 'attempt': an attempt id");
   const std::int64_t id = attempt->get<std::int64_t>();
-  const std::optional<io::AttemptRow> row = db_.attempt(id);
+  const std::optional<records::AttemptRow> row = db_.attempt(id);
   if (!row) return error(request, http::status::not_found, "no attempt " + std::to_string(id));
   if (row->recording.empty())
     return error(request, http::status::conflict, "attempt " + std::to_string(id) + " was not recorded");
@@ -1910,7 +1910,7 @@ std::optional<Console::Response> Console::open_replay(Call& c) {
   }
   r.scene = scene_message(r.player->simulation().scene(), r.attempt);
   json events = json::array();
-  for (const io::EventRow& e : db_.events(id))
+  for (const records::EventRow& e : db_.events(id))
     events.push_back(attempt_event_json(e.at_s, e.kind, e.value));
   for (const sim::Recording::Command& given : r.recording.commands)
     events.push_back(attempt_event_json(static_cast<double>(given.step) * sim::Simulation::kStep_s,
@@ -2285,7 +2285,7 @@ void Console::poll() {
                             {"time_s", p.time_s()},
                             {"width", p.width()},
                             {"height", p.height()},
-                            {"jpeg", io::to_base64(std::string_view(
+                            {"jpeg", records::to_base64(std::string_view(
                                          reinterpret_cast<const char*>(jpeg.data()), jpeg.size()))}}));
           s->picture_sent() = key;
         }
@@ -2599,9 +2599,9 @@ std::string Console::attempts_csv(const std::optional<std::string>& trainee) {
       "id,trainee,exercise,exercise_version,route,stage,status,score,passed,moves,skill_safety,skill_"
       "precision,"
       "skill_productivity\r\n";
-  std::vector<io::AttemptRow> rows = db_.attempts(trainee);
+  std::vector<records::AttemptRow> rows = db_.attempts(trainee);
   std::reverse(rows.begin(), rows.end());
-  for (const io::AttemptRow& a : rows) {
+  for (const records::AttemptRow& a : rows) {
     std::map<std::string, double> skills;
     for (const auto& [name, value] : db_.metrics(a.id))
       skills[name] = value;
@@ -2744,8 +2744,8 @@ int run_console(const ConsoleOptions& given) {
 }
 
 int list_accounts(const std::string& database) {
-  io::RecordsStore db(database.empty() ? default_database() : database);
-  for (const io::AccountRow& a : db.accounts())
+  records::RecordsStore db(database.empty() ? default_database() : database);
+  for (const records::AccountRow& a : db.accounts())
     std::printf("%-24s %s\n", core::printable(a.name).c_str(), a.role.c_str());
   return 0;
 }
@@ -2757,7 +2757,7 @@ int add_account(const std::string& database, const std::string& name, const std:
   if (!std::getline(std::cin, password)) throw std::runtime_error("no password on standard input");
   if (password.size() < 8 || password.size() > 256)
     throw std::runtime_error("the password: 8 to 256 characters");
-  io::RecordsStore db(database.empty() ? default_database() : database);
+  records::RecordsStore db(database.empty() ? default_database() : database);
   db.add_account({name, role, hash_password(password), trainee});
   db.audit("(command line)", "add_account", name, role);
   std::printf("account %s (%s) added\n", name.c_str(), role.c_str());

@@ -22,7 +22,7 @@
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/io/InstructorCommandText.h"
 #include "harbour/io/RecordingFile.h"
-#include "harbour/io/RecordsStore.h"
+#include "harbour/records/RecordsStore.h"
 #include "harbour/sim/Pilot.h"
 #include "harbour/sim/Recording.h"
 
@@ -189,25 +189,25 @@ std::string default_database() {
 }
 
 int add_trainee(const std::string& database, const std::string& id, const std::string& name) {
-  io::RecordsStore db(database.empty() ? default_database() : database);
+  records::RecordsStore db(database.empty() ? default_database() : database);
   db.add_trainee(id, name);
   std::printf("trainee %s (%s) added\n", id.c_str(), name.c_str());
   return 0;
 }
 
 int list_trainees(const std::string& database) {
-  io::RecordsStore db(database.empty() ? default_database() : database);
-  for (const io::TraineeRow& t : db.trainees())
+  records::RecordsStore db(database.empty() ? default_database() : database);
+  for (const records::TraineeRow& t : db.trainees())
     std::printf("%-16s %s\n", core::printable(t.id).c_str(), core::printable(t.name).c_str());
   return 0;
 }
 
 int list_results(const std::string& database, const std::string& trainee) {
-  io::RecordsStore db(database.empty() ? default_database() : database);
+  records::RecordsStore db(database.empty() ? default_database() : database);
   const auto attempts = db.attempts(trainee.empty() ? std::nullopt : std::optional(trainee));
   std::printf("%-8s %-16s %-9s %-12s %-20s %-11s %6s %6s  %s\n", "attempt", "started (UTC)", "by", "trainee",
               "exercise", "status", "moves", "score", "from");
-  for (const io::AttemptRow& a : attempts) {
+  for (const records::AttemptRow& a : attempts) {
     const std::string score =
         a.score ? std::to_string(static_cast<int>(*a.score)) + (a.passed ? " P" : " F") : "-";
     const std::string from =
@@ -224,7 +224,7 @@ int list_results(const std::string& database, const std::string& trainee) {
 }
 
 int drive_attempt(const sim::ExerciseSettings& exercise, sim::Simulation& simulation, sim::Pilot& pilot,
-                  sim::Evaluator& evaluator, sim::Recorder& recorder, io::RecordsStore& db,
+                  sim::Evaluator& evaluator, sim::Recorder& recorder, records::RecordsStore& db,
                   std::optional<std::int64_t> parent, std::int64_t branch_step, const RunOptions& options);
 
 int run_exercise(const RunOptions& options) {
@@ -234,7 +234,7 @@ int run_exercise(const RunOptions& options) {
   }
   check_outputs(options);
   schedule(options.commands);  // a bad command stops the run before it starts
-  io::RecordsStore db(options.database.empty() ? default_database() : options.database);
+  records::RecordsStore db(options.database.empty() ? default_database() : options.database);
   RunOptions run = options;
   std::string exercise_file;
   if (!options.route.empty()) {
@@ -260,14 +260,14 @@ int run_exercise(const RunOptions& options) {
 }
 
 int drive(const sim::ExerciseSettings& exercise, sim::Simulation& simulation, sim::Pilot& pilot,
-          sim::Evaluator& evaluator, sim::Recorder& recorder, io::RecordsStore& db, std::int64_t attempt,
+          sim::Evaluator& evaluator, sim::Recorder& recorder, records::RecordsStore& db, std::int64_t attempt,
           const RunOptions& options, std::optional<io::RecordingWriter>& writer);
 
 // Runs an attempt to its end: the exercise done, its time limit and overtime past, the physics diverged, or
 // Ctrl-C. The recording streams as it goes and the attempt is stored with how it ended; an error on the way
 // (a full disk, a lost database) still marks the attempt interrupted where it can.
 int drive_attempt(const sim::ExerciseSettings& exercise, sim::Simulation& simulation, sim::Pilot& pilot,
-                  sim::Evaluator& evaluator, sim::Recorder& recorder, io::RecordsStore& db,
+                  sim::Evaluator& evaluator, sim::Recorder& recorder, records::RecordsStore& db,
                   std::optional<std::int64_t> parent, std::int64_t branch_step, const RunOptions& options) {
   if (options.trainee == "autopilot") db.ensure_trainee("autopilot", "Scripted operator");
   if (!db.has_trainee(options.trainee))
@@ -298,7 +298,7 @@ int drive_attempt(const sim::ExerciseSettings& exercise, sim::Simulation& simula
 }
 
 int drive(const sim::ExerciseSettings& exercise, sim::Simulation& simulation, sim::Pilot& pilot,
-          sim::Evaluator& evaluator, sim::Recorder& recorder, io::RecordsStore& db, std::int64_t attempt,
+          sim::Evaluator& evaluator, sim::Recorder& recorder, records::RecordsStore& db, std::int64_t attempt,
           const RunOptions& options, std::optional<io::RecordingWriter>& writer) {
   const StopOnSignal stop_on_signal;
   const auto wall_start = std::chrono::steady_clock::now();
@@ -321,7 +321,7 @@ int drive(const sim::ExerciseSettings& exercise, sim::Simulation& simulation, si
     simulation.step(in);
     evaluator.observe(simulation, in);
     if (const sim::Progress now = sim::progress(evaluator.metrics()); now.grew_since(stored)) {
-      io::record_progress(db, attempt, stored, now);
+      records::record_progress(db, attempt, stored, now);
       stored = now;
     }
     if (!options.record.empty()) recorder.after_step(simulation, in);
@@ -346,7 +346,7 @@ int drive(const sim::ExerciseSettings& exercise, sim::Simulation& simulation, si
               simulation.time_s() - start_s, wall, (simulation.time_s() - start_s) / wall,
               simulation.warnings().total());
   const sim::Score score = evaluator.score();
-  const std::string status = io::attempt_status(simulation.diverged(), g_stop_requested != 0, score);
+  const std::string status = records::attempt_status(simulation.diverged(), g_stop_requested != 0, score);
   const bool out_of_time = !simulation.diverged() && !g_stop_requested && !evaluator.finished();
   if (simulation.diverged()) {
     std::printf("STOPPED: the physics diverged at t=%.3f s (%s); the attempt is stored as diverged\n",
@@ -370,7 +370,7 @@ int drive(const sim::ExerciseSettings& exercise, sim::Simulation& simulation, si
   std::string kept;
   if (writer) {
     writer->finish(recorder.recording().total_steps);
-    kept = io::recording_copy(options.record, io::kMaxStoredRecordingBytes);
+    kept = io::recording_copy(options.record, records::kMaxStoredRecordingBytes);
   }
   db.finish_attempt(attempt, evaluator.metrics(), score, options.record, status, kept);
   std::printf("stored as attempt %lld of trainee %s (%s)\n", static_cast<long long>(attempt),
@@ -422,7 +422,7 @@ sim::ExerciseSettings load_resolved_exercise(const std::string& file) {
   return io::load_exercise_source(io::read_exercise_source(file));
 }
 
-io::ExerciseSource attempt_exercise(io::RecordsStore& db, const io::AttemptRow& attempt,
+io::ExerciseSource attempt_exercise(records::RecordsStore& db, const records::AttemptRow& attempt,
                                     const std::string& centre_exercises, std::string& inexact) {
   namespace fs = std::filesystem;
   inexact.clear();
@@ -460,8 +460,8 @@ int replay_recording(const std::string& recording_path, const std::string& exerc
 }
 
 int replay_attempt(std::int64_t attempt, const std::string& database, const std::string& centre_exercises) {
-  io::RecordsStore db(database.empty() ? default_database() : database);
-  const std::optional<io::AttemptRow> row = db.attempt(attempt);
+  records::RecordsStore db(database.empty() ? default_database() : database);
+  const std::optional<records::AttemptRow> row = db.attempt(attempt);
   if (!row) {
     std::fprintf(stderr, "harboursim: no attempt %lld in the records\n", static_cast<long long>(attempt));
     return 2;
@@ -532,9 +532,9 @@ int take_over_recording(const std::string& recording_path, const RunOptions& giv
   sim::TakeOver branch =
       sim::take_over(exercise.scenario, recording, recording_path, step,
                      [&](const sim::Simulation& s, const scene::Controls& in) { evaluator.observe(s, in); });
-  io::RecordsStore db(options.database.empty() ? default_database() : options.database);
+  records::RecordsStore db(options.database.empty() ? default_database() : options.database);
   std::optional<std::int64_t> parent;
-  if (const std::optional<io::AttemptRow> original = db.attempt_recorded_at(recording_path))
+  if (const std::optional<records::AttemptRow> original = db.attempt_recorded_at(recording_path))
     parent = original->id;
   std::printf("harboursim: took over %s at t=%.3f s (%s)%s; the autopilot drives on\n",
               recording_path.c_str(), branch.simulation->time_s(),

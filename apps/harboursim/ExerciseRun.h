@@ -5,7 +5,7 @@
 
 #include "Centre.h"
 #include "harbour/io/ExerciseFiles.h"
-#include "harbour/io/RecordsStore.h"
+#include "harbour/records/RecordsStore.h"
 #include "harbour/sim/Evaluation.h"
 
 namespace harbour::apps {
@@ -52,7 +52,7 @@ sim::ExerciseSettings load_resolved_exercise(const std::string& file);
 /// The exercise a stored attempt ran, to replay or continue it: the records' copy of its version, else the
 /// file of that version (the current one, or one the designer kept). Where neither is left, the current file
 /// with `inexact` saying in words that the replay may not be what the trainee had (else `inexact` is "").
-io::ExerciseSource attempt_exercise(io::RecordsStore& db, const io::AttemptRow& attempt,
+io::ExerciseSource attempt_exercise(records::RecordsStore& db, const records::AttemptRow& attempt,
                                     const std::string& centre_exercises, std::string& inexact);
 
 /// The default records database: $XDG_DATA_HOME/harboursim/records.db (or ~/.local/share/...), as a SOCI

@@ -33,11 +33,11 @@ std::string utc_now() {
   return text;
 }
 
-std::vector<training::RouteStanding> route_standings(io::RecordsStore& db,
+std::vector<training::RouteStanding> route_standings(records::RecordsStore& db,
                                                      const std::vector<training::Route>& routes,
                                                      const std::string& trainee) {
   std::vector<training::RouteStanding> out;
-  for (const io::EnrolmentRow& e : db.enrolments(trainee)) {
+  for (const records::EnrolmentRow& e : db.enrolments(trainee)) {
     for (const training::Route& r : routes)
       if (r.id == e.route)
         out.push_back(
@@ -46,11 +46,11 @@ std::vector<training::RouteStanding> route_standings(io::RecordsStore& db,
   return out;
 }
 
-training::TraineeReportData trainee_report_data(io::RecordsStore& db,
+training::TraineeReportData trainee_report_data(records::RecordsStore& db,
                                                 const std::vector<training::Route>& routes,
                                                 const std::string& trainee) {
   training::TraineeReportData d;
-  for (const io::TraineeRow& t : db.trainees())
+  for (const records::TraineeRow& t : db.trainees())
     if (t.id == trainee) d.name = t.name;
   if (!db.has_trainee(trainee)) throw std::out_of_range("no trainee '" + core::printable(trainee) + "'");
   d.trainee = trainee;
@@ -63,12 +63,12 @@ training::TraineeReportData trainee_report_data(io::RecordsStore& db,
   return d;
 }
 
-training::ClassReportData class_report_data(io::RecordsStore& db,
+training::ClassReportData class_report_data(records::RecordsStore& db,
                                             const std::vector<training::Route>& routes) {
   training::ClassReportData d;
   d.generated_at = utc_now();
   std::vector<std::string> ids;
-  for (const io::TraineeRow& t : db.trainees()) {
+  for (const records::TraineeRow& t : db.trainees()) {
     ids.push_back(t.id);
     d.names.push_back(t.name);
     d.routes.push_back(route_standings(db, routes, t.id));
@@ -154,7 +154,7 @@ void print_pdf(const std::string& html, const std::filesystem::path& pdf) {
 
 int write_report(const std::string& database, const CentreFolders& centre, const std::string& trainee,
                  const std::string& out) {
-  io::RecordsStore db(database.empty() ? default_database() : database);
+  records::RecordsStore db(database.empty() ? default_database() : database);
   const std::vector<training::Route> routes = load_centre_routes(centre);
   std::string html;
   try {

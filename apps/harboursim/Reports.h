@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "Centre.h"
-#include "harbour/io/RecordsStore.h"
+#include "harbour/records/RecordsStore.h"
 #include "harbour/training/Report.h"
 
 namespace harbour::apps {
@@ -14,16 +14,17 @@ namespace harbour::apps {
 std::string utc_now();
 
 /// A trainee's routes (those of `routes` they are enrolled in) and their progress on each.
-std::vector<training::RouteStanding> route_standings(io::RecordsStore& db,
+std::vector<training::RouteStanding> route_standings(records::RecordsStore& db,
                                                      const std::vector<training::Route>& routes,
                                                      const std::string& trainee);
 
 /// What a trainee's report holds, read from the records; throws std::out_of_range for an unknown trainee.
-training::TraineeReportData trainee_report_data(io::RecordsStore& db,
+training::TraineeReportData trainee_report_data(records::RecordsStore& db,
                                                 const std::vector<training::Route>& routes,
                                                 const std::string& trainee);
 /// What the class report holds: every trainee in the records.
-training::ClassReportData class_report_data(io::RecordsStore& db, const std::vector<training::Route>& routes);
+training::ClassReportData class_report_data(records::RecordsStore& db,
+                                            const std::vector<training::Route>& routes);
 
 /// Prints an HTML page to a PDF file with Debian's chromium, headless, in a private profile;
 /// the page is written next to the PDF's temporary and both are replaced only when chromium succeeded, so

@@ -42,12 +42,12 @@ training::Route load_named_route(const CentreFolders& centre, const std::string&
   throw std::runtime_error("no route '" + id + "' (there are: " + known + ")");
 }
 
-RouteStage next_route_stage(io::RecordsStore& db, const CentreFolders& centre, const std::string& trainee,
-                            const std::string& route_id) {
+RouteStage next_route_stage(records::RecordsStore& db, const CentreFolders& centre,
+                            const std::string& trainee, const std::string& route_id) {
   const training::Route route = load_named_route(centre, route_id);
   const auto enrolled = db.enrolments(trainee);
   if (std::none_of(enrolled.begin(), enrolled.end(),
-                   [&](const io::EnrolmentRow& e) { return e.route == route.id; }))
+                   [&](const records::EnrolmentRow& e) { return e.route == route.id; }))
     throw std::runtime_error("trainee '" + trainee + "' is not enrolled in route '" + route.id +
                              "' (harboursim routes enrol " + trainee + " " + route.id + ")");
   const training::RouteProgress p =
@@ -87,7 +87,7 @@ int show_route(const std::string& database, const CentreFolders& centre, const s
   const training::Route route = load_named_route(centre, route_id);
   std::optional<training::RouteProgress> p;
   if (!trainee.empty()) {
-    io::RecordsStore db(database.empty() ? default_database() : database);
+    records::RecordsStore db(database.empty() ? default_database() : database);
     if (!db.has_trainee(trainee)) throw std::runtime_error("no trainee '" + core::printable(trainee) + "'");
     p = training::progress(route, db.stage_attempts(trainee, route.id), db.overrides(trainee, route.id));
   }
@@ -122,7 +122,7 @@ int show_route(const std::string& database, const CentreFolders& centre, const s
 int enrol_trainee(const std::string& database, const CentreFolders& centre, const std::string& trainee,
                   const std::string& route_id) {
   const training::Route route = load_named_route(centre, route_id);
-  io::RecordsStore db(database.empty() ? default_database() : database);
+  records::RecordsStore db(database.empty() ? default_database() : database);
   const bool added = db.enrol(trainee, route.id, "(command line)");
   if (added) db.audit("(command line)", "enrol", trainee, route.id);
   std::printf("trainee %s %s route %s\n", trainee.c_str(), added ? "enrolled in" : "was already enrolled in",
@@ -136,7 +136,7 @@ int decide_stage(const std::string& database, const CentreFolders& centre, const
   const training::Route route = load_named_route(centre, route_id);
   if (!route.stage(stage))
     throw std::runtime_error("route '" + route.id + "' has no stage '" + core::printable(stage) + "'");
-  io::RecordsStore db(database.empty() ? default_database() : database);
+  records::RecordsStore db(database.empty() ? default_database() : database);
   db.add_override(trainee, route.id, {stage, action, reason, "(command line)", ""});
   db.audit("(command line)", action, trainee + " " + route.id + "/" + stage, reason);
   std::printf("%s: %s %s/%s (%s)\n", action.c_str(), trainee.c_str(), route.id.c_str(), stage.c_str(),

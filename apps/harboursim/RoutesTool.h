@@ -5,7 +5,7 @@
 
 #include "Centre.h"
 
-#include "harbour/io/RecordsStore.h"
+#include "harbour/records/RecordsStore.h"
 #include "harbour/training/Route.h"
 
 namespace harbour::apps {
@@ -22,8 +22,8 @@ struct RouteStage {
   training::Route route;
   training::Stage stage;
 };
-RouteStage next_route_stage(io::RecordsStore& db, const CentreFolders& centre, const std::string& trainee,
-                            const std::string& route_id);
+RouteStage next_route_stage(records::RecordsStore& db, const CentreFolders& centre,
+                            const std::string& trainee, const std::string& route_id);
 
 /// `harboursim routes list|show|enrol|sign-off|retry`.
 int list_routes(const CentreFolders& centre);

@@ -92,8 +92,8 @@ std::unique_ptr<station::DeviceInput> open_devices(const station::Profile& profi
 std::optional<io::ExerciseSource> taken_over_exercise(const std::string& database,
                                                       const StationOptions& options) {
   if (options.take_over_recording.empty()) return std::nullopt;
-  io::RecordsStore db(database);
-  const std::optional<io::AttemptRow> taken = db.attempt_recorded_at(options.take_over_recording);
+  records::RecordsStore db(database);
+  const std::optional<records::AttemptRow> taken = db.attempt_recorded_at(options.take_over_recording);
   if (!taken) return std::nullopt;
   std::string inexact;
   io::ExerciseSource source = attempt_exercise(db, *taken, options.centre.exercises, inexact);
@@ -120,7 +120,7 @@ void choose_exercise(const StationOptions& options, const std::string& database,
                                "' (its roles: " + team->role_list() + ")");
   }
   if (!options.route.empty()) {
-    io::RecordsStore db(database);
+    records::RecordsStore db(database);
     const RouteStage next = next_route_stage(db, options.centre, options.trainee, options.route);
     session.source = io::read_exercise_source(next.stage.exercise_file);
     session.route = next.route.id;
@@ -465,8 +465,9 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
   const station::Profile profile =
       station::load_profile(station::resolve_profile(options.profile, HARBOUR_DATA_DIR));
   if (options.trainee == "autopilot")
-    io::RecordsStore(database).ensure_trainee("autopilot", "Scripted operator");
-  if (options.trainee == "guest") io::RecordsStore(database).ensure_trainee("guest", "Guest at the station");
+    records::RecordsStore(database).ensure_trainee("autopilot", "Scripted operator");
+  if (options.trainee == "guest")
+    records::RecordsStore(database).ensure_trainee("guest", "Guest at the station");
 
   session_options.trainee = options.trainee;
   session_options.record = options.record;

@@ -63,7 +63,7 @@ Endpoint parse_endpoint(const std::string& url) {
 
 // UTC ISO 8601 with milliseconds, `seconds` from now: the outbox's times compare as text
 std::string utc_after(double seconds) {
-  return io::utc_time(
+  return records::utc_time(
       std::chrono::system_clock::now() + std::chrono::duration_cast<std::chrono::system_clock::duration>(
                                              std::chrono::duration<double>(seconds)),
       3);
@@ -82,7 +82,7 @@ http::response<http::string_body> round_trip(Stream& stream,
 }
 
 http::response<http::string_body> put_statement(const Endpoint& e, const LrsOptions& lrs,
-                                                const io::XapiRow& row) {
+                                                const records::XapiRow& row) {
   http::request<http::string_body> request{http::verb::put,
                                            e.path + "statements?statementId=" + row.statement_id, 11};
   // RFC 9112 (3.2): Host is the URI's host and its port, which may only be left out where it is the scheme's
@@ -92,7 +92,7 @@ http::response<http::string_body> put_statement(const Endpoint& e, const LrsOpti
   request.set(http::field::content_type, "application/json");
   request.set("X-Experience-API-Version", "1.0.3");
   if (!lrs.credentials.empty())
-    request.set(http::field::authorization, "Basic " + io::to_base64(lrs.credentials));
+    request.set(http::field::authorization, "Basic " + records::to_base64(lrs.credentials));
   request.body() = training::xapi::addressed(row.statement, lrs.centre);
   request.prepare_payload();
   asio::io_context io;
@@ -137,11 +137,11 @@ std::string read_lrs_credentials(const std::string& file) {
   return line;
 }
 
-SendReport send_due(io::RecordsStore& db, const LrsOptions& lrs, int most) {
+SendReport send_due(records::RecordsStore& db, const LrsOptions& lrs, int most) {
   const Endpoint e = parse_endpoint(lrs.endpoint);
   SendReport report;
   const std::string now = utc_after(0.0);
-  for (const io::XapiRow& row : db.xapi_due("9999", most)) {  // every queued one, in order
+  for (const records::XapiRow& row : db.xapi_due("9999", most)) {  // every queued one, in order
     if (row.next_try_at > now) break;  // a failed one waits: those after it wait too, so that order holds
     const double wait_s = std::min(300.0, 2.0 * static_cast<double>(1 << std::min(row.tries, 8)));
     try {
@@ -190,13 +190,13 @@ std::string XapiWorker::last_report() const {
 }
 
 void XapiWorker::run() {
-  std::unique_ptr<io::RecordsStore> db;
+  std::unique_ptr<records::RecordsStore> db;
   std::unique_lock lock(mutex_);
   while (!stop_) {
     lock.unlock();
     std::string said;
     try {
-      if (!db) db = std::make_unique<io::RecordsStore>(database_);
+      if (!db) db = std::make_unique<records::RecordsStore>(database_);
       const SendReport r = send_due(*db, lrs_);
       if (r.sent || r.retry || r.rejected)
         said = std::to_string(r.sent) + " sent, " + std::to_string(r.retry) + " to retry, " +
@@ -212,12 +212,12 @@ void XapiWorker::run() {
 }
 
 int xapi_status(const std::string& database) {
-  io::RecordsStore db(database.empty() ? default_database() : database);
+  records::RecordsStore db(database.empty() ? default_database() : database);
   std::map<std::string, int> by_state = db.xapi_counts();
-  const std::vector<io::XapiRow> rows = db.xapi_outbox();
+  const std::vector<records::XapiRow> rows = db.xapi_outbox();
   std::printf("xAPI outbox: %d queued, %d sent, %d rejected\n", by_state["queued"], by_state["sent"],
               by_state["rejected"]);
-  for (const io::XapiRow& r : rows)
+  for (const records::XapiRow& r : rows)
     if (!r.last_error.empty())
       std::printf("  %s %s (attempt %lld, %d tries, %s): %s\n", r.state.c_str(), r.verb.c_str(),
                   static_cast<long long>(r.attempt), r.tries,
@@ -243,7 +243,7 @@ training::xapi::Centre xapi_centre(const std::string& iri, const CentreFolders& 
 
 int xapi_send(const std::string& database, const std::string& endpoint, const std::string& credentials_file,
               bool watch, const training::xapi::Centre& centre) {
-  io::RecordsStore db(database.empty() ? default_database() : database);
+  records::RecordsStore db(database.empty() ? default_database() : database);
   const LrsOptions lrs{endpoint, read_lrs_credentials(credentials_file), centre};
   parse_endpoint(endpoint);  // a bad URL stops it before anything is tried
   g_stop = 0;

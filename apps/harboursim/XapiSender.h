@@ -7,7 +7,7 @@
 #include <thread>
 
 #include "Centre.h"
-#include "harbour/io/RecordsStore.h"
+#include "harbour/records/RecordsStore.h"
 #include "harbour/training/Xapi.h"
 
 namespace harbour::apps {
@@ -38,7 +38,7 @@ struct SendReport {
 /// its answer lost, is stored once). 200/204 mark it sent; 400, 409 and 413 reject it; anything else, or no
 /// answer, queues it again after 2 s x 2^tries (at most 5 min) and ends the pass (the LRS is not asked again
 /// until then).
-SendReport send_due(io::RecordsStore& db, const LrsOptions& lrs, int most = 200);
+SendReport send_due(records::RecordsStore& db, const LrsOptions& lrs, int most = 200);
 
 /// The credentials in an LRS credentials file: one line user:password; throws naming the file.
 std::string read_lrs_credentials(const std::string& file);

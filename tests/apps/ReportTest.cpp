@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "harbour/io/RecordsStore.h"
+#include "harbour/records/RecordsStore.h"
 #include "support/PngPixels.h"
 
 namespace harbour::apps {
@@ -54,7 +54,7 @@ TEST(Report, TheTraineePdfHasTheNameThePlotsAndTheFigures) {
   fs::create_directories(folder);
   const std::string db = "sqlite3://db=" + (folder / "records.db").string();
   {
-    io::RecordsStore records(db);
+    records::RecordsStore records(db);
     records.add_trainee("ana", "Ana Lopez");
     records.add_trainee("ben", "Ben Okafor");
     ASSERT_TRUE(records.enrol("ana", "sts_basic", "ines"));
@@ -111,7 +111,7 @@ TEST(Report, TheTraineePdfHasTheNameThePlotsAndTheFigures) {
 
   // a long report: the attempts' table runs onto a second page, which repeats its head
   {
-    io::RecordsStore records(db);
+    records::RecordsStore records(db);
     for (int n = 0; n < 60; ++n) {
       const auto id =
           records.begin_attempt({"ben", "sts_discharge", std::nullopt, 0, "", "", "", "0123456789abcdef"});

@@ -16,7 +16,7 @@
 
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/io/RecordingFile.h"
-#include "harbour/io/RecordsStore.h"
+#include "harbour/records/RecordsStore.h"
 #include "harbour/sim/Recording.h"
 #include "support/AppProcess.h"
 
@@ -55,7 +55,7 @@ TEST(Run, KilledMidExerciseItsAttemptIsInterruptedAndItsRecordingPrefixReplays) 
   ASSERT_TRUE(WIFSIGNALED(status));
 
   // opening the database marks the attempt whose process is gone; its recording is linked from the start
-  io::RecordsStore store(db);
+  records::RecordsStore store(db);
   const auto attempts = store.attempts();
   ASSERT_EQ(attempts.size(), 1u);
   EXPECT_EQ(attempts[0].status, "interrupted");
@@ -90,10 +90,10 @@ TEST(Run, EightStationsOnOneSqliteDatabaseAllStoreTheirAttempts) {
         << ", its log:\n"
         << read_text(folder / ("run" + std::to_string(n) + ".log"));
   }
-  io::RecordsStore store(db);
+  records::RecordsStore store(db);
   const auto attempts = store.attempts();
   ASSERT_EQ(attempts.size(), 8u);
-  for (const io::AttemptRow& a : attempts) {
+  for (const records::AttemptRow& a : attempts) {
     EXPECT_EQ(a.status, "finished");
     EXPECT_EQ(a.moves, 1);
   }
@@ -131,12 +131,12 @@ TEST(Run, AFaultTheInstructorInjectedEndsTheAttemptByTheInstructorNotAsAPass) {
   EXPECT_NE(log.find("ENDED BY THE INSTRUCTOR (neither passed nor failed)"), std::string::npos) << log;
   EXPECT_EQ(log.find("PASSED"), std::string::npos) << log;
   EXPECT_EQ(log.find("after -"), std::string::npos) << "a negative duration: " << log;
-  io::RecordsStore store(db);
+  records::RecordsStore store(db);
   const auto attempts = store.attempts();
   ASSERT_EQ(attempts.size(), 1u);
   EXPECT_EQ(attempts[0].status, "ended_by_instructor");
   EXPECT_FALSE(attempts[0].passed);
-  EXPECT_EQ(io::attempt_outcome(attempts[0]), "ended by the instructor");
+  EXPECT_EQ(records::attempt_outcome(attempts[0]), "ended by the instructor");
   EXPECT_EQ(attempts[0].moves, 0);
 }
 
@@ -158,7 +158,7 @@ TEST(Run, ARunOutOfTimeWithGoalsLeftExitsNonZeroAndSaysSo) {
       exit_code(start_run(folder, db, "", 0, {}, (folder / "exercises" / "sts_discharge.yaml").string())), 4);
   const std::string log = read_text(folder / "run0.log");
   EXPECT_NE(log.find("with goals left: moves 0/1"), std::string::npos) << log;
-  io::RecordsStore store(db);
+  records::RecordsStore store(db);
   ASSERT_EQ(store.attempts().size(), 1u);
   EXPECT_EQ(store.attempts()[0].status, "finished");
   EXPECT_FALSE(store.attempts()[0].passed);

@@ -22,8 +22,8 @@
 
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/io/RecordingFile.h"
-#include "harbour/io/RecordsStore.h"
 #include "harbour/machines/sts/StsCrane.h"
+#include "harbour/records/RecordsStore.h"
 #include "harbour/station/DeviceMappingFile.h"
 #include "scenes/StsScenes.h"
 #include "support/PngPixels.h"
@@ -159,7 +159,7 @@ TEST(StationCommand, CtrlCStoresTheAttemptAndClosesTheRecording) {
   EXPECT_NE(output.find("station (medium)"), std::string::npos) << output;
   EXPECT_NE(output.find("(interrupted)"), std::string::npos) << output;
 
-  io::RecordsStore store(db);
+  records::RecordsStore store(db);
   const auto attempts = store.attempts();
   ASSERT_EQ(attempts.size(), 1u);
   EXPECT_EQ(attempts[0].status, "interrupted");

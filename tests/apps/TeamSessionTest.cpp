@@ -17,8 +17,8 @@
 #include "harbour/core/Vec3.h"
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/io/RecordingFile.h"
-#include "harbour/io/RecordsStore.h"
 #include "harbour/net/DdsLink.h"
+#include "harbour/records/RecordsStore.h"
 #include "harbour/sim/Recording.h"
 #include "support/AppProcess.h"
 
@@ -249,10 +249,10 @@ TEST(TeamSession, ThreeStationsHandEachBoxOverOnceAndStoreOneSessionThatReplaysB
   // replays its own machine bit for bit with the others' doings read back from it
   std::string session;
   for (const std::string& role : roles) {
-    io::RecordsStore records("sqlite3://db=" + (folder / (role + ".db")).string());
-    const std::vector<io::AttemptRow> attempts = records.attempts();
+    records::RecordsStore records("sqlite3://db=" + (folder / (role + ".db")).string());
+    const std::vector<records::AttemptRow> attempts = records.attempts();
     ASSERT_EQ(attempts.size(), 1u) << role;
-    const io::AttemptRow& a = attempts.front();
+    const records::AttemptRow& a = attempts.front();
     EXPECT_EQ(a.status, "finished") << role << "\n" << logs();
     EXPECT_EQ(a.team, "sts_and_two_tractors");
     EXPECT_EQ(a.team_role, role);

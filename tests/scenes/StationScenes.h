@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <string>
 
-#include "harbour/io/RecordsStore.h"
+#include "harbour/records/RecordsStore.h"
 
 namespace harbour::scenes {
 
@@ -21,7 +21,7 @@ inline std::string temp_path(const std::string& name) {
 inline std::string fresh_database(const std::string& name) {
   const std::string path = temp_path(name);
   std::filesystem::remove(path);
-  io::RecordsStore("sqlite3://db=" + path).ensure_trainee("t1", "Trainee One");
+  records::RecordsStore("sqlite3://db=" + path).ensure_trainee("t1", "Trainee One");
   return "sqlite3://db=" + path;
 }
 

@@ -17,8 +17,8 @@
 #include <thread>
 
 #include "harbour/io/DataError.h"
-#include "harbour/io/RecordsStore.h"
 #include "harbour/machines/GantryAutopilot.h"
+#include "harbour/records/RecordsStore.h"
 #include "harbour/station/DeviceMappingFile.h"
 #include "harbour/station/HeadTracker.h"
 #include "harbour/station/MotionLink.h"
@@ -81,7 +81,7 @@ TEST(TakeOver, AStationContinuesOnlyAStoredAttempt) {
               std::string::npos)
         << e.what();
   }
-  EXPECT_TRUE(io::RecordsStore(options.database).attempts().empty());
+  EXPECT_TRUE(records::RecordsStore(options.database).attempts().empty());
 }
 
 TEST(HeadTracking, OpenTrackDatagramsConvertToTheCabFrameWithinLimits) {

@@ -8,9 +8,9 @@
 #include <map>
 
 #include "harbour/io/ExerciseFiles.h"
-#include "harbour/io/RecordsStore.h"
 #include "harbour/io/RouteFiles.h"
 #include "harbour/machines/GantryAutopilot.h"
+#include "harbour/records/RecordsStore.h"
 #include "harbour/training/Cohort.h"
 #include "harbour/training/Route.h"
 
@@ -58,7 +58,7 @@ goals:
 )";
   const Route route = io::load_route((folder / "sts_cohort.yaml").string(), {HARBOUR_DATA_DIR "/exercises"});
   const std::string connection = "sqlite3://db=" + (folder / "records.db").string();
-  io::RecordsStore db(connection);
+  records::RecordsStore db(connection);
 
   // the defect levels: none; the twistlocks forgotten once; and landing fast as well
   const std::map<std::string, sim::OperatorDefects> cohort = {

@@ -18,14 +18,14 @@ Session::Session(const sim::ExerciseSettings& exercise, const SessionOptions& op
       simulation_(std::make_unique<sim::Simulation>(exercise.scenario)),
       evaluator_(exercise),
       recorder_(exercise.name, simulation_->control_table()) {
-  db_ = std::make_unique<io::RecordsStore>(options.database);
+  db_ = std::make_unique<records::RecordsStore>(options.database);
   if (!db_->has_trainee(options.trainee))
     throw std::runtime_error("no trainee '" + options.trainee + "' (add it with: harboursim trainees add)");
   std::optional<std::int64_t> parent;
   std::int64_t branch_step = 0;
   if (options.take_over) {
     // only an attempt the centre's records know is continued: a command names no other file to read
-    const std::optional<io::AttemptRow> taken = db_->attempt_recorded_at(options.take_over->recording);
+    const std::optional<records::AttemptRow> taken = db_->attempt_recorded_at(options.take_over->recording);
     if (!taken)
       throw std::runtime_error("take-over refused: no stored attempt was recorded at '" +
                                core::printable(options.take_over->recording) + "'");
@@ -161,7 +161,7 @@ bool Session::keep_what_is_handed() {
     keep(record);
   sim::Progress now;
   while (progress_.pop(now)) {
-    io::record_progress(*db_, attempt_, stored_, now);
+    records::record_progress(*db_, attempt_, stored_, now);
     stored_ = now;
     kept = true;
   }
@@ -202,12 +202,12 @@ SessionResult Session::finish(SessionEnd end) {
   result.metrics = evaluator_.metrics();  // the loop has stopped: the step thread's evaluator is ours
   result.metrics.team = team_;
   result.score = evaluator_.score(end == SessionEnd::kStoppedByInstructor);
-  result.status = io::attempt_status(simulation_->diverged(),
-                                     end == SessionEnd::kInterrupted || !keeper_error_.empty(), result.score);
+  result.status = records::attempt_status(
+      simulation_->diverged(), end == SessionEnd::kInterrupted || !keeper_error_.empty(), result.score);
   std::string kept;
   if (writer_) {
     writer_->finish(recorder_.recording().total_steps);
-    kept = io::recording_copy(options_.record, io::kMaxStoredRecordingBytes);
+    kept = io::recording_copy(options_.record, records::kMaxStoredRecordingBytes);
   }
   if (!team_member_[0].empty()) db_->note_team(attempt_, team_member_[0], team_member_[1], team_member_[2]);
   db_->finish_attempt(attempt_, result.metrics, result.score, options_.record, result.status, kept);

@@ -10,7 +10,7 @@
 #include <thread>
 
 #include "harbour/io/RecordingFile.h"
-#include "harbour/io/RecordsStore.h"
+#include "harbour/records/RecordsStore.h"
 #include "harbour/sim/Evaluation.h"
 #include "harbour/sim/Recording.h"
 #include "harbour/station/RealTimeLoop.h"
@@ -44,7 +44,7 @@ enum class SessionEnd : std::uint8_t {
 };
 
 struct SessionResult {
-  std::string status;  ///< as stored (io::attempt_status)
+  std::string status;  ///< as stored (records::attempt_status)
   std::int64_t attempt = 0;
   sim::Metrics metrics;
   sim::Score score;
@@ -87,7 +87,8 @@ class Session {
   /// A team session's member: what its station measured of the team, stored with the attempt's figures.
   /// Before finish().
   void set_team_figures(const sim::TeamFigures& figures) { team_ = figures; }
-  /// The attempt was a team session's member: stored with it (io::AttemptRow::team, team_role, team_session).
+  /// The attempt was a team session's member: stored with it (records::AttemptRow::team, team_role,
+  /// team_session).
   void set_team(const std::string& team, const std::string& role, const std::string& session) {
     team_member_ = {team, role, session};
   }
@@ -112,7 +113,7 @@ class Session {
   std::atomic<std::int64_t> kept_steps_{0};  // the keeper's: the steps it has recorded
   sim::Recorder recorder_;
   std::optional<io::RecordingWriter> writer_;
-  std::unique_ptr<io::RecordsStore> db_;
+  std::unique_ptr<records::RecordsStore> db_;
   std::int64_t attempt_ = 0;
   std::thread keeper_;
   std::atomic<bool> over_{false}, loop_done_{false};

@@ -16,7 +16,7 @@
 #include "harbour/training/Cohort.h"
 #include "harbour/training/Route.h"
 
-namespace harbour::io {
+namespace harbour::records {
 
 /// A trainee in the records.
 struct TraineeRow {
@@ -59,8 +59,8 @@ struct AttemptStart {
   std::int64_t branch_step = 0;
   std::string recording;
   std::string route, stage, exercise_version;
-  ExerciseSource source;   ///< the exercise as it runs, kept by its version (none: its text is not kept)
-  bool autopilot = false;  ///< the scripted operator drives it
+  io::ExerciseSource source;  ///< the exercise as it runs, kept by its version (none: its text is not kept)
+  bool autopilot = false;     ///< the scripted operator drives it
 };
 
 /// A trainee enrolled in a route: when and by whom (UTC, ISO 8601).
@@ -179,7 +179,7 @@ class RecordsStore {
   std::vector<AttemptRow> attempts(const std::optional<std::string>& trainee = std::nullopt);
   /// The exercise text an attempt of version `version` ran (none: not kept, an attempt before the records
   /// kept them); throws naming it when the kept text does not hash to its version.
-  std::optional<ExerciseSource> kept_exercise(const std::string& version);
+  std::optional<io::ExerciseSource> kept_exercise(const std::string& version);
   /// The attempt whose recording is the file `path`: the newest of them when a path was used again (the file
   /// holds the last run written to it); none when no attempt was recorded there (a take-over's check).
   std::optional<AttemptRow> attempt_recorded_at(const std::string& path);
@@ -250,4 +250,4 @@ class RecordsStore {
 void record_progress(RecordsStore& db, std::int64_t attempt, const sim::Progress& before,
                      const sim::Progress& now);
 
-}  // namespace harbour::io
+}  // namespace harbour::records

@@ -1,4 +1,4 @@
-#include "harbour/io/RecordsStore.h"
+#include "harbour/records/RecordsStore.h"
 
 #include <tuple>
 
@@ -30,7 +30,7 @@
 #include "harbour/io/RecordingFile.h"
 #include "harbour/training/Xapi.h"
 
-namespace harbour::io {
+namespace harbour::records {
 namespace {
 
 // setting WAL mode while another station opens the same file: tries, and the wait between them (10 s in all,
@@ -700,15 +700,15 @@ std::int64_t RecordsStore::begin_attempt(const AttemptStart& start) {
   });
 }
 
-std::optional<ExerciseSource> RecordsStore::kept_exercise(const std::string& version) {
+std::optional<io::ExerciseSource> RecordsStore::kept_exercise(const std::string& version) {
   return impl_->guarded(
-      "reading exercise version " + core::printable(version), [&]() -> std::optional<ExerciseSource> {
-        ExerciseSource source;
+      "reading exercise version " + core::printable(version), [&]() -> std::optional<io::ExerciseSource> {
+        io::ExerciseSource source;
         std::string exercise;
         impl_->sql << "SELECT exercise, folder, text FROM exercise_versions WHERE version = :v",
             soci::use(version), soci::into(exercise), soci::into(source.folder), soci::into(source.text);
         if (!impl_->sql.got_data()) return std::nullopt;
-        source.version = exercise_text_version(source.text);
+        source.version = io::exercise_text_version(source.text);
         if (source.version != version)
           throw std::runtime_error("the kept text of exercise " + core::printable(exercise) + " version " +
                                    core::printable(version) + " is damaged (its hash is " + source.version +
@@ -824,7 +824,8 @@ std::optional<AttemptRow> RecordsStore::attempt(std::int64_t id) {
 
 sim::Recording RecordsStore::read_recording_of(const AttemptRow& attempt) {
   std::optional<std::string> kept = recording(attempt.id);
-  return kept ? parse_recording(attempt.recording, std::move(*kept)) : io::read_recording(attempt.recording);
+  return kept ? io::parse_recording(attempt.recording, std::move(*kept))
+              : io::read_recording(attempt.recording);
 }
 
 std::optional<AttemptRow> RecordsStore::attempt_recorded_at(const std::string& path) {
@@ -1250,4 +1251,4 @@ void record_progress(RecordsStore& db, std::int64_t attempt, const sim::Progress
     db.record_event(attempt, now.time_s, e.kind, e.value);
 }
 
-}  // namespace harbour::io
+}  // namespace harbour::records

@@ -1,4 +1,4 @@
-#include "harbour/io/RecordsStore.h"
+#include "harbour/records/RecordsStore.h"
 
 #include <gtest/gtest.h>
 
@@ -17,7 +17,7 @@
 #include "scenes/StsScenes.h"
 #include "support/PostgresServer.h"
 
-namespace harbour::io {
+namespace harbour::records {
 namespace {
 
 std::string fresh_db(const char* name) {
@@ -320,14 +320,14 @@ TEST_P(RecordsStoreOn, TheExerciseVersionAnAttemptRanIsKept) {
   const std::string connection = fresh_connection(GetParam(), "records_exercise_versions");
   RecordsStore db(connection);
   db.add_trainee("t001", "Ana");
-  ExerciseSource source;
+  io::ExerciseSource source;
   source.file = "/centre/exercises/drill.yaml";
   source.folder = "/centre/exercises";
   source.text = "exercise:\n  name: drill  # \u00e9t\u00e9, every byte kept\n";
-  source.version = exercise_text_version(source.text);
+  source.version = io::exercise_text_version(source.text);
   for (int n = 0; n < 2; ++n)  // two attempts of one version: kept once
     db.begin_attempt({"t001", "drill", std::nullopt, 0, "", "", "", source.version, source});
-  const std::optional<ExerciseSource> kept = db.kept_exercise(source.version);
+  const std::optional<io::ExerciseSource> kept = db.kept_exercise(source.version);
   ASSERT_TRUE(kept);
   EXPECT_EQ(kept->text, source.text);
   EXPECT_EQ(kept->folder, source.folder);
@@ -665,9 +665,9 @@ TEST_P(RecordsStoreOn, KillingTheProcessMidExerciseKeepsTheMovesDoneSoFar) {
 }
 
 }  // namespace
-}  // namespace harbour::io
+}  // namespace harbour::records
 
-namespace harbour::io {
+namespace harbour::records {
 namespace {
 
 // Eight stations of a centre writing at once, each on its own connection: every attempt is stored, with its
@@ -740,4 +740,4 @@ TEST(RecordsStore, WhatCannotPersistIsRefusedAndAForeignDatabaseIsLeftUntouched)
 }
 
 }  // namespace
-}  // namespace harbour::io
+}  // namespace harbour::records
