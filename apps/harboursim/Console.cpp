@@ -39,13 +39,8 @@
 #include <type_traits>
 #include <vector>
 
-#include "AuditWriter.h"
 #include "Designer.h"
-#include "ExerciseRun.h"
-#include "Reports.h"
-#include "RoutesTool.h"
 #include "StationNet.h"
-#include "XapiSender.h"
 #include "harbour/bulk/BulkPublish.h"
 #include "harbour/core/Text.h"
 #include "harbour/ig/Visuals.h"
@@ -57,7 +52,11 @@
 #include "harbour/io/TeamFiles.h"
 #include "harbour/machines/MachineType.h"
 #include "harbour/net/DdsLink.h"
+#include "harbour/records/AuditWriter.h"
+#include "harbour/records/CentreRoutes.h"
 #include "harbour/records/RecordsStore.h"
+#include "harbour/records/Reports.h"
+#include "harbour/records/XapiSender.h"
 #include "harbour/sim/Recording.h"
 #include "harbour/training/Figures.h"
 
@@ -677,9 +676,10 @@ class Console {
         static_files_(options.web_root),
         poll_timer_(io) {
     if (!options.lrs.empty())
-      xapi_ = std::make_unique<XapiWorker>(
-          options.database, LrsOptions{options.lrs, read_lrs_credentials(options.lrs_auth_file),
-                                       xapi_centre(options.centre_iri, options.centre)});
+      xapi_ = std::make_unique<records::XapiWorker>(
+          options.database,
+          records::LrsOptions{options.lrs, records::read_lrs_credentials(options.lrs_auth_file),
+                              records::xapi_centre(options.centre_iri, options.centre)});
     // a password check for names that have no account, as slow as a real one: the time of a refusal does not
     // tell which names exist
     unknown_account_hash_ = hash_password(random_token());
@@ -817,7 +817,7 @@ class Console {
   static constexpr std::chrono::seconds kCheckBudget{10}, kPrintBudget{60};
   int checks_ = 0, printing_ = 0;                   ///< running beside (changed on the console's thread only)
   std::map<std::thread::id, std::thread> workers_;  ///< joined when done, or when the console ends
-  std::unique_ptr<XapiWorker> xapi_;                ///< the xAPI sender, with --lrs
+  std::unique_ptr<records::XapiWorker> xapi_;       ///< the xAPI sender, with --lrs
   /// Attempts (of one trainee or all) as CSV: one row each with the skills; text cells quoted, and
   /// those a spreadsheet would run as a formula prefixed with an apostrophe.
   std::string attempts_csv(const std::optional<std::string>& trainee);
@@ -829,7 +829,7 @@ class Console {
   asio::io_context& io_;
   net::ConsoleLink link_;
   records::RecordsStore db_;
-  AuditWriter audit_;  // after db_: the database is made before the writer opens it
+  records::AuditWriter audit_;  // after db_: the database is made before the writer opens it
   StaticFiles static_files_;
   std::shared_ptr<Connections> connections_ = std::make_shared<Connections>();
   asio::steady_timer poll_timer_;
@@ -872,9 +872,9 @@ class Console {
       dump(looks_json(ig::load_looks(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml")));
   /// the training routes (the centre's and data/routes), checked at start: a bad one stops the console
   /// naming it
-  std::vector<training::Route> routes_ = load_centre_routes(centre());
+  std::vector<training::Route> routes_ = records::load_centre_routes(centre());
   /// the centre's folders, the designer's folder being the centre's exercise folder
-  CentreFolders centre() const { return {exercise_folder(), options_.centre.routes}; }
+  records::CentreFolders centre() const { return {exercise_folder(), options_.centre.routes}; }
 };
 
 // Every API route and who may call it: read this table to know what each role can see and do.
@@ -1853,7 +1853,7 @@ Console::Response Console::save_route_now(const http::request<http::string_body>
   }
   // the console's routes with it; should another file of the folder spoil them, the save is undone
   try {
-    routes_ = load_centre_routes(centre());
+    routes_ = records::load_centre_routes(centre());
   } catch (const std::exception& e) {
     std::error_code ec;
     if (before.empty())
@@ -1888,7 +1888,7 @@ std::optional<Console::Response> Console::open_replay(Call& c) {
   Replay replay;
   std::string version, inexact;  // of the exercise replayed: the version the attempt ran, kept in the records
   try {
-    const io::ExerciseSource source = attempt_exercise(db_, *row, exercise_folder(), inexact);
+    const io::ExerciseSource source = records::attempt_exercise(db_, *row, exercise_folder(), inexact);
     replay.exercise = io::load_exercise_source(source);
     version = source.version;
     replay.recording = db_.read_recording_of(*row);  // the station may be another PC
@@ -2406,7 +2406,7 @@ json Console::evolution(const std::string& trainee) {
     standings.push_back(std::move(line));
   }
   json routes = json::array();
-  for (const training::RouteStanding& r : route_standings(db_, routes_, trainee)) {
+  for (const training::RouteStanding& r : records::route_standings(db_, routes_, trainee)) {
     int passed = 0;
     for (const training::StageProgress& p : r.progress.stages)
       passed += p.state == training::StageState::kPassed ? 1 : 0;
@@ -2423,7 +2423,7 @@ json Console::evolution(const std::string& trainee) {
 
 std::optional<Console::Response> Console::class_overview(Call& c) {
   const auto optional_number = [](const std::optional<double>& v) { return v ? json(*v) : json(nullptr); };
-  const training::ClassReportData d = class_report_data(db_, routes_);
+  const training::ClassReportData d = records::class_report_data(db_, routes_);
   json lines = json::array();
   for (std::size_t i = 0; i < d.lines.size(); ++i) {
     const training::TraineeSummary& t = d.lines[i];
@@ -2489,10 +2489,10 @@ std::optional<Console::Response> Console::report(Call& c) {
     if (c.trainee.empty()) return error(request, http::status::bad_request, "a report on whom: ?trainee=ID");
     if (!db_.has_trainee(c.trainee))
       return error(request, http::status::not_found, "no trainee '" + core::printable(c.trainee) + "'");
-    html = training::trainee_report_html(trainee_report_data(db_, routes_, c.trainee));
+    html = training::trainee_report_html(records::trainee_report_data(db_, routes_, c.trainee));
     name = "trainee-" + c.trainee;
   } else {
-    html = training::class_report_html(class_report_data(db_, routes_));
+    html = training::class_report_html(records::class_report_data(db_, routes_));
     name = "class";
   }
   // a file name a browser may save under: letters, digits, - and _ only
@@ -2517,7 +2517,7 @@ std::optional<Console::Response> Console::report(Call& c) {
            const std::filesystem::path file = std::filesystem::path(folder) / "report.pdf";
            std::string bytes, why;
            try {
-             print_pdf(html, file);
+             records::print_pdf(html, file);
              std::ifstream in(file, std::ios::binary);
              bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
            } catch (const std::exception& e) {
@@ -2691,7 +2691,7 @@ int run_console(const ConsoleOptions& given) {
   if (sodium_init() < 0) throw std::runtime_error("libsodium could not start");
   ConsoleOptions options = given;
   if (options.name.empty()) options.name = "console-" + std::to_string(getpid());
-  if (options.database.empty()) options.database = default_database();
+  if (options.database.empty()) options.database = records::default_database();
   if (options.web_root.empty()) options.web_root = std::string(HARBOUR_WEB_DIR);
   boost::system::error_code ec;
   const asio::ip::address address = asio::ip::make_address(options.bind, ec);
@@ -2744,7 +2744,7 @@ int run_console(const ConsoleOptions& given) {
 }
 
 int list_accounts(const std::string& database) {
-  records::RecordsStore db(database.empty() ? default_database() : database);
+  records::RecordsStore db(database.empty() ? records::default_database() : database);
   for (const records::AccountRow& a : db.accounts())
     std::printf("%-24s %s\n", core::printable(a.name).c_str(), a.role.c_str());
   return 0;
@@ -2757,7 +2757,7 @@ int add_account(const std::string& database, const std::string& name, const std:
   if (!std::getline(std::cin, password)) throw std::runtime_error("no password on standard input");
   if (password.size() < 8 || password.size() > 256)
     throw std::runtime_error("the password: 8 to 256 characters");
-  records::RecordsStore db(database.empty() ? default_database() : database);
+  records::RecordsStore db(database.empty() ? records::default_database() : database);
   db.add_account({name, role, hash_password(password), trainee});
   db.audit("(command line)", "add_account", name, role);
   std::printf("account %s (%s) added\n", name.c_str(), role.c_str());

@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-#include "Centre.h"
+#include "harbour/records/Centre.h"
 
 namespace harbour::apps {
 
@@ -20,7 +20,7 @@ struct ConsoleOptions {
   std::string centre_iri;          ///< the centre's xAPI IRI ("" : http://HOSTNAME/harboursim)
   /// the centre's exercise folder the designer saves in and its route folder the route editor saves in
   /// ("" : data/exercises, data/routes)
-  CentreFolders centre;
+  records::CentreFolders centre;
   double seconds = 0.0;  ///< stop after this long (tests; 0: until Ctrl-C)
   /// TLS (required off loopback): the certificate chain and its private key, PEM files
   std::string tls_certificate, tls_key;

@@ -230,7 +230,8 @@ std::string design_source(const std::string& folder, const std::string& name) {
   return read_file(file);
 }
 
-RouteCheck check_route_text(const CentreFolders& centre, const std::string& id, const std::string& yaml) {
+RouteCheck check_route_text(const records::CentreFolders& centre, const std::string& id,
+                            const std::string& yaml) {
   if (const std::string why = why_bad_design_name(id); !why.empty())
     throw std::invalid_argument("the route's file name '" + core::printable(id, 64) + "': " + why);
   RouteCheck check;
@@ -246,7 +247,7 @@ RouteCheck check_route_text(const CentreFolders& centre, const std::string& id, 
   return check;
 }
 
-std::string save_route(const CentreFolders& centre, const RouteCheck& route) {
+std::string save_route(const records::CentreFolders& centre, const RouteCheck& route) {
   const std::vector<std::string> folders = centre.route_folders();
   const fs::path file = fs::path(folders.front()) / (route.route.id + ".yaml");
   std::error_code ec;
@@ -264,7 +265,7 @@ std::string save_route(const CentreFolders& centre, const RouteCheck& route) {
   return file.string();
 }
 
-std::string route_source(const CentreFolders& centre, const std::string& id) {
+std::string route_source(const records::CentreFolders& centre, const std::string& id) {
   if (!why_bad_design_name(id).empty()) throw std::out_of_range("no route '" + core::printable(id) + "'");
   for (const std::string& folder : centre.route_folders())
     if (const fs::path file = fs::path(folder) / (id + ".yaml"); fs::is_regular_file(file))

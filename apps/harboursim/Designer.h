@@ -4,7 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "Centre.h"
+#include "harbour/records/Centre.h"
 #include "harbour/sim/Evaluation.h"
 #include "harbour/training/Route.h"
 
@@ -52,13 +52,14 @@ struct RouteCheck {
   std::string text;  ///< as it would be saved (the marker last)
 };
 /// Checks a route; throws std::invalid_argument with the loader's error, or when ID is no file name.
-RouteCheck check_route_text(const CentreFolders& centre, const std::string& id, const std::string& yaml);
+RouteCheck check_route_text(const records::CentreFolders& centre, const std::string& id,
+                            const std::string& yaml);
 /// Saves a checked route in the centre's route folder (the first of centre.route_folders()), written beside
 /// and renamed over. Throws std::logic_error when its name is a shipped route's or a route the editor did not
 /// write. Returns the file saved.
-std::string save_route(const CentreFolders& centre, const RouteCheck& route);
+std::string save_route(const records::CentreFolders& centre, const RouteCheck& route);
 /// The text of a route by name (the centre's, then the shipped ones), to start from; std::out_of_range when
 /// none.
-std::string route_source(const CentreFolders& centre, const std::string& id);
+std::string route_source(const records::CentreFolders& centre, const std::string& id);
 
 }  // namespace harbour::apps

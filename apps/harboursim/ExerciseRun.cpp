@@ -1,7 +1,5 @@
 #include "ExerciseRun.h"
 
-#include "RoutesTool.h"
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -22,6 +20,7 @@
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/io/InstructorCommandText.h"
 #include "harbour/io/RecordingFile.h"
+#include "harbour/records/CentreRoutes.h"
 #include "harbour/records/RecordsStore.h"
 #include "harbour/sim/Pilot.h"
 #include "harbour/sim/Recording.h"
@@ -178,32 +177,22 @@ void print_evaluation(const sim::Metrics& m, const sim::Score& s, bool container
               s.skills[2]);
 }
 
-std::string default_database() {
-  const char* xdg = std::getenv("XDG_DATA_HOME");
-  const char* home = std::getenv("HOME");
-  const std::filesystem::path base = xdg && *xdg
-                                         ? std::filesystem::path(xdg)
-                                         : std::filesystem::path(home && *home ? home : ".") / ".local/share";
-  std::filesystem::create_directories(base / "harboursim");
-  return "sqlite3://db=" + (base / "harboursim" / "records.db").string();
-}
-
 int add_trainee(const std::string& database, const std::string& id, const std::string& name) {
-  records::RecordsStore db(database.empty() ? default_database() : database);
+  records::RecordsStore db(database.empty() ? records::default_database() : database);
   db.add_trainee(id, name);
   std::printf("trainee %s (%s) added\n", id.c_str(), name.c_str());
   return 0;
 }
 
 int list_trainees(const std::string& database) {
-  records::RecordsStore db(database.empty() ? default_database() : database);
+  records::RecordsStore db(database.empty() ? records::default_database() : database);
   for (const records::TraineeRow& t : db.trainees())
     std::printf("%-16s %s\n", core::printable(t.id).c_str(), core::printable(t.name).c_str());
   return 0;
 }
 
 int list_results(const std::string& database, const std::string& trainee) {
-  records::RecordsStore db(database.empty() ? default_database() : database);
+  records::RecordsStore db(database.empty() ? records::default_database() : database);
   const auto attempts = db.attempts(trainee.empty() ? std::nullopt : std::optional(trainee));
   std::printf("%-8s %-16s %-9s %-12s %-20s %-11s %6s %6s  %s\n", "attempt", "started (UTC)", "by", "trainee",
               "exercise", "status", "moves", "score", "from");
@@ -234,17 +223,18 @@ int run_exercise(const RunOptions& options) {
   }
   check_outputs(options);
   schedule(options.commands);  // a bad command stops the run before it starts
-  records::RecordsStore db(options.database.empty() ? default_database() : options.database);
+  records::RecordsStore db(options.database.empty() ? records::default_database() : options.database);
   RunOptions run = options;
   std::string exercise_file;
   if (!options.route.empty()) {
-    const RouteStage next = next_route_stage(db, options.centre, options.trainee, options.route);
+    const records::RouteStage next =
+        records::next_route_stage(db, options.centre, options.trainee, options.route);
     run.stage = next.stage.id;
     exercise_file = next.stage.exercise_file;
     std::printf("harboursim: route %s, stage %s (%s)\n", next.route.id.c_str(), next.stage.id.c_str(),
                 next.stage.goal.c_str());
   } else {
-    exercise_file = resolve_exercise(options.exercise, options.centre.exercises);
+    exercise_file = records::resolve_exercise(options.exercise, options.centre.exercises);
   }
   run.source = io::read_exercise_source(exercise_file);
   const sim::ExerciseSettings exercise = io::load_exercise_source(run.source);
@@ -385,70 +375,6 @@ int drive(const sim::ExerciseSettings& exercise, sim::Simulation& simulation, si
   return simulation.warnings().total() == 0 ? 0 : 1;
 }
 
-std::string resolve_exercise(const std::string& name_or_path, const std::string& centre,
-                             const std::string& version) {
-  namespace fs = std::filesystem;
-  if (fs::is_regular_file(name_or_path)) return name_or_path;
-  const fs::path shipped_folder = fs::path(HARBOUR_DATA_DIR) / "exercises";
-  std::vector<fs::path> folders;
-  if (!centre.empty()) folders.push_back(centre);
-  folders.push_back(shipped_folder);
-  if (!centre.empty() && fs::is_regular_file(fs::path(centre) / (name_or_path + ".yaml")) &&
-      fs::is_regular_file(shipped_folder / (name_or_path + ".yaml")) &&
-      !fs::equivalent(fs::path(centre), shipped_folder))
-    throw std::runtime_error(
-        "exercise '" + name_or_path + "' is both the centre's (" +
-        (fs::path(centre) / (name_or_path + ".yaml")).string() +
-        ") and a shipped one: a centre's exercise takes a name of its own (rename the file "
-        "and its exercise.name)");
-  for (const fs::path& folder : folders) {
-    const fs::path file = folder / (name_or_path + ".yaml");
-    if (!fs::is_regular_file(file)) continue;
-    // an earlier version the designer kept, when the exercise has changed since
-    const fs::path kept = folder / "versions" / (name_or_path + "-" + version + ".yaml");
-    if (!version.empty() && io::exercise_version(file.string()) != version && fs::is_regular_file(kept))
-      return kept.string();
-    return file.string();
-  }
-  std::string list;
-  for (const fs::path& folder : folders)
-    for (const std::string& n : io::exercise_names(folder.string()))
-      list += (list.empty() ? "" : ", ") + n;
-  throw std::runtime_error("no exercise file '" + name_or_path + "' and no exercise of that name (" + list +
-                           ")");
-}
-
-sim::ExerciseSettings load_resolved_exercise(const std::string& file) {
-  return io::load_exercise_source(io::read_exercise_source(file));
-}
-
-io::ExerciseSource attempt_exercise(records::RecordsStore& db, const records::AttemptRow& attempt,
-                                    const std::string& centre_exercises, std::string& inexact) {
-  namespace fs = std::filesystem;
-  inexact.clear();
-  if (!attempt.exercise_version.empty())
-    if (std::optional<io::ExerciseSource> kept = db.kept_exercise(attempt.exercise_version)) {
-      // its paths resolve where they did; on another PC, from where an exercise of its name stands here
-      if (!fs::is_directory(kept->folder)) {
-        try {
-          kept->folder =
-              io::read_exercise_source(resolve_exercise(attempt.exercise, centre_exercises)).folder;
-        } catch (const std::exception&) {
-          kept->folder = std::string(HARBOUR_DATA_DIR) + "/exercises";
-        }
-      }
-      return *kept;
-    }
-  io::ExerciseSource source = io::read_exercise_source(
-      resolve_exercise(attempt.exercise, centre_exercises, attempt.exercise_version));
-  if (!attempt.exercise_version.empty() && source.version != attempt.exercise_version)
-    inexact = "exercise " + attempt.exercise + " has changed since attempt " + std::to_string(attempt.id) +
-              " (version " + attempt.exercise_version + ", now " + source.version +
-              ") and neither the records nor the designer keep the version it ran: this replay runs on the "
-              "current file and may not show what the trainee had";
-  return source;
-}
-
 namespace {
 int replay_checked(const std::string& recording_path, const sim::Recording& recording,
                    const sim::ExerciseSettings& exercise);
@@ -456,11 +382,11 @@ int replay_checked(const std::string& recording_path, const sim::Recording& reco
 
 int replay_recording(const std::string& recording_path, const std::string& exercise_path) {
   return replay_checked(recording_path, io::read_recording(recording_path),
-                        load_resolved_exercise(resolve_exercise(exercise_path)));
+                        records::load_resolved_exercise(records::resolve_exercise(exercise_path)));
 }
 
 int replay_attempt(std::int64_t attempt, const std::string& database, const std::string& centre_exercises) {
-  records::RecordsStore db(database.empty() ? default_database() : database);
+  records::RecordsStore db(database.empty() ? records::default_database() : database);
   const std::optional<records::AttemptRow> row = db.attempt(attempt);
   if (!row) {
     std::fprintf(stderr, "harboursim: no attempt %lld in the records\n", static_cast<long long>(attempt));
@@ -474,7 +400,7 @@ int replay_attempt(std::int64_t attempt, const std::string& database, const std:
               row->recording.c_str(), db.recording(attempt) ? "the records' copy" : "its file");
   const sim::Recording recording = db.read_recording_of(*row);
   std::string inexact;
-  const io::ExerciseSource source = attempt_exercise(db, *row, centre_exercises, inexact);
+  const io::ExerciseSource source = records::attempt_exercise(db, *row, centre_exercises, inexact);
   std::printf("exercise %s version %s (%s)\n", row->exercise.c_str(), source.version.c_str(),
               source.file.c_str());
   if (!inexact.empty()) std::printf("NOTE: %s\n", inexact.c_str());
@@ -512,7 +438,8 @@ int replay_checked(const std::string& recording_path, const sim::Recording& reco
 int take_over_recording(const std::string& recording_path, const RunOptions& given, double at_s) {
   const sim::Recording recording = io::read_recording(recording_path);
   RunOptions options = given;
-  options.source = io::read_exercise_source(resolve_exercise(options.exercise, options.centre.exercises));
+  options.source =
+      io::read_exercise_source(records::resolve_exercise(options.exercise, options.centre.exercises));
   const sim::ExerciseSettings exercise = io::load_exercise_source(options.source);
   if (recording.scenario != exercise.name) {
     std::fprintf(stderr, "harboursim: %s was recorded on exercise '%s', not '%s'\n", recording_path.c_str(),
@@ -532,7 +459,7 @@ int take_over_recording(const std::string& recording_path, const RunOptions& giv
   sim::TakeOver branch =
       sim::take_over(exercise.scenario, recording, recording_path, step,
                      [&](const sim::Simulation& s, const scene::Controls& in) { evaluator.observe(s, in); });
-  records::RecordsStore db(options.database.empty() ? default_database() : options.database);
+  records::RecordsStore db(options.database.empty() ? records::default_database() : options.database);
   std::optional<std::int64_t> parent;
   if (const std::optional<records::AttemptRow> original = db.attempt_recorded_at(recording_path))
     parent = original->id;

@@ -3,8 +3,8 @@
 #include <string>
 #include <vector>
 
-#include "Centre.h"
 #include "harbour/io/ExerciseFiles.h"
+#include "harbour/records/Centre.h"
 #include "harbour/records/RecordsStore.h"
 #include "harbour/sim/Evaluation.h"
 
@@ -12,8 +12,8 @@ namespace harbour::apps {
 
 /// `harboursim run`: an exercise headless with the autopilot, progress lines and the evaluation.
 struct RunOptions {
-  std::string exercise;  ///< exercise file, or an exercise's name (resolve_exercise)
-  CentreFolders centre;  ///< the centre's exercises and routes (none: only the shipped ones)
+  std::string exercise;           ///< exercise file, or an exercise's name (records::resolve_exercise)
+  records::CentreFolders centre;  ///< the centre's exercises and routes (none: only the shipped ones)
   bool autopilot = false;
   std::string record;                 ///< recording file to write ("" for none)
   std::string trainee = "autopilot";  ///< trainee id the attempt is stored under
@@ -38,26 +38,6 @@ void check_outputs(const RunOptions& options);
 /// The attempt's metrics and score; `container_moves`: with the STS's move, landing, twistlock and travel
 /// figures (an exercise without container moves shows what every machine is measured on).
 void print_evaluation(const sim::Metrics& metrics, const sim::Score& score, bool container_moves = true);
-
-/// An exercise file: `name_or_path` itself when it is a file, else `<name>.yaml` in the centre's exercise
-/// folder (when given: the designer's), then the shipped `data/exercises`. With `version` (an attempt's): the
-/// version the designer kept (`versions/<name>-<version>.yaml`) when the exercise has changed since. Throws
-/// naming what it tried and the exercises there are.
-std::string resolve_exercise(const std::string& name_or_path, const std::string& centre = "",
-                             const std::string& version = "");
-/// Loads what resolve_exercise found: a version the designer kept (in the folder's `versions/`) as if it
-/// stood in the folder itself, where its relative paths (../machines/...) were written for.
-sim::ExerciseSettings load_resolved_exercise(const std::string& file);
-
-/// The exercise a stored attempt ran, to replay or continue it: the records' copy of its version, else the
-/// file of that version (the current one, or one the designer kept). Where neither is left, the current file
-/// with `inexact` saying in words that the replay may not be what the trainee had (else `inexact` is "").
-io::ExerciseSource attempt_exercise(records::RecordsStore& db, const records::AttemptRow& attempt,
-                                    const std::string& centre_exercises, std::string& inexact);
-
-/// The default records database: $XDG_DATA_HOME/harboursim/records.db (or ~/.local/share/...), as a SOCI
-/// connection string.
-std::string default_database();
 
 /// `harboursim trainees add|list` and `harboursim results`.
 int add_trainee(const std::string& database, const std::string& id, const std::string& name);

@@ -111,7 +111,8 @@ int render_video(const RenderOptions& options) {
         throw std::runtime_error(std::string(flag) + " " + path + ": " + why);
   const bool drawing = !options.out.empty(), hearing = !options.audio.empty() || (drawing && options.sound);
   const sim::Recording recording = io::read_recording(options.recording);
-  const sim::ExerciseSettings exercise = load_resolved_exercise(resolve_exercise(options.exercise));
+  const sim::ExerciseSettings exercise =
+      records::load_resolved_exercise(records::resolve_exercise(options.exercise));
   if (recording.scenario != exercise.name)
     throw std::runtime_error(options.recording + " was recorded on exercise '" + recording.scenario +
                              "', not '" + exercise.name + "'");

@@ -7,6 +7,7 @@
 #include "ExerciseRun.h"
 #include "harbour/core/Text.h"
 #include "harbour/io/RouteFiles.h"
+#include "harbour/records/CentreRoutes.h"
 
 namespace harbour::apps {
 namespace {
@@ -24,49 +25,8 @@ std::string criteria(const training::Stage& s) {
 
 }  // namespace
 
-std::vector<training::Route> load_centre_routes(const CentreFolders& centre) {
-  return io::load_routes(centre.route_folders(), centre.exercise_folders());
-}
-
-training::Route load_named_route(const CentreFolders& centre, const std::string& id) {
-  if (const std::string why = core::why_bad_name(id, 64); !why.empty() || id.find('/') != std::string::npos)
-    throw std::runtime_error("route '" + core::printable(id, 64) +
-                             "': a route's name, as harboursim routes list shows");
-  for (const std::string& folder : centre.route_folders()) {
-    const std::string file = folder + "/" + id + ".yaml";
-    if (std::filesystem::is_regular_file(file)) return io::load_route(file, centre.exercise_folders());
-  }
-  std::string known;
-  for (const training::Route& r : load_centre_routes(centre))
-    known += (known.empty() ? "" : ", ") + r.id;
-  throw std::runtime_error("no route '" + id + "' (there are: " + known + ")");
-}
-
-RouteStage next_route_stage(records::RecordsStore& db, const CentreFolders& centre,
-                            const std::string& trainee, const std::string& route_id) {
-  const training::Route route = load_named_route(centre, route_id);
-  const auto enrolled = db.enrolments(trainee);
-  if (std::none_of(enrolled.begin(), enrolled.end(),
-                   [&](const records::EnrolmentRow& e) { return e.route == route.id; }))
-    throw std::runtime_error("trainee '" + trainee + "' is not enrolled in route '" + route.id +
-                             "' (harboursim routes enrol " + trainee + " " + route.id + ")");
-  const training::RouteProgress p =
-      training::progress(route, db.stage_attempts(trainee, route.id), db.overrides(trainee, route.id));
-  if (p.complete)
-    throw std::runtime_error("trainee '" + trainee + "' has passed every stage of route '" + route.id + "'");
-  if (!p.next) {
-    std::string blocked;
-    for (const training::StageProgress& s : p.stages)
-      if (s.state == training::StageState::kBlocked) blocked += (blocked.empty() ? "" : ", ") + s.stage;
-    throw std::runtime_error("route '" + route.id + "': no stage open for '" + trainee +
-                             "'; blocked after their attempts: " + blocked +
-                             " (an instructor decides: harboursim routes sign-off|retry)");
-  }
-  return {route, *route.stage(*p.next)};
-}
-
-int list_routes(const CentreFolders& centre) {
-  for (const training::Route& r : load_centre_routes(centre)) {
+int list_routes(const records::CentreFolders& centre) {
+  for (const training::Route& r : records::load_centre_routes(centre)) {
     std::printf("%-16s %s (%s): ", r.id.c_str(), r.name.c_str(), r.machine.c_str());
     std::string last_goal;
     for (const training::Stage& s : r.stages) {
@@ -82,12 +42,12 @@ int list_routes(const CentreFolders& centre) {
   return 0;
 }
 
-int show_route(const std::string& database, const CentreFolders& centre, const std::string& route_id,
+int show_route(const std::string& database, const records::CentreFolders& centre, const std::string& route_id,
                const std::string& trainee) {
-  const training::Route route = load_named_route(centre, route_id);
+  const training::Route route = records::load_named_route(centre, route_id);
   std::optional<training::RouteProgress> p;
   if (!trainee.empty()) {
-    records::RecordsStore db(database.empty() ? default_database() : database);
+    records::RecordsStore db(database.empty() ? records::default_database() : database);
     if (!db.has_trainee(trainee)) throw std::runtime_error("no trainee '" + core::printable(trainee) + "'");
     p = training::progress(route, db.stage_attempts(trainee, route.id), db.overrides(trainee, route.id));
   }
@@ -119,10 +79,10 @@ int show_route(const std::string& database, const CentreFolders& centre, const s
   return 0;
 }
 
-int enrol_trainee(const std::string& database, const CentreFolders& centre, const std::string& trainee,
-                  const std::string& route_id) {
-  const training::Route route = load_named_route(centre, route_id);
-  records::RecordsStore db(database.empty() ? default_database() : database);
+int enrol_trainee(const std::string& database, const records::CentreFolders& centre,
+                  const std::string& trainee, const std::string& route_id) {
+  const training::Route route = records::load_named_route(centre, route_id);
+  records::RecordsStore db(database.empty() ? records::default_database() : database);
   const bool added = db.enrol(trainee, route.id, "(command line)");
   if (added) db.audit("(command line)", "enrol", trainee, route.id);
   std::printf("trainee %s %s route %s\n", trainee.c_str(), added ? "enrolled in" : "was already enrolled in",
@@ -130,13 +90,13 @@ int enrol_trainee(const std::string& database, const CentreFolders& centre, cons
   return 0;
 }
 
-int decide_stage(const std::string& database, const CentreFolders& centre, const std::string& trainee,
-                 const std::string& route_id, const std::string& stage, const std::string& action,
-                 const std::string& reason) {
-  const training::Route route = load_named_route(centre, route_id);
+int decide_stage(const std::string& database, const records::CentreFolders& centre,
+                 const std::string& trainee, const std::string& route_id, const std::string& stage,
+                 const std::string& action, const std::string& reason) {
+  const training::Route route = records::load_named_route(centre, route_id);
   if (!route.stage(stage))
     throw std::runtime_error("route '" + route.id + "' has no stage '" + core::printable(stage) + "'");
-  records::RecordsStore db(database.empty() ? default_database() : database);
+  records::RecordsStore db(database.empty() ? records::default_database() : database);
   db.add_override(trainee, route.id, {stage, action, reason, "(command line)", ""});
   db.audit("(command line)", action, trainee + " " + route.id + "/" + stage, reason);
   std::printf("%s: %s %s/%s (%s)\n", action.c_str(), trainee.c_str(), route.id.c_str(), stage.c_str(),

@@ -20,7 +20,8 @@ namespace harbour::apps {
 int take_screenshot(const ScreenshotOptions& options) {
   if (const std::string why = io::why_not_writable(options.out); !why.empty())
     throw std::runtime_error("--out " + options.out + ": " + why);
-  const sim::ExerciseSettings exercise = load_resolved_exercise(resolve_exercise(options.exercise));
+  const sim::ExerciseSettings exercise =
+      records::load_resolved_exercise(records::resolve_exercise(options.exercise));
   sim::Simulation simulation(exercise.scenario);
   // a scripted operator drives the exercises it can (container moves, grab deliveries); else the levers rest
   std::unique_ptr<sim::Pilot> pilot;

@@ -1,7 +1,5 @@
 #include "StationRun.h"
 
-#include "RoutesTool.h"
-
 #include <SDL.h>
 
 #include <osg/Image>
@@ -30,6 +28,7 @@
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/io/MotionFiles.h"
 #include "harbour/machines/MachineType.h"
+#include "harbour/records/CentreRoutes.h"
 #include "harbour/sim/Pilot.h"
 #include "harbour/station/DeviceMappingFile.h"
 #include "harbour/station/DisplayLayout.h"
@@ -96,7 +95,7 @@ std::optional<io::ExerciseSource> taken_over_exercise(const std::string& databas
   const std::optional<records::AttemptRow> taken = db.attempt_recorded_at(options.take_over_recording);
   if (!taken) return std::nullopt;
   std::string inexact;
-  io::ExerciseSource source = attempt_exercise(db, *taken, options.centre.exercises, inexact);
+  io::ExerciseSource source = records::attempt_exercise(db, *taken, options.centre.exercises, inexact);
   if (!inexact.empty()) std::printf("NOTE: %s\n", inexact.c_str());
   return source;
 }
@@ -121,7 +120,8 @@ void choose_exercise(const StationOptions& options, const std::string& database,
   }
   if (!options.route.empty()) {
     records::RecordsStore db(database);
-    const RouteStage next = next_route_stage(db, options.centre, options.trainee, options.route);
+    const records::RouteStage next =
+        records::next_route_stage(db, options.centre, options.trainee, options.route);
     session.source = io::read_exercise_source(next.stage.exercise_file);
     session.route = next.route.id;
     session.stage = next.stage.id;
@@ -132,7 +132,8 @@ void choose_exercise(const StationOptions& options, const std::string& database,
   } else if (team) {
     session.source = io::read_exercise_source(team->find(options.role)->exercise_file);
   } else {
-    session.source = io::read_exercise_source(resolve_exercise(options.exercise, options.centre.exercises));
+    session.source =
+        io::read_exercise_source(records::resolve_exercise(options.exercise, options.centre.exercises));
   }
 }
 
@@ -453,7 +454,7 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
   outputs.record = options.record;
   outputs.trainee = options.trainee;
   check_outputs(outputs);
-  const std::string database = options.database.empty() ? default_database() : options.database;
+  const std::string database = options.database.empty() ? records::default_database() : options.database;
   station::SessionOptions session_options;
   session_options.autopilot = options.autopilot;
   std::optional<io::Team> team;
@@ -598,7 +599,7 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
 std::string recording_for(const std::string& station, const std::string& exercise,
                           const std::string& database) {
   const std::string sqlite_prefix = "sqlite3://db=";
-  const std::string records = database.rfind(sqlite_prefix, 0) == 0 ? database : default_database();
+  const std::string records = database.rfind(sqlite_prefix, 0) == 0 ? database : records::default_database();
   const std::filesystem::path folder =
       std::filesystem::path(records.substr(sqlite_prefix.size())).parent_path() / "recordings";
   std::filesystem::create_directories(folder);

@@ -3,14 +3,14 @@
 #include <cstdint>
 #include <string>
 
-#include "Centre.h"
+#include "harbour/records/Centre.h"
 
 namespace harbour::apps {
 
 /// `harboursim station`: a trainee runs an exercise live at the station.
 struct StationOptions {
   std::string exercise;             ///< file or name (in the centre's folder, then the shipped ones)
-  CentreFolders centre;             ///< the centre's exercises and routes (none: only the shipped ones)
+  records::CentreFolders centre;    ///< the centre's exercises and routes (none: only the shipped ones)
   std::string route;                ///< or a training route: its next stage for the trainee
   std::string profile = "desktop";  ///< desktop, medium, immersive or a profile file
   std::string trainee;              ///< "" : autopilot with --autopilot, else guest (both made on first use)

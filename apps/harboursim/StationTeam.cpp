@@ -44,7 +44,7 @@ std::vector<station::TeamMember> other_members(const io::Team& team, const std::
   std::vector<station::TeamMember> members;
   for (const io::TeamRole& r : team.roles) {
     if (r.role == role) continue;
-    const sim::ExerciseSettings exercise = load_resolved_exercise(r.exercise_file);
+    const sim::ExerciseSettings exercise = records::load_resolved_exercise(r.exercise_file);
     const sim::Simulation simulation(exercise.scenario);
     const scene::SceneDescription scene = simulation.scene();
     const std::unique_ptr<scene::Snapshot> at_start = simulation.snapshot();

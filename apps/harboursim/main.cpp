@@ -13,16 +13,18 @@
 #include "Console.h"
 #include "ExerciseRun.h"
 #include "RenderVideo.h"
-#include "Reports.h"
+#include "ReportCommand.h"
 #include "RoutesTool.h"
 #include "Screenshot.h"
 #include "StationRun.h"
-#include "XapiSender.h"
+#include "XapiCommand.h"
+#include "harbour/records/XapiSender.h"
 
 namespace {
 
 // --exercises and --routes: the centre's own folders, searched before the shipped ones
-void add_centre_options(CLI::App* command, harbour::apps::CentreFolders& centre, const char* exercises_help) {
+void add_centre_options(CLI::App* command, harbour::records::CentreFolders& centre,
+                        const char* exercises_help) {
   command->add_option("--exercises", centre.exercises, exercises_help);
   command->add_option("--routes", centre.routes,
                       "the centre's route folder, beside the shipped routes (its stages name exercises of "
@@ -420,7 +422,7 @@ Command add_accounts(CLI::App& app) {
 
 struct RoutesArguments {
   std::string route_id, route_trainee, route_stage, route_reason, route_db;
-  harbour::apps::CentreFolders route_centre;
+  harbour::records::CentreFolders route_centre;
 };
 
 // routes, when it was chosen
@@ -472,7 +474,7 @@ Command add_routes(CLI::App& app) {
 
 struct ReportArguments {
   std::string report_db, report_trainee, report_out;
-  harbour::apps::CentreFolders report_centre;
+  harbour::records::CentreFolders report_centre;
 };
 
 // report, when it was chosen
@@ -511,7 +513,7 @@ Command add_report(CLI::App& app) {
 struct XapiArguments {
   std::string xapi_db, xapi_lrs, xapi_auth_file, xapi_centre_iri;
   bool xapi_watch = false;
-  harbour::apps::CentreFolders xapi_folders;
+  harbour::records::CentreFolders xapi_folders;
 };
 
 // xapi, when it was chosen
@@ -521,7 +523,7 @@ std::optional<int> chosen_xapi(const CLI::App* xapi_status_cmd, const CLI::App* 
   if (*xapi_status_cmd) return harbour::apps::xapi_status(xapi_db);
   if (*xapi_send_cmd)
     return harbour::apps::xapi_send(xapi_db, xapi_lrs, xapi_auth_file, xapi_watch,
-                                    harbour::apps::xapi_centre(xapi_centre_iri, xapi_folders));
+                                    harbour::records::xapi_centre(xapi_centre_iri, xapi_folders));
   return std::nullopt;
 }
 

@@ -1,4 +1,4 @@
-#include "XapiSender.h"
+#include "harbour/records/XapiSender.h"
 
 #include <utility>  // before Boost.Asio 1.74, which uses std::exchange without it
 
@@ -18,11 +18,10 @@
 
 #include <unistd.h>
 
-#include "ExerciseRun.h"
 #include "harbour/core/Text.h"
 #include "harbour/io/ExerciseFiles.h"
 
-namespace harbour::apps {
+namespace harbour::records {
 
 namespace {
 
@@ -82,7 +81,7 @@ http::response<http::string_body> round_trip(Stream& stream,
 }
 
 http::response<http::string_body> put_statement(const Endpoint& e, const LrsOptions& lrs,
-                                                const records::XapiRow& row) {
+                                                const XapiRow& row) {
   http::request<http::string_body> request{http::verb::put,
                                            e.path + "statements?statementId=" + row.statement_id, 11};
   // RFC 9112 (3.2): Host is the URI's host and its port, which may only be left out where it is the scheme's
@@ -118,12 +117,11 @@ http::response<http::string_body> put_statement(const Endpoint& e, const LrsOpti
   return round_trip(stream, request);
 }
 
-volatile std::sig_atomic_t g_stop = 0;
-extern "C" void stop_watching(int) {
-  g_stop = 1;
-}
-
 }  // namespace
+
+void check_lrs_endpoint(const std::string& endpoint) {
+  parse_endpoint(endpoint);
+}
 
 std::string read_lrs_credentials(const std::string& file) {
   if (file.empty()) return "";
@@ -137,11 +135,11 @@ std::string read_lrs_credentials(const std::string& file) {
   return line;
 }
 
-SendReport send_due(records::RecordsStore& db, const LrsOptions& lrs, int most) {
+SendReport send_due(RecordsStore& db, const LrsOptions& lrs, int most) {
   const Endpoint e = parse_endpoint(lrs.endpoint);
   SendReport report;
   const std::string now = utc_after(0.0);
-  for (const records::XapiRow& row : db.xapi_due("9999", most)) {  // every queued one, in order
+  for (const XapiRow& row : db.xapi_due("9999", most)) {  // every queued one, in order
     if (row.next_try_at > now) break;  // a failed one waits: those after it wait too, so that order holds
     const double wait_s = std::min(300.0, 2.0 * static_cast<double>(1 << std::min(row.tries, 8)));
     try {
@@ -211,21 +209,6 @@ void XapiWorker::run() {
   }
 }
 
-int xapi_status(const std::string& database) {
-  records::RecordsStore db(database.empty() ? default_database() : database);
-  std::map<std::string, int> by_state = db.xapi_counts();
-  const std::vector<records::XapiRow> rows = db.xapi_outbox();
-  std::printf("xAPI outbox: %d queued, %d sent, %d rejected\n", by_state["queued"], by_state["sent"],
-              by_state["rejected"]);
-  for (const records::XapiRow& r : rows)
-    if (!r.last_error.empty())
-      std::printf("  %s %s (attempt %lld, %d tries, %s): %s\n", r.state.c_str(), r.verb.c_str(),
-                  static_cast<long long>(r.attempt), r.tries,
-                  r.state == "queued" ? ("next at " + r.next_try_at).c_str() : "not retried",
-                  r.last_error.c_str());
-  return 0;
-}
-
 training::xapi::Centre xapi_centre(const std::string& iri, const CentreFolders& folders) {
   training::xapi::Centre centre;
   centre.iri = iri;
@@ -241,34 +224,4 @@ training::xapi::Centre xapi_centre(const std::string& iri, const CentreFolders& 
   return centre;
 }
 
-int xapi_send(const std::string& database, const std::string& endpoint, const std::string& credentials_file,
-              bool watch, const training::xapi::Centre& centre) {
-  records::RecordsStore db(database.empty() ? default_database() : database);
-  const LrsOptions lrs{endpoint, read_lrs_credentials(credentials_file), centre};
-  parse_endpoint(endpoint);  // a bad URL stops it before anything is tried
-  g_stop = 0;
-  if (watch) {
-    std::signal(SIGINT, stop_watching);
-    std::signal(SIGTERM, stop_watching);
-  }
-  int waiting = 0;
-  do {
-    const SendReport r = send_due(db, lrs);
-    if (r.sent || r.retry || r.rejected) {
-      std::printf("xapi: %d sent, %d to retry, %d rejected%s%s\n", r.sent, r.retry, r.rejected,
-                  r.last_error.empty() ? "" : "; ", r.last_error.c_str());
-      std::fflush(stdout);
-    }
-    waiting = r.retry;
-    if (watch)
-      for (int n = 0; n < 10 && !g_stop; ++n)
-        std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  } while (watch && !g_stop);
-  if (watch) {
-    std::signal(SIGINT, SIG_DFL);
-    std::signal(SIGTERM, SIG_DFL);
-  }
-  return waiting ? 3 : 0;
-}
-
-}  // namespace harbour::apps
+}  // namespace harbour::records

@@ -6,11 +6,11 @@
 #include <string>
 #include <thread>
 
-#include "Centre.h"
+#include "harbour/records/Centre.h"
 #include "harbour/records/RecordsStore.h"
 #include "harbour/training/Xapi.h"
 
-namespace harbour::apps {
+namespace harbour::records {
 
 /// A Learning Record Store: its xAPI endpoint (http:// or https://, e.g. "http://lrs.centre:8080/xAPI/") and
 /// the HTTP Basic credentials "user:password" ("" : none).
@@ -38,7 +38,10 @@ struct SendReport {
 /// its answer lost, is stored once). 200/204 mark it sent; 400, 409 and 413 reject it; anything else, or no
 /// answer, queues it again after 2 s x 2^tries (at most 5 min) and ends the pass (the LRS is not asked again
 /// until then).
-SendReport send_due(records::RecordsStore& db, const LrsOptions& lrs, int most = 200);
+SendReport send_due(RecordsStore& db, const LrsOptions& lrs, int most = 200);
+
+/// Throws std::invalid_argument naming what is wrong with an LRS endpoint (http:// or https://, a host).
+void check_lrs_endpoint(const std::string& endpoint);
 
 /// The credentials in an LRS credentials file: one line user:password; throws naming the file.
 std::string read_lrs_credentials(const std::string& file);
@@ -65,11 +68,4 @@ class XapiWorker {
   std::thread thread_;
 };
 
-/// `harboursim xapi status`: the outbox by state, and the errors of those failing.
-int xapi_status(const std::string& database);
-/// `harboursim xapi send`: one pass (exit 0: nothing due is left unsent, 3: some wait for a retry), or with
-/// `watch` a pass every second until SIGINT/SIGTERM. The credentials are read from `credentials_file`.
-int xapi_send(const std::string& database, const std::string& endpoint, const std::string& credentials_file,
-              bool watch, const training::xapi::Centre& centre);
-
-}  // namespace harbour::apps
+}  // namespace harbour::records

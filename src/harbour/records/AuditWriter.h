@@ -9,7 +9,7 @@
 
 #include "harbour/records/RecordsStore.h"
 
-namespace harbour::apps {
+namespace harbour::records {
 
 /// The console's audit log, written off the server's thread: an instructor's command is answered without
 /// waiting for the records database (another process — a station storing its attempt — may hold its write
@@ -36,11 +36,11 @@ class AuditWriter {
   std::string database_;
   mutable std::mutex mutex_;
   std::condition_variable wake_, written_;
-  std::deque<records::AuditRow> queue_;
+  std::deque<AuditRow> queue_;
   std::uint64_t queued_ = 0, done_ = 0;  // entries ever queued and ever written
   bool stop_ = false;
   std::string last_error_;
   std::thread thread_;
 };
 
-}  // namespace harbour::apps
+}  // namespace harbour::records

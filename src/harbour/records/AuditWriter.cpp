@@ -1,10 +1,10 @@
-#include "AuditWriter.h"
+#include "harbour/records/AuditWriter.h"
 
 #include <chrono>
 #include <memory>
 #include <utility>
 
-namespace harbour::apps {
+namespace harbour::records {
 
 AuditWriter::AuditWriter(std::string database) : database_(std::move(database)) {
   thread_ = std::thread([this] { run(); });
@@ -47,7 +47,7 @@ void AuditWriter::run() {
   for (;;) {
     wake_.wait(lock, [this] { return stop_ || !queue_.empty(); });
     if (queue_.empty()) return;  // stopping with nothing left
-    const records::AuditRow row = queue_.front();
+    const AuditRow row = queue_.front();
     lock.unlock();
     std::string error;
     try {
@@ -70,4 +70,4 @@ void AuditWriter::run() {
   }
 }
 
-}  // namespace harbour::apps
+}  // namespace harbour::records

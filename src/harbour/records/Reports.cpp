@@ -1,4 +1,4 @@
-#include "Reports.h"
+#include "harbour/records/Reports.h"
 
 #include <fcntl.h>
 #include <signal.h>
@@ -15,16 +15,16 @@
 #include <stdexcept>
 #include <thread>
 
-#include "ExerciseRun.h"
-#include "RoutesTool.h"
 #include "harbour/core/Text.h"
 #include "harbour/io/RouteFiles.h"
 
 extern char** environ;
 
-namespace harbour::apps {
+namespace harbour::records {
+namespace {
 
-std::string utc_now() {
+// The current time in UTC as a report prints it ("2026-11-25 09:30 UTC").
+std::string report_time_now() {
   const std::time_t now = std::time(nullptr);
   std::tm utc{};
   gmtime_r(&now, &utc);
@@ -33,11 +33,13 @@ std::string utc_now() {
   return text;
 }
 
-std::vector<training::RouteStanding> route_standings(records::RecordsStore& db,
+}  // namespace
+
+std::vector<training::RouteStanding> route_standings(RecordsStore& db,
                                                      const std::vector<training::Route>& routes,
                                                      const std::string& trainee) {
   std::vector<training::RouteStanding> out;
-  for (const records::EnrolmentRow& e : db.enrolments(trainee)) {
+  for (const EnrolmentRow& e : db.enrolments(trainee)) {
     for (const training::Route& r : routes)
       if (r.id == e.route)
         out.push_back(
@@ -46,15 +48,14 @@ std::vector<training::RouteStanding> route_standings(records::RecordsStore& db,
   return out;
 }
 
-training::TraineeReportData trainee_report_data(records::RecordsStore& db,
-                                                const std::vector<training::Route>& routes,
+training::TraineeReportData trainee_report_data(RecordsStore& db, const std::vector<training::Route>& routes,
                                                 const std::string& trainee) {
   training::TraineeReportData d;
-  for (const records::TraineeRow& t : db.trainees())
+  for (const TraineeRow& t : db.trainees())
     if (t.id == trainee) d.name = t.name;
   if (!db.has_trainee(trainee)) throw std::out_of_range("no trainee '" + core::printable(trainee) + "'");
   d.trainee = trainee;
-  d.generated_at = utc_now();
+  d.generated_at = report_time_now();
   const std::vector<training::AttemptFigures> all = db.attempt_figures();
   for (const training::AttemptFigures& a : all)
     if (a.trainee == trainee) d.attempts.push_back(a);
@@ -63,12 +64,11 @@ training::TraineeReportData trainee_report_data(records::RecordsStore& db,
   return d;
 }
 
-training::ClassReportData class_report_data(records::RecordsStore& db,
-                                            const std::vector<training::Route>& routes) {
+training::ClassReportData class_report_data(RecordsStore& db, const std::vector<training::Route>& routes) {
   training::ClassReportData d;
-  d.generated_at = utc_now();
+  d.generated_at = report_time_now();
   std::vector<std::string> ids;
-  for (const records::TraineeRow& t : db.trainees()) {
+  for (const TraineeRow& t : db.trainees()) {
     ids.push_back(t.id);
     d.names.push_back(t.name);
     d.routes.push_back(route_standings(db, routes, t.id));
@@ -152,36 +152,4 @@ void print_pdf(const std::string& html, const std::filesystem::path& pdf) {
   }
 }
 
-int write_report(const std::string& database, const CentreFolders& centre, const std::string& trainee,
-                 const std::string& out) {
-  records::RecordsStore db(database.empty() ? default_database() : database);
-  const std::vector<training::Route> routes = load_centre_routes(centre);
-  std::string html;
-  try {
-    html = trainee.empty() ? training::class_report_html(class_report_data(db, routes))
-                           : training::trainee_report_html(trainee_report_data(db, routes, trainee));
-  } catch (const std::out_of_range& e) {
-    std::fprintf(stderr, "harboursim: %s\n", e.what());
-    return 1;
-  }
-  const std::filesystem::path path = out;
-  if (path.extension() == ".html") {
-    const std::filesystem::path partial = out + ".partial";
-    {
-      std::ofstream file(partial, std::ios::binary);
-      file << html;
-      if (!file) throw std::runtime_error("cannot write " + partial.string());
-    }
-    std::filesystem::rename(partial, path);
-  } else if (path.extension() == ".pdf") {
-    print_pdf(html, path);
-  } else {
-    std::fprintf(stderr, "harboursim: report --out %s: a .pdf or .html file\n", out.c_str());
-    return 2;
-  }
-  std::printf("%s report written to %s\n", trainee.empty() ? "class" : ("trainee " + trainee + "'s").c_str(),
-              out.c_str());
-  return 0;
-}
-
-}  // namespace harbour::apps
+}  // namespace harbour::records
