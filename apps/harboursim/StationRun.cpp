@@ -17,7 +17,6 @@
 #include <thread>
 
 #include "ExerciseRun.h"
-#include "StationNet.h"
 #include "StationTeam.h"
 #include "StationWindow.h"
 #include "harbour/audio/SoundFile.h"
@@ -30,6 +29,7 @@
 #include "harbour/machines/MachineType.h"
 #include "harbour/records/CentreRoutes.h"
 #include "harbour/sim/Pilot.h"
+#include "harbour/station/ConsolePresence.h"
 #include "harbour/station/DeviceMappingFile.h"
 #include "harbour/station/DisplayLayout.h"
 #include "harbour/station/HeadTracker.h"
@@ -232,7 +232,8 @@ std::unique_ptr<audio::SoundThread> start_sound(const station::Profile& profile,
 // only while a console shows this station
 std::unique_ptr<ig::RenderThread> draw_for_instructor(const station::Profile& profile,
                                                       const scene::SceneDescription& scene,
-                                                      station::Session& session, AttemptPresence& presence) {
+                                                      station::Session& session,
+                                                      station::AttemptPresence& presence) {
   ig::View view = ig::view_named("cab");
   if (!profile.displays.empty()) {
     const station::DisplayChannel& c = profile.displays.front();
@@ -243,17 +244,18 @@ std::unique_ptr<ig::RenderThread> draw_for_instructor(const station::Profile& pr
     view.fov_vertical_rad = c.fov_vertical_rad;
   }
   return std::make_unique<ig::RenderThread>(
-      scene, ig::load_looks(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml"), kPictureWidth,
-      kPictureHeight, std::vector<ig::View>{view},
+      scene, ig::load_looks(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml"), station::kPictureWidth,
+      station::kPictureHeight, std::vector<ig::View>{view},
       // drawn only while a console shows this station
       [&session, &presence]() -> const scene::Snapshot* {
         return presence.watched() ? session.loop().latest_snapshot(station::kPictureReader) : nullptr;
       },
       [&presence](ig::ImageGenerator& generator, const scene::Snapshot& s, int) {
-        presence.offer_picture(ig::encode_jpeg(generator.render_result()), kPictureWidth, kPictureHeight,
-                               s.time_s);
+        presence.offer_picture(ig::encode_jpeg(generator.render_result()), station::kPictureWidth,
+                               station::kPictureHeight, s.time_s);
       },
-      kPicturesPerSecond, [&session] { return session.loop().latest_bulk(station::kPictureReader); });
+      station::kPicturesPerSecond,
+      [&session] { return session.loop().latest_bulk(station::kPictureReader); });
 }
 
 // The attempt's progress on the terminal: the machine's first indicators, its load, the moves done, the loop
@@ -355,7 +357,7 @@ void stop_drawing(ig::RenderThread* render, const std::vector<std::unique_ptr<St
   }
   if (pictures) {
     std::printf("instructor's picture: %ld frames (%.1f fps, %dx%d)%s\n", pictures->frames(), pictures->fps(),
-                kPictureWidth, kPictureHeight,
+                station::kPictureWidth, station::kPictureHeight,
                 pictures->error().empty() ? "" : (": stopped: " + pictures->error()).c_str());
     pictures->stop();
   }
@@ -505,7 +507,7 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
   if (!windows.empty()) render = render_windows(profile, layout, windows, scene, session);
   std::unique_ptr<audio::SoundThread> sound;
   if (hearing) sound = start_sound(profile, scene, exercise, session);
-  std::optional<AttemptPresence> presence;
+  std::optional<station::AttemptPresence> presence;
   if (link) presence.emplace(*link, session, exercise, options.trainee, scene);
   if (presence) presence->use_sound(sound.get());
   if (presence && team) presence->member_of(team->name, options.role);
@@ -530,7 +532,7 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
                         c.team = input;
                         return session.loop().post(c);
                       });
-  AttemptPresence::Next next = AttemptPresence::Next::kRun;
+  station::AttemptPresence::Next next = station::AttemptPresence::Next::kRun;
   int next_line = 0;
   bool window_open = true;
   // looking round at the window (keys, a mouse drag) within the cab's limits; F1 the machine's keys
@@ -543,7 +545,7 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
   bool help = false;
   auto last_pump = std::chrono::steady_clock::now();
   while (!session.over() && !g_stop && session.loop().running() && window_open &&
-         next == AttemptPresence::Next::kRun) {
+         next == station::AttemptPresence::Next::kRun) {
     // a console's command waits at most this long (its round trip's share)
     std::this_thread::sleep_for(std::chrono::milliseconds(presence ? 5 : windows.empty() ? 100 : 15));
     if (presence) next = presence->service();
@@ -575,20 +577,20 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
     if (!s) continue;
     print_progress(scene, *s, exercise, session);
   }
-  const bool interrupted = g_stop || !window_open || next != AttemptPresence::Next::kRun ||
+  const bool interrupted = g_stop || !window_open || next != station::AttemptPresence::Next::kRun ||
                            (!session.over() && options.seconds > 0.0);
-  reset = next == AttemptPresence::Next::kReset;
+  reset = next == station::AttemptPresence::Next::kReset;
   stop_drawing(render.get(), windows, pictures.get());
   if (membership) leave_team(*membership, session, team->name, options.role);
   station.stop_monitoring();
   const station::SessionResult result =
-      session.finish(g_stop || !window_open || (next == AttemptPresence::Next::kRun && interrupted)
+      session.finish(g_stop || !window_open || (next == station::AttemptPresence::Next::kRun && interrupted)
                          ? station::SessionEnd::kInterrupted
                      : interrupted ? station::SessionEnd::kStoppedByInstructor
                                    : station::SessionEnd::kRan);
   station.stop();  // the platform parks with the simulation stopped
   if (presence) presence->publish_end(result);
-  if (outcome) *outcome = attempt_outcome(result);
+  if (outcome) *outcome = station::attempt_outcome(result);
   print_result(result, exercise, options);
   if (result.status == "diverged") return 3;
   return interrupted ? 130 : 0;
@@ -647,8 +649,8 @@ int run_station(const StationOptions& options) {
   std::fflush(stdout);
   std::string message = "ready", outcome;
   while (!g_stop) {
-    IdlePresence idle(*link, message);
-    std::optional<StartRequest> start;
+    station::IdlePresence idle(*link, message);
+    std::optional<station::StartRequest> start;
     while (!g_stop && !(start = idle.service()))
       std::this_thread::sleep_for(std::chrono::milliseconds(5));
     if (!start) break;

@@ -10,7 +10,6 @@
 #include <vector>
 
 #include "BulkDemo.h"
-#include "Console.h"
 #include "ExerciseRun.h"
 #include "RenderVideo.h"
 #include "ReportCommand.h"
@@ -18,6 +17,7 @@
 #include "Screenshot.h"
 #include "StationRun.h"
 #include "XapiCommand.h"
+#include "harbour/console/Console.h"
 #include "harbour/records/XapiSender.h"
 
 namespace {
@@ -352,14 +352,14 @@ Command add_render(CLI::App& app) {
 }
 
 // console, when it was chosen
-std::optional<int> chosen_console(const CLI::App* console_cmd, harbour::apps::ConsoleOptions& options) {
+std::optional<int> chosen_console(const CLI::App* console_cmd, harbour::console::ConsoleOptions& options) {
   if (!*console_cmd) return std::nullopt;
-  return harbour::apps::run_console(options);
+  return harbour::console::run_console(options);
 }
 
 Command add_console(CLI::App& app) {
-  auto options = std::make_shared<harbour::apps::ConsoleOptions>();
-  harbour::apps::ConsoleOptions& console = *options;
+  auto options = std::make_shared<harbour::console::ConsoleOptions>();
+  harbour::console::ConsoleOptions& console = *options;
   CLI::App* console_cmd = app.add_subcommand(
       "console", "the instructor console: a web application watching and commanding stations");
   console_cmd->add_option("--bind", console.bind, "the address to listen on (default: this machine only)");
@@ -395,10 +395,10 @@ struct AccountsArguments {
 // accounts, when it was chosen
 std::optional<int> chosen_accounts(const CLI::App* account_add_cmd, const CLI::App* account_list_cmd,
                                    AccountsArguments& options) {
-  if (*account_list_cmd) return harbour::apps::list_accounts(options.account_db);
+  if (*account_list_cmd) return harbour::console::list_accounts(options.account_db);
   if (*account_add_cmd)
-    return harbour::apps::add_account(options.account_db, options.account_name, options.account_role,
-                                      options.account_trainee);
+    return harbour::console::add_account(options.account_db, options.account_name, options.account_role,
+                                         options.account_trainee);
   return std::nullopt;
 }
 

@@ -5,7 +5,7 @@
 
 #include "harbour/records/Centre.h"
 
-namespace harbour::apps {
+namespace harbour::console {
 
 /// `harboursim console`: the instructor console, a web application and its API served over HTTP and
 /// WebSocket (Boost.Beast), watching and commanding the centre's stations over DDS.
@@ -38,4 +38,4 @@ int add_account(const std::string& database, const std::string& name, const std:
 /// `harboursim accounts list`: name and role, a line each.
 int list_accounts(const std::string& database);
 
-}  // namespace harbour::apps
+}  // namespace harbour::console

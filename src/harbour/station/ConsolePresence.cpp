@@ -1,4 +1,4 @@
-#include "StationNet.h"
+#include "harbour/station/ConsolePresence.h"
 
 #include <unistd.h>
 
@@ -10,7 +10,7 @@
 
 #include "harbour/io/InstructorCommandText.h"
 
-namespace harbour::apps {
+namespace harbour::station {
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -34,8 +34,8 @@ net::StationStatus base_status(const std::string& state) {
 }
 
 // the commands a running loop takes as they are
-std::optional<station::LoopCommand::Kind> loop_kind(const std::string& kind) {
-  using K = station::LoopCommand::Kind;
+std::optional<LoopCommand::Kind> loop_kind(const std::string& kind) {
+  using K = LoopCommand::Kind;
   if (kind == "hold") return K::kHold;
   if (kind == "resume") return K::kResume;
   if (kind == "step") return K::kSingleStep;
@@ -43,101 +43,6 @@ std::optional<station::LoopCommand::Kind> loop_kind(const std::string& kind) {
 }
 
 }  // namespace
-
-net::StationScene scene_message(const scene::SceneDescription& description, std::int64_t attempt) {
-  net::StationScene scene;
-  scene.attempt(attempt);
-  scene.machine(description.machine);
-  const std::size_t count = std::min<std::size_t>(description.entities.size(), scene::kMaxEntities);
-  std::vector<eprosima::fastrtps::fixed_string<48>> names, visuals;
-  std::vector<float> extents;
-  for (std::size_t n = 0; n < count; ++n) {
-    names.emplace_back(description.entities[n].name.substr(0, 48));
-    visuals.emplace_back(description.entities[n].visual.substr(0, 48));
-    const core::Vec3& e = description.entities[n].half_extents_m;
-    extents.insert(extents.end(),
-                   {static_cast<float>(e.x), static_cast<float>(e.y), static_cast<float>(e.z)});
-  }
-  scene.entity_names(names);
-  scene.entity_visuals(visuals);
-  scene.entity_half_extents_m(extents);
-  std::vector<eprosima::fastrtps::fixed_string<48>> indicators;
-  for (std::size_t n = 0; n < description.indicators.size() && n < scene::kMaxIndicators; ++n)
-    indicators.emplace_back(description.indicators[n].substr(0, 48));
-  scene.indicator_names(indicators);
-  return scene;
-}
-
-net::StationBulk bulk_message(const scene::BulkView& view, std::int64_t attempt, double time_s) {
-  net::StationBulk bulk;
-  bulk.attempt(attempt);
-  bulk.time_s(time_s);
-  const std::size_t grids = std::min<std::size_t>(view.grids.size(), kMostBulkGrids);
-  // every grid the same budget of samples, at most 64 x 64
-  const int budget = std::min(kMostBulkSamplesPerSide * kMostBulkSamplesPerSide,
-                              static_cast<int>(kMostBulkSamples / std::max<std::size_t>(grids, 1)));
-  for (std::size_t g = 0; g < grids; ++g) {
-    const scene::BulkView::Grid& grid = view.grids[g];
-    int block = 1;  // cells per sample side
-    while ((grid.cells_x + block - 1) / block * ((grid.cells_y + block - 1) / block) > budget)
-      ++block;
-    const int nx = (grid.cells_x + block - 1) / block, ny = (grid.cells_y + block - 1) / block;
-    bulk.samples_x().push_back(static_cast<std::uint16_t>(nx));
-    bulk.samples_y().push_back(static_cast<std::uint16_t>(ny));
-    bulk.sample_m().push_back(static_cast<float>(grid.cell_m * block));
-    const core::Quat q = core::Quat::from(grid.pose.rotation);
-    for (const double v :
-         {grid.pose.position.x, grid.pose.position.y, grid.pose.position.z, q.x, q.y, q.z, q.w})
-      bulk.grid_poses().push_back(static_cast<float>(v));
-    for (int sj = 0; sj < ny; ++sj)
-      for (int si = 0; si < nx; ++si) {
-        float top = 0.0f;  // the block's highest cell: a pile's crest stays
-        for (int j = sj * block; j < std::min((sj + 1) * block, grid.cells_y); ++j)
-          for (int i = si * block; i < std::min((si + 1) * block, grid.cells_x); ++i)
-            top = std::max(top, grid.heights[static_cast<std::size_t>(j * grid.cells_x + i)]);
-        bulk.heights_m().push_back(top);
-      }
-  }
-  return bulk;
-}
-
-net::StationState state_message(const scene::Snapshot& snapshot, std::size_t entity_count,
-                                std::int64_t attempt) {
-  net::StationState state;
-  state.attempt(attempt);
-  state.step(snapshot.step);
-  state.time_s(snapshot.time_s);
-  state.held(snapshot.held);
-  state.wind_mps({static_cast<float>(snapshot.wind_mps.x), static_cast<float>(snapshot.wind_mps.y),
-                  static_cast<float>(snapshot.wind_mps.z)});
-  state.time_of_day_h(snapshot.time_of_day_h);
-  state.visibility_m(snapshot.visibility_m);
-  state.rain_mm_per_h(snapshot.rain_mm_per_h);
-  state.water_level_m(snapshot.sea.water_level_m);
-  state.indicators().assign(snapshot.indicators.begin(),
-                            snapshot.indicators.begin() + snapshot.indicator_count);
-  // every entity in scene order (one not in this snapshot, or hidden in it, keeps a zero pose: not drawn)
-  std::vector<float>& poses = state.entity_poses();
-  poses.assign(std::min<std::size_t>(entity_count, scene::kMaxEntities) * 7, 0.0f);
-  for (int n = 0; n < snapshot.entity_count; ++n) {
-    const scene::Snapshot::Entity& e = snapshot.entities[static_cast<std::size_t>(n)];
-    if (e.index * 7 + 7 > poses.size() || (e.flags & scene::Snapshot::kHidden) != 0) continue;
-    const core::Quat q = core::Quat::from(e.pose.rotation);
-    float* p = &poses[e.index * 7];
-    for (const double v : {e.pose.position.x, e.pose.position.y, e.pose.position.z, q.x, q.y, q.z, q.w})
-      *p++ = static_cast<float>(v);
-  }
-  for (int r = 0; r < snapshot.rope_count; ++r) {
-    const std::size_t first = snapshot.rope_first[static_cast<std::size_t>(r)];
-    const std::size_t count = snapshot.rope_points[static_cast<std::size_t>(r)];
-    state.rope_point_counts().push_back(static_cast<std::uint16_t>(count));
-    for (std::size_t k = first; k < first + count && k < snapshot.points.size(); ++k)
-      state.rope_points_m().insert(state.rope_points_m().end(), {static_cast<float>(snapshot.points[k].x),
-                                                                 static_cast<float>(snapshot.points[k].y),
-                                                                 static_cast<float>(snapshot.points[k].z)});
-  }
-  return state;
-}
 
 IdlePresence::IdlePresence(net::StationLink& link, const std::string& last_message)
     : link_(link), message_(last_message) {}
@@ -151,7 +56,7 @@ std::optional<StartRequest> IdlePresence::service() {
       start = StartRequest{
           c.exercise().to_string(), c.trainee().to_string(), c.user().to_string(), c.route().to_string(),
           c.team().to_string(),     c.role().to_string(),    c.autopilot(),        std::nullopt};
-      if (kind == "take-over") start->take_over = station::TakeOverFrom{c.recording().to_string(), c.step()};
+      if (kind == "take-over") start->take_over = TakeOverFrom{c.recording().to_string(), c.step()};
       link_.acknowledge(
           c, true,
           (kind == "start" ? "starting " : "taking over ") +
@@ -178,11 +83,11 @@ std::optional<StartRequest> IdlePresence::service() {
   return start;
 }
 
-AttemptPresence::AttemptPresence(net::StationLink& link, station::Session& session,
+AttemptPresence::AttemptPresence(net::StationLink& link, Session& session,
                                  const sim::ExerciseSettings& exercise, const std::string& trainee,
                                  const scene::SceneDescription& scene)
     : link_(link), session_(session), exercise_(exercise), trainee_(trainee), scene_(scene) {
-  link_.publish(scene_message(scene_, session.attempt()));
+  link_.publish(net::scene_message(scene_, session.attempt()));
 }
 
 net::StationStatus AttemptPresence::status(const std::string& state, const scene::Snapshot* snapshot) const {
@@ -194,7 +99,7 @@ net::StationStatus AttemptPresence::status(const std::string& state, const scene
   s.role(role_);
   s.attempt(session_.attempt());
   s.time_limit_s(exercise_.rules.time_limit_s);
-  const station::LoopStats loop = session_.loop().stats();
+  const LoopStats loop = session_.loop().stats();
   s.real_time_factor(loop.real_time_factor);
   s.late_ticks(loop.late_ticks);
   s.skipped_ticks(loop.skipped_ticks);
@@ -214,16 +119,16 @@ net::StationStatus AttemptPresence::status(const std::string& state, const scene
 }
 
 void AttemptPresence::publish_state(const scene::Snapshot& snapshot) {
-  link_.publish(state_message(snapshot, scene_.entities.size(), session_.attempt()));
+  link_.publish(net::state_message(snapshot, scene_.entities.size(), session_.attempt()));
 }
 
 double AttemptPresence::published_time_s() {
-  const scene::Snapshot* snapshot = session_.loop().latest_snapshot(station::kConsoleReader);
+  const scene::Snapshot* snapshot = session_.loop().latest_snapshot(kConsoleReader);
   return snapshot ? snapshot->time_s : 0.0;
 }
 
 const scene::Snapshot* AttemptPresence::snapshot() {
-  return session_.loop().latest_snapshot(station::kConsoleReader);
+  return session_.loop().latest_snapshot(kConsoleReader);
 }
 
 bool AttemptPresence::apply(const net::StationCommand& command, std::string& answer, Next& next) {
@@ -240,16 +145,16 @@ bool AttemptPresence::apply(const net::StationCommand& command, std::string& ans
   }
   if (kind == "mute" || kind == "unmute" || kind.starts_with("volume:") || kind.starts_with("radio:"))
     return apply_sound(kind, answer);
-  station::LoopCommand loop;
+  LoopCommand loop;
   if (const auto k = loop_kind(kind)) {
     loop.kind = *k;
-    if (*k == station::LoopCommand::Kind::kSingleStep && !was_held_) {
+    if (*k == LoopCommand::Kind::kSingleStep && !was_held_) {
       answer = "single steps only while held";
       return false;
     }
   } else {
     try {
-      loop.kind = station::LoopCommand::Kind::kInstructor;
+      loop.kind = LoopCommand::Kind::kInstructor;
       loop.instructor = io::parse_instructor_command("0:" + kind).command;
     } catch (const std::invalid_argument& e) {
       answer = e.what();
@@ -374,8 +279,8 @@ AttemptPresence::Next AttemptPresence::service() {
     next_state_ = t + kStatePeriod;
   }
   if (t >= next_bulk_) {
-    if (const scene::BulkView* bulk = session_.loop().latest_bulk(station::kConsoleReader))
-      link_.publish(bulk_message(*bulk, session_.attempt(), published_time_s()));
+    if (const scene::BulkView* bulk = session_.loop().latest_bulk(kConsoleReader))
+      link_.publish(net::bulk_message(*bulk, session_.attempt(), published_time_s()));
     next_bulk_ = t + kBulkPeriod;
   }
   return next;
@@ -390,7 +295,7 @@ void AttemptPresence::note(const std::string& kind, const std::string& text) {
   link_.publish(e);
 }
 
-std::string attempt_outcome(const station::SessionResult& r) {
+std::string attempt_outcome(const SessionResult& r) {
   const bool scored = r.status == "finished" || r.status == "ended_by_instructor";
   const std::string how = r.status == "finished"              ? (r.score.passed ? "passed" : "not passed")
                           : r.status == "ended_by_instructor" ? "ended by the instructor"
@@ -400,7 +305,7 @@ std::string attempt_outcome(const station::SessionResult& r) {
   return "attempt " + std::to_string(r.attempt) + " " + how + (scored ? score : "");
 }
 
-void AttemptPresence::publish_end(const station::SessionResult& result) {
+void AttemptPresence::publish_end(const SessionResult& result) {
   net::StationStatus s = status("finished", nullptr);
   s.score(result.score.total);
   s.moves_done(result.metrics.moves_completed);
@@ -417,4 +322,4 @@ void AttemptPresence::publish_end(const station::SessionResult& result) {
   link_.publish(e);
 }
 
-}  // namespace harbour::apps
+}  // namespace harbour::station

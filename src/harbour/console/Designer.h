@@ -8,7 +8,7 @@
 #include "harbour/sim/Evaluation.h"
 #include "harbour/training/Route.h"
 
-namespace harbour::apps {
+namespace harbour::console {
 
 /// A line of an exercise the console's designer saved, or of a route its route editor saved (their last): the
 /// console may overwrite only these (a shipped exercise or route stays as it is).
@@ -62,4 +62,4 @@ std::string save_route(const records::CentreFolders& centre, const RouteCheck& r
 /// none.
 std::string route_source(const records::CentreFolders& centre, const std::string& id);
 
-}  // namespace harbour::apps
+}  // namespace harbour::console

@@ -1,4 +1,4 @@
-#include "Designer.h"
+#include "harbour/console/Designer.h"
 
 #include <unistd.h>
 
@@ -19,7 +19,7 @@
 #include "harbour/sim/Simulation.h"
 #include "harbour/sim/Vessel.h"
 
-namespace harbour::apps {
+namespace harbour::console {
 
 namespace {
 
@@ -103,7 +103,7 @@ DesignCheck check_design(const std::string& folder, const std::string& yaml) {
                                 "': the file's name, " + why);
   if (check.exercise.about) {
     // people pick exercises by title: the centre's and the shipped ones each have their own
-    const std::string why = io::why_title_taken({folder, std::string(HARBOUR_DATA_DIR) + "/exercises"},
+    const std::string why = io::why_title_taken({folder, records::shipped_data_folder() + "/exercises"},
                                                 check.exercise.about->title, check.exercise.name);
     if (!why.empty()) throw std::invalid_argument("the design: field 'exercise.about.title' " + why);
   }
@@ -114,7 +114,8 @@ DesignCheck check_design(const std::string& folder, const std::string& yaml) {
 std::string save_design(const std::string& folder, const DesignCheck& design) {
   const fs::path file = fs::path(folder) / (design.exercise.name + ".yaml");
   // a centre's exercise named as a shipped one would stand in for it at every station and route
-  const fs::path shipped = fs::path(HARBOUR_DATA_DIR) / "exercises" / (design.exercise.name + ".yaml");
+  const fs::path shipped =
+      fs::path(records::shipped_data_folder()) / "exercises" / (design.exercise.name + ".yaml");
   std::error_code ec;
   if (fs::is_regular_file(shipped) && !fs::equivalent(file, shipped, ec))
     throw std::logic_error(
@@ -273,4 +274,4 @@ std::string route_source(const records::CentreFolders& centre, const std::string
   throw std::out_of_range("no route '" + id + "'");
 }
 
-}  // namespace harbour::apps
+}  // namespace harbour::console

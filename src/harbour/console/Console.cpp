@@ -1,7 +1,7 @@
 // The instructor console's server: static files, the JSON API and the live WebSocket, over Boost.Beast
 // (kept in this one translation unit: Beast is slow to compile). One thread runs everything: the HTTP and
 // WebSocket sessions, the records database and the DDS link, polled every few milliseconds.
-#include "Console.h"
+#include "harbour/console/Console.h"
 
 #include <sodium.h>
 #include <sys/resource.h>
@@ -39,9 +39,8 @@
 #include <type_traits>
 #include <vector>
 
-#include "Designer.h"
-#include "StationNet.h"
 #include "harbour/bulk/BulkPublish.h"
+#include "harbour/console/Designer.h"
 #include "harbour/core/Text.h"
 #include "harbour/ig/Visuals.h"
 #include "harbour/io/BoundedFile.h"
@@ -58,9 +57,10 @@
 #include "harbour/records/Reports.h"
 #include "harbour/records/XapiSender.h"
 #include "harbour/sim/Recording.h"
+#include "harbour/station/ConsolePresence.h"
 #include "harbour/training/Figures.h"
 
-namespace harbour::apps {
+namespace harbour::console {
 namespace {
 
 namespace asio = boost::asio;
@@ -252,7 +252,7 @@ json team_list(const std::vector<std::string>& exercise_folders) {
   json list = json::array();
   std::set<std::filesystem::path> files;
   std::error_code ec;
-  for (const auto& f : std::filesystem::directory_iterator(std::string(HARBOUR_DATA_DIR) + "/teams", ec))
+  for (const auto& f : std::filesystem::directory_iterator(records::shipped_data_folder() + "/teams", ec))
     if (f.path().extension() == ".yaml") files.insert(f.path());
   for (const std::filesystem::path& file : files) {
     try {
@@ -483,28 +483,29 @@ json design_preview(const std::string& folder, const DesignCheck& design) {
   const sim::Simulation simulation(design.exercise.scenario);
   auto snapshot = std::make_unique<scene::Snapshot>();
   simulation.write_snapshot(*snapshot);
-  const net::StationScene published = scene_message(simulation.scene(), 0);
+  const net::StationScene published = net::scene_message(simulation.scene(), 0);
   json bulk;
   if (const bulk::BulkWorld* material = simulation.bulk()) {
     scene::BulkView view;
     bulk::publish(*material, view);
-    bulk = bulk_json("designer", bulk_message(view, 0, 0.0));
+    bulk = bulk_json("designer", net::bulk_message(view, 0, 0.0));
   }
   const sim::ExerciseSettings& x = design.exercise;
-  return {{"exercise", x.name},
-          {"machine", x.scenario.machine.kind()},
-          {"version", design.version},
-          {"containers", x.scenario.containers.size()},
-          {"moves", x.moves.size()},
-          {"events", x.scenario.events.size() + x.scenario.lift_events.size()},
-          {"time_limit_s", x.rules.time_limit_s},
-          {"pass_score", x.rules.pass_score},
-          {"wind_mps", x.scenario.weather.wind_mean_mps},
-          {"form", design_form(folder, design)},
-          {"scene", scene_json("designer", published)},
-          {"state", state_json("designer", state_message(*snapshot, simulation.scene().entities.size(), 0),
-                               &published, true)},
-          {"bulk", bulk}};
+  return {
+      {"exercise", x.name},
+      {"machine", x.scenario.machine.kind()},
+      {"version", design.version},
+      {"containers", x.scenario.containers.size()},
+      {"moves", x.moves.size()},
+      {"events", x.scenario.events.size() + x.scenario.lift_events.size()},
+      {"time_limit_s", x.rules.time_limit_s},
+      {"pass_score", x.rules.pass_score},
+      {"wind_mps", x.scenario.weather.wind_mean_mps},
+      {"form", design_form(folder, design)},
+      {"scene", scene_json("designer", published)},
+      {"state", state_json("designer", net::state_message(*snapshot, simulation.scene().entities.size(), 0),
+                           &published, true)},
+      {"bulk", bulk}};
 }
 
 // A stored attempt played back in the console: re-simulated from its recording, seeking through keyframes,
@@ -803,7 +804,7 @@ class Console {
   /// exercise version stands among every trainee's best on it (percentile rank).
   json evolution(const std::string& trainee);
   std::string exercise_folder() const {
-    return options_.centre.exercises.empty() ? std::string(HARBOUR_DATA_DIR) + "/exercises"
+    return options_.centre.exercises.empty() ? records::shipped_data_folder() + "/exercises"
                                              : options_.centre.exercises;
   }
 
@@ -869,7 +870,7 @@ class Console {
   void push_state(LiveSocket& socket, const std::string& station, const net::StationScene* scene,
                   const std::function<json(bool)>& state_of);
   std::string looks_ =
-      dump(looks_json(ig::load_looks(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml")));
+      dump(looks_json(ig::load_looks(records::shipped_data_folder() + "/visuals/harbour.yaml")));
   /// the training routes (the centre's and data/routes), checked at start: a bad one stops the console
   /// naming it
   std::vector<training::Route> routes_ = records::load_centre_routes(centre());
@@ -1728,7 +1729,7 @@ std::optional<Console::Response> Console::design_source(Call& c) {
   const std::string name = query_param(c.query, "exercise");
   for (const std::string& folder : centre().exercise_folders()) {
     try {
-      const std::string text = apps::design_source(folder, name);
+      const std::string text = console::design_source(folder, name);
       return json_reply(c.request, http::status::ok,
                         {{"exercise", name}, {"text", text}, {"designed", designed(text)}});
     } catch (const std::out_of_range&) {
@@ -1908,7 +1909,7 @@ std::optional<Console::Response> Console::open_replay(Call& c) {
     replays_.erase(it);
     return error(request, http::status::conflict, std::string("cannot replay: ") + e.what());
   }
-  r.scene = scene_message(r.player->simulation().scene(), r.attempt);
+  r.scene = net::scene_message(r.player->simulation().scene(), r.attempt);
   json events = json::array();
   for (const records::EventRow& e : db_.events(id))
     events.push_back(attempt_event_json(e.at_s, e.kind, e.value));
@@ -2022,8 +2023,9 @@ std::optional<Console::Response> Console::control_replay(Call& c) {
 json Console::replay_state(Replay& r, bool view) {
   const sim::Simulation& sim = r.player->simulation();
   sim.write_snapshot(*r.snapshot);
-  json state = state_json("replay-" + std::to_string(r.id),
-                          state_message(*r.snapshot, sim.scene().entities.size(), r.attempt), &r.scene, view);
+  json state =
+      state_json("replay-" + std::to_string(r.id),
+                 net::state_message(*r.snapshot, sim.scene().entities.size(), r.attempt), &r.scene, view);
   state["held"] = !r.playing;
   state["replay"] = r.id;
   state["checkpoint_mismatch"] = r.player->first_mismatch().has_value();
@@ -2253,8 +2255,8 @@ void Console::poll() {
                   s->subscribed() + " " + std::to_string(std::lround(r.player->simulation().time_s()));
               if (s->bulk_sent() != key) {
                 bulk::publish(*material, r.bulk);
-                s->send(dump(bulk_json(s->subscribed(),
-                                       bulk_message(r.bulk, r.attempt, r.player->simulation().time_s()))));
+                s->send(dump(bulk_json(
+                    s->subscribed(), net::bulk_message(r.bulk, r.attempt, r.player->simulation().time_s()))));
                 s->bulk_sent() = key;
               }
             }
@@ -2764,4 +2766,4 @@ int add_account(const std::string& database, const std::string& name, const std:
   return 0;
 }
 
-}  // namespace harbour::apps
+}  // namespace harbour::console

@@ -9,32 +9,19 @@
 
 #include "harbour/audio/SoundThread.h"
 #include "harbour/net/DdsLink.h"
-#include "harbour/scene/BulkView.h"
+#include "harbour/net/SceneMessages.h"
 #include "harbour/sim/Evaluation.h"
 #include "harbour/station/Session.h"
 
-namespace harbour::apps {
+namespace harbour::station {
 
-/// The network's form of a scene and of a published state (entities in scene order, poses as x, y, z and
-/// a quaternion x, y, z, w; an entity missing from the snapshot keeps a zero pose): what the stations
-/// publish and the console's replays send alike.
-net::StationScene scene_message(const scene::SceneDescription& scene, std::int64_t attempt);
-net::StationState state_message(const scene::Snapshot& snapshot, std::size_t entity_count,
-                                std::int64_t attempt);
-/// The bulk material's surfaces as the console's 3D view draws them: at most kMostBulkGrids grids, each
-/// coarsened to blocks of cells (the block's highest cell) so that all fit in kMostBulkSamples samples, at
-/// most 64 on a side.
-inline constexpr std::size_t kMostBulkGrids = 8, kMostBulkSamples = 16384;
-inline constexpr int kMostBulkSamplesPerSide = 64;
 /// The instructor's picture of the trainee's cab view: its size, rate and largest JPEG (the topic's bound).
 inline constexpr int kPictureWidth = 640, kPictureHeight = 360;
 inline constexpr double kPicturesPerSecond = 5.0;
 inline constexpr std::size_t kMostPictureBytes = 262144;
-net::StationBulk bulk_message(const scene::BulkView& view, std::int64_t attempt, double time_s);
-
 /// How an attempt ended, in the words the console shows: "attempt 5 passed, score 87.0", "attempt 6 ended by
 /// the instructor, score 40.2", "attempt 7 interrupted".
-std::string attempt_outcome(const station::SessionResult& result);
+std::string attempt_outcome(const SessionResult& result);
 
 /// What a console asked a station to do next (run an exercise, or nothing new).
 struct StartRequest {
@@ -43,7 +30,7 @@ struct StartRequest {
   std::string team,
       role;  ///< a member of a team session (a shipped team's name), running its role's exercise
   bool autopilot = false;
-  std::optional<station::TakeOverFrom> take_over;  ///< continue a stored attempt from a moment
+  std::optional<TakeOverFrom> take_over;  ///< continue a stored attempt from a moment
 };
 
 /// A station's presence on the centre's network while idle: its status at 2 Hz and the commands it takes
@@ -67,12 +54,12 @@ class AttemptPresence {
  public:
   enum class Next { kRun, kStop, kReset };
   /// `scene`: what the station draws (its simulation's scene, and a team's other machines after it).
-  AttemptPresence(net::StationLink& link, station::Session& session, const sim::ExerciseSettings& exercise,
+  AttemptPresence(net::StationLink& link, Session& session, const sim::ExerciseSettings& exercise,
                   const std::string& trainee, const scene::SceneDescription& scene);
   /// Publishes what is due and applies the commands that came; says whether the attempt goes on.
   Next service();
   /// Tells the consoles how the attempt ended.
-  void publish_end(const station::SessionResult& result);
+  void publish_end(const SessionResult& result);
   /// A line for the consoles' event logs (a device lost, the image generator stopped). Call from the
   /// thread that calls service() (it reads the console's snapshots).
   void note(const std::string& kind, const std::string& text);
@@ -104,7 +91,7 @@ class AttemptPresence {
   bool apply_sound(const std::string& kind, std::string& answer);
 
   net::StationLink& link_;
-  station::Session& session_;
+  Session& session_;
   const sim::ExerciseSettings& exercise_;
   std::string trainee_;
   std::string team_, role_;
@@ -118,4 +105,4 @@ class AttemptPresence {
   audio::SoundThread* sound_ = nullptr;
 };
 
-}  // namespace harbour::apps
+}  // namespace harbour::station
