@@ -17,8 +17,6 @@
 #include <thread>
 
 #include "ExerciseRun.h"
-#include "StationTeam.h"
-#include "StationWindow.h"
 #include "harbour/audio/SoundFile.h"
 #include "harbour/audio/SoundThread.h"
 #include "harbour/core/Text.h"
@@ -37,6 +35,8 @@
 #include "harbour/station/MotionLink.h"
 #include "harbour/station/Profile.h"
 #include "harbour/station/Station.h"
+#include "harbour/station/StationWindow.h"
+#include "harbour/station/TeamMembership.h"
 
 namespace harbour::apps {
 namespace {
@@ -113,7 +113,7 @@ void choose_exercise(const StationOptions& options, const std::string& database,
     std::vector<std::string> exercise_folders{std::string(HARBOUR_DATA_DIR) + "/exercises"};
     if (!options.centre.exercises.empty())
       exercise_folders.insert(exercise_folders.begin(), options.centre.exercises);
-    team = io::load_team(resolve_team(options.team, options.centre.exercises), exercise_folders);
+    team = io::load_team(station::resolve_team(options.team, options.centre.exercises), exercise_folders);
     if (!team->find(options.role))
       throw std::runtime_error("team " + team->name + " has no role '" + options.role +
                                "' (its roles: " + team->role_list() + ")");
@@ -139,11 +139,10 @@ void choose_exercise(const StationOptions& options, const std::string& database,
 
 // The trainee's windows' pictures: one image generator drawing every display channel's picture (each eye's in
 // stereo) from the newest snapshot and handing each to its window
-std::unique_ptr<ig::RenderThread> render_windows(const station::Profile& profile,
-                                                 const station::DisplayLayout& layout,
-                                                 const std::vector<std::unique_ptr<StationWindow>>& windows,
-                                                 const scene::SceneDescription& scene,
-                                                 station::Session& session) {
+std::unique_ptr<ig::RenderThread> render_windows(
+    const station::Profile& profile, const station::DisplayLayout& layout,
+    const std::vector<std::unique_ptr<station::StationWindow>>& windows, const scene::SceneDescription& scene,
+    station::Session& session) {
   std::vector<ig::View> views;
   std::vector<bool> last_of_window(layout.pictures.size(), false);  // the frame's last picture there
   for (std::size_t k = 0; k < layout.pictures.size(); ++k) {
@@ -168,7 +167,7 @@ std::unique_ptr<ig::RenderThread> render_windows(const station::Profile& profile
       if (layout.pictures[j].window == picture.window) last_of_window[j] = false;
     last_of_window[k] = true;
   }
-  std::vector<StationWindow*> shown;
+  std::vector<station::StationWindow*> shown;
   for (const auto& w : windows)
     shown.push_back(w.get());
   auto render = std::make_unique<ig::RenderThread>(
@@ -281,20 +280,20 @@ void print_progress(const scene::SceneDescription& scene, const scene::Snapshot&
 
 // The trainee's windows (before the devices: the keyboard and mouse need them): the profile's displays side
 // by side in one window or a window each, where there is a display or they are asked for
-std::vector<std::unique_ptr<StationWindow>> open_windows(const StationOptions& options,
-                                                         const station::Profile& profile,
-                                                         const station::DisplayLayout& layout,
-                                                         const sim::ExerciseSettings& exercise) {
+std::vector<std::unique_ptr<station::StationWindow>> open_windows(const StationOptions& options,
+                                                                  const station::Profile& profile,
+                                                                  const station::DisplayLayout& layout,
+                                                                  const sim::ExerciseSettings& exercise) {
   const bool display = std::getenv("DISPLAY") || std::getenv("WAYLAND_DISPLAY");
   if (options.window != "on" && options.window != "off" && options.window != "auto")
     throw std::runtime_error("--window " + options.window + ": on, off or auto");
-  std::vector<std::unique_ptr<StationWindow>> windows;
+  std::vector<std::unique_ptr<station::StationWindow>> windows;
   if (options.window == "on" || (options.window == "auto" && display))
     for (const station::DisplayLayout::Window& w : layout.windows) {
       const station::DisplayChannel& d = profile.displays[static_cast<std::size_t>(w.display)];
       const std::string title = "harboursim: " + exercise.name + " (" + profile.name +
                                 (layout.windows.size() > 1 ? ", " + d.name : std::string()) + ")";
-      windows.push_back(std::make_unique<StationWindow>(
+      windows.push_back(std::make_unique<station::StationWindow>(
           w.width, w.height, title, layout.windows.size() > 1 && d.fullscreen, w.display));
     }
   return windows;
@@ -325,9 +324,10 @@ void use_head_and_platform(station::Station& station, const station::Profile& pr
 
 // This station as a member of a team session: the other members' machines in its scene and in every snapshot
 // it publishes (the loop's addition holds the membership as long as the loop may run)
-std::shared_ptr<TeamMembership> join_team(const io::Team& team, const StationOptions& options,
-                                          const sim::ExerciseSettings& exercise, station::Session& session) {
-  auto membership = std::make_shared<TeamMembership>(
+std::shared_ptr<station::TeamMembership> join_team(const io::Team& team, const StationOptions& options,
+                                                   const sim::ExerciseSettings& exercise,
+                                                   station::Session& session) {
+  auto membership = std::make_shared<station::TeamMembership>(
       team, options.role, options.name.empty() ? options.role : options.name, options.domain, exercise,
       session.simulation().scene(), options.time_scale);
   // for the readers that draw: the windows, the console's 3D view, the instructor's picture
@@ -344,7 +344,8 @@ std::shared_ptr<TeamMembership> join_team(const io::Team& team, const StationOpt
 }
 
 // The image generators stopped, with what they drew
-void stop_drawing(ig::RenderThread* render, const std::vector<std::unique_ptr<StationWindow>>& windows,
+void stop_drawing(ig::RenderThread* render,
+                  const std::vector<std::unique_ptr<station::StationWindow>>& windows,
                   ig::RenderThread* pictures) {
   if (render) {
     long shown = windows.front()->frames_shown();
@@ -400,12 +401,12 @@ void skip_unread_snapshots(station::LoopSettings& loop, const StationOptions& op
 
 // The windows' input since the last pump: keys to the devices, looking round, F1's list of keys; false when
 // one was closed
-bool pump_windows(const std::vector<std::unique_ptr<StationWindow>>& windows, station::Station& station,
-                  station::LookAround& look, ig::RenderThread* render, const std::string& keys, bool& help,
-                  double dt_s) {
+bool pump_windows(const std::vector<std::unique_ptr<station::StationWindow>>& windows,
+                  station::Station& station, station::LookAround& look, ig::RenderThread* render,
+                  const std::string& keys, bool& help, double dt_s) {
   bool open = true;
   for (const auto& w : windows) {
-    const WindowInput in = w->pump();
+    const station::WindowInput in = w->pump();
     open = in.open && open;
     if (station.devices())
       for (const int key : in.keys_went_down)
@@ -421,7 +422,7 @@ bool pump_windows(const std::vector<std::unique_ptr<StationWindow>>& windows, st
 }
 
 // This station leaves its team session: the team's figures and the session's id go with the attempt
-void leave_team(TeamMembership& membership, station::Session& session, const std::string& team,
+void leave_team(station::TeamMembership& membership, station::Session& session, const std::string& team,
                 const std::string& role) {
   membership.stop();
   membership.leave();
@@ -480,7 +481,7 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
     session_options.take_over = station::TakeOverFrom{options.take_over_recording, options.take_over_step};
   // the profile's displays: side by side in one window or a window each, two eyes each in stereo
   const station::DisplayLayout layout = station::layout_displays(profile);
-  const std::vector<std::unique_ptr<StationWindow>> windows =
+  const std::vector<std::unique_ptr<station::StationWindow>> windows =
       open_windows(options, profile, layout, exercise);
   const bool hearing = wants_sound(options, profile, !windows.empty());
   skip_unread_snapshots(session_options.loop, options, profile, !windows.empty(), hearing, link != nullptr,
@@ -488,7 +489,7 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
   station::Session session(exercise, session_options);
   station::Station station(session);
   // the other members' machines, in this station's scene and in every snapshot it publishes
-  std::shared_ptr<TeamMembership> membership;
+  std::shared_ptr<station::TeamMembership> membership;
   if (team) membership = join_team(*team, options, exercise, session);
   std::unique_ptr<sim::Pilot> pilot;
   if (options.autopilot) {

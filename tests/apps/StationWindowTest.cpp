@@ -13,10 +13,10 @@
 #include <thread>
 #include <vector>
 
-#include "../../apps/harboursim/StationWindow.h"
 #include "harbour/machines/sts/StsCrane.h"
 #include "harbour/station/DeviceInput.h"
 #include "harbour/station/DeviceMappingFile.h"
+#include "harbour/station/StationWindow.h"
 #include "scenes/StsScenes.h"
 
 namespace harbour::apps {
@@ -49,7 +49,7 @@ std::array<int, 3> at(const std::vector<std::uint8_t>& rgb, int width, int x, in
 TEST(StationWindow, FitsTheScreenKeepsTheWholePictureResizedAndTheMouseMovesNoControl) {
   if (std::system("command -v Xvfb > /dev/null") != 0) GTEST_SKIP() << "Xvfb is not installed";
   const Xvfb server(":" + std::to_string(150 + getpid() % 50));
-  StationWindow window(1920, 1080, "harboursim: test");
+  station::StationWindow window(1920, 1080, "harboursim: test");
   int w = 0, h = 0;
   window.size(w, h);
   EXPECT_LE(w, 1600);

@@ -1,4 +1,4 @@
-#include "StationWindow.h"
+#include "harbour/station/StationWindow.h"
 
 #include <SDL.h>
 
@@ -8,7 +8,7 @@
 
 #include "harbour/station/DisplayLayout.h"
 
-namespace harbour::apps {
+namespace harbour::station {
 
 StationWindow::StationWindow(int width, int height, const std::string& title, bool fullscreen, int output)
     : width_(width), height_(height) {
@@ -49,8 +49,7 @@ StationWindow::~StationWindow() {
 void StationWindow::hand_over(const unsigned char* pixels, int width, int height, int pixel_bytes,
                               std::size_t row_bytes, int x0, std::uint8_t colours, bool last) {
   const std::lock_guard lock(mutex_);
-  if (station::copy_picture(frame_, width_, height_, pixels, width, height, pixel_bytes, row_bytes, x0,
-                            colours) &&
+  if (copy_picture(frame_, width_, height_, pixels, width, height, pixel_bytes, row_bytes, x0, colours) &&
       last)
     fresh_ = true;
 }
@@ -119,4 +118,4 @@ std::vector<std::uint8_t> StationWindow::shown(int& width, int& height) {
   return pixels;
 }
 
-}  // namespace harbour::apps
+}  // namespace harbour::station

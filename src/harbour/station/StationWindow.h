@@ -9,7 +9,7 @@ struct SDL_Window;
 struct SDL_Renderer;
 struct SDL_Texture;
 
-namespace harbour::apps {
+namespace harbour::station {
 
 /// What the trainee did at the window since the last pump, beyond the machine's controls: the station's own
 /// keys (F1 the key list, the keypad looking round, keypad 5 back to the line of sight) and a mouse drag with
@@ -40,7 +40,7 @@ class StationWindow {
 
   /// Render thread: a picture of RGB or RGBA pixels (`pixel_bytes` 3 or 4), rows `row_bytes` apart, bottom
   /// row first (as OpenGL reads them), into its tile from column `x0`, writing the colours `colours` names
-  /// (station::copy_picture); shown once the `last` picture of a frame is in (not an eye of one frame beside
+  /// (copy_picture); shown once the `last` picture of a frame is in (not an eye of one frame beside
   /// the other eye of the previous).
   void hand_over(const unsigned char* pixels, int width, int height, int pixel_bytes, std::size_t row_bytes,
                  int x0 = 0, std::uint8_t colours = 0b111, bool last = true);
@@ -67,4 +67,4 @@ class StationWindow {
   long frames_shown_ = 0;
 };
 
-}  // namespace harbour::apps
+}  // namespace harbour::station

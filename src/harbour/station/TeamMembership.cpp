@@ -1,4 +1,4 @@
-#include "StationTeam.h"
+#include "harbour/station/TeamMembership.h"
 
 #include <algorithm>
 #include <chrono>
@@ -7,11 +7,11 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include "ExerciseRun.h"
+#include "harbour/records/Centre.h"
 #include "harbour/sim/Simulation.h"
 #include "harbour/station/RealTimeLoop.h"
 
-namespace harbour::apps {
+namespace harbour::station {
 
 namespace fs = std::filesystem;
 
@@ -40,8 +40,8 @@ int entity_named(const scene::SceneDescription& scene, const std::string& name) 
 
 // the other roles' machines as this station knows them before it hears from them: their exercises built
 // here (not stepped) for their bodies and where those start
-std::vector<station::TeamMember> other_members(const io::Team& team, const std::string& role) {
-  std::vector<station::TeamMember> members;
+std::vector<TeamMember> other_members(const io::Team& team, const std::string& role) {
+  std::vector<TeamMember> members;
   for (const io::TeamRole& r : team.roles) {
     if (r.role == role) continue;
     const sim::ExerciseSettings exercise = records::load_resolved_exercise(r.exercise_file);
@@ -54,7 +54,7 @@ std::vector<station::TeamMember> other_members(const io::Team& team, const std::
     for (const sim::ContainerPlacement& c : exercise.scenario.containers)
       for (std::size_t n = bodies; n < scene.entities.size(); ++n)
         if (scene.entities[n].name == c.id) bodies = n + 1;
-    station::TeamMember m;
+    TeamMember m;
     m.role = r.role;
     m.machine_bodies = scene.machine_entities;
     std::vector<core::Pose> start(scene.entities.size());
@@ -77,7 +77,7 @@ std::vector<station::TeamMember> other_members(const io::Team& team, const std::
 std::string team_folders_list() {
   std::string list;
   std::error_code ec;
-  for (const auto& f : fs::directory_iterator(fs::path(HARBOUR_DATA_DIR) / "teams", ec))
+  for (const auto& f : fs::directory_iterator(fs::path(records::shipped_data_folder()) / "teams", ec))
     if (f.path().extension() == ".yaml") list += (list.empty() ? "" : ", ") + f.path().stem().string();
   return list;
 }
@@ -88,7 +88,7 @@ std::string resolve_team(const std::string& name_or_path, const std::string& cen
   if (fs::is_regular_file(name_or_path)) return name_or_path;
   std::vector<fs::path> folders;
   if (!centre_exercises.empty()) folders.push_back(fs::path(centre_exercises).parent_path() / "teams");
-  folders.push_back(fs::path(HARBOUR_DATA_DIR) / "teams");
+  folders.push_back(fs::path(records::shipped_data_folder()) / "teams");
   for (const fs::path& folder : folders)
     if (const fs::path file = folder / (name_or_path + ".yaml"); fs::is_regular_file(file))
       return file.string();
@@ -258,7 +258,7 @@ void TeamMembership::feed_trucks() {
   const double now = now_s();
   for (std::size_t k = 0; k < trucks_.size(); ++k) {
     Truck& truck = trucks_[k];
-    const std::optional<station::RemoteMotion> m = presence_.motion_of(truck.role, truck.trailer_body, now);
+    const std::optional<RemoteMotion> m = presence_.motion_of(truck.role, truck.trailer_body, now);
     if (!m) continue;
     // its deck's top centre, moving with the trailer
     sim::TeamInput in;
@@ -412,7 +412,7 @@ void TeamMembership::take() {
         }
         continue;
       }
-      station::TeamSample sample;
+      TeamSample sample;
       sample.role = role;
       sample.received_s = now_s();
       sample.age_s = static_cast<double>(arrived_ns - t.sent_ns()) * 1e-9;  // one host: one monotonic clock
@@ -421,7 +421,7 @@ void TeamMembership::take() {
       if (m.size() != sample.body.size() * 13) continue;  // torn: not ours to draw
       for (std::size_t k = 0; k < sample.body.size(); ++k) {
         const float* f = &m[k * 13];
-        station::RemoteMotion r;
+        RemoteMotion r;
         r.pose.position = {f[0], f[1], f[2]};
         r.pose.rotation = core::Quat{f[3], f[4], f[5], f[6]}.matrix();
         r.velocity_mps = {f[7], f[8], f[9]};
@@ -439,7 +439,7 @@ void TeamMembership::take() {
   }
   {
     std::vector<std::string> changed;
-    for (const station::TeamPresence::MemberState& m : presence_.members(now_s(), &changed))
+    for (const TeamPresence::MemberState& m : presence_.members(now_s(), &changed))
       for (const std::string& role : changed)
         if (role == m.role && said_) said_(role + (m.lost ? ": lost" : ": back"));
   }
@@ -447,7 +447,7 @@ void TeamMembership::take() {
 
 sim::TeamFigures TeamMembership::figures() const {
   sim::TeamFigures f;
-  for (const station::NearMissWatch::Tally& t : near_misses_.tallies()) {
+  for (const NearMissWatch::Tally& t : near_misses_.tallies()) {
     f.near_misses += t.near_misses;
     f.contacts += t.contacts;
     const double closest = std::max(t.closest_m, 0.0);
@@ -465,7 +465,7 @@ std::vector<std::string> TeamMembership::report() {
   std::snprintf(line, sizeof line, "team %s: %s, %lld states published", team_.name.c_str(), role_.c_str(),
                 static_cast<long long>(published_));
   lines.emplace_back(line);
-  for (const station::TeamPresence::MemberState& m : presence_.members(now_s(), nullptr, true)) {
+  for (const TeamPresence::MemberState& m : presence_.members(now_s(), nullptr, true)) {
     if (!m.heard) {
       lines.push_back("  " + m.role + ": never heard (drawn where its exercise starts it)");
       continue;
@@ -477,7 +477,7 @@ std::vector<std::string> TeamMembership::report() {
                   : m.left ? ", left"
                            : "");
     std::string text = line;
-    for (const station::NearMissWatch::Tally& t : near_misses_.tallies())
+    for (const NearMissWatch::Tally& t : near_misses_.tallies())
       if (t.role == m.role) {
         std::snprintf(line, sizeof line, "; closest %.2f m, %d near miss%s, %d contact%s",
                       std::max(t.closest_m, 0.0), t.near_misses, t.near_misses == 1 ? "" : "es", t.contacts,
@@ -489,4 +489,4 @@ std::vector<std::string> TeamMembership::report() {
   return lines;
 }
 
-}  // namespace harbour::apps
+}  // namespace harbour::station

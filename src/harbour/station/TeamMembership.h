@@ -15,13 +15,13 @@
 #include "harbour/sim/Evaluation.h"
 #include "harbour/station/TeamPresence.h"
 
-namespace harbour::apps {
+namespace harbour::station {
 
 /// A team file by name (data/teams/NAME.yaml, or the centre's folder first) or path.
 std::string resolve_team(const std::string& name_or_path, const std::string& centre_exercises = "");
 
 /// A station's place in a team session: it publishes its machine's bodies at 50 Hz (velocities from
-/// consecutive snapshots), takes the other members' and draws their machines in its scene (station::
+/// consecutive snapshots), takes the other members' and draws their machines in its scene (
 /// TeamPresence), and says when a member is lost or back. A crane with team trucks feeds its simulation where
 /// their tractors' trailers are (sim::TeamInput::kTruckAt, 50 Hz) and hands each box seated on one to that
 /// tractor's station: it offers the box every 100 ms until the tractor says it has acquired it, then lets it
@@ -76,7 +76,7 @@ class TeamMembership {
   int own_bodies_;    // its machine's: sent every period
   int own_entities_;  // its scene's (the items it holds are sent while it holds them)
   net::TeamLink link_;
-  station::TeamPresence presence_;
+  TeamPresence presence_;
   std::function<const scene::Snapshot*()> latest_;
   std::function<void(const std::string&)> said_;
   std::thread thread_;
@@ -87,7 +87,7 @@ class TeamMembership {
   std::set<std::string> refused_;               // the refusals said so far
   std::set<std::string> joined_;                // the roles heard so far
   std::set<std::string> left_;                  // the roles that said they left
-  station::NearMissWatch near_misses_;
+  NearMissWatch near_misses_;
   std::function<bool(const sim::TeamInput&)> input_;
   // a crane's team trucks: the tractors' roles, their trailers' bodies and decks; the crane's own boxes
   struct Truck {
@@ -117,4 +117,4 @@ class TeamMembership {
   double trailer_was_s_ = -1.0, standing_since_s_ = -1.0, waited_s_ = -1.0;
 };
 
-}  // namespace harbour::apps
+}  // namespace harbour::station
