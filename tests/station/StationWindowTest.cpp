@@ -19,7 +19,7 @@
 #include "harbour/station/StationWindow.h"
 #include "scenes/StsScenes.h"
 
-namespace harbour::apps {
+namespace harbour::station {
 namespace {
 
 struct Xvfb {
@@ -49,7 +49,7 @@ std::array<int, 3> at(const std::vector<std::uint8_t>& rgb, int width, int x, in
 TEST(StationWindow, FitsTheScreenKeepsTheWholePictureResizedAndTheMouseMovesNoControl) {
   if (std::system("command -v Xvfb > /dev/null") != 0) GTEST_SKIP() << "Xvfb is not installed";
   const Xvfb server(":" + std::to_string(150 + getpid() % 50));
-  station::StationWindow window(1920, 1080, "harboursim: test");
+  StationWindow window(1920, 1080, "harboursim: test");
   int w = 0, h = 0;
   window.size(w, h);
   EXPECT_LE(w, 1600);
@@ -91,8 +91,8 @@ TEST(StationWindow, FitsTheScreenKeepsTheWholePictureResizedAndTheMouseMovesNoCo
   }
   // the keyboard mapping binds no mouse: the pointer at the window's edge drives nothing
   const scene::ControlTable table = scenes::sts_controls();
-  station::DeviceInput input(
-      table, station::load_device_mapping(std::string(HARBOUR_DATA_DIR) + "/devices/keyboard.yaml", table));
+  DeviceInput input(table,
+                    load_device_mapping(std::string(HARBOUR_DATA_DIR) + "/devices/keyboard.yaml", table));
   for (const auto& [x, y] : {std::pair{0, 0}, std::pair{1599, 450}, std::pair{800, 899}}) {
     window.move_mouse(x, y);
     window.pump();
@@ -102,4 +102,4 @@ TEST(StationWindow, FitsTheScreenKeepsTheWholePictureResizedAndTheMouseMovesNoCo
 }
 
 }  // namespace
-}  // namespace harbour::apps
+}  // namespace harbour::station
