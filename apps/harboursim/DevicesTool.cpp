@@ -24,6 +24,7 @@
 
 #include "StationRun.h"
 #include "harbour/machines/sts/Files.h"
+#include "harbour/records/Centre.h"
 #include "harbour/station/DeviceInput.h"
 #include "harbour/station/DeviceMappingFile.h"
 
@@ -252,7 +253,7 @@ void pump(std::vector<Opened>& devices, VirtualStick* stick) {
 
 int bind(const DevicesOptions& options, std::vector<Opened>& devices, VirtualStick* stick) {
   const std::string machine =
-      options.machine.empty() ? std::string(HARBOUR_DATA_DIR) + "/machines/sts.yaml" : options.machine;
+      options.machine.empty() ? records::shipped_data_folder() + "/machines/sts.yaml" : options.machine;
   const scene::ControlTable table = io::load_sts_crane(machine).controls;
   if (devices.empty()) {
     std::printf("no joysticks to bind: connect one and start again\n");

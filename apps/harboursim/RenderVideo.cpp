@@ -22,6 +22,7 @@
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/io/RecordingFile.h"
 #include "harbour/machines/MachineType.h"
+#include "harbour/records/Centre.h"
 #include "harbour/sim/Recording.h"
 
 namespace harbour::apps {
@@ -120,7 +121,7 @@ int render_video(const RenderOptions& options) {
                            ? options.to_s
                            : static_cast<double>(recording.total_steps) * sim::Simulation::kStep_s;
   const auto stop_step = static_cast<std::int64_t>(end_s / sim::Simulation::kStep_s);
-  ig::Looks looks = ig::load_looks(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml");
+  ig::Looks looks = ig::load_looks(records::shipped_data_folder() + "/visuals/harbour.yaml");
   std::unique_ptr<ig::ImageGenerator> generator;
   const ig::View view = ig::view_named(options.view);
   // first the attempt's events, for the timeline bar and the captions: a replay without drawing
@@ -171,7 +172,7 @@ int render_video(const RenderOptions& options) {
   std::unique_ptr<audio::OfflineMix> sound;
   const audio::SoundSettings sounds =
       hearing
-          ? audio::load_sounds(std::string(HARBOUR_DATA_DIR) + "/sounds/harbour.yaml", sim::machine_kinds())
+          ? audio::load_sounds(records::shipped_data_folder() + "/sounds/harbour.yaml", sim::machine_kinds())
           : audio::SoundSettings{};
   audio::AudioSettings listening;
   listening.speakers = options.headphones ? audio::Speakers::kHeadphones : audio::Speakers::kStereo;

@@ -13,6 +13,7 @@
 #include "harbour/io/BoundedFile.h"
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/io/InstructorCommandText.h"
+#include "harbour/records/Centre.h"
 #include "harbour/sim/Pilot.h"
 
 namespace harbour::apps {
@@ -57,7 +58,7 @@ int take_screenshot(const ScreenshotOptions& options) {
     simulation.step(pilot ? pilot->next(simulation) : simulation.control_table().neutral());
   }
   ig::Looks looks = ig::load_looks(
-      options.looks.empty() ? std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml" : options.looks);
+      options.looks.empty() ? records::shipped_data_folder() + "/visuals/harbour.yaml" : options.looks);
   ig::ImageGenerator generator(simulation.scene(), std::move(looks.visuals), options.width, options.height,
                                options.multisamples);
   if (options.soft_shadows) generator.set_soft_shadows(*options.soft_shadows);

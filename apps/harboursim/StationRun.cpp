@@ -110,7 +110,7 @@ void choose_exercise(const StationOptions& options, const std::string& database,
                      station::SessionOptions& session, std::optional<io::Team>& team) {
   // a member of a team session runs its role's exercise
   if (!options.team.empty()) {
-    std::vector<std::string> exercise_folders{std::string(HARBOUR_DATA_DIR) + "/exercises"};
+    std::vector<std::string> exercise_folders{records::shipped_data_folder() + "/exercises"};
     if (!options.centre.exercises.empty())
       exercise_folders.insert(exercise_folders.begin(), options.centre.exercises);
     team = io::load_team(station::resolve_team(options.team, options.centre.exercises), exercise_folders);
@@ -171,7 +171,7 @@ std::unique_ptr<ig::RenderThread> render_windows(
   for (const auto& w : windows)
     shown.push_back(w.get());
   auto render = std::make_unique<ig::RenderThread>(
-      scene, ig::load_looks(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml"), layout.render_width,
+      scene, ig::load_looks(records::shipped_data_folder() + "/visuals/harbour.yaml"), layout.render_width,
       layout.render_height, views,
       [&session] { return session.loop().latest_snapshot(station::kImageGeneratorReader); },
       [shown, pictures = layout.pictures, last_of_window](ig::ImageGenerator& generator,
@@ -214,7 +214,7 @@ std::unique_ptr<audio::SoundThread> start_sound(const station::Profile& profile,
   try {
     auto sound = std::make_unique<audio::SoundThread>(
         scene,
-        audio::load_sounds(std::string(HARBOUR_DATA_DIR) + "/sounds/harbour.yaml", sim::machine_kinds()),
+        audio::load_sounds(records::shipped_data_folder() + "/sounds/harbour.yaml", sim::machine_kinds()),
         settings, exercise.radio,
         [&session] { return session.loop().latest_snapshot(station::kSoundReader); });
     std::printf("sound: %s\n", sound->describe().c_str());
@@ -243,7 +243,7 @@ std::unique_ptr<ig::RenderThread> draw_for_instructor(const station::Profile& pr
     view.fov_vertical_rad = c.fov_vertical_rad;
   }
   return std::make_unique<ig::RenderThread>(
-      scene, ig::load_looks(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml"), station::kPictureWidth,
+      scene, ig::load_looks(records::shipped_data_folder() + "/visuals/harbour.yaml"), station::kPictureWidth,
       station::kPictureHeight, std::vector<ig::View>{view},
       // drawn only while a console shows this station
       [&session, &presence]() -> const scene::Snapshot* {
@@ -467,7 +467,7 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
     if (const std::string why = sim::why_no_pilot(exercise); !why.empty())
       throw std::runtime_error(exercise.name + ": " + why + " (drive it yourself: no --autopilot)");
   const station::Profile profile =
-      station::load_profile(station::resolve_profile(options.profile, HARBOUR_DATA_DIR));
+      station::load_profile(station::resolve_profile(options.profile, records::shipped_data_folder()));
   if (options.trainee == "autopilot")
     records::RecordsStore(database).ensure_trainee("autopilot", "Scripted operator");
   if (options.trainee == "guest")
