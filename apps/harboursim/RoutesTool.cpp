@@ -4,7 +4,6 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include "ExerciseRun.h"
 #include "harbour/core/Text.h"
 #include "harbour/io/RouteFiles.h"
 #include "harbour/records/CentreRoutes.h"

@@ -10,15 +10,17 @@
 #include <vector>
 
 #include "BulkDemo.h"
-#include "ExerciseRun.h"
-#include "RenderVideo.h"
 #include "ReportCommand.h"
 #include "RoutesTool.h"
-#include "Screenshot.h"
-#include "StationRun.h"
+#include "TraineesCommand.h"
 #include "XapiCommand.h"
 #include "harbour/console/Console.h"
+#include "harbour/debrief/RenderVideo.h"
+#include "harbour/debrief/Screenshot.h"
+#include "harbour/records/HeadlessRun.h"
 #include "harbour/records/XapiSender.h"
+#include "harbour/station/DevicesTool.h"
+#include "harbour/station/StationProgram.h"
 
 namespace {
 
@@ -40,18 +42,18 @@ const char* kCentreIri =
 using Command = std::function<std::optional<int>()>;
 
 // run, when it was chosen
-std::optional<int> chosen_run(const CLI::App* run_cmd, harbour::apps::RunOptions& options) {
+std::optional<int> chosen_run(const CLI::App* run_cmd, harbour::records::RunOptions& options) {
   if (!*run_cmd) return std::nullopt;
   if (options.exercise.empty() == options.route.empty()) {
     std::fprintf(stderr, "harboursim: run needs --exercise or --route (one of them)\n");
     return 2;
   }
-  return harbour::apps::run_exercise(options);
+  return harbour::records::run_exercise(options);
 }
 
 Command add_run(CLI::App& app) {
-  auto options = std::make_shared<harbour::apps::RunOptions>();
-  harbour::apps::RunOptions& run = *options;
+  auto options = std::make_shared<harbour::records::RunOptions>();
+  harbour::records::RunOptions& run = *options;
   CLI::App* run_cmd = app.add_subcommand("run", "run an exercise headless");
   run_cmd->add_option("--exercise", run.exercise,
                       "exercise file, or a shipped exercise's name (sts_discharge)");
@@ -107,7 +109,7 @@ struct ReplayArguments {
   std::string recording, replay_exercise, replay_centre;
   std::int64_t replay_attempt = 0;
   double take_over_s = -1.0;
-  harbour::apps::RunOptions branch;
+  harbour::records::RunOptions branch;
 };
 
 // replay, when it was chosen
@@ -142,10 +144,10 @@ std::optional<int> chosen_replay(const CLI::App* replay_cmd, ReplayArguments& op
   if (take_over_s >= 0.0) {
     branch.exercise = replay_exercise;
     branch.autopilot = true;
-    return harbour::apps::take_over_recording(recording, branch, take_over_s);
+    return harbour::records::take_over_recording(recording, branch, take_over_s);
   }
-  if (by_attempt) return harbour::apps::replay_attempt(replay_attempt, branch.database, replay_centre);
-  return harbour::apps::replay_recording(recording, replay_exercise);
+  if (by_attempt) return harbour::records::replay_attempt(replay_attempt, branch.database, replay_centre);
+  return harbour::records::replay_recording(recording, replay_exercise);
 }
 
 Command add_replay(CLI::App& app) {
@@ -173,9 +175,9 @@ Command add_replay(CLI::App& app) {
 }
 
 // station, when it was chosen
-std::optional<int> chosen_station(const CLI::App* station_cmd, harbour::apps::StationOptions& options) {
+std::optional<int> chosen_station(const CLI::App* station_cmd, harbour::station::StationOptions& options) {
   if (!*station_cmd) return std::nullopt;
-  const harbour::apps::StationOptions& live = options;
+  const harbour::station::StationOptions& live = options;
   const int chosen = !live.exercise.empty() + !live.route.empty() + !live.team.empty();
   if (live.serve ? chosen != 0 : chosen != 1) {
     std::fprintf(stderr,
@@ -191,12 +193,12 @@ std::optional<int> chosen_station(const CLI::App* station_cmd, harbour::apps::St
     std::fprintf(stderr, "harboursim: station --serve needs --name (the station's name on the network)\n");
     return 2;
   }
-  return harbour::apps::run_station(live);
+  return harbour::station::run_station(live);
 }
 
 Command add_station(CLI::App& app) {
-  auto options = std::make_shared<harbour::apps::StationOptions>();
-  harbour::apps::StationOptions& live = *options;
+  auto options = std::make_shared<harbour::station::StationOptions>();
+  harbour::station::StationOptions& live = *options;
   CLI::App* station_cmd = app.add_subcommand("station", "a trainee runs an exercise live at the station");
   station_cmd->add_option("--exercise", live.exercise,
                           "exercise file, or a shipped exercise's name (not with --serve: the console "
@@ -233,20 +235,21 @@ Command add_station(CLI::App& app) {
 }
 
 // devices, when it was chosen
-std::optional<int> chosen_devices(const CLI::App* devices_cmd, harbour::apps::DevicesOptions& options) {
+std::optional<int> chosen_devices(const CLI::App* devices_cmd, harbour::station::DevicesOptions& options) {
   if (!*devices_cmd) return std::nullopt;
-  return harbour::apps::run_devices(options);
+  return harbour::station::run_devices(options);
 }
 
 Command add_devices(CLI::App& app) {
-  auto options = std::make_shared<harbour::apps::DevicesOptions>();
-  harbour::apps::DevicesOptions& devices = *options;
+  auto options = std::make_shared<harbour::station::DevicesOptions>();
+  harbour::station::DevicesOptions& devices = *options;
   CLI::App* devices_cmd = app.add_subcommand("devices", "list, watch, bind and calibrate input devices");
   devices_cmd->add_flag("--watch", devices.watch, "show live values (q quits)");
   devices_cmd->add_option("--bind", devices.bind,
                           "walk through the machine's controls and write this mapping file");
   devices_cmd->add_option("--machine", devices.machine,
                           "machine file whose controls are bound (default: the STS)");
+  devices.machine = harbour::records::shipped_data_folder() + "/machines/sts.yaml";
   devices_cmd->add_option("--name", devices.name, "the mapping's name");
   devices_cmd->add_option("--virtual", devices.virtual_device,
                           "NAME:AXES:BUTTONS:HATS: add a virtual joystick (testing without hardware)");
@@ -257,7 +260,7 @@ Command add_devices(CLI::App& app) {
 }
 
 struct ScreenshotArguments {
-  harbour::apps::ScreenshotOptions shot;
+  harbour::debrief::ScreenshotOptions shot;
   double shot_time_of_day = -1.0, shot_visibility = -1.0, shot_rain = -1.0;
   std::string shot_size = "1280x720";
 };
@@ -274,7 +277,7 @@ std::optional<int> chosen_screenshot(const CLI::App* shot_cmd, ScreenshotArgumen
   if (shot_time_of_day >= 0.0) shot.time_of_day_h = shot_time_of_day;
   if (shot_visibility > 0.0) shot.visibility_m = shot_visibility;
   if (shot_rain >= 0.0) shot.rain_mm_per_h = shot_rain;
-  return harbour::apps::take_screenshot(shot);
+  return harbour::debrief::take_screenshot(shot);
 }
 
 Command add_screenshot(CLI::App& app) {
@@ -309,7 +312,7 @@ Command add_screenshot(CLI::App& app) {
 }
 
 struct RenderArguments {
-  harbour::apps::RenderOptions video;
+  harbour::debrief::RenderOptions video;
   std::string video_size = "960x540";
 };
 
@@ -327,7 +330,7 @@ std::optional<int> chosen_render(const CLI::App* render_cmd, RenderArguments& op
                  video_size.c_str());
     return 2;
   }
-  return harbour::apps::render_video(video);
+  return harbour::debrief::render_video(video);
 }
 
 Command add_render(CLI::App& app) {

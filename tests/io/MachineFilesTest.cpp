@@ -1,4 +1,5 @@
 #include "harbour/io/MachineFiles.h"
+#include "harbour/machines/MachineType.h"
 #include "harbour/machines/mhc/Files.h"
 #include "harbour/machines/sts/Files.h"
 #include "harbour/machines/tractor/Files.h"
@@ -7,10 +8,13 @@
 
 #include <numbers>
 
+#include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include "scenes/DataErrors.h"
+#include "scenes/MachineControls.h"
 
 namespace harbour::io {
 namespace {
@@ -25,6 +29,32 @@ void expect_error(const std::string& from, const std::string& to, const std::str
   scenes::expect_data_error(
       text, from, to, [](const YamlFile& f) { load_sts_crane(f, HARBOUR_DATA_DIR "/machines"); },
       scenes::line_of(text, from) + lines_below, field, says);
+}
+
+// The controls a device mapping binds (`harboursim devices --bind --machine FILE`), read from any machine
+// file without its machine's loader: the same table its loader gives, for every shipped machine.
+TEST(MachineFiles, AnyMachineFilesControlsReadAsItsOwnLoaderReadsThem) {
+  const std::map<std::string, scene::ControlTable> loaded = test::shipped_machine_controls();
+  ASSERT_EQ(loaded.size(), sim::machine_types().size());
+  for (const auto& [kind, table] : loaded) {
+    const std::string file = HARBOUR_DATA_DIR "/machines/" + kind + ".yaml";
+    EXPECT_EQ(machine_file_controls(file), table) << file;
+    EXPECT_GT(table.size(), 3) << file;
+  }
+  // a kind no machine folder registers is named at its line, with the kinds there are
+  std::string text = shipped_sts();
+  text.replace(text.find("kind: sts"), 9, "kind: crane");
+  const std::string bad = (std::filesystem::temp_directory_path() / "harbour_bad_machine.yaml").string();
+  std::ofstream(bad) << text;
+  try {
+    machine_file_controls(bad);
+    FAIL() << "a crane of no registered kind was read";
+  } catch (const DataError& e) {
+    EXPECT_EQ(e.line(), scenes::line_of(text, "kind: crane"));
+    EXPECT_EQ(e.field(), "machine.kind");
+    EXPECT_NE(std::string(e.what()).find("straddle_carrier"), std::string::npos) << e.what();
+  }
+  std::filesystem::remove(bad);
 }
 
 TEST(MachineFiles, ShippedStsLoadsWithItsHoist) {

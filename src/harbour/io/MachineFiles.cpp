@@ -340,4 +340,10 @@ std::string machine_file_kind(const std::string& path) {
   return kind;
 }
 
+scene::ControlTable machine_file_controls(const std::string& path) {
+  machine_file_kind(path);
+  const YamlFile f = YamlFile::load(path);
+  return read_control_table(f, f.required_map(f.root(), "machine", ""), "machine");
+}
+
 }  // namespace harbour::io

@@ -67,5 +67,8 @@ void require_driving_controls(const YamlFile& f, const YAML::Node& m, const scen
 /// The kind a machine file declares (`machine.kind`, one of the registered machine types); throws DataError
 /// naming the field.
 std::string machine_file_kind(const std::string& path);
+/// The controls a machine file declares (`machine.controls`, of a registered kind), as a device mapping binds
+/// them; throws DataError naming the field.
+scene::ControlTable machine_file_controls(const std::string& path);
 
 }  // namespace harbour::io

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-namespace harbour::apps {
+namespace harbour::debrief {
 
 /// `harboursim screenshot`: the exercise driven by the autopilot to a moment, drawn by the image generator
 /// (headless) from a view, written as a PNG.
@@ -24,4 +24,4 @@ struct ScreenshotOptions {
 };
 int take_screenshot(const ScreenshotOptions& options);
 
-}  // namespace harbour::apps
+}  // namespace harbour::debrief

@@ -2,7 +2,7 @@
 
 #include <string>
 
-namespace harbour::apps {
+namespace harbour::debrief {
 
 /// `harboursim render`: a recording re-simulated and drawn into a debrief video (ffmpeg, H.264 MP4) with the
 /// HUD, the evaluation's events as they happened and the cab's sound (AAC), and/or its sound alone (WAV).
@@ -18,4 +18,4 @@ struct RenderOptions {
 };
 int render_video(const RenderOptions& options);
 
-}  // namespace harbour::apps
+}  // namespace harbour::debrief

@@ -1,4 +1,4 @@
-#include "RenderVideo.h"
+#include "harbour/debrief/RenderVideo.h"
 
 #include <osg/Image>
 
@@ -13,7 +13,6 @@
 #include <string>
 #include <vector>
 
-#include "ExerciseRun.h"
 #include "harbour/audio/AudioOut.h"
 #include "harbour/audio/SoundFile.h"
 #include "harbour/bulk/BulkPublish.h"
@@ -23,9 +22,10 @@
 #include "harbour/io/RecordingFile.h"
 #include "harbour/machines/MachineType.h"
 #include "harbour/records/Centre.h"
+#include "harbour/records/HeadlessRun.h"
 #include "harbour/sim/Recording.h"
 
-namespace harbour::apps {
+namespace harbour::debrief {
 
 namespace {
 
@@ -243,8 +243,8 @@ int render_video(const RenderOptions& options) {
     std::printf("%s: %ld frames (%.1f-%.1f s at %.0f fps, %s view, %dx%d%s)%s\n", options.out.c_str(), frames,
                 options.from_s, end_s, options.fps, options.view.c_str(), options.width, options.height,
                 hearing ? ", with sound" : "", diverged);
-  print_evaluation(evaluator.metrics(), evaluator.score(), !exercise.moves.empty());
+  records::print_evaluation(evaluator.metrics(), evaluator.score(), !exercise.moves.empty());
   return result.first_mismatch ? 1 : 0;
 }
 
-}  // namespace harbour::apps
+}  // namespace harbour::debrief

@@ -1,6 +1,8 @@
 // `harboursim devices`: what SDL sees, live values, and a walk through a machine's controls that binds and
 // calibrates them and writes a mapping file.
 
+#include "harbour/station/DevicesTool.h"
+
 #include <SDL.h>
 
 #include <arpa/inet.h>
@@ -22,13 +24,11 @@
 #include <stdexcept>
 #include <thread>
 
-#include "StationRun.h"
-#include "harbour/machines/sts/Files.h"
-#include "harbour/records/Centre.h"
+#include "harbour/io/MachineFiles.h"
 #include "harbour/station/DeviceInput.h"
 #include "harbour/station/DeviceMappingFile.h"
 
-namespace harbour::apps {
+namespace harbour::station {
 namespace {
 
 volatile std::sig_atomic_t g_quit = 0;
@@ -252,9 +252,8 @@ void pump(std::vector<Opened>& devices, VirtualStick* stick) {
 }
 
 int bind(const DevicesOptions& options, std::vector<Opened>& devices, VirtualStick* stick) {
-  const std::string machine =
-      options.machine.empty() ? records::shipped_data_folder() + "/machines/sts.yaml" : options.machine;
-  const scene::ControlTable table = io::load_sts_crane(machine).controls;
+  const std::string& machine = options.machine;
+  const scene::ControlTable table = io::machine_file_controls(machine);
   if (devices.empty()) {
     std::printf("no joysticks to bind: connect one and start again\n");
     return 2;
@@ -390,4 +389,4 @@ int run_devices(const DevicesOptions& options) {
   return status;
 }
 
-}  // namespace harbour::apps
+}  // namespace harbour::station

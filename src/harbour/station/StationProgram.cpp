@@ -1,4 +1,4 @@
-#include "StationRun.h"
+#include "harbour/station/StationProgram.h"
 
 #include <SDL.h>
 
@@ -16,7 +16,6 @@
 #include <stdexcept>
 #include <thread>
 
-#include "ExerciseRun.h"
 #include "harbour/audio/SoundFile.h"
 #include "harbour/audio/SoundThread.h"
 #include "harbour/core/Text.h"
@@ -26,6 +25,7 @@
 #include "harbour/io/MotionFiles.h"
 #include "harbour/machines/MachineType.h"
 #include "harbour/records/CentreRoutes.h"
+#include "harbour/records/HeadlessRun.h"
 #include "harbour/sim/Pilot.h"
 #include "harbour/station/ConsolePresence.h"
 #include "harbour/station/DeviceMappingFile.h"
@@ -38,7 +38,7 @@
 #include "harbour/station/StationWindow.h"
 #include "harbour/station/TeamMembership.h"
 
-namespace harbour::apps {
+namespace harbour::station {
 namespace {
 
 volatile std::sig_atomic_t g_stop = 0;
@@ -373,7 +373,7 @@ void print_result(const station::SessionResult& result, const sim::ExerciseSetti
       static_cast<long long>(l.ticks), static_cast<long long>(l.late_ticks),
       static_cast<long long>(l.skipped_ticks), l.longest_tick_s * 1e3, l.mean_tick_s * 1e6,
       l.real_time_factor, l.keeping_real_time ? "" : " (COULD NOT KEEP REAL TIME)");
-  print_evaluation(result.metrics, result.score, !exercise.moves.empty());
+  records::print_evaluation(result.metrics, result.score, !exercise.moves.empty());
   std::printf("stored as attempt %lld of trainee %s (%s)\n", static_cast<long long>(result.attempt),
               options.trainee.c_str(), result.status.c_str());
   if (!options.record.empty()) std::printf("recording %s\n", options.record.c_str());
@@ -453,10 +453,10 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
   reset = false;
   StationOptions options = given;
   if (options.trainee.empty()) options.trainee = options.autopilot ? "autopilot" : "guest";
-  RunOptions outputs;
+  records::RunOptions outputs;
   outputs.record = options.record;
   outputs.trainee = options.trainee;
-  check_outputs(outputs);
+  records::check_outputs(outputs);
   const std::string database = options.database.empty() ? records::default_database() : options.database;
   station::SessionOptions session_options;
   session_options.autopilot = options.autopilot;
@@ -698,4 +698,4 @@ int run_station(const StationOptions& options) {
   return 0;
 }
 
-}  // namespace harbour::apps
+}  // namespace harbour::station

@@ -8,7 +8,7 @@
 #include "harbour/records/RecordsStore.h"
 #include "harbour/sim/Evaluation.h"
 
-namespace harbour::apps {
+namespace harbour::records {
 
 /// `harboursim run`: an exercise headless with the autopilot, progress lines and the evaluation.
 struct RunOptions {
@@ -39,11 +39,6 @@ void check_outputs(const RunOptions& options);
 /// figures (an exercise without container moves shows what every machine is measured on).
 void print_evaluation(const sim::Metrics& metrics, const sim::Score& score, bool container_moves = true);
 
-/// `harboursim trainees add|list` and `harboursim results`.
-int add_trainee(const std::string& database, const std::string& id, const std::string& name);
-int list_trainees(const std::string& database);
-int list_results(const std::string& database, const std::string& trainee);
-
 /// `harboursim replay`: re-simulates a recording, checks every recorded second's hash, prints the evaluation.
 int replay_recording(const std::string& recording, const std::string& exercise);
 /// `harboursim replay --attempt N`: the same for a stored attempt, from the records alone where they keep its
@@ -56,4 +51,4 @@ int replay_attempt(std::int64_t attempt, const std::string& database, const std:
 /// options.record is set.
 int take_over_recording(const std::string& recording, const RunOptions& options, double at_s);
 
-}  // namespace harbour::apps
+}  // namespace harbour::records

@@ -1,4 +1,4 @@
-#include "ExerciseRun.h"
+#include "harbour/records/HeadlessRun.h"
 
 #include <algorithm>
 #include <chrono>
@@ -25,7 +25,7 @@
 #include "harbour/sim/Pilot.h"
 #include "harbour/sim/Recording.h"
 
-namespace harbour::apps {
+namespace harbour::records {
 namespace {
 
 constexpr double kProgressEvery_s = 10.0;
@@ -175,41 +175,6 @@ void print_evaluation(const sim::Metrics& m, const sim::Score& s, bool container
     std::printf("  -%.0f  %s x%d (%s)\n", d.points, d.reason.c_str(), d.count, sim::skill_name(d.skill));
   std::printf("skills: safety %.0f, precision %.0f, productivity %.0f\n", s.skills[0], s.skills[1],
               s.skills[2]);
-}
-
-int add_trainee(const std::string& database, const std::string& id, const std::string& name) {
-  records::RecordsStore db(database.empty() ? records::default_database() : database);
-  db.add_trainee(id, name);
-  std::printf("trainee %s (%s) added\n", id.c_str(), name.c_str());
-  return 0;
-}
-
-int list_trainees(const std::string& database) {
-  records::RecordsStore db(database.empty() ? records::default_database() : database);
-  for (const records::TraineeRow& t : db.trainees())
-    std::printf("%-16s %s\n", core::printable(t.id).c_str(), core::printable(t.name).c_str());
-  return 0;
-}
-
-int list_results(const std::string& database, const std::string& trainee) {
-  records::RecordsStore db(database.empty() ? records::default_database() : database);
-  const auto attempts = db.attempts(trainee.empty() ? std::nullopt : std::optional(trainee));
-  std::printf("%-8s %-16s %-9s %-12s %-20s %-11s %6s %6s  %s\n", "attempt", "started (UTC)", "by", "trainee",
-              "exercise", "status", "moves", "score", "from");
-  for (const records::AttemptRow& a : attempts) {
-    const std::string score =
-        a.score ? std::to_string(static_cast<int>(*a.score)) + (a.passed ? " P" : " F") : "-";
-    const std::string from =
-        a.parent ? "take-over of " + std::to_string(*a.parent) + " at step " + std::to_string(a.branch_step)
-                 : "";
-    std::string started = a.started_at.empty() ? "-" : a.started_at.substr(0, 16);  // to the minute
-    if (started.size() > 10 && started[10] == 'T') started[10] = ' ';
-    std::printf("%-8lld %-16s %-9s %-12s %-20s %-11s %6d %6s  %s\n", static_cast<long long>(a.id),
-                core::printable(started).c_str(), a.autopilot ? "autopilot" : "trainee",
-                core::printable(a.trainee).c_str(), core::printable(a.exercise).c_str(),
-                core::printable(a.status).c_str(), a.moves, score.c_str(), from.c_str());
-  }
-  return 0;
 }
 
 int drive_attempt(const sim::ExerciseSettings& exercise, sim::Simulation& simulation, sim::Pilot& pilot,
@@ -473,4 +438,4 @@ int take_over_recording(const std::string& recording_path, const RunOptions& giv
                        options);
 }
 
-}  // namespace harbour::apps
+}  // namespace harbour::records

@@ -1,4 +1,4 @@
-#include "Screenshot.h"
+#include "harbour/debrief/Screenshot.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -7,7 +7,6 @@
 #include <optional>
 #include <stdexcept>
 
-#include "ExerciseRun.h"
 #include "harbour/bulk/BulkPublish.h"
 #include "harbour/ig/ImageGenerator.h"
 #include "harbour/io/BoundedFile.h"
@@ -16,7 +15,7 @@
 #include "harbour/records/Centre.h"
 #include "harbour/sim/Pilot.h"
 
-namespace harbour::apps {
+namespace harbour::debrief {
 
 int take_screenshot(const ScreenshotOptions& options) {
   if (const std::string why = io::why_not_writable(options.out); !why.empty())
@@ -92,4 +91,4 @@ int take_screenshot(const ScreenshotOptions& options) {
   return 0;
 }
 
-}  // namespace harbour::apps
+}  // namespace harbour::debrief
