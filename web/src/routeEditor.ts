@@ -16,6 +16,7 @@ const show = (e: HTMLElement, value: string) => { e.textContent = value; };
 export class RouteEditor {
   private timer = 0;
   private request = 0;  // the latest check or save: an earlier check's late answer is dropped
+  private machineOf = new Map<string, string>();  // an exercise's machine, as people call it
 
   constructor(private api: Api, private saved: () => Promise<void>) {
     $("route-load").addEventListener("click", () => this.load());
@@ -32,7 +33,9 @@ export class RouteEditor {
     base.replaceChildren();
     for (const r of routes) base.add(new Option(`${r.name} (${r.id})`, r.id));
     if (routes.some((r) => r.id === kept)) base.value = kept;
-    const exercises: { name: string; title?: string }[] = (await this.api("/api/exercises")).data ?? [];
+    const exercises: { name: string; title?: string; machine_title?: string }[] =
+      (await this.api("/api/exercises")).data ?? [];
+    this.machineOf = new Map(exercises.map((e) => [e.name, e.machine_title ?? ""]));
     const select = $<HTMLSelectElement>("route-add-exercise"), chosen = select.value;
     select.replaceChildren();
     for (const e of exercises) select.add(new Option(e.title ? `${e.title} (${e.name})` : e.name, e.name));
@@ -114,9 +117,11 @@ export class RouteEditor {
   // the YAML's comments and layout elsewhere are kept
   private addStage() {
     const area = $<HTMLTextAreaElement>("route-text");
-    const doc = parseDocument(area.value.trim() ? area.value : "name: New route\nmachine: STS\ngoals: []\n");
-    if (doc.errors.length) { this.verdict(false, `the YAML does not parse: ${doc.errors[0].message.split("\n")[0]}`); return; }
     const exercise = $<HTMLSelectElement>("route-add-exercise").value;
+    // a new route trains on its first stage's machine
+    const machine = JSON.stringify(this.machineOf.get(exercise) || "");
+    const doc = parseDocument(area.value.trim() ? area.value : `name: New route\nmachine: ${machine}\ngoals: []\n`);
+    if (doc.errors.length) { this.verdict(false, `the YAML does not parse: ${doc.errors[0].message.split("\n")[0]}`); return; }
     const id = $<HTMLInputElement>("route-add-id").value.trim() || exercise;
     const goalName = $<HTMLInputElement>("route-add-goal").value.trim() || "Practice";
     let goals = doc.get("goals");

@@ -219,6 +219,13 @@ try {
   check((await page.inputValue("#route-text")).includes("name: STS basic (centre copy)"),
     "the copy of a shipped route gets a title of its own");
   check((await page.locator("#route-stages tr[data-stage=hoist_brake_fault]").count()) === 1, "the loader's stages are listed");
+  // a route begun from nothing trains on its first stage's machine, as the machine's type calls it
+  await page.fill("#route-text", "");
+  await page.selectOption("#route-add-exercise", "rtg_rehandle");
+  await page.click("#route-add-stage");
+  await until("a new route is begun", async () => (await page.inputValue("#route-text")).startsWith("name: New route"));
+  check(/\nmachine: "?rubber-tyred gantry crane"?\n/.test(await page.inputValue("#route-text")),
+    `the new route's machine is its stage's: ${await page.inputValue("#route-text")}`);
   await page.fill("#route-id", "centre_long");
   await page.fill("#route-text", "# the centre's own\nname: Long discharges\nmachine: STS\ngoals:\n  - goal: Endurance\n    stages:\n" +
     "      - {id: warm_up, exercise: sts_nowhere}\n");
