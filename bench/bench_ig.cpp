@@ -14,6 +14,7 @@
 #include "harbour/ig/ImageGenerator.h"
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/machines/GantryAutopilot.h"
+#include "harbour/machines/MachineType.h"
 
 namespace harbour {
 namespace {
@@ -29,7 +30,7 @@ void BM_Frame(benchmark::State& state) {
   simulation.command(wind);
   while (simulation.time_s() < 30.0)
     simulation.step(pilot.next(simulation));  // a box on the spreader
-  const ig::Looks looks = ig::load_looks(HARBOUR_DATA_DIR "/visuals/harbour.yaml");
+  const ig::Looks looks = ig::load_shipped_looks(HARBOUR_DATA_DIR, sim::machine_kinds());
   // samples per pixel: -1 the renderer's default (none on a software renderer)
   const std::optional<int> samples =
       state.range(4) < 0 ? std::nullopt : std::optional<int>(static_cast<int>(state.range(4)));

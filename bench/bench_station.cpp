@@ -17,6 +17,7 @@
 #include "harbour/ig/RenderThread.h"
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/machines/GantryAutopilot.h"
+#include "harbour/machines/MachineType.h"
 #include "harbour/sim/Evaluation.h"
 #include "harbour/sim/Pilot.h"
 #include "harbour/station/DeviceInput.h"
@@ -239,9 +240,8 @@ void BM_LiveRun(benchmark::State& state) {
     std::unique_ptr<ig::RenderThread> render;
     if (drawing)
       render = std::make_unique<ig::RenderThread>(
-          session.simulation().scene(),
-          ig::load_looks(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml"), 1280, 720,
-          std::vector<ig::View>{ig::View{}},
+          session.simulation().scene(), ig::load_shipped_looks(HARBOUR_DATA_DIR, sim::machine_kinds()), 1280,
+          720, std::vector<ig::View>{ig::View{}},
           [&] { return session.loop().latest_snapshot(station::kImageGeneratorReader); });
     session.start();
     std::this_thread::sleep_for(std::chrono::seconds(drawing ? 20 : 60));

@@ -19,6 +19,7 @@
 #include "harbour/bulk/BulkWorld.h"
 #include "harbour/ig/ImageGenerator.h"
 #include "harbour/io/ExerciseFiles.h"
+#include "harbour/machines/MachineType.h"
 #include "harbour/sim/Evaluation.h"
 #include "harbour/sim/Pilot.h"
 
@@ -83,7 +84,7 @@ std::vector<MoveFraming> framing(const std::string& exercise_name, const std::st
   const scene::SceneDescription scene = simulation.scene();
   const int tool = entity_named(scene, tool_name);
   EXPECT_GE(tool, 0) << "no entity '" << tool_name << "'";
-  Looks looks = load_looks(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml");
+  Looks looks = load_shipped_looks(HARBOUR_DATA_DIR, sim::machine_kinds());
   ImageGenerator generator(scene, std::move(looks.visuals), kWidth, kHeight);
   generator.set_view(view_named("cab"));
   auto snapshot = std::make_unique<scene::Snapshot>();
@@ -211,7 +212,7 @@ TEST(CabView, TheTrailerIsInAMirrorOrOnTheReversingCameraWhileReversing) {
   const scene::SceneDescription scene = simulation.scene();
   const int trailer = entity_named(scene, "trailer");
   ASSERT_GE(trailer, 0);
-  Looks looks = load_looks(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml");
+  Looks looks = load_shipped_looks(HARBOUR_DATA_DIR, sim::machine_kinds());
   ImageGenerator generator(scene, std::move(looks.visuals), kWidth, kHeight);
   generator.use(looks);
   generator.set_view(view_named("cab"));
@@ -263,7 +264,7 @@ TEST(CabView, TheHudShowsWhatEachMachinesDisplayShows) {
     sim::Simulation simulation(exercise.scenario);
     for (int k = 0; k < 200; ++k)
       simulation.step(simulation.control_table().neutral());
-    Looks looks = load_looks(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml");
+    Looks looks = load_shipped_looks(HARBOUR_DATA_DIR, sim::machine_kinds());
     ImageGenerator generator(simulation.scene(), std::move(looks.visuals), 320, 180);
     generator.use(looks);
     generator.update(*simulation.snapshot());
@@ -288,7 +289,7 @@ TEST(CabView, TheChaseViewFramesEveryMachineAndFogFadesItWithoutBlankingIt) {
       simulation.step(simulation.control_table().neutral());
     const scene::SceneDescription scene = simulation.scene();
     ASSERT_GT(scene.machine_entities, 0) << name;
-    Looks looks = load_looks(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml");
+    Looks looks = load_shipped_looks(HARBOUR_DATA_DIR, sim::machine_kinds());
     ImageGenerator generator(scene, std::move(looks.visuals), kWidth, kHeight);
     generator.use(looks);
     generator.set_view(view_named("chase"));

@@ -14,6 +14,7 @@
 #include "harbour/ig/ImageGenerator.h"
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/machines/GantryAutopilot.h"
+#include "harbour/machines/MachineType.h"
 
 namespace harbour::ig {
 namespace {
@@ -56,7 +57,7 @@ DischargeInChase discharge_in_chase(int width, int height) {
   sim::GantryAutopilot pilot(exercise);
   while (simulation.time_s() < 40.0)
     simulation.step(pilot.next(simulation));
-  Looks looks = load_looks(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml");
+  Looks looks = load_shipped_looks(HARBOUR_DATA_DIR, sim::machine_kinds());
   DischargeInChase d{
       std::make_unique<ImageGenerator>(simulation.scene(), std::move(looks.visuals), width, height),
       simulation.snapshot()};

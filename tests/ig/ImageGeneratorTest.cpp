@@ -1,6 +1,7 @@
 // The image generator drawing hand-made published states (it reads nothing else): measured properties of
 // the pictures, headless through EGL on llvmpipe.
 #include "harbour/ig/ImageGenerator.h"
+#include "harbour/machines/MachineType.h"
 
 #include <gtest/gtest.h>
 
@@ -189,14 +190,18 @@ TEST(ImageGenerator, ARopesOscillationMovesItsPixels) {
 namespace harbour::ig {
 namespace {
 
+// Every entity of every shipped exercise has a look: the harbour's or its machine file's.
 TEST(Visuals, EveryLookTheShippedExercisesPublishIsInTheData) {
-  const auto visuals = load_visuals(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml");
-  for (const char* name : {"sts_discharge", "sts_bay12_hold", "sts_bay12_deck"}) {
-    const sim::ExerciseSettings e =
-        io::load_exercise(std::string(HARBOUR_DATA_DIR) + "/exercises/" + name + ".yaml");
+  const Looks looks = load_shipped_looks(HARBOUR_DATA_DIR, sim::machine_kinds());
+  int exercises = 0;
+  for (const auto& file : std::filesystem::directory_iterator(HARBOUR_DATA_DIR "/exercises")) {
+    const sim::ExerciseSettings e = io::load_exercise(file.path().string());
     for (const scene::SceneDescription::Entity& entity : sim::Simulation(e.scenario).scene().entities)
-      EXPECT_TRUE(visuals.count(entity.visual)) << name << ": no look for '" << entity.visual << "'";
+      EXPECT_TRUE(looks.visuals.count(entity.visual))
+          << file.path().filename() << ": no look for '" << entity.visual << "'";
+    ++exercises;
   }
+  EXPECT_GE(exercises, 27);
 }
 
 TEST(Visuals, BadLooksNameFileLineAndField) {
@@ -1118,7 +1123,7 @@ TEST(ImageGenerator, TheGrabsShellsOpenWithThePublishedOpening) {
   d.entities.push_back({"mast", "none", {}});
   d.entities.push_back({"grab", "mhc.grab", {1.6, 1.4, 0.8}});
   d.indicators = {"grab_opening"};
-  const Looks shipped = load_looks(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml");
+  const Looks shipped = load_shipped_looks(HARBOUR_DATA_DIR, sim::machine_kinds());
   ImageGenerator ig(d, shipped.visuals, kWidth, kHeight);
   View v = level();
   v.hud = false;

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "harbour/io/DataError.h"
+#include "harbour/machines/MachineType.h"
 
 namespace harbour::ig {
 namespace {
@@ -117,10 +118,98 @@ TEST(Visuals, ABadLookIsNamedByFileLineAndField) {
 }
 
 TEST(Visuals, TheShippedLooksLoad) {
-  const Looks looks = load_looks(std::string(HARBOUR_DATA_DIR) + "/visuals/harbour.yaml");
+  const Looks looks = load_shipped_looks(HARBOUR_DATA_DIR, sim::machine_kinds());
   EXPECT_GT(looks.visuals.size(), 20u);
   EXPECT_FALSE(looks.hud.empty());
   EXPECT_FALSE(looks.scenery.empty());
+  // each machine's looks come from its own file: none of the harbour's file names a machine's entity
+  const Looks harbour = load_looks(HARBOUR_DATA_DIR "/visuals/harbour.yaml");
+  for (const std::string_view kind : sim::machine_kinds()) {
+    EXPECT_TRUE(
+        looks.visuals.count(std::string(kind) + (kind == "mhc"                                  ? ".boom"
+                                                 : kind == "tractor" || kind == "reach_stacker" ? ".chassis"
+                                                 : kind == "straddle_carrier"                   ? ".portal"
+                                                 : kind == "rtg"                                ? ".frame"
+                                                                                                : ".gantry")))
+        << kind;
+    for (const auto& [key, visual] : harbour.visuals)
+      EXPECT_NE(key.rfind(std::string(kind) + ".", 0), 0u) << key << " is the " << kind << "'s";
+  }
+}
+
+// A machine file's looks beside the harbour's: its HUD lines first on it and in place of the harbour's for
+// the same indicator; what is not its own (a look, a lamp or a camera on another's entity) refused by field.
+TEST(Visuals, AMachineFilesLooksAreItsOwn) {
+  const std::string harbour = written("harbour.yaml", R"(visuals:
+  - key: box
+    parts: [{size: entity, at: [0, 0, 0], color: [0.5, 0.5, 0.5]}]
+hud:
+  - {indicator: speed_kmh, label: speed, unit: km/h, decimals: 0}
+  - {indicator: horn, label: HORN, lamp: true}
+)");
+  const std::string machine_head = "machine:\n  kind: tractor\n  mass_kg: 1\nlooks:\n";
+  const std::string good = written("tractor.yaml", machine_head + R"(  visuals:
+    - key: tractor.chassis
+      parts: [{size: entity, at: [0, 0, 0], color: [0.9, 0.5, 0.1]}]
+  floodlights:
+    - {entity: tractor.chassis, at: [1, 0, 2], color: [1, 1, 1], range_m: 25}
+  cameras:
+    - {name: reversing, entity: tractor.chassis, at: [0, 0, 2], look: [-1, 0, 0], fov_vertical_deg: 70}
+  insets:
+    - {camera: reversing, rect: [0.4, 0.03, 0.2, 0.22]}
+  hud:
+    - {indicator: gear, label: gear, decimals: 0}
+    - {indicator: speed_kmh, label: km/h, decimals: 1}
+)");
+  const Looks looks = load_looks(harbour, {good});
+  EXPECT_EQ(looks.visuals.size(), 2u);
+  ASSERT_EQ(looks.floodlights.size(), 1u);
+  EXPECT_EQ(looks.floodlights[0].entity, "tractor.chassis");
+  ASSERT_EQ(looks.insets.size(), 1u);
+  std::vector<std::string> on_tractor, on_crane;
+  for (const HudItem& line : looks.hud) {
+    if (line.shown_on("tractor")) on_tractor.push_back(line.label);
+    if (line.shown_on("sts")) on_crane.push_back(line.label);
+  }
+  EXPECT_EQ(on_tractor, (std::vector<std::string>{"gear", "km/h", "HORN"}));
+  EXPECT_EQ(on_crane, (std::vector<std::string>{"speed", "HORN"}));
+  // of two files of one kind the last is read (an exercise's own machine file after the shipped one)
+  const std::string other = written("tractor2.yaml", machine_head + R"(  visuals:
+    - key: tractor.cab
+      parts: [{size: entity, at: [0, 0, 0], color: [0.1, 0.5, 0.9]}]
+)");
+  const Looks replaced = load_looks(harbour, {good, other});
+  EXPECT_EQ(replaced.visuals.count("tractor.chassis"), 0u);
+  EXPECT_EQ(replaced.visuals.count("tractor.cab"), 1u);
+  EXPECT_TRUE(replaced.floodlights.empty());
+
+  const auto refused = [&](const std::string& looks_text, int line, const std::string& field,
+                           const std::string& says) {
+    const std::string bad = written("bad_tractor.yaml", machine_head + looks_text);
+    try {
+      load_looks(harbour, {bad});
+      ADD_FAILURE() << "accepted: " << looks_text;
+    } catch (const io::DataError& e) {
+      EXPECT_EQ(e.file(), bad);
+      EXPECT_EQ(e.line(), line) << e.what();
+      EXPECT_EQ(e.field(), field) << e.what();
+      EXPECT_NE(std::string(e.what()).find(says), std::string::npos) << e.what();
+    }
+  };
+  refused("  visuals:\n    - key: box\n      parts: []\n", 6, "looks.visuals[0].key", "'tractor.<part>'");
+  refused("  visuals:\n    - key: sts.gantry\n      parts: []\n", 6, "looks.visuals[0].key",
+          "not 'sts.gantry'");
+  refused("  floodlights:\n    - {entity: sts.trolley, at: [0, 0, 0], color: [1, 1, 1], range_m: 20}\n", 6,
+          "looks.floodlights[0].entity", "rides one of its own entities");
+  refused("  cameras:\n    - {name: c, entity: box, at: [0, 0, 0], look: [1, 0, 0], fov_vertical_deg: 60}\n",
+          6, "looks.cameras[0].entity", "rides one of its own entities");
+  refused(
+      "  cameras:\n    - {name: c, entity: tractor.cab, at: [0, 0, 0], look: [1, 0, 0], fov_vertical_deg: "
+      "60}\n"
+      "  insets:\n    - {camera: d, rect: [0, 0, 0.2, 0.2]}\n",
+      8, "looks.insets[0].camera", "no camera 'd'");
+  refused("  hud:\n    - {indicator: gear, label: gear, machines: [sts]}\n", 6, "looks.hud[0].machines",
+          "unknown key");
 }
 
 }  // namespace

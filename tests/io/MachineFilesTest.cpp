@@ -68,6 +68,13 @@ TEST(MachineFiles, ShippedStsLoadsWithItsHoist) {
   EXPECT_NEAR(s.boom.drive.max_speed_mps * 300, s.boom.drive.max_position_m, 1e-12);
 }
 
+// The machine's reader passes over its looks (the image generator reads them) and refuses a key beside them
+// that nothing reads.
+TEST(MachineFiles, AMachinesReaderLeavesItsLooksToTheImageGenerator) {
+  ASSERT_NE(shipped_sts().find("\nlooks:\n"), std::string::npos);
+  expect_error("\nlooks:\n", "\nlookz:\n", "lookz", "unknown key 'lookz'", 1);
+}
+
 TEST(MachineFiles, BadStsFilesNameTheField) {
   expect_error("hoist_reeving: ../reeving/sts_hoist.yaml", "hoist_reeving: ../reeving/nowhere.yaml",
                "machine.hoist_reeving", "no such file");

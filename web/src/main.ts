@@ -329,7 +329,8 @@ const machineOf = new Map<string, string>();  // station -> machine kind, from i
 function hudText(indicators: Record<string, number>, machine: string): string {
   const parts: string[] = [];
   const items = (looks?.hud ?? [])
-    .filter((h) => indicators[h.indicator] !== undefined && (!h.machines.length || h.machines.includes(machine)));
+    .filter((h) => indicators[h.indicator] !== undefined && (!h.machines.length || h.machines.includes(machine)) &&
+      !h.except.includes(machine));
   for (const h of items) {
     const v = indicators[h.indicator];
     if (h.shown_while && !((indicators[h.shown_while] ?? 0) > 0.5)) continue;

@@ -12,7 +12,7 @@ interface Part {
 interface Scenery { shape: "box" | "cylinder"; at_m: number[]; size_m: number[]; color: number[]; repeat: number; step_m: number[]; }
 /** A line of the trainee's HUD (the looks' `hud`): an indicator as the cab shows it. */
 export interface HudItem { indicator: string; label: string; unit: string; decimals: number; lamp: boolean; scale: number;
-  words: string[]; words_from: number; shown_while: string; machines: string[]; }
+  words: string[]; words_from: number; shown_while: string; machines: string[]; except: string[]; }
 export interface Looks { visuals: Record<string, { parts: Part[]; liveries: number[][] }>; scenery: Scenery[];
   hud: HudItem[]; }
 export interface SceneMessage {

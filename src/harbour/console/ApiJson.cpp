@@ -360,7 +360,8 @@ json looks_json(const ig::Looks& looks) {
                    {"words", h.words},
                    {"words_from", h.words_from},
                    {"shown_while", h.shown_while},
-                   {"machines", h.machines}});
+                   {"machines", h.machines},
+                   {"except", h.except}});
   return {{"visuals", std::move(visuals)}, {"scenery", std::move(scenery)}, {"hud", std::move(hud)}};
 }
 

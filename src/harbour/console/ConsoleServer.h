@@ -30,6 +30,7 @@
 #include "harbour/console/Console.h"
 #include "harbour/console/Designer.h"
 #include "harbour/ig/Visuals.h"
+#include "harbour/machines/MachineType.h"
 #include "harbour/net/DdsLink.h"
 #include "harbour/records/AuditWriter.h"
 #include "harbour/records/CentreRoutes.h"
@@ -441,7 +442,7 @@ class Console {
   void push_state(LiveSocket& socket, const std::string& station, const net::StationScene* scene,
                   const std::function<json(bool)>& state_of);
   std::string looks_ =
-      dump(looks_json(ig::load_looks(records::shipped_data_folder() + "/visuals/harbour.yaml")));
+      dump(looks_json(ig::load_shipped_looks(records::shipped_data_folder(), sim::machine_kinds())));
   /// the training routes (the centre's and data/routes), checked at start: a bad one stops the console
   /// naming it
   std::vector<training::Route> routes_ = records::load_centre_routes(centre());

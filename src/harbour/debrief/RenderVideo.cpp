@@ -121,7 +121,8 @@ int render_video(const RenderOptions& options) {
                            ? options.to_s
                            : static_cast<double>(recording.total_steps) * sim::Simulation::kStep_s;
   const auto stop_step = static_cast<std::int64_t>(end_s / sim::Simulation::kStep_s);
-  ig::Looks looks = ig::load_looks(records::shipped_data_folder() + "/visuals/harbour.yaml");
+  ig::Looks looks =
+      ig::load_shipped_looks(records::shipped_data_folder(), sim::machine_kinds(), exercise.machine_file);
   std::unique_ptr<ig::ImageGenerator> generator;
   const ig::View view = ig::view_named(options.view);
   // first the attempt's events, for the timeline bar and the captions: a replay without drawing

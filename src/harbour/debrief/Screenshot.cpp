@@ -12,6 +12,7 @@
 #include "harbour/io/BoundedFile.h"
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/io/InstructorCommandText.h"
+#include "harbour/machines/MachineType.h"
 #include "harbour/records/Centre.h"
 #include "harbour/sim/Pilot.h"
 
@@ -56,8 +57,9 @@ int take_screenshot(const ScreenshotOptions& options) {
       simulation.command(commands[next_command].command);
     simulation.step(pilot ? pilot->next(simulation) : simulation.control_table().neutral());
   }
-  ig::Looks looks = ig::load_looks(
-      options.looks.empty() ? records::shipped_data_folder() + "/visuals/harbour.yaml" : options.looks);
+  const std::string data = records::shipped_data_folder();
+  ig::Looks looks = ig::load_looks(options.looks.empty() ? data + "/visuals/harbour.yaml" : options.looks,
+                                   ig::machine_look_files(data, sim::machine_kinds(), exercise.machine_file));
   ig::ImageGenerator generator(simulation.scene(), std::move(looks.visuals), options.width, options.height,
                                options.multisamples);
   if (options.soft_shadows) generator.set_soft_shadows(*options.soft_shadows);

@@ -1168,9 +1168,7 @@ void ImageGenerator::update_hud(const scene::Snapshot& s) {
     const std::optional<double> value = indicator(item.indicator);
     if (!value) continue;
     if (!item.shown_while.empty() && !(indicator(item.shown_while).value_or(0.0) > 0.5)) continue;
-    if (!item.machines.empty() &&
-        std::find(item.machines.begin(), item.machines.end(), machine_) == item.machines.end())
-      continue;
+    if (!item.shown_on(machine_)) continue;
     const double v = *value * item.scale;
     if (item.lamp) {
       if (v > 0.5) line += "   " + item.label;

@@ -26,6 +26,11 @@ osg::ref_ptr<osg::Node> read_mesh(const std::string& path) {
   return osgDB::readRefNodeFile(path, options.get());
 }
 
+bool HudItem::shown_on(const std::string& machine) const {
+  return (machines.empty() || std::find(machines.begin(), machines.end(), machine) != machines.end()) &&
+         std::find(except.begin(), except.end(), machine) == except.end();
+}
+
 std::map<std::string, Visual> load_visuals(const std::string& path) {
   return load_looks(path).visuals;
 }
@@ -145,12 +150,18 @@ VisualPart read_part(const io::YamlFile& f, const YAML::Node& p, const std::stri
   return part;
 }
 
+// "hud[3]" at the file's root, "looks.hud[3]" in a machine file's looks
+std::string item_path(const std::string& section, const char* list, std::size_t n) {
+  return (section.empty() ? std::string(list) : section + "." + list) + "[" + std::to_string(n) + "]";
+}
+
 // the heads-up display's lines
-void read_hud(const io::YamlFile& f, Looks& looks) {
-  if (f.optional(f.root(), "hud", "")) {
-    const YAML::Node hud = f.sequence(f.root(), "hud", "", 32);
+std::vector<HudItem> read_hud(const io::YamlFile& f, const YAML::Node& section, const std::string& path) {
+  std::vector<HudItem> lines;
+  if (f.optional(section, "hud", path)) {
+    const YAML::Node hud = f.sequence(section, "hud", path, 32);
     for (std::size_t n = 0; n < hud.size(); ++n) {
-      const std::string at = "hud[" + std::to_string(n) + "]";
+      const std::string at = item_path(path, "hud", n);
       HudItem item;
       item.indicator = f.text(hud[n], "indicator", at);
       item.label = f.text(hud[n], "label", at);
@@ -168,25 +179,20 @@ void read_hud(const io::YamlFile& f, Looks& looks) {
             f.optional(hud[n], "words_from", at) ? f.integer(hud[n], "words_from", at, -100, 100) : 0;
       }
       if (f.optional(hud[n], "shown_while", at)) item.shown_while = f.text(hud[n], "shown_while", at);
-      if (f.optional(hud[n], "machines", at)) {
-        const YAML::Node machines = f.sequence(hud[n], "machines", at, 16);
-        for (std::size_t k = 0; k < machines.size(); ++k) {
-          if (!machines[k].IsScalar()) f.fail(machines[k], at + ".machines", "expected a machine's kind");
-          item.machines.push_back(machines[k].Scalar());
-        }
-      }
-      looks.hud.push_back(item);
+      lines.push_back(item);
     }
   }
+  return lines;
 }
 
 // floodlights and the machines' lamps
-void read_floodlights(const io::YamlFile& f, Looks& looks) {
-  if (f.optional(f.root(), "floodlights", "")) {
+void read_floodlights(const io::YamlFile& f, const YAML::Node& section, const std::string& path,
+                      Looks& looks) {
+  if (f.optional(section, "floodlights", path)) {
     // any number: the image generator lights the first seven that are in the scene (OpenGL's eight lights)
-    const YAML::Node lights = f.sequence(f.root(), "floodlights", "", 64);
+    const YAML::Node lights = f.sequence(section, "floodlights", path, 64);
     for (std::size_t n = 0; n < lights.size(); ++n) {
-      const std::string at = "floodlights[" + std::to_string(n) + "]";
+      const std::string at = item_path(path, "floodlights", n);
       Floodlight light;
       light.position_m = f.vector3(f.required(lights[n], "at", at), at + ".at", 2000.0);
       if (f.optional(lights[n], "entity", at)) light.entity = f.text(lights[n], "entity", at);
@@ -198,13 +204,16 @@ void read_floodlights(const io::YamlFile& f, Looks& looks) {
 }
 
 // cameras riding entities
-void read_cameras(const io::YamlFile& f, Looks& looks) {
-  if (f.optional(f.root(), "cameras", "")) {
-    const YAML::Node cameras = f.sequence(f.root(), "cameras", "", 16);
+void read_cameras(const io::YamlFile& f, const YAML::Node& section, const std::string& path, Looks& looks) {
+  if (f.optional(section, "cameras", path)) {
+    const YAML::Node cameras = f.sequence(section, "cameras", path, 16);
     for (std::size_t n = 0; n < cameras.size(); ++n) {
-      const std::string at = "cameras[" + std::to_string(n) + "]";
+      const std::string at = item_path(path, "cameras", n);
       EntityCamera c;
       c.name = f.text(cameras[n], "name", at);
+      if (std::any_of(looks.cameras.begin(), looks.cameras.end(),
+                      [&](const EntityCamera& other) { return other.name == c.name; }))
+        f.fail(cameras[n]["name"], at + ".name", "a camera '" + c.name + "' is declared already");
       c.entity = f.text(cameras[n], "entity", at);
       c.at_m = f.vector3(f.required(cameras[n], "at", at), at + ".at", 1000.0);
       c.look = f.vector3(f.required(cameras[n], "look", at), at + ".look", 1.0);
@@ -219,11 +228,11 @@ void read_cameras(const io::YamlFile& f, Looks& looks) {
 }
 
 // camera pictures set into the cab view (after the cameras)
-void read_insets(const io::YamlFile& f, Looks& looks) {
-  if (f.optional(f.root(), "insets", "")) {
-    const YAML::Node insets = f.sequence(f.root(), "insets", "", 32);
+void read_insets(const io::YamlFile& f, const YAML::Node& section, const std::string& path, Looks& looks) {
+  if (f.optional(section, "insets", path)) {
+    const YAML::Node insets = f.sequence(section, "insets", path, 32);
     for (std::size_t n = 0; n < insets.size(); ++n) {
-      const std::string at = "insets[" + std::to_string(n) + "]";
+      const std::string at = item_path(path, "insets", n);
       Inset inset;
       inset.camera = f.text(insets[n], "camera", at);
       if (std::none_of(looks.cameras.begin(), looks.cameras.end(),
@@ -274,17 +283,20 @@ void read_scenery(const io::YamlFile& f, Looks& looks) {
   }
 }
 
-}  // namespace
-
-Looks load_looks(const std::string& path) {
-  const io::YamlFile f = io::YamlFile::load(path);
-  Looks looks;
+// the looks by key (`path`: the look file, where meshes are found); `owner`: a machine file's kind, whose
+// looks are its own entities' ("sts.gantry"), or "" for the harbour's file
+void read_visuals(const io::YamlFile& f, const YAML::Node& section, const std::string& section_path,
+                  const std::string& path, const std::string& owner, Looks& looks) {
+  if (!owner.empty() && !f.optional(section, "visuals", section_path)) return;  // a machine's are optional
   std::map<std::string, Visual>& out = looks.visuals;
-  const YAML::Node list = f.sequence(f.root(), "visuals", "", 1000);
+  const YAML::Node list = f.sequence(section, "visuals", section_path, 1000);
   for (std::size_t n = 0; n < list.size(); ++n) {
-    const std::string at = "visuals[" + std::to_string(n) + "]";
+    const std::string at = item_path(section_path, "visuals", n);
     const YAML::Node v = list[n];
     const std::string key = f.text(v, "key", at);
+    if (!owner.empty() && key.rfind(owner + ".", 0) != 0)
+      f.fail(v["key"], at + ".key",
+             "a " + owner + "'s file gives its own looks: '" + owner + ".<part>', not '" + key + "'");
     if (out.count(key)) f.fail(v["key"], at + ".key", "'" + key + "' is declared twice");
     Visual visual;
     if (f.optional(v, "liveries", at)) {
@@ -300,13 +312,84 @@ Looks load_looks(const std::string& path) {
     }
     out[key] = visual;
   }
-  read_hud(f, looks);
-  read_floodlights(f, looks);
-  read_cameras(f, looks);
-  read_insets(f, looks);
+}
+
+// A machine file's looks (`looks`: its entities' looks, its lamps, cameras, camera insets and HUD lines)
+// into `looks`; the HUD lines its own, shown before the harbour's and in place of one for the same indicator.
+void read_machine_looks(const std::string& machine_file, Looks& looks) {
+  const io::YamlFile f = io::YamlFile::load(machine_file);
+  const std::string kind = f.text(f.required_map(f.root(), "machine", ""), "kind", "machine");
+  const std::optional<YAML::Node> section = f.optional_map(f.root(), "looks", "");
+  if (!section) return;
+  read_visuals(f, *section, "looks", machine_file, kind, looks);
+  const std::size_t lights = looks.floodlights.size(), cameras = looks.cameras.size();
+  read_floodlights(f, *section, "looks", looks);
+  read_cameras(f, *section, "looks", looks);
+  const auto owned = [&](const std::string& entity) { return entity.rfind(kind + ".", 0) == 0; };
+  for (std::size_t n = lights; n < looks.floodlights.size(); ++n)
+    if (!owned(looks.floodlights[n].entity))
+      f.fail((*section)["floodlights"][n - lights], item_path("looks", "floodlights", n - lights) + ".entity",
+             "a " + kind + "'s lamp rides one of its own entities ('" + kind + ".<part>')");
+  for (std::size_t n = cameras; n < looks.cameras.size(); ++n)
+    if (!owned(looks.cameras[n].entity))
+      f.fail((*section)["cameras"][n - cameras], item_path("looks", "cameras", n - cameras) + ".entity",
+             "a " + kind + "'s camera rides one of its own entities ('" + kind + ".<part>')");
+  read_insets(f, *section, "looks", looks);
+  std::vector<HudItem> own = read_hud(f, *section, "looks");
+  for (HudItem& line : own) {
+    line.machines = {kind};
+    for (HudItem& shared : looks.hud)
+      if (shared.machines.empty() && shared.indicator == line.indicator) shared.except.push_back(kind);
+  }
+  looks.hud.insert(looks.hud.begin(), own.begin(), own.end());
+  f.check_unknown_keys(*section, "looks");
+}
+
+}  // namespace
+
+Looks load_looks(const std::string& path) {
+  const io::YamlFile f = io::YamlFile::load(path);
+  Looks looks;
+  read_visuals(f, f.root(), "", path, "", looks);
+  looks.hud = read_hud(f, f.root(), "");
+  read_floodlights(f, f.root(), "", looks);
+  read_cameras(f, f.root(), "", looks);
+  read_insets(f, f.root(), "", looks);
   read_scenery(f, looks);
   f.check_unknown_keys();
   return looks;
+}
+
+Looks load_looks(const std::string& path, const std::vector<std::string>& machine_files) {
+  Looks looks = load_looks(path);
+  // the last file of each kind (an exercise's own machine file after the shipped one of its kind)
+  std::map<std::string, std::string> file_of_kind;
+  std::vector<std::string> kinds;
+  for (const std::string& file : machine_files) {
+    const io::YamlFile f = io::YamlFile::load(file);
+    const std::string kind = f.text(f.required_map(f.root(), "machine", ""), "kind", "machine");
+    if (!file_of_kind.count(kind)) kinds.push_back(kind);
+    file_of_kind[kind] = file;
+  }
+  for (const std::string& kind : kinds)
+    read_machine_looks(file_of_kind[kind], looks);
+  return looks;
+}
+
+std::vector<std::string> machine_look_files(const std::string& data_folder,
+                                            std::span<const std::string_view> kinds,
+                                            const std::string& machine_file) {
+  std::vector<std::string> files;
+  for (const std::string_view kind : kinds)
+    files.push_back(data_folder + "/machines/" + std::string(kind) + ".yaml");
+  if (!machine_file.empty()) files.push_back(machine_file);
+  return files;
+}
+
+Looks load_shipped_looks(const std::string& data_folder, std::span<const std::string_view> kinds,
+                         const std::string& machine_file) {
+  return load_looks(data_folder + "/visuals/harbour.yaml",
+                    machine_look_files(data_folder, kinds, machine_file));
 }
 
 }  // namespace harbour::ig

@@ -2,7 +2,9 @@
 
 #include <map>
 #include <optional>
+#include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <osg/Node>
@@ -76,8 +78,11 @@ struct HudItem {
   std::vector<std::string> words;
   int words_from = 0;
   std::string shown_while;  ///< only while this indicator is on (> 0.5): a hitch angle while reversing
-  std::vector<std::string>
-      machines;  ///< only on these machines (SceneDescription::machine); none: on every one
+  /// only on these machines (SceneDescription::machine; a machine file's own lines); none: on every one
+  std::vector<std::string> machines;
+  /// not on these: machines whose own line shows the indicator in its place
+  std::vector<std::string> except;
+  bool shown_on(const std::string& machine) const;
 };
 
 /// A floodlight lit from dusk to dawn: on the quay (world frame) or on a machine (riding the first entity
@@ -135,6 +140,19 @@ osg::ref_ptr<osg::Node> read_mesh(const std::string& path);
 
 /// Reads a look file (data/visuals/*.yaml). Errors name file, line and field.
 Looks load_looks(const std::string& path);
+/// The harbour's look file with the looks of machine files (`looks` in data/machines/<kind>.yaml: a
+/// machine's entities, lamps, cameras, camera insets and HUD lines, keyed by its kind). Of several files of
+/// one kind the last is read. A machine's HUD lines come first on it, in place of the harbour file's for the
+/// same indicators.
+Looks load_looks(const std::string& path, const std::vector<std::string>& machine_files);
+/// The shipped machine file of each kind (`data_folder`/machines/<kind>.yaml; the registry's kinds, from the
+/// caller: the image generator names none) and, where given, an exercise's own machine file after them.
+std::vector<std::string> machine_look_files(const std::string& data_folder,
+                                            std::span<const std::string_view> kinds,
+                                            const std::string& machine_file = "");
+/// The shipped looks: `data_folder`/visuals/harbour.yaml with machine_look_files().
+Looks load_shipped_looks(const std::string& data_folder, std::span<const std::string_view> kinds,
+                         const std::string& machine_file = "");
 /// Its looks alone.
 std::map<std::string, Visual> load_visuals(const std::string& path);
 

@@ -9,6 +9,7 @@
 
 #include "harbour/core/Units.h"
 #include "harbour/io/ControlFiles.h"
+#include "harbour/io/MotionFiles.h"
 #include "harbour/io/ReevingFiles.h"
 
 namespace harbour::io {
@@ -325,6 +326,11 @@ void require_driving_controls(const YamlFile& f, const YAML::Node& m, const scen
            "'direction' must have the positions [reverse, neutral, forward]");
   if (controls[controls.find("parking_brake")].positions != std::vector<std::string>{"released", "set"})
     f.fail(m["controls"], "machine.controls", "'parking_brake' must have the positions [released, set]");
+}
+
+void check_machine_file_sections(const YamlFile& f) {
+  check_motion_cues(f);
+  f.read_elsewhere(f.root(), "looks", "");
 }
 
 std::string machine_file_kind(const std::string& path) {

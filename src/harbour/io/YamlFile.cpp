@@ -280,7 +280,7 @@ void YamlFile::check_keys_under(const YAML::Node& node, const std::string& path,
       check_keys_under(node[n], path + "[" + std::to_string(n) + "]", depth + 1);
     return;
   }
-  if (!node.IsMap()) return;
+  if (!node.IsMap() || read_elsewhere_.count(node.Mark().pos)) return;
   const auto known = asked_.find(node.Mark().pos);
   for (const auto& entry : node) {
     const std::string& key = entry.first.Scalar();
@@ -297,8 +297,17 @@ void YamlFile::check_keys_under(const YAML::Node& node, const std::string& path,
   }
 }
 
+void YamlFile::read_elsewhere(const YAML::Node& map, const std::string& key, const std::string& path) const {
+  if (const std::optional<YAML::Node> section = optional_map(map, key, path))
+    read_elsewhere_.insert(section->Mark().pos);
+}
+
 void YamlFile::check_unknown_keys() const {
   check_keys_under(root_, "", 0);
+}
+
+void YamlFile::check_unknown_keys(const YAML::Node& node, const std::string& path) const {
+  check_keys_under(node, path, 0);
 }
 
 }  // namespace harbour::io

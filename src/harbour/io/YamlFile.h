@@ -64,9 +64,15 @@ class YamlFile {
   YAML::Node sequence(const YAML::Node& map, const std::string& key, const std::string& path,
                       std::size_t max_items = 10000) const;
 
+  /// A section of `map` that another reader reads (a machine file's looks, read by the image generator): this
+  /// file's check_unknown_keys passes over it; it must be a mapping where present.
+  void read_elsewhere(const YAML::Node& map, const std::string& key, const std::string& path) const;
+
   /// Fails at the first mapping key in the file that no accessor above asked for, naming the keys that its
   /// mapping may hold. Loaders call it once they have read everything.
   void check_unknown_keys() const;
+  /// The same for the keys under `node` (at `path`) alone: a reader of one section of a file.
+  void check_unknown_keys(const YAML::Node& node, const std::string& path) const;
 
  private:
   YamlFile(YAML::Node root, std::string name) : root_(std::move(root)), name_(std::move(name)) {}
@@ -78,6 +84,8 @@ class YamlFile {
   std::string name_;
   /// keys asked for, by the position of their mapping in the text (a mapping's identity)
   mutable std::map<std::size_t, std::set<std::string>> asked_;
+  /// sections another reader reads, by their position in the text
+  mutable std::set<std::size_t> read_elsewhere_;
 };
 
 }  // namespace harbour::io

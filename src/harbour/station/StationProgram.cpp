@@ -142,7 +142,7 @@ void choose_exercise(const StationOptions& options, const std::string& database,
 std::unique_ptr<ig::RenderThread> render_windows(
     const station::Profile& profile, const station::DisplayLayout& layout,
     const std::vector<std::unique_ptr<station::StationWindow>>& windows, const scene::SceneDescription& scene,
-    station::Session& session) {
+    const ig::Looks& looks, station::Session& session) {
   std::vector<ig::View> views;
   std::vector<bool> last_of_window(layout.pictures.size(), false);  // the frame's last picture there
   for (std::size_t k = 0; k < layout.pictures.size(); ++k) {
@@ -171,8 +171,7 @@ std::unique_ptr<ig::RenderThread> render_windows(
   for (const auto& w : windows)
     shown.push_back(w.get());
   auto render = std::make_unique<ig::RenderThread>(
-      scene, ig::load_looks(records::shipped_data_folder() + "/visuals/harbour.yaml"), layout.render_width,
-      layout.render_height, views,
+      scene, looks, layout.render_width, layout.render_height, views,
       [&session] { return session.loop().latest_snapshot(station::kImageGeneratorReader); },
       [shown, pictures = layout.pictures, last_of_window](ig::ImageGenerator& generator,
                                                           const scene::Snapshot&, int k) {
@@ -231,7 +230,7 @@ std::unique_ptr<audio::SoundThread> start_sound(const station::Profile& profile,
 // only while a console shows this station
 std::unique_ptr<ig::RenderThread> draw_for_instructor(const station::Profile& profile,
                                                       const scene::SceneDescription& scene,
-                                                      station::Session& session,
+                                                      const ig::Looks& looks, station::Session& session,
                                                       station::AttemptPresence& presence) {
   ig::View view = ig::view_named("cab");
   if (!profile.displays.empty()) {
@@ -243,8 +242,7 @@ std::unique_ptr<ig::RenderThread> draw_for_instructor(const station::Profile& pr
     view.fov_vertical_rad = c.fov_vertical_rad;
   }
   return std::make_unique<ig::RenderThread>(
-      scene, ig::load_looks(records::shipped_data_folder() + "/visuals/harbour.yaml"), station::kPictureWidth,
-      station::kPictureHeight, std::vector<ig::View>{view},
+      scene, looks, station::kPictureWidth, station::kPictureHeight, std::vector<ig::View>{view},
       // drawn only while a console shows this station
       [&session, &presence]() -> const scene::Snapshot* {
         return presence.watched() ? session.loop().latest_snapshot(station::kPictureReader) : nullptr;
@@ -504,8 +502,13 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
   print_banner(profile, exercise, options, session);
 
   const scene::SceneDescription scene = membership ? membership->scene() : session.simulation().scene();
+  // the harbour's looks and every machine's (a team's others drawn too), this exercise's machine file last
+  ig::Looks looks;
+  if (!windows.empty() || link)
+    looks =
+        ig::load_shipped_looks(records::shipped_data_folder(), sim::machine_kinds(), exercise.machine_file);
   std::unique_ptr<ig::RenderThread> render;
-  if (!windows.empty()) render = render_windows(profile, layout, windows, scene, session);
+  if (!windows.empty()) render = render_windows(profile, layout, windows, scene, looks, session);
   std::unique_ptr<audio::SoundThread> sound;
   if (hearing) sound = start_sound(profile, scene, exercise, session);
   std::optional<station::AttemptPresence> presence;
@@ -514,7 +517,7 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
   if (presence && team) presence->member_of(team->name, options.role);
   // the instructor sees what the trainee sees: the cab view drawn small a few times a second, as JPEG
   std::unique_ptr<ig::RenderThread> pictures;
-  if (presence) pictures = draw_for_instructor(profile, scene, session, *presence);
+  if (presence) pictures = draw_for_instructor(profile, scene, looks, session, *presence);
   const auto start = std::chrono::steady_clock::now();
   session.start();
   station.start();

@@ -5,7 +5,6 @@
 #include "harbour/core/Units.h"
 #include "harbour/io/ControlFiles.h"
 #include "harbour/io/MachineFiles.h"
-#include "harbour/io/MotionFiles.h"
 
 namespace harbour::io {
 namespace {
@@ -165,7 +164,7 @@ sim::MhcSettings read_mhc(const YamlFile& f, const std::string& folder) {
 
 sim::MhcSettings load_mhc(const YamlFile& f, const std::string& folder) {
   sim::MhcSettings s = read_mhc(f, folder);
-  check_motion_cues(f);
+  check_machine_file_sections(f);
   f.check_unknown_keys();
   return s;
 }

@@ -5,7 +5,6 @@
 #include "harbour/core/Units.h"
 #include "harbour/io/ControlFiles.h"
 #include "harbour/io/MachineFiles.h"
-#include "harbour/io/MotionFiles.h"
 
 namespace harbour::io {
 namespace {
@@ -112,7 +111,7 @@ sim::ReachStackerSettings load_reach_stacker(const YamlFile& f) {
                     {"unlock", K::kButton},
                     {"spreader_20", K::kButton},
                     {"spreader_40", K::kButton}});
-  check_motion_cues(f);
+  check_machine_file_sections(f);
   f.check_unknown_keys();
   return s;
 }

@@ -5,7 +5,6 @@
 #include "harbour/core/Units.h"
 #include "harbour/io/ControlFiles.h"
 #include "harbour/io/MachineFiles.h"
-#include "harbour/io/MotionFiles.h"
 
 namespace harbour::io {
 sim::RtgSettings load_rtg(const YamlFile& f, const std::string& folder) {
@@ -53,7 +52,7 @@ sim::RtgSettings load_rtg(const YamlFile& f, const std::string& folder) {
   } catch (const std::invalid_argument& e) {
     f.fail(m["controls"], "machine.controls", e.what());
   }
-  check_motion_cues(f);
+  check_machine_file_sections(f);
   f.check_unknown_keys();
   return s;
 }

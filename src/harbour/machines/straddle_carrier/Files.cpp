@@ -6,7 +6,6 @@
 #include "harbour/core/Units.h"
 #include "harbour/io/ControlFiles.h"
 #include "harbour/io/MachineFiles.h"
-#include "harbour/io/MotionFiles.h"
 
 namespace harbour::io {
 
@@ -49,7 +48,7 @@ sim::StraddleCarrierSettings load_straddle_carrier(const YamlFile& f, const std:
   } catch (const std::invalid_argument& e) {
     f.fail(m["controls"], "machine.controls", e.what());
   }
-  check_motion_cues(f);
+  check_machine_file_sections(f);
   f.check_unknown_keys();
   return s;
 }

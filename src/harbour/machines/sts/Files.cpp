@@ -5,7 +5,6 @@
 #include "harbour/core/Units.h"
 #include "harbour/io/ControlFiles.h"
 #include "harbour/io/MachineFiles.h"
-#include "harbour/io/MotionFiles.h"
 
 namespace harbour::io {
 namespace {
@@ -66,7 +65,7 @@ sim::StsCraneSettings read_sts_crane(const YamlFile& f, const std::string& folde
 
 sim::StsCraneSettings load_sts_crane(const YamlFile& f, const std::string& folder) {
   sim::StsCraneSettings s = read_sts_crane(f, folder);
-  check_motion_cues(f);
+  check_machine_file_sections(f);
   f.check_unknown_keys();
   return s;
 }

@@ -7,7 +7,6 @@
 #include "harbour/io/ControlFiles.h"
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/io/MachineFiles.h"
-#include "harbour/io/MotionFiles.h"
 
 namespace harbour::io {
 namespace {
@@ -35,7 +34,7 @@ sim::TractorSettings read_tractor(const YamlFile& f) {
 
 sim::TractorSettings load_tractor(const YamlFile& f) {
   sim::TractorSettings s = read_tractor(f);
-  check_motion_cues(f);
+  check_machine_file_sections(f);
   f.check_unknown_keys();
   return s;
 }
