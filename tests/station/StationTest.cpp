@@ -223,6 +223,17 @@ TEST(Profiles, TheThreeShippedConfigurationsLoad) {
     return desktop.mappings.size();
   };
   EXPECT_LT(first_of("gamepad_reach_stacker"), first_of("keyboard"));
+  // every shipped mapping, found by its class in the device folder (a new machine's join without an edit):
+  // sticks, then game pads, then keyboards; the cabin has no keyboard
+  std::size_t shipped = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(HARBOUR_DATA_DIR "/devices"))
+    shipped += entry.path().extension() == ".yaml";
+  EXPECT_EQ(desktop.mappings.size(), shipped);
+  EXPECT_TRUE(std::is_sorted(
+      desktop.mappings.begin(), desktop.mappings.end(),
+      [](const std::string& a, const std::string& b) { return device_class_of(a) < device_class_of(b); }));
+  EXPECT_EQ(device_class_of(desktop.mappings.front()), DeviceClass::kSticks);
+  EXPECT_EQ(device_class_of(desktop.mappings.back()), DeviceClass::kKeyboards);
   // a monitor shows the machine's design view: its line of sight and field of view
   EXPECT_TRUE(desktop.displays[0].from_sight && desktop.displays[0].fov_from_sight);
   EXPECT_FALSE(load_profile(resolve_profile("immersive", HARBOUR_DATA_DIR)).displays[0].from_sight);
@@ -273,6 +284,30 @@ TEST(Profiles, BadProfilesNameFileLineAndField) {
                 .find("profile.displays: at least one display"),
             std::string::npos);
   EXPECT_NE(profile_error(ok + "  steroe: true\n").find("unknown key 'steroe'"), std::string::npos);
+  // a class of mappings in a folder: the folder there, the class one of three, some mapping of it in it
+  const std::string devices =
+      "profile:\n  name: p\n  devices:\n    - {folder: " HARBOUR_DATA_DIR "/devices, class: ";
+  const std::string rest = "}\n  displays:\n" + display + "  motion: off\n  head_tracking: off\n";
+  EXPECT_EQ(profile_error(devices + "game_pads" + rest), "");
+  EXPECT_NE(profile_error(devices + "wheels" + rest)
+                .find("harbour_profile.yaml:4: profile.devices[0].class: sticks, game_pads or keyboards, not "
+                      "'wheels'"),
+            std::string::npos);
+  EXPECT_NE(profile_error("profile:\n  name: p\n  devices:\n    - {folder: nowhere, class: sticks" + rest)
+                .find("profile.devices[0].folder: no such folder"),
+            std::string::npos);
+  const std::string empty = scenes::temp_path("harbour_no_devices");
+  std::filesystem::create_directories(empty);
+  EXPECT_NE(
+      profile_error("profile:\n  name: p\n  devices:\n    - {folder: " + empty + ", class: sticks" + rest)
+          .find("profile.devices[0]: no sticks mapping in"),
+      std::string::npos);
+  // a file there that is no mapping is named, not passed over
+  EXPECT_NE(profile_error("profile:\n  name: p\n  devices:\n    - {folder: " HARBOUR_DATA_DIR
+                          "/profiles, class: sticks" +
+                          rest)
+                .find("mapping: missing"),
+            std::string::npos);
   const std::string skewed =
       "    - {name: m, width: 1920, height: 1080, view: {yaw_deg: 0, pitch_deg: 0, roll_deg: 0}, fov: "
       "{left_deg: 10, right_deg: -10, bottom_deg: -5, top_deg: 5}}\n";

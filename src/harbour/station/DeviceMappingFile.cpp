@@ -481,6 +481,31 @@ std::string device_mapping_text(const DeviceMapping& m) {
   return out.str();
 }
 
+DeviceClass device_class_of(const std::string& path) {
+  const io::YamlFile f = io::YamlFile::load(path);
+  const YAML::Node root = f.required_map(f.root(), "mapping", "");
+  const YAML::Node devices = f.sequence(root, "devices", "mapping", 16);
+  bool window = false, pad = false;
+  for (std::size_t n = 0; n < devices.size(); ++n) {
+    const std::string at = "mapping.devices[" + std::to_string(n) + "]";
+    window = f.flag(devices[n], "keyboard", at, false) || f.flag(devices[n], "mouse", at, false) || window;
+    pad = f.flag(devices[n], "game_controller", at, false) || pad;
+  }
+  return window ? DeviceClass::kKeyboards : pad ? DeviceClass::kGamePads : DeviceClass::kSticks;
+}
+
+const char* to_string(DeviceClass c) {
+  switch (c) {
+    case DeviceClass::kSticks:
+      return "sticks";
+    case DeviceClass::kGamePads:
+      return "game_pads";
+    case DeviceClass::kKeyboards:
+      return "keyboards";
+  }
+  return "?";
+}
+
 std::string why_mapping_does_not_fit(const std::string& path, const scene::ControlTable& table) {
   try {
     const io::YamlFile f = io::YamlFile::load(path);

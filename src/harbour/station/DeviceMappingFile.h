@@ -15,6 +15,16 @@ DeviceMapping load_device_mapping(const std::string& path, const scene::ControlT
 /// it binds only the machine's controls, or when the file is broken: load_device_mapping says how).
 std::string why_mapping_does_not_fit(const std::string& path, const scene::ControlTable& table);
 
+/// What a mapping's devices are, as a profile picks mappings by them: the keyboard or the mouse (a window's
+/// devices), game pads through SDL's game controller API, or joysticks and levers matched by name or GUID.
+enum class DeviceClass { kSticks, kGamePads, kKeyboards };
+/// The class of the mapping at `path`: kKeyboards when any of its devices is the keyboard or the mouse, else
+/// kGamePads when any is a game controller, else kSticks. Throws io::DataError naming a file that is no
+/// mapping.
+DeviceClass device_class_of(const std::string& path);
+/// "sticks", "game_pads", "keyboards"
+const char* to_string(DeviceClass c);
+
 /// Why `line` is not one line of SDL's game controller mapping format ("GUID,name,a:b0,leftx:a0,...", as
 /// in gamecontrollerdb.txt), naming the field; "" when it is.
 std::string why_bad_controller_mapping(const std::string& line);

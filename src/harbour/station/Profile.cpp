@@ -1,8 +1,11 @@
 #include "harbour/station/Profile.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <numbers>
 #include <stdexcept>
+
+#include "harbour/station/DeviceMappingFile.h"
 
 namespace harbour::station {
 
@@ -17,6 +20,14 @@ std::string existing(const io::YamlFile& f, const YAML::Node& map, const std::st
   return path;
 }
 
+std::string existing_folder(const io::YamlFile& f, const YAML::Node& map, const std::string& at,
+                            const std::string& folder) {
+  const std::string name = f.text(map, "folder", at);
+  const std::string path = (std::filesystem::path(folder) / name).lexically_normal().string();
+  if (!std::filesystem::is_directory(path)) f.fail(map["folder"], at + ".folder", "no such folder: " + path);
+  return path;
+}
+
 // `off`, or a mapping
 std::optional<YAML::Node> switched(const io::YamlFile& f, const YAML::Node& map, const std::string& key,
                                    const std::string& at) {
@@ -24,6 +35,46 @@ std::optional<YAML::Node> switched(const io::YamlFile& f, const YAML::Node& map,
   if (node.IsScalar() && node.Scalar() == "off") return std::nullopt;
   if (!node.IsMap()) f.fail(node, at + "." + key, "expected off or a mapping");
   return f.required_map(map, key, at);
+}
+
+// The mapping files of a folder whose devices are of `wanted`, by file name
+std::vector<std::string> mappings_of_class(const std::string& folder, DeviceClass wanted) {
+  std::vector<std::string> files;
+  for (const std::filesystem::directory_entry& entry : std::filesystem::directory_iterator(folder))
+    if (entry.is_regular_file() && entry.path().extension() == ".yaml")
+      files.push_back(entry.path().string());
+  std::sort(files.begin(), files.end());
+  std::erase_if(files, [&](const std::string& file) { return device_class_of(file) != wanted; });
+  return files;
+}
+
+// profile.devices: mapping files, and {folder, class} entries for every mapping of a class in a folder
+std::vector<std::string> read_mappings(const io::YamlFile& f, const YAML::Node& root,
+                                       const std::string& folder) {
+  std::vector<std::string> mappings;
+  const YAML::Node devices = f.sequence(root, "devices", "profile", 16);
+  for (std::size_t n = 0; n < devices.size(); ++n) {
+    const std::string field = "profile.devices[" + std::to_string(n) + "]";
+    if (devices[n].IsMap()) {
+      const std::string in = existing_folder(f, devices[n], field, folder);
+      const std::string name = f.text(devices[n], "class", field);
+      std::optional<DeviceClass> wanted;
+      for (const DeviceClass c : {DeviceClass::kSticks, DeviceClass::kGamePads, DeviceClass::kKeyboards})
+        if (name == to_string(c)) wanted = c;
+      if (!wanted)
+        f.fail(devices[n]["class"], field + ".class", "sticks, game_pads or keyboards, not '" + name + "'");
+      const std::vector<std::string> files = mappings_of_class(in, *wanted);
+      if (files.empty()) f.fail(devices[n], field, "no " + name + " mapping in " + in);
+      mappings.insert(mappings.end(), files.begin(), files.end());
+      continue;
+    }
+    if (!devices[n].IsScalar()) f.fail(devices[n], field, "expected a mapping file or {folder, class}");
+    const std::string file =
+        (std::filesystem::path(folder) / devices[n].Scalar()).lexically_normal().string();
+    if (!std::filesystem::is_regular_file(file)) f.fail(devices[n], field, "no such file: " + file);
+    mappings.push_back(file);
+  }
+  return mappings;
 }
 }  // namespace
 
@@ -34,15 +85,7 @@ Profile load_profile(const std::string& path) {
   p.file = path;
   const YAML::Node root = f.required_map(f.root(), "profile", "");
   p.name = f.text(root, "name", "profile");
-  const YAML::Node devices = f.sequence(root, "devices", "profile", 16);
-  for (std::size_t n = 0; n < devices.size(); ++n) {
-    const std::string field = "profile.devices[" + std::to_string(n) + "]";
-    if (!devices[n].IsScalar()) f.fail(devices[n], field, "expected a mapping file");
-    const std::string file =
-        (std::filesystem::path(folder) / devices[n].Scalar()).lexically_normal().string();
-    if (!std::filesystem::is_regular_file(file)) f.fail(devices[n], field, "no such file: " + file);
-    p.mappings.push_back(file);
-  }
+  p.mappings = read_mappings(f, root, folder);
   const YAML::Node displays = f.sequence(root, "displays", "profile", 8);
   if (displays.size() == 0) f.fail(displays, "profile.displays", "at least one display");
   for (std::size_t n = 0; n < displays.size(); ++n) {

@@ -32,7 +32,10 @@ struct DisplayChannel {
 struct Profile {
   std::string name;
   std::string file;
-  std::vector<std::string> mappings;  ///< device mapping files, in order of preference
+  /// device mapping files, in order of preference: as the profile lists them, a `{folder, class}` entry
+  /// standing for every mapping of that class in the folder, by file name (a new machine's mappings join
+  /// without an edit to the profile)
+  std::vector<std::string> mappings;
   std::vector<DisplayChannel> displays;
   /// One window for all the displays, side by side (a desktop, or projectors on one wide desktop), or one
   /// window per display, each full screen on its own output where the display system has one.
