@@ -54,8 +54,7 @@ void sound_block(benchmark::State& state, audio::Speakers speakers) {
   BusyScene busy;
   audio::AudioSettings settings;
   settings.speakers = speakers;
-  const audio::SoundSettings sounds =
-      audio::load_sounds(HARBOUR_DATA_DIR "/sounds/harbour.yaml", sim::machine_kinds());
+  const audio::SoundSettings sounds = audio::load_shipped_sounds(HARBOUR_DATA_DIR, sim::machine_kinds());
   audio::SoundScape scape(busy.scene, sounds);
   const std::unique_ptr<audio::AudioOut> out = audio::AudioOut::loopback(settings);
   std::vector<float> mixed(audio::SoundScape::kBlockFrames * static_cast<std::size_t>(out->channels()));

@@ -9,6 +9,8 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <functional>
 #include <memory>
 
@@ -27,8 +29,7 @@ using test::channel;
 using test::rms;
 
 const SoundSettings& shipped_sounds() {
-  static const SoundSettings sounds =
-      load_sounds(HARBOUR_DATA_DIR "/sounds/harbour.yaml", sim::machine_kinds());
+  static const SoundSettings sounds = load_shipped_sounds(HARBOUR_DATA_DIR, sim::machine_kinds());
   return sounds;
 }
 
@@ -344,28 +345,43 @@ TEST(Sound, ASoundNamingWhatTheMachineLacksIsRefusedByName) {
 TEST(Sound, BadSoundDataNamesItsLineAndField) {
   const auto error_of = [](const std::string& text) {
     try {
-      parse_sounds(text, "sounds.yaml", sim::machine_kinds());
+      parse_sounds(text, "sounds.yaml");
     } catch (const io::DataError& e) {
       return std::string(e.what());
     }
     return std::string("accepted");
   };
-  EXPECT_NE(error_of("sounds:\n  ambience: []\n  machines:\n    sts:\n      - {name: a, kind: "
-                     "electric_motor, level: 0.1}\n")
-                .find("sounds.yaml:5"),
-            std::string::npos);
-  EXPECT_NE(error_of("sounds:\n  ambience: []\n  machines:\n    crane:\n      - {name: a, kind: wind, "
-                     "reference: 1, level: 0.1}\n")
-                .find("no machine of kind 'crane'"),
-            std::string::npos);
   EXPECT_NE(
-      error_of("sounds:\n  ambience:\n    - {name: w, kind: wind, reference: 1, level: 3}\n  machines: {}\n")
-          .find("level"),
+      error_of("sounds:\n  ambience:\n    - {name: w, kind: wind, reference: 1, level: 3}\n").find("level"),
       std::string::npos);
-  EXPECT_NE(error_of("sounds:\n  ambience:\n    - {name: w, kind: wind, reference: 1, level: 0.1, pitch: "
-                     "2}\n  machines: {}\n")
-                .find("pitch"),
+  EXPECT_NE(
+      error_of("sounds:\n  ambience:\n    - {name: w, kind: wind, reference: 1, level: 0.1, pitch: 2}\n")
+          .find("pitch"),
+      std::string::npos);
+  // a machine's own sounds, in its machine file: named by that file, line and field
+  const std::string machine =
+      (std::filesystem::temp_directory_path() / "harbour_sound_machine.yaml").string();
+  const auto machine_error = [&](const std::string& sounds) {
+    std::ofstream(machine) << "machine:\n  kind: sts\nsounds:\n" << sounds;
+    try {
+      load_sounds(HARBOUR_DATA_DIR "/sounds/harbour.yaml", {machine});
+    } catch (const io::DataError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(machine_error("  - {name: a, kind: wind, reference: 1, level: 0.1}\n"), "accepted");
+  EXPECT_NE(machine_error("  - {name: a, kind: electric_motor, level: 0.1}\n")
+                .find("harbour_sound_machine.yaml:4: sounds[0]"),
             std::string::npos);
+  EXPECT_NE(machine_error("  - {name: a, kind: wind, reference: 1, level: 0.1, pitch: 2}\n")
+                .find("sounds[0].pitch: unknown key"),
+            std::string::npos);
+  EXPECT_NE(machine_error("  - {name: a, kind: wind, reference: 1, level: 0.1}\n  - {name: a, kind: rain, "
+                          "reference: 1, level: 0.1}\n")
+                .find("sounds[1].name: a second sound named 'a'"),
+            std::string::npos);
+  std::filesystem::remove(machine);
 }
 
 }  // namespace

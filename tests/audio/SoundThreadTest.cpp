@@ -41,9 +41,8 @@ TEST(SoundThread, PlaysTheNewestSnapshotOnTheOutputDeviceAndMutes) {
   AudioSettings settings;
   settings.speakers = Speakers::kHeadphones;
   {
-    SoundThread sound(simulation.scene(),
-                      load_sounds(HARBOUR_DATA_DIR "/sounds/harbour.yaml", sim::machine_kinds()), settings,
-                      {}, [&] { return snapshot.get(); });
+    SoundThread sound(simulation.scene(), load_shipped_sounds(HARBOUR_DATA_DIR, sim::machine_kinds()),
+                      settings, {}, [&] { return snapshot.get(); });
     EXPECT_NE(sound.describe().find("HRTF"), std::string::npos) << sound.describe();
     // it keeps rendering as the device plays (the wave writer plays in real time)
     for (int k = 0; k < 500 && sound.blocks() < 30; ++k)

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "harbour/core/Text.h"
+#include "harbour/io/MachineDataFiles.h"
 #include "harbour/io/YamlFile.h"
 
 namespace harbour::audio {
@@ -146,7 +147,7 @@ std::vector<SoundSource> read_list(const io::YamlFile& f, const YAML::Node& map,
   std::vector<SoundSource> sources;
   const YAML::Node list = f.sequence(map, key, at, 64);
   for (std::size_t i = 0; i < list.size(); ++i) {
-    const std::string item_at = at + "." + key + "[" + std::to_string(i) + "]";
+    const std::string item_at = (at.empty() ? key : at + "." + key) + "[" + std::to_string(i) + "]";
     sources.push_back(read_source(f, list[i], item_at));
     for (std::size_t j = 0; j + 1 < sources.size(); ++j)
       if (sources[j].name == sources.back().name)
@@ -155,33 +156,40 @@ std::vector<SoundSource> read_list(const io::YamlFile& f, const YAML::Node& map,
   return sources;
 }
 
-SoundSettings read_sounds(const io::YamlFile& f, std::span<const std::string_view> machine_kinds) {
+SoundSettings read_sounds(const io::YamlFile& f) {
   SoundSettings s;
   const YAML::Node sounds = f.required_map(f.root(), "sounds", "");
   s.ambience = read_list(f, sounds, "ambience", "sounds");
-  const YAML::Node machines = f.required_map(sounds, "machines", "sounds");
-  for (const auto& entry : machines) {
-    const std::string kind = entry.first.as<std::string>();
-    if (std::find(machine_kinds.begin(), machine_kinds.end(), kind) == machine_kinds.end()) {
-      const std::vector<std::string> known(machine_kinds.begin(), machine_kinds.end());
-      f.fail(entry.first, "sounds.machines." + kind,
-             "no machine of kind '" + kind + "' (" + core::comma_separated(known) + ")");
-    }
-    s.machines[kind] = read_list(f, machines, kind, "sounds.machines");
-  }
   f.check_unknown_keys();
   return s;
 }
 
-}  // namespace
-
-SoundSettings load_sounds(const std::string& path, std::span<const std::string_view> machine_kinds) {
-  return read_sounds(io::YamlFile::load(path), machine_kinds);
+// a machine file's own sounds (`sounds`, a list; the rest of the file is its machine reader's)
+std::vector<SoundSource> read_machine_sounds(const std::string& machine_file) {
+  const io::YamlFile f = io::YamlFile::load(machine_file);
+  if (!f.optional(f.root(), "sounds", "")) return {};
+  std::vector<SoundSource> sources = read_list(f, f.root(), "sounds", "");
+  f.check_unknown_keys(f.root()["sounds"], "sounds");
+  return sources;
 }
 
-SoundSettings parse_sounds(const std::string& text, const std::string& name,
-                           std::span<const std::string_view> machine_kinds) {
-  return read_sounds(io::YamlFile::parse(text, name), machine_kinds);
+}  // namespace
+
+SoundSettings load_sounds(const std::string& path, const std::vector<std::string>& machine_files) {
+  SoundSettings s = read_sounds(io::YamlFile::load(path));
+  for (const auto& [kind, file] : io::machine_files_by_kind(machine_files))
+    s.machines[kind] = read_machine_sounds(file);
+  return s;
+}
+
+SoundSettings load_shipped_sounds(const std::string& data_folder, std::span<const std::string_view> kinds,
+                                  const std::string& machine_file) {
+  return load_sounds(data_folder + "/sounds/harbour.yaml",
+                     io::machine_data_files(data_folder, kinds, machine_file));
+}
+
+SoundSettings parse_sounds(const std::string& text, const std::string& name) {
+  return read_sounds(io::YamlFile::parse(text, name));
 }
 
 }  // namespace harbour::audio

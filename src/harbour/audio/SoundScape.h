@@ -31,7 +31,8 @@ enum class SourceKind : std::uint8_t {
   kRadio,          ///< the cab's radio: the exercise's scripted calls and the instructor's, spoken
 };
 
-/// One sound of a machine or of the harbour, as data (data/sounds/harbour.yaml).
+/// One sound of a machine (its machine file's `sounds`) or of the harbour (data/sounds/harbour.yaml), as
+/// data.
 struct SoundSource {
   std::string name;  ///< "hoist motors"
   SourceKind kind = SourceKind::kElectricDrive;

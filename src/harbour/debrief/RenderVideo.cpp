@@ -172,9 +172,9 @@ int render_video(const RenderOptions& options) {
   // the sound: a 10 ms block ending at every tenth step from the start of the span
   std::unique_ptr<audio::OfflineMix> sound;
   const audio::SoundSettings sounds =
-      hearing
-          ? audio::load_sounds(records::shipped_data_folder() + "/sounds/harbour.yaml", sim::machine_kinds())
-          : audio::SoundSettings{};
+      hearing ? audio::load_shipped_sounds(records::shipped_data_folder(), sim::machine_kinds(),
+                                           exercise.machine_file)
+              : audio::SoundSettings{};
   audio::AudioSettings listening;
   listening.speakers = options.headphones ? audio::Speakers::kHeadphones : audio::Speakers::kStereo;
   const auto from_step =

@@ -12,6 +12,7 @@
 #include "harbour/io/BoundedFile.h"
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/io/InstructorCommandText.h"
+#include "harbour/io/MachineDataFiles.h"
 #include "harbour/machines/MachineType.h"
 #include "harbour/records/Centre.h"
 #include "harbour/sim/Pilot.h"
@@ -59,7 +60,7 @@ int take_screenshot(const ScreenshotOptions& options) {
   }
   const std::string data = records::shipped_data_folder();
   ig::Looks looks = ig::load_looks(options.looks.empty() ? data + "/visuals/harbour.yaml" : options.looks,
-                                   ig::machine_look_files(data, sim::machine_kinds(), exercise.machine_file));
+                                   io::machine_data_files(data, sim::machine_kinds(), exercise.machine_file));
   ig::ImageGenerator generator(simulation.scene(), std::move(looks.visuals), options.width, options.height,
                                options.multisamples);
   if (options.soft_shadows) generator.set_soft_shadows(*options.soft_shadows);

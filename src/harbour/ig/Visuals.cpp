@@ -8,6 +8,7 @@
 #include <numbers>
 
 #include "harbour/ig/Models.h"
+#include "harbour/io/MachineDataFiles.h"
 #include "harbour/io/YamlFile.h"
 
 namespace harbour::ig {
@@ -362,34 +363,15 @@ Looks load_looks(const std::string& path) {
 
 Looks load_looks(const std::string& path, const std::vector<std::string>& machine_files) {
   Looks looks = load_looks(path);
-  // the last file of each kind (an exercise's own machine file after the shipped one of its kind)
-  std::map<std::string, std::string> file_of_kind;
-  std::vector<std::string> kinds;
-  for (const std::string& file : machine_files) {
-    const io::YamlFile f = io::YamlFile::load(file);
-    const std::string kind = f.text(f.required_map(f.root(), "machine", ""), "kind", "machine");
-    if (!file_of_kind.count(kind)) kinds.push_back(kind);
-    file_of_kind[kind] = file;
-  }
-  for (const std::string& kind : kinds)
-    read_machine_looks(file_of_kind[kind], looks);
+  for (const auto& [kind, file] : io::machine_files_by_kind(machine_files))
+    read_machine_looks(file, looks);
   return looks;
-}
-
-std::vector<std::string> machine_look_files(const std::string& data_folder,
-                                            std::span<const std::string_view> kinds,
-                                            const std::string& machine_file) {
-  std::vector<std::string> files;
-  for (const std::string_view kind : kinds)
-    files.push_back(data_folder + "/machines/" + std::string(kind) + ".yaml");
-  if (!machine_file.empty()) files.push_back(machine_file);
-  return files;
 }
 
 Looks load_shipped_looks(const std::string& data_folder, std::span<const std::string_view> kinds,
                          const std::string& machine_file) {
   return load_looks(data_folder + "/visuals/harbour.yaml",
-                    machine_look_files(data_folder, kinds, machine_file));
+                    io::machine_data_files(data_folder, kinds, machine_file));
 }
 
 }  // namespace harbour::ig

@@ -145,12 +145,8 @@ Looks load_looks(const std::string& path);
 /// one kind the last is read. A machine's HUD lines come first on it, in place of the harbour file's for the
 /// same indicators.
 Looks load_looks(const std::string& path, const std::vector<std::string>& machine_files);
-/// The shipped machine file of each kind (`data_folder`/machines/<kind>.yaml; the registry's kinds, from the
-/// caller: the image generator names none) and, where given, an exercise's own machine file after them.
-std::vector<std::string> machine_look_files(const std::string& data_folder,
-                                            std::span<const std::string_view> kinds,
-                                            const std::string& machine_file = "");
-/// The shipped looks: `data_folder`/visuals/harbour.yaml with machine_look_files().
+/// The shipped looks: `data_folder`/visuals/harbour.yaml with io::machine_data_files() (the registry's kinds
+/// from the caller: the image generator names none).
 Looks load_shipped_looks(const std::string& data_folder, std::span<const std::string_view> kinds,
                          const std::string& machine_file = "");
 /// Its looks alone.

@@ -331,6 +331,7 @@ void require_driving_controls(const YamlFile& f, const YAML::Node& m, const scen
 void check_machine_file_sections(const YamlFile& f) {
   check_motion_cues(f);
   f.read_elsewhere(f.root(), "looks", "");
+  f.read_elsewhere(f.root(), "sounds", "");
 }
 
 std::string machine_file_kind(const std::string& path) {

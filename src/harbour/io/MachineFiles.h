@@ -64,9 +64,9 @@ sim::WheeledChassisSettings read_wheels(const YamlFile& f, const YAML::Node& m);
 /// forward), the parking brake (released, set), emergency stop and horn.
 void require_driving_controls(const YamlFile& f, const YAML::Node& m, const scene::ControlTable& controls);
 
-/// The sections every machine file may have beside `machine`: its motion cues (`motion_cues`, checked here)
-/// and its looks (`looks`, read by the image generator). A machine's reader calls it before
-/// check_unknown_keys.
+/// The sections every machine file may have beside `machine`: its motion cues (`motion_cues`, checked here),
+/// its looks (`looks`, read by the image generator) and its sounds (`sounds`, read by the station's sound). A
+/// machine's reader calls it before check_unknown_keys.
 void check_machine_file_sections(const YamlFile& f);
 
 /// The kind a machine file declares (`machine.kind`, one of the registered machine types); throws DataError

@@ -275,12 +275,13 @@ YAML::Node YamlFile::sequence(const YAML::Node& map, const std::string& key, con
 
 void YamlFile::check_keys_under(const YAML::Node& node, const std::string& path, int depth) const {
   if (depth > kMaxDepth) return;  // check_structure refused deeper files already
+  if (read_elsewhere_.count(node.Mark().pos)) return;
   if (node.IsSequence()) {
     for (std::size_t n = 0; n < node.size(); ++n)
       check_keys_under(node[n], path + "[" + std::to_string(n) + "]", depth + 1);
     return;
   }
-  if (!node.IsMap() || read_elsewhere_.count(node.Mark().pos)) return;
+  if (!node.IsMap()) return;
   const auto known = asked_.find(node.Mark().pos);
   for (const auto& entry : node) {
     const std::string& key = entry.first.Scalar();
@@ -298,7 +299,7 @@ void YamlFile::check_keys_under(const YAML::Node& node, const std::string& path,
 }
 
 void YamlFile::read_elsewhere(const YAML::Node& map, const std::string& key, const std::string& path) const {
-  if (const std::optional<YAML::Node> section = optional_map(map, key, path))
+  if (const std::optional<YAML::Node> section = optional(map, key, path))
     read_elsewhere_.insert(section->Mark().pos);
 }
 

@@ -65,7 +65,7 @@ class YamlFile {
                       std::size_t max_items = 10000) const;
 
   /// A section of `map` that another reader reads (a machine file's looks, read by the image generator): this
-  /// file's check_unknown_keys passes over it; it must be a mapping where present.
+  /// file's check_unknown_keys passes over it.
   void read_elsewhere(const YAML::Node& map, const std::string& key, const std::string& path) const;
 
   /// Fails at the first mapping key in the file that no accessor above asked for, naming the keys that its

@@ -213,7 +213,8 @@ std::unique_ptr<audio::SoundThread> start_sound(const station::Profile& profile,
   try {
     auto sound = std::make_unique<audio::SoundThread>(
         scene,
-        audio::load_sounds(records::shipped_data_folder() + "/sounds/harbour.yaml", sim::machine_kinds()),
+        audio::load_shipped_sounds(records::shipped_data_folder(), sim::machine_kinds(),
+                                   exercise.machine_file),
         settings, exercise.radio,
         [&session] { return session.loop().latest_snapshot(station::kSoundReader); });
     std::printf("sound: %s\n", sound->describe().c_str());
