@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The cab's sound of three exercises, the scripted operator driving, as spectrograms of its left channel
+# The cab's sound of four exercises, the scripted operator driving, as spectrograms of its left channel
 # (sox): docs/images/sound_<exercise>.png. Usage: docs/images/sound_spectrograms.sh [path/to/harboursim]
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
@@ -18,3 +18,4 @@ listen() {  # exercise, seconds heard, the band shown [Hz] (twice it: the rate s
 listen sts_discharge 88 2k "hoist and trolley motors, brake and twistlock clunks, landings"
 listen mhc_coal_discharge 90 8k "winches, slewing, the engine's turbo, coal pouring at 62 s"
 listen tractor_mafi_park 53 4k "the diesel's firing harmonics through its gears"
+listen straddle_carrier_stack 90 4k "its generator set's firing, the hoist motors, the twistlocks, the reversing beeper"
