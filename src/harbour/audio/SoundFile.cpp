@@ -4,7 +4,6 @@
 #include <utility>
 #include <vector>
 
-#include "harbour/core/Text.h"
 #include "harbour/io/MachineDataFiles.h"
 #include "harbour/io/YamlFile.h"
 

@@ -432,6 +432,20 @@ void leave_team(station::TeamMembership& membership, station::Session& session, 
   std::printf("team session %s\n", membership.session().c_str());
 }
 
+// The harbour's looks and every machine's (a team's others drawn too), the exercise's machine file last;
+// none where nothing is drawn
+ig::Looks looks_to_draw(const sim::ExerciseSettings& exercise, bool drawn) {
+  if (!drawn) return {};
+  return ig::load_shipped_looks(records::shipped_data_folder(), sim::machine_kinds(), exercise.machine_file);
+}
+
+// What F1 shows the trainee: the machine's controls and the keys (or whatever else) that work them
+std::string keys_to_show(station::Station& station, station::Session& session) {
+  return station.devices()
+             ? station::key_list(station.devices()->mapping(), session.simulation().control_table())
+             : "the scripted operator drives: no keys\nF1 this list   F11 full screen";
+}
+
 // What the station runs, on the terminal
 void print_banner(const station::Profile& profile, const sim::ExerciseSettings& exercise,
                   const StationOptions& options, const station::Session& session) {
@@ -503,11 +517,7 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
   print_banner(profile, exercise, options, session);
 
   const scene::SceneDescription scene = membership ? membership->scene() : session.simulation().scene();
-  // the harbour's looks and every machine's (a team's others drawn too), this exercise's machine file last
-  ig::Looks looks;
-  if (!windows.empty() || link)
-    looks =
-        ig::load_shipped_looks(records::shipped_data_folder(), sim::machine_kinds(), exercise.machine_file);
+  const ig::Looks looks = looks_to_draw(exercise, !windows.empty() || link);
   std::unique_ptr<ig::RenderThread> render;
   if (!windows.empty()) render = render_windows(profile, layout, windows, scene, looks, session);
   std::unique_ptr<audio::SoundThread> sound;
@@ -543,10 +553,7 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
   // looking round at the window (keys, a mouse drag) within the cab's limits; F1 the machine's keys
   const scene::CabSight sight = session.simulation().machine().cab_sight();
   station::LookAround look({sight.look_yaw_rad, sight.look_pitch_rad});
-  const std::string keys =
-      station.devices()
-          ? station::key_list(station.devices()->mapping(), session.simulation().control_table())
-          : "the scripted operator drives: no keys\nF1 this list   F11 full screen";
+  const std::string keys = keys_to_show(station, session);
   bool help = false;
   auto last_pump = std::chrono::steady_clock::now();
   while (!session.over() && !g_stop && session.loop().running() && window_open &&
