@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <string>
 
 #include "harbour/io/DataError.h"
@@ -124,14 +125,14 @@ TEST(Visuals, TheShippedLooksLoad) {
   EXPECT_FALSE(looks.scenery.empty());
   // each machine's looks come from its own file: none of the harbour's file names a machine's entity
   const Looks harbour = load_looks(HARBOUR_DATA_DIR "/visuals/harbour.yaml");
+  const std::map<std::string_view, std::string> main_part = {{"sts", "sts.gantry"},
+                                                             {"rtg", "rtg.frame"},
+                                                             {"mhc", "mhc.boom"},
+                                                             {"reach_stacker", "reach_stacker.chassis"},
+                                                             {"tractor", "tractor.chassis"},
+                                                             {"straddle_carrier", "straddle_carrier.portal"}};
   for (const std::string_view kind : sim::machine_kinds()) {
-    EXPECT_TRUE(
-        looks.visuals.count(std::string(kind) + (kind == "mhc"                                  ? ".boom"
-                                                 : kind == "tractor" || kind == "reach_stacker" ? ".chassis"
-                                                 : kind == "straddle_carrier"                   ? ".portal"
-                                                 : kind == "rtg"                                ? ".frame"
-                                                                                                : ".gantry")))
-        << kind;
+    EXPECT_TRUE(main_part.count(kind) && looks.visuals.count(main_part.at(kind))) << kind;
     for (const auto& [key, visual] : harbour.visuals)
       EXPECT_NE(key.rfind(std::string(kind) + ".", 0), 0u) << key << " is the " << kind << "'s";
   }

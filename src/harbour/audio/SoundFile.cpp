@@ -164,8 +164,7 @@ SoundSettings read_sounds(const io::YamlFile& f) {
 }
 
 // a machine file's own sounds (`sounds`, a list; the rest of the file is its machine reader's)
-std::vector<SoundSource> read_machine_sounds(const std::string& machine_file) {
-  const io::YamlFile f = io::YamlFile::load(machine_file);
+std::vector<SoundSource> read_machine_sounds(const io::YamlFile& f) {
   if (!f.optional(f.root(), "sounds", "")) return {};
   std::vector<SoundSource> sources = read_list(f, f.root(), "sounds", "");
   f.check_unknown_keys(f.root()["sounds"], "sounds");
@@ -176,8 +175,8 @@ std::vector<SoundSource> read_machine_sounds(const std::string& machine_file) {
 
 SoundSettings load_sounds(const std::string& path, const std::vector<std::string>& machine_files) {
   SoundSettings s = read_sounds(io::YamlFile::load(path));
-  for (const auto& [kind, file] : io::machine_files_by_kind(machine_files))
-    s.machines[kind] = read_machine_sounds(file);
+  for (const io::MachineDataFile& machine : io::load_machine_data_files(machine_files))
+    s.machines[machine.kind] = read_machine_sounds(machine.file);
   return s;
 }
 

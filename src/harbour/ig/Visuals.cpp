@@ -317,12 +317,10 @@ void read_visuals(const io::YamlFile& f, const YAML::Node& section, const std::s
 
 // A machine file's looks (`looks`: its entities' looks, its lamps, cameras, camera insets and HUD lines)
 // into `looks`; the HUD lines its own, shown before the harbour's and in place of one for the same indicator.
-void read_machine_looks(const std::string& machine_file, Looks& looks) {
-  const io::YamlFile f = io::YamlFile::load(machine_file);
-  const std::string kind = f.text(f.required_map(f.root(), "machine", ""), "kind", "machine");
+void read_machine_looks(const io::YamlFile& f, const std::string& kind, Looks& looks) {
   const std::optional<YAML::Node> section = f.optional_map(f.root(), "looks", "");
   if (!section) return;
-  read_visuals(f, *section, "looks", machine_file, kind, looks);
+  read_visuals(f, *section, "looks", f.name(), kind, looks);
   const std::size_t lights = looks.floodlights.size(), cameras = looks.cameras.size();
   read_floodlights(f, *section, "looks", looks);
   read_cameras(f, *section, "looks", looks);
@@ -363,8 +361,8 @@ Looks load_looks(const std::string& path) {
 
 Looks load_looks(const std::string& path, const std::vector<std::string>& machine_files) {
   Looks looks = load_looks(path);
-  for (const auto& [kind, file] : io::machine_files_by_kind(machine_files))
-    read_machine_looks(file, looks);
+  for (const io::MachineDataFile& machine : io::load_machine_data_files(machine_files))
+    read_machine_looks(machine.file, machine.kind, looks);
   return looks;
 }
 

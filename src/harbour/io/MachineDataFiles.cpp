@@ -1,8 +1,7 @@
 #include "harbour/io/MachineDataFiles.h"
 
 #include <algorithm>
-
-#include "harbour/io/YamlFile.h"
+#include <utility>
 
 namespace harbour::io {
 
@@ -16,18 +15,17 @@ std::vector<std::string> machine_data_files(const std::string& data_folder,
   return files;
 }
 
-std::vector<std::pair<std::string, std::string>> machine_files_by_kind(
-    const std::vector<std::string>& files) {
-  std::vector<std::pair<std::string, std::string>> by_kind;
-  for (const std::string& file : files) {
-    const YamlFile f = YamlFile::load(file);
-    const std::string kind = f.text(f.required_map(f.root(), "machine", ""), "kind", "machine");
-    const auto same =
-        std::find_if(by_kind.begin(), by_kind.end(), [&](const auto& k) { return k.first == kind; });
+std::vector<MachineDataFile> load_machine_data_files(const std::vector<std::string>& files) {
+  std::vector<MachineDataFile> by_kind;
+  for (const std::string& path : files) {
+    YamlFile f = YamlFile::load(path);
+    std::string kind = f.text(f.required_map(f.root(), "machine", ""), "kind", "machine");
+    const auto same = std::find_if(by_kind.begin(), by_kind.end(),
+                                   [&](const MachineDataFile& read) { return read.kind == kind; });
     if (same == by_kind.end())
-      by_kind.emplace_back(kind, file);
+      by_kind.push_back({std::move(kind), std::move(f)});
     else
-      same->second = file;
+      same->file = std::move(f);
   }
   return by_kind;
 }

@@ -3,8 +3,9 @@
 #include <span>
 #include <string>
 #include <string_view>
-#include <utility>
 #include <vector>
+
+#include "harbour/io/YamlFile.h"
 
 namespace harbour::io {
 
@@ -16,9 +17,13 @@ std::vector<std::string> machine_data_files(const std::string& data_folder,
                                             std::span<const std::string_view> kinds,
                                             const std::string& machine_file = "");
 
-/// Each file's kind (`machine.kind`) with the file, in the order the kinds first appear; of several files of
-/// one kind the last (an exercise's own machine file after the shipped one). Throws DataError naming a file
-/// without a kind.
-std::vector<std::pair<std::string, std::string>> machine_files_by_kind(const std::vector<std::string>& files);
+/// A machine file read for one of its sections, with its kind (`machine.kind`).
+struct MachineDataFile {
+  std::string kind;
+  YamlFile file;
+};
+/// The files read, one per kind in the order the kinds first appear; of several files of one kind the last
+/// (an exercise's own machine file after the shipped one). Throws DataError naming a file without a kind.
+std::vector<MachineDataFile> load_machine_data_files(const std::vector<std::string>& files);
 
 }  // namespace harbour::io

@@ -334,8 +334,9 @@ void check_machine_file_sections(const YamlFile& f) {
   f.read_elsewhere(f.root(), "sounds", "");
 }
 
-std::string machine_file_kind(const std::string& path) {
-  const YamlFile f = YamlFile::load(path);
+namespace {
+// `machine.kind`, one of the registered machine types
+std::string registered_kind(const YamlFile& f) {
   const YAML::Node m = f.required_map(f.root(), "machine", "");
   const std::string kind = f.text(m, "kind", "machine");
   if (!sim::find_machine_type(kind)) {
@@ -346,10 +347,15 @@ std::string machine_file_kind(const std::string& path) {
   }
   return kind;
 }
+}  // namespace
+
+std::string machine_file_kind(const std::string& path) {
+  return registered_kind(YamlFile::load(path));
+}
 
 scene::ControlTable machine_file_controls(const std::string& path) {
-  machine_file_kind(path);
   const YamlFile f = YamlFile::load(path);
+  registered_kind(f);
   return read_control_table(f, f.required_map(f.root(), "machine", ""), "machine");
 }
 
