@@ -11,7 +11,7 @@
 #include "harbour/audio/AudioOut.h"
 #include "harbour/audio/SoundFile.h"
 #include "harbour/io/ExerciseFiles.h"
-#include "harbour/machines/MachineType.h"
+#include "harbour/machines/MachineRegistry.h"
 #include "harbour/sim/Simulation.h"
 
 namespace harbour {

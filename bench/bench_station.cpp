@@ -17,7 +17,7 @@
 #include "harbour/ig/RenderThread.h"
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/machines/GantryAutopilot.h"
-#include "harbour/machines/MachineType.h"
+#include "harbour/machines/MachineRegistry.h"
 #include "harbour/sim/Evaluation.h"
 #include "harbour/sim/Pilot.h"
 #include "harbour/station/DeviceInput.h"

@@ -19,7 +19,7 @@
 #include "harbour/bulk/BulkWorld.h"
 #include "harbour/ig/ImageGenerator.h"
 #include "harbour/io/ExerciseFiles.h"
-#include "harbour/machines/MachineType.h"
+#include "harbour/machines/MachineRegistry.h"
 #include "harbour/sim/Evaluation.h"
 #include "harbour/sim/Pilot.h"
 

@@ -14,7 +14,7 @@
 #include "harbour/ig/ImageGenerator.h"
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/machines/GantryAutopilot.h"
-#include "harbour/machines/MachineType.h"
+#include "harbour/machines/MachineRegistry.h"
 
 namespace harbour::ig {
 namespace {

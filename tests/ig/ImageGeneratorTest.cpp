@@ -1,7 +1,6 @@
 // The image generator drawing hand-made published states (it reads nothing else): measured properties of
 // the pictures, headless through EGL on llvmpipe.
 #include "harbour/ig/ImageGenerator.h"
-#include "harbour/machines/MachineType.h"
 
 #include <gtest/gtest.h>
 
@@ -15,6 +14,7 @@
 #include "harbour/core/Vec3.h"
 #include "harbour/io/DataError.h"
 #include "harbour/io/ExerciseFiles.h"
+#include "harbour/machines/MachineRegistry.h"
 #include "harbour/sim/Simulation.h"
 
 namespace harbour::ig {

@@ -9,7 +9,7 @@
 #include <string>
 
 #include "harbour/io/DataError.h"
-#include "harbour/machines/MachineType.h"
+#include "harbour/machines/MachineRegistry.h"
 
 namespace harbour::ig {
 namespace {

@@ -1,5 +1,5 @@
 #include "harbour/io/MachineFiles.h"
-#include "harbour/machines/MachineType.h"
+#include "harbour/machines/MachineRegistry.h"
 #include "harbour/machines/mhc/Files.h"
 #include "harbour/machines/sts/Files.h"
 #include "harbour/machines/tractor/Files.h"

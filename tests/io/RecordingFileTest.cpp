@@ -13,6 +13,7 @@
 
 #include "harbour/core/Rng.h"
 #include "harbour/core/StateArchive.h"
+#include "harbour/machines/sts/StsCrane.h"
 #include "scenes/StsScenes.h"
 
 namespace harbour::io {

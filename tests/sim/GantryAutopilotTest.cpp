@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "harbour/core/Units.h"
+#include "harbour/machines/sts/StsCrane.h"
 #include "harbour/sim/Recording.h"
 #include "scenes/StsScenes.h"
 

@@ -12,6 +12,7 @@
 
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/machines/GantryAutopilot.h"
+#include "harbour/machines/sts/StsCrane.h"
 #include "harbour/sim/Pilot.h"
 
 namespace harbour::sim {

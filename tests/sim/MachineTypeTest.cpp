@@ -1,6 +1,6 @@
 // The machine registry: one type per machine folder, generated from the folders; each type says what its
 // machine is without building one, and what it says is what the built machine does.
-#include "harbour/machines/MachineType.h"
+#include "harbour/machines/MachineRegistry.h"
 
 #include <gtest/gtest.h>
 
@@ -12,6 +12,8 @@
 
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/machines/mhc/MobileHarbourCrane.h"
+#include "harbour/machines/reach_stacker/ReachStacker.h"
+#include "harbour/machines/sts/StsCrane.h"
 #include "harbour/sim/Pilot.h"
 #include "harbour/sim/Simulation.h"
 
@@ -139,7 +141,22 @@ TEST(MachineSetup, IsAValueOfOneKind) {
     EXPECT_STREQ(e.what(), "the machine is an mhc, not an sts");
   }
   EXPECT_EQ(copy.machine.reevings().size(), 3u);  // luffing, grab, hook
-  EXPECT_STREQ(ScenarioSettings{}.machine.kind(), "sts");
+  // no machine of its own: a scenario is given one by its exercise, and builds nothing without it
+  const ScenarioSettings bare;
+  EXPECT_FALSE(bare.machine.has_value());
+  EXPECT_THROW((void)bare.machine.kind(), std::logic_error);
+  EXPECT_THROW(Simulation{bare}, std::logic_error);
+}
+
+TEST(MachineSetup, AReachStackersEndStopsGoToItsTravelOnlyWhereAnOldRunAsks) {
+  const ExerciseSettings exercise = io::load_exercise(HARBOUR_DATA_DIR "/exercises/reach_stacker_stack.yaml");
+  MachineSetup as_recorded = exercise.scenario.machine;
+  as_recorded.end_stops_at_travel();
+  EXPECT_GT(exercise.scenario.machine.as<ReachStackerSetup>().vehicle.telescope_end_stop_margin_m, 0.0);
+  EXPECT_EQ(as_recorded.as<ReachStackerSetup>().vehicle.telescope_end_stop_margin_m, 0.0);
+  MachineSetup sts = io::load_exercise(HARBOUR_DATA_DIR "/exercises/sts_discharge.yaml").scenario.machine;
+  sts.end_stops_at_travel();  // it has no such margin: nothing changes, nothing throws
+  EXPECT_STREQ(sts.kind(), "sts");
 }
 
 }  // namespace

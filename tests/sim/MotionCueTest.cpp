@@ -6,6 +6,7 @@
 
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/io/MotionFiles.h"
+#include "harbour/machines/MachineRegistry.h"
 #include "harbour/machines/sts/Files.h"
 #include "harbour/machines/tractor/TerminalTractor.h"
 #include "harbour/motion/MotionSystem.h"

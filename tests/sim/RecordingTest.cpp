@@ -6,6 +6,7 @@
 #include <map>
 
 #include "harbour/machines/GantryAutopilot.h"
+#include "harbour/machines/sts/StsCrane.h"
 #include "scenes/StsScenes.h"
 
 namespace harbour::sim {

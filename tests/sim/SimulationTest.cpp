@@ -10,6 +10,8 @@
 
 #include "scenes/StsScenes.h"
 
+#include "harbour/machines/sts/StsCrane.h"
+
 namespace harbour::sim {
 namespace {
 

@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "harbour/core/Units.h"
+#include "harbour/machines/sts/StsCrane.h"
 #include "harbour/sim/Simulation.h"
 #include "scenes/StsScenes.h"
 

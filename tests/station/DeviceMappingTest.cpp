@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "harbour/io/DataError.h"
+#include "harbour/machines/MachineRegistry.h"
 #include "harbour/machines/sts/StsCrane.h"
 #include "harbour/station/DeviceMappingFile.h"
 #include "scenes/MachineControls.h"

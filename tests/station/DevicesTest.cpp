@@ -18,6 +18,7 @@
 
 #include "harbour/io/RecordingFile.h"
 #include "harbour/machines/GantryAutopilot.h"
+#include "harbour/machines/MachineRegistry.h"
 #include "harbour/machines/mhc/MobileHarbourCrane.h"
 #include "harbour/machines/sts/StsCrane.h"
 #include "harbour/station/DeviceMappingFile.h"

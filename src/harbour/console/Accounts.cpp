@@ -22,9 +22,9 @@
 #include "harbour/io/RecordingFile.h"
 #include "harbour/io/RouteFiles.h"
 #include "harbour/io/TeamFiles.h"
-#include "harbour/machines/MachineType.h"
 #include "harbour/net/SceneMessages.h"
 #include "harbour/records/Reports.h"
+#include "harbour/sim/MachineType.h"
 #include "harbour/training/Figures.h"
 
 namespace harbour::console {

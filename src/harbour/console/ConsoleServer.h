@@ -30,7 +30,7 @@
 #include "harbour/console/Console.h"
 #include "harbour/console/Designer.h"
 #include "harbour/ig/Visuals.h"
-#include "harbour/machines/MachineType.h"
+#include "harbour/machines/MachineRegistry.h"
 #include "harbour/net/DdsLink.h"
 #include "harbour/records/AuditWriter.h"
 #include "harbour/records/CentreRoutes.h"

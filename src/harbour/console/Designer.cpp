@@ -15,7 +15,7 @@
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/io/RouteFiles.h"
 #include "harbour/io/VesselFiles.h"
-#include "harbour/machines/MachineType.h"
+#include "harbour/sim/MachineType.h"
 #include "harbour/sim/Simulation.h"
 #include "harbour/sim/Vessel.h"
 

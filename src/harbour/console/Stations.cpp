@@ -19,7 +19,7 @@
 #include "harbour/io/RecordingFile.h"
 #include "harbour/io/RouteFiles.h"
 #include "harbour/io/TeamFiles.h"
-#include "harbour/machines/MachineType.h"
+#include "harbour/machines/MachineRegistry.h"
 #include "harbour/net/SceneMessages.h"
 #include "harbour/records/Reports.h"
 #include "harbour/training/Figures.h"

@@ -20,7 +20,7 @@
 #include "harbour/io/BoundedFile.h"
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/io/RecordingFile.h"
-#include "harbour/machines/MachineType.h"
+#include "harbour/machines/MachineRegistry.h"
 #include "harbour/records/Centre.h"
 #include "harbour/records/HeadlessRun.h"
 #include "harbour/sim/Recording.h"

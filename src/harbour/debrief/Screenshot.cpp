@@ -13,7 +13,7 @@
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/io/InstructorCommandText.h"
 #include "harbour/io/MachineDataFiles.h"
-#include "harbour/machines/MachineType.h"
+#include "harbour/machines/MachineRegistry.h"
 #include "harbour/records/Centre.h"
 #include "harbour/sim/Pilot.h"
 

@@ -20,6 +20,7 @@
 #include "harbour/io/InstructorCommandText.h"
 #include "harbour/io/MachineFiles.h"
 #include "harbour/io/VesselFiles.h"
+#include "harbour/machines/MachineRegistry.h"
 #include "harbour/machines/mhc/MobileHarbourCrane.h"
 #include "harbour/machines/tractor/TerminalTractor.h"
 #include "harbour/sim/Trucks.h"

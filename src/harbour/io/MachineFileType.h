@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "harbour/io/YamlFile.h"
-#include "harbour/machines/Machine.h"
-#include "harbour/machines/MachineSetup.h"
+#include "harbour/sim/Machine.h"
+#include "harbour/sim/MachineSetup.h"
 
 namespace harbour::io {
 

@@ -11,6 +11,7 @@
 #include "harbour/io/ControlFiles.h"
 #include "harbour/io/MotionFiles.h"
 #include "harbour/io/ReevingFiles.h"
+#include "harbour/machines/MachineRegistry.h"
 
 namespace harbour::io {
 // `turns`: a rotary axis without end switches (slewing): no positions read

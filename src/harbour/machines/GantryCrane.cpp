@@ -1,7 +1,7 @@
 #include "harbour/machines/GantryCrane.h"
 
-#include "harbour/machines/Machine.h"
 #include "harbour/machines/parts/KineticDamping.h"
+#include "harbour/sim/Machine.h"
 
 namespace harbour::sim {
 

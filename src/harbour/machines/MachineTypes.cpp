@@ -1,4 +1,4 @@
-#include "harbour/machines/MachineType.h"
+#include "harbour/machines/MachineRegistry.h"
 
 #include <vector>
 

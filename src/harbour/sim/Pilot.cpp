@@ -2,8 +2,8 @@
 
 #include <stdexcept>
 
-#include "harbour/machines/MachineType.h"
 #include "harbour/sim/Evaluation.h"
+#include "harbour/sim/MachineType.h"
 #include "harbour/sim/Simulation.h"
 
 namespace harbour::sim {

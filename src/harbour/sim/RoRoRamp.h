@@ -1,7 +1,7 @@
 #pragma once
 
 #include "harbour/core/Vec3.h"
-#include "harbour/machines/parts/Ground.h"
+#include "harbour/sim/Ground.h"
 #include "harbour/sim/Vessel.h"
 
 namespace harbour::sim {

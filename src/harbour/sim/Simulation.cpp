@@ -8,7 +8,6 @@
 
 #include "harbour/core/StateHash.h"
 #include "harbour/core/Units.h"
-#include "harbour/machines/reach_stacker/ReachStacker.h"
 
 namespace harbour::sim {
 namespace {
@@ -33,8 +32,7 @@ MachineSetup as_built(const ScenarioSettings& scenario) {
     reeving->simple_sheaves |= scenario.simple_sheaves;
     reeving->slack_ropes_straighten |= scenario.slack_ropes_straighten;
   }
-  if (auto* stacker = setup.get_if<ReachStackerSetup>(); stacker && scenario.end_stops_at_travel)
-    stacker->vehicle.telescope_end_stop_margin_m = 0.0;
+  if (scenario.end_stops_at_travel) setup.end_stops_at_travel();
   return setup;
 }
 }  // namespace

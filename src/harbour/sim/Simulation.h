@@ -13,11 +13,10 @@
 #include "harbour/core/FixedStepClock.h"
 #include "harbour/core/Units.h"
 #include "harbour/core/Warnings.h"
-#include "harbour/machines/MachineSetup.h"
-#include "harbour/machines/sts/StsCrane.h"  // the scenario's default machine
 #include "harbour/physics/PhysicsWorld.h"
 #include "harbour/scene/Controls.h"
 #include "harbour/scene/Snapshot.h"
+#include "harbour/sim/MachineSetup.h"
 #include "harbour/sim/RoRoRamp.h"
 #include "harbour/sim/TeamInput.h"
 #include "harbour/sim/Trucks.h"
@@ -100,7 +99,7 @@ std::string why_invalid(const InstructorCommand& command);
 /// The initial state of an exercise world (settings).
 struct ScenarioSettings {
   std::string name;
-  MachineSetup machine = StsSetup{};
+  MachineSetup machine;  ///< the machine, as its file and the exercise set it up (none: nothing to build)
   std::vector<StaticBlock> blocks;
   /// The quay's waterside edge [m]: with a vessel the quay is a block up to it and the harbour bed lies
   /// below the water; without one the ground is a plane at the quay's level.
@@ -126,8 +125,8 @@ struct ScenarioSettings {
   /// The ropes stretch along their chords (cable::ReevingSettings::stretch_along_chord), as in every run
   /// recorded before the curved length counted: their replays run so.
   bool ropes_stretch_along_chord = false;
-  /// The reach stacker's telescope end stops sit at its drive's travel limits
-  /// (ReachStackerSettings::telescope_end_stop_margin_m 0), as in every run recorded before they cleared it:
+  /// The machine's end stops sit at its drives' travel limits (MachineSetup::end_stops_at_travel: a reach
+  /// stacker's telescope), as in every run recorded before they cleared it:
   /// their replays run so.
   bool end_stops_at_travel = false;
   /// The machine starts as built, not brought to rest first (Machine::settle_at_rest), as in every run

@@ -5,8 +5,8 @@
 #include <vector>
 
 #include "harbour/core/StateArchive.h"
-#include "harbour/machines/Machine.h"
 #include "harbour/physics/PhysicsWorld.h"
+#include "harbour/sim/Machine.h"
 
 namespace harbour::sim {
 

@@ -23,7 +23,7 @@
 #include "harbour/ig/RenderThread.h"
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/io/MotionFiles.h"
-#include "harbour/machines/MachineType.h"
+#include "harbour/machines/MachineRegistry.h"
 #include "harbour/records/CentreRoutes.h"
 #include "harbour/records/HeadlessRun.h"
 #include "harbour/sim/Pilot.h"

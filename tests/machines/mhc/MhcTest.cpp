@@ -6,6 +6,7 @@
 
 #include "harbour/io/BulkFiles.h"
 #include "harbour/io/ExerciseFiles.h"
+#include "harbour/machines/sts/StsCrane.h"
 #include "harbour/sim/Evaluation.h"
 #include "scenes/MhcScenes.h"
 

@@ -9,12 +9,12 @@
 
 #include "harbour/bulk/Grab.h"
 #include "harbour/cable/HoistSystem.h"
-#include "harbour/machines/Machine.h"
-#include "harbour/machines/MachineSetup.h"
 #include "harbour/machines/parts/Drive.h"
 #include "harbour/machines/parts/LimitSwitches.h"
 #include "harbour/machines/parts/OdeCableBodies.h"
 #include "harbour/physics/PhysicsWorld.h"
+#include "harbour/sim/Machine.h"
+#include "harbour/sim/MachineSetup.h"
 
 namespace harbour::sim {
 

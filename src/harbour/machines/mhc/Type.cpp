@@ -1,10 +1,10 @@
 #include <memory>
 #include <vector>
 
-#include "harbour/machines/MachineType.h"
 #include "harbour/machines/mhc/GrabAutopilot.h"
 #include "harbour/machines/mhc/HookAutopilot.h"
 #include "harbour/machines/mhc/MobileHarbourCrane.h"
+#include "harbour/sim/MachineType.h"
 
 namespace harbour::sim {
 namespace {

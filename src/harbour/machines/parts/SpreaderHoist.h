@@ -12,11 +12,11 @@
 
 #include "harbour/cable/HoistSystem.h"
 #include "harbour/core/Units.h"
-#include "harbour/machines/Machine.h"
 #include "harbour/machines/parts/LimitSwitches.h"
 #include "harbour/machines/parts/OdeCableBodies.h"
 #include "harbour/machines/parts/Spreader.h"
 #include "harbour/machines/parts/SpreaderLocks.h"
+#include "harbour/sim/Machine.h"
 
 namespace harbour::sim {
 

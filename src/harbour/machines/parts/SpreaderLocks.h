@@ -3,9 +3,9 @@
 #include <optional>
 #include <span>
 
-#include "harbour/machines/Machine.h"
 #include "harbour/machines/parts/Spreader.h"
 #include "harbour/machines/parts/Twistlocks.h"
+#include "harbour/sim/Machine.h"
 
 namespace harbour::sim {
 

@@ -6,6 +6,7 @@
 
 #include "harbour/core/StateArchive.h"
 #include "harbour/core/Vec3.h"
+#include "harbour/sim/TwistlockEvent.h"
 
 namespace harbour::sim {
 
@@ -21,13 +22,6 @@ struct TwistlockLamps {
   bool landed = false;  ///< all four corners seated
   bool locked = false;
   bool unlocked = false;
-};
-
-/// Twistlock misuse and interlock events, for evaluation.
-enum class TwistlockEvent : std::uint8_t {
-  kLockRefusedNotLanded,    ///< lock pressed with fewer than four corners landed (interlock refuses it)
-  kUnlockRefusedSuspended,  ///< unlock pressed with the load hanging (interlock refuses it)
-  kHoistedUnlocked,         ///< the spreader arrived empty on a container and lifted off without locking
 };
 
 /// Corners (twistlock frame, x along the length: +x +y, -x +y, -x -y, +x -y) whose twistlock sits in the

@@ -1,8 +1,8 @@
 #pragma once
 
 #include "harbour/core/Vec3.h"
-#include "harbour/machines/parts/Ground.h"
 #include "harbour/physics/PhysicsWorld.h"
+#include "harbour/sim/Ground.h"
 
 namespace harbour::sim {
 

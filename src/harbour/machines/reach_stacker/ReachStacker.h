@@ -6,14 +6,14 @@
 #include <optional>
 #include <span>
 
-#include "harbour/machines/Machine.h"
-#include "harbour/machines/MachineSetup.h"
 #include "harbour/machines/parts/Drive.h"
 #include "harbour/machines/parts/DrivingCab.h"
 #include "harbour/machines/parts/Spreader.h"
 #include "harbour/machines/parts/SpreaderLocks.h"
 #include "harbour/machines/parts/WheeledChassis.h"
 #include "harbour/machines/reach_stacker/ReachStackerStability.h"
+#include "harbour/sim/Machine.h"
+#include "harbour/sim/MachineSetup.h"
 
 namespace harbour::sim {
 
@@ -139,6 +139,8 @@ struct ReachStackerSetup {
   const scene::ControlTable& controls() const { return vehicle.controls; }
   std::unique_ptr<Machine> build(physics::PhysicsWorld& world) const;
   std::vector<cable::ReevingSettings*> reevings() { return {}; }
+  /// Its telescope runs to its end stops (as runs recorded before the margin was kept were built).
+  void end_stops_at_travel() { vehicle.telescope_end_stop_margin_m = 0.0; }
 };
 
 }  // namespace harbour::sim

@@ -1,9 +1,9 @@
 #include <memory>
 #include <vector>
 
-#include "harbour/machines/MachineType.h"
 #include "harbour/machines/reach_stacker/ReachStacker.h"
 #include "harbour/machines/reach_stacker/ReachStackerAutopilot.h"
+#include "harbour/sim/MachineType.h"
 
 namespace harbour::sim {
 namespace {

@@ -6,11 +6,11 @@
 #include <span>
 #include <vector>
 
-#include "harbour/machines/Machine.h"
-#include "harbour/machines/MachineSetup.h"
 #include "harbour/machines/parts/DrivingCab.h"
 #include "harbour/machines/parts/SpreaderHoist.h"
 #include "harbour/machines/parts/WheeledChassis.h"
+#include "harbour/sim/Machine.h"
+#include "harbour/sim/MachineSetup.h"
 
 namespace harbour::sim {
 

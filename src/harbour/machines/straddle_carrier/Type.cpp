@@ -1,9 +1,9 @@
 #include <memory>
 #include <vector>
 
-#include "harbour/machines/MachineType.h"
 #include "harbour/machines/straddle_carrier/StraddleCarrier.h"
 #include "harbour/machines/straddle_carrier/StraddleCarrierAutopilot.h"
+#include "harbour/sim/MachineType.h"
 
 namespace harbour::sim {
 namespace {

@@ -9,12 +9,12 @@
 
 #include "harbour/cable/HoistSystem.h"
 #include "harbour/machines/GantryCrane.h"
-#include "harbour/machines/Machine.h"
-#include "harbour/machines/MachineSetup.h"
 #include "harbour/machines/parts/Drive.h"
 #include "harbour/machines/parts/SpreaderHoist.h"
 #include "harbour/physics/PhysicsWorld.h"
 #include "harbour/scene/Controls.h"
+#include "harbour/sim/Machine.h"
+#include "harbour/sim/MachineSetup.h"
 
 namespace harbour::sim {
 

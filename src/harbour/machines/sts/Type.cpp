@@ -2,8 +2,8 @@
 #include <vector>
 
 #include "harbour/machines/GantryAutopilot.h"
-#include "harbour/machines/MachineType.h"
 #include "harbour/machines/sts/StsCrane.h"
+#include "harbour/sim/MachineType.h"
 
 namespace harbour::sim {
 namespace {

@@ -8,11 +8,11 @@
 #include <utility>
 #include <vector>
 
-#include "harbour/machines/Machine.h"
-#include "harbour/machines/MachineSetup.h"
 #include "harbour/machines/parts/DrivingCab.h"
 #include "harbour/machines/parts/WheeledChassis.h"
 #include "harbour/physics/PhysicsWorld.h"
+#include "harbour/sim/Machine.h"
+#include "harbour/sim/MachineSetup.h"
 
 namespace harbour::sim {
 

@@ -1,9 +1,9 @@
 #include <memory>
 #include <vector>
 
-#include "harbour/machines/MachineType.h"
 #include "harbour/machines/tractor/TerminalTractor.h"
 #include "harbour/machines/tractor/TractorAutopilot.h"
+#include "harbour/sim/MachineType.h"
 
 namespace harbour::sim {
 namespace {

@@ -1,4 +1,4 @@
-#include "harbour/machines/Machine.h"
+#include "harbour/sim/Machine.h"
 
 #include <array>
 

@@ -40,8 +40,9 @@ enum class Handles : std::uint8_t {
 /// What a kind of machine is, known without building one: its kind as files name it, what it handles, the
 /// faults an instructor can inject into it and the scripted operators that drive its exercises. Each
 /// machine's folder defines its own
-/// (`src/harbour/machines/<kind>/Type.cpp`, `<kind>_machine_type()`); the list of them is generated from the
-/// folders when the build is configured, so a new machine is one more folder.
+/// (`src/harbour/machines/<kind>/Type.cpp`, `<kind>_machine_type()`); the list of them
+/// (`machines/MachineRegistry.h`) is generated from the folders when the build is configured, so a new
+/// machine is one more folder.
 struct MachineType {
   const char* kind = "";   ///< as exercise and machine files name it ("sts")
   const char* title = "";  ///< what an instructor calls it ("ship-to-shore gantry crane")
@@ -63,12 +64,5 @@ struct MachineType {
     return false;
   }
 };
-
-/// Every machine type, by kind (generated from the machine folders).
-std::span<const MachineType* const> machine_types();
-/// The type of that kind, nullptr where there is none.
-const MachineType* find_machine_type(std::string_view kind);
-/// Every machine type's kind, in the registry's order.
-std::span<const std::string_view> machine_kinds();
 
 }  // namespace harbour::sim

@@ -12,12 +12,12 @@
 #include "harbour/cable/HoistSystem.h"
 #include "harbour/core/StateArchive.h"
 #include "harbour/core/StateHash.h"
-#include "harbour/machines/MachineType.h"
-#include "harbour/machines/parts/Ground.h"
-#include "harbour/machines/parts/Twistlocks.h"
 #include "harbour/physics/PhysicsWorld.h"
 #include "harbour/scene/Controls.h"
 #include "harbour/scene/Snapshot.h"
+#include "harbour/sim/Ground.h"
+#include "harbour/sim/MachineType.h"
+#include "harbour/sim/TwistlockEvent.h"
 
 namespace harbour::sim {
 

@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-#include "harbour/machines/MachineType.h"
+#include "harbour/sim/MachineType.h"
 
 namespace harbour::physics {
 class PhysicsWorld;
@@ -27,10 +27,12 @@ class Machine;
 /// folder's setup (`StsSetup`, `MhcSetup`, ...). A setup type has `static const MachineType& type()`,
 /// `std::unique_ptr<Machine> build(physics::PhysicsWorld&) const`, `const ControlTable& controls() const` and
 /// `std::vector<cable::ReevingSettings*> reevings()` (its ropes' settings, where a recorded run's rope model
-/// is put back). Nothing here names a machine: a new one is a new setup type in its own folder.
+/// is put back); it may have `void end_stops_at_travel()` (its travel stops at its end stops, with no margin
+/// before them, as old runs were built). Nothing here names a machine: a new one is a new setup type in its
+/// own folder.
 class MachineSetup {
  public:
-  MachineSetup() = default;  ///< none yet (ScenarioSettings starts with an STS)
+  MachineSetup() = default;  ///< none yet: an exercise's machine file sets it up
   template <typename Setup, typename = std::enable_if_t<!std::is_same_v<std::decay_t<Setup>, MachineSetup>>>
   MachineSetup(Setup setup)  // NOLINT: a setup is a machine setup
       : held_(std::make_unique<Held<std::decay_t<Setup>>>(std::move(setup))) {}
@@ -51,6 +53,11 @@ class MachineSetup {
   const scene::ControlTable& controls() const { return held().controls(); }
   /// Its reevings' settings (none for a machine without ropes).
   std::vector<cable::ReevingSettings*> reevings() { return held().reevings(); }
+  /// Its travel stops at its end stops with no margin before them (a run recorded before the margin was
+  /// kept); nothing for a machine whose setup has no such margin.
+  void end_stops_at_travel() { held().end_stops_at_travel(); }
+  /// Whether a machine is set up.
+  bool has_value() const { return held_ != nullptr; }
 
   /// The setup when it is a `Setup`, else nullptr.
   template <typename Setup>
@@ -82,6 +89,7 @@ class MachineSetup {
     virtual const scene::ControlTable& controls() const = 0;
     virtual std::unique_ptr<Machine> build(physics::PhysicsWorld& world) const = 0;
     virtual std::vector<cable::ReevingSettings*> reevings() = 0;
+    virtual void end_stops_at_travel() = 0;
   };
   template <typename Setup>
   struct Held final : Base {
@@ -91,6 +99,9 @@ class MachineSetup {
     const scene::ControlTable& controls() const override { return setup.controls(); }
     std::unique_ptr<Machine> build(physics::PhysicsWorld& world) const override { return setup.build(world); }
     std::vector<cable::ReevingSettings*> reevings() override { return setup.reevings(); }
+    void end_stops_at_travel() override {
+      if constexpr (requires { setup.end_stops_at_travel(); }) setup.end_stops_at_travel();
+    }
     Setup setup;
   };
 
