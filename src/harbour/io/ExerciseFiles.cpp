@@ -20,9 +20,6 @@
 #include "harbour/io/InstructorCommandText.h"
 #include "harbour/io/MachineFiles.h"
 #include "harbour/io/VesselFiles.h"
-#include "harbour/machines/MachineRegistry.h"
-#include "harbour/machines/mhc/MobileHarbourCrane.h"
-#include "harbour/machines/tractor/TerminalTractor.h"
 #include "harbour/sim/Trucks.h"
 
 namespace harbour::io {
@@ -407,14 +404,14 @@ std::size_t read_cargo(const YamlFile& f, const YAML::Node& x, sim::ScenarioSett
 // the moves: what each takes (a container, a cargo piece, the trailer) and where to
 void read_moves(const YamlFile& f, const YAML::Node& x, sim::ExerciseSettings& e,
                 std::map<std::string, std::size_t>& container_index, bool handles_containers, bool on_hook,
-                const sim::TractorSetup* tractor, std::size_t cargo_count) {
+                const std::optional<sim::BroughtTrailer>& trailer, std::size_t cargo_count) {
   sim::ScenarioSettings& s = e.scenario;
-  const bool tows = tractor && tractor->start.trailer;
+  const bool tows = trailer.has_value();
   const YAML::Node moves = handles_containers || on_hook || tows
                                ? f.sequence(x, "moves", "exercise", kMaxMoves)
                                : YAML::Node(YAML::NodeType::Sequence);
   const char* moved_key = on_hook ? "cargo" : tows ? "trailer" : "container";  // what a move names
-  if (tows) container_index[tractor->start.trailer->id] = s.containers.size();
+  if (tows) container_index[trailer->id] = s.containers.size();
   std::map<std::string, std::size_t> moved;  // container or cargo id -> the move that takes it
   for (std::size_t n = 0; n < moves.size(); ++n) {
     const std::string at = item("exercise.moves", n);
@@ -451,7 +448,7 @@ void read_moves(const YamlFile& f, const YAML::Node& x, sim::ExerciseSettings& e
     }
     if (tows && g.heading_rad) {
       // its bay painted where it is to stand: the trailer's footprint and the tolerance around it
-      const core::Vec3& half = tractor->start.trailer->half_extents_m;
+      const core::Vec3& half = trailer->half_extents_m;
       s.markings.push_back({"bay " + g.container_id, g.target_m, *g.heading_rad, half.x + g.tolerance_m,
                             half.y + g.tolerance_m});
     } else if (g.heading_rad && !g.to_truck && known->second < s.containers.size()) {
@@ -609,8 +606,7 @@ void read_course(const YamlFile& f, const YAML::Node& x, sim::ExerciseSettings& 
   if (const auto stop = f.optional_map(x, "load_stop", "exercise")) {
     // a team's tractor collects a box under the crane first: {trailer_at_m: [x, y], heading_deg}
     const std::string at = "exercise.load_stop";
-    const auto* towing = s.machine.get_if<sim::TractorSetup>();
-    if (!towing || !towing->start.trailer || !towing->start.trailer->receives_half_extents_m)
+    if (const auto trailer = s.machine.trailer(); !trailer || !trailer->receives_box)
       f.fail(x["load_stop"], at,
              "only a tractor whose trailer receives a box (vehicle.trailer.receives) stops for one");
     const YAML::Node c = f.required(*stop, "trailer_at_m", at);
@@ -737,16 +733,15 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
   e.machine_file = machine_path;
   const bool vehicle = std::string_view(files.start_section) == "vehicle";  // it drives (ramps, routes)
   // container exercises (the STS), general cargo on a hook, bulk on a grab
-  const sim::MachineType& machine_type =
-      *sim::find_machine_type(machine_kind);  // machine_file_kind() checked it
+  const sim::MachineType& machine_type = s.machine.type();
   const bool handles_containers = machine_type.handles == sim::Handles::kContainers;
-  const auto* mhc = s.machine.get_if<sim::MhcSetup>();
-  const bool on_hook = mhc && mhc->start.on_hook;
-  const auto* tractor = s.machine.get_if<sim::TractorSetup>();
-  const bool tows = tractor && tractor->start.trailer;
+  const bool on_hook = s.machine.slings_cargo();
+  const std::optional<sim::BroughtTrailer> trailer = s.machine.trailer();
+  const bool tows = trailer.has_value();
+  const bool grabs_bulk = machine_type.handles == sim::Handles::kBulkOrCargo && !on_hook;
   const std::string handles = handles_containers ? "containers with its spreader"
                               : on_hook          ? "general cargo on its hook (exercise.cargo)"
-                              : mhc              ? "bulk with its grab (crane.tool: hook for general cargo)"
+                              : grabs_bulk       ? "bulk with its grab (crane.tool: hook for general cargo)"
                               : tows             ? "its trailer (exercise.vehicle.trailer)"
                                                  : "a trailer (exercise.vehicle.trailer)";
   for (const char* key : {"containers", "trucks", "cargo", "moves"}) {
@@ -764,7 +759,7 @@ sim::ExerciseSettings read_exercise(const YamlFile& f, const std::string& folder
   std::map<std::string, std::size_t> container_index =
       read_containers(f, x, s, vessel, hatch_covers, handles_containers);
   const std::size_t cargo_count = read_cargo(f, x, s, container_index, on_hook);
-  read_moves(f, x, e, container_index, handles_containers, on_hook, tractor, cargo_count);
+  read_moves(f, x, e, container_index, handles_containers, on_hook, trailer, cargo_count);
   read_bulk(f, x, folder, vessel, e);
   read_weather(f, x, s);
   read_events(f, x, s, machine_kind, machine_type);

@@ -7,14 +7,13 @@
 
 #include "harbour/cable/Reeving.h"
 #include "harbour/io/YamlFile.h"
-#include "harbour/machines/parts/Drive.h"
-#include "harbour/machines/parts/SpreaderHoist.h"
-#include "harbour/machines/parts/WheeledChassis.h"
 #include "harbour/scene/Controls.h"
 #include "harbour/scene/Snapshot.h"
 
-/// The readers of the parts machine files share (data/machines/*.yaml): each machine's own reader (its
-/// folder's Files.cpp) reads its file with them. Every failure is a DataError naming file, line and field.
+/// What every machine file (data/machines/*.yaml) has, whatever its machine: its controls, cab, reevings and
+/// sections beside `machine`, and its kind; each machine's own reader (its folder's Files.cpp) reads its file
+/// with these and its parts' readers (machines/parts/PartFiles.h). Every failure is a DataError naming file,
+/// line and field.
 namespace harbour::io {
 
 // physical ranges (docs/reliability.md): wide enough for any real quay crane, narrow enough that the
@@ -22,20 +21,6 @@ namespace harbour::io {
 inline constexpr double kMaxForce_n = 1e8;  ///< [N] 10 000 t: above any crane drive or brake
 inline constexpr double kRails_m = 2000.0;  ///< [m] a quay's rails and a trolley's girder lie within this
 
-/// A motor drive (`at`.drive); `turns`: a rotary axis without end switches (slewing), no positions read.
-sim::DriveSettings read_drive(const YamlFile& f, const YAML::Node& parent, const std::string& at,
-                              bool turns = false);
-/// Fails unless the drive's force gives what it moves (`moved_kg`) the drive's acceleration.
-void check_drive_moves(const YamlFile& f, const YAML::Node& parent, const std::string& at,
-                       const sim::DriveSettings& drive, double moved_kg, const char* what);
-/// A container spreader (machine.spreader).
-sim::SpreaderSettings read_spreader(const YamlFile& f, const YAML::Node& m);
-/// A container spreader on its hoist ropes under a trolley whose centre runs `rail_height_m` up: the limit
-/// switches (machine.hoist), the spreader, its twistlocks and the reeving (over `bodies`, the headblock
-/// last).
-sim::SpreaderHoistSettings read_spreader_hoist(const YamlFile& f, const YAML::Node& m,
-                                               const std::string& folder,
-                                               const std::vector<std::string>& bodies, double rail_height_m);
 /// The operator's cab (machine.cab): where it sits (within `reach_m` of the frame it is given in), the eye
 /// in it and the design line of sight.
 struct CabFields {
@@ -53,13 +38,6 @@ cable::ReevingSettings read_reeving_file(const YamlFile& f, const YAML::Node& ma
 /// A wheeled machine's chassis body (machine.chassis): its mass and its box about its centre of mass.
 std::pair<double, core::Vec3> read_chassis_box(const YamlFile& f, const YAML::Node& m, double min_kg,
                                                double max_kg);
-/// A wheeled machine's or trailer's axles (`path`.axles).
-std::vector<sim::AxleSettings> read_axles(const YamlFile& f, const YAML::Node& m, const std::string& path);
-/// A tyre (`path`.tyre).
-sim::TyreSettings read_tyre(const YamlFile& f, const YAML::Node& m, const std::string& path);
-/// A driven and steered machine's wheels (machine.axles, tyre, drivetrain, brake_torque_per_wheel_nm,
-/// parking_brake_torque_per_wheel_nm on the axles marked parking_brake, max_steer_deg).
-sim::WheeledChassisSettings read_wheels(const YamlFile& f, const YAML::Node& m);
 /// A vehicle's driving controls: steering wheel, pedals, the direction selector (reverse, neutral,
 /// forward), the parking brake (released, set), emergency stop and horn.
 void require_driving_controls(const YamlFile& f, const YAML::Node& m, const scene::ControlTable& controls);

@@ -1,12 +1,14 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
 #include <utility>
 #include <vector>
 
+#include "harbour/core/Vec3.h"
 #include "harbour/sim/MachineType.h"
 
 namespace harbour::physics {
@@ -23,13 +25,22 @@ namespace harbour::sim {
 
 class Machine;
 
+/// A trailer a machine brings to its exercise (a tractor's, coupled at the start): what the exercise's moves
+/// and bay markings need of it.
+struct BroughtTrailer {
+  std::string id;             ///< the exercise's name for it (its moves name it)
+  core::Vec3 half_extents_m;  ///< [m] its deck's box
+  bool receives_box = false;  ///< a team's crane may set a box on it
+};
+
 /// The machine an exercise runs, with where it starts, of whichever kind: a value holding one machine
 /// folder's setup (`StsSetup`, `MhcSetup`, ...). A setup type has `static const MachineType& type()`,
 /// `std::unique_ptr<Machine> build(physics::PhysicsWorld&) const`, `const ControlTable& controls() const` and
 /// `std::vector<cable::ReevingSettings*> reevings()` (its ropes' settings, where a recorded run's rope model
 /// is put back); it may have `void end_stops_at_travel()` (its travel stops at its end stops, with no margin
-/// before them, as old runs were built). Nothing here names a machine: a new one is a new setup type in its
-/// own folder.
+/// before them, as old runs were built), `bool slings_cargo() const` (it handles general cargo slung on its
+/// hook, not bulk) and `std::optional<BroughtTrailer> trailer() const`. Nothing here names a machine: a new
+/// one is a new setup type in its own folder.
 class MachineSetup {
  public:
   MachineSetup() = default;  ///< none yet: an exercise's machine file sets it up
@@ -56,6 +67,11 @@ class MachineSetup {
   /// Its travel stops at its end stops with no margin before them (a run recorded before the margin was
   /// kept); nothing for a machine whose setup has no such margin.
   void end_stops_at_travel() { held().end_stops_at_travel(); }
+  /// Its exercise gives it general cargo slung on its hook (a crane with a grab or a hook: its tool as set
+  /// up).
+  bool slings_cargo() const { return held().slings_cargo(); }
+  /// The trailer it brings to its exercise, if any.
+  std::optional<BroughtTrailer> trailer() const { return held().trailer(); }
   /// Whether a machine is set up.
   bool has_value() const { return held_ != nullptr; }
 
@@ -90,6 +106,8 @@ class MachineSetup {
     virtual std::unique_ptr<Machine> build(physics::PhysicsWorld& world) const = 0;
     virtual std::vector<cable::ReevingSettings*> reevings() = 0;
     virtual void end_stops_at_travel() = 0;
+    virtual bool slings_cargo() const = 0;
+    virtual std::optional<BroughtTrailer> trailer() const = 0;
   };
   template <typename Setup>
   struct Held final : Base {
@@ -101,6 +119,18 @@ class MachineSetup {
     std::vector<cable::ReevingSettings*> reevings() override { return setup.reevings(); }
     void end_stops_at_travel() override {
       if constexpr (requires { setup.end_stops_at_travel(); }) setup.end_stops_at_travel();
+    }
+    bool slings_cargo() const override {
+      if constexpr (requires { setup.slings_cargo(); })
+        return setup.slings_cargo();
+      else
+        return false;
+    }
+    std::optional<BroughtTrailer> trailer() const override {
+      if constexpr (requires { setup.trailer(); })
+        return setup.trailer();
+      else
+        return std::nullopt;
     }
     Setup setup;
   };

@@ -279,6 +279,7 @@ struct MhcSetup {
   const scene::ControlTable& controls() const { return crane.controls; }
   std::unique_ptr<Machine> build(physics::PhysicsWorld& world) const;
   std::vector<cable::ReevingSettings*> reevings();
+  bool slings_cargo() const { return start.on_hook; }
 };
 
 }  // namespace harbour::sim

@@ -6,7 +6,7 @@
 #include "harbour/core/Units.h"
 #include "harbour/io/ControlFiles.h"
 #include "harbour/io/ExerciseFiles.h"
-#include "harbour/io/MachineFiles.h"
+#include "harbour/machines/parts/PartFiles.h"
 
 namespace harbour::io {
 namespace {

@@ -185,6 +185,11 @@ struct TractorSetup {
   const scene::ControlTable& controls() const { return vehicle.controls; }
   std::unique_ptr<Machine> build(physics::PhysicsWorld& world) const;
   std::vector<cable::ReevingSettings*> reevings() { return {}; }
+  std::optional<BroughtTrailer> trailer() const {
+    if (!start.trailer) return std::nullopt;
+    return BroughtTrailer{start.trailer->id, start.trailer->half_extents_m,
+                          start.trailer->receives_half_extents_m.has_value()};
+  }
 };
 
 }  // namespace harbour::sim
