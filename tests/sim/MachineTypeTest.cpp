@@ -14,11 +14,15 @@
 #include "harbour/machines/mhc/MobileHarbourCrane.h"
 #include "harbour/machines/reach_stacker/ReachStacker.h"
 #include "harbour/machines/sts/StsCrane.h"
+#include "harbour/sim/Evaluation.h"
 #include "harbour/sim/Pilot.h"
 #include "harbour/sim/Simulation.h"
+#include "harbour/training/Figures.h"
 
 namespace harbour::sim {
 namespace {
+
+constexpr MachineType kNoFigures{};
 
 TEST(MachineTypes, EveryMachineFolderWithATypeIsRegisteredByItsName) {
   std::set<std::string> folders, registered;
@@ -124,6 +128,87 @@ TEST(MachineTypes, EachTypeListsTheDeductionsItsOperatorCanIncur) {
   EXPECT_TRUE(sts.can_incur("gantry_travel_without_horn"));
   EXPECT_FALSE(find_machine_type("tractor")->can_incur("twistlock_misuse"));
   EXPECT_TRUE(find_machine_type("mhc")->can_incur("pad_lift_off"));
+}
+
+// every figure a machine's parts can measure: a Metrics with no machine type stores them all (a vehicle's
+// too)
+std::set<std::string> part_figures() {
+  Metrics every;
+  every.vehicle = true;
+  Metrics common;
+  common.machine = &kNoFigures;
+  std::set<std::string> names;
+  for (const auto& [name, value] : every.rows())
+    names.insert(name);
+  for (const auto& [name, value] : common.rows())
+    names.erase(name);
+  return names;
+}
+
+TEST(MachineType, ItsFiguresAreFiguresItsPartsMeasureAndTheRecordsKnow) {
+  const std::set<std::string> parts = part_figures();
+  EXPECT_EQ(parts.size(), 20u);
+  for (const MachineType* type : machine_types()) {
+    EXPECT_GT(type->figures.size(), 0u) << type->kind;
+    for (const std::string_view figure : type->figures) {
+      EXPECT_TRUE(parts.contains(std::string(figure))) << type->kind << ": " << figure;
+      EXPECT_LT(training::figure_order(std::string(figure)), training::figure_table().size())
+          << type->kind << ": " << figure << " has no words in the reports";
+    }
+  }
+}
+
+TEST(MachineType, WhatItsRubricDeductsItsAttemptsStore) {
+  // a deduction its operator can incur and the figure that counts it: an attempt's record shows what cost
+  // points
+  const std::map<std::string_view, std::string_view> counted_by = {
+      {"hard_landing", "hard_landings"},
+      {"landing_while_swaying", "sway_landings"},
+      {"twistlock_misuse", "twistlock_misuse"},
+      {"rope_overload", "overloads"},
+      {"limit_switch_hit", "limit_hits"},
+      {"gantry_travel_without_horn", "unwarned_gantry_travel"},
+      {"load_drop", "load_drops"},
+      {"limiter_trip", "limiter_trips"},
+      {"pad_lift_off", "pad_lift_offs"},
+      {"tip_over", "tip_overs"},
+      {"jackknife", "jackknifes"},
+      {"speeding", "overspeeds"}};
+  for (const MachineType* type : machine_types())
+    for (const auto& [deduction, figure] : counted_by) {
+      if (type->can_incur(deduction)) {
+        EXPECT_TRUE(type->measures(figure))
+            << type->kind << " deducts " << deduction << " but stores no " << figure;
+      }
+    }
+}
+
+TEST(MachineType, EachMachinesAttemptStoresItsOwnFiguresAndNoOthers) {
+  const std::set<std::string> parts = part_figures();
+  std::set<std::string> kinds_seen;
+  for (const auto& entry : std::filesystem::directory_iterator(HARBOUR_DATA_DIR "/exercises")) {
+    const ExerciseSettings exercise = io::load_exercise(entry.path().string());
+    const MachineType& type = exercise.scenario.machine.type();
+    if (!kinds_seen.insert(type.kind).second) continue;  // one exercise of each machine
+    Simulation simulation(exercise.scenario);
+    Evaluator evaluator(exercise);
+    const scene::Controls neutral = simulation.control_table().neutral();
+    simulation.step(neutral);
+    evaluator.observe(simulation, neutral);
+    std::set<std::string> stored;
+    for (const auto& [name, value] : evaluator.metrics().rows())
+      if (parts.contains(name)) stored.insert(name);
+    const std::set<std::string> own(type.figures.begin(), type.figures.end());
+    EXPECT_EQ(stored, own) << entry.path().filename();
+  }
+  EXPECT_EQ(kinds_seen.size(), machine_types().size());
+  // what the tractor has no part for is not stored as a zero; what the reach stacker has, is
+  const MachineType& tractor = *find_machine_type("tractor");
+  for (const char* none : {"twistlock_misuse", "hoist_energy_j", "unwarned_gantry_travel", "hard_landings"})
+    EXPECT_FALSE(tractor.measures(none)) << none;
+  const MachineType& stacker = *find_machine_type("reach_stacker");
+  for (const char* figure : {"limiter_trips", "tip_overs", "twistlock_misuse"})
+    EXPECT_TRUE(stacker.measures(figure)) << figure;
 }
 
 TEST(MachineSetup, IsAValueOfOneKind) {

@@ -91,6 +91,18 @@ TEST(Routes, ABadRouteNamesTheFileLineAndField) {
           std::string(kHead) +
           "      - {id: a, exercise: mhc_coal_discharge, pass: {metrics: {spilled_percent: {max: 5}}}}\n"),
       "(loaded)");
+  // a machine's own figures: a tractor stores no twistlock misuse, a reach stacker its limiter trips
+  const std::string tractor = route_error(
+      std::string(kHead) +
+      "      - {id: a, exercise: tractor_mafi_park, pass: {metrics: {twistlock_misuse: {max: 0}}}}\n");
+  EXPECT_NE(tractor.find("exercise 'tractor_mafi_park' stores no figure 'twistlock_misuse'"),
+            std::string::npos)
+      << tractor;
+  EXPECT_EQ(
+      route_error(
+          std::string(kHead) +
+          "      - {id: a, exercise: reach_stacker_stack, pass: {metrics: {limiter_trips: {max: 0}}}}\n"),
+      "(loaded)");
 }
 
 // A centre's own routes stand beside the shipped ones and name the centre's exercises (found before the

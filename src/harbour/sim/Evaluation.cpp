@@ -73,6 +73,7 @@ bool scripts_fault(const ExerciseSettings& exercise, MachineFault fault) {
 
 Evaluator::Evaluator(const ExerciseSettings& exercise)
     : exercise_(exercise), done_(exercise.moves.size(), false) {
+  if (exercise.scenario.machine.has_value()) metrics_.machine = &exercise.scenario.machine.type();
   reserve_lists(metrics_);  // a station evaluates on its step thread, which must not allocate
 }
 
@@ -156,6 +157,8 @@ void Evaluator::observe(const Simulation& simulation, const scene::Controls& con
   metrics_.vehicle = tally.vehicle;
   metrics_.jackknifes = static_cast<int>(tally.jackknifes);
   metrics_.tip_overs = static_cast<int>(tally.tip_overs);
+  metrics_.limiter_trips = static_cast<int>(tally.limiter_trips);
+  metrics_.pad_lift_offs = static_cast<int>(tally.pad_lift_offs);
   if (const TruckLane* trucks = simulation.trucks(); trucks && trucks->team()) {
     int taken_over = 0, set_on_trucks = 0;
     for (int k = 0; k < trucks->trucks(); ++k)
@@ -293,8 +296,6 @@ void Evaluator::observe_bulk(const Simulation& simulation, const MachineTally& t
     trimmed_ = placed && metrics_.pile_top_m <= exercise_.trim->top_m;
     next_pile_measure_s_ = simulation.time_s() + kPileMeasure_s;
   }
-  metrics_.limiter_trips = static_cast<int>(tally.limiter_trips);
-  metrics_.pad_lift_offs = static_cast<int>(tally.pad_lift_offs);
   if (simulation.bulk_grab() < 0) return;
   const double load = bulk.grab(simulation.bulk_grab()).load_m3;
   // it opened: the bite is what it held (a shell's jitter while it digs lets a little go, not a release)
@@ -489,21 +490,40 @@ std::vector<std::pair<std::string, double>> Metrics::rows() const {
                                                    {"collisions", collisions},
                                                    {"worst_collision_mps", worst_collision_mps},
                                                    {"collision_impulse_ns", collision_impulse_ns},
-                                                   {"container_collisions", container_collisions},
-                                                   {"cell_guide_collisions", cell_guide_collisions},
-                                                   {"ship_collisions", ship_collisions},
-                                                   {"vehicle_collisions", vehicle_collisions},
-                                                   {"hard_landings", hard_landings},
-                                                   {"worst_landing_mps", worst_landing_mps},
-                                                   {"sway_landings", sway_landings},
-                                                   {"twistlock_misuse", twistlock_misuse},
-                                                   {"overloads", overloads},
-                                                   {"limit_hits", limit_hits},
-                                                   {"emergency_stops", emergency_stops},
-                                                   {"unwarned_gantry_travel", unwarned_gantry_travel},
-                                                   {"load_drops", load_drops},
-                                                   {"hoist_energy_j", hoist_energy_j},
-                                                   {"travel_energy_j", travel_energy_j}};
+                                                   {"emergency_stops", emergency_stops}};
+  // what a machine measures with its parts: its type's figures (without a type, every one of them, the
+  // vehicle's where it is one)
+  struct PartFigure {
+    const char* name;
+    double value;
+    bool of_a_vehicle;
+  };
+  const auto figure = [](const char* name, double value, bool of_a_vehicle = false) {
+    return PartFigure{name, value, of_a_vehicle};
+  };
+  const PartFigure parts[] = {figure("container_collisions", container_collisions),
+                              figure("cell_guide_collisions", cell_guide_collisions),
+                              figure("ship_collisions", ship_collisions),
+                              figure("vehicle_collisions", vehicle_collisions),
+                              figure("hard_landings", hard_landings),
+                              figure("worst_landing_mps", worst_landing_mps),
+                              figure("sway_landings", sway_landings),
+                              figure("twistlock_misuse", twistlock_misuse),
+                              figure("overloads", overloads),
+                              figure("limit_hits", limit_hits),
+                              figure("unwarned_gantry_travel", unwarned_gantry_travel),
+                              figure("load_drops", load_drops),
+                              figure("hoist_energy_j", hoist_energy_j),
+                              figure("travel_energy_j", travel_energy_j),
+                              figure("limiter_trips", limiter_trips),
+                              figure("pad_lift_offs", pad_lift_offs),
+                              figure("jackknifes", jackknifes, true),
+                              figure("tip_overs", tip_overs, true),
+                              figure("overspeeds", overspeeds, true),
+                              figure("worst_overspeed_kmh", std::max(0.0, worst_overspeed_kmh), true)};
+  for (const PartFigure& part : parts)
+    if (machine ? machine->measures(part.name) : (!part.of_a_vehicle || vehicle))
+      r.emplace_back(part.name, part.value);
   for (const Smoothness& axis : smoothness) {
     r.emplace_back(axis.axis + "_rms_jerk_mps3", axis.rms_jerk_mps3);
     r.emplace_back(axis.axis + "_harsh_moves", axis.harsh_moves);
@@ -530,12 +550,6 @@ std::vector<std::pair<std::string, double>> Metrics::rows() const {
     if (fault_set_down_s >= 0.0) r.emplace_back("fault_set_down_s", fault_set_down_s);
   }
   if (instructor_disruptions > 0) r.emplace_back("instructor_disruptions", instructor_disruptions);
-  if (vehicle) {
-    r.emplace_back("jackknifes", jackknifes);
-    r.emplace_back("tip_overs", tip_overs);
-    r.emplace_back("overspeeds", overspeeds);
-    r.emplace_back("worst_overspeed_kmh", std::max(0.0, worst_overspeed_kmh));
-  }
   if (!bulk) return r;
   double fill_sum = 0.0, swing_max = 0.0;
   for (double f : bite_fill)
@@ -552,9 +566,7 @@ std::vector<std::pair<std::string, double>> Metrics::rows() const {
       {"mean_bite_fill", bite_fill.empty() ? 0.0 : fill_sum / static_cast<double>(bite_fill.size())},
       {"poor_bites", poor_bites},
       {"worst_release_swing_m", swing_max},
-      {"swinging_releases", swinging_releases},
-      {"limiter_trips", limiter_trips},
-      {"pad_lift_offs", pad_lift_offs}};
+      {"swinging_releases", swinging_releases}};
   r.insert(r.end(), std::begin(more), std::end(more));
   if (trim) r.emplace_back("pile_top_m", pile_top_m);
   return r;

@@ -210,8 +210,11 @@ struct Metrics {
   std::vector<Smoothness> smoothness;
   /// A team session's member: its team figures (measured by its station).
   std::optional<TeamFigures> team;
-  /// Every figure by name (the records store them as rows): the container figures, and the bulk ones for a
-  /// bulk exercise.
+  /// The machine measured: of the figures that depend on a machine's parts, its type's `figures` are stored
+  /// (nullptr: all of them).
+  const MachineType* machine = nullptr;
+  /// Every figure by name (the records store them as rows): those every machine's attempt has, the machine's
+  /// own (MachineType::figures), and the bulk ones for a bulk exercise.
   std::vector<std::pair<std::string, double>> rows() const;
 };
 

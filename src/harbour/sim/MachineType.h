@@ -52,6 +52,9 @@ struct MachineType {
   std::span<const PilotType> pilots;     ///< its scripted operators, the first that can drive an exercise
   /// the rubric's deductions (rules.deductions keys) its operator can incur: what the designer offers
   std::span<const std::string_view> deductions;
+  /// the figures its attempts store (Metrics::rows names) beyond those every machine's do: what it has the
+  /// parts to measure (a spreader's twistlocks, ropes, a gantry's horn, a load-moment limiter, wheels)
+  std::span<const std::string_view> figures;
 
   bool has_fault(MachineFault fault) const {
     for (const MachineFault f : faults)
@@ -61,6 +64,11 @@ struct MachineType {
   bool can_incur(std::string_view deduction) const {
     for (const std::string_view d : deductions)
       if (d == deduction) return true;
+    return false;
+  }
+  bool measures(std::string_view figure) const {
+    for (const std::string_view f : figures)
+      if (f == figure) return true;
     return false;
   }
 };

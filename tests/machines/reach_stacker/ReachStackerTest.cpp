@@ -2,6 +2,7 @@
 // multibody model tipping it.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <iterator>
@@ -181,6 +182,19 @@ TEST(ReachStacker, TheLimiterStopsTheTelescopeAtTheChartAndWithItsFaultTheMachin
     work(c, "telescope", 0.3, 40.0, [] { return false; });
     EXPECT_TRUE(m.limiter_stopping());
     EXPECT_EQ(m.tally().limiter_trips, 1u);
+    // the attempt counts the trip, stores it and its rubric deducts it (it was counted for a grab's bulk
+    // only)
+    const Metrics& metrics = c.evaluator->metrics();
+    EXPECT_EQ(metrics.limiter_trips, 1);
+    const auto rows = metrics.rows();
+    const auto stored =
+        std::find_if(rows.begin(), rows.end(), [](const auto& r) { return r.first == "limiter_trips"; });
+    ASSERT_NE(stored, rows.end());
+    EXPECT_EQ(stored->second, 1.0);
+    const Score score = c.evaluator->score();
+    EXPECT_TRUE(std::any_of(score.deductions.begin(), score.deductions.end(), [](const Score::Deduction& d) {
+      return d.reason == "load-moment limiter trip" && d.count == 1 && d.points > 0.0;
+    }));
     EXPECT_EQ(m.tip_overs(), 0u);
     const double rated_kg = rated_load_kg(m.settings(), m.reach_m());
     EXPECT_NEAR(rated_kg, kBox_kg, 0.03 * kBox_kg);  // stopped at the chart

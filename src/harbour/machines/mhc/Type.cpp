@@ -16,11 +16,15 @@ constexpr std::string_view kDeductions[] = {
     "limit_switch_hit",    "load_drop",      "lift_under_fault",      "tonne_spilled",
     "tonne_short",         "poor_bite",      "limiter_trip",          "pad_lift_off",
     "decimetre_above_trim"};
+constexpr std::string_view kFigures[] = {
+    "container_collisions", "ship_collisions", "vehicle_collisions", "hard_landings",
+    "worst_landing_mps",    "sway_landings",   "overloads",          "limit_hits",
+    "load_drops",           "hoist_energy_j",  "limiter_trips",      "pad_lift_offs"};
 }  // namespace
 
 const MachineType& mhc_machine_type() {
   static constexpr MachineType type{
-      "mhc", "mobile harbour crane", Handles::kBulkOrCargo, kFaults, false, kPilots, kDeductions};
+      "mhc", "mobile harbour crane", Handles::kBulkOrCargo, kFaults, false, kPilots, kDeductions, kFigures};
   return type;
 }
 

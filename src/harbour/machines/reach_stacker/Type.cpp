@@ -21,11 +21,15 @@ constexpr std::string_view kDeductions[] = {"collision",
                                             "tip_over",
                                             "speeding",
                                             "load_drop"};
+constexpr std::string_view kFigures[] = {
+    "container_collisions", "vehicle_collisions", "hard_landings", "worst_landing_mps",
+    "sway_landings",        "twistlock_misuse",   "load_drops",    "travel_energy_j",
+    "limiter_trips",        "tip_overs",          "overspeeds",    "worst_overspeed_kmh"};
 }  // namespace
 
 const MachineType& reach_stacker_machine_type() {
-  static constexpr MachineType type{"reach_stacker", "reach stacker", Handles::kContainers, kFaults, true,
-                                    kPilots,         kDeductions};
+  static constexpr MachineType type{
+      "reach_stacker", "reach stacker", Handles::kContainers, kFaults, true, kPilots, kDeductions, kFigures};
   return type;
 }
 

@@ -14,11 +14,16 @@ constexpr std::string_view kDeductions[] = {
     "harsh_move",      "hard_landing",     "landing_while_swaying",      "twistlock_misuse",
     "rope_overload",   "limit_switch_hit", "gantry_travel_without_horn", "load_drop",
     "lift_under_fault"};
+constexpr std::string_view kFigures[] = {
+    "container_collisions",   "vehicle_collisions", "hard_landings",  "worst_landing_mps",
+    "sway_landings",          "twistlock_misuse",   "overloads",      "limit_hits",
+    "unwarned_gantry_travel", "load_drops",         "hoist_energy_j", "travel_energy_j"};
 }  // namespace
 
 const MachineType& rtg_machine_type() {
   static constexpr MachineType type{
-      "rtg", "rubber-tyred gantry crane", Handles::kContainers, kFaults, true, kPilots, kDeductions};
+      "rtg",   "rubber-tyred gantry crane", Handles::kContainers, kFaults, true, kPilots, kDeductions,
+      kFigures};
   return type;
 }
 

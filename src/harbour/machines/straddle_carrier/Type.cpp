@@ -22,11 +22,21 @@ constexpr std::string_view kDeductions[] = {"collision",
                                             "speeding",
                                             "load_drop",
                                             "lift_under_fault"};
+constexpr std::string_view kFigures[] = {
+    "container_collisions", "vehicle_collisions", "hard_landings",      "worst_landing_mps", "sway_landings",
+    "twistlock_misuse",     "overloads",          "limit_hits",         "load_drops",        "hoist_energy_j",
+    "travel_energy_j",      "overspeeds",         "worst_overspeed_kmh"};
 }  // namespace
 
 const MachineType& straddle_carrier_machine_type() {
-  static constexpr MachineType type{
-      "straddle_carrier", "straddle carrier", Handles::kContainers, kFaults, false, kPilots, kDeductions};
+  static constexpr MachineType type{"straddle_carrier",
+                                    "straddle carrier",
+                                    Handles::kContainers,
+                                    kFaults,
+                                    false,
+                                    kPilots,
+                                    kDeductions,
+                                    kFigures};
   return type;
 }
 

@@ -11,11 +11,13 @@ constexpr PilotType kPilots[] = {pilot_type<TractorAutopilot>()};
 constexpr std::string_view kDeductions[] = {
     "collision", "emergency_stop", "move_not_completed", "minute_over_time_limit", "harsh_move",
     "jackknife", "speeding"};
+constexpr std::string_view kFigures[] = {"container_collisions", "vehicle_collisions", "travel_energy_j",
+                                         "jackknifes",           "overspeeds",         "worst_overspeed_kmh"};
 }  // namespace
 
 const MachineType& tractor_machine_type() {
   static constexpr MachineType type{
-      "tractor", "ro-ro terminal tractor", Handles::kTrailer, {}, false, kPilots, kDeductions};
+      "tractor", "ro-ro terminal tractor", Handles::kTrailer, {}, false, kPilots, kDeductions, kFigures};
   return type;
 }
 
