@@ -4,13 +4,16 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <map>
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "harbour/io/ExerciseFiles.h"
+#include "harbour/io/InstructorCommandText.h"
 #include "harbour/machines/mhc/MobileHarbourCrane.h"
 #include "harbour/machines/reach_stacker/ReachStacker.h"
 #include "harbour/machines/sts/StsCrane.h"
@@ -104,6 +107,40 @@ TEST(MachineTypes, EachTypeOffersTheEventsOfItsParts) {
   EXPECT_EQ(io::event_kinds(*find_machine_type("tractor")), (std::vector<std::string>{"gust"}));
   EXPECT_EQ(io::event_kinds(*find_machine_type("reach_stacker")),
             (std::vector<std::string>{"gust", "landed_sensor_fault", "limiter_fault"}));
+}
+
+// the first shipped exercise of a machine of this kind (by file name)
+ExerciseSettings first_exercise_of(std::string_view kind) {
+  std::vector<std::filesystem::path> files;
+  for (const auto& entry : std::filesystem::directory_iterator(HARBOUR_DATA_DIR "/exercises"))
+    files.push_back(entry.path());
+  std::sort(files.begin(), files.end());
+  for (const std::filesystem::path& file : files)
+    if (ExerciseSettings exercise = io::load_exercise(file.string());
+        exercise.scenario.machine.kind() == kind)
+      return exercise;
+  throw std::runtime_error("no shipped exercise of " + std::string(kind));
+}
+
+// The console's panel offers an instructor the faults of the selected station's machine, by the commands'
+// names: each one the station takes (InstructorCommandText), none of a part the machine lacks.
+TEST(MachineTypes, AnInstructorIsOfferedTheFaultsOfTheMachinesParts) {
+  EXPECT_EQ(io::instructor_faults(*find_machine_type("sts")),
+            (std::vector<std::string>{"hoist-brake-fault", "landed-sensor-fault"}));
+  EXPECT_EQ(io::instructor_faults(*find_machine_type("reach_stacker")),
+            (std::vector<std::string>{"landed-sensor-fault", "limiter-fault"}));
+  EXPECT_TRUE(io::instructor_faults(*find_machine_type("tractor")).empty());
+  for (const MachineType* type : machine_types()) {
+    std::size_t offered = 0;
+    for (const std::string& fault : io::instructor_faults(*type)) {
+      const std::string command = "0:" + fault + (fault == "landed-sensor-fault" ? ":2" : "");
+      const io::TimedCommand parsed = io::parse_instructor_command(command);
+      const Simulation simulation(first_exercise_of(type->kind).scenario);
+      EXPECT_EQ(simulation.why_refused(parsed.command), "") << type->kind << " " << fault;
+      ++offered;
+    }
+    EXPECT_EQ(offered, type->faults.size()) << type->kind;
+  }
 }
 
 // A scenario's machine is a value: a copy changed leaves the original as it was; asked for another

@@ -114,6 +114,7 @@ function showStations(stations: Station[]) {
     else if (s.attempt) runningAttempt.set(s.station, s.attempt);
     if (s.station === selected) {
       showOutcome(s);
+      showFaultButtons(s.machine);
       selectedTeam = s.state === "idle" ? "" : s.team;
       $("team-actions").hidden = selectedTeam === "";
       text($("team-name"), teamWords(selectedTeam));
@@ -508,14 +509,24 @@ async function loadRecords() {
 }
 
 // The exercises as people pick them: by title, grouped by machine, with what each asks of the trainee.
-interface ExerciseCard { name: string; machine: string; machine_title: string; title?: string; objective?: string;
-  difficulty?: string; expected_min?: number; error?: string }
+interface ExerciseCard { name: string; machine: string; machine_title: string; faults: string[]; title?: string;
+  objective?: string; difficulty?: string; expected_min?: number; error?: string }
 let exerciseCards: ExerciseCard[] = [];
 // a route stage's, a team's or a team role's id in words ("single_lift": "single lift")
 const stageWords = (id: string) => id.replace(/_/g, " ");
 const teamWords = stageWords;
 const exerciseTitle = (name: string) => exerciseCards.find((e) => e.name === name)?.title ?? name;
 const machineTitle = (kind: string) => exerciseCards.find((e) => e.machine === kind)?.machine_title ?? kind;
+// The fault buttons of the parts the selected station's machine has (its type's faults; a machine no exercise
+// card names: every button, the station refusing what it lacks).
+function showFaultButtons(machine: string) {
+  const faults = exerciseCards.find((e) => e.machine === machine)?.faults;
+  for (const b of document.querySelectorAll<HTMLButtonElement>(".faults button[data-kind]")) {
+    const command = b.dataset.kind!.split(":")[0];
+    if (command.endsWith("-fault")) b.hidden = faults !== undefined && !faults.includes(command);
+    else if (command === "clear-faults") b.hidden = faults !== undefined && faults.length === 0;
+  }
+}
 function fillExerciseSelect(select: HTMLSelectElement) {
   const kept = select.value;
   select.replaceChildren();

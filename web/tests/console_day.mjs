@@ -90,6 +90,11 @@ try {
   await page.check("#autopilot");
   await page.click("button[data-kind=start]");
   await until("day-2 runs", async () => (await stateOf("day-2")) === "running", 40);
+  // the tractor has no hoist brake, twistlocks or limiter: none of their faults is offered, its stops are
+  const shown = async (kind) => page.isVisible(`button[data-kind="${kind}"]`);
+  await until("the tractor's panel offers no fault of a part it lacks", async () =>
+    !(await shown("hoist-brake-fault")) && !(await shown("landed-sensor-fault:2")) && !(await shown("limiter-fault")) &&
+    !(await shown("clear-faults")) && await shown("emergency-stop") && await shown("power-failure"));
   const row1 = await page.locator("#stations tr[data-station=day-1] td").allTextContents();
   check(row1[2] === "ship-to-shore gantry crane" && row1[3] === "First discharge onto a truck" && row1[4] === "ben",
     `the stations table names the machine and the exercise in words (${row1.slice(0, 5).join(" | ")})`);
@@ -99,6 +104,9 @@ try {
   // a fault on the STS: its lamp in the live line, cleared again
   await page.click("#stations tr[data-station=day-1]");
   await until("day-1's live line", async () => /load -?\d+\.\d t/.test(await page.textContent("#live")));
+  await until("the STS's panel offers its hoist brake's and twistlocks' faults, not a limiter's", async () =>
+    await shown("hoist-brake-fault") && await shown("landed-sensor-fault:2") && !(await shown("limiter-fault")) &&
+    await shown("clear-faults"));
   await page.click("button[data-kind=hoist-brake-fault]");
   await until("the fault is in force", async () => (await page.textContent("#live-faults")).includes("BRAKE FAULT"));
   await page.click("button[data-kind=clear-faults]");

@@ -171,8 +171,10 @@ std::optional<Console::Response> Console::exercises(Call& c) {
   json list = json::array();
   for (const io::ExerciseCard& card : io::exercise_cards(centre().exercise_folders())) {
     const sim::MachineType* type = sim::find_machine_type(card.machine);
-    json item = {
-        {"name", card.name}, {"machine", card.machine}, {"machine_title", type ? type->title : card.machine}};
+    json item = {{"name", card.name},
+                 {"machine", card.machine},
+                 {"machine_title", type ? type->title : card.machine},
+                 {"faults", type ? io::instructor_faults(*type) : std::vector<std::string>{}}};
     if (card.about)
       item.update({{"title", card.about->title},
                    {"objective", card.about->objective},

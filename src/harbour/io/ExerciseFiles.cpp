@@ -930,4 +930,11 @@ std::vector<std::string> event_kinds(const sim::MachineType& type) {
   return scriptable_events([&](sim::MachineFault fault) { return type.has_fault(fault); });
 }
 
+std::vector<std::string> instructor_faults(const sim::MachineType& type) {
+  std::vector<std::string> faults;
+  for (const FaultEvent& e : kFaultEvents)
+    if (type.has_fault(e.fault)) faults.emplace_back(command_name(e.command));
+  return faults;
+}
+
 }  // namespace harbour::io

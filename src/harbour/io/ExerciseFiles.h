@@ -30,6 +30,9 @@ const std::map<std::string, IsoType>& iso_types();
 /// The kinds of scripted event an exercise for a machine of this type may hold, as its file names them: a
 /// gust, and a failure of each part the machine has (its type's faults).
 std::vector<std::string> event_kinds(const sim::MachineType& type);
+/// The faults an instructor can inject into a machine of this type, as the console and the command line name
+/// the commands ("hoist-brake-fault"): a failure of each part it has.
+std::vector<std::string> instructor_faults(const sim::MachineType& type);
 
 /// A figure of an exercise's rubric by its key under exercise.rules (a threshold) or
 /// exercise.rules.deductions (points per occurrence), with the range the loader accepts (open at min when
