@@ -103,7 +103,7 @@ TEST(MachineTypes, EachTypeOffersTheEventsOfItsParts) {
   EXPECT_EQ(io::event_kinds(*find_machine_type("sts")),
             (std::vector<std::string>{"gust", "hoist_brake_fault", "landed_sensor_fault"}));
   EXPECT_EQ(io::event_kinds(*find_machine_type("mhc")),
-            (std::vector<std::string>{"gust", "hoist_brake_fault"}));
+            (std::vector<std::string>{"gust", "hoist_brake_fault", "limiter_fault"}));
   EXPECT_EQ(io::event_kinds(*find_machine_type("tractor")), (std::vector<std::string>{"gust"}));
   EXPECT_EQ(io::event_kinds(*find_machine_type("reach_stacker")),
             (std::vector<std::string>{"gust", "landed_sensor_fault", "limiter_fault"}));

@@ -287,6 +287,47 @@ TEST(Mhc, TheLoadMomentLimiterStopsLuffingOutBeforeTheChartIsExceeded) {
   EXPECT_GT(m.boom_angle_rad(), angle + 0.01);
 }
 
+// The instructor's limiter fault: the same luff out goes on past the chart, the limiter still warning (its
+// stop lamp and the fault lamp lit, the trip counted) but cutting nothing, until the boom's own switch; the
+// fault cleared, luffing out is cut again at once.
+TEST(Mhc, WithItsLimiterFailedTheBoomLuffsOutPastTheChart) {
+  ScenarioSettings s = damped(scenes::mhc_on_quay(HARBOUR_DATA_DIR));
+  s.machine.as<MhcSetup>().crane.grab_lower_mass_kg = 40000.0;
+  s.machine.as<MhcSetup>().start.hanging_z_m = 38.0;
+  Simulation sim(s);
+  run(sim, 10.0, sim.control_table().neutral());
+  const MobileHarbourCrane& m = mhc(sim);
+  sim.command({InstructorCommand::Kind::kLimiterFault});
+  run(sim, 0.01, sim.control_table().neutral());
+  EXPECT_TRUE(m.fault_active(MachineFault::kLoadMomentLimiter));
+  const scene::Controls luff_out = mhc_controls(sim, {{"luff", -1.0}});
+  double worst = 0.0;
+  for (int k = 0; k < 90000; ++k) {
+    sim.step(luff_out);
+    worst = std::max(worst, m.utilisation());
+  }
+  EXPECT_GT(worst, 1.1);  // past the chart: the limiter cut nothing
+  // on to the boom's lowest angle, where its own limit switch stops it
+  EXPECT_NEAR(m.boom_angle_rad(), m.settings().boom_min_angle_rad, 0.01);
+  std::printf("limiter failed: luffed out to %.1f m radius (boom %.1f deg)\n", m.radius_m(),
+              m.boom_angle_rad() * 180.0 / std::numbers::pi);
+  EXPECT_EQ(m.limiter_trips(), 1u);
+  const std::vector<std::string> names = sim.scene().indicators;
+  const auto reading = [&](const char* name) {
+    const auto at = std::find(names.begin(), names.end(), name);
+    return at == names.end() ? -1.0
+                             : sim.snapshot()->indicators[static_cast<std::size_t>(at - names.begin())];
+  };
+  EXPECT_EQ(reading("lamp_limiter_fault"), 1.0);
+  EXPECT_EQ(reading("limiter_stop"), 1.0);  // it still warns
+  sim.command({InstructorCommand::Kind::kClearFaults});
+  run(sim, 0.5, luff_out);
+  const double angle = m.boom_angle_rad();
+  run(sim, 3.0, luff_out);
+  EXPECT_NEAR(m.boom_angle_rad(), angle, 1e-3);  // cut again, the lever still out
+  EXPECT_EQ(reading("lamp_limiter_fault"), 0.0);
+}
+
 // Luffed in and hoisted up with the levers held: the boom stops on its upper angle switch and the grab on its
 // upper hoist switch, each counted once in the machine's tally (what the evaluator scores as limit hits).
 TEST(Mhc, TheBoomAndTheGrabStopOnTheirLimitSwitchesAndCountEachHitOnce) {

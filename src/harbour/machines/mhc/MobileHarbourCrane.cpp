@@ -58,9 +58,10 @@ const cable::ElementSettings& first_drum(const cable::ReevingSettings& reeving) 
 }
 
 constexpr const char* kMhcIndicators[] = {
-    "slew_deg",     "boom_angle_deg", "radius_m",         "load_t",         "capacity_t", "utilisation",
-    "limiter_stop", "grab_opening",   "pad_1_kn",         "pad_2_kn",       "pad_3_kn",   "pad_4_kn",
-    "horn",         "slung",          "lamp_brake_fault", "grab_material_t"};
+    "slew_deg",        "boom_angle_deg",    "radius_m",     "load_t",   "capacity_t",
+    "utilisation",     "limiter_stop",      "grab_opening", "pad_1_kn", "pad_2_kn",
+    "pad_3_kn",        "pad_4_kn",          "horn",         "slung",    "lamp_brake_fault",
+    "grab_material_t", "lamp_limiter_fault"};
 
 }  // namespace
 
@@ -471,7 +472,8 @@ void MobileHarbourCrane::step(const scene::Controls& raw, std::span<const Contai
     limiter_armed_ = false;
   }
   if (u < settings_.limiter_slow_from) limiter_armed_ = true;
-  const double share = limiter_stopping_ ? 0.0 : allowed;
+  // failed, it still counts and warns (the stop lamp and alarm) but lets every motion run at full speed
+  const double share = limiter_fault_ ? 1.0 : limiter_stopping_ ? 0.0 : allowed;
   if (luff < 0.0) luff *= share;
   if (hoist > 0.0) hoist *= share;
 
@@ -649,7 +651,8 @@ int MobileHarbourCrane::publish(scene::Snapshot& s, int first) const {
                            horn_ ? 1.0 : 0.0,
                            slung_ != physics::kWorld ? 1.0 : 0.0,
                            hoist_brake_fault_ ? 1.0 : 0.0,
-                           carried_kg_ / 1000.0};
+                           carried_kg_ / 1000.0,
+                           limiter_fault_ ? 1.0 : 0.0};
   static_assert(std::size(values) == std::size(kMhcIndicators));
   s.indicator_count = static_cast<int>(std::size(values));
   std::copy(std::begin(values), std::end(values), s.indicators.begin());
@@ -674,6 +677,7 @@ void MobileHarbourCrane::drain_events(StepEvents& events) {
 
 void MobileHarbourCrane::inject_fault(MachineFault fault, int) {
   if (fault == MachineFault::kHoistBrake) hoist_brake_fault_ = true;
+  if (fault == MachineFault::kLoadMomentLimiter) limiter_fault_ = true;
 }
 
 void MobileHarbourCrane::hash_into(core::StateHash& hash) const {
@@ -692,6 +696,13 @@ void MobileHarbourCrane::hash_into(core::StateHash& hash) const {
   hash.add(slings_refused_);
 }
 
+// its faults as one byte where the hoist brake's flag was before the limiter could fail (a bool's byte: 0 or
+// 1), so keyframes saved then restore as they were
+std::uint8_t MobileHarbourCrane::fault_mask() const {
+  return static_cast<std::uint8_t>((hoist_brake_fault_ ? kHoistBrakeFaultBit : 0) |
+                                   (limiter_fault_ ? kLimiterFaultBit : 0));
+}
+
 void MobileHarbourCrane::save_state(core::StateWriter& out) const {
   out.section(0x4D484331);  // "MHC1"
   slew_drive_.save_state(out);
@@ -703,7 +714,7 @@ void MobileHarbourCrane::save_state(core::StateWriter& out) const {
   out.put(slew_);
   out.put(last_hinge_angle_);
   out.put(horn_);
-  out.put(hoist_brake_fault_);
+  out.put(fault_mask());
   out.put(limiter_stopping_);
   out.put(limiter_armed_);
   out.put(limiter_load_n_);
@@ -732,7 +743,11 @@ void MobileHarbourCrane::restore_state(core::StateReader& in) {
   in.get(slew_);
   in.get(last_hinge_angle_);
   in.get(horn_);
-  in.get(hoist_brake_fault_);
+  const auto faults = in.get<std::uint8_t>();
+  if (faults > (kHoistBrakeFaultBit | kLimiterFaultBit))
+    throw core::StateError("saved state holds a fault this mobile harbour crane does not have");
+  hoist_brake_fault_ = (faults & kHoistBrakeFaultBit) != 0;
+  limiter_fault_ = (faults & kLimiterFaultBit) != 0;
   in.get(limiter_stopping_);
   in.get(limiter_armed_);
   in.get(limiter_load_n_);

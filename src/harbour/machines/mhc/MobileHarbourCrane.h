@@ -135,9 +135,10 @@ class MobileHarbourCrane final : public Machine {
   void carry_bulk(double mass_kg) override { carried_kg_ = mass_kg; }
   double carried_bulk_kg() const { return carried_kg_; }
   void inject_fault(MachineFault fault, int detail) override;
-  void clear_faults() override { hoist_brake_fault_ = false; }
+  void clear_faults() override { hoist_brake_fault_ = limiter_fault_ = false; }
   bool fault_active(MachineFault fault) const override {
-    return fault == MachineFault::kHoistBrake && hoist_brake_fault_;
+    return (fault == MachineFault::kHoistBrake && hoist_brake_fault_) ||
+           (fault == MachineFault::kLoadMomentLimiter && limiter_fault_);
   }
   void hash_into(core::StateHash& hash) const override;
   void save_state(core::StateWriter& out) const override;
@@ -253,6 +254,9 @@ class MobileHarbourCrane final : public Machine {
   double holding_falls_per_rope_ = 1.0;  // falls below the boom head per rope not through the shells' tackle
   double limiter_load_n_ = 0.0;
   bool horn_ = false, hoist_brake_fault_ = false, limiter_stopping_ = false, limiter_armed_ = true;
+  bool limiter_fault_ = false;  // the limiter warns but no longer cuts moment-raising motions
+  static constexpr std::uint8_t kHoistBrakeFaultBit = 1, kLimiterFaultBit = 2;
+  std::uint8_t fault_mask() const;
   bool pad_lifted_ = false;
   std::uint32_t limiter_trips_ = 0, pad_lift_offs_ = 0;
   std::vector<WindArea> wind_areas_;

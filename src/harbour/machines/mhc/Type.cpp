@@ -8,7 +8,7 @@
 
 namespace harbour::sim {
 namespace {
-constexpr MachineFault kFaults[] = {MachineFault::kHoistBrake};
+constexpr MachineFault kFaults[] = {MachineFault::kHoistBrake, MachineFault::kLoadMomentLimiter};
 constexpr PilotType kPilots[] = {pilot_type<GrabAutopilot>(), pilot_type<HookAutopilot>()};
 constexpr std::string_view kDeductions[] = {
     "collision",           "emergency_stop", "move_not_completed",    "minute_over_time_limit",
