@@ -244,7 +244,7 @@ int render_video(const RenderOptions& options) {
     std::printf("%s: %ld frames (%.1f-%.1f s at %.0f fps, %s view, %dx%d%s)%s\n", options.out.c_str(), frames,
                 options.from_s, end_s, options.fps, options.view.c_str(), options.width, options.height,
                 hearing ? ", with sound" : "", diverged);
-  records::print_evaluation(evaluator.metrics(), evaluator.score(), !exercise.moves.empty());
+  records::print_evaluation(evaluator.metrics(), evaluator.score());
   return result.first_mismatch ? 1 : 0;
 }
 

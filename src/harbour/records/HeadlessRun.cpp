@@ -24,6 +24,7 @@
 #include "harbour/records/RecordsStore.h"
 #include "harbour/sim/Pilot.h"
 #include "harbour/sim/Recording.h"
+#include "harbour/training/Figures.h"
 
 namespace harbour::records {
 namespace {
@@ -98,69 +99,34 @@ void check_outputs(const RunOptions& options) {
     throw std::runtime_error("--trainee '" + core::printable(options.trainee, 64) + "' " + why);
 }
 
-void print_evaluation(const sim::Metrics& m, const sim::Score& s, bool container_moves) {
+void print_evaluation(const sim::Metrics& m, const sim::Score& s) {
   std::printf("\nevaluation\n");
-  std::printf("  time                 %8.1f s\n", m.time_s);
-  if (m.bulk) {
-    std::printf("  delivered            %8.2f t (%.0f t/h)\n", m.delivered_t, m.tonnes_per_hour);
-    std::printf("  handled              %8.2f t\n", m.handled_t);
-    if (m.trim) std::printf("  pile top             %8.2f m\n", m.pile_top_m);
-    std::printf("  spilled              %8.2f t (%.1f %% of handled)\n", m.spilled_t, m.spilled_percent);
-    for (std::size_t n = 0; n < m.bite_fill.size(); ++n)
-      std::printf("  bite %zu                 %5.0f %% full, swing at release %.2f m\n", n + 1,
-                  100.0 * m.bite_fill[n], n < m.release_swing_m.size() ? m.release_swing_m[n] : 0.0);
-    std::printf("  collisions           %8d (worst %.2f m/s; ship %d, other %d)\n", m.collisions,
-                m.worst_collision_mps, m.ship_collisions, m.other_collisions);
-    std::printf("  rope overloads       %8d\n", m.overloads);
-    std::printf("  limiter trips        %8d\n", m.limiter_trips);
-    std::printf("  pad lift-offs        %8d\n", m.pad_lift_offs);
-    std::printf("  emergency stops      %8d\n", m.emergency_stops);
-  } else if (m.vehicle) {
-    std::printf("  moves completed      %8d\n", m.moves_completed);
-    for (std::size_t n = 0; n < m.placement_offset_m.size(); ++n)
-      std::printf("  placed, move %zu      %8.2f m off its mark%s\n", n + 1, m.placement_offset_m[n],
-                  n < m.placement_skew_deg.size()
-                      ? (", " + std::to_string(m.placement_skew_deg[n]).substr(0, 4) + " deg skew").c_str()
-                      : "");
-    std::printf("  collisions           %8d (worst %.2f m/s; stack %d, vehicle %d, ship %d, other %d)\n",
-                m.collisions, m.worst_collision_mps, m.container_collisions, m.vehicle_collisions,
-                m.ship_collisions, m.other_collisions);
-    std::printf("  jack-knives          %8d\n", m.jackknifes);
-    std::printf("  tip-overs            %8d\n", m.tip_overs);
-    std::printf("  speeding             %8d (worst %.1f km/h over)\n", m.overspeeds,
-                std::max(0.0, m.worst_overspeed_kmh));
-    std::printf("  emergency stops      %8d\n", m.emergency_stops);
-  } else if (!container_moves) {
-    std::printf("  collisions           %8d (worst %.2f m/s, %.0f N s)\n", m.collisions,
-                m.worst_collision_mps, m.worst_collision_impulse_ns);
-    std::printf("  rope overloads       %8d\n", m.overloads);
-    std::printf("  emergency stops      %8d\n", m.emergency_stops);
-  } else {
-    std::printf("  moves completed      %8d\n", m.moves_completed);
-    for (std::size_t n = 0; n < m.cycle_times_s.size(); ++n)
-      std::printf("  cycle time, move %zu   %8.1f s\n", n + 1, m.cycle_times_s[n]);
-    std::printf("  moves per hour       %8.1f\n", m.moves_per_hour);
-    std::printf(
-        "  collisions           %8d (worst %.2f m/s, %.0f N s; box %d, cell guide %d, ship %d, vehicle %d, "
-        "other %d)\n",
-        m.collisions, m.worst_collision_mps, m.worst_collision_impulse_ns, m.container_collisions,
-        m.cell_guide_collisions, m.ship_collisions, m.vehicle_collisions, m.other_collisions);
-    std::printf("  hard landings        %8d (worst landing %.2f m/s)\n", m.hard_landings,
-                m.worst_landing_mps);
-    for (std::size_t n = 0; n < m.landing_sway_m.size(); ++n)
-      std::printf("  sway at landing %zu    %8.3f m\n", n + 1, m.landing_sway_m[n]);
-    std::printf("  twistlock misuse     %8d\n", m.twistlock_misuse);
-    std::printf("  rope overloads       %8d\n", m.overloads);
-    std::printf("  limit switch hits    %8d\n", m.limit_hits);
-    std::printf("  emergency stops      %8d\n", m.emergency_stops);
-    std::printf("  gantry without horn  %8d\n", m.unwarned_gantry_travel);
-    std::printf("  hoist energy         %8.2f MJ\n", m.hoist_energy_j / 1e6);
-    std::printf("  travel energy        %8.2f MJ (gantry and trolley)\n", m.travel_energy_j / 1e6);
+  // every figure the records store of it (what its machine measures), in words, in the order people read them
+  std::vector<std::pair<std::string, double>> rows = m.rows();
+  std::stable_sort(rows.begin(), rows.end(), [](const auto& a, const auto& b) {
+    return training::figure_order(a.first) < training::figure_order(b.first);
+  });
+  for (const auto& [name, value] : rows) {
+    const training::FigureWords words = training::figure_words(name);
+    std::printf("  %-32s %s\n", words.label.c_str(), training::figure_text(words, value).c_str());
   }
-  for (const sim::Metrics::Smoothness& axis : m.smoothness)
-    std::printf("  %-20s %8d harsh moves (RMS jerk %.2f m/s^3)\n", axis.axis.c_str(), axis.harsh_moves,
-                axis.rms_jerk_mps3);
-  if (m.load_drops > 0) std::printf("  loads dropped        %8d\n", m.load_drops);
+  // and what each move, landing and bite was
+  for (std::size_t n = 0; n < m.cycle_times_s.size(); ++n)
+    std::printf("  move %zu: cycle time %.1f s\n", n + 1, m.cycle_times_s[n]);
+  for (std::size_t n = 0; n < m.placement_offset_m.size(); ++n)
+    std::printf("  move %zu placed %.2f m off its mark%s\n", n + 1, m.placement_offset_m[n],
+                n < m.placement_skew_deg.size()
+                    ? (", " + fixed(m.placement_skew_deg[n], 2) + " deg skew").c_str()
+                    : "");
+  for (std::size_t n = 0; n < m.landing_sway_m.size(); ++n)
+    std::printf("  landing %zu: sway %.3f m\n", n + 1, m.landing_sway_m[n]);
+  for (std::size_t n = 0; n < m.bite_fill.size(); ++n)
+    std::printf("  bite %zu: %.0f %% full, swing at release %.2f m\n", n + 1, 100.0 * m.bite_fill[n],
+                n < m.release_swing_m.size() ? m.release_swing_m[n] : 0.0);
+  if (m.collisions > 0)
+    std::printf("  collisions by kind: box %d, cell guide %d, ship %d, vehicle %d, other %d\n",
+                m.container_collisions, m.cell_guide_collisions, m.ship_collisions, m.vehicle_collisions,
+                m.other_collisions);
   if (m.hoist_fault) {
     const std::string set_down = m.fault_set_down_s >= 0.0
                                      ? "load set down " + fixed(m.fault_set_down_s, 1) + " s after it came"

@@ -34,10 +34,9 @@ inline constexpr int kExitOutOfTime = 4;
 
 /// Everything a run writes, checked before it starts (a bad output never costs a whole exercise).
 void check_outputs(const RunOptions& options);
-/// The evaluation as the trainee reads it.
-/// The attempt's metrics and score; `container_moves`: with the STS's move, landing, twistlock and travel
-/// figures (an exercise without container moves shows what every machine is measured on).
-void print_evaluation(const sim::Metrics& metrics, const sim::Score& score, bool container_moves = true);
+/// The evaluation as the trainee reads it: every figure the records store of the attempt (those every machine
+/// has and its machine's own) in words, what each move, landing and bite was, and the score.
+void print_evaluation(const sim::Metrics& metrics, const sim::Score& score);
 
 /// `harboursim replay`: re-simulates a recording, checks every recorded second's hash, prints the evaluation.
 int replay_recording(const std::string& recording, const std::string& exercise);

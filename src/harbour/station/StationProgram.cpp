@@ -364,15 +364,14 @@ void stop_drawing(ig::RenderThread* render,
 }
 
 // How the attempt went: its loop's timing, its evaluation, where it is stored
-void print_result(const station::SessionResult& result, const sim::ExerciseSettings& exercise,
-                  const StationOptions& options) {
+void print_result(const station::SessionResult& result, const StationOptions& options) {
   const station::LoopStats& l = result.loop;
   std::printf(
       "\nloop: %lld ticks, %lld late, %lld given up, longest %.2f ms, mean %.1f us, %.3fx real time%s\n",
       static_cast<long long>(l.ticks), static_cast<long long>(l.late_ticks),
       static_cast<long long>(l.skipped_ticks), l.longest_tick_s * 1e3, l.mean_tick_s * 1e6,
       l.real_time_factor, l.keeping_real_time ? "" : " (COULD NOT KEEP REAL TIME)");
-  records::print_evaluation(result.metrics, result.score, !exercise.moves.empty());
+  records::print_evaluation(result.metrics, result.score);
   std::printf("stored as attempt %lld of trainee %s (%s)\n", static_cast<long long>(result.attempt),
               options.trainee.c_str(), result.status.c_str());
   if (!options.record.empty()) std::printf("recording %s\n", options.record.c_str());
@@ -603,7 +602,7 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
   station.stop();  // the platform parks with the simulation stopped
   if (presence) presence->publish_end(result);
   if (outcome) *outcome = station::attempt_outcome(result);
-  print_result(result, exercise, options);
+  print_result(result, options);
   if (result.status == "diverged") return 3;
   return interrupted ? 130 : 0;
 }
