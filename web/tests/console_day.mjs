@@ -95,6 +95,11 @@ try {
   await until("the tractor's panel offers no fault of a part it lacks", async () =>
     !(await shown("hoist-brake-fault")) && !(await shown("landed-sensor-fault:2")) && !(await shown("limiter-fault")) &&
     !(await shown("clear-faults")) && await shown("emergency-stop") && await shown("power-failure"));
+  // its live line is its cab's HUD: its own lines first, its speed once (its line replaces the harbour's)
+  await until("the tractor's live line reads as its cab's HUD", async () => {
+    const live = await page.textContent("#live");
+    return /speed -?\d+ km\/h\s+selector [RND]\s+gear \d/.test(live) && live.split("speed").length === 2;
+  });
   const row1 = await page.locator("#stations tr[data-station=day-1] td").allTextContents();
   check(row1[2] === "ship-to-shore gantry crane" && row1[3] === "First discharge onto a truck" && row1[4] === "ben",
     `the stations table names the machine and the exercise in words (${row1.slice(0, 5).join(" | ")})`);
