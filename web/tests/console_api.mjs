@@ -218,7 +218,7 @@ try {
   }
   const offered = (name) => forms[name]?.event_kinds?.join(",");
   check(offered("sts_discharge") === "gust,hoist_brake_fault,landed_sensor_fault" &&
-    offered("mhc_hook_lift") === "gust,hoist_brake_fault" && offered("tractor_free_practice") === "gust" &&
+    offered("mhc_hook_lift") === "gust,hoist_brake_fault,limiter_fault" && offered("tractor_free_practice") === "gust" &&
     offered("reach_stacker_stack") === "gust,landed_sensor_fault,limiter_fault",
     `the designer offers each machine the faults it has: ${Object.keys(forms).map((n) => `${n} ${offered(n)}`).join("; ")}`);
   check(forms.sts_discharge?.serves_trucks === true && forms.mhc_hook_lift?.serves_trucks === false &&
