@@ -68,7 +68,7 @@ TEST(PhysicsWorld, AnImpactIsReportedOnceWithItsClosingSpeed) {
 TEST(PhysicsWorld, SliderMotorDrivesTheBodyAtItsSpeed) {
   PhysicsWorld w({});
   const BodyId trolley = w.add_box(box_at({0, 0, 10}, 30000.0, false));
-  const int s = w.add_slider(kWorld, trolley, {1, 0, 0});
+  const auto s = w.add_slider(kWorld, trolley, {1, 0, 0});
   w.set_slider_motor(s, 2.0, 1e6);
   for (int k = 0; k < 2000; ++k)
     w.step(kDt);
@@ -84,7 +84,7 @@ TEST(PhysicsWorld, SliderBetweenTwoBodiesMeasuresTheSecondRelativeToTheFirst) {
   const BodyId gantry = w.add_box(box_at({0, 0, 10}, 1e6, false));
   const BodyId trolley = w.add_box(box_at({5, 0, 20}, 3e4, false));
   w.add_slider(kWorld, gantry, {0, 1, 0});
-  const int s = w.add_slider(gantry, trolley, {1, 0, 0});
+  const auto s = w.add_slider(gantry, trolley, {1, 0, 0});
   w.set_slider_motor(s, 1.0, 1e7);
   for (int k = 0; k < 1000; ++k)
     w.step(kDt);
@@ -97,8 +97,8 @@ TEST(PhysicsWorld, SliderBetweenTwoBodiesMeasuresTheSecondRelativeToTheFirst) {
 TEST(PhysicsWorld, SliderForceTimesRateIsTheWorkTheMotorDoes) {
   PhysicsWorld w({});
   const BodyId trolley = w.add_box(box_at({0, 0, 10}, 30000.0, false));
-  const int s = w.add_slider(kWorld, trolley, {-2, 0, 0});  // any axis length, either direction
-  w.set_slider_motor(s, 2.0, 3e4);                          // 1 m/s^2 for 2 s
+  const auto s = w.add_slider(kWorld, trolley, {-2, 0, 0});  // any axis length, either direction
+  w.set_slider_motor(s, 2.0, 3e4);                           // 1 m/s^2 for 2 s
   double work = 0.0;
   for (int k = 0; k < 3000; ++k) {
     w.step(kDt);
@@ -112,7 +112,7 @@ TEST(PhysicsWorld, SliderForceTimesRateIsTheWorkTheMotorDoes) {
   const BodyId gantry = two.add_box(box_at({0, 0, 10}, 1e6, false));
   const BodyId car = two.add_box(box_at({5, 0, 20}, 3e4, false));
   two.add_slider(kWorld, gantry, {0, 1, 0});
-  const int rail = two.add_slider(gantry, car, {1, 0, 0});
+  const auto rail = two.add_slider(gantry, car, {1, 0, 0});
   two.set_slider_motor(rail, -1.5, 3e4);  // towards -x this time
   double trolley_work = 0.0;
   for (int k = 0; k < 3000; ++k) {
@@ -131,7 +131,7 @@ TEST(PhysicsWorld, AHingedBarSwingsWithTheCompoundPendulumsPeriod) {
   BoxSettings bar = box_at({0, 0, 10.0 - length / 2}, mass, false);
   bar.half_extents_m = {width / 2, width / 2, length / 2};
   const BodyId b = w.add_box(bar);
-  const int hinge = w.add_hinge(kWorld, b, {0, 0, 10.0}, {0, 1, 0});
+  const auto hinge = w.add_hinge(kWorld, b, {0, 0, 10.0}, {0, 1, 0});
   w.set_linear_velocity(b, {0.05 * length / 2, 0, 0});  // a small push: ~0.05 rad/s at the centre
   std::vector<double> crossings;                        // times the angle passes zero going up
   double last = w.hinge_angle(hinge);
@@ -197,7 +197,7 @@ TEST(PhysicsWorld, HingeTorqueTimesRateIsTheWorkTheMotorDoes) {
   BoxSettings disc = box_at({3, 0, 5}, 800.0, false);
   disc.half_extents_m = {1.0, 1.0, 0.25};
   const BodyId b = w.add_box(disc);
-  const int hinge = w.add_hinge(kWorld, b, {3, 0, 5}, {0, 0, 2});  // about its own vertical axis
+  const auto hinge = w.add_hinge(kWorld, b, {3, 0, 5}, {0, 0, 2});  // about its own vertical axis
   w.set_hinge_motor(hinge, 1.5, 400.0);
   double work = 0.0;
   for (int k = 0; k < 4000; ++k) {

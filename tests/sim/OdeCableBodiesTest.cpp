@@ -32,7 +32,7 @@ TEST(OdeCableBodies, StsLoadSwingsWithThePendulumPeriod) {
   headblock.collides = false;
   const physics::BodyId t = world.add_box(trolley);
   const physics::BodyId h = world.add_box(headblock);
-  const int rail = world.add_slider(physics::kWorld, t, {1, 0, 0});
+  const auto rail = world.add_slider(physics::kWorld, t, {1, 0, 0});
   world.set_slider_motor(rail, 0.0, 1e7);
 
   const io::ReevingFile file = io::load_reeving(HARBOUR_DATA_DIR "/reeving/sts_hoist.yaml");

@@ -282,8 +282,8 @@ BodyId PhysicsWorld::add_kinematic_body(const core::Pose& pose) {
   return id;
 }
 
-int PhysicsWorld::add_box_shape(BodyId body, const Vec3& half_extents_m, const core::Pose& local,
-                                int surface) {
+ShapeId PhysicsWorld::add_box_shape(BodyId body, const Vec3& half_extents_m, const core::Pose& local,
+                                    int surface) {
   const dSpaceID space =
       body != kWorld && ode_->bodies[body].shapes ? ode_->bodies[body].shapes : ode_->space;
   dGeomID g = dCreateBox(space, 2 * half_extents_m.x, 2 * half_extents_m.y, 2 * half_extents_m.z);
@@ -298,11 +298,11 @@ int PhysicsWorld::add_box_shape(BodyId body, const Vec3& half_extents_m, const c
     dGeomSetOffsetPosition(g, at.x, at.y, at.z);
     dGeomSetOffsetRotation(g, r);
   }
-  return ode_->add_shape(g, body, surface);
+  return ShapeId{ode_->add_shape(g, body, surface)};
 }
 
-void PhysicsWorld::set_box_shape(int shape, const Vec3& half_extents_m, const core::Pose& local) {
-  const Ode::Shape& s = ode_->shapes[static_cast<std::size_t>(shape)];
+void PhysicsWorld::set_box_shape(ShapeId shape, const Vec3& half_extents_m, const core::Pose& local) {
+  const Ode::Shape& s = ode_->shapes[static_cast<std::size_t>(shape.index)];
   dGeomBoxSetLengths(s.id, 2 * half_extents_m.x, 2 * half_extents_m.y, 2 * half_extents_m.z);
   dMatrix3 r;
   to_ode(local.rotation, r);
@@ -311,8 +311,8 @@ void PhysicsWorld::set_box_shape(int shape, const Vec3& half_extents_m, const co
   dGeomSetOffsetRotation(s.id, r);
 }
 
-void PhysicsWorld::set_shape_enabled(int shape, bool enabled) {
-  const dGeomID g = ode_->shapes[static_cast<std::size_t>(shape)].id;
+void PhysicsWorld::set_shape_enabled(ShapeId shape, bool enabled) {
+  const dGeomID g = ode_->shapes[static_cast<std::size_t>(shape.index)].id;
   if (enabled) {
     dGeomEnable(g);
   } else {
@@ -361,31 +361,31 @@ void PhysicsWorld::set_kinematic_motion(BodyId body, const core::Pose& pose, con
   dBodySetAngularVel(b, angular_velocity.x, angular_velocity.y, angular_velocity.z);
 }
 
-int PhysicsWorld::attach(BodyId a, BodyId b) {
+AttachmentId PhysicsWorld::attach(BodyId a, BodyId b) {
   Ode::Attachment made{nullptr, a, b, ode_->raw_pose(a), ode_->raw_pose(b)};
   made.id = ode_->make_joint(made);
   ode_->attachments.push_back(made);
-  return static_cast<int>(ode_->attachments.size()) - 1;
+  return AttachmentId{static_cast<int>(ode_->attachments.size()) - 1};
 }
 
-int PhysicsWorld::attach_pivot(BodyId a, BodyId b, const Vec3& anchor_m) {
+AttachmentId PhysicsWorld::attach_pivot(BodyId a, BodyId b, const Vec3& anchor_m) {
   Ode::Attachment made{nullptr, a, b, ode_->raw_pose(a), ode_->raw_pose(b), true, anchor_m};
   made.id = ode_->make_joint(made);
   ode_->attachments.push_back(made);
-  return static_cast<int>(ode_->attachments.size()) - 1;
+  return AttachmentId{static_cast<int>(ode_->attachments.size()) - 1};
 }
 
 int PhysicsWorld::attachments_made() const {
   return static_cast<int>(ode_->attachments.size());
 }
 
-void PhysicsWorld::detach(int attachment) {
-  Ode::Attachment& a = ode_->attachments[static_cast<std::size_t>(attachment)];
+void PhysicsWorld::detach(AttachmentId attachment) {
+  Ode::Attachment& a = ode_->attachments[static_cast<std::size_t>(attachment.index)];
   if (a.id) dJointDestroy(a.id);
   a.id = nullptr;
 }
 
-int PhysicsWorld::add_slider(BodyId a, BodyId b, const Vec3& axis) {
+SliderId PhysicsWorld::add_slider(BodyId a, BodyId b, const Vec3& axis) {
   dJointID j = dJointCreateSlider(ode_->world, nullptr);
   // ODE measures a slider as body 1 relative to body 2. On the world, attach b alone. Between two bodies the
   // (a, b) attachment is the numerically stable one (measured: (b, a) diverged under the STS trolley), so the
@@ -400,32 +400,33 @@ int PhysicsWorld::add_slider(BodyId a, BodyId b, const Vec3& axis) {
   dJointSetFeedback(j, &ode_->slider_feedback.emplace_back());
   ode_->slider_axis.push_back(axis * (1.0 / std::sqrt(dot(axis, axis))));
   ode_->sliders.push_back(j);
-  return static_cast<int>(ode_->sliders.size()) - 1;
+  return SliderId{static_cast<int>(ode_->sliders.size()) - 1};
 }
 
-void PhysicsWorld::set_slider_motor(int slider, double velocity_mps, double max_force_n) {
-  dJointSetSliderParam(ode_->sliders[slider], dParamVel, ode_->slider_sign[slider] * velocity_mps);
-  dJointSetSliderParam(ode_->sliders[slider], dParamFMax, max_force_n);
+void PhysicsWorld::set_slider_motor(SliderId slider, double velocity_mps, double max_force_n) {
+  dJointSetSliderParam(ode_->sliders[slider.index], dParamVel,
+                       ode_->slider_sign[slider.index] * velocity_mps);
+  dJointSetSliderParam(ode_->sliders[slider.index], dParamFMax, max_force_n);
 }
 
-double PhysicsWorld::slider_position(int slider) const {
-  return ode_->slider_sign[slider] * dJointGetSliderPosition(ode_->sliders[slider]);
+double PhysicsWorld::slider_position(SliderId slider) const {
+  return ode_->slider_sign[slider.index] * dJointGetSliderPosition(ode_->sliders[slider.index]);
 }
 
-double PhysicsWorld::slider_rate(int slider) const {
-  return ode_->slider_sign[slider] * dJointGetSliderPositionRate(ode_->sliders[slider]);
+double PhysicsWorld::slider_rate(SliderId slider) const {
+  return ode_->slider_sign[slider.index] * dJointGetSliderPositionRate(ode_->sliders[slider.index]);
 }
 
-double PhysicsWorld::slider_force(int slider) const {
+double PhysicsWorld::slider_force(SliderId slider) const {
   // the force on the moving body b along the axis: on the world b is ODE's body 1; between two bodies ODE's
   // body 1 is a, which feels the reaction
-  const dJointFeedback& f = ode_->slider_feedback[static_cast<std::size_t>(slider)];
-  const bool on_world = ode_->slider_sign[slider] > 0.0;
-  return on_world ? dot(to_vec(f.f1), ode_->slider_axis[static_cast<std::size_t>(slider)])
-                  : -dot(to_vec(f.f1), ode_->slider_axis[static_cast<std::size_t>(slider)]);
+  const dJointFeedback& f = ode_->slider_feedback[static_cast<std::size_t>(slider.index)];
+  const bool on_world = ode_->slider_sign[slider.index] > 0.0;
+  return on_world ? dot(to_vec(f.f1), ode_->slider_axis[static_cast<std::size_t>(slider.index)])
+                  : -dot(to_vec(f.f1), ode_->slider_axis[static_cast<std::size_t>(slider.index)]);
 }
 
-int PhysicsWorld::add_hinge(BodyId a, BodyId b, const Vec3& anchor_m, const Vec3& axis) {
+HingeId PhysicsWorld::add_hinge(BodyId a, BodyId b, const Vec3& anchor_m, const Vec3& axis) {
   dJointID j = dJointCreateHinge(ode_->world, nullptr);
   // b is ODE's body 1, so ODE's angle and rate are b relative to a directly
   dJointAttach(j, ode_->bodies[b].id, a == kWorld ? nullptr : ode_->bodies[a].id);
@@ -433,44 +434,44 @@ int PhysicsWorld::add_hinge(BodyId a, BodyId b, const Vec3& anchor_m, const Vec3
   dJointSetHingeAxis(j, axis.x, axis.y, axis.z);
   dJointSetFeedback(j, &ode_->hinge_feedback.emplace_back());
   ode_->hinges.push_back({j, b, axis * (1.0 / std::sqrt(dot(axis, axis)))});
-  return static_cast<int>(ode_->hinges.size()) - 1;
+  return HingeId{static_cast<int>(ode_->hinges.size()) - 1};
 }
 
-void PhysicsWorld::set_hinge_motor(int hinge, double rate_radps, double max_torque_nm) {
-  dJointSetHingeParam(ode_->hinges[static_cast<std::size_t>(hinge)].id, dParamVel, rate_radps);
-  dJointSetHingeParam(ode_->hinges[static_cast<std::size_t>(hinge)].id, dParamFMax, max_torque_nm);
+void PhysicsWorld::set_hinge_motor(HingeId hinge, double rate_radps, double max_torque_nm) {
+  dJointSetHingeParam(ode_->hinges[static_cast<std::size_t>(hinge.index)].id, dParamVel, rate_radps);
+  dJointSetHingeParam(ode_->hinges[static_cast<std::size_t>(hinge.index)].id, dParamFMax, max_torque_nm);
 }
 
-double PhysicsWorld::hinge_angle(int hinge) const {
-  return dJointGetHingeAngle(ode_->hinges[static_cast<std::size_t>(hinge)].id);
+double PhysicsWorld::hinge_angle(HingeId hinge) const {
+  return dJointGetHingeAngle(ode_->hinges[static_cast<std::size_t>(hinge.index)].id);
 }
 
-double PhysicsWorld::hinge_rate(int hinge) const {
-  return dJointGetHingeAngleRate(ode_->hinges[static_cast<std::size_t>(hinge)].id);
+double PhysicsWorld::hinge_rate(HingeId hinge) const {
+  return dJointGetHingeAngleRate(ode_->hinges[static_cast<std::size_t>(hinge.index)].id);
 }
 
-PhysicsWorld::Wrench PhysicsWorld::hinge_reaction(int hinge, const Vec3& about_m) const {
-  const Ode::Hinge& h = ode_->hinges[static_cast<std::size_t>(hinge)];
-  const dJointFeedback& f = ode_->hinge_feedback[static_cast<std::size_t>(hinge)];
+PhysicsWorld::Wrench PhysicsWorld::hinge_reaction(HingeId hinge, const Vec3& about_m) const {
+  const Ode::Hinge& h = ode_->hinges[static_cast<std::size_t>(hinge.index)];
+  const dJointFeedback& f = ode_->hinge_feedback[static_cast<std::size_t>(hinge.index)];
   const Vec3 com = to_vec(dBodyGetPosition(ode_->bodies[h.body].id));
   const Vec3 force = to_vec(f.f1);
   return {force, to_vec(f.t1) + cross(com - about_m, force)};
 }
 
-void PhysicsWorld::set_slider_limits(int slider, double low_m, double high_m) {
+void PhysicsWorld::set_slider_limits(SliderId slider, double low_m, double high_m) {
   // ODE's position is ours times the sign: flip the stops with it (high first keeps lo <= hi on the way)
-  const double sign = ode_->slider_sign[slider];
+  const double sign = ode_->slider_sign[slider.index];
   const double lo = sign > 0 ? low_m : -high_m, hi = sign > 0 ? high_m : -low_m;
-  dJointSetSliderParam(ode_->sliders[slider], dParamLoStop, -dInfinity);
-  dJointSetSliderParam(ode_->sliders[slider], dParamHiStop, hi);
-  dJointSetSliderParam(ode_->sliders[slider], dParamLoStop, lo);
+  dJointSetSliderParam(ode_->sliders[slider.index], dParamLoStop, -dInfinity);
+  dJointSetSliderParam(ode_->sliders[slider.index], dParamHiStop, hi);
+  dJointSetSliderParam(ode_->sliders[slider.index], dParamLoStop, lo);
 }
 
-double PhysicsWorld::hinge_torque(int hinge) const {
+double PhysicsWorld::hinge_torque(HingeId hinge) const {
   // ODE reports the joint's force and torque on b at its centre of mass; about the anchor the force has no
   // moment, so the torque left about the axis is the motor's (the hinge constrains only the other two axes)
-  const Ode::Hinge& h = ode_->hinges[static_cast<std::size_t>(hinge)];
-  const dJointFeedback& f = ode_->hinge_feedback[static_cast<std::size_t>(hinge)];
+  const Ode::Hinge& h = ode_->hinges[static_cast<std::size_t>(hinge.index)];
+  const dJointFeedback& f = ode_->hinge_feedback[static_cast<std::size_t>(hinge.index)];
   dVector3 anchor;
   dJointGetHingeAnchor(h.id, anchor);
   const Vec3 com = to_vec(dBodyGetPosition(ode_->bodies[h.body].id));

@@ -18,6 +18,20 @@ namespace harbour::physics {
 using BodyId = int;
 inline constexpr BodyId kWorld = -1;
 
+/// The index of one kind of thing a PhysicsWorld hands out (a body's collision shape, a slider, a hinge, an
+/// attachment): a type of its own per kind, so a hinge's cannot be passed where a slider's is meant. -1:
+/// none. Its bytes are its index's (saved states hold it as they held the index).
+template <typename Kind>
+struct Handle {
+  int index = -1;
+  constexpr bool valid() const { return index >= 0; }
+  friend constexpr bool operator==(Handle, Handle) = default;
+};
+using ShapeId = Handle<struct ShapeKind>;
+using SliderId = Handle<struct SliderKind>;
+using HingeId = Handle<struct HingeKind>;
+using AttachmentId = Handle<struct AttachmentKind>;
+
 /// Settings of the multibody world (ODE).
 struct WorldSettings {
   core::Vec3 gravity{0, 0, -core::kStandardGravity};  ///< [m/s^2]
@@ -75,11 +89,11 @@ class PhysicsWorld {
   BodyId add_kinematic_body(const core::Pose& pose);
   /// A box shape on `body` at a pose in the body's frame (kWorld: a static box at a world pose); returns
   /// its index for set_box_shape / set_shape_enabled.
-  int add_box_shape(BodyId body, const core::Vec3& half_extents_m, const core::Pose& local, int surface);
+  ShapeId add_box_shape(BodyId body, const core::Vec3& half_extents_m, const core::Pose& local, int surface);
   /// Resizes and moves a body's box shape (a telescoping spreader, its flippers).
-  void set_box_shape(int shape, const core::Vec3& half_extents_m, const core::Pose& local);
+  void set_box_shape(ShapeId shape, const core::Vec3& half_extents_m, const core::Pose& local);
   /// A disabled shape touches nothing (a flipper folded up).
-  void set_shape_enabled(int shape, bool enabled);
+  void set_shape_enabled(ShapeId shape, bool enabled);
   /// A static horizontal ground plane at height `z_m`.
   void add_ground(double z_m, int surface = 0);
   /// A static box (quay furniture, a vessel's deck or hatch cover) at a world pose.
@@ -95,11 +109,11 @@ class PhysicsWorld {
                             const core::Vec3& angular_velocity);
   /// Rigidly joins two bodies as they are now (twistlocks locked); returns a handle for detach().
   /// ODE allocates the fixed joint: one allocation per attachment made (an event, not every step).
-  int attach(BodyId a, BodyId b);
+  AttachmentId attach(BodyId a, BodyId b);
   /// Joins two bodies at the world point `anchor_m` as they are now, free to turn about it (a load in its
   /// slings on a crane hook); returns a handle for detach().
-  int attach_pivot(BodyId a, BodyId b, const core::Vec3& anchor_m);
-  void detach(int attachment);
+  AttachmentId attach_pivot(BodyId a, BodyId b, const core::Vec3& anchor_m);
+  void detach(AttachmentId attachment);
   /// Bodies `a` and `b` never touch each other (parts of one machine whose boxes overlap: a trailer's front
   /// over its tractor); set once when the scene is built, like the bodies themselves.
   void exclude_contacts(BodyId a, BodyId b);
@@ -107,36 +121,36 @@ class PhysicsWorld {
   int attachments_made() const;
   /// A prismatic joint letting `b` slide along world `axis` relative to `a` (kWorld: the ground); returns its
   /// index.
-  int add_slider(BodyId a, BodyId b, const core::Vec3& axis);
+  SliderId add_slider(BodyId a, BodyId b, const core::Vec3& axis);
   /// Drives a slider at `velocity_mps` with at most `max_force_n` (0 frees it).
-  void set_slider_motor(int slider, double velocity_mps, double max_force_n);
+  void set_slider_motor(SliderId slider, double velocity_mps, double max_force_n);
   /// Slider displacement [m] along its axis from where it was created, and its rate [m/s].
-  double slider_position(int slider) const;
-  double slider_rate(int slider) const;
+  double slider_position(SliderId slider) const;
+  double slider_rate(SliderId slider) const;
   /// Force the joint (motor, brake) put on the slider's moving body along +axis in the last step [N]:
   /// times slider_rate, the power the drive delivered.
-  double slider_force(int slider) const;
+  double slider_force(SliderId slider) const;
 
   /// A revolute joint letting `b` turn relative to `a` (kWorld: the ground) about the world `axis` through
   /// the world point `anchor_m` (a slewing superstructure, a luffing boom, a wheel); returns its index.
-  int add_hinge(BodyId a, BodyId b, const core::Vec3& anchor_m, const core::Vec3& axis);
+  HingeId add_hinge(BodyId a, BodyId b, const core::Vec3& anchor_m, const core::Vec3& axis);
   /// Drives a hinge at `rate_radps` with at most `max_torque_nm` (0 frees it).
-  void set_hinge_motor(int hinge, double rate_radps, double max_torque_nm);
+  void set_hinge_motor(HingeId hinge, double rate_radps, double max_torque_nm);
   /// Hinge angle [rad] of `b` relative to `a` about +axis from where it was created, in (-pi, pi] (a machine
   /// that turns further counts the turns), and its rate [rad/s].
-  double hinge_angle(int hinge) const;
-  double hinge_rate(int hinge) const;
+  double hinge_angle(HingeId hinge) const;
+  double hinge_rate(HingeId hinge) const;
   /// Torque the joint (motor, brake) put on `b` about +axis in the last step [N m]: times hinge_rate, the
   /// power the drive delivered.
-  double hinge_torque(int hinge) const;
+  double hinge_torque(HingeId hinge) const;
   /// Force the hinge put on `b` in the last step and its moment about the world point `about_m` [N, N m]
   /// (what `a` carries is the opposite: the load a slewing house puts on its undercarriage).
   struct Wrench {
     core::Vec3 force, moment;
   };
-  Wrench hinge_reaction(int hinge, const core::Vec3& about_m) const;
+  Wrench hinge_reaction(HingeId hinge, const core::Vec3& about_m) const;
   /// Limits a slider's travel to [low_m, high_m] about where it was created (hard stops).
-  void set_slider_limits(int slider, double low_m, double high_m);
+  void set_slider_limits(SliderId slider, double low_m, double high_m);
 
   core::Pose pose(BodyId body) const;
   core::Vec3 linear_velocity(BodyId body) const;

@@ -72,7 +72,7 @@ class TruckLane {
     physics::BodyId body = physics::kWorld;
     double y = 0.0, speed = 0.0;
     State state = State::kQueued;
-    int load_attachment = -1;  // the box held by the chassis cones
+    physics::AttachmentId load_attachment;  // the box held by the chassis cones
   };
   /// The box seated on the truck once the spreader is clear of it.
   /// A box stands on the truck's chassis (none: nullopt).

@@ -557,7 +557,7 @@ void MobileHarbourCrane::sling(std::span<const ContainerRef> liftables) {
     }
     world_.detach(sling_attachment_);
     slung_ = physics::kWorld;
-    sling_attachment_ = -1;
+    sling_attachment_ = {};
     rocking_damping_nms_ = 0.0;
     return;
   }
@@ -764,8 +764,8 @@ void MobileHarbourCrane::restore_state(core::StateReader& in) {
   slung_half_extents_m_ = {slung_half[0], slung_half[1], slung_half[2]};
   in.get(sling_pressed_);
   in.get(slings_refused_);
-  if ((slung_ != physics::kWorld) != (sling_attachment_ >= 0) ||
-      sling_attachment_ >= world_.attachments_made())
+  if ((slung_ != physics::kWorld) != sling_attachment_.valid() ||
+      sling_attachment_.index >= world_.attachments_made())
     throw core::StateError("saved state slings a load this mobile harbour crane cannot have");
   update_tool();
 }

@@ -196,8 +196,8 @@ class MobileHarbourCrane final : public Machine {
   std::optional<physics::BodyId> gripper_body() const override { return on_hook() ? block_ : grab_lower_; }
   /// The grab's lower block (kWorld on the hook).
   physics::BodyId grab_lower_body() const { return grab_lower_; }
-  int slew_hinge() const { return slew_hinge_; }
-  int boom_hinge() const { return boom_hinge_; }
+  physics::HingeId slew_hinge() const { return slew_hinge_; }
+  physics::HingeId boom_hinge() const { return boom_hinge_; }
   const MhcSettings& settings() const { return settings_; }
   const core::Vec3& position_m() const { return position_; }
 
@@ -235,7 +235,8 @@ class MobileHarbourCrane final : public Machine {
   int slew_slot_, luff_slot_, hoist_slot_, grab_slot_, sling_slot_, stop_slot_, horn_slot_;
   core::Vec3 position_;
   physics::BodyId house_, boom_, block_, grab_lower_ = physics::kWorld;
-  int slew_hinge_, boom_hinge_, grab_slider_ = -1;
+  physics::HingeId slew_hinge_, boom_hinge_;
+  physics::SliderId grab_slider_;
   Drive slew_drive_;
   LimitSwitches luff_limits_, hoist_limits_;
   LimitSwitches grab_limits_;  // on the shells' shut share: 0 fully open, 1 shut
@@ -267,7 +268,7 @@ class MobileHarbourCrane final : public Machine {
   double luff_speed_mps_ = 0.0;  // the boom head's radial speed the luffing winch was last commanded
   // on the hook: what is slung to it (its body, its pivot attachment), the sling button's last state
   physics::BodyId slung_ = physics::kWorld;
-  int sling_attachment_ = -1;
+  physics::AttachmentId sling_attachment_;
   double rocking_damping_nms_ = 0.0;  // [N m s] on the slung load's rocking relative to the hook
   core::Vec3 slung_half_extents_m_;   // the slung load's shape (its slings are drawn to its corners)
   bool sling_pressed_ = false;

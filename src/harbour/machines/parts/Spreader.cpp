@@ -29,7 +29,7 @@ Spreader::Spreader(physics::PhysicsWorld& world, physics::BodyId body, int surfa
       pin_half_span_(0.5 * settings.pin_span_m[index(settings.initial_size)]) {
   frame_shape_ = world.add_box_shape(body, half_extents_m(), {}, surface_frame);
   for (auto& corner : flipper_shapes_)
-    for (int& plate : corner)
+    for (physics::ShapeId& plate : corner)
       plate = world.add_box_shape(body, {0.1, 0.1, 0.1}, {}, surface_flipper);
   apply_shapes();
 }
@@ -79,7 +79,7 @@ void Spreader::apply_shapes() {
                    {xs * (h.x + g), ys * (h.y + g + t - 0.5 * a), -h.z});
     world_.set_box_shape(flipper_shapes_[c][0], plate_end, end);
     world_.set_box_shape(flipper_shapes_[c][1], plate_side, side);
-    for (int plate : flipper_shapes_[c])
+    for (const physics::ShapeId plate : flipper_shapes_[c])
       world_.set_shape_enabled(plate, flippers_[c] == 1.0);
   }
   shapes_stale_ = false;

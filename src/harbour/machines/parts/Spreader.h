@@ -73,8 +73,8 @@ class Spreader {
 
   physics::PhysicsWorld& world_;
   SpreaderSettings settings_;
-  int frame_shape_ = -1;
-  std::array<std::array<int, 2>, 4> flipper_shapes_{};  // end plate, side plate per corner
+  physics::ShapeId frame_shape_;
+  std::array<std::array<physics::ShapeId, 2>, 4> flipper_shapes_{};  // end plate, side plate per corner
   SpreaderSize size_;
   double pin_half_span_ = 0.0;
   std::array<double, 4> flippers_{};

@@ -56,9 +56,9 @@ void SpreaderLocks::step(physics::PhysicsWorld& world, physics::BodyId spreader,
   if (!was_locked && twistlocks_.locked() && landed_on) {
     attachment_ = world.attach(spreader, *landed_on);
     locked_ = landed_on;
-  } else if (was_locked && !twistlocks_.locked() && attachment_ >= 0) {
+  } else if (was_locked && !twistlocks_.locked() && attachment_.valid()) {
     world.detach(attachment_);
-    attachment_ = -1;
+    attachment_ = {};
     locked_.reset();
   }
 }

@@ -31,7 +31,7 @@ class SpreaderLocks {
  private:
   Twistlocks twistlocks_;
   std::optional<physics::BodyId> locked_;
-  int attachment_ = -1;
+  physics::AttachmentId attachment_;
 };
 
 }  // namespace harbour::sim

@@ -43,10 +43,10 @@ core::Vec3 inner_half_extents(const ReachStackerSettings& s) {
 }
 
 // Moves a drive's speed and force limit onto a joint's motor.
-void drive_hinge(physics::PhysicsWorld& world, int hinge, const DriveOutput& out) {
+void drive_hinge(physics::PhysicsWorld& world, physics::HingeId hinge, const DriveOutput& out) {
   world.set_hinge_motor(hinge, out.velocity_mps, out.max_force_n);
 }
-void drive_slider(physics::PhysicsWorld& world, int slider, const DriveOutput& out) {
+void drive_slider(physics::PhysicsWorld& world, physics::SliderId slider, const DriveOutput& out) {
   world.set_slider_motor(slider, out.velocity_mps, out.max_force_n);
 }
 

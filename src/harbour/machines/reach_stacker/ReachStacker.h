@@ -117,7 +117,8 @@ class ReachStacker final : public Machine {
       size_40_slot_;
   physics::BodyId body_, outer_, inner_, rotator_, slew_, spreader_;
   WheeledChassis chassis_;
-  int luff_hinge_, telescope_slider_, tilt_hinge_, rotate_hinge_, shift_slider_;
+  physics::HingeId luff_hinge_, tilt_hinge_, rotate_hinge_;
+  physics::SliderId telescope_slider_, shift_slider_;
   double start_boom_rad_, start_extension_m_;
   HydraulicDrive luff_, telescope_, rotate_, side_shift_;
   std::unique_ptr<Spreader> frame_;

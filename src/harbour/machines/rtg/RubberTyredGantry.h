@@ -156,7 +156,7 @@ class RubberTyredGantry final : public Machine, public GantryCrane {
   FlatGround yard_;
   const Ground* ground_ = &yard_;
   physics::BodyId frame_, trolley_;
-  int trolley_slider_;
+  physics::SliderId trolley_slider_;
   double trolley_start_x_;
   Drive gantry_, trolley_drive_;
   bool gantry_braked_ = true;                // the holding brakes are set (it starts parked)

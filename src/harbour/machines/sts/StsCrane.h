@@ -183,7 +183,7 @@ class StsCrane final : public Machine, public GantryCrane {
   StsCraneSettings settings_;
   StsControlSlots slots_;
   physics::BodyId gantry_body_, trolley_body_;
-  int gantry_slider_, trolley_slider_;
+  physics::SliderId gantry_slider_, trolley_slider_;
   double gantry_start_y_, trolley_start_x_;
   Drive gantry_, trolley_, boom_;
   double boom_angle_ = 0.0;
