@@ -259,13 +259,17 @@ TEST(Mhc, TheGrabShutsWhenTheClosingRopesReelInAndOpensWhenTheyPayOut) {
   EXPECT_GT(m.grab_opening(), 0.95);
 }
 
-TEST(Mhc, TheLoadMomentLimiterStopsLuffingOutBeforeTheChartIsExceeded) {
-  // 40 t shells (about 44 t under the head) at 35 m: the chart allows 57 t there and 44.5 t at 44.6 m
-  // (the grab hangs high: luffing out lowers the head by some 13 m)
+// 40 t shells (about 44 t under the head) at 35 m: the chart allows 57 t there and 44.5 t at 44.6 m (the grab
+// hangs high: luffing out lowers the head by some 13 m)
+ScenarioSettings heavy_grab_hanging_high() {
   ScenarioSettings s = damped(scenes::mhc_on_quay(HARBOUR_DATA_DIR));
   s.machine.as<MhcSetup>().crane.grab_lower_mass_kg = 40000.0;
   s.machine.as<MhcSetup>().start.hanging_z_m = 38.0;
-  Simulation sim(s);
+  return s;
+}
+
+TEST(Mhc, TheLoadMomentLimiterStopsLuffingOutBeforeTheChartIsExceeded) {
+  Simulation sim(heavy_grab_hanging_high());
   run(sim, 10.0, sim.control_table().neutral());
   const MobileHarbourCrane& m = mhc(sim);
   EXPECT_LT(m.utilisation(), 0.85);
@@ -291,10 +295,7 @@ TEST(Mhc, TheLoadMomentLimiterStopsLuffingOutBeforeTheChartIsExceeded) {
 // stop lamp and the fault lamp lit, the trip counted) but cutting nothing, until the boom's own switch; the
 // fault cleared, luffing out is cut again at once.
 TEST(Mhc, WithItsLimiterFailedTheBoomLuffsOutPastTheChart) {
-  ScenarioSettings s = damped(scenes::mhc_on_quay(HARBOUR_DATA_DIR));
-  s.machine.as<MhcSetup>().crane.grab_lower_mass_kg = 40000.0;
-  s.machine.as<MhcSetup>().start.hanging_z_m = 38.0;
-  Simulation sim(s);
+  Simulation sim(heavy_grab_hanging_high());
   run(sim, 10.0, sim.control_table().neutral());
   const MobileHarbourCrane& m = mhc(sim);
   sim.command({InstructorCommand::Kind::kLimiterFault});
