@@ -341,48 +341,34 @@ std::uint64_t BulkWorld::state_hash() const {
   return hash.value();
 }
 
+template <typename Self, typename Archive>
+void BulkWorld::archive(Self& self, Archive& ar) {
+  ar.section(0x424C4B31, "bulk");  // "BLK1"
+  std::size_t grids = self.grids_.size();
+  ar(grids);
+  if (grids != self.grids_.size()) throw core::StateError("saved state has other bulk grids");
+  for (auto& g : self.grids_)
+    ar.part(g);
+  ar.sized(self.grabs_);
+  ar(self.parcels_, self.pressed_, self.pressing_);
+  if constexpr (Archive::kRestoring)
+    for (const auto* cells : {&self.pressed_, &self.pressing_})
+      for (const PressedCell& c : *cells)
+        if (c.grid < 0 || c.grid >= self.grid_count() || c.i < 0 || c.j < 0 ||
+            c.i >= self.grids_[static_cast<std::size_t>(c.grid)].cells_x() ||
+            c.j >= self.grids_[static_cast<std::size_t>(c.grid)].cells_y())
+          throw core::StateError("saved bulk state presses a cell off its grids");
+  ar(self.added_m3_, self.spilled_m3_, self.delivered_m3_, self.loaded_m3_, self.unloaded_m3_);
+  ar.sized(self.landed_m3_);
+  ar(self.full_sweep_, self.warnings_);
+}
+
 void BulkWorld::save_state(core::StateWriter& out) const {
-  out.section(0x424C4B31);  // "BLK1"
-  out.put(grids_.size());
-  for (const HeightGrid& g : grids_)
-    g.save_state(out);
-  out.put(grabs_);
-  out.put(parcels_);
-  out.put(pressed_);
-  out.put(pressing_);
-  out.put(added_m3_);
-  out.put(spilled_m3_);
-  out.put(delivered_m3_);
-  out.put(loaded_m3_);
-  out.put(unloaded_m3_);
-  out.put(landed_m3_);
-  out.put(full_sweep_);
-  out.put(warnings_);
+  archive(*this, out);
 }
 
 void BulkWorld::restore_state(core::StateReader& in) {
-  in.section(0x424C4B31, "bulk");
-  if (in.get<std::size_t>() != grids_.size()) throw core::StateError("saved state has other bulk grids");
-  for (HeightGrid& g : grids_)
-    g.restore_state(in);
-  in.get(grabs_, static_cast<std::int64_t>(grabs_.size()));
-  in.get(parcels_);
-  in.get(pressed_);
-  in.get(pressing_);
-  for (const auto* cells : {&pressed_, &pressing_})
-    for (const PressedCell& c : *cells)
-      if (c.grid < 0 || c.grid >= grid_count() || c.i < 0 || c.j < 0 ||
-          c.i >= grids_[static_cast<std::size_t>(c.grid)].cells_x() ||
-          c.j >= grids_[static_cast<std::size_t>(c.grid)].cells_y())
-        throw core::StateError("saved bulk state presses a cell off its grids");
-  in.get(added_m3_);
-  in.get(spilled_m3_);
-  in.get(delivered_m3_);
-  in.get(loaded_m3_);
-  in.get(unloaded_m3_);
-  in.get(landed_m3_, static_cast<std::int64_t>(grids_.size()));
-  in.get(full_sweep_);
-  in.get(warnings_);
+  archive(*this, in);
 }
 
 }  // namespace harbour::bulk

@@ -110,6 +110,8 @@ class BulkWorld {
   void restore_state(core::StateReader& in);
 
  private:
+  template <typename Self, typename Archive>
+  static void archive(Self& self, Archive& ar);
   void step_grab(GrabSettings const& settings, GrabState& state, const GrabCommand& command, double dt_s);
   double dig(const GrabSettings& settings, GrabState& state, double dt_s);
   void step_parcels(double dt_s);

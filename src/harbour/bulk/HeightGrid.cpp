@@ -429,56 +429,38 @@ void HeightGrid::hash_into(core::StateHash& hash) const {
   hash.add(active_.size());
 }
 
+template <typename Self, typename Archive>
+void HeightGrid::archive(Self& self, Archive& ar) {
+  ar.section(0x48475231, "bulk grid");  // "HGR1"
+  int nx = self.nx_, ny = self.ny_;
+  double cell_m = self.cell_m_;
+  ar(nx, ny, cell_m);
+  if constexpr (Archive::kRestoring)
+    if (nx != self.nx_ || ny != self.ny_ || cell_m != self.cell_m_)
+      throw core::StateError("saved state has a bulk grid of another size");
+  ar.sized(self.h_);
+  ar.sized(self.comp_);
+  ar.sized(self.vel_);
+  ar.sized(self.tile_version_);
+  ar(self.pose_, self.linear_velocity_, self.angular_velocity_, self.slope_up_, self.fastest_mps_,
+     self.moving_pipes_, self.substeps_, self.active_);
+  if constexpr (Archive::kRestoring) {
+    if (self.active_.size() > self.h_.size())
+      throw core::StateError("saved bulk grid's active list is longer than the grid");
+    for (const std::size_t cell : self.active_)
+      if (cell >= self.h_.size()) throw core::StateError("saved bulk grid's active list points off the grid");
+  }
+  ar.sized(self.active_stamp_);
+  ar.sized(self.examine_bits_);
+  ar(self.epoch_, self.non_finite_, self.examined_);
+}
+
 void HeightGrid::save_state(core::StateWriter& out) const {
-  out.section(0x48475231);  // "HGR1"
-  out.put(nx_);
-  out.put(ny_);
-  out.put(cell_m_);
-  out.put(h_);
-  out.put(comp_);
-  out.put(vel_);
-  out.put(tile_version_);
-  out.put(pose_);
-  out.put(linear_velocity_);
-  out.put(angular_velocity_);
-  out.put(slope_up_);
-  out.put(fastest_mps_);
-  out.put(moving_pipes_);
-  out.put(substeps_);
-  out.put(active_);
-  out.put(active_stamp_);
-  out.put(examine_bits_);
-  out.put(epoch_);
-  out.put(non_finite_);
-  out.put(examined_);
+  archive(*this, out);
 }
 
 void HeightGrid::restore_state(core::StateReader& in) {
-  in.section(0x48475231, "bulk grid");
-  if (in.get<int>() != nx_ || in.get<int>() != ny_ || in.get<double>() != cell_m_)
-    throw core::StateError("saved state has a bulk grid of another size");
-  const auto cells = static_cast<std::int64_t>(h_.size());
-  in.get(h_, cells);
-  in.get(comp_, cells);
-  in.get(vel_, static_cast<std::int64_t>(vel_.size()));
-  in.get(tile_version_, static_cast<std::int64_t>(tile_version_.size()));
-  in.get(pose_);
-  in.get(linear_velocity_);
-  in.get(angular_velocity_);
-  in.get(slope_up_);
-  in.get(fastest_mps_);
-  in.get(moving_pipes_);
-  in.get(substeps_);
-  in.get(active_);
-  if (active_.size() > h_.size())
-    throw core::StateError("saved bulk grid's active list is longer than the grid");
-  for (const std::size_t cell : active_)
-    if (cell >= h_.size()) throw core::StateError("saved bulk grid's active list points off the grid");
-  in.get(active_stamp_, static_cast<std::int64_t>(active_stamp_.size()));
-  in.get(examine_bits_, static_cast<std::int64_t>(examine_bits_.size()));
-  in.get(epoch_);
-  in.get(non_finite_);
-  in.get(examined_);
+  archive(*this, in);
   update_slope_offsets();
 }
 

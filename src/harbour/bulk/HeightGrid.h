@@ -129,6 +129,8 @@ class HeightGrid {
   void restore_state(core::StateReader& in);
 
  private:
+  template <typename Self, typename Archive>
+  static void archive(Self& self, Archive& ar);
   static constexpr int kPad = 2;  // stencil radius: knight moves reach two cells
   static constexpr int kStencil = 16;
   static constexpr int kPipes = kStencil / 2;  // one per neighbour pair, owned by the cell it leaves

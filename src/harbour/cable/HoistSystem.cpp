@@ -566,58 +566,28 @@ int HoistSystem::polyline(int rope, int segment, std::span<core::Vec3> out) cons
   return static_cast<int>(n);
 }
 
-void HoistSystem::save_state(core::StateWriter& out) const {
-  out.section(state_section());
-  for (const Segment& s : segments_) {
-    out.put(s.rest_length);
-    out.put(s.length);
-    out.put(s.chord_length);
-    out.put(s.tension);
-    out.put(s.stiffness);
-    out.put(s.switch_tension);
-    out.put(s.oscillating);
-    out.put(s.sag_share);
-    out.put(s.slack);
-    out.put(s.overloaded);
-    out.put(s.breaking);
-    out.put(s.w);
-    out.put(s.u);
-    out.put(s.end_a);
-    out.put(s.end_b);
-    out.put(s.velocity_a);
-    out.put(s.velocity_b);
-    if (!settings_.simple_sheaves) out.put(s.over_s);
+template <typename Self, typename Archive>
+void HoistSystem::archive(Self& self, Archive& ar) {
+  ar.section(self.state_section(), "hoist");
+  for (auto& s : self.segments_) {
+    ar(s.rest_length, s.length, s.chord_length, s.tension, s.stiffness, s.switch_tension, s.oscillating,
+       s.sag_share, s.slack, s.overloaded, s.breaking);
+    ar.sized(s.w);
+    ar.sized(s.u);
+    ar(s.end_a, s.end_b, s.velocity_a, s.velocity_b);
+    if (!self.settings_.simple_sheaves) ar(s.over_s);
   }
-  for (const Rope& r : ropes_)
-    out.put(r.stored_m);
-  out.put(elements_);
+  for (auto& r : self.ropes_)
+    ar(r.stored_m);
+  ar.sized(self.elements_);
+}
+
+void HoistSystem::save_state(core::StateWriter& out) const {
+  archive(*this, out);
 }
 
 void HoistSystem::restore_state(core::StateReader& in) {
-  in.section(state_section(), "hoist");
-  for (Segment& s : segments_) {
-    in.get(s.rest_length);
-    in.get(s.length);
-    in.get(s.chord_length);
-    in.get(s.tension);
-    in.get(s.stiffness);
-    in.get(s.switch_tension);
-    in.get(s.oscillating);
-    in.get(s.sag_share);
-    in.get(s.slack);
-    in.get(s.overloaded);
-    in.get(s.breaking);
-    in.get(s.w, static_cast<std::int64_t>(s.w.size()));
-    in.get(s.u, static_cast<std::int64_t>(s.u.size()));
-    in.get(s.end_a);
-    in.get(s.end_b);
-    in.get(s.velocity_a);
-    in.get(s.velocity_b);
-    if (!settings_.simple_sheaves) in.get(s.over_s);
-  }
-  for (Rope& r : ropes_)
-    in.get(r.stored_m);
-  in.get(elements_, static_cast<std::int64_t>(elements_.size()));
+  archive(*this, in);
   events_.clear();
 }
 

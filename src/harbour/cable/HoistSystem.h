@@ -94,6 +94,8 @@ class HoistSystem {
   void restore_state(core::StateReader& in);
 
  private:
+  template <typename Self, typename Archive>
+  static void archive(Self& self, Archive& ar);
   struct Segment {
     int rope = 0, a = 0, b = 0;   // element indices of its ends (a: towards the drum)
     double rest_length = 0.0;     // [m] unstretched

@@ -19,13 +19,35 @@ class StateError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// State is written once. A stateful class lists its state in one function template over the archive,
+//   template <typename Self, typename Archive> static void archive(Self& self, Archive& ar);
+// which its save_state (Self const, a StateWriter) and its restore_state (a StateReader) both call: `ar(a,
+// b)` writes or reads fields in order, `ar.sized(v)` a vector whose size the scenario fixes, `ar.part(p)` a
+// member's own state, `ar.section(tag, what)` a tag restore checks; `if constexpr (Archive::kRestoring)`
+// guards what only a restore does (checking what was read, rebuilding what follows from it).
+
 /// Writes the exact bytes of state values (a keyframe). Values are written in the order the component's
 /// save_state lists them; restore_state reads them back in the same order. A writer made on a StateHash
 /// keeps nothing: it hashes the bytes (the state hash of exactly what save_state saves, allocating nothing).
 class StateWriter {
  public:
+  static constexpr bool kRestoring = false;
+
   StateWriter() = default;
   explicit StateWriter(StateHash& hash) : hash_(&hash) {}
+
+  template <typename... T>
+  void operator()(const T&... values) {
+    (put(values), ...);
+  }
+  template <typename T>
+  void sized(const std::vector<T>& values) {
+    put(values);
+  }
+  template <typename Part>
+  void part(const Part& p) {
+    p.save_state(*this);
+  }
 
   template <typename T>
   requires std::is_trivially_copyable_v<T>
@@ -38,6 +60,7 @@ class StateWriter {
   }
   /// A tag that restore checks, so a state from another layout is refused instead of misread.
   void section(std::uint32_t tag) { put(tag); }
+  void section(std::uint32_t tag, const char* /*what: named by the reader*/) { put(tag); }
   const std::vector<std::uint8_t>& bytes() const { return bytes_; }
   std::vector<std::uint8_t> take() { return std::move(bytes_); }
 
@@ -59,7 +82,23 @@ class StateWriter {
 /// Reads what a StateWriter wrote; throws StateError on truncation, a wrong section tag or a wrong count.
 class StateReader {
  public:
+  static constexpr bool kRestoring = true;
+
   explicit StateReader(const std::vector<std::uint8_t>& bytes) : bytes_(bytes) {}
+
+  template <typename... T>
+  void operator()(T&... values) {
+    (get(values), ...);
+  }
+  /// A vector as long as it is now (its length is the scenario's): a saved one of another length is refused.
+  template <typename T>
+  void sized(std::vector<T>& values) {
+    get(values, static_cast<std::int64_t>(values.size()));
+  }
+  template <typename Part>
+  void part(Part& p) {
+    p.restore_state(*this);
+  }
 
   template <typename T>
   requires std::is_trivially_copyable_v<T>

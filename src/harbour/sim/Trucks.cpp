@@ -191,20 +191,21 @@ void TruckLane::step(double dt_s, std::span<const ContainerRef> boxes, std::opti
   }
 }
 
+template <typename Self, typename Archive>
+void TruckLane::archive(Self& self, Archive& ar) {
+  ar.section(0x54524B32, "trucks");  // "TRK2": trucks with their load attachments
+  ar.sized(self.trucks_);
+  if (!self.settings_.team) return;
+  ar.section(0x54524B54, "team trucks");  // "TRKT": a team lane's seated and taken-over boxes
+  ar.sized(self.team_);
+}
+
 void TruckLane::save_state(core::StateWriter& out) const {
-  out.section(0x54524B32);  // "TRK2": trucks with their load attachments
-  out.put(trucks_);
-  if (!settings_.team) return;
-  out.section(0x54524B54);  // "TRKT": a team lane's seated and taken-over boxes
-  out.put(team_);
+  archive(*this, out);
 }
 
 void TruckLane::restore_state(core::StateReader& in) {
-  in.section(0x54524B32, "trucks");
-  in.get(trucks_, static_cast<std::int64_t>(trucks_.size()));
-  if (!settings_.team) return;
-  in.section(0x54524B54, "team trucks");
-  in.get(team_, static_cast<std::int64_t>(team_.size()));
+  archive(*this, in);
 }
 
 }  // namespace harbour::sim

@@ -67,6 +67,8 @@ class TruckLane {
   void restore_state(core::StateReader& in);
 
  private:
+  template <typename Self, typename Archive>
+  static void archive(Self& self, Archive& ar);
   enum class State : std::uint8_t { kQueued, kArriving, kWaiting, kLeaving, kParked };
   struct Truck {
     physics::BodyId body = physics::kWorld;

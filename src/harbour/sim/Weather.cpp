@@ -78,30 +78,23 @@ void Weather::set_time_of_day(double hours) {
   settings_.time_of_day_h = start;
 }
 
-void Weather::save_state(core::StateWriter& out) const {
-  out.section(0x57545832);  // "WTX2": with the instructor's weather
+template <typename Self, typename Archive>
+void Weather::archive(Self& self, Archive& ar) {
+  ar.section(0x57545832, "weather");  // "WTX2": with the instructor's weather
   // what the instructor can change, in the layout of version 2 (the date and the latitude stay the
   // scenario's)
-  for (const double* v : {&settings_.wind_mean_mps, &settings_.wind_from_rad, &settings_.turbulence_intensity,
-                          &settings_.turbulence_time_s, &settings_.visibility_m, &settings_.rain_mm_per_h,
-                          &settings_.time_of_day_h, &settings_.air_density_kg_m3})
-    out.put(*v);
-  out.put(rng_);
-  out.put(time_s_);
-  out.put(turbulence_);
-  out.put(gusts_);
+  auto& s = self.settings_;
+  ar(s.wind_mean_mps, s.wind_from_rad, s.turbulence_intensity, s.turbulence_time_s, s.visibility_m,
+     s.rain_mm_per_h, s.time_of_day_h, s.air_density_kg_m3);
+  ar(self.rng_, self.time_s_, self.turbulence_, self.gusts_);
+}
+
+void Weather::save_state(core::StateWriter& out) const {
+  archive(*this, out);
 }
 
 void Weather::restore_state(core::StateReader& in) {
-  in.section(0x57545832, "weather");
-  for (double* v : {&settings_.wind_mean_mps, &settings_.wind_from_rad, &settings_.turbulence_intensity,
-                    &settings_.turbulence_time_s, &settings_.visibility_m, &settings_.rain_mm_per_h,
-                    &settings_.time_of_day_h, &settings_.air_density_kg_m3})
-    in.get(*v);
-  in.get(rng_);
-  in.get(time_s_);
-  in.get(turbulence_);
-  in.get(gusts_);
+  archive(*this, in);
 }
 
 }  // namespace harbour::sim

@@ -68,6 +68,8 @@ class Weather {
   double turbulence_mps() const { return turbulence_; }
 
  private:
+  template <typename Self, typename Archive>
+  static void archive(Self& self, Archive& ar);
   WeatherSettings settings_;
   core::Rng rng_;
   double time_s_ = 0.0;

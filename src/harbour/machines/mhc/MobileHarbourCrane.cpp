@@ -703,67 +703,35 @@ std::uint8_t MobileHarbourCrane::fault_mask() const {
                                    (limiter_fault_ ? kLimiterFaultBit : 0));
 }
 
+template <typename Self, typename Archive>
+void MobileHarbourCrane::archive(Self& self, Archive& ar) {
+  ar.section(0x4D484331, "mobile harbour crane");  // "MHC1"
+  ar.part(self.slew_drive_);
+  ar.part(self.luff_limits_);
+  ar.part(self.hoist_limits_);
+  ar.part(self.grab_limits_);
+  ar.part(*self.luffing_);
+  ar.part(*self.hoist_);
+  std::uint8_t faults = self.fault_mask();
+  ar(self.slew_, self.last_hinge_angle_, self.horn_, faults);
+  if constexpr (Archive::kRestoring) {
+    if (faults > (kHoistBrakeFaultBit | kLimiterFaultBit))
+      throw core::StateError("saved state holds a fault this mobile harbour crane does not have");
+    self.hoist_brake_fault_ = (faults & kHoistBrakeFaultBit) != 0;
+    self.limiter_fault_ = (faults & kLimiterFaultBit) != 0;
+  }
+  ar(self.limiter_stopping_, self.limiter_armed_, self.limiter_load_n_, self.pad_lifted_, self.limiter_trips_,
+     self.pad_lift_offs_, self.carried_kg_, self.holding_share_, self.luff_speed_mps_, self.slung_,
+     self.sling_attachment_, self.rocking_damping_nms_, self.slung_half_extents_m_, self.sling_pressed_,
+     self.slings_refused_);
+}
+
 void MobileHarbourCrane::save_state(core::StateWriter& out) const {
-  out.section(0x4D484331);  // "MHC1"
-  slew_drive_.save_state(out);
-  luff_limits_.save_state(out);
-  hoist_limits_.save_state(out);
-  grab_limits_.save_state(out);
-  luffing_->save_state(out);
-  hoist_->save_state(out);
-  out.put(slew_);
-  out.put(last_hinge_angle_);
-  out.put(horn_);
-  out.put(fault_mask());
-  out.put(limiter_stopping_);
-  out.put(limiter_armed_);
-  out.put(limiter_load_n_);
-  out.put(pad_lifted_);
-  out.put(limiter_trips_);
-  out.put(pad_lift_offs_);
-  out.put(carried_kg_);
-  out.put(holding_share_);
-  out.put(luff_speed_mps_);
-  out.put(slung_);
-  out.put(sling_attachment_);
-  out.put(rocking_damping_nms_);
-  out.put(std::array<double, 3>{slung_half_extents_m_.x, slung_half_extents_m_.y, slung_half_extents_m_.z});
-  out.put(sling_pressed_);
-  out.put(slings_refused_);
+  archive(*this, out);
 }
 
 void MobileHarbourCrane::restore_state(core::StateReader& in) {
-  in.section(0x4D484331, "mobile harbour crane");
-  slew_drive_.restore_state(in);
-  luff_limits_.restore_state(in);
-  hoist_limits_.restore_state(in);
-  grab_limits_.restore_state(in);
-  luffing_->restore_state(in);
-  hoist_->restore_state(in);
-  in.get(slew_);
-  in.get(last_hinge_angle_);
-  in.get(horn_);
-  const auto faults = in.get<std::uint8_t>();
-  if (faults > (kHoistBrakeFaultBit | kLimiterFaultBit))
-    throw core::StateError("saved state holds a fault this mobile harbour crane does not have");
-  hoist_brake_fault_ = (faults & kHoistBrakeFaultBit) != 0;
-  limiter_fault_ = (faults & kLimiterFaultBit) != 0;
-  in.get(limiter_stopping_);
-  in.get(limiter_armed_);
-  in.get(limiter_load_n_);
-  in.get(pad_lifted_);
-  in.get(limiter_trips_);
-  in.get(pad_lift_offs_);
-  in.get(carried_kg_);
-  in.get(holding_share_);
-  in.get(luff_speed_mps_);
-  in.get(slung_);
-  in.get(sling_attachment_);
-  in.get(rocking_damping_nms_);
-  const auto slung_half = in.get<std::array<double, 3>>();
-  slung_half_extents_m_ = {slung_half[0], slung_half[1], slung_half[2]};
-  in.get(sling_pressed_);
-  in.get(slings_refused_);
+  archive(*this, in);
   if ((slung_ != physics::kWorld) != sling_attachment_.valid() ||
       sling_attachment_.index >= world_.attachments_made())
     throw core::StateError("saved state slings a load this mobile harbour crane cannot have");

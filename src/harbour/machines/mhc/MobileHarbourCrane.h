@@ -202,6 +202,8 @@ class MobileHarbourCrane final : public Machine {
   const core::Vec3& position_m() const { return position_; }
 
  private:
+  template <typename Self, typename Archive>
+  static void archive(Self& self, Archive& ar);
   double track_slew();
   /// Brings the machine to rest on its ropes before the exercise starts (kSettleSteps of the world).
   void settle();

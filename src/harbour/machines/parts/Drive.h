@@ -41,18 +41,15 @@ class Drive {
   std::uint32_t limit_hits() const { return limit_hits_; }
   bool at_limit() const { return at_limit_; }
   const DriveSettings& settings() const { return settings_; }
-  void save_state(core::StateWriter& out) const {
-    out.put(reference_);
-    out.put(at_limit_);
-    out.put(limit_hits_);
-  }
-  void restore_state(core::StateReader& in) {
-    in.get(reference_);
-    in.get(at_limit_);
-    in.get(limit_hits_);
-  }
+  void save_state(core::StateWriter& out) const { archive(*this, out); }
+  void restore_state(core::StateReader& in) { archive(*this, in); }
 
  private:
+  template <typename Self, typename Archive>
+  static void archive(Self& self, Archive& ar) {
+    ar(self.reference_, self.at_limit_, self.limit_hits_);
+  }
+
   DriveSettings settings_;
   double reference_ = 0.0;
   bool at_limit_ = false;
@@ -70,18 +67,16 @@ class HydraulicDrive {
   DriveOutput step(double lever, double position_m, double dt_s, bool emergency_stop);
   const Drive& drive() const { return drive_; }
   double reference_mps() const { return drive_.reference_mps(); }
-  void save_state(core::StateWriter& out) const {
-    drive_.save_state(out);
-    out.put(tracking_);
-    out.put(target_m_);
-  }
-  void restore_state(core::StateReader& in) {
-    drive_.restore_state(in);
-    in.get(tracking_);
-    in.get(target_m_);
-  }
+  void save_state(core::StateWriter& out) const { archive(*this, out); }
+  void restore_state(core::StateReader& in) { archive(*this, in); }
 
  private:
+  template <typename Self, typename Archive>
+  static void archive(Self& self, Archive& ar) {
+    ar.part(self.drive_);
+    ar(self.tracking_, self.target_m_);
+  }
+
   static constexpr double kFollow_s = 0.2;  ///< [s] the time constant the joint follows its position with
   static constexpr double kSlack_m = 0.01;  ///< [m] the most the position runs ahead of a stalled cylinder
   Drive drive_;

@@ -28,16 +28,15 @@ class DrivingCab {
   int direction() const { return direction_; }
   /// The parking brake's switch as last read (set: true).
   bool parking_brake() const { return parking_; }
-  void save_state(core::StateWriter& out) const {
-    out.put(steering_);
-    out.put(horn_);
-  }
-  void restore_state(core::StateReader& in) {
-    in.get(steering_);
-    in.get(horn_);
-  }
+  void save_state(core::StateWriter& out) const { archive(*this, out); }
+  void restore_state(core::StateReader& in) { archive(*this, in); }
 
  private:
+  template <typename Self, typename Archive>
+  static void archive(Self& self, Archive& ar) {
+    ar(self.steering_, self.horn_);
+  }
+
   int steer_slot_, throttle_slot_, brake_slot_, direction_slot_, parking_slot_, stop_slot_, horn_slot_;
   double steer_rate_per_s_;
   double steering_ = 0.0;

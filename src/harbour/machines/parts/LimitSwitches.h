@@ -27,16 +27,15 @@ class LimitSwitches {
   }
   bool at_limit() const { return at_limit_; }
   std::uint32_t hits() const { return hits_; }
-  void save_state(core::StateWriter& out) const {
-    out.put(at_limit_);
-    out.put(hits_);
-  }
-  void restore_state(core::StateReader& in) {
-    in.get(at_limit_);
-    in.get(hits_);
-  }
+  void save_state(core::StateWriter& out) const { archive(*this, out); }
+  void restore_state(core::StateReader& in) { archive(*this, in); }
 
  private:
+  template <typename Self, typename Archive>
+  static void archive(Self& self, Archive& ar) {
+    ar(self.at_limit_, self.hits_);
+  }
+
   double lower_, upper_;
   bool at_limit_ = false;
   std::uint32_t hits_ = 0;

@@ -91,17 +91,11 @@ SpreaderState Spreader::state() const {
 }
 
 void Spreader::save_state(core::StateWriter& out) const {
-  out.put(size_);
-  out.put(pin_half_span_);
-  for (double f : flippers_)
-    out.put(f);
+  archive(*this, out);
 }
 
 void Spreader::restore_state(core::StateReader& in) {
-  in.get(size_);
-  in.get(pin_half_span_);
-  for (double& f : flippers_)
-    in.get(f);
+  archive(*this, in);
   apply_shapes();
 }
 

@@ -69,6 +69,10 @@ class Spreader {
   void restore_state(core::StateReader& in);
 
  private:
+  template <typename Self, typename Archive>
+  static void archive(Self& self, Archive& ar) {
+    ar(self.size_, self.pin_half_span_, self.flippers_);
+  }
   void apply_shapes();
 
   physics::PhysicsWorld& world_;

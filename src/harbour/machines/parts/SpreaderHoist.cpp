@@ -144,23 +144,11 @@ void SpreaderHoist::clear_faults() {
 }
 
 void SpreaderHoist::save_state(core::StateWriter& out) const {
-  frame_->save_state(out);
-  locks_.twistlocks().save_state(out);
-  hoist_->save_state(out);
-  locks_.save_joint(out);
-  out.put(brake_fault_);
-  limits_.save_state(out);
-  out.put(landed_sensor_fault_);
+  archive(*this, out);
 }
 
 void SpreaderHoist::restore_state(core::StateReader& in) {
-  frame_->restore_state(in);
-  locks_.twistlocks().restore_state(in);
-  hoist_->restore_state(in);
-  locks_.restore_joint(in);
-  in.get(brake_fault_);
-  limits_.restore_state(in);
-  in.get(landed_sensor_fault_);
+  archive(*this, in);
 }
 
 }  // namespace harbour::sim

@@ -99,6 +99,16 @@ class SpreaderHoist {
   void restore_state(core::StateReader& in);
 
  private:
+  template <typename Self, typename Archive>
+  static void archive(Self& self, Archive& ar) {
+    ar.part(*self.frame_);
+    ar.part(self.locks_.twistlocks());
+    ar.part(*self.hoist_);
+    ar.part(self.locks_);
+    ar(self.brake_fault_);
+    ar.part(self.limits_);
+    ar(self.landed_sensor_fault_);
+  }
   physics::PhysicsWorld& world_;
   SpreaderHoistSettings settings_;
   physics::BodyId spreader_;

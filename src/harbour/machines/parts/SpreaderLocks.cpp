@@ -63,15 +63,20 @@ void SpreaderLocks::step(physics::PhysicsWorld& world, physics::BodyId spreader,
   }
 }
 
-void SpreaderLocks::save_joint(core::StateWriter& out) const {
-  out.put(locked_.value_or(physics::kWorld));
-  out.put(attachment_);
+template <typename Self, typename Archive>
+void SpreaderLocks::archive(Self& self, Archive& ar) {
+  physics::BodyId locked = self.locked_.value_or(physics::kWorld);
+  ar(locked, self.attachment_);
+  if constexpr (Archive::kRestoring)
+    self.locked_ = locked == physics::kWorld ? std::nullopt : std::optional<physics::BodyId>(locked);
 }
 
-void SpreaderLocks::restore_joint(core::StateReader& in) {
-  const auto locked = in.get<physics::BodyId>();
-  locked_ = locked == physics::kWorld ? std::nullopt : std::optional<physics::BodyId>(locked);
-  in.get(attachment_);
+void SpreaderLocks::save_state(core::StateWriter& out) const {
+  archive(*this, out);
+}
+
+void SpreaderLocks::restore_state(core::StateReader& in) {
+  archive(*this, in);
 }
 
 }  // namespace harbour::sim

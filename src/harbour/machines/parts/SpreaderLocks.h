@@ -24,11 +24,14 @@ class SpreaderLocks {
   std::optional<physics::BodyId> locked_container() const { return locked_; }
   const Twistlocks& twistlocks() const { return twistlocks_; }
   Twistlocks& twistlocks() { return twistlocks_; }
-  /// The locked container and its joint (the twistlocks save themselves).
-  void save_joint(core::StateWriter& out) const;
-  void restore_joint(core::StateReader& in);
+  /// The locked container and its joint (the twistlocks save themselves: twistlocks()).
+  void save_state(core::StateWriter& out) const;
+  void restore_state(core::StateReader& in);
 
  private:
+  template <typename Self, typename Archive>
+  static void archive(Self& self, Archive& ar);
+
   Twistlocks twistlocks_;
   std::optional<physics::BodyId> locked_;
   physics::AttachmentId attachment_;

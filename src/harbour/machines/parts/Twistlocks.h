@@ -55,21 +55,19 @@ class Twistlocks {
     into.insert(into.end(), events_.begin(), events_.end());
     events_.clear();
   }
-  void save_state(core::StateWriter& out) const {
-    for (bool b :
-         {locked_, all_landed_, in_landing_, locked_this_landing_, lock_was_pressed_, unlock_was_pressed_})
-      out.put(b);
-    out.put(clear_s_);
-  }
+  void save_state(core::StateWriter& out) const { archive(*this, out); }
   void restore_state(core::StateReader& in) {
-    for (bool* b : {&locked_, &all_landed_, &in_landing_, &locked_this_landing_, &lock_was_pressed_,
-                    &unlock_was_pressed_})
-      in.get(*b);
-    in.get(clear_s_);
+    archive(*this, in);
     events_.clear();
   }
 
  private:
+  template <typename Self, typename Archive>
+  static void archive(Self& self, Archive& ar) {
+    ar(self.locked_, self.all_landed_, self.in_landing_, self.locked_this_landing_, self.lock_was_pressed_,
+       self.unlock_was_pressed_, self.clear_s_);
+  }
+
   bool locked_ = false;
   bool all_landed_ = false;
   bool in_landing_ = false;           // seated on a box, or off it for less than kLiftOff_s

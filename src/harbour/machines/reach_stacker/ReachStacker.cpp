@@ -331,42 +331,31 @@ void ReachStacker::hash_into(core::StateHash& hash) const {
   hash.add(tip_overs_);
 }
 
+template <typename Self, typename Archive>
+void ReachStacker::archive(Self& self, Archive& ar) {
+  ar.section(0x52535431, "reach stacker");  // "RST1"
+  ar.part(self.cab_);
+  ar.part(self.luff_);
+  ar.part(self.telescope_);
+  ar.part(self.rotate_);
+  ar.part(self.side_shift_);
+  ar.part(*self.frame_);
+  ar.part(self.locks_.twistlocks());
+  ar.part(self.locks_);
+  ar(self.measured_load_kg_, self.limiter_stopping_, self.limiter_armed_, self.limiter_fault_, self.tipped_,
+     self.landed_sensor_fault_, self.limiter_trips_, self.tip_overs_);
+  double pin_n = 0.0;  // the pin force as measured, which the first step after a restore reads
+  if constexpr (!Archive::kRestoring) pin_n = self.pin_force_n();
+  ar(pin_n);
+  if constexpr (Archive::kRestoring) self.restored_pin_n_ = pin_n;
+}
+
 void ReachStacker::save_state(core::StateWriter& out) const {
-  out.section(0x52535431);  // "RST1"
-  cab_.save_state(out);
-  luff_.save_state(out);
-  telescope_.save_state(out);
-  rotate_.save_state(out);
-  side_shift_.save_state(out);
-  frame_->save_state(out);
-  locks_.twistlocks().save_state(out);
-  locks_.save_joint(out);
-  out.put(measured_load_kg_);
-  for (const bool b : {limiter_stopping_, limiter_armed_, limiter_fault_, tipped_})
-    out.put(b);
-  out.put(landed_sensor_fault_);
-  out.put(limiter_trips_);
-  out.put(tip_overs_);
-  out.put(pin_force_n());
+  archive(*this, out);
 }
 
 void ReachStacker::restore_state(core::StateReader& in) {
-  in.section(0x52535431, "reach stacker");
-  cab_.restore_state(in);
-  luff_.restore_state(in);
-  telescope_.restore_state(in);
-  rotate_.restore_state(in);
-  side_shift_.restore_state(in);
-  frame_->restore_state(in);
-  locks_.twistlocks().restore_state(in);
-  locks_.restore_joint(in);
-  in.get(measured_load_kg_);
-  for (bool* b : {&limiter_stopping_, &limiter_armed_, &limiter_fault_, &tipped_})
-    in.get(*b);
-  in.get(landed_sensor_fault_);
-  in.get(limiter_trips_);
-  in.get(tip_overs_);
-  restored_pin_n_ = in.get<double>();
+  archive(*this, in);
   wind_areas_[2].half_extents_m = frame_->half_extents_m();
 }
 

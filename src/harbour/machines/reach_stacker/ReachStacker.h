@@ -97,6 +97,8 @@ class ReachStacker final : public Machine {
   TwistlockLamps lamps() const { return locks_.twistlocks().lamps(); }
 
  private:
+  template <typename Self, typename Archive>
+  static void archive(Self& self, Archive& ar);
   struct StartPoses {
     core::Pose chassis, outer, inner, rotator, slew, spreader;
     core::Vec3 pivot, head;

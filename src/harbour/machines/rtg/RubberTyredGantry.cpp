@@ -374,30 +374,22 @@ void RubberTyredGantry::hash_into(core::StateHash& hash) const {
   hash.add(rig_->spreader_state().length_m);
 }
 
+template <typename Self, typename Archive>
+void RubberTyredGantry::archive(Self& self, Archive& ar) {
+  ar.section(0x52544732, "rtg");  // "RTG2": and the gantry's holding brakes
+  ar.part(self.gantry_);
+  ar.part(self.trolley_drive_);
+  ar(self.travel_integral_, self.gantry_braked_, self.wheel_turn_, self.turn_refused_, self.turn_refusals_,
+     self.horn_);
+  ar.part(*self.rig_);
+}
+
 void RubberTyredGantry::save_state(core::StateWriter& out) const {
-  out.section(0x52544732);  // "RTG2": and the gantry's holding brakes
-  gantry_.save_state(out);
-  trolley_drive_.save_state(out);
-  out.put(travel_integral_);
-  out.put(gantry_braked_);
-  out.put(wheel_turn_);
-  out.put(turn_refused_);
-  out.put(turn_refusals_);
-  out.put(horn_);
-  rig_->save_state(out);
+  archive(*this, out);
 }
 
 void RubberTyredGantry::restore_state(core::StateReader& in) {
-  in.section(0x52544732, "rtg");
-  gantry_.restore_state(in);
-  trolley_drive_.restore_state(in);
-  in.get(travel_integral_);
-  in.get(gantry_braked_);
-  in.get(wheel_turn_);
-  in.get(turn_refused_);
-  in.get(turn_refusals_);
-  in.get(horn_);
-  rig_->restore_state(in);
+  archive(*this, in);
   wind_areas_[0].half_extents_m = rig_->spreader().half_extents_m();
 }
 

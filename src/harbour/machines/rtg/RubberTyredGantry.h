@@ -144,6 +144,8 @@ class RubberTyredGantry final : public Machine, public GantryCrane {
   bool horn() const { return horn_; }
 
  private:
+  template <typename Self, typename Archive>
+  static void archive(Self& self, Archive& ar);
   /// The bogies' steering angle for a steering lever, the auto-steer's bias added [rad].
   double steer_angle_rad(double steer) const;
   /// Each corner tyre's heading from the frame's x for a steering lever [rad].

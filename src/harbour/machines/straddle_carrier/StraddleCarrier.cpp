@@ -198,16 +198,19 @@ void StraddleCarrier::hash_into(core::StateHash& hash) const {
   hash.add(rig_->spreader_state().length_m);
 }
 
+template <typename Self, typename Archive>
+void StraddleCarrier::archive(Self& self, Archive& ar) {
+  ar.section(0x53434152, "straddle carrier");  // "SCAR"
+  ar.part(self.cab_);
+  ar.part(*self.rig_);
+}
+
 void StraddleCarrier::save_state(core::StateWriter& out) const {
-  out.section(0x53434152);  // "SCAR"
-  cab_.save_state(out);
-  rig_->save_state(out);
+  archive(*this, out);
 }
 
 void StraddleCarrier::restore_state(core::StateReader& in) {
-  in.section(0x53434152, "straddle carrier");
-  cab_.restore_state(in);
-  rig_->restore_state(in);
+  archive(*this, in);
   wind_areas_[0].half_extents_m = rig_->spreader().half_extents_m();
 }
 

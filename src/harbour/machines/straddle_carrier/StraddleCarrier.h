@@ -108,6 +108,8 @@ class StraddleCarrier final : public Machine {
   core::Vec3 plumb_m() const;
 
  private:
+  template <typename Self, typename Archive>
+  static void archive(Self& self, Archive& ar);
   physics::PhysicsWorld& world_;
   StraddleCarrierSettings settings_;
   StraddleCarrierSlots slots_;

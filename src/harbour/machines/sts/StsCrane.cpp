@@ -283,24 +283,22 @@ void StsCrane::hash_into(core::StateHash& hash) const {
   hash.add(spreader.flippers);
 }
 
+template <typename Self, typename Archive>
+void StsCrane::archive(Self& self, Archive& ar) {
+  ar.section(0x53545333, "crane");  // "STS3": the third layout (twistlock landings debounced)
+  ar.part(self.gantry_);
+  ar.part(self.trolley_);
+  ar.part(self.boom_);
+  ar(self.boom_angle_, self.horn_);
+  ar.part(*self.rig_);
+}
+
 void StsCrane::save_state(core::StateWriter& out) const {
-  out.section(0x53545333);  // "STS3": the third layout (twistlock landings debounced)
-  gantry_.save_state(out);
-  trolley_.save_state(out);
-  boom_.save_state(out);
-  out.put(boom_angle_);
-  out.put(horn_);
-  rig_->save_state(out);
+  archive(*this, out);
 }
 
 void StsCrane::restore_state(core::StateReader& in) {
-  in.section(0x53545333, "crane");
-  gantry_.restore_state(in);
-  trolley_.restore_state(in);
-  boom_.restore_state(in);
-  in.get(boom_angle_);
-  in.get(horn_);
-  rig_->restore_state(in);
+  archive(*this, in);
   wind_areas_[0].half_extents_m = rig_->spreader().half_extents_m();
 }
 

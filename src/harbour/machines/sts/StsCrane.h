@@ -179,6 +179,8 @@ class StsCrane final : public Machine, public GantryCrane {
   void restore_state(core::StateReader& in) override;
 
  private:
+  template <typename Self, typename Archive>
+  static void archive(Self& self, Archive& ar);
   physics::PhysicsWorld& world_;
   StsCraneSettings settings_;
   StsControlSlots slots_;

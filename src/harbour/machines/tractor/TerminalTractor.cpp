@@ -311,37 +311,25 @@ void TerminalTractor::hash_into(core::StateHash& hash) const {
   hash.add(load_mass_kg_);
 }
 
+template <typename Self, typename Archive>
+void TerminalTractor::archive(Self& self, Archive& ar) {
+  ar.section(0x54524332, "terminal tractor");  // "TRC2"
+  ar.part(self.cab_);
+  ar(self.jackknifed_, self.jackknifes_, self.coupled_, self.couple_was_pressed_, self.lift_,
+     self.lift_target_, self.capture_offset_m_);
+  if (self.load_body_ == physics::kWorld) return;
+  ar.section(0x5452434C, "tractor's load");  // "TRCL": the load handed over
+  ar(self.loaded_, self.load_mass_kg_);
+}
+
 void TerminalTractor::save_state(core::StateWriter& out) const {
-  out.section(0x54524332);  // "TRC2"
-  cab_.save_state(out);
-  out.put(jackknifed_);
-  out.put(jackknifes_);
-  out.put(coupled_);
-  out.put(couple_was_pressed_);
-  out.put(lift_);
-  out.put(lift_target_);
-  out.put(capture_offset_m_);
-  if (load_body_ == physics::kWorld) return;
-  out.section(0x5452434C);  // "TRCL": the load handed over
-  out.put(loaded_);
-  out.put(load_mass_kg_);
+  archive(*this, out);
 }
 
 void TerminalTractor::restore_state(core::StateReader& in) {
-  in.section(0x54524332, "terminal tractor");
-  cab_.restore_state(in);
-  in.get(jackknifed_);
-  in.get(jackknifes_);
-  in.get(coupled_);
-  in.get(couple_was_pressed_);
-  in.get(lift_);
-  in.get(lift_target_);
-  in.get(capture_offset_m_);
-  if (load_body_ == physics::kWorld) return;
-  in.section(0x5452434C, "tractor's load");
-  in.get(loaded_);
-  in.get(load_mass_kg_);
-  if (loaded_) world_.set_box_mass(load_body_, load_mass_kg_, load_half_extents_m_);
+  archive(*this, in);
+  if (load_body_ != physics::kWorld && loaded_)
+    world_.set_box_mass(load_body_, load_mass_kg_, load_half_extents_m_);
 }
 
 }  // namespace harbour::sim

@@ -139,6 +139,8 @@ class TerminalTractor final : public Machine {
   const TractorSettings& settings() const { return settings_; }
 
  private:
+  template <typename Self, typename Archive>
+  static void archive(Self& self, Archive& ar);
   physics::PhysicsWorld& world_;
   TractorSettings settings_;
   FlatGround quay_;
