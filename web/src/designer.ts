@@ -23,9 +23,9 @@ type Path = (string | number)[];
 type Plain = Record<string, any>;
 const X = "exercise";
 const BOX_TYPES = ["20ft", "40ft", "40ftHC", "45ftHC"];
-const EVENT_LABEL: Record<string, string> = {
-  gust: "gust", hoist_brake_fault: "hoist brake fault", landed_sensor_fault: "landed-sensor fault", limiter_fault: "limiter fault",
-};
+// the scripted events' words by their names in the exercise files, from the console's command table
+let EVENT_LABEL: Record<string, string> = {};
+export function setEventLabels(labels: Record<string, string>) { EVENT_LABEL = labels; }
 
 function el<K extends keyof HTMLElementTagNameMap>(tag: K, props: Partial<HTMLElementTagNameMap[K]> & Plain = {},
   ...children: (Node | string)[]): HTMLElementTagNameMap[K] {
@@ -563,7 +563,7 @@ export class DesignerForms {
     const span = Math.max(limit, ...events.map((e) => when(e) + 10));
     const W = 640, H = 64, left = 10, right = W - 10, y = 36;
     const tx = (t: number) => left + ((right - left) * t) / span;
-    const kinds = this.form?.event_kinds ?? ["gust", "hoist_brake_fault", "limiter_fault"];
+    const kinds = this.form?.event_kinds ?? [];
     const kind = el("select", { id: "design-event-kind" });
     for (const k of kinds) kind.add(new Option(EVENT_LABEL[k] ?? k, k));
     const remembered = sessionStorage.getItem("design-event-kind");

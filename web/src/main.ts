@@ -3,7 +3,7 @@
 import uPlot from "uplot";
 import { parseDocument } from "yaml";
 import { View3D, type BulkMessage, type Looks, type SceneMessage, type ViewState } from "./view3d";
-import { DesignerForms } from "./designer";
+import { DesignerForms, setEventLabels } from "./designer";
 import { RouteEditor } from "./routeEditor";
 import { TelemetryPlots } from "./telemetry";
 
@@ -508,6 +508,55 @@ async function loadRecords() {
   await loadClass();
 }
 
+// The commands an instructor gives a station, from the console's table (names, labels, values with ranges):
+// every command but the session's (drawn with its exercise, trainee, route and team fields) gets its button here,
+// with a field for each value it takes.
+interface CommandValue { what: string; unit: string; min: number; max: number; initial: number; step: number;
+  above_min: boolean; below_max: boolean; words: boolean; }
+interface CommandInfo { name: string; label: string; group: string; file_name: string; values: CommandValue[]; }
+let commandTable: CommandInfo[] = [];
+const COMMAND_ROWS: Record<string, string> = { weather: "commands-weather", fault: "commands-fault",
+  stop: "commands-fault", restart: "commands-fault", sound: "commands-sound" };
+function drawCommands(commands: CommandInfo[]) {
+  commandTable = commands;
+  for (const id of new Set(Object.values(COMMAND_ROWS)))
+    for (const e of [...$(id).querySelectorAll(".command")]) e.remove();
+  for (const c of commands) {
+    const row = COMMAND_ROWS[c.group];
+    if (!row) continue;
+    const box = document.createElement("span");
+    box.className = "command";
+    box.dataset.name = c.name;
+    c.values.forEach((v, k) => {
+      const input = document.createElement("input");
+      input.id = `command-${c.name}-${k}`;
+      if (v.words) {
+        input.type = "text";
+        input.maxLength = v.max;
+      } else {
+        input.type = "number";
+        input.min = String(v.min);
+        input.max = String(v.max);
+        input.step = String(v.step);
+        input.value = String(v.initial);
+      }
+      const label = document.createElement("label");
+      label.append(`${v.what} `, input, v.unit ? ` ${v.unit === "deg" ? "°" : v.unit}` : "");
+      box.append(label, " ");
+    });
+    const button = document.createElement("button");
+    button.dataset.kind = c.name;
+    button.textContent = c.label;
+    if (c.group === "stop") button.className = "emergency";
+    button.addEventListener("click", () => command([c.name, ...c.values.map((_, k) =>
+      $<HTMLInputElement>(`command-${c.name}-${k}`).value)].join(":")));
+    box.append(button);
+    $(row).append(box, " ");
+  }
+  setEventLabels(Object.fromEntries(commands.filter((c) => c.file_name)
+    .map((c) => [c.file_name, c.label.toLowerCase()])));
+}
+
 // The exercises as people pick them: by title, grouped by machine, with what each asks of the trainee.
 interface ExerciseCard { name: string; machine: string; machine_title: string; faults: string[]; title?: string;
   objective?: string; difficulty?: string; expected_min?: number; error?: string }
@@ -521,10 +570,11 @@ const machineTitle = (kind: string) => exerciseCards.find((e) => e.machine === k
 // card names: every button, the station refusing what it lacks).
 function showFaultButtons(machine: string) {
   const faults = exerciseCards.find((e) => e.machine === machine)?.faults;
-  for (const b of document.querySelectorAll<HTMLButtonElement>(".faults button[data-kind]")) {
-    const command = b.dataset.kind!.split(":")[0];
-    if (command.endsWith("-fault")) b.hidden = faults !== undefined && !faults.includes(command);
-    else if (command === "clear-faults") b.hidden = faults !== undefined && faults.length === 0;
+  for (const c of commandTable.filter((c) => c.group === "fault")) {
+    const box = document.querySelector<HTMLElement>(`.command[data-name="${c.name}"]`);
+    if (!box) continue;
+    // clearing faults: where the machine has some
+    box.hidden = faults !== undefined && (c.name === "clear-faults" ? faults.length === 0 : !faults.includes(c.name));
   }
 }
 function fillExerciseSelect(select: HTMLSelectElement) {
@@ -820,6 +870,8 @@ async function enter(who: Me) {
   await loadProgress();
   if (who.role === "trainee") return;
   await loadTeams();
+  const commandsReply = await api("/api/commands");
+  if (commandsReply.status === 200) drawCommands(commandsReply.data.commands as CommandInfo[]);
   plots = new TelemetryPlots($("plot"));
   const looksReply = await api("/api/looks");
   if (looksReply.status === 200) {
@@ -850,12 +902,6 @@ function wire() {
   for (const b of document.querySelectorAll<HTMLButtonElement>("button[data-team-kind]"))
     b.addEventListener("click", () => teamCommand(b.dataset.teamKind!));
   const value = (id: string) => $<HTMLInputElement>(id).value;
-  $("set-wind").addEventListener("click", () => command(`wind:${value("wind-speed")}:${value("wind-from")}:0.15`));
-  $("set-visibility").addEventListener("click", () => command(`visibility:${value("visibility")}`));
-  $("set-rain").addEventListener("click", () => command(`rain:${value("rain")}`));
-  $("set-time").addEventListener("click", () => command(`time-of-day:${value("time-of-day")}`));
-  $("set-volume").addEventListener("click", () => command(`volume:${value("volume")}`));
-  $("say-radio").addEventListener("click", () => command(`radio:${$<HTMLInputElement>("radio-call").value}`));
   $("view-on").addEventListener("change", () => { $("views").hidden = !viewOn(); if (selected) subscribe(); });
   $("view-light").addEventListener("change", () => view?.setLight($<HTMLInputElement>("view-light").checked));
   $("start-team").addEventListener("change", showTeamRoles);

@@ -67,6 +67,8 @@ try {
     ["control characters", "api/trainees", "POST", { id: "a\u0001b", name: "x" }, 400],
     ["an unknown station", "api/stations/nowhere/command", "POST", { kind: "hold" }, 404],
     ["a command without kind", "api/stations/api-1/command", "POST", {}, 400],
+    ["a command the table lacks", "api/stations/api-1/command", "POST", { kind: "gale" }, 400],
+    ["a value past the table's range", "api/stations/api-1/command", "POST", { kind: "wind:80:270:0.1" }, 400],
     ["start for an unknown trainee", "api/stations/api-1/command", "POST", { kind: "start", exercise: "sts_discharge", trainee: "zed" }, 400],
     ["start as a member of an unknown team", "api/stations/api-1/command", "POST", { kind: "start", team: "nope", role: "crane" }, 404],
     ["start as a role the team lacks", "api/stations/api-1/command", "POST", { kind: "start", team: "sts_and_tractor", role: "signaller" }, 400],
@@ -96,6 +98,14 @@ try {
   check(teams.status === 200 && teams.data.some((t) => t.name === "sts_and_tractor" &&
     t.roles.map((r) => `${r.role}:${r.exercise}`).join(" ") === "crane:sts_discharge tractor:tractor_mafi_park"),
     `the teams and their roles: ${JSON.stringify(teams.data)}`);
+  // the command table the panel is drawn from: every command once, its values' ranges the simulation's
+  const table = (await b("api/commands")).data?.commands ?? [];
+  const wind = table.find((t) => t.name === "wind");
+  check(table.length === 23 && new Set(table.map((t) => t.name)).size === 23 &&
+    table.find((t) => t.name === "limiter-fault")?.file_name === "limiter_fault" &&
+    wind?.group === "weather" && wind.values.map((v) => `${v.what} ${v.min}-${v.max}`).join(", ") ===
+      "wind speed 0-50, wind from 0-360, turbulence intensity 0-1",
+    `the command table: ${table.map((t) => t.name).join(" ")}; wind ${JSON.stringify(wind?.values)}`);
   check((await b("api/trainees", "POST", { id: "x", name: "y" }, { "X-CSRF-Token": "forged" })).status === 403, "a forged CSRF token: 403");
   check((await b("api/trainees", "POST", "id=x", { "Content-Type": "application/x-www-form-urlencoded" })).status === 415, "a form post: 415");
   check((await fetch(baseB + "api/stations")).status === 401, "no session: 401");

@@ -93,7 +93,7 @@ try {
   // the tractor has no hoist brake, twistlocks or limiter: none of their faults is offered, its stops are
   const shown = async (kind) => page.isVisible(`button[data-kind="${kind}"]`);
   await until("the tractor's panel offers no fault of a part it lacks", async () =>
-    !(await shown("hoist-brake-fault")) && !(await shown("landed-sensor-fault:2")) && !(await shown("limiter-fault")) &&
+    !(await shown("hoist-brake-fault")) && !(await shown("landed-sensor-fault")) && !(await shown("limiter-fault")) &&
     !(await shown("clear-faults")) && await shown("emergency-stop") && await shown("power-failure"));
   // its live line is its cab's HUD: its own lines first, its speed once (its line replaces the harbour's)
   await until("the tractor's live line reads as its cab's HUD", async () => {
@@ -110,7 +110,7 @@ try {
   await page.click("#stations tr[data-station=day-1]");
   await until("day-1's live line", async () => /load -?\d+\.\d t/.test(await page.textContent("#live")));
   await until("the STS's panel offers its hoist brake's and twistlocks' faults, not a limiter's", async () =>
-    await shown("hoist-brake-fault") && await shown("landed-sensor-fault:2") && !(await shown("limiter-fault")) &&
+    await shown("hoist-brake-fault") && await shown("landed-sensor-fault") && await page.isVisible("#command-landed-sensor-fault-0") && !(await shown("limiter-fault")) &&
     await shown("clear-faults"));
   await page.click("button[data-kind=hoist-brake-fault]");
   await until("the fault is in force", async () => (await page.textContent("#live-faults")).includes("BRAKE FAULT"));

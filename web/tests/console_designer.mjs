@@ -133,6 +133,10 @@ try {
     await page.press("#design-event-at", "Enter");
     await until(`it is at ${at} s`, async () => (await yaml()).includes(`at_s: ${at}`));
   }
+  // the kinds of event offered read as the console's command table words them (the STS: a gust and its faults)
+  const kindWords = await page.$$eval("#design-event-kind option", (os) => os.map((o) => `${o.value}=${o.textContent}`));
+  check(kindWords.includes("gust=gust") && kindWords.includes("hoist_brake_fault=hoist brake fault") &&
+    kindWords.includes("landed_sensor_fault=landed sensor fault"), `the event kinds in words: ${kindWords.join(", ")}`);
   const text = await yaml();
   check(text.indexOf("at_s: 20") < text.indexOf("at_s: 60") && /collision: 25/.test(text) && /wind_mean_mps: 6/.test(text) &&
     /time_limit_s: 250/.test(text) && /name: sts_long_discharge/.test(text), `the forms wrote the YAML:\n${text}`);

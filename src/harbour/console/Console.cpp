@@ -125,6 +125,7 @@ const Console::Route Console::kRoutes[] = {
     {http::verb::post, "/api/logout", Who::kAnyAccount, &Console::logout},
     {http::verb::get, "/api/looks", Who::kAnyAccount, &Console::looks},
     {http::verb::get, "/api/exercises", Who::kAnyAccount, &Console::exercises},
+    {http::verb::get, "/api/commands", Who::kStaff, &Console::commands},
     {http::verb::get, "/api/teams", Who::kStaff, &Console::teams},
     {http::verb::post, "/api/teams/*/command", Who::kStaff, &Console::team_command},
     {http::verb::get, "/api/routes", Who::kAnyAccount, &Console::routes},

@@ -340,6 +340,7 @@ class Console {
   std::optional<Response> team_command(Call& c);
   std::optional<Response> looks(Call& c);
   std::optional<Response> exercises(Call& c);
+  std::optional<Response> commands(Call& c);
   std::optional<Response> teams(Call& c);
   std::optional<Response> xapi_status(Call& c);
   std::optional<Response> trainees(Call& c);

@@ -54,6 +54,8 @@ std::optional<Console::Response> Console::command(Call& c) {
   const auto autopilot = body->find("autopilot");
   if (autopilot != body->end() && !autopilot->is_boolean())
     return error(request, http::status::bad_request, "field 'autopilot' is not true or false");
+  if (const std::string refused = io::why_refused(*kind); !refused.empty())
+    return error(request, http::status::bad_request, "field 'kind': " + refused);
   const auto found = link_.stations().find(station);
   if (found == link_.stations().end())
     return error(request, http::status::not_found, "no station '" + core::printable(station) + "'");
@@ -165,6 +167,32 @@ std::optional<Console::Response> Console::looks(Call& c) {
   r.body() = looks_;
   r.prepare_payload();
   return r;
+}
+
+// The commands an instructor gives a station, with their values' ranges: the console's panel is drawn from
+// it.
+std::optional<Console::Response> Console::commands(Call& c) {
+  json list = json::array();
+  for (const io::CommandText& command : io::station_commands()) {
+    json values = json::array();
+    for (const io::CommandValue& v : command.values)
+      if (v.what)
+        values.push_back({{"what", v.what},
+                          {"unit", v.unit},
+                          {"min", v.min},
+                          {"max", v.max},
+                          {"initial", v.initial},
+                          {"step", v.step},
+                          {"above_min", v.above_min},
+                          {"below_max", v.below_max},
+                          {"words", v.words}});
+    list.push_back({{"name", command.name},
+                    {"label", command.label},
+                    {"group", io::group_name(command.group)},
+                    {"file_name", command.kind ? io::file_spelling(*command.kind) : ""},
+                    {"values", values}});
+  }
+  return json_reply(c.request, http::status::ok, json{{"commands", list}});
 }
 
 std::optional<Console::Response> Console::exercises(Call& c) {

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <optional>
+#include <sstream>
 #include <stdexcept>
 #include <vector>
 
@@ -24,32 +26,155 @@ std::vector<std::string> split(const std::string& text) {
 }
 
 using Kind = sim::InstructorCommand::Kind;
-constexpr CommandKindText kCommandKinds[] = {
-    {Kind::kGust, "gust", {"amplitude [m/s]", "duration [s]", nullptr}},
-    {Kind::kHoistBrakeFault, "hoist-brake-fault", {}},
-    {Kind::kLandedSensorFault, "landed-sensor-fault", {"corner (0-3)", nullptr, nullptr}},
-    {Kind::kClearFaults, "clear-faults", {}},
-    {Kind::kSetWind, "wind", {"mean speed [m/s]", "direction it blows from [deg]", "turbulence intensity"}},
-    {Kind::kSetVisibility, "visibility", {"visibility [m]", nullptr, nullptr}},
-    {Kind::kSetRain, "rain", {"rain [mm/h]", nullptr, nullptr}},
-    {Kind::kSetTimeOfDay, "time-of-day", {"time [h]", nullptr, nullptr}},
-    {Kind::kLimiterFault, "limiter-fault", {}},
-    {Kind::kEmergencyStop, "emergency-stop", {}},
-    {Kind::kReleaseEmergencyStop, "release-emergency-stop", {}},
-    {Kind::kPowerFailure, "power-failure", {}},
-    {Kind::kPowerRestored, "power-restored", {}},
+using Group = CommandGroup;
+// a value within [min, max]: what, unit, min, max, initial, step (and where an end itself is refused)
+constexpr CommandValue number(const char* what, const char* unit, double min, double max, double initial,
+                              double step) {
+  return {what, unit, min, max, initial, step};
+}
+constexpr CommandValue above(CommandValue v) {
+  v.above_min = true;
+  return v;
+}
+constexpr CommandValue below(CommandValue v) {
+  v.below_max = true;
+  return v;
+}
+constexpr CommandValue kWords{.what = "radio call", .max = 42, .words = true};
+
+constexpr CommandText kCommands[] = {
+    {"start", "Start", Group::kSession, std::nullopt, {}},
+    {"hold", "Hold", Group::kSession, std::nullopt, {}},
+    {"resume", "Resume", Group::kSession, std::nullopt, {}},
+    {"step", "Step", Group::kSession, std::nullopt, {}},
+    {"reset", "Reset", Group::kSession, std::nullopt, {}},
+    {"stop", "Stop", Group::kSession, std::nullopt, {}},
+    {"wind",
+     "Set wind",
+     Group::kWeather,
+     Kind::kSetWind,
+     {number("wind speed", "m/s", 0, sim::kMaxMeanWind_mps, 12, 0.5),
+      number("wind from", "deg", 0, 360, 270, 5), number("turbulence intensity", "", 0, 1, 0.15, 0.05)}},
+    {"gust",
+     "Gust",
+     Group::kWeather,
+     Kind::kGust,
+     {above(number("gust amplitude", "m/s", 0, sim::kMaxGust_mps, 8, 1)),
+      above(number("gust duration", "s", 0, sim::kMaxGustDuration_s, 3, 1))}},
+    {"visibility",
+     "Set visibility",
+     Group::kWeather,
+     Kind::kSetVisibility,
+     {above(number("visibility", "m", 0, sim::kMaxVisibility_m, 300, 10))}},
+    {"rain",
+     "Set rain",
+     Group::kWeather,
+     Kind::kSetRain,
+     {number("rain", "mm/h", 0, sim::kMaxRain_mm_per_h, 8, 1)}},
+    {"time-of-day",
+     "Set time",
+     Group::kWeather,
+     Kind::kSetTimeOfDay,
+     {below(number("time of day", "h", 0, sim::kHoursPerDay, 21.5, 0.5))}},
+    {"hoist-brake-fault", "Hoist brake fault", Group::kFault, Kind::kHoistBrakeFault, {}},
+    {"landed-sensor-fault",
+     "Landed sensor fault",
+     Group::kFault,
+     Kind::kLandedSensorFault,
+     {number("corner", "", 0, sim::kTwistlockCorners - 1, 2, 1)}},
+    {"limiter-fault", "Limiter fault", Group::kFault, Kind::kLimiterFault, {}},
+    {"clear-faults", "Clear faults", Group::kFault, Kind::kClearFaults, {}},
+    {"emergency-stop", "Emergency stop", Group::kStop, Kind::kEmergencyStop, {}},
+    {"release-emergency-stop", "Release stop", Group::kRestart, Kind::kReleaseEmergencyStop, {}},
+    {"power-failure", "Power failure", Group::kStop, Kind::kPowerFailure, {}},
+    {"power-restored", "Power back", Group::kRestart, Kind::kPowerRestored, {}},
+    {"mute", "Mute", Group::kSound, std::nullopt, {}},
+    {"unmute", "Unmute", Group::kSound, std::nullopt, {}},
+    {"volume", "Set volume", Group::kSound, std::nullopt, {number("volume", "%", 0, 200, 100, 10)}},
+    {"radio", "Call", Group::kSound, std::nullopt, {kWords}},
 };
-static_assert(std::size(kCommandKinds) == sim::InstructorCommand::kKinds, "a name for every kind");
+constexpr std::size_t simulation_commands() {
+  std::size_t n = 0;
+  for (const CommandText& c : kCommands)
+    n += c.kind.has_value();
+  return n;
+}
+static_assert(simulation_commands() == sim::InstructorCommand::kKinds, "a name for every kind");
+
+std::size_t value_count(const CommandText& c) {
+  std::size_t n = 0;
+  while (n < c.values.size() && c.values[n].what)
+    ++n;
+  return n;
+}
+
+std::string value_name(const CommandValue& v) {
+  return *v.unit ? std::string(v.what) + " [" + v.unit + "]" : std::string(v.what);
+}
+
+std::string range_text(const CommandValue& v) {
+  std::ostringstream out;
+  out << v.min << "-" << v.max;
+  if (v.above_min) out << " (not " << v.min << ")";
+  if (v.below_max) out << " (not " << v.max << ")";
+  return out.str();
+}
+
+// plain decimal numbers only, as in the exercise files (no hex, inf or nan)
+std::optional<double> decimal(const std::string& p) {
+  const bool digits = !p.empty() && p.find_first_not_of("0123456789.-+eE") == std::string::npos &&
+                      std::isdigit(static_cast<unsigned char>(p.back())) != 0;
+  if (!digits) return std::nullopt;
+  char* end = nullptr;
+  const double v = std::strtod(p.c_str(), &end);
+  if (*end != '\0' || !std::isfinite(v)) return std::nullopt;
+  return v;
+}
+
+bool in_range(const CommandValue& v, double x) {
+  return (v.above_min ? x > v.min : x >= v.min) && (v.below_max ? x < v.max : x <= v.max);
+}
+
+const CommandText* find_command(const std::string& name) {
+  for (const CommandText& c : kCommands)
+    if (name == c.name) return &c;
+  return nullptr;
+}
+
+std::string known_names(bool simulation_only) {
+  std::string names;
+  for (const CommandText& c : kCommands)
+    if (!simulation_only || c.kind) names += std::string(names.empty() ? "" : ", ") + c.name;
+  return names;
+}
 
 }  // namespace
 
-std::span<const CommandKindText> command_kinds() {
-  return kCommandKinds;
+const char* group_name(CommandGroup group) {
+  switch (group) {
+    case Group::kSession:
+      return "session";
+    case Group::kWeather:
+      return "weather";
+    case Group::kFault:
+      return "fault";
+    case Group::kStop:
+      return "stop";
+    case Group::kRestart:
+      return "restart";
+    case Group::kSound:
+      return "sound";
+  }
+  return "?";
+}
+
+std::span<const CommandText> station_commands() {
+  return kCommands;
 }
 
 const char* command_name(Kind kind) {
-  for (const CommandKindText& k : kCommandKinds)
-    if (k.kind == kind) return k.name;
+  for (const CommandText& c : kCommands)
+    if (c.kind == kind) return c.name;
   return "?";
 }
 
@@ -59,22 +184,45 @@ std::string file_spelling(Kind kind) {
   return name;
 }
 
+std::string why_refused(const std::string& command) {
+  const std::size_t colon = command.find(':');
+  const std::string name = command.substr(0, colon);
+  const CommandText* known = find_command(name);
+  if (!known) return "no command '" + core::printable(name, 40) + "' (" + known_names(false) + ")";
+  if (known->kind) {
+    try {
+      parse_instructor_command("0:" + command);
+    } catch (const std::invalid_argument& e) {
+      return e.what();
+    }
+    return "";
+  }
+  const std::size_t values = value_count(*known);
+  const std::string rest = colon == std::string::npos ? "" : command.substr(colon + 1);
+  if (values == 0) return colon == std::string::npos ? "" : name + " takes no value";
+  const CommandValue& v = known->values[0];  // the station's own commands take one value at most
+  if (v.words) {
+    if (rest.find_first_not_of(' ') == std::string::npos) return name + ":" + v.what + " (some words to say)";
+    if (rest.size() > static_cast<std::size_t>(v.max))
+      return name + ": at most " + std::to_string(static_cast<int>(v.max)) + " characters";
+    return "";
+  }
+  const std::optional<double> x = decimal(rest);
+  if (!x || !in_range(v, *x)) return name + ":" + value_name(v) + ", " + range_text(v);
+  return "";
+}
+
 TimedCommand parse_instructor_command(const std::string& text) {
   auto fail = [&](const std::string& why) -> void {
     throw std::invalid_argument("instructor command '" + core::printable(text, 100) + "': " + why);
   };
   if (text.size() > kMaxCommandBytes) fail("longer than " + std::to_string(kMaxCommandBytes) + " characters");
   const std::vector<std::string> parts = split(text);
-  auto number = [&](std::size_t k, const char* what) {
-    if (k >= parts.size()) fail(std::string("missing ") + what);
-    // plain decimal numbers only, as in the exercise files (no hex, inf or nan)
-    const std::string& p = parts[k];
-    const bool decimal = !p.empty() && p.find_first_not_of("0123456789.-+eE") == std::string::npos &&
-                         std::isdigit(static_cast<unsigned char>(p.back())) != 0;
-    char* end = nullptr;
-    const double v = decimal ? std::strtod(p.c_str(), &end) : 0.0;
-    if (!decimal || *end != '\0' || !std::isfinite(v)) fail(std::string(what) + " is not a decimal number");
-    return v;
+  auto number = [&](std::size_t k, const std::string& what) {
+    if (k >= parts.size()) fail("missing " + what);
+    const std::optional<double> v = decimal(parts[k]);
+    if (!v) fail(what + " is not a decimal number");
+    return *v;
   };
   TimedCommand t;
   t.at_s = number(0, "time [s]");
@@ -82,21 +230,18 @@ TimedCommand parse_instructor_command(const std::string& text) {
   if (parts.size() < 2) fail("missing the kind");
   std::string kind = parts[1];
   std::replace(kind.begin(), kind.end(), '_', '-');  // as exercise files spell it
-  const CommandKindText* known = nullptr;
-  for (const CommandKindText& k : kCommandKinds)
-    if (kind == k.name) known = &k;
-  if (!known) {
-    std::string names;
-    for (const CommandKindText& k : kCommandKinds)
-      names += std::string(names.empty() ? "" : ", ") + k.name;
-    fail("unknown kind '" + core::printable(kind, 40) + "' (" + names + ")");
-  }
-  std::size_t values = 0;
+  const CommandText* known = find_command(kind);
+  if (!known || !known->kind)
+    fail("unknown kind '" + core::printable(kind, 40) + "' (" + known_names(true) + ")");
+  const std::size_t values = value_count(*known);
   double v[3] = {0.0, 0.0, 0.0};
-  for (; values < known->values.size() && known->values[values]; ++values)
-    v[values] = number(2 + values, known->values[values]);
+  for (std::size_t k = 0; k < values; ++k) {
+    const CommandValue& value = known->values[k];
+    v[k] = number(2 + k, value_name(value));
+    if (!in_range(value, v[k])) fail("the " + value_name(value) + " is outside " + range_text(value));
+  }
   sim::InstructorCommand& c = t.command;
-  c.kind = known->kind;
+  c.kind = *known->kind;
   switch (c.kind) {
     case Kind::kGust:
       c.gust.amplitude_mps = v[0];
@@ -107,7 +252,6 @@ TimedCommand parse_instructor_command(const std::string& text) {
       c.corner = static_cast<int>(v[0]);
       break;
     case Kind::kSetWind:
-      if (!(v[1] >= 0.0 && v[1] <= 360.0)) fail("the direction is outside 0-360 deg");
       c.wind_mean_mps = v[0];
       c.wind_from_rad = core::deg_to_rad(v[1]);
       c.turbulence = v[2];

@@ -1,6 +1,8 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 
@@ -24,14 +26,38 @@ struct TimedCommand {
   sim::InstructorCommand command;
 };
 
-/// Each kind of instructor command as the command line, the console, the stations and the records name it,
-/// with the values it takes in order: the one table every reader and writer of the names uses.
-struct CommandKindText {
-  sim::InstructorCommand::Kind kind;
-  const char* name;                   ///< "hoist-brake-fault"
-  std::array<const char*, 3> values;  ///< what each value is ("mean speed [m/s]"), nullptr past the last
+/// What a command is for: the console's panel groups its buttons so.
+/// (kStop: what stops the machine at once; kRestart: what lets it go again.)
+enum class CommandGroup : std::uint8_t { kSession, kWeather, kFault, kStop, kRestart, kSound };
+const char* group_name(CommandGroup group);  ///< "session", "weather", "fault", "stop", "restart", "sound"
+
+/// One value a command takes: a number within its range, or words.
+struct CommandValue {
+  const char* what = nullptr;  ///< "mean speed" (nullptr: past the last value)
+  const char* unit = "";       ///< "m/s"
+  double min = 0.0;            ///< the least it may be (itself refused where above_min)
+  double max = 0.0;      ///< the most it may be (itself refused where below_max); words: the most characters
+  double initial = 0.0;  ///< what the console's form offers first
+  double step = 1.0;     ///< the console form's step
+  bool above_min = false, below_max = false;
+  bool words = false;  ///< free words (a radio call)
 };
-std::span<const CommandKindText> command_kinds();
+
+/// Each command an instructor gives a station, as the command line, the console, its designer, the stations
+/// and the records name it, with the values it takes in order and their ranges: the one table every reader
+/// and writer of the names uses.
+struct CommandText {
+  const char* name;   ///< "hoist-brake-fault"
+  const char* label;  ///< "Hoist brake fault": its button's words
+  CommandGroup group;
+  /// The simulation's command it gives (none: the station's own, as start, hold or the sound's volume).
+  std::optional<sim::InstructorCommand::Kind> kind;
+  std::array<CommandValue, 3> values{};
+};
+std::span<const CommandText> station_commands();
+/// Why a station command written as text ("wind:12:270:0.15", "volume:80", "radio:hoist up slowly") is not
+/// one of the table's with its values in range ("" when it is).
+std::string why_refused(const std::string& command);
 /// The name of a kind of command ("landed-sensor-fault").
 const char* command_name(sim::InstructorCommand::Kind kind);
 /// The same name as exercise files write it, its words joined by underscores ("landed_sensor_fault").

@@ -145,13 +145,13 @@ std::string why_invalid(const InstructorCommand& c) {
   using Kind = InstructorCommand::Kind;
   switch (c.kind) {
     case Kind::kGust:
-      if (!(c.gust.duration_s > 0.0 && c.gust.duration_s <= 600.0 && c.gust.amplitude_mps > 0.0 &&
-            c.gust.amplitude_mps <= kMaxGust_mps))
-        return "a gust lasts up to 600 s and peaks at 0-" + std::to_string(static_cast<int>(kMaxGust_mps)) +
-               " m/s over the mean";
+      if (!(c.gust.duration_s > 0.0 && c.gust.duration_s <= kMaxGustDuration_s &&
+            c.gust.amplitude_mps > 0.0 && c.gust.amplitude_mps <= kMaxGust_mps))
+        return "a gust lasts up to " + std::to_string(static_cast<int>(kMaxGustDuration_s)) +
+               " s and peaks at 0-" + std::to_string(static_cast<int>(kMaxGust_mps)) + " m/s over the mean";
       break;
     case Kind::kLandedSensorFault:
-      if (c.corner < 0 || c.corner > 3) return "a twistlock corner is 0-3";
+      if (c.corner < 0 || c.corner >= kTwistlockCorners) return "a twistlock corner is 0-3";
       break;
     case Kind::kSetWind:
       if (!(c.wind_mean_mps >= 0.0 && c.wind_mean_mps <= kMaxMeanWind_mps && c.turbulence >= 0.0 &&
@@ -160,13 +160,13 @@ std::string why_invalid(const InstructorCommand& c) {
                " m/s from 0-360 deg, turbulence intensity 0-1";
       break;
     case Kind::kSetVisibility:
-      if (!(c.value > 0.0 && c.value <= 1e5)) return "visibility 0-100 km";
+      if (!(c.value > 0.0 && c.value <= kMaxVisibility_m)) return "visibility 0-100 km";
       break;
     case Kind::kSetRain:
-      if (!(c.value >= 0.0 && c.value <= 500.0)) return "rain 0-500 mm/h";
+      if (!(c.value >= 0.0 && c.value <= kMaxRain_mm_per_h)) return "rain 0-500 mm/h";
       break;
     case Kind::kSetTimeOfDay:
-      if (!(c.value >= 0.0 && c.value < 24.0)) return "time of day 0-24 h";
+      if (!(c.value >= 0.0 && c.value < kHoursPerDay)) return "time of day 0-24 h";
       break;
     case Kind::kHoistBrakeFault:
     case Kind::kLimiterFault:

@@ -93,6 +93,13 @@ struct InstructorCommand {
   friend bool operator==(const InstructorCommand&, const InstructorCommand&) = default;
 };
 
+/// The ranges of an instructor command's values (why_invalid keeps them; the command table shows them).
+inline constexpr double kMaxGustDuration_s = 600.0;
+inline constexpr double kMaxVisibility_m = 1e5;
+inline constexpr double kMaxRain_mm_per_h = 500.0;
+inline constexpr double kHoursPerDay = 24.0;
+inline constexpr int kTwistlockCorners = 4;
+
 /// Why a command's values are out of range ("" when they are not).
 std::string why_invalid(const InstructorCommand& command);
 

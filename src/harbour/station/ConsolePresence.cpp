@@ -137,6 +137,10 @@ bool AttemptPresence::apply(const net::StationCommand& command, std::string& ans
     answer = "already running " + exercise_.name + ": stop it first";
     return false;
   }
+  if (const std::string refused = io::why_refused(kind); !refused.empty()) {
+    answer = refused;  // not the table's, or a value out of its range: nothing done
+    return false;
+  }
   if (kind == "stop" || kind == "reset") {
     next = kind == "stop" ? Next::kStop : Next::kReset;
     answer = kind == "stop" ? "stopping: with goals left the attempt is stored as ended by the instructor"
@@ -173,10 +177,6 @@ bool AttemptPresence::apply_sound(const std::string& kind, std::string& answer) 
   }
   if (kind.starts_with("radio:")) {
     const std::string text = kind.substr(std::string("radio:").size());
-    if (text.find_first_not_of(' ') == std::string::npos) {
-      answer = "radio:WORDS";
-      return false;
-    }
     try {
       sound_->say(text);
     } catch (const audio::AudioError& e) {
@@ -191,13 +191,8 @@ bool AttemptPresence::apply_sound(const std::string& kind, std::string& answer) 
     answer = kind == "mute" ? "done: sound muted" : "done: sound on";
     return true;
   }
-  const std::string percent = kind.substr(std::string("volume:").size());
-  char* end = nullptr;
-  const double value = std::strtod(percent.c_str(), &end);
-  if (percent.empty() || *end != '\0' || !(value >= 0.0 && value <= 200.0)) {
-    answer = "volume:PERCENT, 0 to 200";
-    return false;
-  }
+  const double value =
+      std::strtod(kind.c_str() + std::string("volume:").size(), nullptr);  // in range, checked
   sound_->set_volume(value / 100.0);
   answer = "done: volume " + std::to_string(static_cast<int>(std::lround(value))) + " %" +
            (sound_->muted() ? " (muted)" : "");
