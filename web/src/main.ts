@@ -2,25 +2,12 @@
 // follow its events, manage trainees and open results. Talks to `harboursim console` only (same origin).
 import uPlot from "uplot";
 import { parseDocument } from "yaml";
-import { View3D, type BulkMessage, type Looks, type SceneMessage, type ViewState } from "./view3d";
+import { View3D, type BulkMessage, type Looks, type SceneMessage } from "./view3d";
 import { DesignerForms, setEventLabels } from "./designer";
 import { RouteEditor } from "./routeEditor";
 import { TelemetryPlots } from "./telemetry";
 
-interface Me { name: string; role: string; trainee: string; csrf: string; }
-interface Station {
-  station: string; state: string; machine: string; exercise: string; trainee: string; attempt: number;
-  time_s: number; time_limit_s: number; real_time_factor: number; late_ticks: number; skipped_ticks: number;
-  keeping_real_time: boolean; devices_missing: number; physics_warnings: number; diverged: boolean;
-  score: number; moves_done: number; moves_total: number; collisions: number; message: string;
-  team: string; role: string;  // a team session's member ("" when alone)
-}
-interface StateMessage extends ViewState {
-  type: "state"; station: string; time_s: number; held: boolean; wind_mps: number[];
-  indicators: Record<string, number>;
-  checkpoint_mismatch?: boolean;  // a replay's: it no longer reproduces its recording
-}
-interface EventMessage { type: "event"; station: string; time_s: number; kind: string; value: number; text: string; words: string; }
+import type { CommandInfo, EventMessage, ExerciseCard, LiveMessage, Me, PictureMessage, StateMessage, Station } from "./wire";
 
 const $ = <T extends HTMLElement>(id: string) => document.getElementById(id) as T;
 let me: Me | null = null;
@@ -219,7 +206,7 @@ function drawFrame() {
 }
 
 // the trainee's cab view as the station draws it, a few times a second
-function showPicture(m: { station: string; time_s: number; width: number; height: number; jpeg: string }) {
+function showPicture(m: PictureMessage) {
   if (m.station !== selected) return;
   const img = $<HTMLImageElement>("cab-picture");
   img.src = `data:image/jpeg;base64,${m.jpeg}`;
@@ -246,15 +233,15 @@ function showEvent(e: EventMessage) {
 function connect() {
   socket = new WebSocket(`${location.protocol === "https:" ? "wss" : "ws"}://${location.host}/api/live`);
   socket.onmessage = (message) => {
-    const m = JSON.parse(message.data);
+    const m = JSON.parse(message.data) as LiveMessage;
     if (m.type === "stations") showStations(m.stations);
     else if (m.type === "state") keepState(m);
     else if (m.type === "scene") {
-      machineOf.set(m.station, (m as SceneMessage).machine ?? "");
-      if (m.station === selected) view?.setScene(m as SceneMessage);
+      machineOf.set(m.station, m.machine);
+      if (m.station === selected) view?.setScene(m);
     }
     else if (m.type === "bulk") {
-      if (m.station === selected && viewOn() && view) { view.setBulk(m as BulkMessage); $("view3d").dataset.bulk = String(view.bulkQuadsDrawn()); }
+      if (m.station === selected && viewOn() && view) { view.setBulk(m); $("view3d").dataset.bulk = String(view.bulkQuadsDrawn()); }
     }
     else if (m.type === "event") showEvent(m);
     else if (m.type === "picture") showPicture(m);
@@ -511,9 +498,6 @@ async function loadRecords() {
 // The commands an instructor gives a station, from the console's table (names, labels, values with ranges):
 // every command but the session's (drawn with its exercise, trainee, route and team fields) gets its button here,
 // with a field for each value it takes.
-interface CommandValue { what: string; unit: string; min: number; max: number; initial: number; step: number;
-  above_min: boolean; below_max: boolean; words: boolean; }
-interface CommandInfo { name: string; label: string; group: string; file_name: string; values: CommandValue[]; }
 let commandTable: CommandInfo[] = [];
 const COMMAND_ROWS: Record<string, string> = { weather: "commands-weather", fault: "commands-fault",
   stop: "commands-fault", restart: "commands-fault", sound: "commands-sound" };
@@ -558,8 +542,6 @@ function drawCommands(commands: CommandInfo[]) {
 }
 
 // The exercises as people pick them: by title, grouped by machine, with what each asks of the trainee.
-interface ExerciseCard { name: string; machine: string; machine_title: string; faults: string[]; title?: string;
-  objective?: string; difficulty?: string; expected_min?: number; error?: string }
 let exerciseCards: ExerciseCard[] = [];
 // a route stage's, a team's or a team role's id in words ("single_lift": "single lift")
 const stageWords = (id: string) => id.replace(/_/g, " ");

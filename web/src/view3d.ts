@@ -5,29 +5,8 @@
 import * as THREE from "three";
 import { OrbitControls } from "three/examples/jsm/controls/OrbitControls.js";
 
-interface Part {
-  shape: "box" | "lattice" | "container" | "tyre" | "shell" | "hull" | "mesh"; size_m: number[] | null; at_m: number[]; color: number[];
-  livery: boolean; bay_m: number; member_m: number;
-}
-interface Scenery { shape: "box" | "cylinder"; at_m: number[]; size_m: number[]; color: number[]; repeat: number; step_m: number[]; }
-/** A line of the trainee's HUD (the looks' `hud`): an indicator as the cab shows it. */
-export interface HudItem { indicator: string; label: string; unit: string; decimals: number; lamp: boolean; scale: number;
-  words: string[]; words_from: number; shown_while: string; machines: string[]; except: string[]; }
-export interface Looks { visuals: Record<string, { parts: Part[]; liveries: number[][] }>; scenery: Scenery[];
-  hud: HudItem[]; }
-export interface SceneMessage {
-  station: string; attempt: number; machine: string;
-  entities: { name: string; visual: string; half_m: number[] }[];
-}
-/** A station's bulk material: each grid's samples (nx by ny, step_m apart), its pose (corner, quaternion) and
- * the heights above its floor, row by row. */
-export interface BulkMessage {
-  attempt: number; grids: { nx: number; ny: number; step_m: number; pose: number[]; heights: number[] }[];
-}
-export interface ViewState {
-  attempt: number; water_level_m?: number; poses?: number[]; ropes?: { counts: number[]; points: number[] };
-  time_of_day_h?: number; visibility_m?: number; rain_mm_per_h?: number;
-}
+import type { BulkMessage, Looks, SceneMessage, ViewState } from "./wire";
+export type { BulkMessage, HudItem, Looks, SceneMessage, ViewState } from "./wire";
 
 /** The weather as the view shows it: the sky's colour by the time of day (day, dusk, night), greyed by rain
  * cloud and fog as the image generator greys it; the light by day and cloud; fog by the visibility. */

@@ -1,6 +1,7 @@
 // The console's API on its error paths, two consoles commanding one station, and a station process killed
 // mid-exercise (lost, its attempt stored). Usage: node console_api.mjs HARBOURSIM DOMAIN
 import { Harness, sleep, webSocket, frame } from "./harness.mjs";
+import { MESSAGE_OF_TYPE, wireErrors } from "./wire.mjs";
 import { randomBytes } from "node:crypto";
 import { mkdtempSync } from "node:fs";
 import { tmpdir } from "node:os";
@@ -311,6 +312,10 @@ try {
   check(staged?.route === "sts_basic" && staged?.stage === "deck_discharge" && staged?.exercise === "sts_bay12_deck",
     `its attempt is stored for the route's stage (${staged?.route}/${staged?.stage}, ${staged?.exercise})`);
 
+  // what the console sends is what schema/wire.json (the browser's types) says: its replies, and every live
+  // message of a running station watched with its 3D view
+  const watching = await webSocket(portB, whoB.cookie);
+  watching.socket.write(frame(JSON.stringify({ type: "subscribe", station: "api-1", view: true })));
   const started = await b("api/stations/api-1/command", "POST", { kind: "start", exercise: "sts_discharge", trainee: "carl", autopilot: true });
   check(started.status === 200, `console B starts the exercise: ${started.data?.message}`);
   await until("it runs", async () => (await c("api/stations")).data?.find((s) => s.station === "api-1")?.state === "running");
@@ -321,6 +326,17 @@ try {
   check(again.status === 409, `a second start while running: 409 (${again.data?.message})`);
   await b("api/stations/api-1/command", "POST", { kind: "resume" });
   await sleep(3000);
+  await until("the watched station's state, scene and events have come", () =>
+    ["stations", "subscribed", "state", "scene", "event"].every((t) => watching.messages.some((m) => m.type === t)));
+  const wrong = [];
+  for (const m of watching.messages) wrong.push(...(MESSAGE_OF_TYPE[m.type] ? wireErrors(m, MESSAGE_OF_TYPE[m.type]) : [`a message of type ${m.type}`]));
+  for (const [reply, name] of [[await b("api/me"), "Me"], [await b("api/commands"), "CommandTable"], [await b("api/looks"), "Looks"]])
+    wrong.push(...wireErrors(reply.data, name));
+  for (const [path, name] of [["api/stations", "Station"], ["api/exercises", "ExerciseCard"]])
+    for (const item of (await b(path)).data) wrong.push(...wireErrors(item, name));
+  check(wrong.length === 0 && wireErrors({ type: "event", station: "x" }, "EventMessage").length > 0,
+    `the console's ${watching.messages.length} live messages and its replies are as the schema says${wrong.length ? `: ${[...new Set(wrong)].slice(0, 8).join("; ")}` : ""}`);
+  watching.socket.destroy();
 
   // the station's process killed mid-exercise: lost at the console, its attempt stored so far
   station.kill("SIGKILL");

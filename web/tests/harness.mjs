@@ -85,10 +85,15 @@ export function webSocket(port, cookie) {
         if (length === 126) { if (ws.buffer.length < 4) break; length = ws.buffer.readUInt16BE(2); at = 4; }
         else if (length === 127) { if (ws.buffer.length < 10) break; length = Number(ws.buffer.readBigUInt64BE(2)); at = 10; }
         if (ws.buffer.length < at + length) break;
-        const opcode = ws.buffer[0] & 15;
+        const opcode = ws.buffer[0] & 15, fin = (ws.buffer[0] & 128) !== 0;
         const payload = ws.buffer.subarray(at, at + length);
         ws.buffer = ws.buffer.subarray(at + length);
-        if (opcode === 1) ws.messages.push(JSON.parse(payload.toString()));
+        // a text message may come in fragments (a first frame, continuations, the last with FIN)
+        if (opcode === 1 || (opcode === 0 && ws.fragments)) ws.fragments = [...(opcode === 1 ? [] : ws.fragments), payload];
+        if ((opcode === 1 || opcode === 0) && fin && ws.fragments) {
+          ws.messages.push(JSON.parse(Buffer.concat(ws.fragments).toString()));
+          ws.fragments = null;
+        }
         if (opcode === 8) ws.closeCode = payload.length >= 2 ? payload.readUInt16BE(0) : 0;
       }
     });
