@@ -121,7 +121,7 @@ struct PhysicsWorld::Ode {
   // the joint an attachment's record describes, made between its bodies (at their poses of the moment)
   dJointID make_joint(const Attachment& a) const {
     dJointID j = a.pivot ? dJointCreateBall(world, nullptr) : dJointCreateFixed(world, nullptr);
-    dJointAttach(j, bodies[a.a].id, bodies[a.b].id);
+    dJointAttach(j, bodies[a.a.index].id, bodies[a.b.index].id);
     if (a.pivot)
       dJointSetBallAnchor(j, a.anchor.x, a.anchor.y, a.anchor.z);
     else
@@ -176,22 +176,24 @@ struct PhysicsWorld::Ode {
   using RawPose = std::array<double, 19>;  // position, quaternion, rotation matrix (ODE's 3x4)
   RawPose raw_pose(BodyId b) const {
     RawPose pose;
-    std::memcpy(pose.data(), dBodyGetPosition(bodies[b].id), 3 * sizeof(dReal));
-    std::memcpy(pose.data() + 3, dBodyGetQuaternion(bodies[b].id), 4 * sizeof(dReal));
-    std::memcpy(pose.data() + 7, dBodyGetRotation(bodies[b].id), 12 * sizeof(dReal));
+    std::memcpy(pose.data(), dBodyGetPosition(bodies[b.index].id), 3 * sizeof(dReal));
+    std::memcpy(pose.data() + 3, dBodyGetQuaternion(bodies[b.index].id), 4 * sizeof(dReal));
+    std::memcpy(pose.data() + 7, dBodyGetRotation(bodies[b.index].id), 12 * sizeof(dReal));
     return pose;
   }
   // Exact restore: dBodySetQuaternion renormalises (measured: the last bit changes in 2 of 5 steps), so the
   // saved quaternion and matrix are copied into the body's own storage, which ODE 0.16's getters return;
   // dBodySetPosition then moves the body's shapes.
   void set_raw_pose(BodyId b, const RawPose& pose) const {
-    std::memcpy(const_cast<dReal*>(dBodyGetQuaternion(bodies[b].id)), pose.data() + 3, 4 * sizeof(dReal));
-    std::memcpy(const_cast<dReal*>(dBodyGetRotation(bodies[b].id)), pose.data() + 7, 12 * sizeof(dReal));
-    dBodySetPosition(bodies[b].id, pose[0], pose[1], pose[2]);
+    std::memcpy(const_cast<dReal*>(dBodyGetQuaternion(bodies[b.index].id)), pose.data() + 3,
+                4 * sizeof(dReal));
+    std::memcpy(const_cast<dReal*>(dBodyGetRotation(bodies[b.index].id)), pose.data() + 7,
+                12 * sizeof(dReal));
+    dBodySetPosition(bodies[b.index].id, pose[0], pose[1], pose[2]);
   }
   // the shape centre's offset from the centre of mass, world frame
   Vec3 world_offset(BodyId b) const {
-    return to_mat(dBodyGetRotation(bodies[b].id)) * bodies[b].shape_offset;
+    return to_mat(dBodyGetRotation(bodies[b.index].id)) * bodies[b.index].shape_offset;
   }
 };
 
@@ -254,9 +256,9 @@ BodyId PhysicsWorld::add_box(const BoxSettings& box) {
   to_ode(box.pose.rotation, r);
   dBodySetRotation(b, r);
   ode_->bodies.push_back({b, box.center_of_mass_m * -1.0});
-  const BodyId id = static_cast<BodyId>(ode_->bodies.size()) - 1;
+  const BodyId id{static_cast<int>(ode_->bodies.size()) - 1};
   if (box.kinematic) dBodySetKinematic(b);
-  dBodySetData(b, reinterpret_cast<void*>(static_cast<std::intptr_t>(id)));
+  dBodySetData(b, reinterpret_cast<void*>(static_cast<std::intptr_t>(id.index)));
   if (box.collides) {
     dGeomID g = dCreateBox(ode_->space, size.x, size.y, size.z);
     dGeomSetBody(g, b);
@@ -277,15 +279,15 @@ BodyId PhysicsWorld::add_kinematic_body(const core::Pose& pose) {
   dSpaceID shapes = dSimpleSpaceCreate(ode_->space);
   dSpaceSetCleanup(shapes, 1);
   ode_->bodies.push_back({b, {}, shapes});
-  const BodyId id = static_cast<BodyId>(ode_->bodies.size()) - 1;
-  dBodySetData(b, reinterpret_cast<void*>(static_cast<std::intptr_t>(id)));
+  const BodyId id{static_cast<int>(ode_->bodies.size()) - 1};
+  dBodySetData(b, reinterpret_cast<void*>(static_cast<std::intptr_t>(id.index)));
   return id;
 }
 
 ShapeId PhysicsWorld::add_box_shape(BodyId body, const Vec3& half_extents_m, const core::Pose& local,
                                     int surface) {
   const dSpaceID space =
-      body != kWorld && ode_->bodies[body].shapes ? ode_->bodies[body].shapes : ode_->space;
+      body != kWorld && ode_->bodies[body.index].shapes ? ode_->bodies[body.index].shapes : ode_->space;
   dGeomID g = dCreateBox(space, 2 * half_extents_m.x, 2 * half_extents_m.y, 2 * half_extents_m.z);
   dMatrix3 r;
   to_ode(local.rotation, r);
@@ -293,8 +295,8 @@ ShapeId PhysicsWorld::add_box_shape(BodyId body, const Vec3& half_extents_m, con
     dGeomSetPosition(g, local.position.x, local.position.y, local.position.z);
     dGeomSetRotation(g, r);
   } else {
-    dGeomSetBody(g, ode_->bodies[body].id);
-    const Vec3 at = local.position + ode_->bodies[body].shape_offset;
+    dGeomSetBody(g, ode_->bodies[body.index].id);
+    const Vec3 at = local.position + ode_->bodies[body.index].shape_offset;
     dGeomSetOffsetPosition(g, at.x, at.y, at.z);
     dGeomSetOffsetRotation(g, r);
   }
@@ -306,7 +308,7 @@ void PhysicsWorld::set_box_shape(ShapeId shape, const Vec3& half_extents_m, cons
   dGeomBoxSetLengths(s.id, 2 * half_extents_m.x, 2 * half_extents_m.y, 2 * half_extents_m.z);
   dMatrix3 r;
   to_ode(local.rotation, r);
-  const Vec3 at = local.position + ode_->bodies[s.body].shape_offset;
+  const Vec3 at = local.position + ode_->bodies[s.body.index].shape_offset;
   dGeomSetOffsetPosition(s.id, at.x, at.y, at.z);
   dGeomSetOffsetRotation(s.id, r);
 }
@@ -330,14 +332,14 @@ void PhysicsWorld::add_static_box(const Vec3& half_extents_m, const core::Pose& 
 
 void PhysicsWorld::set_kinematic(BodyId body, bool kinematic) {
   if (kinematic) {
-    dBodySetKinematic(ode_->bodies[body].id);
+    dBodySetKinematic(ode_->bodies[body.index].id);
   } else {
-    dBodySetDynamic(ode_->bodies[body].id);
+    dBodySetDynamic(ode_->bodies[body.index].id);
   }
 }
 
 void PhysicsWorld::set_box_mass(BodyId body, double mass_kg, const Vec3& half_extents_m) {
-  dBodyID b = ode_->bodies[body].id;
+  dBodyID b = ode_->bodies[body.index].id;
   const bool kinematic = dBodyIsKinematic(b) != 0;
   dMass mass;
   const Vec3 size = half_extents_m * 2.0;
@@ -347,12 +349,12 @@ void PhysicsWorld::set_box_mass(BodyId body, double mass_kg, const Vec3& half_ex
 }
 
 bool PhysicsWorld::is_kinematic(BodyId body) const {
-  return dBodyIsKinematic(ode_->bodies[body].id) != 0;
+  return dBodyIsKinematic(ode_->bodies[body.index].id) != 0;
 }
 
 void PhysicsWorld::set_kinematic_motion(BodyId body, const core::Pose& pose, const Vec3& velocity,
                                         const Vec3& angular_velocity) {
-  dBodyID b = ode_->bodies[body].id;
+  dBodyID b = ode_->bodies[body.index].id;
   dBodySetPosition(b, pose.position.x, pose.position.y, pose.position.z);
   dMatrix3 r;
   to_ode(pose.rotation, r);
@@ -391,9 +393,9 @@ SliderId PhysicsWorld::add_slider(BodyId a, BodyId b, const Vec3& axis) {
   // (a, b) attachment is the numerically stable one (measured: (b, a) diverged under the STS trolley), so the
   // adapter flips its sign: our position and motor speed are b relative to a along +axis.
   if (a == kWorld) {
-    dJointAttach(j, ode_->bodies[b].id, nullptr);
+    dJointAttach(j, ode_->bodies[b.index].id, nullptr);
   } else {
-    dJointAttach(j, ode_->bodies[a].id, ode_->bodies[b].id);
+    dJointAttach(j, ode_->bodies[a.index].id, ode_->bodies[b.index].id);
   }
   dJointSetSliderAxis(j, axis.x, axis.y, axis.z);
   ode_->slider_sign.push_back(a == kWorld ? 1.0 : -1.0);
@@ -429,7 +431,7 @@ double PhysicsWorld::slider_force(SliderId slider) const {
 HingeId PhysicsWorld::add_hinge(BodyId a, BodyId b, const Vec3& anchor_m, const Vec3& axis) {
   dJointID j = dJointCreateHinge(ode_->world, nullptr);
   // b is ODE's body 1, so ODE's angle and rate are b relative to a directly
-  dJointAttach(j, ode_->bodies[b].id, a == kWorld ? nullptr : ode_->bodies[a].id);
+  dJointAttach(j, ode_->bodies[b.index].id, a == kWorld ? nullptr : ode_->bodies[a.index].id);
   dJointSetHingeAnchor(j, anchor_m.x, anchor_m.y, anchor_m.z);  // world coordinates
   dJointSetHingeAxis(j, axis.x, axis.y, axis.z);
   dJointSetFeedback(j, &ode_->hinge_feedback.emplace_back());
@@ -453,7 +455,7 @@ double PhysicsWorld::hinge_rate(HingeId hinge) const {
 PhysicsWorld::Wrench PhysicsWorld::hinge_reaction(HingeId hinge, const Vec3& about_m) const {
   const Ode::Hinge& h = ode_->hinges[static_cast<std::size_t>(hinge.index)];
   const dJointFeedback& f = ode_->hinge_feedback[static_cast<std::size_t>(hinge.index)];
-  const Vec3 com = to_vec(dBodyGetPosition(ode_->bodies[h.body].id));
+  const Vec3 com = to_vec(dBodyGetPosition(ode_->bodies[h.body.index].id));
   const Vec3 force = to_vec(f.f1);
   return {force, to_vec(f.t1) + cross(com - about_m, force)};
 }
@@ -474,7 +476,7 @@ double PhysicsWorld::hinge_torque(HingeId hinge) const {
   const dJointFeedback& f = ode_->hinge_feedback[static_cast<std::size_t>(hinge.index)];
   dVector3 anchor;
   dJointGetHingeAnchor(h.id, anchor);
-  const Vec3 com = to_vec(dBodyGetPosition(ode_->bodies[h.body].id));
+  const Vec3 com = to_vec(dBodyGetPosition(ode_->bodies[h.body.index].id));
   dVector3 axis;
   dJointGetHingeAxis(h.id, axis);
   const Vec3 about_anchor = to_vec(f.t1) - cross(to_vec(anchor) - com, to_vec(f.f1));
@@ -482,16 +484,16 @@ double PhysicsWorld::hinge_torque(HingeId hinge) const {
 }
 
 core::Pose PhysicsWorld::pose(BodyId body) const {
-  const dBodyID b = ode_->bodies[body].id;
+  const dBodyID b = ode_->bodies[body.index].id;
   return {to_mat(dBodyGetRotation(b)), to_vec(dBodyGetPosition(b)) + ode_->world_offset(body)};
 }
 Vec3 PhysicsWorld::linear_velocity(BodyId body) const {
-  const dBodyID b = ode_->bodies[body].id;
+  const dBodyID b = ode_->bodies[body.index].id;
   return to_vec(dBodyGetLinearVel(b)) + cross(to_vec(dBodyGetAngularVel(b)), ode_->world_offset(body));
 }
 Vec3 PhysicsWorld::angular_velocity(BodyId body) const {
   if (body == kWorld) return {};
-  return to_vec(dBodyGetAngularVel(ode_->bodies[body].id));
+  return to_vec(dBodyGetAngularVel(ode_->bodies[body.index].id));
 }
 
 double PhysicsWorld::kinetic_energy_j() const {
@@ -515,34 +517,34 @@ double PhysicsWorld::kinetic_energy_j() const {
 
 double PhysicsWorld::mass_kg(BodyId body) const {
   dMass m;
-  dBodyGetMass(ode_->bodies[body].id, &m);
+  dBodyGetMass(ode_->bodies[body.index].id, &m);
   return m.mass;
 }
 
 Vec3 PhysicsWorld::point_position(BodyId body, const Vec3& local) const {
   if (body == kWorld) return local;
-  const Vec3 at = local + ode_->bodies[body].shape_offset;
+  const Vec3 at = local + ode_->bodies[body.index].shape_offset;
   dVector3 out;
-  dBodyGetRelPointPos(ode_->bodies[body].id, at.x, at.y, at.z, out);
+  dBodyGetRelPointPos(ode_->bodies[body.index].id, at.x, at.y, at.z, out);
   return to_vec(out);
 }
 
 Vec3 PhysicsWorld::point_velocity(BodyId body, const Vec3& local) const {
   if (body == kWorld) return {};
-  const Vec3 at = local + ode_->bodies[body].shape_offset;
+  const Vec3 at = local + ode_->bodies[body.index].shape_offset;
   dVector3 out;
-  dBodyGetRelPointVel(ode_->bodies[body].id, at.x, at.y, at.z, out);
+  dBodyGetRelPointVel(ode_->bodies[body.index].id, at.x, at.y, at.z, out);
   return to_vec(out);
 }
 
 void PhysicsWorld::add_force_at(BodyId body, const Vec3& p, const Vec3& f) {
   if (body == kWorld) return;
-  dBodyAddForceAtPos(ode_->bodies[body].id, f.x, f.y, f.z, p.x, p.y, p.z);
+  dBodyAddForceAtPos(ode_->bodies[body.index].id, f.x, f.y, f.z, p.x, p.y, p.z);
 }
 
 void PhysicsWorld::add_torque(BodyId body, const Vec3& t) {
   if (body == kWorld) return;
-  dBodyAddTorque(ode_->bodies[body].id, t.x, t.y, t.z);
+  dBodyAddTorque(ode_->bodies[body.index].id, t.x, t.y, t.z);
 }
 
 void PhysicsWorld::hold_point(BodyId body, const Vec3& world_point, const Vec3& normal, const Vec3& along,
@@ -560,26 +562,26 @@ void PhysicsWorld::hold_point(BodyId body, const Vec3& world_point, const Vec3& 
   c.geom.normal[0] = normal.x, c.geom.normal[1] = normal.y, c.geom.normal[2] = normal.z;
   c.geom.depth = 0.0;
   c.fdir1[0] = along.x, c.fdir1[1] = along.y, c.fdir1[2] = along.z;
-  ode_->holds.emplace_back(ode_->bodies[body].id, c);
+  ode_->holds.emplace_back(ode_->bodies[body.index].id, c);
 }
 
 void PhysicsWorld::set_position(BodyId body, const Vec3& p) {
   const Vec3 com = p - ode_->world_offset(body);
-  dBodySetPosition(ode_->bodies[body].id, com.x, com.y, com.z);
+  dBodySetPosition(ode_->bodies[body.index].id, com.x, com.y, com.z);
 }
 void PhysicsWorld::stop_body(BodyId body) {
-  dBodySetLinearVel(ode_->bodies[body].id, 0.0, 0.0, 0.0);
-  dBodySetAngularVel(ode_->bodies[body].id, 0.0, 0.0, 0.0);
+  dBodySetLinearVel(ode_->bodies[body.index].id, 0.0, 0.0, 0.0);
+  dBodySetAngularVel(ode_->bodies[body.index].id, 0.0, 0.0, 0.0);
 }
 
 void PhysicsWorld::set_linear_velocity(BodyId body, const Vec3& v) {
-  const dBodyID b = ode_->bodies[body].id;
+  const dBodyID b = ode_->bodies[body.index].id;
   const Vec3 com = v - cross(to_vec(dBodyGetAngularVel(b)), ode_->world_offset(body));
   dBodySetLinearVel(b, com.x, com.y, com.z);
 }
 
 void PhysicsWorld::exclude_contacts(BodyId a, BodyId b) {
-  ode_->excluded.emplace_back(ode_->bodies[a].id, ode_->bodies[b].id);
+  ode_->excluded.emplace_back(ode_->bodies[a.index].id, ode_->bodies[b.index].id);
 }
 
 void PhysicsWorld::collide() {
@@ -629,8 +631,8 @@ void PhysicsWorld::collide() {
     Ode::PendingContact& p = ode_->pending[i];
     const Ode::Shape& s1 = ode_->shapes[static_cast<std::size_t>(p.shape1)];
     const Ode::Shape& s2 = ode_->shapes[static_cast<std::size_t>(p.shape2)];
-    const TouchKey key{s1.body == kWorld ? -2 - p.shape1 : s1.body, s1.surface,
-                       s2.body == kWorld ? -2 - p.shape2 : s2.body, s2.surface};
+    const TouchKey key{s1.body == kWorld ? -2 - p.shape1 : s1.body.index, s1.surface,
+                       s2.body == kWorld ? -2 - p.shape2 : s2.body.index, s2.surface};
     const bool same_as_previous =
         i > 0 && ode_->pending[i - 1].shape1 == p.shape1 && ode_->pending[i - 1].shape2 == p.shape2;
     if (!same_as_previous) {
@@ -640,8 +642,10 @@ void PhysicsWorld::collide() {
       if (!known || step_count_ - last->second > rearm) {
         const dContactGeom& g = p.contact.geom;
         dVector3 v1{0, 0, 0, 0}, v2{0, 0, 0, 0};
-        if (s1.body != kWorld) dBodyGetPointVel(ode_->bodies[s1.body].id, g.pos[0], g.pos[1], g.pos[2], v1);
-        if (s2.body != kWorld) dBodyGetPointVel(ode_->bodies[s2.body].id, g.pos[0], g.pos[1], g.pos[2], v2);
+        if (s1.body != kWorld)
+          dBodyGetPointVel(ode_->bodies[s1.body.index].id, g.pos[0], g.pos[1], g.pos[2], v1);
+        if (s2.body != kWorld)
+          dBodyGetPointVel(ode_->bodies[s2.body.index].id, g.pos[0], g.pos[1], g.pos[2], v2);
         const double closing = std::abs((v1[0] - v2[0]) * g.normal[0] + (v1[1] - v2[1]) * g.normal[1] +
                                         (v1[2] - v2[2]) * g.normal[2]);
         ImpactEvent e{s1.body, s2.body, s1.surface, s2.surface, closing, 0.0, {g.pos[0], g.pos[1], g.pos[2]}};
@@ -810,7 +814,7 @@ void PhysicsWorld::save_state(core::StateWriter& out) const {
   out.section(kPhysicsSection);
   std::vector<double> bodies;
   for (std::size_t b = 0; b < ode_->bodies.size(); ++b) {
-    const auto pose = ode_->raw_pose(static_cast<BodyId>(b));
+    const auto pose = ode_->raw_pose(BodyId{static_cast<int>(b)});
     bodies.insert(bodies.end(), pose.begin(), pose.end());
     const dReal* v = dBodyGetLinearVel(ode_->bodies[b].id);
     const dReal* w = dBodyGetAngularVel(ode_->bodies[b].id);
@@ -862,8 +866,8 @@ void PhysicsWorld::restore_state(core::StateReader& in) {
       const auto anchor = in.get<std::array<double, 3>>();
       a.anchor = {anchor[0], anchor[1], anchor[2]};
     }
-    const auto count = static_cast<BodyId>(ode_->bodies.size());
-    if (a.a < 0 || a.a >= count || a.b < 0 || a.b >= count)
+    const auto count = static_cast<int>(ode_->bodies.size());
+    if (!a.a.valid() || a.a.index >= count || !a.b.valid() || a.b.index >= count)
       throw core::StateError("saved state attaches a body this simulation does not have");
     if (active) {
       ode_->set_raw_pose(a.a, a.pose_a);
@@ -876,10 +880,10 @@ void PhysicsWorld::restore_state(core::StateReader& in) {
     const double* v = &bodies[kPerBody * b];
     Ode::RawPose pose;
     std::copy(v, v + 19, pose.begin());
-    ode_->set_raw_pose(static_cast<BodyId>(b), pose);
+    ode_->set_raw_pose(BodyId{static_cast<int>(b)}, pose);
     dBodySetLinearVel(ode_->bodies[b].id, v[19], v[20], v[21]);
     dBodySetAngularVel(ode_->bodies[b].id, v[22], v[23], v[24]);
-    set_kinematic(static_cast<BodyId>(b), v[25] != 0.0);
+    set_kinematic(BodyId{static_cast<int>(b)}, v[25] != 0.0);
   }
   std::vector<Touch> touches;
   in.get(touches);

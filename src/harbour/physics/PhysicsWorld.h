@@ -14,19 +14,19 @@
 
 namespace harbour::physics {
 
-/// Index of a rigid body in a PhysicsWorld; -1 stands for the fixed world.
-using BodyId = int;
-inline constexpr BodyId kWorld = -1;
-
-/// The index of one kind of thing a PhysicsWorld hands out (a body's collision shape, a slider, a hinge, an
-/// attachment): a type of its own per kind, so a hinge's cannot be passed where a slider's is meant. -1:
-/// none. Its bytes are its index's (saved states hold it as they held the index).
+/// The index of one kind of thing a PhysicsWorld hands out (a rigid body, a body's collision shape, a slider,
+/// a hinge, an attachment): a type of its own per kind, so a hinge's cannot be passed where a slider's is
+/// meant, nor a body where a number is. -1: none (for a body, the fixed world). Its bytes are its index's
+/// (saved states hold it as they held the index).
 template <typename Kind>
 struct Handle {
   int index = -1;
   constexpr bool valid() const { return index >= 0; }
   friend constexpr bool operator==(Handle, Handle) = default;
+  friend constexpr auto operator<=>(Handle, Handle) = default;
 };
+using BodyId = Handle<struct BodyKind>;
+inline constexpr BodyId kWorld{};
 using ShapeId = Handle<struct ShapeKind>;
 using SliderId = Handle<struct SliderKind>;
 using HingeId = Handle<struct HingeKind>;

@@ -15,7 +15,7 @@ constexpr std::array<bool, 4> kUp{false, false, false, false}, kDown{true, true,
 struct Rig {
   physics::PhysicsWorld world{{}};
   SpreaderSettings settings;
-  physics::BodyId body = -1;
+  physics::BodyId body = physics::kWorld;
   std::unique_ptr<Spreader> spreader;
 
   Rig() {
