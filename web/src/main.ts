@@ -7,7 +7,8 @@ import { DesignerForms, setEventLabels } from "./designer";
 import { RouteEditor } from "./routeEditor";
 import { TelemetryPlots } from "./telemetry";
 
-import type { CommandInfo, EventMessage, ExerciseCard, LiveMessage, Me, PictureMessage, StateMessage, Station } from "./wire";
+import type { AttemptEvent, AttemptItem, CommandInfo, EventMessage, ExerciseCard, LiveMessage, Me, PictureMessage, ReplayInfo,
+  StateMessage, Station, Team } from "./wire";
 
 const $ = <T extends HTMLElement>(id: string) => document.getElementById(id) as T;
 let me: Me | null = null;
@@ -127,8 +128,6 @@ function showStations(stations: Station[]) {
     if (!seen.has(row.dataset.station!)) row.remove();
 }
 
-interface ReplayInfo { replay: number; station: string; attempt: number; exercise: string; trainee: string;
-  duration_s: number; exact: boolean; note: string; events: AttemptEvent[]; }
 let replay: ReplayInfo | null = null;
 
 function select(station: string) {
@@ -330,7 +329,6 @@ function hudText(indicators: Record<string, number>, machine: string): string {
 }
 
 // One attempt as a debrief: what it was, how it ended, what happened when, and its figures in words.
-interface AttemptEvent { at_s: number; kind: string; value: number; text: string }
 function showDebrief(d: { id: number; trainee: string; exercise: string; outcome: string; score: number | null;
   events: AttemptEvent[]; figures: { name: string; label: string; text: string; about: string }[];
   deductions: { reason: string; skill: string; count: number; points: number }[]; recording?: string } | null) {
@@ -404,9 +402,6 @@ function durationText(started: string, ended: string): string {
 
 // The results table: every attempt the account may see, filtered and sorted as the instructor asks (a
 // header's button sorts by it, again reverses), a row opening the attempt's debrief.
-interface AttemptItem { id: number; trainee: string; exercise: string; outcome: string; score: number | null; moves: number;
-  started_at: string; ended_at: string; autopilot: boolean; parent: number | null; exercise_version: string;
-  team?: string; team_role?: string; team_session?: string; }
 let attemptItems: AttemptItem[] = [];
 const attemptSort = { column: 0, descending: true };
 function attemptCells(a: AttemptItem): (string | number)[] {
@@ -761,7 +756,7 @@ async function loadClass() {
 }
 
 // The team sessions a station can join as one of their roles (its exercise then the role's).
-interface Team { name: string; roles?: { role: string; exercise: string }[]; error?: string }
+
 let teams: Team[] = [];
 async function loadTeams() {
   teams = (await api("/api/teams")).data ?? [];

@@ -5,6 +5,7 @@
 // Usage: node console_designer.mjs HARBOURSIM OUT_DIR DATA_DIR
 import { chromium } from "playwright-core";
 import { Harness } from "./harness.mjs";
+import { wireErrors } from "./wire.mjs";
 import { mkdtempSync, mkdirSync, readdirSync, readFileSync, existsSync, symlinkSync, writeFileSync } from "node:fs";
 import { tmpdir } from "node:os";
 import path from "node:path";
@@ -183,6 +184,7 @@ try {
   }, evolution.attempts[0].id);
   check(replay.status === 201 && replay.body.exercise_version === version,
     `the replay of eva's attempt opens on version ${replay.body.exercise_version ?? replay.body.error} (${version} ran)`);
+  check(wireErrors(replay.body, "ReplayInfo").length === 0, `the opened replay is as schema/wire.json says: ${wireErrors(replay.body, "ReplayInfo").join("; ")}`);
   // the command line replays it bit for bit on the kept version's file (it stands in versions/, beside the
   // centre's folder)
   const kept = path.join(exercises, "versions", `sts_long_discharge-${version}.yaml`);
