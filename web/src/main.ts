@@ -72,7 +72,13 @@ function showOutcome(s: Station) {
   panel.className = / passed,/.test(last[1]) ? "outcome-passed" : "outcome-other";
 }
 
+let idleStations: string[] = [];
 function showStations(stations: Station[]) {
+  const idle = stations.filter((s) => s.state === "idle").map((s) => s.station);
+  if (idle.join(" ") !== idleStations.join(" ")) {
+    idleStations = idle;
+    showTeamStart();
+  }
   const takeover = $<HTMLSelectElement>("takeover-station");
   const chosen = takeover.value;
   takeover.replaceChildren();
@@ -485,6 +491,7 @@ async function loadRecords() {
     for (const t of trainees.data ?? []) select.add(new Option(`${t.id} (${t.name})`, t.id));
     if ([...select.options].some((o) => o.value === kept)) select.value = kept;
   }
+  showTeamStart();  // its trainees' choices
   for (const id of ["exercise", "design-base"]) fillExerciseSelect($<HTMLSelectElement>(id));
   showExerciseAbout();
   await loadClass();
@@ -774,6 +781,57 @@ function showTeamRoles() {
   // a member runs its role's exercise: the exercise and the route are not chosen then
   $<HTMLSelectElement>("exercise").disabled = !!team;
   $<HTMLSelectElement>("start-route").disabled = !!team;
+  showTeamStart();
+}
+
+// The whole team started as one: a free station and a trainee for each role, one button. The choices made are
+// kept while the idle stations change.
+function showTeamStart() {
+  const team = teams.find((t) => t.name === $<HTMLSelectElement>("start-team").value);
+  const box = $("team-start");
+  const kept = new Map([...box.querySelectorAll<HTMLSelectElement>("select")].map((s) => [s.id, s.value]));
+  box.replaceChildren();
+  box.hidden = !team?.roles;
+  if (!team?.roles) return;
+  box.append("the whole team: ");
+  team.roles.forEach((r, k) => {
+    const station = document.createElement("select");
+    station.id = `team-start-station-${r.role}`;
+    station.setAttribute("aria-label", `${teamWords(r.role)}'s station`);
+    for (const s of idleStations) station.add(new Option(s, s));
+    const keptStation = kept.get(station.id);
+    station.value = idleStations.includes(keptStation ?? "") ? keptStation! : idleStations[k] ?? "";
+    const trainee = document.createElement("select");
+    trainee.id = `team-start-trainee-${r.role}`;
+    trainee.setAttribute("aria-label", `${teamWords(r.role)}'s trainee`);
+    for (const o of $<HTMLSelectElement>("trainee").options) trainee.add(new Option(o.text, o.value));
+    // the one chosen here before while it is still offered, else the panel's trainee
+    const keptTrainee = kept.get(trainee.id);
+    trainee.value = [...trainee.options].some((o) => o.value === keptTrainee) ? keptTrainee! : $<HTMLSelectElement>("trainee").value;
+    const role = document.createElement("span");
+    role.append(`${teamWords(r.role)} on `, station, " for ", trainee);
+    box.append(role, " ");
+  });
+  const go = document.createElement("button");
+  go.id = "team-start-go";
+  go.textContent = "Start the team";
+  go.disabled = idleStations.length < team.roles.length;
+  go.addEventListener("click", () => startTeam(team));
+  box.append(go);
+}
+async function startTeam(team: Team) {
+  const members = (team.roles ?? []).map((r) => ({ role: r.role,
+    station: $<HTMLSelectElement>(`team-start-station-${r.role}`).value,
+    trainee: $<HTMLSelectElement>(`team-start-trainee-${r.role}`).value }));
+  const result = $("command-result");
+  text(result, `team ${teamWords(team.name)} start…`);
+  const r = await api(`/api/teams/${encodeURIComponent(team.name)}/start`, "POST",
+    { members, autopilot: $<HTMLInputElement>("autopilot").checked });
+  result.className = r.status === 200 ? "" : "refused";
+  const each = (r.data?.stations ?? []).map((x: { station: string; ok: boolean; message: string }) =>
+    `${x.station} ${x.ok ? "done" : x.message}`).join(", ");
+  text(result, r.status === 200 ? `team ${teamWords(team.name)} started: ${each}` :
+    `team start refused (${r.status}): ${r.data?.error ?? each}`);
 }
 
 // The routes (the centre's and the shipped ones) wherever they are chosen.

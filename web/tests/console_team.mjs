@@ -107,6 +107,34 @@ try {
       rows.includes(`Park a mafi in its lane (tractor of ${session})`);
   }, 20);
   await page.locator("#attempts").screenshot({ path: path.join(out, "console_team_records.png") });
+
+  // the whole team started again as one: a free station and a trainee for each role, one button (the roles
+  // swapped between the stations this time)
+  await page.selectOption("#start-team", "sts_and_tractor");
+  await until("the team's start row offers both idle stations for each role", async () =>
+    (await page.locator("#team-start-station-crane option").count()) === 2 &&
+    (await page.locator("#team-start-station-tractor option").count()) === 2);
+  await page.selectOption("#team-start-station-crane", "tractor-cab");
+  await page.selectOption("#team-start-station-tractor", "crane-cab");
+  await page.check("#autopilot");
+  await page.locator("#control-panel").screenshot({ path: path.join(out, "console_team_start.png") });
+  await page.click("#team-start-go");
+  await until("the team starts as one", async () => /^team sts and tractor started: (crane-cab|tractor-cab) done, (crane-cab|tractor-cab) done$/
+    .test(await page.textContent("#command-result")), 30);
+  await until("each station runs the role chosen for it", async () =>
+    (await cell("tractor-cab", 4)) === "First discharge onto a truck (crane of team sts and tractor)" &&
+    (await cell("crane-cab", 4)) === "Park a mafi in its lane (tractor of team sts and tractor)", 60);
+  // started again while it runs: refused whole, naming the busy station, nothing sent
+  const again = await page.evaluate(async () => {
+    const me = await (await fetch("/api/me")).json();
+    const r = await fetch("/api/teams/sts_and_tractor/start", { method: "POST", headers: { "Content-Type": "application/json",
+      "X-CSRF-Token": me.csrf }, body: JSON.stringify({ members: [{ role: "crane", station: "crane-cab" }, { role: "tractor", station: "tractor-cab" }] }) });
+    return { status: r.status, body: await r.json() };
+  });
+  check(again.status === 409 && /is not idle on the network \(running\)/.test(again.body.error), `a second team start while it runs: ${again.status} (${again.body.error})`);
+  await page.click("#stations tr[data-station=crane-cab]");
+  await teamCommand("stop", null);
+  await until("both idle once more", async () => (await cell("crane-cab", 2)) === "idle" && (await cell("tractor-cab", 2)) === "idle", 40);
   const figures = await page.evaluate(async (id) => (await fetch(`/api/attempts/${id}`)).json(), members[0]?.id);
   check(figures.metrics?.team_near_misses === 0 && figures.metrics?.team_closest_m > 1,
     `a member's team figures: near misses ${figures.metrics?.team_near_misses}, closest ${figures.metrics?.team_closest_m?.toFixed(1)} m`);

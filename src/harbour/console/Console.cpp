@@ -128,6 +128,7 @@ const Console::Route Console::kRoutes[] = {
     {http::verb::get, "/api/commands", Who::kStaff, &Console::commands},
     {http::verb::get, "/api/teams", Who::kStaff, &Console::teams},
     {http::verb::post, "/api/teams/*/command", Who::kStaff, &Console::team_command},
+    {http::verb::post, "/api/teams/*/start", Who::kStaff, &Console::team_start},
     {http::verb::get, "/api/routes", Who::kAnyAccount, &Console::routes},
     {http::verb::get, "/api/attempts", Who::kOwnRecords, &Console::attempts},
     {http::verb::get, "/api/attempts/#", Who::kOwnRecords, &Console::attempt},

@@ -338,6 +338,7 @@ class Console {
   std::optional<Response> stations(Call& c);
   std::optional<Response> command(Call& c);
   std::optional<Response> team_command(Call& c);
+  std::optional<Response> team_start(Call& c);
   std::optional<Response> looks(Call& c);
   std::optional<Response> exercises(Call& c);
   std::optional<Response> commands(Call& c);

@@ -130,6 +130,81 @@ std::optional<Console::Response> Console::command(Call& c) {
   return std::nullopt;  // answered when the station acknowledges
 }
 
+// A whole team session started as one: each of its roles on an idle station of the instructor's choice, with
+// its trainee. Checked as a whole before anything is sent (every role once, each on its own station, each
+// station idle on the network, each trainee in the records), so no team is left half started by a bad
+// request; answered when every member has acknowledged.
+std::optional<Console::Response> Console::team_start(Call& c) {
+  const auto& request = c.request;
+  std::string why;
+  const std::optional<json> body = parse_object(request.body(), why);
+  if (!body) return error(request, http::status::bad_request, why);
+  const json teams = team_list(centre().exercise_folders());
+  const auto team =
+      std::find_if(teams.begin(), teams.end(), [&](const json& t) { return t["name"] == c.segment; });
+  if (team == teams.end() || team->contains("error"))
+    return error(request, http::status::not_found, "no team '" + core::printable(c.segment) + "'");
+  const auto autopilot = body->find("autopilot");
+  if (autopilot != body->end() && !autopilot->is_boolean())
+    return error(request, http::status::bad_request, "field 'autopilot' is not true or false");
+  const auto members = body->find("members");
+  if (members == body->end() || !members->is_array())
+    return error(request, http::status::bad_request, "field 'members': a list of {role, station, trainee}");
+  std::set<std::string> roles;
+  for (const json& r : (*team)["roles"])
+    roles.insert(r["role"].get<std::string>());
+  struct Member {
+    std::string role, station, trainee;
+  };
+  std::vector<Member> chosen;
+  std::set<std::string> stations;
+  for (const json& m : *members) {
+    const std::optional<std::string> role = m.is_object() ? text_field(m, "role", 32, why) : std::nullopt;
+    const std::optional<std::string> station = role ? text_field(m, "station", 64, why) : std::nullopt;
+    const std::optional<std::string> trainee =
+        station ? text_field(m, "trainee", 64, why, false) : std::nullopt;
+    if (!trainee)
+      return error(request, http::status::bad_request,
+                   "field 'members': " + (why.empty() ? "an object each" : why));
+    if (!roles.erase(*role))
+      return error(request, http::status::bad_request,
+                   "field 'members': role '" + core::printable(*role) + "' is not one of team " + c.segment +
+                       "'s, or given twice");
+    if (!stations.insert(*station).second)
+      return error(request, http::status::bad_request,
+                   "field 'members': station " + *station + " given twice");
+    const auto found = link_.stations().find(*station);
+    if (found == link_.stations().end())
+      return error(request, http::status::not_found, "no station '" + core::printable(*station) + "'");
+    if (found->second.lost || found->second.gone || found->second.status.state().to_string() != "idle")
+      return error(request, http::status::conflict,
+                   "station " + *station + " is not idle on the network (" +
+                       (found->second.lost || found->second.gone ? "not seen"
+                                                                 : found->second.status.state().to_string()) +
+                       ")");
+    if (!trainee->empty() && !db_.has_trainee(*trainee))
+      return error(request, http::status::bad_request, "no trainee '" + core::printable(*trainee) + "'");
+    chosen.push_back({*role, *station, *trainee});
+  }
+  if (!roles.empty())
+    return error(request, http::status::bad_request,
+                 "field 'members': no station for role '" + *roles.begin() + "' of team " + c.segment);
+  TeamPending p{request, c.session, *c.account, c.segment, "start", {}, {}, Clock::now() + kAckTimeout};
+  for (const Member& m : chosen) {
+    net::StationCommand sent;
+    sent.station(m.station);
+    sent.user(c.account->name);
+    sent.kind("start");
+    sent.trainee(m.trainee);
+    sent.team(c.segment);
+    sent.role(m.role);
+    sent.autopilot(autopilot != body->end() && autopilot->get<bool>());
+    p.sent.emplace_back(link_.send(sent), m.station);
+  }
+  team_pending_.push_back(std::move(p));
+  return std::nullopt;  // answered when every member has acknowledged
+}
+
 // hold, resume or stop every running member of a team session at once
 std::optional<Console::Response> Console::team_command(Call& c) {
   std::string why;
