@@ -575,6 +575,13 @@ function fillExerciseSelect(select: HTMLSelectElement) {
   if (exerciseCards.some((e) => e.name === kept)) select.value = kept;
 }
 function showExerciseAbout() {
+  // with a team chosen, what each of its roles runs (the exercise chosen is not run then)
+  const team = teams.find((t) => t.name === $<HTMLSelectElement>("start-team").value);
+  if (team?.roles) {
+    text($("exercise-about"), `Team ${teamWords(team.name)}: ${team.roles.map((r) =>
+      `${teamWords(r.role)}, ${exerciseTitle(r.exercise)}`).join("; ")}.`);
+    return;
+  }
   const e = exerciseCards.find((x) => x.name === $<HTMLSelectElement>("exercise").value);
   text($("exercise-about"), !e ? "" : e.error ? `cannot be started: ${e.error}` : !e.title ? "" :
     `${e.objective} ${e.difficulty ? e.difficulty[0].toUpperCase() + e.difficulty.slice(1) : ""}, about ${e.expected_min} min.`);
@@ -782,6 +789,7 @@ function showTeamRoles() {
   $<HTMLSelectElement>("exercise").disabled = !!team;
   $<HTMLSelectElement>("start-route").disabled = !!team;
   showTeamStart();
+  showExerciseAbout();
 }
 
 // The whole team started as one: a free station and a trainee for each role, one button. The choices made are

@@ -111,6 +111,9 @@ try {
   // the whole team started again as one: a free station and a trainee for each role, one button (the roles
   // swapped between the stations this time)
   await page.selectOption("#start-team", "sts_and_tractor");
+  const about = await page.textContent("#exercise-about");
+  check(about === "Team sts and tractor: crane, First discharge onto a truck; tractor, Park a mafi in its lane.",
+    `with the team chosen, the line under the start says what each role runs: ${about}`);
   await until("the team's start row offers both idle stations for each role", async () =>
     (await page.locator("#team-start-station-crane option").count()) === 2 &&
     (await page.locator("#team-start-station-tractor option").count()) === 2);
