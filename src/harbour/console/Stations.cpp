@@ -172,7 +172,7 @@ std::optional<Console::Response> Console::team_start(Call& c) {
                        "'s, or given twice");
     if (!stations.insert(*station).second)
       return error(request, http::status::bad_request,
-                   "field 'members': station " + *station + " given twice");
+                   "field 'members': station " + core::printable(*station) + " given twice");
     const auto found = link_.stations().find(*station);
     if (found == link_.stations().end())
       return error(request, http::status::not_found, "no station '" + core::printable(*station) + "'");
