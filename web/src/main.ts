@@ -7,8 +7,8 @@ import { DesignerForms, setEventLabels } from "./designer";
 import { RouteEditor } from "./routeEditor";
 import { TelemetryPlots } from "./telemetry";
 
-import type { AttemptEvent, AttemptItem, CommandInfo, EventMessage, ExerciseCard, LiveMessage, Me, PictureMessage, ReplayInfo,
-  StateMessage, Station, Team } from "./wire";
+import type { AttemptEvent, AttemptItem, CommandInfo, EventMessage, ExerciseCard, LiveMessage, Me, PictureMessage, Progress,
+  ReplayInfo, RouteInfo, StateMessage, Station, Team } from "./wire";
 
 const $ = <T extends HTMLElement>(id: string) => document.getElementById(id) as T;
 let me: Me | null = null;
@@ -587,10 +587,6 @@ function showExerciseAbout() {
     `${e.objective} ${e.difficulty ? e.difficulty[0].toUpperCase() + e.difficulty.slice(1) : ""}, about ${e.expected_min} min.`);
 }
 
-interface StageProgress { stage: string; state: string; attempts: number; attempts_allowed: number; passes: number;
-  best_score: number | null; signed_off: boolean; missing: string[]; }
-interface RouteInfo { id: string; name: string; machine: string;
-  stages: { id: string; goal: string; exercise: string; repetitions: number; }[]; }
 let routes: RouteInfo[] = [];
 
 // A trainee's progress on each route they are enrolled in: a table of stages with their state.
@@ -605,7 +601,8 @@ async function loadProgress() {
   if (r.status !== 200) { text(box, r.data?.error ?? `error ${r.status}`); return; }
   const stageSelect = $<HTMLSelectElement>("decision-stage");
   stageSelect.replaceChildren();
-  for (const enrolled of r.data.routes) {
+  const progress = r.data as Progress;
+  for (const enrolled of progress.routes) {
     const route = routes.find((x) => x.id === enrolled.route);
     const title = document.createElement("h3");
     text(title, `${route?.name ?? enrolled.route}: ${enrolled.complete ? "complete" : enrolled.next ? `next ${stageWords(enrolled.next)}` :
@@ -618,7 +615,7 @@ async function loadProgress() {
       const th = document.createElement("th"); text(th, h); head.appendChild(th);
     }
     table.appendChild(head);
-    for (const sp of enrolled.stages as StageProgress[]) {
+    for (const sp of enrolled.stages) {
       const stage = route?.stages.find((x) => x.id === sp.stage);
       const row = document.createElement("tr");
       row.dataset.stage = sp.stage;
@@ -634,7 +631,7 @@ async function loadProgress() {
     }
     box.append(title, table);
   }
-  if (r.data.routes.length === 0) text(box, `${trainee} is enrolled in no route`);
+  if (progress.routes.length === 0) text(box, `${trainee} is enrolled in no route`);
   await loadEvolution(trainee);
 }
 

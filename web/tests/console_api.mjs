@@ -335,10 +335,11 @@ try {
     ["stations", "subscribed", "state", "scene", "event"].every((t) => watching.messages.some((m) => m.type === t)));
   const wrong = [];
   for (const m of watching.messages) wrong.push(...(MESSAGE_OF_TYPE[m.type] ? wireErrors(m, MESSAGE_OF_TYPE[m.type]) : [`a message of type ${m.type}`]));
-  for (const [reply, name] of [[await b("api/me"), "Me"], [await b("api/commands"), "CommandTable"], [await b("api/looks"), "Looks"]])
+  for (const [reply, name] of [[await b("api/me"), "Me"], [await b("api/commands"), "CommandTable"], [await b("api/looks"), "Looks"],
+    [await b("api/progress?trainee=carl"), "Progress"]])
     wrong.push(...wireErrors(reply.data, name));
   for (const [path, name] of [["api/stations", "Station"], ["api/exercises", "ExerciseCard"], ["api/attempts", "AttemptItem"],
-    ["api/teams", "Team"]])
+    ["api/teams", "Team"], ["api/routes", "RouteInfo"]])
     for (const item of (await b(path)).data) wrong.push(...wireErrors(item, name));
   check(wrong.length === 0 && wireErrors({ type: "event", station: "x" }, "EventMessage").length > 0,
     `the console's ${watching.messages.length} live messages and its replies are as the schema says${wrong.length ? `: ${[...new Set(wrong)].slice(0, 8).join("; ")}` : ""}`);
