@@ -7,8 +7,8 @@ import { DesignerForms, setEventLabels } from "./designer";
 import { RouteEditor } from "./routeEditor";
 import { TelemetryPlots } from "./telemetry";
 
-import type { AttemptEvent, AttemptItem, CommandInfo, EventMessage, ExerciseCard, LiveMessage, Me, PictureMessage, Progress,
-  ReplayInfo, RouteInfo, StateMessage, Station, Team } from "./wire";
+import type { AttemptEvent, AttemptItem, CommandInfo, Evolution, EvolutionAttempt, EventMessage, ExerciseCard, FigureWords,
+  LiveMessage, Me, PictureMessage, Progress, ReplayInfo, RouteInfo, StateMessage, Station, Team } from "./wire";
 
 const $ = <T extends HTMLElement>(id: string) => document.getElementById(id) as T;
 let me: Me | null = null;
@@ -635,10 +635,6 @@ async function loadProgress() {
   await loadEvolution(trainee);
 }
 
-interface EvolutionAttempt { score: number; skills: Record<string, number>; metrics: Record<string, number>; }
-interface Standing { exercise: string; exercise_version: string; figure: string; label: string; higher_better: boolean;
-  best: number; best_text: string; trainees: number; percentile: number; place: number; tied: number; place_words: string; }
-interface FigureWords { label: string; unit: string; scale: number; about: string }
 const number = (v: number | null | undefined, digits = 1) => v === null || v === undefined ? "" : v.toFixed(digits);
 function row(values: (string | number)[]): HTMLTableRowElement {
   const tr = document.createElement("tr");
@@ -665,11 +661,11 @@ async function loadEvolution(trainee: string) {
   const body = $("cohort").querySelector("tbody")!;
   body.replaceChildren();
   if (r.status !== 200) return;
-  const attempts = r.data.attempts as EvolutionAttempt[];
-  const theirs = (o?.status === 200 ? o.data.attempts : []) as EvolutionAttempt[];
+  const attempts = (r.data as Evolution).attempts;
+  const theirs = o?.status === 200 ? (o.data as Evolution).attempts : [];
   // the figures this trainee has: the selector keeps the one chosen
   const chosen = figure.value;
-  const words = r.data.figures as Record<string, FigureWords>;
+  const words = (r.data as Evolution).figures;
   const wordsOf = (name: string): FigureWords => words[name] ?? { label: name, unit: "", scale: 1, about: "" };
   const labelOf = (name: string) => { const w = wordsOf(name); return w.unit ? `${w.label} [${w.unit}]` : w.label; };
   const names = [...new Set(attempts.flatMap((a) => Object.keys(a.metrics)))]
@@ -706,7 +702,7 @@ async function loadEvolution(trainee: string) {
   $("evolution").dataset.attempts = String(attempts.length);
   $("evolution").dataset.figure = figure.value;
   const shown = figure.value === "" ? "score" : figure.value;
-  for (const c of r.data.standings as Standing[]) {
+  for (const c of (r.data as Evolution).standings) {
     if (c.figure !== shown) continue;
     const tr = row([exerciseTitle(c.exercise), c.exercise_version.slice(0, 8), c.label, c.best_text,
       c.higher_better ? "higher" : "lower", c.trainees, c.place_words]);

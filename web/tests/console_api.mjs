@@ -336,7 +336,7 @@ try {
   const wrong = [];
   for (const m of watching.messages) wrong.push(...(MESSAGE_OF_TYPE[m.type] ? wireErrors(m, MESSAGE_OF_TYPE[m.type]) : [`a message of type ${m.type}`]));
   for (const [reply, name] of [[await b("api/me"), "Me"], [await b("api/commands"), "CommandTable"], [await b("api/looks"), "Looks"],
-    [await b("api/progress?trainee=carl"), "Progress"]])
+    [await b("api/progress?trainee=carl"), "Progress"], [await b("api/evolution?trainee=carl"), "Evolution"]])
     wrong.push(...wireErrors(reply.data, name));
   for (const [path, name] of [["api/stations", "Station"], ["api/exercises", "ExerciseCard"], ["api/attempts", "AttemptItem"],
     ["api/teams", "Team"], ["api/routes", "RouteInfo"]])

@@ -163,6 +163,7 @@ try {
   const evolution = await page.evaluate(async () => (await fetch("/api/evolution?trainee=eva")).json());
   check(evolution.attempts.length === 1 && evolution.attempts[0].exercise_version === version,
     `eva's attempt ran version ${evolution.attempts[0]?.exercise_version} (${evolution.attempts[0]?.exercise})`);
+  check(wireErrors(evolution, "Evolution").length === 0, `eva's evolution is as schema/wire.json says: ${wireErrors(evolution, "Evolution").join("; ")}`);
   await page.selectOption("#progress-trainee", "eva");
   await page.click("#show-progress");
   await until("her evolution plots the attempt", async () => (await page.getAttribute("#evolution", "data-attempts")) === "1");
