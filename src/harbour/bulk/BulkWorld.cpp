@@ -346,7 +346,8 @@ void BulkWorld::archive(Self& self, Archive& ar) {
   ar.section(0x424C4B31, "bulk");  // "BLK1"
   std::size_t grids = self.grids_.size();
   ar(grids);
-  if (grids != self.grids_.size()) throw core::StateError("saved state has other bulk grids");
+  if constexpr (Archive::kRestoring)
+    if (grids != self.grids_.size()) throw core::StateError("saved state has other bulk grids");
   for (auto& g : self.grids_)
     ar.part(g);
   ar.sized(self.grabs_);
