@@ -546,6 +546,22 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
                         c.team = input;
                         return session.loop().post(c);
                       });
+  // the station's and the team's messages since last asked, printed and told to the consoles
+  const auto tell_what_was_said = [&] {
+    for (const std::string& m : station.take_messages()) {
+      std::printf("  %s\n", core::printable(m).c_str());
+      if (presence) presence->note("station", m);
+    }
+    std::vector<std::string> said;
+    {
+      const std::lock_guard lock(team_said_mutex);
+      said.swap(team_said);
+    }
+    for (const std::string& m : said) {
+      std::printf("  team: %s\n", core::printable(m).c_str());
+      if (presence) presence->note("team", m);
+    }
+  };
   station::AttemptPresence::Next next = station::AttemptPresence::Next::kRun;
   int next_line = 0;
   bool window_open = true;
@@ -567,21 +583,7 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
     if (!windows.empty()) session.loop().set_look(look.yaw_rad(), look.pitch_rad());
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (options.seconds > 0.0 && wall >= options.seconds) break;
-    for (const std::string& m : station.take_messages()) {
-      std::printf("  %s\n", core::printable(m).c_str());
-      if (presence) presence->note("station", m);
-    }
-    if (membership) {
-      std::vector<std::string> said;
-      {
-        const std::lock_guard lock(team_said_mutex);
-        said.swap(team_said);
-      }
-      for (const std::string& m : said) {
-        std::printf("  team: %s\n", core::printable(m).c_str());
-        if (presence) presence->note("team", m);
-      }
-    }
+    tell_what_was_said();
     if (wall < next_line * 2.0) continue;
     ++next_line;
     const scene::Snapshot* s = session.loop().latest_snapshot(station::kConsoleReader);
@@ -593,6 +595,7 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
   reset = next == station::AttemptPresence::Next::kReset;
   stop_drawing(render.get(), windows, pictures.get());
   if (membership) leave_team(*membership, session, team->name, options.role);
+  tell_what_was_said();  // what came with the last steps (a box handed over as the last move ended)
   station.stop_monitoring();
   const station::SessionResult result =
       session.finish(g_stop || !window_open || (next == station::AttemptPresence::Next::kRun && interrupted)
