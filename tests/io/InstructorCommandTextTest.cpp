@@ -45,9 +45,14 @@ TEST(InstructorCommandText, EveryKindHasOneNameThatReadsBackAsIt) {
     for (const CommandText& c : station_commands())
       if (c.kind == kind)
         for (const CommandValue& value : c.values)
-          if (value.what) text += ":1";
+          if (value.what) text += value.hand_signal ? ":lower" : ":1";
     EXPECT_EQ(parse_instructor_command(text).command.kind, kind) << text;
   }
+  // a hand signal by its name, its index the value
+  EXPECT_EQ(parse_instructor_command("5:signal:hoist-slowly").command.value, 4.0);
+  EXPECT_EQ(why_refused("signal:stop"), "");
+  EXPECT_NE(why_refused("signal:wave").find("hoist-slowly"), std::string::npos);
+  EXPECT_NE(why_refused("signal").find("hand signal"), std::string::npos);
   EXPECT_STREQ(command_name(Kind::kHoistBrakeFault), "hoist-brake-fault");
   // the exercise files' spelling of the same names, read too
   EXPECT_EQ(file_spelling(Kind::kLandedSensorFault), "landed_sensor_fault");
@@ -99,6 +104,7 @@ TEST(InstructorCommandText, TheTablesRangesAreTheSimulations) {
     if (!c.kind) continue;
     for (std::size_t k = 0; k < c.values.size() && c.values[k].what; ++k) {
       const CommandValue& v = c.values[k];
+      if (v.hand_signal) continue;  // a name, not a number (above)
       for (const bool upper : {false, true}) {
         const double end = upper ? v.max : v.min;
         const double past = upper ? end + std::max(1e-6, 1e-9 * std::abs(end)) : end - 1e-6;

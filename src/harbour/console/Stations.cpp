@@ -22,6 +22,7 @@
 #include "harbour/machines/MachineRegistry.h"
 #include "harbour/net/SceneMessages.h"
 #include "harbour/records/Reports.h"
+#include "harbour/scene/HandSignals.h"
 #include "harbour/training/Figures.h"
 
 namespace harbour::console {
@@ -260,14 +261,20 @@ std::optional<Console::Response> Console::commands(Call& c) {
                           {"step", v.step},
                           {"above_min", v.above_min},
                           {"below_max", v.below_max},
-                          {"words", v.words}});
+                          {"words", v.words},
+                          {"hand_signal", v.hand_signal}});
     list.push_back({{"name", command.name},
                     {"label", command.label},
                     {"group", io::group_name(command.group)},
                     {"file_name", command.kind ? io::file_spelling(*command.kind) : ""},
                     {"values", values}});
   }
-  return json_reply(c.request, http::status::ok, json{{"commands", list}});
+  // the hand signals a signal command names, each as the signaller gives it and drawn as the cab shows it
+  json signals = json::array();
+  for (const scene::HandSignal& s : scene::hand_signals())
+    signals.push_back(
+        {{"name", s.name}, {"words", s.words}, {"how", s.how}, {"strokes", scene::signal_strokes(s)}});
+  return json_reply(c.request, http::status::ok, json{{"commands", list}, {"signals", signals}});
 }
 
 std::optional<Console::Response> Console::exercises(Call& c) {

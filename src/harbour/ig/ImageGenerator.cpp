@@ -974,6 +974,8 @@ void ImageGenerator::build_hud(const scene::SceneDescription& scene) {
   inset_quads_->getOrCreateStateSet()->setRenderBinDetails(999, "TraversalOrderBin");
   hud->addChild(inset_quads_);
   hud->addChild(lines);
+  signal_panel_ = std::make_unique<SignalPanel>(width_, height_, size);
+  hud->addChild(signal_panel_->node());
   hud_camera_ = hud;
 }
 
@@ -1194,6 +1196,7 @@ void ImageGenerator::update_hud(const scene::Snapshot& s) {
   if (s.devices_missing > 0) alarm += "INPUT DEVICE MISSING: ITS CONTROLS ARE NEUTRAL   ";
   if (s.diverged) alarm += "SIMULATION STOPPED   ";
   update_timeline(s.time_s);
+  signal_panel_->update(s);
   hud_line_ = line + (alarm.empty() ? "" : "\n" + alarm);
   // each line at its size, smaller where it would run off a narrow picture
   const float size = std::max(14.0f, static_cast<float>(height_) / 32.0f);

@@ -12,6 +12,7 @@
 #include <osg/ref_ptr>
 
 #include "harbour/ig/Ocean.h"
+#include "harbour/ig/SignalPanel.h"
 #include "harbour/ig/Visuals.h"
 #include "harbour/scene/BulkView.h"
 #include "harbour/scene/Snapshot.h"
@@ -311,6 +312,7 @@ class ImageGenerator {
   double timeline_from_s_ = 0.0, timeline_to_s_ = 0.0;
   std::vector<TimelineMark> timeline_marks_;
   osg::ref_ptr<osg::Geometry> timeline_;
+  std::unique_ptr<SignalPanel> signal_panel_;
   void update_timeline(double now_s);
   View view_;
   scene::Snapshot::Cab cab_{};

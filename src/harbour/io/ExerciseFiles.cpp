@@ -787,6 +787,7 @@ const std::vector<RuleField>& rule_thresholds() {
       {"collision_speed_mps", &R::collision_speed_mps, 0.0, 10.0, true},
       {"body_contact_impulse_ns", &R::body_contact_impulse_ns, 0.0, 1e7, true},
       {"horn_warning_s", &R::horn_warning_s, 0.0, 600.0, true},
+      {"signal_reaction_s", &R::signal_reaction_s, 0.0, 60.0, true},
       {"load_drop_mps", &R::load_drop_mps, 0.0, 100.0, true},
       {"overtime_s", &R::overtime_s, 0.0, 3600.0, false},
       {"poor_bite_fill", &R::poor_bite_fill, 0.0, 1.0, false},
@@ -818,7 +819,8 @@ const std::vector<RuleField>& rule_deductions() {
       {"speeding", &R::points_overspeed, 0.0, 100.0, false},
       {"decimetre_above_trim", &R::points_per_trim_dm, 0.0, 100.0, false},
       {"load_drop", &R::points_load_drop, 0.0, 100.0, false},
-      {"lift_under_fault", &R::points_lift_under_fault, 0.0, 100.0, false}};
+      {"lift_under_fault", &R::points_lift_under_fault, 0.0, 100.0, false},
+      {"late_stop_signal", &R::points_late_stop_signal, 0.0, 100.0, false}};
   return fields;
 }
 

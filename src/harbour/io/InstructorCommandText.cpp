@@ -10,6 +10,7 @@
 
 #include "harbour/core/Text.h"
 #include "harbour/core/Units.h"
+#include "harbour/scene/HandSignals.h"
 
 namespace harbour::io {
 namespace {
@@ -92,6 +93,11 @@ constexpr CommandText kCommands[] = {
     {"unmute", "Unmute", Group::kSound, std::nullopt, {}},
     {"volume", "Set volume", Group::kSound, std::nullopt, {number("volume", "%", 0, 200, 100, 10)}},
     {"radio", "Call", Group::kSound, std::nullopt, {kWords}},
+    {"signal",
+     "Signal",
+     Group::kSignal,
+     Kind::kSignal,
+     {CommandValue{.what = "hand signal", .hand_signal = true}}},
 };
 constexpr std::size_t simulation_commands() {
   std::size_t n = 0;
@@ -164,6 +170,8 @@ const char* group_name(CommandGroup group) {
       return "restart";
     case Group::kSound:
       return "sound";
+    case Group::kSignal:
+      return "signal";
   }
   return "?";
 }
@@ -237,6 +245,12 @@ TimedCommand parse_instructor_command(const std::string& text) {
   double v[3] = {0.0, 0.0, 0.0};
   for (std::size_t k = 0; k < values; ++k) {
     const CommandValue& value = known->values[k];
+    if (value.hand_signal) {
+      const int signal = 2 + k < parts.size() ? scene::find_hand_signal(parts[2 + k]) : -1;
+      if (signal < 0) fail("the hand signal is one of " + scene::hand_signal_names());
+      v[k] = signal;
+      continue;
+    }
     v[k] = number(2 + k, value_name(value));
     if (!in_range(value, v[k])) fail("the " + value_name(value) + " is outside " + range_text(value));
   }
@@ -259,6 +273,7 @@ TimedCommand parse_instructor_command(const std::string& text) {
     case Kind::kSetVisibility:
     case Kind::kSetRain:
     case Kind::kSetTimeOfDay:
+    case Kind::kSignal:
       c.value = v[0];
       break;
     default:

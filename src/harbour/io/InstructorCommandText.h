@@ -15,7 +15,7 @@ namespace harbour::io {
 ///   gust:AMPLITUDE_MPS:DURATION_S, hoist-brake-fault, landed-sensor-fault:CORNER, limiter-fault,
 ///   clear-faults, emergency-stop, release-emergency-stop, power-failure, power-restored,
 ///   wind:MEAN_MPS:FROM_DEG:TURBULENCE,
-///   visibility:METRES, rain:MM_PER_H, time-of-day:HOURS.
+///   visibility:METRES, rain:MM_PER_H, time-of-day:HOURS, signal:NAME (a hand signal: hoist, stop, ...).
 /// A kind may be spelt with underscores as exercise files write it (`hoist_brake_fault`).
 /// Longest command text read, and the latest time a command may be set for (a day) [s].
 inline constexpr std::size_t kMaxCommandBytes = 200;
@@ -28,8 +28,10 @@ struct TimedCommand {
 
 /// What a command is for: the console's panel groups its buttons so.
 /// (kStop: what stops the machine at once; kRestart: what lets it go again.)
-enum class CommandGroup : std::uint8_t { kSession, kWeather, kFault, kStop, kRestart, kSound };
-const char* group_name(CommandGroup group);  ///< "session", "weather", "fault", "stop", "restart", "sound"
+/// (kSignal: what the signaller shows the operator.)
+enum class CommandGroup : std::uint8_t { kSession, kWeather, kFault, kStop, kRestart, kSound, kSignal };
+/// "session", "weather", "fault", "stop", "restart", "sound", "signal"
+const char* group_name(CommandGroup group);
 
 /// One value a command takes: a number within its range, or words.
 struct CommandValue {
@@ -40,7 +42,8 @@ struct CommandValue {
   double initial = 0.0;  ///< what the console's form offers first
   double step = 1.0;     ///< the console form's step
   bool above_min = false, below_max = false;
-  bool words = false;  ///< free words (a radio call)
+  bool words = false;        ///< free words (a radio call)
+  bool hand_signal = false;  ///< a hand signal's name (scene::hand_signals(); its index is the value)
 };
 
 /// Each command an instructor gives a station, as the command line, the console, its designer, the stations

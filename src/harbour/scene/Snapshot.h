@@ -67,6 +67,8 @@ struct Snapshot {
   bool awaiting_zero = false;  ///< the supply is back; the drives wait for every lever at zero
   bool emergency_stop =
       false;  ///< the machine's emergency stop is in force (the trainee's or the instructor's)
+  int hand_signal = -1;  ///< the signaller's latest hand signal (scene::hand_signals()), -1: none yet
+  double hand_signal_at_s = 0.0;  ///< [s] when it was given
 
   // environment
   core::Vec3 wind_mps;  ///< [m/s] world

@@ -6,6 +6,7 @@
 #include <tuple>
 
 #include "harbour/bulk/PileMeasure.h"
+#include "harbour/scene/HandSignals.h"
 #include "harbour/scene/Surface.h"
 
 namespace harbour::sim {
@@ -150,6 +151,7 @@ void Evaluator::observe(const Simulation& simulation, const scene::Controls& con
   const MachineTally tally = simulation.machine().tally();
   observe_hoist_fault(simulation, estop);
   observe_instructor(simulation);
+  observe_signals(simulation, controls);
   observe_machine(simulation, controls, tally, estop);
   if (simulation.bulk()) observe_bulk(simulation, tally);
   observe_smoothness(simulation, tally);
@@ -177,6 +179,28 @@ void Evaluator::observe_instructor(const Simulation& simulation) {
     disrupted = disrupted || (simulation.machine().fault_active(fault) && !scripts_fault(exercise_, fault));
   if (disrupted && !disrupted_) ++metrics_.instructor_disruptions;
   disrupted_ = disrupted;
+}
+
+void Evaluator::observe_signals(const Simulation& simulation, const scene::Controls& controls) {
+  const Simulation::GivenSignal& given = simulation.signal();
+  if (given.count != signals_seen_) {  // a new signal (one not followed before it stays late)
+    signals_seen_ = given.count;
+    ++metrics_.signals;
+    signal_pending_ = true;
+    signal_late_ = false;
+  }
+  if (!signal_pending_) return;
+  const scene::HandSignal& signal = scene::hand_signals()[static_cast<std::size_t>(given.signal)];
+  const double waited_s = simulation.time_s() - given.at_s;
+  if (scene::follows(signal, simulation.control_table(), controls)) {
+    metrics_.signal_delays_s.push_back(waited_s);
+    signal_pending_ = false;
+  }
+  if (signal_pending_ && !signal_late_ && waited_s > exercise_.rules.signal_reaction_s) {
+    signal_late_ = true;
+    ++metrics_.late_signals;
+    if (signal.sense == 0) ++metrics_.late_stop_signals;
+  }
 }
 
 void Evaluator::observe_hoist_fault(const Simulation& simulation, bool emergency_stop) {
@@ -429,6 +453,7 @@ Score score_of(const ExerciseSettings& exercise, const Metrics& metrics, bool go
   deduct("gantry travel without the horn", Skill::kSafety, metrics.unwarned_gantry_travel,
          r.points_unwarned_travel);
   deduct("load dropped", Skill::kSafety, metrics.load_drops, r.points_load_drop);
+  deduct("stop signal followed late", Skill::kSafety, metrics.late_stop_signals, r.points_late_stop_signal);
   deduct("lift with the hoist brake failed", Skill::kSafety, metrics.lifts_under_fault,
          r.points_lift_under_fault);
   // a machine taken out of service after a fault, as the procedure says, is excused the goals left
@@ -528,6 +553,19 @@ std::vector<std::pair<std::string, double>> Metrics::rows() const {
     r.emplace_back(axis.axis + "_rms_jerk_mps3", axis.rms_jerk_mps3);
     r.emplace_back(axis.axis + "_harsh_moves", axis.harsh_moves);
   }
+  if (signals > 0) {
+    r.emplace_back("signals", signals);
+    r.emplace_back("late_signals", late_signals);
+    r.emplace_back("late_stop_signals", late_stop_signals);
+    if (!signal_delays_s.empty()) {
+      r.emplace_back("worst_signal_delay_s",
+                     *std::max_element(signal_delays_s.begin(), signal_delays_s.end()));
+      double sum = 0.0;
+      for (const double d : signal_delays_s)
+        sum += d;
+      r.emplace_back("mean_signal_delay_s", sum / static_cast<double>(signal_delays_s.size()));
+    }
+  }
   if (team) {
     r.emplace_back("team_near_misses", team->near_misses);
     r.emplace_back("team_contacts", team->contacts);
@@ -597,6 +635,7 @@ constexpr std::array<CountedKind, kCountedEventKinds> kCountedKinds{{
     {"speeding", &Metrics::overspeeds, &Metrics::worst_overspeed_kmh},
     {"load_drop", &Metrics::load_drops, nullptr},
     {"lift_under_fault", &Metrics::lifts_under_fault, nullptr},
+    {"late_stop_signal", &Metrics::late_stop_signals, nullptr},
 }};
 }  // namespace
 

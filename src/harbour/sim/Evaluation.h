@@ -54,6 +54,11 @@ struct EvaluationRules {
   double points_limit_hit = 2.0;
   double points_emergency_stop = 5.0;
   double points_unwarned_travel = 2.0;
+  /// [s] a signaller's signal is to be followed at the controls within this long (2.5 s: the design
+  /// perception-reaction time of AASHTO's Green Book for drivers; assumed for an operator watching a
+  /// signaller)
+  double signal_reaction_s = 2.5;
+  double points_late_stop_signal = 10.0;  ///< a stop or emergency-stop signal not followed in time
   double points_load_drop = 30.0;
   double points_lift_under_fault = 20.0;  ///< lifting again with the hoist brake failed
   double points_per_move_missing = 20.0;
@@ -208,6 +213,13 @@ struct Metrics {
     int harsh_moves = 0;         ///< onsets of a jerk above rules.harsh_jerk_mps3
   };
   std::vector<Smoothness> smoothness;
+  /// A signaller's hand signals: how many were given, the time from each to the operator's controls
+  /// following it (rules.signal_reaction_s), those not followed in that time (or at all), and of them the
+  /// stop and emergency-stop signals.
+  int signals = 0;
+  std::vector<double> signal_delays_s;
+  int late_signals = 0;
+  int late_stop_signals = 0;
   /// A team session's member: its team figures (measured by its station).
   std::optional<TeamFigures> team;
   /// The machine measured: of the figures that depend on a machine's parts, its type's `figures` are stored
@@ -255,7 +267,7 @@ struct CountedEvent {
   double value = 0.0;
 };
 /// The kinds of counted events, in the order Progress keeps them.
-inline constexpr std::size_t kCountedEventKinds = 17;
+inline constexpr std::size_t kCountedEventKinds = 18;
 /// What the records store the moment it grows, at the time it happened: the completed moves (with the
 /// newest cycle times) and every counted event with its figure. Plain and fixed-size: a station's step
 /// thread hands it to the record keeper without allocating.
@@ -326,6 +338,8 @@ class Evaluator {
   void observe_hoist_fault(const Simulation& simulation, bool emergency_stop);
   /// Onsets of an instructor's disruption the exercise does not script (Metrics::instructor_disruptions).
   void observe_instructor(const Simulation& simulation);
+  /// The signaller's signals and how long the operator took to follow each at the controls.
+  void observe_signals(const Simulation& simulation, const scene::Controls& controls);
   int goal_of(physics::BodyId body, const Simulation& simulation) const;
   double sway_m(const Simulation& simulation, std::optional<physics::BodyId> hanging_box) const;
   bool near_target(physics::BodyId box, const Simulation& simulation) const;
@@ -360,6 +374,9 @@ class Evaluator {
   double fault_since_s_ = -1.0;   // when the hoist brake fault came with a load hanging
   bool stopping_safely_ = false;  // the brake failed with the load down: an emergency stop is the procedure
   bool disrupted_ = false;        // an instructor's disruption was in force at the last step
+  int signals_seen_ = 0;          // Simulation::GivenSignal::count at the last step
+  bool signal_pending_ = false;   // the latest signal not yet followed
+  bool signal_late_ = false;      // ... and already counted late
 };
 
 }  // namespace harbour::sim

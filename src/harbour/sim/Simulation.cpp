@@ -8,6 +8,7 @@
 
 #include "harbour/core/StateHash.h"
 #include "harbour/core/Units.h"
+#include "harbour/scene/HandSignals.h"
 
 namespace harbour::sim {
 namespace {
@@ -168,6 +169,11 @@ std::string why_invalid(const InstructorCommand& c) {
     case Kind::kSetTimeOfDay:
       if (!(c.value >= 0.0 && c.value < kHoursPerDay)) return "time of day 0-24 h";
       break;
+    case Kind::kSignal:
+      if (!(c.value >= 0.0 && c.value < static_cast<double>(scene::hand_signals().size()) &&
+            c.value == std::floor(c.value)))
+        return "a hand signal is one of " + scene::hand_signal_names();
+      break;
     case Kind::kHoistBrakeFault:
     case Kind::kLimiterFault:
     case Kind::kClearFaults:
@@ -190,6 +196,9 @@ std::optional<MachineFault> fault_of(const InstructorCommand& c) {
          : c.kind == Kind::kLimiterFault      ? std::optional(MachineFault::kLoadMomentLimiter)
                                               : std::nullopt;
 }
+const scene::HandSignal& signal_of(const InstructorCommand& c) {
+  return scene::hand_signals()[static_cast<std::size_t>(c.value)];  // why_invalid checked it
+}
 }  // namespace
 
 std::string Simulation::why_refused(const InstructorCommand& c) const {
@@ -201,6 +210,9 @@ std::string Simulation::why_refused(const InstructorCommand& c) const {
                      c.kind == Kind::kPowerFailure || c.kind == Kind::kPowerRestored;
   if (stops && control_table().find(kEmergencyStopControl) < 0)
     return std::string("the ") + machine_->kind() + " has no emergency stop (nothing to cut its drives)";
+  if (c.kind == Kind::kSignal)
+    if (const std::string why = scene::why_not_for(signal_of(c), control_table()); !why.empty())
+      return std::string("the ") + machine_->kind() + " has " + why;
   return "";
 }
 
@@ -295,6 +307,9 @@ void Simulation::command(const InstructorCommand& c) {
     case Kind::kPowerRestored:
       if (power_off_) awaiting_zero_ = true;  // zero-voltage protection: no drive restarts under a held lever
       power_off_ = false;
+      break;
+    case Kind::kSignal:
+      signal_ = {static_cast<int>(c.value), clock_.time_s(), signal_.count + 1};
       break;
   }
 }
@@ -524,6 +539,8 @@ void Simulation::write_snapshot(scene::Snapshot& s) const {
   s.power_off = power_off_;
   s.awaiting_zero = awaiting_zero_;
   s.emergency_stop = emergency_stop_;
+  s.hand_signal = signal_.signal;
+  s.hand_signal_at_s = signal_.at_s;
   s.diverged = world_->diverged();
   s.warnings = warnings_.total();
   s.wind_mps = weather_.wind();

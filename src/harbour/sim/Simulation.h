@@ -83,8 +83,9 @@ struct InstructorCommand {
     kReleaseEmergencyStop,
     kPowerFailure,  ///< the machine's supply fails: every drive dead, every brake set (as its emergency stop)
     kPowerRestored,  ///< the supply is back: the drives start once every lever has been back at zero
+    kSignal,  ///< a signaller's hand signal to the operator (value: its index in scene::hand_signals())
   };
-  static constexpr std::uint8_t kKinds = 13;
+  static constexpr std::uint8_t kKinds = 14;
   Kind kind = Kind::kGust;
   Gust gust;  ///< kGust: duration and amplitude (its start is now)
   int corner = 0;
@@ -191,6 +192,14 @@ class Simulation {
   bool power_off() const { return power_off_; }
   /// The instructor holds the machine's emergency stop pressed (kEmergencyStop).
   bool instructor_stopped() const { return instructor_stop_; }
+  /// The signaller's latest hand signal: its index in scene::hand_signals() and when it was given (it moves
+  /// nothing; the operator sees and hears it and the evaluator times the answer at the controls).
+  struct GivenSignal {
+    int signal = -1;  ///< -1: none yet
+    double at_s = 0.0;
+    int count = 0;  ///< signals given so far
+  };
+  const GivenSignal& signal() const { return signal_; }
   /// The supply is back but a lever has not been at zero since: the drives stay off until every axis control
   /// reads within kLeverZeroBand of its neutral (zero-voltage protection).
   bool awaiting_zero() const { return awaiting_zero_; }
@@ -289,10 +298,11 @@ class Simulation {
   std::size_t next_lift_event_ = 0;
   bool held_ = false;
   bool instructor_stop_ = false;  // the instructor holds the machine's emergency stop pressed
-  bool power_off_ = false;        // the supply has failed
-  bool roped_ = false;            // the machine hangs its load on ropes (it publishes their telemetry)
-  bool awaiting_zero_ = false;    // restored, but no lever has been at zero since
-  bool emergency_stop_ = false;   // the machine's stop was in force at the last step (published, not state)
+  GivenSignal signal_;  // not state: it changes nothing simulated (a restored run shows none until the next)
+  bool power_off_ = false;       // the supply has failed
+  bool roped_ = false;           // the machine hangs its load on ropes (it publishes their telemetry)
+  bool awaiting_zero_ = false;   // restored, but no lever has been at zero since
+  bool emergency_stop_ = false;  // the machine's stop was in force at the last step (published, not state)
   bool levers_at_zero(const scene::Controls& controls) const;
   core::Warnings warnings_;
   StepEvents events_;

@@ -11,6 +11,7 @@ constexpr MachineFault kFaults[] = {MachineFault::kLoadMomentLimiter, MachineFau
 constexpr PilotType kPilots[] = {pilot_type<ReachStackerAutopilot>()};
 constexpr std::string_view kDeductions[] = {"collision",
                                             "emergency_stop",
+                                            "late_stop_signal",
                                             "move_not_completed",
                                             "minute_over_time_limit",
                                             "harsh_move",
