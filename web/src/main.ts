@@ -7,8 +7,8 @@ import { DesignerForms, setEventLabels } from "./designer";
 import { RouteEditor } from "./routeEditor";
 import { TelemetryPlots } from "./telemetry";
 
-import type { AttemptEvent, AttemptItem, CommandInfo, Evolution, EvolutionAttempt, EventMessage, ExerciseCard, FigureWords,
-  LiveMessage, Me, PictureMessage, Progress, ReplayInfo, RouteInfo, StateMessage, Station, Team } from "./wire";
+import type { AttemptEvent, AttemptItem, CommandInfo, CommandTable, Evolution, EvolutionAttempt, EventMessage, ExerciseCard, FigureWords,
+  HandSignal, LiveMessage, Me, PictureMessage, Progress, ReplayInfo, RouteInfo, StateMessage, Station, Team } from "./wire";
 
 const $ = <T extends HTMLElement>(id: string) => document.getElementById(id) as T;
 let me: Me | null = null;
@@ -502,14 +502,19 @@ async function loadRecords() {
 // with a field for each value it takes.
 let commandTable: CommandInfo[] = [];
 const COMMAND_ROWS: Record<string, string> = { weather: "commands-weather", fault: "commands-fault",
-  stop: "commands-fault", restart: "commands-fault", sound: "commands-sound" };
-function drawCommands(commands: CommandInfo[]) {
+  stop: "commands-fault", restart: "commands-fault", sound: "commands-sound", signal: "commands-signal" };
+function drawCommands(table: CommandTable) {
+  const commands = table.commands;
   commandTable = commands;
   for (const id of new Set(Object.values(COMMAND_ROWS)))
     for (const e of [...$(id).querySelectorAll(".command")]) e.remove();
   for (const c of commands) {
     const row = COMMAND_ROWS[c.group];
     if (!row) continue;
+    if (c.values.some((v) => v.hand_signal)) {  // a button for each hand signal, the signaller drawn giving it
+      for (const s of table.signals) $(row).append(signalButton(c.name, s), " ");
+      continue;
+    }
     const box = document.createElement("span");
     box.className = "command";
     box.dataset.name = c.name;
@@ -541,6 +546,31 @@ function drawCommands(commands: CommandInfo[]) {
   }
   setEventLabels(Object.fromEntries(commands.filter((c) => c.file_name)
     .map((c) => [c.file_name, c.label.toLowerCase()])));
+}
+
+// A hand signal's button: the signaller as the cab shows them (the strokes' metres, y up), and the words.
+function signalButton(kind: string, s: HandSignal): HTMLElement {
+  const svgNs = "http://www.w3.org/2000/svg";
+  const svg = document.createElementNS(svgNs, "svg");
+  svg.setAttribute("viewBox", "-1.2 -1.95 2.4 2.35");  // the cab panel's extent, y flipped
+  svg.setAttribute("aria-hidden", "true");
+  for (const stroke of s.strokes) {
+    const line = document.createElementNS(svgNs, "polyline");
+    const points: string[] = [];
+    for (let k = 0; k + 1 < stroke.length; k += 2) points.push(`${stroke[k]},${-stroke[k + 1]}`);
+    line.setAttribute("points", points.join(" "));
+    svg.append(line);
+  }
+  const button = document.createElement("button");
+  button.className = "command signal";
+  button.dataset.name = kind;
+  button.dataset.signal = s.name;
+  button.title = s.how;
+  const words = document.createElement("span");
+  words.textContent = s.words;
+  button.append(svg, words);
+  button.addEventListener("click", () => command(`${kind}:${s.name}`));
+  return button;
 }
 
 // The exercises as people pick them: by title, grouped by machine, with what each asks of the trainee.
@@ -899,15 +929,21 @@ async function enter(who: Me) {
   $("main-view").hidden = false;
   $("logout").hidden = false;
   text($("who"), `${who.name} (${who.role})`);
+  document.body.dataset.role = who.role;  // a signaller's page: the stations, their views and the signals only
+  const signaller = who.role === "signaller";
   for (const e of document.querySelectorAll<HTMLElement>(".instructor-only"))
-    e.hidden = who.role === "trainee" || e.id === "control-panel" || e.id === "attempt-actions";
-  await loadRecords();
-  await loadRoutes();
-  await loadProgress();
+    e.hidden = who.role === "trainee" || e.id === "control-panel" || e.id === "attempt-actions" ||
+      (signaller && e.id !== "stations-panel");
+  for (const id of ["records-panel", "routes-panel"]) $(id).hidden = signaller;
+  if (!signaller) {
+    await loadRecords();
+    await loadRoutes();
+    await loadProgress();
+  }
   if (who.role === "trainee") return;
-  await loadTeams();
+  if (!signaller) await loadTeams();
   const commandsReply = await api("/api/commands");
-  if (commandsReply.status === 200) drawCommands(commandsReply.data.commands as CommandInfo[]);
+  if (commandsReply.status === 200) drawCommands(commandsReply.data as CommandTable);
   plots = new TelemetryPlots($("plot"));
   const looksReply = await api("/api/looks");
   if (looksReply.status === 200) {
@@ -940,6 +976,7 @@ function wire() {
   const value = (id: string) => $<HTMLInputElement>(id).value;
   $("view-on").addEventListener("change", () => { $("views").hidden = !viewOn(); if (selected) subscribe(); });
   $("view-light").addEventListener("change", () => view?.setLight($<HTMLInputElement>("view-light").checked));
+  $("view-ground").addEventListener("click", () => view?.fromTheGround());
   $("start-team").addEventListener("change", showTeamRoles);
   $("exercise").addEventListener("change", showExerciseAbout);
   // the theme: the one picked here last, else the system's

@@ -259,6 +259,23 @@ export class View3D {
     return into;
   }
 
+  // A signaller's view: standing on the ground beside the machine, eyes 1.7 m up, looking at where the load
+  // hangs (the spreader, hook or grab; else the machine's middle)
+  fromTheGround() {
+    if (!this.entities.length || !this.entities[0].visible) return;
+    const machine = this.bounds(this.entities[0]);
+    const load = this.names.findIndex((n) => /^(spreader|hook|grab|load)$/.test(n));
+    const target = load >= 0 && this.entities[load].visible
+      ? this.bounds(this.entities[load]).getCenter(new THREE.Vector3()) : machine.getCenter(new THREE.Vector3());
+    const reach = Math.max(12, 0.6 * machine.getSize(new THREE.Vector3()).length());
+    const ground = Math.max(0, machine.min.z);
+    this.camera.position.set(target.x - 0.45 * reach, target.y - 0.75 * reach, ground + 1.7);
+    this.controls.target.copy(target);
+    this.controls.update();
+    this.framed = true;
+    this.invalidate();
+  }
+
   private frame() {
     // the 3D view: the machine (the scene's first entity) whole, from the landside and above; the plan:
     // everything posed

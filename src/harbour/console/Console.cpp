@@ -125,7 +125,7 @@ const Console::Route Console::kRoutes[] = {
     {http::verb::post, "/api/logout", Who::kAnyAccount, &Console::logout},
     {http::verb::get, "/api/looks", Who::kAnyAccount, &Console::looks},
     {http::verb::get, "/api/exercises", Who::kAnyAccount, &Console::exercises},
-    {http::verb::get, "/api/commands", Who::kStaff, &Console::commands},
+    {http::verb::get, "/api/commands", Who::kSignallers, &Console::commands},
     {http::verb::get, "/api/teams", Who::kStaff, &Console::teams},
     {http::verb::post, "/api/teams/*/command", Who::kStaff, &Console::team_command},
     {http::verb::post, "/api/teams/*/start", Who::kStaff, &Console::team_start},
@@ -137,8 +137,8 @@ const Console::Route Console::kRoutes[] = {
     {http::verb::get, "/api/progress", Who::kOwnRecords, &Console::progress},
     {http::verb::get, "/api/reports/trainee", Who::kOwnRecords, &Console::report},
     {http::verb::get, "/api/reports/trainee.pdf", Who::kOwnRecords, &Console::report},
-    {http::verb::get, "/api/stations", Who::kStaff, &Console::stations},
-    {http::verb::post, "/api/stations/*/command", Who::kStaff, &Console::command},
+    {http::verb::get, "/api/stations", Who::kSignallers, &Console::stations},
+    {http::verb::post, "/api/stations/*/command", Who::kSignallers, &Console::command},
     {http::verb::get, "/api/xapi", Who::kStaff, &Console::xapi_status},
     {http::verb::get, "/api/trainees", Who::kStaff, &Console::trainees},
     {http::verb::post, "/api/trainees", Who::kStaff, &Console::change_trainee},
@@ -532,12 +532,15 @@ std::string Console::refusal(Who who, Call& call) {
         call.trainee = asked;
         return "";
       }
+      if (account.trainee.empty()) return "not for a " + account.role;  // no records of its own (a signaller)
       if (!asked.empty() && asked != account.trainee) return "a trainee sees only their own records";
       call.trainee = account.trainee;
       return "";
     }
     case Who::kStaff:
       return account.instructs() ? "" : "not for a " + account.role;
+    case Who::kSignallers:
+      return account.instructs() || account.signals() ? "" : "not for a " + account.role;
     case Who::kAdministrators:
       return account.role == "administrator" ? "" : "not for a " + account.role;
   }

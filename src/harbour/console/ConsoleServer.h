@@ -122,6 +122,8 @@ std::string hash_password(const std::string& password);
 struct Account {
   std::string name, role, trainee;
   bool instructs() const { return role == "administrator" || role == "instructor"; }
+  /// A signaller sees the stations live and gives their operators hand signals and radio calls, nothing more.
+  bool signals() const { return role == "signaller"; }
 };
 
 struct LoginSession {
@@ -204,6 +206,7 @@ enum class Who : std::uint8_t {
   kAnyAccount,      ///< any account logged in
   kOwnRecords,      ///< staff: anyone's records; a trainee: only their own (?trainee= another is refused)
   kStaff,           ///< instructors and administrators
+  kSignallers,      ///< staff and signallers: the stations live, and a signaller's signals and radio calls
   kAdministrators,  ///< administrators only
 };
 
@@ -309,7 +312,7 @@ class Console {
   };
   static const Route kRoutes[];
   /// The live socket's upgrade, and each subscription on it: staff only.
-  static constexpr Who kLiveSocket = Who::kStaff;
+  static constexpr Who kLiveSocket = Who::kSignallers;
   /// The route `call` names, its segment filled in (nullptr: none for this method and path).
   static const Route* route_of(Call& call, http::verb method);
   /// Why `who` may not use a route (""; else the reason): role, and for kOwnRecords the trainee asked.

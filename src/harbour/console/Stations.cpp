@@ -57,6 +57,8 @@ std::optional<Console::Response> Console::command(Call& c) {
     return error(request, http::status::bad_request, "field 'autopilot' is not true or false");
   if (const std::string refused = io::why_refused(*kind); !refused.empty())
     return error(request, http::status::bad_request, "field 'kind': " + refused);
+  if (account.signals() && !kind->starts_with("signal:") && !kind->starts_with("radio:"))
+    return error(request, http::status::forbidden, "a signaller gives hand signals and radio calls only");
   const auto found = link_.stations().find(station);
   if (found == link_.stations().end())
     return error(request, http::status::not_found, "no station '" + core::printable(station) + "'");

@@ -903,9 +903,10 @@ std::vector<AttemptRow> RecordsStore::attempt_rows(const std::string& who, std::
 }
 
 void RecordsStore::add_account(const AccountRow& account) {
-  if (account.role != "administrator" && account.role != "instructor" && account.role != "trainee")
+  if (account.role != "administrator" && account.role != "instructor" && account.role != "trainee" &&
+      account.role != "signaller")
     throw std::invalid_argument("account role '" + core::printable(account.role) +
-                                "': administrator, instructor or trainee");
+                                "': administrator, instructor, signaller or trainee");
   if (const std::string why = core::why_bad_name(account.name, 64); !why.empty())
     throw std::invalid_argument("account name " + why);
   if (account.role == "trainee" && !has_trainee(account.trainee))

@@ -71,7 +71,7 @@ struct EnrolmentRow {
 /// A console account: an administrator, an instructor, or a trainee (who sees only their own results).
 struct AccountRow {
   std::string name;
-  std::string role;           ///< administrator, instructor, trainee
+  std::string role;           ///< administrator, instructor, signaller, trainee
   std::string password_hash;  ///< the Argon2id hash string (libsodium's crypto_pwhash_str)
   std::string trainee;        ///< a trainee account's trainee id ("" for the others)
 };
