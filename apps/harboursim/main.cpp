@@ -415,7 +415,8 @@ Command add_accounts(CLI::App& app) {
   CLI::App* account_add_cmd =
       accounts_cmd->add_subcommand("add", "add an account; its password is read from standard input");
   account_add_cmd->add_option("name", account_name, "account name")->required();
-  account_add_cmd->add_option("--role", account_role, "administrator, instructor, signaller or trainee")->required();
+  account_add_cmd->add_option("--role", account_role, "administrator, instructor, signaller or trainee")
+      ->required();
   account_add_cmd->add_option("--trainee", account_trainee, "a trainee account's trainee id");
   CLI::App* account_list_cmd = accounts_cmd->add_subcommand("list", "list accounts (name and role)");
   return [account_add_cmd, account_list_cmd, options]() {
