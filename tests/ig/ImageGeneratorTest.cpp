@@ -1245,3 +1245,59 @@ TEST(ImageGenerator, ASteeredWheelTurnsWithItsSteeringAndRollsWithTheSpeed) {
 
 }  // namespace
 }  // namespace harbour::ig
+
+namespace harbour::ig {
+namespace {
+
+// the first of "box 0", "box 1", ... whose livery is `livery` of `count`
+std::string named_for_livery(std::size_t livery, std::size_t count) {
+  for (int n = 0;; ++n)
+    if (const std::string name = "box " + std::to_string(n); scene::livery_key(name) % count == livery)
+      return name;
+}
+
+TEST(ImageGenerator, ABoxIsPaintedByItsNameWhereverItStandsAndTakesTheLiveryOfANewName) {
+  EXPECT_EQ(scene::livery_key(""), 2166136261u);  // FNV-1a's published vectors
+  EXPECT_EQ(scene::livery_key("a"), 0xe40c292cu);
+  EXPECT_EQ(scene::livery_key("foobar"), 0xbf9cf968u);
+  Visual painted;
+  VisualPart part;
+  part.size_m = core::Vec3{0.2, 2.44, 2.6};
+  part.livery = true;
+  painted.parts.push_back(part);
+  painted.liveries = {{0.9, 0.1, 0.1}, {0.1, 0.9, 0.1}, {0.1, 0.1, 0.9}};
+  const std::map<std::string, Visual> looks{{"test.box", painted}};
+  const std::string red = named_for_livery(0, 3), green = named_for_livery(1, 3);
+  // the colour drawn where entity `index` stands 40 m ahead of the cab (the others out of sight)
+  const auto colour_ahead = [&](ImageGenerator& ig, std::size_t index) {
+    scene::Snapshot s = state(5000.0, 5000.0, 20000.0, 12.0);
+    s.entities[index].pose.position = {40.0, 0.0, 14.0};
+    ig.set_view(level());
+    ig.update(s);
+    const osg::Image& image = ig.render();
+    const auto at = ig.project({40.0, 0.0, 14.0});
+    return pixel(image, at->first, at->second);
+  };
+  scene::SceneDescription first = scene();
+  first.entities[1].name = red;
+  first.entities[2].name = green;
+  ImageGenerator ig(first, looks, kWidth, kHeight);
+  const osg::Vec3 as_first = colour_ahead(ig, 1);
+  EXPECT_GT(as_first.x(), 2.0 * as_first.y()) << as_first.x() << " " << as_first.y() << " " << as_first.z();
+  EXPECT_GT(colour_ahead(ig, 2).y(), 2.0 * colour_ahead(ig, 2).x());
+  // the same box second in another scene: the same paint
+  scene::SceneDescription other = scene();
+  other.entities[1].name = green;
+  other.entities[2].name = red;
+  ImageGenerator elsewhere(other, looks, kWidth, kHeight);
+  const osg::Vec3 again = colour_ahead(elsewhere, 2);
+  EXPECT_NEAR(again.x(), as_first.x(), 0.02);
+  EXPECT_NEAR(again.y(), as_first.y(), 0.02);
+  // a box handed over onto this entity: it is the green one now
+  ig.rename_entity(1, green);
+  const osg::Vec3 renamed = colour_ahead(ig, 1);
+  EXPECT_GT(renamed.y(), 2.0 * renamed.x()) << renamed.x() << " " << renamed.y() << " " << renamed.z();
+}
+
+}  // namespace
+}  // namespace harbour::ig

@@ -135,7 +135,7 @@ export class View3D {
     this.bulkGroup.clear();
     this.bulkQuads = 0;
     // every part of every entity's look: one instanced mesh
-    const looks = m.entities.map((e, index) => this.partsOf(e.visual, e.half_m, index));
+    const looks = m.entities.map((e) => this.partsOf(e.visual, e.half_m, e.livery_key));
     this.parts = new Instances(this.box, looks.reduce((sum, l) => sum + l.length, 0));
     this.entities = looks.map((l) => ({
       position: new THREE.Vector3(), quaternion: new THREE.Quaternion(), visible: false,
@@ -337,7 +337,7 @@ export class View3D {
 
   // an entity's look as unit boxes placed in it: boxes, lattice girders as their four chords, any other shape
   // as the box it fills; an entity without a look is a grey box of its own size
-  private partsOf(visual: string, half: number[], index: number): { local: THREE.Matrix4; rgb: number[] }[] {
+  private partsOf(visual: string, half: number[], liveryKey: number): { local: THREE.Matrix4; rgb: number[] }[] {
     const look = this.looks.visuals[visual];
     const own = half.map((h) => 2 * h);
     const placed = (size: number[], at: number[], rgb: number[]) => ({ local: boxMatrix(size, at), rgb });
@@ -345,7 +345,7 @@ export class View3D {
     const parts: { local: THREE.Matrix4; rgb: number[] }[] = [];
     for (const part of look.parts) {
       const size = part.size_m ?? own;
-      const rgb = part.livery && look.liveries.length ? look.liveries[index % look.liveries.length] : part.color;
+      const rgb = part.livery && look.liveries.length ? look.liveries[liveryKey % look.liveries.length] : part.color;
       if (part.shape !== "lattice") { parts.push(placed(size, part.at_m, rgb)); continue; }
       const along = size.indexOf(Math.max(...size));
       for (const a of [-1, 1]) for (const b of [-1, 1]) {

@@ -105,9 +105,11 @@ try {
     t.roles.map((r) => `${r.role}:${r.exercise}`).join(" ") === "crane:sts_discharge tractor:tractor_mafi_park"),
     `the teams and their roles: ${JSON.stringify(teams.data)}`);
   // the command table the panel is drawn from: every command once, its values' ranges the simulation's
-  const table = (await b("api/commands")).data?.commands ?? [];
+  const reply = (await b("api/commands")).data;
+  const table = reply?.commands ?? [];
   const wind = table.find((t) => t.name === "wind");
-  check(table.length === 23 && new Set(table.map((t) => t.name)).size === 23 &&
+  check(table.length === 24 && new Set(table.map((t) => t.name)).size === 24 &&
+    table.find((t) => t.name === "signal")?.values[0]?.hand_signal === true && reply.signals.length === 14 &&
     table.find((t) => t.name === "limiter-fault")?.file_name === "limiter_fault" &&
     wind?.group === "weather" && wind.values.map((v) => `${v.what} ${v.min}-${v.max}`).join(", ") ===
       "wind speed 0-50, wind from 0-360, turbulence intensity 0-1",

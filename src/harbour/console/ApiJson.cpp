@@ -308,6 +308,7 @@ json scene_json(const std::string& station, const net::StationScene& scene) {
     entities.push_back(
         {{"name", scene.entity_names()[n].to_string()},
          {"visual", scene.entity_visuals()[n].to_string()},
+         {"livery_key", scene::livery_key(scene.entity_names()[n].to_string())},
          {"half_m", 3 * n + 2 < extents.size() ? json{extents[3 * n], extents[3 * n + 1], extents[3 * n + 2]}
                                                : json{0.5, 0.5, 0.5}}});
   return {{"type", "scene"},

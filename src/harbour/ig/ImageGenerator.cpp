@@ -191,6 +191,8 @@ void add_lattice(osg::Geode& geode, const core::Vec3& centre, const core::Vec3& 
   }
 }
 
+}  // namespace
+
 // The procedural models (ig/Models.h) of a scene, each built once per size and colour and shared by every
 // entity drawing it, within a level of detail: beyond its range a container is a plain box, a tyre smooth.
 class ModelCache {
@@ -226,6 +228,8 @@ class ModelCache {
   static constexpr float kContainerDetail_m = 150.0f, kTyreDetail_m = 80.0f;
   std::map<std::array<double, 10>, osg::ref_ptr<osg::Node>> nodes_;
 };
+
+namespace {
 
 // a body of declination `declination` seen at hour angle `hour_angle` from `latitude`: the direction
 // towards it (x east, y north, z up)
@@ -763,7 +767,6 @@ void ImageGenerator::build_quay_and_water() {
 
 // every entity from its look, the machine's own boxes from its looks' parts
 void ImageGenerator::build_entities(const scene::SceneDescription& scene) {
-  std::size_t index = 0;
   for (const scene::SceneDescription::Entity& e : scene.entities)
     entity_visuals_.push_back(e.visual);
   entity_poses_.assign(scene.entities.size(), core::Pose{});
@@ -782,16 +785,44 @@ void ImageGenerator::build_entities(const scene::SceneDescription& scene) {
       }
     machine_boxes_.emplace_back((low + high) * 0.5, (high - low) * 0.5);
   }
-  ModelCache models;
+  models_ = std::make_unique<ModelCache>();
+  description_ = scene;
   for (const scene::SceneDescription::Entity& e : scene.entities) {
     osg::ref_ptr<osg::MatrixTransform> transform = new osg::MatrixTransform();
+    draw_entity(*transform, e, scene.indicators);
+    add_lit(transform);
+    entities_.push_back(transform);
+  }
+  root_->addChild(shadowed_);
+  root_->addChild(unshadowed_);
+}
+
+void ImageGenerator::rename_entity(std::size_t index, const std::string& name) {
+  if (index >= entities_.size() || index < static_cast<std::size_t>(description_.machine_entities) ||
+      description_.entities[index].name == name)
+    return;
+  scene::SceneDescription::Entity& e = description_.entities[index];
+  e.name = name;
+  osg::MatrixTransform& transform = *entities_[index];
+  transform.removeChildren(0, transform.getNumChildren());
+  draw_entity(transform, e, description_.indicators);
+}
+
+// an entity's look as drawn in its frame: its parts (a livery by its name), a container's code on its sides
+void ImageGenerator::draw_entity(osg::MatrixTransform& transform_node,
+                                 const scene::SceneDescription::Entity& e,
+                                 const std::vector<std::string>& indicators) {
+  osg::ref_ptr<osg::MatrixTransform> transform = &transform_node;
+  ModelCache& models = *models_;
+  {
     const auto look = visuals_.find(e.visual);
     osg::ref_ptr<osg::Geode> geode = new osg::Geode();
     if (look != visuals_.end()) {
       for (const VisualPart& part : look->second.parts) {
         const core::Vec3 size = part.size_m ? *part.size_m : e.half_extents_m * 2.0;
         const core::Vec3 color =
-            part.livery ? look->second.liveries[index % look->second.liveries.size()] : part.color;
+            part.livery ? look->second.liveries[scene::livery_key(e.name) % look->second.liveries.size()]
+                        : part.color;
         // a part turned or turning has a transform of its own, and is drawn about its origin in it
         const bool own_frame = part.yaw_rad != 0.0 || part.turn.has_value() || !part.rolls_with.empty();
         osg::ref_ptr<osg::MatrixTransform> frame = transform;
@@ -806,8 +837,8 @@ void ImageGenerator::build_entities(const scene::SceneDescription& scene) {
           transform->addChild(frame);
           centre = {};
           auto indicator = [&](const std::string& name) {
-            const auto at = std::find(scene.indicators.begin(), scene.indicators.end(), name);
-            return at == scene.indicators.end() ? -1 : static_cast<int>(at - scene.indicators.begin());
+            const auto at = std::find(indicators.begin(), indicators.end(), name);
+            return at == indicators.end() ? -1 : static_cast<int>(at - indicators.begin());
           };
           TurningPart moving{frame, placed};
           if (part.turn) {
@@ -882,12 +913,7 @@ void ImageGenerator::build_entities(const scene::SceneDescription& scene) {
       }
     }
     transform->addChild(geode);
-    add_lit(transform);
-    entities_.push_back(transform);
-    ++index;
   }
-  root_->addChild(shadowed_);
-  root_->addChild(unshadowed_);
 }
 
 // the ropes: one line strip each, moved every frame

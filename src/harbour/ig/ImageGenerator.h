@@ -43,6 +43,8 @@ class Viewer;
 
 namespace harbour::ig {
 
+class ModelCache;  // the procedural models built once per size and colour
+
 class HeadlessContext;
 
 /// Where a view looks from.
@@ -143,6 +145,9 @@ class ImageGenerator {
   void set_hud(std::vector<HudItem> items) { hud_items_ = std::move(items); }
   /// Text over the middle of the picture on a dark panel (the station's key list); "" for none.
   void set_overlay(const std::string& text);
+  /// Entity `index` (not one of the machine's own) is now `name` (a box handed over to this station's load:
+  /// its livery and its code on its sides follow its id).
+  void rename_entity(std::size_t index, const std::string& name);
   /// A caption under the HUD, set by the application (a debrief's latest events); "" for none.
   void set_caption(const std::string& caption) { caption_ = caption; }
   /// A moment on the timeline bar, in its colour.
@@ -197,6 +202,8 @@ class ImageGenerator {
   void build_sky();
   void build_quay_and_water();
   void build_entities(const scene::SceneDescription& scene);
+  void draw_entity(osg::MatrixTransform& transform, const scene::SceneDescription::Entity& e,
+                   const std::vector<std::string>& indicators);
   void build_ropes(const scene::SceneDescription& scene);
   void build_hud(const scene::SceneDescription& scene);
   void build_near_rain();
@@ -245,6 +252,8 @@ class ImageGenerator {
   long bulk_tiles_meshed_ = 0;
   osg::ref_ptr<osg::Uniform> floodlights_on_;
   std::vector<osg::ref_ptr<osg::MatrixTransform>> entities_;
+  std::unique_ptr<ModelCache> models_;
+  scene::SceneDescription description_;  // as built, with the entities renamed since
   std::vector<osg::ref_ptr<osg::Geometry>> ropes_;
   osg::ref_ptr<osg::Fog> fog_;
   osg::ref_ptr<osg::MatrixTransform> sky_;       // the dome, centred on the eye

@@ -33,8 +33,13 @@ double RenderThread::fps() const {
   return s > 0.0 ? static_cast<double>(frames_.load()) / s : 0.0;
 }
 
+void RenderThread::rename_entity(std::size_t index, std::string name) {
+  const std::lock_guard lock(requests_mutex_);
+  renames_.emplace_back(index, std::move(name));
+}
+
 void RenderThread::set_overlay(std::string text) {
-  const std::lock_guard lock(overlay_mutex_);
+  const std::lock_guard lock(requests_mutex_);
   overlay_ = std::move(text);
   overlay_changed_ = true;
 }
@@ -71,9 +76,12 @@ void RenderThread::run(scene::SceneDescription scene, Looks looks, int width, in
       }
       last_step = s->step;
       {
-        const std::lock_guard lock(overlay_mutex_);
+        const std::lock_guard lock(requests_mutex_);
         if (overlay_changed_) generator.set_overlay(overlay_);
         overlay_changed_ = false;
+        for (const auto& [index, name] : renames_)
+          generator.rename_entity(index, name);
+        renames_.clear();
       }
       generator.update(*s);
       if (const scene::BulkView* material = bulk_ ? bulk_() : nullptr)

@@ -37,6 +37,8 @@ class RenderThread {
   std::string error() const;
   /// Text over the picture from the next frame on (ImageGenerator::set_overlay); any thread.
   void set_overlay(std::string text);
+  /// Entity `index` is `name` from the next frame on (ImageGenerator::rename_entity); any thread.
+  void rename_entity(std::size_t index, std::string name);
 
  private:
   void run(scene::SceneDescription scene, Looks looks, int width, int height, std::vector<View> views);
@@ -51,8 +53,9 @@ class RenderThread {
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
   mutable std::mutex error_mutex_;
   std::string error_;
-  std::mutex overlay_mutex_;
+  std::mutex requests_mutex_;  // what other threads ask of the next frame
   std::string overlay_;
+  std::vector<std::pair<std::size_t, std::string>> renames_;
   bool overlay_changed_ = false;
 };
 

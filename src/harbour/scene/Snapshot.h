@@ -3,6 +3,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <type_traits>
 #include <vector>
 
@@ -33,6 +34,17 @@ struct CabSight {
 inline const char* container_look(double length_m) {
   const double feet = length_m / 0.3048;
   return feet < 30 ? "container.20ft" : feet < 42 ? "container.40ft" : "container.45ft";
+}
+
+/// A name's livery key (32-bit FNV-1a of its bytes): an item is painted liveries[key % count] of its look, so
+/// a box keeps its operator's colour wherever it is drawn (another station, the console, a later exercise).
+constexpr std::uint32_t livery_key(std::string_view name) {
+  std::uint32_t h = 2166136261u;
+  for (const char c : name) {
+    h ^= static_cast<std::uint8_t>(c);
+    h *= 16777619u;
+  }
+  return h;
 }
 
 /// What a scene holds, fixed for a session: entities (what they look like and how big) and the names of the
@@ -66,7 +78,7 @@ struct Snapshot {
   bool power_off = false;   ///< the machine's supply has failed (an instructor's emergency)
   bool awaiting_zero = false;  ///< the supply is back; the drives wait for every lever at zero
   bool emergency_stop =
-      false;  ///< the machine's emergency stop is in force (the trainee's or the instructor's)
+      false;             ///< the machine's emergency stop is in force (the trainee's or the instructor's)
   int hand_signal = -1;  ///< the signaller's latest hand signal (scene::hand_signals()), -1: none yet
   double hand_signal_at_s = 0.0;  ///< [s] when it was given
 

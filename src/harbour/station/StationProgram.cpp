@@ -545,6 +545,10 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
                         c.kind = station::LoopCommand::Kind::kTeam;
                         c.team = input;
                         return session.loop().post(c);
+                      },
+                      [&render, &pictures](int entity, const std::string& id) {
+                        for (ig::RenderThread* drawing : {render.get(), pictures.get()})
+                          if (drawing) drawing->rename_entity(static_cast<std::size_t>(entity), id);
                       });
   // the station's and the team's messages since last asked, printed and told to the consoles
   const auto tell_what_was_said = [&] {

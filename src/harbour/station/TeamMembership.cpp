@@ -169,8 +169,10 @@ void TeamMembership::add_to(scene::Snapshot& snapshot) const {
 
 void TeamMembership::start(std::function<const scene::Snapshot*()> latest,
                            std::function<void(const std::string&)> said,
-                           std::function<bool(const sim::TeamInput&)> input) {
+                           std::function<bool(const sim::TeamInput&)> input,
+                           std::function<void(int entity, const std::string& id)> load_named) {
   latest_ = std::move(latest);
+  load_named_ = std::move(load_named);
   said_ = std::move(said);
   input_ = std::move(input);
   thread_ = std::thread([this] { run(); });
@@ -369,6 +371,7 @@ void TeamMembership::take_hand_offs() {
         in.mass_kg = m.mass_kg();
         if (!input_ || !input_(in)) continue;  // not taken: the next offer tries again
         acquired_.insert(item);
+        if (load_named_ && load_entity_ >= 0) load_named_(load_entity_, item);
         ++hand_offs_;
         const double took_s = static_cast<double>(net::TeamLink::monotonic_ns() - m.sent_ns()) * 1e-9;
         worst_hand_off_s_ = std::max(worst_hand_off_s_, took_s);

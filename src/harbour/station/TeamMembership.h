@@ -45,9 +45,12 @@ class TeamMembership {
   void add_to(scene::Snapshot& snapshot) const;
   /// Starts publishing this machine from `latest` (the loop's team snapshots) and taking the others'; `said`
   /// hears "tractor: lost" and "tractor: back" (from this thread, as it happens).
-  /// `input` posts a team input to the station's loop (false: refused, to be tried again).
+  /// `input` posts a team input to the station's loop (false: refused, to be tried again). `load_named`
+  /// hears, at a tractor, its load entity's index and the id of the box handed over onto it (its pictures
+  /// then draw the box as the crane's did).
   void start(std::function<const scene::Snapshot*()> latest, std::function<void(const std::string&)> said,
-             std::function<bool(const sim::TeamInput&)> input);
+             std::function<bool(const sim::TeamInput&)> input,
+             std::function<void(int entity, const std::string& id)> load_named = {});
   void stop();
   /// After stop(), as the attempt ends: tells the others this member leaves in order (they say "left", not
   /// "lost").
@@ -78,6 +81,7 @@ class TeamMembership {
   net::TeamLink link_;
   TeamPresence presence_;
   std::function<const scene::Snapshot*()> latest_;
+  std::function<void(int, const std::string&)> load_named_;
   std::function<void(const std::string&)> said_;
   std::thread thread_;
   std::atomic<bool> stop_{false};
