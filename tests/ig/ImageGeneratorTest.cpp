@@ -1281,6 +1281,7 @@ TEST(ImageGenerator, ABoxIsPaintedByItsNameWhereverItStandsAndTakesTheLiveryOfAN
   scene::SceneDescription first = scene();
   first.entities[1].name = red;
   first.entities[2].name = green;
+  first.machine_entities = 3;  // as a tractor's load is one of its machine's entities
   ImageGenerator ig(first, looks, kWidth, kHeight);
   const osg::Vec3 as_first = colour_ahead(ig, 1);
   EXPECT_GT(as_first.x(), 2.0 * as_first.y()) << as_first.x() << " " << as_first.y() << " " << as_first.z();

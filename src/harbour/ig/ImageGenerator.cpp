@@ -798,10 +798,12 @@ void ImageGenerator::build_entities(const scene::SceneDescription& scene) {
 }
 
 void ImageGenerator::rename_entity(std::size_t index, const std::string& name) {
-  if (index >= entities_.size() || index < static_cast<std::size_t>(description_.machine_entities) ||
-      description_.entities[index].name == name)
-    return;
+  if (index >= entities_.size() || description_.entities[index].name == name) return;
   scene::SceneDescription::Entity& e = description_.entities[index];
+  // (a look with parts that turn or roll is a machine's part, drawn once: its parts are registered to turn)
+  if (const auto look = visuals_.find(e.visual); look != visuals_.end())
+    for (const VisualPart& part : look->second.parts)
+      if (part.turn || !part.rolls_with.empty()) return;
   e.name = name;
   osg::MatrixTransform& transform = *entities_[index];
   transform.removeChildren(0, transform.getNumChildren());

@@ -145,8 +145,8 @@ class ImageGenerator {
   void set_hud(std::vector<HudItem> items) { hud_items_ = std::move(items); }
   /// Text over the middle of the picture on a dark panel (the station's key list); "" for none.
   void set_overlay(const std::string& text);
-  /// Entity `index` (not one of the machine's own) is now `name` (a box handed over to this station's load:
-  /// its livery and its code on its sides follow its id).
+  /// Entity `index` is now `name` (a box handed over onto this station's load: its livery and the code on its
+  /// sides follow its id); a part that turns or rolls with the machine keeps its name.
   void rename_entity(std::size_t index, const std::string& name);
   /// A caption under the HUD, set by the application (a debrief's latest events); "" for none.
   void set_caption(const std::string& caption) { caption_ = caption; }
