@@ -7,30 +7,14 @@
 #include <limits>
 #include <stdexcept>
 
+#include "support/ControlSpecs.h"
+
 namespace harbour::scene {
 namespace {
 
-ControlSpec axis(const char* label, double min = -1.0, double max = 1.0) {
-  ControlSpec c;
-  c.label = label;
-  c.min = min;
-  c.max = max;
-  return c;
-}
-ControlSpec button(const char* label) {
-  ControlSpec c;
-  c.label = label;
-  c.kind = ControlKind::kButton;
-  return c;
-}
-ControlSpec selector(const char* label, std::vector<std::string> positions, double neutral) {
-  ControlSpec c;
-  c.label = label;
-  c.kind = ControlKind::kSwitch;
-  c.positions = std::move(positions);
-  c.neutral = c.safe = neutral;
-  return c;
-}
+using test::axis;
+using test::button;
+using test::selector;
 
 void expect_refused(std::vector<ControlSpec> controls, const std::string& says) {
   try {

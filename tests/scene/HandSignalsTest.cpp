@@ -7,22 +7,13 @@
 #include <set>
 #include <string>
 
+#include "support/ControlSpecs.h"
+
 namespace harbour::scene {
 namespace {
 
-ControlSpec axis(const char* label, double min = -1.0, double max = 1.0) {
-  ControlSpec c;
-  c.label = label;
-  c.min = min;
-  c.max = max;
-  return c;
-}
-ControlSpec button(const char* label) {
-  ControlSpec c;
-  c.label = label;
-  c.kind = ControlKind::kButton;
-  return c;
-}
+using test::axis;
+using test::button;
 
 const HandSignal& named(const char* name) {
   const int n = find_hand_signal(name);
