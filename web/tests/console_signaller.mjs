@@ -77,7 +77,7 @@ try {
   await sam.click("button.signal[data-signal=stop]");
   await until("the station answers the signal", async () => /signal:stop: done/.test(await sam.textContent("#command-result")));
   const answer = await sam.textContent("#command-result");
-  check(/called on the radio/.test(answer), `the answer: ${answer}`);
+  check(/sees "stop" and hears it on the radio/.test(answer), `the answer: ${answer}`);
   await until("the cab picture shows the signaller", async () => (await yellowInPanel(sam)) > 150, 20);
   const after = await yellowInPanel(sam);
   check(before < 40 && after > 150, `yellow pixels where the cab draws the signal: ${before} before, ${after} after`);

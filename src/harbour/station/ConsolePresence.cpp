@@ -170,20 +170,21 @@ bool AttemptPresence::apply(const net::StationCommand& command, std::string& ans
   answer = "done: " + kind;
   if (loop.kind == LoopCommand::Kind::kInstructor &&
       loop.instructor.kind == sim::InstructorCommand::Kind::kSignal)
-    answer += say_signal(loop.instructor);
+    answer = say_signal(loop.instructor);
   return true;
 }
 
 std::string AttemptPresence::say_signal(const sim::InstructorCommand& command) {
   // the signaller calls it on the radio as well as showing it, where the cab has one
-  if (!sound_) return " (shown; no sound here to call it on the radio)";
   const scene::HandSignal& signal = scene::hand_signals()[static_cast<std::size_t>(command.value)];
+  const std::string shown = "done: the operator sees \"" + std::string(signal.words) + "\"";
+  if (!sound_) return shown + " (no sound here to call it on the radio)";
   try {
     sound_->say(std::string(signal.words));
   } catch (const audio::AudioError& e) {
-    return std::string(" (shown; not called on the radio: ") + e.what() + ")";
+    return shown + " (not called on the radio: " + e.what() + ")";
   }
-  return " (shown and called on the radio)";
+  return shown + " and hears it on the radio";
 }
 
 bool AttemptPresence::apply_sound(const std::string& kind, std::string& answer) {

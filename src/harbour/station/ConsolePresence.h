@@ -89,7 +89,8 @@ class AttemptPresence {
   double published_time_s();  // the simulated time of the newest snapshot (not the stepping simulation's)
   bool apply(const net::StationCommand& command, std::string& answer, Next& next);
   bool apply_sound(const std::string& kind, std::string& answer);
-  /// " (shown and called on the radio)", or why it was only shown.
+  /// Calls a signal on the radio where it can: "done: the operator sees "stop" and hears it on the radio", or
+  /// why it is only shown.
   std::string say_signal(const sim::InstructorCommand& command);
 
   net::StationLink& link_;
