@@ -183,7 +183,7 @@ void Evaluator::observe_instructor(const Simulation& simulation) {
 
 void Evaluator::observe_signals(const Simulation& simulation, const scene::Controls& controls) {
   const Simulation::GivenSignal& given = simulation.signal();
-  if (given.count != signals_seen_) {  // a new signal (one not followed before it stays late)
+  if (given.count != signals_seen_) {  // a new signal replaces the last (late only if its time had passed)
     signals_seen_ = given.count;
     ++metrics_.signals;
     signal_pending_ = true;
