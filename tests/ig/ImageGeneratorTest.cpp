@@ -707,37 +707,65 @@ TEST(ImageGenerator, TheViewsRollTurnsThePictureAboutItsAxis) {
 namespace harbour::ig {
 namespace {
 
-TEST(ImageGenerator, AContainersIsoCodeIsPaintedOnItsSides) {
+TEST(ImageGenerator, AContainersIsoCodeIsPaintedOnItsSidesItsEndsAndItsRoof) {
   scene::SceneDescription d;
   d.entities.push_back({"mast", "none", {}});
   d.entities.push_back({"TGHU1234567", "test.container", {6.1, 1.22, 1.3}});
-  const auto white_pixels = [&](bool labelled) {
+  // bright pixels within the rows `top`-`bottom` of the picture of the (dark blue) box posed at `pose`, seen
+  // from the cab at 10 m looking along +x, turned down by `pitch`
+  const auto white_pixels = [&](bool labelled, const core::Pose& pose, double pitch, const core::Vec3& top,
+                                const core::Vec3& bottom) {
     Visual look;
     VisualPart part;
     part.color = {0.1, 0.25, 0.6};
     look.parts.push_back(part);
-    look.name_on_sides = labelled;
+    look.name_marked = labelled;
     ImageGenerator ig(d, {{"test.container", look}}, kWidth, kHeight);
     View v = level();
     v.hud = false;
+    v.pitch_rad = pitch;
     ig.set_view(v);
     scene::Snapshot s = state(5000.0, 5000.0, 20000.0, 12.0);
     s.entity_count = 2;
-    // 7 m ahead, its long side towards the eye (its length across the view)
-    s.entities[1] = {1, 0, {core::Mat3::rotation({0.0, 0.0, 1.0}, std::numbers::pi / 2.0), {7.0, 0.0, 10.0}}};
+    s.entities[1] = {1, 0, pose};
     ig.update(s);
     const osg::Image& image = ig.render();
-    int white = 0;  // bright pixels on the box's side (the rows it spans), which is dark blue
-    const double top = ig.project({7.0, 0.0, 11.2})->second, bottom = ig.project({7.0, 0.0, 8.8})->second;
-    for (int y = static_cast<int>(top); y <= static_cast<int>(bottom); ++y)
+    int white = 0;
+    const auto from = ig.project(top), to = ig.project(bottom);
+    for (int y = static_cast<int>(std::min(from->second, to->second));
+         y <= static_cast<int>(std::max(from->second, to->second)); ++y)
       for (int x = 0; x < kWidth; ++x)
         white += luminance(pixel(image, x, y)) > 0.6;
     return white;
   };
-  const int plain = white_pixels(false), labelled = white_pixels(true);
-  std::printf("white pixels on the box's side: %d plain, %d with its code\n", plain, labelled);
-  EXPECT_EQ(plain, 0);
-  EXPECT_GT(labelled, 80);  // "TGHU1234567" in 0.32 m letters 7 m away
+  const core::Mat3 across = core::Mat3::rotation({0.0, 0.0, 1.0}, std::numbers::pi / 2.0);
+  struct Seen {
+    const char* what;
+    core::Pose pose;
+    double pitch_rad;
+    core::Vec3 top, bottom;
+    int at_least;
+  };
+  const Seen views[] = {
+      // 7 m ahead, its long side towards the eye: "TGHU1234567" in 0.32 m letters
+      {"side", {across, {7.0, 0.0, 10.0}}, 0.0, {7.0, 0.0, 11.2}, {7.0, 0.0, 8.8}, 80},
+      // its end towards the eye, 7 m ahead of it: 0.2 m letters across its 2.44 m
+      {"end", {core::Mat3::identity(), {13.1, 0.0, 10.0}}, 0.0, {7.0, 0.0, 11.2}, {7.0, 0.0, 8.8}, 30},
+      // 9 m below the eye, looked straight down on: its roof, 0.45 m letters
+      {"roof",
+       {core::Mat3::identity(), {0.0, 0.0, -0.3}},
+       -std::numbers::pi / 2.0,
+       {6.0, 0.0, 1.0},
+       {-6.0, 0.0, 1.0},
+       150},
+  };
+  for (const Seen& seen : views) {
+    const int plain = white_pixels(false, seen.pose, seen.pitch_rad, seen.top, seen.bottom);
+    const int labelled = white_pixels(true, seen.pose, seen.pitch_rad, seen.top, seen.bottom);
+    std::printf("white pixels on the box's %s: %d plain, %d with its code\n", seen.what, plain, labelled);
+    EXPECT_EQ(plain, 0) << seen.what;
+    EXPECT_GT(labelled, seen.at_least) << seen.what;
+  }
 }
 
 }  // namespace

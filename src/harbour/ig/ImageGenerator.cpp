@@ -896,21 +896,33 @@ void ImageGenerator::draw_entity(osg::MatrixTransform& transform_node,
         drawables->addDrawable(box);
       }
     }
-    if (look != visuals_.end() && look->second.name_on_sides) {
-      // the name (a container's ISO code) high on both long sides, facing out (x along the length, y across)
-      for (const double side : {-1.0, 1.0}) {
+    if (look != visuals_.end() && look->second.name_marked) {
+      // the name (a container's ISO code) where ISO 6346 marks it, each facing out: high on both long sides
+      // reading along the box, high on both ends reading across it, and on the roof, larger, for the crane
+      // driver looking down (x along the length, y across, z up; text lies in its xy plane reading along x)
+      const osg::Vec3 half = to_osg(e.half_extents_m);
+      const osg::Quat upright(osg::PI_2, osg::Vec3(1, 0, 0));  // onto the -y side, reading along +x
+      const osg::Quat turn_z_90(osg::PI_2, osg::Vec3(0, 0, 1)), turn_z_180(osg::PI, osg::Vec3(0, 0, 1)),
+          turn_z_270(-osg::PI_2, osg::Vec3(0, 0, 1));
+      const float high = half.z() * 0.55f;
+      const struct {
+        osg::Quat rotation;
+        osg::Vec3 at;
+        float size;
+      } marks[] = {{upright, {0.0f, -half.y() - 0.01f, high}, 0.32f},
+                   {upright * turn_z_180, {0.0f, half.y() + 0.01f, high}, 0.32f},
+                   {upright * turn_z_90, {half.x() + 0.01f, 0.0f, high}, 0.2f},  // 2.44 m across
+                   {upright * turn_z_270, {-half.x() - 0.01f, 0.0f, high}, 0.2f},
+                   {osg::Quat(), {0.0f, 0.0f, half.z() + 0.01f}, 0.45f}};
+      for (const auto& mark : marks) {
         osg::ref_ptr<osgText::Text> label = new osgText::Text;
         label->setText(e.name);
-        label->setCharacterSize(0.32f);
+        label->setCharacterSize(mark.size);
         label->setColor(osg::Vec4(0.95f, 0.95f, 0.95f, 1.0f));
         label->setAlignment(osgText::Text::CENTER_CENTER);
         label->setAxisAlignment(osgText::Text::USER_DEFINED_ROTATION);
-        // text lies in its xy plane reading along x: turn it upright onto the side face, reading along the
-        // box
-        const osg::Quat upright(osg::PI_2, osg::Vec3(1, 0, 0));
-        label->setRotation(side < 0 ? upright : upright * osg::Quat(osg::PI, osg::Vec3(0, 0, 1)));
-        label->setPosition(osg::Vec3(0.0f, static_cast<float>(side * (e.half_extents_m.y + 0.01)),
-                                     static_cast<float>(e.half_extents_m.z * 0.55)));
+        label->setRotation(mark.rotation);
+        label->setPosition(mark.at);
         geode->addDrawable(label);
       }
     }

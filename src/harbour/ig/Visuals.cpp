@@ -305,7 +305,7 @@ void read_visuals(const io::YamlFile& f, const YAML::Node& section, const std::s
       for (std::size_t k = 0; k < liveries.size(); ++k)
         visual.liveries.push_back(color_of(f, liveries[k], at + ".liveries[" + std::to_string(k) + "]"));
     }
-    visual.name_on_sides = f.flag(v, "name_on_sides", at, false);
+    visual.name_marked = f.flag(v, "name_marked", at, false);
     const YAML::Node parts = f.sequence(v, "parts", at, 256);
     for (std::size_t k = 0; k < parts.size(); ++k) {
       const std::string pat = at + ".parts[" + std::to_string(k) + "]";

@@ -63,7 +63,8 @@ struct VisualPart {
 struct Visual {
   std::vector<VisualPart> parts;
   std::vector<core::Vec3> liveries;  ///< colours picked by entity index
-  bool name_on_sides = false;        ///< the entity's name painted on its long sides (a container's ISO code)
+  /// the entity's name marked where ISO 6346 marks a container's code: both long sides, both ends, the roof
+  bool name_marked = false;
 };
 
 /// One line of the trainee's heads-up display: an indicator by name (SceneDescription::indicators).
