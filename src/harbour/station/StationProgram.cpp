@@ -419,6 +419,55 @@ bool pump_windows(const std::vector<std::unique_ptr<station::StationWindow>>& wi
   return open;
 }
 
+// What a team's thread says, kept until the station's thread prints it and tells the consoles
+class TeamSaid {
+ public:
+  void add(std::string line) {
+    const std::lock_guard lock(mutex_);
+    lines_.push_back(std::move(line));
+  }
+  std::vector<std::string> take() {
+    const std::lock_guard lock(mutex_);
+    std::vector<std::string> lines;
+    lines.swap(lines_);
+    return lines;
+  }
+
+ private:
+  std::mutex mutex_;
+  std::vector<std::string> lines_;
+};
+
+// The membership started: the others' states taken, its team inputs posted to the loop, what it says kept
+// in `said`, a box handed over onto this station's load named so in every picture drawn
+void start_membership(station::TeamMembership& membership, station::Session& session, TeamSaid& said,
+                      ig::RenderThread* render, ig::RenderThread* pictures) {
+  membership.start([&session] { return session.loop().latest_snapshot(station::kTeamReader); },
+                   [&said](const std::string& line) { said.add(line); },
+                   [&session](const sim::TeamInput& input) {
+                     station::LoopCommand c;
+                     c.kind = station::LoopCommand::Kind::kTeam;
+                     c.team = input;
+                     return session.loop().post(c);
+                   },
+                   [render, pictures](int entity, const std::string& id) {
+                     for (ig::RenderThread* drawing : {render, pictures})
+                       if (drawing) drawing->rename_entity(static_cast<std::size_t>(entity), id);
+                   });
+}
+
+// The station's and the team's messages since last asked, printed and told to the consoles
+void tell(station::Station& station, station::AttemptPresence* presence, TeamSaid& said) {
+  for (const std::string& m : station.take_messages()) {
+    std::printf("  %s\n", core::printable(m).c_str());
+    if (presence) presence->note("station", m);
+  }
+  for (const std::string& m : said.take()) {
+    std::printf("  team: %s\n", core::printable(m).c_str());
+    if (presence) presence->note("team", m);
+  }
+}
+
 // This station leaves its team session: the team's figures and the session's id go with the attempt
 void leave_team(station::TeamMembership& membership, station::Session& session, const std::string& team,
                 const std::string& role) {
@@ -531,41 +580,9 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
   const auto start = std::chrono::steady_clock::now();
   session.start();
   station.start();
-  // what the team thread says, printed and told to the consoles from this thread
-  std::mutex team_said_mutex;
-  std::vector<std::string> team_said;
-  if (membership)
-    membership->start([&session] { return session.loop().latest_snapshot(station::kTeamReader); },
-                      [&](const std::string& said) {
-                        const std::lock_guard lock(team_said_mutex);
-                        team_said.push_back(said);
-                      },
-                      [&session](const sim::TeamInput& input) {
-                        station::LoopCommand c;
-                        c.kind = station::LoopCommand::Kind::kTeam;
-                        c.team = input;
-                        return session.loop().post(c);
-                      },
-                      [&render, &pictures](int entity, const std::string& id) {
-                        for (ig::RenderThread* drawing : {render.get(), pictures.get()})
-                          if (drawing) drawing->rename_entity(static_cast<std::size_t>(entity), id);
-                      });
-  // the station's and the team's messages since last asked, printed and told to the consoles
-  const auto tell_what_was_said = [&] {
-    for (const std::string& m : station.take_messages()) {
-      std::printf("  %s\n", core::printable(m).c_str());
-      if (presence) presence->note("station", m);
-    }
-    std::vector<std::string> said;
-    {
-      const std::lock_guard lock(team_said_mutex);
-      said.swap(team_said);
-    }
-    for (const std::string& m : said) {
-      std::printf("  team: %s\n", core::printable(m).c_str());
-      if (presence) presence->note("team", m);
-    }
-  };
+  TeamSaid team_said;
+  if (membership) start_membership(*membership, session, team_said, render.get(), pictures.get());
+  const auto tell_what_was_said = [&] { tell(station, presence ? &*presence : nullptr, team_said); };
   station::AttemptPresence::Next next = station::AttemptPresence::Next::kRun;
   int next_line = 0;
   bool window_open = true;
