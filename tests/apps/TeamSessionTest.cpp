@@ -241,6 +241,17 @@ TEST(TeamSession, ThreeStationsHandEachBoxOverOnceAndStoreOneSessionThatReplaysB
   EXPECT_EQ(count_said("crane-cab TGHU1000010"), 0) << logs();  // not one of the moves
   EXPECT_EQ(count_said("tractor_1-cab TGHU1000012: acquired from crane"), 1) << logs();
   EXPECT_EQ(count_said("tractor_2-cab TGHU1000014: acquired from crane"), 1) << logs();
+  // each tractor's scene sent again with its load named as the box handed over onto it (the consoles' 3D
+  // views draw it with that box's paint)
+  for (const auto& [station, box] :
+       {std::pair{"tractor_1-cab", "TGHU1000012"}, {"tractor_2-cab", "TGHU1000014"}}) {
+    const auto found = console.stations().find(station);
+    ASSERT_TRUE(found != console.stations().end() && found->second.scene) << station;
+    const auto& names = found->second.scene->entity_names();
+    EXPECT_TRUE(std::any_of(names.begin(), names.end(), [&](const auto& n) { return n.to_string() == box; }))
+        << station << " has no entity named " << box;
+    EXPECT_GE(found->second.scene_count, 2u) << station;
+  }
   // a tractor that has parked its box leaves the session in order: the others say so, not that it is lost
   EXPECT_EQ(count_said("crane-cab tractor_1: left (tractor_1-cab, its attempt ended)"), 1) << logs();
   EXPECT_EQ(count_said("crane-cab tractor_1: lost"), 0) << logs();

@@ -128,8 +128,10 @@ export class View3D {
     this.scene.add(this.scenery(), this.water, this.entityGroup, this.ropeGroup, this.bulkGroup);
   }
 
-  /** The station's entities for an attempt (a new attempt replaces them). */
+  /** The station's entities for an attempt (a new attempt replaces them; the same attempt's again, an entity
+   *  renamed, redraws them where the view looks). */
   setScene(m: SceneMessage) {
+    const again = m.station === this.station && m.attempt === this.attempt;
     this.entityGroup.clear();
     this.parts?.mesh.dispose();
     this.bulkGroup.clear();
@@ -146,7 +148,7 @@ export class View3D {
     this.names = m.entities.map((e) => e.name);
     this.attempt = m.attempt;
     this.station = m.station;
-    this.framed = false;
+    this.framed = again && this.framed;
     this.invalidate();
   }
 

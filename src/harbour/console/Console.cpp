@@ -680,7 +680,7 @@ void Console::poll() {
       if (s->subscribed().rfind("replay-", 0) == 0) {
         for (auto& [id, r] : replays_)
           if (s->subscribed() == "replay-" + std::to_string(id))
-            push_state(*s, s->subscribed(), &r.scene, [&](bool view) { return replay_state(r, view); });
+            push_state(*s, s->subscribed(), &r.scene, 0, [&](bool view) { return replay_state(r, view); });
         for (auto& [id, r] : replays_)
           if (s->subscribed() == "replay-" + std::to_string(id) && s->wants_view())
             if (const bulk::BulkWorld* material = r.player->simulation().bulk()) {
@@ -700,7 +700,7 @@ void Console::poll() {
       if (s->subscribed().empty() || found == link_.stations().end() || !found->second.state) continue;
       const net::StationState& st = *found->second.state;
       const net::StationScene* scene = found->second.scene ? &*found->second.scene : nullptr;
-      push_state(*s, s->subscribed(), scene,
+      push_state(*s, s->subscribed(), scene, found->second.scene_count,
                  [&](bool view) { return state_json(s->subscribed(), st, scene, view); });
       if (s->wants_view() && found->second.bulk) {
         const std::string key = s->subscribed() + " " + std::to_string(found->second.bulk_count);

@@ -444,8 +444,9 @@ class Console {
   json replay_state(Replay& replay, bool view = false);
   /// Sends a socket its subscription's scene (when it draws the 3D view and has not got this attempt's)
   /// and state.
+  /// `scene_count`: how many scenes the station has sent (a renamed entity's attempt is sent again).
   void push_state(LiveSocket& socket, const std::string& station, const net::StationScene* scene,
-                  const std::function<json(bool)>& state_of);
+                  std::uint64_t scene_count, const std::function<json(bool)>& state_of);
   std::string looks_ =
       dump(looks_json(ig::load_shipped_looks(records::shipped_data_folder(), sim::machine_kinds())));
   /// the training routes (the centre's and data/routes), checked at start: a bad one stops the console

@@ -190,9 +190,10 @@ json Console::replay_state(Replay& r, bool view) {
 }
 
 void Console::push_state(LiveSocket& socket, const std::string& station, const net::StationScene* scene,
-                         const std::function<json(bool)>& state_of) {
+                         std::uint64_t scene_count, const std::function<json(bool)>& state_of) {
   if (socket.wants_view() && scene) {
-    const std::string key = station + " " + std::to_string(scene->attempt());
+    const std::string key =
+        station + " " + std::to_string(scene->attempt()) + " " + std::to_string(scene_count);
     if (socket.scene_sent() != key) {
       socket.send(dump(scene_json(station, *scene)));
       socket.scene_sent() = key;

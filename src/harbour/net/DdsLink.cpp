@@ -323,7 +323,9 @@ std::vector<std::string> ConsoleLink::poll(Clock::time_point now) {
   });
   dds_->take<StationScene>(dds_->scene_in, [&](const StationScene& s, const dds::SampleInfo& info) {
     if (!info.valid_data) return;
-    stations_[s.station().to_string()].scene = s;
+    Station& station = stations_[s.station().to_string()];
+    station.scene = s;
+    ++station.scene_count;
     note(s.station().to_string());
   });
   dds_->take<StationState>(dds_->state_in, [&](const StationState& s, const dds::SampleInfo& info) {

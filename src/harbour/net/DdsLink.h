@@ -111,6 +111,8 @@ class ConsoleLink {
     bool lost = false;        ///< no status for kLostAfter_s (its process gone or its network)
     bool gone = false;        ///< it left the network in order
     std::optional<StationScene> scene;
+    std::uint64_t scene_count =
+        0;  ///< scenes received (an attempt's is sent again when an entity is renamed)
     std::optional<StationState> state;
     std::uint64_t state_count = 0;    ///< states received (the console's rate figures)
     std::optional<StationBulk> bulk;  ///< its bulk material's surfaces (bulk exercises)

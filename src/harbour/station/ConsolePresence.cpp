@@ -91,6 +91,12 @@ AttemptPresence::AttemptPresence(net::StationLink& link, Session& session,
   link_.publish(net::scene_message(scene_, session.attempt()));
 }
 
+void AttemptPresence::rename_entity(std::size_t index, const std::string& name) {
+  if (index >= scene_.entities.size() || scene_.entities[index].name == name) return;
+  scene_.entities[index].name = name;
+  link_.publish(net::scene_message(scene_, session_.attempt()));
+}
+
 net::StationStatus AttemptPresence::status(const std::string& state, const scene::Snapshot* snapshot) const {
   net::StationStatus s = base_status(state);
   s.machine(scene_.machine);

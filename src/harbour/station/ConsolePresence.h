@@ -63,6 +63,9 @@ class AttemptPresence {
   /// A line for the consoles' event logs (a device lost, the image generator stopped). Call from the
   /// thread that calls service() (it reads the console's snapshots).
   void note(const std::string& kind, const std::string& text);
+  /// Entity `index` of the attempt's scene is now `name` (a box handed over onto this station's load): the
+  /// scene is published again, so the consoles' 3D views draw it with its own paint.
+  void rename_entity(std::size_t index, const std::string& name);
   /// The trainee's cab view as the instructor sees it, a JPEG picture drawn at simulated time `time_s`: sent
   /// with the next service() (any thread; a newer one replaces one not yet sent).
   void offer_picture(std::vector<std::uint8_t> jpeg, int width, int height, double time_s);

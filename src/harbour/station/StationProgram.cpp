@@ -419,23 +419,31 @@ bool pump_windows(const std::vector<std::unique_ptr<station::StationWindow>>& wi
   return open;
 }
 
-// What a team's thread says, kept until the station's thread prints it and tells the consoles
+// What a team's thread says, and the entities it renames (a box handed over onto the load), kept until the
+// station's thread prints them and tells the consoles
 class TeamSaid {
  public:
+  using Renamed = std::pair<std::size_t, std::string>;
   void add(std::string line) {
     const std::lock_guard lock(mutex_);
     lines_.push_back(std::move(line));
   }
-  std::vector<std::string> take() {
+  void renamed(std::size_t entity, std::string name) {
     const std::lock_guard lock(mutex_);
-    std::vector<std::string> lines;
-    lines.swap(lines_);
-    return lines;
+    renamed_.emplace_back(entity, std::move(name));
+  }
+  std::pair<std::vector<std::string>, std::vector<Renamed>> take() {
+    const std::lock_guard lock(mutex_);
+    std::pair<std::vector<std::string>, std::vector<Renamed>> taken;
+    taken.first.swap(lines_);
+    taken.second.swap(renamed_);
+    return taken;
   }
 
  private:
   std::mutex mutex_;
   std::vector<std::string> lines_;
+  std::vector<Renamed> renamed_;
 };
 
 // The membership started: the others' states taken, its team inputs posted to the loop, what it says kept
@@ -450,9 +458,10 @@ void start_membership(station::TeamMembership& membership, station::Session& ses
                      c.team = input;
                      return session.loop().post(c);
                    },
-                   [render, pictures](int entity, const std::string& id) {
+                   [render, pictures, &said](int entity, const std::string& id) {
                      for (ig::RenderThread* drawing : {render, pictures})
                        if (drawing) drawing->rename_entity(static_cast<std::size_t>(entity), id);
+                     said.renamed(static_cast<std::size_t>(entity), id);  // for the consoles' 3D views
                    });
 }
 
@@ -462,10 +471,14 @@ void tell(station::Station& station, station::AttemptPresence* presence, TeamSai
     std::printf("  %s\n", core::printable(m).c_str());
     if (presence) presence->note("station", m);
   }
-  for (const std::string& m : said.take()) {
+  const auto [lines, renamed] = said.take();
+  for (const std::string& m : lines) {
     std::printf("  team: %s\n", core::printable(m).c_str());
     if (presence) presence->note("team", m);
   }
+  if (presence)
+    for (const auto& [entity, name] : renamed)
+      presence->rename_entity(entity, name);
 }
 
 // This station leaves its team session: the team's figures and the session's id go with the attempt
