@@ -149,12 +149,18 @@ TEST(MachineTypes, EachTypeListsTheDeductionsItsOperatorCanIncur) {
   std::set<std::string> rubric, incurred;
   for (const io::RuleField& f : io::rule_deductions())
     rubric.insert(f.key);
+  for (const std::string_view d : kEveryMachinesDeductions) {
+    EXPECT_TRUE(rubric.count(std::string(d))) << "every machine's '" << d << "' is not a rubric key";
+    incurred.insert(std::string(d));
+  }
   for (const MachineType* type : machine_types()) {
     for (const std::string_view d : type->deductions) {
       EXPECT_TRUE(rubric.count(std::string(d))) << type->kind << " lists '" << d << "', not a rubric key";
+      EXPECT_FALSE(std::count(std::begin(kEveryMachinesDeductions), std::end(kEveryMachinesDeductions), d))
+          << type->kind << " lists every machine's '" << d << "' again";
       incurred.insert(std::string(d));
     }
-    EXPECT_TRUE(type->can_incur("collision")) << type->kind;
+    EXPECT_TRUE(type->can_incur("collision") && type->can_incur("late_stop_signal")) << type->kind;
   }
   EXPECT_EQ(incurred, rubric);
   const MachineType& sts = *find_machine_type("sts");

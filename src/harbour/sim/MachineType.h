@@ -37,6 +37,12 @@ enum class Handles : std::uint8_t {
   kTrailer,      ///< a trailer it tows
 };
 
+/// The rubric's deductions every machine's operator can incur, whatever its parts: a collision, the emergency
+/// stop, a signaller's stop followed late, the moves and the time, a harsh move.
+inline constexpr std::string_view kEveryMachinesDeductions[] = {
+    "collision",          "emergency_stop",         "late_stop_signal",
+    "move_not_completed", "minute_over_time_limit", "harsh_move"};
+
 /// What a kind of machine is, known without building one: its kind as files name it, what it handles, the
 /// faults an instructor can inject into it and the scripted operators that drive its exercises. Each
 /// machine's folder defines its own
@@ -50,7 +56,8 @@ struct MachineType {
   std::span<const MachineFault> faults;  ///< the faults it has the parts for
   bool serves_trucks = false;            ///< road trucks come to it in its exercises
   std::span<const PilotType> pilots;     ///< its scripted operators, the first that can drive an exercise
-  /// the rubric's deductions (rules.deductions keys) its operator can incur: what the designer offers
+  /// the rubric's deductions (rules.deductions keys) its operator can incur beyond those every machine's can
+  /// (kEveryMachinesDeductions): with them, what the designer offers
   std::span<const std::string_view> deductions;
   /// the figures its attempts store (Metrics::rows names) beyond those every machine's do: what it has the
   /// parts to measure (a spreader's twistlocks, ropes, a gantry's horn, a load-moment limiter, wheels)
@@ -62,6 +69,8 @@ struct MachineType {
     return false;
   }
   bool can_incur(std::string_view deduction) const {
+    for (const std::string_view d : kEveryMachinesDeductions)
+      if (d == deduction) return true;
     for (const std::string_view d : deductions)
       if (d == deduction) return true;
     return false;

@@ -10,24 +10,10 @@ namespace harbour::sim {
 namespace {
 constexpr MachineFault kFaults[] = {MachineFault::kHoistBrake, MachineFault::kLoadMomentLimiter};
 constexpr PilotType kPilots[] = {pilot_type<GrabAutopilot>(), pilot_type<HookAutopilot>()};
-constexpr std::string_view kDeductions[] = {"collision",
-                                            "emergency_stop",
-                                            "late_stop_signal",
-                                            "move_not_completed",
-                                            "minute_over_time_limit",
-                                            "harsh_move",
-                                            "hard_landing",
-                                            "landing_while_swaying",
-                                            "rope_overload",
-                                            "limit_switch_hit",
-                                            "load_drop",
-                                            "lift_under_fault",
-                                            "tonne_spilled",
-                                            "tonne_short",
-                                            "poor_bite",
-                                            "limiter_trip",
-                                            "pad_lift_off",
-                                            "decimetre_above_trim"};
+constexpr std::string_view kDeductions[] = {
+    "hard_landing", "landing_while_swaying", "rope_overload", "limit_switch_hit",
+    "load_drop",    "lift_under_fault",      "tonne_spilled", "tonne_short",
+    "poor_bite",    "limiter_trip",          "pad_lift_off",  "decimetre_above_trim"};  // and every machine's
 constexpr std::string_view kFigures[] = {
     "container_collisions", "ship_collisions", "vehicle_collisions", "hard_landings",
     "worst_landing_mps",    "sway_landings",   "overloads",          "limit_hits",

@@ -9,19 +9,9 @@ namespace harbour::sim {
 namespace {
 constexpr MachineFault kFaults[] = {MachineFault::kLoadMomentLimiter, MachineFault::kLandedSensor};
 constexpr PilotType kPilots[] = {pilot_type<ReachStackerAutopilot>()};
-constexpr std::string_view kDeductions[] = {"collision",
-                                            "emergency_stop",
-                                            "late_stop_signal",
-                                            "move_not_completed",
-                                            "minute_over_time_limit",
-                                            "harsh_move",
-                                            "hard_landing",
-                                            "landing_while_swaying",
-                                            "twistlock_misuse",
-                                            "limiter_trip",
-                                            "tip_over",
-                                            "speeding",
-                                            "load_drop"};
+constexpr std::string_view kDeductions[] = {
+    "hard_landing", "landing_while_swaying", "twistlock_misuse", "limiter_trip", "tip_over", "speeding",
+    "load_drop"};  // and every machine's
 constexpr std::string_view kFigures[] = {
     "container_collisions", "vehicle_collisions", "hard_landings", "worst_landing_mps",
     "sway_landings",        "twistlock_misuse",   "load_drops",    "travel_energy_j",

@@ -8,9 +8,7 @@
 namespace harbour::sim {
 namespace {
 constexpr PilotType kPilots[] = {pilot_type<TractorAutopilot>()};
-constexpr std::string_view kDeductions[] = {
-    "collision",  "emergency_stop", "late_stop_signal", "move_not_completed", "minute_over_time_limit",
-    "harsh_move", "jackknife",      "speeding"};
+constexpr std::string_view kDeductions[] = {"jackknife", "speeding"};  // and every machine's
 constexpr std::string_view kFigures[] = {"container_collisions", "vehicle_collisions", "travel_energy_j",
                                          "jackknifes",           "overspeeds",         "worst_overspeed_kmh"};
 }  // namespace
