@@ -12,6 +12,7 @@
 #include "harbour/bulk/BulkWorld.h"
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/machines/GantryAutopilot.h"
+#include "harbour/scene/HandSignals.h"
 #include "harbour/sim/Evaluation.h"
 #include "harbour/sim/Pilot.h"
 #include "harbour/sim/Recording.h"
@@ -138,9 +139,17 @@ struct StationTicks {
     while (loop.records().pop(record))
       if (record.kind == station::StepRecord::Kind::kKeyframe) loop.release_keyframe(record.keyframe_slot);
   }
-  long allocating_ticks(int seconds) {
+  // `signalled`: a signaller's hoist or stop given at each second (the evaluator times the answers)
+  long allocating_ticks(int seconds, bool signalled = false) {
     long allocating = 0;
     for (int second = 0; second < seconds; ++second) {
+      if (signalled) {
+        station::LoopCommand signal;
+        signal.kind = station::LoopCommand::Kind::kInstructor;
+        signal.instructor.kind = InstructorCommand::Kind::kSignal;
+        signal.instructor.value = scene::find_hand_signal(second % 2 == 0 ? "hoist" : "stop");
+        EXPECT_TRUE(loop.post(signal));
+      }
       for (int k = 0; k < 1000; ++k) {
         const int attachments = simulation.world().attachments_made();
         const long before = g_allocations.load();
@@ -171,8 +180,10 @@ struct StationTicks {
 
 TEST(Allocation, TheStationsTickAndItsSnapshotsAllocateNothing) {
   StationTicks sts("sts_bay12_hold");
-  const long allocating = sts.allocating_ticks(60);
+  const long allocating = sts.allocating_ticks(60, true);
   EXPECT_EQ(allocating, 0) << allocating << " of 60000 ticks allocated";
+  EXPECT_EQ(sts.published.signals, 60);
+  EXPECT_FALSE(sts.published.signal_delays_s.empty()) << "no signal was followed: nothing was timed";
   EXPECT_EQ(sts.keyframes, 6);
   EXPECT_GT(sts.published.time_s, 60.0) << "nothing was evaluated";
   // a snapshot is written into a reader's buffer without allocating, and the readers get the newest

@@ -33,10 +33,10 @@ const char* skill_name(Skill skill) {
 }
 
 void reserve_lists(Metrics& metrics) {
-  constexpr std::size_t kRoom = 256;  // moves, landings, bites: a long attempt's worth
+  constexpr std::size_t kRoom = 256;  // moves, landings, bites, signals: a long attempt's worth
   for (std::vector<double>* list :
        {&metrics.cycle_times_s, &metrics.landing_sway_m, &metrics.bite_fill, &metrics.release_swing_m,
-        &metrics.placement_offset_m, &metrics.placement_skew_deg})
+        &metrics.placement_offset_m, &metrics.placement_skew_deg, &metrics.signal_delays_s})
     list->reserve(std::max(kRoom, list->size()));
 }
 

@@ -292,8 +292,8 @@ Score score_of(const ExerciseSettings& exercise, const Metrics& metrics, bool go
                bool stopped_by_instructor = false);
 /// The exercise scripts this fault itself (a fault exercise): its procedure is what is trained.
 bool scripts_fault(const ExerciseSettings& exercise, MachineFault fault);
-/// Room in every per-move, per-landing and per-bite list of `metrics` for a long attempt (256 of each), so
-/// that filling them, or copying a metrics into one with this room, allocates nothing.
+/// Room in every per-move, per-landing, per-bite and per-signal list of `metrics` for a long attempt (256 of
+/// each), so that filling them, or copying a metrics into one with this room, allocates nothing.
 void reserve_lists(Metrics& metrics);
 /// Every event counted between `before` and `now`, one per count (moves are not events: see
 /// Metrics::moves_completed).
