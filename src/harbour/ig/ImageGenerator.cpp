@@ -810,124 +810,123 @@ void ImageGenerator::rename_entity(std::size_t index, const std::string& name) {
   draw_entity(transform, e, description_.indicators);
 }
 
-// an entity's look as drawn in its frame: its parts (a livery by its name), a container's code on its sides
+// an entity's look as drawn in its frame: its parts (a livery by its name), a container's code where it is
+// marked
 void ImageGenerator::draw_entity(osg::MatrixTransform& transform_node,
                                  const scene::SceneDescription::Entity& e,
                                  const std::vector<std::string>& indicators) {
   osg::ref_ptr<osg::MatrixTransform> transform = &transform_node;
   ModelCache& models = *models_;
-  {
-    const auto look = visuals_.find(e.visual);
-    osg::ref_ptr<osg::Geode> geode = new osg::Geode();
-    if (look != visuals_.end()) {
-      for (const VisualPart& part : look->second.parts) {
-        const core::Vec3 size = part.size_m ? *part.size_m : e.half_extents_m * 2.0;
-        const core::Vec3 color =
-            part.livery ? look->second.liveries[scene::livery_key(e.name) % look->second.liveries.size()]
-                        : part.color;
-        // a part turned or turning has a transform of its own, and is drawn about its origin in it
-        const bool own_frame = part.yaw_rad != 0.0 || part.turn.has_value() || !part.rolls_with.empty();
-        osg::ref_ptr<osg::MatrixTransform> frame = transform;
-        osg::ref_ptr<osg::Geode> drawables = geode;
-        core::Vec3 centre = part.centre_m;
-        if (own_frame) {
-          const osg::Matrixd placed = osg::Matrixd::rotate(part.yaw_rad, osg::Vec3d(0.0, 0.0, 1.0)) *
-                                      osg::Matrixd::translate(to_osg(part.centre_m));
-          frame = new osg::MatrixTransform(placed);
-          drawables = new osg::Geode;
-          frame->addChild(drawables);
-          transform->addChild(frame);
-          centre = {};
-          auto indicator = [&](const std::string& name) {
-            const auto at = std::find(indicators.begin(), indicators.end(), name);
-            return at == indicators.end() ? -1 : static_cast<int>(at - indicators.begin());
-          };
-          TurningPart moving{frame, placed};
-          if (part.turn) {
-            moving.turn = *part.turn;
-            moving.indicator = indicator(part.turn->indicator);
-          }
-          if (!part.rolls_with.empty()) {
-            moving.speed_indicator = indicator(part.rolls_with);
-            moving.rolls_unit_mps = part.rolls_unit_mps;
-            moving.roll_axis = to_osg(core::cross(core::Vec3{0.0, 0.0, 1.0}, part.rolls_along));
-            moving.radius_m = 0.5 * (tyre_axis(size) == 0 ? size.y : size.x);  // its diameter, twice
-          }
-          if (moving.indicator >= 0 || moving.speed_indicator >= 0) turning_parts_.push_back(moving);
+  const auto look = visuals_.find(e.visual);
+  osg::ref_ptr<osg::Geode> geode = new osg::Geode();
+  if (look != visuals_.end()) {
+    for (const VisualPart& part : look->second.parts) {
+      const core::Vec3 size = part.size_m ? *part.size_m : e.half_extents_m * 2.0;
+      const core::Vec3 color =
+          part.livery ? look->second.liveries[scene::livery_key(e.name) % look->second.liveries.size()]
+                      : part.color;
+      // a part turned or turning has a transform of its own, and is drawn about its origin in it
+      const bool own_frame = part.yaw_rad != 0.0 || part.turn.has_value() || !part.rolls_with.empty();
+      osg::ref_ptr<osg::MatrixTransform> frame = transform;
+      osg::ref_ptr<osg::Geode> drawables = geode;
+      core::Vec3 centre = part.centre_m;
+      if (own_frame) {
+        const osg::Matrixd placed = osg::Matrixd::rotate(part.yaw_rad, osg::Vec3d(0.0, 0.0, 1.0)) *
+                                    osg::Matrixd::translate(to_osg(part.centre_m));
+        frame = new osg::MatrixTransform(placed);
+        drawables = new osg::Geode;
+        frame->addChild(drawables);
+        transform->addChild(frame);
+        centre = {};
+        auto indicator = [&](const std::string& name) {
+          const auto at = std::find(indicators.begin(), indicators.end(), name);
+          return at == indicators.end() ? -1 : static_cast<int>(at - indicators.begin());
+        };
+        TurningPart moving{frame, placed};
+        if (part.turn) {
+          moving.turn = *part.turn;
+          moving.indicator = indicator(part.turn->indicator);
         }
-        if (part.shape == VisualPart::Shape::kMesh) {
-          osg::ref_ptr<osg::Node> mesh = read_mesh(part.mesh);
-          if (!mesh) throw std::runtime_error("osgDB could not read the mesh " + part.mesh);
-          paint_uncoloured(*mesh, rgba(color));
-          osg::ref_ptr<osg::MatrixTransform> placed =
-              new osg::MatrixTransform(osg::Matrixd::scale(part.scale, part.scale, part.scale) *
-                                       osg::Matrixd::translate(to_osg(centre)));
-          placed->addChild(mesh);
-          frame->addChild(placed);
-          continue;
+        if (!part.rolls_with.empty()) {
+          moving.speed_indicator = indicator(part.rolls_with);
+          moving.rolls_unit_mps = part.rolls_unit_mps;
+          moving.roll_axis = to_osg(core::cross(core::Vec3{0.0, 0.0, 1.0}, part.rolls_along));
+          moving.radius_m = 0.5 * (tyre_axis(size) == 0 ? size.y : size.x);  // its diameter, twice
         }
-        if (part.shape == VisualPart::Shape::kLattice) {
-          add_lattice(*drawables, centre, size, part.bay_m, part.member_m, rgba(color));
-          continue;
-        }
-        if (part.shape != VisualPart::Shape::kBox) {  // a procedural model, built about its origin
-          osg::ref_ptr<osg::Node> model;
-          if (part.shape == VisualPart::Shape::kContainer || part.shape == VisualPart::Shape::kTyre) {
-            model = models.detailed(part, size, color);
-          } else {
-            osg::ref_ptr<osg::Geode> holder = new osg::Geode;
-            holder->addDrawable(part.shape == VisualPart::Shape::kShell
-                                    ? clamshell(size, part.hinge_m, rgba(color))
-                                    : hull(size, rgba(color), rgba(part.bottom_color), part.waterline_m,
-                                           part.deck_color ? rgba(*part.deck_color) : osg::Vec4(0, 0, 0, 0),
-                                           part.deck_open_from_m, part.deck_open_to_m));
-            model = holder;
-          }
-          osg::ref_ptr<osg::MatrixTransform> placed =
-              new osg::MatrixTransform(osg::Matrixd::translate(to_osg(centre)));
-          placed->addChild(model);
-          frame->addChild(placed);
-          continue;
-        }
-        osg::ref_ptr<osg::ShapeDrawable> box =
-            new osg::ShapeDrawable(new osg::Box(to_osg(centre), static_cast<float>(size.x),
-                                                static_cast<float>(size.y), static_cast<float>(size.z)));
-        box->setColor(rgba(color));
-        drawables->addDrawable(box);
+        if (moving.indicator >= 0 || moving.speed_indicator >= 0) turning_parts_.push_back(moving);
       }
-    }
-    if (look != visuals_.end() && look->second.name_marked) {
-      // the name (a container's ISO code) where ISO 6346 marks it, each facing out: high on both long sides
-      // reading along the box, high on both ends reading across it, and on the roof, larger, for the crane
-      // driver looking down (x along the length, y across, z up; text lies in its xy plane reading along x)
-      const osg::Vec3 half = to_osg(e.half_extents_m);
-      const osg::Quat upright(osg::PI_2, osg::Vec3(1, 0, 0));  // onto the -y side, reading along +x
-      const osg::Quat turn_z_90(osg::PI_2, osg::Vec3(0, 0, 1)), turn_z_180(osg::PI, osg::Vec3(0, 0, 1)),
-          turn_z_270(-osg::PI_2, osg::Vec3(0, 0, 1));
-      const float high = half.z() * 0.55f;
-      const struct {
-        osg::Quat rotation;
-        osg::Vec3 at;
-        float size;
-      } marks[] = {{upright, {0.0f, -half.y() - 0.01f, high}, 0.32f},
-                   {upright * turn_z_180, {0.0f, half.y() + 0.01f, high}, 0.32f},
-                   {upright * turn_z_90, {half.x() + 0.01f, 0.0f, high}, 0.2f},  // 2.44 m across
-                   {upright * turn_z_270, {-half.x() - 0.01f, 0.0f, high}, 0.2f},
-                   {osg::Quat(), {0.0f, 0.0f, half.z() + 0.01f}, 0.45f}};
-      for (const auto& mark : marks) {
-        osg::ref_ptr<osgText::Text> label = new osgText::Text;
-        label->setText(e.name);
-        label->setCharacterSize(mark.size);
-        label->setColor(osg::Vec4(0.95f, 0.95f, 0.95f, 1.0f));
-        label->setAlignment(osgText::Text::CENTER_CENTER);
-        label->setAxisAlignment(osgText::Text::USER_DEFINED_ROTATION);
-        label->setRotation(mark.rotation);
-        label->setPosition(mark.at);
-        geode->addDrawable(label);
+      if (part.shape == VisualPart::Shape::kMesh) {
+        osg::ref_ptr<osg::Node> mesh = read_mesh(part.mesh);
+        if (!mesh) throw std::runtime_error("osgDB could not read the mesh " + part.mesh);
+        paint_uncoloured(*mesh, rgba(color));
+        osg::ref_ptr<osg::MatrixTransform> placed =
+            new osg::MatrixTransform(osg::Matrixd::scale(part.scale, part.scale, part.scale) *
+                                     osg::Matrixd::translate(to_osg(centre)));
+        placed->addChild(mesh);
+        frame->addChild(placed);
+        continue;
       }
+      if (part.shape == VisualPart::Shape::kLattice) {
+        add_lattice(*drawables, centre, size, part.bay_m, part.member_m, rgba(color));
+        continue;
+      }
+      if (part.shape != VisualPart::Shape::kBox) {  // a procedural model, built about its origin
+        osg::ref_ptr<osg::Node> model;
+        if (part.shape == VisualPart::Shape::kContainer || part.shape == VisualPart::Shape::kTyre) {
+          model = models.detailed(part, size, color);
+        } else {
+          osg::ref_ptr<osg::Geode> holder = new osg::Geode;
+          holder->addDrawable(part.shape == VisualPart::Shape::kShell
+                                  ? clamshell(size, part.hinge_m, rgba(color))
+                                  : hull(size, rgba(color), rgba(part.bottom_color), part.waterline_m,
+                                         part.deck_color ? rgba(*part.deck_color) : osg::Vec4(0, 0, 0, 0),
+                                         part.deck_open_from_m, part.deck_open_to_m));
+          model = holder;
+        }
+        osg::ref_ptr<osg::MatrixTransform> placed =
+            new osg::MatrixTransform(osg::Matrixd::translate(to_osg(centre)));
+        placed->addChild(model);
+        frame->addChild(placed);
+        continue;
+      }
+      osg::ref_ptr<osg::ShapeDrawable> box =
+          new osg::ShapeDrawable(new osg::Box(to_osg(centre), static_cast<float>(size.x),
+                                              static_cast<float>(size.y), static_cast<float>(size.z)));
+      box->setColor(rgba(color));
+      drawables->addDrawable(box);
     }
-    transform->addChild(geode);
   }
+  if (look != visuals_.end() && look->second.name_marked) {
+    // the name (a container's ISO code) where ISO 6346 marks it, each facing out: high on both long sides
+    // reading along the box, high on both ends reading across it, and on the roof, larger, for the crane
+    // driver looking down (x along the length, y across, z up; text lies in its xy plane reading along x)
+    const osg::Vec3 half = to_osg(e.half_extents_m);
+    const osg::Quat upright(osg::PI_2, osg::Vec3(1, 0, 0));  // onto the -y side, reading along +x
+    const osg::Quat turn_z_90(osg::PI_2, osg::Vec3(0, 0, 1)), turn_z_180(osg::PI, osg::Vec3(0, 0, 1)),
+        turn_z_270(-osg::PI_2, osg::Vec3(0, 0, 1));
+    const float high = half.z() * 0.55f;
+    const struct {
+      osg::Quat rotation;
+      osg::Vec3 at;
+      float size;
+    } marks[] = {{upright, {0.0f, -half.y() - 0.01f, high}, 0.32f},
+                 {upright * turn_z_180, {0.0f, half.y() + 0.01f, high}, 0.32f},
+                 {upright * turn_z_90, {half.x() + 0.01f, 0.0f, high}, 0.2f},  // 2.44 m across
+                 {upright * turn_z_270, {-half.x() - 0.01f, 0.0f, high}, 0.2f},
+                 {osg::Quat(), {0.0f, 0.0f, half.z() + 0.01f}, 0.45f}};
+    for (const auto& mark : marks) {
+      osg::ref_ptr<osgText::Text> label = new osgText::Text;
+      label->setText(e.name);
+      label->setCharacterSize(mark.size);
+      label->setColor(osg::Vec4(0.95f, 0.95f, 0.95f, 1.0f));
+      label->setAlignment(osgText::Text::CENTER_CENTER);
+      label->setAxisAlignment(osgText::Text::USER_DEFINED_ROTATION);
+      label->setRotation(mark.rotation);
+      label->setPosition(mark.at);
+      geode->addDrawable(label);
+    }
+  }
+  transform->addChild(geode);
 }
 
 // the ropes: one line strip each, moved every frame
