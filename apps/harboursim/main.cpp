@@ -19,6 +19,7 @@
 #include "harbour/debrief/Screenshot.h"
 #include "harbour/records/HeadlessRun.h"
 #include "harbour/records/XapiSender.h"
+#include "harbour/station/ChannelProgram.h"
 #include "harbour/station/DevicesTool.h"
 #include "harbour/station/StationProgram.h"
 
@@ -232,6 +233,26 @@ Command add_station(CLI::App& app) {
   station_cmd->add_flag("--serve", live.serve,
                         "wait for a console to start exercises, one after another (needs --name)");
   return [station_cmd, options]() { return chosen_station(station_cmd, *options); };
+}
+
+Command add_channel(CLI::App& app) {
+  auto options = std::make_shared<harbour::station::ChannelOptions>();
+  harbour::station::ChannelOptions& o = *options;
+  CLI::App* cmd = app.add_subcommand(
+      "channel", "one display of an immersive station drawn on this host, frame-locked with its others");
+  cmd->add_option("--station", o.station, "the station's name on the centre's network")->required();
+  cmd->add_option("--display", o.display, "the profile's display to draw (one marked remote)")->required();
+  cmd->add_option("--profile", o.profile, "the station's profile: a shipped one's name or a file");
+  cmd->add_option("--domain", o.domain, "the centre's DDS domain (0-232)")->check(CLI::Range(0, 232));
+  cmd->add_option("--window", o.window, "on, off, auto (where there is a display)");
+  cmd->add_option("--size", o.size, "WIDTHxHEIGHT: draw at this size, not the display's");
+  cmd->add_option("--seconds", o.seconds, "stop after this many seconds")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--picture", o.picture, "at the end, write the last picture shown here (PNG)");
+  cmd->add_option("--log", o.log, "write a CSV line per frame shown (frame, step, time, when, drawing time)");
+  return [cmd, options]() -> std::optional<int> {
+    if (!*cmd) return std::nullopt;
+    return harbour::station::run_channel(*options);
+  };
 }
 
 // devices, when it was chosen
@@ -576,9 +597,9 @@ int main(int argc, char** argv) {
   CLI::App app{"harboursim: harbour crane training simulator"};
   app.require_subcommand(1);
   const std::vector<Command> commands = {
-      add_run(app),        add_trainees(app), add_replay(app),   add_station(app),  add_devices(app),
-      add_screenshot(app), add_render(app),   add_console(app),  add_accounts(app), add_routes(app),
-      add_report(app),     add_xapi(app),     add_bulk_demo(app)};
+      add_run(app),     add_trainees(app),   add_replay(app), add_station(app),  add_channel(app),
+      add_devices(app), add_screenshot(app), add_render(app), add_console(app),  add_accounts(app),
+      add_routes(app),  add_report(app),     add_xapi(app),   add_bulk_demo(app)};
   CLI11_PARSE(app, argc, argv);
   try {
     for (const Command& command : commands)

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <string>
+
 namespace harbour::station {
 namespace {
 
@@ -38,6 +40,31 @@ TEST(DisplayLayout, ChannelsShareAWindowOrHaveOneEach) {
     EXPECT_EQ(apart.pictures[static_cast<std::size_t>(n)].window, n);
     EXPECT_EQ(apart.pictures[static_cast<std::size_t>(n)].x0, 0);
   }
+}
+
+// A cabin whose projectors have hosts of their own: the station draws none of them, a channel its one (the
+// first display's HUD stays with it)
+TEST(DisplayLayout, RemoteDisplaysAreLeftToTheirChannels) {
+  const Profile p = load_profile(std::string(HARBOUR_DATA_DIR) + "/profiles/immersive_remote.yaml");
+  ASSERT_EQ(p.displays.size(), 4u);
+  for (const DisplayChannel& d : p.displays)
+    EXPECT_TRUE(d.remote) << d.name;
+  EXPECT_TRUE(p.displays[0].hud);
+  EXPECT_FALSE(p.displays[1].hud);
+  const Profile own = with_displays(p, [](const DisplayChannel& d) { return !d.remote; });
+  EXPECT_TRUE(own.displays.empty());
+  const DisplayLayout none = layout_displays(own);
+  EXPECT_TRUE(none.windows.empty());
+  EXPECT_TRUE(none.pictures.empty());
+  const Profile floor = with_displays(p, [](const DisplayChannel& d) { return d.name == "floor"; });
+  ASSERT_EQ(floor.displays.size(), 1u);
+  EXPECT_FALSE(floor.displays[0].remote);  // drawn where it is now
+  ASSERT_TRUE(floor.displays[0].frustum_rad.has_value());
+  EXPECT_EQ(layout_displays(floor).pictures.size(), 1u);
+  // the shipped immersive profile draws every display itself
+  for (const DisplayChannel& d :
+       load_profile(std::string(HARBOUR_DATA_DIR) + "/profiles/immersive.yaml").displays)
+    EXPECT_FALSE(d.remote) << d.name;
 }
 
 TEST(DisplayLayout, StereoDrawsTwoEyesPerChannel) {

@@ -11,8 +11,12 @@ namespace harbour::ig {
 
 RenderThread::RenderThread(scene::SceneDescription scene, Looks looks, int width, int height,
                            std::vector<View> views, Source source, FrameSink sink, double max_fps,
-                           BulkSource bulk)
-    : source_(std::move(source)), sink_(std::move(sink)), bulk_(std::move(bulk)), max_fps_(max_fps) {
+                           BulkSource bulk, Priority priority)
+    : source_(std::move(source)),
+      sink_(std::move(sink)),
+      bulk_(std::move(bulk)),
+      max_fps_(max_fps),
+      priority_(priority) {
   thread_ = std::thread([this, scene = std::move(scene), looks = std::move(looks), width, height,
                          views = std::move(views)]() mutable {
     run(std::move(scene), std::move(looks), width, height, std::move(views));
@@ -54,7 +58,7 @@ void RenderThread::run(scene::SceneDescription scene, Looks looks, int width, in
   // below the simulation: this thread and the renderer's workers it starts run only when the step and the
   // record keeper leave a core free (SCHED_IDLE; nice +10 where that is refused)
   const sched_param idle{0};
-  if (sched_setscheduler(0, SCHED_IDLE, &idle) != 0)
+  if (priority_ == Priority::kBelowSimulation && sched_setscheduler(0, SCHED_IDLE, &idle) != 0)
     setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), 10);
   try {
     ImageGenerator generator(scene, std::move(looks.visuals), width, height);

@@ -15,7 +15,7 @@ namespace harbour::ig {
 /// The image generator on a thread of its own (its OpenGL context lives there): it draws the newest snapshot
 /// the source hands it, at most `max_fps` frames a second (a display's refresh; 0: as fast as it can), in the
 /// lowest scheduling class (SCHED_IDLE, which the renderer's worker threads inherit), so drawing never holds
-/// the 1 kHz step back.
+/// the 1 kHz step back (unless asked to run as any thread).
 class RenderThread {
  public:
   /// The newest snapshot (nullptr while there is none); called on the render thread only.
@@ -26,8 +26,13 @@ class RenderThread {
   /// The newest view of the bulk material (nullptr where there is none); called on the render thread only.
   using BulkSource = std::function<const scene::BulkView*()>;
 
+  /// How it is scheduled: below the simulation on the station's host, or as any thread (a host that only
+  /// draws)
+  enum class Priority { kBelowSimulation, kNormal };
+
   RenderThread(scene::SceneDescription scene, Looks looks, int width, int height, std::vector<View> views,
-               Source source, FrameSink sink = {}, double max_fps = 60.0, BulkSource bulk = {});
+               Source source, FrameSink sink = {}, double max_fps = 60.0, BulkSource bulk = {},
+               Priority priority = Priority::kBelowSimulation);
   ~RenderThread();
   void stop();
   long frames() const { return frames_.load(); }
@@ -47,6 +52,7 @@ class RenderThread {
   FrameSink sink_;
   BulkSource bulk_;
   double max_fps_;
+  Priority priority_;
   std::thread thread_;
   std::atomic<bool> running_{true};
   std::atomic<long> frames_{0};

@@ -49,7 +49,7 @@ constexpr int kHandOffDepth =
 
 // a writer's or a reader's QoS for one of the three kinds of delivery
 template <class Qos>
-Qos endpoint_qos(Qos q, Delivery delivery, int depth) {
+Qos endpoint_qos(Qos q, Delivery delivery, int depth, int instances) {
   q.reliability().kind =
       delivery == Delivery::kBestEffort ? dds::BEST_EFFORT_RELIABILITY_QOS : dds::RELIABLE_RELIABILITY_QOS;
   q.durability().kind =
@@ -57,9 +57,9 @@ Qos endpoint_qos(Qos q, Delivery delivery, int depth) {
   q.history().kind = dds::KEEP_LAST_HISTORY_QOS;
   q.history().depth = depth;
   // one instance per station or console (Fast DDS's default allows 10)
-  q.resource_limits().max_instances = kMostNodes;
+  q.resource_limits().max_instances = instances;
   q.resource_limits().max_samples_per_instance = depth;
-  q.resource_limits().max_samples = kMostNodes * depth;
+  q.resource_limits().max_samples = instances * depth;
   // the big samples (scene, state) are not preallocated at their bound for every slot
   q.endpoint().history_memory_policy = eprosima::fastrtps::rtps::DYNAMIC_REUSABLE_MEMORY_MODE;
   return q;
@@ -68,20 +68,24 @@ Qos endpoint_qos(Qos q, Delivery delivery, int depth) {
 // Events and commands may come in bursts (an instructor's several clicks, a collision series): deep enough
 // histories that none is dropped (KEEP_LAST 1 drops samples under bursts).
 constexpr int kEventDepth = 256, kCommandDepth = 64, kAckDepth = 256;
+// a channel's readiness comes once a frame; a station's bulk tiles are an instance each
+constexpr int kReadyDepth = 8, kMostTiles = 8192;
 
 }  // namespace
 
-/// One DDS participant with the seven topics.
+/// One DDS participant with the centre's topics.
 struct Participant {
   dds::DomainParticipant* participant = nullptr;
   dds::Publisher* publisher = nullptr;
   dds::Subscriber* subscriber = nullptr;
   std::map<std::string, dds::Topic*> topics;
   dds::DataWriter *status = nullptr, *scene = nullptr, *state = nullptr, *bulk = nullptr, *picture = nullptr,
-                  *event = nullptr, *command = nullptr, *ack = nullptr, *team = nullptr, *hand_off = nullptr;
+                  *event = nullptr, *command = nullptr, *ack = nullptr, *team = nullptr, *hand_off = nullptr,
+                  *frame = nullptr, *ready = nullptr, *tile = nullptr;
   dds::DataReader *status_in = nullptr, *scene_in = nullptr, *state_in = nullptr, *bulk_in = nullptr,
                   *picture_in = nullptr, *event_in = nullptr, *command_in = nullptr, *ack_in = nullptr,
-                  *team_in = nullptr, *hand_off_in = nullptr;
+                  *team_in = nullptr, *hand_off_in = nullptr, *frame_in = nullptr, *ready_in = nullptr,
+                  *tile_in = nullptr;
   std::mutex write_mutex;
 
   Participant(int domain, const std::string& name) {
@@ -102,6 +106,9 @@ struct Participant {
     register_type<CommandAckPubSubType>(kAckTopic);
     register_type<TeamStatePubSubType>(kTeamTopic);
     register_type<TeamHandOffPubSubType>(kHandOffTopic);
+    register_type<ChannelFramePubSubType>(kChannelFrameTopic);
+    register_type<ChannelReadyPubSubType>(kChannelReadyTopic);
+    register_type<ChannelBulkTilePubSubType>(kChannelTileTopic);
     publisher = participant->create_publisher(dds::PUBLISHER_QOS_DEFAULT);
     subscriber = participant->create_subscriber(dds::SUBSCRIBER_QOS_DEFAULT);
     if (!publisher || !subscriber) fail("a publisher or subscriber");
@@ -120,15 +127,15 @@ struct Participant {
     if (!topic) fail(topic_name);
     topics[topic_name] = topic;
   }
-  dds::DataWriter* writer(const char* topic, Delivery delivery, int depth) {
+  dds::DataWriter* writer(const char* topic, Delivery delivery, int depth, int instances = kMostNodes) {
     dds::DataWriter* w = publisher->create_datawriter(
-        topics.at(topic), endpoint_qos(dds::DATAWRITER_QOS_DEFAULT, delivery, depth));
+        topics.at(topic), endpoint_qos(dds::DATAWRITER_QOS_DEFAULT, delivery, depth, instances));
     if (!w) fail(std::string("a writer of ") + topic);
     return w;
   }
-  dds::DataReader* reader(const char* topic, Delivery delivery, int depth) {
+  dds::DataReader* reader(const char* topic, Delivery delivery, int depth, int instances = kMostNodes) {
     dds::DataReader* r = subscriber->create_datareader(
-        topics.at(topic), endpoint_qos(dds::DATAREADER_QOS_DEFAULT, delivery, depth));
+        topics.at(topic), endpoint_qos(dds::DATAREADER_QOS_DEFAULT, delivery, depth, instances));
     if (!r) fail(std::string("a reader of ") + topic);
     return r;
   }
@@ -382,6 +389,87 @@ std::optional<CommandAck> ConsoleLink::take_ack(std::uint64_t id) {
   CommandAck ack = found->second;
   acks_.erase(found);
   return ack;
+}
+
+ChannelServerLink::ChannelServerLink(const std::string& station, int domain) : station_(station) {
+  if (const std::string why = why_bad_node_name(station); !why.empty())
+    throw std::runtime_error("station name '" + station + "': " + why);
+  dds_ = std::make_unique<Participant>(domain, "harbour channels of " + station);
+  dds_->frame = dds_->writer(kChannelFrameTopic, Delivery::kLatestKept, 1);
+  dds_->tile = dds_->writer(kChannelTileTopic, Delivery::kLatestKept, 1, kMostTiles);
+  dds_->ready_in = dds_->reader(kChannelReadyTopic, Delivery::kStream, kReadyDepth);
+}
+
+ChannelServerLink::~ChannelServerLink() = default;
+
+void ChannelServerLink::publish(ChannelFrame frame) {
+  frame.station(station_);
+  dds_->write(dds_->frame, frame);
+}
+
+void ChannelServerLink::publish(ChannelBulkTile tile) {
+  tile.station(station_);
+  dds_->write(dds_->tile, tile);
+}
+
+std::vector<ChannelReady> ChannelServerLink::take_readies() {
+  std::vector<ChannelReady> readies;
+  dds_->take<ChannelReady>(dds_->ready_in, [&](const ChannelReady& r, const dds::SampleInfo& info) {
+    if (info.valid_data && r.station().to_string() == station_) readies.push_back(r);
+  });
+  return readies;
+}
+
+ChannelFeed::ChannelFeed(const std::string& station, const std::string& display, int domain)
+    : station_(station), display_(display) {
+  if (const std::string why = why_bad_node_name(station); !why.empty())
+    throw std::runtime_error("station name '" + station + "': " + why);
+  dds_ = std::make_unique<Participant>(domain, "harbour channel " + display + " of " + station);
+  dds_->scene_in = dds_->reader(kSceneTopic, Delivery::kLatestKept, 1);
+  dds_->frame_in = dds_->reader(kChannelFrameTopic, Delivery::kLatestKept, 1);
+  dds_->tile_in = dds_->reader(kChannelTileTopic, Delivery::kLatestKept, 1, kMostTiles);
+  dds_->ready = dds_->writer(kChannelReadyTopic, Delivery::kStream, kReadyDepth);
+}
+
+ChannelFeed::~ChannelFeed() = default;
+
+std::optional<StationScene> ChannelFeed::take_scene() {
+  std::optional<StationScene> newest;
+  dds_->take<StationScene>(dds_->scene_in, [&](const StationScene& s, const dds::SampleInfo& info) {
+    if (info.valid_data && s.station().to_string() == station_) newest = s;
+  });
+  return newest;
+}
+
+bool ChannelFeed::take_frame(ChannelFrame& frame) {
+  bool taken = false;
+  dds_->take<ChannelFrame>(dds_->frame_in, [&](const ChannelFrame& f, const dds::SampleInfo& info) {
+    if (info.valid_data && f.station().to_string() == station_) {
+      frame = f;
+      taken = true;
+    }
+  });
+  return taken;
+}
+
+bool ChannelFeed::wait_for_frame(std::chrono::nanoseconds timeout) {
+  const std::int64_t ns = std::max<std::int64_t>(timeout.count(), 0);
+  return dds_->frame_in->wait_for_unread_message(eprosima::fastrtps::Duration_t(
+      static_cast<std::int32_t>(ns / 1000000000), static_cast<std::uint32_t>(ns % 1000000000)));
+}
+
+std::vector<ChannelBulkTile> ChannelFeed::take_tiles() {
+  std::vector<ChannelBulkTile> tiles;
+  dds_->take<ChannelBulkTile>(dds_->tile_in, [&](const ChannelBulkTile& t, const dds::SampleInfo& info) {
+    if (info.valid_data && t.station().to_string() == station_) tiles.push_back(t);
+  });
+  return tiles;
+}
+
+void ChannelFeed::ready(ChannelReady ready) {
+  ready.station(station_);
+  ready.display(display_);
+  dds_->write(dds_->ready, ready);
 }
 
 }  // namespace harbour::net

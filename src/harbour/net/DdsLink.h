@@ -25,6 +25,9 @@ inline constexpr const char* kCommandTopic = "harbour/station_command";
 inline constexpr const char* kAckTopic = "harbour/command_ack";
 inline constexpr const char* kTeamTopic = "harbour/team_state";
 inline constexpr const char* kHandOffTopic = "harbour/team_hand_off";
+inline constexpr const char* kChannelFrameTopic = "harbour/channel_frame";
+inline constexpr const char* kChannelReadyTopic = "harbour/channel_ready";
+inline constexpr const char* kChannelTileTopic = "harbour/channel_bulk_tile";
 
 /// How often a station says it is there, and how long a console waits before it shows it as lost.
 inline constexpr double kStatusPeriod_s = 0.5;
@@ -146,6 +149,53 @@ class ConsoleLink {
   std::vector<StationEvent> events_;
   std::map<std::uint64_t, CommandAck> acks_;
   std::uint64_t next_id_ = 1;
+};
+
+/// A station's side of its remote image-generator channels: it publishes the frames and the bulk tiles and
+/// takes the channels' readiness. Thread-safe.
+class ChannelServerLink {
+ public:
+  /// Joins DDS domain `domain` for station `station`'s channels; throws std::runtime_error saying what
+  /// failed.
+  ChannelServerLink(const std::string& station, int domain);
+  ~ChannelServerLink();
+  ChannelServerLink(const ChannelServerLink&) = delete;
+  ChannelServerLink& operator=(const ChannelServerLink&) = delete;
+
+  /// Each fills in the station's name before it is written.
+  void publish(ChannelFrame frame);
+  void publish(ChannelBulkTile tile);
+  /// This station's channels' words since the last call, in arrival order.
+  std::vector<ChannelReady> take_readies();
+
+ private:
+  std::string station_;
+  std::unique_ptr<Participant> dds_;
+};
+
+/// A remote channel's side (`harboursim channel`): station `station`'s scene, frames and bulk tiles, and its
+/// own readiness as display `display`. Thread-safe.
+class ChannelFeed {
+ public:
+  ChannelFeed(const std::string& station, const std::string& display, int domain);
+  ~ChannelFeed();
+  ChannelFeed(const ChannelFeed&) = delete;
+  ChannelFeed& operator=(const ChannelFeed&) = delete;
+
+  /// The station's newest scene since the last call (an attempt's, or the same again with an entity renamed).
+  std::optional<StationScene> take_scene();
+  /// The newest frame since the last call into `frame`; false (untouched) when none came.
+  bool take_frame(ChannelFrame& frame);
+  /// Waits up to `timeout` for a frame to take; true when one came.
+  bool wait_for_frame(std::chrono::nanoseconds timeout);
+  /// The bulk tiles that changed since the last call, in arrival order.
+  std::vector<ChannelBulkTile> take_tiles();
+  /// Fills in the station and the display, and writes it.
+  void ready(ChannelReady ready);
+
+ private:
+  std::string station_, display_;
+  std::unique_ptr<Participant> dds_;
 };
 
 }  // namespace harbour::net

@@ -7,6 +7,7 @@ namespace harbour::station {
 
 DisplayLayout layout_displays(const Profile& profile, int max_width) {
   DisplayLayout layout;
+  if (profile.displays.empty()) return layout;  // every display drawn elsewhere
   const DisplayChannel& first = profile.displays.front();
   const int channels = static_cast<int>(profile.displays.size());
   const int tile_width = std::min(first.width, max_width / channels);

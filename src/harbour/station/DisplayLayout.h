@@ -30,7 +30,7 @@ struct DisplayLayout {
 /// The layout of a profile's displays: the channels side by side in one window or a window each, at most
 /// `max_width` pixels drawn across all channels (a software renderer's budget; each keeps its aspect ratio),
 /// stereo as two pictures per channel (half-width halves side by side, or a red and a cyan one over each
-/// other).
+/// other). No windows or pictures for a profile without displays.
 DisplayLayout layout_displays(const Profile& profile, int max_width = 1920);
 
 /// Copies a picture (RGB or RGBA, `pixel_bytes` 3 or 4, rows `row_bytes` apart, bottom row first as OpenGL

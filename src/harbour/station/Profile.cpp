@@ -96,6 +96,8 @@ Profile load_profile(const std::string& path) {
     c.width = f.integer(d, "width", at, 320, 16384);
     c.height = f.integer(d, "height", at, 200, 16384);
     c.fullscreen = f.flag(d, "fullscreen", at, false);
+    c.remote = f.flag(d, "remote", at, false);
+    c.hud = n == 0;
     const YAML::Node view = f.required_map(d, "view", at);
     c.yaw_rad = f.number(view, "yaw_deg", at + ".view", -180.0, 180.0) * kDeg;
     // without a pitch the channel looks along the machine's design line of sight (a desktop monitor)
@@ -191,6 +193,17 @@ std::string resolve_profile(const std::string& name_or_path, const std::string& 
   if (fs::is_regular_file(shipped)) return shipped.string();
   throw std::runtime_error("no profile file '" + name_or_path +
                            "' and no shipped profile of that name (desktop, medium, immersive)");
+}
+
+Profile with_displays(const Profile& profile, const std::function<bool(const DisplayChannel&)>& keep) {
+  Profile kept = profile;
+  kept.displays.clear();
+  for (const DisplayChannel& display : profile.displays)
+    if (keep(display)) {
+      kept.displays.push_back(display);
+      kept.displays.back().remote = false;
+    }
+  return kept;
 }
 
 }  // namespace harbour::station

@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -16,6 +17,9 @@ struct DisplayChannel {
   std::string name;
   int width = 1920, height = 1080;
   bool fullscreen = false;
+  /// Drawn by a `harboursim channel` process (a projector's own host, fed over the network), not the station
+  bool remote = false;
+  bool hud = false;  ///< it carries the heads-up display (the profile's first display)
   double yaw_rad = 0.0, pitch_rad = 0.0, roll_rad = 0.0;  ///< view offset from the cab's forward axis
   /// No pitch given: yaw_rad and pitch_rad are offsets from the machine's design line of sight (a desktop
   /// monitor looks where the operator looks)
@@ -64,6 +68,10 @@ struct Profile {
   };
   std::optional<Sound> sound;
 };
+
+/// The profile with only the displays `keep` says yes to (the station's own; a remote channel's one), each
+/// drawn there as a display of its own (not remote).
+Profile with_displays(const Profile& profile, const std::function<bool(const DisplayChannel&)>& keep);
 
 /// Reads and checks a profile (every file it names exists; displays 1-8, sizes, angles); errors name file,
 /// line and field.

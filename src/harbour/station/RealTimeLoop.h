@@ -67,7 +67,8 @@ enum SnapshotReader : int {
   kPictureReader = 3,  ///< the small cab view a served station sends the instructor
   kSoundReader = 4,    ///< the cab's sound
   kTeamReader = 5,     ///< a team session's other members (this machine's bodies, with their velocities)
-  kSnapshotReaders = 6
+  kChannelReader = 6,  ///< the remote image-generator channels
+  kSnapshotReaders = 7
 };
 
 /// The time the loop paces itself by: the steady clock, or a test's manual clock (real time tested by its
@@ -89,9 +90,10 @@ struct LoopSettings {
   int ticks_per_wake = 1;
   /// Each reader's publish period in steps (SnapshotReader order): the image generator at 250 Hz (it
   /// interpolates by step and time), the console at 50 Hz, the motion platform at 200 Hz (washout at 100 Hz),
-  /// the instructor's picture at 20 Hz, the sound at 100 Hz (a 10 ms block each), a team at 50 Hz; 0: a
-  /// reader that is not there (no window, no platform, no team), given only the first snapshot.
-  std::array<int, kSnapshotReaders> snapshot_every_steps{4, 20, 5, 50, 10, 20};
+  /// the instructor's picture at 20 Hz, the sound at 100 Hz (a 10 ms block each), a team at 50 Hz, remote
+  /// image-generator channels at 250 Hz; 0: a reader that is not there (no window, no platform, no team),
+  /// given only the first snapshot.
+  std::array<int, kSnapshotReaders> snapshot_every_steps{4, 20, 5, 50, 10, 20, 4};
   /// The bulk material's heights for the image generator (tiles changed since copied): 20 Hz, as it flows.
   int bulk_every_steps = 50;
   std::size_t record_capacity = 1 << 15;       ///< steps of hand-off to the recorder (32 s)

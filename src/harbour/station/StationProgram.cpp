@@ -29,11 +29,13 @@
 #include "harbour/sim/Pilot.h"
 #include "harbour/station/ConsolePresence.h"
 #include "harbour/station/DeviceMappingFile.h"
+#include "harbour/station/DisplayDrawing.h"
 #include "harbour/station/DisplayLayout.h"
 #include "harbour/station/HeadTracker.h"
 #include "harbour/station/LookAround.h"
 #include "harbour/station/MotionLink.h"
 #include "harbour/station/Profile.h"
+#include "harbour/station/RemoteChannels.h"
 #include "harbour/station/Station.h"
 #include "harbour/station/StationWindow.h"
 #include "harbour/station/TeamMembership.h"
@@ -143,46 +145,18 @@ std::unique_ptr<ig::RenderThread> render_windows(
     const station::Profile& profile, const station::DisplayLayout& layout,
     const std::vector<std::unique_ptr<station::StationWindow>>& windows, const scene::SceneDescription& scene,
     const ig::Looks& looks, station::Session& session) {
-  std::vector<ig::View> views;
-  std::vector<bool> last_of_window(layout.pictures.size(), false);  // the frame's last picture there
-  for (std::size_t k = 0; k < layout.pictures.size(); ++k) {
-    const station::DisplayLayout::Picture& picture = layout.pictures[k];
-    const station::DisplayChannel& c = profile.displays[static_cast<std::size_t>(picture.channel)];
-    ig::View view;
-    view.yaw_rad = c.yaw_rad;
-    view.pitch_rad = c.pitch_rad;
-    view.from_sight = c.from_sight;
-    view.fov_from_sight = c.fov_from_sight;
-    view.roll_rad = c.roll_rad;
-    view.fov_vertical_rad = c.fov_vertical_rad;
-    view.frustum_rad = c.frustum_rad;
-    view.hud = picture.channel == 0;  // on the first channel
-    view.eye_offset_m = picture.eye_offset_m;
-    view.pixel_aspect = picture.pixel_aspect;
-    if (profile.stereo) view.convergence_m = profile.stereo->convergence_m;
-    // a tracked head looks through the desktop's monitor as through a window
-    view.off_axis = profile.opentrack_port.has_value();
-    views.push_back(view);
-    for (std::size_t j = 0; j < k; ++j)
-      if (layout.pictures[j].window == picture.window) last_of_window[j] = false;
-    last_of_window[k] = true;
-  }
   std::vector<station::StationWindow*> shown;
   for (const auto& w : windows)
     shown.push_back(w.get());
-  auto render = std::make_unique<ig::RenderThread>(
-      scene, looks, layout.render_width, layout.render_height, views,
+  auto render = station::draw_displays(
+      profile, layout, scene, looks,
       [&session] { return session.loop().latest_snapshot(station::kImageGeneratorReader); },
-      [shown, pictures = layout.pictures, last_of_window](ig::ImageGenerator& generator,
-                                                          const scene::Snapshot&, int k) {
-        const station::DisplayLayout::Picture& picture = pictures[static_cast<std::size_t>(k)];
-        const osg::Image& image = generator.render_result();
-        shown[static_cast<std::size_t>(picture.window)]->hand_over(
-            image.data(), image.s(), image.t(), static_cast<int>(image.getPixelSizeInBits() / 8),
-            image.getRowStepInBytes(), picture.x0, picture.colours,
-            last_of_window[static_cast<std::size_t>(k)]);
-      },
-      60.0, [&session] { return session.loop().latest_bulk(station::kImageGeneratorReader); });
+      [&session] { return session.loop().latest_bulk(station::kImageGeneratorReader); },
+      [shown](int window, const osg::Image& image, int x0, std::uint8_t colours, bool last) {
+        shown[static_cast<std::size_t>(window)]->hand_over(image.data(), image.s(), image.t(),
+                                                           static_cast<int>(image.getPixelSizeInBits() / 8),
+                                                           image.getRowStepInBytes(), x0, colours, last);
+      });
   const int channels = static_cast<int>(profile.displays.size());
   const std::string stereo = !profile.stereo ? ""
                              : profile.stereo->mode == station::Profile::Stereo::Mode::kAnaglyph
@@ -345,7 +319,11 @@ std::shared_ptr<station::TeamMembership> join_team(const io::Team& team, const S
 // The image generators stopped, with what they drew
 void stop_drawing(ig::RenderThread* render,
                   const std::vector<std::unique_ptr<station::StationWindow>>& windows,
-                  ig::RenderThread* pictures) {
+                  ig::RenderThread* pictures, station::RemoteChannels* channels) {
+  if (channels) {
+    channels->stop();
+    std::printf("%s\n", channels->summary().c_str());
+  }
   if (render) {
     long shown = windows.front()->frames_shown();
     for (const auto& w : windows)
@@ -387,14 +365,16 @@ bool wants_sound(const StationOptions& options, const station::Profile& profile,
 // Snapshots only for the readers there are (writing one for nobody costs the step thread); nobody in the loop
 // to feel a millisecond (the scripted operator, no window, no platform): woken less often
 void skip_unread_snapshots(station::LoopSettings& loop, const StationOptions& options,
-                           const station::Profile& profile, bool drawn, bool hearing, bool watched,
-                           bool team) {
+                           const station::Profile& profile, bool drawn, bool hearing, bool watched, bool team,
+                           bool channels) {
   if (!drawn) loop.snapshot_every_steps[station::kImageGeneratorReader] = 0;
+  if (!channels) loop.snapshot_every_steps[station::kChannelReader] = 0;
   if (!hearing) loop.snapshot_every_steps[station::kSoundReader] = 0;
   if (!watched) loop.snapshot_every_steps[station::kPictureReader] = 0;
   if (!profile.motion) loop.snapshot_every_steps[station::kMotionReader] = 0;
   if (!team) loop.snapshot_every_steps[station::kTeamReader] = 0;
-  if (options.autopilot && !drawn && !profile.motion) loop.ticks_per_wake = kHeadlessTicksPerWake;
+  if (options.autopilot && !drawn && !channels && !profile.motion)
+    loop.ticks_per_wake = kHeadlessTicksPerWake;
 }
 
 // The windows' input since the last pump: keys to the devices, looking round, F1's list of keys; false when
@@ -466,7 +446,13 @@ void start_membership(station::TeamMembership& membership, station::Session& ses
 }
 
 // The station's and the team's messages since last asked, printed and told to the consoles
-void tell(station::Station& station, station::AttemptPresence* presence, TeamSaid& said) {
+void tell(station::Station& station, station::AttemptPresence* presence, TeamSaid& said,
+          station::RemoteChannels* channels) {
+  if (channels)
+    for (const std::string& m : channels->take_said()) {
+      std::printf("  %s\n", core::printable(m).c_str());
+      if (presence) presence->note("station", m);
+    }
   for (const std::string& m : station.take_messages()) {
     std::printf("  %s\n", core::printable(m).c_str());
     if (presence) presence->note("station", m);
@@ -479,6 +465,36 @@ void tell(station::Station& station, station::AttemptPresence* presence, TeamSai
   if (presence)
     for (const auto& [entity, name] : renamed)
       presence->rename_entity(entity, name);
+}
+
+// The profile's displays drawn by `harboursim channel` processes on their own hosts, fed over the network
+std::vector<std::string> remote_displays(const station::Profile& profile, bool on_network) {
+  std::vector<std::string> names;
+  for (const station::DisplayChannel& display : profile.displays)
+    if (display.remote) names.push_back(display.name);
+  if (!names.empty() && !on_network)
+    throw std::runtime_error(
+        "profile " + profile.name + ": display '" + names.front() +
+        "' is drawn by a channel process over the network (remote: true): give the station "
+        "a name on it (--name)");
+  return names;
+}
+
+// Frames of the newest snapshot for the remote displays' channels, frame-locked
+std::unique_ptr<station::RemoteChannels> feed_channels(const std::vector<std::string>& displays,
+                                                       const StationOptions& options,
+                                                       station::Session& session) {
+  if (displays.empty()) return nullptr;
+  std::string names;
+  for (const std::string& d : displays)
+    names += (names.empty() ? "" : ", ") + d;
+  std::printf("remote channels: %s (harboursim channel --station %s --display NAME), DDS domain %d\n",
+              names.c_str(), options.name.c_str(), options.domain);
+  return std::make_unique<station::RemoteChannels>(
+      std::make_unique<net::ChannelServerLink>(options.name, options.domain), displays, session.attempt(),
+      [&session] { return session.loop().latest_snapshot(station::kChannelReader); },
+      [&session] { return session.loop().latest_bulk(station::kChannelReader); },
+      station::RemoteChannels::Settings{});
 }
 
 // This station leaves its team session: the team's figures and the session's id go with the attempt
@@ -554,12 +570,15 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
   if (!options.take_over_recording.empty())
     session_options.take_over = station::TakeOverFrom{options.take_over_recording, options.take_over_step};
   // the profile's displays: side by side in one window or a window each, two eyes each in stereo
-  const station::DisplayLayout layout = station::layout_displays(profile);
+  const station::Profile own =
+      station::with_displays(profile, [](const station::DisplayChannel& d) { return !d.remote; });
+  const std::vector<std::string> remote = remote_displays(profile, link != nullptr);
+  const station::DisplayLayout layout = station::layout_displays(own);
   const std::vector<std::unique_ptr<station::StationWindow>> windows =
-      open_windows(options, profile, layout, exercise);
+      open_windows(options, own, layout, exercise);
   const bool hearing = wants_sound(options, profile, !windows.empty());
   skip_unread_snapshots(session_options.loop, options, profile, !windows.empty(), hearing, link != nullptr,
-                        team.has_value());
+                        team.has_value(), !remote.empty());
   station::Session session(exercise, session_options);
   station::Station station(session);
   // the other members' machines, in this station's scene and in every snapshot it publishes
@@ -580,7 +599,7 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
   const scene::SceneDescription scene = membership ? membership->scene() : session.simulation().scene();
   const ig::Looks looks = looks_to_draw(exercise, !windows.empty() || link);
   std::unique_ptr<ig::RenderThread> render;
-  if (!windows.empty()) render = render_windows(profile, layout, windows, scene, looks, session);
+  if (!windows.empty()) render = render_windows(own, layout, windows, scene, looks, session);
   std::unique_ptr<audio::SoundThread> sound;
   if (hearing) sound = start_sound(profile, scene, exercise, session);
   std::optional<station::AttemptPresence> presence;
@@ -593,9 +612,12 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
   const auto start = std::chrono::steady_clock::now();
   session.start();
   station.start();
+  const std::unique_ptr<station::RemoteChannels> channels = feed_channels(remote, options, session);
   TeamSaid team_said;
   if (membership) start_membership(*membership, session, team_said, render.get(), pictures.get());
-  const auto tell_what_was_said = [&] { tell(station, presence ? &*presence : nullptr, team_said); };
+  const auto tell_what_was_said = [&] {
+    tell(station, presence ? &*presence : nullptr, team_said, channels.get());
+  };
   station::AttemptPresence::Next next = station::AttemptPresence::Next::kRun;
   int next_line = 0;
   bool window_open = true;
@@ -627,7 +649,7 @@ int run_attempt(const StationOptions& given, net::StationLink* link, bool& reset
   const bool interrupted = g_stop || !window_open || next != station::AttemptPresence::Next::kRun ||
                            (!session.over() && options.seconds > 0.0);
   reset = next == station::AttemptPresence::Next::kReset;
-  stop_drawing(render.get(), windows, pictures.get());
+  stop_drawing(render.get(), windows, pictures.get(), channels.get());
   if (membership) leave_team(*membership, session, team->name, options.role);
   tell_what_was_said();  // what came with the last steps (a box handed over as the last move ended)
   station.stop_monitoring();
