@@ -7,8 +7,10 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <thread>
@@ -20,6 +22,7 @@
 #include "harbour/net/DdsLink.h"
 #include "harbour/records/RecordsStore.h"
 #include "harbour/sim/Recording.h"
+#include "harbour/sim/SessionPlayer.h"
 #include "support/AppProcess.h"
 
 namespace harbour::apps {
@@ -167,6 +170,58 @@ TEST(TeamSession, TwoStationsDrawEachOthersMachinesWhereTheirOwnStationsHaveThem
   EXPECT_NE(crane_log.find(", LOST"), std::string::npos) << crane_log;
 }
 
+// Each box of a session replayed as a whole (the crane first, then its trucks): which member draws it at
+// every replayed step (the crane its box by name, slot k's truck its "load"), and where it is at the moment
+// the drawing passes from the crane to the truck.
+struct HandOffsSeen {
+  int drawn_twice[2] = {0, 0}, not_drawn[2] = {0, 0}, hand_offs[2] = {0, 0};
+  double at_s[2] = {0.0, 0.0}, jump_m[2] = {0.0, 0.0};
+};
+HandOffsSeen watch_hand_offs(sim::SessionPlayer& session, const std::vector<std::string>& boxes) {
+  HandOffsSeen seen;
+  const auto index_of = [&](std::size_t member, const std::string& name) {
+    int first = 0;
+    for (std::size_t k = 0; k < member; ++k)
+      first += static_cast<int>(session.player(k).simulation().scene().entities.size());
+    const auto& entities = session.player(member).simulation().scene().entities;
+    for (std::size_t e = 0; e < entities.size(); ++e)
+      if (entities[e].name == name) return first + static_cast<int>(e);
+    return -1;
+  };
+  int by_crane[2], by_truck[2];
+  for (std::size_t slot = 0; slot < 2; ++slot) {
+    by_crane[slot] = index_of(0, boxes[slot]);
+    by_truck[slot] = index_of(1 + slot, "load");
+    EXPECT_TRUE(by_crane[slot] >= 0 && by_truck[slot] >= 0) << boxes[slot];
+  }
+  const auto snapshot = std::make_unique<scene::Snapshot>();
+  std::optional<core::Vec3> crane_had[2];
+  const auto steps = static_cast<std::int64_t>(std::llround(session.duration_s() / sim::Simulation::kStep_s));
+  for (std::int64_t step = 0; step <= steps; ++step) {
+    const double t = static_cast<double>(step) * sim::Simulation::kStep_s;
+    session.advance_to(t);
+    session.write_snapshot(*snapshot);
+    for (std::size_t slot = 0; slot < 2; ++slot) {
+      std::optional<core::Vec3> crane_at, truck_at;
+      for (int n = 0; n < snapshot->entity_count; ++n) {
+        const scene::Snapshot::Entity& e = snapshot->entities[static_cast<std::size_t>(n)];
+        if ((e.flags & scene::Snapshot::kHidden) != 0) continue;
+        if (static_cast<int>(e.index) == by_crane[slot]) crane_at = e.pose.position;
+        if (static_cast<int>(e.index) == by_truck[slot]) truck_at = e.pose.position;
+      }
+      seen.drawn_twice[slot] += crane_at && truck_at;
+      seen.not_drawn[slot] += !crane_at && !truck_at;
+      if (truck_at && crane_had[slot]) {
+        ++seen.hand_offs[slot];
+        seen.at_s[slot] = t;
+        seen.jump_m[slot] = core::length(*truck_at - *crane_had[slot]);
+      }
+      crane_had[slot] = crane_at;
+    }
+  }
+  return seen;
+}
+
 TEST(TeamSession, ThreeStationsHandEachBoxOverOnceAndStoreOneSessionThatReplaysBitForBit) {
   // data/teams/sts_and_two_tractors.yaml: the crane sets a box on each tractor's chassis; each tractor takes
   // its box away. All three under their autopilots at five times real time (the session's clock with them).
@@ -259,6 +314,7 @@ TEST(TeamSession, ThreeStationsHandEachBoxOverOnceAndStoreOneSessionThatReplaysB
   // three attempts, finished and passed, of one team session; each with its team figures; each recording
   // replays its own machine bit for bit with the others' doings read back from it
   std::string session;
+  std::vector<sim::SessionPlayer::Member> replayed;
   for (const std::string& role : roles) {
     records::RecordsStore records("sqlite3://db=" + (folder / (role + ".db")).string());
     const std::vector<records::AttemptRow> attempts = records.attempts();
@@ -283,14 +339,37 @@ TEST(TeamSession, ThreeStationsHandEachBoxOverOnceAndStoreOneSessionThatReplaysB
     std::printf("%s: hand-offs %.0f, worst settled in %.1f ms, waited %.1f s, closest %.2f m\n", role.c_str(),
                 figures["team_hand_offs"], figures["team_worst_hand_off_ms"], figures["team_waited_s"],
                 figures["team_closest_m"]);
-    const sim::Recording recording = records.read_recording_of(a);
+    sim::Recording recording = records.read_recording_of(a);
     EXPECT_FALSE(recording.team.empty()) << role;
-    sim::ScenarioSettings scenario =
-        io::load_exercise(std::string(HARBOUR_DATA_DIR) + "/exercises/" + a.exercise + ".yaml").scenario;
-    const sim::ReplayResult replayed = sim::replay(scenario, recording);
-    EXPECT_FALSE(replayed.first_mismatch.has_value())
-        << role << " at step " << replayed.first_mismatch.value_or(-1);
-    EXPECT_GT(replayed.checkpoints_checked, 60) << role;
+    replayed.push_back(
+        {role,
+         io::load_exercise(std::string(HARBOUR_DATA_DIR) + "/exercises/" + a.exercise + ".yaml").scenario,
+         std::move(recording), 0.0});
+  }
+  ASSERT_EQ(replayed.size(), 3u);
+  // the session as a whole, as the console replays it: each tractor from the hand-off both recorded
+  for (int slot : {0, 1}) {
+    const std::optional<double> start =
+        sim::truck_start_s(replayed[0].recording, slot, replayed[1 + slot].recording);
+    ASSERT_TRUE(start.has_value()) << roles[1 + slot];
+    replayed[1 + slot].start_s = *start;
+  }
+  sim::SessionPlayer session_replay(std::move(replayed));
+  const HandOffsSeen seen = watch_hand_offs(session_replay, {"TGHU1000012", "TGHU1000014"});
+  for (std::size_t k = 0; k < 3; ++k) {
+    const sim::ReplayPlayer& played = session_replay.player(k);
+    EXPECT_EQ(played.simulation().steps(), played.total_steps()) << roles[k];
+    EXPECT_FALSE(played.first_mismatch().has_value())
+        << roles[k] << " at step " << played.first_mismatch().value_or(-1);
+    EXPECT_GT(played.checkpoints_checked(), 60) << roles[k];
+  }
+  for (std::size_t slot = 0; slot < 2; ++slot) {
+    EXPECT_EQ(seen.drawn_twice[slot], 0) << "box " << slot << " drawn by the crane and its tractor together";
+    EXPECT_EQ(seen.not_drawn[slot], 0) << "box " << slot << " drawn by nobody";
+    EXPECT_EQ(seen.hand_offs[slot], 1) << "box " << slot;
+    EXPECT_LT(seen.jump_m[slot], 0.05) << "box " << slot << " moved at its hand-off from crane to tractor";
+    std::printf("box %zu handed over at %.2f s of the session, drawn %.3f m apart either side\n", slot,
+                seen.at_s[slot], seen.jump_m[slot]);
   }
 }
 

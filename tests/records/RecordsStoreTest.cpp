@@ -285,6 +285,17 @@ TEST_P(RecordsStoreOn, DatabasesOfEarlierBuildsAreUpgradedInPlace) {
   EXPECT_EQ(upgraded_v7.attempts()[0].team, "sts_and_tractor");
   EXPECT_EQ(upgraded_v7.attempts()[0].team_role, "crane");
   EXPECT_EQ(upgraded_v7.attempts()[0].team_session, "sts_and_tractor@2026-11-27T20:31:52Z");
+  // a session's members found together, oldest first; an attempt of no session is in none
+  upgraded_v7.begin_attempt({"t001", "tractor_mafi_park", std::nullopt, 0, "", "", "", "", {}, true});
+  upgraded_v7.begin_attempt({"t001", "sts_discharge", std::nullopt, 0, "", "", "", "", {}, true});
+  upgraded_v7.note_team(2, "sts_and_tractor", "tractor", "sts_and_tractor@2026-11-27T20:31:52Z");
+  const std::vector<AttemptRow> session =
+      upgraded_v7.session_attempts("sts_and_tractor@2026-11-27T20:31:52Z");
+  ASSERT_EQ(session.size(), 2u);
+  EXPECT_EQ(session[0].team_role, "crane");
+  EXPECT_EQ(session[1].team_role, "tractor");
+  EXPECT_TRUE(upgraded_v7.session_attempts("sts_and_tractor@2026-11-27T20:31:53Z").empty());
+  EXPECT_TRUE(upgraded_v7.session_attempts("").empty());
 
   // a version-8 database gets the deductions table; its attempts have none kept, a new one keeps its own
   const std::string v8 = fresh_connection(GetParam(), "records_upgrade_v8");

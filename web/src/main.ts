@@ -293,12 +293,17 @@ async function replayAction(body: Record<string, unknown>) {
   if (r.status !== 200) text($("replay-time"), `${body.action}: ${r.data?.error ?? r.status}`);
 }
 
-async function openReplay(attempt: number, at_s = 0) {
-  const r = await api("/api/replays", "POST", { attempt });
+// an attempt, or a team session's every member together on the session's clock
+async function openReplay(which: { attempt: number } | { session: string }, at_s = 0) {
+  const r = await api("/api/replays", "POST", which);
   if (r.status !== 201) { text($("replay-result"), r.data?.error ?? `error ${r.status}`); return; }
   replay = r.data as ReplayInfo;
-  text($("replay-title"), `attempt ${replay.attempt}: ${exerciseTitle(replay.exercise)}, ${replay.trainee}`);
+  text($("replay-title"), replay.session !== undefined
+    ? `team session ${replay.session}: ` + (replay.members ?? []).map((m) =>
+      `${m.role} (attempt ${m.attempt}, ${m.trainee}${m.start_s > 0 ? `, from ${m.start_s.toFixed(1)} s` : ""})`).join(", ")
+    : `attempt ${replay.attempt}: ${exerciseTitle(replay.exercise)}, ${replay.trainee}`);
   showReplayExactness(replay.exact ? "" : replay.note);
+  $("takeover-row").hidden = replay.session !== undefined;  // a member is taken over from its own attempt's replay
   const scrub = $<HTMLInputElement>("replay-scrub");
   scrub.max = String(replay.duration_s);
   scrub.value = "0";
@@ -366,7 +371,7 @@ function showDebrief(d: { id: number; trainee: string; exercise: string; outcome
       go.className = "link";
       text(go, `${e.at_s.toFixed(1)} s`);
       go.title = "replay from 3 s before";
-      go.addEventListener("click", () => openReplay(d.id, Math.max(0, e.at_s - 3)));
+      go.addEventListener("click", () => openReplay({ attempt: d.id }, Math.max(0, e.at_s - 3)));
       li.append(go, `: ${e.text}`);
     } else {
       text(li, `${e.at_s.toFixed(1)} s: ${e.text}`);
@@ -459,6 +464,8 @@ function showAttempts() {
       showDebrief(detail.data);
       $("attempt-actions").hidden = me?.role === "trainee";
       $("open-replay").dataset.attempt = String(a.id);
+      $("open-session-replay").hidden = !a.team_session;
+      $("open-session-replay").dataset.session = a.team_session;
     };
     row.addEventListener("click", open);
     row.addEventListener("keydown", (e) => { if (e.key === "Enter") open(); });
@@ -1006,7 +1013,9 @@ function wire() {
       showAttempts();
     });
   });
-  $("open-replay").addEventListener("click", () => openReplay(Number($("open-replay").dataset.attempt)));
+  $("open-replay").addEventListener("click", () => openReplay({ attempt: Number($("open-replay").dataset.attempt) }));
+  $("open-session-replay").addEventListener("click", () =>
+    openReplay({ session: $("open-session-replay").dataset.session ?? "" }));
   const speed = () => Number($<HTMLSelectElement>("replay-speed").value);
   $("replay-play").addEventListener("click", () => replayAction({ action: "play", speed: speed() }));
   $("replay-pause").addEventListener("click", () => replayAction({ action: "pause" }));

@@ -3,6 +3,7 @@
 // announces the other, the crane's 3D view holds the tractor; both stopped.
 // Usage: node console_team.mjs HARBOURSIM OUT_DIR DOMAIN
 import { Harness, launchChromium } from "./harness.mjs";
+import { wireErrors } from "./wire.mjs";
 import { mkdtempSync, mkdirSync } from "node:fs";
 import { tmpdir } from "node:os";
 import path from "node:path";
@@ -107,6 +108,47 @@ try {
       rows.includes(`Park a mafi in its lane (tractor of ${session})`);
   }, 20);
   await page.locator("#attempts").screenshot({ path: path.join(out, "console_team_records.png") });
+
+  // the session replayed as a whole: both members' machines in one scene on the session's clock
+  const opened = await page.evaluate(async (name) => {
+    const me = await (await fetch("/api/me")).json();
+    const open = async (body) => {
+      const r = await fetch("/api/replays", { method: "POST", headers: { "Content-Type": "application/json",
+        "X-CSRF-Token": me.csrf }, body: JSON.stringify(body) });
+      return { status: r.status, body: await r.json() };
+    };
+    const whole = await open({ session: name }), none = await open({ session: "no_such_team@2026" });
+    if (whole.status === 201) await fetch(`/api/replays/${whole.body.replay}`, { method: "POST",
+      headers: { "Content-Type": "application/json", "X-CSRF-Token": me.csrf }, body: JSON.stringify({ action: "close" }) });
+    return { whole, none };
+  }, session);
+  check(opened.whole.status === 201 && opened.whole.body.session === session &&
+    (opened.whole.body.members ?? []).map((m) => m.role).join(",") === "crane,tractor",
+  `the session opens as one replay, the crane first: ${opened.whole.status} ${JSON.stringify(opened.whole.body.members ?? opened.whole.body.error)}`);
+  check(wireErrors(opened.whole.body, "ReplayInfo").length === 0,
+    `the session's replay is as schema/wire.json says: ${wireErrors(opened.whole.body, "ReplayInfo").join("; ")}`);
+  check(opened.none.status === 404 && /no team session 'no_such_team@2026'/.test(opened.none.body.error),
+    `a session nobody ran: ${opened.none.status} (${opened.none.body.error})`);
+  await page.locator("#attempts tbody tr", { hasText: `tractor of ${session}` }).click();
+  await until("a member's attempt offers its session's replay", async () => page.isVisible("#open-session-replay"), 10);
+  await page.click("#open-session-replay");
+  await until("the session's replay opens, naming its members", async () =>
+    /^team session \S+: crane \(attempt \d+, \w+\), tractor \(attempt \d+, \w+/.test(await page.textContent("#replay-title")), 20);
+  const middle = opened.whole.body.duration_s / 2;
+  await page.$eval("#replay-scrub", (e, at) => { e.value = String(at); e.dispatchEvent(new Event("change")); }, middle);
+  await until("the replay shows its middle", async () => Math.abs(parseFloat(await page.textContent("#replay-time")) - middle) < 0.1, 30);
+  await until("the replay's 3D view draws the crane and the tractor, the tractor on the quay", async () => page.evaluate(() => {
+    const v = window.harbourView;
+    if (!v?.drawnStation().startsWith("replay-")) return false;
+    const shown = (name) => v.entities.find((e, k) => v.names[k] === name && e.visible);
+    const tractor = shown("tractor");
+    return shown("gantry") !== undefined && tractor !== undefined && tractor.position.z > 0.5 && tractor.position.z < 3;
+  }), 20);
+  check(!(await page.isVisible("#take-over")), "a session's replay offers no take-over (a member's own replay does)");
+  await page.locator("#view3d").screenshot({ path: path.join(out, "console_team_replay.png") });
+  await page.locator("#replay-panel").screenshot({ path: path.join(out, "console_team_replay_panel.png") });
+  await page.click("#replay-close");
+  await page.click("#stations tr[data-station=crane-cab]");
 
   // the whole team started again as one: a free station and a trainee for each role, one button (the roles
   // swapped between the stations this time)

@@ -683,14 +683,13 @@ void Console::poll() {
             push_state(*s, s->subscribed(), &r.scene, 0, [&](bool view) { return replay_state(r, view); });
         for (auto& [id, r] : replays_)
           if (s->subscribed() == "replay-" + std::to_string(id) && s->wants_view())
-            if (const bulk::BulkWorld* material = r.player->simulation().bulk()) {
+            if (const bulk::BulkWorld* material = r.player->player(0).simulation().bulk()) {
               // each second of the replay's time (and after a seek)
-              const std::string key =
-                  s->subscribed() + " " + std::to_string(std::lround(r.player->simulation().time_s()));
+              const std::string key = s->subscribed() + " " + std::to_string(std::lround(r.player->time_s()));
               if (s->bulk_sent() != key) {
                 bulk::publish(*material, r.bulk);
-                s->send(dump(bulk_json(
-                    s->subscribed(), net::bulk_message(r.bulk, r.attempt, r.player->simulation().time_s()))));
+                s->send(dump(
+                    bulk_json(s->subscribed(), net::bulk_message(r.bulk, r.attempt, r.player->time_s()))));
                 s->bulk_sent() = key;
               }
             }

@@ -38,6 +38,7 @@
 #include "harbour/records/XapiSender.h"
 #include "harbour/scene/BulkView.h"
 #include "harbour/sim/Recording.h"
+#include "harbour/sim/SessionPlayer.h"
 #include "harbour/training/Route.h"
 
 namespace harbour::console {
@@ -139,17 +140,17 @@ class Console;
 struct Replay {
   static constexpr int kMostOpen = 4;
   static constexpr std::int64_t kMostStepsPerPoll = 400;  // the server stays responsive while it plays
-  std::int64_t id = 0, attempt = 0;
-  sim::ExerciseSettings exercise;
-  sim::Recording recording;
+  std::int64_t id = 0, attempt = 0;                       // attempt: the (first member's) attempt
+  std::string session;             // a team session replayed as a whole ("" : one attempt)
+  sim::ExerciseSettings exercise;  // the first member's
   std::string recording_file, trainee;
-  std::unique_ptr<sim::ReplayPlayer> player;
+  std::unique_ptr<sim::SessionPlayer> player;  // a single attempt is a session of one
   std::unique_ptr<scene::Snapshot> snapshot = std::make_unique<scene::Snapshot>();
   net::StationScene scene;  // as a station publishes its own
   scene::BulkView bulk;     // its material's heights (tiles copied as they change)
   double speed = 1.0;
   bool playing = false;
-  double position_steps = 0.0;  // where playing has got to (fractions carried between polls)
+  double position_s = 0.0;  // where playing has got to (fractions carried between polls)
   Clock::time_point last_poll = Clock::now();
   std::string owner;
 };

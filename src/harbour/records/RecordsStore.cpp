@@ -847,7 +847,15 @@ std::vector<AttemptRow> RecordsStore::attempts(const std::optional<std::string>&
   return attempt_rows(trainee.value_or(""), 0);
 }
 
-std::vector<AttemptRow> RecordsStore::attempt_rows(const std::string& who, std::int64_t only_id) {
+std::vector<AttemptRow> RecordsStore::session_attempts(const std::string& session) {
+  if (session.empty()) return {};
+  std::vector<AttemptRow> rows = attempt_rows("", 0, session);
+  std::reverse(rows.begin(), rows.end());
+  return rows;
+}
+
+std::vector<AttemptRow> RecordsStore::attempt_rows(const std::string& who, std::int64_t only_id,
+                                                   const std::string& session) {
   std::vector<AttemptRow> out;
   const long long id_wanted = only_id;
   impl_->guarded("reading the attempts", [&] {
@@ -856,8 +864,10 @@ std::vector<AttemptRow> RecordsStore::attempt_rows(const std::string& who, std::
              << "SELECT a.id, a.trainee, a.exercise, a.status, a.score, a.passed, a.parent, a.branch_step,"
                 " a.recording, a.route, a.stage, a.exercise_version, a.started_at, a.ended_at, a.autopilot,"
                 " a.team, a.team_role, a.team_session FROM attempts a WHERE (:who = '' OR "
-                "a.trainee = :who2) AND (:id = 0 OR a.id = :id2) ORDER BY a.id DESC",
-         soci::use(who), soci::use(who), soci::use(id_wanted), soci::use(id_wanted));
+                "a.trainee = :who2) AND (:id = 0 OR a.id = :id2) AND (:s = '' OR a.team_session = :s2)"
+                " ORDER BY a.id DESC",
+         soci::use(who), soci::use(who), soci::use(id_wanted), soci::use(id_wanted), soci::use(session),
+         soci::use(session));
     for (const soci::row& r : rows) {
       AttemptRow a;
       a.id = r.get<long long>(0);

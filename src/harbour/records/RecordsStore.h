@@ -185,6 +185,8 @@ class RecordsStore {
   std::optional<AttemptRow> attempt_recorded_at(const std::string& path);
   /// One attempt (none: no such attempt).
   std::optional<AttemptRow> attempt(std::int64_t id);
+  /// The attempts of team session `session` (its members'; AttemptRow::team_session), oldest first.
+  std::vector<AttemptRow> session_attempts(const std::string& session);
   /// An attempt's events in time order, its final metrics by name, and what its score took off (none for an
   /// attempt not finished, or finished before the records kept them).
   std::vector<EventRow> events(std::int64_t attempt);
@@ -240,7 +242,8 @@ class RecordsStore {
  private:
   void refuse_name_taken(const std::string& id, const std::string& name);
   // the attempts of `who` ("": everyone's), or only attempt `only_id` (0: all), newest first
-  std::vector<AttemptRow> attempt_rows(const std::string& who, std::int64_t only_id);
+  std::vector<AttemptRow> attempt_rows(const std::string& who, std::int64_t only_id,
+                                       const std::string& session = "");
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
