@@ -20,10 +20,10 @@
 namespace harbour {
 namespace {
 
-// three members with three bodies each (a tractor and its trailer and load, say), moving
-std::unique_ptr<station::TeamPresence> three_members(const scene::SceneDescription& own) {
+// `count` members with three bodies each (a tractor and its trailer and load, say), moving
+std::unique_ptr<station::TeamPresence> team_of(int count, const scene::SceneDescription& own) {
   std::vector<station::TeamMember> members;
-  for (int m = 0; m < 3; ++m) {
+  for (int m = 0; m < count; ++m) {
     station::TeamMember member;
     member.role = "tractor-" + std::to_string(m + 1);
     for (int b = 0; b < 3; ++b) {
@@ -33,7 +33,7 @@ std::unique_ptr<station::TeamPresence> three_members(const scene::SceneDescripti
     members.push_back(member);
   }
   auto team = std::make_unique<station::TeamPresence>(own, members);
-  for (int m = 0; m < 3; ++m) {
+  for (int m = 0; m < count; ++m) {
     station::TeamSample sample;
     sample.role = "tractor-" + std::to_string(m + 1);
     for (std::uint16_t b = 0; b < 3; ++b) {
@@ -50,16 +50,28 @@ std::unique_ptr<station::TeamPresence> three_members(const scene::SceneDescripti
 }
 
 // One tick of the station's loop on `sts_discharge` under the autopilot, every snapshot reader on at its
-// rate, with and without three other members' machines (nine bodies) added to each snapshot.
+// rate, alone and with one or three other members' machines (three bodies each) added to each snapshot and
+// standing in the simulation as its obstacles.
 void BM_LoopTickWithTeam(benchmark::State& state) {
-  const bool team_on = state.range(0) != 0;
+  const int members = static_cast<int>(state.range(0));
+  const bool team_on = members > 0;
   const sim::ExerciseSettings exercise = scenes::sts_discharge_exercise(HARBOUR_DATA_DIR);
   auto sim = std::make_unique<sim::Simulation>(exercise.scenario);
   auto pilot = std::make_unique<sim::GantryAutopilot>(exercise);
   auto loop = std::make_unique<station::RealTimeLoop>(*sim);
-  const auto team = three_members(sim->scene());
+  const auto team = team_of(members, sim->scene());
   const auto wire = [&] {
     loop->set_pilot([&](const sim::Simulation& s) { return pilot->next(s); });
+    // the nine bodies as the simulation's obstacles too, standing on the quay beside the crane
+    for (int k = 0; k < 3 * members; ++k) {
+      sim::TeamInput obstacle;
+      obstacle.kind = sim::TeamInput::Kind::kObstacleAt;
+      obstacle.slot = k;
+      obstacle.pose.position = {-10.0 * (k / 3), 60.0 + 8.0 * (k % 3),
+                                1.5};  // on the quay, clear of the crane
+      obstacle.half_extents_m = {3, 1.2, 1.5};
+      sim->team_input(obstacle);
+    }
     if (team_on)
       loop->set_addition([&](scene::Snapshot& s) { team->write(s, 1.05); },
                          1u << station::kImageGeneratorReader | 1u << station::kConsoleReader |
@@ -84,7 +96,7 @@ void BM_LoopTickWithTeam(benchmark::State& state) {
     loop->run_ticks(1);
   }
 }
-BENCHMARK(BM_LoopTickWithTeam)->Arg(0)->Arg(1)->ArgNames({"three_members"})->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_LoopTickWithTeam)->Arg(0)->Arg(1)->Arg(3)->ArgNames({"members"})->Unit(benchmark::kMicrosecond);
 
 // A member's state from another process at 50 Hz, as a station's team thread takes it: its age on arrival
 // (the sender's and the receiver's monotonic clocks are the host's one clock) over 20 s.

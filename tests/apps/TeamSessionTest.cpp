@@ -362,6 +362,10 @@ TEST(TeamSession, ThreeStationsHandEachBoxOverOnceAndStoreOneSessionThatReplaysB
     EXPECT_FALSE(played.first_mismatch().has_value())
         << roles[k] << " at step " << played.first_mismatch().value_or(-1);
     EXPECT_GT(played.checkpoints_checked(), 60) << roles[k];
+    // the others' machine bodies as its obstacles: at the crane each tractor (its trailer is a team truck's
+    // deck there, its load the box the crane set on it); at a tractor the crane's spreader (its gantry and
+    // trolley have no size) and the other tractor, its trailer and its load
+    EXPECT_EQ(played.simulation().obstacles().count(), k == 0 ? 2 : 4) << roles[k];
   }
   for (std::size_t slot = 0; slot < 2; ++slot) {
     EXPECT_EQ(seen.drawn_twice[slot], 0) << "box " << slot << " drawn by the crane and its tractor together";

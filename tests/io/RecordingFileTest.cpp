@@ -54,7 +54,13 @@ sim::Recording sample() {
   load.kind = sim::TeamInput::Kind::kLoadOn;
   load.pose.position = {0.125, 0.0, 1.595};
   load.mass_kg = 22000.0;
-  r.team = {{1500, truck}, {2700, load}};
+  sim::TeamInput obstacle;  // version 10: another member's machine body, with its size
+  obstacle.kind = sim::TeamInput::Kind::kObstacleAt;
+  obstacle.slot = 2;
+  obstacle.pose.position = {8.0, 40.0, 1.6};
+  obstacle.velocity_mps = {0.0, -2.5, 0.0};
+  obstacle.half_extents_m = {1.25, 3.0625, 1.5};
+  r.team = {{1500, truck}, {2700, load}, {2800, obstacle}};
   return r;
 }
 
@@ -79,9 +85,9 @@ TEST(RecordingFile, RoundTripsBitForBit) {
   EXPECT_EQ(back.commands[1].step, 2600);
   EXPECT_TRUE(back.commands[0].command == sample().commands[0].command);
   EXPECT_TRUE(back.commands[1].command == sample().commands[1].command);
-  ASSERT_EQ(back.team.size(), 2u);
+  ASSERT_EQ(back.team.size(), 3u);
   const sim::Recording expected = sample();
-  for (std::size_t n = 0; n < 2; ++n) {
+  for (std::size_t n = 0; n < 3; ++n) {
     const sim::TeamInput &got = back.team[n].input, &sent = expected.team[n].input;
     EXPECT_EQ(back.team[n].step, expected.team[n].step);
     EXPECT_EQ(got.kind, sent.kind);
@@ -93,6 +99,7 @@ TEST(RecordingFile, RoundTripsBitForBit) {
     EXPECT_TRUE(got.velocity_mps == sent.velocity_mps);
     EXPECT_TRUE(got.angular_velocity_radps == sent.angular_velocity_radps);
     EXPECT_EQ(got.mass_kg, sent.mass_kg);
+    EXPECT_TRUE(got.half_extents_m == sent.half_extents_m);
   }
   EXPECT_FALSE(std::filesystem::exists(path + ".partial"));
   EXPECT_TRUE(back.ropes_settled);
@@ -180,13 +187,16 @@ TEST(RecordingFile, BadFilesNameTheFileAndTheByte) {
   {
     std::fstream f(path, std::ios::binary | std::ios::in | std::ios::out);
     f.seekp(4);
-    f.put(10);  // version 10
+    f.put(static_cast<char>(kRecordingVersion + 1));  // a version after this build's
   }
   try {
     read_recording(path);
     FAIL() << "accepted a future version";
   } catch (const RecordingFileError& e) {
-    EXPECT_NE(std::string(e.what()).find("version 10 is not supported"), std::string::npos) << e.what();
+    EXPECT_NE(
+        std::string(e.what()).find("version " + std::to_string(kRecordingVersion + 1) + " is not supported"),
+        std::string::npos)
+        << e.what();
   }
   // the last instructor command's kind byte: its record is tag 'M', the step (2600, little-endian), the kind
   write_recording(path, sample());

@@ -174,6 +174,9 @@ void put_team(Writer& w, const sim::Recording::TeamEvent& e) {
   for (const double v : {t.velocity_mps.x, t.velocity_mps.y, t.velocity_mps.z, t.angular_velocity_radps.x,
                          t.angular_velocity_radps.y, t.angular_velocity_radps.z, t.mass_kg})
     w.put(v);
+  if (t.kind == sim::TeamInput::Kind::kObstacleAt)  // v10: and its size
+    for (const double v : {t.half_extents_m.x, t.half_extents_m.y, t.half_extents_m.z})
+      w.put(v);
 }
 
 }  // namespace
@@ -375,11 +378,12 @@ sim::Recording::Command read_command(Reader& r, std::size_t n) {
   return c;
 }
 
-sim::Recording::TeamEvent read_team(Reader& r, std::size_t n) {
+sim::Recording::TeamEvent read_team(Reader& r, std::size_t n, std::uint16_t version) {
   sim::Recording::TeamEvent e;
   e.step = r.get<std::int64_t>("team input step");
   const auto kind = r.get<std::uint8_t>("team input kind");
-  if (kind >= sim::TeamInput::kKinds) r.fail("team input kind " + std::to_string(kind) + " unknown");
+  const std::uint8_t kinds = version >= 10 ? sim::TeamInput::kKinds : 3;
+  if (kind >= kinds) r.fail("team input kind " + std::to_string(kind) + " unknown");
   sim::TeamInput& t = e.input;
   t.kind = static_cast<sim::TeamInput::Kind>(kind);
   t.slot = r.get<std::int32_t>("team input slot");
@@ -401,6 +405,9 @@ sim::Recording::TeamEvent read_team(Reader& r, std::size_t n) {
   t.velocity_mps = {v[12], v[13], v[14]};
   t.angular_velocity_radps = {v[15], v[16], v[17]};
   t.mass_kg = v[18];
+  if (t.kind == sim::TeamInput::Kind::kObstacleAt)
+    for (double* side : {&t.half_extents_m.x, &t.half_extents_m.y, &t.half_extents_m.z})
+      *side = r.get<double>("team obstacle size");
   if (const std::string why = sim::why_invalid(t); !why.empty())
     r.fail("team input " + std::to_string(n) + ": " + why);
   return e;
@@ -459,7 +466,7 @@ void read_records(Reader& r, sim::Recording& rec, std::uint16_t version) {
       } else if (tag == kTagCommand) {
         rec.commands.push_back(read_command(r, rec.commands.size()));
       } else if (tag == kTagTeam && version >= 9) {
-        rec.team.push_back(read_team(r, rec.team.size()));
+        rec.team.push_back(read_team(r, rec.team.size(), version));
       } else if (tag == kTagEnd) {
         rec.total_steps = r.get<std::int64_t>("total steps");
         ended = true;

@@ -270,14 +270,21 @@ BodyId PhysicsWorld::add_box(const BoxSettings& box) {
 }
 
 BodyId PhysicsWorld::add_kinematic_body(const core::Pose& pose) {
+  return add_kinematic_body(pose, kWorld);
+}
+
+BodyId PhysicsWorld::add_kinematic_body(const core::Pose& pose, BodyId beside) {
   dBodyID b = dBodyCreate(ode_->world);
   dBodySetKinematic(b);
   dBodySetPosition(b, pose.position.x, pose.position.y, pose.position.z);
   dMatrix3 r;
   to_ode(pose.rotation, r);
   dBodySetRotation(b, r);
-  dSpaceID shapes = dSimpleSpaceCreate(ode_->space);
-  dSpaceSetCleanup(shapes, 1);
+  dSpaceID shapes = beside != kWorld ? ode_->bodies[static_cast<std::size_t>(beside.index)].shapes : nullptr;
+  if (!shapes) {
+    shapes = dSimpleSpaceCreate(ode_->space);
+    dSpaceSetCleanup(shapes, 1);
+  }
   ode_->bodies.push_back({b, {}, shapes});
   const BodyId id{static_cast<int>(ode_->bodies.size()) - 1};
   dBodySetData(b, reinterpret_cast<void*>(static_cast<std::intptr_t>(id.index)));

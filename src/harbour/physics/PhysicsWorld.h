@@ -87,6 +87,9 @@ class PhysicsWorld {
   /// A body moved by the caller (set_kinematic_motion): a vessel, a truck. It pushes dynamic bodies and is
   /// not pushed; its shapes come from add_box_shape.
   BodyId add_kinematic_body(const core::Pose& pose);
+  /// The same, its shapes in one space with kinematic body `beside`'s (a group searched as one: bodies that
+  /// come and go together, as another station's machines, cost the broad phase one entry).
+  BodyId add_kinematic_body(const core::Pose& pose, BodyId beside);
   /// A box shape on `body` at a pose in the body's frame (kWorld: a static box at a world pose); returns
   /// its index for set_box_shape / set_shape_enabled.
   ShapeId add_box_shape(BodyId body, const core::Vec3& half_extents_m, const core::Pose& local, int surface);

@@ -361,6 +361,15 @@ int replay_checked(const std::string& recording_path, const sim::Recording& reco
               recording_path.c_str(), r.simulation->time_s(), r.checkpoints_checked,
               recording.checkpoints.size(),
               recording.complete ? "" : " (an incomplete recording: its run was interrupted there)");
+  if (!recording.team.empty()) {  // what the team's other stations made happen, by kind
+    int count[sim::TeamInput::kKinds] = {};
+    for (const sim::Recording::TeamEvent& e : recording.team)
+      ++count[static_cast<int>(e.input.kind)];
+    std::printf(
+        "team inputs: %zu (team trucks moved %d, boxes taken over %d, loads handed on %d, obstacles moved "
+        "%d)\n",
+        recording.team.size(), count[0], count[1], count[2], count[3]);
+  }
   print_evaluation(evaluator.metrics(), evaluator.score());
   return 0;
 }

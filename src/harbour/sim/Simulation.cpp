@@ -17,6 +17,7 @@ constexpr std::uint32_t kSimulationSectionV2 = 0x53494D32;       // "SIM2": with
 constexpr std::uint32_t kSimulationSectionV3 = 0x53494D33;       // "SIM3": and the instructor's stop
 constexpr std::uint32_t kSimulationSectionV4 = 0x53494D34;       // "SIM4": and the events from the first lift
 constexpr std::uint32_t kSimulationSection = 0x53494D35;         // "SIM5": and the supply (power failure)
+constexpr std::uint32_t kSimulationSectionV6 = 0x53494D36;       // "SIM6": SIM5 and the team obstacles' sizes
 }  // namespace
 
 namespace {
@@ -76,6 +77,7 @@ Simulation::Simulation(const ScenarioSettings& scenario)
                           : c.pose);
   }
   if (scenario.trucks.trucks > 0) trucks_ = std::make_unique<TruckLane>(*world_, scenario.trucks);
+  obstacles_ = std::make_unique<TeamObstacles>(*world_);
   machine_ = as_built(scenario).build(*world_);
   if (!scenario.ropes_start_unstretched) machine_->settle_ropes();
   if (!scenario.ropes_start_unstretched && !scenario.start_unsettled) machine_->settle_at_rest();
@@ -229,6 +231,13 @@ std::string why_invalid(const TeamInput& t) {
   if (core::length(v) > 100.0 || core::length(w) > 10.0) return "a speed beyond 100 m/s or 10 rad/s";
   if (t.kind == TeamInput::Kind::kLoadOn && (t.mass_kg < 100.0 || t.mass_kg > 80000.0))
     return "a load's mass outside 100 kg - 80 t";
+  if (t.kind == TeamInput::Kind::kObstacleAt) {
+    const core::Vec3 h = t.half_extents_m;
+    if (t.slot >= TeamObstacles::kMostObstacles)
+      return "an obstacle past " + std::to_string(TeamObstacles::kMostObstacles);
+    for (const double x : {h.x, h.y, h.z})
+      if (!std::isfinite(x) || x < 0.0 || x > 25.0) return "an obstacle's side outside 0-50 m";
+  }
   return "";
 }
 
@@ -236,6 +245,7 @@ std::string Simulation::why_refused(const TeamInput& t) const {
   if (std::string why = why_invalid(t); !why.empty()) return why;
   using Kind = TeamInput::Kind;
   if (t.kind == Kind::kLoadOn) return machine_->why_no_load();
+  if (t.kind == Kind::kObstacleAt) return "";
   if (!trucks_ || !trucks_->team()) return "this exercise has no team trucks";
   if (t.slot >= trucks_->trucks()) return "no team truck " + std::to_string(t.slot + 1);
   if (t.kind == Kind::kTruckAt) return "";
@@ -255,6 +265,9 @@ void Simulation::team_input(const TeamInput& t) {
       break;
     case TeamInput::Kind::kLoadOn:
       machine_->take_load(t.pose, t.mass_kg);
+      break;
+    case TeamInput::Kind::kObstacleAt:
+      obstacles_->set(t.slot, t.half_extents_m, t.pose, t.velocity_mps, t.angular_velocity_radps);
       break;
   }
 }
@@ -649,6 +662,7 @@ std::uint64_t Simulation::state_hash() const {
   }
   if (bulk_) hash.add(bulk_->state_hash());
   hash.add(weather_.turbulence_mps());
+  obstacles_->hash_into(hash);  // (none outside a team session: states hash as they did)
   if (trucks_ && trucks_->team())
     for (int k = 0; k < trucks_->trucks(); ++k) {
       hash.add(trucks_->seated_box(k));
@@ -667,7 +681,8 @@ std::uint64_t Simulation::state_hash() const {
 
 std::vector<std::uint8_t> Simulation::save_state() const {
   core::StateWriter out;
-  out.section(kSimulationSection);
+  // (SIM6 only where another member's machine is an obstacle: other states are saved as they were)
+  out.section(obstacles_->count() > 0 ? kSimulationSectionV6 : kSimulationSection);
   out.put(clock_.steps());
   out.put(held_);
   out.put(next_event_);
@@ -678,6 +693,7 @@ std::vector<std::uint8_t> Simulation::save_state() const {
   out.put(power_off_);
   out.put(awaiting_zero_);
   out.put(std::vector<std::uint8_t>(secured_.begin(), secured_.end()));
+  if (obstacles_->count() > 0) obstacles_->save_sizes(out);
   world_->save_state(out);
   machine_->save_state(out);
   weather_.save_state(out);
@@ -689,7 +705,9 @@ std::vector<std::uint8_t> Simulation::save_state() const {
 
 void Simulation::restore_state(const std::vector<std::uint8_t>& state) {
   core::StateReader in(state);
-  const auto section = in.get<std::uint32_t>();
+  auto section = in.get<std::uint32_t>();
+  const bool with_obstacles = section == kSimulationSectionV6;
+  if (with_obstacles) section = kSimulationSection;  // its fields and then the obstacles' sizes
   if (section != kSimulationSection && section != kSimulationSectionV4 && section != kSimulationSectionV3 &&
       section != kSimulationSectionV2)
     throw core::StateError("saved state does not match this simulation at its simulation section");
@@ -714,6 +732,11 @@ void Simulation::restore_state(const std::vector<std::uint8_t>& state) {
   std::vector<std::uint8_t> secured;
   in.get(secured, static_cast<std::int64_t>(secured_.size()));
   secured_.assign(secured.begin(), secured.end());
+  if (with_obstacles) {
+    obstacles_->restore_sizes(in);
+  } else if (obstacles_->count() > 0) {
+    throw core::StateError("saved state has no team obstacles, this simulation has");
+  }
   world_->restore_state(in);
   machine_->restore_state(in);
   weather_.restore_state(in);

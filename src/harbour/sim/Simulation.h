@@ -19,6 +19,7 @@
 #include "harbour/sim/MachineSetup.h"
 #include "harbour/sim/RoRoRamp.h"
 #include "harbour/sim/TeamInput.h"
+#include "harbour/sim/TeamObstacles.h"
 #include "harbour/sim/Trucks.h"
 #include "harbour/sim/Vessel.h"
 #include "harbour/sim/Weather.h"
@@ -245,6 +246,7 @@ class Simulation {
   core::Vec3 wind_rest_offset_m(const core::Vec3& wind, std::optional<physics::BodyId> box) const;
   const Vessel* vessel() const { return vessel_.get(); }
   const TruckLane* trucks() const { return trucks_.get(); }
+  const TeamObstacles& obstacles() const { return *obstacles_; }
   /// Frees secured item `index` and what is stacked on it (the spreader locking onto it does this).
   void release(std::size_t index);
   bool secured(std::size_t index) const { return secured_[index]; }
@@ -291,6 +293,7 @@ class Simulation {
   std::unique_ptr<Vessel> vessel_;
   std::unique_ptr<RoRoRamp> ramp_;
   std::unique_ptr<TruckLane> trucks_;
+  std::unique_ptr<TeamObstacles> obstacles_;  // the other members' machines (none outside a team session)
   std::unique_ptr<bulk::BulkWorld> bulk_;
   int bulk_grab_ = -1;  // the machine's tool in the bulk world
   std::size_t next_event_ = 0;

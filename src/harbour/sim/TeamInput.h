@@ -23,13 +23,17 @@ struct TeamInput {
     /// A box handed over to this station's trailer: `mass_kg` set down at `pose` (its centre in the trailer's
     /// frame); the trailer's locating cones hold it from now on.
     kLoadOn,
+    /// Another member's machine body, obstacle `slot` of this station (TeamObstacles): a box of
+    /// `half_extents_m` (zero: gone, its member left) centred at `pose`, moving so (recording version 10).
+    kObstacleAt,
   };
-  static constexpr std::uint8_t kKinds = 3;
+  static constexpr std::uint8_t kKinds = 4;
   Kind kind = Kind::kTruckAt;
   int slot = 0;
   core::Pose pose;
   core::Vec3 velocity_mps, angular_velocity_radps;
   double mass_kg = 0.0;
+  core::Vec3 half_extents_m;  ///< kObstacleAt's
 };
 
 /// A trailer's deck (its top centre, in the trailer's orientation) from the trailer body's pose and half
@@ -45,7 +49,8 @@ inline core::Pose on_trailer(const core::Pose& deck, const core::Pose& box, doub
           deck.to_local(box.position) + core::Vec3{0, 0, half_height_m}};
 }
 
-/// Why `input` is out of range ("" when it is not): non-finite numbers, a mass outside 0-80 t, a slot < 0.
+/// Why `input` is out of range ("" when it is not): non-finite numbers, a mass outside 0-80 t, a slot < 0, an
+/// obstacle's slot past TeamObstacles::kMostObstacles or a side outside 0-50 m.
 std::string why_invalid(const TeamInput& input);
 
 }  // namespace harbour::sim

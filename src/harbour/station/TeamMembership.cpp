@@ -21,9 +21,26 @@ constexpr auto kPeriod = std::chrono::milliseconds(20);  // 50 Hz, the team read
 constexpr double kOfferEvery_s = 0.1;                    // a box offered again until it is acquired
 constexpr double kStanding_mps = 0.05;                   // a trailer this slow stands
 constexpr double kAtLoadStop_m = 1.5;                    // its centre this near its load stop
-// a team truck's input is given again once it departs this far from where the last one carries it
-constexpr double kFeedTolerance_m = 0.002, kFeedTolerance_mps = 0.002, kFeedTolerance_rad = 0.0005,
-                 kFeedTolerance_radps = 0.0005;
+// how far a remote body may depart from where the simulation carries its last input on before it is given a
+// new one: a team truck's deck within 2 mm (a box is set on it), an obstacle within 2 cm
+struct FeedTolerance {
+  double m, mps, rad, radps;
+};
+constexpr FeedTolerance kTruckTolerance{0.002, 0.002, 0.0005, 0.0005};
+constexpr FeedTolerance kObstacleTolerance{0.02, 0.02, 0.002, 0.002};
+
+// `now` departs from where the simulation has carried `was` (given at `was_s`) on to `now_s`
+bool departs(const sim::TeamInput& was, double was_s, const sim::TeamInput& now, double now_s,
+             const FeedTolerance& tolerance) {
+  const core::Vec3 carried = was.pose.position + (now_s - was_s) * was.velocity_mps;
+  double turned = 0.0;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c)
+      turned = std::max(turned, std::abs(now.pose.rotation.m[r][c] - was.pose.rotation.m[r][c]));
+  return core::length(now.pose.position - carried) >= tolerance.m ||
+         core::length(now.velocity_mps - was.velocity_mps) >= tolerance.mps || turned >= tolerance.rad ||
+         core::length(now.angular_velocity_radps - was.angular_velocity_radps) >= tolerance.radps;
+}
 
 const scene::Snapshot::Entity* entity_in(const scene::Snapshot& s, int index) {
   for (int n = 0; n < s.entity_count; ++n)
@@ -135,6 +152,19 @@ TeamMembership::TeamMembership(const io::Team& team, const std::string& role, co
     t.trailer_body -= first;
     trucks_.push_back(t);
   }
+  // the others' machine bodies as obstacles, in the team's order (a crane's team trucks' trailers are its
+  // decks, and the loads on them the boxes it set there)
+  for (const TeamMember& m : presence_.known())
+    for (int b = 0; b < std::min(m.machine_bodies, static_cast<int>(m.bodies.size())); ++b) {
+      const scene::SceneDescription::Entity& body = m.bodies[static_cast<std::size_t>(b)];
+      const core::Vec3 h = body.half_extents_m;
+      const bool in_lane = std::any_of(trucks_.begin(), trucks_.end(), [&](const Truck& t) {
+        return t.role == m.role && (t.trailer_body == b || body.name == "load");
+      });
+      if (h.x > 0.0 && h.y > 0.0 && h.z > 0.0 && !in_lane &&
+          static_cast<int>(obstacles_.size()) < sim::TeamObstacles::kMostObstacles)
+        obstacles_.push_back({m.role, b, h, std::nullopt, 0.0});
+    }
   for (const sim::ContainerPlacement& c : own_exercise.scenario.containers)
     box_mass_kg_[c.id] = c.gross_mass_kg;
   load_stop_ = own_exercise.load_stop;
@@ -251,6 +281,7 @@ void TeamMembership::run() {
       watch_load_stop(*s);
     }
     feed_trucks();
+    feed_obstacles();
     take();
   }
 }
@@ -272,22 +303,34 @@ void TeamMembership::feed_trucks() {
     in.angular_velocity_radps = m->angular_velocity_radps;
     // only where it departs from where the simulation carries the last one on (each input is recorded: a
     // tractor standing under the crane for minutes costs nothing)
-    if (truck.fed) {
-      const sim::TeamInput& was = *truck.fed;
-      const core::Vec3 carried = was.pose.position + (now - truck.fed_s) * was.velocity_mps;
-      double turned = 0.0;
-      for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c)
-          turned = std::max(turned, std::abs(in.pose.rotation.m[r][c] - was.pose.rotation.m[r][c]));
-      if (core::length(in.pose.position - carried) < kFeedTolerance_m &&
-          core::length(in.velocity_mps - was.velocity_mps) < kFeedTolerance_mps &&
-          turned < kFeedTolerance_rad &&
-          core::length(in.angular_velocity_radps - was.angular_velocity_radps) < kFeedTolerance_radps)
-        continue;
-    }
+    if (truck.fed && !departs(*truck.fed, truck.fed_s, in, now, kTruckTolerance)) continue;
     if (input_(in)) {
       truck.fed = in;
       truck.fed_s = now;
+    }
+  }
+}
+
+void TeamMembership::feed_obstacles() {
+  if (!input_) return;
+  const double now = now_s();
+  for (std::size_t k = 0; k < obstacles_.size(); ++k) {
+    Obstacle& o = obstacles_[k];
+    const std::optional<RemoteMotion> m = presence_.motion_of(o.role, o.body, now);
+    if (!m) continue;
+    sim::TeamInput in;
+    in.kind = sim::TeamInput::Kind::kObstacleAt;
+    in.slot = static_cast<int>(k);
+    in.pose = m->pose;
+    in.velocity_mps = m->velocity_mps;
+    in.angular_velocity_radps = m->angular_velocity_radps;
+    if (presence_.there(o.role, o.body)) in.half_extents_m = o.half_extents_m;  // else gone: no size
+    if (o.fed && o.fed->half_extents_m == in.half_extents_m &&
+        (in.half_extents_m == core::Vec3{} || !departs(*o.fed, o.fed_s, in, now, kObstacleTolerance)))
+      continue;
+    if (input_(in)) {
+      o.fed = in;
+      o.fed_s = now;
     }
   }
 }

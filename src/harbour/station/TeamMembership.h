@@ -26,6 +26,8 @@ std::string resolve_team(const std::string& name_or_path, const std::string& cen
 /// their tractors' trailers are (sim::TeamInput::kTruckAt, 50 Hz) and hands each box seated on one to that
 /// tractor's station: it offers the box every 100 ms until the tractor says it has acquired it, then lets it
 /// go (kTakenOver). A tractor takes a box offered to it onto its trailer (kLoadOn) and answers every offer.
+/// Every member's simulation has the others' machine bodies with a size (a tractor, a trailer, a spreader;
+/// at a crane its team trucks' trailers are its decks already) as obstacles it can hit (kObstacleAt).
 class TeamMembership {
  public:
   /// Builds the other roles' exercises here (without stepping them) for their machines' bodies and start
@@ -68,7 +70,8 @@ class TeamMembership {
   void run();
   void take();  // the others' states that came, and who was lost or came back
   void take_hand_offs();
-  void feed_trucks();                           // a crane: where its team trucks are, into its simulation
+  void feed_trucks();     // a crane: where its team trucks are, into its simulation
+  void feed_obstacles();  // the others' machine bodies, into its simulation as obstacles
   void offer_seated(const scene::Snapshot& s);  // a crane: the boxes on its trucks, offered to their tractors
   void watch_load_stop(const scene::Snapshot& s);  // a tractor: how long it stood waiting for its box
   static double wall_s();
@@ -103,6 +106,15 @@ class TeamMembership {
     int entity = -1;  // the crane's team truck in its own scene
   };
   std::vector<Truck> trucks_;
+  // the others' machine bodies with a size, each obstacle of this simulation (its slot: its place here)
+  struct Obstacle {
+    std::string role;
+    int body = -1;  // in the member's bodies
+    core::Vec3 half_extents_m;
+    std::optional<sim::TeamInput> fed;  // the last input given for it, and when (the session's clock)
+    double fed_s = 0.0;
+  };
+  std::vector<Obstacle> obstacles_;
   std::map<std::string, double> box_mass_kg_;  // by id
   struct Offer {
     int truck = -1;

@@ -204,6 +204,23 @@ void TeamPresence::left(const std::string& role) {
     if (m.known.role == role) m.state.left = true;
 }
 
+std::vector<TeamMember> TeamPresence::known() const {
+  const std::lock_guard lock(mutex_);
+  std::vector<TeamMember> result;
+  for (const Member& m : members_)
+    result.push_back(m.known);
+  return result;
+}
+
+bool TeamPresence::there(const std::string& role, int body) const {
+  const std::lock_guard lock(mutex_);
+  for (const Member& m : members_)
+    if (m.known.role == role)
+      return !m.state.left && body >= 0 && body < static_cast<int>(m.present.size()) &&
+             m.present[static_cast<std::size_t>(body)];
+  return false;
+}
+
 std::vector<std::string> NearMissWatch::update(const std::vector<TeamPresence::Closest>& closest) {
   std::vector<std::string> said;
   for (const TeamPresence::Closest& c : closest) {

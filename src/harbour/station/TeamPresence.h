@@ -121,6 +121,11 @@ class TeamPresence {
                                    bool with_ages = false);
   /// Member `role` left in order (its attempt ended): it stays where it was, and is not reported lost.
   void left(const std::string& role);
+  /// Each member as known before hearing from it (its bodies and their sizes), in the team's order.
+  std::vector<TeamMember> known() const;
+  /// Body `body` of member `role` is drawn: in its newest sample (as its exercise starts it until heard) and
+  /// its member has not left.
+  bool there(const std::string& role, int body) const;
 
  private:
   struct Member {
