@@ -472,4 +472,14 @@ void ChannelFeed::ready(ChannelReady ready) {
   dds_->write(dds_->ready, ready);
 }
 
+void ChannelFeed::leave(std::int64_t attempt, std::chrono::milliseconds timeout) {
+  ChannelReady leaving;
+  leaving.attempt(attempt);
+  leaving.leaving(true);
+  ready(std::move(leaving));
+  const auto ms = timeout.count();
+  dds_->ready->wait_for_acknowledgments(eprosima::fastrtps::Duration_t(
+      static_cast<std::int32_t>(ms / 1000), static_cast<std::uint32_t>(ms % 1000) * 1'000'000u));
+}
+
 }  // namespace harbour::net

@@ -192,6 +192,9 @@ class ChannelFeed {
   std::vector<ChannelBulkTile> take_tiles();
   /// Fills in the station and the display, and writes it.
   void ready(ChannelReady ready);
+  /// Tells the station this channel stops drawing attempt `attempt` (it goes on without waiting for it), and
+  /// waits up to `timeout` for the station to have it.
+  void leave(std::int64_t attempt, std::chrono::milliseconds timeout = std::chrono::milliseconds(500));
 
  private:
   std::string station_, display_;

@@ -266,6 +266,7 @@ int run_channel(const ChannelOptions& options) {
   }
   if (drawing.render) {
     drawing.render->stop();
+    feed.leave(drawing.attempt);  // (after its last ready) the station goes on without this channel at once
     std::printf("channel %s: %ld frames shown (%.1f a second)\n", display.name.c_str(),
                 drawing.lock->frames_shown(), drawing.render->fps());
   }

@@ -56,6 +56,11 @@ void RemoteChannels::hear(Clock::time_point now) {
       }
       continue;
     }
+    if (ready.leaving()) {  // stopped in order: not waited for, not lost
+      if (channel->live) say("channel " + display + " (" + channel->host + ") left: the others go on");
+      channel->live = false;
+      continue;
+    }
     channel->heard = now;
     channel->host = ready.host().to_string();
     channel->ready_frame = std::max<std::uint64_t>(channel->ready_frame, ready.frame());
