@@ -1,5 +1,7 @@
 #include "harbour/core/Text.h"
 
+#include <unistd.h>
+
 #include <cstdio>
 
 namespace harbour::core {
@@ -101,6 +103,12 @@ std::string comma_separated(const std::vector<std::string>& items) {
   for (const std::string& item : items)
     text += (text.empty() ? "" : ", ") + item;
   return text;
+}
+
+std::string host_name() {
+  char name[256] = {};
+  if (::gethostname(name, sizeof name - 1) != 0) return "";
+  return name;
 }
 
 }  // namespace harbour::core

@@ -22,4 +22,7 @@ std::string printable(std::string_view text, std::size_t max_bytes = kMaxNameByt
 /// The items in one line, separated by ", " (a list in a message: "gust, hoist_brake_fault").
 std::string comma_separated(const std::vector<std::string>& items);
 
+/// This host's name ("" where it has none): what a station, a channel or the records say runs where.
+std::string host_name();
+
 }  // namespace harbour::core

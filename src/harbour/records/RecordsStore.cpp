@@ -218,20 +218,15 @@ std::string start_ticks(long pid) {
   return {};
 }
 
-std::string host_name() {
-  char name[256] = {};
-  ::gethostname(name, sizeof name - 1);
-  return name;
-}
-
 std::string this_process() {
-  return host_name() + ":" + std::to_string(::getpid()) + ":" + start_ticks(::getpid());
+  return core::host_name() + ":" + std::to_string(::getpid()) + ":" + start_ticks(::getpid());
 }
 
 // a process of this host named by this_process() that has ended (false for other hosts: not known here)
 bool ended_here(const std::string& process) {
   const auto first = process.find(':'), second = process.rfind(':');
-  if (first == std::string::npos || second == first || process.substr(0, first) != host_name()) return false;
+  if (first == std::string::npos || second == first || process.substr(0, first) != core::host_name())
+    return false;
   long pid = 0;
   try {
     pid = std::stol(process.substr(first + 1, second - first - 1));

@@ -40,12 +40,6 @@ extern "C" void on_channel_stop_signal(int) {
 // A frame not shown within this long of being drawn is shown anyway (the station gone or stopped)
 constexpr auto kLongestSwapWait = std::chrono::seconds(1);
 
-std::string host_name() {
-  char name[256] = {};
-  if (gethostname(name, sizeof name - 1) != 0) return "";
-  return name;
-}
-
 std::int64_t monotonic_ns() {
   return std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now().time_since_epoch()).count();
 }
@@ -108,7 +102,7 @@ class FrameLock {
     const auto drawn = Clock::now();
     const std::int64_t drawn_ns = monotonic_ns();
     net::ChannelReady ready;
-    ready.host(host_name().substr(0, 64));
+    ready.host(core::host_name().substr(0, 64));
     ready.attempt(attempt_);
     ready.frame(drawing_);
     ready.shown_frame(shown_);

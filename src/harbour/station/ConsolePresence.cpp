@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <stdexcept>
 
+#include "harbour/core/Text.h"
 #include "harbour/io/InstructorCommandText.h"
 #include "harbour/scene/HandSignals.h"
 
@@ -19,15 +20,9 @@ constexpr auto kStatusPeriod = std::chrono::milliseconds(static_cast<int>(net::k
 constexpr auto kStatePeriod = std::chrono::milliseconds(100);  // 10 Hz: plots and the console's 3D view
 constexpr auto kBulkPeriod = std::chrono::seconds(1);          // the material's surfaces: it moves slowly
 
-std::string host_name() {
-  char name[256] = {};
-  if (gethostname(name, sizeof name - 1) != 0) return "";
-  return name;
-}
-
 net::StationStatus base_status(const std::string& state) {
   net::StationStatus s;
-  s.host(host_name());
+  s.host(core::host_name());
   s.process_id(static_cast<std::uint32_t>(getpid()));
   s.state(state);
   s.keeping_real_time(true);
