@@ -88,6 +88,16 @@ try {
   check(await page.isVisible("#team-actions"), "the team's buttons show for a member");
   await page.locator("#stations").screenshot({ path: path.join(out, "console_team_stations.png") });
   await page.locator("#control-panel").screenshot({ path: path.join(out, "console_team_panel.png") });
+  // fog over both (recorded in each member's run: the session's replay lists it for each)
+  const fogged = await page.evaluate(async () => {
+    const me = await (await fetch("/api/me")).json();
+    const answers = [];
+    for (const station of ["crane-cab", "tractor-cab"])
+      answers.push((await fetch(`/api/stations/${station}/command`, { method: "POST", headers: {
+        "Content-Type": "application/json", "X-CSRF-Token": me.csrf }, body: JSON.stringify({ kind: "visibility:800" }) })).status);
+    return answers;
+  });
+  check(fogged.every((status) => status === 200), `fog commanded on both members: ${fogged.join(", ")}`);
   await teamCommand("hold", "held");
   await teamCommand("resume", "running");
   await teamCommand("stop", null);
@@ -125,6 +135,10 @@ try {
   check(opened.whole.status === 201 && opened.whole.body.session === session &&
     (opened.whole.body.members ?? []).map((m) => m.role).join(",") === "crane,tractor",
   `the session opens as one replay, the crane first: ${opened.whole.status} ${JSON.stringify(opened.whole.body.members ?? opened.whole.body.error)}`);
+  const said = (opened.whole.body.events ?? []).map((e) => e.text);
+  check(said.filter((t) => /^(crane|tractor): instructor: visibility$/.test(t)).length === 2 &&
+    said.every((t) => /^(crane|tractor): [^_]+$/.test(t)),
+    `the session's timeline says each event in words with its member's role: ${said.slice(0, 4).join("; ")}`);
   check(wireErrors(opened.whole.body, "ReplayInfo").length === 0,
     `the session's replay is as schema/wire.json says: ${wireErrors(opened.whole.body, "ReplayInfo").join("; ")}`);
   check(opened.none.status === 404 && /no team session 'no_such_team@2026'/.test(opened.none.body.error),

@@ -167,12 +167,16 @@ std::optional<Console::Response> Console::open_replay(Call& c) {
     const OpenedAttempt& m = members[k];
     const double start_s = replay.player->member(k).start_s;
     const std::string who = session.empty() ? "" : m.row.team_role + ": ";
+    const auto happened = [&](double at_s, const std::string& kind, double value) {
+      json event = attempt_event_json(start_s + at_s, kind, value);
+      event["text"] = who + event["text"].get<std::string>();  // "tractor_1: move 1 done"
+      events.push_back(std::move(event));
+    };
     for (const records::EventRow& e : db_.events(m.row.id))
-      events.push_back(attempt_event_json(start_s + e.at_s, who + e.kind, e.value));
+      happened(e.at_s, e.kind, e.value);
     for (const sim::Recording::Command& given : m.recording.commands)
-      events.push_back(
-          attempt_event_json(start_s + static_cast<double>(given.step) * sim::Simulation::kStep_s,
-                             who + "instructor " + io::command_name(given.command.kind), 0.0));
+      happened(static_cast<double>(given.step) * sim::Simulation::kStep_s,
+               "instructor " + std::string(io::command_name(given.command.kind)), 0.0);
     complete = complete && m.recording.complete;
     if (!m.inexact.empty()) inexact += (inexact.empty() ? "" : "; ") + who + m.inexact;
     roles.push_back({{"role", m.row.team_role},
