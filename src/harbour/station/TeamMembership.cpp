@@ -163,7 +163,7 @@ TeamMembership::TeamMembership(const io::Team& team, const std::string& role, co
       });
       if (h.x > 0.0 && h.y > 0.0 && h.z > 0.0 && !in_lane &&
           static_cast<int>(obstacles_.size()) < sim::TeamObstacles::kMostObstacles)
-        obstacles_.push_back({m.role, b, h, std::nullopt, 0.0});
+        obstacles_.push_back({m.role, b, h, {}});
     }
   for (const sim::ContainerPlacement& c : own_exercise.scenario.containers)
     box_mass_kg_[c.id] = c.gross_mass_kg;
@@ -303,12 +303,13 @@ void TeamMembership::feed_trucks() {
     in.angular_velocity_radps = m->angular_velocity_radps;
     // only where it departs from where the simulation carries the last one on (each input is recorded: a
     // tractor standing under the crane for minutes costs nothing)
-    if (truck.fed && !departs(*truck.fed, truck.fed_s, in, now, kTruckTolerance)) continue;
-    if (input_(in)) {
-      truck.fed = in;
-      truck.fed_s = now;
-    }
+    if (!truck.fed.input || departs(*truck.fed.input, truck.fed.at_s, in, now, kTruckTolerance))
+      give(truck.fed, in, now);
   }
+}
+
+void TeamMembership::give(Fed& fed, const sim::TeamInput& in, double now_s) {
+  if (input_(in)) fed = {in, now_s};  // (refused: tried again next period)
 }
 
 void TeamMembership::feed_obstacles() {
@@ -325,13 +326,10 @@ void TeamMembership::feed_obstacles() {
     in.velocity_mps = m->velocity_mps;
     in.angular_velocity_radps = m->angular_velocity_radps;
     if (presence_.there(o.role, o.body)) in.half_extents_m = o.half_extents_m;  // else gone: no size
-    if (o.fed && o.fed->half_extents_m == in.half_extents_m &&
-        (in.half_extents_m == core::Vec3{} || !departs(*o.fed, o.fed_s, in, now, kObstacleTolerance)))
-      continue;
-    if (input_(in)) {
-      o.fed = in;
-      o.fed_s = now;
-    }
+    const std::optional<sim::TeamInput>& was = o.fed.input;
+    if (!was || was->half_extents_m != in.half_extents_m ||
+        (in.half_extents_m != core::Vec3{} && departs(*was, o.fed.at_s, in, now, kObstacleTolerance)))
+      give(o.fed, in, now);
   }
 }
 

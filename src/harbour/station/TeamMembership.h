@@ -96,13 +96,18 @@ class TeamMembership {
   std::set<std::string> left_;                  // the roles that said they left
   NearMissWatch near_misses_;
   std::function<bool(const sim::TeamInput&)> input_;
+  // the last input given for a remote body, and when (the session's clock)
+  struct Fed {
+    std::optional<sim::TeamInput> input;
+    double at_s = 0.0;
+  };
+  void give(Fed& fed, const sim::TeamInput& in, double now_s);  // to the simulation, noted where taken
   // a crane's team trucks: the tractors' roles, their trailers' bodies and decks; the crane's own boxes
   struct Truck {
     std::string role;
-    int trailer_body = -1;              // in the member's bodies
-    double deck_half_z_m = 0.0;         // its deck's top above its centre
-    std::optional<sim::TeamInput> fed;  // the last input given for it, and when (the session's clock)
-    double fed_s = 0.0;
+    int trailer_body = -1;       // in the member's bodies
+    double deck_half_z_m = 0.0;  // its deck's top above its centre
+    Fed fed;
     int entity = -1;  // the crane's team truck in its own scene
   };
   std::vector<Truck> trucks_;
@@ -111,8 +116,7 @@ class TeamMembership {
     std::string role;
     int body = -1;  // in the member's bodies
     core::Vec3 half_extents_m;
-    std::optional<sim::TeamInput> fed;  // the last input given for it, and when (the session's clock)
-    double fed_s = 0.0;
+    Fed fed;
   };
   std::vector<Obstacle> obstacles_;
   std::map<std::string, double> box_mass_kg_;  // by id
