@@ -19,6 +19,7 @@
 #include "harbour/core/Vec3.h"
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/io/RecordingFile.h"
+#include "harbour/machines/sts/StsCrane.h"
 #include "harbour/net/DdsLink.h"
 #include "harbour/records/RecordsStore.h"
 #include "harbour/sim/Recording.h"
@@ -363,9 +364,21 @@ TEST(TeamSession, ThreeStationsHandEachBoxOverOnceAndStoreOneSessionThatReplaysB
         << roles[k] << " at step " << played.first_mismatch().value_or(-1);
     EXPECT_GT(played.checkpoints_checked(), 60) << roles[k];
     // the others' machine bodies as its obstacles: at the crane each tractor (its trailer is a team truck's
-    // deck there, its load the box the crane set on it); at a tractor the crane's spreader (its gantry and
-    // trolley have no size) and the other tractor, its trailer and its load
-    EXPECT_EQ(played.simulation().obstacles().count(), k == 0 ? 2 : 4) << roles[k];
+    // deck there, its load the box the crane set on it); at a tractor the crane's spreader and its gantry's
+    // four legs (the gantry's look's solid parts) and the other tractor, its trailer and its load
+    EXPECT_EQ(played.simulation().obstacles().count(), k == 0 ? 2 : 8) << roles[k];
+  }
+  // a tractor's first four obstacles are the crane's legs, where the crane's gantry has them (its look's
+  // solid parts: 2 x 2 x 50 m at x -13 and 15 m, y -9 and 9 m, z 25 m in the gantry's frame)
+  const sim::Simulation& crane_replayed = session_replay.player(0).simulation();
+  const core::Pose gantry =
+      crane_replayed.world().pose(dynamic_cast<const sim::StsCrane&>(crane_replayed.machine()).gantry_body());
+  const core::Vec3 legs[] = {{-13, -9, 25}, {-13, 9, 25}, {15, -9, 25}, {15, 9, 25}};
+  const sim::TeamObstacles& at_tractor = session_replay.player(1).simulation().obstacles();
+  for (int leg = 0; leg < 4; ++leg) {
+    EXPECT_LT(core::length(at_tractor.pose(leg).position - gantry.to_parent(legs[leg])), 0.05)
+        << "leg " << leg;
+    EXPECT_TRUE(at_tractor.half_extents_m(leg) == (core::Vec3{1, 1, 25})) << "leg " << leg;
   }
   for (std::size_t slot = 0; slot < 2; ++slot) {
     EXPECT_EQ(seen.drawn_twice[slot], 0) << "box " << slot << " drawn by the crane and its tractor together";

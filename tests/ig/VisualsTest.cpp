@@ -84,6 +84,15 @@ TEST(Visuals, ABadLookIsNamedByFileLineAndField) {
   expect_refused("visuals:\n  - key: a\n    parts:\n      - {size: [1, 0, 1], at: [0, 0, 0]}\n", 4,
                  "visuals[0].parts[0].size", "every side must be positive");
   expect_refused(
+      "visuals:\n  - key: a\n    parts:\n      - {shape: lattice, size: [1, 1, 9], at: [0, 0, 0], color: [0, "
+      "0, "
+      "0], solid: true}\n",
+      4, "visuals[0].parts[0].solid", "only a fixed box with its size written out is solid");
+  expect_refused(
+      "visuals:\n  - key: a\n    parts:\n      - {size: entity, at: [0, 0, 0], color: [0, 0, 0], solid: "
+      "true}\n",
+      4, "visuals[0].parts[0].solid", "only a fixed box with its size written out is solid");
+  expect_refused(
       "visuals:\n  - key: a\n    parts:\n      - {size: [1, 1, 1], at: [0, 0, 0], color: [-0.5, 0, 0]}\n", 4,
       "visuals[0].parts[0].color", "colour components are 0-1");
   expect_refused(

@@ -141,6 +141,10 @@ VisualPart read_part(const io::YamlFile& f, const YAML::Node& p, const std::stri
     part.member_m = f.number_or(p, "member_m", pat, 0.25, 0.01, 2.0);
   }
   part.centre_m = f.vector3(f.required(p, "at", pat), pat + ".at", 1000.0);
+  part.solid = f.flag(p, "solid", pat, false);
+  if (part.solid &&
+      (part.shape != VisualPart::Shape::kBox || !part.size_m || part.turn || part.yaw_rad != 0.0))
+    f.fail(p["solid"], pat + ".solid", "only a fixed box with its size written out is solid");
   const YAML::Node color = f.required(p, "color", pat);
   if (color.IsScalar() && color.Scalar() == "livery") {
     if (visual.liveries.empty()) f.fail(color, pat + ".color", "a livery colour needs the look's liveries");

@@ -52,11 +52,14 @@ struct VisualPart {
   double deck_open_from_m = 0.0, deck_open_to_m = 0.0;  ///< hull: its deck left open along y (the holds)
   double yaw_rad = 0.0;                                 ///< turned about the entity's z at its centre
   std::optional<PartTurn> turn;                         ///< turning with an indicator
-  std::string rolls_with;                               ///< tyre: rolling with this speed indicator
-  double rolls_unit_mps = 1.0;                          ///< tyre: m/s per unit of that indicator
-  core::Vec3 rolls_along{1.0, 0.0, 0.0};                ///< tyre: the way it rolls at a positive speed
-  std::string mesh;    ///< mesh: its file (resolved against the look file's folder)
-  double scale = 1.0;  ///< mesh
+  /// Something another machine can hit: in a team session the other stations' simulations have it as an
+  /// obstacle riding its entity (a fixed box with its size written out: an STS's legs).
+  bool solid = false;
+  std::string rolls_with;                 ///< tyre: rolling with this speed indicator
+  double rolls_unit_mps = 1.0;            ///< tyre: m/s per unit of that indicator
+  core::Vec3 rolls_along{1.0, 0.0, 0.0};  ///< tyre: the way it rolls at a positive speed
+  std::string mesh;                       ///< mesh: its file (resolved against the look file's folder)
+  double scale = 1.0;                     ///< mesh
 };
 
 /// What a visual key looks like (data/visuals/*.yaml).

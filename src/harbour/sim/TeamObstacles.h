@@ -26,6 +26,7 @@ class TeamObstacles {
   core::Vec3 half_extents_m(int slot) const {
     return obstacles_[static_cast<std::size_t>(slot)].half_extents_m;
   }
+  core::Pose pose(int slot) const { return world_.pose(obstacles_[static_cast<std::size_t>(slot)].body); }
   /// Their sizes, written before the physics' state: a restored simulation makes its obstacles before the
   /// physics' bodies are restored.
   void save_sizes(core::StateWriter& out) const;

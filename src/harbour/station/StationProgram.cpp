@@ -295,6 +295,18 @@ void use_head_and_platform(station::Station& station, const station::Profile& pr
   }
 }
 
+// What the machines' looks say another machine can hit, by look key (read whether or not this station draws:
+// what its simulation collides with does not depend on its windows)
+station::SolidParts solid_parts() {
+  station::SolidParts solid;
+  const ig::Looks looks = ig::load_shipped_looks(records::shipped_data_folder(), sim::machine_kinds());
+  for (const auto& [key, visual] : looks.visuals)
+    for (const ig::VisualPart& part : visual.parts)
+      if (part.solid && part.size_m)
+        solid[key].push_back({core::Pose{core::Mat3::identity(), part.centre_m}, 0.5 * *part.size_m});
+  return solid;
+}
+
 // This station as a member of a team session: the other members' machines in its scene and in every snapshot
 // it publishes (the loop's addition holds the membership as long as the loop may run)
 std::shared_ptr<station::TeamMembership> join_team(const io::Team& team, const StationOptions& options,
@@ -302,7 +314,7 @@ std::shared_ptr<station::TeamMembership> join_team(const io::Team& team, const S
                                                    station::Session& session) {
   auto membership = std::make_shared<station::TeamMembership>(
       team, options.role, options.name.empty() ? options.role : options.name, options.domain, exercise,
-      session.simulation().scene(), options.time_scale);
+      session.simulation().scene(), options.time_scale, solid_parts());
   // for the readers that draw: the windows, the console's 3D view, the instructor's picture
   session.loop().set_addition(
       [membership](scene::Snapshot& s) { membership->add_to(s); },

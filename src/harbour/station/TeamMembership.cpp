@@ -115,7 +115,8 @@ std::string resolve_team(const std::string& name_or_path, const std::string& cen
 
 TeamMembership::TeamMembership(const io::Team& team, const std::string& role, const std::string& station,
                                int domain, const sim::ExerciseSettings& own_exercise,
-                               const scene::SceneDescription& own_scene, double time_scale)
+                               const scene::SceneDescription& own_scene, double time_scale,
+                               const SolidParts& solid)
     : team_(team),
       role_(role),
       time_scale_(time_scale),
@@ -161,10 +162,14 @@ TeamMembership::TeamMembership(const io::Team& team, const std::string& role, co
       const bool in_lane = std::any_of(trucks_.begin(), trucks_.end(), [&](const Truck& t) {
         return t.role == m.role && (t.trailer_body == b || body.name == "load");
       });
-      if (h.x > 0.0 && h.y > 0.0 && h.z > 0.0 && !in_lane &&
-          static_cast<int>(obstacles_.size()) < sim::TeamObstacles::kMostObstacles)
-        obstacles_.push_back({m.role, b, h, {}});
+      if (h.x > 0.0 && h.y > 0.0 && h.z > 0.0 && !in_lane)
+        obstacles_.push_back({m.role, b, core::Pose{}, h, {}});
+      if (const auto parts = solid.find(body.visual); parts != solid.end())
+        for (const SolidPart& part : parts->second)
+          obstacles_.push_back({m.role, b, part.local, part.half_extents_m, {}});
     }
+  if (static_cast<int>(obstacles_.size()) > sim::TeamObstacles::kMostObstacles)
+    obstacles_.resize(sim::TeamObstacles::kMostObstacles);
   for (const sim::ContainerPlacement& c : own_exercise.scenario.containers)
     box_mass_kg_[c.id] = c.gross_mass_kg;
   load_stop_ = own_exercise.load_stop;
@@ -322,8 +327,9 @@ void TeamMembership::feed_obstacles() {
     sim::TeamInput in;
     in.kind = sim::TeamInput::Kind::kObstacleAt;
     in.slot = static_cast<int>(k);
-    in.pose = m->pose;
-    in.velocity_mps = m->velocity_mps;
+    in.pose = {m->pose.rotation * o.local.rotation, m->pose.to_parent(o.local.position)};
+    in.velocity_mps =
+        m->velocity_mps + core::cross(m->angular_velocity_radps, in.pose.position - m->pose.position);
     in.angular_velocity_radps = m->angular_velocity_radps;
     if (presence_.there(o.role, o.body)) in.half_extents_m = o.half_extents_m;  // else gone: no size
     const std::optional<sim::TeamInput>& was = o.fed.input;

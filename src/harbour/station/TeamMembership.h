@@ -17,6 +17,14 @@
 
 namespace harbour::station {
 
+/// What another machine can hit of a look beyond its entity's own box (ig::VisualPart::solid): boxes in the
+/// entity's frame, by look key (an STS's legs under "sts.gantry").
+struct SolidPart {
+  core::Pose local;
+  core::Vec3 half_extents_m;
+};
+using SolidParts = std::map<std::string, std::vector<SolidPart>>;
+
 /// A team file by name (data/teams/NAME.yaml, or the centre's folder first) or path.
 std::string resolve_team(const std::string& name_or_path, const std::string& centre_exercises = "");
 
@@ -27,7 +35,8 @@ std::string resolve_team(const std::string& name_or_path, const std::string& cen
 /// tractor's station: it offers the box every 100 ms until the tractor says it has acquired it, then lets it
 /// go (kTakenOver). A tractor takes a box offered to it onto its trailer (kLoadOn) and answers every offer.
 /// Every member's simulation has the others' machine bodies with a size (a tractor, a trailer, a spreader;
-/// at a crane its team trucks' trailers are its decks already) as obstacles it can hit (kObstacleAt).
+/// at a crane its team trucks' trailers are its decks already) and their looks' solid parts (an STS's legs)
+/// as obstacles it can hit (kObstacleAt).
 class TeamMembership {
  public:
   /// Builds the other roles' exercises here (without stepping them) for their machines' bodies and start
@@ -36,7 +45,7 @@ class TeamMembership {
   /// `time_scale`: the session's clock runs so much faster than the wall's (every member runs at it).
   TeamMembership(const io::Team& team, const std::string& role, const std::string& station, int domain,
                  const sim::ExerciseSettings& own_exercise, const scene::SceneDescription& own_scene,
-                 double time_scale = 1.0);
+                 double time_scale = 1.0, const SolidParts& solid = {});
   ~TeamMembership();
   TeamMembership(const TeamMembership&) = delete;
   TeamMembership& operator=(const TeamMembership&) = delete;
@@ -111,10 +120,12 @@ class TeamMembership {
     int entity = -1;  // the crane's team truck in its own scene
   };
   std::vector<Truck> trucks_;
-  // the others' machine bodies with a size, each obstacle of this simulation (its slot: its place here)
+  // the others' machine bodies with a size and their looks' solid parts, each obstacle of this simulation
+  // (its slot: its place here)
   struct Obstacle {
     std::string role;
-    int body = -1;  // in the member's bodies
+    int body = -1;     // in the member's bodies
+    core::Pose local;  // in the body's frame
     core::Vec3 half_extents_m;
     Fed fed;
   };
