@@ -66,8 +66,8 @@ class RemoteChannels {
   std::atomic<bool> running_{true};
   std::atomic<long> frames_{0};
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
-  double longest_frame_s_ =
-      0.0;  // between two frames while channels drew (the run thread's; read after stop)
+  // between two frames while channels drew (the run thread's; read after stop)
+  double longest_frame_s_ = 0.0;
   mutable std::mutex said_mutex_;
   std::vector<std::string> said_;
   std::vector<std::string> strangers_;  // displays heard that are not this profile's remote ones
