@@ -46,7 +46,7 @@ struct OpenedAttempt {
   records::AttemptRow row;
   sim::ExerciseSettings exercise;
   std::string version, inexact;
-  sim::Recording recording;
+  sim::Recording recording;  // moved into the replay's player once the members' starts are found
 };
 
 // A team session's members in its team file's order of roles (the crane before its trucks), and when each
@@ -119,12 +119,14 @@ std::optional<Console::Response> Console::open_replay(Call& c) {
   if (static_cast<int>(replays_.size()) >= Replay::kMostOpen)
     return error(request, http::status::too_many_requests,
                  "already " + std::to_string(Replay::kMostOpen) + " replays open: close one");
+  for (const records::AttemptRow& row : rows)
+    if (row.recording.empty())
+      return error(request, http::status::conflict,
+                   "attempt " + std::to_string(row.id) + (session.empty() ? "" : " (" + row.team_role + ")") +
+                       " was not recorded");
   std::vector<OpenedAttempt> members;
   try {
     for (records::AttemptRow& row : rows) {
-      const std::string which =
-          "attempt " + std::to_string(row.id) + (session.empty() ? "" : " (" + row.team_role + ")");
-      if (row.recording.empty()) throw std::runtime_error(which + " was not recorded");
       OpenedAttempt m;
       const io::ExerciseSource source = records::attempt_exercise(db_, row, exercise_folder(), m.inexact);
       m.exercise = io::load_exercise_source(source);
@@ -134,16 +136,14 @@ std::optional<Console::Response> Console::open_replay(Call& c) {
       members.push_back(std::move(m));
     }
   } catch (const std::exception& e) {
-    const bool unrecorded = std::string(e.what()).find("was not recorded") != std::string::npos;
-    return error(request, http::status::conflict,
-                 unrecorded ? e.what() : std::string("cannot replay: ") + e.what());
+    return error(request, http::status::conflict, std::string("cannot replay: ") + e.what());
   }
   const std::vector<double> starts =
       session.empty() ? std::vector<double>{0.0} : member_starts(members, centre().exercise_folders());
   std::vector<sim::SessionPlayer::Member> played;
   for (std::size_t k = 0; k < members.size(); ++k)
-    played.push_back(
-        {members[k].row.team_role, members[k].exercise.scenario, members[k].recording, starts[k]});
+    played.push_back({members[k].row.team_role, members[k].exercise.scenario, std::move(members[k].recording),
+                      starts[k]});  // (the player keeps each recording; none is copied)
   Replay replay;
   try {
     replay.player = std::make_unique<sim::SessionPlayer>(std::move(played));
@@ -174,10 +174,11 @@ std::optional<Console::Response> Console::open_replay(Call& c) {
     };
     for (const records::EventRow& e : db_.events(m.row.id))
       happened(e.at_s, e.kind, e.value);
-    for (const sim::Recording::Command& given : m.recording.commands)
+    const sim::Recording& recording = replay.player->member(k).recording;
+    for (const sim::Recording::Command& given : recording.commands)
       happened(static_cast<double>(given.step) * sim::Simulation::kStep_s,
                "instructor " + std::string(io::command_name(given.command.kind)), 0.0);
-    complete = complete && m.recording.complete;
+    complete = complete && recording.complete;
     if (!m.inexact.empty()) inexact += (inexact.empty() ? "" : "; ") + who + m.inexact;
     roles.push_back({{"role", m.row.team_role},
                      {"attempt", m.row.id},

@@ -45,7 +45,6 @@ class SessionPlayer {
   std::optional<std::pair<std::string, std::int64_t>> first_mismatch() const;
   std::size_t members() const { return members_.size(); }
   const Member& member(std::size_t k) const { return members_[k]; }
-  const std::string& role(std::size_t k) const { return members_[k].role; }
   const ReplayPlayer& player(std::size_t k) const { return *players_[k]; }
   ReplayPlayer& player(std::size_t k) { return *players_[k]; }
 

@@ -29,6 +29,18 @@ struct FeedTolerance {
 constexpr FeedTolerance kTruckTolerance{0.002, 0.002, 0.0005, 0.0005};
 constexpr FeedTolerance kObstacleTolerance{0.02, 0.02, 0.002, 0.002};
 
+// An input of `kind` for `slot`: a frame fixed to remote body `body` that stands at `at` now, moving with it
+sim::TeamInput riding(sim::TeamInput::Kind kind, int slot, const RemoteMotion& body, const core::Pose& at) {
+  sim::TeamInput in;
+  in.kind = kind;
+  in.slot = slot;
+  in.pose = at;
+  in.velocity_mps =
+      body.velocity_mps + core::cross(body.angular_velocity_radps, at.position - body.pose.position);
+  in.angular_velocity_radps = body.angular_velocity_radps;
+  return in;
+}
+
 // `now` departs from where the simulation has carried `was` (given at `was_s`) on to `now_s`
 bool departs(const sim::TeamInput& was, double was_s, const sim::TeamInput& now, double now_s,
              const FeedTolerance& tolerance) {
@@ -299,13 +311,8 @@ void TeamMembership::feed_trucks() {
     const std::optional<RemoteMotion> m = presence_.motion_of(truck.role, truck.trailer_body, now);
     if (!m) continue;
     // its deck's top centre, moving with the trailer
-    sim::TeamInput in;
-    in.kind = sim::TeamInput::Kind::kTruckAt;
-    in.slot = static_cast<int>(k);
-    in.pose = sim::deck_of_trailer(m->pose, truck.deck_half_z_m);
-    in.velocity_mps =
-        m->velocity_mps + core::cross(m->angular_velocity_radps, in.pose.position - m->pose.position);
-    in.angular_velocity_radps = m->angular_velocity_radps;
+    const sim::TeamInput in = riding(sim::TeamInput::Kind::kTruckAt, static_cast<int>(k), *m,
+                                     sim::deck_of_trailer(m->pose, truck.deck_half_z_m));
     // only where it departs from where the simulation carries the last one on (each input is recorded: a
     // tractor standing under the crane for minutes costs nothing)
     if (!truck.fed.input || departs(*truck.fed.input, truck.fed.at_s, in, now, kTruckTolerance))
@@ -324,13 +331,8 @@ void TeamMembership::feed_obstacles() {
     Obstacle& o = obstacles_[k];
     const std::optional<RemoteMotion> m = presence_.motion_of(o.role, o.body, now);
     if (!m) continue;
-    sim::TeamInput in;
-    in.kind = sim::TeamInput::Kind::kObstacleAt;
-    in.slot = static_cast<int>(k);
-    in.pose = {m->pose.rotation * o.local.rotation, m->pose.to_parent(o.local.position)};
-    in.velocity_mps =
-        m->velocity_mps + core::cross(m->angular_velocity_radps, in.pose.position - m->pose.position);
-    in.angular_velocity_radps = m->angular_velocity_radps;
+    sim::TeamInput in = riding(sim::TeamInput::Kind::kObstacleAt, static_cast<int>(k), *m,
+                               {m->pose.rotation * o.local.rotation, m->pose.to_parent(o.local.position)});
     if (presence_.there(o.role, o.body)) in.half_extents_m = o.half_extents_m;  // else gone: no size
     const std::optional<sim::TeamInput>& was = o.fed.input;
     if (!was || was->half_extents_m != in.half_extents_m ||
