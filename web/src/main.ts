@@ -300,7 +300,7 @@ async function openReplay(which: { attempt: number } | { session: string }, at_s
   replay = r.data as ReplayInfo;
   text($("replay-title"), replay.session !== undefined
     ? `team session ${replay.session}: ` + (replay.members ?? []).map((m) =>
-      `${m.role} (attempt ${m.attempt}, ${m.trainee}${m.start_s > 0 ? `, from ${m.start_s.toFixed(1)} s` : ""})`).join(", ")
+      `${m.role} (attempt ${m.attempt}, ${m.trainee}${m.start_s >= 0.05 ? `, from ${m.start_s.toFixed(1)} s` : ""})`).join(", ")
     : `attempt ${replay.attempt}: ${exerciseTitle(replay.exercise)}, ${replay.trainee}`);
   showReplayExactness(replay.exact ? "" : replay.note);
   $("takeover-row").hidden = replay.session !== undefined;  // a member is taken over from its own attempt's replay

@@ -147,7 +147,7 @@ try {
   await until("a member's attempt offers its session's replay", async () => page.isVisible("#open-session-replay"), 10);
   await page.click("#open-session-replay");
   await until("the session's replay opens, naming its members", async () =>
-    /^team session \S+: crane \(attempt \d+, \w+\), tractor \(attempt \d+, \w+/.test(await page.textContent("#replay-title")), 20);
+    /^team session \S+: crane \(attempt \d+, \w+(, from \d+\.\d s)?\), tractor \(attempt \d+, \w+/.test(await page.textContent("#replay-title")), 20);
   const middle = opened.whole.body.duration_s / 2;
   await page.$eval("#replay-scrub", (e, at) => { e.value = String(at); e.dispatchEvent(new Event("change")); }, middle);
   await until("the replay shows its middle", async () => Math.abs(parseFloat(await page.textContent("#replay-time")) - middle) < 0.1, 30);
