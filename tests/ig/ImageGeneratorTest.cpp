@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <numbers>
+#include <vector>
 
 #include "harbour/core/Vec3.h"
 #include "harbour/io/DataError.h"
@@ -97,6 +98,69 @@ TEST(ImageGenerator, TheSkyIsBrighterAtNoonThanAtDuskAndDarkAtNight) {
   EXPECT_LT(night, 0.05);
 }
 
+// Twilight lasts as long as the sun's depression says. Looking straight up through an evening, the zenith's
+// brightness in the picture (the median of its middle, stars aside) is bisected for the moment it falls to
+// what it shows at 40° N on the March equinox when the sun is 6° down (civil twilight's end). At 60° N at
+// midsummer that moment is where the textbook's sun, sin h = sin φ sin δ + cos φ cos δ cos H (Cooper's
+// declination), stands 6° down too (within 0.25°, the picture's 8-bit step) — two hours after sunset there
+// against half an hour at 40° N.
+TEST(ImageGenerator, TwilightLastsAsLongAsTheSunsDepressionSays) {
+  ImageGenerator ig(scene(), looks(), kWidth, kHeight);
+  View up = level();
+  up.hud = false;
+  up.pitch_rad = std::numbers::pi / 2.0;
+  ig.set_view(up);
+  const auto zenith_brightness = [&](double latitude_deg, double day_of_year, double t_h) {
+    scene::Snapshot snapshot = state(40.0, 200.0, 20000.0, t_h);
+    snapshot.latitude_deg = latitude_deg;
+    snapshot.day_of_year = day_of_year;
+    ig.update(snapshot);
+    const osg::Image& image = ig.render();
+    std::vector<double> middle;
+    for (int y = kHeight / 2 - 10; y <= kHeight / 2 + 10; ++y)
+      for (int x = kWidth / 2 - 10; x <= kWidth / 2 + 10; ++x)
+        middle.push_back(luminance(pixel(image, x, y)));
+    std::nth_element(middle.begin(), middle.begin() + middle.size() / 2, middle.end());
+    return middle[middle.size() / 2];
+  };
+  // the local solar time after noon when the sun stands at `elevation_deg` (the textbook's hour angle)
+  const auto when = [](double latitude_deg, double day_of_year, double elevation_deg) {
+    const double deg = std::numbers::pi / 180.0;
+    const double declination = 23.45 * deg * std::sin(2.0 * std::numbers::pi * (284.0 + day_of_year) / 365.0);
+    const double cos_h =
+        (std::sin(elevation_deg * deg) - std::sin(latitude_deg * deg) * std::sin(declination)) /
+        (std::cos(latitude_deg * deg) * std::cos(declination));
+    return 12.0 + std::acos(cos_h) / deg / 15.0;
+  };
+  // the textbook's elevation of the sun, degrees, at `t_h`
+  const auto elevation = [](double latitude_deg, double day_of_year, double t_h) {
+    const double deg = std::numbers::pi / 180.0;
+    const double declination = 23.45 * deg * std::sin(2.0 * std::numbers::pi * (284.0 + day_of_year) / 365.0);
+    return std::asin(std::sin(latitude_deg * deg) * std::sin(declination) +
+                     std::cos(latitude_deg * deg) * std::cos(declination) *
+                         std::cos((t_h - 12.0) * 15.0 * deg)) /
+           deg;
+  };
+  const double civil_end = zenith_brightness(40.0, 80.0, when(40.0, 80.0, -6.0));
+  const double at_sunset = zenith_brightness(40.0, 80.0, when(40.0, 80.0, 0.0));
+  EXPECT_GT(at_sunset, 2.0 * civil_end);
+  for (const auto& [latitude, day] : {std::pair{40.0, 80.0}, std::pair{60.0, 172.0}}) {
+    double lighter = when(latitude, day, 0.0), darker = when(latitude, day, -6.5);
+    for (int i = 0; i < 12; ++i) {
+      const double mid = (lighter + darker) / 2.0;
+      (zenith_brightness(latitude, day, mid) > civil_end ? lighter : darker) = mid;
+    }
+    const double crossed = (lighter + darker) / 2.0, astronomical = when(latitude, day, -6.0);
+    std::printf(
+        "%.0f deg N, day %.0f: sunset %.2f h; the zenith as dark as civil twilight's end at %.3f h, the "
+        "sun 6 deg down at %.3f h (%.2f deg down then)\n",
+        latitude, day, when(latitude, day, 0.0), crossed, astronomical, -elevation(latitude, day, crossed));
+    EXPECT_NEAR(elevation(latitude, day, crossed), -6.0, 0.25) << latitude;  // a 8-bit picture's step
+  }
+  EXPECT_GT(when(60.0, 172.0, -6.0) - when(60.0, 172.0, 0.0),
+            3.0 * (when(40.0, 80.0, -6.0) - when(40.0, 80.0, 0.0)));
+}
+
 TEST(ImageGenerator, FogHidesAFarBoxMoreThanANearOne) {
   ImageGenerator ig(scene(), looks(), kWidth, kHeight);
   ig.set_view(level());
@@ -115,6 +179,15 @@ TEST(ImageGenerator, FogHidesAFarBoxMoreThanANearOne) {
   const auto [near_fog, far_fog] = contrast(300.0);
   std::printf("contrast against the sky: clear near %.3f far %.3f; fog 300 m near %.3f far %.3f\n",
               near_clear, far_clear, near_fog, far_fog);
+  // the fog's colour is grey: the sky beside the far box in 300 m of fog, its channels within 10 % of each
+  // other
+  ig.update(state(30.0, 250.0, 300.0, 12.0));
+  const osg::Vec3 fog = pixel(ig.render(), 5, ig.project({250.0, 0.0, 14.0 + 220.0 * 0.04})->second);
+  const double saturation = (std::max({fog.x(), fog.y(), fog.z()}) - std::min({fog.x(), fog.y(), fog.z()})) /
+                            std::max({fog.x(), fog.y(), fog.z()});
+  std::printf("the fog's colour: %.3f %.3f %.3f (saturation %.3f)\n", fog.x(), fog.y(), fog.z(), saturation);
+  EXPECT_LT(saturation, 0.10);
+  EXPECT_GT(fog.y(), 0.35) << "a daylit grey, not a night's";
   EXPECT_GT(far_clear, 0.5);              // both stand out in clear air
   EXPECT_GT(near_fog, 0.5 * near_clear);  // at 30 m in 300 m fog a box keeps most of its contrast
   EXPECT_LT(far_fog, 0.25 * far_clear);   // at 250 m it has nearly gone (Koschmieder: e^(-3.9 250/300))
@@ -667,10 +740,12 @@ TEST(ImageGenerator, MultisamplingBlendsThePixelsAnEdgeCrosses) {
                  sky = redness(centre.first - 30.0, centre.second);
     EXPECT_GT(panel - sky, 0.3);
     Drawn d{ig.multisamples()};
-    // the panel (some 32 px square, turned 0.3 rad) and the sky round it
+    // the panel (some 32 px square, turned 0.3 rad) and the sky round it, against the sky of the row (the
+    // sky's colour changes with height)
     for (int y = static_cast<int>(centre.second) - 30; y <= static_cast<int>(centre.second) + 30; ++y)
       for (int x = static_cast<int>(centre.first) - 30; x <= static_cast<int>(centre.first) + 30; ++x) {
-        const double share = (redness(x, y) - sky) / (panel - sky);
+        const double row_sky = redness(centre.first - 40.0, y);
+        const double share = (redness(x, y) - row_sky) / (panel - row_sky);
         d.area_px += std::clamp(share, 0.0, 1.0);
         d.blended += share > 0.15 && share < 0.85 ? 1 : 0;
       }
@@ -714,7 +789,7 @@ TEST(ImageGenerator, AContainersIsoCodeIsPaintedOnItsSidesItsEndsAndItsRoof) {
   // bright pixels within the rows `top`-`bottom` of the picture of the (dark blue) box posed at `pose`, seen
   // from the cab at 10 m looking along +x, turned down by `pitch`
   const auto white_pixels = [&](bool labelled, const core::Pose& pose, double pitch, const core::Vec3& top,
-                                const core::Vec3& bottom) {
+                                const core::Vec3& bottom, double half_width) {
     Visual look;
     VisualPart part;
     part.color = {0.1, 0.25, 0.6};
@@ -732,9 +807,14 @@ TEST(ImageGenerator, AContainersIsoCodeIsPaintedOnItsSidesItsEndsAndItsRoof) {
     const osg::Image& image = ig.render();
     int white = 0;
     const auto from = ig.project(top), to = ig.project(bottom);
+    // the box's columns (the pale sky beside it is not its paint)
+    const auto left = ig.project(top + core::Vec3{0.0, half_width, 0.0}),
+               right = ig.project(top - core::Vec3{0.0, half_width, 0.0});
+    const int first = std::max(0, static_cast<int>(std::min(left->first, right->first)));
+    const int last = std::min(kWidth - 1, static_cast<int>(std::max(left->first, right->first)));
     for (int y = static_cast<int>(std::min(from->second, to->second));
          y <= static_cast<int>(std::max(from->second, to->second)); ++y)
-      for (int x = 0; x < kWidth; ++x)
+      for (int x = first; x <= last; ++x)
         white += luminance(pixel(image, x, y)) > 0.6;
     return white;
   };
@@ -744,24 +824,28 @@ TEST(ImageGenerator, AContainersIsoCodeIsPaintedOnItsSidesItsEndsAndItsRoof) {
     core::Pose pose;
     double pitch_rad;
     core::Vec3 top, bottom;
+    double half_width_m;  // the box's across the picture
     int at_least;
   };
   const Seen views[] = {
       // 7 m ahead, its long side towards the eye: "TGHU1234567" in 0.32 m letters
-      {"side", {across, {7.0, 0.0, 10.0}}, 0.0, {7.0, 0.0, 11.2}, {7.0, 0.0, 8.8}, 80},
+      {"side", {across, {7.0, 0.0, 10.0}}, 0.0, {7.0, 0.0, 11.2}, {7.0, 0.0, 8.8}, 6.1, 80},
       // its end towards the eye, 7 m ahead of it: 0.2 m letters across its 2.44 m
-      {"end", {core::Mat3::identity(), {13.1, 0.0, 10.0}}, 0.0, {7.0, 0.0, 11.2}, {7.0, 0.0, 8.8}, 30},
+      {"end", {core::Mat3::identity(), {13.1, 0.0, 10.0}}, 0.0, {7.0, 0.0, 11.2}, {7.0, 0.0, 8.8}, 1.22, 30},
       // 9 m below the eye, looked straight down on: its roof, 0.45 m letters
       {"roof",
        {core::Mat3::identity(), {0.0, 0.0, -0.3}},
        -std::numbers::pi / 2.0,
        {6.0, 0.0, 1.0},
        {-6.0, 0.0, 1.0},
+       1.22,
        150},
   };
   for (const Seen& seen : views) {
-    const int plain = white_pixels(false, seen.pose, seen.pitch_rad, seen.top, seen.bottom);
-    const int labelled = white_pixels(true, seen.pose, seen.pitch_rad, seen.top, seen.bottom);
+    const int plain =
+        white_pixels(false, seen.pose, seen.pitch_rad, seen.top, seen.bottom, seen.half_width_m);
+    const int labelled =
+        white_pixels(true, seen.pose, seen.pitch_rad, seen.top, seen.bottom, seen.half_width_m);
     std::printf("white pixels on the box's %s: %d plain, %d with its code\n", seen.what, plain, labelled);
     EXPECT_EQ(plain, 0) << seen.what;
     EXPECT_GT(labelled, seen.at_least) << seen.what;

@@ -35,6 +35,7 @@
 #include "harbour/core/Rng.h"
 #include "harbour/ig/HeadlessContext.h"
 #include "harbour/ig/Models.h"
+#include "harbour/ig/Sky.h"
 
 namespace harbour::ig {
 
@@ -252,49 +253,32 @@ constexpr double kNewMoonDay = 5.0;  // a new moon on 5 January (a year's phases
 constexpr int kStars = 900;
 constexpr double kDomeRadius_m = 3900.0;
 
-// the sky at the horizon for a sun elevation: day blue, dusk orange, night dark blue
-core::Vec3 sky_color(double elevation) {
-  const core::Vec3 day{0.45, 0.63, 0.90}, dusk{0.80, 0.45, 0.30}, night{0.01, 0.015, 0.04};
-  const double deg = elevation * 180.0 / kPi;
-  const auto mix = [](const core::Vec3& a, const core::Vec3& b, double f) {
-    f = std::clamp(f, 0.0, 1.0);
-    return core::Vec3{a.x + (b.x - a.x) * f, a.y + (b.y - a.y) * f, a.z + (b.z - a.z) * f};
-  };
-  if (deg >= 10.0) return day;
-  if (deg >= 0.0) return mix(dusk, day, deg / 10.0);
-  return mix(night, dusk, (deg + 8.0) / 8.0);
-}
-// the sky's colours for a sun: the horizon's (fog's) blending into a deeper zenith with height, a halo and
-// a disc round the sun while it is up (the water's shader mirrors `towards`)
+// the sky's colours for a sun (the clear sky of `Daylight`) under the weather's veil: rain clouds
+// (`overcast`, 0-1) hide the sun; they and fog (`grey`, the larger of the two) turn the sky towards a grey of
+// its own brightness, darker under rain clouds. The water's shader mirrors `horizon` and `zenith`.
 struct SkyShade {
-  core::Vec3 horizon, zenith, sun;
+  Daylight daylight;
+  core::Vec3 sun;
+  double grey = 0.0, overcast = 0.0;
+  core::Vec3 horizon, zenith;
   double sun_visible = 0.0;
 
-  SkyShade(const core::Vec3& to_sun, double sun_elevation) : horizon(sky_color(sun_elevation)), sun(to_sun) {
-    const double daylight = std::clamp(std::sin(sun_elevation) * 4.0 + 0.3, 0.0, 1.0);
-    zenith = {horizon.x * (0.35 + 0.15 * (1 - daylight)), horizon.y * 0.62, horizon.z * 0.92};
-    sun_visible = sun_elevation > -0.1 ? std::clamp((sun_elevation + 0.1) / 0.2, 0.0, 1.0) : 0.0;
-  }
-  /// The weather's veil: rain clouds (`overcast`, 0-1) hide the sun; they and fog (`grey`, the larger of the
-  /// two) turn the sky towards a grey of its own brightness, darker under rain clouds.
-  SkyShade& weathered(double grey, double overcast) {
-    const auto veil = [&](const core::Vec3& c) {
-      const double luminance = (0.30 * c.x + 0.59 * c.y + 0.11 * c.z) * (1.0 - 0.35 * overcast);
-      const core::Vec3 g{luminance, luminance, luminance * 1.03};
-      return c + (g - c) * grey;
-    };
-    horizon = veil(horizon);
-    zenith = veil(zenith);
+  SkyShade(const core::Vec3& to_sun, double sun_elevation, double grey_share, double overcast_share)
+      : daylight(to_sun), sun(to_sun), grey(grey_share), overcast(overcast_share) {
+    horizon = veiled(daylight.horizon());
+    zenith = veiled(daylight.zenith());
+    sun_visible = sun_elevation > -0.01 ? std::clamp((sun_elevation + 0.01) / 0.02, 0.0, 1.0) : 0.0;
     sun_visible *= 1.0 - std::max(grey, overcast);
-    return *this;
+  }
+  core::Vec3 veiled(const core::Vec3& c) const {
+    const double luminance = (0.30 * c.x + 0.59 * c.y + 0.11 * c.z) * (1.0 - 0.35 * overcast);
+    const core::Vec3 g{luminance, luminance, luminance * 1.03};
+    return c + (g - c) * grey;
   }
   osg::Vec4 towards(const core::Vec3& d) const {
-    const double up = std::sqrt(std::clamp(d.z, 0.0, 1.0));  // most of the change near the horizon
-    core::Vec3 c = horizon + (zenith - horizon) * up;
-    const double cos_angle = dot(d, sun);
-    const double halo = 0.35 * std::exp((cos_angle - 1.0) / 0.02) * sun_visible;  // ~11 deg wide
-    const double disc = cos_angle > 0.99996 ? sun_visible : 0.0;                  // ~0.5 deg across
-    c = {c.x + halo + disc, c.y + halo * 0.9 + disc, c.z + halo * 0.7 + disc * 0.9};
+    core::Vec3 c = veiled(daylight.sky(d));
+    if (dot(d, sun) > 0.99996)
+      c = c + core::Vec3{1.0, 0.95, 0.85} * sun_visible;  // the disc, ~0.5 deg across
     return {static_cast<float>(std::min(c.x, 1.0)), static_cast<float>(std::min(c.y, 1.0)),
             static_cast<float>(std::min(c.z, 1.0)), 1.0f};
   }
@@ -575,6 +559,9 @@ void ImageGenerator::build_lighting() {
   state->setMode(GL_LIGHTING, osg::StateAttribute::ON);
   state->setMode(GL_LIGHT0, osg::StateAttribute::ON);
   state->setMode(GL_NORMALIZE, osg::StateAttribute::ON);
+  osg::ref_ptr<osg::LightModel> no_global_ambient = new osg::LightModel;  // all ambient light is the sky's
+  no_global_ambient->setAmbientIntensity(osg::Vec4(0.0f, 0.0f, 0.0f, 1.0f));
+  state->setAttributeAndModes(no_global_ambient);
   // solids show their outsides only: from the seat, the cab's own walls are not drawn and the world shows
   // through them (its windows), while the bonnet and the mirror arms ahead of them are
   state->setMode(GL_CULL_FACE, osg::StateAttribute::ON);
@@ -1129,15 +1116,16 @@ void ImageGenerator::update_sky_and_weather(const scene::Snapshot& s) {
       3.912 / std::max(s.visibility_m, 1.0) + 0.29e-3 * std::pow(std::max(s.rain_mm_per_h, 0.0), 0.67);
   const double visibility_m = 3.912 / extinction_per_m;
   grey_ = std::max(overcast_, std::clamp((5000.0 - visibility_m) / 4500.0, 0.0, 1.0));
-  const SkyShade shade = SkyShade(to_sun, sun_elevation_).weathered(grey_, overcast_);
+  const SkyShade shade = SkyShade(to_sun, sun_elevation_, grey_, overcast_);
   const core::Vec3 sky = shade.horizon;
   osg::Light* light = sun_->getLight();
   light->setPosition(osg::Vec4(to_osg(to_sun), 0.0f));
-  // under cloud or in fog the sun's direct light gives way to the sky's diffuse light: soft, shadowless
-  const float diffuse = static_cast<float>(0.85 * daylight * (1.0 - 0.85 * grey_));
-  const float ambient = static_cast<float>((0.08 + 0.30 * daylight) * (1.0 + 0.5 * grey_));
-  light->setDiffuse(osg::Vec4(diffuse, diffuse * 0.97f, diffuse * 0.92f, 1.0f));
-  light->setAmbient(osg::Vec4(ambient, ambient, ambient * 1.1f, 1.0f));
+  // the clear sky's sun and sky light; under cloud or in fog the sun's direct light gives way to the sky's
+  // diffuse light: soft, shadowless
+  const core::Vec3 diffuse = shade.daylight.sun_light() * (1.0 - 0.85 * grey_);
+  const core::Vec3 ambient = shade.veiled(shade.daylight.sky_light()) * (1.0 + 0.5 * grey_);
+  light->setDiffuse(rgba(diffuse));
+  light->setAmbient(rgba(ambient));
   viewer_->getCamera()->setClearColor(rgba(sky));
   for (std::size_t n = 0; n < sky_directions_->size(); ++n) {
     const osg::Vec3& d = (*sky_directions_)[n];
@@ -1332,13 +1320,13 @@ void ImageGenerator::update_night_sky(const scene::Snapshot& s, const core::Vec3
   const double lat = s.latitude_deg * kPi / 180.0, sidereal = sidereal_angle(s.time_of_day_h, s.day_of_year);
   auto& star_vertices = static_cast<osg::Vec3Array&>(*stars_->getVertexArray());
   auto& star_colours = static_cast<osg::Vec4Array&>(*stars_->getColorArray());
+  const SkyShade shade(to_sun_, sun_elevation_, grey_, overcast_);
   for (std::size_t n = 0; n < star_positions_.size(); ++n) {
     const auto& [right_ascension, declination, brightness] = star_positions_[n];
     const core::Vec3 d = sky_direction(sidereal - right_ascension, declination, lat);
     star_vertices[n] = to_osg(d * kDomeRadius_m);
     const float b = static_cast<float>(brightness * dark * std::clamp(d.z * 8.0, 0.0, 1.0));  // haze low down
-    const osg::Vec4 behind =
-        SkyShade(to_sun_, sun_elevation_).weathered(grey_, overcast_).towards(d);  // the dome's colour there
+    const osg::Vec4 behind = shade.towards(d);  // the dome's colour there
     star_colours[n].set(behind.r() + b, behind.g() + b, behind.b() + b, 1.0f);
   }
   star_vertices.dirty();
@@ -1726,7 +1714,7 @@ void ImageGenerator::update_water(const osg::Vec3d& eye) {
     foam_slope_ = *at;
   }
   // the shading's uniforms: the eye, the sky it mirrors, the deep water's colour
-  const SkyShade sky = SkyShade(to_sun_, sun_elevation_).weathered(grey_, overcast_);
+  const SkyShade sky = SkyShade(to_sun_, sun_elevation_, grey_, overcast_);
   const auto set = [&](const char* name, const auto& value) { water_shading_->getUniform(name)->set(value); };
   set("daylight", static_cast<float>(daylight_ * (1.0 - grey_)));  // no glint under cloud or in fog
   set("sky_light", static_cast<float>(0.12 + 0.88 * daylight_ * (1.0 - 0.4 * grey_)));

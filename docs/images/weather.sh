@@ -1,0 +1,52 @@
+#!/usr/bin/env bash
+# Each machine's cab view (top row) and chase view (bottom row) at one moment of its main exercise in six
+# conditions — noon, dusk (18:18, the sun 3.5° down), night (22 h), fog (200 m), rain (20 mm/h) and a storm
+# (20 m/s wind, 40 mm/h, 2 km visibility) — side by side: docs/images/weather_<exercise>.png; and the sky
+# through an evening from the quay (12, 16, 17:30, 18, 18:12, 18:30, 18:48, 19:12 h): docs/images/sky_evening.png.
+# Usage: docs/images/weather.sh [path/to/harboursim]
+set -euo pipefail
+here="$(cd "$(dirname "$0")" && pwd)"
+app="${1:-$here/../../build/release/apps/harboursim/harboursim}"
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+conditions=(noon dusk night fog rain storm)
+options() {  # condition
+  case "$1" in
+    noon) echo "--time-of-day 12" ;;
+    dusk) echo "--time-of-day 18.3" ;;
+    night) echo "--time-of-day 22" ;;
+    fog) echo "--time-of-day 12 --visibility 200" ;;
+    rain) echo "--time-of-day 12 --rain 20 --visibility 3000" ;;
+    storm) echo "--time-of-day 15 --rain 40 --visibility 2000 --command 0:wind:20:270:0.2" ;;
+  esac
+}
+shoot() {  # exercise, moment [s]
+  local exercise="$1" at="$2" frames=()
+  for view in cab chase; do
+    for c in "${conditions[@]}"; do
+      # shellcheck disable=SC2046
+      "$app" screenshot --exercise "$exercise" --at "$at" --view "$view" --size 320x180 $(options "$c") \
+        --out "$work/$view-$c.png" > /dev/null
+      frames+=(-i "$work/$view-$c.png")
+    done
+  done
+  ffmpeg -loglevel error -y "${frames[@]}" -filter_complex \
+    "[0][1][2][3][4][5]hstack=6[cab];[6][7][8][9][10][11]hstack=6[chase];[cab][chase]vstack" \
+    "$here/weather_$exercise.png"
+  echo "$here/weather_$exercise.png"
+}
+shoot sts_discharge 12
+shoot rtg_rehandle 20
+shoot mhc_coal_discharge 40
+shoot reach_stacker_stack 30
+shoot tractor_semi_reverse 30
+shoot straddle_carrier_stack 40
+frames=()
+for t in 12 16 17.5 18 18.2 18.5 18.8 19.2; do
+  "$app" screenshot --exercise sts_discharge --at 1 --view free --camera=-120,-80,20,60,8 --size 400x225 \
+    --time-of-day "$t" --out "$work/sky-$t.png" > /dev/null
+  frames+=(-i "$work/sky-$t.png")
+done
+ffmpeg -loglevel error -y "${frames[@]}" -filter_complex "[0][1][2][3]hstack=4[a];[4][5][6][7]hstack=4[b];[a][b]vstack" \
+  "$here/sky_evening.png"
+echo "$here/sky_evening.png"
