@@ -6,6 +6,7 @@
 
 #include <osg/Image>
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -532,6 +533,75 @@ TEST(ImageGenerator, RainWetsAndDarkensTheQuay) {
   std::printf("quay luminance dry %.3f, in 10 mm/h rain %.3f\n", dry, wet);
   EXPECT_LT(wet, 0.8 * dry);
   EXPECT_GT(wet, 0.4 * dry);
+}
+
+// A wet quay is a rough mirror: at night in rain a floodlight 30 m up and 60 m ahead glares on the quay
+// where its mirror image (30 m below the quay) is seen — the brightest part of what the rain adds is centred
+// within 3 pixels of that image's projection across the picture and 10 along it — while the dry quay has no
+// glare there (its pool of light lies under the lamp, higher in the picture).
+TEST(ImageGenerator, AWetQuayMirrorsAFloodlightWhereItsMirrorImageIs) {
+  ImageGenerator ig(scene(), looks(), kWidth, kHeight);
+  View v = level();
+  v.hud = false;
+  v.pitch_rad = -0.45;
+  ig.set_view(v);
+  ig.set_floodlights({{{60.0, 0.0, 30.0}, {1.0, 0.9, 0.75}, 80.0}});
+  const auto picture = [&](double rain) {
+    scene::Snapshot s = state(40.0, 200.0, 20000.0, 23.0);
+    s.rain_mm_per_h = rain;
+    ig.update(s);
+    const osg::Image& image = ig.render();
+    // each pixel the median of its 3x3 neighbourhood: the drops falling past, a pixel or two wide, go
+    std::vector<double> l(static_cast<std::size_t>(kWidth * kHeight));
+    for (int y = 0; y < kHeight; ++y)
+      for (int x = 0; x < kWidth; ++x) {
+        std::array<double, 9> around{};
+        for (std::size_t k = 0; k < around.size(); ++k)
+          around[k] =
+              luminance(pixel(image, x + static_cast<int>(k % 3) - 1, y + static_cast<int>(k / 3) - 1));
+        std::nth_element(around.begin(), around.begin() + 4, around.end());
+        l[static_cast<std::size_t>(y * kWidth + x)] = around[4];
+      }
+    return l;
+  };
+  const std::vector<double> dry = picture(0.0), wet = picture(10.0);
+  const auto mirror = ig.project({60.0, 0.0, -30.0}), lamp_pool = ig.project({60.0, 0.0, 0.0});
+  ASSERT_TRUE(mirror && lamp_pool);
+  // what the rain added, summed over 9x9 patches; the glare is where those sums are within 30 % of the most
+  // (its plateau's centre of brightness)
+  std::vector<double> patch(static_cast<std::size_t>(kWidth * kHeight), 0.0);
+  double best = 0.0;
+  for (int y = 4; y < kHeight - 4; ++y)
+    for (int x = 4; x < kWidth - 4; ++x) {
+      double added = 0.0;
+      for (int j = -4; j <= 4; ++j)
+        for (int i = -4; i <= 4; ++i) {
+          const std::size_t k = static_cast<std::size_t>((y + j) * kWidth + x + i);
+          added += wet[k] - dry[k];
+        }
+      patch[static_cast<std::size_t>(y * kWidth + x)] = added;
+      best = std::max(best, added);
+    }
+  double weight = 0.0, cx = 0.0, cy = 0.0;
+  for (int y = 0; y < kHeight; ++y)
+    for (int x = 0; x < kWidth; ++x) {
+      const double p = patch[static_cast<std::size_t>(y * kWidth + x)];
+      if (p < 0.7 * best) continue;
+      weight += p;
+      cx += p * x;
+      cy += p * y;
+    }
+  cx /= weight;
+  cy /= weight;
+  std::printf(
+      "glare on the wet quay centred at (%.1f, %.1f), up to +%.3f a pixel; the lamp's mirror image projects "
+      "to "
+      "(%.1f, %.1f), its pool to (%.1f, %.1f)\n",
+      cx, cy, best / 81.0, mirror->first, mirror->second, lamp_pool->first, lamp_pool->second);
+  EXPECT_NEAR(cx, mirror->first, 3.0);
+  EXPECT_NEAR(cy, mirror->second, 10.0);  // a rough mirror draws the glare out along the line of sight
+  EXPECT_GT(best / 81.0, 0.10);           // bright against the night
+  EXPECT_GT(mirror->second - lamp_pool->second, 20.0) << "the glare is not the pool of light";
 }
 
 TEST(ImageGenerator, RainStreaksPastTheEyeFallTheWayTheDropsFall) {

@@ -286,15 +286,21 @@ struct SkyShade {
 
 // The lit scene's shading: the fixed pipeline's per-vertex lighting (the geometry's colour as ambient and
 // diffuse; the sun as light 0, floodlights as lights 1..n with their attenuation) and its exponential fog,
-// with the sun's diffuse part dimmed where the shadow map says the sun is hidden.
+// with the sun's diffuse part dimmed where the shadow map says the sun is hidden. A wet surface (the quay in
+// rain) carries a water film per pixel: it mirrors the sky by Fresnel's reflectance, shows the sun's and the
+// floodlights' glare, and rings where drops land.
 constexpr char kLitVertexShader[] = R"(#version 120
 uniform int floodlights;  // lights 1..floodlights are on
 varying vec4 unshadowed;  // ambient and floodlight
 varying vec4 sunlit;      // the sun's diffuse part
 varying float fog_depth;
+varying vec3 eye_position;
+varying vec3 eye_normal;
 void main() {
   vec4 eye = gl_ModelViewMatrix * gl_Vertex;
   vec3 n = normalize(gl_NormalMatrix * gl_Normal);
+  eye_position = eye.xyz;
+  eye_normal = n;
   vec4 colour = gl_Color;
   unshadowed = gl_LightModel.ambient * colour + gl_LightSource[0].ambient * colour;
   sunlit = max(dot(n, normalize(gl_LightSource[0].position.xyz)), 0.0) * gl_LightSource[0].diffuse * colour;
@@ -318,7 +324,63 @@ uniform bool sun_shadows;  // off in the insets' small pictures (no shadow map o
 varying vec4 unshadowed;
 varying vec4 sunlit;
 varying float fog_depth;
+varying vec3 eye_position;
+varying vec3 eye_normal;
 uniform bool soft_shadows;  // filtered edges (ImageGenerator::set_soft_shadows)
+uniform int floodlights;
+uniform float wetness;      // this surface's water film: 0 dry, 1 wet through
+uniform float splash_rate;  // drops whose splash shows, per square metre and second
+uniform float time_s;
+uniform vec3 sky_horizon;   // the sky the film mirrors
+uniform vec3 sky_zenith;
+uniform mat4 osg_ViewMatrix;
+uniform mat4 osg_ViewMatrixInverse;
+float hash(vec2 p) {
+  return fract(sin(dot(p, vec2(127.1, 311.7))) * 43758.5453);
+}
+// the rings of the drops landing round `xy` (world, m): in each 0.35 m cell one drop at a time, at a random
+// place and moment, its ring spreading at 0.25 m/s and fading over 0.3 s
+float splash(vec2 xy) {
+  const float cell = 0.35;
+  vec2 c = floor(xy / cell);
+  float period = 1.0 / max(splash_rate * cell * cell, 1e-3);
+  float t = time_s / period + hash(c);
+  float k = floor(t);
+  float age = (t - k) * period;
+  vec2 at = (c + vec2(hash(c + vec2(k, 1.7)), hash(c + vec2(5.3, k)))) * cell;
+  float ring = abs(length(xy - at) - (0.01 + 0.25 * age));
+  return (1.0 - smoothstep(0.0, 0.015, ring)) * max(0.0, 1.0 - age / 0.3);
+}
+// Schlick's reflectance of water (R0 = 0.02) at an angle of cosine `c`
+float fresnel(float c) {
+  return 0.02 + 0.98 * pow(1.0 - max(c, 0.0), 5.0);
+}
+// a light's glare on the film: energy-normalised Blinn-Phong (exponent 400) of the light from `to_light`
+vec3 glare(vec3 n, vec3 v, vec3 to_light, vec3 light) {
+  vec3 h = normalize(to_light + v);
+  return fresnel(dot(v, h)) * (408.0 / 25.13) * pow(max(dot(n, h), 0.0), 400.0) * max(dot(n, to_light), 0.0) *
+         light;
+}
+vec3 wet(vec3 colour, float lit) {
+  vec3 n = normalize(eye_normal), v = normalize(-eye_position);
+  vec3 up = osg_ViewMatrix[2].xyz;
+  vec3 r = reflect(-v, n);
+  vec3 sky = mix(sky_horizon, sky_zenith, sqrt(max(dot(r, up), 0.0)));
+  vec3 c = mix(colour, sky, fresnel(dot(n, v)) * wetness);
+  c += wetness * lit * glare(n, v, normalize(gl_LightSource[0].position.xyz), gl_LightSource[0].diffuse.rgb);
+  for (int i = 1; i < 8; ++i) {
+    if (i > floodlights) break;
+    vec3 to_light = gl_LightSource[i].position.xyz - eye_position;
+    float d = length(to_light);
+    float attenuation = 1.0 / (gl_LightSource[i].constantAttenuation + gl_LightSource[i].linearAttenuation * d +
+                               gl_LightSource[i].quadraticAttenuation * d * d);
+    // a lamp is far brighter to look at than the pool it lights (its glare a few times its light: assumed 4)
+    c += wetness * 4.0 * glare(n, v, to_light / d, gl_LightSource[i].diffuse.rgb * attenuation);
+  }
+  vec2 xy = (osg_ViewMatrixInverse * vec4(eye_position, 1.0)).xy;
+  float near = clamp(1.0 - fog_depth / 35.0, 0.0, 1.0);  // a ring's width is under a pixel farther off
+  return c + splash(xy) * near * 0.8 * gl_LightSource[0].ambient.rgb;
+}
 // percentage-closer filtering: the share of a 3x3 patch of the shadow map (a texel apart, each tap
 // compared and filtered by the hardware) that sees the sun, so a shadow's edge is a soft ramp a few texels
 // wide instead of the map's staircase
@@ -334,9 +396,10 @@ void main() {
   vec4 at = gl_TexCoord[1];
   at.z -= 0.0015 * at.w;  // towards the sun: no self-shadowing on lit faces, the filter's taps included
   float lit = !sun_shadows ? 1.0 : soft_shadows ? sun_visible(at) : shadow2DProj(shadowTexture0, at).r;
-  vec4 colour = min(unshadowed + sunlit * lit, vec4(1.0));
+  vec3 colour = min(unshadowed + sunlit * lit, vec4(1.0)).rgb;
+  if (wetness > 0.0) colour = min(wet(colour, lit), vec3(1.0));
   float fog = clamp(exp(-gl_Fog.density * fog_depth), 0.0, 1.0);
-  gl_FragColor = vec4(mix(gl_Fog.color.rgb, colour.rgb, fog), 1.0);
+  gl_FragColor = vec4(mix(gl_Fog.color.rgb, colour, fog), 1.0);
 }
 )";
 // The water's shading per pixel: the normal from the slopes of the swell and the wind sea (interpolated
@@ -590,6 +653,12 @@ void ImageGenerator::build_lighting() {
     lit->addUniform(new osg::Uniform("sun_shadows", true));
     soft_shadows_ = new osg::Uniform("soft_shadows", false);
     lit->addUniform(soft_shadows_);
+    // the water film's: dry unless a surface says otherwise (the quay's own `quay_wetness_`)
+    film_ = {new osg::Uniform("wetness", 0.0f), new osg::Uniform("splash_rate", 0.0f),
+             new osg::Uniform("time_s", 0.0f), new osg::Uniform("sky_horizon", osg::Vec3()),
+             new osg::Uniform("sky_zenith", osg::Vec3())};
+    for (const osg::ref_ptr<osg::Uniform>& u : film_)
+      lit->addUniform(u);
     // the same nodes lit the same way but without a shadow pass, for the insets: a camera drawing the
     // shadowed scene draws a 1024^2 shadow map of its own, which cost an inset more than its picture
     shadowed_->setNodeMask(kMainView | kCastsShadow);  // the shadow pass bounds its casters from here
@@ -599,6 +668,8 @@ void ImageGenerator::build_lighting() {
     inset_lit->setAttribute(program);
     inset_lit->addUniform(floodlights_on_);
     inset_lit->addUniform(new osg::Uniform("sun_shadows", false));
+    for (const osg::ref_ptr<osg::Uniform>& u : film_)
+      inset_lit->addUniform(u);
   }
   fog_ = new osg::Fog;
   fog_->setMode(osg::Fog::EXP);
@@ -691,6 +762,8 @@ void ImageGenerator::build_sky() {
 void ImageGenerator::build_quay_and_water() {
   osg::ref_ptr<osg::Geode> apron = tessellated_plane(-60.0, 18.0, -80.0, 80.0, 0.0, 3.0, {0.42, 0.42, 0.40});
   quay_color_ = static_cast<osg::Vec4Array*>(apron->getDrawable(0)->asGeometry()->getColorArray());
+  quay_wetness_ = new osg::Uniform("wetness", 0.0f);
+  apron->getOrCreateStateSet()->addUniform(quay_wetness_);
   apron->setNodeMask(kReceivesOnly);
   add_lit(apron);
   for (const auto& [x0, x1, y0, y1] :
@@ -698,6 +771,7 @@ void ImageGenerator::build_quay_and_water() {
         std::array{-60.0, 18.0, 80.0, 400.0}}) {
     osg::ref_ptr<osg::Geode> part = tessellated_plane(x0, x1, y0, y1, 0.0, 20.0, {0.42, 0.42, 0.40});
     part->getDrawable(0)->asGeometry()->setColorArray(quay_color_, osg::Array::BIND_OVERALL);  // wet together
+    part->getOrCreateStateSet()->addUniform(quay_wetness_);
     part->setNodeMask(kReceivesOnly);
     add_lit(part);
   }
@@ -1148,9 +1222,17 @@ void ImageGenerator::update_sky_and_weather(const scene::Snapshot& s) {
     rain_->setWind(to_osg(s.wind_mps));
     rain_->getFog()->setDensity(fog_->getDensity());
   }
-  const float dry = 1.0f - 0.35f * static_cast<float>(std::clamp(s.rain_mm_per_h / 2.0, 0.0, 1.0));
+  const double wetness = std::clamp(s.rain_mm_per_h / 2.0, 0.0, 1.0);
+  const float dry = 1.0f - 0.35f * static_cast<float>(wetness);
   (*quay_color_)[0] = osg::Vec4(0.42f * dry, 0.42f * dry, 0.40f * dry, 1.0f);
   quay_color_->dirty();
+  // the film: wet through from 2 mm/h; splashes that show, 0.75 a square metre and second per mm/h (assumed:
+  // the larger drops' crowns; 20 mm/h brings ~1,300 drops a square metre and second in all)
+  quay_wetness_->set(static_cast<float>(wetness));
+  film_[1]->set(static_cast<float>(0.75 * std::max(s.rain_mm_per_h, 0.0)));
+  film_[2]->set(static_cast<float>(s.time_s));
+  film_[3]->set(to_osg(shade.horizon));
+  film_[4]->set(to_osg(shade.zenith));
   daylight_ = daylight;
 }
 
@@ -1548,10 +1630,12 @@ void ImageGenerator::place_camera() {
   const bool cab_view = view_.kind == View::Kind::kCab;
   const double fov_vertical =
       cab_view && view_.fov_from_sight ? cab_.sight.fov_vertical_rad : view_.fov_vertical_rad;
-  // a cab view's near plane just in front of the eye (the bonnet, the mirror arms and the floor window's edge
-  // are a metre away: a near plane computed from the whole harbour's bounds, some 3 m, cut them off); the
-  // other views let it follow the scene's bounds
-  camera->setComputeNearFarMode(cab_view ? osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR
+  // a cab view's and a free camera's near plane just in front of the eye (the bonnet, the mirror arms and the
+  // floor window's edge are a metre away, a free camera may stand low over the quay: a near plane computed
+  // from the whole harbour's bounds, some 3 m, cut them off and showed the water under the quay); the chase
+  // view lets it follow the scene's bounds
+  const bool near_eye = cab_view || view_.kind == View::Kind::kFree;
+  camera->setComputeNearFarMode(near_eye ? osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR
                                          : osg::CullSettings::COMPUTE_NEAR_FAR_USING_BOUNDING_VOLUMES);
   camera->setProjectionMatrixAsPerspective(fov_vertical * 180.0 / kPi, aspect, kCabNear_m, 6000.0);
   camera->setViewport(0, 0, width_, height_);

@@ -269,6 +269,8 @@ class ImageGenerator {
   double rain_mm_per_h_ = 0.0;
   void update_near_rain(const osg::Vec3d& eye);
   osg::ref_ptr<osg::Vec4Array> quay_color_;
+  osg::ref_ptr<osg::Uniform> quay_wetness_;
+  std::array<osg::ref_ptr<osg::Uniform>, 5> film_;  // wetness (0 but the quay's), splash rate, time, the sky
   osg::ref_ptr<osg::Geometry> water_;
   osg::ref_ptr<osg::StateSet> water_shading_;  // its shader's uniforms
   osg::ref_ptr<osg::MatrixTransform> far_water_;
