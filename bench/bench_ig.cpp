@@ -1,17 +1,20 @@
 // The image generator: frames per second of the STS deck exercise with everything on (ten boxes, the feeder,
 // trucks, the crane and its ropes, the harbour's scenery and lamps, sun shadows, the FFT wind sea in 8 m/s
-// of wind) drawn headless (EGL) from the cab (with and without its spreader camera inset) and the chase view;
-// and the cost of re-meshing one changed bulk tile. Results: docs/benchmarks.md.
+// of wind) drawn headless (EGL) from the cab (with and without its spreader camera inset) and the chase view,
+// dry and in rain; the analytic sky's colours; and the cost of re-meshing one changed bulk tile. Results:
+// docs/benchmarks.md.
 
 #include <benchmark/benchmark.h>
 
 #include <osg/Image>
 
+#include <cmath>
 #include <optional>
 
 #include "harbour/bulk/BulkPublish.h"
 #include "harbour/core/Rng.h"
 #include "harbour/ig/ImageGenerator.h"
+#include "harbour/ig/Sky.h"
 #include "harbour/io/ExerciseFiles.h"
 #include "harbour/machines/GantryAutopilot.h"
 #include "harbour/machines/MachineRegistry.h"
@@ -28,6 +31,12 @@ void BM_Frame(benchmark::State& state) {
   wind.kind = sim::InstructorCommand::Kind::kSetWind;
   wind.wind_mean_mps = 8.0;
   simulation.command(wind);
+  if (state.range(5) > 0) {  // rain [mm/h]: the wet quay's own shading
+    sim::InstructorCommand rain;
+    rain.kind = sim::InstructorCommand::Kind::kSetRain;
+    rain.value = static_cast<double>(state.range(5));
+    simulation.command(rain);
+  }
   while (simulation.time_s() < 30.0)
     simulation.step(pilot.next(simulation));  // a box on the spreader
   const ig::Looks looks = ig::load_shipped_looks(HARBOUR_DATA_DIR, sim::machine_kinds());
@@ -60,17 +69,46 @@ void BM_Frame(benchmark::State& state) {
   state.SetLabel(generator.renderer());
 }
 BENCHMARK(BM_Frame)
-    ->Args({1280, 720, 0, 1, -1})
-    ->Args({1280, 720, 0, 0, -1})
-    ->Args({1280, 720, 1, 0, -1})
-    ->Args({1920, 1080, 0, 1, -1})
-    ->Args({1920, 1080, 1, 0, -1})
-    ->Args({1280, 720, 0, 1, 4})
-    ->Args({1280, 720, 1, 0, 4})
-    ->ArgNames({"w", "h", "chase", "insets", "samples"})
+    ->Args({1280, 720, 0, 1, -1, 0})
+    ->Args({1280, 720, 0, 0, -1, 0})
+    ->Args({1280, 720, 1, 0, -1, 0})
+    ->Args({1280, 720, 0, 1, -1, 10})
+    ->Args({1280, 720, 1, 0, -1, 10})
+    ->Args({1920, 1080, 0, 1, -1, 0})
+    ->Args({1920, 1080, 1, 0, -1, 0})
+    ->Args({1280, 720, 0, 1, 4, 0})
+    ->Args({1280, 720, 1, 0, 4, 0})
+    ->ArgNames({"w", "h", "chase", "insets", "samples", "rain"})
     ->Unit(benchmark::kMillisecond)
     ->MinTime(3.0)
     ->UseRealTime();  // llvmpipe may draw on threads of its own
+
+// The analytic sky's work on the CPU each frame: the image generator builds Preetham's sky for the sun three
+// times (the dome and the lights, the stars, the water) and colours the dome's 833 vertices and the 900
+// stars.
+void BM_SkyColours(benchmark::State& state) {
+  double t_h = 6.0;
+  for (auto _ : state) {
+    t_h = t_h > 20.0 ? 6.0 : t_h + 0.01;  // the sun moving through a day
+    const double hour_angle = (t_h - 12.0) / 24.0 * 6.283185307179586;
+    const core::Vec3 to_sun{-std::sin(hour_angle), -0.64 * std::cos(hour_angle), 0.77 * std::cos(hour_angle)};
+    double sum = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      const ig::Daylight daylight(to_sun);
+      sum += daylight.horizon().x;
+    }
+    const ig::Daylight daylight(to_sun);
+    for (int n = 0; n < 833 + 900; ++n) {
+      const double elevation = -0.2 + 1.77 * (n % 17) / 16.0, azimuth = 0.13 * n;
+      sum += daylight
+                 .sky({std::cos(elevation) * std::cos(azimuth), std::cos(elevation) * std::sin(azimuth),
+                       std::sin(elevation)})
+                 .y;
+    }
+    benchmark::DoNotOptimize(sum);
+  }
+}
+BENCHMARK(BM_SkyColours)->Unit(benchmark::kMicrosecond);
 
 // One bulk tile (32 x 32 cells) changed per iteration on a 1024^2 grid holding a heap: publish copies it, the
 // image generator re-meshes it (no frame drawn).

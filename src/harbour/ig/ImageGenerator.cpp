@@ -288,19 +288,24 @@ struct SkyShade {
 // diffuse; the sun as light 0, floodlights as lights 1..n with their attenuation) and its exponential fog,
 // with the sun's diffuse part dimmed where the shadow map says the sun is hidden. A wet surface (the quay in
 // rain) carries a water film per pixel: it mirrors the sky by Fresnel's reflectance, shows the sun's and the
-// floodlights' glare, and rings where drops land.
-constexpr char kLitVertexShader[] = R"(#version 120
+// floodlights' glare, and rings where drops land: a program of its own (the sources with WET defined), since
+// llvmpipe shades both sides of a branch and the film cost every dry pixel as much as the rest of the frame.
+constexpr char kLitVertexShader[] = R"(
 uniform int floodlights;  // lights 1..floodlights are on
 varying vec4 unshadowed;  // ambient and floodlight
 varying vec4 sunlit;      // the sun's diffuse part
 varying float fog_depth;
+#ifdef WET
 varying vec3 eye_position;
 varying vec3 eye_normal;
+#endif
 void main() {
   vec4 eye = gl_ModelViewMatrix * gl_Vertex;
   vec3 n = normalize(gl_NormalMatrix * gl_Normal);
+#ifdef WET
   eye_position = eye.xyz;
   eye_normal = n;
+#endif
   vec4 colour = gl_Color;
   unshadowed = gl_LightModel.ambient * colour + gl_LightSource[0].ambient * colour;
   sunlit = max(dot(n, normalize(gl_LightSource[0].position.xyz)), 0.0) * gl_LightSource[0].diffuse * colour;
@@ -318,15 +323,16 @@ void main() {
   gl_Position = gl_ProjectionMatrix * eye;
 }
 )";
-constexpr char kLitFragmentShader[] = R"(#version 120
+constexpr char kLitFragmentShader[] = R"(
 uniform sampler2DShadow shadowTexture0;
 uniform bool sun_shadows;  // off in the insets' small pictures (no shadow map of their own)
 varying vec4 unshadowed;
 varying vec4 sunlit;
 varying float fog_depth;
+uniform bool soft_shadows;  // filtered edges (ImageGenerator::set_soft_shadows)
+#ifdef WET
 varying vec3 eye_position;
 varying vec3 eye_normal;
-uniform bool soft_shadows;  // filtered edges (ImageGenerator::set_soft_shadows)
 uniform int floodlights;
 uniform float wetness;      // this surface's water film: 0 dry, 1 wet through
 uniform float splash_rate;  // drops whose splash shows, per square metre and second
@@ -381,6 +387,7 @@ vec3 wet(vec3 colour, float lit) {
   float near = clamp(1.0 - fog_depth / 35.0, 0.0, 1.0);  // a ring's width is under a pixel farther off
   return c + splash(xy) * near * 0.8 * gl_LightSource[0].ambient.rgb;
 }
+#endif
 // percentage-closer filtering: the share of a 3x3 patch of the shadow map (a texel apart, each tap
 // compared and filtered by the hardware) that sees the sun, so a shadow's edge is a soft ramp a few texels
 // wide instead of the map's staircase
@@ -397,7 +404,9 @@ void main() {
   at.z -= 0.0015 * at.w;  // towards the sun: no self-shadowing on lit faces, the filter's taps included
   float lit = !sun_shadows ? 1.0 : soft_shadows ? sun_visible(at) : shadow2DProj(shadowTexture0, at).r;
   vec3 colour = min(unshadowed + sunlit * lit, vec4(1.0)).rgb;
-  if (wetness > 0.0) colour = min(wet(colour, lit), vec3(1.0));
+#ifdef WET
+  colour = min(wet(colour, lit), vec3(1.0));
+#endif
   float fog = clamp(exp(-gl_Fog.density * fog_depth), 0.0, 1.0);
   gl_FragColor = vec4(mix(gl_Fog.color.rgb, colour, fog), 1.0);
 }
@@ -644,8 +653,15 @@ void ImageGenerator::build_lighting() {
     shadowed_ = new osgShadow::ShadowedScene(new osgShadow::ViewDependentShadowMap);
     shadowed_->setShadowSettings(settings);
     osg::ref_ptr<osg::Program> program = new osg::Program;
-    program->addShader(new osg::Shader(osg::Shader::VERTEX, kLitVertexShader));
-    program->addShader(new osg::Shader(osg::Shader::FRAGMENT, kLitFragmentShader));
+    program->addShader(
+        new osg::Shader(osg::Shader::VERTEX, std::string("#version 120\n") + kLitVertexShader));
+    program->addShader(
+        new osg::Shader(osg::Shader::FRAGMENT, std::string("#version 120\n") + kLitFragmentShader));
+    wet_program_ = new osg::Program;
+    wet_program_->addShader(
+        new osg::Shader(osg::Shader::VERTEX, std::string("#version 120\n#define WET\n") + kLitVertexShader));
+    wet_program_->addShader(new osg::Shader(osg::Shader::FRAGMENT,
+                                            std::string("#version 120\n#define WET\n") + kLitFragmentShader));
     osg::StateSet* lit = shadowed_->getOrCreateStateSet();
     lit->setAttribute(program);
     floodlights_on_ = new osg::Uniform("floodlights", 0);
@@ -764,6 +780,7 @@ void ImageGenerator::build_quay_and_water() {
   quay_color_ = static_cast<osg::Vec4Array*>(apron->getDrawable(0)->asGeometry()->getColorArray());
   quay_wetness_ = new osg::Uniform("wetness", 0.0f);
   apron->getOrCreateStateSet()->addUniform(quay_wetness_);
+  quay_states_.push_back(apron->getOrCreateStateSet());
   apron->setNodeMask(kReceivesOnly);
   add_lit(apron);
   for (const auto& [x0, x1, y0, y1] :
@@ -772,6 +789,7 @@ void ImageGenerator::build_quay_and_water() {
     osg::ref_ptr<osg::Geode> part = tessellated_plane(x0, x1, y0, y1, 0.0, 20.0, {0.42, 0.42, 0.40});
     part->getDrawable(0)->asGeometry()->setColorArray(quay_color_, osg::Array::BIND_OVERALL);  // wet together
     part->getOrCreateStateSet()->addUniform(quay_wetness_);
+    quay_states_.push_back(part->getOrCreateStateSet());
     part->setNodeMask(kReceivesOnly);
     add_lit(part);
   }
@@ -1229,6 +1247,11 @@ void ImageGenerator::update_sky_and_weather(const scene::Snapshot& s) {
   // the film: wet through from 2 mm/h; splashes that show, 0.75 a square metre and second per mm/h (assumed:
   // the larger drops' crowns; 20 mm/h brings ~1,300 drops a square metre and second in all)
   quay_wetness_->set(static_cast<float>(wetness));
+  for (const osg::ref_ptr<osg::StateSet>& quay : quay_states_)
+    if (wetness > 0.0)
+      quay->setAttribute(wet_program_);
+    else
+      quay->removeAttribute(osg::StateAttribute::PROGRAM);
   film_[1]->set(static_cast<float>(0.75 * std::max(s.rain_mm_per_h, 0.0)));
   film_[2]->set(static_cast<float>(s.time_s));
   film_[3]->set(to_osg(shade.horizon));

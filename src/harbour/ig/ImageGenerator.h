@@ -27,6 +27,7 @@ class Fog;
 class LightSource;
 class Uniform;
 class StateSet;
+class Program;
 }  // namespace osg
 namespace osgShadow {
 class ShadowedScene;
@@ -270,6 +271,8 @@ class ImageGenerator {
   void update_near_rain(const osg::Vec3d& eye);
   osg::ref_ptr<osg::Vec4Array> quay_color_;
   osg::ref_ptr<osg::Uniform> quay_wetness_;
+  osg::ref_ptr<osg::Program> wet_program_;                // the lit scene's, with the water film
+  std::vector<osg::ref_ptr<osg::StateSet>> quay_states_;  // take it while the quay is wet
   std::array<osg::ref_ptr<osg::Uniform>, 5> film_;  // wetness (0 but the quay's), splash rate, time, the sky
   osg::ref_ptr<osg::Geometry> water_;
   osg::ref_ptr<osg::StateSet> water_shading_;  // its shader's uniforms
