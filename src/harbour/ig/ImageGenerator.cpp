@@ -1236,7 +1236,12 @@ void ImageGenerator::update_sky_and_weather(const scene::Snapshot& s) {
     rain_->rain(static_cast<float>(intensity));
     // streaks a person sees: osgParticle's drops are a hair's width, grey on grey (0.01-0.03 m)
     rain_->setParticleSize(static_cast<float>(0.03 + 0.04 * intensity));
-    rain_->setParticleColor(osg::Vec4(0.62f, 0.65f, 0.70f, 0.55f));
+    // a drop shows the sky's light it refracts and reflects: a little brighter than the horizon behind it by
+    // day, dark at night (a floodlight's pool lights the ground, not the drops: their glare is left out)
+    const core::Vec3 drop = shade.horizon * 1.15;
+    rain_->setParticleColor(osg::Vec4(static_cast<float>(std::min(drop.x, 1.0)),
+                                      static_cast<float>(std::min(drop.y, 1.0)),
+                                      static_cast<float>(std::min(drop.z, 1.0)), 0.55f));
     rain_->setWind(to_osg(s.wind_mps));
     rain_->getFog()->setDensity(fog_->getDensity());
   }
