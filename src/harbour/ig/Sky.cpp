@@ -98,8 +98,7 @@ ClearSky::ClearSky(const core::Vec3& to_sun, double turbidity) {
                                             : core::Vec3{1.0, 0.0, 0.0};
   // the distribution of a sun no lower than the horizon (Perez's fit ends there)
   sun_ = elevation >= 0.0 ? to_sun : flat;
-  cos_sun_theta_ = std::max(sun_.z, 0.0);
-  sun_theta_ = std::acos(std::clamp(cos_sun_theta_, 0.0, 1.0));
+  sun_theta_ = std::acos(std::clamp(sun_.z, 0.0, 1.0));
   twilight_ = twilight_dimming(-elevation * 180.0 / kPi);
   const double t = turbidity;
   y_lum_ = {0.1787 * t - 1.4630, -0.3554 * t + 0.4275, -0.0227 * t + 5.3251, 0.1206 * t - 2.5771,

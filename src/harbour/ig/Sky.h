@@ -35,11 +35,10 @@ class ClearSky {
   static double perez(const Perez& c, double cos_theta, double gamma);
   double gamma_to(const core::Vec3& d) const;
 
-  core::Vec3 sun_;            // towards the sun, held at the horizon while it is below
-  double cos_sun_theta_ = 0;  // its zenith angle's cosine
-  double sun_theta_ = 0;
-  double twilight_ = 1;  // the luminance's share left by the sun's depression
-  core::Vec3 zenith_;    // x, y, Y (cd/m²) at the zenith before twilight's dimming
+  core::Vec3 sun_;        // towards the sun, held at the horizon while it is below
+  double sun_theta_ = 0;  // its zenith angle
+  double twilight_ = 1;   // the luminance's share left by the sun's depression
+  core::Vec3 zenith_;     // x, y, Y (cd/m²) at the zenith before twilight's dimming
   Perez y_lum_{}, x_chroma_{}, y_chroma_{};
   double at_zenith_lum_ = 1, at_zenith_x_ = 1, at_zenith_y_ = 1;  // F(0, θs) of each
   core::Vec3 ozone_;  // the Chappuis band's transmittance per channel
