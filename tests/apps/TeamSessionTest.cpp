@@ -172,10 +172,13 @@ TEST(TeamSession, TwoStationsDrawEachOthersMachinesWhereTheirOwnStationsHaveThem
 }
 
 // Each box of a session replayed as a whole (the crane first, then its trucks): which member draws it at
-// every replayed step (the crane its box by name, slot k's truck its "load"), and where it is at the moment
-// the drawing passes from the crane to the truck.
+// every replayed step (the crane its box by name, slot k's truck its "load" entity, which the session's scene
+// names after the box from its recorded hand-off on), and where it is at the moment the drawing passes from
+// the crane to the truck.
 struct HandOffsSeen {
   int drawn_twice[2] = {0, 0}, not_drawn[2] = {0, 0}, hand_offs[2] = {0, 0};
+  int load_misnamed[2] = {0, 0};  // steps the truck drew the box under another name than its own
+  std::string load_name_at_start[2];
   double at_s[2] = {0.0, 0.0}, jump_m[2] = {0.0, 0.0};
 };
 HandOffsSeen watch_hand_offs(sim::SessionPlayer& session, const std::vector<std::string>& boxes) {
@@ -210,6 +213,11 @@ HandOffsSeen watch_hand_offs(sim::SessionPlayer& session, const std::vector<std:
         if (static_cast<int>(e.index) == by_crane[slot]) crane_at = e.pose.position;
         if (static_cast<int>(e.index) == by_truck[slot]) truck_at = e.pose.position;
       }
+      const std::string& truck_names = session.scene()
+                                           .entities[static_cast<std::size_t>(by_truck[slot])]
+                                           .name;  // by the recorded hand-off
+      if (step == 0) seen.load_name_at_start[slot] = truck_names;
+      seen.load_misnamed[slot] += truck_at && truck_names != boxes[slot];
       seen.drawn_twice[slot] += crane_at && truck_at;
       seen.not_drawn[slot] += !crane_at && !truck_at;
       if (truck_at && crane_had[slot]) {
@@ -384,6 +392,8 @@ TEST(TeamSession, ThreeStationsHandEachBoxOverOnceAndStoreOneSessionThatReplaysB
     EXPECT_EQ(seen.drawn_twice[slot], 0) << "box " << slot << " drawn by the crane and its tractor together";
     EXPECT_EQ(seen.not_drawn[slot], 0) << "box " << slot << " drawn by nobody";
     EXPECT_EQ(seen.hand_offs[slot], 1) << "box " << slot;
+    EXPECT_EQ(seen.load_name_at_start[slot], "load") << "box " << slot;
+    EXPECT_EQ(seen.load_misnamed[slot], 0) << "box " << slot << " drawn on its truck by another name";
     EXPECT_LT(seen.jump_m[slot], 0.05) << "box " << slot << " moved at its hand-off from crane to tractor";
     std::printf("box %zu handed over at %.2f s of the session, drawn %.3f m apart either side\n", slot,
                 seen.at_s[slot], seen.jump_m[slot]);

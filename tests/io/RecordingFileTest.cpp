@@ -54,7 +54,8 @@ sim::Recording sample() {
   load.kind = sim::TeamInput::Kind::kLoadOn;
   load.pose.position = {0.125, 0.0, 1.595};
   load.mass_kg = 22000.0;
-  sim::TeamInput obstacle;  // version 10: another member's machine body, with its size
+  load.name_item("TGHU1000012");  // version 11: the box's name
+  sim::TeamInput obstacle;        // version 10: another member's machine body, with its size
   obstacle.kind = sim::TeamInput::Kind::kObstacleAt;
   obstacle.slot = 2;
   obstacle.pose.position = {8.0, 40.0, 1.6};
@@ -100,7 +101,9 @@ TEST(RecordingFile, RoundTripsBitForBit) {
     EXPECT_TRUE(got.angular_velocity_radps == sent.angular_velocity_radps);
     EXPECT_EQ(got.mass_kg, sent.mass_kg);
     EXPECT_TRUE(got.half_extents_m == sent.half_extents_m);
+    EXPECT_EQ(got.item_name(), sent.item_name());
   }
+  EXPECT_EQ(back.team[1].input.item_name(), "TGHU1000012");
   EXPECT_FALSE(std::filesystem::exists(path + ".partial"));
   EXPECT_TRUE(back.ropes_settled);
   EXPECT_TRUE(back.ropes_curved);

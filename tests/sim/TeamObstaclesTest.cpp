@@ -158,6 +158,20 @@ TEST(TeamObstacles, InputsOutOfRangeAreRefused) {
   EXPECT_EQ(sim.why_refused(far), "an obstacle's side outside 0-50 m");
   EXPECT_THROW(sim.team_input(far), std::invalid_argument);
   EXPECT_EQ(sim.obstacles().count(), 0);  // nothing made
+  // a handed box's name: printable ASCII of at most 19 characters, NUL-padded
+  TeamInput load;
+  load.kind = TeamInput::Kind::kLoadOn;
+  load.mass_kg = 20000.0;
+  EXPECT_TRUE(load.name_item("TGHU1000012"));
+  EXPECT_EQ(load.item_name(), "TGHU1000012");
+  EXPECT_EQ(why_invalid(load), "");
+  load.item[3] = '\n';
+  EXPECT_EQ(why_invalid(load), "an item's name of other than printable ASCII");
+  load.name_item("TGHU1000012");
+  load.item[15] = 'X';  // after the name's end
+  EXPECT_EQ(why_invalid(load), "an item's name of other than printable ASCII");
+  EXPECT_FALSE(load.name_item("A NAME OF TWENTY CHARS"));
+  EXPECT_EQ(load.item_name(), "");
 }
 
 }  // namespace

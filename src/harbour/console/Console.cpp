@@ -680,7 +680,8 @@ void Console::poll() {
       if (s->subscribed().rfind("replay-", 0) == 0) {
         for (auto& [id, r] : replays_)
           if (s->subscribed() == "replay-" + std::to_string(id))
-            push_state(*s, s->subscribed(), &r.scene, 0, [&](bool view) { return replay_state(r, view); });
+            push_state(*s, s->subscribed(), &r.scene, r.player->names_version(),
+                       [&](bool view) { return replay_state(r, view); });
         for (auto& [id, r] : replays_)
           if (s->subscribed() == "replay-" + std::to_string(id) && s->wants_view())
             if (const bulk::BulkWorld* material = r.player->player(0).simulation().bulk()) {

@@ -146,8 +146,9 @@ struct Replay {
   std::string recording_file, trainee;
   std::unique_ptr<sim::SessionPlayer> player;  // a single attempt is a session of one
   std::unique_ptr<scene::Snapshot> snapshot = std::make_unique<scene::Snapshot>();
-  net::StationScene scene;  // as a station publishes its own
-  scene::BulkView bulk;     // its material's heights (tiles copied as they change)
+  net::StationScene scene;        // as a station publishes its own
+  std::uint64_t scene_names = 0;  // the player's names_version() `scene` was made at
+  scene::BulkView bulk;           // its material's heights (tiles copied as they change)
   double speed = 1.0;
   bool playing = false;
   double position_s = 0.0;  // where playing has got to (fractions carried between polls)

@@ -88,6 +88,14 @@ std::vector<double> member_starts(std::vector<OpenedAttempt>& members,
   return starts;
 }
 
+// the scene sent again where the player's names changed: a box handed onto a truck is drawn by its name
+// (the scene's key moves on with the player's names_version())
+void name_scene(Replay& r) {
+  if (r.scene_names == r.player->names_version()) return;
+  r.scene = net::scene_message(r.player->scene(), r.attempt);
+  r.scene_names = r.player->names_version();
+}
+
 }  // namespace
 
 std::optional<Console::Response> Console::open_replay(Call& c) {
@@ -251,6 +259,7 @@ std::optional<Console::Response> Console::control_replay(Call& c) {
       return error(request, http::status::conflict, std::string("cannot seek: ") + e.what());
     }
     r.position_s = r.player->time_s();
+    name_scene(r);
     r.bulk = {};  // the material as it was then: copied whole again (tile versions restart with the state)
   } else if (*action == "take-over") {
     // the attempt continues live at a station from the moment shown, as a new attempt of a trainee
@@ -341,6 +350,7 @@ void Console::play_replays(Clock::time_point now) {
     } catch (const std::exception&) {
       r.playing = false;  // a damaged recording: it stops where it could go no further
     }
+    name_scene(r);
     if (r.player->time_s() >= r.player->duration_s()) r.playing = false;
   }
 }

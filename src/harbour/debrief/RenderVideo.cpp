@@ -180,6 +180,8 @@ int render_video(const RenderOptions& options) {
   const auto from_step =
       static_cast<std::int64_t>(std::ceil(options.from_s / sim::Simulation::kStep_s - 1e-9));
   auto heard = std::make_unique<scene::Snapshot>();
+  std::ptrdiff_t load_entity = 0;  // the truck's "load" (past the scene's end: none)
+  std::string load_name;           // the name it is drawn by ("" : "load")
   const sim::ReplayResult result = sim::replay(
       exercise.scenario, recording, stop_step, [&](const sim::Simulation& s, const scene::Controls&) {
         const std::int64_t step = s.steps();
@@ -206,6 +208,19 @@ int render_video(const RenderOptions& options) {
             throw std::runtime_error("--view " + options.view + ": not a view of this scene");
           generator->set_view(view);
           generator->set_timeline(options.from_s, end_s, marks);
+          const auto& entities = s.scene().entities;
+          load_entity =
+              std::find_if(entities.begin(), entities.end(),
+                           [](const scene::SceneDescription::Entity& e) { return e.name == "load"; }) -
+              entities.begin();
+        }
+        // a box handed onto this truck in a team session: drawn by its name from then on
+        if (load_entity < static_cast<std::ptrdiff_t>(s.scene().entities.size())) {
+          const std::string handed = sim::handed_load_name(recording, s.steps());
+          if (handed != load_name) {
+            load_name = handed;
+            generator->rename_entity(static_cast<std::size_t>(load_entity), handed.empty() ? "load" : handed);
+          }
         }
         std::string caption;  // the events of the last 6 s
         for (const Event& e : events)

@@ -177,6 +177,11 @@ void put_team(Writer& w, const sim::Recording::TeamEvent& e) {
   if (t.kind == sim::TeamInput::Kind::kObstacleAt)  // v10: and its size
     for (const double v : {t.half_extents_m.x, t.half_extents_m.y, t.half_extents_m.z})
       w.put(v);
+  if (t.kind == sim::TeamInput::Kind::kLoadOn) {  // v11: and the box's name
+    const std::string item = t.item_name();
+    w.put(static_cast<std::uint8_t>(item.size()));
+    w.out.insert(w.out.end(), item.begin(), item.end());
+  }
 }
 
 }  // namespace
@@ -408,6 +413,15 @@ sim::Recording::TeamEvent read_team(Reader& r, std::size_t n, std::uint16_t vers
   if (t.kind == sim::TeamInput::Kind::kObstacleAt)
     for (double* side : {&t.half_extents_m.x, &t.half_extents_m.y, &t.half_extents_m.z})
       *side = r.get<double>("team obstacle size");
+  if (t.kind == sim::TeamInput::Kind::kLoadOn && version >= 11) {
+    const auto length = r.get<std::uint8_t>("team load's name length");
+    if (length > sim::TeamInput::kMostItemChars)
+      r.fail("team input " + std::to_string(n) + ": a load's name of " + std::to_string(length) +
+             " characters");
+    std::vector<std::uint8_t> name;
+    r.bytes(length, name, "team load's name");
+    std::copy(name.begin(), name.end(), t.item.begin());
+  }
   if (const std::string why = sim::why_invalid(t); !why.empty())
     r.fail("team input " + std::to_string(n) + ": " + why);
   return e;

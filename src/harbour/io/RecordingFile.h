@@ -16,7 +16,8 @@ class RecordingFileError : public std::runtime_error {
 };
 
 /// Version of the recording format written by this build ("HSRC" files).
-/// 10 adds the team obstacles (TeamInput::kObstacleAt, with its size: another member's machine body); 9 adds
+/// 11 adds the name of a box handed onto this station's trailer (TeamInput::kLoadOn's item); 10 adds the
+/// team obstacles (TeamInput::kObstacleAt, with its size: another member's machine body); 9 adds
 /// team records (what a team session's other stations made happen: sim::TeamInput); 8 says in its
 /// header's flags whether the run's hoist ropes started stretched under their load (bit 0; runs recorded
 /// before started unstretched, and their replays start so); 6 streams tagged records (inputs, checkpoints,
@@ -24,7 +25,7 @@ class RecordingFileError : public std::runtime_error {
 /// prefix; 5 added a checksum to every keyframe; 4 the instructor's commands; 3 the boom lever, horn, flipper
 /// and spreader-size controls; 2 keyframes. Versions 1-5 are still read (the keyframes of 2 and 3 hold an
 /// older machine state: a seek from one is refused with core::StateError).
-inline constexpr std::uint16_t kRecordingVersion = 10;
+inline constexpr std::uint16_t kRecordingVersion = 11;
 
 /// Longest recording read [steps]: 24 hours at 1 kHz (docs/reliability.md).
 inline constexpr std::int64_t kMaxRecordingSteps = 24LL * 3600 * 1000;

@@ -172,6 +172,15 @@ void ReplayPlayer::advance_to(std::int64_t step, const ReplayObserver& observer)
   }
 }
 
+std::string handed_load_name(const Recording& recording, std::int64_t step) {
+  std::string name;
+  for (const Recording::TeamEvent& e : recording.team) {
+    if (e.step > step) break;  // in order (the reader checks)
+    if (e.input.kind == TeamInput::Kind::kLoadOn) name = e.input.item_name();
+  }
+  return name;
+}
+
 ReplayResult replay(const ScenarioSettings& scenario, const Recording& recording, std::int64_t stop_step,
                     const ReplayObserver& observer) {
   ReplayPlayer player(scenario, recording);

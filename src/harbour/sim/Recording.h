@@ -170,6 +170,10 @@ class ReplayPlayer {
   std::optional<std::int64_t> first_mismatch_;
 };
 
+/// The name of the box last handed onto this station's trailer at or before `step` (its team inputs' kLoadOn
+/// item; "" before any, and in a recording older than version 11): what its "load" entity is drawn as then.
+std::string handed_load_name(const Recording& recording, std::int64_t step);
+
 /// Re-simulates `recording` from `scenario` up to `stop_step` (default: its end), comparing every checkpoint.
 /// Given a stop step and no observer it starts from the last keyframe at or before it (a seek); a whole
 /// replay, or one with an observer, runs every step from the start.

@@ -6,6 +6,10 @@
 
 namespace harbour::sim {
 
+namespace {
+constexpr const char* kLoad = "load";  // a truck's load entity, as its machine names it
+}  // namespace
+
 SessionPlayer::SessionPlayer(std::vector<Member> members) : members_(std::move(members)) {
   if (members_.empty()) throw std::runtime_error("a session replay needs a member");
   double earliest_s = members_.front().start_s;
@@ -21,6 +25,11 @@ SessionPlayer::SessionPlayer(std::vector<Member> members) : members_(std::move(m
     }
     const scene::SceneDescription member = players_.back()->simulation().scene();
     first_entity_.push_back(static_cast<int>(scene_.entities.size()));
+    const auto load = std::find_if(member.entities.begin(), member.entities.end(),
+                                   [](const scene::SceneDescription::Entity& e) { return e.name == kLoad; });
+    load_entity_.push_back(load == member.entities.end()
+                               ? -1
+                               : first_entity_.back() + static_cast<int>(load - member.entities.begin()));
     if (players_.size() == 1) {
       scene_ = member;  // the first: its machine, indicators and drives
     } else {
@@ -45,6 +54,7 @@ void SessionPlayer::seek(double t_s) {
   time_s_ = std::clamp(t_s, 0.0, duration_s_);
   for (std::size_t k = 0; k < players_.size(); ++k)
     players_[k]->seek(member_step(k, time_s_));
+  name_loads();
 }
 
 void SessionPlayer::advance_to(double t_s) {
@@ -52,6 +62,19 @@ void SessionPlayer::advance_to(double t_s) {
   for (std::size_t k = 0; k < players_.size(); ++k)
     if (member_step(k, time_s_) > players_[k]->simulation().steps())
       players_[k]->advance_to(member_step(k, time_s_));
+  name_loads();
+}
+
+void SessionPlayer::name_loads() {
+  for (std::size_t k = 0; k < players_.size(); ++k) {
+    if (load_entity_[k] < 0) continue;
+    const std::string handed = handed_load_name(members_[k].recording, players_[k]->simulation().steps());
+    std::string& name = scene_.entities[static_cast<std::size_t>(load_entity_[k])].name;
+    const std::string now = handed.empty() ? std::string(kLoad) : handed;
+    if (name == now) continue;
+    name = now;
+    ++names_version_;
+  }
 }
 
 void SessionPlayer::write_snapshot(scene::Snapshot& out) const {

@@ -29,7 +29,10 @@ class SessionPlayer {
   explicit SessionPlayer(std::vector<Member> members);
   ~SessionPlayer();
 
+  /// The members' entities, a truck's "load" named after the box handed onto it by then (handed_load_name).
   const scene::SceneDescription& scene() const { return scene_; }
+  /// Counts the changes of the scene's names (a box handed onto a truck, or seeking back before it).
+  std::uint64_t names_version() const { return names_version_; }
   double duration_s() const { return duration_s_; }
   /// The session's clock: where it has been taken to.
   double time_s() const { return time_s_; }
@@ -50,10 +53,13 @@ class SessionPlayer {
 
  private:
   std::int64_t member_step(std::size_t k, double t_s) const;
+  void name_loads();  // each truck's load as handed then
 
   std::vector<Member> members_;  // each recording stays where it is: its player refers to it
   std::vector<std::unique_ptr<ReplayPlayer>> players_;
   std::vector<int> first_entity_;  // of each member in scene_
+  std::vector<int> load_entity_;   // each member's "load" in scene_, -1 where it has none
+  std::uint64_t names_version_ = 0;
   scene::SceneDescription scene_;
   std::unique_ptr<scene::Snapshot> member_snapshot_ = std::make_unique<scene::Snapshot>();
   double duration_s_ = 0.0, time_s_ = 0.0;

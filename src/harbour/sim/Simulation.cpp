@@ -218,6 +218,18 @@ std::string Simulation::why_refused(const InstructorCommand& c) const {
   return "";
 }
 
+std::string TeamInput::item_name() const {
+  const auto end = std::find(item.begin(), item.end(), '\0');
+  return {item.begin(), end};
+}
+
+bool TeamInput::name_item(std::string_view name) {
+  item.fill('\0');
+  if (name.size() > kMostItemChars) return false;
+  std::copy(name.begin(), name.end(), item.begin());
+  return true;
+}
+
 std::string why_invalid(const TeamInput& t) {
   const core::Vec3 p = t.pose.position, v = t.velocity_mps, w = t.angular_velocity_radps;
   for (const double x : {p.x, p.y, p.z, v.x, v.y, v.z, w.x, w.y, w.z, t.mass_kg})
@@ -231,6 +243,11 @@ std::string why_invalid(const TeamInput& t) {
   if (core::length(v) > 100.0 || core::length(w) > 10.0) return "a speed beyond 100 m/s or 10 rad/s";
   if (t.kind == TeamInput::Kind::kLoadOn && (t.mass_kg < 100.0 || t.mass_kg > 80000.0))
     return "a load's mass outside 100 kg - 80 t";
+  const std::string item = t.item_name();
+  if (!std::all_of(item.begin(), item.end(), [](char c) { return c > ' ' && c < 127; }) ||
+      std::any_of(t.item.begin() + static_cast<std::ptrdiff_t>(item.size()), t.item.end(),
+                  [](char c) { return c != 0; }))
+    return "an item's name of other than printable ASCII";
   if (t.kind == TeamInput::Kind::kObstacleAt) {
     const core::Vec3 h = t.half_extents_m;
     if (t.slot >= TeamObstacles::kMostObstacles)

@@ -1,7 +1,9 @@
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
+#include <string_view>
 
 #include "harbour/core/Vec3.h"
 
@@ -34,6 +36,14 @@ struct TeamInput {
   core::Vec3 velocity_mps, angular_velocity_radps;
   double mass_kg = 0.0;
   core::Vec3 half_extents_m;  ///< kObstacleAt's
+  /// kLoadOn's: the handed box's name (its ISO 6346 code), printable ASCII, NUL-padded (recording version 11;
+  /// a fixed array: the input crosses the step thread's queues without allocating).
+  static constexpr std::size_t kMostItemChars = 19;
+  std::array<char, kMostItemChars + 1> item{};
+
+  std::string item_name() const;
+  /// `item` set to `name`; false (and `item` left empty) where it is longer than kMostItemChars.
+  bool name_item(std::string_view name);
 };
 
 /// A trailer's deck (its top centre, in the trailer's orientation) from the trailer body's pose and half
@@ -50,7 +60,8 @@ inline core::Pose on_trailer(const core::Pose& deck, const core::Pose& box, doub
 }
 
 /// Why `input` is out of range ("" when it is not): non-finite numbers, a mass outside 0-80 t, a slot < 0, an
-/// obstacle's slot past TeamObstacles::kMostObstacles or a side outside 0-50 m.
+/// obstacle's slot past TeamObstacles::kMostObstacles or a side outside 0-50 m, an item's name of other than
+/// printable ASCII.
 std::string why_invalid(const TeamInput& input);
 
 }  // namespace harbour::sim

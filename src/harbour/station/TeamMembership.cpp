@@ -418,6 +418,7 @@ void TeamMembership::take_hand_offs() {
         in.kind = sim::TeamInput::Kind::kLoadOn;
         in.pose = {core::Quat{p[3], p[4], p[5], p[6]}.matrix(), {p[0], p[1], p[2]}};
         in.mass_kg = m.mass_kg();
+        in.name_item(item);  // recorded: a replay draws the box by its name (a longer one: as "load")
         if (!input_ || !input_(in)) continue;  // not taken: the next offer tries again
         acquired_.insert(item);
         if (load_named_ && load_entity_ >= 0) load_named_(load_entity_, item);
