@@ -162,6 +162,84 @@ TEST(ImageGenerator, TwilightLastsAsLongAsTheSunsDepressionSays) {
             3.0 * (when(40.0, 80.0, -6.0) - when(40.0, 80.0, 0.0)));
 }
 
+// Rain brings its clouds: looking 29 deg up at noon, the clear sky is smooth, and in 8 mm/h of rain (the sky
+// overcast) the picture has the clouds' texture (the mean change between pixels 4 apart, drops filtered out
+// by a 3x3 median, three times the clear sky's). In 10 m/s of wind along +x the deck drifts at twice the
+// wind: 10 s later the pattern has moved where the projection of a point 200 m along +x at the deck's height
+// says, within a fifth of that shift, and matches the earlier picture better there than moved the other way.
+TEST(ImageGenerator, RainCloudsTextureTheSkyAndDriftWithTheWind) {
+  ImageGenerator ig(scene(), looks(), kWidth, kHeight);
+  View up = level();
+  up.hud = false;
+  up.pitch_rad = 0.5;  // the deck from 12 to 46 deg up: 5.6 to 1.7 km away
+  ig.set_view(up);
+  const auto picture = [&](double rain, double time_s) {
+    scene::Snapshot s = state(40.0, 200.0, 20000.0, 12.0);
+    s.rain_mm_per_h = rain;
+    s.time_s = time_s;
+    s.wind_mps = {10.0, 0.0, 0.0};
+    ig.update(s);
+    const osg::Image& image = ig.render();
+    std::vector<double> l(static_cast<std::size_t>(kWidth * kHeight));
+    for (int y = 0; y < kHeight; ++y)
+      for (int x = 0; x < kWidth; ++x) {
+        std::array<double, 9> around{};
+        for (std::size_t k = 0; k < around.size(); ++k)
+          around[k] =
+              luminance(pixel(image, x + static_cast<int>(k % 3) - 1, y + static_cast<int>(k / 3) - 1));
+        std::nth_element(around.begin(), around.begin() + 4, around.end());
+        l[static_cast<std::size_t>(y * kWidth + x)] = around[4];
+      }
+    return l;
+  };
+  const auto texture = [](const std::vector<double>& l) {
+    double sum = 0.0;
+    int n = 0;
+    for (int y = 10; y < kHeight - 10; y += 2)
+      for (int x = 10; x < kWidth - 14; x += 2, ++n)
+        sum += std::abs(l[static_cast<std::size_t>(y * kWidth + x + 4)] -
+                        l[static_cast<std::size_t>(y * kWidth + x)]);
+    return sum / n;
+  };
+  const std::vector<double> clear = picture(0.0, 0.0), clouded = picture(8.0, 0.0),
+                            later = picture(8.0, 10.0);
+  std::printf("change between pixels 4 apart: clear sky %.4f, in 8 mm/h %.4f\n", texture(clear),
+              texture(clouded));
+  EXPECT_GT(texture(clouded), 3.0 * texture(clear));
+  // the deck's drift in the picture: 2 x 10 m/s x 10 s = 200 m along +x, 1,190 m over the eye, where the
+  // picture's middle looks
+  const double ahead = 1190.0 / std::tan(0.5);
+  const auto from = ig.project({ahead, 0.0, 1200.0}), to = ig.project({ahead + 200.0, 0.0, 1200.0});
+  ASSERT_TRUE(from && to);
+  const double dx = to->first - from->first, dy = to->second - from->second;
+  const double expected = std::hypot(dx, dy);
+  // how well the later picture matches the earlier one moved by `share` of the expected shift (mean square)
+  const auto mismatch = [&](double share) {
+    const int ox = static_cast<int>(std::lround(share * dx)), oy = static_cast<int>(std::lround(share * dy));
+    double sum = 0.0;
+    int n = 0;
+    for (int y = kHeight / 2 - 25; y < kHeight / 2 + 25;
+         ++y)  // about the middle, where the projection was taken
+      for (int x = 60; x < kWidth - 60; ++x, ++n) {
+        const double d = later[static_cast<std::size_t>((y + oy) * kWidth + x + ox)] -
+                         clouded[static_cast<std::size_t>(y * kWidth + x)];
+        sum += d * d;
+      }
+    return sum / n;
+  };
+  double best_share = 0.0, best = 1e9;
+  for (double share = -1.0; share <= 2.0; share += 0.05)
+    if (const double m = mismatch(share); m < best) {
+      best = m;
+      best_share = share;
+    }
+  std::printf("the deck moved %.1f px in 10 s (%.2f of the %.1f px its drift projects to)\n",
+              best_share * expected, best_share, expected);
+  EXPECT_GT(expected, 10.0);
+  EXPECT_NEAR(best_share, 1.0, 0.2);
+  EXPECT_LT(best, mismatch(-1.0));
+}
+
 TEST(ImageGenerator, FogHidesAFarBoxMoreThanANearOne) {
   ImageGenerator ig(scene(), looks(), kWidth, kHeight);
   ig.set_view(level());

@@ -485,6 +485,73 @@ void main() {
   gl_FragColor = vec4(mix(gl_Fog.color.rgb, colour, fog), 1.0);
 }
 )";
+// The rain clouds' deck: each pixel's ray from the eye (`dir`, the dome's vertex) meets a flat deck 1,200 m
+// up at `reach` metres; there the noise texture (two octaves of it, 5 km a tile) is the cloud's thickness,
+// and `cover` (0-1) how much of it is cloud. Far off, where a pixel spans many tiles, the texture gives way
+// to its mean, and the deck thins into the horizon's haze. Thicker cloud is darker underneath.
+constexpr char kCloudVertexShader[] = R"(#version 120
+varying vec3 dir;
+void main() {
+  dir = gl_Vertex.xyz;
+  gl_Position = ftransform();
+}
+)";
+constexpr char kCloudFragmentShader[] = R"(#version 120
+uniform sampler2D cloud_noise;
+uniform float cover;
+uniform vec2 deck_shift_m;  // the eye's place over the ground less the deck's drift with the wind
+uniform vec3 light;         // thin cloud's colour
+uniform vec3 dark;          // thick cloud's base
+uniform vec3 horizon;
+varying vec3 dir;
+void main() {
+  vec3 d = normalize(dir);
+  float reach = 1200.0 / max(d.z, 0.01);
+  vec2 at = (deck_shift_m + d.xy * reach) / 5000.0;
+  float n = 0.65 * texture2D(cloud_noise, at).r + 0.35 * texture2D(cloud_noise, at * 3.1 + 0.37).r;
+  float far = smoothstep(8000.0, 40000.0, reach);
+  n = mix(n, 0.5, far);
+  float thickness = clamp((n - (0.9 - cover)) / 0.6, 0.0, 1.0);
+  vec3 colour = mix(mix(light, dark, thickness), horizon, 0.6 * far);
+  float edge = smoothstep(0.0, 0.2, thickness);  // a cloud's ragged edge
+  gl_FragColor = vec4(colour, edge * (1.0 - 0.6 * smoothstep(20000.0, 100000.0, reach)));
+}
+)";
+
+// a tileable field of value noise (four octaves, 256 x 256): the clouds' thickness
+osg::ref_ptr<osg::Image> cloud_noise() {
+  constexpr int kSize = 256;
+  core::Rng rng(0xC10D5);
+  std::vector<double> sum(kSize * kSize, 0.0);
+  double weight = 0.0, amplitude = 1.0;
+  for (int cells = 4; cells <= 32; cells *= 2, amplitude *= 0.5) {
+    std::vector<double> lattice(static_cast<std::size_t>(cells * cells));
+    for (double& v : lattice)
+      v = rng.uniform();
+    const auto at = [&](int i, int j) {
+      return lattice[static_cast<std::size_t>(((j % cells) + cells) % cells * cells +
+                                              ((i % cells) + cells) % cells)];
+    };
+    for (int y = 0; y < kSize; ++y)
+      for (int x = 0; x < kSize; ++x) {
+        const double u = static_cast<double>(x) * cells / kSize, v = static_cast<double>(y) * cells / kSize;
+        const int i = static_cast<int>(u), j = static_cast<int>(v);
+        const double fx = u - i, fy = v - j;
+        const double sx = fx * fx * (3 - 2 * fx), sy = fy * fy * (3 - 2 * fy);
+        const double top = at(i, j) + (at(i + 1, j) - at(i, j)) * sx;
+        const double bottom = at(i, j + 1) + (at(i + 1, j + 1) - at(i, j + 1)) * sx;
+        sum[static_cast<std::size_t>(y * kSize + x)] += amplitude * (top + (bottom - top) * sy);
+      }
+    weight += amplitude;
+  }
+  osg::ref_ptr<osg::Image> image = new osg::Image;
+  image->allocateImage(kSize, kSize, 1, GL_LUMINANCE, GL_UNSIGNED_BYTE);
+  for (int k = 0; k < kSize * kSize; ++k)
+    image->data()[k] = static_cast<unsigned char>(
+        std::lround(255.0 * std::clamp(sum[static_cast<std::size_t>(k)] / weight, 0.0, 1.0)));
+  return image;
+}
+
 }  // namespace
 
 core::Vec3 sun_direction(double t_h, double day_of_year, double latitude_deg, double& elevation) {
@@ -733,7 +800,7 @@ void ImageGenerator::build_sky() {
     sky_state->setMode(GL_FOG, osg::StateAttribute::OFF | osg::StateAttribute::PROTECTED);
     sky_state->setMode(GL_CULL_FACE, osg::StateAttribute::OFF);
     sky_state->setAttributeAndModes(new osg::Depth(osg::Depth::ALWAYS, 0.0, 1.0, false));
-    sky_state->setRenderBinDetails(-2, "RenderBin");
+    sky_state->setRenderBinDetails(-3, "RenderBin");
     sky_ = new osg::MatrixTransform;
     sky_->setCullingActive(false);
     sky_->addChild(geode);
@@ -769,9 +836,67 @@ void ImageGenerator::build_sky() {
     night_state->setMode(GL_CULL_FACE, osg::StateAttribute::OFF);
     night_state->setAttributeAndModes(new osg::Depth(osg::Depth::ALWAYS, 0.0, 1.0, false));
     night_state->setAttributeAndModes(new osg::Point(2.0f));
-    night_state->setRenderBinDetails(-1, "RenderBin");
+    night_state->setRenderBinDetails(-2, "RenderBin");
     sky_->addChild(night);
   }
+  build_clouds();
+}
+
+// rain clouds: a deck 1,200 m up seen through the dome (each pixel's ray meets it), its density from a
+// tileable noise texture, drifting with the wind; in front of the stars, behind everything else
+void ImageGenerator::build_clouds() {
+  constexpr int kRings = 12, kSegments = 48;
+  constexpr double kRadius = 3800.0;  // inside the dome
+  osg::ref_ptr<osg::Geometry> deck = new osg::Geometry;
+  deck->setUseDisplayList(false);
+  deck->setUseVertexBufferObjects(true);
+  osg::ref_ptr<osg::Vec3Array> vertices = new osg::Vec3Array;
+  for (int r = 0; r <= kRings; ++r) {
+    const double elevation = 0.01 + (kPi / 2.0 - 0.01) * r / kRings;
+    for (int k = 0; k <= kSegments; ++k) {
+      const double azimuth = 2.0 * kPi * k / kSegments;
+      vertices->push_back(osg::Vec3(static_cast<float>(std::cos(elevation) * std::cos(azimuth)),
+                                    static_cast<float>(std::cos(elevation) * std::sin(azimuth)),
+                                    static_cast<float>(std::sin(elevation))) *
+                          static_cast<float>(kRadius));
+    }
+  }
+  for (int r = 0; r < kRings; ++r) {
+    osg::ref_ptr<osg::DrawElementsUShort> strip = new osg::DrawElementsUShort(GL_TRIANGLE_STRIP);
+    for (int k = 0; k <= kSegments; ++k) {
+      strip->push_back(static_cast<unsigned short>((r + 1) * (kSegments + 1) + k));
+      strip->push_back(static_cast<unsigned short>(r * (kSegments + 1) + k));
+    }
+    deck->addPrimitiveSet(strip);
+  }
+  deck->setVertexArray(vertices);
+  clouds_ = new osg::Geode;
+  clouds_->addDrawable(deck);
+  clouds_->setNodeMask(0u);  // clear until it rains
+  osg::StateSet* state = clouds_->getOrCreateStateSet();
+  osg::ref_ptr<osg::Texture2D> noise = new osg::Texture2D(cloud_noise());
+  noise->setWrap(osg::Texture::WRAP_S, osg::Texture::REPEAT);
+  noise->setWrap(osg::Texture::WRAP_T, osg::Texture::REPEAT);
+  noise->setFilter(osg::Texture::MIN_FILTER, osg::Texture::LINEAR_MIPMAP_LINEAR);
+  noise->setFilter(osg::Texture::MAG_FILTER, osg::Texture::LINEAR);
+  state->setTextureAttributeAndModes(0, noise);
+  osg::ref_ptr<osg::Program> program = new osg::Program;
+  program->addShader(new osg::Shader(osg::Shader::VERTEX, kCloudVertexShader));
+  program->addShader(new osg::Shader(osg::Shader::FRAGMENT, kCloudFragmentShader));
+  state->setAttribute(program);
+  state->addUniform(new osg::Uniform("cloud_noise", 0));
+  cloud_uniforms_ = {new osg::Uniform("cover", 0.0f), new osg::Uniform("deck_shift_m", osg::Vec2()),
+                     new osg::Uniform("light", osg::Vec3()), new osg::Uniform("dark", osg::Vec3()),
+                     new osg::Uniform("horizon", osg::Vec3())};
+  for (const osg::ref_ptr<osg::Uniform>& u : cloud_uniforms_)
+    state->addUniform(u);
+  state->setMode(GL_LIGHTING, osg::StateAttribute::OFF | osg::StateAttribute::PROTECTED);
+  state->setMode(GL_FOG, osg::StateAttribute::OFF | osg::StateAttribute::PROTECTED);
+  state->setMode(GL_CULL_FACE, osg::StateAttribute::OFF);
+  state->setMode(GL_BLEND, osg::StateAttribute::ON);
+  state->setAttributeAndModes(new osg::Depth(osg::Depth::ALWAYS, 0.0, 1.0, false));
+  state->setRenderBinDetails(-1, "RenderBin");
+  sky_->addChild(clouds_);
 }
 
 // the quay (its top at z = 0, up to its edge at x = 18 m), the rain, the harbour's water beyond
@@ -1225,6 +1350,15 @@ void ImageGenerator::update_sky_and_weather(const scene::Snapshot& s) {
   }
   sky_colors_->dirty();
   update_night_sky(s, sky);
+  // rain clouds over the sky as the rain says (overcast from 8 mm/h), grey of the veiled sky's brightness,
+  // their bases darker where thicker; drifting at twice the surface wind (the wind's rise with height)
+  clouds_->setNodeMask(overcast_ > 0.0 ? ~0u : 0u);
+  cloud_uniforms_[0]->set(static_cast<float>(overcast_));
+  const double zenith_grey = 0.30 * shade.zenith.x + 0.59 * shade.zenith.y + 0.11 * shade.zenith.z;
+  cloud_uniforms_[2]->set(to_osg(core::Vec3{1.0, 1.0, 1.02} * (1.25 * zenith_grey)));
+  cloud_uniforms_[3]->set(to_osg(core::Vec3{1.0, 1.0, 1.03} * (0.65 * zenith_grey)));
+  cloud_uniforms_[4]->set(to_osg(shade.horizon));
+  cloud_drift_m_ = {2.0 * s.wind_mps.x * s.time_s, 2.0 * s.wind_mps.y * s.time_s};
   fog_->setColor(rgba(sky));
   fog_->setDensity(static_cast<float>(extinction_per_m));
   visibility_m_ = visibility_m;
@@ -1357,12 +1491,12 @@ void ImageGenerator::update_hud(const scene::Snapshot& s) {
 void ImageGenerator::update(const scene::Snapshot& s) {
   update_entities(s);
   update_ropes(s);
-  update_sky_and_weather(s);
-  update_floodlights(s);
   cab_ = s.cab;
   sea_ = s.sea;
   time_s_ = s.time_s;
   wind_mps_ = s.wind_mps;
+  update_sky_and_weather(s);
+  update_floodlights(s);
   far_water_->setMatrix(osg::Matrixd::translate(0.0, 0.0, s.sea.water_level_m));
   update_hud(s);
 }
@@ -2073,6 +2207,8 @@ const osg::Image& ImageGenerator::render() {
   osg::Vec3d eye, centre, up;
   viewer_->getCamera()->getViewMatrixAsLookAt(eye, centre, up);
   sky_->setMatrix(osg::Matrixd::translate(eye));
+  cloud_uniforms_[1]->set(osg::Vec2(static_cast<float>(eye.x() - cloud_drift_m_.first),
+                                    static_cast<float>(eye.y() - cloud_drift_m_.second)));
   update_water(eye);
   update_near_rain(eye);
   viewer_->frame();

@@ -5,6 +5,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <osg/Array>
@@ -28,6 +29,7 @@ class LightSource;
 class Uniform;
 class StateSet;
 class Program;
+class Geode;
 }  // namespace osg
 namespace osgShadow {
 class ShadowedScene;
@@ -224,6 +226,10 @@ class ImageGenerator {
   // the water round the eye: swell plus the wind sea, shaded by its Fresnel reflection of the sky
   void update_water(const osg::Vec3d& eye);
   void update_night_sky(const scene::Snapshot& s, const core::Vec3& horizon);
+  void build_clouds();
+  osg::ref_ptr<osg::Geode> clouds_;
+  std::array<osg::ref_ptr<osg::Uniform>, 5> cloud_uniforms_;  // cover, deck shift, light, dark, horizon
+  std::pair<double, double> cloud_drift_m_{0.0, 0.0};
   void mesh_bulk_tile(const scene::BulkView::Grid& grid, int ti, int tj, osg::Geometry& tile);
 
   std::map<std::string, Visual> visuals_;
