@@ -209,17 +209,19 @@ int render_video(const RenderOptions& options) {
           generator->set_view(view);
           generator->set_timeline(options.from_s, end_s, marks);
           const auto& entities = s.scene().entities;
-          load_entity =
-              std::find_if(entities.begin(), entities.end(),
-                           [](const scene::SceneDescription::Entity& e) { return e.name == "load"; }) -
-              entities.begin();
+          load_entity = std::find_if(entities.begin(), entities.end(),
+                                     [](const scene::SceneDescription::Entity& e) {
+                                       return e.name == scene::kTrailerLoad;
+                                     }) -
+                        entities.begin();
         }
         // a box handed onto this truck in a team session: drawn by its name from then on
         if (load_entity < static_cast<std::ptrdiff_t>(s.scene().entities.size())) {
           const std::string handed = sim::handed_load_name(recording, s.steps());
           if (handed != load_name) {
             load_name = handed;
-            generator->rename_entity(static_cast<std::size_t>(load_entity), handed.empty() ? "load" : handed);
+            generator->rename_entity(static_cast<std::size_t>(load_entity),
+                                     handed.empty() ? scene::kTrailerLoad : handed);
           }
         }
         std::string caption;  // the events of the last 6 s

@@ -47,6 +47,10 @@ constexpr std::uint32_t livery_key(std::string_view name) {
   return h;
 }
 
+/// The entity a truck's machine names its trailer's load by; a box handed onto it in a team session is drawn
+/// by the box's own name instead (in the station's pictures, the consoles' views and the replays).
+inline constexpr const char* kTrailerLoad = "load";
+
 /// What a scene holds, fixed for a session: entities (what they look like and how big) and the names of the
 /// indicators. Consumers read it once; each Snapshot then carries only numbers by index (as CIGI does).
 struct SceneDescription {

@@ -6,10 +6,6 @@
 
 namespace harbour::sim {
 
-namespace {
-constexpr const char* kLoad = "load";  // a truck's load entity, as its machine names it
-}  // namespace
-
 SessionPlayer::SessionPlayer(std::vector<Member> members) : members_(std::move(members)) {
   if (members_.empty()) throw std::runtime_error("a session replay needs a member");
   double earliest_s = members_.front().start_s;
@@ -25,8 +21,9 @@ SessionPlayer::SessionPlayer(std::vector<Member> members) : members_(std::move(m
     }
     const scene::SceneDescription member = players_.back()->simulation().scene();
     first_entity_.push_back(static_cast<int>(scene_.entities.size()));
-    const auto load = std::find_if(member.entities.begin(), member.entities.end(),
-                                   [](const scene::SceneDescription::Entity& e) { return e.name == kLoad; });
+    const auto load =
+        std::find_if(member.entities.begin(), member.entities.end(),
+                     [](const scene::SceneDescription::Entity& e) { return e.name == scene::kTrailerLoad; });
     load_entity_.push_back(load == member.entities.end()
                                ? -1
                                : first_entity_.back() + static_cast<int>(load - member.entities.begin()));
@@ -70,7 +67,7 @@ void SessionPlayer::name_loads() {
     if (load_entity_[k] < 0) continue;
     const std::string handed = handed_load_name(members_[k].recording, players_[k]->simulation().steps());
     std::string& name = scene_.entities[static_cast<std::size_t>(load_entity_[k])].name;
-    const std::string now = handed.empty() ? std::string(kLoad) : handed;
+    const std::string now = handed.empty() ? std::string(scene::kTrailerLoad) : handed;
     if (name == now) continue;
     name = now;
     ++names_version_;

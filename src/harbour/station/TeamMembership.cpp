@@ -172,7 +172,7 @@ TeamMembership::TeamMembership(const io::Team& team, const std::string& role, co
       const scene::SceneDescription::Entity& body = m.bodies[static_cast<std::size_t>(b)];
       const core::Vec3 h = body.half_extents_m;
       const bool in_lane = std::any_of(trucks_.begin(), trucks_.end(), [&](const Truck& t) {
-        return t.role == m.role && (t.trailer_body == b || body.name == "load");
+        return t.role == m.role && (t.trailer_body == b || body.name == scene::kTrailerLoad);
       });
       if (h.x > 0.0 && h.y > 0.0 && h.z > 0.0 && !in_lane)
         obstacles_.push_back({m.role, b, core::Pose{}, h, {}});
@@ -186,7 +186,7 @@ TeamMembership::TeamMembership(const io::Team& team, const std::string& role, co
     box_mass_kg_[c.id] = c.gross_mass_kg;
   load_stop_ = own_exercise.load_stop;
   trailer_entity_ = entity_named(own_scene, "trailer");
-  load_entity_ = entity_named(own_scene, "load");
+  load_entity_ = entity_named(own_scene, scene::kTrailerLoad);
 }
 
 std::string TeamMembership::session() const {

@@ -252,7 +252,8 @@ void TerminalTractor::describe(scene::SceneDescription& d) const {
   if (trailer_body_ != physics::kWorld)
     d.entities.push_back({"trailer", trailer_look_, trailer_half_extents_m_});
   if (load_body_ != physics::kWorld)
-    d.entities.push_back({"load", scene::container_look(2.0 * load_half_extents_m_.x), load_half_extents_m_});
+    d.entities.push_back(
+        {scene::kTrailerLoad, scene::container_look(2.0 * load_half_extents_m_.x), load_half_extents_m_});
   if (payload_half_extents_m_)
     d.entities.push_back(
         {payload_id_, scene::container_look(2.0 * payload_half_extents_m_->x), *payload_half_extents_m_});
