@@ -76,6 +76,21 @@ double luminance(const osg::Vec3& c) {
   return 0.2126 * c.x() + 0.7152 * c.y() + 0.0722 * c.z();
 }
 
+// each pixel's luminance as the median of its 3x3 neighbourhood, rows from the top: the rain's drops falling
+// past, a pixel or two wide, go
+std::vector<double> median_luminance(const osg::Image& image) {
+  std::vector<double> l(static_cast<std::size_t>(image.s() * image.t()));
+  for (int y = 0; y < image.t(); ++y)
+    for (int x = 0; x < image.s(); ++x) {
+      std::array<double, 9> around{};
+      for (std::size_t k = 0; k < around.size(); ++k)
+        around[k] = luminance(pixel(image, x + static_cast<int>(k % 3) - 1, y + static_cast<int>(k / 3) - 1));
+      std::nth_element(around.begin(), around.begin() + 4, around.end());
+      l[static_cast<std::size_t>(y * image.s() + x)] = around[4];
+    }
+  return l;
+}
+
 double mean_luminance(const osg::Image& image) {
   double sum = 0.0;
   for (int y = 0; y < image.t(); ++y)
@@ -179,18 +194,7 @@ TEST(ImageGenerator, RainCloudsTextureTheSkyAndDriftWithTheWind) {
     s.time_s = time_s;
     s.wind_mps = {10.0, 0.0, 0.0};
     ig.update(s);
-    const osg::Image& image = ig.render();
-    std::vector<double> l(static_cast<std::size_t>(kWidth * kHeight));
-    for (int y = 0; y < kHeight; ++y)
-      for (int x = 0; x < kWidth; ++x) {
-        std::array<double, 9> around{};
-        for (std::size_t k = 0; k < around.size(); ++k)
-          around[k] =
-              luminance(pixel(image, x + static_cast<int>(k % 3) - 1, y + static_cast<int>(k / 3) - 1));
-        std::nth_element(around.begin(), around.begin() + 4, around.end());
-        l[static_cast<std::size_t>(y * kWidth + x)] = around[4];
-      }
-    return l;
+    return median_luminance(ig.render());
   };
   const auto texture = [](const std::vector<double>& l) {
     double sum = 0.0;
@@ -628,19 +632,7 @@ TEST(ImageGenerator, AWetQuayMirrorsAFloodlightWhereItsMirrorImageIs) {
     scene::Snapshot s = state(40.0, 200.0, 20000.0, 23.0);
     s.rain_mm_per_h = rain;
     ig.update(s);
-    const osg::Image& image = ig.render();
-    // each pixel the median of its 3x3 neighbourhood: the drops falling past, a pixel or two wide, go
-    std::vector<double> l(static_cast<std::size_t>(kWidth * kHeight));
-    for (int y = 0; y < kHeight; ++y)
-      for (int x = 0; x < kWidth; ++x) {
-        std::array<double, 9> around{};
-        for (std::size_t k = 0; k < around.size(); ++k)
-          around[k] =
-              luminance(pixel(image, x + static_cast<int>(k % 3) - 1, y + static_cast<int>(k / 3) - 1));
-        std::nth_element(around.begin(), around.begin() + 4, around.end());
-        l[static_cast<std::size_t>(y * kWidth + x)] = around[4];
-      }
-    return l;
+    return median_luminance(ig.render());
   };
   const std::vector<double> dry = picture(0.0), wet = picture(10.0);
   const auto mirror = ig.project({60.0, 0.0, -30.0}), lamp_pool = ig.project({60.0, 0.0, 0.0});

@@ -518,6 +518,36 @@ void main() {
 }
 )";
 
+// a dome of `radius` round its centre from `lowest` (rad) up to the zenith: `rings` rings of 48 segments, as
+// triangle strips
+osg::ref_ptr<osg::Geometry> dome_geometry(double radius, double lowest, int rings) {
+  constexpr int kSegments = 48;
+  osg::ref_ptr<osg::Geometry> dome = new osg::Geometry;
+  dome->setUseDisplayList(false);
+  dome->setUseVertexBufferObjects(true);
+  osg::ref_ptr<osg::Vec3Array> vertices = new osg::Vec3Array;
+  for (int r = 0; r <= rings; ++r) {
+    const double elevation = lowest + (kPi / 2.0 - lowest) * r / rings;
+    for (int k = 0; k <= kSegments; ++k) {
+      const double azimuth = 2.0 * kPi * k / kSegments;
+      vertices->push_back(osg::Vec3(static_cast<float>(std::cos(elevation) * std::cos(azimuth)),
+                                    static_cast<float>(std::cos(elevation) * std::sin(azimuth)),
+                                    static_cast<float>(std::sin(elevation))) *
+                          static_cast<float>(radius));
+    }
+  }
+  for (int r = 0; r < rings; ++r) {
+    osg::ref_ptr<osg::DrawElementsUShort> strip = new osg::DrawElementsUShort(GL_TRIANGLE_STRIP);
+    for (int k = 0; k <= kSegments; ++k) {
+      strip->push_back(static_cast<unsigned short>((r + 1) * (kSegments + 1) + k));
+      strip->push_back(static_cast<unsigned short>(r * (kSegments + 1) + k));
+    }
+    dome->addPrimitiveSet(strip);
+  }
+  dome->setVertexArray(vertices);
+  return dome;
+}
+
 // a tileable field of value noise (four octaves, 256 x 256): the clouds' thickness
 osg::ref_ptr<osg::Image> cloud_noise() {
   constexpr int kSize = 256;
@@ -763,35 +793,14 @@ void ImageGenerator::build_lighting() {
 // the sky: a dome round the eye, drawn first, unlit, unfogged, behind everything
 void ImageGenerator::build_sky() {
   {
-    constexpr int kRings = 16, kSegments = 48;
-    constexpr double kRadius = 4000.0;
-    osg::ref_ptr<osg::Geometry> dome = new osg::Geometry;
-    dome->setUseDisplayList(false);
-    dome->setUseVertexBufferObjects(true);
-    osg::ref_ptr<osg::Vec3Array> vertices = new osg::Vec3Array;
+    osg::ref_ptr<osg::Geometry> dome = dome_geometry(4000.0, -0.2, 16);
+    const auto& vertices = static_cast<const osg::Vec3Array&>(*dome->getVertexArray());
     sky_directions_ = new osg::Vec3Array;
     sky_colors_ = new osg::Vec4Array;
-    for (int r = 0; r <= kRings; ++r) {
-      const double elevation = -0.2 + (kPi / 2.0 + 0.2) * r / kRings;
-      for (int k = 0; k <= kSegments; ++k) {
-        const double azimuth = 2.0 * kPi * k / kSegments;
-        const osg::Vec3 d(static_cast<float>(std::cos(elevation) * std::cos(azimuth)),
-                          static_cast<float>(std::cos(elevation) * std::sin(azimuth)),
-                          static_cast<float>(std::sin(elevation)));
-        sky_directions_->push_back(d);
-        vertices->push_back(d * static_cast<float>(kRadius));
-        sky_colors_->push_back(osg::Vec4(0.5f, 0.6f, 0.9f, 1.0f));
-      }
+    for (const osg::Vec3& v : vertices) {
+      sky_directions_->push_back(v / v.length());
+      sky_colors_->push_back(osg::Vec4(0.5f, 0.6f, 0.9f, 1.0f));
     }
-    for (int r = 0; r < kRings; ++r) {
-      osg::ref_ptr<osg::DrawElementsUShort> strip = new osg::DrawElementsUShort(GL_TRIANGLE_STRIP);
-      for (int k = 0; k <= kSegments; ++k) {
-        strip->push_back(static_cast<unsigned short>((r + 1) * (kSegments + 1) + k));
-        strip->push_back(static_cast<unsigned short>(r * (kSegments + 1) + k));
-      }
-      dome->addPrimitiveSet(strip);
-    }
-    dome->setVertexArray(vertices);
     dome->setColorArray(sky_colors_, osg::Array::BIND_PER_VERTEX);
     osg::ref_ptr<osg::Geode> geode = new osg::Geode;
     geode->addDrawable(dome);
@@ -845,31 +854,7 @@ void ImageGenerator::build_sky() {
 // rain clouds: a deck 1,200 m up seen through the dome (each pixel's ray meets it), its density from a
 // tileable noise texture, drifting with the wind; in front of the stars, behind everything else
 void ImageGenerator::build_clouds() {
-  constexpr int kRings = 12, kSegments = 48;
-  constexpr double kRadius = 3800.0;  // inside the dome
-  osg::ref_ptr<osg::Geometry> deck = new osg::Geometry;
-  deck->setUseDisplayList(false);
-  deck->setUseVertexBufferObjects(true);
-  osg::ref_ptr<osg::Vec3Array> vertices = new osg::Vec3Array;
-  for (int r = 0; r <= kRings; ++r) {
-    const double elevation = 0.01 + (kPi / 2.0 - 0.01) * r / kRings;
-    for (int k = 0; k <= kSegments; ++k) {
-      const double azimuth = 2.0 * kPi * k / kSegments;
-      vertices->push_back(osg::Vec3(static_cast<float>(std::cos(elevation) * std::cos(azimuth)),
-                                    static_cast<float>(std::cos(elevation) * std::sin(azimuth)),
-                                    static_cast<float>(std::sin(elevation))) *
-                          static_cast<float>(kRadius));
-    }
-  }
-  for (int r = 0; r < kRings; ++r) {
-    osg::ref_ptr<osg::DrawElementsUShort> strip = new osg::DrawElementsUShort(GL_TRIANGLE_STRIP);
-    for (int k = 0; k <= kSegments; ++k) {
-      strip->push_back(static_cast<unsigned short>((r + 1) * (kSegments + 1) + k));
-      strip->push_back(static_cast<unsigned short>(r * (kSegments + 1) + k));
-    }
-    deck->addPrimitiveSet(strip);
-  }
-  deck->setVertexArray(vertices);
+  osg::ref_ptr<osg::Geometry> deck = dome_geometry(3800.0, 0.01, 12);  // inside the sky's dome
   clouds_ = new osg::Geode;
   clouds_->addDrawable(deck);
   clouds_->setNodeMask(0u);  // clear until it rains
