@@ -253,9 +253,12 @@ constexpr double kNewMoonDay = 5.0;  // a new moon on 5 January (a year's phases
 constexpr int kStars = 900;
 constexpr double kDomeRadius_m = 3900.0;
 
+}  // namespace
+
 // the sky's colours for a sun (the clear sky of `Daylight`) under the weather's veil: rain clouds
 // (`overcast`, 0-1) hide the sun; they and fog (`grey`, the larger of the two) turn the sky towards a grey of
-// its own brightness, darker under rain clouds. The water's shader mirrors `horizon` and `zenith`.
+// its own brightness, darker under rain clouds. Made once an update: the water's shader mirrors `horizon` and
+// `zenith`, the stars sit on `towards`.
 struct SkyShade {
   Daylight daylight;
   core::Vec3 sun;
@@ -283,6 +286,8 @@ struct SkyShade {
             static_cast<float>(std::min(c.z, 1.0)), 1.0f};
   }
 };
+
+namespace {
 
 // The lit scene's shading: the fixed pipeline's per-vertex lighting (the geometry's colour as ambient and
 // diffuse; the sun as light 0, floodlights as lights 1..n with their attenuation) and its exponential fog,
@@ -766,10 +771,9 @@ void ImageGenerator::build_lighting() {
     lit->addUniform(new osg::Uniform("sun_shadows", true));
     soft_shadows_ = new osg::Uniform("soft_shadows", false);
     lit->addUniform(soft_shadows_);
-    // the water film's: dry unless a surface says otherwise (the quay's own `quay_wetness_`)
-    film_ = {new osg::Uniform("wetness", 0.0f), new osg::Uniform("splash_rate", 0.0f),
-             new osg::Uniform("time_s", 0.0f), new osg::Uniform("sky_horizon", osg::Vec3()),
-             new osg::Uniform("sky_zenith", osg::Vec3())};
+    // the water film's (its wetness is the quay's own, `quay_wetness_`)
+    film_ = {new osg::Uniform("splash_rate", 0.0f), new osg::Uniform("time_s", 0.0f),
+             new osg::Uniform("sky_horizon", osg::Vec3()), new osg::Uniform("sky_zenith", osg::Vec3())};
     for (const osg::ref_ptr<osg::Uniform>& u : film_)
       lit->addUniform(u);
     // the same nodes lit the same way but without a shadow pass, for the insets: a camera drawing the
@@ -1334,7 +1338,7 @@ void ImageGenerator::update_sky_and_weather(const scene::Snapshot& s) {
     (*sky_colors_)[n] = shade.towards({d.x(), d.y(), d.z()});
   }
   sky_colors_->dirty();
-  update_night_sky(s, sky);
+  update_night_sky(s, shade);
   // rain clouds over the sky as the rain says (overcast from 8 mm/h), grey of the veiled sky's brightness,
   // their bases darker where thicker; drifting at twice the surface wind (the wind's rise with height)
   clouds_->setNodeMask(overcast_ > 0.0 ? ~0u : 0u);
@@ -1376,10 +1380,12 @@ void ImageGenerator::update_sky_and_weather(const scene::Snapshot& s) {
       quay->setAttribute(wet_program_);
     else
       quay->removeAttribute(osg::StateAttribute::PROGRAM);
-  film_[1]->set(static_cast<float>(0.75 * std::max(s.rain_mm_per_h, 0.0)));
-  film_[2]->set(static_cast<float>(s.time_s));
-  film_[3]->set(to_osg(shade.horizon));
-  film_[4]->set(to_osg(shade.zenith));
+  film_[0]->set(static_cast<float>(0.75 * std::max(s.rain_mm_per_h, 0.0)));
+  film_[1]->set(static_cast<float>(s.time_s));
+  film_[2]->set(to_osg(shade.horizon));
+  film_[3]->set(to_osg(shade.zenith));
+  water_shading_->getUniform("horizon")->set(to_osg(shade.horizon));  // the sky the water mirrors
+  water_shading_->getUniform("zenith")->set(to_osg(shade.zenith));
   daylight_ = daylight;
 }
 
@@ -1542,14 +1548,13 @@ void ImageGenerator::update_timeline(double now_s) {
   timeline_->dirtyBound();
 }
 
-void ImageGenerator::update_night_sky(const scene::Snapshot& s, const core::Vec3& horizon) {
+void ImageGenerator::update_night_sky(const scene::Snapshot& s, const SkyShade& shade) {
   // stars show from nautical dusk on (sun 4-12 deg down), dimmed by haze and fog
   const double dark = std::clamp((-sun_elevation_ * 180.0 / kPi - 4.0) / 8.0, 0.0, 1.0) *
                       std::clamp(s.visibility_m / 8000.0, 0.0, 1.0);
   const double lat = s.latitude_deg * kPi / 180.0, sidereal = sidereal_angle(s.time_of_day_h, s.day_of_year);
   auto& star_vertices = static_cast<osg::Vec3Array&>(*stars_->getVertexArray());
   auto& star_colours = static_cast<osg::Vec4Array&>(*stars_->getColorArray());
-  const SkyShade shade(to_sun_, sun_elevation_, grey_, overcast_);
   for (std::size_t n = 0; n < star_positions_.size(); ++n) {
     const auto& [right_ascension, declination, brightness] = star_positions_[n];
     const core::Vec3 d = sky_direction(sidereal - right_ascension, declination, lat);
@@ -1582,9 +1587,9 @@ void ImageGenerator::update_night_sky(const scene::Snapshot& s, const core::Vec3
     const double lit = std::clamp(dot(normal, to_sun_) * 6.0, 0.0, 1.0) * 0.9 + 0.04;  // and earthshine
     const double l = lit * (1.0 - 0.75 * daylight);
     moon_vertices[k] = to_osg(to_moon * kDomeRadius_m + (across * u + up * v) * radius);
-    moon_colours[k] =
-        osg::Vec4(static_cast<float>(std::max(l, horizon.x)), static_cast<float>(std::max(l, horizon.y)),
-                  static_cast<float>(std::max(l * 0.95, horizon.z)), 1.0f);
+    moon_colours[k] = osg::Vec4(static_cast<float>(std::max(l, shade.horizon.x)),
+                                static_cast<float>(std::max(l, shade.horizon.y)),
+                                static_cast<float>(std::max(l * 0.95, shade.horizon.z)), 1.0f);
     ++k;
   };
   for (int ring = 0; ring < kMoonRings; ++ring)
@@ -1944,8 +1949,7 @@ void ImageGenerator::update_water(const osg::Vec3d& eye) {
     std::nth_element(foam_samples_.begin(), at, foam_samples_.end());
     foam_slope_ = *at;
   }
-  // the shading's uniforms: the eye, the sky it mirrors, the deep water's colour
-  const SkyShade sky = SkyShade(to_sun_, sun_elevation_, grey_, overcast_);
+  // the shading's uniforms: the eye, the deep water's colour (the sky it mirrors: update_sky_and_weather)
   const auto set = [&](const char* name, const auto& value) { water_shading_->getUniform(name)->set(value); };
   set("daylight", static_cast<float>(daylight_ * (1.0 - grey_)));  // no glint under cloud or in fog
   set("sky_light", static_cast<float>(0.12 + 0.88 * daylight_ * (1.0 - 0.4 * grey_)));
@@ -1956,8 +1960,6 @@ void ImageGenerator::update_water(const osg::Vec3d& eye) {
                   : osg::Vec2(1.0f, 0.0f));
   set("eye_world", osg::Vec3(eye));
   set("to_sun", to_osg(to_sun_));
-  set("horizon", to_osg(sky.horizon));
-  set("zenith", to_osg(sky.zenith));
   set("deep", to_osg(core::Vec3{0.02 + 0.03 * daylight_, 0.06 + 0.10 * daylight_, 0.08 + 0.12 * daylight_}));
 
   const double finest = wind_sea_->length_m() / wind_sea_->size();

@@ -46,6 +46,8 @@ class Viewer;
 
 namespace harbour::ig {
 
+struct SkyShade;  // the sky's colours for the sun and the weather (ImageGenerator.cpp)
+
 class ModelCache;  // the procedural models built once per size and colour
 
 class HeadlessContext;
@@ -225,7 +227,7 @@ class ImageGenerator {
   void place_insets();
   // the water round the eye: swell plus the wind sea, shaded by its Fresnel reflection of the sky
   void update_water(const osg::Vec3d& eye);
-  void update_night_sky(const scene::Snapshot& s, const core::Vec3& horizon);
+  void update_night_sky(const scene::Snapshot& s, const SkyShade& shade);
   void build_clouds();
   osg::ref_ptr<osg::Geode> clouds_;
   std::array<osg::ref_ptr<osg::Uniform>, 5> cloud_uniforms_;  // cover, deck shift, light, dark, horizon
@@ -279,7 +281,7 @@ class ImageGenerator {
   osg::ref_ptr<osg::Uniform> quay_wetness_;
   osg::ref_ptr<osg::Program> wet_program_;                // the lit scene's, with the water film
   std::vector<osg::ref_ptr<osg::StateSet>> quay_states_;  // take it while the quay is wet
-  std::array<osg::ref_ptr<osg::Uniform>, 5> film_;  // wetness (0 but the quay's), splash rate, time, the sky
+  std::array<osg::ref_ptr<osg::Uniform>, 4> film_;        // splash rate, time, the sky's horizon and zenith
   osg::ref_ptr<osg::Geometry> water_;
   osg::ref_ptr<osg::StateSet> water_shading_;  // its shader's uniforms
   osg::ref_ptr<osg::MatrixTransform> far_water_;

@@ -177,6 +177,13 @@ Illuminance illuminance(const ClearSky& sky, const core::Vec3& to_sun, double tu
   return e;
 }
 
+// the daylight of a sun 60° up: its beam and the sky's light together
+core::Vec3 white_daylight(double turbidity) {
+  const core::Vec3 high_sun{0.5, 0.0, std::sqrt(0.75)};
+  const Illuminance reference = illuminance(ClearSky(high_sun, turbidity), high_sun, turbidity);
+  return reference.sky + reference.sun;
+}
+
 }  // namespace
 
 Daylight::Daylight(const core::Vec3& to_sun, double turbidity) : sky_(to_sun, turbidity) {
@@ -191,10 +198,9 @@ Daylight::Daylight(const core::Vec3& to_sun, double turbidity) : sky_(to_sun, tu
   }
   horizon_ = round_horizon * (1.0 / kAzimuths);
   zenith_ = sky({0.0, 0.0, 1.0});
-  // the eye's chromatic adaptation: the daylight of a sun 60° up (its beam and the sky's light) is white
-  const core::Vec3 high_sun{0.5, 0.0, std::sqrt(0.75)};
-  const Illuminance reference = illuminance(ClearSky(high_sun, turbidity), high_sun, turbidity);
-  const core::Vec3 white = reference.sky + reference.sun;
+  // the eye's chromatic adaptation: the daylight of a sun 60° up is white (the clear sky's, worked out once)
+  static const core::Vec3 clear_white = white_daylight(kClearSkyTurbidity);
+  const core::Vec3 white = turbidity == kClearSkyTurbidity ? clear_white : white_daylight(turbidity);
   const double white_luminance = luminance(white);
   const auto balanced = [&](const core::Vec3& e) {
     return core::Vec3{e.x / white.x, e.y / white.y, e.z / white.z} * white_luminance;
@@ -206,7 +212,7 @@ Daylight::Daylight(const core::Vec3& to_sun, double turbidity) : sky_(to_sun, tu
   const core::Vec3 sky_illuminance =
       balanced(now.sky * 0.75 + (now.sun * sun_up + now.sky) * (0.25 * kGroundAlbedo));
   const core::Vec3 sun_illuminance = balanced(now.sun);
-  sun_lx_ = luminance(balanced(now.sun));
+  sun_lx_ = luminance(sun_illuminance);
   sky_lx_ = luminance(balanced(now.sky));
   // the fixed pipeline adds ambient and diffuse in display units: each end right (in shade, the sky alone;
   // facing the sun, sun and sky), the part-lit between them blended
