@@ -1,8 +1,8 @@
 // The image generator: frames per second of the STS deck exercise with everything on (ten boxes, the feeder,
 // trucks, the crane and its ropes, the harbour's scenery and lamps, sun shadows, the FFT wind sea in 8 m/s
 // of wind) drawn headless (EGL) from the cab (with and without its spreader camera inset) and the chase view,
-// dry and in rain; the analytic sky's colours; and the cost of re-meshing one changed bulk tile. Results:
-// docs/benchmarks.md.
+// dry and in rain, with the renderer's default surfaces and with surface detail; the analytic sky's colours;
+// and the cost of re-meshing one changed bulk tile. Results: docs/benchmarks.md.
 
 #include <benchmark/benchmark.h>
 
@@ -44,6 +44,7 @@ void BM_Frame(benchmark::State& state) {
   const std::optional<int> samples =
       state.range(4) < 0 ? std::nullopt : std::optional<int>(static_cast<int>(state.range(4)));
   ig::ImageGenerator generator(simulation.scene(), looks.visuals, width, height, samples);
+  if (state.range(6) >= 0) generator.set_surface_detail(state.range(6) != 0);  // -1: the renderer's default
   generator.use(looks);
   ig::View view;
   view.kind = state.range(2) == 0 ? ig::View::Kind::kCab : ig::View::Kind::kChase;
@@ -66,19 +67,22 @@ void BM_Frame(benchmark::State& state) {
   state.counters["insets"] =
       static_cast<double>(view.kind == ig::View::Kind::kCab && view.insets ? generator.insets().size() : 0);
   state.counters["samples"] = generator.multisamples();
+  state.counters["detail"] = generator.surface_detail() ? 1.0 : 0.0;
   state.SetLabel(generator.renderer());
 }
 BENCHMARK(BM_Frame)
-    ->Args({1280, 720, 0, 1, -1, 0})
-    ->Args({1280, 720, 0, 0, -1, 0})
-    ->Args({1280, 720, 1, 0, -1, 0})
-    ->Args({1280, 720, 0, 1, -1, 10})
-    ->Args({1280, 720, 1, 0, -1, 10})
-    ->Args({1920, 1080, 0, 1, -1, 0})
-    ->Args({1920, 1080, 1, 0, -1, 0})
-    ->Args({1280, 720, 0, 1, 4, 0})
-    ->Args({1280, 720, 1, 0, 4, 0})
-    ->ArgNames({"w", "h", "chase", "insets", "samples", "rain"})
+    ->Args({1280, 720, 0, 1, -1, 0, -1})
+    ->Args({1280, 720, 0, 0, -1, 0, -1})
+    ->Args({1280, 720, 1, 0, -1, 0, -1})
+    ->Args({1280, 720, 0, 1, -1, 10, -1})
+    ->Args({1280, 720, 1, 0, -1, 10, -1})
+    ->Args({1920, 1080, 0, 1, -1, 0, -1})
+    ->Args({1920, 1080, 1, 0, -1, 0, -1})
+    ->Args({1280, 720, 0, 1, 4, 0, -1})
+    ->Args({1280, 720, 1, 0, 4, 0, -1})
+    ->Args({1280, 720, 0, 1, -1, 0, 1})
+    ->Args({1280, 720, 1, 0, -1, 0, 1})
+    ->ArgNames({"w", "h", "chase", "insets", "samples", "rain", "detail"})
     ->Unit(benchmark::kMillisecond)
     ->MinTime(3.0)
     ->UseRealTime();  // llvmpipe may draw on threads of its own

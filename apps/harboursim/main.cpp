@@ -319,6 +319,10 @@ Command add_screenshot(CLI::App& app) {
                        "30:power-failure");
   shot_cmd->add_option("--soft-shadows", shot.soft_shadows,
                        "filtered shadow edges, true or false (default: on, off on a software renderer)");
+  shot_cmd->add_option(
+      "--surface-detail", shot.surface_detail,
+      "surfaces with detail (worn paint, stained concrete, grain, rust streaks), true or false "
+      "(default: on, off on a software renderer)");
   shot_cmd
       ->add_option("--multisamples", shot.multisamples,
                    "anti-aliasing samples per pixel, 0-16 (default: 4, 0 on a software renderer)")

@@ -10,7 +10,10 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <map>
 #include <numbers>
+#include <tuple>
 #include <vector>
 
 #include "harbour/core/Vec3.h"
@@ -389,10 +392,20 @@ TEST(Visuals, BadLooksNameFileLineAndField) {
   EXPECT_NE(
       error("visuals:\n  - key: a\n    parts: []\n  - key: a\n    parts: []\n").find("'a' is declared twice"),
       std::string::npos);
+  EXPECT_NE(
+      error("visuals:\n  - key: a\n    parts:\n      - {size: entity, at: [0, 0, 0], color: [1, 0, 0], "
+            "material: chrome}\n")
+          .find("harbour_looks.yaml:4: visuals[0].parts[0].material: 'chrome' is not a material: paint, "
+                "steel, galvanised, rubber, concrete, glass, timber or bulk"),
+      std::string::npos);
   const std::string no_looks = "visuals:\n  - key: a\n    parts: []\n";
   EXPECT_NE(
       error(no_looks + "scenery:\n  - {shape: cone, at: [0, 0, 0], size: [1, 1, 1], color: [1, 1, 1]}\n")
           .find("harbour_looks.yaml:5: scenery[0].shape: 'cone' is not a shape: box or cylinder"),
+      std::string::npos);
+  EXPECT_NE(
+      error(no_looks + "scenery:\n  - {at: [0, 0, 0], size: [1, 1, 1], color: [1, 1, 1], material: 7}\n")
+          .find("harbour_looks.yaml:5: scenery[0].material: '7' is not a material"),
       std::string::npos);
   EXPECT_NE(error(no_looks + "scenery:\n  - {at: [0, 0, 0], size: [1, 0, 1], color: [1, 1, 1]}\n")
                 .find("scenery[0].size: sizes are positive"),
@@ -672,6 +685,180 @@ TEST(ImageGenerator, AWetQuayMirrorsAFloodlightWhereItsMirrorImageIs) {
   EXPECT_NEAR(cy, mirror->second, 10.0);  // a rough mirror draws the glare out along the line of sight
   EXPECT_GT(best / 81.0, 0.10);           // bright against the night
   EXPECT_GT(mirror->second - lamp_pool->second, 20.0) << "the glare is not the pool of light";
+}
+
+// The sun's glint on a flat plate by GGX (Walter et al. 2007) with Smith-Schlick visibility and Schlick's
+// Fresnel, as the lit shader has it, in units of the sun's diffuse light: pi D V F (n.l).
+double ggx_glint(const core::Vec3& n, const core::Vec3& v, const core::Vec3& l, double f0, double roughness) {
+  const core::Vec3 sum = l + v;
+  const core::Vec3 h = sum * (1.0 / core::length(sum));
+  const double nl = std::max(dot(n, l), 0.0), nv = std::max(dot(n, v), 1e-3), nh = std::max(dot(n, h), 0.0);
+  const double a = roughness * roughness, a2 = a * a, d = nh * nh * (a2 - 1.0) + 1.0, k = a / 2.0;
+  const double visibility = 0.25 / ((nl * (1.0 - k) + k) * (nv * (1.0 - k) + k));
+  const double fresnel = f0 + (1.0 - f0) * std::pow(1.0 - dot(v, h), 5.0);
+  return fresnel * a2 / (d * d) * visibility * nl;
+}
+
+// The sun's glint on a dark plate seen looking along the sun's mirror image: it peaks where the mirror image
+// is (the picture's centre), as wide across and along the picture as GGX's lobe for the plate's roughness
+// (the half-maximum widths within 15 %), and as bright for bare steel against paint as GGX and Fresnel say
+// (within 20 %): steel (roughness 0.35) draws a glint 0.4 as wide across as paint (0.50).
+TEST(ImageGenerator, ASunsGlintIsWhereAndAsWideAsGgxSays) {
+  constexpr int kW = 320, kH = 240;
+  constexpr double kFov = 1.2, kTime = 14.0;
+  double elevation = 0.0;
+  const core::Vec3 to_sun = sun_direction(kTime, 80.0, 40.0, elevation);
+  ASSERT_GT(elevation, 0.3);
+  const core::Vec3 eye{0.0, 0.0, 12.0}, mirror{to_sun.x, to_sun.y, -to_sun.z};
+  constexpr double kTop = 1.0;  // the plate's top, clear of the quay
+  const core::Vec3 glint_at = eye + mirror * ((eye.z - kTop) / to_sun.z);
+  View view;
+  view.kind = View::Kind::kFree;
+  view.position_m = eye;
+  view.yaw_rad = std::atan2(to_sun.y, to_sun.x);
+  view.pitch_rad = -elevation;  // the picture's centre looks at the sun's mirror image
+  view.fov_vertical_rad = kFov;
+  view.hud = false;
+  // a pixel's ray (the camera's forward, right and up; rows from the top)
+  const core::Vec3 forward{std::cos(view.pitch_rad) * std::cos(view.yaw_rad),
+                           std::cos(view.pitch_rad) * std::sin(view.yaw_rad), std::sin(view.pitch_rad)};
+  const core::Vec3 right{std::sin(view.yaw_rad), -std::cos(view.yaw_rad), 0.0};
+  const core::Vec3 up = core::cross(right, forward);
+  const double focal = (kH / 2.0) / std::tan(kFov / 2.0);
+  const auto ray = [&](int x, int y) {
+    const core::Vec3 d =
+        forward + right * ((x + 0.5 - kW / 2.0) / focal) + up * ((kH / 2.0 - y - 0.5) / focal);
+    return d * (1.0 / core::length(d));
+  };
+  struct Glint {
+    int x = 0, y = 0;           // the brightest pixel
+    double peak = 0.0;          // over the plate's darkest
+    double cx = 0.0, cy = 0.0;  // the centre of the pixels at or over half the peak
+    int across = 0, along = 0;  // those pixels on the brightest's row and column
+  };
+  const auto measure = [&](const std::function<double(int, int)>& at) {
+    Glint g;
+    double lowest = 1e9;
+    for (int y = kH / 8; y < kH; ++y)  // the plate fills the picture's lower seven eighths
+      for (int x = 0; x < kW; ++x) {
+        const double value = at(x, y);
+        lowest = std::min(lowest, value);
+        if (value > g.peak) g = {x, y, value, 0.0, 0.0, 0, 0};
+      }
+    g.peak -= lowest;
+    int count = 0;
+    for (int y = kH / 8; y < kH; ++y)
+      for (int x = 0; x < kW; ++x)
+        if (at(x, y) - lowest >= 0.5 * g.peak) {
+          g.cx += x;
+          g.cy += y;
+          ++count;
+          g.across += y == g.y ? 1 : 0;
+          g.along += x == g.x ? 1 : 0;
+        }
+    g.cx /= count;
+    g.cy /= count;
+    return g;
+  };
+  std::map<std::string, Glint> drawn, ggx;
+  for (const auto& [name, surface, f0, roughness] :
+       {std::tuple{"steel", Surface::kSteel, 0.01, 0.35}, std::tuple{"paint", Surface::kPaint, 0.04, 0.50}}) {
+    scene::SceneDescription d;
+    d.machine = "test";
+    d.entities.push_back({"plate", "test.plate", {300.0, 300.0, 0.1}});
+    Visual plate;
+    VisualPart part;
+    part.color = {0.01, 0.01, 0.01};  // dark: the glint stands out and stays under the highlights' shoulder
+    part.surface = surface;
+    plate.parts.push_back(part);
+    ImageGenerator ig(d, {{"test.plate", plate}}, kW, kH);
+    ig.set_surface_detail(false);  // the finish's own roughness everywhere
+    ig.set_view(view);
+    scene::Snapshot s;
+    s.time_of_day_h = kTime;
+    s.visibility_m = 1e6;
+    s.entity_count = 1;
+    s.entities[0] = {0, 0, {core::Mat3::identity(), {glint_at.x, glint_at.y, kTop - 0.05}}};
+    ig.update(s);
+    const osg::Image& image = ig.render();
+    drawn[name] = measure([&](int x, int y) { return luminance(pixel(image, x, y)); });
+    ggx[name] = measure([&](int x, int y) {
+      const core::Vec3 r = ray(x, y);
+      return r.z < 0.0 ? ggx_glint({0.0, 0.0, 1.0}, r * -1.0, to_sun, f0, roughness) : 0.0;
+    });
+    std::printf(
+        "%s: drawn +%.3f centred at (%.1f, %.1f), %d px across, %d along; GGX centred at (%.1f, %.1f), "
+        "%d across, %d along\n",
+        name, drawn[name].peak, drawn[name].cx, drawn[name].cy, drawn[name].across, drawn[name].along,
+        ggx[name].cx, ggx[name].cy, ggx[name].across, ggx[name].along);
+    EXPECT_NEAR(drawn[name].cx, ggx[name].cx, 2.0) << name;
+    EXPECT_NEAR(drawn[name].cy, ggx[name].cy, 2.0) << name;
+    EXPECT_NEAR(drawn[name].across, ggx[name].across, 0.15 * ggx[name].across) << name;
+    EXPECT_NEAR(drawn[name].along, ggx[name].along, 0.15 * ggx[name].along) << name;
+  }
+  const double drawn_ratio = drawn["steel"].peak / drawn["paint"].peak,
+               ggx_ratio = ggx["steel"].peak / ggx["paint"].peak;
+  std::printf("steel's glint %.2f times paint's (GGX %.2f)\n", drawn_ratio, ggx_ratio);
+  EXPECT_NEAR(drawn_ratio, ggx_ratio, 0.2 * ggx_ratio);
+  EXPECT_LT(drawn["steel"].across, 0.7 * drawn["paint"].across);
+}
+
+// Surface detail is laid on the object's own faces: a painted wall filling the picture is textured with it
+// (its luminance varies by over 2 % of its mean, four times the plain wall's variation from its sky
+// reflection and glint) and the texture rides the wall —
+// moved 1.3 m along and 0.7 m up (not whole 4 m tiles), with the camera moved alike, the picture is the same.
+TEST(ImageGenerator, SurfaceDetailRidesTheMachine) {
+  scene::SceneDescription d;
+  d.machine = "test";
+  d.entities.push_back({"wall", "test.wall", {2.0, 20.0, 20.0}});
+  Visual wall;
+  VisualPart part;
+  part.color = {0.6, 0.3, 0.2};
+  wall.parts.push_back(part);
+  ImageGenerator ig(d, {{"test.wall", wall}}, kWidth, kHeight);
+  const auto picture = [&](const core::Vec3& offset, bool detail) {
+    ig.set_surface_detail(detail);
+    View v;
+    v.kind = View::Kind::kFree;
+    v.position_m = core::Vec3{-12.0, 0.0, 30.0} + offset;
+    v.yaw_rad = 0.0;
+    v.pitch_rad = 0.0;
+    v.fov_vertical_rad = 0.8;
+    v.hud = false;
+    ig.set_view(v);
+    scene::Snapshot s;
+    s.time_of_day_h = 12.0;
+    s.visibility_m = 1e6;
+    s.entity_count = 1;
+    s.entities[0] = {0, 0, {core::Mat3::identity(), core::Vec3{0.0, 0.0, 30.0} + offset}};
+    ig.update(s);
+    const osg::Image& image = ig.render();
+    std::vector<double> l;
+    for (int y = 0; y < kHeight; ++y)
+      for (int x = 0; x < kWidth; ++x)
+        l.push_back(luminance(pixel(image, x, y)));
+    return l;
+  };
+  const auto spread = [](const std::vector<double>& l) {
+    double mean = 0.0, square = 0.0;
+    for (const double v : l)
+      mean += v / static_cast<double>(l.size());
+    for (const double v : l)
+      square += (v - mean) * (v - mean) / static_cast<double>(l.size());
+    return std::sqrt(square) / mean;
+  };
+  const std::vector<double> plain = picture({}, false), detailed = picture({}, true),
+                            moved = picture({0.0, 1.3, 0.7}, true);
+  double largest = 0.0;
+  for (std::size_t k = 0; k < detailed.size(); ++k)
+    largest = std::max(largest, std::abs(moved[k] - detailed[k]));
+  std::printf(
+      "the wall's luminance varies by %.4f (plain) and %.4f (detailed) of its mean; moved, the detailed "
+      "picture differs by at most %.4f\n",
+      spread(plain), spread(detailed), largest);
+  EXPECT_GT(spread(detailed), 0.02);
+  EXPECT_GT(spread(detailed), 4.0 * spread(plain));
+  EXPECT_LT(largest, 3.0 / 255.0);
 }
 
 TEST(ImageGenerator, RainStreaksPastTheEyeFallTheWayTheDropsFall) {

@@ -64,6 +64,7 @@ int take_screenshot(const ScreenshotOptions& options) {
   ig::ImageGenerator generator(simulation.scene(), std::move(looks.visuals), options.width, options.height,
                                options.multisamples);
   if (options.soft_shadows) generator.set_soft_shadows(*options.soft_shadows);
+  if (options.surface_detail) generator.set_surface_detail(*options.surface_detail);
   generator.use(looks);
   generator.update(*simulation.snapshot());
   if (const bulk::BulkWorld* material = simulation.bulk()) {

@@ -17,9 +17,10 @@ struct ScreenshotOptions {
   std::optional<double> time_of_day_h, visibility_m, rain_mm_per_h;  ///< instructor settings at the start
   /// the free view's camera: x, y, z [m], yaw and pitch [deg] (yaw from +x towards +y)
   std::vector<double> camera;
-  std::vector<std::string> commands;  ///< instructor commands on the way there, AT:KIND[:VALUES] (as `run`)
-  std::optional<bool> soft_shadows;   ///< filtered shadow edges (unset: the renderer's default)
-  std::optional<int> multisamples;    ///< anti-aliasing samples per pixel (unset: the renderer's default)
+  std::vector<std::string> commands;   ///< instructor commands on the way there, AT:KIND[:VALUES] (as `run`)
+  std::optional<bool> soft_shadows;    ///< filtered shadow edges (unset: the renderer's default)
+  std::optional<bool> surface_detail;  ///< surfaces with detail textures (unset: the renderer's default)
+  std::optional<int> multisamples;     ///< anti-aliasing samples per pixel (unset: the renderer's default)
   std::string looks;  ///< a look file to draw with (empty: the shipped data/visuals/harbour.yaml)
 };
 int take_screenshot(const ScreenshotOptions& options);

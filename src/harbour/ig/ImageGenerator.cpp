@@ -34,6 +34,7 @@
 
 #include "harbour/core/Rng.h"
 #include "harbour/ig/HeadlessContext.h"
+#include "harbour/ig/Materials.h"
 #include "harbour/ig/Models.h"
 #include "harbour/ig/Sky.h"
 
@@ -85,9 +86,12 @@ osg::Vec4 rgba(const core::Vec3& c) {
   return {static_cast<float>(c.x), static_cast<float>(c.y), static_cast<float>(c.z), 1.0f};
 }
 
+// the quay's concrete paving, dry
+const osg::Vec4 kQuayPaving = finished({0.42f, 0.42f, 0.40f, 1.0f}, Surface::kConcrete);
+
 // a flat rectangle at height z, cut into cells so that per-vertex fog and lighting vary over it
 osg::ref_ptr<osg::Geode> tessellated_plane(double x0, double x1, double y0, double y1, double z, double cell,
-                                           const core::Vec3& color) {
+                                           const osg::Vec4& color) {
   osg::ref_ptr<osg::Geometry> geometry = new osg::Geometry();
   osg::ref_ptr<osg::Vec3Array> vertices = new osg::Vec3Array();
   osg::ref_ptr<osg::Vec3Array> normals = new osg::Vec3Array();
@@ -108,7 +112,7 @@ osg::ref_ptr<osg::Geode> tessellated_plane(double x0, double x1, double y0, doub
   geometry->setVertexArray(vertices);
   geometry->setNormalArray(normals, osg::Array::BIND_PER_VERTEX);
   osg::ref_ptr<osg::Vec4Array> colors = new osg::Vec4Array();
-  colors->push_back(rgba(color));
+  colors->push_back(color);
   geometry->setColorArray(colors, osg::Array::BIND_OVERALL);
   geometry->addPrimitiveSet(new osg::DrawArrays(GL_QUADS, 0, static_cast<int>(vertices->size())));
   osg::ref_ptr<osg::Geode> geode = new osg::Geode();
@@ -200,24 +204,34 @@ class ModelCache {
  public:
   osg::ref_ptr<osg::Node> detailed(const VisualPart& part, const core::Vec3& size, const core::Vec3& color) {
     const bool container = part.shape == VisualPart::Shape::kContainer;
-    const std::array<double, 10> key{
-        container ? 1.0 : 0.0, size.x,           size.y,          size.z, color.x, color.y, color.z,
-        part.rim_color.x,      part.rim_color.y, part.rim_color.z};
+    const std::array<double, 11> key{container ? 1.0 : 0.0,
+                                     size.x,
+                                     size.y,
+                                     size.z,
+                                     color.x,
+                                     color.y,
+                                     color.z,
+                                     part.rim_color.x,
+                                     part.rim_color.y,
+                                     part.rim_color.z,
+                                     static_cast<double>(part.surface)};
+    const osg::Vec4 paint = finished(rgba(color), part.surface);
     osg::ref_ptr<osg::Node>& node = nodes_[key];
     if (node) return node;
     osg::ref_ptr<osg::Geode> near = new osg::Geode, far = new osg::Geode;
     osg::ref_ptr<osg::LOD> lod = new osg::LOD;
     if (container) {
-      near->addDrawable(iso_container(size, rgba(color)));
+      near->addDrawable(iso_container(size, paint));
       osg::ref_ptr<osg::ShapeDrawable> box = new osg::ShapeDrawable(new osg::Box(
           osg::Vec3(), static_cast<float>(size.x), static_cast<float>(size.y), static_cast<float>(size.z)));
-      box->setColor(rgba(color));
+      box->setColor(paint);
       far->addDrawable(box);
       lod->addChild(near, 0.0f, kContainerDetail_m);
       lod->addChild(far, kContainerDetail_m, std::numeric_limits<float>::max());
     } else {
-      near->addDrawable(tyre(size, rgba(color), rgba(part.rim_color), 36));
-      far->addDrawable(tyre(size, rgba(color), rgba(part.rim_color), 12));
+      const osg::Vec4 rim = finished(rgba(part.rim_color), part.surface);
+      near->addDrawable(tyre(size, rgba(color), rim, 36));
+      far->addDrawable(tyre(size, rgba(color), rim, 12));
       lod->addChild(near, 0.0f, kTyreDetail_m);
       lod->addChild(far, kTyreDetail_m, std::numeric_limits<float>::max());
     }
@@ -227,7 +241,7 @@ class ModelCache {
 
  private:
   static constexpr float kContainerDetail_m = 150.0f, kTyreDetail_m = 80.0f;
-  std::map<std::array<double, 10>, osg::ref_ptr<osg::Node>> nodes_;
+  std::map<std::array<double, 11>, osg::ref_ptr<osg::Node>> nodes_;
 };
 
 namespace {
@@ -289,62 +303,133 @@ struct SkyShade {
 
 namespace {
 
-// The lit scene's shading: the fixed pipeline's per-vertex lighting (the geometry's colour as ambient and
-// diffuse; the sun as light 0, floodlights as lights 1..n with their attenuation) and its exponential fog,
-// with the sun's diffuse part dimmed where the shadow map says the sun is hidden. A wet surface (the quay in
-// rain) carries a water film per pixel: it mirrors the sky by Fresnel's reflectance, shows the sun's and the
-// floodlights' glare, and rings where drops land: a program of its own (the sources with WET defined), since
-// llvmpipe shades both sides of a branch and the film cost every dry pixel as much as the rest of the frame.
+// The lit scene's shading, physically based: each surface's colour and its finish (ig/Materials.h: its
+// roughness and metalness, carried in the colour's alpha) lit by the sun (light 0: its diffuse as what a
+// white matt surface facing it shows, dimmed where the shadow map says the sun is hidden), the sky's light
+// (light 0's ambient) and the floodlights (lights 1..n, their attenuation). Per pixel the sun's diffuse light
+// and its glint by the GGX microfacet distribution with Smith's visibility (Schlick-GGX) and Schlick's
+// Fresnel; per vertex the sky's and the floodlights' diffuse light and the sky mirrored by the surface (the
+// horizon's and the zenith's colours along the reflected ray, the ground's under it, blurred towards the
+// sky's mean as the surface roughens) weighted by Karis's analytic fit of the split-sum environment term.
+// With DETAIL, surface detail from a tileable noise texture laid on the object's own faces (it rides the
+// machine): blotches that vary the colour and the roughness (worn paint, stained concrete), a fine grain that
+// bumps the normal, and on upright faces streaks running down (rust under paint, water stains on concrete),
+// each as strong as the finish says. A highlight beyond white is rolled off by a shoulder (identity to 0.8,
+// then 0.8 + 0.2 x / (x + 0.2), x = c - 0.8), not clipped; then the fog per pixel. With WET (the quay in
+// rain) a water film per pixel: it mirrors the sky by Fresnel's reflectance, shows the sun's and the
+// floodlights' glare, and rings where drops land. Each combination is a program of its own, since llvmpipe
+// shades both sides of a branch (the film in a branch cost every dry pixel as much as the rest of the frame).
 constexpr char kLitVertexShader[] = R"(
-uniform int floodlights;  // lights 1..floodlights are on
-varying vec4 unshadowed;  // ambient and floodlight
-varying vec4 sunlit;      // the sun's diffuse part
-varying float fog_depth;
-#ifdef WET
+uniform int floodlights;   // lights 1..floodlights are on
+uniform vec4 finishes[8];  // (roughness, metalness, texture, weathering) by surface (ig/Materials.h)
+varying vec3 unshadowed;   // the sky's and the floodlights' light on a white matt surface
+varying vec3 sky_reflected;
+varying vec3 base_colour;
+varying vec4 finish;
 varying vec3 eye_position;
 varying vec3 eye_normal;
+#ifdef DETAIL
+varying vec3 object_position;  // where the surface detail is laid
+varying vec3 object_normal;
 #endif
+uniform vec3 sky_horizon;  // the sky that surfaces mirror
+uniform vec3 sky_zenith;
+uniform mat4 osg_ViewMatrix;
+// the sky mirrored along `r` (the ground's light under the horizon: paving of albedo 0.3 under the sky),
+// blurred towards the sky's mean as the surface roughens, times Karis's (2014) fit of the preintegrated
+// environment term for reflectance `f0`; per vertex (the sky's gradient is smooth)
+vec3 sky_reflection(vec3 n, vec3 v, vec3 f0, float roughness) {
+  vec3 r = reflect(-v, n);
+  float up = dot(r, osg_ViewMatrix[2].xyz);
+  vec3 sky_light = gl_LightSource[0].ambient.rgb;
+  vec3 mirrored = up > 0.0 ? mix(sky_horizon, sky_zenith, sqrt(up)) : 0.3 * sky_light;
+  vec3 seen = mix(mirrored, sky_light, roughness);
+  const vec4 c0 = vec4(-1.0, -0.0275, -0.572, 0.022);
+  const vec4 c1 = vec4(1.0, 0.0425, 1.04, -0.04);
+  vec4 fit = roughness * c0 + c1;
+  float a004 = min(fit.x * fit.x, exp2(-9.28 * max(dot(n, v), 0.0))) * fit.x + fit.y;
+  vec2 ab = vec2(-1.04, 1.04) * a004 + fit.zw;
+  return seen * (f0 * ab.x + ab.y);
+}
 void main() {
   vec4 eye = gl_ModelViewMatrix * gl_Vertex;
   vec3 n = normalize(gl_NormalMatrix * gl_Normal);
-#ifdef WET
   eye_position = eye.xyz;
   eye_normal = n;
+#ifdef DETAIL
+  object_position = gl_Vertex.xyz;
+  object_normal = gl_Normal;
 #endif
-  vec4 colour = gl_Color;
-  unshadowed = gl_LightModel.ambient * colour + gl_LightSource[0].ambient * colour;
-  sunlit = max(dot(n, normalize(gl_LightSource[0].position.xyz)), 0.0) * gl_LightSource[0].diffuse * colour;
+  finish = finishes[int(clamp(floor((1.0 - gl_Color.a) * 16.0 + 0.5), 0.0, 7.0))];
+  base_colour = gl_Color.rgb;
+  sky_reflected = sky_reflection(n, normalize(-eye.xyz), mix(vec3(0.04), base_colour, finish.y), finish.x);
+  unshadowed = gl_LightModel.ambient.rgb + gl_LightSource[0].ambient.rgb;
   for (int i = 1; i < 8; ++i) {
     if (i > floodlights) break;
     vec3 to_light = gl_LightSource[i].position.xyz - eye.xyz;
     float d = length(to_light);
     float attenuation = 1.0 / (gl_LightSource[i].constantAttenuation + gl_LightSource[i].linearAttenuation * d +
                                gl_LightSource[i].quadraticAttenuation * d * d);
-    unshadowed += max(dot(n, to_light / d), 0.0) * attenuation * gl_LightSource[i].diffuse * colour;
+    unshadowed += max(dot(n, to_light / d), 0.0) * attenuation * gl_LightSource[i].diffuse.rgb;
   }
   gl_TexCoord[1] = vec4(dot(eye, gl_EyePlaneS[1]), dot(eye, gl_EyePlaneT[1]), dot(eye, gl_EyePlaneR[1]),
                         dot(eye, gl_EyePlaneQ[1]));
-  fog_depth = length(eye.xyz);
   gl_Position = gl_ProjectionMatrix * eye;
 }
 )";
 constexpr char kLitFragmentShader[] = R"(
 uniform sampler2DShadow shadowTexture0;
 uniform bool sun_shadows;  // off in the insets' small pictures (no shadow map of their own)
-varying vec4 unshadowed;
-varying vec4 sunlit;
-varying float fog_depth;
-uniform bool soft_shadows;  // filtered edges (ImageGenerator::set_soft_shadows)
-#ifdef WET
+varying vec3 unshadowed;
+varying vec3 sky_reflected;
+varying vec3 base_colour;
+varying vec4 finish;
 varying vec3 eye_position;
 varying vec3 eye_normal;
+#ifdef DETAIL
+uniform sampler2D detail_texture;  // 4 m a tile: blotches, grain, streaks (surface_detail_texture)
+varying vec3 object_position;
+varying vec3 object_normal;
+#endif
+uniform bool soft_shadows;  // filtered edges (ImageGenerator::set_soft_shadows)
+uniform vec3 sky_horizon;   // the sky that surfaces mirror
+uniform vec3 sky_zenith;
+uniform mat4 osg_ViewMatrix;
+// Schlick's Fresnel term from the reflectance at normal incidence `f0`, at an angle of cosine `c`
+vec3 schlick(vec3 f0, float c) {
+  float m = 1.0 - max(c, 0.0);
+  float m2 = m * m;
+  return f0 + (1.0 - f0) * (m2 * m2 * m);
+}
+// the sun's glint: GGX's distribution (alpha = roughness^2), Smith's visibility with Schlick-GGX's k = alpha/2,
+// Schlick's Fresnel; in the units of the sun's diffuse light (what a white matt surface facing it shows: the
+// irradiance over pi), so the glint is pi D V F (n.l) times it
+vec3 sun_glint(vec3 n, vec3 v, vec3 l, vec3 f0, float roughness) {
+  vec3 h = normalize(l + v);
+  float nl = max(dot(n, l), 0.0), nv = max(dot(n, v), 1e-3), nh = max(dot(n, h), 0.0);
+  float a = max(roughness * roughness, 2e-3);
+  float a2 = a * a;
+  float d = nh * nh * (a2 - 1.0) + 1.0;
+  float k = 0.5 * a;
+  float visibility = 0.25 / ((nl * (1.0 - k) + k) * (nv * (1.0 - k) + k));
+  return schlick(f0, dot(v, h)) * (a2 / (d * d) * visibility * nl) * gl_LightSource[0].diffuse.rgb;
+}
+#ifdef DETAIL
+// the normal `n` bumped by the height field `h` (m) over the surface: Mikkelsen's (2010) surface gradient
+// from the screen-space derivatives of the position and the height
+vec3 bumped(vec3 n, float h) {
+  vec3 dpdx = dFdx(eye_position), dpdy = dFdy(eye_position);
+  vec3 r1 = cross(dpdy, n), r2 = cross(n, dpdx);
+  float det = dot(dpdx, r1);
+  vec3 gradient = sign(det) * (dFdx(h) * r1 + dFdy(h) * r2);
+  return normalize(abs(det) * n - gradient);
+}
+#endif
+#ifdef WET
 uniform int floodlights;
 uniform float wetness;      // this surface's water film: 0 dry, 1 wet through
 uniform float splash_rate;  // drops whose splash shows, per square metre and second
 uniform float time_s;
-uniform vec3 sky_horizon;   // the sky the film mirrors
-uniform vec3 sky_zenith;
-uniform mat4 osg_ViewMatrix;
 uniform mat4 osg_ViewMatrixInverse;
 float hash(vec2 p) {
   return fract(sin(dot(p, vec2(127.1, 311.7))) * 43758.5453);
@@ -372,8 +457,7 @@ vec3 glare(vec3 n, vec3 v, vec3 to_light, vec3 light) {
   return fresnel(dot(v, h)) * (408.0 / 25.13) * pow(max(dot(n, h), 0.0), 400.0) * max(dot(n, to_light), 0.0) *
          light;
 }
-vec3 wet(vec3 colour, float lit) {
-  vec3 n = normalize(eye_normal), v = normalize(-eye_position);
+vec3 wet(vec3 colour, float lit, vec3 n, vec3 v, float distance) {
   vec3 up = osg_ViewMatrix[2].xyz;
   vec3 r = reflect(-v, n);
   vec3 sky = mix(sky_horizon, sky_zenith, sqrt(max(dot(r, up), 0.0)));
@@ -389,7 +473,7 @@ vec3 wet(vec3 colour, float lit) {
     c += wetness * 4.0 * glare(n, v, to_light / d, gl_LightSource[i].diffuse.rgb * attenuation);
   }
   vec2 xy = (osg_ViewMatrixInverse * vec4(eye_position, 1.0)).xy;
-  float near = clamp(1.0 - fog_depth / 35.0, 0.0, 1.0);  // a ring's width is under a pixel farther off
+  float near = clamp(1.0 - distance / 35.0, 0.0, 1.0);  // a ring's width is under a pixel farther off
   return c + splash(xy) * near * 0.8 * gl_LightSource[0].ambient.rgb;
 }
 #endif
@@ -408,11 +492,36 @@ void main() {
   vec4 at = gl_TexCoord[1];
   at.z -= 0.0015 * at.w;  // towards the sun: no self-shadowing on lit faces, the filter's taps included
   float lit = !sun_shadows ? 1.0 : soft_shadows ? sun_visible(at) : shadow2DProj(shadowTexture0, at).r;
-  vec3 colour = min(unshadowed + sunlit * lit, vec4(1.0)).rgb;
-#ifdef WET
-  colour = min(wet(colour, lit), vec3(1.0));
+  float roughness = finish.x, metalness = finish.y;
+  vec3 tint = vec3(1.0);
+  vec3 n = normalize(eye_normal);
+#ifdef DETAIL
+  // the detail on the face's own plane (the object's frame, z up): blotches (r), grain (g), streaks (b)
+  vec3 across = abs(object_normal);
+  vec2 on_face = across.z > 0.7 ? object_position.xy
+                                : (across.x > across.y ? object_position.yz : object_position.xz);
+  vec4 detail = texture2D(detail_texture, on_face * 0.25);
+  // blotches at two scales, the larger turned 30 degrees and 4.33 times as large: no 4 m grid shows
+  float large = texture2D(detail_texture, mat2(0.866, 0.5, -0.5, 0.866) * on_face * (0.25 / 4.33)).r;
+  float blotch = 0.5 * (detail.r - 0.5) + 0.5 * (large - 0.5);
+  float streak = (1.0 - smoothstep(0.3, 0.5, across.z)) * smoothstep(0.72, 0.95, detail.b) * finish.w;
+  tint = (1.0 + finish.z * blotch) * mix(vec3(1.0), vec3(0.72, 0.55, 0.42), 0.5 * streak);
+  roughness = clamp(roughness + 0.5 * finish.z * blotch, 0.03, 1.0);
+  n = bumped(n, 0.004 * finish.z * (detail.g - 0.5));
 #endif
-  float fog = clamp(exp(-gl_Fog.density * fog_depth), 0.0, 1.0);
+  float distance = length(eye_position);
+  vec3 v = -eye_position / distance, l = gl_LightSource[0].position.xyz;  // a unit vector, turned rigidly
+  vec3 colour = base_colour * tint;
+  vec3 diffuse = colour * (1.0 - metalness);  // a metal's diffuse part is nil
+  vec3 f0 = mix(vec3(0.04), colour, metalness);  // 4 % for a dielectric, a metal's colour
+  colour = (unshadowed + lit * max(dot(n, l), 0.0) * gl_LightSource[0].diffuse.rgb) * diffuse +
+           sky_reflected * mix(vec3(1.0), tint, metalness) + lit * sun_glint(n, v, l, f0, roughness);
+#ifdef WET
+  colour = wet(colour, lit, normalize(eye_normal), v, distance);  // the film is smooth over the grain
+#endif
+  vec3 over = max(colour - 0.8, 0.0);
+  colour = min(colour, 0.8) + 0.2 * over / (over + 0.2);  // the highlights' shoulder
+  float fog = clamp(exp(-gl_Fog.density * distance), 0.0, 1.0);
   gl_FragColor = vec4(mix(gl_Fog.color.rgb, colour, fog), 1.0);
 }
 )";
@@ -553,37 +662,71 @@ osg::ref_ptr<osg::Geometry> dome_geometry(double radius, double lowest, int ring
   return dome;
 }
 
-// a tileable field of value noise (four octaves, 256 x 256): the clouds' thickness
-osg::ref_ptr<osg::Image> cloud_noise() {
-  constexpr int kSize = 256;
-  core::Rng rng(0xC10D5);
-  std::vector<double> sum(kSize * kSize, 0.0);
+// Tileable value noise over a `size` x `size` tile: `octaves` layers, the first of `cells_x` x `cells_y`
+// lattice cells over the tile, each next twice as fine and half as strong (smoothstep between lattice
+// values); 0-1, normalised by the layers' weights.
+std::vector<double> tileable_noise(core::Rng& rng, int size, int cells_x, int cells_y, int octaves) {
+  std::vector<double> sum(static_cast<std::size_t>(size * size), 0.0);
   double weight = 0.0, amplitude = 1.0;
-  for (int cells = 4; cells <= 32; cells *= 2, amplitude *= 0.5) {
-    std::vector<double> lattice(static_cast<std::size_t>(cells * cells));
+  for (int octave = 0; octave < octaves; ++octave, cells_x *= 2, cells_y *= 2, amplitude *= 0.5) {
+    std::vector<double> lattice(static_cast<std::size_t>(cells_x * cells_y));
     for (double& v : lattice)
       v = rng.uniform();
     const auto at = [&](int i, int j) {
-      return lattice[static_cast<std::size_t>(((j % cells) + cells) % cells * cells +
-                                              ((i % cells) + cells) % cells)];
+      return lattice[static_cast<std::size_t>(((j % cells_y) + cells_y) % cells_y * cells_x +
+                                              ((i % cells_x) + cells_x) % cells_x)];
     };
-    for (int y = 0; y < kSize; ++y)
-      for (int x = 0; x < kSize; ++x) {
-        const double u = static_cast<double>(x) * cells / kSize, v = static_cast<double>(y) * cells / kSize;
+    for (int y = 0; y < size; ++y)
+      for (int x = 0; x < size; ++x) {
+        const double u = static_cast<double>(x) * cells_x / size, v = static_cast<double>(y) * cells_y / size;
         const int i = static_cast<int>(u), j = static_cast<int>(v);
         const double fx = u - i, fy = v - j;
         const double sx = fx * fx * (3 - 2 * fx), sy = fy * fy * (3 - 2 * fy);
         const double top = at(i, j) + (at(i + 1, j) - at(i, j)) * sx;
         const double bottom = at(i, j + 1) + (at(i + 1, j + 1) - at(i, j + 1)) * sx;
-        sum[static_cast<std::size_t>(y * kSize + x)] += amplitude * (top + (bottom - top) * sy);
+        sum[static_cast<std::size_t>(y * size + x)] += amplitude * (top + (bottom - top) * sy);
       }
     weight += amplitude;
   }
+  for (double& v : sum)
+    v /= weight;
+  return sum;
+}
+
+unsigned char byte_of(double v) {
+  return static_cast<unsigned char>(std::lround(255.0 * std::clamp(v, 0.0, 1.0)));
+}
+
+// the cloud deck's thickness: four octaves from 4 cells a tile
+osg::ref_ptr<osg::Image> cloud_noise() {
+  constexpr int kSize = 256;
+  core::Rng rng(0xC10D5);
+  const std::vector<double> noise = tileable_noise(rng, kSize, 4, 4, 4);
   osg::ref_ptr<osg::Image> image = new osg::Image;
   image->allocateImage(kSize, kSize, 1, GL_LUMINANCE, GL_UNSIGNED_BYTE);
   for (int k = 0; k < kSize * kSize; ++k)
-    image->data()[k] = static_cast<unsigned char>(
-        std::lround(255.0 * std::clamp(sum[static_cast<std::size_t>(k)] / weight, 0.0, 1.0)));
+    image->data()[k] = byte_of(noise[static_cast<std::size_t>(k)]);
+  return image;
+}
+
+// The lit surfaces' detail, a 4 m tile: blotches 1 m down to 25 cm (red), a grain 12 down to 3 cm (green),
+// and streaks 12 cm wide and 2 m long along the tile's second axis (blue: up an upright face), their
+// contrast stretched (x 2 about the middle) so that the shader's thresholds find them.
+osg::ref_ptr<osg::Image> surface_detail_texture() {
+  constexpr int kSize = 256;
+  core::Rng rng(0xDE7A1);
+  const std::vector<double> blotches = tileable_noise(rng, kSize, 4, 4, 3);
+  const std::vector<double> grain = tileable_noise(rng, kSize, 32, 32, 3);
+  const std::vector<double> streaks = tileable_noise(rng, kSize, 32, 2, 3);
+  osg::ref_ptr<osg::Image> image = new osg::Image;
+  image->allocateImage(kSize, kSize, 1, GL_RGBA, GL_UNSIGNED_BYTE);
+  for (std::size_t k = 0; k < blotches.size(); ++k) {
+    unsigned char* texel = image->data() + 4 * k;
+    texel[0] = byte_of(0.5 + 2.0 * (blotches[k] - 0.5));
+    texel[1] = byte_of(0.5 + 2.0 * (grain[k] - 0.5));
+    texel[2] = byte_of(0.5 + 2.0 * (streaks[k] - 0.5));
+    texel[3] = 255;
+  }
   return image;
 }
 
@@ -628,6 +771,7 @@ ImageGenerator::ImageGenerator(const scene::SceneDescription& scene, std::map<st
   viewer_->getCamera()->attach(osg::Camera::COLOR_BUFFER, image_.get());
   viewer_->realize();
   set_soft_shadows(!software);
+  set_surface_detail(!software);
   if (const int samples = multisamples.value_or(software ? 0 : kDefaultMultisamples); samples > 1)
     draw_multisampled(samples);
 }
@@ -701,6 +845,18 @@ void ImageGenerator::set_soft_shadows(bool on) {
   soft_shadows_->set(on);
 }
 
+void ImageGenerator::set_surface_detail(bool on) {
+  surface_detail_ = on;
+  for (osg::Group* lit : {static_cast<osg::Group*>(shadowed_.get()), unshadowed_.get()})
+    lit->getOrCreateStateSet()->setAttribute(lit_programs_[0][on]);
+  for (const osg::ref_ptr<osg::StateSet>& quay : quay_states_)
+    if (quay->getAttribute(osg::StateAttribute::PROGRAM)) quay->setAttribute(lit_programs_[1][on]);
+}
+
+bool ImageGenerator::surface_detail() const {
+  return surface_detail_;
+}
+
 std::vector<double> ImageGenerator::tyre_angles() const {
   std::vector<double> angles;
   for (const TurningPart& part : turning_parts_)
@@ -754,18 +910,17 @@ void ImageGenerator::build_lighting() {
     settings->setCastsShadowTraversalMask(kCastsShadow);
     shadowed_ = new osgShadow::ShadowedScene(new osgShadow::ViewDependentShadowMap);
     shadowed_->setShadowSettings(settings);
-    osg::ref_ptr<osg::Program> program = new osg::Program;
-    program->addShader(
-        new osg::Shader(osg::Shader::VERTEX, std::string("#version 120\n") + kLitVertexShader));
-    program->addShader(
-        new osg::Shader(osg::Shader::FRAGMENT, std::string("#version 120\n") + kLitFragmentShader));
-    wet_program_ = new osg::Program;
-    wet_program_->addShader(
-        new osg::Shader(osg::Shader::VERTEX, std::string("#version 120\n#define WET\n") + kLitVertexShader));
-    wet_program_->addShader(new osg::Shader(osg::Shader::FRAGMENT,
-                                            std::string("#version 120\n#define WET\n") + kLitFragmentShader));
+    // the lit shaders' four programs: dry or wet (the film), plain or with surface detail
+    for (const bool wet : {false, true})
+      for (const bool detail : {false, true}) {
+        const std::string defines =
+            std::string("#version 120\n") + (wet ? "#define WET\n" : "") + (detail ? "#define DETAIL\n" : "");
+        osg::ref_ptr<osg::Program>& program = lit_programs_[wet][detail];
+        program = new osg::Program;
+        program->addShader(new osg::Shader(osg::Shader::VERTEX, defines + kLitVertexShader));
+        program->addShader(new osg::Shader(osg::Shader::FRAGMENT, defines + kLitFragmentShader));
+      }
     osg::StateSet* lit = shadowed_->getOrCreateStateSet();
-    lit->setAttribute(program);
     floodlights_on_ = new osg::Uniform("floodlights", 0);
     lit->addUniform(floodlights_on_);
     lit->addUniform(new osg::Uniform("sun_shadows", true));
@@ -776,17 +931,37 @@ void ImageGenerator::build_lighting() {
              new osg::Uniform("sky_horizon", osg::Vec3()), new osg::Uniform("sky_zenith", osg::Vec3())};
     for (const osg::ref_ptr<osg::Uniform>& u : film_)
       lit->addUniform(u);
+    osg::ref_ptr<osg::Uniform> finishes =
+        new osg::Uniform(osg::Uniform::FLOAT_VEC4, "finishes", static_cast<int>(kSurfaceFinishes.size()));
+    for (std::size_t k = 0; k < kSurfaceFinishes.size(); ++k) {
+      const SurfaceFinish& f = kSurfaceFinishes[k];
+      finishes->setElement(static_cast<unsigned>(k),
+                           osg::Vec4(f.roughness, f.metalness, f.texture, f.weathering));
+    }
+    lit->addUniform(finishes);
+    // the surfaces' detail texture on unit 2 (the shadow map's is 1), mipmapped: the grain fades to flat
+    // with distance instead of shimmering
+    osg::ref_ptr<osg::Texture2D> detail = new osg::Texture2D(surface_detail_texture());
+    detail->setWrap(osg::Texture::WRAP_S, osg::Texture::REPEAT);
+    detail->setWrap(osg::Texture::WRAP_T, osg::Texture::REPEAT);
+    detail->setFilter(osg::Texture::MIN_FILTER, osg::Texture::LINEAR_MIPMAP_LINEAR);
+    detail->setFilter(osg::Texture::MAG_FILTER, osg::Texture::LINEAR);
+    osg::ref_ptr<osg::Uniform> detail_unit = new osg::Uniform("detail_texture", 2);
+    lit->setTextureAttribute(2, detail);
+    lit->addUniform(detail_unit);
     // the same nodes lit the same way but without a shadow pass, for the insets: a camera drawing the
     // shadowed scene draws a 1024^2 shadow map of its own, which cost an inset more than its picture
     shadowed_->setNodeMask(kMainView | kCastsShadow);  // the shadow pass bounds its casters from here
     unshadowed_ = new osg::Group;
     unshadowed_->setNodeMask(kInsetViews);
     osg::StateSet* inset_lit = unshadowed_->getOrCreateStateSet();
-    inset_lit->setAttribute(program);
     inset_lit->addUniform(floodlights_on_);
     inset_lit->addUniform(new osg::Uniform("sun_shadows", false));
     for (const osg::ref_ptr<osg::Uniform>& u : film_)
       inset_lit->addUniform(u);
+    inset_lit->addUniform(finishes);
+    inset_lit->setTextureAttribute(2, detail);
+    inset_lit->addUniform(detail_unit);
   }
   fog_ = new osg::Fog;
   fog_->setMode(osg::Fog::EXP);
@@ -890,7 +1065,7 @@ void ImageGenerator::build_clouds() {
 
 // the quay (its top at z = 0, up to its edge at x = 18 m), the rain, the harbour's water beyond
 void ImageGenerator::build_quay_and_water() {
-  osg::ref_ptr<osg::Geode> apron = tessellated_plane(-60.0, 18.0, -80.0, 80.0, 0.0, 3.0, {0.42, 0.42, 0.40});
+  osg::ref_ptr<osg::Geode> apron = tessellated_plane(-60.0, 18.0, -80.0, 80.0, 0.0, 3.0, kQuayPaving);
   quay_color_ = static_cast<osg::Vec4Array*>(apron->getDrawable(0)->asGeometry()->getColorArray());
   quay_wetness_ = new osg::Uniform("wetness", 0.0f);
   apron->getOrCreateStateSet()->addUniform(quay_wetness_);
@@ -900,7 +1075,7 @@ void ImageGenerator::build_quay_and_water() {
   for (const auto& [x0, x1, y0, y1] :
        {std::array{-300.0, -60.0, -400.0, 400.0}, std::array{-60.0, 18.0, -400.0, -80.0},
         std::array{-60.0, 18.0, 80.0, 400.0}}) {
-    osg::ref_ptr<osg::Geode> part = tessellated_plane(x0, x1, y0, y1, 0.0, 20.0, {0.42, 0.42, 0.40});
+    osg::ref_ptr<osg::Geode> part = tessellated_plane(x0, x1, y0, y1, 0.0, 20.0, kQuayPaving);
     part->getDrawable(0)->asGeometry()->setColorArray(quay_color_, osg::Array::BIND_OVERALL);  // wet together
     part->getOrCreateStateSet()->addUniform(quay_wetness_);
     quay_states_.push_back(part->getOrCreateStateSet());
@@ -912,7 +1087,8 @@ void ImageGenerator::build_quay_and_water() {
   root_->addChild(rain_);
   // the water: a grid round the eye moved every frame, over a flat sea to the horizon (below its troughs)
   far_water_ = new osg::MatrixTransform;
-  far_water_->addChild(tessellated_plane(-4000.0, 4000.0, -4000.0, 4000.0, -4.0, 400.0, {0.04, 0.12, 0.17}));
+  far_water_->addChild(
+      tessellated_plane(-4000.0, 4000.0, -4000.0, 4000.0, -4.0, 400.0, rgba({0.04, 0.12, 0.17})));
   // the water after everything solid, the far sea after the near: a pixel something hides is never shaded
   // (the depth test runs before the shader; a software rasteriser spends most of a frame shading)
   far_water_->getOrCreateStateSet()->setRenderBinDetails(kFarWaterBin, "RenderBin");
@@ -1018,6 +1194,7 @@ void ImageGenerator::draw_entity(osg::MatrixTransform& transform_node,
       const core::Vec3 color =
           part.livery ? look->second.liveries[scene::livery_key(e.name) % look->second.liveries.size()]
                       : part.color;
+      const osg::Vec4 paint = finished(rgba(color), part.surface);
       // a part turned or turning has a transform of its own, and is drawn about its origin in it
       const bool own_frame = part.yaw_rad != 0.0 || part.turn.has_value() || !part.rolls_with.empty();
       osg::ref_ptr<osg::MatrixTransform> frame = transform;
@@ -1051,7 +1228,7 @@ void ImageGenerator::draw_entity(osg::MatrixTransform& transform_node,
       if (part.shape == VisualPart::Shape::kMesh) {
         osg::ref_ptr<osg::Node> mesh = read_mesh(part.mesh);
         if (!mesh) throw std::runtime_error("osgDB could not read the mesh " + part.mesh);
-        paint_uncoloured(*mesh, rgba(color));
+        paint_uncoloured(*mesh, paint);
         osg::ref_ptr<osg::MatrixTransform> placed =
             new osg::MatrixTransform(osg::Matrixd::scale(part.scale, part.scale, part.scale) *
                                      osg::Matrixd::translate(to_osg(centre)));
@@ -1060,7 +1237,7 @@ void ImageGenerator::draw_entity(osg::MatrixTransform& transform_node,
         continue;
       }
       if (part.shape == VisualPart::Shape::kLattice) {
-        add_lattice(*drawables, centre, size, part.bay_m, part.member_m, rgba(color));
+        add_lattice(*drawables, centre, size, part.bay_m, part.member_m, paint);
         continue;
       }
       if (part.shape != VisualPart::Shape::kBox) {  // a procedural model, built about its origin
@@ -1070,9 +1247,11 @@ void ImageGenerator::draw_entity(osg::MatrixTransform& transform_node,
         } else {
           osg::ref_ptr<osg::Geode> holder = new osg::Geode;
           holder->addDrawable(part.shape == VisualPart::Shape::kShell
-                                  ? clamshell(size, part.hinge_m, rgba(color))
-                                  : hull(size, rgba(color), rgba(part.bottom_color), part.waterline_m,
-                                         part.deck_color ? rgba(*part.deck_color) : osg::Vec4(0, 0, 0, 0),
+                                  ? clamshell(size, part.hinge_m, paint)
+                                  : hull(size, paint, finished(rgba(part.bottom_color), part.surface),
+                                         part.waterline_m,
+                                         part.deck_color ? finished(rgba(*part.deck_color), part.surface)
+                                                         : osg::Vec4(0, 0, 0, 0),
                                          part.deck_open_from_m, part.deck_open_to_m));
           model = holder;
         }
@@ -1085,7 +1264,7 @@ void ImageGenerator::draw_entity(osg::MatrixTransform& transform_node,
       osg::ref_ptr<osg::ShapeDrawable> box =
           new osg::ShapeDrawable(new osg::Box(to_osg(centre), static_cast<float>(size.x),
                                               static_cast<float>(size.y), static_cast<float>(size.z)));
-      box->setColor(rgba(color));
+      box->setColor(paint);
       drawables->addDrawable(box);
     }
   }
@@ -1370,14 +1549,14 @@ void ImageGenerator::update_sky_and_weather(const scene::Snapshot& s) {
   }
   const double wetness = std::clamp(s.rain_mm_per_h / 2.0, 0.0, 1.0);
   const float dry = 1.0f - 0.35f * static_cast<float>(wetness);
-  (*quay_color_)[0] = osg::Vec4(0.42f * dry, 0.42f * dry, 0.40f * dry, 1.0f);
+  (*quay_color_)[0] = finished(osg::Vec4(0.42f * dry, 0.42f * dry, 0.40f * dry, 1.0f), Surface::kConcrete);
   quay_color_->dirty();
   // the film: wet through from 2 mm/h; splashes that show, 0.75 a square metre and second per mm/h (assumed:
   // the larger drops' crowns; 20 mm/h brings ~1,300 drops a square metre and second in all)
   quay_wetness_->set(static_cast<float>(wetness));
   for (const osg::ref_ptr<osg::StateSet>& quay : quay_states_)
     if (wetness > 0.0)
-      quay->setAttribute(wet_program_);
+      quay->setAttribute(lit_programs_[1][surface_detail_]);
     else
       quay->removeAttribute(osg::StateAttribute::PROGRAM);
   film_[0]->set(static_cast<float>(0.75 * std::max(s.rain_mm_per_h, 0.0)));
@@ -1632,7 +1811,7 @@ void ImageGenerator::set_scenery(const std::vector<SceneryPart>& parts) {
         shape = new osg::Box(centre, static_cast<float>(part.size_m.x), static_cast<float>(part.size_m.y),
                              static_cast<float>(part.size_m.z));
       osg::ref_ptr<osg::ShapeDrawable> drawable = new osg::ShapeDrawable(shape);
-      drawable->setColor(rgba(part.color));
+      drawable->setColor(finished(rgba(part.color), part.surface));
       (part.size_m.z < 0.05 ? flat : standing)->addDrawable(drawable);
     }
   scenery_->addChild(standing);

@@ -195,6 +195,10 @@ class ImageGenerator {
   /// software renderer (software_renderer()), where the nine taps cost a 1280x720 frame ~40 % more.
   void set_soft_shadows(bool on);
   bool soft_shadows() const;
+  /// Surfaces with detail (ig/Materials.h: blotches, grain, streaks from a noise texture) rather than plain:
+  /// on by default except on a software renderer, where they cost a 1280x720 cab frame ~30 % more.
+  void set_surface_detail(bool on);
+  bool surface_detail() const;
   /// Samples per pixel the picture is drawn with (0: one, aliased).
   int multisamples() const;
   /// How far each rolling tyre has turned about its axle [rad, within one turn], in the order of the scene's
@@ -279,7 +283,9 @@ class ImageGenerator {
   void update_near_rain(const osg::Vec3d& eye);
   osg::ref_ptr<osg::Vec4Array> quay_color_;
   osg::ref_ptr<osg::Uniform> quay_wetness_;
-  osg::ref_ptr<osg::Program> wet_program_;                // the lit scene's, with the water film
+  /// the lit scene's programs by [wet][detail]: the water film (the quay takes it while wet), surface detail
+  std::array<std::array<osg::ref_ptr<osg::Program>, 2>, 2> lit_programs_;
+  bool surface_detail_ = false;
   std::vector<osg::ref_ptr<osg::StateSet>> quay_states_;  // take it while the quay is wet
   std::array<osg::ref_ptr<osg::Uniform>, 4> film_;        // splash rate, time, the sky's horizon and zenith
   osg::ref_ptr<osg::Geometry> water_;

@@ -1,5 +1,7 @@
 #include "harbour/ig/Models.h"
 
+#include "harbour/ig/Materials.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -109,7 +111,8 @@ osg::ref_ptr<osg::Geometry> iso_container(const core::Vec3& size_m, const osg::V
   const float hx = static_cast<float>(size_m.x / 2.0), hy = static_cast<float>(size_m.y / 2.0),
               hz = static_cast<float>(size_m.z / 2.0);
   const osg::Vec4 casting = shaded(paint, 0.7f), dark(0.03f, 0.03f, 0.03f, 1.0f),
-                  floor(0.12f, 0.10f, 0.08f, 1.0f), steel(0.55f, 0.56f, 0.57f, 1.0f);
+                  floor(0.12f, 0.10f, 0.08f, 1.0f),
+                  steel = finished({0.55f, 0.56f, 0.57f, 1.0f}, Surface::kGalvanised);
   const osg::Vec3 x(1, 0, 0), y(0, 1, 0), z(0, 0, 1);
 
   // corner castings, each with its apertures (the top's oblong hole, the side's and end's ovals as slots)
@@ -203,7 +206,8 @@ osg::ref_ptr<osg::Geometry> clamshell(const core::Vec3& size_m, double hinge_m, 
   MeshBuilder mesh;
   const float reach = static_cast<float>(size_m.x), half_width = static_cast<float>(size_m.y / 2.0),
               height = static_cast<float>(size_m.z), lip = static_cast<float>(hinge_m);
-  const osg::Vec4 worn(0.42f, 0.40f, 0.37f, 1.0f), edge(0.25f, 0.25f, 0.26f, 1.0f);
+  const osg::Vec4 worn = finished({0.50f, 0.48f, 0.45f, 1.0f}, Surface::kSteel),
+                  edge = finished({0.40f, 0.40f, 0.41f, 1.0f}, Surface::kSteel);
   const osg::Vec3 y(0, 1, 0);
   // the back's profile (x, z) from the lip round to the top of the back: a quarter ellipse about the point
   // above the lip at the back's top height
@@ -333,8 +337,9 @@ int tyre_axis(const core::Vec3& size_m) {
   return -1;
 }
 
-osg::ref_ptr<osg::Geometry> tyre(const core::Vec3& size_m, const osg::Vec4& rubber, const osg::Vec4& rim,
-                                 int segments) {
+osg::ref_ptr<osg::Geometry> tyre(const core::Vec3& size_m, const osg::Vec4& rubber_colour,
+                                 const osg::Vec4& rim, int segments) {
+  const osg::Vec4 rubber = finished(rubber_colour, Surface::kRubber);
   const int axis = std::max(tyre_axis(size_m), 0);
   const std::array<double, 3> s{size_m.x, size_m.y, size_m.z};
   const float radius = static_cast<float>(s[static_cast<std::size_t>((axis + 1) % 3)] / 2.0);

@@ -37,10 +37,10 @@ osg::ref_ptr<osg::Geometry> iso_container(const core::Vec3& size_m, const osg::V
 
 /// A tyre on its rim filling a box of `size_m` round the origin: the axle along the side that differs
 /// from the other two (equal: the diameter). A lugged tread staggered from shoulder to shoulder, rounded
-/// shoulders, sidewalls, a dished rim with its hub and wheel nuts. `segments` round it (the lugs only from
-/// 24 on: a far level of detail draws a smooth tyre).
-osg::ref_ptr<osg::Geometry> tyre(const core::Vec3& size_m, const osg::Vec4& rubber, const osg::Vec4& rim,
-                                 int segments);
+/// shoulders, sidewalls (rubber: ig/Materials.h), a dished rim with its hub and wheel nuts. `segments` round
+/// it (the lugs only from 24 on: a far level of detail draws a smooth tyre).
+osg::ref_ptr<osg::Geometry> tyre(const core::Vec3& size_m, const osg::Vec4& rubber_colour,
+                                 const osg::Vec4& rim, int segments);
 
 /// A clamshell grab's shell hanging from its pivot at the origin, shut: a bucket `size_m.y` wide whose back
 /// curves (a quarter ellipse) from its lip `hinge_m` below the pivot, under the pivot, out to `size_m.x` on

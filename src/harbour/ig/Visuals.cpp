@@ -38,6 +38,17 @@ std::map<std::string, Visual> load_visuals(const std::string& path) {
 
 namespace {
 
+// a part's `material` (ig/Materials.h), paint where it names none
+Surface read_surface(const io::YamlFile& f, const YAML::Node& p, const std::string& at) {
+  if (!f.optional(p, "material", at)) return Surface::kPaint;
+  const std::string name = f.text(p, "material", at);
+  const std::optional<Surface> surface = surface_named(name);
+  if (!surface)
+    f.fail(p["material"], at + ".material",
+           "'" + name + "' is not a material: " + std::string(surface_names()));
+  return *surface;
+}
+
 // one part of a look (`path`: the look file, where a mesh is found)
 VisualPart read_part(const io::YamlFile& f, const YAML::Node& p, const std::string& pat,
                      const std::string& path, const Visual& visual) {
@@ -145,6 +156,7 @@ VisualPart read_part(const io::YamlFile& f, const YAML::Node& p, const std::stri
   if (part.solid &&
       (part.shape != VisualPart::Shape::kBox || !part.size_m || part.turn || part.yaw_rad != 0.0))
     f.fail(p["solid"], pat + ".solid", "only a fixed box with its size written out is solid");
+  part.surface = read_surface(f, p, pat);
   const YAML::Node color = f.required(p, "color", pat);
   if (color.IsScalar() && color.Scalar() == "livery") {
     if (visual.liveries.empty()) f.fail(color, pat + ".color", "a livery colour needs the look's liveries");
@@ -279,6 +291,7 @@ void read_scenery(const io::YamlFile& f, Looks& looks) {
       if (part.size_m.x <= 0 || part.size_m.y <= 0 || part.size_m.z <= 0)
         f.fail(p["size"], at + ".size", "sizes are positive");
       part.color = color_of(f, f.required(p, "color", at), at + ".color");
+      part.surface = read_surface(f, p, at);
       if (f.optional(p, "repeat", at)) {
         part.repeat = f.integer(p, "repeat", at, 1, 500);
         part.step_m = f.vector3(f.required(p, "step", at), at + ".step", 1000.0);

@@ -11,6 +11,7 @@
 #include <osg/ref_ptr>
 
 #include "harbour/core/Vec3.h"
+#include "harbour/ig/Materials.h"
 
 namespace harbour::ig {
 
@@ -42,6 +43,7 @@ struct VisualPart {
   std::optional<core::Vec3> size_m;  ///< full size; empty: the entity's own size
   core::Vec3 centre_m;
   core::Vec3 color{0.5, 0.5, 0.5};                      ///< linear RGB
+  Surface surface = Surface::kPaint;                    ///< what it is made of (a tyre: its rim's)
   bool livery = false;                                  ///< coloured by the entity's livery instead
   double bay_m = 3.0, member_m = 0.25;                  ///< lattice
   core::Vec3 rim_color{0.72, 0.72, 0.70};               ///< tyre: its rim's paint
@@ -124,6 +126,7 @@ struct SceneryPart {
   Shape shape = Shape::kBox;
   core::Vec3 centre_m, size_m;
   core::Vec3 color{0.5, 0.5, 0.5};
+  Surface surface = Surface::kPaint;
   int repeat = 1;
   core::Vec3 step_m;
 };
