@@ -66,7 +66,10 @@ constexpr int kWaterColumns = 96,
               kWaterRows = 64;          // the water's grid, laid over the screen (projected grid)
 constexpr double kWaterFar_m = 3000.0;  // where it ends; a flat sea beyond
 // render bins after the solid scene's (0): the water, then the far sea under it
-constexpr int kWaterBin = 5, kFarWaterBin = 6;
+constexpr int kWaterBin = 5, kFarWaterBin = 6, kSprayBin = 20;
+constexpr int kSprayCells = 64;
+constexpr double kQuayEdge_m = 18.0;  // the quay's top reaches x = 18 m; the harbour's water lies beyond  //
+                                      // spray's grid, 5 m cells: 320 m round the eye
 // node masks: what draws into the sun's shadow map (the ground and flat markings only receive); what the main
 // view draws and what the insets' cameras do (the lit scene with or without the sun's shadows)
 constexpr unsigned kCastsShadow = 0x2u, kReceivesOnly = ~kCastsShadow, kMainView = 0x4u, kInsetViews = 0x8u;
@@ -523,6 +526,61 @@ void main() {
   colour = min(colour, 0.8) + 0.2 * over / (over + 0.2);  // the highlights' shoulder
   float fog = clamp(exp(-gl_Fog.density * distance), 0.0, 1.0);
   gl_FragColor = vec4(mix(gl_Fog.color.rgb, colour, fog), 1.0);
+}
+)";
+// Spray torn off the crests in a gale: puffs on a world-fixed grid of 5 m cells round the eye (kSprayCells
+// across), each cell at most one puff at a time, born at a random moment of its 2.5 s period with the chance
+// `spray_share`; a puff rises and falls (its height `spray_height` times sin(pi age / life)) while the wind
+// carries it at 0.7 of its speed, grows from 1 to 3 m across and fades in and out; over water only (beyond
+// the quay's edge), fading out from 100 to 300 m. Billboards in the eye's frame, drawn out 2.5 times along
+// the wind, white in the light the foam takes, fogged per vertex.
+constexpr char kSprayVertexShader[] = R"(#version 120
+uniform vec2 first_cell;    // world, m: the grid's corner cell
+uniform float time_s;
+uniform float spray_share;  // the chance a cell carries a puff in a period
+uniform float spray_height; // m
+uniform vec2 wind;          // m/s
+uniform float water_level;  // m
+uniform float quay_edge;    // x of the quay's edge: water beyond it
+uniform mat4 osg_ViewMatrix;
+varying vec2 corner;
+varying float opacity;
+varying float fog;
+float hash(vec2 p) { return fract(sin(dot(p, vec2(127.1, 311.7))) * 43758.5453); }
+void main() {
+  const float cell = 5.0, life = 2.5;
+  vec2 c = first_cell / cell + gl_Vertex.xy;  // the cell's index in the world
+  float t = time_s / life + hash(c);
+  float k = floor(t);
+  float age = t - k;  // 0-1 of its life
+  bool born = hash(c + vec2(k * 0.37, 3.1)) < spray_share;
+  vec2 at = (c + vec2(hash(c + vec2(1.3, k)), hash(c + vec2(k, 7.9)))) * cell + wind * (0.7 * age * life);
+  float rise = sin(3.14159265 * age);
+  vec3 world = vec3(at, water_level + spray_height * rise);
+  float size = 0.5 + 1.0 * age;  // half its width
+  vec4 eye = osg_ViewMatrix * vec4(world, 1.0);
+  // drawn out along the wind, as the picture shows it: a streak 2.5 times as long as it is wide
+  vec2 along = (osg_ViewMatrix * vec4(wind, 0.0, 0.0)).xy;
+  along = dot(along, along) > 1e-4 ? normalize(along) : vec2(1.0, 0.0);
+  eye.xy += (2.5 * gl_MultiTexCoord0.x * along + gl_MultiTexCoord0.y * vec2(-along.y, along.x)) * size;
+  corner = gl_MultiTexCoord0.xy;
+  float near = clamp(1.5 - length(eye.xyz) / 200.0, 0.0, 1.0);  // farther off it is the haze's
+  opacity = (born && at.x > quay_edge + 1.0) ? 0.35 * rise * near : 0.0;
+  fog = clamp(exp(-gl_Fog.density * length(eye.xyz)), 0.0, 1.0);
+  gl_Position = gl_ProjectionMatrix * eye;
+}
+)";
+constexpr char kSprayFragmentShader[] = R"(#version 120
+uniform float sky_light;  // the light on the foam (update_water)
+varying vec2 corner;
+varying float opacity;
+varying float fog;
+void main() {
+  float r2 = dot(corner, corner);
+  float a = opacity * max(1.0 - r2, 0.0) * max(1.0 - r2, 0.0);
+  if (a < 0.004) discard;
+  vec3 colour = vec3(0.86, 0.89, 0.91) * sky_light;
+  gl_FragColor = vec4(mix(gl_Fog.color.rgb, colour, fog), a);
 }
 )";
 // The water's shading per pixel: the normal from the slopes of the swell and the wind sea (interpolated
@@ -1065,7 +1123,7 @@ void ImageGenerator::build_clouds() {
 
 // the quay (its top at z = 0, up to its edge at x = 18 m), the rain, the harbour's water beyond
 void ImageGenerator::build_quay_and_water() {
-  osg::ref_ptr<osg::Geode> apron = tessellated_plane(-60.0, 18.0, -80.0, 80.0, 0.0, 3.0, kQuayPaving);
+  osg::ref_ptr<osg::Geode> apron = tessellated_plane(-60.0, kQuayEdge_m, -80.0, 80.0, 0.0, 3.0, kQuayPaving);
   quay_color_ = static_cast<osg::Vec4Array*>(apron->getDrawable(0)->asGeometry()->getColorArray());
   quay_wetness_ = new osg::Uniform("wetness", 0.0f);
   apron->getOrCreateStateSet()->addUniform(quay_wetness_);
@@ -1073,8 +1131,8 @@ void ImageGenerator::build_quay_and_water() {
   apron->setNodeMask(kReceivesOnly);
   add_lit(apron);
   for (const auto& [x0, x1, y0, y1] :
-       {std::array{-300.0, -60.0, -400.0, 400.0}, std::array{-60.0, 18.0, -400.0, -80.0},
-        std::array{-60.0, 18.0, 80.0, 400.0}}) {
+       {std::array{-300.0, -60.0, -400.0, 400.0}, std::array{-60.0, kQuayEdge_m, -400.0, -80.0},
+        std::array{-60.0, kQuayEdge_m, 80.0, 400.0}}) {
     osg::ref_ptr<osg::Geode> part = tessellated_plane(x0, x1, y0, y1, 0.0, 20.0, kQuayPaving);
     part->getDrawable(0)->asGeometry()->setColorArray(quay_color_, osg::Array::BIND_OVERALL);  // wet together
     part->getOrCreateStateSet()->addUniform(quay_wetness_);
@@ -1419,6 +1477,42 @@ void ImageGenerator::build_near_rain() {
   near_rain_->setNodeMask(0u);  // dry until the weather says otherwise
 }
 
+// spray: a quad per cell of its grid, placed and faded by its shader
+void ImageGenerator::build_spray() {
+  osg::ref_ptr<osg::Geometry> puffs = new osg::Geometry;
+  osg::ref_ptr<osg::Vec3Array> cells = new osg::Vec3Array;
+  osg::ref_ptr<osg::Vec2Array> corners = new osg::Vec2Array;
+  for (int j = 0; j < kSprayCells; ++j)
+    for (int i = 0; i < kSprayCells; ++i)
+      for (const osg::Vec2& corner :
+           {osg::Vec2(-1, -1), osg::Vec2(1, -1), osg::Vec2(1, 1), osg::Vec2(-1, 1)}) {
+        cells->push_back(osg::Vec3(static_cast<float>(i), static_cast<float>(j), 0.0f));
+        corners->push_back(corner);
+      }
+  puffs->setVertexArray(cells);
+  puffs->setTexCoordArray(0, corners, osg::Array::BIND_PER_VERTEX);
+  puffs->addPrimitiveSet(new osg::DrawArrays(GL_QUADS, 0, static_cast<int>(cells->size())));
+  puffs->setCullingActive(false);  // placed by its shader round the eye
+  spray_ = new osg::Geode;
+  spray_->addDrawable(puffs);
+  osg::StateSet* state = spray_->getOrCreateStateSet();
+  state->setRenderBinDetails(kSprayBin, "RenderBin");
+  state->setMode(GL_LIGHTING, osg::StateAttribute::OFF);
+  state->setMode(GL_CULL_FACE, osg::StateAttribute::OFF);
+  state->setMode(GL_BLEND, osg::StateAttribute::ON);
+  state->setAttributeAndModes(new osg::Depth(osg::Depth::LESS, 0.0, 1.0, false));  // seen through each other
+  osg::ref_ptr<osg::Program> program = new osg::Program;
+  program->addShader(new osg::Shader(osg::Shader::VERTEX, kSprayVertexShader));
+  program->addShader(new osg::Shader(osg::Shader::FRAGMENT, kSprayFragmentShader));
+  state->setAttribute(program);
+  for (const char* name : {"time_s", "spray_share", "spray_height", "water_level", "quay_edge", "sky_light"})
+    state->addUniform(new osg::Uniform(name, 0.0f));
+  for (const char* name : {"first_cell", "wind"})
+    state->addUniform(new osg::Uniform(name, osg::Vec2()));
+  spray_->setNodeMask(0u);  // calm until the wind says otherwise
+  root_->addChild(spray_);
+}
+
 void ImageGenerator::build(const scene::SceneDescription& scene) {
   root_ = new osg::Group;
   build_lighting();
@@ -1428,6 +1522,7 @@ void ImageGenerator::build(const scene::SceneDescription& scene) {
   build_ropes(scene);
   build_hud(scene);
   build_near_rain();
+  build_spray();
   frame_ = new osg::Group;
   frame_->addChild(root_);
   frame_->addChild(near_rain_);
@@ -2140,6 +2235,25 @@ void ImageGenerator::update_water(const osg::Vec3d& eye) {
   set("eye_world", osg::Vec3(eye));
   set("to_sun", to_osg(to_sun_));
   set("deep", to_osg(core::Vec3{0.02 + 0.03 * daylight_, 0.06 + 0.10 * daylight_, 0.08 + 0.12 * daylight_}));
+  // spray from 15 m/s (Beaufort 7-8: crests begin to break into spindrift) growing to a puff in 60 % of the
+  // cells at 28 m/s (Beaufort 10: spray affects visibility) and thrown higher the stronger the wind (2 m at
+  // 15 m/s, 0.25 m more a m/s): the Beaufort scale's descriptions, the figures assumed
+  const double spray = std::clamp((wind - 15.0) / 13.0, 0.0, 1.0);
+  spray_->setNodeMask(spray > 0.0 ? ~0u : 0u);
+  if (spray > 0.0) {
+    osg::StateSet* state = spray_->getStateSet();
+    const auto cell_of = [](double v) { return 5.0 * std::floor(v / 5.0) - 5.0 * (kSprayCells / 2); };
+    state->getUniform("first_cell")
+        ->set(osg::Vec2(static_cast<float>(cell_of(eye.x())), static_cast<float>(cell_of(eye.y()))));
+    state->getUniform("time_s")->set(static_cast<float>(time_s_));
+    state->getUniform("spray_share")->set(static_cast<float>(0.6 * spray));
+    state->getUniform("spray_height")->set(static_cast<float>(2.0 + 0.25 * (wind - 15.0)));
+    state->getUniform("wind")->set(
+        osg::Vec2(static_cast<float>(wind_mps_.x), static_cast<float>(wind_mps_.y)));
+    state->getUniform("water_level")->set(static_cast<float>(sea_.water_level_m));
+    state->getUniform("quay_edge")->set(static_cast<float>(kQuayEdge_m));
+    state->getUniform("sky_light")->set(static_cast<float>(0.12 + 0.88 * daylight_ * (1.0 - 0.4 * grey_)));
+  }
 
   const double finest = wind_sea_->length_m() / wind_sea_->size();
   const double level = sea_.water_level_m;

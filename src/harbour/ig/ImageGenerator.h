@@ -216,6 +216,7 @@ class ImageGenerator {
   void build_ropes(const scene::SceneDescription& scene);
   void build_hud(const scene::SceneDescription& scene);
   void build_near_rain();
+  void build_spray();
   void update_entities(const scene::Snapshot& s);
   void update_ropes(const scene::Snapshot& s);
   void update_sky_and_weather(const scene::Snapshot& s);
@@ -279,6 +280,7 @@ class ImageGenerator {
   // the rain falling close past the eye, drawn over the picture as streaks towards where the drops fall
   osg::ref_ptr<osg::Camera> near_rain_;
   osg::ref_ptr<osg::Geometry> streaks_;
+  osg::ref_ptr<osg::Geode> spray_;  // puffs blown off the crests in a gale
   double rain_mm_per_h_ = 0.0;
   void update_near_rain(const osg::Vec3d& eye);
   osg::ref_ptr<osg::Vec4Array> quay_color_;
