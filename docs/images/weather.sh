@@ -3,6 +3,7 @@
 # conditions — noon, dusk (18:18, the sun 3.5° down), night (22 h), fog (200 m), rain (20 mm/h) and a storm
 # (20 m/s wind, 40 mm/h, 2 km visibility) — side by side: docs/images/weather_<exercise>.png; and the sky
 # through an evening from the quay (12, 16, 17:30, 18, 18:12, 18:30, 18:48, 19:12 h): docs/images/sky_evening.png.
+# Drawn with surface detail (a GPU station's default) on any renderer.
 # Usage: docs/images/weather.sh [path/to/harboursim]
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
@@ -25,7 +26,7 @@ shoot() {  # exercise, moment [s]
   for view in cab chase; do
     for c in "${conditions[@]}"; do
       # shellcheck disable=SC2046
-      "$app" screenshot --exercise "$exercise" --at "$at" --view "$view" --size 320x180 $(options "$c") \
+      "$app" screenshot --exercise "$exercise" --at "$at" --view "$view" --size 320x180 --surface-detail true $(options "$c") \
         --out "$work/$view-$c.png" > /dev/null
       frames+=(-i "$work/$view-$c.png")
     done
