@@ -124,7 +124,7 @@ osg::ref_ptr<osg::Geode> tessellated_plane(double x0, double x1, double y0, doub
 }
 
 // The part's colour on a mesh's geometry that brings none of its own (the lit shader reads vertex colours;
-// a material's diffuse colour, where the file has one, wins).
+// a material's diffuse colour, where the file has one, wins), with the part's finish in its alpha.
 void paint_uncoloured(osg::Node& mesh, const osg::Vec4& color) {
   struct Painter : osg::NodeVisitor {
     osg::Vec4 color;
@@ -140,6 +140,7 @@ void paint_uncoloured(osg::Node& mesh, const osg::Vec4& color) {
           if (const auto* material =
                   dynamic_cast<const osg::Material*>(state->getAttribute(osg::StateAttribute::MATERIAL)))
             paint = material->getDiffuse(osg::Material::FRONT);
+      paint.a() = color.a();  // the part's finish
       osg::ref_ptr<osg::Vec4Array> colors = new osg::Vec4Array;
       colors->push_back(paint);
       geometry->setColorArray(colors, osg::Array::BIND_OVERALL);

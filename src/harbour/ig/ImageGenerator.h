@@ -196,7 +196,7 @@ class ImageGenerator {
   void set_soft_shadows(bool on);
   bool soft_shadows() const;
   /// Surfaces with detail (ig/Materials.h: blotches, grain, streaks from a noise texture) rather than plain:
-  /// on by default except on a software renderer, where they cost a 1280x720 cab frame ~30 % more.
+  /// on by default except on a software renderer, where they cost a 1280x720 cab frame ~35 % more.
   void set_surface_detail(bool on);
   bool surface_detail() const;
   /// Samples per pixel the picture is drawn with (0: one, aliased).
