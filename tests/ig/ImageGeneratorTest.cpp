@@ -630,6 +630,66 @@ TEST(ImageGenerator, RainWetsAndDarkensTheQuay) {
   EXPECT_GT(wet, 0.4 * dry);
 }
 
+// Rain wets every face turned up, and a wet face is darker the darker it was, as Lekner & Dorf's (1988) film
+// model says: A_wet = (1 - re)(1 - ri) A / (1 - ri A), re = 0.066, ri = 0.472. Three painted plates of albedo
+// 0.6, 0.35 and 0.1 side by side, seen from above at noon dry and in 10 mm/h: the ratio of their steps,
+// (L1 - L2) / (L2 - L3), cancels the light (the sun's, the overcast's) and the sky's reflection (the same on
+// each), and goes from 1.00 dry to the model's 1.33 wet, within 5 %.
+TEST(ImageGenerator, RainDarkensEveryFaceTurnedUpAsAWaterFilmDoes) {
+  scene::SceneDescription d;
+  d.machine = "test";
+  d.entities.push_back({"plates", "test.plates", {9.0, 2.5, 0.1}});
+  Visual plates;
+  const std::array<double, 3> albedo{0.6, 0.35, 0.1};
+  for (int k = 0; k < 3; ++k) {
+    VisualPart part;
+    part.size_m = core::Vec3{5.0, 5.0, 0.1};
+    part.centre_m = {-6.0 + 6.0 * k, 0.0, 0.0};
+    part.color = {albedo[static_cast<std::size_t>(k)], albedo[static_cast<std::size_t>(k)],
+                  albedo[static_cast<std::size_t>(k)]};
+    plates.parts.push_back(part);
+  }
+  ImageGenerator ig(d, {{"test.plates", plates}}, kWidth, kHeight);
+  ig.set_surface_detail(false);
+  View v;
+  v.kind = View::Kind::kFree;
+  v.position_m = {0.0, 0.0, 40.0};
+  v.yaw_rad = 0.0;
+  v.pitch_rad = -std::numbers::pi / 2.0 + 1e-3;
+  v.fov_vertical_rad = 0.5;
+  v.hud = false;
+  ig.set_view(v);
+  const auto steps = [&](double rain) {
+    scene::Snapshot s;
+    s.time_of_day_h = 12.0;
+    s.visibility_m = 20000.0;
+    s.rain_mm_per_h = rain;
+    s.entity_count = 1;
+    s.entities[0] = {0, 0, {core::Mat3::identity(), {0.0, 0.0, 1.0}}};
+    ig.update(s);
+    const std::vector<double> l = median_luminance(ig.render());
+    std::array<double, 3> plate{};
+    for (int k = 0; k < 3; ++k) {
+      const auto at = ig.project({-6.0 + 6.0 * k, 0.0, 1.05});
+      std::vector<double> patch;
+      for (int y = -6; y <= 6; ++y)
+        for (int x = -6; x <= 6; ++x)
+          patch.push_back(l[static_cast<std::size_t>((static_cast<int>(at->second) + y) * kWidth +
+                                                     static_cast<int>(at->first) + x)]);
+      std::nth_element(patch.begin(), patch.begin() + static_cast<std::ptrdiff_t>(patch.size() / 2),
+                       patch.end());
+      plate[static_cast<std::size_t>(k)] = patch[patch.size() / 2];
+    }
+    std::printf("plates %.3f %.3f %.3f in %.0f mm/h: steps' ratio %.3f\n", plate[0], plate[1], plate[2], rain,
+                (plate[0] - plate[1]) / (plate[1] - plate[2]));
+    return (plate[0] - plate[1]) / (plate[1] - plate[2]);
+  };
+  const auto wet_albedo = [](double a) { return (1.0 - 0.066) * (1.0 - 0.472) * a / (1.0 - 0.472 * a); };
+  const double model = (wet_albedo(0.6) - wet_albedo(0.35)) / (wet_albedo(0.35) - wet_albedo(0.1));
+  EXPECT_NEAR(steps(0.0), 1.0, 0.05);
+  EXPECT_NEAR(steps(10.0), model, 0.05 * model) << "Lekner & Dorf: " << model;
+}
+
 // A wet quay is a rough mirror: at night in rain a floodlight 30 m up and 60 m ahead glares on the quay
 // where its mirror image (30 m below the quay) is seen — the brightest part of what the rain adds is centred
 // within 3 pixels of that image's projection across the picture and 10 along it — while the dry quay has no

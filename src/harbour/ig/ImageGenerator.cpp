@@ -92,7 +92,7 @@ osg::Vec4 rgba(const core::Vec3& c) {
 // the quay's concrete paving, dry
 const osg::Vec4 kQuayPaving = finished({0.42f, 0.42f, 0.40f, 1.0f}, Surface::kConcrete);
 
-// a flat rectangle at height z, cut into cells so that per-vertex fog and lighting vary over it
+// a flat rectangle at height z, cut into cells so that the lighting done per vertex varies over it
 osg::ref_ptr<osg::Geode> tessellated_plane(double x0, double x1, double y0, double y1, double z, double cell,
                                            const osg::Vec4& color) {
   osg::ref_ptr<osg::Geometry> geometry = new osg::Geometry();
@@ -326,6 +326,7 @@ namespace {
 constexpr char kLitVertexShader[] = R"(
 uniform int floodlights;   // lights 1..floodlights are on
 uniform vec4 finishes[8];  // (roughness, metalness, texture, weathering) by surface (ig/Materials.h)
+uniform float wetness;     // rain's water on the surfaces: 0 dry, 1 wet through
 varying vec3 unshadowed;   // the sky's and the floodlights' light on a white matt surface
 varying vec3 sky_reflected;
 varying vec3 base_colour;
@@ -366,6 +367,15 @@ void main() {
 #endif
   finish = finishes[int(clamp(floor((1.0 - gl_Color.a) * 16.0 + 0.5), 0.0, 7.0))];
   base_colour = gl_Color.rgb;
+  // water lies on faces turned up: under its film an albedo A shows (1 - re)(1 - ri) A / (1 - ri A) (Lekner &
+  // Dorf 1988; water's diffuse reflectances from outside re = 0.066 and inside ri = 1 - (1 - re) / 1.33^2 =
+  // 0.472): darker, the darker it was; a metal's reflectance stays; the film smooths it (roughness 0.15)
+  float wet = wetness * smoothstep(0.5, 0.9, dot(n, osg_ViewMatrix[2].xyz));
+  base_colour = mix(base_colour, mix(0.4932 * base_colour / (1.0 - 0.472 * base_colour), base_colour, finish.y),
+                    wet);
+#ifndef WET
+  finish.x = mix(finish.x, 0.15, wet);  // the quay's film is its own (WET)
+#endif
   sky_reflected = sky_reflection(n, normalize(-eye.xyz), mix(vec3(0.04), base_colour, finish.y), finish.x);
   unshadowed = gl_LightModel.ambient.rgb + gl_LightSource[0].ambient.rgb;
   for (int i = 1; i < 8; ++i) {
@@ -985,7 +995,9 @@ void ImageGenerator::build_lighting() {
     lit->addUniform(new osg::Uniform("sun_shadows", true));
     soft_shadows_ = new osg::Uniform("soft_shadows", false);
     lit->addUniform(soft_shadows_);
-    // the water film's (its wetness is the quay's own, `quay_wetness_`)
+    // rain's water on the surfaces (0 dry, 1 wet through) and the quay's water film's
+    wetness_ = new osg::Uniform("wetness", 0.0f);
+    lit->addUniform(wetness_);
     film_ = {new osg::Uniform("splash_rate", 0.0f), new osg::Uniform("time_s", 0.0f),
              new osg::Uniform("sky_horizon", osg::Vec3()), new osg::Uniform("sky_zenith", osg::Vec3())};
     for (const osg::ref_ptr<osg::Uniform>& u : film_)
@@ -1019,6 +1031,7 @@ void ImageGenerator::build_lighting() {
     for (const osg::ref_ptr<osg::Uniform>& u : film_)
       inset_lit->addUniform(u);
     inset_lit->addUniform(finishes);
+    inset_lit->addUniform(wetness_);
     inset_lit->setTextureAttribute(2, detail);
     inset_lit->addUniform(detail_unit);
   }
@@ -1125,9 +1138,6 @@ void ImageGenerator::build_clouds() {
 // the quay (its top at z = 0, up to its edge at x = 18 m), the rain, the harbour's water beyond
 void ImageGenerator::build_quay_and_water() {
   osg::ref_ptr<osg::Geode> apron = tessellated_plane(-60.0, kQuayEdge_m, -80.0, 80.0, 0.0, 3.0, kQuayPaving);
-  quay_color_ = static_cast<osg::Vec4Array*>(apron->getDrawable(0)->asGeometry()->getColorArray());
-  quay_wetness_ = new osg::Uniform("wetness", 0.0f);
-  apron->getOrCreateStateSet()->addUniform(quay_wetness_);
   quay_states_.push_back(apron->getOrCreateStateSet());
   apron->setNodeMask(kReceivesOnly);
   add_lit(apron);
@@ -1135,8 +1145,6 @@ void ImageGenerator::build_quay_and_water() {
        {std::array{-300.0, -60.0, -400.0, 400.0}, std::array{-60.0, kQuayEdge_m, -400.0, -80.0},
         std::array{-60.0, kQuayEdge_m, 80.0, 400.0}}) {
     osg::ref_ptr<osg::Geode> part = tessellated_plane(x0, x1, y0, y1, 0.0, 20.0, kQuayPaving);
-    part->getDrawable(0)->asGeometry()->setColorArray(quay_color_, osg::Array::BIND_OVERALL);  // wet together
-    part->getOrCreateStateSet()->addUniform(quay_wetness_);
     quay_states_.push_back(part->getOrCreateStateSet());
     part->setNodeMask(kReceivesOnly);
     add_lit(part);
@@ -1643,13 +1651,11 @@ void ImageGenerator::update_sky_and_weather(const scene::Snapshot& s) {
     rain_->setWind(to_osg(s.wind_mps));
     rain_->getFog()->setDensity(fog_->getDensity());
   }
+  // every surface turned up wet through from 2 mm/h (the lit shader darkens it under its film), the quay
+  // with its water film; splashes that show, 0.75 a square metre and second per mm/h (assumed: the larger
+  // drops' crowns; 20 mm/h brings ~1,300 drops a square metre and second in all)
   const double wetness = std::clamp(s.rain_mm_per_h / 2.0, 0.0, 1.0);
-  const float dry = 1.0f - 0.35f * static_cast<float>(wetness);
-  (*quay_color_)[0] = finished(osg::Vec4(0.42f * dry, 0.42f * dry, 0.40f * dry, 1.0f), Surface::kConcrete);
-  quay_color_->dirty();
-  // the film: wet through from 2 mm/h; splashes that show, 0.75 a square metre and second per mm/h (assumed:
-  // the larger drops' crowns; 20 mm/h brings ~1,300 drops a square metre and second in all)
-  quay_wetness_->set(static_cast<float>(wetness));
+  wetness_->set(static_cast<float>(wetness));
   for (const osg::ref_ptr<osg::StateSet>& quay : quay_states_)
     if (wetness > 0.0)
       quay->setAttribute(lit_programs_[1][surface_detail_]);
