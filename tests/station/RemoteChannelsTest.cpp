@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <sstream>
 #include <string>
@@ -100,19 +101,31 @@ TEST(RemoteChannels, TwoProjectorHostsShowEveryFrameTogether) {
   ASSERT_GE(left_frames.size(), 40u);
   ASSERT_GE(floor_frames.size(), 30u);
   // the swap barrier: from the later one's second frame until the floor one stopped, each frame both showed
-  // was shown by either only after both had drawn it
+  // was shown by either only after both had drawn it — while both were live: a channel that took over 0.4 s
+  // from showing a frame to drawing the next (a loaded machine's stall) may have been left out as lost (0.5 s
+  // silent, RemoteChannels::Settings::lost_after_s), and the other, by design, not held for it
+  const auto stalled = [](const std::map<std::uint64_t, Shown>& frames, std::uint64_t frame) {
+    const auto at = frames.find(frame);
+    return at != frames.begin() && at->second.drawn_ns - std::prev(at)->second.shown_ns > 400'000'000;
+  };
   const std::uint64_t from = std::max(left_frames.begin()->first, floor_frames.begin()->first) + 1;
-  int checked = 0, early = 0;
+  int checked = 0, early = 0, left_out = 0;
   std::vector<double> skew_ms;
   for (const auto& [frame, l] : left_frames) {
     const auto r = floor_frames.find(frame);
     if (frame < from || r == floor_frames.end()) continue;
+    if (stalled(left_frames, frame) || stalled(floor_frames, frame)) {
+      ++left_out;
+      continue;
+    }
     ++checked;
     if (std::min(l.shown_ns, r->second.shown_ns) < std::max(l.drawn_ns, r->second.drawn_ns)) ++early;
     skew_ms.push_back(static_cast<double>(std::abs(l.shown_ns - r->second.shown_ns)) / 1e6);
   }
   EXPECT_GE(checked, 30);
-  EXPECT_EQ(early, 0) << "of " << checked << " frames shown by both";
+  EXPECT_LE(left_out, checked / 4) << "frames after a stall";
+  EXPECT_EQ(early, 0) << "of " << checked << " frames shown by both (" << left_out
+                      << " after a stall not checked)";
   std::sort(skew_ms.begin(), skew_ms.end());
   if (!skew_ms.empty()) {
     std::printf("shown apart: median %.2f ms, 99th percentile %.2f ms, most %.2f ms over %zu frames\n",

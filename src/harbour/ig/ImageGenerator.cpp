@@ -314,15 +314,16 @@ namespace {
 // and its glint by the GGX microfacet distribution with Smith's visibility (Schlick-GGX) and Schlick's
 // Fresnel; per vertex the sky's and the floodlights' diffuse light and the sky mirrored by the surface (the
 // horizon's and the zenith's colours along the reflected ray, the ground's under it, blurred towards the
-// sky's mean as the surface roughens) weighted by Karis's analytic fit of the split-sum environment term.
-// With DETAIL, surface detail from a tileable noise texture laid on the object's own faces (it rides the
-// machine): blotches that vary the colour and the roughness (worn paint, stained concrete), a fine grain that
-// bumps the normal, and on upright faces streaks running down (rust under paint, water stains on concrete),
-// each as strong as the finish says. A highlight beyond white is rolled off by a shoulder (identity to 0.8,
-// then 0.8 + 0.2 x / (x + 0.2), x = c - 0.8), not clipped; then the fog per pixel. With WET (the quay in
-// rain) a water film per pixel: it mirrors the sky by Fresnel's reflectance, shows the sun's and the
-// floodlights' glare, and rings where drops land. Each combination is a program of its own, since llvmpipe
-// shades both sides of a branch (the film in a branch cost every dry pixel as much as the rest of the frame).
+// sky's mean as the surface roughens) weighted by Karis's analytic fit of the split-sum environment term;
+// in rain the faces turned up darkened and smoothed by their water film. With DETAIL, surface detail from a
+// tileable noise texture laid on the object's own faces (it rides the machine): blotches that vary the colour
+// and the roughness (worn paint, stained concrete), a fine grain that bumps the normal, and on upright faces
+// streaks running down (rust under paint, water stains on concrete), each as strong as the finish says. A
+// highlight beyond white is rolled off by a shoulder (identity to 0.8, then 0.8 + 0.2 x / (x + 0.2), x = c -
+// 0.8), not clipped; then the fog per pixel. With WET (the quay in rain) a water film per pixel: it mirrors
+// the sky by Fresnel's reflectance, shows the sun's and the floodlights' glare, and rings where drops land.
+// Each combination is a program of its own, since llvmpipe shades both sides of a branch (the film in a
+// branch cost every dry pixel as much as the rest of the frame).
 constexpr char kLitVertexShader[] = R"(
 uniform int floodlights;   // lights 1..floodlights are on
 uniform vec4 finishes[8];  // (roughness, metalness, texture, weathering) by surface (ig/Materials.h)
