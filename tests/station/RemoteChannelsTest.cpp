@@ -125,7 +125,8 @@ TEST(RemoteChannels, TwoProjectorHostsShowEveryFrameTogether) {
   EXPECT_GE(checked, 30);
   EXPECT_LE(left_out, checked / 4) << "frames after a stall";
   EXPECT_EQ(early, 0) << "of " << checked << " frames shown by both (" << left_out
-                      << " after a stall not checked)";
+                      << " after a stall not checked); the station said:\n"
+                      << said;
   std::sort(skew_ms.begin(), skew_ms.end());
   if (!skew_ms.empty()) {
     std::printf("shown apart: median %.2f ms, 99th percentile %.2f ms, most %.2f ms over %zu frames\n",
