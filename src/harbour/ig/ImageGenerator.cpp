@@ -407,9 +407,7 @@ varying vec3 object_position;
 varying vec3 object_normal;
 #endif
 uniform bool soft_shadows;  // filtered edges (ImageGenerator::set_soft_shadows)
-uniform vec3 sky_horizon;   // the sky that surfaces mirror
-uniform vec3 sky_zenith;
-uniform mat4 osg_ViewMatrix;
+uniform float sun_seen;     // how much of the sun's disc shows (none under rain cloud or in fog): its glint
 // Schlick's Fresnel term from the reflectance at normal incidence `f0`, at an angle of cosine `c`
 vec3 schlick(vec3 f0, float c) {
   float m = 1.0 - max(c, 0.0);
@@ -442,6 +440,9 @@ vec3 bumped(vec3 n, float h) {
 #endif
 #ifdef WET
 uniform int floodlights;
+uniform vec3 sky_horizon;  // the sky the film mirrors
+uniform vec3 sky_zenith;
+uniform mat4 osg_ViewMatrix;
 uniform float wetness;      // this surface's water film: 0 dry, 1 wet through
 uniform float splash_rate;  // drops whose splash shows, per square metre and second
 uniform float time_s;
@@ -530,7 +531,7 @@ void main() {
   vec3 diffuse = colour * (1.0 - metalness);  // a metal's diffuse part is nil
   vec3 f0 = mix(vec3(0.04), colour, metalness);  // 4 % for a dielectric, a metal's colour
   colour = (unshadowed + lit * max(dot(n, l), 0.0) * gl_LightSource[0].diffuse.rgb) * diffuse +
-           sky_reflected * mix(vec3(1.0), tint, metalness) + lit * sun_glint(n, v, l, f0, roughness);
+           sky_reflected * mix(vec3(1.0), tint, metalness) + lit * sun_seen * sun_glint(n, v, l, f0, roughness);
 #ifdef WET
   colour = wet(colour, lit, normalize(eye_normal), v, distance);  // the film is smooth over the grain
 #endif
@@ -999,6 +1000,8 @@ void ImageGenerator::build_lighting() {
     // rain's water on the surfaces (0 dry, 1 wet through) and the quay's water film's
     wetness_ = new osg::Uniform("wetness", 0.0f);
     lit->addUniform(wetness_);
+    sun_seen_ = new osg::Uniform("sun_seen", 1.0f);
+    lit->addUniform(sun_seen_);
     film_ = {new osg::Uniform("splash_rate", 0.0f), new osg::Uniform("time_s", 0.0f),
              new osg::Uniform("sky_horizon", osg::Vec3()), new osg::Uniform("sky_zenith", osg::Vec3())};
     for (const osg::ref_ptr<osg::Uniform>& u : film_)
@@ -1033,6 +1036,7 @@ void ImageGenerator::build_lighting() {
       inset_lit->addUniform(u);
     inset_lit->addUniform(finishes);
     inset_lit->addUniform(wetness_);
+    inset_lit->addUniform(sun_seen_);
     inset_lit->setTextureAttribute(2, detail);
     inset_lit->addUniform(detail_unit);
   }
@@ -1616,6 +1620,7 @@ void ImageGenerator::update_sky_and_weather(const scene::Snapshot& s) {
   const core::Vec3 ambient = shade.veiled(shade.daylight.sky_light()) * (1.0 + 0.5 * grey_);
   light->setDiffuse(rgba(diffuse));
   light->setAmbient(rgba(ambient));
+  sun_seen_->set(static_cast<float>(shade.sun_visible));  // no glint from a sun hidden by cloud or fog
   viewer_->getCamera()->setClearColor(rgba(sky));
   for (std::size_t n = 0; n < sky_directions_->size(); ++n) {
     const osg::Vec3& d = (*sky_directions_)[n];
@@ -2234,7 +2239,9 @@ void ImageGenerator::update_water(const osg::Vec3d& eye) {
   // the shading's uniforms: the eye, the deep water's colour (the sky it mirrors: update_sky_and_weather)
   const auto set = [&](const char* name, const auto& value) { water_shading_->getUniform(name)->set(value); };
   set("daylight", static_cast<float>(daylight_ * (1.0 - grey_)));  // no glint under cloud or in fog
-  set("sky_light", static_cast<float>(0.12 + 0.88 * daylight_ * (1.0 - 0.4 * grey_)));
+  // the light on foam and spray: daylight, and the floodlights' share at night
+  const float foam_light = static_cast<float>(0.12 + 0.88 * daylight_ * (1.0 - 0.4 * grey_));
+  set("sky_light", foam_light);
   set("breaking", static_cast<float>(breaking));
   set("time_s", static_cast<float>(time_s_));
   set("wind_dir",
@@ -2260,7 +2267,7 @@ void ImageGenerator::update_water(const osg::Vec3d& eye) {
         osg::Vec2(static_cast<float>(wind_mps_.x), static_cast<float>(wind_mps_.y)));
     state->getUniform("water_level")->set(static_cast<float>(sea_.water_level_m));
     state->getUniform("quay_edge")->set(static_cast<float>(kQuayEdge_m));
-    state->getUniform("sky_light")->set(static_cast<float>(0.12 + 0.88 * daylight_ * (1.0 - 0.4 * grey_)));
+    state->getUniform("sky_light")->set(foam_light);
   }
 
   const double finest = wind_sea_->length_m() / wind_sea_->size();

@@ -283,7 +283,8 @@ class ImageGenerator {
   osg::ref_ptr<osg::Geode> spray_;  // puffs blown off the crests in a gale
   double rain_mm_per_h_ = 0.0;
   void update_near_rain(const osg::Vec3d& eye);
-  osg::ref_ptr<osg::Uniform> wetness_;  // rain's water on the lit surfaces (the quay's film too)
+  osg::ref_ptr<osg::Uniform> wetness_;   // rain's water on the lit surfaces (the quay's film too)
+  osg::ref_ptr<osg::Uniform> sun_seen_;  // the share of the sun's disc that shows: its glint
   /// the lit scene's programs by [wet][detail]: the water film (the quay takes it while wet), surface detail
   std::array<std::array<osg::ref_ptr<osg::Program>, 2>, 2> lit_programs_;
   bool surface_detail_ = false;
