@@ -422,7 +422,7 @@ TEST(Visuals, BadLooksNameFileLineAndField) {
             "");
   EXPECT_NE(error(part + "{shape: cone, size: [1, 1, 1], at: [0, 0, 0], color: [1, 0, 0]}\n")
                 .find("harbour_looks.yaml:4: visuals[0].parts[0].shape: 'cone' is not a shape: box, lattice, "
-                      "container, tyre, shell, hull or mesh"),
+                      "container, tyre, shell, hull, mesh, girder, walkway, stairs, cylinder or member"),
             std::string::npos);
   EXPECT_NE(error(part + "{shape: lattice, size: [10, 1, 1], at: [0, 0, 0], member_m: 9, color: [1, 0, 0]}\n")
                 .find("visuals[0].parts[0].member_m"),
@@ -440,6 +440,49 @@ TEST(Visuals, BadLooksNameFileLineAndField) {
   EXPECT_NE(error(part + "{shape: tyre, size: [0.4, 1, 1], at: [0, 0, 0], color: [0, 0, 0], "
                          "rolls: {with: gantry_mps}}\n")
                 .find("visuals[0].parts[0].rolls.along: a level direction across the tyre's axle"),
+            std::string::npos);
+  // steelwork: members between two points, stairs of EN ISO 14122-3's steps, walkways' rails, repeats
+  EXPECT_EQ(
+      error(part + "{shape: member, from: [0, 0, 0], to: [3, 4, 0], section_m: [0.3, 0.4], color: [1, 0, 0], "
+                   "repeat: 3, step: [0, 2, 0]}\n"),
+      "");
+  {
+    {
+      std::ofstream(path) << part +
+                                 "{shape: member, from: [0, 0, 0], to: [3, 4, 0], section_m: [0.3, 0.4], "
+                                 "color: [1, 0, 0], repeat: 3, step: [0, 2, 0]}\n";
+    }
+    const std::vector<VisualPart> members = load_visuals(path).at("a").parts;
+    ASSERT_EQ(members.size(), 3u);
+    EXPECT_DOUBLE_EQ(members[2].centre_m.y, 6.0);
+    EXPECT_DOUBLE_EQ(members[0].size_m->x, 5.0);
+    EXPECT_DOUBLE_EQ(members[0].along.y, 0.8);
+  }
+  EXPECT_NE(
+      error(part +
+            "{shape: member, from: [1, 1, 1], to: [1, 1, 1], section_m: [0.3, 0.4], color: [1, 0, 0]}\n")
+          .find("visuals[0].parts[0].to: a member's ends are apart"),
+      std::string::npos);
+  EXPECT_NE(
+      error(part + "{shape: member, from: [0, 0, 0], to: [1, 1, 1], section_m: [0.3], color: [1, 0, 0]}\n")
+          .find("visuals[0].parts[0].section_m: expected [width, depth]"),
+      std::string::npos);
+  EXPECT_EQ(error(part + "{shape: stairs, size: [4, 1, 3.25], at: [0, 0, 0], color: [1, 1, 0]}\n"), "");
+  EXPECT_NE(
+      error(part + "{shape: stairs, size: [2, 1, 3.25], at: [0, 0, 0], color: [1, 1, 0]}\n")
+          .find("visuals[0].parts[0].size: a flight 2 m long and 3.25 m high (58.4 deg) has no steps of EN "
+                "ISO 14122-3"),
+      std::string::npos);
+  EXPECT_NE(
+      error(part + "{shape: walkway, size: [9, 1, 1.1], at: [0, 0, 0], rails: left, color: [1, 1, 0]}\n")
+          .find("visuals[0].parts[0].rails: 'left' is not a side: both, positive, negative or none"),
+      std::string::npos);
+  EXPECT_NE(error(part + "{shape: cylinder, size: [1, 2, 3], at: [0, 0, 0], color: [1, 1, 0]}\n")
+                .find("visuals[0].parts[0].size: a cylinder's size is written out: two equal sides"),
+            std::string::npos);
+  EXPECT_NE(error(no_looks + "floodlights:\n  - {entity: a, at: [0, 0, 30], color: [1, 1, 1], range_m: 50, "
+                             "mast: true}\n")
+                .find("floodlights[0].mast: a light mast stands on the quay under a lamp at least 5 m up"),
             std::string::npos);
   const std::string junk = (std::filesystem::temp_directory_path() / "harbour_junk.obj").string();
   { std::ofstream(junk) << "this is not a model\n"; }

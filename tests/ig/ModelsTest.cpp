@@ -1,6 +1,7 @@
 // The procedural models on their own: their geometry measured against the standards and sizes they are
 // drawn from.
 #include "harbour/ig/Models.h"
+#include "harbour/ig/Structures.h"
 
 #include <gtest/gtest.h>
 
@@ -185,6 +186,105 @@ TEST(Models, AHullHasItsBeamAmidshipsAStemAtTheBowAndATransomAtTheStern) {
   EXPECT_TRUE(deck_at(-35.9f, 35.9f).empty());
   EXPECT_FALSE(deck_at(36.1f, 75.0f).empty());
   EXPECT_FALSE(deck_at(-75.0f, -36.1f).empty());
+}
+
+// EN ISO 14122-3: a stair's rises equal and at most 250 mm, its stride g + 2h 600-660 mm, its handrail
+// 0.9-1.0 m above the pitch line. Measured on the drawn treads (their grating tops) and stanchions.
+TEST(Structures, AFlightsStepsAndHandrailFollowEnIso14122) {
+  for (const core::Vec3 size :
+       {core::Vec3{4.0, 1.0, 3.25}, core::Vec3{3.0, 0.8, 3.0}, core::Vec3{6.0, 1.2, 3.0}}) {
+    const osg::ref_ptr<osg::Geometry> flight = stairs(size, {0.9f, 0.7f, 0.1f, 1.0f});
+    // the treads' tops: up-facing faces in the grating's colour
+    std::set<int> heights_mm;
+    for (const auto& [p, colour] : facing(*flight, {0, 0, 1}, [](const osg::Vec3&) { return true; }))
+      if (std::abs(colour.r() - 0.55f) < 0.01f)
+        heights_mm.insert(static_cast<int>(std::lround(p.z() * 1000)));
+    const int rises = static_cast<int>(heights_mm.size());
+    ASSERT_GE(rises, 10) << size.x << " x " << size.z;
+    EXPECT_EQ(*heights_mm.rbegin(), static_cast<int>(std::lround(size.z * 500)));  // the last at the top
+    const double rise = size.z / rises, going = size.x / rises;
+    int previous = static_cast<int>(std::lround(-size.z * 500));
+    for (const int h : heights_mm) {  // every rise the same
+      EXPECT_NEAR(h - previous, rise * 1000, 1.5);
+      previous = h;
+    }
+    EXPECT_LE(rise, access::kLargestRise_m);
+    EXPECT_GE(going + 2 * rise, access::kStepLengthLow_m);
+    EXPECT_LE(going + 2 * rise, access::kStepLengthHigh_m);
+    // the stanchion at the foot: its top 0.95 m over the first nose (x = -run/2, one rise up)
+    const float nose = static_cast<float>(-size.z / 2 + rise), foot = static_cast<float>(-size.x / 2);
+    const auto tops = facing(*flight, {0, 0, 1}, [&](const osg::Vec3& p) {
+      return std::abs(p.x() - foot) < 0.03f && p.z() > nose + 0.5f;
+    });
+    ASSERT_FALSE(tops.empty());
+    float top = -1e9f;
+    for (const auto& t : tops)
+      top = std::max(top, t.first.z());
+    EXPECT_GE(top - nose, 0.9f);
+    EXPECT_LE(top - nose, 1.0f);
+  }
+}
+
+// A walkway's guard-rail (EN ISO 14122-3): the handrail at the walkway's height (1.1 m), a knee rail and a
+// toe board leaving no gap over 0.5 m, stanchions at most 1.5 m apart, on the sides asked for.
+TEST(Structures, AWalkwaysGuardRailFollowsEnIso14122) {
+  const core::Vec3 size{10.0, 1.0, 1.1};
+  const osg::ref_ptr<osg::Geometry> one_side = walkway(size, RailSides::kPlus, {0.9f, 0.7f, 0.1f, 1.0f});
+  const Extent e = extent_of(*one_side);
+  EXPECT_NEAR(e.high.z() - (-0.55f), 1.1f, 1e-4);  // the handrail's top over the deck (the box's bottom)
+  // the rails' undersides and tops over the deck, across the +y edge: handrail, knee rail, toe board
+  std::vector<float> levels;
+  for (const osg::Vec3 normal : {osg::Vec3(0, 0, 1), osg::Vec3(0, 0, -1)})
+    for (const auto& [p, colour] : facing(*one_side, normal, [](const osg::Vec3&) { return true; }))
+      if (p.y() > 0.3f && p.z() > -0.54f) levels.push_back(p.z() + 0.55f);
+  levels.push_back(0.0f);
+  std::sort(levels.begin(), levels.end());
+  levels.erase(
+      std::unique(levels.begin(), levels.end(), [](float a, float b) { return std::abs(a - b) < 1e-3f; }),
+      levels.end());
+  for (std::size_t k = 0; k + 1 < levels.size(); ++k)
+    EXPECT_LE(levels[k + 1] - levels[k], access::kLargestRailGap_m + 1e-4) << "between " << levels[k];
+  EXPECT_GE(levels.size(), 6u);  // deck, toe board's top, knee rail's two faces, handrail's two faces
+  // stanchions: upright members' x-facing sides along the rail, spaced at most 1.5 m
+  std::set<int> posts_cm;
+  for (const auto& [p, colour] :
+       facing(*one_side, {1, 0, 0}, [](const osg::Vec3& q) { return q.z() > 0.0f; }))
+    posts_cm.insert(static_cast<int>(std::lround(p.x() * 100)));
+  std::vector<int> xs(posts_cm.begin(), posts_cm.end());
+  ASSERT_GE(xs.size(), 8u);
+  for (std::size_t k = 0; k + 1 < xs.size(); ++k)
+    EXPECT_LE(xs[k + 1] - xs[k], 150);
+  // only on the +y side
+  EXPECT_TRUE(
+      facing(*one_side, {0, 0, 1}, [](const osg::Vec3& q) { return q.y() < 0.0f && q.z() > -0.5f; }).empty());
+}
+
+// A box girder: its stiffeners stand on both webs at every diaphragm, whole bays, none at the plated ends.
+TEST(Structures, ABoxGirdersStiffenersMarkItsDiaphragms) {
+  const core::Vec3 size{48.5, 1.6, 3.0};
+  const osg::ref_ptr<osg::Geometry> girder = box_girder(size, 5.0, {0.85f, 0.3f, 0.1f, 1.0f});
+  // faces standing out of the webs (beyond y = 0.8, short of the flanges' outstands at 0.864)
+  for (const float side : {-1.0f, 1.0f}) {
+    std::set<int> stations_cm;
+    for (const auto& [p, colour] : facing(*girder, {0, side, 0}, [&](const osg::Vec3& q) {
+           return side * q.y() > 0.8f + 1e-3f && side * q.y() < 0.85f;  // not the flanges' edges
+         }))
+      stations_cm.insert(static_cast<int>(std::lround(p.x() * 100 / 2)) * 2);
+    // each stiffener's outer face has its two edges 12 cm apart: pair them into centres
+    std::vector<int> edges(stations_cm.begin(), stations_cm.end());
+    ASSERT_EQ(edges.size(), 18u) << "nine stiffeners on a web (10 bays of 4.85 m)";
+    for (std::size_t k = 0; k + 2 < edges.size(); k += 2)
+      EXPECT_NEAR((edges[k + 2] + edges[k + 3]) / 2.0 - (edges[k] + edges[k + 1]) / 2.0, 485.0, 2.5);
+  }
+  const Extent e = extent_of(*girder);
+  EXPECT_NEAR(e.high.x(), 24.25f, 1e-4);
+  EXPECT_NEAR(e.high.z(), 1.5f, 1e-4);
+}
+
+TEST(Structures, AStairCountsTheRisesTheStrideRuleAsks) {
+  EXPECT_EQ(stair_rises(4.0, 3.25), 17);  // 191 mm rises, 235 mm goings: 618 mm (16 rises: 656 mm)
+  EXPECT_EQ(stair_rises(3.0, 3.0), 14);   // 45 degrees: 214 mm, 643 mm (15 rises: 600 mm)
+  EXPECT_EQ(stair_rises(6.0, 3.0), 19);   // 27 degrees: 158 mm rises, 316 mm goings: 632 mm
 }
 
 }  // namespace

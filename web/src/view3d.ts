@@ -68,8 +68,11 @@ interface DrawnEntity { position: THREE.Vector3; quaternion: THREE.Quaternion; v
 const kHidden = new THREE.Matrix4().makeScale(0, 0, 0);
 
 /** A unit box scaled to `size` and centred at `at` (sizes kept above 1 cm: a flat part still has faces). */
-function boxMatrix(size: number[], at: number[]): THREE.Matrix4 {
-  return new THREE.Matrix4().compose(new THREE.Vector3(at[0], at[1], at[2]), new THREE.Quaternion(),
+// a box of `size` at `at`, its x side turned `along` (a member's length)
+function boxMatrix(size: number[], at: number[], along: number[] = [1, 0, 0]): THREE.Matrix4 {
+  const turn = new THREE.Quaternion().setFromUnitVectors(new THREE.Vector3(1, 0, 0),
+    new THREE.Vector3(along[0], along[1], along[2]).normalize());
+  return new THREE.Matrix4().compose(new THREE.Vector3(at[0], at[1], at[2]), turn,
     new THREE.Vector3(Math.max(size[0], 0.01), Math.max(size[1], 0.01), Math.max(size[2], 0.01)));
 }
 
@@ -337,17 +340,19 @@ export class View3D {
     });
   }
 
-  // an entity's look as unit boxes placed in it: boxes, lattice girders as their four chords, any other shape
-  // as the box it fills; an entity without a look is a grey box of its own size
+  // an entity's look as unit boxes placed in it: boxes, lattice girders as their four chords, members turned along
+  // their length, any other shape as the box it fills; an entity without a look is a grey box of its own size
   private partsOf(visual: string, half: number[], liveryKey: number): { local: THREE.Matrix4; rgb: number[] }[] {
     const look = this.looks.visuals[visual];
     const own = half.map((h) => 2 * h);
-    const placed = (size: number[], at: number[], rgb: number[]) => ({ local: boxMatrix(size, at), rgb });
+    const placed = (size: number[], at: number[], rgb: number[], along?: number[]) =>
+      ({ local: boxMatrix(size, at, along), rgb });
     if (!look) return [placed(own, [0, 0, 0], [0.5, 0.5, 0.5])];
     const parts: { local: THREE.Matrix4; rgb: number[] }[] = [];
     for (const part of look.parts) {
       const size = part.size_m ?? own;
       const rgb = part.livery && look.liveries.length ? look.liveries[liveryKey % look.liveries.length] : part.color;
+      if (part.shape === "member") { parts.push(placed(size, part.at_m, rgb, part.along)); continue; }
       if (part.shape !== "lattice") { parts.push(placed(size, part.at_m, rgb)); continue; }
       const along = size.indexOf(Math.max(...size));
       for (const a of [-1, 1]) for (const b of [-1, 1]) {

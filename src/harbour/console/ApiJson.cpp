@@ -318,23 +318,26 @@ json scene_json(const std::string& station, const net::StationScene& scene) {
           {"entities", std::move(entities)}};
 }
 
-// The looks (data/visuals/*.yaml) as the browser's 3D view reads them; a container, tyre, shell, hull or mesh
-// part is drawn as the box it fills.
+// The looks (data/visuals/*.yaml) as the browser's 3D view reads them; a container, tyre, shell, hull, mesh,
+// girder, walkway, stairs or cylinder part is drawn as the box it fills, a member as its box turned `along`
+// it.
 json looks_json(const ig::Looks& looks) {
   json visuals = json::object();
   for (const auto& [key, visual] : looks.visuals) {
     json parts = json::array();
     for (const ig::VisualPart& part : visual.parts) {
-      static constexpr const char* kShapes[] = {"box",   "lattice", "container", "tyre",
-                                                "shell", "hull",    "mesh"};
-      static_assert(std::size(kShapes) == static_cast<std::size_t>(ig::VisualPart::Shape::kMesh) + 1);
+      static constexpr const char* kShapes[] = {"box",     "lattice", "container", "tyre",
+                                                "shell",   "hull",    "mesh",      "girder",
+                                                "walkway", "stairs",  "cylinder",  "member"};
+      static_assert(std::size(kShapes) == static_cast<std::size_t>(ig::VisualPart::Shape::kMember) + 1);
       parts.push_back({{"shape", kShapes[static_cast<int>(part.shape)]},
                        {"size_m", part.size_m ? vec3_json(*part.size_m) : json(nullptr)},
                        {"at_m", vec3_json(part.centre_m)},
                        {"color", vec3_json(part.color)},
                        {"livery", part.livery},
                        {"bay_m", part.bay_m},
-                       {"member_m", part.member_m}});
+                       {"member_m", part.member_m},
+                       {"along", vec3_json(part.along)}});
     }
     json liveries = json::array();
     for (const core::Vec3& c : visual.liveries)

@@ -37,6 +37,7 @@
 #include "harbour/ig/Materials.h"
 #include "harbour/ig/Models.h"
 #include "harbour/ig/Sky.h"
+#include "harbour/ig/Structures.h"
 
 namespace harbour::ig {
 
@@ -197,6 +198,29 @@ void add_lattice(osg::Geode& geode, const core::Vec3& centre, const core::Vec3& 
       bar(point(x, rising ? f[0] : f[2], rising ? f[1] : f[3]),
           point(x + step, rising ? f[2] : f[0], rising ? f[3] : f[1]));
     }
+  }
+}
+
+// a steelwork part (ig/Structures.h) built about its centre; none for any other shape
+osg::ref_ptr<osg::Geometry> structure(const VisualPart& part, const core::Vec3& size,
+                                      const osg::Vec4& paint) {
+  switch (part.shape) {
+    case VisualPart::Shape::kGirder:
+      return box_girder(size, part.bay_m, paint);
+    case VisualPart::Shape::kWalkway:
+      return walkway(size, part.rails, paint);
+    case VisualPart::Shape::kStairs:
+      return stairs(size, paint);
+    case VisualPart::Shape::kCylinder:
+      return cylinder(size, 20, paint);
+    case VisualPart::Shape::kMember: {
+      MeshBuilder mesh;
+      const osg::Vec3 half = to_osg(part.along) * static_cast<float>(size.x / 2);
+      beam(mesh, -half, half, static_cast<float>(size.y), static_cast<float>(size.z), paint);
+      return mesh.build();
+    }
+    default:
+      return nullptr;
   }
 }
 
@@ -1316,6 +1340,10 @@ void ImageGenerator::draw_entity(osg::MatrixTransform& transform_node,
         osg::ref_ptr<osg::Node> model;
         if (part.shape == VisualPart::Shape::kContainer || part.shape == VisualPart::Shape::kTyre) {
           model = models.detailed(part, size, color);
+        } else if (osg::ref_ptr<osg::Geometry> steelwork = structure(part, size, paint)) {
+          osg::ref_ptr<osg::Geode> holder = new osg::Geode;
+          holder->addDrawable(steelwork);
+          model = holder;
         } else {
           osg::ref_ptr<osg::Geode> holder = new osg::Geode;
           holder->addDrawable(part.shape == VisualPart::Shape::kShell
@@ -1932,6 +1960,18 @@ void ImageGenerator::set_floodlights(const std::vector<Floodlight>& lights) {
     root_->removeChild(light);
   floodlights_.clear();
   floodlight_settings_ = lights;
+  if (masts_) remove_lit(masts_);
+  masts_ = new osg::Group;
+  for (const Floodlight& light : lights) {
+    if (!light.mast) continue;
+    osg::ref_ptr<osg::MatrixTransform> at =
+        new osg::MatrixTransform(osg::Matrixd::translate(to_osg(light.position_m)));
+    osg::ref_ptr<osg::Geode> mast = new osg::Geode;
+    mast->addDrawable(light_mast(light.position_m.z));
+    at->addChild(mast);
+    masts_->addChild(at);
+  }
+  add_lit(masts_);
   for (std::size_t n = 0; n < lights.size() && n < kFloodlightSlots; ++n) {  // placed and lit in update()
     osg::ref_ptr<osg::LightSource> source = new osg::LightSource;
     osg::Light* light = source->getLight();

@@ -302,6 +302,7 @@ class ImageGenerator {
   std::vector<osg::ref_ptr<osg::LightSource>> floodlights_;  // the slots, lit in update()
   std::vector<Floodlight> floodlight_settings_;
   osg::ref_ptr<osg::Group> scenery_;
+  osg::ref_ptr<osg::Group> masts_;  // the quay floodlights' masts
   osg::ref_ptr<osg::LightSource> sun_;
   osg::ref_ptr<osg::Image> image_;
   osg::ref_ptr<osgText::Text> hud_, alarm_, overlay_;

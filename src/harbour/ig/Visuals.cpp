@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <iomanip>
 #include <numbers>
+#include <sstream>
 
 #include "harbour/ig/Models.h"
 #include "harbour/io/MachineDataFiles.h"
@@ -67,11 +69,40 @@ VisualPart read_part(const io::YamlFile& f, const YAML::Node& p, const std::stri
       part.shape = VisualPart::Shape::kHull;
     else if (shape == "mesh")
       part.shape = VisualPart::Shape::kMesh;
+    else if (shape == "girder")
+      part.shape = VisualPart::Shape::kGirder;
+    else if (shape == "walkway")
+      part.shape = VisualPart::Shape::kWalkway;
+    else if (shape == "stairs")
+      part.shape = VisualPart::Shape::kStairs;
+    else if (shape == "cylinder")
+      part.shape = VisualPart::Shape::kCylinder;
+    else if (shape == "member")
+      part.shape = VisualPart::Shape::kMember;
     else if (shape != "box")
-      f.fail(p["shape"], pat + ".shape",
-             "'" + shape + "' is not a shape: box, lattice, container, tyre, shell, hull or mesh");
+      f.fail(
+          p["shape"], pat + ".shape",
+          "'" + shape +
+              "' is not a shape: box, lattice, container, tyre, shell, hull, mesh, girder, walkway, stairs, "
+              "cylinder or member");
   }
-  if (part.shape == VisualPart::Shape::kMesh) {
+  if (part.shape == VisualPart::Shape::kMember) {
+    // from one point to another, of a section [width, depth]: its centre and size follow
+    const core::Vec3 from = f.vector3(f.required(p, "from", pat), pat + ".from", 1000.0);
+    const core::Vec3 to = f.vector3(f.required(p, "to", pat), pat + ".to", 1000.0);
+    const YAML::Node section = f.required(p, "section_m", pat);
+    if (!section.IsSequence() || section.size() != 2)
+      f.fail(section, pat + ".section_m", "expected [width, depth]");
+    const double width = f.number_at(section[0], pat + ".section_m[0]"),
+                 depth = f.number_at(section[1], pat + ".section_m[1]");
+    const double length = core::length(to - from);
+    if (!(width > 0.0 && depth > 0.0 && width < 10.0 && depth < 10.0))
+      f.fail(section, pat + ".section_m", "width and depth are positive (under 10 m)");
+    if (!(length > 1e-3)) f.fail(p["to"], pat + ".to", "a member's ends are apart");
+    part.size_m = core::Vec3{length, width, depth};
+    part.along = (to - from) * (1.0 / length);
+    part.centre_m = (from + to) * 0.5;
+  } else if (part.shape == VisualPart::Shape::kMesh) {
     const std::string file = f.text(p, "file", pat);
     part.mesh = (std::filesystem::path(path).parent_path() / file).lexically_normal().string();
     if (!std::filesystem::is_regular_file(part.mesh))
@@ -151,7 +182,46 @@ VisualPart read_part(const io::YamlFile& f, const YAML::Node& p, const std::stri
     part.bay_m = f.number_or(p, "bay_m", pat, 3.0, 0.2, 50.0);
     part.member_m = f.number_or(p, "member_m", pat, 0.25, 0.01, 2.0);
   }
-  part.centre_m = f.vector3(f.required(p, "at", pat), pat + ".at", 1000.0);
+  if (part.shape == VisualPart::Shape::kGirder) part.bay_m = f.number_or(p, "bay_m", pat, 3.0, 0.5, 50.0);
+  if ((part.shape == VisualPart::Shape::kCylinder) && (!part.size_m || tyre_axis(*part.size_m) < 0))
+    f.fail(p["size"], pat + ".size",
+           "a cylinder's size is written out: two equal sides (its diameter), its length");
+  if (part.shape == VisualPart::Shape::kWalkway) {
+    if (!part.size_m)
+      f.fail(p["size"], pat + ".size",
+             "a walkway's size is written out: its deck and its guard-rails' height");
+    if (f.optional(p, "rails", pat)) {
+      const std::string rails = f.text(p, "rails", pat);
+      if (rails == "positive")
+        part.rails = RailSides::kPlus;
+      else if (rails == "negative")
+        part.rails = RailSides::kMinus;
+      else if (rails == "none")
+        part.rails = RailSides::kNone;
+      else if (rails != "both")
+        f.fail(p["rails"], pat + ".rails",
+               "'" + rails + "' is not a side: both, positive, negative or none (across the walkway)");
+    }
+  }
+  if (part.shape == VisualPart::Shape::kStairs) {
+    if (!part.size_m)
+      f.fail(p["size"], pat + ".size", "a flight's size is written out: its run, width and height");
+    const double run = part.size_m->x, height = part.size_m->z;
+    const double pitch_deg = std::atan2(height, run) * 180.0 / std::numbers::pi;
+    const int rises = stair_rises(run, height);
+    const double stride = (run + 2.0 * height) / rises;
+    if (pitch_deg > access::kSteepestStair_deg || pitch_deg < access::kFlattestStair_deg ||
+        stride < access::kStepLengthLow_m - 1e-9 || stride > access::kStepLengthHigh_m + 1e-9) {
+      std::ostringstream what;
+      what << std::setprecision(3) << "a flight " << run << " m long and " << height << " m high ("
+           << pitch_deg
+           << " deg) has no steps of EN ISO 14122-3 (pitch 20-45 deg, rise at most 0.25 m, going "
+           << "+ 2 rises 0.60-0.66 m)";
+      f.fail(p["size"], pat + ".size", what.str());
+    }
+  }
+  if (part.shape != VisualPart::Shape::kMember)
+    part.centre_m = f.vector3(f.required(p, "at", pat), pat + ".at", 1000.0);
   part.solid = f.flag(p, "solid", pat, false);
   if (part.solid &&
       (part.shape != VisualPart::Shape::kBox || !part.size_m || part.turn || part.yaw_rad != 0.0))
@@ -215,6 +285,10 @@ void read_floodlights(const io::YamlFile& f, const YAML::Node& section, const st
       if (f.optional(lights[n], "entity", at)) light.entity = f.text(lights[n], "entity", at);
       light.color = color_of(f, f.required(lights[n], "color", at), at + ".color");
       light.range_m = f.number(lights[n], "range_m", at, 5.0, 500.0);
+      light.mast = f.flag(lights[n], "mast", at, false);
+      if (light.mast && (!light.entity.empty() || light.position_m.z < 5.0))
+        f.fail(lights[n]["mast"], at + ".mast",
+               "a light mast stands on the quay under a lamp at least 5 m up");
       looks.floodlights.push_back(light);
     }
   }
@@ -326,7 +400,16 @@ void read_visuals(const io::YamlFile& f, const YAML::Node& section, const std::s
     const YAML::Node parts = f.sequence(v, "parts", at, 256);
     for (std::size_t k = 0; k < parts.size(); ++k) {
       const std::string pat = at + ".parts[" + std::to_string(k) + "]";
-      visual.parts.push_back(read_part(f, parts[k], pat, path, visual));
+      const VisualPart part = read_part(f, parts[k], pat, path, visual);
+      // `repeat` copies `step` apart
+      const bool repeated = f.optional(parts[k], "repeat", pat).has_value();
+      const int copies = repeated ? f.integer(parts[k], "repeat", pat, 1, 200) : 1;
+      const core::Vec3 step =
+          repeated ? f.vector3(f.required(parts[k], "step", pat), pat + ".step", 1000.0) : core::Vec3{};
+      for (int copy = 0; copy < copies; ++copy) {
+        visual.parts.push_back(part);
+        visual.parts.back().centre_m = part.centre_m + step * static_cast<double>(copy);
+      }
     }
     out[key] = visual;
   }

@@ -12,6 +12,7 @@
 
 #include "harbour/core/Vec3.h"
 #include "harbour/ig/Materials.h"
+#include "harbour/ig/Structures.h"
 
 namespace harbour::ig {
 
@@ -21,7 +22,11 @@ namespace harbour::ig {
 /// filling the box (its axle along the side that differs from the two equal ones, the rim `rim_color`); or
 /// a clamshell grab's shell hanging from its pivot at the centre (ig/Models.h); a ship's hull filling the box
 /// (bow at +y, `bottom_color` under `waterline_m`, a deck of `deck_color` or none); or a mesh read through
-/// osgDB (OBJ, STL, PLY, .osgt, ...), placed at the centre, scaled by `scale`. Any part may be turned about z
+/// osgDB (OBJ, STL, PLY, .osgt, ...), placed at the centre, scaled by `scale`. Steelwork (ig/Structures.h): a
+/// box girder filling the box (a stiffener at every diaphragm, `bay_m` apart), a walkway (grating deck at the
+/// box's bottom, guard-rails its height on `rails`), a flight of stairs (climbing along +x), a cylinder (its
+/// axis along the side that differs), or a member `from` one point `to` another of a `section_m` [width,
+/// depth]. `repeat` copies of a part `step` apart are read as that many parts. Any part may be turned about z
 /// by `yaw_rad` and turn with an indicator. A part that turns with one of the machine's indicators (its
 /// published value, taken as 0-1 by `arcsine`): about `axis` (the part's frame, right hand) through its
 /// centre, by `max_rad` times the value, or with `arcsine` by the angle whose sine is the value times
@@ -38,19 +43,34 @@ struct PartTurn {
 };
 
 struct VisualPart {
-  enum class Shape { kBox, kLattice, kContainer, kTyre, kShell, kHull, kMesh };
+  enum class Shape {
+    kBox,
+    kLattice,
+    kContainer,
+    kTyre,
+    kShell,
+    kHull,
+    kMesh,
+    kGirder,
+    kWalkway,
+    kStairs,
+    kCylinder,
+    kMember
+  };
   Shape shape = Shape::kBox;
   std::optional<core::Vec3> size_m;  ///< full size; empty: the entity's own size
   core::Vec3 centre_m;
-  core::Vec3 color{0.5, 0.5, 0.5};                      ///< linear RGB
-  Surface surface = Surface::kPaint;                    ///< what it is made of (a tyre: its rim's)
-  bool livery = false;                                  ///< coloured by the entity's livery instead
-  double bay_m = 3.0, member_m = 0.25;                  ///< lattice
-  core::Vec3 rim_color{0.72, 0.72, 0.70};               ///< tyre: its rim's paint
-  double hinge_m = 0.0;                                 ///< shell: from its pivot down to its lip, shut
-  core::Vec3 bottom_color{0.55, 0.12, 0.10};            ///< hull: under its waterline
-  double waterline_m = 0.0;                             ///< hull: from the keel
-  std::optional<core::Vec3> deck_color;                 ///< hull: its deck (none: open to the sky)
+  core::Vec3 color{0.5, 0.5, 0.5};            ///< linear RGB
+  Surface surface = Surface::kPaint;          ///< what it is made of (a tyre: its rim's)
+  bool livery = false;                        ///< coloured by the entity's livery instead
+  double bay_m = 3.0, member_m = 0.25;        ///< lattice; a girder's bay_m
+  RailSides rails = RailSides::kBoth;         ///< walkway
+  core::Vec3 along{1.0, 0.0, 0.0};            ///< member: its length's way (size_m: length, width, depth)
+  core::Vec3 rim_color{0.72, 0.72, 0.70};     ///< tyre: its rim's paint
+  double hinge_m = 0.0;                       ///< shell: from its pivot down to its lip, shut
+  core::Vec3 bottom_color{0.55, 0.12, 0.10};  ///< hull: under its waterline
+  double waterline_m = 0.0;                   ///< hull: from the keel
+  std::optional<core::Vec3> deck_color;       ///< hull: its deck (none: open to the sky)
   double deck_open_from_m = 0.0, deck_open_to_m = 0.0;  ///< hull: its deck left open along y (the holds)
   double yaw_rad = 0.0;                                 ///< turned about the entity's z at its centre
   std::optional<PartTurn> turn;                         ///< turning with an indicator
@@ -99,6 +119,7 @@ struct Floodlight {
   core::Vec3 color{1.0, 0.9, 0.75};
   double range_m = 60.0;  ///< where its light has fallen to a tenth
   std::string entity;     ///< empty: on the quay
+  bool mast = false;      ///< on the quay: drawn on a light mast standing under it (ig/Structures.h)
 };
 
 /// A camera riding an entity (by its visual key): the spreader's camera, the boom tip's.
