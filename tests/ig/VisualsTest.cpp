@@ -214,6 +214,27 @@ hud:
   refused("  cameras:\n    - {name: c, entity: box, at: [0, 0, 0], look: [1, 0, 0], fov_vertical_deg: 60}\n",
           6, "looks.cameras[0].entity", "rides one of its own entities");
   refused(
+      "  festoons:\n    - {from: {entity: tractor.chassis, at: [0, 0, 0]}, to: {entity: sts.trolley, at: [1, "
+      "0, "
+      "0]}, carriers: 4, loop_m: 2}\n",
+      6, "looks.festoons[0].to.entity", "hangs from its own entities");
+  refused(
+      "  festoons:\n    - {from: {entity: tractor.chassis, at: [0, 0, 0]}, to: {entity: tractor.cab, at: [1, "
+      "0, "
+      "0]}, carriers: 0, loop_m: 2}\n",
+      6, "looks.festoons[0].carriers", "");
+  {
+    const std::string hung = written("hung_tractor.yaml", machine_head + R"(  festoons:
+    - {from: {entity: tractor.chassis, at: [0, 0, 2]}, to: {entity: tractor.cab, at: [3, 0, 0]}, carriers: 4,
+       loop_m: 2, cables: 2}
+)");
+    const Looks festooned = load_looks(harbour, {hung});
+    ASSERT_EQ(festooned.festoons.size(), 1u);
+    EXPECT_EQ(festooned.festoons[0].to_entity, "tractor.cab");
+    EXPECT_DOUBLE_EQ(festooned.festoons[0].from_m.z, 2.0);
+    EXPECT_EQ(festooned.festoons[0].cables, 2);
+  }
+  refused(
       "  cameras:\n    - {name: c, entity: tractor.cab, at: [0, 0, 0], look: [1, 0, 0], fov_vertical_deg: "
       "60}\n"
       "  insets:\n    - {camera: d, rect: [0, 0, 0.2, 0.2]}\n",

@@ -153,7 +153,7 @@ void paint_uncoloured(osg::Node& mesh, const osg::Vec4& color) {
 // A lattice girder filling the box of `size` round `centre`: four chords along its longest side, at every
 // panel point a vertical in each side face and a strut in the top and bottom faces, Warren diagonals (one
 // way, then the other) in all four faces. Members are square bars `member` thick.
-void add_lattice(osg::Geode& geode, const core::Vec3& centre, const core::Vec3& size, double bay,
+void add_lattice(MeshBuilder& mesh, const core::Vec3& centre, const core::Vec3& size, double bay,
                  double member, const osg::Vec4& color) {
   // the girder's axes: a along the longest side, b and c across it
   const std::array<double, 3> sides{size.x, size.y, size.z};
@@ -167,16 +167,7 @@ void add_lattice(osg::Geode& geode, const core::Vec3& centre, const core::Vec3& 
     return centre + core::Vec3{p[0], p[1], p[2]};
   };
   const auto bar = [&](const core::Vec3& from, const core::Vec3& to) {
-    const core::Vec3 d = to - from;
-    const double length = std::sqrt(dot(d, d));
-    osg::ref_ptr<osg::Box> box = new osg::Box(to_osg((from + to) * 0.5), static_cast<float>(member),
-                                              static_cast<float>(member), static_cast<float>(length));
-    osg::Quat onto;
-    onto.makeRotate(osg::Vec3d(0.0, 0.0, 1.0), osg::Vec3d(d.x, d.y, d.z));  // the box's z along the bar
-    box->setRotation(onto);
-    osg::ref_ptr<osg::ShapeDrawable> drawable = new osg::ShapeDrawable(box);
-    drawable->setColor(color);
-    geode.addDrawable(drawable);
+    beam(mesh, to_osg(from), to_osg(to), static_cast<float>(member), static_cast<float>(member), color);
   };
   const double length = sides[static_cast<std::size_t>(a)];
   const double hb = (sides[static_cast<std::size_t>(b)] - member) / 2.0,
@@ -1284,6 +1275,7 @@ void ImageGenerator::draw_entity(osg::MatrixTransform& transform_node,
   ModelCache& models = *models_;
   const auto look = visuals_.find(e.visual);
   osg::ref_ptr<osg::Geode> geode = new osg::Geode();
+  MeshBuilder fixed;
   if (look != visuals_.end()) {
     for (const VisualPart& part : look->second.parts) {
       const core::Vec3 size = part.size_m ? *part.size_m : e.half_extents_m * 2.0;
@@ -1332,18 +1324,32 @@ void ImageGenerator::draw_entity(osg::MatrixTransform& transform_node,
         frame->addChild(placed);
         continue;
       }
+      // the fixed parts' boxes, lattices and steelwork drawn as one mesh (a draw each costs more than its
+      // triangles); a part in a frame of its own, a mesh of its own
+      MeshBuilder own_mesh;
+      MeshBuilder& mesh = own_frame ? own_mesh : fixed;
+      const auto into_mesh = [&] {
+        if (own_frame) drawables->addDrawable(own_mesh.build());
+      };
       if (part.shape == VisualPart::Shape::kLattice) {
-        add_lattice(*drawables, centre, size, part.bay_m, part.member_m, paint);
+        add_lattice(mesh, centre, size, part.bay_m, part.member_m, paint);
+        into_mesh();
+        continue;
+      }
+      if (part.shape == VisualPart::Shape::kBox) {
+        mesh.box(to_osg(centre), to_osg(size * 0.5), paint);
+        into_mesh();
+        continue;
+      }
+      if (osg::ref_ptr<osg::Geometry> steelwork = structure(part, size, paint)) {
+        mesh.append(*steelwork, to_osg(centre));
+        into_mesh();
         continue;
       }
       if (part.shape != VisualPart::Shape::kBox) {  // a procedural model, built about its origin
         osg::ref_ptr<osg::Node> model;
         if (part.shape == VisualPart::Shape::kContainer || part.shape == VisualPart::Shape::kTyre) {
           model = models.detailed(part, size, color);
-        } else if (osg::ref_ptr<osg::Geometry> steelwork = structure(part, size, paint)) {
-          osg::ref_ptr<osg::Geode> holder = new osg::Geode;
-          holder->addDrawable(steelwork);
-          model = holder;
         } else {
           osg::ref_ptr<osg::Geode> holder = new osg::Geode;
           holder->addDrawable(part.shape == VisualPart::Shape::kShell
@@ -1361,13 +1367,9 @@ void ImageGenerator::draw_entity(osg::MatrixTransform& transform_node,
         frame->addChild(placed);
         continue;
       }
-      osg::ref_ptr<osg::ShapeDrawable> box =
-          new osg::ShapeDrawable(new osg::Box(to_osg(centre), static_cast<float>(size.x),
-                                              static_cast<float>(size.y), static_cast<float>(size.z)));
-      box->setColor(paint);
-      drawables->addDrawable(box);
     }
   }
+  if (!fixed.empty()) geode->addDrawable(fixed.build());
   if (look != visuals_.end() && look->second.name_marked) {
     // the name (a container's ISO code) where ISO 6346 marks it, each facing out: high on both long sides
     // reading along the box, high on both ends reading across it, and on the roof, larger, for the crane
@@ -1425,7 +1427,86 @@ void ImageGenerator::build_ropes(const scene::SceneDescription& scene) {
     ropes->addDrawable(geometry);
     ropes_.push_back(geometry);
   }
+  ropes_geode_ = ropes;
   root_->addChild(ropes);
+}
+
+// the festoons: their cables' loops and the carriers' hangers as lines, drawn as the ropes are
+void ImageGenerator::set_festoons(const std::vector<Festoon>& festoons) {
+  for (const auto& geometry : festoons_)
+    ropes_geode_->removeDrawable(geometry);
+  festoons_.clear();
+  festoon_settings_ = festoons;
+  for (std::size_t n = 0; n < festoon_settings_.size(); ++n) {
+    osg::ref_ptr<osg::Geometry> geometry = new osg::Geometry();
+    geometry->setUseDisplayList(false);
+    geometry->setUseVertexBufferObjects(true);
+    geometry->setDataVariance(osg::Object::DYNAMIC);
+    geometry->setVertexArray(new osg::Vec3Array);
+    osg::ref_ptr<osg::Vec4Array> colors = new osg::Vec4Array();
+    colors->push_back(osg::Vec4(0.05f, 0.05f, 0.05f, 1.0f));
+    geometry->setColorArray(colors, osg::Array::BIND_OVERALL);
+    geometry->addPrimitiveSet(new osg::DrawArrays(GL_LINES, 0, 0));
+    ropes_geode_->addDrawable(geometry);
+    festoons_.push_back(geometry);
+  }
+  update_festoons();
+}
+
+// each festoon between its ends as they ride their entities: carriers spread evenly on the level track
+// between them, a loop of cable from each to the next
+void ImageGenerator::update_festoons() {
+  constexpr float kHanger = 0.35f, kCableGap = 0.09f, kClosest = 0.2f;
+  constexpr int kLoopPoints = 9;
+  for (std::size_t n = 0; n < festoons_.size(); ++n) {
+    const Festoon& festoon = festoon_settings_[n];
+    auto* vertices = static_cast<osg::Vec3Array*>(festoons_[n]->getVertexArray());
+    vertices->clear();
+    const auto from = std::find(entity_visuals_.begin(), entity_visuals_.end(), festoon.from_entity);
+    const auto to = std::find(entity_visuals_.begin(), entity_visuals_.end(), festoon.to_entity);
+    if (from != entity_visuals_.end() && to != entity_visuals_.end()) {
+      const osg::Vec3 a = to_osg(
+                          entity_poses_[static_cast<std::size_t>(from - entity_visuals_.begin())].to_parent(
+                              festoon.from_m)),
+                      b = to_osg(
+                          entity_poses_[static_cast<std::size_t>(to - entity_visuals_.begin())].to_parent(
+                              festoon.to_m));
+      osg::Vec3 along = b - a;
+      along.z() = 0.0f;
+      const float length = along.length();
+      if (length > 1e-3f) along /= length;
+      osg::Vec3 across = along ^ osg::Vec3(0.0f, 0.0f, 1.0f);
+      const float spacing = std::max(length / static_cast<float>(festoon.carriers + 1), kClosest);
+      // the clamps: the ends and each carrier's hanger's foot
+      std::vector<osg::Vec3> clamps{a - osg::Vec3(0.0f, 0.0f, kHanger)};
+      for (int k = 1; k <= festoon.carriers; ++k) {
+        const osg::Vec3 carrier =
+            a + along * (spacing * static_cast<float>(k)) +
+            osg::Vec3(0.0f, 0.0f,
+                      (b.z() - a.z()) * static_cast<float>(k) / static_cast<float>(festoon.carriers + 1));
+        vertices->push_back(carrier);
+        vertices->push_back(carrier - osg::Vec3(0.0f, 0.0f, kHanger));
+        clamps.push_back(carrier - osg::Vec3(0.0f, 0.0f, kHanger));
+      }
+      clamps.push_back(b - osg::Vec3(0.0f, 0.0f, kHanger));
+      for (int c = 0; c < festoon.cables; ++c) {
+        const osg::Vec3 side =
+            across * (kCableGap * (static_cast<float>(c) - 0.5f * static_cast<float>(festoon.cables - 1)));
+        for (std::size_t k = 0; k + 1 < clamps.size(); ++k) {
+          const std::vector<osg::Vec3> loop =
+              festoon_loop(clamps[k] + side, clamps[k + 1] + side, festoon.loop_m, kLoopPoints);
+          for (std::size_t p = 0; p + 1 < loop.size(); ++p) {
+            vertices->push_back(loop[p]);
+            vertices->push_back(loop[p + 1]);
+          }
+        }
+      }
+    }
+    vertices->dirty();
+    static_cast<osg::DrawArrays*>(festoons_[n]->getPrimitiveSet(0))
+        ->setCount(static_cast<int>(vertices->size()));
+    festoons_[n]->dirtyBound();
+  }
 }
 
 // the heads-up display: an orthographic camera drawn last, in pixels
@@ -1797,6 +1878,7 @@ void ImageGenerator::update_hud(const scene::Snapshot& s) {
 void ImageGenerator::update(const scene::Snapshot& s) {
   update_entities(s);
   update_ropes(s);
+  update_festoons();
   cab_ = s.cab;
   sea_ = s.sea;
   time_s_ = s.time_s;

@@ -125,11 +125,15 @@ class ImageGenerator {
   /// while the machine's supply is on (not in a power failure); the first kFloodlightSlots of those, in
   /// order.
   void set_floodlights(const std::vector<Floodlight>& lights);
+  /// Cables hanging in loops between entities (a trolley's festoon), redrawn as they move; replaces those
+  /// set before.
+  void set_festoons(const std::vector<Festoon>& festoons);
   static constexpr std::size_t kFloodlightSlots = 7;  ///< OpenGL's eight lights, one of them the sun
   /// Everything a look file gives beyond the looks: the HUD and the floodlights.
   void use(const Looks& looks) {
     set_hud(looks.hud);
     set_floodlights(looks.floodlights);
+    set_festoons(looks.festoons);
     set_scenery(looks.scenery);
     cameras_ = looks.cameras;
     set_insets(looks.insets);
@@ -219,6 +223,7 @@ class ImageGenerator {
   void build_spray();
   void update_entities(const scene::Snapshot& s);
   void update_ropes(const scene::Snapshot& s);
+  void update_festoons();
   void update_sky_and_weather(const scene::Snapshot& s);
   void update_floodlights(const scene::Snapshot& s);
   void update_hud(const scene::Snapshot& s);
@@ -334,6 +339,9 @@ class ImageGenerator {
   std::string machine_;                      // the scene's machine (its kind)
   std::vector<std::string> entity_visuals_;  // visual key by entity index
   std::vector<core::Pose> entity_poses_;     // as last published
+  std::vector<Festoon> festoon_settings_;
+  osg::ref_ptr<osg::Geode> ropes_geode_;               // the ropes and the festoons (lines, unlit, fogged)
+  std::vector<osg::ref_ptr<osg::Geometry>> festoons_;  // by festoon_settings_, built with the ropes
   // the machine's entities' boxes in their frames (from their looks' parts), a chase view frames them
   std::vector<std::pair<core::Vec3, core::Vec3>> machine_boxes_;  // centre, half size
   double visibility_m_ = 20000.0;

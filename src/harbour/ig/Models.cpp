@@ -47,6 +47,17 @@ void MeshBuilder::box(const osg::Vec3& centre, const osg::Vec3& half, const osg:
     }
 }
 
+void MeshBuilder::append(const osg::Geometry& geometry, const osg::Vec3& offset) {
+  const auto& v = *static_cast<const osg::Vec3Array*>(geometry.getVertexArray());
+  const auto& n = *static_cast<const osg::Vec3Array*>(geometry.getNormalArray());
+  const auto& c = *static_cast<const osg::Vec4Array*>(geometry.getColorArray());
+  for (std::size_t k = 0; k < v.size(); ++k) {
+    vertices_->push_back(v[k] + offset);
+    normals_->push_back(n[k]);
+    colours_->push_back(c[k]);
+  }
+}
+
 osg::ref_ptr<osg::Geometry> MeshBuilder::build() const {
   osg::ref_ptr<osg::Geometry> geometry = new osg::Geometry;
   geometry->setUseDisplayList(false);

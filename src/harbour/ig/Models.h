@@ -20,7 +20,11 @@ class MeshBuilder {
                 const osg::Vec4& colour);
   /// An axis-aligned box round `centre` with half sides `half`.
   void box(const osg::Vec3& centre, const osg::Vec3& half, const osg::Vec4& colour);
+  /// Another geometry's triangles (drawn as GL_TRIANGLES with normals and colours per vertex), moved by
+  /// `offset`.
+  void append(const osg::Geometry& geometry, const osg::Vec3& offset);
   std::size_t triangle_count() const { return vertices_->size() / 3; }
+  bool empty() const { return vertices_->empty(); }
   osg::ref_ptr<osg::Geometry> build() const;
 
  private:

@@ -261,4 +261,29 @@ osg::ref_ptr<osg::Geometry> light_mast(double height_m) {
   return mesh.build();
 }
 
+double festoon_sag(double span_m, double cable_m) {
+  if (!(cable_m > span_m) || !(span_m > 0.0)) return span_m > 0.0 ? 0.0 : cable_m / 2.0;
+  const auto arc = [&](double d) {
+    return 0.5 * std::sqrt(span_m * span_m + 16.0 * d * d) +
+           span_m * span_m / (8.0 * d) * std::asinh(4.0 * d / span_m);
+  };
+  double low = 0.0, high = cable_m / 2.0;  // the arc grows with the sag
+  for (int k = 0; k < 60; ++k) {
+    const double mid = 0.5 * (low + high);
+    (mid > 0.0 && arc(mid) > cable_m ? high : low) = mid;
+  }
+  return 0.5 * (low + high);
+}
+
+std::vector<osg::Vec3> festoon_loop(const osg::Vec3& a, const osg::Vec3& b, double cable_m, int points) {
+  const float sag = static_cast<float>(festoon_sag((b - a).length(), cable_m));
+  std::vector<osg::Vec3> loop;
+  loop.reserve(static_cast<std::size_t>(points));
+  for (int k = 0; k < points; ++k) {
+    const float t = static_cast<float>(k) / static_cast<float>(points - 1);
+    loop.push_back(a + (b - a) * t - osg::Vec3(0.0f, 0.0f, 4.0f * sag * t * (1.0f - t)));
+  }
+  return loop;
+}
+
 }  // namespace harbour::ig

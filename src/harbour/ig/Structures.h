@@ -3,6 +3,8 @@
 #include <osg/Geometry>
 #include <osg/ref_ptr>
 
+#include <vector>
+
 #include "harbour/core/Vec3.h"
 #include "harbour/ig/Models.h"
 
@@ -60,5 +62,14 @@ osg::ref_ptr<osg::Geometry> cylinder(const core::Vec3& size_m, int segments, con
 /// octagonal pole (0.5 m across at the foot, 0.22 m at the head) on a concrete plinth, a ring of six lamp
 /// housings tilted down round a service platform with its guard-rail, and a ladder's cage up one side.
 osg::ref_ptr<osg::Geometry> light_mast(double height_m);
+
+/// The sag of a loop of cable `cable_m` long hanging between two carriers `span_m` apart, the loop taken as a
+/// parabola (arc length ½√(s² + 16d²) + (s²/8d)·asinh(4d/s)): 0 where the cable is taut, half its length
+/// where the carriers meet.
+double festoon_sag(double span_m, double cable_m);
+
+/// A festoon's loop of `cable_m` hanging from `a` to `b` (at one height, or nearly): `points` along it, down
+/// (-z) by festoon_sag.
+std::vector<osg::Vec3> festoon_loop(const osg::Vec3& a, const osg::Vec3& b, double cable_m, int points);
 
 }  // namespace harbour::ig

@@ -415,6 +415,32 @@ void read_visuals(const io::YamlFile& f, const YAML::Node& section, const std::s
   }
 }
 
+// a machine's festoons (`looks.festoons`), each end riding one of its own entities
+void read_festoons(const io::YamlFile& f, const YAML::Node& section, const std::string& kind, Looks& looks) {
+  if (!f.optional(section, "festoons", "looks")) return;
+  const YAML::Node festoons = f.sequence(section, "festoons", "looks", 16);
+  for (std::size_t n = 0; n < festoons.size(); ++n) {
+    const std::string at = item_path("looks", "festoons", n);
+    Festoon festoon;
+    const auto end = [&](const char* key, std::string& entity, core::Vec3& position) {
+      const std::string eat = at + "." + key;
+      const YAML::Node node = f.required(festoons[n], key, at);
+      entity = f.text(node, "entity", eat);
+      if (entity.rfind(kind + ".", 0) != 0)
+        f.fail(node["entity"], eat + ".entity",
+               "a " + kind + "'s festoon hangs from its own entities ('" + kind + ".<part>')");
+      position = f.vector3(f.required(node, "at", eat), eat + ".at", 1000.0);
+      f.check_unknown_keys(node, eat);
+    };
+    end("from", festoon.from_entity, festoon.from_m);
+    end("to", festoon.to_entity, festoon.to_m);
+    festoon.carriers = f.integer(festoons[n], "carriers", at, 1, 100);
+    festoon.loop_m = f.number(festoons[n], "loop_m", at, 0.2, 50.0);
+    festoon.cables = f.optional(festoons[n], "cables", at) ? f.integer(festoons[n], "cables", at, 1, 8) : 1;
+    looks.festoons.push_back(festoon);
+  }
+}
+
 // A machine file's looks (`looks`: its entities' looks, its lamps, cameras, camera insets and HUD lines)
 // into `looks`; the HUD lines its own, shown before the harbour's and in place of one for the same indicator.
 void read_machine_looks(const io::YamlFile& f, const std::string& kind, Looks& looks) {
@@ -434,6 +460,7 @@ void read_machine_looks(const io::YamlFile& f, const std::string& kind, Looks& l
       f.fail((*section)["cameras"][n - cameras], item_path("looks", "cameras", n - cameras) + ".entity",
              "a " + kind + "'s camera rides one of its own entities ('" + kind + ".<part>')");
   read_insets(f, *section, "looks", looks);
+  read_festoons(f, *section, kind, looks);
   std::vector<HudItem> own = read_hud(f, *section, "looks");
   for (HudItem& line : own) {
     line.machines = {kind};

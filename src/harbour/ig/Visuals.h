@@ -122,6 +122,17 @@ struct Floodlight {
   bool mast = false;      ///< on the quay: drawn on a light mast standing under it (ig/Structures.h)
 };
 
+/// A festoon: cables hanging in loops from carriers that run on a level track between two ends riding
+/// entities (a trolley's supply and control cables from the girder's end to the trolley): `carriers` spread
+/// evenly between the ends (at least 0.2 m apart), each loop `loop_m` of cable, `cables` side by side.
+struct Festoon {
+  std::string from_entity, to_entity;  ///< the looks of the entities its ends ride (the first with each)
+  core::Vec3 from_m, to_m;             ///< the ends in their entities' frames
+  int carriers = 12;
+  double loop_m = 5.0;
+  int cables = 3;
+};
+
 /// A camera riding an entity (by its visual key): the spreader's camera, the boom tip's.
 struct EntityCamera {
   std::string name;    ///< the view's name: spreader, boom_tip, ...
@@ -157,6 +168,7 @@ struct Looks {
   std::map<std::string, Visual> visuals;
   std::vector<HudItem> hud;
   std::vector<Floodlight> floodlights;
+  std::vector<Festoon> festoons;
   std::vector<EntityCamera> cameras;
   std::vector<Inset> insets;  ///< of the cameras whose entity is in the scene
   std::vector<SceneryPart> scenery;
