@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Each machine's cab view (top row) and chase view (bottom row) at one moment of its main exercise in six
 # conditions — noon, dusk (18:18, the sun 3.5° down), night (22 h), fog (200 m), rain (20 mm/h) and a storm
-# (20 m/s wind, 40 mm/h, 2 km visibility) — side by side: docs/images/weather_<exercise>.png; and the sky
+# (26 m/s wind, Beaufort 10, 40 mm/h, 2 km visibility) — side by side: docs/images/weather_<exercise>.png; and the sky
 # through an evening from the quay (12, 16, 17:30, 18, 18:12, 18:30, 18:48, 19:12 h): docs/images/sky_evening.png.
 # Drawn with surface detail (a GPU station's default) on any renderer.
 # Usage: docs/images/weather.sh [path/to/harboursim]
@@ -18,7 +18,7 @@ options() {  # condition
     night) echo "--time-of-day 22" ;;
     fog) echo "--time-of-day 12 --visibility 200" ;;
     rain) echo "--time-of-day 12 --rain 20 --visibility 3000" ;;
-    storm) echo "--time-of-day 15 --rain 40 --visibility 2000 --command 0:wind:20:270:0.2" ;;
+    storm) echo "--time-of-day 15 --rain 40 --visibility 2000 --command 0:wind:26:270:0.15" ;;
   esac
 }
 shoot() {  # exercise, moment [s]
