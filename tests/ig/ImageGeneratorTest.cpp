@@ -629,6 +629,43 @@ TEST(ImageGenerator, FloodlightsLightTheQuayAtNightOnly) {
   EXPECT_NEAR(noon_with, noon_without, 1e-6);  // off by day
 }
 
+// A lit floodlight is seen as a lamp at night from below it: its glow where it projects; none by day, and
+// none from above (a floodlight faces down).
+TEST(ImageGenerator, ALitLampGlowsAtNightSeenFromBelowOnly) {
+  ImageGenerator ig(scene(), looks(), kWidth, kHeight);
+  const core::Vec3 lamp{-10.0, 30.0, 30.0};  // beside the boxes, clear of them
+  const auto seen_from = [&](const core::Vec3& eye, double time_of_day_h) {
+    View v;
+    v.kind = View::Kind::kFree;
+    v.position_m = eye;
+    const core::Vec3 to = lamp - eye;
+    v.yaw_rad = std::atan2(to.y, to.x);
+    v.pitch_rad = std::atan2(to.z, std::hypot(to.x, to.y));
+    v.fov_vertical_rad = 0.6;
+    ig.set_view(v);
+    ig.update(state(5000.0, 5000.0, 20000.0, time_of_day_h));
+    const osg::Image& image = ig.render();
+    const auto at = ig.project(lamp);
+    EXPECT_TRUE(at.has_value());
+    return at ? luminance(pixel(image, static_cast<int>(at->first), static_cast<int>(at->second))) : -1.0;
+  };
+  const core::Vec3 below{-10.0, 0.0, 2.0}, above{-10.0, 10.0, 70.0};
+  ig.set_floodlights({});
+  const double night_unlit = seen_from(below, 23.0), above_unlit = seen_from(above, 23.0);
+  const double noon_unlit = seen_from(below, 12.0);
+  ig.set_floodlights({{lamp, {1.0, 0.9, 0.75}, 60.0}});
+  const double night = seen_from(below, 23.0), from_above = seen_from(above, 23.0);
+  const double noon = seen_from(below, 12.0);
+  std::printf(
+      "the lamp from below at night %.3f (%.3f without it), from above %.3f (%.3f), at noon %.3f "
+      "(%.3f)\n",
+      night, night_unlit, from_above, above_unlit, noon, noon_unlit);
+  EXPECT_GT(night, 0.6);  // the lamp's colour (luminance 0.91) at its glow's core
+  EXPECT_LT(night_unlit, 0.1);
+  EXPECT_LT(from_above - above_unlit, 0.2);  // the quay under it is lit, the lamp not seen
+  EXPECT_NEAR(noon, noon_unlit, 1e-6);
+}
+
 TEST(ImageGenerator, AMachinesLampRidesItAndGoesOutInAPowerFailure) {
   ImageGenerator ig(scene(), looks(), kWidth, kHeight);
   ig.set_view(down());

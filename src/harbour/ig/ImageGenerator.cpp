@@ -1,5 +1,6 @@
 #include "harbour/ig/ImageGenerator.h"
 
+#include <osg/BlendFunc>
 #include <osg/Depth>
 #include <osg/Fog>
 #include <osg/FrameBufferObject>
@@ -67,7 +68,7 @@ constexpr int kWaterColumns = 96,
               kWaterRows = 64;          // the water's grid, laid over the screen (projected grid)
 constexpr double kWaterFar_m = 3000.0;  // where it ends; a flat sea beyond
 // render bins after the solid scene's (0): the water, then the far sea under it
-constexpr int kWaterBin = 5, kFarWaterBin = 6, kSprayBin = 20;
+constexpr int kWaterBin = 5, kFarWaterBin = 6, kSprayBin = 20, kLampBin = 21;
 constexpr int kSprayCells = 64;
 constexpr double kQuayEdge_m = 18.0;  // the quay's top reaches x = 18 m; the harbour's water lies beyond  //
                                       // spray's grid, 5 m cells: 320 m round the eye
@@ -609,6 +610,35 @@ void main() {
   if (a < 0.004) discard;
   vec3 colour = vec3(0.86, 0.89, 0.91) * sky_light;
   gl_FragColor = vec4(mix(gl_Fog.color.rgb, colour, fog), a);
+}
+)";
+// A lit lamp seen as the eye sees one at night: a glow round it (a billboard at the lamp, half a metre across
+// near and widening with distance so that a far lamp stays a few pixels), its brightness falling off as
+// exp(-6 r^2) from the centre, added to the picture; a floodlight faces down, so it shows to an eye below it
+// (fading out as the eye comes level with it, none from above); it fades in the fog.
+constexpr char kLampVertexShader[] = R"(#version 120
+uniform mat4 osg_ViewMatrix;
+varying vec2 corner;
+varying float shown;
+void main() {
+  vec4 eye = osg_ViewMatrix * gl_Vertex;
+  float distance = length(eye.xyz);
+  vec3 down = (osg_ViewMatrix * vec4(0.0, 0.0, -1.0, 0.0)).xyz;
+  float facing = dot(-eye.xyz / max(distance, 1e-3), down);  // the cosine from its axis to the eye
+  eye.xy += gl_MultiTexCoord0.xy * (0.3 + 0.004 * distance);
+  corner = gl_MultiTexCoord0.xy;
+  shown = smoothstep(-0.1, 0.3, facing) * clamp(exp(-gl_Fog.density * distance), 0.0, 1.0);
+  gl_FrontColor = gl_Color;
+  gl_Position = gl_ProjectionMatrix * eye;
+}
+)";
+constexpr char kLampFragmentShader[] = R"(#version 120
+varying vec2 corner;
+varying float shown;
+void main() {
+  float glow = exp(-6.0 * dot(corner, corner)) * shown;
+  if (glow < 0.004) discard;
+  gl_FragColor = vec4(gl_Color.rgb * glow, 1.0);
 }
 )";
 // The water's shading per pixel: the normal from the slopes of the swell and the wind sea (interpolated
@@ -1636,6 +1666,34 @@ void ImageGenerator::build_spray() {
   root_->addChild(spray_);
 }
 
+// the lit lamps' glows: one billboard each, placed every frame by update_floodlights
+void ImageGenerator::build_lamp_glows() {
+  osg::ref_ptr<osg::Geometry> glows = new osg::Geometry;
+  glows->setUseDisplayList(false);
+  glows->setUseVertexBufferObjects(true);
+  glows->setDataVariance(osg::Object::DYNAMIC);
+  glows->setVertexArray(new osg::Vec3Array);
+  glows->setColorArray(new osg::Vec4Array, osg::Array::BIND_PER_VERTEX);
+  glows->setTexCoordArray(0, new osg::Vec2Array, osg::Array::BIND_PER_VERTEX);
+  glows->addPrimitiveSet(new osg::DrawArrays(GL_QUADS, 0, 0));
+  glows->setCullingActive(false);  // spread by its shader
+  lamp_glows_ = new osg::Geode;
+  lamp_glows_->addDrawable(glows);
+  osg::StateSet* state = lamp_glows_->getOrCreateStateSet();
+  state->setRenderBinDetails(kLampBin, "RenderBin");
+  state->setMode(GL_LIGHTING, osg::StateAttribute::OFF);
+  state->setMode(GL_CULL_FACE, osg::StateAttribute::OFF);
+  state->setMode(GL_BLEND, osg::StateAttribute::ON);
+  state->setAttributeAndModes(new osg::BlendFunc(GL_ONE, GL_ONE));
+  state->setAttributeAndModes(new osg::Depth(osg::Depth::LESS, 0.0, 1.0, false));
+  osg::ref_ptr<osg::Program> program = new osg::Program;
+  program->addShader(new osg::Shader(osg::Shader::VERTEX, kLampVertexShader));
+  program->addShader(new osg::Shader(osg::Shader::FRAGMENT, kLampFragmentShader));
+  state->setAttribute(program);
+  lamp_glows_->setNodeMask(0u);
+  root_->addChild(lamp_glows_);
+}
+
 void ImageGenerator::build(const scene::SceneDescription& scene) {
   root_ = new osg::Group;
   build_lighting();
@@ -1646,6 +1704,7 @@ void ImageGenerator::build(const scene::SceneDescription& scene) {
   build_hud(scene);
   build_near_rain();
   build_spray();
+  build_lamp_glows();
   frame_ = new osg::Group;
   frame_->addChild(root_);
   frame_->addChild(near_rain_);
@@ -1791,6 +1850,13 @@ void ImageGenerator::update_floodlights(const scene::Snapshot& s) {
   // supply is on; OpenGL's seven lights go to them in the look file's order
   const bool dark = sun_elevation_ < 0.02;
   std::size_t lit_lamps = 0;
+  osg::Geometry& glows = *lamp_glows_->getDrawable(0)->asGeometry();
+  auto* glow_at = static_cast<osg::Vec3Array*>(glows.getVertexArray());
+  auto* glow_colour = static_cast<osg::Vec4Array*>(glows.getColorArray());
+  auto* glow_corner = static_cast<osg::Vec2Array*>(glows.getTexCoordArray(0));
+  glow_at->clear();
+  glow_colour->clear();
+  glow_corner->clear();
   for (const Floodlight& lamp : floodlight_settings_) {
     if (!dark || lit_lamps == floodlights_.size()) break;
     core::Vec3 at = lamp.position_m;
@@ -1801,6 +1867,16 @@ void ImageGenerator::update_floodlights(const scene::Snapshot& s) {
     }
     osg::Light* slot = floodlights_[lit_lamps++]->getLight();
     slot->setPosition(osg::Vec4(to_osg(at), 1.0f));
+    // its glow: at the lamp, or at each lens of its mast's head
+    const std::vector<osg::Vec3> lenses =
+        lamp.mast ? light_mast_lenses() : std::vector<osg::Vec3>{osg::Vec3()};
+    for (const osg::Vec3& lens : lenses)
+      for (const osg::Vec2& corner :
+           {osg::Vec2(-1, -1), osg::Vec2(1, -1), osg::Vec2(1, 1), osg::Vec2(-1, 1)}) {
+        glow_at->push_back(to_osg(at) + lens);
+        glow_colour->push_back(rgba(lamp.color));
+        glow_corner->push_back(corner);
+      }
     slot->setDiffuse(rgba(lamp.color));
     // a tenth of the light at its range: 1 / (1 + q r^2) = 0.1
     slot->setQuadraticAttenuation(static_cast<float>(9.0 / (lamp.range_m * lamp.range_m)));
@@ -1809,6 +1885,11 @@ void ImageGenerator::update_floodlights(const scene::Snapshot& s) {
     root_->getOrCreateStateSet()->setMode(GL_LIGHT1 + static_cast<GLenum>(n),
                                           n < lit_lamps ? osg::StateAttribute::ON : osg::StateAttribute::OFF);
   floodlights_on_->set(static_cast<int>(lit_lamps));
+  for (osg::Array* array : {static_cast<osg::Array*>(glow_at), static_cast<osg::Array*>(glow_colour),
+                            static_cast<osg::Array*>(glow_corner)})
+    array->dirty();
+  static_cast<osg::DrawArrays*>(glows.getPrimitiveSet(0))->setCount(static_cast<int>(glow_at->size()));
+  lamp_glows_->setNodeMask(lit_lamps > 0 ? ~0u : 0u);
 }
 
 // the HUD's lines

@@ -221,6 +221,7 @@ class ImageGenerator {
   void build_hud(const scene::SceneDescription& scene);
   void build_near_rain();
   void build_spray();
+  void build_lamp_glows();
   void update_entities(const scene::Snapshot& s);
   void update_ropes(const scene::Snapshot& s);
   void update_festoons();
@@ -285,7 +286,8 @@ class ImageGenerator {
   // the rain falling close past the eye, drawn over the picture as streaks towards where the drops fall
   osg::ref_ptr<osg::Camera> near_rain_;
   osg::ref_ptr<osg::Geometry> streaks_;
-  osg::ref_ptr<osg::Geode> spray_;  // puffs blown off the crests in a gale
+  osg::ref_ptr<osg::Geode> spray_;       // puffs blown off the crests in a gale
+  osg::ref_ptr<osg::Geode> lamp_glows_;  // the lit lamps seen at night
   double rain_mm_per_h_ = 0.0;
   void update_near_rain(const osg::Vec3d& eye);
   osg::ref_ptr<osg::Uniform> wetness_;   // rain's water on the lit surfaces (the quay's film too)

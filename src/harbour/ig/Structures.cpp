@@ -207,6 +207,28 @@ osg::ref_ptr<osg::Geometry> cylinder(const core::Vec3& size_m, int segments, con
   return mesh.build();
 }
 
+namespace {
+// a light mast's lamps: six on a ring 1.2 m round its head, each looking out and 53 degrees down
+constexpr int kMastLamps = 6;
+osg::Vec3 lamp_mount(int k) {
+  const float t = kPi / 3 * static_cast<float>(k);
+  return osg::Vec3(std::cos(t), std::sin(t), 0.0f) * 1.2f;
+}
+osg::Vec3 lamp_look(int k) {
+  const float t = kPi / 3 * static_cast<float>(k);
+  osg::Vec3 look = osg::Vec3(std::cos(t), std::sin(t), 0.0f) * 0.6f + osg::Vec3(0.0f, 0.0f, -0.8f);
+  look.normalize();
+  return look;
+}
+}  // namespace
+
+std::vector<osg::Vec3> light_mast_lenses() {
+  std::vector<osg::Vec3> lenses;
+  for (int k = 0; k < kMastLamps; ++k)
+    lenses.push_back(lamp_mount(k) + lamp_look(k) * 0.16f);
+  return lenses;
+}
+
 osg::ref_ptr<osg::Geometry> light_mast(double height_m) {
   const float top = 0.0f, foot = -static_cast<float>(height_m);
   const osg::Vec4 steel = finished(osg::Vec4(0.60f, 0.61f, 0.60f, 1.0f), Surface::kGalvanised);
@@ -227,21 +249,15 @@ osg::ref_ptr<osg::Geometry> light_mast(double height_m) {
               osg::Vec3(std::cos(tm), std::sin(tm), 0.0f), steel);
   }
   // the head: a ring of six lamp housings looking down and out, on arms from the pole's top
-  constexpr float kRing = 1.2f;
-  for (int k = 0; k < 6; ++k) {
-    const float t = kPi / 3 * static_cast<float>(k);
-    const osg::Vec3 out(std::cos(t), std::sin(t), 0.0f);
-    const osg::Vec3 mount = out * kRing;
+  for (int k = 0; k < kMastLamps; ++k) {
+    const osg::Vec3 mount = lamp_mount(k), look = lamp_look(k);
     beam(mesh, osg::Vec3(0.0f, 0.0f, top - 0.15f), mount, 0.1f, 0.1f, steel);
-    const osg::Vec3 facing = out * 0.6f + osg::Vec3(0.0f, 0.0f, -0.8f);  // 53 degrees down
-    osg::Vec3 look = facing;
-    look.normalize();
     beam(mesh, mount - look * 0.15f, mount + look * 0.12f, 0.7f, 0.5f, housing);
     beam(mesh, mount + look * 0.12f, mount + look * 0.14f, 0.6f, 0.4f, lens);
   }
-  // a service platform under the lamps with its guard-rail, reached by a ladder up the pole
-  constexpr float kPlatform = 1.4f;
-  const float deck = top - 1.6f;
+  // a service platform inside the ring of lamps, over them, with its guard-rail, reached by a ladder up the pole
+  constexpr float kPlatform = 1.0f;
+  const float deck = top + 0.35f;
   for (int k = 0; k < 8; ++k) {
     const float t0 = kPi / 4 * static_cast<float>(k), t1 = t0 + kPi / 4;
     const osg::Vec3 a(kPlatform * std::cos(t0), kPlatform * std::sin(t0), deck),
@@ -251,7 +267,7 @@ osg::ref_ptr<osg::Geometry> light_mast(double height_m) {
                   osg::Vec3(0.0f, 0.0f, -1.0f), kGrating);
     guard_rail(mesh, a, b, static_cast<float>(access::kGuardRailHeight_m), 0.04f, steel);
   }
-  constexpr float kLadderOut = 0.45f, kLadderHalf = 0.2f, kRungs = 0.28f;
+  constexpr float kLadderOut = 0.45f, kLadderHalf = 0.15f, kRungs = 0.28f;
   for (const float side : {-1.0f, 1.0f})
     beam(mesh, osg::Vec3(-kLadderOut, side * kLadderHalf, z0),
          osg::Vec3(-kLadderOut, side * kLadderHalf, deck), 0.06f, 0.03f, steel);

@@ -60,8 +60,11 @@ osg::ref_ptr<osg::Geometry> cylinder(const core::Vec3& size_m, int segments, con
 
 /// A floodlight's mast standing on the quay with its lamp head `height_m` up at the origin: a tapered
 /// octagonal pole (0.5 m across at the foot, 0.22 m at the head) on a concrete plinth, a ring of six lamp
-/// housings tilted down round a service platform with its guard-rail, and a ladder's cage up one side.
+/// housings 1.2 m round it tilted 53 degrees down, a service platform over them inside the ring with its
+/// guard-rail, and a ladder up the pole.
 osg::ref_ptr<osg::Geometry> light_mast(double height_m);
+/// Where the light mast's six lamps' lenses are, from its head.
+std::vector<osg::Vec3> light_mast_lenses();
 
 /// The sag of a loop of cable `cable_m` long hanging between two carriers `span_m` apart, the loop taken as a
 /// parabola (arc length ½√(s² + 16d²) + (s²/8d)·asinh(4d/s)): 0 where the cable is taut, half its length
