@@ -1433,6 +1433,22 @@ void ImageGenerator::draw_entity(osg::MatrixTransform& transform_node,
   transform->addChild(geode);
 }
 
+namespace {
+// lines of one colour whose points change every frame (none yet)
+osg::ref_ptr<osg::Geometry> moving_lines(GLenum mode, const osg::Vec4& colour) {
+  osg::ref_ptr<osg::Geometry> geometry = new osg::Geometry();
+  geometry->setUseDisplayList(false);
+  geometry->setUseVertexBufferObjects(true);
+  geometry->setDataVariance(osg::Object::DYNAMIC);
+  geometry->setVertexArray(new osg::Vec3Array);
+  osg::ref_ptr<osg::Vec4Array> colors = new osg::Vec4Array();
+  colors->push_back(colour);
+  geometry->setColorArray(colors, osg::Array::BIND_OVERALL);
+  geometry->addPrimitiveSet(new osg::DrawArrays(mode, 0, 0));
+  return geometry;
+}
+}  // namespace
+
 // the ropes: one line strip each, moved every frame
 void ImageGenerator::build_ropes(const scene::SceneDescription& scene) {
   osg::ref_ptr<osg::Geode> ropes = new osg::Geode();
@@ -1445,15 +1461,7 @@ void ImageGenerator::build_ropes(const scene::SceneDescription& scene) {
     ropes->getOrCreateStateSet()->setAttribute(program);
   }
   for (int r = 0; r < scene.rope_count; ++r) {
-    osg::ref_ptr<osg::Geometry> geometry = new osg::Geometry();
-    geometry->setUseDisplayList(false);
-    geometry->setUseVertexBufferObjects(true);
-    geometry->setDataVariance(osg::Object::DYNAMIC);
-    geometry->setVertexArray(new osg::Vec3Array);
-    osg::ref_ptr<osg::Vec4Array> colors = new osg::Vec4Array();
-    colors->push_back(osg::Vec4(0.08f, 0.08f, 0.08f, 1.0f));
-    geometry->setColorArray(colors, osg::Array::BIND_OVERALL);
-    geometry->addPrimitiveSet(new osg::DrawArrays(GL_LINE_STRIP, 0, 0));
+    osg::ref_ptr<osg::Geometry> geometry = moving_lines(GL_LINE_STRIP, osg::Vec4(0.08f, 0.08f, 0.08f, 1.0f));
     ropes->addDrawable(geometry);
     ropes_.push_back(geometry);
   }
@@ -1468,15 +1476,7 @@ void ImageGenerator::set_festoons(const std::vector<Festoon>& festoons) {
   festoons_.clear();
   festoon_settings_ = festoons;
   for (std::size_t n = 0; n < festoon_settings_.size(); ++n) {
-    osg::ref_ptr<osg::Geometry> geometry = new osg::Geometry();
-    geometry->setUseDisplayList(false);
-    geometry->setUseVertexBufferObjects(true);
-    geometry->setDataVariance(osg::Object::DYNAMIC);
-    geometry->setVertexArray(new osg::Vec3Array);
-    osg::ref_ptr<osg::Vec4Array> colors = new osg::Vec4Array();
-    colors->push_back(osg::Vec4(0.05f, 0.05f, 0.05f, 1.0f));
-    geometry->setColorArray(colors, osg::Array::BIND_OVERALL);
-    geometry->addPrimitiveSet(new osg::DrawArrays(GL_LINES, 0, 0));
+    osg::ref_ptr<osg::Geometry> geometry = moving_lines(GL_LINES, osg::Vec4(0.05f, 0.05f, 0.05f, 1.0f));
     ropes_geode_->addDrawable(geometry);
     festoons_.push_back(geometry);
   }

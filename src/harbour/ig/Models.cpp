@@ -348,21 +348,27 @@ int tyre_axis(const core::Vec3& size_m) {
   return -1;
 }
 
+Revolved::Revolved(const core::Vec3& size_m) : axis(std::max(tyre_axis(size_m), 0)) {
+  const std::array<double, 3> s{size_m.x, size_m.y, size_m.z};
+  radius = static_cast<float>(s[static_cast<std::size_t>((axis + 1) % 3)] / 2.0);
+  half_length = static_cast<float>(s[static_cast<std::size_t>(axis)] / 2.0);
+}
+
+osg::Vec3 Revolved::at(float theta, float r, float w) const {
+  osg::Vec3 p;
+  p[axis] = w;
+  p[(axis + 1) % 3] = r * std::cos(theta);
+  p[(axis + 2) % 3] = r * std::sin(theta);
+  return p;
+}
+
 osg::ref_ptr<osg::Geometry> tyre(const core::Vec3& size_m, const osg::Vec4& rubber_colour,
                                  const osg::Vec4& rim, int segments) {
   const osg::Vec4 rubber = finished(rubber_colour, Surface::kRubber);
-  const int axis = std::max(tyre_axis(size_m), 0);
-  const std::array<double, 3> s{size_m.x, size_m.y, size_m.z};
-  const float radius = static_cast<float>(s[static_cast<std::size_t>((axis + 1) % 3)] / 2.0);
-  const float half_width = static_cast<float>(s[static_cast<std::size_t>(axis)] / 2.0);
-  // a point at angle `theta`, `r` from the axle, `w` along it
-  const auto at = [&](float theta, float r, float w) {
-    osg::Vec3 p;
-    p[axis] = w;
-    p[(axis + 1) % 3] = r * std::cos(theta);
-    p[(axis + 2) % 3] = r * std::sin(theta);
-    return p;
-  };
+  const Revolved wheel(size_m);
+  const int axis = wheel.axis;
+  const float radius = wheel.radius, half_width = wheel.half_length;
+  const auto at = [&](float theta, float r, float w) { return wheel.at(theta, r, w); };
   const auto radial = [&](float theta) { return at(theta, 1.0f, 0.0f); };
   osg::Vec3 axle;
   axle[axis] = 1.0f;

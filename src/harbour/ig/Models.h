@@ -66,4 +66,14 @@ osg::ref_ptr<osg::Geometry> hull(const core::Vec3& size_m, const osg::Vec4& tops
 /// The axle's axis (0 x, 1 y, 2 z) of a tyre filling `size_m`, or -1 where no two sides are equal.
 int tyre_axis(const core::Vec3& size_m);
 
+/// A solid of revolution filling a box of `size_m` round the origin (a tyre, a cylinder): its axis along the
+/// side that differs (tyre_axis; x where none does), its radius and half length.
+struct Revolved {
+  explicit Revolved(const core::Vec3& size_m);
+  /// the point at angle `theta` round the axis, `r` from it and `w` along it
+  osg::Vec3 at(float theta, float r, float w) const;
+  int axis;
+  float radius, half_length;
+};
+
 }  // namespace harbour::ig

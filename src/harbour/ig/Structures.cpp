@@ -182,18 +182,10 @@ osg::ref_ptr<osg::Geometry> stairs(const core::Vec3& size_m, const osg::Vec4& pa
 }
 
 osg::ref_ptr<osg::Geometry> cylinder(const core::Vec3& size_m, int segments, const osg::Vec4& paint) {
-  const int axis = std::max(tyre_axis(size_m), 0);
-  const std::array<double, 3> s{size_m.x, size_m.y, size_m.z};
-  const float radius = static_cast<float>(s[static_cast<std::size_t>((axis + 1) % 3)] / 2.0);
-  const float half = static_cast<float>(s[static_cast<std::size_t>(axis)] / 2.0);
-  const auto at = [&](float theta, float r, float w) {
-    osg::Vec3 p;
-    p[axis] = w;
-    p[(axis + 1) % 3] = r * std::cos(theta);
-    p[(axis + 2) % 3] = r * std::sin(theta);
-    return p;
-  };
-  const osg::Vec3 axle = unit(axis);
+  const Revolved drum(size_m);
+  const float radius = drum.radius, half = drum.half_length;
+  const auto at = [&](float theta, float r, float w) { return drum.at(theta, r, w); };
+  const osg::Vec3 axle = unit(drum.axis);
   MeshBuilder mesh;
   const float step = 2.0f * kPi / static_cast<float>(segments);
   for (int k = 0; k < segments; ++k) {
@@ -255,7 +247,8 @@ osg::ref_ptr<osg::Geometry> light_mast(double height_m) {
     beam(mesh, mount - look * 0.15f, mount + look * 0.12f, 0.7f, 0.5f, housing);
     beam(mesh, mount + look * 0.12f, mount + look * 0.14f, 0.6f, 0.4f, lens);
   }
-  // a service platform inside the ring of lamps, over them, with its guard-rail, reached by a ladder up the pole
+  // a service platform inside the ring of lamps, over them, with its guard-rail, reached by a ladder up the
+  // pole
   constexpr float kPlatform = 1.0f;
   const float deck = top + 0.35f;
   for (int k = 0; k < 8; ++k) {
