@@ -340,8 +340,8 @@ export class View3D {
     });
   }
 
-  // an entity's look as unit boxes placed in it: boxes, lattice girders as their four chords, members turned along
-  // their length, any other shape as the box it fills; an entity without a look is a grey box of its own size
+  // an entity's look as unit boxes placed in it: boxes, lattice girders as their four chords, members and flights
+  // turned along them, any other shape as the box the console sends; an entity without a look is a grey box
   private partsOf(visual: string, half: number[], liveryKey: number): { local: THREE.Matrix4; rgb: number[] }[] {
     const look = this.looks.visuals[visual];
     const own = half.map((h) => 2 * h);
@@ -352,7 +352,7 @@ export class View3D {
     for (const part of look.parts) {
       const size = part.size_m ?? own;
       const rgb = part.livery && look.liveries.length ? look.liveries[liveryKey % look.liveries.length] : part.color;
-      if (part.shape === "member") { parts.push(placed(size, part.at_m, rgb, part.along)); continue; }
+      if (part.shape === "member" || part.shape === "stairs") { parts.push(placed(size, part.at_m, rgb, part.along)); continue; }
       if (part.shape !== "lattice") { parts.push(placed(size, part.at_m, rgb)); continue; }
       const along = size.indexOf(Math.max(...size));
       for (const a of [-1, 1]) for (const b of [-1, 1]) {

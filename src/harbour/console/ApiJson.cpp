@@ -326,18 +326,30 @@ json looks_json(const ig::Looks& looks) {
   for (const auto& [key, visual] : looks.visuals) {
     json parts = json::array();
     for (const ig::VisualPart& part : visual.parts) {
+      // a walkway as its deck, a flight as the slab along its pitch (turned by its yaw), a member along
+      // itself
+      std::optional<core::Vec3> size = part.size_m;
+      core::Vec3 at = part.centre_m, along = part.along;
+      if (size && part.shape == ig::VisualPart::Shape::kWalkway) {
+        at.z -= size->z / 2.0;
+        size->z = 0.05;
+      } else if (size && part.shape == ig::VisualPart::Shape::kStairs) {
+        const core::Vec3 rise{size->x * std::cos(part.yaw_rad), size->x * std::sin(part.yaw_rad), size->z};
+        along = rise * (1.0 / core::length(rise));
+        size = core::Vec3{core::length(rise), size->y, 0.3};
+      }
       static constexpr const char* kShapes[] = {"box",     "lattice", "container", "tyre",
                                                 "shell",   "hull",    "mesh",      "girder",
                                                 "walkway", "stairs",  "cylinder",  "member"};
       static_assert(std::size(kShapes) == static_cast<std::size_t>(ig::VisualPart::Shape::kMember) + 1);
       parts.push_back({{"shape", kShapes[static_cast<int>(part.shape)]},
-                       {"size_m", part.size_m ? vec3_json(*part.size_m) : json(nullptr)},
-                       {"at_m", vec3_json(part.centre_m)},
+                       {"size_m", size ? vec3_json(*size) : json(nullptr)},
+                       {"at_m", vec3_json(at)},
                        {"color", vec3_json(part.color)},
                        {"livery", part.livery},
                        {"bay_m", part.bay_m},
                        {"member_m", part.member_m},
-                       {"along", vec3_json(part.along)}});
+                       {"along", vec3_json(along)}});
     }
     json liveries = json::array();
     for (const core::Vec3& c : visual.liveries)
