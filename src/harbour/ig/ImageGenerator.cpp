@@ -125,6 +125,20 @@ osg::ref_ptr<osg::Geode> tessellated_plane(double x0, double x1, double y0, doub
   return geode;
 }
 
+// A mesh read from a file drawn from buffer objects, as every other geometry here is (its reader's display
+// lists, compiled after a geometry drawn from a buffer object, read their arrays through the buffer still
+// bound: a software renderer crashed on it).
+void use_buffer_objects(osg::Node& mesh) {
+  struct Buffered : osg::NodeVisitor {
+    Buffered() : osg::NodeVisitor(TRAVERSE_ALL_CHILDREN) {}
+    void apply(osg::Drawable& drawable) override {
+      drawable.setUseDisplayList(false);
+      drawable.setUseVertexBufferObjects(true);
+    }
+  } buffered;
+  mesh.accept(buffered);
+}
+
 // The part's colour on a mesh's geometry that brings none of its own (the lit shader reads vertex colours;
 // a material's diffuse colour, where the file has one, wins), with the part's finish in its alpha.
 void paint_uncoloured(osg::Node& mesh, const osg::Vec4& color) {
@@ -1347,6 +1361,7 @@ void ImageGenerator::draw_entity(osg::MatrixTransform& transform_node,
         osg::ref_ptr<osg::Node> mesh = read_mesh(part.mesh);
         if (!mesh) throw std::runtime_error("osgDB could not read the mesh " + part.mesh);
         paint_uncoloured(*mesh, paint);
+        use_buffer_objects(*mesh);
         osg::ref_ptr<osg::MatrixTransform> placed =
             new osg::MatrixTransform(osg::Matrixd::scale(part.scale, part.scale, part.scale) *
                                      osg::Matrixd::translate(to_osg(centre)));
@@ -1359,7 +1374,7 @@ void ImageGenerator::draw_entity(osg::MatrixTransform& transform_node,
       MeshBuilder own_mesh;
       MeshBuilder& mesh = own_frame ? own_mesh : fixed;
       const auto into_mesh = [&] {
-        if (own_frame) drawables->addDrawable(own_mesh.build());
+        if (own_frame && !own_mesh.empty()) drawables->addDrawable(own_mesh.build());
       };
       if (part.shape == VisualPart::Shape::kLattice) {
         add_lattice(mesh, centre, size, part.bay_m, part.member_m, paint);
@@ -1474,7 +1489,13 @@ void ImageGenerator::set_festoons(const std::vector<Festoon>& festoons) {
   for (const auto& geometry : festoons_)
     ropes_geode_->removeDrawable(geometry);
   festoons_.clear();
-  festoon_settings_ = festoons;
+  // those whose ends this scene has
+  festoon_settings_.clear();
+  const auto in_scene = [&](const std::string& look) {
+    return std::find(entity_visuals_.begin(), entity_visuals_.end(), look) != entity_visuals_.end();
+  };
+  for (const Festoon& festoon : festoons)
+    if (in_scene(festoon.from_entity) && in_scene(festoon.to_entity)) festoon_settings_.push_back(festoon);
   for (std::size_t n = 0; n < festoon_settings_.size(); ++n) {
     osg::ref_ptr<osg::Geometry> geometry = moving_lines(GL_LINES, osg::Vec4(0.05f, 0.05f, 0.05f, 1.0f));
     ropes_geode_->addDrawable(geometry);
@@ -1672,9 +1693,10 @@ void ImageGenerator::build_lamp_glows() {
   glows->setUseDisplayList(false);
   glows->setUseVertexBufferObjects(true);
   glows->setDataVariance(osg::Object::DYNAMIC);
-  glows->setVertexArray(new osg::Vec3Array);
-  glows->setColorArray(new osg::Vec4Array, osg::Array::BIND_PER_VERTEX);
-  glows->setTexCoordArray(0, new osg::Vec2Array, osg::Array::BIND_PER_VERTEX);
+  // one quad's room from the start, drawn only when a lamp is lit
+  glows->setVertexArray(new osg::Vec3Array(4));
+  glows->setColorArray(new osg::Vec4Array(4), osg::Array::BIND_PER_VERTEX);
+  glows->setTexCoordArray(0, new osg::Vec2Array(4), osg::Array::BIND_PER_VERTEX);
   glows->addPrimitiveSet(new osg::DrawArrays(GL_QUADS, 0, 0));
   glows->setCullingActive(false);  // spread by its shader
   lamp_glows_ = new osg::Geode;
@@ -1854,9 +1876,10 @@ void ImageGenerator::update_floodlights(const scene::Snapshot& s) {
   auto* glow_at = static_cast<osg::Vec3Array*>(glows.getVertexArray());
   auto* glow_colour = static_cast<osg::Vec4Array*>(glows.getColorArray());
   auto* glow_corner = static_cast<osg::Vec2Array*>(glows.getTexCoordArray(0));
-  glow_at->clear();
-  glow_colour->clear();
-  glow_corner->clear();
+  glow_at->resize(4);  // one quad's room at least, drawn only when lit (see build_lamp_glows)
+  glow_colour->resize(4);
+  glow_corner->resize(4);
+  std::size_t glow_vertices = 0;
   for (const Floodlight& lamp : floodlight_settings_) {
     if (!dark || lit_lamps == floodlights_.size()) break;
     core::Vec3 at = lamp.position_m;
@@ -1873,9 +1896,14 @@ void ImageGenerator::update_floodlights(const scene::Snapshot& s) {
     for (const osg::Vec3& lens : lenses)
       for (const osg::Vec2& corner :
            {osg::Vec2(-1, -1), osg::Vec2(1, -1), osg::Vec2(1, 1), osg::Vec2(-1, 1)}) {
-        glow_at->push_back(to_osg(at) + lens);
-        glow_colour->push_back(rgba(lamp.color));
-        glow_corner->push_back(corner);
+        if (glow_vertices == glow_at->size()) {
+          glow_at->push_back({});
+          glow_colour->push_back({});
+          glow_corner->push_back({});
+        }
+        (*glow_at)[glow_vertices] = to_osg(at) + lens;
+        (*glow_colour)[glow_vertices] = rgba(lamp.color);
+        (*glow_corner)[glow_vertices++] = corner;
       }
     slot->setDiffuse(rgba(lamp.color));
     // a tenth of the light at its range: 1 / (1 + q r^2) = 0.1
@@ -1888,7 +1916,7 @@ void ImageGenerator::update_floodlights(const scene::Snapshot& s) {
   for (osg::Array* array : {static_cast<osg::Array*>(glow_at), static_cast<osg::Array*>(glow_colour),
                             static_cast<osg::Array*>(glow_corner)})
     array->dirty();
-  static_cast<osg::DrawArrays*>(glows.getPrimitiveSet(0))->setCount(static_cast<int>(glow_at->size()));
+  static_cast<osg::DrawArrays*>(glows.getPrimitiveSet(0))->setCount(static_cast<int>(glow_vertices));
   lamp_glows_->setNodeMask(lit_lamps > 0 ? ~0u : 0u);
 }
 
@@ -2111,6 +2139,8 @@ void ImageGenerator::set_scenery(const std::vector<SceneryPart>& parts) {
                              static_cast<float>(part.size_m.z));
       osg::ref_ptr<osg::ShapeDrawable> drawable = new osg::ShapeDrawable(shape);
       drawable->setColor(finished(rgba(part.color), part.surface));
+      drawable->setUseDisplayList(false);  // buffer objects, as everything else (use_buffer_objects)
+      drawable->setUseVertexBufferObjects(true);
       (part.size_m.z < 0.05 ? flat : standing)->addDrawable(drawable);
     }
   scenery_->addChild(standing);
