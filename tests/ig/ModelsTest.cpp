@@ -287,9 +287,8 @@ TEST(Structures, AStairCountsTheRisesTheStrideRuleAsks) {
   EXPECT_EQ(stair_rises(6.0, 3.0), 19);   // 27 degrees: 158 mm rises, 316 mm goings: 632 mm
 }
 
-
-// A festoon's loop: a parabola whose arc is the cable's length. Taut at a span of the cable's length, half the
-// cable deep where the carriers meet, and for a shallow loop the parabola's series L = s + 8d^2/(3s).
+// A festoon's loop: a parabola whose arc is the cable's length. Taut at a span of the cable's length, half
+// the cable deep where the carriers meet, and for a shallow loop the parabola's series L = s + 8d^2/(3s).
 TEST(Structures, AFestoonsLoopHangsByItsCablesLength) {
   EXPECT_NEAR(festoon_sag(5.0, 5.0), 0.0, 1e-9);
   EXPECT_NEAR(festoon_sag(0.0, 5.0), 2.5, 1e-9);
@@ -305,7 +304,8 @@ TEST(Structures, AFestoonsLoopHangsByItsCablesLength) {
   // the drawn loop's polyline is the cable's length (a fine one: the chords fall short of the arc)
   const std::vector<osg::Vec3> loop = festoon_loop({0, 0, 0}, {2.0f, 0, 0}, 5.0, 401);
   double length = 0.0;
-  for (std::size_t k = 0; k + 1 < loop.size(); ++k) length += (loop[k + 1] - loop[k]).length();
+  for (std::size_t k = 0; k + 1 < loop.size(); ++k)
+    length += (loop[k + 1] - loop[k]).length();
   EXPECT_NEAR(length, 5.0, 0.005);
   EXPECT_NEAR(loop[200].z(), -festoon_sag(2.0, 5.0), 1e-5);
 }

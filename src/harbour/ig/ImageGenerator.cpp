@@ -1652,16 +1652,37 @@ void ImageGenerator::build_near_rain() {
 }
 
 // spray: a quad per cell of its grid, placed and faded by its shader
+namespace {
+// a billboard's corners, as its shader spreads it in the eye's frame
+constexpr std::array<std::array<float, 2>, 4> kBillboardCorners{{{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}};
+
+// billboards spread by their own shaders, unlit, blended, in bin `bin` after the scene, seen through each
+// other (no depth written): the state of `geode`
+osg::StateSet* billboards(osg::Geode& geode, int bin, const char* vertex_shader,
+                          const char* fragment_shader) {
+  osg::StateSet* state = geode.getOrCreateStateSet();
+  state->setRenderBinDetails(bin, "RenderBin");
+  state->setMode(GL_LIGHTING, osg::StateAttribute::OFF);
+  state->setMode(GL_CULL_FACE, osg::StateAttribute::OFF);
+  state->setMode(GL_BLEND, osg::StateAttribute::ON);
+  state->setAttributeAndModes(new osg::Depth(osg::Depth::LESS, 0.0, 1.0, false));
+  osg::ref_ptr<osg::Program> program = new osg::Program;
+  program->addShader(new osg::Shader(osg::Shader::VERTEX, vertex_shader));
+  program->addShader(new osg::Shader(osg::Shader::FRAGMENT, fragment_shader));
+  state->setAttribute(program);
+  return state;
+}
+}  // namespace
+
 void ImageGenerator::build_spray() {
   osg::ref_ptr<osg::Geometry> puffs = new osg::Geometry;
   osg::ref_ptr<osg::Vec3Array> cells = new osg::Vec3Array;
   osg::ref_ptr<osg::Vec2Array> corners = new osg::Vec2Array;
   for (int j = 0; j < kSprayCells; ++j)
     for (int i = 0; i < kSprayCells; ++i)
-      for (const osg::Vec2& corner :
-           {osg::Vec2(-1, -1), osg::Vec2(1, -1), osg::Vec2(1, 1), osg::Vec2(-1, 1)}) {
+      for (const auto& [u, v] : kBillboardCorners) {
         cells->push_back(osg::Vec3(static_cast<float>(i), static_cast<float>(j), 0.0f));
-        corners->push_back(corner);
+        corners->push_back(osg::Vec2(u, v));
       }
   puffs->setVertexArray(cells);
   puffs->setTexCoordArray(0, corners, osg::Array::BIND_PER_VERTEX);
@@ -1669,16 +1690,7 @@ void ImageGenerator::build_spray() {
   puffs->setCullingActive(false);  // placed by its shader round the eye
   spray_ = new osg::Geode;
   spray_->addDrawable(puffs);
-  osg::StateSet* state = spray_->getOrCreateStateSet();
-  state->setRenderBinDetails(kSprayBin, "RenderBin");
-  state->setMode(GL_LIGHTING, osg::StateAttribute::OFF);
-  state->setMode(GL_CULL_FACE, osg::StateAttribute::OFF);
-  state->setMode(GL_BLEND, osg::StateAttribute::ON);
-  state->setAttributeAndModes(new osg::Depth(osg::Depth::LESS, 0.0, 1.0, false));  // seen through each other
-  osg::ref_ptr<osg::Program> program = new osg::Program;
-  program->addShader(new osg::Shader(osg::Shader::VERTEX, kSprayVertexShader));
-  program->addShader(new osg::Shader(osg::Shader::FRAGMENT, kSprayFragmentShader));
-  state->setAttribute(program);
+  osg::StateSet* state = billboards(*spray_, kSprayBin, kSprayVertexShader, kSprayFragmentShader);
   for (const char* name : {"time_s", "spray_share", "spray_height", "water_level", "quay_edge", "sky_light"})
     state->addUniform(new osg::Uniform(name, 0.0f));
   for (const char* name : {"first_cell", "wind"})
@@ -1701,17 +1713,8 @@ void ImageGenerator::build_lamp_glows() {
   glows->setCullingActive(false);  // spread by its shader
   lamp_glows_ = new osg::Geode;
   lamp_glows_->addDrawable(glows);
-  osg::StateSet* state = lamp_glows_->getOrCreateStateSet();
-  state->setRenderBinDetails(kLampBin, "RenderBin");
-  state->setMode(GL_LIGHTING, osg::StateAttribute::OFF);
-  state->setMode(GL_CULL_FACE, osg::StateAttribute::OFF);
-  state->setMode(GL_BLEND, osg::StateAttribute::ON);
-  state->setAttributeAndModes(new osg::BlendFunc(GL_ONE, GL_ONE));
-  state->setAttributeAndModes(new osg::Depth(osg::Depth::LESS, 0.0, 1.0, false));
-  osg::ref_ptr<osg::Program> program = new osg::Program;
-  program->addShader(new osg::Shader(osg::Shader::VERTEX, kLampVertexShader));
-  program->addShader(new osg::Shader(osg::Shader::FRAGMENT, kLampFragmentShader));
-  state->setAttribute(program);
+  billboards(*lamp_glows_, kLampBin, kLampVertexShader, kLampFragmentShader)
+      ->setAttributeAndModes(new osg::BlendFunc(GL_ONE, GL_ONE));  // light added
   lamp_glows_->setNodeMask(0u);
   root_->addChild(lamp_glows_);
 }
@@ -1876,10 +1879,9 @@ void ImageGenerator::update_floodlights(const scene::Snapshot& s) {
   auto* glow_at = static_cast<osg::Vec3Array*>(glows.getVertexArray());
   auto* glow_colour = static_cast<osg::Vec4Array*>(glows.getColorArray());
   auto* glow_corner = static_cast<osg::Vec2Array*>(glows.getTexCoordArray(0));
-  glow_at->resize(4);  // one quad's room at least, drawn only when lit (see build_lamp_glows)
-  glow_colour->resize(4);
-  glow_corner->resize(4);
-  std::size_t glow_vertices = 0;
+  glow_at->clear();
+  glow_colour->clear();
+  glow_corner->clear();
   for (const Floodlight& lamp : floodlight_settings_) {
     if (!dark || lit_lamps == floodlights_.size()) break;
     core::Vec3 at = lamp.position_m;
@@ -1894,16 +1896,10 @@ void ImageGenerator::update_floodlights(const scene::Snapshot& s) {
     const std::vector<osg::Vec3> lenses =
         lamp.mast ? light_mast_lenses() : std::vector<osg::Vec3>{osg::Vec3()};
     for (const osg::Vec3& lens : lenses)
-      for (const osg::Vec2& corner :
-           {osg::Vec2(-1, -1), osg::Vec2(1, -1), osg::Vec2(1, 1), osg::Vec2(-1, 1)}) {
-        if (glow_vertices == glow_at->size()) {
-          glow_at->push_back({});
-          glow_colour->push_back({});
-          glow_corner->push_back({});
-        }
-        (*glow_at)[glow_vertices] = to_osg(at) + lens;
-        (*glow_colour)[glow_vertices] = rgba(lamp.color);
-        (*glow_corner)[glow_vertices++] = corner;
+      for (const auto& [u, v] : kBillboardCorners) {
+        glow_at->push_back(to_osg(at) + lens);
+        glow_colour->push_back(rgba(lamp.color));
+        glow_corner->push_back(osg::Vec2(u, v));
       }
     slot->setDiffuse(rgba(lamp.color));
     // a tenth of the light at its range: 1 / (1 + q r^2) = 0.1
@@ -1913,10 +1909,14 @@ void ImageGenerator::update_floodlights(const scene::Snapshot& s) {
     root_->getOrCreateStateSet()->setMode(GL_LIGHT1 + static_cast<GLenum>(n),
                                           n < lit_lamps ? osg::StateAttribute::ON : osg::StateAttribute::OFF);
   floodlights_on_->set(static_cast<int>(lit_lamps));
+  static_cast<osg::DrawArrays*>(glows.getPrimitiveSet(0))->setCount(static_cast<int>(glow_at->size()));
+  // one quad's room at least, drawn only when a lamp is lit (see build_lamp_glows)
+  glow_at->resize(std::max<std::size_t>(glow_at->size(), 4));
+  glow_colour->resize(glow_at->size());
+  glow_corner->resize(glow_at->size());
   for (osg::Array* array : {static_cast<osg::Array*>(glow_at), static_cast<osg::Array*>(glow_colour),
                             static_cast<osg::Array*>(glow_corner)})
     array->dirty();
-  static_cast<osg::DrawArrays*>(glows.getPrimitiveSet(0))->setCount(static_cast<int>(glow_vertices));
   lamp_glows_->setNodeMask(lit_lamps > 0 ? ~0u : 0u);
 }
 

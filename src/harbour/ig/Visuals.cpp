@@ -430,7 +430,6 @@ void read_festoons(const io::YamlFile& f, const YAML::Node& section, const std::
         f.fail(node["entity"], eat + ".entity",
                "a " + kind + "'s festoon hangs from its own entities ('" + kind + ".<part>')");
       position = f.vector3(f.required(node, "at", eat), eat + ".at", 1000.0);
-      f.check_unknown_keys(node, eat);
     };
     end("from", festoon.from_entity, festoon.from_m);
     end("to", festoon.to_entity, festoon.to_m);
