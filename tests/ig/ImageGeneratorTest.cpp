@@ -420,10 +420,11 @@ TEST(Visuals, BadLooksNameFileLineAndField) {
   const std::string part = "visuals:\n  - key: a\n    parts:\n      - ";
   EXPECT_EQ(error(part + "{shape: lattice, size: [10, 1, 1], at: [0, 0, 0], bay_m: 2, color: [1, 0, 0]}\n"),
             "");
-  EXPECT_NE(error(part + "{shape: cone, size: [1, 1, 1], at: [0, 0, 0], color: [1, 0, 0]}\n")
-                .find("harbour_looks.yaml:4: visuals[0].parts[0].shape: 'cone' is not a shape: box, lattice, "
-                      "container, tyre, shell, hull, mesh, girder, walkway, stairs, cylinder or member"),
-            std::string::npos);
+  EXPECT_NE(
+      error(part + "{shape: cone, size: [1, 1, 1], at: [0, 0, 0], color: [1, 0, 0]}\n")
+          .find("harbour_looks.yaml:4: visuals[0].parts[0].shape: 'cone' is not a shape: box, lattice, "
+                "container, tyre, shell, hull, mesh, girder, walkway, stairs, cylinder, member or spreader"),
+      std::string::npos);
   EXPECT_NE(error(part + "{shape: lattice, size: [10, 1, 1], at: [0, 0, 0], member_m: 9, color: [1, 0, 0]}\n")
                 .find("visuals[0].parts[0].member_m"),
             std::string::npos);
@@ -1922,6 +1923,78 @@ TEST(ImageGenerator, ABoxIsPaintedByItsNameWhereverItStandsAndTakesTheLiveryOfAN
   ig.rename_entity(1, green);
   const osg::Vec3 renamed = colour_ahead(ig, 1);
   EXPECT_GT(renamed.y(), 2.0 * renamed.x()) << renamed.x() << " " << renamed.y() << " " << renamed.z();
+}
+
+}  // namespace
+}  // namespace harbour::ig
+
+namespace harbour::ig {
+namespace {
+
+// The shipped STS spreader telescopes with its published length: seen from above its yellow spans the
+// length the physics has (40 ft, then 20 and 45 ft) to a pixel or two; its flippers fold down with their
+// indicators: seen from the side, the plates reach 0.4 m under its underside (data/machines/sts.yaml's
+// flipper depth), none while they are up.
+TEST(ImageGenerator, TheSpreaderTelescopesWithItsLengthAndItsFlippersFoldDown) {
+  scene::SceneDescription d;
+  d.machine = "test";
+  d.entities.push_back({"mast", "none", {}});
+  d.entities.push_back({"spreader", "sts.spreader", {1.219, 6.096, 0.5}});  // 40 ft, as the STS describes it
+  d.indicators = {"spreader_length_m", "flipper_1", "flipper_2", "flipper_3", "flipper_4"};
+  const Looks shipped = load_shipped_looks(HARBOUR_DATA_DIR, sim::machine_kinds());
+  ImageGenerator ig(d, shipped.visuals, kWidth, kHeight);
+  const core::Vec3 at{20.0, 0.0, 14.0};
+  const auto show = [&](double length_m, double flippers) {
+    scene::Snapshot s = state(5000.0, 5000.0, 20000.0, 12.0);
+    s.entity_count = 2;
+    s.entities[1] = {1, 0, {core::Mat3::identity(), at}};
+    s.indicator_count = 5;
+    s.indicators[0] = length_m;
+    for (int c = 1; c <= 4; ++c)
+      s.indicators[static_cast<std::size_t>(c)] = flippers;
+    ig.update(s);
+    return &ig.render();
+  };
+  const auto yellow = [](const osg::Vec3& p) {
+    return p.x() > 0.25 && p.y() > 0.6 * p.x() && p.z() < 0.45 * p.x();
+  };
+  // from 40 m above, its length across the picture (the world's y to the left)
+  ig.set_view(free_camera(at + core::Vec3{0.0, 0.0, 40.0}, 0.0, -std::numbers::pi / 2.0 + 1e-3));
+  for (const double length : {12.192, 6.058, 13.716}) {
+    const osg::Image& image = *show(length, 0.0);
+    int left = kWidth, right = -1;
+    for (int y = 0; y < kHeight; ++y)
+      for (int x = 0; x < kWidth; ++x)
+        if (yellow(pixel(image, x, y))) {
+          left = std::min(left, x);
+          right = std::max(right, x);
+        }
+    const double drawn = right - left + 1;
+    const double expected = ig.project(at + core::Vec3{0.0, -length / 2.0, 0.0})->first -
+                            ig.project(at + core::Vec3{0.0, length / 2.0, 0.0})->first;
+    std::printf("spreader %.3f m long: drawn %.0f px, its length %.1f px\n", length, drawn, expected);
+    EXPECT_NEAR(drawn, expected, 2.5) << length;
+  }
+  // from the side, 15 m off: the lowest yellow
+  ig.set_view(free_camera(at + core::Vec3{-15.0, 0.0, 0.0}, 0.0, 0.0));
+  const auto lowest_row = [&](double flippers) {
+    const osg::Image& image = *show(12.192, flippers);
+    int lowest = -1;
+    for (int y = 0; y < kHeight; ++y)
+      for (int x = 0; x < kWidth; ++x)
+        if (yellow(pixel(image, x, y))) lowest = std::max(lowest, y);
+    return lowest;
+  };
+  // the near corners' underside, 1.3 m nearer than the centre
+  const auto row_at = [&](double below_m) {
+    return ig.project(at + core::Vec3{-1.3, 0.0, -0.5 - below_m})->second;
+  };
+  const int up = lowest_row(0.0), down = lowest_row(1.0), half = lowest_row(0.5);
+  std::printf("lowest yellow row: flippers up %d, down %d, half %d; underside %.1f, 0.4 m under it %.1f\n",
+              up, down, half, row_at(0.0), row_at(0.4));
+  EXPECT_NEAR(up, row_at(0.0), 2.0);
+  EXPECT_NEAR(down, row_at(0.4), 2.0);
+  EXPECT_GT(half, up);  // half way round: hanging outboard
 }
 
 }  // namespace

@@ -3,9 +3,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <numbers>
 #include <string>
 
 #include "harbour/io/DataError.h"
@@ -241,6 +243,102 @@ hud:
       8, "looks.insets[0].camera", "no camera 'd'");
   refused("  hud:\n    - {indicator: gear, label: gear, machines: [sts]}\n", 6, "looks.hud[0].machines",
           "unknown key");
+}
+
+}  // namespace
+}  // namespace harbour::ig
+
+namespace harbour::ig {
+namespace {
+
+// A telescopic spreader drawn as its parts: its twistlocks where ISO 1161 puts a box's castings at each of
+// the sizes it telescopes to (ISO 668 lengths), sliding with the published length; its flippers turning about
+// their hinges; the main frame inside the 20 ft length.
+TEST(Visuals, ASpreadersTwistlocksSlideToTheCastingsOfEverySize) {
+  VisualPart spreader;
+  spreader.shape = VisualPart::Shape::kSpreader;
+  spreader.telescopes_with = "spreader_length_m";
+  spreader.locks_with = "lamp_locked";
+  spreader.flippers = {"f1", "f2", "f3", "f4"};
+  spreader.centre_m = {0.0, 0.0, 0.0};
+  const core::Vec3 box{2.438, 12.192, 1.0};  // drawn for 40 ft
+  const std::vector<VisualPart> parts = spreader_parts(spreader, box);
+  // ISO 1161 casting centres: 2.259 m across; 5.853, 11.985 and 13.509 m along for 20, 40 and 45 ft boxes
+  const struct { double length, span; } sizes[] = {{6.058, 5.853}, {12.192, 11.985}, {13.716, 13.509}};
+  int cones = 0, heads = 0, flippers = 0;
+  for (const VisualPart& p : parts) {
+    if (p.shape == VisualPart::Shape::kCylinder) {  // a twistlock's cone
+      ++cones;
+      ASSERT_TRUE(p.slide);
+      EXPECT_EQ(p.slide->indicator, "spreader_length_m");
+      EXPECT_NEAR(std::abs(p.centre_m.x), 2.259 / 2.0, 1e-9);
+      for (const auto& size : sizes) {
+        const double y = p.centre_m.y + p.slide->along.y * (size.length - p.slide->from);
+        // (a 20 ft box's castings sit 1 mm further in from its ends than a 40 or 45 ft box's)
+        EXPECT_NEAR(std::abs(y), size.span / 2.0, 1.5e-3) << size.length;
+      }
+      EXPECT_LT(p.centre_m.z, -0.5);  // under the spreader
+    }
+    if (p.turn && p.turn->indicator == "lamp_locked") {  // a twistlock's head: a quarter turn about z
+      ++heads;
+      EXPECT_NEAR(p.turn->max_rad, std::numbers::pi / 2.0, 1e-12);
+      EXPECT_EQ(p.turn->axis.z, 1.0);
+    }
+    if (p.turn && p.turn->indicator.starts_with("f")) {
+      ++flippers;
+      ASSERT_TRUE(p.turn->pivot_m);
+      const core::Vec3 hinge = *p.turn->pivot_m;
+      EXPECT_NEAR(std::abs(hinge.y), box.y / 2.0, 1e-9);  // at the corner's end
+      EXPECT_GT(std::abs(hinge.x), box.x / 2.0);          // outside its side
+      EXPECT_NEAR(hinge.z, -box.z / 2.0, 1e-9);           // on its lower edge
+      EXPECT_NEAR(std::abs(p.turn->max_rad), std::numbers::pi, 1e-12);
+      // folded up outboard: turning outward over the top (+180 deg about +y at +x, -180 at -x) brings it down
+      EXPECT_GT(p.centre_m.x * hinge.x, hinge.x * hinge.x);
+      EXPECT_GT(p.turn->max_rad * hinge.x, 0.0);
+      ASSERT_TRUE(p.slide);  // and it rides its end
+      EXPECT_NEAR(p.slide->along.y * hinge.y, 0.5 * std::abs(hinge.y), 1e-12);
+    }
+    if (p.shape == VisualPart::Shape::kGirder && p.size_m->y > p.size_m->x) {  // the main frame
+      EXPECT_LT(p.size_m->y, 6.058 - 1.0);
+    }
+  }
+  EXPECT_EQ(cones, 4);
+  EXPECT_EQ(heads, 4);
+  EXPECT_EQ(flippers, 12);  // an end plate, a side plate and an arm a corner
+  // corner c's flipper turns with the c-th indicator, in the twistlocks' order: +y -x, -y -x, -y +x, +y +x
+  const double signs[4][2] = {{-1, 1}, {-1, -1}, {1, -1}, {1, 1}};
+  for (const VisualPart& p : parts)
+    if (p.turn && p.turn->indicator.starts_with("f")) {
+      const int c = p.turn->indicator[1] - '1';
+      EXPECT_GT(p.turn->pivot_m->x * signs[c][0], 0.0) << c;
+      EXPECT_GT(p.turn->pivot_m->y * signs[c][1], 0.0) << c;
+    }
+  // without the indicators nothing moves
+  VisualPart still = spreader;
+  still.telescopes_with.clear();
+  still.locks_with.clear();
+  still.flippers.clear();
+  for (const VisualPart& p : spreader_parts(still, box))
+    EXPECT_FALSE(p.turn || p.slide);
+}
+
+TEST(Visuals, ABadSpreaderIsNamedByField) {
+  expect_refused(
+      "visuals:\n  - key: a\n    parts:\n      - {shape: spreader, size: [2.4, 12, 1], at: [0, 0, 0], "
+      "color: [1, 1, 0],\n         flippers: [f1, f2, f3]}\n",
+      5, "visuals[0].parts[0].flippers", "four indicators");
+  expect_refused(
+      "visuals:\n  - key: a\n    parts:\n      - {shape: spreader, size: [2.4, 3, 1], at: [0, 0, 0], "
+      "color: [1, 1, 0]}\n",
+      4, "visuals[0].parts[0].size", "longer (y) than twice its width");
+  expect_refused(
+      "visuals:\n  - key: a\n    parts:\n      - {shape: spreader, size: entity, at: [0, 0, 0], "
+      "color: [1, 1, 0],\n         turns: {with: x, axis: [0, 0, 1], degrees: 90}}\n",
+      4, "visuals[0].parts[0]", "no turns, slides or yaw of its own");
+  expect_refused(
+      "visuals:\n  - key: a\n    parts:\n      - {size: [1, 1, 1], at: [0, 0, 0], color: [1, 1, 0],\n"
+      "         slides: {with: x}}\n",
+      5, "visuals[0].parts[0].slides.along", "");
 }
 
 }  // namespace

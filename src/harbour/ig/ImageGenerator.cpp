@@ -1303,7 +1303,8 @@ void ImageGenerator::rename_entity(std::size_t index, const std::string& name) {
   // (a look with parts that turn or roll is a machine's part, drawn once: its parts are registered to turn)
   if (const auto look = visuals_.find(e.visual); look != visuals_.end())
     for (const VisualPart& part : look->second.parts)
-      if (part.turn || !part.rolls_with.empty()) return;
+      if (part.turn || part.slide || part.shape == VisualPart::Shape::kSpreader || !part.rolls_with.empty())
+        return;
   e.name = name;
   osg::MatrixTransform& transform = *entities_[index];
   transform.removeChildren(0, transform.getNumChildren());
@@ -1321,14 +1322,26 @@ void ImageGenerator::draw_entity(osg::MatrixTransform& transform_node,
   osg::ref_ptr<osg::Geode> geode = new osg::Geode();
   MeshBuilder fixed;
   if (look != visuals_.end()) {
+    // a spreader drawn as its parts
+    std::vector<VisualPart> parts;
     for (const VisualPart& part : look->second.parts) {
+      if (part.shape != VisualPart::Shape::kSpreader) {
+        parts.push_back(part);
+        continue;
+      }
+      const std::vector<VisualPart> pieces =
+          spreader_parts(part, part.size_m ? *part.size_m : e.half_extents_m * 2.0);
+      parts.insert(parts.end(), pieces.begin(), pieces.end());
+    }
+    for (const VisualPart& part : parts) {
       const core::Vec3 size = part.size_m ? *part.size_m : e.half_extents_m * 2.0;
       const core::Vec3 color =
           part.livery ? look->second.liveries[scene::livery_key(e.name) % look->second.liveries.size()]
                       : part.color;
       const osg::Vec4 paint = finished(rgba(color), part.surface);
       // a part turned or turning has a transform of its own, and is drawn about its origin in it
-      const bool own_frame = part.yaw_rad != 0.0 || part.turn.has_value() || !part.rolls_with.empty();
+      const bool own_frame =
+          part.yaw_rad != 0.0 || part.turn.has_value() || part.slide.has_value() || !part.rolls_with.empty();
       osg::ref_ptr<osg::MatrixTransform> frame = transform;
       osg::ref_ptr<osg::Geode> drawables = geode;
       core::Vec3 centre = part.centre_m;
@@ -1348,6 +1361,15 @@ void ImageGenerator::draw_entity(osg::MatrixTransform& transform_node,
         if (part.turn) {
           moving.turn = *part.turn;
           moving.indicator = indicator(part.turn->indicator);
+          if (part.turn->pivot_m) {  // into the part's frame, turned by its yaw
+            const core::Vec3 offset = *part.turn->pivot_m - part.centre_m;
+            moving.pivot = osg::Matrixd::rotate(-part.yaw_rad, osg::Vec3d(0.0, 0.0, 1.0))
+                               .preMult(osg::Vec3d(offset.x, offset.y, offset.z));
+          }
+        }
+        if (part.slide) {
+          moving.slide = *part.slide;
+          moving.slide_indicator = indicator(part.slide->indicator);
         }
         if (!part.rolls_with.empty()) {
           moving.speed_indicator = indicator(part.rolls_with);
@@ -1355,7 +1377,8 @@ void ImageGenerator::draw_entity(osg::MatrixTransform& transform_node,
           moving.roll_axis = to_osg(core::cross(core::Vec3{0.0, 0.0, 1.0}, part.rolls_along));
           moving.radius_m = 0.5 * (tyre_axis(size) == 0 ? size.y : size.x);  // its diameter, twice
         }
-        if (moving.indicator >= 0 || moving.speed_indicator >= 0) turning_parts_.push_back(moving);
+        if (moving.indicator >= 0 || moving.speed_indicator >= 0 || moving.slide_indicator >= 0)
+          turning_parts_.push_back(moving);
       }
       if (part.shape == VisualPart::Shape::kMesh) {
         osg::ref_ptr<osg::Node> mesh = read_mesh(part.mesh);
@@ -1761,7 +1784,8 @@ void ImageGenerator::update_entities(const scene::Snapshot& s) {
       const double value = part.turn.arcsine ? std::clamp(raw, 0.0, 1.0) : raw;
       const double angle =
           part.turn.arcsine ? std::asin(value * std::sin(part.turn.max_rad)) : value * part.turn.max_rad;
-      turned = osg::Matrixd::rotate(angle, to_osg(part.turn.axis)) * turned;
+      turned = osg::Matrixd::translate(-part.pivot) * osg::Matrixd::rotate(angle, to_osg(part.turn.axis)) *
+               osg::Matrixd::translate(part.pivot) * turned;
     }
     if (part.speed_indicator >= 0) {
       if (rolling)
@@ -1770,6 +1794,9 @@ void ImageGenerator::update_entities(const scene::Snapshot& s) {
                                     2.0 * kPi);
       turned = osg::Matrixd::rotate(part.rolled_rad, part.roll_axis) * turned;
     }
+    if (part.slide_indicator >= 0)
+      turned = turned * osg::Matrixd::translate(to_osg(
+                            part.slide.along * (indicator_at(part.slide_indicator) - part.slide.from)));
     part.transform->setMatrix(turned);
   }
 }

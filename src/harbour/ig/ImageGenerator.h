@@ -334,7 +334,10 @@ class ImageGenerator {
     double rolls_unit_mps = 1.0;
     osg::Vec3d roll_axis;  // about which a positive speed rolls it (its frame)
     double radius_m = 1.0;
-    double rolled_rad = 0.0;  // the wheel's angle so far, within a turn
+    double rolled_rad = 0.0;   // the wheel's angle so far, within a turn
+    osg::Vec3d pivot;          // where it turns about, from its origin (its frame)
+    int slide_indicator = -1;  // sliding: the indicator's index (-1: it does not slide)
+    PartSlide slide;
   };
   std::vector<TurningPart> turning_parts_;
   double rolled_at_s_ = -1.0;                // the snapshot time the tyres last rolled to

@@ -79,12 +79,14 @@ VisualPart read_part(const io::YamlFile& f, const YAML::Node& p, const std::stri
       part.shape = VisualPart::Shape::kCylinder;
     else if (shape == "member")
       part.shape = VisualPart::Shape::kMember;
+    else if (shape == "spreader")
+      part.shape = VisualPart::Shape::kSpreader;
     else if (shape != "box")
       f.fail(
           p["shape"], pat + ".shape",
           "'" + shape +
               "' is not a shape: box, lattice, container, tyre, shell, hull, mesh, girder, walkway, stairs, "
-              "cylinder or member");
+              "cylinder, member or spreader");
   }
   if (part.shape == VisualPart::Shape::kMember) {
     // from one point to another, of a section [width, depth]: its centre and size follow
@@ -154,6 +156,7 @@ VisualPart read_part(const io::YamlFile& f, const YAML::Node& p, const std::stri
     if (!(axis_length > 1e-6)) f.fail((*turns)["axis"], tat + ".axis", "a direction, not zero");
     turn.axis = turn.axis * (1.0 / axis_length);
     turn.max_rad = f.number(*turns, "degrees", tat, -180.0, 180.0) * std::numbers::pi / 180.0;
+    if (f.optional(*turns, "about", tat)) turn.pivot_m = f.vector3((*turns)["about"], tat + ".about", 1000.0);
     if (f.optional(*turns, "law", tat)) {
       const std::string law = f.text(*turns, "law", tat);
       if (law != "linear" && law != "arcsine")
@@ -161,6 +164,34 @@ VisualPart read_part(const io::YamlFile& f, const YAML::Node& p, const std::stri
       turn.arcsine = law == "arcsine";
     }
     part.turn = turn;
+  }
+  if (const auto slides = f.optional_map(p, "slides", pat)) {
+    const std::string sat = pat + ".slides";
+    PartSlide slide;
+    slide.indicator = f.text(*slides, "with", sat);
+    slide.along = f.vector3(f.required(*slides, "along", sat), sat + ".along", 100.0);
+    slide.from = f.number_or(*slides, "from", sat, 0.0, -1e6, 1e6);
+    part.slide = slide;
+  }
+  if (part.shape == VisualPart::Shape::kSpreader) {
+    if (f.optional(p, "telescopes_with", pat)) part.telescopes_with = f.text(p, "telescopes_with", pat);
+    if (f.optional(p, "locks_with", pat)) part.locks_with = f.text(p, "locks_with", pat);
+    if (f.optional(p, "flippers", pat)) {
+      const YAML::Node flippers = f.sequence(p, "flippers", pat, 4);
+      if (flippers.size() != 4)
+        f.fail(flippers, pat + ".flippers", "four indicators, one a corner in the twistlocks' order");
+      for (std::size_t c = 0; c < 4; ++c) {
+        if (!flippers[c].IsScalar() || flippers[c].Scalar().empty())
+          f.fail(flippers[c], pat + ".flippers[" + std::to_string(c) + "]", "expected an indicator's name");
+        part.flippers.push_back(flippers[c].Scalar());
+      }
+    }
+    part.twistlock_track_m = f.number_or(p, "twistlock_track_m", pat, 2.259, 0.5, 5.0);
+    if (part.size_m && (part.size_m->y < 2.0 * part.size_m->x || part.twistlock_track_m > part.size_m->x))
+      f.fail(p["size"], pat + ".size",
+             "a spreader is longer (y) than twice its width (x), its twistlocks' track within its width");
+    if (part.turn || part.slide || part.yaw_rad != 0.0)
+      f.fail(p, pat, "a spreader's parts move by its own indicators: no turns, slides or yaw of its own");
   }
   if (const auto rolls = f.optional_map(p, "rolls", pat)) {
     if (part.shape != VisualPart::Shape::kTyre)
@@ -496,6 +527,111 @@ Looks load_shipped_looks(const std::string& data_folder, std::span<const std::st
                          const std::string& machine_file) {
   return load_looks(data_folder + "/visuals/harbour.yaml",
                     io::machine_data_files(data_folder, kinds, machine_file));
+}
+
+}  // namespace harbour::ig
+
+namespace harbour::ig {
+
+namespace {
+constexpr double kTwentyFoot_m = 6.058;       // ISO 668: the shortest a telescopic spreader closes to
+constexpr double kCastingFromEnd_m = 0.1035;  // ISO 1161: a casting's aperture centre from the box's end
+constexpr double kHeadBeamAlong_m = 0.5;      // an end's head beam, along the spreader
+constexpr double kFlipperArm_m = 0.5, kFlipperDepth_m = 0.4, kFlipperPlate_m = 0.05, kFlipperGap_m = 0.015;
+}  // namespace
+
+std::vector<VisualPart> spreader_parts(const VisualPart& spreader, const core::Vec3& size_m) {
+  const double w = size_m.x, length = size_m.y, h = size_m.z;
+  const double bottom = spreader.centre_m.z - h / 2.0;
+  const core::Vec3 centre = spreader.centre_m;
+  std::vector<VisualPart> parts;
+  const auto part = [&](VisualPart::Shape shape, const core::Vec3& size,
+                        const core::Vec3& at) -> VisualPart& {
+    VisualPart p;
+    p.shape = shape;
+    p.size_m = size;
+    p.centre_m = at;
+    p.color = spreader.color;
+    p.livery = spreader.livery;
+    p.surface = spreader.surface;
+    parts.push_back(p);
+    return parts.back();
+  };
+  // the main frame: a box girder along it between the head beams closed to 20 ft, its power pack and junction
+  // box on top
+  const double main_length = std::min(length, kTwentyFoot_m) - 2.0 * kHeadBeamAlong_m - 0.1;
+  VisualPart& frame = part(VisualPart::Shape::kGirder, {w - 0.3, main_length, 0.8 * h},
+                           centre + core::Vec3{0.0, 0.0, 0.1 * h});
+  frame.bay_m = 1.0;
+  part(VisualPart::Shape::kBox, {0.8, 0.7, 0.35},
+       centre + core::Vec3{0.45, 0.5 * main_length - 0.45, 0.5 * h + 0.175});
+  part(VisualPart::Shape::kBox, {0.6, 0.4, 0.3},
+       centre + core::Vec3{-0.5, -0.5 * main_length + 0.3, 0.5 * h + 0.15});
+  for (const double end : {1.0, -1.0}) {
+    // each end slides out with the published length, half of its change each way
+    const auto sliding = [&](VisualPart& p) -> VisualPart& {
+      if (!spreader.telescopes_with.empty())
+        p.slide = PartSlide{spreader.telescopes_with, {0.0, 0.5 * end, 0.0}, length};
+      return p;
+    };
+    const double head_y = end * (length / 2.0 - kHeadBeamAlong_m / 2.0);
+    sliding(part(VisualPart::Shape::kGirder, {w, kHeadBeamAlong_m, 0.6 * h},
+                 {centre.x, centre.y + head_y, bottom + 0.3 * h}))
+        .bay_m = 0.6;
+    // two telescopic beams an end, staggered across from the other end's, back into the main frame
+    const double beam_length = kTwentyFoot_m / 2.0 - kHeadBeamAlong_m + main_length / 2.0 - 0.05;
+    const double beam_inner = length / 2.0 - kHeadBeamAlong_m - beam_length;
+    for (const double across : {end > 0 ? -0.75 : -0.35, end > 0 ? 0.35 : 0.75})
+      sliding(part(VisualPart::Shape::kBox, {0.32, beam_length, 0.3 * h},
+                   {centre.x + across, centre.y + end * (beam_inner + beam_length / 2.0), bottom + 0.4 * h}));
+    for (const double side : {1.0, -1.0}) {
+      const double corner_x = side * spreader.twistlock_track_m / 2.0,
+                   corner_y = end * (length / 2.0 - kCastingFromEnd_m);
+      // the twistlock housing over its casting, the twistlock's cone under it and its head turning as it
+      // locks
+      sliding(part(
+          VisualPart::Shape::kBox, {0.42, 0.55, 0.8 * h},
+          {centre.x + side * (w / 2.0 - 0.21), centre.y + end * (length / 2.0 - 0.275), bottom + 0.4 * h}));
+      VisualPart& cone = sliding(part(VisualPart::Shape::kCylinder, {0.11, 0.11, 0.1},
+                                      {centre.x + corner_x, centre.y + corner_y, bottom - 0.05}));
+      cone.surface = Surface::kSteel;
+      cone.color = {0.55, 0.55, 0.55};
+      cone.livery = false;
+      VisualPart& head = sliding(part(VisualPart::Shape::kBox, {0.06, 0.13, 0.05},
+                                      {centre.x + corner_x, centre.y + corner_y, bottom - 0.125}));
+      head.surface = Surface::kSteel;
+      head.color = {0.55, 0.55, 0.55};
+      head.livery = false;
+      if (!spreader.locks_with.empty())
+        head.turn =
+            PartTurn{spreader.locks_with, {0.0, 0.0, 1.0}, std::numbers::pi / 2.0, false, std::nullopt};
+    }
+  }
+  // the flippers: an L of guide plates round the corner, on an arm from a hinge along the spreader at the
+  // corner's outer lower edge; drawn folded up (outboard, standing), turned 180 deg down round the corner
+  if (spreader.flippers.size() == 4) {
+    constexpr double kCorner[4][2] = {{1, -1}, {-1, -1}, {-1, 1}, {1, 1}};  // (along, across) signs
+    const double a = kFlipperArm_m, d = kFlipperDepth_m, t = kFlipperPlate_m, g = kFlipperGap_m;
+    for (std::size_t c = 0; c < 4; ++c) {
+      const double ys = kCorner[c][0], xs = kCorner[c][1];
+      const core::Vec3 hinge = centre + core::Vec3{xs * (w / 2.0 + g + t), ys * (length / 2.0), -h / 2.0};
+      // folded up: mirrored about the hinge of where they hang down
+      const auto up = [&](double x_in, double y_out, double z_down) {
+        return hinge + core::Vec3{xs * x_in, ys * y_out, z_down};
+      };
+      const PartTurn swing{spreader.flippers[c], {0.0, 1.0, 0.0}, xs * std::numbers::pi, false, hinge};
+      for (const auto& [size, at] :
+           {std::pair{core::Vec3{a, t, d}, up(a / 2.0, g + t / 2.0, d / 2.0)},      // end plate
+            std::pair{core::Vec3{t, a, d}, up(t / 2.0, g + t - a / 2.0, d / 2.0)},  // side plate
+            std::pair{core::Vec3{0.3, 0.12, 0.12}, up(0.15, -0.1, 0.06)}}) {        // arm
+        VisualPart& plate = part(VisualPart::Shape::kBox, size, at);
+        plate.turn = swing;
+        if (!spreader.telescopes_with.empty())
+          plate.slide = PartSlide{spreader.telescopes_with, {0.0, 0.5 * ys, 0.0}, length};
+      }
+    }
+  }
+  return parts;
 }
 
 }  // namespace harbour::ig

@@ -40,6 +40,15 @@ struct PartTurn {
   core::Vec3 axis{0.0, 1.0, 0.0};
   double max_rad = 0.0;
   bool arcsine = false;
+  std::optional<core::Vec3> pivot_m;  ///< the point it turns about (entity frame); none: the part's centre
+};
+
+/// A part sliding with one of the machine's indicators: moved by (value - `from`) times `along` (metres per
+/// unit, entity frame) after any turn: a telescopic spreader's ends with its published length.
+struct PartSlide {
+  std::string indicator;
+  core::Vec3 along;
+  double from = 0.0;
 };
 
 struct VisualPart {
@@ -55,7 +64,8 @@ struct VisualPart {
     kWalkway,
     kStairs,
     kCylinder,
-    kMember
+    kMember,
+    kSpreader
   };
   Shape shape = Shape::kBox;
   std::optional<core::Vec3> size_m;  ///< full size; empty: the entity's own size
@@ -74,6 +84,7 @@ struct VisualPart {
   double deck_open_from_m = 0.0, deck_open_to_m = 0.0;  ///< hull: its deck left open along y (the holds)
   double yaw_rad = 0.0;                                 ///< turned about the entity's z at its centre
   std::optional<PartTurn> turn;                         ///< turning with an indicator
+  std::optional<PartSlide> slide;                       ///< sliding with an indicator
   /// Something another machine can hit: in a team session the other stations' simulations have it as an
   /// obstacle riding its entity (a fixed box with its size written out: an STS's legs).
   bool solid = false;
@@ -82,7 +93,21 @@ struct VisualPart {
   core::Vec3 rolls_along{1.0, 0.0, 0.0};  ///< tyre: the way it rolls at a positive speed
   std::string mesh;                       ///< mesh: its file (resolved against the look file's folder)
   double scale = 1.0;                     ///< mesh
+  /// spreader: its length follows this indicator (empty: as its box), its four corners' flippers turn with
+  /// these (in the twistlock corners' order: empty, none drawn), its twistlocks turn with `locks_with`
+  std::string telescopes_with, locks_with;
+  std::vector<std::string> flippers;
+  double twistlock_track_m = 2.259;  ///< spreader: its twistlocks' centres across (ISO 1161)
 };
+
+/// A telescopic top-lift spreader filling a box of `size_m` (x across, y along its length, z up) as the parts
+/// that draw it: a main frame of box girders with its power pack and junction box, and at each end a head
+/// beam with its twistlock housings, twistlocks (heads turning a quarter turn as they lock) and the
+/// telescopic beams running back into the main frame, sliding out with its `telescopes_with` length from the
+/// box's; at each corner a flipper (an L of guide plates on its arm) turning 180 deg about its hinge, folded
+/// up at 0 and down round the corner at 1 (the corners in the twistlocks' order: +y -x, -y -x, -y +x, +y +x).
+/// The main frame is as long as fits inside a 20 ft spreader (ISO 668: 6.058 m).
+std::vector<VisualPart> spreader_parts(const VisualPart& spreader, const core::Vec3& size_m);
 
 /// What a visual key looks like (data/visuals/*.yaml).
 struct Visual {

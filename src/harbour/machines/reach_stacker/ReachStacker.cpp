@@ -13,11 +13,16 @@ namespace harbour::sim {
 namespace {
 
 constexpr double kG = core::kStandardGravity;
-constexpr const char* kIndicators[] = {
-    "speed_kmh",          "boom_angle_deg", "extension_m",       "reach_m",     "rotation_deg",
-    "side_shift_m",       "load_t",         "capacity_t",        "utilisation", "limiter_warn",
-    "limiter_stop",       "lamp_landed",    "lamp_locked",       "horn",        "reversing",
-    "lamp_parking_brake", "steering",       "lamp_limiter_fault"};
+constexpr const char* kIndicators[] = {"speed_kmh",        "boom_angle_deg",
+                                       "extension_m",      "reach_m",
+                                       "rotation_deg",     "side_shift_m",
+                                       "load_t",           "capacity_t",
+                                       "utilisation",      "limiter_warn",
+                                       "limiter_stop",     "lamp_landed",
+                                       "lamp_locked",      "horn",
+                                       "reversing",        "lamp_parking_brake",
+                                       "steering",         "lamp_limiter_fault",
+                                       "spreader_length_m"};
 // the rotator between the head pin and the spreader: a link hanging on the pin (its centre kLinkDrop_m below
 // it) and the turning frame the spreader shifts on (its centre kSlewDrop_m below), half its mass each
 constexpr double kLinkDrop_m = 0.3, kSlewDrop_m = 0.75;
@@ -307,7 +312,8 @@ int ReachStacker::publish(scene::Snapshot& s, int first) const {
                            cab_.direction() < 0 ? 1.0 : 0.0,
                            cab_.parking_brake() ? 1.0 : 0.0,
                            cab_.steering(),
-                           limiter_fault_ ? 1.0 : 0.0};
+                           limiter_fault_ ? 1.0 : 0.0,
+                           frame_->state().length_m};
   static_assert(std::size(values) == std::size(kIndicators));
   s.indicator_count = static_cast<int>(std::size(values));
   std::copy(std::begin(values), std::end(values), s.indicators.begin());

@@ -276,8 +276,9 @@ scene::Controls RubberTyredGantry::crane_controls(const GantryLevers& in) const 
 namespace {
 // the indicators an RTG publishes, in snapshot order
 constexpr const char* kRtgIndicators[] = {
-    "gantry_mps",  "trolley_x_m",   "wheel_turn_deg", "lane_offset_m", "spreader_size_ft", "lamp_landed",
-    "lamp_locked", "lamp_unlocked", "horn",           "load_t",        "lamp_brake_fault", "net_load_t"};
+    "gantry_mps",       "trolley_x_m", "wheel_turn_deg",   "lane_offset_m", "spreader_size_ft",
+    "lamp_landed",      "lamp_locked", "lamp_unlocked",    "horn",          "load_t",
+    "lamp_brake_fault", "net_load_t",  "spreader_length_m"};
 }  // namespace
 
 void RubberTyredGantry::describe(scene::SceneDescription& d) const {
@@ -311,7 +312,8 @@ int RubberTyredGantry::publish(scene::Snapshot& s, int first) const {
                            horn_ ? 1.0 : 0.0,
                            rig_->hoisted_load_n() / kG / 1000.0,
                            rig_->brake_fault() ? 1.0 : 0.0,
-                           rig_->net_load_t()};
+                           rig_->net_load_t(),
+                           spreader.length_m};
   static_assert(std::size(values) == std::size(kRtgIndicators));
   s.indicator_count = static_cast<int>(std::size(values));
   std::copy(std::begin(values), std::end(values), s.indicators.begin());

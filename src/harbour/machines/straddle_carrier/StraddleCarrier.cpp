@@ -14,9 +14,10 @@ namespace {
 
 constexpr double kG = core::kStandardGravity;
 // the indicators a straddle carrier publishes, in snapshot order
-constexpr const char* kIndicators[] = {
-    "speed_kmh", "spreader_size_ft", "lamp_landed",      "lamp_locked", "lamp_unlocked",     "horn",
-    "load_t",    "net_load_t",       "lamp_brake_fault", "reversing",   "lamp_parking_brake"};
+constexpr const char* kIndicators[] = {"speed_kmh",   "spreader_size_ft",   "lamp_landed",
+                                       "lamp_locked", "lamp_unlocked",      "horn",
+                                       "load_t",      "net_load_t",         "lamp_brake_fault",
+                                       "reversing",   "lamp_parking_brake", "spreader_length_m"};
 
 // the spreader's frame in the portal's: its length (its y) along the portal's x
 core::Mat3 spreader_on_portal() {
@@ -145,7 +146,8 @@ int StraddleCarrier::publish(scene::Snapshot& s, int first) const {
                            rig_->net_load_t(),
                            rig_->brake_fault() ? 1.0 : 0.0,
                            cab_.direction() < 0 ? 1.0 : 0.0,
-                           cab_.parking_brake() ? 1.0 : 0.0};
+                           cab_.parking_brake() ? 1.0 : 0.0,
+                           rig_->spreader_state().length_m};
   static_assert(std::size(values) == std::size(kIndicators));
   s.indicator_count = static_cast<int>(std::size(values));
   std::copy(std::begin(values), std::end(values), s.indicators.begin());
