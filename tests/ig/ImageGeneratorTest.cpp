@@ -1999,3 +1999,65 @@ TEST(ImageGenerator, TheSpreaderTelescopesWithItsLengthAndItsFlippersFoldDown) {
 
 }  // namespace
 }  // namespace harbour::ig
+
+namespace harbour::ig {
+namespace {
+
+// A jack between two entities is drawn from eye to eye as they move apart (its barrel from one, its rod from
+// the other), and shows the gap a real one would have were they further apart than both its lengths.
+TEST(ImageGenerator, AJackReachesFromEyeToEyeAsItsEntitiesMove) {
+  scene::SceneDescription d;
+  d.machine = "test";
+  d.entities.push_back({"mast", "none", {}});
+  d.entities.push_back({"base", "test.base", {0.5, 0.5, 0.5}});
+  d.entities.push_back({"arm", "test.arm", {0.5, 0.5, 0.5}});
+  ImageGenerator ig(d, {{"test.base", Visual{}}, {"test.arm", Visual{}}}, kWidth, kHeight);
+  Jack jack;
+  jack.from_entity = "test.base";
+  jack.to_entity = "test.arm";
+  jack.barrel_m = 2.0;
+  jack.rod_m = 2.0;
+  jack.diameter_m = 0.3;
+  jack.color = {0.7, 0.1, 0.1};
+  ig.set_view(level());
+  // the jack across the view 15 m ahead, its eyes `apart` metres apart: the columns it changes
+  const auto columns = [&](double apart) {
+    scene::Snapshot s = state(5000.0, 5000.0, 20000.0, 12.0);
+    s.entity_count = 3;
+    s.entities[1] = {1, 0, {core::Mat3::identity(), {15.0, apart / 2.0, 10.0}}};
+    s.entities[2] = {2, 0, {core::Mat3::identity(), {15.0, -apart / 2.0, 10.0}}};
+    ig.set_jacks({});
+    ig.update(s);
+    const osg::ref_ptr<osg::Image> without = new osg::Image(ig.render(), osg::CopyOp::DEEP_COPY_ALL);
+    ig.set_jacks({jack});
+    ig.update(s);
+    const osg::Image& with = ig.render();
+    std::vector<bool> changed(kWidth, false);
+    for (int y = 0; y < kHeight; ++y)
+      for (int x = 0; x < kWidth; ++x)
+        if ((pixel(with, x, y) - pixel(*without, x, y)).length() > 0.05f)
+          changed[static_cast<std::size_t>(x)] = true;
+    return changed;
+  };
+  const auto column_of = [&](double y) { return ig.project({15.0, y, 10.0})->first; };
+  for (const double apart : {2.5, 3.9}) {  // from a rod's length to both lengths
+    const std::vector<bool> changed = columns(apart);
+    const auto first = std::find(changed.begin(), changed.end(), true) - changed.begin();
+    const auto last = changed.rend() - std::find(changed.rbegin(), changed.rend(), true) - 1;
+    std::printf("jack %.1f m between its eyes: columns %td-%td, its eyes at %.1f and %.1f\n", apart, first,
+                last, column_of(apart / 2.0), column_of(-apart / 2.0));
+    EXPECT_NEAR(static_cast<double>(first), column_of(apart / 2.0), 2.0);
+    EXPECT_NEAR(static_cast<double>(last), column_of(-apart / 2.0), 2.0);
+    for (auto x = first; x <= last; ++x)
+      EXPECT_TRUE(changed[static_cast<std::size_t>(x)]) << apart << " m: a gap at column " << x;
+  }
+  // 4.6 m apart: the barrel's and the rod's ends 0.6 m apart in the middle
+  const std::vector<bool> over = columns(4.6);
+  for (double y = -0.2; y <= 0.2; y += 0.1)
+    EXPECT_FALSE(over[static_cast<std::size_t>(std::lround(column_of(y)))]) << y;
+  EXPECT_TRUE(over[static_cast<std::size_t>(std::lround(column_of(1.0)))]);
+  EXPECT_TRUE(over[static_cast<std::size_t>(std::lround(column_of(-1.0)))]);
+}
+
+}  // namespace
+}  // namespace harbour::ig

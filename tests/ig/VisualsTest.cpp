@@ -343,3 +343,48 @@ TEST(Visuals, ABadSpreaderIsNamedByField) {
 
 }  // namespace
 }  // namespace harbour::ig
+
+namespace harbour::ig {
+namespace {
+
+TEST(Visuals, AMachinesJacksJoinItsOwnEntities) {
+  const std::string harbour = written("harbour_no_looks.yaml", "visuals: []\n");
+  const std::string head = "machine:\n  kind: reach_stacker\n  mass_kg: 1\nlooks:\n  jacks:\n    - ";
+  const std::string good =
+      written("rs.yaml", head + R"({from: {entity: reach_stacker.chassis, at: [0.3, 0.3, -0.9]},
+       to: {entity: reach_stacker.boom, at: [-2.0, 0.3, -0.55]}, barrel_m: 2.4, rod_m: 2.45, diameter_m: 0.3,
+       color: [0.7, 0.1, 0.1]}
+)");
+  const Looks looks = load_looks(harbour, {good});
+  ASSERT_EQ(looks.jacks.size(), 1u);
+  EXPECT_EQ(looks.jacks[0].from_entity, "reach_stacker.chassis");
+  EXPECT_EQ(looks.jacks[0].to_entity, "reach_stacker.boom");
+  EXPECT_EQ(looks.jacks[0].to_m.x, -2.0);
+  EXPECT_EQ(looks.jacks[0].rod_m, 2.45);
+  const auto refused = [&](const std::string& jack, const std::string& field, const std::string& says) {
+    try {
+      load_looks(harbour, {written("rs_bad.yaml", head + jack + "\n")});
+      FAIL() << "accepted " << jack;
+    } catch (const io::DataError& e) {
+      EXPECT_EQ(e.field(), field) << e.what();
+      EXPECT_NE(std::string(e.what()).find(says), std::string::npos) << e.what();
+    }
+  };
+  refused(
+      "{from: {entity: sts.trolley, at: [0, 0, 0]}, to: {entity: reach_stacker.boom, at: [0, 0, 0]}, "
+      "barrel_m: 2, rod_m: 2, diameter_m: 0.3, color: [1, 0, 0]}",
+      "looks.jacks[0].from.entity", "a reach_stacker's jack joins its own entities");
+  refused(
+      "{from: {entity: reach_stacker.chassis, at: [0, 0, 0]}, to: {entity: reach_stacker.boom, at: [0, 0, "
+      "0]}, "
+      "barrel_m: 2, rod_m: 3, diameter_m: 0.3, color: [1, 0, 0]}",
+      "looks.jacks[0].rod_m", "retracts into its barrel");
+  refused(
+      "{from: {entity: reach_stacker.chassis, at: [0, 0, 0]}, to: {entity: reach_stacker.boom, at: [0, 0, "
+      "0]}, "
+      "barrel_m: 2, rod_m: 2, color: [1, 0, 0]}",
+      "looks.jacks[0].diameter_m", "missing");
+}
+
+}  // namespace
+}  // namespace harbour::ig

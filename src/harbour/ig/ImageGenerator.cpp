@@ -1583,6 +1583,53 @@ void ImageGenerator::update_festoons() {
   }
 }
 
+// the jacks: a barrel and a rod each, along +x from their eyes, placed every frame
+void ImageGenerator::set_jacks(const std::vector<Jack>& jacks) {
+  if (jacks_group_) remove_lit(jacks_group_);
+  jacks_.clear();
+  jacks_group_ = new osg::Group;
+  const auto entity = [&](const std::string& look) {
+    return static_cast<std::size_t>(std::find(entity_visuals_.begin(), entity_visuals_.end(), look) -
+                                    entity_visuals_.begin());
+  };
+  const auto along_x = [](double length, double diameter, const osg::Vec4& colour) {
+    MeshBuilder mesh;
+    mesh.append(*cylinder({length, diameter, diameter}, 16, colour),
+                osg::Vec3(static_cast<float>(length / 2), 0, 0));
+    osg::ref_ptr<osg::Geode> geode = new osg::Geode;
+    geode->addDrawable(mesh.build());
+    osg::ref_ptr<osg::MatrixTransform> placed = new osg::MatrixTransform;
+    placed->addChild(geode);
+    return placed;
+  };
+  for (const Jack& jack : jacks) {
+    DrawnJack drawn{jack, entity(jack.from_entity), entity(jack.to_entity), nullptr, nullptr};
+    if (drawn.from >= entity_visuals_.size() || drawn.to >= entity_visuals_.size()) continue;
+    drawn.barrel = along_x(jack.barrel_m, jack.diameter_m, finished(rgba(jack.color), Surface::kPaint));
+    drawn.rod = along_x(jack.rod_m, 0.55 * jack.diameter_m,
+                        finished(osg::Vec4(0.80f, 0.80f, 0.78f, 1.0f), Surface::kSteel));  // chromed
+    jacks_group_->addChild(drawn.barrel);
+    jacks_group_->addChild(drawn.rod);
+    jacks_.push_back(drawn);
+  }
+  add_lit(jacks_group_);
+  update_jacks();
+}
+
+// each jack between its eyes as they ride their entities: the barrel from one towards the other, the rod back
+void ImageGenerator::update_jacks() {
+  for (const DrawnJack& drawn : jacks_) {
+    const osg::Vec3d a = to_osg(entity_poses_[drawn.from].to_parent(drawn.jack.from_m)),
+                     b = to_osg(entity_poses_[drawn.to].to_parent(drawn.jack.to_m));
+    osg::Vec3d along = b - a;
+    if (along.normalize() < 1e-6) along = osg::Vec3d(1.0, 0.0, 0.0);
+    drawn.barrel->setMatrix(osg::Matrixd::rotate(osg::Vec3d(1.0, 0.0, 0.0), along) *
+                            osg::Matrixd::translate(a));
+    drawn.rod->setMatrix(osg::Matrixd::rotate(osg::Vec3d(1.0, 0.0, 0.0), -along) *
+                         osg::Matrixd::translate(b));
+  }
+}
+
 // the heads-up display: an orthographic camera drawn last, in pixels
 void ImageGenerator::build_hud(const scene::SceneDescription& scene) {
   indicators_ = scene.indicators;
@@ -2015,6 +2062,7 @@ void ImageGenerator::update(const scene::Snapshot& s) {
   update_entities(s);
   update_ropes(s);
   update_festoons();
+  update_jacks();
   cab_ = s.cab;
   sea_ = s.sea;
   time_s_ = s.time_s;

@@ -128,12 +128,16 @@ class ImageGenerator {
   /// Cables hanging in loops between entities (a trolley's festoon), redrawn as they move; replaces those
   /// set before.
   void set_festoons(const std::vector<Festoon>& festoons);
+  /// Hydraulic jacks between entities (a reach stacker's lift cylinders), redrawn as they move; replaces
+  /// those set before.
+  void set_jacks(const std::vector<Jack>& jacks);
   static constexpr std::size_t kFloodlightSlots = 7;  ///< OpenGL's eight lights, one of them the sun
   /// Everything a look file gives beyond the looks: the HUD and the floodlights.
   void use(const Looks& looks) {
     set_hud(looks.hud);
     set_floodlights(looks.floodlights);
     set_festoons(looks.festoons);
+    set_jacks(looks.jacks);
     set_scenery(looks.scenery);
     cameras_ = looks.cameras;
     set_insets(looks.insets);
@@ -225,6 +229,7 @@ class ImageGenerator {
   void update_entities(const scene::Snapshot& s);
   void update_ropes(const scene::Snapshot& s);
   void update_festoons();
+  void update_jacks();
   void update_sky_and_weather(const scene::Snapshot& s);
   void update_floodlights(const scene::Snapshot& s);
   void update_hud(const scene::Snapshot& s);
@@ -347,6 +352,13 @@ class ImageGenerator {
   std::vector<Festoon> festoon_settings_;
   osg::ref_ptr<osg::Geode> ropes_geode_;               // the ropes and the festoons (lines, unlit, fogged)
   std::vector<osg::ref_ptr<osg::Geometry>> festoons_;  // by festoon_settings_, built with the ropes
+  struct DrawnJack {
+    Jack jack;
+    std::size_t from = 0, to = 0;  // its ends' entities
+    osg::ref_ptr<osg::MatrixTransform> barrel, rod;
+  };
+  std::vector<DrawnJack> jacks_;
+  osg::ref_ptr<osg::Group> jacks_group_;
   // the machine's entities' boxes in their frames (from their looks' parts), a chase view frames them
   std::vector<std::pair<core::Vec3, core::Vec3>> machine_boxes_;  // centre, half size
   double visibility_m_ = 20000.0;

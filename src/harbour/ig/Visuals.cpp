@@ -446,6 +446,19 @@ void read_visuals(const io::YamlFile& f, const YAML::Node& section, const std::s
   }
 }
 
+// an end of a festoon or a jack (`key`: from or to) riding one of the machine's own entities (`what`: the
+// thing and its verb, for the error)
+void read_end(const io::YamlFile& f, const YAML::Node& item, const std::string& at, const char* key,
+              const std::string& kind, const std::string& what, std::string& entity, core::Vec3& position) {
+  const std::string eat = at + "." + key;
+  const YAML::Node node = f.required(item, key, at);
+  entity = f.text(node, "entity", eat);
+  if (entity.rfind(kind + ".", 0) != 0)
+    f.fail(node["entity"], eat + ".entity",
+           "a " + kind + "'s " + what + " its own entities ('" + kind + ".<part>')");
+  position = f.vector3(f.required(node, "at", eat), eat + ".at", 1000.0);
+}
+
 // a machine's festoons (`looks.festoons`), each end riding one of its own entities
 void read_festoons(const io::YamlFile& f, const YAML::Node& section, const std::string& kind, Looks& looks) {
   if (!f.optional(section, "festoons", "looks")) return;
@@ -453,21 +466,31 @@ void read_festoons(const io::YamlFile& f, const YAML::Node& section, const std::
   for (std::size_t n = 0; n < festoons.size(); ++n) {
     const std::string at = item_path("looks", "festoons", n);
     Festoon festoon;
-    const auto end = [&](const char* key, std::string& entity, core::Vec3& position) {
-      const std::string eat = at + "." + key;
-      const YAML::Node node = f.required(festoons[n], key, at);
-      entity = f.text(node, "entity", eat);
-      if (entity.rfind(kind + ".", 0) != 0)
-        f.fail(node["entity"], eat + ".entity",
-               "a " + kind + "'s festoon hangs from its own entities ('" + kind + ".<part>')");
-      position = f.vector3(f.required(node, "at", eat), eat + ".at", 1000.0);
-    };
-    end("from", festoon.from_entity, festoon.from_m);
-    end("to", festoon.to_entity, festoon.to_m);
+    read_end(f, festoons[n], at, "from", kind, "festoon hangs from", festoon.from_entity, festoon.from_m);
+    read_end(f, festoons[n], at, "to", kind, "festoon hangs from", festoon.to_entity, festoon.to_m);
     festoon.carriers = f.integer(festoons[n], "carriers", at, 1, 100);
     festoon.loop_m = f.number(festoons[n], "loop_m", at, 0.2, 50.0);
     festoon.cables = f.optional(festoons[n], "cables", at) ? f.integer(festoons[n], "cables", at, 1, 8) : 1;
     looks.festoons.push_back(festoon);
+  }
+}
+
+// a machine's hydraulic jacks (`looks.jacks`), each end riding one of its own entities
+void read_jacks(const io::YamlFile& f, const YAML::Node& section, const std::string& kind, Looks& looks) {
+  if (!f.optional(section, "jacks", "looks")) return;
+  const YAML::Node jacks = f.sequence(section, "jacks", "looks", 16);
+  for (std::size_t n = 0; n < jacks.size(); ++n) {
+    const std::string at = item_path("looks", "jacks", n);
+    Jack jack;
+    read_end(f, jacks[n], at, "from", kind, "jack joins", jack.from_entity, jack.from_m);
+    read_end(f, jacks[n], at, "to", kind, "jack joins", jack.to_entity, jack.to_m);
+    jack.barrel_m = f.number(jacks[n], "barrel_m", at, 0.1, 50.0);
+    jack.rod_m = f.number(jacks[n], "rod_m", at, 0.1, 50.0);
+    if (jack.rod_m > jack.barrel_m + 0.2)
+      f.fail(jacks[n]["rod_m"], at + ".rod_m", "a jack's rod retracts into its barrel: at most 0.2 m longer");
+    jack.diameter_m = f.number(jacks[n], "diameter_m", at, 0.02, 2.0);
+    jack.color = color_of(f, f.required(jacks[n], "color", at), at + ".color");
+    looks.jacks.push_back(jack);
   }
 }
 
@@ -491,6 +514,7 @@ void read_machine_looks(const io::YamlFile& f, const std::string& kind, Looks& l
              "a " + kind + "'s camera rides one of its own entities ('" + kind + ".<part>')");
   read_insets(f, *section, "looks", looks);
   read_festoons(f, *section, kind, looks);
+  read_jacks(f, *section, kind, looks);
   std::vector<HudItem> own = read_hud(f, *section, "looks");
   for (HudItem& line : own) {
     line.machines = {kind};

@@ -158,6 +158,17 @@ struct Festoon {
   int cables = 3;
 };
 
+/// A hydraulic jack between two of a machine's entities (a reach stacker's lift cylinders): a barrel
+/// `barrel_m` long from its eye on one towards the other, a rod `rod_m` long from the other's eye back into
+/// it, redrawn as they move: whole while its eyes are at least the rod's length and at most both lengths
+/// apart.
+struct Jack {
+  std::string from_entity, to_entity;  ///< the looks of the entities its ends ride (the first with each)
+  core::Vec3 from_m, to_m;             ///< its barrel's and its rod's eyes in their entities' frames
+  double barrel_m = 2.0, rod_m = 2.0, diameter_m = 0.3;
+  core::Vec3 color{0.5, 0.5, 0.5};
+};
+
 /// A camera riding an entity (by its visual key): the spreader's camera, the boom tip's.
 struct EntityCamera {
   std::string name;    ///< the view's name: spreader, boom_tip, ...
@@ -194,6 +205,7 @@ struct Looks {
   std::vector<HudItem> hud;
   std::vector<Floodlight> floodlights;
   std::vector<Festoon> festoons;
+  std::vector<Jack> jacks;
   std::vector<EntityCamera> cameras;
   std::vector<Inset> insets;  ///< of the cameras whose entity is in the scene
   std::vector<SceneryPart> scenery;
