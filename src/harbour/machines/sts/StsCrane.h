@@ -47,7 +47,7 @@ struct StsCraneSettings {
   scene::ControlTable controls;  ///< the cab's controls, by label (its machine file's)
   /// The operator's cab hangs under the trolley: its centre in the trolley's frame [m], and the design eye
   /// point in the cab's frame (x waterside, the way the operator faces; z up) [m].
-  core::Vec3 cab_position_m{3.0, 0.0, -3.5};
+  core::Vec3 cab_position_m{3.0, -3.2, -3.5};
   core::Vec3 eye_m{0.3, 0.0, 0.6};
   scene::CabSight sight{0.0, -1.3,
                         0.75};  ///< the operator looks down through the cab's floor onto the spreader
