@@ -27,3 +27,5 @@ shoot reach_stacker_cab reach_stacker_stack 3 cab
 shoot straddle_carrier straddle_carrier_stack 0.2 free --camera=-26,-8,4,150,8
 shoot straddle_carrier_cab straddle_carrier_stack 3 cab
 shoot mhc_house mhc_coal_discharge 1 free --camera=-14,12,14,-31,-12    # house, counterweight, tower
+shoot tractor tractor_semi_reverse 0.5 free --camera=-52,8,3,-135,-8   # the tractor from ahead
+shoot sts_reel sts_discharge 1 free --camera=-30,-30,4,60,5            # legs, cable reel, stairs
