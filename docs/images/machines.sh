@@ -29,3 +29,4 @@ shoot straddle_carrier_cab straddle_carrier_stack 3 cab
 shoot mhc_house mhc_coal_discharge 1 free --camera=-14,12,14,-31,-12    # house, counterweight, tower
 shoot tractor tractor_semi_reverse 0.5 free --camera=-52,8,3,-135,-8   # the tractor from ahead
 shoot sts_reel sts_discharge 1 free --camera=-30,-30,4,60,5            # legs, cable reel, stairs
+shoot bulk_carrier_house mhc_coal_discharge 1 free --camera=5,-55,22,-40,0   # the bulk carrier's house

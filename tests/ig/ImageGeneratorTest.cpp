@@ -420,11 +420,11 @@ TEST(Visuals, BadLooksNameFileLineAndField) {
   const std::string part = "visuals:\n  - key: a\n    parts:\n      - ";
   EXPECT_EQ(error(part + "{shape: lattice, size: [10, 1, 1], at: [0, 0, 0], bay_m: 2, color: [1, 0, 0]}\n"),
             "");
-  EXPECT_NE(
-      error(part + "{shape: cone, size: [1, 1, 1], at: [0, 0, 0], color: [1, 0, 0]}\n")
-          .find("harbour_looks.yaml:4: visuals[0].parts[0].shape: 'cone' is not a shape: box, lattice, "
-                "container, tyre, shell, hull, mesh, girder, walkway, stairs, cylinder, member or spreader"),
-      std::string::npos);
+  EXPECT_NE(error(part + "{shape: cone, size: [1, 1, 1], at: [0, 0, 0], color: [1, 0, 0]}\n")
+                .find("harbour_looks.yaml:4: visuals[0].parts[0].shape: 'cone' is not a shape: box, lattice, "
+                      "container, tyre, shell, hull, mesh, girder, walkway, stairs, cylinder, member, "
+                      "spreader or deckhouse"),
+            std::string::npos);
   EXPECT_NE(error(part + "{shape: lattice, size: [10, 1, 1], at: [0, 0, 0], member_m: 9, color: [1, 0, 0]}\n")
                 .find("visuals[0].parts[0].member_m"),
             std::string::npos);

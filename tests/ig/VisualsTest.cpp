@@ -388,3 +388,54 @@ TEST(Visuals, AMachinesJacksJoinItsOwnEntities) {
 
 }  // namespace
 }  // namespace harbour::ig
+
+namespace harbour::ig {
+namespace {
+
+// A deckhouse drawn as its parts: a band of windows on every deck above the lowest on its front and both
+// sides, the wheelhouse on top at its front, bridge wings 1 m past its sides, the mast on the wheelhouse.
+TEST(Visuals, ADeckhouseHasAWindowBandADeckAndItsWheelhouseAtTheFront) {
+  VisualPart house;
+  house.shape = VisualPart::Shape::kDeckhouse;
+  house.centre_m = {0.0, -62.0, 18.5};
+  house.color = {0.9, 0.9, 0.9};
+  const core::Vec3 size{20.0, 10.0, 14.0};  // five decks of 2.8 m
+  const std::vector<VisualPart> parts = deckhouse_parts(house, size);
+  const double top = 18.5 + 7.0, front = -62.0 + 5.0;
+  int bands = 0, walkways = 0, masts = 0;
+  bool wheelhouse = false;
+  for (const VisualPart& p : parts) {
+    if (p.surface == Surface::kGlass && p.centre_m.z < top) {  // the block's windows
+      ++bands;
+      const double above_deck = std::fmod(p.centre_m.z - (18.5 - 7.0), kDeckHeight_m);
+      EXPECT_NEAR(above_deck, 0.55 * kDeckHeight_m, 1e-9);
+      EXPECT_GT(p.centre_m.z, 18.5 - 7.0 + kDeckHeight_m);  // none on the lowest deck
+    }
+    if (p.shape == VisualPart::Shape::kBox && p.surface == Surface::kPaint && p.size_m->z == 3.0) {
+      wheelhouse = true;
+      EXPECT_NEAR(p.centre_m.z, top + 1.5, 1e-9);
+      EXPECT_NEAR(p.centre_m.y + p.size_m->y / 2.0, front, 1e-9);  // flush with the front
+      EXPECT_NEAR(p.size_m->x, 14.0, 1e-9);
+    }
+    if (p.shape == VisualPart::Shape::kWalkway) {
+      ++walkways;
+      EXPECT_NEAR(std::abs(p.centre_m.x) + p.size_m->x / 2.0, 11.0, 1e-9);  // 1 m past the side
+      EXPECT_NEAR(p.centre_m.z - p.size_m->z / 2.0, top, 1e-9);             // on the wheelhouse's floor
+    }
+    if (p.shape == VisualPart::Shape::kMember) {
+      ++masts;
+      EXPECT_NEAR(p.centre_m.z - p.size_m->x / 2.0, top + 3.0, 1e-9);  // on the wheelhouse's roof
+    }
+  }
+  EXPECT_EQ(bands, 4 * 3);  // four decks above the main deck, front and both sides
+  EXPECT_TRUE(wheelhouse);
+  EXPECT_EQ(walkways, 2);
+  EXPECT_EQ(masts, 1);
+  expect_refused(
+      "visuals:\n  - key: a\n    parts:\n      - {shape: deckhouse, size: [20, 10, 5], at: [0, 0, 0], color: "
+      "[1, 1, 1]}\n",
+      4, "visuals[0].parts[0].size", "two decks");
+}
+
+}  // namespace
+}  // namespace harbour::ig

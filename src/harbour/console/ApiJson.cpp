@@ -319,8 +319,8 @@ json scene_json(const std::string& station, const net::StationScene& scene) {
 }
 
 // The looks (data/visuals/*.yaml) as the browser's 3D view reads them; a container, tyre, shell, hull, mesh,
-// girder, walkway, stairs, cylinder or spreader part is drawn as the box it fills, a member as its box turned
-// `along` it.
+// girder, walkway, stairs, cylinder, spreader or deckhouse part is drawn as the box it fills, a member as its
+// box turned `along` it.
 json looks_json(const ig::Looks& looks) {
   json visuals = json::object();
   for (const auto& [key, visual] : looks.visuals) {
@@ -338,10 +338,10 @@ json looks_json(const ig::Looks& looks) {
         along = rise * (1.0 / core::length(rise));
         size = core::Vec3{core::length(rise), size->y, 0.3};
       }
-      static constexpr const char* kShapes[] = {"box",      "lattice", "container", "tyre",    "shell",
-                                                "hull",     "mesh",    "girder",    "walkway", "stairs",
-                                                "cylinder", "member",  "spreader"};
-      static_assert(std::size(kShapes) == static_cast<std::size_t>(ig::VisualPart::Shape::kSpreader) + 1);
+      static constexpr const char* kShapes[] = {"box",      "lattice", "container", "tyre",     "shell",
+                                                "hull",     "mesh",    "girder",    "walkway",  "stairs",
+                                                "cylinder", "member",  "spreader",  "deckhouse"};
+      static_assert(std::size(kShapes) == static_cast<std::size_t>(ig::VisualPart::Shape::kDeckhouse) + 1);
       parts.push_back({{"shape", kShapes[static_cast<int>(part.shape)]},
                        {"size_m", size ? vec3_json(*size) : json(nullptr)},
                        {"at_m", vec3_json(at)},

@@ -1322,15 +1322,11 @@ void ImageGenerator::draw_entity(osg::MatrixTransform& transform_node,
   osg::ref_ptr<osg::Geode> geode = new osg::Geode();
   MeshBuilder fixed;
   if (look != visuals_.end()) {
-    // a spreader drawn as its parts
+    // a spreader or a deckhouse drawn as its parts
     std::vector<VisualPart> parts;
     for (const VisualPart& part : look->second.parts) {
-      if (part.shape != VisualPart::Shape::kSpreader) {
-        parts.push_back(part);
-        continue;
-      }
       const std::vector<VisualPart> pieces =
-          spreader_parts(part, part.size_m ? *part.size_m : e.half_extents_m * 2.0);
+          drawn_parts(part, part.size_m ? *part.size_m : e.half_extents_m * 2.0);
       parts.insert(parts.end(), pieces.begin(), pieces.end());
     }
     for (const VisualPart& part : parts) {

@@ -81,12 +81,14 @@ VisualPart read_part(const io::YamlFile& f, const YAML::Node& p, const std::stri
       part.shape = VisualPart::Shape::kMember;
     else if (shape == "spreader")
       part.shape = VisualPart::Shape::kSpreader;
+    else if (shape == "deckhouse")
+      part.shape = VisualPart::Shape::kDeckhouse;
     else if (shape != "box")
       f.fail(
           p["shape"], pat + ".shape",
           "'" + shape +
               "' is not a shape: box, lattice, container, tyre, shell, hull, mesh, girder, walkway, stairs, "
-              "cylinder, member or spreader");
+              "cylinder, member, spreader or deckhouse");
   }
   if (part.shape == VisualPart::Shape::kMember) {
     // from one point to another, of a section [width, depth]: its centre and size follow
@@ -193,6 +195,11 @@ VisualPart read_part(const io::YamlFile& f, const YAML::Node& p, const std::stri
     if (part.turn || part.slide || part.yaw_rad != 0.0)
       f.fail(p, pat, "a spreader's parts move by its own indicators: no turns, slides or yaw of its own");
   }
+  if (part.shape == VisualPart::Shape::kDeckhouse &&
+      (!part.size_m || part.size_m->z < 2.0 * kDeckHeight_m || part.size_m->x < 6.0 || part.size_m->y < 4.0))
+    f.fail(p["size"], pat + ".size",
+           "a deckhouse's size is written out: at least 6 m across (x), 4 m along (y) and two decks (5.6 m) "
+           "high");
   if (const auto rolls = f.optional_map(p, "rolls", pat)) {
     if (part.shape != VisualPart::Shape::kTyre)
       f.fail(p["rolls"], pat + ".rolls", "only a tyre rolls (about its axle, by its radius)");
@@ -656,6 +663,69 @@ std::vector<VisualPart> spreader_parts(const VisualPart& spreader, const core::V
     }
   }
   return parts;
+}
+
+std::vector<VisualPart> deckhouse_parts(const VisualPart& house, const core::Vec3& size_m) {
+  const double w = size_m.x, d = size_m.y, h = size_m.z;
+  const core::Vec3 c = house.centre_m;
+  const core::Vec3 kGlass{0.12, 0.16, 0.20}, kRadar{0.20, 0.20, 0.22};
+  std::vector<VisualPart> parts;
+  const auto part = [&](VisualPart::Shape shape, const core::Vec3& size, const core::Vec3& at,
+                        const core::Vec3& colour, Surface surface) -> VisualPart& {
+    VisualPart p;
+    p.shape = shape;
+    p.size_m = size;
+    p.centre_m = at;
+    p.color = colour;
+    p.livery = house.livery && colour == house.color;
+    p.surface = surface;
+    parts.push_back(p);
+    return parts.back();
+  };
+  const auto glass = [&](const core::Vec3& size, const core::Vec3& at) {
+    part(VisualPart::Shape::kBox, size, at, kGlass, Surface::kGlass);
+  };
+  part(VisualPart::Shape::kBox, size_m, c, house.color, house.surface);
+  // a band of windows on each deck above the lowest: across the front, along both sides
+  const int decks = std::max(1, static_cast<int>(h / kDeckHeight_m));
+  const double deck = h / decks, bottom = c.z - h / 2.0, front = c.y + d / 2.0;
+  for (int k = 1; k < decks; ++k) {
+    const double z = bottom + deck * (k + 0.55);
+    glass({0.9 * w, 0.1, 0.9}, {c.x, front + 0.05, z});
+    for (const double side : {1.0, -1.0})
+      glass({0.1, 0.7 * d, 0.9}, {c.x + side * (w / 2.0 + 0.05), c.y, z});
+  }
+  // the wheelhouse on top at the front, its windows; the bridge wings out past the sides
+  const double wheelhouse_w = 0.7 * w, wheelhouse_d = std::min(6.0, 0.6 * d), top = c.z + h / 2.0;
+  const core::Vec3 wheelhouse{c.x, front - wheelhouse_d / 2.0, top + 1.5};
+  part(VisualPart::Shape::kBox, {wheelhouse_w, wheelhouse_d, 3.0}, wheelhouse, house.color, house.surface);
+  glass({0.93 * wheelhouse_w, 0.1, 1.3}, {c.x, front + 0.05, top + 1.8});
+  for (const double side : {1.0, -1.0}) {
+    glass({0.1, 0.8 * wheelhouse_d, 1.1},
+          {c.x + side * (wheelhouse_w / 2.0 + 0.05), wheelhouse.y, top + 1.8});
+    const double wing = (w - wheelhouse_w) / 2.0 + 1.0;
+    part(VisualPart::Shape::kWalkway, {wing, 2.0, 1.1},
+         {c.x + side * (wheelhouse_w / 2.0 + wing / 2.0), front - 1.0, top + 0.55}, house.color,
+         house.surface);
+  }
+  // the mast on the wheelhouse's roof, its radar scanner
+  const core::Vec3 foot{c.x, wheelhouse.y - wheelhouse_d / 6.0, top + 3.0};
+  VisualPart& mast = part(VisualPart::Shape::kMember, {5.5, 0.3, 0.3}, foot + core::Vec3{0.0, 0.0, 2.75},
+                          house.color, house.surface);
+  mast.along = {0.0, 0.0, 1.0};
+  part(VisualPart::Shape::kBox, {3.0, 0.25, 0.3}, foot + core::Vec3{0.0, 0.0, 4.0}, kRadar, Surface::kPaint);
+  return parts;
+}
+
+std::vector<VisualPart> drawn_parts(const VisualPart& part, const core::Vec3& size_m) {
+  switch (part.shape) {
+    case VisualPart::Shape::kSpreader:
+      return spreader_parts(part, size_m);
+    case VisualPart::Shape::kDeckhouse:
+      return deckhouse_parts(part, size_m);
+    default:
+      return {part};
+  }
 }
 
 }  // namespace harbour::ig

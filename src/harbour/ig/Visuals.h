@@ -65,7 +65,8 @@ struct VisualPart {
     kStairs,
     kCylinder,
     kMember,
-    kSpreader
+    kSpreader,
+    kDeckhouse
   };
   Shape shape = Shape::kBox;
   std::optional<core::Vec3> size_m;  ///< full size; empty: the entity's own size
@@ -108,6 +109,16 @@ struct VisualPart {
 /// up at 0 and down round the corner at 1 (the corners in the twistlocks' order: +y -x, -y -x, -y +x, +y +x).
 /// The main frame is as long as fits inside a 20 ft spreader (ISO 668: 6.058 m).
 std::vector<VisualPart> spreader_parts(const VisualPart& spreader, const core::Vec3& size_m);
+
+/// A ship's deckhouse (its accommodation) filling a box of `size_m` (x across the ship, y along it, the bow
+/// at +y) as the parts that draw it: the block, its decks kDeckHeight_m high (as many as its height holds), a
+/// band of windows on each deck above the lowest across its front and along both sides, the wheelhouse on top
+/// at its front (0.7 of its width, 3 m high) with its windows, bridge wings from the wheelhouse out to 1 m
+/// past the block's sides, a mast on the wheelhouse with its radar scanner.
+std::vector<VisualPart> deckhouse_parts(const VisualPart& house, const core::Vec3& size_m);
+inline constexpr double kDeckHeight_m = 2.8;
+/// The parts a spreader or a deckhouse is drawn as; any other part as itself.
+std::vector<VisualPart> drawn_parts(const VisualPart& part, const core::Vec3& size_m);
 
 /// What a visual key looks like (data/visuals/*.yaml).
 struct Visual {
