@@ -318,14 +318,21 @@ json scene_json(const std::string& station, const net::StationScene& scene) {
           {"entities", std::move(entities)}};
 }
 
-// The looks (data/visuals/*.yaml) as the browser's 3D view reads them; a container, tyre, shell, hull, mesh,
-// girder, walkway, stairs, cylinder, spreader or deckhouse part is drawn as the box it fills, a member as its
-// box turned `along` it.
+// The looks (data/visuals/*.yaml) as the browser's 3D view reads them; a deckhouse as its parts (its block,
+// windows, wheelhouse, wings and mast); a container, tyre, shell, hull, mesh, girder, walkway, stairs,
+// cylinder or spreader part is drawn as the box it fills, a member as its box turned `along` it.
 json looks_json(const ig::Looks& looks) {
   json visuals = json::object();
   for (const auto& [key, visual] : looks.visuals) {
     json parts = json::array();
+    std::vector<ig::VisualPart> drawn;
     for (const ig::VisualPart& part : visual.parts) {
+      const std::vector<ig::VisualPart> pieces = part.shape == ig::VisualPart::Shape::kDeckhouse
+                                                     ? ig::drawn_parts(part, *part.size_m)
+                                                     : std::vector<ig::VisualPart>{part};
+      drawn.insert(drawn.end(), pieces.begin(), pieces.end());
+    }
+    for (const ig::VisualPart& part : drawn) {
       // a walkway as its deck, a flight as the slab along its pitch (turned by its yaw), a member along
       // itself
       std::optional<core::Vec3> size = part.size_m;
