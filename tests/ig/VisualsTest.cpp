@@ -439,3 +439,27 @@ TEST(Visuals, ADeckhouseHasAWindowBandADeckAndItsWheelhouseAtTheFront) {
 
 }  // namespace
 }  // namespace harbour::ig
+
+namespace harbour::ig {
+namespace {
+
+// A repeated part turning about a point of its own: each copy turns about its own point, a step apart.
+TEST(Visuals, ARepeatedPartTurnsAboutItsOwnPivot) {
+  const std::map<std::string, Visual> looks = load_visuals(written("pivots.yaml", R"(visuals:
+  - key: flaps
+    parts:
+      - {size: [0.5, 0.1, 0.4], at: [1.25, 0, -0.2], color: [1, 1, 0], repeat: 3, step: [0, 2, 0],
+         turns: {with: flap, axis: [0, 1, 0], degrees: 180, about: [1, 0, 0]}}
+)"));
+  const Visual& flaps = looks.at("flaps");
+  ASSERT_EQ(flaps.parts.size(), 3u);
+  for (std::size_t k = 0; k < 3; ++k) {
+    ASSERT_TRUE(flaps.parts[k].turn && flaps.parts[k].turn->pivot_m);
+    EXPECT_EQ(flaps.parts[k].centre_m.y, 2.0 * static_cast<double>(k));
+    EXPECT_EQ(flaps.parts[k].turn->pivot_m->y, 2.0 * static_cast<double>(k));
+    EXPECT_EQ(flaps.parts[k].turn->pivot_m->x, 1.0);
+  }
+}
+
+}  // namespace
+}  // namespace harbour::ig

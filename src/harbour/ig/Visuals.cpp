@@ -444,9 +444,10 @@ void read_visuals(const io::YamlFile& f, const YAML::Node& section, const std::s
       const int copies = repeated ? f.integer(parts[k], "repeat", pat, 1, 200) : 1;
       const core::Vec3 step =
           repeated ? f.vector3(f.required(parts[k], "step", pat), pat + ".step", 1000.0) : core::Vec3{};
-      for (int copy = 0; copy < copies; ++copy) {
-        visual.parts.push_back(part);
-        visual.parts.back().centre_m = part.centre_m + step * static_cast<double>(copy);
+      for (int copy = 0; copy < copies; ++copy) {  // each copy with its own pivot
+        VisualPart& placed = visual.parts.emplace_back(part);
+        placed.centre_m = part.centre_m + step * static_cast<double>(copy);
+        if (placed.turn && placed.turn->pivot_m) *placed.turn->pivot_m += step * static_cast<double>(copy);
       }
     }
     out[key] = visual;

@@ -17,7 +17,8 @@ constexpr double kG = core::kStandardGravity;
 constexpr const char* kIndicators[] = {"speed_kmh",   "spreader_size_ft",   "lamp_landed",
                                        "lamp_locked", "lamp_unlocked",      "horn",
                                        "load_t",      "net_load_t",         "lamp_brake_fault",
-                                       "reversing",   "lamp_parking_brake", "spreader_length_m"};
+                                       "reversing",   "lamp_parking_brake", "spreader_length_m",
+                                       "steering"};
 
 // the spreader's frame in the portal's: its length (its y) along the portal's x
 core::Mat3 spreader_on_portal() {
@@ -147,7 +148,8 @@ int StraddleCarrier::publish(scene::Snapshot& s, int first) const {
                            rig_->brake_fault() ? 1.0 : 0.0,
                            cab_.direction() < 0 ? 1.0 : 0.0,
                            cab_.parking_brake() ? 1.0 : 0.0,
-                           rig_->spreader_state().length_m};
+                           rig_->spreader_state().length_m,
+                           cab_.steering()};
   static_assert(std::size(values) == std::size(kIndicators));
   s.indicator_count = static_cast<int>(std::size(values));
   std::copy(std::begin(values), std::end(values), s.indicators.begin());
