@@ -2061,3 +2061,41 @@ TEST(ImageGenerator, AJackReachesFromEyeToEyeAsItsEntitiesMove) {
 
 }  // namespace
 }  // namespace harbour::ig
+
+namespace harbour::ig {
+namespace {
+
+// Far off in a gale the whitecaps whiten the sea evenly (their mean, where a pixel spans several of their
+// cells) instead of drawing a lattice of dots: just under the horizon (0.3-2.7 km out) the luminance changes
+// from pixel to pixel along a row no more than in a calm (0.0001 against 0.028-0.049 with the dots), while
+// the sea there is whiter than in a calm, as much as the dots made it (0.508 against 0.509 and 0.478).
+TEST(ImageGenerator, FarWhitecapsWhitenTheSeaEvenly) {
+  constexpr int kFrom = 3, kTo = 25;  // rows under the horizon: 2.7 km to 320 m out, 20 m below the eye
+  ImageGenerator ig(scene(), looks(), kWidth, kHeight);
+  ig.set_view(free_camera({200.0, 0.0, 20.0}, 0.0, 0.0));  // level, out over open water
+  const auto band = [&](double wind) {
+    scene::Snapshot s = state(-500.0, -600.0, 20000.0, 12.0);  // the boxes behind the camera
+    s.wind_mps = {wind, 0.0, 0.0};
+    s.time_s = 30.0;
+    ig.update(s);
+    const osg::Image& image = ig.render();
+    const int horizon = static_cast<int>(std::lround(ig.project({200.0 + 1e5, 0.0, 20.0})->second));
+    double change = 0.0, mean = 0.0, n = 0.0;
+    for (int y = horizon + kFrom; y <= horizon + kTo; ++y)
+      for (int x = 1; x < kWidth; ++x) {
+        change += std::abs(luminance(pixel(image, x, y)) - luminance(pixel(image, x - 1, y)));
+        mean += luminance(pixel(image, x, y));
+        ++n;
+      }
+    return std::pair{change / n, mean / n};
+  };
+  const auto [calm_change, calm_mean] = band(0.0);
+  const auto [gale_change, gale_mean] = band(26.0);
+  std::printf("far sea: calm change %.4f mean %.3f; 26 m/s change %.4f mean %.3f\n", calm_change, calm_mean,
+              gale_change, gale_mean);
+  EXPECT_LT(gale_change, calm_change + 0.005);
+  EXPECT_GT(gale_mean, calm_mean + 0.015);
+}
+
+}  // namespace
+}  // namespace harbour::ig

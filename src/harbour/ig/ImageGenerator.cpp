@@ -704,6 +704,11 @@ uniform float breaking;   // the share of the sea's surface breaking (whitecaps)
 uniform float time_s;
 uniform vec2 wind_dir;    // where the wind blows towards (whitecaps streak along it)
 float hash(vec2 p) { return fract(sin(dot(p, vec2(127.1, 311.7))) * 43758.5453); }
+float value_noise(vec2 p) {  // smooth noise 0-1 on a unit lattice
+  vec2 i = floor(p), t = fract(p);
+  t = t * t * (3.0 - 2.0 * t);
+  return mix(mix(hash(i), hash(i + vec2(1.0, 0.0)), t.x), mix(hash(i + vec2(0.0, 1.0)), hash(i + 1.0), t.x), t.y);
+}
 varying vec2 slope;
 varying float fog;
 varying float foam;
@@ -719,13 +724,23 @@ void main() {
   vec3 sky = mix(horizon, zenith, sqrt(r.z));
   float glint = daylight * pow(max(dot(r, to_sun), 0.0), 400.0);
   vec3 colour = min((1.0 - f) * deep + f * sky + glint * vec3(1.0, 1.0, 0.9), vec3(1.0));
-  // whitecaps: on the crests the grid carries, and where it is too coarse for them scattered streaks 6 m
-  // along the wind and 2.5 m across, a `breaking` share of such cells white at a time, each for a few seconds
+  // whitecaps: on the crests the grid carries, and where it is too coarse for them scattered streaks in cells
+  // 6 m along the wind and 2.5 m across, a `breaking` share of the cells white at a time, each for a few
+  // seconds, its streak placed and sized at random within its cell (a lattice of like dots otherwise shows);
+  // far off, where a pixel spans a cell or more, their mean (about 0.3 of a cell each) instead of dots
   vec2 along = vec2(dot(world.xy, wind_dir), dot(world.xy, vec2(-wind_dir.y, wind_dir.x))) / vec2(6.0, 2.5);
   vec2 cell = floor(along);
   float born = floor(time_s / 3.0 + 7.0 * hash(cell));
-  float patch = hash(cell + 17.0 * born) < breaking ? smoothstep(0.45, 0.15, length(fract(along) - 0.5)) : 0.0;
-  colour = mix(colour, vec3(0.86, 0.89, 0.91) * sky_light, clamp(max(foam, patch), 0.0, 1.0));
+  vec2 seed = cell + 17.0 * born;
+  vec2 centre = 0.5 + 0.25 * (vec2(hash(seed + 3.7), hash(seed + 8.3)) - 0.5);
+  float radius = 0.3 + 0.075 * hash(seed + 5.1);
+  float patch = hash(seed) < breaking ? smoothstep(radius, radius - 0.3, length(fract(along) - centre)) : 0.0;
+  vec2 span = fwidth(along);
+  patch = mix(patch, 0.3 * breaking, smoothstep(0.35, 1.0, max(span.x, span.y)));
+  // the crests' foam broken into flecks by noise 1.5 m across (the grid's triangles otherwise show), its mean
+  // kept
+  float flecks = foam * 2.0 * value_noise((world.xy + 0.7 * time_s * wind_dir) / 1.5);
+  colour = mix(colour, vec3(0.86, 0.89, 0.91) * sky_light, clamp(max(flecks, patch), 0.0, 1.0));
   gl_FragColor = vec4(mix(gl_Fog.color.rgb, colour, fog), 1.0);
 }
 )";
