@@ -79,6 +79,11 @@ double luminance(const osg::Vec3& c) {
   return 0.2126 * c.x() + 0.7152 * c.y() + 0.0722 * c.z();
 }
 
+// the shipped looks' safety yellow (grab shells, spreaders), lit or shaded
+bool safety_yellow(const osg::Vec3& p) {
+  return p.x() > 0.25 && p.y() > 0.6 * p.x() && p.z() < 0.45 * p.x();
+}
+
 // each pixel's luminance as the median of its 3x3 neighbourhood, rows from the top: the rain's drops falling
 // past, a pixel or two wide, go
 std::vector<double> median_luminance(const osg::Image& image) {
@@ -1767,7 +1772,7 @@ TEST(ImageGenerator, TheGrabsShellsOpenWithThePublishedOpening) {
     for (int y = 0; y < kHeight; ++y)
       for (int x = 0; x < kWidth; ++x) {
         const osg::Vec3 p = pixel(image, x, y);
-        if (p.x() > 0.25 && p.y() > 0.6 * p.x() && p.z() < 0.45 * p.x()) {  // the shells' yellow
+        if (safety_yellow(p)) {
           left = std::min(left, x);
           right = std::max(right, x);
           lowest = std::max(lowest, y);
@@ -1955,9 +1960,6 @@ TEST(ImageGenerator, TheSpreaderTelescopesWithItsLengthAndItsFlippersFoldDown) {
     ig.update(s);
     return &ig.render();
   };
-  const auto yellow = [](const osg::Vec3& p) {
-    return p.x() > 0.25 && p.y() > 0.6 * p.x() && p.z() < 0.45 * p.x();
-  };
   // from 40 m above, its length across the picture (the world's y to the left)
   ig.set_view(free_camera(at + core::Vec3{0.0, 0.0, 40.0}, 0.0, -std::numbers::pi / 2.0 + 1e-3));
   for (const double length : {12.192, 6.058, 13.716}) {
@@ -1965,7 +1967,7 @@ TEST(ImageGenerator, TheSpreaderTelescopesWithItsLengthAndItsFlippersFoldDown) {
     int left = kWidth, right = -1;
     for (int y = 0; y < kHeight; ++y)
       for (int x = 0; x < kWidth; ++x)
-        if (yellow(pixel(image, x, y))) {
+        if (safety_yellow(pixel(image, x, y))) {
           left = std::min(left, x);
           right = std::max(right, x);
         }
@@ -1982,7 +1984,7 @@ TEST(ImageGenerator, TheSpreaderTelescopesWithItsLengthAndItsFlippersFoldDown) {
     int lowest = -1;
     for (int y = 0; y < kHeight; ++y)
       for (int x = 0; x < kWidth; ++x)
-        if (yellow(pixel(image, x, y))) lowest = std::max(lowest, y);
+        if (safety_yellow(pixel(image, x, y))) lowest = std::max(lowest, y);
     return lowest;
   };
   // the near corners' underside, 1.3 m nearer than the centre

@@ -341,12 +341,6 @@ TEST(Visuals, ABadSpreaderIsNamedByField) {
       5, "visuals[0].parts[0].slides.along", "");
 }
 
-}  // namespace
-}  // namespace harbour::ig
-
-namespace harbour::ig {
-namespace {
-
 TEST(Visuals, AMachinesJacksJoinItsOwnEntities) {
   const std::string harbour = written("harbour_no_looks.yaml", "visuals: []\n");
   const std::string head = "machine:\n  kind: reach_stacker\n  mass_kg: 1\nlooks:\n  jacks:\n    - ";
@@ -385,12 +379,6 @@ TEST(Visuals, AMachinesJacksJoinItsOwnEntities) {
       "barrel_m: 2, rod_m: 2, color: [1, 0, 0]}",
       "looks.jacks[0].diameter_m", "missing");
 }
-
-}  // namespace
-}  // namespace harbour::ig
-
-namespace harbour::ig {
-namespace {
 
 // A deckhouse drawn as its parts: a band of windows on every deck above the lowest on its front and both
 // sides, the wheelhouse on top at its front, bridge wings 1 m past its sides, the mast on the wheelhouse.
@@ -436,12 +424,6 @@ TEST(Visuals, ADeckhouseHasAWindowBandADeckAndItsWheelhouseAtTheFront) {
       "[1, 1, 1]}\n",
       4, "visuals[0].parts[0].size", "two decks");
 }
-
-}  // namespace
-}  // namespace harbour::ig
-
-namespace harbour::ig {
-namespace {
 
 // A repeated part turning about a point of its own: each copy turns about its own point, a step apart.
 TEST(Visuals, ARepeatedPartTurnsAboutItsOwnPivot) {

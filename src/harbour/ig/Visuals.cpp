@@ -599,41 +599,47 @@ std::vector<VisualPart> spreader_parts(const VisualPart& spreader, const core::V
        centre + core::Vec3{0.45, 0.5 * main_length - 0.45, 0.5 * h + 0.175});
   part(VisualPart::Shape::kBox, {0.6, 0.4, 0.3},
        centre + core::Vec3{-0.5, -0.5 * main_length + 0.3, 0.5 * h + 0.15});
+  // a part of the end at `end` (+1 or -1 along y): it slides out with the published length, half of its
+  // change each way
+  const auto sliding = [&](VisualPart& p, double end) -> VisualPart& {
+    if (!spreader.telescopes_with.empty())
+      p.slide = PartSlide{spreader.telescopes_with, {0.0, 0.5 * end, 0.0}, length};
+    return p;
+  };
+  const auto bare_steel = [](VisualPart& p) -> VisualPart& {  // a twistlock's cone and head
+    p.surface = Surface::kSteel;
+    p.color = {0.55, 0.55, 0.55};
+    p.livery = false;
+    return p;
+  };
+  // two telescopic beams an end, staggered across from the other end's, back into the main frame
+  const double beam_length = kTwentyFoot_m / 2.0 - kHeadBeamAlong_m + main_length / 2.0 - 0.05;
+  const double beam_inner = length / 2.0 - kHeadBeamAlong_m - beam_length;
   for (const double end : {1.0, -1.0}) {
-    // each end slides out with the published length, half of its change each way
-    const auto sliding = [&](VisualPart& p) -> VisualPart& {
-      if (!spreader.telescopes_with.empty())
-        p.slide = PartSlide{spreader.telescopes_with, {0.0, 0.5 * end, 0.0}, length};
-      return p;
-    };
     const double head_y = end * (length / 2.0 - kHeadBeamAlong_m / 2.0);
     sliding(part(VisualPart::Shape::kGirder, {w, kHeadBeamAlong_m, 0.6 * h},
-                 {centre.x, centre.y + head_y, bottom + 0.3 * h}))
+                 {centre.x, centre.y + head_y, bottom + 0.3 * h}),
+            end)
         .bay_m = 0.6;
-    // two telescopic beams an end, staggered across from the other end's, back into the main frame
-    const double beam_length = kTwentyFoot_m / 2.0 - kHeadBeamAlong_m + main_length / 2.0 - 0.05;
-    const double beam_inner = length / 2.0 - kHeadBeamAlong_m - beam_length;
     for (const double across : {end > 0 ? -0.75 : -0.35, end > 0 ? 0.35 : 0.75})
       sliding(part(VisualPart::Shape::kBox, {0.32, beam_length, 0.3 * h},
-                   {centre.x + across, centre.y + end * (beam_inner + beam_length / 2.0), bottom + 0.4 * h}));
+                   {centre.x + across, centre.y + end * (beam_inner + beam_length / 2.0), bottom + 0.4 * h}),
+              end);
     for (const double side : {1.0, -1.0}) {
       const double corner_x = side * spreader.twistlock_track_m / 2.0,
                    corner_y = end * (length / 2.0 - kCastingFromEnd_m);
       // the twistlock housing over its casting, the twistlock's cone under it and its head turning as it
       // locks
-      sliding(part(
-          VisualPart::Shape::kBox, {0.42, 0.55, 0.8 * h},
-          {centre.x + side * (w / 2.0 - 0.21), centre.y + end * (length / 2.0 - 0.275), bottom + 0.4 * h}));
-      VisualPart& cone = sliding(part(VisualPart::Shape::kCylinder, {0.11, 0.11, 0.1},
-                                      {centre.x + corner_x, centre.y + corner_y, bottom - 0.05}));
-      cone.surface = Surface::kSteel;
-      cone.color = {0.55, 0.55, 0.55};
-      cone.livery = false;
-      VisualPart& head = sliding(part(VisualPart::Shape::kBox, {0.06, 0.13, 0.05},
-                                      {centre.x + corner_x, centre.y + corner_y, bottom - 0.125}));
-      head.surface = Surface::kSteel;
-      head.color = {0.55, 0.55, 0.55};
-      head.livery = false;
+      sliding(part(VisualPart::Shape::kBox, {0.42, 0.55, 0.8 * h},
+                   {centre.x + side * (w / 2.0 - 0.21), centre.y + end * (length / 2.0 - 0.275),
+                    bottom + 0.4 * h}),
+              end);
+      bare_steel(sliding(part(VisualPart::Shape::kCylinder, {0.11, 0.11, 0.1},
+                              {centre.x + corner_x, centre.y + corner_y, bottom - 0.05}),
+                         end));
+      VisualPart& head = bare_steel(sliding(part(VisualPart::Shape::kBox, {0.06, 0.13, 0.05},
+                                                 {centre.x + corner_x, centre.y + corner_y, bottom - 0.125}),
+                                            end));
       if (!spreader.locks_with.empty())
         head.turn =
             PartTurn{spreader.locks_with, {0.0, 0.0, 1.0}, std::numbers::pi / 2.0, false, std::nullopt};
@@ -656,10 +662,7 @@ std::vector<VisualPart> spreader_parts(const VisualPart& spreader, const core::V
            {std::pair{core::Vec3{a, t, d}, up(a / 2.0, g + t / 2.0, d / 2.0)},      // end plate
             std::pair{core::Vec3{t, a, d}, up(t / 2.0, g + t - a / 2.0, d / 2.0)},  // side plate
             std::pair{core::Vec3{0.3, 0.12, 0.12}, up(0.15, -0.1, 0.06)}}) {        // arm
-        VisualPart& plate = part(VisualPart::Shape::kBox, size, at);
-        plate.turn = swing;
-        if (!spreader.telescopes_with.empty())
-          plate.slide = PartSlide{spreader.telescopes_with, {0.0, 0.5 * ys, 0.0}, length};
+        sliding(part(VisualPart::Shape::kBox, size, at), ys).turn = swing;
       }
     }
   }
