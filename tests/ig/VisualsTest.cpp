@@ -10,6 +10,8 @@
 #include <numbers>
 #include <string>
 
+#include <unistd.h>
+
 #include "harbour/io/DataError.h"
 #include "harbour/machines/MachineRegistry.h"
 
@@ -17,7 +19,9 @@ namespace harbour::ig {
 namespace {
 
 std::string written(const std::string& name, const std::string& text) {
-  const std::filesystem::path folder = std::filesystem::temp_directory_path() / "harbour_visuals_test";
+  // a folder of this process's own: ctest runs this file's tests as processes side by side
+  const std::filesystem::path folder =
+      std::filesystem::temp_directory_path() / ("harbour_visuals_test_" + std::to_string(::getpid()));
   std::filesystem::create_directories(folder);
   const std::string path = (folder / name).string();
   std::ofstream(path) << text;
