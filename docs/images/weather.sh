@@ -2,7 +2,8 @@
 # Each machine's cab view (top row) and chase view (bottom row) at one moment of its main exercise in six
 # conditions — noon, dusk (18:18, the sun 3.5° down), night (22 h), fog (200 m), rain (20 mm/h) and a storm
 # (26 m/s wind, Beaufort 10, 40 mm/h, 2 km visibility) — side by side: docs/images/weather_<exercise>.png; and the sky
-# through an evening from the quay (12, 16, 17:30, 18, 18:12, 18:30, 18:48, 19:12 h): docs/images/sky_evening.png.
+# through an evening from the quay (12, 16, 17:30, 18, 18:12, 18:30, 18:48, 19:12 h): docs/images/sky_evening.png;
+# the harbour's water from 25 m at 12 m/s and 24 m/s (gusting to 14 and 28 m/s): docs/images/whitecaps.png.
 # Drawn with surface detail (a GPU station's default) on any renderer.
 # Usage: docs/images/weather.sh [path/to/harboursim]
 set -euo pipefail
@@ -51,3 +52,11 @@ done
 ffmpeg -loglevel error -y "${frames[@]}" -filter_complex "[0][1][2][3]hstack=4[a];[4][5][6][7]hstack=4[b];[a][b]vstack" \
   "$here/sky_evening.png"
 echo "$here/sky_evening.png"
+frames=()
+for wind in 12 24; do
+  "$app" screenshot --exercise sts_discharge --at 5 --view free --camera=60,-40,25,60,-20 --size 640x360 \
+    --command "0:wind:$wind:270:0.15" --out "$work/sea-$wind.png" > /dev/null
+  frames+=(-i "$work/sea-$wind.png")
+done
+ffmpeg -loglevel error -y "${frames[@]}" -filter_complex "[0][1]vstack" "$here/whitecaps.png"
+echo "$here/whitecaps.png"

@@ -64,6 +64,7 @@ void look_round(core::Vec3& forward, core::Vec3& up, core::Vec3& right, double y
 constexpr double kPi = std::numbers::pi;
 constexpr double kLongestRoll_s = 1.0;  // snapshots further apart are a jump (a seek): the tyres do not roll
 constexpr double kFetch_m = 2000.0;     // the harbour basin's open water upwind, for the wind sea (assumed)
+constexpr double kCrestShareOfWhitecaps = 0.5;  // of the whitecaps, on the crests breaking now (ours)
 constexpr int kWaterColumns = 96,
               kWaterRows = 64;          // the water's grid, laid over the screen (projected grid)
 constexpr double kWaterFar_m = 3000.0;  // where it ends; a flat sea beyond
@@ -681,11 +682,11 @@ constexpr char kWaterVertexShader[] = R"(#version 120
 varying vec3 world;
 varying vec2 slope;
 varying float fog;
-varying float foam;
+varying vec2 foam;  // the crests' foam (0.5 at the breaking slope) and how much of the wind sea the grid carries
 void main() {
   world = gl_Vertex.xyz;
   slope = gl_MultiTexCoord0.xy;
-  foam = gl_MultiTexCoord1.x;
+  foam = gl_MultiTexCoord1.xy;
   vec4 eye = gl_ModelViewMatrix * gl_Vertex;
   fog = clamp(exp(-gl_Fog.density * length(eye.xyz)), 0.0, 1.0);
   gl_Position = gl_ProjectionMatrix * eye;
@@ -700,7 +701,8 @@ uniform vec3 deep;
 uniform float daylight;
 varying vec3 world;
 uniform float sky_light;  // the light on the foam: daylight, and the floodlights' share at night
-uniform float breaking;   // the share of the sea's surface breaking (whitecaps)
+uniform float breaking;   // the share of the sea's surface white with foam (whitecaps)
+uniform float crest_share;  // the share of it on the crests breaking now
 uniform float time_s;
 uniform vec2 wind_dir;    // where the wind blows towards (whitecaps streak along it)
 float hash(vec2 p) { return fract(sin(dot(p, vec2(127.1, 311.7))) * 43758.5453); }
@@ -711,7 +713,27 @@ float value_noise(vec2 p) {  // smooth noise 0-1 on a unit lattice
 }
 varying vec2 slope;
 varying float fog;
-varying float foam;
+varying vec2 foam;
+// one layer of foam streaks: cells `size` metres (along the wind, across) apart, a share of them white at a
+// time, each for a few seconds, its streak placed and sized at random within its cell, its edge ragged; white
+// over `cover` of the sea on average (where a streak's edge is past half white); far off, where a pixel spans
+// a cell or more, that mean instead of dots
+float streaks(vec2 along_m, vec2 size, float layer, float cover, float noise) {
+  const float kArea = 0.112;  // a streak's mean white area at its smallest, in cells
+  float share = min(0.6, cover / kArea);
+  float grow = sqrt(cover / max(share * kArea, 1e-6));
+  vec2 at = along_m / size + layer * vec2(0.37, 0.61);
+  at.x += hash(vec2(floor(at.y), layer));  // each row of cells shifted along the wind: no rows line up
+  vec2 cell = floor(at);
+  float born = floor(time_s / 3.0 + 7.0 * hash(cell + 13.0 * layer));
+  vec2 seed = cell + 17.0 * born + 31.0 * layer;
+  float radius = 0.04 + grow * (0.15 + 0.075 * hash(seed + 5.1));
+  vec2 centre = 0.5 + max(0.5 - radius, 0.0) * (vec2(hash(seed + 3.7), hash(seed + 8.3)) - 0.5);
+  float edge = length(fract(at) - centre) + 0.2 * (noise - 0.5);
+  float white = hash(seed) < share ? smoothstep(radius, radius - 0.08, edge) : 0.0;
+  vec2 span = fwidth(along_m / size);  // not of `at`: it jumps between rows
+  return mix(white, cover, smoothstep(0.35, 1.0, max(span.x, span.y)));
+}
 void main() {
   vec3 n = normalize(vec3(-slope, 1.0));
   vec3 v = normalize(eye_world - world);
@@ -724,23 +746,18 @@ void main() {
   vec3 sky = mix(horizon, zenith, sqrt(r.z));
   float glint = daylight * pow(max(dot(r, to_sun), 0.0), 400.0);
   vec3 colour = min((1.0 - f) * deep + f * sky + glint * vec3(1.0, 1.0, 0.9), vec3(1.0));
-  // whitecaps: on the crests the grid carries, and where it is too coarse for them scattered streaks in cells
-  // 6 m along the wind and 2.5 m across, a `breaking` share of the cells white at a time, each for a few
-  // seconds, its streak placed and sized at random within its cell (a lattice of like dots otherwise shows);
-  // far off, where a pixel spans a cell or more, their mean (about 0.3 of a cell each) instead of dots
-  vec2 along = vec2(dot(world.xy, wind_dir), dot(world.xy, vec2(-wind_dir.y, wind_dir.x))) / vec2(6.0, 2.5);
-  vec2 cell = floor(along);
-  float born = floor(time_s / 3.0 + 7.0 * hash(cell));
-  vec2 seed = cell + 17.0 * born;
-  vec2 centre = 0.5 + 0.25 * (vec2(hash(seed + 3.7), hash(seed + 8.3)) - 0.5);
-  float radius = 0.3 + 0.075 * hash(seed + 5.1);
-  float patch = hash(seed) < breaking ? smoothstep(radius, radius - 0.3, length(fract(along) - centre)) : 0.0;
-  vec2 span = fwidth(along);
-  patch = mix(patch, 0.3 * breaking, smoothstep(0.35, 1.0, max(span.x, span.y)));
-  // the crests' foam broken into flecks by noise 1.5 m across (the grid's triangles otherwise show), its mean
-  // kept
-  float flecks = foam * 2.0 * value_noise((world.xy + 0.7 * time_s * wind_dir) / 1.5);
-  colour = mix(colour, vec3(0.86, 0.89, 0.91) * sky_light, clamp(max(flecks, patch), 0.0, 1.0));
+  // whitecaps cover a `breaking` share of the sea: the crests breaking now where the grid carries the wind
+  // sea (their foam past the breaking slope, its edge broken by noise 1.5 m across so the grid's triangles do
+  // not show), and the foam they leave as streaks along the wind in two layers of cells of two sizes (one
+  // lattice of them shows as one), as many and as large as make crests and streaks together cover `breaking`
+  float noise = value_noise((world.xy + 0.7 * time_s * wind_dir) / 1.5);
+  float crest = foam.y * smoothstep(0.4, 0.6, foam.x + 0.4 * (noise - 0.5));
+  float crests_here = crest_share * foam.y;
+  float layer_cover = 1.0 - sqrt((1.0 - breaking) / (1.0 - crests_here));
+  vec2 along = vec2(dot(world.xy, wind_dir), dot(world.xy, vec2(-wind_dir.y, wind_dir.x)));
+  float patch = max(streaks(along, vec2(10.0, 1.6), 0.0, layer_cover, noise),
+                    streaks(along, vec2(14.0, 2.2), 1.0, layer_cover, noise));
+  colour = mix(colour, vec3(0.86, 0.89, 0.91) * sky_light, clamp(max(crest, patch), 0.0, 1.0));
   gl_FragColor = vec4(mix(gl_Fog.color.rgb, colour, fog), 1.0);
 }
 )";
@@ -1247,8 +1264,8 @@ void ImageGenerator::build_quay_and_water() {
     const int row = kWaterColumns + 1;
     const auto points = static_cast<unsigned>(row * (kWaterRows + 1));
     water_->setVertexArray(new osg::Vec3Array(points));
-    water_->setTexCoordArray(0, new osg::Vec2Array(points), osg::Array::BIND_PER_VERTEX);   // the slope
-    water_->setTexCoordArray(1, new osg::FloatArray(points), osg::Array::BIND_PER_VERTEX);  // whitecaps
+    water_->setTexCoordArray(0, new osg::Vec2Array(points), osg::Array::BIND_PER_VERTEX);  // the slope
+    water_->setTexCoordArray(1, new osg::Vec2Array(points), osg::Array::BIND_PER_VERTEX);  // whitecaps
     for (int j = 0; j < kWaterRows; ++j) {
       osg::ref_ptr<osg::DrawElementsUShort> strip = new osg::DrawElementsUShort(GL_TRIANGLE_STRIP);
       for (int i = 0; i <= kWaterColumns; ++i) {
@@ -1271,6 +1288,7 @@ void ImageGenerator::build_quay_and_water() {
     shading->addUniform(new osg::Uniform("daylight", 0.0f));
     shading->addUniform(new osg::Uniform("sky_light", 0.0f));
     shading->addUniform(new osg::Uniform("breaking", 0.0f));
+    shading->addUniform(new osg::Uniform("crest_share", 0.0f));
     shading->addUniform(new osg::Uniform("time_s", 0.0f));
     shading->addUniform(new osg::Uniform("wind_dir", osg::Vec2(1.0f, 0.0f)));
     for (const char* name : {"eye_world", "to_sun", "horizon", "zenith", "deep"})
@@ -2536,22 +2554,27 @@ void ImageGenerator::update_water(const osg::Vec3d& eye) {
     wind_sea_speed_mps_ = wind;
   }
   wind_sea_->evaluate(time_s_);
-  // whitecaps: the share of the sea breaking is Monahan & O'Muircheartaigh's (1980) W = 3.84e-6 U^3.41
-  // (1 % at 10 m/s, 11 % at 20 m/s); the wind sea breaks where it is steepest, so the foam covers its
-  // steepest share W: the slope above which that share of the patch lies now
+  // whitecaps: the share of the sea white with foam is Monahan & O'Muircheartaigh's (1980) W = 3.84e-6
+  // U^3.41 (1 % at 10 m/s, 11 % at 20 m/s), crests breaking now and the foam they leave behind together
+  // (Monahan & Lu 1990's stages A and B); we give the crests half of it. The wind sea breaks where it is
+  // steepest: the crests' foam covers the slopes above which that half of the patch lies now
   const double breaking = std::min(3.84e-6 * std::pow(wind, 3.41), 0.5);
+  const double crest_share = kCrestShareOfWhitecaps * breaking;
   foam_slope_ = std::numeric_limits<double>::infinity();
   if (breaking > 1e-4) {
     foam_samples_.clear();
     const int n = wind_sea_->size();
     const double cell = wind_sea_->length_m() / n;
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i)
-        foam_samples_.push_back(
-            std::hypot(wind_sea_->slope_x_at(i * cell, j * cell), wind_sea_->slope_y_at(i * cell, j * cell)));
+    // sampled between the patch's grid points, as the water's vertices sample it (bilinear: its extremes lie
+    // on the grid points, so a quantile of those alone is steeper than the drawn sea reaches)
+    for (int j = 0; j < 2 * n; ++j)
+      for (int i = 0; i < 2 * n; ++i) {
+        const double x = (0.5 * i + 0.25) * cell, y = (0.5 * j + 0.25) * cell;
+        foam_samples_.push_back(std::hypot(wind_sea_->slope_x_at(x, y), wind_sea_->slope_y_at(x, y)));
+      }
     const auto at =
         foam_samples_.begin() +
-        static_cast<std::ptrdiff_t>((1.0 - breaking) * static_cast<double>(foam_samples_.size() - 1));
+        static_cast<std::ptrdiff_t>((1.0 - crest_share) * static_cast<double>(foam_samples_.size() - 1));
     std::nth_element(foam_samples_.begin(), at, foam_samples_.end());
     foam_slope_ = *at;
   }
@@ -2562,6 +2585,7 @@ void ImageGenerator::update_water(const osg::Vec3d& eye) {
   const float foam_light = static_cast<float>(0.12 + 0.88 * daylight_ * (1.0 - 0.4 * grey_));
   set("sky_light", foam_light);
   set("breaking", static_cast<float>(breaking));
+  set("crest_share", static_cast<float>(crest_share));
   set("time_s", static_cast<float>(time_s_));
   set("wind_dir",
       wind > 1e-6 ? osg::Vec2(static_cast<float>(wind_mps_.x / wind), static_cast<float>(wind_mps_.y / wind))
@@ -2593,7 +2617,7 @@ void ImageGenerator::update_water(const osg::Vec3d& eye) {
   const double level = sea_.water_level_m;
   auto& vertices = static_cast<osg::Vec3Array&>(*water_->getVertexArray());
   auto& slopes = static_cast<osg::Vec2Array&>(*water_->getTexCoordArray(0));
-  auto& foam = static_cast<osg::FloatArray&>(*water_->getTexCoordArray(1));
+  auto& foam = static_cast<osg::Vec2Array&>(*water_->getTexCoordArray(1));
   // a projected grid (Johanson 2004): rays through a grid over the screen (a little wider) meet the still
   // water; rays that miss it end at the far distance, so every cell covers about the same part of the image
   const osg::Camera& camera = *viewer_->getCamera();
@@ -2643,9 +2667,10 @@ void ImageGenerator::update_water(const osg::Vec3d& eye) {
       const double wind_slope = std::hypot(wind_sea_->slope_x_at(x, y), wind_sea_->slope_y_at(x, y));
       slopes[k].set(static_cast<float>(swell_sx + fade * wind_sea_->slope_x_at(x, y)),
                     static_cast<float>(swell_sy + fade * wind_sea_->slope_y_at(x, y)));
-      // foam on the crests past the breaking slope, fading in over a fifth of it
-      foam[k] =
-          static_cast<float>(fade * std::clamp((wind_slope - foam_slope_) / (0.2 * foam_slope_), 0.0, 1.0));
+      // the crests' foam: half way at the breaking slope, none at 0.75 of it, full at 1.25
+      foam[k].set(
+          static_cast<float>(std::clamp(0.5 + (wind_slope - foam_slope_) / (0.5 * foam_slope_), 0.0, 1.0)),
+          static_cast<float>(fade));
     }
   vertices.dirty();
   slopes.dirty();
