@@ -282,14 +282,14 @@ Command add_devices(CLI::App& app) {
 
 struct ScreenshotArguments {
   harbour::debrief::ScreenshotOptions shot;
-  double shot_time_of_day = -1.0, shot_visibility = -1.0, shot_rain = -1.0;
+  double shot_time_of_day = -1.0, shot_visibility = -1.0, shot_rain = -1.0, shot_cloud = -1.0;
   std::string shot_size = "1280x720";
 };
 
 // screenshot, when it was chosen
 std::optional<int> chosen_screenshot(const CLI::App* shot_cmd, ScreenshotArguments& options) {
   if (!*shot_cmd) return std::nullopt;
-  auto& [shot, shot_time_of_day, shot_visibility, shot_rain, shot_size] = options;
+  auto& [shot, shot_time_of_day, shot_visibility, shot_rain, shot_cloud, shot_size] = options;
   if (std::sscanf(shot_size.c_str(), "%dx%d", &shot.width, &shot.height) != 2 || shot.width < 16 ||
       shot.height < 16 || shot.width > 8192 || shot.height > 8192) {
     std::fprintf(stderr, "harboursim: --size %s: WIDTHxHEIGHT, 16-8192 each\n", shot_size.c_str());
@@ -298,12 +298,13 @@ std::optional<int> chosen_screenshot(const CLI::App* shot_cmd, ScreenshotArgumen
   if (shot_time_of_day >= 0.0) shot.time_of_day_h = shot_time_of_day;
   if (shot_visibility > 0.0) shot.visibility_m = shot_visibility;
   if (shot_rain >= 0.0) shot.rain_mm_per_h = shot_rain;
+  if (shot_cloud >= 0.0) shot.cloud_oktas = shot_cloud;
   return harbour::debrief::take_screenshot(shot);
 }
 
 Command add_screenshot(CLI::App& app) {
   auto options = std::make_shared<ScreenshotArguments>();
-  auto& [shot, shot_time_of_day, shot_visibility, shot_rain, shot_size] = *options;
+  auto& [shot, shot_time_of_day, shot_visibility, shot_rain, shot_cloud, shot_size] = *options;
   CLI::App* shot_cmd = app.add_subcommand("screenshot", "draw a moment of an exercise (headless) into a PNG");
   shot_cmd->add_option("--exercise", shot.exercise, "exercise file or shipped name")->required();
   shot_cmd->add_option("--at", shot.at_s, "seconds into the exercise (the autopilot drives there)")
@@ -314,6 +315,7 @@ Command add_screenshot(CLI::App& app) {
   shot_cmd->add_option("--time-of-day", shot_time_of_day, "hours, 0-24")->check(CLI::Range(0.0, 23.999));
   shot_cmd->add_option("--visibility", shot_visibility, "metres")->check(CLI::Range(1.0, 1e5));
   shot_cmd->add_option("--rain", shot_rain, "mm/h")->check(CLI::Range(0.0, 500.0));
+  shot_cmd->add_option("--cloud", shot_cloud, "oktas, 0-8")->check(CLI::Range(0.0, 8.0));
   shot_cmd->add_option("--command", shot.commands,
                        "instructor command on the way there, AT:KIND[:VALUES], repeatable (as for run): "
                        "30:power-failure");

@@ -3,7 +3,8 @@
 # conditions — noon, dusk (18:18, the sun 3.5° down), night (22 h), fog (200 m), rain (20 mm/h) and a storm
 # (26 m/s wind, Beaufort 10, 40 mm/h, 2 km visibility) — side by side: docs/images/weather_<exercise>.png; and the sky
 # through an evening from the quay (12, 16, 17:30, 18, 18:12, 18:30, 18:48, 19:12 h): docs/images/sky_evening.png;
-# the harbour's water from 25 m at 12 m/s and 24 m/s (gusting to 14 and 28 m/s): docs/images/whitecaps.png.
+# the harbour's water from 25 m at 12 m/s and 24 m/s (gusting to 14 and 28 m/s): docs/images/whitecaps.png;
+# fair-weather cloud from the quay at 2, 4 and 7 oktas: docs/images/clouds.png.
 # Drawn with surface detail (a GPU station's default) on any renderer.
 # Usage: docs/images/weather.sh [path/to/harboursim]
 set -euo pipefail
@@ -60,3 +61,11 @@ for wind in 12 24; do
 done
 ffmpeg -loglevel error -y "${frames[@]}" -filter_complex "[0][1]vstack" "$here/whitecaps.png"
 echo "$here/whitecaps.png"
+frames=()
+for oktas in 2 4 7; do
+  "$app" screenshot --exercise sts_discharge --at 1 --view free --camera=-120,-80,20,60,25 --size 480x270 \
+    --cloud "$oktas" --out "$work/cloud-$oktas.png" > /dev/null
+  frames+=(-i "$work/cloud-$oktas.png")
+done
+ffmpeg -loglevel error -y "${frames[@]}" -filter_complex "[0][1][2]vstack=3" "$here/clouds.png"
+echo "$here/clouds.png"

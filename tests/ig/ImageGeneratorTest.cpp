@@ -1502,6 +1502,87 @@ TEST(ImageGenerator, TheSunCastsAShadowWhereItsRaysSay) {
   }
 }
 
+// Fair-weather cloud covers the share of the sky its oktas say: looking up at 16 headings and elevations
+// through four moments of the deck's drift, the pixels whose blue lead over red is under half the clear
+// sky's there (a cloud drawn at least half opaque) are N/8 of them within 0.08 at 2, 4 and 6 oktas; none
+// clear. An overcast sky without rain (8 oktas) hides the sun: the box's shadow on the quay fades (its spot
+// 0.9 or more of the quay beside it, against under 0.7 clear) and the sky greys.
+TEST(ImageGenerator, CloudsCoverTheSkyAsTheirOktasSayAndAnOvercastHidesTheSun) {
+  ImageGenerator ig(scene(), looks(), kWidth, kHeight);
+  const auto sky_seen = [&](double oktas, double yaw, double pitch, double t) -> const osg::Image& {
+    View v = free_camera({0.0, 0.0, 10.0}, yaw, pitch);
+    v.fov_vertical_rad = 0.6;
+    ig.set_view(v);
+    scene::Snapshot s = state(5000.0, 5000.0, 20000.0, 11.0);
+    s.cloud_oktas = oktas;
+    s.wind_mps = {10.0, 4.0, 0.0};
+    s.time_s = t;
+    ig.update(s);
+    return ig.render();
+  };
+  std::vector<std::vector<double>> clear_lead;  // blue less red of the clear sky, per view and pixel
+  const auto views = [](const auto& each) {
+    for (const double yaw : {0.0, 0.8, 1.6, 2.4, 3.2, 4.0, 4.8, 5.6})
+      for (const double pitch : {0.75, 1.25})
+        each(yaw, pitch);
+  };
+  views([&](double yaw, double pitch) {
+    const osg::Image& image = sky_seen(0.0, yaw, pitch, 0.0);
+    std::vector<double> lead;
+    for (int y = 0; y < kHeight; ++y)
+      for (int x = 0; x < kWidth; ++x)
+        lead.push_back(pixel(image, x, y).z() - pixel(image, x, y).x());
+    clear_lead.push_back(std::move(lead));
+  });
+  for (const double oktas : {2.0, 4.0, 6.0}) {
+    double cloud = 0.0, pixels = 0.0;
+    for (const double t : {0.0, 150.0, 300.0, 450.0}) {  // the deck drifts 3.2 km in 150 s
+      std::size_t view = 0;
+      views([&](double yaw, double pitch) {
+        const osg::Image& image = sky_seen(oktas, yaw, pitch, t);
+        const std::vector<double>& lead = clear_lead[view++];
+        for (int y = 0; y < kHeight; ++y)
+          for (int x = 0; x < kWidth; ++x) {
+            const double here = pixel(image, x, y).z() - pixel(image, x, y).x();
+            cloud += here < 0.5 * lead[static_cast<std::size_t>(y * kWidth + x)] ? 1.0 : 0.0;
+            ++pixels;
+          }
+      });
+    }
+    std::printf("%.0f oktas: cloud over %.3f of the sky seen (%.3f)\n", oktas, cloud / pixels, oktas / 8.0);
+    EXPECT_NEAR(cloud / pixels, oktas / 8.0, 0.08) << oktas;
+  }
+  // an overcast without rain: the shadow fades, the sky greys
+  View down = free_camera({-20.0, 0.0, 60.0}, 0.0, -std::numbers::pi / 2.0 + 1e-3);
+  down.fov_vertical_rad = 0.9;
+  const auto shadow_share = [&](double oktas) {
+    ig.set_view(down);
+    scene::Snapshot s = state(5000.0, 5000.0, 20000.0, 10.0);
+    s.cloud_oktas = oktas;
+    const core::Vec3 box{-20.0, 0.0, 6.0};
+    s.entities[1] = {1, 0, {core::Mat3::rotation({0, 0, 1}, std::numbers::pi / 2.0), box}};
+    ig.update(s);
+    const osg::Image& image = ig.render();
+    // the shadow's spot: where the quay is darkest under the box's side of the picture, against its mean
+    double darkest = 1.0, sum = 0.0;
+    for (int y = 10; y < kHeight - 10; ++y)
+      for (int x = 10; x < kWidth - 10; ++x) {
+        darkest = std::min(darkest, luminance(pixel(image, x, y)));
+        sum += luminance(pixel(image, x, y));
+      }
+    return std::pair{darkest, sum / ((kHeight - 20) * (kWidth - 20))};
+  };
+  const auto [clear_darkest, clear_mean] = shadow_share(0.0);
+  const auto [overcast_darkest, overcast_mean] = shadow_share(8.0);
+  std::printf("quay from above: darkest %.3f of mean %.3f clear, %.3f of %.3f overcast\n", clear_darkest,
+              clear_mean, overcast_darkest, overcast_mean);
+  EXPECT_LT(clear_darkest, 0.7 * clear_mean);
+  EXPECT_GT(overcast_darkest, 0.85 * overcast_mean);
+  const osg::Image& overcast_sky = sky_seen(8.0, 0.0, 1.25, 0.0);
+  const osg::Vec3 up = pixel(overcast_sky, kWidth / 2, kHeight / 2);
+  EXPECT_LT(up.z() - up.x(), 0.08) << "an overcast sky is grey";
+}
+
 }  // namespace
 }  // namespace harbour::ig
 

@@ -543,6 +543,8 @@ TEST(ExerciseFiles, UnknownDuplicateAndOutOfRangeKeysNameFileLineAndField) {
                "exercise.weather.wind_mean", "unknown key 'wind_mean'");
   expect_error("  quay_edge_x_m: 18.0", "  weather: {wind_mean_mps: 75}\n  quay_edge_x_m: 18.0",
                "exercise.weather.wind_mean_mps", "75 is outside [0, 50]");
+  expect_error("  quay_edge_x_m: 18.0", "  weather: {cloud_oktas: 9}\n  quay_edge_x_m: 18.0",
+               "exercise.weather.cloud_oktas", "9 is outside [0, 8]");
   expect_error("  quay_edge_x_m: 18.0", "  weather: 5\n  quay_edge_x_m: 18.0", "exercise.weather",
                "expected a mapping");
   expect_error("gantry_y_m: 0.0", "gantry_y_m: 1e300", "exercise.crane.gantry_y_m",

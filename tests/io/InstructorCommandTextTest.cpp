@@ -30,6 +30,9 @@ TEST(InstructorCommandText, ParsesEveryKind) {
   EXPECT_EQ(wind.command.turbulence, 0.15);
   EXPECT_EQ(parse_instructor_command("0:visibility:300").command.value, 300.0);
   EXPECT_EQ(parse_instructor_command("0:rain:8").command.kind, Kind::kSetRain);
+  EXPECT_EQ(parse_instructor_command("0:cloud:6").command.kind, Kind::kSetCloud);
+  EXPECT_EQ(parse_instructor_command("0:cloud:6").command.value, 6.0);
+  EXPECT_NE(why_refused("cloud:9").find("cloud cover [oktas] is outside 0-8"), std::string::npos);
   EXPECT_EQ(parse_instructor_command("0:time-of-day:21.5").command.value, 21.5);
 }
 

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <numbers>
 
 #include "harbour/core/Units.h"
@@ -144,6 +145,48 @@ TEST(Weather, OverlappingGustsSaturateAndFinishedOnesAreForgotten) {
   core::StateWriter out;
   w.save_state(out);
   EXPECT_LT(out.take().size(), 200u);  // and the thousand gusts are not carried in the state
+}
+
+// The instructor's cloud cover is part of the saved state; a clear sky is saved as before the weather had a
+// cover (section "WTX2", the same fields less the cloud: the same bytes and hashes as the runs recorded
+// then), and such a state restores with a clear sky.
+TEST(Weather, TheCloudCoverIsKeptAndAnOlderStateRestoresClear) {
+  WeatherSettings settings;
+  settings.rain_mm_per_h = 3.0;
+  Weather w(settings, 1);
+  w.set_cloud(6.0);
+  core::StateWriter out;
+  w.save_state(out);
+  std::vector<std::uint8_t> bytes = out.take();
+  Weather restored(WeatherSettings{}, 2);
+  core::StateReader in(bytes);
+  restored.restore_state(in);
+  EXPECT_TRUE(in.at_end());
+  EXPECT_EQ(restored.settings().cloud_oktas, 6.0);
+  EXPECT_EQ(restored.settings().rain_mm_per_h, 3.0);
+  // the older layout: its tag, then the fields up to the air's density, then the rest as now
+  const std::uint32_t version2 = 0x57545832;
+  constexpr std::size_t kTag = 4, kFields = 8 * sizeof(double);
+  std::vector<std::uint8_t> older;
+  for (std::size_t n = 0; n < bytes.size(); ++n)
+    if (n < kTag + kFields || n >= kTag + kFields + sizeof(double)) older.push_back(bytes[n]);
+  std::memcpy(older.data(), &version2, kTag);
+  Weather from_older(WeatherSettings{}, 3);
+  from_older.set_cloud(8.0);
+  core::StateReader older_in(older);
+  from_older.restore_state(older_in);
+  EXPECT_TRUE(older_in.at_end());
+  EXPECT_EQ(from_older.settings().cloud_oktas, 0.0);
+  EXPECT_EQ(from_older.settings().rain_mm_per_h, 3.0);
+  // a clear sky saves those bytes
+  w.set_cloud(0.0);
+  core::StateWriter clear;
+  w.save_state(clear);
+  EXPECT_EQ(clear.take(), older);
+  // anything else is refused by its section
+  older[0] ^= 0xFF;
+  core::StateReader bad(older);
+  EXPECT_THROW(from_older.restore_state(bad), core::StateError);
 }
 
 }  // namespace

@@ -425,6 +425,7 @@ export class DesignerForms {
       field("turbulence", "turbulence_intensity", { min: 0, max: 1, step: 0.01 }),
       field("visibility m", "visibility_m", { min: 1, step: 100 }),
       field("rain mm/h", "rain_mm_per_h", { min: 0, max: 500, step: 0.5 }),
+      field("cloud oktas", "cloud_oktas", { min: 0, max: 8, step: 1 }),
       field("time of day h", "time_of_day_h", { min: 0, max: 24, step: 0.25 }));
     const parts: HTMLElement[] = [row];
     // the vessel's motion: a sum of harmonics per motion (the first one offered empty when there is none)

@@ -9,15 +9,18 @@ import type { BulkMessage, Looks, SceneMessage, ViewState } from "./wire";
 export type { BulkMessage, HudItem, Looks, SceneMessage, ViewState } from "./wire";
 
 /** The weather as the view shows it: the sky's colour by the time of day (day, dusk, night), greyed by rain
- * cloud and fog as the image generator greys it; the light by day and cloud; fog by the visibility. */
-export function weatherLook(hour: number, visibility_m: number, rain_mm_per_h: number) {
+ * cloud, fog and a cover of cloud past 6 oktas as the image generator greys it; the light by day and
+ * cloud; fog by the visibility. */
+export function weatherLook(hour: number, visibility_m: number, rain_mm_per_h: number, cloud_oktas = 0) {
   // the sun's height over a day at the equinox, as a share of noon's: dusk from 17 h to 19 h, dawn 5 h to 7 h
   const day = Math.min(Math.max(Math.sin(((hour - 6) / 12) * Math.PI) * 4 + 0.5, 0), 1);
   const sky = [0.62, 0.75, 0.88].map((c, i) => c * day + [0.03, 0.04, 0.08][i] * (1 - day));
   const overcast = Math.min(Math.max(rain_mm_per_h / 8, 0), 1);
   const extinction = 3.912 / Math.max(visibility_m, 1) + 0.29e-3 * Math.pow(Math.max(rain_mm_per_h, 0), 0.67);
   const visibility = 3.912 / extinction;
-  const grey = Math.max(overcast, Math.min(Math.max((5000 - visibility) / 4500, 0), 1));
+  const cover = Math.min(Math.max(cloud_oktas / 8, 0), 1);
+  const grey = Math.max(overcast, Math.min(Math.max((5000 - visibility) / 4500, 0), 1),
+    Math.min(Math.max(4 * cover - 3, 0), 1));
   const luminance = (0.30 * sky[0] + 0.59 * sky[1] + 0.11 * sky[2]) * (1 - 0.35 * overcast);
   const colour = sky.map((c, i) => c + (luminance * (i === 2 ? 1.03 : 1) - c) * grey);
   return { colour, visibility_m: visibility, sun: 1.8 * day * (1 - 0.85 * grey), sky: 0.25 + 1.35 * day };
@@ -197,11 +200,11 @@ export class View3D {
   /** Poses and ropes of a state, drawn at once (the page calls it in its frame); a state of another attempt
    * than the scene's is not drawn. */
   /** The sky, the light and the fog for the station's weather (changed only when it changes). */
-  setWeather(hour: number, visibility_m: number, rain_mm_per_h: number) {
-    const key = `${hour.toFixed(2)} ${visibility_m.toFixed(0)} ${rain_mm_per_h.toFixed(1)}`;
+  setWeather(hour: number, visibility_m: number, rain_mm_per_h: number, cloud_oktas: number) {
+    const key = `${hour.toFixed(2)} ${visibility_m.toFixed(0)} ${rain_mm_per_h.toFixed(1)} ${cloud_oktas.toFixed(1)}`;
     if (key === this.weather) return;
     this.weather = key;
-    const look = weatherLook(hour, visibility_m, rain_mm_per_h);
+    const look = weatherLook(hour, visibility_m, rain_mm_per_h, cloud_oktas);
     this.skyColour.setRGB(look.colour[0], look.colour[1], look.colour[2]);
     const fog = this.scene.fog as THREE.FogExp2;
     fog.color.copy(this.skyColour);
@@ -214,7 +217,8 @@ export class View3D {
 
   update(state: ViewState) {
     if (state.attempt !== this.attempt || !state.poses) return;
-    this.setWeather(state.time_of_day_h ?? 12, state.visibility_m ?? 20000, state.rain_mm_per_h ?? 0);
+    this.setWeather(state.time_of_day_h ?? 12, state.visibility_m ?? 20000, state.rain_mm_per_h ?? 0,
+      state.cloud_oktas ?? 0);
     const p = state.poses;
     const pose = new THREE.Matrix4(), placed = new THREE.Matrix4(), one = new THREE.Vector3(1, 1, 1);
     this.entities.forEach((e, n) => {

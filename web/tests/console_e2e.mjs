@@ -124,6 +124,16 @@ try {
   await page.fill("#command-visibility-0", "20000");
   await page.click("button[data-kind=visibility]");
   await until("the sky clears", async () => (await sky())[2] > (await sky())[0] + 0.1);
+  // an overcast (8 oktas, no rain) greys it too, a broken sky (4 oktas) leaves it blue between the clouds
+  await page.fill("#command-cloud-0", "8");
+  await page.click("button[data-kind=cloud]");
+  await until("the overcast greys the view's sky", async () => {
+    const [r, g, b] = await sky();
+    return Math.abs(r - g) < 0.02 && Math.abs(b - g) < 0.04;
+  });
+  await page.fill("#command-cloud-0", "4");
+  await page.click("button[data-kind=cloud]");
+  await until("the sky is blue again between broken cloud", async () => (await sky())[2] > (await sky())[0] + 0.1);
   const calm = Number(await page.getAttribute("#live", "data-wind"));
   await page.fill("#command-wind-0", "18");
   await page.click("button[data-kind=wind]");

@@ -256,6 +256,7 @@ json state_json(const std::string& station, const net::StationState& st, const n
              {"time_of_day_h", st.time_of_day_h()},
              {"visibility_m", st.visibility_m()},
              {"rain_mm_per_h", st.rain_mm_per_h()},
+             {"cloud_oktas", st.cloud_oktas()},
              {"indicators", indicators}};
   if (!view) return state;
   json poses = json::array();

@@ -197,6 +197,7 @@ nlohmann::json design_form(const std::string& folder, const DesignCheck& design)
                      {"turbulence_intensity", w.turbulence_intensity},
                      {"visibility_m", w.visibility_m},
                      {"rain_mm_per_h", w.rain_mm_per_h},
+                     {"cloud_oktas", w.cloud_oktas},
                      {"time_of_day_h", w.time_of_day_h}};
   form["event_kinds"] = io::event_kinds(type);
   form["serves_trucks"] = type.serves_trucks;

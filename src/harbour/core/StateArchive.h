@@ -131,6 +131,13 @@ class StateReader {
     if (get<std::uint32_t>() != tag)
       throw StateError(std::string("saved state does not match this simulation at its ") + what + " section");
   }
+  /// Whether the next section's tag is `tag` (reads nothing): a layout that changed restores either version.
+  bool next_section_is(std::uint32_t tag) const {
+    std::uint32_t next = 0;
+    if (bytes_.size() - at_ < sizeof next) return false;
+    std::memcpy(&next, bytes_.data() + at_, sizeof next);
+    return next == tag;
+  }
   bool at_end() const { return at_ == bytes_.size(); }
 
  private:

@@ -28,22 +28,15 @@ int take_screenshot(const ScreenshotOptions& options) {
   // a scripted operator drives the exercises it can (container moves, grab deliveries); else the levers rest
   std::unique_ptr<sim::Pilot> pilot;
   if (sim::why_no_pilot(exercise).empty()) pilot = sim::make_pilot(exercise);
-  if (options.time_of_day_h) {
+  using Kind = sim::InstructorCommand::Kind;
+  for (const auto& [kind, value] :
+       {std::pair{Kind::kSetTimeOfDay, options.time_of_day_h},
+        std::pair{Kind::kSetVisibility, options.visibility_m},
+        std::pair{Kind::kSetRain, options.rain_mm_per_h}, std::pair{Kind::kSetCloud, options.cloud_oktas}}) {
+    if (!value) continue;
     sim::InstructorCommand c;
-    c.kind = sim::InstructorCommand::Kind::kSetTimeOfDay;
-    c.value = *options.time_of_day_h;
-    simulation.command(c);
-  }
-  if (options.visibility_m) {
-    sim::InstructorCommand c;
-    c.kind = sim::InstructorCommand::Kind::kSetVisibility;
-    c.value = *options.visibility_m;
-    simulation.command(c);
-  }
-  if (options.rain_mm_per_h) {
-    sim::InstructorCommand c;
-    c.kind = sim::InstructorCommand::Kind::kSetRain;
-    c.value = *options.rain_mm_per_h;
+    c.kind = kind;
+    c.value = *value;
     simulation.command(c);
   }
   std::vector<io::TimedCommand> commands;

@@ -14,7 +14,8 @@ struct ScreenshotOptions {
   std::string view = "cab";  ///< cab, chase
   int width = 1280, height = 720;
   std::string out;
-  std::optional<double> time_of_day_h, visibility_m, rain_mm_per_h;  ///< instructor settings at the start
+  std::optional<double> time_of_day_h, visibility_m, rain_mm_per_h,
+      cloud_oktas;  ///< instructor settings at the start
   /// the free view's camera: x, y, z [m], yaw and pitch [deg] (yaw from +x towards +y)
   std::vector<double> camera;
   std::vector<std::string> commands;   ///< instructor commands on the way there, AT:KIND[:VALUES] (as `run`)

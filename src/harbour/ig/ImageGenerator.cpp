@@ -62,8 +62,13 @@ void look_round(core::Vec3& forward, core::Vec3& up, core::Vec3& right, double y
   up = turned(up, right, pitch);
 }
 constexpr double kPi = std::numbers::pi;
-constexpr double kLongestRoll_s = 1.0;  // snapshots further apart are a jump (a seek): the tyres do not roll
-constexpr double kFetch_m = 2000.0;     // the harbour basin's open water upwind, for the wind sea (assumed)
+constexpr double kLongestRoll_s = 1.0;   // snapshots further apart are a jump (a seek): the tyres do not roll
+constexpr double kFetch_m = 2000.0;      // the harbour basin's open water upwind, for the wind sea (assumed)
+constexpr double kCloudBase_m = 1200.0;  // the cloud deck's height
+constexpr double kCloudTile_m = 5000.0;  // its noise texture's tile
+// a cloud's edge, in its thickness (0-1 over 0.6 of the deck's density past the threshold): fair-weather
+// cloud's crisp, rain cloud's ragged
+constexpr double kFairCloudEdge = 0.06, kRainCloudEdge = 0.2;
 constexpr double kCrestShareOfWhitecaps = 0.5;  // of the whitecaps, on the crests breaking now (ours)
 constexpr int kWaterColumns = 96,
               kWaterRows = 64;          // the water's grid, laid over the screen (projected grid)
@@ -315,12 +320,13 @@ struct SkyShade {
   core::Vec3 horizon, zenith;
   double sun_visible = 0.0;
 
-  SkyShade(const core::Vec3& to_sun, double sun_elevation, double grey_share, double overcast_share)
+  SkyShade(const core::Vec3& to_sun, double sun_elevation, double grey_share, double overcast_share,
+           double sun_clouded = 0.0)
       : daylight(to_sun), sun(to_sun), grey(grey_share), overcast(overcast_share) {
     horizon = veiled(daylight.horizon());
     zenith = veiled(daylight.zenith());
     sun_visible = sun_elevation > -0.01 ? std::clamp((sun_elevation + 0.01) / 0.02, 0.0, 1.0) : 0.0;
-    sun_visible *= 1.0 - std::max(grey, overcast);
+    sun_visible *= 1.0 - std::max({grey, overcast, sun_clouded});
   }
   core::Vec3 veiled(const core::Vec3& c) const {
     const double luminance = (0.30 * c.x + 0.59 * c.y + 0.11 * c.z) * (1.0 - 0.35 * overcast);
@@ -761,10 +767,11 @@ void main() {
   gl_FragColor = vec4(mix(gl_Fog.color.rgb, colour, fog), 1.0);
 }
 )";
-// The rain clouds' deck: each pixel's ray from the eye (`dir`, the dome's vertex) meets a flat deck 1,200 m
-// up at `reach` metres; there the noise texture (two octaves of it, 5 km a tile) is the cloud's thickness,
-// and `cover` (0-1) how much of it is cloud. Far off, where a pixel spans many tiles, the texture gives way
-// to its mean, and the deck thins into the horizon's haze. Thicker cloud is darker underneath.
+// The cloud deck: each pixel's ray from the eye (`dir`, the dome's vertex) meets a flat deck 1,200 m up at
+// `reach` metres; there the noise texture (two octaves of it, 5 km a tile) is the deck's density, cloud where
+// it passes `threshold` (set for the cover), thicker the further past. Far off, where a pixel spans many
+// tiles, the texture gives way to its mean, and the deck thins into the horizon's haze. Thicker cloud is
+// darker underneath.
 constexpr char kCloudVertexShader[] = R"(#version 120
 varying vec3 dir;
 void main() {
@@ -774,7 +781,8 @@ void main() {
 )";
 constexpr char kCloudFragmentShader[] = R"(#version 120
 uniform sampler2D cloud_noise;
-uniform float cover;
+uniform float threshold;
+uniform float edge_width;  // of the cloud's edge, in thickness
 uniform vec2 deck_shift_m;  // the eye's place over the ground less the deck's drift with the wind
 uniform vec3 light;         // thin cloud's colour
 uniform vec3 dark;          // thick cloud's base
@@ -782,14 +790,14 @@ uniform vec3 horizon;
 varying vec3 dir;
 void main() {
   vec3 d = normalize(dir);
-  float reach = 1200.0 / max(d.z, 0.01);
-  vec2 at = (deck_shift_m + d.xy * reach) / 5000.0;
+  float reach = 1200.0 / max(d.z, 0.01);  // kCloudBase_m
+  vec2 at = (deck_shift_m + d.xy * reach) / 5000.0;  // kCloudTile_m
   float n = 0.65 * texture2D(cloud_noise, at).r + 0.35 * texture2D(cloud_noise, at * 3.1 + 0.37).r;
   float far = smoothstep(8000.0, 40000.0, reach);
   n = mix(n, 0.5, far);
-  float thickness = clamp((n - (0.9 - cover)) / 0.6, 0.0, 1.0);
+  float thickness = clamp((n - threshold) / 0.6, 0.0, 1.0);
   vec3 colour = mix(mix(light, dark, thickness), horizon, 0.6 * far);
-  float edge = smoothstep(0.0, 0.2, thickness);  // a cloud's ragged edge
+  float edge = smoothstep(0.0, edge_width, thickness);
   gl_FragColor = vec4(colour, edge * (1.0 - 0.6 * smoothstep(20000.0, 100000.0, reach)));
 }
 )";
@@ -1198,15 +1206,25 @@ void ImageGenerator::build_sky() {
   build_clouds();
 }
 
-// rain clouds: a deck 1,200 m up seen through the dome (each pixel's ray meets it), its density from a
-// tileable noise texture, drifting with the wind; in front of the stars, behind everything else
+// the cloud deck: 1,200 m up seen through the dome (each pixel's ray meets it), its density from a tileable
+// noise texture, drifting with the wind; in front of the stars, behind everything else
 void ImageGenerator::build_clouds() {
   osg::ref_ptr<osg::Geometry> deck = dome_geometry(3800.0, 0.01, 12);  // inside the sky's dome
   clouds_ = new osg::Geode;
   clouds_->addDrawable(deck);
-  clouds_->setNodeMask(0u);  // clear until it rains
+  clouds_->setNodeMask(0u);  // clear until cloud comes
+  cloud_noise_ = cloud_noise();
+  // the deck's densities over a tile (off the texels, as the sky's rays meet it), sorted: the share of the
+  // sky a threshold leaves clear
+  constexpr int kSamples = 192;
+  cloud_densities_.clear();
+  for (int j = 0; j < kSamples; ++j)
+    for (int i = 0; i < kSamples; ++i)
+      cloud_densities_.push_back(
+          cloud_density((i + 0.37) * kCloudTile_m / kSamples, (j + 0.61) * kCloudTile_m / kSamples));
+  std::sort(cloud_densities_.begin(), cloud_densities_.end());
   osg::StateSet* state = clouds_->getOrCreateStateSet();
-  osg::ref_ptr<osg::Texture2D> noise = new osg::Texture2D(cloud_noise());
+  osg::ref_ptr<osg::Texture2D> noise = new osg::Texture2D(cloud_noise_);
   noise->setWrap(osg::Texture::WRAP_S, osg::Texture::REPEAT);
   noise->setWrap(osg::Texture::WRAP_T, osg::Texture::REPEAT);
   noise->setFilter(osg::Texture::MIN_FILTER, osg::Texture::LINEAR_MIPMAP_LINEAR);
@@ -1217,9 +1235,9 @@ void ImageGenerator::build_clouds() {
   program->addShader(new osg::Shader(osg::Shader::FRAGMENT, kCloudFragmentShader));
   state->setAttribute(program);
   state->addUniform(new osg::Uniform("cloud_noise", 0));
-  cloud_uniforms_ = {new osg::Uniform("cover", 0.0f), new osg::Uniform("deck_shift_m", osg::Vec2()),
-                     new osg::Uniform("light", osg::Vec3()), new osg::Uniform("dark", osg::Vec3()),
-                     new osg::Uniform("horizon", osg::Vec3())};
+  cloud_uniforms_ = {new osg::Uniform("threshold", 1.0f),      new osg::Uniform("deck_shift_m", osg::Vec2()),
+                     new osg::Uniform("light", osg::Vec3()),   new osg::Uniform("dark", osg::Vec3()),
+                     new osg::Uniform("horizon", osg::Vec3()), new osg::Uniform("edge_width", 0.2f)};
   for (const osg::ref_ptr<osg::Uniform>& u : cloud_uniforms_)
     state->addUniform(u);
   state->setMode(GL_LIGHTING, osg::StateAttribute::OFF | osg::StateAttribute::PROTECTED);
@@ -1229,6 +1247,24 @@ void ImageGenerator::build_clouds() {
   state->setAttributeAndModes(new osg::Depth(osg::Depth::ALWAYS, 0.0, 1.0, false));
   state->setRenderBinDetails(-1, "RenderBin");
   sky_->addChild(clouds_);
+}
+
+double ImageGenerator::cloud_density(double x_m, double y_m) const {
+  // as the shader samples it: bilinear, repeating, two octaves
+  const int size = cloud_noise_->s();
+  const auto texture = [&](double u, double v) {
+    const double x = u * size - 0.5, y = v * size - 0.5;
+    const double fx = std::floor(x), fy = std::floor(y);
+    const auto texel = [&](double i, double j) {
+      const auto wrap = [size](double k) { return static_cast<int>(k - size * std::floor(k / size)); };
+      return cloud_noise_->data(wrap(i), wrap(j))[0] / 255.0;
+    };
+    const double a = x - fx, b = y - fy;
+    return (1 - a) * (1 - b) * texel(fx, fy) + a * (1 - b) * texel(fx + 1, fy) +
+           (1 - a) * b * texel(fx, fy + 1) + a * b * texel(fx + 1, fy + 1);
+  };
+  const double u = x_m / kCloudTile_m, v = y_m / kCloudTile_m;
+  return 0.65 * texture(u, v) + 0.35 * texture(u * 3.1 + 0.37, v * 3.1 + 0.37);
 }
 
 // the quay (its top at z = 0, up to its edge at x = 18 m), the rain, the harbour's water beyond
@@ -1905,14 +1941,36 @@ void ImageGenerator::update_sky_and_weather(const scene::Snapshot& s) {
   const double extinction_per_m =
       3.912 / std::max(s.visibility_m, 1.0) + 0.29e-3 * std::pow(std::max(s.rain_mm_per_h, 0.0), 0.67);
   const double visibility_m = 3.912 / extinction_per_m;
-  grey_ = std::max(overcast_, std::clamp((5000.0 - visibility_m) / 4500.0, 0.0, 1.0));
-  const SkyShade shade = SkyShade(to_sun, sun_elevation_, grey_, overcast_);
+  // the cloud deck: fair-weather cloud over the share of the sky its oktas say (the threshold its densities
+  // pass over that share), rain's thick deck over the sky as the rain says, whichever is the thicker; the sky
+  // between the clouds greys as the cover closes from 6 oktas to 8 (an overcast sky is grey)
+  const double cover = std::clamp(s.cloud_oktas / 8.0, 0.0, 1.0);
+  const double edge_width = kFairCloudEdge + (kRainCloudEdge - kFairCloudEdge) * overcast_;
+  const double half_opaque = 0.6 * 0.5 * edge_width;  // the density past the threshold a cloud shows at
+  const double cover_threshold =
+      cover > 0.0 ? cloud_densities_[static_cast<std::size_t>(
+                        (1.0 - cover) * static_cast<double>(cloud_densities_.size() - 1))] -
+                        half_opaque
+                  : 2.0;
+  const double threshold = std::min(cover_threshold, overcast_ > 0.0 ? 0.9 - overcast_ : 2.0);
+  cloud_drift_m_ = {2.0 * s.wind_mps.x * s.time_s, 2.0 * s.wind_mps.y * s.time_s};
+  grey_ = std::max({overcast_, std::clamp((5000.0 - visibility_m) / 4500.0, 0.0, 1.0),
+                    std::clamp(4.0 * cover - 3.0, 0.0, 1.0)});
+  // a cloud over the cab between it and the sun hides the sun: its shadows fade as the cloud passes
+  sun_clouded_ = 0.0;
+  if (threshold < 1.5 && to_sun.z > 0.01) {
+    const double reach = kCloudBase_m / to_sun.z;
+    const double density = cloud_density(s.cab.pose.position.x - cloud_drift_m_.first + to_sun.x * reach,
+                                         s.cab.pose.position.y - cloud_drift_m_.second + to_sun.y * reach);
+    sun_clouded_ = std::clamp((density - threshold) / (2.0 * half_opaque), 0.0, 1.0);
+  }
+  const SkyShade shade = SkyShade(to_sun, sun_elevation_, grey_, overcast_, sun_clouded_);
   const core::Vec3 sky = shade.horizon;
   osg::Light* light = sun_->getLight();
   light->setPosition(osg::Vec4(to_osg(to_sun), 0.0f));
   // the clear sky's sun and sky light; under cloud or in fog the sun's direct light gives way to the sky's
   // diffuse light: soft, shadowless
-  const core::Vec3 diffuse = shade.daylight.sun_light() * (1.0 - 0.85 * grey_);
+  const core::Vec3 diffuse = shade.daylight.sun_light() * (1.0 - 0.85 * std::max(grey_, sun_clouded_));
   const core::Vec3 ambient = shade.veiled(shade.daylight.sky_light()) * (1.0 + 0.5 * grey_);
   light->setDiffuse(rgba(diffuse));
   light->setAmbient(rgba(ambient));
@@ -1924,15 +1982,20 @@ void ImageGenerator::update_sky_and_weather(const scene::Snapshot& s) {
   }
   sky_colors_->dirty();
   update_night_sky(s, shade);
-  // rain clouds over the sky as the rain says (overcast from 8 mm/h), grey of the veiled sky's brightness,
-  // their bases darker where thicker; drifting at twice the surface wind (the wind's rise with height)
-  clouds_->setNodeMask(overcast_ > 0.0 ? ~0u : 0u);
-  cloud_uniforms_[0]->set(static_cast<float>(overcast_));
+  // the deck drifts at twice the surface wind (the wind's rise with height). Rain clouds are grey of the
+  // veiled sky's brightness, their bases darker where thicker; fair-weather cloud is lit by the sun and the
+  // sky (white in the sun's colour where thin, a grey base where thick)
+  clouds_->setNodeMask(threshold < 1.5 ? ~0u : 0u);
+  cloud_uniforms_[0]->set(static_cast<float>(threshold));
   const double zenith_grey = 0.30 * shade.zenith.x + 0.59 * shade.zenith.y + 0.11 * shade.zenith.z;
-  cloud_uniforms_[2]->set(to_osg(core::Vec3{1.0, 1.0, 1.02} * (1.25 * zenith_grey)));
-  cloud_uniforms_[3]->set(to_osg(core::Vec3{1.0, 1.0, 1.03} * (0.65 * zenith_grey)));
+  const core::Vec3 lit = shade.daylight.sun_light() + shade.daylight.sky_light();
+  const core::Vec3 fair{std::min(lit.x, 0.95), std::min(lit.y, 0.95), std::min(lit.z, 0.95)};
+  const core::Vec3 light_base = core::Vec3{1.0, 1.0, 1.02} * (1.25 * zenith_grey);
+  const core::Vec3 dark_base = core::Vec3{1.0, 1.0, 1.03} * (0.65 * zenith_grey);
+  cloud_uniforms_[2]->set(to_osg(fair + (light_base - fair) * overcast_));
+  cloud_uniforms_[3]->set(to_osg(fair * 0.62 + (dark_base - fair * 0.62) * overcast_));
   cloud_uniforms_[4]->set(to_osg(shade.horizon));
-  cloud_drift_m_ = {2.0 * s.wind_mps.x * s.time_s, 2.0 * s.wind_mps.y * s.time_s};
+  cloud_uniforms_[5]->set(static_cast<float>(edge_width));
   fog_->setColor(rgba(sky));
   fog_->setDensity(static_cast<float>(extinction_per_m));
   visibility_m_ = visibility_m;

@@ -245,9 +245,15 @@ class ImageGenerator {
   void update_water(const osg::Vec3d& eye);
   void update_night_sky(const scene::Snapshot& s, const SkyShade& shade);
   void build_clouds();
+  // the cloud deck's density (its shader's two octaves of the noise texture) at a deck point [m]
+  double cloud_density(double x_m, double y_m) const;
   osg::ref_ptr<osg::Geode> clouds_;
-  std::array<osg::ref_ptr<osg::Uniform>, 5> cloud_uniforms_;  // cover, deck shift, light, dark, horizon
+  // threshold, deck shift, light, dark, horizon, edge width
+  std::array<osg::ref_ptr<osg::Uniform>, 6> cloud_uniforms_;
   std::pair<double, double> cloud_drift_m_{0.0, 0.0};
+  osg::ref_ptr<osg::Image> cloud_noise_;
+  std::vector<double> cloud_densities_;  // the deck's densities over a tile, sorted: cover's threshold
+  double sun_clouded_ = 0.0;             // how much a cloud hides the sun over the cab
   void mesh_bulk_tile(const scene::BulkView::Grid& grid, int ti, int tj, osg::Geometry& tile);
 
   std::map<std::string, Visual> visuals_;

@@ -521,6 +521,7 @@ void read_weather(const YamlFile& f, const YAML::Node& x, sim::ScenarioSettings&
     ws.turbulence_intensity = f.number_or(w, "turbulence_intensity", at, ws.turbulence_intensity, 0.0, 1.0);
     ws.visibility_m = f.number_or(w, "visibility_m", at, ws.visibility_m, 1.0, 1e5);
     ws.rain_mm_per_h = f.number_or(w, "rain_mm_per_h", at, ws.rain_mm_per_h, 0.0, 500.0);
+    ws.cloud_oktas = f.number_or(w, "cloud_oktas", at, ws.cloud_oktas, 0.0, sim::kOvercast_oktas);
     ws.time_of_day_h = f.number_or(w, "time_of_day_h", at, ws.time_of_day_h, 0.0, 24.0, false, true);
     ws.day_of_year = f.number_or(w, "day_of_year", at, ws.day_of_year, 1.0, 366.0);
     ws.latitude_deg = f.number_or(w, "latitude_deg", at, ws.latitude_deg, -80.0, 80.0);

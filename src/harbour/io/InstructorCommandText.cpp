@@ -72,6 +72,11 @@ constexpr CommandText kCommands[] = {
      Group::kWeather,
      Kind::kSetRain,
      {number("rain", "mm/h", 0, sim::kMaxRain_mm_per_h, 8, 1)}},
+    {"cloud",
+     "Set cloud",
+     Group::kWeather,
+     Kind::kSetCloud,
+     {number("cloud cover", "oktas", 0, sim::kOvercast_oktas, 6, 1)}},
     {"time-of-day",
      "Set time",
      Group::kWeather,
@@ -272,6 +277,7 @@ TimedCommand parse_instructor_command(const std::string& text) {
       break;
     case Kind::kSetVisibility:
     case Kind::kSetRain:
+    case Kind::kSetCloud:
     case Kind::kSetTimeOfDay:
     case Kind::kSignal:
       c.value = v[0];

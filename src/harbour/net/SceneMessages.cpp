@@ -97,6 +97,7 @@ StationState state_message(const scene::Snapshot& snapshot, std::size_t entity_c
   state.time_of_day_h(snapshot.time_of_day_h);
   state.visibility_m(snapshot.visibility_m);
   state.rain_mm_per_h(snapshot.rain_mm_per_h);
+  state.cloud_oktas(snapshot.cloud_oktas);
   state.water_level_m(snapshot.sea.water_level_m);
   state.indicators().assign(snapshot.indicators.begin(),
                             snapshot.indicators.begin() + snapshot.indicator_count);
@@ -173,6 +174,7 @@ ChannelFrame channel_frame(const scene::Snapshot& s, const scene::BulkView* bulk
   f.time_of_day_h(s.time_of_day_h);
   f.visibility_m(s.visibility_m);
   f.rain_mm_per_h(s.rain_mm_per_h);
+  f.cloud_oktas(s.cloud_oktas);
   f.day_of_year(s.day_of_year);
   f.latitude_deg(s.latitude_deg);
   f.water_level_m(s.sea.water_level_m);
@@ -239,6 +241,7 @@ void read_channel_frame(const ChannelFrame& f, scene::Snapshot& s, scene::BulkVi
   s.time_of_day_h = f.time_of_day_h();
   s.visibility_m = f.visibility_m();
   s.rain_mm_per_h = f.rain_mm_per_h();
+  s.cloud_oktas = f.cloud_oktas();
   s.day_of_year = f.day_of_year();
   s.latitude_deg = f.latitude_deg();
   s.sea.water_level_m = f.water_level_m();

@@ -91,6 +91,7 @@ struct Snapshot {
   double time_of_day_h = 12.0;
   double visibility_m = 20000.0;
   double rain_mm_per_h = 0.0;
+  double cloud_oktas = 0.0;    ///< eighths of the sky under cloud
   double day_of_year = 80.0;   ///< sun and moon positions (80: the March equinox)
   double latitude_deg = 40.0;  ///< the harbour's
 

@@ -168,6 +168,9 @@ std::string why_invalid(const InstructorCommand& c) {
     case Kind::kSetRain:
       if (!(c.value >= 0.0 && c.value <= kMaxRain_mm_per_h)) return "rain 0-500 mm/h";
       break;
+    case Kind::kSetCloud:
+      if (!(c.value >= 0.0 && c.value <= kOvercast_oktas)) return "cloud cover 0-8 oktas";
+      break;
     case Kind::kSetTimeOfDay:
       if (!(c.value >= 0.0 && c.value < kHoursPerDay)) return "time of day 0-24 h";
       break;
@@ -320,6 +323,9 @@ void Simulation::command(const InstructorCommand& c) {
       break;
     case Kind::kSetRain:
       weather_.set_rain(c.value);
+      break;
+    case Kind::kSetCloud:
+      weather_.set_cloud(c.value);
       break;
     case Kind::kSetTimeOfDay:
       weather_.set_time_of_day(c.value);
@@ -577,6 +583,7 @@ void Simulation::write_snapshot(scene::Snapshot& s) const {
   s.time_of_day_h = weather_.time_of_day_h();
   s.visibility_m = weather_.settings().visibility_m;
   s.rain_mm_per_h = weather_.settings().rain_mm_per_h;
+  s.cloud_oktas = weather_.settings().cloud_oktas;
   s.day_of_year = weather_.settings().day_of_year;
   s.latitude_deg = weather_.settings().latitude_deg;
   s.sea.swell_count = 0;

@@ -84,9 +84,10 @@ struct InstructorCommand {
     kReleaseEmergencyStop,
     kPowerFailure,  ///< the machine's supply fails: every drive dead, every brake set (as its emergency stop)
     kPowerRestored,  ///< the supply is back: the drives start once every lever has been back at zero
-    kSignal,  ///< a signaller's hand signal to the operator (value: its index in scene::hand_signals())
+    kSignal,    ///< a signaller's hand signal to the operator (value: its index in scene::hand_signals())
+    kSetCloud,  ///< [oktas] (value): eighths of the sky under cloud
   };
-  static constexpr std::uint8_t kKinds = 14;
+  static constexpr std::uint8_t kKinds = 15;
   Kind kind = Kind::kGust;
   Gust gust;  ///< kGust: duration and amplitude (its start is now)
   int corner = 0;

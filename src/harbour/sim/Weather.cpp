@@ -80,12 +80,21 @@ void Weather::set_time_of_day(double hours) {
 
 template <typename Self, typename Archive>
 void Weather::archive(Self& self, Archive& ar) {
-  ar.section(0x57545832, "weather");  // "WTX2": with the instructor's weather
-  // what the instructor can change, in the layout of version 2 (the date and the latitude stay the
-  // scenario's)
+  // what the instructor can change (the date and the latitude stay the scenario's). Version 3 adds the cloud
+  // cover; a clear sky is still saved as version 2 was, so the states (and the state hashes) of every run
+  // recorded before clouds came are the same bytes and their recordings replay as they were
+  constexpr std::uint32_t kVersion2 = 0x57545832, kVersion3 = 0x57545833;  // "WTX2", "WTX3"
   auto& s = self.settings_;
+  bool clouded = s.cloud_oktas != 0.0;
+  if constexpr (Archive::kRestoring) clouded = ar.next_section_is(kVersion3);
+  ar.section(clouded ? kVersion3 : kVersion2, "weather");
   ar(s.wind_mean_mps, s.wind_from_rad, s.turbulence_intensity, s.turbulence_time_s, s.visibility_m,
      s.rain_mm_per_h, s.time_of_day_h, s.air_density_kg_m3);
+  if (clouded) {
+    ar(s.cloud_oktas);
+  } else {
+    if constexpr (Archive::kRestoring) s.cloud_oktas = 0.0;
+  }
   ar(self.rng_, self.time_s_, self.turbulence_, self.gusts_);
 }
 

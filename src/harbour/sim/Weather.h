@@ -14,6 +14,7 @@ namespace harbour::sim {
 /// run.
 inline constexpr double kMaxMeanWind_mps = 50.0;  ///< [m/s] largest mean wind an exercise or instructor sets
 inline constexpr double kMaxGust_mps = 30.0;      ///< [m/s] largest amplitude of one gust
+inline constexpr double kOvercast_oktas = 8.0;    ///< cloud cover: the whole sky under cloud
 inline constexpr double kMaxWindSpeed_mps =
     70.0;  ///< [m/s] mean, turbulence and gusts together saturate here
 
@@ -26,6 +27,7 @@ struct WeatherSettings {
       3.0;                        ///< [s] time scale of the turbulence (first-order; EN 13001 uses 3 s gusts)
   double visibility_m = 20000.0;  ///< [m] for the image generator's fog
   double rain_mm_per_h = 0.0;     ///< [mm/h]
+  double cloud_oktas = 0.0;       ///< eighths of the sky under cloud (0 clear, 8 overcast)
   double time_of_day_h = 12.0;    ///< [h] local solar time at the start
   double air_density_kg_m3 = 1.225;  ///< [kg/m^3]
   double day_of_year = 80.0;         ///< 1..366, for the sun's declination and the moon (80: March equinox)
@@ -53,6 +55,7 @@ class Weather {
   void set_wind(double mean_mps, double from_rad, double turbulence_intensity);
   void set_visibility(double metres) { settings_.visibility_m = metres; }
   void set_rain(double mm_per_h) { settings_.rain_mm_per_h = mm_per_h; }
+  void set_cloud(double oktas) { settings_.cloud_oktas = oktas; }
   /// The clock jumps to `hours` and runs on from there.
   void set_time_of_day(double hours);
   void save_state(core::StateWriter& out) const;
