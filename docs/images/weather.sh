@@ -4,7 +4,8 @@
 # (26 m/s wind, Beaufort 10, 40 mm/h, 2 km visibility) — side by side: docs/images/weather_<exercise>.png; and the sky
 # through an evening from the quay (12, 16, 17:30, 18, 18:12, 18:30, 18:48, 19:12 h): docs/images/sky_evening.png;
 # the harbour's water from 25 m at 12 m/s and 24 m/s (gusting to 14 and 28 m/s): docs/images/whitecaps.png;
-# fair-weather cloud from the quay at 2, 4 and 7 oktas: docs/images/clouds.png.
+# fair-weather cloud from the quay at 2, 4 and 7 oktas: docs/images/clouds.png; its shade on the quay at 4
+# oktas from 500 m up, a minute apart: docs/images/cloud_shade.png.
 # Drawn with surface detail (a GPU station's default) on any renderer.
 # Usage: docs/images/weather.sh [path/to/harboursim]
 set -euo pipefail
@@ -69,3 +70,11 @@ for oktas in 2 4 7; do
 done
 ffmpeg -loglevel error -y "${frames[@]}" -filter_complex "[0][1][2]vstack=3" "$here/clouds.png"
 echo "$here/clouds.png"
+frames=()
+for at in 1 60; do
+  "$app" screenshot --exercise sts_discharge --at "$at" --view free --camera=-900,-900,500,45,-25 --size 640x360 \
+    --cloud 4 --command 0:wind:10:270:0 --out "$work/shade-$at.png" > /dev/null
+  frames+=(-i "$work/shade-$at.png")
+done
+ffmpeg -loglevel error -y "${frames[@]}" -filter_complex "[0][1]vstack" "$here/cloud_shade.png"
+echo "$here/cloud_shade.png"

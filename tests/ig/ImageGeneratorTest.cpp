@@ -1583,6 +1583,43 @@ TEST(ImageGenerator, CloudsCoverTheSkyAsTheirOktasSayAndAnOvercastHidesTheSun) {
   EXPECT_LT(up.z() - up.x(), 0.08) << "an overcast sky is grey";
 }
 
+// Clouds shade the harbour where they hide the sun: looking down on the quay through 60 moments of the deck's
+// drift (20 m/s, 1.5 km between moments: each a fresh part of the deck), the share of the quay's pixels
+// darker than 0.8 of the clear day's is the cloud's cover within 0.12 at 2 and 6 oktas, and none clear.
+TEST(ImageGenerator, CloudsShadeTheQuayAsMuchAsTheyCoverTheSky) {
+  constexpr int kSide = 48;
+  ImageGenerator ig(scene(), looks(), kSide, kSide);
+  View down = free_camera({-40.0, 0.0, 60.0}, 0.0, -std::numbers::pi / 2.0 + 1e-3);
+  down.fov_vertical_rad = 0.6;
+  ig.set_view(down);
+  const auto quay = [&](double oktas, double t) {
+    scene::Snapshot s = state(5000.0, 5000.0, 20000.0, 11.0);
+    s.cloud_oktas = oktas;
+    s.wind_mps = {10.0, 0.0, 0.0};
+    s.time_s = t;
+    ig.update(s);
+    const osg::Image& image = ig.render();
+    std::vector<double> l;
+    for (int y = 0; y < kSide; ++y)
+      for (int x = 0; x < kSide; ++x)
+        l.push_back(luminance(pixel(image, x, y)));
+    return l;
+  };
+  const std::vector<double> clear = quay(0.0, 0.0);
+  for (const double oktas : {0.0, 2.0, 6.0}) {
+    double shaded = 0.0, pixels = 0.0;
+    for (int k = 0; k < 60; ++k) {
+      const std::vector<double> l = quay(oktas, 75.0 * k);
+      for (std::size_t p = 0; p < l.size(); ++p) {
+        shaded += l[p] < 0.8 * clear[p] ? 1.0 : 0.0;
+        ++pixels;
+      }
+    }
+    std::printf("%.0f oktas: the quay in the clouds' shade %.3f of the time\n", oktas, shaded / pixels);
+    EXPECT_NEAR(shaded / pixels, oktas / 8.0, 0.12) << oktas;
+  }
+}
+
 }  // namespace
 }  // namespace harbour::ig
 

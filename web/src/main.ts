@@ -928,6 +928,7 @@ async function designerAction(action: "check" | "save") {
   if (r.data.bulk) designView?.setBulk(r.data.bulk as BulkMessage);
   $("design-view").dataset.bulk = String(designView?.bulkQuadsDrawn() ?? 0);
   $("design-view").dataset.entities = String(designView?.visibleEntities() ?? 0);
+  $("design-view").dataset.jacks = JSON.stringify(designView?.jackEnds() ?? []);
 }
 
 async function enter(who: Me) {

@@ -5,7 +5,7 @@
 import * as THREE from "three";
 import { OrbitControls } from "three/examples/jsm/controls/OrbitControls.js";
 
-import type { BulkMessage, Looks, SceneMessage, ViewState } from "./wire";
+import type { BulkMessage, Jack, Looks, SceneMessage, ViewState } from "./wire";
 export type { BulkMessage, HudItem, Looks, SceneMessage, ViewState } from "./wire";
 
 /** The weather as the view shows it: the sky's colour by the time of day (day, dusk, night), greyed by rain
@@ -67,6 +67,8 @@ class Instances {
 interface PlacedPart { instance: number; local: THREE.Matrix4; }
 /** An entity as drawn: its pose from the last state, whether it is there, and its parts. */
 interface DrawnEntity { position: THREE.Vector3; quaternion: THREE.Quaternion; visible: boolean; parts: PlacedPart[]; }
+/** A jack as drawn: the entities its eyes ride (by index), and its barrel's and rod's instances. */
+interface DrawnJack { jack: Jack; from: number; to: number; barrel: number; rod: number; }
 
 const kHidden = new THREE.Matrix4().makeScale(0, 0, 0);
 
@@ -95,6 +97,7 @@ export class View3D {
   private readonly water = new THREE.Mesh(new THREE.PlaneGeometry(3000, 3000),
     new THREE.MeshLambertMaterial({ color: new THREE.Color().setRGB(0.05, 0.16, 0.22, THREE.LinearSRGBColorSpace) }));
   private entities: DrawnEntity[] = [];
+  private jacks: DrawnJack[] = [];
   private parts: Instances | null = null;
   private names: string[] = [];
   private attempt = -1;
@@ -144,11 +147,17 @@ export class View3D {
     this.bulkQuads = 0;
     // every part of every entity's look: one instanced mesh
     const looks = m.entities.map((e) => this.partsOf(e.visual, e.half_m, e.livery_key));
-    this.parts = new Instances(this.box, looks.reduce((sum, l) => sum + l.length, 0));
+    // the jacks whose two entities are in this scene (the first with each look), a barrel and a rod each
+    const entity = (look: string) => m.entities.findIndex((e) => e.visual === look);
+    const jacks = this.looks.jacks.map((jack) => ({ jack, from: entity(jack.from), to: entity(jack.to) }))
+      .filter((j) => j.from >= 0 && j.to >= 0);
+    this.parts = new Instances(this.box, looks.reduce((sum, l) => sum + l.length, 0) + 2 * jacks.length);
     this.entities = looks.map((l) => ({
       position: new THREE.Vector3(), quaternion: new THREE.Quaternion(), visible: false,
       parts: l.map(({ local, rgb }) => ({ instance: this.parts!.add(kHidden, rgb), local })),
     }));
+    this.jacks = jacks.map((j) => ({ ...j, barrel: this.parts!.add(kHidden, j.jack.color),
+      rod: this.parts!.add(kHidden, [0.80, 0.80, 0.78]) }));  // the rod chromed
     this.parts.changed();
     this.entityGroup.add(this.parts.mesh);
     this.names = m.entities.map((e) => e.name);
@@ -231,11 +240,43 @@ export class View3D {
       }
       for (const part of e.parts) this.parts!.set(part.instance, e.visible ? placed.multiplyMatrices(pose, part.local) : kHidden);
     });
+    for (const j of this.jacks) this.placeJack(j);
     this.parts?.changed();
     this.drawRopes(state.ropes);
     if (state.water_level_m !== undefined) this.water.position.z = state.water_level_m;
     if (!this.framed) this.frame();
     this.render();
+  }
+
+  /** A jack between its eyes as they ride their entities: the barrel from one towards the other, the rod back
+   * from the other (as the image generator draws it). */
+  private placeJack(j: DrawnJack) {
+    const from = this.entities[j.from], to = this.entities[j.to];
+    if (!from.visible || !to.visible) {
+      this.parts!.set(j.barrel, kHidden);
+      this.parts!.set(j.rod, kHidden);
+      return;
+    }
+    const eye = (e: DrawnEntity, at: number[]) => new THREE.Vector3(at[0], at[1], at[2]).applyQuaternion(e.quaternion).add(e.position);
+    const a = eye(from, j.jack.from_m), b = eye(to, j.jack.to_m);
+    const along = b.clone().sub(a);
+    if (along.length() < 1e-6) along.set(1, 0, 0);
+    along.normalize();
+    const { barrel_m: barrel, rod_m: rod, diameter_m: d } = j.jack;
+    const centre = (p: THREE.Vector3, length: number, sign: number) => p.clone().addScaledVector(along, sign * length / 2).toArray();
+    this.parts!.set(j.barrel, boxMatrix([barrel, d, d], centre(a, barrel, 1), along.toArray()));
+    this.parts!.set(j.rod, boxMatrix([rod, 0.55 * d, 0.55 * d], centre(b, rod, -1), along.toArray()));
+  }
+
+  // what the browser tests read: where a jack's barrel and rod are drawn (empty: none in this scene)
+  jackEnds(): number[][] {
+    const m = new THREE.Matrix4(), at = new THREE.Vector3(), turn = new THREE.Quaternion(), size = new THREE.Vector3();
+    return this.jacks.flatMap((j) => [j.barrel, j.rod].map((n) => {
+      this.parts!.mesh.getMatrixAt(n, m);
+      m.decompose(at, turn, size);
+      const half = new THREE.Vector3(size.x / 2, 0, 0).applyQuaternion(turn);
+      return [...at.clone().sub(half).toArray(), ...at.clone().add(half).toArray()];
+    }));
   }
 
   /** Light (a quarter of the pixels, the plan once a second) or full; light by default where the browser draws

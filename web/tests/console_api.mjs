@@ -108,7 +108,9 @@ try {
   const reply = (await b("api/commands")).data;
   const table = reply?.commands ?? [];
   const wind = table.find((t) => t.name === "wind");
-  check(table.length === 24 && new Set(table.map((t) => t.name)).size === 24 &&
+  const cloud = table.find((t) => t.name === "cloud");
+  check(table.length === 25 && new Set(table.map((t) => t.name)).size === 25 &&
+    cloud?.group === "weather" && cloud.values.map((v) => `${v.what} ${v.min}-${v.max} ${v.unit}`).join() === "cloud cover 0-8 oktas" &&
     table.find((t) => t.name === "signal")?.values[0]?.hand_signal === true && reply.signals.length === 14 &&
     table.find((t) => t.name === "limiter-fault")?.file_name === "limiter_fault" &&
     wind?.group === "weather" && wind.values.map((v) => `${v.what} ${v.min}-${v.max}`).join(", ") ===

@@ -316,6 +316,21 @@ try {
   // the preview draws the material: both heaps on the stockpile (coarsened as a station sends it)
   await until("the preview draws the piles", async () => Number(await page.getAttribute("#design-view", "data-bulk")) > 100);
   await page.locator("#design-preview").screenshot({ path: path.join(out, "console_designer_bulk_preview.png") });
+  // the reach stacker's two lift jacks in the preview: each barrel from its eye on the chassis towards the
+  // boom, the rod back from the boom's eye, in line and overlapping, the eyes between the rod's length and
+  // both lengths apart (2.45 m boom down to 4.79 m at 60 degrees in its data)
+  await load("reach_stacker_stack");
+  await until("the reach stacker is checked", async () => (await page.textContent("#design-result")).includes("reach_stacker_stack: valid"));
+  const jacks = JSON.parse((await page.getAttribute("#design-view", "data-jacks")) ?? "[]");
+  check(jacks.length === 4, `two jacks drawn, a barrel and a rod each (${jacks.length} pieces)`);
+  for (let k = 0; k + 1 < jacks.length; k += 2) {
+    const [barrel, rod] = [jacks[k], jacks[k + 1]];
+    const eyes = Math.hypot(rod[3] - barrel[0], rod[4] - barrel[1], rod[5] - barrel[2]);
+    const direction = (s) => [s[3] - s[0], s[4] - s[1], s[5] - s[2]].map((v, _, a) => v / Math.hypot(...a));
+    const inLine = direction(barrel).reduce((sum, v, i) => sum + v * direction(rod)[i], 0);
+    check(eyes > 2.4 && eyes < 4.8 && inLine > 0.999,
+      `jack ${k / 2 + 1}: eyes ${eyes.toFixed(2)} m apart, barrel and rod in line (cos ${inLine.toFixed(4)})`);
+  }
   // general cargo on the MHC's hook: a second piece beside the first, going beside its target, given a mass
   await load("mhc_hook_lift");
   await page.click("#design-add-cargo");

@@ -386,7 +386,21 @@ json looks_json(const ig::Looks& looks) {
                    {"shown_while", h.shown_while},
                    {"machines", h.machines},
                    {"except", h.except}});
-  return {{"visuals", std::move(visuals)}, {"scenery", std::move(scenery)}, {"hud", std::move(hud)}};
+  // the machines' hydraulic jacks between two of their entities (by look), redrawn as those move
+  json jacks = json::array();
+  for (const ig::Jack& j : looks.jacks)
+    jacks.push_back({{"from", j.from_entity},
+                     {"to", j.to_entity},
+                     {"from_m", vec3_json(j.from_m)},
+                     {"to_m", vec3_json(j.to_m)},
+                     {"barrel_m", j.barrel_m},
+                     {"rod_m", j.rod_m},
+                     {"diameter_m", j.diameter_m},
+                     {"color", vec3_json(j.color)}});
+  return {{"visuals", std::move(visuals)},
+          {"scenery", std::move(scenery)},
+          {"hud", std::move(hud)},
+          {"jacks", std::move(jacks)}};
 }
 
 json route_json(const training::Route& r) {

@@ -445,6 +445,18 @@ varying vec3 object_normal;
 #endif
 uniform bool soft_shadows;  // filtered edges (ImageGenerator::set_soft_shadows)
 uniform float sun_seen;     // how much of the sun's disc shows (none under rain cloud or in fog): its glint
+uniform sampler2D cloud_noise;  // the cloud deck's density (the clouds' texture)
+// the deck's threshold (over 1: no cloud), the density past it a cloud is half opaque, the deck's drift [m]
+uniform vec4 cloud_deck;
+uniform mat4 osg_ViewMatrixInverse;
+// the share of the sun's light a cloud takes from a point: the deck's density where the sun's ray from it
+// meets the deck (1,200 m up, 5 km a tile: the clouds' own), as opaque as the cloud drawn there
+float cloud_shade(vec3 world, vec3 to_sun) {
+  vec2 deck = world.xy + to_sun.xy * (1200.0 - world.z) / max(to_sun.z, 0.01) - cloud_deck.zw;
+  vec2 at = deck / 5000.0;
+  float n = 0.65 * texture2D(cloud_noise, at).r + 0.35 * texture2D(cloud_noise, at * 3.1 + 0.37).r;
+  return clamp((n - cloud_deck.x) / (2.0 * cloud_deck.y), 0.0, 1.0);
+}
 // Schlick's Fresnel term from the reflectance at normal incidence `f0`, at an angle of cosine `c`
 vec3 schlick(vec3 f0, float c) {
   float m = 1.0 - max(c, 0.0);
@@ -483,7 +495,6 @@ uniform mat4 osg_ViewMatrix;
 uniform float wetness;      // this surface's water film: 0 dry, 1 wet through
 uniform float splash_rate;  // drops whose splash shows, per square metre and second
 uniform float time_s;
-uniform mat4 osg_ViewMatrixInverse;
 float hash(vec2 p) {
   return fract(sin(dot(p, vec2(127.1, 311.7))) * 43758.5453);
 }
@@ -545,6 +556,10 @@ void main() {
   vec4 at = gl_TexCoord[1];
   at.z -= 0.0015 * at.w;  // towards the sun: no self-shadowing on lit faces, the filter's taps included
   float lit = !sun_shadows ? 1.0 : soft_shadows ? sun_visible(at) : shadow2DProj(shadowTexture0, at).r;
+  // under a cloud the sun's direct light falls by 85 % (as under an overcast)
+  vec3 world = (osg_ViewMatrixInverse * vec4(eye_position, 1.0)).xyz;
+  vec3 to_sun_world = (osg_ViewMatrixInverse * vec4(gl_LightSource[0].position.xyz, 0.0)).xyz;
+  lit *= 1.0 - 0.85 * cloud_shade(world, normalize(to_sun_world));
   float roughness = finish.x, metalness = finish.y;
   vec3 tint = vec3(1.0);
   vec3 n = normalize(eye_normal);
@@ -1123,6 +1138,17 @@ void ImageGenerator::build_lighting() {
     osg::ref_ptr<osg::Uniform> detail_unit = new osg::Uniform("detail_texture", 2);
     lit->setTextureAttribute(2, detail);
     lit->addUniform(detail_unit);
+    // the cloud deck's density on unit 3, for the clouds' shade on the ground
+    cloud_texture_ = new osg::Texture2D(cloud_noise());
+    cloud_texture_->setWrap(osg::Texture::WRAP_S, osg::Texture::REPEAT);
+    cloud_texture_->setWrap(osg::Texture::WRAP_T, osg::Texture::REPEAT);
+    cloud_texture_->setFilter(osg::Texture::MIN_FILTER, osg::Texture::LINEAR_MIPMAP_LINEAR);
+    cloud_texture_->setFilter(osg::Texture::MAG_FILTER, osg::Texture::LINEAR);
+    osg::ref_ptr<osg::Uniform> cloud_unit = new osg::Uniform("cloud_noise", 3);
+    cloud_deck_ = new osg::Uniform("cloud_deck", osg::Vec4(2.0f, 0.1f, 0.0f, 0.0f));
+    lit->setTextureAttribute(3, cloud_texture_);
+    lit->addUniform(cloud_unit);
+    lit->addUniform(cloud_deck_);
     // the same nodes lit the same way but without a shadow pass, for the insets: a camera drawing the
     // shadowed scene draws a 1024^2 shadow map of its own, which cost an inset more than its picture
     shadowed_->setNodeMask(kMainView | kCastsShadow);  // the shadow pass bounds its casters from here
@@ -1138,6 +1164,9 @@ void ImageGenerator::build_lighting() {
     inset_lit->addUniform(sun_seen_);
     inset_lit->setTextureAttribute(2, detail);
     inset_lit->addUniform(detail_unit);
+    inset_lit->setTextureAttribute(3, cloud_texture_);
+    inset_lit->addUniform(cloud_unit);
+    inset_lit->addUniform(cloud_deck_);
   }
   fog_ = new osg::Fog;
   fog_->setMode(osg::Fog::EXP);
@@ -1213,7 +1242,7 @@ void ImageGenerator::build_clouds() {
   clouds_ = new osg::Geode;
   clouds_->addDrawable(deck);
   clouds_->setNodeMask(0u);  // clear until cloud comes
-  cloud_noise_ = cloud_noise();
+  cloud_noise_ = cloud_texture_->getImage();
   // the deck's densities over a tile (off the texels, as the sky's rays meet it), sorted: the share of the
   // sky a threshold leaves clear
   constexpr int kSamples = 192;
@@ -1224,12 +1253,7 @@ void ImageGenerator::build_clouds() {
           cloud_density((i + 0.37) * kCloudTile_m / kSamples, (j + 0.61) * kCloudTile_m / kSamples));
   std::sort(cloud_densities_.begin(), cloud_densities_.end());
   osg::StateSet* state = clouds_->getOrCreateStateSet();
-  osg::ref_ptr<osg::Texture2D> noise = new osg::Texture2D(cloud_noise_);
-  noise->setWrap(osg::Texture::WRAP_S, osg::Texture::REPEAT);
-  noise->setWrap(osg::Texture::WRAP_T, osg::Texture::REPEAT);
-  noise->setFilter(osg::Texture::MIN_FILTER, osg::Texture::LINEAR_MIPMAP_LINEAR);
-  noise->setFilter(osg::Texture::MAG_FILTER, osg::Texture::LINEAR);
-  state->setTextureAttributeAndModes(0, noise);
+  state->setTextureAttributeAndModes(0, cloud_texture_);
   osg::ref_ptr<osg::Program> program = new osg::Program;
   program->addShader(new osg::Shader(osg::Shader::VERTEX, kCloudVertexShader));
   program->addShader(new osg::Shader(osg::Shader::FRAGMENT, kCloudFragmentShader));
@@ -1954,9 +1978,9 @@ void ImageGenerator::update_sky_and_weather(const scene::Snapshot& s) {
                   : 2.0;
   const double threshold = std::min(cover_threshold, overcast_ > 0.0 ? 0.9 - overcast_ : 2.0);
   cloud_drift_m_ = {2.0 * s.wind_mps.x * s.time_s, 2.0 * s.wind_mps.y * s.time_s};
-  grey_ = std::max({overcast_, std::clamp((5000.0 - visibility_m) / 4500.0, 0.0, 1.0),
-                    std::clamp(4.0 * cover - 3.0, 0.0, 1.0)});
-  // a cloud over the cab between it and the sun hides the sun: its shadows fade as the cloud passes
+  const double fog_grey = std::clamp((5000.0 - visibility_m) / 4500.0, 0.0, 1.0);
+  grey_ = std::max({overcast_, fog_grey, std::clamp(4.0 * cover - 3.0, 0.0, 1.0)});
+  // a cloud between the cab and the sun hides the sun's disc and the water's glint from the cab
   sun_clouded_ = 0.0;
   if (threshold < 1.5 && to_sun.z > 0.01) {
     const double reach = kCloudBase_m / to_sun.z;
@@ -1970,7 +1994,8 @@ void ImageGenerator::update_sky_and_weather(const scene::Snapshot& s) {
   light->setPosition(osg::Vec4(to_osg(to_sun), 0.0f));
   // the clear sky's sun and sky light; under cloud or in fog the sun's direct light gives way to the sky's
   // diffuse light: soft, shadowless
-  const core::Vec3 diffuse = shade.daylight.sun_light() * (1.0 - 0.85 * std::max(grey_, sun_clouded_));
+  // (rain's deck and fog everywhere; fair-weather cloud where it shades, per pixel: cloud_deck_)
+  const core::Vec3 diffuse = shade.daylight.sun_light() * (1.0 - 0.85 * std::max(overcast_, fog_grey));
   const core::Vec3 ambient = shade.veiled(shade.daylight.sky_light()) * (1.0 + 0.5 * grey_);
   light->setDiffuse(rgba(diffuse));
   light->setAmbient(rgba(ambient));
@@ -1987,6 +2012,9 @@ void ImageGenerator::update_sky_and_weather(const scene::Snapshot& s) {
   // sky (white in the sun's colour where thin, a grey base where thick)
   clouds_->setNodeMask(threshold < 1.5 ? ~0u : 0u);
   cloud_uniforms_[0]->set(static_cast<float>(threshold));
+  cloud_deck_->set(osg::Vec4(static_cast<float>(cover_threshold), static_cast<float>(half_opaque),
+                             static_cast<float>(cloud_drift_m_.first),
+                             static_cast<float>(cloud_drift_m_.second)));
   const double zenith_grey = 0.30 * shade.zenith.x + 0.59 * shade.zenith.y + 0.11 * shade.zenith.z;
   const core::Vec3 lit = shade.daylight.sun_light() + shade.daylight.sky_light();
   const core::Vec3 fair{std::min(lit.x, 0.95), std::min(lit.y, 0.95), std::min(lit.z, 0.95)};
@@ -2643,7 +2671,8 @@ void ImageGenerator::update_water(const osg::Vec3d& eye) {
   }
   // the shading's uniforms: the eye, the deep water's colour (the sky it mirrors: update_sky_and_weather)
   const auto set = [&](const char* name, const auto& value) { water_shading_->getUniform(name)->set(value); };
-  set("daylight", static_cast<float>(daylight_ * (1.0 - grey_)));  // no glint under cloud or in fog
+  // no glint under cloud (the one over the cab hides the sun from it) or in fog
+  set("daylight", static_cast<float>(daylight_ * (1.0 - grey_) * (1.0 - sun_clouded_)));
   // the light on foam and spray: daylight, and the floodlights' share at night
   const float foam_light = static_cast<float>(0.12 + 0.88 * daylight_ * (1.0 - 0.4 * grey_));
   set("sky_light", foam_light);

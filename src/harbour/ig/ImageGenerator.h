@@ -30,6 +30,7 @@ class Uniform;
 class StateSet;
 class Program;
 class Geode;
+class Texture2D;
 }  // namespace osg
 namespace osgShadow {
 class ShadowedScene;
@@ -252,8 +253,10 @@ class ImageGenerator {
   std::array<osg::ref_ptr<osg::Uniform>, 6> cloud_uniforms_;
   std::pair<double, double> cloud_drift_m_{0.0, 0.0};
   osg::ref_ptr<osg::Image> cloud_noise_;
-  std::vector<double> cloud_densities_;  // the deck's densities over a tile, sorted: cover's threshold
-  double sun_clouded_ = 0.0;             // how much a cloud hides the sun over the cab
+  osg::ref_ptr<osg::Texture2D> cloud_texture_;  // the deck's density: the clouds' and their shade's
+  osg::ref_ptr<osg::Uniform> cloud_deck_;       // the lit shaders': threshold, half opaque, drift
+  std::vector<double> cloud_densities_;         // the deck's densities over a tile, sorted: cover's threshold
+  double sun_clouded_ = 0.0;                    // how much a cloud hides the sun over the cab
   void mesh_bulk_tile(const scene::BulkView::Grid& grid, int ti, int tj, osg::Geometry& tile);
 
   std::map<std::string, Visual> visuals_;
