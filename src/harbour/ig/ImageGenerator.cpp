@@ -359,8 +359,9 @@ namespace {
 // highlight beyond white is rolled off by a shoulder (identity to 0.8, then 0.8 + 0.2 x / (x + 0.2), x = c -
 // 0.8), not clipped; then the fog per pixel. With WET (the quay in rain) a water film per pixel: it mirrors
 // the sky by Fresnel's reflectance, shows the sun's and the floodlights' glare, and rings where drops land.
-// Each combination is a program of its own, since llvmpipe shades both sides of a branch (the film in a
-// branch cost every dry pixel as much as the rest of the frame).
+// With CLOUDS (fair-weather cloud in the sky) the sun's light taken where a cloud hides it. Each combination
+// is a program of its own, since llvmpipe shades both sides of a branch (the film in a branch cost every dry
+// pixel as much as the rest of the frame; the clouds' shade cost a clear day's chase view 22 ms in 129).
 constexpr char kLitVertexShader[] = R"(
 uniform int floodlights;   // lights 1..floodlights are on
 uniform vec4 finishes[8];  // (roughness, metalness, texture, weathering) by surface (ig/Materials.h)
@@ -445,10 +446,11 @@ varying vec3 object_normal;
 #endif
 uniform bool soft_shadows;  // filtered edges (ImageGenerator::set_soft_shadows)
 uniform float sun_seen;     // how much of the sun's disc shows (none under rain cloud or in fog): its glint
-uniform sampler2D cloud_noise;  // the cloud deck's density (the clouds' texture)
-// the deck's threshold (over 1: no cloud), the density past it a cloud is half opaque, the deck's drift [m]
-uniform vec4 cloud_deck;
 uniform mat4 osg_ViewMatrixInverse;
+#ifdef CLOUDS
+uniform sampler2D cloud_noise;  // the cloud deck's density (the clouds' texture)
+// the deck's threshold, the density past it a cloud is half opaque, the deck's drift [m]
+uniform vec4 cloud_deck;
 // the share of the sun's light a cloud takes from a point: the deck's density where the sun's ray from it
 // meets the deck (1,200 m up, 5 km a tile: the clouds' own), as opaque as the cloud drawn there
 float cloud_shade(vec3 world, vec3 to_sun) {
@@ -457,6 +459,7 @@ float cloud_shade(vec3 world, vec3 to_sun) {
   float n = 0.65 * texture2D(cloud_noise, at).r + 0.35 * texture2D(cloud_noise, at * 3.1 + 0.37).r;
   return clamp((n - cloud_deck.x) / (2.0 * cloud_deck.y), 0.0, 1.0);
 }
+#endif
 // Schlick's Fresnel term from the reflectance at normal incidence `f0`, at an angle of cosine `c`
 vec3 schlick(vec3 f0, float c) {
   float m = 1.0 - max(c, 0.0);
@@ -556,10 +559,12 @@ void main() {
   vec4 at = gl_TexCoord[1];
   at.z -= 0.0015 * at.w;  // towards the sun: no self-shadowing on lit faces, the filter's taps included
   float lit = !sun_shadows ? 1.0 : soft_shadows ? sun_visible(at) : shadow2DProj(shadowTexture0, at).r;
+#ifdef CLOUDS
   // under a cloud the sun's direct light falls by 85 % (as under an overcast)
   vec3 world = (osg_ViewMatrixInverse * vec4(eye_position, 1.0)).xyz;
   vec3 to_sun_world = (osg_ViewMatrixInverse * vec4(gl_LightSource[0].position.xyz, 0.0)).xyz;
   lit *= 1.0 - 0.85 * cloud_shade(world, normalize(to_sun_world));
+#endif
   float roughness = finish.x, metalness = finish.y;
   vec3 tint = vec3(1.0);
   vec3 n = normalize(eye_normal);
@@ -747,11 +752,13 @@ float streaks(vec2 along_m, vec2 size, float layer, float cover, float noise) {
   at.x += hash(vec2(floor(at.y), layer));  // each row of cells shifted along the wind: no rows line up
   vec2 cell = floor(at);
   float born = floor(time_s / 3.0 + 7.0 * hash(cell + 13.0 * layer));
-  vec2 seed = cell + 17.0 * born + 31.0 * layer;
-  float radius = 0.04 + grow * (0.15 + 0.075 * hash(seed + 5.1));
-  vec2 centre = 0.5 + max(0.5 - radius, 0.0) * (vec2(hash(seed + 3.7), hash(seed + 8.3)) - 0.5);
+  // one hash a streak (a sine each is dear to a software renderer): whether it shows, and from its digits its
+  // size and place
+  float h = hash(cell + 17.0 * born + 31.0 * layer);
+  float radius = 0.04 + grow * (0.15 + 0.075 * fract(h * 61.7));
+  vec2 centre = 0.5 + max(0.5 - radius, 0.0) * (fract(h * vec2(127.3, 241.9)) - 0.5);
   float edge = length(fract(at) - centre) + 0.2 * (noise - 0.5);
-  float white = hash(seed) < share ? smoothstep(radius, radius - 0.08, edge) : 0.0;
+  float white = h < share ? smoothstep(radius, radius - 0.08, edge) : 0.0;
   vec2 span = fwidth(along_m / size);  // not of `at`: it jumps between rows
   return mix(white, cover, smoothstep(0.35, 1.0, max(span.x, span.y)));
 }
@@ -1033,9 +1040,10 @@ void ImageGenerator::set_soft_shadows(bool on) {
 void ImageGenerator::set_surface_detail(bool on) {
   surface_detail_ = on;
   for (osg::Group* lit : {static_cast<osg::Group*>(shadowed_.get()), unshadowed_.get()})
-    lit->getOrCreateStateSet()->setAttribute(lit_programs_[0][on]);
+    lit->getOrCreateStateSet()->setAttribute(lit_programs_[0][on][cloud_shade_]);
   for (const osg::ref_ptr<osg::StateSet>& quay : quay_states_)
-    if (quay->getAttribute(osg::StateAttribute::PROGRAM)) quay->setAttribute(lit_programs_[1][on]);
+    if (quay->getAttribute(osg::StateAttribute::PROGRAM))
+      quay->setAttribute(lit_programs_[1][on][cloud_shade_]);
 }
 
 bool ImageGenerator::surface_detail() const {
@@ -1097,14 +1105,15 @@ void ImageGenerator::build_lighting() {
     shadowed_->setShadowSettings(settings);
     // the lit shaders' four programs: dry or wet (the film), plain or with surface detail
     for (const bool wet : {false, true})
-      for (const bool detail : {false, true}) {
-        const std::string defines =
-            std::string("#version 120\n") + (wet ? "#define WET\n" : "") + (detail ? "#define DETAIL\n" : "");
-        osg::ref_ptr<osg::Program>& program = lit_programs_[wet][detail];
-        program = new osg::Program;
-        program->addShader(new osg::Shader(osg::Shader::VERTEX, defines + kLitVertexShader));
-        program->addShader(new osg::Shader(osg::Shader::FRAGMENT, defines + kLitFragmentShader));
-      }
+      for (const bool detail : {false, true})
+        for (const bool clouds : {false, true}) {
+          const std::string defines = std::string("#version 120\n") + (wet ? "#define WET\n" : "") +
+                                      (detail ? "#define DETAIL\n" : "") + (clouds ? "#define CLOUDS\n" : "");
+          osg::ref_ptr<osg::Program>& program = lit_programs_[wet][detail][clouds];
+          program = new osg::Program;
+          program->addShader(new osg::Shader(osg::Shader::VERTEX, defines + kLitVertexShader));
+          program->addShader(new osg::Shader(osg::Shader::FRAGMENT, defines + kLitFragmentShader));
+        }
     osg::StateSet* lit = shadowed_->getOrCreateStateSet();
     floodlights_on_ = new osg::Uniform("floodlights", 0);
     lit->addUniform(floodlights_on_);
@@ -2012,6 +2021,10 @@ void ImageGenerator::update_sky_and_weather(const scene::Snapshot& s) {
   // sky (white in the sun's colour where thin, a grey base where thick)
   clouds_->setNodeMask(threshold < 1.5 ? ~0u : 0u);
   cloud_uniforms_[0]->set(static_cast<float>(threshold));
+  if ((cover > 0.0) != cloud_shade_) {  // the lit programs that shade under cloud, or those that need not
+    cloud_shade_ = cover > 0.0;
+    set_surface_detail(surface_detail_);
+  }
   cloud_deck_->set(osg::Vec4(static_cast<float>(cover_threshold), static_cast<float>(half_opaque),
                              static_cast<float>(cloud_drift_m_.first),
                              static_cast<float>(cloud_drift_m_.second)));
@@ -2051,7 +2064,7 @@ void ImageGenerator::update_sky_and_weather(const scene::Snapshot& s) {
   wetness_->set(static_cast<float>(wetness));
   for (const osg::ref_ptr<osg::StateSet>& quay : quay_states_)
     if (wetness > 0.0)
-      quay->setAttribute(lit_programs_[1][surface_detail_]);
+      quay->setAttribute(lit_programs_[1][surface_detail_][cloud_shade_]);
     else
       quay->removeAttribute(osg::StateAttribute::PROGRAM);
   film_[0]->set(static_cast<float>(0.75 * std::max(s.rain_mm_per_h, 0.0)));

@@ -307,7 +307,9 @@ class ImageGenerator {
   osg::ref_ptr<osg::Uniform> wetness_;   // rain's water on the lit surfaces (the quay's film too)
   osg::ref_ptr<osg::Uniform> sun_seen_;  // the share of the sun's disc that shows: its glint
   /// the lit scene's programs by [wet][detail]: the water film (the quay takes it while wet), surface detail
-  std::array<std::array<osg::ref_ptr<osg::Program>, 2>, 2> lit_programs_;
+  // by wet film, surface detail, clouds' shade
+  std::array<std::array<std::array<osg::ref_ptr<osg::Program>, 2>, 2>, 2> lit_programs_;
+  bool cloud_shade_ = false;  // fair-weather cloud in the sky: the lit programs shade under it
   bool surface_detail_ = false;
   std::vector<osg::ref_ptr<osg::StateSet>> quay_states_;  // take it while the quay is wet
   std::array<osg::ref_ptr<osg::Uniform>, 4> film_;        // splash rate, time, the sky's horizon and zenith
