@@ -54,27 +54,23 @@ done
 ffmpeg -loglevel error -y "${frames[@]}" -filter_complex "[0][1][2][3]hstack=4[a];[4][5][6][7]hstack=4[b];[a][b]vstack" \
   "$here/sky_evening.png"
 echo "$here/sky_evening.png"
-frames=()
-for wind in 12 24; do
-  "$app" screenshot --exercise sts_discharge --at 5 --view free --camera=60,-40,25,60,-20 --size 640x360 \
-    --command "0:wind:$wind:270:0.15" --out "$work/sea-$wind.png" > /dev/null
-  frames+=(-i "$work/sea-$wind.png")
-done
-ffmpeg -loglevel error -y "${frames[@]}" -filter_complex "[0][1]vstack" "$here/whitecaps.png"
-echo "$here/whitecaps.png"
-frames=()
-for oktas in 2 4 7; do
-  "$app" screenshot --exercise sts_discharge --at 1 --view free --camera=-120,-80,20,60,25 --size 480x270 \
-    --cloud "$oktas" --out "$work/cloud-$oktas.png" > /dev/null
-  frames+=(-i "$work/cloud-$oktas.png")
-done
-ffmpeg -loglevel error -y "${frames[@]}" -filter_complex "[0][1][2]vstack=3" "$here/clouds.png"
-echo "$here/clouds.png"
-frames=()
-for at in 1 60; do
-  "$app" screenshot --exercise sts_discharge --at "$at" --view free --camera=-900,-900,500,45,-25 --size 640x360 \
-    --cloud 4 --command 0:wind:10:270:0 --out "$work/shade-$at.png" > /dev/null
-  frames+=(-i "$work/shade-$at.png")
-done
-ffmpeg -loglevel error -y "${frames[@]}" -filter_complex "[0][1]vstack" "$here/cloud_shade.png"
-echo "$here/cloud_shade.png"
+# free views of sts_discharge stacked into one picture: stacked NAME SIZE CAMERA OPTIONS... (each OPTIONS one
+# frame's own screenshot options, in one word)
+stacked() {
+  local name="$1" size="$2" camera="$3" n=0 inputs="" frames=()
+  shift 3
+  for options in "$@"; do
+    # shellcheck disable=SC2086
+    "$app" screenshot --exercise sts_discharge --view free --camera="$camera" --size "$size" $options \
+      --out "$work/$name-$n.png" > /dev/null
+    frames+=(-i "$work/$name-$n.png")
+    inputs+="[$n]"
+    n=$((n + 1))
+  done
+  ffmpeg -loglevel error -y "${frames[@]}" -filter_complex "${inputs}vstack=$n" "$here/$name.png"
+  echo "$here/$name.png"
+}
+stacked whitecaps 640x360 60,-40,25,60,-20 "--at 5 --command 0:wind:12:270:0.15" "--at 5 --command 0:wind:24:270:0.15"
+stacked clouds 480x270 -120,-80,20,60,25 "--at 1 --cloud 2" "--at 1 --cloud 4" "--at 1 --cloud 7"
+stacked cloud_shade 640x360 -900,-900,500,45,-25 "--at 1 --cloud 4 --command 0:wind:10:270:0" \
+  "--at 60 --cloud 4 --command 0:wind:10:270:0"

@@ -99,6 +99,15 @@ std::vector<double> median_luminance(const osg::Image& image) {
   return l;
 }
 
+// each pixel's luminance, rows from the top
+std::vector<double> luminances(const osg::Image& image) {
+  std::vector<double> l;
+  for (int y = 0; y < image.t(); ++y)
+    for (int x = 0; x < image.s(); ++x)
+      l.push_back(luminance(pixel(image, x, y)));
+  return l;
+}
+
 double mean_luminance(const osg::Image& image) {
   double sum = 0.0;
   for (int y = 0; y < image.t(); ++y)
@@ -979,12 +988,7 @@ TEST(ImageGenerator, SurfaceDetailRidesTheMachine) {
     s.entity_count = 1;
     s.entities[0] = {0, 0, {core::Mat3::identity(), core::Vec3{0.0, 0.0, 30.0} + offset}};
     ig.update(s);
-    const osg::Image& image = ig.render();
-    std::vector<double> l;
-    for (int y = 0; y < kHeight; ++y)
-      for (int x = 0; x < kWidth; ++x)
-        l.push_back(luminance(pixel(image, x, y)));
-    return l;
+    return luminances(ig.render());
   };
   const auto spread = [](const std::vector<double>& l) {
     double mean = 0.0, square = 0.0;
@@ -1598,12 +1602,7 @@ TEST(ImageGenerator, CloudsShadeTheQuayAsMuchAsTheyCoverTheSky) {
     s.wind_mps = {10.0, 0.0, 0.0};
     s.time_s = t;
     ig.update(s);
-    const osg::Image& image = ig.render();
-    std::vector<double> l;
-    for (int y = 0; y < kSide; ++y)
-      for (int x = 0; x < kSide; ++x)
-        l.push_back(luminance(pixel(image, x, y)));
-    return l;
+    return luminances(ig.render());
   };
   const std::vector<double> clear = quay(0.0, 0.0);
   for (const double oktas : {0.0, 2.0, 6.0}) {
