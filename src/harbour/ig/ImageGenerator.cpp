@@ -66,9 +66,10 @@ constexpr double kLongestRoll_s = 1.0;   // snapshots further apart are a jump (
 constexpr double kFetch_m = 2000.0;      // the harbour basin's open water upwind, for the wind sea (assumed)
 constexpr double kCloudBase_m = 1200.0;  // the cloud deck's height
 constexpr double kCloudTile_m = 5000.0;  // its noise texture's tile
-// a cloud's edge, in its thickness (0-1 over 0.6 of the deck's density past the threshold): fair-weather
-// cloud's crisp, rain cloud's ragged
-constexpr double kFairCloudEdge = 0.06, kRainCloudEdge = 0.2;
+// a cloud as the deck's density passes its threshold: opaque within `edge` of it (fair-weather cloud's edge
+// crisp, rain cloud's ragged), thick (its darkest base) at `depth` past it (a fair-weather cloud's core dark
+// under its sunlit rim, a rain cloud's deck more even)
+constexpr double kFairCloudEdge = 0.036, kRainCloudEdge = 0.12, kFairCloudDepth = 0.15, kRainCloudDepth = 0.6;
 constexpr double kCrestShareOfWhitecaps = 0.5;  // of the whitecaps, on the crests breaking now (ours)
 constexpr int kWaterColumns = 96,
               kWaterRows = 64;          // the water's grid, laid over the screen (projected grid)
@@ -804,7 +805,8 @@ void main() {
 constexpr char kCloudFragmentShader[] = R"(#version 120
 uniform sampler2D cloud_noise;
 uniform float threshold;
-uniform float edge_width;  // of the cloud's edge, in thickness
+uniform float edge;   // the density past the threshold a cloud is opaque at
+uniform float depth;  // and at its thickest
 uniform vec2 deck_shift_m;  // the eye's place over the ground less the deck's drift with the wind
 uniform vec3 light;         // thin cloud's colour
 uniform vec3 dark;          // thick cloud's base
@@ -817,10 +819,10 @@ void main() {
   float n = 0.65 * texture2D(cloud_noise, at).r + 0.35 * texture2D(cloud_noise, at * 3.1 + 0.37).r;
   float far = smoothstep(8000.0, 40000.0, reach);
   n = mix(n, 0.5, far);
-  float thickness = clamp((n - threshold) / 0.6, 0.0, 1.0);
+  float thickness = clamp((n - threshold) / depth, 0.0, 1.0);
   vec3 colour = mix(mix(light, dark, thickness), horizon, 0.6 * far);
-  float edge = smoothstep(0.0, edge_width, thickness);
-  gl_FragColor = vec4(colour, edge * (1.0 - 0.6 * smoothstep(20000.0, 100000.0, reach)));
+  float opaque = smoothstep(0.0, edge, n - threshold);
+  gl_FragColor = vec4(colour, opaque * (1.0 - 0.6 * smoothstep(20000.0, 100000.0, reach)));
 }
 )";
 
@@ -1270,7 +1272,8 @@ void ImageGenerator::build_clouds() {
   state->addUniform(new osg::Uniform("cloud_noise", 0));
   cloud_uniforms_ = {new osg::Uniform("threshold", 1.0f),      new osg::Uniform("deck_shift_m", osg::Vec2()),
                      new osg::Uniform("light", osg::Vec3()),   new osg::Uniform("dark", osg::Vec3()),
-                     new osg::Uniform("horizon", osg::Vec3()), new osg::Uniform("edge_width", 0.2f)};
+                     new osg::Uniform("horizon", osg::Vec3()), new osg::Uniform("edge", 0.12f),
+                     new osg::Uniform("depth", 0.6f)};
   for (const osg::ref_ptr<osg::Uniform>& u : cloud_uniforms_)
     state->addUniform(u);
   state->setMode(GL_LIGHTING, osg::StateAttribute::OFF | osg::StateAttribute::PROTECTED);
@@ -1978,8 +1981,8 @@ void ImageGenerator::update_sky_and_weather(const scene::Snapshot& s) {
   // pass over that share), rain's thick deck over the sky as the rain says, whichever is the thicker; the sky
   // between the clouds greys as the cover closes from 6 oktas to 8 (an overcast sky is grey)
   const double cover = std::clamp(s.cloud_oktas / 8.0, 0.0, 1.0);
-  const double edge_width = kFairCloudEdge + (kRainCloudEdge - kFairCloudEdge) * overcast_;
-  const double half_opaque = 0.6 * 0.5 * edge_width;  // the density past the threshold a cloud shows at
+  const double edge = kFairCloudEdge + (kRainCloudEdge - kFairCloudEdge) * overcast_;
+  const double half_opaque = 0.5 * edge;  // the density past the threshold a cloud shows at
   const double cover_threshold =
       cover > 0.0 ? cloud_densities_[static_cast<std::size_t>(
                         (1.0 - cover) * static_cast<double>(cloud_densities_.size() - 1))] -
@@ -2036,7 +2039,9 @@ void ImageGenerator::update_sky_and_weather(const scene::Snapshot& s) {
   cloud_uniforms_[2]->set(to_osg(fair + (light_base - fair) * overcast_));
   cloud_uniforms_[3]->set(to_osg(fair * 0.62 + (dark_base - fair * 0.62) * overcast_));
   cloud_uniforms_[4]->set(to_osg(shade.horizon));
-  cloud_uniforms_[5]->set(static_cast<float>(edge_width));
+  cloud_uniforms_[5]->set(static_cast<float>(edge));
+  cloud_uniforms_[6]->set(
+      static_cast<float>(kFairCloudDepth + (kRainCloudDepth - kFairCloudDepth) * overcast_));
   fog_->setColor(rgba(sky));
   fog_->setDensity(static_cast<float>(extinction_per_m));
   visibility_m_ = visibility_m;
