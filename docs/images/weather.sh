@@ -4,7 +4,8 @@
 # (26 m/s wind, Beaufort 10, 40 mm/h, 2 km visibility) — side by side: docs/images/weather_<exercise>.png; and the sky
 # through an evening from the quay (12, 16, 17:30, 18, 18:12, 18:30, 18:48, 19:12 h): docs/images/sky_evening.png;
 # the harbour's water from 25 m at 12 m/s and 24 m/s (gusting to 14 and 28 m/s): docs/images/whitecaps.png;
-# fair-weather cloud from the quay at 2, 4 and 7 oktas: docs/images/clouds.png; its shade on the quay at 4
+# fair-weather cloud from the quay at 2, 4 and 7 oktas: docs/images/clouds.png; 3 oktas towards the evening
+# sun at noon and at 17:36: docs/images/clouds_dusk.png; its shade on the quay at 4
 # oktas from 500 m up, a minute apart: docs/images/cloud_shade.png.
 # Drawn with surface detail (a GPU station's default) on any renderer.
 # Usage: docs/images/weather.sh [path/to/harboursim]
@@ -72,5 +73,6 @@ stacked() {
 }
 stacked whitecaps 640x360 60,-40,25,60,-20 "--at 5 --command 0:wind:12:270:0.15" "--at 5 --command 0:wind:24:270:0.15"
 stacked clouds 480x270 -120,-80,20,60,25 "--at 1 --cloud 2" "--at 1 --cloud 4" "--at 1 --cloud 7"
+stacked clouds_dusk 480x270 -120,-80,20,-90,15 "--at 1 --cloud 3 --time-of-day 12" "--at 1 --cloud 3 --time-of-day 17.6"
 stacked cloud_shade 640x360 -900,-900,500,45,-25 "--at 1 --cloud 4 --command 0:wind:10:270:0" \
   "--at 60 --cloud 4 --command 0:wind:10:270:0"

@@ -807,6 +807,8 @@ uniform sampler2D cloud_noise;
 uniform float threshold;
 uniform float edge;   // the density past the threshold a cloud is opaque at
 uniform float depth;  // and at its thickest
+uniform vec3 to_sun;
+uniform vec3 rim;     // the sun's light scattered forward through a thin cloud's edge (none in rain's deck)
 uniform vec2 deck_shift_m;  // the eye's place over the ground less the deck's drift with the wind
 uniform vec3 light;         // thin cloud's colour
 uniform vec3 dark;          // thick cloud's base
@@ -820,7 +822,10 @@ void main() {
   float far = smoothstep(8000.0, 40000.0, reach);
   n = mix(n, 0.5, far);
   float thickness = clamp((n - threshold) / depth, 0.0, 1.0);
-  vec3 colour = mix(mix(light, dark, thickness), horizon, 0.6 * far);
+  // a cloud's thin edge towards the sun glows with the sun's light scattered forward (its silver lining; at
+  // dusk in the sun's colour)
+  float towards = max(dot(d, to_sun), 0.0);
+  vec3 colour = mix(mix(light, dark, thickness) + rim * (1.0 - thickness) * pow(towards, 8.0), horizon, 0.6 * far);
   float opaque = smoothstep(0.0, edge, n - threshold);
   gl_FragColor = vec4(colour, opaque * (1.0 - 0.6 * smoothstep(20000.0, 100000.0, reach)));
 }
@@ -1273,7 +1278,8 @@ void ImageGenerator::build_clouds() {
   cloud_uniforms_ = {new osg::Uniform("threshold", 1.0f),      new osg::Uniform("deck_shift_m", osg::Vec2()),
                      new osg::Uniform("light", osg::Vec3()),   new osg::Uniform("dark", osg::Vec3()),
                      new osg::Uniform("horizon", osg::Vec3()), new osg::Uniform("edge", 0.12f),
-                     new osg::Uniform("depth", 0.6f)};
+                     new osg::Uniform("depth", 0.6f),          new osg::Uniform("to_sun", osg::Vec3(0, 0, 1)),
+                     new osg::Uniform("rim", osg::Vec3())};
   for (const osg::ref_ptr<osg::Uniform>& u : cloud_uniforms_)
     state->addUniform(u);
   state->setMode(GL_LIGHTING, osg::StateAttribute::OFF | osg::StateAttribute::PROTECTED);
@@ -2039,6 +2045,8 @@ void ImageGenerator::update_sky_and_weather(const scene::Snapshot& s) {
   cloud_uniforms_[2]->set(to_osg(fair + (light_base - fair) * overcast_));
   cloud_uniforms_[3]->set(to_osg(fair * 0.62 + (dark_base - fair * 0.62) * overcast_));
   cloud_uniforms_[4]->set(to_osg(shade.horizon));
+  cloud_uniforms_[7]->set(to_osg(to_sun));
+  cloud_uniforms_[8]->set(to_osg(shade.daylight.sun_light() * (0.8 * (1.0 - overcast_))));
   cloud_uniforms_[5]->set(static_cast<float>(edge));
   cloud_uniforms_[6]->set(
       static_cast<float>(kFairCloudDepth + (kRainCloudDepth - kFairCloudDepth) * overcast_));

@@ -249,8 +249,8 @@ class ImageGenerator {
   // the cloud deck's density (its shader's two octaves of the noise texture) at a deck point [m]
   double cloud_density(double x_m, double y_m) const;
   osg::ref_ptr<osg::Geode> clouds_;
-  // threshold, deck shift, light, dark, horizon, edge, depth
-  std::array<osg::ref_ptr<osg::Uniform>, 7> cloud_uniforms_;
+  // threshold, deck shift, light, dark, horizon, edge, depth, to the sun, rim light
+  std::array<osg::ref_ptr<osg::Uniform>, 9> cloud_uniforms_;
   std::pair<double, double> cloud_drift_m_{0.0, 0.0};
   osg::ref_ptr<osg::Image> cloud_noise_;
   osg::ref_ptr<osg::Texture2D> cloud_texture_;  // the deck's density: the clouds' and their shade's
