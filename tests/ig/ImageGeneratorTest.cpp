@@ -1389,17 +1389,22 @@ View free_camera(const core::Vec3& at, double yaw, double pitch) {
   return v;
 }
 
+// the open sea drawn in a wind along +x at `time_of_day_h`, `t` seconds into it (the boxes behind the camera)
+const osg::Image& sea_in_wind(ImageGenerator& ig, double wind, double time_of_day_h, double t) {
+  scene::Snapshot s = state(-500.0, -600.0, 20000.0, time_of_day_h);
+  s.wind_mps = {wind, 0.0, 0.0};
+  s.time_s = t;
+  ig.update(s);
+  return ig.render();
+}
+
 // The wind sea (Tessendorf's FFT waves) breaks the water's reflection of the sky into a pattern: the
 // water's luminance varies across the picture in a fresh breeze far more than in a calm.
 TEST(ImageGenerator, WindRoughensTheWater) {
   ImageGenerator ig(scene(), looks(), kWidth, kHeight);
   ig.set_view(free_camera({200.0, 0.0, 6.0}, 0.0, -0.35));  // over open water, looking down the wind
   const auto spread = [&](double wind) {
-    scene::Snapshot s = state(-500.0, -600.0, 20000.0, 11.0);  // the boxes behind the camera
-    s.wind_mps = {wind, 0.0, 0.0};
-    s.time_s = 30.0;
-    ig.update(s);
-    const osg::Image& image = ig.render();
+    const osg::Image& image = sea_in_wind(ig, wind, 11.0, 30.0);
     double sum = 0.0,
            n = 0.0;  // mean change of luminance from pixel to pixel (the gradient of distance aside)
     for (int y = kHeight * 3 / 10; y < kHeight * 6 / 10; ++y)  // water only, where it mirrors the sky most
@@ -2193,11 +2198,7 @@ TEST(ImageGenerator, FarWhitecapsWhitenTheSeaEvenly) {
   ImageGenerator ig(scene(), looks(), kWidth, kHeight);
   ig.set_view(free_camera({200.0, 0.0, 20.0}, 0.0, 0.0));  // level, out over open water
   const auto band = [&](double wind) {
-    scene::Snapshot s = state(-500.0, -600.0, 20000.0, 12.0);  // the boxes behind the camera
-    s.wind_mps = {wind, 0.0, 0.0};
-    s.time_s = 30.0;
-    ig.update(s);
-    const osg::Image& image = ig.render();
+    const osg::Image& image = sea_in_wind(ig, wind, 12.0, 30.0);
     const int horizon = static_cast<int>(std::lround(ig.project({200.0 + 1e5, 0.0, 20.0})->second));
     double change = 0.0, mean = 0.0, n = 0.0;
     for (int y = horizon + kFrom; y <= horizon + kTo; ++y)
@@ -2224,11 +2225,7 @@ TEST(ImageGenerator, WhitecapsCoverTheSeaAsMonahansLawSays) {
   ImageGenerator ig(scene(), looks(), kWidth, kHeight);
   const auto render = [&](double wind, double yaw, double t) -> const osg::Image& {
     ig.set_view(free_camera({300.0, 0.0, 40.0}, yaw, -1.1));
-    scene::Snapshot s = state(-500.0, -600.0, 20000.0, 12.0);  // the boxes behind the camera
-    s.wind_mps = {wind, 0.0, 0.0};
-    s.time_s = t;
-    ig.update(s);
-    return ig.render();
+    return sea_in_wind(ig, wind, 12.0, t);
   };
   const double calm = mean_luminance(render(0.0, 0.0, 30.0));
   const double foam = luminance({0.86f, 0.89f, 0.91f});  // the shader's foam in full daylight

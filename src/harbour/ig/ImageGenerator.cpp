@@ -1258,7 +1258,6 @@ void ImageGenerator::build_clouds() {
   clouds_ = new osg::Geode;
   clouds_->addDrawable(deck);
   clouds_->setNodeMask(0u);  // clear until cloud comes
-  cloud_noise_ = cloud_texture_->getImage();
   // the deck's densities over a tile (off the texels, as the sky's rays meet it), sorted: the share of the
   // sky a threshold leaves clear
   constexpr int kSamples = 192;
@@ -1293,13 +1292,14 @@ void ImageGenerator::build_clouds() {
 
 double ImageGenerator::cloud_density(double x_m, double y_m) const {
   // as the shader samples it: bilinear, repeating, two octaves
-  const int size = cloud_noise_->s();
+  const osg::Image& noise = *cloud_texture_->getImage();
+  const int size = noise.s();
   const auto texture = [&](double u, double v) {
     const double x = u * size - 0.5, y = v * size - 0.5;
     const double fx = std::floor(x), fy = std::floor(y);
     const auto texel = [&](double i, double j) {
       const auto wrap = [size](double k) { return static_cast<int>(k - size * std::floor(k / size)); };
-      return cloud_noise_->data(wrap(i), wrap(j))[0] / 255.0;
+      return noise.data(wrap(i), wrap(j))[0] / 255.0;
     };
     const double a = x - fx, b = y - fy;
     return (1 - a) * (1 - b) * texel(fx, fy) + a * (1 - b) * texel(fx + 1, fy) +

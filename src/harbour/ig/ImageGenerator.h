@@ -252,7 +252,6 @@ class ImageGenerator {
   // threshold, deck shift, light, dark, horizon, edge, depth, to the sun, rim light
   std::array<osg::ref_ptr<osg::Uniform>, 9> cloud_uniforms_;
   std::pair<double, double> cloud_drift_m_{0.0, 0.0};
-  osg::ref_ptr<osg::Image> cloud_noise_;
   osg::ref_ptr<osg::Texture2D> cloud_texture_;  // the deck's density: the clouds' and their shade's
   osg::ref_ptr<osg::Uniform> cloud_deck_;       // the lit shaders': threshold, half opaque, drift
   std::vector<double> cloud_densities_;         // the deck's densities over a tile, sorted: cover's threshold
